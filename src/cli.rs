@@ -1,0 +1,262 @@
+//! The command line: parse flags, build a [`Config`], call the library, map errors to exit codes
+//! (2: bad parameters or usage, 1: a check failed or an I/O error).
+
+use crate::config::{self, Config, ConfigError, Params, RomStyle, Rounding};
+use crate::emit;
+use crate::model::{self, Inputs, Model};
+use crate::rom::{self, RomFormat};
+use clap::{Args, Parser, Subcommand};
+use std::path::{Path, PathBuf};
+
+#[derive(Parser, Debug)]
+#[command(name = "specgen", version, about = "Generate a fixed-point specular highlight unit (Verilog-2005) and its golden model")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Write <top>.v, cos_sp_rom.hex, <top>.json and <top>.core into DIR, atomically.
+    Generate {
+        /// Output directory (created, or replaced if it holds only a previous specgen output).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        #[command(flatten)]
+        params: ParamArgs,
+    },
+    /// Export the cut-off ROM cos_sp(n) alone.
+    Rom {
+        #[arg(long, value_enum, default_value = "hex")]
+        format: RomFormat,
+        /// Output file (default: standard output).
+        #[arg(short = 'o', long, value_name = "FILE")]
+        output: Option<PathBuf>,
+        #[command(flatten)]
+        params: ParamArgs,
+    },
+    /// Show the golden model's outputs and internal values for one input, beside the exact
+    /// value, formula (15) in real arithmetic, and Blinn's cos^n.
+    Eval {
+        /// cos(gamma) as a decimal in [0, 2), rounded to the nearest UQ1.F code.
+        #[arg(long, value_name = "X", conflicts_with = "cos_code", required_unless_present = "cos_code")]
+        cos: Option<String>,
+        /// cos(gamma) as the raw UQ1.F port code.
+        #[arg(long, value_name = "CODE")]
+        cos_code: Option<u32>,
+        /// Specular exponent n.
+        #[arg(long)]
+        n: u32,
+        /// Colour codes R,G,B (default: all ones, i.e. 1.0).
+        #[arg(long, value_name = "R,G,B", value_delimiter = ',', num_args = 3)]
+        ks: Option<Vec<u32>>,
+        #[command(flatten)]
+        params: ParamArgs,
+    },
+    /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
+    Cosim(crate::cosim::CosimArgs),
+}
+
+/// The generator parameters (SPEC §2). Unset flags fall back to --config, then to the defaults.
+#[derive(Args, Debug, Default, Clone)]
+pub struct ParamArgs {
+    /// Read parameters from a JSON file (a manifest written by `generate`, or a subset of its keys).
+    #[arg(long, value_name = "FILE.json")]
+    pub config: Option<PathBuf>,
+    /// Top module name (a Verilog identifier). [default: specular_unit]
+    #[arg(long)]
+    pub top: Option<String>,
+    /// F: fractional bits of cos_g, UQ1.F [4..=20, default 15]
+    #[arg(long)]
+    pub cos_frac_bits: Option<u32>,
+    /// N: bits of the exponent n; the ROM has 2^N entries [1..=12, default 10]
+    #[arg(long)]
+    pub n_bits: Option<u32>,
+    /// B: bits of each colour input and output [1..=16, default 8]
+    #[arg(long)]
+    pub color_bits: Option<u32>,
+    /// FI: fractional bits of the intensity output, UQ1.FI [1..=24, default 15]
+    #[arg(long)]
+    pub intensity_frac_bits: Option<u32>,
+    /// The constant k as a decimal string, 0 < k <= 1 [default "0.3686"]
+    #[arg(long)]
+    pub k: Option<String>,
+    /// KF: fractional bits k is rounded to (nearest, ties to even) [4..=24, default 16]
+    #[arg(long)]
+    pub k_frac_bits: Option<u32>,
+    /// Pipeline registers; 0 = combinational; latency = stages [0..=6, default 0]
+    #[arg(long)]
+    pub stages: Option<u32>,
+    /// Output rounding: faithful (|error| < 1 ulp) or exact (nearest, ties away) [default faithful]
+    #[arg(long, value_enum)]
+    pub rounding: Option<Rounding>,
+    /// How the ROM is written: file ($readmemh) or case (inline table) [default file]
+    #[arg(long, value_enum)]
+    pub rom_style: Option<RomStyle>,
+}
+
+/// A failure with its exit code.
+#[derive(Debug)]
+pub struct Failure {
+    pub code: i32,
+    pub message: String,
+}
+
+impl From<ConfigError> for Failure {
+    fn from(e: ConfigError) -> Self {
+        Failure { code: 2, message: e.to_string() }
+    }
+}
+
+pub fn usage(message: impl Into<String>) -> Failure {
+    Failure { code: 2, message: message.into() }
+}
+
+pub fn failed(message: impl Into<String>) -> Failure {
+    Failure { code: 1, message: message.into() }
+}
+
+/// Reads parameters from a JSON file: a full manifest or any subset of the parameter keys.
+pub fn params_from_json(path: &Path) -> Result<Params, Failure> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| usage(format!("cannot read --config {}: {e}", path.display())))?;
+    let value: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| usage(format!("--config {} is not valid JSON: {e}", path.display())))?;
+    let serde_json::Value::Object(mut map) = value else {
+        return Err(usage(format!("--config {} must hold a JSON object", path.display())));
+    };
+    for key in emit::MANIFEST_OUTPUT_KEYS {
+        map.remove(*key);
+    }
+    let mut full = serde_json::to_value(Params::default()).expect("params serialise");
+    for (k, v) in map {
+        if full.get(&k).is_none() {
+            return Err(usage(format!("--config {}: unknown key {k:?}", path.display())));
+        }
+        full[&k] = v;
+    }
+    serde_json::from_value(full).map_err(|e| usage(format!("--config {}: {e}", path.display())))
+}
+
+impl ParamArgs {
+    pub fn to_config(&self) -> Result<Config, Failure> {
+        let mut p = match &self.config {
+            Some(path) => params_from_json(path)?,
+            None => Params::default(),
+        };
+        if let Some(v) = &self.top {
+            p.top = v.clone();
+        }
+        macro_rules! set {
+            ($($f:ident),*) => { $(if let Some(v) = self.$f { p.$f = v; })* };
+        }
+        set!(cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, stages, rounding, rom_style);
+        if let Some(v) = &self.k {
+            p.k = v.clone();
+        }
+        Ok(Config::new(p)?)
+    }
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
+        Command::Generate { out, params } => {
+            let cfg = params.to_config()?;
+            let files = emit::generate_files(&cfg);
+            emit::write_dir_atomically(&out, &files).map_err(|e| match e {
+                emit::OutputError::Occupied(..) => usage(e.to_string()),
+                emit::OutputError::Io(_) => failed(format!("cannot write {}: {e}", out.display())),
+            })?;
+            for (name, _) in &files {
+                println!("{}", out.join(name).display());
+            }
+            Ok(())
+        }
+        Command::Rom { format, output, params } => {
+            let cfg = params.to_config()?;
+            let text = rom::render(&cfg, format);
+            match output {
+                Some(path) => emit::write_file_atomically(&path, text.as_bytes())
+                    .map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
+                None => {
+                    print!("{text}");
+                    Ok(())
+                }
+            }
+        }
+        Command::Eval { cos, cos_code, n, ks, params } => {
+            let cfg = params.to_config()?;
+            eval(&cfg, cos.as_deref(), cos_code, n, ks)
+        }
+        Command::Cosim(args) => crate::cosim::run_cli(&args),
+    }
+}
+
+fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Option<Vec<u32>>) -> Result<(), Failure> {
+    let f = cfg.f();
+    let cos_g = match (cos, cos_code) {
+        (Some(text), _) => {
+            let code = config::parse_decimal(text, f)
+                .map_err(|why| usage(format!("invalid --cos: {why}; allowed a decimal in [0, 2)")))?;
+            if code >= 2u64 << f {
+                return Err(usage(format!("invalid --cos: {text} is out of range; allowed a decimal in [0, 2)")));
+            }
+            code as u32
+        }
+        (None, Some(code)) if code < 2u32 << f => code,
+        (None, Some(code)) => {
+            return Err(usage(format!("invalid --cos-code: {code} is out of range; allowed 0..={}", (2u32 << f) - 1)))
+        }
+        (None, None) => return Err(usage("one of --cos or --cos-code is required")),
+    };
+    let n_max = (1u32 << cfg.n_bits()) - 1;
+    if n > n_max {
+        return Err(usage(format!("invalid --n: {n} is out of range; allowed 0..={n_max} (n_bits = {})", cfg.n_bits())));
+    }
+    let ks_max = (1u32 << cfg.b()) - 1;
+    let ks = ks.unwrap_or_else(|| vec![ks_max; 3]);
+    if let Some(bad) = ks.iter().find(|&&k| k > ks_max) {
+        return Err(usage(format!("invalid --ks: {bad} is out of range; allowed 0..={ks_max} (color_bits = {})", cfg.b())));
+    }
+    let x = Inputs { cos_g, n, ks: [ks[0], ks[1], ks[2]] };
+    let m = Model::new(cfg);
+    let t = m.trace(x);
+    let r = model::reference(cfg, x);
+    let w = &m.widths;
+    let c = cos_g.min(1 << f) as f64 / (1u64 << f) as f64;
+    let k_real: f64 = cfg.params.k.trim().parse().unwrap_or(f64::NAN);
+    let bracket_real = k_real * n as f64 * (c - 1.0) + 1.0;
+    let formula15 = if bracket_real < 0.0 { 0.0 } else { bracket_real * bracket_real };
+    println!("input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}", rom::exact_decimal(cos_g as u64, f), x.ks);
+    println!("constant   k = {} -> k_code = {} (k_q = {})", cfg.params.k, cfg.k_code, rom::exact_decimal(cfg.k_code, cfg.kf()));
+    println!("datapath   cos_clamped = {}  one_minus_cos = {}  cos_sp[n] = {}  done = {}", t.cos_clamped, t.one_minus_cos, t.cos_sp, t.done);
+    println!("           kn = {}  deviation = {} (UQ1.{})  bracket = {} (UQ1.{} = {:.9})", t.kn, t.deviation, w.bracket_frac_bits, t.bracket, w.bracket_frac_bits, t.bracket as f64 / (w.bracket_frac_bits as f64).exp2());
+    println!("           square = {} (UQ1.{} = {:.9})", t.square, w.square_frac_bits, t.square as f64 / (w.square_frac_bits as f64).exp2());
+    let o = t.outputs;
+    println!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / (cfg.fi() as f64).exp2(), o.spec, o.done);
+    println!("exact      intensity* = {:.9} ulp  spec* = [{:.6}, {:.6}, {:.6}]  done = {}  (SPEC §3 with k_q)", r.intensity.to_f64(), r.spec[0].to_f64(), r.spec[1].to_f64(), r.spec[2].to_f64(), r.done);
+    println!("real       formula (15) with k = {k_real}: {formula15:.9}   Blinn cos^n: {:.9}", c.powi(n as i32));
+    match model::check(cfg, x, o) {
+        Ok(()) => println!("contract   {} rounding holds for this input", cfg.rounding().name()),
+        Err(e) => return Err(failed(format!("contract violated: {e}"))),
+    }
+    Ok(())
+}
+
+/// Runs the command line; returns the process exit code.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return e.exit_code();
+        }
+    };
+    match run(cli) {
+        Ok(()) => 0,
+        Err(f) => {
+            eprintln!("specgen: error: {}", f.message);
+            f.code
+        }
+    }
+}

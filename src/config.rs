@@ -1,0 +1,302 @@
+//! Stage 1: user parameters → a validated [`Config`].
+//!
+//! Every parameter of SPEC §2 lives here with its default and its allowed range. Nothing
+//! downstream re-checks a range: a `Config` that exists is a legal one.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// An invalid parameter: names the parameter and what it may be. Exit code 2.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ConfigError {
+    pub parameter: &'static str,
+    pub message: String,
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "invalid --{}: {}", self.parameter.replace('_', "-"), self.message)
+    }
+}
+
+impl std::error::Error for ConfigError {}
+
+/// Output rounding contract (SPEC §3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Rounding {
+    /// `|o − o*| < 1` for every output.
+    Faithful,
+    /// `|o − o*| ≤ 1/2`, ties away from zero.
+    Exact,
+}
+
+impl Rounding {
+    pub fn name(self) -> &'static str {
+        match self {
+            Rounding::Faithful => "faithful",
+            Rounding::Exact => "exact",
+        }
+    }
+}
+
+/// How the cut-off ROM is written in the Verilog.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum RomStyle {
+    /// A memory initialised with `$readmemh` from `cos_sp_rom.hex`.
+    File,
+    /// A `case` table inlined in the module (no file to carry around).
+    Case,
+}
+
+impl RomStyle {
+    pub fn name(self) -> &'static str {
+        match self {
+            RomStyle::File => "file",
+            RomStyle::Case => "case",
+        }
+    }
+}
+
+/// A closed integer range with the parameter's name, used for validation and for `--help`.
+pub struct Range {
+    pub name: &'static str,
+    pub min: u32,
+    pub max: u32,
+}
+
+pub const COS_FRAC_BITS: Range = Range { name: "cos_frac_bits", min: 4, max: 20 };
+pub const N_BITS: Range = Range { name: "n_bits", min: 1, max: 12 };
+pub const COLOR_BITS: Range = Range { name: "color_bits", min: 1, max: 16 };
+pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min: 1, max: 24 };
+pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24 };
+pub const STAGES: Range = Range { name: "stages", min: 0, max: crate::widths::PIPELINE_CUTS as u32 };
+
+impl Range {
+    fn check(&self, value: u32) -> Result<u32, ConfigError> {
+        if value < self.min || value > self.max {
+            Err(ConfigError {
+                parameter: self.name,
+                message: format!("{} is out of range; allowed {}..={}", value, self.min, self.max),
+            })
+        } else {
+            Ok(value)
+        }
+    }
+}
+
+/// The generator's parameters as the user gives them (CLI flags or a manifest).
+/// Field names are SPEC §2's; this is also the `parameters` part of the manifest.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Params {
+    pub top: String,
+    pub cos_frac_bits: u32,
+    pub n_bits: u32,
+    pub color_bits: u32,
+    pub intensity_frac_bits: u32,
+    pub k: String,
+    pub k_frac_bits: u32,
+    pub stages: u32,
+    pub rounding: Rounding,
+    pub rom_style: RomStyle,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            top: "specular_unit".into(),
+            cos_frac_bits: 15,
+            n_bits: 10,
+            color_bits: 8,
+            intensity_frac_bits: 15,
+            k: "0.3686".into(),
+            k_frac_bits: 16,
+            stages: 0,
+            rounding: Rounding::Faithful,
+            rom_style: RomStyle::File,
+        }
+    }
+}
+
+/// A validated configuration: the parameters plus the constant they fix.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Config {
+    pub params: Params,
+    /// `k_q · 2^KF`, the integer the hardware multiplies by (SPEC §3).
+    pub k_code: u64,
+}
+
+impl Config {
+    pub fn new(params: Params) -> Result<Config, ConfigError> {
+        check_identifier(&params.top)?;
+        COS_FRAC_BITS.check(params.cos_frac_bits)?;
+        N_BITS.check(params.n_bits)?;
+        COLOR_BITS.check(params.color_bits)?;
+        INTENSITY_FRAC_BITS.check(params.intensity_frac_bits)?;
+        K_FRAC_BITS.check(params.k_frac_bits)?;
+        STAGES.check(params.stages)?;
+        let k_code = parse_k(&params.k, params.k_frac_bits)?;
+        Ok(Config { params, k_code })
+    }
+
+    pub fn defaults() -> Config {
+        Config::new(Params::default()).expect("defaults are valid")
+    }
+
+    /// F: fractional bits of `cos_g` (UQ1.F).
+    pub fn f(&self) -> u32 {
+        self.params.cos_frac_bits
+    }
+    /// N: bits of the exponent `n`.
+    pub fn n_bits(&self) -> u32 {
+        self.params.n_bits
+    }
+    /// B: bits of each colour channel.
+    pub fn b(&self) -> u32 {
+        self.params.color_bits
+    }
+    /// FI: fractional bits of `intensity` (UQ1.FI).
+    pub fn fi(&self) -> u32 {
+        self.params.intensity_frac_bits
+    }
+    /// KF: fractional bits of the constant k.
+    pub fn kf(&self) -> u32 {
+        self.params.k_frac_bits
+    }
+    pub fn stages(&self) -> u32 {
+        self.params.stages
+    }
+    pub fn rounding(&self) -> Rounding {
+        self.params.rounding
+    }
+    pub fn top(&self) -> &str {
+        &self.params.top
+    }
+}
+
+/// Parses a plain decimal (digits and one optional point) to the nearest multiple of
+/// `2^-frac_bits` with the `fixed` crate, which converts decimal text with a single correct
+/// rounding (to nearest, ties to even) and no binary floating point in between.
+/// Returns the integer code `round(x · 2^frac_bits)`. `frac_bits` must be in 1..=24.
+pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
+    use fixed::types::extra::*;
+    use fixed::FixedU64;
+    let trimmed = text.trim();
+    if trimmed.is_empty() || !trimmed.chars().all(|c| c.is_ascii_digit() || c == '.') {
+        return Err(format!("{text:?} is not a plain decimal number"));
+    }
+    macro_rules! parse_as {
+        ($($bits:literal => $frac:ty),* $(,)?) => {
+            match frac_bits {
+                $($bits => trimmed
+                    .parse::<FixedU64<$frac>>()
+                    .map(|v| v.to_bits())
+                    .map_err(|e| format!("{text:?} does not parse ({e})")),)*
+                _ => panic!("parse_decimal: frac_bits {frac_bits} outside 1..=24"),
+            }
+        };
+    }
+    parse_as!(
+        1 => U1, 2 => U2, 3 => U3, 4 => U4, 5 => U5, 6 => U6, 7 => U7, 8 => U8, 9 => U9,
+        10 => U10, 11 => U11, 12 => U12, 13 => U13, 14 => U14, 15 => U15, 16 => U16, 17 => U17,
+        18 => U18, 19 => U19, 20 => U20, 21 => U21, 22 => U22, 23 => U23, 24 => U24,
+    )
+}
+
+/// Parses the constant `k` (SPEC §3: `k_q = round(k·2^KF)/2^KF`). Allowed: `0 < k_q ≤ 1`.
+pub fn parse_k(text: &str, kf: u32) -> Result<u64, ConfigError> {
+    let bad = |why: String| ConfigError {
+        parameter: "k",
+        message: format!(
+            "{why}; allowed a plain decimal such as \"0.3686\" with 0 < k <= 1 after rounding to {kf} fractional bits"
+        ),
+    };
+    let code = parse_decimal(text, kf).map_err(bad)?;
+    if code == 0 {
+        return Err(bad(format!("{text:?} rounds to 0")));
+    }
+    if code > 1u64 << kf {
+        return Err(bad(format!("{text:?} is greater than 1")));
+    }
+    Ok(code)
+}
+
+const VERILOG_KEYWORDS: &[&str] = &[
+    "always", "and", "assign", "automatic", "begin", "buf", "bufif0", "bufif1", "case", "casex",
+    "casez", "cell", "cmos", "config", "deassign", "default", "defparam", "design", "disable",
+    "edge", "else", "end", "endcase", "endconfig", "endfunction", "endgenerate", "endmodule",
+    "endprimitive", "endspecify", "endtable", "endtask", "event", "for", "force", "forever",
+    "fork", "function", "generate", "genvar", "highz0", "highz1", "if", "ifnone", "incdir",
+    "include", "initial", "inout", "input", "instance", "integer", "join", "large", "liblist",
+    "library", "localparam", "macromodule", "medium", "module", "nand", "negedge", "nmos", "nor",
+    "noshowcancelled", "not", "notif0", "notif1", "or", "output", "parameter", "pmos", "posedge",
+    "primitive", "pull0", "pull1", "pulldown", "pullup", "pulsestyle_ondetect",
+    "pulsestyle_onevent", "rcmos", "real", "realtime", "reg", "release", "repeat", "rnmos",
+    "rpmos", "rtran", "rtranif0", "rtranif1", "scalared", "showcancelled", "signed", "small",
+    "specify", "specparam", "strong0", "strong1", "supply0", "supply1", "table", "task", "time",
+    "tran", "tranif0", "tranif1", "tri", "tri0", "tri1", "triand", "trior", "trireg", "unsigned",
+    "use", "uwire", "vectored", "wait", "wand", "weak0", "weak1", "while", "wire", "wor", "xnor",
+    "xor",
+    // SystemVerilog keywords a user's flow may parse the file as, and C++ names Verilator uses.
+    "logic", "bit", "byte", "int", "shortint", "longint", "interface", "package", "class",
+];
+
+/// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
+fn check_identifier(top: &str) -> Result<(), ConfigError> {
+    let err = |why: &str| ConfigError {
+        parameter: "top",
+        message: format!(
+            "{top:?} {why}; allowed: a Verilog identifier [A-Za-z_][A-Za-z0-9_]* of at most 64 characters, not a keyword"
+        ),
+    };
+    let mut chars = top.chars();
+    match chars.next() {
+        None => return Err(err("is empty")),
+        Some(c) if !(c.is_ascii_alphabetic() || c == '_') => {
+            return Err(err("does not start with a letter or underscore"))
+        }
+        _ => {}
+    }
+    if !chars.all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return Err(err("contains a character other than letters, digits and underscore"));
+    }
+    if top.len() > 64 {
+        return Err(err("is too long"));
+    }
+    if VERILOG_KEYWORDS.contains(&top) {
+        return Err(err("is a reserved word"));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_k_code_is_round_of_0_3686_times_2_16() {
+        // 0.3686 · 65536 = 24156.97… → 24157
+        assert_eq!(Config::defaults().k_code, 24157);
+    }
+
+    #[test]
+    fn k_rejects_out_of_range_and_garbage() {
+        for bad in ["", "abc", "-0.5", "1.5", "0", "0.00001", "1e-3", "0.3.6"] {
+            assert!(parse_k(bad, 8).is_err(), "{bad} accepted");
+        }
+        assert_eq!(parse_k("1", 8).unwrap(), 256);
+        assert_eq!(parse_k("1.0", 8).unwrap(), 256);
+    }
+
+    #[test]
+    fn top_must_be_identifier() {
+        for bad in ["", "1abc", "a-b", "../x", "a/b", "module", "wire", "a b"] {
+            let p = Params { top: bad.into(), ..Params::default() };
+            assert_eq!(Config::new(p).unwrap_err().parameter, "top", "{bad}");
+        }
+        let p = Params { top: "my_unit_2".into(), ..Params::default() };
+        assert!(Config::new(p).is_ok());
+    }
+}

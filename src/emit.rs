@@ -1,0 +1,427 @@
+//! Stage 3b/4: config + widths → template context → emitted files, written atomically.
+//!
+//! Rust decides every width, literal and register placement here; `templates/unit.v`
+//! holds only the Verilog's shape.
+
+use crate::config::{Config, Params, RomStyle, Rounding};
+use crate::rom::{self, RomFormat};
+use crate::widths::{Widths, PIPELINE_CUTS};
+use askama::Template;
+use serde::Serialize;
+use sha2::{Digest, Sha256};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+pub const ROM_FILE: &str = "cos_sp_rom.hex";
+
+/// A sized Verilog literal, `W'hX`.
+fn lit(width: u32, value: u128) -> String {
+    format!("{width}'h{value:x}")
+}
+
+/// `x` zero-extended from `from` to `to` bits, as a Verilog expression with explicit widths.
+fn zext(x: &str, from: u32, to: u32) -> String {
+    assert!(to >= from, "zext {x} from {from} to {to}");
+    if to == from {
+        x.to_string()
+    } else {
+        format!("{{{{{}{{1'b0}}}}, {x}}}", to - from)
+    }
+}
+
+pub struct CutSignal {
+    pub name: &'static str,
+    pub width: u32,
+    /// the expression the cut takes it from (`x_sK` computed in step K, or `x_cK-1` passed on)
+    pub source: String,
+}
+
+pub struct Cut {
+    pub index: usize,
+    pub registered: bool,
+    pub signals: Vec<CutSignal>,
+}
+
+pub struct RomEntry {
+    pub index: String,
+    pub value: String,
+}
+
+pub struct Channel {
+    pub name: &'static str,
+    pub sq_ext: String,
+    pub ks_ext: String,
+}
+
+#[derive(Template)]
+#[template(path = "unit.v")]
+pub struct UnitTemplate<'a> {
+    pub top: &'a str,
+    pub version: &'a str,
+    pub p: &'a Params,
+    pub w: &'a Widths,
+    pub k_code: u64,
+    pub k_q: String,
+    pub rounding: &'a str,
+    pub rounding_text: &'a str,
+    pub rom_style: &'a str,
+    pub cuts_text: String,
+    pub rom_file: bool,
+    pub rom_depth: usize,
+    pub rom_entries: Vec<RomEntry>,
+    pub cos_lit_zero: String,
+    pub cos_lit_one: String,
+    pub kn_n: String,
+    pub kn_k: String,
+    pub dev_a: String,
+    pub dev_b: String,
+    pub dev_hi: u32,
+    pub dev_unused: String,
+    pub dev_unused_why: &'a str,
+    pub bracket_lit_zero: String,
+    pub bracket_lit_one: String,
+    pub sq_a: String,
+    pub sq_unused: String,
+    pub channels: Vec<Channel>,
+    pub intensity_rounds: bool,
+    pub intensity_half: String,
+    pub intensity_widen: String,
+    pub color_half: String,
+    pub cuts: Vec<Cut>,
+}
+
+/// The signals alive after each step, in step order: (name, width, computed in this step?).
+fn live_signals(cfg: &Config, w: &Widths) -> [Vec<(&'static str, u32, bool)>; PIPELINE_CUTS] {
+    let b = cfg.b();
+    let ks = |fresh| vec![("ks_r", b, fresh), ("ks_g", b, fresh), ("ks_b", b, fresh)];
+    let with = |mut head: Vec<(&'static str, u32, bool)>, tail: Vec<(&'static str, u32, bool)>| {
+        head.extend(tail);
+        head
+    };
+    let intensity_sum_bits = if w.square_frac_bits > cfg.fi() { w.square_bits() } else { cfg.fi() + 1 };
+    [
+        with(vec![("done", 1, true), ("one_minus_cos", w.cos_bits, true), ("kn", w.kn_bits, true)], ks(false)),
+        with(vec![("done", 1, false), ("deviation", w.bracket_bits(), true)], ks(false)),
+        with(vec![("done", 1, false), ("bracket", w.bracket_bits(), true)], ks(false)),
+        with(vec![("done", 1, false), ("square", w.square_bits(), true)], ks(false)),
+        vec![
+            ("done", 1, false),
+            ("intensity_sum", intensity_sum_bits, true),
+            ("color_prod_r", w.color_product_bits, true),
+            ("color_prod_g", w.color_product_bits, true),
+            ("color_prod_b", w.color_product_bits, true),
+        ],
+        vec![
+            ("done", 1, false),
+            ("intensity", cfg.fi() + 1, true),
+            ("spec_r", b, true),
+            ("spec_g", b, true),
+            ("spec_b", b, true),
+        ],
+    ]
+}
+
+fn build_cuts(cfg: &Config, w: &Widths) -> Vec<Cut> {
+    live_signals(cfg, w)
+        .into_iter()
+        .enumerate()
+        .map(|(i, sigs)| {
+            let index = i + 1;
+            Cut {
+                index,
+                registered: w.registered_cuts.contains(&(index as u32)),
+                signals: sigs
+                    .into_iter()
+                    .map(|(name, width, fresh)| CutSignal {
+                        name,
+                        width,
+                        source: if fresh { format!("{name}_s{index}") } else { format!("{name}_c{i}") },
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// Builds the template context of the RTL for one configuration.
+pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
+    let p = &cfg.params;
+    let (f, wb, ws, fi, b) = (cfg.f(), w.bracket_frac_bits, w.square_frac_bits, cfg.fi(), cfg.b());
+    let dev_hi = wb + w.deviation_shift; // = KF + F
+    let mut dropped = Vec::new();
+    if w.deviation_bits > dev_hi + 1 {
+        dropped.push(format!("deviation_full_s2[{}:{}]", w.deviation_bits - 1, dev_hi + 1));
+    }
+    if w.deviation_shift > 0 {
+        dropped.push(format!("deviation_full_s2[{}:0]", w.deviation_shift - 1));
+    }
+    let dev_unused_why = match (w.deviation_bits > dev_hi + 1, w.deviation_shift > 0) {
+        (true, true) => "high bits matter only beyond the cut-off (then the key block zeroes the bracket); low bits are truncation #1",
+        (true, false) => "high bits matter only beyond the cut-off, where the key block zeroes the bracket",
+        (false, true) => "truncation #1",
+        (false, false) => "",
+    };
+    let mut sq_dropped = vec![format!("square_full_s4[{}]", w.full_square_bits() - 1)];
+    if w.square_shift > 0 {
+        sq_dropped.push(format!("square_full_s4[{}:0]", w.square_shift - 1));
+    }
+    let rom_table = rom::cos_sp_table(cfg);
+    let intensity_rounds = ws > fi;
+    let cuts_text = w.registered_cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", ");
+    UnitTemplate {
+        top: cfg.top(),
+        version: VERSION,
+        p,
+        w,
+        k_code: cfg.k_code,
+        k_q: rom::exact_decimal(cfg.k_code, cfg.kf()),
+        rounding: p.rounding.name(),
+        rounding_text: match p.rounding {
+            Rounding::Faithful => "faithful: every output within 1 ulp of the exact value (|o - o*| < 1)",
+            Rounding::Exact => "exact: every output is the exact value rounded to nearest, ties away from zero",
+        },
+        rom_style: p.rom_style.name(),
+        cuts_text: if cuts_text.is_empty() { "none".into() } else { cuts_text },
+        rom_file: p.rom_style == RomStyle::File,
+        rom_depth: rom_table.len(),
+        rom_entries: rom_table
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| RomEntry { index: format!("{}'d{i}", cfg.n_bits()), value: lit(w.cos_bits, v as u128) })
+            .collect(),
+        cos_lit_zero: lit(w.cos_bits, 0),
+        cos_lit_one: lit(w.cos_bits, 1u128 << f),
+        kn_n: zext("n_c0", cfg.n_bits(), w.kn_bits),
+        kn_k: lit(w.kn_bits, cfg.k_code as u128),
+        dev_a: zext("kn_c1", w.kn_bits, w.deviation_bits),
+        dev_b: zext("one_minus_cos_c1", w.cos_bits, w.deviation_bits),
+        dev_hi,
+        dev_unused: match dropped.len() {
+            0 => String::new(),
+            _ => format!("{{{}}}", dropped.join(", ")),
+        },
+        dev_unused_why,
+        bracket_lit_zero: lit(w.bracket_bits(), 0),
+        bracket_lit_one: lit(w.bracket_bits(), 1u128 << wb),
+        sq_a: zext("bracket_c3", w.bracket_bits(), w.full_square_bits()),
+        sq_unused: format!("{{{}}}", sq_dropped.join(", ")),
+        channels: ["r", "g", "b"]
+            .into_iter()
+            .map(|name| Channel {
+                name,
+                sq_ext: zext("square_c4", w.square_bits(), w.color_product_bits),
+                ks_ext: zext(&format!("ks_{name}_c4"), b, w.color_product_bits),
+            })
+            .collect(),
+        intensity_rounds,
+        intensity_half: if intensity_rounds { lit(w.square_bits(), 1u128 << (ws - fi - 1)) } else { String::new() },
+        intensity_widen: if fi > ws { format!("{{square_c4, {}}}", lit(fi - ws, 0)) } else { "square_c4".into() },
+        color_half: lit(w.color_product_bits, 1u128 << (ws - 1)),
+        cuts: build_cuts(cfg, w),
+    }
+}
+
+#[derive(Template)]
+#[template(path = "unit.core")]
+struct CoreTemplate<'a> {
+    top: &'a str,
+    version: &'a str,
+    latency: u32,
+    rom_file: bool,
+}
+
+/// One port of the generated module, for the manifest and the harnesses.
+#[derive(Debug, Clone, Serialize, PartialEq, Eq)]
+pub struct Port {
+    pub name: &'static str,
+    pub direction: &'static str,
+    pub width: u32,
+}
+
+pub fn ports(cfg: &Config) -> Vec<Port> {
+    let mut v = Vec::new();
+    let mut port = |name, direction, width| v.push(Port { name, direction, width });
+    if cfg.stages() > 0 {
+        port("clk", "input", 1);
+        port("rst", "input", 1);
+    }
+    port("in_valid", "input", 1);
+    port("cos_g", "input", cfg.f() + 1);
+    port("n", "input", cfg.n_bits());
+    for name in ["ks_r", "ks_g", "ks_b"] {
+        port(name, "input", cfg.b());
+    }
+    port("out_valid", "output", 1);
+    for name in ["spec_r", "spec_g", "spec_b"] {
+        port(name, "output", cfg.b());
+    }
+    port("intensity", "output", cfg.fi() + 1);
+    port("done", "output", 1);
+    v
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct FileEntry {
+    pub name: String,
+    pub sha256: String,
+}
+
+/// The manifest `<top>.json` (SPEC §4): parameters at top level under their SPEC names.
+#[derive(Debug, Clone, Serialize)]
+pub struct Manifest<'a> {
+    pub generator: &'static str,
+    pub version: &'static str,
+    #[serde(flatten)]
+    pub params: &'a Params,
+    pub k_code: u64,
+    pub latency: u32,
+    pub ports: Vec<Port>,
+    pub internal_widths: &'a Widths,
+    pub files: Vec<FileEntry>,
+}
+
+/// Keys of the manifest that are outputs, not parameters (ignored when read as a config).
+pub const MANIFEST_OUTPUT_KEYS: &[&str] =
+    &["generator", "version", "k_code", "latency", "ports", "internal_widths", "files"];
+
+fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// Every file of a `generate` run, in memory: (file name, contents).
+pub fn generate_files(cfg: &Config) -> Vec<(String, Vec<u8>)> {
+    let w = Widths::derive(cfg);
+    let top = cfg.top();
+    let mut verilog = unit_template(cfg, &w).render().expect("unit template renders");
+    verilog.push('\n');
+    let core = CoreTemplate { top, version: VERSION, latency: cfg.stages(), rom_file: cfg.params.rom_style == RomStyle::File }
+        .render()
+        .expect("core template renders");
+    let mut files = vec![
+        (format!("{top}.v"), verilog.into_bytes()),
+        (ROM_FILE.to_string(), rom::render(cfg, RomFormat::Hex).into_bytes()),
+        (format!("{top}.core"), core.into_bytes()),
+    ];
+    let manifest = Manifest {
+        generator: "specgen",
+        version: VERSION,
+        params: &cfg.params,
+        k_code: cfg.k_code,
+        latency: cfg.stages(),
+        ports: ports(cfg),
+        internal_widths: &w,
+        files: files.iter().map(|(name, bytes)| FileEntry { name: name.clone(), sha256: sha256_hex(bytes) }).collect(),
+    };
+    let mut json = serde_json::to_string_pretty(&manifest).expect("manifest serialises");
+    json.push('\n');
+    files.push((format!("{top}.json"), json.into_bytes()));
+    files
+}
+
+/// Why an output directory was refused.
+#[derive(Debug)]
+pub enum OutputError {
+    /// DIR holds something that is not a previous specgen output (exit code 2).
+    Occupied(PathBuf, String),
+    Io(std::io::Error),
+}
+
+impl fmt::Display for OutputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            OutputError::Occupied(dir, why) => write!(
+                f,
+                "refusing to write into --out {}: {why}; only an empty directory or a previous specgen output is replaced",
+                dir.display()
+            ),
+            OutputError::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl From<std::io::Error> for OutputError {
+    fn from(e: std::io::Error) -> Self {
+        OutputError::Io(e)
+    }
+}
+
+/// The names a previous specgen output in `dir` may hold: every `*.json` manifest written by
+/// specgen, and the files it lists. `Err` names the first entry that is not one of them.
+fn check_replaceable(dir: &Path) -> Result<(), OutputError> {
+    let occupied = |why: String| OutputError::Occupied(dir.to_path_buf(), why);
+    if !dir.is_dir() {
+        return Err(occupied("it exists and is not a directory".into()));
+    }
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        if !entry.file_type()?.is_file() {
+            return Err(occupied(format!("it contains {:?}, which is not a regular file", entry.file_name())));
+        }
+        names.push(entry.file_name().to_string_lossy().into_owned());
+    }
+    let mut allowed: Vec<String> = Vec::new();
+    for name in names.iter().filter(|n| n.ends_with(".json")) {
+        let text = std::fs::read_to_string(dir.join(name)).unwrap_or_default();
+        let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else { continue };
+        if v.get("generator").and_then(|g| g.as_str()) != Some("specgen") {
+            continue;
+        }
+        allowed.push(name.clone());
+        for file in v.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
+            if let Some(n) = file.get("name").and_then(|n| n.as_str()) {
+                allowed.push(n.to_string());
+            }
+        }
+    }
+    match names.iter().find(|n| !allowed.contains(n)) {
+        Some(stranger) => Err(occupied(format!("it contains {stranger:?}, which no specgen manifest there lists"))),
+        None => Ok(()),
+    }
+}
+
+/// Writes `files` as the whole content of `dir`, atomically: they are written to a fresh
+/// directory beside `dir` and renamed into place, so `dir` holds either the old output or
+/// the new one, never a mix. An existing `dir` is replaced only when it is empty or holds
+/// nothing but a previous specgen output.
+pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
+    if dir.exists() || dir.symlink_metadata().is_ok() {
+        check_replaceable(dir)?;
+    }
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent)?;
+    let staging = tempfile::Builder::new().prefix(".specgen-new-").tempdir_in(&parent)?;
+    for (name, bytes) in files {
+        std::fs::write(staging.path().join(name), bytes)?;
+    }
+    if dir.exists() {
+        let graveyard = tempfile::Builder::new().prefix(".specgen-old-").tempdir_in(&parent)?;
+        std::fs::rename(dir, graveyard.path().join("old"))?;
+        if let Err(e) = std::fs::rename(staging.path(), dir) {
+            // put the previous output back before reporting
+            let _ = std::fs::rename(graveyard.path().join("old"), dir);
+            return Err(e.into());
+        }
+        drop(graveyard); // removes the previous output
+    } else {
+        std::fs::rename(staging.path(), dir)?;
+    }
+    let _ = staging.keep(); // renamed away: nothing left to clean up
+    Ok(())
+}
+
+/// Writes one file atomically (temp file in the same directory, then rename).
+pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent)?;
+    std::io::Write::write_all(&mut tmp, bytes)?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}

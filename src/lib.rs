@@ -1,0 +1,15 @@
+//! specgen: a generator of synthesizable Verilog for a fixed-point specular highlight unit
+//! (Blinn's `cos^n δ` approximated by `[k·n·(cos δ − 1) + 1]²`, cut off at `cos γsp(n)`),
+//! with a bit-exact golden model.
+//!
+//! Data flows one way: [`config`] (validated parameters) → [`widths`] (error analysis) →
+//! {[`model`], [`rom`], [`emit`] (templates)} → files → [`cosim`] (simulators).
+//! [`cli`] is the command line over all of it.
+
+pub mod cli;
+pub mod config;
+pub mod cosim;
+pub mod emit;
+pub mod model;
+pub mod rom;
+pub mod widths;

@@ -1,0 +1,145 @@
+//! Stage 2: validated config → internal widths, derived from an error budget.
+//!
+//! # The datapath (all quantities unsigned)
+//!
+//! ```text
+//! d        = 2^F − min(cos_g, 2^F)          exact, UQ1.F            "1 − cos γ" (adder 6)
+//! kn       = k_code · n                     exact, UQ(N).KF         (multipliers 34, 7)
+//! P        = kn · d                         exact, UQ(N+1).(KF+F)   k_q·n·(1 − c)
+//! dev      = ⌊P / 2^s⌋,  s = KF+F−WB        UQ(·).WB                truncation #1
+//! bracket  = done ? 0 : 2^WB − dev          UQ1.WB                  (adder 9, key block 13)
+//! sq       = ⌊bracket² / 2^(2WB−WS)⌋        UQ1.WS                  truncation #2 (squarer 11)
+//! intensity= ⌊(sq·2^FI + 2^(WS−1)) / 2^WS⌋  UQ1.FI                  round half up
+//! spec_X   = ⌊(sq·ks_X + 2^(WS−1)) / 2^WS⌋  B bits                  round half up (mult. 14–16)
+//! ```
+//!
+//! # Error budget (the argument the widths below apply)
+//!
+//! Let `b = base ∈ [0, 1]` be the exact bracket when not `done`, `e = bracket/2^WB − b`.
+//! Truncating `P` makes `dev` too small by less than one unit, so `0 ≤ e < 2^−WB`, and
+//! `bracket ≤ 2^WB` (i.e. `b + e ≤ 1`). Squaring: `(b+e)² − b² = e(2b+e) ≤ 2e(b+e) ≤ 2e`,
+//! so the square is high by less than `2^(1−WB)`. Truncation #2 makes it low by less than
+//! `2^−WS`. Hence the value `y` fed to the final rounding satisfies, in units of the output,
+//!
+//! ```text
+//!   −2^−WS · M  <  y − o*  <  2^(1−WB) · M,      M = 2^FI (intensity) or ks < 2^B (colours)
+//! ```
+//!
+//! Both bounds are below `1/2` when `WS ≥ max(FI, B) + 1` and `WB ≥ max(FI, B) + 2`.
+//! The final `o = ⌊y + 1/2⌋` is within `(−1/2, 1/2]` of `y`, so `|o − o*| < 1` (faithful),
+//! and where `o*` is an integer `|y − o*| < 1/2` forces `o = o*`.
+//! Every step is a monotone function of `cos_g` (truncation, squaring a non-negative value,
+//! multiplying by `ks ≥ 0`, rounding), so outputs never decrease as `cos_g` grows.
+//!
+//! `exact` rounding needs the value itself, not an approximation (a tie can only be told
+//! from a near-tie by every bit), so it uses `WB = KF+F` (no truncation #1) and `WS = 2·WB`
+//! (no truncation #2): then `e = 0`, `y = o*`, and `⌊o* + 1/2⌋` is round-half-up, which for
+//! non-negative values is "ties away from zero". The same caps apply in `faithful` mode
+//! when the budget asks for more bits than the exact value has.
+
+use crate::config::{Config, Rounding};
+use serde::Serialize;
+
+/// Points in the datapath where a pipeline register may be placed (after each step).
+pub const PIPELINE_CUTS: usize = 6;
+
+/// Every internal width and shift of the unit. All widths are bit counts of unsigned values.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Widths {
+    /// `cos_g`, `cos_sp` and `d = 1 − cos`: F+1 bits, UQ1.F.
+    pub cos_bits: u32,
+    /// `kn = k_code·n`: bits of its largest value, UQ(·).KF.
+    pub kn_bits: u32,
+    /// `P = kn·d`, the exact deviation: UQ(·).(KF+F).
+    pub deviation_bits: u32,
+    /// Bits dropped from `P` (truncation #1): `s = KF + F − WB`.
+    pub deviation_shift: u32,
+    /// WB: fractional bits of the bracket; the bracket is UQ1.WB, WB+1 bits.
+    pub bracket_frac_bits: u32,
+    /// WS: fractional bits of the (truncated) square; UQ1.WS, WS+1 bits.
+    pub square_frac_bits: u32,
+    /// Bits dropped from the full square (truncation #2): `2·WB − WS`.
+    pub square_shift: u32,
+    /// `sq · ks_X` (+ the rounding half): WS+B bits, since `2^WS·(2^B−1) + 2^(WS−1) < 2^(WS+B)`.
+    pub color_product_bits: u32,
+    /// Registered cut points, 1-based step numbers (empty when combinational).
+    pub registered_cuts: Vec<u32>,
+}
+
+impl Widths {
+    pub fn derive(cfg: &Config) -> Widths {
+        let (f, kf, fi, b) = (cfg.f(), cfg.kf(), cfg.fi(), cfg.b());
+        let exact_bracket_frac = kf + f;
+        let (wb, ws) = match cfg.rounding() {
+            Rounding::Faithful => {
+                let need = fi.max(b);
+                let wb = (need + 2).min(exact_bracket_frac);
+                (wb, (need + 1).min(2 * wb))
+            }
+            Rounding::Exact => (exact_bracket_frac, 2 * exact_bracket_frac),
+        };
+        let n_max = (1u64 << cfg.n_bits()) - 1;
+        let kn_bits = bit_length(cfg.k_code as u128 * n_max as u128).max(1);
+        Widths {
+            cos_bits: f + 1,
+            kn_bits,
+            deviation_bits: kn_bits + f + 1,
+            deviation_shift: exact_bracket_frac - wb,
+            bracket_frac_bits: wb,
+            square_frac_bits: ws,
+            square_shift: 2 * wb - ws,
+            color_product_bits: ws + b,
+            registered_cuts: registered_cuts(cfg.stages()),
+        }
+    }
+
+    pub fn bracket_bits(&self) -> u32 {
+        self.bracket_frac_bits + 1
+    }
+    pub fn square_bits(&self) -> u32 {
+        self.square_frac_bits + 1
+    }
+    pub fn full_square_bits(&self) -> u32 {
+        2 * self.bracket_bits()
+    }
+    /// Width of `dev` after truncation #1, as kept in the datapath.
+    pub fn truncated_deviation_bits(&self) -> u32 {
+        self.deviation_bits - self.deviation_shift
+    }
+}
+
+/// Spreads `stages` registers over the [`PIPELINE_CUTS`] cut points: register j (1-based)
+/// goes after step `round(j·(C+1)/(S+1))`, so the logic between registers is roughly even.
+pub fn registered_cuts(stages: u32) -> Vec<u32> {
+    let c = PIPELINE_CUTS as u32;
+    (1..=stages).map(|j| (2 * j * (c + 1) + stages + 1) / (2 * (stages + 1))).collect()
+}
+
+/// Number of bits needed to hold `v` (0 for 0).
+pub fn bit_length(v: u128) -> u32 {
+    128 - v.leading_zeros()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cuts_are_distinct_increasing_and_in_range() {
+        for s in 0..=PIPELINE_CUTS as u32 {
+            let cuts = registered_cuts(s);
+            assert_eq!(cuts.len(), s as usize);
+            assert!(cuts.windows(2).all(|w| w[0] < w[1]), "{cuts:?}");
+            assert!(cuts.iter().all(|&c| (1..=PIPELINE_CUTS as u32).contains(&c)));
+        }
+        assert_eq!(registered_cuts(PIPELINE_CUTS as u32), (1..=PIPELINE_CUTS as u32).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn default_faithful_widths_follow_the_budget() {
+        let w = Widths::derive(&Config::defaults());
+        assert_eq!(w.bracket_frac_bits, 15 + 2);
+        assert_eq!(w.square_frac_bits, 15 + 1);
+        assert_eq!(w.deviation_shift, 16 + 15 - 17);
+    }
+}
