@@ -2,11 +2,12 @@
 //! (2: bad parameters or usage, 1: a check failed or an I/O error).
 
 use crate::config::{self, Config, ConfigError, Params, RomStyle, Rounding};
+
 use crate::emit;
 use crate::model::{self, Inputs, Model};
 use crate::rom::{self, RomFormat};
 use clap::{Args, Parser, Subcommand};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
 #[command(name = "specgen", version, about = "Generate a fixed-point specular highlight unit (Verilog-2005) and its golden model")]
@@ -116,32 +117,10 @@ pub fn failed(message: impl Into<String>) -> Failure {
     Failure { code: 1, message: message.into() }
 }
 
-/// Reads parameters from a JSON file: a full manifest or any subset of the parameter keys.
-pub fn params_from_json(path: &Path) -> Result<Params, Failure> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| usage(format!("cannot read --config {}: {e}", path.display())))?;
-    let value: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| usage(format!("--config {} is not valid JSON: {e}", path.display())))?;
-    let serde_json::Value::Object(mut map) = value else {
-        return Err(usage(format!("--config {} must hold a JSON object", path.display())));
-    };
-    for key in emit::MANIFEST_OUTPUT_KEYS {
-        map.remove(*key);
-    }
-    let mut full = serde_json::to_value(Params::default()).expect("params serialise");
-    for (k, v) in map {
-        if full.get(&k).is_none() {
-            return Err(usage(format!("--config {}: unknown key {k:?}", path.display())));
-        }
-        full[&k] = v;
-    }
-    serde_json::from_value(full).map_err(|e| usage(format!("--config {}: {e}", path.display())))
-}
-
 impl ParamArgs {
     pub fn to_config(&self) -> Result<Config, Failure> {
         let mut p = match &self.config {
-            Some(path) => params_from_json(path)?,
+            Some(path) => Params::from_json_file(path)?,
             None => Params::default(),
         };
         if let Some(v) = &self.top {

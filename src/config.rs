@@ -120,6 +120,38 @@ impl Default for Params {
     }
 }
 
+/// Keys of a manifest that are outputs, not parameters (skipped when it is read as a config).
+pub const MANIFEST_OUTPUT_KEYS: &[&str] =
+    &["generator", "version", "k_code", "latency", "ports", "internal_widths", "files"];
+
+impl Params {
+    /// Reads parameters from JSON: a full manifest written by `generate`, or any subset of
+    /// the parameter keys (the rest take their defaults). Unknown keys are an error.
+    pub fn from_json(text: &str) -> Result<Params, String> {
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| format!("not valid JSON: {e}"))?;
+        let serde_json::Value::Object(mut map) = value else {
+            return Err("must hold a JSON object".into());
+        };
+        for key in MANIFEST_OUTPUT_KEYS {
+            map.remove(*key);
+        }
+        let mut full = serde_json::to_value(Params::default()).expect("params serialise");
+        for (k, v) in map {
+            if full.get(&k).is_none() {
+                return Err(format!("unknown key {k:?}"));
+            }
+            full[&k] = v;
+        }
+        serde_json::from_value(full).map_err(|e| e.to_string())
+    }
+
+    pub fn from_json_file(path: &std::path::Path) -> Result<Params, ConfigError> {
+        let err = |why: String| ConfigError { parameter: "config", message: format!("{}: {why}", path.display()) };
+        let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it ({e})")))?;
+        Params::from_json(&text).map_err(err)
+    }
+}
+
 /// A validated configuration: the parameters plus the constant they fix.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Config {

@@ -281,9 +281,6 @@ pub struct Manifest<'a> {
     pub files: Vec<FileEntry>,
 }
 
-/// Keys of the manifest that are outputs, not parameters (ignored when read as a config).
-pub const MANIFEST_OUTPUT_KEYS: &[&str] =
-    &["generator", "version", "k_code", "latency", "ports", "internal_widths", "files"];
 
 fn sha256_hex(bytes: &[u8]) -> String {
     Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()

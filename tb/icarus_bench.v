@@ -1,0 +1,60 @@
+// specgen co-simulation bench for Icarus Verilog (-g2005): generic over every configuration.
+//
+// Defines (passed with -D by specgen cosim): TOP (module name), COS_W, N_W, B_W, I_W (port
+// widths), HAS_CLOCK (when the unit has clk/rst). Plusargs +vec_in=FILE +vec_out=FILE.
+// vec_in holds one cycle a line: "in_valid rst cos_g n ks_r ks_g ks_b" in hex.
+// vec_out gets one line a cycle: "out_valid done intensity spec_r spec_g spec_b" in hex,
+// sampled after the inputs settle and before the clock's rising edge (as the C++ harness).
+`timescale 1ns/1ps
+module specgen_icarus_bench;
+    reg             in_valid, rst, clk;
+    reg  [`COS_W-1:0] cos_g;
+    reg  [`N_W-1:0]   n;
+    reg  [`B_W-1:0]   ks_r, ks_g, ks_b;
+    wire            out_valid, done;
+    wire [`B_W-1:0]   spec_r, spec_g, spec_b;
+    wire [`I_W-1:0]   intensity;
+    integer         fin, fout, got;
+    reg  [31:0]     v_valid, v_rst, v_cos, v_n, v_r, v_g, v_b;
+    reg  [8*1024-1:0] vec_in, vec_out;
+
+    `TOP dut (
+`ifdef HAS_CLOCK
+        .clk(clk), .rst(rst),
+`endif
+        .in_valid(in_valid), .cos_g(cos_g), .n(n), .ks_r(ks_r), .ks_g(ks_g), .ks_b(ks_b),
+        .out_valid(out_valid), .spec_r(spec_r), .spec_g(spec_g), .spec_b(spec_b),
+        .intensity(intensity), .done(done));
+
+    initial begin
+        clk = 1'b0;
+        if (!$value$plusargs("vec_in=%s", vec_in) || !$value$plusargs("vec_out=%s", vec_out)) begin
+            $display("specgen bench: +vec_in=FILE and +vec_out=FILE are required");
+            $finish;
+        end
+        fin = $fopen(vec_in, "r");
+        fout = $fopen(vec_out, "w");
+        if (fin == 0 || fout == 0) begin
+            $display("specgen bench: cannot open vector files");
+            $finish;
+        end
+        got = $fscanf(fin, "%h %h %h %h %h %h %h\n", v_valid, v_rst, v_cos, v_n, v_r, v_g, v_b);
+        while (got == 7) begin
+            in_valid = v_valid[0];
+            rst = v_rst[0];
+            cos_g = v_cos[`COS_W-1:0];
+            n = v_n[`N_W-1:0];
+            ks_r = v_r[`B_W-1:0];
+            ks_g = v_g[`B_W-1:0];
+            ks_b = v_b[`B_W-1:0];
+            clk = 1'b0;
+            #5;
+            $fwrite(fout, "%h %h %h %h %h %h\n", out_valid, done, intensity, spec_r, spec_g, spec_b);
+            clk = 1'b1;
+            #5;
+            got = $fscanf(fin, "%h %h %h %h %h %h %h\n", v_valid, v_rst, v_cos, v_n, v_r, v_g, v_b);
+        end
+        $fclose(fout);
+        $finish;
+    end
+endmodule
