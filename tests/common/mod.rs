@@ -1,0 +1,40 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Fails (never skips) when an external tool is missing: the README's test command installs them.
+pub fn require_tool(tool: &str, package: &str) {
+    let found = Command::new("sh").arg("-c").arg(format!("command -v {tool}")).output().map(|o| o.status.success()).unwrap_or(false);
+    assert!(found, "{tool} is required for this test: run `scripts/test.sh` (installs it) or `apt-get install -y {package}`");
+}
+
+pub fn specgen() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_specgen"))
+}
+
+/// Runs `specgen generate --out DIR args…` and returns DIR (inside `parent`).
+pub fn generate(parent: &Path, name: &str, args: &[&str]) -> PathBuf {
+    let dir = parent.join(name);
+    let out = specgen().arg("generate").arg("--out").arg(&dir).args(args).output().unwrap();
+    assert!(out.status.success(), "generate {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    dir
+}
+
+/// A cache directory for simulator builds shared by every test of this checkout.
+pub fn cache_dir() -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cosim-cache");
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Configurations that exercise odd widths, every pipeline depth 0–3, both roundings, both ROM styles.
+pub const CONFIGS: &[&[&str]] = &[
+    &[],
+    &["--stages", "1", "--rom-style", "case"],
+    &["--stages", "2", "--rounding", "exact"],
+    &["--stages", "3", "--cos-frac-bits", "11", "--n-bits", "7", "--color-bits", "5", "--intensity-frac-bits", "9", "--k", "0.5", "--k-frac-bits", "7"],
+    &["--cos-frac-bits", "5", "--n-bits", "3", "--color-bits", "1", "--intensity-frac-bits", "13", "--k-frac-bits", "4", "--k", "1", "--rom-style", "case", "--rounding", "exact"],
+    &["--stages", "6", "--cos-frac-bits", "17", "--n-bits", "12", "--color-bits", "13", "--intensity-frac-bits", "3", "--k", "0.0625", "--k-frac-bits", "19", "--top", "wide_unit"],
+];

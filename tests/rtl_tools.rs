@@ -1,0 +1,53 @@
+//! The generated Verilog, for several configurations, is silent under
+//! `verilator --lint-only -Wall`, compiles with `iverilog -g2005`, and synthesizes in yosys
+//! with `check -assert`, no latches and no warnings.
+
+mod common;
+use common::*;
+use std::process::Command;
+
+fn top_of<'a>(args: &[&'a str]) -> &'a str {
+    args.iter().position(|a| *a == "--top").map(|i| args[i + 1]).unwrap_or("specular_unit")
+}
+
+#[test]
+fn verilator_lint_is_silent() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    for (i, args) in CONFIGS.iter().enumerate() {
+        let dir = generate(tmp.path(), &format!("c{i}"), args);
+        let out = Command::new("verilator").current_dir(&dir).args(["--lint-only", "-Wall"]).arg(format!("{}.v", top_of(args))).output().unwrap();
+        let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(out.status.success() && text.trim().is_empty(), "{args:?}:\n{text}");
+    }
+}
+
+#[test]
+fn iverilog_compiles() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    for (i, args) in CONFIGS.iter().enumerate() {
+        let dir = generate(tmp.path(), &format!("c{i}"), args);
+        let out = Command::new("iverilog").current_dir(&dir).args(["-g2005", "-Wall", "-o", "/dev/null"]).arg(format!("{}.v", top_of(args))).output().unwrap();
+        let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(out.status.success() && text.trim().is_empty(), "{args:?}:\n{text}");
+    }
+}
+
+#[test]
+fn yosys_synthesizes_without_latches_or_warnings() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    for (i, args) in CONFIGS.iter().enumerate() {
+        let dir = generate(tmp.path(), &format!("c{i}"), args);
+        let top = top_of(args);
+        let script = format!(
+            "read_verilog {top}.v; synth -top {top}; check -assert; select -assert-none t:$dlatch t:$_DLATCH_*; select -assert-min 1 t:*; stat"
+        );
+        let out = Command::new("yosys").current_dir(&dir).args(["-p", &script]).output().unwrap();
+        let log = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{args:?}: yosys failed:\n{}", &log[log.len().saturating_sub(3000)..]);
+        let warnings: Vec<&str> = log.lines().filter(|l| l.contains("Warning")).collect();
+        assert!(warnings.is_empty(), "{args:?}: {warnings:?}");
+    }
+}
