@@ -1,0 +1,130 @@
+//! Co-simulation: generated RTL agrees bit-exactly with the golden model under Verilator and
+//! Icarus, on several configurations and on a yosys netlist; injected faults are caught.
+
+mod common;
+use common::*;
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn cosim(dir: &Path, extra: &[&str]) -> Output {
+    specgen().env("SPECGEN_CACHE_DIR", cache_dir()).arg("cosim").arg("--rtl").arg(dir).args(extra).output().unwrap()
+}
+
+fn text(o: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+}
+
+#[test]
+fn every_config_passes_under_verilator() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    for (i, args) in CONFIGS.iter().enumerate() {
+        let dir = generate(tmp.path(), &format!("c{i}"), args);
+        let o = cosim(&dir, &["--vectors", "100000", "--seed", &i.to_string()]);
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", text(&o));
+        assert!(text(&o).contains(" 0 mismatches"), "{}", text(&o));
+    }
+}
+
+#[test]
+fn pipelined_and_combinational_pass_under_icarus() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    for (i, args) in [CONFIGS[0], CONFIGS[3]].iter().enumerate() {
+        let dir = generate(tmp.path(), &format!("i{i}"), args);
+        let o = cosim(&dir, &["--simulator", "icarus", "--vectors", "5000"]);
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", text(&o));
+    }
+}
+
+#[test]
+fn checked_in_default_unit_is_right_on_its_whole_input_space() {
+    require_tool("verilator", "verilator");
+    let rtl_out = Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl_out");
+    let o = cosim(&rtl_out, &["--exhaustive"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    // (2^15 + 1) · 2^10 pairs
+    assert!(text(&o).contains(&format!("{} checked, 0 mismatches", 32769u64 * 1024)), "{}", text(&o));
+}
+
+#[test]
+fn yosys_netlist_of_default_unit_passes() {
+    require_tool("yosys", "yosys");
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "rtl", &["--stages", "2"]);
+    let net = tmp.path().join("netlist");
+    std::fs::create_dir(&net).unwrap();
+    let out = Command::new("yosys")
+        .current_dir(&dir)
+        .args(["-q", "-p"])
+        .arg(format!("read_verilog specular_unit.v; synth -top specular_unit; write_verilog -noattr {}", net.join("specular_unit_netlist.v").display()))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::copy(dir.join("specular_unit.json"), net.join("specular_unit.json")).unwrap();
+    let o = cosim(&net, &["--vectors", "200000"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+}
+
+/// Applies one textual mutation to the generated RTL (asserting it applies) and runs cosim.
+fn mutant(root: &Path, name: &str, gen_args: &[&str], from: &str, to: &str, cosim_args: &[&str]) -> Output {
+    let dir = generate(root, name, gen_args);
+    let v = dir.join("specular_unit.v");
+    let src = std::fs::read_to_string(&v).unwrap();
+    assert_eq!(src.matches(from).count(), 1, "mutation {name}: {from:?} must occur once");
+    std::fs::write(&v, src.replace(from, to)).unwrap();
+    cosim(&dir, cosim_args)
+}
+
+#[test]
+fn injected_faults_are_caught() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let r = tmp.path();
+    let random: &[&str] = &["--vectors", "100000"];
+    let faults: Vec<(&str, &[&str], &str, &str, &[&str])> = vec![
+        // an off-by-one constant: k_code 24157 = 0x5e5d
+        ("k_off_by_one", &[], "25'h5e5d", "25'h5e5e", random),
+        // a dropped rounding bit: intensity truncates instead of rounding
+        ("no_round", &[], "square_c4 + 17'h1", "square_c4 + 17'h0", random),
+        // swapped colour channels
+        ("swap_rg", &[], "assign spec_r    = spec_r_c6;\nassign spec_g    = spec_g_c6;", "assign spec_r    = spec_g_c6;\nassign spec_g    = spec_r_c6;", random),
+        // a wrong cut-off comparison
+        ("cutoff_le", &[], "(cos_clamped_s1 < cos_sp_s1)", "(cos_clamped_s1 <= cos_sp_s1)", random),
+        // a fault at one single (cos_g, n): only the exhaustive run meets it
+        ("one_point", &[], "assign done      = done_c6;", "assign done      = done_c6 ^ (cos_g == 16'd32000 && n == 10'd77);", &["--exhaustive"]),
+        // out_valid one cycle late in a pipelined unit
+        ("valid_late", &["--stages", "2"], "assign out_valid = valid_c6;", "reg valid_late;\nalways @(posedge clk) valid_late <= valid_c6;\nassign out_valid = valid_late;", random),
+    ];
+    for (name, gen_args, from, to, args) in faults {
+        let o = mutant(r, name, gen_args, from, to, args);
+        assert_eq!(o.status.code(), Some(1), "fault {name} survived: {}", text(&o));
+        assert!(text(&o).contains("first mismatch"), "{name}: {}", text(&o));
+    }
+}
+
+#[test]
+fn mismatch_with_trace_writes_a_vcd() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let vcd = tmp.path().join("fail.vcd");
+    let o = mutant(tmp.path(), "t", &["--stages", "1"], "square_c4 + 17'h1", "square_c4 + 17'h0", &["--trace", vcd.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let dump = std::fs::read_to_string(&vcd).unwrap();
+    assert!(dump.contains("$enddefinitions") && dump.contains("intensity"), "not a VCD of the unit");
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = cosim(tmp.path(), &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("manifest"), "{}", text(&o));
+    // a Verilog file that does not build
+    let dir = generate(tmp.path(), "broken", &[]);
+    std::fs::write(dir.join("specular_unit.v"), "module specular_unit(; endmodule\n").unwrap();
+    let o = cosim(&dir, &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("could not build"), "{}", text(&o));
+}
