@@ -49,7 +49,7 @@ pub enum Command {
         #[arg(long)]
         n: u32,
         /// Colour codes R,G,B (default: all ones, i.e. 1.0).
-        #[arg(long, value_name = "R,G,B", value_delimiter = ',', num_args = 3)]
+        #[arg(long, value_name = "R,G,B", value_delimiter = ',')]
         ks: Option<Vec<u32>>,
         #[command(flatten)]
         params: ParamArgs,
@@ -194,6 +194,9 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
     }
     let ks_max = (1u32 << cfg.b()) - 1;
     let ks = ks.unwrap_or_else(|| vec![ks_max; 3]);
+    if ks.len() != 3 {
+        return Err(usage(format!("invalid --ks: give three codes R,G,B, each 0..={ks_max}")));
+    }
     if let Some(bad) = ks.iter().find(|&&k| k > ks_max) {
         return Err(usage(format!("invalid --ks: {bad} is out of range; allowed 0..={ks_max} (color_bits = {})", cfg.b())));
     }

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Runs the whole test suite on a fresh machine: installs the simulators and yosys when
+# missing (Debian/Ubuntu, apt-get), then `cargo test --release`. Simulator and synthesis
+# tests never skip: a missing tool makes them fail.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+missing=()
+for pair in verilator:verilator iverilog:iverilog vvp:iverilog yosys:yosys; do
+    tool=${pair%%:*}; pkg=${pair##*:}
+    command -v "$tool" >/dev/null 2>&1 || missing+=("$pkg")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    pkgs=$(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')
+    echo "== installing: $pkgs"
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $pkgs
+fi
+echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V)"
+cargo test --release "$@"
