@@ -56,6 +56,15 @@ pub enum Command {
     },
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
     Cosim(crate::cosim::CosimArgs),
+    /// Write DIR/index.html (self-contained) and DIR/report.json: the paper's claims
+    /// recomputed and the configured unit's accuracy.
+    Report {
+        /// Output directory (created, or replaced if it holds only a previous report).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        #[command(flatten)]
+        params: ParamArgs,
+    },
 }
 
 /// The generator parameters (SPEC §2). Unset flags fall back to --config, then to the defaults.
@@ -137,15 +146,20 @@ impl ParamArgs {
     }
 }
 
+/// Writes a whole output directory atomically; an occupied directory is a usage error.
+fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<(), Failure> {
+    emit::write_dir_atomically(out, files).map_err(|e| match e {
+        emit::OutputError::Occupied(..) => usage(e.to_string()),
+        emit::OutputError::Io(_) => failed(format!("cannot write {}: {e}", out.display())),
+    })
+}
+
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Generate { out, params } => {
             let cfg = params.to_config()?;
             let files = emit::generate_files(&cfg);
-            emit::write_dir_atomically(&out, &files).map_err(|e| match e {
-                emit::OutputError::Occupied(..) => usage(e.to_string()),
-                emit::OutputError::Io(_) => failed(format!("cannot write {}: {e}", out.display())),
-            })?;
+            write_output(&out, &files)?;
             for (name, _) in &files {
                 println!("{}", out.join(name).display());
             }
@@ -168,6 +182,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
             eval(&cfg, cos.as_deref(), cos_code, n, ks)
         }
         Command::Cosim(args) => crate::cosim::run_cli(&args),
+        Command::Report { out, params } => {
+            let cfg = params.to_config()?;
+            let files = crate::report::build(&cfg);
+            write_output(&out, &files)?;
+            Ok(())
+        }
     }
 }
 

@@ -11,5 +11,7 @@ pub mod config;
 pub mod cosim;
 pub mod emit;
 pub mod model;
+pub mod paper;
+pub mod report;
 pub mod rom;
 pub mod widths;

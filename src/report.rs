@@ -1,0 +1,339 @@
+//! `specgen report`: the paper's claims recomputed, and the generated unit's accuracy, as a
+//! self-contained HTML page (inline SVG from plotters) plus `report.json` with every number.
+
+use crate::config::Config;
+use crate::model::{self, Inputs, Model};
+use crate::paper::{self, Claim};
+use crate::rom;
+use askama::Template;
+use plotters::prelude::*;
+use serde::Serialize;
+use std::f64::consts::FRAC_PI_2;
+
+/// Bins of the unit-error heat map (cos axis × n axis).
+const HEAT_COS: usize = 96;
+const HEAT_N: usize = 64;
+/// Sweeps above this many (cos_g, n) points are sampled with a stride on cos_g.
+const SWEEP_LIMIT: u64 = 1 << 26;
+
+/// The generated unit's error against the exact formula and against Blinn.
+#[derive(Debug, Clone, Serialize)]
+pub struct UnitAccuracy {
+    /// "exhaustive" or "every k-th cos code"
+    pub sweep: String,
+    pub points: u64,
+    /// |intensity − intensity*| in units of 2^-FI
+    pub intensity_max_ulp: f64,
+    pub intensity_mean_ulp: f64,
+    /// |spec − spec*| at ks = all ones, in colour codes
+    pub spec_max_ulp: f64,
+    pub spec_mean_ulp: f64,
+    /// |intensity/2^FI − cos^n| (model + quantisation error against Blinn)
+    pub vs_blinn_max: f64,
+    pub vs_blinn_mean: f64,
+    /// |k_q-formula − real-k formula (15)|: what quantising k costs
+    pub k_quantisation_max: f64,
+    /// max |intensity error| in ulps per (cos bin, n bin), row-major by n bin
+    #[serde(skip)]
+    pub heat: Vec<f64>,
+}
+
+/// Exhaustive (or strided) sweep of `(cos_g ∈ [0, 2^F], n)` on two threads.
+pub fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
+    let m = Model::new(cfg);
+    let f = cfg.f();
+    let one = 1u64 << f;
+    let n_count = 1u64 << cfg.n_bits();
+    let total = (one + 1) * n_count;
+    let stride = total.div_ceil(SWEEP_LIMIT).max(1);
+    let ks_max = (1u32 << cfg.b()) - 1;
+    let k_real: f64 = cfg.params.k.trim().parse().unwrap_or(f64::NAN);
+    let k_q = cfg.k_code as f64 / (cfg.kf() as f64).exp2();
+    #[derive(Default, Clone)]
+    struct Acc {
+        points: u64,
+        imax: f64,
+        isum: f64,
+        smax: f64,
+        ssum: f64,
+        bmax: f64,
+        bsum: f64,
+        kmax: f64,
+        heat: Vec<f64>,
+    }
+    let work = |lo: u64, hi: u64| {
+        let mut a = Acc { heat: vec![0.0; HEAT_COS * HEAT_N], ..Acc::default() };
+        for n in lo..hi {
+            let nb = (n * HEAT_N as u64 / n_count) as usize;
+            let mut cos_g = 0;
+            while cos_g <= one {
+                let x = Inputs { cos_g: cos_g as u32, n: n as u32, ks: [ks_max; 3] };
+                let o = m.eval(x);
+                let r = model::reference(cfg, x);
+                let ie = (o.intensity as f64 - r.intensity.to_f64()).abs();
+                let se = (o.spec[0] as f64 - r.spec[0].to_f64()).abs();
+                let c = cos_g as f64 / one as f64;
+                let s = o.intensity as f64 / (cfg.fi() as f64).exp2();
+                let be = (s - c.powi(n as i32)).abs();
+                let quad = |k: f64| {
+                    let b = 1.0 - k * n as f64 * (1.0 - c);
+                    if b < 0.0 { 0.0 } else { b * b }
+                };
+                let ke = (quad(k_q) - quad(k_real)).abs();
+                a.points += 1;
+                a.imax = a.imax.max(ie);
+                a.isum += ie;
+                a.smax = a.smax.max(se);
+                a.ssum += se;
+                a.bmax = a.bmax.max(be);
+                a.bsum += be;
+                a.kmax = a.kmax.max(ke);
+                let cb = ((cos_g * HEAT_COS as u64) / (one + 1)) as usize;
+                let cell = &mut a.heat[nb * HEAT_COS + cb];
+                *cell = cell.max(ie);
+                cos_g += stride;
+            }
+        }
+        a
+    };
+    let (a, b) = std::thread::scope(|s| {
+        let h = s.spawn(|| work(0, n_count / 2));
+        let b = work(n_count / 2, n_count);
+        (h.join().unwrap(), b)
+    });
+    let points = a.points + b.points;
+    UnitAccuracy {
+        sweep: if stride == 1 { "exhaustive".into() } else { format!("every {stride}th cos code") },
+        points,
+        intensity_max_ulp: a.imax.max(b.imax),
+        intensity_mean_ulp: (a.isum + b.isum) / points as f64,
+        spec_max_ulp: a.smax.max(b.smax),
+        spec_mean_ulp: (a.ssum + b.ssum) / points as f64,
+        vs_blinn_max: a.bmax.max(b.bmax),
+        vs_blinn_mean: (a.bsum + b.bsum) / points as f64,
+        k_quantisation_max: a.kmax.max(b.kmax),
+        heat: a.heat.iter().zip(&b.heat).map(|(x, y)| x.max(*y)).collect(),
+    }
+}
+
+const W: u32 = 640;
+const H: u32 = 400;
+
+fn svg(draw: impl FnOnce(DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), Box<dyn std::error::Error + '_>>) -> String {
+    let mut out = String::new();
+    {
+        let area = SVGBackend::with_string(&mut out, (W, H)).into_drawing_area();
+        area.fill(&WHITE).expect("svg fill");
+        draw(area).expect("svg plot");
+    }
+    out
+}
+
+type Curve<'a> = (&'a str, RGBColor, Box<dyn Fn(f64) -> f64 + 'a>);
+
+fn line_plot(title: &str, x_label: &str, x_max: f64, curves: Vec<Curve>) -> String {
+    svg(|area| {
+        let mut chart = ChartBuilder::on(&area)
+            .caption(title, ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(36)
+            .y_label_area_size(48)
+            .build_cartesian_2d(0.0..x_max, 0.0..1.05)?;
+        chart.configure_mesh().x_desc(x_label).y_desc("value").draw()?;
+        for (name, colour, f) in curves {
+            let pts: Vec<(f64, f64)> = (0..=400).map(|i| {
+                let x = x_max * i as f64 / 400.0;
+                (x, f(x).clamp(0.0, 1.05))
+            }).collect();
+            chart
+                .draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
+                .label(name)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+        }
+        chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+        Ok(())
+    })
+}
+
+fn heat_map(title: &str, x_label: &str, y_label: &str, x_max: f64, y_max: f64, cols: usize, rows: usize, cells: &[f64]) -> String {
+    let peak = cells.iter().cloned().fold(0.0f64, f64::max).max(1e-300);
+    svg(|area| {
+        let mut chart = ChartBuilder::on(&area)
+            .caption(format!("{title} (max {peak:.3e})"), ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(36)
+            .y_label_area_size(52)
+            .build_cartesian_2d(0.0..x_max, 0.0..y_max)?;
+        chart.configure_mesh().disable_mesh().x_desc(x_label).y_desc(y_label).draw()?;
+        let (cw, rh) = (x_max / cols as f64, y_max / rows as f64);
+        chart.draw_series((0..rows).flat_map(|r| (0..cols).map(move |c| (r, c))).map(|(r, c)| {
+            let v = cells[r * cols + c] / peak;
+            let colour = ViridisRGB::get_color(v);
+            Rectangle::new([(c as f64 * cw, r as f64 * rh), ((c + 1) as f64 * cw, (r + 1) as f64 * rh)], colour.filled())
+        }))?;
+        Ok(())
+    })
+}
+
+pub struct Figure {
+    pub id: &'static str,
+    pub caption: String,
+    pub svg: String,
+}
+
+/// The figures: analogues of the paper's, plus the ROM cut-off and two error maps.
+pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
+    let mut v = Vec::new();
+    let alpha = 0.15;
+    v.push(Figure {
+        id: "ward",
+        caption: "Ward's exp(−tan²δ/α²) (2), its approximation (5) cut at the bracket's zero, and Blinn with n = 2/α², α = 0.15 (paper, Fig. 2).".into(),
+        svg: line_plot("Ward vs approximation (5), α = 0.15", "δ (rad)", 0.8, vec![
+            ("exp(−tan²δ/α²)", RED, Box::new(move |d| paper::ward(d, alpha))),
+            ("[(cos δ−1)/(8α²)+1]^16", BLUE, Box::new(move |d| paper::ward_approx(d, alpha, true))),
+            ("cos^(2/α²) δ", GREEN, Box::new(move |d| paper::blinn(d, 2.0 / (alpha * alpha)))),
+        ]),
+    });
+    for n in [10.0f64, 50.0, 200.0] {
+        let x_max = (1.0 - 2.713 / n).max(-1.0).acos().max(0.3) * 1.2;
+        v.push(Figure {
+            id: "quadratic",
+            caption: format!("Blinn cos^n δ, (12) and (15) for n = {n} (paper, Fig. 4)."),
+            svg: line_plot(&format!("Blinn vs (12) vs (15), n = {n}"), "δ (rad)", x_max.min(FRAC_PI_2), vec![
+                ("cos^n δ", RED, Box::new(move |d| paper::blinn(d, n))),
+                ("(12): a = 2", BLUE, Box::new(move |d| paper::cosine_quadratic(d, n, 2.0))),
+                ("(15): a = 2.713", GREEN, Box::new(move |d| paper::cosine_quadratic(d, n, 2.713))),
+            ]),
+        });
+    }
+    v.push(Figure {
+        id: "schlick",
+        caption: "Blinn, Schlick (7) and modified Schlick (11) for n = 10 (paper, Fig. 3).".into(),
+        svg: line_plot("Blinn, Schlick (7), (11), n = 10", "δ (rad)", FRAC_PI_2, vec![
+            ("cos^10 δ", RED, Box::new(|d| paper::blinn(d, 10.0))),
+            ("Schlick (7)", BLUE, Box::new(|d| paper::schlick(d, 10.0))),
+            ("(11)", GREEN, Box::new(|d| paper::schlick_ab(d, 10.0, 2.0, 2.0))),
+        ]),
+    });
+    let table = rom::cos_sp_table(cfg);
+    let one = (cfg.f() as f64).exp2();
+    let k_q = cfg.k_code as f64 / (cfg.kf() as f64).exp2();
+    let n_max = table.len() as f64;
+    v.push(Figure {
+        id: "cutoff",
+        caption: format!("Cut-off angle γsp(n) = arccos(ROM[n]/2^{}) from the generated ROM (points), and arccos(1 − 1/(k_q·n)) (line).", cfg.f()),
+        svg: svg(|area| {
+            let mut chart = ChartBuilder::on(&area)
+                .caption("Cut-off angle γsp(n) from the ROM", ("sans-serif", 18))
+                .margin(10)
+                .x_label_area_size(36)
+                .y_label_area_size(48)
+                .build_cartesian_2d(0.0..n_max, 0.0..90.0)?;
+            chart.configure_mesh().x_desc("n").y_desc("γsp (degrees)").draw()?;
+            let step = (table.len() / 256).max(1);
+            chart.draw_series(table.iter().enumerate().step_by(step).skip(1).map(|(n, &c)| {
+                Circle::new((n as f64, (c as f64 / one).acos().to_degrees()), 2, BLUE.filled())
+            }))?;
+            chart.draw_series(LineSeries::new(
+                (1..table.len()).map(|n| (n as f64, (1.0 - 1.0 / (k_q * n as f64)).max(0.0).acos().to_degrees())),
+                RED.stroke_width(1),
+            ))?;
+            Ok(())
+        }),
+    });
+    v.push(Figure {
+        id: "unit_error",
+        caption: format!(
+            "The generated unit's intensity error |intensity − intensity*| in ulps of UQ1.{} over (cos_g, n), max per cell ({} sweep, {} points). Colour: dark = 0, yellow = the maximum in the title; beyond the cut-off the output is exactly 0.",
+            cfg.fi(), acc.sweep, acc.points
+        ),
+        svg: heat_map("Unit error (ulps)", "cos_g", "n", 1.0, n_max, HEAT_COS, HEAT_N, &acc.heat),
+    });
+    let (cols, rows) = (96usize, 64usize);
+    let cells: Vec<f64> = (0..rows)
+        .flat_map(|r| (0..cols).map(move |c| (r, c)))
+        .map(|(r, c)| {
+            let n = 1.0 + 999.0 * (r as f64 + 0.5) / rows as f64;
+            // δ axis: [0, 0.5 rad], where the highlights of n ≥ 10 live
+            let d = 0.5 * (c as f64 + 0.5) / cols as f64;
+            (paper::cosine_quadratic(d, n, 2.713) - paper::blinn(d, n)).abs()
+        })
+        .collect();
+    v.push(Figure {
+        id: "model_error",
+        caption: "Model error of (15) against Blinn, |(15) − cos^n δ|, over δ ∈ [0, 0.5] rad and n ∈ [1, 1000] (cell centres). Colour: dark = 0, yellow = the maximum in the title.".into(),
+        svg: heat_map("|(15) − cos^n δ|", "δ (rad)", "n", 0.5, 1000.0, cols, rows, &cells),
+    });
+    v
+}
+
+/// Everything the report shows; serialised as `report.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReportData {
+    pub generator: &'static str,
+    pub version: &'static str,
+    pub parameters: crate::config::Params,
+    pub k_code: u64,
+    pub claims: Vec<Claim>,
+    pub unit: UnitAccuracy,
+    pub files: Vec<serde_json::Value>,
+}
+
+struct Row {
+    name: &'static str,
+    value: String,
+}
+
+#[derive(Template)]
+#[template(path = "report.html")]
+struct ReportPage<'a> {
+    data: &'a ReportData,
+    unit_rows: Vec<Row>,
+    figures: Vec<Figure>,
+    rounding: &'a str,
+}
+
+/// Builds `index.html` and `report.json` (file name, bytes).
+pub fn build(cfg: &Config) -> Vec<(String, Vec<u8>)> {
+    let unit = unit_accuracy(cfg);
+    let figures = figures(cfg, &unit);
+    let data = ReportData {
+        generator: "specgen",
+        version: crate::emit::VERSION,
+        parameters: cfg.params.clone(),
+        k_code: cfg.k_code,
+        claims: paper::claims(),
+        unit,
+        files: vec![serde_json::json!({"name": "index.html"})],
+    };
+    let u = &data.unit;
+    let unit_rows = vec![
+        Row { name: "sweep", value: format!("{} ({} points of (cos_g ∈ [0, 1.0], n))", u.sweep, u.points) },
+        Row { name: "intensity error, max (ulp)", value: format!("{:.4}", u.intensity_max_ulp) },
+        Row { name: "intensity error, mean (ulp)", value: format!("{:.4}", u.intensity_mean_ulp) },
+        Row { name: "spec error at ks = 1.0, max (colour code)", value: format!("{:.4}", u.spec_max_ulp) },
+        Row { name: "spec error at ks = 1.0, mean (colour code)", value: format!("{:.4}", u.spec_mean_ulp) },
+        Row { name: "|intensity − cos^n|, max", value: format!("{:.4}", u.vs_blinn_max) },
+        Row { name: "|intensity − cos^n|, mean", value: format!("{:.5}", u.vs_blinn_mean) },
+        Row { name: "k quantisation: |S(k_q) − S(k)|, max", value: format!("{:.3e}", u.k_quantisation_max) },
+    ];
+    let page = ReportPage { data: &data, unit_rows, figures, rounding: cfg.rounding().name() };
+    let html = page.render().expect("report template renders");
+    let mut json = serde_json::to_string_pretty(&data).expect("report serialises");
+    json.push('\n');
+    vec![("index.html".into(), html.into_bytes()), ("report.json".into(), json.into_bytes())]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_unit_accuracy_is_within_contract() {
+        let cfg = Config::new(crate::config::Params { cos_frac_bits: 8, n_bits: 4, ..Default::default() }).unwrap();
+        let acc = unit_accuracy(&cfg);
+        assert_eq!(acc.points, 257 * 16);
+        assert!(acc.intensity_max_ulp < 1.0 && acc.spec_max_ulp < 1.0);
+        assert!(acc.intensity_max_ulp > 0.0);
+    }
+}

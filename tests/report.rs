@@ -1,0 +1,125 @@
+//! The report: solved constants against independent derivations, a page that parses and
+//! references nothing outside itself, and report.json carrying every number shown.
+
+mod common;
+use common::*;
+use specgen::paper;
+use std::f64::consts::FRAC_PI_2;
+
+/// Composite Simpson's rule (a different quadrature from the code under test).
+fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, cells: usize) -> f64 {
+    let h = (b - a) / cells as f64;
+    let mut s = f(a) + f(b);
+    for i in 1..cells {
+        s += f(a + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    s * h / 3.0
+}
+
+#[test]
+fn eq14_root_matches_numerical_quadrature() {
+    // both sides by Simpson, root by the secant method
+    let g = |a: f64| -> f64 {
+        (2..=1000u32)
+            .map(|n| {
+                let n = n as f64;
+                let upper = (1.0 - a / n).clamp(-1.0, 1.0).acos();
+                let quad = simpson(|d| (n / a * (d.cos() - 1.0) + 1.0).powi(2), 0.0, upper, 2000);
+                let blinn = simpson(|d| d.cos().powf(n), 0.0, FRAC_PI_2, 2000);
+                quad - blinn
+            })
+            .sum()
+    };
+    let (mut x0, mut x1) = (2.5, 3.0);
+    for _ in 0..30 {
+        let (g0, g1) = (g(x0), g(x1));
+        if (x1 - x0).abs() < 1e-9 || g1 == g0 {
+            break;
+        }
+        let x2 = x1 - g1 * (x1 - x0) / (g1 - g0);
+        x0 = x1;
+        x1 = x2;
+    }
+    let ours = paper::solve_eq14();
+    assert!((ours - x1).abs() < 1e-4, "closed form {ours} vs quadrature {x1}");
+    assert!((ours - 2.713).abs() < 1e-3, "the paper's 2.713 is reproduced: {ours}");
+}
+
+#[test]
+fn system10_matches_direct_root_finding() {
+    let c = 0.5f64.cos();
+    // a = b; solve cos0.5/(a n − a n cos0.5 + cos0.5) = 0.271 by bisection, n = 10
+    let f = |a: f64| c / (a * 10.0 - a * 10.0 * c + c) - 0.271;
+    let (mut lo, mut hi) = (0.5, 5.0);
+    for _ in 0..100 {
+        let mid = (lo + hi) / 2.0;
+        if f(mid) > 0.0 { lo = mid } else { hi = mid }
+    }
+    assert!((paper::solve_system10(0.271) - lo).abs() < 1e-9);
+    assert!((lo - 1.928).abs() < 1e-3);
+    // and (9) holds for a = b: value 1 at δ = 0
+    assert!((paper::schlick_ab(0.0, 10.0, lo, lo) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn deviation_figures_match_a_second_quadrature() {
+    let claims = paper::claims();
+    let get = |id: &str| claims.iter().find(|c| c.id == id).unwrap().value;
+    // Schlick ratio with Simpson on a different grid, n sampled every 7th value
+    let mad = |f: &dyn Fn(f64, f64) -> f64| -> f64 {
+        let ns: Vec<f64> = (1..=1000).step_by(7).map(|n| n as f64).collect();
+        ns.iter().map(|&n| simpson(|d| (f(d, n) - d.cos().powf(n)).abs(), 0.0, FRAC_PI_2, 6000) / FRAC_PI_2).sum::<f64>() / ns.len() as f64
+    };
+    let ratio = mad(&paper::schlick) / mad(&|d, n| paper::schlick_ab(d, n, 2.0, 2.0));
+    assert!((ratio / get("schlick") - 1.0).abs() < 0.03, "schlick ratio {ratio} vs {}", get("schlick"));
+    // Ward worst case near its α with Simpson
+    let ward_mad = |al: f64| simpson(|d| (paper::ward(d, al) - paper::ward_approx(d, al, true)).abs(), 0.0, FRAC_PI_2 - 1e-9, 40000) / FRAC_PI_2;
+    let worst = (10..=200).map(|i| ward_mad(i as f64 / 1000.0)).fold(0.0, f64::max);
+    assert!((worst / get("ward") - 1.0).abs() < 0.05, "ward {worst} vs {}", get("ward"));
+    // (15) beats (12)
+    assert!(get("eq12_vs_eq15") > 1.0);
+}
+
+#[test]
+fn report_page_is_self_contained_and_carries_every_number() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("rep");
+    let o = specgen().args(["report", "--out"]).arg(&out).args(["--cos-frac-bits", "12", "--n-bits", "8"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let doc = roxmltree::Document::parse_with_options(&html, roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() })
+        .expect("index.html parses as well-formed (X)HTML");
+    assert_eq!(doc.root_element().tag_name().name(), "html");
+    let svgs = doc.descendants().filter(|n| n.tag_name().name() == "svg").count();
+    assert!(svgs >= 8, "{svgs} inline SVG figures");
+    for n in doc.descendants().filter(|n| n.is_element()) {
+        let tag = n.tag_name().name();
+        assert!(!["script", "link", "img", "iframe", "object", "embed"].contains(&tag), "external-capable element <{tag}>");
+        for a in n.attributes() {
+            let v = a.value();
+            if a.name() == "xmlns" || a.namespace().is_some() && a.name() != "href" {
+                continue;
+            }
+            assert!(!(a.name() == "src" || (a.name() == "href" && !v.starts_with('#'))), "<{tag} {}={v}> references outside", a.name());
+            assert!(!v.contains("url(http") && !v.starts_with("http"), "<{tag} {}={v}>", a.name());
+        }
+    }
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let claims = json["claims"].as_array().unwrap();
+    assert_eq!(claims.len(), 5);
+    for c in claims {
+        let shown = c["ours"].as_str().unwrap();
+        assert!(html.contains(&shown.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")) || html.contains(shown), "{shown} not on the page");
+        assert!(c["method"].as_str().unwrap().len() > 20);
+    }
+    for key in ["intensity_max_ulp", "intensity_mean_ulp", "spec_max_ulp", "vs_blinn_max", "points"] {
+        assert!(json["unit"][key].is_number(), "unit.{key}");
+    }
+    assert!(json["unit"]["intensity_max_ulp"].as_f64().unwrap() < 1.0, "faithful unit");
+    assert_eq!(json["unit"]["points"].as_u64().unwrap(), 4097 * 256);
+    // bad parameters: exit 2, nothing written
+    let bad = tmp.path().join("bad");
+    let o = specgen().args(["report", "--out"]).arg(&bad).args(["--n-bits", "99"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!bad.exists());
+}
