@@ -212,14 +212,17 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
 
 /// Every `(cos_g, n)` with `cos_g ∈ [0, 2^F]` (codes above 1.0 all read as 1.0; the corners
 /// cover them), n-major in chunk `part` of `parts`. Colours: `ks_X = (cos_g + n·m_X + o_X) mod 2^B`
-/// with odd `m_X`, so along a row of fixed n every channel sees every code, and at
-/// `cos_g = 1.0` the n values carry every colour code through full intensity.
+/// with odd `m_X`, so along a row of fixed n every channel sees every code. The first part
+/// ends with a tail of `2^B` cycles at `cos_g = 1.0` carrying every colour code on every
+/// channel through full intensity (whatever N is).
 pub struct Exhaustive {
     pub f: u32,
     pub b: u32,
+    pub n_bits: u32,
     pub n_lo: u32,
     pub n_hi: u32,
     pub pipelined: bool,
+    pub full_intensity_tail: bool,
 }
 
 impl Exhaustive {
@@ -230,9 +233,11 @@ impl Exhaustive {
             .map(|p| Exhaustive {
                 f: cfg.f(),
                 b: cfg.b(),
+                n_bits: cfg.n_bits(),
                 n_lo: n_count * p / parts,
                 n_hi: n_count * (p + 1) / parts,
                 pipelined: cfg.stages() > 0,
+                full_intensity_tail: p == 0,
             })
             .collect()
     }
@@ -243,16 +248,24 @@ impl Exhaustive {
 
 impl Stimulus for Exhaustive {
     fn len(&self) -> u64 {
-        (self.n_hi - self.n_lo) as u64 * self.row() + self.pipelined as u64
+        let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
+        (self.n_hi - self.n_lo) as u64 * self.row() + self.pipelined as u64 + tail
     }
     fn cycle(&self, i: u64) -> Cycle {
         if self.pipelined && i == 0 {
             return Cycle { inputs: Inputs::default(), valid: false, rst: true };
         }
         let j = i - self.pipelined as u64;
+        let bm = (1u32 << self.b) - 1;
+        let sweep = (self.n_hi - self.n_lo) as u64 * self.row();
+        if j >= sweep {
+            let code = (j - sweep) as u32;
+            let n = code.wrapping_mul(7) & ((1u32 << self.n_bits) - 1);
+            let ks = [code, code.wrapping_add(1) & bm, code.wrapping_add(2) & bm];
+            return Cycle { inputs: Inputs { cos_g: 1 << self.f, n, ks }, valid: true, rst: false };
+        }
         let n = self.n_lo + (j / self.row()) as u32;
         let cos_g = (j % self.row()) as u32;
-        let bm = (1u32 << self.b) - 1;
         let ks = [
             cos_g.wrapping_add(n.wrapping_mul(1)) & bm,
             cos_g.wrapping_add(n.wrapping_mul(3)).wrapping_add(85) & bm,

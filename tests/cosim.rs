@@ -43,8 +43,8 @@ fn checked_in_default_unit_is_right_on_its_whole_input_space() {
     let rtl_out = Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl_out");
     let o = cosim(&rtl_out, &["--exhaustive"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    // (2^15 + 1) · 2^10 pairs
-    assert!(text(&o).contains(&format!("{} checked, 0 mismatches", 32769u64 * 1024)), "{}", text(&o));
+    // (2^15 + 1) · 2^10 pairs, plus 2^8 full-intensity colour cycles
+    assert!(text(&o).contains(&format!("{} checked, 0 mismatches", 32769u64 * 1024 + 256)), "{}", text(&o));
 }
 
 #[test]
@@ -113,6 +113,33 @@ fn mismatch_with_trace_writes_a_vcd() {
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let dump = std::fs::read_to_string(&vcd).unwrap();
     assert!(dump.contains("$enddefinitions") && dump.contains("intensity"), "not a VCD of the unit");
+}
+
+#[test]
+fn exhaustive_stimulus_covers_every_colour_code_at_full_intensity() {
+    use specgen::config::{Config, Params};
+    use specgen::cosim::{Exhaustive, Stimulus};
+    // 12-bit colours, 3-bit n: the rows alone cannot carry every code at cos = 1.0
+    let cfg = Config::new(Params { color_bits: 12, n_bits: 3, cos_frac_bits: 6, stages: 2, ..Params::default() }).unwrap();
+    let parts = Exhaustive::parts(&cfg, 4);
+    let mut seen = vec![[false; 3]; 1 << 12];
+    let mut pairs = std::collections::HashSet::new();
+    for p in &parts {
+        for i in 0..p.len() {
+            let c = p.cycle(i);
+            if c.rst || !c.valid {
+                continue;
+            }
+            pairs.insert((c.inputs.cos_g, c.inputs.n));
+            if c.inputs.cos_g == 1 << 6 {
+                for ch in 0..3 {
+                    seen[c.inputs.ks[ch] as usize][ch] = true;
+                }
+            }
+        }
+    }
+    assert_eq!(pairs.len(), 65 * 8, "every (cos_g, n) with cos_g in [0, 1.0]");
+    assert!(seen.iter().all(|s| s.iter().all(|&b| b)), "a colour code never met full intensity");
 }
 
 #[test]
