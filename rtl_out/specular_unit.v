@@ -6,7 +6,7 @@
 //             intensity = S (UQ1.15), spec_X = S * ks_X.
 // Rounding:   faithful: every output within 1 ulp of the exact value (|o - o*| < 1)
 // Latency:    0 clock cycle(s) (combinational).
-// Internal:   bracket UQ1.17, square UQ1.16, registered after steps [none].
+// Datapath:   lean (widths from the error budget); bracket UQ1.17, square UQ1.16 (colours UQ1.9), registered after steps [none].
 // ROM:        cos_sp(n) is read with $readmemh from ROM_FILE (default "cos_sp_rom.hex",
 //             resolved against the simulator's or synthesis tool's working directory).
 
@@ -42,7 +42,7 @@ wire [15:0] cos_sp_s1 = cos_sp_rom[n_c0];          // UQ1.15: cos(gamma_sp(n))
 wire [15:0] cos_clamped_s1 = (cos_g_c0 > 16'h8000) ? 16'h8000 : cos_g_c0;   // UQ1.15, <= 1.0
 wire [15:0] one_minus_cos_s1 = 16'h8000 - cos_clamped_s1;                      // UQ1.15: 1 - cos(gamma), exact
 wire        done_s1 = (cos_clamped_s1 < cos_sp_s1);                                    // comparator: bracket < 0
-wire [24:0] kn_s1 = {{15{1'b0}}, n_c0} * 25'h5e5d;   // UQ9.16: k_q*n, exact (constant multiply)
+wire [24:0] kn_s1 = {{15{1'b0}}, n_c0} * 25'h5e5d;   // UQ9.16: k_q*n, exact (constant multiply; saves the paper's general multiplier 34)
 // ---- cut 1: combinational pass-through ----
 wire        valid_c1 = valid_c0;
 wire [0:0] done_c1 = done_s1;
@@ -75,7 +75,12 @@ wire [7:0] ks_g_c3 = ks_g_c2;
 wire [7:0] ks_b_c3 = ks_b_c2;
 
 // ==== step 4: square (squarer 11), truncation #2 ====
-wire [35:0] square_full_s4 = {{18{1'b0}}, bracket_c3} * {{18{1'b0}}, bracket_c3};   // UQ2.34, exact (top bit always 0)
+// squarer split for 16x16 DSP blocks: bracket = hi*2^2 + lo, bracket^2 = hi^2*2^4 + 2*hi*lo*2^2 + lo^2
+wire [15:0] bracket_hi_s4 = bracket_c3[17:2];
+wire [1:0] bracket_lo_s4 = bracket_c3[1:0];
+wire [35:0] square_full_s4 = ({{20{1'b0}}, bracket_hi_s4} * {{20{1'b0}}, bracket_hi_s4} << 4)
+                                 + ({{20{1'b0}}, bracket_hi_s4} * {{34{1'b0}}, bracket_lo_s4} << 3)
+                                 + ({{34{1'b0}}, bracket_lo_s4} * {{34{1'b0}}, bracket_lo_s4});   // UQ2.34, exact (top bit always 0)
 wire [16:0] square_s4 = square_full_s4[34:18];   // UQ1.16: S, floor to 2^-16
 wire        unused_square_bits = ^{square_full_s4[35], square_full_s4[17:0]};   // the always-zero top bit and the truncated low bits
 // ---- cut 4: combinational pass-through ----
@@ -87,28 +92,29 @@ wire [7:0] ks_g_c4 = ks_g_c3;
 wire [7:0] ks_b_c4 = ks_b_c3;
 
 // ==== step 5: colour multipliers (14-16); intensity rounding ====
-wire [23:0] color_prod_r_s5 = {{7{1'b0}}, square_c4} * {{16{1'b0}}, ks_r_c4};   // UQ8.16: S * ks_r, exact
-wire [23:0] color_prod_g_s5 = {{7{1'b0}}, square_c4} * {{16{1'b0}}, ks_g_c4};   // UQ8.16: S * ks_g, exact
-wire [23:0] color_prod_b_s5 = {{7{1'b0}}, square_c4} * {{16{1'b0}}, ks_b_c4};   // UQ8.16: S * ks_b, exact
+wire [9:0] color_square_s5 = square_c4[16:7];   // UQ1.9: all the colours' budget needs (saves 7 bits per colour multiplier)
+wire [16:0] color_prod_r_s5 = {{7{1'b0}}, color_square_s5} * {{9{1'b0}}, ks_r_c4};   // UQ8.9: S * ks_r, exact
+wire [16:0] color_prod_g_s5 = {{7{1'b0}}, color_square_s5} * {{9{1'b0}}, ks_g_c4};   // UQ8.9: S * ks_g, exact
+wire [16:0] color_prod_b_s5 = {{7{1'b0}}, color_square_s5} * {{9{1'b0}}, ks_b_c4};   // UQ8.9: S * ks_b, exact
 wire [16:0] intensity_sum_s5 = square_c4 + 17'h1;   // UQ1.16: S + 2^-16 (round half up)
 // ---- cut 5: combinational pass-through ----
 wire        valid_c5 = valid_c4;
 wire [0:0] done_c5 = done_c4;
 wire [16:0] intensity_sum_c5 = intensity_sum_s5;
-wire [23:0] color_prod_r_c5 = color_prod_r_s5;
-wire [23:0] color_prod_g_c5 = color_prod_g_s5;
-wire [23:0] color_prod_b_c5 = color_prod_b_s5;
+wire [16:0] color_prod_r_c5 = color_prod_r_s5;
+wire [16:0] color_prod_g_c5 = color_prod_g_s5;
+wire [16:0] color_prod_b_c5 = color_prod_b_s5;
 
 // ==== step 6: colour rounding, final slices ====
-wire [23:0] color_sum_r_s6 = color_prod_r_c5 + 24'h8000;   // + 1/2 colour ulp (round half up)
-wire [7:0] spec_r_s6 = color_sum_r_s6[23:16];   // UNORM8
-wire        unused_color_r_bits = ^color_sum_r_s6[15:0];   // rounded-off fraction
-wire [23:0] color_sum_g_s6 = color_prod_g_c5 + 24'h8000;   // + 1/2 colour ulp (round half up)
-wire [7:0] spec_g_s6 = color_sum_g_s6[23:16];   // UNORM8
-wire        unused_color_g_bits = ^color_sum_g_s6[15:0];   // rounded-off fraction
-wire [23:0] color_sum_b_s6 = color_prod_b_c5 + 24'h8000;   // + 1/2 colour ulp (round half up)
-wire [7:0] spec_b_s6 = color_sum_b_s6[23:16];   // UNORM8
-wire        unused_color_b_bits = ^color_sum_b_s6[15:0];   // rounded-off fraction
+wire [16:0] color_sum_r_s6 = color_prod_r_c5 + 17'h100;   // + 1/2 colour ulp (round half up)
+wire [7:0] spec_r_s6 = color_sum_r_s6[16:9];   // UNORM8
+wire        unused_color_r_bits = ^color_sum_r_s6[8:0];   // rounded-off fraction
+wire [16:0] color_sum_g_s6 = color_prod_g_c5 + 17'h100;   // + 1/2 colour ulp (round half up)
+wire [7:0] spec_g_s6 = color_sum_g_s6[16:9];   // UNORM8
+wire        unused_color_g_bits = ^color_sum_g_s6[8:0];   // rounded-off fraction
+wire [16:0] color_sum_b_s6 = color_prod_b_c5 + 17'h100;   // + 1/2 colour ulp (round half up)
+wire [7:0] spec_b_s6 = color_sum_b_s6[16:9];   // UNORM8
+wire        unused_color_b_bits = ^color_sum_b_s6[8:0];   // rounded-off fraction
 wire [15:0] intensity_s6 = intensity_sum_c5[16:1];   // UQ1.15
 wire        unused_intensity_bits = ^intensity_sum_c5[0:0];   // rounded-off fraction
 // ---- cut 6: combinational pass-through ----

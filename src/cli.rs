@@ -56,6 +56,8 @@ pub enum Command {
     },
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
     Cosim(crate::cosim::CosimArgs),
+    /// Synthesize the RTL in DIR with yosys (and nextpnr for Fmax): LUTs, carries, DSPs, FFs, ROM.
+    Synth(crate::synth::SynthArgs),
     /// Write DIR/index.html (self-contained) and DIR/report.json: the paper's claims
     /// recomputed and the configured unit's accuracy.
     Report {
@@ -103,6 +105,9 @@ pub struct ParamArgs {
     /// How the ROM is written: file ($readmemh) or case (inline table) [default file]
     #[arg(long, value_enum)]
     pub rom_style: Option<RomStyle>,
+    /// Datapath: lean (error-budget widths, DSP-sized) or paper (Fig. 5 literally, full width) [default lean]
+    #[arg(long, value_enum)]
+    pub arch: Option<config::Arch>,
 }
 
 /// A failure with its exit code.
@@ -138,7 +143,7 @@ impl ParamArgs {
         macro_rules! set {
             ($($f:ident),*) => { $(if let Some(v) = self.$f { p.$f = v; })* };
         }
-        set!(cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, stages, rounding, rom_style);
+        set!(cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, stages, rounding, rom_style, arch);
         if let Some(v) = &self.k {
             p.k = v.clone();
         }
@@ -182,6 +187,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             eval(&cfg, cos.as_deref(), cos_code, n, ks)
         }
         Command::Cosim(args) => crate::cosim::run_cli(&args),
+        Command::Synth(args) => crate::synth::run_cli(&args),
         Command::Report { out, params } => {
             let cfg = params.to_config()?;
             let files = crate::report::build(&cfg);

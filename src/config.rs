@@ -59,6 +59,25 @@ impl RomStyle {
     }
 }
 
+/// Which datapath is generated; all meet the same contract (SPEC §3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Arch {
+    /// The cheapest correct datapath: widths from the error budget, narrow colour path, DSP-sized squarer.
+    Lean,
+    /// The paper's Fig. 5 literally: full-width datapath, n·(cos − 1) then ·k, multiplier as squarer.
+    Paper,
+}
+
+impl Arch {
+    pub fn name(self) -> &'static str {
+        match self {
+            Arch::Lean => "lean",
+            Arch::Paper => "paper",
+        }
+    }
+}
+
 /// A closed integer range with the parameter's name, used for validation and for `--help`.
 pub struct Range {
     pub name: &'static str,
@@ -101,6 +120,7 @@ pub struct Params {
     pub stages: u32,
     pub rounding: Rounding,
     pub rom_style: RomStyle,
+    pub arch: Arch,
 }
 
 impl Default for Params {
@@ -116,6 +136,7 @@ impl Default for Params {
             stages: 0,
             rounding: Rounding::Faithful,
             rom_style: RomStyle::File,
+            arch: Arch::Lean,
         }
     }
 }
@@ -202,6 +223,9 @@ impl Config {
     }
     pub fn rounding(&self) -> Rounding {
         self.params.rounding
+    }
+    pub fn arch(&self) -> Arch {
+        self.params.arch
     }
     pub fn top(&self) -> &str {
         &self.params.top

@@ -3,7 +3,7 @@
 //! Rust decides every width, literal and register placement here; `templates/unit.v`
 //! holds only the Verilog's shape.
 
-use crate::config::{Config, Params, RomStyle, Rounding};
+use crate::config::{Arch, Config, Params, RomStyle, Rounding};
 use crate::rom::{self, RomFormat};
 use crate::widths::{Widths, PIPELINE_CUTS};
 use askama::Template;
@@ -74,6 +74,14 @@ pub struct UnitTemplate<'a> {
     pub cos_lit_one: String,
     pub kn_n: String,
     pub kn_k: String,
+    pub arch: &'a str,
+    pub paper: bool,
+    pub nd_bits: u32,
+    pub nd_a: String,
+    pub nd_b: String,
+    pub sq_b: String,
+    pub sq_hi: String,
+    pub sq_lo: String,
     pub dev_a: String,
     pub dev_b: String,
     pub dev_hi: u32,
@@ -95,13 +103,17 @@ pub struct UnitTemplate<'a> {
 fn live_signals(cfg: &Config, w: &Widths) -> [Vec<(&'static str, u32, bool)>; PIPELINE_CUTS] {
     let b = cfg.b();
     let ks = |fresh| vec![("ks_r", b, fresh), ("ks_g", b, fresh), ("ks_b", b, fresh)];
+    let multiplicand = match cfg.arch() {
+        Arch::Paper => ("n", cfg.n_bits(), true),
+        Arch::Lean => ("kn", w.kn_bits, true),
+    };
     let with = |mut head: Vec<(&'static str, u32, bool)>, tail: Vec<(&'static str, u32, bool)>| {
         head.extend(tail);
         head
     };
     let intensity_sum_bits = if w.square_frac_bits > cfg.fi() { w.square_bits() } else { cfg.fi() + 1 };
     [
-        with(vec![("done", 1, true), ("one_minus_cos", w.cos_bits, true), ("kn", w.kn_bits, true)], ks(false)),
+        with(vec![("done", 1, true), ("one_minus_cos", w.cos_bits, true), multiplicand], ks(false)),
         with(vec![("done", 1, false), ("deviation", w.bracket_bits(), true)], ks(false)),
         with(vec![("done", 1, false), ("bracket", w.bracket_bits(), true)], ks(false)),
         with(vec![("done", 1, false), ("square", w.square_bits(), true)], ks(false)),
@@ -167,6 +179,8 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
         sq_dropped.push(format!("square_full_s4[{}:0]", w.square_shift - 1));
     }
     let rom_table = rom::cos_sp_table(cfg);
+    let paper = cfg.arch() == Arch::Paper;
+    let nd_bits = cfg.n_bits() + w.cos_bits;
     let intensity_rounds = ws > fi;
     let cuts_text = w.registered_cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", ");
     UnitTemplate {
@@ -194,8 +208,16 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
         cos_lit_one: lit(w.cos_bits, 1u128 << f),
         kn_n: zext("n_c0", cfg.n_bits(), w.kn_bits),
         kn_k: lit(w.kn_bits, cfg.k_code as u128),
-        dev_a: zext("kn_c1", w.kn_bits, w.deviation_bits),
-        dev_b: zext("one_minus_cos_c1", w.cos_bits, w.deviation_bits),
+        arch: cfg.arch().name(),
+        paper,
+        nd_bits,
+        nd_a: zext("n_c1", cfg.n_bits(), nd_bits),
+        nd_b: zext("one_minus_cos_c1", w.cos_bits, nd_bits),
+        dev_a: if paper { zext("n_dev_s2", nd_bits, w.deviation_bits) } else { zext("kn_c1", w.kn_bits, w.deviation_bits) },
+        dev_b: if paper { lit(w.deviation_bits, cfg.k_code as u128) } else { zext("one_minus_cos_c1", w.cos_bits, w.deviation_bits) },
+        sq_b: zext("bracket_c3", w.bracket_bits(), w.full_square_bits()),
+        sq_hi: zext("bracket_hi_s4", w.bracket_bits() - w.squarer_split, w.full_square_bits()),
+        sq_lo: zext("bracket_lo_s4", w.squarer_split.max(1), w.full_square_bits()),
         dev_hi,
         dev_unused: match dropped.len() {
             0 => String::new(),
@@ -210,14 +232,14 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
             .into_iter()
             .map(|name| Channel {
                 name,
-                sq_ext: zext("square_c4", w.square_bits(), w.color_product_bits),
+                sq_ext: zext("color_square_s5", w.color_square_frac_bits + 1, w.color_product_bits),
                 ks_ext: zext(&format!("ks_{name}_c4"), b, w.color_product_bits),
             })
             .collect(),
         intensity_rounds,
         intensity_half: if intensity_rounds { lit(w.square_bits(), 1u128 << (ws - fi - 1)) } else { String::new() },
         intensity_widen: if fi > ws { format!("{{square_c4, {}}}", lit(fi - ws, 0)) } else { "square_c4".into() },
-        color_half: lit(w.color_product_bits, 1u128 << (ws - 1)),
+        color_half: lit(w.color_product_bits, 1u128 << (w.color_square_frac_bits - 1)),
         cuts: build_cuts(cfg, w),
     }
 }

@@ -14,4 +14,5 @@ pub mod model;
 pub mod paper;
 pub mod report;
 pub mod rom;
+pub mod synth;
 pub mod widths;

@@ -99,11 +99,13 @@ impl Model {
         // step 4: square, truncation #2 to WS fractional bits
         let square_full = bracket as u128 * bracket as u128;
         let square = (square_full >> w.square_shift) & mask(ws + 1);
-        // step 5: colour products; intensity rounding add (or exact left shift)
-        let color_prod = ks.map(|k| square * k);
+        // step 5: colour products (of the square cut to WS_C bits); intensity rounding add
+        let wsc = w.color_square_frac_bits;
+        let color_square = square >> (ws - wsc);
+        let color_prod = ks.map(|k| color_square * k);
         let intensity_sum = if ws > fi { square + (1u128 << (ws - fi - 1)) } else { square << (fi - ws) };
         // step 6: colour rounding add and the final slices
-        let spec = color_prod.map(|p| ((p + (1u128 << (ws - 1))) >> ws) as u32);
+        let spec = color_prod.map(|p| ((p + (1u128 << (wsc - 1))) >> wsc) as u32);
         let intensity = if ws > fi { (intensity_sum >> (ws - fi)) as u32 } else { intensity_sum as u32 };
         Trace {
             cos_clamped,

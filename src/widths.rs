@@ -31,13 +31,19 @@
 //! Every step is a monotone function of `cos_g` (truncation, squaring a non-negative value,
 //! multiplying by `ks ≥ 0`, rounding), so outputs never decrease as `cos_g` grows.
 //!
+//! The colour outputs need only `WS_C = B + 1` fractional bits of the square (their own
+//! budget: `WS_C ≥ B + 1`, `WB ≥ B + 2`), so the `lean` datapath multiplies the colours by the
+//! square truncated further, `sq_C = ⌊sq / 2^(WS − WS_C)⌋` (floor of a floor is one floor, so
+//! the bound above holds with WS_C in place of WS). The `paper` datapath keeps every bit
+//! everywhere (the device of Fig. 5 has no error analysis): it is exact, hence also faithful.
+//!
 //! `exact` rounding needs the value itself, not an approximation (a tie can only be told
 //! from a near-tie by every bit), so it uses `WB = KF+F` (no truncation #1) and `WS = 2·WB`
 //! (no truncation #2): then `e = 0`, `y = o*`, and `⌊o* + 1/2⌋` is round-half-up, which for
 //! non-negative values is "ties away from zero". The same caps apply in `faithful` mode
 //! when the budget asks for more bits than the exact value has.
 
-use crate::config::{Config, Rounding};
+use crate::config::{Arch, Config, Rounding};
 use serde::Serialize;
 
 /// Points in the datapath where a pipeline register may be placed (after each step).
@@ -60,7 +66,11 @@ pub struct Widths {
     pub square_frac_bits: u32,
     /// Bits dropped from the full square (truncation #2): `2·WB − WS`.
     pub square_shift: u32,
-    /// `sq · ks_X` (+ the rounding half): WS+B bits, since `2^WS·(2^B−1) + 2^(WS−1) < 2^(WS+B)`.
+    /// WS_C: fractional bits of the square fed to the colour multipliers (≤ WS).
+    pub color_square_frac_bits: u32,
+    /// Low bits split off the bracket so the squarer's main product is ≤ 16×16 (0: one multiply).
+    pub squarer_split: u32,
+    /// `sq_C · ks_X` (+ the rounding half): WS_C+B bits, since `2^WS_C·(2^B−1) + 2^(WS_C−1) < 2^(WS_C+B)`.
     pub color_product_bits: u32,
     /// Registered cut points, 1-based step numbers (empty when combinational).
     pub registered_cuts: Vec<u32>,
@@ -70,13 +80,23 @@ impl Widths {
     pub fn derive(cfg: &Config) -> Widths {
         let (f, kf, fi, b) = (cfg.f(), cfg.kf(), cfg.fi(), cfg.b());
         let exact_bracket_frac = kf + f;
-        let (wb, ws) = match cfg.rounding() {
-            Rounding::Faithful => {
+        let (wb, ws) = match (cfg.rounding(), cfg.arch()) {
+            (_, Arch::Paper) | (Rounding::Exact, _) => (exact_bracket_frac, 2 * exact_bracket_frac),
+            (Rounding::Faithful, Arch::Lean) => {
                 let need = fi.max(b);
                 let wb = (need + 2).min(exact_bracket_frac);
                 (wb, (need + 1).min(2 * wb))
             }
-            Rounding::Exact => (exact_bracket_frac, 2 * exact_bracket_frac),
+        };
+        let wsc = match (cfg.rounding(), cfg.arch()) {
+            (Rounding::Faithful, Arch::Lean) => (b + 1).min(ws),
+            _ => ws,
+        };
+        // A DSP block multiplies 16×16 (iCE40 SB_MAC16); a wider bracket is split x = h·2^r + l
+        // and squared as h²·2^2r + 2hl·2^r + l², the same exact value with one 16×16 product.
+        let squarer_split = match cfg.arch() {
+            Arch::Lean if wb + 1 > 16 && wb + 1 <= 20 => wb + 1 - 16,
+            _ => 0,
         };
         let n_max = (1u64 << cfg.n_bits()) - 1;
         let kn_bits = bit_length(cfg.k_code as u128 * n_max as u128).max(1);
@@ -88,7 +108,9 @@ impl Widths {
             bracket_frac_bits: wb,
             square_frac_bits: ws,
             square_shift: 2 * wb - ws,
-            color_product_bits: ws + b,
+            color_square_frac_bits: wsc,
+            squarer_split,
+            color_product_bits: wsc + b,
             registered_cuts: registered_cuts(cfg.stages()),
         }
     }

@@ -5,7 +5,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
-use specgen::config::{self, Config, Params, RomStyle, Rounding};
+use specgen::config::{self, Arch, Config, Params, RomStyle, Rounding};
 use specgen::model::{self, Inputs, Model};
 use specgen::rom;
 
@@ -28,11 +28,13 @@ prop_compose! {
         kf in config::K_FRAC_BITS.min..=config::K_FRAC_BITS.max,
         k in decimal_k(),
         exact in any::<bool>(),
+        paper in proptest::bool::weighted(0.25),
     ) -> Option<Config> {
         Config::new(Params {
             cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi, k, k_frac_bits: kf,
             rounding: if exact { Rounding::Exact } else { Rounding::Faithful },
             rom_style: RomStyle::File, stages: 0, top: "u".into(),
+            arch: if paper { Arch::Paper } else { Arch::Lean },
         }).ok() // k may round to 0 at few fractional bits: such configs are rejected, not tested
     }
 }

