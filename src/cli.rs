@@ -108,6 +108,9 @@ pub struct ParamArgs {
     /// Datapath: lean (error-budget widths, DSP-sized) or paper (Fig. 5 literally, full width) [default lean]
     #[arg(long, value_enum)]
     pub arch: Option<config::Arch>,
+    /// Function: quadratic (the paper's (15)) or blinn-pow (cos^n by square-and-multiply) [default quadratic]
+    #[arg(long, value_enum)]
+    pub model: Option<config::SpecularModel>,
 }
 
 /// A failure with its exit code.
@@ -143,7 +146,7 @@ impl ParamArgs {
         macro_rules! set {
             ($($f:ident),*) => { $(if let Some(v) = self.$f { p.$f = v; })* };
         }
-        set!(cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, stages, rounding, rom_style, arch);
+        set!(cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, stages, rounding, rom_style, arch, model);
         if let Some(v) = &self.k {
             p.k = v.clone();
         }

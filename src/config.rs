@@ -78,6 +78,27 @@ impl Arch {
     }
 }
 
+/// Which function the unit computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+pub enum SpecularModel {
+    /// The paper's formula (15): `[1 − k·n·(1 − cos)]²` cut off at `cos_sp(n)`.
+    #[serde(rename = "quadratic")]
+    Quadratic,
+    /// Blinn's `cos^n` itself, by square-and-multiply over the bits of n (faithful only).
+    #[serde(rename = "blinn-pow")]
+    #[value(name = "blinn-pow")]
+    BlinnPow,
+}
+
+impl SpecularModel {
+    pub fn name(self) -> &'static str {
+        match self {
+            SpecularModel::Quadratic => "quadratic",
+            SpecularModel::BlinnPow => "blinn-pow",
+        }
+    }
+}
+
 /// A closed integer range with the parameter's name, used for validation and for `--help`.
 pub struct Range {
     pub name: &'static str,
@@ -121,6 +142,7 @@ pub struct Params {
     pub rounding: Rounding,
     pub rom_style: RomStyle,
     pub arch: Arch,
+    pub model: SpecularModel,
 }
 
 impl Default for Params {
@@ -137,6 +159,7 @@ impl Default for Params {
             rounding: Rounding::Faithful,
             rom_style: RomStyle::File,
             arch: Arch::Lean,
+            model: SpecularModel::Quadratic,
         }
     }
 }
@@ -191,6 +214,29 @@ impl Config {
         K_FRAC_BITS.check(params.k_frac_bits)?;
         STAGES.check(params.stages)?;
         let k_code = parse_k(&params.k, params.k_frac_bits)?;
+        if params.model == SpecularModel::BlinnPow {
+            if params.rounding == Rounding::Exact {
+                return Err(ConfigError {
+                    parameter: "rounding",
+                    message: "exact is not available with --model blinn-pow; allowed: faithful".into(),
+                });
+            }
+            if params.stages > params.n_bits + 2 {
+                return Err(ConfigError {
+                    parameter: "stages",
+                    message: format!(
+                        "{} is out of range for --model blinn-pow with n_bits = {}; allowed 0..={}",
+                        params.stages, params.n_bits, params.n_bits + 2
+                    ),
+                });
+            }
+            if params.arch == Arch::Paper {
+                return Err(ConfigError {
+                    parameter: "arch",
+                    message: "paper applies to --model quadratic only; allowed with blinn-pow: lean".into(),
+                });
+            }
+        }
         Ok(Config { params, k_code })
     }
 
@@ -226,6 +272,9 @@ impl Config {
     }
     pub fn arch(&self) -> Arch {
         self.params.arch
+    }
+    pub fn model(&self) -> SpecularModel {
+        self.params.model
     }
     pub fn top(&self) -> &str {
         &self.params.top

@@ -6,7 +6,7 @@
 //! [`reference`] computes the ideal outputs as exact dyadic rationals with no knowledge of
 //! the internal widths; [`check`] states the rounding contract against it.
 
-use crate::config::{Config, Rounding};
+use crate::config::{Config, Rounding, SpecularModel};
 use crate::rom;
 use crate::widths::Widths;
 
@@ -72,8 +72,36 @@ impl Model {
         self.trace(x).outputs
     }
 
+    /// `--model blinn-pow`: square-and-multiply over the bits of n, LSB first, each product
+    /// truncated to W fractional bits (see `widths::power_frac_bits`), as the RTL does it.
+    pub fn eval_blinn_pow(&self, x: Inputs) -> Outputs {
+        let w = self.widths.power_frac_bits;
+        let (f, fi, b, nb) = (self.cfg.f(), self.cfg.fi(), self.cfg.b(), self.cfg.n_bits());
+        let cos_g = x.cos_g as u128 & mask(f + 1);
+        let n = x.n as u128 & mask(nb);
+        // step 1: clamp to 1.0, widen UQ1.F → UQ1.W; r = 1.0
+        let mut power = cos_g.min(1 << f) << (w - f);
+        let mut result = 1u128 << w;
+        // steps 2..N+1: one bit of n each
+        for i in 0..nb {
+            if (n >> i) & 1 == 1 {
+                result = (result * power) >> w;
+            }
+            if i + 1 < nb {
+                power = (power * power) >> w;
+            }
+        }
+        // last step: round half up to the outputs
+        let intensity = ((result + (1u128 << (w - fi - 1))) >> (w - fi)) as u32;
+        let spec = x.ks.map(|k| (((result * (k as u128 & mask(b))) + (1u128 << (w - 1))) >> w) as u32);
+        Outputs { spec, intensity, done: intensity == 0 }
+    }
+
     /// Runs the datapath and returns every intermediate value.
     pub fn trace(&self, x: Inputs) -> Trace {
+        if self.cfg.model() == SpecularModel::BlinnPow {
+            return Trace { outputs: self.eval_blinn_pow(x), ..Trace::default() };
+        }
         let w = &self.widths;
         let f = self.cfg.f();
         let wb = w.bracket_frac_bits;
@@ -194,8 +222,63 @@ pub fn check_value(rounding: Rounding, got: u32, ideal: Ideal) -> Result<(), Str
     }
 }
 
-/// Checks a full output vector against SPEC §3 for one input.
+/// Fractional bits of the interval reference for `cos^n`.
+pub const POW_REF_BITS: u32 = 60;
+
+/// Rigorous bounds `lo ≤ c^n·2^60 ≤ hi` for `c = min(cos_g, 2^F)/2^F`, by square-and-multiply
+/// with every product rounded down (lo) and up (hi) at 60 fractional bits.
+pub fn blinn_bounds(cfg: &Config, cos_g: u32, n: u32) -> (u128, u128) {
+    let q = POW_REF_BITS;
+    let one = 1u128 << q;
+    let c = ((cos_g as u128).min(1 << cfg.f())) << (q - cfg.f());
+    let (mut p_lo, mut p_hi, mut r_lo, mut r_hi) = (c, c, one, one);
+    let mul_dn = |a: u128, b: u128| (a * b) >> q;
+    let mul_up = |a: u128, b: u128| ((a * b + one - 1) >> q).min(one);
+    let mut m = n;
+    while m > 0 {
+        if m & 1 == 1 {
+            r_lo = mul_dn(r_lo, p_lo);
+            r_hi = mul_up(r_hi, p_hi);
+        }
+        m >>= 1;
+        if m > 0 {
+            p_lo = mul_dn(p_lo, p_lo);
+            p_hi = mul_up(p_hi, p_hi);
+        }
+    }
+    (r_lo, r_hi)
+}
+
+/// Checks `--model blinn-pow` outputs: every output within 1 of its ideal `c^n·M` for every
+/// value the interval allows; `done` ⇔ intensity is 0.
+pub fn check_blinn_pow(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
+    let (lo, hi) = blinn_bounds(cfg, x.cos_g, x.n);
+    let q = POW_REF_BITS;
+    let within = |o: u32, m: u128| {
+        let o = (o as u128) << q;
+        // |o − v·m| < 1 for every v in [lo, hi]: o > hi·m − 1 and o < lo·m + 1
+        o + (1u128 << q) > hi * m && o < lo * m + (1u128 << q)
+    };
+    if !within(got.intensity, 1u128 << cfg.fi()) {
+        return Err(format!("intensity: got {}, cos^n·2^FI in [{}, {}]", got.intensity, (lo << cfg.fi()) as f64 / (q as f64).exp2(), (hi << cfg.fi()) as f64 / (q as f64).exp2()));
+    }
+    for (i, name) in ["spec_r", "spec_g", "spec_b"].iter().enumerate() {
+        if !within(got.spec[i], x.ks[i] as u128) {
+            return Err(format!("{name}: got {}, cos^n·ks in [{}, {}]", got.spec[i], (lo * x.ks[i] as u128) as f64 / (q as f64).exp2(), (hi * x.ks[i] as u128) as f64 / (q as f64).exp2()));
+        }
+    }
+    if got.done != (got.intensity == 0) {
+        return Err(format!("done: got {}, intensity {}", got.done, got.intensity));
+    }
+    Ok(())
+}
+
+/// Checks a full output vector against its contract for one input (SPEC §3, or the
+/// `cos^n` contract of `--model blinn-pow`).
 pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
+    if cfg.model() == SpecularModel::BlinnPow {
+        return check_blinn_pow(cfg, x, got);
+    }
     let r = reference(cfg, x);
     if got.done != r.done {
         return Err(format!("done: got {}, reference {}", got.done, r.done));

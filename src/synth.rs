@@ -36,6 +36,9 @@ pub struct SynthArgs {
     /// Also write the result as JSON to FILE.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// Keep nextpnr's log (critical paths) in FILE.
+    #[arg(long, value_name = "FILE")]
+    pub pnr_log: Option<PathBuf>,
 }
 
 /// Area and speed of one synthesis run.
@@ -141,7 +144,7 @@ fn run_yosys(dir: &Path, script: &str) -> Result<String, Failure> {
 }
 
 /// Synthesizes the unit in `design` for `target`.
-pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool) -> Result<SynthResult, Failure> {
+pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
     require("yosys", "yosys")?;
     let top = design.cfg.top().to_string();
     let work = tempfile::tempdir().map_err(|e| usage(e.to_string()))?;
@@ -206,6 +209,9 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool) -> Resu
                 .output()
                 .map_err(|e| usage(format!("cannot run {tool}: {e}")))?;
             let log = String::from_utf8_lossy(&out.stderr);
+            if let Some(path) = pnr_log {
+                std::fs::write(path, log.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display())))?;
+            }
             if !out.status.success() {
                 return Err(failed(format!("{tool} failed:\n{}", &log[log.len().saturating_sub(2000)..])));
             }
@@ -241,7 +247,7 @@ pub fn table(r: &SynthResult) -> String {
 
 pub fn run_cli(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
-    let r = synthesize(&design, args.target, args.dsp, !args.no_pnr)?;
+    let r = synthesize(&design, args.target, args.dsp, !args.no_pnr, args.pnr_log.as_deref())?;
     print!("{}", table(&r));
     if let Some(path) = &args.json {
         let mut text = serde_json::to_string_pretty(&r).expect("serialises");

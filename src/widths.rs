@@ -43,7 +43,7 @@
 //! non-negative values is "ties away from zero". The same caps apply in `faithful` mode
 //! when the budget asks for more bits than the exact value has.
 
-use crate::config::{Arch, Config, Rounding};
+use crate::config::{Arch, Config, Rounding, SpecularModel};
 use serde::Serialize;
 
 /// Points in the datapath where a pipeline register may be placed (after each step).
@@ -72,6 +72,9 @@ pub struct Widths {
     pub squarer_split: u32,
     /// `sq_C · ks_X` (+ the rounding half): WS_C+B bits, since `2^WS_C·(2^B−1) + 2^(WS_C−1) < 2^(WS_C+B)`.
     pub color_product_bits: u32,
+    /// W of `--model blinn-pow`: fractional bits of every power and partial product, UQ1.W
+    /// (0 for the quadratic model). See [`power_frac_bits`].
+    pub power_frac_bits: u32,
     /// Registered cut points, 1-based step numbers (empty when combinational).
     pub registered_cuts: Vec<u32>,
 }
@@ -111,7 +114,8 @@ impl Widths {
             color_square_frac_bits: wsc,
             squarer_split,
             color_product_bits: wsc + b,
-            registered_cuts: registered_cuts(cfg.stages()),
+            power_frac_bits: if cfg.model() == SpecularModel::BlinnPow { power_frac_bits(cfg) } else { 0 },
+            registered_cuts: registered_cuts(cfg.stages(), cut_points(cfg)),
         }
     }
 
@@ -130,11 +134,33 @@ impl Widths {
     }
 }
 
-/// Spreads `stages` registers over the [`PIPELINE_CUTS`] cut points: register j (1-based)
-/// goes after step `round(j·(C+1)/(S+1))`, so the logic between registers is roughly even.
-pub fn registered_cuts(stages: u32) -> Vec<u32> {
-    let c = PIPELINE_CUTS as u32;
-    (1..=stages).map(|j| (2 * j * (c + 1) + stages + 1) / (2 * (stages + 1))).collect()
+/// W for `--model blinn-pow` (square-and-multiply over the bits of n, LSB first, every
+/// product truncated to W fractional bits, c taken exactly: W ≥ F).
+///
+/// Error budget: all truncations round down, so errors are one-sided. Powers `p_i = c^(2^i)`
+/// are squared: with `p ≤ 1`, `x² − (x−e)² ≤ 2e`, so `e(p_i) ≤ (2^i − 1)·2^−W`. The result
+/// `r ← r·p_i` (r, p ≤ 1) gains at most `e(r) + e(p_i) + 2^−W`; summed over the N bits,
+/// `e(r_N) ≤ Σ_{i<N} 2^i·2^−W < 2^(N−W)`. In output units (`M = 2^FI` or `ks < 2^B`) this is
+/// below 1/2 when `W ≥ max(FI, B) + N + 1`; the final round-half-up then gives a faithful
+/// result, exact where the ideal is an integer, and monotone in cos_g.
+pub fn power_frac_bits(cfg: &Config) -> u32 {
+    (cfg.fi().max(cfg.b()) + cfg.n_bits() + 1).max(cfg.f())
+}
+
+/// Number of cut points of the configured datapath.
+pub fn cut_points(cfg: &Config) -> u32 {
+    match cfg.model() {
+        SpecularModel::Quadratic => PIPELINE_CUTS as u32,
+        // after the clamp, after each bit of n, after the rounding
+        SpecularModel::BlinnPow => cfg.n_bits() + 2,
+    }
+}
+
+/// Spreads `stages` registers over `cuts` cut points: register j (1-based) goes after step
+/// `round(j·(C+1)/(S+1))`, so the logic between registers is roughly even.
+pub fn registered_cuts(stages: u32, cuts: u32) -> Vec<u32> {
+    let stages = stages.min(cuts);
+    (1..=stages).map(|j| (2 * j * (cuts + 1) + stages + 1) / (2 * (stages + 1))).collect()
 }
 
 /// Number of bits needed to hold `v` (0 for 0).
@@ -149,12 +175,12 @@ mod tests {
     #[test]
     fn cuts_are_distinct_increasing_and_in_range() {
         for s in 0..=PIPELINE_CUTS as u32 {
-            let cuts = registered_cuts(s);
+            let cuts = registered_cuts(s, PIPELINE_CUTS as u32);
             assert_eq!(cuts.len(), s as usize);
             assert!(cuts.windows(2).all(|w| w[0] < w[1]), "{cuts:?}");
             assert!(cuts.iter().all(|&c| (1..=PIPELINE_CUTS as u32).contains(&c)));
         }
-        assert_eq!(registered_cuts(PIPELINE_CUTS as u32), (1..=PIPELINE_CUTS as u32).collect::<Vec<_>>());
+        assert_eq!(registered_cuts(PIPELINE_CUTS as u32, PIPELINE_CUTS as u32), (1..=PIPELINE_CUTS as u32).collect::<Vec<_>>());
     }
 
     #[test]

@@ -37,4 +37,6 @@ pub const CONFIGS: &[&[&str]] = &[
     &["--stages", "3", "--cos-frac-bits", "11", "--n-bits", "7", "--color-bits", "5", "--intensity-frac-bits", "9", "--k", "0.5", "--k-frac-bits", "7"],
     &["--cos-frac-bits", "5", "--n-bits", "3", "--color-bits", "1", "--intensity-frac-bits", "13", "--k-frac-bits", "4", "--k", "1", "--rom-style", "case", "--rounding", "exact"],
     &["--stages", "6", "--cos-frac-bits", "17", "--n-bits", "12", "--color-bits", "13", "--intensity-frac-bits", "3", "--k", "0.0625", "--k-frac-bits", "19", "--top", "wide_unit"],
+    &["--arch", "paper", "--stages", "2"],
+    &["--arch", "paper", "--cos-frac-bits", "9", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "11", "--k-frac-bits", "9", "--rom-style", "case"],
 ];

@@ -1,0 +1,49 @@
+//! `specgen synth`: the lean datapath is leaner than the paper's and fits an iCE40 UP5K.
+
+mod common;
+use common::*;
+use std::path::Path;
+
+fn synth(dir: &Path, args: &[&str]) -> serde_json::Value {
+    let json = dir.join("synth.json");
+    let o = specgen().arg("synth").arg("--rtl").arg(dir).args(args).arg("--json").arg(&json).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(table.contains("LUT4") && table.contains("Fmax"), "{table}");
+    serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap()
+}
+
+#[test]
+fn lean_uses_30_percent_fewer_lut4_than_paper_without_dsps() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let lean = synth(&generate(tmp.path(), "lean", &[]), &["--target", "ice40", "--no-pnr"]);
+    let paper = synth(&generate(tmp.path(), "paper", &["--arch", "paper"]), &["--target", "ice40", "--no-pnr"]);
+    let (l, p) = (lean["luts"].as_u64().unwrap(), paper["luts"].as_u64().unwrap());
+    assert!(l > 100 && p > 100, "designs were synthesized: {l} {p}");
+    assert!((l as f64) <= 0.7 * p as f64, "lean {l} LUT4 vs paper {p}");
+    assert_eq!(lean["dsp_blocks"], 0);
+    assert_eq!(lean["rom_bits"], 1024 * 16);
+}
+
+#[test]
+fn lean_fits_an_up5k_with_dsps_and_places() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let r = synth(&generate(tmp.path(), "lean", &["--stages", "2"]), &["--target", "ice40", "--dsp"]);
+    let dsp = r["dsp_blocks"].as_u64().unwrap();
+    assert!((1..=8).contains(&dsp), "{dsp} SB_MAC16");
+    assert!(r["luts"].as_u64().unwrap() <= 5280);
+    assert!(r["flip_flops"].as_u64().unwrap() > 0, "stages 2 has registers");
+    assert!(r["fmax_mhz"].as_f64().unwrap() > 10.0, "{r}");
+}
+
+#[test]
+fn generic_target_counts_cells() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let r = synth(&generate(tmp.path(), "g", &["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"]), &["--target", "generic"]);
+    assert!(r["luts"].as_u64().unwrap() > 50);
+    assert!(r["fmax_mhz"].is_null());
+}
