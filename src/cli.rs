@@ -23,6 +23,9 @@ pub enum Command {
         /// Output directory (created, or replaced if it holds only a previous specgen output).
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
+        /// Pick --stages: the shallowest pipeline whose iCE40 UP5K Fmax (yosys + nextpnr, with DSPs) reaches F MHz.
+        #[arg(long, value_name = "F", conflicts_with = "stages")]
+        target_mhz: Option<f64>,
         #[command(flatten)]
         params: ParamArgs,
     },
@@ -164,8 +167,16 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<()
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Generate { out, params } => {
-            let cfg = params.to_config()?;
+        Command::Generate { out, target_mhz, params } => {
+            let mut cfg = params.to_config()?;
+            if let Some(mhz) = target_mhz {
+                if !(mhz > 0.0 && mhz <= 1000.0) {
+                    return Err(usage(format!("invalid --target-mhz: {mhz}; allowed (0, 1000]")));
+                }
+                let (stages, _) = crate::synth::pick_stages(&cfg.params, mhz)?;
+                cfg = Config::new(Params { stages, ..cfg.params.clone() })?;
+                eprintln!("target-mhz: chose --stages {stages}");
+            }
             let files = emit::generate_files(&cfg);
             write_output(&out, &files)?;
             for (name, _) in &files {

@@ -3,7 +3,7 @@
 //! Rust decides every width, literal and register placement here; `templates/unit.v`
 //! holds only the Verilog's shape.
 
-use crate::config::{Arch, Config, Params, RomStyle, Rounding};
+use crate::config::{Arch, Config, Params, RomStyle, Rounding, SpecularModel};
 use crate::rom::{self, RomFormat};
 use crate::widths::{Widths, PIPELINE_CUTS};
 use askama::Template;
@@ -135,25 +135,7 @@ fn live_signals(cfg: &Config, w: &Widths) -> [Vec<(&'static str, u32, bool)>; PI
 }
 
 fn build_cuts(cfg: &Config, w: &Widths) -> Vec<Cut> {
-    live_signals(cfg, w)
-        .into_iter()
-        .enumerate()
-        .map(|(i, sigs)| {
-            let index = i + 1;
-            Cut {
-                index,
-                registered: w.registered_cuts.contains(&(index as u32)),
-                signals: sigs
-                    .into_iter()
-                    .map(|(name, width, fresh)| CutSignal {
-                        name,
-                        width,
-                        source: if fresh { format!("{name}_s{index}") } else { format!("{name}_c{i}") },
-                    })
-                    .collect(),
-            }
-        })
-        .collect()
+    cut_list(w, live_signals(cfg, w).into_iter().collect())
 }
 
 /// Builds the template context of the RTL for one configuration.
@@ -244,6 +226,122 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
     }
 }
 
+pub struct BitStep {
+    pub step: usize,
+    pub prev: usize,
+    pub bit: u32,
+    /// another bit follows: square the power and pass the remaining bits of n
+    pub more: bool,
+    pub rest_bits: u32,
+    pub r_ext: String,
+    pub p_ext: String,
+}
+
+#[derive(Template)]
+#[template(path = "blinn_pow.v")]
+pub struct BlinnPowTemplate<'a> {
+    pub top: &'a str,
+    pub version: &'a str,
+    pub p: &'a Params,
+    pub w: &'a Widths,
+    pub pw: u32,
+    pub cuts_text: String,
+    pub cos_lit_one: String,
+    pub widen_cos: String,
+    pub one_w: String,
+    pub bit_steps: Vec<BitStep>,
+    pub last_step: usize,
+    pub intensity_half: String,
+    pub intensity_zero: String,
+    pub channels: Vec<Channel>,
+    pub color_bits_w: u32,
+    pub color_half: String,
+    pub cuts: Vec<Cut>,
+}
+
+fn cut_list(w: &Widths, live: Vec<Vec<(&'static str, u32, bool)>>) -> Vec<Cut> {
+    live.into_iter()
+        .enumerate()
+        .map(|(i, sigs)| {
+            let index = i + 1;
+            Cut {
+                index,
+                registered: w.registered_cuts.contains(&(index as u32)),
+                signals: sigs
+                    .into_iter()
+                    .map(|(name, width, fresh)| CutSignal {
+                        name,
+                        width,
+                        source: if fresh { format!("{name}_s{index}") } else { format!("{name}_c{i}") },
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// Builds the template context of the `--model blinn-pow` RTL.
+pub fn blinn_pow_template<'a>(cfg: &'a Config, w: &'a Widths) -> BlinnPowTemplate<'a> {
+    let (f, nb, b, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
+    let pw = w.power_frac_bits;
+    let ks = |fresh| vec![("ks_r", b, fresh), ("ks_g", b, fresh), ("ks_b", b, fresh)];
+    let mut live = vec![{
+        let mut v = vec![("power", pw + 1, true), ("result", pw + 1, true), ("n_rest", nb, true)];
+        v.extend(ks(false));
+        v
+    }];
+    let mut bit_steps = Vec::new();
+    for k in 1..=nb {
+        let more = k < nb;
+        let mut v = vec![("result", pw + 1, true)];
+        if more {
+            v.push(("power", pw + 1, true));
+            v.push(("n_rest", nb - k, true));
+        }
+        v.extend(ks(false));
+        live.push(v);
+        bit_steps.push(BitStep {
+            step: k as usize + 1,
+            prev: k as usize,
+            bit: k - 1,
+            more,
+            rest_bits: nb - k,
+            r_ext: zext(&format!("result_c{k}"), pw + 1, 2 * pw + 2),
+            p_ext: zext(&format!("power_c{k}"), pw + 1, 2 * pw + 2),
+        });
+    }
+    live.push(vec![("done", 1, true), ("intensity", fi + 1, true), ("spec_r", b, true), ("spec_g", b, true), ("spec_b", b, true)]);
+    let last_step = nb as usize + 2;
+    let color_bits_w = pw + b;
+    let cuts_text = w.registered_cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", ");
+    BlinnPowTemplate {
+        top: cfg.top(),
+        version: VERSION,
+        p: &cfg.params,
+        w,
+        pw,
+        cuts_text: if cuts_text.is_empty() { "none".into() } else { cuts_text },
+        cos_lit_one: lit(f + 1, 1u128 << f),
+        widen_cos: if pw > f { format!("{{cos_clamped_s1, {}}}", lit(pw - f, 0)) } else { "cos_clamped_s1".into() },
+        one_w: lit(pw + 1, 1u128 << pw),
+        bit_steps,
+        last_step,
+        intensity_half: lit(pw + 1, 1u128 << (pw - fi - 1)),
+        intensity_zero: lit(fi + 1, 0),
+        channels: ["r", "g", "b"]
+            .into_iter()
+            .map(|name| Channel {
+                name,
+                sq_ext: zext(&format!("result_c{}", last_step - 1), pw + 1, color_bits_w),
+                ks_ext: zext(&format!("ks_{name}_c{}", last_step - 1), b, color_bits_w),
+            })
+            .collect(),
+        color_bits_w,
+        color_half: lit(color_bits_w, 1u128 << (pw - 1)),
+        cuts: cut_list(w, live),
+    }
+}
+
 #[derive(Template)]
 #[template(path = "unit.core")]
 struct CoreTemplate<'a> {
@@ -312,16 +410,21 @@ fn sha256_hex(bytes: &[u8]) -> String {
 pub fn generate_files(cfg: &Config) -> Vec<(String, Vec<u8>)> {
     let w = Widths::derive(cfg);
     let top = cfg.top();
-    let mut verilog = unit_template(cfg, &w).render().expect("unit template renders");
+    let quadratic = cfg.model() == SpecularModel::Quadratic;
+    let mut verilog = match cfg.model() {
+        SpecularModel::Quadratic => unit_template(cfg, &w).render(),
+        SpecularModel::BlinnPow => blinn_pow_template(cfg, &w).render(),
+    }
+    .expect("unit template renders");
     verilog.push('\n');
-    let core = CoreTemplate { top, version: VERSION, latency: cfg.stages(), rom_file: cfg.params.rom_style == RomStyle::File }
-        .render()
-        .expect("core template renders");
-    let mut files = vec![
-        (format!("{top}.v"), verilog.into_bytes()),
-        (ROM_FILE.to_string(), rom::render(cfg, RomFormat::Hex).into_bytes()),
-        (format!("{top}.core"), core.into_bytes()),
-    ];
+    let rom_file = quadratic && cfg.params.rom_style == RomStyle::File;
+    let core = CoreTemplate { top, version: VERSION, latency: cfg.stages(), rom_file }.render().expect("core template renders");
+    let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
+    if quadratic {
+        // blinn-pow has no cut-off ROM
+        files.push((ROM_FILE.to_string(), rom::render(cfg, RomFormat::Hex).into_bytes()));
+    }
+    files.push((format!("{top}.core"), core.into_bytes()));
     let manifest = Manifest {
         generator: "specgen",
         version: VERSION,

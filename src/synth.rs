@@ -213,7 +213,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
                 std::fs::write(path, log.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display())))?;
             }
             if !out.status.success() {
-                return Err(failed(format!("{tool} failed:\n{}", &log[log.len().saturating_sub(2000)..])));
+                // typically the design does not fit the device: report it, keep the area figures
+                let why = log.lines().filter(|l| l.starts_with("ERROR")).last().unwrap_or("unknown error").to_string();
+                r.fmax_note = format!("place-and-route failed: {why}");
+                return Ok(r);
             }
             r.fmax_mhz = log
                 .lines()
@@ -255,4 +258,37 @@ pub fn run_cli(args: &SynthArgs) -> Result<(), Failure> {
         emit::write_file_atomically(path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display())))?;
     }
     Ok(())
+}
+
+/// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (iCE40 UP5K with
+/// DSPs, nextpnr) and returns the shallowest whose Fmax reaches `mhz`, with every try.
+pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Vec<(u32, Option<f64>)>), Failure> {
+    require("yosys", "yosys")?;
+    require("nextpnr-ice40", "nextpnr-ice40")?;
+    let max = match params.model {
+        crate::config::SpecularModel::Quadratic => crate::config::STAGES.max,
+        crate::config::SpecularModel::BlinnPow => params.n_bits + 2,
+    };
+    let mut tries = Vec::new();
+    for stages in 0..=max {
+        let cfg = crate::config::Config::new(crate::config::Params { stages, ..params.clone() })?;
+        let dir = tempfile::tempdir().map_err(|e| usage(e.to_string()))?;
+        let out = dir.path().join("rtl");
+        emit::write_dir_atomically(&out, &emit::generate_files(&cfg)).map_err(|e| failed(e.to_string()))?;
+        let design = Design::load(&out)?;
+        let r = synthesize(&design, Target::Ice40, true, true, None)?;
+        eprintln!("target-mhz: stages {stages}: Fmax {}", r.fmax_mhz.map(|f| format!("{f:.1} MHz")).unwrap_or_else(|| r.fmax_note.clone()));
+        tries.push((stages, r.fmax_mhz));
+        if r.fmax_mhz.is_some_and(|f| f >= mhz) {
+            return Ok((stages, tries));
+        }
+    }
+    let best = tries.iter().filter_map(|(s, f)| f.map(|f| (*s, f))).fold(None, |b: Option<(u32, f64)>, x| match b {
+        Some(b) if b.1 >= x.1 => Some(b),
+        _ => Some(x),
+    });
+    Err(failed(match best {
+        Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on iCE40 UP5K; the best is {f:.1} MHz at --stages {s}; nothing written"),
+        None => format!("no pipeline depth could be placed on iCE40 UP5K; nothing written"),
+    }))
 }

@@ -115,8 +115,14 @@ impl Widths {
             squarer_split,
             color_product_bits: wsc + b,
             power_frac_bits: if cfg.model() == SpecularModel::BlinnPow { power_frac_bits(cfg) } else { 0 },
-            registered_cuts: registered_cuts(cfg.stages(), cut_points(cfg)),
+            registered_cuts: Vec::new(),
         }
+        .with_balanced_cuts(cfg)
+    }
+
+    fn with_balanced_cuts(mut self, cfg: &Config) -> Widths {
+        self.registered_cuts = balanced_cuts(&step_delays(cfg, &self), cfg.stages());
+        self
     }
 
     pub fn bracket_bits(&self) -> u32 {
@@ -156,11 +162,73 @@ pub fn cut_points(cfg: &Config) -> u32 {
     }
 }
 
-/// Spreads `stages` registers over `cuts` cut points: register j (1-based) goes after step
-/// `round(j·(C+1)/(S+1))`, so the logic between registers is roughly even.
-pub fn registered_cuts(stages: u32, cuts: u32) -> Vec<u32> {
-    let stages = stages.min(cuts);
-    (1..=stages).map(|j| (2 * j * (cuts + 1) + stages + 1) / (2 * (stages + 1))).collect()
+/// A rough delay model of each datapath step on a LUT4 + carry-chain fabric (iCE40-like),
+/// in ns: an adder of w bits `1.5 + 0.3·w`, an a×b multiplier `1.5·⌈log2 min(a,b)+1⌉ + 0.3·(a+b)`,
+/// a ROM of 2^N words `1.2·⌈N/4⌉ + 1`. Only the ratios matter: they place the registers.
+pub fn step_delays(cfg: &Config, w: &Widths) -> Vec<f64> {
+    let add = |bits: u32| 1.5 + 0.3 * bits as f64;
+    let mul = |a: u32, b: u32| 1.5 * ((a.min(b).max(1) as f64).log2().ceil() + 1.0) + 0.3 * (a + b) as f64;
+    let rom = 1.2 * cfg.n_bits().div_ceil(4) as f64 + 1.0;
+    match cfg.model() {
+        SpecularModel::Quadratic => {
+            let k_terms = cfg.k_code.count_ones().max(1);
+            let square = if w.squarer_split > 0 {
+                mul(w.bracket_bits() - w.squarer_split, w.bracket_bits()) + add(w.full_square_bits())
+            } else {
+                mul(w.bracket_bits(), w.bracket_bits())
+            };
+            vec![
+                (rom + add(w.cos_bits)).max(mul(cfg.n_bits(), k_terms * 2)),
+                mul(w.kn_bits.max(cfg.n_bits()), w.cos_bits),
+                add(w.bracket_bits()) + 0.6,
+                square,
+                mul(w.color_square_frac_bits + 1, cfg.b()).max(add(w.square_bits())),
+                add(w.color_product_bits),
+            ]
+        }
+        SpecularModel::BlinnPow => {
+            let pw = w.power_frac_bits + 1;
+            let mut v = vec![add(w.cos_bits)];
+            v.extend((0..cfg.n_bits()).map(|_| mul(pw, pw) + 0.6));
+            v.push(mul(pw, cfg.b()) + add(pw + cfg.b()));
+            v
+        }
+    }
+}
+
+/// Places `stages` registers after steps (1-based) so that the slowest stretch of logic
+/// between registers (inputs and outputs count as registered outside) is as short as
+/// possible; ties go to the placement closest to the outputs. Exhaustive over placements.
+pub fn balanced_cuts(delays: &[f64], stages: u32) -> Vec<u32> {
+    let c = delays.len();
+    let s = (stages as usize).min(c);
+    let worst = |cuts: &[usize]| {
+        let mut edges = vec![0usize];
+        edges.extend(cuts.iter().copied());
+        edges.push(c);
+        edges.windows(2).map(|e| delays[e[0]..e[1]].iter().sum::<f64>()).fold(0.0f64, f64::max)
+    };
+    let mut best: Option<(f64, Vec<usize>)> = None;
+    let mut pick = vec![0usize; s];
+    fn walk(pos: usize, start: usize, c: usize, pick: &mut Vec<usize>, eval: &dyn Fn(&[usize]) -> f64, best: &mut Option<(f64, Vec<usize>)>) {
+        if pos == pick.len() {
+            let w = eval(pick);
+            let better = match best {
+                None => true,
+                Some((bw, bc)) => w < *bw - 1e-9 || ((w - *bw).abs() <= 1e-9 && pick.as_slice() > bc.as_slice()),
+            };
+            if better {
+                *best = Some((w, pick.clone()));
+            }
+            return;
+        }
+        for cut in start..=c {
+            pick[pos] = cut;
+            walk(pos + 1, cut + 1, c, pick, eval, best);
+        }
+    }
+    walk(0, 1, c, &mut pick, &worst, &mut best);
+    best.map(|(_, cuts)| cuts.into_iter().map(|x| x as u32).collect()).unwrap_or_default()
 }
 
 /// Number of bits needed to hold `v` (0 for 0).
@@ -174,13 +242,25 @@ mod tests {
 
     #[test]
     fn cuts_are_distinct_increasing_and_in_range() {
+        let delays = step_delays(&Config::defaults(), &Widths::derive(&Config::defaults()));
+        assert_eq!(delays.len(), PIPELINE_CUTS);
         for s in 0..=PIPELINE_CUTS as u32 {
-            let cuts = registered_cuts(s, PIPELINE_CUTS as u32);
+            let cuts = balanced_cuts(&delays, s);
             assert_eq!(cuts.len(), s as usize);
             assert!(cuts.windows(2).all(|w| w[0] < w[1]), "{cuts:?}");
             assert!(cuts.iter().all(|&c| (1..=PIPELINE_CUTS as u32).contains(&c)));
         }
-        assert_eq!(registered_cuts(PIPELINE_CUTS as u32, PIPELINE_CUTS as u32), (1..=PIPELINE_CUTS as u32).collect::<Vec<_>>());
+        assert_eq!(balanced_cuts(&delays, PIPELINE_CUTS as u32), (1..=PIPELINE_CUTS as u32).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn balancing_splits_the_heaviest_step_off() {
+        // one heavy step in the middle: a single register goes right next to it
+        let d = [1.0, 1.0, 10.0, 1.0, 1.0];
+        assert_eq!(balanced_cuts(&d, 1), vec![3]);
+        assert_eq!(balanced_cuts(&d, 2), vec![2, 3]);
+        // uniform steps: registers evenly spaced
+        assert_eq!(balanced_cuts(&[1.0; 6], 2), vec![2, 4]);
     }
 
     #[test]

@@ -50,6 +50,11 @@ fn invalid_parameters_exit_2_name_the_range_and_write_nothing() {
         (&["--top", "module"], "--top", "keyword"),
         (&["--rounding", "sloppy"], "--rounding", "faithful"),
         (&["--stages", "-1"], "", ""),
+        (&["--model", "blinn-pow", "--rounding", "exact"], "--rounding", "faithful"),
+        (&["--model", "blinn-pow", "--arch", "paper"], "--arch", "lean"),
+        (&["--model", "blinn-pow", "--n-bits", "2", "--stages", "5"], "--stages", "0..=4"),
+        (&["--arch", "fast"], "--arch", "lean"),
+        (&["--target-mhz", "0"], "--target-mhz", "(0, 1000]"),
         (&["--n-bits", "ten"], "--n-bits", ""),
     ];
     for (i, (args, param, range)) in cases.iter().enumerate() {
@@ -213,5 +218,11 @@ fn rtl_out_is_what_the_generator_emits_now() {
     let tmp = tempfile::tempdir().unwrap();
     let fresh = generate(tmp.path(), "fresh", &[]);
     let checked_in = Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl_out");
-    assert_eq!(read_dir_sorted(&checked_in), read_dir_sorted(&fresh), "rtl_out/ is stale: run `specgen generate --out rtl_out`");
+    let text = |d: &Path| read_dir_sorted(d).into_iter().map(|(n, b)| (n, String::from_utf8_lossy(&b).into_owned())).collect::<Vec<_>>();
+    let (old, new) = (text(&checked_in), text(&fresh));
+    assert_eq!(old.iter().map(|f| &f.0).collect::<Vec<_>>(), new.iter().map(|f| &f.0).collect::<Vec<_>>(), "rtl_out/ file names");
+    for ((name, a), (_, b)) in old.iter().zip(&new) {
+        let first = a.lines().zip(b.lines()).position(|(x, y)| x != y);
+        assert!(a == b, "rtl_out/{name} is stale (first differing line {first:?}): run `specgen generate --out rtl_out`");
+    }
 }

@@ -5,7 +5,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
-use specgen::config::{self, Arch, Config, Params, RomStyle, Rounding};
+use specgen::config::{self, Arch, Config, Params, RomStyle, Rounding, SpecularModel};
 use specgen::model::{self, Inputs, Model};
 use specgen::rom;
 
@@ -34,7 +34,7 @@ prop_compose! {
             cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi, k, k_frac_bits: kf,
             rounding: if exact { Rounding::Exact } else { Rounding::Faithful },
             rom_style: RomStyle::File, stages: 0, top: "u".into(),
-            arch: if paper { Arch::Paper } else { Arch::Lean },
+            arch: if paper { Arch::Paper } else { Arch::Lean }, model: SpecularModel::Quadratic,
         }).ok() // k may round to 0 at few fractional bits: such configs are rejected, not tested
     }
 }
@@ -146,6 +146,54 @@ proptest! {
         prop_assert!(at(c) >= 0);
         if c > 0 {
             prop_assert!(at(c - 1) < 0);
+        }
+    }
+}
+
+prop_compose! {
+    fn blinn_config()(
+        f in config::COS_FRAC_BITS.min..=config::COS_FRAC_BITS.max,
+        n in config::N_BITS.min..=config::N_BITS.max,
+        b in config::COLOR_BITS.min..=config::COLOR_BITS.max,
+        fi in config::INTENSITY_FRAC_BITS.min..=config::INTENSITY_FRAC_BITS.max,
+    ) -> Config {
+        Config::new(Params {
+            cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi,
+            model: SpecularModel::BlinnPow, ..Params::default()
+        }).unwrap()
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// blinn-pow: every output within 1 of the exact c^n·M (big integers), done ⇔ intensity 0,
+    /// exact where the ideal is an integer; and the interval reference agrees.
+    #[test]
+    fn blinn_pow_is_faithful_to_exact_power(cfg in blinn_config(), seeds in proptest::collection::vec(any::<u64>(), 16)) {
+        let m = Model::new(&cfg);
+        for &seed in &seeds {
+            let mut x = inputs_for(&cfg, seed, false);
+            if seed % 3 == 0 {
+                x.cos_g = (1u32 << cfg.f()).saturating_sub((seed >> 40) as u32 % 64); // near 1.0, where c^n is not tiny
+            }
+            let o = m.eval(x);
+            let c = BigInt::from(x.cos_g.min(1 << cfg.f()));
+            let den_log2 = cfg.f() * x.n;
+            let pow = c.pow(x.n); // c^n · 2^(F·n)
+            let check = |got: u32, mult: BigInt| -> bool {
+                let ideal = &pow * mult;
+                let scaled = BigInt::from(got) << den_log2;
+                let diff = (scaled - &ideal).abs();
+                let exact_integer = (&ideal % (BigInt::from(1) << den_log2)).is_zero();
+                diff < (BigInt::from(1) << den_log2) && (!exact_integer || diff.is_zero())
+            };
+            prop_assert!(check(o.intensity, BigInt::from(1) << cfg.fi()), "{:?} {:?} {:?}", cfg.params, x, o);
+            for ch in 0..3 {
+                prop_assert!(check(o.spec[ch], BigInt::from(x.ks[ch])), "{:?} {:?} {:?}", cfg.params, x, o);
+            }
+            prop_assert_eq!(o.done, o.intensity == 0);
+            prop_assert!(model::check(&cfg, x, o).is_ok(), "{:?}", model::check(&cfg, x, o));
         }
     }
 }

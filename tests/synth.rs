@@ -47,3 +47,21 @@ fn generic_target_counts_cells() {
     assert!(r["luts"].as_u64().unwrap() > 50);
     assert!(r["fmax_mhz"].is_null());
 }
+
+#[test]
+fn target_mhz_picks_the_shallowest_pipeline_or_writes_nothing() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let small = ["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "4", "--intensity-frac-bits", "5", "--k-frac-bits", "6"];
+    let out = tmp.path().join("easy");
+    let o = specgen().arg("generate").arg("--out").arg(&out).args(small).args(["--target-mhz", "5"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
+    assert_eq!(m["stages"], 0, "5 MHz needs no pipeline");
+    let out = tmp.path().join("impossible");
+    let o = specgen().arg("generate").arg("--out").arg(&out).args(small).args(["--target-mhz", "900"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no pipeline depth reaches 900"));
+    assert!(!out.exists());
+}

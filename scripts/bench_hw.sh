@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Regenerates the hardware section of BENCHMARKS.md (BENCHMARKS-hw.md, merged by hand-free
+# concatenation below): lean / paper / blinn-pow at default widths and one wide configuration,
+# combinational and pipelined, on iCE40 UP5K with and without DSPs, and yosys generic cells.
+# Needs yosys and nextpnr-ice40. Takes several minutes (paper and blinn-pow are large).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release -q
+bin=target/release/specgen
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+rows="$work/rows.jsonl"; : > "$rows"
+run() { # name widths-label stages args...
+    local name=$1 label=$2 stages=$3; shift 3
+    local dir="$work/$name-$label-$stages"
+    $bin generate --out "$dir" --stages "$stages" "$@" >/dev/null
+    for mode in nodsp dsp generic; do
+        case $mode in
+            nodsp) flags=(--target ice40) ;;
+            dsp) flags=(--target ice40 --dsp) ;;
+            generic) flags=(--target generic) ;;
+        esac
+        $bin synth --rtl "$dir" "${flags[@]}" --json "$dir/$mode.json" >/dev/null
+        python3 -c "import json,sys; d=json.load(open('$dir/$mode.json')); d.update(name='$name', widths='$label', stages=$stages, mode='$mode'); print(json.dumps(d))" >> "$rows"
+        echo "done: $name $label stages=$stages $mode" >&2
+    done
+}
+wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)
+for s in 0 6; do
+    run lean default $s
+    run paper default $s --arch paper
+    run lean wide $s "${wide[@]}"
+    run paper wide $s --arch paper "${wide[@]}"
+done
+run blinn-pow default 0 --model blinn-pow
+run blinn-pow default 12 --model blinn-pow
+python3 - "$rows" > BENCHMARKS-hw.md <<'PY'
+import json, sys, subprocess
+rows = [json.loads(l) for l in open(sys.argv[1])]
+def get(name, widths, stages, mode):
+    for r in rows:
+        if (r['name'], r['widths'], r['stages'], r['mode']) == (name, widths, stages, mode):
+            return r
+ver = subprocess.run(['yosys', '-V'], capture_output=True, text=True).stdout.strip()
+print('# Hardware benchmarks\n')
+print(f'Produced by `scripts/bench_hw.sh` with {ver} and nextpnr-ice40 (iCE40 UP5K, SG48, seed 1;')
+print('Fmax of the unit between the registers of a serial-I/O wrapper). Default widths: F=15, N=10, B=8, FI=15, KF=16;')
+print('wide: F=18, N=11, B=10, FI=18, KF=20. "-" = not placed (see note).\n')
+print('| model | widths | stages | LUT4 (no DSP) | Fmax no DSP (MHz) | LUT4 (DSP) | SB_MAC16 | FFs | Fmax DSP (MHz) | generic cells |')
+print('|---|---|---|---|---|---|---|---|---|---|')
+notes = []
+for key in sorted({(r['name'], r['widths'], r['stages']) for r in rows}, key=lambda k: (k[0] != 'lean', k[0], k[1], k[2])):
+    nd, d, g = (get(*key, m) for m in ('nodsp', 'dsp', 'generic'))
+    f = lambda r: f"{r['fmax_mhz']:.1f}" if r and r.get('fmax_mhz') else '-'
+    for r in (nd, d):
+        if r and not r.get('fmax_mhz'):
+            notes.append(f"{key[0]} {key[1]} stages={key[2]} {r['target']}{' dsp' if r['dsp'] else ''}: {r['fmax_note']}")
+    print(f"| {key[0]} | {key[1]} | {key[2]} | {nd['luts']} | {f(nd)} | {d['luts']} | {d['dsp_blocks']} | {d['flip_flops']} | {f(d)} | {g['luts']} |")
+lean, paper = get('lean', 'default', 0, 'nodsp'), get('paper', 'default', 0, 'nodsp')
+print(f"\nLean vs paper, default widths, LUT-only iCE40: {lean['luts']} vs {paper['luts']} LUT4 ({100*(1-lean['luts']/paper['luts']):.1f}% fewer).")
+if notes:
+    print('\nNotes:\n')
+    for n in notes:
+        print(f'- {n}')
+PY
+echo "wrote BENCHMARKS-hw.md"
