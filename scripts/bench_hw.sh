@@ -1,6 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the hardware section of BENCHMARKS.md (BENCHMARKS-hw.md, merged by hand-free
-# concatenation below): lean / paper / blinn-pow at default widths and one wide configuration,
+# Regenerates BENCHMARKS-hw.md: lean / paper / blinn-pow at default widths and one wide configuration,
 # combinational and pipelined, on iCE40 UP5K with and without DSPs, and yosys generic cells.
 # Needs yosys and nextpnr-ice40. Takes several minutes (paper and blinn-pow are large).
 set -euo pipefail
@@ -25,12 +24,11 @@ run() { # name widths-label stages args...
     done
 }
 wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)
-for s in 0 6; do
-    run lean default $s
-    run paper default $s --arch paper
-    run lean wide $s "${wide[@]}"
-    run paper wide $s --arch paper "${wide[@]}"
-done
+for s in 0 3 6; do run lean default $s; done
+for s in 0 6; do run paper default $s --arch paper; done
+run lean wide 0 "${wide[@]}"
+run lean wide 6 "${wide[@]}"
+run paper wide 0 --arch paper "${wide[@]}"
 run blinn-pow default 0 --model blinn-pow
 run blinn-pow default 12 --model blinn-pow
 python3 - "$rows" > BENCHMARKS-hw.md <<'PY'
