@@ -31,6 +31,8 @@ ic_rate=$(sed -E 's/.*\(([0-9.]+) M cycles\/s\).*/\1/' <<<"$ic")
 cat > BENCHMARKS.md <<MD
 # Benchmarks
 
+Hardware (area, DSPs, Fmax of lean / paper / blinn-pow): [\`BENCHMARKS-hw.md\`](BENCHMARKS-hw.md), from \`scripts/bench_hw.sh\`.
+
 Produced by \`scripts/bench.sh\` on $(nproc) cores ($(uname -m)), $(verilator --version | head -1),
 $(iverilog -V 2>/dev/null | head -1 | cut -c1-40). Wall-clock seconds of whole commands.
 

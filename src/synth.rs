@@ -53,7 +53,7 @@ pub struct SynthResult {
     pub dsp_blocks: u64,
     pub flip_flops: u64,
     pub block_rams: u64,
-    /// the cut-off ROM's content: 2^N × (F+1)
+    /// the cut-off ROM's content: 2^N × (F+1) (0 for blinn-pow, which has none)
     pub rom_bits: u64,
     pub total_cells: u64,
     /// MHz from nextpnr, when place-and-route ran
@@ -174,7 +174,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
         dsp_blocks: count(&|n| n == "SB_MAC16" || n.starts_with("MULT18X18") || n.starts_with("ALU54")),
         flip_flops: count(&|n| n.starts_with("SB_DFF") || n == "TRELLIS_FF" || n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE")),
         block_rams: count(&|n| n.starts_with("SB_RAM40") || n == "DP16KD" || n.starts_with("$mem")),
-        rom_bits: (1u64 << cfg.n_bits()) * (cfg.f() as u64 + 1),
+        rom_bits: match cfg.model() {
+            crate::config::SpecularModel::Quadratic => (1u64 << cfg.n_bits()) * (cfg.f() as u64 + 1),
+            crate::config::SpecularModel::BlinnPow => 0,
+        },
         total_cells,
         fmax_mhz: None,
         fmax_note: String::new(),
