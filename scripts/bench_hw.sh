@@ -38,7 +38,7 @@ if [ "${FULL:-0}" = 1 ]; then
     run blinn-pow default 12 --model blinn-pow
 fi
 python3 - "$rows" > BENCHMARKS-hw.md <<'PY'
-import json, sys, subprocess
+import json, re, sys, subprocess
 rows = [json.loads(l) for l in open(sys.argv[1])]
 def get(name, widths, stages, mode):
     for r in rows:
@@ -57,7 +57,8 @@ for key in sorted({(r['name'], r['widths'], r['stages']) for r in rows}, key=lam
     f = lambda r: f"{r['fmax_mhz']:.1f}" if r and r.get('fmax_mhz') else '-'
     for r in (nd, d):
         if r and not r.get('fmax_mhz'):
-            notes.append(f"{key[0]} {key[1]} stages={key[2]} {r['target']}{' dsp' if r['dsp'] else ''}: {r['fmax_note']}")
+            why = re.sub(r"place-and-route failed: ERROR: Unable to place cell '[^']*', no BELs remaining to implement cell type '([A-Z_]+)'", r"does not fit the UP5K (no \1 left)", r['fmax_note'])
+            notes.append(f"{key[0]} {key[1]} stages={key[2]} {r['target']}{' dsp' if r['dsp'] else ''}: {why}")
     print(f"| {key[0]} | {key[1]} | {key[2]} | {nd['luts']} | {f(nd)} | {d['luts']} | {d['dsp_blocks']} | {d['flip_flops']} | {f(d)} | {g['luts']} |")
 lean, paper = get('lean', 'default', 0, 'nodsp'), get('paper', 'default', 0, 'nodsp')
 print(f"\nLean vs paper, default widths, LUT-only iCE40: {lean['luts']} vs {paper['luts']} LUT4 ({100*(1-lean['luts']/paper['luts']):.1f}% fewer).")
