@@ -138,6 +138,22 @@ fn build_cuts(cfg: &Config, w: &Widths) -> Vec<Cut> {
     cut_list(w, live_signals(cfg, w).into_iter().collect())
 }
 
+/// "after steps [..]" for the Verilog header.
+fn registered_cuts_text(w: &Widths) -> String {
+    match w.registered_cuts.is_empty() {
+        true => "none".into(),
+        false => w.registered_cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", "),
+    }
+}
+
+/// The directory a path lives in (`.` for a bare name).
+fn parent_dir(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
 /// Builds the template context of the RTL for one configuration.
 pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
     let p = &cfg.params;
@@ -164,7 +180,6 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
     let paper = cfg.arch() == Arch::Paper;
     let nd_bits = cfg.n_bits() + w.cos_bits;
     let intensity_rounds = ws > fi;
-    let cuts_text = w.registered_cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", ");
     UnitTemplate {
         top: cfg.top(),
         version: VERSION,
@@ -178,7 +193,7 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
             Rounding::Exact => "exact: every output is the exact value rounded to nearest, ties away from zero",
         },
         rom_style: p.rom_style.name(),
-        cuts_text: if cuts_text.is_empty() { "none".into() } else { cuts_text },
+        cuts_text: registered_cuts_text(w),
         rom_file: p.rom_style == RomStyle::File,
         rom_depth: rom_table.len(),
         rom_entries: rom_table
@@ -313,14 +328,13 @@ pub fn blinn_pow_template<'a>(cfg: &'a Config, w: &'a Widths) -> BlinnPowTemplat
     live.push(vec![("done", 1, true), ("intensity", fi + 1, true), ("spec_r", b, true), ("spec_g", b, true), ("spec_b", b, true)]);
     let last_step = nb as usize + 2;
     let color_bits_w = pw + b;
-    let cuts_text = w.registered_cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", ");
     BlinnPowTemplate {
         top: cfg.top(),
         version: VERSION,
         p: &cfg.params,
         w,
         pw,
-        cuts_text: if cuts_text.is_empty() { "none".into() } else { cuts_text },
+        cuts_text: registered_cuts_text(w),
         cos_lit_one: lit(f + 1, 1u128 << f),
         widen_cos: if pw > f { format!("{{cos_clamped_s1, {}}}", lit(pw - f, 0)) } else { "cos_clamped_s1".into() },
         one_w: lit(pw + 1, 1u128 << pw),
@@ -511,10 +525,7 @@ pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(
     if dir.exists() || dir.symlink_metadata().is_ok() {
         check_replaceable(dir)?;
     }
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let parent = parent_dir(dir);
     std::fs::create_dir_all(&parent)?;
     let staging = tempfile::Builder::new().prefix(".specgen-new-").tempdir_in(&parent)?;
     for (name, bytes) in files {
@@ -538,10 +549,7 @@ pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(
 
 /// Writes one file atomically (temp file in the same directory, then rename).
 pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let parent = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let parent = parent_dir(path);
     let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent)?;
     std::io::Write::write_all(&mut tmp, bytes)?;
     tmp.persist(path).map_err(|e| e.error)?;

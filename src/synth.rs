@@ -102,9 +102,7 @@ fn wrapper(design: &Design) -> String {
 }
 
 fn require(tool: &str, package: &str) -> Result<(), Failure> {
-    let ok = Command::new(tool).arg("--version").output().map(|o| o.status.success()).unwrap_or(false)
-        || Command::new(tool).arg("-V").output().map(|o| o.status.success()).unwrap_or(false);
-    if ok {
+    if tool_exists(tool) {
         Ok(())
     } else {
         Err(usage(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))

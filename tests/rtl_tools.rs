@@ -10,28 +10,26 @@ fn top_of<'a>(args: &[&'a str]) -> &'a str {
     args.iter().position(|a| *a == "--top").map(|i| args[i + 1]).unwrap_or("specular_unit")
 }
 
-#[test]
-fn verilator_lint_is_silent() {
-    require_tool("verilator", "verilator");
+/// Runs `tool args… <top>.v` in every generated configuration; it must succeed and print nothing.
+fn silent_on_every_config(tool: &str, package: &str, args: &[&str]) {
+    require_tool(tool, package);
     let tmp = tempfile::tempdir().unwrap();
-    for (i, args) in CONFIGS.iter().enumerate() {
-        let dir = generate(tmp.path(), &format!("c{i}"), args);
-        let out = Command::new("verilator").current_dir(&dir).args(["--lint-only", "-Wall"]).arg(format!("{}.v", top_of(args))).output().unwrap();
+    for (i, gen_args) in CONFIGS.iter().enumerate() {
+        let dir = generate(tmp.path(), &format!("c{i}"), gen_args);
+        let out = Command::new(tool).current_dir(&dir).args(args).arg(format!("{}.v", top_of(gen_args))).output().unwrap();
         let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
-        assert!(out.status.success() && text.trim().is_empty(), "{args:?}:\n{text}");
+        assert!(out.status.success() && text.trim().is_empty(), "{tool} {gen_args:?}:\n{text}");
     }
 }
 
 #[test]
+fn verilator_lint_is_silent() {
+    silent_on_every_config("verilator", "verilator", &["--lint-only", "-Wall"]);
+}
+
+#[test]
 fn iverilog_compiles() {
-    require_tool("iverilog", "iverilog");
-    let tmp = tempfile::tempdir().unwrap();
-    for (i, args) in CONFIGS.iter().enumerate() {
-        let dir = generate(tmp.path(), &format!("c{i}"), args);
-        let out = Command::new("iverilog").current_dir(&dir).args(["-g2005", "-Wall", "-o", "/dev/null"]).arg(format!("{}.v", top_of(args))).output().unwrap();
-        let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
-        assert!(out.status.success() && text.trim().is_empty(), "{args:?}:\n{text}");
-    }
+    silent_on_every_config("iverilog", "iverilog", &["-g2005", "-Wall", "-o", "/dev/null"]);
 }
 
 #[test]
