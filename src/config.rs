@@ -111,7 +111,9 @@ pub const N_BITS: Range = Range { name: "n_bits", min: 1, max: 12 };
 pub const COLOR_BITS: Range = Range { name: "color_bits", min: 1, max: 16 };
 pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min: 1, max: 24 };
 pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24 };
-pub const STAGES: Range = Range { name: "stages", min: 0, max: crate::widths::PIPELINE_CUTS as u32 };
+/// The bound checked first; the configuration's own bound is the number of cut points of its
+/// datapath ([`crate::widths::cut_points`]), checked once the other parameters are valid.
+pub const STAGES: Range = Range { name: "stages", min: 0, max: 64 };
 
 impl Range {
     fn check(&self, value: u32) -> Result<u32, ConfigError> {
@@ -221,15 +223,6 @@ impl Config {
                     message: "exact is not available with --model blinn-pow; allowed: faithful".into(),
                 });
             }
-            if params.stages > params.n_bits + 2 {
-                return Err(ConfigError {
-                    parameter: "stages",
-                    message: format!(
-                        "{} is out of range for --model blinn-pow with n_bits = {}; allowed 0..={}",
-                        params.stages, params.n_bits, params.n_bits + 2
-                    ),
-                });
-            }
             if params.arch == Arch::Paper {
                 return Err(ConfigError {
                     parameter: "arch",
@@ -237,7 +230,22 @@ impl Config {
                 });
             }
         }
-        Ok(Config { params, k_code })
+        let cfg = Config { params, k_code };
+        let cuts = crate::widths::cut_points(&cfg);
+        if cfg.params.stages > cuts {
+            return Err(ConfigError {
+                parameter: "stages",
+                message: format!(
+                    "{} is out of range; allowed 0..={cuts} (the cut points of the {} datapath with these widths)",
+                    cfg.params.stages,
+                    match cfg.params.model {
+                        SpecularModel::BlinnPow => "blinn-pow".to_string(),
+                        SpecularModel::Quadratic => cfg.params.arch.name().to_string(),
+                    }
+                ),
+            });
+        }
+        Ok(cfg)
     }
 
     pub fn defaults() -> Config {

@@ -5,7 +5,8 @@
 
 use crate::config::{Arch, Config, Params, RomStyle, Rounding, SpecularModel};
 use crate::rom::{self, RomFormat};
-use crate::widths::{Widths, PIPELINE_CUTS};
+use crate::datapath::{self, Wire};
+use crate::widths::Widths;
 use askama::Template;
 use serde::Serialize;
 use sha2::{Digest, Sha256};
@@ -15,10 +16,7 @@ use std::path::{Path, PathBuf};
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 pub const ROM_FILE: &str = "cos_sp_rom.hex";
 
-/// A sized Verilog literal, `W'hX`.
-fn lit(width: u32, value: u128) -> String {
-    format!("{width}'h{value:x}")
-}
+use crate::datapath::lit;
 
 /// `x` zero-extended from `from` to `to` bits, as a Verilog expression with explicit widths.
 fn zext(x: &str, from: u32, to: u32) -> String {
@@ -31,7 +29,7 @@ fn zext(x: &str, from: u32, to: u32) -> String {
 }
 
 pub struct CutSignal {
-    pub name: &'static str,
+    pub name: String,
     pub width: u32,
     /// the expression the cut takes it from (`x_sK` computed in step K, or `x_cK-1` passed on)
     pub source: String,
@@ -54,6 +52,14 @@ pub struct Channel {
     pub ks_ext: String,
 }
 
+/// One step of the datapath as the template renders it: its wires, then the cut after it.
+pub struct StepView {
+    pub index: usize,
+    pub title: String,
+    pub wires: Vec<Wire>,
+    pub cut: Cut,
+}
+
 #[derive(Template)]
 #[template(path = "unit.v")]
 pub struct UnitTemplate<'a> {
@@ -71,71 +77,10 @@ pub struct UnitTemplate<'a> {
     pub rom_depth: usize,
     pub rom_entries: Vec<RomEntry>,
     pub cos_lit_zero: String,
-    pub cos_lit_one: String,
-    pub kn_n: String,
-    pub kn_k: String,
     pub arch: &'a str,
     pub paper: bool,
-    pub nd_bits: u32,
-    pub nd_a: String,
-    pub nd_b: String,
-    pub sq_b: String,
-    pub sq_hi: String,
-    pub sq_lo: String,
-    pub dev_a: String,
-    pub dev_b: String,
-    pub dev_hi: u32,
-    pub dev_unused: String,
-    pub dev_unused_why: &'a str,
-    pub bracket_lit_zero: String,
-    pub bracket_lit_one: String,
-    pub sq_a: String,
-    pub sq_unused: String,
-    pub channels: Vec<Channel>,
-    pub intensity_rounds: bool,
-    pub intensity_half: String,
-    pub intensity_widen: String,
-    pub color_half: String,
-    pub cuts: Vec<Cut>,
-}
-
-/// The signals alive after each step, in step order: (name, width, computed in this step?).
-fn live_signals(cfg: &Config, w: &Widths) -> [Vec<(&'static str, u32, bool)>; PIPELINE_CUTS] {
-    let b = cfg.b();
-    let ks = |fresh| vec![("ks_r", b, fresh), ("ks_g", b, fresh), ("ks_b", b, fresh)];
-    let multiplicand = match cfg.arch() {
-        Arch::Paper => ("n", cfg.n_bits(), true),
-        Arch::Lean => ("kn", w.kn_bits, true),
-    };
-    let with = |mut head: Vec<(&'static str, u32, bool)>, tail: Vec<(&'static str, u32, bool)>| {
-        head.extend(tail);
-        head
-    };
-    let intensity_sum_bits = if w.square_frac_bits > cfg.fi() { w.square_bits() } else { cfg.fi() + 1 };
-    [
-        with(vec![("done", 1, true), ("one_minus_cos", w.cos_bits, true), multiplicand], ks(false)),
-        with(vec![("done", 1, false), ("deviation", w.bracket_bits(), true)], ks(false)),
-        with(vec![("done", 1, false), ("bracket", w.bracket_bits(), true)], ks(false)),
-        with(vec![("done", 1, false), ("square", w.square_bits(), true)], ks(false)),
-        vec![
-            ("done", 1, false),
-            ("intensity_sum", intensity_sum_bits, true),
-            ("color_prod_r", w.color_product_bits, true),
-            ("color_prod_g", w.color_product_bits, true),
-            ("color_prod_b", w.color_product_bits, true),
-        ],
-        vec![
-            ("done", 1, false),
-            ("intensity", cfg.fi() + 1, true),
-            ("spec_r", b, true),
-            ("spec_g", b, true),
-            ("spec_b", b, true),
-        ],
-    ]
-}
-
-fn build_cuts(cfg: &Config, w: &Widths) -> Vec<Cut> {
-    cut_list(w, live_signals(cfg, w).into_iter().collect())
+    pub steps: Vec<StepView>,
+    pub last: usize,
 }
 
 /// "after steps [..]" for the Verilog header.
@@ -157,29 +102,10 @@ fn parent_dir(path: &Path) -> PathBuf {
 /// Builds the template context of the RTL for one configuration.
 pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
     let p = &cfg.params;
-    let (f, wb, ws, fi, b) = (cfg.f(), w.bracket_frac_bits, w.square_frac_bits, cfg.fi(), cfg.b());
-    let dev_hi = wb + w.deviation_shift; // = KF + F
-    let mut dropped = Vec::new();
-    if w.deviation_bits > dev_hi + 1 {
-        dropped.push(format!("deviation_full_s2[{}:{}]", w.deviation_bits - 1, dev_hi + 1));
-    }
-    if w.deviation_shift > 0 {
-        dropped.push(format!("deviation_full_s2[{}:0]", w.deviation_shift - 1));
-    }
-    let dev_unused_why = match (w.deviation_bits > dev_hi + 1, w.deviation_shift > 0) {
-        (true, true) => "high bits matter only beyond the cut-off (then the key block zeroes the bracket); low bits are truncation #1",
-        (true, false) => "high bits matter only beyond the cut-off, where the key block zeroes the bracket",
-        (false, true) => "truncation #1",
-        (false, false) => "",
-    };
-    let mut sq_dropped = vec![format!("square_full_s4[{}]", w.full_square_bits() - 1)];
-    if w.square_shift > 0 {
-        sq_dropped.push(format!("square_full_s4[{}:0]", w.square_shift - 1));
-    }
     let rom_table = rom::cos_sp_table(cfg);
-    let paper = cfg.arch() == Arch::Paper;
-    let nd_bits = cfg.n_bits() + w.cos_bits;
-    let intensity_rounds = ws > fi;
+    let dp = datapath::build(cfg, w);
+    let cuts = cut_list(w, dp.live);
+    let last = dp.steps.len();
     UnitTemplate {
         top: cfg.top(),
         version: VERSION,
@@ -202,42 +128,10 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
             .map(|(i, &v)| RomEntry { index: format!("{}'d{i}", cfg.n_bits()), value: lit(w.cos_bits, v as u128) })
             .collect(),
         cos_lit_zero: lit(w.cos_bits, 0),
-        cos_lit_one: lit(w.cos_bits, 1u128 << f),
-        kn_n: zext("n_c0", cfg.n_bits(), w.kn_bits),
-        kn_k: lit(w.kn_bits, cfg.k_code as u128),
         arch: cfg.arch().name(),
-        paper,
-        nd_bits,
-        nd_a: zext("n_c1", cfg.n_bits(), nd_bits),
-        nd_b: zext("one_minus_cos_c1", w.cos_bits, nd_bits),
-        dev_a: if paper { zext("n_dev_s2", nd_bits, w.deviation_bits) } else { zext("kn_c1", w.kn_bits, w.deviation_bits) },
-        dev_b: if paper { lit(w.deviation_bits, cfg.k_code as u128) } else { zext("one_minus_cos_c1", w.cos_bits, w.deviation_bits) },
-        sq_b: zext("bracket_c3", w.bracket_bits(), w.full_square_bits()),
-        sq_hi: zext("bracket_hi_s4", w.bracket_bits() - w.squarer_split, w.full_square_bits()),
-        sq_lo: zext("bracket_lo_s4", w.squarer_split.max(1), w.full_square_bits()),
-        dev_hi,
-        dev_unused: match dropped.len() {
-            0 => String::new(),
-            _ => format!("{{{}}}", dropped.join(", ")),
-        },
-        dev_unused_why,
-        bracket_lit_zero: lit(w.bracket_bits(), 0),
-        bracket_lit_one: lit(w.bracket_bits(), 1u128 << wb),
-        sq_a: zext("bracket_c3", w.bracket_bits(), w.full_square_bits()),
-        sq_unused: format!("{{{}}}", sq_dropped.join(", ")),
-        channels: ["r", "g", "b"]
-            .into_iter()
-            .map(|name| Channel {
-                name,
-                sq_ext: zext("color_square_s5", w.color_square_frac_bits + 1, w.color_product_bits),
-                ks_ext: zext(&format!("ks_{name}_c4"), b, w.color_product_bits),
-            })
-            .collect(),
-        intensity_rounds,
-        intensity_half: if intensity_rounds { lit(w.square_bits(), 1u128 << (ws - fi - 1)) } else { String::new() },
-        intensity_widen: if fi > ws { format!("{{square_c4, {}}}", lit(fi - ws, 0)) } else { "square_c4".into() },
-        color_half: lit(w.color_product_bits, 1u128 << (w.color_square_frac_bits - 1)),
-        cuts: build_cuts(cfg, w),
+        paper: cfg.arch() == Arch::Paper,
+        steps: dp.steps.into_iter().zip(cuts).map(|(s, cut)| StepView { index: s.index, title: s.title, wires: s.wires, cut }).collect(),
+        last,
     }
 }
 
@@ -274,7 +168,7 @@ pub struct BlinnPowTemplate<'a> {
     pub cuts: Vec<Cut>,
 }
 
-fn cut_list(w: &Widths, live: Vec<Vec<(&'static str, u32, bool)>>) -> Vec<Cut> {
+fn cut_list(w: &Widths, live: Vec<Vec<datapath::Live>>) -> Vec<Cut> {
     live.into_iter()
         .enumerate()
         .map(|(i, sigs)| {
@@ -285,9 +179,9 @@ fn cut_list(w: &Widths, live: Vec<Vec<(&'static str, u32, bool)>>) -> Vec<Cut> {
                 signals: sigs
                     .into_iter()
                     .map(|(name, width, fresh)| CutSignal {
+                        source: if fresh { format!("{name}_s{index}") } else { format!("{name}_c{i}") },
                         name,
                         width,
-                        source: if fresh { format!("{name}_s{index}") } else { format!("{name}_c{i}") },
                     })
                     .collect(),
             }
@@ -300,7 +194,7 @@ pub fn blinn_pow_template<'a>(cfg: &'a Config, w: &'a Widths) -> BlinnPowTemplat
     let (f, nb, b, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
     let pw = w.power_frac_bits;
     let ks = |fresh| vec![("ks_r", b, fresh), ("ks_g", b, fresh), ("ks_b", b, fresh)];
-    let mut live = vec![{
+    let mut live: Vec<Vec<(&str, u32, bool)>> = vec![{
         let mut v = vec![("power", pw + 1, true), ("result", pw + 1, true), ("n_rest", nb, true)];
         v.extend(ks(false));
         v
@@ -352,7 +246,7 @@ pub fn blinn_pow_template<'a>(cfg: &'a Config, w: &'a Widths) -> BlinnPowTemplat
             .collect(),
         color_bits_w,
         color_half: lit(color_bits_w, 1u128 << (pw - 1)),
-        cuts: cut_list(w, live),
+        cuts: cut_list(w, live.into_iter().map(|v| v.into_iter().map(|(n, wd, f)| (n.to_string(), wd, f)).collect()).collect()),
     }
 }
 

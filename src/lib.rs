@@ -9,6 +9,7 @@
 pub mod cli;
 pub mod config;
 pub mod cosim;
+pub mod datapath;
 pub mod emit;
 pub mod model;
 pub mod paper;

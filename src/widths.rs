@@ -46,9 +46,6 @@
 use crate::config::{Arch, Config, Rounding, SpecularModel};
 use serde::Serialize;
 
-/// Points in the datapath where a pipeline register may be placed (after each step).
-pub const PIPELINE_CUTS: usize = 6;
-
 /// Every internal width and shift of the unit. All widths are bit counts of unsigned values.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct Widths {
@@ -81,6 +78,11 @@ pub struct Widths {
 
 impl Widths {
     pub fn derive(cfg: &Config) -> Widths {
+        Widths::derive_unpipelined(cfg).with_balanced_cuts(cfg)
+    }
+
+    /// Every width, no registers placed yet.
+    fn derive_unpipelined(cfg: &Config) -> Widths {
         let (f, kf, fi, b) = (cfg.f(), cfg.kf(), cfg.fi(), cfg.b());
         let exact_bracket_frac = kf + f;
         let (wb, ws) = match (cfg.rounding(), cfg.arch()) {
@@ -117,7 +119,6 @@ impl Widths {
             power_frac_bits: if cfg.model() == SpecularModel::BlinnPow { power_frac_bits(cfg) } else { 0 },
             registered_cuts: Vec::new(),
         }
-        .with_balanced_cuts(cfg)
     }
 
     fn with_balanced_cuts(mut self, cfg: &Config) -> Widths {
@@ -153,39 +154,23 @@ pub fn power_frac_bits(cfg: &Config) -> u32 {
     (cfg.fi().max(cfg.b()) + cfg.n_bits() + 1).max(cfg.f())
 }
 
-/// Number of cut points of the configured datapath.
+/// Number of cut points of the configured datapath (the most `--stages` it takes).
 pub fn cut_points(cfg: &Config) -> u32 {
     match cfg.model() {
-        SpecularModel::Quadratic => PIPELINE_CUTS as u32,
+        SpecularModel::Quadratic => crate::datapath::build(cfg, &Widths::derive_unpipelined(cfg)).steps.len() as u32,
         // after the clamp, after each bit of n, after the rounding
         SpecularModel::BlinnPow => cfg.n_bits() + 2,
     }
 }
 
 /// A rough delay model of each datapath step on a LUT4 + carry-chain fabric (iCE40-like),
-/// in ns: an adder of w bits `1.5 + 0.3·w`, an a×b multiplier `1.5·⌈log2 min(a,b)+1⌉ + 0.3·(a+b)`,
-/// a ROM of 2^N words `1.2·⌈N/4⌉ + 1`. Only the ratios matter: they place the registers.
+/// in ns: an adder of w bits `1.5 + 0.3·w`, an a×b multiplier `1.5·⌈log2 min(a,b)+1⌉ + 0.3·(a+b)`.
+/// Only the ratios matter: they place the registers.
 pub fn step_delays(cfg: &Config, w: &Widths) -> Vec<f64> {
     let add = |bits: u32| 1.5 + 0.3 * bits as f64;
     let mul = |a: u32, b: u32| 1.5 * ((a.min(b).max(1) as f64).log2().ceil() + 1.0) + 0.3 * (a + b) as f64;
-    let rom = 1.2 * cfg.n_bits().div_ceil(4) as f64 + 1.0;
     match cfg.model() {
-        SpecularModel::Quadratic => {
-            let k_terms = cfg.k_code.count_ones().max(1);
-            let square = if w.squarer_split > 0 {
-                mul(w.bracket_bits() - w.squarer_split, w.bracket_bits()) + add(w.full_square_bits())
-            } else {
-                mul(w.bracket_bits(), w.bracket_bits())
-            };
-            vec![
-                (rom + add(w.cos_bits)).max(mul(cfg.n_bits(), k_terms * 2)),
-                mul(w.kn_bits.max(cfg.n_bits()), w.cos_bits),
-                add(w.bracket_bits()) + 0.6,
-                square,
-                mul(w.color_square_frac_bits + 1, cfg.b()).max(add(w.square_bits())),
-                add(w.color_product_bits),
-            ]
-        }
+        SpecularModel::Quadratic => crate::datapath::build(cfg, w).delays(),
         SpecularModel::BlinnPow => {
             let pw = w.power_frac_bits + 1;
             let mut v = vec![add(w.cos_bits)];
@@ -242,15 +227,17 @@ mod tests {
 
     #[test]
     fn cuts_are_distinct_increasing_and_in_range() {
-        let delays = step_delays(&Config::defaults(), &Widths::derive(&Config::defaults()));
-        assert_eq!(delays.len(), PIPELINE_CUTS);
-        for s in 0..=PIPELINE_CUTS as u32 {
+        let cfg = Config::defaults();
+        let delays = step_delays(&cfg, &Widths::derive(&cfg));
+        let c = cut_points(&cfg);
+        assert_eq!(delays.len(), c as usize);
+        for s in 0..=c {
             let cuts = balanced_cuts(&delays, s);
             assert_eq!(cuts.len(), s as usize);
             assert!(cuts.windows(2).all(|w| w[0] < w[1]), "{cuts:?}");
-            assert!(cuts.iter().all(|&c| (1..=PIPELINE_CUTS as u32).contains(&c)));
+            assert!(cuts.iter().all(|&x| (1..=c).contains(&x)));
         }
-        assert_eq!(balanced_cuts(&delays, PIPELINE_CUTS as u32), (1..=PIPELINE_CUTS as u32).collect::<Vec<_>>());
+        assert_eq!(balanced_cuts(&delays, c), (1..=c).collect::<Vec<_>>());
     }
 
     #[test]

@@ -26,13 +26,13 @@ wire [{{ p.color_bits - 1 }}:0] ks_r_c0 = ks_r;
 wire [{{ p.color_bits - 1 }}:0] ks_g_c0 = ks_g;
 wire [{{ p.color_bits - 1 }}:0] ks_b_c0 = ks_b;
 
-// ==== step 1: clamp, 1 - cos (adder 6), cut-off ROM (10), comparator (12), k_q*n ====
+// ---- the cut-off ROM (10): cos(gamma_sp(n)), UQ1.{{ p.cos_frac_bits }}, read in step 1 ----
 {%- if rom_file %}
-reg  [{{ w.cos_bits - 1 }}:0] cos_sp_rom [0:{{ rom_depth - 1 }}];     // UQ1.{{ p.cos_frac_bits }}, indexed by n
+reg  [{{ w.cos_bits - 1 }}:0] cos_sp_rom [0:{{ rom_depth - 1 }}];
 initial $readmemh(ROM_FILE, cos_sp_rom);
-wire [{{ w.cos_bits - 1 }}:0] cos_sp_s1 = cos_sp_rom[n_c0];          // UQ1.{{ p.cos_frac_bits }}: cos(gamma_sp(n))
+wire [{{ w.cos_bits - 1 }}:0] cos_sp_s1 = cos_sp_rom[n_c0];
 {%- else %}
-reg  [{{ w.cos_bits - 1 }}:0] cos_sp_s1;                              // UQ1.{{ p.cos_frac_bits }}: cos(gamma_sp(n))
+reg  [{{ w.cos_bits - 1 }}:0] cos_sp_s1;
 always @(*) begin
     cos_sp_s1 = {{ cos_lit_zero }};
     case (n_c0)
@@ -43,83 +43,20 @@ always @(*) begin
     endcase
 end
 {%- endif %}
-wire [{{ w.cos_bits - 1 }}:0] cos_clamped_s1 = (cos_g_c0 > {{ cos_lit_one }}) ? {{ cos_lit_one }} : cos_g_c0;   // UQ1.{{ p.cos_frac_bits }}, <= 1.0
-wire [{{ w.cos_bits - 1 }}:0] one_minus_cos_s1 = {{ cos_lit_one }} - cos_clamped_s1;                      // UQ1.{{ p.cos_frac_bits }}: 1 - cos(gamma), exact
-wire        done_s1 = (cos_clamped_s1 < cos_sp_s1);                                    // comparator: bracket < 0
-{%- if paper %}
-wire [{{ p.n_bits - 1 }}:0] n_s1 = n_c0;   // the paper multiplies n by (cos - 1) first (multiplier 7), then by k (34)
-{%- else %}
-wire [{{ w.kn_bits - 1 }}:0] kn_s1 = {{ kn_n }} * {{ kn_k }};   // UQ{{ w.kn_bits - p.k_frac_bits }}.{{ p.k_frac_bits }}: k_q*n, exact (constant multiply; saves the paper's general multiplier 34)
-{%- endif %}
-{% call cuts::cut(cuts[0]) %}{% endcall %}
+{%- for st in steps %}
 
-// ==== step 2: deviation k_q*n*(1 - cos) (multiplier 7), truncation #1 ====
-{%- if paper %}
-wire [{{ nd_bits - 1 }}:0] n_dev_s2 = {{ nd_a }} * {{ nd_b }};   // UQ{{ nd_bits - p.cos_frac_bits }}.{{ p.cos_frac_bits }}: n*(1 - cos), exact (multiplier 7)
-wire [{{ w.deviation_bits - 1 }}:0] deviation_full_s2 = {{ dev_a }} * {{ dev_b }};   // general multiplier by k (34)
-{%- else %}
-wire [{{ w.deviation_bits - 1 }}:0] deviation_full_s2 = {{ dev_a }} * {{ dev_b }};
-{%- endif %}   // UQ{{ w.deviation_bits - p.k_frac_bits - p.cos_frac_bits }}.{{ p.k_frac_bits + p.cos_frac_bits }}, exact
-wire [{{ w.bracket_frac_bits }}:0] deviation_s2 = deviation_full_s2[{{ dev_hi }}:{{ w.deviation_shift }}];   // UQ1.{{ w.bracket_frac_bits }}: floor to 2^-{{ w.bracket_frac_bits }} (exact below the cut-off: < 2)
-{%- if dev_unused != "" %}
-wire        unused_deviation_bits = ^{{ dev_unused }};   // dropped bits: {{ dev_unused_why }}
-{%- endif %}
-{% call cuts::cut(cuts[1]) %}{% endcall %}
-
-// ==== step 3: bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13) ====
-wire [{{ w.bracket_frac_bits }}:0] bracket_s3 = done_c2 ? {{ bracket_lit_zero }} : ({{ bracket_lit_one }} - deviation_c2);   // UQ1.{{ w.bracket_frac_bits }}, in [0, 1]
-{% call cuts::cut(cuts[2]) %}{% endcall %}
-
-// ==== step 4: square (squarer 11), truncation #2 ====
-{%- if w.squarer_split > 0 %}
-// squarer split for 16x16 DSP blocks: bracket = hi*2^{{ w.squarer_split }} + lo, bracket^2 = hi^2*2^{{ 2 * w.squarer_split }} + 2*hi*lo*2^{{ w.squarer_split }} + lo^2
-wire [{{ w.bracket_bits() - w.squarer_split - 1 }}:0] bracket_hi_s4 = bracket_c3[{{ w.bracket_frac_bits }}:{{ w.squarer_split }}];
-wire [{{ w.squarer_split - 1 }}:0] bracket_lo_s4 = bracket_c3[{{ w.squarer_split - 1 }}:0];
-wire [{{ w.full_square_bits() - 1 }}:0] square_full_s4 = ({{ sq_hi }} * {{ sq_hi }} << {{ 2 * w.squarer_split }})
-                                 + ({{ sq_hi }} * {{ sq_lo }} << {{ w.squarer_split + 1 }})
-                                 + ({{ sq_lo }} * {{ sq_lo }});   // UQ2.{{ 2 * w.bracket_frac_bits }}, exact (top bit always 0)
-{%- else %}
-wire [{{ w.full_square_bits() - 1 }}:0] square_full_s4 = {{ sq_a }} * {{ sq_b }};   // UQ2.{{ 2 * w.bracket_frac_bits }}, exact (top bit always 0){% if paper %}; a general multiplier as squarer (11){% endif %}
-{%- endif %}
-wire [{{ w.square_frac_bits }}:0] square_s4 = square_full_s4[{{ 2 * w.bracket_frac_bits }}:{{ w.square_shift }}];   // UQ1.{{ w.square_frac_bits }}: S, floor to 2^-{{ w.square_frac_bits }}
-wire        unused_square_bits = ^{{ sq_unused }};   // the always-zero top bit{% if w.square_shift > 0 %} and the truncated low bits{% endif %}
-{% call cuts::cut(cuts[3]) %}{% endcall %}
-
-// ==== step 5: colour multipliers (14-16); intensity rounding ====
-{%- if w.color_square_frac_bits < w.square_frac_bits %}
-wire [{{ w.color_square_frac_bits }}:0] color_square_s5 = square_c4[{{ w.square_frac_bits }}:{{ w.square_frac_bits - w.color_square_frac_bits }}];   // UQ1.{{ w.color_square_frac_bits }}: all the colours' budget needs (saves {{ w.square_frac_bits - w.color_square_frac_bits }} bits per colour multiplier)
-{%- else %}
-wire [{{ w.color_square_frac_bits }}:0] color_square_s5 = square_c4;   // UQ1.{{ w.color_square_frac_bits }}
-{%- endif %}
-{%- for ch in channels %}
-wire [{{ w.color_product_bits - 1 }}:0] color_prod_{{ ch.name }}_s5 = {{ ch.sq_ext }} * {{ ch.ks_ext }};   // UQ{{ p.color_bits }}.{{ w.color_square_frac_bits }}: S * ks_{{ ch.name }}, exact
+// ==== step {{ st.index }}: {{ st.title }} ====
+{%- for x in st.wires %}
+wire {% if x.width == 1 %}      {% else %}[{{ x.width - 1 }}:0]{% endif %} {{ x.name }}_s{{ st.index }} = {{ x.expr }};{% if !x.comment.is_empty() %}   // {{ x.comment }}{% endif %}
 {%- endfor %}
-{%- if intensity_rounds %}
-wire [{{ w.square_frac_bits }}:0] intensity_sum_s5 = square_c4 + {{ intensity_half }};   // UQ1.{{ w.square_frac_bits }}: S + 2^-{{ p.intensity_frac_bits + 1 }} (round half up)
-{%- else %}
-wire [{{ p.intensity_frac_bits }}:0] intensity_sum_s5 = {{ intensity_widen }};   // UQ1.{{ p.intensity_frac_bits }}: S exactly (no bits to drop)
-{%- endif %}
-{% call cuts::cut(cuts[4]) %}{% endcall %}
-
-// ==== step 6: colour rounding, final slices ====
-{%- for ch in channels %}
-wire [{{ w.color_product_bits - 1 }}:0] color_sum_{{ ch.name }}_s6 = color_prod_{{ ch.name }}_c5 + {{ color_half }};   // + 1/2 colour ulp (round half up)
-wire [{{ p.color_bits - 1 }}:0] spec_{{ ch.name }}_s6 = color_sum_{{ ch.name }}_s6[{{ w.color_product_bits - 1 }}:{{ w.color_square_frac_bits }}];   // UNORM{{ p.color_bits }}
-wire        unused_color_{{ ch.name }}_bits = ^color_sum_{{ ch.name }}_s6[{{ w.color_square_frac_bits - 1 }}:0];   // rounded-off fraction
+{% call cuts::cut(st.cut) %}{% endcall %}
 {%- endfor %}
-{%- if intensity_rounds %}
-wire [{{ p.intensity_frac_bits }}:0] intensity_s6 = intensity_sum_c5[{{ w.square_frac_bits }}:{{ w.square_frac_bits - p.intensity_frac_bits }}];   // UQ1.{{ p.intensity_frac_bits }}
-wire        unused_intensity_bits = ^intensity_sum_c5[{{ w.square_frac_bits - p.intensity_frac_bits - 1 }}:0];   // rounded-off fraction
-{%- else %}
-wire [{{ p.intensity_frac_bits }}:0] intensity_s6 = intensity_sum_c5;   // UQ1.{{ p.intensity_frac_bits }}
-{%- endif %}
-{% call cuts::cut(cuts[5]) %}{% endcall %}
 
-assign out_valid = valid_c6;
-assign spec_r    = spec_r_c6;
-assign spec_g    = spec_g_c6;
-assign spec_b    = spec_b_c6;
-assign intensity = intensity_c6;
-assign done      = done_c6;
+assign out_valid = valid_c{{ last }};
+assign spec_r    = spec_r_c{{ last }};
+assign spec_g    = spec_g_c{{ last }};
+assign spec_b    = spec_b_c{{ last }};
+assign intensity = intensity_c{{ last }};
+assign done      = done_c{{ last }};
 
 endmodule

@@ -1,0 +1,794 @@
+//! Stage 3c: the quadratic unit's datapath as a list of steps, from which the RTL is rendered.
+//!
+//! Every step is a set of wires computed from the previous cut (`x_cK`) or from wires of the
+//! same step (`x_sK`); after step K comes cut K, a pipeline register or a pass-through as
+//! [`Widths::registered_cuts`] says. The [`Builder`] resolves each reference to the right
+//! version, works out which signals are alive across each cut (only those get registers),
+//! marks the bits nobody reads (for a lint-clean `unused_*` wire) and keeps a delay estimate
+//! per step, from which `widths::balanced_cuts` places the registers.
+//!
+//! `lean` is split into short steps so that a fully registered unit has at most one
+//! DSP-sized multiply, one ROM read or one ≤ [`CHUNK_BITS`]-bit carry chain between
+//! registers: wide adders are carry-select (chunks added with both carry-ins in one step,
+//! carries resolved and picked in the next), wide compares chunked the same way. Every
+//! decomposition is exact, so the values are those of [`crate::model::Model::trace`].
+//! `paper` keeps the six coarse steps of the seed's Fig. 5.
+
+use crate::config::{Arch, Config};
+use crate::widths::Widths;
+
+/// Longest carry chain of one lean step (bits). iCE40 post-route: a registered 8-bit add
+/// runs at ~143 MHz, 12-bit at ~118 MHz, 16-bit at ~102 MHz.
+pub const CHUNK_BITS: u32 = 10;
+
+/// Width of a DSP block's multiplier operands (iCE40 SB_MAC16: 16×16).
+pub const DSP_BITS: u32 = 16;
+
+/// One wire of a step: `wire [width-1:0] name_sK = expr;   // comment`.
+#[derive(Debug, Clone)]
+pub struct Wire {
+    pub name: String,
+    pub width: u32,
+    pub expr: String,
+    pub comment: String,
+}
+
+#[derive(Debug, Clone)]
+pub struct Step {
+    /// 1-based
+    pub index: usize,
+    pub title: String,
+    pub wires: Vec<Wire>,
+    /// Delay estimate (ns on a LUT4 + carry-chain fabric); only ratios matter.
+    pub delay: f64,
+}
+
+/// A signal alive across a cut: (name, width, computed in the step just before it?).
+pub type Live = (String, u32, bool);
+
+#[derive(Debug, Clone)]
+pub struct Datapath {
+    pub steps: Vec<Step>,
+    /// `live[K-1]`: the signals cut K carries, in definition order.
+    pub live: Vec<Vec<Live>>,
+}
+
+impl Datapath {
+    pub fn delays(&self) -> Vec<f64> {
+        self.steps.iter().map(|s| s.delay).collect()
+    }
+}
+
+#[derive(Debug, Clone)]
+struct Signal {
+    name: String,
+    width: u32,
+    step: usize,
+    /// (step, bits read) for every reference
+    uses: Vec<(usize, u128)>,
+}
+
+fn mask(bits: u32) -> u128 {
+    if bits >= 128 {
+        u128::MAX
+    } else {
+        (1u128 << bits) - 1
+    }
+}
+
+/// A sized Verilog literal, `W'hX`.
+pub fn lit(width: u32, value: u128) -> String {
+    format!("{width}'h{value:x}")
+}
+
+/// Records the datapath step by step; see the module documentation.
+pub struct Builder {
+    steps: Vec<Step>,
+    signals: Vec<Signal>,
+}
+
+/// Bits `[lo, lo+width)` of a signal, optionally inverted; or a constant.
+#[derive(Debug, Clone)]
+pub enum Piece {
+    Sig { name: String, lo: u32, width: u32, invert: bool },
+    Const { value: u128, width: u32 },
+}
+
+impl Piece {
+    pub fn sig(name: &str, lo: u32, width: u32) -> Piece {
+        Piece::Sig { name: name.into(), lo, width, invert: false }
+    }
+    pub fn not(name: &str, lo: u32, width: u32) -> Piece {
+        Piece::Sig { name: name.into(), lo, width, invert: true }
+    }
+    pub fn zeros(width: u32) -> Piece {
+        Piece::Const { value: 0, width }
+    }
+    fn width(&self) -> u32 {
+        match self {
+            Piece::Sig { width, .. } | Piece::Const { width, .. } => *width,
+        }
+    }
+}
+
+/// Bits `[lo, lo+width)` of the value the pieces (LSB first) make, zero above their top.
+pub fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
+    let mut out = Vec::new();
+    let mut base = 0;
+    for p in pieces {
+        let (a, b) = (base.max(lo), (base + p.width()).min(lo + width));
+        if a < b {
+            out.push(match p {
+                Piece::Sig { name, lo: plo, invert, .. } => Piece::Sig { name: name.clone(), lo: plo + a - base, width: b - a, invert: *invert },
+                Piece::Const { value, .. } => Piece::Const { value: (value >> (a - base)) & mask(b - a), width: b - a },
+            });
+        }
+        base += p.width();
+    }
+    let have: u32 = out.iter().map(Piece::width).sum();
+    if have < width {
+        out.push(Piece::zeros(width - have));
+    }
+    out
+}
+
+/// A wide add started by [`Builder::add_start`], finished by [`Builder::add_finish`].
+pub struct PendingAdd {
+    name: String,
+    width: u32,
+    chunks: Vec<(u32, u32)>,
+    comment: String,
+}
+
+/// A chunked `x < y` started by [`Builder::less_start`].
+pub struct PendingLess {
+    name: String,
+    chunks: usize,
+}
+
+/// Chunk boundaries `(lo, width)` of a `width`-bit carry chain, each ≤ `CHUNK_BITS`.
+fn chunks(width: u32, chunk_bits: u32) -> Vec<(u32, u32)> {
+    let n = width.div_ceil(chunk_bits).max(1);
+    let (base, extra) = (width / n, width % n);
+    let mut lo = 0;
+    (0..n)
+        .map(|i| {
+            let w = base + u32::from(i < extra);
+            let c = (lo, w);
+            lo += w;
+            c
+        })
+        .collect()
+}
+
+/// Delay of a `w`-bit carry chain with its LUTs.
+fn add_delay(w: u32) -> f64 {
+    1.5 + 0.3 * w as f64
+}
+
+/// Delay of an a×b multiply (array / DSP alike; only the ratios matter).
+fn mul_delay(a: u32, b: u32) -> f64 {
+    1.5 * ((a.min(b).max(1) as f64).log2().ceil() + 1.0) + 0.3 * (a + b) as f64
+}
+
+impl Builder {
+    /// `inputs`: the port signals, available from cut 0.
+    pub fn new(inputs: &[(&str, u32)]) -> Builder {
+        Builder {
+            steps: Vec::new(),
+            signals: inputs.iter().map(|&(n, w)| Signal { name: n.into(), width: w, step: 0, uses: Vec::new() }).collect(),
+        }
+    }
+
+    fn cur(&self) -> usize {
+        self.steps.len()
+    }
+
+    /// Starts the next step.
+    pub fn step(&mut self, title: &str) {
+        let index = self.steps.len() + 1;
+        self.steps.push(Step { index, title: title.into(), wires: Vec::new(), delay: 0.0 });
+    }
+
+    /// Raises the current step's delay estimate to at least `d`.
+    pub fn delay(&mut self, d: f64) {
+        let s = self.steps.last_mut().expect("a step");
+        s.delay = s.delay.max(d);
+    }
+
+    fn signal(&mut self, name: &str) -> &mut Signal {
+        self.signals.iter_mut().rev().find(|s| s.name == name).unwrap_or_else(|| panic!("datapath: {name} used before it is defined"))
+    }
+
+    /// The name of `name` as seen from the current step.
+    fn version(&mut self, name: &str) -> String {
+        let cur = self.cur();
+        let def = self.signal(name).step;
+        if def == cur {
+            format!("{name}_s{cur}")
+        } else {
+            format!("{name}_c{}", cur - 1)
+        }
+    }
+
+    /// Bits `[hi:lo]` of a signal (the bare name when that is all of it).
+    pub fn bits(&mut self, name: &str, hi: u32, lo: u32) -> String {
+        let cur = self.cur();
+        let s = self.signal(name);
+        assert!(hi < s.width && lo <= hi, "datapath: {name}[{hi}:{lo}] of a {}-bit signal", s.width);
+        s.uses.push((cur, mask(hi + 1) & !mask(lo)));
+        let whole = lo == 0 && hi + 1 == s.width;
+        let v = self.version(name);
+        match (whole, hi == lo) {
+            (true, _) => v,
+            (false, true) => format!("{v}[{lo}]"),
+            (false, false) => format!("{v}[{hi}:{lo}]"),
+        }
+    }
+
+    /// All of a signal.
+    pub fn r(&mut self, name: &str) -> String {
+        let w = self.signal(name).width;
+        self.bits(name, w - 1, 0)
+    }
+
+    /// Bits `[lo, lo+width)` of a signal as an operand of exactly `out` bits: cut to its low
+    /// `out` bits (enough for a result taken modulo 2^out) or zero-extended.
+    pub fn operand(&mut self, name: &str, lo: u32, width: u32, out: u32) -> String {
+        self.pieces(&sub_pieces(&[Piece::sig(name, lo, width)], 0, out))
+    }
+
+    /// `name` zero-extended to `to` bits.
+    pub fn zext(&mut self, name: &str, to: u32) -> String {
+        let w = self.signal(name).width;
+        let v = self.r(name);
+        assert!(to >= w, "zext {name} from {w} to {to}");
+        if to == w {
+            v
+        } else {
+            format!("{{{}'h0, {v}}}", to - w)
+        }
+    }
+
+    /// The Verilog for a list of pieces (LSB first), MSB first in a concatenation.
+    pub fn pieces(&mut self, pieces: &[Piece]) -> String {
+        let parts: Vec<String> = pieces
+            .iter()
+            .rev()
+            .map(|p| match p {
+                Piece::Sig { name, lo, width, invert } => {
+                    let b = self.bits(name, lo + width - 1, *lo);
+                    if *invert {
+                        format!("~{b}")
+                    } else {
+                        b
+                    }
+                }
+                Piece::Const { value, width } => lit(*width, *value),
+            })
+            .collect();
+        match parts.len() {
+            1 => parts.into_iter().next().unwrap(),
+            _ => format!("{{{}}}", parts.join(", ")),
+        }
+    }
+
+    /// ` + b` for an addend (`ext` applied), or nothing when it is constant zero.
+    fn addend(&mut self, pieces: &[Piece], ext: impl Fn(String) -> String) -> String {
+        if pieces.iter().all(|p| matches!(p, Piece::Const { value: 0, .. })) {
+            String::new()
+        } else {
+            let e = self.pieces(pieces);
+            format!(" + {}", ext(e))
+        }
+    }
+
+    /// Defines a wire of the current step.
+    pub fn wire(&mut self, name: &str, width: u32, expr: String, comment: &str) {
+        assert!(self.signals.iter().all(|s| s.name != name), "datapath: {name} defined twice");
+        let cur = self.cur();
+        self.signals.push(Signal { name: name.into(), width, step: cur, uses: Vec::new() });
+        self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
+    }
+
+    /// Declares a signal the template defines itself in the current step (the ROM read).
+    pub fn external(&mut self, name: &str, width: u32) {
+        let cur = self.cur();
+        self.signals.push(Signal { name: name.into(), width, step: cur, uses: Vec::new() });
+    }
+
+    /// Marks all of a signal read in the current step without writing an expression.
+    pub fn touch(&mut self, name: &str) {
+        let _ = self.r(name);
+    }
+
+    /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added
+    /// here with carry-in 0 and 1 (carry-select), and [`Builder::add_finish`] resolves the
+    /// carries and picks in the next step.
+    pub fn add_start(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
+        let parts = chunks(width, CHUNK_BITS);
+        let n = parts.len();
+        let max_chunk = parts.iter().map(|c| c.1).max().unwrap_or(1);
+        self.delay(add_delay(max_chunk));
+        if n == 1 {
+            let ea = self.pieces(&sub_pieces(a, 0, width));
+            let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
+            let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
+            self.wire(name, width, format!("{ea}{eb}{plus}"), comment);
+        } else {
+            for (i, &(lo, w)) in parts.iter().enumerate() {
+                let top = i + 1 == n;
+                let ww = if top { w } else { w + 1 };
+                let ext = |e: String| if top { e } else { format!("{{1'b0, {e}}}") };
+                let ea = self.pieces(&sub_pieces(a, lo, w));
+                let eb = self.addend(&sub_pieces(b, lo, w), ext);
+                let sum = format!("{}{eb}", ext(ea));
+                let what = if top { format!("bits [{}:{lo}]", lo + w - 1) } else { format!("bits [{}:{lo}] and their carry", lo + w - 1) };
+                if i == 0 {
+                    let plus = if cin { format!(" + {}", lit(ww, 1)) } else { String::new() };
+                    self.wire(&format!("{name}_part0"), ww, format!("{sum}{plus}"), &format!("{what}, carry-in {}", u8::from(cin)));
+                } else {
+                    self.wire(&format!("{name}_part{i}"), ww, sum.clone(), &format!("{what}, carry-in 0"));
+                    self.wire(&format!("{name}_part{i}_plus1"), ww, format!("{sum} + {}", lit(ww, 1)), &format!("{what}, carry-in 1 (carry-select)"));
+                }
+            }
+        }
+        PendingAdd { name: name.into(), width, chunks: if n == 1 { Vec::new() } else { parts }, comment: comment.into() }
+    }
+
+    /// Second half of a carry-select add: the carries ripple through the chunks (one LUT
+    /// level each) and pick each chunk's sum. Returns the name of the sum.
+    pub fn add_finish(&mut self, p: PendingAdd) -> String {
+        if p.chunks.is_empty() {
+            return p.name;
+        }
+        let n = p.chunks.len();
+        self.delay(1.0 + 0.5 * (n - 1) as f64);
+        let (_, w0) = p.chunks[0];
+        let mut carry = self.bits(&format!("{}_part0", p.name), w0, w0);
+        let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1, 0)];
+        for (i, &(_, w)) in p.chunks.iter().enumerate().skip(1) {
+            let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
+            let (a, b) = (self.bits(&inc, w - 1, 0), self.bits(&plain, w - 1, 0));
+            words.push(format!("({carry} ? {a} : {b})"));
+            if i + 1 < n {
+                let (ca, cb) = (self.bits(&inc, w, w), self.bits(&plain, w, w));
+                let cname = format!("{}_carry{}", p.name, i + 1);
+                self.wire(&cname, 1, format!("{carry} ? {ca} : {cb}"), &format!("carry into bit {}", p.chunks[i + 1].0));
+                carry = self.r(&cname);
+            }
+        }
+        words.reverse();
+        let comment = p.comment.clone();
+        self.wire(&p.name, p.width, format!("{{{}}}", words.join(", ")), &comment);
+        p.name
+    }
+
+    /// `name = x < y` over `width` bits (both given as pieces), in ≤ `CHUNK_BITS` chunks:
+    /// each chunk's `<` and `==` here, combined by [`Builder::less_finish`] in the next step.
+    pub fn less_start(&mut self, name: &str, x: &[Piece], y: &[Piece], width: u32, comment: &str) -> PendingLess {
+        let parts = chunks(width, CHUNK_BITS);
+        self.delay(add_delay(parts.iter().map(|c| c.1).max().unwrap_or(1)));
+        if parts.len() == 1 {
+            let (ex, ey) = (self.pieces(&sub_pieces(x, 0, width)), self.pieces(&sub_pieces(y, 0, width)));
+            self.wire(name, 1, format!("({ex} < {ey})"), comment);
+            return PendingLess { name: name.into(), chunks: 1 };
+        }
+        for (i, &(lo, w)) in parts.iter().enumerate() {
+            let (ex, ey) = (self.pieces(&sub_pieces(x, lo, w)), self.pieces(&sub_pieces(y, lo, w)));
+            let range = format!("bits [{}:{lo}]", lo + w - 1);
+            self.wire(&format!("{name}_lt{i}"), 1, format!("({ex} < {ey})"), &format!("{range}: less"));
+            if i > 0 {
+                self.wire(&format!("{name}_eq{i}"), 1, format!("({ex} == {ey})"), &format!("{range}: equal"));
+            }
+        }
+        PendingLess { name: name.into(), chunks: parts.len() }
+    }
+
+    /// Combines the chunk compares, most significant first. Returns the expression.
+    pub fn less_finish(&mut self, p: PendingLess) -> String {
+        if p.chunks == 1 {
+            return self.r(&p.name);
+        }
+        self.delay(1.0 + 0.3 * p.chunks as f64);
+        let mut e = self.r(&format!("{}_lt0", p.name));
+        for i in 1..p.chunks {
+            let (lt, eq) = (self.r(&format!("{}_lt{i}", p.name)), self.r(&format!("{}_eq{i}", p.name)));
+            e = format!("({lt} | ({eq} & {e}))");
+        }
+        e
+    }
+
+    /// Closes the datapath: `outputs` are read after the last step. Adds an `unused_*` wire
+    /// for the bits of each signal that its last reader leaves unread, and lists the live
+    /// signals of every cut.
+    pub fn finish(mut self, outputs: &[&str]) -> Datapath {
+        let last = self.cur();
+        for o in outputs {
+            let w = self.signal(o).width;
+            self.signal(o).uses.push((last + 1, mask(w)));
+        }
+        // unused bits: read nowhere at the last step that reads the signal
+        let mut extra: Vec<(usize, String, String)> = Vec::new();
+        for s in &self.signals {
+            let last_use = s.uses.iter().map(|u| u.0).max().unwrap_or(s.step).max(s.step);
+            if last_use > last {
+                continue;
+            }
+            let read = s.uses.iter().filter(|u| u.0 == last_use).fold(0u128, |m, u| m | u.1);
+            let unread = mask(s.width) & !read;
+            if unread == 0 {
+                continue;
+            }
+            let v = if s.step == last_use { format!("{}_s{last_use}", s.name) } else { format!("{}_c{}", s.name, last_use - 1) };
+            let mut ranges = Vec::new();
+            let mut b = s.width;
+            while b > 0 {
+                b -= 1;
+                if unread >> b & 1 == 1 {
+                    let hi = b;
+                    while b > 0 && unread >> (b - 1) & 1 == 1 {
+                        b -= 1;
+                    }
+                    ranges.push(if s.width == 1 { v.clone() } else if hi == b { format!("{v}[{b}]") } else { format!("{v}[{hi}:{b}]") });
+                }
+            }
+            let expr = if ranges.len() == 1 { format!("^{}", ranges[0]) } else { format!("^{{{}}}", ranges.join(", ")) };
+            extra.push((last_use, format!("unused_{}", s.name), expr));
+        }
+        for (step, name, expr) in extra {
+            self.steps[step - 1].wires.push(Wire { name, width: 1, expr, comment: "bits no later step reads".into() });
+        }
+        let live = (1..=last)
+            .map(|k| {
+                self.signals
+                    .iter()
+                    .filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k))
+                    .map(|s| (s.name.clone(), s.width, s.step == k))
+                    .collect()
+            })
+            .collect();
+        Datapath { steps: self.steps, live }
+    }
+}
+
+/// The datapath of the quadratic unit for `cfg` (any `registered_cuts` in `w` are ignored).
+pub fn build(cfg: &Config, w: &Widths) -> Datapath {
+    let inputs = [("cos_g", w.cos_bits), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
+    let mut b = Builder::new(&inputs);
+    match cfg.arch() {
+        Arch::Lean => lean(cfg, w, &mut b),
+        Arch::Paper => paper(cfg, w, &mut b),
+    }
+    b.finish(&["spec_r", "spec_g", "spec_b", "intensity", "done"])
+}
+
+const CHANNELS: [&str; 3] = ["r", "g", "b"];
+
+/// The ROM read (the template holds the ROM itself): `cos_sp_s1`, addressed by `n_c0`.
+fn rom_read(cfg: &Config, w: &Widths, b: &mut Builder) {
+    b.external("cos_sp", w.cos_bits);
+    b.touch("n");
+    b.delay(1.2 * cfg.n_bits().div_ceil(4) as f64 + 1.0);
+}
+
+/// The lean datapath: short steps, every decomposition exact (see the module docs).
+fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
+    let (f, cb, nb, bb, fi) = (cfg.f(), w.cos_bits, cfg.n_bits(), cfg.b(), cfg.fi());
+    let (wb, ws, wsc, s) = (w.bracket_frac_bits, w.square_frac_bits, w.color_square_frac_bits, w.deviation_shift);
+    // P is needed modulo 2^m only: dev = P[m-1:s] (m = KF+F+1), higher bits matter only
+    // beyond the cut-off, where the key block zeroes the bracket.
+    let m = wb + s + 1;
+
+    b.step("cut-off ROM read (10); 1 - cos (adder 6), first half");
+    rom_read(cfg, w, b);
+    let g = b.bits("cos_g", f, f);
+    let x = b.bits("cos_g", f - 1, 0);
+    b.wire(
+        "cos_complement",
+        cb,
+        format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
+        &format!("UQ1.{f}: 1 - 2^-{f} - cos, all ones when cos_g >= 1.0 (the clamp: +1 then wraps to 0)"),
+    );
+    b.delay(1.0);
+    let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1), exact"));
+
+    b.step("1 - cos, second half; k_q*n (constant multiply)");
+    b.add_finish(d);
+    let nn = b.zext("n", w.kn_bits);
+    b.wire(
+        "kn",
+        w.kn_bits,
+        format!("{nn} * {}", lit(w.kn_bits, cfg.k_code as u128)),
+        &format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
+    );
+    b.delay(mul_delay(nb, bit_len(cfg.k_code)));
+
+    b.step("deviation products k_q*n * (1 - cos) (multiplier 7); comparator (12), first half");
+    // kn = kn_hi*2^16 + kn_lo: two products with <= 16-bit operands instead of one that
+    // would take 3 DSP blocks (the hi product is needed only modulo 2^(m-16))
+    let split = w.kn_bits > DSP_BITS && m > DSP_BITS;
+    let (lo_w, hi_w) = ((DSP_BITS + cb).min(m), m.saturating_sub(DSP_BITS));
+    if split {
+        let (kl, d1) = (b.operand("kn", 0, DSP_BITS, lo_w), b.operand("one_minus_cos", 0, cb, lo_w));
+        b.wire("deviation_lo", lo_w, format!("{kl} * {d1}"), &format!("kn[{}:0] * (1 - cos), exact, weight 2^-{}", DSP_BITS - 1, cfg.kf() + f));
+        let (kh, d2) = (b.operand("kn", DSP_BITS, w.kn_bits - DSP_BITS, hi_w), b.operand("one_minus_cos", 0, cb, hi_w));
+        b.wire("deviation_hi", hi_w, format!("{kh} * {d2}"), &format!("kn[{}:{DSP_BITS}] * (1 - cos) mod 2^{hi_w}, weight 2^{}", w.kn_bits - 1, DSP_BITS as i64 - (cfg.kf() + f) as i64));
+        b.delay(mul_delay(DSP_BITS, cb));
+    } else {
+        let pw = (w.kn_bits + cb).min(m);
+        let (kn, d1) = (b.operand("kn", 0, w.kn_bits, pw), b.operand("one_minus_cos", 0, cb, pw));
+        b.wire("deviation_full", pw, format!("{kn} * {d1}"), &format!("UQ.{}: P = k_q*n*(1 - cos), exact mod 2^{pw}", cfg.kf() + f));
+        b.delay(mul_delay(w.kn_bits, cb));
+    }
+    let less = b.less_start("below_cutoff", &[Piece::sig("cos_g", 0, f)], &[Piece::sig("cos_sp", 0, cb)], cb, &format!("cos < cos_sp over UQ1.{f}"));
+
+    b.step("deviation sum, first half; comparator, second half");
+    let pending_sum = split.then(|| {
+        b.add_start(
+            "deviation_top",
+            &[Piece::sig("deviation_lo", DSP_BITS, lo_w - DSP_BITS)],
+            &[Piece::sig("deviation_hi", 0, hi_w)],
+            false,
+            hi_w,
+            &format!("P[{}:{DSP_BITS}] = lo[{}:{DSP_BITS}] + hi, mod 2^{hi_w}", m - 1, lo_w - 1),
+        )
+    });
+    let lt = b.less_finish(less);
+    let gg = b.bits("cos_g", f, f);
+    b.wire("done", 1, format!("~{gg} & {lt}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+
+    b.step("deviation sum, second half; truncation #1");
+    let p_pieces = match pending_sum {
+        Some(p) => {
+            let top = b.add_finish(p);
+            vec![Piece::sig("deviation_lo", 0, DSP_BITS), Piece::sig(&top, 0, hi_w)]
+        }
+        None => vec![Piece::sig("deviation_full", 0, (w.kn_bits + cb).min(m))],
+    };
+    let dev = b.pieces(&sub_pieces(&p_pieces, s, wb + 1));
+    b.wire("deviation", wb + 1, dev, &format!("UQ1.{wb}: P[{}:{s}], floor to 2^-{wb} (truncation #1; exact below the cut-off: < 2)", m - 1));
+
+    b.step("bracket = 1 - deviation (adder 9), first half");
+    let br = b.add_start(
+        "bracket_sum",
+        &[Piece::not("deviation", 0, wb + 1)],
+        &[Piece::zeros(wb), Piece::Const { value: 1, width: 1 }],
+        true,
+        wb + 1,
+        &format!("UQ1.{wb}: 1 - deviation = ~deviation + 1 + 2^{wb} mod 2^{}", wb + 1),
+    );
+
+    b.step("bracket, second half; key block (13)");
+    let sum = b.add_finish(br);
+    let (dn, sm) = (b.r("done"), b.r(&sum));
+    b.wire("bracket", wb + 1, format!("{dn} ? {} : {sm}", lit(wb + 1, 0)), &format!("UQ1.{wb}, in [0, 1]: zeroed beyond the cut-off (key block 13)"));
+    b.delay(1.0);
+
+    b.step("square (squarer 11): partial products");
+    let r = w.squarer_split;
+    let full_bits = w.full_square_bits();
+    let square_full_pieces: Vec<Piece>;
+    let mut pending_sq = None;
+    if r > 0 {
+        let hw = wb + 1 - r;
+        let (h1, h2) = (b.operand("bracket", r, hw, 2 * hw), b.operand("bracket", r, hw, 2 * hw));
+        b.wire("square_hh", 2 * hw, format!("{h1} * {h2}"), &format!("hi^2 where bracket = hi*2^{r} + lo: a {hw}x{hw} multiply (one DSP) instead of {0}x{0}", wb + 1));
+        let (h3, l1) = (b.operand("bracket", r, hw, hw + r), b.operand("bracket", 0, r, hw + r));
+        b.wire("square_hl", hw + r, format!("{h3} * {l1}"), "hi*lo");
+        let (l2, l3) = (b.operand("bracket", 0, r, 2 * r), b.operand("bracket", 0, r, 2 * r));
+        b.wire("square_ll", 2 * r, format!("{l2} * {l3}"), "lo^2");
+        b.delay(mul_delay(hw, hw));
+        b.step("square: hi^2*2^2r + lo^2 + hi*lo*2^(r+1), first half");
+        // {hh, ll} is hi^2*2^2r + lo^2 with no add (lo^2 < 2^2r); one add of hi*lo*2^(r+1) remains
+        let hh_ll = [Piece::sig("square_ll", 0, 2 * r), Piece::sig("square_hh", 0, 2 * hw)];
+        pending_sq = Some(b.add_start(
+            "square_top",
+            &sub_pieces(&hh_ll, r + 1, full_bits - r - 1),
+            &[Piece::sig("square_hl", 0, hw + r)],
+            false,
+            full_bits - r - 1,
+            &format!("bracket^2 bits [{}:{}]", full_bits - 1, r + 1),
+        ));
+        square_full_pieces = Vec::new();
+    } else {
+        let (a1, a2) = (b.operand("bracket", 0, wb + 1, full_bits), b.operand("bracket", 0, wb + 1, full_bits));
+        b.wire("square_full", full_bits, format!("{a1} * {a2}"), &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+        b.delay(mul_delay(wb + 1, wb + 1));
+        square_full_pieces = vec![Piece::sig("square_full", 0, full_bits)];
+    }
+
+    let full = match pending_sq {
+        Some(p) => {
+            b.step("square, second half; truncation #2");
+            let top = b.add_finish(p);
+            vec![Piece::sig("square_ll", 0, r + 1), Piece::sig(&top, 0, full_bits - r - 1)]
+        }
+        None => {
+            b.step("truncation #2");
+            square_full_pieces
+        }
+    };
+    let sq = b.pieces(&sub_pieces(&full, w.square_shift, ws + 1));
+    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2; bit {} is always 0)", full_bits - 1));
+    let csq = b.bits("square", ws, ws - wsc);
+    b.wire(
+        "color_square",
+        wsc + 1,
+        csq,
+        &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
+    );
+
+    b.step("colour multipliers (14-16); intensity rounding, first half");
+    let cpb = w.color_product_bits;
+    for ch in CHANNELS {
+        let (cs, ks) = (b.zext("color_square", cpb), b.zext(&format!("ks_{ch}"), cpb));
+        b.wire(&format!("color_prod_{ch}"), cpb, format!("{cs} * {ks}"), &format!("UQ{bb}.{wsc}: S * ks_{ch}, exact"));
+    }
+    b.delay(mul_delay(wsc + 1, bb));
+    let intensity_add = if ws > fi {
+        // round half up: (S[WS:WS-FI-1] + 1) >> 1 = floor(S*2^FI + 1/2)
+        Some(b.add_start(
+            "intensity_sum",
+            &[Piece::sig("square", ws - fi - 1, fi + 2)],
+            &[],
+            true,
+            fi + 2,
+            &format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
+        ))
+    } else {
+        let sqr = b.r("square");
+        let e = if fi > ws { format!("{{{sqr}, {}}}", lit(fi - ws, 0)) } else { sqr };
+        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
+        None
+    };
+
+    b.step("colour rounding; intensity rounding, second half");
+    let color_adds: Vec<PendingAdd> = CHANNELS
+        .iter()
+        .map(|ch| {
+            // (prod + 2^(WSC-1)) >> WSC = (prod[WSC+B-1:WSC-1] + 1) >> 1
+            b.add_start(&format!("color_sum_{ch}"), &[Piece::sig(&format!("color_prod_{ch}"), wsc - 1, bb + 1)], &[], true, bb + 1, &format!("S*ks_{ch} to 2^-1 plus one: + 1/2 colour ulp (round half up)"))
+        })
+        .collect();
+    if let Some(p) = intensity_add {
+        let s = b.add_finish(p);
+        let e = b.bits(&s, fi + 1, 1);
+        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    }
+    let chunked = color_adds.iter().any(|p| !p.chunks.is_empty());
+    if chunked {
+        b.step("colour rounding, second half");
+    }
+    for (ch, p) in CHANNELS.iter().zip(color_adds) {
+        let s = b.add_finish(p);
+        let e = b.bits(&s, bb, 1);
+        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
+    }
+}
+
+/// The seed's Fig. 5 taken literally: every bit kept, a general multiplier for k (34), a
+/// separate n*(1 - cos) multiplier (7), a multiplier as squarer (11), three colour
+/// multipliers (14-16); six coarse steps.
+fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
+    let (f, cb, nb, bb, fi) = (cfg.f(), w.cos_bits, cfg.n_bits(), cfg.b(), cfg.fi());
+    let (wb, ws) = (w.bracket_frac_bits, w.square_frac_bits);
+    let one = lit(cb, 1u128 << f);
+
+    b.step("clamp, 1 - cos (adder 6), cut-off ROM (10), comparator (12)");
+    rom_read(cfg, w, b);
+    let g = b.r("cos_g");
+    b.wire("cos_clamped", cb, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}, <= 1.0"));
+    let c = b.r("cos_clamped");
+    b.wire("one_minus_cos", cb, format!("{one} - {c}"), &format!("UQ1.{f}: 1 - cos(gamma), exact"));
+    let (c, sp) = (b.r("cos_clamped"), b.r("cos_sp"));
+    b.wire("done", 1, format!("({c} < {sp})"), "comparator: bracket < 0");
+    b.delay(add_delay(cb) * 2.0);
+
+    b.step("deviation n*(1 - cos) (multiplier 7) times k (general multiplier 34), truncation #1");
+    let nd_bits = nb + cb;
+    let (nn, d) = (b.zext("n", nd_bits), b.zext("one_minus_cos", nd_bits));
+    b.wire("n_dev", nd_bits, format!("{nn} * {d}"), &format!("UQ{nb}.{f}: n*(1 - cos), exact (multiplier 7)"));
+    let nd = b.zext("n_dev", w.deviation_bits);
+    b.wire(
+        "deviation_full",
+        w.deviation_bits,
+        format!("{nd} * {}", lit(w.deviation_bits, cfg.k_code as u128)),
+        &format!("UQ.{}: k_q*n*(1 - cos), exact (general multiplier 34)", cfg.kf() + f),
+    );
+    let dev = b.pieces(&sub_pieces(&[Piece::sig("deviation_full", 0, w.deviation_bits)], w.deviation_shift, wb + 1));
+    b.wire("deviation", wb + 1, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
+    b.delay(mul_delay(nb, cb) + mul_delay(nd_bits, bit_len(cfg.k_code)));
+
+    b.step("bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13)");
+    let (dn, dv) = (b.r("done"), b.r("deviation"));
+    b.wire("bracket", wb + 1, format!("{dn} ? {} : ({} - {dv})", lit(wb + 1, 0), lit(wb + 1, 1u128 << wb)), &format!("UQ1.{wb}, in [0, 1]"));
+    b.delay(add_delay(wb + 1) + 0.6);
+
+    b.step("square (a general multiplier as squarer 11)");
+    let fb = w.full_square_bits();
+    let (a1, a2) = (b.zext("bracket", fb), b.zext("bracket", fb));
+    b.wire("square_full", fb, format!("{a1} * {a2}"), &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
+    let sq = b.bits("square_full", 2 * wb, w.square_shift);
+    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S"));
+    b.delay(mul_delay(wb + 1, wb + 1));
+
+    b.step("colour multipliers (14-16); intensity rounding");
+    let cpb = w.color_product_bits;
+    for ch in CHANNELS {
+        let (cs, ks) = (b.zext("square", cpb), b.zext(&format!("ks_{ch}"), cpb));
+        b.wire(&format!("color_prod_{ch}"), cpb, format!("{cs} * {ks}"), &format!("UQ{bb}.{ws}: S * ks_{ch}, exact"));
+    }
+    if ws > fi {
+        let sqr = b.r("square");
+        b.wire("intensity_sum", ws + 1, format!("{sqr} + {}", lit(ws + 1, 1u128 << (ws - fi - 1))), &format!("UQ1.{ws}: S + 2^-{} (round half up)", fi + 1));
+    }
+    b.delay(mul_delay(ws + 1, bb));
+
+    b.step("colour rounding, final slices");
+    for ch in CHANNELS {
+        let p = b.r(&format!("color_prod_{ch}"));
+        b.wire(&format!("color_sum_{ch}"), cpb, format!("{p} + {}", lit(cpb, 1u128 << (ws - 1))), "+ 1/2 colour ulp (round half up)");
+        let s = b.bits(&format!("color_sum_{ch}"), cpb - 1, ws);
+        b.wire(&format!("spec_{ch}"), bb, s, &format!("UNORM{bb}"));
+    }
+    let e = if ws > fi {
+        b.bits("intensity_sum", ws, ws - fi)
+    } else {
+        let sqr = b.r("square");
+        if fi > ws {
+            format!("{{{sqr}, {}}}", lit(fi - ws, 0))
+        } else {
+            sqr
+        }
+    };
+    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}"));
+    b.delay(add_delay(cpb));
+}
+
+fn bit_len(v: u64) -> u32 {
+    64 - v.leading_zeros()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chunks_cover_the_width_in_balanced_pieces() {
+        for w in 1..80 {
+            let c = chunks(w, CHUNK_BITS);
+            assert_eq!(c.iter().map(|x| x.1).sum::<u32>(), w);
+            assert!(c.iter().all(|x| x.1 <= CHUNK_BITS && x.1 >= 1));
+            assert!(c.windows(2).all(|p| p[0].0 + p[0].1 == p[1].0));
+            assert_eq!(c.len() as u32, w.div_ceil(CHUNK_BITS));
+        }
+    }
+
+    #[test]
+    fn sub_pieces_pads_with_zeros() {
+        let p = [Piece::sig("a", 2, 3), Piece::Const { value: 0b101, width: 3 }];
+        let s = sub_pieces(&p, 1, 7);
+        let mut b = Builder::new(&[("a", 8)]);
+        b.step("t");
+        assert_eq!(b.pieces(&s), "{2'h0, 3'h5, a_c0[4:3]}");
+    }
+
+    #[test]
+    fn liveness_and_unused_bits() {
+        let mut b = Builder::new(&[("x", 8)]);
+        b.step("one");
+        let e = b.bits("x", 7, 4);
+        b.wire("y", 4, e, "");
+        b.step("two");
+        let e = b.bits("x", 0, 0);
+        let y = b.r("y");
+        b.wire("z", 5, format!("{{{y}, {e}}}"), "");
+        let d = b.finish(&["z"]);
+        // cut 1 carries x (read again in step 2) and y
+        assert_eq!(d.live[0].iter().map(|l| l.0.as_str()).collect::<Vec<_>>(), ["x", "y"]);
+        assert_eq!(d.live[1].iter().map(|l| l.0.as_str()).collect::<Vec<_>>(), ["z"]);
+        let unused = d.steps[1].wires.iter().find(|w| w.name == "unused_x").expect("unused_x");
+        assert_eq!(unused.expr, "^x_c1[7:1]");
+    }
+}
