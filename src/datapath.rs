@@ -17,9 +17,10 @@
 use crate::config::{Arch, Config};
 use crate::widths::Widths;
 
-/// Longest carry chain of one lean step (bits). iCE40 post-route: a registered 8-bit add
-/// runs at ~143 MHz, 12-bit at ~118 MHz, 16-bit at ~102 MHz.
-pub const CHUNK_BITS: u32 = 10;
+/// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
+/// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
+/// ~103 MHz, 8 bits ~92 MHz.
+pub const CHUNK_BITS: u32 = 6;
 
 /// Width of a DSP block's multiplier operands (iCE40 SB_MAC16: 16×16).
 pub const DSP_BITS: u32 = 16;
@@ -138,12 +139,6 @@ pub struct PendingAdd {
     width: u32,
     chunks: Vec<(u32, u32)>,
     comment: String,
-}
-
-/// A chunked `x < y` started by [`Builder::less_start`].
-pub struct PendingLess {
-    name: String,
-    chunks: usize,
 }
 
 /// Chunk boundaries `(lo, width)` of a `width`-bit carry chain, each ≤ `CHUNK_BITS`.
@@ -336,67 +331,48 @@ impl Builder {
         PendingAdd { name: name.into(), width, chunks: if n == 1 { Vec::new() } else { parts }, comment: comment.into() }
     }
 
-    /// Second half of a carry-select add: the carries ripple through the chunks (one LUT
-    /// level each) and pick each chunk's sum. Returns the name of the sum.
+    /// Second step of a carry-select add: the carry into each chunk from the third on
+    /// (the first chunk's own carry-out is the carry into the second), rippled through the
+    /// chunks' carry-outs. Nothing to do for one or two chunks.
+    pub fn add_carries(&mut self, p: &PendingAdd) {
+        let n = p.chunks.len();
+        if n <= 2 {
+            return;
+        }
+        self.delay(1.0 + 0.5 * (n - 2) as f64);
+        let (_, w0) = p.chunks[0];
+        let mut carry = self.bits(&format!("{}_part0", p.name), w0, w0);
+        for i in 1..n - 1 {
+            let w = p.chunks[i].1;
+            let (ca, cb) = (self.bits(&format!("{}_part{i}_plus1", p.name), w, w), self.bits(&format!("{}_part{i}", p.name), w, w));
+            let cname = format!("{}_carry{}", p.name, i + 1);
+            self.wire(&cname, 1, format!("{carry} ? {ca} : {cb}"), &format!("carry into bit {}", p.chunks[i + 1].0));
+            carry = self.r(&cname);
+        }
+    }
+
+    /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT
+    /// level). Returns the name of the sum.
     pub fn add_finish(&mut self, p: PendingAdd) -> String {
         if p.chunks.is_empty() {
             return p.name;
         }
-        let n = p.chunks.len();
-        self.delay(1.0 + 0.5 * (n - 1) as f64);
+        self.delay(1.0);
         let (_, w0) = p.chunks[0];
-        let mut carry = self.bits(&format!("{}_part0", p.name), w0, w0);
         let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1, 0)];
         for (i, &(_, w)) in p.chunks.iter().enumerate().skip(1) {
+            let carry = match i {
+                1 => self.bits(&format!("{}_part0", p.name), w0, w0),
+                _ => self.r(&format!("{}_carry{i}", p.name)),
+            };
             let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
             let (a, b) = (self.bits(&inc, w - 1, 0), self.bits(&plain, w - 1, 0));
             words.push(format!("({carry} ? {a} : {b})"));
-            if i + 1 < n {
-                let (ca, cb) = (self.bits(&inc, w, w), self.bits(&plain, w, w));
-                let cname = format!("{}_carry{}", p.name, i + 1);
-                self.wire(&cname, 1, format!("{carry} ? {ca} : {cb}"), &format!("carry into bit {}", p.chunks[i + 1].0));
-                carry = self.r(&cname);
-            }
         }
         words.reverse();
         let comment = p.comment.clone();
         self.wire(&p.name, p.width, format!("{{{}}}", words.join(", ")), &comment);
         p.name
-    }
-
-    /// `name = x < y` over `width` bits (both given as pieces), in ≤ `CHUNK_BITS` chunks:
-    /// each chunk's `<` and `==` here, combined by [`Builder::less_finish`] in the next step.
-    pub fn less_start(&mut self, name: &str, x: &[Piece], y: &[Piece], width: u32, comment: &str) -> PendingLess {
-        let parts = chunks(width, CHUNK_BITS);
-        self.delay(add_delay(parts.iter().map(|c| c.1).max().unwrap_or(1)));
-        if parts.len() == 1 {
-            let (ex, ey) = (self.pieces(&sub_pieces(x, 0, width)), self.pieces(&sub_pieces(y, 0, width)));
-            self.wire(name, 1, format!("({ex} < {ey})"), comment);
-            return PendingLess { name: name.into(), chunks: 1 };
-        }
-        for (i, &(lo, w)) in parts.iter().enumerate() {
-            let (ex, ey) = (self.pieces(&sub_pieces(x, lo, w)), self.pieces(&sub_pieces(y, lo, w)));
-            let range = format!("bits [{}:{lo}]", lo + w - 1);
-            self.wire(&format!("{name}_lt{i}"), 1, format!("({ex} < {ey})"), &format!("{range}: less"));
-            if i > 0 {
-                self.wire(&format!("{name}_eq{i}"), 1, format!("({ex} == {ey})"), &format!("{range}: equal"));
-            }
-        }
-        PendingLess { name: name.into(), chunks: parts.len() }
-    }
-
-    /// Combines the chunk compares, most significant first. Returns the expression.
-    pub fn less_finish(&mut self, p: PendingLess) -> String {
-        if p.chunks == 1 {
-            return self.r(&p.name);
-        }
-        self.delay(1.0 + 0.3 * p.chunks as f64);
-        let mut e = self.r(&format!("{}_lt0", p.name));
-        for i in 1..p.chunks {
-            let (lt, eq) = (self.r(&format!("{}_lt{i}", p.name)), self.r(&format!("{}_eq{i}", p.name)));
-            e = format!("({lt} | ({eq} & {e}))");
-        }
-        e
     }
 
     /// Closes the datapath: `outputs` are read after the last step. Adds an `unused_*` wire
@@ -473,14 +449,23 @@ fn rom_read(cfg: &Config, w: &Widths, b: &mut Builder) {
 }
 
 /// The lean datapath: short steps, every decomposition exact (see the module docs).
+///
+/// Where it saves against `paper` (each also said in the RTL comments):
+/// - `k_q·n` is one constant multiply: no general multiplier by k (34);
+/// - the deviation and `1 − deviation` come out of DSP multiply-adds (`P + K'`, then an
+///   inversion folded into the key block's LUTs): no fabric adder for adder 9;
+/// - the bracket is squared as `hi²` and `hi·lo` with a 16-bit `hi`, the adds inside the
+///   DSPs: two 16-bit DSP products instead of a 3-DSP 18×18 one;
+/// - widths cut to the error budget (bracket UQ1.(max(FI,B)+2), colours fed UQ1.(B+1));
+/// - the colour rounding half is the colour DSPs' addend: no rounding adders.
 fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
-    let (f, cb, nb, bb, fi) = (cfg.f(), w.cos_bits, cfg.n_bits(), cfg.b(), cfg.fi());
+    let (f, cb, bb, fi) = (cfg.f(), w.cos_bits, cfg.b(), cfg.fi());
     let (wb, ws, wsc, s) = (w.bracket_frac_bits, w.square_frac_bits, w.color_square_frac_bits, w.deviation_shift);
-    // P is needed modulo 2^m only: dev = P[m-1:s] (m = KF+F+1), higher bits matter only
+    // P is needed modulo 2^m only: dev = P[m-1:s] (m = KF+F+1); higher bits matter only
     // beyond the cut-off, where the key block zeroes the bracket.
     let m = wb + s + 1;
 
-    b.step("cut-off ROM read (10); 1 - cos (adder 6), first half");
+    b.step("cut-off ROM read (10); cos complemented and clamped");
     rom_read(cfg, w, b);
     let g = b.bits("cos_g", f, f);
     let x = b.bits("cos_g", f - 1, 0);
@@ -488,129 +473,127 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         "cos_complement",
         cb,
         format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
-        &format!("UQ1.{f}: 1 - 2^-{f} - cos, all ones when cos_g >= 1.0 (the clamp: +1 then wraps to 0)"),
+        &format!("UQ1.{f}: ~cos = 1 - 2^-{f} - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)"),
     );
     b.delay(1.0);
-    let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1), exact"));
 
-    b.step("1 - cos, second half; k_q*n (constant multiply)");
+    b.step("1 - cos (adder 6): chunk sums");
+    let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
+
+    b.step("1 - cos: carries; comparator (12): chunk sums");
+    b.add_carries(&d);
+    // cos < cos_sp  <=>  cos_sp + ~cos (over F+1 bits) carries out: an add of two registers
+    let cmp = b.add_start(
+        "cutoff_sum",
+        &[Piece::sig("cos_sp", 0, cb)],
+        &[Piece::sig("cos_complement", 0, f), Piece::Const { value: 1, width: 1 }],
+        false,
+        cb + 1,
+        &format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
+    );
+
+    b.step("1 - cos: select; comparator: carries; k_q*n (constant multiply)");
     b.add_finish(d);
-    let nn = b.zext("n", w.kn_bits);
+    b.add_carries(&cmp);
+    let nn = b.operand("n", 0, cfg.n_bits(), w.kn_bits);
     b.wire(
         "kn",
         w.kn_bits,
         format!("{nn} * {}", lit(w.kn_bits, cfg.k_code as u128)),
         &format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
     );
-    b.delay(mul_delay(nb, bit_len(cfg.k_code)));
+    b.delay(mul_delay(cfg.n_bits(), bit_len(cfg.k_code)));
 
-    b.step("deviation products k_q*n * (1 - cos) (multiplier 7); comparator (12), first half");
+    // 1 - deviation without an adder: with K = 2^(WB+s) + 2^s - 1 and K' = 2^m - 1 - K,
+    // ~(P + K') = K - P (mod 2^m), and (K - P)[m-1:s] = 2^WB - floor(P / 2^s) (mod 2^(WB+1)).
+    let k_big = (1u128 << (wb + s)) + (1u128 << s) - 1;
+    let k_prime = mask(m) - k_big;
+    b.step("comparator: select; deviation, high partial product (multiply-add)");
+    let sum = b.add_finish(cmp);
+    let (gg, c) = (b.bits("cos_g", f, f), b.bits(&sum, cb, cb));
+    b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
     // kn = kn_hi*2^16 + kn_lo: two products with <= 16-bit operands instead of one that
-    // would take 3 DSP blocks (the hi product is needed only modulo 2^(m-16))
+    // would take 3 DSP blocks; the hi product is needed only modulo 2^(m-16)
     let split = w.kn_bits > DSP_BITS && m > DSP_BITS;
-    let (lo_w, hi_w) = ((DSP_BITS + cb).min(m), m.saturating_sub(DSP_BITS));
     if split {
-        let (kl, d1) = (b.operand("kn", 0, DSP_BITS, lo_w), b.operand("one_minus_cos", 0, cb, lo_w));
-        b.wire("deviation_lo", lo_w, format!("{kl} * {d1}"), &format!("kn[{}:0] * (1 - cos), exact, weight 2^-{}", DSP_BITS - 1, cfg.kf() + f));
+        let hi_w = m - DSP_BITS;
         let (kh, d2) = (b.operand("kn", DSP_BITS, w.kn_bits - DSP_BITS, hi_w), b.operand("one_minus_cos", 0, cb, hi_w));
-        b.wire("deviation_hi", hi_w, format!("{kh} * {d2}"), &format!("kn[{}:{DSP_BITS}] * (1 - cos) mod 2^{hi_w}, weight 2^{}", w.kn_bits - 1, DSP_BITS as i64 - (cfg.kf() + f) as i64));
-        b.delay(mul_delay(DSP_BITS, cb));
-    } else {
-        let pw = (w.kn_bits + cb).min(m);
-        let (kn, d1) = (b.operand("kn", 0, w.kn_bits, pw), b.operand("one_minus_cos", 0, cb, pw));
-        b.wire("deviation_full", pw, format!("{kn} * {d1}"), &format!("UQ.{}: P = k_q*n*(1 - cos), exact mod 2^{pw}", cfg.kf() + f));
-        b.delay(mul_delay(w.kn_bits, cb));
-    }
-    let less = b.less_start("below_cutoff", &[Piece::sig("cos_g", 0, f)], &[Piece::sig("cos_sp", 0, cb)], cb, &format!("cos < cos_sp over UQ1.{f}"));
-
-    b.step("deviation sum, first half; comparator, second half");
-    let pending_sum = split.then(|| {
-        b.add_start(
-            "deviation_top",
-            &[Piece::sig("deviation_lo", DSP_BITS, lo_w - DSP_BITS)],
-            &[Piece::sig("deviation_hi", 0, hi_w)],
-            false,
+        b.wire(
+            "deviation_hi",
             hi_w,
-            &format!("P[{}:{DSP_BITS}] = lo[{}:{DSP_BITS}] + hi, mod 2^{hi_w}", m - 1, lo_w - 1),
-        )
-    });
-    let lt = b.less_finish(less);
-    let gg = b.bits("cos_g", f, f);
-    b.wire("done", 1, format!("~{gg} & {lt}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+            format!("{kh} * {d2} + {}", lit(hi_w, k_prime >> DSP_BITS)),
+            &format!("kn[{}:{DSP_BITS}] * (1 - cos) + K'[{}:{DSP_BITS}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1),
+        );
+        b.delay(mul_delay(w.kn_bits - DSP_BITS, cb));
+    }
 
-    b.step("deviation sum, second half; truncation #1");
-    let p_pieces = match pending_sum {
-        Some(p) => {
-            let top = b.add_finish(p);
-            vec![Piece::sig("deviation_lo", 0, DSP_BITS), Piece::sig(&top, 0, hi_w)]
-        }
-        None => vec![Piece::sig("deviation_full", 0, (w.kn_bits + cb).min(m))],
+    b.step("deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add)");
+    let expr = if split {
+        let (kl, d1) = (b.operand("kn", 0, DSP_BITS, m), b.operand("one_minus_cos", 0, cb, m));
+        let c = b.pieces(&[Piece::Const { value: k_prime & mask(DSP_BITS), width: DSP_BITS }, Piece::sig("deviation_hi", 0, m - DSP_BITS)]);
+        format!("{kl} * {d1} + {c}")
+    } else {
+        let (kn, d1) = (b.operand("kn", 0, w.kn_bits, m), b.operand("one_minus_cos", 0, cb, m));
+        format!("{kn} * {d1} + {}", lit(m, k_prime))
     };
-    let dev = b.pieces(&sub_pieces(&p_pieces, s, wb + 1));
-    b.wire("deviation", wb + 1, dev, &format!("UQ1.{wb}: P[{}:{s}], floor to 2^-{wb} (truncation #1; exact below the cut-off: < 2)", m - 1));
-
-    b.step("bracket = 1 - deviation (adder 9), first half");
-    let br = b.add_start(
-        "bracket_sum",
-        &[Piece::not("deviation", 0, wb + 1)],
-        &[Piece::zeros(wb), Piece::Const { value: 1, width: 1 }],
-        true,
-        wb + 1,
-        &format!("UQ1.{wb}: 1 - deviation = ~deviation + 1 + 2^{wb} mod 2^{}", wb + 1),
+    b.wire(
+        "deviation_sum",
+        m,
+        expr,
+        &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f),
     );
+    b.delay(mul_delay(DSP_BITS, cb));
 
-    b.step("bracket, second half; key block (13)");
-    let sum = b.add_finish(br);
-    let (dn, sm) = (b.r("done"), b.r(&sum));
-    b.wire("bracket", wb + 1, format!("{dn} ? {} : {sm}", lit(wb + 1, 0)), &format!("UQ1.{wb}, in [0, 1]: zeroed beyond the cut-off (key block 13)"));
+    b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
+    let (dn, q) = (b.r("done"), b.bits("deviation_sum", m - 1, s));
+    b.wire(
+        "bracket",
+        wb + 1,
+        format!("{dn} ? {} : ~{q}", lit(wb + 1, 0)),
+        &format!("UQ1.{wb} in [0, 1]: 2^{wb} - floor(P/2^{s}) (truncation #1), zeroed beyond the cut-off (key block 13)"),
+    );
     b.delay(1.0);
 
-    b.step("square (squarer 11): partial products");
     let r = w.squarer_split;
     let full_bits = w.full_square_bits();
-    let square_full_pieces: Vec<Piece>;
-    let mut pending_sq = None;
-    if r > 0 {
+    let full: Vec<Piece> = if r > 0 {
+        // bracket = hi*2^r + lo; bracket^2 = hi^2*2^2r + hi*lo*2^(r+1) + lo^2 regrouped, all
+        // floors exact: T = hi*lo + lo^2/2^(r+1), Z = hi^2 + T/2^(r-1), and
+        // bracket^2 = {Z, T mod 2^(r-1), lo^2 mod 2^(r+1)}: two multiply-adds, no fabric adder
         let hw = wb + 1 - r;
+        b.step("square (squarer 11): lo^2");
+        let (l1, l2) = (b.operand("bracket", 0, r, 2 * r), b.operand("bracket", 0, r, 2 * r));
+        b.wire("square_ll", 2 * r, format!("{l1} * {l2}"), &format!("lo^2, bracket = hi*2^{r} + lo"));
+        b.delay(1.0);
+        b.step("square: T = hi*lo + lo^2/2^(r+1) (multiply-add)");
+        let tw = hw + r;
+        let (hi, lo) = (b.operand("bracket", r, hw, tw), b.operand("bracket", 0, r, tw));
+        let plus = if 2 * r > r + 1 { format!(" + {}", b.operand("square_ll", r + 1, r - 1, tw)) } else { String::new() };
+        b.wire("square_t", tw, format!("{hi} * {lo}{plus}"), "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)");
+        b.delay(mul_delay(hw, r));
+        b.step("square: Z = hi^2 + T/2^(r-1) (multiply-add)");
         let (h1, h2) = (b.operand("bracket", r, hw, 2 * hw), b.operand("bracket", r, hw, 2 * hw));
-        b.wire("square_hh", 2 * hw, format!("{h1} * {h2}"), &format!("hi^2 where bracket = hi*2^{r} + lo: a {hw}x{hw} multiply (one DSP) instead of {0}x{0}", wb + 1));
-        let (h3, l1) = (b.operand("bracket", r, hw, hw + r), b.operand("bracket", 0, r, hw + r));
-        b.wire("square_hl", hw + r, format!("{h3} * {l1}"), "hi*lo");
-        let (l2, l3) = (b.operand("bracket", 0, r, 2 * r), b.operand("bracket", 0, r, 2 * r));
-        b.wire("square_ll", 2 * r, format!("{l2} * {l3}"), "lo^2");
+        let th = b.operand("square_t", r - 1, tw - (r - 1), 2 * hw);
+        b.wire("square_z", 2 * hw, format!("{h1} * {h2} + {th}"), &format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1));
         b.delay(mul_delay(hw, hw));
-        b.step("square: hi^2*2^2r + lo^2 + hi*lo*2^(r+1), first half");
-        // {hh, ll} is hi^2*2^2r + lo^2 with no add (lo^2 < 2^2r); one add of hi*lo*2^(r+1) remains
-        let hh_ll = [Piece::sig("square_ll", 0, 2 * r), Piece::sig("square_hh", 0, 2 * hw)];
-        pending_sq = Some(b.add_start(
-            "square_top",
-            &sub_pieces(&hh_ll, r + 1, full_bits - r - 1),
-            &[Piece::sig("square_hl", 0, hw + r)],
-            false,
-            full_bits - r - 1,
-            &format!("bracket^2 bits [{}:{}]", full_bits - 1, r + 1),
-        ));
-        square_full_pieces = Vec::new();
+        let mut full = vec![Piece::sig("square_ll", 0, r + 1)];
+        if r > 1 {
+            full.push(Piece::sig("square_t", 0, r - 1));
+        }
+        full.push(Piece::sig("square_z", 0, 2 * hw));
+        full
+
     } else {
+        b.step("square (squarer 11)");
         let (a1, a2) = (b.operand("bracket", 0, wb + 1, full_bits), b.operand("bracket", 0, wb + 1, full_bits));
         b.wire("square_full", full_bits, format!("{a1} * {a2}"), &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
         b.delay(mul_delay(wb + 1, wb + 1));
-        square_full_pieces = vec![Piece::sig("square_full", 0, full_bits)];
-    }
-
-    let full = match pending_sq {
-        Some(p) => {
-            b.step("square, second half; truncation #2");
-            let top = b.add_finish(p);
-            vec![Piece::sig("square_ll", 0, r + 1), Piece::sig(&top, 0, full_bits - r - 1)]
-        }
-        None => {
-            b.step("truncation #2");
-            square_full_pieces
-        }
+        vec![Piece::sig("square_full", 0, full_bits)]
     };
+
+    b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add); intensity rounding: chunk sums");
     let sq = b.pieces(&sub_pieces(&full, w.square_shift, ws + 1));
-    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2; bit {} is always 0)", full_bits - 1));
+    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
     let csq = b.bits("square", ws, ws - wsc);
     b.wire(
         "color_square",
@@ -618,12 +601,15 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         csq,
         &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
     );
-
-    b.step("colour multipliers (14-16); intensity rounding, first half");
     let cpb = w.color_product_bits;
     for ch in CHANNELS {
         let (cs, ks) = (b.zext("color_square", cpb), b.zext(&format!("ks_{ch}"), cpb));
-        b.wire(&format!("color_prod_{ch}"), cpb, format!("{cs} * {ks}"), &format!("UQ{bb}.{wsc}: S * ks_{ch}, exact"));
+        b.wire(
+            &format!("color_sum_{ch}"),
+            cpb,
+            format!("{cs} * {ks} + {}", lit(cpb, 1u128 << (wsc - 1))),
+            &format!("UQ{bb}.{wsc}: S * ks_{ch} + 1/2 colour ulp (round half up; the add inside the DSP)"),
+        );
     }
     b.delay(mul_delay(wsc + 1, bb));
     let intensity_add = if ws > fi {
@@ -643,27 +629,20 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         None
     };
 
-    b.step("colour rounding; intensity rounding, second half");
-    let color_adds: Vec<PendingAdd> = CHANNELS
-        .iter()
-        .map(|ch| {
-            // (prod + 2^(WSC-1)) >> WSC = (prod[WSC+B-1:WSC-1] + 1) >> 1
-            b.add_start(&format!("color_sum_{ch}"), &[Piece::sig(&format!("color_prod_{ch}"), wsc - 1, bb + 1)], &[], true, bb + 1, &format!("S*ks_{ch} to 2^-1 plus one: + 1/2 colour ulp (round half up)"))
-        })
-        .collect();
-    if let Some(p) = intensity_add {
-        let s = b.add_finish(p);
-        let e = b.bits(&s, fi + 1, 1);
-        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
-    }
-    let chunked = color_adds.iter().any(|p| !p.chunks.is_empty());
-    if chunked {
-        b.step("colour rounding, second half");
-    }
-    for (ch, p) in CHANNELS.iter().zip(color_adds) {
-        let s = b.add_finish(p);
-        let e = b.bits(&s, bb, 1);
+    b.step("colour results; intensity rounding: carries");
+    for ch in CHANNELS {
+        let e = b.bits(&format!("color_sum_{ch}"), cpb - 1, wsc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
+    }
+    b.delay(0.5);
+    if let Some(p) = intensity_add {
+        b.add_carries(&p);
+        if !p.chunks.is_empty() {
+            b.step("intensity rounding: select");
+        }
+        let sum = b.add_finish(p);
+        let e = b.bits(&sum, fi + 1, 1);
+        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
     }
 }
 
