@@ -138,6 +138,8 @@ pub struct PendingAdd {
     name: String,
     width: u32,
     chunks: Vec<(u32, u32)>,
+    /// 1 when chunk 0 carries its carry-in as an extra low bit
+    part0_offset: u32,
     comment: String,
 }
 
@@ -315,20 +317,33 @@ impl Builder {
                 let top = i + 1 == n;
                 let ww = if top { w } else { w + 1 };
                 let ext = |e: String| if top { e } else { format!("{{1'b0, {e}}}") };
-                let ea = self.pieces(&sub_pieces(a, lo, w));
-                let eb = self.addend(&sub_pieces(b, lo, w), ext);
-                let sum = format!("{}{eb}", ext(ea));
+                // carry-in 1 as a 1 + 1 in an extra low bit: one adder that no synthesis tool
+                // can share with the carry-in-0 sum (a shared "+ 1" would chain two adders)
+                let ext1 = |e: String| if top { format!("{{{e}, 1'b1}}") } else { format!("{{1'b0, {e}, 1'b1}}") };
+                let pa = sub_pieces(a, lo, w);
+                let pb = sub_pieces(b, lo, w);
+                let ea = self.pieces(&pa);
                 let what = if top { format!("bits [{}:{lo}]", lo + w - 1) } else { format!("bits [{}:{lo}] and their carry", lo + w - 1) };
-                if i == 0 {
-                    let plus = if cin { format!(" + {}", lit(ww, 1)) } else { String::new() };
-                    self.wire(&format!("{name}_part0"), ww, format!("{sum}{plus}"), &format!("{what}, carry-in {}", u8::from(cin)));
+                let sum0 = {
+                    let eb = self.addend(&pb, ext);
+                    format!("{}{eb}", ext(ea.clone()))
+                };
+                let sum1 = {
+                    let eb = self.addend(&pb, ext1);
+                    let eb = if eb.is_empty() { format!(" + {}", lit(ww + 1, 1)) } else { eb };
+                    format!("{}{eb}", ext1(ea))
+                };
+                if i == 0 && cin {
+                    self.wire(&format!("{name}_part0"), ww + 1, sum1, &format!("{what} above bit 0, carry-in 1"));
+                } else if i == 0 {
+                    self.wire(&format!("{name}_part0"), ww, sum0, &format!("{what}, carry-in 0"));
                 } else {
-                    self.wire(&format!("{name}_part{i}"), ww, sum.clone(), &format!("{what}, carry-in 0"));
-                    self.wire(&format!("{name}_part{i}_plus1"), ww, format!("{sum} + {}", lit(ww, 1)), &format!("{what}, carry-in 1 (carry-select)"));
+                    self.wire(&format!("{name}_part{i}"), ww, sum0, &format!("{what}, carry-in 0"));
+                    self.wire(&format!("{name}_part{i}_plus1"), ww + 1, sum1, &format!("{what} above bit 0, carry-in 1 (carry-select)"));
                 }
             }
         }
-        PendingAdd { name: name.into(), width, chunks: if n == 1 { Vec::new() } else { parts }, comment: comment.into() }
+        PendingAdd { name: name.into(), width, chunks: if n == 1 { Vec::new() } else { parts }, part0_offset: u32::from(cin), comment: comment.into() }
     }
 
     /// Second step of a carry-select add: the carry into each chunk from the third on
@@ -341,10 +356,11 @@ impl Builder {
         }
         self.delay(1.0 + 0.5 * (n - 2) as f64);
         let (_, w0) = p.chunks[0];
-        let mut carry = self.bits(&format!("{}_part0", p.name), w0, w0);
+        let o = p.part0_offset;
+        let mut carry = self.bits(&format!("{}_part0", p.name), w0 + o, w0 + o);
         for i in 1..n - 1 {
             let w = p.chunks[i].1;
-            let (ca, cb) = (self.bits(&format!("{}_part{i}_plus1", p.name), w, w), self.bits(&format!("{}_part{i}", p.name), w, w));
+            let (ca, cb) = (self.bits(&format!("{}_part{i}_plus1", p.name), w + 1, w + 1), self.bits(&format!("{}_part{i}", p.name), w, w));
             let cname = format!("{}_carry{}", p.name, i + 1);
             self.wire(&cname, 1, format!("{carry} ? {ca} : {cb}"), &format!("carry into bit {}", p.chunks[i + 1].0));
             carry = self.r(&cname);
@@ -359,14 +375,15 @@ impl Builder {
         }
         self.delay(1.0);
         let (_, w0) = p.chunks[0];
-        let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1, 0)];
+        let o = p.part0_offset;
+        let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1 + o, o)];
         for (i, &(_, w)) in p.chunks.iter().enumerate().skip(1) {
             let carry = match i {
-                1 => self.bits(&format!("{}_part0", p.name), w0, w0),
+                1 => self.bits(&format!("{}_part0", p.name), w0 + o, w0 + o),
                 _ => self.r(&format!("{}_carry{i}", p.name)),
             };
             let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
-            let (a, b) = (self.bits(&inc, w - 1, 0), self.bits(&plain, w - 1, 0));
+            let (a, b) = (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0));
             words.push(format!("({carry} ? {a} : {b})"));
         }
         words.reverse();
@@ -562,8 +579,13 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         // bracket^2 = {Z, T mod 2^(r-1), lo^2 mod 2^(r+1)}: two multiply-adds, no fabric adder
         let hw = wb + 1 - r;
         b.step("square (squarer 11): lo^2");
-        let (l1, l2) = (b.operand("bracket", 0, r, 2 * r), b.operand("bracket", 0, r, 2 * r));
-        b.wire("square_ll", 2 * r, format!("{l1} * {l2}"), &format!("lo^2, bracket = hi*2^{r} + lo"));
+        // a table of 2^r entries: LUTs, no carry chain in front of the next DSP
+        let lo = b.bits("bracket", r - 1, 0);
+        let table = (0..(1u128 << r)).rev().fold(String::new(), |acc, v| match acc.is_empty() {
+            true => lit(2 * r, v * v),
+            false => format!("({lo} == {}) ? {} : {acc}", lit(r, v), lit(2 * r, v * v)),
+        });
+        b.wire("square_ll", 2 * r, table, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
         b.delay(1.0);
         b.step("square: T = hi*lo + lo^2/2^(r+1) (multiply-add)");
         let tw = hw + r;
