@@ -35,101 +35,236 @@ wire [7:0] ks_r_c0 = ks_r;
 wire [7:0] ks_g_c0 = ks_g;
 wire [7:0] ks_b_c0 = ks_b;
 
-// ==== step 1: clamp, 1 - cos (adder 6), cut-off ROM (10), comparator (12), k_q*n ====
-reg  [15:0] cos_sp_rom [0:1023];     // UQ1.15, indexed by n
+// ---- the cut-off ROM (10): cos(gamma_sp(n)), UQ1.15, read in step 1 ----
+reg  [15:0] cos_sp_rom [0:1023];
 initial $readmemh(ROM_FILE, cos_sp_rom);
-wire [15:0] cos_sp_s1 = cos_sp_rom[n_c0];          // UQ1.15: cos(gamma_sp(n))
-wire [15:0] cos_clamped_s1 = (cos_g_c0 > 16'h8000) ? 16'h8000 : cos_g_c0;   // UQ1.15, <= 1.0
-wire [15:0] one_minus_cos_s1 = 16'h8000 - cos_clamped_s1;                      // UQ1.15: 1 - cos(gamma), exact
-wire        done_s1 = (cos_clamped_s1 < cos_sp_s1);                                    // comparator: bracket < 0
-wire [24:0] kn_s1 = {{15{1'b0}}, n_c0} * 25'h5e5d;   // UQ9.16: k_q*n, exact (constant multiply; saves the paper's general multiplier 34)
+wire [15:0] cos_sp_s1 = cos_sp_rom[n_c0];
+
+// ==== step 1: cut-off ROM read (10); cos complemented and clamped ====
+wire [15:0] cos_complement_s1 = {cos_g_c0[15], ~cos_g_c0[14:0] | {15{cos_g_c0[15]}}};   // UQ1.15: ~cos = 1 - 2^-15 - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)
 // ---- cut 1: combinational pass-through ----
 wire        valid_c1 = valid_c0;
-wire [0:0] done_c1 = done_s1;
-wire [15:0] one_minus_cos_c1 = one_minus_cos_s1;
-wire [24:0] kn_c1 = kn_s1;
+wire [15:0] cos_g_c1 = cos_g_c0;
+wire [9:0] n_c1 = n_c0;
 wire [7:0] ks_r_c1 = ks_r_c0;
 wire [7:0] ks_g_c1 = ks_g_c0;
 wire [7:0] ks_b_c1 = ks_b_c0;
+wire [15:0] cos_sp_c1 = cos_sp_s1;
+wire [15:0] cos_complement_c1 = cos_complement_s1;
 
-// ==== step 2: deviation k_q*n*(1 - cos) (multiplier 7), truncation #1 ====
-wire [40:0] deviation_full_s2 = {{16{1'b0}}, kn_c1} * {{25{1'b0}}, one_minus_cos_c1};   // UQ10.31, exact
-wire [17:0] deviation_s2 = deviation_full_s2[31:14];   // UQ1.17: floor to 2^-17 (exact below the cut-off: < 2)
-wire        unused_deviation_bits = ^{deviation_full_s2[40:32], deviation_full_s2[13:0]};   // dropped bits: high bits matter only beyond the cut-off (then the key block zeroes the bracket); low bits are truncation #1
+// ==== step 2: 1 - cos (adder 6): chunk sums ====
+wire [7:0] one_minus_cos_part0_s2 = {1'b0, cos_complement_c1[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
+wire [5:0] one_minus_cos_part1_s2 = {1'b0, cos_complement_c1[10:6]};   // bits [10:6] and their carry, carry-in 0
+wire [6:0] one_minus_cos_part1_plus1_s2 = {1'b0, cos_complement_c1[10:6], 1'b1} + 7'h1;   // bits [10:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [4:0] one_minus_cos_part2_s2 = cos_complement_c1[15:11];   // bits [15:11], carry-in 0
+wire [5:0] one_minus_cos_part2_plus1_s2 = {cos_complement_c1[15:11], 1'b1} + 6'h1;   // bits [15:11] above bit 0, carry-in 1 (carry-select)
 // ---- cut 2: combinational pass-through ----
 wire        valid_c2 = valid_c1;
-wire [0:0] done_c2 = done_c1;
-wire [17:0] deviation_c2 = deviation_s2;
+wire [15:0] cos_g_c2 = cos_g_c1;
+wire [9:0] n_c2 = n_c1;
 wire [7:0] ks_r_c2 = ks_r_c1;
 wire [7:0] ks_g_c2 = ks_g_c1;
 wire [7:0] ks_b_c2 = ks_b_c1;
+wire [15:0] cos_sp_c2 = cos_sp_c1;
+wire [15:0] cos_complement_c2 = cos_complement_c1;
+wire [7:0] one_minus_cos_part0_c2 = one_minus_cos_part0_s2;
+wire [5:0] one_minus_cos_part1_c2 = one_minus_cos_part1_s2;
+wire [6:0] one_minus_cos_part1_plus1_c2 = one_minus_cos_part1_plus1_s2;
+wire [4:0] one_minus_cos_part2_c2 = one_minus_cos_part2_s2;
+wire [5:0] one_minus_cos_part2_plus1_c2 = one_minus_cos_part2_plus1_s2;
 
-// ==== step 3: bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13) ====
-wire [17:0] bracket_s3 = done_c2 ? 18'h0 : (18'h20000 - deviation_c2);   // UQ1.17, in [0, 1]
+// ==== step 3: 1 - cos: carries; comparator (12): chunk sums ====
+wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_c2[7] ? one_minus_cos_part1_plus1_c2[6] : one_minus_cos_part1_c2[5];   // carry into bit 11
+wire [6:0] cutoff_sum_part0_s3 = {1'b0, cos_sp_c2[5:0]} + {1'b0, cos_complement_c2[5:0]};   // bits [5:0] and their carry, carry-in 0
+wire [6:0] cutoff_sum_part1_s3 = {1'b0, cos_sp_c2[11:6]} + {1'b0, cos_complement_c2[11:6]};   // bits [11:6] and their carry, carry-in 0
+wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b0, cos_sp_c2[11:6], 1'b1} + {1'b0, cos_complement_c2[11:6], 1'b1};   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_c2[15:12]} + {1'h0, 1'h1, cos_complement_c2[14:12]};   // bits [16:12], carry-in 0
+wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_c2[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_c2[14:12]}, 1'b1};   // bits [16:12] above bit 0, carry-in 1 (carry-select)
+wire        unused_cos_complement_s3 = ^cos_complement_c2[15];   // bits no later step reads
 // ---- cut 3: combinational pass-through ----
 wire        valid_c3 = valid_c2;
-wire [0:0] done_c3 = done_c2;
-wire [17:0] bracket_c3 = bracket_s3;
+wire [15:0] cos_g_c3 = cos_g_c2;
+wire [9:0] n_c3 = n_c2;
 wire [7:0] ks_r_c3 = ks_r_c2;
 wire [7:0] ks_g_c3 = ks_g_c2;
 wire [7:0] ks_b_c3 = ks_b_c2;
+wire [7:0] one_minus_cos_part0_c3 = one_minus_cos_part0_c2;
+wire [5:0] one_minus_cos_part1_c3 = one_minus_cos_part1_c2;
+wire [6:0] one_minus_cos_part1_plus1_c3 = one_minus_cos_part1_plus1_c2;
+wire [4:0] one_minus_cos_part2_c3 = one_minus_cos_part2_c2;
+wire [5:0] one_minus_cos_part2_plus1_c3 = one_minus_cos_part2_plus1_c2;
+wire [0:0] one_minus_cos_carry2_c3 = one_minus_cos_carry2_s3;
+wire [6:0] cutoff_sum_part0_c3 = cutoff_sum_part0_s3;
+wire [6:0] cutoff_sum_part1_c3 = cutoff_sum_part1_s3;
+wire [7:0] cutoff_sum_part1_plus1_c3 = cutoff_sum_part1_plus1_s3;
+wire [4:0] cutoff_sum_part2_c3 = cutoff_sum_part2_s3;
+wire [5:0] cutoff_sum_part2_plus1_c3 = cutoff_sum_part2_plus1_s3;
 
-// ==== step 4: square (squarer 11), truncation #2 ====
-// squarer split for 16x16 DSP blocks: bracket = hi*2^2 + lo, bracket^2 = hi^2*2^4 + 2*hi*lo*2^2 + lo^2
-wire [15:0] bracket_hi_s4 = bracket_c3[17:2];
-wire [1:0] bracket_lo_s4 = bracket_c3[1:0];
-wire [35:0] square_full_s4 = ({{20{1'b0}}, bracket_hi_s4} * {{20{1'b0}}, bracket_hi_s4} << 4)
-                                 + ({{20{1'b0}}, bracket_hi_s4} * {{34{1'b0}}, bracket_lo_s4} << 3)
-                                 + ({{34{1'b0}}, bracket_lo_s4} * {{34{1'b0}}, bracket_lo_s4});   // UQ2.34, exact (top bit always 0)
-wire [16:0] square_s4 = square_full_s4[34:18];   // UQ1.16: S, floor to 2^-16
-wire        unused_square_bits = ^{square_full_s4[35], square_full_s4[17:0]};   // the always-zero top bit and the truncated low bits
+// ==== step 4: 1 - cos: select; comparator: carries; k_q*n (constant multiply) ====
+wire [15:0] one_minus_cos_s4 = {(one_minus_cos_carry2_c3 ? one_minus_cos_part2_plus1_c3[5:1] : one_minus_cos_part2_c3), (one_minus_cos_part0_c3[7] ? one_minus_cos_part1_plus1_c3[5:1] : one_minus_cos_part1_c3[4:0]), one_minus_cos_part0_c3[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
+wire        cutoff_sum_carry2_s4 = cutoff_sum_part0_c3[6] ? cutoff_sum_part1_plus1_c3[7] : cutoff_sum_part1_c3[6];   // carry into bit 12
+wire [24:0] kn_s4 = {15'h0, n_c3} * 25'h5e5d;   // UQ9.16: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34
+wire        unused_one_minus_cos_part0_s4 = ^one_minus_cos_part0_c3[0];   // bits no later step reads
+wire        unused_one_minus_cos_part1_s4 = ^one_minus_cos_part1_c3[5];   // bits no later step reads
+wire        unused_one_minus_cos_part1_plus1_s4 = ^{one_minus_cos_part1_plus1_c3[6], one_minus_cos_part1_plus1_c3[0]};   // bits no later step reads
+wire        unused_one_minus_cos_part2_plus1_s4 = ^one_minus_cos_part2_plus1_c3[0];   // bits no later step reads
 // ---- cut 4: combinational pass-through ----
 wire        valid_c4 = valid_c3;
-wire [0:0] done_c4 = done_c3;
-wire [16:0] square_c4 = square_s4;
+wire [15:0] cos_g_c4 = cos_g_c3;
 wire [7:0] ks_r_c4 = ks_r_c3;
 wire [7:0] ks_g_c4 = ks_g_c3;
 wire [7:0] ks_b_c4 = ks_b_c3;
+wire [6:0] cutoff_sum_part0_c4 = cutoff_sum_part0_c3;
+wire [6:0] cutoff_sum_part1_c4 = cutoff_sum_part1_c3;
+wire [7:0] cutoff_sum_part1_plus1_c4 = cutoff_sum_part1_plus1_c3;
+wire [4:0] cutoff_sum_part2_c4 = cutoff_sum_part2_c3;
+wire [5:0] cutoff_sum_part2_plus1_c4 = cutoff_sum_part2_plus1_c3;
+wire [15:0] one_minus_cos_c4 = one_minus_cos_s4;
+wire [0:0] cutoff_sum_carry2_c4 = cutoff_sum_carry2_s4;
+wire [24:0] kn_c4 = kn_s4;
 
-// ==== step 5: colour multipliers (14-16); intensity rounding ====
-wire [9:0] color_square_s5 = square_c4[16:7];   // UQ1.9: all the colours' budget needs (saves 7 bits per colour multiplier)
-wire [16:0] color_prod_r_s5 = {{7{1'b0}}, color_square_s5} * {{9{1'b0}}, ks_r_c4};   // UQ8.9: S * ks_r, exact
-wire [16:0] color_prod_g_s5 = {{7{1'b0}}, color_square_s5} * {{9{1'b0}}, ks_g_c4};   // UQ8.9: S * ks_g, exact
-wire [16:0] color_prod_b_s5 = {{7{1'b0}}, color_square_s5} * {{9{1'b0}}, ks_b_c4};   // UQ8.9: S * ks_b, exact
-wire [16:0] intensity_sum_s5 = square_c4 + 17'h1;   // UQ1.16: S + 2^-16 (round half up)
+// ==== step 5: comparator: select; deviation, high partial product (multiply-add) ====
+wire [16:0] cutoff_sum_s5 = {(cutoff_sum_carry2_c4 ? cutoff_sum_part2_plus1_c4[5:1] : cutoff_sum_part2_c4), (cutoff_sum_part0_c4[6] ? cutoff_sum_part1_plus1_c4[6:1] : cutoff_sum_part1_c4[5:0]), cutoff_sum_part0_c4[5:0]};   // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
+wire        done_s5 = ~cos_g_c4[15] & cutoff_sum_s5[16];   // comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)
+wire [15:0] deviation_hi_s5 = {7'h0, kn_c4[24:16]} * one_minus_cos_c4 + 16'h7fff;   // kn[24:16] * (1 - cos) + K'[31:16], mod 2^16 (one DSP, the add inside it)
+wire        unused_cos_g_s5 = ^cos_g_c4[14:0];   // bits no later step reads
+wire        unused_cutoff_sum_part1_s5 = ^cutoff_sum_part1_c4[6];   // bits no later step reads
+wire        unused_cutoff_sum_part1_plus1_s5 = ^{cutoff_sum_part1_plus1_c4[7], cutoff_sum_part1_plus1_c4[0]};   // bits no later step reads
+wire        unused_cutoff_sum_part2_plus1_s5 = ^cutoff_sum_part2_plus1_c4[0];   // bits no later step reads
+wire        unused_cutoff_sum_s5 = ^cutoff_sum_s5[15:0];   // bits no later step reads
 // ---- cut 5: combinational pass-through ----
 wire        valid_c5 = valid_c4;
-wire [0:0] done_c5 = done_c4;
-wire [16:0] intensity_sum_c5 = intensity_sum_s5;
-wire [16:0] color_prod_r_c5 = color_prod_r_s5;
-wire [16:0] color_prod_g_c5 = color_prod_g_s5;
-wire [16:0] color_prod_b_c5 = color_prod_b_s5;
+wire [7:0] ks_r_c5 = ks_r_c4;
+wire [7:0] ks_g_c5 = ks_g_c4;
+wire [7:0] ks_b_c5 = ks_b_c4;
+wire [15:0] one_minus_cos_c5 = one_minus_cos_c4;
+wire [24:0] kn_c5 = kn_c4;
+wire [0:0] done_c5 = done_s5;
+wire [15:0] deviation_hi_c5 = deviation_hi_s5;
 
-// ==== step 6: colour rounding, final slices ====
-wire [16:0] color_sum_r_s6 = color_prod_r_c5 + 17'h100;   // + 1/2 colour ulp (round half up)
-wire [7:0] spec_r_s6 = color_sum_r_s6[16:9];   // UNORM8
-wire        unused_color_r_bits = ^color_sum_r_s6[8:0];   // rounded-off fraction
-wire [16:0] color_sum_g_s6 = color_prod_g_c5 + 17'h100;   // + 1/2 colour ulp (round half up)
-wire [7:0] spec_g_s6 = color_sum_g_s6[16:9];   // UNORM8
-wire        unused_color_g_bits = ^color_sum_g_s6[8:0];   // rounded-off fraction
-wire [16:0] color_sum_b_s6 = color_prod_b_c5 + 17'h100;   // + 1/2 colour ulp (round half up)
-wire [7:0] spec_b_s6 = color_sum_b_s6[16:9];   // UNORM8
-wire        unused_color_b_bits = ^color_sum_b_s6[8:0];   // rounded-off fraction
-wire [15:0] intensity_s6 = intensity_sum_c5[16:1];   // UQ1.15
-wire        unused_intensity_bits = ^intensity_sum_c5[0:0];   // rounded-off fraction
+// ==== step 6: deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add) ====
+wire [31:0] deviation_sum_s6 = {16'h0, kn_c5[15:0]} * {16'h0, one_minus_cos_c5} + {deviation_hi_c5, 16'hc000};   // P + K' mod 2^32, P = k_q*n*(1 - cos) UQ.31 exact; its complement is K - P (no subtractor)
+wire        unused_kn_s6 = ^kn_c5[24:16];   // bits no later step reads
 // ---- cut 6: combinational pass-through ----
 wire        valid_c6 = valid_c5;
+wire [7:0] ks_r_c6 = ks_r_c5;
+wire [7:0] ks_g_c6 = ks_g_c5;
+wire [7:0] ks_b_c6 = ks_b_c5;
 wire [0:0] done_c6 = done_c5;
-wire [15:0] intensity_c6 = intensity_s6;
-wire [7:0] spec_r_c6 = spec_r_s6;
-wire [7:0] spec_g_c6 = spec_g_s6;
-wire [7:0] spec_b_c6 = spec_b_s6;
+wire [31:0] deviation_sum_c6 = deviation_sum_s6;
 
-assign out_valid = valid_c6;
-assign spec_r    = spec_r_c6;
-assign spec_g    = spec_g_c6;
-assign spec_b    = spec_b_c6;
-assign intensity = intensity_c6;
-assign done      = done_c6;
+// ==== step 7: bracket = 1 - deviation (adder 9), truncation #1, key block (13) ====
+wire [17:0] bracket_s7 = done_c6 ? 18'h0 : ~deviation_sum_c6[31:14];   // UQ1.17 in [0, 1]: 2^17 - floor(P/2^14) (truncation #1), zeroed beyond the cut-off (key block 13)
+wire        unused_deviation_sum_s7 = ^deviation_sum_c6[13:0];   // bits no later step reads
+// ---- cut 7: combinational pass-through ----
+wire        valid_c7 = valid_c6;
+wire [7:0] ks_r_c7 = ks_r_c6;
+wire [7:0] ks_g_c7 = ks_g_c6;
+wire [7:0] ks_b_c7 = ks_b_c6;
+wire [0:0] done_c7 = done_c6;
+wire [17:0] bracket_c7 = bracket_s7;
+
+// ==== step 8: square (squarer 11): lo^2 ====
+wire [3:0] square_ll_s8 = (bracket_c7[1:0] == 2'h0) ? 4'h0 : (bracket_c7[1:0] == 2'h1) ? 4'h1 : (bracket_c7[1:0] == 2'h2) ? 4'h4 : 4'h9;   // lo^2 by table, bracket = hi*2^2 + lo
+// ---- cut 8: combinational pass-through ----
+wire        valid_c8 = valid_c7;
+wire [7:0] ks_r_c8 = ks_r_c7;
+wire [7:0] ks_g_c8 = ks_g_c7;
+wire [7:0] ks_b_c8 = ks_b_c7;
+wire [0:0] done_c8 = done_c7;
+wire [17:0] bracket_c8 = bracket_c7;
+wire [3:0] square_ll_c8 = square_ll_s8;
+
+// ==== step 9: square: T = hi*lo + lo^2/2^(r+1) (multiply-add) ====
+wire [17:0] square_t_s9 = {2'h0, bracket_c8[17:2]} * {16'h0, bracket_c8[1:0]} + {17'h0, square_ll_c8[3]};   // hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)
+wire        unused_square_ll_s9 = ^square_ll_c8[2:0];   // bits no later step reads
+// ---- cut 9: combinational pass-through ----
+wire        valid_c9 = valid_c8;
+wire [7:0] ks_r_c9 = ks_r_c8;
+wire [7:0] ks_g_c9 = ks_g_c8;
+wire [7:0] ks_b_c9 = ks_b_c8;
+wire [0:0] done_c9 = done_c8;
+wire [17:0] bracket_c9 = bracket_c8;
+wire [17:0] square_t_c9 = square_t_s9;
+
+// ==== step 10: square: Z = hi^2 + T/2^(r-1) (multiply-add) ====
+wire [31:0] square_z_s10 = {16'h0, bracket_c9[17:2]} * {16'h0, bracket_c9[17:2]} + {15'h0, square_t_c9[17:1]};   // floor(bracket^2 / 2^4), exact: a 16x16 multiply-add (one DSP) instead of 18x18
+wire        unused_bracket_s10 = ^bracket_c9[1:0];   // bits no later step reads
+wire        unused_square_t_s10 = ^square_t_c9[0];   // bits no later step reads
+// ---- cut 10: combinational pass-through ----
+wire        valid_c10 = valid_c9;
+wire [7:0] ks_r_c10 = ks_r_c9;
+wire [7:0] ks_g_c10 = ks_g_c9;
+wire [7:0] ks_b_c10 = ks_b_c9;
+wire [0:0] done_c10 = done_c9;
+wire [31:0] square_z_c10 = square_z_s10;
+
+// ==== step 11: truncation #2; colour multipliers (14-16) with the rounding half (multiply-add); intensity rounding: chunk sums ====
+wire [16:0] square_s11 = square_z_c10[30:14];   // UQ1.16: S = bracket^2 floored to 2^-16 (truncation #2)
+wire [9:0] color_square_s11 = square_s11[16:7];   // UQ1.9: all the colours' budget needs (saves 7 bits per colour multiplier)
+wire [16:0] color_sum_r_s11 = {7'h0, color_square_s11} * {9'h0, ks_r_c10} + 17'h100;   // UQ8.9: S * ks_r + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [16:0] color_sum_g_s11 = {7'h0, color_square_s11} * {9'h0, ks_g_c10} + 17'h100;   // UQ8.9: S * ks_g + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b_c10} + 17'h100;   // UQ8.9: S * ks_b + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [7:0] intensity_sum_part0_s11 = {1'b0, square_s11[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
+wire [6:0] intensity_sum_part1_s11 = {1'b0, square_s11[11:6]};   // bits [11:6] and their carry, carry-in 0
+wire [7:0] intensity_sum_part1_plus1_s11 = {1'b0, square_s11[11:6], 1'b1} + 8'h1;   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [4:0] intensity_sum_part2_s11 = square_s11[16:12];   // bits [16:12], carry-in 0
+wire [5:0] intensity_sum_part2_plus1_s11 = {square_s11[16:12], 1'b1} + 6'h1;   // bits [16:12] above bit 0, carry-in 1 (carry-select)
+wire        unused_square_z_s11 = ^{square_z_c10[31], square_z_c10[13:0]};   // bits no later step reads
+// ---- cut 11: combinational pass-through ----
+wire        valid_c11 = valid_c10;
+wire [0:0] done_c11 = done_c10;
+wire [16:0] color_sum_r_c11 = color_sum_r_s11;
+wire [16:0] color_sum_g_c11 = color_sum_g_s11;
+wire [16:0] color_sum_b_c11 = color_sum_b_s11;
+wire [7:0] intensity_sum_part0_c11 = intensity_sum_part0_s11;
+wire [6:0] intensity_sum_part1_c11 = intensity_sum_part1_s11;
+wire [7:0] intensity_sum_part1_plus1_c11 = intensity_sum_part1_plus1_s11;
+wire [4:0] intensity_sum_part2_c11 = intensity_sum_part2_s11;
+wire [5:0] intensity_sum_part2_plus1_c11 = intensity_sum_part2_plus1_s11;
+
+// ==== step 12: colour results; intensity rounding: carries ====
+wire [7:0] spec_r_s12 = color_sum_r_c11[16:9];   // UNORM8: S * ks_r rounded half up
+wire [7:0] spec_g_s12 = color_sum_g_c11[16:9];   // UNORM8: S * ks_g rounded half up
+wire [7:0] spec_b_s12 = color_sum_b_c11[16:9];   // UNORM8: S * ks_b rounded half up
+wire        intensity_sum_carry2_s12 = intensity_sum_part0_c11[7] ? intensity_sum_part1_plus1_c11[7] : intensity_sum_part1_c11[6];   // carry into bit 12
+wire        unused_color_sum_r_s12 = ^color_sum_r_c11[8:0];   // bits no later step reads
+wire        unused_color_sum_g_s12 = ^color_sum_g_c11[8:0];   // bits no later step reads
+wire        unused_color_sum_b_s12 = ^color_sum_b_c11[8:0];   // bits no later step reads
+// ---- cut 12: combinational pass-through ----
+wire        valid_c12 = valid_c11;
+wire [0:0] done_c12 = done_c11;
+wire [7:0] intensity_sum_part0_c12 = intensity_sum_part0_c11;
+wire [6:0] intensity_sum_part1_c12 = intensity_sum_part1_c11;
+wire [7:0] intensity_sum_part1_plus1_c12 = intensity_sum_part1_plus1_c11;
+wire [4:0] intensity_sum_part2_c12 = intensity_sum_part2_c11;
+wire [5:0] intensity_sum_part2_plus1_c12 = intensity_sum_part2_plus1_c11;
+wire [7:0] spec_r_c12 = spec_r_s12;
+wire [7:0] spec_g_c12 = spec_g_s12;
+wire [7:0] spec_b_c12 = spec_b_s12;
+wire [0:0] intensity_sum_carry2_c12 = intensity_sum_carry2_s12;
+
+// ==== step 13: intensity rounding: select ====
+wire [16:0] intensity_sum_s13 = {(intensity_sum_carry2_c12 ? intensity_sum_part2_plus1_c12[5:1] : intensity_sum_part2_c12), (intensity_sum_part0_c12[7] ? intensity_sum_part1_plus1_c12[6:1] : intensity_sum_part1_c12[5:0]), intensity_sum_part0_c12[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
+wire [15:0] intensity_s13 = intensity_sum_s13[16:1];   // UQ1.15: S rounded half up
+wire        unused_intensity_sum_part0_s13 = ^intensity_sum_part0_c12[0];   // bits no later step reads
+wire        unused_intensity_sum_part1_s13 = ^intensity_sum_part1_c12[6];   // bits no later step reads
+wire        unused_intensity_sum_part1_plus1_s13 = ^{intensity_sum_part1_plus1_c12[7], intensity_sum_part1_plus1_c12[0]};   // bits no later step reads
+wire        unused_intensity_sum_part2_plus1_s13 = ^intensity_sum_part2_plus1_c12[0];   // bits no later step reads
+wire        unused_intensity_sum_s13 = ^intensity_sum_s13[0];   // bits no later step reads
+// ---- cut 13: combinational pass-through ----
+wire        valid_c13 = valid_c12;
+wire [0:0] done_c13 = done_c12;
+wire [7:0] spec_r_c13 = spec_r_c12;
+wire [7:0] spec_g_c13 = spec_g_c12;
+wire [7:0] spec_b_c13 = spec_b_c12;
+wire [15:0] intensity_c13 = intensity_s13;
+
+assign out_valid = valid_c13;
+assign spec_r    = spec_r_c13;
+assign spec_g    = spec_g_c13;
+assign spec_b    = spec_b_c13;
+assign intensity = intensity_c13;
+assign done      = done_c13;
 
 endmodule

@@ -99,7 +99,8 @@ pub struct ParamArgs {
     /// KF: fractional bits k is rounded to (nearest, ties to even) [4..=24, default 16]
     #[arg(long)]
     pub k_frac_bits: Option<u32>,
-    /// Pipeline registers; 0 = combinational; latency = stages [0..=6, default 0]
+    /// Pipeline registers; 0 = combinational; latency = stages [0..=cut points: lean 13, paper 6,
+    /// blinn-pow N+2 at default widths; default 0]
     #[arg(long)]
     pub stages: Option<u32>,
     /// Output rounding: faithful (|error| < 1 ulp) or exact (nearest, ties away) [default faithful]

@@ -111,9 +111,6 @@ pub const N_BITS: Range = Range { name: "n_bits", min: 1, max: 12 };
 pub const COLOR_BITS: Range = Range { name: "color_bits", min: 1, max: 16 };
 pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min: 1, max: 24 };
 pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24 };
-/// The bound checked first; the configuration's own bound is the number of cut points of its
-/// datapath ([`crate::widths::cut_points`]), checked once the other parameters are valid.
-pub const STAGES: Range = Range { name: "stages", min: 0, max: 64 };
 
 impl Range {
     fn check(&self, value: u32) -> Result<u32, ConfigError> {
@@ -214,7 +211,6 @@ impl Config {
         COLOR_BITS.check(params.color_bits)?;
         INTENSITY_FRAC_BITS.check(params.intensity_frac_bits)?;
         K_FRAC_BITS.check(params.k_frac_bits)?;
-        STAGES.check(params.stages)?;
         let k_code = parse_k(&params.k, params.k_frac_bits)?;
         if params.model == SpecularModel::BlinnPow {
             if params.rounding == Rounding::Exact {
@@ -230,6 +226,7 @@ impl Config {
                 });
             }
         }
+        // stages: up to the cut points of this configuration's datapath
         let cfg = Config { params, k_code };
         let cuts = crate::widths::cut_points(&cfg);
         if cfg.params.stages > cuts {

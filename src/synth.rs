@@ -266,10 +266,7 @@ pub fn run_cli(args: &SynthArgs) -> Result<(), Failure> {
 pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Vec<(u32, Option<f64>)>), Failure> {
     require("yosys", "yosys")?;
     require("nextpnr-ice40", "nextpnr-ice40")?;
-    let max = match params.model {
-        crate::config::SpecularModel::Quadratic => crate::config::STAGES.max,
-        crate::config::SpecularModel::BlinnPow => params.n_bits + 2,
-    };
+    let max = crate::widths::cut_points(&crate::config::Config::new(crate::config::Params { stages: 0, ..params.clone() })?);
     let mut tries = Vec::new();
     for stages in 0..=max {
         let cfg = crate::config::Config::new(crate::config::Params { stages, ..params.clone() })?;

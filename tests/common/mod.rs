@@ -29,7 +29,7 @@ pub fn cache_dir() -> PathBuf {
     d
 }
 
-/// Configurations that exercise odd widths, pipeline depths from 0 to the lean datapath's full 12, both roundings, both ROM styles.
+/// Configurations that exercise odd widths, pipeline depths from 0 to the lean datapath's full 13, both roundings, both ROM styles.
 pub const CONFIGS: &[&[&str]] = &[
     &[],
     &["--stages", "1", "--rom-style", "case"],
@@ -38,7 +38,7 @@ pub const CONFIGS: &[&[&str]] = &[
     &["--cos-frac-bits", "5", "--n-bits", "3", "--color-bits", "1", "--intensity-frac-bits", "13", "--k-frac-bits", "4", "--k", "1", "--rom-style", "case", "--rounding", "exact"],
     &["--stages", "6", "--cos-frac-bits", "17", "--n-bits", "12", "--color-bits", "13", "--intensity-frac-bits", "3", "--k", "0.0625", "--k-frac-bits", "19", "--top", "wide_unit"],
     &["--arch", "paper", "--stages", "2"],
-    &["--stages", "12", "--top", "deep_unit"],
+    &["--stages", "13", "--top", "deep_unit"],
     &["--model", "blinn-pow", "--stages", "3"],
     &["--model", "blinn-pow", "--n-bits", "4", "--color-bits", "11", "--cos-frac-bits", "6", "--intensity-frac-bits", "4"],
     &["--arch", "paper", "--cos-frac-bits", "9", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "11", "--k-frac-bits", "9", "--rom-style", "case"],
