@@ -24,16 +24,16 @@ run() { # name widths-label stages args...
     done
 }
 wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)
+# the most --stages a configuration takes (its cut points), read from the generator's error
+max_stages() { $bin generate --out "$work/probe" --stages 4294967295 "$@" 2>&1 | sed -n 's/.*allowed 0\.\.=\([0-9]*\).*/\1/p'; }
 # the full matrix (every model pipelined, paper at wide widths) takes well over half an hour
 # on 2 cores; FULL=1 runs it
-for s in 0 6; do run lean default $s; done
+for s in 0 "$(max_stages)"; do run lean default "$s"; done
 run paper default 0 --arch paper
-run lean wide 0 "${wide[@]}"
+for s in 0 "$(max_stages "${wide[@]}")"; do run lean wide "$s" "${wide[@]}"; done
 run blinn-pow default 0 --model blinn-pow
 if [ "${FULL:-0}" = 1 ]; then
-    run lean default 3
     run paper default 6 --arch paper
-    run lean wide 6 "${wide[@]}"
     run paper wide 0 --arch paper "${wide[@]}"
     run blinn-pow default 12 --model blinn-pow
 fi
@@ -62,6 +62,12 @@ for key in sorted({(r['name'], r['widths'], r['stages']) for r in rows}, key=lam
     print(f"| {key[0]} | {key[1]} | {key[2]} | {nd['luts']} | {f(nd)} | {d['luts']} | {d['dsp_blocks']} | {d['flip_flops']} | {f(d)} | {g['luts']} |")
 lean, paper = get('lean', 'default', 0, 'nodsp'), get('paper', 'default', 0, 'nodsp')
 print(f"\nLean vs paper, default widths, LUT-only iCE40: {lean['luts']} vs {paper['luts']} LUT4 ({100*(1-lean['luts']/paper['luts']):.1f}% fewer).")
+best = max((r for r in rows if r['name'] == 'lean' and r['widths'] == 'default' and r['mode'] == 'dsp' and r.get('fmax_mhz')), key=lambda r: r['fmax_mhz'], default=None)
+if best:
+    print(f"Lean, default widths, best pipeline on iCE40 UP5K with DSPs: {best['fmax_mhz']:.1f} MHz at --stages {best['stages']}, {best['luts']} LUT4, {best['dsp_blocks']} SB_MAC16, {best['flip_flops']} FFs.")
+bp = get('blinn-pow', 'default', 0, 'nodsp')
+if bp:
+    print(f"Blinn-pow (exact cos^n), default widths, LUT-only: {bp['luts']} LUT4 = {bp['luts']/lean['luts']:.1f}x lean, {bp['luts']/paper['luts']:.1f}x paper.")
 if notes:
     print('\nNotes:\n')
     for n in notes:

@@ -7,11 +7,14 @@
 //! marks the bits nobody reads (for a lint-clean `unused_*` wire) and keeps a delay estimate
 //! per step, from which `widths::balanced_cuts` places the registers.
 //!
-//! `lean` is split into short steps so that a fully registered unit has at most one
-//! DSP-sized multiply, one ROM read or one ≤ [`CHUNK_BITS`]-bit carry chain between
-//! registers: wide adders are carry-select (chunks added with both carry-ins in one step,
-//! carries resolved and picked in the next), wide compares chunked the same way. Every
-//! decomposition is exact, so the values are those of [`crate::model::Model::trace`].
+//! `lean` is split into short steps so that a fully registered unit has at most one DSP
+//! multiply-add, one ROM read, one LUT level or one ≤ [`CHUNK_BITS`]-bit carry chain between
+//! registers, and every carry chain takes its operands straight from registers (an inverter
+//! or mux in front of an iCE40 carry chain costs a LUT level and a route). Wide adds go into
+//! the DSPs' post-adders where the products are; the three left in the fabric are
+//! carry-select: chunks added with carry-in 0 and 1 in one step, the carries rippled in the
+//! next, each chunk's sum picked in the third. Every regrouping is exact, so the values are
+//! those of [`crate::model::Model::trace`].
 //! `paper` keeps the six coarse steps of the seed's Fig. 5.
 
 use crate::config::{Arch, Config};
