@@ -161,14 +161,27 @@ fn chunks(width: u32, chunk_bits: u32) -> Vec<(u32, u32)> {
         .collect()
 }
 
-/// Delay of a `w`-bit carry chain with its LUTs.
+// Delay estimates in ns, after iCE40 UP5K post-route figures (logic and routing, without the
+// clock-to-out and setup every register adds once): one LUT level with its route ~2.7, a
+// carry chain ~0.7 + 0.3/bit plus the LUT that brings its carry-out back to the fabric, a
+// DSP multiply(-add) of <= 16-bit operands ~5.5, an asynchronous 2^N-word ROM in LUTs about
+// one LUT level per 2 address bits. Only the ratios matter: they place the registers.
+
+/// One LUT level and its route.
+const LUT_DELAY: f64 = 2.7;
+
+/// A `w`-bit carry chain, carry-out included.
 fn add_delay(w: u32) -> f64 {
-    1.5 + 0.3 * w as f64
+    0.7 + 0.3 * w as f64 + LUT_DELAY
 }
 
-/// Delay of an a×b multiply (array / DSP alike; only the ratios matter).
+/// An a×b multiply: one DSP when both fit its operands, else an array of partial products.
 fn mul_delay(a: u32, b: u32) -> f64 {
-    1.5 * ((a.min(b).max(1) as f64).log2().ceil() + 1.0) + 0.3 * (a + b) as f64
+    if a.max(b) <= DSP_BITS {
+        5.5
+    } else {
+        1.5 * ((a.min(b).max(1) as f64).log2().ceil() + 1.0) + 0.3 * (a + b) as f64
+    }
 }
 
 impl Builder {
@@ -357,7 +370,7 @@ impl Builder {
         if n <= 2 {
             return;
         }
-        self.delay(1.0 + 0.5 * (n - 2) as f64);
+        self.delay(LUT_DELAY * (n - 2) as f64);
         let (_, w0) = p.chunks[0];
         let o = p.part0_offset;
         let mut carry = self.bits(&format!("{}_part0", p.name), w0 + o, w0 + o);
@@ -376,7 +389,7 @@ impl Builder {
         if p.chunks.is_empty() {
             return p.name;
         }
-        self.delay(1.0);
+        self.delay(LUT_DELAY);
         let (_, w0) = p.chunks[0];
         let o = p.part0_offset;
         let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1 + o, o)];
@@ -465,7 +478,7 @@ const CHANNELS: [&str; 3] = ["r", "g", "b"];
 fn rom_read(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.external("cos_sp", w.cos_bits);
     b.touch("n");
-    b.delay(1.2 * cfg.n_bits().div_ceil(4) as f64 + 1.0);
+    b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
 }
 
 /// The lean datapath: short steps, every decomposition exact (see the module docs).
@@ -495,7 +508,7 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
         &format!("UQ1.{f}: ~cos = 1 - 2^-{f} - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)"),
     );
-    b.delay(1.0);
+    b.delay(LUT_DELAY);
 
     b.step("1 - cos (adder 6): chunk sums");
     let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
@@ -572,7 +585,7 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         format!("{dn} ? {} : ~{q}", lit(wb + 1, 0)),
         &format!("UQ1.{wb} in [0, 1]: 2^{wb} - floor(P/2^{s}) (truncation #1), zeroed beyond the cut-off (key block 13)"),
     );
-    b.delay(1.0);
+    b.delay(LUT_DELAY);
 
     let r = w.squarer_split;
     let full_bits = w.full_square_bits();
@@ -589,7 +602,7 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
             false => format!("({lo} == {}) ? {} : {acc}", lit(r, v), lit(2 * r, v * v)),
         });
         b.wire("square_ll", 2 * r, table, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
-        b.delay(1.0);
+        b.delay(LUT_DELAY);
         b.step("square: T = hi*lo + lo^2/2^(r+1) (multiply-add)");
         let tw = hw + r;
         let (hi, lo) = (b.operand("bracket", r, hw, tw), b.operand("bracket", 0, r, tw));
@@ -659,7 +672,7 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let e = b.bits(&format!("color_sum_{ch}"), cpb - 1, wsc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
     }
-    b.delay(0.5);
+    b.delay(0.0);
     if let Some(p) = intensity_add {
         b.add_carries(&p);
         if !p.chunks.is_empty() {
@@ -707,7 +720,7 @@ fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13)");
     let (dn, dv) = (b.r("done"), b.r("deviation"));
     b.wire("bracket", wb + 1, format!("{dn} ? {} : ({} - {dv})", lit(wb + 1, 0), lit(wb + 1, 1u128 << wb)), &format!("UQ1.{wb}, in [0, 1]"));
-    b.delay(add_delay(wb + 1) + 0.6);
+    b.delay(add_delay(wb + 1) + LUT_DELAY);
 
     b.step("square (a general multiplier as squarer 11)");
     let fb = w.full_square_bits();
