@@ -291,28 +291,28 @@ impl Config {
 /// rounding (to nearest, ties to even) and no binary floating point in between.
 /// Returns the integer code `round(x · 2^frac_bits)`. `frac_bits` must be in 1..=24.
 pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
-    use fixed::types::extra::*;
-    use fixed::FixedU64;
+    use fixed::types::extra::U120;
+    use fixed::FixedU128;
     let trimmed = text.trim();
     if trimmed.is_empty() || !trimmed.chars().all(|c| c.is_ascii_digit() || c == '.') {
         return Err(format!("{text:?} is not a plain decimal number"));
     }
-    macro_rules! parse_as {
-        ($($bits:literal => $frac:ty),* $(,)?) => {
-            match frac_bits {
-                $($bits => trimmed
-                    .parse::<FixedU64<$frac>>()
-                    .map(|v| v.to_bits())
-                    .map_err(|e| format!("{text:?} does not parse ({e})")),)*
-                _ => panic!("parse_decimal: frac_bits {frac_bits} outside 1..=24"),
-            }
-        };
+    assert!((1..=24).contains(&frac_bits), "parse_decimal: frac_bits {frac_bits} outside 1..=24");
+    // The decimal is read to 120 fractional bits (within 2^-120 of its value) and rounded to
+    // `frac_bits` here. A decimal with d <= MAX_DIGITS digits after the point lies either on a
+    // tie of the final rounding or at least 1/(10^d * 2^25) > 2^-120 away from every tie, so
+    // this one rounding is the correctly rounded result. (Parsing straight to `frac_bits`
+    // with fixed 1.31 misrounds: "0.8437" at 4 bits gives 14/16; 0.8437*16 = 13.4992.)
+    const MAX_DIGITS: usize = 28;
+    let digits = trimmed.split_once('.').map_or(0, |(_, f)| f.len());
+    if digits > MAX_DIGITS {
+        return Err(format!("{text:?} has {digits} digits after the point (at most {MAX_DIGITS})"));
     }
-    parse_as!(
-        1 => U1, 2 => U2, 3 => U3, 4 => U4, 5 => U5, 6 => U6, 7 => U7, 8 => U8, 9 => U9,
-        10 => U10, 11 => U11, 12 => U12, 13 => U13, 14 => U14, 15 => U15, 16 => U16, 17 => U17,
-        18 => U18, 19 => U19, 20 => U20, 21 => U21, 22 => U22, 23 => U23, 24 => U24,
-    )
+    let wide = trimmed.parse::<FixedU128<U120>>().map_err(|e| format!("{text:?} does not parse ({e})"))?.to_bits();
+    let shift = 120 - frac_bits;
+    let (q, rem, half) = (wide >> shift, wide & ((1u128 << shift) - 1), 1u128 << (shift - 1));
+    let code = if rem > half || (rem == half && q & 1 == 1) { q + 1 } else { q };
+    u64::try_from(code).map_err(|_| format!("{text:?} is too large"))
 }
 
 /// Parses the constant `k` (SPEC §3: `k_q = round(k·2^KF)/2^KF`). Allowed: `0 < k_q ≤ 1`.

@@ -46,6 +46,7 @@ fn invalid_parameters_exit_2_name_the_range_and_write_nothing() {
         (&["--k", "0.000001"], "--k", "0 < k <= 1"),
         (&["--k", "1e-3"], "--k", "0 < k <= 1"),
         (&["--k", "0.3.6"], "--k", "0 < k <= 1"),
+        (&["--k", "0.36860000000000000000000000001"], "--k", "at most 28"),
         (&["--k=-0.5"], "--k", "0 < k <= 1"),
         (&["--top", "1abc"], "--top", "Verilog identifier"),
         (&["--top", "../evil"], "--top", "Verilog identifier"),
