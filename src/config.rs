@@ -236,8 +236,8 @@ impl Config {
                     "{} is out of range; allowed 0..={cuts} (the cut points of the {} datapath with these widths)",
                     cfg.params.stages,
                     match cfg.params.model {
-                        SpecularModel::BlinnPow => "blinn-pow".to_string(),
-                        SpecularModel::Quadratic => cfg.params.arch.name().to_string(),
+                        SpecularModel::BlinnPow => "blinn-pow",
+                        SpecularModel::Quadratic => cfg.params.arch.name(),
                     }
                 ),
             });

@@ -18,7 +18,7 @@
 //! `paper` keeps the six coarse steps of the seed's Fig. 5.
 
 use crate::config::{Arch, Config};
-use crate::widths::Widths;
+use crate::widths::{bit_length, mask, Widths};
 
 /// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
 /// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
@@ -70,14 +70,6 @@ struct Signal {
     step: usize,
     /// (step, bits read) for every reference
     uses: Vec<(usize, u128)>,
-}
-
-fn mask(bits: u32) -> u128 {
-    if bits >= 128 {
-        u128::MAX
-    } else {
-        (1u128 << bits) - 1
-    }
 }
 
 /// A sized Verilog literal, `W'hX`.
@@ -251,16 +243,11 @@ impl Builder {
         self.pieces(&sub_pieces(&[Piece::sig(name, lo, width)], 0, out))
     }
 
-    /// `name` zero-extended to `to` bits.
+    /// All of `name` zero-extended to `to` bits.
     pub fn zext(&mut self, name: &str, to: u32) -> String {
         let w = self.signal(name).width;
-        let v = self.r(name);
         assert!(to >= w, "zext {name} from {w} to {to}");
-        if to == w {
-            v
-        } else {
-            format!("{{{}'h0, {v}}}", to - w)
-        }
+        self.operand(name, 0, w, to)
     }
 
     /// The Verilog for a list of pieces (LSB first), MSB first in a concatenation.
@@ -535,7 +522,7 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         format!("{nn} * {}", lit(w.kn_bits, cfg.k_code as u128)),
         &format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
     );
-    b.delay(mul_delay(cfg.n_bits(), bit_len(cfg.k_code)));
+    b.delay(mul_delay(cfg.n_bits(), bit_length(cfg.k_code as u128)));
 
     // 1 - deviation without an adder: with K = 2^(WB+s) + 2^s - 1 and K' = 2^m - 1 - K,
     // ~(P + K') = K - P (mod 2^m), and (K - P)[m-1:s] = 2^WB - floor(P / 2^s) (mod 2^(WB+1)).
@@ -715,7 +702,7 @@ fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     );
     let dev = b.pieces(&sub_pieces(&[Piece::sig("deviation_full", 0, w.deviation_bits)], w.deviation_shift, wb + 1));
     b.wire("deviation", wb + 1, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
-    b.delay(mul_delay(nb, cb) + mul_delay(nd_bits, bit_len(cfg.k_code)));
+    b.delay(mul_delay(nb, cb) + mul_delay(nd_bits, bit_length(cfg.k_code as u128)));
 
     b.step("bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13)");
     let (dn, dv) = (b.r("done"), b.r("deviation"));
@@ -763,9 +750,6 @@ fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.delay(add_delay(cpb));
 }
 
-fn bit_len(v: u64) -> u32 {
-    64 - v.leading_zeros()
-}
 
 #[cfg(test)]
 mod tests {

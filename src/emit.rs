@@ -168,7 +168,9 @@ pub struct BlinnPowTemplate<'a> {
     pub cuts: Vec<Cut>,
 }
 
-fn cut_list(w: &Widths, live: Vec<Vec<datapath::Live>>) -> Vec<Cut> {
+/// The cuts after each step, from the signals alive across each: (name, width, computed in
+/// the step just before it?).
+fn cut_list<S: Into<String>>(w: &Widths, live: Vec<Vec<(S, u32, bool)>>) -> Vec<Cut> {
     live.into_iter()
         .enumerate()
         .map(|(i, sigs)| {
@@ -178,10 +180,9 @@ fn cut_list(w: &Widths, live: Vec<Vec<datapath::Live>>) -> Vec<Cut> {
                 registered: w.registered_cuts.contains(&(index as u32)),
                 signals: sigs
                     .into_iter()
-                    .map(|(name, width, fresh)| CutSignal {
-                        source: if fresh { format!("{name}_s{index}") } else { format!("{name}_c{i}") },
-                        name,
-                        width,
+                    .map(|(name, width, fresh)| {
+                        let name: String = name.into();
+                        CutSignal { source: if fresh { format!("{name}_s{index}") } else { format!("{name}_c{i}") }, name, width }
                     })
                     .collect(),
             }
@@ -194,7 +195,7 @@ pub fn blinn_pow_template<'a>(cfg: &'a Config, w: &'a Widths) -> BlinnPowTemplat
     let (f, nb, b, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
     let pw = w.power_frac_bits;
     let ks = |fresh| vec![("ks_r", b, fresh), ("ks_g", b, fresh), ("ks_b", b, fresh)];
-    let mut live: Vec<Vec<(&str, u32, bool)>> = vec![{
+    let mut live = vec![{
         let mut v = vec![("power", pw + 1, true), ("result", pw + 1, true), ("n_rest", nb, true)];
         v.extend(ks(false));
         v
@@ -246,7 +247,7 @@ pub fn blinn_pow_template<'a>(cfg: &'a Config, w: &'a Widths) -> BlinnPowTemplat
             .collect(),
         color_bits_w,
         color_half: lit(color_bits_w, 1u128 << (pw - 1)),
-        cuts: cut_list(w, live.into_iter().map(|v| v.into_iter().map(|(n, wd, f)| (n.to_string(), wd, f)).collect()).collect()),
+        cuts: cut_list(w, live),
     }
 }
 

@@ -8,7 +8,7 @@
 
 use crate::config::{Config, Rounding, SpecularModel};
 use crate::rom;
-use crate::widths::Widths;
+use crate::widths::{mask, Widths};
 
 /// One input vector of the unit (port values as integers).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -53,14 +53,6 @@ pub struct Model {
     pub cfg: Config,
     pub widths: Widths,
     pub rom: Vec<u32>,
-}
-
-fn mask(bits: u32) -> u128 {
-    if bits >= 128 {
-        u128::MAX
-    } else {
-        (1u128 << bits) - 1
-    }
 }
 
 impl Model {

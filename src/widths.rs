@@ -216,6 +216,15 @@ pub fn balanced_cuts(delays: &[f64], stages: u32) -> Vec<u32> {
     best.map(|(_, cuts)| cuts.into_iter().map(|x| x as u32).collect()).unwrap_or_default()
 }
 
+/// The low `bits` bits set (all 128 when `bits >= 128`).
+pub fn mask(bits: u32) -> u128 {
+    if bits >= 128 {
+        u128::MAX
+    } else {
+        (1u128 << bits) - 1
+    }
+}
+
 /// Number of bits needed to hold `v` (0 for 0).
 pub fn bit_length(v: u128) -> u32 {
     128 - v.leading_zeros()

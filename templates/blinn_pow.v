@@ -54,11 +54,6 @@ wire        unused_color_{{ ch.name }}_bits = ^color_sum_{{ ch.name }}_s{{ last_
 wire        done_s{{ last_step }} = (intensity_s{{ last_step }} == {{ intensity_zero }});
 {% call cuts::cut(cuts[last_step - 1]) %}{% endcall %}
 
-assign out_valid = valid_c{{ last_step }};
-assign spec_r    = spec_r_c{{ last_step }};
-assign spec_g    = spec_g_c{{ last_step }};
-assign spec_b    = spec_b_c{{ last_step }};
-assign intensity = intensity_c{{ last_step }};
-assign done      = done_c{{ last_step }};
+{% call cuts::outputs(last_step) %}{% endcall %}
 
 endmodule

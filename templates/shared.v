@@ -1,4 +1,4 @@
-{#- Macros shared by the unit templates: the port list and a pipeline cut point. -#}
+{#- Macros shared by the unit templates: the port list, a pipeline cut point, the outputs. -#}
 {%- macro cut(c) -%}
 // ---- cut {{ c.index }}: {% if c.registered %}pipeline register{% else %}combinational pass-through{% endif %} ----
 {%- if c.registered %}
@@ -21,6 +21,14 @@ wire        valid_c{{ c.index }} = valid_c{{ c.index - 1 }};
 wire [{{ s.width - 1 }}:0] {{ s.name }}_c{{ c.index }} = {{ s.source }};
 {%- endfor %}
 {%- endif %}
+{%- endmacro -%}
+{%- macro outputs(last) -%}
+assign out_valid = valid_c{{ last }};
+assign spec_r    = spec_r_c{{ last }};
+assign spec_g    = spec_g_c{{ last }};
+assign spec_b    = spec_b_c{{ last }};
+assign intensity = intensity_c{{ last }};
+assign done      = done_c{{ last }};
 {%- endmacro -%}
 {%- macro ports(p, done_meaning) -%}
 {%- if p.stages > 0 %}

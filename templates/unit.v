@@ -52,11 +52,6 @@ wire {% if x.width == 1 %}      {% else %}[{{ x.width - 1 }}:0]{% endif %} {{ x.
 {% call cuts::cut(st.cut) %}{% endcall %}
 {%- endfor %}
 
-assign out_valid = valid_c{{ last }};
-assign spec_r    = spec_r_c{{ last }};
-assign spec_g    = spec_g_c{{ last }};
-assign spec_b    = spec_b_c{{ last }};
-assign intensity = intensity_c{{ last }};
-assign done      = done_c{{ last }};
+{% call cuts::outputs(last) %}{% endcall %}
 
 endmodule
