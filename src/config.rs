@@ -88,6 +88,12 @@ pub enum SpecularModel {
     #[serde(rename = "blinn-pow")]
     #[value(name = "blinn-pow")]
     BlinnPow,
+    /// Blinn's `cos^n` from log2/exp2 tables with linear interpolation (SPEC §6, faithful).
+    #[serde(rename = "blinn")]
+    Blinn,
+    /// `[1 − a_n·(1 − cos)]^(2^m_n)` with per-n `a_n`, `m_n` from a minimax fit (SPEC §6).
+    #[serde(rename = "fitted")]
+    Fitted,
 }
 
 impl SpecularModel {
@@ -95,6 +101,8 @@ impl SpecularModel {
         match self {
             SpecularModel::Quadratic => "quadratic",
             SpecularModel::BlinnPow => "blinn-pow",
+            SpecularModel::Blinn => "blinn",
+            SpecularModel::Fitted => "fitted",
         }
     }
 }
@@ -111,6 +119,7 @@ pub const N_BITS: Range = Range { name: "n_bits", min: 1, max: 12 };
 pub const COLOR_BITS: Range = Range { name: "color_bits", min: 1, max: 16 };
 pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min: 1, max: 24 };
 pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24 };
+pub const MAX_SQUARINGS: Range = Range { name: "max_squarings", min: 0, max: 4 };
 
 impl Range {
     fn check(&self, value: u32) -> Result<u32, ConfigError> {
@@ -142,6 +151,8 @@ pub struct Params {
     pub rom_style: RomStyle,
     pub arch: Arch,
     pub model: SpecularModel,
+    /// M of `--model fitted`: the largest `m_n` (the bracket is squared up to M times).
+    pub max_squarings: u32,
 }
 
 impl Default for Params {
@@ -159,13 +170,14 @@ impl Default for Params {
             rom_style: RomStyle::File,
             arch: Arch::Lean,
             model: SpecularModel::Quadratic,
+            max_squarings: 3,
         }
     }
 }
 
 /// Keys of a manifest that are outputs, not parameters (skipped when it is read as a config).
 pub const MANIFEST_OUTPUT_KEYS: &[&str] =
-    &["generator", "version", "k_code", "latency", "ports", "internal_widths", "files"];
+    &["generator", "version", "k_code", "latency", "ports", "internal_widths", "files", "model_widths", "blinn_error_max", "blinn_error_mean", "blinn_error_method"];
 
 impl Params {
     /// Reads parameters from JSON: a full manifest written by `generate`, or any subset of
@@ -211,18 +223,19 @@ impl Config {
         COLOR_BITS.check(params.color_bits)?;
         INTENSITY_FRAC_BITS.check(params.intensity_frac_bits)?;
         K_FRAC_BITS.check(params.k_frac_bits)?;
+        MAX_SQUARINGS.check(params.max_squarings)?;
         let k_code = parse_k(&params.k, params.k_frac_bits)?;
-        if params.model == SpecularModel::BlinnPow {
+        if params.model != SpecularModel::Quadratic {
             if params.rounding == Rounding::Exact {
                 return Err(ConfigError {
                     parameter: "rounding",
-                    message: "exact is not available with --model blinn-pow; allowed: faithful".into(),
+                    message: format!("exact is not available with --model {}; allowed: faithful", params.model.name()),
                 });
             }
             if params.arch == Arch::Paper {
                 return Err(ConfigError {
                     parameter: "arch",
-                    message: "paper applies to --model quadratic only; allowed with blinn-pow: lean".into(),
+                    message: format!("paper applies to --model quadratic only; allowed with {}: lean", params.model.name()),
                 });
             }
         }
@@ -236,8 +249,8 @@ impl Config {
                     "{} is out of range; allowed 0..={cuts} (the cut points of the {} datapath with these widths)",
                     cfg.params.stages,
                     match cfg.params.model {
-                        SpecularModel::BlinnPow => "blinn-pow",
                         SpecularModel::Quadratic => cfg.params.arch.name(),
+                        other => other.name(),
                     }
                 ),
             });
@@ -280,6 +293,10 @@ impl Config {
     }
     pub fn model(&self) -> SpecularModel {
         self.params.model
+    }
+    /// M: the most squarings of `--model fitted`.
+    pub fn max_squarings(&self) -> u32 {
+        self.params.max_squarings
     }
     pub fn top(&self) -> &str {
         &self.params.top

@@ -136,21 +136,24 @@ pub fn splitmix(mut x: u64) -> u64 {
     x ^ (x >> 31)
 }
 
-/// The corner cases: cos 0, 1.0, above 1.0, ROM[n]−1, ROM[n], ROM[n]+1; n 0, 1, 2, 3, max;
-/// colour codes 0, 1, max on every channel.
+/// The corner cases: cos 0, 1.0, above 1.0, B−1, B, B+1 where B is n's boundary (the
+/// cut-off ROM entry, or the first code with a non-zero output); n 0, 1, 2, 3, max; colour
+/// codes 0, 1, max on every channel. Then, for every n, the three codes around its boundary
+/// with colours that vary with n: a single wrong table entry at any n shows.
 pub fn corner_vectors(model: &Model) -> Vec<Inputs> {
     let cfg = &model.cfg;
     let one = 1u32 << cfg.f();
     let cos_max = (2u32 << cfg.f()) - 1;
     let n_max = (1u32 << cfg.n_bits()) - 1;
     let ks_max = (1u32 << cfg.b()) - 1;
+    let bounds = model.boundaries();
     let mut ns: Vec<u32> = vec![0, 1, 2, 3, n_max];
     ns.retain(|&n| n <= n_max);
     ns.dedup();
     let colours = [0, 1, ks_max];
     let mut v = Vec::new();
     for &n in &ns {
-        let sp = model.rom[n as usize];
+        let sp = bounds[n as usize];
         let mut coss = vec![0, one, one + 1, cos_max, sp.saturating_sub(1), sp, (sp + 1).min(cos_max)];
         coss.sort();
         coss.dedup();
@@ -162,6 +165,14 @@ pub fn corner_vectors(model: &Model) -> Vec<Inputs> {
                     }
                 }
             }
+        }
+    }
+    for n in 0..=n_max {
+        let sp = bounds[n as usize];
+        let r = splitmix(n as u64 ^ 0x5bd1_e995);
+        let ks = [ks_max, (r as u32) & ks_max, ((r >> 20) as u32) & ks_max];
+        for cos_g in [sp.saturating_sub(1), sp, (sp + 1).min(cos_max)] {
+            v.push(Inputs { cos_g, n, ks });
         }
     }
     v

@@ -50,8 +50,43 @@ pub struct Step {
 /// A signal alive across a cut: (name, width, computed in the step just before it?).
 pub type Live = (String, u32, bool);
 
+/// A constant table of the unit (a ROM): written as a `$readmemh` file or inlined as a `case`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Table {
+    /// The memory's name in the Verilog.
+    pub name: String,
+    /// Its `$readmemh` file.
+    pub file: String,
+    /// The Verilog parameter that names the file.
+    pub param: String,
+    pub width: u32,
+    pub words: Vec<u128>,
+    /// What an entry holds, for the comments.
+    pub what: String,
+    /// The fields of a word, LSB first: (name, bits), for the CSV export.
+    pub fields: Vec<(String, u32)>,
+}
+
+impl Table {
+    pub fn address_bits(&self) -> u32 {
+        bit_length(self.words.len() as u128 - 1).max(1)
+    }
+}
+
+/// A read of a table in a step: `signal_sK = table[addr]`.
+#[derive(Debug, Clone)]
+pub struct RomRead {
+    pub step: usize,
+    pub signal: String,
+    pub table: usize,
+    /// the address as a Verilog expression of this step
+    pub addr: String,
+}
+
 #[derive(Debug, Clone)]
 pub struct Datapath {
+    pub tables: Vec<Table>,
+    pub reads: Vec<RomRead>,
     pub steps: Vec<Step>,
     /// `live[K-1]`: the signals cut K carries, in definition order.
     pub live: Vec<Vec<Live>>,
@@ -81,6 +116,8 @@ pub fn lit(width: u32, value: u128) -> String {
 pub struct Builder {
     steps: Vec<Step>,
     signals: Vec<Signal>,
+    tables: Vec<Table>,
+    reads: Vec<RomRead>,
 }
 
 /// Bits `[lo, lo+width)` of a signal, optionally inverted; or a constant.
@@ -160,15 +197,15 @@ fn chunks(width: u32, chunk_bits: u32) -> Vec<(u32, u32)> {
 // one LUT level per 2 address bits. Only the ratios matter: they place the registers.
 
 /// One LUT level and its route.
-const LUT_DELAY: f64 = 2.7;
+pub const LUT_DELAY: f64 = 2.7;
 
 /// A `w`-bit carry chain, carry-out included.
-fn add_delay(w: u32) -> f64 {
+pub fn add_delay(w: u32) -> f64 {
     0.7 + 0.3 * w as f64 + LUT_DELAY
 }
 
 /// An a×b multiply: one DSP when both fit its operands, else an array of partial products.
-fn mul_delay(a: u32, b: u32) -> f64 {
+pub fn mul_delay(a: u32, b: u32) -> f64 {
     if a.max(b) <= DSP_BITS {
         5.5
     } else {
@@ -182,6 +219,8 @@ impl Builder {
         Builder {
             steps: Vec::new(),
             signals: inputs.iter().map(|&(n, w)| Signal { name: n.into(), width: w, step: 0, uses: Vec::new() }).collect(),
+            tables: Vec::new(),
+            reads: Vec::new(),
         }
     }
 
@@ -291,15 +330,21 @@ impl Builder {
         self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
     }
 
-    /// Declares a signal the template defines itself in the current step (the ROM read).
-    pub fn external(&mut self, name: &str, width: u32) {
-        let cur = self.cur();
-        self.signals.push(Signal { name: name.into(), width, step: cur, uses: Vec::new() });
+    /// Adds a constant table to the unit; returns its index for [`Builder::rom_read`].
+    pub fn table(&mut self, t: Table) -> usize {
+        self.tables.push(t);
+        self.tables.len() - 1
     }
 
-    /// Marks all of a signal read in the current step without writing an expression.
-    pub fn touch(&mut self, name: &str) {
-        let _ = self.r(name);
+    /// Defines `signal` in the current step as the entry of table `t` addressed by all of
+    /// the signal `addr` (the template renders the memory and the read).
+    pub fn rom_read(&mut self, signal: &str, t: usize, addr: &str) {
+        let a = self.r(addr);
+        let cur = self.cur();
+        let width = self.tables[t].width;
+        assert!(self.signals.iter().all(|s| s.name != signal), "datapath: {signal} defined twice");
+        self.signals.push(Signal { name: signal.into(), width, step: cur, uses: Vec::new() });
+        self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a });
     }
 
     /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added
@@ -444,7 +489,7 @@ impl Builder {
                     .collect()
             })
             .collect();
-        Datapath { steps: self.steps, live }
+        Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live }
     }
 }
 
@@ -452,19 +497,29 @@ impl Builder {
 pub fn build(cfg: &Config, w: &Widths) -> Datapath {
     let inputs = [("cos_g", w.cos_bits), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
     let mut b = Builder::new(&inputs);
-    match cfg.arch() {
-        Arch::Lean => lean(cfg, w, &mut b),
-        Arch::Paper => paper(cfg, w, &mut b),
+    match (crate::model::Kind::new(cfg), cfg.arch()) {
+        (crate::model::Kind::Fitted { fit, widths }, _) => crate::fitted::datapath(cfg, &fit, &widths, &mut b),
+        (crate::model::Kind::Blinn { widths, tables }, _) => crate::blinn::datapath(cfg, &widths, &tables, &mut b),
+        (_, Arch::Lean) => lean(cfg, w, &mut b),
+        (_, Arch::Paper) => paper(cfg, w, &mut b),
     }
     b.finish(&["spec_r", "spec_g", "spec_b", "intensity", "done"])
 }
 
-const CHANNELS: [&str; 3] = ["r", "g", "b"];
+pub const CHANNELS: [&str; 3] = ["r", "g", "b"];
 
-/// The ROM read (the template holds the ROM itself): `cos_sp_s1`, addressed by `n_c0`.
+/// The cut-off ROM (10) read: `cos_sp`, addressed by n.
 fn rom_read(cfg: &Config, w: &Widths, b: &mut Builder) {
-    b.external("cos_sp", w.cos_bits);
-    b.touch("n");
+    let t = b.table(Table {
+        name: "cos_sp_rom".into(),
+        file: crate::emit::ROM_FILE.into(),
+        param: "ROM_FILE".into(),
+        width: w.cos_bits,
+        words: crate::rom::cos_sp_table(cfg).into_iter().map(u128::from).collect(),
+        what: format!("cut-off ROM cos_sp(n), UQ1.{}, address = n", cfg.f()),
+        fields: vec![("cos_sp".into(), w.cos_bits)],
+    });
+    b.rom_read("cos_sp", t, "n");
     b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
 }
 

@@ -4,6 +4,7 @@
 //! holds only the Verilog's shape.
 
 use crate::config::{Arch, Config, Params, RomStyle, Rounding, SpecularModel};
+use crate::model::Kind;
 use crate::rom::{self, RomFormat};
 use crate::datapath::{self, Wire};
 use crate::widths::Widths;
@@ -52,10 +53,36 @@ pub struct Channel {
     pub ks_ext: String,
 }
 
-/// One step of the datapath as the template renders it: its wires, then the cut after it.
+/// A table read with `$readmemh` (declared once at the top of the module).
+pub struct TableView {
+    pub name: String,
+    pub param: String,
+    pub file: String,
+    pub what: String,
+    pub width: u32,
+    pub depth: usize,
+    /// its last entry, and a value it cannot be (the short-file check)
+    pub last: String,
+    pub not_last: String,
+}
+
+/// A table read inside a step: an index into a `$readmemh` memory or an inline `case`.
+pub struct ReadView {
+    pub signal: String,
+    pub width: u32,
+    pub table: String,
+    pub addr: String,
+    pub what: String,
+    pub file: bool,
+    pub zero: String,
+    pub entries: Vec<RomEntry>,
+}
+
+/// One step of the datapath as the template renders it: its reads and wires, then the cut after it.
 pub struct StepView {
     pub index: usize,
     pub title: String,
+    pub reads: Vec<ReadView>,
     pub wires: Vec<Wire>,
     pub cut: Cut,
 }
@@ -65,20 +92,15 @@ pub struct StepView {
 pub struct UnitTemplate<'a> {
     pub top: &'a str,
     pub version: &'a str,
+    pub model: &'a str,
     pub p: &'a Params,
-    pub w: &'a Widths,
-    pub k_code: u64,
-    pub k_q: String,
-    pub rounding: &'a str,
-    pub rounding_text: &'a str,
-    pub rom_style: &'a str,
+    pub param_line: String,
+    pub formula: Vec<String>,
+    pub rounding_text: String,
+    pub datapath_line: String,
+    pub done_meaning: &'a str,
     pub cuts_text: String,
-    pub rom_file: bool,
-    pub rom_depth: usize,
-    pub rom_entries: Vec<RomEntry>,
-    pub cos_lit_zero: String,
-    pub arch: &'a str,
-    pub paper: bool,
+    pub file_tables: Vec<TableView>,
     pub steps: Vec<StepView>,
     pub last: usize,
 }
@@ -99,38 +121,132 @@ fn parent_dir(path: &Path) -> PathBuf {
     }
 }
 
-/// Builds the template context of the RTL for one configuration.
+/// The header lines that say what a model computes, and how its datapath is sized.
+fn describe_model(cfg: &Config, w: &Widths, kind: &Kind) -> (String, Vec<String>, String, String, &'static str) {
+    let p = &cfg.params;
+    let (fi, m) = (p.intensity_frac_bits, p.max_squarings);
+    match kind {
+        Kind::Fitted { widths: fw, .. } => (
+            format!("k_frac_bits={} (fractional bits of a_n) max_squarings={m} stages={} rounding=faithful rom_style={}", p.k_frac_bits, p.stages, p.rom_style.name()),
+            vec![
+                format!("S = [1 - a_n*(1 - cos_g)]^(2^m_n), m_n <= {m}, a_n and m_n per n from a minimax fit to cos^n"),
+                "(quantised a_n in the fit ROM define the unit); S = 0 where the bracket is negative (done);".into(),
+                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X."),
+            ],
+            "faithful: every output within 1 ulp of S with the stored a_n (|o - o*| < 1)".into(),
+            format!("bracket and every square UQ1.{} (error budget in specgen's fitted.rs)", fw.frac_bits),
+            "the bracket is negative: beyond the highlight",
+        ),
+        Kind::Blinn { widths: bw, .. } => (
+            format!("stages={} rounding=faithful rom_style={}", p.stages, p.rom_style.name()),
+            vec![
+                "S = c^n, c = min(cos_g, 1.0), as 2^-(n*(e + x*g(x))) with c = (1 - x)*2^-e, x in [0, 1/2);".into(),
+                format!("g from a {}-entry log2 table, 2^-f from a {}-entry exp2 table, both interpolated;", 1u32 << bw.log_index_bits, 1u32 << bw.exp2_index_bits),
+                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X; done = (intensity == 0)."),
+            ],
+            "faithful: every output within 1 ulp of the exact c^n value (|o - o*| < 1)".into(),
+            format!("-log2 c UQ.{}, y UQ{}.{}, 2^-f UQ1.{} (error budget in specgen's blinn.rs)", bw.ell_frac_bits, bw.y_int_bits, bw.y_frac_bits, bw.exp2_frac_bits),
+            "intensity == 0: the highlight is below the output's resolution",
+        ),
+        _ => (
+            format!(
+                "k={} k_frac_bits={} (k_code={}, k_q={}) stages={} rounding={} rom_style={}",
+                p.k,
+                p.k_frac_bits,
+                cfg.k_code,
+                rom::exact_decimal(cfg.k_code, cfg.kf()),
+                p.stages,
+                p.rounding.name(),
+                p.rom_style.name()
+            ),
+            vec![
+                "S = [1 - k_q*n*(1 - cos_g)]^2, cut to 0 where the bracket is negative (done);".into(),
+                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X."),
+            ],
+            match p.rounding {
+                Rounding::Faithful => "faithful: every output within 1 ulp of the exact value (|o - o*| < 1)".into(),
+                Rounding::Exact => "exact: every output is the exact value rounded to nearest, ties away from zero".into(),
+            },
+            format!(
+                "{}{}; bracket UQ1.{}, square UQ1.{} (colours UQ1.{})",
+                cfg.arch().name(),
+                if cfg.arch() == Arch::Paper { " (the paper's Fig. 5 literally, every bit kept)" } else { " (widths from the error budget)" },
+                w.bracket_frac_bits,
+                w.square_frac_bits,
+                w.color_square_frac_bits
+            ),
+            "cos(gamma) < cos_sp(n): beyond the highlight",
+        ),
+    }
+}
+
+/// Builds the template context of the RTL for one configuration (every model but blinn-pow).
 pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
     let p = &cfg.params;
-    let rom_table = rom::cos_sp_table(cfg);
+    let kind = Kind::new(cfg);
     let dp = datapath::build(cfg, w);
     let cuts = cut_list(w, dp.live);
     let last = dp.steps.len();
+    let file = p.rom_style == RomStyle::File;
+    let file_tables = if file {
+        dp.tables
+            .iter()
+            .map(|t| {
+                let last_word = *t.words.last().expect("a table has words");
+                TableView {
+                    name: t.name.clone(),
+                    param: t.param.clone(),
+                    file: t.file.clone(),
+                    what: t.what.clone(),
+                    width: t.width,
+                    depth: t.words.len(),
+                    last: lit(t.width, last_word),
+                    not_last: lit(t.width, !last_word & crate::widths::mask(t.width)),
+                }
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let mut reads: Vec<Vec<ReadView>> = (0..last).map(|_| Vec::new()).collect();
+    for r in &dp.reads {
+        let t = &dp.tables[r.table];
+        let ab = t.address_bits();
+        reads[r.step - 1].push(ReadView {
+            signal: format!("{}_s{}", r.signal, r.step),
+            width: t.width,
+            table: t.name.clone(),
+            addr: r.addr.clone(),
+            what: t.what.clone(),
+            file,
+            zero: lit(t.width, 0),
+            entries: if file {
+                Vec::new()
+            } else {
+                t.words.iter().enumerate().map(|(i, &v)| RomEntry { index: format!("{ab}'d{i}"), value: lit(t.width, v) }).collect()
+            },
+        });
+    }
+    let (param_line, formula, rounding_text, datapath_line, done_meaning) = describe_model(cfg, w, &kind);
     UnitTemplate {
         top: cfg.top(),
         version: VERSION,
+        model: cfg.model().name(),
         p,
-        w,
-        k_code: cfg.k_code,
-        k_q: rom::exact_decimal(cfg.k_code, cfg.kf()),
-        rounding: p.rounding.name(),
-        rounding_text: match p.rounding {
-            Rounding::Faithful => "faithful: every output within 1 ulp of the exact value (|o - o*| < 1)",
-            Rounding::Exact => "exact: every output is the exact value rounded to nearest, ties away from zero",
-        },
-        rom_style: p.rom_style.name(),
+        param_line,
+        formula,
+        rounding_text,
+        datapath_line,
+        done_meaning,
         cuts_text: registered_cuts_text(w),
-        rom_file: p.rom_style == RomStyle::File,
-        rom_depth: rom_table.len(),
-        rom_entries: rom_table
-            .iter()
-            .enumerate()
-            .map(|(i, &v)| RomEntry { index: format!("{}'d{i}", cfg.n_bits()), value: lit(w.cos_bits, v as u128) })
+        file_tables,
+        steps: dp
+            .steps
+            .into_iter()
+            .zip(cuts)
+            .zip(reads)
+            .map(|((s, cut), reads)| StepView { index: s.index, title: s.title, reads, wires: s.wires, cut })
             .collect(),
-        cos_lit_zero: lit(w.cos_bits, 0),
-        arch: cfg.arch().name(),
-        paper: cfg.arch() == Arch::Paper,
-        steps: dp.steps.into_iter().zip(cuts).map(|(s, cut)| StepView { index: s.index, title: s.title, wires: s.wires, cut }).collect(),
         last,
     }
 }
@@ -256,8 +372,8 @@ pub fn blinn_pow_template<'a>(cfg: &'a Config, w: &'a Widths) -> BlinnPowTemplat
 struct CoreTemplate<'a> {
     top: &'a str,
     version: &'a str,
-    latency: u32,
-    rom_file: bool,
+    description: String,
+    table_files: Vec<String>,
 }
 
 /// One port of the generated module, for the manifest and the harnesses.
@@ -307,6 +423,13 @@ pub struct Manifest<'a> {
     pub latency: u32,
     pub ports: Vec<Port>,
     pub internal_widths: &'a Widths,
+    /// The fitted or blinn model's own widths and table sizes (null for the others).
+    #[serde(skip_serializing_if = "serde_json::Value::is_null")]
+    pub model_widths: serde_json::Value,
+    /// `max |intensity/2^FI − c^n|` over the inputs of `blinn_error_method` (SPEC §6).
+    pub blinn_error_max: f64,
+    pub blinn_error_mean: f64,
+    pub blinn_error_method: String,
     pub files: Vec<FileEntry>,
 }
 
@@ -319,21 +442,34 @@ fn sha256_hex(bytes: &[u8]) -> String {
 pub fn generate_files(cfg: &Config) -> Vec<(String, Vec<u8>)> {
     let w = Widths::derive(cfg);
     let top = cfg.top();
-    let quadratic = cfg.model() == SpecularModel::Quadratic;
+    let model = crate::model::Model::new(cfg);
     let mut verilog = match cfg.model() {
-        SpecularModel::Quadratic => unit_template(cfg, &w).render(),
         SpecularModel::BlinnPow => blinn_pow_template(cfg, &w).render(),
+        _ => unit_template(cfg, &w).render(),
     }
     .expect("unit template renders");
     verilog.push('\n');
-    let rom_file = quadratic && cfg.params.rom_style == RomStyle::File;
-    let core = CoreTemplate { top, version: VERSION, latency: cfg.stages(), rom_file }.render().expect("core template renders");
+    let tables = if cfg.params.rom_style == RomStyle::File { rom::tables(cfg) } else { Vec::new() };
+    let description = match cfg.model() {
+        SpecularModel::Quadratic => "Fixed-point specular highlight unit, [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)",
+        SpecularModel::BlinnPow => "Fixed-point Blinn specular unit, cos^n by square-and-multiply",
+        SpecularModel::Blinn => "Fixed-point Blinn specular unit, cos^n from log2/exp2 tables",
+        SpecularModel::Fitted => "Fixed-point specular highlight unit, [1 - a_n*(1 - cos)]^(2^m_n) fitted per n to cos^n",
+    };
+    let core = CoreTemplate {
+        top,
+        version: VERSION,
+        description: format!("{description}, {}-cycle latency", cfg.stages()),
+        table_files: tables.iter().map(|t| t.file.clone()).collect(),
+    }
+    .render()
+    .expect("core template renders");
     let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
-    if quadratic {
-        // blinn-pow has no cut-off ROM
-        files.push((ROM_FILE.to_string(), rom::render(cfg, RomFormat::Hex).into_bytes()));
+    for t in &tables {
+        files.push((t.file.clone(), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
     }
     files.push((format!("{top}.core"), core.into_bytes()));
+    let fidelity = crate::model::blinn_fidelity(&model);
     let manifest = Manifest {
         generator: "specgen",
         version: VERSION,
@@ -342,6 +478,14 @@ pub fn generate_files(cfg: &Config) -> Vec<(String, Vec<u8>)> {
         latency: cfg.stages(),
         ports: ports(cfg),
         internal_widths: &w,
+        model_widths: match &model.kind {
+            Kind::Fitted { widths, .. } => serde_json::to_value(widths).expect("widths serialise"),
+            Kind::Blinn { widths, .. } => serde_json::to_value(widths).expect("widths serialise"),
+            _ => serde_json::Value::Null,
+        },
+        blinn_error_max: fidelity.max,
+        blinn_error_mean: fidelity.mean,
+        blinn_error_method: fidelity.method(),
         files: files.iter().map(|(name, bytes)| FileEntry { name: name.clone(), sha256: sha256_hex(bytes) }).collect(),
     };
     let mut json = serde_json::to_string_pretty(&manifest).expect("manifest serialises");

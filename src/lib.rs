@@ -6,11 +6,13 @@
 //! {[`model`], [`rom`], [`emit`] (templates)} → files → [`cosim`] (simulators).
 //! [`cli`] is the command line over all of it.
 
+pub mod blinn;
 pub mod cli;
 pub mod config;
 pub mod cosim;
 pub mod datapath;
 pub mod emit;
+pub mod fitted;
 pub mod model;
 pub mod paper;
 pub mod report;

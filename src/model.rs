@@ -6,8 +6,12 @@
 //! [`reference`] computes the ideal outputs as exact dyadic rationals with no knowledge of
 //! the internal widths; [`check`] states the rounding contract against it.
 
+use crate::blinn::{self, BlinnTables, BlinnWidths};
 use crate::config::{Config, Rounding, SpecularModel};
+use crate::fitted::{self, Fit, FittedWidths};
 use crate::rom;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
 use crate::widths::{mask, Widths};
 
 /// One input vector of the unit (port values as integers).
@@ -47,21 +51,111 @@ pub struct Trace {
     pub outputs: Outputs,
 }
 
+/// What a model needs beyond the common widths: its fit or its tables.
+#[derive(Debug, Clone)]
+pub enum Kind {
+    Quadratic,
+    BlinnPow,
+    Fitted { fit: Arc<Fit>, widths: FittedWidths },
+    Blinn { widths: BlinnWidths, tables: BlinnTables },
+}
+
+/// The fit of a configuration, computed once per process for each (N, M, KA).
+pub fn cached_fit(cfg: &Config) -> Arc<Fit> {
+    type Cache = Mutex<HashMap<(u32, u32, u32), Arc<Fit>>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
+    let key = (cfg.n_bits(), cfg.max_squarings(), cfg.kf());
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(f) = cache.lock().expect("fit cache").get(&key) {
+        return f.clone();
+    }
+    let fit = Arc::new(fitted::fit(cfg));
+    cache.lock().expect("fit cache").entry(key).or_insert(fit).clone()
+}
+
+impl Kind {
+    /// The one place a configuration's model is chosen: every golden model, reference,
+    /// datapath and table goes through here.
+    pub fn new(cfg: &Config) -> Kind {
+        match cfg.model() {
+            SpecularModel::Quadratic => Kind::Quadratic,
+            SpecularModel::BlinnPow => Kind::BlinnPow,
+            SpecularModel::Fitted => {
+                let fit = cached_fit(cfg);
+                let widths = FittedWidths::derive(cfg, &fit);
+                Kind::Fitted { fit, widths }
+            }
+            SpecularModel::Blinn => {
+                let widths = BlinnWidths::derive(cfg);
+                let tables = blinn::tables(cfg, &widths);
+                Kind::Blinn { widths, tables }
+            }
+        }
+    }
+}
+
 /// The golden model of one configuration.
 #[derive(Debug, Clone)]
 pub struct Model {
     pub cfg: Config,
     pub widths: Widths,
+    /// The cut-off ROM `cos_sp(n)` (quadratic; empty for the other models).
     pub rom: Vec<u32>,
+    pub kind: Kind,
 }
 
 impl Model {
     pub fn new(cfg: &Config) -> Model {
-        Model { cfg: cfg.clone(), widths: Widths::derive(cfg), rom: rom::cos_sp_table(cfg) }
+        let kind = Kind::new(cfg);
+        let rom = if cfg.model() == SpecularModel::Quadratic { rom::cos_sp_table(cfg) } else { Vec::new() };
+        Model { cfg: cfg.clone(), widths: Widths::derive(cfg), rom, kind }
     }
 
+    /// The unit's outputs for one input, bit for bit.
     pub fn eval(&self, x: Inputs) -> Outputs {
-        self.trace(x).outputs
+        match &self.kind {
+            Kind::Quadratic => self.trace(x).outputs,
+            Kind::BlinnPow => self.eval_blinn_pow(x),
+            Kind::Fitted { fit, widths } => fitted::trace(&self.cfg, fit, widths, x).1,
+            Kind::Blinn { widths, tables } => blinn::trace(&self.cfg, widths, tables, x).1,
+        }
+    }
+
+    /// Checks outputs against this model's contract (its exact reference).
+    pub fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+        match &self.kind {
+            Kind::Fitted { fit, .. } => fitted::check(&self.cfg, fit, x, got),
+            _ => check(&self.cfg, x, got),
+        }
+    }
+
+    /// The last `cos_g` code with a non-zero output, or the cut-off, for each n: the
+    /// boundary a test stimulus should visit.
+    pub fn boundaries(&self) -> Vec<u32> {
+        let cfg = &self.cfg;
+        let one = 1u32 << cfg.f();
+        (0..1u32 << cfg.n_bits())
+            .map(|n| match &self.kind {
+                Kind::Quadratic => self.rom[n as usize],
+                _ => {
+                    // outputs are monotone in cos_g: bisect for the first code with intensity > 0
+                    let nz = |c: u32| self.eval(Inputs { cos_g: c, n, ks: [0; 3] }).intensity > 0;
+                    let (mut lo, mut hi) = (0u32, one);
+                    if nz(0) {
+                        return 0;
+                    }
+                    while hi - lo > 1 {
+                        let mid = (lo + hi) / 2;
+                        if nz(mid) {
+                            hi = mid;
+                        } else {
+                            lo = mid;
+                        }
+                    }
+                    hi
+                }
+            })
+            .collect()
     }
 
     /// `--model blinn-pow`: square-and-multiply over the bits of n, LSB first, each product
@@ -89,10 +183,11 @@ impl Model {
         Outputs { spec, intensity, done: intensity == 0 }
     }
 
-    /// Runs the datapath and returns every intermediate value.
+    /// Runs the quadratic datapath and returns every intermediate value (the other models
+    /// have their own traces: [`fitted::trace`], [`blinn::trace`]).
     pub fn trace(&self, x: Inputs) -> Trace {
-        if self.cfg.model() == SpecularModel::BlinnPow {
-            return Trace { outputs: self.eval_blinn_pow(x), ..Trace::default() };
+        if self.cfg.model() != SpecularModel::Quadratic {
+            return Trace { outputs: self.eval(x), ..Trace::default() };
         }
         let w = &self.widths;
         let f = self.cfg.f();
@@ -265,11 +360,13 @@ pub fn check_blinn_pow(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Stri
     Ok(())
 }
 
-/// Checks a full output vector against its contract for one input (SPEC §3, or the
-/// `cos^n` contract of `--model blinn-pow`).
+/// Checks a full output vector against its model's contract for one input (SPEC §3 for the
+/// quadratic unit, faithful `c^n` for blinn and blinn-pow, its own formula for fitted).
 pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
-    if cfg.model() == SpecularModel::BlinnPow {
-        return check_blinn_pow(cfg, x, got);
+    match cfg.model() {
+        SpecularModel::BlinnPow | SpecularModel::Blinn => return check_blinn_pow(cfg, x, got),
+        SpecularModel::Fitted => return fitted::check(cfg, &cached_fit(cfg), x, got),
+        SpecularModel::Quadratic => {}
     }
     let r = reference(cfg, x);
     if got.done != r.done {
@@ -303,4 +400,82 @@ mod tests {
         o.spec[1] += 1;
         assert!(check(&cfg, x, o).is_err());
     }
+}
+
+/// How far a configured unit is from Blinn's `cos^n` (SPEC §6): `|intensity/2^FI − c^n|`
+/// over every `(cos_g ≤ 2^F, n)`, or over every `stride`-th `cos_g` (and 1.0) when the
+/// space exceeds [`FIDELITY_POINTS`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fidelity {
+    pub max: f64,
+    pub mean: f64,
+    /// where the maximum is
+    pub worst_n: u32,
+    pub worst_cos: u32,
+    pub points: u64,
+    pub stride: u32,
+}
+
+/// The most points [`blinn_fidelity`] visits: 2^26.
+pub const FIDELITY_POINTS: u64 = 1 << 26;
+
+impl Fidelity {
+    pub fn method(&self) -> String {
+        match self.stride {
+            1 => format!("every (cos_g <= 2^F, n): {} points", self.points),
+            s => format!("every {s}th cos_g code (and 1.0) for every n: {} points", self.points),
+        }
+    }
+}
+
+/// Measures [`Fidelity`] with the golden model (two threads or more).
+pub fn blinn_fidelity(m: &Model) -> Fidelity {
+    let cfg = &m.cfg;
+    let one = 1u32 << cfg.f();
+    let n_count = 1u32 << cfg.n_bits();
+    let full = (one as u64 + 1) * n_count as u64;
+    let stride = full.div_ceil(FIDELITY_POINTS).max(1) as u32;
+    let scale = (cfg.fi() as f64).exp2();
+    // a fixed partition (not the core count), so the sums and the manifest are the same bytes
+    // on every machine
+    let threads = 8u32;
+    let parts: Vec<(f64, f64, u32, u32, u64)> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                s.spawn(move || {
+                    let (mut max, mut sum, mut wn, mut wc, mut count) = (0.0f64, 0.0f64, 0u32, 0u32, 0u64);
+                    for n in (t..n_count).step_by(threads as usize) {
+                        let mut cos_g = 0u32;
+                        loop {
+                            let c = cos_g as f64 / one as f64;
+                            let got = m.eval(Inputs { cos_g, n, ks: [0; 3] }).intensity as f64 / scale;
+                            let err = (got - c.powi(n as i32)).abs();
+                            sum += err;
+                            count += 1;
+                            if err > max {
+                                (max, wn, wc) = (err, n, cos_g);
+                            }
+                            if cos_g == one {
+                                break;
+                            }
+                            cos_g = (cos_g + stride).min(one);
+                        }
+                    }
+                    (max, sum, wn, wc, count)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().expect("fidelity thread")).collect()
+    });
+    let mut f = Fidelity { max: 0.0, mean: 0.0, worst_n: 0, worst_cos: 0, points: 0, stride };
+    let mut sum = 0.0;
+    for (max, s, wn, wc, count) in parts {
+        if max > f.max || (max == f.max && (wn, wc) < (f.worst_n, f.worst_cos)) {
+            (f.max, f.worst_n, f.worst_cos) = (max, wn, wc);
+        }
+        sum += s;
+        f.points += count;
+    }
+    f.mean = sum / f.points as f64;
+    f
 }

@@ -6,6 +6,7 @@
 //! (and `C = 0` for `n = 0`, where the bracket is 1 everywhere).
 
 use crate::config::Config;
+use crate::datapath::Table;
 use askama::Template;
 
 /// Every entry of the ROM, index n = 0 .. 2^N − 1.
@@ -56,6 +57,7 @@ struct ReadmemFile {
 #[template(path = "rom.coe")]
 struct CoeFile<'a> {
     top: &'a str,
+    what: &'a str,
     width: u32,
     depth: usize,
     words: Vec<Word>,
@@ -65,26 +67,21 @@ struct CoeFile<'a> {
 #[template(path = "rom.mif")]
 struct MifFile<'a> {
     top: &'a str,
+    what: &'a str,
     width: u32,
     depth: usize,
     addr_digits: usize,
     words: Vec<Word>,
 }
 
-struct CsvRow {
-    n: usize,
-    code: u32,
-    cosine: String,
-    degrees: String,
-}
-
 #[derive(Template)]
 #[template(path = "rom.csv")]
 struct CsvFile {
-    rows: Vec<CsvRow>,
+    header: String,
+    rows: Vec<String>,
 }
 
-fn words(table: &[u32], radix: u32, width: u32) -> Vec<Word> {
+fn words(table: &[u128], radix: u32, width: u32) -> Vec<Word> {
     let digits = match radix {
         2 => width as usize,
         _ => width.div_ceil(4) as usize,
@@ -119,37 +116,74 @@ pub fn exact_decimal(code: u64, frac_bits: u32) -> String {
     s
 }
 
-/// Renders the ROM in one format. The text is complete and ends with a newline.
-pub fn render(cfg: &Config, format: RomFormat) -> String {
-    let table = cos_sp_table(cfg);
-    let width = cfg.f() + 1;
-    let depth = table.len();
-    let top = cfg.top();
+/// Every table of the configured unit (the cut-off ROM, the fit ROM, the log2/exp2 tables;
+/// none for blinn-pow), in the order the RTL declares them.
+pub fn tables(cfg: &Config) -> Vec<Table> {
+    match cfg.model() {
+        crate::config::SpecularModel::BlinnPow => Vec::new(),
+        _ => crate::datapath::build(cfg, &crate::widths::Widths::derive(cfg)).tables,
+    }
+}
+
+/// Renders one table in one format. The text is complete and ends with a newline.
+pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
+    let (width, depth, top, what) = (t.width, t.words.len(), cfg.top(), t.what.as_str());
+    let table = &t.words;
     let text = match format {
-        RomFormat::Hex => ReadmemFile { words: words(&table, 16, width) }.render(),
-        RomFormat::Bin => ReadmemFile { words: words(&table, 2, width) }.render(),
-        RomFormat::Coe => CoeFile { top, width, depth, words: words(&table, 16, width) }.render(),
-        RomFormat::Mif => MifFile {
-            top,
-            width,
-            depth,
-            addr_digits: ((cfg.n_bits() as usize).div_ceil(4)).max(1),
-            words: words(&table, 16, width),
-        }
-        .render(),
-        RomFormat::Csv => CsvFile {
+        RomFormat::Hex => ReadmemFile { words: words(table, 16, width) }.render(),
+        RomFormat::Bin => ReadmemFile { words: words(table, 2, width) }.render(),
+        RomFormat::Coe => CoeFile { top, what, width, depth, words: words(table, 16, width) }.render(),
+        RomFormat::Mif => MifFile { top, what, width, depth, addr_digits: (t.address_bits() as usize).div_ceil(4).max(1), words: words(table, 16, width) }.render(),
+        RomFormat::Csv if t.name == "cos_sp_rom" => CsvFile {
+            header: "n,code,cosine,angle_deg".into(),
             rows: table
                 .iter()
                 .enumerate()
                 .map(|(n, &code)| {
                     let cos = code as f64 / (1u64 << cfg.f()) as f64;
-                    CsvRow { n, code, cosine: exact_decimal(code as u64, cfg.f()), degrees: format!("{:.4}", cos.acos().to_degrees()) }
+                    format!("{n},{code},{},{:.4}", exact_decimal(code as u64, cfg.f()), cos.acos().to_degrees())
+                })
+                .collect(),
+        }
+        .render(),
+        RomFormat::Csv => CsvFile {
+            header: format!("index,word_hex,{}", t.fields.iter().rev().map(|f| f.0.as_str()).collect::<Vec<_>>().join(",")),
+            rows: table
+                .iter()
+                .enumerate()
+                .map(|(i, &v)| {
+                    let mut lo = 0;
+                    let mut fields: Vec<String> = t
+                        .fields
+                        .iter()
+                        .map(|(_, bits)| {
+                            let f = (v >> lo) & crate::widths::mask(*bits);
+                            lo += bits;
+                            f.to_string()
+                        })
+                        .collect();
+                    fields.reverse();
+                    format!("{i},{v:x},{}", fields.join(","))
                 })
                 .collect(),
         }
         .render(),
     };
     text.expect("ROM templates render")
+}
+
+/// Renders the cut-off ROM (quadratic) in one format.
+pub fn render(cfg: &Config, format: RomFormat) -> String {
+    let table = Table {
+        name: "cos_sp_rom".into(),
+        file: crate::emit::ROM_FILE.into(),
+        param: "ROM_FILE".into(),
+        width: cfg.f() + 1,
+        words: cos_sp_table(cfg).into_iter().map(u128::from).collect(),
+        what: format!("cut-off ROM cos_sp(n), UQ1.{}, address = n", cfg.f()),
+        fields: vec![("cos_sp".into(), cfg.f() + 1)],
+    };
+    render_table(cfg, &table, format)
 }
 
 #[cfg(test)]

@@ -172,10 +172,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
         dsp_blocks: count(&|n| n == "SB_MAC16" || n.starts_with("MULT18X18") || n.starts_with("ALU54")),
         flip_flops: count(&|n| n.starts_with("SB_DFF") || n == "TRELLIS_FF" || n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE")),
         block_rams: count(&|n| n.starts_with("SB_RAM40") || n == "DP16KD" || n.starts_with("$mem")),
-        rom_bits: match cfg.model() {
-            crate::config::SpecularModel::Quadratic => (1u64 << cfg.n_bits()) * (cfg.f() as u64 + 1),
-            crate::config::SpecularModel::BlinnPow => 0,
-        },
+        rom_bits: crate::rom::tables(cfg).iter().map(|t| t.words.len() as u64 * t.width as u64).sum(),
         total_cells,
         fmax_mhz: None,
         fmax_note: String::new(),

@@ -157,7 +157,9 @@ pub fn power_frac_bits(cfg: &Config) -> u32 {
 /// Number of cut points of the configured datapath (the most `--stages` it takes).
 pub fn cut_points(cfg: &Config) -> u32 {
     match cfg.model() {
-        SpecularModel::Quadratic => crate::datapath::build(cfg, &Widths::derive_unpipelined(cfg)).steps.len() as u32,
+        SpecularModel::Quadratic | SpecularModel::Fitted | SpecularModel::Blinn => {
+            crate::datapath::build(cfg, &Widths::derive_unpipelined(cfg)).steps.len() as u32
+        }
         // after the clamp, after each bit of n, after the rounding
         SpecularModel::BlinnPow => cfg.n_bits() + 2,
     }
@@ -170,7 +172,7 @@ pub fn step_delays(cfg: &Config, w: &Widths) -> Vec<f64> {
     let add = |bits: u32| 1.5 + 0.3 * bits as f64;
     let mul = |a: u32, b: u32| 1.5 * ((a.min(b).max(1) as f64).log2().ceil() + 1.0) + 0.3 * (a + b) as f64;
     match cfg.model() {
-        SpecularModel::Quadratic => crate::datapath::build(cfg, w).delays(),
+        SpecularModel::Quadratic | SpecularModel::Fitted | SpecularModel::Blinn => crate::datapath::build(cfg, w).delays(),
         SpecularModel::BlinnPow => {
             let pw = w.power_frac_bits + 1;
             let mut v = vec![add(w.cos_bits)];

@@ -1,0 +1,476 @@
+//! `--model blinn` (SPEC §6): Blinn's `c^n` itself, faithfully, from a log2 and an exp2
+//! table with linear interpolation — the way GPUs raise to a power.
+//!
+//! # Datapath (all unsigned; W = max(FI, B))
+//!
+//! ```text
+//! C     = min(cos_g, 2^F)                      UQ1.F      c = C/2^F; C = 0 → S = 0 (n ≥ 1)
+//! e     = F − bitlen(C − 1)                    0..F       normalise: c = c'·2^−e, c' ∈ (1/2, 1]
+//! X     = 2^F − (C << e)                       UQ0.F      x = 1 − c' ∈ [0, 1/2), exact
+//! ĝ     = G[i] + ⌊ΔG[i]·r / 2^RB⌋              UQ2.WG     g(x) = −log2(1 − x)/x, i = top TG bits of 2x
+//! L     = X·ĝ                                  UQ1.(F+WG) −log2 c' = x·g(x), exact product
+//! ℓ     = ⌊(e + L)⌋ to WL fractional bits      −log2 c    truncation #1
+//! y     = ⌊n·ℓ⌋ to WY fractional bits, ≤ W+2   −log2 c^n  truncation #2, saturated
+//! Ê     = E[j] − ⌊ΔE[j]·r' / 2^RE⌋             UQ1.WE     2^−frac(y), j = top TE bits of frac(y)
+//! V     = ⌊Ê / 2^⌊y⌋⌋                          UQ1.WE     truncation #3
+//! out   = ⌊(V·Mo + 2^(WE−1)) / 2^WE⌋           Mo = 2^FI or ks_X, round half up; done = (intensity == 0)
+//! ```
+//!
+//! # Error budget (the argument [`BlinnWidths::derive`] applies)
+//!
+//! Write `y* = −n·log2 c` and `ŷ = y* + δ`. The sources of δ:
+//! - the g table: entries rounded to nearest (≤ 2^−(WG+1), plus 2^−50 for the f64 they are
+//!   computed in), linear interpolation between them (≤ h²/8·max g'', h = 2^−(TG+1); g'' grows
+//!   on [0, 1/2], so its maximum is g''(1/2), summed from g's series), the floor of the
+//!   interpolation product (< 2^−WG): together `εg`. It enters as `n·x·εg`, and since
+//!   `c^n ≤ (1 − x)^n ≤ e^(−nx)`, `c^n·n·x·εg ≤ εg/e`: the relative form `x·g(x)` is what
+//!   keeps this independent of n;
+//! - truncation #1: `n·2^−WL < 2^(N−WL)`;   truncation #2: `< 2^−WY`.
+//!
+//! `|2^−ŷ − 2^−y*| ≤ 2^−y*·|δ|·ln2·2^|δ|`, and `c^n·|δ|·2^|δ|` is at most
+//! `εg/(e·(1 − εg·ln2)) + (2^(N−WL) + 2^−WY)·1.01` (the 1.01 covers `2^|δ|` for the two small
+//! terms, which the budget makes < 2^−W−3). The exp table adds `εE` (entries ≤ 2^−(WE+1) +
+//! 2^−50, interpolation of the convex 2^−f ≤ ln²2/8·2^−2TE, the floor < 2^−WE), shrunk by the
+//! shift, and truncation #3 adds < 2^−WE. In output units (`Mo ≤ 2^W`) the value fed to the
+//! final rounding is within
+//!
+//! ```text
+//! T = 2^W·[ ln2·(εg/(e(1−εg ln2)) + 1.01·(2^(N−WL) + 2^−WY)) + εE + 2^−WE ]
+//! ```
+//!
+//! of `o*`. [`BlinnWidths::derive`] picks the smallest widths and tables with `T < 1/2`; the
+//! final round-half-up then gives `|o − o*| < 1`, and `o = o*` where `o*` is an integer.
+//! Saturating y at `W + 2` only replaces outputs whose ideal is `< 2^−2·2^W/2^W·...` — below
+//! 1/4 ulp — by 0, inside the same bound.
+//!
+//! Monotonicity: the tables are monotone (g rises, 2^−f falls; rounding keeps order), each
+//! interpolation stays between its two entries, products, floors and the shift are monotone,
+//! so ŷ never rises as `cos_g` grows within one exponent e. Across a power of two ŷ is
+//! continuous from below only if `L ≤ 1` at the top of the range: the budget also requires
+//! `εg/2 ≤ 0.9·(1 − L(1/2 − 2^−F))`, checked in [`BlinnWidths::derive`].
+
+use crate::config::Config;
+use crate::datapath::{lit, Builder, Table};
+use crate::widths::{bit_length, mask};
+use serde::Serialize;
+
+/// Every width and table size of the blinn unit, from the error budget.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct BlinnWidths {
+    /// W = max(FI, B).
+    pub out_bits: u32,
+    /// Bits of the exponent e ∈ [0, F].
+    pub exp_bits: u32,
+    /// TG: the log table has 2^TG entries.
+    pub log_index_bits: u32,
+    /// WG: fractional bits of g.
+    pub log_frac_bits: u32,
+    /// Bits of a G entry and of a ΔG entry.
+    pub log_entry_bits: u32,
+    pub log_delta_bits: u32,
+    /// WL: fractional bits of ℓ = −log2 c.
+    pub ell_frac_bits: u32,
+    /// WY: fractional bits of y; YI its integer bits (saturated at W + 2).
+    pub y_frac_bits: u32,
+    pub y_int_bits: u32,
+    /// TE: the exp table has 2^TE entries.
+    pub exp2_index_bits: u32,
+    /// WE: fractional bits of 2^−f.
+    pub exp2_frac_bits: u32,
+    pub exp2_entry_bits: u32,
+    pub exp2_delta_bits: u32,
+}
+
+/// The budget terms in output units; their sum must be < 1/2.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Budget {
+    pub log_table: f64,
+    pub ell_truncation: f64,
+    pub y_truncation: f64,
+    pub exp2_table: f64,
+    pub shift_truncation: f64,
+    /// `εg/2` against the room `1 − L(1/2 − 2^−F)` below the next exponent (must be ≤ 0.9).
+    pub monotone_ratio: f64,
+}
+
+impl Budget {
+    pub fn total(&self) -> f64 {
+        self.log_table + self.ell_truncation + self.y_truncation + self.exp2_table + self.shift_truncation
+    }
+    pub fn holds(&self) -> bool {
+        self.total() < 0.5 && self.monotone_ratio <= 0.9
+    }
+}
+
+/// `max g''` on [0, 1/2]: g'' = (1/ln2)·Σ_{k≥2} k(k−1)/(k+1)·x^(k−2), rising in x.
+fn g2_max() -> f64 {
+    let s: f64 = (2..400).map(|k| (k * (k - 1)) as f64 / (k + 1) as f64 * 0.5f64.powi(k as i32 - 2)).sum();
+    s / std::f64::consts::LN_2 * 1.001
+}
+
+/// `g(x) = −log2(1 − x)/x`, `g(0) = 1/ln2`.
+pub fn g(x: f64) -> f64 {
+    if x == 0.0 {
+        1.0 / std::f64::consts::LN_2
+    } else {
+        -(-x).ln_1p() / (x * std::f64::consts::LN_2)
+    }
+}
+
+impl BlinnWidths {
+    /// The error budget for a choice of widths (see the module documentation).
+    pub fn budget(&self, cfg: &Config) -> Budget {
+        let ln2 = std::f64::consts::LN_2;
+        let p = |k: i64| (k as f64).exp2();
+        let (w, n, f) = (self.out_bits as i64, cfg.n_bits() as i64, cfg.f() as i64);
+        let (tg, wg, wl, wy) = (self.log_index_bits as i64, self.log_frac_bits as i64, self.ell_frac_bits as i64, self.y_frac_bits as i64);
+        let (te, we) = (self.exp2_index_bits as i64, self.exp2_frac_bits as i64);
+        let interpolates_g = tg < f - 1;
+        let eps_g = p(-wg - 1) + p(-50) + if interpolates_g { g2_max() / 8.0 * p(-2 * (tg + 1)) + p(-wg) } else { 0.0 };
+        let interpolates_e = te < wy;
+        let eps_e = p(-we - 1) + p(-50) + if interpolates_e { ln2 * ln2 / 8.0 * p(-2 * te) + p(-we) } else { 0.0 };
+        let l_top = -(0.5 + p(-f)).log2();
+        Budget {
+            log_table: p(w) * ln2 * eps_g / (std::f64::consts::E * (1.0 - eps_g * ln2)),
+            ell_truncation: p(w) * ln2 * 1.01 * p(n - wl),
+            y_truncation: p(w) * ln2 * 1.01 * p(-wy),
+            exp2_table: p(w) * eps_e,
+            shift_truncation: p(w) * p(-we),
+            monotone_ratio: eps_g / 2.0 / (1.0 - l_top),
+        }
+    }
+
+    /// The smallest widths with a budget below 1/2: each term gets its share
+    /// (log table 1/6, each truncation 1/16, exp table 1/8, shift 1/32), then the table
+    /// sizes are the smallest that keep the share.
+    pub fn derive(cfg: &Config) -> BlinnWidths {
+        let (f, n) = (cfg.f(), cfg.n_bits());
+        let w = cfg.fi().max(cfg.b());
+        let mut bw = BlinnWidths {
+            out_bits: w,
+            exp_bits: bit_length(f as u128),
+            log_index_bits: 1,
+            log_frac_bits: w + 3,
+            log_entry_bits: 0,
+            log_delta_bits: 0,
+            ell_frac_bits: w + n + 4,
+            y_frac_bits: w + 4,
+            y_int_bits: bit_length((w + 2) as u128),
+            exp2_index_bits: 1,
+            exp2_frac_bits: w + 5,
+            exp2_entry_bits: 0,
+            exp2_delta_bits: 0,
+        };
+        // WG: the entries' own rounding (no interpolation, TG = F-1) within 1/12 and within
+        // half the monotone room; the monotone condition may ask for more than the outputs do
+        let rounding_only = |bw: &BlinnWidths| BlinnWidths { log_index_bits: f - 1, ..bw.clone() }.budget(cfg);
+        while rounding_only(&bw).log_table > 1.0 / 12.0 || rounding_only(&bw).monotone_ratio > 0.45 {
+            bw.log_frac_bits += 1;
+        }
+        // TG: the smallest log table whose interpolation keeps the whole term within 1/6
+        while bw.log_index_bits < f - 1 && (bw.budget(cfg).log_table > 1.0 / 6.0 || bw.budget(cfg).monotone_ratio > 0.9) {
+            bw.log_index_bits += 1;
+        }
+        // TE: the smallest exp table within 1/8
+        while bw.exp2_index_bits < bw.y_frac_bits && bw.budget(cfg).exp2_table > 1.0 / 8.0 {
+            bw.exp2_index_bits += 1;
+        }
+        let b = bw.budget(cfg);
+        assert!(b.holds(), "blinn budget does not close for {:?}: {b:?}", cfg.params);
+        let (lt, et) = (log_values(cfg, &bw), exp2_values(&bw));
+        bw.log_entry_bits = bit_length(*lt.iter().max().unwrap());
+        bw.log_delta_bits = bit_length(lt.windows(2).map(|p| p[1] - p[0]).max().unwrap()).max(1);
+        bw.exp2_entry_bits = bit_length(et[0]);
+        bw.exp2_delta_bits = bit_length(et.windows(2).map(|p| p[0] - p[1]).max().unwrap()).max(1);
+        bw
+    }
+
+    /// RB: the interpolation fraction of the log table (bits of X below its index).
+    pub fn log_rest_bits(&self, cfg: &Config) -> u32 {
+        cfg.f() - 1 - self.log_index_bits
+    }
+    /// RE: the interpolation fraction of the exp table.
+    pub fn exp2_rest_bits(&self) -> u32 {
+        self.y_frac_bits - self.exp2_index_bits
+    }
+    /// Bits of ĝ and of L = X·ĝ.
+    pub fn ghat_bits(&self) -> u32 {
+        self.log_entry_bits.max(self.log_frac_bits + 1) + 1
+    }
+    pub fn ell_bits(&self) -> u32 {
+        self.exp_bits + self.ell_frac_bits + 1
+    }
+    pub fn y_bits(&self) -> u32 {
+        self.y_int_bits + self.y_frac_bits
+    }
+    /// The saturation value of y, `(W + 2)·2^WY`.
+    pub fn y_sat(&self) -> u128 {
+        ((self.out_bits + 2) as u128) << self.y_frac_bits
+    }
+}
+
+/// `G_i = round(g(i/2^(TG+1))·2^WG)` for `i = 0..=2^TG` (the last only for ΔG).
+fn log_values(cfg: &Config, w: &BlinnWidths) -> Vec<u128> {
+    let _ = cfg;
+    let count = 1u32 << w.log_index_bits;
+    (0..=count)
+        .map(|i| {
+            let x = i as f64 / (2 * count) as f64;
+            (g(x) * (w.log_frac_bits as f64).exp2()).round() as u128
+        })
+        .collect()
+}
+
+/// `E_j = round(2^−(j/2^TE)·2^WE)` for `j = 0..=2^TE` (`E_0 = 2^WE`, the last `2^(WE−1)`).
+fn exp2_values(w: &BlinnWidths) -> Vec<u128> {
+    let count = 1u32 << w.exp2_index_bits;
+    (0..=count).map(|j| ((-(j as f64) / count as f64).exp2() * (w.exp2_frac_bits as f64).exp2()).round() as u128).collect()
+}
+
+/// The two tables of the unit, each word `{Δ, entry}`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BlinnTables {
+    pub g: Vec<u128>,
+    pub dg: Vec<u128>,
+    pub e: Vec<u128>,
+    pub de: Vec<u128>,
+}
+
+pub fn tables(cfg: &Config, w: &BlinnWidths) -> BlinnTables {
+    let (lv, ev) = (log_values(cfg, w), exp2_values(w));
+    BlinnTables {
+        g: lv[..lv.len() - 1].to_vec(),
+        dg: lv.windows(2).map(|p| p[1] - p[0]).collect(),
+        e: ev[..ev.len() - 1].to_vec(),
+        de: ev.windows(2).map(|p| p[0] - p[1]).collect(),
+    }
+}
+
+impl BlinnTables {
+    pub fn log_table(&self, w: &BlinnWidths) -> Table {
+        Table {
+            name: "log2_rom".into(),
+            file: "log2_rom.hex".into(),
+            param: "LOG2_ROM_FILE".into(),
+            width: w.log_delta_bits + w.log_entry_bits,
+            words: self.g.iter().zip(&self.dg).map(|(&g, &d)| (d << w.log_entry_bits) | g).collect(),
+            what: format!("{{dG, G}}: g(x) = -log2(1 - x)/x at x = i/2^{}, UQ2.{}, and the step to the next entry", w.log_index_bits + 1, w.log_frac_bits),
+            fields: vec![("g".into(), w.log_entry_bits), ("dg".into(), w.log_delta_bits)],
+        }
+    }
+    pub fn exp2_table(&self, w: &BlinnWidths) -> Table {
+        Table {
+            name: "exp2_rom".into(),
+            file: "exp2_rom.hex".into(),
+            param: "EXP2_ROM_FILE".into(),
+            width: w.exp2_delta_bits + w.exp2_entry_bits,
+            words: self.e.iter().zip(&self.de).map(|(&e, &d)| (d << w.exp2_entry_bits) | e).collect(),
+            what: format!("{{dE, E}}: 2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits),
+            fields: vec![("e".into(), w.exp2_entry_bits), ("de".into(), w.exp2_delta_bits)],
+        }
+    }
+}
+
+/// Every intermediate value of the blinn datapath for one input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct BlinnTrace {
+    pub cos_clamped: u64,
+    pub exponent: u32,
+    pub x: u64,
+    pub ghat: u128,
+    pub ell: u128,
+    pub y: u128,
+    pub ehat: u128,
+    pub v: u128,
+}
+
+/// The bit-exact golden model.
+pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: crate::model::Inputs) -> (BlinnTrace, crate::model::Outputs) {
+    let (f, fi, b) = (cfg.f(), cfg.fi(), cfg.b());
+    let c = (x.cos_g as u64 & mask(f + 1) as u64).min(1 << f);
+    let n = x.n as u128 & mask(cfg.n_bits());
+    let zero = c == 0;
+    let cm1 = c.wrapping_sub(1) & mask(f) as u64;
+    let e = f - bit_length(cm1 as u128);
+    let cn = (c << e) & mask(f + 1) as u64;
+    let xx = ((1u64 << f).wrapping_sub(cn)) & mask(f - 1) as u64;
+    let rb = w.log_rest_bits(cfg);
+    let (i, r) = ((xx >> rb) as usize, xx as u128 & mask(rb));
+    let ghat = t.g[i] + ((t.dg[i] * r) >> rb);
+    let l = xx as u128 * ghat; // frac F + WG
+    let lf = f + w.log_frac_bits;
+    let full = ((e as u128) << lf) + l;
+    let ell = if lf >= w.ell_frac_bits { full >> (lf - w.ell_frac_bits) } else { full << (w.ell_frac_bits - lf) };
+    let y_full = (n * ell) >> (w.ell_frac_bits - w.y_frac_bits);
+    let y = if (zero && n != 0) || y_full >= w.y_sat() { w.y_sat() } else { y_full };
+    let (yint, yfrac) = ((y >> w.y_frac_bits) as u32, y & mask(w.y_frac_bits));
+    let re = w.exp2_rest_bits();
+    let (j, rr) = ((yfrac >> re) as usize, yfrac & mask(re));
+    let ehat = t.e[j] - ((t.de[j] * rr) >> re);
+    let v = ehat >> yint;
+    let we = w.exp2_frac_bits;
+    let intensity = ((v + (1u128 << (we - fi - 1))) >> (we - fi)) as u32;
+    let spec = x.ks.map(|k| ((v * (k as u128 & mask(b)) + (1u128 << (we - 1))) >> we) as u32);
+    (
+        BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v },
+        crate::model::Outputs { spec, intensity, done: intensity == 0 },
+    )
+}
+
+/// The blinn datapath: normalise, log2 by table, times n, exp2 by table, shift, round.
+pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder) {
+    use crate::datapath::{add_delay, mul_delay, CHANNELS, LUT_DELAY};
+    let (f, fi, bb, nb) = (cfg.f(), cfg.fi(), cfg.b(), cfg.n_bits());
+    let cb = f + 1;
+    let lt = b.table(t.log_table(w));
+    let et = b.table(t.exp2_table(w));
+
+    b.step("clamp c = min(cos, 1); c - 1 for the normalisation");
+    let g = b.r("cos_g");
+    let one = lit(cb, 1u128 << f);
+    b.wire("cos_clamped", cb, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    let c = b.r("cos_clamped");
+    b.wire("cos_minus_ulp", cb, format!("{c} - {}", lit(cb, 1)), &format!("UQ1.{f}: c - 2^-{f} (its leading zeros give the exponent)"));
+    b.delay(add_delay(cb) + LUT_DELAY);
+
+    b.step("normalise: c = c'*2^-e with c' in (1/2, 1]; x = 1 - c'");
+    let eb = w.exp_bits;
+    let mut chain = lit(eb, f as u128);
+    for k in 0..f {
+        // bit k of c-1 set (and none above): e = F-1-k
+        let bit = b.bits("cos_minus_ulp", k, k);
+        chain = format!("{bit} ? {} : ({chain})", lit(eb, (f - 1 - k) as u128));
+    }
+    b.wire("exponent", eb, chain, &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"));
+    let c = b.r("cos_clamped");
+    let e = b.r("exponent");
+    b.wire("cos_norm", cb, format!("{c} << {e}"), &format!("UQ1.{f}: c' = c*2^e in (1/2, 1]"));
+    let cn = b.bits("cos_norm", f - 2, 0);
+    // x = 1 - c' < 1/2: only the low F-1 bits of 2^F - c', i.e. of -c'
+    b.wire("x", f - 1, format!("{} - {cn}", lit(f - 1, 0)), &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
+    let zc = b.r("cos_clamped");
+    b.wire("cos_zero", 1, format!("{zc} == {}", lit(cb, 0)), "c = 0: c^n = 0 for n >= 1");
+    b.delay(LUT_DELAY * ((f as f64).log2().ceil() + 1.0) + add_delay(f - 1));
+
+    let rb = w.log_rest_bits(cfg);
+    let tg = w.log_index_bits;
+    b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
+    let idx = b.bits("x", f - 2, rb);
+    b.wire("log_index", tg, idx, &format!("i: 2x to {tg} bits"));
+    b.rom_read("log_word", lt, "log_index");
+    b.delay(LUT_DELAY * tg.div_ceil(2) as f64);
+
+    let gb = w.ghat_bits();
+    let ge = w.log_entry_bits;
+    b.step("g by linear interpolation");
+    let ghat_expr = if rb > 0 {
+        let pb = w.log_delta_bits + rb;
+        let (d, r) = (b.operand("log_word", ge, w.log_delta_bits, pb), b.operand("x", 0, rb, pb));
+        b.wire("log_step", pb, format!("{d} * {r}"), &format!("dG[i] * (x mod 2^-{}), exact", tg + 1));
+        let (gi, st) = (b.operand("log_word", 0, ge, gb), b.operand("log_step", rb, pb - rb, gb));
+        format!("{gi} + {st}")
+    } else {
+        b.operand("log_word", 0, ge, gb)
+    };
+    b.wire("ghat", gb, ghat_expr, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+    b.delay(mul_delay(w.log_delta_bits, rb) + add_delay(gb));
+
+    let lf = f + w.log_frac_bits;
+    let eb2 = w.ell_bits();
+    let lb = f - 1 + gb;
+    b.step("-log2 c = e + x*g(x)");
+    let (xv, gv) = (b.zext("x", lb), b.zext("ghat", lb));
+    b.wire("log_frac", lb, format!("{xv} * {gv}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
+    let e = b.r("exponent");
+    let lbits = if lf >= w.ell_frac_bits {
+        b.bits("log_frac", lb - 1, lf - w.ell_frac_bits)
+    } else {
+        let v = b.r("log_frac");
+        format!("{{{v}, {}}}", lit(w.ell_frac_bits - lf, 0))
+    };
+    let lwidth = if lf >= w.ell_frac_bits { lb - (lf - w.ell_frac_bits) } else { lb + w.ell_frac_bits - lf };
+    b.wire(
+        "ell",
+        eb2,
+        format!("{{1'b0, {e}, {}}} + {}", lit(w.ell_frac_bits, 0), zext_expr(&lbits, lwidth, eb2)),
+        &format!("UQ{}.{}: e + L floored (truncation #1)", eb2 - w.ell_frac_bits, w.ell_frac_bits),
+    );
+    b.delay(mul_delay(f - 1, gb) + add_delay(eb2));
+
+    let yb = w.y_bits();
+    let pb = nb + eb2;
+    b.step("y = n*(-log2 c) (multiplier 7), saturated");
+    let (nv, lv) = (b.zext("n", pb), b.zext("ell", pb));
+    b.wire("y_full", pb, format!("{nv} * {lv}"), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
+    let drop = w.ell_frac_bits - w.y_frac_bits;
+    let top = b.bits("y_full", pb - 1, drop);
+    let ytw = pb - drop;
+    b.wire("y_trunc", ytw, top, &format!("UQ{}.{}: truncation #2", ytw - w.y_frac_bits, w.y_frac_bits));
+    let (z, nn) = (b.r("cos_zero"), b.r("n"));
+    let over = if w.y_sat() < 1u128 << ytw {
+        let yt = b.r("y_trunc");
+        format!(" || ({yt} >= {})", lit(ytw, w.y_sat()))
+    } else {
+        String::new() // y_trunc cannot reach the saturation value
+    };
+    let yt2 = b.operand("y_trunc", 0, ytw, yb);
+    b.wire(
+        "y",
+        yb,
+        format!("(({z} && ({nn} != {})){over}) ? {} : {yt2}", lit(nb, 0), lit(yb, w.y_sat())),
+        &format!("UQ{}.{}: y, saturated at {} (every output is 0 from there on)", w.y_int_bits, w.y_frac_bits, w.out_bits + 2),
+    );
+    b.delay(mul_delay(nb, eb2) + add_delay(ytw) + LUT_DELAY);
+
+    let re = w.exp2_rest_bits();
+    let te = w.exp2_index_bits;
+    b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
+    let ji = b.bits("y", w.y_frac_bits - 1, re);
+    b.wire("exp2_index", te, ji, "j: frac(y) to the table's resolution");
+    b.rom_read("exp2_word", et, "exp2_index");
+    b.delay(LUT_DELAY * te.div_ceil(2) as f64);
+
+    let we = w.exp2_frac_bits;
+    let ee = w.exp2_entry_bits;
+    b.step("2^-frac(y) by linear interpolation");
+    let ehat = if re > 0 {
+        let pb = w.exp2_delta_bits + re;
+        let (d, r) = (b.operand("exp2_word", ee, w.exp2_delta_bits, pb), b.operand("y", 0, re, pb));
+        b.wire("exp2_step", pb, format!("{d} * {r}"), &format!("dE[j] * (frac(y) mod 2^-{te}), exact"));
+        let (ej, st) = (b.operand("exp2_word", 0, ee, ee), b.operand("exp2_step", re, pb - re, ee));
+        format!("{ej} - {st}")
+    } else {
+        b.operand("exp2_word", 0, ee, ee)
+    };
+    b.wire("exp2_frac", ee, ehat, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+    b.delay(mul_delay(w.exp2_delta_bits, re) + add_delay(ee));
+
+    b.step("shift by the integer part of y (truncation #3)");
+    let (ev, yi) = (b.r("exp2_frac"), b.bits("y", w.y_bits() - 1, w.y_frac_bits));
+    b.wire("power", ee, format!("{ev} >> {yi}"), &format!("UQ1.{we}: c^n before rounding"));
+    b.delay(LUT_DELAY * (w.y_int_bits as f64));
+
+    b.step("colour multipliers (14-16) and the intensity, rounded half up");
+    let cp = we + bb;
+    for ch in CHANNELS {
+        let (sv, kv) = (b.zext("power", cp), b.zext(&format!("ks_{ch}"), cp));
+        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (we - 1))), &format!("UQ{bb}.{we}: c^n*ks_{ch} + 1/2 colour ulp"));
+        let e = b.bits(&format!("color_sum_{ch}"), cp - 1, we);
+        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: c^n*ks_{ch} rounded half up"));
+    }
+    let pv = b.r("power");
+    b.wire("intensity_sum", ee, format!("{pv} + {}", lit(ee, 1u128 << (we - fi - 1))), &format!("UQ1.{we}: c^n + 2^-{} (round half up)", fi + 1));
+    let e = b.bits("intensity_sum", we, we - fi);
+    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
+    let iv = b.r("intensity");
+    b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
+    b.delay(mul_delay(ee, bb) + add_delay(cp) + LUT_DELAY);
+}
+
+fn zext_expr(e: &str, from: u32, to: u32) -> String {
+    if to == from {
+        e.to_string()
+    } else {
+        format!("{{{}, {e}}}", lit(to - from, 0))
+    }
+}

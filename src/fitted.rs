@@ -1,0 +1,381 @@
+//! `--model fitted` (SPEC §6): the paper's structure made accurate. For every n ≥ 1 the
+//! generator fits `S = [1 − a_n·(1 − c)]^(2^m_n)`, `m_n ∈ {0, …, M}`, minimax against `c^n`
+//! over the real interval `c ∈ [0, 1]`, quantises `a_n` to `KA = k_frac_bits` fractional
+//! bits, and from then on the *quantised* `a_n` define the unit.
+//!
+//! # The fit
+//!
+//! For fixed m the approximant `max(0, 1 − a·t)^(2^m)` (t = 1 − c) falls everywhere as a
+//! grows, so `max_t (approx − c^n)` falls and `max_t (c^n − approx)` rises with a: the
+//! maximum error `E(a)` is quasi-convex and a golden-section search finds its minimum. The
+//! inner maximum over t is taken on a grid of `t ∈ [0, min(1, 40/n)]` (past `40/n`,
+//! `c^n < e^−40` and the approximant only falls, so the error there is at most its value at
+//! the grid's end) and refined around the worst grid point. Every m is tried; the smallest
+//! error wins (ties to the smaller m). Only `f64::powi` is used, so the fit is the same on
+//! every run. n = 0 stores `a = 0, m = 0` (S = 1).
+//!
+//! # Datapath and error budget (all unsigned, W = max(FI, B) + M + 2)
+//!
+//! ```text
+//! D       = 2^F − min(cos_g, 2^F)                 UQ1.F exact                 1 − cos
+//! P       = a_code·D                              UQ(·).(KA+F) exact          a_n·(1 − c)
+//! diff    = 2^(KA+F) − P                          signed; done = diff < 0     the bracket, exact
+//! x_0     = done ? 0 : ⌊diff / 2^(KA+F−W)⌋        UQ1.W  truncation #1
+//! x_j     = j ≤ m_n ? ⌊x_(j−1)² / 2^W⌋ : x_(j−1)  UQ1.W  truncation #(j+1), j = 1..M
+//! out     = ⌊(x_M·Mo + 2^(W−1)) / 2^W⌋            Mo = 2^FI or ks_X, round half up
+//! ```
+//!
+//! Every truncation rounds down, so every error is one-sided: the computed value never
+//! exceeds the exact one. With `e_j = x_j(exact) − x_j ≥ 0`, `e_0 < 2^−W` and, as all values
+//! are in [0, 1], `x² − (x − e)² ≤ 2e`, so `e_j < 2·e_(j−1) + 2^−W`, hence
+//! `e_m < (2^(m+1) − 1)·2^−W < 2^(M+1−W)`. In output units (`Mo < 2^max(FI,B)`) the value fed
+//! to the final rounding lies in `(o* − 2^(M+1−W+max(FI,B)), o*] = (o* − 1/2, o*]` for
+//! `W = max(FI, B) + M + 2`; round half up then gives `|o − o*| < 1`, and `o = o*` where `o*`
+//! is an integer. Each step is monotone in `cos_g` (the mux depends on n only), so the
+//! outputs never decrease as `cos_g` grows. (When `KA + F < W` the bracket is exact and
+//! shifted left instead.)
+
+use crate::config::Config;
+use crate::datapath::{lit, Builder, Table};
+use crate::widths::{bit_length, mask};
+use num_bigint::BigUint;
+use serde::Serialize;
+
+/// The fitted constants of one configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fit {
+    /// `a_n` before quantisation (0 for n = 0).
+    pub a: Vec<f64>,
+    /// `round(a_n · 2^KA)`.
+    pub a_code: Vec<u64>,
+    /// `m_n`: the bracket is raised to `2^m_n`.
+    pub m: Vec<u32>,
+    /// The fit's own estimate of `max_c |S − c^n|` for each n (before quantisation).
+    pub fit_error: Vec<f64>,
+}
+
+/// Internal widths of the fitted unit.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct FittedWidths {
+    /// KA: fractional bits of `a_n` (the `k_frac_bits` parameter).
+    pub a_frac_bits: u32,
+    /// Bits of the largest `a_code`.
+    pub a_bits: u32,
+    /// Bits of the `m_n` field of the ROM word (0 when M = 0).
+    pub m_bits: u32,
+    /// ROM word: `{m_n, a_code}`.
+    pub rom_word_bits: u32,
+    /// `P = a_code·D`.
+    pub product_bits: u32,
+    /// `diff = 2^(KA+F) − P` with its sign bit.
+    pub diff_bits: u32,
+    /// W: fractional bits of the bracket and of every square, UQ1.W.
+    pub frac_bits: u32,
+}
+
+/// Largest and worst error of `max(0, 1 − a t)^(2^m)` against `(1 − t)^n` over `t ∈ [0, 1]`.
+fn max_error(n: u32, m: u32, a: f64) -> f64 {
+    const GRID: usize = 160;
+    let e = 1i32 << m;
+    let err = |t: f64| {
+        let base = (1.0 - a * t).max(0.0);
+        (base.powi(e) - (1.0 - t).powi(n as i32)).abs()
+    };
+    let t_end = (40.0 / n as f64).min(1.0);
+    let (mut worst, mut at) = (err(1.0), GRID);
+    for i in 0..=GRID {
+        let v = err(t_end * i as f64 / GRID as f64);
+        if v > worst {
+            worst = v;
+            at = i;
+        }
+    }
+    if at < GRID || t_end < 1.0 {
+        // golden-section refinement of the worst grid point's neighbourhood
+        let h = t_end / GRID as f64;
+        let (mut lo, mut hi) = ((at as f64 - 1.0) * h, (at as f64 + 1.0) * h);
+        lo = lo.max(0.0);
+        hi = hi.min(1.0);
+        let r = 0.618_033_988_749_894_9;
+        let (mut x1, mut x2) = (hi - r * (hi - lo), lo + r * (hi - lo));
+        let (mut f1, mut f2) = (err(x1), err(x2));
+        for _ in 0..24 {
+            if f1 > f2 {
+                hi = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = hi - r * (hi - lo);
+                f1 = err(x1);
+            } else {
+                lo = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = lo + r * (hi - lo);
+                f2 = err(x2);
+            }
+        }
+        worst = worst.max(f1).max(f2);
+    }
+    worst
+}
+
+/// The minimax `a` for one (n, m): golden-section search on the quasi-convex `E(a)`.
+fn fit_one(n: u32, m: u32) -> (f64, f64) {
+    let centre = n as f64 / (1u32 << m) as f64;
+    let (mut lo, mut hi) = (centre * 0.25, centre * 4.0);
+    let r = 0.618_033_988_749_894_9;
+    let (mut x1, mut x2) = (hi - r * (hi - lo), lo + r * (hi - lo));
+    let (mut f1, mut f2) = (max_error(n, m, x1), max_error(n, m, x2));
+    for _ in 0..48 {
+        if f1 < f2 {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - r * (hi - lo);
+            f1 = max_error(n, m, x1);
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + r * (hi - lo);
+            f2 = max_error(n, m, x2);
+        }
+    }
+    let a = 0.5 * (lo + hi);
+    (a, max_error(n, m, a))
+}
+
+/// The best `(a, m, error)` for one n over `m ∈ 0..=max_m`.
+pub fn fit_n(n: u32, max_m: u32) -> (f64, u32, f64) {
+    let mut best = (0.0, 0, f64::INFINITY);
+    for m in 0..=max_m {
+        if (1u64 << m) > 4 * n as u64 {
+            break; // raising to far more than n only widens the bell
+        }
+        let (a, e) = fit_one(n, m);
+        if e < best.2 - 1e-12 {
+            best = (a, m, e);
+        }
+    }
+    best
+}
+
+/// Fits every n of the configuration (two threads) and quantises `a_n`.
+pub fn fit(cfg: &Config) -> Fit {
+    let count = 1usize << cfg.n_bits();
+    let max_m = cfg.max_squarings();
+    let threads = std::thread::available_parallelism().map_or(1, |p| p.get()).clamp(1, 8);
+    let mut rows: Vec<(f64, u32, f64)> = vec![(0.0, 0, 0.0); count];
+    std::thread::scope(|s| {
+        let chunk = count.div_ceil(threads);
+        for (t, part) in rows.chunks_mut(chunk).enumerate() {
+            s.spawn(move || {
+                for (i, row) in part.iter_mut().enumerate() {
+                    let n = (t * chunk + i) as u32;
+                    if n > 0 {
+                        *row = fit_n(n, max_m);
+                    }
+                }
+            });
+        }
+    });
+    let scale = (cfg.kf() as f64).exp2();
+    let a_code = rows.iter().enumerate().map(|(n, r)| if n == 0 { 0 } else { ((r.0 * scale).round() as u64).max(1) }).collect();
+    Fit { a: rows.iter().map(|r| r.0).collect(), a_code, m: rows.iter().map(|r| r.1).collect(), fit_error: rows.iter().map(|r| r.2).collect() }
+}
+
+impl Fit {
+    /// The ROM words `{m_n, a_code}`.
+    pub fn rom_words(&self, w: &FittedWidths) -> Vec<u128> {
+        self.a_code.iter().zip(&self.m).map(|(&a, &m)| ((m as u128) << w.a_bits) | a as u128).collect()
+    }
+}
+
+impl FittedWidths {
+    pub fn derive(cfg: &Config, fit: &Fit) -> FittedWidths {
+        let (f, ka) = (cfg.f(), cfg.kf());
+        let a_bits = bit_length(*fit.a_code.iter().max().unwrap_or(&1) as u128).max(1);
+        let m_bits = bit_length(cfg.max_squarings() as u128);
+        let product_bits = a_bits + f + 1;
+        FittedWidths {
+            a_frac_bits: ka,
+            a_bits,
+            m_bits,
+            rom_word_bits: a_bits + m_bits,
+            product_bits,
+            diff_bits: product_bits.max(ka + f + 1) + 1,
+            frac_bits: cfg.fi().max(cfg.b()) + cfg.max_squarings() + 2,
+        }
+    }
+}
+
+/// Every intermediate value of the fitted datapath for one input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FittedTrace {
+    pub a_code: u64,
+    pub m: u32,
+    pub one_minus_cos: u64,
+    pub product: u128,
+    pub done: bool,
+    /// `x_0 … x_M` (only the first M+1 used)
+    pub squares: [u128; 5],
+}
+
+/// The bit-exact golden model (what the RTL computes).
+pub fn trace(cfg: &Config, fit: &Fit, w: &FittedWidths, x: crate::model::Inputs) -> (FittedTrace, crate::model::Outputs) {
+    let (f, fi, b, ka, wf) = (cfg.f(), cfg.fi(), cfg.b(), cfg.kf(), w.frac_bits);
+    let cos = (x.cos_g as u64 & mask(f + 1) as u64).min(1 << f);
+    let n = (x.n as u64 & mask(cfg.n_bits()) as u64) as usize;
+    let (a_code, m) = (fit.a_code[n], fit.m[n]);
+    let d = (1u64 << f) - cos;
+    let product = a_code as u128 * d as u128;
+    let one = 1u128 << (ka + f);
+    let done = product > one;
+    let diff = if done { 0 } else { one - product };
+    let x0 = if ka + f >= wf { diff >> (ka + f - wf) } else { diff << (wf - ka - f) };
+    let mut squares = [0u128; 5];
+    squares[0] = x0;
+    for j in 1..=cfg.max_squarings() as usize {
+        let prev = squares[j - 1];
+        squares[j] = if j as u32 <= m { (prev * prev) >> wf } else { prev };
+    }
+    let s = squares[cfg.max_squarings() as usize];
+    let intensity = ((s + (1u128 << (wf - fi - 1))) >> (wf - fi)) as u32;
+    let spec = x.ks.map(|k| ((s * (k as u128 & mask(b)) + (1u128 << (wf - 1))) >> wf) as u32);
+    (
+        FittedTrace { a_code, m, one_minus_cos: d, product, done, squares },
+        crate::model::Outputs { spec, intensity, done },
+    )
+}
+
+/// Checks one output vector against the exact rational `S = base^(2^m)`,
+/// `base = 1 − a_code·D/2^(KA+F)`, with the faithful contract; `done ⇔ base < 0`.
+pub fn check(cfg: &Config, fit: &Fit, x: crate::model::Inputs, got: crate::model::Outputs) -> Result<(), String> {
+    let (f, ka) = (cfg.f(), cfg.kf());
+    let cos = (x.cos_g as u64).min(1 << f);
+    let n = x.n as usize;
+    let one = 1u128 << (ka + f);
+    let p = fit.a_code[n] as u128 * ((1u64 << f) - cos) as u128;
+    let done = p > one;
+    if got.done != done {
+        return Err(format!("done: got {}, reference {done}", got.done));
+    }
+    let e = 1u32 << fit.m[n];
+    let den_log2 = (ka + f) * e;
+    let s_num = if done { BigUint::from(0u32) } else { BigUint::from(one - p).pow(e) };
+    let within = |o: u32, mult: u128| -> bool {
+        let ideal = &s_num * BigUint::from(mult);
+        let scaled = BigUint::from(o) << den_log2;
+        let diff = if scaled > ideal { scaled - &ideal } else { &ideal - scaled };
+        diff < (BigUint::from(1u32) << den_log2)
+    };
+    if !within(got.intensity, 1u128 << cfg.fi()) {
+        return Err(format!("intensity: got {}, ideal S·2^FI = {:.6}", got.intensity, ratio(&s_num, den_log2) * (cfg.fi() as f64).exp2()));
+    }
+    for (i, name) in ["spec_r", "spec_g", "spec_b"].iter().enumerate() {
+        if !within(got.spec[i], x.ks[i] as u128) {
+            return Err(format!("{name}: got {}, ideal S·ks = {:.6}", got.spec[i], ratio(&s_num, den_log2) * x.ks[i] as f64));
+        }
+    }
+    Ok(())
+}
+
+/// `num / 2^den_log2` as a float.
+fn ratio(num: &BigUint, den_log2: u32) -> f64 {
+    let bits = num.bits() as u32;
+    let keep = bits.min(60);
+    let top = (num >> (bits - keep)).iter_u64_digits().next().unwrap_or(0) as f64;
+    top * ((bits - keep) as f64 - den_log2 as f64).exp2()
+}
+
+/// The ROM `{m_n, a_n}` as a table of the datapath.
+pub fn table(fit: &Fit, w: &FittedWidths) -> Table {
+    Table {
+        name: "fit_rom".into(),
+        file: "fit_rom.hex".into(),
+        param: "FIT_ROM_FILE".into(),
+        width: w.rom_word_bits,
+        words: fit.rom_words(w),
+        what: format!(
+            "per-n fit: {{m_n ({} bits), a_n (UQ{}.{})}}",
+            w.m_bits,
+            w.a_bits.saturating_sub(w.a_frac_bits),
+            w.a_frac_bits
+        ),
+        fields: vec![("a_code".into(), w.a_bits), ("m".into(), w.m_bits)],
+    }
+}
+
+/// The fitted datapath: ROM read and 1 − cos; a_n·(1 − cos); the bracket and the key block;
+/// M squarings, each bypassed when j > m_n; colour multipliers and the roundings.
+pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
+    let (f, fi, bb, ka, wf) = (cfg.f(), cfg.fi(), cfg.b(), cfg.kf(), w.frac_bits);
+    let cb = f + 1;
+    let t = b.table(table(fit, w));
+
+    b.step("per-n fit ROM read {m_n, a_n}; 1 - cos (adder 6)");
+    b.rom_read("fit", t, "n");
+    let g = b.r("cos_g");
+    let one = lit(cb, 1u128 << f);
+    b.wire("one_minus_cos", cb, format!("({g} > {one}) ? {} : ({one} - {g})", lit(cb, 0)), &format!("UQ1.{f}: 1 - min(cos, 1), exact"));
+    b.delay(crate::datapath::add_delay(cb) + crate::datapath::LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
+
+    b.step("deviation a_n*(1 - cos) (multiplier 7)");
+    let pb = w.product_bits;
+    let (a, d) = (b.operand("fit", 0, w.a_bits, pb), b.operand("one_minus_cos", 0, cb, pb));
+    b.wire("deviation", pb, format!("{a} * {d}"), &format!("UQ{}.{}: a_n*(1 - cos), exact", pb - ka - f, ka + f));
+    b.delay(crate::datapath::mul_delay(w.a_bits, cb));
+
+    b.step("bracket = 1 - deviation (adder 9); its sign is the cut-off (comparator 12)");
+    let db = w.diff_bits;
+    let dv = b.zext("deviation", db);
+    b.wire("diff", db, format!("{} - {dv}", lit(db, 1u128 << (ka + f))), &format!("S{}.{}: 1 - a_n*(1 - cos), exact (two's complement)", db - ka - f, ka + f));
+    let sign = b.bits("diff", db - 1, db - 1);
+    b.wire("done", 1, sign, "the bracket is negative: beyond the highlight");
+    b.delay(crate::datapath::add_delay(db));
+
+    b.step("key block (13) and truncation #1");
+    let x0 = if ka + f >= wf {
+        b.bits("diff", ka + f, ka + f - wf)
+    } else {
+        let d = b.bits("diff", ka + f, 0);
+        format!("{{{d}, {}}}", lit(wf - ka - f, 0))
+    };
+    let dn = b.r("done");
+    b.wire("power0", wf + 1, format!("{dn} ? {} : {x0}", lit(wf + 1, 0)), &format!("UQ1.{wf}: the bracket in [0, 1], floored; 0 beyond the cut-off"));
+    b.delay(crate::datapath::LUT_DELAY);
+
+    let m_max = cfg.max_squarings();
+    for j in 1..=m_max {
+        b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
+        let prev = format!("power{}", j - 1);
+        let sq = 2 * wf + 2;
+        let (p1, p2) = (b.zext(&prev, sq), b.zext(&prev, sq));
+        b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
+        let hi = b.bits(&format!("square{j}"), 2 * wf, wf);
+        let keep = b.r(&prev);
+        let mf = b.bits("fit", w.rom_word_bits - 1, w.a_bits);
+        b.wire(
+            &format!("power{j}"),
+            wf + 1,
+            format!("({mf} >= {}) ? {hi} : {keep}", lit(w.m_bits, j as u128)),
+            &format!("UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}", j + 1, j - 1),
+        );
+        b.delay(crate::datapath::mul_delay(wf + 1, wf + 1) + crate::datapath::LUT_DELAY);
+    }
+
+    b.step("colour multipliers (14-16) and the intensity, rounded half up");
+    let s = format!("power{m_max}");
+    let cp = wf + bb;
+    for ch in crate::datapath::CHANNELS {
+        let (sv, kv) = (b.zext(&s, cp), b.zext(&format!("ks_{ch}"), cp));
+        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wf - 1))), &format!("UQ{bb}.{wf}: S*ks_{ch} + 1/2 colour ulp"));
+        let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wf);
+        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S*ks_{ch} rounded half up"));
+    }
+    let sv = b.r(&s);
+    b.wire("intensity_sum", wf + 1, format!("{sv} + {}", lit(wf + 1, 1u128 << (wf - fi - 1))), &format!("UQ1.{wf}: S + 2^-{} (round half up; S < 1 when it is not a whole 1.0)", fi + 1));
+    let e = b.bits("intensity_sum", wf, wf - fi);
+    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    b.delay(crate::datapath::mul_delay(wf + 1, bb) + crate::datapath::add_delay(cp));
+}
