@@ -539,9 +539,12 @@ pub fn run_one(
                 let mut t = 0;
                 while t < len {
                     let n = (len - t).min(CHUNK) as usize;
-                    stdout
-                        .read_exact(&mut buf[..n * OUT_RECORD])
-                        .map_err(|e| failed(format!("the Verilator harness stopped after {t} of {len} cycles: {e}")))?;
+                    if let Err(e) = stdout.read_exact(&mut buf[..n * OUT_RECORD]) {
+                        let mut err = String::new();
+                        let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
+                        let _ = child.wait();
+                        return Err(failed(format!("the Verilator harness stopped after {t} of {len} cycles ({e}):\n{}", err.trim_end())));
+                    }
                     for k in 0..n {
                         checker.check(stim, t + k as u64, decode(&buf[k * OUT_RECORD..(k + 1) * OUT_RECORD]));
                     }
@@ -581,7 +584,8 @@ pub fn run_one(
             if !out.status.success() {
                 return Err(failed(format!("vvp failed: {}", String::from_utf8_lossy(&out.stderr))));
             }
-            let file = std::fs::File::open(&vout).map_err(|e| failed(format!("vvp wrote no output: {e}")))?;
+            let said = String::from_utf8_lossy(&out.stdout);
+            let file = std::fs::File::open(&vout).map_err(|e| failed(format!("vvp wrote no output ({e}); it said:\n{}", said.trim_end())))?;
             let mut t = 0;
             for line in BufReader::new(file).lines() {
                 let line = line.map_err(|e| failed(e.to_string()))?;
@@ -723,6 +727,7 @@ fn write_trace(design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], m: &
 /// `specgen cosim`: exit 0 when every output matches, 1 on any mismatch, 2 on usage errors.
 pub fn run_cli(args: &CosimArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
+    check_tables(&design)?;
     let model = Model::new(&design.cfg);
     let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)).max(1);
     let t0 = Instant::now();
@@ -764,4 +769,67 @@ pub fn run_cli(args: &CosimArgs) -> Result<(), Failure> {
             Err(failed(msg))
         }
     }
+}
+
+/// Reads a `$readmemh` file: hex words separated by white space, `//` comments, `@addr`
+/// address jumps. Returns the words by address (`None` where the file sets nothing).
+pub fn parse_readmemh(text: &str, depth: usize) -> Result<Vec<Option<u128>>, String> {
+    let mut words = vec![None; depth];
+    let mut addr = 0usize;
+    for (ln, line) in text.lines().enumerate() {
+        let line = line.split("//").next().unwrap_or("");
+        for tok in line.split_whitespace() {
+            if let Some(a) = tok.strip_prefix('@') {
+                addr = usize::from_str_radix(a, 16).map_err(|_| format!("line {}: bad address {tok:?}", ln + 1))?;
+                continue;
+            }
+            let v = u128::from_str_radix(&tok.replace('_', ""), 16).map_err(|_| format!("line {}: {tok:?} is not a hex word", ln + 1))?;
+            if addr >= depth {
+                return Err(format!("line {}: more than {depth} entries", ln + 1));
+            }
+            words[addr] = Some(v);
+            addr += 1;
+        }
+    }
+    Ok(words)
+}
+
+/// Table files are data: every table the configuration reads with `$readmemh` is compared
+/// with the golden model's entry by entry before anything is simulated. A missing, short or
+/// wrong file fails (exit 1) naming the file, and the first wrong entry by index and value.
+pub fn check_tables(design: &Design) -> Result<(), Failure> {
+    if design.cfg.params.rom_style != crate::config::RomStyle::File {
+        return Ok(());
+    }
+    for t in crate::rom::tables(&design.cfg) {
+        let path = design.dir.join(&t.file);
+        let meta = std::fs::metadata(&path)
+            .map_err(|e| failed(format!("table file {} is missing ({e}); `specgen generate` writes it beside the RTL", path.display())))?;
+        if !meta.is_file() || meta.len() > 64 << 20 {
+            return Err(failed(format!("table file {} is not a regular file of at most 64 MiB", path.display())));
+        }
+        let text = std::fs::read_to_string(&path).map_err(|e| failed(format!("cannot read table file {}: {e}", path.display())))?;
+        let words = parse_readmemh(&text, t.words.len()).map_err(|e| failed(format!("table file {}: {e}", path.display())))?;
+        for (i, (got, want)) in words.iter().zip(&t.words).enumerate() {
+            match got {
+                None => {
+                    return Err(failed(format!(
+                        "table file {} is short: entry {i} is missing ({} entries expected, {})",
+                        path.display(),
+                        t.words.len(),
+                        t.what
+                    )))
+                }
+                Some(v) if v != want => {
+                    return Err(failed(format!(
+                        "table file {}: entry {i} is {v:x}, the golden model's is {want:x} ({})",
+                        path.display(),
+                        t.what
+                    )))
+                }
+                _ => {}
+            }
+        }
+    }
+    Ok(())
 }

@@ -1,3 +1,4 @@
+#include <unistd.h>
 // specgen co-simulation harness for Verilator: generic over every generated configuration.
 //
 // Built with --prefix Vdut --top-module <top>; -DHAS_CLOCK=1 when the unit has clk/rst.
@@ -46,6 +47,14 @@ int main(int argc, char** argv) {
     vcd.open(vcd_path ? vcd_path : "specgen_trace.vcd");
     uint64_t time = 0;
 #endif
+    // results go to the original stdout; the design's own $display text to stderr
+    FILE* data = fdopen(dup(1), "wb");
+    if (!data || dup2(2, 1) < 0) return 5;
+    dut.eval();  // runs the initial blocks: a missing or short table file stops here
+    if (ctx.gotFinish()) {
+        std::fprintf(stderr, "the design stopped the simulation with $finish before the first vector (its message is above)\n");
+        return 4;
+    }
     size_t count;
     while ((count = std::fread(in_buf, sizeof(InRecord), BATCH, stdin)) > 0) {
         for (size_t i = 0; i < count; i++) {
@@ -79,8 +88,8 @@ int main(int argc, char** argv) {
 #endif
 #endif
         }
-        if (std::fwrite(out_buf, sizeof(OutRecord), count, stdout) != count) return 3;
-        std::fflush(stdout);
+        if (std::fwrite(out_buf, sizeof(OutRecord), count, data) != count) return 3;
+        std::fflush(data);
     }
 #if TRACE
     vcd.close();

@@ -49,15 +49,16 @@ initial begin
     if ({{ t.name }}_fd == 0) begin
         $display("ERROR: %m: cannot open table file %0s (parameter {{ t.param }}); run the simulator where it is, or set the parameter", {{ t.param }});
         $finish;
-    end
-    $fclose({{ t.name }}_fd);
-    {{ t.name }}[{{ t.depth - 1 }}] = {{ t.not_last }};
+    end else begin
+        $fclose({{ t.name }}_fd);
+        {{ t.name }}[{{ t.depth - 1 }}] = {{ t.not_last }};
 `endif
-    $readmemh({{ t.param }}, {{ t.name }});
+        $readmemh({{ t.param }}, {{ t.name }});
 `ifndef SYNTHESIS
-    if ({{ t.name }}[{{ t.depth - 1 }}] !== {{ t.last }}) begin
-        $display("ERROR: %m: table file %0s (parameter {{ t.param }}) is short or not the generated one: entry {{ t.depth - 1 }} is %h, expected %h", {{ t.param }}, {{ t.name }}[{{ t.depth - 1 }}], {{ t.last }});
-        $finish;
+        if ({{ t.name }}[{{ t.depth - 1 }}] !== {{ t.last }}) begin
+            $display("ERROR: %m: table file %0s (parameter {{ t.param }}) is short or not the generated one: entry {{ t.depth - 1 }} is %h, expected %h", {{ t.param }}, {{ t.name }}[{{ t.depth - 1 }}], {{ t.last }});
+            $finish;
+        end
     end
 `endif
 end
