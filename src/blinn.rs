@@ -38,7 +38,8 @@
 //! T = 2^W·[ ln2·(εg/(e(1−εg ln2)) + 1.01·(2^(N−WL) + 2^−WY)) + εE + 2^−WE ]
 //! ```
 //!
-//! of `o*`. [`BlinnWidths::derive`] picks the smallest widths and tables with `T < 1/2`; the
+//! of `o*`. [`BlinnWidths::derive`] gives each width a share of the 1/2 ([`Shares`]) and picks
+//! the smallest width that keeps it; the
 //! final round-half-up then gives `|o − o*| < 1`, and `o = o*` where `o*` is an integer.
 //! Saturating y at `W + 2` only replaces outputs whose ideal is `< 2^−2·2^W/2^W·...` — below
 //! 1/4 ulp — by 0, inside the same bound.
@@ -102,6 +103,43 @@ impl Budget {
     }
 }
 
+/// The budget's shares, each a condition on one width (all together: `T ≤ 0.448 < 1/2`):
+/// WY: truncation #2 ≤ 1/16; WL: truncation #1 ≤ 1/16; WG: the log entries' own rounding
+/// (table as fine as X, no interpolation) ≤ 1/12 and ≤ 0.45 of the monotone room; TG: the
+/// whole log term ≤ 1/6 and ≤ 0.9 of the room; WE: the exp entries' rounding (no
+/// interpolation) plus truncation #3 ≤ 1/12; TE: the whole exp term plus truncation #3 ≤ 5/32.
+pub struct Shares;
+
+impl Shares {
+    pub fn y_truncation(w: &BlinnWidths, cfg: &Config) -> bool {
+        w.budget(cfg).y_truncation <= 1.0 / 16.0
+    }
+    pub fn ell_truncation(w: &BlinnWidths, cfg: &Config) -> bool {
+        w.budget(cfg).ell_truncation <= 1.0 / 16.0
+    }
+    pub fn log_entries(w: &BlinnWidths, cfg: &Config) -> bool {
+        // the entries' rounding and the interpolation's floor, without the interpolation error
+        let eps = 1.5 * (-(w.log_frac_bits as f64)).exp2() + (-50f64).exp2();
+        let b = w.budget(cfg);
+        let room = b.monotone_ratio / w.eps_g(cfg);
+        let ln2 = std::f64::consts::LN_2;
+        (w.out_bits as f64).exp2() * ln2 * eps / (std::f64::consts::E * (1.0 - eps * ln2)) <= 1.0 / 12.0 && eps * room <= 0.45
+    }
+    pub fn log_table(w: &BlinnWidths, cfg: &Config) -> bool {
+        let b = w.budget(cfg);
+        w.log_index_bits >= cfg.f() - 1 || (b.log_table <= 1.0 / 6.0 && b.monotone_ratio <= 0.9)
+    }
+    pub fn exp2_entries(w: &BlinnWidths, cfg: &Config) -> bool {
+        // the entries' rounding, the interpolation's floor and truncation #3
+        let _ = cfg;
+        (w.out_bits as f64).exp2() * (2.5 * (-(w.exp2_frac_bits as f64)).exp2() + (-50f64).exp2()) <= 1.0 / 12.0
+    }
+    pub fn exp2_table(w: &BlinnWidths, cfg: &Config) -> bool {
+        let b = w.budget(cfg);
+        w.exp2_index_bits >= w.y_frac_bits || b.exp2_table + b.shift_truncation <= 5.0 / 32.0
+    }
+}
+
 /// `max g''` on [0, 1/2]: g'' = (1/ln2)·Σ_{k≥2} k(k−1)/(k+1)·x^(k−2), rising in x.
 fn g2_max() -> f64 {
     let s: f64 = (2..400).map(|k| (k * (k - 1)) as f64 / (k + 1) as f64 * 0.5f64.powi(k as i32 - 2)).sum();
@@ -118,6 +156,14 @@ pub fn g(x: f64) -> f64 {
 }
 
 impl BlinnWidths {
+    /// `εg`: the g table's error (entries, interpolation, its floor).
+    pub fn eps_g(&self, cfg: &Config) -> f64 {
+        let p = |k: i64| (k as f64).exp2();
+        let (tg, wg) = (self.log_index_bits as i64, self.log_frac_bits as i64);
+        let interpolates = tg < cfg.f() as i64 - 1;
+        p(-wg - 1) + p(-50) + if interpolates { g2_max() / 8.0 * p(-2 * (tg + 1)) + p(-wg) } else { 0.0 }
+    }
+
     /// The error budget for a choice of widths (see the module documentation).
     pub fn budget(&self, cfg: &Config) -> Budget {
         let ln2 = std::f64::consts::LN_2;
@@ -125,8 +171,8 @@ impl BlinnWidths {
         let (w, n, f) = (self.out_bits as i64, cfg.n_bits() as i64, cfg.f() as i64);
         let (tg, wg, wl, wy) = (self.log_index_bits as i64, self.log_frac_bits as i64, self.ell_frac_bits as i64, self.y_frac_bits as i64);
         let (te, we) = (self.exp2_index_bits as i64, self.exp2_frac_bits as i64);
-        let interpolates_g = tg < f - 1;
-        let eps_g = p(-wg - 1) + p(-50) + if interpolates_g { g2_max() / 8.0 * p(-2 * (tg + 1)) + p(-wg) } else { 0.0 };
+        let eps_g = self.eps_g(cfg);
+        let _ = (tg, wg);
         let interpolates_e = te < wy;
         let eps_e = p(-we - 1) + p(-50) + if interpolates_e { ln2 * ln2 / 8.0 * p(-2 * te) + p(-we) } else { 0.0 };
         let l_top = -(0.5 + p(-f)).log2();
@@ -140,9 +186,8 @@ impl BlinnWidths {
         }
     }
 
-    /// The smallest widths with a budget below 1/2: each term gets its share
-    /// (log table 1/6, each truncation 1/16, exp table 1/8, shift 1/32), then the table
-    /// sizes are the smallest that keep the share.
+    /// The shares of the budget's `1/2`, one per width: each width is the smallest that keeps
+    /// its share, so removing any one bit breaks the budget as written (see [`Shares`]).
     pub fn derive(cfg: &Config) -> BlinnWidths {
         let (f, n) = (cfg.f(), cfg.n_bits());
         let w = cfg.fi().max(cfg.b());
@@ -150,29 +195,35 @@ impl BlinnWidths {
             out_bits: w,
             exp_bits: bit_length(f as u128),
             log_index_bits: 1,
-            log_frac_bits: w + 3,
+            log_frac_bits: 1,
             log_entry_bits: 0,
             log_delta_bits: 0,
-            ell_frac_bits: w + n + 4,
-            y_frac_bits: w + 4,
+            ell_frac_bits: 1,
+            y_frac_bits: 1,
             y_int_bits: bit_length((w + 2) as u128),
             exp2_index_bits: 1,
-            exp2_frac_bits: w + 5,
+            exp2_frac_bits: cfg.fi() + 1,
             exp2_entry_bits: 0,
             exp2_delta_bits: 0,
         };
-        // WG: the entries' own rounding (no interpolation, TG = F-1) within 1/12 and within
-        // half the monotone room; the monotone condition may ask for more than the outputs do
-        let rounding_only = |bw: &BlinnWidths| BlinnWidths { log_index_bits: f - 1, ..bw.clone() }.budget(cfg);
-        while rounding_only(&bw).log_table > 1.0 / 12.0 || rounding_only(&bw).monotone_ratio > 0.45 {
+        let _ = n;
+        while !Shares::y_truncation(&bw, cfg) {
+            bw.y_frac_bits += 1;
+        }
+        bw.ell_frac_bits = bw.y_frac_bits;
+        while !Shares::ell_truncation(&bw, cfg) {
+            bw.ell_frac_bits += 1;
+        }
+        while !Shares::log_entries(&bw, cfg) {
             bw.log_frac_bits += 1;
         }
-        // TG: the smallest log table whose interpolation keeps the whole term within 1/6
-        while bw.log_index_bits < f - 1 && (bw.budget(cfg).log_table > 1.0 / 6.0 || bw.budget(cfg).monotone_ratio > 0.9) {
+        while !Shares::log_table(&bw, cfg) {
             bw.log_index_bits += 1;
         }
-        // TE: the smallest exp table within 1/8
-        while bw.exp2_index_bits < bw.y_frac_bits && bw.budget(cfg).exp2_table > 1.0 / 8.0 {
+        while !Shares::exp2_entries(&bw, cfg) {
+            bw.exp2_frac_bits += 1;
+        }
+        while !Shares::exp2_table(&bw, cfg) {
             bw.exp2_index_bits += 1;
         }
         let b = bw.budget(cfg);

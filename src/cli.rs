@@ -29,8 +29,12 @@ pub enum Command {
         #[command(flatten)]
         params: ParamArgs,
     },
-    /// Export the cut-off ROM cos_sp(n) alone.
+    /// Export one table of the unit: the cut-off ROM cos_sp(n) (quadratic), the fit ROM
+    /// (fitted), the log2 or exp2 table (blinn).
     Rom {
+        /// Which table [default: the model's first: cos_sp_rom, fit_rom, log2_rom]
+        #[arg(long, value_name = "NAME")]
+        table: Option<String>,
         #[arg(long, value_enum, default_value = "hex")]
         format: RomFormat,
         /// Output file (default: standard output).
@@ -96,7 +100,8 @@ pub struct ParamArgs {
     /// The constant k as a decimal string, 0 < k <= 1 [default "0.3686"]
     #[arg(long)]
     pub k: Option<String>,
-    /// KF: fractional bits k is rounded to (nearest, ties to even) [4..=24, default 16]
+    /// KF: fractional bits k is rounded to (nearest, ties to even); with --model fitted, the
+    /// fractional bits of every a_n [4..=24, default 16]
     #[arg(long)]
     pub k_frac_bits: Option<u32>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=cut points: lean 13, paper 6,
@@ -112,9 +117,13 @@ pub struct ParamArgs {
     /// Datapath: lean (error-budget widths, DSP-sized) or paper (Fig. 5 literally, full width) [default lean]
     #[arg(long, value_enum)]
     pub arch: Option<config::Arch>,
-    /// Function: quadratic (the paper's (15)) or blinn-pow (cos^n by square-and-multiply) [default quadratic]
+    /// Function: quadratic (the paper's (15)), fitted ([1 - a_n(1 - cos)]^(2^m_n) per n), blinn
+    /// (cos^n from log2/exp2 tables) or blinn-pow (cos^n by square-and-multiply) [default quadratic]
     #[arg(long, value_enum)]
     pub model: Option<config::SpecularModel>,
+    /// M of --model fitted: the bracket is squared up to M times (exponent 2^m_n, m_n <= M) [0..=4, default 3]
+    #[arg(long)]
+    pub max_squarings: Option<u32>,
 }
 
 /// A failure with its exit code.
@@ -150,7 +159,7 @@ impl ParamArgs {
         macro_rules! set {
             ($($f:ident),*) => { $(if let Some(v) = self.$f { p.$f = v; })* };
         }
-        set!(cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, stages, rounding, rom_style, arch, model);
+        set!(cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, stages, rounding, rom_style, arch, model, max_squarings);
         if let Some(v) = &self.k {
             p.k = v.clone();
         }
@@ -185,9 +194,22 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Rom { format, output, params } => {
+        Command::Rom { table, format, output, params } => {
             let cfg = params.to_config()?;
-            let text = rom::render(&cfg, format);
+            let tables = rom::tables(&cfg);
+            let names = tables.iter().map(|t| t.name.as_str()).collect::<Vec<_>>().join(", ");
+            let t = match &table {
+                None => tables.first(),
+                Some(name) => tables.iter().find(|t| &t.name == name),
+            }
+            .ok_or_else(|| {
+                usage(match (&table, names.is_empty()) {
+                    (_, true) => format!("--model {} has no table", cfg.model().name()),
+                    (Some(name), false) => format!("invalid --table: {name:?}; allowed: {names}"),
+                    (None, false) => unreachable!("a first table exists"),
+                })
+            })?;
+            let text = rom::render_table(&cfg, t, format);
             match output {
                 Some(path) => emit::write_file_atomically(&path, text.as_bytes())
                     .map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
@@ -243,24 +265,85 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
     }
     let x = Inputs { cos_g, n, ks: [ks[0], ks[1], ks[2]] };
     let m = Model::new(cfg);
-    let t = m.trace(x);
-    let r = model::reference(cfg, x);
-    let w = &m.widths;
+    let o = m.eval(x);
     let c = cos_g.min(1 << f) as f64 / (1u64 << f) as f64;
+    let blinn = c.powi(n as i32);
+    let scale = (cfg.fi() as f64).exp2();
+    println!("input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}", rom::exact_decimal(cos_g as u64, f), x.ks);
+    println!("model      {}", cfg.model().name());
+    match &m.kind {
+        model::Kind::Quadratic => {
+            let t = m.trace(x);
+            let w = &m.widths;
+            let r = model::reference(cfg, x);
+            println!("constant   k = {} -> k_code = {} (k_q = {})", cfg.params.k, cfg.k_code, rom::exact_decimal(cfg.k_code, cfg.kf()));
+            println!("datapath   cos_clamped = {}  one_minus_cos = {}  cos_sp[n] = {}  done = {}", t.cos_clamped, t.one_minus_cos, t.cos_sp, t.done);
+            println!(
+                "           kn = {}  deviation = {} (UQ1.{})  bracket = {} (UQ1.{} = {:.9})",
+                t.kn,
+                t.deviation,
+                w.bracket_frac_bits,
+                t.bracket,
+                w.bracket_frac_bits,
+                t.bracket as f64 / (w.bracket_frac_bits as f64).exp2()
+            );
+            println!("           square = {} (UQ1.{} = {:.9})", t.square, w.square_frac_bits, t.square as f64 / (w.square_frac_bits as f64).exp2());
+            println!(
+                "exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  done = {}  (SPEC §3 with k_q)",
+                r.intensity.to_f64(),
+                r.spec[0].to_f64(),
+                r.spec[1].to_f64(),
+                r.spec[2].to_f64(),
+                r.done
+            );
+        }
+        model::Kind::Fitted { fit, widths } => {
+            let (t, _) = crate::fitted::trace(cfg, fit, widths, x);
+            let wf = widths.frac_bits;
+            let a_q = t.a_code as f64 / (cfg.kf() as f64).exp2();
+            println!("constant   a_n = {} (fit {:.9}) -> a_code = {}, m_n = {} (exponent 2^m_n = {})", rom::exact_decimal(t.a_code, cfg.kf()), fit.a[n as usize], t.a_code, t.m, 1u32 << t.m);
+            println!("datapath   one_minus_cos = {}  a_n*(1 - cos) = {}  done = {}", t.one_minus_cos, t.product, t.done);
+            for j in 0..=cfg.max_squarings() as usize {
+                println!("           power{j} = {} (UQ1.{wf} = {:.9})", t.squares[j], t.squares[j] as f64 / (wf as f64).exp2());
+            }
+            let base = 1.0 - a_q * (1.0 - c);
+            let s = if base < 0.0 { 0.0 } else { base.powi(1 << t.m) };
+            println!("exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (the fitted formula with the stored a_n)", s * scale, s * x.ks[0] as f64, s * x.ks[1] as f64, s * x.ks[2] as f64);
+        }
+        model::Kind::Blinn { widths, tables } => {
+            let (t, _) = crate::blinn::trace(cfg, widths, tables, x);
+            println!("datapath   c = {}  e = {}  x = {} (UQ0.{f})  g^ = {} (UQ2.{})", t.cos_clamped, t.exponent, t.x, t.ghat, widths.log_frac_bits);
+            println!(
+                "           -log2 c = {} (= {:.9})  y = {} (UQ{}.{} = {:.9})  2^-frac(y) = {} (UQ1.{})  power = {}",
+                t.ell,
+                t.ell as f64 / (widths.ell_frac_bits as f64).exp2(),
+                t.y,
+                widths.y_int_bits,
+                widths.y_frac_bits,
+                t.y as f64 / (widths.y_frac_bits as f64).exp2(),
+                t.ehat,
+                widths.exp2_frac_bits,
+                t.v
+            );
+            println!("exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (c^n)", blinn * scale, blinn * x.ks[0] as f64, blinn * x.ks[1] as f64, blinn * x.ks[2] as f64);
+        }
+        model::Kind::BlinnPow => {
+            println!("datapath   square-and-multiply over the bits of n, UQ1.{}", m.widths.power_frac_bits);
+            println!("exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (c^n)", blinn * scale, blinn * x.ks[0] as f64, blinn * x.ks[1] as f64, blinn * x.ks[2] as f64);
+        }
+    }
+    println!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / scale, o.spec, o.done);
     let k_real: f64 = cfg.params.k.trim().parse().unwrap_or(f64::NAN);
     let bracket_real = k_real * n as f64 * (c - 1.0) + 1.0;
     let formula15 = if bracket_real < 0.0 { 0.0 } else { bracket_real * bracket_real };
-    println!("input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}", rom::exact_decimal(cos_g as u64, f), x.ks);
-    println!("constant   k = {} -> k_code = {} (k_q = {})", cfg.params.k, cfg.k_code, rom::exact_decimal(cfg.k_code, cfg.kf()));
-    println!("datapath   cos_clamped = {}  one_minus_cos = {}  cos_sp[n] = {}  done = {}", t.cos_clamped, t.one_minus_cos, t.cos_sp, t.done);
-    println!("           kn = {}  deviation = {} (UQ1.{})  bracket = {} (UQ1.{} = {:.9})", t.kn, t.deviation, w.bracket_frac_bits, t.bracket, w.bracket_frac_bits, t.bracket as f64 / (w.bracket_frac_bits as f64).exp2());
-    println!("           square = {} (UQ1.{} = {:.9})", t.square, w.square_frac_bits, t.square as f64 / (w.square_frac_bits as f64).exp2());
-    let o = t.outputs;
-    println!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / (cfg.fi() as f64).exp2(), o.spec, o.done);
-    println!("exact      intensity* = {:.9} ulp  spec* = [{:.6}, {:.6}, {:.6}]  done = {}  (SPEC §3 with k_q)", r.intensity.to_f64(), r.spec[0].to_f64(), r.spec[1].to_f64(), r.spec[2].to_f64(), r.done);
-    println!("real       formula (15) with k = {k_real}: {formula15:.9}   Blinn cos^n: {:.9}", c.powi(n as i32));
-    match model::check(cfg, x, o) {
-        Ok(()) => println!("contract   {} rounding holds for this input", cfg.rounding().name()),
+    println!(
+        "fidelity   Blinn cos^n = {blinn:.9}; this unit gives {:.9}, off by {:.9}{}",
+        o.intensity as f64 / scale,
+        (o.intensity as f64 / scale - blinn).abs(),
+        if cfg.model() == crate::config::SpecularModel::Quadratic { format!("; formula (15) in real arithmetic with k = {k_real}: {formula15:.9}") } else { String::new() }
+    );
+    match m.check(x, o) {
+        Ok(()) => println!("contract   {} rounding holds for this input ({} model)", cfg.rounding().name(), cfg.model().name()),
         Err(e) => return Err(failed(format!("contract violated: {e}"))),
     }
     Ok(())
