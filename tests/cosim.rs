@@ -155,3 +155,95 @@ fn usage_errors_exit_2() {
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("could not build"), "{}", text(&o));
 }
+
+#[test]
+fn injected_faults_in_the_new_models_are_caught() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let r = tmp.path();
+    let random: &[&str] = &["--vectors", "100000"];
+    let faults: Vec<(&str, &[&str], &str, &str)> = vec![
+        // fitted: the second squaring done when m_n = 1 too
+        ("fit_mux", &["--model", "fitted"], "(fit_c5[24:23] >= 2'h2)", "(fit_c5[24:23] >= 2'h1)"),
+        // fitted: intensity truncated instead of rounded
+        ("fit_round", &["--model", "fitted"], "power3_c7 + 21'h10;", "power3_c7 + 21'h0;"),
+        // blinn: one exponent mis-encoded in the normalisation
+        ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_c1[9] ? 4'h5", "cos_minus_ulp_c1[9] ? 4'h6"),
+        // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)
+        ("blinn_zero", &["--model", "blinn"], "(cos_zero_c5 && (n_c5 != 10'h0))", "(cos_zero_c5)"),
+    ];
+    for (name, gen_args, from, to) in faults {
+        let o = mutant(r, name, gen_args, from, to, random);
+        assert_eq!(o.status.code(), Some(1), "fault {name} survived: {}", text(&o));
+        assert!(text(&o).contains("first mismatch"), "{name}: {}", text(&o));
+    }
+}
+
+/// Adds `delta` to entry `index` of a table file (one hex word a line).
+fn corrupt(path: &Path, index: usize, delta: u128) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let w = lines[index].len();
+    let v = u128::from_str_radix(&lines[index], 16).unwrap() + delta;
+    lines[index] = format!("{v:0w$x}");
+    std::fs::write(path, lines.join("\n") + "\n").unwrap();
+}
+
+#[test]
+fn a_wrong_or_missing_table_entry_fails_cosim_at_default_settings() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    // ROM[700] + 1, and the same fault at a random n, fail the default cosim, naming the entry
+    let n_random = (specgen::cosim::splitmix(std::process::id() as u64) % 1024) as usize;
+    for (i, n) in [700usize, n_random].into_iter().enumerate() {
+        let dir = generate(tmp.path(), &format!("q{i}"), &[]);
+        corrupt(&dir.join("cos_sp_rom.hex"), n, 1);
+        let o = cosim(&dir, &[]);
+        assert_eq!(o.status.code(), Some(1), "ROM[{n}]+1 survived: {}", text(&o));
+        assert!(text(&o).contains(&format!("entry {n} is")) && text(&o).contains("cos_sp_rom.hex"), "{}", text(&o));
+    }
+    // a table of the blinn unit, and a short and a missing file
+    let dir = generate(tmp.path(), "b", &["--model", "blinn"]);
+    corrupt(&dir.join("exp2_rom.hex"), 77, 1);
+    let o = cosim(&dir, &[]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("exp2_rom.hex: entry 77 is"), "{}", text(&o));
+    let short = std::fs::read_to_string(dir.join("log2_rom.hex")).unwrap().lines().take(5).collect::<Vec<_>>().join("\n");
+    std::fs::write(dir.join("log2_rom.hex"), short).unwrap();
+    let o = cosim(&dir, &[]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("log2_rom.hex is short: entry 5 is missing"), "{}", text(&o));
+    std::fs::remove_file(dir.join("log2_rom.hex")).unwrap();
+    let o = cosim(&dir, &[]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("log2_rom.hex is missing"), "{}", text(&o));
+}
+
+/// The generated unit itself refuses to run without its tables: from a working directory
+/// without the file, Icarus and Verilator stop with an error that names it.
+#[test]
+fn a_missing_table_file_stops_both_simulators() {
+    require_tool("verilator", "verilator");
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let elsewhere = tmp.path().join("elsewhere");
+    std::fs::create_dir(&elsewhere).unwrap();
+    for (name, args, file) in [("q", &[][..], "cos_sp_rom.hex"), ("b", &["--model", "blinn"][..], "log2_rom.hex")] {
+        let dir = generate(tmp.path(), name, args);
+        let v = dir.join("specular_unit.v");
+        let sim = tmp.path().join(format!("{name}.vvp"));
+        assert!(Command::new("iverilog").args(["-g2005", "-o"]).arg(&sim).arg(&v).status().unwrap().success());
+        let o = Command::new("vvp").current_dir(&elsewhere).arg("-n").arg(&sim).output().unwrap();
+        assert!(text(&o).contains(&format!("cannot open table file {file}")), "Icarus: {}", text(&o));
+        let mdir = tmp.path().join(format!("{name}_obj"));
+        let b = Command::new("verilator").args(["--binary", "-Wno-fatal", "--top-module", "specular_unit", "-o", "vsim", "--Mdir"]).arg(&mdir).arg(&v).output().unwrap();
+        assert!(b.status.success(), "{}", text(&b));
+        let o = Command::new(mdir.join("vsim")).current_dir(&elsewhere).output().unwrap();
+        assert!(text(&o).contains(&format!("cannot open table file {file}")), "Verilator: {}", text(&o));
+        // and with the file where the simulator runs, neither complains
+        std::fs::copy(dir.join(file), elsewhere.join(file)).unwrap();
+        let o = Command::new("vvp").current_dir(&elsewhere).arg("-n").arg(&sim).output().unwrap();
+        assert!(!text(&o).contains(&format!("table file {file}")), "Icarus: {}", text(&o));
+        std::fs::remove_file(elsewhere.join(file)).unwrap();
+    }
+}

@@ -34,7 +34,7 @@ prop_compose! {
             cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi, k, k_frac_bits: kf,
             rounding: if exact { Rounding::Exact } else { Rounding::Faithful },
             rom_style: RomStyle::File, stages: 0, top: "u".into(),
-            arch: if paper { Arch::Paper } else { Arch::Lean }, model: SpecularModel::Quadratic,
+            arch: if paper { Arch::Paper } else { Arch::Lean }, model: SpecularModel::Quadratic, max_squarings: 3,
         }).ok() // k may round to 0 at few fractional bits: such configs are rejected, not tested
     }
 }

@@ -29,7 +29,7 @@ pub fn cache_dir() -> PathBuf {
     d
 }
 
-/// Configurations that exercise odd widths, pipeline depths from 0 to the lean datapath's full 13, both roundings, both ROM styles.
+/// Configurations that exercise odd widths, pipeline depths from 0 to each datapath's full depth, both roundings, both ROM styles, every model.
 pub const CONFIGS: &[&[&str]] = &[
     &[],
     &["--stages", "1", "--rom-style", "case"],
@@ -42,4 +42,10 @@ pub const CONFIGS: &[&[&str]] = &[
     &["--model", "blinn-pow", "--stages", "3"],
     &["--model", "blinn-pow", "--n-bits", "4", "--color-bits", "11", "--cos-frac-bits", "6", "--intensity-frac-bits", "4"],
     &["--arch", "paper", "--cos-frac-bits", "9", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "11", "--k-frac-bits", "9", "--rom-style", "case"],
+    &["--model", "fitted"],
+    &["--model", "fitted", "--stages", "8"],
+    &["--model", "fitted", "--max-squarings", "1", "--n-bits", "6", "--cos-frac-bits", "9", "--color-bits", "5", "--intensity-frac-bits", "7", "--k-frac-bits", "10", "--stages", "2", "--rom-style", "case", "--top", "fit_unit"],
+    &["--model", "blinn"],
+    &["--model", "blinn", "--stages", "10"],
+    &["--model", "blinn", "--cos-frac-bits", "7", "--n-bits", "5", "--color-bits", "12", "--intensity-frac-bits", "6", "--stages", "4", "--rom-style", "case"],
 ];
