@@ -13,7 +13,7 @@
 //! y     = ⌊n·ℓ⌋ to WY fractional bits, ≤ W+2   −log2 c^n  truncation #2, saturated
 //! Ê     = E[j] − ⌊ΔE[j]·r' / 2^RE⌋             UQ1.WE     2^−frac(y), j = top TE bits of frac(y)
 //! V     = ⌊Ê / 2^⌊y⌋⌋                          UQ1.WE     truncation #3
-//! out   = ⌊(V·Mo + 2^(WE−1)) / 2^WE⌋           Mo = 2^FI or ks_X, round half up; done = (intensity == 0)
+//! out   = ⌊(V·2^FI + 2^(WE−1)) / 2^WE⌋; spec = ⌊(⌊V/2^(WE−WC)⌋·ks + 2^(WC−1)) / 2^WC⌋; done = (intensity == 0)
 //! ```
 //!
 //! # Error budget (the argument [`BlinnWidths::derive`] applies)
@@ -38,7 +38,8 @@
 //! T = 2^W·[ ln2·(εg/(e(1−εg ln2)) + 1.01·(2^(N−WL) + 2^−WY)) + εE + 2^−WE ]
 //! ```
 //!
-//! of `o*`. [`BlinnWidths::derive`] gives each width a share of the 1/2 ([`Shares`]) and picks
+//! of `o*` (for the colours, `T·2^(B−W)` plus the floor of V to WC bits, `< 2^(B−WC)`).
+//! [`BlinnWidths::derive`] gives each width a share of the 1/2 ([`Shares`]) and picks
 //! the smallest width that keeps it; the
 //! final round-half-up then gives `|o − o*| < 1`, and `o = o*` where `o*` is an integer.
 //! Saturating y at `W + 2` only replaces outputs whose ideal is `< 2^−2·2^W/2^W·...` — below
@@ -80,6 +81,8 @@ pub struct BlinnWidths {
     pub exp2_frac_bits: u32,
     pub exp2_entry_bits: u32,
     pub exp2_delta_bits: u32,
+    /// WC: fractional bits of c^n fed to the colour multipliers (the colours' own budget).
+    pub color_frac_bits: u32,
 }
 
 /// The budget terms in output units; their sum must be < 1/2.
@@ -205,6 +208,7 @@ impl BlinnWidths {
             exp2_frac_bits: cfg.fi() + 1,
             exp2_entry_bits: 0,
             exp2_delta_bits: 0,
+            color_frac_bits: 0,
         };
         let _ = n;
         while !Shares::y_truncation(&bw, cfg) {
@@ -228,6 +232,11 @@ impl BlinnWidths {
         }
         let b = bw.budget(cfg);
         assert!(b.holds(), "blinn budget does not close for {:?}: {b:?}", cfg.params);
+        // WC: the colours see the same error scaled by ks/2^W < 2^(B−W), plus flooring V to
+        // WC bits (< 2^(B−WC) in colour units): the smallest WC with a sum below 1/2
+        let p = |k: i64| (k as f64).exp2();
+        let tc = b.total() * p(cfg.b() as i64 - w as i64);
+        bw.color_frac_bits = (1..=bw.exp2_frac_bits).find(|&wc| tc + p(cfg.b() as i64 - wc as i64) < 0.5).unwrap_or(bw.exp2_frac_bits);
         let (lt, et) = (log_values(cfg, &bw), exp2_values(&bw));
         bw.log_entry_bits = bit_length(*lt.iter().max().unwrap());
         bw.log_delta_bits = bit_length(lt.windows(2).map(|p| p[1] - p[0]).max().unwrap()).max(1);
@@ -361,7 +370,9 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: crate::model::In
     let v = ehat >> yint;
     let we = w.exp2_frac_bits;
     let intensity = ((v + (1u128 << (we - fi - 1))) >> (we - fi)) as u32;
-    let spec = x.ks.map(|k| ((v * (k as u128 & mask(b)) + (1u128 << (we - 1))) >> we) as u32);
+    let wc = w.color_frac_bits;
+    let vc = v >> (we - wc);
+    let spec = x.ks.map(|k| ((vc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
     (
         BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v },
         crate::model::Outputs { spec, intensity, done: intensity == 0 },
@@ -502,11 +513,14 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.delay(LUT_DELAY * (w.y_int_bits as f64));
 
     b.step("colour multipliers (14-16) and the intensity, rounded half up");
-    let cp = we + bb;
+    let wc = w.color_frac_bits;
+    let cs = b.bits("power", we, we - wc);
+    b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: c^n floored to what the colours' budget needs"));
+    let cp = wc + bb;
     for ch in CHANNELS {
-        let (sv, kv) = (b.zext("power", cp), b.zext(&format!("ks_{ch}"), cp));
-        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (we - 1))), &format!("UQ{bb}.{we}: c^n*ks_{ch} + 1/2 colour ulp"));
-        let e = b.bits(&format!("color_sum_{ch}"), cp - 1, we);
+        let (sv, kv) = (b.zext("color_power", cp), b.zext(&format!("ks_{ch}"), cp));
+        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &format!("UQ{bb}.{wc}: c^n*ks_{ch} + 1/2 colour ulp"));
+        let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: c^n*ks_{ch} rounded half up"));
     }
     let pv = b.r("power");

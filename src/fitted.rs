@@ -31,7 +31,7 @@
 //! `e_m < (2^(m+1) − 1)·2^−W < 2^(M+1−W)`. In output units (`Mo < 2^max(FI,B)`) the value fed
 //! to the final rounding lies in `(o* − 2^(M+1−W+max(FI,B)), o*] = (o* − 1/2, o*]` for
 //! `W = max(FI, B) + M + 2`; round half up then gives `|o − o*| < 1`, and `o = o*` where `o*`
-//! is an integer. Each step is monotone in `cos_g` (the mux depends on n only), so the
+//! is an integer. The colours need less: see [`color_frac_bits`]. Each step is monotone in `cos_g` (the mux depends on n only), so the
 //! outputs never decrease as `cos_g` grows. (When `KA + F < W` the bracket is exact and
 //! shifted left instead.)
 
@@ -71,6 +71,19 @@ pub struct FittedWidths {
     pub diff_bits: u32,
     /// W: fractional bits of the bracket and of every square, UQ1.W.
     pub frac_bits: u32,
+    /// WC: fractional bits of S fed to the colour multipliers (≤ W; see the module docs).
+    pub color_frac_bits: u32,
+}
+
+/// WC: the colours' own budget. With `e < 2^(M+1−W)` from the squarings and `< 2^−WC` from
+/// flooring S further to WC bits, the colour value is low by less than
+/// `ks·(2^(M+1−W) + 2^−WC) < 2^(B+M+1−W) + 2^(B−WC)`; the smallest WC ≤ W keeping that
+/// ≤ 1/2 (when FI > B there is room, and the colour multipliers shrink to B+2 or so bits).
+pub fn color_frac_bits(cfg: &Config) -> u32 {
+    let (b, m) = (cfg.b() as i64, cfg.max_squarings() as i64);
+    let w = cfg.fi().max(cfg.b()) as i64 + m + 2;
+    let p = |k: i64| (k as f64).exp2();
+    (1..=w).find(|&wc| p(b + m + 1 - w) + p(b - wc) <= 0.5).unwrap_or(w) as u32
 }
 
 /// Largest and worst error of `max(0, 1 − a t)^(2^m)` against `(1 − t)^n` over `t ∈ [0, 1]`.
@@ -205,6 +218,7 @@ impl FittedWidths {
             product_bits,
             diff_bits: product_bits.max(ka + f + 1) + 1,
             frac_bits: cfg.fi().max(cfg.b()) + cfg.max_squarings() + 2,
+            color_frac_bits: color_frac_bits(cfg),
         }
     }
 }
@@ -241,7 +255,9 @@ pub fn trace(cfg: &Config, fit: &Fit, w: &FittedWidths, x: crate::model::Inputs)
     }
     let s = squares[cfg.max_squarings() as usize];
     let intensity = ((s + (1u128 << (wf - fi - 1))) >> (wf - fi)) as u32;
-    let spec = x.ks.map(|k| ((s * (k as u128 & mask(b)) + (1u128 << (wf - 1))) >> wf) as u32);
+    let wc = w.color_frac_bits;
+    let sc = s >> (wf - wc);
+    let spec = x.ks.map(|k| ((sc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
     (
         FittedTrace { a_code, m, one_minus_cos: d, product, done, squares },
         crate::model::Outputs { spec, intensity, done },
@@ -366,11 +382,14 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
 
     b.step("colour multipliers (14-16) and the intensity, rounded half up");
     let s = format!("power{m_max}");
-    let cp = wf + bb;
+    let wc = w.color_frac_bits;
+    let cs = b.bits(&s, wf, wf - wc);
+    b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: S floored to what the colours' budget needs"));
+    let cp = wc + bb;
     for ch in crate::datapath::CHANNELS {
-        let (sv, kv) = (b.zext(&s, cp), b.zext(&format!("ks_{ch}"), cp));
-        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wf - 1))), &format!("UQ{bb}.{wf}: S*ks_{ch} + 1/2 colour ulp"));
-        let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wf);
+        let (sv, kv) = (b.zext("color_power", cp), b.zext(&format!("ks_{ch}"), cp));
+        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &format!("UQ{bb}.{wc}: S*ks_{ch} + 1/2 colour ulp"));
+        let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S*ks_{ch} rounded half up"));
     }
     let sv = b.r(&s);
