@@ -65,6 +65,10 @@ pub enum Command {
     Cosim(crate::cosim::CosimArgs),
     /// Synthesize the RTL in DIR with yosys (and nextpnr for Fmax): LUTs, carries, DSPs, FFs, ROM.
     Synth(crate::synth::SynthArgs),
+    /// Render a sphere and a plane at grazing light with the unit in DIR, beside float cos^n and
+    /// their difference, one row per n, as a PNG. Pixels go through the RTL (co-simulation) and
+    /// must be bit-identical to the golden model; --model-only skips the simulator.
+    Render(crate::cli::RenderArgs),
     /// Write DIR/index.html (self-contained) and DIR/report.json: the paper's claims
     /// recomputed and the configured unit's accuracy.
     Report {
@@ -74,6 +78,25 @@ pub enum Command {
         #[command(flatten)]
         params: ParamArgs,
     },
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct RenderArgs {
+    /// Directory with the generated unit (Verilog, tables, manifest).
+    #[arg(long, value_name = "DIR")]
+    pub rtl: PathBuf,
+    /// The PNG to write.
+    #[arg(long, value_name = "FILE.png")]
+    pub out: PathBuf,
+    /// Exponents, one row each [each 0..=2^n_bits-1]
+    #[arg(long, value_delimiter = ',', default_value = "1,4,16,128")]
+    pub n: Vec<u32>,
+    /// Pixels per tile side [16..=1024]
+    #[arg(long, default_value_t = 128)]
+    pub size: u32,
+    /// Take the pixels from the golden model without simulating the RTL.
+    #[arg(long)]
+    pub model_only: bool,
 }
 
 /// The generator parameters (SPEC §2). Unset flags fall back to --config, then to the defaults.
@@ -224,6 +247,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             eval(&cfg, cos.as_deref(), cos_code, n, ks)
         }
         Command::Cosim(args) => crate::cosim::run_cli(&args),
+        Command::Render(args) => render(&args),
         Command::Synth(args) => crate::synth::run_cli(&args),
         Command::Report { out, params } => {
             let cfg = params.to_config()?;
@@ -346,6 +370,52 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
         Ok(()) => println!("contract   {} rounding holds for this input ({} model)", cfg.rounding().name(), cfg.model().name()),
         Err(e) => return Err(failed(format!("contract violated: {e}"))),
     }
+    Ok(())
+}
+
+fn render(args: &RenderArgs) -> Result<(), Failure> {
+    use crate::cosim::{self, Cycle, Recorded, Stimulus};
+    use crate::render::{self, Scene};
+    if !(16..=1024).contains(&args.size) {
+        return Err(usage(format!("invalid --size: {}; allowed 16..=1024", args.size)));
+    }
+    if args.n.is_empty() || args.n.len() > 16 {
+        return Err(usage("invalid --n: give 1 to 16 exponents, e.g. 1,4,16,128"));
+    }
+    let design = cosim::Design::load(&args.rtl)?;
+    let n_max = (1u32 << design.cfg.n_bits()) - 1;
+    if let Some(bad) = args.n.iter().find(|&&n| n > n_max) {
+        return Err(usage(format!("invalid --n: {bad} is out of range; allowed 0..={n_max} (n_bits = {})", design.cfg.n_bits())));
+    }
+    let model = Model::new(&design.cfg);
+    if !args.model_only {
+        cosim::check_tables(&design)?;
+        let mut cycles = Vec::new();
+        if design.cfg.stages() > 0 {
+            cycles.push(Cycle { inputs: Inputs::default(), valid: false, rst: true });
+        }
+        for &n in &args.n {
+            for scene in [Scene::Sphere, Scene::GrazingPlane] {
+                cycles.extend(render::tile_inputs(&model, scene, n, args.size).into_iter().map(|inputs| Cycle { inputs, valid: true, rst: false }));
+            }
+        }
+        let stim: Vec<Box<dyn Stimulus>> = vec![Box::new(Recorded(cycles))];
+        let built = cosim::build(&design, cosim::Simulator::Verilator, false)?;
+        let report = cosim::run_all(&built, &design, &model, &stim, 1)?;
+        if report.mismatches > 0 {
+            return Err(failed(format!(
+                "the RTL in {} differs from the golden model at {} of {} pixels; no picture written (run `specgen cosim --rtl {}`)",
+                args.rtl.display(),
+                report.mismatches,
+                report.checked,
+                args.rtl.display()
+            )));
+        }
+        eprintln!("render: {} pixels through the RTL (Verilator), all bit-identical to the golden model", report.checked);
+    }
+    let png = render::picture(&model, &args.n, args.size);
+    emit::write_file_atomically(&args.out, &png).map_err(|e| failed(format!("cannot write {}: {e}", args.out.display())))?;
+    println!("{}", args.out.display());
     Ok(())
 }
 

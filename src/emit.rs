@@ -591,6 +591,12 @@ pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let parent = parent_dir(path);
     let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent)?;
     std::io::Write::write_all(&mut tmp, bytes)?;
+    // like every file `generate` writes: readable by all (tempfile creates 0600)
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
+    }
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())
 }

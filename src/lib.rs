@@ -15,6 +15,7 @@ pub mod emit;
 pub mod fitted;
 pub mod model;
 pub mod paper;
+pub mod render;
 pub mod report;
 pub mod rom;
 pub mod synth;
