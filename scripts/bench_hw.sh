@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates BENCHMARKS-hw.md: lean / paper / blinn-pow at default widths and one wide configuration,
+# Regenerates BENCHMARKS-hw.md: lean / paper / fitted / blinn / blinn-pow at default widths and one wide configuration,
 # combinational and pipelined, on iCE40 UP5K with and without DSPs, and yosys generic cells.
 # Needs yosys and nextpnr-ice40. Takes several minutes (paper and blinn-pow are large).
 set -euo pipefail
@@ -32,6 +32,9 @@ for s in 0 "$(max_stages)"; do run lean default "$s"; done
 run paper default 0 --arch paper
 for s in 0 "$(max_stages "${wide[@]}")"; do run lean wide "$s" "${wide[@]}"; done
 run blinn-pow default 0 --model blinn-pow
+for m in fitted blinn; do
+    for s in 0 "$(max_stages --model $m)"; do run $m default "$s" --model $m; done
+done
 if [ "${FULL:-0}" = 1 ]; then
     run paper default 6 --arch paper
     run paper wide 0 --arch paper "${wide[@]}"
@@ -72,5 +75,21 @@ if notes:
     print('\nNotes:\n')
     for n in notes:
         print(f'- {n}')
+PY
+# the report's model comparison from the LUT-only combinational results (the one mode every
+# model has), and its verdict on the paper's premise
+hw=(); for m in lean fitted blinn blinn-pow; do hw+=(--hw "$work/$m-default-0/nodsp.json"); done
+$bin report --out "$work/report" "${hw[@]}" >/dev/null
+python3 - "$work/report/report.json" >> BENCHMARKS-hw.md <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+print('\n## The models compared (`specgen report --hw`, iCE40 LUT-only, combinational)\n')
+print('| model | max error vs cos^n | mean error | LUT4 | Fmax (MHz) |')
+print('|---|---|---|---|---|')
+for r in d['models']:
+    h = r.get('hardware') or {}
+    f = f"{h['fmax_mhz']:.1f}" if h.get('fmax_mhz') else '-'
+    print(f"| {r['model']} | {r['blinn_error_max']:.3e} | {r['blinn_error_mean']:.3e} | {h.get('luts', '-')} | {f} |")
+print('\n' + d['premise'])
 PY
 echo "wrote BENCHMARKS-hw.md"

@@ -75,6 +75,9 @@ pub enum Command {
         /// Output directory (created, or replaced if it holds only a previous report).
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
+        /// A `specgen synth --json` result to show in the model comparison (repeatable).
+        #[arg(long, value_name = "FILE.json")]
+        hw: Vec<PathBuf>,
         #[command(flatten)]
         params: ParamArgs,
     },
@@ -249,9 +252,17 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Cosim(args) => crate::cosim::run_cli(&args),
         Command::Render(args) => render(&args),
         Command::Synth(args) => crate::synth::run_cli(&args),
-        Command::Report { out, params } => {
+        Command::Report { out, hw, params } => {
             let cfg = params.to_config()?;
-            let files = crate::report::build(&cfg);
+            let hw = hw
+                .iter()
+                .map(|p| {
+                    let text = std::fs::read_to_string(p).map_err(|e| usage(format!("invalid --hw: cannot read {}: {e}", p.display())))?;
+                    serde_json::from_str::<crate::synth::SynthResult>(&text)
+                        .map_err(|e| usage(format!("invalid --hw: {} is not a `specgen synth --json` result: {e}", p.display())))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            let files = crate::report::build(&cfg, &hw);
             write_output(&out, &files)?;
             Ok(())
         }

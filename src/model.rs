@@ -121,6 +121,30 @@ impl Model {
         }
     }
 
+    /// The ideal outputs this model's contract refers to, as floats (for reports): SPEC §3's
+    /// for the quadratic unit, `S` with the stored `a_n` for fitted, `c^n` for the Blinn models.
+    pub fn ideal(&self, x: Inputs) -> (f64, [f64; 3]) {
+        let cfg = &self.cfg;
+        let c = x.cos_g.min(1 << cfg.f()) as f64 / (cfg.f() as f64).exp2();
+        let s = match &self.kind {
+            Kind::Quadratic => {
+                let r = reference(cfg, x);
+                return (r.intensity.to_f64(), r.spec.map(Ideal::to_f64));
+            }
+            Kind::Fitted { fit, .. } => {
+                let a = fit.a_code[x.n as usize] as f64 / (cfg.kf() as f64).exp2();
+                let base = 1.0 - a * (1.0 - c);
+                if base < 0.0 {
+                    0.0
+                } else {
+                    base.powi(1 << fit.m[x.n as usize])
+                }
+            }
+            Kind::Blinn { .. } | Kind::BlinnPow => c.powi(x.n as i32),
+        };
+        (s * (cfg.fi() as f64).exp2(), x.ks.map(|k| s * k as f64))
+    }
+
     /// Checks outputs against this model's contract (its exact reference).
     pub fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
         match &self.kind {
@@ -405,7 +429,7 @@ mod tests {
 /// How far a configured unit is from Blinn's `cos^n` (SPEC §6): `|intensity/2^FI − c^n|`
 /// over every `(cos_g ≤ 2^F, n)`, or over every `stride`-th `cos_g` (and 1.0) when the
 /// space exceeds [`FIDELITY_POINTS`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Fidelity {
     pub max: f64,
     pub mean: f64,
@@ -414,6 +438,8 @@ pub struct Fidelity {
     pub worst_cos: u32,
     pub points: u64,
     pub stride: u32,
+    /// `max_c |intensity/2^FI − c^n|` for each n
+    pub per_n_max: Vec<f64>,
 }
 
 /// The most points [`blinn_fidelity`] visits: 2^26.
@@ -439,12 +465,14 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
     // a fixed partition (not the core count), so the sums and the manifest are the same bytes
     // on every machine
     let threads = 8u32;
-    let parts: Vec<(f64, f64, u32, u32, u64)> = std::thread::scope(|s| {
+    let parts: Vec<(f64, f64, u32, u32, u64, Vec<(u32, f64)>)> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
                 s.spawn(move || {
                     let (mut max, mut sum, mut wn, mut wc, mut count) = (0.0f64, 0.0f64, 0u32, 0u32, 0u64);
+                    let mut per_n = Vec::new();
                     for n in (t..n_count).step_by(threads as usize) {
+                        let mut row_max = 0.0f64;
                         let mut cos_g = 0u32;
                         loop {
                             let c = cos_g as f64 / one as f64;
@@ -452,6 +480,7 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
                             let err = (got - c.powi(n as i32)).abs();
                             sum += err;
                             count += 1;
+                            row_max = row_max.max(err);
                             if err > max {
                                 (max, wn, wc) = (err, n, cos_g);
                             }
@@ -460,16 +489,20 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
                             }
                             cos_g = (cos_g + stride).min(one);
                         }
+                        per_n.push((n, row_max));
                     }
-                    (max, sum, wn, wc, count)
+                    (max, sum, wn, wc, count, per_n)
                 })
             })
             .collect();
         handles.into_iter().map(|h| h.join().expect("fidelity thread")).collect()
     });
-    let mut f = Fidelity { max: 0.0, mean: 0.0, worst_n: 0, worst_cos: 0, points: 0, stride };
+    let mut f = Fidelity { max: 0.0, mean: 0.0, worst_n: 0, worst_cos: 0, points: 0, stride, per_n_max: vec![0.0; n_count as usize] };
     let mut sum = 0.0;
-    for (max, s, wn, wc, count) in parts {
+    for (max, s, wn, wc, count, per_n) in parts {
+        for (n, e) in per_n {
+            f.per_n_max[n as usize] = e;
+        }
         if max > f.max || (max == f.max && (wn, wc) < (f.worst_n, f.worst_cos)) {
             (f.max, f.worst_n, f.worst_cos) = (max, wn, wc);
         }

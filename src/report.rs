@@ -2,7 +2,7 @@
 //! self-contained HTML page (inline SVG from plotters) plus `report.json` with every number.
 
 use crate::config::Config;
-use crate::model::{self, Inputs, Model};
+use crate::model::{Inputs, Model};
 use crate::paper::{self, Claim};
 use crate::rom;
 use askama::Template;
@@ -69,9 +69,9 @@ pub fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
             while cos_g <= one {
                 let x = Inputs { cos_g: cos_g as u32, n: n as u32, ks: [ks_max; 3] };
                 let o = m.eval(x);
-                let r = model::reference(cfg, x);
-                let ie = (o.intensity as f64 - r.intensity.to_f64()).abs();
-                let se = (o.spec[0] as f64 - r.spec[0].to_f64()).abs();
+                let (ideal_i, ideal_s) = m.ideal(x);
+                let ie = (o.intensity as f64 - ideal_i).abs();
+                let se = (o.spec[0] as f64 - ideal_s[0]).abs();
                 let c = cos_g as f64 / one as f64;
                 let s = o.intensity as f64 / (cfg.fi() as f64).exp2();
                 let be = (s - c.powi(n as i32)).abs();
@@ -268,6 +268,108 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
 }
 
 /// Everything the report shows; serialised as `report.json`.
+/// One model of the comparison: its distance from Blinn at the report's widths, and its
+/// hardware as `specgen synth --json` measured it (when given with `--hw`).
+#[derive(Debug, Clone, Serialize)]
+pub struct ModelComparison {
+    pub model: String,
+    pub computes: String,
+    pub blinn_error_max: f64,
+    pub blinn_error_mean: f64,
+    pub worst_n: u32,
+    pub worst_cos_g: u32,
+    pub hardware: Option<crate::synth::SynthResult>,
+}
+
+/// The four models at the report's widths (stages 0, faithful): quadratic (the paper, with
+/// the configured arch), fitted, blinn, blinn-pow.
+pub fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
+    use crate::config::{Params, Rounding, SpecularModel};
+    [
+        (SpecularModel::Quadratic, "formula (15), the paper: [1 - k n (1 - c)]^2"),
+        (SpecularModel::Fitted, "[1 - a_n (1 - c)]^(2^m_n), minimax per n"),
+        (SpecularModel::Blinn, "c^n from log2/exp2 tables"),
+        (SpecularModel::BlinnPow, "c^n by square-and-multiply"),
+    ]
+    .into_iter()
+    .map(|(model, what)| {
+        let arch = if model == SpecularModel::Quadratic { cfg.arch() } else { crate::config::Arch::Lean };
+        let p = Params { model, arch, stages: 0, rounding: Rounding::Faithful, ..cfg.params.clone() };
+        (Model::new(&Config::new(p).expect("the report's widths are valid for every model")), what)
+    })
+    .collect()
+}
+
+/// What the comparison says about the paper's premise that cos^n is too costly.
+fn premise(rows: &[ModelComparison]) -> String {
+    let get = |m: &str| rows.iter().find(|r| r.model == m);
+    let (q, f, b, p) = (get("quadratic"), get("fitted"), get("blinn"), get("blinn-pow"));
+    let (Some(q), Some(f), Some(b), Some(p)) = (q, f, b, p) else { return String::new() };
+    let mut s = format!(
+        "Against Blinn's cos^n, formula (15) is off by up to {:.3} of full scale; the fitted form by {:.4}; the table-based unit by {:.2e} (within one unit of the output), as exact as square-and-multiply ({:.2e}).",
+        q.blinn_error_max, f.blinn_error_max, b.blinn_error_max, p.blinn_error_max
+    );
+    match (&q.hardware, &f.hardware, &b.hardware, &p.hardware) {
+        (Some(qh), Some(fh), Some(bh), Some(ph)) => s.push_str(&format!(
+            " In hardware ({}{}): (15) takes {} LUT4 and {} DSP blocks, fitted {} and {}, blinn {} and {}, square-and-multiply {} and {}. \
+             The paper's premise — that cos^n itself is too costly — holds for square-and-multiply ({:.1}× the LUT4 of (15)), \
+             not for the table-based unit ({:.1}× the LUT4 and {} more DSP blocks than (15), for an error {:.0}× smaller).",
+            qh.target,
+            if qh.dsp { ", DSPs" } else { ", no DSPs" },
+            qh.luts,
+            qh.dsp_blocks,
+            fh.luts,
+            fh.dsp_blocks,
+            bh.luts,
+            bh.dsp_blocks,
+            ph.luts,
+            ph.dsp_blocks,
+            ph.luts as f64 / qh.luts.max(1) as f64,
+            bh.luts as f64 / qh.luts.max(1) as f64,
+            bh.dsp_blocks as i64 - qh.dsp_blocks as i64,
+            q.blinn_error_max / b.blinn_error_max.max(1e-300)
+        )),
+        _ => s.push_str(" Hardware columns are empty: pass `specgen synth --json` results with --hw (scripts/bench_hw.sh writes them) to compare area and speed."),
+    }
+    s
+}
+
+/// The per-n worst error of every model against cos^n (log scale).
+fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
+    let n_max = fids.first().map_or(1, |f| f.1.len()) as f64;
+    let colours = [RED, BLUE, GREEN, BLACK];
+    svg(|area| {
+        let mut chart = ChartBuilder::on(&area)
+            .caption("Worst |intensity − cos^n| over cos_g, per n", ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(36)
+            .y_label_area_size(60)
+            .build_cartesian_2d(1.0..n_max, (1e-7f64..1.0).log_scale())?;
+        chart.configure_mesh().x_desc("n").y_desc("max error").draw()?;
+        for ((name, per_n), colour) in fids.iter().zip(colours) {
+            let pts: Vec<(f64, f64)> = per_n.iter().enumerate().skip(1).map(|(n, &e)| (n as f64, e.max(1e-7))).collect();
+            chart
+                .draw_series(LineSeries::new(pts, colour.stroke_width(1)))?
+                .label(name.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+        }
+        chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+        Ok(())
+    })
+}
+
+/// A grid of sphere renders, one row per model and one column per n, plus float cos^n.
+fn render_grid(models: &[(Model, &'static str)]) -> (String, Vec<u32>) {
+    use crate::render::{Panel, Scene};
+    let n_max = (1u32 << models[0].0.cfg.n_bits()) - 1;
+    let ns: Vec<u32> = [1u32, 4, 16, 128].into_iter().filter(|&n| n <= n_max).collect();
+    let size = 96;
+    let mut rows: Vec<Vec<Vec<u8>>> = models.iter().map(|(m, _)| ns.iter().map(|&n| crate::render::tile(m, Scene::Sphere, Panel::Unit, n, size)).collect()).collect();
+    rows.push(ns.iter().map(|&n| crate::render::tile(&models[0].0, Scene::Sphere, Panel::Float, n, size)).collect());
+    let (w, h, img) = crate::render::grid(&rows, size);
+    (crate::render::base64(&crate::render::png(w, h, &img, "specgen report: models x n")), ns)
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub struct ReportData {
     pub generator: &'static str,
@@ -276,6 +378,8 @@ pub struct ReportData {
     pub k_code: u64,
     pub claims: Vec<Claim>,
     pub unit: UnitAccuracy,
+    pub models: Vec<ModelComparison>,
+    pub premise: String,
     pub files: Vec<serde_json::Value>,
 }
 
@@ -291,12 +395,39 @@ struct ReportPage<'a> {
     unit_rows: Vec<Row>,
     figures: Vec<Figure>,
     rounding: &'a str,
+    comparison_svg: String,
+    grid_png: String,
+    grid_models: Vec<String>,
+    grid_ns: Vec<u32>,
 }
 
 /// Builds `index.html` and `report.json` (file name, bytes).
-pub fn build(cfg: &Config) -> Vec<(String, Vec<u8>)> {
+pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec<u8>)> {
     let unit = unit_accuracy(cfg);
     let figures = figures(cfg, &unit);
+    let models = models_compared(cfg);
+    let mut fids = Vec::new();
+    let rows: Vec<ModelComparison> = models
+        .iter()
+        .map(|(m, what)| {
+            let f = crate::model::blinn_fidelity(m);
+            let name = m.cfg.model().name();
+            fids.push((name.to_string(), f.per_n_max.clone()));
+            ModelComparison {
+                model: name.into(),
+                computes: (*what).into(),
+                blinn_error_max: f.max,
+                blinn_error_mean: f.mean,
+                worst_n: f.worst_n,
+                worst_cos_g: f.worst_cos,
+                hardware: hw.iter().find(|h| h.model == name).cloned(),
+            }
+        })
+        .collect();
+    let comparison_svg = comparison_figure(&fids);
+    let (grid_png, grid_ns) = render_grid(&models);
+    let grid_models = models.iter().map(|(m, _)| m.cfg.model().name().to_string()).collect();
+    let premise = premise(&rows);
     let data = ReportData {
         generator: "specgen",
         version: crate::emit::VERSION,
@@ -304,6 +435,8 @@ pub fn build(cfg: &Config) -> Vec<(String, Vec<u8>)> {
         k_code: cfg.k_code,
         claims: paper::claims(),
         unit,
+        models: rows,
+        premise,
         files: vec![serde_json::json!({"name": "index.html"})],
     };
     let u = &data.unit;
@@ -317,7 +450,7 @@ pub fn build(cfg: &Config) -> Vec<(String, Vec<u8>)> {
         Row { name: "|intensity − cos^n|, mean", value: format!("{:.5}", u.vs_blinn_mean) },
         Row { name: "k quantisation: |S(k_q) − S(k)|, max", value: format!("{:.3e}", u.k_quantisation_max) },
     ];
-    let page = ReportPage { data: &data, unit_rows, figures, rounding: cfg.rounding().name() };
+    let page = ReportPage { data: &data, unit_rows, figures, rounding: cfg.rounding().name(), comparison_svg, grid_png, grid_models, grid_ns };
     let html = page.render().expect("report template renders");
     let mut json = serde_json::to_string_pretty(&data).expect("report serialises");
     json.push('\n');

@@ -42,9 +42,15 @@ pub struct SynthArgs {
 }
 
 /// Area and speed of one synthesis run.
-#[derive(Debug, Clone, Default, Serialize)]
+#[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct SynthResult {
     pub top: String,
+    /// the manifest's model and pipeline depth
+    #[serde(default)]
+    pub model: String,
+    #[serde(default)]
+    pub stages: u32,
     pub target: String,
     pub dsp: bool,
     /// LUT4 (iCE40/ECP5) or all cells (generic)
@@ -53,7 +59,7 @@ pub struct SynthResult {
     pub dsp_blocks: u64,
     pub flip_flops: u64,
     pub block_rams: u64,
-    /// the cut-off ROM's content: 2^N × (F+1) (0 for blinn-pow, which has none)
+    /// the content of every table (cut-off ROM, fit ROM, log2/exp2 tables; 0 for blinn-pow)
     pub rom_bits: u64,
     pub total_cells: u64,
     /// MHz from nextpnr, when place-and-route ran
@@ -161,6 +167,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
     let total_cells = cells.iter().map(|(_, c)| c).sum();
     let cfg = &design.cfg;
     let mut r = SynthResult {
+        model: cfg.model().name().to_string(),
+        stages: cfg.stages(),
         top: top.clone(),
         target: format!("{target:?}").to_lowercase(),
         dsp,

@@ -94,7 +94,12 @@ fn report_page_is_self_contained_and_carries_every_number() {
     assert!(svgs >= 8, "{svgs} inline SVG figures");
     for n in doc.descendants().filter(|n| n.is_element()) {
         let tag = n.tag_name().name();
-        assert!(!["script", "link", "img", "iframe", "object", "embed"].contains(&tag), "external-capable element <{tag}>");
+        assert!(!["script", "link", "iframe", "object", "embed"].contains(&tag), "external-capable element <{tag}>");
+        if tag == "img" {
+            // the render grid, inline
+            assert!(n.attribute("src").unwrap_or("").starts_with("data:image/png;base64,"), "<img> not inline");
+            continue;
+        }
         for a in n.attributes() {
             let v = a.value();
             if a.name() == "xmlns" || a.namespace().is_some() && a.name() != "href" {
@@ -121,5 +126,57 @@ fn report_page_is_self_contained_and_carries_every_number() {
     let bad = tmp.path().join("bad");
     let o = specgen().args(["report", "--out"]).arg(&bad).args(["--n-bits", "99"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2));
+    assert!(!bad.exists());
+}
+
+/// Every model's report and eval use that model's own reference: the unit's error is within
+/// its contract for each, the comparison lists all four, and `--hw` results appear.
+#[test]
+fn report_and_eval_are_right_for_every_model() {
+    let tmp = tempfile::tempdir().unwrap();
+    let small = ["--cos-frac-bits", "10", "--n-bits", "6"];
+    for model in ["quadratic", "fitted", "blinn", "blinn-pow"] {
+        let out = tmp.path().join(model);
+        let o = specgen().args(["report", "--model", model, "--out"]).arg(&out).args(small).output().unwrap();
+        assert!(o.status.success(), "{model}: {}", String::from_utf8_lossy(&o.stderr));
+        let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+        let ulp = json["unit"]["intensity_max_ulp"].as_f64().unwrap();
+        assert!(ulp < 1.0, "{model}: the unit's intensity error against its own reference is {ulp} ulp");
+        let models: Vec<&str> = json["models"].as_array().unwrap().iter().map(|m| m["model"].as_str().unwrap()).collect();
+        assert_eq!(models, ["quadratic", "fitted", "blinn", "blinn-pow"]);
+        let err = |i: usize| json["models"][i]["blinn_error_max"].as_f64().unwrap();
+        assert!(err(0) > 10.0 * err(1) && err(1) > 10.0 * err(2), "{model}: {} {} {}", err(0), err(1), err(2));
+        assert!(err(2) < 1.0 / 32768.0 * 32.0 && err(3) < 1.0 / 32768.0 * 32.0);
+        // eval: the model's value beside cos^n, and the contract
+        let o = specgen().args(["eval", "--model", model, "--cos", "0.98", "--n", "40", "--n-bits", "6"]).output().unwrap();
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success() && text.contains(&format!("model      {model}")) && text.contains("Blinn cos^n = 0.445900"), "{model}: {text}");
+        assert!(text.contains("rounding holds"), "{text}");
+        if model.starts_with("blinn") {
+            // c^n = 0.98^40 at UQ1.15: 14611.26 (the quadratic (15) value 16299.30 must not appear)
+            assert!(text.contains("intensity* = 14611.26") && !text.contains("16299.30"), "{model}: {text}");
+        }
+    }
+}
+
+#[test]
+fn report_shows_synthesis_results_given_with_hw() {
+    let tmp = tempfile::tempdir().unwrap();
+    let hw = tmp.path().join("fitted.json");
+    std::fs::write(&hw, r#"{"top": "specular_unit", "model": "fitted", "stages": 0, "target": "ice40", "dsp": true, "luts": 4321, "dsp_blocks": 7, "block_rams": 3, "fmax_mhz": 55.5}"#).unwrap();
+    let out = tmp.path().join("rep");
+    let o = specgen().args(["report", "--cos-frac-bits", "9", "--n-bits", "5", "--out"]).arg(&out).arg("--hw").arg(&hw).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(json["models"][1]["hardware"]["luts"], 4321);
+    assert!(json["models"][0]["hardware"].is_null());
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("<td>4321</td><td>7</td><td>3</td><td>55.5</td>"), "hardware row not shown");
+    // a file that is not a synth result: exit 2, nothing written
+    std::fs::write(&hw, "[1, 2]").unwrap();
+    let bad = tmp.path().join("bad");
+    let o = specgen().args(["report", "--out"]).arg(&bad).arg("--hw").arg(&hw).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--hw"));
     assert!(!bad.exists());
 }
