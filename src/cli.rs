@@ -47,13 +47,13 @@ pub enum Command {
     /// value, formula (15) in real arithmetic, and Blinn's cos^n.
     Eval {
         /// cos(gamma) as a decimal in [0, 2), rounded to the nearest UQ1.F code.
-        #[arg(long, value_name = "X", conflicts_with = "cos_code", required_unless_present = "cos_code")]
+        #[arg(allow_negative_numbers = true, long, value_name = "X", conflicts_with = "cos_code", required_unless_present = "cos_code")]
         cos: Option<String>,
         /// cos(gamma) as the raw UQ1.F port code.
-        #[arg(long, value_name = "CODE")]
+        #[arg(allow_negative_numbers = true, value_parser = param_whole, long, value_name = "CODE")]
         cos_code: Option<u32>,
         /// Specular exponent n.
-        #[arg(long)]
+        #[arg(allow_negative_numbers = true, value_parser = param_whole, long)]
         n: u32,
         /// Colour codes R,G,B (default: all ones, i.e. 1.0).
         #[arg(long, value_name = "R,G,B", value_delimiter = ',')]
@@ -95,7 +95,7 @@ pub struct RenderArgs {
     #[arg(long, value_delimiter = ',', default_value = "1,4,16,128")]
     pub n: Vec<u32>,
     /// Pixels per tile side [16..=1024]
-    #[arg(long, default_value_t = 128)]
+    #[arg(allow_negative_numbers = true, value_parser = param_whole, long, default_value_t = 128)]
     pub size: u32,
     /// Take the pixels from the golden model without simulating the RTL.
     #[arg(long)]
@@ -112,27 +112,27 @@ pub struct ParamArgs {
     #[arg(long)]
     pub top: Option<String>,
     /// F: fractional bits of cos_g, UQ1.F [4..=20, default 15]
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = param_cos_frac_bits, long)]
     pub cos_frac_bits: Option<u32>,
     /// N: bits of the exponent n; the ROM has 2^N entries [1..=12, default 10]
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = param_n_bits, long)]
     pub n_bits: Option<u32>,
     /// B: bits of each colour input and output [1..=16, default 8]
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = param_color_bits, long)]
     pub color_bits: Option<u32>,
     /// FI: fractional bits of the intensity output, UQ1.FI [1..=24, default 15]
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = param_intensity_frac_bits, long)]
     pub intensity_frac_bits: Option<u32>,
     /// The constant k as a decimal string, 0 < k <= 1 [default "0.3686"]
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub k: Option<String>,
     /// KF: fractional bits k is rounded to (nearest, ties to even); with --model fitted, the
     /// fractional bits of every a_n [4..=24, default 16]
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = param_k_frac_bits, long)]
     pub k_frac_bits: Option<u32>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=cut points: lean 13, paper 6,
     /// blinn-pow N+2 at default widths; default 0]
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = param_stages, long)]
     pub stages: Option<u32>,
     /// Output rounding: faithful (|error| < 1 ulp) or exact (nearest, ties away) [default faithful]
     #[arg(long, value_enum)]
@@ -148,9 +148,37 @@ pub struct ParamArgs {
     #[arg(long, value_enum)]
     pub model: Option<config::SpecularModel>,
     /// M of --model fitted: the bracket is squared up to M times (exponent 2^m_n, m_n <= M) [0..=4, default 3]
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, value_parser = param_max_squarings, long)]
     pub max_squarings: Option<u32>,
 }
+
+/// A whole-number flag: a negative value gets a range error, not a "flag not found".
+fn whole_in(text: &str, r: Option<&config::Range>) -> Result<u32, String> {
+    let range = r.map_or("allowed a whole number >= 0".to_string(), |r| format!("allowed {}..={}", r.min, r.max));
+    match text.trim().parse::<i64>() {
+        Ok(v) if v < 0 || v > u32::MAX as i64 => Err(format!("{v} is out of range; {range}")),
+        Ok(v) => Ok(v as u32),
+        Err(_) => Err(format!("{text:?} is not a whole number; {range}")),
+    }
+}
+
+fn param_whole(t: &str) -> Result<u32, String> {
+    whole_in(t, None)
+}
+fn param_stages(t: &str) -> Result<u32, String> {
+    whole_in(t, None).map_err(|e| format!("{e} (up to the configuration's cut points)"))
+}
+macro_rules! range_params {
+    ($($f:ident => $r:path),*) => { $(fn $f(t: &str) -> Result<u32, String> { whole_in(t, Some(&$r)) })* };
+}
+range_params!(
+    param_cos_frac_bits => config::COS_FRAC_BITS,
+    param_n_bits => config::N_BITS,
+    param_color_bits => config::COLOR_BITS,
+    param_intensity_frac_bits => config::INTENSITY_FRAC_BITS,
+    param_k_frac_bits => config::K_FRAC_BITS,
+    param_max_squarings => config::MAX_SQUARINGS
+);
 
 /// A failure with its exit code.
 #[derive(Debug)]
@@ -197,6 +225,7 @@ impl ParamArgs {
 fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<(), Failure> {
     emit::write_dir_atomically(out, files).map_err(|e| match e {
         emit::OutputError::Occupied(..) => usage(e.to_string()),
+        emit::OutputError::Busy(_) => failed(e.to_string()),
         emit::OutputError::Io(_) => failed(format!("cannot write {}: {e}", out.display())),
     })
 }
@@ -400,6 +429,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     }
     let model = Model::new(&design.cfg);
     if !args.model_only {
+        cosim::check_ports(&design)?;
         cosim::check_tables(&design)?;
         let mut cycles = Vec::new();
         if design.cfg.stages() > 0 {

@@ -201,8 +201,23 @@ impl Params {
     }
 
     pub fn from_json_file(path: &std::path::Path) -> Result<Params, ConfigError> {
+        use std::io::Read;
+        const LIMIT: u64 = 1 << 20;
         let err = |why: String| ConfigError { parameter: "config", message: format!("{}: {why}", path.display()) };
-        let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read it ({e})")))?;
+        let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read it ({e})")))?;
+        if !meta.is_file() {
+            return Err(err("is not a regular file; allowed a JSON file of at most 1 MiB".into()));
+        }
+        if meta.len() > LIMIT {
+            return Err(err(format!("is {} bytes; allowed a JSON file of at most 1 MiB", meta.len())));
+        }
+        let mut text = String::new();
+        std::fs::File::open(path)
+            .and_then(|f| f.take(LIMIT + 1).read_to_string(&mut text))
+            .map_err(|e| err(format!("cannot read it ({e})")))?;
+        if text.len() as u64 > LIMIT {
+            return Err(err("grew past 1 MiB while being read; allowed a JSON file of at most 1 MiB".into()));
+        }
         Params::from_json(&text).map_err(err)
     }
 }
@@ -311,7 +326,13 @@ pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
     use fixed::types::extra::U120;
     use fixed::FixedU128;
     let trimmed = text.trim();
-    if trimmed.is_empty() || !trimmed.chars().all(|c| c.is_ascii_digit() || c == '.') {
+    let plain = |t: &str| !t.is_empty() && t.chars().all(|c| c.is_ascii_digit() || c == '.');
+    if let Some(rest) = trimmed.strip_prefix('-') {
+        if plain(rest) {
+            return Err(format!("{text:?} is negative, out of range"));
+        }
+    }
+    if !plain(trimmed) {
         return Err(format!("{text:?} is not a plain decimal number"));
     }
     assert!((1..=24).contains(&frac_bits), "parse_decimal: frac_bits {frac_bits} outside 1..=24");
@@ -370,12 +391,26 @@ const VERILOG_KEYWORDS: &[&str] = &[
     "logic", "bit", "byte", "int", "shortint", "longint", "interface", "package", "class",
 ];
 
+/// The unit's ports, and the shapes of its internal names: `x_sK` (a step's wire), `x_cK` (a
+/// cut), the tables and their file handles, `unused_*`. A module named like one of them
+/// would be hidden by it inside the module (Verilator VARHIDDEN).
+pub fn is_internal_name(name: &str) -> bool {
+    const PORTS: &[&str] = &[
+        "clk", "rst", "in_valid", "cos_g", "n", "ks_r", "ks_g", "ks_b", "out_valid", "spec_r", "spec_g", "spec_b", "intensity", "done",
+    ];
+    const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom"];
+    let step_or_cut = name
+        .rsplit_once('_')
+        .is_some_and(|(_, tail)| tail.len() > 1 && (tail.starts_with('s') || tail.starts_with('c')) && tail[1..].bytes().all(|b| b.is_ascii_digit()));
+    PORTS.contains(&name) || TABLES.contains(&name) || step_or_cut || name.starts_with("unused_") || name.ends_with("_fd") || name.ends_with("_FILE")
+}
+
 /// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
 fn check_identifier(top: &str) -> Result<(), ConfigError> {
     let err = |why: &str| ConfigError {
         parameter: "top",
         message: format!(
-            "{top:?} {why}; allowed: a Verilog identifier [A-Za-z_][A-Za-z0-9_]* of at most 64 characters, not a keyword"
+            "{top:?} {why}; allowed: a Verilog identifier [A-Za-z_][A-Za-z0-9_]* of at most 64 characters, not a keyword, not a port or internal name"
         ),
     };
     let mut chars = top.chars();
@@ -394,6 +429,9 @@ fn check_identifier(top: &str) -> Result<(), ConfigError> {
     }
     if VERILOG_KEYWORDS.contains(&top) {
         return Err(err("is a reserved word"));
+    }
+    if is_internal_name(top) {
+        return Err(err("is the name of a port or an internal signal of the unit"));
     }
     Ok(())
 }

@@ -499,6 +499,8 @@ pub fn generate_files(cfg: &Config) -> Vec<(String, Vec<u8>)> {
 pub enum OutputError {
     /// DIR holds something that is not a previous specgen output (exit code 2).
     Occupied(PathBuf, String),
+    /// Another specgen is writing into the same parent directory right now (exit code 1).
+    Busy(PathBuf),
     Io(std::io::Error),
 }
 
@@ -510,6 +512,7 @@ impl fmt::Display for OutputError {
                 "refusing to write into --out {}: {why}; only an empty directory or a previous specgen output is replaced",
                 dir.display()
             ),
+            OutputError::Busy(dir) => write!(f, "another specgen is writing into {} at this moment; nothing written (try again when it has finished)", dir.display()),
             OutputError::Io(e) => write!(f, "{e}"),
         }
     }
@@ -517,7 +520,56 @@ impl fmt::Display for OutputError {
 
 impl From<std::io::Error> for OutputError {
     fn from(e: std::io::Error) -> Self {
-        OutputError::Io(e)
+        OutputError::Io(plain(e))
+    }
+}
+
+/// An I/O error without the (temporary) path some crates put in its text: the caller names
+/// the user's path.
+fn plain(e: std::io::Error) -> std::io::Error {
+    if let Some(code) = e.raw_os_error() {
+        return std::io::Error::from_raw_os_error(code);
+    }
+    // tempfile wraps the OS error with its own path: find the OS error underneath
+    let mut cause: Option<&(dyn std::error::Error + 'static)> = e.get_ref().map(|r| r as &(dyn std::error::Error + 'static));
+    while let Some(c) = cause {
+        if let Some(code) = c.downcast_ref::<std::io::Error>().and_then(|io| io.raw_os_error()) {
+            return std::io::Error::from_raw_os_error(code);
+        }
+        cause = c.source();
+    }
+    // tempfile's PathError shows "<OS error> at path <temp path>": keep the OS error only
+    let text = e.to_string();
+    std::io::Error::new(e.kind(), text.split(" at path ").next().unwrap_or(&text).to_string())
+}
+
+/// Holds an exclusive lock on a parent directory while an output is swapped in, so two
+/// writers never race, and stale staging directories of an interrupted run can be removed.
+struct ParentLock(std::fs::File);
+
+impl ParentLock {
+    fn take(parent: &Path, target: &Path) -> Result<ParentLock, OutputError> {
+        let f = std::fs::File::open(parent)?;
+        match f.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => return Err(OutputError::Busy(target.to_path_buf())),
+            Err(std::fs::TryLockError::Error(e)) => return Err(e.into()),
+        }
+        // under the lock no other specgen is mid-swap here: what is left is from a killed run
+        for entry in std::fs::read_dir(parent)?.flatten() {
+            let name = entry.file_name();
+            let name = name.to_string_lossy();
+            if (name.starts_with(".specgen-old-") || name.starts_with(".specgen-new-")) && entry.file_type().is_ok_and(|t| t.is_dir()) {
+                let _ = std::fs::remove_dir_all(entry.path());
+            }
+        }
+        Ok(ParentLock(f))
+    }
+}
+
+impl Drop for ParentLock {
+    fn drop(&mut self) {
+        let _ = self.0.unlock();
     }
 }
 
@@ -561,11 +613,23 @@ fn check_replaceable(dir: &Path) -> Result<(), OutputError> {
 /// the new one, never a mix. An existing `dir` is replaced only when it is empty or holds
 /// nothing but a previous specgen output.
 pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
-    if dir.exists() || dir.symlink_metadata().is_ok() {
-        check_replaceable(dir)?;
-    }
+    // a symbolic link is followed: the output lands where it points, and the link stays
+    let resolved;
+    let dir = match std::fs::symlink_metadata(dir) {
+        Ok(m) if m.file_type().is_symlink() => {
+            resolved = std::fs::canonicalize(dir).map_err(|_| {
+                OutputError::Occupied(dir.to_path_buf(), "it is a symbolic link to nothing (a dangling link)".into())
+            })?;
+            resolved.as_path()
+        }
+        _ => dir,
+    };
     let parent = parent_dir(dir);
     std::fs::create_dir_all(&parent)?;
+    let _lock = ParentLock::take(&parent, dir)?;
+    if dir.exists() {
+        check_replaceable(dir)?;
+    }
     let staging = tempfile::Builder::new().prefix(".specgen-new-").tempdir_in(&parent)?;
     for (name, bytes) in files {
         std::fs::write(staging.path().join(name), bytes)?;
@@ -589,7 +653,7 @@ pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(
 /// Writes one file atomically (temp file in the same directory, then rename).
 pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let parent = parent_dir(path);
-    let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent)?;
+    let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent).map_err(plain)?;
     std::io::Write::write_all(&mut tmp, bytes)?;
     // like every file `generate` writes: readable by all (tempfile creates 0600)
     #[cfg(unix)]
@@ -597,6 +661,6 @@ pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         use std::os::unix::fs::PermissionsExt;
         tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
     }
-    tmp.persist(path).map_err(|e| e.error)?;
+    tmp.persist(path).map_err(|e| plain(e.error))?;
     Ok(())
 }

@@ -1,0 +1,127 @@
+//! Careless and hostile inputs on the real binary (issue: nothing passes silently): each ends
+//! in a clear message and the right exit code, and nothing is lost or half-written.
+
+mod common;
+use common::*;
+use std::process::Output;
+
+fn text(o: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+}
+
+#[test]
+fn config_must_be_a_small_regular_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    let big = tmp.path().join("big.json");
+    std::fs::write(&big, vec![b' '; (1 << 20) + 1]).unwrap();
+    for (cfg, why) in [("/dev/zero", "not a regular file"), (big.to_str().unwrap(), "at most 1 MiB"), (tmp.path().to_str().unwrap(), "not a regular file")] {
+        let o = specgen().args(["generate", "--config", cfg, "--out"]).arg(&out).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{cfg}: {}", text(&o));
+        assert!(text(&o).contains("--config") && text(&o).contains(why), "{cfg}: {}", text(&o));
+        assert!(!out.exists());
+    }
+}
+
+#[test]
+fn out_through_a_symlink_lands_where_it_points_and_keeps_the_link() {
+    let tmp = tempfile::tempdir().unwrap();
+    let target = tmp.path().join("target");
+    std::fs::create_dir(&target).unwrap();
+    let link = tmp.path().join("lnk");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    for round in 0..2 {
+        let o = specgen().args(["generate", "--out"]).arg(&link).output().unwrap();
+        assert!(o.status.success(), "round {round}: {}", text(&o));
+        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "the link is gone");
+        assert!(target.join("specular_unit.v").is_file() && link.join("cos_sp_rom.hex").is_file());
+    }
+    // a dangling link: refused, the link left alone
+    let dangling = tmp.path().join("dangling");
+    std::os::unix::fs::symlink(tmp.path().join("nowhere"), &dangling).unwrap();
+    let o = specgen().args(["generate", "--out"]).arg(&dangling).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("dangling"));
+    assert!(std::fs::symlink_metadata(&dangling).unwrap().file_type().is_symlink());
+}
+
+#[test]
+fn leftovers_of_an_interrupted_swap_are_cleaned_and_a_concurrent_writer_is_told() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    // what a generate killed between its renames leaves behind
+    for stale in [".specgen-old-AbC123", ".specgen-new-XyZ789"] {
+        std::fs::create_dir_all(tmp.path().join(stale).join("old")).unwrap();
+    }
+    let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let names: Vec<String> = std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    assert_eq!(names, ["o"], "leftovers remain");
+    // another writer holds the parent: a clear message, exit 1, the output untouched
+    let before = std::fs::read(out.join("specular_unit.v")).unwrap();
+    let lock = std::fs::File::open(tmp.path()).unwrap();
+    lock.lock().unwrap();
+    let o = specgen().args(["generate", "--stages", "2", "--out"]).arg(&out).output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("another specgen is writing"), "{}", text(&o));
+    lock.unlock().unwrap();
+    assert_eq!(std::fs::read(out.join("specular_unit.v")).unwrap(), before);
+}
+
+#[test]
+fn top_may_not_be_a_port_or_an_internal_name() {
+    let tmp = tempfile::tempdir().unwrap();
+    for bad in ["cos_g", "done", "clk", "valid_c0", "bracket_s7", "cos_sp_rom", "unused_x", "cos_sp_rom_fd", "ROM_FILE"] {
+        let out = tmp.path().join(bad);
+        let o = specgen().args(["generate", "--top", bad, "--out"]).arg(&out).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{bad}: {}", text(&o));
+        assert!(text(&o).contains("--top") && text(&o).contains("internal"), "{bad}: {}", text(&o));
+        assert!(!out.exists());
+    }
+    // the rule covers every name the generated units declare
+    for args in [&[][..], &["--model", "blinn", "--stages", "3"][..], &["--model", "fitted", "--stages", "8"][..], &["--model", "blinn-pow", "--stages", "2"][..]] {
+        let dir = generate(tmp.path(), "ok", args);
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        for line in v.lines().map(str::trim) {
+            let decl = ["wire ", "reg ", "integer "].iter().find_map(|k| line.strip_prefix(k));
+            let Some(rest) = decl else { continue };
+            let name = rest.trim_start().trim_start_matches(|c: char| c == '[' || c.is_ascii_digit() || c == ':' || c == ']').trim_start();
+            let name: String = name.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+            if !name.is_empty() {
+                assert!(specgen::config::is_internal_name(&name), "{args:?}: internal name {name:?} would be accepted as --top");
+            }
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+#[test]
+fn errors_name_the_users_paths_and_negative_numbers_get_ranges() {
+    let o = specgen().args(["rom", "-o", "/missing/dir/f.hex"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert!(text(&o).contains("/missing/dir/f.hex") && !text(&o).contains(".specgen-"), "{}", text(&o));
+    let cases: &[(&[&str], &str)] = &[
+        (&["eval", "--cos", "-0.1", "--n", "3"], "out of range; allowed a decimal in [0, 2)"),
+        (&["eval", "--cos", "0.5", "--n", "-3"], "-3 is out of range"),
+        (&["generate", "--out", "/tmp/specgen-never", "--n-bits", "-3"], "-3 is out of range; allowed 1..=12"),
+        (&["generate", "--out", "/tmp/specgen-never", "--k", "-0.5"], "negative, out of range"),
+        (&["generate", "--out", "/tmp/specgen-never", "--stages", "-1"], "-1 is out of range"),
+    ];
+    for (args, want) in cases {
+        let o = specgen().args(*args).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
+        assert!(text(&o).contains(want), "{args:?}: {}", text(&o));
+    }
+    assert!(!std::path::Path::new("/tmp/specgen-never").exists());
+}
+
+#[test]
+fn a_manifest_that_disagrees_with_the_rtl_is_reported_as_such() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "u", &[]);
+    let m = dir.join("specular_unit.json");
+    std::fs::write(&m, std::fs::read_to_string(&m).unwrap().replace("\"color_bits\": 8", "\"color_bits\": 10")).unwrap();
+    let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(["cosim", "--rtl"]).arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("disagree with the manifest") && text(&o).contains("spec_r is output of 8 bits in the RTL, output of 10 bits by the manifest"), "{}", text(&o));
+}
