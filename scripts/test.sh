@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the whole test suite on a fresh machine: installs the simulators and yosys when
-# missing (Debian/Ubuntu, apt-get), then `cargo test --release`. Simulator and synthesis
+# missing (Debian/Ubuntu, apt-get), checks formatting and clippy, then `cargo test --release`. Simulator and synthesis
 # tests never skip: a missing tool makes them fail.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,4 +18,12 @@ if [ ${#missing[@]} -gt 0 ]; then
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $pkgs
 fi
 echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1)"
+for comp in rustfmt clippy; do
+    cargo "${comp/rustfmt/fmt}" --version >/dev/null 2>&1 || rustup component add "$comp"
+done
+echo "== cargo fmt --check"
+cargo fmt --check
+echo "== cargo clippy --all-targets -- -D warnings"
+cargo clippy --release --all-targets -- -D warnings
+echo "== cargo test --release"
 cargo test --release "$@"

@@ -145,7 +145,7 @@ impl Shares {
 
 /// `max g''` on [0, 1/2]: g'' = (1/ln2)·Σ_{k≥2} k(k−1)/(k+1)·x^(k−2), rising in x.
 fn g2_max() -> f64 {
-    let s: f64 = (2..400).map(|k| (k * (k - 1)) as f64 / (k + 1) as f64 * 0.5f64.powi(k as i32 - 2)).sum();
+    let s: f64 = (2..400).map(|k| (k * (k - 1)) as f64 / (k + 1) as f64 * 0.5f64.powi(k - 2)).sum();
     s / std::f64::consts::LN_2 * 1.001
 }
 
@@ -373,10 +373,7 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: crate::model::In
     let wc = w.color_frac_bits;
     let vc = v >> (we - wc);
     let spec = x.ks.map(|k| ((vc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
-    (
-        BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v },
-        crate::model::Outputs { spec, intensity, done: intensity == 0 },
-    )
+    (BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v }, crate::model::Outputs { spec, intensity, done: intensity == 0 })
 }
 
 /// The blinn datapath: normalise, log2 by table, times n, exp2 by table, shift, round.

@@ -266,8 +266,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             })?;
             let text = rom::render_table(&cfg, t, format);
             match output {
-                Some(path) => emit::write_file_atomically(&path, text.as_bytes())
-                    .map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
+                Some(path) => emit::write_file_atomically(&path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
                 None => {
                     print!("{text}");
                     Ok(())
@@ -302,17 +301,14 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
     let f = cfg.f();
     let cos_g = match (cos, cos_code) {
         (Some(text), _) => {
-            let code = config::parse_decimal(text, f)
-                .map_err(|why| usage(format!("invalid --cos: {why}; allowed a decimal in [0, 2)")))?;
+            let code = config::parse_decimal(text, f).map_err(|why| usage(format!("invalid --cos: {why}; allowed a decimal in [0, 2)")))?;
             if code >= 2u64 << f {
                 return Err(usage(format!("invalid --cos: {text} is out of range; allowed a decimal in [0, 2)")));
             }
             code as u32
         }
         (None, Some(code)) if code < 2u32 << f => code,
-        (None, Some(code)) => {
-            return Err(usage(format!("invalid --cos-code: {code} is out of range; allowed 0..={}", (2u32 << f) - 1)))
-        }
+        (None, Some(code)) => return Err(usage(format!("invalid --cos-code: {code} is out of range; allowed 0..={}", (2u32 << f) - 1))),
         (None, None) => return Err(usage("one of --cos or --cos-code is required")),
     };
     let n_max = (1u32 << cfg.n_bits()) - 1;
@@ -365,14 +361,27 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
             let (t, _) = crate::fitted::trace(cfg, fit, widths, x);
             let wf = widths.frac_bits;
             let a_q = t.a_code as f64 / (cfg.kf() as f64).exp2();
-            println!("constant   a_n = {} (fit {:.9}) -> a_code = {}, m_n = {} (exponent 2^m_n = {})", rom::exact_decimal(t.a_code, cfg.kf()), fit.a[n as usize], t.a_code, t.m, 1u32 << t.m);
+            println!(
+                "constant   a_n = {} (fit {:.9}) -> a_code = {}, m_n = {} (exponent 2^m_n = {})",
+                rom::exact_decimal(t.a_code, cfg.kf()),
+                fit.a[n as usize],
+                t.a_code,
+                t.m,
+                1u32 << t.m
+            );
             println!("datapath   one_minus_cos = {}  a_n*(1 - cos) = {}  done = {}", t.one_minus_cos, t.product, t.done);
             for j in 0..=cfg.max_squarings() as usize {
                 println!("           power{j} = {} (UQ1.{wf} = {:.9})", t.squares[j], t.squares[j] as f64 / (wf as f64).exp2());
             }
             let base = 1.0 - a_q * (1.0 - c);
             let s = if base < 0.0 { 0.0 } else { base.powi(1 << t.m) };
-            println!("exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (the fitted formula with the stored a_n)", s * scale, s * x.ks[0] as f64, s * x.ks[1] as f64, s * x.ks[2] as f64);
+            println!(
+                "exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (the fitted formula with the stored a_n)",
+                s * scale,
+                s * x.ks[0] as f64,
+                s * x.ks[1] as f64,
+                s * x.ks[2] as f64
+            );
         }
         model::Kind::Blinn { widths, tables } => {
             let (t, _) = crate::blinn::trace(cfg, widths, tables, x);
@@ -389,11 +398,23 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
                 widths.exp2_frac_bits,
                 t.v
             );
-            println!("exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (c^n)", blinn * scale, blinn * x.ks[0] as f64, blinn * x.ks[1] as f64, blinn * x.ks[2] as f64);
+            println!(
+                "exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (c^n)",
+                blinn * scale,
+                blinn * x.ks[0] as f64,
+                blinn * x.ks[1] as f64,
+                blinn * x.ks[2] as f64
+            );
         }
         model::Kind::BlinnPow => {
             println!("datapath   square-and-multiply over the bits of n, UQ1.{}", m.widths.power_frac_bits);
-            println!("exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (c^n)", blinn * scale, blinn * x.ks[0] as f64, blinn * x.ks[1] as f64, blinn * x.ks[2] as f64);
+            println!(
+                "exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (c^n)",
+                blinn * scale,
+                blinn * x.ks[0] as f64,
+                blinn * x.ks[1] as f64,
+                blinn * x.ks[2] as f64
+            );
         }
     }
     println!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / scale, o.spec, o.done);
@@ -404,7 +425,11 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
         "fidelity   Blinn cos^n = {blinn:.9}; this unit gives {:.9}, off by {:.9}{}",
         o.intensity as f64 / scale,
         (o.intensity as f64 / scale - blinn).abs(),
-        if cfg.model() == crate::config::SpecularModel::Quadratic { format!("; formula (15) in real arithmetic with k = {k_real}: {formula15:.9}") } else { String::new() }
+        if cfg.model() == crate::config::SpecularModel::Quadratic {
+            format!("; formula (15) in real arithmetic with k = {k_real}: {formula15:.9}")
+        } else {
+            String::new()
+        }
     );
     match m.check(x, o) {
         Ok(()) => println!("contract   {} rounding holds for this input ({} model)", cfg.rounding().name(), cfg.model().name()),

@@ -124,10 +124,7 @@ pub const MAX_SQUARINGS: Range = Range { name: "max_squarings", min: 0, max: 4 }
 impl Range {
     fn check(&self, value: u32) -> Result<u32, ConfigError> {
         if value < self.min || value > self.max {
-            Err(ConfigError {
-                parameter: self.name,
-                message: format!("{} is out of range; allowed {}..={}", value, self.min, self.max),
-            })
+            Err(ConfigError { parameter: self.name, message: format!("{} is out of range; allowed {}..={}", value, self.min, self.max) })
         } else {
             Ok(value)
         }
@@ -176,8 +173,19 @@ impl Default for Params {
 }
 
 /// Keys of a manifest that are outputs, not parameters (skipped when it is read as a config).
-pub const MANIFEST_OUTPUT_KEYS: &[&str] =
-    &["generator", "version", "k_code", "latency", "ports", "internal_widths", "files", "model_widths", "blinn_error_max", "blinn_error_mean", "blinn_error_method"];
+pub const MANIFEST_OUTPUT_KEYS: &[&str] = &[
+    "generator",
+    "version",
+    "k_code",
+    "latency",
+    "ports",
+    "internal_widths",
+    "files",
+    "model_widths",
+    "blinn_error_max",
+    "blinn_error_mean",
+    "blinn_error_method",
+];
 
 impl Params {
     /// Reads parameters from JSON: a full manifest written by `generate`, or any subset of
@@ -212,9 +220,7 @@ impl Params {
             return Err(err(format!("is {} bytes; allowed a JSON file of at most 1 MiB", meta.len())));
         }
         let mut text = String::new();
-        std::fs::File::open(path)
-            .and_then(|f| f.take(LIMIT + 1).read_to_string(&mut text))
-            .map_err(|e| err(format!("cannot read it ({e})")))?;
+        std::fs::File::open(path).and_then(|f| f.take(LIMIT + 1).read_to_string(&mut text)).map_err(|e| err(format!("cannot read it ({e})")))?;
         if text.len() as u64 > LIMIT {
             return Err(err("grew past 1 MiB while being read; allowed a JSON file of at most 1 MiB".into()));
         }
@@ -357,9 +363,7 @@ pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
 pub fn parse_k(text: &str, kf: u32) -> Result<u64, ConfigError> {
     let bad = |why: String| ConfigError {
         parameter: "k",
-        message: format!(
-            "{why}; allowed a plain decimal such as \"0.3686\" with 0 < k <= 1 after rounding to {kf} fractional bits"
-        ),
+        message: format!("{why}; allowed a plain decimal such as \"0.3686\" with 0 < k <= 1 after rounding to {kf} fractional bits"),
     };
     let code = parse_decimal(text, kf).map_err(bad)?;
     if code == 0 {
@@ -372,32 +376,147 @@ pub fn parse_k(text: &str, kf: u32) -> Result<u64, ConfigError> {
 }
 
 const VERILOG_KEYWORDS: &[&str] = &[
-    "always", "and", "assign", "automatic", "begin", "buf", "bufif0", "bufif1", "case", "casex",
-    "casez", "cell", "cmos", "config", "deassign", "default", "defparam", "design", "disable",
-    "edge", "else", "end", "endcase", "endconfig", "endfunction", "endgenerate", "endmodule",
-    "endprimitive", "endspecify", "endtable", "endtask", "event", "for", "force", "forever",
-    "fork", "function", "generate", "genvar", "highz0", "highz1", "if", "ifnone", "incdir",
-    "include", "initial", "inout", "input", "instance", "integer", "join", "large", "liblist",
-    "library", "localparam", "macromodule", "medium", "module", "nand", "negedge", "nmos", "nor",
-    "noshowcancelled", "not", "notif0", "notif1", "or", "output", "parameter", "pmos", "posedge",
-    "primitive", "pull0", "pull1", "pulldown", "pullup", "pulsestyle_ondetect",
-    "pulsestyle_onevent", "rcmos", "real", "realtime", "reg", "release", "repeat", "rnmos",
-    "rpmos", "rtran", "rtranif0", "rtranif1", "scalared", "showcancelled", "signed", "small",
-    "specify", "specparam", "strong0", "strong1", "supply0", "supply1", "table", "task", "time",
-    "tran", "tranif0", "tranif1", "tri", "tri0", "tri1", "triand", "trior", "trireg", "unsigned",
-    "use", "uwire", "vectored", "wait", "wand", "weak0", "weak1", "while", "wire", "wor", "xnor",
+    "always",
+    "and",
+    "assign",
+    "automatic",
+    "begin",
+    "buf",
+    "bufif0",
+    "bufif1",
+    "case",
+    "casex",
+    "casez",
+    "cell",
+    "cmos",
+    "config",
+    "deassign",
+    "default",
+    "defparam",
+    "design",
+    "disable",
+    "edge",
+    "else",
+    "end",
+    "endcase",
+    "endconfig",
+    "endfunction",
+    "endgenerate",
+    "endmodule",
+    "endprimitive",
+    "endspecify",
+    "endtable",
+    "endtask",
+    "event",
+    "for",
+    "force",
+    "forever",
+    "fork",
+    "function",
+    "generate",
+    "genvar",
+    "highz0",
+    "highz1",
+    "if",
+    "ifnone",
+    "incdir",
+    "include",
+    "initial",
+    "inout",
+    "input",
+    "instance",
+    "integer",
+    "join",
+    "large",
+    "liblist",
+    "library",
+    "localparam",
+    "macromodule",
+    "medium",
+    "module",
+    "nand",
+    "negedge",
+    "nmos",
+    "nor",
+    "noshowcancelled",
+    "not",
+    "notif0",
+    "notif1",
+    "or",
+    "output",
+    "parameter",
+    "pmos",
+    "posedge",
+    "primitive",
+    "pull0",
+    "pull1",
+    "pulldown",
+    "pullup",
+    "pulsestyle_ondetect",
+    "pulsestyle_onevent",
+    "rcmos",
+    "real",
+    "realtime",
+    "reg",
+    "release",
+    "repeat",
+    "rnmos",
+    "rpmos",
+    "rtran",
+    "rtranif0",
+    "rtranif1",
+    "scalared",
+    "showcancelled",
+    "signed",
+    "small",
+    "specify",
+    "specparam",
+    "strong0",
+    "strong1",
+    "supply0",
+    "supply1",
+    "table",
+    "task",
+    "time",
+    "tran",
+    "tranif0",
+    "tranif1",
+    "tri",
+    "tri0",
+    "tri1",
+    "triand",
+    "trior",
+    "trireg",
+    "unsigned",
+    "use",
+    "uwire",
+    "vectored",
+    "wait",
+    "wand",
+    "weak0",
+    "weak1",
+    "while",
+    "wire",
+    "wor",
+    "xnor",
     "xor",
     // SystemVerilog keywords a user's flow may parse the file as, and C++ names Verilator uses.
-    "logic", "bit", "byte", "int", "shortint", "longint", "interface", "package", "class",
+    "logic",
+    "bit",
+    "byte",
+    "int",
+    "shortint",
+    "longint",
+    "interface",
+    "package",
+    "class",
 ];
 
 /// The unit's ports, and the shapes of its internal names: `x_sK` (a step's wire), `x_cK` (a
 /// cut), the tables and their file handles, `unused_*`. A module named like one of them
 /// would be hidden by it inside the module (Verilator VARHIDDEN).
 pub fn is_internal_name(name: &str) -> bool {
-    const PORTS: &[&str] = &[
-        "clk", "rst", "in_valid", "cos_g", "n", "ks_r", "ks_g", "ks_b", "out_valid", "spec_r", "spec_g", "spec_b", "intensity", "done",
-    ];
+    const PORTS: &[&str] = &["clk", "rst", "in_valid", "cos_g", "n", "ks_r", "ks_g", "ks_b", "out_valid", "spec_r", "spec_g", "spec_b", "intensity", "done"];
     const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom"];
     let step_or_cut = name
         .rsplit_once('_')
@@ -416,9 +535,7 @@ fn check_identifier(top: &str) -> Result<(), ConfigError> {
     let mut chars = top.chars();
     match chars.next() {
         None => return Err(err("is empty")),
-        Some(c) if !(c.is_ascii_alphabetic() || c == '_') => {
-            return Err(err("does not start with a letter or underscore"))
-        }
+        Some(c) if !(c.is_ascii_alphabetic() || c == '_') => return Err(err("does not start with a letter or underscore")),
         _ => {}
     }
     if !chars.all(|c| c.is_ascii_alphanumeric() || c == '_') {

@@ -182,11 +182,7 @@ pub fn corner_vectors(model: &Model) -> Vec<Inputs> {
 pub fn random_vector(cfg: &Config, seed: u64, i: u64) -> Inputs {
     let r = splitmix(seed.wrapping_mul(0x1000_0000_0000_0001) ^ i);
     let r2 = splitmix(r);
-    let cos_g = if r & 1 == 0 {
-        ((r >> 1) % ((1u64 << cfg.f()) + 1)) as u32
-    } else {
-        ((r >> 1) & ((2u64 << cfg.f()) - 1)) as u32
-    };
+    let cos_g = if r & 1 == 0 { ((r >> 1) % ((1u64 << cfg.f()) + 1)) as u32 } else { ((r >> 1) & ((2u64 << cfg.f()) - 1)) as u32 };
     let n = ((r >> 32) & ((1u64 << cfg.n_bits()) - 1)) as u32;
     let bm = (1u64 << cfg.b()) - 1;
     Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
@@ -206,7 +202,7 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
     for (i, &inputs) in vectors.iter().enumerate() {
         if pipelined {
             let r = splitmix(seed ^ 0xb0bb1e5 ^ (i as u64) << 8);
-            if r % 8 == 0 {
+            if r.is_multiple_of(8) {
                 cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xb0bb, i as u64), valid: false, rst: false });
             }
             if i == reset_at {
@@ -350,8 +346,7 @@ impl<'a> Checker<'a> {
         if !ok {
             self.report.mismatches += 1;
             if self.report.first.is_none() {
-                self.report.first =
-                    Some(Mismatch { cycle: t, run: self.run, cycle_in: src, expected, actual: got, data_compared });
+                self.report.first = Some(Mismatch { cycle: t, run: self.run, cycle_in: src, expected, actual: got, data_compared });
             }
         }
     }
@@ -371,9 +366,10 @@ fn cache_root() -> PathBuf {
 }
 
 fn tool_version(tool: &str, package: &str) -> Result<String, Failure> {
-    let out = Command::new(tool).arg(if tool == "iverilog" { "-V" } else { "--version" }).output().map_err(|_| {
-        usage(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})"))
-    })?;
+    let out = Command::new(tool)
+        .arg(if tool == "iverilog" { "-V" } else { "--version" })
+        .output()
+        .map_err(|_| usage(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))?;
     let text = String::from_utf8_lossy(&out.stdout);
     Ok(text.lines().next().unwrap_or("").to_string())
 }
@@ -453,11 +449,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     if !out.status.success() {
         let log = String::from_utf8_lossy(&out.stderr);
         let tail: Vec<&str> = log.lines().rev().take(25).collect();
-        return Err(usage(format!(
-            "{tool} could not build the RTL in {}:\n{}",
-            design.dir.display(),
-            tail.into_iter().rev().collect::<Vec<_>>().join("\n")
-        )));
+        return Err(usage(format!("{tool} could not build the RTL in {}:\n{}", design.dir.display(), tail.into_iter().rev().collect::<Vec<_>>().join("\n"))));
     }
     std::fs::write(work.path().join("ok"), b"").map_err(|e| usage(e.to_string()))?;
     let kept = work.keep();
@@ -485,11 +477,7 @@ fn encode(c: &Cycle, buf: &mut Vec<u8>) {
 fn decode(rec: &[u8]) -> Sampled {
     let u16at = |i: usize| u16::from_le_bytes([rec[i], rec[i + 1]]) as u32;
     Sampled {
-        outputs: Outputs {
-            intensity: u32::from_le_bytes([rec[0], rec[1], rec[2], rec[3]]),
-            spec: [u16at(4), u16at(6), u16at(8)],
-            done: rec[10] & 2 != 0,
-        },
+        outputs: Outputs { intensity: u32::from_le_bytes([rec[0], rec[1], rec[2], rec[3]]), spec: [u16at(4), u16at(6), u16at(8)], done: rec[10] & 2 != 0 },
         valid: rec[10] & 1 != 0,
     }
 }
@@ -594,10 +582,7 @@ pub fn run_one(
                 if f.len() != 6 {
                     return Err(failed(format!("vvp output line {t} is malformed: {line:?}")));
                 }
-                let s = Sampled {
-                    outputs: Outputs { intensity: hex(f[2]), spec: [hex(f[3]), hex(f[4]), hex(f[5])], done: f[1] == "1" },
-                    valid: f[0] == "1",
-                };
+                let s = Sampled { outputs: Outputs { intensity: hex(f[2]), spec: [hex(f[3]), hex(f[4]), hex(f[5])], done: f[1] == "1" }, valid: f[0] == "1" };
                 // outputs that are x/z before the pipeline fills are never compared (see Checker)
                 checker.check(stim, t, s);
                 t += 1;
@@ -689,12 +674,25 @@ fn describe(m: &Mismatch, cfg: &Config) -> String {
     let x = m.cycle_in.inputs;
     let mut s = format!(
         "first mismatch: run {}, cycle {} (latency {}), inputs cos_g={} n={} ks_r={} ks_g={} ks_b={}\n",
-        m.run, m.cycle, cfg.stages(), x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2]
+        m.run,
+        m.cycle,
+        cfg.stages(),
+        x.cos_g,
+        x.n,
+        x.ks[0],
+        x.ks[1],
+        x.ks[2]
     );
     let e = m.expected;
     let a = m.actual;
     let mut row = |port: &str, exp: u64, act: u64, compared: bool| {
-        let mark = if !compared { "  (not compared)" } else if exp != act { "  <-- differs" } else { "" };
+        let mark = if !compared {
+            "  (not compared)"
+        } else if exp != act {
+            "  <-- differs"
+        } else {
+            ""
+        };
         s.push_str(&format!("  {port:<10} expected {exp:>10}  actual {act:>10}{mark}\n"));
     };
     row("out_valid", e.valid as u64, a.valid as u64, true);
@@ -828,11 +826,7 @@ pub fn check_tables(design: &Design) -> Result<(), Failure> {
                     )))
                 }
                 Some(v) if v != want => {
-                    return Err(failed(format!(
-                        "table file {}: entry {i} is {v:x}, the golden model's is {want:x} ({})",
-                        path.display(),
-                        t.what
-                    )))
+                    return Err(failed(format!("table file {}: entry {i} is {v:x}, the golden model's is {want:x} ({})", path.display(), t.what)))
                 }
                 _ => {}
             }
@@ -858,13 +852,7 @@ pub fn source_ports(text: &str, top: &str) -> Option<Vec<(String, &'static str, 
             rest = &rest[c.len_utf8()..];
         }
     }
-    let tokens: Vec<String> = clean
-        .replace('[', " [ ")
-        .replace(']', " ] ")
-        .replace([',', ';', '(', ')'], " , ")
-        .split_whitespace()
-        .map(String::from)
-        .collect();
+    let tokens: Vec<String> = clean.replace('[', " [ ").replace(']', " ] ").replace([',', ';', '(', ')'], " , ").split_whitespace().map(String::from).collect();
     let start = tokens.windows(2).position(|w| w[0] == "module" && (w[1] == top || w[1].starts_with(&format!("{top}#"))))?;
     let end = tokens[start..].iter().position(|t| t == "endmodule").map_or(tokens.len(), |e| start + e);
     let mut ports = Vec::new();
@@ -897,7 +885,9 @@ pub fn source_ports(text: &str, top: &str) -> Option<Vec<(String, &'static str, 
                 i += 1;
                 continue;
             }
-            if ["input", "output", "wire", "reg", "assign", "always", "initial", "endmodule", "parameter", "localparam", "integer"].contains(&t) || !t.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '\\') {
+            if ["input", "output", "wire", "reg", "assign", "always", "initial", "endmodule", "parameter", "localparam", "integer"].contains(&t)
+                || !t.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '\\')
+            {
                 break;
             }
             ports.push((t.trim_start_matches('\\').to_string(), dir, width));

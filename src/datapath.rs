@@ -471,7 +471,13 @@ impl Builder {
                     while b > 0 && unread >> (b - 1) & 1 == 1 {
                         b -= 1;
                     }
-                    ranges.push(if s.width == 1 { v.clone() } else if hi == b { format!("{v}[{b}]") } else { format!("{v}[{hi}:{b}]") });
+                    ranges.push(if s.width == 1 {
+                        v.clone()
+                    } else if hi == b {
+                        format!("{v}[{b}]")
+                    } else {
+                        format!("{v}[{hi}:{b}]")
+                    });
                 }
             }
             let expr = if ranges.len() == 1 { format!("^{}", ranges[0]) } else { format!("^{{{}}}", ranges.join(", ")) };
@@ -481,13 +487,7 @@ impl Builder {
             self.steps[step - 1].wires.push(Wire { name, width: 1, expr, comment: "bits no later step reads".into() });
         }
         let live = (1..=last)
-            .map(|k| {
-                self.signals
-                    .iter()
-                    .filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k))
-                    .map(|s| (s.name.clone(), s.width, s.step == k))
-                    .collect()
-            })
+            .map(|k| self.signals.iter().filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k)).map(|s| (s.name.clone(), s.width, s.step == k)).collect())
             .collect();
         Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live }
     }
@@ -611,12 +611,7 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let (kn, d1) = (b.operand("kn", 0, w.kn_bits, m), b.operand("one_minus_cos", 0, cb, m));
         format!("{kn} * {d1} + {}", lit(m, k_prime))
     };
-    b.wire(
-        "deviation_sum",
-        m,
-        expr,
-        &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f),
-    );
+    b.wire("deviation_sum", m, expr, &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f));
     b.delay(mul_delay(DSP_BITS, cb));
 
     b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
@@ -654,7 +649,12 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.step("square: Z = hi^2 + T/2^(r-1) (multiply-add)");
         let (h1, h2) = (b.operand("bracket", r, hw, 2 * hw), b.operand("bracket", r, hw, 2 * hw));
         let th = b.operand("square_t", r - 1, tw - (r - 1), 2 * hw);
-        b.wire("square_z", 2 * hw, format!("{h1} * {h2} + {th}"), &format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1));
+        b.wire(
+            "square_z",
+            2 * hw,
+            format!("{h1} * {h2} + {th}"),
+            &format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1),
+        );
         b.delay(mul_delay(hw, hw));
         let mut full = vec![Piece::sig("square_ll", 0, r + 1)];
         if r > 1 {
@@ -662,7 +662,6 @@ fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         }
         full.push(Piece::sig("square_z", 0, 2 * hw));
         full
-
     } else {
         b.step("square (squarer 11)");
         let (a1, a2) = (b.operand("bracket", 0, wb + 1, full_bits), b.operand("bracket", 0, wb + 1, full_bits));
@@ -804,7 +803,6 @@ fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}"));
     b.delay(add_delay(cpb));
 }
-
 
 #[cfg(test)]
 mod tests {

@@ -4,9 +4,9 @@
 //! holds only the Verilog's shape.
 
 use crate::config::{Arch, Config, Params, RomStyle, Rounding, SpecularModel};
+use crate::datapath::{self, Wire};
 use crate::model::Kind;
 use crate::rom::{self, RomFormat};
-use crate::datapath::{self, Wire};
 use crate::widths::Widths;
 use askama::Template;
 use serde::Serialize;
@@ -127,7 +127,12 @@ fn describe_model(cfg: &Config, w: &Widths, kind: &Kind) -> (String, Vec<String>
     let (fi, m) = (p.intensity_frac_bits, p.max_squarings);
     match kind {
         Kind::Fitted { widths: fw, .. } => (
-            format!("k_frac_bits={} (fractional bits of a_n) max_squarings={m} stages={} rounding=faithful rom_style={}", p.k_frac_bits, p.stages, p.rom_style.name()),
+            format!(
+                "k_frac_bits={} (fractional bits of a_n) max_squarings={m} stages={} rounding=faithful rom_style={}",
+                p.k_frac_bits,
+                p.stages,
+                p.rom_style.name()
+            ),
             vec![
                 format!("S = [1 - a_n*(1 - cos_g)]^(2^m_n), m_n <= {m}, a_n and m_n per n from a minimax fit to cos^n"),
                 "(quantised a_n in the fit ROM define the unit); S = 0 where the bracket is negative (done);".into(),
@@ -141,11 +146,18 @@ fn describe_model(cfg: &Config, w: &Widths, kind: &Kind) -> (String, Vec<String>
             format!("stages={} rounding=faithful rom_style={}", p.stages, p.rom_style.name()),
             vec![
                 "S = c^n, c = min(cos_g, 1.0), as 2^-(n*(e + x*g(x))) with c = (1 - x)*2^-e, x in [0, 1/2);".into(),
-                format!("g from a {}-entry log2 table, 2^-f from a {}-entry exp2 table, both interpolated;", 1u32 << bw.log_index_bits, 1u32 << bw.exp2_index_bits),
+                format!(
+                    "g from a {}-entry log2 table, 2^-f from a {}-entry exp2 table, both interpolated;",
+                    1u32 << bw.log_index_bits,
+                    1u32 << bw.exp2_index_bits
+                ),
                 format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X; done = (intensity == 0)."),
             ],
             "faithful: every output within 1 ulp of the exact c^n value (|o - o*| < 1)".into(),
-            format!("-log2 c UQ.{}, y UQ{}.{}, 2^-f UQ1.{} (error budget in specgen's blinn.rs)", bw.ell_frac_bits, bw.y_int_bits, bw.y_frac_bits, bw.exp2_frac_bits),
+            format!(
+                "-log2 c UQ.{}, y UQ{}.{}, 2^-f UQ1.{} (error budget in specgen's blinn.rs)",
+                bw.ell_frac_bits, bw.y_int_bits, bw.y_frac_bits, bw.exp2_frac_bits
+            ),
             "intensity == 0: the highlight is below the output's resolution",
         ),
         _ => (
@@ -433,7 +445,6 @@ pub struct Manifest<'a> {
     pub files: Vec<FileEntry>,
 }
 
-
 fn sha256_hex(bytes: &[u8]) -> String {
     Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
 }
@@ -507,12 +518,12 @@ pub enum OutputError {
 impl fmt::Display for OutputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            OutputError::Occupied(dir, why) => write!(
-                f,
-                "refusing to write into --out {}: {why}; only an empty directory or a previous specgen output is replaced",
-                dir.display()
-            ),
-            OutputError::Busy(dir) => write!(f, "another specgen is writing into {} at this moment; nothing written (try again when it has finished)", dir.display()),
+            OutputError::Occupied(dir, why) => {
+                write!(f, "refusing to write into --out {}: {why}; only an empty directory or a previous specgen output is replaced", dir.display())
+            }
+            OutputError::Busy(dir) => {
+                write!(f, "another specgen is writing into {} at this moment; nothing written (try again when it has finished)", dir.display())
+            }
             OutputError::Io(e) => write!(f, "{e}"),
         }
     }
@@ -617,9 +628,8 @@ pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(
     let resolved;
     let dir = match std::fs::symlink_metadata(dir) {
         Ok(m) if m.file_type().is_symlink() => {
-            resolved = std::fs::canonicalize(dir).map_err(|_| {
-                OutputError::Occupied(dir.to_path_buf(), "it is a symbolic link to nothing (a dangling link)".into())
-            })?;
+            resolved = std::fs::canonicalize(dir)
+                .map_err(|_| OutputError::Occupied(dir.to_path_buf(), "it is a symbolic link to nothing (a dangling link)".into()))?;
             resolved.as_path()
         }
         _ => dir,

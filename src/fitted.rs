@@ -258,10 +258,7 @@ pub fn trace(cfg: &Config, fit: &Fit, w: &FittedWidths, x: crate::model::Inputs)
     let wc = w.color_frac_bits;
     let sc = s >> (wf - wc);
     let spec = x.ks.map(|k| ((sc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
-    (
-        FittedTrace { a_code, m, one_minus_cos: d, product, done, squares },
-        crate::model::Outputs { spec, intensity, done },
-    )
+    (FittedTrace { a_code, m, one_minus_cos: d, product, done, squares }, crate::model::Outputs { spec, intensity, done })
 }
 
 /// Checks one output vector against the exact rational `S = base^(2^m)`,
@@ -312,12 +309,7 @@ pub fn table(fit: &Fit, w: &FittedWidths) -> Table {
         param: "FIT_ROM_FILE".into(),
         width: w.rom_word_bits,
         words: fit.rom_words(w),
-        what: format!(
-            "per-n fit: {{m_n ({} bits), a_n (UQ{}.{})}}",
-            w.m_bits,
-            w.a_bits.saturating_sub(w.a_frac_bits),
-            w.a_frac_bits
-        ),
+        what: format!("per-n fit: {{m_n ({} bits), a_n (UQ{}.{})}}", w.m_bits, w.a_bits.saturating_sub(w.a_frac_bits), w.a_frac_bits),
         fields: vec![("a_code".into(), w.a_bits), ("m".into(), w.m_bits)],
     }
 }
@@ -393,7 +385,12 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S*ks_{ch} rounded half up"));
     }
     let sv = b.r(&s);
-    b.wire("intensity_sum", wf + 1, format!("{sv} + {}", lit(wf + 1, 1u128 << (wf - fi - 1))), &format!("UQ1.{wf}: S + 2^-{} (round half up; S < 1 when it is not a whole 1.0)", fi + 1));
+    b.wire(
+        "intensity_sum",
+        wf + 1,
+        format!("{sv} + {}", lit(wf + 1, 1u128 << (wf - fi - 1))),
+        &format!("UQ1.{wf}: S + 2^-{} (round half up; S < 1 when it is not a whole 1.0)", fi + 1),
+    );
     let e = b.bits("intensity_sum", wf, wf - fi);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
     b.delay(crate::datapath::mul_delay(wf + 1, bb) + crate::datapath::add_delay(cp));

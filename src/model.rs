@@ -10,9 +10,9 @@ use crate::blinn::{self, BlinnTables, BlinnWidths};
 use crate::config::{Config, Rounding, SpecularModel};
 use crate::fitted::{self, Fit, FittedWidths};
 use crate::rom;
+use crate::widths::{mask, Widths};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
-use crate::widths::{mask, Widths};
 
 /// One input vector of the unit (port values as integers).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -309,13 +309,7 @@ pub fn reference(cfg: &Config, x: Inputs) -> Reference {
     let done = base_num < 0;
     let s_num: u128 = if done { 0 } else { (base_num * base_num) as u128 };
     let den_log2 = 2 * base_den_log2;
-    Reference {
-        base_num,
-        base_den_log2,
-        done,
-        intensity: Ideal { num: s_num << fi, den_log2 },
-        spec: x.ks.map(|k| Ideal { num: s_num * k as u128, den_log2 }),
-    }
+    Reference { base_num, base_den_log2, done, intensity: Ideal { num: s_num << fi, den_log2 }, spec: x.ks.map(|k| Ideal { num: s_num * k as u128, den_log2 }) }
 }
 
 /// Checks one output against its ideal under the rounding contract.
@@ -371,11 +365,21 @@ pub fn check_blinn_pow(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Stri
         o + (1u128 << q) > hi * m && o < lo * m + (1u128 << q)
     };
     if !within(got.intensity, 1u128 << cfg.fi()) {
-        return Err(format!("intensity: got {}, cos^n·2^FI in [{}, {}]", got.intensity, (lo << cfg.fi()) as f64 / (q as f64).exp2(), (hi << cfg.fi()) as f64 / (q as f64).exp2()));
+        return Err(format!(
+            "intensity: got {}, cos^n·2^FI in [{}, {}]",
+            got.intensity,
+            (lo << cfg.fi()) as f64 / (q as f64).exp2(),
+            (hi << cfg.fi()) as f64 / (q as f64).exp2()
+        ));
     }
     for (i, name) in ["spec_r", "spec_g", "spec_b"].iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
-            return Err(format!("{name}: got {}, cos^n·ks in [{}, {}]", got.spec[i], (lo * x.ks[i] as u128) as f64 / (q as f64).exp2(), (hi * x.ks[i] as u128) as f64 / (q as f64).exp2()));
+            return Err(format!(
+                "{name}: got {}, cos^n·ks in [{}, {}]",
+                got.spec[i],
+                (lo * x.ks[i] as u128) as f64 / (q as f64).exp2(),
+                (hi * x.ks[i] as u128) as f64 / (q as f64).exp2()
+            ));
         }
     }
     if got.done != (got.intensity == 0) {
@@ -465,7 +469,9 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
     // a fixed partition (not the core count), so the sums and the manifest are the same bytes
     // on every machine
     let threads = 8u32;
-    let parts: Vec<(f64, f64, u32, u32, u64, Vec<(u32, f64)>)> = std::thread::scope(|s| {
+    /// one thread's part: max, sum, worst n, worst cos_g, points, per-n maxima
+    type Part = (f64, f64, u32, u32, u64, Vec<(u32, f64)>);
+    let parts: Vec<Part> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
                 s.spawn(move || {

@@ -48,8 +48,8 @@ pub fn ward_approx(delta: f64, alpha: f64, cut: bool) -> f64 {
 
 /// `∫_0^{π/2} cos^n δ dδ` by the Wallis recurrence `W_n = (n−1)/n · W_{n−2}`, exact.
 pub fn wallis(n: u32) -> f64 {
-    let mut w = if n % 2 == 0 { FRAC_PI_2 } else { 1.0 };
-    let mut k = if n % 2 == 0 { 2 } else { 3 };
+    let mut w = if n.is_multiple_of(2) { FRAC_PI_2 } else { 1.0 };
+    let mut k = if n.is_multiple_of(2) { 2 } else { 3 };
     while k <= n {
         w *= (k - 1) as f64 / k as f64;
         k += 2;
@@ -105,10 +105,13 @@ pub fn solve_system10(target: f64) -> f64 {
 /// Mean of `|f(δ) − g(δ)|` over δ uniform on [0, π/2], composite midpoint rule with `steps` cells.
 pub fn mean_abs_dev(f: impl Fn(f64) -> f64, g: impl Fn(f64) -> f64, steps: usize) -> f64 {
     let h = FRAC_PI_2 / steps as f64;
-    (0..steps).map(|i| {
-        let d = (i as f64 + 0.5) * h;
-        (f(d) - g(d)).abs()
-    }).sum::<f64>() / steps as f64
+    (0..steps)
+        .map(|i| {
+            let d = (i as f64 + 0.5) * h;
+            (f(d) - g(d)).abs()
+        })
+        .sum::<f64>()
+        / steps as f64
 }
 
 /// Mean over integer n in `ns` of the per-n mean absolute deviation.
@@ -133,7 +136,11 @@ pub struct Claim {
 }
 
 fn verdict(agrees: bool) -> String {
-    if agrees { "agrees".into() } else { "disagrees".into() }
+    if agrees {
+        "agrees".into()
+    } else {
+        "disagrees".into()
+    }
 }
 
 pub const MAD_STEPS: usize = 4000;
@@ -167,17 +174,22 @@ pub fn claims() -> Vec<Claim> {
         verdict: verdict((a10 - 1.928).abs() < 5e-4),
         remark: "the paper rounds a = b to 2, giving (11)".into(),
     });
-    let mad7 = mad_over_n(1..=1000, MAD_STEPS, |d, n| schlick(d, n), |d, n| blinn(d, n));
-    let mad11 = mad_over_n(1..=1000, MAD_STEPS, |d, n| schlick_ab(d, n, 2.0, 2.0), |d, n| blinn(d, n));
+    let mad7 = mad_over_n(1..=1000, MAD_STEPS, schlick, blinn);
+    let mad11 = mad_over_n(1..=1000, MAD_STEPS, |d, n| schlick_ab(d, n, 2.0, 2.0), blinn);
     let ratio = mad7 / mad11;
     let ratio_cos = {
         // the same deviation averaged with δ uniform in cos δ ∈ [0, 1] (δ = arccos u)
         let m = |f: &dyn Fn(f64, f64) -> f64| {
             (1..=1000u32)
-                .map(|n| (0..MAD_STEPS).map(|i| {
-                    let d = ((i as f64 + 0.5) / MAD_STEPS as f64).acos();
-                    (f(d, n as f64) - blinn(d, n as f64)).abs()
-                }).sum::<f64>() / MAD_STEPS as f64)
+                .map(|n| {
+                    (0..MAD_STEPS)
+                        .map(|i| {
+                            let d = ((i as f64 + 0.5) / MAD_STEPS as f64).acos();
+                            (f(d, n as f64) - blinn(d, n as f64)).abs()
+                        })
+                        .sum::<f64>()
+                        / MAD_STEPS as f64
+                })
                 .sum::<f64>()
         };
         m(&|d, n| schlick(d, n)) / m(&|d, n| schlick_ab(d, n, 2.0, 2.0))
@@ -190,17 +202,24 @@ pub fn claims() -> Vec<Claim> {
         value: ratio,
         method: format!("per integer n, mean of |f − cos^n| over δ uniform on [0, π/2] (midpoint rule, {MAD_STEPS} cells); averaged over n = 1..1000"),
         agrees: (ratio - 1.45).abs() < 0.05,
-        verdict: if (ratio - 1.45).abs() < 0.05 { verdict(true) } else if ratio > 1.0 { "disagrees on the figure; (11) is better, by more than claimed".into() } else { verdict(false) },
-        remark: format!(
-            "sensitivity, not a substitute: weighting δ uniformly in cos δ instead of in angle gives {ratio_cos:.3}×"
-        ),
+        verdict: if (ratio - 1.45).abs() < 0.05 {
+            verdict(true)
+        } else if ratio > 1.0 {
+            "disagrees on the figure; (11) is better, by more than claimed".into()
+        } else {
+            verdict(false)
+        },
+        remark: format!("sensitivity, not a substitute: weighting δ uniformly in cos δ instead of in angle gives {ratio_cos:.3}×"),
     });
     let alphas: Vec<f64> = (0..=190).map(|i| 0.01 + i as f64 * 0.001).collect();
     let worst = |cut: bool| {
-        alphas
-            .iter()
-            .map(|&al| (mean_abs_dev(|d| ward(d, al), |d| ward_approx(d, al, cut), MAD_STEPS * 5), al))
-            .fold((0.0f64, 0.0f64), |acc, x| if x.0 > acc.0 { x } else { acc })
+        alphas.iter().map(|&al| (mean_abs_dev(|d| ward(d, al), |d| ward_approx(d, al, cut), MAD_STEPS * 5), al)).fold((0.0f64, 0.0f64), |acc, x| {
+            if x.0 > acc.0 {
+                x
+            } else {
+                acc
+            }
+        })
     };
     let (w_cut, al_cut) = worst(true);
     let (w_lit, al_lit) = worst(false);
@@ -217,8 +236,8 @@ pub fn claims() -> Vec<Claim> {
             "taken literally (no cut), the 16th power of the negative bracket grows without bound: worst {w_lit:.2e} at α = {al_lit:.3}; the paper's figure only makes sense with the cut, as for (15)"
         ),
     });
-    let mad12 = mad_over_n(2..=1000, MAD_STEPS, |d, n| cosine_quadratic(d, n, 2.0), |d, n| blinn(d, n));
-    let mad15 = mad_over_n(2..=1000, MAD_STEPS, |d, n| cosine_quadratic(d, n, 2.713), |d, n| blinn(d, n));
+    let mad12 = mad_over_n(2..=1000, MAD_STEPS, |d, n| cosine_quadratic(d, n, 2.0), blinn);
+    let mad15 = mad_over_n(2..=1000, MAD_STEPS, |d, n| cosine_quadratic(d, n, 2.713), blinn);
     v.push(Claim {
         id: "eq12_vs_eq15",
         claim: "(15) approximates Blinn better than (12), n ∈ [2, 1000]".into(),

@@ -77,7 +77,11 @@ pub fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
                 let be = (s - c.powi(n as i32)).abs();
                 let quad = |k: f64| {
                     let b = 1.0 - k * n as f64 * (1.0 - c);
-                    if b < 0.0 { 0.0 } else { b * b }
+                    if b < 0.0 {
+                        0.0
+                    } else {
+                        b * b
+                    }
                 };
                 let ke = (quad(k_q) - quad(k_real)).abs();
                 a.points += 1;
@@ -141,10 +145,12 @@ fn line_plot(title: &str, x_label: &str, x_max: f64, curves: Vec<Curve>) -> Stri
             .build_cartesian_2d(0.0..x_max, 0.0..1.05)?;
         chart.configure_mesh().x_desc(x_label).y_desc("value").draw()?;
         for (name, colour, f) in curves {
-            let pts: Vec<(f64, f64)> = (0..=400).map(|i| {
-                let x = x_max * i as f64 / 400.0;
-                (x, f(x).clamp(0.0, 1.05))
-            }).collect();
+            let pts: Vec<(f64, f64)> = (0..=400)
+                .map(|i| {
+                    let x = x_max * i as f64 / 400.0;
+                    (x, f(x).clamp(0.0, 1.05))
+                })
+                .collect();
             chart
                 .draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
                 .label(name)
@@ -155,6 +161,7 @@ fn line_plot(title: &str, x_label: &str, x_max: f64, curves: Vec<Curve>) -> Stri
     })
 }
 
+#[allow(clippy::too_many_arguments)] // a plot's labels, axes and grid, each named at the call
 fn heat_map(title: &str, x_label: &str, y_label: &str, x_max: f64, y_max: f64, cols: usize, rows: usize, cells: &[f64]) -> String {
     let peak = cells.iter().cloned().fold(0.0f64, f64::max).max(1e-300);
     svg(|area| {
@@ -188,32 +195,47 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
     v.push(Figure {
         id: "ward",
         caption: "Ward's exp(−tan²δ/α²) (2), its approximation (5) cut at the bracket's zero, and Blinn with n = 2/α², α = 0.15 (paper, Fig. 2).".into(),
-        svg: line_plot("Ward vs approximation (5), α = 0.15", "δ (rad)", 0.8, vec![
-            ("exp(−tan²δ/α²)", RED, Box::new(move |d| paper::ward(d, alpha))),
-            ("[(cos δ−1)/(8α²)+1]^16", BLUE, Box::new(move |d| paper::ward_approx(d, alpha, true))),
-            ("cos^(2/α²) δ", GREEN, Box::new(move |d| paper::blinn(d, 2.0 / (alpha * alpha)))),
-        ]),
+        svg: line_plot(
+            "Ward vs approximation (5), α = 0.15",
+            "δ (rad)",
+            0.8,
+            vec![
+                ("exp(−tan²δ/α²)", RED, Box::new(move |d| paper::ward(d, alpha))),
+                ("[(cos δ−1)/(8α²)+1]^16", BLUE, Box::new(move |d| paper::ward_approx(d, alpha, true))),
+                ("cos^(2/α²) δ", GREEN, Box::new(move |d| paper::blinn(d, 2.0 / (alpha * alpha)))),
+            ],
+        ),
     });
     for n in [10.0f64, 50.0, 200.0] {
         let x_max = (1.0 - 2.713 / n).max(-1.0).acos().max(0.3) * 1.2;
         v.push(Figure {
             id: "quadratic",
             caption: format!("Blinn cos^n δ, (12) and (15) for n = {n} (paper, Fig. 4)."),
-            svg: line_plot(&format!("Blinn vs (12) vs (15), n = {n}"), "δ (rad)", x_max.min(FRAC_PI_2), vec![
-                ("cos^n δ", RED, Box::new(move |d| paper::blinn(d, n))),
-                ("(12): a = 2", BLUE, Box::new(move |d| paper::cosine_quadratic(d, n, 2.0))),
-                ("(15): a = 2.713", GREEN, Box::new(move |d| paper::cosine_quadratic(d, n, 2.713))),
-            ]),
+            svg: line_plot(
+                &format!("Blinn vs (12) vs (15), n = {n}"),
+                "δ (rad)",
+                x_max.min(FRAC_PI_2),
+                vec![
+                    ("cos^n δ", RED, Box::new(move |d| paper::blinn(d, n))),
+                    ("(12): a = 2", BLUE, Box::new(move |d| paper::cosine_quadratic(d, n, 2.0))),
+                    ("(15): a = 2.713", GREEN, Box::new(move |d| paper::cosine_quadratic(d, n, 2.713))),
+                ],
+            ),
         });
     }
     v.push(Figure {
         id: "schlick",
         caption: "Blinn, Schlick (7) and modified Schlick (11) for n = 10 (paper, Fig. 3).".into(),
-        svg: line_plot("Blinn, Schlick (7), (11), n = 10", "δ (rad)", FRAC_PI_2, vec![
-            ("cos^10 δ", RED, Box::new(|d| paper::blinn(d, 10.0))),
-            ("Schlick (7)", BLUE, Box::new(|d| paper::schlick(d, 10.0))),
-            ("(11)", GREEN, Box::new(|d| paper::schlick_ab(d, 10.0, 2.0, 2.0))),
-        ]),
+        svg: line_plot(
+            "Blinn, Schlick (7), (11), n = 10",
+            "δ (rad)",
+            FRAC_PI_2,
+            vec![
+                ("cos^10 δ", RED, Box::new(|d| paper::blinn(d, 10.0))),
+                ("Schlick (7)", BLUE, Box::new(|d| paper::schlick(d, 10.0))),
+                ("(11)", GREEN, Box::new(|d| paper::schlick_ab(d, 10.0, 2.0, 2.0))),
+            ],
+        ),
     });
     let table = rom::cos_sp_table(cfg);
     let one = (cfg.f() as f64).exp2();
@@ -231,9 +253,9 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
                 .build_cartesian_2d(0.0..n_max, 0.0..90.0)?;
             chart.configure_mesh().x_desc("n").y_desc("γsp (degrees)").draw()?;
             let step = (table.len() / 256).max(1);
-            chart.draw_series(table.iter().enumerate().step_by(step).skip(1).map(|(n, &c)| {
-                Circle::new((n as f64, (c as f64 / one).acos().to_degrees()), 2, BLUE.filled())
-            }))?;
+            chart.draw_series(
+                table.iter().enumerate().step_by(step).skip(1).map(|(n, &c)| Circle::new((n as f64, (c as f64 / one).acos().to_degrees()), 2, BLUE.filled())),
+            )?;
             chart.draw_series(LineSeries::new(
                 (1..table.len()).map(|n| (n as f64, (1.0 - 1.0 / (k_q * n as f64)).max(0.0).acos().to_degrees())),
                 RED.stroke_width(1),
@@ -329,7 +351,9 @@ fn premise(rows: &[ModelComparison]) -> String {
             bh.dsp_blocks as i64 - qh.dsp_blocks as i64,
             q.blinn_error_max / b.blinn_error_max.max(1e-300)
         )),
-        _ => s.push_str(" Hardware columns are empty: pass `specgen synth --json` results with --hw (scripts/bench_hw.sh writes them) to compare area and speed."),
+        _ => s.push_str(
+            " Hardware columns are empty: pass `specgen synth --json` results with --hw (scripts/bench_hw.sh writes them) to compare area and speed.",
+        ),
     }
     s
 }
@@ -364,7 +388,8 @@ fn render_grid(models: &[(Model, &'static str)]) -> (String, Vec<u32>) {
     let n_max = (1u32 << models[0].0.cfg.n_bits()) - 1;
     let ns: Vec<u32> = [1u32, 4, 16, 128].into_iter().filter(|&n| n <= n_max).collect();
     let size = 96;
-    let mut rows: Vec<Vec<Vec<u8>>> = models.iter().map(|(m, _)| ns.iter().map(|&n| crate::render::tile(m, Scene::Sphere, Panel::Unit, n, size)).collect()).collect();
+    let mut rows: Vec<Vec<Vec<u8>>> =
+        models.iter().map(|(m, _)| ns.iter().map(|&n| crate::render::tile(m, Scene::Sphere, Panel::Unit, n, size)).collect()).collect();
     rows.push(ns.iter().map(|&n| crate::render::tile(&models[0].0, Scene::Sphere, Panel::Float, n, size)).collect());
     let (w, h, img) = crate::render::grid(&rows, size);
     (crate::render::base64(&crate::render::png(w, h, &img, "specgen report: models x n")), ns)

@@ -133,7 +133,9 @@ pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
         RomFormat::Hex => ReadmemFile { words: words(table, 16, width) }.render(),
         RomFormat::Bin => ReadmemFile { words: words(table, 2, width) }.render(),
         RomFormat::Coe => CoeFile { top, what, width, depth, words: words(table, 16, width) }.render(),
-        RomFormat::Mif => MifFile { top, what, width, depth, addr_digits: (t.address_bits() as usize).div_ceil(4).max(1), words: words(table, 16, width) }.render(),
+        RomFormat::Mif => {
+            MifFile { top, what, width, depth, addr_digits: (t.address_bits() as usize).div_ceil(4).max(1), words: words(table, 16, width) }.render()
+        }
         RomFormat::Csv if t.name == "cos_sp_rom" => CsvFile {
             header: "n,code,cosine,angle_deg".into(),
             rows: table

@@ -100,9 +100,7 @@ fn wrapper(design: &Design) -> String {
     let (inputs, in_data) = pack("input");
     let (outputs, out_bits) = pack("output");
     let clocked = design.cfg.stages() > 0;
-    let mut text = Wrapper { top: design.cfg.top(), clocked, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }
-        .render()
-        .expect("wrapper renders");
+    let mut text = Wrapper { top: design.cfg.top(), clocked, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }.render().expect("wrapper renders");
     text.push('\n');
     text
 }
@@ -220,14 +218,13 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
             }
             if !out.status.success() {
                 // typically the design does not fit the device: report it, keep the area figures
-                let why = log.lines().filter(|l| l.starts_with("ERROR")).last().unwrap_or("unknown error").to_string();
+                let why = log.lines().rfind(|l| l.starts_with("ERROR")).unwrap_or("unknown error").to_string();
                 r.fmax_note = format!("place-and-route failed: {why}");
                 return Ok(r);
             }
             r.fmax_mhz = log
                 .lines()
-                .filter(|l| l.contains("Max frequency for clock"))
-                .last()
+                .rfind(|l| l.contains("Max frequency for clock"))
                 .and_then(|l| l.split("': ").nth(1))
                 .and_then(|s| s.split_whitespace().next())
                 .and_then(|s| s.parse().ok());
@@ -268,7 +265,10 @@ pub fn run_cli(args: &SynthArgs) -> Result<(), Failure> {
 
 /// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (iCE40 UP5K with
 /// DSPs, nextpnr) and returns the shallowest whose Fmax reaches `mhz`, with every try.
-pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Vec<(u32, Option<f64>)>), Failure> {
+/// Fmax (when placed) for each depth tried: (stages, MHz).
+pub type StageTrials = Vec<(u32, Option<f64>)>;
+
+pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, StageTrials), Failure> {
     require("yosys", "yosys")?;
     require("nextpnr-ice40", "nextpnr-ice40")?;
     let max = crate::widths::cut_points(&crate::config::Config::new(crate::config::Params { stages: 0, ..params.clone() })?);
@@ -292,6 +292,6 @@ pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Vec
     });
     Err(failed(match best {
         Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on iCE40 UP5K; the best is {f:.1} MHz at --stages {s}; nothing written"),
-        None => format!("no pipeline depth could be placed on iCE40 UP5K; nothing written"),
+        None => "no pipeline depth could be placed on iCE40 UP5K; nothing written".to_string(),
     }))
 }

@@ -100,7 +100,7 @@ impl Widths {
         // A DSP block multiplies 16×16 (iCE40 SB_MAC16); a wider bracket is split x = h·2^r + l
         // and squared as h²·2^2r + 2hl·2^r + l², the same exact value with one 16×16 product.
         let squarer_split = match cfg.arch() {
-            Arch::Lean if wb + 1 > 16 && wb + 1 <= 20 => wb + 1 - 16,
+            Arch::Lean if wb + 1 > 16 && wb < 20 => wb + 1 - 16,
             _ => 0,
         };
         let n_max = (1u64 << cfg.n_bits()) - 1;

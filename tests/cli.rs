@@ -135,7 +135,23 @@ fn manifest_lists_files_with_hashes_ports_and_widths() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = generate(tmp.path(), "m", &["--stages", "2"]);
     let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
-    for key in ["top", "cos_frac_bits", "n_bits", "color_bits", "intensity_frac_bits", "k", "k_frac_bits", "stages", "rounding", "k_code", "latency", "ports", "internal_widths", "files", "version"] {
+    for key in [
+        "top",
+        "cos_frac_bits",
+        "n_bits",
+        "color_bits",
+        "intensity_frac_bits",
+        "k",
+        "k_frac_bits",
+        "stages",
+        "rounding",
+        "k_code",
+        "latency",
+        "ports",
+        "internal_widths",
+        "files",
+        "version",
+    ] {
         assert!(v.get(key).is_some(), "manifest lacks {key}");
     }
     assert_eq!(v["k_code"], 24157);
@@ -160,15 +176,21 @@ fn rom_formats_follow_their_syntax_and_agree() {
         String::from_utf8(o.stdout).unwrap()
     };
     let hex = run("hex");
-    let words: Vec<u32> = hex.lines().map(|l| {
-        assert_eq!(l.len(), 4, "{l}");
-        u32::from_str_radix(l, 16).unwrap()
-    }).collect();
+    let words: Vec<u32> = hex
+        .lines()
+        .map(|l| {
+            assert_eq!(l.len(), 4, "{l}");
+            u32::from_str_radix(l, 16).unwrap()
+        })
+        .collect();
     assert_eq!(words, table);
-    let bin: Vec<u32> = run("bin").lines().map(|l| {
-        assert_eq!(l.len(), 16);
-        u32::from_str_radix(l, 2).unwrap()
-    }).collect();
+    let bin: Vec<u32> = run("bin")
+        .lines()
+        .map(|l| {
+            assert_eq!(l.len(), 16);
+            u32::from_str_radix(l, 2).unwrap()
+        })
+        .collect();
     assert_eq!(bin, table);
     let coe = run("coe");
     let body = coe.split("memory_initialization_vector=").nth(1).unwrap();

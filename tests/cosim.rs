@@ -83,19 +83,39 @@ fn injected_faults_are_caught() {
     let tmp = tempfile::tempdir().unwrap();
     let r = tmp.path();
     let random: &[&str] = &["--vectors", "100000"];
-    let faults: Vec<(&str, &[&str], &str, &str, &[&str])> = vec![
+    /// name, generate flags, RTL text, its mutation, cosim flags
+    type Fault<'a> = (&'a str, &'a [&'a str], &'a str, &'a str, &'a [&'a str]);
+    let faults: Vec<Fault> = vec![
         // an off-by-one constant: k_code 24157 = 0x5e5d
         ("k_off_by_one", &[], "25'h5e5d", "25'h5e5e", random),
         // a dropped rounding bit: intensity truncates instead of rounding
         ("no_round", &[], "{1'b0, square_s11[5:0], 1'b1} + 8'h1;", "{1'b0, square_s11[5:0], 1'b1} + 8'h0;", random),
         // swapped colour channels
-        ("swap_rg", &[], "assign spec_r    = spec_r_c13;\nassign spec_g    = spec_g_c13;", "assign spec_r    = spec_g_c13;\nassign spec_g    = spec_r_c13;", random),
+        (
+            "swap_rg",
+            &[],
+            "assign spec_r    = spec_r_c13;\nassign spec_g    = spec_g_c13;",
+            "assign spec_r    = spec_g_c13;\nassign spec_g    = spec_r_c13;",
+            random,
+        ),
         // a wrong cut-off comparison: cos <= cos_sp
-        ("cutoff_le", &[], "{1'b0, cos_sp_c2[5:0]} + {1'b0, cos_complement_c2[5:0]};", "{1'b0, cos_sp_c2[5:0]} + {1'b0, cos_complement_c2[5:0]} + 7'h1;", random),
+        (
+            "cutoff_le",
+            &[],
+            "{1'b0, cos_sp_c2[5:0]} + {1'b0, cos_complement_c2[5:0]};",
+            "{1'b0, cos_sp_c2[5:0]} + {1'b0, cos_complement_c2[5:0]} + 7'h1;",
+            random,
+        ),
         // a fault at one single (cos_g, n): only the exhaustive run meets it
         ("one_point", &[], "assign done      = done_c13;", "assign done      = done_c13 ^ (cos_g == 16'd32000 && n == 10'd77);", &["--exhaustive"]),
         // out_valid one cycle late in a pipelined unit
-        ("valid_late", &["--stages", "2"], "assign out_valid = valid_c13;", "reg valid_late;\nalways @(posedge clk) valid_late <= valid_c13;\nassign out_valid = valid_late;", random),
+        (
+            "valid_late",
+            &["--stages", "2"],
+            "assign out_valid = valid_c13;",
+            "reg valid_late;\nalways @(posedge clk) valid_late <= valid_c13;\nassign out_valid = valid_late;",
+            random,
+        ),
     ];
     for (name, gen_args, from, to, args) in faults {
         let o = mutant(r, name, gen_args, from, to, args);
@@ -109,7 +129,14 @@ fn mismatch_with_trace_writes_a_vcd() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
     let vcd = tmp.path().join("fail.vcd");
-    let o = mutant(tmp.path(), "t", &["--stages", "1"], "{1'b0, square_s11[5:0], 1'b1} + 8'h1;", "{1'b0, square_s11[5:0], 1'b1} + 8'h0;", &["--trace", vcd.to_str().unwrap()]);
+    let o = mutant(
+        tmp.path(),
+        "t",
+        &["--stages", "1"],
+        "{1'b0, square_s11[5:0], 1'b1} + 8'h1;",
+        "{1'b0, square_s11[5:0], 1'b1} + 8'h0;",
+        &["--trace", vcd.to_str().unwrap()],
+    );
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let dump = std::fs::read_to_string(&vcd).unwrap();
     assert!(dump.contains("$enddefinitions") && dump.contains("intensity"), "not a VCD of the unit");
@@ -236,7 +263,12 @@ fn a_missing_table_file_stops_both_simulators() {
         let o = Command::new("vvp").current_dir(&elsewhere).arg("-n").arg(&sim).output().unwrap();
         assert!(text(&o).contains(&format!("cannot open table file {file}")), "Icarus: {}", text(&o));
         let mdir = tmp.path().join(format!("{name}_obj"));
-        let b = Command::new("verilator").args(["--binary", "-Wno-fatal", "--top-module", "specular_unit", "-o", "vsim", "--Mdir"]).arg(&mdir).arg(&v).output().unwrap();
+        let b = Command::new("verilator")
+            .args(["--binary", "-Wno-fatal", "--top-module", "specular_unit", "-o", "vsim", "--Mdir"])
+            .arg(&mdir)
+            .arg(&v)
+            .output()
+            .unwrap();
         assert!(b.status.success(), "{}", text(&b));
         let o = Command::new(mdir.join("vsim")).current_dir(&elsewhere).output().unwrap();
         assert!(text(&o).contains(&format!("cannot open table file {file}")), "Verilator: {}", text(&o));

@@ -79,7 +79,9 @@ fn top_may_not_be_a_port_or_an_internal_name() {
         assert!(!out.exists());
     }
     // the rule covers every name the generated units declare
-    for args in [&[][..], &["--model", "blinn", "--stages", "3"][..], &["--model", "fitted", "--stages", "8"][..], &["--model", "blinn-pow", "--stages", "2"][..]] {
+    for args in
+        [&[][..], &["--model", "blinn", "--stages", "3"][..], &["--model", "fitted", "--stages", "8"][..], &["--model", "blinn-pow", "--stages", "2"][..]]
+    {
         let dir = generate(tmp.path(), "ok", args);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
         for line in v.lines().map(str::trim) {
@@ -123,5 +125,9 @@ fn a_manifest_that_disagrees_with_the_rtl_is_reported_as_such() {
     std::fs::write(&m, std::fs::read_to_string(&m).unwrap().replace("\"color_bits\": 8", "\"color_bits\": 10")).unwrap();
     let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(["cosim", "--rtl"]).arg(&dir).output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("disagree with the manifest") && text(&o).contains("spec_r is output of 8 bits in the RTL, output of 10 bits by the manifest"), "{}", text(&o));
+    assert!(
+        text(&o).contains("disagree with the manifest") && text(&o).contains("spec_r is output of 8 bits in the RTL, output of 10 bits by the manifest"),
+        "{}",
+        text(&o)
+    );
 }

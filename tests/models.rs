@@ -180,7 +180,9 @@ fn fit_is_exact_where_it_can_be_and_locally_minimax() {
         assert!(fit.fit_error[n] < 1e-9, "n = {n}: {}", fit.fit_error[n]);
     }
     // the error of (a, m) against cos^n on a dense grid of c
-    let err = |n: u32, m: u32, a: f64| (0..=20000).map(|i| i as f64 / 20000.0).map(|c: f64| ((1.0 - a * (1.0 - c)).max(0.0).powi(1 << m) - c.powi(n as i32)).abs()).fold(0.0, f64::max);
+    let err = |n: u32, m: u32, a: f64| {
+        (0..=20000).map(|i| i as f64 / 20000.0).map(|c: f64| ((1.0 - a * (1.0 - c)).max(0.0).powi(1 << m) - c.powi(n as i32)).abs()).fold(0.0, f64::max)
+    };
     for n in [3u32, 5, 17, 40, 63] {
         let (a, m) = (fit.a[n as usize], fit.m[n as usize]);
         let e = err(n, m, a);
@@ -195,7 +197,7 @@ fn fit_is_exact_where_it_can_be_and_locally_minimax() {
 fn fidelity_figures_at_defaults() {
     let fid = |model| specgen::model::blinn_fidelity(&Model::new(&Config::new(Params { model, ..Params::default() }).unwrap()));
     let (q, f, b) = (fid(SpecularModel::Quadratic), fid(SpecularModel::Fitted), fid(SpecularModel::Blinn));
-    for x in [q, f, b] {
+    for x in [&q, &f, &b] {
         assert_eq!((x.points, x.stride), (32769 * 1024, 1));
         assert!(x.mean > 0.0 && x.mean <= x.max);
     }

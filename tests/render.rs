@@ -20,7 +20,14 @@ fn render_through_the_rtl_equals_the_model_and_shows_the_difference() {
     for (name, args) in [("q", &["--stages", "3"][..]), ("b", &["--model", "blinn"][..])] {
         let dir = generate(tmp.path(), name, args);
         let (rtl_png, model_png) = (tmp.path().join(format!("{name}_rtl.png")), tmp.path().join(format!("{name}_model.png")));
-        let o = specgen().env("SPECGEN_CACHE_DIR", &cache).args(["render", "--n", "1,16,128", "--size", "32", "--rtl"]).arg(&dir).arg("--out").arg(&rtl_png).output().unwrap();
+        let o = specgen()
+            .env("SPECGEN_CACHE_DIR", &cache)
+            .args(["render", "--n", "1,16,128", "--size", "32", "--rtl"])
+            .arg(&dir)
+            .arg("--out")
+            .arg(&rtl_png)
+            .output()
+            .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert!(String::from_utf8_lossy(&o.stderr).contains("through the RTL"));
         let o = specgen().args(["render", "--model-only", "--n", "1,16,128", "--size", "32", "--rtl"]).arg(&dir).arg("--out").arg(&model_png).output().unwrap();
@@ -33,7 +40,7 @@ fn render_through_the_rtl_equals_the_model_and_shows_the_difference() {
         // unit differs from cos^n — plenty for the paper's quadratic, none for blinn
         let red = (0..32 * 32).filter(|i| {
             let (x, y) = (2 + 2 * 34 + i % 32, 2 + 34 + i / 32);
-            let p = ((y * w as usize + x) * 3) as usize;
+            let p = (y * w as usize + x) * 3;
             px[p] > 60 && px[p + 1] < 40
         });
         let red = red.count();
@@ -61,7 +68,14 @@ fn render_refuses_bad_arguments_and_faulty_rtl() {
     let from = "assign intensity = intensity_c";
     assert_eq!(src.matches(from).count(), 1);
     std::fs::write(&v, src.replace(from, "assign intensity = 16'h1 ^ intensity_c")).unwrap();
-    let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(["render", "--size", "16", "--n", "1,40", "--rtl"]).arg(&dir).arg("--out").arg(&out).output().unwrap();
+    let o = specgen()
+        .env("SPECGEN_CACHE_DIR", cache_dir())
+        .args(["render", "--size", "16", "--n", "1,40", "--rtl"])
+        .arg(&dir)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(String::from_utf8_lossy(&o.stderr).contains("differs from the golden model"));
     assert!(!out.exists());

@@ -53,7 +53,11 @@ fn system10_matches_direct_root_finding() {
     let (mut lo, mut hi) = (0.5, 5.0);
     for _ in 0..100 {
         let mid = (lo + hi) / 2.0;
-        if f(mid) > 0.0 { lo = mid } else { hi = mid }
+        if f(mid) > 0.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
     }
     assert!((paper::solve_system10(0.271) - lo).abs() < 1e-9);
     assert!((lo - 1.928).abs() < 1e-3);

@@ -39,9 +39,8 @@ fn yosys_synthesizes_without_latches_or_warnings() {
     for (i, args) in CONFIGS.iter().enumerate() {
         let dir = generate(tmp.path(), &format!("c{i}"), args);
         let top = top_of(args);
-        let script = format!(
-            "read_verilog {top}.v; synth -top {top}; check -assert; select -assert-none t:$dlatch t:$_DLATCH_*; select -assert-min 1 t:*; stat"
-        );
+        let script =
+            format!("read_verilog {top}.v; synth -top {top}; check -assert; select -assert-none t:$dlatch t:$_DLATCH_*; select -assert-min 1 t:*; stat");
         let out = Command::new("yosys").current_dir(&dir).args(["-p", &script]).output().unwrap();
         let log = String::from_utf8_lossy(&out.stdout);
         assert!(out.status.success(), "{args:?}: yosys failed:\n{}", &log[log.len().saturating_sub(3000)..]);

@@ -48,7 +48,10 @@ fn lean_fully_pipelined_fits_an_up5k_and_reaches_100_mhz() {
 fn generic_target_counts_cells() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let r = synth(&generate(tmp.path(), "g", &["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"]), &["--target", "generic"]);
+    let r = synth(
+        &generate(tmp.path(), "g", &["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"]),
+        &["--target", "generic"],
+    );
     assert!(r["luts"].as_u64().unwrap() > 50);
     assert!(r["fmax_mhz"].is_null());
 }
