@@ -32,14 +32,6 @@ module specular_unit #(
     output wire        done        // cos(gamma) < cos_sp(n): beyond the highlight
 );
 
-// ---- cut 0: the input ports ----
-wire        valid_c0 = in_valid;
-wire [15:0] cos_g_c0 = cos_g;
-wire [9:0] n_c0 = n;
-wire [7:0] ks_r_c0 = ks_r;
-wire [7:0] ks_g_c0 = ks_g;
-wire [7:0] ks_b_c0 = ks_b;
-
 // ---- table cos_sp_rom: cut-off ROM cos_sp(n), UQ1.15, address = n ----
 reg  [15:0] cos_sp_rom [0:1023];
 `ifndef SYNTHESIS
@@ -67,232 +59,80 @@ initial begin
 end
 
 // ==== step 1: cut-off ROM read (10); cos complemented and clamped ====
-wire [15:0] cos_sp_s1 = cos_sp_rom[n_c0];   // cut-off ROM cos_sp(n), UQ1.15, address = n
-wire [15:0] cos_complement_s1 = {cos_g_c0[15], ~cos_g_c0[14:0] | {15{cos_g_c0[15]}}};   // UQ1.15: ~cos = 1 - 2^-15 - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)
-// ---- cut 1: combinational pass-through ----
-wire        valid_c1 = valid_c0;
-wire [15:0] cos_g_c1 = cos_g_c0;
-wire [9:0] n_c1 = n_c0;
-wire [7:0] ks_r_c1 = ks_r_c0;
-wire [7:0] ks_g_c1 = ks_g_c0;
-wire [7:0] ks_b_c1 = ks_b_c0;
-wire [15:0] cos_sp_c1 = cos_sp_s1;
-wire [15:0] cos_complement_c1 = cos_complement_s1;
+wire [15:0] cos_sp_s1 = cos_sp_rom[n];   // cut-off ROM cos_sp(n), UQ1.15, address = n
+wire [15:0] cos_complement_s1 = {cos_g[15], ~cos_g[14:0] | {15{cos_g[15]}}};   // UQ1.15: ~cos = 1 - 2^-15 - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)
 
 // ==== step 2: 1 - cos (adder 6): chunk sums ====
-wire [7:0] one_minus_cos_part0_s2 = {1'b0, cos_complement_c1[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
-wire [5:0] one_minus_cos_part1_s2 = {1'b0, cos_complement_c1[10:6]};   // bits [10:6] and their carry, carry-in 0
-wire [6:0] one_minus_cos_part1_plus1_s2 = {1'b0, cos_complement_c1[10:6], 1'b1} + 7'h1;   // bits [10:6] and their carry above bit 0, carry-in 1 (carry-select)
-wire [4:0] one_minus_cos_part2_s2 = cos_complement_c1[15:11];   // bits [15:11], carry-in 0
-wire [5:0] one_minus_cos_part2_plus1_s2 = {cos_complement_c1[15:11], 1'b1} + 6'h1;   // bits [15:11] above bit 0, carry-in 1 (carry-select)
-// ---- cut 2: combinational pass-through ----
-wire        valid_c2 = valid_c1;
-wire [15:0] cos_g_c2 = cos_g_c1;
-wire [9:0] n_c2 = n_c1;
-wire [7:0] ks_r_c2 = ks_r_c1;
-wire [7:0] ks_g_c2 = ks_g_c1;
-wire [7:0] ks_b_c2 = ks_b_c1;
-wire [15:0] cos_sp_c2 = cos_sp_c1;
-wire [15:0] cos_complement_c2 = cos_complement_c1;
-wire [7:0] one_minus_cos_part0_c2 = one_minus_cos_part0_s2;
-wire [5:0] one_minus_cos_part1_c2 = one_minus_cos_part1_s2;
-wire [6:0] one_minus_cos_part1_plus1_c2 = one_minus_cos_part1_plus1_s2;
-wire [4:0] one_minus_cos_part2_c2 = one_minus_cos_part2_s2;
-wire [5:0] one_minus_cos_part2_plus1_c2 = one_minus_cos_part2_plus1_s2;
+wire [7:0] one_minus_cos_part0_s2 = {1'b0, cos_complement_s1[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
+wire [5:0] one_minus_cos_part1_s2 = {1'b0, cos_complement_s1[10:6]};   // bits [10:6] and their carry, carry-in 0
+wire [6:0] one_minus_cos_part1_plus1_s2 = {1'b0, cos_complement_s1[10:6], 1'b1} + 7'h1;   // bits [10:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [4:0] one_minus_cos_part2_s2 = cos_complement_s1[15:11];   // bits [15:11], carry-in 0
+wire [5:0] one_minus_cos_part2_plus1_s2 = {cos_complement_s1[15:11], 1'b1} + 6'h1;   // bits [15:11] above bit 0, carry-in 1 (carry-select)
 
 // ==== step 3: 1 - cos: carries; comparator (12): chunk sums ====
-wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_c2[7] ? one_minus_cos_part1_plus1_c2[6] : one_minus_cos_part1_c2[5];   // carry into bit 11
-wire [6:0] cutoff_sum_part0_s3 = {1'b0, cos_sp_c2[5:0]} + {1'b0, cos_complement_c2[5:0]};   // bits [5:0] and their carry, carry-in 0
-wire [6:0] cutoff_sum_part1_s3 = {1'b0, cos_sp_c2[11:6]} + {1'b0, cos_complement_c2[11:6]};   // bits [11:6] and their carry, carry-in 0
-wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b0, cos_sp_c2[11:6], 1'b1} + {1'b0, cos_complement_c2[11:6], 1'b1};   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
-wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_c2[15:12]} + {1'h0, 1'h1, cos_complement_c2[14:12]};   // bits [16:12], carry-in 0
-wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_c2[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_c2[14:12]}, 1'b1};   // bits [16:12] above bit 0, carry-in 1 (carry-select)
-wire        unused_cos_complement_s3 = ^cos_complement_c2[15];   // bits no later step reads
-// ---- cut 3: combinational pass-through ----
-wire        valid_c3 = valid_c2;
-wire [15:0] cos_g_c3 = cos_g_c2;
-wire [9:0] n_c3 = n_c2;
-wire [7:0] ks_r_c3 = ks_r_c2;
-wire [7:0] ks_g_c3 = ks_g_c2;
-wire [7:0] ks_b_c3 = ks_b_c2;
-wire [7:0] one_minus_cos_part0_c3 = one_minus_cos_part0_c2;
-wire [5:0] one_minus_cos_part1_c3 = one_minus_cos_part1_c2;
-wire [6:0] one_minus_cos_part1_plus1_c3 = one_minus_cos_part1_plus1_c2;
-wire [4:0] one_minus_cos_part2_c3 = one_minus_cos_part2_c2;
-wire [5:0] one_minus_cos_part2_plus1_c3 = one_minus_cos_part2_plus1_c2;
-wire [0:0] one_minus_cos_carry2_c3 = one_minus_cos_carry2_s3;
-wire [6:0] cutoff_sum_part0_c3 = cutoff_sum_part0_s3;
-wire [6:0] cutoff_sum_part1_c3 = cutoff_sum_part1_s3;
-wire [7:0] cutoff_sum_part1_plus1_c3 = cutoff_sum_part1_plus1_s3;
-wire [4:0] cutoff_sum_part2_c3 = cutoff_sum_part2_s3;
-wire [5:0] cutoff_sum_part2_plus1_c3 = cutoff_sum_part2_plus1_s3;
+wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[6] : one_minus_cos_part1_s2[5];   // carry into bit 11
+wire [6:0] cutoff_sum_part0_s3 = {1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};   // bits [5:0] and their carry, carry-in 0
+wire [6:0] cutoff_sum_part1_s3 = {1'b0, cos_sp_s1[11:6]} + {1'b0, cos_complement_s1[11:6]};   // bits [11:6] and their carry, carry-in 0
+wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b0, cos_sp_s1[11:6], 1'b1} + {1'b0, cos_complement_s1[11:6], 1'b1};   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_s1[15:12]} + {1'h0, 1'h1, cos_complement_s1[14:12]};   // bits [16:12], carry-in 0
+wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_s1[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_s1[14:12]}, 1'b1};   // bits [16:12] above bit 0, carry-in 1 (carry-select)
 
 // ==== step 4: 1 - cos: select; comparator: carries; k_q*n (constant multiply) ====
-wire [15:0] one_minus_cos_s4 = {(one_minus_cos_carry2_c3 ? one_minus_cos_part2_plus1_c3[5:1] : one_minus_cos_part2_c3), (one_minus_cos_part0_c3[7] ? one_minus_cos_part1_plus1_c3[5:1] : one_minus_cos_part1_c3[4:0]), one_minus_cos_part0_c3[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
-wire        cutoff_sum_carry2_s4 = cutoff_sum_part0_c3[6] ? cutoff_sum_part1_plus1_c3[7] : cutoff_sum_part1_c3[6];   // carry into bit 12
-wire [24:0] kn_s4 = {15'h0, n_c3} * 25'h5e5d;   // UQ9.16: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34
-wire        unused_one_minus_cos_part0_s4 = ^one_minus_cos_part0_c3[0];   // bits no later step reads
-wire        unused_one_minus_cos_part1_s4 = ^one_minus_cos_part1_c3[5];   // bits no later step reads
-wire        unused_one_minus_cos_part1_plus1_s4 = ^{one_minus_cos_part1_plus1_c3[6], one_minus_cos_part1_plus1_c3[0]};   // bits no later step reads
-wire        unused_one_minus_cos_part2_plus1_s4 = ^one_minus_cos_part2_plus1_c3[0];   // bits no later step reads
-// ---- cut 4: combinational pass-through ----
-wire        valid_c4 = valid_c3;
-wire [15:0] cos_g_c4 = cos_g_c3;
-wire [7:0] ks_r_c4 = ks_r_c3;
-wire [7:0] ks_g_c4 = ks_g_c3;
-wire [7:0] ks_b_c4 = ks_b_c3;
-wire [6:0] cutoff_sum_part0_c4 = cutoff_sum_part0_c3;
-wire [6:0] cutoff_sum_part1_c4 = cutoff_sum_part1_c3;
-wire [7:0] cutoff_sum_part1_plus1_c4 = cutoff_sum_part1_plus1_c3;
-wire [4:0] cutoff_sum_part2_c4 = cutoff_sum_part2_c3;
-wire [5:0] cutoff_sum_part2_plus1_c4 = cutoff_sum_part2_plus1_c3;
-wire [15:0] one_minus_cos_c4 = one_minus_cos_s4;
-wire [0:0] cutoff_sum_carry2_c4 = cutoff_sum_carry2_s4;
-wire [24:0] kn_c4 = kn_s4;
+wire [15:0] one_minus_cos_s4 = {(one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] : one_minus_cos_part2_s2), (one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] : one_minus_cos_part1_s2[4:0]), one_minus_cos_part0_s2[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
+wire        cutoff_sum_carry2_s4 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[7] : cutoff_sum_part1_s3[6];   // carry into bit 12
+wire [24:0] kn_s4 = {15'h0, n} * 25'h5e5d;   // UQ9.16: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34
 
 // ==== step 5: comparator: select; deviation, high partial product (multiply-add) ====
-wire [16:0] cutoff_sum_s5 = {(cutoff_sum_carry2_c4 ? cutoff_sum_part2_plus1_c4[5:1] : cutoff_sum_part2_c4), (cutoff_sum_part0_c4[6] ? cutoff_sum_part1_plus1_c4[6:1] : cutoff_sum_part1_c4[5:0]), cutoff_sum_part0_c4[5:0]};   // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
-wire        done_s5 = ~cos_g_c4[15] & cutoff_sum_s5[16];   // comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)
-wire [15:0] deviation_hi_s5 = {7'h0, kn_c4[24:16]} * one_minus_cos_c4 + 16'h7fff;   // kn[24:16] * (1 - cos) + K'[31:16], mod 2^16 (one DSP, the add inside it)
-wire        unused_cos_g_s5 = ^cos_g_c4[14:0];   // bits no later step reads
-wire        unused_cutoff_sum_part1_s5 = ^cutoff_sum_part1_c4[6];   // bits no later step reads
-wire        unused_cutoff_sum_part1_plus1_s5 = ^{cutoff_sum_part1_plus1_c4[7], cutoff_sum_part1_plus1_c4[0]};   // bits no later step reads
-wire        unused_cutoff_sum_part2_plus1_s5 = ^cutoff_sum_part2_plus1_c4[0];   // bits no later step reads
-wire        unused_cutoff_sum_s5 = ^cutoff_sum_s5[15:0];   // bits no later step reads
-// ---- cut 5: combinational pass-through ----
-wire        valid_c5 = valid_c4;
-wire [7:0] ks_r_c5 = ks_r_c4;
-wire [7:0] ks_g_c5 = ks_g_c4;
-wire [7:0] ks_b_c5 = ks_b_c4;
-wire [15:0] one_minus_cos_c5 = one_minus_cos_c4;
-wire [24:0] kn_c5 = kn_c4;
-wire [0:0] done_c5 = done_s5;
-wire [15:0] deviation_hi_c5 = deviation_hi_s5;
+wire [16:0] cutoff_sum_s5 = {(cutoff_sum_carry2_s4 ? cutoff_sum_part2_plus1_s3[5:1] : cutoff_sum_part2_s3), (cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[6:1] : cutoff_sum_part1_s3[5:0]), cutoff_sum_part0_s3[5:0]};   // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
+wire        done_s5 = ~cos_g[15] & cutoff_sum_s5[16];   // comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)
+wire [15:0] deviation_hi_s5 = {7'h0, kn_s4[24:16]} * one_minus_cos_s4 + 16'h7fff;   // kn[24:16] * (1 - cos) + K'[31:16], mod 2^16 (one DSP, the add inside it)
 
 // ==== step 6: deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add) ====
-wire [31:0] deviation_sum_s6 = {16'h0, kn_c5[15:0]} * {16'h0, one_minus_cos_c5} + {deviation_hi_c5, 16'hc000};   // P + K' mod 2^32, P = k_q*n*(1 - cos) UQ.31 exact; its complement is K - P (no subtractor)
-wire        unused_kn_s6 = ^kn_c5[24:16];   // bits no later step reads
-// ---- cut 6: combinational pass-through ----
-wire        valid_c6 = valid_c5;
-wire [7:0] ks_r_c6 = ks_r_c5;
-wire [7:0] ks_g_c6 = ks_g_c5;
-wire [7:0] ks_b_c6 = ks_b_c5;
-wire [0:0] done_c6 = done_c5;
-wire [31:0] deviation_sum_c6 = deviation_sum_s6;
+wire [31:0] deviation_sum_s6 = {16'h0, kn_s4[15:0]} * {16'h0, one_minus_cos_s4} + {deviation_hi_s5, 16'hc000};   // P + K' mod 2^32, P = k_q*n*(1 - cos) UQ.31 exact; its complement is K - P (no subtractor)
 
 // ==== step 7: bracket = 1 - deviation (adder 9), truncation #1, key block (13) ====
-wire [17:0] bracket_s7 = done_c6 ? 18'h0 : ~deviation_sum_c6[31:14];   // UQ1.17 in [0, 1]: 2^17 - floor(P/2^14) (truncation #1), zeroed beyond the cut-off (key block 13)
-wire        unused_deviation_sum_s7 = ^deviation_sum_c6[13:0];   // bits no later step reads
-// ---- cut 7: combinational pass-through ----
-wire        valid_c7 = valid_c6;
-wire [7:0] ks_r_c7 = ks_r_c6;
-wire [7:0] ks_g_c7 = ks_g_c6;
-wire [7:0] ks_b_c7 = ks_b_c6;
-wire [0:0] done_c7 = done_c6;
-wire [17:0] bracket_c7 = bracket_s7;
+wire [17:0] bracket_s7 = done_s5 ? 18'h0 : ~deviation_sum_s6[31:14];   // UQ1.17 in [0, 1]: 2^17 - floor(P/2^14) (truncation #1), zeroed beyond the cut-off (key block 13)
 
 // ==== step 8: square (squarer 11): lo^2 ====
-wire [3:0] square_ll_s8 = (bracket_c7[1:0] == 2'h0) ? 4'h0 : (bracket_c7[1:0] == 2'h1) ? 4'h1 : (bracket_c7[1:0] == 2'h2) ? 4'h4 : 4'h9;   // lo^2 by table, bracket = hi*2^2 + lo
-// ---- cut 8: combinational pass-through ----
-wire        valid_c8 = valid_c7;
-wire [7:0] ks_r_c8 = ks_r_c7;
-wire [7:0] ks_g_c8 = ks_g_c7;
-wire [7:0] ks_b_c8 = ks_b_c7;
-wire [0:0] done_c8 = done_c7;
-wire [17:0] bracket_c8 = bracket_c7;
-wire [3:0] square_ll_c8 = square_ll_s8;
+wire [3:0] square_ll_s8 = (bracket_s7[1:0] == 2'h0) ? 4'h0 : (bracket_s7[1:0] == 2'h1) ? 4'h1 : (bracket_s7[1:0] == 2'h2) ? 4'h4 : 4'h9;   // lo^2 by table, bracket = hi*2^2 + lo
 
 // ==== step 9: square: T = hi*lo + lo^2/2^(r+1) (multiply-add) ====
-wire [17:0] square_t_s9 = {2'h0, bracket_c8[17:2]} * {16'h0, bracket_c8[1:0]} + {17'h0, square_ll_c8[3]};   // hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)
-wire        unused_square_ll_s9 = ^square_ll_c8[2:0];   // bits no later step reads
-// ---- cut 9: combinational pass-through ----
-wire        valid_c9 = valid_c8;
-wire [7:0] ks_r_c9 = ks_r_c8;
-wire [7:0] ks_g_c9 = ks_g_c8;
-wire [7:0] ks_b_c9 = ks_b_c8;
-wire [0:0] done_c9 = done_c8;
-wire [17:0] bracket_c9 = bracket_c8;
-wire [17:0] square_t_c9 = square_t_s9;
+wire [17:0] square_t_s9 = {2'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[1:0]} + {17'h0, square_ll_s8[3]};   // hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)
 
 // ==== step 10: square: Z = hi^2 + T/2^(r-1) (multiply-add) ====
-wire [31:0] square_z_s10 = {16'h0, bracket_c9[17:2]} * {16'h0, bracket_c9[17:2]} + {15'h0, square_t_c9[17:1]};   // floor(bracket^2 / 2^4), exact: a 16x16 multiply-add (one DSP) instead of 18x18
-wire        unused_bracket_s10 = ^bracket_c9[1:0];   // bits no later step reads
-wire        unused_square_t_s10 = ^square_t_c9[0];   // bits no later step reads
-// ---- cut 10: combinational pass-through ----
-wire        valid_c10 = valid_c9;
-wire [7:0] ks_r_c10 = ks_r_c9;
-wire [7:0] ks_g_c10 = ks_g_c9;
-wire [7:0] ks_b_c10 = ks_b_c9;
-wire [0:0] done_c10 = done_c9;
-wire [31:0] square_z_c10 = square_z_s10;
+wire [31:0] square_z_s10 = {16'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[17:2]} + {15'h0, square_t_s9[17:1]};   // floor(bracket^2 / 2^4), exact: a 16x16 multiply-add (one DSP) instead of 18x18
 
 // ==== step 11: truncation #2; colour multipliers (14-16) with the rounding half (multiply-add); intensity rounding: chunk sums ====
-wire [16:0] square_s11 = square_z_c10[30:14];   // UQ1.16: S = bracket^2 floored to 2^-16 (truncation #2)
+wire [16:0] square_s11 = square_z_s10[30:14];   // UQ1.16: S = bracket^2 floored to 2^-16 (truncation #2)
 wire [9:0] color_square_s11 = square_s11[16:7];   // UQ1.9: all the colours' budget needs (saves 7 bits per colour multiplier)
-wire [16:0] color_sum_r_s11 = {7'h0, color_square_s11} * {9'h0, ks_r_c10} + 17'h100;   // UQ8.9: S * ks_r + 1/2 colour ulp (round half up; the add inside the DSP)
-wire [16:0] color_sum_g_s11 = {7'h0, color_square_s11} * {9'h0, ks_g_c10} + 17'h100;   // UQ8.9: S * ks_g + 1/2 colour ulp (round half up; the add inside the DSP)
-wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b_c10} + 17'h100;   // UQ8.9: S * ks_b + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [16:0] color_sum_r_s11 = {7'h0, color_square_s11} * {9'h0, ks_r} + 17'h100;   // UQ8.9: S * ks_r + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [16:0] color_sum_g_s11 = {7'h0, color_square_s11} * {9'h0, ks_g} + 17'h100;   // UQ8.9: S * ks_g + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b} + 17'h100;   // UQ8.9: S * ks_b + 1/2 colour ulp (round half up; the add inside the DSP)
 wire [7:0] intensity_sum_part0_s11 = {1'b0, square_s11[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
 wire [6:0] intensity_sum_part1_s11 = {1'b0, square_s11[11:6]};   // bits [11:6] and their carry, carry-in 0
 wire [7:0] intensity_sum_part1_plus1_s11 = {1'b0, square_s11[11:6], 1'b1} + 8'h1;   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
 wire [4:0] intensity_sum_part2_s11 = square_s11[16:12];   // bits [16:12], carry-in 0
 wire [5:0] intensity_sum_part2_plus1_s11 = {square_s11[16:12], 1'b1} + 6'h1;   // bits [16:12] above bit 0, carry-in 1 (carry-select)
-wire        unused_square_z_s11 = ^{square_z_c10[31], square_z_c10[13:0]};   // bits no later step reads
-// ---- cut 11: combinational pass-through ----
-wire        valid_c11 = valid_c10;
-wire [0:0] done_c11 = done_c10;
-wire [16:0] color_sum_r_c11 = color_sum_r_s11;
-wire [16:0] color_sum_g_c11 = color_sum_g_s11;
-wire [16:0] color_sum_b_c11 = color_sum_b_s11;
-wire [7:0] intensity_sum_part0_c11 = intensity_sum_part0_s11;
-wire [6:0] intensity_sum_part1_c11 = intensity_sum_part1_s11;
-wire [7:0] intensity_sum_part1_plus1_c11 = intensity_sum_part1_plus1_s11;
-wire [4:0] intensity_sum_part2_c11 = intensity_sum_part2_s11;
-wire [5:0] intensity_sum_part2_plus1_c11 = intensity_sum_part2_plus1_s11;
 
 // ==== step 12: colour results; intensity rounding: carries ====
-wire [7:0] spec_r_s12 = color_sum_r_c11[16:9];   // UNORM8: S * ks_r rounded half up
-wire [7:0] spec_g_s12 = color_sum_g_c11[16:9];   // UNORM8: S * ks_g rounded half up
-wire [7:0] spec_b_s12 = color_sum_b_c11[16:9];   // UNORM8: S * ks_b rounded half up
-wire        intensity_sum_carry2_s12 = intensity_sum_part0_c11[7] ? intensity_sum_part1_plus1_c11[7] : intensity_sum_part1_c11[6];   // carry into bit 12
-wire        unused_color_sum_r_s12 = ^color_sum_r_c11[8:0];   // bits no later step reads
-wire        unused_color_sum_g_s12 = ^color_sum_g_c11[8:0];   // bits no later step reads
-wire        unused_color_sum_b_s12 = ^color_sum_b_c11[8:0];   // bits no later step reads
-// ---- cut 12: combinational pass-through ----
-wire        valid_c12 = valid_c11;
-wire [0:0] done_c12 = done_c11;
-wire [7:0] intensity_sum_part0_c12 = intensity_sum_part0_c11;
-wire [6:0] intensity_sum_part1_c12 = intensity_sum_part1_c11;
-wire [7:0] intensity_sum_part1_plus1_c12 = intensity_sum_part1_plus1_c11;
-wire [4:0] intensity_sum_part2_c12 = intensity_sum_part2_c11;
-wire [5:0] intensity_sum_part2_plus1_c12 = intensity_sum_part2_plus1_c11;
-wire [7:0] spec_r_c12 = spec_r_s12;
-wire [7:0] spec_g_c12 = spec_g_s12;
-wire [7:0] spec_b_c12 = spec_b_s12;
-wire [0:0] intensity_sum_carry2_c12 = intensity_sum_carry2_s12;
+wire [7:0] spec_r_s12 = color_sum_r_s11[16:9];   // UNORM8: S * ks_r rounded half up
+wire [7:0] spec_g_s12 = color_sum_g_s11[16:9];   // UNORM8: S * ks_g rounded half up
+wire [7:0] spec_b_s12 = color_sum_b_s11[16:9];   // UNORM8: S * ks_b rounded half up
+wire        intensity_sum_carry2_s12 = intensity_sum_part0_s11[7] ? intensity_sum_part1_plus1_s11[7] : intensity_sum_part1_s11[6];   // carry into bit 12
 
 // ==== step 13: intensity rounding: select ====
-wire [16:0] intensity_sum_s13 = {(intensity_sum_carry2_c12 ? intensity_sum_part2_plus1_c12[5:1] : intensity_sum_part2_c12), (intensity_sum_part0_c12[7] ? intensity_sum_part1_plus1_c12[6:1] : intensity_sum_part1_c12[5:0]), intensity_sum_part0_c12[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
+wire [16:0] intensity_sum_s13 = {(intensity_sum_carry2_s12 ? intensity_sum_part2_plus1_s11[5:1] : intensity_sum_part2_s11), (intensity_sum_part0_s11[7] ? intensity_sum_part1_plus1_s11[6:1] : intensity_sum_part1_s11[5:0]), intensity_sum_part0_s11[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
 wire [15:0] intensity_s13 = intensity_sum_s13[16:1];   // UQ1.15: S rounded half up
-wire        unused_intensity_sum_part0_s13 = ^intensity_sum_part0_c12[0];   // bits no later step reads
-wire        unused_intensity_sum_part1_s13 = ^intensity_sum_part1_c12[6];   // bits no later step reads
-wire        unused_intensity_sum_part1_plus1_s13 = ^{intensity_sum_part1_plus1_c12[7], intensity_sum_part1_plus1_c12[0]};   // bits no later step reads
-wire        unused_intensity_sum_part2_plus1_s13 = ^intensity_sum_part2_plus1_c12[0];   // bits no later step reads
-wire        unused_intensity_sum_s13 = ^intensity_sum_s13[0];   // bits no later step reads
-// ---- cut 13: combinational pass-through ----
-wire        valid_c13 = valid_c12;
-wire [0:0] done_c13 = done_c12;
-wire [7:0] spec_r_c13 = spec_r_c12;
-wire [7:0] spec_g_c13 = spec_g_c12;
-wire [7:0] spec_b_c13 = spec_b_c12;
-wire [15:0] intensity_c13 = intensity_s13;
 
-assign out_valid = valid_c13;
-assign spec_r    = spec_r_c13;
-assign spec_g    = spec_g_c13;
-assign spec_b    = spec_b_c13;
-assign intensity = intensity_c13;
-assign done      = done_c13;
+// bits no step reads (one sink, so lint stays silent)
+wire        unused_bits = ^{cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_s2[5], one_minus_cos_part1_plus1_s2[6], one_minus_cos_part1_plus1_s2[0], one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6], cutoff_sum_part1_plus1_s3[7], cutoff_sum_part1_plus1_s3[0], cutoff_sum_part2_plus1_s3[0], kn_s4[24:16], cutoff_sum_s5[15:0], deviation_sum_s6[13:0], bracket_s7[1:0], square_ll_s8[2:0], square_t_s9[0], square_z_s10[31], square_z_s10[13:0], color_sum_r_s11[8:0], color_sum_g_s11[8:0], color_sum_b_s11[8:0], intensity_sum_part0_s11[0], intensity_sum_part1_s11[6], intensity_sum_part1_plus1_s11[7], intensity_sum_part1_plus1_s11[0], intensity_sum_part2_plus1_s11[0], intensity_sum_s13[0]};
+
+assign out_valid = in_valid;
+assign spec_r    = spec_r_s12;
+assign spec_g    = spec_g_s12;
+assign spec_b    = spec_b_s12;
+assign intensity = intensity_s13;
+assign done      = done_s5;
 
 endmodule
 `resetall

@@ -47,8 +47,13 @@ pub struct Step {
     pub delay: f64,
 }
 
-/// A signal alive across a cut: (name, width, computed in the step just before it?).
-pub type Live = (String, u32, bool);
+/// A signal alive across a cut, and the name it is taken from there.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Live {
+    pub name: String,
+    pub width: u32,
+    pub source: String,
+}
 
 /// A constant table of the unit (a ROM): written as a `$readmemh` file or inlined as a `case`.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -90,6 +95,11 @@ pub struct Datapath {
     pub steps: Vec<Step>,
     /// `live[K-1]`: the signals cut K carries, in definition order.
     pub live: Vec<Vec<Live>>,
+    /// The one lint sink: the XOR of every bit no step reads (None when there is none).
+    pub unused: Option<String>,
+    /// Each output port's source after the last step.
+    pub outputs: Vec<(String, String)>,
+    pub registered: Vec<u32>,
 }
 
 impl Datapath {
@@ -118,6 +128,8 @@ pub struct Builder {
     signals: Vec<Signal>,
     tables: Vec<Table>,
     reads: Vec<RomRead>,
+    /// the cuts that hold a register (1-based)
+    registered: Vec<u32>,
 }
 
 /// Bits `[lo, lo+width)` of a signal, optionally inverted; or a constant.
@@ -175,6 +187,19 @@ pub struct PendingAdd {
     comment: String,
 }
 
+/// The name under which a signal defined in step `def` (0: an input port) is seen in step
+/// `at`: its own wire in its own step, else the last register holding it, else its wire.
+pub fn visible(registered: &[u32], name: &str, def: usize, at: usize) -> String {
+    if def == at {
+        return format!("{name}_s{at}");
+    }
+    match registered.iter().copied().filter(|&r| r as usize >= def && (r as usize) < at).max() {
+        Some(r) => format!("{name}_c{r}"),
+        None if def == 0 => name.to_string(),
+        None => format!("{name}_s{def}"),
+    }
+}
+
 /// Chunk boundaries `(lo, width)` of a `width`-bit carry chain, each ≤ `CHUNK_BITS`.
 fn chunks(width: u32, chunk_bits: u32) -> Vec<(u32, u32)> {
     let n = width.div_ceil(chunk_bits).max(1);
@@ -214,13 +239,16 @@ pub fn mul_delay(a: u32, b: u32) -> f64 {
 }
 
 impl Builder {
-    /// `inputs`: the port signals, available from cut 0.
-    pub fn new(inputs: &[(&str, u32)]) -> Builder {
+    /// `inputs`: the port signals, available from cut 0; `registered`: the cuts that hold a
+    /// pipeline register (a reference resolves to the last of them before it, or to the
+    /// defining wire when there is none: a combinational cut emits nothing).
+    pub fn new(inputs: &[(&str, u32)], registered: &[u32]) -> Builder {
         Builder {
             steps: Vec::new(),
             signals: inputs.iter().map(|&(n, w)| Signal { name: n.into(), width: w, step: 0, uses: Vec::new() }).collect(),
             tables: Vec::new(),
             reads: Vec::new(),
+            registered: registered.to_vec(),
         }
     }
 
@@ -246,13 +274,8 @@ impl Builder {
 
     /// The name of `name` as seen from the current step.
     fn version(&mut self, name: &str) -> String {
-        let cur = self.cur();
-        let def = self.signal(name).step;
-        if def == cur {
-            format!("{name}_s{cur}")
-        } else {
-            format!("{name}_c{}", cur - 1)
-        }
+        let (cur, def) = (self.cur(), self.signal(name).step);
+        visible(&self.registered, name, def, cur)
     }
 
     /// Bits `[hi:lo]` of a signal (the bare name when that is all of it).
@@ -449,8 +472,8 @@ impl Builder {
             let w = self.signal(o).width;
             self.signal(o).uses.push((last + 1, mask(w)));
         }
-        // unused bits: read nowhere at the last step that reads the signal
-        let mut extra: Vec<(usize, String, String)> = Vec::new();
+        // unused bits: read nowhere at the last step that reads the signal; one sink for all
+        let mut parts: Vec<String> = Vec::new();
         for s in &self.signals {
             let last_use = s.uses.iter().map(|u| u.0).max().unwrap_or(s.step).max(s.step);
             if last_use > last {
@@ -461,8 +484,7 @@ impl Builder {
             if unread == 0 {
                 continue;
             }
-            let v = if s.step == last_use { format!("{}_s{last_use}", s.name) } else { format!("{}_c{}", s.name, last_use - 1) };
-            let mut ranges = Vec::new();
+            let v = visible(&self.registered, &s.name, s.step, last_use);
             let mut b = s.width;
             while b > 0 {
                 b -= 1;
@@ -471,7 +493,7 @@ impl Builder {
                     while b > 0 && unread >> (b - 1) & 1 == 1 {
                         b -= 1;
                     }
-                    ranges.push(if s.width == 1 {
+                    parts.push(if s.width == 1 {
                         v.clone()
                     } else if hi == b {
                         format!("{v}[{b}]")
@@ -480,26 +502,38 @@ impl Builder {
                     });
                 }
             }
-            let expr = if ranges.len() == 1 { format!("^{}", ranges[0]) } else { format!("^{{{}}}", ranges.join(", ")) };
-            extra.push((last_use, format!("unused_{}", s.name), expr));
         }
-        for (step, name, expr) in extra {
-            self.steps[step - 1].wires.push(Wire { name, width: 1, expr, comment: "bits no later step reads".into() });
-        }
+        let unused = (!parts.is_empty()).then(|| format!("^{{{}}}", parts.join(", ")));
         let live = (1..=last)
-            .map(|k| self.signals.iter().filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k)).map(|s| (s.name.clone(), s.width, s.step == k)).collect())
+            .map(|k| {
+                self.signals
+                    .iter()
+                    .filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k))
+                    .map(|s| Live { name: s.name.clone(), width: s.width, source: visible(&self.registered, &s.name, s.step, k) })
+                    .collect()
+            })
             .collect();
-        Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live }
+        let outputs = outputs
+            .iter()
+            .map(|o| {
+                (o.to_string(), {
+                    let d = self.signals.iter().rev().find(|s| s.name == *o).expect("output defined").step;
+                    visible(&self.registered, o, d, last + 1)
+                })
+            })
+            .collect();
+        Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live, unused, outputs, registered: self.registered }
     }
 }
 
-/// The datapath of the quadratic unit for `cfg` (any `registered_cuts` in `w` are ignored).
+/// The datapath of the configured model: the one description every RTL is rendered from.
 pub fn build(cfg: &Config, w: &Widths) -> Datapath {
     let inputs = [("cos_g", w.cos_bits), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
-    let mut b = Builder::new(&inputs);
+    let mut b = Builder::new(&inputs, &w.registered_cuts);
     match (crate::model::Kind::new(cfg), cfg.arch()) {
         (crate::model::Kind::Fitted { fit, widths }, _) => crate::fitted::datapath(cfg, &fit, &widths, &mut b),
         (crate::model::Kind::Blinn { widths, tables }, _) => crate::blinn::datapath(cfg, &widths, &tables, &mut b),
+        (crate::model::Kind::BlinnPow, _) => crate::blinn_pow::datapath(cfg, w, &mut b),
         (_, Arch::Lean) => lean(cfg, w, &mut b),
         (_, Arch::Paper) => paper(cfg, w, &mut b),
     }
@@ -823,14 +857,14 @@ mod tests {
     fn sub_pieces_pads_with_zeros() {
         let p = [Piece::sig("a", 2, 3), Piece::Const { value: 0b101, width: 3 }];
         let s = sub_pieces(&p, 1, 7);
-        let mut b = Builder::new(&[("a", 8)]);
+        let mut b = Builder::new(&[("a", 8)], &[]);
         b.step("t");
-        assert_eq!(b.pieces(&s), "{2'h0, 3'h5, a_c0[4:3]}");
+        assert_eq!(b.pieces(&s), "{2'h0, 3'h5, a[4:3]}");
     }
 
     #[test]
     fn liveness_and_unused_bits() {
-        let mut b = Builder::new(&[("x", 8)]);
+        let mut b = Builder::new(&[("x", 8)], &[1]);
         b.step("one");
         let e = b.bits("x", 7, 4);
         b.wire("y", 4, e, "");
@@ -840,9 +874,20 @@ mod tests {
         b.wire("z", 5, format!("{{{y}, {e}}}"), "");
         let d = b.finish(&["z"]);
         // cut 1 carries x (read again in step 2) and y
-        assert_eq!(d.live[0].iter().map(|l| l.0.as_str()).collect::<Vec<_>>(), ["x", "y"]);
-        assert_eq!(d.live[1].iter().map(|l| l.0.as_str()).collect::<Vec<_>>(), ["z"]);
-        let unused = d.steps[1].wires.iter().find(|w| w.name == "unused_x").expect("unused_x");
-        assert_eq!(unused.expr, "^x_c1[7:1]");
+        assert_eq!(d.live[0].iter().map(|l| (l.name.as_str(), l.source.as_str())).collect::<Vec<_>>(), [("x", "x"), ("y", "y_s1")]);
+        assert_eq!(d.live[1].iter().map(|l| l.name.as_str()).collect::<Vec<_>>(), ["z"]);
+        // step 2 reads x through the register of cut 1; bits 7:1 are left for the sink
+        assert_eq!(d.unused.as_deref(), Some("^{x_c1[7:1]}"));
+        assert_eq!(d.outputs, [("z".to_string(), "z_s2".to_string())]);
+    }
+
+    #[test]
+    fn a_combinational_cut_is_no_name() {
+        // nothing registered: every reference goes straight to the defining wire or port
+        assert_eq!(visible(&[], "x", 0, 3), "x");
+        assert_eq!(visible(&[], "y", 1, 3), "y_s1");
+        assert_eq!(visible(&[2], "y", 1, 3), "y_c2");
+        assert_eq!(visible(&[2], "y", 1, 2), "y_s1");
+        assert_eq!(visible(&[1, 2], "y", 2, 2), "y_s2");
     }
 }

@@ -19,16 +19,6 @@ pub const ROM_FILE: &str = "cos_sp_rom.hex";
 
 use crate::datapath::lit;
 
-/// `x` zero-extended from `from` to `to` bits, as a Verilog expression with explicit widths.
-fn zext(x: &str, from: u32, to: u32) -> String {
-    assert!(to >= from, "zext {x} from {from} to {to}");
-    if to == from {
-        x.to_string()
-    } else {
-        format!("{{{{{}{{1'b0}}}}, {x}}}", to - from)
-    }
-}
-
 pub struct CutSignal {
     pub name: String,
     pub width: u32,
@@ -40,6 +30,8 @@ pub struct Cut {
     pub index: usize,
     pub registered: bool,
     pub signals: Vec<CutSignal>,
+    /// the valid bit it registers (the previous register's, or in_valid)
+    pub valid_source: String,
 }
 
 pub struct RomEntry {
@@ -102,7 +94,16 @@ pub struct UnitTemplate<'a> {
     pub cuts_text: String,
     pub file_tables: Vec<TableView>,
     pub steps: Vec<StepView>,
-    pub last: usize,
+    pub out_valid: String,
+    pub outputs: Vec<OutputView>,
+    /// the one lint sink for bits no step reads
+    pub unused: Option<String>,
+}
+
+/// `assign port = source;`
+pub struct OutputView {
+    pub port: String,
+    pub source: String,
 }
 
 /// "after steps [..]" for the Verilog header.
@@ -160,6 +161,19 @@ fn describe_model(cfg: &Config, w: &Widths, kind: &Kind) -> (String, Vec<String>
             ),
             "intensity == 0: the highlight is below the output's resolution",
         ),
+        Kind::BlinnPow => (
+            format!("stages={} rounding=faithful", p.stages),
+            vec![
+                "S = c^n, c = min(cos_g, 1.0), by square-and-multiply over the bits of n, LSB first;".into(),
+                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X; done = (intensity == 0)."),
+            ],
+            "faithful: every output within 1 ulp of the exact c^n value (|o - o*| < 1)".into(),
+            format!(
+                "powers c^(2^i) and the running product UQ1.{}, each product floored (error budget in specgen's widths::power_frac_bits)",
+                w.power_frac_bits
+            ),
+            "intensity == 0: the highlight is below the output's resolution",
+        ),
         _ => (
             format!(
                 "k={} k_frac_bits={} (k_code={}, k_q={}) stages={} rounding={} rom_style={}",
@@ -192,13 +206,15 @@ fn describe_model(cfg: &Config, w: &Widths, kind: &Kind) -> (String, Vec<String>
     }
 }
 
-/// Builds the template context of the RTL for one configuration (every model but blinn-pow).
+/// Builds the template context of the RTL for one configuration (every model).
 pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
     let p = &cfg.params;
     let kind = Kind::new(cfg);
     let dp = datapath::build(cfg, w);
-    let cuts = cut_list(w, dp.live);
-    let last = dp.steps.len();
+    let cuts = cut_list(&dp);
+    let out_valid = cuts.iter().rev().find(|c| c.registered).map_or("in_valid".to_string(), |c| format!("valid_c{}", c.index));
+    let outputs = dp.outputs.iter().map(|(port, src)| OutputView { port: port.clone(), source: src.clone() }).collect();
+    let unused = dp.unused.clone();
     let file = p.rom_style == RomStyle::File;
     let file_tables = if file {
         dp.tables
@@ -220,7 +236,7 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
     } else {
         Vec::new()
     };
-    let mut reads: Vec<Vec<ReadView>> = (0..last).map(|_| Vec::new()).collect();
+    let mut reads: Vec<Vec<ReadView>> = (0..dp.steps.len()).map(|_| Vec::new()).collect();
     for r in &dp.reads {
         let t = &dp.tables[r.table];
         let ab = t.address_bits();
@@ -252,6 +268,9 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
         done_meaning,
         cuts_text: registered_cuts_text(w),
         file_tables,
+        out_valid,
+        outputs,
+        unused,
         steps: dp
             .steps
             .into_iter()
@@ -259,124 +278,31 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
             .zip(reads)
             .map(|((s, cut), reads)| StepView { index: s.index, title: s.title, reads, wires: s.wires, cut })
             .collect(),
-        last,
     }
 }
 
-pub struct BitStep {
-    pub step: usize,
-    pub prev: usize,
-    pub bit: u32,
-    /// another bit follows: square the power and pass the remaining bits of n
-    pub more: bool,
-    pub rest_bits: u32,
-    pub r_ext: String,
-    pub p_ext: String,
-}
-
-#[derive(Template)]
-#[template(path = "blinn_pow.v")]
-pub struct BlinnPowTemplate<'a> {
-    pub top: &'a str,
-    pub version: &'a str,
-    pub p: &'a Params,
-    pub w: &'a Widths,
-    pub pw: u32,
-    pub cuts_text: String,
-    pub cos_lit_one: String,
-    pub widen_cos: String,
-    pub one_w: String,
-    pub bit_steps: Vec<BitStep>,
-    pub last_step: usize,
-    pub intensity_half: String,
-    pub intensity_zero: String,
-    pub channels: Vec<Channel>,
-    pub color_bits_w: u32,
-    pub color_half: String,
-    pub cuts: Vec<Cut>,
-}
-
-/// The cuts after each step, from the signals alive across each: (name, width, computed in
-/// the step just before it?).
-fn cut_list<S: Into<String>>(w: &Widths, live: Vec<Vec<(S, u32, bool)>>) -> Vec<Cut> {
-    live.into_iter()
-        .enumerate()
-        .map(|(i, sigs)| {
-            let index = i + 1;
-            Cut {
+/// The registered cuts of a datapath, each with the signals it holds and where from.
+fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
+    let mut valid = "in_valid".to_string();
+    (1..=dp.live.len())
+        .map(|index| {
+            let registered = dp.registered.contains(&(index as u32));
+            let cut = Cut {
                 index,
-                registered: w.registered_cuts.contains(&(index as u32)),
-                signals: sigs
-                    .into_iter()
-                    .map(|(name, width, fresh)| {
-                        let name: String = name.into();
-                        CutSignal { source: if fresh { format!("{name}_s{index}") } else { format!("{name}_c{i}") }, name, width }
-                    })
-                    .collect(),
+                registered,
+                signals: if registered {
+                    dp.live[index - 1].iter().map(|l| CutSignal { name: l.name.clone(), width: l.width, source: l.source.clone() }).collect()
+                } else {
+                    Vec::new()
+                },
+                valid_source: valid.clone(),
+            };
+            if registered {
+                valid = format!("valid_c{index}");
             }
+            cut
         })
         .collect()
-}
-
-/// Builds the template context of the `--model blinn-pow` RTL.
-pub fn blinn_pow_template<'a>(cfg: &'a Config, w: &'a Widths) -> BlinnPowTemplate<'a> {
-    let (f, nb, b, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
-    let pw = w.power_frac_bits;
-    let ks = |fresh| vec![("ks_r", b, fresh), ("ks_g", b, fresh), ("ks_b", b, fresh)];
-    let mut live = vec![{
-        let mut v = vec![("power", pw + 1, true), ("result", pw + 1, true), ("n_rest", nb, true)];
-        v.extend(ks(false));
-        v
-    }];
-    let mut bit_steps = Vec::new();
-    for k in 1..=nb {
-        let more = k < nb;
-        let mut v = vec![("result", pw + 1, true)];
-        if more {
-            v.push(("power", pw + 1, true));
-            v.push(("n_rest", nb - k, true));
-        }
-        v.extend(ks(false));
-        live.push(v);
-        bit_steps.push(BitStep {
-            step: k as usize + 1,
-            prev: k as usize,
-            bit: k - 1,
-            more,
-            rest_bits: nb - k,
-            r_ext: zext(&format!("result_c{k}"), pw + 1, 2 * pw + 2),
-            p_ext: zext(&format!("power_c{k}"), pw + 1, 2 * pw + 2),
-        });
-    }
-    live.push(vec![("done", 1, true), ("intensity", fi + 1, true), ("spec_r", b, true), ("spec_g", b, true), ("spec_b", b, true)]);
-    let last_step = nb as usize + 2;
-    let color_bits_w = pw + b;
-    BlinnPowTemplate {
-        top: cfg.top(),
-        version: VERSION,
-        p: &cfg.params,
-        w,
-        pw,
-        cuts_text: registered_cuts_text(w),
-        cos_lit_one: lit(f + 1, 1u128 << f),
-        widen_cos: if pw > f { format!("{{cos_clamped_s1, {}}}", lit(pw - f, 0)) } else { "cos_clamped_s1".into() },
-        one_w: lit(pw + 1, 1u128 << pw),
-        bit_steps,
-        last_step,
-        intensity_half: lit(pw + 1, 1u128 << (pw - fi - 1)),
-        intensity_zero: lit(fi + 1, 0),
-        channels: ["r", "g", "b"]
-            .into_iter()
-            .map(|name| Channel {
-                name,
-                sq_ext: zext(&format!("result_c{}", last_step - 1), pw + 1, color_bits_w),
-                ks_ext: zext(&format!("ks_{name}_c{}", last_step - 1), b, color_bits_w),
-            })
-            .collect(),
-        color_bits_w,
-        color_half: lit(color_bits_w, 1u128 << (pw - 1)),
-        cuts: cut_list(w, live),
-    }
 }
 
 #[derive(Template)]
@@ -454,11 +380,7 @@ pub fn generate_files(cfg: &Config) -> Vec<(String, Vec<u8>)> {
     let w = Widths::derive(cfg);
     let top = cfg.top();
     let model = crate::model::Model::new(cfg);
-    let mut verilog = match cfg.model() {
-        SpecularModel::BlinnPow => blinn_pow_template(cfg, &w).render(),
-        _ => unit_template(cfg, &w).render(),
-    }
-    .expect("unit template renders");
+    let mut verilog = unit_template(cfg, &w).render().expect("unit template renders");
     verilog.push('\n');
     let tables = if cfg.params.rom_style == RomStyle::File { rom::tables(cfg) } else { Vec::new() };
     let description = match cfg.model() {

@@ -7,6 +7,7 @@
 //! [`cli`] is the command line over all of it.
 
 pub mod blinn;
+pub mod blinn_pow;
 pub mod cli;
 pub mod config;
 pub mod cosim;

@@ -156,31 +156,12 @@ pub fn power_frac_bits(cfg: &Config) -> u32 {
 
 /// Number of cut points of the configured datapath (the most `--stages` it takes).
 pub fn cut_points(cfg: &Config) -> u32 {
-    match cfg.model() {
-        SpecularModel::Quadratic | SpecularModel::Fitted | SpecularModel::Blinn => {
-            crate::datapath::build(cfg, &Widths::derive_unpipelined(cfg)).steps.len() as u32
-        }
-        // after the clamp, after each bit of n, after the rounding
-        SpecularModel::BlinnPow => cfg.n_bits() + 2,
-    }
+    crate::datapath::build(cfg, &Widths::derive_unpipelined(cfg)).steps.len() as u32
 }
 
-/// A rough delay model of each datapath step on a LUT4 + carry-chain fabric (iCE40-like),
-/// in ns: an adder of w bits `1.5 + 0.3·w`, an a×b multiplier `1.5·⌈log2 min(a,b)+1⌉ + 0.3·(a+b)`.
-/// Only the ratios matter: they place the registers.
+/// The datapath's per-step delay estimates (the one delay model, in `datapath`).
 pub fn step_delays(cfg: &Config, w: &Widths) -> Vec<f64> {
-    let add = |bits: u32| 1.5 + 0.3 * bits as f64;
-    let mul = |a: u32, b: u32| 1.5 * ((a.min(b).max(1) as f64).log2().ceil() + 1.0) + 0.3 * (a + b) as f64;
-    match cfg.model() {
-        SpecularModel::Quadratic | SpecularModel::Fitted | SpecularModel::Blinn => crate::datapath::build(cfg, w).delays(),
-        SpecularModel::BlinnPow => {
-            let pw = w.power_frac_bits + 1;
-            let mut v = vec![add(w.cos_bits)];
-            v.extend((0..cfg.n_bits()).map(|_| mul(pw, pw) + 0.6));
-            v.push(mul(pw, cfg.b()) + add(pw + cfg.b()));
-            v
-        }
-    }
+    crate::datapath::build(cfg, w).delays()
 }
 
 /// Places `stages` registers after steps (1-based) so that the slowest stretch of logic

@@ -1,34 +1,19 @@
-{#- Macros shared by the unit templates: the port list, a pipeline cut point, the outputs. -#}
-{%- macro cut(c) -%}
-// ---- cut {{ c.index }}: {% if c.registered %}pipeline register{% else %}combinational pass-through{% endif %} ----
-{%- if c.registered %}
+{#- Macros of the unit template: the port list, a pipeline register. -#}
+{%- macro register(c) -%}
+// ---- cut {{ c.index }}: pipeline register ----
 reg         valid_c{{ c.index }};
 {%- for s in c.signals %}
 reg  [{{ s.width - 1 }}:0] {{ s.name }}_c{{ c.index }};
 {%- endfor %}
 always @(posedge clk) begin
     if (rst) valid_c{{ c.index }} <= 1'b0;
-    else     valid_c{{ c.index }} <= valid_c{{ c.index - 1 }};
+    else     valid_c{{ c.index }} <= {{ c.valid_source }};
 end
 always @(posedge clk) begin
 {%- for s in c.signals %}
     {{ s.name }}_c{{ c.index }} <= {{ s.source }};
 {%- endfor %}
 end
-{%- else %}
-wire        valid_c{{ c.index }} = valid_c{{ c.index - 1 }};
-{%- for s in c.signals %}
-wire [{{ s.width - 1 }}:0] {{ s.name }}_c{{ c.index }} = {{ s.source }};
-{%- endfor %}
-{%- endif %}
-{%- endmacro -%}
-{%- macro outputs(last) -%}
-assign out_valid = valid_c{{ last }};
-assign spec_r    = spec_r_c{{ last }};
-assign spec_g    = spec_g_c{{ last }};
-assign spec_b    = spec_b_c{{ last }};
-assign intensity = intensity_c{{ last }};
-assign done      = done_c{{ last }};
 {%- endmacro -%}
 {%- macro ports(p, done_meaning) -%}
 {%- if p.stages > 0 %}

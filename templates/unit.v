@@ -27,14 +27,6 @@ module {{ top }}{% if !file_tables.is_empty() %} #(
 {%- endfor %}
 ){% endif %} (
 {%- call cuts::ports(p, done_meaning) %}{% endcall %}
-
-// ---- cut 0: the input ports ----
-wire        valid_c0 = in_valid;
-wire [{{ p.cos_frac_bits }}:0] cos_g_c0 = cos_g;
-wire [{{ p.n_bits - 1 }}:0] n_c0 = n;
-wire [{{ p.color_bits - 1 }}:0] ks_r_c0 = ks_r;
-wire [{{ p.color_bits - 1 }}:0] ks_g_c0 = ks_g;
-wire [{{ p.color_bits - 1 }}:0] ks_b_c0 = ks_b;
 {%- for t in file_tables %}
 
 // ---- table {{ t.name }}: {{ t.what }} ----
@@ -85,10 +77,20 @@ end
 {%- for x in st.wires %}
 wire {% if x.width == 1 %}      {% else %}[{{ x.width - 1 }}:0]{% endif %} {{ x.name }}_s{{ st.index }} = {{ x.expr }};{% if !x.comment.is_empty() %}   // {{ x.comment }}{% endif %}
 {%- endfor %}
-{% call cuts::cut(st.cut) %}{% endcall %}
+{%- if st.cut.registered %}
+{% call cuts::register(st.cut) %}{% endcall %}
+{%- endif %}
 {%- endfor %}
+{%- if let Some(u) = unused %}
 
-{% call cuts::outputs(last) %}{% endcall %}
+// bits no step reads (one sink, so lint stays silent)
+wire        unused_bits = {{ u }};
+{%- endif %}
+
+assign out_valid = {{ out_valid }};
+{%- for o in outputs %}
+assign {{ "{:<9}"|format(o.port) }} = {{ o.source }};
+{%- endfor %}
 
 endmodule
 `resetall
