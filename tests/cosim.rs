@@ -94,26 +94,26 @@ fn injected_faults_are_caught() {
         (
             "swap_rg",
             &[],
-            "assign spec_r    = spec_r_c13;\nassign spec_g    = spec_g_c13;",
-            "assign spec_r    = spec_g_c13;\nassign spec_g    = spec_r_c13;",
+            "assign spec_r    = spec_r_s12;\nassign spec_g    = spec_g_s12;",
+            "assign spec_r    = spec_g_s12;\nassign spec_g    = spec_r_s12;",
             random,
         ),
         // a wrong cut-off comparison: cos <= cos_sp
         (
             "cutoff_le",
             &[],
-            "{1'b0, cos_sp_c2[5:0]} + {1'b0, cos_complement_c2[5:0]};",
-            "{1'b0, cos_sp_c2[5:0]} + {1'b0, cos_complement_c2[5:0]} + 7'h1;",
+            "{1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};",
+            "{1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]} + 7'h1;",
             random,
         ),
         // a fault at one single (cos_g, n): only the exhaustive run meets it
-        ("one_point", &[], "assign done      = done_c13;", "assign done      = done_c13 ^ (cos_g == 16'd32000 && n == 10'd77);", &["--exhaustive"]),
+        ("one_point", &[], "assign done      = done_s5;", "assign done      = done_s5 ^ (cos_g == 16'd32000 && n == 10'd77);", &["--exhaustive"]),
         // out_valid one cycle late in a pipelined unit
         (
             "valid_late",
             &["--stages", "2"],
-            "assign out_valid = valid_c13;",
-            "reg valid_late;\nalways @(posedge clk) valid_late <= valid_c13;\nassign out_valid = valid_late;",
+            "assign out_valid = valid_c8;",
+            "reg valid_late;\nalways @(posedge clk) valid_late <= valid_c8;\nassign out_valid = valid_late;",
             random,
         ),
     ];
@@ -191,13 +191,13 @@ fn injected_faults_in_the_new_models_are_caught() {
     let random: &[&str] = &["--vectors", "100000"];
     let faults: Vec<(&str, &[&str], &str, &str)> = vec![
         // fitted: the second squaring done when m_n = 1 too
-        ("fit_mux", &["--model", "fitted"], "(fit_c5[24:23] >= 2'h2)", "(fit_c5[24:23] >= 2'h1)"),
+        ("fit_mux", &["--model", "fitted"], "(fit_s1[24:23] >= 2'h2)", "(fit_s1[24:23] >= 2'h1)"),
         // fitted: intensity truncated instead of rounded
-        ("fit_round", &["--model", "fitted"], "power3_c7 + 21'h10;", "power3_c7 + 21'h0;"),
+        ("fit_round", &["--model", "fitted"], "power3_s7 + 21'h10;", "power3_s7 + 21'h0;"),
         // blinn: one exponent mis-encoded in the normalisation
-        ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_c1[9] ? 4'h5", "cos_minus_ulp_c1[9] ? 4'h6"),
+        ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_s1[9] ? 4'h5", "cos_minus_ulp_s1[9] ? 4'h6"),
         // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)
-        ("blinn_zero", &["--model", "blinn"], "(cos_zero_c5 && (n_c5 != 10'h0))", "(cos_zero_c5)"),
+        ("blinn_zero", &["--model", "blinn"], "(cos_zero_s2 && (n != 10'h0))", "(cos_zero_s2)"),
     ];
     for (name, gen_args, from, to) in faults {
         let o = mutant(r, name, gen_args, from, to, random);

@@ -65,9 +65,9 @@ fn render_refuses_bad_arguments_and_faulty_rtl() {
     // intensity rounding broken in the RTL: no picture
     let v = dir.join("specular_unit.v");
     let src = std::fs::read_to_string(&v).unwrap();
-    let from = "assign intensity = intensity_c";
+    let from = "assign intensity = intensity_s";
     assert_eq!(src.matches(from).count(), 1);
-    std::fs::write(&v, src.replace(from, "assign intensity = 16'h1 ^ intensity_c")).unwrap();
+    std::fs::write(&v, src.replace(from, "assign intensity = 16'h1 ^ intensity_s")).unwrap();
     let o = specgen()
         .env("SPECGEN_CACHE_DIR", cache_dir())
         .args(["render", "--size", "16", "--n", "1,40", "--rtl"])
