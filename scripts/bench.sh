@@ -13,6 +13,9 @@ cycles() { sed -E 's/.*: ([0-9]+) cycles.*/\1/' <<<"$1"; }
 
 t0=$(now); $bin generate --out "$work/rtl" >/dev/null; t1=$(now); gen=$(secs "$t0" "$t1")
 t0=$(now); $bin generate --out "$work/rtl_exact" --rounding exact --stages 3 >/dev/null; t1=$(now); gen_exact=$(secs "$t0" "$t1")
+t0=$(now); $bin generate --out "$work/rtl_fitted" --model fitted >/dev/null; t1=$(now); gen_fitted=$(secs "$t0" "$t1")
+t0=$(now); $bin generate --out "$work/rtl_blinn" --model blinn >/dev/null; t1=$(now); gen_blinn=$(secs "$t0" "$t1")
+t0=$(now); $bin eval --model fitted --cos 0.5 --n 7 >/dev/null; t1=$(now); fit_only=$(secs "$t0" "$t1")
 
 t0=$(now); cold=$($bin cosim --rtl "$work/rtl" --vectors 1000); t1=$(now); cold_total=$(secs "$t0" "$t1")
 build=$(sed -E 's/.*build ([0-9.]+) s.*/\1/' <<<"$cold")
@@ -27,11 +30,15 @@ rnd_rate=$(sed -E 's/.*\(([0-9.]+) M cycles\/s\).*/\1/' <<<"$rnd")
 $bin cosim --rtl "$work/rtl" --simulator icarus --vectors 10 >/dev/null
 t0=$(now); ic=$($bin cosim --rtl "$work/rtl" --simulator icarus --vectors 100000); t1=$(now); ic_total=$(secs "$t0" "$t1")
 ic_rate=$(sed -E 's/.*\(([0-9.]+) M cycles\/s\).*/\1/' <<<"$ic")
+for m in fitted blinn; do $bin cosim --rtl "$work/rtl_$m" --vectors 10 >/dev/null; done
+t0=$(now); exf=$($bin cosim --rtl "$work/rtl_fitted" --exhaustive); t1=$(now); exf_total=$(secs "$t0" "$t1")
+t0=$(now); exb=$($bin cosim --rtl "$work/rtl_blinn" --exhaustive); t1=$(now); exb_total=$(secs "$t0" "$t1")
+rate() { sed -E 's/.*\(([0-9.]+) M cycles\/s\).*/\1/' <<<"$1"; }
 
 cat > BENCHMARKS.md <<MD
 # Benchmarks
 
-Hardware (area, DSPs, Fmax of lean / paper / blinn-pow): [\`BENCHMARKS-hw.md\`](BENCHMARKS-hw.md), from \`scripts/bench_hw.sh\`.
+Hardware (area, DSPs, Fmax of every model): [\`BENCHMARKS-hw.md\`](BENCHMARKS-hw.md), from \`scripts/bench_hw.sh\`.
 
 Produced by \`scripts/bench.sh\` on $(nproc) cores ($(uname -m)), $(verilator --version | head -1),
 $(iverilog -V 2>/dev/null | head -1 | cut -c1-40). Wall-clock seconds of whole commands.
@@ -42,6 +49,12 @@ $(iverilog -V 2>/dev/null | head -1 | cut -c1-40). Wall-clock seconds of whole c
 |---|---|
 | \`specgen generate --out DIR\` (defaults) | $gen |
 | \`specgen generate --out DIR --rounding exact --stages 3\` | $gen_exact |
+| \`specgen generate --out DIR --model fitted\` (the minimax fit of 1023 n, the fidelity sweep) | $gen_fitted |
+| \`specgen generate --out DIR --model blinn\` (tables, the fidelity sweep) | $gen_blinn |
+| \`specgen eval --model fitted ...\` (the fit alone, no sweep) | $fit_only |
+
+Every \`generate\` measures the manifest's \`blinn_error_max\`/\`_mean\` with the golden model over
+all 33.5 M (cos_g, n) of the default configuration (2^26 points at most): most of its time.
 
 ## Co-simulation (default configuration unless noted)
 
@@ -52,6 +65,8 @@ $(iverilog -V 2>/dev/null | head -1 | cut -c1-40). Wall-clock seconds of whole c
 | \`--exhaustive\`, \`--rounding exact --stages 3\`, cached | $(cycles "$exh2") | $exh2_total | | $exh2_rate |
 | \`--vectors 10000000\` (random, corners first) | $(cycles "$rnd") | $rnd_total | | $rnd_rate |
 | Icarus, \`--vectors 100000\` | $(cycles "$ic") | $ic_total | | $ic_rate |
+| \`--model fitted --exhaustive\`, cached | $(cycles "$exf") | $exf_total | | $(rate "$exf") |
+| \`--model blinn --exhaustive\`, cached | $(cycles "$exb") | $exb_total | | $(rate "$exb") |
 
 Raw lines:
 
@@ -61,6 +76,8 @@ $exh
 $exh2
 $rnd
 $ic
+$exf
+$exb
 \`\`\`
 MD
 echo "wrote BENCHMARKS.md"

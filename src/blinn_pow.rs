@@ -21,8 +21,6 @@ pub fn datapath(cfg: &Config, w: &Widths, b: &mut Builder) {
     let widened = if pw > f { format!("{{{c}, {}}}", lit(pw - f, 0)) } else { c };
     b.wire("power0", pw + 1, widened, &format!("UQ1.{pw}: c^(2^0), exact"));
     b.wire("result0", pw + 1, lit(pw + 1, 1u128 << pw), &format!("UQ1.{pw}: 1.0"));
-    let n = b.r("n");
-    b.wire("n_rest0", nb, n, "the bits of n still to use");
     b.delay(crate::datapath::add_delay(f + 1));
 
     for i in 0..nb {
@@ -31,7 +29,9 @@ pub fn datapath(cfg: &Config, w: &Widths, b: &mut Builder) {
         let (r, p) = (format!("result{i}"), format!("power{i}"));
         let (re, pe) = (b.zext(&r, full), b.zext(&p, full));
         b.wire(&format!("result_prod{}", i + 1), full, format!("{re} * {pe}"), &format!("UQ2.{}: result*power, exact", 2 * pw));
-        let bit = b.bits(&format!("n_rest{i}"), 0, 0);
+        // the bits of n still to use travel on, shrinking, as n_rest (n itself for bit 0)
+        let rest = if i == 0 { "n".to_string() } else { format!("n_rest{i}") };
+        let bit = b.bits(&rest, 0, 0);
         let (hi, keep) = (b.bits(&format!("result_prod{}", i + 1), 2 * pw, pw), b.r(&r));
         b.wire(&format!("result{}", i + 1), pw + 1, format!("{bit} ? {hi} : {keep}"), &format!("UQ1.{pw}: floored product, or the product so far"));
         if more {
@@ -39,8 +39,8 @@ pub fn datapath(cfg: &Config, w: &Widths, b: &mut Builder) {
             b.wire(&format!("power_sq{}", i + 1), full, format!("{p1} * {p2}"), &format!("UQ2.{}: power^2, exact", 2 * pw));
             let sq = b.bits(&format!("power_sq{}", i + 1), 2 * pw, pw);
             b.wire(&format!("power{}", i + 1), pw + 1, sq, &format!("UQ1.{pw}: c^(2^{}), floored", i + 1));
-            let rest = b.bits(&format!("n_rest{i}"), nb - i - 1, 1);
-            b.wire(&format!("n_rest{}", i + 1), nb - i - 1, rest, "the bits of n still to use");
+            let upper = b.bits(&rest, nb - i - 1, 1);
+            b.wire(&format!("n_rest{}", i + 1), nb - i - 1, upper, "the bits of n still to use");
         }
         b.delay(mul_delay(pw + 1, pw + 1) + LUT_DELAY);
     }

@@ -107,19 +107,24 @@ impl SpecularModel {
     }
 }
 
-/// A closed integer range with the parameter's name, used for validation and for `--help`.
+/// A closed integer range with the parameter's name and default: the one table that drives
+/// validation, the defaults and the ranges `--help` shows.
 pub struct Range {
     pub name: &'static str,
     pub min: u32,
     pub max: u32,
+    pub default: u32,
 }
 
-pub const COS_FRAC_BITS: Range = Range { name: "cos_frac_bits", min: 4, max: 20 };
-pub const N_BITS: Range = Range { name: "n_bits", min: 1, max: 12 };
-pub const COLOR_BITS: Range = Range { name: "color_bits", min: 1, max: 16 };
-pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min: 1, max: 24 };
-pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24 };
-pub const MAX_SQUARINGS: Range = Range { name: "max_squarings", min: 0, max: 4 };
+pub const COS_FRAC_BITS: Range = Range { name: "cos_frac_bits", min: 4, max: 20, default: 15 };
+pub const N_BITS: Range = Range { name: "n_bits", min: 1, max: 12, default: 10 };
+pub const COLOR_BITS: Range = Range { name: "color_bits", min: 1, max: 16, default: 8 };
+pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min: 1, max: 24, default: 15 };
+pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24, default: 16 };
+pub const MAX_SQUARINGS: Range = Range { name: "max_squarings", min: 0, max: 4, default: 3 };
+
+/// Every integer parameter with a fixed range (`stages` depends on the datapath).
+pub const RANGES: &[&Range] = &[&COS_FRAC_BITS, &N_BITS, &COLOR_BITS, &INTENSITY_FRAC_BITS, &K_FRAC_BITS, &MAX_SQUARINGS];
 
 impl Range {
     fn check(&self, value: u32) -> Result<u32, ConfigError> {
@@ -156,18 +161,18 @@ impl Default for Params {
     fn default() -> Self {
         Params {
             top: "specular_unit".into(),
-            cos_frac_bits: 15,
-            n_bits: 10,
-            color_bits: 8,
-            intensity_frac_bits: 15,
+            cos_frac_bits: COS_FRAC_BITS.default,
+            n_bits: N_BITS.default,
+            color_bits: COLOR_BITS.default,
+            intensity_frac_bits: INTENSITY_FRAC_BITS.default,
             k: "0.3686".into(),
-            k_frac_bits: 16,
+            k_frac_bits: K_FRAC_BITS.default,
             stages: 0,
             rounding: Rounding::Faithful,
             rom_style: RomStyle::File,
             arch: Arch::Lean,
             model: SpecularModel::Quadratic,
-            max_squarings: 3,
+            max_squarings: MAX_SQUARINGS.default,
         }
     }
 }

@@ -4,7 +4,8 @@
 //!
 //! Data flows one way: [`config`] (validated parameters) → [`widths`] (error analysis) →
 //! {[`model`], [`rom`], [`emit`] (templates)} → files → [`cosim`] (simulators).
-//! [`cli`] is the command line over all of it.
+//! [`error`] is the one error type of every stage; [`cli`] is the command line over all of
+//! it, and nothing else imports it.
 
 pub mod blinn;
 pub mod blinn_pow;
@@ -13,6 +14,7 @@ pub mod config;
 pub mod cosim;
 pub mod datapath;
 pub mod emit;
+pub mod error;
 pub mod fitted;
 pub mod model;
 pub mod paper;

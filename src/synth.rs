@@ -1,12 +1,12 @@
 //! `specgen synth`: yosys (and nextpnr, when installed) on the RTL in a directory; area and
 //! speed as JSON and a table.
 
-use crate::cli::{failed, usage, Failure};
 use crate::cosim::Design;
 use crate::emit;
+use crate::error::{failed, usage, Error as Failure};
 use askama::Template;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
@@ -18,27 +18,6 @@ pub enum Target {
     Ice40,
     /// Lattice ECP5-25 (synth_ecp5; nextpnr-ecp5 for Fmax when installed)
     Ecp5,
-}
-
-#[derive(clap::Args, Debug, Clone)]
-pub struct SynthArgs {
-    /// Directory with the Verilog and the specgen manifest.
-    #[arg(long, value_name = "DIR")]
-    pub rtl: PathBuf,
-    #[arg(long, value_enum, default_value = "ice40")]
-    pub target: Target,
-    /// Map multipliers to DSP blocks (iCE40 SB_MAC16, ECP5 MULT18X18D).
-    #[arg(long)]
-    pub dsp: bool,
-    /// Skip place-and-route (no Fmax).
-    #[arg(long)]
-    pub no_pnr: bool,
-    /// Also write the result as JSON to FILE.
-    #[arg(long, value_name = "FILE")]
-    pub json: Option<PathBuf>,
-    /// Keep nextpnr's log (critical paths) in FILE.
-    #[arg(long, value_name = "FILE")]
-    pub pnr_log: Option<PathBuf>,
 }
 
 /// Area and speed of one synthesis run.
@@ -251,23 +230,11 @@ pub fn table(r: &SynthResult) -> String {
     s
 }
 
-pub fn run_cli(args: &SynthArgs) -> Result<(), Failure> {
-    let design = Design::load(&args.rtl)?;
-    let r = synthesize(&design, args.target, args.dsp, !args.no_pnr, args.pnr_log.as_deref())?;
-    print!("{}", table(&r));
-    if let Some(path) = &args.json {
-        let mut text = serde_json::to_string_pretty(&r).expect("serialises");
-        text.push('\n');
-        emit::write_file_atomically(path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display())))?;
-    }
-    Ok(())
-}
-
-/// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (iCE40 UP5K with
-/// DSPs, nextpnr) and returns the shallowest whose Fmax reaches `mhz`, with every try.
 /// Fmax (when placed) for each depth tried: (stages, MHz).
 pub type StageTrials = Vec<(u32, Option<f64>)>;
 
+/// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (iCE40 UP5K with
+/// DSPs, nextpnr) and returns the shallowest whose Fmax reaches `mhz`, with every try.
 pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, StageTrials), Failure> {
     require("yosys", "yosys")?;
     require("nextpnr-ice40", "nextpnr-ice40")?;

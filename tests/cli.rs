@@ -251,3 +251,30 @@ fn rtl_out_is_what_the_generator_emits_now() {
         assert!(a == b, "rtl_out/{name} is stale (first differing line {first:?}): run `specgen generate --out rtl_out`");
     }
 }
+
+/// Each subcommand takes only the parameters it uses; help states ranges from the one table
+/// and the exit codes.
+#[test]
+fn subcommands_take_only_their_parameters_and_help_is_complete() {
+    for (cmd, flag) in [("rom", "--stages"), ("rom", "--rom-style"), ("eval", "--stages"), ("eval", "--top"), ("report", "--stages"), ("report", "--rom-style")]
+    {
+        let o = specgen().args([cmd, flag, "1"]).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{cmd} {flag}: {}", text(&o));
+        assert!(text(&o).contains("unexpected argument"), "{cmd} {flag}: {}", text(&o));
+    }
+    for cmd in ["generate", "rom", "eval", "report"] {
+        let o = specgen().args([cmd, "--help"]).output().unwrap();
+        let help = text(&o);
+        assert!(o.status.success() && help.contains("Exit codes: 0 success"), "{cmd}: {help}");
+        for r in specgen::config::RANGES {
+            let flag = format!("--{}", r.name.replace('_', "-"));
+            if help.contains(&flag) {
+                assert!(help.contains(&format!("[{}..={}, default {}]", r.min, r.max, r.default)), "{cmd} {flag}: range not from the table");
+            }
+        }
+    }
+    let o = specgen().args(["generate", "--help"]).output().unwrap();
+    for heading in ["Number formats:", "Model:", "RTL:"] {
+        assert!(text(&o).contains(heading), "{heading}");
+    }
+}

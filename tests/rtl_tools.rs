@@ -48,3 +48,26 @@ fn yosys_synthesizes_without_latches_or_warnings() {
         assert!(warnings.is_empty(), "{args:?}: {warnings:?}");
     }
 }
+
+/// A reviewer reads steps, not renamings: at `--stages 0` no wire of any model is just another
+/// wire's or port's name, and there is one lint sink.
+#[test]
+fn combinational_units_have_no_renaming_wires_and_one_sink() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (i, args) in
+        [&[][..], &["--arch", "paper"][..], &["--model", "fitted"][..], &["--model", "blinn"][..], &["--model", "blinn-pow"][..]].iter().enumerate()
+    {
+        let dir = generate(tmp.path(), &format!("r{i}"), args);
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        for line in v.lines().filter(|l| l.starts_with("wire ")) {
+            let rhs = line.split_once(" = ").map(|x| x.1).unwrap_or("");
+            let rhs = rhs.split(';').next().unwrap().trim();
+            assert!(!rhs.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'), "{args:?}: a renaming wire: {line}");
+        }
+        assert!(v.matches("unused").count() <= 1, "{args:?}: more than one unused sink");
+        assert!(
+            v.starts_with("`resetall\n`timescale 1ns / 1ps\n`default_nettype none\n") && v.trim_end().ends_with("endmodule\n`resetall"),
+            "{args:?}: preamble"
+        );
+    }
+}

@@ -1,7 +1,10 @@
 //! The command line: parse flags, build a [`Config`], call the library, map errors to exit codes
 //! (2: bad parameters or usage, 1: a check failed or an I/O error).
 
-use crate::config::{self, Config, ConfigError, Params, RomStyle, Rounding};
+mod cosim;
+mod synth;
+
+use crate::config::{self, Config, Params, RomStyle, Rounding};
 
 use crate::emit;
 use crate::model::{self, Inputs, Model};
@@ -10,7 +13,12 @@ use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
-#[command(name = "specgen", version, about = "Generate a fixed-point specular highlight unit (Verilog-2005) and its golden model")]
+#[command(
+    name = "specgen",
+    version,
+    about = "Generate a fixed-point specular highlight unit (Verilog-2005) and its golden model",
+    after_help = "Exit codes: 0 success; 1 a check failed (a mismatch, a broken contract, a tool's error) or a file could not be read or written; 2 invalid parameters or usage."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -18,7 +26,7 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Write <top>.v, cos_sp_rom.hex, <top>.json and <top>.core into DIR, atomically.
+    /// Write <top>.v, its table files (cos_sp_rom.hex, ...), <top>.json and <top>.core into DIR, atomically.
     Generate {
         /// Output directory (created, or replaced if it holds only a previous specgen output).
         #[arg(long, value_name = "DIR")]
@@ -28,6 +36,8 @@ pub enum Command {
         target_mhz: Option<f64>,
         #[command(flatten)]
         params: ParamArgs,
+        #[command(flatten)]
+        rtl: RtlArgs,
     },
     /// Export one table of the unit: the cut-off ROM cos_sp(n) (quadratic), the fit ROM
     /// (fitted), the log2 or exp2 table (blinn).
@@ -40,6 +50,9 @@ pub enum Command {
         /// Output file (default: standard output).
         #[arg(short = 'o', long, value_name = "FILE")]
         output: Option<PathBuf>,
+        /// The module name the .coe/.mif header names [default: specular_unit]
+        #[arg(long)]
+        top: Option<String>,
         #[command(flatten)]
         params: ParamArgs,
     },
@@ -62,9 +75,9 @@ pub enum Command {
         params: ParamArgs,
     },
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
-    Cosim(crate::cosim::CosimArgs),
+    Cosim(cosim::CosimArgs),
     /// Synthesize the RTL in DIR with yosys (and nextpnr for Fmax): LUTs, carries, DSPs, FFs, ROM.
-    Synth(crate::synth::SynthArgs),
+    Synth(synth::SynthArgs),
     /// Render a sphere and a plane at grazing light with the unit in DIR, beside float cos^n and
     /// their difference, one row per n, as a PNG. Pixels go through the RTL (co-simulation) and
     /// must be bit-identical to the golden model; --model-only skips the simulator.
@@ -102,54 +115,60 @@ pub struct RenderArgs {
     pub model_only: bool,
 }
 
-/// The generator parameters (SPEC §2). Unset flags fall back to --config, then to the defaults.
+/// The generator parameters (SPEC §2) that define the arithmetic. Unset flags fall back to
+/// --config, then to the defaults. Ranges in --help come from `config::RANGES`.
 #[derive(Args, Debug, Default, Clone)]
 pub struct ParamArgs {
     /// Read parameters from a JSON file (a manifest written by `generate`, or a subset of its keys).
-    #[arg(long, value_name = "FILE.json")]
+    #[arg(long, value_name = "FILE.json", help_heading = "Parameters")]
     pub config: Option<PathBuf>,
-    /// Top module name (a Verilog identifier). [default: specular_unit]
-    #[arg(long)]
-    pub top: Option<String>,
-    /// F: fractional bits of cos_g, UQ1.F [4..=20, default 15]
-    #[arg(allow_negative_numbers = true, value_parser = param_cos_frac_bits, long)]
+    /// F: fractional bits of cos_g, UQ1.F
+    #[arg(allow_negative_numbers = true, value_parser = param_cos_frac_bits, long, help_heading = "Number formats")]
     pub cos_frac_bits: Option<u32>,
-    /// N: bits of the exponent n; the ROM has 2^N entries [1..=12, default 10]
-    #[arg(allow_negative_numbers = true, value_parser = param_n_bits, long)]
+    /// N: bits of the exponent n (tables indexed by n have 2^N entries)
+    #[arg(allow_negative_numbers = true, value_parser = param_n_bits, long, help_heading = "Number formats")]
     pub n_bits: Option<u32>,
-    /// B: bits of each colour input and output [1..=16, default 8]
-    #[arg(allow_negative_numbers = true, value_parser = param_color_bits, long)]
+    /// B: bits of each colour input and output
+    #[arg(allow_negative_numbers = true, value_parser = param_color_bits, long, help_heading = "Number formats")]
     pub color_bits: Option<u32>,
-    /// FI: fractional bits of the intensity output, UQ1.FI [1..=24, default 15]
-    #[arg(allow_negative_numbers = true, value_parser = param_intensity_frac_bits, long)]
+    /// FI: fractional bits of the intensity output, UQ1.FI
+    #[arg(allow_negative_numbers = true, value_parser = param_intensity_frac_bits, long, help_heading = "Number formats")]
     pub intensity_frac_bits: Option<u32>,
-    /// The constant k as a decimal string, 0 < k <= 1 [default "0.3686"]
-    #[arg(allow_negative_numbers = true, long)]
-    pub k: Option<String>,
-    /// KF: fractional bits k is rounded to (nearest, ties to even); with --model fitted, the
-    /// fractional bits of every a_n [4..=24, default 16]
-    #[arg(allow_negative_numbers = true, value_parser = param_k_frac_bits, long)]
-    pub k_frac_bits: Option<u32>,
-    /// Pipeline registers; 0 = combinational; latency = stages [0..=cut points: lean 13, paper 6,
-    /// blinn-pow N+2 at default widths; default 0]
-    #[arg(allow_negative_numbers = true, value_parser = param_stages, long)]
-    pub stages: Option<u32>,
-    /// Output rounding: faithful (|error| < 1 ulp) or exact (nearest, ties away) [default faithful]
-    #[arg(long, value_enum)]
-    pub rounding: Option<Rounding>,
-    /// How the ROM is written: file ($readmemh) or case (inline table) [default file]
-    #[arg(long, value_enum)]
-    pub rom_style: Option<RomStyle>,
-    /// Datapath: lean (error-budget widths, DSP-sized) or paper (Fig. 5 literally, full width) [default lean]
-    #[arg(long, value_enum)]
-    pub arch: Option<config::Arch>,
     /// Function: quadratic (the paper's (15)), fitted ([1 - a_n(1 - cos)]^(2^m_n) per n), blinn
     /// (cos^n from log2/exp2 tables) or blinn-pow (cos^n by square-and-multiply) [default quadratic]
-    #[arg(long, value_enum)]
+    #[arg(long, value_enum, help_heading = "Model")]
     pub model: Option<config::SpecularModel>,
-    /// M of --model fitted: the bracket is squared up to M times (exponent 2^m_n, m_n <= M) [0..=4, default 3]
-    #[arg(allow_negative_numbers = true, value_parser = param_max_squarings, long)]
+    /// The constant k of --model quadratic as a decimal string, 0 < k <= 1 [default "0.3686"]
+    #[arg(allow_negative_numbers = true, long, help_heading = "Model")]
+    pub k: Option<String>,
+    /// KF: fractional bits k is rounded to (nearest, ties to even); with --model fitted, the
+    /// fractional bits of every a_n
+    #[arg(allow_negative_numbers = true, value_parser = param_k_frac_bits, long, help_heading = "Model")]
+    pub k_frac_bits: Option<u32>,
+    /// M of --model fitted: the bracket is squared up to M times (exponent 2^m_n, m_n <= M)
+    #[arg(allow_negative_numbers = true, value_parser = param_max_squarings, long, help_heading = "Model")]
     pub max_squarings: Option<u32>,
+    /// Output rounding: faithful (|error| < 1 ulp) or exact (nearest, ties away; quadratic only) [default faithful]
+    #[arg(long, value_enum, help_heading = "Model")]
+    pub rounding: Option<Rounding>,
+    /// Datapath of --model quadratic: lean (error-budget widths, DSP-sized) or paper (Fig. 5 literally) [default lean]
+    #[arg(long, value_enum, help_heading = "Model")]
+    pub arch: Option<config::Arch>,
+}
+
+/// What only the generated RTL needs (`generate`).
+#[derive(Args, Debug, Default, Clone)]
+pub struct RtlArgs {
+    /// Top module name (a Verilog identifier, not a port or internal name) [default: specular_unit]
+    #[arg(long, help_heading = "RTL")]
+    pub top: Option<String>,
+    /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points:
+    /// lean 13, paper 6, fitted M+5, blinn 10, blinn-pow N+2 at default widths; default 0]
+    #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
+    pub stages: Option<u32>,
+    /// How tables are written: file ($readmemh) or case (inline) [default file]
+    #[arg(long, value_enum, help_heading = "RTL")]
+    pub rom_style: Option<RomStyle>,
 }
 
 /// A whole-number flag: a negative value gets a range error, not a "flag not found".
@@ -180,40 +199,25 @@ range_params!(
     param_max_squarings => config::MAX_SQUARINGS
 );
 
-/// A failure with its exit code.
-#[derive(Debug)]
-pub struct Failure {
-    pub code: i32,
-    pub message: String,
-}
-
-impl From<ConfigError> for Failure {
-    fn from(e: ConfigError) -> Self {
-        Failure { code: 2, message: e.to_string() }
-    }
-}
-
-pub fn usage(message: impl Into<String>) -> Failure {
-    Failure { code: 2, message: message.into() }
-}
-
-pub fn failed(message: impl Into<String>) -> Failure {
-    Failure { code: 1, message: message.into() }
-}
+pub use crate::error::{failed, usage, Error as Failure};
 
 impl ParamArgs {
-    pub fn to_config(&self) -> Result<Config, Failure> {
+    /// The configuration: --config, then these flags, then `rtl`'s (when the command has them).
+    pub fn to_config(&self, rtl: Option<&RtlArgs>) -> Result<Config, Failure> {
         let mut p = match &self.config {
             Some(path) => Params::from_json_file(path)?,
             None => Params::default(),
         };
-        if let Some(v) = &self.top {
-            p.top = v.clone();
-        }
         macro_rules! set {
-            ($($f:ident),*) => { $(if let Some(v) = self.$f { p.$f = v; })* };
+            ($src:expr; $($f:ident),*) => { $(if let Some(v) = $src.$f { p.$f = v; })* };
         }
-        set!(cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, stages, rounding, rom_style, arch, model, max_squarings);
+        set!(self; cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, rounding, arch, model, max_squarings);
+        if let Some(r) = rtl {
+            if let Some(v) = &r.top {
+                p.top = v.clone();
+            }
+            set!(r; stages, rom_style);
+        }
         if let Some(v) = &self.k {
             p.k = v.clone();
         }
@@ -226,14 +230,14 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<()
     emit::write_dir_atomically(out, files).map_err(|e| match e {
         emit::OutputError::Occupied(..) => usage(e.to_string()),
         emit::OutputError::Busy(_) => failed(e.to_string()),
-        emit::OutputError::Io(_) => failed(format!("cannot write {}: {e}", out.display())),
+        emit::OutputError::Io(io) => crate::error::Error::io("write", out, io),
     })
 }
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Generate { out, target_mhz, params } => {
-            let mut cfg = params.to_config()?;
+        Command::Generate { out, target_mhz, params, rtl } => {
+            let mut cfg = params.to_config(Some(&rtl))?;
             if let Some(mhz) = target_mhz {
                 if !(mhz > 0.0 && mhz <= 1000.0) {
                     return Err(usage(format!("invalid --target-mhz: {mhz}; allowed (0, 1000]")));
@@ -249,8 +253,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Rom { table, format, output, params } => {
-            let cfg = params.to_config()?;
+        Command::Rom { table, format, output, top, params } => {
+            let cfg = params.to_config(Some(&RtlArgs { top, ..RtlArgs::default() }))?;
             let tables = rom::tables(&cfg);
             let names = tables.iter().map(|t| t.name.as_str()).collect::<Vec<_>>().join(", ");
             let t = match &table {
@@ -274,14 +278,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
         }
         Command::Eval { cos, cos_code, n, ks, params } => {
-            let cfg = params.to_config()?;
+            let cfg = params.to_config(None)?;
             eval(&cfg, cos.as_deref(), cos_code, n, ks)
         }
-        Command::Cosim(args) => crate::cosim::run_cli(&args),
+        Command::Cosim(args) => cosim::run(&args),
         Command::Render(args) => render(&args),
-        Command::Synth(args) => crate::synth::run_cli(&args),
+        Command::Synth(args) => synth::run(&args),
         Command::Report { out, hw, params } => {
-            let cfg = params.to_config()?;
+            let cfg = params.to_config(None)?;
             let hw = hw
                 .iter()
                 .map(|p| {
@@ -480,14 +484,37 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         eprintln!("render: {} pixels through the RTL (Verilator), all bit-identical to the golden model", report.checked);
     }
     let png = render::picture(&model, &args.n, args.size);
-    emit::write_file_atomically(&args.out, &png).map_err(|e| failed(format!("cannot write {}: {e}", args.out.display())))?;
+    emit::write_file_atomically(&args.out, &png).map_err(|e| crate::error::Error::io("write", &args.out, e))?;
     println!("{}", args.out.display());
     Ok(())
 }
 
+/// The command line, with each ranged parameter's help completed from `config::RANGES` (one
+/// table drives validation, defaults and help) and the exit codes on every subcommand.
+pub fn command() -> clap::Command {
+    use clap::CommandFactory;
+    let mut cmd = Cli::command();
+    let names: Vec<String> = cmd.get_subcommands().map(|s| s.get_name().to_string()).collect();
+    for sub in names {
+        cmd = cmd.mut_subcommand(&sub, |mut sc| {
+            for r in config::RANGES {
+                if sc.get_arguments().any(|a| a.get_id() == r.name) {
+                    sc = sc.mut_arg(r.name, |a| {
+                        let h = a.get_help().map(|h| h.to_string()).unwrap_or_default();
+                        a.help(format!("{h} [{}..={}, default {}]", r.min, r.max, r.default))
+                    });
+                }
+            }
+            sc.after_help("Exit codes: 0 success; 1 a check failed or a file could not be read or written; 2 invalid parameters or usage.")
+        });
+    }
+    cmd
+}
+
 /// Runs the command line; returns the process exit code.
 pub fn main() -> i32 {
-    let cli = match Cli::try_parse() {
+    use clap::FromArgMatches;
+    let cli = match command().try_get_matches().and_then(|m| Cli::from_arg_matches(&m)) {
         Ok(cli) => cli,
         Err(e) => {
             let _ = e.print();
@@ -496,9 +523,9 @@ pub fn main() -> i32 {
     };
     match run(cli) {
         Ok(()) => 0,
-        Err(f) => {
-            eprintln!("specgen: error: {}", f.message);
-            f.code
+        Err(e) => {
+            eprintln!("specgen: error: {}", crate::error::chain(&e));
+            e.exit_code()
         }
     }
 }

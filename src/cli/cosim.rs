@@ -1,0 +1,80 @@
+//! `specgen cosim`: the command-line glue over [`crate::cosim`].
+
+use crate::cosim::{build, check_ports, check_tables, describe, random_stimulus, run_all, write_trace, Design, Exhaustive, Simulator, Stimulus};
+use crate::error::{failed, Error as Failure};
+use crate::model::Model;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct CosimArgs {
+    /// Directory with the Verilog (*.v) and the specgen manifest (<top>.json).
+    #[arg(long, value_name = "DIR")]
+    pub rtl: PathBuf,
+    /// Number of vectors after the corner cases (random mode).
+    #[arg(long, default_value_t = 100_000)]
+    pub vectors: u64,
+    /// Seed of the random vectors.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Every (cos_g, n) pair with cos_g in [0, 1.0], colours varied over every code.
+    #[arg(long, conflicts_with = "vectors")]
+    pub exhaustive: bool,
+    #[arg(long, value_enum, default_value = "verilator")]
+    pub simulator: Simulator,
+    /// On a mismatch, write a VCD of a short replay around the first failure.
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
+    /// Parallel simulator processes [default: available cores].
+    #[arg(long)]
+    pub jobs: Option<usize>,
+}
+
+/// `specgen cosim`: exit 0 when every output matches, 1 on any mismatch, 2 on usage errors.
+pub fn run(args: &CosimArgs) -> Result<(), Failure> {
+    let design = Design::load(&args.rtl)?;
+    check_tables(&design)?;
+    let model = Model::new(&design.cfg);
+    let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)).max(1);
+    let t0 = Instant::now();
+    // a file that does not compile is best told by the simulator; then the ports
+    let built = build(&design, args.simulator, false)?;
+    check_ports(&design)?;
+    let build_time = t0.elapsed();
+    let stims: Vec<Box<dyn Stimulus>> = if args.exhaustive {
+        Exhaustive::parts(&design.cfg, jobs as u32 * 2).into_iter().map(|e| Box::new(e) as Box<dyn Stimulus>).collect()
+    } else {
+        vec![Box::new(random_stimulus(&model, args.vectors, args.seed))]
+    };
+    let t1 = Instant::now();
+    let report = run_all(&built, &design, &model, &stims, jobs)?;
+    let check_time = t1.elapsed();
+    let rate = report.cycles as f64 / check_time.as_secs_f64().max(1e-9);
+    println!(
+        "cosim {} ({:?}{}): {} cycles, {} checked, {} mismatches; build {:.2} s{}, check {:.2} s ({:.1} M cycles/s)",
+        design.dir.display(),
+        args.simulator,
+        if args.exhaustive { ", exhaustive" } else { "" },
+        report.cycles,
+        report.checked,
+        report.mismatches,
+        build_time.as_secs_f64(),
+        if built.fresh { "" } else { " (cached)" },
+        check_time.as_secs_f64(),
+        rate / 1e6
+    );
+    match &report.first {
+        None if report.checked > 0 => Ok(()),
+        None => Err(failed("no output was checked")),
+        Some(m) => {
+            let mut msg = format!("{} of {} checked cycles differ from the golden model\n{}", report.mismatches, report.checked, describe(m, &design.cfg));
+            if let Some(path) = &args.trace {
+                match write_trace(&design, &model, &stims, m, path) {
+                    Ok(()) => msg.push_str(&format!("trace of the replay around the failure: {}", path.display())),
+                    Err(e) => msg.push_str(&format!("could not write the trace: {e}")),
+                }
+            }
+            Err(failed(msg))
+        }
+    }
+}

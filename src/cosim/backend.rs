@@ -1,0 +1,351 @@
+//! The simulators: cached builds of the harnesses in `tb/`, and runs that stream vectors
+//! through them into a [`Checker`].
+
+use super::{Checker, Cycle, Design, Mismatch, Recorded, Report, Sampled, Simulator, Stimulus};
+use crate::error::{failed, usage, Error as Failure};
+use crate::model::{Model, Outputs};
+use sha2::{Digest, Sha256};
+use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+const VERILATOR_HARNESS: &str = include_str!("../../tb/verilator_harness.cpp");
+const ICARUS_BENCH: &str = include_str!("../../tb/icarus_bench.v");
+
+fn cache_root() -> PathBuf {
+    if let Some(dir) = std::env::var_os("SPECGEN_CACHE_DIR") {
+        return PathBuf::from(dir);
+    }
+    if let Some(dir) = std::env::var_os("XDG_CACHE_HOME") {
+        return PathBuf::from(dir).join("specgen");
+    }
+    if let Some(home) = std::env::var_os("HOME") {
+        return PathBuf::from(home).join(".cache").join("specgen");
+    }
+    std::env::temp_dir().join("specgen-cache")
+}
+
+fn tool_version(tool: &str, package: &str) -> Result<String, Failure> {
+    let out = Command::new(tool)
+        .arg(if tool == "iverilog" { "-V" } else { "--version" })
+        .output()
+        .map_err(|_| usage(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    Ok(text.lines().next().unwrap_or("").to_string())
+}
+
+/// A built simulator, ready to run vectors.
+pub struct Built {
+    pub simulator: Simulator,
+    pub dir: PathBuf,
+    /// true when this call compiled it (false: taken from the cache)
+    pub fresh: bool,
+}
+
+/// Builds (or finds in the cache) the simulator for `design`.
+pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built, Failure> {
+    let top = design.cfg.top().to_string();
+    let has_clock = design.cfg.stages() > 0;
+    let (tool, package, harness) = match simulator {
+        Simulator::Verilator => ("verilator", "verilator", VERILATOR_HARNESS),
+        Simulator::Icarus => ("iverilog", "iverilog", ICARUS_BENCH),
+    };
+    let version = tool_version(tool, package)?;
+    let mut h = Sha256::new();
+    for part in [version.as_str(), harness, &top, &format!("{has_clock} {trace} {simulator:?} v2")] {
+        h.update(part.as_bytes());
+        h.update([0u8]);
+    }
+    for src in &design.sources {
+        h.update(src.file_name().unwrap().to_string_lossy().as_bytes());
+        h.update(std::fs::read(src).map_err(|e| usage(format!("cannot read {}: {e}", src.display())))?);
+    }
+    let key: String = h.finalize().iter().take(12).map(|b| format!("{b:02x}")).collect();
+    let root = cache_root();
+    let dir = root.join(format!("{}-{top}-{key}", tool));
+    if dir.join("ok").exists() {
+        return Ok(Built { simulator, dir, fresh: false });
+    }
+    std::fs::create_dir_all(&root).map_err(|e| failed(format!("cannot create cache {}: {e}", root.display())))?;
+    let work = tempfile::Builder::new()
+        .prefix(".build-")
+        .tempdir_in(&root)
+        .map_err(|e| failed(format!("cannot create a build directory in {}: {e}", root.display())))?;
+    let sources: Vec<PathBuf> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone())).collect();
+    let mut cmd;
+    match simulator {
+        Simulator::Verilator => {
+            std::fs::write(work.path().join("harness.cpp"), harness).map_err(|e| failed(e.to_string()))?;
+            cmd = Command::new("verilator");
+            cmd.current_dir(work.path())
+                .args(["--cc", "--exe", "--build", "-O3", "--prefix", "Vdut", "--top-module", &top])
+                .args(["-Wno-fatal", "-Wno-lint", "-Wno-style", "-Mdir", "obj", "-o", "../harness"])
+                .args(["-j", "2", "-CFLAGS", &format!("-O2 -DHAS_CLOCK={} -DTRACE={}", has_clock as u8, trace as u8)])
+                .arg("-MAKEFLAGS")
+                .arg("OPT_FAST=-O2");
+            if trace {
+                cmd.arg("--trace");
+            }
+            cmd.args(&sources).arg("harness.cpp");
+        }
+        Simulator::Icarus => {
+            std::fs::write(work.path().join("bench.v"), harness).map_err(|e| failed(e.to_string()))?;
+            let c = &design.cfg;
+            cmd = Command::new("iverilog");
+            cmd.current_dir(work.path())
+                .args(["-g2005", "-o", "sim.vvp", "-s", "specgen_icarus_bench"])
+                .arg(format!("-DTOP={top}"))
+                .arg(format!("-DCOS_W={}", c.f() + 1))
+                .arg(format!("-DN_W={}", c.n_bits()))
+                .arg(format!("-DB_W={}", c.b()))
+                .arg(format!("-DI_W={}", c.fi() + 1));
+            if has_clock {
+                cmd.arg("-DHAS_CLOCK");
+            }
+            cmd.arg("bench.v").args(&sources);
+        }
+    }
+    let out = cmd.output().map_err(|e| failed(format!("cannot run {tool}: {e}")))?;
+    if !out.status.success() {
+        let log = String::from_utf8_lossy(&out.stderr);
+        let tail: Vec<&str> = log.lines().rev().take(25).collect();
+        return Err(usage(format!("{tool} could not build the RTL in {}:\n{}", design.dir.display(), tail.into_iter().rev().collect::<Vec<_>>().join("\n"))));
+    }
+    std::fs::write(work.path().join("ok"), b"").map_err(|e| failed(e.to_string()))?;
+    let kept = work.keep();
+    if std::fs::rename(&kept, &dir).is_err() {
+        // another process built it at the same time: use theirs
+        let _ = std::fs::remove_dir_all(&kept);
+    }
+    Ok(Built { simulator, dir, fresh: true })
+}
+
+const IN_RECORD: usize = 16;
+const OUT_RECORD: usize = 12;
+const CHUNK: u64 = 1 << 14;
+
+fn encode(c: &Cycle, buf: &mut Vec<u8>) {
+    buf.extend_from_slice(&c.inputs.cos_g.to_le_bytes());
+    buf.extend_from_slice(&(c.inputs.n as u16).to_le_bytes());
+    for k in c.inputs.ks {
+        buf.extend_from_slice(&(k as u16).to_le_bytes());
+    }
+    buf.push(c.valid as u8 | (c.rst as u8) << 1);
+    buf.extend_from_slice(&[0, 0, 0]);
+}
+
+fn decode(rec: &[u8]) -> Sampled {
+    let u16at = |i: usize| u16::from_le_bytes([rec[i], rec[i + 1]]) as u32;
+    Sampled {
+        outputs: Outputs { intensity: u32::from_le_bytes([rec[0], rec[1], rec[2], rec[3]]), spec: [u16at(4), u16at(6), u16at(8)], done: rec[10] & 2 != 0 },
+        valid: rec[10] & 1 != 0,
+    }
+}
+
+/// Runs one stimulus through the built simulator, checking every cycle. `progress` counts
+/// cycles done (for the progress bar).
+pub fn run_one(
+    built: &Built,
+    design: &Design,
+    model: &Model,
+    stim: &dyn Stimulus,
+    run: usize,
+    progress: &AtomicU64,
+    env: &[(&str, &Path)],
+) -> Result<Report, Failure> {
+    let mut checker = Checker::new(model, run);
+    match built.simulator {
+        Simulator::Verilator => {
+            let mut child = Command::new(built.dir.join("harness"))
+                .current_dir(&design.dir)
+                .envs(env.iter().map(|(k, v)| (k, v.as_os_str())))
+                .stdin(Stdio::piped())
+                .stdout(Stdio::piped())
+                .stderr(Stdio::piped())
+                .spawn()
+                .map_err(|e| failed(format!("cannot start the Verilator harness: {e}")))?;
+            let mut stdin = child.stdin.take().unwrap();
+            let mut stdout = child.stdout.take().unwrap();
+            let len = stim.len();
+            std::thread::scope(|scope| -> Result<(), Failure> {
+                scope.spawn(move || {
+                    let mut buf = Vec::with_capacity(CHUNK as usize * IN_RECORD);
+                    let mut i = 0;
+                    while i < len {
+                        buf.clear();
+                        let end = (i + CHUNK).min(len);
+                        for j in i..end {
+                            encode(&stim.cycle(j), &mut buf);
+                        }
+                        if stdin.write_all(&buf).is_err() {
+                            return;
+                        }
+                        i = end;
+                    }
+                });
+                let mut buf = vec![0u8; CHUNK as usize * OUT_RECORD];
+                let mut t = 0;
+                while t < len {
+                    let n = (len - t).min(CHUNK) as usize;
+                    if let Err(e) = stdout.read_exact(&mut buf[..n * OUT_RECORD]) {
+                        let mut err = String::new();
+                        let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
+                        let _ = child.wait();
+                        return Err(failed(format!("the Verilator harness stopped after {t} of {len} cycles ({e}):\n{}", err.trim_end())));
+                    }
+                    for k in 0..n {
+                        checker.check(stim, t + k as u64, decode(&buf[k * OUT_RECORD..(k + 1) * OUT_RECORD]));
+                    }
+                    t += n as u64;
+                    progress.fetch_add(n as u64, Ordering::Relaxed);
+                }
+                Ok(())
+            })?;
+            let status = child.wait().map_err(|e| failed(e.to_string()))?;
+            if !status.success() {
+                let mut err = String::new();
+                let _ = child.stderr.take().unwrap().read_to_string(&mut err);
+                return Err(failed(format!("the Verilator harness failed ({status}): {err}")));
+            }
+        }
+        Simulator::Icarus => {
+            let work = tempfile::tempdir().map_err(|e| failed(e.to_string()))?;
+            let vin = work.path().join("vectors.in");
+            let vout = work.path().join("vectors.out");
+            {
+                let mut w = std::io::BufWriter::new(std::fs::File::create(&vin).map_err(|e| failed(e.to_string()))?);
+                for i in 0..stim.len() {
+                    let c = stim.cycle(i);
+                    let x = c.inputs;
+                    writeln!(w, "{:x} {:x} {:x} {:x} {:x} {:x} {:x}", c.valid as u8, c.rst as u8, x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2])
+                        .map_err(|e| failed(e.to_string()))?;
+                }
+            }
+            let out = Command::new("vvp")
+                .current_dir(&design.dir)
+                .arg("-n")
+                .arg(built.dir.join("sim.vvp"))
+                .arg(format!("+vec_in={}", vin.display()))
+                .arg(format!("+vec_out={}", vout.display()))
+                .output()
+                .map_err(|e| failed(format!("cannot run vvp (Debian package `iverilog`): {e}")))?;
+            if !out.status.success() {
+                return Err(failed(format!("vvp failed: {}", String::from_utf8_lossy(&out.stderr))));
+            }
+            let said = String::from_utf8_lossy(&out.stdout);
+            let file = std::fs::File::open(&vout).map_err(|e| failed(format!("vvp wrote no output ({e}); it said:\n{}", said.trim_end())))?;
+            let mut t = 0;
+            for line in BufReader::new(file).lines() {
+                let line = line.map_err(|e| failed(e.to_string()))?;
+                let f: Vec<&str> = line.split_whitespace().collect();
+                let hex = |s: &str| u32::from_str_radix(s, 16).unwrap_or(u32::MAX); // x/z never match
+                if f.len() != 6 {
+                    return Err(failed(format!("vvp output line {t} is malformed: {line:?}")));
+                }
+                let s = Sampled { outputs: Outputs { intensity: hex(f[2]), spec: [hex(f[3]), hex(f[4]), hex(f[5])], done: f[1] == "1" }, valid: f[0] == "1" };
+                // outputs that are x/z before the pipeline fills are never compared (see Checker)
+                checker.check(stim, t, s);
+                t += 1;
+            }
+            if t != stim.len() {
+                return Err(failed(format!("vvp returned {t} of {} cycles", stim.len())));
+            }
+            progress.fetch_add(t, Ordering::Relaxed);
+        }
+    }
+    Ok(checker.report)
+}
+
+/// Runs several independent stimuli on `jobs` parallel simulator processes and merges the reports.
+pub fn run_all(built: &Built, design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], jobs: usize) -> Result<Report, Failure> {
+    let total: u64 = stims.iter().map(|s| s.len()).sum();
+    let progress = Arc::new(AtomicU64::new(0));
+    let next = AtomicU64::new(0);
+    let results: Vec<Result<Vec<Report>, Failure>> = std::thread::scope(|scope| {
+        let bar = {
+            let progress = progress.clone();
+            let done = Arc::new(std::sync::atomic::AtomicBool::new(false));
+            let d2 = done.clone();
+            let handle = scope.spawn(move || progress_bar(&progress, total, &d2));
+            (handle, done)
+        };
+        let workers: Vec<_> = (0..jobs.max(1))
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut reports = Vec::new();
+                    loop {
+                        let i = next.fetch_add(1, Ordering::Relaxed) as usize;
+                        if i >= stims.len() {
+                            return Ok(reports);
+                        }
+                        reports.push(run_one(built, design, model, stims[i].as_ref(), i, &progress, &[])?);
+                    }
+                })
+            })
+            .collect();
+        let r = workers.into_iter().map(|w| w.join().expect("worker panicked")).collect();
+        bar.1.store(true, Ordering::Relaxed);
+        let _ = bar.0.join();
+        r
+    });
+    let mut all = Report::default();
+    for r in results {
+        for rep in r? {
+            all.cycles += rep.cycles;
+            all.checked += rep.checked;
+            all.mismatches += rep.mismatches;
+            let earlier = match (&all.first, &rep.first) {
+                (None, Some(_)) => true,
+                (Some(a), Some(b)) => (b.run, b.cycle) < (a.run, a.cycle),
+                _ => false,
+            };
+            if earlier {
+                all.first = rep.first;
+            }
+        }
+    }
+    Ok(all)
+}
+
+/// A progress bar on stderr for runs longer than a second; silent when stderr is no terminal.
+fn progress_bar(progress: &AtomicU64, total: u64, done: &std::sync::atomic::AtomicBool) {
+    if !std::io::stderr().is_terminal() || total == 0 {
+        return;
+    }
+    let start = Instant::now();
+    let mut shown = false;
+    while !done.load(Ordering::Relaxed) {
+        std::thread::sleep(Duration::from_millis(100));
+        if start.elapsed() < Duration::from_secs(1) {
+            continue;
+        }
+        let p = progress.load(Ordering::Relaxed).min(total);
+        let width = 40;
+        let filled = (p * width / total) as usize;
+        eprint!("\r[{}{}] {:5.1}% {p}/{total} cycles", "#".repeat(filled), ".".repeat(width as usize - filled), p as f64 * 100.0 / total as f64);
+        shown = true;
+    }
+    if shown {
+        eprintln!();
+    }
+}
+
+/// Replays a short window around a failure with a tracing build and writes its VCD.
+pub fn write_trace(design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], m: &Mismatch, path: &Path) -> Result<(), Failure> {
+    let built = build(design, Simulator::Verilator, true)?;
+    let stim = stims[m.run].as_ref();
+    let s = design.cfg.stages() as u64;
+    let from = m.cycle.saturating_sub(16 + s);
+    let to = (m.cycle + 4).min(stim.len() - 1);
+    let mut cycles = Vec::new();
+    if s > 0 {
+        cycles.push(Cycle { rst: true, valid: false, ..stim.cycle(from) });
+    }
+    cycles.extend((from..=to).map(|i| stim.cycle(i)));
+    let abs = if path.is_absolute() { path.to_path_buf() } else { std::env::current_dir().unwrap_or_default().join(path) };
+    run_one(&built, design, model, &Recorded(cycles), 0, &AtomicU64::new(0), &[("SPECGEN_VCD", &abs)])?;
+    Ok(())
+}

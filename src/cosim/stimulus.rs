@@ -1,0 +1,180 @@
+//! The stimulus: corner cases, a boundary for every n, random vectors, the exhaustive sweep.
+
+use super::Cycle;
+use crate::config::Config;
+use crate::model::{Inputs, Model};
+
+/// A stream of cycles, addressable by index so a checker can regenerate what it needs.
+/// Every run starts with a reset cycle when the unit is pipelined.
+pub trait Stimulus: Send + Sync {
+    fn len(&self) -> u64;
+    fn cycle(&self, i: u64) -> Cycle;
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// A stimulus held in memory.
+pub struct Recorded(pub Vec<Cycle>);
+
+impl Stimulus for Recorded {
+    fn len(&self) -> u64 {
+        self.0.len() as u64
+    }
+    fn cycle(&self, i: u64) -> Cycle {
+        self.0[i as usize]
+    }
+}
+
+/// splitmix64: a small counter-based generator, so vectors are reproducible from the seed.
+pub fn splitmix(mut x: u64) -> u64 {
+    x = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^ (x >> 31)
+}
+
+/// The corner cases: cos 0, 1.0, above 1.0, B−1, B, B+1 where B is n's boundary (the
+/// cut-off ROM entry, or the first code with a non-zero output); n 0, 1, 2, 3, max; colour
+/// codes 0, 1, max on every channel. Then, for every n, the three codes around its boundary
+/// with colours that vary with n: a single wrong table entry at any n shows.
+pub fn corner_vectors(model: &Model) -> Vec<Inputs> {
+    let cfg = &model.cfg;
+    let one = 1u32 << cfg.f();
+    let cos_max = (2u32 << cfg.f()) - 1;
+    let n_max = (1u32 << cfg.n_bits()) - 1;
+    let ks_max = (1u32 << cfg.b()) - 1;
+    let bounds = model.boundaries();
+    let mut ns: Vec<u32> = vec![0, 1, 2, 3, n_max];
+    ns.retain(|&n| n <= n_max);
+    ns.dedup();
+    let colours = [0, 1, ks_max];
+    let mut v = Vec::new();
+    for &n in &ns {
+        let sp = bounds[n as usize];
+        let mut coss = vec![0, one, one + 1, cos_max, sp.saturating_sub(1), sp, (sp + 1).min(cos_max)];
+        coss.sort();
+        coss.dedup();
+        for &cos_g in &coss {
+            for &r in &colours {
+                for &g in &colours {
+                    for &b in &colours {
+                        v.push(Inputs { cos_g, n, ks: [r, g, b] });
+                    }
+                }
+            }
+        }
+    }
+    for n in 0..=n_max {
+        let sp = bounds[n as usize];
+        let r = splitmix(n as u64 ^ 0x5bd1_e995);
+        let ks = [ks_max, (r as u32) & ks_max, ((r >> 20) as u32) & ks_max];
+        for cos_g in [sp.saturating_sub(1), sp, (sp + 1).min(cos_max)] {
+            v.push(Inputs { cos_g, n, ks });
+        }
+    }
+    v
+}
+
+/// A uniformly random input vector (cos_g over the whole port, half of them in [0, 1.0]).
+pub fn random_vector(cfg: &Config, seed: u64, i: u64) -> Inputs {
+    let r = splitmix(seed.wrapping_mul(0x1000_0000_0000_0001) ^ i);
+    let r2 = splitmix(r);
+    let cos_g = if r & 1 == 0 { ((r >> 1) % ((1u64 << cfg.f()) + 1)) as u32 } else { ((r >> 1) & ((2u64 << cfg.f()) - 1)) as u32 };
+    let n = ((r >> 32) & ((1u64 << cfg.n_bits()) - 1)) as u32;
+    let bm = (1u64 << cfg.b()) - 1;
+    Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
+}
+
+/// Corners, then `count` random vectors. For a pipelined unit: a reset first, random bubbles
+/// on `in_valid` (one cycle in eight), and a reset in mid-stream.
+pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
+    let cfg = &model.cfg;
+    let pipelined = cfg.stages() > 0;
+    let vectors: Vec<Inputs> = corner_vectors(model).into_iter().chain((0..count).map(|i| random_vector(cfg, seed, i))).collect();
+    let mut cycles = Vec::with_capacity(vectors.len() * 9 / 8 + 8);
+    if pipelined {
+        cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xdead, 0), valid: true, rst: true });
+    }
+    let reset_at = vectors.len() / 2;
+    for (i, &inputs) in vectors.iter().enumerate() {
+        if pipelined {
+            let r = splitmix(seed ^ 0xb0bb1e5 ^ (i as u64) << 8);
+            if r.is_multiple_of(8) {
+                cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xb0bb, i as u64), valid: false, rst: false });
+            }
+            if i == reset_at {
+                // a reset in mid-stream: the vectors in flight are dropped, then the stream resumes
+                cycles.push(Cycle { inputs, valid: true, rst: true });
+                cycles.push(Cycle { inputs, valid: true, rst: true });
+            }
+        }
+        cycles.push(Cycle { inputs, valid: true, rst: false });
+    }
+    Recorded(cycles)
+}
+
+/// Every `(cos_g, n)` with `cos_g ∈ [0, 2^F]` (codes above 1.0 all read as 1.0; the corners
+/// cover them), n-major in chunk `part` of `parts`. Colours: `ks_X = (cos_g + n·m_X + o_X) mod 2^B`
+/// with odd `m_X`, so along a row of fixed n every channel sees every code. The first part
+/// ends with a tail of `2^B` cycles at `cos_g = 1.0` carrying every colour code on every
+/// channel through full intensity (whatever N is).
+pub struct Exhaustive {
+    pub f: u32,
+    pub b: u32,
+    pub n_bits: u32,
+    pub n_lo: u32,
+    pub n_hi: u32,
+    pub pipelined: bool,
+    pub full_intensity_tail: bool,
+}
+
+impl Exhaustive {
+    pub fn parts(cfg: &Config, parts: u32) -> Vec<Exhaustive> {
+        let n_count = 1u32 << cfg.n_bits();
+        let parts = parts.clamp(1, n_count);
+        (0..parts)
+            .map(|p| Exhaustive {
+                f: cfg.f(),
+                b: cfg.b(),
+                n_bits: cfg.n_bits(),
+                n_lo: n_count * p / parts,
+                n_hi: n_count * (p + 1) / parts,
+                pipelined: cfg.stages() > 0,
+                full_intensity_tail: p == 0,
+            })
+            .collect()
+    }
+    fn row(&self) -> u64 {
+        (1u64 << self.f) + 1
+    }
+}
+
+impl Stimulus for Exhaustive {
+    fn len(&self) -> u64 {
+        let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
+        (self.n_hi - self.n_lo) as u64 * self.row() + self.pipelined as u64 + tail
+    }
+    fn cycle(&self, i: u64) -> Cycle {
+        if self.pipelined && i == 0 {
+            return Cycle { inputs: Inputs::default(), valid: false, rst: true };
+        }
+        let j = i - self.pipelined as u64;
+        let bm = (1u32 << self.b) - 1;
+        let sweep = (self.n_hi - self.n_lo) as u64 * self.row();
+        if j >= sweep {
+            let code = (j - sweep) as u32;
+            let n = code.wrapping_mul(7) & ((1u32 << self.n_bits) - 1);
+            let ks = [code, code.wrapping_add(1) & bm, code.wrapping_add(2) & bm];
+            return Cycle { inputs: Inputs { cos_g: 1 << self.f, n, ks }, valid: true, rst: false };
+        }
+        let n = self.n_lo + (j / self.row()) as u32;
+        let cos_g = (j % self.row()) as u32;
+        let ks = [
+            cos_g.wrapping_add(n.wrapping_mul(1)) & bm,
+            cos_g.wrapping_add(n.wrapping_mul(3)).wrapping_add(85) & bm,
+            cos_g.wrapping_add(n.wrapping_mul(7)).wrapping_add(170) & bm,
+        ];
+        Cycle { inputs: Inputs { cos_g, n, ks }, valid: true, rst: false }
+    }
+}

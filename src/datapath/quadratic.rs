@@ -1,0 +1,311 @@
+//! The quadratic unit of SPEC §3 on the datapath builder: `lean` (widths from the error
+//! budget in `widths`, short steps for a fully pipelined DSP design) and `paper` (the seed's
+//! Fig. 5 literally). Every regrouping is exact, so the values are those of
+//! [`crate::model::Model::trace`].
+//!
+//! `lean` is split into short steps so that a fully registered unit has at most one DSP
+//! multiply-add, one ROM read, one LUT level or one ≤ [`CHUNK_BITS`]-bit carry chain between
+//! registers, and every carry chain takes its operands straight from registers (an inverter
+//! or mux in front of an iCE40 carry chain costs a LUT level and a route). Wide adds go into
+//! the DSPs' post-adders where the products are; the three left in the fabric are
+//! carry-select: chunks added with carry-in 0 and 1 in one step, the carries rippled in the
+//! next, each chunk's sum picked in the third. `paper` keeps the six coarse steps of Fig. 5.
+
+use super::*;
+use crate::widths::Widths;
+
+/// The cut-off ROM (10) read: `cos_sp`, addressed by n.
+fn rom_read(cfg: &Config, w: &Widths, b: &mut Builder) {
+    let t = b.table(Table {
+        name: "cos_sp_rom".into(),
+        file: crate::emit::ROM_FILE.into(),
+        param: "ROM_FILE".into(),
+        width: w.cos_bits,
+        words: crate::rom::cos_sp_table(cfg).into_iter().map(u128::from).collect(),
+        what: format!("cut-off ROM cos_sp(n), UQ1.{}, address = n", cfg.f()),
+        fields: vec![("cos_sp".into(), w.cos_bits)],
+    });
+    b.rom_read("cos_sp", t, "n");
+    b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
+}
+
+/// The lean datapath: short steps, every decomposition exact (see the module docs).
+///
+/// Where it saves against `paper` (each also said in the RTL comments):
+/// - `k_q·n` is one constant multiply: no general multiplier by k (34);
+/// - the deviation and `1 − deviation` come out of DSP multiply-adds (`P + K'`, then an
+///   inversion folded into the key block's LUTs): no fabric adder for adder 9;
+/// - the bracket is squared as `hi²` and `hi·lo` with a 16-bit `hi`, the adds inside the
+///   DSPs: two 16-bit DSP products instead of a 3-DSP 18×18 one;
+/// - widths cut to the error budget (bracket UQ1.(max(FI,B)+2), colours fed UQ1.(B+1));
+/// - the colour rounding half is the colour DSPs' addend: no rounding adders.
+pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
+    let (f, cb, bb, fi) = (cfg.f(), w.cos_bits, cfg.b(), cfg.fi());
+    let (wb, ws, wsc, s) = (w.bracket_frac_bits, w.square_frac_bits, w.color_square_frac_bits, w.deviation_shift);
+    // P is needed modulo 2^m only: dev = P[m-1:s] (m = KF+F+1); higher bits matter only
+    // beyond the cut-off, where the key block zeroes the bracket.
+    let m = wb + s + 1;
+
+    b.step("cut-off ROM read (10); cos complemented and clamped");
+    rom_read(cfg, w, b);
+    let g = b.bits("cos_g", f, f);
+    let x = b.bits("cos_g", f - 1, 0);
+    b.wire(
+        "cos_complement",
+        cb,
+        format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
+        &format!("UQ1.{f}: ~cos = 1 - 2^-{f} - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)"),
+    );
+    b.delay(LUT_DELAY);
+
+    b.step("1 - cos (adder 6): chunk sums");
+    let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
+
+    b.step("1 - cos: carries; comparator (12): chunk sums");
+    b.add_carries(&d);
+    // cos < cos_sp  <=>  cos_sp + ~cos (over F+1 bits) carries out: an add of two registers
+    let cmp = b.add_start(
+        "cutoff_sum",
+        &[Piece::sig("cos_sp", 0, cb)],
+        &[Piece::sig("cos_complement", 0, f), Piece::Const { value: 1, width: 1 }],
+        false,
+        cb + 1,
+        &format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
+    );
+
+    b.step("1 - cos: select; comparator: carries; k_q*n (constant multiply)");
+    b.add_finish(d);
+    b.add_carries(&cmp);
+    let nn = b.operand("n", 0, cfg.n_bits(), w.kn_bits);
+    b.wire(
+        "kn",
+        w.kn_bits,
+        format!("{nn} * {}", lit(w.kn_bits, cfg.k_code as u128)),
+        &format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
+    );
+    b.delay(mul_delay(cfg.n_bits(), bit_length(cfg.k_code as u128)));
+
+    // 1 - deviation without an adder: with K = 2^(WB+s) + 2^s - 1 and K' = 2^m - 1 - K,
+    // ~(P + K') = K - P (mod 2^m), and (K - P)[m-1:s] = 2^WB - floor(P / 2^s) (mod 2^(WB+1)).
+    let k_big = (1u128 << (wb + s)) + (1u128 << s) - 1;
+    let k_prime = mask(m) - k_big;
+    b.step("comparator: select; deviation, high partial product (multiply-add)");
+    let sum = b.add_finish(cmp);
+    let (gg, c) = (b.bits("cos_g", f, f), b.bits(&sum, cb, cb));
+    b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+    // kn = kn_hi*2^16 + kn_lo: two products with <= 16-bit operands instead of one that
+    // would take 3 DSP blocks; the hi product is needed only modulo 2^(m-16)
+    let split = w.kn_bits > DSP_BITS && m > DSP_BITS;
+    if split {
+        let hi_w = m - DSP_BITS;
+        let (kh, d2) = (b.operand("kn", DSP_BITS, w.kn_bits - DSP_BITS, hi_w), b.operand("one_minus_cos", 0, cb, hi_w));
+        b.wire(
+            "deviation_hi",
+            hi_w,
+            format!("{kh} * {d2} + {}", lit(hi_w, k_prime >> DSP_BITS)),
+            &format!("kn[{}:{DSP_BITS}] * (1 - cos) + K'[{}:{DSP_BITS}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1),
+        );
+        b.delay(mul_delay(w.kn_bits - DSP_BITS, cb));
+    }
+
+    b.step("deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add)");
+    let expr = if split {
+        let (kl, d1) = (b.operand("kn", 0, DSP_BITS, m), b.operand("one_minus_cos", 0, cb, m));
+        let c = b.pieces(&[Piece::Const { value: k_prime & mask(DSP_BITS), width: DSP_BITS }, Piece::sig("deviation_hi", 0, m - DSP_BITS)]);
+        format!("{kl} * {d1} + {c}")
+    } else {
+        let (kn, d1) = (b.operand("kn", 0, w.kn_bits, m), b.operand("one_minus_cos", 0, cb, m));
+        format!("{kn} * {d1} + {}", lit(m, k_prime))
+    };
+    b.wire("deviation_sum", m, expr, &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f));
+    b.delay(mul_delay(DSP_BITS, cb));
+
+    b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
+    let (dn, q) = (b.r("done"), b.bits("deviation_sum", m - 1, s));
+    b.wire(
+        "bracket",
+        wb + 1,
+        format!("{dn} ? {} : ~{q}", lit(wb + 1, 0)),
+        &format!("UQ1.{wb} in [0, 1]: 2^{wb} - floor(P/2^{s}) (truncation #1), zeroed beyond the cut-off (key block 13)"),
+    );
+    b.delay(LUT_DELAY);
+
+    let r = w.squarer_split;
+    let full_bits = w.full_square_bits();
+    let full: Vec<Piece> = if r > 0 {
+        // bracket = hi*2^r + lo; bracket^2 = hi^2*2^2r + hi*lo*2^(r+1) + lo^2 regrouped, all
+        // floors exact: T = hi*lo + lo^2/2^(r+1), Z = hi^2 + T/2^(r-1), and
+        // bracket^2 = {Z, T mod 2^(r-1), lo^2 mod 2^(r+1)}: two multiply-adds, no fabric adder
+        let hw = wb + 1 - r;
+        b.step("square (squarer 11): lo^2");
+        // a table of 2^r entries: LUTs, no carry chain in front of the next DSP
+        let lo = b.bits("bracket", r - 1, 0);
+        let table = (0..(1u128 << r)).rev().fold(String::new(), |acc, v| match acc.is_empty() {
+            true => lit(2 * r, v * v),
+            false => format!("({lo} == {}) ? {} : {acc}", lit(r, v), lit(2 * r, v * v)),
+        });
+        b.wire("square_ll", 2 * r, table, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
+        b.delay(LUT_DELAY);
+        b.step("square: T = hi*lo + lo^2/2^(r+1) (multiply-add)");
+        let tw = hw + r;
+        let (hi, lo) = (b.operand("bracket", r, hw, tw), b.operand("bracket", 0, r, tw));
+        let plus = if 2 * r > r + 1 { format!(" + {}", b.operand("square_ll", r + 1, r - 1, tw)) } else { String::new() };
+        b.wire("square_t", tw, format!("{hi} * {lo}{plus}"), "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)");
+        b.delay(mul_delay(hw, r));
+        b.step("square: Z = hi^2 + T/2^(r-1) (multiply-add)");
+        let (h1, h2) = (b.operand("bracket", r, hw, 2 * hw), b.operand("bracket", r, hw, 2 * hw));
+        let th = b.operand("square_t", r - 1, tw - (r - 1), 2 * hw);
+        b.wire(
+            "square_z",
+            2 * hw,
+            format!("{h1} * {h2} + {th}"),
+            &format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1),
+        );
+        b.delay(mul_delay(hw, hw));
+        let mut full = vec![Piece::sig("square_ll", 0, r + 1)];
+        if r > 1 {
+            full.push(Piece::sig("square_t", 0, r - 1));
+        }
+        full.push(Piece::sig("square_z", 0, 2 * hw));
+        full
+    } else {
+        b.step("square (squarer 11)");
+        let (a1, a2) = (b.operand("bracket", 0, wb + 1, full_bits), b.operand("bracket", 0, wb + 1, full_bits));
+        b.wire("square_full", full_bits, format!("{a1} * {a2}"), &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+        b.delay(mul_delay(wb + 1, wb + 1));
+        vec![Piece::sig("square_full", 0, full_bits)]
+    };
+
+    b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add); intensity rounding: chunk sums");
+    let sq = b.pieces(&sub_pieces(&full, w.square_shift, ws + 1));
+    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
+    let csq = b.bits("square", ws, ws - wsc);
+    b.wire(
+        "color_square",
+        wsc + 1,
+        csq,
+        &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
+    );
+    let cpb = w.color_product_bits;
+    for ch in CHANNELS {
+        let (cs, ks) = (b.zext("color_square", cpb), b.zext(&format!("ks_{ch}"), cpb));
+        b.wire(
+            &format!("color_sum_{ch}"),
+            cpb,
+            format!("{cs} * {ks} + {}", lit(cpb, 1u128 << (wsc - 1))),
+            &format!("UQ{bb}.{wsc}: S * ks_{ch} + 1/2 colour ulp (round half up; the add inside the DSP)"),
+        );
+    }
+    b.delay(mul_delay(wsc + 1, bb));
+    let intensity_add = if ws > fi {
+        // round half up: (S[WS:WS-FI-1] + 1) >> 1 = floor(S*2^FI + 1/2)
+        Some(b.add_start(
+            "intensity_sum",
+            &[Piece::sig("square", ws - fi - 1, fi + 2)],
+            &[],
+            true,
+            fi + 2,
+            &format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
+        ))
+    } else {
+        let sqr = b.r("square");
+        let e = if fi > ws { format!("{{{sqr}, {}}}", lit(fi - ws, 0)) } else { sqr };
+        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
+        None
+    };
+
+    b.step("colour results; intensity rounding: carries");
+    for ch in CHANNELS {
+        let e = b.bits(&format!("color_sum_{ch}"), cpb - 1, wsc);
+        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
+    }
+    b.delay(0.0);
+    if let Some(p) = intensity_add {
+        b.add_carries(&p);
+        if !p.chunks.is_empty() {
+            b.step("intensity rounding: select");
+        }
+        let sum = b.add_finish(p);
+        let e = b.bits(&sum, fi + 1, 1);
+        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    }
+}
+
+/// The seed's Fig. 5 taken literally: every bit kept, a general multiplier for k (34), a
+/// separate n*(1 - cos) multiplier (7), a multiplier as squarer (11), three colour
+/// multipliers (14-16); six coarse steps.
+pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
+    let (f, cb, nb, bb, fi) = (cfg.f(), w.cos_bits, cfg.n_bits(), cfg.b(), cfg.fi());
+    let (wb, ws) = (w.bracket_frac_bits, w.square_frac_bits);
+    let one = lit(cb, 1u128 << f);
+
+    b.step("clamp, 1 - cos (adder 6), cut-off ROM (10), comparator (12)");
+    rom_read(cfg, w, b);
+    let g = b.r("cos_g");
+    b.wire("cos_clamped", cb, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}, <= 1.0"));
+    let c = b.r("cos_clamped");
+    b.wire("one_minus_cos", cb, format!("{one} - {c}"), &format!("UQ1.{f}: 1 - cos(gamma), exact"));
+    let (c, sp) = (b.r("cos_clamped"), b.r("cos_sp"));
+    b.wire("done", 1, format!("({c} < {sp})"), "comparator: bracket < 0");
+    b.delay(add_delay(cb) * 2.0);
+
+    b.step("deviation n*(1 - cos) (multiplier 7) times k (general multiplier 34), truncation #1");
+    let nd_bits = nb + cb;
+    let (nn, d) = (b.zext("n", nd_bits), b.zext("one_minus_cos", nd_bits));
+    b.wire("n_dev", nd_bits, format!("{nn} * {d}"), &format!("UQ{nb}.{f}: n*(1 - cos), exact (multiplier 7)"));
+    let nd = b.zext("n_dev", w.deviation_bits);
+    b.wire(
+        "deviation_full",
+        w.deviation_bits,
+        format!("{nd} * {}", lit(w.deviation_bits, cfg.k_code as u128)),
+        &format!("UQ.{}: k_q*n*(1 - cos), exact (general multiplier 34)", cfg.kf() + f),
+    );
+    let dev = b.pieces(&sub_pieces(&[Piece::sig("deviation_full", 0, w.deviation_bits)], w.deviation_shift, wb + 1));
+    b.wire("deviation", wb + 1, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
+    b.delay(mul_delay(nb, cb) + mul_delay(nd_bits, bit_length(cfg.k_code as u128)));
+
+    b.step("bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13)");
+    let (dn, dv) = (b.r("done"), b.r("deviation"));
+    b.wire("bracket", wb + 1, format!("{dn} ? {} : ({} - {dv})", lit(wb + 1, 0), lit(wb + 1, 1u128 << wb)), &format!("UQ1.{wb}, in [0, 1]"));
+    b.delay(add_delay(wb + 1) + LUT_DELAY);
+
+    b.step("square (a general multiplier as squarer 11)");
+    let fb = w.full_square_bits();
+    let (a1, a2) = (b.zext("bracket", fb), b.zext("bracket", fb));
+    b.wire("square_full", fb, format!("{a1} * {a2}"), &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
+    let sq = b.bits("square_full", 2 * wb, w.square_shift);
+    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S"));
+    b.delay(mul_delay(wb + 1, wb + 1));
+
+    b.step("colour multipliers (14-16); intensity rounding");
+    let cpb = w.color_product_bits;
+    for ch in CHANNELS {
+        let (cs, ks) = (b.zext("square", cpb), b.zext(&format!("ks_{ch}"), cpb));
+        b.wire(&format!("color_prod_{ch}"), cpb, format!("{cs} * {ks}"), &format!("UQ{bb}.{ws}: S * ks_{ch}, exact"));
+    }
+    if ws > fi {
+        let sqr = b.r("square");
+        b.wire("intensity_sum", ws + 1, format!("{sqr} + {}", lit(ws + 1, 1u128 << (ws - fi - 1))), &format!("UQ1.{ws}: S + 2^-{} (round half up)", fi + 1));
+    }
+    b.delay(mul_delay(ws + 1, bb));
+
+    b.step("colour rounding, final slices");
+    for ch in CHANNELS {
+        let p = b.r(&format!("color_prod_{ch}"));
+        b.wire(&format!("color_sum_{ch}"), cpb, format!("{p} + {}", lit(cpb, 1u128 << (ws - 1))), "+ 1/2 colour ulp (round half up)");
+        let s = b.bits(&format!("color_sum_{ch}"), cpb - 1, ws);
+        b.wire(&format!("spec_{ch}"), bb, s, &format!("UNORM{bb}"));
+    }
+    let e = if ws > fi {
+        b.bits("intensity_sum", ws, ws - fi)
+    } else {
+        let sqr = b.r("square");
+        if fi > ws {
+            format!("{{{sqr}, {}}}", lit(fi - ws, 0))
+        } else {
+            sqr
+        }
+    };
+    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}"));
+    b.delay(add_delay(cpb));
+}
