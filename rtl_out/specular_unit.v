@@ -78,12 +78,16 @@ wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_s1[15:12]} + {1'h0, 1'h1, cos_com
 wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_s1[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_s1[14:12]}, 1'b1};   // bits [16:12] above bit 0, carry-in 1 (carry-select)
 
 // ==== step 4: 1 - cos: select; comparator: carries; k_q*n (constant multiply) ====
-wire [15:0] one_minus_cos_s4 = {(one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] : one_minus_cos_part2_s2), (one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] : one_minus_cos_part1_s2[4:0]), one_minus_cos_part0_s2[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
+wire [4:0] one_minus_cos_chunk1_s4 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] : one_minus_cos_part1_s2[4:0];   // bits [10:6]: the sum with the carry into bit 6
+wire [4:0] one_minus_cos_chunk2_s4 = one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] : one_minus_cos_part2_s2;   // bits [15:11]: the sum with the carry into bit 11
+wire [15:0] one_minus_cos_s4 = {one_minus_cos_chunk2_s4, one_minus_cos_chunk1_s4, one_minus_cos_part0_s2[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
 wire        cutoff_sum_carry2_s4 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[7] : cutoff_sum_part1_s3[6];   // carry into bit 12
 wire [24:0] kn_s4 = {15'h0, n} * 25'h5e5d;   // UQ9.16: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34
 
 // ==== step 5: comparator: select; deviation, high partial product (multiply-add) ====
-wire [16:0] cutoff_sum_s5 = {(cutoff_sum_carry2_s4 ? cutoff_sum_part2_plus1_s3[5:1] : cutoff_sum_part2_s3), (cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[6:1] : cutoff_sum_part1_s3[5:0]), cutoff_sum_part0_s3[5:0]};   // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
+wire [5:0] cutoff_sum_chunk1_s5 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[6:1] : cutoff_sum_part1_s3[5:0];   // bits [11:6]: the sum with the carry into bit 6
+wire [4:0] cutoff_sum_chunk2_s5 = cutoff_sum_carry2_s4 ? cutoff_sum_part2_plus1_s3[5:1] : cutoff_sum_part2_s3;   // bits [16:12]: the sum with the carry into bit 12
+wire [16:0] cutoff_sum_s5 = {cutoff_sum_chunk2_s5, cutoff_sum_chunk1_s5, cutoff_sum_part0_s3[5:0]};   // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
 wire        done_s5 = ~cos_g[15] & cutoff_sum_s5[16];   // comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)
 wire [15:0] deviation_hi_s5 = {7'h0, kn_s4[24:16]} * one_minus_cos_s4 + 16'h7fff;   // kn[24:16] * (1 - cos) + K'[31:16], mod 2^16 (one DSP, the add inside it)
 
@@ -121,11 +125,21 @@ wire [7:0] spec_b_s12 = color_sum_b_s11[16:9];   // UNORM8: S * ks_b rounded hal
 wire        intensity_sum_carry2_s12 = intensity_sum_part0_s11[7] ? intensity_sum_part1_plus1_s11[7] : intensity_sum_part1_s11[6];   // carry into bit 12
 
 // ==== step 13: intensity rounding: select ====
-wire [16:0] intensity_sum_s13 = {(intensity_sum_carry2_s12 ? intensity_sum_part2_plus1_s11[5:1] : intensity_sum_part2_s11), (intensity_sum_part0_s11[7] ? intensity_sum_part1_plus1_s11[6:1] : intensity_sum_part1_s11[5:0]), intensity_sum_part0_s11[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
+wire [5:0] intensity_sum_chunk1_s13 = intensity_sum_part0_s11[7] ? intensity_sum_part1_plus1_s11[6:1] : intensity_sum_part1_s11[5:0];   // bits [11:6]: the sum with the carry into bit 6
+wire [4:0] intensity_sum_chunk2_s13 = intensity_sum_carry2_s12 ? intensity_sum_part2_plus1_s11[5:1] : intensity_sum_part2_s11;   // bits [16:12]: the sum with the carry into bit 12
+wire [16:0] intensity_sum_s13 = {intensity_sum_chunk2_s13, intensity_sum_chunk1_s13, intensity_sum_part0_s11[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
 wire [15:0] intensity_s13 = intensity_sum_s13[16:1];   // UQ1.15: S rounded half up
 
 // bits no step reads (one sink, so lint stays silent)
-wire        unused_bits = ^{cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_s2[5], one_minus_cos_part1_plus1_s2[6], one_minus_cos_part1_plus1_s2[0], one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6], cutoff_sum_part1_plus1_s3[7], cutoff_sum_part1_plus1_s3[0], cutoff_sum_part2_plus1_s3[0], kn_s4[24:16], cutoff_sum_s5[15:0], deviation_sum_s6[13:0], bracket_s7[1:0], square_ll_s8[2:0], square_t_s9[0], square_z_s10[31], square_z_s10[13:0], color_sum_r_s11[8:0], color_sum_g_s11[8:0], color_sum_b_s11[8:0], intensity_sum_part0_s11[0], intensity_sum_part1_s11[6], intensity_sum_part1_plus1_s11[7], intensity_sum_part1_plus1_s11[0], intensity_sum_part2_plus1_s11[0], intensity_sum_s13[0]};
+wire        unused_bits = ^{
+    cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_s2[5],
+    one_minus_cos_part1_plus1_s2[6], one_minus_cos_part1_plus1_s2[0], one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6],
+    cutoff_sum_part1_plus1_s3[7], cutoff_sum_part1_plus1_s3[0], cutoff_sum_part2_plus1_s3[0], kn_s4[24:16],
+    cutoff_sum_s5[15:0], deviation_sum_s6[13:0], bracket_s7[1:0], square_ll_s8[2:0],
+    square_t_s9[0], square_z_s10[31], square_z_s10[13:0], color_sum_r_s11[8:0],
+    color_sum_g_s11[8:0], color_sum_b_s11[8:0], intensity_sum_part0_s11[0], intensity_sum_part1_s11[6],
+    intensity_sum_part1_plus1_s11[7], intensity_sum_part1_plus1_s11[0], intensity_sum_part2_plus1_s11[0], intensity_sum_s13[0]
+};
 
 assign out_valid = in_valid;
 assign spec_r    = spec_r_s12;

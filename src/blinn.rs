@@ -52,7 +52,7 @@
 //! `εg/2 ≤ 0.9·(1 − L(1/2 − 2^−F))`, checked in [`BlinnWidths::derive`].
 
 use crate::config::Config;
-use crate::datapath::{lit, Builder, Table};
+use crate::datapath::{lit, Builder, Piece, Table};
 use crate::widths::{bit_length, mask};
 use serde::Serialize;
 
@@ -394,12 +394,15 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     b.step("normalise: c = c'*2^-e with c' in (1/2, 1]; x = 1 - c'");
     let eb = w.exp_bits;
-    let mut chain = lit(eb, f as u128);
-    for k in 0..f {
+    // a priority chain, most significant bit first, one case a line (?: is right-associative)
+    let mut cases = Vec::new();
+    for k in (0..f).rev() {
         // bit k of c-1 set (and none above): e = F-1-k
         let bit = b.bits("cos_minus_ulp", k, k);
-        chain = format!("{bit} ? {} : ({chain})", lit(eb, (f - 1 - k) as u128));
+        cases.push(format!("{bit} ? {}", lit(eb, (f - 1 - k) as u128)));
     }
+    cases.push(lit(eb, f as u128));
+    let chain = cases.join("\n    : ");
     b.wire("exponent", eb, chain, &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"));
     let c = b.r("cos_clamped");
     let e = b.r("exponent");
@@ -424,8 +427,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.step("g by linear interpolation");
     let ghat_expr = if rb > 0 {
         let pb = w.log_delta_bits + rb;
-        let (d, r) = (b.operand("log_word", ge, w.log_delta_bits, pb), b.operand("x", 0, rb, pb));
-        b.wire("log_step", pb, format!("{d} * {r}"), &format!("dG[i] * (x mod 2^-{}), exact", tg + 1));
+        let e = b.shift_add(&Piece::sig("log_word", ge, w.log_delta_bits), &Piece::sig("x", 0, rb), pb);
+        b.wire("log_step", pb, e, &format!("dG[i] * (x mod 2^-{}), exact, by shift-and-add (small: LUTs, no DSP block)", tg + 1));
         let (gi, st) = (b.operand("log_word", 0, ge, gb), b.operand("log_step", rb, pb - rb, gb));
         format!("{gi} + {st}")
     } else {
@@ -494,8 +497,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.step("2^-frac(y) by linear interpolation");
     let ehat = if re > 0 {
         let pb = w.exp2_delta_bits + re;
-        let (d, r) = (b.operand("exp2_word", ee, w.exp2_delta_bits, pb), b.operand("y", 0, re, pb));
-        b.wire("exp2_step", pb, format!("{d} * {r}"), &format!("dE[j] * (frac(y) mod 2^-{te}), exact"));
+        let e = b.shift_add(&Piece::sig("exp2_word", ee, w.exp2_delta_bits), &Piece::sig("y", 0, re), pb);
+        b.wire("exp2_step", pb, e, &format!("dE[j] * (frac(y) mod 2^-{te}), exact, by shift-and-add (LUTs, no DSP block)"));
         let (ej, st) = (b.operand("exp2_word", 0, ee, ee), b.operand("exp2_step", re, pb - re, ee));
         format!("{ej} - {st}")
     } else {

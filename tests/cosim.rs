@@ -195,7 +195,7 @@ fn injected_faults_in_the_new_models_are_caught() {
         // fitted: intensity truncated instead of rounded
         ("fit_round", &["--model", "fitted"], "power3_s7 + 21'h10;", "power3_s7 + 21'h0;"),
         // blinn: one exponent mis-encoded in the normalisation
-        ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_s1[9] ? 4'h5", "cos_minus_ulp_s1[9] ? 4'h6"),
+        ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_s1[9] ? 4'h5\n", "cos_minus_ulp_s1[9] ? 4'h6\n"),
         // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)
         ("blinn_zero", &["--model", "blinn"], "(cos_zero_s2 && (n != 10'h0))", "(cos_zero_s2)"),
     ];

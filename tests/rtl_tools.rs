@@ -65,6 +65,8 @@ fn combinational_units_have_no_renaming_wires_and_one_sink() {
             assert!(!rhs.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'), "{args:?}: a renaming wire: {line}");
         }
         assert!(v.matches("unused").count() <= 1, "{args:?}: more than one unused sink");
+        let longest = v.lines().map(str::len).max().unwrap();
+        assert!(longest <= 240, "{args:?}: a {longest}-character line (carry-select picks, shift-adds, sinks are one item a line)");
         assert!(
             v.starts_with("`resetall\n`timescale 1ns / 1ps\n`default_nettype none\n") && v.trim_end().ends_with("endmodule\n`resetall"),
             "{args:?}: preamble"

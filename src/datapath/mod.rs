@@ -332,6 +332,23 @@ impl Builder {
         }
     }
 
+    /// `a·r` (`out` bits, exact) as a sum of shifted copies of `a`, one per bit of `r`: no `*`,
+    /// so a small product stays in LUTs and carry chains instead of taking a DSP block.
+    pub fn shift_add(&mut self, a: &Piece, r: &Piece, out: u32) -> String {
+        let (Piece::Sig { name: rn, lo: rlo, width: rw, .. }, Piece::Sig { name: an, lo: alo, width: aw, .. }) = (r, a) else {
+            panic!("shift_add takes signal pieces")
+        };
+        let mut terms = Vec::new();
+        for k in 0..(*rw).min(out) {
+            let bit = self.bits(rn, rlo + k, rlo + k);
+            let av = self.operand(an, *alo, *aw, out - k);
+            let shifted = if k == 0 { av } else { format!("{{{av}, {}}}", lit(k, 0)) };
+            terms.push(format!("({bit} ? {shifted} : {})", lit(out, 0)));
+        }
+        // one partial product a line
+        terms.join("\n    + ")
+    }
+
     /// ` + b` for an addend (`ext` applied), or nothing when it is constant zero.
     fn addend(&mut self, pieces: &[Piece], ext: impl Fn(String) -> String) -> String {
         if pieces.iter().all(|p| matches!(p, Piece::Const { value: 0, .. })) {
@@ -445,14 +462,17 @@ impl Builder {
         let (_, w0) = p.chunks[0];
         let o = p.part0_offset;
         let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1 + o, o)];
-        for (i, &(_, w)) in p.chunks.iter().enumerate().skip(1) {
+        for (i, &(lo, w)) in p.chunks.iter().enumerate().skip(1) {
             let carry = match i {
                 1 => self.bits(&format!("{}_part0", p.name), w0 + o, w0 + o),
                 _ => self.r(&format!("{}_carry{i}", p.name)),
             };
             let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
             let (a, b) = (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0));
-            words.push(format!("({carry} ? {a} : {b})"));
+            // each chunk's pick on its own line; the sum is then a plain concatenation
+            let chunk = format!("{}_chunk{i}", p.name);
+            self.wire(&chunk, w, format!("{carry} ? {a} : {b}"), &format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1));
+            words.push(self.r(&chunk));
         }
         words.reverse();
         let comment = p.comment.clone();
@@ -500,7 +520,8 @@ impl Builder {
                 }
             }
         }
-        let unused = (!parts.is_empty()).then(|| format!("^{{{}}}", parts.join(", ")));
+        let lines: Vec<String> = parts.chunks(4).map(|c| c.join(", ")).collect();
+        let unused = (!parts.is_empty()).then(|| format!("^{{\n    {}\n}}", lines.join(",\n    ")));
         let live = (1..=last)
             .map(|k| {
                 self.signals
@@ -578,7 +599,7 @@ mod tests {
         assert_eq!(d.live[0].iter().map(|l| (l.name.as_str(), l.source.as_str())).collect::<Vec<_>>(), [("x", "x"), ("y", "y_s1")]);
         assert_eq!(d.live[1].iter().map(|l| l.name.as_str()).collect::<Vec<_>>(), ["z"]);
         // step 2 reads x through the register of cut 1; bits 7:1 are left for the sink
-        assert_eq!(d.unused.as_deref(), Some("^{x_c1[7:1]}"));
+        assert_eq!(d.unused.as_deref(), Some("^{\n    x_c1[7:1]\n}"));
         assert_eq!(d.outputs, [("z".to_string(), "z_s2".to_string())]);
     }
 
