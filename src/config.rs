@@ -265,22 +265,9 @@ impl Config {
                 });
             }
         }
-        // stages: up to the cut points of this configuration's datapath
+        // `stages` is bounded by the datapath's cut points: `plan::Plan::new` checks it, since
+        // validating a configuration builds nothing
         let cfg = Config { params, k_code };
-        let cuts = crate::widths::cut_points(&cfg);
-        if cfg.params.stages > cuts {
-            return Err(ConfigError {
-                parameter: "stages",
-                message: format!(
-                    "{} is out of range; allowed 0..={cuts} (the cut points of the {} datapath with these widths)",
-                    cfg.params.stages,
-                    match cfg.params.model {
-                        SpecularModel::Quadratic => cfg.params.arch.name(),
-                        other => other.name(),
-                    }
-                ),
-            });
-        }
         Ok(cfg)
     }
 

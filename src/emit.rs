@@ -6,6 +6,7 @@
 use crate::config::{Arch, Config, Params, RomStyle, Rounding, SpecularModel};
 use crate::datapath::{self, Wire};
 use crate::model::Kind;
+use crate::plan::Plan;
 use crate::rom::{self, RomFormat};
 use crate::widths::Widths;
 use askama::Template;
@@ -207,11 +208,11 @@ fn describe_model(cfg: &Config, w: &Widths, kind: &Kind) -> (String, Vec<String>
 }
 
 /// Builds the template context of the RTL for one configuration (every model).
-pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
+pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
+    let (cfg, w, kind) = (&plan.cfg, &plan.widths, &plan.kind);
     let p = &cfg.params;
-    let kind = Kind::new(cfg);
-    let dp = datapath::build(cfg, w);
-    let cuts = cut_list(&dp);
+    let dp = &plan.datapath;
+    let cuts = cut_list(dp);
     let out_valid = cuts.iter().rev().find(|c| c.registered).map_or("in_valid".to_string(), |c| format!("valid_c{}", c.index));
     let outputs = dp.outputs.iter().map(|(port, src)| OutputView { port: port.clone(), source: src.clone() }).collect();
     let unused = dp.unused.clone();
@@ -255,7 +256,7 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
             },
         });
     }
-    let (param_line, formula, rounding_text, datapath_line, done_meaning) = describe_model(cfg, w, &kind);
+    let (param_line, formula, rounding_text, datapath_line, done_meaning) = describe_model(cfg, w, kind);
     UnitTemplate {
         top: cfg.top(),
         version: VERSION,
@@ -273,10 +274,10 @@ pub fn unit_template<'a>(cfg: &'a Config, w: &'a Widths) -> UnitTemplate<'a> {
         unused,
         steps: dp
             .steps
-            .into_iter()
+            .iter()
             .zip(cuts)
             .zip(reads)
-            .map(|((s, cut), reads)| StepView { index: s.index, title: s.title, reads, wires: s.wires, cut })
+            .map(|((s, cut), reads)| StepView { index: s.index, title: s.title.clone(), reads, wires: s.wires.clone(), cut })
             .collect(),
     }
 }
@@ -376,13 +377,13 @@ fn sha256_hex(bytes: &[u8]) -> String {
 }
 
 /// Every file of a `generate` run, in memory: (file name, contents).
-pub fn generate_files(cfg: &Config) -> Vec<(String, Vec<u8>)> {
-    let w = Widths::derive(cfg);
+pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
+    let (cfg, w) = (&plan.cfg, &plan.widths);
     let top = cfg.top();
-    let model = crate::model::Model::new(cfg);
-    let mut verilog = unit_template(cfg, &w).render().expect("unit template renders");
+    let model = plan.model();
+    let mut verilog = unit_template(plan).render().expect("unit template renders");
     verilog.push('\n');
-    let tables = if cfg.params.rom_style == RomStyle::File { rom::tables(cfg) } else { Vec::new() };
+    let tables = if cfg.params.rom_style == RomStyle::File { plan.datapath.tables.clone() } else { Vec::new() };
     let description = match cfg.model() {
         SpecularModel::Quadratic => "Fixed-point specular highlight unit, [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)",
         SpecularModel::BlinnPow => "Fixed-point Blinn specular unit, cos^n by square-and-multiply",
@@ -410,7 +411,7 @@ pub fn generate_files(cfg: &Config) -> Vec<(String, Vec<u8>)> {
         k_code: cfg.k_code,
         latency: cfg.stages(),
         ports: ports(cfg),
-        internal_widths: &w,
+        internal_widths: w,
         model_widths: match &model.kind {
             Kind::Fitted { widths, .. } => serde_json::to_value(widths).expect("widths serialise"),
             Kind::Blinn { widths, .. } => serde_json::to_value(widths).expect("widths serialise"),

@@ -2,7 +2,8 @@
 //! (Blinn's `cos^n δ` approximated by `[k·n·(cos δ − 1) + 1]²`, cut off at `cos γsp(n)`),
 //! with a bit-exact golden model.
 //!
-//! Data flows one way: [`config`] (validated parameters) → [`widths`] (error analysis) →
+//! Data flows one way: [`config`] (validated parameters) → [`plan`] (model, widths, datapath with
+//! its registers, built once per command; [`widths`] holds the error analysis) →
 //! {[`model`], [`rom`], [`emit`] (templates)} → files → [`cosim`] (simulators).
 //! [`error`] is the one error type of every stage; [`cli`] is the command line over all of
 //! it, and nothing else imports it.
@@ -18,6 +19,7 @@ pub mod error;
 pub mod fitted;
 pub mod model;
 pub mod paper;
+pub mod plan;
 pub mod render;
 pub mod report;
 pub mod rom;

@@ -106,9 +106,13 @@ pub struct Model {
 
 impl Model {
     pub fn new(cfg: &Config) -> Model {
-        let kind = Kind::new(cfg);
+        Model::from_parts(cfg, Widths::derive(cfg), Kind::new(cfg))
+    }
+
+    /// A model from parts already made (`plan::Plan::model`).
+    pub fn from_parts(cfg: &Config, widths: Widths, kind: Kind) -> Model {
         let rom = if cfg.model() == SpecularModel::Quadratic { rom::cos_sp_table(cfg) } else { Vec::new() };
-        Model { cfg: cfg.clone(), widths: Widths::derive(cfg), rom, kind }
+        Model { cfg: cfg.clone(), widths, rom, kind }
     }
 
     /// The unit's outputs for one input, bit for bit.

@@ -40,7 +40,7 @@ pub struct UnitAccuracy {
 
 /// Exhaustive (or strided) sweep of `(cos_g ∈ [0, 2^F], n)` on two threads.
 pub fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
-    let m = Model::new(cfg);
+    let m = crate::plan::Plan::from_params(crate::config::Params { stages: 0, ..cfg.params.clone() }).expect("a valid configuration at stages 0").model();
     let f = cfg.f();
     let one = 1u64 << f;
     let n_count = 1u64 << cfg.n_bits();
@@ -317,7 +317,7 @@ pub fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
     .map(|(model, what)| {
         let arch = if model == SpecularModel::Quadratic { cfg.arch() } else { crate::config::Arch::Lean };
         let p = Params { model, arch, stages: 0, rounding: Rounding::Faithful, ..cfg.params.clone() };
-        (Model::new(&Config::new(p).expect("the report's widths are valid for every model")), what)
+        (crate::plan::Plan::from_params(p).expect("the report's widths are valid for every model").model(), what)
     })
     .collect()
 }

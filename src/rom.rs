@@ -116,15 +116,6 @@ pub fn exact_decimal(code: u64, frac_bits: u32) -> String {
     s
 }
 
-/// Every table of the configured unit (the cut-off ROM, the fit ROM, the log2/exp2 tables;
-/// none for blinn-pow), in the order the RTL declares them.
-pub fn tables(cfg: &Config) -> Vec<Table> {
-    match cfg.model() {
-        crate::config::SpecularModel::BlinnPow => Vec::new(),
-        _ => crate::datapath::build(cfg, &crate::widths::Widths::derive(cfg)).tables,
-    }
-}
-
 /// Renders one table in one format. The text is complete and ends with a newline.
 pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
     let (width, depth, top, what) = (t.width, t.words.len(), cfg.top(), t.what.as_str());

@@ -157,7 +157,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
         dsp_blocks: count(&|n| n == "SB_MAC16" || n.starts_with("MULT18X18") || n.starts_with("ALU54")),
         flip_flops: count(&|n| n.starts_with("SB_DFF") || n == "TRELLIS_FF" || n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE")),
         block_rams: count(&|n| n.starts_with("SB_RAM40") || n == "DP16KD" || n.starts_with("$mem")),
-        rom_bits: crate::rom::tables(cfg).iter().map(|t| t.words.len() as u64 * t.width as u64).sum(),
+        rom_bits: design.plan.datapath.tables.iter().map(|t| t.words.len() as u64 * t.width as u64).sum(),
         total_cells,
         fmax_mhz: None,
         fmax_note: String::new(),
@@ -238,13 +238,13 @@ pub type StageTrials = Vec<(u32, Option<f64>)>;
 pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, StageTrials), Failure> {
     require("yosys", "yosys")?;
     require("nextpnr-ice40", "nextpnr-ice40")?;
-    let max = crate::widths::cut_points(&crate::config::Config::new(crate::config::Params { stages: 0, ..params.clone() })?);
+    let max = crate::plan::Plan::from_params(crate::config::Params { stages: 0, ..params.clone() })?.cut_points;
     let mut tries = Vec::new();
     for stages in 0..=max {
-        let cfg = crate::config::Config::new(crate::config::Params { stages, ..params.clone() })?;
-        let dir = tempfile::tempdir().map_err(|e| usage(e.to_string()))?;
+        let plan = crate::plan::Plan::from_params(crate::config::Params { stages, ..params.clone() })?;
+        let dir = tempfile::tempdir().map_err(|e| failed(e.to_string()))?;
         let out = dir.path().join("rtl");
-        emit::write_dir_atomically(&out, &emit::generate_files(&cfg)).map_err(|e| failed(e.to_string()))?;
+        emit::write_dir_atomically(&out, &emit::generate_files(&plan)).map_err(|e| failed(e.to_string()))?;
         let design = Design::load(&out)?;
         let r = synthesize(&design, Target::Ice40, true, true, None)?;
         eprintln!("target-mhz: stages {stages}: Fmax {}", r.fmax_mhz.map(|f| format!("{f:.1} MHz")).unwrap_or_else(|| r.fmax_note.clone()));

@@ -82,7 +82,7 @@ impl Widths {
     }
 
     /// Every width, no registers placed yet.
-    fn derive_unpipelined(cfg: &Config) -> Widths {
+    pub fn derive_unpipelined(cfg: &Config) -> Widths {
         let (f, kf, fi, b) = (cfg.f(), cfg.kf(), cfg.fi(), cfg.b());
         let exact_bracket_frac = kf + f;
         let (wb, ws) = match (cfg.rounding(), cfg.arch()) {
@@ -121,8 +121,14 @@ impl Widths {
         }
     }
 
-    fn with_balanced_cuts(mut self, cfg: &Config) -> Widths {
-        self.registered_cuts = balanced_cuts(&step_delays(cfg, &self), cfg.stages());
+    fn with_balanced_cuts(self, cfg: &Config) -> Widths {
+        let delays = step_delays(cfg, &self);
+        self.with_cuts(balanced_cuts(&delays, cfg.stages()))
+    }
+
+    /// These widths with registers after the given steps.
+    pub fn with_cuts(mut self, cuts: Vec<u32>) -> Widths {
+        self.registered_cuts = cuts;
         self
     }
 

@@ -35,7 +35,7 @@ fn lean_fully_pipelined_fits_an_up5k_and_reaches_100_mhz() {
     require_tool("yosys", "yosys");
     require_tool("nextpnr-ice40", "nextpnr-ice40");
     let tmp = tempfile::tempdir().unwrap();
-    let deepest = specgen::widths::cut_points(&specgen::config::Config::defaults()).to_string();
+    let deepest = specgen::plan::Plan::new(specgen::config::Config::defaults()).unwrap().cut_points.to_string();
     let r = synth(&generate(tmp.path(), "lean", &["--stages", &deepest]), &["--target", "ice40", "--dsp"]);
     let dsp = r["dsp_blocks"].as_u64().unwrap();
     assert!((1..=8).contains(&dsp), "{dsp} SB_MAC16");

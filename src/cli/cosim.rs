@@ -2,7 +2,6 @@
 
 use crate::cosim::{build, check_ports, check_tables, describe, random_stimulus, run_all, write_trace, Design, Exhaustive, Simulator, Stimulus};
 use crate::error::{failed, Error as Failure};
-use crate::model::Model;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -34,7 +33,7 @@ pub struct CosimArgs {
 pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
     check_tables(&design)?;
-    let model = Model::new(&design.cfg);
+    let model = design.plan.model();
     let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)).max(1);
     let t0 = Instant::now();
     // a file that does not compile is best told by the simulator; then the ports

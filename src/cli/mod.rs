@@ -8,6 +8,7 @@ use crate::config::{self, Config, Params, RomStyle, Rounding};
 
 use crate::emit;
 use crate::model::{self, Inputs, Model};
+use crate::plan::Plan;
 use crate::rom::{self, RomFormat};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -246,7 +247,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 cfg = Config::new(Params { stages, ..cfg.params.clone() })?;
                 eprintln!("target-mhz: chose --stages {stages}");
             }
-            let files = emit::generate_files(&cfg);
+            // the plan: model, widths, registers, datapath, built once; --stages checked here
+            let plan = Plan::new(cfg)?;
+            let files = emit::generate_files(&plan);
             write_output(&out, &files)?;
             for (name, _) in &files {
                 println!("{}", out.join(name).display());
@@ -255,7 +258,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Rom { table, format, output, top, params } => {
             let cfg = params.to_config(Some(&RtlArgs { top, ..RtlArgs::default() }))?;
-            let tables = rom::tables(&cfg);
+            let plan = Plan::new(Config::new(Params { stages: 0, ..cfg.params.clone() })?)?;
+            let tables = &plan.datapath.tables;
             let names = tables.iter().map(|t| t.name.as_str()).collect::<Vec<_>>().join(", ");
             let t = match &table {
                 None => tables.first(),
@@ -328,7 +332,7 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
         return Err(usage(format!("invalid --ks: {bad} is out of range; allowed 0..={ks_max} (color_bits = {})", cfg.b())));
     }
     let x = Inputs { cos_g, n, ks: [ks[0], ks[1], ks[2]] };
-    let m = Model::new(cfg);
+    let m = Plan::new(Config::new(Params { stages: 0, ..cfg.params.clone() })?)?.model();
     let o = m.eval(x);
     let c = cos_g.min(1 << f) as f64 / (1u64 << f) as f64;
     let blinn = c.powi(n as i32);
@@ -456,7 +460,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     if let Some(bad) = args.n.iter().find(|&&n| n > n_max) {
         return Err(usage(format!("invalid --n: {bad} is out of range; allowed 0..={n_max} (n_bits = {})", design.cfg.n_bits())));
     }
-    let model = Model::new(&design.cfg);
+    let model = design.plan.model();
     if !args.model_only {
         cosim::check_ports(&design)?;
         cosim::check_tables(&design)?;

@@ -36,7 +36,7 @@ pub fn check_tables(design: &Design) -> Result<(), Failure> {
         return Ok(());
     }
     let sources: Vec<String> = design.sources.iter().map(|p| std::fs::read_to_string(p).unwrap_or_default()).collect();
-    for t in crate::rom::tables(&design.cfg) {
+    for t in &design.plan.datapath.tables {
         // a synthesized netlist holds its tables inline: only files the sources name are read
         if !sources.iter().any(|s| s.contains(&format!("\"{}\"", t.file))) {
             continue;

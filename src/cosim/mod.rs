@@ -35,6 +35,8 @@ pub enum Simulator {
 pub struct Design {
     pub dir: PathBuf,
     pub cfg: Config,
+    /// the configuration's plan: its model, widths, datapath and tables
+    pub plan: crate::plan::Plan,
     pub sources: Vec<PathBuf>,
 }
 
@@ -67,8 +69,9 @@ impl Design {
             return Err(usage(format!("no Verilog (*.v) in --rtl {}", dir.display())));
         }
         let params = Params::from_json(&text).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
-        let cfg = Config::new(params).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
-        Ok(Design { dir: dir.to_path_buf(), cfg, sources })
+        let plan = crate::plan::Plan::from_params(params).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
+        let cfg = plan.cfg.clone();
+        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources })
     }
 }
 

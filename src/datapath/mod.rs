@@ -546,11 +546,16 @@ impl Builder {
 
 /// The datapath of the configured model: the one description every RTL is rendered from.
 pub fn build(cfg: &Config, w: &Widths) -> Datapath {
+    build_for(cfg, w, &crate::model::Kind::new(cfg))
+}
+
+/// [`build`] for a model whose fit or tables are already made (see `plan::Plan`).
+pub fn build_for(cfg: &Config, w: &Widths, kind: &crate::model::Kind) -> Datapath {
     let inputs = [("cos_g", w.cos_bits), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
     let mut b = Builder::new(&inputs, &w.registered_cuts);
-    match (crate::model::Kind::new(cfg), cfg.arch()) {
-        (crate::model::Kind::Fitted { fit, widths }, _) => crate::fitted::datapath(cfg, &fit, &widths, &mut b),
-        (crate::model::Kind::Blinn { widths, tables }, _) => crate::blinn::datapath(cfg, &widths, &tables, &mut b),
+    match (kind, cfg.arch()) {
+        (crate::model::Kind::Fitted { fit, widths }, _) => crate::fitted::datapath(cfg, fit, widths, &mut b),
+        (crate::model::Kind::Blinn { widths, tables }, _) => crate::blinn::datapath(cfg, widths, tables, &mut b),
         (crate::model::Kind::BlinnPow, _) => crate::blinn_pow::datapath(cfg, w, &mut b),
         (_, Arch::Lean) => quadratic::lean(cfg, w, &mut b),
         (_, Arch::Paper) => quadratic::paper(cfg, w, &mut b),
