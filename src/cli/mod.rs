@@ -7,7 +7,7 @@ mod synth;
 use crate::config::{self, Config, Params, RomStyle, Rounding};
 
 use crate::emit;
-use crate::model::{self, Inputs, Model};
+use crate::model::{self, Inputs};
 use crate::plan::Plan;
 use crate::rom::{self, RomFormat};
 use clap::{Args, Parser, Subcommand};
