@@ -424,25 +424,29 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     let gb = w.ghat_bits();
     let ge = w.log_entry_bits;
-    b.step("g by linear interpolation");
+    b.step("g by linear interpolation: the step dG[i]*r");
     let ghat_expr = if rb > 0 {
         let pb = w.log_delta_bits + rb;
         let e = b.shift_add(&Piece::sig("log_word", ge, w.log_delta_bits), &Piece::sig("x", 0, rb), pb);
         b.wire("log_step", pb, e, &format!("dG[i] * (x mod 2^-{}), exact, by shift-and-add (small: LUTs, no DSP block)", tg + 1));
+        b.delay(mul_delay(w.log_delta_bits, rb));
+        b.step("g by linear interpolation: G[i] plus the step");
         let (gi, st) = (b.operand("log_word", 0, ge, gb), b.operand("log_step", rb, pb - rb, gb));
         format!("{gi} + {st}")
     } else {
         b.operand("log_word", 0, ge, gb)
     };
     b.wire("ghat", gb, ghat_expr, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
-    b.delay(mul_delay(w.log_delta_bits, rb) + add_delay(gb));
+    b.delay(add_delay(gb));
 
     let lf = f + w.log_frac_bits;
     let eb2 = w.ell_bits();
     let lb = f - 1 + gb;
-    b.step("-log2 c = e + x*g(x)");
+    b.step("-log2 c' = x*g(x)");
     let (xv, gv) = (b.zext("x", lb), b.zext("ghat", lb));
     b.wire("log_frac", lb, format!("{xv} * {gv}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
+    b.delay(mul_delay(f - 1, gb));
+    b.step("-log2 c = e + L");
     let e = b.r("exponent");
     let lbits = if lf >= w.ell_frac_bits {
         b.bits("log_frac", lb - 1, lf - w.ell_frac_bits)
@@ -457,13 +461,15 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         format!("{{1'b0, {e}, {}}} + {}", lit(w.ell_frac_bits, 0), zext_expr(&lbits, lwidth, eb2)),
         &format!("UQ{}.{}: e + L floored (truncation #1)", eb2 - w.ell_frac_bits, w.ell_frac_bits),
     );
-    b.delay(mul_delay(f - 1, gb) + add_delay(eb2));
+    b.delay(add_delay(eb2));
 
     let yb = w.y_bits();
     let pb = nb + eb2;
-    b.step("y = n*(-log2 c) (multiplier 7), saturated");
+    b.step("y = n*(-log2 c) (multiplier 7)");
     let (nv, lv) = (b.zext("n", pb), b.zext("ell", pb));
     b.wire("y_full", pb, format!("{nv} * {lv}"), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
+    b.delay(mul_delay(nb, eb2));
+    b.step("y truncated and saturated");
     let drop = w.ell_frac_bits - w.y_frac_bits;
     let top = b.bits("y_full", pb - 1, drop);
     let ytw = pb - drop;
@@ -482,7 +488,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         format!("(({z} && ({nn} != {})){over}) ? {} : {yt2}", lit(nb, 0), lit(yb, w.y_sat())),
         &format!("UQ{}.{}: y, saturated at {} (every output is 0 from there on)", w.y_int_bits, w.y_frac_bits, w.out_bits + 2),
     );
-    b.delay(mul_delay(nb, eb2) + add_delay(ytw) + LUT_DELAY);
+    b.delay(add_delay(ytw) + LUT_DELAY);
 
     let re = w.exp2_rest_bits();
     let te = w.exp2_index_bits;
@@ -494,18 +500,20 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     let we = w.exp2_frac_bits;
     let ee = w.exp2_entry_bits;
-    b.step("2^-frac(y) by linear interpolation");
+    b.step("2^-frac(y) by linear interpolation: the step dE[j]*r");
     let ehat = if re > 0 {
         let pb = w.exp2_delta_bits + re;
         let e = b.shift_add(&Piece::sig("exp2_word", ee, w.exp2_delta_bits), &Piece::sig("y", 0, re), pb);
         b.wire("exp2_step", pb, e, &format!("dE[j] * (frac(y) mod 2^-{te}), exact, by shift-and-add (LUTs, no DSP block)"));
+        b.delay(mul_delay(w.exp2_delta_bits, re));
+        b.step("2^-frac(y) by linear interpolation: E[j] minus the step");
         let (ej, st) = (b.operand("exp2_word", 0, ee, ee), b.operand("exp2_step", re, pb - re, ee));
         format!("{ej} - {st}")
     } else {
         b.operand("exp2_word", 0, ee, ee)
     };
     b.wire("exp2_frac", ee, ehat, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
-    b.delay(mul_delay(w.exp2_delta_bits, re) + add_delay(ee));
+    b.delay(add_delay(ee));
 
     b.step("shift by the integer part of y (truncation #3)");
     let (ev, yi) = (b.r("exp2_frac"), b.bits("y", w.y_bits() - 1, w.y_frac_bits));
@@ -523,13 +531,15 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: c^n*ks_{ch} rounded half up"));
     }
+    b.delay(mul_delay(wc + 1, bb));
+    b.step("the intensity rounded half up; done");
     let pv = b.r("power");
     b.wire("intensity_sum", ee, format!("{pv} + {}", lit(ee, 1u128 << (we - fi - 1))), &format!("UQ1.{we}: c^n + 2^-{} (round half up)", fi + 1));
     let e = b.bits("intensity_sum", we, we - fi);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
     let iv = b.r("intensity");
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
-    b.delay(mul_delay(ee, bb) + add_delay(cp) + LUT_DELAY);
+    b.delay(add_delay(ee) + LUT_DELAY);
 }
 
 fn zext_expr(e: &str, from: u32, to: u32) -> String {

@@ -114,6 +114,6 @@ pub const CONFIGS: &[&[&str]] = &[
         "--top",
         "fit_unit",
     ],
-    &["--model", "blinn", "--stages", "10"],
+    &["--model", "blinn", "--stages", "15"],
     &["--model", "blinn", "--cos-frac-bits", "7", "--n-bits", "5", "--color-bits", "12", "--intensity-frac-bits", "6", "--stages", "4", "--rom-style", "case"],
 ];
