@@ -306,28 +306,29 @@ pub fn tables(cfg: &Config, w: &BlinnWidths) -> BlinnTables {
     }
 }
 
+/// An interpolation table: word i = `{Δ_i, entry_i}` (the entry in the low bits), one name
+/// for the memory, its file and its `FILE` parameter.
+fn interpolation_table(name: &str, entries: &[u128], deltas: &[u128], bits: (u32, u32), what: String, fields: (&str, &str)) -> Table {
+    let (entry_bits, delta_bits) = bits;
+    Table {
+        name: format!("{name}_rom"),
+        file: format!("{name}_rom.hex"),
+        param: format!("{}_ROM_FILE", name.to_uppercase()),
+        width: delta_bits + entry_bits,
+        words: entries.iter().zip(deltas).map(|(&e, &d)| (d << entry_bits) | e).collect(),
+        what,
+        fields: vec![(fields.0.into(), entry_bits), (fields.1.into(), delta_bits)],
+    }
+}
+
 impl BlinnTables {
     pub fn log_table(&self, w: &BlinnWidths) -> Table {
-        Table {
-            name: "log2_rom".into(),
-            file: "log2_rom.hex".into(),
-            param: "LOG2_ROM_FILE".into(),
-            width: w.log_delta_bits + w.log_entry_bits,
-            words: self.g.iter().zip(&self.dg).map(|(&g, &d)| (d << w.log_entry_bits) | g).collect(),
-            what: format!("{{dG, G}}: g(x) = -log2(1 - x)/x at x = i/2^{}, UQ2.{}, and the step to the next entry", w.log_index_bits + 1, w.log_frac_bits),
-            fields: vec![("g".into(), w.log_entry_bits), ("dg".into(), w.log_delta_bits)],
-        }
+        let what = format!("{{dG, G}}: g(x) = -log2(1 - x)/x at x = i/2^{}, UQ2.{}, and the step to the next entry", w.log_index_bits + 1, w.log_frac_bits);
+        interpolation_table("log2", &self.g, &self.dg, (w.log_entry_bits, w.log_delta_bits), what, ("g", "dg"))
     }
     pub fn exp2_table(&self, w: &BlinnWidths) -> Table {
-        Table {
-            name: "exp2_rom".into(),
-            file: "exp2_rom.hex".into(),
-            param: "EXP2_ROM_FILE".into(),
-            width: w.exp2_delta_bits + w.exp2_entry_bits,
-            words: self.e.iter().zip(&self.de).map(|(&e, &d)| (d << w.exp2_entry_bits) | e).collect(),
-            what: format!("{{dE, E}}: 2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits),
-            fields: vec![("e".into(), w.exp2_entry_bits), ("de".into(), w.exp2_delta_bits)],
-        }
+        let what = format!("{{dE, E}}: 2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits);
+        interpolation_table("exp2", &self.e, &self.de, (w.exp2_entry_bits, w.exp2_delta_bits), what, ("e", "de"))
     }
 }
 

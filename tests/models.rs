@@ -2,6 +2,8 @@
 //! tested — properties over random configurations against exact references (big integers),
 //! monotonicity, the error budgets, the fit's quality, and the fidelity figures.
 
+mod common;
+
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
@@ -9,18 +11,9 @@ use specgen::blinn::{BlinnWidths, Shares};
 use specgen::config::{self, Config, Params, SpecularModel};
 use specgen::model::{Inputs, Kind, Model};
 
-prop_compose! {
-    fn blinn_config()(
-        f in config::COS_FRAC_BITS.min..=config::COS_FRAC_BITS.max,
-        n in config::N_BITS.min..=config::N_BITS.max,
-        b in config::COLOR_BITS.min..=config::COLOR_BITS.max,
-        fi in config::INTENSITY_FRAC_BITS.min..=config::INTENSITY_FRAC_BITS.max,
-    ) -> Config {
-        Config::new(Params {
-            cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi,
-            model: SpecularModel::Blinn, ..Params::default()
-        }).unwrap()
-    }
+/// blinn configurations over every width range.
+fn blinn_config() -> impl Strategy<Value = Config> {
+    common::power_config(SpecularModel::Blinn)
 }
 
 prop_compose! {

@@ -1,6 +1,8 @@
 //! Property tests over random configurations across the whole allowed ranges: the golden
 //! model against the exact reference of SPEC §3, and the reference against big rationals.
 
+mod common;
+
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
@@ -150,18 +152,9 @@ proptest! {
     }
 }
 
-prop_compose! {
-    fn blinn_config()(
-        f in config::COS_FRAC_BITS.min..=config::COS_FRAC_BITS.max,
-        n in config::N_BITS.min..=config::N_BITS.max,
-        b in config::COLOR_BITS.min..=config::COLOR_BITS.max,
-        fi in config::INTENSITY_FRAC_BITS.min..=config::INTENSITY_FRAC_BITS.max,
-    ) -> Config {
-        Config::new(Params {
-            cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi,
-            model: SpecularModel::BlinnPow, ..Params::default()
-        }).unwrap()
-    }
+/// blinn-pow configurations over every width range.
+fn blinn_config() -> impl Strategy<Value = Config> {
+    common::power_config(SpecularModel::BlinnPow)
 }
 
 proptest! {

@@ -117,3 +117,18 @@ pub const CONFIGS: &[&[&str]] = &[
     &["--model", "blinn", "--stages", "15"],
     &["--model", "blinn", "--cos-frac-bits", "7", "--n-bits", "5", "--color-bits", "12", "--intensity-frac-bits", "6", "--stages", "4", "--rom-style", "case"],
 ];
+
+proptest::prop_compose! {
+    /// A configuration of a `cos^n` model (blinn or blinn-pow) over every width range.
+    pub fn power_config(model: specgen::config::SpecularModel)(
+        f in specgen::config::COS_FRAC_BITS.min..=specgen::config::COS_FRAC_BITS.max,
+        n in specgen::config::N_BITS.min..=specgen::config::N_BITS.max,
+        b in specgen::config::COLOR_BITS.min..=specgen::config::COLOR_BITS.max,
+        fi in specgen::config::INTENSITY_FRAC_BITS.min..=specgen::config::INTENSITY_FRAC_BITS.max,
+    ) -> specgen::config::Config {
+        specgen::config::Config::new(specgen::config::Params {
+            cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi,
+            model, ..specgen::config::Params::default()
+        }).unwrap()
+    }
+}
