@@ -8,6 +8,7 @@ cargo build --release -q
 bin=target/release/specgen
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 rows="$work/rows.jsonl"; : > "$rows"
+seeds=${SEEDS:-5} # nextpnr seeds per place-and-route; Fmax is their median
 run() { # name widths-label stages args...
     local name=$1 label=$2 stages=$3; shift 3
     local dir="$work/$name-$label-$stages"
@@ -16,9 +17,10 @@ run() { # name widths-label stages args...
         case $mode in
             nodsp) flags=(--target ice40) ;;
             dsp) flags=(--target ice40 --dsp) ;;
-            generic) flags=(--target generic) ;;
+            generic) flags=(--target generic --no-pnr) ;;
         esac
-        $bin synth --rtl "$dir" "${flags[@]}" --json "$dir/$mode.json" >/dev/null
+        if [ "$mode" = generic ]; then seed_flag=(); else seed_flag=(--seeds "$seeds"); fi
+        $bin synth --rtl "$dir" "${flags[@]}" "${seed_flag[@]}" --json "$dir/$mode.json" >/dev/null
         python3 -c "import json,sys; d=json.load(open('$dir/$mode.json')); d.update(name='$name', widths='$label', stages=$stages, mode='$mode'); print(json.dumps(d))" >> "$rows"
         echo "done: $name $label stages=$stages $mode" >&2
     done
@@ -49,15 +51,17 @@ def get(name, widths, stages, mode):
             return r
 ver = subprocess.run(['yosys', '-V'], capture_output=True, text=True).stdout.strip()
 print('# Hardware benchmarks\n')
-print(f'Produced by `scripts/bench_hw.sh` with {ver} and nextpnr-ice40 (iCE40 UP5K, SG48, seed 1;')
-print('Fmax of the unit between the registers of a serial-I/O wrapper). Default widths: F=15, N=10, B=8, FI=15, KF=16;')
+seeds = max((len(r.get('fmax_seeds') or []) for r in rows), default=0)
+print(f'Produced by `scripts/bench_hw.sh` with {ver} and nextpnr-ice40 (iCE40 UP5K, SG48; Fmax of the unit between')
+print(f'the registers of a serial-I/O wrapper, the median over nextpnr seeds 1..{seeds} with the range in brackets).')
+print('Default widths: F=15, N=10, B=8, FI=15, KF=16;')
 print('wide: F=18, N=11, B=10, FI=18, KF=20. "-" = not placed (see note).\n')
-print('| model | widths | stages | LUT4 (no DSP) | Fmax no DSP (MHz) | LUT4 (DSP) | SB_MAC16 | FFs | Fmax DSP (MHz) | generic cells |')
+print('| model | widths | stages | LUT4 (no DSP) | Fmax no DSP, median (range) MHz | LUT4 (DSP) | SB_MAC16 | FFs | Fmax DSP, median (range) MHz | generic cells |')
 print('|---|---|---|---|---|---|---|---|---|---|')
 notes = []
 for key in sorted({(r['name'], r['widths'], r['stages']) for r in rows}, key=lambda k: (k[0] != 'lean', k[0], k[1], k[2])):
     nd, d, g = (get(*key, m) for m in ('nodsp', 'dsp', 'generic'))
-    f = lambda r: f"{r['fmax_mhz']:.1f}" if r and r.get('fmax_mhz') else '-'
+    f = lambda r: f"{r['fmax_mhz']:.1f} ({min(r['fmax_seeds']):.1f}–{max(r['fmax_seeds']):.1f})" if r and r.get('fmax_mhz') else '-'
     for r in (nd, d):
         if r and not r.get('fmax_mhz'):
             why = re.sub(r"place-and-route failed: ERROR: Unable to place cell '[^']*', no BELs remaining to implement cell type '([A-Z_]+)'", r"does not fit the UP5K (no \1 left)", r['fmax_note'])
@@ -67,7 +71,7 @@ lean, paper = get('lean', 'default', 0, 'nodsp'), get('paper', 'default', 0, 'no
 print(f"\nLean vs paper, default widths, LUT-only iCE40: {lean['luts']} vs {paper['luts']} LUT4 ({100*(1-lean['luts']/paper['luts']):.1f}% fewer).")
 best = max((r for r in rows if r['name'] == 'lean' and r['widths'] == 'default' and r['mode'] == 'dsp' and r.get('fmax_mhz')), key=lambda r: r['fmax_mhz'], default=None)
 if best:
-    print(f"Lean, default widths, best pipeline on iCE40 UP5K with DSPs: {best['fmax_mhz']:.1f} MHz at --stages {best['stages']}, {best['luts']} LUT4, {best['dsp_blocks']} SB_MAC16, {best['flip_flops']} FFs.")
+    print(f"Lean, default widths, best pipeline on iCE40 UP5K with DSPs: median {best['fmax_mhz']:.1f} MHz (seeds: {', '.join(f'{x:.1f}' for x in best['fmax_seeds'])}) at --stages {best['stages']}, {best['luts']} LUT4, {best['dsp_blocks']} SB_MAC16, {best['flip_flops']} FFs.")
 bp = get('blinn-pow', 'default', 0, 'nodsp')
 if bp:
     print(f"Blinn-pow (exact cos^n), default widths, LUT-only: {bp['luts']} LUT4 = {bp['luts']/lean['luts']:.1f}x lean, {bp['luts']/paper['luts']:.1f}x paper.")
@@ -84,7 +88,7 @@ python3 - "$work/report/report.json" >> BENCHMARKS-hw.md <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
 print('\n## The models compared (`specgen report --hw`, iCE40 LUT-only, combinational)\n')
-print('| model | max error vs cos^n | mean error | LUT4 | Fmax (MHz) |')
+print('| model | max error vs cos^n | mean error | LUT4 | Fmax, median of seeds (MHz) |')
 print('|---|---|---|---|---|')
 for r in d['models']:
     h = r.get('hardware') or {}

@@ -41,8 +41,10 @@ pub struct SynthResult {
     /// the content of every table (cut-off ROM, fit ROM, log2/exp2 tables; 0 for blinn-pow)
     pub rom_bits: u64,
     pub total_cells: u64,
-    /// MHz from nextpnr, when place-and-route ran
+    /// MHz from nextpnr, when place-and-route ran: the median over the seeds
     pub fmax_mhz: Option<f64>,
+    /// Fmax of each seed 1..=K, in seed order (Fmax moves with the seed by several per cent)
+    pub fmax_seeds: Vec<f64>,
     /// why Fmax is missing, when it is
     pub fmax_note: String,
     pub cells: Vec<(String, u64)>,
@@ -124,8 +126,20 @@ fn run_yosys(dir: &Path, script: &str) -> Result<String, Failure> {
     Ok(log)
 }
 
+/// The median (mean of the two middle values for an even count).
+pub fn median(v: &[f64]) -> Option<f64> {
+    let mut s = v.to_vec();
+    s.sort_by(|a, b| a.total_cmp(b));
+    match s.len() {
+        0 => None,
+        n if n % 2 == 1 => Some(s[n / 2]),
+        n => Some((s[n / 2 - 1] + s[n / 2]) / 2.0),
+    }
+}
+
 /// Synthesizes the unit in `design` for `target`.
-pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
+/// `seeds`: place-and-route runs with nextpnr seeds 1..=seeds (0: none); Fmax is their median.
+pub fn synthesize(design: &Design, target: Target, dsp: bool, seeds: u32, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
     require("yosys", "yosys")?;
     let top = design.cfg.top().to_string();
     let work = tempfile::tempdir().map_err(|e| usage(e.to_string()))?;
@@ -160,6 +174,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
         rom_bits: design.plan.datapath.tables.iter().map(|t| t.words.len() as u64 * t.width as u64).sum(),
         total_cells,
         fmax_mhz: None,
+        fmax_seeds: Vec::new(),
         fmax_note: String::new(),
         cells,
     };
@@ -174,7 +189,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
     };
     match pnr_tool {
         None => r.fmax_note = "no place-and-route for the generic target".into(),
-        Some(_) if !pnr => r.fmax_note = "place-and-route skipped (--no-pnr)".into(),
+        Some(_) if seeds == 0 => r.fmax_note = "place-and-route skipped (--no-pnr)".into(),
         Some((tool, package, args)) if !tool_exists(tool) => {
             let _ = args;
             r.fmax_note = format!("{tool} not installed (package {package})");
@@ -184,30 +199,51 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, pnr: bool, pnr_log
             std::fs::write(&wrap, wrapper(design)).map_err(|e| usage(e.to_string()))?;
             let json = work.path().join("wrapped.json");
             run_yosys(&design.dir, &format!("{read} {}; {} -json {}", wrap.display(), synth_cmd("specgen_synth_top"), json.display()))?;
-            let out = Command::new(tool)
-                .args(&args)
-                .arg("--json")
-                .arg(&json)
-                .args(["--pcf-allow-unconstrained", "--timing-allow-fail", "--seed", "1", "--freq", "12"])
-                .output()
-                .map_err(|e| usage(format!("cannot run {tool}: {e}")))?;
-            let log = String::from_utf8_lossy(&out.stderr);
-            if let Some(path) = pnr_log {
-                std::fs::write(path, log.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display())))?;
+            // one nextpnr per seed, as many at a time as there are cores
+            let run = |seed: u32| -> Result<(bool, String), Failure> {
+                let out = Command::new(tool)
+                    .args(&args)
+                    .arg("--json")
+                    .arg(&json)
+                    .args(["--pcf-allow-unconstrained", "--timing-allow-fail", "--freq", "12", "--seed", &seed.to_string()])
+                    .output()
+                    .map_err(|e| failed(format!("cannot run {tool}: {e}")))?;
+                Ok((out.status.success(), String::from_utf8_lossy(&out.stderr).into_owned()))
+            };
+            let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as u32;
+            let mut runs = Vec::new();
+            for batch in (1..=seeds).collect::<Vec<_>>().chunks(cores as usize) {
+                let done: Vec<_> = std::thread::scope(|sc| {
+                    let hs: Vec<_> = batch.iter().map(|&seed| sc.spawn(move || run(seed))).collect();
+                    hs.into_iter().map(|h| h.join().expect("nextpnr thread")).collect()
+                });
+                for d in done {
+                    runs.push(d?);
+                }
             }
-            if !out.status.success() {
+            if let Some(path) = pnr_log {
+                std::fs::write(path, runs[0].1.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+            }
+            if let Some((_, log)) = runs.iter().find(|(ok, _)| !ok) {
                 // typically the design does not fit the device: report it, keep the area figures
                 let why = log.lines().rfind(|l| l.starts_with("ERROR")).unwrap_or("unknown error").to_string();
                 r.fmax_note = format!("place-and-route failed: {why}");
                 return Ok(r);
             }
-            r.fmax_mhz = log
-                .lines()
-                .rfind(|l| l.contains("Max frequency for clock"))
-                .and_then(|l| l.split("': ").nth(1))
-                .and_then(|s| s.split_whitespace().next())
-                .and_then(|s| s.parse().ok());
-            r.fmax_note = format!("{tool} {}, seed 1, unit between registers of a serial-I/O wrapper", args.join(" "));
+            let fmax = |log: &str| -> Option<f64> {
+                log.lines()
+                    .rfind(|l| l.contains("Max frequency for clock"))
+                    .and_then(|l| l.split("': ").nth(1))
+                    .and_then(|s| s.split_whitespace().next())
+                    .and_then(|s| s.parse().ok())
+            };
+            r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax(log)).collect();
+            r.fmax_mhz = median(&r.fmax_seeds);
+            r.fmax_note = format!(
+                "{tool} {}, median of seeds 1..={seeds} ({}), unit between registers of a serial-I/O wrapper",
+                args.join(" "),
+                r.fmax_seeds.iter().map(|f| format!("{f:.1}")).collect::<Vec<_>>().join(", ")
+            );
         }
     }
     Ok(r)
@@ -222,7 +258,13 @@ pub fn table(r: &SynthResult) -> String {
         ("flip-flops", r.flip_flops.to_string()),
         ("block RAMs", r.block_rams.to_string()),
         ("ROM bits", r.rom_bits.to_string()),
-        ("Fmax (MHz)", r.fmax_mhz.map(|f| format!("{f:.1}")).unwrap_or_else(|| format!("- ({})", r.fmax_note))),
+        (
+            "Fmax (MHz)",
+            match (r.fmax_mhz, r.fmax_seeds.iter().copied().reduce(f64::min), r.fmax_seeds.iter().copied().reduce(f64::max)) {
+                (Some(m), Some(lo), Some(hi)) => format!("{m:.1} median of {} seeds (min {lo:.1}, max {hi:.1})", r.fmax_seeds.len()),
+                _ => format!("- ({})", r.fmax_note),
+            },
+        ),
     ];
     for (k, v) in rows {
         s.push_str(&format!("  {k:<14} {v}\n"));
@@ -246,7 +288,8 @@ pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Sta
         let out = dir.path().join("rtl");
         emit::write_dir_atomically(&out, &emit::generate_files(&plan)).map_err(|e| failed(e.to_string()))?;
         let design = Design::load(&out)?;
-        let r = synthesize(&design, Target::Ice40, true, true, None)?;
+        // one seed per depth: the search is a guide; quote a depth's Fmax with `synth --seeds`
+        let r = synthesize(&design, Target::Ice40, true, 1, None)?;
         eprintln!("target-mhz: stages {stages}: Fmax {}", r.fmax_mhz.map(|f| format!("{f:.1} MHz")).unwrap_or_else(|| r.fmax_note.clone()));
         tries.push((stages, r.fmax_mhz));
         if r.fmax_mhz.is_some_and(|f| f >= mhz) {
