@@ -132,9 +132,8 @@ impl Shares {
         let b = w.budget(cfg);
         w.log_index_bits >= cfg.f() - 1 || (b.log_table <= 1.0 / 6.0 && b.monotone_ratio <= 0.9)
     }
-    pub fn exp2_entries(w: &BlinnWidths, cfg: &Config) -> bool {
+    pub fn exp2_entries(w: &BlinnWidths, _cfg: &Config) -> bool {
         // the entries' rounding, the interpolation's floor and truncation #3
-        let _ = cfg;
         (w.out_bits as f64).exp2() * (2.5 * (-(w.exp2_frac_bits as f64)).exp2() + (-50f64).exp2()) <= 1.0 / 12.0
     }
     pub fn exp2_table(w: &BlinnWidths, cfg: &Config) -> bool {
@@ -172,10 +171,9 @@ impl BlinnWidths {
         let ln2 = std::f64::consts::LN_2;
         let p = |k: i64| (k as f64).exp2();
         let (w, n, f) = (self.out_bits as i64, cfg.n_bits() as i64, cfg.f() as i64);
-        let (tg, wg, wl, wy) = (self.log_index_bits as i64, self.log_frac_bits as i64, self.ell_frac_bits as i64, self.y_frac_bits as i64);
+        let (wl, wy) = (self.ell_frac_bits as i64, self.y_frac_bits as i64);
         let (te, we) = (self.exp2_index_bits as i64, self.exp2_frac_bits as i64);
         let eps_g = self.eps_g(cfg);
-        let _ = (tg, wg);
         let interpolates_e = te < wy;
         let eps_e = p(-we - 1) + p(-50) + if interpolates_e { ln2 * ln2 / 8.0 * p(-2 * te) + p(-we) } else { 0.0 };
         let l_top = -(0.5 + p(-f)).log2();
@@ -192,7 +190,7 @@ impl BlinnWidths {
     /// The shares of the budget's `1/2`, one per width: each width is the smallest that keeps
     /// its share, so removing any one bit breaks the budget as written (see [`Shares`]).
     pub fn derive(cfg: &Config) -> BlinnWidths {
-        let (f, n) = (cfg.f(), cfg.n_bits());
+        let f = cfg.f();
         let w = cfg.fi().max(cfg.b());
         let mut bw = BlinnWidths {
             out_bits: w,
@@ -210,7 +208,6 @@ impl BlinnWidths {
             exp2_delta_bits: 0,
             color_frac_bits: 0,
         };
-        let _ = n;
         while !Shares::y_truncation(&bw, cfg) {
             bw.y_frac_bits += 1;
         }
@@ -237,7 +234,7 @@ impl BlinnWidths {
         let p = |k: i64| (k as f64).exp2();
         let tc = b.total() * p(cfg.b() as i64 - w as i64);
         bw.color_frac_bits = (1..=bw.exp2_frac_bits).find(|&wc| tc + p(cfg.b() as i64 - wc as i64) < 0.5).unwrap_or(bw.exp2_frac_bits);
-        let (lt, et) = (log_values(cfg, &bw), exp2_values(&bw));
+        let (lt, et) = (log_values(&bw), exp2_values(&bw));
         bw.log_entry_bits = bit_length(*lt.iter().max().unwrap());
         bw.log_delta_bits = bit_length(lt.windows(2).map(|p| p[1] - p[0]).max().unwrap()).max(1);
         bw.exp2_entry_bits = bit_length(et[0]);
@@ -270,8 +267,7 @@ impl BlinnWidths {
 }
 
 /// `G_i = round(g(i/2^(TG+1))·2^WG)` for `i = 0..=2^TG` (the last only for ΔG).
-fn log_values(cfg: &Config, w: &BlinnWidths) -> Vec<u128> {
-    let _ = cfg;
+fn log_values(w: &BlinnWidths) -> Vec<u128> {
     let count = 1u32 << w.log_index_bits;
     (0..=count)
         .map(|i| {
@@ -296,8 +292,8 @@ pub struct BlinnTables {
     pub de: Vec<u128>,
 }
 
-pub fn tables(cfg: &Config, w: &BlinnWidths) -> BlinnTables {
-    let (lv, ev) = (log_values(cfg, w), exp2_values(w));
+pub fn tables(w: &BlinnWidths) -> BlinnTables {
+    let (lv, ev) = (log_values(w), exp2_values(w));
     BlinnTables {
         g: lv[..lv.len() - 1].to_vec(),
         dg: lv.windows(2).map(|p| p[1] - p[0]).collect(),

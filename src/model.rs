@@ -87,7 +87,7 @@ impl Kind {
             }
             SpecularModel::Blinn => {
                 let widths = BlinnWidths::derive(cfg);
-                let tables = blinn::tables(cfg, &widths);
+                let tables = blinn::tables(&widths);
                 Kind::Blinn { widths, tables }
             }
         }
@@ -160,30 +160,29 @@ impl Model {
     /// The last `cos_g` code with a non-zero output, or the cut-off, for each n: the
     /// boundary a test stimulus should visit.
     pub fn boundaries(&self) -> Vec<u32> {
-        let cfg = &self.cfg;
-        let one = 1u32 << cfg.f();
-        (0..1u32 << cfg.n_bits())
-            .map(|n| match &self.kind {
-                Kind::Quadratic => self.rom[n as usize],
-                _ => {
-                    // outputs are monotone in cos_g: bisect for the first code with intensity > 0
-                    let nz = |c: u32| self.eval(Inputs { cos_g: c, n, ks: [0; 3] }).intensity > 0;
-                    let (mut lo, mut hi) = (0u32, one);
-                    if nz(0) {
-                        return 0;
-                    }
-                    while hi - lo > 1 {
-                        let mid = (lo + hi) / 2;
-                        if nz(mid) {
-                            hi = mid;
-                        } else {
-                            lo = mid;
-                        }
-                    }
-                    hi
-                }
-            })
-            .collect()
+        (0..1u32 << self.cfg.n_bits()).map(|n| self.boundary(n)).collect()
+    }
+
+    /// [`Model::boundaries`] for one n.
+    pub fn boundary(&self, n: u32) -> u32 {
+        if let Kind::Quadratic = self.kind {
+            return self.rom[n as usize];
+        }
+        // outputs are monotone in cos_g: bisect for the first code with intensity > 0
+        let nz = |c: u32| self.eval(Inputs { cos_g: c, n, ks: [0; 3] }).intensity > 0;
+        let (mut lo, mut hi) = (0u32, 1u32 << self.cfg.f());
+        if nz(0) {
+            return 0;
+        }
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            if nz(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        hi
     }
 
     /// `--model blinn-pow`: square-and-multiply over the bits of n, LSB first, each product

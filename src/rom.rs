@@ -165,9 +165,9 @@ pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
     text.expect("ROM templates render")
 }
 
-/// Renders the cut-off ROM (quadratic) in one format.
-pub fn render(cfg: &Config, format: RomFormat) -> String {
-    let table = Table {
+/// The cut-off ROM (10) as a table of the unit.
+pub fn cos_sp_rom(cfg: &Config) -> Table {
+    Table {
         name: "cos_sp_rom".into(),
         file: crate::emit::ROM_FILE.into(),
         param: "ROM_FILE".into(),
@@ -175,8 +175,12 @@ pub fn render(cfg: &Config, format: RomFormat) -> String {
         words: cos_sp_table(cfg).into_iter().map(u128::from).collect(),
         what: format!("cut-off ROM cos_sp(n), UQ1.{}, address = n", cfg.f()),
         fields: vec![("cos_sp".into(), cfg.f() + 1)],
-    };
-    render_table(cfg, &table, format)
+    }
+}
+
+/// Renders the cut-off ROM (quadratic) in one format.
+pub fn render(cfg: &Config, format: RomFormat) -> String {
+    render_table(cfg, &cos_sp_rom(cfg), format)
 }
 
 #[cfg(test)]

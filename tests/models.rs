@@ -42,7 +42,7 @@ fn input(cfg: &Config, m: &Model, seed: u64) -> Inputs {
     let cos_g = match seed % 3 {
         0 => one.saturating_sub((r >> 40) as u32 % 64),
         1 => {
-            let b = m.boundaries()[n as usize] as i64;
+            let b = m.boundary(n) as i64;
             (b + ((r >> 40) % 5) as i64 - 2).clamp(0, (2 * one - 1) as i64) as u32
         }
         _ => ((r >> 12) as u32) & (2 * one - 1),

@@ -15,16 +15,8 @@ use super::*;
 use crate::widths::Widths;
 
 /// The cut-off ROM (10) read: `cos_sp`, addressed by n.
-fn rom_read(cfg: &Config, w: &Widths, b: &mut Builder) {
-    let t = b.table(Table {
-        name: "cos_sp_rom".into(),
-        file: crate::emit::ROM_FILE.into(),
-        param: "ROM_FILE".into(),
-        width: w.cos_bits,
-        words: crate::rom::cos_sp_table(cfg).into_iter().map(u128::from).collect(),
-        what: format!("cut-off ROM cos_sp(n), UQ1.{}, address = n", cfg.f()),
-        fields: vec![("cos_sp".into(), w.cos_bits)],
-    });
+fn rom_read(cfg: &Config, b: &mut Builder) {
+    let t = b.table(crate::rom::cos_sp_rom(cfg));
     b.rom_read("cos_sp", t, "n");
     b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
 }
@@ -47,7 +39,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     let m = wb + s + 1;
 
     b.step("cut-off ROM read (10); cos complemented and clamped");
-    rom_read(cfg, w, b);
+    rom_read(cfg, b);
     let g = b.bits("cos_g", f, f);
     let x = b.bits("cos_g", f - 1, 0);
     b.wire(
@@ -240,7 +232,7 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let one = lit(cb, 1u128 << f);
 
     b.step("clamp, 1 - cos (adder 6), cut-off ROM (10), comparator (12)");
-    rom_read(cfg, w, b);
+    rom_read(cfg, b);
     let g = b.r("cos_g");
     b.wire("cos_clamped", cb, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}, <= 1.0"));
     let c = b.r("cos_clamped");
