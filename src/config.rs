@@ -314,6 +314,25 @@ impl Config {
     pub fn top(&self) -> &str {
         &self.params.top
     }
+    /// The parameters that define the unit, as `name=value` words (for file headers).
+    pub fn describe(&self) -> String {
+        let p = &self.params;
+        let mut s = format!(
+            "model={} cos_frac_bits={} n_bits={} color_bits={} intensity_frac_bits={} k={} k_frac_bits={}",
+            p.model.name(),
+            p.cos_frac_bits,
+            p.n_bits,
+            p.color_bits,
+            p.intensity_frac_bits,
+            p.k,
+            p.k_frac_bits
+        );
+        if p.model == SpecularModel::Fitted {
+            s.push_str(&format!(" max_squarings={}", p.max_squarings));
+        }
+        s.push_str(&format!(" stages={} rounding={} arch={}", p.stages, p.rounding.name(), p.arch.name()));
+        s
+    }
 }
 
 /// Parses a plain decimal (digits and one optional point) to the nearest multiple of

@@ -585,9 +585,20 @@ pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(
 
 /// Writes one file atomically (temp file in the same directory, then rename).
 pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_file_atomically_with(path, |w| w.write_all(bytes))
+}
+
+/// Writes one file atomically from a writer `fill` streams into (a buffered temp file in the
+/// same directory, renamed over `path` only when `fill` succeeded; on error nothing is left).
+pub fn write_file_atomically_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<T>) -> std::io::Result<T> {
     let parent = parent_dir(path);
     let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent).map_err(plain)?;
-    std::io::Write::write_all(&mut tmp, bytes)?;
+    let value = {
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file_mut());
+        let v = fill(&mut w)?;
+        std::io::Write::flush(&mut w)?;
+        v
+    };
     // like every file `generate` writes: readable by all (tempfile creates 0600)
     #[cfg(unix)]
     {
@@ -595,5 +606,5 @@ pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
     }
     tmp.persist(path).map_err(|e| plain(e.error))?;
-    Ok(())
+    Ok(value)
 }

@@ -24,4 +24,5 @@ pub mod render;
 pub mod report;
 pub mod rom;
 pub mod synth;
+pub mod vectors;
 pub mod widths;

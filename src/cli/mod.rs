@@ -77,6 +77,9 @@ pub enum Command {
     },
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
     Cosim(cosim::CosimArgs),
+    /// Write golden vectors for any testbench: CSV (a header row of port names) or $readmemh
+    /// hex, one row per input with the golden model's outputs; the header states the timing.
+    Vectors(VectorsArgs),
     /// Synthesize the RTL in DIR with yosys (and nextpnr for Fmax): LUTs, carries, DSPs, FFs, ROM.
     Synth(synth::SynthArgs),
     /// Render a sphere and a plane at grazing light with the unit in DIR, beside float cos^n and
@@ -95,6 +98,28 @@ pub enum Command {
         #[command(flatten)]
         params: ParamArgs,
     },
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct VectorsArgs {
+    /// Directory with the generated unit (its manifest states the configuration).
+    #[arg(long, value_name = "DIR")]
+    pub rtl: PathBuf,
+    /// Random vectors after the corner cases and every n's boundary.
+    #[arg(long, default_value_t = 10_000)]
+    pub count: u64,
+    /// Seed of the random vectors.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Every (cos_g <= 1.0, n), colours varied, instead of random vectors (2^N * (2^F + 1) rows).
+    #[arg(long, conflicts_with_all = ["count", "seed"])]
+    pub exhaustive: bool,
+    /// csv or hex [default: hex for FILE ending in .hex or .mem, else csv]
+    #[arg(long, value_enum)]
+    pub format: Option<crate::vectors::VectorFormat>,
+    /// The file to write (atomically).
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -288,6 +313,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Cosim(args) => cosim::run(&args),
         Command::Render(args) => render(&args),
         Command::Synth(args) => synth::run(&args),
+        Command::Vectors(args) => vectors(&args),
         Command::Report { out, hw, params } => {
             let cfg = params.to_config(None)?;
             let hw = hw
@@ -532,4 +558,19 @@ pub fn main() -> i32 {
             e.exit_code()
         }
     }
+}
+
+fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
+    use crate::vectors::{Selection, VectorFormat};
+    let design = crate::cosim::Design::load(&args.rtl)?;
+    let model = design.plan.model();
+    let selection = if args.exhaustive { Selection::Exhaustive } else { Selection::Random { count: args.count, seed: args.seed } };
+    let format = args.format.unwrap_or_else(|| match args.out.extension().and_then(|e| e.to_str()) {
+        Some("hex" | "mem") => VectorFormat::Hex,
+        _ => VectorFormat::Csv,
+    });
+    let rows =
+        emit::write_file_atomically_with(&args.out, |w| crate::vectors::write(&model, selection, format, w)).map_err(|e| Failure::io("write", &args.out, e))?;
+    println!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.stages(), args.out.display());
+    Ok(())
 }
