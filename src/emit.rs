@@ -311,8 +311,19 @@ fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
 struct CoreTemplate<'a> {
     top: &'a str,
     version: &'a str,
+    name: String,
+    params: String,
     description: String,
     table_files: Vec<String>,
+}
+
+/// The FuseSoC VLNV of a configuration: `specgen:specular:<top>-<digest>:<version>`, the digest
+/// (8 hex digits of SHA-256) taken over every parameter that shapes the files, so two
+/// configurations never replace each other in one cores-root, and one configuration always
+/// gets the same name.
+pub fn core_name(cfg: &crate::config::Config) -> String {
+    let digest = sha256_hex(format!("{} rom_style={} top={}", cfg.describe(), cfg.params.rom_style.name(), cfg.top()).as_bytes());
+    format!("specgen:specular:{}-{}:{VERSION}", cfg.top(), &digest[..8])
 }
 
 /// One port of the generated module, for the manifest and the harnesses.
@@ -393,11 +404,14 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let core = CoreTemplate {
         top,
         version: VERSION,
+        name: core_name(cfg),
+        params: cfg.describe(),
         description: format!("{description}, {}-cycle latency", cfg.stages()),
         table_files: tables.iter().map(|t| t.file.clone()).collect(),
     }
     .render()
-    .expect("core template renders");
+    .expect("core template renders")
+        + "\n";
     let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
     for t in &tables {
         files.push((t.file.clone(), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
