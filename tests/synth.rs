@@ -141,3 +141,17 @@ fn verify_passes_real_netlists_and_catches_a_broken_one() {
     assert_eq!(o.status.code(), Some(1), "{}{err}", String::from_utf8_lossy(&o.stdout));
     assert!(err.contains("mapped netlist differs from the golden model") && err.contains("<-- differs"), "{err}");
 }
+
+/// A design that does not fit: nextpnr's own error reaches the user (here the fitted unit's
+/// 14 multipliers on the UP5K's 8 SB_MAC16), and the area figures stay.
+#[test]
+fn place_and_route_failure_shows_nextpnr_text() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let r = synth(&generate(tmp.path(), "fitted", &["--model", "fitted"]), &["--target", "ice40", "--dsp", "--seeds", "1"]);
+    assert!(r["dsp_blocks"].as_u64().unwrap() > 8, "{r}");
+    assert!(r["fmax_mhz"].is_null(), "{r}");
+    let note = r["fmax_note"].as_str().unwrap();
+    assert!(note.starts_with("place-and-route failed: ERROR:") && note.contains("SB_MAC16"), "{note}");
+}
