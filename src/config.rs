@@ -107,6 +107,30 @@ impl SpecularModel {
     }
 }
 
+/// The FPGA family the datapath is shaped for (`generate --target`): the operand width of its
+/// multipliers, the carry chain a step may hold, and whether products use the DSP block's own
+/// registers. Every target computes the same values (SPEC §3); only the RTL's shape differs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Target {
+    /// No family assumed: whole-width products and adds, mapped by the synthesis tool
+    Generic,
+    /// Lattice iCE40 UP5K: 16x16 SB_MAC16 with post-adders, short carry chains
+    Ice40,
+    /// Lattice ECP5: 18x18 MULT18X18D with its input and output registers, long carry chains
+    Ecp5,
+}
+
+impl Target {
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Generic => "generic",
+            Target::Ice40 => "ice40",
+            Target::Ecp5 => "ecp5",
+        }
+    }
+}
+
 /// A closed integer range with the parameter's name and default: the one table that drives
 /// validation, the defaults and the ranges `--help` shows.
 pub struct Range {
@@ -155,6 +179,8 @@ pub struct Params {
     pub model: SpecularModel,
     /// M of `--model fitted`: the largest `m_n` (the bracket is squared up to M times).
     pub max_squarings: u32,
+    /// The family the datapath is shaped for.
+    pub target: Target,
 }
 
 impl Default for Params {
@@ -173,6 +199,7 @@ impl Default for Params {
             arch: Arch::Lean,
             model: SpecularModel::Quadratic,
             max_squarings: MAX_SQUARINGS.default,
+            target: Target::Ice40,
         }
     }
 }
@@ -311,6 +338,9 @@ impl Config {
     pub fn max_squarings(&self) -> u32 {
         self.params.max_squarings
     }
+    pub fn target(&self) -> Target {
+        self.params.target
+    }
     pub fn top(&self) -> &str {
         &self.params.top
     }
@@ -330,7 +360,7 @@ impl Config {
         if p.model == SpecularModel::Fitted {
             s.push_str(&format!(" max_squarings={}", p.max_squarings));
         }
-        s.push_str(&format!(" stages={} rounding={} arch={}", p.stages, p.rounding.name(), p.arch.name()));
+        s.push_str(&format!(" stages={} rounding={} arch={} target={}", p.stages, p.rounding.name(), p.arch.name(), p.target.name()));
         s
     }
 }

@@ -69,6 +69,24 @@ pub struct ReadView {
     pub file: bool,
     pub zero: String,
     pub entries: Vec<RomEntry>,
+    /// on an ECP5 DP16KD with its registers: its contents as `INITVAL_XX` values, the
+    /// address zero-extended to 10 bits, the unread data bits, the cut its address register takes
+    pub block: bool,
+    pub initvals: Vec<(String, String)>,
+    pub unused: u32,
+    pub input_cut: usize,
+}
+
+/// The `INITVAL_00..3F` parameters of a DP16KD in 1024 x 18 mode holding `words`: word k in
+/// INITVAL_(k/16) bits [(k%16)*20 +: 18], as yosys's ecp5/brams_map.v lays them out.
+pub fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
+    (0..datapath::DP16KD_WORDS / 16)
+        .map(|i| {
+            // 320 bits as 80 hex digits, most significant first: 16 slots of 20 bits = 5 digits
+            let digits: String = (0..16).rev().map(|j| format!("{:05x}", words.get(i * 16 + j).copied().unwrap_or(0) & 0x3ffff)).collect();
+            (format!("INITVAL_{i:02X}"), format!("320'h{digits}"))
+        })
+        .collect()
 }
 
 /// One step of the datapath as the template renders it: its reads and wires, then the cut after it.
@@ -77,7 +95,23 @@ pub struct StepView {
     pub title: String,
     pub reads: Vec<ReadView>,
     pub wires: Vec<Wire>,
+    pub dsps: Vec<DspView>,
     pub cut: Cut,
+}
+
+/// A product on an ECP5 MULT18X18D with its registers (see `datapath::Builder::product`).
+pub struct DspView {
+    /// the product's signal name, and its wire (the DSP's output register: the cut after the step)
+    pub name: String,
+    pub wire: String,
+    pub width: u32,
+    /// bits of the 36-bit P above `width`, sent to `unused_<name>_p`
+    pub unused: u32,
+    pub a: String,
+    pub b: String,
+    pub comment: String,
+    /// the cut whose place the input registers take
+    pub input_cut: usize,
 }
 
 #[derive(Template)]
@@ -99,6 +133,10 @@ pub struct UnitTemplate<'a> {
     pub outputs: Vec<OutputView>,
     /// the one lint sink for bits no step reads
     pub unused: Option<String>,
+    /// products use the ECP5 product module (`<top>_mult18x18`)
+    pub dsp_module: bool,
+    /// tables use the ECP5 ROM module (`<top>_rom1k18`)
+    pub bram_module: bool,
 }
 
 /// `assign port = source;`
@@ -220,7 +258,9 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let file_tables = if file {
         dp.tables
             .iter()
-            .map(|t| {
+            .enumerate()
+            .filter(|(i, _)| !block_table(dp, *i))
+            .map(|(_, t)| {
                 let last_word = *t.words.last().expect("a table has words");
                 TableView {
                     name: t.name.clone(),
@@ -242,14 +282,18 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
         let t = &dp.tables[r.table];
         let ab = t.address_bits();
         reads[r.step - 1].push(ReadView {
-            signal: format!("{}_s{}", r.signal, r.step),
+            signal: format!("{}_{}{}", r.signal, if r.block { "c" } else { "s" }, r.step),
             width: t.width,
             table: t.name.clone(),
-            addr: r.addr.clone(),
+            addr: if r.block && ab < 10 { format!("{{{}, {}}}", lit(10 - ab, 0), r.addr) } else { r.addr.clone() },
             what: t.what.clone(),
             file,
             zero: lit(t.width, 0),
-            entries: if file {
+            block: r.block,
+            initvals: if r.block { dp16kd_initvals(&t.words) } else { Vec::new() },
+            unused: datapath::DP16KD_BITS - t.width.min(datapath::DP16KD_BITS),
+            input_cut: r.step - 1,
+            entries: if file || r.block {
                 Vec::new()
             } else {
                 t.words.iter().enumerate().map(|(i, &v)| RomEntry { index: format!("{ab}'d{i}"), value: lit(t.width, v) }).collect()
@@ -277,9 +321,37 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
             .iter()
             .zip(cuts)
             .zip(reads)
-            .map(|((s, cut), reads)| StepView { index: s.index, title: s.title.clone(), reads, wires: s.wires.clone(), cut })
+            .map(|((s, cut), reads)| StepView {
+                index: s.index,
+                title: s.title.clone(),
+                reads,
+                wires: s.wires.clone(),
+                dsps: s
+                    .dsps
+                    .iter()
+                    .map(|d| DspView {
+                        name: d.name.clone(),
+                        wire: format!("{}_c{}", d.name, s.index),
+                        width: d.width,
+                        unused: 2 * datapath::ECP5_DSP_BITS - d.width,
+                        a: d.a.clone(),
+                        b: d.b.clone(),
+                        comment: d.comment.clone(),
+                        input_cut: s.index - 1,
+                    })
+                    .collect(),
+                cut,
+            })
             .collect(),
+        dsp_module: dp.steps.iter().any(|s| !s.dsps.is_empty()),
+        bram_module: dp.reads.iter().any(|r| r.block),
     }
+}
+
+/// Whether every read of table `t` is a block RAM with its registers (no `$readmemh` memory then).
+fn block_table(dp: &datapath::Datapath, t: usize) -> bool {
+    let mut reads = dp.reads.iter().filter(|r| r.table == t).peekable();
+    reads.peek().is_some() && reads.all(|r| r.block)
 }
 
 /// The registered cuts of a datapath, each with the signals it holds and where from.
@@ -315,6 +387,61 @@ struct CoreTemplate<'a> {
     params: String,
     description: String,
     table_files: Vec<String>,
+    /// RTL files beside `<top>.v` (the ECP5 product module)
+    rtl_files: Vec<String>,
+    /// the simulation models of the ECP5 primitives, for lint and simulation only
+    sim_models: Vec<String>,
+    /// synthesize for ECP5 (trellis flow) rather than iCE40
+    ecp5: bool,
+}
+
+/// The ECP5 product module `<top>_mult18x18` (one MULT18X18D with its registers).
+#[derive(Template)]
+#[template(path = "mult18x18.v")]
+struct Mult18Template<'a> {
+    top: &'a str,
+    version: &'a str,
+}
+
+/// The MULT18X18D simulation model written beside an ECP5 unit (never synthesized).
+#[derive(Template)]
+#[template(path = "ecp5_mult18x18d_sim.v")]
+pub struct Mult18SimModel<'a> {
+    pub version: &'a str,
+}
+
+/// The ECP5 ROM module `<top>_rom1k18` (one DP16KD with its address and output registers).
+#[derive(Template)]
+#[template(path = "rom1k18.v")]
+struct Rom1k18Template<'a> {
+    top: &'a str,
+    version: &'a str,
+}
+
+/// The DP16KD simulation model written beside an ECP5 unit with a table in block RAM.
+#[derive(Template)]
+#[template(path = "ecp5_dp16kd_sim.v")]
+struct Dp16kdSimModel<'a> {
+    version: &'a str,
+}
+
+/// The file name of the DP16KD simulation model: simulators read it, synthesis must not.
+pub const ECP5_BRAM_MODEL_FILE: &str = "ecp5_dp16kd_sim.v";
+
+/// The DP16KD simulation model's text.
+pub fn ecp5_bram_model() -> String {
+    Dp16kdSimModel { version: VERSION }.render().expect("model template renders") + "\n"
+}
+
+/// The simulation-only files specgen writes: simulators read them, synthesis never.
+pub const SIM_MODEL_FILES: [&str; 2] = [ECP5_SIM_MODEL_FILE, ECP5_BRAM_MODEL_FILE];
+
+/// The file name of the MULT18X18D simulation model: simulators read it, synthesis must not.
+pub const ECP5_SIM_MODEL_FILE: &str = "ecp5_mult18x18d_sim.v";
+
+/// The MULT18X18D simulation model's text.
+pub fn ecp5_sim_model() -> String {
+    Mult18SimModel { version: VERSION }.render().expect("model template renders") + "\n"
 }
 
 /// The FuseSoC VLNV of a configuration: `specgen:specular:<top>-<digest>:<version>`, the digest
@@ -394,13 +521,30 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let model = plan.model();
     let mut verilog = unit_template(plan).render().expect("unit template renders");
     verilog.push('\n');
-    let tables = if cfg.params.rom_style == RomStyle::File { plan.datapath.tables.clone() } else { Vec::new() };
+    let dp = &plan.datapath;
+    let tables: Vec<_> = match cfg.params.rom_style {
+        RomStyle::File => dp.tables.iter().enumerate().filter(|(i, _)| !block_table(dp, *i)).map(|(_, t)| t.clone()).collect(),
+        RomStyle::Case => Vec::new(),
+    };
     let description = match cfg.model() {
         SpecularModel::Quadratic => "Fixed-point specular highlight unit, [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)",
         SpecularModel::BlinnPow => "Fixed-point Blinn specular unit, cos^n by square-and-multiply",
         SpecularModel::Blinn => "Fixed-point Blinn specular unit, cos^n from log2/exp2 tables",
         SpecularModel::Fitted => "Fixed-point specular highlight unit, [1 - a_n*(1 - cos)]^(2^m_n) fitted per n to cos^n",
     };
+    let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
+    // the ECP5 primitives' wrappers (RTL) and their simulation models (never synthesized)
+    let (mut rtl_files, mut sim_models) = (Vec::new(), Vec::new());
+    if dp.steps.iter().any(|s| !s.dsps.is_empty()) {
+        let text = Mult18Template { top, version: VERSION }.render().expect("mult18x18 template renders") + "\n";
+        rtl_files.push((format!("{top}_mult18x18.v"), text));
+        sim_models.push((ECP5_SIM_MODEL_FILE.to_string(), ecp5_sim_model()));
+    }
+    if dp.reads.iter().any(|r| r.block) {
+        let text = Rom1k18Template { top, version: VERSION }.render().expect("rom1k18 template renders") + "\n";
+        rtl_files.push((format!("{top}_rom1k18.v"), text));
+        sim_models.push((ECP5_BRAM_MODEL_FILE.to_string(), ecp5_bram_model()));
+    }
     let core = CoreTemplate {
         top,
         version: VERSION,
@@ -408,11 +552,14 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         params: cfg.describe(),
         description: format!("{description}, {}-cycle latency", cfg.stages()),
         table_files: tables.iter().map(|t| t.file.clone()).collect(),
+        rtl_files: rtl_files.iter().map(|(n, _)| n.clone()).collect(),
+        sim_models: sim_models.iter().map(|(n, _)| n.clone()).collect(),
+        ecp5: cfg.target() == crate::config::Target::Ecp5,
     }
     .render()
     .expect("core template renders")
         + "\n";
-    let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
+    files.extend(rtl_files.into_iter().chain(sim_models).map(|(n, t)| (n, t.into_bytes())));
     for t in &tables {
         files.push((t.file.clone(), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
     }

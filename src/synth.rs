@@ -9,16 +9,7 @@ use serde::Serialize;
 use std::path::Path;
 use std::process::Command;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Target {
-    /// yosys `synth`: technology-independent gates
-    Generic,
-    /// Lattice iCE40 UP5K (synth_ice40; nextpnr-ice40 for Fmax)
-    Ice40,
-    /// Lattice ECP5-25 (synth_ecp5; nextpnr-ecp5 for Fmax when installed)
-    Ecp5,
-}
+pub use crate::config::Target;
 
 /// Area and speed of one synthesis run.
 #[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
@@ -348,8 +339,6 @@ pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Sta
     }))
 }
 
-const ECP5_MULT_MODEL: &str = include_str!("../tb/ecp5_mult18x18d.v");
-const ECP5_DP16KD_MODEL: &str = include_str!("../tb/ecp5_dp16kd.v");
 
 /// yosys's data directory (cell models): `<bin>/../share/yosys` beside the binary, as yosys
 /// itself finds it, else `yosys-config --datdir`.
@@ -424,12 +413,12 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
             // its DP16KD is an empty black box: ours takes its place
             if let Some(start) = text.find("module DP16KD(") {
                 let end = text[start..].find("endmodule").map_or(text.len(), |e| start + e + "endmodule".len());
-                text.replace_range(start..end, "// DP16KD: see ecp5_dp16kd.v (specgen's model; this one is an empty black box)");
+                text.replace_range(start..end, "// DP16KD: see ecp5_dp16kd_sim.v (specgen's model; this one is an empty black box)");
             }
             vec![
                 ("ecp5_cells_sim.v".into(), text),
-                ("ecp5_mult18x18d.v".into(), ECP5_MULT_MODEL.to_string()),
-                ("ecp5_dp16kd.v".into(), ECP5_DP16KD_MODEL.to_string()),
+                (emit::ECP5_SIM_MODEL_FILE.into(), emit::ecp5_sim_model()),
+                (emit::ECP5_BRAM_MODEL_FILE.into(), emit::ecp5_bram_model()),
             ]
         }
     };

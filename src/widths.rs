@@ -43,7 +43,7 @@
 //! non-negative values is "ties away from zero". The same caps apply in `faithful` mode
 //! when the budget asks for more bits than the exact value has.
 
-use crate::config::{Arch, Config, Rounding, SpecularModel};
+use crate::config::{Arch, Config, Rounding, SpecularModel, Target};
 use serde::Serialize;
 
 /// Every internal width and shift of the unit. All widths are bit counts of unsigned values.
@@ -97,10 +97,11 @@ impl Widths {
             (Rounding::Faithful, Arch::Lean) => (b + 1).min(ws),
             _ => ws,
         };
-        // A DSP block multiplies 16×16 (iCE40 SB_MAC16); a wider bracket is split x = h·2^r + l
+        // An iCE40 DSP block multiplies 16×16 (SB_MAC16); a wider bracket is split x = h·2^r + l
         // and squared as h²·2^2r + 2hl·2^r + l², the same exact value with one 16×16 product.
-        let squarer_split = match cfg.arch() {
-            Arch::Lean if wb + 1 > 16 && wb < 20 => wb + 1 - 16,
+        // (ECP5 squares an 18-bit bracket in one MULT18X18D; generic leaves it to the tool.)
+        let squarer_split = match (cfg.arch(), cfg.target()) {
+            (Arch::Lean, Target::Ice40) if wb + 1 > 16 && wb < 20 => wb + 1 - 16,
             _ => 0,
         };
         let n_max = (1u64 << cfg.n_bits()) - 1;

@@ -12,6 +12,15 @@
 // Rounding:   {{ rounding_text }}
 // Latency:    {{ p.stages }} clock cycle(s){% if p.stages == 0 %} (combinational){% else %}, one result per cycle; rst clears only the valid pipeline{% endif %}.
 // Datapath:   {{ datapath_line }}; registered after steps [{{ cuts_text }}].
+{%- if dsp_module %}
+// Products:   on ECP5 MULT18X18D blocks with their own registers ({{ top }}_mult18x18.v); simulate
+//             with a MULT18X18D model (Lattice's, or ecp5_mult18x18d_sim.v, written beside).
+{%- endif %}
+{%- if bram_module %}
+// Tables:     on ECP5 DP16KD block RAMs with their own registers ({{ top }}_rom1k18.v), contents
+//             as INITVAL parameters below; simulate with a DP16KD model (Lattice's, or
+//             ecp5_dp16kd_sim.v, written beside).
+{%- endif %}
 {%- for t in file_tables %}
 {%- if loop.first %}
 // Tables:     read with $readmemh from the files named by the parameters below, resolved
@@ -59,7 +68,18 @@ end
 
 // ==== step {{ st.index }}: {{ st.title }} ====
 {%- for r in st.reads %}
-{%- if r.file %}
+{%- if r.block %}
+// {{ r.what }}: one DP16KD, its address register in place of cut {{ r.input_cut }}, its output register cut {{ st.index }}
+wire [{{ r.width - 1 }}:0] {{ r.signal }};
+{%- if r.unused > 0 %}
+wire [{{ r.unused - 1 }}:0] unused_{{ r.table }}_q;
+{%- endif %}
+{{ top }}_rom1k18 #(
+{%- for (k, v) in r.initvals %}
+    .{{ k }}({{ v }}){% if !loop.last %},{% endif %}
+{%- endfor %}
+) {{ r.table }}_bram (.clk(clk), .addr({{ r.addr }}), .q({% if r.unused > 0 %}{unused_{{ r.table }}_q, {{ r.signal }}}{% else %}{{ r.signal }}{% endif %}));
+{%- else if r.file %}
 wire [{{ r.width - 1 }}:0] {{ r.signal }} = {{ r.table }}[{{ r.addr }}];   // {{ r.what }}
 {%- else %}
 reg  [{{ r.width - 1 }}:0] {{ r.signal }};   // {{ r.what }}
@@ -73,6 +93,14 @@ always @(*) begin
     endcase
 end
 {%- endif %}
+{%- endfor %}
+{%- for d in st.dsps %}
+// {{ d.comment }}: one MULT18X18D, its input registers in place of cut {{ d.input_cut }}, its output register cut {{ st.index }}
+wire [{{ d.width - 1 }}:0] {{ d.wire }};
+{%- if d.unused > 0 %}
+wire [{{ d.unused - 1 }}:0] unused_{{ d.name }}_p;
+{%- endif %}
+{{ top }}_mult18x18 {{ d.name }}_dsp (.clk(clk), .a({{ d.a }}), .b({{ d.b }}), .p({% if d.unused > 0 %}{unused_{{ d.name }}_p, {{ d.wire }}}{% else %}{{ d.wire }}{% endif %}));
 {%- endfor %}
 {%- for x in st.wires %}
 wire {% if x.width == 1 %}      {% else %}[{{ x.width - 1 }}:0]{% endif %} {{ x.name }}_s{{ st.index }} = {{ x.expr }};{% if !x.comment.is_empty() %}   // {{ x.comment }}{% endif %}

@@ -32,7 +32,7 @@ pub enum Command {
         /// Output directory (created, or replaced if it holds only a previous specgen output).
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
-        /// Pick --stages: the shallowest pipeline whose iCE40 UP5K Fmax (yosys + nextpnr, with DSPs) reaches F MHz.
+        /// Pick --stages: the shallowest pipeline whose Fmax on the --target's part (iCE40 UP5K or ECP5-25; yosys + nextpnr, with DSPs) reaches F MHz.
         #[arg(long, value_name = "F", conflicts_with = "stages")]
         target_mhz: Option<f64>,
         #[command(flatten)]
@@ -195,6 +195,12 @@ pub struct RtlArgs {
     /// How tables are written: file ($readmemh) or case (inline) [default file]
     #[arg(long, value_enum, help_heading = "RTL")]
     pub rom_style: Option<RomStyle>,
+    /// The FPGA family the datapath is shaped for: ice40 (16x16 DSPs with post-adders, short
+    /// carry chains), ecp5 (MULT18X18D instances with their own registers, long carry chains;
+    /// simulate with ecp5_mult18x18d_sim.v, written beside) or generic (whole-width products
+    /// and adds, left to the synthesis tool) [default ice40]
+    #[arg(long, value_enum, help_heading = "RTL")]
+    pub target: Option<config::Target>,
 }
 
 /// A whole-number flag: a negative value gets a range error, not a "flag not found".
@@ -242,7 +248,7 @@ impl ParamArgs {
             if let Some(v) = &r.top {
                 p.top = v.clone();
             }
-            set!(r; stages, rom_style);
+            set!(r; stages, rom_style, target);
         }
         if let Some(v) = &self.k {
             p.k = v.clone();

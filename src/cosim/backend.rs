@@ -59,7 +59,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         h.update(part.as_bytes());
         h.update([0u8]);
     }
-    for src in &design.sources {
+    for src in &design.sim_sources() {
         h.update(src.file_name().unwrap().to_string_lossy().as_bytes());
         h.update(std::fs::read(src).map_err(|e| usage(format!("cannot read {}: {e}", src.display())))?);
     }
@@ -74,7 +74,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         .prefix(".build-")
         .tempdir_in(&root)
         .map_err(|e| failed(format!("cannot create a build directory in {}: {e}", root.display())))?;
-    let sources: Vec<PathBuf> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone())).collect();
+    let sources: Vec<PathBuf> = design.sim_sources().iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone())).collect();
     let mut cmd;
     match simulator {
         Simulator::Verilator => {

@@ -37,7 +37,18 @@ pub struct Design {
     pub cfg: Config,
     /// the configuration's plan: its model, widths, datapath and tables
     pub plan: crate::plan::Plan,
+    /// the synthesizable Verilog: every `*.v` but the simulation models
     pub sources: Vec<PathBuf>,
+    /// simulation-only models beside it (the MULT18X18D model of an ECP5 unit): simulators
+    /// read them after the sources, synthesis never
+    pub sim_models: Vec<PathBuf>,
+}
+
+impl Design {
+    /// What a simulator reads: the sources, then the simulation models.
+    pub fn sim_sources(&self) -> Vec<PathBuf> {
+        self.sources.iter().chain(&self.sim_models).cloned().collect()
+    }
 }
 
 impl Design {
@@ -45,9 +56,11 @@ impl Design {
         let entries = std::fs::read_dir(dir).map_err(|e| usage(format!("cannot read --rtl {}: {e}", dir.display())))?;
         let mut manifests = Vec::new();
         let mut sources = Vec::new();
+        let mut sim_models = Vec::new();
         for entry in entries.flatten() {
             let path = entry.path();
             match path.extension().and_then(|e| e.to_str()) {
+                Some("v") if path.file_name().and_then(|n| n.to_str()).is_some_and(|n| crate::emit::SIM_MODEL_FILES.contains(&n)) => sim_models.push(path),
                 Some("v") => sources.push(path),
                 Some("json") => {
                     let text = std::fs::read_to_string(&path).unwrap_or_default();
@@ -60,6 +73,7 @@ impl Design {
             }
         }
         sources.sort();
+        sim_models.sort();
         let (path, text) = match manifests.len() {
             1 => manifests.pop().unwrap(),
             0 => return Err(usage(format!("no specgen manifest (<top>.json) in --rtl {}", dir.display()))),
@@ -71,7 +85,7 @@ impl Design {
         let params = Params::from_json(&text).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
         let plan = crate::plan::Plan::from_params(params).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
         let cfg = plan.cfg.clone();
-        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources })
+        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
     }
 }
 

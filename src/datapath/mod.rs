@@ -14,7 +14,7 @@
 
 pub mod quadratic;
 
-use crate::config::{Arch, Config};
+use crate::config::{Arch, Config, Target};
 use crate::widths::{bit_length, mask, Widths};
 
 /// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
@@ -24,6 +24,27 @@ pub const CHUNK_BITS: u32 = 6;
 
 /// Width of a DSP block's multiplier operands (iCE40 SB_MAC16: 16×16).
 pub const DSP_BITS: u32 = 16;
+
+/// Width of an ECP5 MULT18X18D's operands.
+pub const ECP5_DSP_BITS: u32 = 18;
+
+/// Longest carry chain of one ECP5 step: a 32-bit CCU2C chain between registers took 1.9 ns
+/// of a 9.1 ns path on LFE5U-25F grade 6 (nextpnr), so every add of the unit fits one step.
+pub const ECP5_CHUNK_BITS: u32 = 40;
+
+/// A product on an ECP5 MULT18X18D with its own registers: the input registers take the
+/// operands at the cut before the product's step, the output register is the cut after it.
+#[derive(Debug, Clone)]
+pub struct Dsp {
+    /// the product signal; its wire is `name_cK` (the DSP's output register is cut K)
+    pub name: String,
+    /// bits of the product kept (the rest of the 36-bit P goes to `unused_<name>_p`)
+    pub width: u32,
+    /// 18-bit operands, as seen in the step before (the input registers take them there)
+    pub a: String,
+    pub b: String,
+    pub comment: String,
+}
 
 /// One wire of a step: `wire [width-1:0] name_sK = expr;   // comment`.
 #[derive(Debug, Clone)]
@@ -40,6 +61,8 @@ pub struct Step {
     pub index: usize,
     pub title: String,
     pub wires: Vec<Wire>,
+    /// products on ECP5 DSP blocks with their own registers (`Builder::product`)
+    pub dsps: Vec<Dsp>,
     /// Delay estimate (ns on a LUT4 + carry-chain fabric); only ratios matter.
     pub delay: f64,
 }
@@ -81,9 +104,16 @@ pub struct RomRead {
     pub step: usize,
     pub signal: String,
     pub table: usize,
-    /// the address as a Verilog expression of this step
+    /// the address as a Verilog expression of this step (of the step before, for a block read)
     pub addr: String,
+    /// on an ECP5 DP16KD with its output register: the address register stands in for the cut
+    /// before this step, the output register is the cut after it (`signal_cK`)
+    pub block: bool,
 }
+
+/// Words and width an ECP5 DP16KD holds in its 1024 x 18 mode.
+pub const DP16KD_WORDS: usize = 1024;
+pub const DP16KD_BITS: u32 = 18;
 
 #[derive(Debug, Clone)]
 pub struct Datapath {
@@ -112,6 +142,8 @@ struct Signal {
     step: usize,
     /// (step, bits read) for every reference
     uses: Vec<(usize, u128)>,
+    /// held by a DSP's output register at the cut after its step (no fabric register there)
+    dsp_registered: bool,
 }
 
 /// A sized Verilog literal, `W'hX`.
@@ -127,6 +159,9 @@ pub struct Builder {
     reads: Vec<RomRead>,
     /// the cuts that hold a register (1-based)
     registered: Vec<u32>,
+    target: Target,
+    /// while the operands of a registered DSP are written: the step whose view they take
+    view: Option<usize>,
 }
 
 /// Bits `[lo, lo+width)` of a signal, optionally inverted; or a constant.
@@ -239,24 +274,85 @@ impl Builder {
     /// `inputs`: the port signals, available from cut 0; `registered`: the cuts that hold a
     /// pipeline register (a reference resolves to the last of them before it, or to the
     /// defining wire when there is none: a combinational cut emits nothing).
-    pub fn new(inputs: &[(&str, u32)], registered: &[u32]) -> Builder {
+    pub fn new(inputs: &[(&str, u32)], registered: &[u32], target: Target) -> Builder {
         Builder {
             steps: Vec::new(),
-            signals: inputs.iter().map(|&(n, w)| Signal { name: n.into(), width: w, step: 0, uses: Vec::new() }).collect(),
+            signals: inputs.iter().map(|&(n, w)| Signal { name: n.into(), width: w, step: 0, uses: Vec::new(), dsp_registered: false }).collect(),
             tables: Vec::new(),
             reads: Vec::new(),
             registered: registered.to_vec(),
+            target,
+            view: None,
         }
     }
 
+    /// The step references are made from: the current one, or the one before a registered
+    /// DSP while its operands are written.
     fn cur(&self) -> usize {
-        self.steps.len()
+        self.view.unwrap_or(self.steps.len())
+    }
+
+    pub fn target(&self) -> Target {
+        self.target
+    }
+
+    /// The widest multiplier operand one DSP block takes on the target (generic: no limit).
+    pub fn dsp_bits(&self) -> u32 {
+        match self.target {
+            Target::Ice40 => DSP_BITS,
+            Target::Ecp5 => ECP5_DSP_BITS,
+            Target::Generic => u32::MAX,
+        }
+    }
+
+    /// The longest carry chain one step holds on the target (generic: no limit).
+    pub fn chunk_bits(&self) -> u32 {
+        match self.target {
+            Target::Ice40 => CHUNK_BITS,
+            Target::Ecp5 => ECP5_CHUNK_BITS,
+            Target::Generic => u32::MAX,
+        }
+    }
+
+    fn is_registered(&self, cut: usize) -> bool {
+        self.registered.contains(&(cut as u32))
+    }
+
+    /// `name = a·b mod 2^width` (operands zero-extended; `width` at most their two widths
+    /// summed keeps it exact). On ECP5, when both operands fit 18 bits and the cuts on both
+    /// sides of this step are registered, one MULT18X18D with its own registers: its input
+    /// registers are the cut before (they take the operands as the step before sees them, so
+    /// no fabric register holds them), its output register is the cut after (the product is
+    /// `name_cK` from there). Anywhere else, a `*` the synthesis tool maps.
+    pub fn product(&mut self, name: &str, a: &[Piece], b: &[Piece], width: u32, comment: &str) {
+        let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
+        let k = self.steps.len();
+        let on_dsp = self.target == Target::Ecp5 && wa.max(wb) <= ECP5_DSP_BITS && k >= 2 && self.is_registered(k - 1) && self.is_registered(k) && width <= 2 * ECP5_DSP_BITS;
+        self.delay(mul_delay(wa, wb));
+        if !on_dsp {
+            let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
+            self.wire(name, width, format!("{ea} * {eb}"), comment);
+            return;
+        }
+        // the operands as the step before sees them: each must be visible there
+        for p in a.iter().chain(b) {
+            if let Piece::Sig { name: n, .. } = p {
+                let s = self.signal(n);
+                assert!(s.step < k && !(s.dsp_registered && s.step + 1 == k), "datapath: {n} is not visible in step {} for the DSP of {name}", k - 1);
+            }
+        }
+        self.view = Some(k - 1);
+        let (ea, eb) = (self.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)), self.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)));
+        self.view = None;
+        assert!(self.signals.iter().all(|s| s.name != name), "datapath: {name} defined twice");
+        self.signals.push(Signal { name: name.into(), width, step: k, uses: Vec::new(), dsp_registered: true });
+        self.steps.last_mut().expect("a step").dsps.push(Dsp { name: name.into(), width, a: ea, b: eb, comment: comment.into() });
     }
 
     /// Starts the next step.
     pub fn step(&mut self, title: &str) {
         let index = self.steps.len() + 1;
-        self.steps.push(Step { index, title: title.into(), wires: Vec::new(), delay: 0.0 });
+        self.steps.push(Step { index, title: title.into(), wires: Vec::new(), dsps: Vec::new(), delay: 0.0 });
     }
 
     /// Raises the current step's delay estimate to at least `d`.
@@ -271,7 +367,8 @@ impl Builder {
 
     /// The name of `name` as seen from the current step.
     fn version(&mut self, name: &str) -> String {
-        let (cur, def) = (self.cur(), self.signal(name).step);
+        let (cur, def, dsp) = (self.cur(), self.signal(name).step, self.signal(name).dsp_registered);
+        assert!(!(dsp && def == cur), "datapath: {name} is a DSP's registered output, read only after its step");
         visible(&self.registered, name, def, cur)
     }
 
@@ -363,7 +460,7 @@ impl Builder {
     pub fn wire(&mut self, name: &str, width: u32, expr: String, comment: &str) {
         assert!(self.signals.iter().all(|s| s.name != name), "datapath: {name} defined twice");
         let cur = self.cur();
-        self.signals.push(Signal { name: name.into(), width, step: cur, uses: Vec::new() });
+        self.signals.push(Signal { name: name.into(), width, step: cur, uses: Vec::new(), dsp_registered: false });
         self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
     }
 
@@ -380,15 +477,37 @@ impl Builder {
         let cur = self.cur();
         let width = self.tables[t].width;
         assert!(self.signals.iter().all(|s| s.name != signal), "datapath: {signal} defined twice");
-        self.signals.push(Signal { name: signal.into(), width, step: cur, uses: Vec::new() });
-        self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a });
+        self.signals.push(Signal { name: signal.into(), width, step: cur, uses: Vec::new(), dsp_registered: false });
+        self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a, block: false });
+    }
+
+    /// [`Builder::rom_read`], on ECP5 a block RAM with both its registers when the table fits
+    /// one DP16KD (1024 x 18) and the cuts on both sides of this step are registered: its
+    /// address register takes the address as the step before sees it, its output register
+    /// is the cut after this step (the read's clock-to-out, 5.6 ns without it on LFE5U-25F
+    /// grade 6, then never limits Fmax). Anywhere else, an asynchronous read in this step.
+    pub fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
+        let k = self.steps.len();
+        let fits = self.tables[t].words.len() <= DP16KD_WORDS && self.tables[t].width <= DP16KD_BITS;
+        if !(self.target == Target::Ecp5 && fits && k >= 2 && self.is_registered(k - 1) && self.is_registered(k)) {
+            return self.rom_read(signal, t, addr);
+        }
+        let s = self.signal(addr);
+        assert!(s.step < k && !(s.dsp_registered && s.step + 1 == k), "datapath: {addr} is not visible in step {} for the block read of {signal}", k - 1);
+        self.view = Some(k - 1);
+        let a = self.r(addr);
+        self.view = None;
+        let width = self.tables[t].width;
+        assert!(self.signals.iter().all(|s| s.name != signal), "datapath: {signal} defined twice");
+        self.signals.push(Signal { name: signal.into(), width, step: k, uses: Vec::new(), dsp_registered: true });
+        self.reads.push(RomRead { step: k, signal: signal.into(), table: t, addr: a, block: true });
     }
 
     /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added
     /// here with carry-in 0 and 1 (carry-select), and [`Builder::add_finish`] resolves the
     /// carries and picks in the next step.
     pub fn add_start(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
-        let parts = chunks(width, CHUNK_BITS);
+        let parts = chunks(width, self.chunk_bits());
         let n = parts.len();
         let max_chunk = parts.iter().map(|c| c.1).max().unwrap_or(1);
         self.delay(add_delay(max_chunk));
@@ -526,7 +645,8 @@ impl Builder {
             .map(|k| {
                 self.signals
                     .iter()
-                    .filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k))
+                    // a DSP's output register is the cut after its step: nothing to add there
+                    .filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k) && !(s.dsp_registered && s.step == k))
                     .map(|s| Live { name: s.name.clone(), width: s.width, source: visible(&self.registered, &s.name, s.step, k) })
                     .collect()
             })
@@ -552,11 +672,12 @@ pub fn build(cfg: &Config, w: &Widths) -> Datapath {
 /// [`build`] for a model whose fit or tables are already made (see `plan::Plan`).
 pub fn build_for(cfg: &Config, w: &Widths, kind: &crate::model::Kind) -> Datapath {
     let inputs = [("cos_g", w.cos_bits), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
-    let mut b = Builder::new(&inputs, &w.registered_cuts);
+    let mut b = Builder::new(&inputs, &w.registered_cuts, cfg.target());
     match (kind, cfg.arch()) {
         (crate::model::Kind::Fitted { fit, widths }, _) => crate::fitted::datapath(cfg, fit, widths, &mut b),
         (crate::model::Kind::Blinn { widths, tables }, _) => crate::blinn::datapath(cfg, widths, tables, &mut b),
         (crate::model::Kind::BlinnPow, _) => crate::blinn_pow::datapath(cfg, w, &mut b),
+        (_, Arch::Lean) if cfg.target() == Target::Ecp5 => quadratic::lean_ecp5(cfg, w, &mut b),
         (_, Arch::Lean) => quadratic::lean(cfg, w, &mut b),
         (_, Arch::Paper) => quadratic::paper(cfg, w, &mut b),
     }
@@ -584,14 +705,14 @@ mod tests {
     fn sub_pieces_pads_with_zeros() {
         let p = [Piece::sig("a", 2, 3), Piece::Const { value: 0b101, width: 3 }];
         let s = sub_pieces(&p, 1, 7);
-        let mut b = Builder::new(&[("a", 8)], &[]);
+        let mut b = Builder::new(&[("a", 8)], &[], Target::Ice40);
         b.step("t");
         assert_eq!(b.pieces(&s), "{2'h0, 3'h5, a[4:3]}");
     }
 
     #[test]
     fn liveness_and_unused_bits() {
-        let mut b = Builder::new(&[("x", 8)], &[1]);
+        let mut b = Builder::new(&[("x", 8)], &[1], Target::Ice40);
         b.step("one");
         let e = b.bits("x", 7, 4);
         b.wire("y", 4, e, "");

@@ -87,30 +87,31 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
     // kn = kn_hi*2^16 + kn_lo: two products with <= 16-bit operands instead of one that
     // would take 3 DSP blocks; the hi product is needed only modulo 2^(m-16)
-    let split = w.kn_bits > DSP_BITS && m > DSP_BITS;
+    let dsp = b.dsp_bits();
+    let split = w.kn_bits > dsp && m > dsp;
     if split {
-        let hi_w = m - DSP_BITS;
-        let (kh, d2) = (b.operand("kn", DSP_BITS, w.kn_bits - DSP_BITS, hi_w), b.operand("one_minus_cos", 0, cb, hi_w));
+        let hi_w = m - dsp;
+        let (kh, d2) = (b.operand("kn", dsp, w.kn_bits - dsp, hi_w), b.operand("one_minus_cos", 0, cb, hi_w));
         b.wire(
             "deviation_hi",
             hi_w,
-            format!("{kh} * {d2} + {}", lit(hi_w, k_prime >> DSP_BITS)),
-            &format!("kn[{}:{DSP_BITS}] * (1 - cos) + K'[{}:{DSP_BITS}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1),
+            format!("{kh} * {d2} + {}", lit(hi_w, k_prime >> dsp)),
+            &format!("kn[{}:{dsp}] * (1 - cos) + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1),
         );
-        b.delay(mul_delay(w.kn_bits - DSP_BITS, cb));
+        b.delay(mul_delay(w.kn_bits - dsp, cb));
     }
 
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add)");
     let expr = if split {
-        let (kl, d1) = (b.operand("kn", 0, DSP_BITS, m), b.operand("one_minus_cos", 0, cb, m));
-        let c = b.pieces(&[Piece::Const { value: k_prime & mask(DSP_BITS), width: DSP_BITS }, Piece::sig("deviation_hi", 0, m - DSP_BITS)]);
+        let (kl, d1) = (b.operand("kn", 0, dsp, m), b.operand("one_minus_cos", 0, cb, m));
+        let c = b.pieces(&[Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_hi", 0, m - dsp)]);
         format!("{kl} * {d1} + {c}")
     } else {
         let (kn, d1) = (b.operand("kn", 0, w.kn_bits, m), b.operand("one_minus_cos", 0, cb, m));
         format!("{kn} * {d1} + {}", lit(m, k_prime))
     };
     b.wire("deviation_sum", m, expr, &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f));
-    b.delay(mul_delay(DSP_BITS, cb));
+    b.delay(mul_delay(dsp.min(w.kn_bits), cb));
 
     b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
     let (dn, q) = (b.r("done"), b.bits("deviation_sum", m - 1, s));
@@ -220,6 +221,189 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let sum = b.add_finish(p);
         let e = b.bits(&sum, fi + 1, 1);
         b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    }
+}
+
+/// The lean datapath shaped for ECP5 (`--target ecp5`): the same values as [`lean`], in the
+/// shape of the family. A MULT18X18D has 18×18 operands, no post-adder that yosys uses, and
+/// its own input and output registers; the fabric's CCU2C carry chains add 32 bits in ~2 ns.
+/// So every product is a step of its own on one DSP with its registers (see
+/// [`Builder::product`]), every add a whole carry chain in the fabric step after it, and no
+/// product reads another's output in the step right after it (an operand must be visible in
+/// the step before the product, where the input registers take it).
+///
+/// Where it differs from [`lean`]:
+/// - `k_q·n` is a product on a DSP (the constant as operand B);
+/// - `P = kn·(1 − cos)` as `kn[17:0]·d + kn[hi:18]·d·2^18` (two DSPs), `P + K'` in two adds;
+/// - the bracket (≤ 18 bits) is squared on one DSP: no hi/lo split;
+/// - the colours' rounding half is a fabric add after their products.
+pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
+    let (f, cb, bb, fi) = (cfg.f(), w.cos_bits, cfg.b(), cfg.fi());
+    let (wb, ws, wsc, s) = (w.bracket_frac_bits, w.square_frac_bits, w.color_square_frac_bits, w.deviation_shift);
+    let dsp = ECP5_DSP_BITS;
+    // P is needed modulo 2^m only, as in `lean`
+    let m = wb + s + 1;
+
+    b.step("cos complemented and clamped");
+    let g = b.bits("cos_g", f, f);
+    let x = b.bits("cos_g", f - 1, 0);
+    b.wire(
+        "cos_complement",
+        cb,
+        format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
+        &format!("UQ1.{f}: ~cos = 1 - 2^-{f} - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)"),
+    );
+    b.delay(LUT_DELAY);
+
+    b.step("cut-off ROM read (10, a block RAM); 1 - cos (adder 6); k_q*n (a product)");
+    let t = b.table(crate::rom::cos_sp_rom(cfg));
+    b.rom_read_registered("cos_sp", t, "n");
+    b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
+    let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
+    b.add_finish(d);
+    let kc = Piece::Const { value: cfg.k_code as u128, width: bit_length(cfg.k_code as u128) };
+    b.product(
+        "kn",
+        &[Piece::sig("n", 0, cfg.n_bits())],
+        &[kc],
+        w.kn_bits,
+        &format!("UQ{}.{}: k_q*n, exact; one constant product replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
+    );
+
+    b.step("comparator (12)");
+    // cos < cos_sp  <=>  cos_sp + ~cos (over F+1 bits) carries out: an add of two registers
+    let cmp = b.add_start(
+        "cutoff_sum",
+        &[Piece::sig("cos_sp", 0, cb)],
+        &[Piece::sig("cos_complement", 0, f), Piece::Const { value: 1, width: 1 }],
+        false,
+        cb + 1,
+        &format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
+    );
+    b.add_finish(cmp);
+
+    // 1 - deviation without a subtractor, as in `lean`: ~(P + K') = K - P (mod 2^m)
+    let k_big = (1u128 << (wb + s)) + (1u128 << s) - 1;
+    let k_prime = mask(m) - k_big;
+    let split = w.kn_bits > dsp && m > dsp;
+    b.step("deviation P = k_q*n*(1 - cos) (multiplier 7, products); comparator result");
+    let (gg, c) = (b.bits("cos_g", f, f), b.bits("cutoff_sum", cb, cb));
+    b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+    let one_minus_cos = [Piece::sig("one_minus_cos", 0, cb)];
+    if split {
+        let hi_w = m - dsp;
+        b.product("deviation_lo", &[Piece::sig("kn", 0, dsp)], &one_minus_cos, m.min(dsp + cb), &format!("kn[{}:0] * (1 - cos), exact", dsp - 1));
+        b.product(
+            "deviation_hi",
+            &[Piece::sig("kn", dsp, w.kn_bits - dsp)],
+            &one_minus_cos,
+            hi_w,
+            &format!("kn[{}:{dsp}] * (1 - cos), mod 2^{hi_w}", w.kn_bits - 1),
+        );
+        b.step("deviation: the high product plus K' (adder)");
+        let add = b.add_start(
+            "deviation_hi_sum",
+            &[Piece::sig("deviation_hi", 0, hi_w)],
+            &[Piece::Const { value: k_prime >> dsp, width: hi_w }],
+            false,
+            hi_w,
+            &format!("kn[{}:{dsp}] * (1 - cos) + K'[{}:{dsp}], mod 2^{hi_w}", w.kn_bits - 1, m - 1),
+        );
+        b.add_finish(add);
+        b.step("deviation P plus K' (adder)");
+        let lo_w = m.min(dsp + cb);
+        let add = b.add_start(
+            "deviation_sum",
+            &[Piece::sig("deviation_lo", 0, lo_w)],
+            &[Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_hi_sum", 0, hi_w)],
+            false,
+            m,
+            &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f),
+        );
+        b.add_finish(add);
+    } else {
+        b.product("deviation", &[Piece::sig("kn", 0, w.kn_bits)], &one_minus_cos, m, &format!("P = k_q*n*(1 - cos) mod 2^{m}, UQ.{} exact", cfg.kf() + f));
+        b.step("deviation P plus K' (adder)");
+        let add = b.add_start(
+            "deviation_sum",
+            &[Piece::sig("deviation", 0, m)],
+            &[Piece::Const { value: k_prime, width: m }],
+            false,
+            m,
+            &format!("P + K' mod 2^{m}; its complement is K - P (no subtractor)"),
+        );
+        b.add_finish(add);
+    }
+
+    b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
+    let (dn, q) = (b.r("done"), b.bits("deviation_sum", m - 1, s));
+    b.wire(
+        "bracket",
+        wb + 1,
+        format!("{dn} ? {} : ~{q}", lit(wb + 1, 0)),
+        &format!("UQ1.{wb} in [0, 1]: 2^{wb} - floor(P/2^{s}) (truncation #1), zeroed beyond the cut-off (key block 13)"),
+    );
+    b.delay(LUT_DELAY);
+
+    let full_bits = w.full_square_bits();
+    b.step("square (squarer 11, a product)");
+    let bracket = [Piece::sig("bracket", 0, wb + 1)];
+    b.product("square_full", &bracket, &bracket, full_bits, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+
+    b.step("truncation #2; intensity rounding (adder)");
+    let sq = b.bits("square_full", w.square_shift + ws, w.square_shift);
+    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
+    let csq = b.bits("square", ws, ws - wsc);
+    b.wire(
+        "color_square",
+        wsc + 1,
+        csq,
+        &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
+    );
+    if ws > fi {
+        // round half up: (S[WS:WS-FI-1] + 1) >> 1 = floor(S*2^FI + 1/2)
+        let add = b.add_start(
+            "intensity_sum",
+            &[Piece::sig("square", ws - fi - 1, fi + 2)],
+            &[],
+            true,
+            fi + 2,
+            &format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
+        );
+        let sum = b.add_finish(add);
+        let e = b.bits(&sum, fi + 1, 1);
+        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    } else {
+        let sqr = b.r("square");
+        let e = if fi > ws { format!("{{{sqr}, {}}}", lit(fi - ws, 0)) } else { sqr };
+        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
+    }
+
+    b.step("colour multipliers (14-16, products)");
+    let cpb = w.color_product_bits;
+    for ch in CHANNELS {
+        b.product(
+            &format!("color_prod_{ch}"),
+            &[Piece::sig("color_square", 0, wsc + 1)],
+            &[Piece::sig(&format!("ks_{ch}"), 0, bb)],
+            cpb,
+            &format!("UQ{bb}.{wsc}: S * ks_{ch}, exact"),
+        );
+    }
+
+    b.step("colour rounding (adders)");
+    for ch in CHANNELS {
+        let add = b.add_start(
+            &format!("color_sum_{ch}"),
+            &[Piece::sig(&format!("color_prod_{ch}"), 0, cpb)],
+            &[Piece::Const { value: 1u128 << (wsc - 1), width: wsc }],
+            false,
+            cpb,
+            &format!("UQ{bb}.{wsc}: S * ks_{ch} + 1/2 colour ulp (round half up)"),
+        );
+        let sum = b.add_finish(add);
+        let e = b.bits(&sum, cpb - 1, wsc);
+        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
     }
 }
 

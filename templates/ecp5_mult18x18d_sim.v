@@ -1,12 +1,21 @@
-// MULT18X18D (Lattice ECP5 18x18 multiplier): a behavioural simulation model for
-// `specgen synth --verify --target ecp5`. yosys (0.23, and 0.70) ships MULT18X18D only as a
-// black box (ecp5/cells_bb.v), so a mapped ECP5 netlist cannot be simulated with yosys's
-// models alone. This model covers what yosys's synth_ecp5 instantiates: P = A * B
+// MULT18X18D (Lattice ECP5 18x18 multiplier): a behavioural simulation model, written by
+// specgen {{ version }} beside a unit generated with --target ecp5, and used by
+// `specgen synth --verify --target ecp5`. For simulation only: never give it to synthesis
+// (it would replace the DSP block with logic). yosys (0.23, and 0.70) ships MULT18X18D only as
+// a black box (ecp5/cells_bb.v), so neither the generated RTL nor a mapped ECP5 netlist can be
+// simulated with yosys's models alone. This model covers what yosys's synth_ecp5 instantiates: P = A * B
 // (SIGNEDA/SIGNEDB: two's complement operands), the input, pipeline and output registers each
 // bypassed ("NONE") or clocked by CLK0 with CE0 and a synchronous RST0. Any other setting
 // (CLK1..3, the SOURCEA/B shift chains, asynchronous reset, MULT_BYPASS) stops the
 // simulation with an error rather than computing something else. Ports as in cells_bb.v.
+{%- raw %}
 `timescale 1ns / 1ps
+// A cell model: its ports are the primitive's, most unused here, its file is not its name, and
+// it compares string parameters of any length.
+/* verilator lint_off UNUSEDSIGNAL */
+/* verilator lint_off UNUSEDPARAM */
+/* verilator lint_off DECLFILENAME */
+/* verilator lint_off WIDTH */
 module MULT18X18D(
     input A0, A1, A2, A3, A4, A5, A6, A7, A8, A9, A10, A11, A12, A13, A14, A15, A16, A17,
     input B0, B1, B2, B3, B4, B5, B6, B7, B8, B9, B10, B11, B12, B13, B14, B15, B16, B17,
@@ -107,3 +116,8 @@ module MULT18X18D(
     assign {SROA17, SROA16, SROA15, SROA14, SROA13, SROA12, SROA11, SROA10, SROA9, SROA8, SROA7, SROA6, SROA5, SROA4, SROA3, SROA2, SROA1, SROA0} = a_in;
     assign {SROB17, SROB16, SROB15, SROB14, SROB13, SROB12, SROB11, SROB10, SROB9, SROB8, SROB7, SROB6, SROB5, SROB4, SROB3, SROB2, SROB1, SROB0} = b_in;
 endmodule
+/* verilator lint_on WIDTH */
+/* verilator lint_on DECLFILENAME */
+/* verilator lint_on UNUSEDPARAM */
+/* verilator lint_on UNUSEDSIGNAL */
+{% endraw %}

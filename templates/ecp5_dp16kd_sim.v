@@ -1,12 +1,21 @@
-// DP16KD (Lattice ECP5 16-kbit block RAM) used as a ROM: a behavioural simulation model for
-// `specgen synth --verify --target ecp5`. yosys (0.23, and 0.70) ships DP16KD only as an empty
+// DP16KD (Lattice ECP5 16-kbit block RAM) used as a ROM: a behavioural simulation model,
+// written by specgen {{ version }} beside a unit generated with --target ecp5 whose table is in
+// block RAM, and used by `specgen synth --verify --target ecp5`. For simulation only: never
+// give it to synthesis. yosys (0.23, and 0.70) ships DP16KD only as an empty
 // black box, so a mapped ECP5 netlist with a table in block RAM cannot be simulated with
 // yosys's models alone. The contents follow yosys's ecp5/brams_map.v: 18-bit word k lives in
 // INITVAL_(k/16) bits [(k%16)*20 +: 18]. Both ports read synchronously (CLK, CE, chip select
 // by CSDECODE) in 18- or 9-bit width, with REGMODE NOREG or OUTREG and a reset that clears
 // the output. A write, another width, or another setting stops the simulation with an error
 // rather than computing something else. Ports as in yosys's ecp5/cells_sim.v.
+{%- raw %}
 `timescale 1ns / 1ps
+// A cell model: its ports are the primitive's, most unused here, its file is not its name, and
+// it compares string parameters of any length.
+/* verilator lint_off UNUSEDSIGNAL */
+/* verilator lint_off UNUSEDPARAM */
+/* verilator lint_off DECLFILENAME */
+/* verilator lint_off WIDTH */
 module DP16KD(
   input DIA17, DIA16, DIA15, DIA14, DIA13, DIA12, DIA11, DIA10, DIA9, DIA8, DIA7, DIA6, DIA5, DIA4, DIA3, DIA2, DIA1, DIA0,
   input ADA13, ADA12, ADA11, ADA10, ADA9, ADA8, ADA7, ADA6, ADA5, ADA4, ADA3, ADA2, ADA1, ADA0,
@@ -154,3 +163,8 @@ module DP16KD(
     end
     assign {DOB17, DOB16, DOB15, DOB14, DOB13, DOB12, DOB11, DOB10, DOB9, DOB8, DOB7, DOB6, DOB5, DOB4, DOB3, DOB2, DOB1, DOB0} = REGMODE_B == "OUTREG" ? out_b : rd_b;
 endmodule
+/* verilator lint_on WIDTH */
+/* verilator lint_on DECLFILENAME */
+/* verilator lint_on UNUSEDPARAM */
+/* verilator lint_on UNUSEDSIGNAL */
+{% endraw %}
