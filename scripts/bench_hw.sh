@@ -12,10 +12,11 @@ rows="$work/rows.jsonl"; : > "$rows"
 seeds=${SEEDS:-5} # nextpnr seeds per place-and-route; Fmax is their median
 run() { # name widths-label stages args...
     local name=$1 label=$2 stages=$3; shift 3
-    local dir="$work/$name-$label-$stages"
+    local dir="$work/${name// /_}-$label-$stages"
     $bin generate --out "$dir" --stages "$stages" "$@" >/dev/null
     modes=(nodsp dsp generic ecp5)
     [ "$name" = blinn-pow ] && modes=(nodsp dsp generic) # 75 multipliers: no ECP5 row
+    case " $* " in *" --target ecp5 "*) modes=(ecp5) ;; esac # ECP5 primitives: ECP5 only
     for mode in "${modes[@]}"; do
         case $mode in
             ecp5) flags=(--target ecp5 --dsp) ;;
@@ -38,6 +39,11 @@ for s in 0 "$(max_stages)"; do run lean default "$s"; done
 run paper default 0 --arch paper
 for s in 0 "$(max_stages "${wide[@]}")"; do run lean wide "$s" "${wide[@]}"; done
 run blinn-pow default 0 --model blinn-pow
+# the datapath shaped for ECP5 (MULT18X18D and DP16KD with their own registers)
+for w in default wide; do
+    if [ $w = wide ]; then wa=("${wide[@]}"); else wa=(); fi
+    run "lean --target ecp5" $w "$(max_stages --target ecp5 "${wa[@]}")" --target ecp5 "${wa[@]}"
+done
 for m in fitted blinn; do
     for s in 0 "$(max_stages --model $m)"; do run $m default "$s" --model $m; done
 done

@@ -160,6 +160,26 @@ fn read_sources(design: &Design) -> String {
     format!("read_verilog {}", sources.join(" "))
 }
 
+/// The family to synthesize the design for: the one asked for, else the one its RTL was
+/// generated for (iCE40 for generic RTL). RTL with one family's primitives (an ECP5 unit's
+/// MULT18X18D and DP16KD instances) cannot be synthesized for another: a usage error.
+pub fn target_for(design: &Design, asked: Option<Target>) -> Result<Target, Failure> {
+    let generated = design.cfg.target();
+    let primitives = !design.plan.datapath.steps.iter().all(|s| s.dsps.is_empty()) || design.plan.datapath.reads.iter().any(|r| r.block);
+    match asked {
+        Some(t) if primitives && t != generated => Err(usage(format!(
+            "invalid --target {}: the RTL in {} was generated with --target {} and instantiates its primitives (MULT18X18D, DP16KD); allowed: --target {}, or generate again",
+            t.name(),
+            design.dir.display(),
+            generated.name(),
+            generated.name()
+        ))),
+        Some(t) => Ok(t),
+        None if generated == Target::Generic => Ok(Target::Ice40),
+        None => Ok(generated),
+    }
+}
+
 /// The yosys synthesis command of `target` for module `top`.
 fn synth_command(target: Target, dsp: bool, top: &str) -> String {
     match target {
@@ -308,11 +328,13 @@ pub fn table(r: &SynthResult) -> String {
 /// Fmax (when placed) for each depth tried: (stages, MHz).
 pub type StageTrials = Vec<(u32, Option<f64>)>;
 
-/// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (iCE40 UP5K with
-/// DSPs, nextpnr) and returns the shallowest whose Fmax reaches `mhz`, with every try.
+/// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (with DSPs and
+/// nextpnr, on the ECP5-25 for `--target ecp5`, else the iCE40 UP5K) and returns the shallowest whose Fmax reaches `mhz`, with every try.
 pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, StageTrials), Failure> {
     require("yosys", "yosys")?;
-    require("nextpnr-ice40", "nextpnr-ice40")?;
+    let target = if params.target == Target::Ecp5 { Target::Ecp5 } else { Target::Ice40 };
+    let part = if target == Target::Ecp5 { "ECP5-25" } else { "iCE40 UP5K" };
+    Pnr::find(target).map_err(usage)?;
     let max = crate::plan::Plan::from_params(crate::config::Params { stages: 0, ..params.clone() })?.cut_points;
     let mut tries = Vec::new();
     for stages in 0..=max {
@@ -322,7 +344,7 @@ pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Sta
         emit::write_dir_atomically(&out, &emit::generate_files(&plan)).map_err(|e| failed(e.to_string()))?;
         let design = Design::load(&out)?;
         // one seed per depth: the search is a guide; quote a depth's Fmax with `synth --seeds`
-        let r = synthesize(&design, Target::Ice40, true, "yosys", 1, None)?;
+        let r = synthesize(&design, target, true, "yosys", 1, None)?;
         eprintln!("target-mhz: stages {stages}: Fmax {}", r.fmax_mhz.map(|f| format!("{f:.1} MHz")).unwrap_or_else(|| r.fmax_note.clone()));
         tries.push((stages, r.fmax_mhz));
         if r.fmax_mhz.is_some_and(|f| f >= mhz) {
@@ -334,8 +356,8 @@ pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Sta
         _ => Some(x),
     });
     Err(failed(match best {
-        Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on iCE40 UP5K; the best is {f:.1} MHz at --stages {s}; nothing written"),
-        None => "no pipeline depth could be placed on iCE40 UP5K; nothing written".to_string(),
+        Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on {part}; the best is {f:.1} MHz at --stages {s}; nothing written"),
+        None => format!("no pipeline depth could be placed on {part}; nothing written"),
     }))
 }
 

@@ -31,12 +31,13 @@ prop_compose! {
         k in decimal_k(),
         exact in any::<bool>(),
         paper in proptest::bool::weighted(0.25),
+        target in prop_oneof![Just(config::Target::Ice40), Just(config::Target::Ecp5), Just(config::Target::Generic)],
     ) -> Option<Config> {
         Config::new(Params {
             cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi, k, k_frac_bits: kf,
             rounding: if exact { Rounding::Exact } else { Rounding::Faithful },
             rom_style: RomStyle::File, stages: 0, top: "u".into(),
-            arch: if paper { Arch::Paper } else { Arch::Lean }, model: SpecularModel::Quadratic, max_squarings: 3,
+            arch: if paper { Arch::Paper } else { Arch::Lean }, model: SpecularModel::Quadratic, max_squarings: 3, target,
         }).ok() // k may round to 0 at few fractional bits: such configs are rejected, not tested
     }
 }

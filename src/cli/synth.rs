@@ -12,8 +12,10 @@ pub struct SynthArgs {
     /// Directory with the Verilog and the specgen manifest.
     #[arg(long, value_name = "DIR")]
     pub rtl: PathBuf,
-    #[arg(long, value_enum, default_value = "ice40")]
-    pub target: Target,
+    /// The family to synthesize for [default: the one the RTL was generated for (--target of
+    /// generate; iCE40 UP5K for generic RTL)]
+    #[arg(long, value_enum)]
+    pub target: Option<Target>,
     /// Map multipliers to DSP blocks (iCE40 SB_MAC16, ECP5 MULT18X18D).
     #[arg(long)]
     pub dsp: bool,
@@ -43,7 +45,8 @@ pub struct SynthArgs {
 
 pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
-    let r = synthesize(&design, args.target, args.dsp, &args.yosys, if args.no_pnr { 0 } else { args.seeds }, args.pnr_log.as_deref())?;
+    let target = crate::synth::target_for(&design, args.target)?;
+    let r = synthesize(&design, target, args.dsp, &args.yosys, if args.no_pnr { 0 } else { args.seeds }, args.pnr_log.as_deref())?;
     print!("{}", table(&r));
     if let Some(path) = &args.json {
         let mut text = serde_json::to_string_pretty(&r).expect("serialises");
@@ -51,7 +54,7 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         emit::write_file_atomically(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     if args.verify {
-        let v = crate::synth::verify(&design, args.target, args.dsp, &args.yosys, args.verify_vectors)?;
+        let v = crate::synth::verify(&design, target, args.dsp, &args.yosys, args.verify_vectors)?;
         for (sim, report) in &v.runs {
             println!(
                 "verify: mapped netlist with {} under {sim:?}: {} cycles, {} checked, {} mismatches",
