@@ -361,7 +361,6 @@ pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, Sta
     }))
 }
 
-
 /// yosys's data directory (cell models): `<bin>/../share/yosys` beside the binary, as yosys
 /// itself finds it, else `yosys-config --datdir`.
 fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {

@@ -17,7 +17,8 @@ fn cosim(dir: &Path, args: &[&str]) -> Output {
 
 /// Every `*.v` of a generated directory, simulation models last.
 fn verilog_files(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().to_string()).filter(|n| n.ends_with(".v")).collect();
+    let mut v: Vec<String> =
+        std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().to_string()).filter(|n| n.ends_with(".v")).collect();
     v.sort_by_key(|n| (n.ends_with("_sim.v"), n.clone()));
     v
 }
@@ -102,7 +103,13 @@ fn ecp5_unit_keeps_its_registers_in_the_blocks_and_reaches_200_mhz() {
     let dir = generate(tmp.path(), "ecp5", &["--target", "ecp5", "--stages", &stages]);
     let json = tmp.path().join("synth.json");
     // no --target: the one the RTL was generated for
-    let o = specgen().args(["synth", "--dsp", "--seeds", "1", "--verify", "--verify-vectors", "3000", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    let o = specgen()
+        .args(["synth", "--dsp", "--seeds", "1", "--verify", "--verify-vectors", "3000", "--rtl"])
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", text(&o));
     assert_eq!(text(&o).matches(", 0 mismatches").count(), 2, "Verilator and Icarus on the netlist\n{}", text(&o));
     let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();

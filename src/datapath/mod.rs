@@ -327,7 +327,12 @@ impl Builder {
     pub fn product(&mut self, name: &str, a: &[Piece], b: &[Piece], width: u32, comment: &str) {
         let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
         let k = self.steps.len();
-        let on_dsp = self.target == Target::Ecp5 && wa.max(wb) <= ECP5_DSP_BITS && k >= 2 && self.is_registered(k - 1) && self.is_registered(k) && width <= 2 * ECP5_DSP_BITS;
+        let on_dsp = self.target == Target::Ecp5
+            && wa.max(wb) <= ECP5_DSP_BITS
+            && k >= 2
+            && self.is_registered(k - 1)
+            && self.is_registered(k)
+            && width <= 2 * ECP5_DSP_BITS;
         self.delay(mul_delay(wa, wb));
         if !on_dsp {
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
@@ -501,6 +506,17 @@ impl Builder {
         assert!(self.signals.iter().all(|s| s.name != signal), "datapath: {signal} defined twice");
         self.signals.push(Signal { name: signal.into(), width, step: k, uses: Vec::new(), dsp_registered: true });
         self.reads.push(RomRead { step: k, signal: signal.into(), table: t, addr: a, block: true });
+    }
+
+    /// `name = (a + b + cin) mod 2^width` as one carry chain in this step, whatever its width
+    /// (the ECP5's CCU2C chains are fast; the iCE40 shape uses [`Builder::add_start`]).
+    pub fn add(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> String {
+        self.delay(add_delay(width.min(self.chunk_bits())));
+        let ea = self.pieces(&sub_pieces(a, 0, width));
+        let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
+        let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
+        self.wire(name, width, format!("{ea}{eb}{plus}"), comment);
+        name.to_string()
     }
 
     /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added

@@ -259,8 +259,7 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     let t = b.table(crate::rom::cos_sp_rom(cfg));
     b.rom_read_registered("cos_sp", t, "n");
     b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
-    let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
-    b.add_finish(d);
+    b.add("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
     let kc = Piece::Const { value: cfg.k_code as u128, width: bit_length(cfg.k_code as u128) };
     b.product(
         "kn",
@@ -272,7 +271,7 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("comparator (12)");
     // cos < cos_sp  <=>  cos_sp + ~cos (over F+1 bits) carries out: an add of two registers
-    let cmp = b.add_start(
+    b.add(
         "cutoff_sum",
         &[Piece::sig("cos_sp", 0, cb)],
         &[Piece::sig("cos_complement", 0, f), Piece::Const { value: 1, width: 1 }],
@@ -280,7 +279,6 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         cb + 1,
         &format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
     );
-    b.add_finish(cmp);
 
     // 1 - deviation without a subtractor, as in `lean`: ~(P + K') = K - P (mod 2^m)
     let k_big = (1u128 << (wb + s)) + (1u128 << s) - 1;
@@ -301,7 +299,7 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             &format!("kn[{}:{dsp}] * (1 - cos), mod 2^{hi_w}", w.kn_bits - 1),
         );
         b.step("deviation: the high product plus K' (adder)");
-        let add = b.add_start(
+        b.add(
             "deviation_hi_sum",
             &[Piece::sig("deviation_hi", 0, hi_w)],
             &[Piece::Const { value: k_prime >> dsp, width: hi_w }],
@@ -309,10 +307,9 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             hi_w,
             &format!("kn[{}:{dsp}] * (1 - cos) + K'[{}:{dsp}], mod 2^{hi_w}", w.kn_bits - 1, m - 1),
         );
-        b.add_finish(add);
         b.step("deviation P plus K' (adder)");
         let lo_w = m.min(dsp + cb);
-        let add = b.add_start(
+        b.add(
             "deviation_sum",
             &[Piece::sig("deviation_lo", 0, lo_w)],
             &[Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_hi_sum", 0, hi_w)],
@@ -320,11 +317,10 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             m,
             &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f),
         );
-        b.add_finish(add);
     } else {
         b.product("deviation", &[Piece::sig("kn", 0, w.kn_bits)], &one_minus_cos, m, &format!("P = k_q*n*(1 - cos) mod 2^{m}, UQ.{} exact", cfg.kf() + f));
         b.step("deviation P plus K' (adder)");
-        let add = b.add_start(
+        b.add(
             "deviation_sum",
             &[Piece::sig("deviation", 0, m)],
             &[Piece::Const { value: k_prime, width: m }],
@@ -332,7 +328,6 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             m,
             &format!("P + K' mod 2^{m}; its complement is K - P (no subtractor)"),
         );
-        b.add_finish(add);
     }
 
     b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
@@ -362,7 +357,7 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     );
     if ws > fi {
         // round half up: (S[WS:WS-FI-1] + 1) >> 1 = floor(S*2^FI + 1/2)
-        let add = b.add_start(
+        let add = b.add(
             "intensity_sum",
             &[Piece::sig("square", ws - fi - 1, fi + 2)],
             &[],
@@ -370,8 +365,7 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             fi + 2,
             &format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
         );
-        let sum = b.add_finish(add);
-        let e = b.bits(&sum, fi + 1, 1);
+        let e = b.bits(&add, fi + 1, 1);
         b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
     } else {
         let sqr = b.r("square");
@@ -393,7 +387,7 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("colour rounding (adders)");
     for ch in CHANNELS {
-        let add = b.add_start(
+        let add = b.add(
             &format!("color_sum_{ch}"),
             &[Piece::sig(&format!("color_prod_{ch}"), 0, cpb)],
             &[Piece::Const { value: 1u128 << (wsc - 1), width: wsc }],
@@ -401,8 +395,7 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             cpb,
             &format!("UQ{bb}.{wsc}: S * ks_{ch} + 1/2 colour ulp (round half up)"),
         );
-        let sum = b.add_finish(add);
-        let e = b.bits(&sum, cpb - 1, wsc);
+        let e = b.bits(&add, cpb - 1, wsc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
     }
 }
