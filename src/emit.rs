@@ -343,8 +343,8 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                 cut,
             })
             .collect(),
-        dsp_module: dp.steps.iter().any(|s| !s.dsps.is_empty()),
-        bram_module: dp.reads.iter().any(|r| r.block),
+        dsp_module: dp.has_dsp_blocks(),
+        bram_module: dp.has_block_rams(),
     }
 }
 
@@ -535,12 +535,12 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
     // the ECP5 primitives' wrappers (RTL) and their simulation models (never synthesized)
     let (mut rtl_files, mut sim_models) = (Vec::new(), Vec::new());
-    if dp.steps.iter().any(|s| !s.dsps.is_empty()) {
+    if dp.has_dsp_blocks() {
         let text = Mult18Template { top, version: VERSION }.render().expect("mult18x18 template renders") + "\n";
         rtl_files.push((format!("{top}_mult18x18.v"), text));
         sim_models.push((ECP5_SIM_MODEL_FILE.to_string(), ecp5_sim_model()));
     }
-    if dp.reads.iter().any(|r| r.block) {
+    if dp.has_block_rams() {
         let text = Rom1k18Template { top, version: VERSION }.render().expect("rom1k18 template renders") + "\n";
         rtl_files.push((format!("{top}_rom1k18.v"), text));
         sim_models.push((ECP5_BRAM_MODEL_FILE.to_string(), ecp5_bram_model()));

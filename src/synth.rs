@@ -165,7 +165,7 @@ fn read_sources(design: &Design) -> String {
 /// MULT18X18D and DP16KD instances) cannot be synthesized for another: a usage error.
 pub fn target_for(design: &Design, asked: Option<Target>) -> Result<Target, Failure> {
     let generated = design.cfg.target();
-    let primitives = !design.plan.datapath.steps.iter().all(|s| s.dsps.is_empty()) || design.plan.datapath.reads.iter().any(|r| r.block);
+    let primitives = design.plan.datapath.has_dsp_blocks() || design.plan.datapath.has_block_rams();
     match asked {
         Some(t) if primitives && t != generated => Err(usage(format!(
             "invalid --target {}: the RTL in {} was generated with --target {} and instantiates its primitives (MULT18X18D, DP16KD); allowed: --target {}, or generate again",

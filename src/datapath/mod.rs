@@ -133,6 +133,16 @@ impl Datapath {
     pub fn delays(&self) -> Vec<f64> {
         self.steps.iter().map(|s| s.delay).collect()
     }
+
+    /// Whether some product is an ECP5 MULT18X18D with its registers (`<top>_mult18x18`).
+    pub fn has_dsp_blocks(&self) -> bool {
+        self.steps.iter().any(|s| !s.dsps.is_empty())
+    }
+
+    /// Whether some table read is an ECP5 DP16KD with its registers (`<top>_rom1k18`).
+    pub fn has_block_rams(&self) -> bool {
+        self.reads.iter().any(|r| r.block)
+    }
 }
 
 #[derive(Debug, Clone)]
@@ -318,6 +328,35 @@ impl Builder {
         self.registered.contains(&(cut as u32))
     }
 
+    /// Whether the current step can be one ECP5 block (DSP or block RAM) with its registers:
+    /// the cuts on both sides registered, the one before being a cut (not the input ports).
+    fn block_registers_here(&self) -> bool {
+        let k = self.steps.len();
+        self.target == Target::Ecp5 && k >= 2 && self.is_registered(k - 1) && self.is_registered(k)
+    }
+
+    /// Runs `f` with references taken as the step before sees them, where a block's input
+    /// registers take its inputs; each of `inputs` must be visible there (defined before it,
+    /// and not another block's output registered at its end).
+    fn seen_from_step_before<T>(&mut self, inputs: &[&str], what: &str, f: impl FnOnce(&mut Self) -> T) -> T {
+        let k = self.steps.len();
+        for n in inputs {
+            let s = self.signal(n);
+            assert!(s.step < k && !(s.dsp_registered && s.step + 1 == k), "datapath: {n} is not visible in step {} for {what}", k - 1);
+        }
+        self.view = Some(k - 1);
+        let out = f(self);
+        self.view = None;
+        out
+    }
+
+    /// Records a new signal defined in `step` (`dsp_registered`: held by a block's output
+    /// register at the cut after it).
+    fn define(&mut self, name: &str, width: u32, step: usize, dsp_registered: bool) {
+        assert!(self.signals.iter().all(|s| s.name != name), "datapath: {name} defined twice");
+        self.signals.push(Signal { name: name.into(), width, step, uses: Vec::new(), dsp_registered });
+    }
+
     /// `name = a·b mod 2^width` (operands zero-extended; `width` at most their two widths
     /// summed keeps it exact). On ECP5, when both operands fit 18 bits and the cuts on both
     /// sides of this step are registered, one MULT18X18D with its own registers: its input
@@ -326,31 +365,19 @@ impl Builder {
     /// `name_cK` from there). Anywhere else, a `*` the synthesis tool maps.
     pub fn product(&mut self, name: &str, a: &[Piece], b: &[Piece], width: u32, comment: &str) {
         let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
-        let k = self.steps.len();
-        let on_dsp = self.target == Target::Ecp5
-            && wa.max(wb) <= ECP5_DSP_BITS
-            && k >= 2
-            && self.is_registered(k - 1)
-            && self.is_registered(k)
-            && width <= 2 * ECP5_DSP_BITS;
+        let on_dsp = self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
         self.delay(mul_delay(wa, wb));
         if !on_dsp {
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
             self.wire(name, width, format!("{ea} * {eb}"), comment);
             return;
         }
-        // the operands as the step before sees them: each must be visible there
-        for p in a.iter().chain(b) {
-            if let Piece::Sig { name: n, .. } = p {
-                let s = self.signal(n);
-                assert!(s.step < k && !(s.dsp_registered && s.step + 1 == k), "datapath: {n} is not visible in step {} for the DSP of {name}", k - 1);
-            }
-        }
-        self.view = Some(k - 1);
-        let (ea, eb) = (self.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)), self.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)));
-        self.view = None;
-        assert!(self.signals.iter().all(|s| s.name != name), "datapath: {name} defined twice");
-        self.signals.push(Signal { name: name.into(), width, step: k, uses: Vec::new(), dsp_registered: true });
+        let inputs: Vec<String> = a.iter().chain(b).filter_map(|p| if let Piece::Sig { name, .. } = p { Some(name.clone()) } else { None }).collect();
+        let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
+        let (ea, eb) = self.seen_from_step_before(&inputs, &format!("the DSP of {name}"), |s| {
+            (s.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)), s.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)))
+        });
+        self.define(name, width, self.steps.len(), true);
         self.steps.last_mut().expect("a step").dsps.push(Dsp { name: name.into(), width, a: ea, b: eb, comment: comment.into() });
     }
 
@@ -463,9 +490,8 @@ impl Builder {
 
     /// Defines a wire of the current step.
     pub fn wire(&mut self, name: &str, width: u32, expr: String, comment: &str) {
-        assert!(self.signals.iter().all(|s| s.name != name), "datapath: {name} defined twice");
         let cur = self.cur();
-        self.signals.push(Signal { name: name.into(), width, step: cur, uses: Vec::new(), dsp_registered: false });
+        self.define(name, width, cur, false);
         self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
     }
 
@@ -480,9 +506,7 @@ impl Builder {
     pub fn rom_read(&mut self, signal: &str, t: usize, addr: &str) {
         let a = self.r(addr);
         let cur = self.cur();
-        let width = self.tables[t].width;
-        assert!(self.signals.iter().all(|s| s.name != signal), "datapath: {signal} defined twice");
-        self.signals.push(Signal { name: signal.into(), width, step: cur, uses: Vec::new(), dsp_registered: false });
+        self.define(signal, self.tables[t].width, cur, false);
         self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a, block: false });
     }
 
@@ -492,19 +516,13 @@ impl Builder {
     /// is the cut after this step (the read's clock-to-out, 5.6 ns without it on LFE5U-25F
     /// grade 6, then never limits Fmax). Anywhere else, an asynchronous read in this step.
     pub fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
-        let k = self.steps.len();
         let fits = self.tables[t].words.len() <= DP16KD_WORDS && self.tables[t].width <= DP16KD_BITS;
-        if !(self.target == Target::Ecp5 && fits && k >= 2 && self.is_registered(k - 1) && self.is_registered(k)) {
+        if !(fits && self.block_registers_here()) {
             return self.rom_read(signal, t, addr);
         }
-        let s = self.signal(addr);
-        assert!(s.step < k && !(s.dsp_registered && s.step + 1 == k), "datapath: {addr} is not visible in step {} for the block read of {signal}", k - 1);
-        self.view = Some(k - 1);
-        let a = self.r(addr);
-        self.view = None;
-        let width = self.tables[t].width;
-        assert!(self.signals.iter().all(|s| s.name != signal), "datapath: {signal} defined twice");
-        self.signals.push(Signal { name: signal.into(), width, step: k, uses: Vec::new(), dsp_registered: true });
+        let a = self.seen_from_step_before(&[addr], &format!("the block read of {signal}"), |s| s.r(addr));
+        let k = self.steps.len();
+        self.define(signal, self.tables[t].width, k, true);
         self.reads.push(RomRead { step: k, signal: signal.into(), table: t, addr: a, block: true });
     }
 

@@ -14,11 +14,117 @@
 use super::*;
 use crate::widths::Widths;
 
-/// The cut-off ROM (10) read: `cos_sp`, addressed by n.
-fn rom_read(cfg: &Config, b: &mut Builder) {
+/// The cut-off ROM (10) read: `cos_sp`, addressed by n (`registered`: in block RAM with its
+/// registers where the family has them, see [`Builder::rom_read_registered`]).
+fn rom_read(cfg: &Config, b: &mut Builder, registered: bool) {
     let t = b.table(crate::rom::cos_sp_rom(cfg));
-    b.rom_read("cos_sp", t, "n");
+    if registered {
+        b.rom_read_registered("cos_sp", t, "n");
+    } else {
+        b.rom_read("cos_sp", t, "n");
+    }
     b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
+}
+
+/// `~cos`, clamped: one LUT level.
+fn cos_complement(cfg: &Config, b: &mut Builder) {
+    let f = cfg.f();
+    let g = b.bits("cos_g", f, f);
+    let x = b.bits("cos_g", f - 1, 0);
+    b.wire(
+        "cos_complement",
+        f + 1,
+        format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
+        &format!("UQ1.{f}: ~cos = 1 - 2^-{f} - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)"),
+    );
+    b.delay(LUT_DELAY);
+}
+
+/// The comparator's add (12): `cos < cos_sp` is the carry out of `cos_sp + ~cos` over F+1
+/// bits, an add of two registers. Returns (a, b, width, comment) for the family's adder.
+fn cutoff_add(cfg: &Config) -> ([Piece; 1], [Piece; 2], u32, String) {
+    let (f, cb) = (cfg.f(), cfg.f() + 1);
+    (
+        [Piece::sig("cos_sp", 0, cb)],
+        [Piece::sig("cos_complement", 0, f), Piece::Const { value: 1, width: 1 }],
+        cb + 1,
+        format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
+    )
+}
+
+/// `done` from the comparator's carry (never when cos >= 1.0).
+fn done(cfg: &Config, b: &mut Builder, sum: &str) {
+    let f = cfg.f();
+    let (gg, c) = (b.bits("cos_g", f, f), b.bits(sum, f + 1, f + 1));
+    b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+}
+
+/// 1 - deviation without an adder: with K = 2^(WB+s) + 2^s - 1 and K' = 2^m - 1 - K,
+/// ~(P + K') = K - P (mod 2^m), and (K - P)[m-1:s] = 2^WB - floor(P / 2^s) (mod 2^(WB+1)).
+/// Returns (m, K'): P is needed modulo 2^m only (m = WB+s+1); higher bits matter only beyond
+/// the cut-off, where the key block zeroes the bracket.
+fn deviation_offset(w: &Widths) -> (u32, u128) {
+    let (wb, s) = (w.bracket_frac_bits, w.deviation_shift);
+    let m = wb + s + 1;
+    let k_big = (1u128 << (wb + s)) + (1u128 << s) - 1;
+    (m, mask(m) - k_big)
+}
+
+/// The bracket step: `1 - deviation` (adder 9) as the complement of `P + K'`, truncation #1,
+/// zeroed by the key block (13).
+fn bracket(w: &Widths, b: &mut Builder) {
+    let (wb, s) = (w.bracket_frac_bits, w.deviation_shift);
+    let (m, _) = deviation_offset(w);
+    b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
+    let (dn, q) = (b.r("done"), b.bits("deviation_sum", m - 1, s));
+    b.wire(
+        "bracket",
+        wb + 1,
+        format!("{dn} ? {} : ~{q}", lit(wb + 1, 0)),
+        &format!("UQ1.{wb} in [0, 1]: 2^{wb} - floor(P/2^{s}) (truncation #1), zeroed beyond the cut-off (key block 13)"),
+    );
+    b.delay(LUT_DELAY);
+}
+
+/// Truncation #2 of the full square (`pieces`, LSB first) to `square`, and the colours' part of it.
+fn square_and_color_square(w: &Widths, b: &mut Builder, full: &[Piece]) {
+    let (ws, wsc) = (w.square_frac_bits, w.color_square_frac_bits);
+    let sq = b.pieces(&sub_pieces(full, w.square_shift, ws + 1));
+    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
+    let csq = b.bits("square", ws, ws - wsc);
+    b.wire(
+        "color_square",
+        wsc + 1,
+        csq,
+        &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
+    );
+}
+
+/// The intensity rounding's add, `S[WS:WS-FI-1] + 1` (its bits [FI+1:1] are S rounded half
+/// up), as (a, width, comment); `None` when S has no bits to drop, and then `intensity` is
+/// defined here as S itself.
+fn intensity_add(cfg: &Config, w: &Widths, b: &mut Builder) -> Option<([Piece; 1], u32, String)> {
+    let (ws, fi) = (w.square_frac_bits, cfg.fi());
+    if ws > fi {
+        // round half up: (S[WS:WS-FI-1] + 1) >> 1 = floor(S*2^FI + 1/2)
+        Some((
+            [Piece::sig("square", ws - fi - 1, fi + 2)],
+            fi + 2,
+            format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
+        ))
+    } else {
+        let sqr = b.r("square");
+        let e = if fi > ws { format!("{{{sqr}, {}}}", lit(fi - ws, 0)) } else { sqr };
+        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
+        None
+    }
+}
+
+/// `intensity` from the rounding add's sum.
+fn intensity_from(cfg: &Config, b: &mut Builder, sum: &str) {
+    let fi = cfg.fi();
+    let e = b.bits(sum, fi + 1, 1);
+    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
 }
 
 /// The lean datapath: short steps, every decomposition exact (see the module docs).
@@ -32,38 +138,21 @@ fn rom_read(cfg: &Config, b: &mut Builder) {
 /// - widths cut to the error budget (bracket UQ1.(max(FI,B)+2), colours fed UQ1.(B+1));
 /// - the colour rounding half is the colour DSPs' addend: no rounding adders.
 pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
-    let (f, cb, bb, fi) = (cfg.f(), w.cos_bits, cfg.b(), cfg.fi());
-    let (wb, ws, wsc, s) = (w.bracket_frac_bits, w.square_frac_bits, w.color_square_frac_bits, w.deviation_shift);
-    // P is needed modulo 2^m only: dev = P[m-1:s] (m = KF+F+1); higher bits matter only
-    // beyond the cut-off, where the key block zeroes the bracket.
-    let m = wb + s + 1;
+    let (f, cb, bb) = (cfg.f(), w.cos_bits, cfg.b());
+    let (wb, wsc) = (w.bracket_frac_bits, w.color_square_frac_bits);
+    let (m, k_prime) = deviation_offset(w);
 
     b.step("cut-off ROM read (10); cos complemented and clamped");
-    rom_read(cfg, b);
-    let g = b.bits("cos_g", f, f);
-    let x = b.bits("cos_g", f - 1, 0);
-    b.wire(
-        "cos_complement",
-        cb,
-        format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
-        &format!("UQ1.{f}: ~cos = 1 - 2^-{f} - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)"),
-    );
-    b.delay(LUT_DELAY);
+    rom_read(cfg, b, false);
+    cos_complement(cfg, b);
 
     b.step("1 - cos (adder 6): chunk sums");
     let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
 
     b.step("1 - cos: carries; comparator (12): chunk sums");
     b.add_carries(&d);
-    // cos < cos_sp  <=>  cos_sp + ~cos (over F+1 bits) carries out: an add of two registers
-    let cmp = b.add_start(
-        "cutoff_sum",
-        &[Piece::sig("cos_sp", 0, cb)],
-        &[Piece::sig("cos_complement", 0, f), Piece::Const { value: 1, width: 1 }],
-        false,
-        cb + 1,
-        &format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
-    );
+    let (ca, cb2, cw, comment) = cutoff_add(cfg);
+    let cmp = b.add_start("cutoff_sum", &ca, &cb2, false, cw, &comment);
 
     b.step("1 - cos: select; comparator: carries; k_q*n (constant multiply)");
     b.add_finish(d);
@@ -77,14 +166,9 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     );
     b.delay(mul_delay(cfg.n_bits(), bit_length(cfg.k_code as u128)));
 
-    // 1 - deviation without an adder: with K = 2^(WB+s) + 2^s - 1 and K' = 2^m - 1 - K,
-    // ~(P + K') = K - P (mod 2^m), and (K - P)[m-1:s] = 2^WB - floor(P / 2^s) (mod 2^(WB+1)).
-    let k_big = (1u128 << (wb + s)) + (1u128 << s) - 1;
-    let k_prime = mask(m) - k_big;
     b.step("comparator: select; deviation, high partial product (multiply-add)");
     let sum = b.add_finish(cmp);
-    let (gg, c) = (b.bits("cos_g", f, f), b.bits(&sum, cb, cb));
-    b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+    done(cfg, b, &sum);
     // kn = kn_hi*2^16 + kn_lo: two products with <= 16-bit operands instead of one that
     // would take 3 DSP blocks; the hi product is needed only modulo 2^(m-16)
     let dsp = b.dsp_bits();
@@ -113,15 +197,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.wire("deviation_sum", m, expr, &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f));
     b.delay(mul_delay(dsp.min(w.kn_bits), cb));
 
-    b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
-    let (dn, q) = (b.r("done"), b.bits("deviation_sum", m - 1, s));
-    b.wire(
-        "bracket",
-        wb + 1,
-        format!("{dn} ? {} : ~{q}", lit(wb + 1, 0)),
-        &format!("UQ1.{wb} in [0, 1]: 2^{wb} - floor(P/2^{s}) (truncation #1), zeroed beyond the cut-off (key block 13)"),
-    );
-    b.delay(LUT_DELAY);
+    bracket(w, b);
 
     let r = w.squarer_split;
     let full_bits = w.full_square_bits();
@@ -170,15 +246,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     };
 
     b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add); intensity rounding: chunk sums");
-    let sq = b.pieces(&sub_pieces(&full, w.square_shift, ws + 1));
-    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
-    let csq = b.bits("square", ws, ws - wsc);
-    b.wire(
-        "color_square",
-        wsc + 1,
-        csq,
-        &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
-    );
+    square_and_color_square(w, b, &full);
     let cpb = w.color_product_bits;
     for ch in CHANNELS {
         let (cs, ks) = (b.zext("color_square", cpb), b.zext(&format!("ks_{ch}"), cpb));
@@ -190,22 +258,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         );
     }
     b.delay(mul_delay(wsc + 1, bb));
-    let intensity_add = if ws > fi {
-        // round half up: (S[WS:WS-FI-1] + 1) >> 1 = floor(S*2^FI + 1/2)
-        Some(b.add_start(
-            "intensity_sum",
-            &[Piece::sig("square", ws - fi - 1, fi + 2)],
-            &[],
-            true,
-            fi + 2,
-            &format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
-        ))
-    } else {
-        let sqr = b.r("square");
-        let e = if fi > ws { format!("{{{sqr}, {}}}", lit(fi - ws, 0)) } else { sqr };
-        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
-        None
-    };
+    let intensity_add = intensity_add(cfg, w, b).map(|(a, width, comment)| b.add_start("intensity_sum", &a, &[], true, width, &comment));
 
     b.step("colour results; intensity rounding: carries");
     for ch in CHANNELS {
@@ -219,8 +272,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
             b.step("intensity rounding: select");
         }
         let sum = b.add_finish(p);
-        let e = b.bits(&sum, fi + 1, 1);
-        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+        intensity_from(cfg, b, &sum);
     }
 }
 
@@ -238,27 +290,16 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
 /// - the bracket (≤ 18 bits) is squared on one DSP: no hi/lo split;
 /// - the colours' rounding half is a fabric add after their products.
 pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
-    let (f, cb, bb, fi) = (cfg.f(), w.cos_bits, cfg.b(), cfg.fi());
-    let (wb, ws, wsc, s) = (w.bracket_frac_bits, w.square_frac_bits, w.color_square_frac_bits, w.deviation_shift);
+    let (f, cb, bb) = (cfg.f(), w.cos_bits, cfg.b());
+    let (wb, wsc) = (w.bracket_frac_bits, w.color_square_frac_bits);
     let dsp = ECP5_DSP_BITS;
-    // P is needed modulo 2^m only, as in `lean`
-    let m = wb + s + 1;
+    let (m, k_prime) = deviation_offset(w);
 
     b.step("cos complemented and clamped");
-    let g = b.bits("cos_g", f, f);
-    let x = b.bits("cos_g", f - 1, 0);
-    b.wire(
-        "cos_complement",
-        cb,
-        format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
-        &format!("UQ1.{f}: ~cos = 1 - 2^-{f} - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)"),
-    );
-    b.delay(LUT_DELAY);
+    cos_complement(cfg, b);
 
     b.step("cut-off ROM read (10, a block RAM); 1 - cos (adder 6); k_q*n (a product)");
-    let t = b.table(crate::rom::cos_sp_rom(cfg));
-    b.rom_read_registered("cos_sp", t, "n");
-    b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
+    rom_read(cfg, b, true);
     b.add("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
     let kc = Piece::Const { value: cfg.k_code as u128, width: bit_length(cfg.k_code as u128) };
     b.product(
@@ -270,23 +311,13 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     );
 
     b.step("comparator (12)");
-    // cos < cos_sp  <=>  cos_sp + ~cos (over F+1 bits) carries out: an add of two registers
-    b.add(
-        "cutoff_sum",
-        &[Piece::sig("cos_sp", 0, cb)],
-        &[Piece::sig("cos_complement", 0, f), Piece::Const { value: 1, width: 1 }],
-        false,
-        cb + 1,
-        &format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
-    );
+    let (ca, cb2, cw, comment) = cutoff_add(cfg);
+    let cmp = b.add("cutoff_sum", &ca, &cb2, false, cw, &comment);
 
     // 1 - deviation without a subtractor, as in `lean`: ~(P + K') = K - P (mod 2^m)
-    let k_big = (1u128 << (wb + s)) + (1u128 << s) - 1;
-    let k_prime = mask(m) - k_big;
     let split = w.kn_bits > dsp && m > dsp;
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7, products); comparator result");
-    let (gg, c) = (b.bits("cos_g", f, f), b.bits("cutoff_sum", cb, cb));
-    b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+    done(cfg, b, &cmp);
     let one_minus_cos = [Piece::sig("one_minus_cos", 0, cb)];
     if split {
         let hi_w = m - dsp;
@@ -330,47 +361,18 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         );
     }
 
-    b.step("bracket = 1 - deviation (adder 9), truncation #1, key block (13)");
-    let (dn, q) = (b.r("done"), b.bits("deviation_sum", m - 1, s));
-    b.wire(
-        "bracket",
-        wb + 1,
-        format!("{dn} ? {} : ~{q}", lit(wb + 1, 0)),
-        &format!("UQ1.{wb} in [0, 1]: 2^{wb} - floor(P/2^{s}) (truncation #1), zeroed beyond the cut-off (key block 13)"),
-    );
-    b.delay(LUT_DELAY);
+    bracket(w, b);
 
     let full_bits = w.full_square_bits();
     b.step("square (squarer 11, a product)");
-    let bracket = [Piece::sig("bracket", 0, wb + 1)];
-    b.product("square_full", &bracket, &bracket, full_bits, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+    let bracket_bits = [Piece::sig("bracket", 0, wb + 1)];
+    b.product("square_full", &bracket_bits, &bracket_bits, full_bits, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
 
     b.step("truncation #2; intensity rounding (adder)");
-    let sq = b.bits("square_full", w.square_shift + ws, w.square_shift);
-    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
-    let csq = b.bits("square", ws, ws - wsc);
-    b.wire(
-        "color_square",
-        wsc + 1,
-        csq,
-        &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
-    );
-    if ws > fi {
-        // round half up: (S[WS:WS-FI-1] + 1) >> 1 = floor(S*2^FI + 1/2)
-        let add = b.add(
-            "intensity_sum",
-            &[Piece::sig("square", ws - fi - 1, fi + 2)],
-            &[],
-            true,
-            fi + 2,
-            &format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
-        );
-        let e = b.bits(&add, fi + 1, 1);
-        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
-    } else {
-        let sqr = b.r("square");
-        let e = if fi > ws { format!("{{{sqr}, {}}}", lit(fi - ws, 0)) } else { sqr };
-        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
+    square_and_color_square(w, b, &[Piece::sig("square_full", 0, full_bits)]);
+    if let Some((a, width, comment)) = intensity_add(cfg, w, b) {
+        let sum = b.add("intensity_sum", &a, &[], true, width, &comment);
+        intensity_from(cfg, b, &sum);
     }
 
     b.step("colour multipliers (14-16, products)");
@@ -409,7 +411,7 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let one = lit(cb, 1u128 << f);
 
     b.step("clamp, 1 - cos (adder 6), cut-off ROM (10), comparator (12)");
-    rom_read(cfg, b);
+    rom_read(cfg, b, false);
     let g = b.r("cos_g");
     b.wire("cos_clamped", cb, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}, <= 1.0"));
     let c = b.r("cos_clamped");
