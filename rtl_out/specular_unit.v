@@ -69,18 +69,18 @@ wire [6:0] one_minus_cos_part1_plus1_s2 = {1'b0, cos_complement_s1[10:6], 1'b1} 
 wire [4:0] one_minus_cos_part2_s2 = cos_complement_s1[15:11];   // bits [15:11], carry-in 0
 wire [5:0] one_minus_cos_part2_plus1_s2 = {cos_complement_s1[15:11], 1'b1} + 6'h1;   // bits [15:11] above bit 0, carry-in 1 (carry-select)
 
-// ==== step 3: 1 - cos: carries; comparator (12): chunk sums ====
+// ==== step 3: 1 - cos: carries and select; comparator (12): chunk sums ====
 wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[6] : one_minus_cos_part1_s2[5];   // carry into bit 11
+wire [4:0] one_minus_cos_chunk1_s3 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] : one_minus_cos_part1_s2[4:0];   // bits [10:6]: the sum with the carry into bit 6
+wire [4:0] one_minus_cos_chunk2_s3 = one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] : one_minus_cos_part2_s2;   // bits [15:11]: the sum with the carry into bit 11
+wire [15:0] one_minus_cos_s3 = {one_minus_cos_chunk2_s3, one_minus_cos_chunk1_s3, one_minus_cos_part0_s2[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
 wire [6:0] cutoff_sum_part0_s3 = {1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};   // bits [5:0] and their carry, carry-in 0
 wire [6:0] cutoff_sum_part1_s3 = {1'b0, cos_sp_s1[11:6]} + {1'b0, cos_complement_s1[11:6]};   // bits [11:6] and their carry, carry-in 0
 wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b0, cos_sp_s1[11:6], 1'b1} + {1'b0, cos_complement_s1[11:6], 1'b1};   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
 wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_s1[15:12]} + {1'h0, 1'h1, cos_complement_s1[14:12]};   // bits [16:12], carry-in 0
 wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_s1[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_s1[14:12]}, 1'b1};   // bits [16:12] above bit 0, carry-in 1 (carry-select)
 
-// ==== step 4: 1 - cos: select; comparator: carries; k_q*n (constant multiply) ====
-wire [4:0] one_minus_cos_chunk1_s4 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] : one_minus_cos_part1_s2[4:0];   // bits [10:6]: the sum with the carry into bit 6
-wire [4:0] one_minus_cos_chunk2_s4 = one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] : one_minus_cos_part2_s2;   // bits [15:11]: the sum with the carry into bit 11
-wire [15:0] one_minus_cos_s4 = {one_minus_cos_chunk2_s4, one_minus_cos_chunk1_s4, one_minus_cos_part0_s2[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
+// ==== step 4: comparator: carries; k_q*n (constant multiply) ====
 wire        cutoff_sum_carry2_s4 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[7] : cutoff_sum_part1_s3[6];   // carry into bit 12
 wire [24:0] kn_s4 = {15'h0, n} * 25'h5e5d;   // UQ9.16: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34
 
@@ -89,10 +89,10 @@ wire [5:0] cutoff_sum_chunk1_s5 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus
 wire [4:0] cutoff_sum_chunk2_s5 = cutoff_sum_carry2_s4 ? cutoff_sum_part2_plus1_s3[5:1] : cutoff_sum_part2_s3;   // bits [16:12]: the sum with the carry into bit 12
 wire [16:0] cutoff_sum_s5 = {cutoff_sum_chunk2_s5, cutoff_sum_chunk1_s5, cutoff_sum_part0_s3[5:0]};   // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
 wire        done_s5 = ~cos_g[15] & cutoff_sum_s5[16];   // comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)
-wire [15:0] deviation_hi_s5 = {7'h0, kn_s4[24:16]} * one_minus_cos_s4 + 16'h7fff;   // kn[24:16] * (1 - cos) + K'[31:16], mod 2^16 (one DSP, the add inside it)
+wire [15:0] deviation_hi_s5 = {7'h0, kn_s4[24:16]} * one_minus_cos_s3 + 16'h7fff;   // kn[24:16] * (1 - cos) + K'[31:16], mod 2^16 (one DSP, the add inside it)
 
 // ==== step 6: deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add) ====
-wire [31:0] deviation_sum_s6 = {16'h0, kn_s4[15:0]} * {16'h0, one_minus_cos_s4} + {deviation_hi_s5, 16'hc000};   // P + K' mod 2^32, P = k_q*n*(1 - cos) UQ.31 exact; its complement is K - P (no subtractor)
+wire [31:0] deviation_sum_s6 = {16'h0, kn_s4[15:0]} * {16'h0, one_minus_cos_s3} + {deviation_hi_s5, 16'hc000};   // P + K' mod 2^32, P = k_q*n*(1 - cos) UQ.31 exact; its complement is K - P (no subtractor)
 
 // ==== step 7: bracket = 1 - deviation (adder 9), truncation #1, key block (13) ====
 wire [17:0] bracket_s7 = done_s5 ? 18'h0 : ~deviation_sum_s6[31:14];   // UQ1.17 in [0, 1]: 2^17 - floor(P/2^14) (truncation #1), zeroed beyond the cut-off (key block 13)
@@ -106,39 +106,38 @@ wire [17:0] square_t_s9 = {2'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[1:0]} + 
 // ==== step 10: square: Z = hi^2 + T/2^(r-1) (multiply-add) ====
 wire [31:0] square_z_s10 = {16'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[17:2]} + {15'h0, square_t_s9[17:1]};   // floor(bracket^2 / 2^4), exact: a 16x16 multiply-add (one DSP) instead of 18x18
 
-// ==== step 11: truncation #2; colour multipliers (14-16) with the rounding half (multiply-add); intensity rounding: chunk sums ====
+// ==== step 11: truncation #2; colour multipliers (14-16) with the rounding half (multiply-add) ====
 wire [16:0] square_s11 = square_z_s10[30:14];   // UQ1.16: S = bracket^2 floored to 2^-16 (truncation #2)
 wire [9:0] color_square_s11 = square_s11[16:7];   // UQ1.9: all the colours' budget needs (saves 7 bits per colour multiplier)
 wire [16:0] color_sum_r_s11 = {7'h0, color_square_s11} * {9'h0, ks_r} + 17'h100;   // UQ8.9: S * ks_r + 1/2 colour ulp (round half up; the add inside the DSP)
 wire [16:0] color_sum_g_s11 = {7'h0, color_square_s11} * {9'h0, ks_g} + 17'h100;   // UQ8.9: S * ks_g + 1/2 colour ulp (round half up; the add inside the DSP)
 wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b} + 17'h100;   // UQ8.9: S * ks_b + 1/2 colour ulp (round half up; the add inside the DSP)
-wire [7:0] intensity_sum_part0_s11 = {1'b0, square_s11[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
-wire [6:0] intensity_sum_part1_s11 = {1'b0, square_s11[11:6]};   // bits [11:6] and their carry, carry-in 0
-wire [7:0] intensity_sum_part1_plus1_s11 = {1'b0, square_s11[11:6], 1'b1} + 8'h1;   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
-wire [4:0] intensity_sum_part2_s11 = square_s11[16:12];   // bits [16:12], carry-in 0
-wire [5:0] intensity_sum_part2_plus1_s11 = {square_s11[16:12], 1'b1} + 6'h1;   // bits [16:12] above bit 0, carry-in 1 (carry-select)
 
-// ==== step 12: colour results; intensity rounding: carries ====
+// ==== step 12: colour results; intensity rounding: chunk sums ====
 wire [7:0] spec_r_s12 = color_sum_r_s11[16:9];   // UNORM8: S * ks_r rounded half up
 wire [7:0] spec_g_s12 = color_sum_g_s11[16:9];   // UNORM8: S * ks_g rounded half up
 wire [7:0] spec_b_s12 = color_sum_b_s11[16:9];   // UNORM8: S * ks_b rounded half up
-wire        intensity_sum_carry2_s12 = intensity_sum_part0_s11[7] ? intensity_sum_part1_plus1_s11[7] : intensity_sum_part1_s11[6];   // carry into bit 12
+wire [7:0] intensity_sum_part0_s12 = {1'b0, square_s11[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
+wire [6:0] intensity_sum_part1_s12 = {1'b0, square_s11[11:6]};   // bits [11:6] and their carry, carry-in 0
+wire [7:0] intensity_sum_part1_plus1_s12 = {1'b0, square_s11[11:6], 1'b1} + 8'h1;   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [4:0] intensity_sum_part2_s12 = square_s11[16:12];   // bits [16:12], carry-in 0
+wire [5:0] intensity_sum_part2_plus1_s12 = {square_s11[16:12], 1'b1} + 6'h1;   // bits [16:12] above bit 0, carry-in 1 (carry-select)
 
-// ==== step 13: intensity rounding: select ====
-wire [5:0] intensity_sum_chunk1_s13 = intensity_sum_part0_s11[7] ? intensity_sum_part1_plus1_s11[6:1] : intensity_sum_part1_s11[5:0];   // bits [11:6]: the sum with the carry into bit 6
-wire [4:0] intensity_sum_chunk2_s13 = intensity_sum_carry2_s12 ? intensity_sum_part2_plus1_s11[5:1] : intensity_sum_part2_s11;   // bits [16:12]: the sum with the carry into bit 12
-wire [16:0] intensity_sum_s13 = {intensity_sum_chunk2_s13, intensity_sum_chunk1_s13, intensity_sum_part0_s11[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
+// ==== step 13: intensity rounding: carries and select ====
+wire        intensity_sum_carry2_s13 = intensity_sum_part0_s12[7] ? intensity_sum_part1_plus1_s12[7] : intensity_sum_part1_s12[6];   // carry into bit 12
+wire [5:0] intensity_sum_chunk1_s13 = intensity_sum_part0_s12[7] ? intensity_sum_part1_plus1_s12[6:1] : intensity_sum_part1_s12[5:0];   // bits [11:6]: the sum with the carry into bit 6
+wire [4:0] intensity_sum_chunk2_s13 = intensity_sum_carry2_s13 ? intensity_sum_part2_plus1_s12[5:1] : intensity_sum_part2_s12;   // bits [16:12]: the sum with the carry into bit 12
+wire [16:0] intensity_sum_s13 = {intensity_sum_chunk2_s13, intensity_sum_chunk1_s13, intensity_sum_part0_s12[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
 wire [15:0] intensity_s13 = intensity_sum_s13[16:1];   // UQ1.15: S rounded half up
 
 // bits no step reads (one sink, so lint stays silent)
 wire        unused_bits = ^{
-    cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_s2[5],
-    one_minus_cos_part1_plus1_s2[6], one_minus_cos_part1_plus1_s2[0], one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6],
-    cutoff_sum_part1_plus1_s3[7], cutoff_sum_part1_plus1_s3[0], cutoff_sum_part2_plus1_s3[0], kn_s4[24:16],
-    cutoff_sum_s5[15:0], deviation_sum_s6[13:0], bracket_s7[1:0], square_ll_s8[2:0],
-    square_t_s9[0], square_z_s10[31], square_z_s10[13:0], color_sum_r_s11[8:0],
-    color_sum_g_s11[8:0], color_sum_b_s11[8:0], intensity_sum_part0_s11[0], intensity_sum_part1_s11[6],
-    intensity_sum_part1_plus1_s11[7], intensity_sum_part1_plus1_s11[0], intensity_sum_part2_plus1_s11[0], intensity_sum_s13[0]
+    cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_plus1_s2[0],
+    one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6], cutoff_sum_part1_plus1_s3[7], cutoff_sum_part1_plus1_s3[0],
+    cutoff_sum_part2_plus1_s3[0], kn_s4[24:16], cutoff_sum_s5[15:0], deviation_sum_s6[13:0],
+    bracket_s7[1:0], square_ll_s8[2:0], square_t_s9[0], square_z_s10[31],
+    square_z_s10[13:0], color_sum_r_s11[8:0], color_sum_g_s11[8:0], color_sum_b_s11[8:0],
+    intensity_sum_part0_s12[0], intensity_sum_part1_plus1_s12[0], intensity_sum_part2_plus1_s12[0], intensity_sum_s13[0]
 };
 
 assign out_valid = in_valid;

@@ -76,6 +76,10 @@ pub struct Widths {
     pub registered_cuts: Vec<u32>,
 }
 
+/// The most low bits split off the bracket for the squarer: `lo²` then comes from a table of
+/// 2^6 = 64 entries in LUTs, and `hi·lo` from one DSP (the bracket is at most UQ1.21 there).
+pub const MAX_SQUARER_SPLIT: u32 = 6;
+
 impl Widths {
     pub fn derive(cfg: &Config) -> Widths {
         Widths::derive_unpipelined(cfg).with_balanced_cuts(cfg)
@@ -101,7 +105,7 @@ impl Widths {
         // and squared as h²·2^2r + 2hl·2^r + l², the same exact value with one 16×16 product.
         // (ECP5 squares an 18-bit bracket in one MULT18X18D; generic leaves it to the tool.)
         let squarer_split = match (cfg.arch(), cfg.target()) {
-            (Arch::Lean, Target::Ice40) if wb + 1 > 16 && wb < 20 => wb + 1 - 16,
+            (Arch::Lean, Target::Ice40) if wb + 1 > 16 && wb + 1 - 16 <= MAX_SQUARER_SPLIT => wb + 1 - 16,
             _ => 0,
         };
         let n_max = (1u64 << cfg.n_bits()) - 1;

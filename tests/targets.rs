@@ -156,3 +156,79 @@ fn generic_target_has_whole_width_arithmetic_and_the_same_values() {
     let o = cosim(&dir, &["--vectors", "200000"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
 }
+
+/// Issue 12's wide configuration.
+const WIDE: &[&str] = &["--cos-frac-bits", "18", "--n-bits", "11", "--color-bits", "10", "--intensity-frac-bits", "18", "--k-frac-bits", "20"];
+
+/// The wide configuration fits the UP5K's 8 SB_MAC16 at its deepest pipeline and places
+/// there: `k_q` and `1 − cos` wider than a DSP's 16 bits are split, their narrow high parts
+/// multiplied by shift-adds, and the 21-bit bracket squared as `hi²` and `hi·lo`. The unit is
+/// the golden model's, pipelined and combinational, lint-clean.
+#[test]
+fn wide_config_fits_the_up5k_dsps_and_is_right() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    require_tool("verilator", "verilator");
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let stages = deepest(WIDE);
+    let dir = generate(tmp.path(), "wide", &[WIDE, &["--stages", &stages]].concat());
+    let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+    for split in ["n_k_hi", "deviation_top", "deviation_hi", "square_t", "square_z"] {
+        assert!(unit.contains(split), "the wide unit splits for the DSPs: {split}");
+    }
+    let json = tmp.path().join("synth.json");
+    let o = specgen().args(["synth", "--target", "ice40", "--dsp", "--seeds", "1", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let dsp = r["dsp_blocks"].as_u64().unwrap();
+    assert!((1..=8).contains(&dsp), "{dsp} SB_MAC16 (the UP5K has 8): {r}");
+    assert!(r["fmax_mhz"].as_f64().is_some(), "placed and routed on the UP5K: {r}");
+    let o = Command::new("verilator").current_dir(&dir).args(["--lint-only", "-Wall", "specular_unit.v"]).output().unwrap();
+    assert!(o.status.success() && o.stderr.is_empty(), "verilator -Wall:\n{}", text(&o));
+    let o = cosim(&dir, &["--vectors", "200000"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let comb = generate(tmp.path(), "wide0", WIDE);
+    let o = cosim(&comb, &["--vectors", "20000", "--simulator", "icarus"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+}
+
+/// Random iCE40 configurations where `1 − cos` (F ≥ 16), `k_q` (KF ≥ 16) or the bracket are
+/// wider than a DSP's operands, at random depths: every one equals the golden model under
+/// Icarus (a few thousand vectors each, corner cases first).
+#[test]
+fn dsp_splits_are_right_over_random_wide_configs() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let mut r = 0x5eed_u64;
+    let mut draw = |lo: u64, hi: u64| {
+        r = specgen::cosim::splitmix(r);
+        (lo + r % (hi - lo + 1)).to_string()
+    };
+    for i in 0..8 {
+        let k = format!("0.{}", draw(100, 999));
+        let args: Vec<String> = [
+            "--cos-frac-bits",
+            &draw(14, 20),
+            "--n-bits",
+            &draw(1, 12),
+            "--color-bits",
+            &draw(1, 16),
+            "--intensity-frac-bits",
+            &draw(8, 24),
+            "--k-frac-bits",
+            &draw(14, 24),
+            "--k",
+            &k,
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let depth: u64 = deepest(&args).parse().unwrap();
+        let stages = draw(0, depth);
+        let dir = generate(tmp.path(), &format!("w{i}"), &[&args[..], &["--stages", &stages]].concat());
+        let o = cosim(&dir, &["--vectors", "3000", "--simulator", "icarus", "--seed", &i.to_string()]);
+        assert_eq!(o.status.code(), Some(0), "{args:?} --stages {stages}: {}", text(&o));
+    }
+}

@@ -9,7 +9,12 @@
 //! or mux in front of an iCE40 carry chain costs a LUT level and a route). Wide adds go into
 //! the DSPs' post-adders where the products are; the three left in the fabric are
 //! carry-select: chunks added with carry-in 0 and 1 in one step, the carries rippled in the
-//! next, each chunk's sum picked in the third. `paper` keeps the six coarse steps of Fig. 5.
+//! next, each chunk's sum picked in the third. A register, not a LUT, drives every DSP input,
+//! and no carry chain starts at a DSP output: the routes into and out of the iCE40's DSP
+//! columns take 4–6 ns by themselves. Where `k_q` or `1 − cos` is wider than a DSP's 16 bits,
+//! its high bits (a few) multiply by shift-adds in the fabric and the DSPs take the low 16:
+//! the wide configuration keeps to the UP5K's 8 SB_MAC16. `paper` keeps the six coarse steps
+//! of Fig. 5.
 
 use super::*;
 use crate::widths::Widths;
@@ -50,6 +55,21 @@ fn cutoff_add(cfg: &Config) -> ([Piece; 1], [Piece; 2], u32, String) {
         cb + 1,
         format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
     )
+}
+
+/// `sig * c` (`c` a constant) as a sum of `sig` shifted to each set bit of `c`, mod 2^width:
+/// fabric adds, for a product too narrow to spend a DSP block on.
+fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -> String {
+    let mut terms: Vec<String> = Vec::new();
+    for j in (0..128).filter(|j| c >> j & 1 == 1 && *j < width) {
+        let pieces = if j == 0 { vec![Piece::sig(sig, 0, sig_width)] } else { vec![Piece::zeros(j), Piece::sig(sig, 0, sig_width)] };
+        terms.push(b.pieces(&sub_pieces(&pieces, 0, width)));
+    }
+    if terms.is_empty() {
+        lit(width, 0)
+    } else {
+        terms.join(" + ")
+    }
 }
 
 /// `done` from the comparator's carry (never when cos >= 1.0).
@@ -149,53 +169,102 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("1 - cos (adder 6): chunk sums");
     let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
 
-    b.step("1 - cos: carries; comparator (12): chunk sums");
+    // 1 - cos is resolved a step before the DSP that reads it: its cut register there is the
+    // DSP's input register, and a register, not a LUT, drives the long route into the DSP column
+    b.step("1 - cos: carries and select; comparator (12): chunk sums");
     b.add_carries(&d);
+    b.add_finish(d);
     let (ca, cb2, cw, comment) = cutoff_add(cfg);
     let cmp = b.add_start("cutoff_sum", &ca, &cb2, false, cw, &comment);
+    // a k_q wider than the DSP's operands: k_q = k_hi*2^16 + k_lo, and n*k_hi (a few bits of
+    // k_hi) in shift-adds here, the DSP's addend in the next step: one DSP for k_q*n, not two
+    let dsp = b.dsp_bits();
+    let k_bits = bit_length(cfg.k_code as u128);
+    let k_split = k_bits > dsp;
+    if k_split {
+        let k_hi = cfg.k_code as u128 >> dsp;
+        let nkw = (w.kn_bits - dsp).max(1);
+        let e = shift_adds(b, "n", cfg.n_bits(), k_hi, nkw);
+        b.wire("n_k_hi", nkw, e, &format!("n * k_code[{}:{dsp}] = n * {k_hi} mod 2^{nkw}, by shift-adds", k_bits - 1));
+        b.delay(add_delay(nkw) + LUT_DELAY * (k_hi.count_ones().max(2) - 1).ilog2() as f64);
+    }
 
-    b.step("1 - cos: select; comparator: carries; k_q*n (constant multiply)");
-    b.add_finish(d);
+    b.step("comparator: carries; k_q*n (constant multiply)");
     b.add_carries(&cmp);
     let nn = b.operand("n", 0, cfg.n_bits(), w.kn_bits);
-    b.wire(
-        "kn",
-        w.kn_bits,
-        format!("{nn} * {}", lit(w.kn_bits, cfg.k_code as u128)),
-        &format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
-    );
-    b.delay(mul_delay(cfg.n_bits(), bit_length(cfg.k_code as u128)));
+    if k_split {
+        let hi = b.operand("n_k_hi", 0, w.kn_bits - dsp, w.kn_bits - dsp);
+        b.wire(
+            "kn",
+            w.kn_bits,
+            format!("{nn} * {} + {{{hi}, {}}}", lit(w.kn_bits, cfg.k_code as u128 & mask(dsp)), lit(dsp, 0)),
+            &format!("UQ{}.{}: k_q*n = n*k_lo + n*k_hi*2^{dsp}, exact (one DSP, the add inside it)", w.kn_bits - cfg.kf(), cfg.kf()),
+        );
+    } else {
+        b.wire(
+            "kn",
+            w.kn_bits,
+            format!("{nn} * {}", lit(w.kn_bits, cfg.k_code as u128)),
+            &format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
+        );
+    }
+    b.delay(mul_delay(cfg.n_bits(), k_bits.min(dsp)));
 
     b.step("comparator: select; deviation, high partial product (multiply-add)");
     let sum = b.add_finish(cmp);
     done(cfg, b, &sum);
+    // 1 - cos wider than the DSP's operands: d = d_hi*2^16 + d_lo, and kn*d_hi (a few bits of
+    // d_hi) in shift-adds with K'[m-1:16], the products then take d_lo alone: kn*d + K' =
+    // kn*d_lo + 2^16*(kn*d_hi + K'_hi) + K'_lo, every term exact mod 2^m
+    let d_split = cb > dsp;
+    let dw = cb.min(dsp);
+    if d_split {
+        let xw = m - dsp;
+        let mut terms: Vec<String> = Vec::new();
+        for j in 0..cb - dsp {
+            let bit = b.bits("one_minus_cos", dsp + j, dsp + j);
+            let shifted = if j == 0 { vec![Piece::sig("kn", 0, w.kn_bits)] } else { vec![Piece::zeros(j), Piece::sig("kn", 0, w.kn_bits)] };
+            let t = b.pieces(&sub_pieces(&shifted, 0, xw));
+            terms.push(format!("({{{xw}{{{bit}}}}} & {t})"));
+        }
+        terms.push(lit(xw, k_prime >> dsp));
+        b.wire("deviation_top", xw, terms.join(" + "), &format!("kn * (1 - cos)[{}:{dsp}] + K'[{}:{dsp}] mod 2^{xw}, by shift-adds", cb - 1, m - 1));
+        b.delay(add_delay(xw) + LUT_DELAY * ((cb - dsp + 1) as f64).log2().ceil());
+        b.step("deviation, high partial product (multiply-add)");
+    }
     // kn = kn_hi*2^16 + kn_lo: two products with <= 16-bit operands instead of one that
     // would take 3 DSP blocks; the hi product is needed only modulo 2^(m-16)
-    let dsp = b.dsp_bits();
     let split = w.kn_bits > dsp && m > dsp;
     if split {
         let hi_w = m - dsp;
-        let (kh, d2) = (b.operand("kn", dsp, w.kn_bits - dsp, hi_w), b.operand("one_minus_cos", 0, cb, hi_w));
+        let (kh, d2) = (b.operand("kn", dsp, w.kn_bits - dsp, hi_w), b.operand("one_minus_cos", 0, dw, hi_w));
+        // the addend of the 2^16 part: K'_hi, or with kn*d_hi
+        let c = if d_split { b.operand("deviation_top", 0, m - dsp, hi_w) } else { lit(hi_w, k_prime >> dsp) };
+        let what = if d_split { format!("(1 - cos)[{}:0] + kn*(1 - cos)[{}:{dsp}]", dsp - 1, cb - 1) } else { "(1 - cos)".into() };
         b.wire(
             "deviation_hi",
             hi_w,
-            format!("{kh} * {d2} + {}", lit(hi_w, k_prime >> dsp)),
-            &format!("kn[{}:{dsp}] * (1 - cos) + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1),
+            format!("{kh} * {d2} + {c}"),
+            &format!("kn[{}:{dsp}] * {what} + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1),
         );
-        b.delay(mul_delay(w.kn_bits - dsp, cb));
+        b.delay(mul_delay(w.kn_bits - dsp, dw));
     }
 
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add)");
     let expr = if split {
-        let (kl, d1) = (b.operand("kn", 0, dsp, m), b.operand("one_minus_cos", 0, cb, m));
+        let (kl, d1) = (b.operand("kn", 0, dsp, m), b.operand("one_minus_cos", 0, dw, m));
         let c = b.pieces(&[Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_hi", 0, m - dsp)]);
         format!("{kl} * {d1} + {c}")
+    } else if d_split {
+        let (kn, d1) = (b.operand("kn", 0, w.kn_bits, m), b.operand("one_minus_cos", 0, dw, m));
+        let c = b.pieces(&[Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_top", 0, m - dsp)]);
+        format!("{kn} * {d1} + {c}")
     } else {
         let (kn, d1) = (b.operand("kn", 0, w.kn_bits, m), b.operand("one_minus_cos", 0, cb, m));
         format!("{kn} * {d1} + {}", lit(m, k_prime))
     };
     b.wire("deviation_sum", m, expr, &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f));
-    b.delay(mul_delay(dsp.min(w.kn_bits), cb));
+    b.delay(mul_delay(dsp.min(w.kn_bits), dw));
 
     bracket(w, b);
 
@@ -245,7 +314,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         vec![Piece::sig("square_full", 0, full_bits)]
     };
 
-    b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add); intensity rounding: chunk sums");
+    b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add)");
     square_and_color_square(w, b, &full);
     let cpb = w.color_product_bits;
     for ch in CHANNELS {
@@ -258,18 +327,21 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         );
     }
     b.delay(mul_delay(wsc + 1, bb));
-    let intensity_add = intensity_add(cfg, w, b).map(|(a, width, comment)| b.add_start("intensity_sum", &a, &[], true, width, &comment));
+    // the intensity rounding starts a step after the squarer's DSP: its output register
+    // drives a fabric register across the long route out of the DSP column, not a carry chain
+    let intensity_add = intensity_add(cfg, w, b);
 
-    b.step("colour results; intensity rounding: carries");
+    b.step("colour results; intensity rounding: chunk sums");
     for ch in CHANNELS {
         let e = b.bits(&format!("color_sum_{ch}"), cpb - 1, wsc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
     }
     b.delay(0.0);
-    if let Some(p) = intensity_add {
-        b.add_carries(&p);
+    if let Some((a, width, comment)) = intensity_add {
+        let p = b.add_start("intensity_sum", &a, &[], true, width, &comment);
         if !p.chunks.is_empty() {
-            b.step("intensity rounding: select");
+            b.step("intensity rounding: carries and select");
+            b.add_carries(&p);
         }
         let sum = b.add_finish(p);
         intensity_from(cfg, b, &sum);
