@@ -76,7 +76,7 @@ fn combinational_units_have_no_renaming_wires_and_one_sink() {
 
 /// FuseSoC as users run it: the `.core` uses the flow API (no deprecation warning), two
 /// configurations live side by side in one cores-root, `run --target lint` and the synth target
-/// pass, and the table files reach the tool's work directory.
+/// pass (iCE40 and ECP5), and the table files reach the tool's work directory.
 #[test]
 fn fusesoc_runs_the_core_with_the_flow_api() {
     require_tool("fusesoc", "fusesoc (pip install fusesoc==2.4.7)");
@@ -109,6 +109,14 @@ fn fusesoc_runs_the_core_with_the_flow_api() {
     for table in ["log2_rom.hex", "exp2_rom.hex"] {
         assert_eq!(std::fs::read(work.join(table)).unwrap(), std::fs::read(b.join(table)).unwrap(), "{table} shipped to the tool");
     }
+    // an ECP5 unit: the primitives' models are linted with it, never synthesized
+    let e = generate(&root, "e", &["--target", "ecp5", "--stages", "11"]);
+    let ne = name(&e);
+    fusesoc(&["run", "--target", "lint", &ne]);
+    let synth = fusesoc(&["run", "--target", "synth", &ne]);
+    assert!(synth.contains("synth_ecp5"), "{synth}");
+    let cells = |cell: &str| synth.lines().filter_map(|l| l.trim().strip_prefix(cell)).last().map(|n| n.trim().parse::<u32>().unwrap());
+    assert_eq!((cells("MULT18X18D"), cells("DP16KD")), (Some(7), Some(1)), "the blocks instantiated, the models left out:\n{synth}");
     // the same configuration gives the same name (and the same bytes)
     let again = generate(tmp.path(), "again", &["--n-bits", "6"]);
     assert_eq!(name(&again), na);
