@@ -328,11 +328,34 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     b.wire("one_minus_cos", cb, format!("({g} > {one}) ? {} : ({one} - {g})", lit(cb, 0)), &format!("UQ1.{f}: 1 - min(cos, 1), exact"));
     b.delay(crate::datapath::add_delay(cb) + crate::datapath::LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
 
-    b.step("deviation a_n*(1 - cos) (multiplier 7)");
+    // a_n wider than a DSP's operands: a_n = a_hi*2^D + a_lo, a_hi*(1 - cos) (a few bits of
+    // a_hi) by shift-adds here, the DSP's addend in the next step: one DSP, exact
+    let dsp = b.dsp_bits();
     let pb = w.product_bits;
-    let (a, d) = (b.operand("fit", 0, w.a_bits, pb), b.operand("one_minus_cos", 0, cb, pb));
-    b.wire("deviation", pb, format!("{a} * {d}"), &format!("UQ{}.{}: a_n*(1 - cos), exact", pb - ka - f, ka + f));
-    b.delay(crate::datapath::mul_delay(w.a_bits, cb));
+    let a_split = w.a_bits > dsp && cb <= dsp;
+    if a_split {
+        b.step("deviation: a_n's high bits times (1 - cos) (shift-adds)");
+        let hw = pb - dsp;
+        let terms = b.masked_shifts(("one_minus_cos", 0, cb), ("fit", dsp, w.a_bits - dsp), 0, hw);
+        b.wire("deviation_hi", hw, terms.join(" + "), &format!("a_n[{}:{dsp}]*(1 - cos) mod 2^{hw}, by shift-adds", w.a_bits - 1));
+        b.delay(crate::datapath::add_delay(hw) + crate::datapath::LUT_DELAY * ((w.a_bits - dsp) as f64).log2().ceil());
+    }
+
+    b.step("deviation a_n*(1 - cos) (multiplier 7)");
+    if a_split {
+        let (a, d) = (b.operand("fit", 0, dsp, pb), b.operand("one_minus_cos", 0, cb, pb));
+        let hi = b.operand("deviation_hi", 0, pb - dsp, pb - dsp);
+        b.wire(
+            "deviation",
+            pb,
+            format!("{a} * {d} + {{{hi}, {}}}", lit(dsp, 0)),
+            &format!("UQ{}.{}: a_n*(1 - cos) = a_lo*(1 - cos) + a_hi*(1 - cos)*2^{dsp}, exact (one DSP, the add inside it)", pb - ka - f, ka + f),
+        );
+    } else {
+        let (a, d) = (b.operand("fit", 0, w.a_bits, pb), b.operand("one_minus_cos", 0, cb, pb));
+        b.wire("deviation", pb, format!("{a} * {d}"), &format!("UQ{}.{}: a_n*(1 - cos), exact", pb - ka - f, ka + f));
+    }
+    b.delay(crate::datapath::mul_delay(w.a_bits.min(dsp), cb));
 
     b.step("bracket = 1 - deviation (adder 9); its sign is the cut-off (comparator 12)");
     let db = w.diff_bits;
@@ -353,23 +376,50 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     b.wire("power0", wf + 1, format!("{dn} ? {} : {x0}", lit(wf + 1, 0)), &format!("UQ1.{wf}: the bracket in [0, 1], floored; 0 beyond the cut-off"));
     b.delay(crate::datapath::LUT_DELAY);
 
+    // a bracket wider than a DSP's operands: x = hi*2^r + lo with hi of D bits, and
+    // x^2 = 2^r*(hi^2*2^r + T) + (lo^2 mod 2^r), T = 2*hi*lo + floor(lo^2/2^r) by shift-adds
+    // and a table of lo^2, Z = hi^2 + floor(T/2^r) = floor(x^2/2^2r) on one DSP (the add inside
+    // it); then floor(x^2/2^W) = floor(Z/2^(W-2r)), all floors exact (W >= 2r: W <= 2D - 2)
+    let r = (wf + 1).saturating_sub(dsp);
+    let sq_split = r > 0 && wf >= 2 * r && r <= crate::widths::MAX_SQUARER_SPLIT;
     let m_max = cfg.max_squarings();
     for j in 1..=m_max {
-        b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
         let prev = format!("power{}", j - 1);
-        let sq = 2 * wf + 2;
-        let (p1, p2) = (b.zext(&prev, sq), b.zext(&prev, sq));
-        b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
-        let hi = b.bits(&format!("square{j}"), 2 * wf, wf);
+        let hi_bits = if sq_split {
+            b.step(&format!("squaring {j} of {m_max}: T = 2*hi*lo + lo^2/2^{r} (shift-adds, a table)"));
+            let tw = dsp + r + 2;
+            b.square_table(&format!("square{j}_ll"), &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
+            let mut terms = b.masked_shifts((&prev, r, dsp), (&prev, 0, r), 1, tw);
+            terms.push(b.operand(&format!("square{j}_ll"), r, r, tw));
+            b.wire(&format!("square{j}_t"), tw, terms.join(" + "), "2*hi*lo + floor(lo^2 / 2^r), exact, by shift-adds");
+            b.delay(crate::datapath::add_delay(tw) + crate::datapath::LUT_DELAY * ((r + 1) as f64).log2().ceil());
+            b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add), bypassed when m_n < {j}"));
+            let zw = 2 * dsp;
+            let (h1, h2) = (b.operand(&prev, r, dsp, zw), b.operand(&prev, r, dsp, zw));
+            let th = b.operand(&format!("square{j}_t"), r, tw - r, zw);
+            b.wire(
+                &format!("square{j}"),
+                zw,
+                format!("{h1} * {h2} + {th}"),
+                &format!("floor(power{}^2 / 2^{}), exact: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", j - 1, 2 * r, wf + 1, wf + 1),
+            );
+            b.bits(&format!("square{j}"), 2 * wf - 2 * r, wf - 2 * r)
+        } else {
+            b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
+            let sq = 2 * wf + 2;
+            let (p1, p2) = (b.zext(&prev, sq), b.zext(&prev, sq));
+            b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
+            b.bits(&format!("square{j}"), 2 * wf, wf)
+        };
         let keep = b.r(&prev);
         let mf = b.bits("fit", w.rom_word_bits - 1, w.a_bits);
         b.wire(
             &format!("power{j}"),
             wf + 1,
-            format!("({mf} >= {}) ? {hi} : {keep}", lit(w.m_bits, j as u128)),
+            format!("({mf} >= {}) ? {hi_bits} : {keep}", lit(w.m_bits, j as u128)),
             &format!("UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}", j + 1, j - 1),
         );
-        b.delay(crate::datapath::mul_delay(wf + 1, wf + 1) + crate::datapath::LUT_DELAY);
+        b.delay(crate::datapath::mul_delay((wf + 1).min(dsp), (wf + 1).min(dsp)) + crate::datapath::LUT_DELAY);
     }
 
     b.step("colour multipliers (14-16) and the intensity, rounded half up");

@@ -193,7 +193,11 @@ fn injected_faults_in_the_new_models_are_caught() {
         // fitted: the second squaring done when m_n = 1 too
         ("fit_mux", &["--model", "fitted"], "(fit_s1[24:23] >= 2'h2)", "(fit_s1[24:23] >= 2'h1)"),
         // fitted: intensity truncated instead of rounded
-        ("fit_round", &["--model", "fitted"], "power3_s7 + 21'h10;", "power3_s7 + 21'h0;"),
+        ("fit_round", &["--model", "fitted"], "power3_s11 + 21'h10;", "power3_s11 + 21'h0;"),
+        // fitted: a_n's high bits left out of the deviation (the shift-adds beside its DSP)
+        ("fit_a_hi", &["--model", "fitted"], " + {deviation_hi_s2, 16'h0};", ";"),
+        // fitted: the first squaring's 2*hi*lo masked by the wrong bit of lo
+        ("fit_sq_t", &["--model", "fitted"], "({23{power0_s5[4]}} &", "({23{power0_s5[3]}} &"),
         // blinn: one exponent mis-encoded in the normalisation
         ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_s1[9] ? 4'h5\n", "cos_minus_ulp_s1[9] ? 4'h6\n"),
         // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)

@@ -115,7 +115,7 @@ fn fusesoc_runs_the_core_with_the_flow_api() {
     fusesoc(&["run", "--target", "lint", &ne]);
     let synth = fusesoc(&["run", "--target", "synth", &ne]);
     assert!(synth.contains("synth_ecp5"), "{synth}");
-    let cells = |cell: &str| synth.lines().filter_map(|l| l.trim().strip_prefix(cell)).last().map(|n| n.trim().parse::<u32>().unwrap());
+    let cells = |cell: &str| synth.lines().filter_map(|l| l.trim().strip_prefix(cell)).next_back().map(|n| n.trim().parse::<u32>().unwrap());
     assert_eq!((cells("MULT18X18D"), cells("DP16KD")), (Some(7), Some(1)), "the blocks instantiated, the models left out:\n{synth}");
     // the same configuration gives the same name (and the same bytes)
     let again = generate(tmp.path(), "again", &["--n-bits", "6"]);

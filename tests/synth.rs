@@ -143,16 +143,35 @@ fn verify_passes_real_netlists_and_catches_a_broken_one() {
     assert!(err.contains("mapped netlist differs from the golden model") && err.contains("<-- differs"), "{err}");
 }
 
-/// A design that does not fit: nextpnr's own error reaches the user (here the fitted unit's
-/// 14 multipliers on the UP5K's 8 SB_MAC16), and the area figures stay.
+/// A design that does not fit: nextpnr's own error reaches the user (here the fitted unit
+/// with whole-width products, `--target generic`: 14 multipliers on the UP5K's 8 SB_MAC16),
+/// and the area figures stay.
 #[test]
 fn place_and_route_failure_shows_nextpnr_text() {
     require_tool("yosys", "yosys");
     require_tool("nextpnr-ice40", "nextpnr-ice40");
     let tmp = tempfile::tempdir().unwrap();
-    let r = synth(&generate(tmp.path(), "fitted", &["--model", "fitted"]), &["--target", "ice40", "--dsp", "--seeds", "1"]);
+    let r = synth(&generate(tmp.path(), "fitted", &["--model", "fitted", "--target", "generic"]), &["--target", "ice40", "--dsp", "--seeds", "1"]);
     assert!(r["dsp_blocks"].as_u64().unwrap() > 8, "{r}");
     assert!(r["fmax_mhz"].is_null(), "{r}");
     let note = r["fmax_note"].as_str().unwrap();
     assert!(note.starts_with("place-and-route failed: ERROR:") && note.contains("SB_MAC16"), "{note}");
+}
+
+/// Issue 11: the fitted unit shaped for the iCE40 keeps its intensity path to 4 SB_MAC16 (one
+/// for a_n·(1 − cos), one per squaring; a_n's high bits and each squaring's hi·lo by
+/// shift-adds) beside the 3 colour multipliers, and so places on the UP5K.
+#[test]
+fn fitted_intensity_path_takes_at_most_4_sb_mac16() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "fitted", &["--model", "fitted"]);
+    let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+    let colours = unit.lines().filter(|l| l.starts_with("wire") && l.contains("color_sum_") && l.contains(" * ")).count();
+    assert_eq!(colours, 3, "three colour multipliers");
+    let r = synth(&dir, &["--target", "ice40", "--dsp", "--seeds", "1"]);
+    let dsp = r["dsp_blocks"].as_u64().unwrap();
+    assert!(dsp <= 4 + 3, "{dsp} SB_MAC16: more than 4 in the intensity path: {r}");
+    assert!(r["fmax_mhz"].as_f64().is_some(), "placed on the UP5K: {r}");
 }

@@ -495,6 +495,34 @@ impl Builder {
         self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
     }
 
+    /// `x · y[lo..lo+k)` mod 2^width for a `y` field of a few bits, as the terms of a fabric
+    /// sum: `x` shifted to each bit `j` of the field (by `j + shift`) and masked by that bit.
+    /// For a multiplier too narrow to spend a DSP block on; exact.
+    pub fn masked_shifts(&mut self, x: (&str, u32, u32), y: (&str, u32, u32), shift: u32, width: u32) -> Vec<String> {
+        let (yn, ylo, yw) = y;
+        let mut terms = Vec::new();
+        for j in (0..yw).filter(|j| j + shift < width) {
+            let bit = self.bits(yn, ylo + j, ylo + j);
+            let s = j + shift;
+            let shifted = if s == 0 { vec![Piece::sig(x.0, x.1, x.2)] } else { vec![Piece::zeros(s), Piece::sig(x.0, x.1, x.2)] };
+            let t = self.pieces(&sub_pieces(&shifted, 0, width));
+            terms.push(format!("({{{width}{{{bit}}}}} & {t})"));
+        }
+        terms
+    }
+
+    /// `name = v²` for the `r`-bit field `v = sig[lo..lo+r)`, by a table of 2^r entries in
+    /// LUTs (no multiply, no carry chain): one LUT level for small `r`.
+    pub fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
+        let v = self.bits(sig, lo + r - 1, lo);
+        let table = (0..(1u128 << r)).rev().fold(String::new(), |acc, x| match acc.is_empty() {
+            true => lit(2 * r, x * x),
+            false => format!("({v} == {}) ? {} : {acc}", lit(r, x), lit(2 * r, x * x)),
+        });
+        self.wire(name, 2 * r, table, comment);
+        self.delay(LUT_DELAY);
+    }
+
     /// Adds a constant table to the unit; returns its index for [`Builder::rom_read`].
     pub fn table(&mut self, t: Table) -> usize {
         self.tables.push(t);

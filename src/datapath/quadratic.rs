@@ -220,13 +220,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     let dw = cb.min(dsp);
     if d_split {
         let xw = m - dsp;
-        let mut terms: Vec<String> = Vec::new();
-        for j in 0..cb - dsp {
-            let bit = b.bits("one_minus_cos", dsp + j, dsp + j);
-            let shifted = if j == 0 { vec![Piece::sig("kn", 0, w.kn_bits)] } else { vec![Piece::zeros(j), Piece::sig("kn", 0, w.kn_bits)] };
-            let t = b.pieces(&sub_pieces(&shifted, 0, xw));
-            terms.push(format!("({{{xw}{{{bit}}}}} & {t})"));
-        }
+        let mut terms = b.masked_shifts(("kn", 0, w.kn_bits), ("one_minus_cos", dsp, cb - dsp), 0, xw);
         terms.push(lit(xw, k_prime >> dsp));
         b.wire("deviation_top", xw, terms.join(" + "), &format!("kn * (1 - cos)[{}:{dsp}] + K'[{}:{dsp}] mod 2^{xw}, by shift-adds", cb - 1, m - 1));
         b.delay(add_delay(xw) + LUT_DELAY * ((cb - dsp + 1) as f64).log2().ceil());
@@ -277,13 +271,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let hw = wb + 1 - r;
         b.step("square (squarer 11): lo^2");
         // a table of 2^r entries: LUTs, no carry chain in front of the next DSP
-        let lo = b.bits("bracket", r - 1, 0);
-        let table = (0..(1u128 << r)).rev().fold(String::new(), |acc, v| match acc.is_empty() {
-            true => lit(2 * r, v * v),
-            false => format!("({lo} == {}) ? {} : {acc}", lit(r, v), lit(2 * r, v * v)),
-        });
-        b.wire("square_ll", 2 * r, table, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
-        b.delay(LUT_DELAY);
+        b.square_table("square_ll", "bracket", 0, r, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
         b.step("square: T = hi*lo + lo^2/2^(r+1) (multiply-add)");
         let tw = hw + r;
         let (hi, lo) = (b.operand("bracket", r, hw, tw), b.operand("bracket", 0, r, tw));
