@@ -322,9 +322,27 @@ impl BlinnTables {
         let what = format!("{{dG, G}}: g(x) = -log2(1 - x)/x at x = i/2^{}, UQ2.{}, and the step to the next entry", w.log_index_bits + 1, w.log_frac_bits);
         interpolation_table("log2", &self.g, &self.dg, (w.log_entry_bits, w.log_delta_bits), what, ("g", "dg"))
     }
+    /// The exp2 table as stored: `E_0 = 1.0` is the only entry with its integer bit set when
+    /// [`BlinnTables::exp2_one_implied`], and then that bit is not stored but read as `j == 0`
+    /// (one word bit fewer: 2 block RAMs for 256 words instead of 3).
     pub fn exp2_table(&self, w: &BlinnWidths) -> Table {
-        let what = format!("{{dE, E}}: 2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits);
-        interpolation_table("exp2", &self.e, &self.de, (w.exp2_entry_bits, w.exp2_delta_bits), what, ("e", "de"))
+        let implied = self.exp2_one_implied(w);
+        let stored_bits = w.exp2_entry_bits - implied as u32;
+        let entries: Vec<u128> = self.e.iter().map(|&e| e & mask(stored_bits)).collect();
+        let what = if implied {
+            format!(
+                "{{dE, E mod 1}}: 2^-f at f = j/2^{}, UQ0.{} (its integer bit, set for j = 0 only, is j == 0), and the step down to the next entry",
+                w.exp2_index_bits, w.exp2_frac_bits
+            )
+        } else {
+            format!("{{dE, E}}: 2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits)
+        };
+        interpolation_table("exp2", &entries, &self.de, (stored_bits, w.exp2_delta_bits), what, ("e", "de"))
+    }
+
+    /// Whether E_0 = 2^WE is the only exp2 entry at or above 1.0.
+    pub fn exp2_one_implied(&self, w: &BlinnWidths) -> bool {
+        w.exp2_entry_bits == w.exp2_frac_bits + 1 && self.e[1..].iter().all(|&e| e < 1u128 << w.exp2_frac_bits)
     }
 }
 
@@ -372,6 +390,9 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: crate::model::In
     let spec = x.ks.map(|k| ((vc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
     (BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v }, crate::model::Outputs { spec, intensity, done: intensity == 0 })
 }
+
+/// A multiplier of at most this many bits is worth shift-adds rather than a DSP block.
+const SHIFT_ADD_BITS: u32 = 5;
 
 /// The blinn datapath: normalise, log2 by table, times n, exp2 by table, shift, round.
 pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder) {
@@ -439,10 +460,30 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let lf = f + w.log_frac_bits;
     let eb2 = w.ell_bits();
     let lb = f - 1 + gb;
-    b.step("-log2 c' = x*g(x)");
-    let (xv, gv) = (b.zext("x", lb), b.zext("ghat", lb));
-    b.wire("log_frac", lb, format!("{xv} * {gv}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
-    b.delay(mul_delay(f - 1, gb));
+    // g wider than a DSP's operands: g = g_hi*2^D + g_lo, x*g_hi (a few bits of g_hi) by
+    // shift-adds a step before, the DSP's addend: L on one DSP, exact
+    let dsp = b.dsp_bits();
+    if f - 1 <= dsp && gb > dsp && gb - dsp <= SHIFT_ADD_BITS {
+        b.step("-log2 c': x times g's high bits (shift-adds)");
+        let hw = lb - dsp;
+        let e = b.shift_add(&Piece::sig("x", 0, f - 1), &Piece::sig("ghat", dsp, gb - dsp), hw);
+        b.wire("log_frac_hi", hw, e, &format!("x*ghat[{}:{dsp}] mod 2^{hw}, exact, by shift-and-add", gb - 1));
+        b.delay(add_delay(hw) + LUT_DELAY * ((gb - dsp) as f64).log2().ceil());
+        b.step("-log2 c' = x*g(x)");
+        let (xv, gv, hv) = (b.zext("x", lb), b.operand("ghat", 0, dsp, lb), b.r("log_frac_hi"));
+        b.wire(
+            "log_frac",
+            lb,
+            format!("{xv} * {gv} + {{{hv}, {}}}", lit(dsp, 0)),
+            &format!("UQ1.{lf}: L = x*g(x) = -log2 c' = x*g_lo + x*g_hi*2^{dsp}, exact (one DSP, the add inside it)"),
+        );
+        b.delay(mul_delay(f - 1, dsp));
+    } else {
+        b.step("-log2 c' = x*g(x)");
+        let (xv, gv) = (b.zext("x", lb), b.zext("ghat", lb));
+        b.wire("log_frac", lb, format!("{xv} * {gv}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
+        b.delay(mul_delay(f - 1, gb));
+    }
     b.step("-log2 c = e + L");
     let e = b.r("exponent");
     let lbits = if lf >= w.ell_frac_bits {
@@ -462,10 +503,50 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     let yb = w.y_bits();
     let pb = nb + eb2;
-    b.step("y = n*(-log2 c) (multiplier 7)");
-    let (nv, lv) = (b.zext("n", pb), b.zext("ell", pb));
-    b.wire("y_full", pb, format!("{nv} * {lv}"), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
-    b.delay(mul_delay(nb, eb2));
+    // l wider than a DSP's operands: l in D-bit chunks, the top one (a few bits) times n by
+    // shift-adds, then from the top down each chunk's product on one DSP plus the partial sum
+    // above it shifted by D (the add inside the DSP), one step each: n*l exact
+    let chunks: Vec<(u32, u32)> = (0..eb2.div_ceil(dsp.min(eb2))).map(|i| (i * dsp, (eb2 - i * dsp).min(dsp))).collect();
+    if nb <= dsp && chunks.len() > 1 {
+        let mut acc: Option<String> = None;
+        for (k, &(lo, cw)) in chunks.iter().enumerate().rev() {
+            let width = nb + eb2 - lo;
+            let name = if k == 0 { "y_full".to_string() } else { format!("y_part{k}") };
+            let what = format!("n*l[{}:{lo}]", eb2 - 1);
+            match &acc {
+                None if cw <= SHIFT_ADD_BITS => {
+                    b.step("y = n*(-log2 c): the top bits of l (shift-adds)");
+                    let e = b.shift_add(&Piece::sig("n", 0, nb), &Piece::sig("ell", lo, cw), width);
+                    b.wire(&name, width, e, &format!("{what}, exact, by shift-and-add"));
+                    b.delay(add_delay(width) + LUT_DELAY * (cw as f64).log2().ceil());
+                }
+                _ => {
+                    b.step(&format!("y = n*(-log2 c) (multiplier 7): l[{}:{lo}] (multiply-add)", lo + cw - 1));
+                    let (nv, lv) = (b.zext("n", width), b.operand("ell", lo, cw, width));
+                    let expr = match &acc {
+                        Some(above) => {
+                            let av = b.r(above);
+                            format!("{nv} * {lv} + {{{av}, {}}}", lit(dsp, 0))
+                        }
+                        None => format!("{nv} * {lv}"),
+                    };
+                    let comment = if k == 0 {
+                        format!("UQ{}.{}: n*(-log2 c), exact (one DSP, the add inside it)", pb - w.ell_frac_bits, w.ell_frac_bits)
+                    } else {
+                        format!("{what}, exact")
+                    };
+                    b.wire(&name, width, expr, &comment);
+                    b.delay(mul_delay(nb, cw));
+                }
+            }
+            acc = Some(name);
+        }
+    } else {
+        b.step("y = n*(-log2 c) (multiplier 7)");
+        let (nv, lv) = (b.zext("n", pb), b.zext("ell", pb));
+        b.wire("y_full", pb, format!("{nv} * {lv}"), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
+        b.delay(mul_delay(nb, eb2));
+    }
     b.step("y truncated and saturated");
     let drop = w.ell_frac_bits - w.y_frac_bits;
     let top = b.bits("y_full", pb - 1, drop);
@@ -493,21 +574,28 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let ji = b.bits("y", w.y_frac_bits - 1, re);
     b.wire("exp2_index", te, ji, "j: frac(y) to the table's resolution");
     b.rom_read("exp2_word", et, "exp2_index");
+    let implied = t.exp2_one_implied(w);
+    if implied {
+        let ji = b.r("exp2_index");
+        b.wire("exp2_one", 1, format!("{ji} == {}", lit(te, 0)), "E's integer bit: 2^-f = 1.0 at j = 0 only");
+    }
     b.delay(LUT_DELAY * te.div_ceil(2) as f64);
 
     let we = w.exp2_frac_bits;
     let ee = w.exp2_entry_bits;
+    let es = ee - implied as u32; // E's bits in the word
     b.step("2^-frac(y) by linear interpolation: the step dE[j]*r");
     let ehat = if re > 0 {
         let pb = w.exp2_delta_bits + re;
-        let e = b.shift_add(&Piece::sig("exp2_word", ee, w.exp2_delta_bits), &Piece::sig("y", 0, re), pb);
+        let e = b.shift_add(&Piece::sig("exp2_word", es, w.exp2_delta_bits), &Piece::sig("y", 0, re), pb);
         b.wire("exp2_step", pb, e, &format!("dE[j] * (frac(y) mod 2^-{te}), exact, by shift-and-add (LUTs, no DSP block)"));
         b.delay(mul_delay(w.exp2_delta_bits, re));
         b.step("2^-frac(y) by linear interpolation: E[j] minus the step");
-        let (ej, st) = (b.operand("exp2_word", 0, ee, ee), b.operand("exp2_step", re, pb - re, ee));
+        let ej = exp2_entry(b, implied, es);
+        let st = b.operand("exp2_step", re, pb - re, ee);
         format!("{ej} - {st}")
     } else {
-        b.operand("exp2_word", 0, ee, ee)
+        exp2_entry(b, implied, es)
     };
     b.wire("exp2_frac", ee, ehat, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
     b.delay(add_delay(ee));
@@ -537,6 +625,17 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let iv = b.r("intensity");
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
     b.delay(add_delay(ee) + LUT_DELAY);
+}
+
+/// E[j] from the exp2 word: its `es` stored bits, under the integer bit `j == 0` when implied.
+fn exp2_entry(b: &mut Builder, implied: bool, es: u32) -> String {
+    let e = b.bits("exp2_word", es - 1, 0);
+    if implied {
+        let one = b.r("exp2_one");
+        format!("{{{one}, {e}}}")
+    } else {
+        e
+    }
 }
 
 fn zext_expr(e: &str, from: u32, to: u32) -> String {

@@ -36,7 +36,7 @@
 //! shifted left instead.)
 
 use crate::config::Config;
-use crate::datapath::{lit, Builder, Table};
+use crate::datapath::{lit, Builder, Piece, Table};
 use crate::widths::{bit_length, mask};
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -336,8 +336,8 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     if a_split {
         b.step("deviation: a_n's high bits times (1 - cos) (shift-adds)");
         let hw = pb - dsp;
-        let terms = b.masked_shifts(("one_minus_cos", 0, cb), ("fit", dsp, w.a_bits - dsp), 0, hw);
-        b.wire("deviation_hi", hw, terms.join(" + "), &format!("a_n[{}:{dsp}]*(1 - cos) mod 2^{hw}, by shift-adds", w.a_bits - 1));
+        let e = b.shift_add(&Piece::sig("one_minus_cos", 0, cb), &Piece::sig("fit", dsp, w.a_bits - dsp), hw);
+        b.wire("deviation_hi", hw, e, &format!("a_n[{}:{dsp}]*(1 - cos) mod 2^{hw}, by shift-adds", w.a_bits - 1));
         b.delay(crate::datapath::add_delay(hw) + crate::datapath::LUT_DELAY * ((w.a_bits - dsp) as f64).log2().ceil());
     }
 
@@ -389,9 +389,9 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             b.step(&format!("squaring {j} of {m_max}: T = 2*hi*lo + lo^2/2^{r} (shift-adds, a table)"));
             let tw = dsp + r + 2;
             b.square_table(&format!("square{j}_ll"), &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
-            let mut terms = b.masked_shifts((&prev, r, dsp), (&prev, 0, r), 1, tw);
+            let mut terms = b.shift_add_terms(&Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw);
             terms.push(b.operand(&format!("square{j}_ll"), r, r, tw));
-            b.wire(&format!("square{j}_t"), tw, terms.join(" + "), "2*hi*lo + floor(lo^2 / 2^r), exact, by shift-adds");
+            b.wire(&format!("square{j}_t"), tw, terms.join("\n    + "), "2*hi*lo + floor(lo^2 / 2^r), exact, by shift-adds");
             b.delay(crate::datapath::add_delay(tw) + crate::datapath::LUT_DELAY * ((r + 1) as f64).log2().ceil());
             b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add), bypassed when m_n < {j}"));
             let zw = 2 * dsp;

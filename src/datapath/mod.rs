@@ -464,18 +464,25 @@ impl Builder {
     /// `a·r` (`out` bits, exact) as a sum of shifted copies of `a`, one per bit of `r`: no `*`,
     /// so a small product stays in LUTs and carry chains instead of taking a DSP block.
     pub fn shift_add(&mut self, a: &Piece, r: &Piece, out: u32) -> String {
+        // one partial product a line
+        self.shift_add_terms(a, r, 0, out).join("\n    + ")
+    }
+
+    /// The terms of `a·r·2^shift` mod 2^out: `a` shifted to each bit `k` of `r` (by `k + shift`)
+    /// where that bit is set, for a sum with more addends (constants, a table's value).
+    pub fn shift_add_terms(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32) -> Vec<String> {
         let (Piece::Sig { name: rn, lo: rlo, width: rw, .. }, Piece::Sig { name: an, lo: alo, width: aw, .. }) = (r, a) else {
             panic!("shift_add takes signal pieces")
         };
         let mut terms = Vec::new();
-        for k in 0..(*rw).min(out) {
+        for k in (0..*rw).filter(|k| k + shift < out) {
             let bit = self.bits(rn, rlo + k, rlo + k);
-            let av = self.operand(an, *alo, *aw, out - k);
-            let shifted = if k == 0 { av } else { format!("{{{av}, {}}}", lit(k, 0)) };
+            let s = k + shift;
+            let av = self.operand(an, *alo, *aw, out - s);
+            let shifted = if s == 0 { av } else { format!("{{{av}, {}}}", lit(s, 0)) };
             terms.push(format!("({bit} ? {shifted} : {})", lit(out, 0)));
         }
-        // one partial product a line
-        terms.join("\n    + ")
+        terms
     }
 
     /// ` + b` for an addend (`ext` applied), or nothing when it is constant zero.
@@ -495,31 +502,15 @@ impl Builder {
         self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
     }
 
-    /// `x · y[lo..lo+k)` mod 2^width for a `y` field of a few bits, as the terms of a fabric
-    /// sum: `x` shifted to each bit `j` of the field (by `j + shift`) and masked by that bit.
-    /// For a multiplier too narrow to spend a DSP block on; exact.
-    pub fn masked_shifts(&mut self, x: (&str, u32, u32), y: (&str, u32, u32), shift: u32, width: u32) -> Vec<String> {
-        let (yn, ylo, yw) = y;
-        let mut terms = Vec::new();
-        for j in (0..yw).filter(|j| j + shift < width) {
-            let bit = self.bits(yn, ylo + j, ylo + j);
-            let s = j + shift;
-            let shifted = if s == 0 { vec![Piece::sig(x.0, x.1, x.2)] } else { vec![Piece::zeros(s), Piece::sig(x.0, x.1, x.2)] };
-            let t = self.pieces(&sub_pieces(&shifted, 0, width));
-            terms.push(format!("({{{width}{{{bit}}}}} & {t})"));
-        }
-        terms
-    }
-
     /// `name = v²` for the `r`-bit field `v = sig[lo..lo+r)`, by a table of 2^r entries in
     /// LUTs (no multiply, no carry chain): one LUT level for small `r`.
     pub fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
         let v = self.bits(sig, lo + r - 1, lo);
-        let table = (0..(1u128 << r)).rev().fold(String::new(), |acc, x| match acc.is_empty() {
-            true => lit(2 * r, x * x),
-            false => format!("({v} == {}) ? {} : {acc}", lit(r, x), lit(2 * r, x * x)),
-        });
-        self.wire(name, 2 * r, table, comment);
+        // one entry a line (?: is right-associative), the last as the default
+        let last = (1u128 << r) - 1;
+        let mut cases: Vec<String> = (0..last).map(|x| format!("({v} == {}) ? {}", lit(r, x), lit(2 * r, x * x))).collect();
+        cases.push(lit(2 * r, last * last));
+        self.wire(name, 2 * r, cases.join("\n    : "), comment);
         self.delay(LUT_DELAY);
     }
 

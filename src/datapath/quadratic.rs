@@ -68,7 +68,7 @@ fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -
     if terms.is_empty() {
         lit(width, 0)
     } else {
-        terms.join(" + ")
+        terms.join("\n    + ")
     }
 }
 
@@ -220,9 +220,9 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     let dw = cb.min(dsp);
     if d_split {
         let xw = m - dsp;
-        let mut terms = b.masked_shifts(("kn", 0, w.kn_bits), ("one_minus_cos", dsp, cb - dsp), 0, xw);
+        let mut terms = b.shift_add_terms(&Piece::sig("kn", 0, w.kn_bits), &Piece::sig("one_minus_cos", dsp, cb - dsp), 0, xw);
         terms.push(lit(xw, k_prime >> dsp));
-        b.wire("deviation_top", xw, terms.join(" + "), &format!("kn * (1 - cos)[{}:{dsp}] + K'[{}:{dsp}] mod 2^{xw}, by shift-adds", cb - 1, m - 1));
+        b.wire("deviation_top", xw, terms.join("\n    + "), &format!("kn * (1 - cos)[{}:{dsp}] + K'[{}:{dsp}] mod 2^{xw}, by shift-adds", cb - 1, m - 1));
         b.delay(add_delay(xw) + LUT_DELAY * ((cb - dsp + 1) as f64).log2().ceil());
         b.step("deviation, high partial product (multiply-add)");
     }
