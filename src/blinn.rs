@@ -402,35 +402,65 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let lt = b.table(t.log_table(w));
     let et = b.table(t.exp2_table(w));
 
-    b.step("clamp c = min(cos, 1); c - 1 for the normalisation");
-    let g = b.r("cos_g");
+    b.step("clamp c = min(cos, 1)");
+    let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
     let one = lit(cb, 1u128 << f);
-    b.wire("cos_clamped", cb, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator
+    b.wire("cos_clamped", cb, format!("{top} ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    b.delay(LUT_DELAY);
+
+    b.step("c - 1 for the normalisation; c = 0");
     let c = b.r("cos_clamped");
     b.wire("cos_minus_ulp", cb, format!("{c} - {}", lit(cb, 1)), &format!("UQ1.{f}: c - 2^-{f} (its leading zeros give the exponent)"));
-    b.delay(add_delay(cb) + LUT_DELAY);
-
-    b.step("normalise: c = c'*2^-e with c' in (1/2, 1]; x = 1 - c'");
-    let eb = w.exp_bits;
-    // a priority chain, most significant bit first, one case a line (?: is right-associative)
-    let mut cases = Vec::new();
-    for k in (0..f).rev() {
-        // bit k of c-1 set (and none above): e = F-1-k
-        let bit = b.bits("cos_minus_ulp", k, k);
-        cases.push(format!("{bit} ? {}", lit(eb, (f - 1 - k) as u128)));
-    }
-    cases.push(lit(eb, f as u128));
-    let chain = cases.join("\n    : ");
-    b.wire("exponent", eb, chain, &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"));
-    let c = b.r("cos_clamped");
-    let e = b.r("exponent");
-    b.wire("cos_norm", cb, format!("{c} << {e}"), &format!("UQ1.{f}: c' = c*2^e in (1/2, 1]"));
-    let cn = b.bits("cos_norm", f - 2, 0);
-    // x = 1 - c' < 1/2: only the low F-1 bits of 2^F - c', i.e. of -c'
-    b.wire("x", f - 1, format!("{} - {cn}", lit(f - 1, 0)), &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
     let zc = b.r("cos_clamped");
     b.wire("cos_zero", 1, format!("{zc} == {}", lit(cb, 0)), "c = 0: c^n = 0 for n >= 1");
-    b.delay(LUT_DELAY * ((f as f64).log2().ceil() + 1.0) + add_delay(f - 1));
+    b.delay(add_delay(cb));
+
+    // e = the leading zeros of c - 2^-F over its F fraction bits, in two LUT steps: per group
+    // of 4 bits from the top, whether it has a one and where its first one is; then the
+    // first group with a one
+    let eb = w.exp_bits;
+    let groups: Vec<(u32, u32)> = (0..f.div_ceil(4)).map(|k| (f - 4 * k, (f - 4 * k).min(4))).collect(); // (top + 1, width)
+    b.step("normalise: the exponent e, per group of 4 bits of c - 2^-F");
+    for (k, &(hi, gw)) in groups.iter().enumerate() {
+        let bits = b.bits("cos_minus_ulp", hi - 1, hi - gw);
+        b.wire(&format!("lead_any{k}"), 1, format!("|{bits}"), &format!("bits [{}:{}] of c - 2^-{f} have a one", hi - 1, hi - gw));
+        let mut cases = Vec::new();
+        for j in 0..gw - 1 {
+            let bit = b.bits("cos_minus_ulp", hi - 1 - j, hi - 1 - j);
+            cases.push(format!("{bit} ? {}", lit(2, j as u128)));
+        }
+        cases.push(lit(2, (gw - 1) as u128));
+        b.wire(&format!("lead_zeros{k}"), 2, cases.join(" : "), "its leading zeros (when it has a one)");
+    }
+    b.delay(LUT_DELAY);
+    b.step("normalise: e = the leading zeros of c - 2^-F");
+    let mut cases = Vec::new();
+    for k in 0..groups.len() {
+        let (any, lz) = (b.r(&format!("lead_any{k}")), b.r(&format!("lead_zeros{k}")));
+        cases.push(format!("{any} ? {{{}, {lz}}}", lit(eb - 2, k as u128)));
+    }
+    cases.push(lit(eb, f as u128));
+    b.wire("exponent", eb, cases.join("\n    : "), &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"));
+    b.delay(2.0 * LUT_DELAY);
+
+    // c' = c*2^e by e's high bits (multiples of 4) and then its low two, a mux level each;
+    // the second also inverts c' for x = -c' = ~c' + 1
+    b.step("normalise: c shifted by e's multiple of 4");
+    let (c, eh) = (b.r("cos_clamped"), b.bits("exponent", eb - 1, 2));
+    b.wire("cos_norm_hi", cb, format!("{c} << {{{eh}, 2'b00}}"), &format!("UQ1.{f}: c*2^(e - e mod 4)"));
+    b.delay(2.0 * LUT_DELAY);
+    b.step("normalise: c' = c*2^e in (1/2, 1], its complement");
+    let (ch, el) = (b.r("cos_norm_hi"), b.bits("exponent", 1, 0));
+    b.wire("cos_norm", cb, format!("{ch} << {el}"), &format!("UQ1.{f}: c' = c*2^e in (1/2, 1]"));
+    let cn = b.bits("cos_norm", f - 2, 0);
+    b.wire("cos_norm_inv", f - 1, format!("~{cn}"), &format!("~c' over its low {} bits", f - 1));
+    b.delay(2.0 * LUT_DELAY);
+    // x = 1 - c' < 1/2: only the low F-1 bits of 2^F - c', i.e. of -c' = ~c' + 1
+    b.step("x = 1 - c'");
+    let ci = b.r("cos_norm_inv");
+    b.wire("x", f - 1, format!("{ci} + {}", lit(f - 1, 1)), &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
+    b.delay(add_delay(f - 1));
 
     let rb = w.log_rest_bits(cfg);
     let tg = w.log_index_bits;
@@ -442,131 +472,139 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     let gb = w.ghat_bits();
     let ge = w.log_entry_bits;
-    b.step("g by linear interpolation: the step dG[i]*r");
-    let ghat_expr = if rb > 0 {
-        let pb = w.log_delta_bits + rb;
-        let e = b.shift_add(&Piece::sig("log_word", ge, w.log_delta_bits), &Piece::sig("x", 0, rb), pb);
-        b.wire("log_step", pb, e, &format!("dG[i] * (x mod 2^-{}), exact, by shift-and-add (small: LUTs, no DSP block)", tg + 1));
-        b.delay(mul_delay(w.log_delta_bits, rb));
-        b.step("g by linear interpolation: G[i] plus the step");
-        let (gi, st) = (b.operand("log_word", 0, ge, gb), b.operand("log_step", rb, pb - rb, gb));
-        format!("{gi} + {st}")
+    let title = "g by linear interpolation";
+    if rb > 0 {
+        // g^ = G[i] + floor(dG[i]*r / 2^RB) = floor((G[i]*2^RB + dG[i]*r) / 2^RB): the entry and
+        // the step's partial products in one carry-save sum, one carry chain at its end
+        b.step(&format!("{title}: the partial products of dG[i]*r"));
+        let sw = gb + rb;
+        let mut terms = b.partial_products("ghat_sum", &Piece::sig("log_word", ge, w.log_delta_bits), &Piece::sig("x", 0, rb), 0, sw, false);
+        terms.push(vec![Piece::zeros(rb), Piece::sig("log_word", 0, ge)]);
+        let p = b.sum_start("ghat_sum", terms, sw, title, &format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact", tg + 1));
+        let sum = b.resolve(p, title);
+        let e = b.bits(&sum, sw - 1, rb);
+        b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
     } else {
-        b.operand("log_word", 0, ge, gb)
-    };
-    b.wire("ghat", gb, ghat_expr, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
-    b.delay(add_delay(gb));
+        b.step(title);
+        let e = b.operand("log_word", 0, ge, gb);
+        b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+    }
 
     let lf = f + w.log_frac_bits;
     let eb2 = w.ell_bits();
     let lb = f - 1 + gb;
-    // g wider than a DSP's operands: g = g_hi*2^D + g_lo, x*g_hi (a few bits of g_hi) by
-    // shift-adds a step before, the DSP's addend: L on one DSP, exact
+    // g wider than a DSP's operands: g = g_hi*2^D + g_lo; x*g_lo on one DSP, then the bits of
+    // L above D as x*g_hi (its few partial products) plus x*g_lo/2^D in one carry-save sum
     let dsp = b.dsp_bits();
     if f - 1 <= dsp && gb > dsp && gb - dsp <= SHIFT_ADD_BITS {
-        b.step("-log2 c': x times g's high bits (shift-adds)");
+        b.step("-log2 c' = x*g(x): x*g_lo (multiplier); the partial products of x*g_hi");
+        let lw = f - 1 + dsp;
+        let (xv, gv) = (b.zext("x", lw), b.operand("ghat", 0, dsp, lw));
+        b.wire("log_frac_lo", lw, format!("{xv} * {gv}"), &format!("x*ghat[{}:0], exact", dsp - 1));
+        // beside the DSP (they do not wait for it), x*g_hi's partial products
+        let t = "-log2 c' = x*g(x)";
         let hw = lb - dsp;
-        let e = b.shift_add(&Piece::sig("x", 0, f - 1), &Piece::sig("ghat", dsp, gb - dsp), hw);
-        b.wire("log_frac_hi", hw, e, &format!("x*ghat[{}:{dsp}] mod 2^{hw}, exact, by shift-and-add", gb - 1));
-        b.delay(add_delay(hw) + LUT_DELAY * ((gb - dsp) as f64).log2().ceil());
-        b.step("-log2 c' = x*g(x)");
-        let (xv, gv, hv) = (b.zext("x", lb), b.operand("ghat", 0, dsp, lb), b.r("log_frac_hi"));
-        b.wire(
-            "log_frac",
-            lb,
-            format!("{xv} * {gv} + {{{hv}, {}}}", lit(dsp, 0)),
-            &format!("UQ1.{lf}: L = x*g(x) = -log2 c' = x*g_lo + x*g_hi*2^{dsp}, exact (one DSP, the add inside it)"),
-        );
+        let mut terms = b.partial_products("log_frac_hi", &Piece::sig("x", 0, f - 1), &Piece::sig("ghat", dsp, gb - dsp), 0, hw, false);
         b.delay(mul_delay(f - 1, dsp));
+        terms.push(vec![Piece::sig("log_frac_lo", dsp, lw - dsp)]);
+        let p = b.sum_start("log_frac_hi", terms, hw, t, &format!("x*ghat[{}:{dsp}] + x*ghat[{}:0]/2^{dsp}, exact", gb - 1, dsp - 1));
+        let hi = b.resolve(p, t);
+        let (hv, lv) = (b.r(&hi), b.bits("log_frac_lo", dsp - 1, 0));
+        b.wire("log_frac", lb, format!("{{{hv}, {lv}}}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
     } else {
         b.step("-log2 c' = x*g(x)");
         let (xv, gv) = (b.zext("x", lb), b.zext("ghat", lb));
         b.wire("log_frac", lb, format!("{xv} * {gv}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
         b.delay(mul_delay(f - 1, gb));
     }
-    b.step("-log2 c = e + L");
+    // L = x*g < 1 (x < 1/2, g^ < 2: each interpolation stays below the next entry, and the
+    // last is g(1/2) = 2), so e + L is a concatenation: e above L's fraction bits
     let e = b.r("exponent");
     let lbits = if lf >= w.ell_frac_bits {
-        b.bits("log_frac", lb - 1, lf - w.ell_frac_bits)
+        b.bits("log_frac", lf - 1, lf - w.ell_frac_bits)
     } else {
-        let v = b.r("log_frac");
+        let v = b.bits("log_frac", lf - 1, 0);
         format!("{{{v}, {}}}", lit(w.ell_frac_bits - lf, 0))
     };
-    let lwidth = if lf >= w.ell_frac_bits { lb - (lf - w.ell_frac_bits) } else { lb + w.ell_frac_bits - lf };
-    b.wire(
-        "ell",
-        eb2,
-        format!("{{1'b0, {e}, {}}} + {}", lit(w.ell_frac_bits, 0), zext_expr(&lbits, lwidth, eb2)),
-        &format!("UQ{}.{}: e + L floored (truncation #1)", eb2 - w.ell_frac_bits, w.ell_frac_bits),
-    );
-    b.delay(add_delay(eb2));
+    b.wire("ell", eb2, format!("{{1'b0, {e}, {lbits}}}"), &format!("UQ{}.{}: e + L floored (truncation #1); L < 1", eb2 - w.ell_frac_bits, w.ell_frac_bits));
 
+    // n*l from the bottom up, l in D-bit chunks: P_0 = n*l[D-1:0], and P_k = n*l[chunk k] +
+    // floor(P_(k-1) / 2^D) on one DSP each (the add inside it); then n*l = {P_top, P_(top-1)
+    // mod 2^D, .., P_0 mod 2^D}. A top chunk of a few bits is partial products instead.
     let yb = w.y_bits();
     let pb = nb + eb2;
-    // l wider than a DSP's operands: l in D-bit chunks, the top one (a few bits) times n by
-    // shift-adds, then from the top down each chunk's product on one DSP plus the partial sum
-    // above it shifted by D (the add inside the DSP), one step each: n*l exact
     let chunks: Vec<(u32, u32)> = (0..eb2.div_ceil(dsp.min(eb2))).map(|i| (i * dsp, (eb2 - i * dsp).min(dsp))).collect();
     if nb <= dsp && chunks.len() > 1 {
-        let mut acc: Option<String> = None;
-        for (k, &(lo, cw)) in chunks.iter().enumerate().rev() {
-            let width = nb + eb2 - lo;
-            let name = if k == 0 { "y_full".to_string() } else { format!("y_part{k}") };
-            let what = format!("n*l[{}:{lo}]", eb2 - 1);
-            match &acc {
-                None if cw <= SHIFT_ADD_BITS => {
-                    b.step("y = n*(-log2 c): the top bits of l (shift-adds)");
-                    let e = b.shift_add(&Piece::sig("n", 0, nb), &Piece::sig("ell", lo, cw), width);
-                    b.wire(&name, width, e, &format!("{what}, exact, by shift-and-add"));
-                    b.delay(add_delay(width) + LUT_DELAY * (cw as f64).log2().ceil());
-                }
-                _ => {
-                    b.step(&format!("y = n*(-log2 c) (multiplier 7): l[{}:{lo}] (multiply-add)", lo + cw - 1));
-                    let (nv, lv) = (b.zext("n", width), b.operand("ell", lo, cw, width));
-                    let expr = match &acc {
-                        Some(above) => {
-                            let av = b.r(above);
-                            format!("{nv} * {lv} + {{{av}, {}}}", lit(dsp, 0))
-                        }
-                        None => format!("{nv} * {lv}"),
-                    };
-                    let comment = if k == 0 {
-                        format!("UQ{}.{}: n*(-log2 c), exact (one DSP, the add inside it)", pb - w.ell_frac_bits, w.ell_frac_bits)
-                    } else {
-                        format!("{what}, exact")
-                    };
-                    b.wire(&name, width, expr, &comment);
-                    b.delay(mul_delay(nb, cw));
-                }
+        let mut low_words: Vec<String> = Vec::new();
+        let last = chunks.len() - 1;
+        for (k, &(lo, cw)) in chunks.iter().enumerate() {
+            let width = nb + cw;
+            let name = format!("y_part{k}");
+            let what = format!("floor(n*l[{}:0] / 2^{lo}), exact", lo + cw - 1);
+            if k == last && k > 0 && cw <= SHIFT_ADD_BITS {
+                let t = "y = n*(-log2 c): the top bits of l";
+                b.step(&format!("{t}: partial products"));
+                let mut terms = b.partial_products(&name, &Piece::sig("n", 0, nb), &Piece::sig("ell", lo, cw), 0, width, false);
+                let below = format!("y_part{}", k - 1);
+                let bw = nb + chunks[k - 1].1;
+                terms.push(vec![Piece::sig(&below, dsp, bw - dsp)]);
+                let p = b.sum_start(&name, terms, width, t, &what);
+                b.resolve(p, t);
+            } else {
+                b.step(&format!("y = n*(-log2 c) (multiplier 7): l[{}:{lo}] (multiply-add)", lo + cw - 1));
+                let (nv, lv) = (b.zext("n", width), b.operand("ell", lo, cw, width));
+                let expr = if k == 0 {
+                    format!("{nv} * {lv}")
+                } else {
+                    let bw = nb + chunks[k - 1].1;
+                    let av = b.operand(&format!("y_part{}", k - 1), dsp, bw - dsp, width);
+                    format!("{nv} * {lv} + {av}")
+                };
+                b.wire(&name, width, expr, &format!("{what} (one DSP{})", if k == 0 { "" } else { ", the add inside it" }));
+                b.delay(mul_delay(nb, cw));
             }
-            acc = Some(name);
         }
+        // each P_k's low D bits, read here (in the step of the last: a register holds the others)
+        for k in (0..chunks.len()).rev() {
+            let name = format!("y_part{k}");
+            low_words.push(if k == last { b.r(&name) } else { b.bits(&name, dsp - 1, 0) });
+        }
+        b.wire("y_full", pb, format!("{{{}}}", low_words.join(", ")), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
     } else {
         b.step("y = n*(-log2 c) (multiplier 7)");
         let (nv, lv) = (b.zext("n", pb), b.zext("ell", pb));
         b.wire("y_full", pb, format!("{nv} * {lv}"), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
         b.delay(mul_delay(nb, eb2));
     }
-    b.step("y truncated and saturated");
+
+    b.step("y truncated; its saturation");
     let drop = w.ell_frac_bits - w.y_frac_bits;
     let top = b.bits("y_full", pb - 1, drop);
     let ytw = pb - drop;
     b.wire("y_trunc", ytw, top, &format!("UQ{}.{}: truncation #2", ytw - w.y_frac_bits, w.y_frac_bits));
     let (z, nn) = (b.r("cos_zero"), b.r("n"));
-    let over = if w.y_sat() < 1u128 << ytw {
-        let yt = b.r("y_trunc");
-        format!(" || ({yt} >= {})", lit(ytw, w.y_sat()))
+    // y >= (W + 2)*2^WY on its integer bits alone (the saturation value has no fraction)
+    let sat_int = (w.out_bits + 2) as u128;
+    let yiw = ytw - w.y_frac_bits;
+    let over = if sat_int < 1u128 << yiw {
+        let k = bit_length(sat_int);
+        let low = b.bits("y_trunc", w.y_frac_bits + k - 1, w.y_frac_bits);
+        let high = if yiw > k { format!("(|{}) || ", b.bits("y_trunc", ytw - 1, w.y_frac_bits + k)) } else { String::new() };
+        format!(" || {high}({low} >= {})", lit(k, sat_int))
     } else {
         String::new() // y_trunc cannot reach the saturation value
     };
-    let yt2 = b.operand("y_trunc", 0, ytw, yb);
+    b.wire("y_saturates", 1, format!("({z} && ({nn} != {})){over}", lit(nb, 0)), &format!("y >= {}, or c = 0 with n >= 1", w.out_bits + 2));
+    b.delay(2.0 * LUT_DELAY);
+    b.step("y saturated");
+    let (sv, yt2) = (b.r("y_saturates"), b.operand("y_trunc", 0, ytw, yb));
     b.wire(
         "y",
         yb,
-        format!("(({z} && ({nn} != {})){over}) ? {} : {yt2}", lit(nb, 0), lit(yb, w.y_sat())),
+        format!("{sv} ? {} : {yt2}", lit(yb, w.y_sat())),
         &format!("UQ{}.{}: y, saturated at {} (every output is 0 from there on)", w.y_int_bits, w.y_frac_bits, w.out_bits + 2),
     );
-    b.delay(add_delay(ytw) + LUT_DELAY);
+    b.delay(LUT_DELAY);
 
     let re = w.exp2_rest_bits();
     let te = w.exp2_index_bits;
@@ -584,28 +622,51 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let we = w.exp2_frac_bits;
     let ee = w.exp2_entry_bits;
     let es = ee - implied as u32; // E's bits in the word
-    b.step("2^-frac(y) by linear interpolation: the step dE[j]*r");
-    let ehat = if re > 0 {
-        let pb = w.exp2_delta_bits + re;
-        let e = b.shift_add(&Piece::sig("exp2_word", es, w.exp2_delta_bits), &Piece::sig("y", 0, re), pb);
-        b.wire("exp2_step", pb, e, &format!("dE[j] * (frac(y) mod 2^-{te}), exact, by shift-and-add (LUTs, no DSP block)"));
-        b.delay(mul_delay(w.exp2_delta_bits, re));
-        b.step("2^-frac(y) by linear interpolation: E[j] minus the step");
-        let ej = exp2_entry(b, implied, es);
-        let st = b.operand("exp2_step", re, pb - re, ee);
-        format!("{ej} - {st}")
+    let mut e_word = vec![Piece::sig("exp2_word", 0, es)];
+    if implied {
+        e_word.push(Piece::sig("exp2_one", 0, 1));
+    }
+    let title = "2^-frac(y) by linear interpolation";
+    if re > 0 {
+        // E[j] - floor(s / 2^RE) = floor((E[j]*2^RE + 2^RE - 1 - s) / 2^RE) for the step
+        // s = dE[j]*r, and -s = the sum of its complemented partial products plus their count:
+        // one carry-save sum, one carry chain at its end
+        b.step(&format!("{title}: the partial products of dE[j]*r, complemented"));
+        let sw = ee + re;
+        let mut terms = b.partial_products("exp2_sum", &Piece::sig("exp2_word", es, w.exp2_delta_bits), &Piece::sig("y", 0, re), 0, sw, true);
+        let k = terms.len() as u128;
+        let mut et = vec![Piece::zeros(re)];
+        et.extend(e_word);
+        terms.push(et);
+        terms.push(vec![Piece::Const { value: (((1u128 << re) - 1) + k) & mask(sw), width: sw }]);
+        let p = b.sum_start("exp2_sum", terms, sw, title, &format!("E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te}), exact"));
+        let sum = b.resolve(p, title);
+        let e = b.bits(&sum, sw - 1, re);
+        b.wire("exp2_frac", ee, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
     } else {
-        exp2_entry(b, implied, es)
-    };
-    b.wire("exp2_frac", ee, ehat, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
-    b.delay(add_delay(ee));
+        b.step(title);
+        let e = b.pieces(&e_word);
+        b.wire("exp2_frac", ee, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+    }
 
-    b.step("shift by the integer part of y (truncation #3)");
-    let (ev, yi) = (b.r("exp2_frac"), b.bits("y", w.y_bits() - 1, w.y_frac_bits));
-    b.wire("power", ee, format!("{ev} >> {yi}"), &format!("UQ1.{we}: c^n before rounding"));
-    b.delay(LUT_DELAY * (w.y_int_bits as f64));
+    // the shift by the integer part of y, two of its bits a step (a 4:1 mux level each)
+    let yib = w.y_int_bits;
+    let mut src = "exp2_frac".to_string();
+    let mut hi = yib;
+    while hi > 0 {
+        let lo = hi.saturating_sub(2);
+        b.step(&format!("shift by the integer part of y: its bits [{}:{lo}]{}", hi - 1, if lo == 0 { " (truncation #3)" } else { "" }));
+        let (sv, yi) = (b.r(&src), b.bits("y", w.y_frac_bits + hi - 1, w.y_frac_bits + lo));
+        let name = if lo == 0 { "power".to_string() } else { format!("power_shift{lo}") };
+        let by = if lo == 0 { yi } else { format!("{{{yi}, {}}}", lit(lo, 0)) };
+        let comment = if lo == 0 { format!("UQ1.{we}: c^n before rounding") } else { format!("2^-frac(y) shifted by floor(y)'s bits above {lo}") };
+        b.wire(&name, ee, format!("{sv} >> {by}"), &comment);
+        b.delay(2.0 * LUT_DELAY);
+        src = name;
+        hi = lo;
+    }
 
-    b.step("colour multipliers (14-16) and the intensity, rounded half up");
+    b.step("colour multipliers (14-16); the intensity rounding: chunk sums; done");
     let wc = w.color_frac_bits;
     let cs = b.bits("power", we, we - wc);
     b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: c^n floored to what the colours' budget needs"));
@@ -613,35 +674,25 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     for ch in CHANNELS {
         let (sv, kv) = (b.zext("color_power", cp), b.zext(&format!("ks_{ch}"), cp));
         b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &format!("UQ{bb}.{wc}: c^n*ks_{ch} + 1/2 colour ulp"));
+    }
+    b.delay(mul_delay(wc + 1, bb));
+    // round half up on the bits that matter: (power[WE:WE-FI-1] + 1) >> 1
+    let p = b.add_start(
+        "intensity_sum",
+        &[Piece::sig("power", we - fi - 1, fi + 2)],
+        &[],
+        true,
+        fi + 2,
+        &format!("UQ1.{}: c^n to 2^-{} plus one ulp = c^n + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
+    );
+    // the intensity is 0 exactly when c^n < 2^-(FI+1): its bits from 2^-(FI+1) up are all 0
+    let top = b.bits("power", ee - 1, we - fi - 1);
+    b.wire("done", 1, format!("~|{top}"), "the highlight is below the output's resolution (the intensity rounds to 0)");
+    let sum = b.resolve(p, "the intensity rounded half up");
+    for ch in CHANNELS {
         let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: c^n*ks_{ch} rounded half up"));
     }
-    b.delay(mul_delay(wc + 1, bb));
-    b.step("the intensity rounded half up; done");
-    let pv = b.r("power");
-    b.wire("intensity_sum", ee, format!("{pv} + {}", lit(ee, 1u128 << (we - fi - 1))), &format!("UQ1.{we}: c^n + 2^-{} (round half up)", fi + 1));
-    let e = b.bits("intensity_sum", we, we - fi);
+    let e = b.bits(&sum, fi + 1, 1);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
-    let iv = b.r("intensity");
-    b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
-    b.delay(add_delay(ee) + LUT_DELAY);
-}
-
-/// E[j] from the exp2 word: its `es` stored bits, under the integer bit `j == 0` when implied.
-fn exp2_entry(b: &mut Builder, implied: bool, es: u32) -> String {
-    let e = b.bits("exp2_word", es - 1, 0);
-    if implied {
-        let one = b.r("exp2_one");
-        format!("{{{one}, {e}}}")
-    } else {
-        e
-    }
-}
-
-fn zext_expr(e: &str, from: u32, to: u32) -> String {
-    if to == from {
-        e.to_string()
-    } else {
-        format!("{{{}, {e}}}", lit(to - from, 0))
-    }
 }

@@ -55,7 +55,7 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
     assert_eq!(unit.matches("specular_unit_rom1k18 #(").count(), 1);
     assert!(!has_multiply(&unit), "every product on a DSP at the deepest pipeline");
     let core = std::fs::read_to_string(dir.join("specular_unit.core")).unwrap();
-    assert!(core.contains("flow: trellis") && core.contains("sim_models:") && core.contains("- ecp5_mult18x18d_sim.v"), "{core}");
+    assert!(core.contains("tool: yosys") && core.contains("arch: ecp5") && core.contains("sim_models:") && core.contains("- ecp5_mult18x18d_sim.v"), "{core}");
     let o = Command::new("verilator").current_dir(&dir).args(["--lint-only", "-Wall"]).args(&files).output().unwrap();
     assert!(o.status.success() && o.stderr.is_empty(), "verilator -Wall:\n{}", text(&o));
     let o = Command::new("iverilog").current_dir(&dir).args(["-g2005", "-o", "/dev/null"]).args(&files).output().unwrap();

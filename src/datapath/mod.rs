@@ -608,20 +608,101 @@ impl Builder {
     /// chunks' carry-outs. Nothing to do for one or two chunks.
     pub fn add_carries(&mut self, p: &PendingAdd) {
         let n = p.chunks.len();
-        if n <= 2 {
-            return;
+        if n > 2 {
+            self.add_carries_range(p, 1, n - 1);
         }
-        self.delay(LUT_DELAY * (n - 2) as f64);
+    }
+
+    /// The carries into chunks `from + 1 ..= to` (one LUT level each, rippled).
+    fn add_carries_range(&mut self, p: &PendingAdd, from: usize, to: usize) {
+        self.delay(LUT_DELAY * (to - from) as f64);
         let (_, w0) = p.chunks[0];
         let o = p.part0_offset;
-        let mut carry = self.bits(&format!("{}_part0", p.name), w0 + o, w0 + o);
-        for i in 1..n - 1 {
+        let mut carry = match from {
+            1 => self.bits(&format!("{}_part0", p.name), w0 + o, w0 + o),
+            _ => self.r(&format!("{}_carry{from}", p.name)),
+        };
+        for i in from..to {
             let w = p.chunks[i].1;
             let (ca, cb) = (self.bits(&format!("{}_part{i}_plus1", p.name), w + 1, w + 1), self.bits(&format!("{}_part{i}", p.name), w, w));
             let cname = format!("{}_carry{}", p.name, i + 1);
             self.wire(&cname, 1, format!("{carry} ? {ca} : {cb}"), &format!("carry into bit {}", p.chunks[i + 1].0));
             carry = self.r(&cname);
         }
+    }
+
+    /// The partial products of `a·r·2^shift` mod 2^width as wires `{name}_pp{k}` (one LUT
+    /// level: `a` shifted to bit `k` of `r` where it is set, else 0; each complemented when
+    /// `invert`, for a difference), as terms for [`Builder::sum_start`].
+    pub fn partial_products(&mut self, name: &str, a: &Piece, r: &Piece, shift: u32, width: u32, invert: bool) -> Vec<Vec<Piece>> {
+        let terms = self.shift_add_terms(a, r, shift, width);
+        let mut out = Vec::new();
+        for (k, t) in terms.into_iter().enumerate() {
+            let pp = format!("{name}_pp{k}");
+            let (e, what) = if invert { (format!("~{t}"), "complemented") } else { (t, "") };
+            self.wire(&pp, width, e, &format!("partial product {k}{}", if invert { format!(", {what}") } else { String::new() }));
+            out.push(vec![Piece::sig(&pp, 0, width)]);
+        }
+        self.delay(LUT_DELAY);
+        out
+    }
+
+    /// `name = Σ terms mod 2^width` (each term pieces, LSB first) without a carry chain until
+    /// the end: 3:2 carry-save layers (sum `a ^ b ^ c`, carry the majority shifted up: one LUT
+    /// level each, two a step, from this step on), then the two vectors left into
+    /// [`Builder::add_start`] in a step of its own. [`Builder::resolve`] finishes it.
+    pub fn sum_start(&mut self, name: &str, mut terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
+        let mut layer = 0;
+        while terms.len() > 2 {
+            if layer % 2 == 0 {
+                self.step(&format!("{title}: carry-save layers {} and {}", layer + 1, layer + 2));
+                self.delay(2.0 * LUT_DELAY);
+            }
+            layer += 1;
+            let mut next = Vec::new();
+            let mut rest = terms.into_iter();
+            let mut i = 0;
+            loop {
+                let group: Vec<Vec<Piece>> = rest.by_ref().take(3).collect();
+                if group.len() < 3 {
+                    next.extend(group);
+                    break;
+                }
+                let e: Vec<String> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
+                let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
+                self.wire(&sn, width, format!("{} ^ {} ^ {}", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the sum bits"));
+                self.wire(&cn, width, format!("({0} & {1}) | ({0} & {2}) | ({1} & {2})", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the carries (worth twice)"));
+                next.push(vec![Piece::sig(&sn, 0, width)]);
+                next.push(vec![Piece::zeros(1), Piece::sig(&cn, 0, width - 1)]);
+                i += 1;
+            }
+            terms = next;
+        }
+        self.step(&format!("{title}: chunk sums"));
+        let zero = vec![Piece::zeros(width)];
+        let (a, b) = (terms.first().unwrap_or(&zero).clone(), terms.get(1).unwrap_or(&zero).clone());
+        self.add_start(name, &a, &b, false, width, comment)
+    }
+
+    /// Finishes a carry-select add in the steps it needs, at most two LUT levels a step: none
+    /// for one chunk; the chunk carries rippled two a step, the last with each chunk's pick.
+    /// Returns the name of the sum.
+    pub fn resolve(&mut self, p: PendingAdd, title: &str) -> String {
+        let n = p.chunks.len();
+        if n > 0 {
+            // carries into chunks 2..n-1 (chunk 1's is part0's): n - 2 levels, then the pick
+            let mut from = 1;
+            while n > 2 && (n - 1) - from > 1 {
+                self.step(&format!("{title}: carries"));
+                self.add_carries_range(&p, from, from + 2);
+                from += 2;
+            }
+            self.step(&format!("{title}: {}select", if n > 2 && from < n - 1 { "carries and " } else { "" }));
+            if n > 2 && from < n - 1 {
+                self.add_carries_range(&p, from, n - 1);
+            }
+        }
+        self.add_finish(p)
     }
 
     /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT
