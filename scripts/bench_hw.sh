@@ -71,6 +71,8 @@ print('|---|---|---|---|---|---|---|---|---|---|')
 notes = []
 for key in sorted({(r['name'], r['widths'], r['stages']) for r in rows}, key=lambda k: (k[0] != 'lean', k[0], k[1], k[2])):
     nd, d, g = (get(*key, m) for m in ('nodsp', 'dsp', 'generic'))
+    if not (nd and d and g):
+        continue  # an ECP5-shaped unit: in the ECP5 table only
     f = lambda r: f"{r['fmax_mhz']:.1f} ({min(r['fmax_seeds']):.1f}–{max(r['fmax_seeds']):.1f})" if r and r.get('fmax_mhz') else '-'
     for r in (nd, d):
         if r and not r.get('fmax_mhz'):

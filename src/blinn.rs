@@ -583,25 +583,31 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let ytw = pb - drop;
     b.wire("y_trunc", ytw, top, &format!("UQ{}.{}: truncation #2", ytw - w.y_frac_bits, w.y_frac_bits));
     let (z, nn) = (b.r("cos_zero"), b.r("n"));
-    // y >= (W + 2)*2^WY on its integer bits alone (the saturation value has no fraction)
+    b.wire("y_zero_power", 1, format!("{z} && ({nn} != {})", lit(nb, 0)), "c = 0 with n >= 1: c^n = 0");
+    // y >= (W + 2)*2^WY on its integer bits alone (the saturation value has no fraction):
+    // some high bit set, or the low ones at least W + 2
     let sat_int = (w.out_bits + 2) as u128;
     let yiw = ytw - w.y_frac_bits;
-    let over = if sat_int < 1u128 << yiw {
+    let mut flags = vec!["y_zero_power"];
+    if sat_int < 1u128 << yiw {
         let k = bit_length(sat_int);
         let low = b.bits("y_trunc", w.y_frac_bits + k - 1, w.y_frac_bits);
-        let high = if yiw > k { format!("(|{}) || ", b.bits("y_trunc", ytw - 1, w.y_frac_bits + k)) } else { String::new() };
-        format!(" || {high}({low} >= {})", lit(k, sat_int))
-    } else {
-        String::new() // y_trunc cannot reach the saturation value
-    };
-    b.wire("y_saturates", 1, format!("({z} && ({nn} != {})){over}", lit(nb, 0)), &format!("y >= {}, or c = 0 with n >= 1", w.out_bits + 2));
+        b.wire("y_over_low", 1, format!("{low} >= {}", lit(k, sat_int)), &format!("floor(y)'s low {k} bits reach {sat_int}"));
+        flags.push("y_over_low");
+        if yiw > k {
+            let high = b.bits("y_trunc", ytw - 1, w.y_frac_bits + k);
+            b.wire("y_over_high", 1, format!("|{high}"), &format!("floor(y) has a bit set above its low {k}"));
+            flags.push("y_over_high");
+        }
+    } // else y_trunc cannot reach the saturation value
     b.delay(2.0 * LUT_DELAY);
     b.step("y saturated");
-    let (sv, yt2) = (b.r("y_saturates"), b.operand("y_trunc", 0, ytw, yb));
+    let flags: Vec<String> = flags.iter().map(|f| b.r(f)).collect();
+    let yt2 = b.operand("y_trunc", 0, ytw, yb);
     b.wire(
         "y",
         yb,
-        format!("{sv} ? {} : {yt2}", lit(yb, w.y_sat())),
+        format!("({}) ? {} : {yt2}", flags.join(" || "), lit(yb, w.y_sat())),
         &format!("UQ{}.{}: y, saturated at {} (every output is 0 from there on)", w.y_int_bits, w.y_frac_bits, w.out_bits + 2),
     );
     b.delay(LUT_DELAY);

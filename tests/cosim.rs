@@ -199,9 +199,9 @@ fn injected_faults_in_the_new_models_are_caught() {
         // fitted: the first squaring's 2*hi*lo masked by the wrong bit of lo
         ("fit_sq_t", &["--model", "fitted"], "(power0_s5[4] ? {{2'h0", "(power0_s5[3] ? {{2'h0"),
         // blinn: one exponent mis-encoded in the normalisation
-        ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_s1[9] ? 4'h5\n", "cos_minus_ulp_s1[9] ? 4'h6\n"),
+        ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_s2[9] ? 2'h1", "cos_minus_ulp_s2[9] ? 2'h2"),
         // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)
-        ("blinn_zero", &["--model", "blinn"], "(cos_zero_s2 && (n != 10'h0))", "(cos_zero_s2)"),
+        ("blinn_zero", &["--model", "blinn"], "cos_zero_s2 && (n != 10'h0);", "cos_zero_s2;"),
     ];
     for (name, gen_args, from, to) in faults {
         let o = mutant(r, name, gen_args, from, to, random);

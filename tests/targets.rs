@@ -194,8 +194,8 @@ fn wide_config_fits_the_up5k_dsps_and_is_right() {
 }
 
 /// Random iCE40 configurations where `1 − cos` (F ≥ 16), `k_q` (KF ≥ 16) or the bracket are
-/// wider than a DSP's operands, at random depths: every one equals the golden model under
-/// Icarus (a few thousand vectors each, corner cases first).
+/// wider than a DSP's operands, of every model, at random depths: every one equals the
+/// golden model under Icarus (a few thousand vectors each, corner cases first).
 #[test]
 fn dsp_splits_are_right_over_random_wide_configs() {
     require_tool("iverilog", "iverilog");
@@ -205,13 +205,14 @@ fn dsp_splits_are_right_over_random_wide_configs() {
         r = specgen::cosim::splitmix(r);
         (lo + r % (hi - lo + 1)).to_string()
     };
-    for i in 0..8 {
+    for i in 0..12 {
         let k = format!("0.{}", draw(100, 999));
         let args: Vec<String> = [
             "--cos-frac-bits",
             &draw(14, 20),
             "--n-bits",
-            &draw(1, 12),
+            // 6 bits at most for fitted: one minimax fit per n, each well under a second
+            &draw(1, if i % 4 == 3 { 6 } else { 12 }),
             "--color-bits",
             &draw(1, 16),
             "--intensity-frac-bits",
@@ -224,7 +225,13 @@ fn dsp_splits_are_right_over_random_wide_configs() {
         .iter()
         .map(|s| s.to_string())
         .collect();
-        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let mut args: Vec<&str> = args.iter().map(String::as_str).collect();
+        // every model's shape: its splits, carry-save sums and cuts
+        match i % 4 {
+            1 => args.extend(["--model", "blinn"]),
+            3 => args.extend(["--model", "fitted"]),
+            _ => {}
+        }
         let depth: u64 = deepest(&args).parse().unwrap();
         let stages = draw(0, depth);
         let dir = generate(tmp.path(), &format!("w{i}"), &[&args[..], &["--stages", &stages]].concat());

@@ -172,6 +172,8 @@ pub struct Builder {
     target: Target,
     /// while the operands of a registered DSP are written: the step whose view they take
     view: Option<usize>,
+    /// a shorter carry-select chunk than the family's, while a carry-save sum is closed
+    chunk_limit: u32,
 }
 
 /// Bits `[lo, lo+width)` of a signal, optionally inverted; or a constant.
@@ -266,6 +268,9 @@ fn chunks(width: u32, chunk_bits: u32) -> Vec<(u32, u32)> {
 /// One LUT level and its route.
 pub const LUT_DELAY: f64 = 2.7;
 
+/// Chunk bits of the carry-select add closing a carry-save sum ([`Builder::sum_start`]).
+pub const SUM_CHUNK_BITS: u32 = 4;
+
 /// A `w`-bit carry chain, carry-out included.
 pub fn add_delay(w: u32) -> f64 {
     0.7 + 0.3 * w as f64 + LUT_DELAY
@@ -293,6 +298,7 @@ impl Builder {
             registered: registered.to_vec(),
             target,
             view: None,
+            chunk_limit: u32::MAX,
         }
     }
 
@@ -560,7 +566,7 @@ impl Builder {
     /// here with carry-in 0 and 1 (carry-select), and [`Builder::add_finish`] resolves the
     /// carries and picks in the next step.
     pub fn add_start(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
-        let parts = chunks(width, self.chunk_bits());
+        let parts = chunks(width, self.chunk_bits().min(self.chunk_limit));
         let n = parts.len();
         let max_chunk = parts.iter().map(|c| c.1).max().unwrap_or(1);
         self.delay(add_delay(max_chunk));
@@ -671,7 +677,12 @@ impl Builder {
                 let e: Vec<String> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
                 let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
                 self.wire(&sn, width, format!("{} ^ {} ^ {}", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the sum bits"));
-                self.wire(&cn, width, format!("({0} & {1}) | ({0} & {2}) | ({1} & {2})", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the carries (worth twice)"));
+                self.wire(
+                    &cn,
+                    width,
+                    format!("({0} & {1}) | ({0} & {2}) | ({1} & {2})", e[0], e[1], e[2]),
+                    &format!("carry-save layer {layer}: the carries (worth twice)"),
+                );
                 next.push(vec![Piece::sig(&sn, 0, width)]);
                 next.push(vec![Piece::zeros(1), Piece::sig(&cn, 0, width - 1)]);
                 i += 1;
@@ -681,7 +692,11 @@ impl Builder {
         self.step(&format!("{title}: chunk sums"));
         let zero = vec![Piece::zeros(width)];
         let (a, b) = (terms.first().unwrap_or(&zero).clone(), terms.get(1).unwrap_or(&zero).clone());
-        self.add_start(name, &a, &b, false, width, comment)
+        // short chunks: the vectors come from registers spread over a wide sum
+        self.chunk_limit = SUM_CHUNK_BITS;
+        let p = self.add_start(name, &a, &b, false, width, comment);
+        self.chunk_limit = u32::MAX;
+        p
     }
 
     /// Finishes a carry-select add in the steps it needs, at most two LUT levels a step: none
