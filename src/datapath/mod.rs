@@ -676,11 +676,12 @@ impl Builder {
                 }
                 let e: Vec<String> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
                 let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
-                self.wire(&sn, width, format!("{} ^ {} ^ {}", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the sum bits"));
+                // one operand (or pair) a line
+                self.wire(&sn, width, format!("{}\n    ^ {}\n    ^ {}", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the sum bits"));
                 self.wire(
                     &cn,
                     width,
-                    format!("({0} & {1}) | ({0} & {2}) | ({1} & {2})", e[0], e[1], e[2]),
+                    format!("({0} & {1})\n    | ({0} & {2})\n    | ({1} & {2})", e[0], e[1], e[2]),
                     &format!("carry-save layer {layer}: the carries (worth twice)"),
                 );
                 next.push(vec![Piece::sig(&sn, 0, width)]);
@@ -744,7 +745,9 @@ impl Builder {
         }
         words.reverse();
         let comment = p.comment.clone();
-        self.wire(&p.name, p.width, format!("{{{}}}", words.join(", ")), &comment);
+        // many chunks: one a line
+        let sep = if words.len() > 4 { ",\n    " } else { ", " };
+        self.wire(&p.name, p.width, format!("{{{}}}", words.join(sep)), &comment);
         p.name
     }
 
