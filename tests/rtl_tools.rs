@@ -59,7 +59,15 @@ fn combinational_units_have_no_renaming_wires_and_one_sink() {
     {
         let dir = generate(tmp.path(), &format!("r{i}"), args);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        for line in v.lines().filter(|l| l.starts_with("wire ")) {
+        // a wire's whole statement: its continuation lines (one operand a line) joined
+        let mut statements: Vec<String> = Vec::new();
+        for l in v.lines() {
+            match statements.last_mut() {
+                Some(last) if l.starts_with("    ") && !last.contains(';') => last.push_str(l),
+                _ => statements.push(l.to_string()),
+            }
+        }
+        for line in statements.iter().filter(|l| l.starts_with("wire ")) {
             let rhs = line.split_once(" = ").map(|x| x.1).unwrap_or("");
             let rhs = rhs.split(';').next().unwrap().trim();
             assert!(!rhs.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'), "{args:?}: a renaming wire: {line}");
