@@ -704,18 +704,20 @@ impl Builder {
     /// for one chunk; the chunk carries rippled two a step, the last with each chunk's pick.
     /// Returns the name of the sum.
     pub fn resolve(&mut self, p: PendingAdd, title: &str) -> String {
-        let n = p.chunks.len();
-        if n > 0 {
-            // carries into chunks 2..n-1 (chunk 1's is part0's): n - 2 levels, then the pick
+        if !p.chunks.is_empty() {
+            // the carries into chunks from+1..=to (chunk 1's is part0's), two levels a step,
+            // then the pick with the last of them
+            let to = p.chunks.len().saturating_sub(1).max(1);
             let mut from = 1;
-            while n > 2 && (n - 1) - from > 1 {
+            while to - from > 1 {
                 self.step(&format!("{title}: carries"));
                 self.add_carries_range(&p, from, from + 2);
                 from += 2;
             }
-            self.step(&format!("{title}: {}select", if n > 2 && from < n - 1 { "carries and " } else { "" }));
-            if n > 2 && from < n - 1 {
-                self.add_carries_range(&p, from, n - 1);
+            let rest = from < to;
+            self.step(&format!("{title}: {}select", if rest { "carries and " } else { "" }));
+            if rest {
+                self.add_carries_range(&p, from, to);
             }
         }
         self.add_finish(p)
