@@ -70,7 +70,7 @@ wire [4:0] one_minus_cos_part2_s2 = cos_complement_s1[15:11];   // bits [15:11],
 wire [5:0] one_minus_cos_part2_plus1_s2 = {cos_complement_s1[15:11], 1'b1} + 6'h1;   // bits [15:11] above bit 0, carry-in 1 (carry-select)
 
 // ==== step 3: 1 - cos: carries and select; comparator (12): chunk sums ====
-wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[6] : one_minus_cos_part1_s2[5];   // carry into bit 11
+wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_s2[7] & one_minus_cos_part1_plus1_s2[6];   // carry into bit 11
 wire [4:0] one_minus_cos_chunk1_s3 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] : one_minus_cos_part1_s2[4:0];   // bits [10:6]: the sum with the carry into bit 6
 wire [4:0] one_minus_cos_chunk2_s3 = one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] : one_minus_cos_part2_s2;   // bits [15:11]: the sum with the carry into bit 11
 wire [15:0] one_minus_cos_s3 = {one_minus_cos_chunk2_s3, one_minus_cos_chunk1_s3, one_minus_cos_part0_s2[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
@@ -127,7 +127,7 @@ wire [4:0] intensity_sum_part2_s12 = square_s11[16:12];   // bits [16:12], carry
 wire [5:0] intensity_sum_part2_plus1_s12 = {square_s11[16:12], 1'b1} + 6'h1;   // bits [16:12] above bit 0, carry-in 1 (carry-select)
 
 // ==== step 13: intensity rounding: carries and select ====
-wire        intensity_sum_carry2_s13 = intensity_sum_part0_s12[7] ? intensity_sum_part1_plus1_s12[7] : intensity_sum_part1_s12[6];   // carry into bit 12
+wire        intensity_sum_carry2_s13 = intensity_sum_part0_s12[7] & intensity_sum_part1_plus1_s12[7];   // carry into bit 12
 wire [5:0] intensity_sum_chunk1_s13 = intensity_sum_part0_s12[7] ? intensity_sum_part1_plus1_s12[6:1] : intensity_sum_part1_s12[5:0];   // bits [11:6]: the sum with the carry into bit 6
 wire [4:0] intensity_sum_chunk2_s13 = intensity_sum_carry2_s13 ? intensity_sum_part2_plus1_s12[5:1] : intensity_sum_part2_s12;   // bits [16:12]: the sum with the carry into bit 12
 wire [16:0] intensity_sum_s13 = {intensity_sum_chunk2_s13, intensity_sum_chunk1_s13, intensity_sum_part0_s12[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
@@ -135,12 +135,13 @@ wire [15:0] intensity_s13 = intensity_sum_s13[16:1];   // UQ1.15: S rounded half
 
 // bits no step reads (one sink, so lint stays silent)
 wire        unused_bits = ^{
-    cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_plus1_s2[0],
-    one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6], cutoff_sum_part1_plus1_s3[7], cutoff_sum_part1_plus1_s3[0],
-    cutoff_sum_part2_plus1_s3[0], kn_s4[24:16], cutoff_sum_s5[15:0], deviation_sum_s6[13:0],
-    bracket_s7[1:0], square_ll_s8[2:0], square_t_s9[0], square_z_s10[31],
-    square_z_s10[13:0], color_sum_r_s11[8:0], color_sum_g_s11[8:0], color_sum_b_s11[8:0],
-    intensity_sum_part0_s12[0], intensity_sum_part1_plus1_s12[0], intensity_sum_part2_plus1_s12[0], intensity_sum_s13[0]
+    cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_s2[5],
+    one_minus_cos_part1_plus1_s2[0], one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6], cutoff_sum_part1_plus1_s3[7],
+    cutoff_sum_part1_plus1_s3[0], cutoff_sum_part2_plus1_s3[0], kn_s4[24:16], cutoff_sum_s5[15:0],
+    deviation_sum_s6[13:0], bracket_s7[1:0], square_ll_s8[2:0], square_t_s9[0],
+    square_z_s10[31], square_z_s10[13:0], color_sum_r_s11[8:0], color_sum_g_s11[8:0],
+    color_sum_b_s11[8:0], intensity_sum_part0_s12[0], intensity_sum_part1_s12[6], intensity_sum_part1_plus1_s12[0],
+    intensity_sum_part2_plus1_s12[0], intensity_sum_s13[0]
 };
 
 assign out_valid = in_valid;

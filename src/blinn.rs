@@ -396,7 +396,7 @@ const SHIFT_ADD_BITS: u32 = 5;
 
 /// The blinn datapath: normalise, log2 by table, times n, exp2 by table, shift, round.
 pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder) {
-    use crate::datapath::{add_delay, mul_delay, CHANNELS, LUT_DELAY};
+    use crate::datapath::{mul_delay, CHANNELS, LUT_DELAY};
     let (f, fi, bb, nb) = (cfg.f(), cfg.fi(), cfg.b(), cfg.n_bits());
     let cb = f + 1;
     let lt = b.table(t.log_table(w));
@@ -404,17 +404,25 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     b.step("clamp c = min(cos, 1)");
     let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
-    let one = lit(cb, 1u128 << f);
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator
-    b.wire("cos_clamped", cb, format!("{top} ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    b.wire("cos_clamped", cb, Builder::select_const(&top, 1u128 << f, cb, &g), &format!("UQ1.{f}: c"));
     b.delay(LUT_DELAY);
 
-    b.step("c - 1 for the normalisation; c = 0");
-    let c = b.r("cos_clamped");
-    b.wire("cos_minus_ulp", cb, format!("{c} - {}", lit(cb, 1)), &format!("UQ1.{f}: c - 2^-{f} (its leading zeros give the exponent)"));
+    // c - 2^-F = c + (2^(F+1) - 1) mod 2^(F+1): a carry-select add of the all-ones word
+    let title = "c - 1 for the normalisation";
+    b.step(&format!("{title}; c = 0"));
+    let p = b.add_start(
+        "cos_minus_ulp",
+        &[Piece::sig("cos_clamped", 0, cb)],
+        &[Piece::Const { value: mask(cb), width: cb }],
+        false,
+        cb,
+        &format!("UQ1.{f}: c - 2^-{f} (its leading zeros give the exponent)"),
+    );
     let zc = b.r("cos_clamped");
     b.wire("cos_zero", 1, format!("{zc} == {}", lit(cb, 0)), "c = 0: c^n = 0 for n >= 1");
-    b.delay(add_delay(cb));
+    b.delay(2.0 * LUT_DELAY);
+    b.resolve(p, title);
 
     // e = the leading zeros of c - 2^-F over its F fraction bits, in two LUT steps: per group
     // of 4 bits from the top, whether it has a one and where its first one is; then the
@@ -425,13 +433,33 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     for (k, &(hi, gw)) in groups.iter().enumerate() {
         let bits = b.bits("cos_minus_ulp", hi - 1, hi - gw);
         b.wire(&format!("lead_any{k}"), 1, format!("|{bits}"), &format!("bits [{}:{}] of c - 2^-{f} have a one", hi - 1, hi - gw));
-        let mut cases = Vec::new();
-        for j in 0..gw - 1 {
-            let bit = b.bits("cos_minus_ulp", hi - 1 - j, hi - 1 - j);
-            cases.push(format!("{bit} ? {}", lit(2, j as u128)));
-        }
-        cases.push(lit(2, (gw - 1) as u128));
-        b.wire(&format!("lead_zeros{k}"), 2, cases.join(" : "), "its leading zeros (when it has a one)");
+        // its first one at j from the top: bits above it 0, bit j 1 (the last j: when the
+        // group has a one, it is there if nowhere above); each bit of j an OR of those
+        // conditions, no ?: of constants ([`Builder::select`])
+        let bit = |b: &mut Builder, j: u32| b.bits("cos_minus_ulp", hi - 1 - j, hi - 1 - j);
+        let first_at: Vec<String> = (0..gw)
+            .map(|j| {
+                let mut terms: Vec<String> = (0..j).map(|i| format!("~{}", bit(b, i))).collect();
+                if j + 1 < gw {
+                    terms.push(bit(b, j));
+                }
+                if terms.is_empty() {
+                    "1'b1".to_string()
+                } else {
+                    format!("({})", terms.join(" & "))
+                }
+            })
+            .collect();
+        let lz_bit = |v: u32| {
+            let ors: Vec<&str> = (0..gw).filter(|j| j >> v & 1 == 1).map(|j| first_at[j as usize].as_str()).collect();
+            if ors.is_empty() {
+                "1'b0".to_string()
+            } else {
+                ors.join(" | ")
+            }
+        };
+        let (b1, b0) = (lz_bit(1), lz_bit(0));
+        b.wire(&format!("lead_zeros{k}"), 2, format!("{{{b1},\n    {b0}}}"), "its leading zeros (when it has a one)");
     }
     b.delay(LUT_DELAY);
     b.step("normalise: e = the leading zeros of c - 2^-F");
@@ -442,25 +470,36 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     }
     cases.push(lit(eb, f as u128));
     b.wire("exponent", eb, cases.join("\n    : "), &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"));
+    // beside it, the one case the tables do not cover, carried as one bit
+    let (z, nn) = (b.r("cos_zero"), b.r("n"));
+    b.wire("y_zero_power", 1, format!("{z} && ({nn} != {})", lit(nb, 0)), "c = 0 with n >= 1: c^n = 0 (y saturates)");
     b.delay(2.0 * LUT_DELAY);
 
-    // c' = c*2^e by e's high bits (multiples of 4) and then its low two, a mux level each;
-    // the second also inverts c' for x = -c' = ~c' + 1
-    b.step("normalise: c shifted by e's multiple of 4");
-    let (c, eh) = (b.r("cos_clamped"), b.bits("exponent", eb - 1, 2));
-    b.wire("cos_norm_hi", cb, format!("{c} << {{{eh}, 2'b00}}"), &format!("UQ1.{f}: c*2^(e - e mod 4)"));
-    b.delay(2.0 * LUT_DELAY);
-    b.step("normalise: c' = c*2^e in (1/2, 1], its complement");
-    let (ch, el) = (b.r("cos_norm_hi"), b.bits("exponent", 1, 0));
-    b.wire("cos_norm", cb, format!("{ch} << {el}"), &format!("UQ1.{f}: c' = c*2^e in (1/2, 1]"));
-    let cn = b.bits("cos_norm", f - 2, 0);
-    b.wire("cos_norm_inv", f - 1, format!("~{cn}"), &format!("~c' over its low {} bits", f - 1));
-    b.delay(2.0 * LUT_DELAY);
+    // c' = c*2^e, one bit of e a step from the top: a 2:1 mux level each, so the bit that
+    // fans out over the whole word drives one LUT level; the last also inverts c' for
+    // x = -c' = ~c' + 1
+    let mut src = "cos_clamped".to_string();
+    for k in (0..eb).rev() {
+        let last = k == 0;
+        let name = if last { "cos_norm".to_string() } else { format!("cos_norm_shift{k}") };
+        b.step(&if last { "normalise: c' = c*2^e in (1/2, 1], its complement".to_string() } else { format!("normalise: c shifted by e's bit {k}") });
+        let (c, ek) = (b.r(&src), b.bits("exponent", k, k));
+        // 2^k <= F < F + 1: bit k of e never shifts the whole word out
+        let shifted = format!("{{{}, {}}}", b.bits(&src, cb - 1 - (1 << k), 0), lit(1 << k, 0));
+        let what = if last { format!("UQ1.{f}: c' = c*2^e in (1/2, 1]") } else { format!("UQ1.{f}: c*2^(e's bits from {k} up)") };
+        b.wire(&name, cb, Builder::select(&ek, &shifted, &c, cb), &what);
+        if last {
+            let cn = b.bits("cos_norm", f - 2, 0);
+            b.wire("cos_norm_inv", f - 1, format!("~{cn}"), &format!("~c' over its low {} bits", f - 1));
+        }
+        b.delay(LUT_DELAY);
+        src = name;
+    }
     // x = 1 - c' < 1/2: only the low F-1 bits of 2^F - c', i.e. of -c' = ~c' + 1
-    b.step("x = 1 - c'");
-    let ci = b.r("cos_norm_inv");
-    b.wire("x", f - 1, format!("{ci} + {}", lit(f - 1, 1)), &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
-    b.delay(add_delay(f - 1));
+    let title = "x = 1 - c'";
+    b.step(title);
+    let p = b.add_start("x", &[Piece::sig("cos_norm_inv", 0, f - 1)], &[], true, f - 1, &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
+    b.resolve(p, title);
 
     let rb = w.log_rest_bits(cfg);
     let tg = w.log_index_bits;
@@ -582,8 +621,6 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let top = b.bits("y_full", pb - 1, drop);
     let ytw = pb - drop;
     b.wire("y_trunc", ytw, top, &format!("UQ{}.{}: truncation #2", ytw - w.y_frac_bits, w.y_frac_bits));
-    let (z, nn) = (b.r("cos_zero"), b.r("n"));
-    b.wire("y_zero_power", 1, format!("{z} && ({nn} != {})", lit(nb, 0)), "c = 0 with n >= 1: c^n = 0");
     // y >= (W + 2)*2^WY on its integer bits alone (the saturation value has no fraction):
     // some high bit set, or the low ones at least W + 2
     let sat_int = (w.out_bits + 2) as u128;
@@ -603,11 +640,12 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.delay(2.0 * LUT_DELAY);
     b.step("y saturated");
     let flags: Vec<String> = flags.iter().map(|f| b.r(f)).collect();
-    let yt2 = b.operand("y_trunc", 0, ytw, yb);
+    b.wire("y_saturate", 1, flags.join(" || "), &format!("y reaches {} (or c = 0 with n >= 1)", w.out_bits + 2));
+    let (sat, yt2) = (b.r("y_saturate"), b.operand("y_trunc", 0, ytw, yb));
     b.wire(
         "y",
         yb,
-        format!("({}) ? {} : {yt2}", flags.join(" || "), lit(yb, w.y_sat())),
+        Builder::select_const(&sat, w.y_sat(), yb, &yt2),
         &format!("UQ{}.{}: y, saturated at {} (every output is 0 from there on)", w.y_int_bits, w.y_frac_bits, w.out_bits + 2),
     );
     b.delay(LUT_DELAY);
@@ -664,15 +702,22 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.step(&format!("shift by the integer part of y: its bits [{}:{lo}]{}", hi - 1, if lo == 0 { " (truncation #3)" } else { "" }));
         let (sv, yi) = (b.r(&src), b.bits("y", w.y_frac_bits + hi - 1, w.y_frac_bits + lo));
         let name = if lo == 0 { "power".to_string() } else { format!("power_shift{lo}") };
-        let by = if lo == 0 { yi } else { format!("{{{yi}, {}}}", lit(lo, 0)) };
         let comment = if lo == 0 { format!("UQ1.{we}: c^n before rounding") } else { format!("2^-frac(y) shifted by floor(y)'s bits above {lo}") };
-        b.wire(&name, ee, format!("{sv} >> {by}"), &comment);
+        // a 4:1 mux as an AND-OR of the shifted words ([`Builder::select`])
+        let terms: Vec<String> = (0..1u32 << (hi - lo))
+            .map(|v| v << lo)
+            .filter(|&by| by < ee)
+            .map(|by| {
+                Builder::gate(&format!("({yi} == {})", lit(hi - lo, (by >> lo) as u128)), &if by == 0 { sv.clone() } else { format!("({sv} >> {by})") }, ee)
+            })
+            .collect();
+        b.wire(&name, ee, terms.join("\n    | "), &comment);
         b.delay(2.0 * LUT_DELAY);
         src = name;
         hi = lo;
     }
 
-    b.step("colour multipliers (14-16); the intensity rounding: chunk sums; done");
+    b.step("colour multipliers (14-16)");
     let wc = w.color_frac_bits;
     let cs = b.bits("power", we, we - wc);
     b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: c^n floored to what the colours' budget needs"));
@@ -682,8 +727,11 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &format!("UQ{bb}.{wc}: c^n*ks_{ch} + 1/2 colour ulp"));
     }
     b.delay(mul_delay(wc + 1, bb));
+    // a step of its own, from a copy of c^n of its own: the register that feeds the colour
+    // multipliers sits by the DSP column
+    b.step("the intensity rounding: chunk sums; done");
     // round half up on the bits that matter: (power[WE:WE-FI-1] + 1) >> 1
-    let p = b.add_start(
+    let p = b.add_start_short(
         "intensity_sum",
         &[Piece::sig("power", we - fi - 1, fi + 2)],
         &[],
@@ -692,9 +740,19 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         &format!("UQ1.{}: c^n to 2^-{} plus one ulp = c^n + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
     );
     // the intensity is 0 exactly when c^n < 2^-(FI+1): its bits from 2^-(FI+1) up are all 0
-    let top = b.bits("power", ee - 1, we - fi - 1);
-    b.wire("done", 1, format!("~|{top}"), "the highlight is below the output's resolution (the intensity rounds to 0)");
+    // (whether each group of 4 of them is 0 here, all of them in the last step)
+    let (lo, hi) = (we - fi - 1, ee);
+    let mut groups = Vec::new();
+    for (k, g) in (lo..hi).step_by(4).enumerate() {
+        let gh = (g + 4).min(hi);
+        let bits = b.bits("power", gh - 1, g);
+        let name = format!("done_zero{k}");
+        b.wire(&name, 1, format!("~|{bits}"), &format!("bits [{}:{g}] of c^n are 0", gh - 1));
+        groups.push(name);
+    }
     let sum = b.resolve(p, "the intensity rounded half up");
+    let zeros: Vec<String> = groups.iter().map(|g| b.r(g)).collect();
+    b.wire("done", 1, zeros.join(" & "), "the highlight is below the output's resolution (the intensity rounds to 0)");
     for ch in CHANNELS {
         let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wc);
         b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: c^n*ks_{ch} rounded half up"));

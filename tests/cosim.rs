@@ -197,9 +197,9 @@ fn injected_faults_in_the_new_models_are_caught() {
         // fitted: a_n's high bits left out of the deviation (the shift-adds beside its DSP)
         ("fit_a_hi", &["--model", "fitted"], " + {deviation_hi_s2, 16'h0};", ";"),
         // fitted: the first squaring's 2*hi*lo masked by the wrong bit of lo
-        ("fit_sq_t", &["--model", "fitted"], "(power0_s5[4] ? {{2'h0", "(power0_s5[3] ? {{2'h0"),
+        ("fit_sq_t", &["--model", "fitted"], "({23{power0_s5[4]}} & {{2'h0", "({23{power0_s5[3]}} & {{2'h0"),
         // blinn: one exponent mis-encoded in the normalisation
-        ("blinn_lzc", &["--model", "blinn"], "cos_minus_ulp_s2[9] ? 2'h1", "cos_minus_ulp_s2[9] ? 2'h2"),
+        ("blinn_lzc", &["--model", "blinn"], "(~cos_minus_ulp_s3[10] & cos_minus_ulp_s3[9]) |", "(~cos_minus_ulp_s3[10] & cos_minus_ulp_s3[8]) |"),
         // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)
         ("blinn_zero", &["--model", "blinn"], "cos_zero_s2 && (n != 10'h0);", "cos_zero_s2;"),
     ];

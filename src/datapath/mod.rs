@@ -228,6 +228,8 @@ pub struct PendingAdd {
     chunks: Vec<(u32, u32)>,
     /// 1 when chunk 0 carries its carry-in as an extra low bit
     part0_offset: u32,
+    /// per chunk: the second addend is 0 there, so its carry-in-0 sum has no carry-out
+    no_carry_out: Vec<bool>,
     comment: String,
 }
 
@@ -270,6 +272,10 @@ pub const LUT_DELAY: f64 = 2.7;
 
 /// Chunk bits of the carry-select add closing a carry-save sum ([`Builder::sum_start`]).
 pub const SUM_CHUNK_BITS: u32 = 4;
+
+/// A carry-select sum of more chunks than this spreads over so many tiles that a carry
+/// crosses a long route: [`Builder::resolve`] ripples its carries one a step.
+pub const WIDE_SUM_CHUNKS: usize = 4;
 
 /// A `w`-bit carry chain, carry-out included.
 pub fn add_delay(w: u32) -> f64 {
@@ -444,6 +450,26 @@ impl Builder {
         self.operand(name, 0, w, to)
     }
 
+    /// `cond ? a : b` over `width` bits written as an AND-OR, for a mux where `a` or `b` has
+    /// constant bits: yosys makes a `?:` of a constant before a register the register's
+    /// synchronous set/reset (iCE40 SB_DFFSR/SS), and a set/reset driven by logic costs
+    /// placement (the 8 flip-flops of a tile share one) and ~3.5 ns of route into the pin,
+    /// or a global buffer ~6 ns away when it drives more than 15 flip-flops.
+    pub fn select(cond: &str, a: &str, b: &str, width: u32) -> String {
+        // one side a line
+        format!("({{{width}{{{cond}}}}} & {a})\n    | (~{{{width}{{{cond}}}}} & {b})")
+    }
+
+    /// `cond ? value : other` for a constant `value` of `width` bits ([`Builder::select`]).
+    pub fn select_const(cond: &str, value: u128, width: u32, other: &str) -> String {
+        Builder::select(cond, &lit(width, value), other, width)
+    }
+
+    /// `cond ? a : 0` over `width` bits as an AND ([`Builder::select`]).
+    pub fn gate(cond: &str, a: &str, width: u32) -> String {
+        format!("({{{width}{{{cond}}}}} & {a})")
+    }
+
     /// The Verilog for a list of pieces (LSB first), MSB first in a concatenation.
     pub fn pieces(&mut self, pieces: &[Piece]) -> String {
         let parts: Vec<String> = pieces
@@ -486,7 +512,7 @@ impl Builder {
             let s = k + shift;
             let av = self.operand(an, *alo, *aw, out - s);
             let shifted = if s == 0 { av } else { format!("{{{av}, {}}}", lit(s, 0)) };
-            terms.push(format!("({bit} ? {shifted} : {})", lit(out, 0)));
+            terms.push(Builder::gate(&bit, &shifted, out));
         }
         terms
     }
@@ -568,6 +594,7 @@ impl Builder {
     pub fn add_start(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
         let parts = chunks(width, self.chunk_bits().min(self.chunk_limit));
         let n = parts.len();
+        let no_carry_out = parts.iter().map(|&(lo, w)| sub_pieces(b, lo, w).iter().all(|p| matches!(p, Piece::Const { value: 0, .. }))).collect();
         let max_chunk = parts.iter().map(|c| c.1).max().unwrap_or(1);
         self.delay(add_delay(max_chunk));
         if n == 1 {
@@ -606,7 +633,14 @@ impl Builder {
                 }
             }
         }
-        PendingAdd { name: name.into(), width, chunks: if n == 1 { Vec::new() } else { parts }, part0_offset: u32::from(cin), comment: comment.into() }
+        PendingAdd {
+            name: name.into(),
+            width,
+            chunks: if n == 1 { Vec::new() } else { parts },
+            part0_offset: u32::from(cin),
+            no_carry_out,
+            comment: comment.into(),
+        }
     }
 
     /// Second step of a carry-select add: the carry into each chunk from the third on
@@ -630,9 +664,16 @@ impl Builder {
         };
         for i in from..to {
             let w = p.chunks[i].1;
-            let (ca, cb) = (self.bits(&format!("{}_part{i}_plus1", p.name), w + 1, w + 1), self.bits(&format!("{}_part{i}", p.name), w, w));
+            let ca = self.bits(&format!("{}_part{i}_plus1", p.name), w + 1, w + 1);
             let cname = format!("{}_carry{}", p.name, i + 1);
-            self.wire(&cname, 1, format!("{carry} ? {ca} : {cb}"), &format!("carry into bit {}", p.chunks[i + 1].0));
+            let expr = if p.no_carry_out[i] {
+                // an AND, not a ?: of 0 ([`Builder::select`])
+                format!("{carry} & {ca}")
+            } else {
+                let cb = self.bits(&format!("{}_part{i}", p.name), w, w);
+                format!("{carry} ? {ca} : {cb}")
+            };
+            self.wire(&cname, 1, expr, &format!("carry into bit {}", p.chunks[i + 1].0));
             carry = self.r(&cname);
         }
     }
@@ -694,25 +735,32 @@ impl Builder {
         let zero = vec![Piece::zeros(width)];
         let (a, b) = (terms.first().unwrap_or(&zero).clone(), terms.get(1).unwrap_or(&zero).clone());
         // short chunks: the vectors come from registers spread over a wide sum
+        self.add_start_short(name, &a, &b, false, width, comment)
+    }
+
+    /// [`Builder::add_start`] in chunks of at most [`SUM_CHUNK_BITS`]: for a sum whose
+    /// operands come from registers spread over the fabric, or whose result fans out far.
+    pub fn add_start_short(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
         self.chunk_limit = SUM_CHUNK_BITS;
-        let p = self.add_start(name, &a, &b, false, width, comment);
+        let p = self.add_start(name, a, b, cin, width, comment);
         self.chunk_limit = u32::MAX;
         p
     }
 
     /// Finishes a carry-select add in the steps it needs, at most two LUT levels a step: none
-    /// for one chunk; the chunk carries rippled two a step, the last with each chunk's pick.
-    /// Returns the name of the sum.
+    /// for one chunk; the chunk carries rippled two a step (one for a sum of more than
+    /// [`WIDE_SUM_CHUNKS`] chunks), the last with each chunk's pick. Returns the name of the sum.
     pub fn resolve(&mut self, p: PendingAdd, title: &str) -> String {
         if !p.chunks.is_empty() {
-            // the carries into chunks from+1..=to (chunk 1's is part0's), two levels a step,
-            // then the pick with the last of them
+            // the carries into chunks from+1..=to (chunk 1's is part0's), `per_step` levels a
+            // step, then the pick with the last of them
             let to = p.chunks.len().saturating_sub(1).max(1);
+            let per_step = if p.chunks.len() > WIDE_SUM_CHUNKS { 1 } else { 2 };
             let mut from = 1;
             while to - from > 1 {
                 self.step(&format!("{title}: carries"));
-                self.add_carries_range(&p, from, from + 2);
-                from += 2;
+                self.add_carries_range(&p, from, from + per_step);
+                from += per_step;
             }
             let rest = from < to;
             self.step(&format!("{title}: {}select", if rest { "carries and " } else { "" }));
