@@ -117,11 +117,11 @@ fn injected_faults_are_caught() {
             random,
         ),
     ];
-    for (name, gen_args, from, to, args) in faults {
+    for_each_parallel(&faults, |_, &(name, gen_args, from, to, args)| {
         let o = mutant(r, name, gen_args, from, to, args);
         assert_eq!(o.status.code(), Some(1), "fault {name} survived: {}", text(&o));
         assert!(text(&o).contains("first mismatch"), "{name}: {}", text(&o));
-    }
+    });
 }
 
 #[test]
@@ -203,11 +203,11 @@ fn injected_faults_in_the_new_models_are_caught() {
         // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)
         ("blinn_zero", &["--model", "blinn"], "cos_zero_s2 && (n != 10'h0);", "cos_zero_s2;"),
     ];
-    for (name, gen_args, from, to) in faults {
+    for_each_parallel(&faults, |_, &(name, gen_args, from, to)| {
         let o = mutant(r, name, gen_args, from, to, random);
         assert_eq!(o.status.code(), Some(1), "fault {name} survived: {}", text(&o));
         assert!(text(&o).contains("first mismatch"), "{name}: {}", text(&o));
-    }
+    });
 }
 
 /// Adds `delta` to entry `index` of a table file (one hex word a line).

@@ -36,7 +36,7 @@ fn iverilog_compiles() {
 fn yosys_synthesizes_without_latches_or_warnings() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    for (i, args) in CONFIGS.iter().enumerate() {
+    for_each_parallel(CONFIGS, |i, args| {
         let dir = generate(tmp.path(), &format!("c{i}"), args);
         let top = top_of(args);
         let script =
@@ -46,7 +46,7 @@ fn yosys_synthesizes_without_latches_or_warnings() {
         assert!(out.status.success(), "{args:?}: yosys failed:\n{}", &log[log.len().saturating_sub(3000)..]);
         let warnings: Vec<&str> = log.lines().filter(|l| l.contains("Warning")).collect();
         assert!(warnings.is_empty(), "{args:?}: {warnings:?}");
-    }
+    });
 }
 
 /// A reviewer reads steps, not renamings: at `--stages 0` no wire of any model is just another

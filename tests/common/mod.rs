@@ -22,6 +22,24 @@ pub fn generate(parent: &Path, name: &str, args: &[&str]) -> PathBuf {
     dir
 }
 
+/// `f(i, item)` for every item, as many at a time as there are cores (for tests that run one
+/// external tool per configuration); a panic in any fails the caller.
+pub fn for_each_parallel<T: Sync>(items: &[T], f: impl Fn(usize, &T) + Sync) {
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    std::thread::scope(|s| {
+        for _ in 0..cores.min(items.len()) {
+            s.spawn(|| loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                match items.get(i) {
+                    Some(item) => f(i, item),
+                    None => break,
+                }
+            });
+        }
+    });
+}
+
 /// A cache directory for simulator builds shared by every test of this checkout.
 pub fn cache_dir() -> PathBuf {
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cosim-cache");
