@@ -273,6 +273,9 @@ pub const LUT_DELAY: f64 = 2.7;
 /// Chunk bits of the carry-select add closing a carry-save sum ([`Builder::sum_start`]).
 pub const SUM_CHUNK_BITS: u32 = 4;
 
+/// A step that only registers its signals (a route, no logic).
+pub const REGISTER_ONLY_DELAY: f64 = 1.0;
+
 /// A carry-select sum of more chunks than this spreads over so many tiles that a carry
 /// crosses a long route: [`Builder::resolve`] ripples its carries one a step.
 pub const WIDE_SUM_CHUNKS: usize = 4;
@@ -696,8 +699,9 @@ impl Builder {
 
     /// `name = Σ terms mod 2^width` (each term pieces, LSB first) without a carry chain until
     /// the end: 3:2 carry-save layers (sum `a ^ b ^ c`, carry the majority shifted up: one LUT
-    /// level each, two a step, from this step on), then the two vectors left into
-    /// [`Builder::add_start`] in a step of its own. [`Builder::resolve`] finishes it.
+    /// level each, two a step, from this step on), then (iCE40: after a step that only
+    /// registers them) the two vectors left into [`Builder::add_start`] in a step of its own.
+    /// [`Builder::resolve`] finishes it.
     pub fn sum_start(&mut self, name: &str, mut terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
         let mut layer = 0;
         while terms.len() > 2 {
@@ -730,6 +734,13 @@ impl Builder {
                 i += 1;
             }
             terms = next;
+        }
+        if self.target == Target::Ice40 {
+            // a step that only registers the two vectors: each of their bits feeds two carry
+            // chains (carry-select), and a flip-flop with no logic before it is free to sit
+            // between them (from the carry-save layers' LUTs a bit crosses a 3 ns route)
+            self.step(&format!("{title}: the two vectors registered"));
+            self.delay(REGISTER_ONLY_DELAY);
         }
         self.step(&format!("{title}: chunk sums"));
         let zero = vec![Piece::zeros(width)];

@@ -132,7 +132,7 @@ pub const CONFIGS: &[&[&str]] = &[
         "--top",
         "fit_unit",
     ],
-    &["--model", "blinn", "--stages", "56"],
+    &["--model", "blinn", "--stages", "60"],
     &["--model", "blinn", "--cos-frac-bits", "7", "--n-bits", "5", "--color-bits", "12", "--intensity-frac-bits", "6", "--stages", "4", "--rom-style", "case"],
 ];
 
