@@ -705,10 +705,10 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let comment = if lo == 0 { format!("UQ1.{we}: c^n before rounding") } else { format!("2^-frac(y) shifted by floor(y)'s bits above {lo}") };
         // a 4:1 mux as an AND-OR of the shifted words ([`Builder::select`])
         let terms: Vec<String> = (0..1u32 << (hi - lo))
-            .map(|v| v << lo)
-            .filter(|&by| by < ee)
-            .map(|by| {
-                Builder::gate(&format!("({yi} == {})", lit(hi - lo, (by >> lo) as u128)), &if by == 0 { sv.clone() } else { format!("({sv} >> {by})") }, ee)
+            .filter(|v| v << lo < ee)
+            .map(|v| {
+                let shifted = if v == 0 { sv.clone() } else { format!("({sv} >> {})", v << lo) };
+                Builder::gate(&format!("({yi} == {})", lit(hi - lo, v as u128)), &shifted, ee)
             })
             .collect();
         b.wire(&name, ee, terms.join("\n    | "), &comment);
