@@ -19,17 +19,17 @@ module specular_unit #(
     parameter ROM_FILE = "cos_sp_rom.hex"
 ) (
     input  wire        in_valid,
-    input  wire [15:0] cos_g,      // UQ1.15: cos(gamma) = N.H; codes above 1.0 read as 1.0
-    input  wire [9:0] n,          // unsigned specular exponent
-    input  wire [7:0] ks_r,       // UNORM8: Ks * R
-    input  wire [7:0] ks_g,       // UNORM8: Ks * G
-    input  wire [7:0] ks_b,       // UNORM8: Ks * B
+    input  wire [15:0] cos_g,        // UQ1.15: cos(gamma) = N.H; codes above 1.0 read as 1.0
+    input  wire [9:0]  n,            // unsigned specular exponent
+    input  wire [7:0]  ks_r,         // UNORM8: Ks * R
+    input  wire [7:0]  ks_g,         // UNORM8: Ks * G
+    input  wire [7:0]  ks_b,         // UNORM8: Ks * B
     output wire        out_valid,
-    output wire [7:0] spec_r,     // UNORM8: S * ks_r
-    output wire [7:0] spec_g,     // UNORM8: S * ks_g
-    output wire [7:0] spec_b,     // UNORM8: S * ks_b
-    output wire [15:0] intensity,  // UQ1.15: S
-    output wire        done        // cos(gamma) < cos_sp(n): beyond the highlight
+    output wire [7:0]  spec_r,       // UNORM8: S * ks_r
+    output wire [7:0]  spec_g,       // UNORM8: S * ks_g
+    output wire [7:0]  spec_b,       // UNORM8: S * ks_b
+    output wire [15:0] intensity,    // UQ1.15: S
+    output wire        done          // cos(gamma) < cos_sp(n): beyond the highlight
 );
 
 // ---- table cos_sp_rom: cut-off ROM cos_sp(n), UQ1.15, address = n ----

@@ -22,7 +22,7 @@ impl fmt::Display for ConfigError {
 impl std::error::Error for ConfigError {}
 
 /// Output rounding contract (SPEC §3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Rounding {
     /// `|o − o*| < 1` for every output.
@@ -41,7 +41,7 @@ impl Rounding {
 }
 
 /// How the cut-off ROM is written in the Verilog.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum RomStyle {
     /// A memory initialised with `$readmemh` from `cos_sp_rom.hex`.
@@ -60,7 +60,7 @@ impl RomStyle {
 }
 
 /// Which datapath is generated; all meet the same contract (SPEC §3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Arch {
     /// The cheapest correct datapath: widths from the error budget, narrow colour path, DSP-sized squarer.
@@ -79,14 +79,13 @@ impl Arch {
 }
 
 /// Which function the unit computes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum SpecularModel {
     /// The paper's formula (15): `[1 − k·n·(1 − cos)]²` cut off at `cos_sp(n)`.
     #[serde(rename = "quadratic")]
     Quadratic,
     /// Blinn's `cos^n` itself, by square-and-multiply over the bits of n (faithful only).
     #[serde(rename = "blinn-pow")]
-    #[value(name = "blinn-pow")]
     BlinnPow,
     /// Blinn's `cos^n` from log2/exp2 tables with linear interpolation (SPEC §6, faithful).
     #[serde(rename = "blinn")]
@@ -97,6 +96,9 @@ pub enum SpecularModel {
 }
 
 impl SpecularModel {
+    /// Every model, from the coarsest to the exact ones (the order of reports and tests).
+    pub const ALL: [SpecularModel; 4] = [SpecularModel::Quadratic, SpecularModel::Fitted, SpecularModel::Blinn, SpecularModel::BlinnPow];
+
     pub fn name(self) -> &'static str {
         match self {
             SpecularModel::Quadratic => "quadratic",
@@ -110,7 +112,7 @@ impl SpecularModel {
 /// The FPGA family the datapath is shaped for (`generate --target`): the operand width of its
 /// multipliers, the carry chain a step may hold, and whether products use the DSP block's own
 /// registers. Every target computes the same values (SPEC §3); only the RTL's shape differs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Target {
     /// No family assumed: whole-width products and adds, mapped by the synthesis tool
@@ -214,6 +216,7 @@ pub const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "internal_widths",
     "files",
     "model_widths",
+    "registered_cuts",
     "blinn_error_max",
     "blinn_error_mean",
     "blinn_error_method",
@@ -344,6 +347,26 @@ impl Config {
     pub fn top(&self) -> &str {
         &self.params.top
     }
+    /// The unit's ports (SPEC §2) in module order; `done_meaning` completes `done`'s comment.
+    pub fn ports(&self, done_meaning: &str) -> Vec<crate::ports::Port> {
+        let widths = crate::ports::PortWidths {
+            cos_frac_bits: self.f(),
+            n_bits: self.n_bits(),
+            color_bits: self.b(),
+            intensity_frac_bits: self.fi(),
+            clocked: self.stages() > 0,
+        };
+        crate::ports::ports(widths, done_meaning)
+    }
+
+    /// The datapath's name in messages: the architecture for the quadratic model, else the model.
+    pub fn datapath_name(&self) -> &'static str {
+        match self.model() {
+            SpecularModel::Quadratic => self.arch().name(),
+            other => other.name(),
+        }
+    }
+
     /// The parameters that define the unit, as `name=value` words (for file headers).
     pub fn describe(&self) -> String {
         let p = &self.params;
@@ -557,12 +580,16 @@ const VERILOG_KEYWORDS: &[&str] = &[
 /// cut), the tables and their file handles, `unused_*`. A module named like one of them
 /// would be hidden by it inside the module (Verilator VARHIDDEN).
 pub fn is_internal_name(name: &str) -> bool {
-    const PORTS: &[&str] = &["clk", "rst", "in_valid", "cos_g", "n", "ks_r", "ks_g", "ks_b", "out_valid", "spec_r", "spec_g", "spec_b", "intensity", "done"];
     const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom"];
     let step_or_cut = name
         .rsplit_once('_')
         .is_some_and(|(_, tail)| tail.len() > 1 && (tail.starts_with('s') || tail.starts_with('c')) && tail[1..].bytes().all(|b| b.is_ascii_digit()));
-    PORTS.contains(&name) || TABLES.contains(&name) || step_or_cut || name.starts_with("unused_") || name.ends_with("_fd") || name.ends_with("_FILE")
+    crate::ports::NAMES.contains(&name)
+        || TABLES.contains(&name)
+        || step_or_cut
+        || name.starts_with("unused_")
+        || name.ends_with("_fd")
+        || name.ends_with("_FILE")
 }
 
 /// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.

@@ -3,12 +3,12 @@
 //! Rust decides every width, literal and register placement here; `templates/unit.v`
 //! holds only the Verilog's shape.
 
-use crate::config::{Arch, Config, Params, RomStyle, Rounding, SpecularModel};
+use crate::bits::{lit, mask};
+use crate::config::{Params, RomStyle};
 use crate::datapath::{self, Wire};
-use crate::model::Kind;
 use crate::plan::Plan;
+use crate::ports::Port;
 use crate::rom::{self, RomFormat};
-use crate::widths::Widths;
 use askama::Template;
 use serde::Serialize;
 use sha2::{Digest, Sha256};
@@ -16,9 +16,6 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
-pub const ROM_FILE: &str = "cos_sp_rom.hex";
-
-use crate::datapath::lit;
 
 pub struct CutSignal {
     pub name: String,
@@ -125,7 +122,8 @@ pub struct UnitTemplate<'a> {
     pub formula: Vec<String>,
     pub rounding_text: String,
     pub datapath_line: String,
-    pub done_meaning: &'a str,
+    /// the port list (SPEC §2), one declaration a line
+    pub port_lines: Vec<String>,
     pub cuts_text: String,
     pub file_tables: Vec<TableView>,
     pub steps: Vec<StepView>,
@@ -145,12 +143,36 @@ pub struct OutputView {
     pub source: String,
 }
 
-/// "after steps [..]" for the Verilog header.
-fn registered_cuts_text(w: &Widths) -> String {
-    match w.registered_cuts.is_empty() {
-        true => "none".into(),
-        false => w.registered_cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", "),
+/// "after steps [..]" for the Verilog header: runs of consecutive steps as `a-b`.
+fn registered_cuts_text(cuts: &[u32]) -> String {
+    if cuts.is_empty() {
+        return "none".into();
     }
+    let mut runs: Vec<(u32, u32)> = Vec::new();
+    for &c in cuts {
+        match runs.last_mut() {
+            Some(r) if r.1 + 1 == c => r.1 = c,
+            _ => runs.push((c, c)),
+        }
+    }
+    runs.iter().map(|&(a, b)| if a == b { a.to_string() } else { format!("{a}-{b}") }).collect::<Vec<_>>().join(", ")
+}
+
+/// The module's port declarations, one a line, the comments in one column.
+pub fn port_lines(ports: &[Port]) -> Vec<String> {
+    ports
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let range = if p.width == 1 { String::new() } else { format!("[{}:0]", p.width - 1) };
+            let decl = format!("    {:<6} wire {range:<6} {}{}", p.direction, p.name, if i + 1 < ports.len() { "," } else { "" });
+            if p.meaning.is_empty() {
+                decl
+            } else {
+                format!("{decl:<36} // {}", p.meaning)
+            }
+        })
+        .collect()
 }
 
 /// The directory a path lives in (`.` for a bare name).
@@ -161,93 +183,9 @@ fn parent_dir(path: &Path) -> PathBuf {
     }
 }
 
-/// The header lines that say what a model computes, and how its datapath is sized.
-fn describe_model(cfg: &Config, w: &Widths, kind: &Kind) -> (String, Vec<String>, String, String, &'static str) {
-    let p = &cfg.params;
-    let (fi, m) = (p.intensity_frac_bits, p.max_squarings);
-    match kind {
-        Kind::Fitted { widths: fw, .. } => (
-            format!(
-                "k_frac_bits={} (fractional bits of a_n) max_squarings={m} stages={} rounding=faithful rom_style={}",
-                p.k_frac_bits,
-                p.stages,
-                p.rom_style.name()
-            ),
-            vec![
-                format!("S = [1 - a_n*(1 - cos_g)]^(2^m_n), m_n <= {m}, a_n and m_n per n from a minimax fit to cos^n"),
-                "(quantised a_n in the fit ROM define the unit); S = 0 where the bracket is negative (done);".into(),
-                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X."),
-            ],
-            "faithful: every output within 1 ulp of S with the stored a_n (|o - o*| < 1)".into(),
-            format!("bracket and every square UQ1.{} (error budget in specgen's fitted.rs)", fw.frac_bits),
-            "the bracket is negative: beyond the highlight",
-        ),
-        Kind::Blinn { widths: bw, .. } => (
-            format!("stages={} rounding=faithful rom_style={}", p.stages, p.rom_style.name()),
-            vec![
-                "S = c^n, c = min(cos_g, 1.0), as 2^-(n*(e + x*g(x))) with c = (1 - x)*2^-e, x in [0, 1/2);".into(),
-                format!(
-                    "g from a {}-entry log2 table, 2^-f from a {}-entry exp2 table, both interpolated;",
-                    1u32 << bw.log_index_bits,
-                    1u32 << bw.exp2_index_bits
-                ),
-                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X; done = (intensity == 0)."),
-            ],
-            "faithful: every output within 1 ulp of the exact c^n value (|o - o*| < 1)".into(),
-            format!(
-                "-log2 c UQ.{}, y UQ{}.{}, 2^-f UQ1.{} (error budget in specgen's blinn.rs)",
-                bw.ell_frac_bits, bw.y_int_bits, bw.y_frac_bits, bw.exp2_frac_bits
-            ),
-            "intensity == 0: the highlight is below the output's resolution",
-        ),
-        Kind::BlinnPow => (
-            format!("stages={} rounding=faithful", p.stages),
-            vec![
-                "S = c^n, c = min(cos_g, 1.0), by square-and-multiply over the bits of n, LSB first;".into(),
-                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X; done = (intensity == 0)."),
-            ],
-            "faithful: every output within 1 ulp of the exact c^n value (|o - o*| < 1)".into(),
-            format!(
-                "powers c^(2^i) and the running product UQ1.{}, each product floored (error budget in specgen's widths::power_frac_bits)",
-                w.power_frac_bits
-            ),
-            "intensity == 0: the highlight is below the output's resolution",
-        ),
-        _ => (
-            format!(
-                "k={} k_frac_bits={} (k_code={}, k_q={}) stages={} rounding={} rom_style={}",
-                p.k,
-                p.k_frac_bits,
-                cfg.k_code,
-                rom::exact_decimal(cfg.k_code, cfg.kf()),
-                p.stages,
-                p.rounding.name(),
-                p.rom_style.name()
-            ),
-            vec![
-                "S = [1 - k_q*n*(1 - cos_g)]^2, cut to 0 where the bracket is negative (done);".into(),
-                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X."),
-            ],
-            match p.rounding {
-                Rounding::Faithful => "faithful: every output within 1 ulp of the exact value (|o - o*| < 1)".into(),
-                Rounding::Exact => "exact: every output is the exact value rounded to nearest, ties away from zero".into(),
-            },
-            format!(
-                "{}{}; bracket UQ1.{}, square UQ1.{} (colours UQ1.{})",
-                cfg.arch().name(),
-                if cfg.arch() == Arch::Paper { " (the paper's Fig. 5 literally, every bit kept)" } else { " (widths from the error budget)" },
-                w.bracket_frac_bits,
-                w.square_frac_bits,
-                w.color_square_frac_bits
-            ),
-            "cos(gamma) < cos_sp(n): beyond the highlight",
-        ),
-    }
-}
-
 /// Builds the template context of the RTL for one configuration (every model).
 pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
-    let (cfg, w, kind) = (&plan.cfg, &plan.widths, &plan.kind);
+    let cfg = &plan.cfg;
     let p = &cfg.params;
     let dp = &plan.datapath;
     let cuts = cut_list(dp);
@@ -270,7 +208,7 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                     width: t.width,
                     depth: t.words.len(),
                     last: lit(t.width, last_word),
-                    not_last: lit(t.width, !last_word & crate::widths::mask(t.width)),
+                    not_last: lit(t.width, !last_word & mask(t.width)),
                 }
             })
             .collect()
@@ -300,18 +238,23 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
             },
         });
     }
-    let (param_line, formula, rounding_text, datapath_line, done_meaning) = describe_model(cfg, w, kind);
+    let d = plan.model.unit().describe();
+    let mut param_line = format!("{}{}stages={} rounding={}", d.param_line, if d.param_line.is_empty() { "" } else { " " }, p.stages, p.rounding.name());
+    if !dp.tables.is_empty() {
+        param_line.push_str(&format!(" rom_style={}", p.rom_style.name()));
+    }
+    let ports = cfg.ports(d.done_meaning);
     UnitTemplate {
         top: cfg.top(),
         version: VERSION,
         model: cfg.model().name(),
         p,
         param_line,
-        formula,
-        rounding_text,
-        datapath_line,
-        done_meaning,
-        cuts_text: registered_cuts_text(w),
+        formula: d.formula,
+        rounding_text: d.rounding,
+        datapath_line: d.datapath,
+        port_lines: port_lines(&ports),
+        cuts_text: registered_cuts_text(&plan.registered_cuts),
         file_tables,
         out_valid,
         outputs,
@@ -453,36 +396,6 @@ pub fn core_name(cfg: &crate::config::Config) -> String {
     format!("specgen:specular:{}-{}:{VERSION}", cfg.top(), &digest[..8])
 }
 
-/// One port of the generated module, for the manifest and the harnesses.
-#[derive(Debug, Clone, Serialize, PartialEq, Eq)]
-pub struct Port {
-    pub name: &'static str,
-    pub direction: &'static str,
-    pub width: u32,
-}
-
-pub fn ports(cfg: &Config) -> Vec<Port> {
-    let mut v = Vec::new();
-    let mut port = |name, direction, width| v.push(Port { name, direction, width });
-    if cfg.stages() > 0 {
-        port("clk", "input", 1);
-        port("rst", "input", 1);
-    }
-    port("in_valid", "input", 1);
-    port("cos_g", "input", cfg.f() + 1);
-    port("n", "input", cfg.n_bits());
-    for name in ["ks_r", "ks_g", "ks_b"] {
-        port(name, "input", cfg.b());
-    }
-    port("out_valid", "output", 1);
-    for name in ["spec_r", "spec_g", "spec_b"] {
-        port(name, "output", cfg.b());
-    }
-    port("intensity", "output", cfg.fi() + 1);
-    port("done", "output", 1);
-    v
-}
-
 #[derive(Debug, Clone, Serialize)]
 pub struct FileEntry {
     pub name: String,
@@ -499,10 +412,10 @@ pub struct Manifest<'a> {
     pub k_code: u64,
     pub latency: u32,
     pub ports: Vec<Port>,
-    pub internal_widths: &'a Widths,
-    /// The fitted or blinn model's own widths and table sizes (null for the others).
-    #[serde(skip_serializing_if = "serde_json::Value::is_null")]
-    pub model_widths: serde_json::Value,
+    /// The model's own widths and table sizes.
+    pub internal_widths: serde_json::Value,
+    /// The cuts that hold a pipeline register (1-based step numbers).
+    pub registered_cuts: &'a [u32],
     /// `max |intensity/2^FI − c^n|` over the inputs of `blinn_error_method` (SPEC §6).
     pub blinn_error_max: f64,
     pub blinn_error_mean: f64,
@@ -516,9 +429,9 @@ fn sha256_hex(bytes: &[u8]) -> String {
 
 /// Every file of a `generate` run, in memory: (file name, contents).
 pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
-    let (cfg, w) = (&plan.cfg, &plan.widths);
+    let cfg = &plan.cfg;
     let top = cfg.top();
-    let model = plan.model();
+    let unit = plan.model.unit();
     let mut verilog = unit_template(plan).render().expect("unit template renders");
     verilog.push('\n');
     let dp = &plan.datapath;
@@ -526,12 +439,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         RomStyle::File => dp.tables.iter().enumerate().filter(|(i, _)| !block_table(dp, *i)).map(|(_, t)| t.clone()).collect(),
         RomStyle::Case => Vec::new(),
     };
-    let description = match cfg.model() {
-        SpecularModel::Quadratic => "Fixed-point specular highlight unit, [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)",
-        SpecularModel::BlinnPow => "Fixed-point Blinn specular unit, cos^n by square-and-multiply",
-        SpecularModel::Blinn => "Fixed-point Blinn specular unit, cos^n from log2/exp2 tables",
-        SpecularModel::Fitted => "Fixed-point specular highlight unit, [1 - a_n*(1 - cos)]^(2^m_n) fitted per n to cos^n",
-    };
+    let description = unit.describe().summary;
     let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
     // the ECP5 primitives' wrappers (RTL) and their simulation models (never synthesized)
     let (mut rtl_files, mut sim_models) = (Vec::new(), Vec::new());
@@ -564,20 +472,16 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         files.push((t.file.clone(), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
     }
     files.push((format!("{top}.core"), core.into_bytes()));
-    let fidelity = crate::model::blinn_fidelity(&model);
+    let fidelity = crate::models::blinn_fidelity(&plan.model);
     let manifest = Manifest {
         generator: "specgen",
         version: VERSION,
         params: &cfg.params,
         k_code: cfg.k_code,
         latency: cfg.stages(),
-        ports: ports(cfg),
-        internal_widths: w,
-        model_widths: match &model.kind {
-            Kind::Fitted { widths, .. } => serde_json::to_value(widths).expect("widths serialise"),
-            Kind::Blinn { widths, .. } => serde_json::to_value(widths).expect("widths serialise"),
-            _ => serde_json::Value::Null,
-        },
+        ports: cfg.ports(""),
+        internal_widths: unit.widths(),
+        registered_cuts: &plan.registered_cuts,
         blinn_error_max: fidelity.max,
         blinn_error_mean: fidelity.mean,
         blinn_error_method: fidelity.method(),

@@ -1,28 +1,31 @@
 //! specgen: a generator of synthesizable Verilog for a fixed-point specular highlight unit
-//! (Blinn's `cos^n δ` approximated by `[k·n·(cos δ − 1) + 1]²`, cut off at `cos γsp(n)`),
-//! with a bit-exact golden model.
+//! (Blinn's `cos^n δ` approximated by `[k·n·(cos δ − 1) + 1]²`, cut off at `cos γsp(n)`, and
+//! the models past the paper), with a bit-exact golden model.
 //!
-//! Data flows one way: [`config`] (validated parameters) → [`plan`] (model, widths, datapath with
-//! its registers, built once per command; [`widths`] holds the error analysis) →
-//! {[`model`], [`rom`], [`emit`] (templates)} → files → [`cosim`] (simulators).
-//! [`error`] is the one error type of every stage; [`cli`] is the command line over all of
-//! it, and nothing else imports it.
+//! Layers import only downward (docs/ARCHITECTURE.md draws them):
+//! 1. leaves: [`bits`] (fixed-point helpers), [`ports`] (the port table, `Inputs`/`Outputs`),
+//!    [`table`] (a ROM), [`config`] (validated parameters), [`error`];
+//! 2. [`datapath`]: the step/cut IR and its `Builder`, which knows no model;
+//! 3. [`models`]: one home per model behind the `SpecularUnit` trait, and the registry;
+//! 4. [`plan`]: config → model → registers placed → datapath, built once per command;
+//! 5. [`emit`] and [`rom`] (files), [`cosim`], [`synth`], [`vectors`], [`render`],
+//!    [`report`], [`paper`].
+//!
+//! The command line lives in the binary (`src/main.rs`, `src/cli/`): the library knows no flag.
 
-pub mod blinn;
-pub mod blinn_pow;
-pub mod cli;
+pub mod bits;
 pub mod config;
 pub mod cosim;
 pub mod datapath;
 pub mod emit;
 pub mod error;
-pub mod fitted;
-pub mod model;
+pub mod models;
 pub mod paper;
 pub mod plan;
+pub mod ports;
 pub mod render;
 pub mod report;
 pub mod rom;
 pub mod synth;
+pub mod table;
 pub mod vectors;
-pub mod widths;

@@ -1,3 +1,7 @@
+//! The `specgen` command line: flags → the library → files and an exit code.
+
+mod cli;
+
 fn main() {
-    std::process::exit(specgen::cli::main());
+    std::process::exit(cli::main());
 }

@@ -1,30 +1,47 @@
-//! The plan of one command: a validated configuration, its model (fit or tables made), its
-//! widths with the registers placed, and the datapath they give — built once, and taken by
-//! everything downstream (the RTL, the tables, the golden model, the manifest).
+//! The plan of one command: a validated configuration, its model (fit or tables made once),
+//! the registers placed, and the datapath they give — built once, and taken by everything
+//! downstream (the RTL, the tables, the golden model, the manifest).
 //!
 //! This is also where `--stages` is bounded: by the cut points of this configuration's own
-//! datapath, which only exists once the model is made.
+//! datapath, which only exists once the model is made; and where the registers are placed
+//! ([`balanced_cuts`]) from the datapath's per-step delay estimates.
 
-use crate::config::{Config, ConfigError, Params, SpecularModel};
-use crate::datapath::{self, Datapath};
-use crate::model::{Kind, Model};
-use crate::widths::{balanced_cuts, Widths};
+use crate::config::{Config, ConfigError, Params};
+use crate::datapath::{Builder, Datapath};
+use crate::models::Model;
+
+/// The signals every model's datapath defines, read by the output ports.
+pub const OUTPUT_SIGNALS: [&str; 5] = ["spec_r", "spec_g", "spec_b", "intensity", "done"];
 
 #[derive(Debug, Clone)]
 pub struct Plan {
     pub cfg: Config,
-    pub kind: Kind,
-    pub widths: Widths,
+    pub model: Model,
+    /// The cuts that hold a pipeline register, 1-based step numbers (empty: combinational).
+    pub registered_cuts: Vec<u32>,
     pub datapath: Datapath,
     /// the most `--stages` this configuration takes
     pub cut_points: u32,
 }
 
+/// The model's datapath with registers at `registered` cuts.
+fn build(model: &Model, registered: &[u32]) -> Datapath {
+    let cfg = &model.cfg;
+    let inputs = [("cos_g", cfg.f() + 1), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
+    let mut b = Builder::new(&inputs, registered, cfg.target());
+    model.unit().datapath(&mut b);
+    b.finish(&OUTPUT_SIGNALS)
+}
+
 impl Plan {
     pub fn new(cfg: Config) -> Result<Plan, ConfigError> {
-        let kind = Kind::new(&cfg);
-        let flat = Widths::derive_unpipelined(&cfg);
-        let combinational = datapath::build_for(&cfg, &flat, &kind);
+        Plan::for_model(Model::new(&cfg))
+    }
+
+    /// The plan of a model already made (its configuration's `stages` placed).
+    pub fn for_model(model: Model) -> Result<Plan, ConfigError> {
+        let cfg = model.cfg.clone();
+        let combinational = build(&model, &[]);
         let cut_points = combinational.steps.len() as u32;
         if cfg.stages() > cut_points {
             return Err(ConfigError {
@@ -32,31 +49,85 @@ impl Plan {
                 message: format!(
                     "{} is out of range; allowed 0..={cut_points} (the cut points of the {} datapath with these widths)",
                     cfg.stages(),
-                    match cfg.model() {
-                        SpecularModel::Quadratic => cfg.arch().name(),
-                        other => other.name(),
-                    }
+                    cfg.datapath_name()
                 ),
             });
         }
-        let widths = flat.with_cuts(balanced_cuts(&combinational.delays(), cfg.stages()));
-        let datapath = if cfg.stages() == 0 { combinational } else { datapath::build_for(&cfg, &widths, &kind) };
-        Ok(Plan { cfg, kind, widths, datapath, cut_points })
+        let registered_cuts = balanced_cuts(&combinational.delays(), cfg.stages());
+        let datapath = if cfg.stages() == 0 { combinational } else { build(&model, &registered_cuts) };
+        Ok(Plan { cfg, model, registered_cuts, datapath, cut_points })
     }
 
     pub fn from_params(params: Params) -> Result<Plan, ConfigError> {
         Plan::new(Config::new(params)?)
     }
 
+    /// The same configuration at another depth, the model reused (its fit or tables are not
+    /// made again).
+    pub fn with_stages(&self, stages: u32) -> Result<Plan, ConfigError> {
+        let cfg = Config::new(Params { stages, ..self.cfg.params.clone() })?;
+        let model = self.model.with_config(cfg);
+        Plan::for_model(model)
+    }
+
     /// The golden model of this plan.
     pub fn model(&self) -> Model {
-        Model::from_parts(&self.cfg, self.widths.clone(), self.kind.clone())
+        self.model.clone()
     }
+}
+
+/// Places `stages` registers after steps (1-based) so that the slowest stretch of logic
+/// between registers (inputs and outputs count as registered outside) is as short as
+/// possible; ties go to the placement closest to the outputs. Exact: the least bound any
+/// placement reaches (over the segment sums), then each cut as late as the bound allows.
+pub fn balanced_cuts(delays: &[f64], stages: u32) -> Vec<u32> {
+    const TIE: f64 = 1e-9;
+    let c = delays.len();
+    let s = (stages as usize).min(c);
+    if s == 0 {
+        return Vec::new();
+    }
+    let seg = |a: usize, b: usize| delays[a..b].iter().sum::<f64>();
+    // the fewest cuts after an edge at `v` that keep every segment up to the end within `w`
+    // (greedy: each segment as long as it may be); None when one step alone exceeds `w`
+    let need = |v: usize, w: f64| -> Option<usize> {
+        let (mut count, mut start) = (0, v);
+        while seg(start, c) > w + TIE {
+            let mut e = start;
+            while e < c && seg(start, e + 1) <= w + TIE {
+                e += 1;
+            }
+            if e == start {
+                return None;
+            }
+            count += 1;
+            start = e;
+        }
+        Some(count)
+    };
+    // the least worst step: the smallest segment sum that s cuts can keep every segment within
+    let mut sums: Vec<f64> = (0..c).flat_map(|a| (a + 1..=c).map(move |b| (a, b))).map(|(a, b)| seg(a, b)).collect();
+    sums.push(0.0);
+    sums.sort_by(f64::total_cmp);
+    let best = *sums.iter().find(|&&w| need(0, w).is_some_and(|m| m <= s)).expect("c cuts always do");
+    // among the cuts that reach it, the latest first, then the latest second, ...
+    let (mut cuts, mut prev) = (Vec::with_capacity(s), 0usize);
+    for i in 0..s {
+        let after = s - i - 1;
+        let v = (prev + 1..=c - after)
+            .rev()
+            .find(|&v| seg(prev, v) <= best + TIE && need(v, best).is_some_and(|m| m <= after))
+            .expect("a cut that keeps the bound exists");
+        cuts.push(v as u32);
+        prev = v;
+    }
+    cuts
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::SpecularModel;
 
     #[test]
     fn validation_builds_nothing_and_the_plan_bounds_stages() {
@@ -65,13 +136,87 @@ mod tests {
         let e = Plan::new(cfg).unwrap_err();
         assert_eq!(e.parameter, "stages");
         assert!(e.message.contains("allowed 0..=13"), "{}", e.message);
-        for model in [SpecularModel::Quadratic, SpecularModel::Fitted, SpecularModel::Blinn, SpecularModel::BlinnPow] {
+        for model in SpecularModel::ALL {
             let top = Plan::from_params(Params { model, stages: 0, n_bits: 6, ..Params::default() }).unwrap().cut_points;
             let plan = Plan::from_params(Params { model, stages: top, n_bits: 6, ..Params::default() }).unwrap();
-            // every cut registered, and the same registers as the widths derived on their own
-            assert_eq!(plan.widths.registered_cuts, (1..=top).collect::<Vec<_>>(), "{model:?}");
-            assert_eq!(plan.widths, Widths::derive(&plan.cfg), "{model:?}");
+            // every cut registered; the same plan when the model is reused
+            assert_eq!(plan.registered_cuts, (1..=top).collect::<Vec<_>>(), "{model:?}");
             assert_eq!(plan.datapath.steps.len() as u32, top);
+            let again = Plan::from_params(Params { model, stages: 0, n_bits: 6, ..Params::default() }).unwrap().with_stages(top).unwrap();
+            assert_eq!(again.registered_cuts, plan.registered_cuts);
         }
+    }
+
+    #[test]
+    fn cuts_are_distinct_increasing_and_in_range() {
+        let plan = Plan::new(Config::defaults()).unwrap();
+        let delays = plan.datapath.delays();
+        let c = plan.cut_points;
+        assert_eq!(delays.len(), c as usize);
+        for s in 0..=c {
+            let cuts = balanced_cuts(&delays, s);
+            assert_eq!(cuts.len(), s as usize);
+            assert!(cuts.windows(2).all(|w| w[0] < w[1]), "{cuts:?}");
+            assert!(cuts.iter().all(|&x| (1..=c).contains(&x)));
+        }
+        assert_eq!(balanced_cuts(&delays, c), (1..=c).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn balancing_splits_the_heaviest_step_off() {
+        // one heavy step in the middle: a single register goes right next to it
+        let d = [1.0, 1.0, 10.0, 1.0, 1.0];
+        assert_eq!(balanced_cuts(&d, 1), vec![3]);
+        assert_eq!(balanced_cuts(&d, 2), vec![2, 3]);
+        // uniform steps: registers evenly spaced
+        assert_eq!(balanced_cuts(&[1.0; 6], 2), vec![2, 4]);
+    }
+
+    /// Every placement tried: the slowest stretch, least; ties to the latest cuts.
+    fn balanced_cuts_by_search(delays: &[f64], s: usize) -> Vec<u32> {
+        let c = delays.len();
+        let worst = |cuts: &[usize]| {
+            let mut edges = vec![0usize];
+            edges.extend(cuts.iter().copied());
+            edges.push(c);
+            edges.windows(2).map(|e| delays[e[0]..e[1]].iter().sum::<f64>()).fold(0.0f64, f64::max)
+        };
+        let mut best: Option<(f64, Vec<usize>)> = None;
+        for mask in 0u32..(1 << c) {
+            if mask.count_ones() as usize != s {
+                continue;
+            }
+            let pick: Vec<usize> = (0..c).filter(|i| mask >> i & 1 == 1).map(|i| i + 1).collect();
+            let w = worst(&pick);
+            let better = match &best {
+                None => true,
+                Some((bw, bc)) => w < *bw - 1e-9 || ((w - *bw).abs() <= 1e-9 && pick > *bc),
+            };
+            if better {
+                best = Some((w, pick));
+            }
+        }
+        best.map(|(_, p)| p.into_iter().map(|x| x as u32).collect()).unwrap_or_default()
+    }
+
+    #[test]
+    fn balancing_equals_the_search_over_every_placement() {
+        let mut r = 7u64;
+        for _ in 0..300 {
+            r = crate::bits::splitmix(r);
+            let c = 1 + (r % 11) as usize;
+            let delays: Vec<f64> = (0..c)
+                .map(|i| {
+                    let v = crate::bits::splitmix(r ^ i as u64);
+                    // a few distinct values, so ties happen
+                    [0.0, 2.7, 3.4, 5.5, 8.1][(v % 5) as usize]
+                })
+                .collect();
+            for s in 0..=c {
+                assert_eq!(balanced_cuts(&delays, s as u32), balanced_cuts_by_search(&delays, s), "{delays:?} with {s} cuts");
+            }
+        }
+        // and a long datapath in no time (the search would take 2^43 placements)
+        assert_eq!(balanced_cuts(&[2.7; 43], 43).len(), 43);
     }
 }

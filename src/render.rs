@@ -4,7 +4,7 @@
 //! model; `specgen render` first runs the same vectors through the RTL under the
 //! co-simulation harness and renders only when every pixel is bit-identical.
 
-use crate::model::{Inputs, Model};
+use crate::models::{Inputs, Model};
 
 /// The two scenes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

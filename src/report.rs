@@ -2,9 +2,8 @@
 //! self-contained HTML page (inline SVG from plotters) plus `report.json` with every number.
 
 use crate::config::Config;
-use crate::model::{Inputs, Model};
+use crate::models::{Inputs, Model};
 use crate::paper::{self, Claim};
-use crate::rom;
 use askama::Template;
 use plotters::prelude::*;
 use serde::Serialize;
@@ -237,7 +236,7 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
             ],
         ),
     });
-    let table = rom::cos_sp_table(cfg);
+    let table = crate::models::quadratic::rom::cos_sp_table(cfg);
     let one = (cfg.f() as f64).exp2();
     let k_q = cfg.k_code as f64 / (cfg.kf() as f64).exp2();
     let n_max = table.len() as f64;
@@ -435,7 +434,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
     let rows: Vec<ModelComparison> = models
         .iter()
         .map(|(m, what)| {
-            let f = crate::model::blinn_fidelity(m);
+            let f = crate::models::blinn_fidelity(m);
             let name = m.cfg.model().name();
             fids.push((name.to_string(), f.per_n_max.clone()));
             ModelComparison {

@@ -1,32 +1,13 @@
-//! The cut-off ROM `cos_sp(n)` (SPEC §3) and its export formats.
-//!
-//! Entry n is the smallest code `C ∈ [0, 2^F]` whose bracket `1 − k_q·n·(1 − C/2^F)` is
-//! non-negative. With `P(C) = k_code·n·(2^F − C)` that is `P(C) ≤ 2^(KF+F)`, i.e.
-//! `2^F − C ≤ ⌊2^(KF+F) / (k_code·n)⌋`, so `C = max(0, 2^F − ⌊2^(KF+F) / (k_code·n)⌋)`
-//! (and `C = 0` for `n = 0`, where the bracket is 1 everywhere).
+//! `specgen rom`: any table of the unit in an export format ($readmemh hex or binary, Xilinx
+//! `.coe`, Intel `.mif`, a readable CSV).
 
+use crate::bits::exact_decimal;
 use crate::config::Config;
-use crate::datapath::Table;
+use crate::table::Table;
 use askama::Template;
 
-/// Every entry of the ROM, index n = 0 .. 2^N − 1.
-pub fn cos_sp_table(cfg: &Config) -> Vec<u32> {
-    (0..1u64 << cfg.n_bits()).map(|n| cos_sp(cfg, n)).collect()
-}
-
-/// The cut-off code for one exponent n.
-pub fn cos_sp(cfg: &Config, n: u64) -> u32 {
-    let one = 1u128 << cfg.f();
-    let kn = cfg.k_code as u128 * n as u128;
-    if kn == 0 {
-        return 0;
-    }
-    let reach = (1u128 << (cfg.kf() + cfg.f())) / kn; // largest 2^F − C with bracket ≥ 0
-    one.saturating_sub(reach) as u32
-}
-
 /// ROM export formats of `specgen rom`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RomFormat {
     /// `$readmemh`: one zero-padded hex word a line.
     Hex,
@@ -100,22 +81,6 @@ fn words(table: &[u128], radix: u32, width: u32) -> Vec<Word> {
         .collect()
 }
 
-/// `code / 2^F` written exactly in decimal (a dyadic fraction always has a finite expansion).
-pub fn exact_decimal(code: u64, frac_bits: u32) -> String {
-    let int = code >> frac_bits;
-    let mut rem = (code & ((1u64 << frac_bits) - 1)) as u128;
-    let mut s = format!("{int}.");
-    if rem == 0 {
-        s.push('0');
-    }
-    while rem != 0 {
-        rem *= 10;
-        s.push(char::from(b'0' + (rem >> frac_bits) as u8));
-        rem &= (1u128 << frac_bits) - 1;
-    }
-    s
-}
-
 /// Renders one table in one format. The text is complete and ends with a newline.
 pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
     let (width, depth, top, what) = (t.width, t.words.len(), cfg.top(), t.what.as_str());
@@ -150,7 +115,7 @@ pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
                         .fields
                         .iter()
                         .map(|(_, bits)| {
-                            let f = (v >> lo) & crate::widths::mask(*bits);
+                            let f = (v >> lo) & crate::bits::mask(*bits);
                             lo += bits;
                             f.to_string()
                         })
@@ -163,35 +128,4 @@ pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
         .render(),
     };
     text.expect("ROM templates render")
-}
-
-/// The cut-off ROM (10) as a table of the unit.
-pub fn cos_sp_rom(cfg: &Config) -> Table {
-    Table {
-        name: "cos_sp_rom".into(),
-        file: crate::emit::ROM_FILE.into(),
-        param: "ROM_FILE".into(),
-        width: cfg.f() + 1,
-        words: cos_sp_table(cfg).into_iter().map(u128::from).collect(),
-        what: format!("cut-off ROM cos_sp(n), UQ1.{}, address = n", cfg.f()),
-        fields: vec![("cos_sp".into(), cfg.f() + 1)],
-    }
-}
-
-/// Renders the cut-off ROM (quadratic) in one format.
-pub fn render(cfg: &Config, format: RomFormat) -> String {
-    render_table(cfg, &cos_sp_rom(cfg), format)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn exact_decimal_is_exact() {
-        assert_eq!(exact_decimal(1, 1), "0.5");
-        assert_eq!(exact_decimal(3, 2), "0.75");
-        assert_eq!(exact_decimal(1 << 15, 15), "1.0");
-        assert_eq!(exact_decimal(1, 15), "0.000030517578125");
-    }
 }

@@ -59,7 +59,7 @@ struct Wrapper<'a> {
 }
 
 fn wrapper(design: &Design) -> String {
-    let ports = emit::ports(&design.cfg);
+    let ports = design.cfg.ports("");
     let pack = |dir: &str| {
         let mut lo = 0;
         let mut v = Vec::new();

@@ -8,7 +8,7 @@
 
 use crate::config::Config;
 use crate::cosim::{corner_vectors, random_vector, Exhaustive, Stimulus};
-use crate::model::{Inputs, Model, Outputs};
+use crate::models::{Inputs, Model, Outputs};
 use askama::Template;
 use std::io::Write;
 
@@ -22,7 +22,7 @@ pub enum Selection {
     Exhaustive,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VectorFormat {
     /// CSV: comment header, a row of port names, one row per input (unsigned decimal)
     Csv,

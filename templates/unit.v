@@ -35,7 +35,7 @@ module {{ top }}{% if !file_tables.is_empty() %} #(
     parameter {{ t.param }} = "{{ t.file }}"{% if !loop.last %},{% endif %}
 {%- endfor %}
 ){% endif %} (
-{%- call cuts::ports(p, done_meaning) %}{% endcall %}
+{%- call cuts::ports(port_lines) %}{% endcall %}
 {%- for t in file_tables %}
 
 // ---- table {{ t.name }}: {{ t.what }} ----

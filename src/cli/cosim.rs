@@ -1,7 +1,7 @@
-//! `specgen cosim`: the command-line glue over [`crate::cosim`].
+//! `specgen cosim`: the command-line glue over [`specgen::cosim`].
 
-use crate::cosim::{build, check_ports, check_tables, describe, random_stimulus, run_all, write_trace, Design, Exhaustive, Simulator, Stimulus};
-use crate::error::{failed, Error as Failure};
+use specgen::cosim::{build, check_ports, check_tables, describe, random_stimulus, run_all, write_trace, Design, Exhaustive, Simulator, Stimulus};
+use specgen::error::{failed, Error as Failure};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -20,7 +20,7 @@ pub struct CosimArgs {
     #[arg(long, conflicts_with = "vectors")]
     pub exhaustive: bool,
     #[arg(long, value_enum, default_value = "verilator")]
-    pub simulator: Simulator,
+    pub simulator: super::values::SimulatorFlag,
     /// On a mismatch, write a VCD of a short replay around the first failure.
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
@@ -37,7 +37,7 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)).max(1);
     let t0 = Instant::now();
     // a file that does not compile is best told by the simulator; then the ports
-    let built = build(&design, args.simulator, false)?;
+    let built = build(&design, args.simulator.into(), false)?;
     check_ports(&design)?;
     let build_time = t0.elapsed();
     let stims: Vec<Box<dyn Stimulus>> = if args.exhaustive {
@@ -52,7 +52,7 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     println!(
         "cosim {} ({:?}{}): {} cycles, {} checked, {} mismatches; build {:.2} s{}, check {:.2} s ({:.1} M cycles/s)",
         design.dir.display(),
-        args.simulator,
+        Simulator::from(args.simulator),
         if args.exhaustive { ", exhaustive" } else { "" },
         report.cycles,
         report.checked,

@@ -3,15 +3,17 @@
 
 mod cosim;
 mod synth;
+mod values;
 
-use crate::config::{self, Config, Params, RomStyle, Rounding};
-
-use crate::emit;
-use crate::model::{self, Inputs};
-use crate::plan::Plan;
-use crate::rom::{self, RomFormat};
 use clap::{Args, Parser, Subcommand};
+use specgen::bits::exact_decimal;
+use specgen::config::{self, Config, Params};
+use specgen::emit;
+use specgen::models::Inputs;
+use specgen::plan::Plan;
+use specgen::rom;
 use std::path::PathBuf;
+use values::{ArchFlag, ModelFlag, RomFormatFlag, RomStyleFlag, RoundingFlag, TargetFlag, VectorFormatFlag};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -47,7 +49,7 @@ pub enum Command {
         #[arg(long, value_name = "NAME")]
         table: Option<String>,
         #[arg(long, value_enum, default_value = "hex")]
-        format: RomFormat,
+        format: RomFormatFlag,
         /// Output file (default: standard output).
         #[arg(short = 'o', long, value_name = "FILE")]
         output: Option<PathBuf>,
@@ -85,7 +87,7 @@ pub enum Command {
     /// Render a sphere and a plane at grazing light with the unit in DIR, beside float cos^n and
     /// their difference, one row per n, as a PNG. Pixels go through the RTL (co-simulation) and
     /// must be bit-identical to the golden model; --model-only skips the simulator.
-    Render(crate::cli::RenderArgs),
+    Render(RenderArgs),
     /// Write DIR/index.html (self-contained) and DIR/report.json: the paper's claims
     /// recomputed and the configured unit's accuracy.
     Report {
@@ -116,7 +118,7 @@ pub struct VectorsArgs {
     pub exhaustive: bool,
     /// csv or hex [default: hex for FILE ending in .hex or .mem, else csv]
     #[arg(long, value_enum)]
-    pub format: Option<crate::vectors::VectorFormat>,
+    pub format: Option<VectorFormatFlag>,
     /// The file to write (atomically).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
@@ -163,7 +165,7 @@ pub struct ParamArgs {
     /// Function: quadratic (the paper's (15)), fitted ([1 - a_n(1 - cos)]^(2^m_n) per n), blinn
     /// (cos^n from log2/exp2 tables) or blinn-pow (cos^n by square-and-multiply) [default quadratic]
     #[arg(long, value_enum, help_heading = "Model")]
-    pub model: Option<config::SpecularModel>,
+    pub model: Option<ModelFlag>,
     /// The constant k of --model quadratic as a decimal string, 0 < k <= 1 [default "0.3686"]
     #[arg(allow_negative_numbers = true, long, help_heading = "Model")]
     pub k: Option<String>,
@@ -176,10 +178,10 @@ pub struct ParamArgs {
     pub max_squarings: Option<u32>,
     /// Output rounding: faithful (|error| < 1 ulp) or exact (nearest, ties away; quadratic only) [default faithful]
     #[arg(long, value_enum, help_heading = "Model")]
-    pub rounding: Option<Rounding>,
+    pub rounding: Option<RoundingFlag>,
     /// Datapath of --model quadratic: lean (error-budget widths, DSP-sized) or paper (Fig. 5 literally) [default lean]
     #[arg(long, value_enum, help_heading = "Model")]
-    pub arch: Option<config::Arch>,
+    pub arch: Option<ArchFlag>,
 }
 
 /// What only the generated RTL needs (`generate`).
@@ -194,13 +196,13 @@ pub struct RtlArgs {
     pub stages: Option<u32>,
     /// How tables are written: file ($readmemh) or case (inline) [default file]
     #[arg(long, value_enum, help_heading = "RTL")]
-    pub rom_style: Option<RomStyle>,
+    pub rom_style: Option<RomStyleFlag>,
     /// The FPGA family the datapath is shaped for: ice40 (16x16 DSPs with post-adders, short
     /// carry chains), ecp5 (MULT18X18D instances with their own registers, long carry chains;
     /// simulate with ecp5_mult18x18d_sim.v, written beside) or generic (whole-width products
     /// and adds, left to the synthesis tool) [default ice40]
     #[arg(long, value_enum, help_heading = "RTL")]
-    pub target: Option<config::Target>,
+    pub target: Option<TargetFlag>,
 }
 
 /// A whole-number flag: a negative value gets a range error, not a "flag not found".
@@ -231,7 +233,7 @@ range_params!(
     param_max_squarings => config::MAX_SQUARINGS
 );
 
-pub use crate::error::{failed, usage, Error as Failure};
+pub use specgen::error::{failed, usage, Error as Failure};
 
 impl ParamArgs {
     /// The configuration: --config, then these flags, then `rtl`'s (when the command has them).
@@ -241,7 +243,7 @@ impl ParamArgs {
             None => Params::default(),
         };
         macro_rules! set {
-            ($src:expr; $($f:ident),*) => { $(if let Some(v) = $src.$f { p.$f = v; })* };
+            ($src:expr; $($f:ident),*) => { $(if let Some(v) = $src.$f { p.$f = v.into(); })* };
         }
         set!(self; cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, rounding, arch, model, max_squarings);
         if let Some(r) = rtl {
@@ -262,7 +264,7 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<()
     emit::write_dir_atomically(out, files).map_err(|e| match e {
         emit::OutputError::Occupied(..) => usage(e.to_string()),
         emit::OutputError::Busy(_) => failed(e.to_string()),
-        emit::OutputError::Io(io) => crate::error::Error::io("write", out, io),
+        emit::OutputError::Io(io) => specgen::error::Error::io("write", out, io),
     })
 }
 
@@ -274,7 +276,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 if !(mhz > 0.0 && mhz <= 1000.0) {
                     return Err(usage(format!("invalid --target-mhz: {mhz}; allowed (0, 1000]")));
                 }
-                let (stages, _) = crate::synth::pick_stages(&cfg.params, mhz)?;
+                let (stages, _) = specgen::synth::pick_stages(&cfg.params, mhz)?;
                 cfg = Config::new(Params { stages, ..cfg.params.clone() })?;
                 eprintln!("target-mhz: chose --stages {stages}");
             }
@@ -303,7 +305,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     (None, false) => unreachable!("a first table exists"),
                 })
             })?;
-            let text = rom::render_table(&cfg, t, format);
+            let text = rom::render_table(&cfg, t, format.into());
             match output {
                 Some(path) => emit::write_file_atomically(&path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
                 None => {
@@ -326,11 +328,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 .iter()
                 .map(|p| {
                     let text = std::fs::read_to_string(p).map_err(|e| usage(format!("invalid --hw: cannot read {}: {e}", p.display())))?;
-                    serde_json::from_str::<crate::synth::SynthResult>(&text)
+                    serde_json::from_str::<specgen::synth::SynthResult>(&text)
                         .map_err(|e| usage(format!("invalid --hw: {} is not a `specgen synth --json` result: {e}", p.display())))
                 })
                 .collect::<Result<Vec<_>, _>>()?;
-            let files = crate::report::build(&cfg, &hw);
+            let files = specgen::report::build(&cfg, &hw);
             write_output(&out, &files)?;
             Ok(())
         }
@@ -364,98 +366,16 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
         return Err(usage(format!("invalid --ks: {bad} is out of range; allowed 0..={ks_max} (color_bits = {})", cfg.b())));
     }
     let x = Inputs { cos_g, n, ks: [ks[0], ks[1], ks[2]] };
-    let m = Plan::new(Config::new(Params { stages: 0, ..cfg.params.clone() })?)?.model();
+    // the golden model alone: no datapath, no Verilog
+    let m = specgen::models::Model::new(cfg);
     let o = m.eval(x);
     let c = cos_g.min(1 << f) as f64 / (1u64 << f) as f64;
     let blinn = c.powi(n as i32);
     let scale = (cfg.fi() as f64).exp2();
-    println!("input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}", rom::exact_decimal(cos_g as u64, f), x.ks);
+    println!("input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}", exact_decimal(cos_g as u64, f), x.ks);
     println!("model      {}", cfg.model().name());
-    match &m.kind {
-        model::Kind::Quadratic => {
-            let t = m.trace(x);
-            let w = &m.widths;
-            let r = model::reference(cfg, x);
-            println!("constant   k = {} -> k_code = {} (k_q = {})", cfg.params.k, cfg.k_code, rom::exact_decimal(cfg.k_code, cfg.kf()));
-            println!("datapath   cos_clamped = {}  one_minus_cos = {}  cos_sp[n] = {}  done = {}", t.cos_clamped, t.one_minus_cos, t.cos_sp, t.done);
-            println!(
-                "           kn = {}  deviation = {} (UQ1.{})  bracket = {} (UQ1.{} = {:.9})",
-                t.kn,
-                t.deviation,
-                w.bracket_frac_bits,
-                t.bracket,
-                w.bracket_frac_bits,
-                t.bracket as f64 / (w.bracket_frac_bits as f64).exp2()
-            );
-            println!("           square = {} (UQ1.{} = {:.9})", t.square, w.square_frac_bits, t.square as f64 / (w.square_frac_bits as f64).exp2());
-            println!(
-                "exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  done = {}  (SPEC §3 with k_q)",
-                r.intensity.to_f64(),
-                r.spec[0].to_f64(),
-                r.spec[1].to_f64(),
-                r.spec[2].to_f64(),
-                r.done
-            );
-        }
-        model::Kind::Fitted { fit, widths } => {
-            let (t, _) = crate::fitted::trace(cfg, fit, widths, x);
-            let wf = widths.frac_bits;
-            let a_q = t.a_code as f64 / (cfg.kf() as f64).exp2();
-            println!(
-                "constant   a_n = {} (fit {:.9}) -> a_code = {}, m_n = {} (exponent 2^m_n = {})",
-                rom::exact_decimal(t.a_code, cfg.kf()),
-                fit.a[n as usize],
-                t.a_code,
-                t.m,
-                1u32 << t.m
-            );
-            println!("datapath   one_minus_cos = {}  a_n*(1 - cos) = {}  done = {}", t.one_minus_cos, t.product, t.done);
-            for j in 0..=cfg.max_squarings() as usize {
-                println!("           power{j} = {} (UQ1.{wf} = {:.9})", t.squares[j], t.squares[j] as f64 / (wf as f64).exp2());
-            }
-            let base = 1.0 - a_q * (1.0 - c);
-            let s = if base < 0.0 { 0.0 } else { base.powi(1 << t.m) };
-            println!(
-                "exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (the fitted formula with the stored a_n)",
-                s * scale,
-                s * x.ks[0] as f64,
-                s * x.ks[1] as f64,
-                s * x.ks[2] as f64
-            );
-        }
-        model::Kind::Blinn { widths, tables } => {
-            let (t, _) = crate::blinn::trace(cfg, widths, tables, x);
-            println!("datapath   c = {}  e = {}  x = {} (UQ0.{f})  g^ = {} (UQ2.{})", t.cos_clamped, t.exponent, t.x, t.ghat, widths.log_frac_bits);
-            println!(
-                "           -log2 c = {} (= {:.9})  y = {} (UQ{}.{} = {:.9})  2^-frac(y) = {} (UQ1.{})  power = {}",
-                t.ell,
-                t.ell as f64 / (widths.ell_frac_bits as f64).exp2(),
-                t.y,
-                widths.y_int_bits,
-                widths.y_frac_bits,
-                t.y as f64 / (widths.y_frac_bits as f64).exp2(),
-                t.ehat,
-                widths.exp2_frac_bits,
-                t.v
-            );
-            println!(
-                "exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (c^n)",
-                blinn * scale,
-                blinn * x.ks[0] as f64,
-                blinn * x.ks[1] as f64,
-                blinn * x.ks[2] as f64
-            );
-        }
-        model::Kind::BlinnPow => {
-            println!("datapath   square-and-multiply over the bits of n, UQ1.{}", m.widths.power_frac_bits);
-            println!(
-                "exact      intensity* = {:.9}  spec* = [{:.6}, {:.6}, {:.6}]  (c^n)",
-                blinn * scale,
-                blinn * x.ks[0] as f64,
-                blinn * x.ks[1] as f64,
-                blinn * x.ks[2] as f64
-            );
-        }
+    for line in m.unit().explain(x) {
+        println!("{line}");
     }
     println!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / scale, o.spec, o.done);
     let k_real: f64 = cfg.params.k.trim().parse().unwrap_or(f64::NAN);
@@ -465,7 +385,7 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
         "fidelity   Blinn cos^n = {blinn:.9}; this unit gives {:.9}, off by {:.9}{}",
         o.intensity as f64 / scale,
         (o.intensity as f64 / scale - blinn).abs(),
-        if cfg.model() == crate::config::SpecularModel::Quadratic {
+        if cfg.model() == config::SpecularModel::Quadratic {
             format!("; formula (15) in real arithmetic with k = {k_real}: {formula15:.9}")
         } else {
             String::new()
@@ -479,8 +399,8 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
 }
 
 fn render(args: &RenderArgs) -> Result<(), Failure> {
-    use crate::cosim::{self, Cycle, Recorded, Stimulus};
-    use crate::render::{self, Scene};
+    use specgen::cosim::{self, Cycle, Recorded, Stimulus};
+    use specgen::render::{self, Scene};
     if !(16..=1024).contains(&args.size) {
         return Err(usage(format!("invalid --size: {}; allowed 16..=1024", args.size)));
     }
@@ -520,7 +440,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         eprintln!("render: {} pixels through the RTL (Verilator), all bit-identical to the golden model", report.checked);
     }
     let png = render::picture(&model, &args.n, args.size);
-    emit::write_file_atomically(&args.out, &png).map_err(|e| crate::error::Error::io("write", &args.out, e))?;
+    emit::write_file_atomically(&args.out, &png).map_err(|e| specgen::error::Error::io("write", &args.out, e))?;
     println!("{}", args.out.display());
     Ok(())
 }
@@ -560,23 +480,23 @@ pub fn main() -> i32 {
     match run(cli) {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("specgen: error: {}", crate::error::chain(&e));
+            eprintln!("specgen: error: {}", specgen::error::chain(&e));
             e.exit_code()
         }
     }
 }
 
 fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
-    use crate::vectors::{Selection, VectorFormat};
-    let design = crate::cosim::Design::load(&args.rtl)?;
+    use specgen::vectors::{Selection, VectorFormat};
+    let design = specgen::cosim::Design::load(&args.rtl)?;
     let model = design.plan.model();
     let selection = if args.exhaustive { Selection::Exhaustive } else { Selection::Random { count: args.count, seed: args.seed } };
-    let format = args.format.unwrap_or_else(|| match args.out.extension().and_then(|e| e.to_str()) {
+    let format = args.format.map(Into::into).unwrap_or_else(|| match args.out.extension().and_then(|e| e.to_str()) {
         Some("hex" | "mem") => VectorFormat::Hex,
         _ => VectorFormat::Csv,
     });
-    let rows =
-        emit::write_file_atomically_with(&args.out, |w| crate::vectors::write(&model, selection, format, w)).map_err(|e| Failure::io("write", &args.out, e))?;
+    let rows = emit::write_file_atomically_with(&args.out, |w| specgen::vectors::write(&model, selection, format, w))
+        .map_err(|e| Failure::io("write", &args.out, e))?;
     println!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.stages(), args.out.display());
     Ok(())
 }

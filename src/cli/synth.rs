@@ -1,10 +1,10 @@
-//! `specgen synth`: the command-line glue over [`crate::synth`].
+//! `specgen synth`: the command-line glue over [`specgen::synth`].
 
-use crate::cosim::describe;
-use crate::cosim::Design;
-use crate::emit;
-use crate::error::{failed, Error as Failure};
-use crate::synth::{synthesize, table, Target};
+use specgen::cosim::describe;
+use specgen::cosim::Design;
+use specgen::emit;
+use specgen::error::{failed, Error as Failure};
+use specgen::synth::{synthesize, table};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug, Clone)]
@@ -15,7 +15,7 @@ pub struct SynthArgs {
     /// The family to synthesize for [default: the one the RTL was generated for (--target of
     /// generate; iCE40 UP5K for generic RTL)]
     #[arg(long, value_enum)]
-    pub target: Option<Target>,
+    pub target: Option<super::values::TargetFlag>,
     /// Map multipliers to DSP blocks (iCE40 SB_MAC16, ECP5 MULT18X18D).
     #[arg(long)]
     pub dsp: bool,
@@ -45,7 +45,7 @@ pub struct SynthArgs {
 
 pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
-    let target = crate::synth::target_for(&design, args.target)?;
+    let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
     let r = synthesize(&design, target, args.dsp, &args.yosys, if args.no_pnr { 0 } else { args.seeds }, args.pnr_log.as_deref())?;
     print!("{}", table(&r));
     if let Some(path) = &args.json {
@@ -54,7 +54,7 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         emit::write_file_atomically(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     if args.verify {
-        let v = crate::synth::verify(&design, target, args.dsp, &args.yosys, args.verify_vectors)?;
+        let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, args.verify_vectors)?;
         for (sim, report) in &v.runs {
             println!(
                 "verify: mapped netlist with {} under {sim:?}: {} cycles, {} checked, {} mismatches",

@@ -3,7 +3,7 @@
 
 use super::{Checker, Cycle, Design, Mismatch, Recorded, Report, Sampled, Simulator, Stimulus};
 use crate::error::{failed, usage, Error as Failure};
-use crate::model::{Model, Outputs};
+use crate::models::{Model, Outputs};
 use sha2::{Digest, Sha256};
 use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 
 use super::{Cycle, Sampled, Stimulus};
 use crate::config::Config;
-use crate::model::Model;
+use crate::models::Model;
 
 /// The first disagreement found.
 #[derive(Debug, Clone)]

@@ -149,7 +149,7 @@ pub fn check_ports(design: &Design) -> Result<(), Failure> {
     let Some((src, got)) = found else {
         return Err(usage(format!("no module {top} (the manifest's top) in the Verilog of {}", design.dir.display())));
     };
-    let want = crate::emit::ports(&design.cfg);
+    let want = design.cfg.ports("");
     let mut problems = Vec::new();
     for p in &want {
         match got.iter().find(|g| g.0 == p.name) {

@@ -21,10 +21,10 @@ pub use stimulus::{corner_vectors, random_stimulus, random_vector, splitmix, Exh
 
 use crate::config::{Config, Params};
 use crate::error::{usage, Error};
-use crate::model::{Inputs, Outputs};
+use crate::models::{Inputs, Outputs};
 use std::path::{Path, PathBuf};
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Simulator {
     Verilator,
     Icarus,

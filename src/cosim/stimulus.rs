@@ -2,7 +2,7 @@
 
 use super::Cycle;
 use crate::config::Config;
-use crate::model::{Inputs, Model};
+use crate::models::{Inputs, Model};
 
 /// A stream of cycles, addressable by index so a checker can regenerate what it needs.
 /// Every run starts with a reset cycle when the unit is pipelined.

@@ -2,20 +2,20 @@
 //! one builder, one liveness pass, one delay model, one renderer (`templates/unit.v`).
 //!
 //! Every step is a set of wires. After step K comes cut K: a pipeline register where
-//! [`Widths::registered_cuts`] says, else nothing at all — a reference resolves to the last
+//! the plan says, else nothing at all — a reference resolves to the last
 //! register holding the signal, or to the wire (or port) that defines it ([`visible`]). The
 //! [`Builder`] works out which signals are alive across each registered cut (only those get
 //! registers), collects the bits nobody reads into one lint sink, holds the unit's tables
-//! (ROMs) and keeps a delay estimate per step, from which `widths::balanced_cuts` places the
+//! (ROMs) and keeps a delay estimate per step, from which `plan::balanced_cuts` places the
 //! registers.
 //!
-//! The quadratic unit is in [`quadratic`]; `fitted`, `blinn` and `blinn_pow` keep their
-//! datapaths beside their golden models and error budgets.
+//! The builder knows no model: each model (`crate::models`) describes its own datapath on it,
+//! and `crate::plan` decides which cuts hold registers.
 
-pub mod quadratic;
-
-use crate::config::{Arch, Config, Target};
-use crate::widths::{bit_length, mask, Widths};
+use crate::bits::{lit, mask};
+use crate::config::Target;
+pub use crate::ports::CHANNELS;
+pub use crate::table::Table;
 
 /// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
 /// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
@@ -24,6 +24,10 @@ pub const CHUNK_BITS: u32 = 6;
 
 /// Width of a DSP block's multiplier operands (iCE40 SB_MAC16: 16×16).
 pub const DSP_BITS: u32 = 16;
+
+/// The most low bits split off the bracket for the squarer: `lo²` then comes from a table of
+/// 2^6 = 64 entries in LUTs, and `hi·lo` from one DSP (the bracket is at most UQ1.21 there).
+pub const MAX_SQUARER_SPLIT: u32 = 6;
 
 /// Width of an ECP5 MULT18X18D's operands.
 pub const ECP5_DSP_BITS: u32 = 18;
@@ -73,29 +77,6 @@ pub struct Live {
     pub name: String,
     pub width: u32,
     pub source: String,
-}
-
-/// A constant table of the unit (a ROM): written as a `$readmemh` file or inlined as a `case`.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Table {
-    /// The memory's name in the Verilog.
-    pub name: String,
-    /// Its `$readmemh` file.
-    pub file: String,
-    /// The Verilog parameter that names the file.
-    pub param: String,
-    pub width: u32,
-    pub words: Vec<u128>,
-    /// What an entry holds, for the comments.
-    pub what: String,
-    /// The fields of a word, LSB first: (name, bits), for the CSV export.
-    pub fields: Vec<(String, u32)>,
-}
-
-impl Table {
-    pub fn address_bits(&self) -> u32 {
-        bit_length(self.words.len() as u128 - 1).max(1)
-    }
 }
 
 /// A read of a table in a step: `signal_sK = table[addr]`.
@@ -154,11 +135,6 @@ struct Signal {
     uses: Vec<(usize, u128)>,
     /// held by a DSP's output register at the cut after its step (no fabric register there)
     dsp_registered: bool,
-}
-
-/// A sized Verilog literal, `W'hX`.
-pub fn lit(width: u32, value: u128) -> String {
-    format!("{width}'h{value:x}")
 }
 
 /// Records the datapath step by step; see the module documentation.
@@ -225,7 +201,8 @@ pub fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
 pub struct PendingAdd {
     name: String,
     width: u32,
-    chunks: Vec<(u32, u32)>,
+    /// the chunks `(lo, width)` of a carry-select add (empty: one chain, done)
+    pub chunks: Vec<(u32, u32)>,
     /// 1 when chunk 0 carries its carry-in as an extra low bit
     part0_offset: u32,
     /// per chunk: the second addend is 0 there, so its carry-in-0 sum has no carry-out
@@ -876,28 +853,6 @@ impl Builder {
         Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live, unused, outputs, registered: self.registered }
     }
 }
-
-/// The datapath of the configured model: the one description every RTL is rendered from.
-pub fn build(cfg: &Config, w: &Widths) -> Datapath {
-    build_for(cfg, w, &crate::model::Kind::new(cfg))
-}
-
-/// [`build`] for a model whose fit or tables are already made (see `plan::Plan`).
-pub fn build_for(cfg: &Config, w: &Widths, kind: &crate::model::Kind) -> Datapath {
-    let inputs = [("cos_g", w.cos_bits), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
-    let mut b = Builder::new(&inputs, &w.registered_cuts, cfg.target());
-    match (kind, cfg.arch()) {
-        (crate::model::Kind::Fitted { fit, widths }, _) => crate::fitted::datapath(cfg, fit, widths, &mut b),
-        (crate::model::Kind::Blinn { widths, tables }, _) => crate::blinn::datapath(cfg, widths, tables, &mut b),
-        (crate::model::Kind::BlinnPow, _) => crate::blinn_pow::datapath(cfg, w, &mut b),
-        (_, Arch::Lean) if cfg.target() == Target::Ecp5 => quadratic::lean_ecp5(cfg, w, &mut b),
-        (_, Arch::Lean) => quadratic::lean(cfg, w, &mut b),
-        (_, Arch::Paper) => quadratic::paper(cfg, w, &mut b),
-    }
-    b.finish(&["spec_r", "spec_g", "spec_b", "intensity", "done"])
-}
-
-pub const CHANNELS: [&str; 3] = ["r", "g", "b"];
 
 #[cfg(test)]
 mod tests {

@@ -51,9 +51,11 @@
 //! continuous from below only if `L ≤ 1` at the top of the range: the budget also requires
 //! `εg/2 ≤ 0.9·(1 − L(1/2 − 2^−F))`, checked in [`BlinnWidths::derive`].
 
+use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
+use crate::bits::{bit_length, lit, mask};
 use crate::config::Config;
-use crate::datapath::{lit, Builder, Piece, Table};
-use crate::widths::{bit_length, mask};
+use crate::datapath::{mul_delay, Builder, Piece, CHANNELS, LUT_DELAY};
+use crate::table::Table;
 use serde::Serialize;
 
 /// Every width and table size of the blinn unit, from the error budget.
@@ -360,7 +362,7 @@ pub struct BlinnTrace {
 }
 
 /// The bit-exact golden model.
-pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: crate::model::Inputs) -> (BlinnTrace, crate::model::Outputs) {
+pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: Inputs) -> (BlinnTrace, Outputs) {
     let (f, fi, b) = (cfg.f(), cfg.fi(), cfg.b());
     let c = (x.cos_g as u64 & mask(f + 1) as u64).min(1 << f);
     let n = x.n as u128 & mask(cfg.n_bits());
@@ -388,7 +390,7 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: crate::model::In
     let wc = w.color_frac_bits;
     let vc = v >> (we - wc);
     let spec = x.ks.map(|k| ((vc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
-    (BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v }, crate::model::Outputs { spec, intensity, done: intensity == 0 })
+    (BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v }, Outputs { spec, intensity, done: intensity == 0 })
 }
 
 /// A multiplier of at most this many bits is worth shift-adds rather than a DSP block.
@@ -396,7 +398,6 @@ const SHIFT_ADD_BITS: u32 = 5;
 
 /// The blinn datapath: normalise, log2 by table, times n, exp2 by table, shift, round.
 pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder) {
-    use crate::datapath::{mul_delay, CHANNELS, LUT_DELAY};
     let (f, fi, bb, nb) = (cfg.f(), cfg.fi(), cfg.b(), cfg.n_bits());
     let cb = f + 1;
     let lt = b.table(t.log_table(w));
@@ -759,4 +760,86 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     }
     let e = b.bits(&sum, fi + 1, 1);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
+}
+
+/// The blinn unit of one configuration: its widths and its two tables.
+#[derive(Debug, Clone)]
+pub struct Blinn {
+    pub cfg: Config,
+    pub widths: BlinnWidths,
+    pub tables: BlinnTables,
+}
+
+impl Blinn {
+    pub fn new(cfg: &Config) -> Blinn {
+        let widths = BlinnWidths::derive(cfg);
+        let tables = tables(&widths);
+        Blinn { cfg: cfg.clone(), widths, tables }
+    }
+}
+
+impl SpecularUnit for Blinn {
+    fn eval(&self, x: Inputs) -> Outputs {
+        trace(&self.cfg, &self.widths, &self.tables, x).1
+    }
+
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+        check_cos_n(&self.cfg, x, got)
+    }
+
+    fn ideal(&self, x: Inputs) -> (f64, [f64; 3]) {
+        scaled(&self.cfg, cosine(&self.cfg, x.cos_g).powi(x.n as i32), x)
+    }
+
+    fn datapath(&self, b: &mut Builder) {
+        datapath(&self.cfg, &self.widths, &self.tables, b)
+    }
+
+    fn describe(&self) -> Description {
+        let (p, bw) = (&self.cfg.params, &self.widths);
+        Description {
+            param_line: String::new(),
+            formula: vec![
+                "S = c^n, c = min(cos_g, 1.0), as 2^-(n*(e + x*g(x))) with c = (1 - x)*2^-e, x in [0, 1/2);".into(),
+                format!(
+                    "g from a {}-entry log2 table, 2^-f from a {}-entry exp2 table, both interpolated;",
+                    1u32 << bw.log_index_bits,
+                    1u32 << bw.exp2_index_bits
+                ),
+                format!("intensity = S (UQ1.{}), spec_X = S * ks_X; done = (intensity == 0).", p.intensity_frac_bits),
+            ],
+            rounding: "faithful: every output within 1 ulp of the exact c^n value (|o - o*| < 1)".into(),
+            datapath: format!(
+                "-log2 c UQ.{}, y UQ{}.{}, 2^-f UQ1.{} (error budget in specgen's models/blinn.rs)",
+                bw.ell_frac_bits, bw.y_int_bits, bw.y_frac_bits, bw.exp2_frac_bits
+            ),
+            done_meaning: "intensity == 0: the highlight is below the output's resolution",
+            summary: "Fixed-point Blinn specular unit, cos^n from log2/exp2 tables",
+        }
+    }
+
+    fn widths(&self) -> serde_json::Value {
+        serde_json::to_value(&self.widths).expect("widths serialise")
+    }
+
+    fn explain(&self, x: Inputs) -> Vec<String> {
+        let (t, _) = trace(&self.cfg, &self.widths, &self.tables, x);
+        let (w, f) = (&self.widths, self.cfg.f());
+        vec![
+            format!("datapath   c = {}  e = {}  x = {} (UQ0.{f})  g^ = {} (UQ2.{})", t.cos_clamped, t.exponent, t.x, t.ghat, w.log_frac_bits),
+            format!(
+                "           -log2 c = {} (= {:.9})  y = {} (UQ{}.{} = {:.9})  2^-frac(y) = {} (UQ1.{})  power = {}",
+                t.ell,
+                t.ell as f64 / (w.ell_frac_bits as f64).exp2(),
+                t.y,
+                w.y_int_bits,
+                w.y_frac_bits,
+                t.y as f64 / (w.y_frac_bits as f64).exp2(),
+                t.ehat,
+                w.exp2_frac_bits,
+                t.v
+            ),
+            explain_ideal(self.ideal(x), "c^n"),
+        ]
+    }
 }

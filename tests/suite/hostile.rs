@@ -1,8 +1,7 @@
 //! Careless and hostile inputs on the real binary (issue: nothing passes silently): each ends
 //! in a clear message and the right exit code, and nothing is lost or half-written.
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::process::Output;
 
 fn text(o: &Output) -> String {

@@ -35,11 +35,15 @@
 //! outputs never decrease as `cos_g` grows. (When `KA + F < W` the bracket is exact and
 //! shifted left instead.)
 
+use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
+use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::Config;
-use crate::datapath::{lit, Builder, Piece, Table};
-use crate::widths::{bit_length, mask};
+use crate::datapath::{add_delay, mul_delay, Builder, Piece, CHANNELS, LUT_DELAY, MAX_SQUARER_SPLIT};
+use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// The fitted constants of one configuration.
 #[derive(Debug, Clone, PartialEq)]
@@ -236,7 +240,7 @@ pub struct FittedTrace {
 }
 
 /// The bit-exact golden model (what the RTL computes).
-pub fn trace(cfg: &Config, fit: &Fit, w: &FittedWidths, x: crate::model::Inputs) -> (FittedTrace, crate::model::Outputs) {
+pub fn trace(cfg: &Config, fit: &Fit, w: &FittedWidths, x: Inputs) -> (FittedTrace, Outputs) {
     let (f, fi, b, ka, wf) = (cfg.f(), cfg.fi(), cfg.b(), cfg.kf(), w.frac_bits);
     let cos = (x.cos_g as u64 & mask(f + 1) as u64).min(1 << f);
     let n = (x.n as u64 & mask(cfg.n_bits()) as u64) as usize;
@@ -258,12 +262,12 @@ pub fn trace(cfg: &Config, fit: &Fit, w: &FittedWidths, x: crate::model::Inputs)
     let wc = w.color_frac_bits;
     let sc = s >> (wf - wc);
     let spec = x.ks.map(|k| ((sc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
-    (FittedTrace { a_code, m, one_minus_cos: d, product, done, squares }, crate::model::Outputs { spec, intensity, done })
+    (FittedTrace { a_code, m, one_minus_cos: d, product, done, squares }, Outputs { spec, intensity, done })
 }
 
 /// Checks one output vector against the exact rational `S = base^(2^m)`,
 /// `base = 1 − a_code·D/2^(KA+F)`, with the faithful contract; `done ⇔ base < 0`.
-pub fn check(cfg: &Config, fit: &Fit, x: crate::model::Inputs, got: crate::model::Outputs) -> Result<(), String> {
+pub fn check(cfg: &Config, fit: &Fit, x: Inputs, got: Outputs) -> Result<(), String> {
     let (f, ka) = (cfg.f(), cfg.kf());
     let cos = (x.cos_g as u64).min(1 << f);
     let n = x.n as usize;
@@ -285,7 +289,7 @@ pub fn check(cfg: &Config, fit: &Fit, x: crate::model::Inputs, got: crate::model
     if !within(got.intensity, 1u128 << cfg.fi()) {
         return Err(format!("intensity: got {}, ideal S·2^FI = {:.6}", got.intensity, ratio(&s_num, den_log2) * (cfg.fi() as f64).exp2()));
     }
-    for (i, name) in ["spec_r", "spec_g", "spec_b"].iter().enumerate() {
+    for (i, name) in SPEC_PORTS.iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
             return Err(format!("{name}: got {}, ideal S·ks = {:.6}", got.spec[i], ratio(&s_num, den_log2) * x.ks[i] as f64));
         }
@@ -326,7 +330,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let g = b.r("cos_g");
     let one = lit(cb, 1u128 << f);
     b.wire("one_minus_cos", cb, format!("({g} > {one}) ? {} : ({one} - {g})", lit(cb, 0)), &format!("UQ1.{f}: 1 - min(cos, 1), exact"));
-    b.delay(crate::datapath::add_delay(cb) + crate::datapath::LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
+    b.delay(add_delay(cb) + LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
 
     // a_n wider than a DSP's operands: a_n = a_hi*2^D + a_lo, a_hi*(1 - cos) (a few bits of
     // a_hi) by shift-adds here, the DSP's addend in the next step: one DSP, exact
@@ -338,7 +342,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         let hw = pb - dsp;
         let e = b.shift_add(&Piece::sig("one_minus_cos", 0, cb), &Piece::sig("fit", dsp, w.a_bits - dsp), hw);
         b.wire("deviation_hi", hw, e, &format!("a_n[{}:{dsp}]*(1 - cos) mod 2^{hw}, by shift-adds", w.a_bits - 1));
-        b.delay(crate::datapath::add_delay(hw) + crate::datapath::LUT_DELAY * ((w.a_bits - dsp) as f64).log2().ceil());
+        b.delay(add_delay(hw) + LUT_DELAY * ((w.a_bits - dsp) as f64).log2().ceil());
     }
 
     b.step("deviation a_n*(1 - cos) (multiplier 7)");
@@ -355,7 +359,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         let (a, d) = (b.operand("fit", 0, w.a_bits, pb), b.operand("one_minus_cos", 0, cb, pb));
         b.wire("deviation", pb, format!("{a} * {d}"), &format!("UQ{}.{}: a_n*(1 - cos), exact", pb - ka - f, ka + f));
     }
-    b.delay(crate::datapath::mul_delay(w.a_bits.min(dsp), cb));
+    b.delay(mul_delay(w.a_bits.min(dsp), cb));
 
     b.step("bracket = 1 - deviation (adder 9); its sign is the cut-off (comparator 12)");
     let db = w.diff_bits;
@@ -363,7 +367,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     b.wire("diff", db, format!("{} - {dv}", lit(db, 1u128 << (ka + f))), &format!("S{}.{}: 1 - a_n*(1 - cos), exact (two's complement)", db - ka - f, ka + f));
     let sign = b.bits("diff", db - 1, db - 1);
     b.wire("done", 1, sign, "the bracket is negative: beyond the highlight");
-    b.delay(crate::datapath::add_delay(db));
+    b.delay(add_delay(db));
 
     b.step("key block (13) and truncation #1");
     let x0 = if ka + f >= wf {
@@ -374,14 +378,14 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     };
     let dn = b.r("done");
     b.wire("power0", wf + 1, format!("{dn} ? {} : {x0}", lit(wf + 1, 0)), &format!("UQ1.{wf}: the bracket in [0, 1], floored; 0 beyond the cut-off"));
-    b.delay(crate::datapath::LUT_DELAY);
+    b.delay(LUT_DELAY);
 
     // a bracket wider than a DSP's operands: x = hi*2^r + lo with hi of D bits, and
     // x^2 = 2^r*(hi^2*2^r + T) + (lo^2 mod 2^r), T = 2*hi*lo + floor(lo^2/2^r) by shift-adds
     // and a table of lo^2, Z = hi^2 + floor(T/2^r) = floor(x^2/2^2r) on one DSP (the add inside
     // it); then floor(x^2/2^W) = floor(Z/2^(W-2r)), all floors exact (W >= 2r: W <= 2D - 2)
     let r = (wf + 1).saturating_sub(dsp);
-    let sq_split = r > 0 && wf >= 2 * r && r <= crate::widths::MAX_SQUARER_SPLIT;
+    let sq_split = r > 0 && wf >= 2 * r && r <= MAX_SQUARER_SPLIT;
     let m_max = cfg.max_squarings();
     for j in 1..=m_max {
         let prev = format!("power{}", j - 1);
@@ -392,7 +396,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             let mut terms = b.shift_add_terms(&Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw);
             terms.push(b.operand(&format!("square{j}_ll"), r, r, tw));
             b.wire(&format!("square{j}_t"), tw, terms.join("\n    + "), "2*hi*lo + floor(lo^2 / 2^r), exact, by shift-adds");
-            b.delay(crate::datapath::add_delay(tw) + crate::datapath::LUT_DELAY * ((r + 1) as f64).log2().ceil());
+            b.delay(add_delay(tw) + LUT_DELAY * ((r + 1) as f64).log2().ceil());
             b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add), bypassed when m_n < {j}"));
             let zw = 2 * dsp;
             let (h1, h2) = (b.operand(&prev, r, dsp, zw), b.operand(&prev, r, dsp, zw));
@@ -419,7 +423,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             format!("({mf} >= {}) ? {hi_bits} : {keep}", lit(w.m_bits, j as u128)),
             &format!("UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}", j + 1, j - 1),
         );
-        b.delay(crate::datapath::mul_delay((wf + 1).min(dsp), (wf + 1).min(dsp)) + crate::datapath::LUT_DELAY);
+        b.delay(mul_delay((wf + 1).min(dsp), (wf + 1).min(dsp)) + LUT_DELAY);
     }
 
     b.step("colour multipliers (14-16) and the intensity, rounded half up");
@@ -428,7 +432,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let cs = b.bits(&s, wf, wf - wc);
     b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: S floored to what the colours' budget needs"));
     let cp = wc + bb;
-    for ch in crate::datapath::CHANNELS {
+    for ch in CHANNELS {
         let (sv, kv) = (b.zext("color_power", cp), b.zext(&format!("ks_{ch}"), cp));
         b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &format!("UQ{bb}.{wc}: S*ks_{ch} + 1/2 colour ulp"));
         let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wc);
@@ -443,5 +447,107 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     );
     let e = b.bits("intensity_sum", wf, wf - fi);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
-    b.delay(crate::datapath::mul_delay(wf + 1, bb) + crate::datapath::add_delay(cp));
+    b.delay(mul_delay(wf + 1, bb) + add_delay(cp));
+}
+
+/// The fit of a configuration, computed once per process for each (N, M, KA).
+pub fn cached_fit(cfg: &Config) -> Arc<Fit> {
+    type Cache = Mutex<HashMap<(u32, u32, u32), Arc<Fit>>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
+    let key = (cfg.n_bits(), cfg.max_squarings(), cfg.kf());
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(f) = cache.lock().expect("fit cache").get(&key) {
+        return f.clone();
+    }
+    let fit = Arc::new(fit(cfg));
+    cache.lock().expect("fit cache").entry(key).or_insert(fit).clone()
+}
+
+/// The fitted unit of one configuration: its fit and its widths.
+#[derive(Debug, Clone)]
+pub struct Fitted {
+    pub cfg: Config,
+    pub fit: Arc<Fit>,
+    pub widths: FittedWidths,
+}
+
+impl Fitted {
+    pub fn new(cfg: &Config) -> Fitted {
+        let fit = cached_fit(cfg);
+        let widths = FittedWidths::derive(cfg, &fit);
+        Fitted { cfg: cfg.clone(), fit, widths }
+    }
+
+    /// `S` with the stored `a_n`, in floating point.
+    fn s(&self, x: Inputs) -> f64 {
+        let n = x.n as usize;
+        let a = self.fit.a_code[n] as f64 / (self.cfg.kf() as f64).exp2();
+        let base = 1.0 - a * (1.0 - cosine(&self.cfg, x.cos_g));
+        if base < 0.0 {
+            0.0
+        } else {
+            base.powi(1 << self.fit.m[n])
+        }
+    }
+}
+
+impl SpecularUnit for Fitted {
+    fn eval(&self, x: Inputs) -> Outputs {
+        trace(&self.cfg, &self.fit, &self.widths, x).1
+    }
+
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+        check(&self.cfg, &self.fit, x, got)
+    }
+
+    fn ideal(&self, x: Inputs) -> (f64, [f64; 3]) {
+        scaled(&self.cfg, self.s(x), x)
+    }
+
+    fn datapath(&self, b: &mut Builder) {
+        datapath(&self.cfg, &self.fit, &self.widths, b)
+    }
+
+    fn describe(&self) -> Description {
+        let p = &self.cfg.params;
+        let (fi, m) = (p.intensity_frac_bits, p.max_squarings);
+        Description {
+            param_line: format!("k_frac_bits={} (fractional bits of a_n) max_squarings={m}", p.k_frac_bits),
+            formula: vec![
+                format!("S = [1 - a_n*(1 - cos_g)]^(2^m_n), m_n <= {m}, a_n and m_n per n from a minimax fit to cos^n"),
+                "(quantised a_n in the fit ROM define the unit); S = 0 where the bracket is negative (done);".into(),
+                format!("intensity = S (UQ1.{fi}), spec_X = S * ks_X."),
+            ],
+            rounding: "faithful: every output within 1 ulp of S with the stored a_n (|o - o*| < 1)".into(),
+            datapath: format!("bracket and every square UQ1.{} (error budget in specgen's models/fitted.rs)", self.widths.frac_bits),
+            done_meaning: "the bracket is negative: beyond the highlight",
+            summary: "Fixed-point specular highlight unit, [1 - a_n*(1 - cos)]^(2^m_n) fitted per n to cos^n",
+        }
+    }
+
+    fn widths(&self) -> serde_json::Value {
+        serde_json::to_value(&self.widths).expect("widths serialise")
+    }
+
+    fn explain(&self, x: Inputs) -> Vec<String> {
+        let cfg = &self.cfg;
+        let (t, _) = trace(cfg, &self.fit, &self.widths, x);
+        let wf = self.widths.frac_bits;
+        let mut lines = vec![
+            format!(
+                "constant   a_n = {} (fit {:.9}) -> a_code = {}, m_n = {} (exponent 2^m_n = {})",
+                exact_decimal(t.a_code, cfg.kf()),
+                self.fit.a[x.n as usize],
+                t.a_code,
+                t.m,
+                1u32 << t.m
+            ),
+            format!("datapath   one_minus_cos = {}  a_n*(1 - cos) = {}  done = {}", t.one_minus_cos, t.product, t.done),
+        ];
+        for j in 0..=cfg.max_squarings() as usize {
+            lines.push(format!("           power{j} = {} (UQ1.{wf} = {:.9})", t.squares[j], t.squares[j] as f64 / (wf as f64).exp2()));
+        }
+        lines.push(explain_ideal(self.ideal(x), "the fitted formula with the stored a_n"));
+        lines
+    }
 }

@@ -1,8 +1,7 @@
 //! The report: solved constants against independent derivations, a page that parses and
 //! references nothing outside itself, and report.json carrying every number shown.
 
-mod common;
-use common::*;
+use crate::common::*;
 use specgen::paper;
 use std::f64::consts::FRAC_PI_2;
 

@@ -1,7 +1,7 @@
 //! The quadratic unit of SPEC §3 on the datapath builder: `lean` (widths from the error
-//! budget in `widths`, short steps for a fully pipelined DSP design) and `paper` (the seed's
+//! budget in `super`, short steps for a fully pipelined DSP design) and `paper` (the seed's
 //! Fig. 5 literally). Every regrouping is exact, so the values are those of
-//! [`crate::model::Model::trace`].
+//! [`super::Quadratic::trace`].
 //!
 //! `lean` is split into short steps so that a fully registered unit has at most one DSP
 //! multiply-add, one ROM read, one LUT level or one ≤ [`CHUNK_BITS`]-bit carry chain between
@@ -16,13 +16,15 @@
 //! the wide configuration keeps to the UP5K's 8 SB_MAC16. `paper` keeps the six coarse steps
 //! of Fig. 5.
 
-use super::*;
-use crate::widths::Widths;
+use super::Widths;
+use crate::bits::{bit_length, lit, mask};
+use crate::config::Config;
+use crate::datapath::*;
 
 /// The cut-off ROM (10) read: `cos_sp`, addressed by n (`registered`: in block RAM with its
 /// registers where the family has them, see [`Builder::rom_read_registered`]).
 fn rom_read(cfg: &Config, b: &mut Builder, registered: bool) {
-    let t = b.table(crate::rom::cos_sp_rom(cfg));
+    let t = b.table(super::rom::cos_sp_rom(cfg));
     if registered {
         b.rom_read_registered("cos_sp", t, "n");
     } else {

@@ -1,8 +1,7 @@
 //! Co-simulation: generated RTL agrees bit-exactly with the golden model under Verilator and
 //! Icarus, on several configurations and on a yosys netlist; injected faults are caught.
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::path::Path;
 use std::process::{Command, Output};
 

@@ -2,8 +2,7 @@
 //! `verilator --lint-only -Wall`, compiles with `iverilog -g2005`, and synthesizes in yosys
 //! with `check -assert`, no latches and no warnings.
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::process::Command;
 
 fn top_of<'a>(args: &[&'a str]) -> &'a str {

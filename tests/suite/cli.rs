@@ -1,9 +1,7 @@
 //! The real binary: invalid parameters, occupied directories, determinism, --config, ROM formats, eval.
 
-mod common;
-use common::*;
+use crate::common::*;
 use specgen::config::Config;
-use specgen::rom;
 use std::path::Path;
 use std::process::Output;
 
@@ -169,7 +167,7 @@ fn manifest_lists_files_with_hashes_ports_and_widths() {
 #[test]
 fn rom_formats_follow_their_syntax_and_agree() {
     let cfg = Config::defaults();
-    let table = rom::cos_sp_table(&cfg);
+    let table = specgen::models::quadratic::rom::cos_sp_table(&cfg);
     let run = |fmt: &str| {
         let o = specgen().args(["rom", "--format", fmt]).output().unwrap();
         assert_eq!(o.status.code(), Some(0));

@@ -2,8 +2,7 @@
 //! shape computing the golden model's values. ECP5 puts its products on MULT18X18D blocks and
 //! its cut-off ROM on a DP16KD, each with its own registers, and reaches 200 MHz.
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::path::Path;
 use std::process::{Command, Output};
 

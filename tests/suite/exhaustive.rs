@@ -3,7 +3,7 @@
 //! (including codes above 1.0), colours varied so every channel sees every code.
 
 use specgen::config::{Config, Params, Rounding, SpecularModel};
-use specgen::model::{self, Inputs, Model};
+use specgen::models::{self, Inputs, Model};
 
 fn sweep(cfg: &Config) {
     let m = Model::new(cfg);
@@ -17,7 +17,7 @@ fn sweep(cfg: &Config) {
                 s.spawn(move || {
                     let mut bad = 0u64;
                     for n in (part * n_count / 2)..((part + 1) * n_count / 2) {
-                        let mut prev: Option<model::Outputs> = None;
+                        let mut prev: Option<models::Outputs> = None;
                         for cos_g in 0..(2u32 << f) {
                             let ks = [(cos_g + n) & bm, (cos_g + 3 * n + 85) & bm, (cos_g + 7 * n + 170) & bm];
                             let x = Inputs { cos_g, n, ks };
@@ -29,7 +29,7 @@ fn sweep(cfg: &Config) {
                                 bad += 1;
                             }
                             if cfg.model() == SpecularModel::Quadratic {
-                                let rom_done = cos_g.min(1 << f) < m.rom[n as usize];
+                                let rom_done = cos_g.min(1 << f) < m.unit().cut_off(n).expect("the quadratic unit stores its cut-off");
                                 assert_eq!(o.done, rom_done, "{x:?}");
                             }
                             // monotonic in cos_g for fixed n: check intensity (colours vary along the row)

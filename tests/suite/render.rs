@@ -1,8 +1,7 @@
 //! `specgen render`: pixels through the RTL equal the golden model's (same PNG bytes), the
 //! PNG decodes to the stated layout, bad arguments and a faulty RTL write nothing.
 
-mod common;
-use common::*;
+use crate::common::*;
 
 fn decode(path: &std::path::Path) -> (u32, u32, Vec<u8>) {
     let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));

@@ -1,8 +1,7 @@
 //! `specgen synth`: the lean datapath is leaner than the paper's, fits an iCE40 UP5K and
 //! reaches 100 MHz there fully pipelined.
 
-mod common;
-use common::*;
+use crate::common::*;
 use std::path::Path;
 
 fn synth(dir: &Path, args: &[&str]) -> serde_json::Value {

@@ -1,10 +1,9 @@
 //! `specgen vectors`: golden vectors for other testbenches, and the cocotb testbench in
 //! `tb/cocotb/` that reads them (run under Icarus and Verilator; a wrong vector must fail it).
 
-mod common;
-use common::*;
+use crate::common::*;
 use specgen::config::Params;
-use specgen::model::{Inputs, Model, Outputs};
+use specgen::models::{Inputs, Model, Outputs};
 use std::path::Path;
 use std::process::Command;
 

@@ -1,15 +1,13 @@
 //! Property tests over random configurations across the whole allowed ranges: the golden
 //! model against the exact reference of SPEC §3, and the reference against big rationals.
 
-mod common;
-
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
 use specgen::config::{self, Arch, Config, Params, RomStyle, Rounding, SpecularModel};
-use specgen::model::{self, Inputs, Model};
-use specgen::rom;
+use specgen::models::quadratic::{golden, rom};
+use specgen::models::{self, Inputs, Model};
 
 fn decimal_k() -> impl Strategy<Value = String> {
     prop_oneof![
@@ -43,7 +41,7 @@ prop_compose! {
 }
 
 fn inputs_for(cfg: &Config, seed: u64, near_cutoff: bool) -> Inputs {
-    let r = specgen::cosim::splitmix(seed);
+    let r = specgen::bits::splitmix(seed);
     let n = (r as u32) & ((1 << cfg.n_bits()) - 1);
     let cos_g = if near_cutoff {
         let sp = rom::cos_sp(cfg, n as u64) as i64;
@@ -51,7 +49,7 @@ fn inputs_for(cfg: &Config, seed: u64, near_cutoff: bool) -> Inputs {
     } else {
         ((r >> 12) as u32) & ((2 << cfg.f()) - 1)
     };
-    let r2 = specgen::cosim::splitmix(r);
+    let r2 = specgen::bits::splitmix(r);
     let bm = (1u64 << cfg.b()) - 1;
     Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
 }
@@ -68,9 +66,9 @@ proptest! {
         for (i, &seed) in seeds.iter().enumerate() {
             let x = inputs_for(&cfg, seed, i % 2 == 0);
             let o = m.eval(x);
-            let r = model::reference(&cfg, x);
-            prop_assert!(model::check(&cfg, x, o).is_ok(), "{:?} {:?} {:?}: {:?}", cfg.params, x, o, model::check(&cfg, x, o));
-            let rom_done = x.cos_g.min(1 << cfg.f()) < m.rom[x.n as usize];
+            let r = golden::reference(&cfg, x);
+            prop_assert!(golden::check(&cfg, x, o).is_ok(), "{:?} {:?} {:?}: {:?}", cfg.params, x, o, golden::check(&cfg, x, o));
+            let rom_done = x.cos_g.min(1 << cfg.f()) < m.unit().cut_off(x.n).expect("the quadratic unit stores its cut-off");
             prop_assert_eq!(o.done, rom_done);
             prop_assert_eq!(o.done, r.base_num < 0);
             if o.done {
@@ -109,14 +107,14 @@ proptest! {
     fn reference_matches_rationals(cfg in any_config(), seed in any::<u64>()) {
         let Some(cfg) = cfg else { return Ok(()) };
         let x = inputs_for(&cfg, seed, seed % 2 == 0);
-        let r = model::reference(&cfg, x);
+        let r = golden::reference(&cfg, x);
         let two = |e: u32| BigInt::from(2).pow(e);
         let c = BigRational::new(BigInt::from(x.cos_g.min(1 << cfg.f())), two(cfg.f()));
         let kq = BigRational::new(BigInt::from(cfg.k_code), two(cfg.kf()));
         let base = BigRational::from_integer(1.into()) - kq * BigRational::from_integer(x.n.into()) * (BigRational::from_integer(1.into()) - c);
         prop_assert_eq!(r.done, base.is_negative());
         let s = if base.is_negative() { BigRational::zero() } else { base.clone() * base };
-        let as_rat = |i: model::Ideal| BigRational::new(BigInt::from(i.num), two(i.den_log2));
+        let as_rat = |i: models::Ideal| BigRational::new(BigInt::from(i.num), two(i.den_log2));
         prop_assert_eq!(as_rat(r.intensity), s.clone() * BigRational::from_integer(two(cfg.fi())));
         for ch in 0..3 {
             prop_assert_eq!(as_rat(r.spec[ch]), s.clone() * BigRational::from_integer(x.ks[ch].into()));
@@ -145,7 +143,7 @@ proptest! {
         let n = (n_seed as u32) & ((1 << cfg.n_bits()) - 1);
         let c = rom::cos_sp(&cfg, n as u64);
         prop_assert!(c <= 1 << cfg.f());
-        let at = |cos_g: u32| model::reference(&cfg, Inputs { cos_g, n, ks: [0; 3] }).base_num;
+        let at = |cos_g: u32| golden::reference(&cfg, Inputs { cos_g, n, ks: [0; 3] }).base_num;
         prop_assert!(at(c) >= 0);
         if c > 0 {
             prop_assert!(at(c - 1) < 0);
@@ -155,7 +153,7 @@ proptest! {
 
 /// blinn-pow configurations over every width range.
 fn blinn_config() -> impl Strategy<Value = Config> {
-    common::power_config(SpecularModel::BlinnPow)
+    crate::common::power_config(SpecularModel::BlinnPow)
 }
 
 proptest! {
@@ -187,7 +185,7 @@ proptest! {
                 prop_assert!(check(o.spec[ch], BigInt::from(x.ks[ch])), "{:?} {:?} {:?}", cfg.params, x, o);
             }
             prop_assert_eq!(o.done, o.intensity == 0);
-            prop_assert!(model::check(&cfg, x, o).is_ok(), "{:?}", model::check(&cfg, x, o));
+            prop_assert!(golden::check(&cfg, x, o).is_ok(), "{:?}", golden::check(&cfg, x, o));
         }
     }
 }

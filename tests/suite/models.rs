@@ -2,18 +2,16 @@
 //! tested — properties over random configurations against exact references (big integers),
 //! monotonicity, the error budgets, the fit's quality, and the fidelity figures.
 
-mod common;
-
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
-use specgen::blinn::{BlinnWidths, Shares};
 use specgen::config::{self, Config, Params, SpecularModel};
-use specgen::model::{Inputs, Kind, Model};
+use specgen::models::blinn::{BlinnWidths, Shares};
+use specgen::models::{Inputs, Model};
 
 /// blinn configurations over every width range.
 fn blinn_config() -> impl Strategy<Value = Config> {
-    common::power_config(SpecularModel::Blinn)
+    crate::common::power_config(SpecularModel::Blinn)
 }
 
 prop_compose! {
@@ -36,7 +34,7 @@ prop_compose! {
 /// A random input; one in three near 1.0 (where c^n is not tiny), one in three near the
 /// last code with a non-zero output.
 fn input(cfg: &Config, m: &Model, seed: u64) -> Inputs {
-    let r = specgen::cosim::splitmix(seed);
+    let r = specgen::bits::splitmix(seed);
     let n = (r as u32) & ((1 << cfg.n_bits()) - 1);
     let one = 1u32 << cfg.f();
     let cos_g = match seed % 3 {
@@ -47,7 +45,7 @@ fn input(cfg: &Config, m: &Model, seed: u64) -> Inputs {
         }
         _ => ((r >> 12) as u32) & (2 * one - 1),
     };
-    let r2 = specgen::cosim::splitmix(r);
+    let r2 = specgen::bits::splitmix(r);
     let bm = (1u64 << cfg.b()) - 1;
     Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
 }
@@ -60,7 +58,7 @@ fn faithful(got: u32, ideal: &BigInt, den_log2: u32) -> bool {
 }
 
 /// Every output of `m` for `x` within one unit of `c^n·M` (exact big integers).
-fn faithful_to_power(cfg: &Config, x: Inputs, o: specgen::model::Outputs) -> Result<(), String> {
+fn faithful_to_power(cfg: &Config, x: Inputs, o: specgen::models::Outputs) -> Result<(), String> {
     let c = BigInt::from(x.cos_g.min(1 << cfg.f()));
     let den = cfg.f() * x.n;
     let pow = c.pow(x.n);
@@ -123,7 +121,7 @@ proptest! {
     #[test]
     fn fitted_is_faithful_to_its_formula(cfg in fitted_config(), seeds in proptest::collection::vec(any::<u64>(), 24)) {
         let m = Model::new(&cfg);
-        let Kind::Fitted { fit, .. } = &m.kind else { panic!("not fitted") };
+        let fit = specgen::models::fitted::cached_fit(&cfg);
         for &seed in &seeds {
             let x = input(&cfg, &m, seed);
             let o = m.eval(x);
@@ -165,7 +163,7 @@ proptest! {
 #[test]
 fn fit_is_exact_where_it_can_be_and_locally_minimax() {
     let cfg = Config::new(Params { model: SpecularModel::Fitted, n_bits: 6, ..Params::default() }).unwrap();
-    let fit = specgen::model::cached_fit(&cfg);
+    let fit = specgen::models::fitted::cached_fit(&cfg);
     assert_eq!((fit.a_code[0], fit.m[0]), (0, 0));
     for (n, m) in [(1usize, 0u32), (2, 1), (4, 2), (8, 3)] {
         assert_eq!(fit.m[n], m, "n = {n}");
@@ -188,7 +186,7 @@ fn fit_is_exact_where_it_can_be_and_locally_minimax() {
 /// one unit (2^-15), the quadratic unit about 0.40 off; every manifest states it and its method.
 #[test]
 fn fidelity_figures_at_defaults() {
-    let fid = |model| specgen::model::blinn_fidelity(&Model::new(&Config::new(Params { model, ..Params::default() }).unwrap()));
+    let fid = |model| specgen::models::blinn_fidelity(&Model::new(&Config::new(Params { model, ..Params::default() }).unwrap()));
     let (q, f, b) = (fid(SpecularModel::Quadratic), fid(SpecularModel::Fitted), fid(SpecularModel::Blinn));
     for x in [&q, &f, &b] {
         assert_eq!((x.points, x.stride), (32769 * 1024, 1));

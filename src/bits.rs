@@ -1,0 +1,69 @@
+//! Leaf helpers on fixed-point codes: masks, bit lengths, sized Verilog literals, exact
+//! decimals of dyadic fractions, and the small counter-based generator the stimuli use.
+//! Imports nothing from the crate.
+
+/// The low `bits` bits set (all 128 when `bits >= 128`).
+pub fn mask(bits: u32) -> u128 {
+    if bits >= 128 {
+        u128::MAX
+    } else {
+        (1u128 << bits) - 1
+    }
+}
+
+/// Number of bits needed to hold `v` (0 for 0).
+pub fn bit_length(v: u128) -> u32 {
+    128 - v.leading_zeros()
+}
+
+/// A sized Verilog literal, `W'hX`.
+pub fn lit(width: u32, value: u128) -> String {
+    format!("{width}'h{value:x}")
+}
+
+/// `code / 2^F` written exactly in decimal (a dyadic fraction always has a finite expansion).
+pub fn exact_decimal(code: u64, frac_bits: u32) -> String {
+    let int = code >> frac_bits;
+    let mut rem = (code & ((1u64 << frac_bits) - 1)) as u128;
+    let mut s = format!("{int}.");
+    if rem == 0 {
+        s.push('0');
+    }
+    while rem != 0 {
+        rem *= 10;
+        s.push(char::from(b'0' + (rem >> frac_bits) as u8));
+        rem &= (1u128 << frac_bits) - 1;
+    }
+    s
+}
+
+/// splitmix64: a small counter-based generator, so vectors are reproducible from the seed.
+pub fn splitmix(mut x: u64) -> u64 {
+    x = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^ (x >> 31)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_decimal_is_exact() {
+        assert_eq!(exact_decimal(1, 1), "0.5");
+        assert_eq!(exact_decimal(3, 2), "0.75");
+        assert_eq!(exact_decimal(1 << 15, 15), "1.0");
+        assert_eq!(exact_decimal(1, 15), "0.000030517578125");
+    }
+
+    #[test]
+    fn masks_and_lengths() {
+        assert_eq!(mask(0), 0);
+        assert_eq!(mask(5), 31);
+        assert_eq!(mask(128), u128::MAX);
+        assert_eq!(bit_length(0), 0);
+        assert_eq!(bit_length(1 << 20), 21);
+        assert_eq!(lit(6, 10), "6'ha");
+    }
+}

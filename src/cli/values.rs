@@ -1,0 +1,90 @@
+//! The command line's form of the library's enums: clap's `ValueEnum` lives here, never in the
+//! library. Each flag value converts into its library type.
+
+use specgen::config::{Arch, RomStyle, Rounding, SpecularModel, Target};
+use specgen::cosim::Simulator;
+use specgen::rom::RomFormat;
+use specgen::vectors::VectorFormat;
+
+/// A clap value enum mirroring a library enum variant for variant, with its conversion.
+macro_rules! flag_values {
+    ($( $(#[$doc:meta])* $cli:ident => $lib:ident { $( $(#[$vdoc:meta])* $v:ident ),* $(,)? } )*) => { $(
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+        pub enum $cli { $( $(#[$vdoc])* $v ),* }
+        impl From<$cli> for $lib {
+            fn from(v: $cli) -> $lib {
+                match v { $( $cli::$v => $lib::$v ),* }
+            }
+        }
+    )* };
+}
+
+flag_values! {
+    /// `--rounding`
+    RoundingFlag => Rounding {
+        /// |o - o*| < 1 for every output
+        Faithful,
+        /// |o - o*| <= 1/2, ties away from zero (quadratic only)
+        Exact,
+    }
+    /// `--rom-style`
+    RomStyleFlag => RomStyle {
+        /// a memory initialised with $readmemh from the table's file
+        File,
+        /// a case table inlined in the module (no file to carry around)
+        Case,
+    }
+    /// `--arch`
+    ArchFlag => Arch {
+        /// the cheapest correct datapath: widths from the error budget, narrow colour path, DSP-sized squarer
+        Lean,
+        /// the paper's Fig. 5 literally: full-width datapath, n*(cos - 1) then *k, multiplier as squarer
+        Paper,
+    }
+    /// `--model`
+    ModelFlag => SpecularModel {
+        /// the paper's formula (15): [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)
+        Quadratic,
+        /// Blinn's cos^n by square-and-multiply over the bits of n
+        BlinnPow,
+        /// Blinn's cos^n from log2/exp2 tables with linear interpolation
+        Blinn,
+        /// [1 - a_n*(1 - cos)]^(2^m_n) with per-n a_n, m_n from a minimax fit
+        Fitted,
+    }
+    /// `--target`
+    TargetFlag => Target {
+        /// no family assumed: whole-width products and adds, mapped by the synthesis tool
+        Generic,
+        /// Lattice iCE40 UP5K: 16x16 SB_MAC16 with post-adders, short carry chains
+        Ice40,
+        /// Lattice ECP5: 18x18 MULT18X18D with its input and output registers, long carry chains
+        Ecp5,
+    }
+    /// `specgen rom --format`
+    RomFormatFlag => RomFormat {
+        /// $readmemh: one zero-padded hex word a line
+        Hex,
+        /// $readmemb: one zero-padded binary word a line
+        Bin,
+        /// Xilinx memory coefficient file
+        Coe,
+        /// Intel memory initialization file
+        Mif,
+        /// readable table: n, code, cosine, angle in degrees
+        Csv,
+    }
+    /// `specgen vectors --format`
+    VectorFormatFlag => VectorFormat {
+        /// CSV: comment header, a row of port names, one row per input (unsigned decimal)
+        Csv,
+        /// $readmemh: comment header, one packed hex word per input
+        Hex,
+    }
+    /// `--simulator`
+    SimulatorFlag => Simulator {
+        Verilator,
+        Icarus,
+    }
+}

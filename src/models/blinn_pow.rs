@@ -1,0 +1,157 @@
+//! `--model blinn-pow`: Blinn's `c^n` by square-and-multiply over the bits of n, LSB first —
+//! the costly exact baseline. Its home: the error budget ([`power_frac_bits`]), the golden
+//! model ([`BlinnPow`]'s `eval`), the datapath, on the same builder as every model. Its
+//! contract is the rigorous `c^n` check every `c^n` model shares ([`check_cos_n`]).
+
+use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
+use crate::bits::{lit, mask};
+use crate::config::Config;
+use crate::datapath::{add_delay, mul_delay, Builder, CHANNELS, LUT_DELAY};
+
+/// W for `--model blinn-pow` (square-and-multiply over the bits of n, LSB first, every
+/// product truncated to W fractional bits, c taken exactly: W ≥ F).
+///
+/// Error budget: all truncations round down, so errors are one-sided. Powers `p_i = c^(2^i)`
+/// are squared: with `p ≤ 1`, `x² − (x−e)² ≤ 2e`, so `e(p_i) ≤ (2^i − 1)·2^−W`. The result
+/// `r ← r·p_i` (r, p ≤ 1) gains at most `e(r) + e(p_i) + 2^−W`; summed over the N bits,
+/// `e(r_N) ≤ Σ_{i<N} 2^i·2^−W < 2^(N−W)`. In output units (`M = 2^FI` or `ks < 2^B`) this is
+/// below 1/2 when `W ≥ max(FI, B) + N + 1`; the final round-half-up then gives a faithful
+/// result, exact where the ideal is an integer, and monotone in cos_g.
+pub fn power_frac_bits(cfg: &Config) -> u32 {
+    (cfg.fi().max(cfg.b()) + cfg.n_bits() + 1).max(cfg.f())
+}
+
+/// The blinn-pow unit of one configuration.
+#[derive(Debug, Clone)]
+pub struct BlinnPow {
+    pub cfg: Config,
+    /// W: fractional bits of every power and partial product, UQ1.W.
+    pub power_frac_bits: u32,
+}
+
+impl BlinnPow {
+    pub fn new(cfg: &Config) -> BlinnPow {
+        BlinnPow { cfg: cfg.clone(), power_frac_bits: power_frac_bits(cfg) }
+    }
+}
+
+impl SpecularUnit for BlinnPow {
+    /// Square-and-multiply over the bits of n, LSB first, each product truncated to W
+    /// fractional bits ([`power_frac_bits`]), as the RTL does it.
+    fn eval(&self, x: Inputs) -> Outputs {
+        let w = self.power_frac_bits;
+        let (f, fi, b, nb) = (self.cfg.f(), self.cfg.fi(), self.cfg.b(), self.cfg.n_bits());
+        let cos_g = x.cos_g as u128 & mask(f + 1);
+        let n = x.n as u128 & mask(nb);
+        // step 1: clamp to 1.0, widen UQ1.F → UQ1.W; r = 1.0
+        let mut power = cos_g.min(1 << f) << (w - f);
+        let mut result = 1u128 << w;
+        // steps 2..N+1: one bit of n each
+        for i in 0..nb {
+            if (n >> i) & 1 == 1 {
+                result = (result * power) >> w;
+            }
+            if i + 1 < nb {
+                power = (power * power) >> w;
+            }
+        }
+        // last step: round half up to the outputs
+        let intensity = ((result + (1u128 << (w - fi - 1))) >> (w - fi)) as u32;
+        let spec = x.ks.map(|k| (((result * (k as u128 & mask(b))) + (1u128 << (w - 1))) >> w) as u32);
+        Outputs { spec, intensity, done: intensity == 0 }
+    }
+
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+        check_cos_n(&self.cfg, x, got)
+    }
+
+    fn ideal(&self, x: Inputs) -> (f64, [f64; 3]) {
+        scaled(&self.cfg, cosine(&self.cfg, x.cos_g).powi(x.n as i32), x)
+    }
+
+    fn datapath(&self, b: &mut Builder) {
+        datapath(&self.cfg, self.power_frac_bits, b)
+    }
+
+    fn describe(&self) -> Description {
+        let p = &self.cfg.params;
+        Description {
+            param_line: String::new(),
+            formula: vec![
+                "S = c^n, c = min(cos_g, 1.0), by square-and-multiply over the bits of n, LSB first;".into(),
+                format!("intensity = S (UQ1.{}), spec_X = S * ks_X; done = (intensity == 0).", p.intensity_frac_bits),
+            ],
+            rounding: "faithful: every output within 1 ulp of the exact c^n value (|o - o*| < 1)".into(),
+            datapath: format!(
+                "powers c^(2^i) and the running product UQ1.{}, each product floored (error budget in specgen's models/blinn_pow.rs)",
+                self.power_frac_bits
+            ),
+            done_meaning: "intensity == 0: the highlight is below the output's resolution",
+            summary: "Fixed-point Blinn specular unit, cos^n by square-and-multiply",
+        }
+    }
+
+    fn widths(&self) -> serde_json::Value {
+        serde_json::json!({ "power_frac_bits": self.power_frac_bits })
+    }
+
+    fn explain(&self, x: Inputs) -> Vec<String> {
+        vec![format!("datapath   square-and-multiply over the bits of n, UQ1.{}", self.power_frac_bits), explain_ideal(self.ideal(x), "c^n")]
+    }
+}
+
+/// Step 1 clamps and widens c; steps 2..N+1 take one bit of n each (multiply the running
+/// product by the power when the bit is set, square the power); the last step rounds.
+fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
+    let (f, nb, bb, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
+    let full = 2 * pw + 2;
+
+    b.step(&format!("clamp c = min(cos, 1), widen to UQ1.{pw}; the running product starts at 1.0"));
+    let g = b.r("cos_g");
+    let one = lit(f + 1, 1u128 << f);
+    b.wire("cos_clamped", f + 1, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    let c = b.r("cos_clamped");
+    let widened = if pw > f { format!("{{{c}, {}}}", lit(pw - f, 0)) } else { c };
+    b.wire("power0", pw + 1, widened, &format!("UQ1.{pw}: c^(2^0), exact"));
+    b.wire("result0", pw + 1, lit(pw + 1, 1u128 << pw), &format!("UQ1.{pw}: 1.0"));
+    b.delay(add_delay(f + 1));
+
+    for i in 0..nb {
+        let more = i + 1 < nb;
+        b.step(&format!("bit {i} of n: multiply by c^(2^{i}) when it is set{}", if more { "; square the power" } else { "" }));
+        let (r, p) = (format!("result{i}"), format!("power{i}"));
+        let (re, pe) = (b.zext(&r, full), b.zext(&p, full));
+        b.wire(&format!("result_prod{}", i + 1), full, format!("{re} * {pe}"), &format!("UQ2.{}: result*power, exact", 2 * pw));
+        // the bits of n still to use travel on, shrinking, as n_rest (n itself for bit 0)
+        let rest = if i == 0 { "n".to_string() } else { format!("n_rest{i}") };
+        let bit = b.bits(&rest, 0, 0);
+        let (hi, keep) = (b.bits(&format!("result_prod{}", i + 1), 2 * pw, pw), b.r(&r));
+        b.wire(&format!("result{}", i + 1), pw + 1, format!("{bit} ? {hi} : {keep}"), &format!("UQ1.{pw}: floored product, or the product so far"));
+        if more {
+            let (p1, p2) = (b.zext(&p, full), b.zext(&p, full));
+            b.wire(&format!("power_sq{}", i + 1), full, format!("{p1} * {p2}"), &format!("UQ2.{}: power^2, exact", 2 * pw));
+            let sq = b.bits(&format!("power_sq{}", i + 1), 2 * pw, pw);
+            b.wire(&format!("power{}", i + 1), pw + 1, sq, &format!("UQ1.{pw}: c^(2^{}), floored", i + 1));
+            let upper = b.bits(&rest, nb - i - 1, 1);
+            b.wire(&format!("n_rest{}", i + 1), nb - i - 1, upper, "the bits of n still to use");
+        }
+        b.delay(mul_delay(pw + 1, pw + 1) + LUT_DELAY);
+    }
+
+    b.step("round half up to the outputs");
+    let r = format!("result{nb}");
+    let rv = b.r(&r);
+    b.wire("intensity_sum", pw + 1, format!("{rv} + {}", lit(pw + 1, 1u128 << (pw - fi - 1))), &format!("UQ1.{pw}: c^n + 2^-{}", fi + 1));
+    let e = b.bits("intensity_sum", pw, pw - fi);
+    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
+    let cp = pw + bb;
+    for ch in CHANNELS {
+        let (sv, kv) = (b.zext(&r, cp), b.zext(&format!("ks_{ch}"), cp));
+        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (pw - 1))), &format!("UQ{bb}.{pw}: c^n*ks_{ch} + 1/2 colour ulp"));
+        let s = b.bits(&format!("color_sum_{ch}"), cp - 1, pw);
+        b.wire(&format!("spec_{ch}"), bb, s, &format!("UNORM{bb}: c^n*ks_{ch} rounded half up"));
+    }
+    let iv = b.r("intensity");
+    b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
+    b.delay(mul_delay(pw + 1, bb) + add_delay(cp));
+}

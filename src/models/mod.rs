@@ -1,0 +1,382 @@
+//! The models: what each unit computes, each in one home behind one trait.
+//!
+//! A model's home (`quadratic/`, `fitted.rs`, `blinn.rs`, `blinn_pow.rs`) holds everything
+//! that model is: its error budget (module doc) and widths, its tables, its bit-exact golden
+//! model, its exact reference and contract check, its datapath on the shared
+//! [`Builder`](crate::datapath::Builder), its header text and its `eval` trace. Everything
+//! downstream (`plan`, `emit`, `cosim`, `report`, `render`, `vectors`, the CLI) sees a model
+//! only through [`SpecularUnit`], held by a [`Model`]; [`unit`] is the one registry.
+//!
+//! This module also holds what the contracts share: exact ideal values ([`Ideal`]), the
+//! rounding check ([`check_value`]), the rigorous bounds on `c^n` ([`cos_n_bounds`],
+//! [`check_cos_n`]) and the distance to Blinn every manifest reports ([`blinn_fidelity`]).
+
+pub mod blinn;
+pub mod blinn_pow;
+pub mod fitted;
+pub mod quadratic;
+
+use crate::bits::mask;
+use crate::config::{Config, Rounding, SpecularModel};
+use crate::datapath::Builder;
+pub use crate::ports::{Inputs, Outputs};
+use std::sync::Arc;
+
+/// What a model's header, manifest and `.core` say of it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Description {
+    /// the model's own parameters, `name=value` words, for the header (none of `stages`,
+    /// `rounding`, `rom_style`: the header adds those)
+    pub param_line: String,
+    /// the formula, one line each
+    pub formula: Vec<String>,
+    /// the rounding contract
+    pub rounding: String,
+    /// the datapath and its widths, one line
+    pub datapath: String,
+    /// what `done` means
+    pub done_meaning: &'static str,
+    /// one line for the `.core` description
+    pub summary: &'static str,
+}
+
+/// One model of the unit (SPEC §3, §6): the golden model, its contract and its datapath.
+///
+/// Everything here is a function of the configuration the model was made from; a model is
+/// made once per command ([`unit`]) and shared.
+pub trait SpecularUnit: Send + Sync + std::fmt::Debug {
+    /// The unit's outputs for one input, bit for bit as the RTL computes them.
+    fn eval(&self, x: Inputs) -> Outputs;
+
+    /// Checks outputs against this model's contract (its exact reference): `Err` says which
+    /// output breaks it and by how much.
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), String>;
+
+    /// The ideal outputs the contract refers to, as floats (for reports): `(intensity, spec)`.
+    fn ideal(&self, x: Inputs) -> (f64, [f64; 3]);
+
+    /// The cut-off code of `n` when the model stores it (the first `cos_g` with `done` low);
+    /// `None` lets [`Model::boundary`] find the first code with a non-zero output.
+    fn cut_off(&self, _n: u32) -> Option<u32> {
+        None
+    }
+
+    /// Describes the datapath on the builder, step by step (the plan places the registers).
+    /// It must define the output signals `spec_r`, `spec_g`, `spec_b`, `intensity`, `done`.
+    fn datapath(&self, b: &mut Builder);
+
+    /// The header text: formula, contract, widths.
+    fn describe(&self) -> Description;
+
+    /// The internal widths, for the manifest's `internal_widths`.
+    fn widths(&self) -> serde_json::Value;
+
+    /// The internal values of the golden model for one input, one line each, for `specgen eval`.
+    fn explain(&self, x: Inputs) -> Vec<String>;
+}
+
+/// The registry: the model a configuration asks for. Every model is one line here.
+pub fn unit(cfg: &Config) -> Arc<dyn SpecularUnit> {
+    match cfg.model() {
+        SpecularModel::Quadratic => Arc::new(quadratic::Quadratic::new(cfg)),
+        SpecularModel::Fitted => Arc::new(fitted::Fitted::new(cfg)),
+        SpecularModel::Blinn => Arc::new(blinn::Blinn::new(cfg)),
+        SpecularModel::BlinnPow => Arc::new(blinn_pow::BlinnPow::new(cfg)),
+    }
+}
+
+/// The golden model of one configuration: the configuration and its [`SpecularUnit`].
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub cfg: Config,
+    unit: Arc<dyn SpecularUnit>,
+}
+
+impl Model {
+    /// The model of a configuration (its fit or tables made here).
+    pub fn new(cfg: &Config) -> Model {
+        Model { cfg: cfg.clone(), unit: unit(cfg) }
+    }
+
+    /// This model under another configuration that differs only in `stages` (or nothing the
+    /// arithmetic depends on): the fit or tables are shared, not made again.
+    pub fn with_config(&self, cfg: Config) -> Model {
+        let same = |c: &Config| crate::config::Params { stages: 0, ..c.params.clone() };
+        debug_assert_eq!(same(&cfg), same(&self.cfg), "only stages may differ");
+        Model { cfg, unit: self.unit.clone() }
+    }
+
+    /// The model behind the trait.
+    pub fn unit(&self) -> &dyn SpecularUnit {
+        self.unit.as_ref()
+    }
+
+    /// The unit's outputs for one input, bit for bit.
+    pub fn eval(&self, x: Inputs) -> Outputs {
+        self.unit.eval(x)
+    }
+
+    /// See [`SpecularUnit::ideal`].
+    pub fn ideal(&self, x: Inputs) -> (f64, [f64; 3]) {
+        self.unit.ideal(x)
+    }
+
+    /// Checks outputs against this model's contract (its exact reference).
+    pub fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+        self.unit.check(x, got)
+    }
+
+    /// The last `cos_g` code with a non-zero output, or the cut-off, for each n: the
+    /// boundary a test stimulus should visit.
+    pub fn boundaries(&self) -> Vec<u32> {
+        (0..1u32 << self.cfg.n_bits()).map(|n| self.boundary(n)).collect()
+    }
+
+    /// [`Model::boundaries`] for one n.
+    pub fn boundary(&self, n: u32) -> u32 {
+        if let Some(c) = self.unit.cut_off(n) {
+            return c;
+        }
+        // outputs are monotone in cos_g: bisect for the first code with intensity > 0
+        let nz = |c: u32| self.eval(Inputs { cos_g: c, n, ks: [0; 3] }).intensity > 0;
+        let (mut lo, mut hi) = (0u32, 1u32 << self.cfg.f());
+        if nz(0) {
+            return 0;
+        }
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            if nz(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        hi
+    }
+}
+
+/// `c = min(cos_g, 2^F)/2^F` as a float.
+pub fn cosine(cfg: &Config, cos_g: u32) -> f64 {
+    cos_g.min(1 << cfg.f()) as f64 / (cfg.f() as f64).exp2()
+}
+
+/// Ideal outputs `(S·2^FI, S·ks)` of a float `S`.
+pub fn scaled(cfg: &Config, s: f64, x: Inputs) -> (f64, [f64; 3]) {
+    (s * (cfg.fi() as f64).exp2(), x.ks.map(|k| s * k as f64))
+}
+
+/// The `exact` line of `specgen eval`: the ideal outputs and what they are.
+pub fn explain_ideal(ideal: (f64, [f64; 3]), what: &str) -> String {
+    let (i, s) = ideal;
+    format!("exact      intensity* = {i:.9}  spec* = [{:.6}, {:.6}, {:.6}]  ({what})", s[0], s[1], s[2])
+}
+
+/// An ideal output value `num / 2^den_log2`, exact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ideal {
+    pub num: u128,
+    pub den_log2: u32,
+}
+
+impl Ideal {
+    /// Round half up (= ties away from zero for these non-negative values).
+    pub fn round_half_away(self) -> u128 {
+        if self.den_log2 == 0 {
+            self.num
+        } else {
+            (self.num + (1u128 << (self.den_log2 - 1))) >> self.den_log2
+        }
+    }
+    pub fn is_integer(self) -> bool {
+        self.num & mask(self.den_log2) == 0
+    }
+    pub fn to_f64(self) -> f64 {
+        self.num as f64 / (self.den_log2 as f64).exp2()
+    }
+}
+
+/// Checks one output against its ideal under the rounding contract.
+pub fn check_value(rounding: Rounding, got: u32, ideal: Ideal) -> Result<(), String> {
+    let scaled = (got as u128) << ideal.den_log2;
+    let diff = scaled.abs_diff(ideal.num);
+    let ok = match rounding {
+        Rounding::Faithful => diff < 1u128 << ideal.den_log2,
+        Rounding::Exact => got as u128 == ideal.round_half_away(),
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(format!("got {got}, ideal {} ({}/2^{})", ideal.to_f64(), ideal.num, ideal.den_log2))
+    }
+}
+
+/// Fractional bits of the interval reference for `cos^n`.
+pub const POW_REF_BITS: u32 = 60;
+
+/// Rigorous bounds `lo ≤ c^n·2^60 ≤ hi` for `c = min(cos_g, 2^F)/2^F`, by square-and-multiply
+/// with every product rounded down (lo) and up (hi) at 60 fractional bits.
+pub fn cos_n_bounds(cfg: &Config, cos_g: u32, n: u32) -> (u128, u128) {
+    let q = POW_REF_BITS;
+    let one = 1u128 << q;
+    let c = ((cos_g as u128).min(1 << cfg.f())) << (q - cfg.f());
+    let (mut p_lo, mut p_hi, mut r_lo, mut r_hi) = (c, c, one, one);
+    let mul_dn = |a: u128, b: u128| (a * b) >> q;
+    let mul_up = |a: u128, b: u128| ((a * b + one - 1) >> q).min(one);
+    let mut m = n;
+    while m > 0 {
+        if m & 1 == 1 {
+            r_lo = mul_dn(r_lo, p_lo);
+            r_hi = mul_up(r_hi, p_hi);
+        }
+        m >>= 1;
+        if m > 0 {
+            p_lo = mul_dn(p_lo, p_lo);
+            p_hi = mul_up(p_hi, p_hi);
+        }
+    }
+    (r_lo, r_hi)
+}
+
+/// Checks a `c^n` model's outputs (blinn, blinn-pow): every output within 1 of its ideal
+/// `c^n·M` for every value the interval allows; `done` ⇔ intensity is 0.
+pub fn check_cos_n(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
+    let (lo, hi) = cos_n_bounds(cfg, x.cos_g, x.n);
+    let q = POW_REF_BITS;
+    let within = |o: u32, m: u128| {
+        let o = (o as u128) << q;
+        // |o − v·m| < 1 for every v in [lo, hi]: o > hi·m − 1 and o < lo·m + 1
+        o + (1u128 << q) > hi * m && o < lo * m + (1u128 << q)
+    };
+    if !within(got.intensity, 1u128 << cfg.fi()) {
+        return Err(format!(
+            "intensity: got {}, cos^n·2^FI in [{}, {}]",
+            got.intensity,
+            (lo << cfg.fi()) as f64 / (q as f64).exp2(),
+            (hi << cfg.fi()) as f64 / (q as f64).exp2()
+        ));
+    }
+    for (i, name) in SPEC_PORTS.iter().enumerate() {
+        if !within(got.spec[i], x.ks[i] as u128) {
+            return Err(format!(
+                "{name}: got {}, cos^n·ks in [{}, {}]",
+                got.spec[i],
+                (lo * x.ks[i] as u128) as f64 / (q as f64).exp2(),
+                (hi * x.ks[i] as u128) as f64 / (q as f64).exp2()
+            ));
+        }
+    }
+    if got.done != (got.intensity == 0) {
+        return Err(format!("done: got {}, intensity {}", got.done, got.intensity));
+    }
+    Ok(())
+}
+
+/// How far a configured unit is from Blinn's `cos^n` (SPEC §6): `|intensity/2^FI − c^n|`
+/// over every `(cos_g ≤ 2^F, n)`, or over every `stride`-th `cos_g` (and 1.0) when the
+/// space exceeds [`FIDELITY_POINTS`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fidelity {
+    pub max: f64,
+    pub mean: f64,
+    /// where the maximum is
+    pub worst_n: u32,
+    pub worst_cos: u32,
+    pub points: u64,
+    pub stride: u32,
+    /// `max_c |intensity/2^FI − c^n|` for each n
+    pub per_n_max: Vec<f64>,
+}
+
+/// The most points [`blinn_fidelity`] visits: 2^26.
+pub const FIDELITY_POINTS: u64 = 1 << 26;
+
+impl Fidelity {
+    pub fn method(&self) -> String {
+        match self.stride {
+            1 => format!("every (cos_g <= 2^F, n): {} points", self.points),
+            s => format!("every {s}th cos_g code (and 1.0) for every n: {} points", self.points),
+        }
+    }
+}
+
+/// Measures [`Fidelity`] with the golden model (two threads or more).
+pub fn blinn_fidelity(m: &Model) -> Fidelity {
+    let cfg = &m.cfg;
+    let one = 1u32 << cfg.f();
+    let n_count = 1u32 << cfg.n_bits();
+    let full = (one as u64 + 1) * n_count as u64;
+    let stride = full.div_ceil(FIDELITY_POINTS).max(1) as u32;
+    let scale = (cfg.fi() as f64).exp2();
+    // a fixed partition (not the core count), so the sums and the manifest are the same bytes
+    // on every machine
+    let threads = 8u32;
+    /// one thread's part: max, sum, worst n, worst cos_g, points, per-n maxima
+    type Part = (f64, f64, u32, u32, u64, Vec<(u32, f64)>);
+    let parts: Vec<Part> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                s.spawn(move || {
+                    let (mut max, mut sum, mut wn, mut wc, mut count) = (0.0f64, 0.0f64, 0u32, 0u32, 0u64);
+                    let mut per_n = Vec::new();
+                    for n in (t..n_count).step_by(threads as usize) {
+                        let mut row_max = 0.0f64;
+                        let mut cos_g = 0u32;
+                        loop {
+                            let c = cos_g as f64 / one as f64;
+                            let got = m.eval(Inputs { cos_g, n, ks: [0; 3] }).intensity as f64 / scale;
+                            let err = (got - c.powi(n as i32)).abs();
+                            sum += err;
+                            count += 1;
+                            row_max = row_max.max(err);
+                            if err > max {
+                                (max, wn, wc) = (err, n, cos_g);
+                            }
+                            if cos_g == one {
+                                break;
+                            }
+                            cos_g = (cos_g + stride).min(one);
+                        }
+                        per_n.push((n, row_max));
+                    }
+                    (max, sum, wn, wc, count, per_n)
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().expect("fidelity thread")).collect()
+    });
+    let mut f = Fidelity { max: 0.0, mean: 0.0, worst_n: 0, worst_cos: 0, points: 0, stride, per_n_max: vec![0.0; n_count as usize] };
+    let mut sum = 0.0;
+    for (max, s, wn, wc, count, per_n) in parts {
+        for (n, e) in per_n {
+            f.per_n_max[n as usize] = e;
+        }
+        if max > f.max || (max == f.max && (wn, wc) < (f.worst_n, f.worst_cos)) {
+            (f.max, f.worst_n, f.worst_cos) = (max, wn, wc);
+        }
+        sum += s;
+        f.points += count;
+    }
+    f.mean = sum / f.points as f64;
+    f
+}
+
+/// The colour output ports, in channel order.
+pub const SPEC_PORTS: [&str; 3] = ["spec_r", "spec_g", "spec_b"];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_model_is_in_the_registry() {
+        for model in SpecularModel::ALL {
+            let cfg = Config::new(crate::config::Params { model, n_bits: 4, ..Default::default() }).unwrap();
+            let m = Model::new(&cfg);
+            // n = 0 gives 1 in every model; c = 1.0 gives full scale
+            let o = m.eval(Inputs { cos_g: 3, n: 0, ks: [255, 1, 0] });
+            assert_eq!(o, Outputs { spec: [255, 1, 0], intensity: 1 << 15, done: false }, "{model:?}");
+            assert!(m.check(Inputs { cos_g: 3, n: 0, ks: [255, 1, 0] }, o).is_ok());
+            assert!(!m.unit().describe().formula.is_empty());
+        }
+    }
+}

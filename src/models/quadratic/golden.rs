@@ -1,0 +1,149 @@
+//! The quadratic unit's golden model ([`Quadratic::trace`]: the RTL's arithmetic step for step,
+//! the same widths and truncations in the same order) and its exact reference ([`reference`]:
+//! SPEC §3 as exact dyadic rationals, with no knowledge of the internal widths), tied by
+//! [`check`], the rounding contract.
+
+use super::Quadratic;
+use crate::bits::mask;
+use crate::config::Config;
+use crate::models::{check_value, Ideal, Inputs, Outputs, SPEC_PORTS};
+
+/// Every intermediate value of the datapath, named as in the RTL.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Trace {
+    pub cos_clamped: u64,
+    pub one_minus_cos: u64,
+    pub cos_sp: u64,
+    pub done: bool,
+    pub kn: u64,
+    pub deviation_full: u128,
+    pub deviation: u64,
+    pub bracket: u64,
+    pub square_full: u128,
+    pub square: u128,
+    pub color_prod: [u128; 3],
+    pub intensity_sum: u128,
+    pub outputs: Outputs,
+}
+
+impl Quadratic {
+    /// Runs the quadratic datapath and returns every intermediate value.
+    pub fn trace(&self, x: Inputs) -> Trace {
+        let w = &self.widths;
+        let f = self.cfg.f();
+        let wb = w.bracket_frac_bits;
+        let ws = w.square_frac_bits;
+        let fi = self.cfg.fi();
+        let b = self.cfg.b();
+        let one = 1u64 << f;
+        let cos_g = x.cos_g as u64 & mask(f + 1) as u64;
+        let n = x.n as u64 & mask(self.cfg.n_bits()) as u64;
+        let ks = x.ks.map(|k| k as u128 & mask(b));
+
+        // step 1: clamp, 1 − cos (adder 6), ROM, comparator, k_code·n
+        let cos_clamped = cos_g.min(one);
+        let one_minus_cos = one - cos_clamped;
+        let cos_sp = self.rom[n as usize] as u64;
+        let done = cos_clamped < cos_sp;
+        let kn = self.cfg.k_code * n;
+        // step 2: P = kn·d, truncation #1 to WB fractional bits (keep WB+1 bits)
+        let deviation_full = kn as u128 * one_minus_cos as u128;
+        let deviation = ((deviation_full >> w.deviation_shift) & mask(wb + 1)) as u64;
+        // step 3: bracket = 1 − dev, zeroed by the key block beyond the cut-off (mod 2^(WB+1))
+        let bracket = if done { 0 } else { ((1u128 << wb).wrapping_sub(deviation as u128) & mask(wb + 1)) as u64 };
+        // step 4: square, truncation #2 to WS fractional bits
+        let square_full = bracket as u128 * bracket as u128;
+        let square = (square_full >> w.square_shift) & mask(ws + 1);
+        // step 5: colour products (of the square cut to WS_C bits); intensity rounding add
+        let wsc = w.color_square_frac_bits;
+        let color_square = square >> (ws - wsc);
+        let color_prod = ks.map(|k| color_square * k);
+        let intensity_sum = if ws > fi { square + (1u128 << (ws - fi - 1)) } else { square << (fi - ws) };
+        // step 6: colour rounding add and the final slices
+        let spec = color_prod.map(|p| ((p + (1u128 << (wsc - 1))) >> wsc) as u32);
+        let intensity = if ws > fi { (intensity_sum >> (ws - fi)) as u32 } else { intensity_sum as u32 };
+        Trace {
+            cos_clamped,
+            one_minus_cos,
+            cos_sp,
+            done,
+            kn,
+            deviation_full,
+            deviation,
+            bracket,
+            square_full,
+            square,
+            color_prod,
+            intensity_sum,
+            outputs: Outputs { spec, intensity, done },
+        }
+    }
+}
+
+/// SPEC §3's ideal outputs for one input, as exact rationals.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Reference {
+    /// `base · 2^(KF+F)` (may be negative).
+    pub base_num: i128,
+    pub base_den_log2: u32,
+    pub done: bool,
+    pub intensity: Ideal,
+    pub spec: [Ideal; 3],
+}
+
+/// The exact reference: `c = min(cos_g, 2^F)/2^F`, `base = 1 − k_q·n·(1 − c)`,
+/// `S = base²` (0 when `base < 0`), `intensity* = S·2^FI`, `spec_X* = S·ks_X`.
+pub fn reference(cfg: &Config, x: Inputs) -> Reference {
+    let (f, kf, fi) = (cfg.f(), cfg.kf(), cfg.fi());
+    let c = (x.cos_g as i128).min(1i128 << f);
+    let base_den_log2 = kf + f;
+    let base_num = (1i128 << base_den_log2) - cfg.k_code as i128 * x.n as i128 * ((1i128 << f) - c);
+    let done = base_num < 0;
+    let s_num: u128 = if done { 0 } else { (base_num * base_num) as u128 };
+    let den_log2 = 2 * base_den_log2;
+    Reference { base_num, base_den_log2, done, intensity: Ideal { num: s_num << fi, den_log2 }, spec: x.ks.map(|k| Ideal { num: s_num * k as u128, den_log2 }) }
+}
+
+/// Checks a full output vector against SPEC §3 for one input.
+pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
+    let r = reference(cfg, x);
+    if got.done != r.done {
+        return Err(format!("done: got {}, reference {}", got.done, r.done));
+    }
+    check_value(cfg.rounding(), got.intensity, r.intensity).map_err(|e| format!("intensity: {e}"))?;
+    for (i, name) in SPEC_PORTS.iter().enumerate() {
+        check_value(cfg.rounding(), got.spec[i], r.spec[i]).map_err(|e| format!("{name}: {e}"))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::Model;
+
+    #[test]
+    fn full_cosine_gives_full_colour() {
+        let m = Model::new(&Config::defaults());
+        let o = m.eval(Inputs { cos_g: 1 << 15, n: 500, ks: [255, 7, 0] });
+        assert_eq!(o, Outputs { spec: [255, 7, 0], intensity: 1 << 15, done: false });
+    }
+
+    #[test]
+    fn check_rejects_off_by_one() {
+        let cfg = Config::defaults();
+        let x = Inputs { cos_g: 32000, n: 40, ks: [200, 100, 50] };
+        let mut o = Model::new(&cfg).eval(x);
+        assert!(check(&cfg, x, o).is_ok());
+        o.spec[1] += 1;
+        assert!(check(&cfg, x, o).is_err());
+    }
+
+    #[test]
+    fn default_faithful_widths_follow_the_budget() {
+        let w = super::super::Widths::derive(&Config::defaults());
+        assert_eq!(w.bracket_frac_bits, 15 + 2);
+        assert_eq!(w.square_frac_bits, 15 + 1);
+        assert_eq!(w.deviation_shift, 16 + 15 - 17);
+    }
+}

@@ -1,0 +1,230 @@
+//! `--model quadratic` (SPEC §3): the paper's formula (15), `[1 − k_q·n·(1 − c)]²` cut off at
+//! `cos_sp(n)`. Its home: the error budget below and the widths it gives ([`Widths`]), the
+//! cut-off ROM ([`rom`]), the golden model and exact reference ([`golden`]) and the datapath
+//! ([`datapath`]: `lean` and `paper`).
+//!
+//! # The datapath (all quantities unsigned)
+//!
+//! ```text
+//! d        = 2^F − min(cos_g, 2^F)          exact, UQ1.F            "1 − cos γ" (adder 6)
+//! kn       = k_code · n                     exact, UQ(N).KF         (multipliers 34, 7)
+//! P        = kn · d                         exact, UQ(N+1).(KF+F)   k_q·n·(1 − c)
+//! dev      = ⌊P / 2^s⌋,  s = KF+F−WB        UQ(·).WB                truncation #1
+//! bracket  = done ? 0 : 2^WB − dev          UQ1.WB                  (adder 9, key block 13)
+//! sq       = ⌊bracket² / 2^(2WB−WS)⌋        UQ1.WS                  truncation #2 (squarer 11)
+//! intensity= ⌊(sq·2^FI + 2^(WS−1)) / 2^WS⌋  UQ1.FI                  round half up
+//! spec_X   = ⌊(sq·ks_X + 2^(WS−1)) / 2^WS⌋  B bits                  round half up (mult. 14–16)
+//! ```
+//!
+//! # Error budget (the argument the widths below apply)
+//!
+//! Let `b = base ∈ [0, 1]` be the exact bracket when not `done`, `e = bracket/2^WB − b`.
+//! Truncating `P` makes `dev` too small by less than one unit, so `0 ≤ e < 2^−WB`, and
+//! `bracket ≤ 2^WB` (i.e. `b + e ≤ 1`). Squaring: `(b+e)² − b² = e(2b+e) ≤ 2e(b+e) ≤ 2e`,
+//! so the square is high by less than `2^(1−WB)`. Truncation #2 makes it low by less than
+//! `2^−WS`. Hence the value `y` fed to the final rounding satisfies, in units of the output,
+//!
+//! ```text
+//!   −2^−WS · M  <  y − o*  <  2^(1−WB) · M,      M = 2^FI (intensity) or ks < 2^B (colours)
+//! ```
+//!
+//! Both bounds are below `1/2` when `WS ≥ max(FI, B) + 1` and `WB ≥ max(FI, B) + 2`.
+//! The final `o = ⌊y + 1/2⌋` is within `(−1/2, 1/2]` of `y`, so `|o − o*| < 1` (faithful),
+//! and where `o*` is an integer `|y − o*| < 1/2` forces `o = o*`.
+//! Every step is a monotone function of `cos_g` (truncation, squaring a non-negative value,
+//! multiplying by `ks ≥ 0`, rounding), so outputs never decrease as `cos_g` grows.
+//!
+//! The colour outputs need only `WS_C = B + 1` fractional bits of the square (their own
+//! budget: `WS_C ≥ B + 1`, `WB ≥ B + 2`), so the `lean` datapath multiplies the colours by the
+//! square truncated further, `sq_C = ⌊sq / 2^(WS − WS_C)⌋` (floor of a floor is one floor, so
+//! the bound above holds with WS_C in place of WS). The `paper` datapath keeps every bit
+//! everywhere (the device of Fig. 5 has no error analysis): it is exact, hence also faithful.
+//!
+//! `exact` rounding needs the value itself, not an approximation (a tie can only be told
+//! from a near-tie by every bit), so it uses `WB = KF+F` (no truncation #1) and `WS = 2·WB`
+//! (no truncation #2): then `e = 0`, `y = o*`, and `⌊o* + 1/2⌋` is round-half-up, which for
+//! non-negative values is "ties away from zero". The same caps apply in `faithful` mode
+//! when the budget asks for more bits than the exact value has.
+
+pub mod datapath;
+pub mod golden;
+pub mod rom;
+
+use super::{explain_ideal, Description, Ideal, Inputs, Outputs, SpecularUnit};
+use crate::bits::{bit_length, exact_decimal};
+use crate::config::{Arch, Config, Rounding, Target};
+use crate::datapath::{Builder, MAX_SQUARER_SPLIT};
+use serde::Serialize;
+
+/// Every internal width and shift of the unit. All widths are bit counts of unsigned values.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Widths {
+    /// `cos_g`, `cos_sp` and `d = 1 − cos`: F+1 bits, UQ1.F.
+    pub cos_bits: u32,
+    /// `kn = k_code·n`: bits of its largest value, UQ(·).KF.
+    pub kn_bits: u32,
+    /// `P = kn·d`, the exact deviation: UQ(·).(KF+F).
+    pub deviation_bits: u32,
+    /// Bits dropped from `P` (truncation #1): `s = KF + F − WB`.
+    pub deviation_shift: u32,
+    /// WB: fractional bits of the bracket; the bracket is UQ1.WB, WB+1 bits.
+    pub bracket_frac_bits: u32,
+    /// WS: fractional bits of the (truncated) square; UQ1.WS, WS+1 bits.
+    pub square_frac_bits: u32,
+    /// Bits dropped from the full square (truncation #2): `2·WB − WS`.
+    pub square_shift: u32,
+    /// WS_C: fractional bits of the square fed to the colour multipliers (≤ WS).
+    pub color_square_frac_bits: u32,
+    /// Low bits split off the bracket so the squarer's main product is ≤ 16×16 (0: one multiply).
+    pub squarer_split: u32,
+    /// `sq_C · ks_X` (+ the rounding half): WS_C+B bits, since `2^WS_C·(2^B−1) + 2^(WS_C−1) < 2^(WS_C+B)`.
+    pub color_product_bits: u32,
+}
+
+impl Widths {
+    /// Every width, from the budget above.
+    pub fn derive(cfg: &Config) -> Widths {
+        let (f, kf, fi, b) = (cfg.f(), cfg.kf(), cfg.fi(), cfg.b());
+        let exact_bracket_frac = kf + f;
+        let (wb, ws) = match (cfg.rounding(), cfg.arch()) {
+            (_, Arch::Paper) | (Rounding::Exact, _) => (exact_bracket_frac, 2 * exact_bracket_frac),
+            (Rounding::Faithful, Arch::Lean) => {
+                let need = fi.max(b);
+                let wb = (need + 2).min(exact_bracket_frac);
+                (wb, (need + 1).min(2 * wb))
+            }
+        };
+        let wsc = match (cfg.rounding(), cfg.arch()) {
+            (Rounding::Faithful, Arch::Lean) => (b + 1).min(ws),
+            _ => ws,
+        };
+        // An iCE40 DSP block multiplies 16×16 (SB_MAC16); a wider bracket is split x = h·2^r + l
+        // and squared as h²·2^2r + 2hl·2^r + l², the same exact value with one 16×16 product.
+        // (ECP5 squares an 18-bit bracket in one MULT18X18D; generic leaves it to the tool.)
+        let squarer_split = match (cfg.arch(), cfg.target()) {
+            (Arch::Lean, Target::Ice40) if wb + 1 > 16 && wb + 1 - 16 <= MAX_SQUARER_SPLIT => wb + 1 - 16,
+            _ => 0,
+        };
+        let n_max = (1u64 << cfg.n_bits()) - 1;
+        let kn_bits = bit_length(cfg.k_code as u128 * n_max as u128).max(1);
+        Widths {
+            cos_bits: f + 1,
+            kn_bits,
+            deviation_bits: kn_bits + f + 1,
+            deviation_shift: exact_bracket_frac - wb,
+            bracket_frac_bits: wb,
+            square_frac_bits: ws,
+            square_shift: 2 * wb - ws,
+            color_square_frac_bits: wsc,
+            squarer_split,
+            color_product_bits: wsc + b,
+        }
+    }
+
+    pub fn bracket_bits(&self) -> u32 {
+        self.bracket_frac_bits + 1
+    }
+    pub fn square_bits(&self) -> u32 {
+        self.square_frac_bits + 1
+    }
+    pub fn full_square_bits(&self) -> u32 {
+        2 * self.bracket_bits()
+    }
+    /// Width of `dev` after truncation #1, as kept in the datapath.
+    pub fn truncated_deviation_bits(&self) -> u32 {
+        self.deviation_bits - self.deviation_shift
+    }
+}
+
+/// The quadratic unit of one configuration: its widths and its cut-off ROM.
+#[derive(Debug, Clone)]
+pub struct Quadratic {
+    pub cfg: Config,
+    pub widths: Widths,
+    /// The cut-off ROM `cos_sp(n)`, n = 0 .. 2^N − 1.
+    pub rom: Vec<u32>,
+}
+
+impl Quadratic {
+    pub fn new(cfg: &Config) -> Quadratic {
+        Quadratic { cfg: cfg.clone(), widths: Widths::derive(cfg), rom: rom::cos_sp_table(cfg) }
+    }
+}
+
+impl SpecularUnit for Quadratic {
+    fn eval(&self, x: Inputs) -> Outputs {
+        self.trace(x).outputs
+    }
+
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+        golden::check(&self.cfg, x, got)
+    }
+
+    fn ideal(&self, x: Inputs) -> (f64, [f64; 3]) {
+        let r = golden::reference(&self.cfg, x);
+        (r.intensity.to_f64(), r.spec.map(Ideal::to_f64))
+    }
+
+    fn cut_off(&self, n: u32) -> Option<u32> {
+        Some(self.rom[n as usize])
+    }
+
+    fn datapath(&self, b: &mut Builder) {
+        let (cfg, w) = (&self.cfg, &self.widths);
+        match cfg.arch() {
+            Arch::Lean if cfg.target() == Target::Ecp5 => datapath::lean_ecp5(cfg, w, b),
+            Arch::Lean => datapath::lean(cfg, w, b),
+            Arch::Paper => datapath::paper(cfg, w, b),
+        }
+    }
+
+    fn describe(&self) -> Description {
+        let (cfg, w) = (&self.cfg, &self.widths);
+        let p = &cfg.params;
+        Description {
+            param_line: format!("k={} k_frac_bits={} (k_code={}, k_q={})", p.k, p.k_frac_bits, cfg.k_code, exact_decimal(cfg.k_code, cfg.kf())),
+            formula: vec![
+                "S = [1 - k_q*n*(1 - cos_g)]^2, cut to 0 where the bracket is negative (done);".into(),
+                format!("intensity = S (UQ1.{}), spec_X = S * ks_X.", p.intensity_frac_bits),
+            ],
+            rounding: match p.rounding {
+                Rounding::Faithful => "faithful: every output within 1 ulp of the exact value (|o - o*| < 1)".into(),
+                Rounding::Exact => "exact: every output is the exact value rounded to nearest, ties away from zero".into(),
+            },
+            datapath: format!(
+                "{}{}; bracket UQ1.{}, square UQ1.{} (colours UQ1.{})",
+                cfg.arch().name(),
+                if cfg.arch() == Arch::Paper { " (the paper's Fig. 5 literally, every bit kept)" } else { " (widths from the error budget)" },
+                w.bracket_frac_bits,
+                w.square_frac_bits,
+                w.color_square_frac_bits
+            ),
+            done_meaning: "cos(gamma) < cos_sp(n): beyond the highlight",
+            summary: "Fixed-point specular highlight unit, [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)",
+        }
+    }
+
+    fn widths(&self) -> serde_json::Value {
+        serde_json::to_value(&self.widths).expect("widths serialise")
+    }
+
+    fn explain(&self, x: Inputs) -> Vec<String> {
+        let (cfg, w) = (&self.cfg, &self.widths);
+        let t = self.trace(x);
+        let r = golden::reference(cfg, x);
+        let (wb, ws) = (w.bracket_frac_bits, w.square_frac_bits);
+        vec![
+            format!("constant   k = {} -> k_code = {} (k_q = {})", cfg.params.k, cfg.k_code, exact_decimal(cfg.k_code, cfg.kf())),
+            format!("datapath   cos_clamped = {}  one_minus_cos = {}  cos_sp[n] = {}  done = {}", t.cos_clamped, t.one_minus_cos, t.cos_sp, t.done),
+            format!(
+                "           kn = {}  deviation = {} (UQ1.{wb})  bracket = {} (UQ1.{wb} = {:.9})",
+                t.kn,
+                t.deviation,
+                t.bracket,
+                t.bracket as f64 / (wb as f64).exp2()
+            ),
+            format!("           square = {} (UQ1.{ws} = {:.9})", t.square, t.square as f64 / (ws as f64).exp2()),
+            format!("{}  done = {}", explain_ideal(self.ideal(x), "SPEC §3 with k_q"), r.done),
+        ]
+    }
+}

@@ -1,0 +1,17 @@
+//! The integration tests: one binary, one module per feature (ripgrep's layout), so the crate
+//! is linked once. `common` holds the configurations and helpers they share.
+
+mod common;
+
+mod cli;
+mod cosim;
+mod exhaustive;
+mod hostile;
+mod models;
+mod properties;
+mod render;
+mod report;
+mod rtl_tools;
+mod synth;
+mod targets;
+mod vectors;
