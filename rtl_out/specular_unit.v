@@ -9,7 +9,8 @@
 //             intensity = S (UQ1.15), spec_X = S * ks_X.
 // Rounding:   faithful: every output within 1 ulp of the exact value (|o - o*| < 1)
 // Latency:    0 clock cycle(s) (combinational).
-// Datapath:   lean (widths from the error budget); bracket UQ1.17, square UQ1.16 (colours UQ1.9); registered after steps [none].
+// Datapath:   lean (widths from the error budget); bracket UQ1.17, square UQ1.16 (colours UQ1.9); registered after
+//     steps [none].
 // Tables:     read with $readmemh from the files named by the parameters below, resolved
 //             against the simulator's or synthesis tool's working directory; a missing or
 //             short file stops the simulation with an error naming it.
@@ -42,7 +43,7 @@ initial begin
     // never run on zeros: the file must exist, and its last entry must arrive
     cos_sp_rom_fd = $fopen(ROM_FILE, "r");
     if (cos_sp_rom_fd == 0) begin
-        $display("ERROR: %m: cannot open table file %0s (parameter ROM_FILE); run the simulator where it is, or set the parameter", ROM_FILE);
+        $display("ERROR: %m: cannot open table file %0s (parameter ROM_FILE)", ROM_FILE);
         $finish;
     end else begin
         $fclose(cos_sp_rom_fd);
@@ -51,7 +52,9 @@ initial begin
         $readmemh(ROM_FILE, cos_sp_rom);
 `ifndef SYNTHESIS
         if (cos_sp_rom[1023] !== 16'h7faa) begin
-            $display("ERROR: %m: table file %0s (parameter ROM_FILE) is short or not the generated one: entry 1023 is %h, expected %h", ROM_FILE, cos_sp_rom[1023], 16'h7faa);
+            $display("ERROR: %m: table file %0s (parameter ROM_FILE) is short or not the generated one:",
+                ROM_FILE);
+            $display("    entry 1023 is %h, expected %h", cos_sp_rom[1023], 16'h7faa);
             $finish;
         end
     end
@@ -60,42 +63,67 @@ end
 
 // ==== step 1: cut-off ROM read (10); cos complemented and clamped ====
 wire [15:0] cos_sp_s1 = cos_sp_rom[n];   // cut-off ROM cos_sp(n), UQ1.15, address = n
-wire [15:0] cos_complement_s1 = {cos_g[15], ~cos_g[14:0] | {15{cos_g[15]}}};   // UQ1.15: ~cos = 1 - 2^-15 - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)
+// UQ1.15: ~cos = 1 - 2^-15 - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)
+wire [15:0] cos_complement_s1 = {cos_g[15], ~cos_g[14:0] | {15{cos_g[15]}}};
 
 // ==== step 2: 1 - cos (adder 6): chunk sums ====
-wire [7:0] one_minus_cos_part0_s2 = {1'b0, cos_complement_s1[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
+// bits [5:0] and their carry above bit 0, carry-in 1
+wire [7:0] one_minus_cos_part0_s2 = {1'b0, cos_complement_s1[5:0], 1'b1} + 8'h1;
 wire [5:0] one_minus_cos_part1_s2 = {1'b0, cos_complement_s1[10:6]};   // bits [10:6] and their carry, carry-in 0
-wire [6:0] one_minus_cos_part1_plus1_s2 = {1'b0, cos_complement_s1[10:6], 1'b1} + 7'h1;   // bits [10:6] and their carry above bit 0, carry-in 1 (carry-select)
+// bits [10:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [6:0] one_minus_cos_part1_plus1_s2 = {1'b0, cos_complement_s1[10:6], 1'b1} + 7'h1;
 wire [4:0] one_minus_cos_part2_s2 = cos_complement_s1[15:11];   // bits [15:11], carry-in 0
-wire [5:0] one_minus_cos_part2_plus1_s2 = {cos_complement_s1[15:11], 1'b1} + 6'h1;   // bits [15:11] above bit 0, carry-in 1 (carry-select)
+// bits [15:11] above bit 0, carry-in 1 (carry-select)
+wire [5:0] one_minus_cos_part2_plus1_s2 = {cos_complement_s1[15:11], 1'b1} + 6'h1;
 
 // ==== step 3: 1 - cos: carries and select; comparator (12): chunk sums ====
-wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_s2[7] & one_minus_cos_part1_plus1_s2[6];   // carry into bit 11
-wire [4:0] one_minus_cos_chunk1_s3 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] : one_minus_cos_part1_s2[4:0];   // bits [10:6]: the sum with the carry into bit 6
-wire [4:0] one_minus_cos_chunk2_s3 = one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] : one_minus_cos_part2_s2;   // bits [15:11]: the sum with the carry into bit 11
-wire [15:0] one_minus_cos_s3 = {one_minus_cos_chunk2_s3, one_minus_cos_chunk1_s3, one_minus_cos_part0_s2[6:1]};   // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
-wire [6:0] cutoff_sum_part0_s3 = {1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};   // bits [5:0] and their carry, carry-in 0
-wire [6:0] cutoff_sum_part1_s3 = {1'b0, cos_sp_s1[11:6]} + {1'b0, cos_complement_s1[11:6]};   // bits [11:6] and their carry, carry-in 0
-wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b0, cos_sp_s1[11:6], 1'b1} + {1'b0, cos_complement_s1[11:6], 1'b1};   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
-wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_s1[15:12]} + {1'h0, 1'h1, cos_complement_s1[14:12]};   // bits [16:12], carry-in 0
-wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_s1[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_s1[14:12]}, 1'b1};   // bits [16:12] above bit 0, carry-in 1 (carry-select)
+// carry into bit 11
+wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_s2[7] & one_minus_cos_part1_plus1_s2[6];
+// bits [10:6]: the sum with the carry into bit 6
+wire [4:0] one_minus_cos_chunk1_s3 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] :
+    one_minus_cos_part1_s2[4:0];
+// bits [15:11]: the sum with the carry into bit 11
+wire [4:0] one_minus_cos_chunk2_s3 = one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] :
+    one_minus_cos_part2_s2;
+// UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
+wire [15:0] one_minus_cos_s3 = {one_minus_cos_chunk2_s3, one_minus_cos_chunk1_s3, one_minus_cos_part0_s2[6:1]};
+// bits [5:0] and their carry, carry-in 0
+wire [6:0] cutoff_sum_part0_s3 = {1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};
+// bits [11:6] and their carry, carry-in 0
+wire [6:0] cutoff_sum_part1_s3 = {1'b0, cos_sp_s1[11:6]} + {1'b0, cos_complement_s1[11:6]};
+// bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b0, cos_sp_s1[11:6], 1'b1} + {1'b0, cos_complement_s1[11:6], 1'b1};
+// bits [16:12], carry-in 0
+wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_s1[15:12]} + {1'h0, 1'h1, cos_complement_s1[14:12]};
+// bits [16:12] above bit 0, carry-in 1 (carry-select)
+wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_s1[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_s1[14:12]},
+    1'b1};
 
 // ==== step 4: comparator: carries; k_q*n (constant multiply) ====
-wire        cutoff_sum_carry2_s4 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[7] : cutoff_sum_part1_s3[6];   // carry into bit 12
-wire [24:0] kn_s4 = {15'h0, n} * 25'h5e5d;   // UQ9.16: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34
+// carry into bit 12
+wire        cutoff_sum_carry2_s4 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[7] : cutoff_sum_part1_s3[6];
+// UQ9.16: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34
+wire [24:0] kn_s4 = {15'h0, n} * 25'h5e5d;
 
 // ==== step 5: comparator: select; deviation, high partial product (multiply-add) ====
-wire [5:0] cutoff_sum_chunk1_s5 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[6:1] : cutoff_sum_part1_s3[5:0];   // bits [11:6]: the sum with the carry into bit 6
-wire [4:0] cutoff_sum_chunk2_s5 = cutoff_sum_carry2_s4 ? cutoff_sum_part2_plus1_s3[5:1] : cutoff_sum_part2_s3;   // bits [16:12]: the sum with the carry into bit 12
-wire [16:0] cutoff_sum_s5 = {cutoff_sum_chunk2_s5, cutoff_sum_chunk1_s5, cutoff_sum_part0_s3[5:0]};   // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
-wire        done_s5 = ~cos_g[15] & cutoff_sum_s5[16];   // comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)
-wire [15:0] deviation_hi_s5 = {7'h0, kn_s4[24:16]} * one_minus_cos_s3 + 16'h7fff;   // kn[24:16] * (1 - cos) + K'[31:16], mod 2^16 (one DSP, the add inside it)
+// bits [11:6]: the sum with the carry into bit 6
+wire [5:0] cutoff_sum_chunk1_s5 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[6:1] : cutoff_sum_part1_s3[5:0];
+// bits [16:12]: the sum with the carry into bit 12
+wire [4:0] cutoff_sum_chunk2_s5 = cutoff_sum_carry2_s4 ? cutoff_sum_part2_plus1_s3[5:1] : cutoff_sum_part2_s3;
+// cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
+wire [16:0] cutoff_sum_s5 = {cutoff_sum_chunk2_s5, cutoff_sum_chunk1_s5, cutoff_sum_part0_s3[5:0]};
+// comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)
+wire        done_s5 = ~cos_g[15] & cutoff_sum_s5[16];
+// kn[24:16] * (1 - cos) + K'[31:16], mod 2^16 (one DSP, the add inside it)
+wire [15:0] deviation_hi_s5 = {7'h0, kn_s4[24:16]} * one_minus_cos_s3 + 16'h7fff;
 
 // ==== step 6: deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add) ====
-wire [31:0] deviation_sum_s6 = {16'h0, kn_s4[15:0]} * {16'h0, one_minus_cos_s3} + {deviation_hi_s5, 16'hc000};   // P + K' mod 2^32, P = k_q*n*(1 - cos) UQ.31 exact; its complement is K - P (no subtractor)
+// P + K' mod 2^32, P = k_q*n*(1 - cos) UQ.31 exact; its complement is K - P (no subtractor)
+wire [31:0] deviation_sum_s6 = {16'h0, kn_s4[15:0]} * {16'h0, one_minus_cos_s3} + {deviation_hi_s5, 16'hc000};
 
 // ==== step 7: bracket = 1 - deviation (adder 9), truncation #1, key block (13) ====
-wire [17:0] bracket_s7 = done_s5 ? 18'h0 : ~deviation_sum_s6[31:14];   // UQ1.17 in [0, 1]: 2^17 - floor(P/2^14) (truncation #1), zeroed beyond the cut-off (key block 13)
+// UQ1.17 in [0, 1]: 2^17 - floor(P/2^14) (truncation #1), zeroed beyond the cut-off (key block 13)
+wire [17:0] bracket_s7 = done_s5 ? 18'h0 : ~deviation_sum_s6[31:14];
 
 // ==== step 8: square (squarer 11): lo^2 ====
 wire [3:0] square_ll_s8 = (bracket_s7[1:0] == 2'h0) ? 4'h0
@@ -104,39 +132,55 @@ wire [3:0] square_ll_s8 = (bracket_s7[1:0] == 2'h0) ? 4'h0
     : 4'h9;   // lo^2 by table, bracket = hi*2^2 + lo
 
 // ==== step 9: square: T = hi*lo + lo^2/2^(r+1) (multiply-add) ====
-wire [17:0] square_t_s9 = {2'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[1:0]} + {17'h0, square_ll_s8[3]};   // hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)
+// hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)
+wire [17:0] square_t_s9 = {2'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[1:0]} + {17'h0, square_ll_s8[3]};
 
 // ==== step 10: square: Z = hi^2 + T/2^(r-1) (multiply-add) ====
-wire [31:0] square_z_s10 = {16'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[17:2]} + {15'h0, square_t_s9[17:1]};   // floor(bracket^2 / 2^4), exact: a 16x16 multiply-add (one DSP) instead of 18x18
+// floor(bracket^2 / 2^4), exact: a 16x16 multiply-add (one DSP) instead of 18x18
+wire [31:0] square_z_s10 = {16'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[17:2]} + {15'h0, square_t_s9[17:1]};
 
 // ==== step 11: truncation #2; colour multipliers (14-16) with the rounding half (multiply-add) ====
 wire [16:0] square_s11 = square_z_s10[30:14];   // UQ1.16: S = bracket^2 floored to 2^-16 (truncation #2)
-wire [9:0] color_square_s11 = square_s11[16:7];   // UQ1.9: all the colours' budget needs (saves 7 bits per colour multiplier)
-wire [16:0] color_sum_r_s11 = {7'h0, color_square_s11} * {9'h0, ks_r} + 17'h100;   // UQ8.9: S * ks_r + 1/2 colour ulp (round half up; the add inside the DSP)
-wire [16:0] color_sum_g_s11 = {7'h0, color_square_s11} * {9'h0, ks_g} + 17'h100;   // UQ8.9: S * ks_g + 1/2 colour ulp (round half up; the add inside the DSP)
-wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b} + 17'h100;   // UQ8.9: S * ks_b + 1/2 colour ulp (round half up; the add inside the DSP)
+// UQ1.9: all the colours' budget needs (saves 7 bits per colour multiplier)
+wire [9:0] color_square_s11 = square_s11[16:7];
+// UQ8.9: S * ks_r + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [16:0] color_sum_r_s11 = {7'h0, color_square_s11} * {9'h0, ks_r} + 17'h100;
+// UQ8.9: S * ks_g + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [16:0] color_sum_g_s11 = {7'h0, color_square_s11} * {9'h0, ks_g} + 17'h100;
+// UQ8.9: S * ks_b + 1/2 colour ulp (round half up; the add inside the DSP)
+wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b} + 17'h100;
 
 // ==== step 12: colour results; intensity rounding: chunk sums ====
 wire [7:0] spec_r_s12 = color_sum_r_s11[16:9];   // UNORM8: S * ks_r rounded half up
 wire [7:0] spec_g_s12 = color_sum_g_s11[16:9];   // UNORM8: S * ks_g rounded half up
 wire [7:0] spec_b_s12 = color_sum_b_s11[16:9];   // UNORM8: S * ks_b rounded half up
-wire [7:0] intensity_sum_part0_s12 = {1'b0, square_s11[5:0], 1'b1} + 8'h1;   // bits [5:0] and their carry above bit 0, carry-in 1
+// bits [5:0] and their carry above bit 0, carry-in 1
+wire [7:0] intensity_sum_part0_s12 = {1'b0, square_s11[5:0], 1'b1} + 8'h1;
 wire [6:0] intensity_sum_part1_s12 = {1'b0, square_s11[11:6]};   // bits [11:6] and their carry, carry-in 0
-wire [7:0] intensity_sum_part1_plus1_s12 = {1'b0, square_s11[11:6], 1'b1} + 8'h1;   // bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
+// bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
+wire [7:0] intensity_sum_part1_plus1_s12 = {1'b0, square_s11[11:6], 1'b1} + 8'h1;
 wire [4:0] intensity_sum_part2_s12 = square_s11[16:12];   // bits [16:12], carry-in 0
-wire [5:0] intensity_sum_part2_plus1_s12 = {square_s11[16:12], 1'b1} + 6'h1;   // bits [16:12] above bit 0, carry-in 1 (carry-select)
+// bits [16:12] above bit 0, carry-in 1 (carry-select)
+wire [5:0] intensity_sum_part2_plus1_s12 = {square_s11[16:12], 1'b1} + 6'h1;
 
 // ==== step 13: intensity rounding: carries and select ====
-wire        intensity_sum_carry2_s13 = intensity_sum_part0_s12[7] & intensity_sum_part1_plus1_s12[7];   // carry into bit 12
-wire [5:0] intensity_sum_chunk1_s13 = intensity_sum_part0_s12[7] ? intensity_sum_part1_plus1_s12[6:1] : intensity_sum_part1_s12[5:0];   // bits [11:6]: the sum with the carry into bit 6
-wire [4:0] intensity_sum_chunk2_s13 = intensity_sum_carry2_s13 ? intensity_sum_part2_plus1_s12[5:1] : intensity_sum_part2_s12;   // bits [16:12]: the sum with the carry into bit 12
-wire [16:0] intensity_sum_s13 = {intensity_sum_chunk2_s13, intensity_sum_chunk1_s13, intensity_sum_part0_s12[6:1]};   // UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
+// carry into bit 12
+wire        intensity_sum_carry2_s13 = intensity_sum_part0_s12[7] & intensity_sum_part1_plus1_s12[7];
+// bits [11:6]: the sum with the carry into bit 6
+wire [5:0] intensity_sum_chunk1_s13 = intensity_sum_part0_s12[7] ? intensity_sum_part1_plus1_s12[6:1] :
+    intensity_sum_part1_s12[5:0];
+// bits [16:12]: the sum with the carry into bit 12
+wire [4:0] intensity_sum_chunk2_s13 = intensity_sum_carry2_s13 ? intensity_sum_part2_plus1_s12[5:1] :
+    intensity_sum_part2_s12;
+// UQ1.16: S to 2^-16 plus one ulp = S + 2^-16 (round half up)
+wire [16:0] intensity_sum_s13 = {intensity_sum_chunk2_s13, intensity_sum_chunk1_s13, intensity_sum_part0_s12[6:1]};
 wire [15:0] intensity_s13 = intensity_sum_s13[16:1];   // UQ1.15: S rounded half up
 
 // bits no step reads (one sink, so lint stays silent)
 wire        unused_bits = ^{
     cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_s2[5],
-    one_minus_cos_part1_plus1_s2[0], one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6], cutoff_sum_part1_plus1_s3[7],
+    one_minus_cos_part1_plus1_s2[0], one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6],
+        cutoff_sum_part1_plus1_s3[7],
     cutoff_sum_part1_plus1_s3[0], cutoff_sum_part2_plus1_s3[0], kn_s4[24:16], cutoff_sum_s5[15:0],
     deviation_sum_s6[13:0], bracket_s7[1:0], square_ll_s8[2:0], square_t_s9[0],
     square_z_s10[31], square_z_s10[13:0], color_sum_r_s11[8:0], color_sum_g_s11[8:0],

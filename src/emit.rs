@@ -17,19 +17,58 @@ use std::path::{Path, PathBuf};
 
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
+/// A signal registered at one cut only: `reg x_cK; x_cK <= source`.
 pub struct CutSignal {
     pub name: String,
     pub width: u32,
-    /// the expression the cut takes it from (`x_sK` computed in step K, or `x_cK-1` passed on)
+    /// the expression the cut takes it from (`x_sK` computed in step K, a port, a block's output)
     pub source: String,
+}
+
+/// A signal that waits through several registered cuts: one shift register, declared at the
+/// first of them, element j (from the bottom) holding the signal after the j-th.
+pub struct DelayLine {
+    pub name: String,
+    pub width: u32,
+    /// how many registers (cuts) deep
+    pub depth: u32,
+    pub first: usize,
+    pub last: usize,
+    /// `x_line <= {x_line[..], source}`
+    pub shift: String,
+    /// the registers read: (`x_cK`, hi, lo) bits of the line
+    pub taps: Vec<(String, u32, u32)>,
 }
 
 pub struct Cut {
     pub index: usize,
     pub registered: bool,
     pub signals: Vec<CutSignal>,
-    /// the valid bit it registers (the previous register's, or in_valid)
-    pub valid_source: String,
+    /// the delay lines that start here
+    pub lines: Vec<DelayLine>,
+}
+
+impl Cut {
+    /// The declarations of the single registers, those of one width in one statement.
+    pub fn declarations(&self) -> Vec<String> {
+        let mut widths: Vec<u32> = self.signals.iter().map(|s| s.width).collect();
+        widths.dedup();
+        widths.sort_unstable();
+        widths.dedup();
+        widths
+            .into_iter()
+            .map(|w| {
+                let names: Vec<String> = self.signals.iter().filter(|s| s.width == w).map(|s| format!("{}_c{}", s.name, self.index)).collect();
+                let range = if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
+                format!("reg  {range} {};", names.join(", "))
+            })
+            .collect()
+    }
+
+    /// Whether anything is registered first here.
+    pub fn is_empty(&self) -> bool {
+        self.signals.is_empty() && self.lines.is_empty()
+    }
 }
 
 pub struct RomEntry {
@@ -90,10 +129,119 @@ pub fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
 pub struct StepView {
     pub index: usize,
     pub title: String,
-    pub reads: Vec<ReadView>,
-    pub wires: Vec<Wire>,
+    /// table reads and wires in definition order
+    pub items: Vec<StepItem>,
     pub dsps: Vec<DspView>,
     pub cut: Cut,
+}
+
+/// A table read or a wire (its whole statement, comment included, as the RTL shows it).
+pub struct StepItem {
+    pub read: Option<ReadView>,
+    pub wire: Option<String>,
+}
+
+/// The longest line the RTL holds.
+pub const MAX_LINE: usize = 120;
+
+/// A wire's statement: `wire [W-1:0] x_sK = expr;   // comment`, the comment on a line of its
+/// own above it when the two do not fit one line.
+fn wire_statement(x: &Wire, step: usize) -> String {
+    let range = if x.width == 1 { "      ".to_string() } else { format!("[{}:0]", x.width - 1) };
+    let stmt = format!("wire {range} {}_s{step} = {};", x.name, x.expr);
+    if x.comment.is_empty() {
+        return stmt;
+    }
+    let inline = format!("{stmt}   // {}", x.comment);
+    if inline.lines().all(|l| l.chars().count() <= MAX_LINE) {
+        inline
+    } else {
+        format!("// {}\n{stmt}", x.comment)
+    }
+}
+
+/// Folds every line longer than [`MAX_LINE`] at a space: a comment continues as a comment, code
+/// (never inside a string) on an indented line; a trailing comment moves to a line above.
+pub fn fold_long_lines(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + 64);
+    for line in text.lines() {
+        fold_line(line, &mut out);
+    }
+    if text.ends_with('\n') {
+        out
+    } else {
+        out.trim_end_matches('\n').to_string()
+    }
+}
+
+fn fold_line(line: &str, out: &mut String) {
+    let len = line.chars().count();
+    if len <= MAX_LINE {
+        out.push_str(line);
+        out.push('\n');
+        return;
+    }
+    let indent: String = line.chars().take_while(|c| *c == ' ').collect();
+    let body = &line[indent.len()..];
+    // where code ends and a trailing comment starts (outside strings)
+    let mut in_string = false;
+    let mut comment_at = None;
+    let bytes = body.as_bytes();
+    for i in 0..bytes.len() {
+        match bytes[i] {
+            b'"' => in_string = !in_string,
+            b'/' if !in_string && bytes.get(i + 1) == Some(&b'/') => {
+                comment_at = Some(i);
+                break;
+            }
+            _ => {}
+        }
+    }
+    match comment_at {
+        Some(0) => wrap_words(&indent, body, "// ", "//     ", out),
+        Some(i) => {
+            fold_line(&format!("{indent}{}", body[i..].trim_end()), out);
+            fold_line(&format!("{indent}{}", body[..i].trim_end()), out);
+        }
+        None => wrap_words(&indent, body, "", "    ", out),
+    }
+}
+
+/// Breaks `body` at spaces outside strings; the first line keeps `first` after the indent, the
+/// others get `rest` (a comment's text is taken from after its `// `).
+fn wrap_words(indent: &str, body: &str, first: &str, rest: &str, out: &mut String) {
+    let text = body.strip_prefix(first).unwrap_or(body);
+    let mut words: Vec<String> = Vec::new();
+    let mut in_string = false;
+    let mut cur = String::new();
+    for c in text.chars() {
+        if c == '"' {
+            in_string = !in_string;
+        }
+        if c == ' ' && !in_string {
+            words.push(std::mem::take(&mut cur));
+        } else {
+            cur.push(c);
+        }
+    }
+    words.push(cur);
+    let mut line = format!("{indent}{first}");
+    let mut fresh = true;
+    for w in words {
+        if !fresh && line.chars().count() + 1 + w.chars().count() > MAX_LINE {
+            out.push_str(line.trim_end());
+            out.push('\n');
+            line = format!("{indent}{rest}");
+            fresh = true;
+        }
+        if !fresh {
+            line.push(' ');
+        }
+        line.push_str(&w);
+        fresh = false;
+    }
+    out.push_str(line.trim_end());
+    out.push('\n');
 }
 
 /// A product on an ECP5 MULT18X18D with its registers (see `datapath::Builder::product`).
@@ -127,10 +275,11 @@ pub struct UnitTemplate<'a> {
     pub cuts_text: String,
     pub file_tables: Vec<TableView>,
     pub steps: Vec<StepView>,
-    pub out_valid: String,
+    /// registers in the valid pipeline (one a registered cut)
+    pub valid_depth: u32,
     pub outputs: Vec<OutputView>,
-    /// the one lint sink for bits no step reads
-    pub unused: Option<String>,
+    /// the one lint sink for bits no step reads, four a line
+    pub unused: Vec<String>,
     /// products use the ECP5 product module (`<top>_mult18x18`)
     pub dsp_module: bool,
     /// tables use the ECP5 ROM module (`<top>_rom1k18`)
@@ -188,10 +337,9 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let cfg = &plan.cfg;
     let p = &cfg.params;
     let dp = &plan.datapath;
-    let cuts = cut_list(dp);
-    let out_valid = cuts.iter().rev().find(|c| c.registered).map_or("in_valid".to_string(), |c| format!("valid_c{}", c.index));
+    let (cuts, unread_taps) = cut_list(dp);
     let outputs = dp.outputs.iter().map(|(port, src)| OutputView { port: port.clone(), source: src.clone() }).collect();
-    let unused = dp.unused.clone();
+    let unused: Vec<String> = dp.unused.iter().chain(&unread_taps).cloned().collect::<Vec<_>>().chunks(4).map(|c| c.join(", ")).collect();
     let file = p.rom_style == RomStyle::File;
     let file_tables = if file {
         dp.tables
@@ -215,28 +363,31 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     } else {
         Vec::new()
     };
-    let mut reads: Vec<Vec<ReadView>> = (0..dp.steps.len()).map(|_| Vec::new()).collect();
+    let mut reads: Vec<Vec<(usize, ReadView)>> = (0..dp.steps.len()).map(|_| Vec::new()).collect();
     for r in &dp.reads {
         let t = &dp.tables[r.table];
         let ab = t.address_bits();
-        reads[r.step - 1].push(ReadView {
-            signal: format!("{}_{}{}", r.signal, if r.block { "c" } else { "s" }, r.step),
-            width: t.width,
-            table: t.name.clone(),
-            addr: if r.block && ab < 10 { format!("{{{}, {}}}", lit(10 - ab, 0), r.addr) } else { r.addr.clone() },
-            what: t.what.clone(),
-            file,
-            zero: lit(t.width, 0),
-            block: r.block,
-            initvals: if r.block { dp16kd_initvals(&t.words) } else { Vec::new() },
-            unused: datapath::DP16KD_BITS - t.width.min(datapath::DP16KD_BITS),
-            input_cut: r.step - 1,
-            entries: if file || r.block {
-                Vec::new()
-            } else {
-                t.words.iter().enumerate().map(|(i, &v)| RomEntry { index: format!("{ab}'d{i}"), value: lit(t.width, v) }).collect()
+        reads[r.step - 1].push((
+            r.position,
+            ReadView {
+                signal: format!("{}_{}{}", r.signal, if r.block { "c" } else { "s" }, r.step),
+                width: t.width,
+                table: t.name.clone(),
+                addr: if r.block && ab < 10 { format!("{{{}, {}}}", lit(10 - ab, 0), r.addr) } else { r.addr.clone() },
+                what: t.what.clone(),
+                file,
+                zero: lit(t.width, 0),
+                block: r.block,
+                initvals: if r.block { dp16kd_initvals(&t.words) } else { Vec::new() },
+                unused: datapath::DP16KD_BITS - t.width.min(datapath::DP16KD_BITS),
+                input_cut: r.step - 1,
+                entries: if file || r.block {
+                    Vec::new()
+                } else {
+                    t.words.iter().enumerate().map(|(i, &v)| RomEntry { index: format!("{ab}'d{i}"), value: lit(t.width, v) }).collect()
+                },
             },
-        });
+        ));
     }
     let d = plan.model.unit().describe();
     let mut param_line = format!("{}{}stages={} rounding={}", d.param_line, if d.param_line.is_empty() { "" } else { " " }, p.stages, p.rounding.name());
@@ -256,7 +407,7 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
         port_lines: port_lines(&ports),
         cuts_text: registered_cuts_text(&plan.registered_cuts),
         file_tables,
-        out_valid,
+        valid_depth: plan.registered_cuts.len() as u32,
         outputs,
         unused,
         steps: dp
@@ -267,8 +418,7 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
             .map(|((s, cut), reads)| StepView {
                 index: s.index,
                 title: s.title.clone(),
-                reads,
-                wires: s.wires.clone(),
+                items: step_items(s, reads),
                 dsps: s
                     .dsps
                     .iter()
@@ -291,34 +441,74 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     }
 }
 
+/// A step's reads and wires in definition order (each read where its position says).
+fn step_items(s: &datapath::Step, reads: Vec<(usize, ReadView)>) -> Vec<StepItem> {
+    let mut reads = reads.into_iter().peekable();
+    let mut items = Vec::new();
+    for (i, x) in s.wires.iter().enumerate() {
+        while let Some((_, r)) = reads.next_if(|(at, _)| *at <= i) {
+            items.push(StepItem { read: Some(r), wire: None });
+        }
+        items.push(StepItem { read: None, wire: Some(wire_statement(x, s.index)) });
+    }
+    items.extend(reads.map(|(_, r)| StepItem { read: Some(r), wire: None }));
+    items
+}
+
 /// Whether every read of table `t` is a block RAM with its registers (no `$readmemh` memory then).
 fn block_table(dp: &datapath::Datapath, t: usize) -> bool {
     let mut reads = dp.reads.iter().filter(|r| r.table == t).peekable();
     reads.peek().is_some() && reads.all(|r| r.block)
 }
 
-/// The registered cuts of a datapath, each with the signals it holds and where from.
-fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
-    let mut valid = "in_valid".to_string();
-    (1..=dp.live.len())
-        .map(|index| {
-            let registered = dp.registered.contains(&(index as u32));
-            let cut = Cut {
-                index,
-                registered,
-                signals: if registered {
-                    dp.live[index - 1].iter().map(|l| CutSignal { name: l.name.clone(), width: l.width, source: l.source.clone() }).collect()
-                } else {
-                    Vec::new()
-                },
-                valid_source: valid.clone(),
-            };
-            if registered {
-                valid = format!("valid_c{index}");
+/// The registered cuts of a datapath, each with the signals it holds and where from: a signal
+/// that only waits (registered at several cuts, each taking the one before) is one
+/// [`DelayLine`] at the first of them, with a wire for each register something reads.
+/// Returns the cuts and the bits of those taps nobody reads (for the lint sink).
+fn cut_list(dp: &datapath::Datapath) -> (Vec<Cut>, Vec<String>) {
+    let mut cuts: Vec<Cut> =
+        (1..=dp.live.len()).map(|index| Cut { index, registered: dp.registered.contains(&(index as u32)), signals: Vec::new(), lines: Vec::new() }).collect();
+    // each signal's chain of registers: the cuts holding it, in order, and the first source
+    let mut chains: Vec<(String, u32, String, Vec<usize>)> = Vec::new();
+    for (k, live) in dp.live.iter().enumerate() {
+        let index = k + 1;
+        if !cuts[k].registered {
+            continue;
+        }
+        for l in live {
+            let continues = chains.iter_mut().rev().find(|c| c.0 == l.name && l.source == format!("{}_c{}", c.0, c.3.last().expect("a cut")));
+            match continues {
+                Some(c) => c.3.push(index),
+                None => chains.push((l.name.clone(), l.width, l.source.clone(), vec![index])),
             }
-            cut
-        })
-        .collect()
+        }
+    }
+    let mut unread = Vec::new();
+    for (name, width, source, at) in chains {
+        let first = at[0];
+        if at.len() == 1 {
+            cuts[first - 1].signals.push(CutSignal { name, width, source });
+            continue;
+        }
+        let depth = at.len();
+        let mut taps = Vec::new();
+        for (j, &cut) in at.iter().enumerate() {
+            let reg = format!("{name}_c{cut}");
+            let read = dp.read_bits.get(&reg).copied().unwrap_or(0);
+            if read == 0 {
+                continue;
+            }
+            // the last register's unread bits are in the datapath's own sink already
+            if j + 1 < depth {
+                unread.extend(datapath::bit_ranges(&reg, width, mask(width) & !read));
+            }
+            let lo = j as u32 * width;
+            taps.push((reg, lo + width - 1, lo));
+        }
+        let shift = format!("{{{name}_line[{}:0], {source}}}", (depth as u32 - 1) * width - 1);
+        cuts[first - 1].lines.push(DelayLine { name, width, depth: depth as u32, first, last: at[depth - 1], shift, taps });
+    }
+    (cuts, unread)
 }
 
 #[derive(Template)]
@@ -432,7 +622,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let cfg = &plan.cfg;
     let top = cfg.top();
     let unit = plan.model.unit();
-    let mut verilog = unit_template(plan).render().expect("unit template renders");
+    let mut verilog = fold_long_lines(&unit_template(plan).render().expect("unit template renders"));
     verilog.push('\n');
     let dp = &plan.datapath;
     let tables: Vec<_> = match cfg.params.rom_style {

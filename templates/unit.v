@@ -48,7 +48,7 @@ initial begin
     // never run on zeros: the file must exist, and its last entry must arrive
     {{ t.name }}_fd = $fopen({{ t.param }}, "r");
     if ({{ t.name }}_fd == 0) begin
-        $display("ERROR: %m: cannot open table file %0s (parameter {{ t.param }}); run the simulator where it is, or set the parameter", {{ t.param }});
+        $display("ERROR: %m: cannot open table file %0s (parameter {{ t.param }})", {{ t.param }});
         $finish;
     end else begin
         $fclose({{ t.name }}_fd);
@@ -57,17 +57,37 @@ initial begin
         $readmemh({{ t.param }}, {{ t.name }});
 `ifndef SYNTHESIS
         if ({{ t.name }}[{{ t.depth - 1 }}] !== {{ t.last }}) begin
-            $display("ERROR: %m: table file %0s (parameter {{ t.param }}) is short or not the generated one: entry {{ t.depth - 1 }} is %h, expected %h", {{ t.param }}, {{ t.name }}[{{ t.depth - 1 }}], {{ t.last }});
+            $display("ERROR: %m: table file %0s (parameter {{ t.param }}) is short or not the generated one:",
+                {{ t.param }});
+            $display("    entry {{ t.depth - 1 }} is %h, expected %h", {{ t.name }}[{{ t.depth - 1 }}], {{ t.last }});
             $finish;
         end
     end
 `endif
 end
 {%- endfor %}
+{%- if valid_depth > 0 %}
+
+// the valid pipeline: bit j is in_valid after j + 1 registered cuts; rst clears it
+reg  [{{ valid_depth - 1 }}:0] valid_line;
+always @(posedge clk) begin
+    if (rst) valid_line <= {{ valid_depth }}'h0;
+    else     valid_line <= {% if valid_depth == 1 %}in_valid{% else %}{valid_line[{{ valid_depth - 2 }}:0], in_valid}{% endif %};
+end
+{%- endif %}
 {%- for st in steps %}
 
 // ==== step {{ st.index }}: {{ st.title }} ====
-{%- for r in st.reads %}
+{%- for d in st.dsps %}
+// {{ d.comment }}: one MULT18X18D, its input registers in place of cut {{ d.input_cut }}, its output register cut {{ st.index }}
+wire [{{ d.width - 1 }}:0] {{ d.wire }};
+{%- if d.unused > 0 %}
+wire [{{ d.unused - 1 }}:0] unused_{{ d.name }}_p;
+{%- endif %}
+{{ top }}_mult18x18 {{ d.name }}_dsp (.clk(clk), .a({{ d.a }}), .b({{ d.b }}), .p({% if d.unused > 0 %}{unused_{{ d.name }}_p, {{ d.wire }}}{% else %}{{ d.wire }}{% endif %}));
+{%- endfor %}
+{%- for item in st.items %}
+{%- if let Some(r) = item.read %}
 {%- if r.block %}
 // {{ r.what }}: one DP16KD, its address register in place of cut {{ r.input_cut }}, its output register cut {{ st.index }}
 wire [{{ r.width - 1 }}:0] {{ r.signal }};
@@ -93,29 +113,28 @@ always @(*) begin
     endcase
 end
 {%- endif %}
-{%- endfor %}
-{%- for d in st.dsps %}
-// {{ d.comment }}: one MULT18X18D, its input registers in place of cut {{ d.input_cut }}, its output register cut {{ st.index }}
-wire [{{ d.width - 1 }}:0] {{ d.wire }};
-{%- if d.unused > 0 %}
-wire [{{ d.unused - 1 }}:0] unused_{{ d.name }}_p;
 {%- endif %}
-{{ top }}_mult18x18 {{ d.name }}_dsp (.clk(clk), .a({{ d.a }}), .b({{ d.b }}), .p({% if d.unused > 0 %}{unused_{{ d.name }}_p, {{ d.wire }}}{% else %}{{ d.wire }}{% endif %}));
+{%- if let Some(w) = item.wire %}
+{{ w }}
+{%- endif %}
 {%- endfor %}
-{%- for x in st.wires %}
-wire {% if x.width == 1 %}      {% else %}[{{ x.width - 1 }}:0]{% endif %} {{ x.name }}_s{{ st.index }} = {{ x.expr }};{% if !x.comment.is_empty() %}   // {{ x.comment }}{% endif %}
-{%- endfor %}
-{%- if st.cut.registered %}
+{%- if st.cut.registered && !st.cut.is_empty() %}
 {% call cuts::register(st.cut) %}{% endcall %}
+{%- else if st.cut.registered %}
+// cut {{ st.index }}: only delay lines pass here
 {%- endif %}
 {%- endfor %}
-{%- if let Some(u) = unused %}
+{%- if !unused.is_empty() %}
 
 // bits no step reads (one sink, so lint stays silent)
-wire        unused_bits = {{ u }};
+wire        unused_bits = ^{
+{%- for u in unused %}
+    {{ u }}{% if !loop.last %},{% endif %}
+{%- endfor %}
+};
 {%- endif %}
 
-assign out_valid = {{ out_valid }};
+assign out_valid = {% if valid_depth > 0 %}valid_line[{{ valid_depth - 1 }}]{% else %}in_valid{% endif %};
 {%- for o in outputs %}
 assign {{ "{:<9}"|format(o.port) }} = {{ o.source }};
 {%- endfor %}

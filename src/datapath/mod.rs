@@ -16,6 +16,7 @@ use crate::bits::{lit, mask};
 use crate::config::Target;
 pub use crate::ports::CHANNELS;
 pub use crate::table::Table;
+use std::collections::BTreeMap;
 
 /// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
 /// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
@@ -90,6 +91,8 @@ pub struct RomRead {
     /// on an ECP5 DP16KD with its output register: the address register stands in for the cut
     /// before this step, the output register is the cut after it (`signal_cK`)
     pub block: bool,
+    /// how many of its step's wires come before it (the RTL declares in definition order)
+    pub position: usize,
 }
 
 /// Words and width an ECP5 DP16KD holds in its 1024 x 18 mode.
@@ -103,8 +106,10 @@ pub struct Datapath {
     pub steps: Vec<Step>,
     /// `live[K-1]`: the signals cut K carries, in definition order.
     pub live: Vec<Vec<Live>>,
-    /// The one lint sink: the XOR of every bit no step reads (None when there is none).
-    pub unused: Option<String>,
+    /// The bits no step reads, as Verilog selects (`x_c3[7:1]`), for the one lint sink.
+    pub unused: Vec<String>,
+    /// For every name a reference resolves to (`x`, `x_s2`, `x_c3`): the bits read of it.
+    pub read_bits: BTreeMap<String, u128>,
     /// Each output port's source after the last step.
     pub outputs: Vec<(String, String)>,
     pub registered: Vec<u32>,
@@ -221,6 +226,29 @@ pub fn visible(registered: &[u32], name: &str, def: usize, at: usize) -> String 
         None if def == 0 => name.to_string(),
         None => format!("{name}_s{def}"),
     }
+}
+
+/// The runs of set bits of `unread` in a `width`-bit signal seen as `v`, MSB first, as selects.
+pub fn bit_ranges(v: &str, width: u32, unread: u128) -> Vec<String> {
+    let mut parts = Vec::new();
+    let mut b = width;
+    while b > 0 {
+        b -= 1;
+        if unread >> b & 1 == 1 {
+            let hi = b;
+            while b > 0 && unread >> (b - 1) & 1 == 1 {
+                b -= 1;
+            }
+            parts.push(if width == 1 {
+                v.to_string()
+            } else if hi == b {
+                format!("{v}[{b}]")
+            } else {
+                format!("{v}[{hi}:{b}]")
+            });
+        }
+    }
+    parts
 }
 
 /// Chunk boundaries `(lo, width)` of a `width`-bit carry chain, each ≤ `CHUNK_BITS`.
@@ -538,7 +566,8 @@ impl Builder {
         let a = self.r(addr);
         let cur = self.cur();
         self.define(signal, self.tables[t].width, cur, false);
-        self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a, block: false });
+        let position = self.steps.last().expect("a step").wires.len();
+        self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a, block: false, position });
     }
 
     /// [`Builder::rom_read`], on ECP5 a block RAM with both its registers when the table fits
@@ -554,7 +583,8 @@ impl Builder {
         let a = self.seen_from_step_before(&[addr], &format!("the block read of {signal}"), |s| s.r(addr));
         let k = self.steps.len();
         self.define(signal, self.tables[t].width, k, true);
-        self.reads.push(RomRead { step: k, signal: signal.into(), table: t, addr: a, block: true });
+        let position = self.steps.last().expect("a step").wires.len();
+        self.reads.push(RomRead { step: k, signal: signal.into(), table: t, addr: a, block: true, position });
     }
 
     /// `name = (a + b + cin) mod 2^width` as one carry chain in this step, whatever its width
@@ -799,38 +829,20 @@ impl Builder {
             self.signal(o).uses.push((last + 1, mask(w)));
         }
         // unused bits: read nowhere at the last step that reads the signal; one sink for all
-        let mut parts: Vec<String> = Vec::new();
+        let mut unused: Vec<String> = Vec::new();
+        // the bits read of every name a reference resolves to (a wire, a port or a register)
+        let mut read_bits: BTreeMap<String, u128> = BTreeMap::new();
         for s in &self.signals {
+            for &(step, bits) in &s.uses {
+                *read_bits.entry(visible(&self.registered, &s.name, s.step, step)).or_default() |= bits;
+            }
             let last_use = s.uses.iter().map(|u| u.0).max().unwrap_or(s.step).max(s.step);
             if last_use > last {
                 continue;
             }
             let read = s.uses.iter().filter(|u| u.0 == last_use).fold(0u128, |m, u| m | u.1);
-            let unread = mask(s.width) & !read;
-            if unread == 0 {
-                continue;
-            }
-            let v = visible(&self.registered, &s.name, s.step, last_use);
-            let mut b = s.width;
-            while b > 0 {
-                b -= 1;
-                if unread >> b & 1 == 1 {
-                    let hi = b;
-                    while b > 0 && unread >> (b - 1) & 1 == 1 {
-                        b -= 1;
-                    }
-                    parts.push(if s.width == 1 {
-                        v.clone()
-                    } else if hi == b {
-                        format!("{v}[{b}]")
-                    } else {
-                        format!("{v}[{hi}:{b}]")
-                    });
-                }
-            }
+            unused.extend(bit_ranges(&visible(&self.registered, &s.name, s.step, last_use), s.width, mask(s.width) & !read));
         }
-        let lines: Vec<String> = parts.chunks(4).map(|c| c.join(", ")).collect();
-        let unused = (!parts.is_empty()).then(|| format!("^{{\n    {}\n}}", lines.join(",\n    ")));
         let live = (1..=last)
             .map(|k| {
                 self.signals
@@ -850,7 +862,7 @@ impl Builder {
                 })
             })
             .collect();
-        Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live, unused, outputs, registered: self.registered }
+        Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live, unused, read_bits, outputs, registered: self.registered }
     }
 }
 
@@ -893,7 +905,9 @@ mod tests {
         assert_eq!(d.live[0].iter().map(|l| (l.name.as_str(), l.source.as_str())).collect::<Vec<_>>(), [("x", "x"), ("y", "y_s1")]);
         assert_eq!(d.live[1].iter().map(|l| l.name.as_str()).collect::<Vec<_>>(), ["z"]);
         // step 2 reads x through the register of cut 1; bits 7:1 are left for the sink
-        assert_eq!(d.unused.as_deref(), Some("^{\n    x_c1[7:1]\n}"));
+        assert_eq!(d.unused, ["x_c1[7:1]"]);
+        assert_eq!(d.read_bits["x_c1"], 1);
+        assert_eq!(d.read_bits["x"], 0xf0);
         assert_eq!(d.outputs, [("z".to_string(), "z_s2".to_string())]);
     }
 

@@ -111,8 +111,8 @@ fn injected_faults_are_caught() {
         (
             "valid_late",
             &["--stages", "2"],
-            "assign out_valid = valid_c8;",
-            "reg valid_late;\nalways @(posedge clk) valid_late <= valid_c8;\nassign out_valid = valid_late;",
+            "assign out_valid = valid_line[1];",
+            "reg valid_late;\nalways @(posedge clk) valid_late <= valid_line[1];\nassign out_valid = valid_late;",
             random,
         ),
     ];
