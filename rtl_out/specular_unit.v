@@ -10,7 +10,10 @@
 // Rounding:   faithful: every output within 1 ulp of the exact value (|o - o*| < 1)
 // Latency:    0 clock cycle(s) (combinational).
 // Datapath:   lean (widths from the error budget); bracket UQ1.17, square UQ1.16 (colours UQ1.9); registered after
-//     steps [none].
+//     steps [none]: a register is
+//             named x_cK after step K (a wire of step K is x_sK); a signal that waits through
+//             several cuts is one shift register x_line, its element j holding x after the
+//             j-th of them.
 // Tables:     read with $readmemh from the files named by the parameters below, resolved
 //             against the simulator's or synthesis tool's working directory; a missing or
 //             short file stops the simulation with an error naming it.
@@ -143,17 +146,14 @@ wire [31:0] square_z_s10 = {16'h0, bracket_s7[17:2]} * {16'h0, bracket_s7[17:2]}
 wire [16:0] square_s11 = square_z_s10[30:14];   // UQ1.16: S = bracket^2 floored to 2^-16 (truncation #2)
 // UQ1.9: all the colours' budget needs (saves 7 bits per colour multiplier)
 wire [9:0] color_square_s11 = square_s11[16:7];
-// UQ8.9: S * ks_r + 1/2 colour ulp (round half up; the add inside the DSP)
-wire [16:0] color_sum_r_s11 = {7'h0, color_square_s11} * {9'h0, ks_r} + 17'h100;
-// UQ8.9: S * ks_g + 1/2 colour ulp (round half up; the add inside the DSP)
-wire [16:0] color_sum_g_s11 = {7'h0, color_square_s11} * {9'h0, ks_g} + 17'h100;
-// UQ8.9: S * ks_b + 1/2 colour ulp (round half up; the add inside the DSP)
-wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b} + 17'h100;
+wire [16:0] color_sum_r_s11 = {7'h0, color_square_s11} * {9'h0, ks_r} + 17'h100;   // UQ8.9: S*ks_r + 1/2 colour ulp
+wire [16:0] color_sum_g_s11 = {7'h0, color_square_s11} * {9'h0, ks_g} + 17'h100;   // UQ8.9: S*ks_g + 1/2 colour ulp
+wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b} + 17'h100;   // UQ8.9: S*ks_b + 1/2 colour ulp
 
 // ==== step 12: colour results; intensity rounding: chunk sums ====
-wire [7:0] spec_r_s12 = color_sum_r_s11[16:9];   // UNORM8: S * ks_r rounded half up
-wire [7:0] spec_g_s12 = color_sum_g_s11[16:9];   // UNORM8: S * ks_g rounded half up
-wire [7:0] spec_b_s12 = color_sum_b_s11[16:9];   // UNORM8: S * ks_b rounded half up
+wire [7:0] spec_r_s12 = color_sum_r_s11[16:9];   // UNORM8: S*ks_r rounded half up
+wire [7:0] spec_g_s12 = color_sum_g_s11[16:9];   // UNORM8: S*ks_g rounded half up
+wire [7:0] spec_b_s12 = color_sum_b_s11[16:9];   // UNORM8: S*ks_b rounded half up
 // bits [5:0] and their carry above bit 0, carry-in 1
 wire [7:0] intensity_sum_part0_s12 = {1'b0, square_s11[5:0], 1'b1} + 8'h1;
 wire [6:0] intensity_sum_part1_s12 = {1'b0, square_s11[11:6]};   // bits [11:6] and their carry, carry-in 0

@@ -49,20 +49,35 @@ pub struct Cut {
 }
 
 impl Cut {
-    /// The declarations of the single registers, those of one width in one statement.
-    pub fn declarations(&self) -> Vec<String> {
-        let mut widths: Vec<u32> = self.signals.iter().map(|s| s.width).collect();
-        widths.dedup();
-        widths.sort_unstable();
-        widths.dedup();
-        widths
-            .into_iter()
-            .map(|w| {
-                let names: Vec<String> = self.signals.iter().filter(|s| s.width == w).map(|s| format!("{}_c{}", s.name, self.index)).collect();
-                let range = if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
-                format!("reg  {range} {};", names.join(", "))
-            })
-            .collect()
+    /// Every register that starts here, one line each: a single register with the always
+    /// block that loads it, or a delay line (its shift, the cuts it spans, the wires of the
+    /// registers something reads, several to a statement). Element j of a delay line, from
+    /// the bottom, holds the signal after the j-th cut it spans.
+    pub fn lines(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let range = |w: u32| if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
+        for s in &self.signals {
+            let reg = format!("{}_c{}", s.name, self.index);
+            out.push(format!("reg  {} {reg};   always @(posedge clk) {reg} <= {};", range(s.width), s.source));
+        }
+        for l in &self.lines {
+            let line = format!("{}_line", l.name);
+            let reg = format!("reg  {} {line};   always @(posedge clk) {line} <= {};", range(l.width * l.depth), l.shift);
+            let what = format!("// {} through cuts {}..{}", l.name, l.first, l.last);
+            if reg.len() + 3 + what.len() <= MAX_LINE {
+                out.push(format!("{reg}   {what}"));
+            } else {
+                out.push(what);
+                out.push(reg);
+            }
+            let taps: Vec<String> =
+                l.taps.iter().map(|(tap, hi, lo)| if hi == lo { format!("{tap} = {line}[{hi}]") } else { format!("{tap} = {line}[{hi}:{lo}]") }).collect();
+            if !taps.is_empty() {
+                let w = if l.width == 1 { "      ".to_string() } else { format!("[{}:0]", l.width - 1) };
+                out.push(format!("wire {w} {};", taps.join(", ")));
+            }
+        }
+        out
     }
 
     /// Whether anything is registered first here.
@@ -149,6 +164,9 @@ pub const MAX_LINE: usize = 120;
 fn wire_statement(x: &Wire, step: usize) -> String {
     let range = if x.width == 1 { "      ".to_string() } else { format!("[{}:0]", x.width - 1) };
     let stmt = format!("wire {range} {}_s{step} = {};", x.name, x.expr);
+    // an expression written one operand a line reads as one line when it fits one
+    let joined = stmt.replace("\n    ", " ");
+    let stmt = if joined.chars().count() <= MAX_LINE { joined } else { stmt };
     if x.comment.is_empty() {
         return stmt;
     }
@@ -662,7 +680,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         files.push((t.file.clone(), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
     }
     files.push((format!("{top}.core"), core.into_bytes()));
-    let fidelity = crate::models::blinn_fidelity(&plan.model);
+    let fidelity = plan.model.fidelity();
     let manifest = Manifest {
         generator: "specgen",
         version: VERSION,

@@ -434,7 +434,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
     let rows: Vec<ModelComparison> = models
         .iter()
         .map(|(m, what)| {
-            let f = crate::models::blinn_fidelity(m);
+            let f = m.fidelity();
             let name = m.cfg.model().name();
             fids.push((name.to_string(), f.per_n_max.clone()));
             ModelComparison {

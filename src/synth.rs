@@ -330,19 +330,19 @@ pub type StageTrials = Vec<(u32, Option<f64>)>;
 
 /// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (with DSPs and
 /// nextpnr, on the ECP5-25 for `--target ecp5`, else the iCE40 UP5K) and returns the shallowest whose Fmax reaches `mhz`, with every try.
-pub fn pick_stages(params: &crate::config::Params, mhz: f64) -> Result<(u32, StageTrials), Failure> {
+/// The model of `plan` is made once: every depth reuses it (and its fidelity figures).
+pub fn pick_stages(plan: &crate::plan::Plan, mhz: f64) -> Result<(u32, StageTrials), Failure> {
     require("yosys", "yosys")?;
-    let target = if params.target == Target::Ecp5 { Target::Ecp5 } else { Target::Ice40 };
+    let target = if plan.cfg.target() == Target::Ecp5 { Target::Ecp5 } else { Target::Ice40 };
     let part = if target == Target::Ecp5 { "ECP5-25" } else { "iCE40 UP5K" };
     Pnr::find(target).map_err(usage)?;
-    let max = crate::plan::Plan::from_params(crate::config::Params { stages: 0, ..params.clone() })?.cut_points;
     let mut tries = Vec::new();
-    for stages in 0..=max {
-        let plan = crate::plan::Plan::from_params(crate::config::Params { stages, ..params.clone() })?;
+    for stages in 0..=plan.cut_points {
+        let plan = plan.with_stages(stages)?;
         let dir = tempfile::tempdir().map_err(|e| failed(e.to_string()))?;
         let out = dir.path().join("rtl");
         emit::write_dir_atomically(&out, &emit::generate_files(&plan)).map_err(|e| failed(e.to_string()))?;
-        let design = Design::load(&out)?;
+        let design = Design::with_plan(&out, plan)?;
         // one seed per depth: the search is a guide; quote a depth's Fmax with `synth --seeds`
         let r = synthesize(&design, target, true, "yosys", 1, None)?;
         eprintln!("target-mhz: stages {stages}: Fmax {}", r.fmax_mhz.map(|f| format!("{f:.1} MHz")).unwrap_or_else(|| r.fmax_note.clone()));

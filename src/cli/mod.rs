@@ -271,17 +271,17 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<()
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Generate { out, target_mhz, params, rtl } => {
-            let mut cfg = params.to_config(Some(&rtl))?;
+            let cfg = params.to_config(Some(&rtl))?;
+            // the plan: model, widths, registers, datapath, built once; --stages checked here
+            let mut plan = Plan::new(cfg)?;
             if let Some(mhz) = target_mhz {
                 if !(mhz > 0.0 && mhz <= 1000.0) {
                     return Err(usage(format!("invalid --target-mhz: {mhz}; allowed (0, 1000]")));
                 }
-                let (stages, _) = specgen::synth::pick_stages(&cfg.params, mhz)?;
-                cfg = Config::new(Params { stages, ..cfg.params.clone() })?;
+                let (stages, _) = specgen::synth::pick_stages(&plan, mhz)?;
+                plan = plan.with_stages(stages)?;
                 eprintln!("target-mhz: chose --stages {stages}");
             }
-            // the plan: model, widths, registers, datapath, built once; --stages checked here
-            let plan = Plan::new(cfg)?;
             let files = emit::generate_files(&plan);
             write_output(&out, &files)?;
             for (name, _) in &files {

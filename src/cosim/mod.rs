@@ -52,7 +52,29 @@ impl Design {
 }
 
 impl Design {
+    /// The RTL in `dir` with the plan its manifest states.
     pub fn load(dir: &Path) -> Result<Design, Error> {
+        let (path, text, sources, sim_models) = Design::files(dir)?;
+        let params = Params::from_json(&text).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
+        let plan = crate::plan::Plan::from_params(params).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
+        let cfg = plan.cfg.clone();
+        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
+    }
+
+    /// The RTL in `dir`, written from `plan` (its manifest must state the same parameters): the
+    /// plan is taken as it is, not made again.
+    pub fn with_plan(dir: &Path, plan: crate::plan::Plan) -> Result<Design, Error> {
+        let (path, text, sources, sim_models) = Design::files(dir)?;
+        let params = Params::from_json(&text).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
+        if params != plan.cfg.params {
+            return Err(usage(format!("manifest {} is not the plan's configuration", path.display())));
+        }
+        let cfg = plan.cfg.clone();
+        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
+    }
+
+    /// The manifest (path, text), the Verilog sources and the simulation models in `dir`.
+    fn files(dir: &Path) -> Result<(PathBuf, String, Vec<PathBuf>, Vec<PathBuf>), Error> {
         let entries = std::fs::read_dir(dir).map_err(|e| usage(format!("cannot read --rtl {}: {e}", dir.display())))?;
         let mut manifests = Vec::new();
         let mut sources = Vec::new();
@@ -82,10 +104,7 @@ impl Design {
         if sources.is_empty() {
             return Err(usage(format!("no Verilog (*.v) in --rtl {}", dir.display())));
         }
-        let params = Params::from_json(&text).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
-        let plan = crate::plan::Plan::from_params(params).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
-        let cfg = plan.cfg.clone();
-        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
+        Ok((path, text, sources, sim_models))
     }
 }
 

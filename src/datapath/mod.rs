@@ -542,6 +542,35 @@ impl Builder {
         self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
     }
 
+    /// The colour multipliers (14–16) with the colours' rounding half as their addend, one
+    /// multiply-add each (on a DSP block, the add is its post-adder):
+    /// `color_sum_X = v·ks_X + 2^(wc−1)`, `B + wc` bits, for the `wc + 1`-bit UQ1.wc signal `v`
+    /// (`what` names the value in the comments). [`Builder::colour_results`] takes the outputs.
+    pub fn colour_sums(&mut self, v: &str, wc: u32, what: &str) {
+        let bb = self.colour_bits();
+        let cp = wc + bb;
+        for ch in CHANNELS {
+            let (sv, kv) = (self.zext(v, cp), self.zext(&format!("ks_{ch}"), cp));
+            let comment = format!("UQ{bb}.{wc}: {what}*ks_{ch} + 1/2 colour ulp");
+            self.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &comment);
+        }
+    }
+
+    /// The colour outputs `spec_X` from `color_sum_X` (`B + wc` bits, the rounding half in it):
+    /// its top B bits, the colour rounded half up.
+    pub fn colour_results(&mut self, wc: u32, what: &str) {
+        let bb = self.colour_bits();
+        for ch in CHANNELS {
+            let e = self.bits(&format!("color_sum_{ch}"), wc + bb - 1, wc);
+            self.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: {what}*ks_{ch} rounded half up"));
+        }
+    }
+
+    /// B: the width of the colour ports.
+    fn colour_bits(&self) -> u32 {
+        self.signals.iter().find(|s| s.name == "ks_r").expect("the colour ports are inputs").width
+    }
+
     /// `name = v²` for the `r`-bit field `v = sig[lo..lo+r)`, by a table of 2^r entries in
     /// LUTs (no multiply, no carry chain): one LUT level for small `r`.
     pub fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {

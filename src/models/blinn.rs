@@ -54,7 +54,7 @@
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, lit, mask};
 use crate::config::Config;
-use crate::datapath::{mul_delay, Builder, Piece, CHANNELS, LUT_DELAY};
+use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY};
 use crate::table::Table;
 use serde::Serialize;
 
@@ -722,11 +722,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let wc = w.color_frac_bits;
     let cs = b.bits("power", we, we - wc);
     b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: c^n floored to what the colours' budget needs"));
-    let cp = wc + bb;
-    for ch in CHANNELS {
-        let (sv, kv) = (b.zext("color_power", cp), b.zext(&format!("ks_{ch}"), cp));
-        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &format!("UQ{bb}.{wc}: c^n*ks_{ch} + 1/2 colour ulp"));
-    }
+    b.colour_sums("color_power", wc, "c^n");
     b.delay(mul_delay(wc + 1, bb));
     // a step of its own, from a copy of c^n of its own: the register that feeds the colour
     // multipliers sits by the DSP column
@@ -754,10 +750,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let sum = b.resolve(p, "the intensity rounded half up");
     let zeros: Vec<String> = groups.iter().map(|g| b.r(g)).collect();
     b.wire("done", 1, zeros.join(" & "), "the highlight is below the output's resolution (the intensity rounds to 0)");
-    for ch in CHANNELS {
-        let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wc);
-        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: c^n*ks_{ch} rounded half up"));
-    }
+    b.colour_results(wc, "c^n");
     let e = b.bits(&sum, fi + 1, 1);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
 }

@@ -6,7 +6,7 @@
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, mul_delay, Builder, CHANNELS, LUT_DELAY};
+use crate::datapath::{add_delay, mul_delay, Builder, LUT_DELAY};
 
 /// W for `--model blinn-pow` (square-and-multiply over the bits of n, LSB first, every
 /// product truncated to W fractional bits, c taken exactly: W ≥ F).
@@ -145,12 +145,8 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
     let e = b.bits("intensity_sum", pw, pw - fi);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
     let cp = pw + bb;
-    for ch in CHANNELS {
-        let (sv, kv) = (b.zext(&r, cp), b.zext(&format!("ks_{ch}"), cp));
-        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (pw - 1))), &format!("UQ{bb}.{pw}: c^n*ks_{ch} + 1/2 colour ulp"));
-        let s = b.bits(&format!("color_sum_{ch}"), cp - 1, pw);
-        b.wire(&format!("spec_{ch}"), bb, s, &format!("UNORM{bb}: c^n*ks_{ch} rounded half up"));
-    }
+    b.colour_sums(&r, pw, "c^n");
+    b.colour_results(pw, "c^n");
     let iv = b.r("intensity");
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
     b.delay(mul_delay(pw + 1, bb) + add_delay(cp));

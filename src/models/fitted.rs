@@ -38,7 +38,7 @@
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, mul_delay, Builder, Piece, CHANNELS, LUT_DELAY, MAX_SQUARER_SPLIT};
+use crate::datapath::{add_delay, mul_delay, Builder, Piece, LUT_DELAY, MAX_SQUARER_SPLIT};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -432,12 +432,8 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let cs = b.bits(&s, wf, wf - wc);
     b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: S floored to what the colours' budget needs"));
     let cp = wc + bb;
-    for ch in CHANNELS {
-        let (sv, kv) = (b.zext("color_power", cp), b.zext(&format!("ks_{ch}"), cp));
-        b.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &format!("UQ{bb}.{wc}: S*ks_{ch} + 1/2 colour ulp"));
-        let e = b.bits(&format!("color_sum_{ch}"), cp - 1, wc);
-        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S*ks_{ch} rounded half up"));
-    }
+    b.colour_sums("color_power", wc, "S");
+    b.colour_results(wc, "S");
     let sv = b.r(&s);
     b.wire(
         "intensity_sum",

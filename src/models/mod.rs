@@ -20,7 +20,7 @@ use crate::bits::mask;
 use crate::config::{Config, Rounding, SpecularModel};
 use crate::datapath::Builder;
 pub use crate::ports::{Inputs, Outputs};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// What a model's header, manifest and `.core` say of it.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -90,12 +90,14 @@ pub fn unit(cfg: &Config) -> Arc<dyn SpecularUnit> {
 pub struct Model {
     pub cfg: Config,
     unit: Arc<dyn SpecularUnit>,
+    /// [`blinn_fidelity`], measured once and shared by every depth of the model
+    fidelity: Arc<OnceLock<Fidelity>>,
 }
 
 impl Model {
     /// The model of a configuration (its fit or tables made here).
     pub fn new(cfg: &Config) -> Model {
-        Model { cfg: cfg.clone(), unit: unit(cfg) }
+        Model { cfg: cfg.clone(), unit: unit(cfg), fidelity: Arc::default() }
     }
 
     /// This model under another configuration that differs only in `stages` (or nothing the
@@ -103,7 +105,12 @@ impl Model {
     pub fn with_config(&self, cfg: Config) -> Model {
         let same = |c: &Config| crate::config::Params { stages: 0, ..c.params.clone() };
         debug_assert_eq!(same(&cfg), same(&self.cfg), "only stages may differ");
-        Model { cfg, unit: self.unit.clone() }
+        Model { cfg, unit: self.unit.clone(), fidelity: self.fidelity.clone() }
+    }
+
+    /// How far this model is from Blinn's `cos^n` ([`blinn_fidelity`]), measured on first use.
+    pub fn fidelity(&self) -> &Fidelity {
+        self.fidelity.get_or_init(|| blinn_fidelity(self))
     }
 
     /// The model behind the trait.

@@ -306,26 +306,14 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add)");
     square_and_color_square(w, b, &full);
-    let cpb = w.color_product_bits;
-    for ch in CHANNELS {
-        let (cs, ks) = (b.zext("color_square", cpb), b.zext(&format!("ks_{ch}"), cpb));
-        b.wire(
-            &format!("color_sum_{ch}"),
-            cpb,
-            format!("{cs} * {ks} + {}", lit(cpb, 1u128 << (wsc - 1))),
-            &format!("UQ{bb}.{wsc}: S * ks_{ch} + 1/2 colour ulp (round half up; the add inside the DSP)"),
-        );
-    }
+    b.colour_sums("color_square", wsc, "S");
     b.delay(mul_delay(wsc + 1, bb));
     // the intensity rounding starts a step after the squarer's DSP: its output register
     // drives a fabric register across the long route out of the DSP column, not a carry chain
     let intensity_add = intensity_add(cfg, w, b);
 
     b.step("colour results; intensity rounding: chunk sums");
-    for ch in CHANNELS {
-        let e = b.bits(&format!("color_sum_{ch}"), cpb - 1, wsc);
-        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
-    }
+    b.colour_results(wsc, "S");
     b.delay(0.0);
     if let Some((a, width, comment)) = intensity_add {
         let p = b.add_start("intensity_sum", &a, &[], true, width, &comment);
@@ -451,7 +439,7 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("colour rounding (adders)");
     for ch in CHANNELS {
-        let add = b.add(
+        b.add(
             &format!("color_sum_{ch}"),
             &[Piece::sig(&format!("color_prod_{ch}"), 0, cpb)],
             &[Piece::Const { value: 1u128 << (wsc - 1), width: wsc }],
@@ -459,9 +447,8 @@ pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             cpb,
             &format!("UQ{bb}.{wsc}: S * ks_{ch} + 1/2 colour ulp (round half up)"),
         );
-        let e = b.bits(&add, cpb - 1, wsc);
-        b.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: S * ks_{ch} rounded half up"));
     }
+    b.colour_results(wsc, "S");
 }
 
 /// The seed's Fig. 5 taken literally: every bit kept, a general multiplier for k (34), a
@@ -526,9 +513,8 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     for ch in CHANNELS {
         let p = b.r(&format!("color_prod_{ch}"));
         b.wire(&format!("color_sum_{ch}"), cpb, format!("{p} + {}", lit(cpb, 1u128 << (ws - 1))), "+ 1/2 colour ulp (round half up)");
-        let s = b.bits(&format!("color_sum_{ch}"), cpb - 1, ws);
-        b.wire(&format!("spec_{ch}"), bb, s, &format!("UNORM{bb}"));
     }
+    b.colour_results(ws, "S");
     let e = if ws > fi {
         b.bits("intensity_sum", ws, ws - fi)
     } else {
