@@ -10,10 +10,9 @@
 // Rounding:   faithful: every output within 1 ulp of the exact value (|o - o*| < 1)
 // Latency:    0 clock cycle(s) (combinational).
 // Datapath:   lean (widths from the error budget); bracket UQ1.17, square UQ1.16 (colours UQ1.9); registered after
-//     steps [none]: a register is
-//             named x_cK after step K (a wire of step K is x_sK); a signal that waits through
-//             several cuts is one shift register x_line, its element j holding x after the
-//             j-th of them.
+//     steps [none]: the register
+//             after step K is x_cK (a wire of step K is x_sK); a signal that waits through
+//             several cuts is one delay line, its registers loaded in one statement.
 // Tables:     read with $readmemh from the files named by the parameters below, resolved
 //             against the simulator's or synthesis tool's working directory; a missing or
 //             short file stops the simulation with an error naming it.

@@ -118,3 +118,6 @@ for r in d['models']:
 print('\n' + d['premise'])
 PY
 echo "wrote BENCHMARKS-hw.md"
+# the speed claims the suite leaves to the bench (median over nextpnr seeds 1-5)
+echo "== the multi-seed Fmax claims (cargo test -- --ignored)"
+cargo test --release -q --test suite -- --ignored

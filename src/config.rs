@@ -577,7 +577,7 @@ const VERILOG_KEYWORDS: &[&str] = &[
 ];
 
 /// The unit's ports, and the shapes of its internal names: `x_sK` (a step's wire), `x_cK` (a
-/// cut), `x_line` (a delay line), the tables and their file handles, `unused_*`. A module named like one of them
+/// cut), `valid_line`, the tables and their file handles, `unused_*`. A module named like one of them
 /// would be hidden by it inside the module (Verilator VARHIDDEN).
 pub fn is_internal_name(name: &str) -> bool {
     const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom"];

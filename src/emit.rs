@@ -25,19 +25,15 @@ pub struct CutSignal {
     pub source: String,
 }
 
-/// A signal that waits through several registered cuts: one shift register, declared at the
-/// first of them, element j (from the bottom) holding the signal after the j-th.
+/// A signal that waits through several registered cuts: one delay line, declared at the first
+/// of them, its registers `x_cK` loaded in one statement, each from the one before.
 pub struct DelayLine {
     pub name: String,
     pub width: u32,
-    /// how many registers (cuts) deep
-    pub depth: u32,
-    pub first: usize,
-    pub last: usize,
-    /// `x_line <= {x_line[..], source}`
-    pub shift: String,
-    /// the registers read: (`x_cK`, hi, lo) bits of the line
-    pub taps: Vec<(String, u32, u32)>,
+    /// the registers, `x_cK` for each cut K it spans, in order
+    pub registers: Vec<String>,
+    /// what the first register takes (`x_sK`, a port, a block's output)
+    pub source: String,
 }
 
 pub struct Cut {
@@ -49,10 +45,9 @@ pub struct Cut {
 }
 
 impl Cut {
-    /// Every register that starts here, one line each: a single register with the always
-    /// block that loads it, or a delay line (its shift, the cuts it spans, the wires of the
-    /// registers something reads, several to a statement). Element j of a delay line, from
-    /// the bottom, holds the signal after the j-th cut it spans.
+    /// Every register that starts here: a single register with the always block that loads
+    /// it, one line; or a delay line, its registers declared in one statement and loaded in
+    /// one, each from the one before.
     pub fn lines(&self) -> Vec<String> {
         let mut out = Vec::new();
         let range = |w: u32| if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
@@ -61,21 +56,12 @@ impl Cut {
             out.push(format!("reg  {} {reg};   always @(posedge clk) {reg} <= {};", range(s.width), s.source));
         }
         for l in &self.lines {
-            let line = format!("{}_line", l.name);
-            let reg = format!("reg  {} {line};   always @(posedge clk) {line} <= {};", range(l.width * l.depth), l.shift);
-            let what = format!("// {} through cuts {}..{}", l.name, l.first, l.last);
-            if reg.len() + 3 + what.len() <= MAX_LINE {
-                out.push(format!("{reg}   {what}"));
-            } else {
-                out.push(what);
-                out.push(reg);
-            }
-            let taps: Vec<String> =
-                l.taps.iter().map(|(tap, hi, lo)| if hi == lo { format!("{tap} = {line}[{hi}]") } else { format!("{tap} = {line}[{hi}:{lo}]") }).collect();
-            if !taps.is_empty() {
-                let w = if l.width == 1 { "      ".to_string() } else { format!("[{}:0]", l.width - 1) };
-                out.push(format!("wire {w} {};", taps.join(", ")));
-            }
+            let (first, last) = (&l.registers[0], &l.registers[l.registers.len() - 1]);
+            out.push(format!("// {} waits through {} cuts: a delay line, each register taking the one before", l.name, l.registers.len()));
+            out.push(format!("reg  {} {};", range(l.width), l.registers.join(", ")));
+            let before: Vec<&str> = std::iter::once(l.source.as_str()).chain(l.registers[..l.registers.len() - 1].iter().map(String::as_str)).collect();
+            out.push(format!("always @(posedge clk) {{{}}} <= {{{}}};", l.registers.join(", "), before.join(", ")));
+            debug_assert!(first != last);
         }
         out
     }
@@ -355,9 +341,9 @@ pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let cfg = &plan.cfg;
     let p = &cfg.params;
     let dp = &plan.datapath;
-    let (cuts, unread_taps) = cut_list(dp);
+    let cuts = cut_list(dp);
     let outputs = dp.outputs.iter().map(|(port, src)| OutputView { port: port.clone(), source: src.clone() }).collect();
-    let unused: Vec<String> = dp.unused.iter().chain(&unread_taps).cloned().collect::<Vec<_>>().chunks(4).map(|c| c.join(", ")).collect();
+    let unused: Vec<String> = dp.unused.chunks(4).map(|c| c.join(", ")).collect();
     let file = p.rom_style == RomStyle::File;
     let file_tables = if file {
         dp.tables
@@ -481,9 +467,8 @@ fn block_table(dp: &datapath::Datapath, t: usize) -> bool {
 
 /// The registered cuts of a datapath, each with the signals it holds and where from: a signal
 /// that only waits (registered at several cuts, each taking the one before) is one
-/// [`DelayLine`] at the first of them, with a wire for each register something reads.
-/// Returns the cuts and the bits of those taps nobody reads (for the lint sink).
-fn cut_list(dp: &datapath::Datapath) -> (Vec<Cut>, Vec<String>) {
+/// [`DelayLine`] at the first of them.
+fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
     let mut cuts: Vec<Cut> =
         (1..=dp.live.len()).map(|index| Cut { index, registered: dp.registered.contains(&(index as u32)), signals: Vec::new(), lines: Vec::new() }).collect();
     // each signal's chain of registers: the cuts holding it, in order, and the first source
@@ -501,32 +486,16 @@ fn cut_list(dp: &datapath::Datapath) -> (Vec<Cut>, Vec<String>) {
             }
         }
     }
-    let mut unread = Vec::new();
     for (name, width, source, at) in chains {
         let first = at[0];
         if at.len() == 1 {
             cuts[first - 1].signals.push(CutSignal { name, width, source });
-            continue;
+        } else {
+            let registers = at.iter().map(|k| format!("{name}_c{k}")).collect();
+            cuts[first - 1].lines.push(DelayLine { name, width, registers, source });
         }
-        let depth = at.len();
-        let mut taps = Vec::new();
-        for (j, &cut) in at.iter().enumerate() {
-            let reg = format!("{name}_c{cut}");
-            let read = dp.read_bits.get(&reg).copied().unwrap_or(0);
-            if read == 0 {
-                continue;
-            }
-            // the last register's unread bits are in the datapath's own sink already
-            if j + 1 < depth {
-                unread.extend(datapath::bit_ranges(&reg, width, mask(width) & !read));
-            }
-            let lo = j as u32 * width;
-            taps.push((reg, lo + width - 1, lo));
-        }
-        let shift = format!("{{{name}_line[{}:0], {source}}}", (depth as u32 - 1) * width - 1);
-        cuts[first - 1].lines.push(DelayLine { name, width, depth: depth as u32, first, last: at[depth - 1], shift, taps });
     }
-    (cuts, unread)
+    cuts
 }
 
 #[derive(Template)]

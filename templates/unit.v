@@ -11,10 +11,9 @@
 {%- endfor %}
 // Rounding:   {{ rounding_text }}
 // Latency:    {{ p.stages }} clock cycle(s){% if p.stages == 0 %} (combinational){% else %}, one result per cycle; rst clears only the valid pipeline{% endif %}.
-// Datapath:   {{ datapath_line }}; registered after steps [{{ cuts_text }}]: a register is
-//             named x_cK after step K (a wire of step K is x_sK); a signal that waits through
-//             several cuts is one shift register x_line, its element j holding x after the
-//             j-th of them.
+// Datapath:   {{ datapath_line }}; registered after steps [{{ cuts_text }}]: the register
+//             after step K is x_cK (a wire of step K is x_sK); a signal that waits through
+//             several cuts is one delay line, its registers loaded in one statement.
 {%- if dsp_module %}
 // Products:   on ECP5 MULT18X18D blocks with their own registers ({{ top }}_mult18x18.v); simulate
 //             with a MULT18X18D model (Lattice's, or ecp5_mult18x18d_sim.v, written beside).
