@@ -144,12 +144,11 @@ fn verify_passes_real_netlists_and_catches_a_broken_one() {
     let tmp = tempfile::tempdir().unwrap();
     let rtl = generate(tmp.path(), "u", &["--stages", "13"]);
     // (the ECP5 netlist is verified in targets::ecp5_unit_keeps_its_registers_in_the_blocks…)
-    for target in ["ice40"] {
-        let o = specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--target", target, "--rtl"]).arg(&rtl).output().unwrap();
-        let text = String::from_utf8_lossy(&o.stdout);
-        assert!(o.status.success(), "{target}: {text}{}", String::from_utf8_lossy(&o.stderr));
-        assert_eq!(text.matches(", 0 mismatches").count(), 2, "{target}: Verilator and Icarus\n{text}");
-    }
+    let target = "ice40";
+    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--target", target, "--rtl"]).arg(&rtl).output().unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{target}: {text}{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(text.matches(", 0 mismatches").count(), 2, "{target}: Verilator and Icarus\n{text}");
     let yosys = broken_yosys(&tmp.path().join("broken"));
     let o =
         specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--rtl"]).arg(&rtl).arg("--yosys").arg(&yosys).output().unwrap();
