@@ -6,7 +6,8 @@
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
-/// An invalid parameter: names the parameter and what it may be. Exit code 2.
+/// An invalid parameter: names the parameter (its name in SPEC §2, as in the manifest) and
+/// what it may be.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ConfigError {
     pub parameter: &'static str,
@@ -15,7 +16,7 @@ pub struct ConfigError {
 
 impl fmt::Display for ConfigError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "invalid --{}: {}", self.parameter.replace('_', "-"), self.message)
+        write!(f, "invalid {}: {}", self.parameter, self.message)
     }
 }
 
@@ -285,13 +286,13 @@ impl Config {
             if params.rounding == Rounding::Exact {
                 return Err(ConfigError {
                     parameter: "rounding",
-                    message: format!("exact is not available with --model {}; allowed: faithful", params.model.name()),
+                    message: format!("exact is not available with the {} model; allowed: faithful", params.model.name()),
                 });
             }
             if params.arch == Arch::Paper {
                 return Err(ConfigError {
                     parameter: "arch",
-                    message: format!("paper applies to --model quadratic only; allowed with {}: lean", params.model.name()),
+                    message: format!("paper applies to the quadratic model only; allowed with {}: lean", params.model.name()),
                 });
             }
         }
@@ -577,8 +578,8 @@ const VERILOG_KEYWORDS: &[&str] = &[
 ];
 
 /// The unit's ports, and the shapes of its internal names: `x_sK` (a step's wire), `x_cK` (a
-/// cut), `valid_line`, the tables and their file handles, `unused_*`. A module named like one of them
-/// would be hidden by it inside the module (Verilator VARHIDDEN).
+/// cut), `valid_line`, the tables and their file handles, `unused_*`. A module named like one
+/// of them would be hidden by it inside the module (Verilator VARHIDDEN).
 pub fn is_internal_name(name: &str) -> bool {
     const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom"];
     let step_or_cut = name
@@ -590,6 +591,7 @@ pub fn is_internal_name(name: &str) -> bool {
         || name.starts_with("unused_")
         || name.ends_with("_fd")
         || name.ends_with("_FILE")
+        || name == "valid_line"
 }
 
 /// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.

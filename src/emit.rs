@@ -6,13 +6,13 @@
 use crate::bits::{lit, mask};
 use crate::config::{Params, RomStyle};
 use crate::datapath::{self, Wire};
+pub use crate::error::OutputError;
 use crate::plan::Plan;
 use crate::ports::Port;
 use crate::rom::{self, RomFormat};
 use askama::Template;
 use serde::Serialize;
 use sha2::{Digest, Sha256};
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -668,30 +668,6 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     json.push('\n');
     files.push((format!("{top}.json"), json.into_bytes()));
     files
-}
-
-/// Why an output directory was refused.
-#[derive(Debug)]
-pub enum OutputError {
-    /// DIR holds something that is not a previous specgen output (exit code 2).
-    Occupied(PathBuf, String),
-    /// Another specgen is writing into the same parent directory right now (exit code 1).
-    Busy(PathBuf),
-    Io(std::io::Error),
-}
-
-impl fmt::Display for OutputError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            OutputError::Occupied(dir, why) => {
-                write!(f, "refusing to write into --out {}: {why}; only an empty directory or a previous specgen output is replaced", dir.display())
-            }
-            OutputError::Busy(dir) => {
-                write!(f, "another specgen is writing into {} at this moment; nothing written (try again when it has finished)", dir.display())
-            }
-            OutputError::Io(e) => write!(f, "{e}"),
-        }
-    }
 }
 
 impl From<std::io::Error> for OutputError {

@@ -1,29 +1,29 @@
-//! The crate's one error type: every stage returns it, the command line turns it into a
-//! message (with its causes) and an exit code.
+//! The crate's one error type: every stage returns it. Its variants say what went wrong in
+//! the library's terms (a parameter, the user's input, an output directory, a tool, a failed
+//! check, a file); the command line turns them into messages with flag names and exit codes.
 
 use std::fmt;
 use std::path::PathBuf;
 
-/// What went wrong, and so which exit code the command line gives.
+/// What went wrong.
 #[derive(Debug)]
 pub enum Error {
-    /// A parameter out of its range or malformed (exit 2).
-    Parameter(crate::config::ConfigError),
-    /// Arguments that cannot work together, or input that is not what it must be (exit 2).
-    Usage(String),
-    /// A check ran and failed: a mismatch, a tool's error, a contract broken (exit 1).
-    CheckFailed(String),
-    /// Reading or writing a file failed (exit 1).
+    /// A parameter out of its range or malformed.
+    Config(crate::config::ConfigError),
+    /// Something the user gave is not what it must be: a directory without a manifest,
+    /// arguments that cannot work together, a file of the wrong kind.
+    Input(String),
+    /// An output directory that is not ours to replace, or is being written.
+    Output(OutputError),
+    /// An external tool is missing, failed, or said something unexpected (its own text kept).
+    Tool { tool: String, message: String },
+    /// A check ran and failed: a mismatch with the golden model, a contract broken.
+    Mismatch(String),
+    /// Reading or writing a file failed.
     Io { action: &'static str, path: PathBuf, source: std::io::Error },
 }
 
 impl Error {
-    pub fn exit_code(&self) -> i32 {
-        match self {
-            Error::Parameter(_) | Error::Usage(_) => 2,
-            Error::CheckFailed(_) | Error::Io { .. } => 1,
-        }
-    }
     pub fn io(action: &'static str, path: impl Into<PathBuf>, source: std::io::Error) -> Error {
         Error::Io { action, path: path.into(), source }
     }
@@ -32,8 +32,10 @@ impl Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Error::Parameter(e) => write!(f, "{e}"),
-            Error::Usage(m) | Error::CheckFailed(m) => write!(f, "{m}"),
+            Error::Config(e) => write!(f, "{e}"),
+            Error::Output(e) => write!(f, "{e}"),
+            Error::Input(m) | Error::Mismatch(m) => write!(f, "{m}"),
+            Error::Tool { message, .. } => write!(f, "{message}"),
             Error::Io { action, path, .. } => write!(f, "cannot {action} {}", path.display()),
         }
     }
@@ -43,6 +45,7 @@ impl std::error::Error for Error {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             Error::Io { source, .. } => Some(source),
+            Error::Output(OutputError::Io(e)) => Some(e),
             _ => None,
         }
     }
@@ -50,18 +53,53 @@ impl std::error::Error for Error {
 
 impl From<crate::config::ConfigError> for Error {
     fn from(e: crate::config::ConfigError) -> Self {
-        Error::Parameter(e)
+        Error::Config(e)
     }
 }
 
-/// A usage error (exit 2).
-pub fn usage(message: impl Into<String>) -> Error {
-    Error::Usage(message.into())
+impl From<OutputError> for Error {
+    fn from(e: OutputError) -> Self {
+        Error::Output(e)
+    }
 }
 
-/// A failed check (exit 1).
-pub fn failed(message: impl Into<String>) -> Error {
-    Error::CheckFailed(message.into())
+/// Why an output directory was refused, or could not be written.
+#[derive(Debug)]
+pub enum OutputError {
+    /// It holds something that is not a previous specgen output.
+    Occupied(PathBuf, String),
+    /// Another specgen is writing into the same parent directory right now.
+    Busy(PathBuf),
+    Io(std::io::Error),
+}
+
+impl fmt::Display for OutputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            OutputError::Occupied(dir, why) => {
+                write!(f, "refusing to write into {}: {why}; only an empty directory or a previous specgen output is replaced", dir.display())
+            }
+            OutputError::Busy(dir) => {
+                write!(f, "another specgen is writing into {} at this moment; nothing written (try again when it has finished)", dir.display())
+            }
+            OutputError::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// The user's input is not what it must be.
+pub fn input(message: impl Into<String>) -> Error {
+    Error::Input(message.into())
+}
+
+/// A check failed.
+pub fn mismatch(message: impl Into<String>) -> Error {
+    Error::Mismatch(message.into())
+}
+
+/// A tool is missing or failed.
+pub fn tool(tool: &str, message: impl Into<String>) -> Error {
+    Error::Tool { tool: tool.into(), message: message.into() }
 }
 
 /// The error and every cause under it, one per line after the first.

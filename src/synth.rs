@@ -3,7 +3,7 @@
 
 use crate::cosim::Design;
 use crate::emit;
-use crate::error::{failed, usage, Error as Failure};
+use crate::error::{self, input, mismatch, Error as Failure};
 use askama::Template;
 use serde::Serialize;
 use std::path::Path;
@@ -107,7 +107,7 @@ fn require(tool: &str, package: &str) -> Result<(), Failure> {
     if tool_exists(tool) {
         Ok(())
     } else {
-        Err(usage(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))
+        Err(input(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))
     }
 }
 
@@ -135,10 +135,10 @@ pub fn parse_stat(log: &str) -> Vec<(String, u64)> {
 }
 
 fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String, Failure> {
-    let out = Command::new(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| usage(format!("cannot run {yosys}: {e}")))?;
+    let out = Command::new(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| input(format!("cannot run {yosys}: {e}")))?;
     let log = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() {
-        return Err(failed(format!("yosys failed:\n{}{}", &log[log.len().saturating_sub(2000)..], String::from_utf8_lossy(&out.stderr))));
+        return Err(error::tool("yosys", format!("yosys failed:\n{}{}", &log[log.len().saturating_sub(2000)..], String::from_utf8_lossy(&out.stderr))));
     }
     Ok(log)
 }
@@ -167,7 +167,7 @@ pub fn target_for(design: &Design, asked: Option<Target>) -> Result<Target, Fail
     let generated = design.cfg.target();
     let primitives = design.plan.datapath.has_dsp_blocks() || design.plan.datapath.has_block_rams();
     match asked {
-        Some(t) if primitives && t != generated => Err(usage(format!(
+        Some(t) if primitives && t != generated => Err(input(format!(
             "invalid --target {}: the RTL in {} was generated with --target {} and instantiates its primitives (MULT18X18D, DP16KD); allowed: --target {}, or generate again",
             t.name(),
             design.dir.display(),
@@ -194,7 +194,7 @@ fn synth_command(target: Target, dsp: bool, top: &str) -> String {
 pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds: u32, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
     require(yosys, "yosys")?;
     let top = design.cfg.top().to_string();
-    let work = tempfile::tempdir().map_err(|e| usage(e.to_string()))?;
+    let work = tempfile::tempdir().map_err(|e| input(e.to_string()))?;
     let read = read_sources(design);
     let synth_cmd = |t: &str| synth_command(target, dsp, t);
     // area: the unit alone (the ROM file resolves against the RTL directory)
@@ -225,7 +225,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         cells,
     };
     if r.total_cells == 0 {
-        return Err(failed("synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
+        return Err(error::tool("yosys", "synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
     }
     // speed: the wrapped unit through place-and-route
     if seeds == 0 && target != Target::Generic {
@@ -241,7 +241,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     };
     let (tool, args) = (pnr.tool.as_str(), pnr.args);
     let wrap = work.path().join("specgen_synth_top.v");
-    std::fs::write(&wrap, wrapper(design)).map_err(|e| usage(e.to_string()))?;
+    std::fs::write(&wrap, wrapper(design)).map_err(|e| input(e.to_string()))?;
     let json = work.path().join("wrapped.json");
     run_yosys(yosys, &design.dir, &format!("{read} {}; {} -json {}", wrap.display(), synth_cmd("specgen_synth_top"), json.display()))?;
     // one nextpnr per seed, as many at a time as there are cores
@@ -253,7 +253,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
             .args(["--json", "wrapped.json"])
             .args(["--timing-allow-fail", "--freq", "12", "--seed", &seed.to_string()])
             .output()
-            .map_err(|e| failed(format!("cannot run {tool}: {e}")))?;
+            .map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
         let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
         log.push_str(&String::from_utf8_lossy(&out.stdout));
         Ok((out.status.success(), log))
@@ -335,13 +335,13 @@ pub fn pick_stages(plan: &crate::plan::Plan, mhz: f64) -> Result<(u32, StageTria
     require("yosys", "yosys")?;
     let target = if plan.cfg.target() == Target::Ecp5 { Target::Ecp5 } else { Target::Ice40 };
     let part = if target == Target::Ecp5 { "ECP5-25" } else { "iCE40 UP5K" };
-    Pnr::find(target).map_err(usage)?;
+    Pnr::find(target).map_err(input)?;
     let mut tries = Vec::new();
     for stages in 0..=plan.cut_points {
         let plan = plan.with_stages(stages)?;
-        let dir = tempfile::tempdir().map_err(|e| failed(e.to_string()))?;
+        let dir = tempfile::tempdir().map_err(|e| error::tool("yosys", e.to_string()))?;
         let out = dir.path().join("rtl");
-        emit::write_dir_atomically(&out, &emit::generate_files(&plan)).map_err(|e| failed(e.to_string()))?;
+        emit::write_dir_atomically(&out, &emit::generate_files(&plan)).map_err(|e| error::tool("yosys", e.to_string()))?;
         let design = Design::with_plan(&out, plan)?;
         // one seed per depth: the search is a guide; quote a depth's Fmax with `synth --seeds`
         let r = synthesize(&design, target, true, "yosys", 1, None)?;
@@ -355,7 +355,7 @@ pub fn pick_stages(plan: &crate::plan::Plan, mhz: f64) -> Result<(u32, StageTria
         Some(b) if b.1 >= x.1 => Some(b),
         _ => Some(x),
     });
-    Err(failed(match best {
+    Err(mismatch(match best {
         Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on {part}; the best is {f:.1} MHz at --stages {s}; nothing written"),
         None => format!("no pipeline depth could be placed on {part}; nothing written"),
     }))
@@ -364,7 +364,7 @@ pub fn pick_stages(plan: &crate::plan::Plan, mhz: f64) -> Result<(u32, StageTria
 /// yosys's data directory (cell models): `<bin>/../share/yosys` beside the binary, as yosys
 /// itself finds it, else `yosys-config --datdir`.
 fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
-    let which = Command::new("sh").arg("-c").arg(format!("command -v '{yosys}'")).output().map_err(|e| usage(format!("cannot look for {yosys}: {e}")))?;
+    let which = Command::new("sh").arg("-c").arg(format!("command -v '{yosys}'")).output().map_err(|e| input(format!("cannot look for {yosys}: {e}")))?;
     let bin = std::path::PathBuf::from(String::from_utf8_lossy(&which.stdout).trim());
     for candidate in
         [bin.parent().map(|d| d.join("../share/yosys")), std::fs::canonicalize(&bin).ok().and_then(|b| b.parent().map(|d| d.join("../share/yosys")))]
@@ -377,7 +377,7 @@ fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
     }
     match Command::new("yosys-config").arg("--datdir").output() {
         Ok(o) if o.status.success() => Ok(std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())),
-        _ => Err(failed(format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or yosys-config --datdir)"))),
+        _ => Err(error::tool(yosys, format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or yosys-config --datdir)"))),
     }
 }
 
@@ -399,13 +399,13 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
     use crate::cosim::{build, check_ports, random_stimulus, run_all, Simulator, Stimulus};
     require(yosys, "yosys")?;
     let top = design.cfg.top().to_string();
-    let work = tempfile::tempdir().map_err(|e| failed(e.to_string()))?;
+    let work = tempfile::tempdir().map_err(|e| error::tool("yosys", e.to_string()))?;
     let dir = work.path().join("netlist");
     std::fs::create_dir_all(&dir).map_err(|e| Failure::io("create", &dir, e))?;
     let netlist = dir.join(format!("{top}.v"));
     run_yosys(yosys, &design.dir, &format!("{}; {}; write_verilog -noattr {}", read_sources(design), synth_command(target, dsp, &top), netlist.display()))?;
     if !netlist.exists() {
-        return Err(failed(format!("{yosys} did not write the mapped netlist {}", netlist.display())));
+        return Err(error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())));
     }
     // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
     let datdir = yosys_datdir(yosys)?;

@@ -1,7 +1,7 @@
 //! `specgen cosim`: the command-line glue over [`specgen::cosim`].
 
+use super::{failed, Failure};
 use specgen::cosim::{build, check_ports, check_tables, describe, random_stimulus, run_all, write_trace, Design, Exhaustive, Simulator, Stimulus};
-use specgen::error::{failed, Error as Failure};
 use std::path::PathBuf;
 use std::time::Instant;
 

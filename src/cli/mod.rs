@@ -233,7 +233,27 @@ range_params!(
     param_max_squarings => config::MAX_SQUARINGS
 );
 
-pub use specgen::error::{failed, usage, Error as Failure};
+use specgen::error::OutputError;
+/// The CLI's names for the library's error constructors: a usage error is the user's input
+/// not being what it must be (exit 2), a failed check is a mismatch (exit 1).
+pub use specgen::error::{input as usage, mismatch as failed, Error as Failure};
+
+/// The exit code of an error: 2 for what the user must change (a parameter, an input, an
+/// occupied output directory), 1 for a check that failed, a tool's error, a file.
+fn exit_code(e: &Failure) -> i32 {
+    match e {
+        Failure::Config(_) | Failure::Input(_) | Failure::Output(OutputError::Occupied(..)) => 2,
+        Failure::Output(OutputError::Busy(_) | OutputError::Io(_)) | Failure::Tool { .. } | Failure::Mismatch(_) | Failure::Io { .. } => 1,
+    }
+}
+
+/// The message of an error and its causes, a parameter named by its flag.
+fn message(e: &Failure) -> String {
+    match e {
+        Failure::Config(c) => format!("invalid --{}: {}", c.parameter.replace('_', "-"), c.message),
+        _ => specgen::error::chain(e),
+    }
+}
 
 impl ParamArgs {
     /// The configuration: --config, then these flags, then `rtl`'s (when the command has them).
@@ -262,9 +282,8 @@ impl ParamArgs {
 /// Writes a whole output directory atomically; an occupied directory is a usage error.
 fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<(), Failure> {
     emit::write_dir_atomically(out, files).map_err(|e| match e {
-        emit::OutputError::Occupied(..) => usage(e.to_string()),
-        emit::OutputError::Busy(_) => failed(e.to_string()),
-        emit::OutputError::Io(io) => specgen::error::Error::io("write", out, io),
+        OutputError::Io(io) => Failure::io("write", out, io),
+        other => Failure::Output(other),
     })
 }
 
@@ -480,8 +499,8 @@ pub fn main() -> i32 {
     match run(cli) {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("specgen: error: {}", specgen::error::chain(&e));
-            e.exit_code()
+            eprintln!("specgen: error: {}", message(&e));
+            exit_code(&e)
         }
     }
 }

@@ -1,9 +1,9 @@
 //! `specgen synth`: the command-line glue over [`specgen::synth`].
 
+use super::{failed, Failure};
 use specgen::cosim::describe;
 use specgen::cosim::Design;
 use specgen::emit;
-use specgen::error::{failed, Error as Failure};
 use specgen::synth::{synthesize, table};
 use std::path::PathBuf;
 

@@ -2,7 +2,7 @@
 //! through them into a [`Checker`].
 
 use super::{Checker, Cycle, Design, Mismatch, Recorded, Report, Sampled, Simulator, Stimulus};
-use crate::error::{failed, usage, Error as Failure};
+use crate::error::{self, input, Error as Failure};
 use crate::models::{Model, Outputs};
 use sha2::{Digest, Sha256};
 use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
@@ -32,7 +32,7 @@ fn tool_version(tool: &str, package: &str) -> Result<String, Failure> {
     let out = Command::new(tool)
         .arg(if tool == "iverilog" { "-V" } else { "--version" })
         .output()
-        .map_err(|_| usage(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))?;
+        .map_err(|_| input(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))?;
     let text = String::from_utf8_lossy(&out.stdout);
     Ok(text.lines().next().unwrap_or("").to_string())
 }
@@ -61,7 +61,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     }
     for src in &design.sim_sources() {
         h.update(src.file_name().unwrap().to_string_lossy().as_bytes());
-        h.update(std::fs::read(src).map_err(|e| usage(format!("cannot read {}: {e}", src.display())))?);
+        h.update(std::fs::read(src).map_err(|e| input(format!("cannot read {}: {e}", src.display())))?);
     }
     let key: String = h.finalize().iter().take(12).map(|b| format!("{b:02x}")).collect();
     let root = cache_root();
@@ -69,16 +69,16 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     if dir.join("ok").exists() {
         return Ok(Built { simulator, dir, fresh: false });
     }
-    std::fs::create_dir_all(&root).map_err(|e| failed(format!("cannot create cache {}: {e}", root.display())))?;
+    std::fs::create_dir_all(&root).map_err(|e| error::tool("simulator", format!("cannot create cache {}: {e}", root.display())))?;
     let work = tempfile::Builder::new()
         .prefix(".build-")
         .tempdir_in(&root)
-        .map_err(|e| failed(format!("cannot create a build directory in {}: {e}", root.display())))?;
+        .map_err(|e| error::tool("simulator", format!("cannot create a build directory in {}: {e}", root.display())))?;
     let sources: Vec<PathBuf> = design.sim_sources().iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone())).collect();
     let mut cmd;
     match simulator {
         Simulator::Verilator => {
-            std::fs::write(work.path().join("harness.cpp"), harness).map_err(|e| failed(e.to_string()))?;
+            std::fs::write(work.path().join("harness.cpp"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
             cmd = Command::new("verilator");
             cmd.current_dir(work.path())
                 .args(["--cc", "--exe", "--build", "-O3", "--prefix", "Vdut", "--top-module", &top])
@@ -92,7 +92,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
             cmd.args(&sources).arg("harness.cpp");
         }
         Simulator::Icarus => {
-            std::fs::write(work.path().join("bench.v"), harness).map_err(|e| failed(e.to_string()))?;
+            std::fs::write(work.path().join("bench.v"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
             let c = &design.cfg;
             cmd = Command::new("iverilog");
             cmd.current_dir(work.path())
@@ -108,13 +108,13 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
             cmd.arg("bench.v").args(&sources);
         }
     }
-    let out = cmd.output().map_err(|e| failed(format!("cannot run {tool}: {e}")))?;
+    let out = cmd.output().map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
     if !out.status.success() {
         let log = String::from_utf8_lossy(&out.stderr);
         let tail: Vec<&str> = log.lines().rev().take(25).collect();
-        return Err(usage(format!("{tool} could not build the RTL in {}:\n{}", design.dir.display(), tail.into_iter().rev().collect::<Vec<_>>().join("\n"))));
+        return Err(input(format!("{tool} could not build the RTL in {}:\n{}", design.dir.display(), tail.into_iter().rev().collect::<Vec<_>>().join("\n"))));
     }
-    std::fs::write(work.path().join("ok"), b"").map_err(|e| failed(e.to_string()))?;
+    std::fs::write(work.path().join("ok"), b"").map_err(|e| error::tool("simulator", e.to_string()))?;
     let kept = work.keep();
     if std::fs::rename(&kept, &dir).is_err() {
         // another process built it at the same time: use theirs
@@ -166,7 +166,7 @@ pub fn run_one(
                 .stdout(Stdio::piped())
                 .stderr(Stdio::piped())
                 .spawn()
-                .map_err(|e| failed(format!("cannot start the Verilator harness: {e}")))?;
+                .map_err(|e| error::tool("verilator", format!("cannot start the Verilator harness: {e}")))?;
             let mut stdin = child.stdin.take().unwrap();
             let mut stdout = child.stdout.take().unwrap();
             let len = stim.len();
@@ -194,7 +194,7 @@ pub fn run_one(
                         let mut err = String::new();
                         let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
                         let _ = child.wait();
-                        return Err(failed(format!("the Verilator harness stopped after {t} of {len} cycles ({e}):\n{}", err.trim_end())));
+                        return Err(error::tool("verilator", format!("the Verilator harness stopped after {t} of {len} cycles ({e}):\n{}", err.trim_end())));
                     }
                     for k in 0..n {
                         checker.check(stim, t + k as u64, decode(&buf[k * OUT_RECORD..(k + 1) * OUT_RECORD]));
@@ -204,24 +204,24 @@ pub fn run_one(
                 }
                 Ok(())
             })?;
-            let status = child.wait().map_err(|e| failed(e.to_string()))?;
+            let status = child.wait().map_err(|e| error::tool("simulator", e.to_string()))?;
             if !status.success() {
                 let mut err = String::new();
                 let _ = child.stderr.take().unwrap().read_to_string(&mut err);
-                return Err(failed(format!("the Verilator harness failed ({status}): {err}")));
+                return Err(error::tool("verilator", format!("the Verilator harness failed ({status}): {err}")));
             }
         }
         Simulator::Icarus => {
-            let work = tempfile::tempdir().map_err(|e| failed(e.to_string()))?;
+            let work = tempfile::tempdir().map_err(|e| error::tool("simulator", e.to_string()))?;
             let vin = work.path().join("vectors.in");
             let vout = work.path().join("vectors.out");
             {
-                let mut w = std::io::BufWriter::new(std::fs::File::create(&vin).map_err(|e| failed(e.to_string()))?);
+                let mut w = std::io::BufWriter::new(std::fs::File::create(&vin).map_err(|e| error::tool("simulator", e.to_string()))?);
                 for i in 0..stim.len() {
                     let c = stim.cycle(i);
                     let x = c.inputs;
                     writeln!(w, "{:x} {:x} {:x} {:x} {:x} {:x} {:x}", c.valid as u8, c.rst as u8, x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2])
-                        .map_err(|e| failed(e.to_string()))?;
+                        .map_err(|e| error::tool("simulator", e.to_string()))?;
                 }
             }
             let out = Command::new("vvp")
@@ -231,19 +231,19 @@ pub fn run_one(
                 .arg(format!("+vec_in={}", vin.display()))
                 .arg(format!("+vec_out={}", vout.display()))
                 .output()
-                .map_err(|e| failed(format!("cannot run vvp (Debian package `iverilog`): {e}")))?;
+                .map_err(|e| error::tool("vvp", format!("cannot run vvp (Debian package `iverilog`): {e}")))?;
             if !out.status.success() {
-                return Err(failed(format!("vvp failed: {}", String::from_utf8_lossy(&out.stderr))));
+                return Err(error::tool("vvp", format!("vvp failed: {}", String::from_utf8_lossy(&out.stderr))));
             }
             let said = String::from_utf8_lossy(&out.stdout);
-            let file = std::fs::File::open(&vout).map_err(|e| failed(format!("vvp wrote no output ({e}); it said:\n{}", said.trim_end())))?;
+            let file = std::fs::File::open(&vout).map_err(|e| error::tool("vvp", format!("vvp wrote no output ({e}); it said:\n{}", said.trim_end())))?;
             let mut t = 0;
             for line in BufReader::new(file).lines() {
-                let line = line.map_err(|e| failed(e.to_string()))?;
+                let line = line.map_err(|e| error::tool("simulator", e.to_string()))?;
                 let f: Vec<&str> = line.split_whitespace().collect();
                 let hex = |s: &str| u32::from_str_radix(s, 16).unwrap_or(u32::MAX); // x/z never match
                 if f.len() != 6 {
-                    return Err(failed(format!("vvp output line {t} is malformed: {line:?}")));
+                    return Err(error::tool("vvp", format!("vvp output line {t} is malformed: {line:?}")));
                 }
                 let s = Sampled { outputs: Outputs { intensity: hex(f[2]), spec: [hex(f[3]), hex(f[4]), hex(f[5])], done: f[1] == "1" }, valid: f[0] == "1" };
                 // outputs that are x/z before the pipeline fills are never compared (see Checker)
@@ -251,7 +251,7 @@ pub fn run_one(
                 t += 1;
             }
             if t != stim.len() {
-                return Err(failed(format!("vvp returned {t} of {} cycles", stim.len())));
+                return Err(error::tool("vvp", format!("vvp returned {t} of {} cycles", stim.len())));
             }
             progress.fetch_add(t, Ordering::Relaxed);
         }

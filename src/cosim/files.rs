@@ -2,7 +2,7 @@
 //! ports against the manifest.
 
 use super::Design;
-use crate::error::{failed, usage, Error as Failure};
+use crate::error::{input, mismatch, Error as Failure};
 
 /// Reads a `$readmemh` file: hex words separated by white space, `//` comments, `@addr`
 /// address jumps. Returns the words by address (`None` where the file sets nothing).
@@ -43,16 +43,16 @@ pub fn check_tables(design: &Design) -> Result<(), Failure> {
         }
         let path = design.dir.join(&t.file);
         let meta = std::fs::metadata(&path)
-            .map_err(|e| failed(format!("table file {} is missing ({e}); `specgen generate` writes it beside the RTL", path.display())))?;
+            .map_err(|e| mismatch(format!("table file {} is missing ({e}); `specgen generate` writes it beside the RTL", path.display())))?;
         if !meta.is_file() || meta.len() > 64 << 20 {
-            return Err(failed(format!("table file {} is not a regular file of at most 64 MiB", path.display())));
+            return Err(mismatch(format!("table file {} is not a regular file of at most 64 MiB", path.display())));
         }
-        let text = std::fs::read_to_string(&path).map_err(|e| failed(format!("cannot read table file {}: {e}", path.display())))?;
-        let words = parse_readmemh(&text, t.words.len()).map_err(|e| failed(format!("table file {}: {e}", path.display())))?;
+        let text = std::fs::read_to_string(&path).map_err(|e| mismatch(format!("cannot read table file {}: {e}", path.display())))?;
+        let words = parse_readmemh(&text, t.words.len()).map_err(|e| mismatch(format!("table file {}: {e}", path.display())))?;
         for (i, (got, want)) in words.iter().zip(&t.words).enumerate() {
             match got {
                 None => {
-                    return Err(failed(format!(
+                    return Err(mismatch(format!(
                         "table file {} is short: entry {i} is missing ({} entries expected, {})",
                         path.display(),
                         t.words.len(),
@@ -60,7 +60,7 @@ pub fn check_tables(design: &Design) -> Result<(), Failure> {
                     )))
                 }
                 Some(v) if v != want => {
-                    return Err(failed(format!("table file {}: entry {i} is {v:x}, the golden model's is {want:x} ({})", path.display(), t.what)))
+                    return Err(mismatch(format!("table file {}: entry {i} is {v:x}, the golden model's is {want:x} ({})", path.display(), t.what)))
                 }
                 _ => {}
             }
@@ -140,14 +140,14 @@ pub fn check_ports(design: &Design) -> Result<(), Failure> {
     let top = design.cfg.top();
     let mut found = None;
     for src in &design.sources {
-        let text = std::fs::read_to_string(src).map_err(|e| usage(format!("cannot read {}: {e}", src.display())))?;
+        let text = std::fs::read_to_string(src).map_err(|e| input(format!("cannot read {}: {e}", src.display())))?;
         if let Some(p) = source_ports(&text, top) {
             found = Some((src.clone(), p));
             break;
         }
     }
     let Some((src, got)) = found else {
-        return Err(usage(format!("no module {top} (the manifest's top) in the Verilog of {}", design.dir.display())));
+        return Err(input(format!("no module {top} (the manifest's top) in the Verilog of {}", design.dir.display())));
     };
     let want = design.cfg.ports("");
     let mut problems = Vec::new();
@@ -168,7 +168,7 @@ pub fn check_ports(design: &Design) -> Result<(), Failure> {
     if problems.is_empty() {
         Ok(())
     } else {
-        Err(usage(format!(
+        Err(input(format!(
             "the ports of {top} in {} disagree with the manifest in {} (was one of them edited?):\n  {}",
             src.display(),
             design.dir.display(),

@@ -20,7 +20,7 @@ pub use files::{check_ports, check_tables, parse_readmemh, source_ports};
 pub use stimulus::{corner_vectors, random_stimulus, random_vector, splitmix, Exhaustive, Recorded, Stimulus};
 
 use crate::config::{Config, Params};
-use crate::error::{usage, Error};
+use crate::error::{input, Error};
 use crate::models::{Inputs, Outputs};
 use std::path::{Path, PathBuf};
 
@@ -55,8 +55,8 @@ impl Design {
     /// The RTL in `dir` with the plan its manifest states.
     pub fn load(dir: &Path) -> Result<Design, Error> {
         let (path, text, sources, sim_models) = Design::files(dir)?;
-        let params = Params::from_json(&text).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
-        let plan = crate::plan::Plan::from_params(params).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
+        let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
+        let plan = crate::plan::Plan::from_params(params).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
         let cfg = plan.cfg.clone();
         Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
     }
@@ -65,9 +65,9 @@ impl Design {
     /// plan is taken as it is, not made again.
     pub fn with_plan(dir: &Path, plan: crate::plan::Plan) -> Result<Design, Error> {
         let (path, text, sources, sim_models) = Design::files(dir)?;
-        let params = Params::from_json(&text).map_err(|e| usage(format!("manifest {}: {e}", path.display())))?;
+        let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
         if params != plan.cfg.params {
-            return Err(usage(format!("manifest {} is not the plan's configuration", path.display())));
+            return Err(input(format!("manifest {} is not the plan's configuration", path.display())));
         }
         let cfg = plan.cfg.clone();
         Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
@@ -75,7 +75,7 @@ impl Design {
 
     /// The manifest (path, text), the Verilog sources and the simulation models in `dir`.
     fn files(dir: &Path) -> Result<(PathBuf, String, Vec<PathBuf>, Vec<PathBuf>), Error> {
-        let entries = std::fs::read_dir(dir).map_err(|e| usage(format!("cannot read --rtl {}: {e}", dir.display())))?;
+        let entries = std::fs::read_dir(dir).map_err(|e| input(format!("cannot read --rtl {}: {e}", dir.display())))?;
         let mut manifests = Vec::new();
         let mut sources = Vec::new();
         let mut sim_models = Vec::new();
@@ -98,11 +98,11 @@ impl Design {
         sim_models.sort();
         let (path, text) = match manifests.len() {
             1 => manifests.pop().unwrap(),
-            0 => return Err(usage(format!("no specgen manifest (<top>.json) in --rtl {}", dir.display()))),
-            _ => return Err(usage(format!("more than one specgen manifest in --rtl {}", dir.display()))),
+            0 => return Err(input(format!("no specgen manifest (<top>.json) in --rtl {}", dir.display()))),
+            _ => return Err(input(format!("more than one specgen manifest in --rtl {}", dir.display()))),
         };
         if sources.is_empty() {
-            return Err(usage(format!("no Verilog (*.v) in --rtl {}", dir.display())));
+            return Err(input(format!("no Verilog (*.v) in --rtl {}", dir.display())));
         }
         Ok((path, text, sources, sim_models))
     }

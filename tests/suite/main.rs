@@ -5,6 +5,7 @@ mod common;
 
 mod cli;
 mod cosim;
+mod every_model;
 mod exhaustive;
 mod hostile;
 mod models;
