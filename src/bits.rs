@@ -3,7 +3,7 @@
 //! Imports nothing from the crate.
 
 /// The low `bits` bits set (all 128 when `bits >= 128`).
-pub fn mask(bits: u32) -> u128 {
+pub(crate) fn mask(bits: u32) -> u128 {
     if bits >= 128 {
         u128::MAX
     } else {
@@ -12,12 +12,12 @@ pub fn mask(bits: u32) -> u128 {
 }
 
 /// Number of bits needed to hold `v` (0 for 0).
-pub fn bit_length(v: u128) -> u32 {
+pub(crate) fn bit_length(v: u128) -> u32 {
     128 - v.leading_zeros()
 }
 
 /// A sized Verilog literal, `W'hX`.
-pub fn lit(width: u32, value: u128) -> String {
+pub(crate) fn lit(width: u32, value: u128) -> String {
     format!("{width}'h{value:x}")
 }
 

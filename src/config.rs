@@ -208,7 +208,7 @@ impl Default for Params {
 }
 
 /// Keys of a manifest that are outputs, not parameters (skipped when it is read as a config).
-pub const MANIFEST_OUTPUT_KEYS: &[&str] = &[
+pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "generator",
     "version",
     "k_code",
@@ -361,7 +361,7 @@ impl Config {
     }
 
     /// The datapath's name in messages: the architecture for the quadratic model, else the model.
-    pub fn datapath_name(&self) -> &'static str {
+    pub(crate) fn datapath_name(&self) -> &'static str {
         match self.model() {
             SpecularModel::Quadratic => self.arch().name(),
             other => other.name(),

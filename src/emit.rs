@@ -15,10 +15,10 @@ use serde::Serialize;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 
-pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+pub(crate) const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// A signal registered at one cut only: `reg x_cK; x_cK <= source`.
-pub struct CutSignal {
+pub(crate) struct CutSignal {
     pub name: String,
     pub width: u32,
     /// the expression the cut takes it from (`x_sK` computed in step K, a port, a block's output)
@@ -27,7 +27,7 @@ pub struct CutSignal {
 
 /// A signal that waits through several registered cuts: one delay line, declared at the first
 /// of them, its registers `x_cK` loaded in one statement, each from the one before.
-pub struct DelayLine {
+pub(crate) struct DelayLine {
     pub name: String,
     pub width: u32,
     /// the registers, `x_cK` for each cut K it spans, in order
@@ -36,7 +36,7 @@ pub struct DelayLine {
     pub source: String,
 }
 
-pub struct Cut {
+pub(crate) struct Cut {
     pub index: usize,
     pub registered: bool,
     pub signals: Vec<CutSignal>,
@@ -72,19 +72,13 @@ impl Cut {
     }
 }
 
-pub struct RomEntry {
+pub(crate) struct RomEntry {
     pub index: String,
     pub value: String,
 }
 
-pub struct Channel {
-    pub name: &'static str,
-    pub sq_ext: String,
-    pub ks_ext: String,
-}
-
 /// A table read with `$readmemh` (declared once at the top of the module).
-pub struct TableView {
+pub(crate) struct TableView {
     pub name: String,
     pub param: String,
     pub file: String,
@@ -97,7 +91,7 @@ pub struct TableView {
 }
 
 /// A table read inside a step: an index into a `$readmemh` memory or an inline `case`.
-pub struct ReadView {
+pub(crate) struct ReadView {
     pub signal: String,
     pub width: u32,
     pub table: String,
@@ -116,7 +110,7 @@ pub struct ReadView {
 
 /// The `INITVAL_00..3F` parameters of a DP16KD in 1024 x 18 mode holding `words`: word k in
 /// INITVAL_(k/16) bits [(k%16)*20 +: 18], as yosys's ecp5/brams_map.v lays them out.
-pub fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
+pub(crate) fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
     (0..datapath::DP16KD_WORDS / 16)
         .map(|i| {
             // 320 bits as 80 hex digits, most significant first: 16 slots of 20 bits = 5 digits
@@ -127,7 +121,7 @@ pub fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
 }
 
 /// One step of the datapath as the template renders it: its reads and wires, then the cut after it.
-pub struct StepView {
+pub(crate) struct StepView {
     pub index: usize,
     pub title: String,
     /// table reads and wires in definition order
@@ -137,13 +131,13 @@ pub struct StepView {
 }
 
 /// A table read or a wire (its whole statement, comment included, as the RTL shows it).
-pub struct StepItem {
+pub(crate) struct StepItem {
     pub read: Option<ReadView>,
     pub wire: Option<String>,
 }
 
 /// The longest line the RTL holds.
-pub const MAX_LINE: usize = 120;
+pub(crate) const MAX_LINE: usize = 120;
 
 /// A wire's statement: `wire [W-1:0] x_sK = expr;   // comment`, the comment on a line of its
 /// own above it when the two do not fit one line.
@@ -166,7 +160,7 @@ fn wire_statement(x: &Wire, step: usize) -> String {
 
 /// Folds every line longer than [`MAX_LINE`] at a space: a comment continues as a comment, code
 /// (never inside a string) on an indented line; a trailing comment moves to a line above.
-pub fn fold_long_lines(text: &str) -> String {
+pub(crate) fn fold_long_lines(text: &str) -> String {
     let mut out = String::with_capacity(text.len() + 64);
     for line in text.lines() {
         fold_line(line, &mut out);
@@ -249,7 +243,7 @@ fn wrap_words(indent: &str, body: &str, first: &str, rest: &str, out: &mut Strin
 }
 
 /// A product on an ECP5 MULT18X18D with its registers (see `datapath::Builder::product`).
-pub struct DspView {
+pub(crate) struct DspView {
     /// the product's signal name, and its wire (the DSP's output register: the cut after the step)
     pub name: String,
     pub wire: String,
@@ -265,7 +259,7 @@ pub struct DspView {
 
 #[derive(Template)]
 #[template(path = "unit.v")]
-pub struct UnitTemplate<'a> {
+pub(crate) struct UnitTemplate<'a> {
     pub top: &'a str,
     pub version: &'a str,
     pub model: &'a str,
@@ -291,7 +285,7 @@ pub struct UnitTemplate<'a> {
 }
 
 /// `assign port = source;`
-pub struct OutputView {
+pub(crate) struct OutputView {
     pub port: String,
     pub source: String,
 }
@@ -312,7 +306,7 @@ fn registered_cuts_text(cuts: &[u32]) -> String {
 }
 
 /// The module's port declarations, one a line, the comments in one column.
-pub fn port_lines(ports: &[Port]) -> Vec<String> {
+pub(crate) fn port_lines(ports: &[Port]) -> Vec<String> {
     ports
         .iter()
         .enumerate()
@@ -337,7 +331,7 @@ fn parent_dir(path: &Path) -> PathBuf {
 }
 
 /// Builds the template context of the RTL for one configuration (every model).
-pub fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
+pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let cfg = &plan.cfg;
     let p = &cfg.params;
     let dp = &plan.datapath;
@@ -526,7 +520,7 @@ struct Mult18Template<'a> {
 /// The MULT18X18D simulation model written beside an ECP5 unit (never synthesized).
 #[derive(Template)]
 #[template(path = "ecp5_mult18x18d_sim.v")]
-pub struct Mult18SimModel<'a> {
+pub(crate) struct Mult18SimModel<'a> {
     pub version: &'a str,
 }
 
@@ -546,21 +540,21 @@ struct Dp16kdSimModel<'a> {
 }
 
 /// The file name of the DP16KD simulation model: simulators read it, synthesis must not.
-pub const ECP5_BRAM_MODEL_FILE: &str = "ecp5_dp16kd_sim.v";
+pub(crate) const ECP5_BRAM_MODEL_FILE: &str = "ecp5_dp16kd_sim.v";
 
 /// The DP16KD simulation model's text.
-pub fn ecp5_bram_model() -> String {
+pub(crate) fn ecp5_bram_model() -> String {
     Dp16kdSimModel { version: VERSION }.render().expect("model template renders") + "\n"
 }
 
 /// The simulation-only files specgen writes: simulators read them, synthesis never.
-pub const SIM_MODEL_FILES: [&str; 2] = [ECP5_SIM_MODEL_FILE, ECP5_BRAM_MODEL_FILE];
+pub(crate) const SIM_MODEL_FILES: [&str; 2] = [ECP5_SIM_MODEL_FILE, ECP5_BRAM_MODEL_FILE];
 
 /// The file name of the MULT18X18D simulation model: simulators read it, synthesis must not.
-pub const ECP5_SIM_MODEL_FILE: &str = "ecp5_mult18x18d_sim.v";
+pub(crate) const ECP5_SIM_MODEL_FILE: &str = "ecp5_mult18x18d_sim.v";
 
 /// The MULT18X18D simulation model's text.
-pub fn ecp5_sim_model() -> String {
+pub(crate) fn ecp5_sim_model() -> String {
     Mult18SimModel { version: VERSION }.render().expect("model template renders") + "\n"
 }
 
@@ -568,20 +562,20 @@ pub fn ecp5_sim_model() -> String {
 /// (8 hex digits of SHA-256) taken over every parameter that shapes the files, so two
 /// configurations never replace each other in one cores-root, and one configuration always
 /// gets the same name.
-pub fn core_name(cfg: &crate::config::Config) -> String {
+pub(crate) fn core_name(cfg: &crate::config::Config) -> String {
     let digest = sha256_hex(format!("{} rom_style={} top={}", cfg.describe(), cfg.params.rom_style.name(), cfg.top()).as_bytes());
     format!("specgen:specular:{}-{}:{VERSION}", cfg.top(), &digest[..8])
 }
 
 #[derive(Debug, Clone, Serialize)]
-pub struct FileEntry {
+pub(crate) struct FileEntry {
     pub name: String,
     pub sha256: String,
 }
 
 /// The manifest `<top>.json` (SPEC §4): parameters at top level under their SPEC names.
 #[derive(Debug, Clone, Serialize)]
-pub struct Manifest<'a> {
+pub(crate) struct Manifest<'a> {
     pub generator: &'static str,
     pub version: &'static str,
     #[serde(flatten)]

@@ -9,7 +9,7 @@ pub fn blinn(delta: f64, n: f64) -> f64 {
 }
 
 /// `[n/a·(cos δ − 1) + 1]^2`, cut to 0 past the zero of the bracket: (12) with a = 2, (15) with a = 2.713.
-pub fn cosine_quadratic(delta: f64, n: f64, a: f64) -> f64 {
+pub(crate) fn cosine_quadratic(delta: f64, n: f64, a: f64) -> f64 {
     let b = n / a * (delta.cos() - 1.0) + 1.0;
     if b < 0.0 {
         0.0
@@ -47,7 +47,7 @@ pub fn ward_approx(delta: f64, alpha: f64, cut: bool) -> f64 {
 }
 
 /// `∫_0^{π/2} cos^n δ dδ` by the Wallis recurrence `W_n = (n−1)/n · W_{n−2}`, exact.
-pub fn wallis(n: u32) -> f64 {
+pub(crate) fn wallis(n: u32) -> f64 {
     let mut w = if n.is_multiple_of(2) { FRAC_PI_2 } else { 1.0 };
     let mut k = if n.is_multiple_of(2) { 2 } else { 3 };
     while k <= n {
@@ -60,19 +60,19 @@ pub fn wallis(n: u32) -> f64 {
 /// `∫_0^{arccos(1−a/n)} [n/a·(cos δ − 1) + 1]² dδ` in closed form: with `u = n/a`,
 /// the integrand is `(u cos δ + 1 − u)²`, whose antiderivative is
 /// `u²(δ/2 + sin 2δ/4) + 2u(1−u) sin δ + (1−u)² δ`.
-pub fn quadratic_area(n: f64, a: f64) -> f64 {
+pub(crate) fn quadratic_area(n: f64, a: f64) -> f64 {
     let u = n / a;
     let x = (1.0 - a / n).clamp(-1.0, 1.0).acos();
     u * u * (x / 2.0 + (2.0 * x).sin() / 4.0) + 2.0 * u * (1.0 - u) * x.sin() + (1.0 - u) * (1.0 - u) * x
 }
 
 /// Equation (14) as `g(a) = Σ_{n=2}^{1000} [area of (13) − area of cos^n]`; (14) holds where g = 0.
-pub fn eq14_residual(a: f64) -> f64 {
+pub(crate) fn eq14_residual(a: f64) -> f64 {
     (2..=1000u32).map(|n| quadratic_area(n as f64, a) - wallis(n)).sum()
 }
 
 /// Bisection to 1e-12 on a bracketing interval.
-pub fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
+pub(crate) fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
     let flo = f(lo);
     assert!(flo * f(hi) <= 0.0, "interval does not bracket a root");
     for _ in 0..200 {
@@ -103,7 +103,7 @@ pub fn solve_system10(target: f64) -> f64 {
 }
 
 /// Mean of `|f(δ) − g(δ)|` over δ uniform on [0, π/2], composite midpoint rule with `steps` cells.
-pub fn mean_abs_dev(f: impl Fn(f64) -> f64, g: impl Fn(f64) -> f64, steps: usize) -> f64 {
+pub(crate) fn mean_abs_dev(f: impl Fn(f64) -> f64, g: impl Fn(f64) -> f64, steps: usize) -> f64 {
     let h = FRAC_PI_2 / steps as f64;
     (0..steps)
         .map(|i| {
@@ -115,7 +115,7 @@ pub fn mean_abs_dev(f: impl Fn(f64) -> f64, g: impl Fn(f64) -> f64, steps: usize
 }
 
 /// Mean over integer n in `ns` of the per-n mean absolute deviation.
-pub fn mad_over_n(ns: std::ops::RangeInclusive<u32>, steps: usize, f: impl Fn(f64, f64) -> f64, g: impl Fn(f64, f64) -> f64) -> f64 {
+pub(crate) fn mad_over_n(ns: std::ops::RangeInclusive<u32>, steps: usize, f: impl Fn(f64, f64) -> f64, g: impl Fn(f64, f64) -> f64) -> f64 {
     let count = ns.clone().count() as f64;
     ns.map(|n| mean_abs_dev(|d| f(d, n as f64), |d| g(d, n as f64), steps)).sum::<f64>() / count
 }
@@ -143,7 +143,7 @@ fn verdict(agrees: bool) -> String {
     }
 }
 
-pub const MAD_STEPS: usize = 4000;
+pub(crate) const MAD_STEPS: usize = 4000;
 
 /// Every claim of SPEC §1, recomputed.
 pub fn claims() -> Vec<Claim> {

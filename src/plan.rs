@@ -39,7 +39,7 @@ impl Plan {
     }
 
     /// The plan of a model already made (its configuration's `stages` placed).
-    pub fn for_model(model: Model) -> Result<Plan, ConfigError> {
+    pub(crate) fn for_model(model: Model) -> Result<Plan, ConfigError> {
         let cfg = model.cfg.clone();
         let combinational = build(&model, &[]);
         let cut_points = combinational.steps.len() as u32;
@@ -80,7 +80,7 @@ impl Plan {
 /// between registers (inputs and outputs count as registered outside) is as short as
 /// possible; ties go to the placement closest to the outputs. Exact: the least bound any
 /// placement reaches (over the segment sums), then each cut as late as the bound allows.
-pub fn balanced_cuts(delays: &[f64], stages: u32) -> Vec<u32> {
+pub(crate) fn balanced_cuts(delays: &[f64], stages: u32) -> Vec<u32> {
     const TIE: f64 = 1e-9;
     let c = delays.len();
     let s = (stages as usize).min(c);

@@ -56,7 +56,8 @@ pub struct Port {
 }
 
 /// Every name the port table can hold.
-pub const NAMES: [&str; 14] = ["clk", "rst", "in_valid", "cos_g", "n", "ks_r", "ks_g", "ks_b", "out_valid", "spec_r", "spec_g", "spec_b", "intensity", "done"];
+pub(crate) const NAMES: [&str; 14] =
+    ["clk", "rst", "in_valid", "cos_g", "n", "ks_r", "ks_g", "ks_b", "out_valid", "spec_r", "spec_g", "spec_b", "intensity", "done"];
 
 /// The port list in module order; `done_meaning` completes the `done` comment.
 pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
@@ -83,7 +84,7 @@ pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
 }
 
 /// The data columns of a vector, inputs then outputs: the order of `specgen vectors`.
-pub const VECTOR_COLUMNS: [&str; 10] = ["cos_g", "n", "ks_r", "ks_g", "ks_b", "intensity", "spec_r", "spec_g", "spec_b", "done"];
+pub(crate) const VECTOR_COLUMNS: [&str; 10] = ["cos_g", "n", "ks_r", "ks_g", "ks_b", "intensity", "spec_r", "spec_g", "spec_b", "done"];
 
 impl Inputs {
     /// The value on an input port of [`VECTOR_COLUMNS`].

@@ -80,7 +80,7 @@ pub enum Panel {
 }
 
 /// The gain of a difference panel.
-pub const DIFF_GAIN: f64 = 8.0;
+pub(crate) const DIFF_GAIN: f64 = 8.0;
 
 /// RGB pixels of one tile, row-major, `size`² × 3 bytes.
 pub fn tile(model: &Model, scene: Scene, panel: Panel, n: u32, size: u32) -> Vec<u8> {

@@ -38,7 +38,7 @@ pub struct UnitAccuracy {
 }
 
 /// Exhaustive (or strided) sweep of `(cos_g ∈ [0, 2^F], n)` on two threads.
-pub fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
+pub(crate) fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
     let m = crate::plan::Plan::from_params(crate::config::Params { stages: 0, ..cfg.params.clone() }).expect("a valid configuration at stages 0").model();
     let f = cfg.f();
     let one = 1u64 << f;
@@ -292,7 +292,7 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
 /// One model of the comparison: its distance from Blinn at the report's widths, and its
 /// hardware as `specgen synth --json` measured it (when given with `--hw`).
 #[derive(Debug, Clone, Serialize)]
-pub struct ModelComparison {
+pub(crate) struct ModelComparison {
     pub model: String,
     pub computes: String,
     pub blinn_error_max: f64,
@@ -304,7 +304,7 @@ pub struct ModelComparison {
 
 /// The four models at the report's widths (stages 0, faithful): quadratic (the paper, with
 /// the configured arch), fitted, blinn, blinn-pow.
-pub fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
+pub(crate) fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
     use crate::config::{Params, Rounding, SpecularModel};
     [
         (SpecularModel::Quadratic, "formula (15), the paper: [1 - k n (1 - c)]^2"),
@@ -395,7 +395,7 @@ fn render_grid(models: &[(Model, &'static str)]) -> (String, Vec<u32>) {
 }
 
 #[derive(Debug, Clone, Serialize)]
-pub struct ReportData {
+pub(crate) struct ReportData {
     pub generator: &'static str,
     pub version: &'static str,
     pub parameters: crate::config::Params,

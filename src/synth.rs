@@ -116,7 +116,7 @@ fn tool_exists(tool: &str) -> bool {
 }
 
 /// Parses yosys `stat` output: cell type → count (the last design summary printed).
-pub fn parse_stat(log: &str) -> Vec<(String, u64)> {
+pub(crate) fn parse_stat(log: &str) -> Vec<(String, u64)> {
     let start = log.rfind("Number of cells:").unwrap_or(0);
     let mut cells = Vec::new();
     for line in log[start..].lines().skip(1) {
@@ -326,7 +326,7 @@ pub fn table(r: &SynthResult) -> String {
 }
 
 /// Fmax (when placed) for each depth tried: (stages, MHz).
-pub type StageTrials = Vec<(u32, Option<f64>)>;
+pub(crate) type StageTrials = Vec<(u32, Option<f64>)>;
 
 /// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (with DSPs and
 /// nextpnr, on the ECP5-25 for `--target ecp5`, else the iCE40 UP5K) and returns the shallowest whose Fmax reaches `mhz`, with every try.

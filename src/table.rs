@@ -22,7 +22,7 @@ pub struct Table {
 }
 
 impl Table {
-    pub fn address_bits(&self) -> u32 {
+    pub(crate) fn address_bits(&self) -> u32 {
         bit_length(self.words.len() as u128 - 1).max(1)
     }
 }

@@ -9,6 +9,7 @@
 use crate::config::Config;
 use crate::cosim::{corner_vectors, random_vector, Exhaustive, Stimulus};
 use crate::models::{Inputs, Model, Outputs};
+use crate::ports::VECTOR_COLUMNS;
 use askama::Template;
 use std::io::Write;
 
@@ -30,25 +31,16 @@ pub enum VectorFormat {
     Hex,
 }
 
-/// The ports of a row, in column order (inputs, then outputs), with their widths.
-pub fn columns(cfg: &Config) -> Vec<(&'static str, u32)> {
-    let (f, n, b, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
-    vec![("cos_g", f + 1), ("n", n), ("ks_r", b), ("ks_g", b), ("ks_b", b), ("intensity", fi + 1), ("spec_r", b), ("spec_g", b), ("spec_b", b), ("done", 1)]
+/// The ports of a row, in column order (inputs, then outputs), with their widths: the port
+/// table's data ports in the order of [`VECTOR_COLUMNS`].
+pub(crate) fn columns(cfg: &Config) -> Vec<(&'static str, u32)> {
+    let ports = cfg.ports("");
+    VECTOR_COLUMNS.iter().map(|c| (*c, ports.iter().find(|p| p.name == *c).expect("every column is a port").width)).collect()
 }
 
+/// A row's values, in column order.
 fn values(x: Inputs, y: Outputs) -> [u64; 10] {
-    [
-        x.cos_g as u64,
-        x.n as u64,
-        x.ks[0] as u64,
-        x.ks[1] as u64,
-        x.ks[2] as u64,
-        y.intensity as u64,
-        y.spec[0] as u64,
-        y.spec[1] as u64,
-        y.spec[2] as u64,
-        y.done as u64,
-    ]
+    VECTOR_COLUMNS.map(|c| x.value(c).or_else(|| y.value(c)).expect("every column is an input or an output"))
 }
 
 /// The inputs of `selection`, in row order, and how many there are.

@@ -46,7 +46,7 @@ pub struct Design {
 
 impl Design {
     /// What a simulator reads: the sources, then the simulation models.
-    pub fn sim_sources(&self) -> Vec<PathBuf> {
+    pub(crate) fn sim_sources(&self) -> Vec<PathBuf> {
         self.sources.iter().chain(&self.sim_models).cloned().collect()
     }
 }
@@ -63,7 +63,7 @@ impl Design {
 
     /// The RTL in `dir`, written from `plan` (its manifest must state the same parameters): the
     /// plan is taken as it is, not made again.
-    pub fn with_plan(dir: &Path, plan: crate::plan::Plan) -> Result<Design, Error> {
+    pub(crate) fn with_plan(dir: &Path, plan: crate::plan::Plan) -> Result<Design, Error> {
         let (path, text, sources, sim_models) = Design::files(dir)?;
         let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
         if params != plan.cfg.params {

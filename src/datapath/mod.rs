@@ -21,21 +21,21 @@ use std::collections::BTreeMap;
 /// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
 /// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
 /// ~103 MHz, 8 bits ~92 MHz.
-pub const CHUNK_BITS: u32 = 6;
+pub(crate) const CHUNK_BITS: u32 = 6;
 
 /// Width of a DSP block's multiplier operands (iCE40 SB_MAC16: 16×16).
-pub const DSP_BITS: u32 = 16;
+pub(crate) const DSP_BITS: u32 = 16;
 
 /// The most low bits split off the bracket for the squarer: `lo²` then comes from a table of
 /// 2^6 = 64 entries in LUTs, and `hi·lo` from one DSP (the bracket is at most UQ1.21 there).
-pub const MAX_SQUARER_SPLIT: u32 = 6;
+pub(crate) const MAX_SQUARER_SPLIT: u32 = 6;
 
 /// Width of an ECP5 MULT18X18D's operands.
-pub const ECP5_DSP_BITS: u32 = 18;
+pub(crate) const ECP5_DSP_BITS: u32 = 18;
 
 /// Longest carry chain of one ECP5 step: a 32-bit CCU2C chain between registers took 1.9 ns
 /// of a 9.1 ns path on LFE5U-25F grade 6 (nextpnr), so every add of the unit fits one step.
-pub const ECP5_CHUNK_BITS: u32 = 40;
+pub(crate) const ECP5_CHUNK_BITS: u32 = 40;
 
 /// A product on an ECP5 MULT18X18D with its own registers: the input registers take the
 /// operands at the cut before the product's step, the output register is the cut after it.
@@ -96,8 +96,8 @@ pub struct RomRead {
 }
 
 /// Words and width an ECP5 DP16KD holds in its 1024 x 18 mode.
-pub const DP16KD_WORDS: usize = 1024;
-pub const DP16KD_BITS: u32 = 18;
+pub(crate) const DP16KD_WORDS: usize = 1024;
+pub(crate) const DP16KD_BITS: u32 = 18;
 
 #[derive(Debug, Clone)]
 pub struct Datapath {
@@ -116,17 +116,17 @@ pub struct Datapath {
 }
 
 impl Datapath {
-    pub fn delays(&self) -> Vec<f64> {
+    pub(crate) fn delays(&self) -> Vec<f64> {
         self.steps.iter().map(|s| s.delay).collect()
     }
 
     /// Whether some product is an ECP5 MULT18X18D with its registers (`<top>_mult18x18`).
-    pub fn has_dsp_blocks(&self) -> bool {
+    pub(crate) fn has_dsp_blocks(&self) -> bool {
         self.steps.iter().any(|s| !s.dsps.is_empty())
     }
 
     /// Whether some table read is an ECP5 DP16KD with its registers (`<top>_rom1k18`).
-    pub fn has_block_rams(&self) -> bool {
+    pub(crate) fn has_block_rams(&self) -> bool {
         self.reads.iter().any(|r| r.block)
     }
 }
@@ -165,13 +165,13 @@ pub enum Piece {
 }
 
 impl Piece {
-    pub fn sig(name: &str, lo: u32, width: u32) -> Piece {
+    pub(crate) fn sig(name: &str, lo: u32, width: u32) -> Piece {
         Piece::Sig { name: name.into(), lo, width, invert: false }
     }
     pub fn not(name: &str, lo: u32, width: u32) -> Piece {
         Piece::Sig { name: name.into(), lo, width, invert: true }
     }
-    pub fn zeros(width: u32) -> Piece {
+    pub(crate) fn zeros(width: u32) -> Piece {
         Piece::Const { value: 0, width }
     }
     fn width(&self) -> u32 {
@@ -182,7 +182,7 @@ impl Piece {
 }
 
 /// Bits `[lo, lo+width)` of the value the pieces (LSB first) make, zero above their top.
-pub fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
+pub(crate) fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
     let mut out = Vec::new();
     let mut base = 0;
     for p in pieces {
@@ -203,7 +203,7 @@ pub fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
 }
 
 /// A wide add started by [`Builder::add_start`], finished by [`Builder::add_finish`].
-pub struct PendingAdd {
+pub(crate) struct PendingAdd {
     name: String,
     width: u32,
     /// the chunks `(lo, width)` of a carry-select add (empty: one chain, done)
@@ -217,7 +217,7 @@ pub struct PendingAdd {
 
 /// The name under which a signal defined in step `def` (0: an input port) is seen in step
 /// `at`: its own wire in its own step, else the last register holding it, else its wire.
-pub fn visible(registered: &[u32], name: &str, def: usize, at: usize) -> String {
+pub(crate) fn visible(registered: &[u32], name: &str, def: usize, at: usize) -> String {
     if def == at {
         return format!("{name}_s{at}");
     }
@@ -229,7 +229,7 @@ pub fn visible(registered: &[u32], name: &str, def: usize, at: usize) -> String 
 }
 
 /// The runs of set bits of `unread` in a `width`-bit signal seen as `v`, MSB first, as selects.
-pub fn bit_ranges(v: &str, width: u32, unread: u128) -> Vec<String> {
+pub(crate) fn bit_ranges(v: &str, width: u32, unread: u128) -> Vec<String> {
     let mut parts = Vec::new();
     let mut b = width;
     while b > 0 {
@@ -273,25 +273,25 @@ fn chunks(width: u32, chunk_bits: u32) -> Vec<(u32, u32)> {
 // one LUT level per 2 address bits. Only the ratios matter: they place the registers.
 
 /// One LUT level and its route.
-pub const LUT_DELAY: f64 = 2.7;
+pub(crate) const LUT_DELAY: f64 = 2.7;
 
 /// Chunk bits of the carry-select add closing a carry-save sum ([`Builder::sum_start`]).
-pub const SUM_CHUNK_BITS: u32 = 4;
+pub(crate) const SUM_CHUNK_BITS: u32 = 4;
 
 /// A step that only registers its signals (a route, no logic).
-pub const REGISTER_ONLY_DELAY: f64 = 1.0;
+pub(crate) const REGISTER_ONLY_DELAY: f64 = 1.0;
 
 /// A carry-select sum of more chunks than this spreads over so many tiles that a carry
 /// crosses a long route: [`Builder::resolve`] ripples its carries one a step.
-pub const WIDE_SUM_CHUNKS: usize = 4;
+pub(crate) const WIDE_SUM_CHUNKS: usize = 4;
 
 /// A `w`-bit carry chain, carry-out included.
-pub fn add_delay(w: u32) -> f64 {
+pub(crate) fn add_delay(w: u32) -> f64 {
     0.7 + 0.3 * w as f64 + LUT_DELAY
 }
 
 /// An a×b multiply: one DSP when both fit its operands, else an array of partial products.
-pub fn mul_delay(a: u32, b: u32) -> f64 {
+pub(crate) fn mul_delay(a: u32, b: u32) -> f64 {
     if a.max(b) <= DSP_BITS {
         5.5
     } else {
@@ -327,7 +327,7 @@ impl Builder {
     }
 
     /// The widest multiplier operand one DSP block takes on the target (generic: no limit).
-    pub fn dsp_bits(&self) -> u32 {
+    pub(crate) fn dsp_bits(&self) -> u32 {
         match self.target {
             Target::Ice40 => DSP_BITS,
             Target::Ecp5 => ECP5_DSP_BITS,
@@ -336,7 +336,7 @@ impl Builder {
     }
 
     /// The longest carry chain one step holds on the target (generic: no limit).
-    pub fn chunk_bits(&self) -> u32 {
+    pub(crate) fn chunk_bits(&self) -> u32 {
         match self.target {
             Target::Ice40 => CHUNK_BITS,
             Target::Ecp5 => ECP5_CHUNK_BITS,
@@ -402,13 +402,13 @@ impl Builder {
     }
 
     /// Starts the next step.
-    pub fn step(&mut self, title: &str) {
+    pub(crate) fn step(&mut self, title: &str) {
         let index = self.steps.len() + 1;
         self.steps.push(Step { index, title: title.into(), wires: Vec::new(), dsps: Vec::new(), delay: 0.0 });
     }
 
     /// Raises the current step's delay estimate to at least `d`.
-    pub fn delay(&mut self, d: f64) {
+    pub(crate) fn delay(&mut self, d: f64) {
         let s = self.steps.last_mut().expect("a step");
         s.delay = s.delay.max(d);
     }
@@ -452,7 +452,7 @@ impl Builder {
     }
 
     /// All of `name` zero-extended to `to` bits.
-    pub fn zext(&mut self, name: &str, to: u32) -> String {
+    pub(crate) fn zext(&mut self, name: &str, to: u32) -> String {
         let w = self.signal(name).width;
         assert!(to >= w, "zext {name} from {w} to {to}");
         self.operand(name, 0, w, to)
@@ -469,17 +469,17 @@ impl Builder {
     }
 
     /// `cond ? value : other` for a constant `value` of `width` bits ([`Builder::select`]).
-    pub fn select_const(cond: &str, value: u128, width: u32, other: &str) -> String {
+    pub(crate) fn select_const(cond: &str, value: u128, width: u32, other: &str) -> String {
         Builder::select(cond, &lit(width, value), other, width)
     }
 
     /// `cond ? a : 0` over `width` bits as an AND ([`Builder::select`]).
-    pub fn gate(cond: &str, a: &str, width: u32) -> String {
+    pub(crate) fn gate(cond: &str, a: &str, width: u32) -> String {
         format!("({{{width}{{{cond}}}}} & {a})")
     }
 
     /// The Verilog for a list of pieces (LSB first), MSB first in a concatenation.
-    pub fn pieces(&mut self, pieces: &[Piece]) -> String {
+    pub(crate) fn pieces(&mut self, pieces: &[Piece]) -> String {
         let parts: Vec<String> = pieces
             .iter()
             .rev()
@@ -503,14 +503,14 @@ impl Builder {
 
     /// `a·r` (`out` bits, exact) as a sum of shifted copies of `a`, one per bit of `r`: no `*`,
     /// so a small product stays in LUTs and carry chains instead of taking a DSP block.
-    pub fn shift_add(&mut self, a: &Piece, r: &Piece, out: u32) -> String {
+    pub(crate) fn shift_add(&mut self, a: &Piece, r: &Piece, out: u32) -> String {
         // one partial product a line
         self.shift_add_terms(a, r, 0, out).join("\n    + ")
     }
 
     /// The terms of `a·r·2^shift` mod 2^out: `a` shifted to each bit `k` of `r` (by `k + shift`)
     /// where that bit is set, for a sum with more addends (constants, a table's value).
-    pub fn shift_add_terms(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32) -> Vec<String> {
+    pub(crate) fn shift_add_terms(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32) -> Vec<String> {
         let (Piece::Sig { name: rn, lo: rlo, width: rw, .. }, Piece::Sig { name: an, lo: alo, width: aw, .. }) = (r, a) else {
             panic!("shift_add takes signal pieces")
         };
@@ -546,7 +546,7 @@ impl Builder {
     /// multiply-add each (on a DSP block, the add is its post-adder):
     /// `color_sum_X = v·ks_X + 2^(wc−1)`, `B + wc` bits, for the `wc + 1`-bit UQ1.wc signal `v`
     /// (`what` names the value in the comments). [`Builder::colour_results`] takes the outputs.
-    pub fn colour_sums(&mut self, v: &str, wc: u32, what: &str) {
+    pub(crate) fn colour_sums(&mut self, v: &str, wc: u32, what: &str) {
         let bb = self.colour_bits();
         let cp = wc + bb;
         for ch in CHANNELS {
@@ -558,7 +558,7 @@ impl Builder {
 
     /// The colour outputs `spec_X` from `color_sum_X` (`B + wc` bits, the rounding half in it):
     /// its top B bits, the colour rounded half up.
-    pub fn colour_results(&mut self, wc: u32, what: &str) {
+    pub(crate) fn colour_results(&mut self, wc: u32, what: &str) {
         let bb = self.colour_bits();
         for ch in CHANNELS {
             let e = self.bits(&format!("color_sum_{ch}"), wc + bb - 1, wc);
@@ -573,7 +573,7 @@ impl Builder {
 
     /// `name = v²` for the `r`-bit field `v = sig[lo..lo+r)`, by a table of 2^r entries in
     /// LUTs (no multiply, no carry chain): one LUT level for small `r`.
-    pub fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
+    pub(crate) fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
         let v = self.bits(sig, lo + r - 1, lo);
         // one entry a line (?: is right-associative), the last as the default
         let last = (1u128 << r) - 1;
@@ -591,7 +591,7 @@ impl Builder {
 
     /// Defines `signal` in the current step as the entry of table `t` addressed by all of
     /// the signal `addr` (the template renders the memory and the read).
-    pub fn rom_read(&mut self, signal: &str, t: usize, addr: &str) {
+    pub(crate) fn rom_read(&mut self, signal: &str, t: usize, addr: &str) {
         let a = self.r(addr);
         let cur = self.cur();
         self.define(signal, self.tables[t].width, cur, false);
@@ -604,7 +604,7 @@ impl Builder {
     /// address register takes the address as the step before sees it, its output register
     /// is the cut after this step (the read's clock-to-out, 5.6 ns without it on LFE5U-25F
     /// grade 6, then never limits Fmax). Anywhere else, an asynchronous read in this step.
-    pub fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
+    pub(crate) fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
         let fits = self.tables[t].words.len() <= DP16KD_WORDS && self.tables[t].width <= DP16KD_BITS;
         if !(fits && self.block_registers_here()) {
             return self.rom_read(signal, t, addr);
@@ -618,7 +618,7 @@ impl Builder {
 
     /// `name = (a + b + cin) mod 2^width` as one carry chain in this step, whatever its width
     /// (the ECP5's CCU2C chains are fast; the iCE40 shape uses [`Builder::add_start`]).
-    pub fn add(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> String {
+    pub(crate) fn add(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> String {
         self.delay(add_delay(width.min(self.chunk_bits())));
         let ea = self.pieces(&sub_pieces(a, 0, width));
         let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
@@ -630,7 +630,7 @@ impl Builder {
     /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added
     /// here with carry-in 0 and 1 (carry-select), and [`Builder::add_finish`] resolves the
     /// carries and picks in the next step.
-    pub fn add_start(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
+    pub(crate) fn add_start(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
         let parts = chunks(width, self.chunk_bits().min(self.chunk_limit));
         let n = parts.len();
         let no_carry_out = parts.iter().map(|&(lo, w)| sub_pieces(b, lo, w).iter().all(|p| matches!(p, Piece::Const { value: 0, .. }))).collect();
@@ -685,7 +685,7 @@ impl Builder {
     /// Second step of a carry-select add: the carry into each chunk from the third on
     /// (the first chunk's own carry-out is the carry into the second), rippled through the
     /// chunks' carry-outs. Nothing to do for one or two chunks.
-    pub fn add_carries(&mut self, p: &PendingAdd) {
+    pub(crate) fn add_carries(&mut self, p: &PendingAdd) {
         let n = p.chunks.len();
         if n > 2 {
             self.add_carries_range(p, 1, n - 1);
@@ -720,7 +720,7 @@ impl Builder {
     /// The partial products of `a·r·2^shift` mod 2^width as wires `{name}_pp{k}` (one LUT
     /// level: `a` shifted to bit `k` of `r` where it is set, else 0; each complemented when
     /// `invert`, for a difference), as terms for [`Builder::sum_start`].
-    pub fn partial_products(&mut self, name: &str, a: &Piece, r: &Piece, shift: u32, width: u32, invert: bool) -> Vec<Vec<Piece>> {
+    pub(crate) fn partial_products(&mut self, name: &str, a: &Piece, r: &Piece, shift: u32, width: u32, invert: bool) -> Vec<Vec<Piece>> {
         let terms = self.shift_add_terms(a, r, shift, width);
         let mut out = Vec::new();
         for (k, t) in terms.into_iter().enumerate() {
@@ -738,7 +738,7 @@ impl Builder {
     /// level each, two a step, from this step on), then (iCE40: after a step that only
     /// registers them) the two vectors left into [`Builder::add_start`] in a step of its own.
     /// [`Builder::resolve`] finishes it.
-    pub fn sum_start(&mut self, name: &str, mut terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
+    pub(crate) fn sum_start(&mut self, name: &str, mut terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
         let mut layer = 0;
         while terms.len() > 2 {
             if layer % 2 == 0 {
@@ -787,7 +787,7 @@ impl Builder {
 
     /// [`Builder::add_start`] in chunks of at most [`SUM_CHUNK_BITS`]: for a sum whose
     /// operands come from registers spread over the fabric, or whose result fans out far.
-    pub fn add_start_short(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
+    pub(crate) fn add_start_short(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
         self.chunk_limit = SUM_CHUNK_BITS;
         let p = self.add_start(name, a, b, cin, width, comment);
         self.chunk_limit = u32::MAX;
@@ -797,7 +797,7 @@ impl Builder {
     /// Finishes a carry-select add in the steps it needs, at most two LUT levels a step: none
     /// for one chunk; the chunk carries rippled two a step (one for a sum of more than
     /// [`WIDE_SUM_CHUNKS`] chunks), the last with each chunk's pick. Returns the name of the sum.
-    pub fn resolve(&mut self, p: PendingAdd, title: &str) -> String {
+    pub(crate) fn resolve(&mut self, p: PendingAdd, title: &str) -> String {
         if !p.chunks.is_empty() {
             // the carries into chunks from+1..=to (chunk 1's is part0's), `per_step` levels a
             // step, then the pick with the last of them
@@ -820,7 +820,7 @@ impl Builder {
 
     /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT
     /// level). Returns the name of the sum.
-    pub fn add_finish(&mut self, p: PendingAdd) -> String {
+    pub(crate) fn add_finish(&mut self, p: PendingAdd) -> String {
         if p.chunks.is_empty() {
             return p.name;
         }
@@ -851,7 +851,7 @@ impl Builder {
     /// Closes the datapath: `outputs` are read after the last step. Adds an `unused_*` wire
     /// for the bits of each signal that its last reader leaves unread, and lists the live
     /// signals of every cut.
-    pub fn finish(mut self, outputs: &[&str]) -> Datapath {
+    pub(crate) fn finish(mut self, outputs: &[&str]) -> Datapath {
         let last = self.cur();
         for o in outputs {
             let w = self.signal(o).width;

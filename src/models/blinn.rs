@@ -100,7 +100,7 @@ pub struct Budget {
 }
 
 impl Budget {
-    pub fn total(&self) -> f64 {
+    pub(crate) fn total(&self) -> f64 {
         self.log_table + self.ell_truncation + self.y_truncation + self.exp2_table + self.shift_truncation
     }
     pub fn holds(&self) -> bool {
@@ -161,7 +161,7 @@ pub fn g(x: f64) -> f64 {
 
 impl BlinnWidths {
     /// `εg`: the g table's error (entries, interpolation, its floor).
-    pub fn eps_g(&self, cfg: &Config) -> f64 {
+    pub(crate) fn eps_g(&self, cfg: &Config) -> f64 {
         let p = |k: i64| (k as f64).exp2();
         let (tg, wg) = (self.log_index_bits as i64, self.log_frac_bits as i64);
         let interpolates = tg < cfg.f() as i64 - 1;
@@ -245,25 +245,25 @@ impl BlinnWidths {
     }
 
     /// RB: the interpolation fraction of the log table (bits of X below its index).
-    pub fn log_rest_bits(&self, cfg: &Config) -> u32 {
+    pub(crate) fn log_rest_bits(&self, cfg: &Config) -> u32 {
         cfg.f() - 1 - self.log_index_bits
     }
     /// RE: the interpolation fraction of the exp table.
-    pub fn exp2_rest_bits(&self) -> u32 {
+    pub(crate) fn exp2_rest_bits(&self) -> u32 {
         self.y_frac_bits - self.exp2_index_bits
     }
     /// Bits of ĝ and of L = X·ĝ.
-    pub fn ghat_bits(&self) -> u32 {
+    pub(crate) fn ghat_bits(&self) -> u32 {
         self.log_entry_bits.max(self.log_frac_bits + 1) + 1
     }
-    pub fn ell_bits(&self) -> u32 {
+    pub(crate) fn ell_bits(&self) -> u32 {
         self.exp_bits + self.ell_frac_bits + 1
     }
-    pub fn y_bits(&self) -> u32 {
+    pub(crate) fn y_bits(&self) -> u32 {
         self.y_int_bits + self.y_frac_bits
     }
     /// The saturation value of y, `(W + 2)·2^WY`.
-    pub fn y_sat(&self) -> u128 {
+    pub(crate) fn y_sat(&self) -> u128 {
         ((self.out_bits + 2) as u128) << self.y_frac_bits
     }
 }
@@ -343,7 +343,7 @@ impl BlinnTables {
     }
 
     /// Whether E_0 = 2^WE is the only exp2 entry at or above 1.0.
-    pub fn exp2_one_implied(&self, w: &BlinnWidths) -> bool {
+    pub(crate) fn exp2_one_implied(&self, w: &BlinnWidths) -> bool {
         w.exp2_entry_bits == w.exp2_frac_bits + 1 && self.e[1..].iter().all(|&e| e < 1u128 << w.exp2_frac_bits)
     }
 }

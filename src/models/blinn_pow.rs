@@ -17,7 +17,7 @@ use crate::datapath::{add_delay, mul_delay, Builder, LUT_DELAY};
 /// `e(r_N) ≤ Σ_{i<N} 2^i·2^−W < 2^(N−W)`. In output units (`M = 2^FI` or `ks < 2^B`) this is
 /// below 1/2 when `W ≥ max(FI, B) + N + 1`; the final round-half-up then gives a faithful
 /// result, exact where the ideal is an integer, and monotone in cos_g.
-pub fn power_frac_bits(cfg: &Config) -> u32 {
+pub(crate) fn power_frac_bits(cfg: &Config) -> u32 {
     (cfg.fi().max(cfg.b()) + cfg.n_bits() + 1).max(cfg.f())
 }
 

@@ -83,7 +83,7 @@ pub struct FittedWidths {
 /// flooring S further to WC bits, the colour value is low by less than
 /// `ks·(2^(M+1−W) + 2^−WC) < 2^(B+M+1−W) + 2^(B−WC)`; the smallest WC ≤ W keeping that
 /// ≤ 1/2 (when FI > B there is room, and the colour multipliers shrink to B+2 or so bits).
-pub fn color_frac_bits(cfg: &Config) -> u32 {
+pub(crate) fn color_frac_bits(cfg: &Config) -> u32 {
     let (b, m) = (cfg.b() as i64, cfg.max_squarings() as i64);
     let w = cfg.fi().max(cfg.b()) as i64 + m + 2;
     let p = |k: i64| (k as f64).exp2();
@@ -163,7 +163,7 @@ fn fit_one(n: u32, m: u32) -> (f64, f64) {
 }
 
 /// The best `(a, m, error)` for one n over `m ∈ 0..=max_m`.
-pub fn fit_n(n: u32, max_m: u32) -> (f64, u32, f64) {
+pub(crate) fn fit_n(n: u32, max_m: u32) -> (f64, u32, f64) {
     let mut best = (0.0, 0, f64::INFINITY);
     for m in 0..=max_m {
         if (1u64 << m) > 4 * n as u64 {
@@ -203,7 +203,7 @@ pub fn fit(cfg: &Config) -> Fit {
 
 impl Fit {
     /// The ROM words `{m_n, a_code}`.
-    pub fn rom_words(&self, w: &FittedWidths) -> Vec<u128> {
+    pub(crate) fn rom_words(&self, w: &FittedWidths) -> Vec<u128> {
         self.a_code.iter().zip(&self.m).map(|(&a, &m)| ((m as u128) << w.a_bits) | a as u128).collect()
     }
 }

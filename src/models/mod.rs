@@ -102,7 +102,7 @@ impl Model {
 
     /// This model under another configuration that differs only in `stages` (or nothing the
     /// arithmetic depends on): the fit or tables are shared, not made again.
-    pub fn with_config(&self, cfg: Config) -> Model {
+    pub(crate) fn with_config(&self, cfg: Config) -> Model {
         let same = |c: &Config| crate::config::Params { stages: 0, ..c.params.clone() };
         debug_assert_eq!(same(&cfg), same(&self.cfg), "only stages may differ");
         Model { cfg, unit: self.unit.clone(), fidelity: self.fidelity.clone() }
@@ -135,7 +135,7 @@ impl Model {
 
     /// The last `cos_g` code with a non-zero output, or the cut-off, for each n: the
     /// boundary a test stimulus should visit.
-    pub fn boundaries(&self) -> Vec<u32> {
+    pub(crate) fn boundaries(&self) -> Vec<u32> {
         (0..1u32 << self.cfg.n_bits()).map(|n| self.boundary(n)).collect()
     }
 
@@ -173,7 +173,7 @@ pub fn scaled(cfg: &Config, s: f64, x: Inputs) -> (f64, [f64; 3]) {
 }
 
 /// The `exact` line of `specgen eval`: the ideal outputs and what they are.
-pub fn explain_ideal(ideal: (f64, [f64; 3]), what: &str) -> String {
+pub(crate) fn explain_ideal(ideal: (f64, [f64; 3]), what: &str) -> String {
     let (i, s) = ideal;
     format!("exact      intensity* = {i:.9}  spec* = [{:.6}, {:.6}, {:.6}]  ({what})", s[0], s[1], s[2])
 }
@@ -187,7 +187,7 @@ pub struct Ideal {
 
 impl Ideal {
     /// Round half up (= ties away from zero for these non-negative values).
-    pub fn round_half_away(self) -> u128 {
+    pub(crate) fn round_half_away(self) -> u128 {
         if self.den_log2 == 0 {
             self.num
         } else {
@@ -197,13 +197,13 @@ impl Ideal {
     pub fn is_integer(self) -> bool {
         self.num & mask(self.den_log2) == 0
     }
-    pub fn to_f64(self) -> f64 {
+    pub(crate) fn to_f64(self) -> f64 {
         self.num as f64 / (self.den_log2 as f64).exp2()
     }
 }
 
 /// Checks one output against its ideal under the rounding contract.
-pub fn check_value(rounding: Rounding, got: u32, ideal: Ideal) -> Result<(), String> {
+pub(crate) fn check_value(rounding: Rounding, got: u32, ideal: Ideal) -> Result<(), String> {
     let scaled = (got as u128) << ideal.den_log2;
     let diff = scaled.abs_diff(ideal.num);
     let ok = match rounding {
@@ -218,11 +218,11 @@ pub fn check_value(rounding: Rounding, got: u32, ideal: Ideal) -> Result<(), Str
 }
 
 /// Fractional bits of the interval reference for `cos^n`.
-pub const POW_REF_BITS: u32 = 60;
+pub(crate) const POW_REF_BITS: u32 = 60;
 
 /// Rigorous bounds `lo ≤ c^n·2^60 ≤ hi` for `c = min(cos_g, 2^F)/2^F`, by square-and-multiply
 /// with every product rounded down (lo) and up (hi) at 60 fractional bits.
-pub fn cos_n_bounds(cfg: &Config, cos_g: u32, n: u32) -> (u128, u128) {
+pub(crate) fn cos_n_bounds(cfg: &Config, cos_g: u32, n: u32) -> (u128, u128) {
     let q = POW_REF_BITS;
     let one = 1u128 << q;
     let c = ((cos_g as u128).min(1 << cfg.f())) << (q - cfg.f());
@@ -246,7 +246,7 @@ pub fn cos_n_bounds(cfg: &Config, cos_g: u32, n: u32) -> (u128, u128) {
 
 /// Checks a `c^n` model's outputs (blinn, blinn-pow): every output within 1 of its ideal
 /// `c^n·M` for every value the interval allows; `done` ⇔ intensity is 0.
-pub fn check_cos_n(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
+pub(crate) fn check_cos_n(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
     let (lo, hi) = cos_n_bounds(cfg, x.cos_g, x.n);
     let q = POW_REF_BITS;
     let within = |o: u32, m: u128| {
@@ -295,7 +295,7 @@ pub struct Fidelity {
 }
 
 /// The most points [`blinn_fidelity`] visits: 2^26.
-pub const FIDELITY_POINTS: u64 = 1 << 26;
+pub(crate) const FIDELITY_POINTS: u64 = 1 << 26;
 
 impl Fidelity {
     pub fn method(&self) -> String {
@@ -368,7 +368,7 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
 }
 
 /// The colour output ports, in channel order.
-pub const SPEC_PORTS: [&str; 3] = ["spec_r", "spec_g", "spec_b"];
+pub(crate) const SPEC_PORTS: [&str; 3] = ["spec_r", "spec_g", "spec_b"];
 
 #[cfg(test)]
 mod tests {

@@ -339,7 +339,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
 /// - `P = kn·(1 − cos)` as `kn[17:0]·d + kn[hi:18]·d·2^18` (two DSPs), `P + K'` in two adds;
 /// - the bracket (≤ 18 bits) is squared on one DSP: no hi/lo split;
 /// - the colours' rounding half is a fabric add after their products.
-pub fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
+pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     let (f, cb, bb) = (cfg.f(), w.cos_bits, cfg.b());
     let (wb, wsc) = (w.bracket_frac_bits, w.color_square_frac_bits);
     let dsp = ECP5_DSP_BITS;

@@ -121,18 +121,11 @@ impl Widths {
         }
     }
 
-    pub fn bracket_bits(&self) -> u32 {
+    pub(crate) fn bracket_bits(&self) -> u32 {
         self.bracket_frac_bits + 1
     }
-    pub fn square_bits(&self) -> u32 {
-        self.square_frac_bits + 1
-    }
-    pub fn full_square_bits(&self) -> u32 {
+    pub(crate) fn full_square_bits(&self) -> u32 {
         2 * self.bracket_bits()
-    }
-    /// Width of `dev` after truncation #1, as kept in the datapath.
-    pub fn truncated_deviation_bits(&self) -> u32 {
-        self.deviation_bits - self.deviation_shift
     }
 }
 
