@@ -302,23 +302,21 @@ pub(crate) struct ModelComparison {
     pub hardware: Option<crate::synth::SynthResult>,
 }
 
-/// The four models at the report's widths (stages 0, faithful): quadratic (the paper, with
-/// the configured arch), fitted, blinn, blinn-pow.
+/// Every model at the report's widths (stages 0, faithful), in `SpecularModel::ALL`'s order:
+/// quadratic (the paper, with the configured arch), fitted, blinn, blinn-pow; each with what
+/// it computes, in its own words. Only the model is made (no datapath).
 pub(crate) fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
     use crate::config::{Params, Rounding, SpecularModel};
-    [
-        (SpecularModel::Quadratic, "formula (15), the paper: [1 - k n (1 - c)]^2"),
-        (SpecularModel::Fitted, "[1 - a_n (1 - c)]^(2^m_n), minimax per n"),
-        (SpecularModel::Blinn, "c^n from log2/exp2 tables"),
-        (SpecularModel::BlinnPow, "c^n by square-and-multiply"),
-    ]
-    .into_iter()
-    .map(|(model, what)| {
-        let arch = if model == SpecularModel::Quadratic { cfg.arch() } else { crate::config::Arch::Lean };
-        let p = Params { model, arch, stages: 0, rounding: Rounding::Faithful, ..cfg.params.clone() };
-        (crate::plan::Plan::from_params(p).expect("the report's widths are valid for every model").model(), what)
-    })
-    .collect()
+    SpecularModel::ALL
+        .into_iter()
+        .map(|model| {
+            let arch = if model == SpecularModel::Quadratic { cfg.arch() } else { crate::config::Arch::Lean };
+            let p = Params { model, arch, stages: 0, rounding: Rounding::Faithful, ..cfg.params.clone() };
+            let m = Model::new(&Config::new(p).expect("the report's widths are valid for every model"));
+            let what = m.unit().describe().computes;
+            (m, what)
+        })
+        .collect()
 }
 
 /// What the comparison says about the paper's premise that cos^n is too costly.

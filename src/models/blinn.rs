@@ -808,6 +808,7 @@ impl SpecularUnit for Blinn {
             ),
             done_meaning: "intensity == 0: the highlight is below the output's resolution",
             summary: "Fixed-point Blinn specular unit, cos^n from log2/exp2 tables",
+            computes: "c^n from log2/exp2 tables",
         }
     }
 

@@ -88,6 +88,7 @@ impl SpecularUnit for BlinnPow {
             ),
             done_meaning: "intensity == 0: the highlight is below the output's resolution",
             summary: "Fixed-point Blinn specular unit, cos^n by square-and-multiply",
+            computes: "c^n by square-and-multiply",
         }
     }
 

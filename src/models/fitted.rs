@@ -518,6 +518,7 @@ impl SpecularUnit for Fitted {
             datapath: format!("bracket and every square UQ1.{} (error budget in specgen's models/fitted.rs)", self.widths.frac_bits),
             done_meaning: "the bracket is negative: beyond the highlight",
             summary: "Fixed-point specular highlight unit, [1 - a_n*(1 - cos)]^(2^m_n) fitted per n to cos^n",
+            computes: "[1 - a_n (1 - c)]^(2^m_n), minimax per n",
         }
     }
 

@@ -38,6 +38,8 @@ pub struct Description {
     pub done_meaning: &'static str,
     /// one line for the `.core` description
     pub summary: &'static str,
+    /// what it computes, in a few words (the report's model comparison)
+    pub computes: &'static str,
 }
 
 /// One model of the unit (SPEC §3, §6): the golden model, its contract and its datapath.

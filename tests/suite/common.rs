@@ -150,3 +150,20 @@ proptest::prop_compose! {
         }).unwrap()
     }
 }
+
+proptest::prop_compose! {
+    /// A configuration of `model` over every width range (n_bits up to 9 for the fit's sake).
+    pub fn model_config(model: specgen::config::SpecularModel)(
+        f in specgen::config::COS_FRAC_BITS.min..=specgen::config::COS_FRAC_BITS.max,
+        n in 1u32..=9,
+        b in specgen::config::COLOR_BITS.min..=specgen::config::COLOR_BITS.max,
+        fi in specgen::config::INTENSITY_FRAC_BITS.min..=specgen::config::INTENSITY_FRAC_BITS.max,
+        kf in specgen::config::K_FRAC_BITS.min..=specgen::config::K_FRAC_BITS.max,
+        m in specgen::config::MAX_SQUARINGS.min..=specgen::config::MAX_SQUARINGS.max,
+    ) -> specgen::config::Config {
+        specgen::config::Config::new(specgen::config::Params {
+            cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi, k_frac_bits: kf,
+            max_squarings: m, model, ..specgen::config::Params::default()
+        }).unwrap()
+    }
+}

@@ -6,29 +6,12 @@
 //! without a line of this file changing; its own module adds the big-integer reference.
 
 use proptest::prelude::*;
-use specgen::config::{self, Config, Params, SpecularModel};
+use specgen::config::{Config, SpecularModel};
 use specgen::models::{Inputs, Model};
 use specgen::plan::Plan;
 
-prop_compose! {
-    /// A configuration of `model` over every width range (n_bits up to 9 for the fit's sake).
-    fn model_config(model: SpecularModel)(
-        f in config::COS_FRAC_BITS.min..=config::COS_FRAC_BITS.max,
-        n in 1u32..=9,
-        b in config::COLOR_BITS.min..=config::COLOR_BITS.max,
-        fi in config::INTENSITY_FRAC_BITS.min..=config::INTENSITY_FRAC_BITS.max,
-        kf in config::K_FRAC_BITS.min..=config::K_FRAC_BITS.max,
-        m in config::MAX_SQUARINGS.min..=config::MAX_SQUARINGS.max,
-    ) -> Config {
-        Config::new(Params {
-            cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi, k_frac_bits: kf,
-            max_squarings: m, model, ..Params::default()
-        }).unwrap()
-    }
-}
-
 fn any_model_config() -> impl Strategy<Value = Config> {
-    proptest::sample::select(SpecularModel::ALL.to_vec()).prop_flat_map(model_config)
+    proptest::sample::select(SpecularModel::ALL.to_vec()).prop_flat_map(crate::common::model_config)
 }
 
 /// An input of `cfg` from a seed: any `cos_g` port code (above 1.0 too), any n and colours.

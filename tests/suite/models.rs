@@ -5,7 +5,7 @@
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
-use specgen::config::{self, Config, Params, SpecularModel};
+use specgen::config::{Config, Params, SpecularModel};
 use specgen::models::blinn::{BlinnWidths, Shares};
 use specgen::models::{Inputs, Model};
 
@@ -14,21 +14,9 @@ fn blinn_config() -> impl Strategy<Value = Config> {
     crate::common::power_config(SpecularModel::Blinn)
 }
 
-prop_compose! {
-    // n_bits up to 9 keeps each new fit (one per (N, M, KF)) well under a second
-    fn fitted_config()(
-        f in config::COS_FRAC_BITS.min..=config::COS_FRAC_BITS.max,
-        n in 1u32..=9,
-        b in config::COLOR_BITS.min..=config::COLOR_BITS.max,
-        fi in config::INTENSITY_FRAC_BITS.min..=config::INTENSITY_FRAC_BITS.max,
-        kf in config::K_FRAC_BITS.min..=config::K_FRAC_BITS.max,
-        m in config::MAX_SQUARINGS.min..=config::MAX_SQUARINGS.max,
-    ) -> Config {
-        Config::new(Params {
-            cos_frac_bits: f, n_bits: n, color_bits: b, intensity_frac_bits: fi, k_frac_bits: kf,
-            max_squarings: m, model: SpecularModel::Fitted, ..Params::default()
-        }).unwrap()
-    }
+/// fitted configurations over every width range (n_bits up to 9: each new fit well under a second).
+fn fitted_config() -> impl Strategy<Value = Config> {
+    crate::common::model_config(SpecularModel::Fitted)
 }
 
 /// A random input; one in three near 1.0 (where c^n is not tiny), one in three near the

@@ -194,6 +194,7 @@ impl SpecularUnit for Quadratic {
             ),
             done_meaning: "cos(gamma) < cos_sp(n): beyond the highlight",
             summary: "Fixed-point specular highlight unit, [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)",
+            computes: "formula (15), the paper: [1 - k n (1 - c)]^2",
         }
     }
 
