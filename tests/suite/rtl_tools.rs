@@ -35,7 +35,10 @@ fn iverilog_compiles() {
 fn yosys_synthesizes_without_latches_or_warnings() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    for_each_parallel(CONFIGS, |i, args| {
+    // one representative of each model, arch, rounding, ROM style and depth (the rest of
+    // CONFIGS repeats their shapes at other widths; yosys takes a minute over all of them)
+    let representative: Vec<&[&str]> = [0, 2, 4, 6, 7, 9, 11, 13, 14].iter().map(|&i| CONFIGS[i]).collect();
+    for_each_parallel(&representative, |i, args| {
         let dir = generate(tmp.path(), &format!("c{i}"), args);
         let top = top_of(args);
         let script =
