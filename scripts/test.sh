@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Runs the whole test suite on a fresh machine: installs the simulators and yosys when
-# missing (Debian/Ubuntu, apt-get), checks formatting and clippy, then `cargo test --release`. Simulator and synthesis
+# missing (Debian/Ubuntu, apt-get; ccache lets every Verilator harness share one compiled
+# runtime), checks formatting and clippy, then `cargo test --release`. Simulator and synthesis
 # tests never skip: a missing tool makes them fail.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 missing=()
-for pair in verilator:verilator iverilog:iverilog vvp:iverilog yosys:yosys nextpnr-ice40:nextpnr-ice40; do
+for pair in verilator:verilator iverilog:iverilog vvp:iverilog yosys:yosys nextpnr-ice40:nextpnr-ice40 ccache:ccache; do
     tool=${pair%%:*}; pkg=${pair##*:}
     command -v "$tool" >/dev/null 2>&1 || missing+=("$pkg")
 done

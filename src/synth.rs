@@ -167,13 +167,16 @@ pub fn target_for(design: &Design, asked: Option<Target>) -> Result<Target, Fail
     let generated = design.cfg.target();
     let primitives = design.plan.datapath.has_dsp_blocks() || design.plan.datapath.has_block_rams();
     match asked {
-        Some(t) if primitives && t != generated => Err(input(format!(
-            "invalid --target {}: the RTL in {} was generated with --target {} and instantiates its primitives (MULT18X18D, DP16KD); allowed: --target {}, or generate again",
-            t.name(),
-            design.dir.display(),
-            generated.name(),
-            generated.name()
-        ))),
+        Some(t) if primitives && t != generated => Err(Failure::Config(crate::config::ConfigError {
+            parameter: "target",
+            message: format!(
+                "{} cannot take the RTL in {}: it was generated for {} and instantiates that family's primitives (MULT18X18D, DP16KD); allowed: {}, or generate again",
+                t.name(),
+                design.dir.display(),
+                generated.name(),
+                generated.name()
+            ),
+        })),
         Some(t) => Ok(t),
         None if generated == Target::Generic => Ok(Target::Ice40),
         None => Ok(generated),
@@ -356,7 +359,7 @@ pub fn pick_stages(plan: &crate::plan::Plan, mhz: f64) -> Result<(u32, StageTria
         _ => Some(x),
     });
     Err(mismatch(match best {
-        Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on {part}; the best is {f:.1} MHz at --stages {s}; nothing written"),
+        Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on {part}; the best is {f:.1} MHz at {s} stages; nothing written"),
         None => format!("no pipeline depth could be placed on {part}; nothing written"),
     }))
 }

@@ -89,6 +89,10 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
             if trace {
                 cmd.arg("--trace");
             }
+            // every harness compiles the same Verilator runtime: with ccache there, compile it once
+            if which("ccache") {
+                cmd.env("OBJCACHE", "ccache");
+            }
             cmd.args(&sources).arg("harness.cpp");
         }
         Simulator::Icarus => {
@@ -348,4 +352,9 @@ pub fn write_trace(design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], 
     let abs = if path.is_absolute() { path.to_path_buf() } else { std::env::current_dir().unwrap_or_default().join(path) };
     run_one(&built, design, model, &Recorded(cycles), 0, &AtomicU64::new(0), &[("SPECGEN_VCD", &abs)])?;
     Ok(())
+}
+
+/// Whether `tool` is an executable on the PATH (looked up directly, no shell).
+fn which(tool: &str) -> bool {
+    std::env::var_os("PATH").is_some_and(|paths| std::env::split_paths(&paths).any(|d| d.join(tool).is_file()))
 }

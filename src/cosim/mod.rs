@@ -75,7 +75,7 @@ impl Design {
 
     /// The manifest (path, text), the Verilog sources and the simulation models in `dir`.
     fn files(dir: &Path) -> Result<(PathBuf, String, Vec<PathBuf>, Vec<PathBuf>), Error> {
-        let entries = std::fs::read_dir(dir).map_err(|e| input(format!("cannot read --rtl {}: {e}", dir.display())))?;
+        let entries = std::fs::read_dir(dir).map_err(|e| input(format!("cannot read the RTL directory {}: {e}", dir.display())))?;
         let mut manifests = Vec::new();
         let mut sources = Vec::new();
         let mut sim_models = Vec::new();
@@ -98,11 +98,11 @@ impl Design {
         sim_models.sort();
         let (path, text) = match manifests.len() {
             1 => manifests.pop().unwrap(),
-            0 => return Err(input(format!("no specgen manifest (<top>.json) in --rtl {}", dir.display()))),
-            _ => return Err(input(format!("more than one specgen manifest in --rtl {}", dir.display()))),
+            0 => return Err(input(format!("no specgen manifest (<top>.json) in the RTL directory {}", dir.display()))),
+            _ => return Err(input(format!("more than one specgen manifest in the RTL directory {}", dir.display()))),
         };
         if sources.is_empty() {
-            return Err(input(format!("no Verilog (*.v) in --rtl {}", dir.display())));
+            return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
         }
         Ok((path, text, sources, sim_models))
     }
