@@ -833,7 +833,7 @@ impl SpecularUnit for Blinn {
                 w.exp2_frac_bits,
                 t.v
             ),
-            explain_ideal(self.ideal(x), "c^n"),
+            explain_ideal(self.ideal(x), "(c^n)"),
         ]
     }
 }

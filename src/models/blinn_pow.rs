@@ -97,7 +97,7 @@ impl SpecularUnit for BlinnPow {
     }
 
     fn explain(&self, x: Inputs) -> Vec<String> {
-        vec![format!("datapath   square-and-multiply over the bits of n, UQ1.{}", self.power_frac_bits), explain_ideal(self.ideal(x), "c^n")]
+        vec![format!("datapath   square-and-multiply over the bits of n, UQ1.{}", self.power_frac_bits), explain_ideal(self.ideal(x), "(c^n)")]
     }
 }
 

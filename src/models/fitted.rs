@@ -544,7 +544,7 @@ impl SpecularUnit for Fitted {
         for j in 0..=cfg.max_squarings() as usize {
             lines.push(format!("           power{j} = {} (UQ1.{wf} = {:.9})", t.squares[j], t.squares[j] as f64 / (wf as f64).exp2()));
         }
-        lines.push(explain_ideal(self.ideal(x), "the fitted formula with the stored a_n"));
+        lines.push(explain_ideal(self.ideal(x), "(the fitted formula with the stored a_n)"));
         lines
     }
 }

@@ -174,10 +174,10 @@ pub fn scaled(cfg: &Config, s: f64, x: Inputs) -> (f64, [f64; 3]) {
     (s * (cfg.fi() as f64).exp2(), x.ks.map(|k| s * k as f64))
 }
 
-/// The `exact` line of `specgen eval`: the ideal outputs and what they are.
-pub(crate) fn explain_ideal(ideal: (f64, [f64; 3]), what: &str) -> String {
+/// The `exact` line of `specgen eval`: the ideal outputs, then `tail` (what they are).
+pub(crate) fn explain_ideal(ideal: (f64, [f64; 3]), tail: &str) -> String {
     let (i, s) = ideal;
-    format!("exact      intensity* = {i:.9}  spec* = [{:.6}, {:.6}, {:.6}]  ({what})", s[0], s[1], s[2])
+    format!("exact      intensity* = {i:.9}  spec* = [{:.6}, {:.6}, {:.6}]  {tail}", s[0], s[1], s[2])
 }
 
 /// An ideal output value `num / 2^den_log2`, exact.

@@ -218,7 +218,7 @@ impl SpecularUnit for Quadratic {
                 t.bracket as f64 / (wb as f64).exp2()
             ),
             format!("           square = {} (UQ1.{ws} = {:.9})", t.square, t.square as f64 / (ws as f64).exp2()),
-            format!("{}  done = {}", explain_ideal(self.ideal(x), "SPEC §3 with k_q"), r.done),
+            explain_ideal(self.ideal(x), &format!("done = {}  (SPEC §3 with k_q)", r.done)),
         ]
     }
 }
