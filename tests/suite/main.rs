@@ -8,6 +8,7 @@ mod cosim;
 mod every_model;
 mod exhaustive;
 mod hostile;
+mod layers;
 mod models;
 mod properties;
 mod render;

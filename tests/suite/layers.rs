@@ -1,0 +1,71 @@
+//! Issue 21: the house has layers that import only downward. Reads `src/` (the library, not
+//! the binary's `cli/` and `main.rs`), takes every `crate::<module>` a file of one top-level
+//! module names, and requires the graph between top-level modules to have no circle; and
+//! no library file names clap.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+/// Every `.rs` file under `dir`, recursively.
+fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+#[test]
+fn library_layers_import_only_downward_and_know_no_command_line() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for f in &files {
+        let rel = f.strip_prefix(&src).unwrap();
+        let top = rel.components().next().unwrap().as_os_str().to_string_lossy().trim_end_matches(".rs").to_string();
+        if top == "cli" || top == "main" || top == "lib" {
+            continue;
+        }
+        // code only: comments and docs may name any module
+        let text: String = std::fs::read_to_string(f).unwrap().lines().filter(|l| !l.trim_start().starts_with("//")).collect::<Vec<_>>().join("\n");
+        assert!(!text.contains("clap::") && !text.contains("use clap"), "{} names clap: the library knows no command line", rel.display());
+        let deps = graph.entry(top.clone()).or_default();
+        for (i, _) in text.match_indices("crate::") {
+            let name: String = text[i + 7..].chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+            if !name.is_empty() && name != top {
+                deps.insert(name);
+            }
+        }
+    }
+    assert!(graph.contains_key("models") && graph.contains_key("datapath"), "{graph:?}");
+    // a depth-first search for a back edge
+    fn visit(n: &str, g: &BTreeMap<String, BTreeSet<String>>, state: &mut BTreeMap<String, u8>, path: &mut Vec<String>) {
+        match state.get(n) {
+            Some(1) => panic!("import circle: {} -> {n}", path.join(" -> ")),
+            Some(2) => return,
+            _ => {}
+        }
+        state.insert(n.to_string(), 1);
+        path.push(n.to_string());
+        for d in g.get(n).into_iter().flatten() {
+            visit(d, g, state, path);
+        }
+        path.pop();
+        state.insert(n.to_string(), 2);
+    }
+    let mut state = BTreeMap::new();
+    for n in graph.keys() {
+        visit(n, &graph, &mut state, &mut Vec::new());
+    }
+    // the builder knows no model, and no model knows what is made of it
+    for low in ["bits", "ports", "table", "config", "error", "datapath"] {
+        let deps = graph.get(low).cloned().unwrap_or_default();
+        for high in ["models", "plan", "emit", "cosim", "synth", "report", "render", "vectors", "rom"] {
+            assert!(!deps.contains(high), "{low} imports {high}: layers import only downward");
+        }
+    }
+}
