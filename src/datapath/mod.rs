@@ -16,7 +16,6 @@ use crate::bits::{lit, mask};
 use crate::config::Target;
 pub use crate::ports::CHANNELS;
 pub use crate::table::Table;
-use std::collections::BTreeMap;
 
 /// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
 /// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
@@ -108,8 +107,6 @@ pub struct Datapath {
     pub live: Vec<Vec<Live>>,
     /// The bits no step reads, as Verilog selects (`x_c3[7:1]`), for the one lint sink.
     pub unused: Vec<String>,
-    /// For every name a reference resolves to (`x`, `x_s2`, `x_c3`): the bits read of it.
-    pub read_bits: BTreeMap<String, u128>,
     /// Each output port's source after the last step.
     pub outputs: Vec<(String, String)>,
     pub registered: Vec<u32>,
@@ -859,12 +856,7 @@ impl Builder {
         }
         // unused bits: read nowhere at the last step that reads the signal; one sink for all
         let mut unused: Vec<String> = Vec::new();
-        // the bits read of every name a reference resolves to (a wire, a port or a register)
-        let mut read_bits: BTreeMap<String, u128> = BTreeMap::new();
         for s in &self.signals {
-            for &(step, bits) in &s.uses {
-                *read_bits.entry(visible(&self.registered, &s.name, s.step, step)).or_default() |= bits;
-            }
             let last_use = s.uses.iter().map(|u| u.0).max().unwrap_or(s.step).max(s.step);
             if last_use > last {
                 continue;
@@ -891,7 +883,7 @@ impl Builder {
                 })
             })
             .collect();
-        Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live, unused, read_bits, outputs, registered: self.registered }
+        Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live, unused, outputs, registered: self.registered }
     }
 }
 
@@ -935,8 +927,6 @@ mod tests {
         assert_eq!(d.live[1].iter().map(|l| l.name.as_str()).collect::<Vec<_>>(), ["z"]);
         // step 2 reads x through the register of cut 1; bits 7:1 are left for the sink
         assert_eq!(d.unused, ["x_c1[7:1]"]);
-        assert_eq!(d.read_bits["x_c1"], 1);
-        assert_eq!(d.read_bits["x"], 0xf0);
         assert_eq!(d.outputs, [("z".to_string(), "z_s2".to_string())]);
     }
 
