@@ -54,8 +54,7 @@ impl Design {
 impl Design {
     /// The RTL in `dir` with the plan its manifest states.
     pub fn load(dir: &Path) -> Result<Design, Error> {
-        let (path, text, sources, sim_models) = Design::files(dir)?;
-        let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
+        let (path, params, sources, sim_models) = Design::files(dir)?;
         let plan = crate::plan::Plan::from_params(params).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
         let cfg = plan.cfg.clone();
         Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
@@ -64,8 +63,7 @@ impl Design {
     /// The RTL in `dir`, written from `plan` (its manifest must state the same parameters): the
     /// plan is taken as it is, not made again.
     pub(crate) fn with_plan(dir: &Path, plan: crate::plan::Plan) -> Result<Design, Error> {
-        let (path, text, sources, sim_models) = Design::files(dir)?;
-        let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
+        let (path, params, sources, sim_models) = Design::files(dir)?;
         if params != plan.cfg.params {
             return Err(input(format!("manifest {} is not the plan's configuration", path.display())));
         }
@@ -73,8 +71,9 @@ impl Design {
         Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
     }
 
-    /// The manifest (path, text), the Verilog sources and the simulation models in `dir`.
-    fn files(dir: &Path) -> Result<(PathBuf, String, Vec<PathBuf>, Vec<PathBuf>), Error> {
+    /// The manifest (its path and the parameters it states), the Verilog sources and the
+    /// simulation models in `dir`.
+    fn files(dir: &Path) -> Result<(PathBuf, Params, Vec<PathBuf>, Vec<PathBuf>), Error> {
         let entries = std::fs::read_dir(dir).map_err(|e| input(format!("cannot read the RTL directory {}: {e}", dir.display())))?;
         let mut manifests = Vec::new();
         let mut sources = Vec::new();
@@ -104,7 +103,8 @@ impl Design {
         if sources.is_empty() {
             return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
         }
-        Ok((path, text, sources, sim_models))
+        let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
+        Ok((path, params, sources, sim_models))
     }
 }
 
