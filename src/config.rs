@@ -134,6 +134,55 @@ impl Target {
     }
 }
 
+/// The unit's handshake (`generate --interface`, SPEC §7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Interface {
+    /// `in_valid`/`out_valid` only: the pipeline never waits (today's ports)
+    Valid,
+    /// adds `in_ready`/`out_ready` with AXI4-Stream rules: backpressure, nothing lost
+    Ready,
+    /// the `ready` behaviour under AXI4-Stream names (`aclk`, `aresetn`, `s_axis_*`, `m_axis_*`)
+    Axis,
+}
+
+impl Interface {
+    pub fn name(self) -> &'static str {
+        match self {
+            Interface::Valid => "valid",
+            Interface::Ready => "ready",
+            Interface::Axis => "axis",
+        }
+    }
+    /// The unit takes backpressure (`ready` or `axis`).
+    pub fn handshake(self) -> bool {
+        self != Interface::Valid
+    }
+}
+
+/// Cycles the `ready`/`axis` output buffer adds after the pipeline (`templates/out_buffer.v`):
+/// the write, the memory's read register, the output register.
+pub const BUFFER_LATENCY: u32 = 3;
+
+/// Where the specular colour comes from (`generate --colour`, SPEC §7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Colour {
+    /// `ks_r/g/b` are per-pixel operands, carried down the pipeline with each pixel
+    Pixel,
+    /// `ks_r/g/b` are material registers loaded by `ks_load` while the unit is `idle`
+    Static,
+}
+
+impl Colour {
+    pub fn name(self) -> &'static str {
+        match self {
+            Colour::Pixel => "pixel",
+            Colour::Static => "static",
+        }
+    }
+}
+
 /// A closed integer range with the parameter's name and default: the one table that drives
 /// validation, the defaults and the ranges `--help` shows.
 pub struct Range {
@@ -149,9 +198,10 @@ pub const COLOR_BITS: Range = Range { name: "color_bits", min: 1, max: 16, defau
 pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min: 1, max: 24, default: 15 };
 pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24, default: 16 };
 pub const MAX_SQUARINGS: Range = Range { name: "max_squarings", min: 0, max: 4, default: 3 };
+pub const TAG_BITS: Range = Range { name: "tag_bits", min: 0, max: 64, default: 0 };
 
 /// Every integer parameter with a fixed range (`stages` depends on the datapath).
-pub const RANGES: &[&Range] = &[&COS_FRAC_BITS, &N_BITS, &COLOR_BITS, &INTENSITY_FRAC_BITS, &K_FRAC_BITS, &MAX_SQUARINGS];
+pub const RANGES: &[&Range] = &[&COS_FRAC_BITS, &N_BITS, &COLOR_BITS, &INTENSITY_FRAC_BITS, &K_FRAC_BITS, &MAX_SQUARINGS, &TAG_BITS];
 
 impl Range {
     fn check(&self, value: u32) -> Result<u32, ConfigError> {
@@ -184,6 +234,14 @@ pub struct Params {
     pub max_squarings: u32,
     /// The family the datapath is shaped for.
     pub target: Target,
+    /// The handshake: valid (default), ready or axis.
+    pub interface: Interface,
+    /// Bits of the tag carried beside each pixel (`in_tag` → `out_tag`), 0 for none.
+    pub tag_bits: u32,
+    /// Per-pixel colour operands, or static material registers.
+    pub colour: Colour,
+    /// The clock the constraints ask for, MHz as a plain decimal; none: the target's default.
+    pub clock_mhz: Option<String>,
 }
 
 impl Default for Params {
@@ -203,6 +261,10 @@ impl Default for Params {
             model: SpecularModel::Quadratic,
             max_squarings: MAX_SQUARINGS.default,
             target: Target::Ice40,
+            interface: Interface::Valid,
+            tag_bits: TAG_BITS.default,
+            colour: Colour::Pixel,
+            clock_mhz: None,
         }
     }
 }
@@ -218,6 +280,7 @@ pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "files",
     "model_widths",
     "registered_cuts",
+    "tdata",
     "blinn_error_max",
     "blinn_error_mean",
     "blinn_error_method",
@@ -281,6 +344,10 @@ impl Config {
         INTENSITY_FRAC_BITS.check(params.intensity_frac_bits)?;
         K_FRAC_BITS.check(params.k_frac_bits)?;
         MAX_SQUARINGS.check(params.max_squarings)?;
+        TAG_BITS.check(params.tag_bits)?;
+        if let Some(text) = &params.clock_mhz {
+            parse_clock_mhz(text)?;
+        }
         let k_code = parse_k(&params.k, params.k_frac_bits)?;
         if params.model != SpecularModel::Quadratic {
             if params.rounding == Rounding::Exact {
@@ -348,16 +415,54 @@ impl Config {
     pub fn top(&self) -> &str {
         &self.params.top
     }
+    pub fn interface(&self) -> Interface {
+        self.params.interface
+    }
+    /// W: bits of the tag beside each pixel (0: no tag ports).
+    pub fn tag_bits(&self) -> u32 {
+        self.params.tag_bits
+    }
+    pub fn colour(&self) -> Colour {
+        self.params.colour
+    }
+    /// Whether the unit has a clock and reset: pipeline registers, a handshake's buffer or
+    /// material registers.
+    pub fn clocked(&self) -> bool {
+        self.stages() > 0 || self.interface().handshake() || self.colour() == Colour::Static
+    }
+    /// The clock the constraint files and `synth` ask for: `clock_mhz`, else 200 MHz on ECP5
+    /// and 100 MHz elsewhere.
+    pub fn clock_mhz(&self) -> f64 {
+        match &self.params.clock_mhz {
+            Some(text) => parse_clock_mhz(text).expect("validated"),
+            None if self.target() == Target::Ecp5 => 200.0,
+            None => 100.0,
+        }
+    }
     /// The unit's ports (SPEC §2) in module order; `done_meaning` completes `done`'s comment.
     pub fn ports(&self, done_meaning: &str) -> Vec<crate::ports::Port> {
-        let widths = crate::ports::PortWidths {
+        crate::ports::ports(self.port_widths(), done_meaning)
+    }
+
+    /// What the port table depends on.
+    pub(crate) fn port_widths(&self) -> crate::ports::PortWidths {
+        crate::ports::PortWidths {
             cos_frac_bits: self.f(),
             n_bits: self.n_bits(),
             color_bits: self.b(),
             intensity_frac_bits: self.fi(),
-            clocked: self.stages() > 0,
-        };
-        crate::ports::ports(widths, done_meaning)
+            clocked: self.clocked(),
+            ready: self.interface().handshake(),
+            axis: self.interface() == Interface::Axis,
+            tag_bits: self.tag_bits(),
+            static_colour: self.colour() == Colour::Static,
+        }
+    }
+
+    /// Cycles from a pixel in to its result out: the pipeline's registers, and behind a
+    /// handshake the output buffer's (while the consumer is ready).
+    pub fn latency(&self) -> u32 {
+        self.stages() + if self.interface().handshake() { BUFFER_LATENCY } else { 0 }
     }
 
     /// The datapath's name in messages: the architecture for the quadratic model, else the model.
@@ -385,6 +490,27 @@ impl Config {
             s.push_str(&format!(" max_squarings={}", p.max_squarings));
         }
         s.push_str(&format!(" stages={} rounding={} arch={} target={}", p.stages, p.rounding.name(), p.arch.name(), p.target.name()));
+        s.push_str(&self.interface_words());
+        if let Some(mhz) = &p.clock_mhz {
+            s.push_str(&format!(" clock_mhz={mhz}"));
+        }
+        s
+    }
+
+    /// ` interface=… tag_bits=… colour=…` for what is not the default (empty for the default
+    /// unit, whose text stays as it was before these parameters).
+    pub fn interface_words(&self) -> String {
+        let p = &self.params;
+        let mut s = String::new();
+        if p.interface != Interface::Valid {
+            s.push_str(&format!(" interface={}", p.interface.name()));
+        }
+        if p.tag_bits > 0 {
+            s.push_str(&format!(" tag_bits={}", p.tag_bits));
+        }
+        if p.colour != Colour::Pixel {
+            s.push_str(&format!(" colour={}", p.colour.name()));
+        }
         s
     }
 }
@@ -422,6 +548,21 @@ pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
     let (q, rem, half) = (wide >> shift, wide & ((1u128 << shift) - 1), 1u128 << (shift - 1));
     let code = if rem > half || (rem == half && q & 1 == 1) { q + 1 } else { q };
     u64::try_from(code).map_err(|_| format!("{text:?} is too large"))
+}
+
+/// Parses `clock_mhz`: a plain decimal in (0, 1000] MHz.
+pub fn parse_clock_mhz(text: &str) -> Result<f64, ConfigError> {
+    let bad = |why: String| ConfigError { parameter: "clock_mhz", message: format!("{why}; allowed a plain decimal in (0, 1000] MHz, such as \"100\" or \"148.5\"") };
+    let t = text.trim();
+    let plain = !t.is_empty() && t.len() <= 16 && t.chars().all(|c| c.is_ascii_digit() || c == '.') && t.matches('.').count() <= 1 && t != ".";
+    if !plain {
+        return Err(bad(format!("{text:?} is not a plain decimal number")));
+    }
+    let v: f64 = t.parse().map_err(|_| bad(format!("{text:?} does not parse")))?;
+    if !(v > 0.0 && v <= 1000.0) {
+        return Err(bad(format!("{text:?} is out of range")));
+    }
+    Ok(v)
 }
 
 /// Parses the constant `k` (SPEC §3: `k_q = round(k·2^KF)/2^KF`). Allowed: `0 < k_q ≤ 1`.
@@ -592,7 +733,12 @@ pub fn is_internal_name(name: &str) -> bool {
         || name.ends_with("_fd")
         || name.ends_with("_FILE")
         || name == "valid_line"
+        || INTERNAL_NAMES.contains(&name)
 }
+
+/// The handshake's, tag's and material registers' own names inside the unit.
+pub(crate) const INTERNAL_NAMES: &[&str] =
+    &["in_take", "out_result", "out_held", "out_buffer", "tag_line", "ks_r_material", "ks_g_material", "ks_b_material", "result_valid"];
 
 /// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
 fn check_identifier(top: &str) -> Result<(), ConfigError> {

@@ -263,6 +263,8 @@ pub(crate) struct UnitTemplate<'a> {
     pub model: &'a str,
     pub p: &'a Params,
     pub param_line: String,
+    /// `interface=… tag_bits=… colour=…` when any is not the default
+    pub interface_line: String,
     pub formula: Vec<String>,
     pub rounding_text: String,
     pub datapath_line: String,
@@ -273,19 +275,20 @@ pub(crate) struct UnitTemplate<'a> {
     pub steps: Vec<StepView>,
     /// registers in the valid pipeline (one a registered cut)
     pub valid_depth: u32,
-    pub outputs: Vec<OutputView>,
+    /// what the valid pipeline takes (`in_valid`, or `in_take` behind a handshake)
+    pub valid_source: String,
+    /// the header's latency and interface lines, the declarations after the ports, the tag's
+    /// delay line, and the outputs (see [`crate::interface`])
+    pub edge_header: Vec<String>,
+    pub prologue: Vec<String>,
+    pub tag_lines: Vec<String>,
+    pub tail: Vec<String>,
     /// the one lint sink for bits no step reads, four a line
     pub unused: Vec<String>,
     /// products use the ECP5 product module (`<top>_mult18x18`)
     pub dsp_module: bool,
     /// tables use the ECP5 ROM module (`<top>_rom1k18`)
     pub bram_module: bool,
-}
-
-/// `assign port = source;`
-pub(crate) struct OutputView {
-    pub port: String,
-    pub source: String,
 }
 
 /// "after steps [..]" for the Verilog header: runs of consecutive steps as `a-b`.
@@ -334,8 +337,8 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let p = &cfg.params;
     let dp = &plan.datapath;
     let cuts = cut_list(dp);
-    let outputs = dp.outputs.iter().map(|(port, src)| OutputView { port: port.clone(), source: src.clone() }).collect();
-    let unused: Vec<String> = dp.unused.chunks(4).map(|c| c.join(", ")).collect();
+    let edge = crate::interface::edge(plan, &dp.outputs);
+    let unused: Vec<String> = dp.unused.iter().chain(&edge.unused).cloned().collect::<Vec<_>>().chunks(4).map(|c| c.join(", ")).collect();
     let file = p.rom_style == RomStyle::File;
     let file_tables = if file {
         dp.tables
@@ -390,6 +393,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     if !dp.tables.is_empty() {
         param_line.push_str(&format!(" rom_style={}", p.rom_style.name()));
     }
+    let interface_line = cfg.interface_words().trim_start().to_string();
     let ports = cfg.ports(d.done_meaning);
     UnitTemplate {
         top: cfg.top(),
@@ -397,6 +401,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
         model: cfg.model().name(),
         p,
         param_line,
+        interface_line,
         formula: d.formula,
         rounding_text: d.rounding,
         datapath_line: d.datapath,
@@ -404,7 +409,11 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
         cuts_text: registered_cuts_text(&plan.registered_cuts),
         file_tables,
         valid_depth: plan.registered_cuts.len() as u32,
-        outputs,
+        valid_source: edge.valid_source,
+        edge_header: edge.header,
+        prologue: edge.prologue,
+        tag_lines: edge.tag,
+        tail: edge.tail,
         unused,
         steps: dp
             .steps
@@ -507,6 +516,14 @@ struct CoreTemplate<'a> {
     ecp5: bool,
 }
 
+/// The output buffer `<top>_out_buffer` of a `ready`/`axis` unit.
+#[derive(Template)]
+#[template(path = "out_buffer.v")]
+struct OutBufferTemplate<'a> {
+    top: &'a str,
+    version: &'a str,
+}
+
 /// The ECP5 product module `<top>_mult18x18` (one MULT18X18D with its registers).
 #[derive(Template)]
 #[template(path = "mult18x18.v")]
@@ -565,6 +582,13 @@ pub(crate) fn core_name(cfg: &crate::config::Config) -> String {
     format!("specgen:specular:{}-{}:{VERSION}", cfg.top(), &digest[..8])
 }
 
+/// Where each field sits in the `axis` unit's `tdata`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Tdata {
+    pub s_axis: Vec<crate::ports::Field>,
+    pub m_axis: Vec<crate::ports::Field>,
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct FileEntry {
     pub name: String,
@@ -581,6 +605,9 @@ pub(crate) struct Manifest<'a> {
     pub k_code: u64,
     pub latency: u32,
     pub ports: Vec<Port>,
+    /// The fields packed into `s_axis_tdata` and `m_axis_tdata` (the `axis` interface).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tdata: Option<Tdata>,
     /// The model's own widths and table sizes.
     pub internal_widths: serde_json::Value,
     /// The cuts that hold a pipeline register (1-based step numbers).
@@ -612,6 +639,10 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
     // the ECP5 primitives' wrappers (RTL) and their simulation models (never synthesized)
     let (mut rtl_files, mut sim_models) = (Vec::new(), Vec::new());
+    if cfg.interface().handshake() {
+        let text = OutBufferTemplate { top, version: VERSION }.render().expect("buffer template renders") + "\n";
+        rtl_files.push((format!("{top}_out_buffer.v"), text));
+    }
     if dp.has_dsp_blocks() {
         let text = Mult18Template { top, version: VERSION }.render().expect("mult18x18 template renders") + "\n";
         rtl_files.push((format!("{top}_mult18x18.v"), text));
@@ -647,8 +678,12 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         version: VERSION,
         params: &cfg.params,
         k_code: cfg.k_code,
-        latency: cfg.stages(),
+        latency: cfg.latency(),
         ports: cfg.ports(""),
+        tdata: (cfg.interface() == crate::config::Interface::Axis).then(|| {
+            let (s_axis, _, m_axis, _) = crate::ports::tdata_fields(cfg.port_widths());
+            Tdata { s_axis, m_axis }
+        }),
         internal_widths: unit.widths(),
         registered_cuts: &plan.registered_cuts,
         blinn_error_max: fidelity.max,

@@ -8,7 +8,7 @@
 //! 2. [`datapath`]: the step/cut IR and its `Builder`, which knows no model;
 //! 3. [`models`]: one home per model behind the `SpecularUnit` trait, and the registry;
 //! 4. [`plan`]: config → model → registers placed → datapath, built once per command;
-//! 5. [`emit`] and [`rom`] (files), [`cosim`], [`synth`], [`vectors`], [`render`],
+//! 5. [`interface`] (the handshake, tag and colour around the datapath), [`emit`] and [`rom`] (files), [`cosim`], [`synth`], [`vectors`], [`render`],
 //!    [`report`], [`paper`].
 //!
 //! The command line lives in the binary (`src/main.rs`, `src/cli/`): the library knows no flag.
@@ -19,6 +19,7 @@ pub mod cosim;
 pub mod datapath;
 pub mod emit;
 pub mod error;
+pub mod interface;
 pub mod models;
 pub mod paper;
 pub mod plan;

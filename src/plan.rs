@@ -6,7 +6,7 @@
 //! datapath, which only exists once the model is made; and where the registers are placed
 //! ([`balanced_cuts`]) from the datapath's per-step delay estimates.
 
-use crate::config::{Config, ConfigError, Params};
+use crate::config::{Colour, Config, ConfigError, Params};
 use crate::datapath::{Builder, Datapath};
 use crate::models::Model;
 
@@ -29,6 +29,11 @@ fn build(model: &Model, registered: &[u32]) -> Datapath {
     let cfg = &model.cfg;
     let inputs = [("cos_g", cfg.f() + 1), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
     let mut b = Builder::new(&inputs, registered, cfg.target());
+    if cfg.colour() == Colour::Static {
+        for ch in crate::ports::CHANNELS {
+            b.hold(&format!("ks_{ch}"), &format!("ks_{ch}_material"));
+        }
+    }
     model.unit().datapath(&mut b);
     b.finish(&OUTPUT_SIGNALS)
 }

@@ -37,8 +37,50 @@ pub struct PortWidths {
     pub color_bits: u32,
     /// FI of UQ1.FI
     pub intensity_frac_bits: u32,
-    /// a clock and reset (the unit has pipeline registers)
+    /// a clock and reset (the unit has registers)
     pub clocked: bool,
+    /// `in_ready`/`out_ready` (the `ready` and `axis` interfaces)
+    pub ready: bool,
+    /// AXI4-Stream names, the fields packed into `tdata` (the `axis` interface)
+    pub axis: bool,
+    /// W of `in_tag`/`out_tag` (`tuser` under `axis`), 0 for none
+    pub tag_bits: u32,
+    /// `ks_r/g/b` are material registers loaded by `ks_load`, with an `idle` output
+    pub static_colour: bool,
+}
+
+/// One field of a packed `tdata` (the `axis` interface): a logical port's bits at `lo`.
+#[derive(Debug, Clone, Serialize, PartialEq, Eq)]
+pub struct Field {
+    pub name: &'static str,
+    pub lo: u32,
+    pub width: u32,
+}
+
+/// The fields of `s_axis_tdata` and `m_axis_tdata`, each starting on a byte boundary, and
+/// the two widths (whole bytes).
+pub fn tdata_fields(w: PortWidths) -> (Vec<Field>, u32, Vec<Field>, u32) {
+    let pack = |fields: &[(&'static str, u32)]| {
+        let mut lo = 0;
+        let v: Vec<Field> = fields
+            .iter()
+            .map(|&(name, width)| {
+                let f = Field { name, lo, width };
+                lo += width.div_ceil(8) * 8;
+                f
+            })
+            .collect();
+        (v, lo)
+    };
+    let (f, b, fi) = (w.cos_frac_bits, w.color_bits, w.intensity_frac_bits);
+    let mut s: Vec<(&'static str, u32)> = vec![("cos_g", f + 1), ("n", w.n_bits)];
+    if !w.static_colour {
+        s.extend([("ks_r", b), ("ks_g", b), ("ks_b", b)]);
+    }
+    let m = [("intensity", fi + 1), ("spec_r", b), ("spec_g", b), ("spec_b", b), ("done", 1)];
+    let (sf, sw) = pack(&s);
+    let (mf, mw) = pack(&m);
+    (sf, sw, mf, mw)
 }
 
 /// One port of the generated module.
@@ -55,31 +97,110 @@ pub struct Port {
     pub data: bool,
 }
 
-/// Every name the port table can hold.
-pub(crate) const NAMES: [&str; 14] =
-    ["clk", "rst", "in_valid", "cos_g", "n", "ks_r", "ks_g", "ks_b", "out_valid", "spec_r", "spec_g", "spec_b", "intensity", "done"];
+/// Every name the port table can hold, and the logical names of the `axis` unit's fields.
+pub(crate) const NAMES: [&str; 30] = [
+    "clk",
+    "rst",
+    "in_valid",
+    "in_ready",
+    "cos_g",
+    "n",
+    "ks_r",
+    "ks_g",
+    "ks_b",
+    "ks_load",
+    "in_tag",
+    "out_valid",
+    "out_ready",
+    "spec_r",
+    "spec_g",
+    "spec_b",
+    "intensity",
+    "done",
+    "out_tag",
+    "idle",
+    "aclk",
+    "aresetn",
+    "s_axis_tvalid",
+    "s_axis_tready",
+    "s_axis_tdata",
+    "s_axis_tuser",
+    "m_axis_tvalid",
+    "m_axis_tready",
+    "m_axis_tdata",
+    "m_axis_tuser",
+];
 
 /// The port list in module order; `done_meaning` completes the `done` comment.
 pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
-    let (f, b, fi) = (w.cos_frac_bits, w.color_bits, w.intensity_frac_bits);
+    let (f, b, fi, tw) = (w.cos_frac_bits, w.color_bits, w.intensity_frac_bits, w.tag_bits);
     let mut v = Vec::new();
     let mut port = |name, direction, width, meaning: String, data| v.push(Port { name, direction, width, meaning, data });
+    let static_colour = |port: &mut dyn FnMut(&'static str, &'static str, u32, String, bool)| {
+        for (name, ch) in ["ks_r", "ks_g", "ks_b"].into_iter().zip(["R", "G", "B"]) {
+            port(name, "input", b, format!("UNORM{b}: Ks * {ch}, taken by ks_load"), false);
+        }
+        port("ks_load", "input", 1, "loads ks_r/g/b into the material registers; only while idle".into(), false);
+    };
+    if w.axis {
+        let (sf, sw, mf, mw) = tdata_fields(w);
+        let layout = |fields: &[Field]| fields.iter().map(|x| format!("{}@{}", x.name, x.lo)).collect::<Vec<_>>().join(" ");
+        port("aclk", "input", 1, String::new(), false);
+        port("aresetn", "input", 1, "synchronous, active low: empties the unit".into(), false);
+        port("s_axis_tvalid", "input", 1, String::new(), false);
+        port("s_axis_tready", "output", 1, String::new(), false);
+        port("s_axis_tdata", "input", sw, layout(&sf), true);
+        if tw > 0 {
+            port("s_axis_tuser", "input", tw, "the pixel's tag".into(), true);
+        }
+        port("m_axis_tvalid", "output", 1, String::new(), false);
+        port("m_axis_tready", "input", 1, String::new(), false);
+        port("m_axis_tdata", "output", mw, layout(&mf), true);
+        if tw > 0 {
+            port("m_axis_tuser", "output", tw, "the tag of the pixel out".into(), true);
+        }
+        if w.static_colour {
+            static_colour(&mut port);
+            port("idle", "output", 1, "no pixel inside the unit".into(), false);
+        }
+        return v;
+    }
     if w.clocked {
         port("clk", "input", 1, String::new(), false);
-        port("rst", "input", 1, "synchronous, active high: clears the valid pipeline".into(), false);
+        let what = if w.ready { "empties the unit" } else { "clears the valid pipeline" };
+        port("rst", "input", 1, format!("synchronous, active high: {what}"), false);
     }
     port("in_valid", "input", 1, String::new(), false);
+    if w.ready {
+        port("in_ready", "output", 1, String::new(), false);
+    }
     port("cos_g", "input", f + 1, format!("UQ1.{f}: cos(gamma) = N.H; codes above 1.0 read as 1.0"), true);
     port("n", "input", w.n_bits, "unsigned specular exponent".into(), true);
-    for (name, ch) in ["ks_r", "ks_g", "ks_b"].into_iter().zip(["R", "G", "B"]) {
-        port(name, "input", b, format!("UNORM{b}: Ks * {ch}"), true);
+    if w.static_colour {
+        static_colour(&mut port);
+    } else {
+        for (name, ch) in ["ks_r", "ks_g", "ks_b"].into_iter().zip(["R", "G", "B"]) {
+            port(name, "input", b, format!("UNORM{b}: Ks * {ch}"), true);
+        }
+    }
+    if tw > 0 {
+        port("in_tag", "input", tw, "carried beside the pixel to out_tag".into(), true);
     }
     port("out_valid", "output", 1, String::new(), false);
+    if w.ready {
+        port("out_ready", "input", 1, String::new(), false);
+    }
     for name in ["spec_r", "spec_g", "spec_b"] {
         port(name, "output", b, format!("UNORM{b}: S * ks_{}", &name[5..]), true);
     }
     port("intensity", "output", fi + 1, format!("UQ1.{fi}: S"), true);
     port("done", "output", 1, done_meaning.to_string(), true);
+    if tw > 0 {
+        port("out_tag", "output", tw, "in_tag of the pixel out".into(), true);
+    }
+    if w.static_colour {
+        port("idle", "output", 1, "no pixel inside the unit".into(), false);
+    }
     v
 }
 
@@ -120,9 +241,22 @@ mod tests {
 
     #[test]
     fn the_table_holds_every_name_once_and_every_column() {
-        let w = PortWidths { cos_frac_bits: 15, n_bits: 10, color_bits: 8, intensity_frac_bits: 15, clocked: true };
+        let w = PortWidths {
+            cos_frac_bits: 15,
+            n_bits: 10,
+            color_bits: 8,
+            intensity_frac_bits: 15,
+            clocked: true,
+            ready: false,
+            axis: false,
+            tag_bits: 0,
+            static_colour: false,
+        };
         let p = ports(w, "");
-        assert_eq!(p.iter().map(|p| p.name).collect::<Vec<_>>(), NAMES);
+        let names = |w| ports(w, "").iter().map(|p| p.name).collect::<Vec<_>>();
+        let mut all: Vec<&str> = names(PortWidths { ready: true, tag_bits: 4, static_colour: true, ..w });
+        all.extend(names(PortWidths { axis: true, tag_bits: 4, static_colour: true, ..w }).into_iter().filter(|n| n.contains("axis") || n.starts_with('a')));
+        assert_eq!(all, NAMES);
         for c in VECTOR_COLUMNS {
             assert!(p.iter().any(|p| p.name == c && p.data), "{c}");
             let (x, y) = (Inputs::default(), Outputs::default());

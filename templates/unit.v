@@ -6,11 +6,16 @@
 //
 // Parameters: cos_frac_bits={{ p.cos_frac_bits }} n_bits={{ p.n_bits }} color_bits={{ p.color_bits }} intensity_frac_bits={{ p.intensity_frac_bits }}
 //             {{ param_line }}
+{%- if !interface_line.is_empty() %}
+//             {{ interface_line }}
+{%- endif %}
 {%- for line in formula %}
 // {% if loop.first %}Formula:    {% else %}            {% endif %}{{ line }}
 {%- endfor %}
 // Rounding:   {{ rounding_text }}
-// Latency:    {{ p.stages }} clock cycle(s){% if p.stages == 0 %} (combinational){% else %}, one result per cycle; rst clears only the valid pipeline{% endif %}.
+{%- for line in edge_header %}
+// {{ line }}
+{%- endfor %}
 // Datapath:   {{ datapath_line }}; registered after steps [{{ cuts_text }}]: the register
 //             after step K is x_cK (a wire of step K is x_sK); a signal that waits through
 //             several cuts is one delay line, its registers loaded in one statement.
@@ -38,6 +43,11 @@ module {{ top }}{% if !file_tables.is_empty() %} #(
 {%- endfor %}
 ){% endif %} (
 {%- call cuts::ports(port_lines) %}{% endcall %}
+{%- if !prologue.is_empty() %}
+{% endif %}
+{%- for line in prologue %}
+{{ line }}
+{%- endfor %}
 {%- for t in file_tables %}
 
 // ---- table {{ t.name }}: {{ t.what }} ----
@@ -74,9 +84,12 @@ end
 reg  [{{ valid_depth - 1 }}:0] valid_line;
 always @(posedge clk) begin
     if (rst) valid_line <= {{ valid_depth }}'h0;
-    else     valid_line <= {% if valid_depth == 1 %}in_valid{% else %}{valid_line[{{ valid_depth - 2 }}:0], in_valid}{% endif %};
+    else     valid_line <= {% if valid_depth == 1 %}{{ valid_source }}{% else %}{valid_line[{{ valid_depth - 2 }}:0], {{ valid_source }}}{% endif %};
 end
 {%- endif %}
+{%- for line in tag_lines %}
+{{ line }}
+{%- endfor %}
 {%- for st in steps %}
 
 // ==== step {{ st.index }}: {{ st.title }} ====
@@ -134,9 +147,8 @@ wire        unused_bits = ^{
 };
 {%- endif %}
 
-assign out_valid = {% if valid_depth > 0 %}valid_line[{{ valid_depth - 1 }}]{% else %}in_valid{% endif %};
-{%- for o in outputs %}
-assign {{ "{:<9}"|format(o.port) }} = {{ o.source }};
+{%- for line in tail %}
+{{ line }}
 {%- endfor %}
 
 endmodule

@@ -13,7 +13,7 @@ use specgen::models::Inputs;
 use specgen::plan::Plan;
 use specgen::rom;
 use std::path::PathBuf;
-use values::{ArchFlag, ModelFlag, RomFormatFlag, RomStyleFlag, RoundingFlag, TargetFlag, VectorFormatFlag};
+use values::{ArchFlag, ColourFlag, InterfaceFlag, ModelFlag, RomFormatFlag, RomStyleFlag, RoundingFlag, TargetFlag, VectorFormatFlag};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -203,6 +203,21 @@ pub struct RtlArgs {
     /// and adds, left to the synthesis tool) [default ice40]
     #[arg(long, value_enum, help_heading = "RTL")]
     pub target: Option<TargetFlag>,
+    /// The handshake: valid (in_valid/out_valid), ready (adds in_ready/out_ready, AXI4-Stream
+    /// rules) or axis (AXI4-Stream names, fields packed in tdata) [default valid]
+    #[arg(long, value_enum, help_heading = "Interface")]
+    pub interface: Option<InterfaceFlag>,
+    /// W: bits of a tag carried beside each pixel, in_tag -> out_tag (tuser with axis) [0..=64; default 0]
+    #[arg(allow_negative_numbers = true, value_parser = param_tag_bits, long, help_heading = "Interface")]
+    pub tag_bits: Option<u32>,
+    /// The specular colour: pixel (ks_r/g/b with every pixel) or static (material registers
+    /// loaded by ks_load while idle) [default pixel]
+    #[arg(long, value_enum, help_heading = "Interface")]
+    pub colour: Option<ColourFlag>,
+    /// The clock the constraints (<top>.sdc, <top>.lpf), the FuseSoC core and synth ask for, MHz
+    /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
+    #[arg(long, value_name = "F", help_heading = "Interface")]
+    pub clock_mhz: Option<String>,
 }
 
 /// A whole-number flag: a negative value gets a range error, not a "flag not found".
@@ -230,7 +245,8 @@ range_params!(
     param_color_bits => config::COLOR_BITS,
     param_intensity_frac_bits => config::INTENSITY_FRAC_BITS,
     param_k_frac_bits => config::K_FRAC_BITS,
-    param_max_squarings => config::MAX_SQUARINGS
+    param_max_squarings => config::MAX_SQUARINGS,
+    param_tag_bits => config::TAG_BITS
 );
 
 use specgen::error::OutputError;
@@ -270,7 +286,10 @@ impl ParamArgs {
             if let Some(v) = &r.top {
                 p.top = v.clone();
             }
-            set!(r; stages, rom_style, target);
+            set!(r; stages, rom_style, target, interface, tag_bits, colour);
+            if let Some(v) = &r.clock_mhz {
+                p.clock_mhz = Some(v.clone());
+            }
         }
         if let Some(v) = &self.k {
             p.k = v.clone();
@@ -290,7 +309,11 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<()
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Generate { out, target_mhz, params, rtl } => {
-            let cfg = params.to_config(Some(&rtl))?;
+            let mut cfg = params.to_config(Some(&rtl))?;
+            if let (Some(mhz), None) = (target_mhz, &cfg.params.clock_mhz) {
+                // the constraints ask for the clock the pipeline was chosen for
+                cfg = Config::new(Params { clock_mhz: Some(format!("{mhz}")), ..cfg.params })?;
+            }
             // the plan: model, widths, registers, datapath, built once; --stages checked here
             let mut plan = Plan::new(cfg)?;
             if let Some(mhz) = target_mhz {

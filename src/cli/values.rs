@@ -1,7 +1,7 @@
 //! The command line's form of the library's enums: clap's `ValueEnum` lives here, never in the
 //! library. Each flag value converts into its library type.
 
-use specgen::config::{Arch, RomStyle, Rounding, SpecularModel, Target};
+use specgen::config::{Arch, Colour, Interface, RomStyle, Rounding, SpecularModel, Target};
 use specgen::cosim::Simulator;
 use specgen::rom::RomFormat;
 use specgen::vectors::VectorFormat;
@@ -52,6 +52,22 @@ flag_values! {
         Blinn,
         /// [1 - a_n*(1 - cos)]^(2^m_n) with per-n a_n, m_n from a minimax fit
         Fitted,
+    }
+    /// `--interface`
+    InterfaceFlag => Interface {
+        /// in_valid/out_valid only: the pipeline never waits
+        Valid,
+        /// adds in_ready/out_ready with AXI4-Stream rules: backpressure, nothing lost
+        Ready,
+        /// the ready behaviour under AXI4-Stream names (aclk, aresetn, s_axis_*, m_axis_*)
+        Axis,
+    }
+    /// `--colour`
+    ColourFlag => Colour {
+        /// ks_r/g/b are per-pixel operands carried with each pixel
+        Pixel,
+        /// ks_r/g/b are material registers loaded by ks_load while the unit is idle
+        Static,
     }
     /// `--target`
     TargetFlag => Target {

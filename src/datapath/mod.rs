@@ -137,6 +137,9 @@ struct Signal {
     uses: Vec<(usize, u128)>,
     /// held by a DSP's output register at the cut after its step (no fabric register there)
     dsp_registered: bool,
+    /// an input held in a register of its own for every pixel (a static colour): read under
+    /// this name at every step, never carried across a cut
+    held: Option<String>,
 }
 
 /// Records the datapath step by step; see the module documentation.
@@ -303,7 +306,7 @@ impl Builder {
     pub fn new(inputs: &[(&str, u32)], registered: &[u32], target: Target) -> Builder {
         Builder {
             steps: Vec::new(),
-            signals: inputs.iter().map(|&(n, w)| Signal { name: n.into(), width: w, step: 0, uses: Vec::new(), dsp_registered: false }).collect(),
+            signals: inputs.iter().map(|&(n, w)| Signal { name: n.into(), width: w, step: 0, uses: Vec::new(), dsp_registered: false, held: None }).collect(),
             tables: Vec::new(),
             reads: Vec::new(),
             registered: registered.to_vec(),
@@ -311,6 +314,14 @@ impl Builder {
             view: None,
             chunk_limit: u32::MAX,
         }
+    }
+
+    /// Makes the input `name` one held in the register `register` for every pixel (a static
+    /// colour): every step reads that register, and no cut carries it.
+    pub fn hold(&mut self, name: &str, register: &str) {
+        let s = self.signal(name);
+        assert_eq!(s.step, 0, "datapath: only an input can be held");
+        s.held = Some(register.to_string());
     }
 
     /// The step references are made from: the current one, or the one before a registered
@@ -371,7 +382,7 @@ impl Builder {
     /// register at the cut after it).
     fn define(&mut self, name: &str, width: u32, step: usize, dsp_registered: bool) {
         assert!(self.signals.iter().all(|s| s.name != name), "datapath: {name} defined twice");
-        self.signals.push(Signal { name: name.into(), width, step, uses: Vec::new(), dsp_registered });
+        self.signals.push(Signal { name: name.into(), width, step, uses: Vec::new(), dsp_registered, held: None });
     }
 
     /// `name = a·b mod 2^width` (operands zero-extended; `width` at most their two widths
@@ -418,6 +429,9 @@ impl Builder {
     fn version(&mut self, name: &str) -> String {
         let (cur, def, dsp) = (self.cur(), self.signal(name).step, self.signal(name).dsp_registered);
         assert!(!(dsp && def == cur), "datapath: {name} is a DSP's registered output, read only after its step");
+        if let Some(held) = &self.signal(name).held {
+            return held.clone();
+        }
         visible(&self.registered, name, def, cur)
     }
 
@@ -862,14 +876,15 @@ impl Builder {
                 continue;
             }
             let read = s.uses.iter().filter(|u| u.0 == last_use).fold(0u128, |m, u| m | u.1);
-            unused.extend(bit_ranges(&visible(&self.registered, &s.name, s.step, last_use), s.width, mask(s.width) & !read));
+            let seen = s.held.clone().unwrap_or_else(|| visible(&self.registered, &s.name, s.step, last_use));
+            unused.extend(bit_ranges(&seen, s.width, mask(s.width) & !read));
         }
         let live = (1..=last)
             .map(|k| {
                 self.signals
                     .iter()
                     // a DSP's output register is the cut after its step: nothing to add there
-                    .filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k) && !(s.dsp_registered && s.step == k))
+                    .filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k) && !(s.dsp_registered && s.step == k) && s.held.is_none())
                     .map(|s| Live { name: s.name.clone(), width: s.width, source: visible(&self.registered, &s.name, s.step, k) })
                     .collect()
             })

@@ -1,0 +1,255 @@
+//! The unit's edge around its datapath (SPEC §7): the handshake, the tag beside each pixel,
+//! the material registers of a static colour, and the `axis` names — rendered as the lines
+//! `templates/unit.v` places around the steps. One place for all of them, so every model gets
+//! every interface from the same text.
+//!
+//! - `valid`: the pipeline's `valid_line` takes `in_valid`; outputs are assigned from the last
+//!   step. The default unit's text is exactly what it was before this module existed.
+//! - `ready`/`axis`: the pipeline takes `in_take` (`in_valid && in_ready`) and its results go
+//!   to `<top>_out_buffer` (`templates/out_buffer.v`): credits reserve a place there for every
+//!   pixel taken, so the pipeline itself never stalls and its registers need no enable.
+//! - a tag (`--tag-bits W`) is one delay line beside `valid_line`, into the buffer with its
+//!   result.
+//! - a static colour: three registers loaded by `ks_load`; the datapath reads them at every step
+//!   (`datapath::Builder::hold`), so no cut carries a colour.
+
+use crate::bits::lit;
+use crate::config::{Colour, Config, Interface, BUFFER_LATENCY};
+use crate::plan::Plan;
+use crate::ports::{self, Field};
+
+
+/// Places of the output buffer, as log2: at least the pipeline's latency + 4, so a stream at
+/// full rate never finds `in_ready` low.
+pub fn buffer_depth_log2(stages: u32) -> u32 {
+    (stages + BUFFER_LATENCY + 1).next_power_of_two().trailing_zeros()
+}
+
+/// The lines around the datapath.
+pub(crate) struct Edge {
+    /// the header's `Latency:` line and the lines after it (each without its `// `)
+    pub header: Vec<String>,
+    /// declarations right after the port list: `axis` aliases, `in_take`, material registers
+    pub prologue: Vec<String>,
+    /// what `valid_line` takes: `in_valid`, or `in_take` behind a handshake
+    pub valid_source: String,
+    /// the tag's delay line (after the valid pipeline)
+    pub tag: Vec<String>,
+    /// the outputs: assigns, or the buffer and what it drives
+    pub tail: Vec<String>,
+    /// bits no logic reads (`tdata` padding), for the lint sink
+    pub unused: Vec<String>,
+}
+
+fn range(width: u32) -> String {
+    if width == 1 {
+        "      ".into()
+    } else {
+        format!("{:<6}", format!("[{}:0]", width - 1))
+    }
+}
+
+/// `{a, b, …}` or the one name.
+fn concat(parts: &[String]) -> String {
+    if parts.len() == 1 {
+        parts[0].clone()
+    } else {
+        format!("{{{}}}", parts.join(", "))
+    }
+}
+
+/// A packed `tdata`, most significant first: fields and zero padding up to `width`.
+fn packed(fields: &[Field], width: u32) -> String {
+    let mut parts = Vec::new();
+    let mut top = width;
+    for f in fields.iter().rev() {
+        let pad = top - (f.lo + f.width);
+        if pad > 0 {
+            parts.push(lit(pad, 0));
+        }
+        parts.push(f.name.to_string());
+        top = f.lo;
+    }
+    concat(&parts)
+}
+
+/// The edge of the unit `plan` describes. `outputs`: each output port and the signal that
+/// drives it (the datapath's last view of it).
+pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
+    let cfg = &plan.cfg;
+    let depth = plan.registered_cuts.len() as u32;
+    let (interface, tw, colour) = (cfg.interface(), cfg.tag_bits(), cfg.colour());
+    let top = cfg.top();
+    let mut e = Edge {
+        header: Vec::new(),
+        prologue: Vec::new(),
+        valid_source: "in_valid".into(),
+        tag: Vec::new(),
+        tail: Vec::new(),
+        unused: Vec::new(),
+    };
+    // the header
+    if interface.handshake() {
+        let places = 1u32 << buffer_depth_log2(depth);
+        let (iv, ir, ov, or, rst) = names(interface);
+        e.header.push(format!("Latency:    {} clock cycles from a transfer in to its result out while {or} is high;", cfg.stages() + BUFFER_LATENCY));
+        e.header.push(format!("            one result a cycle; {rst} empties the unit."));
+        e.header.push("Handshake:  AXI4-Stream rules: a transfer when valid and ready are both high at a rising clock edge.".into());
+        e.header.push(format!("            {ov} and every output hold while {or} is low;"));
+        e.header.push(format!("            {ov} never waits for {or}."));
+        e.header.push(format!("            {ir} is a register: high while fewer than {places} pixels are taken and not yet"));
+        e.header.push(format!("            delivered ({top}_out_buffer holds {places} results), so the pipeline never stalls;"));
+        e.header.push(format!("            {iv} may come and go freely: a pixel is taken only in a transfer."));
+    } else {
+        let latency = if cfg.stages() == 0 {
+            "0 clock cycle(s) (combinational).".to_string()
+        } else {
+            format!("{} clock cycle(s), one result per cycle; rst clears only the valid pipeline.", cfg.stages())
+        };
+        e.header.push(format!("Latency:    {latency}"));
+    }
+    if interface == Interface::Axis {
+        let w = cfg.port_widths();
+        let (sf, _, mf, _) = ports::tdata_fields(w);
+        let bits = |f: &Field| if f.width == 1 { format!("{}[{}]", f.name, f.lo) } else { format!("{}[{}:{}]", f.name, f.lo + f.width - 1, f.lo) };
+        let layout = |fields: &[Field]| fields.iter().map(bits).collect::<Vec<_>>().join(" ");
+        e.header.push(format!("tdata:      s_axis_tdata: {}", layout(&sf)));
+        e.header.push(format!("            m_axis_tdata: {} (other bits 0)", layout(&mf)));
+    }
+    if tw > 0 {
+        let (inp, out) = if interface == Interface::Axis { ("s_axis_tuser", "m_axis_tuser") } else { ("in_tag", "out_tag") };
+        e.header.push(format!("Tag:        {inp} ({tw} bits) leaves on {out} with its own pixel's result."));
+    }
+    if colour == Colour::Static {
+        e.header.push("Colour:     static: ks_load takes ks_r/g/b into the material registers at a rising edge; every".into());
+        e.header.push("            pixel taken after that edge uses them. Load only while idle is high and with no pixel".into());
+        e.header.push("            taken in the same cycle (a pixel inside the unit meanwhile would see either colour).".into());
+    }
+
+    // the prologue: axis aliases, the take, the material registers
+    if interface == Interface::Axis {
+        let w = cfg.port_widths();
+        let (sf, sw, _, _) = ports::tdata_fields(w);
+        e.prologue.push("// ---- AXI4-Stream names: the logic below uses the plain ones ----".into());
+        e.prologue.push(format!("wire {} clk       = aclk;", range(1)));
+        e.prologue.push(format!("wire {} rst       = ~aresetn;   // active high inside", range(1)));
+        e.prologue.push(format!("wire {} in_valid  = s_axis_tvalid;", range(1)));
+        e.prologue.push(format!("wire {} out_ready = m_axis_tready;", range(1)));
+        e.prologue.push(format!("wire {} in_ready, out_valid;", range(1)));
+        let mut covered = 0u128;
+        for f in &sf {
+            e.prologue.push(format!("wire {} {:<9} = s_axis_tdata[{}:{}];", range(f.width), f.name, f.lo + f.width - 1, f.lo));
+            covered |= crate::bits::mask(f.width) << f.lo;
+        }
+        e.unused.extend(crate::datapath::bit_ranges("s_axis_tdata", sw, crate::bits::mask(sw) & !covered));
+        if tw > 0 {
+            e.prologue.push(format!("wire {} in_tag    = s_axis_tuser;", range(tw)));
+        }
+        let b = cfg.b();
+        e.prologue.push(format!("wire {} spec_r, spec_g, spec_b;", range(b)));
+        e.prologue.push(format!("wire {} intensity;", range(cfg.fi() + 1)));
+        e.prologue.push(format!("wire {} done;", range(1)));
+        if tw > 0 {
+            e.prologue.push(format!("wire {} out_tag;", range(tw)));
+        }
+        e.prologue.push("assign s_axis_tready = in_ready;".into());
+        e.prologue.push("assign m_axis_tvalid = out_valid;".into());
+    }
+    if interface.handshake() {
+        e.prologue.push(format!("wire {} in_take;   // in_valid && in_ready: the pipeline takes a pixel ({top}_out_buffer)", range(1)));
+        if colour != Colour::Static {
+            e.prologue.push(format!("wire {} buffer_idle;", range(1)));
+            e.unused.push("buffer_idle".into());
+        }
+        e.valid_source = "in_take".into();
+    }
+    if colour == Colour::Static {
+        let b = cfg.b();
+        e.prologue.push(String::new());
+        e.prologue.push("// ---- the material registers: ks_load takes ks_r/g/b; every step reads them ----".into());
+        e.prologue.push(format!("reg  {} ks_r_material, ks_g_material, ks_b_material;   // UNORM{b}", range(b)));
+        e.prologue.push(
+            "always @(posedge clk) if (ks_load) {ks_r_material, ks_g_material, ks_b_material} <= {ks_r, ks_g, ks_b};".into(),
+        );
+    }
+
+    // the tag: one delay line beside valid_line
+    let tag_out = if tw == 0 {
+        None
+    } else if depth == 0 {
+        Some("in_tag".to_string())
+    } else {
+        let regs: Vec<String> = plan.registered_cuts.iter().map(|k| format!("tag_c{k}")).collect();
+        let before: Vec<String> = std::iter::once("in_tag".to_string()).chain(regs[..regs.len() - 1].iter().cloned()).collect();
+        e.tag.push(String::new());
+        e.tag.push(format!("// the tag: in_tag waits through {depth} cut(s) beside its pixel, one register a cut"));
+        e.tag.push(format!("reg  {} {};", range(tw), regs.join(", ")));
+        e.tag.push(format!("always @(posedge clk) {} <= {};", concat(&regs), concat(&before)));
+        regs.last().cloned()
+    };
+
+    // the outputs
+    let last_valid = if depth == 0 { e.valid_source.clone() } else { format!("valid_line[{}]", depth - 1) };
+    if !interface.handshake() {
+        e.tail.push(String::new());
+        e.tail.push(format!("assign out_valid = {last_valid};"));
+        for (port, src) in outputs {
+            e.tail.push(format!("assign {port:<9} = {src};"));
+        }
+        if let Some(t) = &tag_out {
+            e.tail.push(format!("assign {:<9} = {t};", "out_tag"));
+        }
+        if colour == Colour::Static {
+            let idle = if depth == 0 { "1'b1".to_string() } else { "~|valid_line".to_string() };
+            e.tail.push(format!("assign {:<9} = {idle};   // no pixel in the pipeline", "idle"));
+        }
+        return e;
+    }
+    // the buffer: the tag, then the outputs in port order reversed (spec_r lowest)
+    let mut fields: Vec<(String, String, u32)> = Vec::new();
+    if let Some(t) = &tag_out {
+        fields.push(("out_tag".into(), t.clone(), tw));
+    }
+    let widths = |p: &str| cfg.ports("").iter().chain(logical_outputs(cfg).iter()).find(|x| x.name == p).map(|x| x.width).expect("an output port");
+    for (port, src) in outputs.iter().rev() {
+        fields.push((port.clone(), src.clone(), widths(port)));
+    }
+    let width: u32 = fields.iter().map(|f| f.2).sum();
+    let idle = if colour == Colour::Static { "idle" } else { "buffer_idle" };
+    e.tail.push(String::new());
+    e.tail.push("// ==== the output buffer: the handshake ====".into());
+    e.tail.push(format!("// every pixel taken has a place reserved in {top}_out_buffer, so the pipeline never waits"));
+    e.tail.push(format!("wire {} out_result = {};", range(width), concat(&fields.iter().map(|f| f.1.clone()).collect::<Vec<_>>())));
+    e.tail.push(format!("wire {} out_held;", range(width)));
+    e.tail.push(format!(
+        "{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({}), .LATENCY({})) out_buffer (",
+        buffer_depth_log2(depth),
+        cfg.stages()
+    ));
+    e.tail.push("    .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .take(in_take),".into());
+    e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
+    e.tail.push(format!("    .out_valid(out_valid), .out_ready(out_ready), .out(out_held), .idle({idle})"));
+    e.tail.push(");".into());
+    e.tail.push(format!("assign {} = out_held;", concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>())));
+    if interface == Interface::Axis {
+        let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
+        e.tail.push(format!("assign m_axis_tdata = {};", packed(&mf, mw)));
+        if tw > 0 {
+            e.tail.push("assign m_axis_tuser = out_tag;".into());
+        }
+    }
+    e
+}
+
+/// The logical ports behind `tdata` (the `ready` unit's port table, as `axis` packs it).
+fn logical_outputs(cfg: &Config) -> Vec<ports::Port> {
+    ports::ports(ports::PortWidths { axis: false, ..cfg.port_widths() }, "")
+}
+
+/// The handshake's port names: in valid, in ready, out valid, out ready, reset.
+fn names(interface: Interface) -> (&'static str, &'static str, &'static str, &'static str, &'static str) {
+    match interface {
+        Interface::Axis => ("s_axis_tvalid", "s_axis_tready", "m_axis_tvalid", "m_axis_tready", "aresetn low"),
+        _ => ("in_valid", "in_ready", "out_valid", "out_ready", "rst"),
+    }
+}
