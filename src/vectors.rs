@@ -54,7 +54,7 @@ pub fn inputs(model: &Model, selection: Selection) -> (u64, Box<dyn Iterator<Ite
         Selection::Exhaustive => {
             let all = Exhaustive::parts(cfg, 1).pop().expect("one part");
             // every cycle but the reset a pipelined sweep starts with
-            let rows = all.len() - all.pipelined as u64;
+            let rows = all.len() - all.lead();
             (rows, Box::new((0..all.len()).map(move |i| all.cycle(i)).filter(|c| c.valid && !c.rst).map(|c| c.inputs)))
         }
     }

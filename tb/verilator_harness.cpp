@@ -1,9 +1,10 @@
 #include <unistd.h>
 // specgen co-simulation harness for Verilator: generic over every generated configuration.
 //
-// Built with --prefix Vdut --top-module <top>; -DHAS_CLOCK=1 when the unit has clk/rst.
-// Protocol (little-endian, binary, batched): stdin carries 16-byte input records, one per
-// clock cycle; stdout returns one 12-byte output record per input record. Per cycle:
+// Built with --prefix Vdut --top-module specgen_cosim_top: the adapter specgen writes for each
+// unit, one set of port names for every interface mode (a combinational unit ignores clk).
+// Protocol (little-endian, binary, batched): stdin carries 24-byte input records, one per
+// clock cycle; stdout returns one 24-byte output record per input record. Per cycle:
 // apply the inputs (clk low), settle, sample the outputs, then raise clk (posedge), so an
 // input applied in cycle t shows at the outputs in cycle t + latency.
 // With -DTRACE=1 a VCD of the whole run is written to the file named by $SPECGEN_VCD.
@@ -16,20 +17,22 @@
 #include <cstdio>
 #include <cstdlib>
 
-struct InRecord {            // 16 bytes
+struct InRecord {            // 24 bytes
     uint32_t cos_g;
     uint16_t n, ks_r, ks_g, ks_b;
-    uint8_t flags;           // bit 0: in_valid, bit 1: rst
+    uint8_t flags;           // bit 0: in_valid, 1: rst, 2: out_ready, 3: ks_load
     uint8_t pad[3];
+    uint64_t tag;
 };
-struct OutRecord {           // 12 bytes
+struct OutRecord {           // 24 bytes
     uint32_t intensity;
     uint16_t spec_r, spec_g, spec_b;
-    uint8_t flags;           // bit 0: out_valid, bit 1: done
-    uint8_t pad;
+    uint8_t flags;           // bit 0: out_valid, 1: done, 2: in_ready, 3: idle
+    uint8_t pad[5];
+    uint64_t tag;
 };
-static_assert(sizeof(InRecord) == 16, "input record layout");
-static_assert(sizeof(OutRecord) == 12, "output record layout");
+static_assert(sizeof(InRecord) == 24, "input record layout");
+static_assert(sizeof(OutRecord) == 24, "output record layout");
 
 static const size_t BATCH = 1 << 14;
 static InRecord in_buf[BATCH];
@@ -65,10 +68,11 @@ int main(int argc, char** argv) {
             dut.ks_r = in.ks_r;
             dut.ks_g = in.ks_g;
             dut.ks_b = in.ks_b;
-#if HAS_CLOCK
+            dut.in_tag = in.tag;
             dut.rst = (in.flags >> 1) & 1;
+            dut.out_ready = (in.flags >> 2) & 1;
+            dut.ks_load = (in.flags >> 3) & 1;
             dut.clk = 0;
-#endif
             dut.eval();
 #if TRACE
             vcd.dump(time++);
@@ -78,14 +82,13 @@ int main(int argc, char** argv) {
             out.spec_r = dut.spec_r;
             out.spec_g = dut.spec_g;
             out.spec_b = dut.spec_b;
-            out.flags = (dut.out_valid & 1) | ((dut.done & 1) << 1);
-            out.pad = 0;
-#if HAS_CLOCK
+            out.flags = (dut.out_valid & 1) | ((dut.done & 1) << 1) | ((dut.in_ready & 1) << 2) | ((dut.idle & 1) << 3);
+            for (int k = 0; k < 5; k++) out.pad[k] = 0;
+            out.tag = dut.out_tag;
             dut.clk = 1;
             dut.eval();
 #if TRACE
             vcd.dump(time++);
-#endif
 #endif
         }
         if (std::fwrite(out_buf, sizeof(OutRecord), count, data) != count) return 3;

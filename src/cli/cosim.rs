@@ -50,12 +50,13 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let check_time = t1.elapsed();
     let rate = report.cycles as f64 / check_time.as_secs_f64().max(1e-9);
     println!(
-        "cosim {} ({:?}{}): {} cycles, {} checked, {} mismatches; build {:.2} s{}, check {:.2} s ({:.1} M cycles/s)",
+        "cosim {} ({:?}{}): {} cycles, {} checked, {} results, {} mismatches; build {:.2} s{}, check {:.2} s ({:.1} M cycles/s)",
         design.dir.display(),
         Simulator::from(args.simulator),
         if args.exhaustive { ", exhaustive" } else { "" },
         report.cycles,
         report.checked,
+        report.results,
         report.mismatches,
         build_time.as_secs_f64(),
         if built.fresh { "" } else { " (cached)" },

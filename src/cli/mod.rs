@@ -310,6 +310,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Generate { out, target_mhz, params, rtl } => {
             let mut cfg = params.to_config(Some(&rtl))?;
+            if let Some(mhz) = target_mhz {
+                if !(mhz > 0.0 && mhz <= 1000.0) {
+                    return Err(usage(format!("invalid --target-mhz: {mhz}; allowed (0, 1000]")));
+                }
+            }
             if let (Some(mhz), None) = (target_mhz, &cfg.params.clock_mhz) {
                 // the constraints ask for the clock the pipeline was chosen for
                 cfg = Config::new(Params { clock_mhz: Some(format!("{mhz}")), ..cfg.params })?;
@@ -317,9 +322,6 @@ fn run(cli: Cli) -> Result<(), Failure> {
             // the plan: model, widths, registers, datapath, built once; --stages checked here
             let mut plan = Plan::new(cfg)?;
             if let Some(mhz) = target_mhz {
-                if !(mhz > 0.0 && mhz <= 1000.0) {
-                    return Err(usage(format!("invalid --target-mhz: {mhz}; allowed (0, 1000]")));
-                }
                 let (stages, _) = specgen::synth::pick_stages(&plan, mhz)?;
                 plan = plan.with_stages(stages)?;
                 eprintln!("target-mhz: chose --stages {stages}");
@@ -460,11 +462,11 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         cosim::check_tables(&design)?;
         let mut cycles = Vec::new();
         if design.cfg.stages() > 0 {
-            cycles.push(Cycle { inputs: Inputs::default(), valid: false, rst: true });
+            cycles.push(Cycle::reset());
         }
         for &n in &args.n {
             for scene in [Scene::Sphere, Scene::GrazingPlane] {
-                cycles.extend(render::tile_inputs(&model, scene, n, args.size).into_iter().map(|inputs| Cycle { inputs, valid: true, rst: false }));
+                cycles.extend(render::tile_inputs(&model, scene, n, args.size).into_iter().map(Cycle::pixel));
             }
         }
         let stim: Vec<Box<dyn Stimulus>> = vec![Box::new(Recorded(cycles))];

@@ -48,14 +48,14 @@ pub struct Built {
 /// Builds (or finds in the cache) the simulator for `design`.
 pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built, Failure> {
     let top = design.cfg.top().to_string();
-    let has_clock = design.cfg.stages() > 0;
+    let adapter = super::adapter::adapter(&design.cfg);
     let (tool, package, harness) = match simulator {
         Simulator::Verilator => ("verilator", "verilator", VERILATOR_HARNESS),
         Simulator::Icarus => ("iverilog", "iverilog", ICARUS_BENCH),
     };
     let version = tool_version(tool, package)?;
     let mut h = Sha256::new();
-    for part in [version.as_str(), harness, &top, &format!("{has_clock} {trace} {simulator:?} v2")] {
+    for part in [version.as_str(), harness, &top, &adapter, &format!("{trace} {simulator:?} v3")] {
         h.update(part.as_bytes());
         h.update([0u8]);
     }
@@ -74,16 +74,18 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         .prefix(".build-")
         .tempdir_in(&root)
         .map_err(|e| error::tool("simulator", format!("cannot create a build directory in {}: {e}", root.display())))?;
-    let sources: Vec<PathBuf> = design.sim_sources().iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone())).collect();
+    let mut sources: Vec<PathBuf> = design.sim_sources().iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone())).collect();
+    std::fs::write(work.path().join("cosim_top.v"), &adapter).map_err(|e| error::tool("simulator", e.to_string()))?;
+    sources.push(work.path().join("cosim_top.v"));
     let mut cmd;
     match simulator {
         Simulator::Verilator => {
             std::fs::write(work.path().join("harness.cpp"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
             cmd = Command::new("verilator");
             cmd.current_dir(work.path())
-                .args(["--cc", "--exe", "--build", "-O3", "--prefix", "Vdut", "--top-module", &top])
+                .args(["--cc", "--exe", "--build", "-O3", "--prefix", "Vdut", "--top-module", "specgen_cosim_top"])
                 .args(["-Wno-fatal", "-Wno-lint", "-Wno-style", "-Mdir", "obj", "-o", "../harness"])
-                .args(["-j", "2", "-CFLAGS", &format!("-O2 -DHAS_CLOCK={} -DTRACE={}", has_clock as u8, trace as u8)])
+                .args(["-j", "2", "-CFLAGS", &format!("-O2 -DTRACE={}", trace as u8)])
                 .arg("-MAKEFLAGS")
                 .arg("OPT_FAST=-O2");
             if trace {
@@ -101,14 +103,10 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
             cmd = Command::new("iverilog");
             cmd.current_dir(work.path())
                 .args(["-g2005", "-o", "sim.vvp", "-s", "specgen_icarus_bench"])
-                .arg(format!("-DTOP={top}"))
                 .arg(format!("-DCOS_W={}", c.f() + 1))
                 .arg(format!("-DN_W={}", c.n_bits()))
                 .arg(format!("-DB_W={}", c.b()))
                 .arg(format!("-DI_W={}", c.fi() + 1));
-            if has_clock {
-                cmd.arg("-DHAS_CLOCK");
-            }
             cmd.arg("bench.v").args(&sources);
         }
     }
@@ -127,8 +125,8 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     Ok(Built { simulator, dir, fresh: true })
 }
 
-const IN_RECORD: usize = 16;
-const OUT_RECORD: usize = 12;
+const IN_RECORD: usize = 24;
+const OUT_RECORD: usize = 24;
 const CHUNK: u64 = 1 << 14;
 
 fn encode(c: &Cycle, buf: &mut Vec<u8>) {
@@ -137,8 +135,9 @@ fn encode(c: &Cycle, buf: &mut Vec<u8>) {
     for k in c.inputs.ks {
         buf.extend_from_slice(&(k as u16).to_le_bytes());
     }
-    buf.push(c.valid as u8 | (c.rst as u8) << 1);
+    buf.push(c.valid as u8 | (c.rst as u8) << 1 | (!c.stall as u8) << 2 | (c.load as u8) << 3);
     buf.extend_from_slice(&[0, 0, 0]);
+    buf.extend_from_slice(&c.tag.to_le_bytes());
 }
 
 fn decode(rec: &[u8]) -> Sampled {
@@ -146,6 +145,9 @@ fn decode(rec: &[u8]) -> Sampled {
     Sampled {
         outputs: Outputs { intensity: u32::from_le_bytes([rec[0], rec[1], rec[2], rec[3]]), spec: [u16at(4), u16at(6), u16at(8)], done: rec[10] & 2 != 0 },
         valid: rec[10] & 1 != 0,
+        in_ready: rec[10] & 4 != 0,
+        idle: rec[10] & 8 != 0,
+        tag: u64::from_le_bytes(rec[16..24].try_into().expect("8 bytes")),
     }
 }
 
@@ -224,7 +226,8 @@ pub fn run_one(
                 for i in 0..stim.len() {
                     let c = stim.cycle(i);
                     let x = c.inputs;
-                    writeln!(w, "{:x} {:x} {:x} {:x} {:x} {:x} {:x}", c.valid as u8, c.rst as u8, x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2])
+                    let (v, r, o, l) = (c.valid as u8, c.rst as u8, !c.stall as u8, c.load as u8);
+                    writeln!(w, "{v:x} {r:x} {:x} {:x} {:x} {:x} {:x} {o:x} {l:x} {:x}", x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2], c.tag)
                         .map_err(|e| error::tool("simulator", e.to_string()))?;
                 }
             }
@@ -246,10 +249,16 @@ pub fn run_one(
                 let line = line.map_err(|e| error::tool("simulator", e.to_string()))?;
                 let f: Vec<&str> = line.split_whitespace().collect();
                 let hex = |s: &str| u32::from_str_radix(s, 16).unwrap_or(u32::MAX); // x/z never match
-                if f.len() != 6 {
+                if f.len() != 9 {
                     return Err(error::tool("vvp", format!("vvp output line {t} is malformed: {line:?}")));
                 }
-                let s = Sampled { outputs: Outputs { intensity: hex(f[2]), spec: [hex(f[3]), hex(f[4]), hex(f[5])], done: f[1] == "1" }, valid: f[0] == "1" };
+                let s = Sampled {
+                    outputs: Outputs { intensity: hex(f[2]), spec: [hex(f[3]), hex(f[4]), hex(f[5])], done: f[1] == "1" },
+                    valid: f[0] == "1",
+                    in_ready: f[6] == "1",
+                    idle: f[7] == "1",
+                    tag: u64::from_str_radix(f[8], 16).unwrap_or(u64::MAX),
+                };
                 // outputs that are x/z before the pipeline fills are never compared (see Checker)
                 checker.check(stim, t, s);
                 t += 1;
@@ -300,6 +309,7 @@ pub fn run_all(built: &Built, design: &Design, model: &Model, stims: &[Box<dyn S
         for rep in r? {
             all.cycles += rep.cycles;
             all.checked += rep.checked;
+            all.results += rep.results;
             all.mismatches += rep.mismatches;
             let earlier = match (&all.first, &rep.first) {
                 (None, Some(_)) => true,
@@ -341,11 +351,11 @@ fn progress_bar(progress: &AtomicU64, total: u64, done: &std::sync::atomic::Atom
 pub fn write_trace(design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], m: &Mismatch, path: &Path) -> Result<(), Failure> {
     let built = build(design, Simulator::Verilator, true)?;
     let stim = stims[m.run].as_ref();
-    let s = design.cfg.stages() as u64;
+    let s = design.cfg.latency() as u64;
     let from = m.cycle.saturating_sub(16 + s);
     let to = (m.cycle + 4).min(stim.len() - 1);
     let mut cycles = Vec::new();
-    if s > 0 {
+    if design.cfg.clocked() {
         cycles.push(Cycle { rst: true, valid: false, ..stim.cycle(from) });
     }
     cycles.extend((from..=to).map(|i| stim.cycle(i)));

@@ -9,6 +9,7 @@
 //!   builds, and the runs. Vectors stream to the simulator in binary batches (Verilator) or a
 //!   vector file (Icarus); the comparison is done here, in Rust.
 
+pub mod adapter;
 pub mod backend;
 pub mod checking;
 pub mod files;
@@ -114,6 +115,23 @@ pub struct Cycle {
     pub inputs: Inputs,
     pub valid: bool,
     pub rst: bool,
+    /// `out_ready` low (a handshake unit's consumer stalls this cycle)
+    pub stall: bool,
+    /// `ks_load` high: the material registers take `inputs.ks` (a static colour)
+    pub load: bool,
+    /// `in_tag` (masked to the unit's tag bits)
+    pub tag: u64,
+}
+
+impl Cycle {
+    /// A pixel offered with `in_valid` high.
+    pub fn pixel(inputs: Inputs) -> Cycle {
+        Cycle { inputs, valid: true, ..Cycle::default() }
+    }
+    /// A reset cycle (nothing offered).
+    pub fn reset() -> Cycle {
+        Cycle { rst: true, ..Cycle::default() }
+    }
 }
 
 /// What the simulator returned for one cycle.
@@ -121,4 +139,10 @@ pub struct Cycle {
 pub struct Sampled {
     pub outputs: Outputs,
     pub valid: bool,
+    /// `in_ready` (always 1 without a handshake)
+    pub in_ready: bool,
+    /// `idle` (0 without material registers)
+    pub idle: bool,
+    /// `out_tag` (0 without a tag)
+    pub tag: u64,
 }

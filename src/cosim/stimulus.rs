@@ -86,30 +86,96 @@ pub fn random_vector(cfg: &Config, seed: u64, i: u64) -> Inputs {
     Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
 }
 
-/// Corners, then `count` random vectors. For a pipelined unit: a reset first, random bubbles
-/// on `in_valid` (one cycle in eight), and a reset in mid-stream.
+/// Cycles with nothing offered that empty a unit whose consumer is ready: its latency, and
+/// behind a handshake the buffer's places too.
+pub fn drain_cycles(cfg: &Config) -> u64 {
+    let buffer = if cfg.interface().handshake() { 1u64 << crate::interface::buffer_depth_log2(cfg.stages()) } else { 0 };
+    cfg.latency() as u64 + buffer + 4
+}
+
+/// The consumer's `out_ready` pattern behind a handshake, in four phases of 600 cycles: full
+/// rate; a stall every other cycle at random; long stalls (100 cycles stalled, 20 ready);
+/// rare stalls (one cycle in eight).
+fn stalled(seed: u64, t: u64) -> bool {
+    let r = splitmix(seed ^ 0x57a11 ^ t << 12);
+    match (t / 600) % 4 {
+        0 => false,
+        1 => r & 1 == 0,
+        2 => t % 120 < 100,
+        _ => r.is_multiple_of(8),
+    }
+}
+
+/// Corners, then `count` random vectors. For a clocked unit: a reset first, random bubbles on
+/// `in_valid` (one cycle in eight, and runs of them), and a reset in mid-stream. Behind a
+/// handshake, the consumer stalls in the patterns of [`stalled`]. With a tag, every pixel
+/// carries a random one. With a static colour: a load after the first reset, and a new colour
+/// every quarter of the stream, each after the unit has drained.
 pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
     let cfg = &model.cfg;
-    let pipelined = cfg.stages() > 0;
+    let clocked = cfg.clocked();
+    let handshake = cfg.interface().handshake();
+    let static_colour = cfg.colour() == crate::config::Colour::Static;
+    let tag_mask = crate::bits::mask(cfg.tag_bits()) as u64;
     let vectors: Vec<Inputs> = corner_vectors(model).into_iter().chain((0..count).map(|i| random_vector(cfg, seed, i))).collect();
-    let mut cycles = Vec::with_capacity(vectors.len() * 9 / 8 + 8);
-    if pipelined {
-        cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xdead, 0), valid: true, rst: true });
+    let mut cycles: Vec<Cycle> = Vec::with_capacity(vectors.len() * 5 / 4 + 8);
+    let load = |cycles: &mut Vec<Cycle>, k: u64| {
+        for _ in 0..drain_cycles(cfg) {
+            cycles.push(Cycle::default());
+        }
+        let ks = random_vector(cfg, seed ^ 0x10ad, k).ks;
+        cycles.push(Cycle { inputs: Inputs { ks, ..Inputs::default() }, load: true, ..Cycle::default() });
+    };
+    if clocked {
+        cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xdead, 0), valid: true, rst: true, ..Cycle::default() });
+    }
+    if static_colour {
+        load(&mut cycles, 0);
     }
     let reset_at = vectors.len() / 2;
+    let quarter = (vectors.len() / 4).max(1);
     for (i, &inputs) in vectors.iter().enumerate() {
-        if pipelined {
+        if clocked {
             let r = splitmix(seed ^ 0xb0bb1e5 ^ (i as u64) << 8);
             if r.is_multiple_of(8) {
-                cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xb0bb, i as u64), valid: false, rst: false });
+                // a bubble, or a run of them
+                for _ in 0..if r & 0x700 == 0 { 1 + (r >> 16) % 40 } else { 1 } {
+                    cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xb0bb, i as u64), ..Cycle::default() });
+                }
             }
             if i == reset_at {
-                // a reset in mid-stream: the vectors in flight are dropped, then the stream resumes
-                cycles.push(Cycle { inputs, valid: true, rst: true });
-                cycles.push(Cycle { inputs, valid: true, rst: true });
+                // a reset in mid-stream: the pixels inside are dropped, then the stream resumes
+                cycles.push(Cycle { inputs, valid: true, rst: true, ..Cycle::default() });
+                cycles.push(Cycle { inputs, valid: true, rst: true, ..Cycle::default() });
+                if static_colour {
+                    load(&mut cycles, i as u64);
+                }
+            } else if static_colour && i > 0 && i % quarter == 0 {
+                load(&mut cycles, i as u64);
             }
         }
-        cycles.push(Cycle { inputs, valid: true, rst: false });
+        let tag = splitmix(seed ^ 0x7a9 ^ (i as u64) << 4) & tag_mask;
+        cycles.push(Cycle { tag, ..Cycle::pixel(inputs) });
+    }
+    if handshake {
+        // the consumer's stalls, except on the cycles that load a colour (the unit is empty
+        // there only if it could deliver), and a tail at full rate that empties the unit
+        for (t, c) in cycles.iter_mut().enumerate() {
+            c.stall = !c.load && stalled(seed, t as u64);
+        }
+        for _ in 0..drain_cycles(cfg) {
+            cycles.push(Cycle::default());
+        }
+        // drains before a load must run at full rate
+        let mut t = cycles.len();
+        while t > 0 {
+            t -= 1;
+            if cycles[t].load {
+                for c in cycles[t.saturating_sub(drain_cycles(cfg) as usize)..t].iter_mut() {
+                    c.stall = false;
+                }
+            }
+        }
     }
     Recorded(cycles)
 }
@@ -125,7 +191,11 @@ pub struct Exhaustive {
     pub n_bits: u32,
     pub n_lo: u32,
     pub n_hi: u32,
-    pub pipelined: bool,
+    /// a reset first (the unit has registers)
+    pub clocked: bool,
+    /// a material load after the reset (a static colour): full-scale red, mid green, 1 blue
+    pub static_colour: bool,
+    pub tag_bits: u32,
     pub full_intensity_tail: bool,
 }
 
@@ -140,7 +210,9 @@ impl Exhaustive {
                 n_bits: cfg.n_bits(),
                 n_lo: n_count * p / parts,
                 n_hi: n_count * (p + 1) / parts,
-                pipelined: cfg.stages() > 0,
+                clocked: cfg.clocked(),
+                static_colour: cfg.colour() == crate::config::Colour::Static,
+                tag_bits: cfg.tag_bits(),
                 full_intensity_tail: p == 0,
             })
             .collect()
@@ -148,25 +220,33 @@ impl Exhaustive {
     fn row(&self) -> u64 {
         (1u64 << self.f) + 1
     }
+    /// The cycles before the sweep: a reset, and a material load.
+    pub fn lead(&self) -> u64 {
+        self.clocked as u64 + self.static_colour as u64
+    }
 }
 
 impl Stimulus for Exhaustive {
     fn len(&self) -> u64 {
         let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
-        (self.n_hi - self.n_lo) as u64 * self.row() + self.pipelined as u64 + tail
+        (self.n_hi - self.n_lo) as u64 * self.row() + self.lead() + tail
     }
     fn cycle(&self, i: u64) -> Cycle {
-        if self.pipelined && i == 0 {
-            return Cycle { inputs: Inputs::default(), valid: false, rst: true };
-        }
-        let j = i - self.pipelined as u64;
         let bm = (1u32 << self.b) - 1;
+        if self.clocked && i == 0 {
+            return Cycle::reset();
+        }
+        if self.static_colour && i == self.clocked as u64 {
+            return Cycle { inputs: Inputs { ks: [bm, bm / 2 + 1, 1.min(bm)], ..Inputs::default() }, load: true, ..Cycle::default() };
+        }
+        let j = i - self.lead();
+        let tag = splitmix(i) & crate::bits::mask(self.tag_bits) as u64;
         let sweep = (self.n_hi - self.n_lo) as u64 * self.row();
         if j >= sweep {
             let code = (j - sweep) as u32;
             let n = code.wrapping_mul(7) & ((1u32 << self.n_bits) - 1);
             let ks = [code, code.wrapping_add(1) & bm, code.wrapping_add(2) & bm];
-            return Cycle { inputs: Inputs { cos_g: 1 << self.f, n, ks }, valid: true, rst: false };
+            return Cycle { tag, ..Cycle::pixel(Inputs { cos_g: 1 << self.f, n, ks }) };
         }
         let n = self.n_lo + (j / self.row()) as u32;
         let cos_g = (j % self.row()) as u32;
@@ -175,6 +255,6 @@ impl Stimulus for Exhaustive {
             cos_g.wrapping_add(n.wrapping_mul(3)).wrapping_add(85) & bm,
             cos_g.wrapping_add(n.wrapping_mul(7)).wrapping_add(170) & bm,
         ];
-        Cycle { inputs: Inputs { cos_g, n, ks }, valid: true, rst: false }
+        Cycle { tag, ..Cycle::pixel(Inputs { cos_g, n, ks }) }
     }
 }

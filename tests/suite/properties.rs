@@ -36,6 +36,7 @@ prop_compose! {
             rounding: if exact { Rounding::Exact } else { Rounding::Faithful },
             rom_style: RomStyle::File, stages: 0, top: "u".into(),
             arch: if paper { Arch::Paper } else { Arch::Lean }, model: SpecularModel::Quadratic, max_squarings: 3, target,
+            ..Params::default()
         }).ok() // k may round to 0 at few fractional bits: such configs are rejected, not tested
     }
 }

@@ -1,0 +1,96 @@
+//! The adapter between a unit and the harnesses: `specgen_cosim_top` (`templates/cosim_top.v`)
+//! gives every interface mode one set of port names, so one Verilator harness and one Icarus
+//! bench drive them all.
+
+use crate::config::{Config, Interface};
+use crate::ports::{self, Field};
+use askama::Template;
+
+#[derive(Template)]
+#[template(path = "cosim_top.v")]
+struct CosimTop<'a> {
+    top: &'a str,
+    interface: &'a str,
+    version: &'a str,
+    cos_w: u32,
+    n_w: u32,
+    b_w: u32,
+    i_w: u32,
+    body: Vec<String>,
+}
+
+/// `{pad, field, …}` for a packed `tdata` of `width` bits.
+fn packed(fields: &[Field], width: u32) -> String {
+    let mut parts = Vec::new();
+    let mut top = width;
+    for f in fields.iter().rev() {
+        if top > f.lo + f.width {
+            parts.push(format!("{}'d0", top - f.lo - f.width));
+        }
+        parts.push(f.name.to_string());
+        top = f.lo;
+    }
+    format!("{{{}}}", parts.join(", "))
+}
+
+/// The adapter's Verilog for the unit `cfg` describes.
+pub(crate) fn adapter(cfg: &Config) -> String {
+    let tw = cfg.tag_bits();
+    let axis = cfg.interface() == Interface::Axis;
+    let (sf, sw, mf, mw) = ports::tdata_fields(cfg.port_widths());
+    let mut body = Vec::new();
+    let mut links = Vec::new();
+    let names: Vec<&str> = cfg.ports("").iter().map(|p| p.name).collect();
+    for name in &names {
+        let to = match *name {
+            "aclk" => "clk".to_string(),
+            "aresetn" => "~rst".to_string(),
+            "s_axis_tvalid" => "in_valid".to_string(),
+            "s_axis_tready" => "in_ready".to_string(),
+            "s_axis_tdata" => packed(&sf, sw),
+            "m_axis_tvalid" => "out_valid".to_string(),
+            "m_axis_tready" => "out_ready".to_string(),
+            "m_axis_tdata" => "m_tdata".to_string(),
+            "s_axis_tuser" | "in_tag" => format!("in_tag[{}:0]", tw - 1),
+            "m_axis_tuser" | "out_tag" => format!("out_tag[{}:0]", tw - 1),
+            other => other.to_string(),
+        };
+        links.push(format!(".{name}({to})"));
+    }
+    if axis {
+        body.push(format!("wire [{}:0] m_tdata;", mw - 1));
+        for f in &mf {
+            body.push(format!("assign {} = m_tdata[{}:{}];", f.name, f.lo + f.width - 1, f.lo));
+        }
+    }
+    body.push(format!("{} dut (", cfg.top()));
+    let n = links.len();
+    for (i, l) in links.into_iter().enumerate() {
+        body.push(format!("    {l}{}", if i + 1 < n { "," } else { "" }));
+    }
+    body.push(");".into());
+    if !names.contains(&"in_ready") && !names.contains(&"s_axis_tready") {
+        body.push("assign in_ready = 1'b1;".into());
+    }
+    if tw == 0 {
+        body.push("assign out_tag = 64'd0;".into());
+    } else if tw < 64 {
+        body.push(format!("assign out_tag[63:{tw}] = {}'d0;", 64 - tw));
+    }
+    if !names.contains(&"idle") {
+        body.push("assign idle = 1'b0;".into());
+    }
+    CosimTop {
+        top: cfg.top(),
+        interface: cfg.interface().name(),
+        version: crate::emit::VERSION,
+        cos_w: cfg.f() + 1,
+        n_w: cfg.n_bits(),
+        b_w: cfg.b(),
+        i_w: cfg.fi() + 1,
+        body,
+    }
+    .render()
+    .expect("adapter template renders")
+        + "\n"
+}
