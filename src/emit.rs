@@ -503,6 +503,9 @@ fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
 #[template(path = "unit.core")]
 struct CoreTemplate<'a> {
     top: &'a str,
+    /// `<top>.sdc` (and `<top>.lpf` on ECP5)
+    constraint_files: Vec<String>,
+    clock_mhz: String,
     version: &'a str,
     name: String,
     params: String,
@@ -514,6 +517,50 @@ struct CoreTemplate<'a> {
     sim_models: Vec<String>,
     /// synthesize for ECP5 (trellis flow) rather than iCE40
     ecp5: bool,
+}
+
+/// The clock constraint `<top>.sdc` (every unit) or `<top>.lpf` (ECP5).
+#[derive(Template)]
+#[template(path = "unit.sdc")]
+struct SdcTemplate<'a> {
+    top: &'a str,
+    version: &'a str,
+    params: String,
+    /// the clock port (`clk`, `aclk`); none: a combinational unit
+    clock: Option<&'a str>,
+    mhz: String,
+    /// ns, three decimals
+    period: String,
+}
+
+#[derive(Template)]
+#[template(path = "unit.lpf")]
+struct LpfTemplate<'a> {
+    top: &'a str,
+    version: &'a str,
+    params: String,
+    clock: Option<&'a str>,
+    mhz: String,
+}
+
+/// The clock port of a unit (none when combinational).
+pub(crate) fn clock_port(cfg: &crate::config::Config) -> Option<&'static str> {
+    cfg.ports("").iter().map(|p| p.name).find(|n| *n == "clk" || *n == "aclk")
+}
+
+/// `<top>.sdc`, and `<top>.lpf` for ECP5, at the configuration's clock.
+fn constraint_files(cfg: &crate::config::Config) -> Vec<(String, String)> {
+    let top = cfg.top();
+    let mhz = cfg.clock_mhz();
+    let mhz_text = format!("{mhz}");
+    let clock = clock_port(cfg);
+    let sdc = SdcTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text.clone(), period: format!("{:.3}", 1000.0 / mhz) };
+    let mut files = vec![(format!("{top}.sdc"), sdc.render().expect("sdc renders") + "\n")];
+    if cfg.target() == crate::config::Target::Ecp5 {
+        let lpf = LpfTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text };
+        files.push((format!("{top}.lpf"), lpf.render().expect("lpf renders") + "\n"));
+    }
+    files
 }
 
 /// The output buffer `<top>_out_buffer` of a `ready`/`axis` unit.
@@ -653,8 +700,11 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         rtl_files.push((format!("{top}_rom1k18.v"), text));
         sim_models.push((ECP5_BRAM_MODEL_FILE.to_string(), ecp5_bram_model()));
     }
+    let constraints = constraint_files(cfg);
     let core = CoreTemplate {
         top,
+        constraint_files: constraints.iter().map(|(n, _)| n.clone()).collect(),
+        clock_mhz: format!("{}", cfg.clock_mhz()),
         version: VERSION,
         name: core_name(cfg),
         params: cfg.describe(),
@@ -671,6 +721,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     for t in &tables {
         files.push((t.file.clone(), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
     }
+    files.extend(constraints.into_iter().map(|(n, t)| (n, t.into_bytes())));
     files.push((format!("{top}.core"), core.into_bytes()));
     let fidelity = plan.model.fidelity();
     let manifest = Manifest {

@@ -52,6 +52,9 @@ struct WrapperPort {
 struct Wrapper<'a> {
     top: &'a str,
     clocked: bool,
+    /// the unit's clock and reset ports (`clk`/`rst`, or `aclk`/`aresetn`)
+    clock: &'a str,
+    reset: &'a str,
     in_bits: u32,
     out_bits: u32,
     inputs: Vec<WrapperPort>,
@@ -63,7 +66,7 @@ fn wrapper(design: &Design) -> String {
     let pack = |dir: &str| {
         let mut lo = 0;
         let mut v = Vec::new();
-        for p in ports.iter().filter(|p| p.direction == dir && p.name != "clk" && p.name != "rst") {
+        for p in ports.iter().filter(|p| p.direction == dir && !["clk", "rst", "aclk", "aresetn"].contains(&p.name)) {
             v.push(WrapperPort { name: p.name, hi: lo + p.width - 1, lo });
             lo += p.width;
         }
@@ -71,8 +74,11 @@ fn wrapper(design: &Design) -> String {
     };
     let (inputs, in_data) = pack("input");
     let (outputs, out_bits) = pack("output");
-    let clocked = design.cfg.stages() > 0;
-    let mut text = Wrapper { top: design.cfg.top(), clocked, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }.render().expect("wrapper renders");
+    let clocked = design.cfg.clocked();
+    let axis = design.cfg.interface() == crate::config::Interface::Axis;
+    let (clock, reset) = if axis { ("aclk", "aresetn") } else { ("clk", "rst") };
+    let mut text =
+        Wrapper { top: design.cfg.top(), clocked, clock, reset, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }.render().expect("wrapper renders");
     text.push('\n');
     text
 }
@@ -254,7 +260,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
             // relative to the work directory: the WebAssembly build sees only its cwd
             .current_dir(work.path())
             .args(["--json", "wrapped.json"])
-            .args(["--timing-allow-fail", "--freq", "12", "--seed", &seed.to_string()])
+            // the clock the constraints ask for (`clock_mhz`): nextpnr's timing-driven placement aims at it
+            .args(["--timing-allow-fail", "--freq", &format!("{}", design.cfg.clock_mhz()), "--seed", &seed.to_string()])
             .output()
             .map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
         let mut log = String::from_utf8_lossy(&out.stderr).into_owned();

@@ -34,7 +34,8 @@ pub enum VectorFormat {
 /// The ports of a row, in column order (inputs, then outputs), with their widths: the port
 /// table's data ports in the order of [`VECTOR_COLUMNS`].
 pub(crate) fn columns(cfg: &Config) -> Vec<(&'static str, u32)> {
-    let ports = cfg.ports("");
+    // the logical ports: an `axis` unit packs them into tdata, at the same widths
+    let ports = crate::ports::ports(crate::ports::PortWidths { axis: false, ..cfg.port_widths() }, "");
     VECTOR_COLUMNS.iter().map(|c| (*c, ports.iter().find(|p| p.name == *c).expect("every column is a port").width)).collect()
 }
 

@@ -23,7 +23,7 @@ module specgen_synth_top (
     assign sout = out_chain[{{ out_bits - 1 }}];
     {{ top }} unit (
 {%- if clocked %}
-        .clk(clk), .rst(in_reg[{{ in_bits - 1 }}]),
+        .{{ clock }}(clk), .{{ reset }}(in_reg[{{ in_bits - 1 }}]),
 {%- endif %}
 {%- for p in inputs %}
         .{{ p.name }}(in_reg[{{ p.hi }}:{{ p.lo }}]),
