@@ -47,16 +47,27 @@ localparam [DEPTH_LOG2:0] DEPTH = 1 << DEPTH_LOG2;
 reg  [WIDTH-1:0]      places [0:(1 << DEPTH_LOG2) - 1];
 reg  [DEPTH_LOG2:0]   write_at;
 reg  [DEPTH_LOG2:0]   read_at;
-reg  [DEPTH_LOG2:0]   used;   // taken, not yet delivered: 0..DEPTH
+reg  [DEPTH_LOG2:0]   used;                          // taken, not yet delivered: 0..DEPTH
 reg  [WIDTH-1:0]      read_q;                        // the memory's read register
 reg                   read_valid;
+reg                   empty;                         // no result in the places
+reg                   both_full;                     // read_valid && out_valid
 
-wire                  empty = write_at == read_at;
+// the wide registers load on enables of one LUT from registers and out_ready; whether the
+// places hold a result decides only the read pointer and read_valid
 wire                  out_moves = !out_valid || out_ready;      // the output register may load
-wire                  read_moves = !read_valid || out_moves;    // the read register may load
-wire                  read = read_moves && !empty;
+wire                  read_moves = !both_full || out_ready;     // the read register may load
+wire                  read = read_moves && !empty;              // a result leaves the places
+wire                  one_left = write_at == read_at + 1'b1;
 wire                  deliver = out_valid && out_ready;
-wire [DEPTH_LOG2:0]   used_next = used + {{ "{" }}{DEPTH_LOG2{1'b0}}, take} - {{ "{" }}{DEPTH_LOG2{1'b0}}, deliver};
+wire                  step_up = take && !deliver;               // used goes up by one
+wire                  step_down = deliver && !take;             // used goes down by one
+// one adder: + 1, - 1 (all ones) or + 0
+wire [DEPTH_LOG2:0]   used_next = used + {{ "{" }}{DEPTH_LOG2{step_down}}, step_up | step_down};
+// in_ready next: used_next < DEPTH, decided from flags of `used` itself (no adder before it):
+// used_next reaches DEPTH only from DEPTH with nothing delivered, or from DEPTH - 1 stepping up
+wire                  full = used == DEPTH;
+wire                  one_short = used == DEPTH - 1'b1;
 
 assign take = in_valid && in_ready;
 assign idle = used == {(DEPTH_LOG2 + 1){1'b0}};
@@ -64,7 +75,7 @@ assign idle = used == {(DEPTH_LOG2 + 1){1'b0}};
 // the places: a result is written the cycle it leaves the pipeline, read in order
 always @(posedge clk) begin
     if (result_valid) places[write_at[DEPTH_LOG2-1:0]] <= result;
-    if (read) read_q <= places[read_at[DEPTH_LOG2-1:0]];
+    if (read_moves) read_q <= places[read_at[DEPTH_LOG2-1:0]];
     if (out_moves) out <= read_q;
 end
 
@@ -76,13 +87,18 @@ always @(posedge clk) begin
         read_valid <= 1'b0;
         out_valid  <= 1'b0;
         in_ready   <= 1'b0;
+        empty      <= 1'b1;
+        both_full  <= 1'b0;
     end else begin
         if (result_valid) write_at <= write_at + 1'b1;
         if (read)         read_at <= read_at + 1'b1;
         if (read_moves)   read_valid <= !empty;
+        both_full <= (read_moves ? !empty : read_valid) && (out_moves ? read_valid : out_valid);
+        if (result_valid) empty <= 1'b0;
+        else if (read)    empty <= one_left;
         if (out_moves)    out_valid <= read_valid;
         used     <= used_next;
-        in_ready <= used_next < DEPTH;
+        in_ready <= !(full && !deliver) && !(one_short && step_up);
     end
 end
 
