@@ -552,7 +552,8 @@ pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
 
 /// Parses `clock_mhz`: a plain decimal in (0, 1000] MHz.
 pub fn parse_clock_mhz(text: &str) -> Result<f64, ConfigError> {
-    let bad = |why: String| ConfigError { parameter: "clock_mhz", message: format!("{why}; allowed a plain decimal in (0, 1000] MHz, such as \"100\" or \"148.5\"") };
+    let bad =
+        |why: String| ConfigError { parameter: "clock_mhz", message: format!("{why}; allowed a plain decimal in (0, 1000] MHz, such as \"100\" or \"148.5\"") };
     let t = text.trim();
     let plain = !t.is_empty() && t.len() <= 16 && t.chars().all(|c| c.is_ascii_digit() || c == '.') && t.matches('.').count() <= 1 && t != ".";
     if !plain {

@@ -624,7 +624,7 @@ pub(crate) fn ecp5_sim_model() -> String {
 /// (8 hex digits of SHA-256) taken over every parameter that shapes the files, so two
 /// configurations never replace each other in one cores-root, and one configuration always
 /// gets the same name.
-pub(crate) fn core_name(cfg: &crate::config::Config) -> String {
+pub fn core_name(cfg: &crate::config::Config) -> String {
     let digest = sha256_hex(format!("{} rom_style={} top={}", cfg.describe(), cfg.params.rom_style.name(), cfg.top()).as_bytes());
     format!("specgen:specular:{}-{}:{VERSION}", cfg.top(), &digest[..8])
 }
@@ -708,7 +708,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         version: VERSION,
         name: core_name(cfg),
         params: cfg.describe(),
-        description: format!("{description}, {}-cycle latency", cfg.stages()),
+        description: format!("{description}, {}-cycle latency", cfg.latency()),
         table_files: tables.iter().map(|t| t.file.clone()).collect(),
         rtl_files: rtl_files.iter().map(|(n, _)| n.clone()).collect(),
         sim_models: sim_models.iter().map(|(n, _)| n.clone()).collect(),

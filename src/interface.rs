@@ -18,7 +18,6 @@ use crate::config::{Colour, Config, Interface, BUFFER_LATENCY};
 use crate::plan::Plan;
 use crate::ports::{self, Field};
 
-
 /// Places of the output buffer, as log2: at least the pipeline's latency + 4, so a stream at
 /// full rate never finds `in_ready` low.
 pub fn buffer_depth_log2(stages: u32) -> u32 {
@@ -80,14 +79,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     let depth = plan.registered_cuts.len() as u32;
     let (interface, tw, colour) = (cfg.interface(), cfg.tag_bits(), cfg.colour());
     let top = cfg.top();
-    let mut e = Edge {
-        header: Vec::new(),
-        prologue: Vec::new(),
-        valid_source: "in_valid".into(),
-        tag: Vec::new(),
-        tail: Vec::new(),
-        unused: Vec::new(),
-    };
+    let mut e = Edge { header: Vec::new(), prologue: Vec::new(), valid_source: "in_valid".into(), tag: Vec::new(), tail: Vec::new(), unused: Vec::new() };
     // the header
     if interface.handshake() {
         let places = 1u32 << buffer_depth_log2(depth);
@@ -168,9 +160,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.prologue.push(String::new());
         e.prologue.push("// ---- the material registers: ks_load takes ks_r/g/b; every step reads them ----".into());
         e.prologue.push(format!("reg  {} ks_r_material, ks_g_material, ks_b_material;   // UNORM{b}", range(b)));
-        e.prologue.push(
-            "always @(posedge clk) if (ks_load) {ks_r_material, ks_g_material, ks_b_material} <= {ks_r, ks_g, ks_b};".into(),
-        );
+        e.prologue.push("always @(posedge clk) if (ks_load) {ks_r_material, ks_g_material, ks_b_material} <= {ks_r, ks_g, ks_b};".into());
     }
 
     // the tag: one delay line beside valid_line
@@ -221,11 +211,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     e.tail.push(format!("// every pixel taken has a place reserved in {top}_out_buffer, so the pipeline never waits"));
     e.tail.push(format!("wire {} out_result = {};", range(width), concat(&fields.iter().map(|f| f.1.clone()).collect::<Vec<_>>())));
     e.tail.push(format!("wire {} out_held;", range(width)));
-    e.tail.push(format!(
-        "{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({}), .LATENCY({})) out_buffer (",
-        buffer_depth_log2(depth),
-        cfg.stages()
-    ));
+    e.tail.push(format!("{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({}), .LATENCY({})) out_buffer (", buffer_depth_log2(depth), cfg.stages()));
     e.tail.push("    .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .take(in_take),".into());
     e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
     e.tail.push(format!("    .out_valid(out_valid), .out_ready(out_ready), .out(out_held), .idle({idle})"));

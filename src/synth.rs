@@ -77,8 +77,9 @@ fn wrapper(design: &Design) -> String {
     let clocked = design.cfg.clocked();
     let axis = design.cfg.interface() == crate::config::Interface::Axis;
     let (clock, reset) = if axis { ("aclk", "aresetn") } else { ("clk", "rst") };
-    let mut text =
-        Wrapper { top: design.cfg.top(), clocked, clock, reset, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }.render().expect("wrapper renders");
+    let mut text = Wrapper { top: design.cfg.top(), clocked, clock, reset, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }
+        .render()
+        .expect("wrapper renders");
     text.push('\n');
     text
 }

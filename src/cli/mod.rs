@@ -216,7 +216,7 @@ pub struct RtlArgs {
     pub colour: Option<ColourFlag>,
     /// The clock the constraints (<top>.sdc, <top>.lpf), the FuseSoC core and synth ask for, MHz
     /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
-    #[arg(long, value_name = "F", help_heading = "Interface")]
+    #[arg(long, value_name = "F", allow_hyphen_values = true, help_heading = "Interface")]
     pub clock_mhz: Option<String>,
 }
 
@@ -331,6 +331,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             for (name, _) in &files {
                 println!("{}", out.join(name).display());
             }
+            eprintln!("FuseSoC core {} (fusesoc --cores-root {} run --target lint|sim|synth <this name>)", emit::core_name(&plan.cfg), out.display());
             Ok(())
         }
         Command::Rom { table, format, output, top, params } => {

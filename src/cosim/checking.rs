@@ -2,8 +2,8 @@
 
 use super::{Cycle, Sampled, Stimulus};
 use crate::config::{Colour, Config};
-use std::collections::VecDeque;
 use crate::models::Model;
+use std::collections::VecDeque;
 
 /// The first disagreement found.
 #[derive(Debug, Clone)]

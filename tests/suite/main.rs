@@ -8,6 +8,7 @@ mod cosim;
 mod every_model;
 mod exhaustive;
 mod hostile;
+mod interfaces;
 mod layers;
 mod models;
 mod properties;

@@ -49,9 +49,8 @@ fn yosys_synthesizes_without_latches_or_warnings() {
         let top = top_of(args);
         let buffer = format!("{top}_out_buffer.v");
         let extra = if dir.join(&buffer).exists() { format!(" {buffer}") } else { String::new() };
-        let script = format!(
-            "read_verilog {top}.v{extra}; synth -top {top}; check -assert; select -assert-none t:$dlatch t:$_DLATCH_*; select -assert-min 1 t:*; stat"
-        );
+        let script =
+            format!("read_verilog {top}.v{extra}; synth -top {top}; check -assert; select -assert-none t:$dlatch t:$_DLATCH_*; select -assert-min 1 t:*; stat");
         let out = Command::new("yosys").current_dir(&dir).args(["-p", &script]).output().unwrap();
         let log = String::from_utf8_lossy(&out.stdout);
         assert!(out.status.success(), "{args:?}: yosys failed:\n{}", &log[log.len().saturating_sub(3000)..]);
