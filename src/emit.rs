@@ -15,7 +15,7 @@ use serde::Serialize;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 
-pub(crate) const VERSION: &str = env!("CARGO_PKG_VERSION");
+pub(crate) use crate::names::{ECP5_BRAM_MODEL_FILE, ECP5_SIM_MODEL_FILE, VERSION};
 
 /// A signal registered at one cut only: `reg x_cK; x_cK <= source`.
 pub(crate) struct CutSignal {
@@ -503,6 +503,10 @@ fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
 #[template(path = "unit.core")]
 struct CoreTemplate<'a> {
     top: &'a str,
+    /// the sim targets' testbench, its module and the vectors it reads
+    testbench: String,
+    tb_top: String,
+    tb_vectors: String,
     /// `<top>.sdc` (and `<top>.lpf` on ECP5)
     constraint_files: Vec<String>,
     clock_mhz: String,
@@ -601,19 +605,10 @@ struct Dp16kdSimModel<'a> {
     version: &'a str,
 }
 
-/// The file name of the DP16KD simulation model: simulators read it, synthesis must not.
-pub(crate) const ECP5_BRAM_MODEL_FILE: &str = "ecp5_dp16kd_sim.v";
-
 /// The DP16KD simulation model's text.
 pub(crate) fn ecp5_bram_model() -> String {
     Dp16kdSimModel { version: VERSION }.render().expect("model template renders") + "\n"
 }
-
-/// The simulation-only files specgen writes: simulators read them, synthesis never.
-pub(crate) const SIM_MODEL_FILES: [&str; 2] = [ECP5_SIM_MODEL_FILE, ECP5_BRAM_MODEL_FILE];
-
-/// The file name of the MULT18X18D simulation model: simulators read it, synthesis must not.
-pub(crate) const ECP5_SIM_MODEL_FILE: &str = "ecp5_mult18x18d_sim.v";
 
 /// The MULT18X18D simulation model's text.
 pub(crate) fn ecp5_sim_model() -> String {
@@ -701,7 +696,11 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         sim_models.push((ECP5_BRAM_MODEL_FILE.to_string(), ecp5_bram_model()));
     }
     let constraints = constraint_files(cfg);
+    let testbench = crate::vectors::testbench_files(&plan.model);
     let core = CoreTemplate {
+        testbench: testbench[0].0.clone(),
+        tb_top: format!("{top}_tb"),
+        tb_vectors: testbench[1].0.clone(),
         top,
         constraint_files: constraints.iter().map(|(n, _)| n.clone()).collect(),
         clock_mhz: format!("{}", cfg.clock_mhz()),
@@ -721,7 +720,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     for t in &tables {
         files.push((t.file.clone(), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
     }
-    files.extend(constraints.into_iter().map(|(n, t)| (n, t.into_bytes())));
+    files.extend(constraints.into_iter().chain(testbench).map(|(n, t)| (n, t.into_bytes())));
     files.push((format!("{top}.core"), core.into_bytes()));
     let fidelity = plan.model.fidelity();
     let manifest = Manifest {

@@ -3,7 +3,7 @@
 //! the models past the paper), with a bit-exact golden model.
 //!
 //! Layers import only downward (docs/ARCHITECTURE.md draws them):
-//! 1. leaves: [`bits`] (fixed-point helpers), [`ports`] (the port table, `Inputs`/`Outputs`),
+//! 1. leaves: [`bits`] (fixed-point helpers), [`names`] (version, non-RTL file names), [`ports`] (the port table, `Inputs`/`Outputs`),
 //!    [`table`] (a ROM), [`config`] (validated parameters), [`error`];
 //! 2. [`datapath`]: the step/cut IR and its `Builder`, which knows no model;
 //! 3. [`models`]: one home per model behind the `SpecularUnit` trait, and the registry;
@@ -21,6 +21,7 @@ pub mod emit;
 pub mod error;
 pub mod interface;
 pub mod models;
+pub mod names;
 pub mod paper;
 pub mod plan;
 pub mod ports;

@@ -72,6 +72,7 @@ struct Header<'a> {
     rows: u64,
     params: String,
     latency: u32,
+    handshake: bool,
     hex: bool,
     word_bits: u32,
     fields: String,
@@ -105,7 +106,8 @@ pub fn write(model: &Model, selection: Selection, format: VectorFormat, out: &mu
         },
         rows,
         params: cfg.describe(),
-        latency: cfg.stages(),
+        latency: cfg.latency(),
+        handshake: cfg.interface().handshake(),
         hex,
         word_bits,
         fields,
@@ -139,4 +141,93 @@ pub fn write(model: &Model, selection: Selection, format: VectorFormat, out: &mu
         out.write_all(line.as_bytes())?;
     }
     Ok(rows)
+}
+
+/// The self-checking testbench of the FuseSoC sim targets.
+#[derive(Template)]
+#[template(path = "unit_tb.v")]
+struct Testbench<'a> {
+    top: &'a str,
+    version: &'a str,
+    interface: &'a str,
+    vectors: String,
+    rows: u64,
+    word_bits: u32,
+    cos_w: u32,
+    n_w: u32,
+    b_w: u32,
+    i_w: u32,
+    handshake: bool,
+    static_colour: bool,
+    tag_bits: u32,
+    /// cycles a row may take at most (a colour load waits for the unit to drain)
+    patience: u64,
+    cos_g: (u32, u32),
+    n: (u32, u32),
+    ks_r: (u32, u32),
+    ks_g: (u32, u32),
+    ks_b: (u32, u32),
+    intensity: (u32, u32),
+    spec_r: (u32, u32),
+    spec_g: (u32, u32),
+    spec_b: (u32, u32),
+    done: (u32, u32),
+    /// the port adapter (`<top>_tb_ports`): one set of names for every interface
+    ports: String,
+}
+
+/// Rows of the testbench's vectors: the corners, every n's boundary, and these random ones.
+pub const TESTBENCH_RANDOM_ROWS: u64 = 1000;
+
+/// The FuseSoC sim targets' files: `<top>_tb.v` and the vectors it reads, `<top>_vectors.hex`.
+pub fn testbench_files(model: &Model) -> Vec<(String, String)> {
+    let cfg = &model.cfg;
+    let top = cfg.top();
+    let vectors_file = format!("{top}_vectors.hex");
+    let mut text = Vec::new();
+    let rows = write(model, Selection::Random { count: TESTBENCH_RANDOM_ROWS, seed: 1 }, VectorFormat::Hex, &mut text).expect("vectors to memory");
+    let cols = columns(cfg);
+    let word_bits: u32 = cols.iter().map(|c| c.1).sum();
+    let at = |name: &str| {
+        let mut hi = word_bits;
+        for (n, w) in &cols {
+            hi -= w;
+            if *n == name {
+                return (hi + w - 1, hi);
+            }
+        }
+        unreachable!("{name} is a column")
+    };
+    let handshake = cfg.interface().handshake();
+    let static_colour = cfg.colour() == crate::config::Colour::Static;
+    let places = if handshake { 1u64 << crate::interface::buffer_depth_log2(cfg.stages()) } else { 0 };
+    let tb = Testbench {
+        top,
+        version: crate::names::VERSION,
+        interface: cfg.interface().name(),
+        vectors: vectors_file.clone(),
+        rows,
+        word_bits,
+        cos_w: cfg.f() + 1,
+        n_w: cfg.n_bits(),
+        b_w: cfg.b(),
+        i_w: cfg.fi() + 1,
+        handshake,
+        static_colour,
+        tag_bits: cfg.tag_bits(),
+        patience: if static_colour { cfg.latency() as u64 + places + 24 } else { 24 },
+        cos_g: at("cos_g"),
+        n: at("n"),
+        ks_r: at("ks_r"),
+        ks_g: at("ks_g"),
+        ks_b: at("ks_b"),
+        intensity: at("intensity"),
+        spec_r: at("spec_r"),
+        spec_g: at("spec_g"),
+        spec_b: at("spec_b"),
+        done: at("done"),
+        ports: crate::cosim::adapter::adapter_named(cfg, &format!("{top}_tb_ports")),
+    };
+    let tb_text = tb.render().expect("testbench renders") + "\n";
+    vec![(format!("{top}{}", crate::names::TESTBENCH_SUFFIX), tb_text), (vectors_file, String::from_utf8(text).expect("ASCII vectors"))]
 }

@@ -331,7 +331,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
             for (name, _) in &files {
                 println!("{}", out.join(name).display());
             }
-            eprintln!("FuseSoC core {} (fusesoc --cores-root {} run --target lint|sim|synth <this name>)", emit::core_name(&plan.cfg), out.display());
+            eprintln!(
+                "FuseSoC core {} (fusesoc --cores-root {} run --target lint|sim|sim_verilator|synth <this name>)",
+                emit::core_name(&plan.cfg),
+                out.display()
+            );
             Ok(())
         }
         Command::Rom { table, format, output, top, params } => {

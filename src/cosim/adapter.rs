@@ -9,6 +9,7 @@ use askama::Template;
 #[derive(Template)]
 #[template(path = "cosim_top.v")]
 struct CosimTop<'a> {
+    name: &'a str,
     top: &'a str,
     interface: &'a str,
     version: &'a str,
@@ -33,8 +34,13 @@ fn packed(fields: &[Field], width: u32) -> String {
     format!("{{{}}}", parts.join(", "))
 }
 
-/// The adapter's Verilog for the unit `cfg` describes.
+/// The adapter's Verilog for the unit `cfg` describes, as module `specgen_cosim_top`.
 pub(crate) fn adapter(cfg: &Config) -> String {
+    adapter_named(cfg, "specgen_cosim_top")
+}
+
+/// The adapter as module `name`.
+pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
     let tw = cfg.tag_bits();
     let axis = cfg.interface() == Interface::Axis;
     let (sf, sw, mf, mw) = ports::tdata_fields(cfg.port_widths());
@@ -81,9 +87,10 @@ pub(crate) fn adapter(cfg: &Config) -> String {
         body.push("assign idle = 1'b0;".into());
     }
     CosimTop {
+        name,
         top: cfg.top(),
         interface: cfg.interface().name(),
-        version: crate::emit::VERSION,
+        version: crate::names::VERSION,
         cos_w: cfg.f() + 1,
         n_w: cfg.n_bits(),
         b_w: cfg.b(),

@@ -82,7 +82,7 @@ impl Design {
         for entry in entries.flatten() {
             let path = entry.path();
             match path.extension().and_then(|e| e.to_str()) {
-                Some("v") if path.file_name().and_then(|n| n.to_str()).is_some_and(|n| crate::emit::SIM_MODEL_FILES.contains(&n)) => sim_models.push(path),
+                Some("v") if path.file_name().and_then(|n| n.to_str()).is_some_and(|n| crate::names::SIM_MODEL_FILES.contains(&n)) => sim_models.push(path),
                 Some("v") => sources.push(path),
                 Some("json") => {
                     let text = std::fs::read_to_string(&path).unwrap_or_default();
@@ -105,6 +105,12 @@ impl Design {
             return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
         }
         let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
+        // the FuseSoC sim targets' testbench: neither the unit nor a model of a primitive
+        let testbench = format!("{}{}", params.top, crate::names::TESTBENCH_SUFFIX);
+        sources.retain(|p| p.file_name().and_then(|n| n.to_str()) != Some(testbench.as_str()));
+        if sources.is_empty() {
+            return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
+        }
         Ok((path, params, sources, sim_models))
     }
 }

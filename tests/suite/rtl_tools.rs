@@ -138,6 +138,24 @@ fn fusesoc_runs_the_core_with_the_flow_api() {
     // the same configuration gives the same name (and the same bytes)
     let again = generate(tmp.path(), "again", &["--n-bits", "6"]);
     assert_eq!(name(&again), na);
+    // issue 22: the sim targets run the self-checking testbench on the golden vectors, under
+    // Icarus and Verilator, for a handshake unit with a tag and a static colour
+    let h = generate(&root, "h", &["--n-bits", "6", "--interface", "axis", "--tag-bits", "12", "--colour", "static", "--stages", "4"]);
+    let nh = name(&h);
+    for target in ["sim", "sim_verilator"] {
+        let out = fusesoc(&["run", "--target", target, &nh]);
+        assert!(out.contains("PASS: ") && !out.contains("FAIL"), "{target}:\n{out}");
+    }
+    // and the testbench fails when a golden value is wrong (one digit of the last row changed)
+    let vectors = h.join("specular_unit_vectors.hex");
+    let text = std::fs::read_to_string(&vectors).unwrap();
+    let last = text.trim_end().rsplit('\n').next().unwrap().to_string();
+    let flip = |c: char| if c == '0' { '1' } else { '0' };
+    let bad: String = last[..last.len() - 1].to_string() + &flip(last.chars().last().unwrap()).to_string();
+    std::fs::write(&vectors, text.replace(&last, &bad)).unwrap();
+    let o = Command::new("fusesoc").current_dir(tmp.path()).arg("--cores-root").arg(&root).args(["run", "--target", "sim", &nh]).output().unwrap();
+    let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(!o.status.success() && out.contains("FAIL: result"), "a wrong vector must fail the sim target:\n{out}");
 }
 
 /// Issue 21: the pipelined RTL reads top to bottom. For every configuration: every line is at
