@@ -168,3 +168,35 @@ fn cocotb_checks_the_unit_under_icarus_and_verilator_and_fails_on_a_wrong_vector
     assert!(!ok, "a wrong vector must fail the run:\n{log}");
     assert!(log.contains("FAIL: 1 of 1 cocotb tests failed") && log.contains("intensity ="), "{log}");
 }
+
+/// Issue 22: the cocotb testbench drives `ready` and `axis` units (fields at the manifest's
+/// tdata offsets) with random backpressure and a static colour, and a wrong vector fails it.
+#[test]
+fn cocotb_drives_handshake_units_with_backpressure() {
+    require_tool("iverilog", "iverilog");
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let cases: [(&str, &[&str], &str); 2] = [
+        ("axis", &["--interface", "axis", "--stages", "4", "--tag-bits", "12"], "verilator"),
+        ("ready", &["--interface", "ready", "--stages", "2", "--colour", "static", "--tag-bits", "3", "--n-bits", "6"], "icarus"),
+    ];
+    for (name, args, sim) in cases {
+        let rtl = generate(tmp.path(), name, args);
+        let file = tmp.path().join(format!("{name}.csv"));
+        assert!(vectors(&rtl, &file, &["--count", "300"]).status.success());
+        let (ok, log) = cocotb(&rtl, &file, sim, &tmp.path().join(format!("run-{name}")));
+        assert!(ok && log.contains("under backpressure: 0 mismatches"), "cocotb {name} under {sim}:\n{log}");
+    }
+    // a wrong expected value in the stream: the run fails
+    let rtl = tmp.path().join("axis");
+    let text = std::fs::read_to_string(tmp.path().join("axis.csv")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let i = lines.iter().position(|l| l.starts_with(|c: char| c.is_ascii_digit())).unwrap() + 7;
+    let mut v: Vec<u64> = lines[i].split(',').map(|x| x.parse().unwrap()).collect();
+    v[5] ^= 1;
+    lines[i] = v.iter().map(u64::to_string).collect::<Vec<_>>().join(",");
+    let bad = tmp.path().join("bad-axis.csv");
+    std::fs::write(&bad, lines.join("\n") + "\n").unwrap();
+    let (ok, log) = cocotb(&rtl, &bad, "icarus", &tmp.path().join("run-bad-axis"));
+    assert!(!ok && log.contains("FAIL: 1 of 1 cocotb tests failed"), "a wrong vector must fail the stream run:\n{log}");
+}
