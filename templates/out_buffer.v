@@ -46,8 +46,10 @@ localparam [DEPTH_LOG2:0] DEPTH = 1 << DEPTH_LOG2;
 
 reg  [WIDTH-1:0]      places [0:(1 << DEPTH_LOG2) - 1];
 reg  [DEPTH_LOG2:0]   write_at;
-reg  [DEPTH_LOG2:0]   read_at;
+reg  [DEPTH_LOG2-1:0] read_at;                       // the place read next
+reg  [DEPTH_LOG2:0]   read_after;                    // read_at + 1 with its wrap bit (no adder before one_left)
 reg  [DEPTH_LOG2:0]   used;                          // taken, not yet delivered: 0..DEPTH
+reg  [DEPTH_LOG2:0]   used_up, used_down;            // used + 1 and used - 1, kept beside it
 reg  [WIDTH-1:0]      read_q;                        // the memory's read register
 reg                   read_valid;
 reg                   empty;                         // no result in the places
@@ -58,16 +60,15 @@ reg                   both_full;                     // read_valid && out_valid
 wire                  out_moves = !out_valid || out_ready;      // the output register may load
 wire                  read_moves = !both_full || out_ready;     // the read register may load
 wire                  read = read_moves && !empty;              // a result leaves the places
-wire                  one_left = write_at == read_at + 1'b1;
+wire                  one_left = write_at == read_after;
 wire                  deliver = out_valid && out_ready;
 wire                  step_up = take && !deliver;               // used goes up by one
 wire                  step_down = deliver && !take;             // used goes down by one
-// one adder: + 1, - 1 (all ones) or + 0
-wire [DEPTH_LOG2:0]   used_next = used + {{ "{" }}{DEPTH_LOG2{step_down}}, step_up | step_down};
-// in_ready next: used_next < DEPTH, decided from flags of `used` itself (no adder before it):
-// used_next reaches DEPTH only from DEPTH with nothing delivered, or from DEPTH - 1 stepping up
+// no adder between the handshake and a register: used moves to used_up or used_down, and
+// in_ready next (used next < DEPTH) is decided from flags of those registers
+wire [DEPTH_LOG2:0]   used_next = step_up ? used_up : step_down ? used_down : used;
 wire                  full = used == DEPTH;
-wire                  one_short = used == DEPTH - 1'b1;
+wire                  up_fills = used_up == DEPTH;
 
 assign take = in_valid && in_ready;
 assign idle = used == {(DEPTH_LOG2 + 1){1'b0}};
@@ -75,15 +76,18 @@ assign idle = used == {(DEPTH_LOG2 + 1){1'b0}};
 // the places: a result is written the cycle it leaves the pipeline, read in order
 always @(posedge clk) begin
     if (result_valid) places[write_at[DEPTH_LOG2-1:0]] <= result;
-    if (read_moves) read_q <= places[read_at[DEPTH_LOG2-1:0]];
+    if (read_moves) read_q <= places[read_at];
     if (out_moves) out <= read_q;
 end
 
 always @(posedge clk) begin
     if (rst) begin
         write_at   <= {(DEPTH_LOG2 + 1){1'b0}};
-        read_at    <= {(DEPTH_LOG2 + 1){1'b0}};
+        read_at    <= {DEPTH_LOG2{1'b0}};
+        read_after <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
         used       <= {(DEPTH_LOG2 + 1){1'b0}};
+        used_up    <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
+        used_down  <= {(DEPTH_LOG2 + 1){1'b1}};
         read_valid <= 1'b0;
         out_valid  <= 1'b0;
         in_ready   <= 1'b0;
@@ -91,14 +95,17 @@ always @(posedge clk) begin
         both_full  <= 1'b0;
     end else begin
         if (result_valid) write_at <= write_at + 1'b1;
-        if (read)         read_at <= read_at + 1'b1;
+        if (read)         read_at <= read_after[DEPTH_LOG2-1:0];
+        if (read)         read_after <= read_after + 1'b1;
         if (read_moves)   read_valid <= !empty;
         both_full <= (read_moves ? !empty : read_valid) && (out_moves ? read_valid : out_valid);
         if (result_valid) empty <= 1'b0;
         else if (read)    empty <= one_left;
         if (out_moves)    out_valid <= read_valid;
-        used     <= used_next;
-        in_ready <= !(full && !deliver) && !(one_short && step_up);
+        used      <= used_next;
+        used_up   <= step_up ? used_up + 1'b1 : step_down ? used : used_up;
+        used_down <= step_up ? used : step_down ? used_down - 1'b1 : used_down;
+        in_ready  <= !(step_up ? up_fills : full && !step_down);
     end
 end
 

@@ -111,11 +111,11 @@ fn faults_in_the_handshake_are_caught() {
         // payload changing while stalled
         ("unstable", buffer, "if (out_moves) out <= read_q;", "out <= read_q;"),
         // a result duplicated: the read pointer misses a step
-        ("duplicated", buffer, "if (read)         read_at <= read_at + 1'b1;", "if (read && read_at != 5) read_at <= read_at + 1'b1;"),
+        ("duplicated", buffer, "if (read)         read_after <= read_after + 1'b1;", "if (read && read_at != 5) read_after <= read_after + 1'b1;"),
         // the tag one stage off (the register before the last: see handshake_mutant)
         ("tag_off", "specular_unit.v", "TAG_LAST", "TAG_BEFORE"),
         // credits miscounted: in_ready stays high as the last place fills
-        ("overfull", buffer, "in_ready <= !(full && !deliver) && !(one_short && step_up);", "in_ready <= !(full && !deliver);"),
+        ("overfull", buffer, "in_ready  <= !(step_up ? up_fills : full && !step_down);", "in_ready  <= !(step_up ? 1'b0 : full && !step_down);"),
     ];
     for_each_parallel(faults, |_, (name, file, from, to)| {
         let o = handshake_mutant(tmp.path(), name, file, from, to);
