@@ -466,14 +466,24 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         cosim::check_ports(&design)?;
         cosim::check_tables(&design)?;
         let mut cycles = Vec::new();
-        if design.cfg.stages() > 0 {
+        if design.cfg.clocked() {
+            // a reset; then a cycle for in_ready to rise, which also loads a static colour
+            // (every pixel of a picture has full-scale colours)
             cycles.push(Cycle::reset());
+            let full = (1u32 << design.cfg.b()) - 1;
+            let load = design.cfg.colour() == specgen::config::Colour::Static;
+            cycles.push(Cycle { inputs: specgen::models::Inputs { ks: [full; 3], ..Default::default() }, load, ..Cycle::default() });
         }
+        let mut pixels = 0u64;
         for &n in &args.n {
             for scene in [Scene::Sphere, Scene::GrazingPlane] {
-                cycles.extend(render::tile_inputs(&model, scene, n, args.size).into_iter().map(Cycle::pixel));
+                let tile = render::tile_inputs(&model, scene, n, args.size);
+                pixels += tile.len() as u64;
+                cycles.extend(tile.into_iter().map(Cycle::pixel));
             }
         }
+        // the pipeline (and a handshake's buffer) empties before the run ends
+        cycles.extend((0..design.cfg.latency() + 2).map(|_| Cycle::default()));
         let stim: Vec<Box<dyn Stimulus>> = vec![Box::new(Recorded(cycles))];
         let built = cosim::build(&design, cosim::Simulator::Verilator, false)?;
         let report = cosim::run_all(&built, &design, &model, &stim, 1)?;
@@ -486,7 +496,10 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
                 args.rtl.display()
             )));
         }
-        eprintln!("render: {} pixels through the RTL (Verilator), all bit-identical to the golden model", report.checked);
+        if report.results != pixels {
+            return Err(failed(format!("the RTL in {} gave {} results for {pixels} pixels; no picture written", args.rtl.display(), report.results)));
+        }
+        eprintln!("render: {pixels} pixels through the RTL (Verilator), all bit-identical to the golden model");
     }
     let png = render::picture(&model, &args.n, args.size);
     emit::write_file_atomically(&args.out, &png).map_err(|e| specgen::error::Error::io("write", &args.out, e))?;
