@@ -54,8 +54,8 @@ pub fn inputs(model: &Model, selection: Selection) -> (u64, Box<dyn Iterator<Ite
         }
         Selection::Exhaustive => {
             let all = Exhaustive::parts(cfg, 1).pop().expect("one part");
-            // every cycle but the reset a pipelined sweep starts with
-            let rows = all.len() - all.lead();
+            // every cycle but the reset (and colour load) a sweep starts with and its drain
+            let rows = all.len() - all.lead() - all.drain;
             (rows, Box::new((0..all.len()).map(move |i| all.cycle(i)).filter(|c| c.valid && !c.rst).map(|c| c.inputs)))
         }
     }

@@ -157,6 +157,12 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
         let tag = splitmix(seed ^ 0x7a9 ^ (i as u64) << 4) & tag_mask;
         cycles.push(Cycle { tag, ..Cycle::pixel(inputs) });
     }
+    if !handshake && clocked {
+        // the last pixels' results leave the pipeline before the run ends
+        for _ in 0..cfg.latency() + 1 {
+            cycles.push(Cycle::default());
+        }
+    }
     if handshake {
         // the consumer's stalls, except on the cycles that load a colour (the unit is empty
         // there only if it could deliver), and a tail at full rate that empties the unit
@@ -197,6 +203,8 @@ pub struct Exhaustive {
     pub static_colour: bool,
     pub tag_bits: u32,
     pub full_intensity_tail: bool,
+    /// idle cycles at the end, so the last pixels' results leave a pipelined unit
+    pub drain: u64,
 }
 
 impl Exhaustive {
@@ -214,6 +222,7 @@ impl Exhaustive {
                 static_colour: cfg.colour() == crate::config::Colour::Static,
                 tag_bits: cfg.tag_bits(),
                 full_intensity_tail: p == 0,
+                drain: if cfg.clocked() { cfg.latency() as u64 + 1 } else { 0 },
             })
             .collect()
     }
@@ -229,7 +238,7 @@ impl Exhaustive {
 impl Stimulus for Exhaustive {
     fn len(&self) -> u64 {
         let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
-        (self.n_hi - self.n_lo) as u64 * self.row() + self.lead() + tail
+        (self.n_hi - self.n_lo) as u64 * self.row() + self.lead() + tail + self.drain
     }
     fn cycle(&self, i: u64) -> Cycle {
         let bm = (1u32 << self.b) - 1;
@@ -242,6 +251,10 @@ impl Stimulus for Exhaustive {
         let j = i - self.lead();
         let tag = splitmix(i) & crate::bits::mask(self.tag_bits) as u64;
         let sweep = (self.n_hi - self.n_lo) as u64 * self.row();
+        let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
+        if j >= sweep + tail {
+            return Cycle::default();
+        }
         if j >= sweep {
             let code = (j - sweep) as u32;
             let n = code.wrapping_mul(7) & ((1u32 << self.n_bits) - 1);

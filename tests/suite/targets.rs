@@ -14,10 +14,15 @@ fn cosim(dir: &Path, args: &[&str]) -> Output {
     specgen().arg("cosim").arg("--rtl").arg(dir).args(args).env("SPECGEN_CACHE_DIR", cache_dir()).output().unwrap()
 }
 
-/// Every `*.v` of a generated directory, simulation models last.
+/// The unit's Verilog and the primitives' models of a generated directory, simulation models
+/// last (not the FuseSoC sim targets' testbench).
 fn verilog_files(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> =
-        std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().to_string()).filter(|n| n.ends_with(".v")).collect();
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .filter(|n| n.ends_with(".v") && !n.ends_with("_tb.v"))
+        .collect();
     v.sort_by_key(|n| (n.ends_with("_sim.v"), n.clone()));
     v
 }
@@ -60,7 +65,7 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
     let o = Command::new("iverilog").current_dir(&dir).args(["-g2005", "-o", "/dev/null"]).args(&files).output().unwrap();
     assert!(o.status.success() && o.stderr.is_empty(), "iverilog:\n{}", text(&o));
     let o = cosim(&dir, &["--exhaustive"]);
-    assert!(text(&o).contains(&format!("{n} checked, {n} results, 0 mismatches", n = 32769u64 * 1024 + 256)), "{}", text(&o));
+    assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)), "{}", text(&o));
     let o = cosim(&dir, &["--simulator", "icarus", "--vectors", "1500"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     // a shallower pipeline keeps the products the cuts do not surround as plain multiplies
