@@ -49,7 +49,7 @@ reg  [DEPTH_LOG2:0]   write_at;
 reg  [DEPTH_LOG2-1:0] read_at;                       // the place read next
 reg  [DEPTH_LOG2:0]   read_after;                    // read_at + 1 with its wrap bit (no adder before one_left)
 reg  [DEPTH_LOG2:0]   used;                          // taken, not yet delivered: 0..DEPTH
-reg  [DEPTH_LOG2:0]   used_up, used_down;            // used + 1 and used - 1, kept beside it
+reg  [DEPTH_LOG2:0]   used_up;                       // used + 1, kept beside it
 reg  [WIDTH-1:0]      read_q;                        // the memory's read register
 reg                   read_valid;
 reg                   empty;                         // no result in the places
@@ -66,7 +66,7 @@ wire                  step_up = take && !deliver;               // used goes up 
 wire                  step_down = deliver && !take;             // used goes down by one
 // no adder between the handshake and a register: used moves to used_up or used_down, and
 // in_ready next (used next < DEPTH) is decided from flags of those registers
-wire [DEPTH_LOG2:0]   used_next = step_up ? used_up : step_down ? used_down : used;
+wire [DEPTH_LOG2:0]   used_next = step_up ? used_up : step_down ? used - 1'b1 : used;
 wire                  full = used == DEPTH;
 wire                  up_fills = used_up == DEPTH;
 
@@ -87,7 +87,6 @@ always @(posedge clk) begin
         read_after <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
         used       <= {(DEPTH_LOG2 + 1){1'b0}};
         used_up    <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
-        used_down  <= {(DEPTH_LOG2 + 1){1'b1}};
         read_valid <= 1'b0;
         out_valid  <= 1'b0;
         in_ready   <= 1'b0;
@@ -104,7 +103,6 @@ always @(posedge clk) begin
         if (out_moves)    out_valid <= read_valid;
         used      <= used_next;
         used_up   <= step_up ? used_up + 1'b1 : step_down ? used : used_up;
-        used_down <= step_up ? used : step_down ? used_down - 1'b1 : used_down;
         in_ready  <= !(step_up ? up_fills : full && !step_down);
     end
 end
