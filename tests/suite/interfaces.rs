@@ -191,7 +191,7 @@ fn the_axis_manifest_states_the_tdata_layout_and_the_latency() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 5, ..ProptestConfig::default() })]
     /// Random configurations × interface modes × depths × tags × colours, under Icarus.
     #[test]
     fn random_configurations_pass_every_interface_under_icarus(
