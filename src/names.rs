@@ -14,5 +14,5 @@ pub const ECP5_SIM_MODEL_FILE: &str = "ecp5_mult18x18d_sim.v";
 pub const SIM_MODEL_FILES: [&str; 2] = [ECP5_SIM_MODEL_FILE, ECP5_BRAM_MODEL_FILE];
 
 /// What the self-checking testbench of the FuseSoC sim targets adds to the top's name
-/// (`<top>_tb.v`): neither the unit's RTL nor a model, so cosim and synth never read it.
-pub const TESTBENCH_SUFFIX: &str = "_tb.v";
+/// (`<top>_tb.sv`, SystemVerilog): not the unit's RTL, so cosim, synth and lint of `*.v` never read it.
+pub const TESTBENCH_SUFFIX: &str = "_tb.sv";

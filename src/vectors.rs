@@ -145,7 +145,7 @@ pub fn write(model: &Model, selection: Selection, format: VectorFormat, out: &mu
 
 /// The self-checking testbench of the FuseSoC sim targets.
 #[derive(Template)]
-#[template(path = "unit_tb.v")]
+#[template(path = "unit_tb.sv")]
 struct Testbench<'a> {
     top: &'a str,
     version: &'a str,
@@ -179,7 +179,7 @@ struct Testbench<'a> {
 /// Rows of the testbench's vectors: the corners, every n's boundary, and these random ones.
 pub const TESTBENCH_RANDOM_ROWS: u64 = 1000;
 
-/// The FuseSoC sim targets' files: `<top>_tb.v` and the vectors it reads, `<top>_vectors.hex`.
+/// The FuseSoC sim targets' files: `<top>_tb.sv` and the vectors it reads, `<top>_vectors.hex`.
 pub fn testbench_files(model: &Model) -> Vec<(String, String)> {
     let cfg = &model.cfg;
     let top = cfg.top();

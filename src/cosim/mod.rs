@@ -105,12 +105,6 @@ impl Design {
             return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
         }
         let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
-        // the FuseSoC sim targets' testbench: neither the unit nor a model of a primitive
-        let testbench = format!("{}{}", params.top, crate::names::TESTBENCH_SUFFIX);
-        sources.retain(|p| p.file_name().and_then(|n| n.to_str()) != Some(testbench.as_str()));
-        if sources.is_empty() {
-            return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
-        }
         Ok((path, params, sources, sim_models))
     }
 }

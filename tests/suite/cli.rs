@@ -102,7 +102,7 @@ fn previous_output_is_replaced_whole() {
     let names: Vec<String> = read_dir_sorted(&dir).into_iter().map(|(n, _)| n).collect();
     assert_eq!(
         names,
-        ["cos_sp_rom.hex", "second_unit.core", "second_unit.json", "second_unit.sdc", "second_unit.v", "second_unit_tb.v", "second_unit_vectors.hex"]
+        ["cos_sp_rom.hex", "second_unit.core", "second_unit.json", "second_unit.sdc", "second_unit.v", "second_unit_tb.sv", "second_unit_vectors.hex"]
     );
     let hidden: Vec<_> = std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(hidden.len(), 1, "staging directories left: {hidden:?}");

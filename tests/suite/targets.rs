@@ -14,15 +14,10 @@ fn cosim(dir: &Path, args: &[&str]) -> Output {
     specgen().arg("cosim").arg("--rtl").arg(dir).args(args).env("SPECGEN_CACHE_DIR", cache_dir()).output().unwrap()
 }
 
-/// The unit's Verilog and the primitives' models of a generated directory, simulation models
-/// last (not the FuseSoC sim targets' testbench).
+/// Every `*.v` of a generated directory, simulation models last.
 fn verilog_files(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().to_string())
-        .filter(|n| n.ends_with(".v") && !n.ends_with("_tb.v"))
-        .collect();
+    let mut v: Vec<String> =
+        std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().to_string()).filter(|n| n.ends_with(".v")).collect();
     v.sort_by_key(|n| (n.ends_with("_sim.v"), n.clone()));
     v
 }

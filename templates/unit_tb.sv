@@ -92,7 +92,7 @@ module {{ top }}_tb;
 {%- if !static_colour %}
                         {ks_r, ks_g, ks_b} <= colour_of(want);
 {%- endif %}
-                        in_tag <= sent;
+                        in_tag <= {32'd0, sent};
                         in_valid <= 1'b1;
                     end
                 end

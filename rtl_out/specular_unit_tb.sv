@@ -76,7 +76,7 @@ module specular_unit_tb;
                         cos_g <= want[90:75];
                         n <= want[74:65];
                         {ks_r, ks_g, ks_b} <= colour_of(want);
-                        in_tag <= sent;
+                        in_tag <= {32'd0, sent};
                         in_valid <= 1'b1;
                     end
                 end
