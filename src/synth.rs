@@ -118,8 +118,13 @@ fn require(tool: &str, package: &str) -> Result<(), Failure> {
     }
 }
 
+/// Whether `tool` can be run: a path that is a file, or a name found on the PATH (looked up
+/// directly, no shell: the name is data).
 fn tool_exists(tool: &str) -> bool {
-    Command::new("sh").arg("-c").arg(format!("command -v {tool}")).output().map(|o| o.status.success()).unwrap_or(false)
+    if tool.contains('/') {
+        return Path::new(tool).is_file();
+    }
+    crate::cosim::backend::on_path(tool)
 }
 
 /// Parses yosys `stat` output: cell type → count (the last design summary printed).
@@ -161,10 +166,28 @@ pub fn median(v: &[f64]) -> Option<f64> {
     }
 }
 
-/// `read_verilog` of the design's sources (absolute paths; yosys runs in the RTL directory).
-fn read_sources(design: &Design) -> String {
-    let sources: Vec<String> = design.sources.iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone()).display().to_string()).collect();
-    format!("read_verilog {}", sources.join(" "))
+/// Stages the design for yosys in `work`: each source linked as `src<i>.v` and each table file
+/// under its own (generated) name, so yosys runs in `work` and its scripts hold only names
+/// specgen chose — a file name of the user's (spaces, `;`, quotes, newlines) never reaches a
+/// yosys command line. Returns the `read_verilog` command.
+fn stage_sources(design: &Design, work: &Path) -> Result<String, Failure> {
+    let link = |from: &Path, name: &str| -> Result<(), Failure> {
+        let abs = std::fs::canonicalize(from).map_err(|e| Failure::io("read", from, e))?;
+        std::os::unix::fs::symlink(&abs, work.join(name)).map_err(|e| Failure::io("link", work.join(name), e))
+    };
+    let mut names = Vec::new();
+    for (i, src) in design.sources.iter().enumerate() {
+        let name = format!("src{i}.v");
+        link(src, &name)?;
+        names.push(name);
+    }
+    for t in &design.plan.datapath.tables {
+        let from = design.dir.join(&t.file);
+        if from.exists() && !work.join(&t.file).exists() {
+            link(&from, &t.file)?;
+        }
+    }
+    Ok(format!("read_verilog {}", names.join(" ")))
 }
 
 /// The family to synthesize the design for: the one asked for, else the one its RTL was
@@ -205,10 +228,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     require(yosys, "yosys")?;
     let top = design.cfg.top().to_string();
     let work = tempfile::tempdir().map_err(|e| input(e.to_string()))?;
-    let read = read_sources(design);
+    let read = stage_sources(design, work.path())?;
     let synth_cmd = |t: &str| synth_command(target, dsp, t);
-    // area: the unit alone (the ROM file resolves against the RTL directory)
-    let log = run_yosys(yosys, &design.dir, &format!("{read}; {}; stat", synth_cmd(&top)))?;
+    // area: the unit alone (yosys runs in the staging directory, where the tables are too)
+    let log = run_yosys(yosys, work.path(), &format!("{read}; {}; stat", synth_cmd(&top)))?;
     let cells = parse_stat(&log);
     let count = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(n, _)| pred(n)).map(|(_, c)| c).sum::<u64>();
     let total_cells = cells.iter().map(|(_, c)| c).sum();
@@ -252,8 +275,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     let (tool, args) = (pnr.tool.as_str(), pnr.args);
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(design)).map_err(|e| input(e.to_string()))?;
-    let json = work.path().join("wrapped.json");
-    run_yosys(yosys, &design.dir, &format!("{read} {}; {} -json {}", wrap.display(), synth_cmd("specgen_synth_top"), json.display()))?;
+    run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {} -json wrapped.json", synth_cmd("specgen_synth_top")))?;
     // one nextpnr per seed, as many at a time as there are cores
     let run = |seed: u32| -> Result<(bool, String), Failure> {
         let out = Command::new(tool)
@@ -375,8 +397,14 @@ pub fn pick_stages(plan: &crate::plan::Plan, mhz: f64) -> Result<(u32, StageTria
 /// yosys's data directory (cell models): `<bin>/../share/yosys` beside the binary, as yosys
 /// itself finds it, else `yosys-config --datdir`.
 fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
-    let which = Command::new("sh").arg("-c").arg(format!("command -v '{yosys}'")).output().map_err(|e| input(format!("cannot look for {yosys}: {e}")))?;
-    let bin = std::path::PathBuf::from(String::from_utf8_lossy(&which.stdout).trim());
+    // the binary: a path as given, else the first match on the PATH (no shell: the name is data)
+    let bin = if yosys.contains('/') {
+        std::path::PathBuf::from(yosys)
+    } else {
+        std::env::var_os("PATH")
+            .and_then(|paths| std::env::split_paths(&paths).map(|d| d.join(yosys)).find(|p| p.is_file()))
+            .ok_or_else(|| input(format!("{yosys} not found on the PATH")))?
+    };
     for candidate in
         [bin.parent().map(|d| d.join("../share/yosys")), std::fs::canonicalize(&bin).ok().and_then(|b| b.parent().map(|d| d.join("../share/yosys")))]
             .into_iter()
@@ -414,7 +442,10 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
     let dir = work.path().join("netlist");
     std::fs::create_dir_all(&dir).map_err(|e| Failure::io("create", &dir, e))?;
     let netlist = dir.join(format!("{top}.v"));
-    run_yosys(yosys, &design.dir, &format!("{}; {}; write_verilog -noattr {}", read_sources(design), synth_command(target, dsp, &top), netlist.display()))?;
+    let staging = work.path().join("staging");
+    std::fs::create_dir_all(&staging).map_err(|e| Failure::io("create", &staging, e))?;
+    let read = stage_sources(design, &staging)?;
+    run_yosys(yosys, &staging, &format!("{read}; {}; write_verilog -noattr ../netlist/{top}.v", synth_command(target, dsp, &top)))?;
     if !netlist.exists() {
         return Err(error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())));
     }

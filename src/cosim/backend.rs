@@ -92,7 +92,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
                 cmd.arg("--trace");
             }
             // every harness compiles the same Verilator runtime: with ccache there, compile it once
-            if which("ccache") {
+            if on_path("ccache") {
                 cmd.env("OBJCACHE", "ccache");
             }
             cmd.args(&sources).arg("harness.cpp");
@@ -365,6 +365,6 @@ pub fn write_trace(design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], 
 }
 
 /// Whether `tool` is an executable on the PATH (looked up directly, no shell).
-fn which(tool: &str) -> bool {
+pub(crate) fn on_path(tool: &str) -> bool {
     std::env::var_os("PATH").is_some_and(|paths| std::env::split_paths(&paths).any(|d| d.join(tool).is_file()))
 }

@@ -130,3 +130,27 @@ fn a_manifest_that_disagrees_with_the_rtl_is_reported_as_such() {
         text(&o)
     );
 }
+
+/// Issue 25, point 1: no shell. A file name in `--rtl` and the `--yosys` path are data: a file
+/// named like a yosys command sequence runs nothing, a directory with a space works, and a
+/// "tool" that is a shell command line is not found rather than run.
+#[test]
+fn file_names_and_tool_paths_never_reach_a_shell() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let parent = tmp.path().join("my dir");
+    let dir = generate(&parent, "u", &["--stages", "2"]);
+    let mark = tmp.path().join("PWNED");
+    std::fs::write(dir.join("evil.ys"), format!("! touch {}\n", mark.display())).unwrap();
+    std::fs::write(dir.join("a.v; script evil.ys; #.v"), "module stray; endmodule\n").unwrap();
+    let o = specgen().args(["synth", "--no-pnr", "--rtl"]).arg(&dir).output().unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert_eq!(o.status.code(), Some(0), "{text}");
+    assert!(text.contains("flip-flops"), "{text}");
+    assert!(!mark.exists(), "a file name ran a yosys script");
+    let touched = tmp.path().join("X");
+    let cmd = format!("yosys; touch {}; false", touched.display());
+    let o = specgen().args(["synth", "--no-pnr", "--yosys", &cmd, "--rtl"]).arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!touched.exists(), "--yosys ran a shell command");
+}
