@@ -1,5 +1,6 @@
 //! `specgen cosim`: the command-line glue over [`specgen::cosim`].
 
+use super::outln;
 use super::{failed, Failure};
 use specgen::cosim::{build, check_ports, check_tables, describe, random_stimulus, run_all, write_trace, Design, Exhaustive, Simulator, Stimulus};
 use std::path::PathBuf;
@@ -49,7 +50,7 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let report = run_all(&built, &design, &model, &stims, jobs)?;
     let check_time = t1.elapsed();
     let rate = report.cycles as f64 / check_time.as_secs_f64().max(1e-9);
-    println!(
+    outln!(
         "cosim {} ({:?}{}): {} cycles, {} checked, {} results, {} mismatches; build {:.2} s{}, check {:.2} s ({:.1} M cycles/s)",
         design.dir.display(),
         Simulator::from(args.simulator),
@@ -62,7 +63,7 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
         if built.fresh { "" } else { " (cached)" },
         check_time.as_secs_f64(),
         rate / 1e6
-    );
+    )?;
     match &report.first {
         None if report.checked > 0 => Ok(()),
         None => Err(failed("no output was checked")),

@@ -250,9 +250,32 @@ range_params!(
 );
 
 use specgen::error::OutputError;
+
+/// Writes to standard output; a closed pipe (`specgen rom … | head -1`) ends the program
+/// quietly with exit 0, any other failure (a full disk) is an error naming standard output —
+/// never a panic.
+pub(crate) fn write_stdout(args: std::fmt::Arguments) -> Result<(), Failure> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_fmt(args).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
+        Err(e) => Err(Failure::io("write", "standard output", e)),
+    }
+}
+
+/// `print!` that returns an error instead of panicking (see [`write_stdout`]).
+macro_rules! out {
+    ($($t:tt)*) => { $crate::cli::write_stdout(format_args!($($t)*)) };
+}
+/// `println!` that returns an error instead of panicking (see [`write_stdout`]).
+macro_rules! outln {
+    ($($t:tt)*) => { $crate::cli::write_stdout(format_args!("{}\n", format_args!($($t)*))) };
+}
 /// The CLI's names for the library's error constructors: a usage error is the user's input
 /// not being what it must be (exit 2), a failed check is a mismatch (exit 1).
 pub use specgen::error::{input as usage, mismatch as failed, Error as Failure};
+pub(crate) use {out, outln};
 
 /// The exit code of an error: 2 for what the user must change (a parameter, an input, an
 /// occupied output directory), 1 for a check that failed, a tool's error, a file.
@@ -329,7 +352,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let files = emit::generate_files(&plan);
             write_output(&out, &files)?;
             for (name, _) in &files {
-                println!("{}", out.join(name).display());
+                outln!("{}", out.join(name).display())?;
             }
             eprintln!(
                 "FuseSoC core {} (fusesoc --cores-root {} run --target lint|sim|sim_verilator|synth <this name>)",
@@ -358,7 +381,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             match output {
                 Some(path) => emit::write_file_atomically(&path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
                 None => {
-                    print!("{text}");
+                    out!("{text}")?;
                     Ok(())
                 }
             }
@@ -421,16 +444,16 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
     let c = cos_g.min(1 << f) as f64 / (1u64 << f) as f64;
     let blinn = c.powi(n as i32);
     let scale = (cfg.fi() as f64).exp2();
-    println!("input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}", exact_decimal(cos_g as u64, f), x.ks);
-    println!("model      {}", cfg.model().name());
+    outln!("input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}", exact_decimal(cos_g as u64, f), x.ks)?;
+    outln!("model      {}", cfg.model().name())?;
     for line in m.unit().explain(x) {
-        println!("{line}");
+        outln!("{line}")?;
     }
-    println!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / scale, o.spec, o.done);
+    outln!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / scale, o.spec, o.done)?;
     let k_real: f64 = cfg.params.k.trim().parse().unwrap_or(f64::NAN);
     let bracket_real = k_real * n as f64 * (c - 1.0) + 1.0;
     let formula15 = if bracket_real < 0.0 { 0.0 } else { bracket_real * bracket_real };
-    println!(
+    outln!(
         "fidelity   Blinn cos^n = {blinn:.9}; this unit gives {:.9}, off by {:.9}{}",
         o.intensity as f64 / scale,
         (o.intensity as f64 / scale - blinn).abs(),
@@ -439,9 +462,9 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
         } else {
             String::new()
         }
-    );
+    )?;
     match m.check(x, o) {
-        Ok(()) => println!("contract   {} rounding holds for this input ({} model)", cfg.rounding().name(), cfg.model().name()),
+        Ok(()) => outln!("contract   {} rounding holds for this input ({} model)", cfg.rounding().name(), cfg.model().name())?,
         Err(e) => return Err(failed(format!("contract violated: {e}"))),
     }
     Ok(())
@@ -503,7 +526,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     }
     let png = render::picture(&model, &args.n, args.size);
     emit::write_file_atomically(&args.out, &png).map_err(|e| specgen::error::Error::io("write", &args.out, e))?;
-    println!("{}", args.out.display());
+    outln!("{}", args.out.display())?;
     Ok(())
 }
 
@@ -559,6 +582,6 @@ fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
     });
     let rows = emit::write_file_atomically_with(&args.out, |w| specgen::vectors::write(&model, selection, format, w))
         .map_err(|e| Failure::io("write", &args.out, e))?;
-    println!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.stages(), args.out.display());
+    outln!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.stages(), args.out.display())?;
     Ok(())
 }

@@ -1,6 +1,7 @@
 //! `specgen synth`: the command-line glue over [`specgen::synth`].
 
 use super::{failed, Failure};
+use super::{out, outln};
 use specgen::cosim::describe;
 use specgen::cosim::Design;
 use specgen::emit;
@@ -47,7 +48,7 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
     let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
     let r = synthesize(&design, target, args.dsp, &args.yosys, if args.no_pnr { 0 } else { args.seeds }, args.pnr_log.as_deref())?;
-    print!("{}", table(&r));
+    out!("{}", table(&r))?;
     if let Some(path) = &args.json {
         let mut text = serde_json::to_string_pretty(&r).expect("serialises");
         text.push('\n');
@@ -56,13 +57,13 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     if args.verify {
         let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, args.verify_vectors)?;
         for (sim, report) in &v.runs {
-            println!(
+            outln!(
                 "verify: mapped netlist with {} under {sim:?}: {} cycles, {} checked, {} mismatches",
                 if v.models.is_empty() { "no cell library".to_string() } else { v.models.join(" + ") },
                 report.cycles,
                 report.checked,
                 report.mismatches
-            );
+            )?;
             if let Some(m) = &report.first {
                 return Err(failed(format!(
                     "the mapped netlist differs from the golden model under {sim:?} ({} of {} checked cycles): the synthesis tool changed the function\n{}",

@@ -154,3 +154,23 @@ fn file_names_and_tool_paths_never_reach_a_shell() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!touched.exists(), "--yosys ran a shell command");
 }
+
+/// Issue 25: a closed pipe ends the output quietly (exit 0, as `head` expects), a full device
+/// is an error naming standard output (exit 1) — never a panic (101).
+#[test]
+fn a_closed_or_full_stdout_is_not_a_panic() {
+    use std::io::Read;
+    use std::process::Stdio;
+    let mut child = specgen().args(["rom", "--format", "hex"]).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    let mut first = [0u8; 4];
+    child.stdout.as_mut().unwrap().read_exact(&mut first).unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    if std::path::Path::new("/dev/full").exists() {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let o = specgen().args(["eval", "--cos", "0.9", "--n", "10"]).stdout(full).output().unwrap();
+        assert_eq!(o.status.code(), Some(1));
+        assert!(String::from_utf8_lossy(&o.stderr).contains("standard output"));
+    }
+}
