@@ -554,7 +554,7 @@ pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
 pub fn parse_clock_mhz(text: &str) -> Result<f64, ConfigError> {
     let bad =
         |why: String| ConfigError { parameter: "clock_mhz", message: format!("{why}; allowed a plain decimal in (0, 1000] MHz, such as \"100\" or \"148.5\"") };
-    let t = text.trim();
+    let t = text;
     let plain = !t.is_empty() && t.len() <= 16 && t.chars().all(|c| c.is_ascii_digit() || c == '.') && t.matches('.').count() <= 1 && t != ".";
     if !plain {
         return Err(bad(format!("{text:?} is not a plain decimal number")));
@@ -572,6 +572,10 @@ pub fn parse_k(text: &str, kf: u32) -> Result<u64, ConfigError> {
         parameter: "k",
         message: format!("{why}; allowed a plain decimal such as \"0.3686\" with 0 < k <= 1 after rounding to {kf} fractional bits"),
     };
+    // the text goes into file headers as given: no space, line break or other control
+    if text.chars().any(|c| c.is_whitespace() || c.is_control()) {
+        return Err(bad(format!("{text:?} contains a space, line break or control character")));
+    }
     let code = parse_decimal(text, kf).map_err(bad)?;
     if code == 0 {
         return Err(bad(format!("{text:?} rounds to 0")));
@@ -581,6 +585,139 @@ pub fn parse_k(text: &str, kf: u32) -> Result<u64, ConfigError> {
     }
     Ok(code)
 }
+
+/// SystemVerilog's keywords (IEEE 1800-2017 Annex B) beyond Verilog-2005's: tools read the
+/// unit as SystemVerilog too (Verilator, FuseSoC's sim targets), so none may name it.
+const SYSTEMVERILOG_KEYWORDS: &[&str] = &[
+    "accept_on",
+    "alias",
+    "always_comb",
+    "always_ff",
+    "always_latch",
+    "assert",
+    "assume",
+    "before",
+    "bind",
+    "bins",
+    "binsof",
+    "bit",
+    "break",
+    "byte",
+    "chandle",
+    "checker",
+    "class",
+    "clocking",
+    "const",
+    "constraint",
+    "context",
+    "continue",
+    "cover",
+    "covergroup",
+    "coverpoint",
+    "cross",
+    "dist",
+    "do",
+    "endchecker",
+    "endclass",
+    "endclocking",
+    "endgroup",
+    "endinterface",
+    "endpackage",
+    "endprogram",
+    "endproperty",
+    "endsequence",
+    "enum",
+    "eventually",
+    "expect",
+    "export",
+    "extends",
+    "extern",
+    "final",
+    "first_match",
+    "foreach",
+    "forkjoin",
+    "global",
+    "iff",
+    "ignore_bins",
+    "illegal_bins",
+    "implements",
+    "implies",
+    "import",
+    "inside",
+    "int",
+    "interconnect",
+    "interface",
+    "intersect",
+    "join_any",
+    "join_none",
+    "let",
+    "local",
+    "logic",
+    "longint",
+    "matches",
+    "modport",
+    "nettype",
+    "new",
+    "nexttime",
+    "null",
+    "package",
+    "packed",
+    "priority",
+    "program",
+    "property",
+    "protected",
+    "pure",
+    "rand",
+    "randc",
+    "randcase",
+    "randsequence",
+    "ref",
+    "reject_on",
+    "restrict",
+    "return",
+    "s_always",
+    "s_eventually",
+    "s_nexttime",
+    "s_until",
+    "s_until_with",
+    "sequence",
+    "shortint",
+    "shortreal",
+    "soft",
+    "solve",
+    "static",
+    "string",
+    "strong",
+    "struct",
+    "super",
+    "sync_accept_on",
+    "sync_reject_on",
+    "tagged",
+    "this",
+    "throughout",
+    "timeprecision",
+    "timeunit",
+    "type",
+    "typedef",
+    "union",
+    "unique",
+    "unique0",
+    "until",
+    "until_with",
+    "untyped",
+    "var",
+    "virtual",
+    "void",
+    "wait_order",
+    "weak",
+    "with",
+    "within",
+];
+
+/// Modules the tools specgen runs the unit with already define: the harnesses' tops and the
+/// FPGA primitives a unit instantiates or synthesizes to.
+const TOOL_MODULES: &[&str] =
+    &["specgen_cosim_top", "specgen_icarus_bench", "specgen_synth_top", "MULT18X18D", "DP16KD", "SB_MAC16", "SB_RAM40_4K", "SB_LUT4", "SB_CARRY", "SB_DFF"];
 
 const VERILOG_KEYWORDS: &[&str] = &[
     "always",
@@ -761,11 +898,14 @@ fn check_identifier(top: &str) -> Result<(), ConfigError> {
     if top.len() > 64 {
         return Err(err("is too long"));
     }
-    if VERILOG_KEYWORDS.contains(&top) {
+    if VERILOG_KEYWORDS.contains(&top) || SYSTEMVERILOG_KEYWORDS.contains(&top) {
         return Err(err("is a reserved word"));
     }
     if is_internal_name(top) {
         return Err(err("is the name of a port or an internal signal of the unit"));
+    }
+    if TOOL_MODULES.contains(&top) {
+        return Err(err("is a module the simulation or synthesis tools already define"));
     }
     Ok(())
 }

@@ -136,7 +136,7 @@ pub struct RenderArgs {
     #[arg(long, value_delimiter = ',', default_value = "1,4,16,128")]
     pub n: Vec<u32>,
     /// Pixels per tile side [16..=1024]
-    #[arg(allow_negative_numbers = true, value_parser = param_whole, long, default_value_t = 128)]
+    #[arg(allow_negative_numbers = true, value_parser = param_size, long, default_value_t = 128)]
     pub size: u32,
     /// Take the pixels from the golden model without simulating the RTL.
     #[arg(long)]
@@ -191,7 +191,7 @@ pub struct RtlArgs {
     #[arg(long, help_heading = "RTL")]
     pub top: Option<String>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points:
-    /// lean 13, paper 6, fitted M+5, blinn 15, blinn-pow N+2 at default widths; default 0]
+    /// lean 13, paper 6, fitted 12, blinn 60, blinn-pow N+2 at default widths; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,
     /// How tables are written: file ($readmemh) or case (inline) [default file]
@@ -232,6 +232,11 @@ fn whole_in(text: &str, r: Option<&config::Range>) -> Result<u32, String> {
 
 fn param_whole(t: &str) -> Result<u32, String> {
     whole_in(t, None)
+}
+/// `render --size`: its own range, stated in the error.
+fn param_size(t: &str) -> Result<u32, String> {
+    const SIZE: config::Range = config::Range { name: "size", min: 16, max: 1024, default: 128 };
+    whole_in(t, Some(&SIZE)).and_then(|v| if (SIZE.min..=SIZE.max).contains(&v) { Ok(v) } else { Err(format!("{v} is out of range; allowed 16..=1024")) })
 }
 fn param_stages(t: &str) -> Result<u32, String> {
     whole_in(t, None).map_err(|e| format!("{e} (up to the configuration's cut points)"))
@@ -576,7 +581,7 @@ fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
     let design = specgen::cosim::Design::load(&args.rtl)?;
     let model = design.plan.model();
     let selection = if args.exhaustive { Selection::Exhaustive } else { Selection::Random { count: args.count, seed: args.seed } };
-    let format = args.format.map(Into::into).unwrap_or_else(|| match args.out.extension().and_then(|e| e.to_str()) {
+    let format = args.format.map(Into::into).unwrap_or_else(|| match args.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("hex" | "mem") => VectorFormat::Hex,
         _ => VectorFormat::Csv,
     });

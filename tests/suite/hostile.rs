@@ -174,3 +174,38 @@ fn a_closed_or_full_stdout_is_not_a_panic() {
         assert!(String::from_utf8_lossy(&o.stderr).contains("standard output"));
     }
 }
+
+/// Issue 25: names the tools already use, SystemVerilog keywords and text that would break a
+/// file header are refused up front, naming the flag (exit 2, nothing written); vector files
+/// take their format from the extension in any case; `render --size` states its own range.
+#[test]
+fn reserved_names_and_header_breaking_text_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    let cases: &[(&[&str], &str)] = &[
+        (&["--top", "always_ff"], "--top"),
+        (&["--top", "logic"], "--top"),
+        (&["--top", "MULT18X18D", "--target", "ecp5"], "--top"),
+        (&["--top", "specgen_synth_top"], "--top"),
+        (&["--top", "SB_MAC16"], "--top"),
+        (&["--k", "\n0.3686"], "--k"),
+        (&["--k", "0.3686\r"], "--k"),
+        (&["--clock-mhz", "100\n"], "--clock-mhz"),
+    ];
+    for (args, flag) in cases {
+        let o = specgen().args(["generate", "--out"]).arg(&out).args(*args).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
+        assert!(String::from_utf8_lossy(&o.stderr).contains(flag), "{args:?}: {}", text(&o));
+        assert!(!out.exists(), "{args:?} wrote {out:?}");
+    }
+    let rtl = generate(tmp.path(), "u", &[]);
+    let upper = tmp.path().join("v.HEX");
+    assert!(specgen().args(["vectors", "--count", "2", "--rtl"]).arg(&rtl).arg("--out").arg(&upper).status().unwrap().success());
+    let body = std::fs::read_to_string(&upper).unwrap();
+    assert!(body.contains("$readmemh") && !body.contains("cos_g,n,"), "x.HEX is hex:\n{body}");
+    let o = specgen().args(["render", "--size", "5", "--out"]).arg(tmp.path().join("p.png")).arg("--rtl").arg(&rtl).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).contains("16..=1024"), "{}", text(&o));
+    let help = String::from_utf8_lossy(&specgen().args(["generate", "--help"]).output().unwrap().stdout).to_string();
+    assert!(help.contains("fitted 12, blinn 60"), "the stage limits in --help are the real ones");
+}
