@@ -11,8 +11,8 @@ pub struct CosimArgs {
     /// Directory with the Verilog (*.v) and the specgen manifest (<top>.json).
     #[arg(long, value_name = "DIR")]
     pub rtl: PathBuf,
-    /// Number of vectors after the corner cases (random mode).
-    #[arg(long, default_value_t = 100_000)]
+    /// Number of vectors after the corner cases (random mode) [0..=10000000: the stimulus is held in memory]
+    #[arg(long, default_value_t = 100_000, value_parser = clap::value_parser!(u64).range(0..=10_000_000))]
     pub vectors: u64,
     /// Seed of the random vectors.
     #[arg(long, default_value_t = 1)]
@@ -25,9 +25,9 @@ pub struct CosimArgs {
     /// On a mismatch, write a VCD of a short replay around the first failure.
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
-    /// Parallel simulator processes [default: available cores].
-    #[arg(long)]
-    pub jobs: Option<usize>,
+    /// Parallel simulator processes [1..=64; default: available cores].
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=64))]
+    pub jobs: Option<u16>,
 }
 
 /// `specgen cosim`: exit 0 when every output matches, 1 on any mismatch, 2 on usage errors.
@@ -35,7 +35,7 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
     check_tables(&design)?;
     let model = design.plan.model();
-    let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)).max(1);
+    let jobs = args.jobs.map(usize::from).unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(64)).max(1);
     let t0 = Instant::now();
     // a file that does not compile is best told by the simulator; then the ports
     let built = build(&design, args.simulator.into(), false)?;

@@ -107,8 +107,8 @@ pub struct VectorsArgs {
     /// Directory with the generated unit (its manifest states the configuration).
     #[arg(long, value_name = "DIR")]
     pub rtl: PathBuf,
-    /// Random vectors after the corner cases and every n's boundary.
-    #[arg(long, default_value_t = 10_000)]
+    /// Random vectors after the corner cases and every n's boundary [0..=100000000].
+    #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u64).range(0..=100_000_000))]
     pub count: u64,
     /// Seed of the random vectors.
     #[arg(long, default_value_t = 1)]

@@ -33,8 +33,8 @@ pub struct SynthArgs {
     /// golden model under Verilator and Icarus; exit 1 on any mismatch.
     #[arg(long)]
     pub verify: bool,
-    /// Random vectors of --verify after the corner cases (Icarus runs a tenth of them).
-    #[arg(long, value_name = "N", default_value_t = 20_000)]
+    /// Random vectors of --verify after the corner cases (Icarus runs a tenth of them) [0..=10000000].
+    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(0..=10_000_000))]
     pub verify_vectors: u64,
     /// The yosys binary (e.g. a newer build, whose netlist --verify then checks).
     #[arg(long, value_name = "PATH", default_value = "yosys")]

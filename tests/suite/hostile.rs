@@ -209,3 +209,25 @@ fn reserved_names_and_header_breaking_text_are_refused() {
     let help = String::from_utf8_lossy(&specgen().args(["generate", "--help"]).output().unwrap().stdout).to_string();
     assert!(help.contains("fitted 12, blinn 60"), "the stage limits in --help are the real ones");
 }
+
+/// Issue 25: every count is bounded — a huge `--vectors`, `--jobs`, `--count` or
+/// `--verify-vectors` is a usage error naming the flag and its range (exit 2), not a panic,
+/// an abort or gigabytes of memory.
+#[test]
+fn counts_are_bounded() {
+    let tmp = tempfile::tempdir().unwrap();
+    let rtl = generate(tmp.path(), "u", &[]);
+    let cases: &[(&[&str], &str)] = &[
+        (&["cosim", "--vectors", "18446744073709551615"], "0..=10000000"),
+        (&["cosim", "--vectors", "400000000"], "0..=10000000"),
+        (&["cosim", "--jobs", "1000000"], "1..=64"),
+        (&["vectors", "--count", "18446744073709551615", "--out", "/tmp/specgen-never.csv"], "0..=100000000"),
+        (&["synth", "--verify-vectors", "99999999999"], "0..=10000000"),
+    ];
+    for (args, range) in cases {
+        let o = specgen().args(*args).arg("--rtl").arg(&rtl).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
+        assert!(text(&o).contains(args[1]) && text(&o).contains(range), "{args:?}: {}", text(&o));
+    }
+    assert!(!std::path::Path::new("/tmp/specgen-never.csv").exists());
+}
