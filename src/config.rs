@@ -444,6 +444,12 @@ impl Config {
         crate::ports::ports(self.port_widths(), done_meaning)
     }
 
+    /// The ports under their plain names, the fields of an `axis` unit's `tdata` among them
+    /// (the columns of vectors, the widths of the buffer's fields).
+    pub(crate) fn logical_ports(&self) -> Vec<crate::ports::Port> {
+        crate::ports::ports(crate::ports::PortWidths { axis: false, ..self.port_widths() }, "")
+    }
+
     /// What the port table depends on.
     pub(crate) fn port_widths(&self) -> crate::ports::PortWidths {
         crate::ports::PortWidths {

@@ -5,7 +5,7 @@
 
 use crate::bits::{lit, mask};
 use crate::config::{Params, RomStyle};
-use crate::datapath::{self, Wire};
+use crate::datapath::{self, DelayLine, Wire};
 pub use crate::error::OutputError;
 use crate::plan::Plan;
 use crate::ports::Port;
@@ -22,17 +22,6 @@ pub(crate) struct CutSignal {
     pub name: String,
     pub width: u32,
     /// the expression the cut takes it from (`x_sK` computed in step K, a port, a block's output)
-    pub source: String,
-}
-
-/// A signal that waits through several registered cuts: one delay line, declared at the first
-/// of them, its registers `x_cK` loaded in one statement, each from the one before.
-pub(crate) struct DelayLine {
-    pub name: String,
-    pub width: u32,
-    /// the registers, `x_cK` for each cut K it spans, in order
-    pub registers: Vec<String>,
-    /// what the first register takes (`x_sK`, a port, a block's output)
     pub source: String,
 }
 
@@ -56,10 +45,7 @@ impl Cut {
             out.push(format!("reg  {} {reg};   always @(posedge clk) {reg} <= {};", range(s.width), s.source));
         }
         for l in &self.lines {
-            out.push(format!("// {} waits through {} cuts: a delay line, each register taking the one before", l.name, l.registers.len()));
-            out.push(format!("reg  {} {};", range(l.width), l.registers.join(", ")));
-            let before: Vec<&str> = std::iter::once(l.source.as_str()).chain(l.registers[..l.registers.len() - 1].iter().map(String::as_str)).collect();
-            out.push(format!("always @(posedge clk) {{{}}} <= {{{}}};", l.registers.join(", "), before.join(", ")));
+            out.extend(l.lines());
         }
         out
     }

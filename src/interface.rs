@@ -13,8 +13,8 @@
 //! - a static colour: three registers loaded by `ks_load`; the datapath reads them at every step
 //!   (`datapath::Builder::hold`), so no cut carries a colour.
 
-use crate::bits::lit;
 use crate::config::{Colour, Config, Interface, BUFFER_LATENCY};
+use crate::datapath::DelayLine;
 use crate::plan::Plan;
 use crate::ports::{self, Field};
 
@@ -22,6 +22,15 @@ use crate::ports::{self, Field};
 /// full rate never finds `in_ready` low.
 pub fn buffer_depth_log2(stages: u32) -> u32 {
     (stages + BUFFER_LATENCY + 1).next_power_of_two().trailing_zeros()
+}
+
+/// The places of the `ready`/`axis` output buffer (0 without a handshake).
+pub fn buffer_places(cfg: &Config) -> u64 {
+    if cfg.interface().handshake() {
+        1 << buffer_depth_log2(cfg.stages())
+    } else {
+        0
+    }
 }
 
 /// The lines around the datapath.
@@ -57,21 +66,6 @@ fn concat(parts: &[String]) -> String {
     }
 }
 
-/// A packed `tdata`, most significant first: fields and zero padding up to `width`.
-fn packed(fields: &[Field], width: u32) -> String {
-    let mut parts = Vec::new();
-    let mut top = width;
-    for f in fields.iter().rev() {
-        let pad = top - (f.lo + f.width);
-        if pad > 0 {
-            parts.push(lit(pad, 0));
-        }
-        parts.push(f.name.to_string());
-        top = f.lo;
-    }
-    concat(&parts)
-}
-
 /// The edge of the unit `plan` describes. `outputs`: each output port and the signal that
 /// drives it (the datapath's last view of it).
 pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
@@ -82,7 +76,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     let mut e = Edge { header: Vec::new(), prologue: Vec::new(), valid_source: "in_valid".into(), tag: Vec::new(), tail: Vec::new(), unused: Vec::new() };
     // the header
     if interface.handshake() {
-        let places = 1u32 << buffer_depth_log2(depth);
+        let places = buffer_places(cfg);
         let (iv, ir, ov, or, rst) = names(interface);
         e.header.push(format!("Latency:    {} clock cycles from a transfer in to its result out while {or} is high;", cfg.stages() + BUFFER_LATENCY));
         e.header.push(format!("            one result a cycle; {rst} empties the unit."));
@@ -169,13 +163,11 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     } else if depth == 0 {
         Some("in_tag".to_string())
     } else {
-        let regs: Vec<String> = plan.registered_cuts.iter().map(|k| format!("tag_c{k}")).collect();
-        let before: Vec<String> = std::iter::once("in_tag".to_string()).chain(regs[..regs.len() - 1].iter().cloned()).collect();
+        let line =
+            DelayLine { name: "tag".into(), width: tw, registers: plan.registered_cuts.iter().map(|k| format!("tag_c{k}")).collect(), source: "in_tag".into() };
         e.tag.push(String::new());
-        e.tag.push(format!("// the tag: in_tag waits through {depth} cut(s) beside its pixel, one register a cut"));
-        e.tag.push(format!("reg  {} {};", range(tw), regs.join(", ")));
-        e.tag.push(format!("always @(posedge clk) {} <= {};", concat(&regs), concat(&before)));
-        regs.last().cloned()
+        e.tag.extend(line.lines());
+        line.registers.last().cloned()
     };
 
     // the outputs
@@ -200,7 +192,8 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     if let Some(t) = &tag_out {
         fields.push(("out_tag".into(), t.clone(), tw));
     }
-    let widths = |p: &str| cfg.ports("").iter().chain(logical_outputs(cfg).iter()).find(|x| x.name == p).map(|x| x.width).expect("an output port");
+    let logical = cfg.logical_ports();
+    let widths = |p: &str| logical.iter().find(|x| x.name == p).map(|x| x.width).expect("an output port");
     for (port, src) in outputs.iter().rev() {
         fields.push((port.clone(), src.clone(), widths(port)));
     }
@@ -219,17 +212,12 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     e.tail.push(format!("assign {} = out_held;", concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>())));
     if interface == Interface::Axis {
         let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
-        e.tail.push(format!("assign m_axis_tdata = {};", packed(&mf, mw)));
+        e.tail.push(format!("assign m_axis_tdata = {};", ports::packed_tdata(&mf, mw)));
         if tw > 0 {
             e.tail.push("assign m_axis_tuser = out_tag;".into());
         }
     }
     e
-}
-
-/// The logical ports behind `tdata` (the `ready` unit's port table, as `axis` packs it).
-fn logical_outputs(cfg: &Config) -> Vec<ports::Port> {
-    ports::ports(ports::PortWidths { axis: false, ..cfg.port_widths() }, "")
 }
 
 /// The handshake's port names: in valid, in ready, out valid, out ready, reset.

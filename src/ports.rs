@@ -57,6 +57,22 @@ pub struct Field {
     pub width: u32,
 }
 
+/// A packed `tdata` of `width` bits as a Verilog concatenation, most significant first: the
+/// fields' names with zero padding between them (the RTL's `m_axis_tdata`, the adapter's
+/// `s_axis_tdata`).
+pub(crate) fn packed_tdata(fields: &[Field], width: u32) -> String {
+    let mut parts = Vec::new();
+    let mut top = width;
+    for f in fields.iter().rev() {
+        if top > f.lo + f.width {
+            parts.push(format!("{}'d0", top - f.lo - f.width));
+        }
+        parts.push(f.name.to_string());
+        top = f.lo;
+    }
+    format!("{{{}}}", parts.join(", "))
+}
+
 /// The fields of `s_axis_tdata` and `m_axis_tdata`, each starting on a byte boundary, and
 /// the two widths (whole bytes).
 pub fn tdata_fields(w: PortWidths) -> (Vec<Field>, u32, Vec<Field>, u32) {

@@ -35,7 +35,7 @@ pub enum VectorFormat {
 /// table's data ports in the order of [`VECTOR_COLUMNS`].
 pub(crate) fn columns(cfg: &Config) -> Vec<(&'static str, u32)> {
     // the logical ports: an `axis` unit packs them into tdata, at the same widths
-    let ports = crate::ports::ports(crate::ports::PortWidths { axis: false, ..cfg.port_widths() }, "");
+    let ports = cfg.logical_ports();
     VECTOR_COLUMNS.iter().map(|c| (*c, ports.iter().find(|p| p.name == *c).expect("every column is a port").width)).collect()
 }
 
@@ -200,7 +200,7 @@ pub fn testbench_files(model: &Model) -> Vec<(String, String)> {
     };
     let handshake = cfg.interface().handshake();
     let static_colour = cfg.colour() == crate::config::Colour::Static;
-    let places = if handshake { 1u64 << crate::interface::buffer_depth_log2(cfg.stages()) } else { 0 };
+    let places = crate::interface::buffer_places(cfg);
     let tb = Testbench {
         top,
         version: crate::names::VERSION,

@@ -3,7 +3,7 @@
 //! bench drive them all.
 
 use crate::config::{Config, Interface};
-use crate::ports::{self, Field};
+use crate::ports;
 use askama::Template;
 
 #[derive(Template)]
@@ -18,20 +18,6 @@ struct CosimTop<'a> {
     b_w: u32,
     i_w: u32,
     body: Vec<String>,
-}
-
-/// `{pad, field, …}` for a packed `tdata` of `width` bits.
-fn packed(fields: &[Field], width: u32) -> String {
-    let mut parts = Vec::new();
-    let mut top = width;
-    for f in fields.iter().rev() {
-        if top > f.lo + f.width {
-            parts.push(format!("{}'d0", top - f.lo - f.width));
-        }
-        parts.push(f.name.to_string());
-        top = f.lo;
-    }
-    format!("{{{}}}", parts.join(", "))
 }
 
 /// The adapter's Verilog for the unit `cfg` describes, as module `specgen_cosim_top`.
@@ -53,7 +39,7 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
             "aresetn" => "~rst".to_string(),
             "s_axis_tvalid" => "in_valid".to_string(),
             "s_axis_tready" => "in_ready".to_string(),
-            "s_axis_tdata" => packed(&sf, sw),
+            "s_axis_tdata" => ports::packed_tdata(&sf, sw),
             "m_axis_tvalid" => "out_valid".to_string(),
             "m_axis_tready" => "out_ready".to_string(),
             "m_axis_tdata" => "m_tdata".to_string(),

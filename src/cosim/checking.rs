@@ -70,7 +70,7 @@ pub struct Checker<'a> {
 impl<'a> Checker<'a> {
     pub fn new(model: &'a Model, run: usize) -> Checker<'a> {
         let cfg = &model.cfg;
-        let places = cfg.interface().handshake().then(|| 1usize << crate::interface::buffer_depth_log2(cfg.stages()));
+        let places = cfg.interface().handshake().then(|| crate::interface::buffer_places(cfg) as usize);
         Checker {
             model,
             latency: cfg.latency() as u64,

@@ -89,8 +89,7 @@ pub fn random_vector(cfg: &Config, seed: u64, i: u64) -> Inputs {
 /// Cycles with nothing offered that empty a unit whose consumer is ready: its latency, and
 /// behind a handshake the buffer's places too.
 pub fn drain_cycles(cfg: &Config) -> u64 {
-    let buffer = if cfg.interface().handshake() { 1u64 << crate::interface::buffer_depth_log2(cfg.stages()) } else { 0 };
-    cfg.latency() as u64 + buffer + 4
+    cfg.latency() as u64 + crate::interface::buffer_places(cfg) + 4
 }
 
 /// The consumer's `out_ready` pattern behind a handshake, in four phases of 600 cycles: full

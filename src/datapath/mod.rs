@@ -215,6 +215,31 @@ pub(crate) struct PendingAdd {
     comment: String,
 }
 
+/// A signal that waits through several registered cuts: one delay line, declared at the first
+/// of them, its registers `x_cK` loaded in one statement, each from the one before (a cut's
+/// waiting signals, and the tag beside the valid pipeline).
+pub(crate) struct DelayLine {
+    pub name: String,
+    pub width: u32,
+    /// the registers, `x_cK` for each cut K it spans, in order
+    pub registers: Vec<String>,
+    /// what the first register takes (`x_sK`, a port, a block's output)
+    pub source: String,
+}
+
+impl DelayLine {
+    /// Its Verilog: a comment, the registers declared in one statement, loaded in one.
+    pub fn lines(&self) -> Vec<String> {
+        let range = if self.width == 1 { "     ".to_string() } else { format!("[{}:0]", self.width - 1) };
+        let before: Vec<&str> = std::iter::once(self.source.as_str()).chain(self.registers[..self.registers.len() - 1].iter().map(String::as_str)).collect();
+        vec![
+            format!("// {} waits through {} cuts: a delay line, each register taking the one before", self.name, self.registers.len()),
+            format!("reg  {range} {};", self.registers.join(", ")),
+            format!("always @(posedge clk) {{{}}} <= {{{}}};", self.registers.join(", "), before.join(", ")),
+        ]
+    }
+}
+
 /// The name under which a signal defined in step `def` (0: an input port) is seen in step
 /// `at`: its own wire in its own step, else the last register holding it, else its wire.
 pub(crate) fn visible(registered: &[u32], name: &str, def: usize, at: usize) -> String {
