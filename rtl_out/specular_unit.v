@@ -11,8 +11,9 @@
 // Latency:    0 clock cycle(s) (combinational).
 // Datapath:   lean (widths from the error budget); bracket UQ1.17, square UQ1.16 (colours UQ1.9); registered after
 //     steps [none]: the register
-//             after step K is x_cK (a wire of step K is x_sK); a signal that waits through
-//             several cuts is one delay line, its registers loaded in one statement.
+//             after step K is x_cK (a wire of step K is x_sK); signals that wait through
+//             several cuts are words of one delay line, x_line (waiting_cA_cB_line when several
+//             wait from cut A to cut B), shifted a word each clock; the words read are named x_cK.
 // Tables:     read with $readmemh from the files named by the parameters below, resolved
 //             against the simulator's or synthesis tool's working directory; a missing or
 //             short file stops the simulation with an error naming it.
@@ -44,21 +45,15 @@ initial begin
 `ifndef SYNTHESIS
     // never run on zeros: the file must exist, and its last entry must arrive
     cos_sp_rom_fd = $fopen(ROM_FILE, "r");
-    if (cos_sp_rom_fd == 0) begin
-        $display("ERROR: %m: cannot open table file %0s (parameter ROM_FILE)", ROM_FILE);
-        $finish;
-    end else begin
-        $fclose(cos_sp_rom_fd);
-        cos_sp_rom[1023] = 16'h8055;
+    if (cos_sp_rom_fd == 0) $fatal(1, "%m: cannot open table file %0s (parameter ROM_FILE)", ROM_FILE);
+    $fclose(cos_sp_rom_fd);
+    cos_sp_rom[1023] = 16'h8055;
 `endif
-        $readmemh(ROM_FILE, cos_sp_rom);
+    $readmemh(ROM_FILE, cos_sp_rom);
 `ifndef SYNTHESIS
-        if (cos_sp_rom[1023] !== 16'h7faa) begin
-            $display("ERROR: %m: table file %0s (parameter ROM_FILE) is short or not the generated one:",
-                ROM_FILE);
-            $display("    entry 1023 is %h, expected %h", cos_sp_rom[1023], 16'h7faa);
-            $finish;
-        end
+    if (cos_sp_rom[1023] !== 16'h7faa) begin
+        $display("%m: entry 1023 is %h, expected %h", cos_sp_rom[1023], 16'h7faa);
+        $fatal(1, "%m: table file %0s (parameter ROM_FILE) is short or not the generated one", ROM_FILE);
     end
 `endif
 end
@@ -128,10 +123,8 @@ wire [31:0] deviation_sum_s6 = {16'h0, kn_s4[15:0]} * {16'h0, one_minus_cos_s3} 
 wire [17:0] bracket_s7 = done_s5 ? 18'h0 : ~deviation_sum_s6[31:14];
 
 // ==== step 8: square (squarer 11): lo^2 ====
-wire [3:0] square_ll_s8 = (bracket_s7[1:0] == 2'h0) ? 4'h0
-    : (bracket_s7[1:0] == 2'h1) ? 4'h1
-    : (bracket_s7[1:0] == 2'h2) ? 4'h4
-    : 4'h9;   // lo^2 by table, bracket = hi*2^2 + lo
+wire [3:0] square_ll_s8 = (bracket_s7[1:0] == 2'h0) ? 4'h0 : (bracket_s7[1:0] == 2'h1) ? 4'h1
+    : (bracket_s7[1:0] == 2'h2) ? 4'h4 : 4'h9;   // lo^2 by table, bracket = hi*2^2 + lo
 
 // ==== step 9: square: T = hi*lo + lo^2/2^(r+1) (multiply-add) ====
 // hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)
@@ -179,12 +172,11 @@ wire [15:0] intensity_s13 = intensity_sum_s13[16:1];   // UQ1.15: S rounded half
 wire        unused_bits = ^{
     cos_g[14:0], cos_complement_s1[15], one_minus_cos_part0_s2[0], one_minus_cos_part1_s2[5],
     one_minus_cos_part1_plus1_s2[0], one_minus_cos_part2_plus1_s2[0], cutoff_sum_part1_s3[6],
-        cutoff_sum_part1_plus1_s3[7],
-    cutoff_sum_part1_plus1_s3[0], cutoff_sum_part2_plus1_s3[0], kn_s4[24:16], cutoff_sum_s5[15:0],
-    deviation_sum_s6[13:0], bracket_s7[1:0], square_ll_s8[2:0], square_t_s9[0],
-    square_z_s10[31], square_z_s10[13:0], color_sum_r_s11[8:0], color_sum_g_s11[8:0],
-    color_sum_b_s11[8:0], intensity_sum_part0_s12[0], intensity_sum_part1_s12[6], intensity_sum_part1_plus1_s12[0],
-    intensity_sum_part2_plus1_s12[0], intensity_sum_s13[0]
+    cutoff_sum_part1_plus1_s3[7], cutoff_sum_part1_plus1_s3[0], cutoff_sum_part2_plus1_s3[0], kn_s4[24:16],
+    cutoff_sum_s5[15:0], deviation_sum_s6[13:0], bracket_s7[1:0], square_ll_s8[2:0], square_t_s9[0], square_z_s10[31],
+    square_z_s10[13:0], color_sum_r_s11[8:0], color_sum_g_s11[8:0], color_sum_b_s11[8:0], intensity_sum_part0_s12[0],
+    intensity_sum_part1_s12[6], intensity_sum_part1_plus1_s12[0], intensity_sum_part2_plus1_s12[0],
+    intensity_sum_s13[0]
 };
 
 assign out_valid = in_valid;

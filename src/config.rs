@@ -863,7 +863,7 @@ const VERILOG_KEYWORDS: &[&str] = &[
 ];
 
 /// The unit's ports, and the shapes of its internal names: `x_sK` (a step's wire), `x_cK` (a
-/// cut), `valid_line`, the tables and their file handles, `unused_*`. A module named like one
+/// cut), every delay line (`*_line`), the tables and their file handles, `unused_*`. A module named like one
 /// of them would be hidden by it inside the module (Verilator VARHIDDEN).
 pub fn is_internal_name(name: &str) -> bool {
     const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom"];
@@ -876,7 +876,7 @@ pub fn is_internal_name(name: &str) -> bool {
         || name.starts_with("unused_")
         || name.ends_with("_fd")
         || name.ends_with("_FILE")
-        || name == "valid_line"
+        || name.ends_with("_line")
         || INTERNAL_NAMES.contains(&name)
 }
 

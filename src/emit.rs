@@ -5,7 +5,7 @@
 
 use crate::bits::{lit, mask};
 use crate::config::{Params, RomStyle};
-use crate::datapath::{self, DelayLine, Wire};
+use crate::datapath::{self, DelayLine, Waiting, Wire};
 pub use crate::error::OutputError;
 use crate::plan::Plan;
 use crate::ports::Port;
@@ -128,9 +128,18 @@ pub(crate) const MAX_LINE: usize = 120;
 fn wire_statement(x: &Wire, step: usize) -> String {
     let range = if x.width == 1 { "      ".to_string() } else { format!("[{}:0]", x.width - 1) };
     let stmt = format!("wire {range} {}_s{step} = {};", x.name, x.expr);
-    // an expression written one operand a line reads as one line when it fits one
-    let joined = stmt.replace("\n    ", " ");
-    let stmt = if joined.chars().count() <= MAX_LINE { joined } else { stmt };
+    // an expression written one operand a line reads as few lines as fit
+    let mut lines: Vec<String> = Vec::new();
+    for part in stmt.split("\n    ") {
+        match lines.last_mut() {
+            Some(l) if l.chars().count() + 1 + part.chars().count() <= MAX_LINE => {
+                l.push(' ');
+                l.push_str(part);
+            }
+            _ => lines.push(part.to_string()),
+        }
+    }
+    let stmt = lines.join("\n    ");
     if x.comment.is_empty() {
         return stmt;
     }
@@ -317,6 +326,22 @@ fn parent_dir(path: &Path) -> PathBuf {
     }
 }
 
+/// Joins `items` with `, ` into lines of at most `width` characters, a trailing comma included
+/// (an item longer than that has a line of its own).
+fn fill_lines<'a>(items: impl Iterator<Item = &'a String>, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for item in items {
+        match lines.last_mut() {
+            Some(l) if l.chars().count() + item.chars().count() + 3 <= width => {
+                l.push_str(", ");
+                l.push_str(item);
+            }
+            _ => lines.push(item.clone()),
+        }
+    }
+    lines
+}
+
 /// Builds the template context of the RTL for one configuration (every model).
 pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let cfg = &plan.cfg;
@@ -324,7 +349,8 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let dp = &plan.datapath;
     let cuts = cut_list(dp);
     let edge = crate::interface::edge(plan, &dp.outputs);
-    let unused: Vec<String> = dp.unused.iter().chain(&edge.unused).cloned().collect::<Vec<_>>().chunks(4).map(|c| c.join(", ")).collect();
+    let line_unread: Vec<String> = cuts.iter().flat_map(|c| c.lines.iter().flat_map(DelayLine::unread)).collect();
+    let unused = fill_lines(dp.unused.iter().chain(&line_unread).chain(&edge.unused), MAX_LINE - 4);
     let file = p.rom_style == RomStyle::File;
     let file_tables = if file {
         dp.tables
@@ -473,14 +499,34 @@ fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
             }
         }
     }
-    for (name, width, source, at) in chains {
-        let first = at[0];
-        if at.len() == 1 {
-            cuts[first - 1].signals.push(CutSignal { name, width, source });
-        } else {
-            let registers = at.iter().map(|k| format!("{name}_c{k}")).collect();
-            cuts[first - 1].lines.push(DelayLine { name, width, registers, source });
+    // the chains through the same cuts share one delay line (at their first cut)
+    let mut lines: Vec<DelayLine> = Vec::new();
+    for (name, width, mut source, mut at) in chains {
+        // a product's first register is its own (the DSP block's output register), the rest
+        // of its wait a delay line (never a same-name copy)
+        let product = at.len() > 1 && dp.products.contains(&name);
+        if product {
+            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source });
+            source = format!("{name}_c{}", at[0]);
+            at.remove(0);
         }
+        if at.len() == 1 && !product {
+            cuts[at[0] - 1].signals.push(CutSignal { name, width, source });
+            continue;
+        }
+        let read = at.iter().map(|k| dp.read.get(&format!("{name}_c{k}")).copied().unwrap_or(0)).collect();
+        let member = Waiting { name: name.clone(), width, source, read };
+        match lines.iter_mut().find(|l| l.cuts == at) {
+            Some(l) => {
+                l.members.push(member);
+                l.name = format!("waiting_c{}_c{}", at[0], at[at.len() - 1]);
+            }
+            None => lines.push(DelayLine { name, cuts: at, members: vec![member] }),
+        }
+    }
+    for l in lines {
+        let first = l.cuts[0];
+        cuts[first - 1].lines.push(l);
     }
     cuts
 }

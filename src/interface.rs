@@ -14,7 +14,7 @@
 //!   (`datapath::Builder::hold`), so no cut carries a colour.
 
 use crate::config::{Colour, Config, Interface, BUFFER_LATENCY};
-use crate::datapath::DelayLine;
+use crate::datapath::{DelayLine, Waiting};
 use crate::plan::Plan;
 use crate::ports::{self, Field};
 
@@ -163,11 +163,13 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     } else if depth == 0 {
         Some("in_tag".to_string())
     } else {
-        let line =
-            DelayLine { name: "tag".into(), width: tw, registers: plan.registered_cuts.iter().map(|k| format!("tag_c{k}")).collect(), source: "in_tag".into() };
+        let cuts: Vec<usize> = plan.registered_cuts.iter().map(|&k| k as usize).collect();
+        let last = format!("tag_c{}", cuts[cuts.len() - 1]);
+        let read = vec![0; cuts.len()];
+        let line = DelayLine { name: "tag".into(), cuts, members: vec![Waiting { name: "tag".into(), width: tw, source: "in_tag".into(), read }] };
         e.tag.push(String::new());
         e.tag.extend(line.lines());
-        line.registers.last().cloned()
+        Some(last)
     };
 
     // the outputs

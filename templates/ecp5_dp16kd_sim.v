@@ -115,8 +115,7 @@ module DP16KD(
         if (!(DATA_WIDTH_A == 18 || DATA_WIDTH_A == 9) || !(DATA_WIDTH_B == 18 || DATA_WIDTH_B == 9)
                 || !(REGMODE_A == "NOREG" || REGMODE_A == "OUTREG") || !(REGMODE_B == "NOREG" || REGMODE_B == "OUTREG")
                 || CLKAMUX != "CLKA" || CLKBMUX != "CLKB") begin
-            $display("ERROR: %m: DP16KD setting outside the specgen model (widths 18 or 9, REGMODE NOREG or OUTREG, plain clocks)");
-            $finish;
+            $fatal(1, "%m: DP16KD setting outside the specgen model (widths 18 or 9, REGMODE NOREG or OUTREG, plain clocks)");
         end
     end
     // 18-bit word k of the contents, and 9-bit half h
@@ -137,8 +136,7 @@ module DP16KD(
     reg  [17:0] rd_a, out_a;
     always @(posedge CLKA) begin
         if (WEA === 1'b1 && CEA === 1'b1 && cs_a) begin
-            $display("ERROR: %m: DP16KD write on port A: the specgen model is read-only (ROMs)");
-            $finish;
+            $fatal(1, "%m: DP16KD write on port A: the specgen model is read-only (ROMs)");
         end
         if (RSTA === 1'b1) rd_a <= 18'd0;
         else if (CEA === 1'b1 && cs_a) rd_a <= DATA_WIDTH_A == 18 ? word(ad_a[13:4]) : {9'd0, half(ad_a[13:3])};
@@ -153,8 +151,7 @@ module DP16KD(
     reg  [17:0] rd_b, out_b;
     always @(posedge CLKB) begin
         if (WEB === 1'b1 && CEB === 1'b1 && cs_b) begin
-            $display("ERROR: %m: DP16KD write on port B: the specgen model is read-only (ROMs)");
-            $finish;
+            $fatal(1, "%m: DP16KD write on port B: the specgen model is read-only (ROMs)");
         end
         if (RSTB === 1'b1) rd_b <= 18'd0;
         else if (CEB === 1'b1 && cs_b) rd_b <= DATA_WIDTH_B == 18 ? word(ad_b[13:4]) : {9'd0, half(ad_b[13:3])};

@@ -67,8 +67,7 @@ module MULT18X18D(
     initial begin
         if (!(REG_A || REG_INPUTA_CLK == "NONE") || !(REG_B || REG_INPUTB_CLK == "NONE") || !(REG_P || REG_PIPELINE_CLK == "NONE")
                 || !(REG_O || REG_OUTPUT_CLK == "NONE") || RESETMODE != "SYNC" || MULT_BYPASS != "DISABLED") begin
-            $display("ERROR: %m: MULT18X18D setting outside the specgen model (registers on CLK0 or NONE, RESETMODE SYNC, MULT_BYPASS DISABLED)");
-            $finish;
+            $fatal(1, "%m: MULT18X18D setting outside the specgen model (registers on CLK0 or NONE, RESETMODE SYNC, MULT_BYPASS DISABLED)");
         end
     end
 
@@ -79,8 +78,7 @@ module MULT18X18D(
     reg         sa_q, sb_q;
     always @(posedge CLK0) begin
         if (SOURCEA !== 1'b0 || SOURCEB !== 1'b0) begin
-            $display("ERROR: %m: MULT18X18D shift-chain inputs (SOURCEA/SOURCEB) are outside the specgen model");
-            $finish;
+            $fatal(1, "%m: MULT18X18D shift-chain inputs (SOURCEA/SOURCEB) are outside the specgen model");
         end
         if (RST0) begin
             a_q <= 18'd0; sa_q <= 1'b0; b_q <= 18'd0; sb_q <= 1'b0;

@@ -36,8 +36,7 @@ module {{ top }}_out_buffer #(
 `ifndef SYNTHESIS
 initial begin
     if ((1 << DEPTH_LOG2) < LATENCY + 4) begin
-        $display("ERROR: %m: DEPTH_LOG2 = %0d holds fewer places than LATENCY + 4 = %0d", DEPTH_LOG2, LATENCY + 4);
-        $finish;
+        $fatal(1, "%m: DEPTH_LOG2 = %0d holds fewer places than LATENCY + 4 = %0d", DEPTH_LOG2, LATENCY + 4);
     end
 end
 `endif

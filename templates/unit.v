@@ -17,8 +17,9 @@
 // {{ line }}
 {%- endfor %}
 // Datapath:   {{ datapath_line }}; registered after steps [{{ cuts_text }}]: the register
-//             after step K is x_cK (a wire of step K is x_sK); a signal that waits through
-//             several cuts is one delay line, its registers loaded in one statement.
+//             after step K is x_cK (a wire of step K is x_sK); signals that wait through
+//             several cuts are words of one delay line, x_line (waiting_cA_cB_line when several
+//             wait from cut A to cut B), shifted a word each clock; the words read are named x_cK.
 {%- if dsp_module %}
 // Products:   on ECP5 MULT18X18D blocks with their own registers ({{ top }}_mult18x18.v); simulate
 //             with a MULT18X18D model (Lattice's, or ecp5_mult18x18d_sim.v, written beside).
@@ -59,21 +60,15 @@ initial begin
 `ifndef SYNTHESIS
     // never run on zeros: the file must exist, and its last entry must arrive
     {{ t.name }}_fd = $fopen({{ t.param }}, "r");
-    if ({{ t.name }}_fd == 0) begin
-        $display("ERROR: %m: cannot open table file %0s (parameter {{ t.param }})", {{ t.param }});
-        $finish;
-    end else begin
-        $fclose({{ t.name }}_fd);
-        {{ t.name }}[{{ t.depth - 1 }}] = {{ t.not_last }};
+    if ({{ t.name }}_fd == 0) $fatal(1, "%m: cannot open table file %0s (parameter {{ t.param }})", {{ t.param }});
+    $fclose({{ t.name }}_fd);
+    {{ t.name }}[{{ t.depth - 1 }}] = {{ t.not_last }};
 `endif
-        $readmemh({{ t.param }}, {{ t.name }});
+    $readmemh({{ t.param }}, {{ t.name }});
 `ifndef SYNTHESIS
-        if ({{ t.name }}[{{ t.depth - 1 }}] !== {{ t.last }}) begin
-            $display("ERROR: %m: table file %0s (parameter {{ t.param }}) is short or not the generated one:",
-                {{ t.param }});
-            $display("    entry {{ t.depth - 1 }} is %h, expected %h", {{ t.name }}[{{ t.depth - 1 }}], {{ t.last }});
-            $finish;
-        end
+    if ({{ t.name }}[{{ t.depth - 1 }}] !== {{ t.last }}) begin
+        $display("%m: entry {{ t.depth - 1 }} is %h, expected %h", {{ t.name }}[{{ t.depth - 1 }}], {{ t.last }});
+        $fatal(1, "%m: table file %0s (parameter {{ t.param }}) is short or not the generated one", {{ t.param }});
     end
 `endif
 end

@@ -16,6 +16,7 @@ use crate::bits::{lit, mask};
 use crate::config::Target;
 pub use crate::ports::CHANNELS;
 pub use crate::table::Table;
+use std::collections::BTreeMap;
 
 /// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
 /// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
@@ -110,6 +111,14 @@ pub struct Datapath {
     /// Each output port's source after the last step.
     pub outputs: Vec<(String, String)>,
     pub registered: Vec<u32>,
+    /// Every name a step, an output or the lint sink reads, with the bits read: a delay line
+    /// names only these words.
+    pub read: BTreeMap<String, u128>,
+    /// The signals a multiplier computes: their first register stays a register of its own,
+    /// outside any delay line, so that synthesis can take it into the DSP block as its output
+    /// register (yosys 0.23's ice40_dsp, given a product registered as the low word of a wider
+    /// shift register, takes the whole register and changes the function).
+    pub products: Vec<String>,
 }
 
 impl Datapath {
@@ -155,6 +164,10 @@ pub struct Builder {
     view: Option<usize>,
     /// a shorter carry-select chunk than the family's, while a carry-save sum is closed
     chunk_limit: u32,
+    /// every register or wire name a step, an output or the lint sink reads, with the bits read
+    read: BTreeMap<String, u128>,
+    /// the signals a multiplier computes (a `*` in their expression)
+    products: Vec<String>,
 }
 
 /// Bits `[lo, lo+width)` of a signal, optionally inverted; or a constant.
@@ -215,28 +228,83 @@ pub(crate) struct PendingAdd {
     comment: String,
 }
 
-/// A signal that waits through several registered cuts: one delay line, declared at the first
-/// of them, its registers `x_cK` loaded in one statement, each from the one before (a cut's
-/// waiting signals, and the tag beside the valid pipeline).
-pub(crate) struct DelayLine {
+/// A signal that waits in a [`DelayLine`]: its word after cut K is `x_cK`.
+pub(crate) struct Waiting {
     pub name: String,
     pub width: u32,
-    /// the registers, `x_cK` for each cut K it spans, in order
-    pub registers: Vec<String>,
-    /// what the first register takes (`x_sK`, a port, a block's output)
+    /// what its first word takes (`x_sK`, a port, a block's output)
     pub source: String,
+    /// per cut of the line: the bits something past the line reads (0: none; the last word is
+    /// always named)
+    pub read: Vec<u128>,
+}
+
+/// Signals that wait through the same registered cuts (two or more): one vector, declared at
+/// the first cut and shifted a word each clock, a word holding every member (a cut's waiting
+/// signals, and the tag beside the valid pipeline). Only the words something past the line
+/// reads get a name, `x_cK`, as wires declared together.
+pub(crate) struct DelayLine {
+    /// the vector is `<name>_line`
+    pub name: String,
+    /// the registered cuts it spans, in order
+    pub cuts: Vec<usize>,
+    /// the signals of a word, the first in its low bits
+    pub members: Vec<Waiting>,
 }
 
 impl DelayLine {
-    /// Its Verilog: a comment, the registers declared in one statement, loaded in one.
+    /// Its Verilog: the vector and the statement that shifts it, then the words read, named
+    /// (one statement per width).
     pub fn lines(&self) -> Vec<String> {
-        let range = if self.width == 1 { "     ".to_string() } else { format!("[{}:0]", self.width - 1) };
-        let before: Vec<&str> = std::iter::once(self.source.as_str()).chain(self.registers[..self.registers.len() - 1].iter().map(String::as_str)).collect();
-        vec![
-            format!("// {} waits through {} cuts: a delay line, each register taking the one before", self.name, self.registers.len()),
-            format!("reg  {range} {};", self.registers.join(", ")),
-            format!("always @(posedge clk) {{{}}} <= {{{}}};", self.registers.join(", "), before.join(", ")),
-        ]
+        let d = self.cuts.len();
+        let word: u32 = self.members.iter().map(|m| m.width).sum();
+        let line = format!("{}_line", self.name);
+        let sources: Vec<&str> = self.members.iter().rev().map(|m| m.source.as_str()).collect();
+        let shifted = match (d, sources.len()) {
+            (1, 1) => sources[0].to_string(),
+            (1, _) => format!("{{{}}}", sources.join(", ")),
+            _ => format!("{{{line}[{}:0], {}}}", word * (d as u32 - 1) - 1, sources.join(", ")),
+        };
+        let mut out = Vec::new();
+        out.push(format!("reg  [{}:0] {line};   always @(posedge clk) {line} <= {shifted};", word * d as u32 - 1));
+        // the named words, grouped by width in order of first appearance
+        let mut by_width: Vec<(u32, Vec<String>)> = Vec::new();
+        let mut offset = 0;
+        for m in &self.members {
+            for (k, cut) in self.cuts.iter().enumerate() {
+                if m.read[k] == 0 && k + 1 < d {
+                    continue;
+                }
+                let lo = word * k as u32 + offset;
+                let select = if m.width == 1 { format!("[{lo}]") } else { format!("[{}:{lo}]", lo + m.width - 1) };
+                let tap = format!("{}_c{cut} = {line}{select}", m.name);
+                match by_width.iter_mut().find(|x| x.0 == m.width) {
+                    Some(x) => x.1.push(tap),
+                    None => by_width.push((m.width, vec![tap])),
+                }
+            }
+            offset += m.width;
+        }
+        for (w, taps) in by_width {
+            let range = if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
+            out.push(format!("wire {range} {};", taps.join(", ")));
+        }
+        out
+    }
+
+    /// The bits of its named words before the last that nothing reads, as selects, for the lint
+    /// sink (the last word's are the datapath's own `unused`).
+    pub fn unread(&self) -> Vec<String> {
+        let last = self.cuts.len() - 1;
+        let mut out = Vec::new();
+        for m in &self.members {
+            for (k, cut) in self.cuts[..last].iter().enumerate() {
+                if m.read[k] != 0 {
+                    out.extend(bit_ranges(&format!("{}_c{cut}", m.name), m.width, mask(m.width) & !m.read[k]));
+                }
+            }
+        }
+        out
     }
 }
 
@@ -338,6 +406,8 @@ impl Builder {
             target,
             view: None,
             chunk_limit: u32::MAX,
+            read: BTreeMap::new(),
+            products: Vec::new(),
         }
     }
 
@@ -468,6 +538,7 @@ impl Builder {
         s.uses.push((cur, mask(hi + 1) & !mask(lo)));
         let whole = lo == 0 && hi + 1 == s.width;
         let v = self.version(name);
+        *self.read.entry(v.clone()).or_default() |= mask(hi + 1) & !mask(lo);
         match (whole, hi == lo) {
             (true, _) => v,
             (false, true) => format!("{v}[{lo}]"),
@@ -574,6 +645,9 @@ impl Builder {
     /// Defines a wire of the current step.
     pub fn wire(&mut self, name: &str, width: u32, expr: String, comment: &str) {
         let cur = self.cur();
+        if expr.contains(" * ") {
+            self.products.push(name.to_string());
+        }
         self.define(name, width, cur, false);
         self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
     }
@@ -902,6 +976,7 @@ impl Builder {
             }
             let read = s.uses.iter().filter(|u| u.0 == last_use).fold(0u128, |m, u| m | u.1);
             let seen = s.held.clone().unwrap_or_else(|| visible(&self.registered, &s.name, s.step, last_use));
+            self.read.insert(seen.clone(), mask(s.width));
             unused.extend(bit_ranges(&seen, s.width, mask(s.width) & !read));
         }
         let live = (1..=last)
@@ -914,7 +989,7 @@ impl Builder {
                     .collect()
             })
             .collect();
-        let outputs = outputs
+        let outputs: Vec<(String, String)> = outputs
             .iter()
             .map(|o| {
                 (o.to_string(), {
@@ -923,7 +998,21 @@ impl Builder {
                 })
             })
             .collect();
-        Datapath { tables: self.tables, reads: self.reads, steps: self.steps, live, unused, outputs, registered: self.registered }
+        for (o, seen) in &outputs {
+            let w = self.signal(o).width;
+            self.read.insert(seen.clone(), mask(w));
+        }
+        Datapath {
+            tables: self.tables,
+            reads: self.reads,
+            steps: self.steps,
+            live,
+            unused,
+            outputs,
+            registered: self.registered,
+            read: self.read,
+            products: self.products,
+        }
     }
 }
 

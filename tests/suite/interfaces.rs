@@ -87,11 +87,13 @@ fn handshake_mutant(root: &Path, name: &str, file: &str, from: &str, to: &str) -
     let path = dir.join(file);
     let src = std::fs::read_to_string(&path).unwrap();
     let (from, to) = if from == "TAG_LAST" {
-        // the tag's delay line `reg [11:0] tag_cA, …, tag_cY, tag_cZ;`: the result takes tag_cY
-        let regs = src.lines().find(|l| l.starts_with("reg ") && l.contains("tag_c")).expect("a tag line");
-        let names: Vec<&str> = regs.split([' ', ',', ';']).filter(|w| w.starts_with("tag_c")).collect();
-        let (last, before) = (names[names.len() - 1], names[names.len() - 2]);
-        (format!("out_result = {{{last},"), format!("out_result = {{{before},"))
+        // the tag's delay line `reg [59:0] tag_line` and its last word `wire [11:0] tag_cZ =
+        // tag_line[59:48];`: the mutant takes the word before it
+        let word = src.lines().find(|l| l.starts_with("wire ") && l.contains("= tag_line[")).expect("the tag's last word");
+        let select = &word[word.find("tag_line[").unwrap()..word.find(';').unwrap()];
+        let (hi, lo) = select.trim_start_matches("tag_line[").trim_end_matches(']').split_once(':').unwrap();
+        let (hi, lo): (u32, u32) = (hi.parse().unwrap(), lo.parse().unwrap());
+        (select.to_string(), format!("tag_line[{}:{}]", hi - 12, lo - 12))
     } else {
         (from.to_string(), to.to_string())
     };
@@ -131,12 +133,15 @@ fn static_colour_removes_the_colour_delay_lines() {
     let stat = generate(tmp.path(), "s", &["--model", "blinn", "--stages", "15", "--colour", "static"]);
     let read = |d: &Path| std::fs::read_to_string(d.join("specular_unit.v")).unwrap();
     let (p, s) = (read(&pixel), read(&stat));
-    assert!(p.contains("ks_r_c1"), "the pixel unit carries ks_r through its cuts");
+    assert!(p.contains("ks_r_c"), "the pixel unit carries ks_r through its cuts");
     for ch in ["r", "g", "b"] {
         assert!(!s.contains(&format!("ks_{ch}_c")), "a static unit carries no ks_{ch} register");
     }
     assert!(s.contains("always @(posedge clk) if (ks_load)") && s.contains("input  wire        ks_load"), "{s}");
-    assert!(s.lines().count() < p.lines().count());
+    // the pixel unit's colours wait in a delay line; the static unit has none
+    let in_line = |v: &str| v.lines().any(|l| l.contains("_line <=") && l.contains("ks_r"));
+    assert!(in_line(&p.replace('\n', " ").replace(";", ";\n")), "{p}");
+    assert!(!in_line(&s.replace('\n', " ").replace(";", ";\n")), "{s}");
 }
 
 #[test]
