@@ -1,8 +1,10 @@
 //! Pictures of the specular term: a sphere and a plane at grazing light, each pixel's
-//! `cos δ = N·H` quantised to the unit's `cos_g` port, the unit's intensity beside Blinn's
-//! float `cos^n δ` and their difference amplified. [`tiles`] builds the pixels from a golden
-//! model; `specgen render` first runs the same vectors through the RTL under the
-//! co-simulation harness and renders only when every pixel is bit-identical.
+//! `cos δ = N·H` quantised to the unit's `cos_g` port; per model, the unit's intensity beside
+//! Blinn's float `cos^n δ` and their signed difference on one diverging scale, with titles,
+//! row and column labels and colour bars drawn in a bundled bitmap font. [`picture`] builds
+//! the sheet from golden models; `specgen render` first runs the same vectors through each
+//! unit's RTL under the co-simulation harness and renders only when every pixel is
+//! bit-identical.
 
 use crate::models::{Inputs, Model};
 
@@ -68,68 +70,310 @@ pub fn tile_inputs(model: &Model, scene: Scene, n: u32, size: u32) -> Vec<Inputs
     v
 }
 
-/// What a tile shows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Panel {
-    /// The unit's intensity (golden model = RTL) over a dim diffuse base.
-    Unit,
-    /// Blinn's `cos^n δ` in floating point, same base.
-    Float,
-    /// `|unit − float|`, amplified by [`DIFF_GAIN`], in red.
-    Difference,
-}
+/// One pixel of a tile: the unit's intensity and Blinn's float `cos^n δ` at the pixel's
+/// quantised `cos δ`, both in full scale; `None` off the object.
+pub type Sample = Option<(f64, f64)>;
 
-/// The gain of a difference panel.
-pub(crate) const DIFF_GAIN: f64 = 8.0;
-
-/// RGB pixels of one tile, row-major, `size`² × 3 bytes.
-pub fn tile(model: &Model, scene: Scene, panel: Panel, n: u32, size: u32) -> Vec<u8> {
+/// The samples of one tile, row-major, `size`² of them.
+pub fn samples(model: &Model, scene: Scene, n: u32, size: u32) -> Vec<Sample> {
     let scale = (model.cfg.fi() as f64).exp2();
+    let one = (model.cfg.f() as f64).exp2();
     let ks = (1u32 << model.cfg.b()) - 1;
-    let mut out = Vec::with_capacity((size * size * 3) as usize);
+    let mut out = Vec::with_capacity((size * size) as usize);
     for py in 0..size {
         for px in 0..size {
             let (u, w) = ((px as f64 + 0.5) / size as f64, (py as f64 + 0.5) / size as f64);
-            let rgb = match geometry(scene, u, w) {
-                None => [18.0, 18.0, 24.0],
-                Some((c, diffuse)) => {
-                    let code = cos_code(model, c);
-                    let unit = model.eval(Inputs { cos_g: code, n, ks: [ks; 3] }).intensity as f64 / scale;
-                    let exact = (code as f64 / (model.cfg.f() as f64).exp2()).powi(n as i32);
-                    let base = [40.0 + 60.0 * diffuse, 50.0 + 70.0 * diffuse, 90.0 + 110.0 * diffuse];
-                    match panel {
-                        Panel::Unit => base.map(|b| b + 255.0 * unit),
-                        Panel::Float => base.map(|b| b + 255.0 * exact),
-                        Panel::Difference => {
-                            let d = ((unit - exact).abs() * DIFF_GAIN).min(1.0);
-                            [30.0 + 225.0 * d, 30.0, 30.0]
-                        }
-                    }
-                }
-            };
-            out.extend(rgb.map(|x| x.round().clamp(0.0, 255.0) as u8));
+            out.push(geometry(scene, u, w).map(|(c, _)| {
+                let code = cos_code(model, c);
+                let unit = model.eval(Inputs { cos_g: code, n, ks: [ks; 3] }).intensity as f64 / scale;
+                (unit, (code as f64 / one).powi(n as i32))
+            }));
         }
     }
     out
 }
 
-/// Lays tiles out in a grid (rows of equal length) with 2-pixel gutters.
-pub fn grid(rows: &[Vec<Vec<u8>>], size: u32) -> (u32, u32, Vec<u8>) {
-    const GUTTER: u32 = 2;
-    let cols = rows.iter().map(|r| r.len()).max().unwrap_or(0) as u32;
-    let (w, h) = (cols * (size + GUTTER) + GUTTER, rows.len() as u32 * (size + GUTTER) + GUTTER);
-    let mut img = vec![235u8; (w * h * 3) as usize];
-    for (ry, row) in rows.iter().enumerate() {
-        for (cx, t) in row.iter().enumerate() {
-            let (x0, y0) = (GUTTER + cx as u32 * (size + GUTTER), GUTTER + ry as u32 * (size + GUTTER));
-            for y in 0..size {
-                let src = (y * size * 3) as usize;
-                let dst = (((y0 + y) * w + x0) * 3) as usize;
-                img[dst..dst + (size * 3) as usize].copy_from_slice(&t[src..src + (size * 3) as usize]);
+/// Off the object.
+const BACKGROUND: [u8; 3] = [38, 44, 64];
+/// The sheet around the tiles, and its text.
+const PAPER: [u8; 3] = [240, 240, 236];
+const INK: [u8; 3] = [20, 20, 24];
+
+/// The specular term alone as a grey level, gamma-encoded (`S^(1/2.2)`) so that a broad
+/// highlight (n = 1) is a gradient and not a white disc; a faint floor shows the object.
+pub fn shade(s: f64) -> [u8; 3] {
+    let v = 14.0 + 241.0 * s.clamp(0.0, 1.0).powf(1.0 / 2.2);
+    [v.round() as u8; 3]
+}
+
+/// The diverging map of a signed error `e` against the sheet's scale `e_max`: neutral grey at
+/// 0, red where the unit is too bright, blue where it is too dark, full hue at `±e_max`.
+pub fn diverging(e: f64, e_max: f64) -> [u8; 3] {
+    const ZERO: [f64; 3] = [226.0, 226.0, 222.0];
+    const BRIGHT: [f64; 3] = [196.0, 28.0, 36.0];
+    const DARK: [f64; 3] = [28.0, 72.0, 200.0];
+    let t = (e / e_max).clamp(-1.0, 1.0);
+    let to = if t >= 0.0 { BRIGHT } else { DARK };
+    let t = t.abs();
+    [0, 1, 2].map(|i| (ZERO[i] + (to[i] - ZERO[i]) * t).round() as u8)
+}
+
+/// What a tile shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Panel {
+    /// The unit's intensity (golden model = RTL), [`shade`]d.
+    Unit,
+    /// Blinn's `cos^n δ` in floating point, [`shade`]d.
+    Float,
+    /// `unit − float`, signed, on the [`diverging`] map at the sheet's scale.
+    Error,
+}
+
+/// RGB pixels of one tile from its samples, row-major, 3 bytes a pixel.
+pub fn paint(samples: &[Sample], panel: Panel, e_max: f64) -> Vec<u8> {
+    samples
+        .iter()
+        .flat_map(|s| match s {
+            None => BACKGROUND,
+            Some((unit, exact)) => match panel {
+                Panel::Unit => shade(*unit),
+                Panel::Float => shade(*exact),
+                Panel::Error => diverging(unit - exact, e_max),
+            },
+        })
+        .collect()
+}
+
+/// The smallest of 1, 2, 5 × 10^k at least `x` (`floor` when `x` is 0).
+pub fn nice_ceiling(x: f64, floor: f64) -> f64 {
+    if x <= 0.0 {
+        return floor;
+    }
+    let p = 10f64.powf(x.log10().floor());
+    [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * p).find(|v| *v >= x * (1.0 - 1e-12)).unwrap_or(10.0 * p)
+}
+
+/// A number to 3 significant digits (`0.4`, `1.87e-5`).
+pub fn sig3(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    if (1e-3..1e4).contains(&a) {
+        let decimals = (2 - a.log10().floor() as i32).max(0) as usize;
+        let t = format!("{x:.decimals$}");
+        if t.contains('.') {
+            t.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            t
+        }
+    } else {
+        let t = format!("{x:.2e}");
+        let (m, e) = t.split_once('e').expect("an exponent");
+        let m = if m.contains('.') { m.trim_end_matches('0').trim_end_matches('.') } else { m };
+        format!("{m}e{e}")
+    }
+}
+
+/// An RGB canvas that records the text drawn on it (what a reader reads; the tests read it).
+pub struct Sheet {
+    pub width: u32,
+    pub height: u32,
+    pub rgb: Vec<u8>,
+    pub labels: Vec<String>,
+}
+
+/// Glyph cell of the bundled 8×8 font (font8x8, public domain), at scale 1.
+const GLYPH: u32 = 8;
+
+impl Sheet {
+    fn new(width: u32, height: u32) -> Sheet {
+        Sheet { width, height, rgb: PAPER.repeat((width * height) as usize), labels: Vec::new() }
+    }
+
+    fn put(&mut self, x: u32, y: u32, c: [u8; 3]) {
+        if x < self.width && y < self.height {
+            let i = ((y * self.width + x) * 3) as usize;
+            self.rgb[i..i + 3].copy_from_slice(&c);
+        }
+    }
+
+    fn rect(&mut self, x: u32, y: u32, w: u32, h: u32, c: [u8; 3]) {
+        for yy in y..y + h {
+            for xx in x..x + w {
+                self.put(xx, yy, c);
             }
         }
     }
-    (w, h, img)
+
+    /// Draws `text` with its top left at (x, y), at most `max_w` pixels wide; returns its width.
+    fn text(&mut self, x: u32, y: u32, text: &str, scale: u32, max_w: u32) -> u32 {
+        use font8x8::UnicodeFonts;
+        self.labels.push(text.to_string());
+        let mut cx = x;
+        for ch in text.chars() {
+            if cx + GLYPH * scale > x + max_w {
+                break;
+            }
+            let glyph = font8x8::BASIC_FONTS.get(ch).or_else(|| font8x8::GREEK_FONTS.get(ch)).or_else(|| font8x8::LATIN_FONTS.get(ch)).unwrap_or([0; 8]);
+            for (row, bits) in glyph.iter().enumerate() {
+                for col in 0..8 {
+                    if bits >> col & 1 == 1 {
+                        self.rect(cx + col * scale, y + row as u32 * scale, scale, scale, INK);
+                    }
+                }
+            }
+            cx += GLYPH * scale;
+        }
+        cx - x
+    }
+
+    fn blit(&mut self, x: u32, y: u32, size: u32, tile: &[u8]) {
+        for yy in 0..size {
+            let src = (yy * size * 3) as usize;
+            let dst = (((y + yy) * self.width + x) * 3) as usize;
+            self.rgb[dst..dst + (size * 3) as usize].copy_from_slice(&tile[src..src + (size * 3) as usize]);
+        }
+    }
+
+    /// A horizontal colour bar of `w` pixels, `colour(t)` for t from 0 to 1, with tick labels
+    /// `(t, full scale, output codes)` in two rows under it; returns the height used.
+    fn bar(&mut self, x: u32, y: u32, w: u32, title: &str, colour: impl Fn(f64) -> [u8; 3], ticks: &[(f64, String, String)]) -> u32 {
+        self.text(x, y, title, 1, self.width - x);
+        let y = y + GLYPH + 4;
+        for i in 0..w {
+            let c = colour(i as f64 / (w - 1) as f64);
+            self.rect(x + i, y, 1, 14, c);
+        }
+        for (t, scale, codes) in ticks {
+            let tx = x + (t * (w - 1) as f64).round() as u32;
+            self.rect(tx, y + 14, 1, 4, INK);
+            for (row, label) in [scale, codes].into_iter().enumerate() {
+                let lw = label.chars().count() as u32 * GLYPH;
+                let lx = tx.saturating_sub(lw / 2).clamp(x, (x + w).saturating_sub(lw));
+                self.text(lx, y + 20 + row as u32 * (GLYPH + 2), label, 1, lw);
+            }
+        }
+        GLYPH + 4 + 20 + 2 * GLYPH + 2
+    }
+}
+
+/// The picture `specgen render` writes and the report shows.
+pub struct Picture {
+    pub png: Vec<u8>,
+    /// every text drawn on it, in drawing order
+    pub labels: Vec<String>,
+    /// the error colour scale, full scale (`±e_max` is full hue)
+    pub e_max: f64,
+    /// where each tile is: its row's label, its column's title, its top left corner
+    pub tiles: Vec<TilePlace>,
+    pub size: u32,
+}
+
+/// Where a tile of the sheet is.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TilePlace {
+    /// `sphere n=16`
+    pub row: String,
+    /// `float cos^n`, `<model> unit`, `<model> signed error`
+    pub column: String,
+    pub x: u32,
+    pub y: u32,
+}
+
+/// The sheet: a title; a row per (scene, n), labelled; the columns "float cos^n" and then, per
+/// model, "<model>" (its intensity) and "<model> error" (unit − float, signed); under them a
+/// colour bar for the shaded tiles and one for the errors, each in full scale and in output
+/// codes. Every model's tiles use one error scale, so a model with errors a thousand times
+/// smaller shows as neutral beside one that is visibly off.
+pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
+    const GAP: u32 = 4;
+    const MARGIN: u32 = 10;
+    let scenes = [(Scene::Sphere, "sphere"), (Scene::GrazingPlane, "plane")];
+    // every tile's samples first: the error scale is the sheet's
+    let rows: Vec<(String, Vec<Vec<Sample>>)> = scenes
+        .iter()
+        .flat_map(|&(scene, name)| ns.iter().map(move |&n| (scene, name, n)))
+        .map(|(scene, name, n)| (format!("{name} n={n}"), models.iter().map(|m| samples(m, scene, n, size)).collect()))
+        .collect();
+    let worst = rows.iter().flat_map(|r| r.1.iter().flatten().flatten()).map(|(u, e)| (u - e).abs()).fold(0.0f64, f64::max);
+    let fi = models[0].cfg.fi();
+    let ulp = (-(fi as f64)).exp2();
+    let e_max = nice_ceiling(worst, ulp);
+    // each column's title, in two lines
+    let mut columns = vec![("float".to_string(), "cos^n")];
+    for m in models {
+        let name = m.cfg.model().name();
+        columns.push((name.to_string(), "unit"));
+        columns.push((name.to_string(), "signed error"));
+    }
+    let label_w = 14 * GLYPH + GAP;
+    let body_w = columns.len() as u32 * (size + GAP);
+    let width = (MARGIN * 2 + label_w + body_w).max(600);
+    let top = MARGIN + 2 * GLYPH + 6 + GLYPH + 10 + 2 * GLYPH + 6;
+    let body_h = rows.len() as u32 * (size + GAP);
+    let bars_h = 2 * (GLYPH + 4 + 20 + 2 * GLYPH + 2 + 12);
+    let height = top + body_h + 8 + bars_h + MARGIN;
+    let mut sheet = Sheet::new(width, height);
+    let names: Vec<&str> = models.iter().map(|m| m.cfg.model().name()).collect();
+    let title = format!("specular term: {} vs float cos^n", names.join(", "));
+    let big = title.chars().count() as u32 * 2 * GLYPH <= width - 2 * MARGIN;
+    sheet.text(MARGIN, MARGIN, &title, if big { 2 } else { 1 }, width - 2 * MARGIN);
+    sheet.text(
+        MARGIN,
+        MARGIN + 2 * GLYPH + 6,
+        &format!("S alone, gamma 2.2; error = unit - float cos^n, one scale for all: +/-{}", sig3(e_max)),
+        1,
+        width - 2 * MARGIN,
+    );
+    let x0 = MARGIN + label_w;
+    let y_head = MARGIN + 2 * GLYPH + 6 + GLYPH + 10;
+    for (c, (first, second)) in columns.iter().enumerate() {
+        sheet.text(x0 + c as u32 * (size + GAP), y_head, first, 1, size + GAP);
+        sheet.text(x0 + c as u32 * (size + GAP), y_head + GLYPH + 2, second, 1, size + GAP);
+    }
+    let mut tiles = Vec::new();
+    for (r, (label, per_model)) in rows.iter().enumerate() {
+        let y = top + r as u32 * (size + GAP);
+        sheet.text(MARGIN, y + size / 2 - GLYPH / 2, label, 1, label_w);
+        let mut place = |c: usize, panel: Panel, s: &[Sample], sheet: &mut Sheet| {
+            let x = x0 + c as u32 * (size + GAP);
+            sheet.blit(x, y, size, &paint(s, panel, e_max));
+            tiles.push(TilePlace { row: label.clone(), column: format!("{} {}", columns[c].0, columns[c].1), x, y });
+        };
+        place(0, Panel::Float, &per_model[0], &mut sheet);
+        for (i, s) in per_model.iter().enumerate() {
+            place(1 + 2 * i, Panel::Unit, s, &mut sheet);
+            place(2 + 2 * i, Panel::Error, s, &mut sheet);
+        }
+    }
+    let bar_w = (width - 2 * MARGIN).min(480);
+    let mut y = top + body_h + 8;
+    let codes = |v: f64| format!("{}", (v * (fi as f64).exp2()).round() as i64);
+    y += sheet.bar(
+        MARGIN,
+        y,
+        bar_w,
+        &format!("intensity S: full scale, and below it in output codes (UQ1.{fi})"),
+        shade,
+        &[0.0, 0.25, 0.5, 0.75, 1.0].map(|t| (t, sig3(t), codes(t))),
+    ) + 12;
+    sheet.bar(
+        MARGIN,
+        y,
+        bar_w,
+        "signed error unit - float: blue = too dark, red = too bright; full scale, then output ulps",
+        |t| diverging((2.0 * t - 1.0) * e_max, e_max),
+        &[(0.0, -e_max), (0.25, -e_max / 2.0), (0.5, 0.0), (0.75, e_max / 2.0), (1.0, e_max)].map(|(t, e)| (t, sig3(e), sig3(e / ulp))),
+    );
+    let description = format!(
+        "specgen {} render: rows {}; columns {}; error scale +/-{} full scale",
+        crate::emit::VERSION,
+        rows.iter().map(|r| r.0.as_str()).collect::<Vec<_>>().join(", "),
+        columns.iter().map(|c| format!("{} {}", c.0, c.1)).collect::<Vec<_>>().join(", "),
+        sig3(e_max)
+    );
+    Picture { png: png(sheet.width, sheet.height, &sheet.rgb, &description), labels: sheet.labels, e_max, tiles, size }
 }
 
 /// Encodes RGB8 pixels as PNG, with a text chunk describing the picture.
@@ -144,31 +388,6 @@ pub fn png(width: u32, height: u32, rgb: &[u8], description: &str) -> Vec<u8> {
         w.write_image_data(rgb).expect("PNG data to memory");
     }
     bytes
-}
-
-/// The picture `specgen render` writes: one row per n — sphere (unit, float, difference),
-/// then the grazing plane (unit, float, difference).
-pub fn picture(model: &Model, ns: &[u32], size: u32) -> Vec<u8> {
-    let rows: Vec<Vec<Vec<u8>>> = ns
-        .iter()
-        .map(|&n| {
-            let mut row = Vec::new();
-            for scene in [Scene::Sphere, Scene::GrazingPlane] {
-                for panel in [Panel::Unit, Panel::Float, Panel::Difference] {
-                    row.push(tile(model, scene, panel, n, size));
-                }
-            }
-            row
-        })
-        .collect();
-    let (w, h, img) = grid(&rows, size);
-    let description = format!(
-        "specgen {} {} model: rows n = {:?}; columns: sphere (unit, float cos^n, |difference| x{DIFF_GAIN}), grazing plane (unit, float cos^n, |difference| x{DIFF_GAIN})",
-        crate::emit::VERSION,
-        model.cfg.model().name(),
-        ns
-    );
-    png(w, h, &img, &description)
 }
 
 /// Base64 (RFC 4648), for pictures inlined in the report.

@@ -379,17 +379,14 @@ fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
     })
 }
 
-/// A grid of sphere renders, one row per model and one column per n, plus float cos^n.
-fn render_grid(models: &[(Model, &'static str)]) -> (String, Vec<u32>) {
-    use crate::render::{Panel, Scene};
+/// The render sheet of every model (`specgen render`'s picture): the float cos^n column, then
+/// each model's intensity and signed error on one scale, sphere and grazing plane, n = 1, 4,
+/// 16, 128 (those within n_bits).
+fn render_grid(models: &[(Model, &'static str)]) -> (crate::render::Picture, Vec<u32>) {
     let n_max = (1u32 << models[0].0.cfg.n_bits()) - 1;
     let ns: Vec<u32> = [1u32, 4, 16, 128].into_iter().filter(|&n| n <= n_max).collect();
-    let size = 96;
-    let mut rows: Vec<Vec<Vec<u8>>> =
-        models.iter().map(|(m, _)| ns.iter().map(|&n| crate::render::tile(m, Scene::Sphere, Panel::Unit, n, size)).collect()).collect();
-    rows.push(ns.iter().map(|&n| crate::render::tile(&models[0].0, Scene::Sphere, Panel::Float, n, size)).collect());
-    let (w, h, img) = crate::render::grid(&rows, size);
-    (crate::render::base64(&crate::render::png(w, h, &img, "specgen report: models x n")), ns)
+    let refs: Vec<&Model> = models.iter().map(|(m, _)| m).collect();
+    (crate::render::picture(&refs, &ns, 80), ns)
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -447,7 +444,8 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
         })
         .collect();
     let comparison_svg = comparison_figure(&fids);
-    let (grid_png, grid_ns) = render_grid(&models);
+    let (grid, grid_ns) = render_grid(&models);
+    let grid_png = crate::render::base64(&grid.png);
     let grid_models = models.iter().map(|(m, _)| m.cfg.model().name().to_string()).collect();
     let premise = premise(&rows);
     let data = ReportData {

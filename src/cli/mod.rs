@@ -126,19 +126,24 @@ pub struct VectorsArgs {
 
 #[derive(Args, Debug, Clone)]
 pub struct RenderArgs {
-    /// Directory with the generated unit (Verilog, tables, manifest).
+    /// A directory with a generated unit (Verilog, tables, manifest); repeat it to put units
+    /// side by side.
     #[arg(long, value_name = "DIR")]
-    pub rtl: PathBuf,
+    pub rtl: Vec<PathBuf>,
+    /// Models to generate with default parameters (into a temporary directory) and render side
+    /// by side, after the --rtl units: e.g. quadratic,fitted,blinn.
+    #[arg(long, value_delimiter = ',', value_name = "MODEL,...")]
+    pub models: Vec<values::ModelFlag>,
     /// The PNG to write.
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
-    /// Exponents, one row each [each 0..=2^n_bits-1]
+    /// Exponents, one row each per scene [each 0..=2^n_bits-1]
     #[arg(long, value_delimiter = ',', default_value = "1,4,16,128")]
     pub n: Vec<u32>,
     /// Pixels per tile side [16..=1024]
     #[arg(allow_negative_numbers = true, value_parser = param_size, long, default_value_t = 128)]
     pub size: u32,
-    /// Take the pixels from the golden model without simulating the RTL.
+    /// Take the pixels from the golden models without simulating the RTL.
     #[arg(long)]
     pub model_only: bool,
 }
@@ -476,63 +481,90 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
 }
 
 fn render(args: &RenderArgs) -> Result<(), Failure> {
-    use specgen::cosim::{self, Cycle, Recorded, Stimulus};
-    use specgen::render::{self, Scene};
+    use specgen::cosim;
     if !(16..=1024).contains(&args.size) {
         return Err(usage(format!("invalid --size: {}; allowed 16..=1024", args.size)));
     }
     if args.n.is_empty() || args.n.len() > 16 {
         return Err(usage("invalid --n: give 1 to 16 exponents, e.g. 1,4,16,128"));
     }
-    let design = cosim::Design::load(&args.rtl)?;
-    let n_max = (1u32 << design.cfg.n_bits()) - 1;
-    if let Some(bad) = args.n.iter().find(|&&n| n > n_max) {
-        return Err(usage(format!("invalid --n: {bad} is out of range; allowed 0..={n_max} (n_bits = {})", design.cfg.n_bits())));
+    let units = args.rtl.len() + args.models.len();
+    if !(1..=6).contains(&units) {
+        return Err(usage(format!("render: give 1 to 6 units with --rtl DIR and --models LIST (got {units})")));
     }
-    let model = design.plan.model();
+    // the --models units, generated at default parameters beside each other
+    let scratch = tempfile::tempdir().map_err(|e| specgen::error::Error::io("create a temporary directory in", std::env::temp_dir(), e))?;
+    let mut dirs = args.rtl.clone();
+    for m in &args.models {
+        let model: specgen::config::SpecularModel = (*m).into();
+        let plan = specgen::plan::Plan::from_params(specgen::config::Params { model, ..Default::default() })?;
+        let dir = scratch.path().join(model.name());
+        emit::write_dir_atomically(&dir, &emit::generate_files(&plan))?;
+        dirs.push(dir);
+    }
+    let mut designs = Vec::new();
+    for dir in &dirs {
+        let design = cosim::Design::load(dir)?;
+        let n_max = (1u32 << design.cfg.n_bits()) - 1;
+        if let Some(bad) = args.n.iter().find(|&&n| n > n_max) {
+            return Err(usage(format!("invalid --n: {bad} is out of range for {}; allowed 0..={n_max} (n_bits = {})", dir.display(), design.cfg.n_bits())));
+        }
+        designs.push(design);
+    }
+    let models: Vec<specgen::models::Model> = designs.iter().map(|d| d.plan.model()).collect();
     if !args.model_only {
-        cosim::check_ports(&design)?;
-        cosim::check_tables(&design)?;
-        let mut cycles = Vec::new();
-        if design.cfg.clocked() {
-            // a reset; then a cycle for in_ready to rise, which also loads a static colour
-            // (every pixel of a picture has full-scale colours)
-            cycles.push(Cycle::reset());
-            let full = (1u32 << design.cfg.b()) - 1;
-            let load = design.cfg.colour() == specgen::config::Colour::Static;
-            cycles.push(Cycle { inputs: specgen::models::Inputs { ks: [full; 3], ..Default::default() }, load, ..Cycle::default() });
+        for (design, model) in designs.iter().zip(&models) {
+            let pixels = render_through_rtl(design, model, &args.n, args.size)?;
+            eprintln!("render: {pixels} pixels through the RTL in {} (Verilator), all bit-identical to the golden model", design.dir.display());
         }
-        let mut pixels = 0u64;
-        for &n in &args.n {
-            for scene in [Scene::Sphere, Scene::GrazingPlane] {
-                let tile = render::tile_inputs(&model, scene, n, args.size);
-                pixels += tile.len() as u64;
-                cycles.extend(tile.into_iter().map(Cycle::pixel));
-            }
-        }
-        // the pipeline (and a handshake's buffer) empties before the run ends
-        cycles.extend((0..design.cfg.latency() + 2).map(|_| Cycle::default()));
-        let stim: Vec<Box<dyn Stimulus>> = vec![Box::new(Recorded(cycles))];
-        let built = cosim::build(&design, cosim::Simulator::Verilator, false)?;
-        let report = cosim::run_all(&built, &design, &model, &stim, 1)?;
-        if report.mismatches > 0 {
-            return Err(failed(format!(
-                "the RTL in {} differs from the golden model at {} of {} pixels; no picture written (run `specgen cosim --rtl {}`)",
-                args.rtl.display(),
-                report.mismatches,
-                report.checked,
-                args.rtl.display()
-            )));
-        }
-        if report.results != pixels {
-            return Err(failed(format!("the RTL in {} gave {} results for {pixels} pixels; no picture written", args.rtl.display(), report.results)));
-        }
-        eprintln!("render: {pixels} pixels through the RTL (Verilator), all bit-identical to the golden model");
     }
-    let png = render::picture(&model, &args.n, args.size);
-    emit::write_file_atomically(&args.out, &png).map_err(|e| specgen::error::Error::io("write", &args.out, e))?;
+    let refs: Vec<&specgen::models::Model> = models.iter().collect();
+    let picture = specgen::render::picture(&refs, &args.n, args.size);
+    emit::write_file_atomically(&args.out, &picture.png).map_err(|e| specgen::error::Error::io("write", &args.out, e))?;
     outln!("{}", args.out.display())?;
     Ok(())
+}
+
+/// Runs every pixel of a picture through the unit's RTL and checks each against the golden
+/// model: the picture is drawn from the model only when all are bit-identical.
+fn render_through_rtl(design: &specgen::cosim::Design, model: &specgen::models::Model, ns: &[u32], size: u32) -> Result<u64, Failure> {
+    use specgen::cosim::{self, Cycle, Recorded, Stimulus};
+    use specgen::render::{self, Scene};
+    cosim::check_ports(design)?;
+    cosim::check_tables(design)?;
+    let mut cycles = Vec::new();
+    if design.cfg.clocked() {
+        // a reset; then a cycle for in_ready to rise, which also loads a static colour
+        // (every pixel of a picture has full-scale colours)
+        cycles.push(Cycle::reset());
+        let full = (1u32 << design.cfg.b()) - 1;
+        let load = design.cfg.colour() == specgen::config::Colour::Static;
+        cycles.push(Cycle { inputs: specgen::models::Inputs { ks: [full; 3], ..Default::default() }, load, ..Cycle::default() });
+    }
+    let mut pixels = 0u64;
+    for &n in ns {
+        for scene in [Scene::Sphere, Scene::GrazingPlane] {
+            let tile = render::tile_inputs(model, scene, n, size);
+            pixels += tile.len() as u64;
+            cycles.extend(tile.into_iter().map(Cycle::pixel));
+        }
+    }
+    // the pipeline (and a handshake's buffer) empties before the run ends
+    cycles.extend((0..design.cfg.latency() + 2).map(|_| Cycle::default()));
+    let stim: Vec<Box<dyn Stimulus>> = vec![Box::new(Recorded(cycles))];
+    let built = cosim::build(design, cosim::Simulator::Verilator, false)?;
+    let report = cosim::run_all(&built, design, model, &stim, 1)?;
+    let dir = design.dir.display();
+    if report.mismatches > 0 {
+        return Err(failed(format!(
+            "the RTL in {dir} differs from the golden model at {} of {} pixels; no picture written (run `specgen cosim --rtl {dir}`)",
+            report.mismatches, report.checked
+        )));
+    }
+    if report.results != pixels {
+        return Err(failed(format!("the RTL in {dir} gave {} results for {pixels} pixels; no picture written", report.results)));
+    }
+    Ok(pixels)
 }
 
 /// The command line, with each ranged parameter's help completed from `config::RANGES` (one

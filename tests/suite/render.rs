@@ -11,44 +11,89 @@ fn decode(path: &std::path::Path) -> (u32, u32, Vec<u8>) {
     (info.width, info.height, buf)
 }
 
+/// Pixels of a tile of the decoded sheet at `place`, `size`² RGB triples.
+fn tile_pixels(px: &[u8], width: u32, place: &specgen::render::TilePlace, size: u32) -> Vec<[u8; 3]> {
+    (0..size * size)
+        .map(|i| {
+            let (x, y) = (place.x + i % size, place.y + i / size);
+            let p = ((y * width + x) * 3) as usize;
+            [px[p], px[p + 1], px[p + 2]]
+        })
+        .collect()
+}
+
 #[test]
 fn render_through_the_rtl_equals_the_model_and_shows_the_difference() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
     let cache = cache_dir();
-    for (name, args) in [("q", &["--stages", "3"][..]), ("b", &["--model", "blinn"][..])] {
-        let dir = generate(tmp.path(), name, args);
-        let (rtl_png, model_png) = (tmp.path().join(format!("{name}_rtl.png")), tmp.path().join(format!("{name}_model.png")));
-        let o = specgen()
-            .env("SPECGEN_CACHE_DIR", &cache)
-            .args(["render", "--n", "1,16,128", "--size", "32", "--rtl"])
-            .arg(&dir)
-            .arg("--out")
-            .arg(&rtl_png)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        assert!(String::from_utf8_lossy(&o.stderr).contains("through the RTL"));
-        let o = specgen().args(["render", "--model-only", "--n", "1,16,128", "--size", "32", "--rtl"]).arg(&dir).arg("--out").arg(&model_png).output().unwrap();
-        assert!(o.status.success());
-        assert_eq!(std::fs::read(&rtl_png).unwrap(), std::fs::read(&model_png).unwrap(), "{name}: RTL and model pictures differ");
-        // 6 tiles of 32 px and 7 gutters of 2 across, 3 rows down
-        let (w, h, px) = decode(&rtl_png);
-        assert_eq!((w, h), (6 * 34 + 2, 3 * 34 + 2));
-        // the difference tile of the sphere at n = 16 (third tile, second row): red where the
-        // unit differs from cos^n — plenty for the paper's quadratic, none for blinn
-        let red = (0..32 * 32).filter(|i| {
-            let (x, y) = (2 + 2 * 34 + i % 32, 2 + 34 + i / 32);
-            let p = (y * w as usize + x) * 3;
-            px[p] > 60 && px[p + 1] < 40
-        });
-        let red = red.count();
-        match name {
-            "q" => assert!(red > 50, "quadratic difference tile shows {red} red pixels"),
-            _ => assert_eq!(red, 0, "blinn should be within one unit everywhere"),
-        }
+    let q = generate(tmp.path(), "q", &["--stages", "3"]);
+    let b = generate(tmp.path(), "b", &["--model", "blinn"]);
+    let (rtl_png, model_png) = (tmp.path().join("rtl.png"), tmp.path().join("model.png"));
+    let args = ["render", "--n", "1,16,128", "--size", "32", "--rtl"];
+    let o = specgen().env("SPECGEN_CACHE_DIR", &cache).args(args).arg(&q).arg("--rtl").arg(&b).arg("--out").arg(&rtl_png).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(String::from_utf8_lossy(&o.stderr).matches("through the RTL").count(), 2);
+    let o = specgen().arg("render").arg("--model-only").args(&args[1..]).arg(&q).arg("--rtl").arg(&b).arg("--out").arg(&model_png).output().unwrap();
+    assert!(o.status.success());
+    assert_eq!(std::fs::read(&rtl_png).unwrap(), std::fs::read(&model_png).unwrap(), "RTL and model pictures differ");
+
+    // the sheet the library draws for the same models is the file, and says what it shows
+    let models: Vec<_> = [&q, &b].iter().map(|d| specgen::cosim::Design::load(d).unwrap().plan.model()).collect();
+    let refs: Vec<_> = models.iter().collect();
+    let pic = specgen::render::picture(&refs, &[1, 16, 128], 32);
+    assert_eq!(pic.png, std::fs::read(&rtl_png).unwrap());
+    for label in ["quadratic", "blinn", "float", "cos^n", "unit", "signed error", "sphere n=1", "sphere n=16", "plane n=128"] {
+        assert!(pic.labels.iter().any(|l| l == label), "no label {label:?} in {:?}", pic.labels);
     }
+    for words in ["intensity S: full scale", "signed error unit - float: blue = too dark, red = too bright", "32768"] {
+        assert!(pic.labels.iter().any(|l| l.contains(words)), "no label with {words:?} in {:?}", pic.labels);
+    }
+    // one error scale: (15) is off by up to 0.4 of full scale, so +/-0.5
+    assert_eq!(pic.e_max, 0.5);
+    assert!(pic.labels.iter().any(|l| l.ends_with("+/-0.5")), "{:?}", pic.labels);
+    // 5 columns (float, then unit and error per model), 6 rows (2 scenes x 3 n)
+    assert_eq!(pic.tiles.len(), 5 * 6);
+
+    // the signed error tiles: red and blue rings for (15) at n = 16, none for blinn
+    let (w, _, px) = decode(&rtl_png);
+    let tile = |row: &str, column: &str| {
+        let place = pic.tiles.iter().find(|t| t.row == row && t.column == column).unwrap_or_else(|| panic!("no tile {row} / {column}"));
+        tile_pixels(&px, w, place, 32)
+    };
+    // red minus blue, 0 on the neutral grey (226, 226, 222) of a zero error
+    let hue = |p: &[u8; 3]| p[0] as i32 - p[2] as i32 - 4;
+    let q1 = tile("sphere n=1", "quadratic signed error");
+    assert!(q1.iter().filter(|p| hue(p) > 60).count() > 100, "(15) is too bright at n = 1: a red disc");
+    let q16 = tile("sphere n=16", "quadratic signed error");
+    let (red, blue) = (q16.iter().filter(|p| hue(p) > 10).count(), q16.iter().filter(|p| hue(p) < -10).count());
+    assert!(red > 5 && blue > 5, "quadratic error tile at n = 16: {red} red, {blue} blue pixels");
+    for row in ["sphere n=1", "sphere n=16", "plane n=128"] {
+        let b_err = tile(row, "blinn signed error");
+        assert!(b_err.iter().all(|p| hue(p).abs() <= 1 || p == &[38, 44, 64]), "blinn's error tile at {row} should be neutral (zero at this scale)");
+    }
+    // exposure: n = 1 is a gradient, not a white disc
+    let unit1 = tile("sphere n=1", "blinn unit");
+    let greys: std::collections::BTreeSet<u8> = unit1.iter().filter(|p| p[0] == p[2]).map(|p| p[0]).collect();
+    assert!(greys.len() > 40 && unit1.iter().filter(|p| p[0] == 255).count() < 32, "n = 1 should be shaded, not blown out");
 }
+
+/// The pixels of a fixed `--model-only` render, hashed: any change to the scenes, the tone
+/// curve, the colour maps, the layout or the font shows here (update the hash when a change
+/// is meant, after looking at the picture).
+#[test]
+fn model_only_render_pixels_are_golden() {
+    use sha2::Digest;
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("g.png");
+    let o = specgen().args(["render", "--model-only", "--models", "quadratic,blinn", "--n", "1,16", "--size", "32", "--out"]).arg(&out).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (w, h, px) = decode(&out);
+    let hash: String = sha2::Sha256::digest(&px).iter().map(|b| format!("{b:02x}")).collect();
+    assert_eq!((w, h, hash.as_str()), (GOLDEN.0, GOLDEN.1, GOLDEN.2), "the render changed; look at {} and update GOLDEN", out.display());
+}
+
+const GOLDEN: (u32, u32, &str) = (600, 358, "3b0e6380a4e06823f42f7b14031dfca8149c445372372b51fb8d38b2d77dc7c9");
 
 #[test]
 fn render_refuses_bad_arguments_and_faulty_rtl() {
