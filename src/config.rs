@@ -269,6 +269,24 @@ impl Default for Params {
     }
 }
 
+/// The parameters only some models read, with those models: every other model's manifest,
+/// header and report leave them out (`k_code` is the quadratic model's output).
+pub const MODEL_KEYS: &[(&str, &[SpecularModel])] = &[
+    ("k", &[SpecularModel::Quadratic]),
+    ("k_code", &[SpecularModel::Quadratic]),
+    ("arch", &[SpecularModel::Quadratic]),
+    ("k_frac_bits", &[SpecularModel::Quadratic, SpecularModel::Fitted]),
+    ("max_squarings", &[SpecularModel::Fitted]),
+];
+
+impl SpecularModel {
+    /// Whether this model reads the parameter (or output) `key`: false only for the keys of
+    /// [`MODEL_KEYS`] that belong to other models.
+    pub fn reads(self, key: &str) -> bool {
+        MODEL_KEYS.iter().find(|(k, _)| *k == key).is_none_or(|(_, models)| models.contains(&self))
+    }
+}
+
 /// Keys of a manifest that are outputs, not parameters (skipped when it is read as a config).
 pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "generator",
@@ -482,20 +500,29 @@ impl Config {
     /// The parameters that define the unit, as `name=value` words (for file headers).
     pub fn describe(&self) -> String {
         let p = &self.params;
+        let m = p.model;
         let mut s = format!(
-            "model={} cos_frac_bits={} n_bits={} color_bits={} intensity_frac_bits={} k={} k_frac_bits={}",
-            p.model.name(),
+            "model={} cos_frac_bits={} n_bits={} color_bits={} intensity_frac_bits={}",
+            m.name(),
             p.cos_frac_bits,
             p.n_bits,
             p.color_bits,
-            p.intensity_frac_bits,
-            p.k,
-            p.k_frac_bits
+            p.intensity_frac_bits
         );
-        if p.model == SpecularModel::Fitted {
+        if m.reads("k") {
+            s.push_str(&format!(" k={}", p.k));
+        }
+        if m.reads("k_frac_bits") {
+            s.push_str(&format!(" k_frac_bits={}", p.k_frac_bits));
+        }
+        if m.reads("max_squarings") {
             s.push_str(&format!(" max_squarings={}", p.max_squarings));
         }
-        s.push_str(&format!(" stages={} rounding={} arch={} target={}", p.stages, p.rounding.name(), p.arch.name(), p.target.name()));
+        s.push_str(&format!(" stages={} rounding={}", p.stages, p.rounding.name()));
+        if m.reads("arch") {
+            s.push_str(&format!(" arch={}", p.arch.name()));
+        }
+        s.push_str(&format!(" target={}", p.target.name()));
         s.push_str(&self.interface_words());
         if let Some(mhz) = &p.clock_mhz {
             s.push_str(&format!(" clock_mhz={mhz}"));

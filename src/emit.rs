@@ -773,7 +773,12 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         blinn_error_method: fidelity.method(),
         files: files.iter().map(|(name, bytes)| FileEntry { name: name.clone(), sha256: sha256_hex(bytes) }).collect(),
     };
-    let mut json = serde_json::to_string_pretty(&manifest).expect("manifest serialises");
+    // only the model's own parameters (MODEL_KEYS): a reader branches on `model`
+    let mut value = serde_json::to_value(&manifest).expect("manifest serialises");
+    if let serde_json::Value::Object(map) = &mut value {
+        map.retain(|k, _| cfg.model().reads(k));
+    }
+    let mut json = serde_json::to_string_pretty(&value).expect("manifest serialises");
     json.push('\n');
     files.push((format!("{top}.json"), json.into_bytes()));
     files

@@ -30,8 +30,9 @@ pub struct UnitAccuracy {
     /// |intensity/2^FI − cos^n| (model + quantisation error against Blinn)
     pub vs_blinn_max: f64,
     pub vs_blinn_mean: f64,
-    /// |k_q-formula − real-k formula (15)|: what quantising k costs
-    pub k_quantisation_max: f64,
+    /// |k_q-formula − real-k formula (15)|: what quantising k costs (the quadratic model only)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub k_quantisation_max: Option<f64>,
     /// max |intensity error| in ulps per (cos bin, n bin), row-major by n bin
     #[serde(skip)]
     pub heat: Vec<f64>,
@@ -114,7 +115,7 @@ pub(crate) fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
         spec_mean_ulp: (a.ssum + b.ssum) / points as f64,
         vs_blinn_max: a.bmax.max(b.bmax),
         vs_blinn_mean: (a.bsum + b.bsum) / points as f64,
-        k_quantisation_max: a.kmax.max(b.kmax),
+        k_quantisation_max: (cfg.model() == crate::config::SpecularModel::Quadratic).then(|| a.kmax.max(b.kmax)),
         heat: a.heat.iter().zip(&b.heat).map(|(x, y)| x.max(*y)).collect(),
     }
 }
@@ -139,10 +140,16 @@ fn line_plot(title: &str, x_label: &str, x_max: f64, curves: Vec<Curve>) -> Stri
         let mut chart = ChartBuilder::on(&area)
             .caption(title, ("sans-serif", 18))
             .margin(10)
-            .x_label_area_size(36)
-            .y_label_area_size(48)
+            .x_label_area_size(40)
+            .y_label_area_size(56)
             .build_cartesian_2d(0.0..x_max, 0.0..1.05)?;
-        chart.configure_mesh().x_desc(x_label).y_desc("value").draw()?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc("value")
+            .y_label_formatter(&|v| crate::render::sig3(*v))
+            .x_label_formatter(&|v| crate::render::sig3(*v))
+            .draw()?;
         for (name, colour, f) in curves {
             let pts: Vec<(f64, f64)> = (0..=400)
                 .map(|i| {
@@ -160,23 +167,52 @@ fn line_plot(title: &str, x_label: &str, x_max: f64, curves: Vec<Curve>) -> Stri
     })
 }
 
+/// A tick label: a power of ten as `1e-5`, else 3 significant digits.
+fn tick(v: f64) -> String {
+    let l = v.abs().log10();
+    if v != 0.0 && (l - l.round()).abs() < 1e-6 {
+        format!("{}1e{}", if v < 0.0 { "-" } else { "" }, l.round() as i32)
+    } else {
+        crate::render::sig3(v)
+    }
+}
+
+/// An integer tick label (n, codes).
+fn int_tick(v: &f64) -> String {
+    format!("{}", v.round() as i64)
+}
+
 #[allow(clippy::too_many_arguments)] // a plot's labels, axes and grid, each named at the call
 fn heat_map(title: &str, x_label: &str, y_label: &str, x_max: f64, y_max: f64, cols: usize, rows: usize, cells: &[f64]) -> String {
     let peak = cells.iter().cloned().fold(0.0f64, f64::max).max(1e-300);
     svg(|area| {
-        let mut chart = ChartBuilder::on(&area)
-            .caption(format!("{title} (max {peak:.3e})"), ("sans-serif", 18))
+        // the map, and beside it its colour bar from 0 to the maximum
+        let (map, bar) = area.split_horizontally(W - 80);
+        let mut chart = ChartBuilder::on(&map)
+            .caption(title, ("sans-serif", 16))
             .margin(10)
-            .x_label_area_size(36)
-            .y_label_area_size(52)
+            .x_label_area_size(40)
+            .y_label_area_size(56)
             .build_cartesian_2d(0.0..x_max, 0.0..y_max)?;
-        chart.configure_mesh().disable_mesh().x_desc(x_label).y_desc(y_label).draw()?;
+        chart.configure_mesh().disable_mesh().x_desc(x_label).y_desc(y_label).y_label_formatter(&int_tick).draw()?;
         let (cw, rh) = (x_max / cols as f64, y_max / rows as f64);
         chart.draw_series((0..rows).flat_map(|r| (0..cols).map(move |c| (r, c))).map(|(r, c)| {
             let v = cells[r * cols + c] / peak;
             let colour = ViridisRGB::get_color(v);
             Rectangle::new([(c as f64 * cw, r as f64 * rh), ((c + 1) as f64 * cw, (r + 1) as f64 * rh)], colour.filled())
         }))?;
+        // the colour bar: 100 bands from 0 (bottom) to the maximum (top), 5 labels beside
+        let (top, bottom, x) = (50i32, H as i32 - 50, 8i32);
+        for i in 0..100 {
+            let y0 = bottom - (bottom - top) * (i + 1) / 100;
+            let y1 = bottom - (bottom - top) * i / 100;
+            bar.draw(&Rectangle::new([(x, y0), (x + 18, y1)], ViridisRGB::get_color((i as f64 + 0.5) / 100.0).filled()))?;
+        }
+        for j in 0..=4 {
+            let y = bottom - (bottom - top) * j / 4;
+            bar.draw(&PathElement::new(vec![(x + 18, y), (x + 22, y)], BLACK))?;
+            bar.draw(&Text::new(tick(peak * j as f64 / 4.0), (x + 25, y - 6), ("sans-serif", 12)))?;
+        }
         Ok(())
     })
 }
@@ -236,39 +272,26 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
             ],
         ),
     });
-    let table = crate::models::quadratic::rom::cos_sp_table(cfg);
-    let one = (cfg.f() as f64).exp2();
-    let k_q = cfg.k_code as f64 / (cfg.kf() as f64).exp2();
-    let n_max = table.len() as f64;
-    v.push(Figure {
-        id: "cutoff",
-        caption: format!("Cut-off angle γsp(n) = arccos(ROM[n]/2^{}) from the generated ROM (points), and arccos(1 − 1/(k_q·n)) (line).", cfg.f()),
-        svg: svg(|area| {
-            let mut chart = ChartBuilder::on(&area)
-                .caption("Cut-off angle γsp(n) from the ROM", ("sans-serif", 18))
-                .margin(10)
-                .x_label_area_size(36)
-                .y_label_area_size(48)
-                .build_cartesian_2d(0.0..n_max, 0.0..90.0)?;
-            chart.configure_mesh().x_desc("n").y_desc("γsp (degrees)").draw()?;
-            let step = (table.len() / 256).max(1);
-            chart.draw_series(
-                table.iter().enumerate().step_by(step).skip(1).map(|(n, &c)| Circle::new((n as f64, (c as f64 / one).acos().to_degrees()), 2, BLUE.filled())),
-            )?;
-            chart.draw_series(LineSeries::new(
-                (1..table.len()).map(|n| (n as f64, (1.0 - 1.0 / (k_q * n as f64)).max(0.0).acos().to_degrees())),
-                RED.stroke_width(1),
-            ))?;
-            Ok(())
-        }),
-    });
+    let n_max = (1u64 << cfg.n_bits()) as f64;
+    if cfg.model() == crate::config::SpecularModel::Quadratic {
+        v.push(cutoff_figure(cfg));
+    }
     v.push(Figure {
         id: "unit_error",
         caption: format!(
-            "The generated unit's intensity error |intensity − intensity*| in ulps of UQ1.{} over (cos_g, n), max per cell ({} sweep, {} points). Colour: dark = 0, yellow = the maximum in the title; beyond the cut-off the output is exactly 0.",
-            cfg.fi(), acc.sweep, acc.points
+            "The {} unit's intensity error |intensity − intensity*| in ulps of UQ1.{} against its exact reference, over every (cos_g, n): the worst per cell ({} sweep, {} points), colour bar beside.",
+            cfg.model().name(), cfg.fi(), acc.sweep, acc.points
         ),
-        svg: heat_map("Unit error (ulps)", "cos_g", "n", 1.0, n_max, HEAT_COS, HEAT_N, &acc.heat),
+        svg: heat_map(
+            &format!("{} unit error (ulps), max {}", cfg.model().name(), crate::render::sig3(acc.intensity_max_ulp)),
+            "cos_g (full scale)",
+            "n",
+            1.0,
+            n_max,
+            HEAT_COS,
+            HEAT_N,
+            &acc.heat,
+        ),
     });
     let (cols, rows) = (96usize, 64usize);
     let cells: Vec<f64> = (0..rows)
@@ -280,12 +303,43 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
             (paper::cosine_quadratic(d, n, 2.713) - paper::blinn(d, n)).abs()
         })
         .collect();
+    let peak = cells.iter().cloned().fold(0.0f64, f64::max);
     v.push(Figure {
         id: "model_error",
-        caption: "Model error of (15) against Blinn, |(15) − cos^n δ|, over δ ∈ [0, 0.5] rad and n ∈ [1, 1000] (cell centres). Colour: dark = 0, yellow = the maximum in the title.".into(),
-        svg: heat_map("|(15) − cos^n δ|", "δ (rad)", "n", 0.5, 1000.0, cols, rows, &cells),
+        caption: "The paper's formula (15) in real numbers against Blinn, |(15) − cos^n δ|, over δ ∈ [0, 0.5] rad and n ∈ [1, 1000] only (cell centres): the highlights of n ≥ 10. Its worst over all δ and n (0.399, at n = 1) lies outside this window; see section 3.".into(),
+        svg: heat_map(&format!("|(15) − cos^n δ|, δ ≤ 0.5 rad, n ≤ 1000: max {}", crate::render::sig3(peak)), "δ (rad)", "n", 0.5, 1000.0, cols, rows, &cells),
     });
     v
+}
+
+/// The cut-off angle from the generated ROM (the quadratic model's).
+fn cutoff_figure(cfg: &Config) -> Figure {
+    let table = crate::models::quadratic::rom::cos_sp_table(cfg);
+    let one = (cfg.f() as f64).exp2();
+    let k_q = cfg.k_code as f64 / (cfg.kf() as f64).exp2();
+    let n_max = table.len() as f64;
+    Figure {
+        id: "cutoff",
+        caption: format!("Cut-off angle γsp(n) = arccos(ROM[n]/2^{}) from the generated ROM (points), and arccos(1 − 1/(k_q·n)) (line).", cfg.f()),
+        svg: svg(|area| {
+            let mut chart = ChartBuilder::on(&area)
+                .caption("Cut-off angle γsp(n) from the ROM", ("sans-serif", 18))
+                .margin(10)
+                .x_label_area_size(36)
+                .y_label_area_size(48)
+                .build_cartesian_2d(0.0..n_max, 0.0..90.0)?;
+            chart.configure_mesh().x_desc("n").y_desc("γsp (degrees)").x_label_formatter(&int_tick).draw()?;
+            let step = (table.len() / 256).max(1);
+            chart.draw_series(
+                table.iter().enumerate().step_by(step).skip(1).map(|(n, &c)| Circle::new((n as f64, (c as f64 / one).acos().to_degrees()), 2, BLUE.filled())),
+            )?;
+            chart.draw_series(LineSeries::new(
+                (1..table.len()).map(|n| (n as f64, (1.0 - 1.0 / (k_q * n as f64)).max(0.0).acos().to_degrees())),
+                RED.stroke_width(1),
+            ))?;
+            Ok(())
+        }),
+    }
 }
 
 /// Everything the report shows; serialised as `report.json`.
@@ -297,6 +351,11 @@ pub(crate) struct ModelComparison {
     pub computes: String,
     pub blinn_error_max: f64,
     pub blinn_error_mean: f64,
+    /// the two, to 3 significant digits (as the page prints them)
+    #[serde(skip)]
+    pub blinn_error_max_text: String,
+    #[serde(skip)]
+    pub blinn_error_mean_text: String,
     pub worst_n: u32,
     pub worst_cos_g: u32,
     pub hardware: Option<crate::synth::SynthResult>,
@@ -319,38 +378,61 @@ pub(crate) fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
         .collect()
 }
 
-/// What the comparison says about the paper's premise that cos^n is too costly.
+/// Where a row's hardware was measured: target, DSPs, pipeline depth.
+fn operating_point(h: &crate::synth::SynthResult) -> String {
+    format!("{}{}, {} stage(s)", h.target, if h.dsp { " with DSPs" } else { ", LUTs only" }, h.stages)
+}
+
+/// What the comparison says about the paper's premise that cos^n is too costly: the errors
+/// always; the hardware only as far as `--hw` gave it, each row at its own operating point.
 fn premise(rows: &[ModelComparison]) -> String {
+    use crate::render::sig3;
     let get = |m: &str| rows.iter().find(|r| r.model == m);
     let (q, f, b, p) = (get("quadratic"), get("fitted"), get("blinn"), get("blinn-pow"));
     let (Some(q), Some(f), Some(b), Some(p)) = (q, f, b, p) else { return String::new() };
     let mut s = format!(
-        "Against Blinn's cos^n, formula (15) is off by up to {:.3} of full scale; the fitted form by {:.4}; the table-based unit by {:.2e} (within one unit of the output), as exact as square-and-multiply ({:.2e}).",
-        q.blinn_error_max, f.blinn_error_max, b.blinn_error_max, p.blinn_error_max
+        "Against Blinn's cos^n, formula (15) is off by up to {} of full scale; the fitted form by {}; the table-based unit by {} (within one unit of the output), as exact as square-and-multiply ({}).",
+        sig3(q.blinn_error_max),
+        sig3(f.blinn_error_max),
+        sig3(b.blinn_error_max),
+        sig3(p.blinn_error_max)
     );
-    match (&q.hardware, &f.hardware, &b.hardware, &p.hardware) {
-        (Some(qh), Some(fh), Some(bh), Some(ph)) => s.push_str(&format!(
-            " In hardware ({}{}): (15) takes {} LUT4 and {} DSP blocks, fitted {} and {}, blinn {} and {}, square-and-multiply {} and {}. \
-             The paper's premise — that cos^n itself is too costly — holds for square-and-multiply ({:.1}× the LUT4 of (15)), \
-             not for the table-based unit ({:.1}× the LUT4 and {} more DSP blocks than (15), for an error {:.0}× smaller).",
-            qh.target,
-            if qh.dsp { ", DSPs" } else { ", no DSPs" },
-            qh.luts,
-            qh.dsp_blocks,
-            fh.luts,
-            fh.dsp_blocks,
-            bh.luts,
-            bh.dsp_blocks,
-            ph.luts,
-            ph.dsp_blocks,
-            ph.luts as f64 / qh.luts.max(1) as f64,
-            bh.luts as f64 / qh.luts.max(1) as f64,
-            bh.dsp_blocks as i64 - qh.dsp_blocks as i64,
-            q.blinn_error_max / b.blinn_error_max.max(1e-300)
+    let measured: Vec<&ModelComparison> = rows.iter().filter(|r| r.hardware.is_some()).collect();
+    match (&q.hardware, &b.hardware, &p.hardware) {
+        (Some(qh), Some(bh), Some(ph)) => {
+            s.push_str(&format!(
+                " In hardware, (15) takes {} LUT4, {} flip-flops and {} DSP blocks ({}); blinn {} LUT4, {} flip-flops and {} DSP blocks ({}); square-and-multiply {} LUT4 and {} DSP blocks ({}).",
+                qh.luts,
+                qh.flip_flops,
+                qh.dsp_blocks,
+                operating_point(qh),
+                bh.luts,
+                bh.flip_flops,
+                bh.dsp_blocks,
+                operating_point(bh),
+                ph.luts,
+                ph.dsp_blocks,
+                operating_point(ph)
+            ));
+            if qh.target == bh.target && qh.stages == bh.stages && qh.dsp == bh.dsp {
+                s.push_str(&format!(
+                    " At that one operating point the table-based unit costs {:.1}× the LUT4 of (15) for an error {:.0}× smaller.",
+                    bh.luts as f64 / qh.luts.max(1) as f64,
+                    q.blinn_error_max / b.blinn_error_max.max(1e-300)
+                ));
+            } else {
+                s.push_str(" The rows were measured at different operating points, so their ratios are not a like-for-like cost.");
+            }
+            s.push_str(&format!(
+                " The paper's premise — that cos^n itself is too costly — holds for square-and-multiply ({:.1}× the LUT4 of (15)), not for the table-based unit.",
+                ph.luts as f64 / qh.luts.max(1) as f64
+            ));
+        }
+        _ if !measured.is_empty() => s.push_str(&format!(
+            " Hardware is given for {} only; the verdict on the premise needs quadratic, blinn and blinn-pow measured (scripts/bench_hw.sh writes them).",
+            measured.iter().map(|r| r.model.as_str()).collect::<Vec<_>>().join(", ")
         )),
-        _ => s.push_str(
-            " Hardware columns are empty: pass `specgen synth --json` results with --hw (scripts/bench_hw.sh writes them) to compare area and speed.",
-        ),
+        _ => s.push_str(" No hardware was given: pass `specgen synth --json` results with --hw (scripts/bench_hw.sh writes them) to compare area and speed."),
     }
     s
 }
@@ -363,10 +445,10 @@ fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
         let mut chart = ChartBuilder::on(&area)
             .caption("Worst |intensity − cos^n| over cos_g, per n", ("sans-serif", 18))
             .margin(10)
-            .x_label_area_size(36)
-            .y_label_area_size(60)
+            .x_label_area_size(40)
+            .y_label_area_size(64)
             .build_cartesian_2d(1.0..n_max, (1e-7f64..1.0).log_scale())?;
-        chart.configure_mesh().x_desc("n").y_desc("max error").draw()?;
+        chart.configure_mesh().x_desc("n").y_desc("max error").y_labels(8).y_label_formatter(&|v| tick(*v)).x_label_formatter(&int_tick).draw()?;
         for ((name, per_n), colour) in fids.iter().zip(colours) {
             let pts: Vec<(f64, f64)> = per_n.iter().enumerate().skip(1).map(|(n, &e)| (n as f64, e.max(1e-7))).collect();
             chart
@@ -393,8 +475,14 @@ fn render_grid(models: &[(Model, &'static str)]) -> (crate::render::Picture, Vec
 pub(crate) struct ReportData {
     pub generator: &'static str,
     pub version: &'static str,
-    pub parameters: crate::config::Params,
-    pub k_code: u64,
+    /// the model every section but the paper's claims and the comparison is about
+    pub model: String,
+    /// its parameters, `name=value` words (only the ones the model reads)
+    pub configuration: String,
+    /// its parameters by name (only the ones the model reads)
+    pub parameters: serde_json::Value,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub k_code: Option<u64>,
     pub claims: Vec<Claim>,
     pub unit: UnitAccuracy,
     pub models: Vec<ModelComparison>,
@@ -413,11 +501,17 @@ struct ReportPage<'a> {
     data: &'a ReportData,
     unit_rows: Vec<Row>,
     figures: Vec<Figure>,
-    rounding: &'a str,
+    /// the model's name
+    computes: &'a str,
+    /// what section 2 measures against
+    reference: &'a str,
+    /// whether any row has --hw figures
+    hw_given: bool,
     comparison_svg: String,
     grid_png: String,
     grid_models: Vec<String>,
     grid_ns: Vec<u32>,
+    grid_scale: String,
 }
 
 /// Builds `index.html` and `report.json` (file name, bytes).
@@ -437,6 +531,8 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
                 computes: (*what).into(),
                 blinn_error_max: f.max,
                 blinn_error_mean: f.mean,
+                blinn_error_max_text: crate::render::sig3(f.max),
+                blinn_error_mean_text: crate::render::sig3(f.mean),
                 worst_n: f.worst_n,
                 worst_cos_g: f.worst_cos,
                 hardware: hw.iter().find(|h| h.model == name).cloned(),
@@ -451,8 +547,16 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
     let data = ReportData {
         generator: "specgen",
         version: crate::emit::VERSION,
-        parameters: cfg.params.clone(),
-        k_code: cfg.k_code,
+        model: cfg.model().name().into(),
+        configuration: cfg.describe(),
+        parameters: {
+            let mut v = serde_json::to_value(&cfg.params).expect("params serialise");
+            if let serde_json::Value::Object(map) = &mut v {
+                map.retain(|k, _| cfg.model().reads(k));
+            }
+            v
+        },
+        k_code: cfg.model().reads("k_code").then_some(cfg.k_code),
         claims: paper::claims(),
         unit,
         models: rows,
@@ -460,17 +564,37 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
         files: vec![serde_json::json!({"name": "index.html"})],
     };
     let u = &data.unit;
-    let unit_rows = vec![
+    use crate::render::sig3;
+    let mut unit_rows = vec![
         Row { name: "sweep", value: format!("{} ({} points of (cos_g ∈ [0, 1.0], n))", u.sweep, u.points) },
-        Row { name: "intensity error, max (ulp)", value: format!("{:.4}", u.intensity_max_ulp) },
-        Row { name: "intensity error, mean (ulp)", value: format!("{:.4}", u.intensity_mean_ulp) },
-        Row { name: "spec error at ks = 1.0, max (colour code)", value: format!("{:.4}", u.spec_max_ulp) },
-        Row { name: "spec error at ks = 1.0, mean (colour code)", value: format!("{:.4}", u.spec_mean_ulp) },
-        Row { name: "|intensity − cos^n|, max", value: format!("{:.4}", u.vs_blinn_max) },
-        Row { name: "|intensity − cos^n|, mean", value: format!("{:.5}", u.vs_blinn_mean) },
-        Row { name: "k quantisation: |S(k_q) − S(k)|, max", value: format!("{:.3e}", u.k_quantisation_max) },
+        Row { name: "intensity error, max (ulp)", value: sig3(u.intensity_max_ulp) },
+        Row { name: "intensity error, mean (ulp)", value: sig3(u.intensity_mean_ulp) },
+        Row { name: "spec error at ks = 1.0, max (colour code)", value: sig3(u.spec_max_ulp) },
+        Row { name: "spec error at ks = 1.0, mean (colour code)", value: sig3(u.spec_mean_ulp) },
+        Row { name: "|intensity − cos^n|, max (full scale)", value: sig3(u.vs_blinn_max) },
+        Row { name: "|intensity − cos^n|, mean (full scale)", value: sig3(u.vs_blinn_mean) },
     ];
-    let page = ReportPage { data: &data, unit_rows, figures, rounding: cfg.rounding().name(), comparison_svg, grid_png, grid_models, grid_ns };
+    if let Some(k) = u.k_quantisation_max {
+        unit_rows.push(Row { name: "k quantisation: |S(k_q) − S(k)|, max", value: sig3(k) });
+    }
+    let reference = match cfg.model() {
+        crate::config::SpecularModel::Quadratic => "formula (15) in exact arithmetic with the quantised k_q and the cut-off at cos_sp(n)",
+        _ => "its exact reference (the same function in exact arithmetic)",
+    };
+    let hw_given = data.models.iter().any(|m| m.hardware.is_some());
+    let page = ReportPage {
+        data: &data,
+        unit_rows,
+        figures,
+        computes: cfg.model().name(),
+        reference,
+        hw_given,
+        comparison_svg,
+        grid_png,
+        grid_models,
+        grid_ns,
+        grid_scale: crate::render::sig3(grid.e_max),
+    };
     let html = page.render().expect("report template renders");
     let mut json = serde_json::to_string_pretty(&data).expect("report serialises");
     json.push('\n');

@@ -38,6 +38,10 @@ pub struct SynthResult {
     pub fmax_seeds: Vec<f64>,
     /// why Fmax is missing, when it is
     pub fmax_note: String,
+    /// logic cells after packing, from nextpnr's device utilisation: ICESTORM_LC (iCE40) or
+    /// TRELLIS_SLICE (ECP5), the serial-I/O wrapper included; none without place-and-route
+    #[serde(default)]
+    pub logic_cells: Option<u64>,
     pub cells: Vec<(String, u64)>,
 }
 
@@ -255,6 +259,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         fmax_mhz: None,
         fmax_seeds: Vec::new(),
         fmax_note: String::new(),
+        logic_cells: None,
         cells,
     };
     if r.total_cells == 0 {
@@ -326,6 +331,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
             .and_then(|s| s.parse().ok())
     };
     r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax(log)).collect();
+    r.logic_cells = runs.first().and_then(|(_, log)| logic_cells(log));
     r.fmax_mhz = median(&r.fmax_seeds);
     r.fmax_note = format!(
         "{tool} {}, median of seeds 1..={seeds} ({}), unit between registers of a serial-I/O wrapper",
@@ -335,6 +341,15 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     Ok(r)
 }
 
+/// The packed logic cells in a nextpnr log: `ICESTORM_LC: 777/ 5280 14%` or
+/// `TRELLIS_SLICE: 312/ 12144 2%` under "Device utilisation".
+pub(crate) fn logic_cells(log: &str) -> Option<u64> {
+    log.lines().find_map(|l| {
+        let rest = l.split("ICESTORM_LC:").nth(1).or_else(|| l.split("TRELLIS_SLICE:").nth(1))?;
+        rest.split('/').next()?.trim().parse().ok()
+    })
+}
+
 pub fn table(r: &SynthResult) -> String {
     let mut s = format!("synthesis of {} for {}{}\n", r.top, r.target, if r.dsp { " with DSPs" } else { "" });
     let rows = [
@@ -342,6 +357,7 @@ pub fn table(r: &SynthResult) -> String {
         ("carry cells", r.carry_cells.to_string()),
         ("DSP blocks", r.dsp_blocks.to_string()),
         ("flip-flops", r.flip_flops.to_string()),
+        ("logic cells", r.logic_cells.map_or("- (after place-and-route)".into(), |c| c.to_string())),
         ("block RAMs", r.block_rams.to_string()),
         ("ROM bits", r.rom_bits.to_string()),
         (
@@ -501,4 +517,18 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
         runs.push((simulator, run_all(&built, &mapped, &model, &stims, jobs)?));
     }
     Ok(Verification { runs, models: models.into_iter().map(|m| m.0).collect() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn logic_cells_are_read_from_the_device_utilisation() {
+        let ice40 = "Info: Device utilisation:\nInfo: \t         ICESTORM_LC:   777/ 5280    14%\nInfo: \t        ICESTORM_RAM:     4/   30    13%\n";
+        assert_eq!(logic_cells(ice40), Some(777));
+        let ecp5 = "Info: Device utilisation:\nInfo: \t          TRELLIS_IO:    23/  197    11%\nInfo: \t       TRELLIS_SLICE:   312/12144     2%\n";
+        assert_eq!(logic_cells(ecp5), Some(312));
+        assert_eq!(logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"), None);
+    }
 }

@@ -174,7 +174,11 @@ fn report_shows_synthesis_results_given_with_hw() {
     assert_eq!(json["models"][1]["hardware"]["luts"], 4321);
     assert!(json["models"][0]["hardware"].is_null());
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
-    assert!(html.contains("<td>4321</td><td>7</td><td>3</td><td>55.5</td>"), "hardware row not shown");
+    assert!(html.contains("<td>4321</td><td>0</td><td>–</td><td>7</td><td>3</td><td>55.5</td><td>ice40 with DSPs, 0 stage(s)</td>"), "hardware row not shown");
+    // the verdict follows the data it was given: one row measured, no stale sentence
+    assert!(html.contains("Hardware is given for fitted only"), "verdict");
+    assert!(!html.contains("No hardware was given") && !html.contains("Hardware columns are empty") && !html.contains("Hardware: none given"));
+    assert!(html.contains("each row at the operating point"), "intro");
     // a file that is not a synth result: exit 2, nothing written
     std::fs::write(&hw, "[1, 2]").unwrap();
     let bad = tmp.path().join("bad");
@@ -182,4 +186,78 @@ fn report_shows_synthesis_results_given_with_hw() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--hw"));
     assert!(!bad.exists());
+}
+
+/// A number as the page prints it (`1.89e-5`, `0.619`), read back.
+fn cell(html: &str, row: &str) -> f64 {
+    let at = html.find(&format!("<td>{row}</td><td>")).unwrap_or_else(|| panic!("no row {row:?}"));
+    let rest = &html[at + row.len() + 13..];
+    rest[..rest.find("</td>").unwrap()].parse().unwrap_or_else(|e| panic!("{row}: {e}"))
+}
+
+/// What a reader reads is right for every model: the page's and report.json's errors against
+/// cos^n match a sweep done here (each model's golden model, c^n in f64), to the 3 significant
+/// digits printed; blinn's and blinn-pow's intensity error against c^n itself too. No
+/// parameter, row or figure of another model appears in a model's report or manifest.
+#[test]
+fn report_numbers_are_right_and_only_the_models_own() {
+    use specgen::config::{Params, SpecularModel, MODEL_KEYS};
+    let tmp = tempfile::tempdir().unwrap();
+    for model in SpecularModel::ALL {
+        let name = model.name();
+        let out = tmp.path().join(name);
+        let o = specgen().args(["report", "--model", name, "--cos-frac-bits", "9", "--n-bits", "5", "--out"]).arg(&out).output().unwrap();
+        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+        let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+        // the sweep, independently
+        let plan = specgen::plan::Plan::from_params(Params { model, cos_frac_bits: 9, n_bits: 5, ..Default::default() }).unwrap();
+        let m = plan.model();
+        let (one, fi) = (512u32, 2f64.powi(15));
+        let (mut vs_blinn, mut sum, mut ulp) = (0f64, 0f64, 0f64);
+        for n in 0..32u32 {
+            for c in 0..=one {
+                let got = m.eval(specgen::models::Inputs { cos_g: c, n, ks: [255; 3] }).intensity as f64;
+                let exact = (c as f64 / one as f64).powi(n as i32);
+                vs_blinn = vs_blinn.max((got / fi - exact).abs());
+                sum += (got / fi - exact).abs();
+                ulp = ulp.max((got - exact * fi).abs());
+            }
+        }
+        let points = 32.0 * (one as f64 + 1.0);
+        let close = |shown: f64, want: f64| (shown - want).abs() <= 0.006 * want.abs() + 1e-12;
+        let unit = &json["unit"];
+        assert!(close(unit["vs_blinn_max"].as_f64().unwrap(), vs_blinn), "{name}: report.json {} vs {vs_blinn}", unit["vs_blinn_max"]);
+        assert!(close(cell(&html, "|intensity − cos^n|, max (full scale)"), vs_blinn), "{name}: page vs {vs_blinn}");
+        assert!(close(cell(&html, "|intensity − cos^n|, mean (full scale)"), sum / points), "{name}: mean vs {}", sum / points);
+        if name.starts_with("blinn") {
+            assert!(close(cell(&html, "intensity error, max (ulp)"), ulp), "{name}: ulp vs {ulp}");
+        }
+        // the comparison row of this model carries the same figure
+        let row = json["models"].as_array().unwrap().iter().find(|r| r["model"] == name).unwrap();
+        assert!(close(row["blinn_error_max"].as_f64().unwrap(), vs_blinn), "{name}: comparison row");
+        // only this model's parameters, rows and figures
+        assert_eq!(json["model"], name);
+        assert!(html.contains(&format!("the <strong>{name}</strong> model")), "{name}: the configuration line names the model");
+        let manifest = generate(tmp.path(), &format!("{name}_unit"), &["--model", name]);
+        let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(manifest.join("specular_unit.json")).unwrap()).unwrap();
+        assert_eq!(manifest["model"], name);
+        for (key, owners) in MODEL_KEYS {
+            let own = owners.contains(&model);
+            // k_code is an output: at the top of report.json, never among its parameters
+            let in_params = json["parameters"].get(*key).is_some();
+            let in_params = if *key == "k_code" { !in_params } else { in_params == own };
+            assert!(in_params, "{name}: {key} among report.json's parameters");
+            if *key == "k_code" {
+                assert_eq!(json.get("k_code").is_some(), own, "{name}: k_code in report.json");
+            }
+            assert_eq!(manifest.get(*key).is_some(), own, "{name}: {key} in the manifest");
+            let config_line = &html[html.find("Configuration:").unwrap()..html.find("Every number on this page").unwrap()];
+            assert_eq!(config_line.contains(&format!(" {key}=")), own && *key != "k_code", "{name}: {key}= on the configuration line");
+        }
+        let quadratic = model == SpecularModel::Quadratic;
+        assert_eq!(html.contains("k quantisation"), quadratic, "{name}: k quantisation row");
+        assert_eq!(html.contains("Cut-off angle"), quadratic, "{name}: cut-off figure");
+        assert!(!html.contains("0.0000<"), "{name}: an error printed as 0.0000");
+    }
 }
