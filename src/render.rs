@@ -305,11 +305,16 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
     for m in models {
         let name = m.cfg.model().name();
         columns.push((name.to_string(), "unit"));
-        columns.push((name.to_string(), "signed error"));
+        // "signed error" where a tile is wide enough for it
+        columns.push((name.to_string(), if size + GAP >= 12 * GLYPH { "signed error" } else { "error" }));
     }
     let label_w = 14 * GLYPH + GAP;
     let body_w = columns.len() as u32 * (size + GAP);
-    let width = (MARGIN * 2 + label_w + body_w).max(600);
+    let subtitle = format!("S alone, gamma 2.2; error = unit - float cos^n, one scale: +/-{}", sig3(e_max));
+    let intensity_title = format!("intensity S: full scale, and below it in output codes (UQ1.{fi})");
+    let error_title = "signed error unit - float: blue too dark, red too bright; full scale, then ulps";
+    let longest = [subtitle.len(), intensity_title.len(), error_title.len()].into_iter().max().unwrap_or(0) as u32;
+    let width = (MARGIN * 2 + label_w + body_w).max(MARGIN * 2 + longest * GLYPH);
     let top = MARGIN + 2 * GLYPH + 6 + GLYPH + 10 + 2 * GLYPH + 6;
     let body_h = rows.len() as u32 * (size + GAP);
     let bars_h = 2 * (GLYPH + 4 + 20 + 2 * GLYPH + 2 + 12);
@@ -319,13 +324,7 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
     let title = format!("specular term: {} vs float cos^n", names.join(", "));
     let big = title.chars().count() as u32 * 2 * GLYPH <= width - 2 * MARGIN;
     sheet.text(MARGIN, MARGIN, &title, if big { 2 } else { 1 }, width - 2 * MARGIN);
-    sheet.text(
-        MARGIN,
-        MARGIN + 2 * GLYPH + 6,
-        &format!("S alone, gamma 2.2; error = unit - float cos^n, one scale for all: +/-{}", sig3(e_max)),
-        1,
-        width - 2 * MARGIN,
-    );
+    sheet.text(MARGIN, MARGIN + 2 * GLYPH + 6, &subtitle, 1, width - 2 * MARGIN);
     let x0 = MARGIN + label_w;
     let y_head = MARGIN + 2 * GLYPH + 6 + GLYPH + 10;
     for (c, (first, second)) in columns.iter().enumerate() {
@@ -350,19 +349,12 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
     let bar_w = (width - 2 * MARGIN).min(480);
     let mut y = top + body_h + 8;
     let codes = |v: f64| format!("{}", (v * (fi as f64).exp2()).round() as i64);
-    y += sheet.bar(
-        MARGIN,
-        y,
-        bar_w,
-        &format!("intensity S: full scale, and below it in output codes (UQ1.{fi})"),
-        shade,
-        &[0.0, 0.25, 0.5, 0.75, 1.0].map(|t| (t, sig3(t), codes(t))),
-    ) + 12;
+    y += sheet.bar(MARGIN, y, bar_w, &intensity_title, shade, &[0.0, 0.25, 0.5, 0.75, 1.0].map(|t| (t, sig3(t), codes(t)))) + 12;
     sheet.bar(
         MARGIN,
         y,
         bar_w,
-        "signed error unit - float: blue = too dark, red = too bright; full scale, then output ulps",
+        error_title,
         |t| diverging((2.0 * t - 1.0) * e_max, e_max),
         &[(0.0, -e_max), (0.25, -e_max / 2.0), (0.5, 0.0), (0.75, e_max / 2.0), (1.0, e_max)].map(|(t, e)| (t, sig3(e), sig3(e / ulp))),
     );

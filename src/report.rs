@@ -468,7 +468,7 @@ fn render_grid(models: &[(Model, &'static str)]) -> (crate::render::Picture, Vec
     let n_max = (1u32 << models[0].0.cfg.n_bits()) - 1;
     let ns: Vec<u32> = [1u32, 4, 16, 128].into_iter().filter(|&n| n <= n_max).collect();
     let refs: Vec<&Model> = models.iter().map(|(m, _)| m).collect();
-    (crate::render::picture(&refs, &ns, 80), ns)
+    (crate::render::picture(&refs, &ns, 96), ns)
 }
 
 #[derive(Debug, Clone, Serialize)]
