@@ -270,13 +270,12 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         r.fmax_note = "place-and-route skipped (--no-pnr)".into();
         return Ok(r);
     }
-    let pnr = match Pnr::find(target) {
-        Ok(p) => p,
-        Err(why) => {
-            r.fmax_note = why;
-            return Ok(r);
-        }
-    };
+    if target == Target::Generic {
+        r.fmax_note = "no place-and-route for the generic target".into();
+        return Ok(r);
+    }
+    // Fmax was asked for (seeds > 0): without the place-and-route tool it cannot be measured
+    let pnr = Pnr::find(target).map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?;
     let (tool, args) = (pnr.tool.as_str(), pnr.args);
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(design)).map_err(|e| input(e.to_string()))?;
@@ -339,6 +338,38 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         r.fmax_seeds.iter().map(|f| format!("{f:.1}")).collect::<Vec<_>>().join(", ")
     );
     Ok(r)
+}
+
+impl SynthResult {
+    /// Reads a `specgen synth --json` result: a regular file of at most 1 MiB (never a FIFO or a
+    /// device), a JSON object naming a known model and a target, with its LUT count. A manifest,
+    /// `{}` or another tool's JSON is refused with the reason.
+    pub fn from_file(path: &Path) -> Result<SynthResult, String> {
+        use std::io::Read;
+        const LIMIT: u64 = 1 << 20;
+        let meta = std::fs::metadata(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        if !meta.is_file() || meta.len() > LIMIT {
+            return Err(format!("{} is not a regular file of at most 1 MiB", path.display()));
+        }
+        let mut text = String::new();
+        std::fs::File::open(path).and_then(|f| f.take(LIMIT).read_to_string(&mut text)).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{} is not JSON: {e}", path.display()))?;
+        let not = |why: &str| format!("{} is not a `specgen synth --json` result: {why}", path.display());
+        let obj = value.as_object().ok_or_else(|| not("not a JSON object"))?;
+        if obj.contains_key("generator") || obj.contains_key("ports") {
+            return Err(not("it is a unit's manifest"));
+        }
+        for key in ["model", "target", "luts", "dsp_blocks"] {
+            if !obj.contains_key(key) {
+                return Err(not(&format!("no \"{key}\"")));
+            }
+        }
+        let r: SynthResult = serde_json::from_value(value).map_err(|e| not(&e.to_string()))?;
+        if !crate::config::SpecularModel::ALL.iter().any(|m| m.name() == r.model) {
+            return Err(not(&format!("unknown model {:?}; allowed quadratic, fitted, blinn, blinn-pow", r.model)));
+        }
+        Ok(r)
+    }
 }
 
 /// The packed logic cells in a nextpnr log: `ICESTORM_LC: 777/ 5280 14%` or

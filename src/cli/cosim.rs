@@ -33,6 +33,9 @@ pub struct CosimArgs {
 /// `specgen cosim`: exit 0 when every output matches, 1 on any mismatch, 2 on usage errors.
 pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
+    if let Some(trace) = &args.trace {
+        design.refuse_output("--trace", trace)?;
+    }
     check_tables(&design)?;
     let model = design.plan.model();
     let jobs = args.jobs.map(usize::from).unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(64)).max(1);

@@ -406,14 +406,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Vectors(args) => vectors(&args),
         Command::Report { out, hw, params } => {
             let cfg = params.to_config(None)?;
-            let hw = hw
-                .iter()
-                .map(|p| {
-                    let text = std::fs::read_to_string(p).map_err(|e| usage(format!("invalid --hw: cannot read {}: {e}", p.display())))?;
-                    serde_json::from_str::<specgen::synth::SynthResult>(&text)
-                        .map_err(|e| usage(format!("invalid --hw: {} is not a `specgen synth --json` result: {e}", p.display())))
-                })
-                .collect::<Result<Vec<_>, _>>()?;
+            let hw =
+                hw.iter().map(|p| specgen::synth::SynthResult::from_file(p).map_err(|e| usage(format!("invalid --hw: {e}")))).collect::<Result<Vec<_>, _>>()?;
             let files = specgen::report::build(&cfg, &hw);
             write_output(&out, &files)?;
             Ok(())
@@ -505,6 +499,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     let mut designs = Vec::new();
     for dir in &dirs {
         let design = cosim::Design::load(dir)?;
+        design.refuse_output("--out", &args.out)?;
         let n_max = (1u32 << design.cfg.n_bits()) - 1;
         if let Some(bad) = args.n.iter().find(|&&n| n > n_max) {
             return Err(usage(format!("invalid --n: {bad} is out of range for {}; allowed 0..={n_max} (n_bits = {})", dir.display(), design.cfg.n_bits())));
@@ -611,6 +606,7 @@ pub fn main() -> i32 {
 fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
     use specgen::vectors::{Selection, VectorFormat};
     let design = specgen::cosim::Design::load(&args.rtl)?;
+    design.refuse_output("--out", &args.out)?;
     let model = design.plan.model();
     let selection = if args.exhaustive { Selection::Exhaustive } else { Selection::Random { count: args.count, seed: args.seed } };
     let format = args.format.map(Into::into).unwrap_or_else(|| match args.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {

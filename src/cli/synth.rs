@@ -46,6 +46,11 @@ pub struct SynthArgs {
 
 pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
+    for (flag, out) in [("--json", &args.json), ("--pnr-log", &args.pnr_log)] {
+        if let Some(out) = out {
+            design.refuse_output(flag, out)?;
+        }
+    }
     let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
     let r = synthesize(&design, target, args.dsp, &args.yosys, if args.no_pnr { 0 } else { args.seeds }, args.pnr_log.as_deref())?;
     out!("{}", table(&r))?;

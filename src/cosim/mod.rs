@@ -43,9 +43,32 @@ pub struct Design {
     /// simulation-only models beside it (the MULT18X18D model of an ECP5 unit): simulators
     /// read them after the sources, synthesis never
     pub sim_models: Vec<PathBuf>,
+    /// every file of the unit: the manifest and the files it lists that are present
+    pub inputs: Vec<PathBuf>,
+}
+
+/// The largest manifest read (a generated one is a few kB).
+const MANIFEST_MAX_BYTES: u64 = 1 << 20;
+
+/// Whether `a` and `b` are the same file (device and inode; both must exist).
+fn same_file(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
+        _ => false,
+    }
 }
 
 impl Design {
+    /// Refuses an output path (`flag` names it) that is one of the unit's files: a command never
+    /// writes over what it reads.
+    pub fn refuse_output(&self, flag: &str, out: &Path) -> Result<(), Error> {
+        match self.inputs.iter().find(|i| same_file(out, i)) {
+            Some(i) => Err(input(format!("{flag} {} is the unit's own file {}; write it elsewhere", out.display(), i.display()))),
+            None => Ok(()),
+        }
+    }
+
     /// What a simulator reads: the sources, then the simulation models.
     pub(crate) fn sim_sources(&self) -> Vec<PathBuf> {
         self.sources.iter().chain(&self.sim_models).cloned().collect()
@@ -55,26 +78,27 @@ impl Design {
 impl Design {
     /// The RTL in `dir` with the plan its manifest states.
     pub fn load(dir: &Path) -> Result<Design, Error> {
-        let (path, params, sources, sim_models) = Design::files(dir)?;
+        let (path, params, sources, sim_models, inputs) = Design::files(dir)?;
         let plan = crate::plan::Plan::from_params(params).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
         let cfg = plan.cfg.clone();
-        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
+        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models, inputs })
     }
 
     /// The RTL in `dir`, written from `plan` (its manifest must state the same parameters): the
     /// plan is taken as it is, not made again.
     pub(crate) fn with_plan(dir: &Path, plan: crate::plan::Plan) -> Result<Design, Error> {
-        let (path, params, sources, sim_models) = Design::files(dir)?;
+        let (path, params, sources, sim_models, inputs) = Design::files(dir)?;
         if params != plan.cfg.params {
             return Err(input(format!("manifest {} is not the plan's configuration", path.display())));
         }
         let cfg = plan.cfg.clone();
-        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models })
+        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models, inputs })
     }
 
     /// The manifest (its path and the parameters it states), the Verilog sources and the
     /// simulation models in `dir`.
-    fn files(dir: &Path) -> Result<(PathBuf, Params, Vec<PathBuf>, Vec<PathBuf>), Error> {
+    #[allow(clippy::type_complexity)] // (manifest, its parameters, sources, sim models, inputs)
+    fn files(dir: &Path) -> Result<(PathBuf, Params, Vec<PathBuf>, Vec<PathBuf>, Vec<PathBuf>), Error> {
         let entries = std::fs::read_dir(dir).map_err(|e| input(format!("cannot read the RTL directory {}: {e}", dir.display())))?;
         let mut manifests = Vec::new();
         let mut sources = Vec::new();
@@ -85,7 +109,17 @@ impl Design {
                 Some("v") if path.file_name().and_then(|n| n.to_str()).is_some_and(|n| crate::names::SIM_MODEL_FILES.contains(&n)) => sim_models.push(path),
                 Some("v") => sources.push(path),
                 Some("json") => {
-                    let text = std::fs::read_to_string(&path).unwrap_or_default();
+                    // a regular file of at most MANIFEST_MAX_BYTES (never a FIFO or a device)
+                    let regular = std::fs::metadata(&path).is_ok_and(|m| m.is_file() && m.len() <= MANIFEST_MAX_BYTES);
+                    if !regular {
+                        continue;
+                    }
+                    let mut text = String::new();
+                    let read =
+                        std::fs::File::open(&path).and_then(|f| std::io::Read::read_to_string(&mut std::io::Read::take(f, MANIFEST_MAX_BYTES), &mut text));
+                    if read.is_err() {
+                        continue;
+                    }
                     let v: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
                     if v.get("generator").and_then(|g| g.as_str()) == Some("specgen") {
                         manifests.push((path, text));
@@ -105,7 +139,18 @@ impl Design {
             return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
         }
         let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
-        Ok((path, params, sources, sim_models))
+        let listed: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
+        let mut inputs = vec![path.clone()];
+        for f in listed.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
+            // a listed name is a plain file name of the unit's; anything else is not ours to guard
+            if let Some(name) = f.get("name").and_then(|n| n.as_str()).filter(|n| !n.contains('/') && *n != ".." && *n != ".") {
+                let p = dir.join(name);
+                if p.exists() {
+                    inputs.push(p);
+                }
+            }
+        }
+        Ok((path, params, sources, sim_models, inputs))
     }
 }
 

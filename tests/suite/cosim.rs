@@ -268,6 +268,8 @@ fn a_missing_table_file_stops_both_simulators() {
     assert!(Command::new("iverilog").args(["-g2005", "-o"]).arg(&sim).arg(&v).status().unwrap().success());
     let o = Command::new("vvp").current_dir(&elsewhere).arg("-n").arg(&sim).output().unwrap();
     assert!(text(&o).contains(&format!("cannot open table file {file}")), "Icarus: {}", text(&o));
+    // $fatal: a non-zero exit, not only a message (a plain `$finish` exits 0)
+    assert!(!o.status.success(), "vvp exited 0 without its table");
     let mdir = tmp.path().join(format!("{name}_obj"));
     let b = Command::new("verilator")
         .args(["--binary", "-Wno-fatal", "--top-module", "specular_unit", "-o", "vsim", "--Mdir"])
@@ -278,6 +280,7 @@ fn a_missing_table_file_stops_both_simulators() {
     assert!(b.status.success(), "{}", text(&b));
     let o = Command::new(mdir.join("vsim")).current_dir(&elsewhere).output().unwrap();
     assert!(text(&o).contains(&format!("cannot open table file {file}")), "Verilator: {}", text(&o));
+    assert!(!o.status.success(), "the Verilator binary exited 0 without its table");
     // and with the file where the simulator runs, neither complains
     std::fs::copy(dir.join(file), elsewhere.join(file)).unwrap();
     let o = Command::new("vvp").current_dir(&elsewhere).arg("-n").arg(&sim).output().unwrap();

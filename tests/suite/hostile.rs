@@ -2,7 +2,8 @@
 //! in a clear message and the right exit code, and nothing is lost or half-written.
 
 use crate::common::*;
-use std::process::Output;
+use std::path::PathBuf;
+use std::process::{Command, Output};
 
 fn text(o: &Output) -> String {
     format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
@@ -230,4 +231,87 @@ fn counts_are_bounded() {
         assert!(text(&o).contains(args[1]) && text(&o).contains(range), "{args:?}: {}", text(&o));
     }
     assert!(!std::path::Path::new("/tmp/specgen-never.csv").exists());
+}
+
+/// An output flag naming one of the unit's own files is refused before any work (exit 2),
+/// and the file is left as it was.
+#[test]
+fn outputs_never_replace_the_commands_inputs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &[]);
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (vec!["cosim".into(), "--trace".into(), d.join("specular_unit.v").display().to_string()], "specular_unit.v"),
+        (vec!["cosim".into(), "--trace".into(), d.join("specular_unit.json").display().to_string()], "specular_unit.json"),
+        (vec!["render".into(), "--model-only".into(), "--out".into(), d.join("specular_unit.v").display().to_string()], "specular_unit.v"),
+        (vec!["vectors".into(), "--out".into(), d.join("cos_sp_rom.hex").display().to_string()], "cos_sp_rom.hex"),
+        (vec!["synth".into(), "--no-pnr".into(), "--json".into(), d.join("specular_unit.v").display().to_string()], "specular_unit.v"),
+        (vec!["synth".into(), "--no-pnr".into(), "--pnr-log".into(), d.join("specular_unit.core").display().to_string()], "specular_unit.core"),
+    ];
+    for (args, file) in cases {
+        let before = std::fs::read(d.join(file)).unwrap();
+        let o = specgen().args(&args).arg("--rtl").arg(&d).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
+        assert!(text(&o).contains("the unit's own file"), "{args:?}: {}", text(&o));
+        assert_eq!(std::fs::read(d.join(file)).unwrap(), before, "{args:?} changed {file}");
+    }
+}
+
+/// `report --hw` takes only synthesis results: a manifest, `{}`, an unknown model, a FIFO or
+/// a device are refused (exit 2) without hanging; a FIFO named `*.json` in an RTL directory is
+/// never opened.
+#[test]
+fn hw_results_and_manifests_are_read_only_when_they_are_what_they_claim() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--n-bits", "4", "--cos-frac-bits", "8"]);
+    let fifo = tmp.path().join("pipe.json");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let write = |name: &str, text: &str| {
+        let p = tmp.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let cases = [
+        (d.join("specular_unit.json"), "manifest"),
+        (write("empty.json", "{}"), "no \"model\""),
+        (write("odd.json", r#"{"model": "phong", "target": "ice40", "luts": 1, "dsp_blocks": 0}"#), "unknown model"),
+        (fifo.clone(), "regular file"),
+        (PathBuf::from("/dev/zero"), "regular file"),
+    ];
+    for (hw, why) in cases {
+        let out = tmp.path().join("rep");
+        let start = std::time::Instant::now();
+        let o = specgen().args(["report", "--n-bits", "4", "--cos-frac-bits", "8", "--out"]).arg(&out).arg("--hw").arg(&hw).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{}: {}", hw.display(), text(&o));
+        assert!(text(&o).contains("--hw") && text(&o).contains(why), "{}: {}", hw.display(), text(&o));
+        assert!(start.elapsed().as_secs() < 60 && !out.exists());
+    }
+    // a FIFO among the unit's files is skipped, not opened (which would block)
+    assert!(Command::new("mkfifo").arg(d.join("zz.json")).status().unwrap().success());
+    let o = specgen().args(["vectors", "--count", "3", "--rtl"]).arg(&d).arg("--out").arg(tmp.path().join("v.csv")).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+}
+
+/// `synth` asked for Fmax without the place-and-route tool fails (exit 1) and says how to get
+/// area figures alone; it never exits 0 with no Fmax.
+#[test]
+fn synth_without_nextpnr_fails_when_fmax_is_asked_for() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--n-bits", "4", "--cos-frac-bits", "8"]);
+    // the PATH's tools without nextpnr
+    let bin = tmp.path().join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    for dir in std::env::split_paths(&std::env::var_os("PATH").unwrap()) {
+        for entry in std::fs::read_dir(&dir).into_iter().flatten().flatten() {
+            let name = entry.file_name();
+            if !name.to_string_lossy().starts_with("nextpnr") && !bin.join(&name).exists() {
+                std::os::unix::fs::symlink(entry.path(), bin.join(&name)).unwrap();
+            }
+        }
+    }
+    let o = specgen().env("PATH", &bin).args(["synth", "--target", "ice40", "--seeds", "1", "--rtl"]).arg(&d).output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("nextpnr-ice40 not found") && text(&o).contains("--no-pnr"), "{}", text(&o));
+    let o = specgen().env("PATH", &bin).args(["synth", "--target", "ice40", "--no-pnr", "--rtl"]).arg(&d).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
 }
