@@ -76,12 +76,26 @@ pub fn corner_vectors(model: &Model) -> Vec<Inputs> {
     v
 }
 
-/// A uniformly random input vector (cos_g over the whole port, half of them in [0, 1.0]).
+/// A random input vector. Three in four inside the highlight: n ≥ 1 and cos_g = s^(1/n) for a
+/// uniform s in (0, 1), so that cos^n (which every model approximates) is neither 0 nor full
+/// scale (below the quadratic model's cut-off, s < e^(-1/k), its output is 0); the rest
+/// uniform, cos_g over the whole port (codes above 1.0 too) and n over its range, where most
+/// outputs of a high n are 0.
 pub fn random_vector(cfg: &Config, seed: u64, i: u64) -> Inputs {
     let r = splitmix(seed.wrapping_mul(0x1000_0000_0000_0001) ^ i);
     let r2 = splitmix(r);
-    let cos_g = if r & 1 == 0 { ((r >> 1) % ((1u64 << cfg.f()) + 1)) as u32 } else { ((r >> 1) & ((2u64 << cfg.f()) - 1)) as u32 };
-    let n = ((r >> 32) & ((1u64 << cfg.n_bits()) - 1)) as u32;
+    let n_max = (1u64 << cfg.n_bits()) - 1;
+    let one = 1u64 << cfg.f();
+    let (cos_g, n) = if r & 6 != 0 {
+        let n = 1 + (r >> 32) % n_max.max(1);
+        // s in (0, 1) from 24 random bits
+        let s = (((r >> 3) & 0xff_ffff) as f64 + 0.5) / (1u64 << 24) as f64;
+        let c = s.powf(1.0 / n as f64);
+        (((c * one as f64).round() as u64).min(one) as u32, n.min(n_max) as u32)
+    } else {
+        let cos_g = if r & 1 == 0 { ((r >> 3) % (one + 1)) as u32 } else { ((r >> 3) & ((2 * one) - 1)) as u32 };
+        (cos_g, ((r >> 32) & n_max) as u32)
+    };
     let bm = (1u64 << cfg.b()) - 1;
     Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
 }

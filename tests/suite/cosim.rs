@@ -287,3 +287,22 @@ fn a_missing_table_file_stops_both_simulators() {
     assert!(!text(&o).contains(&format!("table file {file}")), "Icarus: {}", text(&o));
     std::fs::remove_file(elsewhere.join(file)).unwrap();
 }
+
+/// Random stimulus spends at least half its rows inside the highlight, where the output is
+/// neither 0 nor full scale (a uniform draw puts about 9 % of a blinn unit's rows there), for
+/// every model; the other rows still reach cos_g codes above 1.0 and n = 0.
+#[test]
+fn random_stimulus_lands_inside_the_highlight_half_the_time() {
+    use specgen::config::{Params, SpecularModel};
+    for model in SpecularModel::ALL {
+        let plan = specgen::plan::Plan::from_params(Params { model, ..Default::default() }).unwrap();
+        let m = plan.model();
+        let full = 1u32 << plan.cfg.fi();
+        let count = 4000u64;
+        let vectors: Vec<_> = (0..count).map(|i| specgen::cosim::random_vector(&plan.cfg, 7, i)).collect();
+        let inside = vectors.iter().filter(|&&x| (1..full).contains(&m.eval(x).intensity)).count();
+        assert!(inside as u64 * 2 >= count, "{}: {inside} of {count} rows inside the highlight", model.name());
+        assert!(vectors.iter().any(|x| x.cos_g > 1 << plan.cfg.f()), "{}: no cos_g above 1.0", model.name());
+        assert!(vectors.iter().any(|x| x.n == 0), "{}: no n = 0", model.name());
+    }
+}
