@@ -840,8 +840,10 @@ impl Drop for ParentLock {
 }
 
 /// The names a previous specgen output in `dir` may hold: every `*.json` manifest written by
-/// specgen, and the files it lists. `Err` names the first entry that is not one of them.
-fn check_replaceable(dir: &Path) -> Result<(), OutputError> {
+/// specgen for the same kind of output (a unit's manifest has `ports`, a report's `claims`), and
+/// the files it lists. `Err` names the first entry that is not one of them, the other kind of
+/// output, or (unless `force`) a listed file whose SHA-256 is not the manifest's: edited by hand.
+fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), OutputError> {
     let occupied = |why: String| OutputError::Occupied(dir.to_path_buf(), why);
     if !dir.is_dir() {
         return Err(occupied("it exists and is not a directory".into()));
@@ -861,10 +863,27 @@ fn check_replaceable(dir: &Path) -> Result<(), OutputError> {
         if v.get("generator").and_then(|g| g.as_str()) != Some("specgen") {
             continue;
         }
+        match (report, v.get("claims").is_some(), v.get("ports").is_some()) {
+            (true, false, true) => return Err(occupied("it holds a unit written by `specgen generate`, not a report".into())),
+            (false, true, _) => return Err(occupied("it holds a report written by `specgen report`, not a unit".into())),
+            _ => {}
+        }
         allowed.push(name.clone());
         for file in v.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
             if let Some(n) = file.get("name").and_then(|n| n.as_str()) {
                 allowed.push(n.to_string());
+                let want = file.get("sha256").and_then(|h| h.as_str());
+                if let (Some(want), false) = (want, force) {
+                    let path = dir.join(n);
+                    if std::fs::metadata(&path).is_ok_and(|m| m.is_file()) {
+                        let bytes = std::fs::read(&path)?;
+                        if sha256_hex(&bytes) != want {
+                            return Err(occupied(format!(
+                                "{n} was changed since specgen wrote it (its SHA-256 is not the manifest's); move it away, or pass --force to replace it"
+                            )));
+                        }
+                    }
+                }
             }
         }
     }
@@ -877,8 +896,13 @@ fn check_replaceable(dir: &Path) -> Result<(), OutputError> {
 /// Writes `files` as the whole content of `dir`, atomically: they are written to a fresh
 /// directory beside `dir` and renamed into place, so `dir` holds either the old output or
 /// the new one, never a mix. An existing `dir` is replaced only when it is empty or holds
-/// nothing but a previous specgen output.
+/// nothing but a previous specgen output of the same kind, unedited.
 pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
+    write_dir_atomically_forced(dir, files, false)
+}
+
+/// [`write_dir_atomically`]; with `force`, also over files of a previous output edited by hand.
+pub fn write_dir_atomically_forced(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), OutputError> {
     // a symbolic link is followed: the output lands where it points, and the link stays
     let resolved;
     let dir = match std::fs::symlink_metadata(dir) {
@@ -893,7 +917,7 @@ pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(
     std::fs::create_dir_all(&parent)?;
     let _lock = ParentLock::take(&parent, dir)?;
     if dir.exists() {
-        check_replaceable(dir)?;
+        check_replaceable(dir, files.iter().any(|(n, _)| n == "report.json"), force)?;
     }
     let staging = tempfile::Builder::new().prefix(".specgen-new-").tempdir_in(&parent)?;
     for (name, bytes) in files {

@@ -34,6 +34,9 @@ pub enum Command {
         /// Output directory (created, or replaced if it holds only a previous specgen output).
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
+        /// Replace a previous output even where its files were edited by hand.
+        #[arg(long)]
+        force: bool,
         /// Pick --stages: the shallowest pipeline whose Fmax on the --target's part (iCE40 UP5K or ECP5-25; yosys + nextpnr, with DSPs) reaches F MHz.
         #[arg(long, value_name = "F", conflicts_with = "stages")]
         target_mhz: Option<f64>,
@@ -94,6 +97,9 @@ pub enum Command {
         /// Output directory (created, or replaced if it holds only a previous report).
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
+        /// Replace a previous report even where its files were edited by hand.
+        #[arg(long)]
+        force: bool,
         /// A `specgen synth --json` result to show in the model comparison (repeatable).
         #[arg(long, value_name = "FILE.json")]
         hw: Vec<PathBuf>,
@@ -332,8 +338,8 @@ impl ParamArgs {
 }
 
 /// Writes a whole output directory atomically; an occupied directory is a usage error.
-fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<(), Failure> {
-    emit::write_dir_atomically(out, files).map_err(|e| match e {
+fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Failure> {
+    emit::write_dir_atomically_forced(out, files, force).map_err(|e| match e {
         OutputError::Io(io) => Failure::io("write", out, io),
         other => Failure::Output(other),
     })
@@ -341,7 +347,7 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)]) -> Result<()
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Generate { out, target_mhz, params, rtl } => {
+        Command::Generate { out, force, target_mhz, params, rtl } => {
             let mut cfg = params.to_config(Some(&rtl))?;
             if let Some(mhz) = target_mhz {
                 if !(mhz > 0.0 && mhz <= 1000.0) {
@@ -360,7 +366,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 eprintln!("target-mhz: chose --stages {stages}");
             }
             let files = emit::generate_files(&plan);
-            write_output(&out, &files)?;
+            write_output(&out, &files, force)?;
             for (name, _) in &files {
                 outln!("{}", out.join(name).display())?;
             }
@@ -404,12 +410,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Render(args) => render(&args),
         Command::Synth(args) => synth::run(&args),
         Command::Vectors(args) => vectors(&args),
-        Command::Report { out, hw, params } => {
+        Command::Report { out, force, hw, params } => {
             let cfg = params.to_config(None)?;
             let hw =
                 hw.iter().map(|p| specgen::synth::SynthResult::from_file(p).map_err(|e| usage(format!("invalid --hw: {e}")))).collect::<Result<Vec<_>, _>>()?;
             let files = specgen::report::build(&cfg, &hw);
-            write_output(&out, &files)?;
+            write_output(&out, &files, force)?;
             Ok(())
         }
     }

@@ -315,3 +315,36 @@ fn synth_without_nextpnr_fails_when_fmax_is_asked_for() {
     let o = specgen().env("PATH", &bin).args(["synth", "--target", "ice40", "--no-pnr", "--rtl"]).arg(&d).output().unwrap();
     assert!(o.status.success(), "{}", text(&o));
 }
+
+/// `generate` and `report` never replace each other's output, and a file of a previous output
+/// edited by hand is refused (naming it) unless `--force`.
+#[test]
+fn outputs_of_another_kind_or_edited_by_hand_are_not_replaced() {
+    let tmp = tempfile::tempdir().unwrap();
+    let small = ["--n-bits", "4", "--cos-frac-bits", "8"];
+    let unit = generate(tmp.path(), "unit", &small);
+    let rep = tmp.path().join("rep");
+    let o = specgen().args(["report", "--out"]).arg(&rep).args(small).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    // each refuses the other's directory, which stays as it was
+    let o = specgen().args(["report", "--out"]).arg(&unit).args(small).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("not a report") && unit.join("specular_unit.v").exists(), "{}", text(&o));
+    let o = specgen().args(["generate", "--out"]).arg(&rep).args(small).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("not a unit") && rep.join("index.html").exists(), "{}", text(&o));
+    // an unedited previous output is replaced; an edited one only with --force
+    let o = specgen().args(["generate", "--out"]).arg(&unit).args(small).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let v = unit.join("specular_unit.v");
+    let mut edited = std::fs::read_to_string(&v).unwrap();
+    edited.push_str("// my change\n");
+    std::fs::write(&v, &edited).unwrap();
+    let o = specgen().args(["generate", "--out"]).arg(&unit).args(small).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("specular_unit.v was changed") && text(&o).contains("--force"), "{}", text(&o));
+    assert_eq!(std::fs::read_to_string(&v).unwrap(), edited, "the edited file must stay");
+    let o = specgen().args(["generate", "--force", "--out"]).arg(&unit).args(small).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(!std::fs::read_to_string(&v).unwrap().contains("my change"));
+}
