@@ -230,6 +230,13 @@ fn synth_command(target: Target, dsp: bool, top: &str) -> String {
 /// `seeds`: place-and-route runs with nextpnr seeds 1..=seeds (0: none); Fmax is their median.
 pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds: u32, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
     require(yosys, "yosys")?;
+    // Fmax asked for (seeds > 0): without the place-and-route tool it cannot be measured, so
+    // say so before synthesis rather than after
+    let pnr = if seeds > 0 && target != Target::Generic {
+        Some(Pnr::find(target).map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?)
+    } else {
+        None
+    };
     let top = design.cfg.top().to_string();
     let work = tempfile::tempdir().map_err(|e| input(e.to_string()))?;
     let read = stage_sources(design, work.path())?;
@@ -270,12 +277,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         r.fmax_note = "place-and-route skipped (--no-pnr)".into();
         return Ok(r);
     }
-    if target == Target::Generic {
+    let Some(pnr) = pnr else {
         r.fmax_note = "no place-and-route for the generic target".into();
         return Ok(r);
-    }
-    // Fmax was asked for (seeds > 0): without the place-and-route tool it cannot be measured
-    let pnr = Pnr::find(target).map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?;
+    };
     let (tool, args) = (pnr.tool.as_str(), pnr.args);
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(design)).map_err(|e| input(e.to_string()))?;

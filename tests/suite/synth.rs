@@ -149,9 +149,11 @@ fn verify_passes_real_netlists_and_catches_a_broken_one() {
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{target}: {text}{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(text.matches(", 0 mismatches").count(), 2, "{target}: Verilator and Icarus\n{text}");
+    // a broken synthesis is caught on a small unit as well as on a big one
+    let small = generate(tmp.path(), "small", &["--stages", "2", "--n-bits", "5", "--cos-frac-bits", "9"]);
     let yosys = broken_yosys(&tmp.path().join("broken"));
     let o =
-        specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--rtl"]).arg(&rtl).arg("--yosys").arg(&yosys).output().unwrap();
+        specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "300", "--rtl"]).arg(&small).arg("--yosys").arg(&yosys).output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{}{err}", String::from_utf8_lossy(&o.stdout));
     assert!(err.contains("mapped netlist differs from the golden model") && err.contains("<-- differs"), "{err}");
