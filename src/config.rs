@@ -326,21 +326,12 @@ impl Params {
     }
 
     pub fn from_json_file(path: &std::path::Path) -> Result<Params, ConfigError> {
-        use std::io::Read;
-        const LIMIT: u64 = 1 << 20;
+        use crate::small_file::SmallFileError;
         let err = |why: String| ConfigError { parameter: "config", message: format!("{}: {why}", path.display()) };
-        let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read it ({e})")))?;
-        if !meta.is_file() {
-            return Err(err("is not a regular file; allowed a JSON file of at most 1 MiB".into()));
-        }
-        if meta.len() > LIMIT {
-            return Err(err(format!("is {} bytes; allowed a JSON file of at most 1 MiB", meta.len())));
-        }
-        let mut text = String::new();
-        std::fs::File::open(path).and_then(|f| f.take(LIMIT + 1).read_to_string(&mut text)).map_err(|e| err(format!("cannot read it ({e})")))?;
-        if text.len() as u64 > LIMIT {
-            return Err(err("grew past 1 MiB while being read; allowed a JSON file of at most 1 MiB".into()));
-        }
+        let text = crate::small_file::read(path, 1 << 20).map_err(|e| match e {
+            SmallFileError::Io(m) => err(format!("cannot read it ({m})")),
+            other => err(format!("{other}; allowed a JSON file of at most 1 MiB")),
+        })?;
         Params::from_json(&text).map_err(err)
     }
 }

@@ -28,6 +28,7 @@ pub mod ports;
 pub mod render;
 pub mod report;
 pub mod rom;
+pub mod small_file;
 pub mod synth;
 pub mod table;
 pub mod vectors;

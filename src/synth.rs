@@ -350,14 +350,10 @@ impl SynthResult {
     /// device), a JSON object naming a known model and a target, with its LUT count. A manifest,
     /// `{}` or another tool's JSON is refused with the reason.
     pub fn from_file(path: &Path) -> Result<SynthResult, String> {
-        use std::io::Read;
-        const LIMIT: u64 = 1 << 20;
-        let meta = std::fs::metadata(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        if !meta.is_file() || meta.len() > LIMIT {
-            return Err(format!("{} is not a regular file of at most 1 MiB", path.display()));
-        }
-        let mut text = String::new();
-        std::fs::File::open(path).and_then(|f| f.take(LIMIT).read_to_string(&mut text)).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let text = crate::small_file::read(path, 1 << 20).map_err(|e| match e {
+            crate::small_file::SmallFileError::Io(_) => format!("{} {e}", path.display()),
+            _ => format!("{} {e}; allowed a regular file of at most 1 MiB", path.display()),
+        })?;
         let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{} is not JSON: {e}", path.display()))?;
         let not = |why: &str| format!("{} is not a `specgen synth --json` result: {why}", path.display());
         let obj = value.as_object().ok_or_else(|| not("not a JSON object"))?;

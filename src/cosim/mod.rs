@@ -110,16 +110,7 @@ impl Design {
                 Some("v") => sources.push(path),
                 Some("json") => {
                     // a regular file of at most MANIFEST_MAX_BYTES (never a FIFO or a device)
-                    let regular = std::fs::metadata(&path).is_ok_and(|m| m.is_file() && m.len() <= MANIFEST_MAX_BYTES);
-                    if !regular {
-                        continue;
-                    }
-                    let mut text = String::new();
-                    let read =
-                        std::fs::File::open(&path).and_then(|f| std::io::Read::read_to_string(&mut std::io::Read::take(f, MANIFEST_MAX_BYTES), &mut text));
-                    if read.is_err() {
-                        continue;
-                    }
+                    let Ok(text) = crate::small_file::read(&path, MANIFEST_MAX_BYTES) else { continue };
                     let v: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
                     if v.get("generator").and_then(|g| g.as_str()) == Some("specgen") {
                         manifests.push((path, text));
