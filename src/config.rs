@@ -285,6 +285,13 @@ impl SpecularModel {
     pub fn reads(self, key: &str) -> bool {
         MODEL_KEYS.iter().find(|(k, _)| *k == key).is_none_or(|(_, models)| models.contains(&self))
     }
+
+    /// Drops from a JSON object (a manifest, a report's parameters) the keys of other models.
+    pub fn keep_own_keys(self, value: &mut serde_json::Value) {
+        if let serde_json::Value::Object(map) = value {
+            map.retain(|k, _| self.reads(k));
+        }
+    }
 }
 
 /// Keys of a manifest that are outputs, not parameters (skipped when it is read as a config).

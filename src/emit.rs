@@ -129,17 +129,7 @@ fn wire_statement(x: &Wire, step: usize) -> String {
     let range = if x.width == 1 { "      ".to_string() } else { format!("[{}:0]", x.width - 1) };
     let stmt = format!("wire {range} {}_s{step} = {};", x.name, x.expr);
     // an expression written one operand a line reads as few lines as fit
-    let mut lines: Vec<String> = Vec::new();
-    for part in stmt.split("\n    ") {
-        match lines.last_mut() {
-            Some(l) if l.chars().count() + 1 + part.chars().count() <= MAX_LINE => {
-                l.push(' ');
-                l.push_str(part);
-            }
-            _ => lines.push(part.to_string()),
-        }
-    }
-    let stmt = lines.join("\n    ");
+    let stmt = fill_lines(stmt.split("\n    "), " ", MAX_LINE).join("\n    ");
     if x.comment.is_empty() {
         return stmt;
     }
@@ -326,17 +316,17 @@ fn parent_dir(path: &Path) -> PathBuf {
     }
 }
 
-/// Joins `items` with `, ` into lines of at most `width` characters, a trailing comma included
-/// (an item longer than that has a line of its own).
-fn fill_lines<'a>(items: impl Iterator<Item = &'a String>, width: usize) -> Vec<String> {
+/// Joins `items` with `sep` into as few lines as keep each at most `width` characters (an item
+/// longer than that has a line of its own): an expression's operands, the lint sink's selects.
+fn fill_lines<'a>(items: impl IntoIterator<Item = &'a str>, sep: &str, width: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for item in items {
         match lines.last_mut() {
-            Some(l) if l.chars().count() + item.chars().count() + 3 <= width => {
-                l.push_str(", ");
+            Some(l) if l.chars().count() + sep.chars().count() + item.chars().count() <= width => {
+                l.push_str(sep);
                 l.push_str(item);
             }
-            _ => lines.push(item.clone()),
+            _ => lines.push(item.to_string()),
         }
     }
     lines
@@ -350,7 +340,8 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let cuts = cut_list(dp);
     let edge = crate::interface::edge(plan, &dp.outputs);
     let line_unread: Vec<String> = cuts.iter().flat_map(|c| c.lines.iter().flat_map(DelayLine::unread)).collect();
-    let unused = fill_lines(dp.unused.iter().chain(&line_unread).chain(&edge.unused), MAX_LINE - 4);
+    // each line indented 4 and ended by a comma
+    let unused = fill_lines(dp.unused.iter().chain(&line_unread).chain(&edge.unused).map(String::as_str), ", ", MAX_LINE - 5);
     let file = p.rom_style == RomStyle::File;
     let file_tables = if file {
         dp.tables
@@ -775,9 +766,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     };
     // only the model's own parameters (MODEL_KEYS): a reader branches on `model`
     let mut value = serde_json::to_value(&manifest).expect("manifest serialises");
-    if let serde_json::Value::Object(map) = &mut value {
-        map.retain(|k, _| cfg.model().reads(k));
-    }
+    cfg.model().keep_own_keys(&mut value);
     let mut json = serde_json::to_string_pretty(&value).expect("manifest serialises");
     json.push('\n');
     files.push((format!("{top}.json"), json.into_bytes()));

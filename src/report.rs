@@ -551,9 +551,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
         configuration: cfg.describe(),
         parameters: {
             let mut v = serde_json::to_value(&cfg.params).expect("params serialise");
-            if let serde_json::Value::Object(map) = &mut v {
-                map.retain(|k, _| cfg.model().reads(k));
-            }
+            cfg.model().keep_own_keys(&mut v);
             v
         },
         k_code: cfg.model().reads("k_code").then_some(cfg.k_code),
