@@ -18,10 +18,10 @@ use crate::datapath::{DelayLine, Waiting};
 use crate::plan::Plan;
 use crate::ports::{self, Field};
 
-/// Places of the output buffer, as log2: at least the pipeline's latency + 4, so a stream at
+/// Places of the output buffer, as log2: at least the pipeline's latency + 5, so a stream at
 /// full rate never finds `in_ready` low.
 pub fn buffer_depth_log2(stages: u32) -> u32 {
-    (stages + BUFFER_LATENCY + 1).next_power_of_two().trailing_zeros()
+    (stages + BUFFER_LATENCY + 2).next_power_of_two().trailing_zeros()
 }
 
 /// The places of the `ready`/`axis` output buffer (0 without a handshake).
@@ -83,8 +83,9 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.header.push("Handshake:  AXI4-Stream rules: a transfer when valid and ready are both high at a rising clock edge.".into());
         e.header.push(format!("            {ov} and every output hold while {or} is low;"));
         e.header.push(format!("            {ov} never waits for {or}."));
-        e.header.push(format!("            {ir} is a register: high while fewer than {places} pixels are taken and not yet"));
-        e.header.push(format!("            delivered ({top}_out_buffer holds {places} results), so the pipeline never stalls;"));
+        e.header.push(format!("            {ir} is a register: high in a cycle when, the cycle before, fewer than {} pixels", places - 1));
+        e.header.push(format!("            were taken and not yet delivered ({top}_out_buffer holds {places} results), so the"));
+        e.header.push("            pipeline never stalls;".into());
         e.header.push(format!("            {iv} may come and go freely: a pixel is taken only in a transfer."));
     } else {
         let latency = if cfg.stages() == 0 {

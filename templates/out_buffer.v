@@ -6,16 +6,19 @@
 //
 // The unit's pipeline never waits. Its handshake follows the AXI4-Stream rules instead with
 // credits: `used` counts the pixels taken and not yet delivered, and in_ready (a register) is
-// high while fewer than 2^DEPTH_LOG2 are, so every pixel taken has a place here before it
-// enters the pipeline and none is ever lost. Results leave through two registers, the memory's
-// read register and the output register; each moves whenever the one after it is empty or
-// moving, so a stream with out_ready high gets one result a cycle, out_valid and out stay
-// stable while out_ready is low, and out_valid never waits for out_ready.
+// high in a cycle when, in the cycle before, fewer than 2^DEPTH_LOG2 - 1 were: a pixel taken
+// then has a place here before it enters the pipeline, so none is ever lost.
+// Results leave the places through the memory's read register into a queue of three registers,
+// `out` and the two waiting behind it. A read is started only when the queue will have room for
+// it whatever out_ready does, so the read decision is one LUT of registers; every wide register
+// loads on an enable of one LUT from registers and out_ready. A stream with out_ready high gets
+// one result a cycle, out_valid and out stay stable while out_ready is low, and out_valid
+// never waits for out_ready.
 // rst (synchronous, active high) empties the buffer; a cycle with rst high transfers nothing.
 module {{ top }}_out_buffer #(
     // bits of one result (the output fields and the tag)
     parameter WIDTH = 8,
-    // log2 of the places: 2^DEPTH_LOG2 >= LATENCY + 4, or a full-rate stream would wait
+    // log2 of the places: 2^DEPTH_LOG2 >= LATENCY + 5, or a full-rate stream would wait
     parameter DEPTH_LOG2 = 4,
     // the pipeline's latency: result_valid is a pixel taken LATENCY cycles before
     parameter LATENCY = 0
@@ -35,39 +38,38 @@ module {{ top }}_out_buffer #(
 
 `ifndef SYNTHESIS
 initial begin
-    if ((1 << DEPTH_LOG2) < LATENCY + 4) begin
-        $fatal(1, "%m: DEPTH_LOG2 = %0d holds fewer places than LATENCY + 4 = %0d", DEPTH_LOG2, LATENCY + 4);
+    if ((1 << DEPTH_LOG2) < LATENCY + 5) begin
+        $fatal(1, "%m: DEPTH_LOG2 = %0d holds fewer places than LATENCY + 5 = %0d", DEPTH_LOG2, LATENCY + 5);
     end
 end
 `endif
 
 localparam [DEPTH_LOG2:0] DEPTH = 1 << DEPTH_LOG2;
 
+// a place is never read in the clock it is written while the read counts (a read needs a
+// result written before; a write needs a free place), so what a collision reads does not
+// matter: no_rw_check tells yosys not to build bypass logic around the block RAM for it
+(* no_rw_check *)
 reg  [WIDTH-1:0]      places [0:(1 << DEPTH_LOG2) - 1];
 reg  [DEPTH_LOG2:0]   write_at;
 reg  [DEPTH_LOG2-1:0] read_at;                       // the place read next
 reg  [DEPTH_LOG2:0]   read_after;                    // read_at + 1 with its wrap bit (no adder before one_left)
-reg  [DEPTH_LOG2:0]   used;                          // taken, not yet delivered: 0..DEPTH
-reg  [DEPTH_LOG2:0]   used_up;                       // used + 1, kept beside it
-reg  [WIDTH-1:0]      read_q;                        // the memory's read register
-reg                   read_valid;
 reg                   empty;                         // no result in the places
-reg                   both_full;                     // read_valid && out_valid
+reg  [WIDTH-1:0]      read_q;                        // the memory's read register: places[read_at]
+reg                   read_valid;                    // read_q holds a result read the clock before
+reg  [WIDTH-1:0]      queued_1, queued_2;            // results waiting behind out, in order
+reg                   queued_1_valid, queued_2_valid; // the queue fills from out: queued_2 only behind queued_1
+reg                   queue_full;                    // out, queued_1, queued_2 and read_q hold three results
+reg  [DEPTH_LOG2:0]   used;                          // taken, not yet delivered: 0..DEPTH
 
-// the wide registers load on enables of one LUT from registers and out_ready; whether the
-// places hold a result decides only the read pointer and read_valid
-wire                  out_moves = !out_valid || out_ready;      // the output register may load
-wire                  read_moves = !both_full || out_ready;     // the read register may load
-wire                  read = read_moves && !empty;              // a result leaves the places
+// a read starts when a result is in the places and the queue and read_q hold at most two, so
+// the result has a register to go to the clock after, whether or not out delivers
+wire                  read = !empty && !queue_full;
+wire                  queue_two = queued_1_valid || (out_valid && read_valid);  // two or more
 wire                  one_left = write_at == read_after;
+wire                  out_moves = !out_valid || out_ready;      // out may load
+wire                  queued_1_moves = !queued_1_valid || out_ready;  // queued_1 may load (empty behind an empty out)
 wire                  deliver = out_valid && out_ready;
-wire                  step_up = take && !deliver;               // used goes up by one
-wire                  step_down = deliver && !take;             // used goes down by one
-// no adder between the handshake and a register: used moves to used_up or used_down, and
-// in_ready next (used next < DEPTH) is decided from flags of those registers
-wire [DEPTH_LOG2:0]   used_next = step_up ? used_up : step_down ? used - 1'b1 : used;
-wire                  full = used == DEPTH;
-wire                  up_fills = used_up == DEPTH;
 
 assign take = in_valid && in_ready;
 assign idle = used == {(DEPTH_LOG2 + 1){1'b0}};
@@ -75,34 +77,45 @@ assign idle = used == {(DEPTH_LOG2 + 1){1'b0}};
 // the places: a result is written the cycle it leaves the pipeline, read in order
 always @(posedge clk) begin
     if (result_valid) places[write_at[DEPTH_LOG2-1:0]] <= result;
-    if (read_moves) read_q <= places[read_at];
-    if (out_moves) out <= read_q;
+    read_q <= places[read_at];
+    if (out_moves) out <= queued_1_valid ? queued_1 : read_q;
+    if (queued_1_moves) queued_1 <= queued_2_valid ? queued_2 : read_q;
+    if (!queued_2_valid) queued_2 <= read_q;
 end
 
 always @(posedge clk) begin
     if (rst) begin
-        write_at   <= {(DEPTH_LOG2 + 1){1'b0}};
-        read_at    <= {DEPTH_LOG2{1'b0}};
-        read_after <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
-        used       <= {(DEPTH_LOG2 + 1){1'b0}};
-        used_up    <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
-        read_valid <= 1'b0;
-        out_valid  <= 1'b0;
-        in_ready   <= 1'b0;
-        empty      <= 1'b1;
-        both_full  <= 1'b0;
+        write_at       <= {(DEPTH_LOG2 + 1){1'b0}};
+        read_at        <= {DEPTH_LOG2{1'b0}};
+        read_after     <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
+        empty          <= 1'b1;
+        read_valid     <= 1'b0;
+        out_valid      <= 1'b0;
+        queued_1_valid <= 1'b0;
+        queue_full     <= 1'b0;
+        queued_2_valid <= 1'b0;
+        used           <= {(DEPTH_LOG2 + 1){1'b0}};
+        in_ready       <= 1'b0;
     end else begin
         if (result_valid) write_at <= write_at + 1'b1;
         if (read)         read_at <= read_after[DEPTH_LOG2-1:0];
         if (read)         read_after <= read_after + 1'b1;
-        if (read_moves)   read_valid <= !empty;
-        both_full <= (read_moves ? !empty : read_valid) && (out_moves ? read_valid : out_valid);
         if (result_valid) empty <= 1'b0;
         else if (read)    empty <= one_left;
-        if (out_moves)    out_valid <= read_valid;
-        used      <= used_next;
-        used_up   <= step_up ? used_up + 1'b1 : step_down ? used : used_up;
-        in_ready  <= !(step_up ? up_fills : full && !step_down);
+        read_valid <= read;
+        // the queue holds S = out_valid + queued_1_valid + queued_2_valid results, filled from
+        // out; next it holds S + read_valid - deliver (never more than three: see read)
+        out_valid      <= (out_valid && !out_ready) || queued_1_valid || read_valid;
+        queued_1_valid <= queued_2_valid || (queued_1_valid && (read_valid || !out_ready))
+                          || (out_valid && read_valid && !out_ready);
+        queued_2_valid <= !out_ready && (queued_2_valid || (queued_1_valid && read_valid));
+        // three next: three now and none delivered, or two now, a read and none delivered
+        // (with two or more, out_valid is high and out_ready alone decides a delivery)
+        queue_full     <= !out_ready && (queue_full || (queue_two && !empty));
+        used     <= used + {{ "{" }}{DEPTH_LOG2{deliver && !take}}, take ^ deliver};
+        // at most DEPTH - 2 taken before this clock: at most DEPTH - 1 after it, and a take in
+        // the next cycle still finds a place
+        in_ready <= used < DEPTH - 1'b1;
     end
 end
 

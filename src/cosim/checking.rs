@@ -48,8 +48,8 @@ struct Pending {
 ///   at a clock edge without reset, a result delivered when `out_valid && out_ready`; every
 ///   result must be the next pixel's, in order, with its tag; the outputs must hold while
 ///   stalled; a pixel taken `latency` cycles ago must be on the outputs (no bubbles);
-///   `in_ready` must be high exactly while fewer than the buffer's places are taken (except
-///   the cycle after a reset), and `idle` exactly while none is.
+///   `in_ready` must be high exactly when, the cycle before, fewer than the buffer's places - 1
+///   were taken (except the cycle after a reset), and `idle` exactly while none is.
 pub struct Checker<'a> {
     model: &'a Model,
     latency: u64,
@@ -63,6 +63,8 @@ pub struct Checker<'a> {
     /// `ready`/`axis`: the buffer's places, the pixels inside, the last cycle's sample
     places: Option<usize>,
     pending: VecDeque<Pending>,
+    /// pixels taken and not yet delivered in the cycle before
+    pending_before: usize,
     before: Option<(Cycle, Sampled)>,
     pub report: Report,
 }
@@ -81,6 +83,7 @@ impl<'a> Checker<'a> {
             history: VecDeque::new(),
             places,
             pending: VecDeque::new(),
+            pending_before: 0,
             before: None,
             report: Report::default(),
         }
@@ -174,11 +177,14 @@ impl<'a> Checker<'a> {
                 self.fail(t, front, s, got, true, Some("the result changed or went away while out_ready was low".into()));
             }
         }
-        // in_ready: high exactly while fewer than the buffer's places are taken; idle: none is
-        let exp_ready = !after_reset && self.pending.len() < places;
+        // in_ready: high exactly when fewer than places - 1 were taken the cycle before (a
+        // register of the count); idle: none is taken now
+        let used_before = std::mem::replace(&mut self.pending_before, self.pending.len());
+        let exp_ready = !after_reset && used_before + 1 < places;
         if got.in_ready != exp_ready {
             let e = Sampled { in_ready: exp_ready, ..got };
-            self.fail(t, now, e, got, false, Some(format!("in_ready is {} with {} of {places} places taken", got.in_ready as u8, self.pending.len())));
+            let rule = format!("in_ready is {} with {used_before} of {places} places taken the cycle before", got.in_ready as u8);
+            self.fail(t, now, e, got, false, Some(rule));
         }
         if self.static_colour && got.idle != self.pending.is_empty() {
             let e = Sampled { idle: self.pending.is_empty(), ..got };

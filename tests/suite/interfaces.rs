@@ -109,15 +109,17 @@ fn faults_in_the_handshake_are_caught() {
     let buffer = "specular_unit_out_buffer.v";
     let faults: &[(&str, &str, &str, &str)] = &[
         // a result dropped on stall: out_valid falls while out_ready is low
-        ("dropped", buffer, "if (out_moves)    out_valid <= read_valid;", "out_valid <= read_valid;"),
+        ("dropped", buffer, "out_valid      <= (out_valid && !out_ready) || queued_1_valid || read_valid;", "out_valid <= queued_1_valid || read_valid;"),
         // payload changing while stalled
-        ("unstable", buffer, "if (out_moves) out <= read_q;", "out <= read_q;"),
+        ("unstable", buffer, "if (out_moves) out <= queued_1_valid ? queued_1 : read_q;", "out <= queued_1_valid ? queued_1 : read_q;"),
         // a result duplicated: the read pointer misses a step
         ("duplicated", buffer, "if (read)         read_after <= read_after + 1'b1;", "if (read && read_at != 5) read_after <= read_after + 1'b1;"),
+        // a read started with no room in the queue: the result read has no register to go to
+        ("queue_overrun", buffer, "queue_full     <= !out_ready && (queue_full || (queue_two && !empty));", "queue_full     <= 1'b0;"),
         // the tag one stage off (the register before the last: see handshake_mutant)
         ("tag_off", "specular_unit.v", "TAG_LAST", "TAG_BEFORE"),
         // credits miscounted: in_ready stays high as the last place fills
-        ("overfull", buffer, "in_ready  <= !(step_up ? up_fills : full && !step_down);", "in_ready  <= !(step_up ? 1'b0 : full && !step_down);"),
+        ("overfull", buffer, "in_ready <= used < DEPTH - 1'b1;", "in_ready <= used < DEPTH;"),
     ];
     for_each_parallel(faults, |_, (name, file, from, to)| {
         let o = handshake_mutant(tmp.path(), name, file, from, to);
