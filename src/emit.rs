@@ -13,7 +13,7 @@ use crate::rom::{self, RomFormat};
 use askama::Template;
 use serde::Serialize;
 use sha2::{Digest, Sha256};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 pub(crate) use crate::names::{ECP5_BRAM_MODEL_FILE, ECP5_SIM_MODEL_FILE, VERSION};
 
@@ -306,14 +306,6 @@ pub(crate) fn port_lines(ports: &[Port]) -> Vec<String> {
             }
         })
         .collect()
-}
-
-/// The directory a path lives in (`.` for a bare name).
-fn parent_dir(path: &Path) -> PathBuf {
-    match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    }
 }
 
 /// Joins `items` with `sep` into as few lines as keep each at most `width` characters (an item
@@ -773,61 +765,6 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     files
 }
 
-impl From<std::io::Error> for OutputError {
-    fn from(e: std::io::Error) -> Self {
-        OutputError::Io(plain(e))
-    }
-}
-
-/// An I/O error without the (temporary) path some crates put in its text: the caller names
-/// the user's path.
-fn plain(e: std::io::Error) -> std::io::Error {
-    if let Some(code) = e.raw_os_error() {
-        return std::io::Error::from_raw_os_error(code);
-    }
-    // tempfile wraps the OS error with its own path: find the OS error underneath
-    let mut cause: Option<&(dyn std::error::Error + 'static)> = e.get_ref().map(|r| r as &(dyn std::error::Error + 'static));
-    while let Some(c) = cause {
-        if let Some(code) = c.downcast_ref::<std::io::Error>().and_then(|io| io.raw_os_error()) {
-            return std::io::Error::from_raw_os_error(code);
-        }
-        cause = c.source();
-    }
-    // tempfile's PathError shows "<OS error> at path <temp path>": keep the OS error only
-    let text = e.to_string();
-    std::io::Error::new(e.kind(), text.split(" at path ").next().unwrap_or(&text).to_string())
-}
-
-/// Holds an exclusive lock on a parent directory while an output is swapped in, so two
-/// writers never race, and stale staging directories of an interrupted run can be removed.
-struct ParentLock(std::fs::File);
-
-impl ParentLock {
-    fn take(parent: &Path, target: &Path) -> Result<ParentLock, OutputError> {
-        let f = std::fs::File::open(parent)?;
-        match f.try_lock() {
-            Ok(()) => {}
-            Err(std::fs::TryLockError::WouldBlock) => return Err(OutputError::Busy(target.to_path_buf())),
-            Err(std::fs::TryLockError::Error(e)) => return Err(e.into()),
-        }
-        // under the lock no other specgen is mid-swap here: what is left is from a killed run
-        for entry in std::fs::read_dir(parent)?.flatten() {
-            let name = entry.file_name();
-            let name = name.to_string_lossy();
-            if (name.starts_with(".specgen-old-") || name.starts_with(".specgen-new-")) && entry.file_type().is_ok_and(|t| t.is_dir()) {
-                let _ = std::fs::remove_dir_all(entry.path());
-            }
-        }
-        Ok(ParentLock(f))
-    }
-}
-
-impl Drop for ParentLock {
-    fn drop(&mut self) {
-        let _ = self.0.unlock();
-    }
-}
-
 /// The names a previous specgen output in `dir` may hold: every `*.json` manifest written by
 /// specgen for the same kind of output (a unit's manifest has `ports`, a report's `claims`), and
 /// the files it lists. `Err` names the first entry that is not one of them, the other kind of
@@ -882,74 +819,15 @@ fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Output
     }
 }
 
-/// Writes `files` as the whole content of `dir`, atomically: they are written to a fresh
-/// directory beside `dir` and renamed into place, so `dir` holds either the old output or
-/// the new one, never a mix. An existing `dir` is replaced only when it is empty or holds
-/// nothing but a previous specgen output of the same kind, unedited.
+/// Writes `files` as the whole content of `dir`, atomically (`output::write_dir`). An
+/// existing `dir` is replaced only when it is empty or holds nothing but a previous specgen
+/// output of the same kind, unedited.
 pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
     write_dir_atomically_forced(dir, files, false)
 }
 
 /// [`write_dir_atomically`]; with `force`, also over files of a previous output edited by hand.
 pub fn write_dir_atomically_forced(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), OutputError> {
-    // a symbolic link is followed: the output lands where it points, and the link stays
-    let resolved;
-    let dir = match std::fs::symlink_metadata(dir) {
-        Ok(m) if m.file_type().is_symlink() => {
-            resolved = std::fs::canonicalize(dir)
-                .map_err(|_| OutputError::Occupied(dir.to_path_buf(), "it is a symbolic link to nothing (a dangling link)".into()))?;
-            resolved.as_path()
-        }
-        _ => dir,
-    };
-    let parent = parent_dir(dir);
-    std::fs::create_dir_all(&parent)?;
-    let _lock = ParentLock::take(&parent, dir)?;
-    if dir.exists() {
-        check_replaceable(dir, files.iter().any(|(n, _)| n == "report.json"), force)?;
-    }
-    let staging = tempfile::Builder::new().prefix(".specgen-new-").tempdir_in(&parent)?;
-    for (name, bytes) in files {
-        std::fs::write(staging.path().join(name), bytes)?;
-    }
-    if dir.exists() {
-        let graveyard = tempfile::Builder::new().prefix(".specgen-old-").tempdir_in(&parent)?;
-        std::fs::rename(dir, graveyard.path().join("old"))?;
-        if let Err(e) = std::fs::rename(staging.path(), dir) {
-            // put the previous output back before reporting
-            let _ = std::fs::rename(graveyard.path().join("old"), dir);
-            return Err(e.into());
-        }
-        drop(graveyard); // removes the previous output
-    } else {
-        std::fs::rename(staging.path(), dir)?;
-    }
-    let _ = staging.keep(); // renamed away: nothing left to clean up
-    Ok(())
-}
-
-/// Writes one file atomically (temp file in the same directory, then rename).
-pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    write_file_atomically_with(path, |w| w.write_all(bytes))
-}
-
-/// Writes one file atomically from a writer `fill` streams into (a buffered temp file in the
-/// same directory, renamed over `path` only when `fill` succeeded; on error nothing is left).
-pub fn write_file_atomically_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<T>) -> std::io::Result<T> {
-    let parent = parent_dir(path);
-    let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent).map_err(plain)?;
-    let value = {
-        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file_mut());
-        let v = fill(&mut w)?;
-        std::io::Write::flush(&mut w)?;
-        v
-    };
-    // like every file `generate` writes: readable by all (tempfile creates 0600)
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
-    }
-    tmp.persist(path).map_err(|e| plain(e.error))?;
-    Ok(value)
+    let report = files.iter().any(|(n, _)| n == "report.json");
+    crate::output::write_dir(dir, files, |d| check_replaceable(d, report, force))
 }

@@ -22,6 +22,7 @@ pub mod error;
 pub mod interface;
 pub mod models;
 pub mod names;
+pub mod output;
 pub mod paper;
 pub mod plan;
 pub mod ports;

@@ -395,7 +395,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             })?;
             let text = rom::render_table(&cfg, t, format.into());
             match output {
-                Some(path) => emit::write_file_atomically(&path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
+                Some(path) => specgen::output::write_file(&path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
                 None => {
                     out!("{text}")?;
                     Ok(())
@@ -521,7 +521,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     }
     let refs: Vec<&specgen::models::Model> = models.iter().collect();
     let picture = specgen::render::picture(&refs, &args.n, args.size);
-    emit::write_file_atomically(&args.out, &picture.png).map_err(|e| specgen::error::Error::io("write", &args.out, e))?;
+    specgen::output::write_file(&args.out, &picture.png).map_err(|e| specgen::error::Error::io("write", &args.out, e))?;
     outln!("{}", args.out.display())?;
     Ok(())
 }
@@ -619,7 +619,7 @@ fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
         Some("hex" | "mem") => VectorFormat::Hex,
         _ => VectorFormat::Csv,
     });
-    let rows = emit::write_file_atomically_with(&args.out, |w| specgen::vectors::write(&model, selection, format, w))
+    let rows = specgen::output::write_file_with(&args.out, |w| specgen::vectors::write(&model, selection, format, w))
         .map_err(|e| Failure::io("write", &args.out, e))?;
     outln!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.stages(), args.out.display())?;
     Ok(())

@@ -4,7 +4,6 @@ use super::{failed, Failure};
 use super::{out, outln};
 use specgen::cosim::describe;
 use specgen::cosim::Design;
-use specgen::emit;
 use specgen::synth::{synthesize, table};
 use std::path::PathBuf;
 
@@ -57,7 +56,7 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     if let Some(path) = &args.json {
         let mut text = serde_json::to_string_pretty(&r).expect("serialises");
         text.push('\n');
-        emit::write_file_atomically(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+        specgen::output::write_file(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     if args.verify {
         let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, args.verify_vectors)?;

@@ -49,23 +49,117 @@ fn out_through_a_symlink_lands_where_it_points_and_keeps_the_link() {
 fn leftovers_of_an_interrupted_swap_are_cleaned_and_a_concurrent_writer_is_told() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("o");
-    // what a generate killed between its renames leaves behind
-    for stale in [".specgen-old-AbC123", ".specgen-new-XyZ789"] {
-        std::fs::create_dir_all(tmp.path().join(stale).join("old")).unwrap();
-    }
+    let tag = specgen::output::tag(&out);
+    // what a generate killed after its exchange leaves: the old output in the staging name,
+    // beside a sibling output's staging directory, which is not ours to remove
+    std::fs::create_dir_all(tmp.path().join(format!(".specgen-new-{tag}-XyZ789")).join("old")).unwrap();
+    let sibling = tmp.path().join(format!(".specgen-new-{}-AbC123", specgen::output::tag(&tmp.path().join("p"))));
+    std::fs::create_dir_all(&sibling).unwrap();
     let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
     assert!(o.status.success(), "{}", text(&o));
-    let names: Vec<String> = std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-    assert_eq!(names, ["o"], "leftovers remain");
-    // another writer holds the parent: a clear message, exit 1, the output untouched
+    let mut names: Vec<String> = std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, [format!(".specgen-lock-{tag}"), sibling.file_name().unwrap().to_string_lossy().into_owned(), "o".into()], "leftovers remain");
+    // killed between the two renames of the fallback (no exchange): the name is missing and the
+    // old copy waits in .specgen-old-…/old; the next run puts it back, never deletes it
     let before = std::fs::read(out.join("specular_unit.v")).unwrap();
-    let lock = std::fs::File::open(tmp.path()).unwrap();
+    let saved = tmp.path().join(format!(".specgen-old-{tag}-Qq1234"));
+    std::fs::create_dir(&saved).unwrap();
+    std::fs::rename(&out, saved.join("old")).unwrap();
+    let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(!saved.exists() && std::fs::read(out.join("specular_unit.v")).unwrap() == before);
+    // another writer of the same output: a clear message, exit 1, the output untouched
+    let lock = std::fs::File::open(tmp.path().join(format!(".specgen-lock-{tag}"))).unwrap();
     lock.lock().unwrap();
     let o = specgen().args(["generate", "--stages", "2", "--out"]).arg(&out).output().unwrap();
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(text(&o).contains("another specgen is writing"), "{}", text(&o));
-    lock.unlock().unwrap();
     assert_eq!(std::fs::read(out.join("specular_unit.v")).unwrap(), before);
+    // … while a sibling output is written at the same time (the lock is per output)
+    let o = specgen().args(["generate", "--out"]).arg(tmp.path().join("p")).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    lock.unlock().unwrap();
+}
+
+#[test]
+fn the_swap_keeps_mode_and_group_and_refuses_the_current_directory() {
+    use std::os::unix::fs::PermissionsExt;
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    let mode = |p: &std::path::Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o7777;
+    // a new output gets what mkdir gives under the caller's umask; a replaced one keeps its mode
+    let o = with_umask(specgen().args(["generate", "--out"]).arg(&out), 0o027).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(mode(&out), 0o750);
+    assert_eq!(mode(&out.join("specular_unit.v")), 0o640);
+    for kept in [0o700, 0o2755] {
+        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(kept)).unwrap();
+        let o = specgen().args(["generate", "--stages", "2", "--out"]).arg(&out).output().unwrap();
+        assert!(o.status.success(), "{}", text(&o));
+        assert_eq!(mode(&out), kept, "the mode of the output directory changed");
+    }
+    // `--out .` and a directory holding the current one: one line of reason, exit 2, untouched
+    let before = std::fs::read(out.join("specular_unit.v")).unwrap();
+    for (cwd, arg) in [(out.clone(), "."), (out.clone(), out.to_str().unwrap()), (out.join("."), "..")] {
+        let o = specgen().current_dir(&cwd).args(["generate", "--out", arg]).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "--out {arg}: {}", text(&o));
+        assert!(text(&o).contains("current directory"), "--out {arg}: {}", text(&o));
+    }
+    assert_eq!(std::fs::read(out.join("specular_unit.v")).unwrap(), before);
+}
+
+/// `cmd` run under `mask` as its umask.
+fn with_umask(cmd: &mut Command, mask: u32) -> &mut Command {
+    use std::os::unix::process::CommandExt;
+    // SAFETY: umask is async-signal-safe and touches no memory
+    unsafe {
+        cmd.pre_exec(move || {
+            libc::umask(mask as libc::mode_t);
+            Ok(())
+        })
+    }
+}
+
+#[test]
+fn single_file_outputs_go_through_links_into_fifos_and_keep_modes() {
+    use std::os::unix::fs::PermissionsExt;
+    let tmp = tempfile::tempdir().unwrap();
+    let mode = |p: &std::path::Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o7777;
+    // a new file under umask 077; a replaced file keeps its mode
+    let f = tmp.path().join("rom.hex");
+    let o = with_umask(specgen().args(["rom", "-o"]).arg(&f), 0o077).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(mode(&f), 0o600);
+    std::fs::set_permissions(&f, std::fs::Permissions::from_mode(0o640)).unwrap();
+    let o = specgen().args(["rom", "-o"]).arg(&f).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(mode(&f), 0o640);
+    // through a symbolic link: the target is written, the link stays
+    let link = tmp.path().join("lnk.hex");
+    std::os::unix::fs::symlink("rom.hex", &link).unwrap();
+    std::fs::write(&f, "").unwrap();
+    let o = specgen().args(["rom", "-o"]).arg(&link).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "the link was replaced");
+    assert!(std::fs::read(&f).unwrap().len() > 100, "nothing written through the link");
+    // a FIFO gets the stream: its reader receives the table, and it stays a FIFO
+    let fifo = tmp.path().join("fifo");
+    let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read(fifo).unwrap())
+    };
+    let o = specgen().args(["rom", "-o"]).arg(&fifo).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(reader.join().unwrap(), std::fs::read(&f).unwrap());
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+    // a directory is refused and left alone
+    let o = specgen().args(["rom", "-o"]).arg(tmp.path()).output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("it is a directory"), "{}", text(&o));
 }
 
 #[test]

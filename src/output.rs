@@ -1,0 +1,298 @@
+//! Writing at the edge: the library returns generated files as `(name, bytes)`; this module
+//! puts them on disk without ever leaving a half-written output or replacing what is not ours.
+//!
+//! **A directory output** (`generate`, `report`) is built in a staging directory beside it and
+//! swapped in with one `renameat2(RENAME_EXCHANGE)`: at every instant the name holds either the
+//! whole old output or the whole new one, never nothing, so a kill at any point loses nothing.
+//! The old output, now in the staging name, is removed after the swap; if the run is killed
+//! first, the next run writing the same output removes it (under the lock, when the name is
+//! present). Where the exchange is not available (another OS, a file system without it) two
+//! renames are used, and a later run puts a saved old copy back instead of deleting it while
+//! the name is missing.
+//! - The lock is per output: a lock file `.specgen-lock-<hash of the name>` in the parent,
+//!   taken with `flock`, so writers of sibling outputs run in parallel.
+//! - What an existing output may be is decided by the caller's check (`emit`'s
+//!   `check_replaceable`): an empty directory or a previous specgen output of the same kind.
+//! - The new directory gets the old one's mode (setgid included) and group; a new one gets
+//!   `0777 & !umask`, as `mkdir` would give it.
+//! - `--out .`, or any directory holding the current one, is refused with its reason: swapping
+//!   it would leave the caller in a deleted directory. A symbolic link is followed (the output
+//!   lands where it points; the link stays). A parent we cannot write is named in the error.
+//!
+//! **A single-file output** (`rom -o`, `vectors --out`, `render --out`, `--trace`, `synth --json`)
+//! is written to a temporary file beside it and renamed over it. A symbolic link is written
+//! through (its target is replaced, the link stays); a FIFO or character device (`/dev/null`,
+//! `/dev/stdout`) is written as a stream; any other special file is refused. A replaced file
+//! keeps its mode; a new one gets `0666 & !umask`.
+
+use crate::error::OutputError;
+use sha2::{Digest, Sha256};
+use std::path::{Path, PathBuf};
+
+/// The directory a path lives in (`.` for a bare name).
+pub(crate) fn parent_dir(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+/// The process's umask, read without changing it (Linux `/proc/self/status`), else the usual 022.
+fn umask() -> u32 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| s.lines().find_map(|l| l.strip_prefix("Umask:").and_then(|v| u32::from_str_radix(v.trim(), 8).ok())))
+        .unwrap_or(0o022)
+}
+
+/// An I/O error without the (temporary) path some crates put in its text: the caller names
+/// the user's path.
+pub(crate) fn plain(e: std::io::Error) -> std::io::Error {
+    if let Some(code) = e.raw_os_error() {
+        return std::io::Error::from_raw_os_error(code);
+    }
+    // tempfile wraps the OS error with its own path: find the OS error underneath
+    let mut cause: Option<&(dyn std::error::Error + 'static)> = e.get_ref().map(|r| r as &(dyn std::error::Error + 'static));
+    while let Some(c) = cause {
+        if let Some(code) = c.downcast_ref::<std::io::Error>().and_then(|io| io.raw_os_error()) {
+            return std::io::Error::from_raw_os_error(code);
+        }
+        cause = c.source();
+    }
+    // tempfile's PathError shows "<OS error> at path <temp path>": keep the OS error only
+    let text = e.to_string();
+    std::io::Error::new(e.kind(), text.split(" at path ").next().unwrap_or(&text).to_string())
+}
+
+impl From<std::io::Error> for OutputError {
+    fn from(e: std::io::Error) -> Self {
+        OutputError::Io(plain(e))
+    }
+}
+
+/// The tag of one output's staging and lock names in its parent: a hash of its file name, so
+/// the names of two outputs never overlap and any file name is data.
+pub fn tag(target: &Path) -> String {
+    let name = target.file_name().map(|n| n.as_encoded_bytes().to_vec()).unwrap_or_default();
+    Sha256::digest(&name).iter().take(6).map(|b| format!("{b:02x}")).collect()
+}
+
+/// Holds the exclusive lock of one output while it is swapped in, so two writers of the same
+/// output never race; the staging directories an interrupted run left are tidied under it.
+struct OutputLock(std::fs::File);
+
+impl OutputLock {
+    fn take(parent: &Path, target: &Path) -> Result<OutputLock, OutputError> {
+        let tag = tag(target);
+        let path = parent.join(format!(".specgen-lock-{tag}"));
+        let f = std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&path).map_err(|e| unwritable(parent, target, e))?;
+        match f.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => return Err(OutputError::Busy(target.to_path_buf())),
+            Err(std::fs::TryLockError::Error(e)) => return Err(e.into()),
+        }
+        // under the lock no other specgen is mid-swap on this output: what is left is from a
+        // killed run. A saved old copy goes back when the name is missing, else it is removed.
+        for entry in std::fs::read_dir(parent)?.flatten() {
+            let name = entry.file_name();
+            let name = name.to_string_lossy();
+            let ours = name.starts_with(&format!(".specgen-old-{tag}-")) || name.starts_with(&format!(".specgen-new-{tag}-"));
+            if !ours || !entry.file_type().is_ok_and(|t| t.is_dir()) {
+                continue;
+            }
+            let saved = entry.path().join("old");
+            if name.starts_with(".specgen-old-") && saved.is_dir() && std::fs::symlink_metadata(target).is_err() {
+                std::fs::rename(&saved, target)?;
+            }
+            let _ = std::fs::remove_dir_all(entry.path());
+        }
+        Ok(OutputLock(f))
+    }
+}
+
+impl Drop for OutputLock {
+    fn drop(&mut self) {
+        let _ = self.0.unlock();
+    }
+}
+
+/// The one-line reason a parent directory cannot take our staging directory or lock.
+fn unwritable(parent: &Path, target: &Path, e: std::io::Error) -> OutputError {
+    match e.raw_os_error() {
+        Some(code) if code == libc::EACCES || code == libc::EPERM || code == libc::EROFS => OutputError::Occupied(
+            target.to_path_buf(),
+            format!("its parent {} is not writable ({}), and specgen builds the new output beside the old one to swap it in whole", parent.display(), plain(e)),
+        ),
+        _ => plain(e).into(),
+    }
+}
+
+/// Swaps two directory entries in one step (Linux `renameat2(RENAME_EXCHANGE)`). `Ok(false)`:
+/// not available here (another OS, or a file system without it).
+fn exchange(a: &Path, b: &Path) -> std::io::Result<bool> {
+    #[cfg(target_os = "linux")]
+    {
+        use std::ffi::CString;
+        use std::os::unix::ffi::OsStrExt;
+        let ca = CString::new(a.as_os_str().as_bytes()).map_err(|_| std::io::Error::from(std::io::ErrorKind::InvalidInput))?;
+        let cb = CString::new(b.as_os_str().as_bytes()).map_err(|_| std::io::Error::from(std::io::ErrorKind::InvalidInput))?;
+        // SAFETY: two NUL-terminated paths that live across the call; no memory is shared.
+        let r = unsafe { libc::renameat2(libc::AT_FDCWD, ca.as_ptr(), libc::AT_FDCWD, cb.as_ptr(), libc::RENAME_EXCHANGE) };
+        if r == 0 {
+            return Ok(true);
+        }
+        let e = std::io::Error::last_os_error();
+        match e.raw_os_error() {
+            Some(libc::EINVAL) | Some(libc::ENOSYS) | Some(libc::EOPNOTSUPP) => Ok(false),
+            _ => Err(e),
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = (a, b);
+        Ok(false)
+    }
+}
+
+/// Whether `dir` is the current directory or holds it.
+fn holds_cwd(dir: &Path) -> bool {
+    match (std::env::current_dir(), std::fs::canonicalize(dir)) {
+        (Ok(cwd), Ok(dir)) => cwd.starts_with(&dir),
+        _ => false,
+    }
+}
+
+/// Writes `files` as the whole content of `dir`, atomically (see the module doc). `check` is
+/// asked, under the lock, whether an existing `dir` may be replaced.
+pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Path) -> Result<(), OutputError>) -> Result<(), OutputError> {
+    // a symbolic link is followed: the output lands where it points, and the link stays
+    let resolved;
+    let dir = match std::fs::symlink_metadata(dir) {
+        Ok(m) if m.file_type().is_symlink() => {
+            resolved = std::fs::canonicalize(dir)
+                .map_err(|_| OutputError::Occupied(dir.to_path_buf(), "it is a symbolic link to nothing (a dangling link)".into()))?;
+            resolved.as_path()
+        }
+        _ => dir,
+    };
+    if holds_cwd(dir) {
+        return Err(OutputError::Occupied(
+            dir.to_path_buf(),
+            "it is the current directory or holds it; the output is swapped in whole, which would leave this shell in a removed directory: run from outside it"
+                .into(),
+        ));
+    }
+    if dir.file_name().is_none() {
+        return Err(OutputError::Occupied(dir.to_path_buf(), "it has no name of its own (`/`, `..`): name the output directory".into()));
+    }
+    let parent = parent_dir(dir);
+    std::fs::create_dir_all(&parent)?;
+    let _lock = OutputLock::take(&parent, dir)?;
+    let old = std::fs::metadata(dir).ok();
+    if old.is_some() {
+        check(dir)?;
+    }
+    let tag = tag(dir);
+    let staging = tempfile::Builder::new().prefix(&format!(".specgen-new-{tag}-")).tempdir_in(&parent).map_err(|e| unwritable(&parent, dir, e))?;
+    for (name, bytes) in files {
+        std::fs::write(staging.path().join(name), bytes)?;
+    }
+    // the old directory's mode and group, or what mkdir would give a new one
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        let mode = old.as_ref().map_or(0o777 & !umask(), |m| m.mode() & 0o7777);
+        if let Some(m) = &old {
+            let _ = std::os::unix::fs::chown(staging.path(), None, Some(m.gid()));
+        }
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(mode))?;
+    }
+    if old.is_none() {
+        std::fs::rename(staging.path(), dir)?;
+    } else if exchange(staging.path(), dir)? {
+        // the staging name now holds the old output: dropping it removes it
+        return Ok(());
+    } else {
+        let graveyard = tempfile::Builder::new().prefix(&format!(".specgen-old-{tag}-")).tempdir_in(&parent)?;
+        std::fs::rename(dir, graveyard.path().join("old"))?;
+        if let Err(e) = std::fs::rename(staging.path(), dir) {
+            // put the previous output back before reporting
+            let _ = std::fs::rename(graveyard.path().join("old"), dir);
+            return Err(e.into());
+        }
+        drop(graveyard); // removes the previous output
+    }
+    let _ = staging.keep(); // renamed away: nothing left to clean up
+    Ok(())
+}
+
+/// Writes one file (see the module doc).
+pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_file_with(path, |w| w.write_all(bytes))
+}
+
+/// Where a single-file output really goes: through a symbolic link to its target.
+fn through_links(path: &Path) -> std::io::Result<PathBuf> {
+    let mut path = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&path) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let to = std::fs::read_link(&path)?;
+                path = if to.is_absolute() { to } else { parent_dir(&path).join(to) };
+            }
+            _ => return Ok(path),
+        }
+    }
+    Err(std::io::Error::from_raw_os_error(libc::ELOOP))
+}
+
+/// Writes one file from a writer `fill` streams into: a buffered temp file in the same
+/// directory, renamed over the target only when `fill` succeeded (on error nothing is left);
+/// a FIFO or character device gets the stream itself.
+pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<T>) -> std::io::Result<T> {
+    let path = through_links(path)?;
+    let existing = std::fs::metadata(&path).ok();
+    #[cfg(unix)]
+    if let Some(m) = &existing {
+        use std::os::unix::fs::FileTypeExt;
+        let t = m.file_type();
+        if t.is_fifo() || t.is_char_device() {
+            let f = std::fs::OpenOptions::new().write(true).open(&path)?;
+            let mut w = std::io::BufWriter::with_capacity(1 << 16, f);
+            let v = fill(&mut w)?;
+            std::io::Write::flush(&mut w)?;
+            return Ok(v);
+        }
+        if !t.is_file() {
+            let what = if t.is_dir() {
+                "a directory"
+            } else if t.is_block_device() {
+                "a block device"
+            } else {
+                "a special file"
+            };
+            return Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, format!("it is {what}, not a file specgen may replace")));
+        }
+    }
+    let parent = parent_dir(&path);
+    let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent).map_err(plain)?;
+    let value = {
+        let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file_mut());
+        let v = fill(&mut w)?;
+        std::io::Write::flush(&mut w)?;
+        v
+    };
+    // a replaced file keeps its mode; a new one gets what `open(…, 0666)` would give it
+    // (tempfile creates 0600)
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        let mode = existing.as_ref().map_or(0o666 & !umask(), |m| m.mode() & 0o7777);
+        tmp.as_file().set_permissions(std::fs::Permissions::from_mode(mode))?;
+        if let Some(m) = &existing {
+            let _ = std::os::unix::fs::fchown(tmp.as_file(), None, Some(m.gid()));
+        }
+    }
+    tmp.persist(&path).map_err(|e| plain(e.error))?;
+    Ok(value)
+}
