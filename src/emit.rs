@@ -15,7 +15,7 @@ use serde::Serialize;
 use sha2::{Digest, Sha256};
 use std::path::Path;
 
-pub(crate) use crate::names::{ECP5_BRAM_MODEL_FILE, ECP5_SIM_MODEL_FILE, VERSION};
+pub(crate) use crate::names::{ECP5_BRAM_MODEL_FILE, ECP5_SIM_MODEL_FILE, SIM_DIR, VERSION};
 
 /// A signal registered at one cut only: `reg x_cK; x_cK <= source`.
 pub(crate) struct CutSignal {
@@ -703,12 +703,12 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     if dp.has_dsp_blocks() {
         let text = Mult18Template { top, version: VERSION }.render().expect("mult18x18 template renders") + "\n";
         rtl_files.push((format!("{top}_mult18x18.v"), text));
-        sim_models.push((ECP5_SIM_MODEL_FILE.to_string(), ecp5_sim_model()));
+        sim_models.push((format!("{SIM_DIR}/{ECP5_SIM_MODEL_FILE}"), ecp5_sim_model()));
     }
     if dp.has_block_rams() {
         let text = Rom1k18Template { top, version: VERSION }.render().expect("rom1k18 template renders") + "\n";
         rtl_files.push((format!("{top}_rom1k18.v"), text));
-        sim_models.push((ECP5_BRAM_MODEL_FILE.to_string(), ecp5_bram_model()));
+        sim_models.push((format!("{SIM_DIR}/{ECP5_BRAM_MODEL_FILE}"), ecp5_bram_model()));
     }
     let constraints = constraint_files(cfg);
     let testbench = crate::vectors::testbench_files(&plan.model);
@@ -777,10 +777,23 @@ fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Output
     let mut names = Vec::new();
     for entry in std::fs::read_dir(dir)? {
         let entry = entry?;
-        if !entry.file_type()?.is_file() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let kind = entry.file_type()?;
+        if kind.is_dir() && name == SIM_DIR {
+            // the simulation models' subdirectory: its files are listed as `sim/<name>`
+            for inner in std::fs::read_dir(entry.path())? {
+                let inner = inner?;
+                if !inner.file_type()?.is_file() {
+                    return Err(occupied(format!("it contains {SIM_DIR}/{:?}, which is not a regular file", inner.file_name())));
+                }
+                names.push(format!("{SIM_DIR}/{}", inner.file_name().to_string_lossy()));
+            }
+            continue;
+        }
+        if !kind.is_file() {
             return Err(occupied(format!("it contains {:?}, which is not a regular file", entry.file_name())));
         }
-        names.push(entry.file_name().to_string_lossy().into_owned());
+        names.push(name);
     }
     let mut allowed: Vec<String> = Vec::new();
     for name in names.iter().filter(|n| n.ends_with(".json")) {

@@ -195,7 +195,11 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
     let tag = tag(dir);
     let staging = tempfile::Builder::new().prefix(&format!(".specgen-new-{tag}-")).tempdir_in(&parent).map_err(|e| unwritable(&parent, dir, e))?;
     for (name, bytes) in files {
-        std::fs::write(staging.path().join(name), bytes)?;
+        let path = staging.path().join(name);
+        if let Some(sub) = path.parent().filter(|p| *p != staging.path()) {
+            std::fs::create_dir_all(sub)?;
+        }
+        std::fs::write(path, bytes)?;
     }
     // the old directory's mode and group, or what mkdir would give a new one
     #[cfg(unix)]

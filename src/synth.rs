@@ -242,7 +242,12 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     let read = stage_sources(design, work.path())?;
     let synth_cmd = |t: &str| synth_command(target, dsp, t);
     // area: the unit alone (yosys runs in the staging directory, where the tables are too)
-    let log = run_yosys(yosys, work.path(), &format!("{read}; {}; stat", synth_cmd(&top)))?;
+    // `check -assert` on the RTL and on the netlist: no undriven net, no combinational loop, no
+    // conflicting drivers
+    // (the ECP5 primitives the RTL instantiates are known from yosys's own cell library)
+    let cells_lib = if target == Target::Ecp5 { "read_verilog -lib -specify +/ecp5/cells_sim.v +/ecp5/cells_bb.v; " } else { "" };
+    let script = format!("{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; check -assert; stat", synth_cmd(&top));
+    let log = run_yosys(yosys, work.path(), &script)?;
     let cells = parse_stat(&log);
     let count = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(n, _)| pred(n)).map(|(_, c)| c).sum::<u64>();
     let total_cells = cells.iter().map(|(_, c)| c).sum();

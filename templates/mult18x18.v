@@ -10,8 +10,8 @@
 // output register for the one after it, so the unit's latency is that of its --stages.
 // No reset and no clock enable, like the unit's data registers (the valid bits say what
 // they hold). yosys synth_ecp5 and nextpnr-ecp5 keep the registers inside the DSP block;
-// simulate with the family's MULT18X18D model (Lattice's, or ecp5_mult18x18d_sim.v, written
-// beside this file).
+// simulate with the family's MULT18X18D model (Lattice's, or sim/ecp5_mult18x18d_sim.v of
+// this output).
 
 module {{ top }}_mult18x18 (
     input  wire        clk,
@@ -23,11 +23,10 @@ module {{ top }}_mult18x18 (
 // the primitive's outputs this use leaves unread: operand pass-through, shift-out and sign
 wire [17:0] unused_roa, unused_rob, unused_roc, unused_sroa, unused_srob;
 wire        unused_signedp;
-// the shift-chain inputs, left open (never driven): tied to 0, each would take nextpnr-ecp5 a
-// route from the constant net, and with a few DSPs routing then fails
-/* verilator lint_off UNDRIVEN */
-wire [17:0] unused_open_sria, unused_open_srib;
-/* verilator lint_on UNDRIVEN */
+// the shift-chain inputs SRIA/SRIB are not connected at all (no net, so nothing undriven):
+// tied to 0, each would take nextpnr-ecp5 a route from the constant net, and with a few DSPs
+// routing then fails
+/* verilator lint_off PINMISSING */
 
 MULT18X18D #(
     .REG_INPUTA_CLK("CLK0"),   .REG_INPUTA_CE("CE0"),   .REG_INPUTA_RST("RST0"),
@@ -41,7 +40,7 @@ MULT18X18D #(
 ) dsp (
     // operands: unsigned, from the fabric (not the shift chains)
 {%- for i in 0..18 %}
-    .A{{ i }}(a[{{ i }}]), .B{{ i }}(b[{{ i }}]), .C{{ i }}(1'b0), .SRIA{{ i }}(unused_open_sria[{{ i }}]), .SRIB{{ i }}(unused_open_srib[{{ i }}]),
+    .A{{ i }}(a[{{ i }}]), .B{{ i }}(b[{{ i }}]), .C{{ i }}(1'b0),
 {%- endfor %}
     .SIGNEDA(1'b0), .SIGNEDB(1'b0), .SOURCEA(1'b0), .SOURCEB(1'b0),
     // every register on clk (CLK0), always enabled, never reset
@@ -57,6 +56,7 @@ MULT18X18D #(
 {%- endfor %}
     .SIGNEDP(unused_signedp)
 );
+/* verilator lint_on PINMISSING */
 
 endmodule
 `resetall

@@ -9,8 +9,8 @@
 // pipeline register before the read's step, the output register for the one after it, so
 // the unit's latency is that of its --stages. The contents are the INITVAL_00..3F parameters
 // (word k in INITVAL_(k/16) bits [(k%16)*20 +: 18], as yosys lays them out); the unit sets
-// them. Simulate with the family's DP16KD model (Lattice's, or ecp5_dp16kd_sim.v, written
-// beside this file).
+// them. Simulate with the family's DP16KD model (Lattice's, or sim/ecp5_dp16kd_sim.v of this
+// output).
 
 module {{ top }}_rom1k18 #(
 {%- for i in 0..64 %}
@@ -24,12 +24,10 @@ module {{ top }}_rom1k18 #(
 
 // port B is not used
 wire [17:0] unused_dob;
-// data inputs and port B's address, left open (never driven), as yosys leaves them: tied to 0,
-// each would take nextpnr-ecp5 a route from the constant net, and routing then fails
-/* verilator lint_off UNDRIVEN */
-wire [17:0] unused_open_dia, unused_open_dib;
-wire [9:0]  unused_open_adb;
-/* verilator lint_on UNDRIVEN */
+// the data inputs DIA/DIB and port B's address ADB13..ADB4 are not connected at all (no net, so
+// nothing undriven), as yosys leaves them: tied to 0, each would take nextpnr-ecp5 a route from
+// the constant net, and routing then fails
+/* verilator lint_off PINMISSING */
 
 DP16KD #(
     .DATA_WIDTH_A(18), .DATA_WIDTH_B(18),
@@ -50,19 +48,17 @@ DP16KD #(
     .ADA{{ i + 4 }}(addr[{{ i }}]),
 {%- endfor %}
 {%- for i in 0..18 %}
-    .DIA{{ i }}(unused_open_dia[{{ i }}]), .DOA{{ i }}(q[{{ i }}]),
+    .DOA{{ i }}(q[{{ i }}]),
 {%- endfor %}
     // port B: idle
     .CLKB(1'b0), .CEB(1'b0), .OCEB(1'b0), .WEB(1'b0), .RSTB(1'b0),
     .CSB0(1'b0), .CSB1(1'b0), .CSB2(1'b0),
     .ADB0(1'b0), .ADB1(1'b0), .ADB2(1'b0), .ADB3(1'b0),
-{%- for i in 0..10 %}
-    .ADB{{ i + 4 }}(unused_open_adb[{{ i }}]),
-{%- endfor %}
 {%- for i in 0..18 %}
-    .DIB{{ i }}(unused_open_dib[{{ i }}]), .DOB{{ i }}(unused_dob[{{ i }}]){% if i < 17 %},{% endif %}
+    .DOB{{ i }}(unused_dob[{{ i }}]){% if i < 17 %},{% endif %}
 {%- endfor %}
 );
+/* verilator lint_on PINMISSING */
 
 endmodule
 `resetall

@@ -210,7 +210,7 @@ pub struct RtlArgs {
     pub rom_style: Option<RomStyleFlag>,
     /// The FPGA family the datapath is shaped for: ice40 (16x16 DSPs with post-adders, short
     /// carry chains), ecp5 (MULT18X18D instances with their own registers, long carry chains;
-    /// simulate with ecp5_mult18x18d_sim.v, written beside) or generic (whole-width products
+    /// simulate with sim/ecp5_mult18x18d_sim.v, written with it) or generic (whole-width products
     /// and adds, left to the synthesis tool) [default ice40]
     #[arg(long, value_enum, help_heading = "RTL")]
     pub target: Option<TargetFlag>,

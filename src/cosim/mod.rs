@@ -103,6 +103,12 @@ impl Design {
         let mut manifests = Vec::new();
         let mut sources = Vec::new();
         let mut sim_models = Vec::new();
+        // the simulation models live in `sim/` (an output of an older specgen has them beside)
+        let sim_dir = dir.join(crate::names::SIM_DIR);
+        if sim_dir.is_dir() {
+            let models = std::fs::read_dir(&sim_dir).map_err(|e| input(format!("cannot read {}: {e}", sim_dir.display())))?;
+            sim_models.extend(models.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|e| e == "v")));
+        }
         for entry in entries.flatten() {
             let path = entry.path();
             match path.extension().and_then(|e| e.to_str()) {
@@ -134,7 +140,9 @@ impl Design {
         let mut inputs = vec![path.clone()];
         for f in listed.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
             // a listed name is a plain file name of the unit's; anything else is not ours to guard
-            if let Some(name) = f.get("name").and_then(|n| n.as_str()).filter(|n| !n.contains('/') && *n != ".." && *n != ".") {
+            let plain = |n: &str| !n.is_empty() && !n.contains('/') && n != ".." && n != ".";
+            let ours = |n: &&str| plain(n) || n.strip_prefix(crate::names::SIM_DIR).and_then(|r| r.strip_prefix('/')).is_some_and(plain);
+            if let Some(name) = f.get("name").and_then(|n| n.as_str()).filter(ours) {
                 let p = dir.join(name);
                 if p.exists() {
                     inputs.push(p);

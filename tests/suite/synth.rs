@@ -211,3 +211,20 @@ fn blinn_takes_at_most_6_sb_mac16_and_4_block_rams() {
     assert!(dsp <= 3 + 3, "{dsp} SB_MAC16: more than 3 in the intensity path: {r}");
     assert!(r["block_rams"].as_u64().unwrap() <= 4, "{r}");
 }
+
+/// Every synthesis ends in yosys `check -assert`: an undriven net (here the unit's `done`
+/// rewired to a wire nothing drives) fails with yosys's words instead of passing silently.
+#[test]
+fn an_undriven_net_fails_synthesis() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "u", &[]);
+    let v = dir.join("specular_unit.v");
+    let text = std::fs::read_to_string(&v).unwrap();
+    let line = text.lines().find(|l| l.starts_with("assign done")).expect("the done output").to_string();
+    std::fs::write(&v, text.replace(&line, "wire never_driven;\nassign done = never_driven;")).unwrap();
+    let o = specgen().arg("synth").arg("--rtl").arg(&dir).args(["--target", "ecp5", "--no-pnr"]).output().unwrap();
+    let all = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert_eq!(o.status.code(), Some(1), "{all}");
+    assert!(all.contains("never_driven is used but has no driver"), "{all}");
+}

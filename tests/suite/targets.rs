@@ -14,11 +14,17 @@ fn cosim(dir: &Path, args: &[&str]) -> Output {
     specgen().arg("cosim").arg("--rtl").arg(dir).args(args).env("SPECGEN_CACHE_DIR", cache_dir()).output().unwrap()
 }
 
-/// Every `*.v` of a generated directory, simulation models last.
+/// Every `*.v` of a generated directory, then the simulation models of its `sim/`.
 fn verilog_files(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> =
-        std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().to_string()).filter(|n| n.ends_with(".v")).collect();
-    v.sort_by_key(|n| (n.ends_with("_sim.v"), n.clone()));
+    let names = |d: &Path| -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .map(|r| r.flatten().map(|e| e.file_name().to_string_lossy().to_string()).filter(|n| n.ends_with(".v")).collect())
+            .unwrap_or_default();
+        v.sort();
+        v
+    };
+    let mut v = names(dir);
+    v.extend(names(&dir.join("sim")).into_iter().map(|n| format!("sim/{n}")));
     v
 }
 
@@ -37,7 +43,7 @@ fn deepest(args: &[&str]) -> String {
 
 /// The ECP5 unit at its deepest pipeline: products on MULT18X18D through the product module,
 /// the ROM on a DP16KD with its contents as INITVAL parameters, the primitives' simulation
-/// models beside it; lint-clean under `verilator -Wall` with them, compiled by Icarus, and
+/// models in `sim/` (so `read_verilog *.v; synth_ecp5` of the directory works); lint-clean under `verilator -Wall` with them, compiled by Icarus, and
 /// equal to the golden model on every input under Verilator.
 #[test]
 fn ecp5_unit_is_right_everywhere_and_lint_clean() {
@@ -47,14 +53,22 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
     let stages = deepest(&["--target", "ecp5"]);
     let dir = generate(tmp.path(), "ecp5", &["--target", "ecp5", "--stages", &stages]);
     let files = verilog_files(&dir);
-    assert_eq!(files, ["specular_unit.v", "specular_unit_mult18x18.v", "specular_unit_rom1k18.v", "ecp5_dp16kd_sim.v", "ecp5_mult18x18d_sim.v"]);
+    assert_eq!(files, ["specular_unit.v", "specular_unit_mult18x18.v", "specular_unit_rom1k18.v", "sim/ecp5_dp16kd_sim.v", "sim/ecp5_mult18x18d_sim.v"]);
     assert!(!dir.join("cos_sp_rom.hex").exists(), "the ROM's contents are the DP16KD's INITVAL parameters");
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
     assert_eq!(unit.matches("specular_unit_mult18x18 ").count(), 7, "kn, two deviation products, the square, three colours");
     assert_eq!(unit.matches("specular_unit_rom1k18 #(").count(), 1);
     assert!(!has_multiply(&unit), "every product on a DSP at the deepest pipeline");
     let core = std::fs::read_to_string(dir.join("specular_unit.core")).unwrap();
-    assert!(core.contains("tool: yosys") && core.contains("arch: ecp5") && core.contains("sim_models:") && core.contains("- ecp5_mult18x18d_sim.v"), "{core}");
+    assert!(
+        core.contains("tool: yosys") && core.contains("arch: ecp5") && core.contains("sim_models:") && core.contains("- sim/ecp5_mult18x18d_sim.v"),
+        "{core}"
+    );
+    // a user's flow: every *.v of the directory into yosys, no list kept by hand
+    let rtl: Vec<&String> = files.iter().filter(|f| !f.contains('/')).collect();
+    let script = format!("read_verilog {}; synth_ecp5 -top specular_unit", rtl.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(" "));
+    let o = Command::new("yosys").current_dir(&dir).args(["-q", "-p", &script]).output().unwrap();
+    assert!(o.status.success(), "read_verilog *.v; synth_ecp5:\n{}", text(&o));
     let o = Command::new("verilator").current_dir(&dir).args(["--lint-only", "-Wall"]).args(&files).output().unwrap();
     assert!(o.status.success() && o.stderr.is_empty(), "verilator -Wall:\n{}", text(&o));
     let o = Command::new("iverilog").current_dir(&dir).args(["-g2005", "-o", "/dev/null"]).args(&files).output().unwrap();
