@@ -153,6 +153,43 @@ fn decode(rec: &[u8]) -> Sampled {
 
 /// Runs one stimulus through the built simulator, checking every cycle. `progress` counts
 /// cycles done (for the progress bar).
+/// How long one simulator run may take: a minute plus 2 ms a cycle (Icarus simulates about
+/// 20 000 cycles a second here, Verilator millions), or `SPECGEN_SIM_TIMEOUT` seconds when set.
+/// A run past it is killed and reported (a zero-delay loop in the RTL never advances time).
+fn time_limit(cycles: u64) -> std::time::Duration {
+    match std::env::var("SPECGEN_SIM_TIMEOUT").ok().and_then(|s| s.trim().parse::<u64>().ok()) {
+        Some(s) => std::time::Duration::from_secs(s.max(1)),
+        None => std::time::Duration::from_secs(60) + std::time::Duration::from_millis(cycles.saturating_mul(2)),
+    }
+}
+
+/// Kills process `pid` unless the returned sender is dropped (or sent to) within `limit`;
+/// the flag tells afterwards whether it was killed.
+fn watchdog(pid: u32, limit: std::time::Duration) -> (std::sync::mpsc::Sender<()>, std::sync::Arc<std::sync::atomic::AtomicBool>) {
+    let (tx, rx) = std::sync::mpsc::channel::<()>();
+    let fired = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let flag = fired.clone();
+    std::thread::spawn(move || {
+        if let Err(std::sync::mpsc::RecvTimeoutError::Timeout) = rx.recv_timeout(limit) {
+            flag.store(true, Ordering::SeqCst);
+            // SAFETY: a signal to our own child, which has not been waited for (the sender is
+            // still alive), so its pid is not reused
+            unsafe { libc::kill(pid as libc::pid_t, libc::SIGKILL) };
+        }
+    });
+    (tx, fired)
+}
+
+fn timed_out(tool: &str, limit: std::time::Duration, len: u64) -> Failure {
+    error::tool(
+        tool,
+        format!(
+            "the simulation of {len} cycles did not finish within {} s and was stopped: a zero-delay loop in the RTL? (on a slower machine, set SPECGEN_SIM_TIMEOUT to more seconds)",
+            limit.as_secs()
+        ),
+    )
+}
+
 pub fn run_one(
     built: &Built,
     design: &Design,
@@ -173,6 +210,8 @@ pub fn run_one(
                 .stderr(Stdio::piped())
                 .spawn()
                 .map_err(|e| error::tool("verilator", format!("cannot start the Verilator harness: {e}")))?;
+            let limit = time_limit(stim.len());
+            let (_alive, fired) = watchdog(child.id(), limit);
             let mut stdin = child.stdin.take().unwrap();
             let mut stdout = child.stdout.take().unwrap();
             let len = stim.len();
@@ -197,6 +236,10 @@ pub fn run_one(
                 while t < len {
                     let n = (len - t).min(CHUNK) as usize;
                     if let Err(e) = stdout.read_exact(&mut buf[..n * OUT_RECORD]) {
+                        if fired.load(Ordering::SeqCst) {
+                            let _ = child.wait();
+                            return Err(timed_out("verilator", limit, len));
+                        }
                         let mut err = String::new();
                         let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
                         let _ = child.wait();
@@ -231,14 +274,24 @@ pub fn run_one(
                         .map_err(|e| error::tool("simulator", e.to_string()))?;
                 }
             }
-            let out = Command::new("vvp")
+            let child = Command::new("vvp")
                 .current_dir(&design.dir)
                 .arg("-n")
                 .arg(built.dir.join("sim.vvp"))
                 .arg(format!("+vec_in={}", vin.display()))
                 .arg(format!("+vec_out={}", vout.display()))
-                .output()
+                .stdin(Stdio::null())
+                .stdout(Stdio::piped())
+                .stderr(Stdio::piped())
+                .spawn()
                 .map_err(|e| error::tool("vvp", format!("cannot run vvp (Debian package `iverilog`): {e}")))?;
+            let limit = time_limit(stim.len());
+            let (alive, fired) = watchdog(child.id(), limit);
+            let out = child.wait_with_output().map_err(|e| error::tool("vvp", e.to_string()))?;
+            drop(alive);
+            if fired.load(Ordering::SeqCst) {
+                return Err(timed_out("vvp", limit, stim.len()));
+            }
             if !out.status.success() {
                 return Err(error::tool("vvp", format!("vvp failed: {}", String::from_utf8_lossy(&out.stderr))));
             }

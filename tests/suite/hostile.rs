@@ -442,3 +442,28 @@ fn outputs_of_another_kind_or_edited_by_hand_are_not_replaced() {
     assert!(o.status.success(), "{}", text(&o));
     assert!(!std::fs::read_to_string(&v).unwrap().contains("my change"));
 }
+
+/// Every simulation has a time limit: RTL with a zero-delay loop (two processes that wake each
+/// other at time 0) hangs vvp forever; cosim stops it and says why (exit 1).
+#[test]
+fn a_zero_delay_loop_is_stopped_by_the_time_limit() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "loop", &["--stages", "2"]);
+    let v = dir.join("specular_unit.v");
+    let src = std::fs::read_to_string(&v).unwrap();
+    let looped = "reg zero_delay_a = 1'b0, zero_delay_b = 1'b0;\nalways @(zero_delay_a) zero_delay_b = ~zero_delay_a;\n\
+                  always @(zero_delay_b) zero_delay_a = zero_delay_b;\nendmodule";
+    std::fs::write(&v, src.replacen("endmodule", looped, 1)).unwrap();
+    let start = std::time::Instant::now();
+    let o = specgen()
+        .args(["cosim", "--simulator", "icarus", "--vectors", "50", "--rtl"])
+        .arg(&dir)
+        .env("SPECGEN_SIM_TIMEOUT", "2")
+        .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("did not finish within 2 s"), "{}", text(&o));
+    assert!(start.elapsed() < std::time::Duration::from_secs(60), "the limit did not stop it");
+}
