@@ -61,6 +61,7 @@ reg  [WIDTH-1:0]      queued_1, queued_2;            // results waiting behind o
 reg                   queued_1_valid, queued_2_valid; // the queue fills from out: queued_2 only behind queued_1
 reg                   queue_full;                    // out, queued_1, queued_2 and read_q hold three results
 reg  [DEPTH_LOG2:0]   used;                          // taken, not yet delivered: 0..DEPTH
+reg  [DEPTH_LOG2:0]   used_up;                       // used + 1, kept beside it
 
 // a read starts when a result is in the places and the queue and read_q hold at most two, so
 // the result has a register to go to the clock after, whether or not out delivers
@@ -70,6 +71,8 @@ wire                  one_left = write_at == read_after;
 wire                  out_moves = !out_valid || out_ready;      // out may load
 wire                  queued_1_moves = !queued_1_valid || out_ready;  // queued_1 may load (empty behind an empty out)
 wire                  deliver = out_valid && out_ready;
+wire                  step_up = take && !deliver;               // used goes up by one
+wire                  step_down = deliver && !take;             // used goes down by one
 
 assign take = in_valid && in_ready;
 assign idle = used == {(DEPTH_LOG2 + 1){1'b0}};
@@ -95,6 +98,7 @@ always @(posedge clk) begin
         queue_full     <= 1'b0;
         queued_2_valid <= 1'b0;
         used           <= {(DEPTH_LOG2 + 1){1'b0}};
+        used_up        <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
         in_ready       <= 1'b0;
     end else begin
         if (result_valid) write_at <= write_at + 1'b1;
@@ -112,7 +116,10 @@ always @(posedge clk) begin
         // three next: three now and none delivered, or two now, a read and none delivered
         // (with two or more, out_valid is high and out_ready alone decides a delivery)
         queue_full     <= !out_ready && (queue_full || (queue_two && !empty));
-        used     <= used + {{ "{" }}{DEPTH_LOG2{deliver && !take}}, take ^ deliver};
+        // no adder between the handshake and a register: used moves to used_up or used - 1,
+        // both computed from registers alone
+        used     <= step_up ? used_up : step_down ? used - 1'b1 : used;
+        used_up  <= step_up ? used_up + 1'b1 : step_down ? used : used_up;
         // at most DEPTH - 2 taken before this clock: at most DEPTH - 1 after it, and a take in
         // the next cycle still finds a place
         in_ready <= used < DEPTH - 1'b1;
