@@ -5,6 +5,7 @@
 //
 // Parameters: cos_frac_bits=15 n_bits=10 color_bits=8 intensity_frac_bits=15
 //             k=0.3686 k_frac_bits=16 (k_code=24157, k_q=0.3686065673828125) stages=0 rounding=faithful rom_style=file
+// Fingerprint: de5bd01580b04d02 (of these parameters; specular_unit.json states the same)
 // Formula:    S = [1 - k_q*n*(1 - cos_g)]^2, cut to 0 where the bracket is negative (done);
 //             intensity = S (UQ1.15), spec_X = S * ks_X.
 // Rounding:   faithful: every output within 1 ulp of the exact value (|o - o*| < 1)

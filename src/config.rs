@@ -298,6 +298,7 @@ impl SpecularModel {
 pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "generator",
     "version",
+    "fingerprint",
     "k_code",
     "latency",
     "ports",
@@ -493,6 +494,16 @@ impl Config {
             SpecularModel::Quadratic => self.arch().name(),
             other => other.name(),
         }
+    }
+
+    /// A digest of the configuration: the first 16 hex digits of the SHA-256 of the model's own
+    /// parameters as the manifest states them. The manifest and the unit's header both carry
+    /// it, so a reader tells with one comparison whether the files belong together.
+    pub fn fingerprint(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let mut v = serde_json::to_value(&self.params).expect("parameters serialise");
+        self.model().keep_own_keys(&mut v);
+        Sha256::digest(v.to_string().as_bytes()).iter().take(8).map(|b| format!("{b:02x}")).collect()
     }
 
     /// The parameters that define the unit, as `name=value` words (for file headers).

@@ -245,6 +245,8 @@ pub(crate) struct DspView {
 pub(crate) struct UnitTemplate<'a> {
     pub top: &'a str,
     pub version: &'a str,
+    /// `Config::fingerprint`, repeated from the manifest
+    pub fingerprint: String,
     pub model: &'a str,
     pub p: &'a Params,
     pub param_line: String,
@@ -393,6 +395,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     UnitTemplate {
         top: cfg.top(),
         version: VERSION,
+        fingerprint: cfg.fingerprint(),
         model: cfg.model().name(),
         p,
         param_line,
@@ -657,6 +660,8 @@ pub(crate) struct FileEntry {
 pub(crate) struct Manifest<'a> {
     pub generator: &'static str,
     pub version: &'static str,
+    /// `Config::fingerprint`: the unit's header repeats it
+    pub fingerprint: String,
     #[serde(flatten)]
     pub params: &'a Params,
     pub k_code: u64,
@@ -741,6 +746,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let manifest = Manifest {
         generator: "specgen",
         version: VERSION,
+        fingerprint: cfg.fingerprint(),
         params: &cfg.params,
         k_code: cfg.k_code,
         latency: cfg.latency(),

@@ -9,6 +9,7 @@
 {%- if !interface_line.is_empty() %}
 //             {{ interface_line }}
 {%- endif %}
+// Fingerprint: {{ fingerprint }} (of these parameters; {{ top }}.json states the same)
 {%- for line in formula %}
 // {% if loop.first %}Formula:    {% else %}            {% endif %}{{ line }}
 {%- endfor %}

@@ -28,11 +28,16 @@ pub struct CosimArgs {
     /// Parallel simulator processes [1..=64; default: available cores].
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=64))]
     pub jobs: Option<u16>,
+    /// Check an RTL changed on purpose against its manifest's configuration (without it, a
+    /// file whose SHA-256 is not the manifest's is refused: a stale or mixed directory).
+    #[arg(long)]
+    pub edited: bool,
 }
 
 /// `specgen cosim`: exit 0 when every output matches, 1 on any mismatch, 2 on usage errors.
 pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
+    design.verify_files(args.edited)?;
     if let Some(trace) = &args.trace {
         design.refuse_output("--trace", trace)?;
     }

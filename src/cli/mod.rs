@@ -505,6 +505,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     let mut designs = Vec::new();
     for dir in &dirs {
         let design = cosim::Design::load(dir)?;
+        design.verify_files(false)?;
         design.refuse_output("--out", &args.out)?;
         let n_max = (1u32 << design.cfg.n_bits()) - 1;
         if let Some(bad) = args.n.iter().find(|&&n| n > n_max) {
@@ -612,6 +613,7 @@ pub fn main() -> i32 {
 fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
     use specgen::vectors::{Selection, VectorFormat};
     let design = specgen::cosim::Design::load(&args.rtl)?;
+    design.verify_files(false)?;
     design.refuse_output("--out", &args.out)?;
     let model = design.plan.model();
     let selection = if args.exhaustive { Selection::Exhaustive } else { Selection::Random { count: args.count, seed: args.seed } };

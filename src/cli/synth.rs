@@ -45,6 +45,10 @@ pub struct SynthArgs {
 
 pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
+    if args.verify {
+        // the netlist is compared with the golden model: the RTL must first be what specgen wrote
+        design.verify_files(false)?;
+    }
     for (flag, out) in [("--json", &args.json), ("--pnr-log", &args.pnr_log)] {
         if let Some(out) = out {
             design.refuse_output(flag, out)?;

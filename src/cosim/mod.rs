@@ -23,6 +23,7 @@ pub use stimulus::{corner_vectors, random_stimulus, random_vector, splitmix, Exh
 use crate::config::{Config, Params};
 use crate::error::{input, Error};
 use crate::models::{Inputs, Outputs};
+use sha2::Digest;
 use std::path::{Path, PathBuf};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,6 +68,54 @@ impl Design {
             Some(i) => Err(input(format!("{flag} {} is the unit's own file {}; write it elsewhere", out.display(), i.display()))),
             None => Ok(()),
         }
+    }
+
+    /// Whether the directory holds what specgen wrote, checked before anything is simulated or
+    /// compared, each difference named (exit 2): the manifest's fingerprint against its own
+    /// parameters (a hand-edited manifest), the unit's header against the manifest (files of two
+    /// configurations), and, unless `edited` (an RTL changed on purpose, to be checked against
+    /// the manifest's configuration), every listed file's SHA-256.
+    pub fn verify_files(&self, edited: bool) -> Result<(), Error> {
+        let manifest = &self.inputs[0];
+        let text = crate::small_file::read(manifest, MANIFEST_MAX_BYTES).map_err(|e| input(format!("manifest {}: {e}", manifest.display())))?;
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
+        let ours = self.cfg.fingerprint();
+        if let Some(stated) = v.get("fingerprint").and_then(|f| f.as_str()) {
+            if stated != ours {
+                return Err(input(format!(
+                    "manifest {}: its parameters are not the ones specgen wrote it with (fingerprint {stated} stated, {ours} from its parameters): edited by hand? regenerate the unit",
+                    manifest.display()
+                )));
+            }
+        }
+        let top = self.dir.join(format!("{}.v", self.cfg.top()));
+        if let Ok(unit) = crate::small_file::read(&top, 64 << 20) {
+            let header = unit.lines().take(40).find_map(|l| l.strip_prefix("// Fingerprint: ")).and_then(|r| r.split_whitespace().next());
+            if let Some(h) = header.filter(|h| *h != ours) {
+                return Err(input(format!(
+                    "{} was generated for another configuration (fingerprint {h}) than its manifest {} states ({ours}): files of two units in one directory",
+                    top.display(),
+                    manifest.display()
+                )));
+            }
+        }
+        if edited {
+            return Ok(());
+        }
+        for f in v.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
+            let (Some(name), Some(want)) = (f.get("name").and_then(|n| n.as_str()), f.get("sha256").and_then(|h| h.as_str())) else { continue };
+            let Some(path) = self.inputs.iter().find(|p| p.strip_prefix(&self.dir).is_ok_and(|r| r == Path::new(name))) else { continue };
+            let bytes = std::fs::read(path).map_err(|e| input(format!("cannot read {}: {e}", path.display())))?;
+            let got: String = sha2::Sha256::digest(&bytes).iter().map(|b| format!("{b:02x}")).collect();
+            if got != want {
+                return Err(input(format!(
+                    "{} is not the file specgen wrote (its SHA-256 is not the one manifest {} lists): regenerate it, or pass --edited to check an RTL changed on purpose",
+                    path.display(),
+                    manifest.display()
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// What a simulator reads: the sources, then the simulation models.

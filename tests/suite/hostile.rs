@@ -219,11 +219,48 @@ fn a_manifest_that_disagrees_with_the_rtl_is_reported_as_such() {
     std::fs::write(&m, std::fs::read_to_string(&m).unwrap().replace("\"color_bits\": 8", "\"color_bits\": 10")).unwrap();
     let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(["cosim", "--rtl"]).arg(&dir).output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("its parameters are not the ones specgen wrote it with (fingerprint"), "{}", text(&o));
+    // without fingerprints (the files of an older specgen): the ports are compared
+    let drop_line = |path: &std::path::Path, key: &str| {
+        let t = std::fs::read_to_string(path).unwrap();
+        let line = t.lines().find(|l| l.contains(key)).unwrap().to_string();
+        std::fs::write(path, t.replace(&format!("{line}\n"), "")).unwrap();
+    };
+    drop_line(&m, "\"fingerprint\"");
+    drop_line(&dir.join("specular_unit.v"), "// Fingerprint: ");
+    let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(["cosim", "--edited", "--rtl"]).arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(
         text(&o).contains("disagree with the manifest") && text(&o).contains("spec_r is output of 8 bits in the RTL, output of 10 bits by the manifest"),
         "{}",
         text(&o)
     );
+}
+
+/// The unit's header repeats the manifest's fingerprint, and the manifest lists each file's
+/// SHA-256: a unit of another configuration beside the manifest, or a file changed since
+/// specgen wrote it, is named before anything is simulated (exit 2); `--edited` accepts a
+/// changed RTL on purpose.
+#[test]
+fn files_that_are_not_what_the_manifest_lists_are_named() {
+    let tmp = tempfile::tempdir().unwrap();
+    let fitted = generate(tmp.path(), "fitted", &["--model", "fitted"]);
+    let blinn = generate(tmp.path(), "blinn", &["--model", "blinn"]);
+    std::fs::copy(blinn.join("specular_unit.v"), fitted.join("specular_unit.v")).unwrap();
+    for cmd in [&["cosim"][..], &["vectors", "--count", "10", "--out", "/dev/null"][..], &["synth", "--no-pnr", "--verify"][..]] {
+        let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(cmd).arg("--rtl").arg(&fitted).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{cmd:?}: {}", text(&o));
+        assert!(text(&o).contains("was generated for another configuration (fingerprint"), "{cmd:?}: {}", text(&o));
+    }
+    // one changed line in the unit: refused, named; accepted with --edited (and then right)
+    let dir = generate(tmp.path(), "u", &["--stages", "2"]);
+    let v = dir.join("specular_unit.v");
+    std::fs::write(&v, std::fs::read_to_string(&v).unwrap().replacen("// Formula:", "// formula, reworded:", 1)).unwrap();
+    let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(["cosim", "--vectors", "100", "--rtl"]).arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("specular_unit.v is not the file specgen wrote") && text(&o).contains("--edited"), "{}", text(&o));
+    let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(["cosim", "--edited", "--vectors", "100", "--rtl"]).arg(&dir).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
 }
 
 /// Issue 25, point 1: no shell. A file name in `--rtl` and the `--yosys` path are data: a file
@@ -457,7 +494,7 @@ fn a_zero_delay_loop_is_stopped_by_the_time_limit() {
     std::fs::write(&v, src.replacen("endmodule", looped, 1)).unwrap();
     let start = std::time::Instant::now();
     let o = specgen()
-        .args(["cosim", "--simulator", "icarus", "--vectors", "50", "--rtl"])
+        .args(["cosim", "--edited", "--simulator", "icarus", "--vectors", "50", "--rtl"])
         .arg(&dir)
         .env("SPECGEN_SIM_TIMEOUT", "2")
         .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))

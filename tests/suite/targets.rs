@@ -11,7 +11,8 @@ fn text(o: &Output) -> String {
 }
 
 fn cosim(dir: &Path, args: &[&str]) -> Output {
-    specgen().arg("cosim").arg("--rtl").arg(dir).args(args).env("SPECGEN_CACHE_DIR", cache_dir()).output().unwrap()
+    // --edited: the fault tests change the RTL on purpose
+    specgen().arg("cosim").arg("--edited").arg("--rtl").arg(dir).args(args).env("SPECGEN_CACHE_DIR", cache_dir()).output().unwrap()
 }
 
 /// Every `*.v` of a generated directory, then the simulation models of its `sim/`.
