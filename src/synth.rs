@@ -490,6 +490,24 @@ pub struct Verification {
 pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: u64) -> Result<Verification, Failure> {
     use crate::cosim::{build, check_ports, random_stimulus, run_all, Simulator, Stimulus};
     require(yosys, "yosys")?;
+    // the RTL first, on the same vectors: a netlist is blamed only for what its RTL gets right
+    let jobs = std::thread::available_parallelism().map_or(1, |c| c.get());
+    {
+        let model = design.plan.model();
+        let built = build(design, Simulator::Verilator, false)?;
+        check_ports(design)?;
+        let stims: Vec<Box<dyn Stimulus>> = vec![Box::new(random_stimulus(&model, vectors, 1))];
+        let rtl = run_all(&built, design, &model, &stims, jobs)?;
+        if let Some(m) = &rtl.first {
+            return Err(error::mismatch(format!(
+                "the RTL in {} itself differs from the golden model ({} of {} checked cycles), so its netlist was not judged: regenerate the unit\n{}",
+                design.dir.display(),
+                rtl.mismatches,
+                rtl.checked,
+                crate::cosim::describe(m, &design.cfg)
+            )));
+        }
+    }
     let top = design.cfg.top().to_string();
     let work = tempfile::tempdir().map_err(|e| error::tool("yosys", e.to_string()))?;
     let dir = work.path().join("netlist");
@@ -545,7 +563,6 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
     std::fs::copy(&manifest, dir.join(format!("{top}.json"))).map_err(|e| Failure::io("read", &manifest, e))?;
     let mapped = Design::load(&dir)?;
     let model = mapped.plan.model();
-    let jobs = std::thread::available_parallelism().map_or(1, |c| c.get());
     let mut runs = Vec::new();
     for (simulator, count) in [(Simulator::Verilator, vectors), (Simulator::Icarus, vectors / 10)] {
         let built = build(&mapped, simulator, false)?;

@@ -504,3 +504,26 @@ fn a_zero_delay_loop_is_stopped_by_the_time_limit() {
     assert!(text(&o).contains("did not finish within 2 s"), "{}", text(&o));
     assert!(start.elapsed() < std::time::Duration::from_secs(60), "the limit did not stop it");
 }
+
+/// `synth --verify` checks the RTL against the golden model before the netlist: a faulty RTL
+/// (here with a manifest that lists it, as a faulty generator would write) is named as such,
+/// and yosys is not blamed.
+#[test]
+fn verify_blames_a_faulty_rtl_not_yosys() {
+    require_tool("yosys", "yosys");
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "u", &["--stages", "2"]);
+    let v = dir.join("specular_unit.v");
+    let src = std::fs::read_to_string(&v).unwrap();
+    let line = src.lines().find(|l| l.starts_with("assign intensity")).expect("the intensity output").to_string();
+    let faulty = src.replace(&line, &line.replace("= ", "= 16'h1 ^ "));
+    std::fs::write(&v, &faulty).unwrap();
+    let sha = |b: &[u8]| -> String { <sha2::Sha256 as sha2::Digest>::digest(b).iter().map(|x| format!("{x:02x}")).collect() };
+    let m = dir.join("specular_unit.json");
+    std::fs::write(&m, std::fs::read_to_string(&m).unwrap().replace(&sha(src.as_bytes()), &sha(faulty.as_bytes()))).unwrap();
+    let o =
+        specgen().env("SPECGEN_CACHE_DIR", cache_dir()).args(["synth", "--no-pnr", "--verify", "--verify-vectors", "300", "--rtl"]).arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("itself differs from the golden model") && !text(&o).contains("synthesis tool changed"), "{}", text(&o));
+}
