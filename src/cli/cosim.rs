@@ -42,6 +42,9 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
         design.refuse_output("--trace", trace)?;
     }
     check_tables(&design)?;
+    // the directory as it is now: if it changes during the run (a generate swapping it), the
+    // results are not judged against it
+    let before = design.snapshot();
     let model = design.plan.model();
     let jobs = args.jobs.map(usize::from).unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(64)).max(1);
     let t0 = Instant::now();
@@ -55,7 +58,15 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
         vec![Box::new(random_stimulus(&model, args.vectors, args.seed))]
     };
     let t1 = Instant::now();
-    let report = run_all(&built, &design, &model, &stims, jobs)?;
+    let report = run_all(&built, &design, &model, &stims, jobs);
+    if design.snapshot() != before {
+        return Err(specgen::error::mismatch(format!(
+            "{} changed during the run (written by another command?), so its results were not judged: run cosim again",
+            design.dir.display()
+        ))
+        .into());
+    }
+    let report = report?;
     let check_time = t1.elapsed();
     let rate = report.cycles as f64 / check_time.as_secs_f64().max(1e-9);
     outln!(

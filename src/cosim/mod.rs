@@ -118,6 +118,29 @@ impl Design {
         Ok(())
     }
 
+    /// What the unit's directory is now: its identity (device and inode: a swap by `generate`
+    /// gives the name a new directory) and a digest of every file of the unit. Two snapshots
+    /// differ when the directory changed in between.
+    pub fn snapshot(&self) -> Vec<u8> {
+        use std::os::unix::fs::MetadataExt;
+        let mut h = sha2::Sha256::new();
+        if let Ok(m) = std::fs::metadata(&self.dir) {
+            h.update(m.dev().to_le_bytes());
+            h.update(m.ino().to_le_bytes());
+        }
+        let mut files: Vec<&PathBuf> = self.inputs.iter().chain(&self.sources).chain(&self.sim_models).collect();
+        files.sort();
+        files.dedup();
+        for f in files {
+            h.update(f.as_os_str().as_encoded_bytes());
+            match std::fs::read(f) {
+                Ok(bytes) => h.update(sha2::Sha256::digest(&bytes)),
+                Err(_) => h.update(b"missing"),
+            }
+        }
+        h.finalize().to_vec()
+    }
+
     /// What a simulator reads: the sources, then the simulation models.
     pub(crate) fn sim_sources(&self) -> Vec<PathBuf> {
         self.sources.iter().chain(&self.sim_models).cloned().collect()

@@ -527,3 +527,26 @@ fn verify_blames_a_faulty_rtl_not_yosys() {
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(text(&o).contains("itself differs from the golden model") && !text(&o).contains("synthesis tool changed"), "{}", text(&o));
 }
+
+/// A directory swapped by `generate` while `cosim` reads it: the run says the directory
+/// changed (exit 1) instead of reporting the new unit's outputs as mismatches of the old.
+#[test]
+fn cosim_says_when_its_directory_changed_during_the_run() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "race", &["--stages", "2"]);
+    let run = specgen()
+        .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+        .args(["cosim", "--simulator", "icarus", "--vectors", "200000", "--jobs", "1", "--rtl"])
+        .arg(&dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    let o = specgen().args(["generate", "--stages", "3", "--out"]).arg(&dir).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let o = run.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("changed during the run") && !text(&o).contains("first mismatch"), "{}", text(&o));
+}
