@@ -66,8 +66,20 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     let key: String = h.finalize().iter().take(12).map(|b| format!("{b:02x}")).collect();
     let root = cache_root();
     let dir = root.join(format!("{}-{top}-{key}", tool));
-    if dir.join("ok").exists() {
-        return Ok(Built { simulator, dir, fresh: false });
+    // an entry is used only when its program is the one built: `ok` holds its SHA-256, so a
+    // damaged entry (truncated, deleted, overwritten) is removed and built again
+    let program = |d: &Path| {
+        d.join(match simulator {
+            Simulator::Verilator => "harness",
+            Simulator::Icarus => "sim.vvp",
+        })
+    };
+    let digest = |p: &Path| std::fs::read(p).ok().map(|b| Sha256::digest(&b).iter().map(|x| format!("{x:02x}")).collect::<String>());
+    if let Ok(stamp) = std::fs::read_to_string(dir.join("ok")) {
+        if digest(&program(&dir)).is_some_and(|d| d == stamp.trim()) {
+            return Ok(Built { simulator, dir, fresh: false });
+        }
+        let _ = std::fs::remove_dir_all(&dir);
     }
     std::fs::create_dir_all(&root).map_err(|e| error::tool("simulator", format!("cannot create cache {}: {e}", root.display())))?;
     let work = tempfile::Builder::new()
@@ -116,7 +128,8 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         let tail: Vec<&str> = log.lines().rev().take(25).collect();
         return Err(input(format!("{tool} could not build the RTL in {}:\n{}", design.dir.display(), tail.into_iter().rev().collect::<Vec<_>>().join("\n"))));
     }
-    std::fs::write(work.path().join("ok"), b"").map_err(|e| error::tool("simulator", e.to_string()))?;
+    let built = digest(&program(work.path())).ok_or_else(|| error::tool(tool, format!("{tool} reported success but wrote no program")))?;
+    std::fs::write(work.path().join("ok"), built).map_err(|e| error::tool("simulator", e.to_string()))?;
     let kept = work.keep();
     if std::fs::rename(&kept, &dir).is_err() {
         // another process built it at the same time: use theirs

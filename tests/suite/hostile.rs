@@ -550,3 +550,21 @@ fn cosim_says_when_its_directory_changed_during_the_run() {
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(text(&o).contains("changed during the run") && !text(&o).contains("first mismatch"), "{}", text(&o));
 }
+
+/// A damaged entry of the simulator cache (its program truncated) is built again, not run.
+#[test]
+fn a_damaged_cache_entry_is_rebuilt() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "u", &["--stages", "1"]);
+    let cache = tmp.path().join("cache");
+    let run = || specgen().env("SPECGEN_CACHE_DIR", &cache).args(["cosim", "--simulator", "icarus", "--vectors", "200", "--rtl"]).arg(&dir).output().unwrap();
+    let o = run();
+    assert!(o.status.success() && !text(&o).contains("(cached)"), "{}", text(&o));
+    let entry = std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.path()).find(|p| p.join("sim.vvp").is_file()).expect("a cache entry");
+    std::fs::write(entry.join("sim.vvp"), b"").unwrap();
+    let o = run();
+    assert!(o.status.success() && !text(&o).contains("(cached)"), "the damaged entry was used: {}", text(&o));
+    let o = run();
+    assert!(o.status.success() && text(&o).contains("(cached)"), "{}", text(&o));
+}
