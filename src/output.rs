@@ -250,6 +250,34 @@ fn through_links(path: &Path) -> std::io::Result<PathBuf> {
     Err(std::io::Error::from_raw_os_error(libc::ELOOP))
 }
 
+/// Opens a FIFO for writing without hanging: its reader has `FIFO_WAIT` to appear, then the
+/// write fails ("no process reads it").
+#[cfg(unix)]
+fn open_fifo(path: &Path) -> std::io::Result<std::fs::File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    use std::os::unix::io::AsRawFd;
+    const FIFO_WAIT: std::time::Duration = std::time::Duration::from_secs(10);
+    let start = std::time::Instant::now();
+    loop {
+        match std::fs::OpenOptions::new().write(true).custom_flags(libc::O_NONBLOCK).open(path) {
+            Ok(f) => {
+                // blocking writes from here on: the reader paces the stream
+                // SAFETY: fcntl on a descriptor we own
+                let flags = unsafe { libc::fcntl(f.as_raw_fd(), libc::F_GETFL) };
+                if flags < 0 || unsafe { libc::fcntl(f.as_raw_fd(), libc::F_SETFL, flags & !libc::O_NONBLOCK) } < 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                return Ok(f);
+            }
+            Err(e) if e.raw_os_error() == Some(libc::ENXIO) && start.elapsed() < FIFO_WAIT => std::thread::sleep(std::time::Duration::from_millis(50)),
+            Err(e) if e.raw_os_error() == Some(libc::ENXIO) => {
+                return Err(std::io::Error::other(format!("it is a FIFO and no process opened it for reading within {} s", FIFO_WAIT.as_secs())))
+            }
+            Err(e) => return Err(e),
+        }
+    }
+}
+
 /// Writes one file from a writer `fill` streams into: a buffered temp file in the same
 /// directory, renamed over the target only when `fill` succeeded (on error nothing is left);
 /// a FIFO or character device gets the stream itself.
@@ -261,7 +289,7 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
         use std::os::unix::fs::FileTypeExt;
         let t = m.file_type();
         if t.is_fifo() || t.is_char_device() {
-            let f = std::fs::OpenOptions::new().write(true).open(&path)?;
+            let f = if t.is_fifo() { open_fifo(&path)? } else { std::fs::OpenOptions::new().write(true).open(&path)? };
             let mut w = std::io::BufWriter::with_capacity(1 << 16, f);
             let v = fill(&mut w)?;
             std::io::Write::flush(&mut w)?;

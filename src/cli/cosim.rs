@@ -63,8 +63,7 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
         return Err(specgen::error::mismatch(format!(
             "{} changed during the run (written by another command?), so its results were not judged: run cosim again",
             design.dir.display()
-        ))
-        .into());
+        )));
     }
     let report = report?;
     let check_time = t1.elapsed();

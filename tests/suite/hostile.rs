@@ -568,3 +568,166 @@ fn a_damaged_cache_entry_is_rebuilt() {
     let o = run();
     assert!(o.status.success() && text(&o).contains("(cached)"), "{}", text(&o));
 }
+
+/// Issue 25, point 5: no panic, by fuzzing. Argument vectors are built from the flags each
+/// subcommand's `--help` lists and hostile values (huge and negative numbers, whitespace and
+/// line breaks, Verilog keywords, a FIFO, a dangling link, /dev/zero, the unit's own files as
+/// outputs); every run must end with exit 0, 1 or 2 within its time limit, never by a signal
+/// (a panic is 101, an abort a signal). Deterministic: a fixed seed, so CI runs the same cases.
+#[test]
+fn fuzzed_argument_vectors_exit_0_1_or_2() {
+    use proptest::strategy::{Strategy, ValueTree};
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let tmp = tempfile::tempdir().unwrap();
+    let unit = generate(tmp.path(), "unit", &["--stages", "2"]);
+    let cwd = tmp.path().join("a").join("b");
+    std::fs::create_dir_all(&cwd).unwrap();
+    let fifo = tmp.path().join("fifo");
+    let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    let dangling = tmp.path().join("dangling");
+    std::os::unix::fs::symlink(tmp.path().join("nowhere"), &dangling).unwrap();
+    let values: Vec<String> = [
+        "",
+        " ",
+        "0",
+        "1",
+        "2",
+        "3",
+        "-1",
+        "0.5",
+        "1.0",
+        "0.3686",
+        "64",
+        "1000",
+        "4294967295",
+        "4294967296",
+        "18446744073709551615",
+        "18446744073709551616",
+        "99999999999999999999999",
+        "1e9",
+        "nan",
+        "-0",
+        "\n0.3686",
+        "0.36\r86",
+        "always_ff",
+        "logic",
+        "SB_MAC16",
+        "specular_unit",
+        "é",
+        "x y",
+        "a;b",
+        "--out",
+        "ice40",
+        "ecp5",
+        "blinn",
+        "fitted",
+        "ready",
+        "axis",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .chain(
+        [
+            fifo.clone(),
+            dangling.clone(),
+            "/dev/zero".into(),
+            "/dev/null".into(),
+            unit.clone(),
+            unit.join("specular_unit.v"),
+            unit.join("specular_unit.json"),
+            unit.join("cos_sp_rom.hex"),
+            tmp.path().join("fresh"),
+            "..".into(),
+            ".".into(),
+        ]
+        .into_iter()
+        .map(|p| p.display().to_string()),
+    )
+    .collect();
+    let subcommands = ["generate", "rom", "eval", "cosim", "vectors", "synth", "render", "report"];
+    let flags: Vec<Vec<(String, bool)>> = subcommands
+        .iter()
+        .map(|sub| {
+            let help = String::from_utf8(specgen().args([sub, "--help"]).output().unwrap().stdout).unwrap();
+            help.lines()
+                .filter_map(|l| {
+                    let t = l.trim_start();
+                    let t = t.strip_prefix("-o, ").or_else(|| t.strip_prefix("-h, ")).unwrap_or(t);
+                    let name = t.strip_prefix("--")?.split([' ', '=']).next()?.to_string();
+                    (name != "help" && name != "jobs").then(|| (format!("--{name}"), t.contains('<')))
+                })
+                .collect()
+        })
+        .collect();
+    for (sub, f) in subcommands.iter().zip(&flags) {
+        assert!(f.len() >= 3, "{sub}: flags read from --help: {f:?}");
+    }
+    let case = (0..subcommands.len(), proptest::collection::vec((0..64usize, 0..values.len()), 0..3));
+    let mut runner = TestRunner::new_with_rng(Config::default(), TestRng::deterministic_rng(RngAlgorithm::ChaCha));
+    let limit = std::time::Duration::from_secs(120);
+    let started = std::time::Instant::now();
+    let cases = 60;
+    let mut codes = [0u32; 4];
+    for i in 0..cases {
+        let (s, picks) = case.new_tree(&mut runner).unwrap().current();
+        // a working command line first (so the hostile flags reach past argument parsing),
+        // then the hostile flags that do not repeat one of it
+        let fresh = |name: &str| tmp.path().join(format!("{name}{i}")).display().to_string();
+        let unit_dir = unit.display().to_string();
+        let base: Vec<String> = match subcommands[s] {
+            "generate" => vec!["--out".into(), fresh("g")],
+            "eval" => vec!["--cos".into(), "0.5".into(), "--n".into(), "3".into()],
+            "cosim" => vec!["--rtl".into(), unit_dir, "--vectors".into(), "300".into()],
+            "vectors" => vec!["--rtl".into(), unit_dir, "--count".into(), "50".into(), "--out".into(), fresh("v")],
+            "synth" => vec!["--rtl".into(), unit_dir, "--no-pnr".into()],
+            "render" => vec!["--rtl".into(), unit_dir, "--model-only".into(), "--size".into(), "16".into(), "--out".into(), fresh("r")],
+            "report" => vec!["--out".into(), fresh("rep")],
+            _ => vec![],
+        };
+        let mut argv = vec![subcommands[s].to_string()];
+        argv.extend(base.iter().cloned());
+        for (f, v) in picks {
+            let (flag, takes_value) = &flags[s][f % flags[s].len()];
+            if base.contains(flag) && i % 4 != 0 {
+                continue; // a repeated flag is a usage error; keep a quarter of them
+            }
+            argv.push(flag.clone());
+            if *takes_value {
+                argv.push(values[v].clone());
+            }
+        }
+        let mut child = specgen()
+            .args(&argv)
+            .current_dir(&cwd)
+            .env("SPECGEN_CACHE_DIR", cache_dir())
+            .env("SPECGEN_SIM_TIMEOUT", "20")
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut pipe = child.stderr.take().unwrap();
+        let drain = std::thread::spawn(move || {
+            let mut err = String::new();
+            let _ = std::io::Read::read_to_string(&mut pipe, &mut err);
+            err
+        });
+        let t0 = std::time::Instant::now();
+        let status = loop {
+            if let Some(st) = child.try_wait().unwrap() {
+                break st;
+            }
+            if t0.elapsed() > limit {
+                let _ = child.kill();
+                panic!("case {i}: specgen {argv:?} ran past {limit:?}");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        };
+        let err = drain.join().unwrap();
+        codes[status.code().unwrap_or(3).clamp(0, 3) as usize] += 1;
+        assert!(matches!(status.code(), Some(0..=2)), "case {i}: specgen {argv:?} ended with {status}:\n{err}");
+        assert!(!err.contains("panicked"), "case {i}: specgen {argv:?} panicked:\n{err}");
+    }
+    eprintln!("fuzz: {cases} argument vectors in {:.1} s, exit codes 0/1/2: {codes:?}", started.elapsed().as_secs_f64());
+}
