@@ -40,6 +40,11 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     design.verify_files(args.edited)?;
     if let Some(trace) = &args.trace {
         design.refuse_output("--trace", trace)?;
+        // say before the run, not after it, that the trace has nowhere to go
+        let parent = trace.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+        if !parent.is_dir() {
+            return Err(Failure::Input(format!("invalid --trace {}: the directory {} does not exist", trace.display(), parent.display())));
+        }
     }
     check_tables(&design)?;
     // the directory as it is now: if it changes during the run (a generate swapping it), the

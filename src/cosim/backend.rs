@@ -425,9 +425,15 @@ pub fn write_trace(design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], 
         cycles.push(Cycle { rst: true, valid: false, ..stim.cycle(from) });
     }
     cycles.extend((from..=to).map(|i| stim.cycle(i)));
-    let abs = if path.is_absolute() { path.to_path_buf() } else { std::env::current_dir().unwrap_or_default().join(path) };
-    run_one(&built, design, model, &Recorded(cycles), 0, &AtomicU64::new(0), &[("SPECGEN_VCD", &abs)])?;
-    Ok(())
+    // the harness writes into a directory of ours; the trace reaches `path` only when it exists
+    let work = tempfile::tempdir().map_err(|e| error::tool("simulator", e.to_string()))?;
+    let vcd = work.path().join("trace.vcd");
+    run_one(&built, design, model, &Recorded(cycles), 0, &AtomicU64::new(0), &[("SPECGEN_VCD", &vcd)])?;
+    let bytes = match std::fs::read(&vcd) {
+        Ok(b) if !b.is_empty() => b,
+        _ => return Err(error::tool("verilator", "the simulator wrote no trace")),
+    };
+    crate::output::write_file(path, &bytes).map_err(|e| Failure::io("write", path, e))
 }
 
 /// Whether `tool` is an executable on the PATH (looked up directly, no shell).

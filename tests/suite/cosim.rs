@@ -142,6 +142,11 @@ fn mismatch_with_trace_writes_a_vcd() {
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let dump = std::fs::read_to_string(&vcd).unwrap();
     assert!(dump.contains("$enddefinitions") && dump.contains("intensity"), "not a VCD of the unit");
+    // a trace with nowhere to go is refused before the run, not claimed after it
+    let nowhere = tmp.path().join("no-such-dir").join("fail.vcd");
+    let o = cosim(&tmp.path().join("t_parent").join("t"), &["--trace", nowhere.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("does not exist") && !text(&o).contains("trace of the replay"), "{}", text(&o));
 }
 
 #[test]
