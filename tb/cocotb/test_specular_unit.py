@@ -20,7 +20,7 @@ import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
 
-from specgen_manifest import manifest
+from specgen_manifest import check
 
 INPUTS = ["cos_g", "n", "ks_r", "ks_g", "ks_b"]
 OUTPUTS = ["intensity", "spec_r", "spec_g", "spec_b", "done"]
@@ -42,7 +42,8 @@ def value(signal):
 
 
 def rows_and_manifest():
-    info = manifest(os.environ["SPECGEN_RTL_DIR"])
+    # the files, the unit's header and the vectors must all be of the manifest's configuration
+    info = check(os.environ["SPECGEN_RTL_DIR"], os.environ["SPECGEN_VECTORS_FILE"])
     rows = load_vectors(os.environ["SPECGEN_VECTORS_FILE"])
     limit = int(os.environ.get("SPECGEN_MAX_ROWS", "0") or 0)
     if limit:

@@ -200,3 +200,33 @@ fn cocotb_drives_handshake_units_with_backpressure() {
     let (ok, log) = cocotb(&rtl, &bad, "icarus", &tmp.path().join("run-bad-axis"));
     assert!(!ok && log.contains("FAIL: 1 of 1 cocotb tests failed"), "a wrong vector must fail the stream run:\n{log}");
 }
+
+/// The cocotb testbench's own check (run by its Makefile before simulating, and by the test
+/// module): the directory's files against the manifest's SHA-256s, the unit's header and the
+/// vectors' header against its fingerprint; the first difference is named (exit 1).
+#[test]
+fn the_cocotb_check_names_files_of_another_configuration() {
+    let tmp = tempfile::tempdir().unwrap();
+    let fitted = generate(tmp.path(), "fitted", &["--model", "fitted"]);
+    let blinn = generate(tmp.path(), "blinn", &["--model", "blinn"]);
+    let vectors = |dir: &std::path::Path, name: &str| {
+        let out = tmp.path().join(name);
+        let o = specgen().args(["vectors", "--count", "20", "--rtl"]).arg(dir).arg("--out").arg(&out).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        out
+    };
+    let (own, other) = (vectors(&fitted, "fitted.csv"), vectors(&blinn, "blinn.csv"));
+    let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tb/cocotb/specgen_manifest.py");
+    let check =
+        |dir: &std::path::Path, v: &std::path::Path| std::process::Command::new("python3").arg(&script).arg("--check").arg(dir).arg(v).output().unwrap();
+    let say = |o: &std::process::Output| format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    let o = check(&fitted, &own);
+    assert!(o.status.success(), "{}", say(&o));
+    let o = check(&fitted, &other);
+    assert_eq!(o.status.code(), Some(1), "{}", say(&o));
+    assert!(say(&o).contains("holds vectors of another configuration"), "{}", say(&o));
+    std::fs::copy(blinn.join("specular_unit.v"), fitted.join("specular_unit.v")).unwrap();
+    let o = check(&fitted, &own);
+    assert_eq!(o.status.code(), Some(1), "{}", say(&o));
+    assert!(say(&o).contains("specular_unit.v is not the file specgen wrote"), "{}", say(&o));
+}
