@@ -20,7 +20,8 @@
 //!   lands where it points; the link stays). A parent we cannot write is named in the error.
 //!
 //! **A single-file output** (`rom -o`, `vectors --out`, `render --out`, `--trace`, `synth --json`)
-//! is written to a temporary file beside it and renamed over it. A symbolic link is written
+//! is written to a temporary file beside it (`.specgen-<tag>-<pid>-…`; one a killed run left is
+//! removed by the next run writing the same output) and renamed over it. A symbolic link is written
 //! through (its target is replaced, the link stays); a FIFO or character device (`/dev/null`,
 //! `/dev/stdout`) is written as a stream; any other special file is refused. A replaced file
 //! keeps its mode; a new one gets `0666 & !umask`.
@@ -250,6 +251,21 @@ fn through_links(path: &Path) -> std::io::Result<PathBuf> {
     Err(std::io::Error::from_raw_os_error(libc::ELOOP))
 }
 
+/// Removes the temporary files `<prefix><pid>-…` in `dir` whose process no longer runs.
+fn remove_orphans(dir: &Path, prefix: &str) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
+        let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else { continue };
+        // SAFETY: signal 0 only asks whether the process exists
+        let gone = pid > 0 && unsafe { libc::kill(pid, 0) } != 0 && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH);
+        if gone && entry.file_type().is_ok_and(|t| t.is_file()) {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
 /// Opens a FIFO for writing without hanging: its reader has `FIFO_WAIT` to appear, then the
 /// write fails ("no process reads it").
 #[cfg(unix)]
@@ -307,7 +323,11 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
         }
     }
     let parent = parent_dir(&path);
-    let mut tmp = tempfile::Builder::new().prefix(".specgen-").tempfile_in(&parent).map_err(plain)?;
+    // the temporary file is `.specgen-<tag>-<pid>-…`: what a killed run left for this output
+    // (its process gone) is removed by the next run writing it
+    let prefix = format!(".specgen-{}-", tag(&path));
+    remove_orphans(&parent, &prefix);
+    let mut tmp = tempfile::Builder::new().prefix(&format!("{prefix}{}-", std::process::id())).tempfile_in(&parent).map_err(plain)?;
     let value = {
         let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file_mut());
         let v = fill(&mut w)?;

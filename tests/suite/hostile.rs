@@ -156,6 +156,17 @@ fn single_file_outputs_go_through_links_into_fifos_and_keep_modes() {
     assert_eq!(reader.join().unwrap(), std::fs::read(&f).unwrap());
     use std::os::unix::fs::FileTypeExt;
     assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+    // what a run killed mid-write left is removed by the next run writing that file; the
+    // temporary file of a run still going (this test's own process) is not touched
+    let tag = specgen::output::tag(&f);
+    let orphan = tmp.path().join(format!(".specgen-{tag}-4194305-AbC123"));
+    let live = tmp.path().join(format!(".specgen-{tag}-{}-XyZ789", std::process::id()));
+    std::fs::write(&orphan, "half").unwrap();
+    std::fs::write(&live, "busy").unwrap();
+    let o = specgen().args(["rom", "-o"]).arg(&f).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(!orphan.exists() && live.exists(), "orphan removed, live kept");
+    std::fs::remove_file(&live).unwrap();
     // a directory is refused and left alone
     let o = specgen().args(["rom", "-o"]).arg(tmp.path()).output().unwrap();
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
