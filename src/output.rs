@@ -10,7 +10,8 @@
 //! renames are used, and a later run puts a saved old copy back instead of deleting it while
 //! the name is missing.
 //! - The lock is per output: a lock file `.specgen-lock-<hash of the name>` in the parent,
-//!   taken with `flock`, so writers of sibling outputs run in parallel.
+//!   taken with `flock` and removed on release, so writers of sibling outputs run in parallel
+//!   and nothing is left beside the output.
 //! - What an existing output may be is decided by the caller's check (`emit`'s
 //!   `check_replaceable`): an empty directory or a previous specgen output of the same kind.
 //! - The new directory gets the old one's mode (setgid included) and group; a new one gets
@@ -80,18 +81,38 @@ pub fn tag(target: &Path) -> String {
 
 /// Holds the exclusive lock of one output while it is swapped in, so two writers of the same
 /// output never race; the staging directories an interrupted run left are tidied under it.
-struct OutputLock(std::fs::File);
+/// The lock file is removed on release (while still locked); a writer that locked a file
+/// removed meanwhile sees that its file is no longer the one at the path and tries again.
+struct OutputLock {
+    file: std::fs::File,
+    path: PathBuf,
+}
 
 impl OutputLock {
     fn take(parent: &Path, target: &Path) -> Result<OutputLock, OutputError> {
+        use std::os::unix::fs::MetadataExt;
         let tag = tag(target);
         let path = parent.join(format!(".specgen-lock-{tag}"));
-        let f = std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&path).map_err(|e| unwritable(parent, target, e))?;
-        match f.try_lock() {
-            Ok(()) => {}
-            Err(std::fs::TryLockError::WouldBlock) => return Err(OutputError::Busy(target.to_path_buf())),
-            Err(std::fs::TryLockError::Error(e)) => return Err(e.into()),
-        }
+        let mut tries = 0;
+        let f = loop {
+            let f = std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&path).map_err(|e| unwritable(parent, target, e))?;
+            match f.try_lock() {
+                Ok(()) => {}
+                Err(std::fs::TryLockError::WouldBlock) => return Err(OutputError::Busy(target.to_path_buf())),
+                Err(std::fs::TryLockError::Error(e)) => return Err(e.into()),
+            }
+            let same = match (f.metadata(), std::fs::metadata(&path)) {
+                (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+                _ => false,
+            };
+            tries += 1;
+            if same {
+                break f;
+            }
+            if tries > 100 {
+                return Err(OutputError::Busy(target.to_path_buf()));
+            }
+        };
         // under the lock no other specgen is mid-swap on this output: what is left is from a
         // killed run. A saved old copy goes back when the name is missing, else it is removed.
         for entry in std::fs::read_dir(parent)?.flatten() {
@@ -107,13 +128,14 @@ impl OutputLock {
             }
             let _ = std::fs::remove_dir_all(entry.path());
         }
-        Ok(OutputLock(f))
+        Ok(OutputLock { file: f, path })
     }
 }
 
 impl Drop for OutputLock {
     fn drop(&mut self) {
-        let _ = self.0.unlock();
+        let _ = std::fs::remove_file(&self.path);
+        let _ = self.file.unlock();
     }
 }
 
