@@ -306,6 +306,8 @@ pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "files",
     "model_widths",
     "registered_cuts",
+    "stage_delay_estimate",
+    "predicted_fmax_mhz",
     "tdata",
     "blinn_error_max",
     "blinn_error_mean",

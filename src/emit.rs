@@ -674,6 +674,9 @@ pub(crate) struct Manifest<'a> {
     pub internal_widths: serde_json::Value,
     /// The cuts that hold a pipeline register (1-based step numbers).
     pub registered_cuts: &'a [u32],
+    /// `Plan::stage_delay`: the slowest stretch between registers, in the delay estimates'
+    /// units (what `--target-mhz`'s delay model reads)
+    pub stage_delay_estimate: f64,
     /// `max |intensity/2^FI − c^n|` over the inputs of `blinn_error_method` (SPEC §6).
     pub blinn_error_max: f64,
     pub blinn_error_mean: f64,
@@ -757,6 +760,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         }),
         internal_widths: unit.widths(),
         registered_cuts: &plan.registered_cuts,
+        stage_delay_estimate: (plan.stage_delay() * 100.0).round() / 100.0,
         blinn_error_max: fidelity.max,
         blinn_error_mean: fidelity.mean,
         blinn_error_method: fidelity.method(),

@@ -68,6 +68,9 @@ impl From<OutputError> for Error {
 pub enum OutputError {
     /// It holds something that is not a previous specgen output.
     Occupied(PathBuf, String),
+    /// It cannot be an output at all (the current directory, a parent we cannot write, a
+    /// dangling link): the reason.
+    Refused(PathBuf, String),
     /// Another specgen is writing into the same parent directory right now.
     Busy(PathBuf),
     Io(std::io::Error),
@@ -79,6 +82,7 @@ impl fmt::Display for OutputError {
             OutputError::Occupied(dir, why) => {
                 write!(f, "refusing to write into {}: {why}; only an empty directory or a previous specgen output is replaced", dir.display())
             }
+            OutputError::Refused(dir, why) => write!(f, "refusing to write {}: {why}", dir.display()),
             OutputError::Busy(dir) => {
                 write!(f, "another specgen is writing into {} at this moment; nothing written (try again when it has finished)", dir.display())
             }

@@ -142,7 +142,7 @@ impl Drop for OutputLock {
 /// The one-line reason a parent directory cannot take our staging directory or lock.
 fn unwritable(parent: &Path, target: &Path, e: std::io::Error) -> OutputError {
     match e.raw_os_error() {
-        Some(code) if code == libc::EACCES || code == libc::EPERM || code == libc::EROFS => OutputError::Occupied(
+        Some(code) if code == libc::EACCES || code == libc::EPERM || code == libc::EROFS => OutputError::Refused(
             target.to_path_buf(),
             format!("its parent {} is not writable ({}), and specgen builds the new output beside the old one to swap it in whole", parent.display(), plain(e)),
         ),
@@ -192,21 +192,21 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
     let resolved;
     let dir = match std::fs::symlink_metadata(dir) {
         Ok(m) if m.file_type().is_symlink() => {
-            resolved = std::fs::canonicalize(dir)
-                .map_err(|_| OutputError::Occupied(dir.to_path_buf(), "it is a symbolic link to nothing (a dangling link)".into()))?;
+            resolved =
+                std::fs::canonicalize(dir).map_err(|_| OutputError::Refused(dir.to_path_buf(), "it is a symbolic link to nothing (a dangling link)".into()))?;
             resolved.as_path()
         }
         _ => dir,
     };
     if holds_cwd(dir) {
-        return Err(OutputError::Occupied(
+        return Err(OutputError::Refused(
             dir.to_path_buf(),
             "it is the current directory or holds it; the output is swapped in whole, which would leave this shell in a removed directory: run from outside it"
                 .into(),
         ));
     }
     if dir.file_name().is_none() {
-        return Err(OutputError::Occupied(dir.to_path_buf(), "it has no name of its own (`/`, `..`): name the output directory".into()));
+        return Err(OutputError::Refused(dir.to_path_buf(), "it has no name of its own (`/`, `..`): name the output directory".into()));
     }
     let parent = parent_dir(dir);
     std::fs::create_dir_all(&parent)?;

@@ -79,6 +79,17 @@ impl Plan {
     pub fn model(&self) -> Model {
         self.model.clone()
     }
+
+    /// The slowest stretch of logic between two registers (or between the ports and a
+    /// register), by the datapath's per-step delay estimates: what the registers were placed to
+    /// minimise, and what the delay model of `--target-mhz` (`timing`) turns into a clock.
+    pub fn stage_delay(&self) -> f64 {
+        let delays = self.datapath.delays();
+        let mut edges = vec![0usize];
+        edges.extend(self.registered_cuts.iter().map(|&c| (c as usize).min(delays.len())));
+        edges.push(delays.len());
+        edges.windows(2).map(|e| delays[e[0]..e[1].max(e[0])].iter().sum::<f64>()).fold(0.0, f64::max)
+    }
 }
 
 /// Places `stages` registers after steps (1-based) so that the slowest stretch of logic

@@ -297,7 +297,7 @@ pub(crate) use {out, outln};
 /// occupied output directory), 1 for a check that failed, a tool's error, a file.
 fn exit_code(e: &Failure) -> i32 {
     match e {
-        Failure::Config(_) | Failure::Input(_) | Failure::Output(OutputError::Occupied(..)) => 2,
+        Failure::Config(_) | Failure::Input(_) | Failure::Output(OutputError::Occupied(..) | OutputError::Refused(..)) => 2,
         Failure::Output(OutputError::Busy(_) | OutputError::Io(_)) | Failure::Tool { .. } | Failure::Mismatch(_) | Failure::Io { .. } => 1,
     }
 }
