@@ -3,47 +3,114 @@
 
     scripts/fit_delay_model.py [data/delay_calibration.csv] [data/delay_model.json]
 
-Per family, the clock period of a unit is modelled as a straight line in the plan's stage delay
-estimate e (the slowest stretch of logic between two registers, summed from the datapath's
-per-step estimates):
+Per family, the clock period of a unit is modelled from the plan's slowest stretch of logic
+between two registers e (`stage_delay_estimate`) and the mean stretch m (the whole datapath's
+estimate over stages + 1, `stage_delay_mean`):
 
-    period_ns = offset_ns + ns_per_unit * e,    Fmax = min(cap_mhz, 1000 / period_ns)
+    period_ns = offset_ns + ns_per_unit * e + ns_per_mean_unit * m,
+    Fmax = min(cap_mhz, 1000 / period_ns)
 
 `cap_mhz` is the highest median Fmax measured on the family (the hard blocks' limit: SB_MAC16
-and SB_RAM40_4K on the UP5K); the line is fitted by least squares on the units below 97 % of
-it. `margin` is the largest ratio measured/predicted below 1 over the data, so that
-`--target-mhz F` asks the model for F / margin: the chosen depth reached F on every
-calibration point. The JSON also keeps the fit's residuals for the record.
+and SB_RAM40_4K on the UP5K); `cap_up_to` is the largest e among the units that reached it (a
+unit whose slowest stretch is no longer is predicted at the cap; -1: none did). The plane is fitted by least squares on every unit (those at the
+cap too: a deep unit's jump to it, when the DSPs' own registers take the last cuts, is data),
+with non-negative slopes (else the line in one of e, m, or a constant), once per family
+("all") and once per model with three units or more (the generator uses its model's). `margin` is the worst ratio measured/predicted over the data (at most 1): `--target-mhz F`
+asks the model for F / margin, so the chosen depth reached F on every calibration point. The
+JSON also keeps the fit's extremes for the record. The estimates e and m of each unit are asked
+of the generator as it is now ($SPECGEN, default target/release/specgen), so a change to them
+needs a refit, not a new place-and-route (the CSV's two estimate columns are the generator's
+at the last refit, for the reader).
 """
 import csv
 import json
+import os
+import subprocess
 import sys
+import tempfile
 
 
-def fit(rows):
-    cap = max(r["fmax"] for r in rows)
-    free = [r for r in rows if r["fmax"] < 0.97 * cap]
-    if len(free) < 2:
-        free = rows
-    xs = [r["est"] for r in free]
-    ys = [1000.0 / r["fmax"] for r in free]
-    n = len(xs)
-    mx, my = sum(xs) / n, sum(ys) / n
-    sxx = sum((x - mx) ** 2 for x in xs)
-    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx if sxx > 0 else 0.0
-    offset = my - slope * mx
-    predict = lambda e: min(cap, 1000.0 / max(offset + slope * e, 1e-6))
-    ratios = [r["fmax"] / predict(r["est"]) for r in rows]
-    margin = min(1.0, min(ratios))
-    return {
-        "offset_ns": round(offset, 4),
-        "ns_per_unit": round(slope, 4),
+def features(family, model, stages):
+    """The unit's slowest and mean stretch estimates, asked of the generator as it is now (so a
+    change to the estimates needs a refit, not a new place-and-route)."""
+    binary = os.environ.get("SPECGEN", "target/release/specgen")
+    with tempfile.TemporaryDirectory() as d:
+        out = os.path.join(d, "u")
+        args = [binary, "generate", "--out", out, "--target", family, "--stages", str(stages)]
+        if model != "lean":
+            args += ["--model", model]
+        subprocess.run(args, check=True, capture_output=True)
+        with open(os.path.join(out, "specular_unit.json")) as f:
+            m = json.load(f)
+    return m["stage_delay_estimate"], m["stage_delay_mean"]
+
+
+def solve(a, b):
+    """Solves the square system a x = b (Gaussian elimination with pivoting)."""
+    n = len(b)
+    m = [row[:] + [v] for row, v in zip(a, b)]
+    for i in range(n):
+        p = max(range(i, n), key=lambda r: abs(m[r][i]))
+        m[i], m[p] = m[p], m[i]
+        if abs(m[i][i]) < 1e-12:
+            raise ValueError("singular")
+        for r in range(n):
+            if r != i:
+                k = m[r][i] / m[i][i]
+                m[r] = [x - k * y for x, y in zip(m[r], m[i])]
+    return [m[i][n] / m[i][i] for i in range(n)]
+
+
+def least_squares(rows, features):
+    """period = c0 + sum(c_k * feature_k): the coefficients and the squared error."""
+    xs = [[1.0] + [r[f] for f in features] for r in rows]
+    ys = [1000.0 / r["fmax"] for r in rows]
+    k = len(features) + 1
+    ata = [[sum(x[i] * x[j] for x in xs) for j in range(k)] for i in range(k)]
+    aty = [sum(x[i] * y for x, y in zip(xs, ys)) for i in range(k)]
+    c = solve(ata, aty)
+    err = sum((y - sum(ci * xi for ci, xi in zip(c, x))) ** 2 for x, y in zip(xs, ys))
+    return c, err
+
+
+def fit(rows, cap):
+    """The plane (or the line, or the constant) with non-negative slopes that fits best."""
+    free = rows
+    best = None
+    for features in (["est", "mean"], ["mean"], ["est"], []):
+        if len(free) < len(features) + 1:
+            continue
+        try:
+            c, err = least_squares(free, features)
+        except ValueError:
+            continue
+        if any(ci < 0 for ci in c[1:]):
+            continue
+        if best is None or err < best[2] - 1e-9:
+            best = (features, c, err)
+    features, c, _ = best
+    coef = dict(zip(features, c[1:]))
+    # units whose slowest stretch is no longer than one that reached the cap reach it too, as
+    # long as no unit that did not reach it is as short
+    below = [r["est"] for r in rows if r["fmax"] < 0.99 * cap]
+    at_cap = [r["est"] for r in rows if r["fmax"] >= 0.99 * cap and r["est"] < min(below, default=float("inf"))]
+    line = {
+        "offset_ns": round(c[0], 4),
+        "ns_per_unit": round(coef.get("est", 0.0), 4),
+        "ns_per_mean_unit": round(coef.get("mean", 0.0), 4),
         "cap_mhz": round(cap, 2),
-        "margin": round(margin, 4),
-        "points": len(rows),
-        "worst_under": round(min(ratios), 4),
-        "worst_over": round(max(ratios), 4),
+        "cap_up_to": round(max(at_cap), 4) if at_cap else -1.0,
     }
+
+    def predict(r):
+        if r["est"] <= line["cap_up_to"]:
+            return cap
+        return min(cap, 1000.0 / max(line["offset_ns"] + line["ns_per_unit"] * r["est"] + line["ns_per_mean_unit"] * r["mean"], 1e-6))
+
+    # the margin is the line's: a unit predicted at the cap by `cap_up_to` was measured there
+    ratios = [r["fmax"] / predict(r) for r in rows if r["est"] > line["cap_up_to"]] or [1.0]
+    line.update(margin=round(min(1.0, min(ratios)), 4), points=len(rows), worst_under=round(min(ratios), 4), worst_over=round(max(ratios), 4))
+    return line
 
 
 def main():
@@ -54,17 +121,33 @@ def main():
         for row in csv.DictReader(f):
             if not row["fmax_mhz"]:
                 continue
-            by_family.setdefault(row["family"], []).append(
-                {"model": row["model"], "stages": int(row["stages"]), "est": float(row["stage_delay_estimate"]), "fmax": float(row["fmax_mhz"])}
-            )
-    model = {family: fit(rows) for family, rows in sorted(by_family.items())}
+            fam, model, stages = row["family"], row["model"], int(row["stages"])
+            est, mean = features(fam, model, stages)
+            by_family.setdefault(fam, []).append({"model": model, "stages": stages, "est": est, "mean": mean, "fmax": float(row["fmax_mhz"])})
+    # a line per family ("all") and per model of it (three units or more): the generator uses
+    # its model's line, else the family's
+    model = {}
+    for family, rows in sorted(by_family.items()):
+        cap = max(r["fmax"] for r in rows)
+        lines = {"all": fit(rows, cap)}
+        for name in sorted({r["model"] for r in rows}):
+            mine = [r for r in rows if r["model"] == name]
+            if len(mine) >= 3:
+                lines[name] = fit(mine, cap)
+        model[family] = lines
     model["source"] = src
     with open(dst, "w") as f:
         json.dump(model, f, indent=2)
         f.write("\n")
-    for family, m in model.items():
-        if family != "source":
-            print(f"{family}: period = {m['offset_ns']} ns + {m['ns_per_unit']} ns/unit * e, cap {m['cap_mhz']} MHz, margin {m['margin']} over {m['points']} units", file=sys.stderr)
+    for family, lines in model.items():
+        if family == "source":
+            continue
+        for name, m in lines.items():
+            print(
+                f"{family} {name}: period = {m['offset_ns']} + {m['ns_per_unit']}*e + {m['ns_per_mean_unit']}*m ns, cap {m['cap_mhz']} MHz, "
+                f"margin {m['margin']} (measured/predicted {m['worst_under']}..{m['worst_over']}) over {m['points']} units",
+                file=sys.stderr,
+            )
 
 
 if __name__ == "__main__":

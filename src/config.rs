@@ -307,6 +307,7 @@ pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "model_widths",
     "registered_cuts",
     "stage_delay_estimate",
+    "stage_delay_mean",
     "predicted_fmax_mhz",
     "tdata",
     "blinn_error_max",

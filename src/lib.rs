@@ -32,4 +32,5 @@ pub mod rom;
 pub mod small_file;
 pub mod synth;
 pub mod table;
+pub mod timing;
 pub mod vectors;

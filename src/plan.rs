@@ -81,14 +81,38 @@ impl Plan {
     }
 
     /// The slowest stretch of logic between two registers (or between the ports and a
-    /// register), by the datapath's per-step delay estimates: what the registers were placed to
-    /// minimise, and what the delay model of `--target-mhz` (`timing`) turns into a clock.
+    /// register), by the datapath's per-step delay estimates: what the delay model of
+    /// `--target-mhz` (`timing`) turns into a clock. A stretch that is one hard-block step
+    /// alone (a product, a table read) counts nothing: with a register on each side the block
+    /// uses its own input and output registers and runs as fast as the block itself does (the
+    /// family's cap).
     pub fn stage_delay(&self) -> f64 {
-        let delays = self.datapath.delays();
+        let dp = &self.datapath;
         let mut edges = vec![0usize];
-        edges.extend(self.registered_cuts.iter().map(|&c| (c as usize).min(delays.len())));
-        edges.push(delays.len());
-        edges.windows(2).map(|e| delays[e[0]..e[1].max(e[0])].iter().sum::<f64>()).fold(0.0, f64::max)
+        edges.extend(self.registered_cuts.iter().map(|&c| (c as usize).min(dp.steps.len())));
+        edges.push(dp.steps.len());
+        // (iCE40: a `*` that becomes an SB_MAC16, a table read that becomes an SB_RAM40_4K;
+        // ECP5: the MULT18X18D and DP16KD instances with their own registers; `RomRead::step`
+        // is the 1-based step number)
+        let hard_block = |k: usize| {
+            let s = &dp.steps[k];
+            !s.dsps.is_empty() || s.wires.iter().any(|w| w.expr.contains(" * ")) || dp.reads.iter().any(|r| r.step == k + 1)
+        };
+        edges
+            .windows(2)
+            .map(|e| match e[1].saturating_sub(e[0]) {
+                1 if hard_block(e[0]) => 0.0,
+                _ => dp.steps[e[0]..e[1].max(e[0])].iter().map(|s| s.delay).sum::<f64>(),
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// The mean stretch of logic between registers: the datapath's whole delay estimate over
+    /// the `stages + 1` stretches the registers cut it into. With `stage_delay` it is what the
+    /// delay model reads: once one step that no register can split is the slowest stretch, the
+    /// clock still rises as the others shorten (less logic and routing around each register).
+    pub fn stage_delay_mean(&self) -> f64 {
+        self.datapath.delays().iter().sum::<f64>() / (self.registered_cuts.len() + 1) as f64
     }
 }
 

@@ -3,7 +3,7 @@
 
 use crate::cosim::Design;
 use crate::emit;
-use crate::error::{self, input, mismatch, Error as Failure};
+use crate::error::{self, input, Error as Failure};
 use askama::Template;
 use serde::Serialize;
 use std::path::Path;
@@ -409,42 +409,6 @@ pub fn table(r: &SynthResult) -> String {
         s.push_str(&format!("  {k:<14} {v}\n"));
     }
     s
-}
-
-/// Fmax (when placed) for each depth tried: (stages, MHz).
-pub(crate) type StageTrials = Vec<(u32, Option<f64>)>;
-
-/// `generate --target-mhz F`: synthesizes every pipeline depth from 0 up (with DSPs and
-/// nextpnr, on the ECP5-25 for `--target ecp5`, else the iCE40 UP5K) and returns the shallowest whose Fmax reaches `mhz`, with every try.
-/// The model of `plan` is made once: every depth reuses it (and its fidelity figures).
-pub fn pick_stages(plan: &crate::plan::Plan, mhz: f64) -> Result<(u32, StageTrials), Failure> {
-    require("yosys", "yosys")?;
-    let target = if plan.cfg.target() == Target::Ecp5 { Target::Ecp5 } else { Target::Ice40 };
-    let part = if target == Target::Ecp5 { "ECP5-25" } else { "iCE40 UP5K" };
-    Pnr::find(target).map_err(input)?;
-    let mut tries = Vec::new();
-    for stages in 0..=plan.cut_points {
-        let plan = plan.with_stages(stages)?;
-        let dir = tempfile::tempdir().map_err(|e| error::tool("yosys", e.to_string()))?;
-        let out = dir.path().join("rtl");
-        emit::write_dir_atomically(&out, &emit::generate_files(&plan)).map_err(|e| error::tool("yosys", e.to_string()))?;
-        let design = Design::with_plan(&out, plan)?;
-        // one seed per depth: the search is a guide; quote a depth's Fmax with `synth --seeds`
-        let r = synthesize(&design, target, true, "yosys", 1, None)?;
-        eprintln!("target-mhz: stages {stages}: Fmax {}", r.fmax_mhz.map(|f| format!("{f:.1} MHz")).unwrap_or_else(|| r.fmax_note.clone()));
-        tries.push((stages, r.fmax_mhz));
-        if r.fmax_mhz.is_some_and(|f| f >= mhz) {
-            return Ok((stages, tries));
-        }
-    }
-    let best = tries.iter().filter_map(|(s, f)| f.map(|f| (*s, f))).fold(None, |b: Option<(u32, f64)>, x| match b {
-        Some(b) if b.1 >= x.1 => Some(b),
-        _ => Some(x),
-    });
-    Err(mismatch(match best {
-        Some((s, f)) => format!("no pipeline depth reaches {mhz} MHz on {part}; the best is {f:.1} MHz at {s} stages; nothing written"),
-        None => format!("no pipeline depth could be placed on {part}; nothing written"),
-    }))
 }
 
 /// yosys's data directory (cell models): `<bin>/../share/yosys` beside the binary, as yosys

@@ -37,7 +37,7 @@ pub enum Command {
         /// Replace a previous output even where its files were edited by hand.
         #[arg(long)]
         force: bool,
-        /// Pick --stages: the shallowest pipeline whose Fmax on the --target's part (iCE40 UP5K or ECP5-25; yosys + nextpnr, with DSPs) reaches F MHz.
+        /// Pick --stages: the shallowest pipeline that reaches F MHz on the --target's part (iCE40 UP5K or ECP5-25, with DSPs) by the delay model calibrated on nextpnr (in milliseconds; `synth --seeds K` measures it).
         #[arg(long, value_name = "F", conflicts_with = "stages")]
         target_mhz: Option<f64>,
         #[command(flatten)]
@@ -361,9 +361,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             // the plan: model, widths, registers, datapath, built once; --stages checked here
             let mut plan = Plan::new(cfg)?;
             if let Some(mhz) = target_mhz {
-                let (stages, _) = specgen::synth::pick_stages(&plan, mhz)?;
+                // the delay model, no place-and-route: `synth --seeds K` measures the result
+                let (stages, predicted) = specgen::timing::pick_stages(&plan, mhz)?;
                 plan = plan.with_stages(stages)?;
-                eprintln!("target-mhz: chose --stages {stages}");
+                eprintln!("target-mhz: chose --stages {stages}: {predicted:.1} MHz predicted on the {}", specgen::timing::part(plan.cfg.target()));
             }
             let files = emit::generate_files(&plan);
             write_output(&out, &files, force)?;

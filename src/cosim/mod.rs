@@ -156,17 +156,6 @@ impl Design {
         Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models, inputs })
     }
 
-    /// The RTL in `dir`, written from `plan` (its manifest must state the same parameters): the
-    /// plan is taken as it is, not made again.
-    pub(crate) fn with_plan(dir: &Path, plan: crate::plan::Plan) -> Result<Design, Error> {
-        let (path, params, sources, sim_models, inputs) = Design::files(dir)?;
-        if params != plan.cfg.params {
-            return Err(input(format!("manifest {} is not the plan's configuration", path.display())));
-        }
-        let cfg = plan.cfg.clone();
-        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models, inputs })
-    }
-
     /// The manifest (its path and the parameters it states), the Verilog sources and the
     /// simulation models in `dir`.
     #[allow(clippy::type_complexity)] // (manifest, its parameters, sources, sim models, inputs)

@@ -74,21 +74,36 @@ fn generic_target_counts_cells() {
     assert!(r["fmax_mhz"].is_null());
 }
 
+/// `generate --target-mhz F` picks the depth by the delay model (`src/timing.rs`) in well under
+/// a second, no place-and-route, and records its prediction in the manifest; one real
+/// place-and-route per family checks that the chosen unit reaches F (within a seed's scatter,
+/// 10 %) and what was predicted (within the fit's margin and the same scatter). An F out of
+/// reach writes nothing (exit 2).
 #[test]
-fn target_mhz_picks_the_shallowest_pipeline_or_writes_nothing() {
+fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
     require_tool("yosys", "yosys");
     require_tool("nextpnr-ice40", "nextpnr-ice40");
     let tmp = tempfile::tempdir().unwrap();
-    let small = ["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "4", "--intensity-frac-bits", "5", "--k-frac-bits", "6"];
-    let out = tmp.path().join("easy");
-    let o = specgen().arg("generate").arg("--out").arg(&out).args(small).args(["--target-mhz", "5"]).output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
-    assert_eq!(m["stages"], 0, "5 MHz needs no pipeline");
+    for (family, mhz) in [("ice40", 60.0), ("ecp5", 150.0)] {
+        let out = tmp.path().join(family);
+        let t0 = std::time::Instant::now();
+        let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target", family, "--target-mhz", &format!("{mhz}")]).output().unwrap();
+        let took = t0.elapsed();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(took < std::time::Duration::from_secs(10), "{family}: --target-mhz took {took:?}");
+        let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
+        let predicted = m["predicted_fmax_mhz"].as_f64().unwrap();
+        assert!(predicted >= mhz, "{family}: predicted {predicted} MHz for a {mhz} MHz target");
+        let line = specgen::timing::line(if family == "ecp5" { specgen::config::Target::Ecp5 } else { specgen::config::Target::Ice40 }, "lean");
+        let r = synth(&out, &["--dsp", "--seeds", "1"]);
+        let measured = r["fmax_mhz"].as_f64().unwrap();
+        assert!(measured >= 0.9 * mhz, "{family}: --stages {} measured {measured} MHz for a {mhz} MHz target (predicted {predicted})", m["stages"]);
+        assert!(measured >= 0.9 * line.margin * predicted, "{family}: measured {measured} MHz, predicted {predicted} (margin {})", line.margin);
+    }
     let out = tmp.path().join("impossible");
-    let o = specgen().arg("generate").arg("--out").arg(&out).args(small).args(["--target-mhz", "900"]).output().unwrap();
-    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("no pipeline depth reaches 900"));
+    let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("900 MHz is out of reach on the iCE40 UP5K"), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(!out.exists());
 }
 

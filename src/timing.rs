@@ -1,0 +1,177 @@
+//! The delay model of `generate --target-mhz` (issue: a pipeline depth picked in milliseconds,
+//! not by an hour of place-and-route).
+//!
+//! **What is modelled.** Every step of a datapath carries a delay estimate (`datapath`'s
+//! `add_delay`, `mul_delay`, `LUT_DELAY`, …) and the registers are placed to minimise the
+//! slowest stretch between two of them, `Plan::stage_delay` = e; the mean stretch is
+//! `Plan::stage_delay_mean` = m (the whole datapath's estimate over `stages + 1`). Per family,
+//! the clock a unit reaches after place-and-route is modelled as
+//!
+//! ```text
+//! period_ns = offset_ns + ns_per_unit · e + ns_per_mean_unit · m     Fmax = min(cap_mhz, 1000 / period_ns)
+//! ```
+//!
+//! A unit whose slowest stretch is no longer than that of a calibration unit that reached the
+//! cap is predicted at the cap (`cap_up_to`): once every hard block has its own registers the
+//! clock jumps to the blocks' limit, which no straight line follows.
+//!
+//! The mean is there because the slowest stretch stops moving once it is one step no register
+//! can split (a DSP product and its add), while the measured clock keeps rising with depth:
+//! the other stretches shorten, and with them the logic and routing around each register.
+//!
+//! `cap_mhz` is the hard blocks' limit (the UP5K's SB_MAC16 and SB_RAM40_4K stop every deep
+//! unit at the same figure); the coefficients (non-negative slopes) are fitted by least squares
+//! to the median Fmax of units at depths spread over their range, once per family and once per
+//! datapath (`lean`, `fitted`, `blinn`, `blinn-pow`; another uses the family's) (`scripts/calibrate_delay.sh` measures
+//! `data/delay_calibration.csv`, `scripts/fit_delay_model.py` writes `data/delay_model.json`,
+//! which is compiled in here).
+//!
+//! **How it is used.** `pick_stages` returns the shallowest depth whose assured Fmax reaches
+//! the target: the cap where a calibration unit as short reached it, else the predicted Fmax
+//! times the fit's `margin` (the worst measured/predicted ratio over the calibration data,
+//! ≤ 1), so that on every calibration point the depth it picks reached the target.
+//! The model is a guide, not a proof: `synth --seeds K` measures the unit it chose, and
+//! `scripts/bench_target_mhz.sh` records predicted against measured for every model.
+
+use crate::config::{ConfigError, Target};
+use crate::plan::Plan;
+use serde::Deserialize;
+
+/// The fitted lines, `scripts/fit_delay_model.py`'s output.
+const MODEL_JSON: &str = include_str!("../data/delay_model.json");
+
+/// One family's line (see the module doc).
+#[derive(Debug, Clone, Copy, Deserialize)]
+pub struct Line {
+    pub offset_ns: f64,
+    pub ns_per_unit: f64,
+    pub ns_per_mean_unit: f64,
+    pub cap_mhz: f64,
+    /// the largest `e` among the calibration units that reached the cap (-1: none did)
+    pub cap_up_to: f64,
+    pub margin: f64,
+}
+
+impl Line {
+    /// The Fmax the model predicts for the slowest stretch `e` and the mean stretch `m`.
+    pub fn fmax(&self, e: f64, m: f64) -> f64 {
+        if e <= self.cap_up_to {
+            return self.cap_mhz;
+        }
+        self.cap_mhz.min(1000.0 / (self.offset_ns + self.ns_per_unit * e + self.ns_per_mean_unit * m).max(1e-6))
+    }
+
+    /// The model's Fmax for `plan`.
+    pub fn fmax_of(&self, plan: &Plan) -> f64 {
+        self.fmax(plan.stage_delay(), plan.stage_delay_mean())
+    }
+
+    /// What `--target-mhz` compares with its target: the cap where a calibration unit as short
+    /// reached it (measured), else the line's prediction times the fit's margin.
+    pub fn assured_of(&self, plan: &Plan) -> f64 {
+        if plan.stage_delay() <= self.cap_up_to {
+            self.cap_mhz
+        } else {
+            self.fmax_of(plan) * self.margin
+        }
+    }
+}
+
+/// The family the model speaks of for `target`: a generic unit is placed on the iCE40 UP5K,
+/// as `synth` does.
+fn family(target: Target) -> &'static str {
+    match target {
+        Target::Ecp5 => "ecp5",
+        Target::Ice40 | Target::Generic => "ice40",
+    }
+}
+
+/// The part a family's figures are for.
+pub fn part(target: Target) -> &'static str {
+    match target {
+        Target::Ecp5 => "ECP5-25 grade 6",
+        Target::Ice40 | Target::Generic => "iCE40 UP5K",
+    }
+}
+
+/// The fitted line of `target`'s family for the datapath `datapath` (`lean`, `paper`, `fitted`,
+/// `blinn`, `blinn-pow`): its own when calibrated, else the family's (`all`).
+pub fn line(target: Target, datapath: &str) -> Line {
+    let all: serde_json::Value = serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");
+    let lines = &all[family(target)];
+    let chosen = if lines[datapath].is_object() { &lines[datapath] } else { &lines["all"] };
+    serde_json::from_value(chosen.clone()).expect("data/delay_model.json has a line per family")
+}
+
+/// The line for `plan`'s family and datapath.
+fn line_of(plan: &Plan) -> Line {
+    line(plan.cfg.target(), plan.cfg.datapath_name())
+}
+
+/// The Fmax the delay model predicts for `plan` on its family's part, in MHz.
+pub fn predicted_fmax(plan: &Plan) -> f64 {
+    line_of(plan).fmax_of(plan)
+}
+
+/// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
+/// reaches `mhz`, and that prediction. Err: no depth does (the best one is named).
+pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), ConfigError> {
+    let l = line_of(plan);
+    let mut best = (0, 0.0f64, 0.0f64);
+    for stages in 0..=plan.cut_points {
+        let p = plan.with_stages(stages)?;
+        let (f, assured) = (l.fmax_of(&p), l.assured_of(&p));
+        if assured >= mhz {
+            return Ok((stages, f));
+        }
+        if assured > best.2 {
+            best = (stages, f, assured);
+        }
+    }
+    Err(ConfigError {
+        parameter: "target_mhz",
+        message: format!(
+            "{mhz} MHz is out of reach on the {}: the delay model assures at most {:.1} MHz (predicts {:.1}), at --stages {}",
+            part(plan.cfg.target()),
+            best.2,
+            best.1,
+            best.0
+        ),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+
+    /// Deeper targets never pick shallower pipelines, each pick is the shallowest that the
+    /// model assures, and it takes milliseconds.
+    #[test]
+    fn picks_are_the_shallowest_and_grow_with_the_target() {
+        let plan = Plan::new(Config::defaults()).unwrap();
+        let l = line_of(&plan);
+        let t0 = std::time::Instant::now();
+        let mut last = 0;
+        for f in [5.0, 20.0, 40.0, 60.0, 80.0, 100.0] {
+            let Ok((stages, predicted)) = pick_stages(&plan, f) else { continue };
+            assert!(stages >= last, "{f} MHz: {stages} stages after {last}");
+            let p = plan.with_stages(stages).unwrap();
+            assert!(l.assured_of(&p) >= f && (predicted - l.fmax_of(&p)).abs() < 1e-9);
+            if stages > 0 {
+                assert!(l.assured_of(&plan.with_stages(stages - 1).unwrap()) < f, "{f} MHz: {} stages would do", stages - 1);
+            }
+            last = stages;
+        }
+        assert!(t0.elapsed() < std::time::Duration::from_secs(5), "{:?}", t0.elapsed());
+        assert!(pick_stages(&plan, 5000.0).is_err());
+    }
+
+    #[test]
+    fn the_cap_holds_where_a_calibration_unit_reached_it() {
+        let l = Line { offset_ns: 5.0, ns_per_unit: 1.0, ns_per_mean_unit: 0.0, cap_mhz: 100.0, cap_up_to: 3.0, margin: 0.9 };
+        assert_eq!(l.fmax(2.0, 50.0), 100.0);
+        assert!((l.fmax(15.0, 0.0) - 50.0).abs() < 1e-9);
+        assert!(l.fmax(4.0, 0.0) <= 100.0);
+    }
+}
