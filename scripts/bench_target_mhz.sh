@@ -12,9 +12,10 @@ bin=target/release/specgen
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 seeds=${SEEDS:-3}
 rows="$work/rows.txt"; : > "$rows"
-measure() { # dir -> "median (min-max)" or "-"
-    if $bin synth --rtl "$1" --dsp --seeds "$seeds" --json "$1/r.json" >/dev/null 2>&1; then
-        python3 -c "import json; d=json.load(open('$1/r.json')); s=d.get('fmax_seeds') or [0]; print('%.1f (%.1f-%.1f)' % (d['fmax_mhz'], min(s), max(s)))"
+measure() { # dir -> "median (min-max)" or "-" (the result beside the unit, not in it: a unit
+    # directory holds only what generate wrote, or the next generate there refuses it)
+    if $bin synth --rtl "$1" --dsp --seeds "$seeds" --json "$1.synth.json" >/dev/null 2>&1; then
+        python3 -c "import json; d=json.load(open('$1.synth.json')); s=d.get('fmax_seeds') or [0]; print('%.1f (%.1f-%.1f)' % (d['fmax_mhz'], min(s), max(s)))"
     else
         echo "-"
     fi
