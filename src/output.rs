@@ -188,6 +188,9 @@ fn holds_cwd(dir: &Path) -> bool {
 /// Writes `files` as the whole content of `dir`, atomically (see the module doc). `check` is
 /// asked, under the lock, whether an existing `dir` may be replaced.
 pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Path) -> Result<(), OutputError>) -> Result<(), OutputError> {
+    // `link/` names the link (the trailing separator would make every rename of it fail)
+    let normal: PathBuf = dir.components().collect();
+    let dir = normal.as_path();
     // a symbolic link is followed: the output lands where it points, and the link stays
     let resolved;
     let dir = match std::fs::symlink_metadata(dir) {
