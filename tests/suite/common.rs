@@ -172,3 +172,17 @@ proptest::prop_compose! {
         }).unwrap()
     }
 }
+
+/// Writes `text` as `file` of the unit in `dir` and makes its manifest list the new SHA-256, as
+/// a faulty generator would have written them together (so the file checks pass and the
+/// simulation has to find the fault).
+pub fn rewrite_sealed(dir: &Path, file: &str, text: &str) {
+    let sha = |b: &[u8]| -> String { <sha2::Sha256 as sha2::Digest>::digest(b).iter().map(|x| format!("{x:02x}")).collect() };
+    let path = dir.join(file);
+    let before = std::fs::read(&path).unwrap();
+    std::fs::write(&path, text).unwrap();
+    let manifest = std::fs::read_dir(dir).unwrap().flatten().map(|e| e.path()).find(|p| p.extension().is_some_and(|e| e == "json")).expect("a manifest");
+    let m = std::fs::read_to_string(&manifest).unwrap();
+    assert!(m.contains(&sha(&before)), "{file} is listed in {}", manifest.display());
+    std::fs::write(&manifest, m.replace(&sha(&before), &sha(text.as_bytes()))).unwrap();
+}
