@@ -45,6 +45,13 @@ pub fn splitmix(mut x: u64) -> u64 {
     x ^ (x >> 31)
 }
 
+/// The first `bytes` bytes of the SHA-256 of `data`, as lowercase hex (32: the whole digest):
+/// the manifest's file hashes, the fingerprint, cache keys and staging tags.
+pub fn sha256_hex(data: &[u8], bytes: usize) -> String {
+    use sha2::{Digest, Sha256};
+    Sha256::digest(data).iter().take(bytes).map(|b| format!("{b:02x}")).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -503,10 +503,9 @@ impl Config {
     /// parameters as the manifest states them. The manifest and the unit's header both carry
     /// it, so a reader tells with one comparison whether the files belong together.
     pub fn fingerprint(&self) -> String {
-        use sha2::{Digest, Sha256};
         let mut v = serde_json::to_value(&self.params).expect("parameters serialise");
         self.model().keep_own_keys(&mut v);
-        Sha256::digest(v.to_string().as_bytes()).iter().take(8).map(|b| format!("{b:02x}")).collect()
+        crate::bits::sha256_hex(v.to_string().as_bytes(), 8)
     }
 
     /// The parameters that define the unit, as `name=value` words (for file headers).

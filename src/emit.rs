@@ -12,7 +12,6 @@ use crate::ports::Port;
 use crate::rom::{self, RomFormat};
 use askama::Template;
 use serde::Serialize;
-use sha2::{Digest, Sha256};
 use std::path::Path;
 
 pub(crate) use crate::names::{ECP5_BRAM_MODEL_FILE, ECP5_SIM_MODEL_FILE, SIM_DIR, VERSION};
@@ -689,7 +688,7 @@ pub(crate) struct Manifest<'a> {
 }
 
 fn sha256_hex(bytes: &[u8]) -> String {
-    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+    crate::bits::sha256_hex(bytes, 32)
 }
 
 /// Every file of a `generate` run, in memory: (file name, contents).

@@ -28,7 +28,6 @@
 //! keeps its mode; a new one gets `0666 & !umask`.
 
 use crate::error::OutputError;
-use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 
 /// The directory a path lives in (`.` for a bare name).
@@ -76,7 +75,7 @@ impl From<std::io::Error> for OutputError {
 /// the names of two outputs never overlap and any file name is data.
 pub fn tag(target: &Path) -> String {
     let name = target.file_name().map(|n| n.as_encoded_bytes().to_vec()).unwrap_or_default();
-    Sha256::digest(&name).iter().take(6).map(|b| format!("{b:02x}")).collect()
+    crate::bits::sha256_hex(&name, 6)
 }
 
 /// Holds the exclusive lock of one output while it is swapped in, so two writers of the same

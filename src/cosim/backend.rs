@@ -74,7 +74,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
             Simulator::Icarus => "sim.vvp",
         })
     };
-    let digest = |p: &Path| std::fs::read(p).ok().map(|b| Sha256::digest(&b).iter().map(|x| format!("{x:02x}")).collect::<String>());
+    let digest = |p: &Path| std::fs::read(p).ok().map(|b| crate::bits::sha256_hex(&b, 32));
     if let Ok(stamp) = std::fs::read_to_string(dir.join("ok")) {
         if digest(&program(&dir)).is_some_and(|d| d == stamp.trim()) {
             return Ok(Built { simulator, dir, fresh: false });

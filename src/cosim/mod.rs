@@ -106,7 +106,7 @@ impl Design {
             let (Some(name), Some(want)) = (f.get("name").and_then(|n| n.as_str()), f.get("sha256").and_then(|h| h.as_str())) else { continue };
             let Some(path) = self.inputs.iter().find(|p| p.strip_prefix(&self.dir).is_ok_and(|r| r == Path::new(name))) else { continue };
             let bytes = std::fs::read(path).map_err(|e| input(format!("cannot read {}: {e}", path.display())))?;
-            let got: String = sha2::Sha256::digest(&bytes).iter().map(|b| format!("{b:02x}")).collect();
+            let got = crate::bits::sha256_hex(&bytes, 32);
             if got != want {
                 return Err(input(format!(
                     "{} is not the file specgen wrote (its SHA-256 is not the one manifest {} lists): regenerate it, or pass --edited to check an RTL changed on purpose",
