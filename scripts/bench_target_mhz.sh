@@ -5,11 +5,7 @@
 # over nextpnr seeds 1..SEEDS (default 3) of that unit and of the unit one cut shallower.
 # MODELS (default "lean fitted blinn"; blinn-pow fits neither part) and FAMILIES narrow it. Needs yosys and
 # nextpnr; hours on 2 cores with every model (blinn's deep units take minutes a seed).
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q
-bin=target/release/specgen
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-3}
 rows="$work/rows.txt"; : > "$rows"
 measure() { # dir -> "median (min-max)" or "-" (the result beside the unit, not in it: a unit

