@@ -18,16 +18,23 @@ use crate::datapath::{DelayLine, Waiting};
 use crate::plan::Plan;
 use crate::ports::{self, Field};
 
-/// Places of the output buffer, as log2: at least the pipeline's latency + 5, so a stream at
-/// full rate never finds `in_ready` low.
+/// Places of the output buffer for a pipeline of `stages`: its latency + 6 (the buffer's three
+/// cycles and the three of the credit loop: a take, `outstanding`, `in_ready`), so a stream at
+/// full rate never finds `in_ready` low. Exactly as many as that: each place costs a bit of
+/// the buffer's occupancy thermometer (`templates/out_buffer.v`).
+pub fn places_for(stages: u32) -> u64 {
+    (stages + BUFFER_LATENCY + 3) as u64
+}
+
+/// Address bits of the buffer's memory: the places rounded up to a power of two.
 pub fn buffer_depth_log2(stages: u32) -> u32 {
-    (stages + BUFFER_LATENCY + 2).next_power_of_two().trailing_zeros()
+    places_for(stages).next_power_of_two().trailing_zeros()
 }
 
 /// The places of the `ready`/`axis` output buffer (0 without a handshake).
 pub fn buffer_places(cfg: &Config) -> u64 {
     if cfg.interface().handshake() {
-        1 << buffer_depth_log2(cfg.stages())
+        places_for(cfg.stages())
     } else {
         0
     }
@@ -83,7 +90,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.header.push("Handshake:  AXI4-Stream rules: a transfer when valid and ready are both high at a rising clock edge.".into());
         e.header.push(format!("            {ov} and every output hold while {or} is low;"));
         e.header.push(format!("            {ov} never waits for {or}."));
-        e.header.push(format!("            {ir} is a register: high in a cycle when, the cycle before, fewer than {} pixels", places - 1));
+        e.header.push(format!("            {ir} is a register: high in a cycle when, two cycles before, fewer than {} pixels", places - 2));
         e.header.push(format!("            were taken and not yet delivered ({top}_out_buffer holds {places} results), so the"));
         e.header.push("            pipeline never stalls;".into());
         e.header.push(format!("            {iv} may come and go freely: a pixel is taken only in a transfer."));
@@ -207,7 +214,12 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     e.tail.push(format!("// every pixel taken has a place reserved in {top}_out_buffer, so the pipeline never waits"));
     e.tail.push(format!("wire {} out_result = {};", range(width), concat(&fields.iter().map(|f| f.1.clone()).collect::<Vec<_>>())));
     e.tail.push(format!("wire {} out_held;", range(width)));
-    e.tail.push(format!("{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({}), .LATENCY({})) out_buffer (", buffer_depth_log2(depth), cfg.stages()));
+    e.tail.push(format!(
+        "{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({}), .PLACES({}), .LATENCY({})) out_buffer (",
+        buffer_depth_log2(depth),
+        places_for(depth),
+        cfg.stages()
+    ));
     e.tail.push("    .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .take(in_take),".into());
     e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
     e.tail.push(format!("    .out_valid(out_valid), .out_ready(out_ready), .out(out_held), .idle({idle})"));

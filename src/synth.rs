@@ -317,7 +317,9 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         }
     }
     if let Some(path) = pnr_log {
-        std::fs::write(path, runs[0].1.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+        // every seed's log, one after another, each under a line naming its seed
+        let all: String = runs.iter().enumerate().map(|(i, (_, log))| format!("==== nextpnr seed {} ====\n{log}", i + 1)).collect();
+        std::fs::write(path, all.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     if let Some((_, log)) = runs.iter().find(|(ok, _)| !ok) {
         // typically the design does not fit the device: report it, keep the area figures

@@ -5,21 +5,38 @@
 // {{ version }}. Do not edit.
 //
 // The unit's pipeline never waits. Its handshake follows the AXI4-Stream rules instead with
-// credits: `used` counts the pixels taken and not yet delivered, and in_ready (a register) is
-// high in a cycle when, in the cycle before, fewer than 2^DEPTH_LOG2 - 1 were: a pixel taken
-// then has a place here before it enters the pipeline, so none is ever lost.
+// credits: `taken` and `delivered` count the pixels in and out (each a counter that only goes up,
+// its carry chain fed by registers alone), `outstanding` is their difference a clock later, and
+// in_ready (a register) is high in a cycle when, two cycles before, fewer than PLACES - 2
+// pixels were taken and not yet delivered: with the two clocks in between, a pixel taken then
+// still has a place here before it enters the pipeline, so none is ever lost.
+// Speed (iCE40 at 100 MHz leaves two LUTs and their routing between registers): no register
+// here has an enable that rst or a handshake input reaches. Each counter bit is one LUT of its
+// enable's inputs, its + 1 and itself, written as AND-OR rather than as a hold (a hold becomes
+// an enable, and rst would then join it); rst reaches only the flip-flops' reset pins.
 // Results leave the places through the memory's read register into a queue of three registers,
-// `out` and the two waiting behind it. A read is started only when the queue will have room for
-// it whatever out_ready does, so the read decision is one LUT of registers; every wide register
-// loads on an enable of one LUT from registers and out_ready. A stream with out_ready high gets
-// one result a cycle, out_valid and out stay stable while out_ready is low, and out_valid
-// never waits for out_ready.
+// `out` and the two waiting behind it; `held` counts the results in them (0..3, filled from
+// out). The results in the places are counted by a thermometer, stored_at_least[k] for
+// k = 1..PLACES: a read needs stored_at_least[1] and a queue that will have room for the
+// result whatever out_ready does, so the read decision is one LUT of registers and each bit of
+// the thermometer two LUTs of registers and result_valid (no pointer comparator or adder sits
+// between a read and the next). Every register of the queue loads on an
+// enable of one LUT of its count and out_ready, and each bit of the count is one LUT of the
+// count, read_valid and out_ready. The wide registers load in slices of at most SLICE bits,
+// each slice with its own copy of the count: no enable drives more than SLICE flip-flops, so
+// place-and-route keeps every enable in local routing (nextpnr-ice40 moves an enable of more
+// than 15 flip-flops onto a global buffer, several nanoseconds away from out_ready).
+// A stream with out_ready high gets one result a cycle, out_valid and out stay stable while
+// out_ready is low, and out_valid never waits for out_ready.
 // rst (synchronous, active high) empties the buffer; a cycle with rst high transfers nothing.
 module {{ top }}_out_buffer #(
     // bits of one result (the output fields and the tag)
     parameter WIDTH = 8,
-    // log2 of the places: 2^DEPTH_LOG2 >= LATENCY + 5, or a full-rate stream would wait
+    // address bits of the memory: 2^DEPTH_LOG2 >= PLACES
     parameter DEPTH_LOG2 = 4,
+    // the places used, each with its bit in the occupancy thermometer: PLACES >= LATENCY + 6,
+    // or a full-rate stream would wait
+    parameter PLACES = 16,
     // the pipeline's latency: result_valid is a pixel taken LATENCY cycles before
     parameter LATENCY = 0
 ) (
@@ -38,91 +55,146 @@ module {{ top }}_out_buffer #(
 
 `ifndef SYNTHESIS
 initial begin
-    if ((1 << DEPTH_LOG2) < LATENCY + 5) begin
-        $fatal(1, "%m: DEPTH_LOG2 = %0d holds fewer places than LATENCY + 5 = %0d", DEPTH_LOG2, LATENCY + 5);
+    if (PLACES < LATENCY + 6) begin
+        $fatal(1, "%m: PLACES = %0d is fewer than LATENCY + 6 = %0d", PLACES, LATENCY + 6);
+    end
+    if ((1 << DEPTH_LOG2) < PLACES) begin
+        $fatal(1, "%m: DEPTH_LOG2 = %0d addresses fewer than PLACES = %0d", DEPTH_LOG2, PLACES);
     end
 end
 `endif
 
-localparam [DEPTH_LOG2:0] DEPTH = 1 << DEPTH_LOG2;
+localparam [DEPTH_LOG2:0] CREDITS = PLACES - 2;   // in_ready while fewer are outstanding
+// flip-flops on one enable at most, and the slices of the wide registers
+localparam integer SLICE = 12;
+localparam integer SLICES = (WIDTH + SLICE - 1) / SLICE;
 
 // a place is never read in the clock it is written while the read counts (a read needs a
 // result written before; a write needs a free place), so what a collision reads does not
 // matter: no_rw_check tells yosys not to build bypass logic around the block RAM for it
 (* no_rw_check *)
 reg  [WIDTH-1:0]      places [0:(1 << DEPTH_LOG2) - 1];
-reg  [DEPTH_LOG2:0]   write_at;
-reg  [DEPTH_LOG2-1:0] read_at;                       // the place read next
-reg  [DEPTH_LOG2:0]   read_after;                    // read_at + 1 with its wrap bit (no adder before one_left)
-reg                   empty;                         // no result in the places
+reg  [DEPTH_LOG2:0]   write_at;                      // the place written next (and a wrap bit)
+reg  [DEPTH_LOG2:0]   read_at;                       // the place read next (and a wrap bit)
+reg  [PLACES:1]        stored_at_least;               // bit k: k or more results in the places
 reg  [WIDTH-1:0]      read_q;                        // the memory's read register: places[read_at]
 reg                   read_valid;                    // read_q holds a result read the clock before
 reg  [WIDTH-1:0]      queued_1, queued_2;            // results waiting behind out, in order
-reg                   queued_1_valid, queued_2_valid; // the queue fills from out: queued_2 only behind queued_1
+reg  [1:0]            held;                          // results in out, queued_1, queued_2: 0..3
 reg                   queue_full;                    // out, queued_1, queued_2 and read_q hold three results
-reg  [DEPTH_LOG2:0]   used;                          // taken, not yet delivered: 0..DEPTH
-reg  [DEPTH_LOG2:0]   used_up;                       // used + 1, kept beside it
+reg  [DEPTH_LOG2:0]   taken, taken_up;               // pixels taken (modulo 2^(DEPTH_LOG2+1)), and + 1
+reg  [DEPTH_LOG2:0]   delivered, delivered_up;       // results delivered, and + 1
+reg  [DEPTH_LOG2:0]   outstanding;                   // taken - delivered a clock ago: 0..PLACES
+
+// the queue's count a clock later: one more when read_q brings a result, one fewer when out
+// delivers one; each bit a function of four registers and out_ready
+function [1:0] held_next(input [1:0] count, input arriving, input ready);
+    reg leaving;
+    begin
+        leaving = count != 2'd0 && ready;
+        held_next[0] = count[0] ^ (arriving ^ leaving);
+        // count + 1 flips bit 1 when bit 0 is set, count - 1 when it is clear (an XOR, not a
+        // hold: synthesis finds no enable to put before the flip-flop)
+        held_next[1] = count[1] ^ ((arriving && !leaving && count[0]) || (leaving && !arriving && !count[0]));
+    end
+endfunction
 
 // a read starts when a result is in the places and the queue and read_q hold at most two, so
 // the result has a register to go to the clock after, whether or not out delivers
-wire                  read = !empty && !queue_full;
-wire                  queue_two = queued_1_valid || (out_valid && read_valid);  // two or more
-wire                  one_left = write_at == read_after;
-wire                  out_moves = !out_valid || out_ready;      // out may load
-wire                  queued_1_moves = !queued_1_valid || out_ready;  // queued_1 may load (empty behind an empty out)
+wire                  read = stored_at_least[1] && !queue_full;
+wire                  store_up = result_valid && !read;     // one more result in the places
+wire                  store_stays = read == result_valid;   // as many
+// the thermometer with its two ends: always 0 or more, never more than PLACES
+wire [PLACES + 1:0]   stored_level = {1'b0, stored_at_least, 1'b1};
+wire                  queue_two = held[1] || (out_valid && read_valid);  // two or more
 wire                  deliver = out_valid && out_ready;
-wire                  step_up = take && !deliver;               // used goes up by one
-wire                  step_down = deliver && !take;             // used goes down by one
 
 assign take = in_valid && in_ready;
-assign idle = used == {(DEPTH_LOG2 + 1){1'b0}};
+assign idle = taken == delivered;
 
 // the places: a result is written the cycle it leaves the pipeline, read in order
 always @(posedge clk) begin
     if (result_valid) places[write_at[DEPTH_LOG2-1:0]] <= result;
-    read_q <= places[read_at];
-    if (out_moves) out <= queued_1_valid ? queued_1 : read_q;
-    if (queued_1_moves) queued_1 <= queued_2_valid ? queued_2 : read_q;
-    if (!queued_2_valid) queued_2 <= read_q;
+    read_q <= places[read_at[DEPTH_LOG2-1:0]];
 end
+
+// a counter's next value: its + 1 where it moves, itself elsewhere (AND-OR: no enable)
+function [DEPTH_LOG2:0] step(input moves, input [DEPTH_LOG2:0] up, input [DEPTH_LOG2:0] now);
+    step = ({(DEPTH_LOG2 + 1){moves}} & up) | ({(DEPTH_LOG2 + 1){!moves}} & now);
+endfunction
+
+// stored_at_least[k] takes bit k - 1 when a result arrives and none leaves, bit k + 1 when one
+// leaves and none arrives, else stays. A thermometer is monotone, so: set if bit k + 1 is; clear
+// if bit k - 1 is; else set when a result arrives or it stays set. Written as AND-OR, not as a
+// hold: an enable would put rst and read before the flip-flop.
+genvar k;
+generate
+    for (k = 1; k <= PLACES; k = k + 1) begin : thermometer
+        // one LUT of result_valid, stored_at_least[1], queue_full and this bit, then one more
+        (* keep *) wire grows_or_holds;
+        assign grows_or_holds = store_up || (store_stays && stored_level[k]);
+        always @(posedge clk) begin
+            if (rst) stored_at_least[k] <= 1'b0;
+            else     stored_at_least[k] <= stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);
+        end
+    end
+endgenerate
+
+// the queue's wide registers, slice by slice, each slice on its own copy of the count (keep:
+// synthesis must not merge the copies back into one enable of WIDTH flip-flops)
+genvar s;
+generate
+    for (s = 0; s < SLICES; s = s + 1) begin : slice
+        localparam integer LO = s * SLICE;
+        localparam integer HI = (LO + SLICE < WIDTH ? LO + SLICE : WIDTH) - 1;
+        (* keep *) reg [1:0] held_copy;
+        (* keep *)
+        always @(posedge clk) begin
+            if (rst) held_copy <= 2'd0;
+            else     held_copy <= held_next(held_copy, read_valid, out_ready);
+        end
+        always @(posedge clk) begin
+            // out loads when empty or delivering: queued_1 if it holds a result, else read_q
+            if (held_copy == 2'd0 || out_ready) out[HI:LO] <= held_copy[1] ? queued_1[HI:LO] : read_q[HI:LO];
+            // queued_1 loads when empty or moving up: queued_2 if it holds a result, else read_q
+            if (!held_copy[1] || out_ready)     queued_1[HI:LO] <= held_copy == 2'd3 ? queued_2[HI:LO] : read_q[HI:LO];
+            // queued_2 loads while empty
+            if (held_copy != 2'd3)              queued_2[HI:LO] <= read_q[HI:LO];
+        end
+    end
+endgenerate
 
 always @(posedge clk) begin
     if (rst) begin
         write_at       <= {(DEPTH_LOG2 + 1){1'b0}};
-        read_at        <= {DEPTH_LOG2{1'b0}};
-        read_after     <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
-        empty          <= 1'b1;
+        read_at        <= {(DEPTH_LOG2 + 1){1'b0}};
+        taken          <= {(DEPTH_LOG2 + 1){1'b0}};
+        taken_up       <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
+        delivered      <= {(DEPTH_LOG2 + 1){1'b0}};
+        delivered_up   <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
         read_valid     <= 1'b0;
+        held           <= 2'd0;
         out_valid      <= 1'b0;
-        queued_1_valid <= 1'b0;
         queue_full     <= 1'b0;
-        queued_2_valid <= 1'b0;
-        used           <= {(DEPTH_LOG2 + 1){1'b0}};
-        used_up        <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
+        outstanding    <= {(DEPTH_LOG2 + 1){1'b0}};
         in_ready       <= 1'b0;
     end else begin
-        if (result_valid) write_at <= write_at + 1'b1;
-        if (read)         read_at <= read_after[DEPTH_LOG2-1:0];
-        if (read)         read_after <= read_after + 1'b1;
-        if (result_valid) empty <= 1'b0;
-        else if (read)    empty <= one_left;
+        write_at     <= step(result_valid, write_at + 1'b1, write_at);
+        read_at      <= step(read, read_at + 1'b1, read_at);
+        taken        <= step(take, taken_up, taken);
+        taken_up     <= step(take, taken_up + 1'b1, taken_up);
+        delivered    <= step(deliver, delivered_up, delivered);
+        delivered_up <= step(deliver, delivered_up + 1'b1, delivered_up);
         read_valid <= read;
-        // the queue holds S = out_valid + queued_1_valid + queued_2_valid results, filled from
-        // out; next it holds S + read_valid - deliver (never more than three: see read)
-        out_valid      <= (out_valid && !out_ready) || queued_1_valid || read_valid;
-        queued_1_valid <= queued_2_valid || (queued_1_valid && (read_valid || !out_ready))
-                          || (out_valid && read_valid && !out_ready);
-        queued_2_valid <= !out_ready && (queued_2_valid || (queued_1_valid && read_valid));
+        held       <= held_next(held, read_valid, out_ready);
+        out_valid  <= held_next(held, read_valid, out_ready) != 2'd0;
         // three next: three now and none delivered, or two now, a read and none delivered
         // (with two or more, out_valid is high and out_ready alone decides a delivery)
-        queue_full     <= !out_ready && (queue_full || (queue_two && !empty));
-        // no adder between the handshake and a register: used moves to used_up or used - 1,
-        // both computed from registers alone
-        used     <= step_up ? used_up : step_down ? used - 1'b1 : used;
-        used_up  <= step_up ? used_up + 1'b1 : step_down ? used : used_up;
-        // at most DEPTH - 2 taken before this clock: at most DEPTH - 1 after it, and a take in
-        // the next cycle still finds a place
-        in_ready <= used < DEPTH - 1'b1;
+        queue_full <= !out_ready && (queue_full || (queue_two && stored_at_least[1]));
+        outstanding <= taken - delivered;
+        // outstanding < PLACES - 2 two clocks before a take: at most PLACES - 3 + 2 taken before
+        // it, PLACES at most with it, each with its place
+        in_ready <= outstanding < CREDITS;
     end
 end
 

@@ -38,7 +38,7 @@ pub struct SynthArgs {
     /// The yosys binary (e.g. a newer build, whose netlist --verify then checks).
     #[arg(long, value_name = "PATH", default_value = "yosys")]
     pub yosys: String,
-    /// Keep nextpnr's log of seed 1 (critical paths) in FILE.
+    /// Keep nextpnr's logs (critical paths) in FILE: every seed's, one after another.
     #[arg(long, value_name = "FILE")]
     pub pnr_log: Option<PathBuf>,
 }

@@ -48,7 +48,7 @@ struct Pending {
 ///   at a clock edge without reset, a result delivered when `out_valid && out_ready`; every
 ///   result must be the next pixel's, in order, with its tag; the outputs must hold while
 ///   stalled; a pixel taken `latency` cycles ago must be on the outputs (no bubbles);
-///   `in_ready` must be high exactly when, the cycle before, fewer than the buffer's places - 1
+///   `in_ready` must be high exactly when, two cycles before, fewer than the buffer's places - 2
 ///   were taken (except the cycle after a reset), and `idle` exactly while none is.
 pub struct Checker<'a> {
     model: &'a Model,
@@ -65,6 +65,8 @@ pub struct Checker<'a> {
     pending: VecDeque<Pending>,
     /// pixels taken and not yet delivered in the cycle before
     pending_before: usize,
+    /// the same, the cycle before that
+    pending_two_before: usize,
     before: Option<(Cycle, Sampled)>,
     pub report: Report,
 }
@@ -84,6 +86,7 @@ impl<'a> Checker<'a> {
             places,
             pending: VecDeque::new(),
             pending_before: 0,
+            pending_two_before: 0,
             before: None,
             report: Report::default(),
         }
@@ -177,13 +180,15 @@ impl<'a> Checker<'a> {
                 self.fail(t, front, s, got, true, Some("the result changed or went away while out_ready was low".into()));
             }
         }
-        // in_ready: high exactly when fewer than places - 1 were taken the cycle before (a
-        // register of the count); idle: none is taken now
-        let used_before = std::mem::replace(&mut self.pending_before, self.pending.len());
-        let exp_ready = !after_reset && used_before + 1 < places;
+        // in_ready: high exactly when fewer than places - 2 were taken two cycles before (a
+        // register of a register of the count; a reset counts as none taken); idle: none is
+        // taken now
+        let used_before = std::mem::replace(&mut self.pending_before, if now.rst { 0 } else { self.pending.len() });
+        let used_two_before = std::mem::replace(&mut self.pending_two_before, used_before);
+        let exp_ready = !after_reset && used_two_before + 2 < places;
         if got.in_ready != exp_ready {
             let e = Sampled { in_ready: exp_ready, ..got };
-            let rule = format!("in_ready is {} with {used_before} of {places} places taken the cycle before", got.in_ready as u8);
+            let rule = format!("in_ready is {} with {used_two_before} of {places} places taken two cycles before", got.in_ready as u8);
             self.fail(t, now, e, got, false, Some(rule));
         }
         if self.static_colour && got.idle != self.pending.is_empty() {
