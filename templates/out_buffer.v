@@ -66,7 +66,7 @@ end
 
 localparam [DEPTH_LOG2:0] CREDITS = PLACES - 2;   // in_ready while fewer are outstanding
 // flip-flops on one enable at most, and the slices of the wide registers
-localparam integer SLICE = 12;
+localparam integer SLICE = 8;
 localparam integer SLICES = (WIDTH + SLICE - 1) / SLICE;
 
 // a place is never read in the clock it is written while the read counts (a read needs a
@@ -148,10 +148,16 @@ generate
         localparam integer LO = s * SLICE;
         localparam integer HI = (LO + SLICE < WIDTH ? LO + SLICE : WIDTH) - 1;
         (* keep *) reg [1:0] held_copy;
+        (* keep *) reg       queued_2_open;   // held_copy != 3, a register: queued_2's enable
         (* keep *)
         always @(posedge clk) begin
-            if (rst) held_copy <= 2'd0;
-            else     held_copy <= held_next(held_copy, read_valid, out_ready);
+            if (rst) begin
+                held_copy     <= 2'd0;
+                queued_2_open <= 1'b1;
+            end else begin
+                held_copy     <= held_next(held_copy, read_valid, out_ready);
+                queued_2_open <= held_next(held_copy, read_valid, out_ready) != 2'd3;
+            end
         end
         always @(posedge clk) begin
             // out loads when empty or delivering: queued_1 if it holds a result, else read_q
@@ -159,7 +165,7 @@ generate
             // queued_1 loads when empty or moving up: queued_2 if it holds a result, else read_q
             if (!held_copy[1] || out_ready)     queued_1[HI:LO] <= held_copy == 2'd3 ? queued_2[HI:LO] : read_q[HI:LO];
             // queued_2 loads while empty
-            if (held_copy != 2'd3)              queued_2[HI:LO] <= read_q[HI:LO];
+            if (queued_2_open)                  queued_2[HI:LO] <= read_q[HI:LO];
         end
     end
 endgenerate

@@ -58,6 +58,8 @@ pub struct Checker<'a> {
     static_colour: bool,
     /// the material registers now (a static colour)
     material: [u32; 3],
+    /// a load has set them (before it, they hold no value)
+    material_loaded: bool,
     /// `valid`: the material in effect in each of the last `latency + 1` cycles
     history: VecDeque<[u32; 3]>,
     /// `ready`/`axis`: the buffer's places, the pixels inside, the last cycle's sample
@@ -82,6 +84,7 @@ impl<'a> Checker<'a> {
             run,
             static_colour: cfg.colour() == Colour::Static,
             material: [0; 3],
+            material_loaded: false,
             history: VecDeque::new(),
             places,
             pending: VecDeque::new(),
@@ -119,6 +122,7 @@ impl<'a> Checker<'a> {
         }
         if now.load {
             self.material = now.inputs.ks;
+            self.material_loaded = true;
         }
     }
 
@@ -131,7 +135,9 @@ impl<'a> Checker<'a> {
             }
         }
         let (exp_valid, data_compared, src) = if s == 0 {
-            (now.valid, true, now)
+            // combinational: the outputs follow the inputs in every cycle, but a static colour
+            // has no value (x in Icarus) before its first load
+            (now.valid, !self.static_colour || self.material_loaded, now)
         } else {
             // valid needs a defined pipeline: a reset at some cycle before t
             let Some(last_rst) = self.last_rst else {

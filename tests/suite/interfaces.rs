@@ -109,18 +109,25 @@ fn faults_in_the_handshake_are_caught() {
     let tmp = tempfile::tempdir().unwrap();
     let buffer = "specular_unit_out_buffer.v";
     let faults: &[(&str, &str, &str, &str)] = &[
-        // a result dropped on stall: out_valid falls while out_ready is low
-        ("dropped", buffer, "out_valid      <= (out_valid && !out_ready) || queued_1_valid || read_valid;", "out_valid <= queued_1_valid || read_valid;"),
+        // a result dropped on stall: the queue counts a result gone while out_ready is low
+        ("dropped", buffer, "leaving = count != 2'd0 && ready;", "leaving = count != 2'd0;"),
         // payload changing while stalled
-        ("unstable", buffer, "if (out_moves) out <= queued_1_valid ? queued_1 : read_q;", "out <= queued_1_valid ? queued_1 : read_q;"),
+        ("unstable", buffer, "if (held_copy == 2'd0 || out_ready) out[HI:LO] <=", "if (1'b1) out[HI:LO] <="),
         // a result duplicated: the read pointer misses a step
-        ("duplicated", buffer, "if (read)         read_after <= read_after + 1'b1;", "if (read && read_at != 5) read_after <= read_after + 1'b1;"),
+        ("duplicated", buffer, "read_at      <= step(read, read_at + 1'b1, read_at);", "read_at <= step(read && read_at != 5, read_at + 1'b1, read_at);"),
         // a read started with no room in the queue: the result read has no register to go to
-        ("queue_overrun", buffer, "queue_full     <= !out_ready && (queue_full || (queue_two && !empty));", "queue_full     <= 1'b0;"),
+        ("queue_overrun", buffer, "queue_full <= !out_ready && (queue_full || (queue_two && stored_at_least[1]));", "queue_full <= 1'b0;"),
+        // the occupancy thermometer loses a result: bit 2 never rises above bit 1
+        (
+            "thermometer",
+            buffer,
+            "else     stored_at_least[k] <= stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);",
+            "else     stored_at_least[k] <= k == 2 ? 1'b0 : stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);",
+        ),
         // the tag one stage off (the register before the last: see handshake_mutant)
         ("tag_off", "specular_unit.v", "TAG_LAST", "TAG_BEFORE"),
         // credits miscounted: in_ready stays high as the last place fills
-        ("overfull", buffer, "in_ready <= used < DEPTH - 1'b1;", "in_ready <= used < DEPTH;"),
+        ("overfull", buffer, "in_ready <= outstanding < CREDITS;", "in_ready <= outstanding <= CREDITS;"),
     ];
     for_each_parallel(faults, |_, (name, file, from, to)| {
         let o = handshake_mutant(tmp.path(), name, file, from, to);
