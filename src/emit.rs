@@ -330,7 +330,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let cfg = &plan.cfg;
     let p = &cfg.params;
     let dp = &plan.datapath;
-    let cuts = cut_list(dp);
+    let cuts = cut_list(dp, cfg.target().has_block_ram());
     let edge = crate::interface::edge(plan, &dp.outputs);
     let line_unread: Vec<String> = cuts.iter().flat_map(|c| c.lines.iter().flat_map(DelayLine::unread)).collect();
     // each line indented 4 and ended by a comma
@@ -466,7 +466,7 @@ fn block_table(dp: &datapath::Datapath, t: usize) -> bool {
 /// The registered cuts of a datapath, each with the signals it holds and where from: a signal
 /// that only waits (registered at several cuts, each taking the one before) is one
 /// [`DelayLine`] at the first of them.
-fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
+fn cut_list(dp: &datapath::Datapath, memory: bool) -> Vec<Cut> {
     let mut cuts: Vec<Cut> =
         (1..=dp.live.len()).map(|index| Cut { index, registered: dp.registered.contains(&(index as u32)), signals: Vec::new(), lines: Vec::new() }).collect();
     // each signal's chain of registers: the cuts holding it, in order, and the first source
@@ -506,7 +506,7 @@ fn cut_list(dp: &datapath::Datapath) -> Vec<Cut> {
                 l.members.push(member);
                 l.name = format!("waiting_c{}_c{}", at[0], at[at.len() - 1]);
             }
-            None => lines.push(DelayLine { name, cuts: at, members: vec![member] }),
+            None => lines.push(DelayLine { name, cuts: at, members: vec![member], memory }),
         }
     }
     for l in lines {

@@ -174,7 +174,8 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         let cuts: Vec<usize> = plan.registered_cuts.iter().map(|&k| k as usize).collect();
         let last = format!("tag_c{}", cuts[cuts.len() - 1]);
         let read = vec![0; cuts.len()];
-        let line = DelayLine { name: "tag".into(), cuts, members: vec![Waiting { name: "tag".into(), width: tw, source: "in_tag".into(), read }] };
+        let member = Waiting { name: "tag".into(), width: tw, source: "in_tag".into(), read };
+        let line = DelayLine { name: "tag".into(), cuts, members: vec![member], memory: cfg.target().has_block_ram() };
         e.tag.push(String::new());
         e.tag.extend(line.lines());
         Some(last)

@@ -250,34 +250,69 @@ pub(crate) struct DelayLine {
     pub cuts: Vec<usize>,
     /// the signals of a word, the first in its low bits
     pub members: Vec<Waiting>,
+    /// the target has block RAM: a long unread tail may wait there ([`DelayLine::memory_tail`])
+    pub memory: bool,
 }
 
+/// A delay line's tail waits in block RAM when it spans at least this many cuts...
+pub(crate) const MEMORY_TAIL_MIN_CUTS: usize = 8;
+/// ...and holds at least this many bits (a UP5K block RAM holds 4096; below a few hundred, the
+/// flip-flops cost less than its address counters and output register)
+pub(crate) const MEMORY_TAIL_MIN_BITS: u32 = 256;
+
 impl DelayLine {
-    /// Its Verilog: the vector and the statement that shifts it, then the words read, named
-    /// (one statement per width).
-    pub fn lines(&self) -> Vec<String> {
+    /// The bits of a word (every member's).
+    fn word(&self) -> u32 {
+        self.members.iter().map(|m| m.width).sum()
+    }
+
+    /// Where its unread tail starts and how long it is, when that tail waits in block RAM: the
+    /// words after the last one read before the end (or all of them) are never named, so the
+    /// last word is the word before the tail (or the sources) delayed by the tail's cuts, and
+    /// `(shift words kept, tail cuts)` says how. `None`: every word is a register.
+    pub fn memory_tail(&self) -> Option<(usize, usize)> {
         let d = self.cuts.len();
-        let word: u32 = self.members.iter().map(|m| m.width).sum();
+        let read_before_end = (0..d - 1).rev().find(|&k| self.members.iter().any(|m| m.read[k] != 0));
+        let kept = read_before_end.map_or(0, |r| r + 1);
+        let tail = d - kept;
+        (self.memory && tail >= MEMORY_TAIL_MIN_CUTS && self.word() * tail as u32 >= MEMORY_TAIL_MIN_BITS).then_some((kept, tail))
+    }
+
+    /// Its Verilog: the vector and the statement that shifts it, then the words read, named
+    /// (one statement per width). A tail in block RAM ([`DelayLine::memory_tail`]) follows the
+    /// vector: the memory, its two address counters, its read register and the last word.
+    pub fn lines(&self) -> Vec<String> {
+        let word = self.word();
         let line = format!("{}_line", self.name);
         let sources: Vec<&str> = self.members.iter().rev().map(|m| m.source.as_str()).collect();
-        let shifted = match (d, sources.len()) {
-            (1, 1) => sources[0].to_string(),
-            (1, _) => format!("{{{}}}", sources.join(", ")),
-            _ => format!("{{{line}[{}:0], {}}}", word * (d as u32 - 1) - 1, sources.join(", ")),
+        let joined = if sources.len() == 1 { sources[0].to_string() } else { format!("{{{}}}", sources.join(", ")) };
+        let tail = self.memory_tail();
+        // the words in the shift vector
+        let d = tail.map_or(self.cuts.len(), |(kept, _)| kept);
+        let shifted = match d {
+            1 => joined.clone(),
+            _ => format!("{{{line}[{}:0], {}}}", word * (d as u32).saturating_sub(1) - 1, sources.join(", ")),
         };
         let mut out = Vec::new();
-        out.push(format!("reg  [{}:0] {line};   always @(posedge clk) {line} <= {shifted};", word * d as u32 - 1));
+        if d > 0 {
+            out.push(format!("reg  [{}:0] {line};   always @(posedge clk) {line} <= {shifted};", word * d as u32 - 1));
+        }
+        if let Some((kept, cuts)) = tail {
+            out.extend(self.memory_lines(&line, word, kept, cuts, &joined));
+        }
         // the named words, grouped by width in order of first appearance
         let mut by_width: Vec<(u32, Vec<String>)> = Vec::new();
         let mut offset = 0;
+        let last = self.cuts.len() - 1;
         for m in &self.members {
             for (k, cut) in self.cuts.iter().enumerate() {
-                if m.read[k] == 0 && k + 1 < d {
+                if m.read[k] == 0 && k < last {
                     continue;
                 }
-                let lo = word * k as u32 + offset;
+                // the last word of a tail in block RAM is its own register
+                let (vector, lo) = if k >= d { (format!("{line}_end"), offset) } else { (line.clone(), word * k as u32 + offset) };
                 let select = if m.width == 1 { format!("[{lo}]") } else { format!("[{}:{lo}]", lo + m.width - 1) };
-                let tap = format!("{}_c{cut} = {line}{select}", m.name);
+                let tap = format!("{}_c{cut} = {vector}{select}", m.name);
                 match by_width.iter_mut().find(|x| x.0 == m.width) {
                     Some(x) => x.1.push(tap),
                     None => by_width.push((m.width, vec![tap])),
@@ -290,6 +325,40 @@ impl DelayLine {
             out.push(format!("wire {range} {};", taps.join(", ")));
         }
         out
+    }
+
+    /// The tail in block RAM: `cuts` cycles from the word before it (`kept` words into the
+    /// vector; none: the sources) to `<line>_end`. The memory and its read register wait
+    /// `cuts - 1` of them (a word written at one clock is read `cuts - 2` clocks later, into the
+    /// read register), `<line>_end` the last, so the memory's output meets only a flip-flop.
+    fn memory_lines(&self, line: &str, word: u32, kept: usize, cuts: usize, sources: &str) -> Vec<String> {
+        let wait = cuts - 1; // the memory with its read register
+        let bits = (wait as u64).next_power_of_two().trailing_zeros().max(1);
+        let depth = 1u64 << bits;
+        let input = if kept == 0 { sources.to_string() } else { format!("{line}[{}:{}]", word * kept as u32 - 1, word * (kept as u32 - 1)) };
+        // the read address trails the write address by wait - 1 places: what was written
+        // wait - 1 clocks before, never what is being written
+        let from_reset = (depth - (wait as u64 - 1)) % depth;
+        let w = word - 1;
+        let a = bits - 1;
+        let names: Vec<&str> = self.members.iter().map(|m| m.name.as_str()).collect();
+        vec![
+            format!("// {} wait {cuts} more cuts: {wait} clocks in block RAM (with its read register), one in", names.join(", ")),
+            format!("// {line}_end: the memory's output meets only a flip-flop"),
+            "(* no_rw_check *)".to_string(),
+            format!("reg  [{w}:0] {line}_ram [0:{}];", depth - 1),
+            format!("reg  [{a}:0] {line}_at, {line}_from;   // write and read addresses: the read trails by {}", wait - 1),
+            format!("reg  [{w}:0] {line}_q, {line}_end;"),
+            "always @(posedge clk) begin".to_string(),
+            format!("    {line}_ram[{line}_at] <= {input};"),
+            format!("    {line}_q <= {line}_ram[{line}_from];"),
+            format!("    {line}_end <= {line}_q;"),
+            "end".to_string(),
+            "always @(posedge clk) begin".to_string(),
+            format!("    if (rst) begin {line}_at <= {bits}'d0; {line}_from <= {bits}'d{from_reset}; end"),
+            format!("    else begin {line}_at <= {line}_at + 1'b1; {line}_from <= {line}_from + 1'b1; end"),
+            "end".to_string(),
+        ]
     }
 
     /// The bits of its named words before the last that nothing reads, as selects, for the lint
