@@ -18,17 +18,42 @@ use crate::datapath::{DelayLine, Waiting};
 use crate::plan::Plan;
 use crate::ports::{self, Field};
 
-/// Places of the output buffer for a pipeline of `stages`: its latency + 6 (the buffer's three
-/// cycles and the three of the credit loop: a take, `outstanding`, `in_ready`), so a stream at
+/// Places of the output buffer for a pipeline of `stages`: its latency + 7 (the buffer's three
+/// cycles and the four of the credit loop: `took`, `taken`, `outstanding`, `in_ready`), so a stream at
 /// full rate never finds `in_ready` low. Exactly as many as that: each place costs a bit of
 /// the buffer's occupancy thermometer (`templates/out_buffer.v`).
 pub fn places_for(stages: u32) -> u64 {
-    (stages + BUFFER_LATENCY + 3) as u64
+    (stages + BUFFER_LATENCY + 4) as u64
 }
 
-/// Address bits of the buffer's memory: the places rounded up to a power of two.
+/// Address bits of the buffer's memory: its pointers step through the 2^bits - 1 states of a
+/// linear feedback shift register ([`lfsr_taps`]), at least one per place.
 pub fn buffer_depth_log2(stages: u32) -> u32 {
-    places_for(stages).next_power_of_two().trailing_zeros()
+    (places_for(stages) + 1).next_power_of_two().trailing_zeros().max(3)
+}
+
+/// The taps of a maximal-length XNOR linear feedback shift register of `bits` bits (3..=16),
+/// bit k - 1 for tap k, from Xilinx XAPP052 (table 3): shifting left with the XNOR of the taps
+/// into bit 0, it goes through every state but all ones.
+pub fn lfsr_taps(bits: u32) -> u32 {
+    let taps: &[u32] = match bits {
+        3 => &[3, 2],
+        4 => &[4, 3],
+        5 => &[5, 3],
+        6 => &[6, 5],
+        7 => &[7, 6],
+        8 => &[8, 6, 5, 4],
+        9 => &[9, 5],
+        10 => &[10, 7],
+        11 => &[11, 9],
+        12 => &[12, 6, 4, 1],
+        13 => &[13, 4, 3, 1],
+        14 => &[14, 5, 3, 1],
+        15 => &[15, 14],
+        16 => &[16, 15, 13, 4],
+        _ => panic!("no LFSR taps for {bits} bits"),
+    };
+    taps.iter().map(|t| 1 << (t - 1)).sum()
 }
 
 /// The places of the `ready`/`axis` output buffer (0 without a handshake).
@@ -90,7 +115,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.header.push("Handshake:  AXI4-Stream rules: a transfer when valid and ready are both high at a rising clock edge.".into());
         e.header.push(format!("            {ov} and every output hold while {or} is low;"));
         e.header.push(format!("            {ov} never waits for {or}."));
-        e.header.push(format!("            {ir} is a register: high in a cycle when, two cycles before, fewer than {} pixels", places - 2));
+        e.header.push(format!("            {ir} is a register: high in a cycle when, three cycles before, fewer than {} pixels", places - 3));
         e.header.push(format!("            were taken and not yet delivered ({top}_out_buffer holds {places} results), so the"));
         e.header.push("            pipeline never stalls;".into());
         e.header.push(format!("            {iv} may come and go freely: a pixel is taken only in a transfer."));
@@ -151,8 +176,8 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     }
     if interface.handshake() {
         e.prologue.push(format!("wire {} in_take;   // in_valid && in_ready: the pipeline takes a pixel ({top}_out_buffer)", range(1)));
+        e.prologue.push(format!("wire {} buffer_idle;   // no result in {top}_out_buffer", range(1)));
         if colour != Colour::Static {
-            e.prologue.push(format!("wire {} buffer_idle;", range(1)));
             e.unused.push("buffer_idle".into());
         }
         e.valid_source = "in_take".into();
@@ -209,22 +234,26 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         fields.push((port.clone(), src.clone(), widths(port)));
     }
     let width: u32 = fields.iter().map(|f| f.2).sum();
-    let idle = if colour == Colour::Static { "idle" } else { "buffer_idle" };
     e.tail.push(String::new());
     e.tail.push("// ==== the output buffer: the handshake ====".into());
     e.tail.push(format!("// every pixel taken has a place reserved in {top}_out_buffer, so the pipeline never waits"));
     e.tail.push(format!("wire {} out_result = {};", range(width), concat(&fields.iter().map(|f| f.1.clone()).collect::<Vec<_>>())));
     e.tail.push(format!("wire {} out_held;", range(width)));
+    let bits = buffer_depth_log2(depth) as usize;
     e.tail.push(format!(
-        "{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({}), .PLACES({}), .LATENCY({})) out_buffer (",
-        buffer_depth_log2(depth),
+        "{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({bits}), .TAPS({bits}'b{:0bits$b}), .PLACES({}), .LATENCY({})) out_buffer (",
+        lfsr_taps(bits as u32),
         places_for(depth),
         cfg.stages()
     ));
     e.tail.push("    .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .take(in_take),".into());
     e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
-    e.tail.push(format!("    .out_valid(out_valid), .out_ready(out_ready), .out(out_held), .idle({idle})"));
+    e.tail.push("    .out_valid(out_valid), .out_ready(out_ready), .out(out_held), .idle(buffer_idle)".into());
     e.tail.push(");".into());
+    if colour == Colour::Static {
+        let idle = if depth == 0 { "buffer_idle".to_string() } else { "~|valid_line && buffer_idle".to_string() };
+        e.tail.push(format!("assign {:<9} = {idle};   // no pixel in the pipeline or the buffer", "idle"));
+    }
     e.tail.push(format!("assign {} = out_held;", concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>())));
     if interface == Interface::Axis {
         let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
@@ -241,5 +270,28 @@ fn names(interface: Interface) -> (&'static str, &'static str, &'static str, &'s
     match interface {
         Interface::Axis => ("s_axis_tvalid", "s_axis_tready", "m_axis_tvalid", "m_axis_tready", "aresetn low"),
         _ => ("in_valid", "in_ready", "out_valid", "out_ready", "rst"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every tap set gives a register that goes through all 2^bits - 1 states but all ones
+    /// from 0, as the buffer's pointers need (a shorter cycle would reuse a place too early).
+    #[test]
+    fn lfsr_taps_are_maximal() {
+        for bits in 3..=16u32 {
+            let (taps, mask) = (lfsr_taps(bits), (1u32 << bits) - 1);
+            let mut at = 0u32;
+            let mut seen = vec![false; 1 << bits];
+            for _ in 0..mask {
+                assert!(!seen[at as usize], "{bits} bits: state {at} again");
+                seen[at as usize] = true;
+                at = ((at << 1) | (!(at & taps).count_ones() & 1)) & mask;
+            }
+            assert_eq!(at, 0, "{bits} bits: back at 0 after 2^{bits} - 1 steps");
+            assert!(!seen[mask as usize], "{bits} bits: all ones is the one state left out");
+        }
     }
 }

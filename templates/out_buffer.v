@@ -5,36 +5,42 @@
 // {{ version }}. Do not edit.
 //
 // The unit's pipeline never waits. Its handshake follows the AXI4-Stream rules instead with
-// credits: `taken` and `delivered` count the pixels in and out (each a counter that only goes up,
-// its carry chain fed by registers alone), `outstanding` is their difference a clock later, and
-// in_ready (a register) is high in a cycle when, two cycles before, fewer than PLACES - 2
-// pixels were taken and not yet delivered: with the two clocks in between, a pixel taken then
-// still has a place here before it enters the pipeline, so none is ever lost.
+// credits: `taken` and `delivered` count the transfers in and out a clock late (each adds a
+// registered strobe: a carry chain fed by registers alone), `outstanding` is their difference
+// a clock later still, and in_ready (a register) is high in a cycle when, three cycles before,
+// fewer than PLACES - 3 pixels were taken and not yet delivered: with the three clocks in
+// between, a pixel taken then still has a place here before it enters the pipeline, so none is
+// ever lost.
+// Results leave the places (PLACES of the memory's 2^DEPTH_LOG2 - 1, its pointers stepping
+// through a linear feedback shift register: one LUT, no carry chain) through the memory's read
+// register into a queue of three registers, `out` and the two waiting behind it; `held`
+// counts the results in them (0..3, filled from out). The results in the places are counted by
+// a thermometer, stored_at_least[k] for k = 1..PLACES: a read needs stored_at_least[1] and a
+// queue that will have room for the result whatever out_ready does, so the read decision is
+// one LUT of registers and each bit of the thermometer two LUTs of registers and result_valid
+// (no pointer comparator or adder sits between a read and the next). Every register of the
+// queue loads on an enable of one LUT of its count and out_ready, and each bit of the count is
+// one LUT of the count, read_valid and out_ready. The wide registers load in slices of at most
+// SLICE bits, each slice with its own copy of the count: no enable drives more than SLICE
+// flip-flops, so place-and-route keeps every enable in local routing (nextpnr-ice40 moves an
+// enable of more than 15 flip-flops onto a global buffer, several nanoseconds away from
+// out_ready).
 // Speed (iCE40 at 100 MHz leaves two LUTs and their routing between registers): no register
-// here has an enable that rst or a handshake input reaches. Each counter bit is one LUT of its
-// enable's inputs, its + 1 and itself, written as AND-OR rather than as a hold (a hold becomes
-// an enable, and rst would then join it); rst reaches only the flip-flops' reset pins.
-// Results leave the places through the memory's read register into a queue of three registers,
-// `out` and the two waiting behind it; `held` counts the results in them (0..3, filled from
-// out). The results in the places are counted by a thermometer, stored_at_least[k] for
-// k = 1..PLACES: a read needs stored_at_least[1] and a queue that will have room for the
-// result whatever out_ready does, so the read decision is one LUT of registers and each bit of
-// the thermometer two LUTs of registers and result_valid (no pointer comparator or adder sits
-// between a read and the next). Every register of the queue loads on an
-// enable of one LUT of its count and out_ready, and each bit of the count is one LUT of the
-// count, read_valid and out_ready. The wide registers load in slices of at most SLICE bits,
-// each slice with its own copy of the count: no enable drives more than SLICE flip-flops, so
-// place-and-route keeps every enable in local routing (nextpnr-ice40 moves an enable of more
-// than 15 flip-flops onto a global buffer, several nanoseconds away from out_ready).
+// here has an enable that rst reaches, and no register fed by a handshake input has an adder
+// before it. The pointers are written as AND-OR rather than as a hold (a hold becomes an
+// enable, and rst would then join it); rst reaches only the flip-flops' reset pins.
 // A stream with out_ready high gets one result a cycle, out_valid and out stay stable while
 // out_ready is low, and out_valid never waits for out_ready.
 // rst (synchronous, active high) empties the buffer; a cycle with rst high transfers nothing.
 module {{ top }}_out_buffer #(
     // bits of one result (the output fields and the tag)
     parameter WIDTH = 8,
-    // address bits of the memory: 2^DEPTH_LOG2 >= PLACES
+    // address bits of the memory: 2^DEPTH_LOG2 - 1 >= PLACES (the pointers step through the
+    // 2^DEPTH_LOG2 - 1 states of a linear feedback shift register)
     parameter DEPTH_LOG2 = 4,
-    // the places used, each with its bit in the occupancy thermometer: PLACES >= LATENCY + 6,
+    // the register's taps, bit k - 1 for tap k: a maximal-length XNOR feedback
+    parameter [DEPTH_LOG2-1:0] TAPS = 4'b1100,
+    // the places used, each with its bit in the occupancy thermometer: PLACES >= LATENCY + 7,
     // or a full-rate stream would wait
     parameter PLACES = 16,
     // the pipeline's latency: result_valid is a pixel taken LATENCY cycles before
@@ -50,21 +56,21 @@ module {{ top }}_out_buffer #(
     output reg              out_valid,
     input  wire             out_ready,
     output reg  [WIDTH-1:0] out,
-    output wire             idle             // no pixel taken and not yet delivered
+    output wire             idle             // no result here (in the places, read_q or the queue)
 );
 
 `ifndef SYNTHESIS
 initial begin
-    if (PLACES < LATENCY + 6) begin
-        $fatal(1, "%m: PLACES = %0d is fewer than LATENCY + 6 = %0d", PLACES, LATENCY + 6);
+    if (PLACES < LATENCY + 7) begin
+        $fatal(1, "%m: PLACES = %0d is fewer than LATENCY + 7 = %0d", PLACES, LATENCY + 7);
     end
-    if ((1 << DEPTH_LOG2) < PLACES) begin
+    if ((1 << DEPTH_LOG2) - 1 < PLACES) begin
         $fatal(1, "%m: DEPTH_LOG2 = %0d addresses fewer than PLACES = %0d", DEPTH_LOG2, PLACES);
     end
 end
 `endif
 
-localparam [DEPTH_LOG2:0] CREDITS = PLACES - 2;   // in_ready while fewer are outstanding
+localparam [DEPTH_LOG2:0] CREDITS = PLACES - 3;   // in_ready while fewer are outstanding
 // flip-flops on one enable at most, and the slices of the wide registers
 localparam integer SLICE = 8;
 localparam integer SLICES = (WIDTH + SLICE - 1) / SLICE;
@@ -74,16 +80,16 @@ localparam integer SLICES = (WIDTH + SLICE - 1) / SLICE;
 // matter: no_rw_check tells yosys not to build bypass logic around the block RAM for it
 (* no_rw_check *)
 reg  [WIDTH-1:0]      places [0:(1 << DEPTH_LOG2) - 1];
-reg  [DEPTH_LOG2:0]   write_at;                      // the place written next (and a wrap bit)
-reg  [DEPTH_LOG2:0]   read_at;                       // the place read next (and a wrap bit)
+reg  [DEPTH_LOG2-1:0] write_at;                      // the place written next
+reg  [DEPTH_LOG2-1:0] read_at;                       // the place read next
 reg  [PLACES:1]        stored_at_least;               // bit k: k or more results in the places
 reg  [WIDTH-1:0]      read_q;                        // the memory's read register: places[read_at]
 reg                   read_valid;                    // read_q holds a result read the clock before
 reg  [WIDTH-1:0]      queued_1, queued_2;            // results waiting behind out, in order
 reg  [1:0]            held;                          // results in out, queued_1, queued_2: 0..3
 reg                   queue_full;                    // out, queued_1, queued_2 and read_q hold three results
-reg  [DEPTH_LOG2:0]   taken, taken_up;               // pixels taken (modulo 2^(DEPTH_LOG2+1)), and + 1
-reg  [DEPTH_LOG2:0]   delivered, delivered_up;       // results delivered, and + 1
+reg                   took, gave;                    // a pixel taken, a result delivered, the clock before
+reg  [DEPTH_LOG2:0]   taken, delivered;              // pixels taken, results delivered, two clocks before
 reg  [DEPTH_LOG2:0]   outstanding;                   // taken - delivered a clock ago: 0..PLACES
 
 // the queue's count a clock later: one more when read_q brings a result, one fewer when out
@@ -110,17 +116,19 @@ wire                  queue_two = held[1] || (out_valid && read_valid);  // two 
 wire                  deliver = out_valid && out_ready;
 
 assign take = in_valid && in_ready;
-assign idle = taken == delivered;
+assign idle = !stored_at_least[1] && !read_valid && held == 2'd0;
 
 // the places: a result is written the cycle it leaves the pipeline, read in order
 always @(posedge clk) begin
-    if (result_valid) places[write_at[DEPTH_LOG2-1:0]] <= result;
-    read_q <= places[read_at[DEPTH_LOG2-1:0]];
+    if (result_valid) places[write_at] <= result;
+    read_q <= places[read_at];
 end
 
-// a counter's next value: its + 1 where it moves, itself elsewhere (AND-OR: no enable)
-function [DEPTH_LOG2:0] step(input moves, input [DEPTH_LOG2:0] up, input [DEPTH_LOG2:0] now);
-    step = ({(DEPTH_LOG2 + 1){moves}} & up) | ({(DEPTH_LOG2 + 1){!moves}} & now);
+// a pointer's next value: where it moves, the place after it, else itself (AND-OR: no
+// enable). The pointers step through the states of a linear feedback shift register, write_at
+// and read_at alike: a shift and one XNOR, one LUT, no carry chain.
+function [DEPTH_LOG2-1:0] advance(input moves, input [DEPTH_LOG2-1:0] at);
+    advance = ({DEPTH_LOG2{moves}} & {at[DEPTH_LOG2-2:0], ~^(at & TAPS)}) | ({DEPTH_LOG2{!moves}} & at);
 endfunction
 
 // stored_at_least[k] takes bit k - 1 when a result arrives and none leaves, bit k + 1 when one
@@ -172,12 +180,12 @@ endgenerate
 
 always @(posedge clk) begin
     if (rst) begin
-        write_at       <= {(DEPTH_LOG2 + 1){1'b0}};
-        read_at        <= {(DEPTH_LOG2 + 1){1'b0}};
+        write_at       <= {DEPTH_LOG2{1'b0}};
+        read_at        <= {DEPTH_LOG2{1'b0}};
+        took           <= 1'b0;
+        gave           <= 1'b0;
         taken          <= {(DEPTH_LOG2 + 1){1'b0}};
-        taken_up       <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
         delivered      <= {(DEPTH_LOG2 + 1){1'b0}};
-        delivered_up   <= {{ "{" }}{DEPTH_LOG2{1'b0}}, 1'b1};
         read_valid     <= 1'b0;
         held           <= 2'd0;
         out_valid      <= 1'b0;
@@ -185,12 +193,12 @@ always @(posedge clk) begin
         outstanding    <= {(DEPTH_LOG2 + 1){1'b0}};
         in_ready       <= 1'b0;
     end else begin
-        write_at     <= step(result_valid, write_at + 1'b1, write_at);
-        read_at      <= step(read, read_at + 1'b1, read_at);
-        taken        <= step(take, taken_up, taken);
-        taken_up     <= step(take, taken_up + 1'b1, taken_up);
-        delivered    <= step(deliver, delivered_up, delivered);
-        delivered_up <= step(deliver, delivered_up + 1'b1, delivered_up);
+        write_at     <= advance(result_valid, write_at);
+        read_at      <= advance(read, read_at);
+        took         <= take;
+        gave         <= deliver;
+        taken        <= taken + {{ "{" }}{DEPTH_LOG2{1'b0}}, took};
+        delivered    <= delivered + {{ "{" }}{DEPTH_LOG2{1'b0}}, gave};
         read_valid <= read;
         held       <= held_next(held, read_valid, out_ready);
         out_valid  <= held_next(held, read_valid, out_ready) != 2'd0;
@@ -198,8 +206,8 @@ always @(posedge clk) begin
         // (with two or more, out_valid is high and out_ready alone decides a delivery)
         queue_full <= !out_ready && (queue_full || (queue_two && stored_at_least[1]));
         outstanding <= taken - delivered;
-        // outstanding < PLACES - 2 two clocks before a take: at most PLACES - 3 + 2 taken before
-        // it, PLACES at most with it, each with its place
+        // outstanding < PLACES - 3 three clocks before a take: at most PLACES - 4 + 3 taken
+        // before it, PLACES at most with it, each with its place
         in_ready <= outstanding < CREDITS;
     end
 end

@@ -48,7 +48,7 @@ struct Pending {
 ///   at a clock edge without reset, a result delivered when `out_valid && out_ready`; every
 ///   result must be the next pixel's, in order, with its tag; the outputs must hold while
 ///   stalled; a pixel taken `latency` cycles ago must be on the outputs (no bubbles);
-///   `in_ready` must be high exactly when, two cycles before, fewer than the buffer's places - 2
+///   `in_ready` must be high exactly when, three cycles before, fewer than the buffer's places - 3
 ///   were taken (except the cycle after a reset), and `idle` exactly while none is.
 pub struct Checker<'a> {
     model: &'a Model,
@@ -65,10 +65,8 @@ pub struct Checker<'a> {
     /// `ready`/`axis`: the buffer's places, the pixels inside, the last cycle's sample
     places: Option<usize>,
     pending: VecDeque<Pending>,
-    /// pixels taken and not yet delivered in the cycle before
-    pending_before: usize,
-    /// the same, the cycle before that
-    pending_two_before: usize,
+    /// pixels taken and not yet delivered one, two and three cycles before (none after a reset)
+    pending_before: [usize; 3],
     before: Option<(Cycle, Sampled)>,
     pub report: Report,
 }
@@ -88,8 +86,7 @@ impl<'a> Checker<'a> {
             history: VecDeque::new(),
             places,
             pending: VecDeque::new(),
-            pending_before: 0,
-            pending_two_before: 0,
+            pending_before: [0; 3],
             before: None,
             report: Report::default(),
         }
@@ -186,15 +183,15 @@ impl<'a> Checker<'a> {
                 self.fail(t, front, s, got, true, Some("the result changed or went away while out_ready was low".into()));
             }
         }
-        // in_ready: high exactly when fewer than places - 2 were taken two cycles before (a
-        // register of a register of the count; a reset counts as none taken); idle: none is
-        // taken now
-        let used_before = std::mem::replace(&mut self.pending_before, if now.rst { 0 } else { self.pending.len() });
-        let used_two_before = std::mem::replace(&mut self.pending_two_before, used_before);
-        let exp_ready = !after_reset && used_two_before + 2 < places;
+        // in_ready: high exactly when fewer than places - 3 were taken three cycles before (the
+        // count's strobes, the count, their difference, in_ready: registers; a reset empties
+        // them all); idle: none is taken now
+        let used_three_before = self.pending_before[2];
+        self.pending_before = if now.rst { [0; 3] } else { [self.pending.len(), self.pending_before[0], self.pending_before[1]] };
+        let exp_ready = !after_reset && used_three_before + 3 < places;
         if got.in_ready != exp_ready {
             let e = Sampled { in_ready: exp_ready, ..got };
-            let rule = format!("in_ready is {} with {used_two_before} of {places} places taken two cycles before", got.in_ready as u8);
+            let rule = format!("in_ready is {} with {used_three_before} of {places} places taken three cycles before", got.in_ready as u8);
             self.fail(t, now, e, got, false, Some(rule));
         }
         if self.static_colour && got.idle != self.pending.is_empty() {
