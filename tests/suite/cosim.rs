@@ -312,3 +312,29 @@ fn random_stimulus_lands_inside_the_highlight_half_the_time() {
         assert!(vectors.iter().any(|x| x.n == 0), "{}: no n = 0", model.name());
     }
 }
+
+/// A delay line's long unread tail waits in block RAM on the families that have it (blinn's
+/// per-pixel colours, a wide tag) and in registers in generic RTL; the unit is right either way,
+/// under both simulators.
+#[test]
+fn long_delay_line_tails_wait_in_block_ram_and_stay_right() {
+    require_tool("verilator", "verilator");
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let cases: &[(&str, &[&str], bool)] = &[
+        ("blinn_ice40", &["--model", "blinn", "--stages", "30", "--target", "ice40"], true),
+        ("blinn_ecp5", &["--model", "blinn", "--stages", "30", "--target", "ecp5"], true),
+        ("blinn_generic", &["--model", "blinn", "--stages", "30", "--target", "generic"], false),
+        ("tag_ready", &["--stages", "13", "--tag-bits", "24", "--target", "ice40", "--interface", "ready"], true),
+    ];
+    for_each_parallel(cases, |_, (name, args, memory)| {
+        let dir = generate(tmp.path(), name, args);
+        let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert_eq!(unit.contains("_line_ram ["), *memory, "{name}: a tail in block RAM or not");
+        for sim in ["verilator", "icarus"] {
+            let vectors = if sim == "icarus" { "1500" } else { "20000" };
+            let o = cosim(&dir, &["--simulator", sim, "--vectors", vectors, "--jobs", "1"]);
+            assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{name} {sim}: {}", text(&o));
+        }
+    });
+}

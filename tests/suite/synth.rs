@@ -157,7 +157,11 @@ fn verify_passes_real_netlists_and_catches_a_broken_one() {
     require_tool("verilator", "verilator");
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    let rtl = generate(tmp.path(), "u", &["--stages", "13"]);
+    // a 24-bit tag through 13 cuts: its delay line waits in block RAM, which the netlist must
+    // keep right too
+    let rtl = generate(tmp.path(), "u", &["--stages", "13", "--tag-bits", "24"]);
+    let unit = std::fs::read_to_string(rtl.join("specular_unit.v")).unwrap();
+    assert!(unit.contains("reg  [23:0] tag_line_ram [0:15];"), "the tag waits in block RAM:\n{unit}");
     // (the ECP5 netlist is verified in targets::ecp5_unit_keeps_its_registers_in_the_blocks…)
     let target = "ice40";
     let o = specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--target", target, "--rtl"]).arg(&rtl).output().unwrap();
