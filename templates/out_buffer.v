@@ -6,9 +6,8 @@
 //
 // The unit's pipeline never waits. Its handshake follows the AXI4-Stream rules instead with
 // credits: `taken` and `delivered` count the transfers in and out a clock late (each adds a
-// registered strobe: a carry chain fed by registers alone; `delivered` starts at the credits,
-// so their difference a clock later, `outstanding_over`, is negative while a place is free:
-// its sign bit is in_ready's next value, no comparator), and in_ready (a register) is high in a cycle when, three cycles before,
+// registered strobe: a carry chain fed by registers alone), `outstanding` is their difference
+// a clock later still, and in_ready (a register) is high in a cycle when, three cycles before,
 // fewer than PLACES - 3 pixels were taken and not yet delivered: with the three clocks in
 // between, a pixel taken then still has a place here before it enters the pipeline, so none is
 // ever lost.
@@ -91,7 +90,7 @@ reg  [1:0]            held;                          // results in out, queued_1
 reg                   queue_full;                    // out, queued_1, queued_2 and read_q hold three results
 reg                   took, gave;                    // a pixel taken, a result delivered, the clock before
 reg  [DEPTH_LOG2:0]   taken, delivered;              // pixels taken, results delivered, two clocks before
-reg  [DEPTH_LOG2:0]   outstanding_over;              // taken - delivered a clock ago: outstanding - CREDITS
+reg  [DEPTH_LOG2:0]   outstanding;                   // taken - delivered a clock ago: 0..PLACES
 
 // the queue's count a clock later: one more when read_q brings a result, one fewer when out
 // delivers one; each bit a function of four registers and out_ready
@@ -186,12 +185,12 @@ always @(posedge clk) begin
         took           <= 1'b0;
         gave           <= 1'b0;
         taken          <= {(DEPTH_LOG2 + 1){1'b0}};
-        delivered      <= CREDITS;
+        delivered      <= {(DEPTH_LOG2 + 1){1'b0}};
         read_valid     <= 1'b0;
         held           <= 2'd0;
         out_valid      <= 1'b0;
         queue_full     <= 1'b0;
-        outstanding_over <= {1'b1, {DEPTH_LOG2{1'b0}}};   // negative: none outstanding
+        outstanding    <= {(DEPTH_LOG2 + 1){1'b0}};
         in_ready       <= 1'b0;
     end else begin
         write_at     <= advance(result_valid, write_at);
@@ -206,11 +205,10 @@ always @(posedge clk) begin
         // three next: three now and none delivered, or two now, a read and none delivered
         // (with two or more, out_valid is high and out_ready alone decides a delivery)
         queue_full <= !out_ready && (queue_full || (queue_two && stored_at_least[1]));
-        // outstanding - CREDITS lies in -CREDITS..3, within DEPTH_LOG2 + 1 bits
-        outstanding_over <= taken - delivered;
+        outstanding <= taken - delivered;
         // outstanding < PLACES - 3 three clocks before a take: at most PLACES - 4 + 3 taken
         // before it, PLACES at most with it, each with its place
-        in_ready <= outstanding_over[DEPTH_LOG2];
+        in_ready <= outstanding < CREDITS;
     end
 end
 

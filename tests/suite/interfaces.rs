@@ -127,7 +127,7 @@ fn faults_in_the_handshake_are_caught() {
         // the tag one stage off (the register before the last: see handshake_mutant)
         ("tag_off", "specular_unit.v", "TAG_LAST", "TAG_BEFORE"),
         // credits miscounted: in_ready stays high as the last place fills
-        ("overfull", buffer, "delivered      <= CREDITS;", "delivered      <= CREDITS + 1'b1;"),
+        ("overfull", buffer, "in_ready <= outstanding < CREDITS;", "in_ready <= outstanding <= CREDITS;"),
     ];
     for_each_parallel(faults, |_, (name, file, from, to)| {
         let o = handshake_mutant(tmp.path(), name, file, from, to);
