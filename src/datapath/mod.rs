@@ -280,7 +280,7 @@ impl DelayLine {
 
     /// Its Verilog: the vector and the statement that shifts it, then the words read, named
     /// (one statement per width). A tail in block RAM ([`DelayLine::memory_tail`]) follows the
-    /// vector: the memory, its two address counters, its read register and the last word.
+    /// vector: the memory, its two address counters, and its read register with the last word.
     pub fn lines(&self) -> Vec<String> {
         let word = self.word();
         let line = format!("{}_line", self.name);
@@ -309,8 +309,8 @@ impl DelayLine {
                 if m.read[k] == 0 && k < last {
                     continue;
                 }
-                // the last word of a tail in block RAM is its own register
-                let (vector, lo) = if k >= d { (format!("{line}_end"), offset) } else { (line.clone(), word * k as u32 + offset) };
+                // the last word of a tail in block RAM is the high word of `<line>_out`
+                let (vector, lo) = if k >= d { (format!("{line}_out"), word + offset) } else { (line.clone(), word * k as u32 + offset) };
                 let select = if m.width == 1 { format!("[{lo}]") } else { format!("[{}:{lo}]", lo + m.width - 1) };
                 let tap = format!("{}_c{cut} = {vector}{select}", m.name);
                 match by_width.iter_mut().find(|x| x.0 == m.width) {
@@ -328,9 +328,10 @@ impl DelayLine {
     }
 
     /// The tail in block RAM: `cuts` cycles from the word before it (`kept` words into the
-    /// vector; none: the sources) to `<line>_end`. The memory and its read register wait
-    /// `cuts - 1` of them (a word written at one clock is read `cuts - 2` clocks later, into the
-    /// read register), `<line>_end` the last, so the memory's output meets only a flip-flop.
+    /// vector; none: the sources) to the high word of `<line>_out`. The memory and its read
+    /// register (the low word) wait `cuts - 1` of them (a word written at one clock is read
+    /// `cuts - 2` clocks later), the high word the last, so the memory's output meets only a
+    /// flip-flop.
     fn memory_lines(&self, line: &str, word: u32, kept: usize, cuts: usize, sources: &str) -> Vec<String> {
         let wait = cuts - 1; // the memory with its read register
         let bits = (wait as u64).next_power_of_two().trailing_zeros().max(1);
@@ -344,19 +345,18 @@ impl DelayLine {
         let names: Vec<&str> = self.members.iter().map(|m| m.name.as_str()).collect();
         vec![
             format!("// {} wait {cuts} more cuts: {wait} clocks in block RAM (with its read register), one in", names.join(", ")),
-            format!("// {line}_end: the memory's output meets only a flip-flop"),
+            format!("// the high word of {line}_out: the memory's output meets only a flip-flop"),
             "(* no_rw_check *)".to_string(),
             format!("reg  [{w}:0] {line}_ram [0:{}];", depth - 1),
             format!("reg  [{a}:0] {line}_at, {line}_from;   // write and read addresses: the read trails by {}", wait - 1),
-            format!("reg  [{w}:0] {line}_q, {line}_end;"),
+            format!("reg  [{}:0] {line}_out;   // the memory's read register (low word), then the last word", 2 * word - 1),
             "always @(posedge clk) begin".to_string(),
             format!("    {line}_ram[{line}_at] <= {input};"),
-            format!("    {line}_q <= {line}_ram[{line}_from];"),
-            format!("    {line}_end <= {line}_q;"),
+            format!("    {line}_out <= {{{line}_out[{w}:0], {line}_ram[{line}_from]}};"),
             "end".to_string(),
             "always @(posedge clk) begin".to_string(),
-            format!("    if (rst) begin {line}_at <= {bits}'d0; {line}_from <= {bits}'d{from_reset}; end"),
-            format!("    else begin {line}_at <= {line}_at + 1'b1; {line}_from <= {line}_from + 1'b1; end"),
+            format!("    {line}_at <= rst ? {bits}'d0 : {line}_at + 1'b1;"),
+            format!("    {line}_from <= rst ? {bits}'d{from_reset} : {line}_from + 1'b1;"),
             "end".to_string(),
         ]
     }
