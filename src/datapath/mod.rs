@@ -287,14 +287,11 @@ impl DelayLine {
         let sources: Vec<&str> = self.members.iter().rev().map(|m| m.source.as_str()).collect();
         let joined = if sources.len() == 1 { sources[0].to_string() } else { format!("{{{}}}", sources.join(", ")) };
         let tail = self.memory_tail();
-        // the words in the shift vector
+        // the words in the shift vector (none when the whole line waits in block RAM)
         let d = tail.map_or(self.cuts.len(), |(kept, _)| kept);
-        let shifted = match d {
-            1 => joined.clone(),
-            _ => format!("{{{line}[{}:0], {}}}", word * (d as u32).saturating_sub(1) - 1, sources.join(", ")),
-        };
         let mut out = Vec::new();
         if d > 0 {
+            let shifted = if d == 1 { joined.clone() } else { format!("{{{line}[{}:0], {}}}", word * (d as u32 - 1) - 1, sources.join(", ")) };
             out.push(format!("reg  [{}:0] {line};   always @(posedge clk) {line} <= {shifted};", word * d as u32 - 1));
         }
         if let Some((kept, cuts)) = tail {
