@@ -19,7 +19,7 @@ use crate::plan::Plan;
 use crate::ports::{self, Field};
 
 /// Places of the output buffer for a pipeline of `stages`: its latency + 7 (the buffer's three
-/// cycles and the four of the credit loop: `took`, `taken`, `outstanding`, `in_ready`), so a stream at
+/// cycles and the four of the credit loop: `took`, `taken`, `over_credits`, `in_ready`), so a stream at
 /// full rate never finds `in_ready` low. Exactly as many as that: each place costs a bit of
 /// the buffer's occupancy thermometer (`templates/out_buffer.v`).
 pub fn places_for(stages: u32) -> u64 {

@@ -49,6 +49,8 @@ struct WrapperPort {
     name: &'static str,
     hi: u32,
     lo: u32,
+    /// the consumer's ready: it reaches the unit through two free flip-flops (the template says why)
+    relay: bool,
 }
 
 #[derive(Template)]
@@ -71,7 +73,7 @@ fn wrapper(design: &Design) -> String {
         let mut lo = 0;
         let mut v = Vec::new();
         for p in ports.iter().filter(|p| p.direction == dir && !["clk", "rst", "aclk", "aresetn"].contains(&p.name)) {
-            v.push(WrapperPort { name: p.name, hi: lo + p.width - 1, lo });
+            v.push(WrapperPort { name: p.name, hi: lo + p.width - 1, lo, relay: ["out_ready", "m_axis_tready"].contains(&p.name) });
             lo += p.width;
         }
         (v, lo)

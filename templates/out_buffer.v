@@ -6,19 +6,22 @@
 //
 // The unit's pipeline never waits. Its handshake follows the AXI4-Stream rules instead with
 // credits: `taken` and `delivered` count the transfers in and out a clock late (each adds a
-// registered strobe: a carry chain fed by registers alone), `outstanding` is their difference
-// a clock later still, and in_ready (a register) is high in a cycle when, three cycles before,
-// fewer than PLACES - 3 pixels were taken and not yet delivered: with the three clocks in
-// between, a pixel taken then still has a place here before it enters the pipeline, so none is
-// ever lost.
+// registered strobe: a carry chain fed by registers alone; `taken` starts at -CREDITS),
+// `over_credits` is their difference a clock later still, the pixels outstanding minus
+// CREDITS, and in_ready (a register of its sign bit: no comparator) is high in a cycle when,
+// three cycles before, fewer than CREDITS = PLACES - 3 pixels were taken and not yet
+// delivered: with the three clocks in between, a pixel taken then still has a place here
+// before it enters the pipeline, so none is ever lost.
 // Results leave the places (PLACES of the memory's 2^DEPTH_LOG2 - 1, its pointers stepping
 // through a linear feedback shift register: one LUT, no carry chain) through the memory's read
 // register into a queue of three registers, `out` and the two waiting behind it; `held`
-// counts the results in them (0..3, filled from out). The results in the places are counted by
-// a thermometer, stored_at_least[k] for k = 1..PLACES: a read needs stored_at_least[1] and a
-// queue that will have room for the result whatever out_ready does, so the read decision is
-// one LUT of registers and each bit of the thermometer two LUTs of registers and result_valid
-// (no pointer comparator or adder sits between a read and the next). Every register of the
+// counts the results in them (0..3, filled from out). The results in the places, and the one
+// read the clock before while read_q takes it, are counted by a thermometer, stored_at_least[k]
+// for k = 1..PLACES: counting a read a clock late, the thermometer follows two registers
+// (result_valid and read_counted, a copy of read_valid) in two LUTs a bit, and the read decision is one LUT of registers:
+// a result left to read (stored_at_least[2] after a read, else stored_at_least[1]) and a queue
+// that will have room for it whatever out_ready does (no pointer comparator or adder sits
+// between a read and the next, and the read drives no more than the read pointer). Every register of the
 // queue loads on an enable of one LUT of its count and out_ready, and each bit of the count is
 // one LUT of the count, read_valid and out_ready. The wide registers load in slices of at most
 // SLICE bits, each slice with its own copy of the count: no enable drives more than SLICE
@@ -82,15 +85,16 @@ localparam integer SLICES = (WIDTH + SLICE - 1) / SLICE;
 reg  [WIDTH-1:0]      places [0:(1 << DEPTH_LOG2) - 1];
 reg  [DEPTH_LOG2-1:0] write_at;                      // the place written next
 reg  [DEPTH_LOG2-1:0] read_at;                       // the place read next
-reg  [PLACES:1]        stored_at_least;               // bit k: k or more results in the places
+reg  [PLACES:1]       stored_at_least;               // bit k: k or more results in the places or read_q, read the clock before
 reg  [WIDTH-1:0]      read_q;                        // the memory's read register: places[read_at]
 reg                   read_valid;                    // read_q holds a result read the clock before
+(* keep *) reg        read_counted;                  // read_valid again, for the thermometer alone
 reg  [WIDTH-1:0]      queued_1, queued_2;            // results waiting behind out, in order
 reg  [1:0]            held;                          // results in out, queued_1, queued_2: 0..3
 reg                   queue_full;                    // out, queued_1, queued_2 and read_q hold three results
 reg                   took, gave;                    // a pixel taken, a result delivered, the clock before
-reg  [DEPTH_LOG2:0]   taken, delivered;              // pixels taken, results delivered, two clocks before
-reg  [DEPTH_LOG2:0]   outstanding;                   // taken - delivered a clock ago: 0..PLACES
+reg  [DEPTH_LOG2:0]   taken, delivered;              // pixels taken (from -CREDITS), results delivered, two clocks before
+reg  [DEPTH_LOG2:0]   over_credits;                  // taken - delivered a clock ago: pixels outstanding - CREDITS, -CREDITS..3
 
 // the queue's count a clock later: one more when read_q brings a result, one fewer when out
 // delivers one; each bit a function of four registers and out_ready
@@ -105,18 +109,19 @@ function [1:0] held_next(input [1:0] count, input arriving, input ready);
     end
 endfunction
 
-// a read starts when a result is in the places and the queue and read_q hold at most two, so
-// the result has a register to go to the clock after, whether or not out delivers
-wire                  read = stored_at_least[1] && !queue_full;
-wire                  store_up = result_valid && !read;     // one more result in the places
-wire                  store_stays = read == result_valid;   // as many
+// a read starts when a result is in the places (the thermometer less the read the clock
+// before) and the queue and read_q hold at most two, so the result has a register to go to the
+// clock after, whether or not out delivers
+wire                  read = (read_valid ? stored_at_least[2] : stored_at_least[1]) && !queue_full;
+wire                  store_up = result_valid && !read_counted;     // one more result counted
+wire                  store_stays = read_counted == result_valid;   // as many
 // the thermometer with its two ends: always 0 or more, never more than PLACES
 wire [PLACES + 1:0]   stored_level = {1'b0, stored_at_least, 1'b1};
 wire                  queue_two = held[1] || (out_valid && read_valid);  // two or more
 wire                  deliver = out_valid && out_ready;
 
 assign take = in_valid && in_ready;
-assign idle = !stored_at_least[1] && !read_valid && held == 2'd0;
+assign idle = !stored_at_least[1] && held == 2'd0;   // a read in flight is counted in stored_at_least
 
 // the places: a result is written the cycle it leaves the pipeline, read in order
 always @(posedge clk) begin
@@ -131,14 +136,16 @@ function [DEPTH_LOG2-1:0] advance(input moves, input [DEPTH_LOG2-1:0] at);
     advance = ({DEPTH_LOG2{moves}} & {at[DEPTH_LOG2-2:0], ~^(at & TAPS)}) | ({DEPTH_LOG2{!moves}} & at);
 endfunction
 
-// stored_at_least[k] takes bit k - 1 when a result arrives and none leaves, bit k + 1 when one
-// leaves and none arrives, else stays. A thermometer is monotone, so: set if bit k + 1 is; clear
-// if bit k - 1 is; else set when a result arrives or it stays set. Written as AND-OR, not as a
-// hold: an enable would put rst and read before the flip-flop.
+// stored_at_least[k] takes bit k - 1 when a result arrives and none leaves (read_q took the
+// last read's result), bit k + 1 when one leaves and none arrives, else stays. It never passes
+// PLACES: the result arriving and those in the places are pixels outstanding, PLACES at most.
+// A thermometer is monotone, so: set if bit k + 1 is; clear if bit k - 1 is; else set when a
+// result arrives or it stays set. Written as AND-OR, not as a hold: an enable would put rst
+// before the flip-flop.
 genvar k;
 generate
     for (k = 1; k <= PLACES; k = k + 1) begin : thermometer
-        // one LUT of result_valid, stored_at_least[1], queue_full and this bit, then one more
+        // one LUT of result_valid, read_counted and this bit, then one more
         (* keep *) wire grows_or_holds;
         assign grows_or_holds = store_up || (store_stays && stored_level[k]);
         always @(posedge clk) begin
@@ -147,6 +154,10 @@ generate
         end
     end
 endgenerate
+
+// read_valid's copy for the thermometer (keep: synthesis must not merge it back into read_valid)
+(* keep *)
+always @(posedge clk) read_counted <= !rst && read;
 
 // the queue's wide registers, slice by slice, each slice on its own copy of the count (keep:
 // synthesis must not merge the copies back into one enable of WIDTH flip-flops)
@@ -184,13 +195,13 @@ always @(posedge clk) begin
         read_at        <= {DEPTH_LOG2{1'b0}};
         took           <= 1'b0;
         gave           <= 1'b0;
-        taken          <= {(DEPTH_LOG2 + 1){1'b0}};
+        taken          <= -CREDITS;
         delivered      <= {(DEPTH_LOG2 + 1){1'b0}};
         read_valid     <= 1'b0;
         held           <= 2'd0;
         out_valid      <= 1'b0;
         queue_full     <= 1'b0;
-        outstanding    <= {(DEPTH_LOG2 + 1){1'b0}};
+        over_credits   <= -CREDITS;
         in_ready       <= 1'b0;
     end else begin
         write_at     <= advance(result_valid, write_at);
@@ -204,11 +215,12 @@ always @(posedge clk) begin
         out_valid  <= held_next(held, read_valid, out_ready) != 2'd0;
         // three next: three now and none delivered, or two now, a read and none delivered
         // (with two or more, out_valid is high and out_ready alone decides a delivery)
-        queue_full <= !out_ready && (queue_full || (queue_two && stored_at_least[1]));
-        outstanding <= taken - delivered;
-        // outstanding < PLACES - 3 three clocks before a take: at most PLACES - 4 + 3 taken
-        // before it, PLACES at most with it, each with its place
-        in_ready <= outstanding < CREDITS;
+        queue_full <= !out_ready && (queue_full || (queue_two && read));
+        over_credits <= taken - delivered;
+        // fewer than CREDITS = PLACES - 3 outstanding three clocks before a take (over_credits
+        // negative): at most PLACES - 4 + 3 taken before it, PLACES at most with it, each with
+        // its place
+        in_ready <= over_credits[DEPTH_LOG2];
     end
 end
 

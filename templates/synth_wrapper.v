@@ -2,6 +2,11 @@
 // Every input port is loaded from a shift chain into registers, every output port is
 // captured into registers and shifted out, so each path of the unit starts and ends at a
 // flip-flop and nextpnr's Fmax is the unit's own. Not for use in a design.
+// The consumer's ready (out_ready, m_axis_tready) is the one input the unit reads at its far
+// end, beside its results; its register in the input chain sits beside the unit's first
+// stage. As a consumer beside the unit would, it reaches the unit through two more free
+// flip-flops (no enable, no reset), so place-and-route can put the last one next to the
+// output buffer instead of routing it across the chip.
 module specgen_synth_top (
     input  wire clk,
     input  wire sin,
@@ -21,12 +26,19 @@ module specgen_synth_top (
         else      out_chain <= { out_chain[{{ out_bits - 2 }}:0], 1'b0 };
     end
     assign sout = out_chain[{{ out_bits - 1 }}];
+{%- for p in inputs %}{% if p.relay %}
+    reg  [{{ p.hi - p.lo }}:0] {{ p.name }}_relay, {{ p.name }}_near;
+    always @(posedge clk) begin
+        {{ p.name }}_relay <= in_reg[{{ p.hi }}:{{ p.lo }}];
+        {{ p.name }}_near <= {{ p.name }}_relay;
+    end
+{%- endif %}{% endfor %}
     {{ top }} unit (
 {%- if clocked %}
         .{{ clock }}(clk), .{{ reset }}(in_reg[{{ in_bits - 1 }}]),
 {%- endif %}
 {%- for p in inputs %}
-        .{{ p.name }}(in_reg[{{ p.hi }}:{{ p.lo }}]),
+        .{{ p.name }}({% if p.relay %}{{ p.name }}_near{% else %}in_reg[{{ p.hi }}:{{ p.lo }}]{% endif %}),
 {%- endfor %}
 {%- for p in outputs %}
         .{{ p.name }}(unit_out[{{ p.hi }}:{{ p.lo }}]){% if !loop.last %},{% endif %}

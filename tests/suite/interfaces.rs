@@ -116,7 +116,7 @@ fn faults_in_the_handshake_are_caught() {
         // a result duplicated: the read pointer misses a step
         ("duplicated", buffer, "read_at      <= advance(read, read_at);", "read_at <= advance(read && read_at != 5, read_at);"),
         // a read started with no room in the queue: the result read has no register to go to
-        ("queue_overrun", buffer, "queue_full <= !out_ready && (queue_full || (queue_two && stored_at_least[1]));", "queue_full <= 1'b0;"),
+        ("queue_overrun", buffer, "queue_full <= !out_ready && (queue_full || (queue_two && read));", "queue_full <= 1'b0;"),
         // the occupancy thermometer loses a result: bit 2 never rises above bit 1
         (
             "thermometer",
@@ -127,7 +127,7 @@ fn faults_in_the_handshake_are_caught() {
         // the tag one stage off (the register before the last: see handshake_mutant)
         ("tag_off", "specular_unit.v", "TAG_LAST", "TAG_BEFORE"),
         // credits miscounted: in_ready stays high as the last place fills
-        ("overfull", buffer, "in_ready <= outstanding < CREDITS;", "in_ready <= outstanding <= CREDITS;"),
+        ("overfull", buffer, "in_ready <= over_credits[DEPTH_LOG2];", "in_ready <= over_credits[DEPTH_LOG2] || over_credits == 0;"),
     ];
     for_each_parallel(faults, |_, (name, file, from, to)| {
         let o = handshake_mutant(tmp.path(), name, file, from, to);
