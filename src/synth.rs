@@ -1,6 +1,7 @@
 //! `specgen synth`: yosys (and nextpnr, when installed) on the RTL in a directory; area and
 //! speed as JSON and a table.
 
+use crate::config::Config;
 use crate::cosim::Design;
 use crate::emit;
 use crate::error::{self, input, Error as Failure};
@@ -67,8 +68,8 @@ struct Wrapper<'a> {
     outputs: Vec<WrapperPort>,
 }
 
-fn wrapper(design: &Design) -> String {
-    let ports = design.cfg.ports("");
+fn wrapper(cfg: &Config) -> String {
+    let ports = cfg.ports("");
     let pack = |dir: &str| {
         let mut lo = 0;
         let mut v = Vec::new();
@@ -80,12 +81,11 @@ fn wrapper(design: &Design) -> String {
     };
     let (inputs, in_data) = pack("input");
     let (outputs, out_bits) = pack("output");
-    let clocked = design.cfg.clocked();
-    let axis = design.cfg.interface() == crate::config::Interface::Axis;
+    let clocked = cfg.clocked();
+    let axis = cfg.interface() == crate::config::Interface::Axis;
     let (clock, reset) = if axis { ("aclk", "aresetn") } else { ("clk", "rst") };
-    let mut text = Wrapper { top: design.cfg.top(), clocked, clock, reset, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }
-        .render()
-        .expect("wrapper renders");
+    let mut text =
+        Wrapper { top: cfg.top(), clocked, clock, reset, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }.render().expect("wrapper renders");
     text.push('\n');
     text
 }
@@ -290,7 +290,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     };
     let (tool, args) = (pnr.tool.as_str(), pnr.args);
     let wrap = work.path().join("specgen_synth_top.v");
-    std::fs::write(&wrap, wrapper(design)).map_err(|e| input(e.to_string()))?;
+    std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
     run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {} -json wrapped.json", synth_cmd("specgen_synth_top")))?;
     // one nextpnr per seed, as many at a time as there are cores
     let run = |seed: u32| -> Result<(bool, String), Failure> {
@@ -544,6 +544,24 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The consumer's ready reaches a handshake unit through two free flip-flops of the
+    /// wrapper (under either name); a unit without it is wired straight from the input chain.
+    #[test]
+    fn the_wrapper_gives_the_consumers_ready_through_two_free_flip_flops() {
+        use crate::config::{Interface, Params};
+        for (interface, ready) in [(Interface::Valid, None), (Interface::Ready, Some("out_ready")), (Interface::Axis, Some("m_axis_tready"))] {
+            let cfg = Config::new(Params { interface, stages: 4, ..Default::default() }).unwrap();
+            let text = wrapper(&cfg);
+            match ready {
+                None => assert!(!text.contains("_near"), "{text}"),
+                Some(name) => {
+                    assert!(text.contains(&format!(".{name}({name}_near)")), "{text}");
+                    assert!(text.contains(&format!("{name}_relay <= in_reg[")) && text.contains(&format!("{name}_near <= {name}_relay;")), "{text}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn logic_cells_are_read_from_the_device_utilisation() {
