@@ -674,13 +674,6 @@ impl Builder {
         }
     }
 
-    /// `a·r` (`out` bits, exact) as a sum of shifted copies of `a`, one per bit of `r`: no `*`,
-    /// so a small product stays in LUTs and carry chains instead of taking a DSP block.
-    pub(crate) fn shift_add(&mut self, a: &Piece, r: &Piece, out: u32) -> String {
-        // one partial product a line
-        self.shift_add_terms(a, r, 0, out).join("\n    + ")
-    }
-
     /// The terms of `a·r·2^shift` mod 2^out: `a` shifted to each bit `k` of `r` (by `k + shift`)
     /// where that bit is set, for a sum with more addends (constants, a table's value).
     pub(crate) fn shift_add_terms(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32) -> Vec<String> {
@@ -748,14 +741,14 @@ impl Builder {
     }
 
     /// `name = v²` for the `r`-bit field `v = sig[lo..lo+r)`, by a table of 2^r entries in
-    /// LUTs (no multiply, no carry chain): one LUT level for small `r`.
+    /// LUTs (no multiply, no carry chain): one LUT level for small `r`. Written as an OR of
+    /// the entries, each gated by its match: a `?:` chain of constants before a register
+    /// would become the register's synchronous set/reset ([`Builder::select`]).
     pub(crate) fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
         let v = self.bits(sig, lo + r - 1, lo);
-        // one entry a line (?: is right-associative), the last as the default
-        let last = (1u128 << r) - 1;
-        let mut cases: Vec<String> = (0..last).map(|x| format!("({v} == {}) ? {}", lit(r, x), lit(2 * r, x * x))).collect();
-        cases.push(lit(2 * r, last * last));
-        self.wire(name, 2 * r, cases.join("\n    : "), comment);
+        // one entry a line; v = 0 squares to 0 and adds nothing
+        let entries: Vec<String> = (1..1u128 << r).map(|x| Builder::gate(&format!("{v} == {}", lit(r, x)), &lit(2 * r, x * x), 2 * r)).collect();
+        self.wire(name, 2 * r, entries.join("\n    | "), comment);
         self.delay(LUT_DELAY);
     }
 

@@ -34,11 +34,23 @@
 //! is an integer. The colours need less: see [`color_frac_bits`]. Each step is monotone in `cos_g` (the mux depends on n only), so the
 //! outputs never decrease as `cos_g` grows. (When `KA + F < W` the bracket is exact and
 //! shifted left instead.)
+//!
+//! # Shape (what the steps are; the values above are exact, so the shape never changes them)
+//!
+//! Every add is the builder's carry-select add, cut into the family's chunks, and every sum
+//! of more than two terms a carry-save sum closed by one (`Builder::sum_start`): `1 − c`,
+//! `P` (a_lo·D on a DSP with a_hi·D's partial products beside it, when a_n is wider than a
+//! DSP's operands), `diff` (from `~P`, complemented in the LUTs that pick P's chunks so the
+//! add starts at a flip-flop), each squaring's `T = 2·hi·lo + ⌊lo²/2^r⌋` (partial products
+//! and a table of lo², registered once more before its DSP, whose input registers would
+//! otherwise take it from LUTs) and the intensity's rounding. The DSP's output meets only a
+//! flip-flop before the bypass mux. On the iCE40 this makes about 60 cut points, each at most
+//! a short carry chain or two LUTs; a shallower `--stages` picks among them by the delays.
 
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, mul_delay, Builder, Piece, LUT_DELAY, MAX_SQUARER_SPLIT};
+use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -337,125 +349,166 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let cb = f + 1;
     let t = b.table(table(fit, w));
 
-    b.step("per-n fit ROM read {m_n, a_n}; 1 - cos (adder 6)");
+    b.step("per-n fit ROM read {m_n, a_n}; c = min(cos, 1)");
     b.rom_read("fit", t, "n");
-    let g = b.r("cos_g");
-    let one = lit(cb, 1u128 << f);
-    b.wire("one_minus_cos", cb, format!("({g} > {one}) ? {} : ({one} - {g})", lit(cb, 0)), &format!("UQ1.{f}: 1 - min(cos, 1), exact"));
-    b.delay(add_delay(cb) + LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
+    let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
+    // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator; complemented
+    // here, in the mux's LUT, so that the add below takes it straight into its carry chain
+    let not_one = lit(cb, mask(cb) & !(1u128 << f));
+    b.wire("cos_clamped_n", cb, Builder::select(&top, &not_one, &format!("~{g}"), cb), &format!("~c, c = min(cos, 1) in UQ1.{f}"));
+    b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
 
-    // a_n wider than a DSP's operands: a_n = a_hi*2^D + a_lo, a_hi*(1 - cos) (a few bits of
-    // a_hi) by shift-adds here, the DSP's addend in the next step: one DSP, exact
+    // 1 - c = ~c + 2^F + 1 mod 2^(F+1) (c <= 1): a carry-select add of a constant
+    let title = "1 - c (adder 6)";
+    b.step(title);
+    let p = b.add_start(
+        "one_minus_cos",
+        &[Piece::sig("cos_clamped_n", 0, cb)],
+        &[Piece::Const { value: (1u128 << f) + 1, width: cb }],
+        false,
+        cb,
+        &format!("UQ1.{f}: 1 - c, exact"),
+    );
+    b.resolve(p, title);
+
+    // a_n wider than a DSP's operands: a_n = a_hi*2^D + a_lo; a_lo*(1 - cos) on one DSP, then
+    // the bits of P above D as a_hi*(1 - cos) (its few partial products) plus
+    // a_lo*(1 - cos)/2^D in one carry-save sum: exact
     let dsp = b.dsp_bits();
     let pb = w.product_bits;
-    let a_split = w.a_bits > dsp && cb <= dsp;
-    if a_split {
-        b.step("deviation: a_n's high bits times (1 - cos) (shift-adds)");
+    if w.a_bits > dsp && cb <= dsp {
+        let t = "deviation a_n*(1 - cos) (multiplier 7)";
+        b.step(&format!("{t}: a_lo*(1 - cos) (one DSP); the partial products of a_hi*(1 - cos)"));
+        let lw = dsp + cb;
+        b.product("deviation_lo", &[Piece::sig("fit", 0, dsp)], &[Piece::sig("one_minus_cos", 0, cb)], lw, &format!("a_n[{}:0]*(1 - cos), exact", dsp - 1));
         let hw = pb - dsp;
-        let e = b.shift_add(&Piece::sig("one_minus_cos", 0, cb), &Piece::sig("fit", dsp, w.a_bits - dsp), hw);
-        b.wire("deviation_hi", hw, e, &format!("a_n[{}:{dsp}]*(1 - cos) mod 2^{hw}, by shift-adds", w.a_bits - 1));
-        b.delay(add_delay(hw) + LUT_DELAY * ((w.a_bits - dsp) as f64).log2().ceil());
-    }
-
-    b.step("deviation a_n*(1 - cos) (multiplier 7)");
-    if a_split {
-        let (a, d) = (b.operand("fit", 0, dsp, pb), b.operand("one_minus_cos", 0, cb, pb));
-        let hi = b.operand("deviation_hi", 0, pb - dsp, pb - dsp);
-        b.wire(
-            "deviation",
-            pb,
-            format!("{a} * {d} + {{{hi}, {}}}", lit(dsp, 0)),
-            &format!("UQ{}.{}: a_n*(1 - cos) = a_lo*(1 - cos) + a_hi*(1 - cos)*2^{dsp}, exact (one DSP, the add inside it)", pb - ka - f, ka + f),
-        );
+        let mut terms = b.partial_products("deviation_hi", &Piece::sig("one_minus_cos", 0, cb), &Piece::sig("fit", dsp, w.a_bits - dsp), 0, hw, false);
+        b.delay(mul_delay(dsp, cb));
+        terms.push(vec![Piece::sig("deviation_lo", dsp, lw - dsp)]);
+        let p = b.sum_start("deviation_hi", terms, hw, t, &format!("a_n[{}:{dsp}]*(1 - cos) + a_n[{}:0]*(1 - cos)/2^{dsp}, exact", w.a_bits - 1, dsp - 1));
+        let hi = b.resolve(p, t);
+        let (hv, lv) = (b.r(&hi), b.bits("deviation_lo", dsp - 1, 0));
+        // complemented here, in the LUTs that pick the sum's chunks, so that the add below
+        // takes it straight into its carry chain
+        b.wire("deviation_n", pb, format!("~{{{hv}, {lv}}}"), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
     } else {
-        let (a, d) = (b.operand("fit", 0, w.a_bits, pb), b.operand("one_minus_cos", 0, cb, pb));
-        b.wire("deviation", pb, format!("{a} * {d}"), &format!("UQ{}.{}: a_n*(1 - cos), exact", pb - ka - f, ka + f));
+        b.step("deviation a_n*(1 - cos) (multiplier 7)");
+        b.product(
+            "deviation",
+            &[Piece::sig("fit", 0, w.a_bits)],
+            &[Piece::sig("one_minus_cos", 0, cb)],
+            pb,
+            &format!("UQ{}.{}: a_n*(1 - cos), exact", pb - ka - f, ka + f),
+        );
+        let d = b.r("deviation");
+        b.wire("deviation_n", pb, format!("~{d}"), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
     }
-    b.delay(mul_delay(w.a_bits.min(dsp), cb));
 
-    b.step("bracket = 1 - deviation (adder 9); its sign is the cut-off (comparator 12)");
+    // 2^(KA+F) - P = ~P + 2^(KA+F) + 1 mod 2^DB (P zero-extended): a carry-select add
+    let title = "bracket = 1 - deviation (adder 9); its sign is the cut-off (comparator 12)";
+    b.step(title);
     let db = w.diff_bits;
-    let dv = b.zext("deviation", db);
-    b.wire("diff", db, format!("{} - {dv}", lit(db, 1u128 << (ka + f))), &format!("S{}.{}: 1 - a_n*(1 - cos), exact (two's complement)", db - ka - f, ka + f));
-    let sign = b.bits("diff", db - 1, db - 1);
-    b.wire("done", 1, sign, "the bracket is negative: beyond the highlight");
-    b.delay(add_delay(db));
+    let p = b.add_start(
+        "diff",
+        &[Piece::sig("deviation_n", 0, pb), Piece::Const { value: mask(db - pb), width: db - pb }],
+        &[Piece::Const { value: (1u128 << (ka + f)) + 1, width: db }],
+        false,
+        db,
+        &format!("S{}.{}: 1 - a_n*(1 - cos), exact (two's complement)", db - ka - f, ka + f),
+    );
+    b.resolve(p, title);
 
     b.step("key block (13) and truncation #1");
+    let sign = b.bits("diff", db - 1, db - 1);
+    b.wire("done", 1, sign.clone(), "the bracket is negative: beyond the highlight");
     let x0 = if ka + f >= wf {
         b.bits("diff", ka + f, ka + f - wf)
     } else {
         let d = b.bits("diff", ka + f, 0);
         format!("{{{d}, {}}}", lit(wf - ka - f, 0))
     };
-    let dn = b.r("done");
-    b.wire("power0", wf + 1, format!("{dn} ? {} : {x0}", lit(wf + 1, 0)), &format!("UQ1.{wf}: the bracket in [0, 1], floored; 0 beyond the cut-off"));
+    b.wire("power0", wf + 1, Builder::gate(&format!("~{sign}"), &x0, wf + 1), &format!("UQ1.{wf}: the bracket in [0, 1], floored; 0 beyond the cut-off"));
     b.delay(LUT_DELAY);
 
     // a bracket wider than a DSP's operands: x = hi*2^r + lo with hi of D bits, and
-    // x^2 = 2^r*(hi^2*2^r + T) + (lo^2 mod 2^r), T = 2*hi*lo + floor(lo^2/2^r) by shift-adds
-    // and a table of lo^2, Z = hi^2 + floor(T/2^r) = floor(x^2/2^2r) on one DSP (the add inside
-    // it); then floor(x^2/2^W) = floor(Z/2^(W-2r)), all floors exact (W >= 2r: W <= 2D - 2)
+    // x^2 = 2^r*(hi^2*2^r + T) + (lo^2 mod 2^r), T = 2*hi*lo + floor(lo^2/2^r) by partial
+    // products and a table of lo^2 in one carry-save sum, Z = hi^2 + floor(T/2^r) =
+    // floor(x^2/2^2r) on one DSP (the add inside it); then floor(x^2/2^W) = floor(Z/2^(W-2r)),
+    // all floors exact (W >= 2r: W <= 2D - 2)
     let r = (wf + 1).saturating_sub(dsp);
     let sq_split = r > 0 && wf >= 2 * r && r <= MAX_SQUARER_SPLIT;
     let m_max = cfg.max_squarings();
     for j in 1..=m_max {
         let prev = format!("power{}", j - 1);
-        let hi_bits = if sq_split {
-            b.step(&format!("squaring {j} of {m_max}: T = 2*hi*lo + lo^2/2^{r} (shift-adds, a table)"));
+        let (hi_bits, keep) = if sq_split {
+            let t = format!("squaring {j} of {m_max}: T = 2*hi*lo + lo^2/2^{r}");
+            b.step(&format!("{t}: the partial products of 2*hi*lo; lo^2 by a table"));
             let tw = dsp + r + 2;
-            b.square_table(&format!("square{j}_ll"), &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
-            let mut terms = b.shift_add_terms(&Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw);
-            terms.push(b.operand(&format!("square{j}_ll"), r, r, tw));
-            b.wire(&format!("square{j}_t"), tw, terms.join("\n    + "), "2*hi*lo + floor(lo^2 / 2^r), exact, by shift-adds");
-            b.delay(add_delay(tw) + LUT_DELAY * ((r + 1) as f64).log2().ceil());
-            b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add), bypassed when m_n < {j}"));
+            let (ll, tn) = (format!("square{j}_ll"), format!("square{j}_t"));
+            b.square_table(&ll, &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
+            let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw, false);
+            terms.push(vec![Piece::sig(&ll, r, r)]);
+            let p = b.sum_start(&tn, terms, tw, &t, "2*hi*lo + floor(lo^2 / 2^r), exact");
+            let tn = b.resolve(p, &t);
+            // a step that only registers T: the DSP's input registers take their operands from
+            // a flip-flop (a route to the DSP column), not from the LUTs that picked T's chunks
+            b.step(&format!("{t}: registered for the DSP"));
+            b.delay(REGISTER_ONLY_DELAY);
+            b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
             let zw = 2 * dsp;
             let (h1, h2) = (b.operand(&prev, r, dsp, zw), b.operand(&prev, r, dsp, zw));
-            let th = b.operand(&format!("square{j}_t"), r, tw - r, zw);
+            let th = b.operand(&tn, r, tw - r, zw);
             b.wire(
                 &format!("square{j}"),
                 zw,
                 format!("{h1} * {h2} + {th}"),
                 &format!("floor(power{}^2 / 2^{}), exact: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", j - 1, 2 * r, wf + 1, wf + 1),
             );
-            b.bits(&format!("square{j}"), 2 * wf - 2 * r, wf - 2 * r)
+            b.delay(mul_delay(dsp, dsp));
+            // the bypass in a step of its own: the DSP's output meets only a flip-flop
+            b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
+            b.delay(LUT_DELAY);
+            (b.bits(&format!("square{j}"), 2 * wf - 2 * r, wf - 2 * r), b.r(&prev))
         } else {
             b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
             let sq = 2 * wf + 2;
             let (p1, p2) = (b.zext(&prev, sq), b.zext(&prev, sq));
             b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
-            b.bits(&format!("square{j}"), 2 * wf, wf)
+            b.delay(mul_delay((wf + 1).min(dsp), (wf + 1).min(dsp)) + LUT_DELAY);
+            (b.bits(&format!("square{j}"), 2 * wf, wf), b.r(&prev))
         };
-        let keep = b.r(&prev);
         let mf = b.bits("fit", w.rom_word_bits - 1, w.a_bits);
+        let m_test = format!("({mf} >= {})", lit(w.m_bits, j as u128));
         b.wire(
             &format!("power{j}"),
             wf + 1,
-            format!("({mf} >= {}) ? {hi_bits} : {keep}", lit(w.m_bits, j as u128)),
+            format!("{m_test} ? {hi_bits} : {keep}"),
             &format!("UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}", j + 1, j - 1),
         );
-        b.delay(mul_delay((wf + 1).min(dsp), (wf + 1).min(dsp)) + LUT_DELAY);
     }
 
-    b.step("colour multipliers (14-16) and the intensity, rounded half up");
+    b.step("colour multipliers (14-16)");
     let s = format!("power{m_max}");
     let wc = w.color_frac_bits;
     let cs = b.bits(&s, wf, wf - wc);
     b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: S floored to what the colours' budget needs"));
-    let cp = wc + bb;
     b.colour_sums("color_power", wc, "S");
-    b.colour_results(wc, "S");
-    let sv = b.r(&s);
-    b.wire(
+    b.delay(mul_delay(wc + 1, bb));
+    // round half up on the bits that matter: (S[W:W-FI-1] + 1) >> 1 = floor((S + 2^-(FI+1)) / 2^-FI)
+    let title = "the intensity rounded half up";
+    b.step(&format!("{title}: chunk sums"));
+    let p = b.add_start_short(
         "intensity_sum",
-        wf + 1,
-        format!("{sv} + {}", lit(wf + 1, 1u128 << (wf - fi - 1))),
-        &format!("UQ1.{wf}: S + 2^-{} (round half up; S < 1 when it is not a whole 1.0)", fi + 1),
+        &[Piece::sig(&s, wf - fi - 1, fi + 2)],
+        &[],
+        true,
+        fi + 2,
+        &format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up; S < 1 when it is not a whole 1.0)", fi + 1, fi + 1, fi + 1),
     );
-    let e = b.bits("intensity_sum", wf, wf - fi);
+    let sum = b.resolve(p, title);
+    b.colour_results(wc, "S");
+    let e = b.bits(&sum, fi + 1, 1);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
-    b.delay(mul_delay(wf + 1, bb) + add_delay(cp));
 }
 
 /// The fit of a configuration, computed once per process for each (N, M, KA).

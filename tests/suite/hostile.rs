@@ -2,6 +2,8 @@
 //! in a clear message and the right exit code, and nothing is lost or half-written.
 
 use crate::common::*;
+use specgen::config::{Config, Params, SpecularModel};
+use specgen::plan::Plan;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -356,7 +358,11 @@ fn reserved_names_and_header_breaking_text_are_refused() {
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).contains("16..=1024"), "{}", text(&o));
     let help = String::from_utf8_lossy(&specgen().args(["generate", "--help"]).output().unwrap().stdout).to_string();
-    assert!(help.contains("fitted 12, blinn 60"), "the stage limits in --help are the real ones");
+    // the stage limits in --help are the real ones (the plan's cut points at default widths)
+    for (model, name) in [(SpecularModel::Quadratic, "lean"), (SpecularModel::Fitted, "fitted"), (SpecularModel::Blinn, "blinn")] {
+        let cuts = Plan::new(Config::new(Params { model, ..Default::default() }).unwrap()).unwrap().cut_points;
+        assert!(help.contains(&format!("{name} {cuts},")), "--help does not say {name} {cuts}:\n{help}");
+    }
 }
 
 /// Issue 25: every count is bounded — a huge `--vectors`, `--jobs`, `--count` or
