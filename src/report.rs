@@ -378,13 +378,34 @@ pub(crate) fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
         .collect()
 }
 
-/// Where a row's hardware was measured: target, DSPs, pipeline depth.
+/// Where a row's hardware was measured: target, DSPs, pipeline depth, and the clock it was
+/// constrained to when it was pipelined for one.
 fn operating_point(h: &crate::synth::SynthResult) -> String {
-    format!("{}{}, {} stage(s)", h.target, if h.dsp { " with DSPs" } else { ", LUTs only" }, h.stages)
+    let clock = match (h.stages, h.clock_mhz) {
+        (s, Some(c)) if s > 0 => format!(" for {c} MHz"),
+        _ => String::new(),
+    };
+    format!("{}{}, {} stage(s){clock}", h.target, if h.dsp { " with DSPs" } else { ", LUTs only" }, h.stages)
+}
+
+/// What a row's area is counted in: logic cells after packing (the wrapper included) when
+/// place-and-route gave them, else LUT4.
+fn area(h: &crate::synth::SynthResult) -> (u64, &'static str) {
+    match h.logic_cells {
+        Some(c) => (c, "logic cells"),
+        None => (h.luts, "LUT4"),
+    }
+}
+
+/// Whether a row's unit did not fit its part (place-and-route found no place for a cell).
+fn did_not_fit(h: &crate::synth::SynthResult) -> bool {
+    h.fmax_mhz.is_none() && (h.fmax_note.contains("no BELs remaining") || h.fmax_note.contains("Failed to expand region"))
 }
 
 /// What the comparison says about the paper's premise that cos^n is too costly: the errors
 /// always; the hardware only as far as `--hw` gave it, each row at its own operating point.
+/// Rows pipelined for one clock on one target are compared at that operating point (logic
+/// cells when place-and-route counted them); a unit that does not fit the part says so.
 fn premise(rows: &[ModelComparison]) -> String {
     use crate::render::sig3;
     let get = |m: &str| rows.iter().find(|r| r.model == m);
@@ -400,32 +421,38 @@ fn premise(rows: &[ModelComparison]) -> String {
     let measured: Vec<&ModelComparison> = rows.iter().filter(|r| r.hardware.is_some()).collect();
     match (&q.hardware, &b.hardware, &p.hardware) {
         (Some(qh), Some(bh), Some(ph)) => {
-            s.push_str(&format!(
-                " In hardware, (15) takes {} LUT4, {} flip-flops and {} DSP blocks ({}); blinn {} LUT4, {} flip-flops and {} DSP blocks ({}); square-and-multiply {} LUT4 and {} DSP blocks ({}).",
-                qh.luts,
-                qh.flip_flops,
-                qh.dsp_blocks,
-                operating_point(qh),
-                bh.luts,
-                bh.flip_flops,
-                bh.dsp_blocks,
-                operating_point(bh),
-                ph.luts,
-                ph.dsp_blocks,
-                operating_point(ph)
-            ));
-            if qh.target == bh.target && qh.stages == bh.stages && qh.dsp == bh.dsp {
+            let (qa, unit) = area(qh);
+            let (ba, bunit) = area(bh);
+            let cost = |h: &crate::synth::SynthResult| {
+                let (a, u) = area(h);
+                // (each row in its own unit: a row without place-and-route has no logic cells)
+                let fmax = h.fmax_mhz.map_or(String::new(), |m| format!(": {m:.1} MHz median"));
+                format!("{a} {u}, {} flip-flops, {} DSP blocks and {} block RAMs ({}{fmax})", h.flip_flops, h.dsp_blocks, h.block_rams, operating_point(h))
+            };
+            let pow = if did_not_fit(ph) {
+                format!("square-and-multiply does not fit the part ({} DSP blocks and {} LUT4 wanted, {})", ph.dsp_blocks, ph.luts, operating_point(ph))
+            } else {
+                format!("square-and-multiply {}", cost(ph))
+            };
+            s.push_str(&format!(" In hardware, (15) takes {}; blinn {}; {pow}.", cost(qh), cost(bh)));
+            let same_clock = qh.stages > 0 && bh.stages > 0 && qh.clock_mhz.is_some() && qh.clock_mhz == bh.clock_mhz;
+            let same_place = qh.target == bh.target && qh.dsp == bh.dsp && unit == bunit;
+            if same_place && (same_clock || qh.stages == bh.stages) {
+                let at = if same_clock { format!("pipelined for {} MHz", qh.clock_mhz.unwrap_or_default()) } else { "at that one operating point".to_string() };
                 s.push_str(&format!(
-                    " At that one operating point the table-based unit costs {:.1}× the LUT4 of (15) for an error {:.0}× smaller.",
-                    bh.luts as f64 / qh.luts.max(1) as f64,
+                    " {} the table-based unit costs {:.1}× the {unit} of (15) for an error {:.0}× smaller.",
+                    at[..1].to_uppercase() + &at[1..],
+                    ba as f64 / qa.max(1) as f64,
                     q.blinn_error_max / b.blinn_error_max.max(1e-300)
                 ));
             } else {
                 s.push_str(" The rows were measured at different operating points, so their ratios are not a like-for-like cost.");
             }
+            let pa = area(ph).0;
+            let pow_cost =
+                if did_not_fit(ph) { "it does not even fit the part".to_string() } else { format!("{:.1}× the {unit} of (15)", pa as f64 / qa.max(1) as f64) };
             s.push_str(&format!(
-                " The paper's premise — that cos^n itself is too costly — holds for square-and-multiply ({:.1}× the LUT4 of (15)), not for the table-based unit.",
-                ph.luts as f64 / qh.luts.max(1) as f64
+                " The paper's premise — that cos^n itself is too costly — holds for square-and-multiply ({pow_cost}), not for the table-based unit."
             ));
         }
         _ if !measured.is_empty() => s.push_str(&format!(

@@ -24,6 +24,9 @@ pub struct SynthResult {
     pub stages: u32,
     pub target: String,
     pub dsp: bool,
+    /// the clock the unit is constrained to (its `.sdc`, nextpnr's `--freq`), MHz
+    #[serde(default)]
+    pub clock_mhz: Option<f64>,
     /// LUT4 (iCE40/ECP5) or all cells (generic)
     pub luts: u64,
     pub carry_cells: u64,
@@ -260,6 +263,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         top: top.clone(),
         target: format!("{target:?}").to_lowercase(),
         dsp,
+        clock_mhz: Some(cfg.clock_mhz()),
         luts: match target {
             Target::Generic => total_cells,
             _ => count(&|n| n == "SB_LUT4" || n == "LUT4"),

@@ -188,6 +188,58 @@ fn report_shows_synthesis_results_given_with_hw() {
     assert!(!bad.exists());
 }
 
+/// Issue 23: given units pipelined for one clock on one part, the verdict compares them there,
+/// in logic cells, and a unit that does not fit the part is said not to.
+#[test]
+fn the_verdict_compares_units_at_their_operating_point() {
+    let tmp = tempfile::tempdir().unwrap();
+    let row = |model: &str, stages: u32, cells: u64, dsp: u64, fmax: &str, note: &str| {
+        let path = tmp.path().join(format!("{model}.json"));
+        let text = format!(
+            r#"{{"top": "specular_unit", "model": "{model}", "stages": {stages}, "target": "ice40", "dsp": true, "clock_mhz": 100.0, "luts": {}, "flip_flops": {}, "dsp_blocks": {dsp}, "block_rams": 4, "logic_cells": {cells}, "fmax_mhz": {fmax}, "fmax_note": "{note}"}}"#,
+            cells / 2,
+            cells / 3
+        );
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let (lean, blinn) = (777u64, 3488u64);
+    let files = [
+        row("quadratic", 13, lean, 8, "102.6", ""),
+        row("fitted", 60, 4000, 7, "102.6", ""),
+        row("blinn", 60, blinn, 6, "101.9", ""),
+        row("blinn-pow", 12, 0, 75, "null", "place-and-route failed: ERROR: Unable to place cell 'x', no BELs remaining to implement cell type 'ICESTORM_DSP'"),
+    ];
+    let out = tmp.path().join("rep");
+    let mut cmd = specgen();
+    cmd.args(["report", "--out"]).arg(&out);
+    for f in &files {
+        cmd.arg("--hw").arg(f);
+    }
+    let o = cmd.output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let premise = json["premise"].as_str().unwrap();
+    let err = |i: usize| json["models"][i]["blinn_error_max"].as_f64().unwrap();
+    let ratio = format!(
+        "Pipelined for 100 MHz the table-based unit costs {:.1}× the logic cells of (15) for an error {:.0}× smaller.",
+        blinn as f64 / lean as f64,
+        err(0) / err(2)
+    );
+    assert!(premise.contains(&ratio), "{ratio}\n{premise}");
+    assert!(
+        premise.contains(&format!("(15) takes {lean} logic cells")) && premise.contains("(ice40 with DSPs, 13 stage(s) for 100 MHz: 102.6 MHz median)"),
+        "{premise}"
+    );
+    assert!(
+        premise.contains("square-and-multiply does not fit the part (75 DSP blocks")
+            && premise.contains("holds for square-and-multiply (it does not even fit the part)"),
+        "{premise}"
+    );
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("<td>ice40 with DSPs, 60 stage(s) for 100 MHz</td>"), "operating point column");
+}
+
 /// A number as the page prints it (`1.89e-5`, `0.619`), read back.
 fn cell(html: &str, row: &str) -> f64 {
     let at = html.find(&format!("<td>{row}</td><td>")).unwrap_or_else(|| panic!("no row {row:?}"));
