@@ -49,8 +49,8 @@
 
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
-use crate::config::Config;
-use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
+use crate::config::{Config, Target};
+use crate::datapath::{mul_delay, Builder, Piece, CHANNELS, LUT_DELAY, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -450,21 +450,33 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             terms.push(vec![Piece::sig(&ll, r, r)]);
             let p = b.sum_start(&tn, terms, tw, &t, "2*hi*lo + floor(lo^2 / 2^r), exact");
             let tn = b.resolve(p, &t);
-            // a step that only registers T: the DSP's input registers take their operands from
-            // a flip-flop (a route to the DSP column), not from the LUTs that picked T's chunks
-            b.step(&format!("{t}: registered for the DSP"));
-            b.delay(REGISTER_ONLY_DELAY);
-            b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
             let zw = 2 * dsp;
-            let (h1, h2) = (b.operand(&prev, r, dsp, zw), b.operand(&prev, r, dsp, zw));
-            let th = b.operand(&tn, r, tw - r, zw);
-            b.wire(
-                &format!("square{j}"),
-                zw,
-                format!("{h1} * {h2} + {th}"),
-                &format!("floor(power{}^2 / 2^{}), exact: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", j - 1, 2 * r, wf + 1, wf + 1),
-            );
-            b.delay(mul_delay(dsp, dsp));
+            let what = format!("floor(power{}^2 / 2^{}), exact", j - 1, 2 * r);
+            if b.target() == Target::Ecp5 {
+                // the MULT18X18D has no adder: hi^2 alone on it (with its own registers where
+                // the cuts allow), T added after it on a carry chain
+                b.step(&format!("squaring {j} of {m_max} (squarer 11): hi^2 (one DSP)"));
+                let hh = format!("square{j}_hh");
+                b.product(&hh, &[Piece::sig(&prev, r, dsp)], &[Piece::sig(&prev, r, dsp)], zw, &format!("hi^2, power{} = hi*2^{r} + lo, exact", j - 1));
+                b.step(&format!("squaring {j} of {m_max}: Z = hi^2 + T/2^{r}"));
+                b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[Piece::sig(&tn, r, tw - r)], false, zw, &what);
+            } else {
+                // a step that only registers T: the DSP's input registers take their operands
+                // from a flip-flop (a route to the DSP column), not from the LUTs that picked
+                // T's chunks
+                b.step(&format!("{t}: registered for the DSP"));
+                b.delay(REGISTER_ONLY_DELAY);
+                b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
+                let (h1, h2) = (b.operand(&prev, r, dsp, zw), b.operand(&prev, r, dsp, zw));
+                let th = b.operand(&tn, r, tw - r, zw);
+                b.wire(
+                    &format!("square{j}"),
+                    zw,
+                    format!("{h1} * {h2} + {th}"),
+                    &format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1),
+                );
+                b.delay(mul_delay(dsp, dsp));
+            }
             // the bypass in a step of its own: the DSP's output meets only a flip-flop
             b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
             b.delay(LUT_DELAY);
@@ -487,13 +499,36 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         );
     }
 
-    b.step("colour multipliers (14-16)");
     let s = format!("power{m_max}");
     let wc = w.color_frac_bits;
-    let cs = b.bits(&s, wf, wf - wc);
-    b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: S floored to what the colours' budget needs"));
-    b.colour_sums("color_power", wc, "S");
-    b.delay(mul_delay(wc + 1, bb));
+    if b.target() == Target::Ecp5 {
+        // the MULT18X18D has no adder: the products alone (with the blocks' own registers where
+        // the cuts allow), the colours' rounding half added after them on carry chains
+        b.step("colour multipliers (14-16, products)");
+        let cp = wc + bb;
+        for ch in CHANNELS {
+            let (v, k) = (Piece::sig(&s, wf - wc, wc + 1), Piece::sig(&format!("ks_{ch}"), 0, bb));
+            b.product(&format!("color_prod_{ch}"), &[v], &[k], cp, &format!("UQ{bb}.{wc}: S*ks_{ch}, S floored to what the colours' budget needs, exact"));
+        }
+        b.step("colour rounding (adders)");
+        for ch in CHANNELS {
+            let half = Piece::Const { value: 1u128 << (wc - 1), width: wc };
+            b.add(
+                &format!("color_sum_{ch}"),
+                &[Piece::sig(&format!("color_prod_{ch}"), 0, cp)],
+                &[half],
+                false,
+                cp,
+                &format!("UQ{bb}.{wc}: S*ks_{ch} + 1/2 colour ulp"),
+            );
+        }
+    } else {
+        b.step("colour multipliers (14-16)");
+        let cs = b.bits(&s, wf, wf - wc);
+        b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: S floored to what the colours' budget needs"));
+        b.colour_sums("color_power", wc, "S");
+        b.delay(mul_delay(wc + 1, bb));
+    }
     // round half up on the bits that matter: (S[W:W-FI-1] + 1) >> 1 = floor((S + 2^-(FI+1)) / 2^-FI)
     let title = "the intensity rounded half up";
     b.step(&format!("{title}: chunk sums"));
