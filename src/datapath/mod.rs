@@ -725,6 +725,47 @@ impl Builder {
         }
     }
 
+    /// The colour multipliers (14–16) in this step, for the `wc + 1`-bit UQ1.wc field of `src`
+    /// from bit `lo` (`what` names the value). Where the DSP block has a post-adder (iCE40,
+    /// generic) one multiply-add each with the colours' rounding half as its addend
+    /// (`color_power`, then [`Builder::colour_sums`]); on the ECP5, whose MULT18X18D has none,
+    /// the products alone (`color_prod_X`, on blocks with their own registers where the cuts
+    /// allow), and [`Builder::colour_rounding`] adds the half in a later step.
+    pub(crate) fn colour_products(&mut self, src: &str, lo: u32, wc: u32, what: &str) {
+        if self.target != Target::Ecp5 {
+            let cs = self.bits(src, lo + wc, lo);
+            self.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"));
+            self.colour_sums("color_power", wc, what);
+            return;
+        }
+        let bb = self.colour_bits();
+        for ch in CHANNELS {
+            let (v, k) = (Piece::sig(src, lo, wc + 1), Piece::sig(&format!("ks_{ch}"), 0, bb));
+            self.product(
+                &format!("color_prod_{ch}"),
+                &[v],
+                &[k],
+                wc + bb,
+                &format!("UQ{bb}.{wc}: {what}*ks_{ch}, {what} floored to what the colours' budget needs, exact"),
+            );
+        }
+    }
+
+    /// The ECP5's colour rounding after [`Builder::colour_products`], in this step:
+    /// `color_sum_X = color_prod_X + 2^(wc−1)` on carry chains (elsewhere nothing: the half was
+    /// the multiply-add's addend).
+    pub(crate) fn colour_rounding(&mut self, wc: u32, what: &str) {
+        if self.target != Target::Ecp5 {
+            return;
+        }
+        let cp = wc + self.colour_bits();
+        for ch in CHANNELS {
+            let half = Piece::Const { value: 1u128 << (wc - 1), width: wc };
+            let comment = format!("UQ{}.{wc}: {what}*ks_{ch} + 1/2 colour ulp", cp - wc);
+            self.add(&format!("color_sum_{ch}"), &[Piece::sig(&format!("color_prod_{ch}"), 0, cp)], &[half], false, cp, &comment);
+        }
+    }
+
     /// The colour outputs `spec_X` from `color_sum_X` (`B + wc` bits, the rounding half in it):
     /// its top B bits, the colour rounded half up.
     pub(crate) fn colour_results(&mut self, wc: u32, what: &str) {

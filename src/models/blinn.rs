@@ -53,7 +53,7 @@
 
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, lit, mask};
-use crate::config::Config;
+use crate::config::{Config, Target};
 use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY};
 use crate::table::Table;
 use serde::Serialize;
@@ -539,8 +539,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     if f - 1 <= dsp && gb > dsp && gb - dsp <= SHIFT_ADD_BITS {
         b.step("-log2 c' = x*g(x): x*g_lo (multiplier); the partial products of x*g_hi");
         let lw = f - 1 + dsp;
-        let (xv, gv) = (b.zext("x", lw), b.operand("ghat", 0, dsp, lw));
-        b.wire("log_frac_lo", lw, format!("{xv} * {gv}"), &format!("x*ghat[{}:0], exact", dsp - 1));
+        b.product("log_frac_lo", &[Piece::sig("x", 0, f - 1)], &[Piece::sig("ghat", 0, dsp)], lw, &format!("x*ghat[{}:0], exact", dsp - 1));
         // beside the DSP (they do not wait for it), x*g_hi's partial products
         let t = "-log2 c' = x*g(x)";
         let hw = lb - dsp;
@@ -590,6 +589,17 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
                 terms.push(vec![Piece::sig(&below, dsp, bw - dsp)]);
                 let p = b.sum_start(&name, terms, width, t, &what);
                 b.resolve(p, t);
+            } else if b.target() == Target::Ecp5 {
+                // the MULT18X18D has no adder: the product alone (with the block's own
+                // registers where the cuts allow), the chunk below added after it on a carry chain
+                b.step(&format!("y = n*(-log2 c) (multiplier 7): n*l[{}:{lo}] (one DSP)", lo + cw - 1));
+                let product = if k == 0 { name.clone() } else { format!("{name}_prod") };
+                b.product(&product, &[Piece::sig("n", 0, nb)], &[Piece::sig("ell", lo, cw)], width, &format!("n*l[{}:{lo}], exact (one DSP)", lo + cw - 1));
+                if k > 0 {
+                    b.step(&format!("y = n*(-log2 c): n*l[{}:{lo}] plus the chunk below", lo + cw - 1));
+                    let bw = nb + chunks[k - 1].1;
+                    b.add(&name, &[Piece::sig(&product, 0, width)], &[Piece::sig(&format!("y_part{}", k - 1), dsp, bw - dsp)], false, width, &what);
+                }
             } else {
                 b.step(&format!("y = n*(-log2 c) (multiplier 7): l[{}:{lo}] (multiply-add)", lo + cw - 1));
                 let (nv, lv) = (b.zext("n", width), b.operand("ell", lo, cw, width));
@@ -720,9 +730,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     b.step("colour multipliers (14-16)");
     let wc = w.color_frac_bits;
-    let cs = b.bits("power", we, we - wc);
-    b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: c^n floored to what the colours' budget needs"));
-    b.colour_sums("color_power", wc, "c^n");
+    b.colour_products("power", we - wc, wc, "c^n");
     b.delay(mul_delay(wc + 1, bb));
     // a step of its own, from a copy of c^n of its own: the register that feeds the colour
     // multipliers sits by the DSP column
@@ -747,6 +755,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.wire(&name, 1, format!("~|{bits}"), &format!("bits [{}:{g}] of c^n are 0", gh - 1));
         groups.push(name);
     }
+    // (on the ECP5, the colours' rounding half after their products)
+    b.colour_rounding(wc, "c^n");
     let sum = b.resolve(p, "the intensity rounded half up");
     let zeros: Vec<String> = groups.iter().map(|g| b.r(g)).collect();
     b.wire("done", 1, zeros.join(" & "), "the highlight is below the output's resolution (the intensity rounds to 0)");

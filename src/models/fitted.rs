@@ -50,7 +50,7 @@
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::{Config, Target};
-use crate::datapath::{mul_delay, Builder, Piece, CHANNELS, LUT_DELAY, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
+use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -501,34 +501,9 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
 
     let s = format!("power{m_max}");
     let wc = w.color_frac_bits;
-    if b.target() == Target::Ecp5 {
-        // the MULT18X18D has no adder: the products alone (with the blocks' own registers where
-        // the cuts allow), the colours' rounding half added after them on carry chains
-        b.step("colour multipliers (14-16, products)");
-        let cp = wc + bb;
-        for ch in CHANNELS {
-            let (v, k) = (Piece::sig(&s, wf - wc, wc + 1), Piece::sig(&format!("ks_{ch}"), 0, bb));
-            b.product(&format!("color_prod_{ch}"), &[v], &[k], cp, &format!("UQ{bb}.{wc}: S*ks_{ch}, S floored to what the colours' budget needs, exact"));
-        }
-        b.step("colour rounding (adders)");
-        for ch in CHANNELS {
-            let half = Piece::Const { value: 1u128 << (wc - 1), width: wc };
-            b.add(
-                &format!("color_sum_{ch}"),
-                &[Piece::sig(&format!("color_prod_{ch}"), 0, cp)],
-                &[half],
-                false,
-                cp,
-                &format!("UQ{bb}.{wc}: S*ks_{ch} + 1/2 colour ulp"),
-            );
-        }
-    } else {
-        b.step("colour multipliers (14-16)");
-        let cs = b.bits(&s, wf, wf - wc);
-        b.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: S floored to what the colours' budget needs"));
-        b.colour_sums("color_power", wc, "S");
-        b.delay(mul_delay(wc + 1, bb));
-    }
+    b.step("colour multipliers (14-16)");
+    b.colour_products(&s, wf - wc, wc, "S");
+    b.delay(mul_delay(wc + 1, bb));
     // round half up on the bits that matter: (S[W:W-FI-1] + 1) >> 1 = floor((S + 2^-(FI+1)) / 2^-FI)
     let title = "the intensity rounded half up";
     b.step(&format!("{title}: chunk sums"));
@@ -540,6 +515,8 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         fi + 2,
         &format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up; S < 1 when it is not a whole 1.0)", fi + 1, fi + 1, fi + 1),
     );
+    // (on the ECP5, the colours' rounding half after their products)
+    b.colour_rounding(wc, "S");
     let sum = b.resolve(p, title);
     b.colour_results(wc, "S");
     let e = b.bits(&sum, fi + 1, 1);

@@ -91,26 +91,29 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
 /// The primitives' registers are part of the arithmetic's timing: a product module without its
 /// output register, or a ROM without its output register, is a cycle early and the
 /// co-simulation says so.
-/// Issue 23: the fitted unit shaped for the ECP5 at its deepest pipeline puts every product
-/// on a MULT18X18D with its own registers (each squaring's hi² and the colour products alone
-/// on theirs: the block has no adder, the adds follow on carry chains), and is the golden
-/// model's under both simulators.
+/// Issue 23: fitted and blinn shaped for the ECP5 at their deepest pipelines put every product
+/// on a MULT18X18D with its own registers (products alone on the block, which has no adder:
+/// fitted's squarings' hi², blinn's n·ℓ chunks, both models' colours; the adds follow on carry
+/// chains), and are the golden model's under both simulators.
 #[test]
-fn fitted_on_the_ecp5_keeps_every_product_in_a_registered_block_and_is_right() {
+fn fitted_and_blinn_on_the_ecp5_keep_every_product_in_a_registered_block_and_are_right() {
     require_tool("verilator", "verilator");
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    let args = ["--model", "fitted", "--target", "ecp5"];
-    let stages = deepest(&args);
-    let dir = generate(tmp.path(), "fitted_ecp5", &[&args[..], &["--stages", &stages]].concat());
-    let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    assert!(!has_multiply(&unit), "every product on a registered block:\n{unit}");
-    // a_lo*(1 - cos), three squarings' hi^2, three colours
-    assert_eq!(unit.matches("specular_unit_mult18x18 ").count(), 7, "{unit}");
-    let o = cosim(&dir, &["--vectors", "200000"]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let o = cosim(&dir, &["--simulator", "icarus", "--vectors", "2000"]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    // fitted: a_lo*(1 - cos), three squarings' hi^2, three colours; blinn: x*g_lo, two n*l
+    // chunks, three colours
+    for (model, blocks) in [("fitted", 7), ("blinn", 6)] {
+        let args = ["--model", model, "--target", "ecp5"];
+        let stages = deepest(&args);
+        let dir = generate(tmp.path(), model, &[&args[..], &["--stages", &stages]].concat());
+        let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert!(!has_multiply(&unit), "{model}: every product on a registered block:\n{unit}");
+        assert_eq!(unit.matches("specular_unit_mult18x18 ").count(), blocks, "{model}");
+        let o = cosim(&dir, &["--vectors", "200000"]);
+        assert_eq!(o.status.code(), Some(0), "{model}: {}", text(&o));
+        let o = cosim(&dir, &["--simulator", "icarus", "--vectors", "2000"]);
+        assert_eq!(o.status.code(), Some(0), "{model}: {}", text(&o));
+    }
 }
 
 #[test]
