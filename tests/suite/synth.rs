@@ -194,8 +194,8 @@ fn place_and_route_failure_shows_nextpnr_text() {
 }
 
 /// Issue 11: the fitted unit shaped for the iCE40 keeps its intensity path to 4 SB_MAC16 (one
-/// for a_n·(1 − cos), one per squaring; a_n's high bits and each squaring's hi·lo by
-/// shift-adds) beside the 3 colour multipliers.
+/// for a_n·(1 − cos), one per squaring; a_n's high bits and each squaring's hi·lo as partial
+/// products in carry-save sums) beside the 3 colour multipliers.
 #[test]
 fn fitted_intensity_path_takes_at_most_4_sb_mac16() {
     require_tool("yosys", "yosys");
