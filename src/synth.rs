@@ -43,7 +43,9 @@ pub struct SynthResult {
     /// why Fmax is missing, when it is
     pub fmax_note: String,
     /// logic cells after packing, from nextpnr's device utilisation: ICESTORM_LC (iCE40) or
-    /// TRELLIS_SLICE (ECP5), the serial-I/O wrapper included; none without place-and-route
+    /// TRELLIS_SLICE (ECP5; where nextpnr-ecp5 counts TRELLIS_COMB and TRELLIS_FF instead, the
+    /// larger: LUT4-and-flip-flop places, two to a slice), the serial-I/O wrapper included;
+    /// none without place-and-route
     #[serde(default)]
     pub logic_cells: Option<u64>,
     pub cells: Vec<(String, u64)>,
@@ -387,12 +389,19 @@ impl SynthResult {
 }
 
 /// The packed logic cells in a nextpnr log: `ICESTORM_LC: 777/ 5280 14%` or
-/// `TRELLIS_SLICE: 312/ 12144 2%` under "Device utilisation".
+/// `TRELLIS_SLICE: 312/ 12144 2%` under "Device utilisation", or the larger of
+/// `TRELLIS_COMB` and `TRELLIS_FF` where those are counted instead.
 pub(crate) fn logic_cells(log: &str) -> Option<u64> {
-    log.lines().find_map(|l| {
-        let rest = l.split("ICESTORM_LC:").nth(1).or_else(|| l.split("TRELLIS_SLICE:").nth(1))?;
-        rest.split('/').next()?.trim().parse().ok()
-    })
+    let used = |cell: &str| {
+        log.lines().find_map(|l| {
+            let rest = l.split(&format!(" {cell}:")).nth(1)?;
+            rest.split('/').next()?.trim().parse::<u64>().ok()
+        })
+    };
+    // nextpnr-ecp5 builds that place LUTs and flip-flops as cells of their own report
+    // TRELLIS_COMB and TRELLIS_FF, not slices: a LUT4 and a flip-flop together, as an
+    // ICESTORM_LC holds them, is then the larger of the two
+    used("ICESTORM_LC").or_else(|| used("TRELLIS_SLICE")).or_else(|| Some(used("TRELLIS_COMB")?.max(used("TRELLIS_FF")?)))
 }
 
 pub fn table(r: &SynthResult) -> String {
@@ -573,6 +582,9 @@ mod tests {
         assert_eq!(logic_cells(ice40), Some(777));
         let ecp5 = "Info: Device utilisation:\nInfo: \t          TRELLIS_IO:    23/  197    11%\nInfo: \t       TRELLIS_SLICE:   312/12144     2%\n";
         assert_eq!(logic_cells(ecp5), Some(312));
+        let ecp5_cells =
+            "Info: Device utilisation:\nInfo: \t          TRELLIS_FF:    2684/  24288    11%\nInfo: \t        TRELLIS_COMB:    1510/  24288     6%\n";
+        assert_eq!(logic_cells(ecp5_cells), Some(2684));
         assert_eq!(logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"), None);
     }
 }
