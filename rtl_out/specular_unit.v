@@ -124,8 +124,8 @@ wire [31:0] deviation_sum_s6 = {16'h0, kn_s4[15:0]} * {16'h0, one_minus_cos_s3} 
 wire [17:0] bracket_s7 = done_s5 ? 18'h0 : ~deviation_sum_s6[31:14];
 
 // ==== step 8: square (squarer 11): lo^2 ====
-wire [3:0] square_ll_s8 = (bracket_s7[1:0] == 2'h0) ? 4'h0 : (bracket_s7[1:0] == 2'h1) ? 4'h1
-    : (bracket_s7[1:0] == 2'h2) ? 4'h4 : 4'h9;   // lo^2 by table, bracket = hi*2^2 + lo
+wire [3:0] square_ll_s8 = ({4{bracket_s7[1:0] == 2'h1}} & 4'h1) | ({4{bracket_s7[1:0] == 2'h2}} & 4'h4)
+    | ({4{bracket_s7[1:0] == 2'h3}} & 4'h9);   // lo^2 by table, bracket = hi*2^2 + lo
 
 // ==== step 9: square: T = hi*lo + lo^2/2^(r+1) (multiply-add) ====
 // hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)
