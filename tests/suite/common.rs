@@ -4,6 +4,12 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+/// The cut points of `model`'s datapath at default parameters (its deepest `--stages`).
+pub fn default_cut_points(model: specgen::config::SpecularModel) -> u32 {
+    let cfg = specgen::config::Config::new(specgen::config::Params { model, ..Default::default() }).unwrap();
+    specgen::plan::Plan::new(cfg).unwrap().cut_points
+}
+
 /// Fails (never skips) when an external tool is missing: the README's test command installs them.
 pub fn require_tool(tool: &str, package: &str) {
     let found = Command::new("sh").arg("-c").arg(format!("command -v {tool}")).output().map(|o| o.status.success()).unwrap_or(false);

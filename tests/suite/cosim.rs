@@ -54,11 +54,7 @@ fn checked_in_default_unit_is_right_on_its_whole_input_space() {
 fn fitted_at_its_deepest_pipeline_is_right_on_its_whole_input_space() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let deepest = specgen::plan::Plan::new(
-        specgen::config::Config::new(specgen::config::Params { model: specgen::config::SpecularModel::Fitted, ..Default::default() }).unwrap(),
-    )
-    .unwrap()
-    .cut_points;
+    let deepest = default_cut_points(specgen::config::SpecularModel::Fitted);
     assert!(deepest >= 50, "the fitted datapath's sums are cut into steps: {deepest} cut points");
     let dir = generate(tmp.path(), "fitted", &["--model", "fitted", "--stages", &deepest.to_string()]);
     let o = cosim(&dir, &["--exhaustive"]);

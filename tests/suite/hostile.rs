@@ -2,8 +2,7 @@
 //! in a clear message and the right exit code, and nothing is lost or half-written.
 
 use crate::common::*;
-use specgen::config::{Config, Params, SpecularModel};
-use specgen::plan::Plan;
+use specgen::config::SpecularModel;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -360,7 +359,7 @@ fn reserved_names_and_header_breaking_text_are_refused() {
     let help = String::from_utf8_lossy(&specgen().args(["generate", "--help"]).output().unwrap().stdout).to_string();
     // the stage limits in --help are the real ones (the plan's cut points at default widths)
     for (model, name) in [(SpecularModel::Quadratic, "lean"), (SpecularModel::Fitted, "fitted"), (SpecularModel::Blinn, "blinn")] {
-        let cuts = Plan::new(Config::new(Params { model, ..Default::default() }).unwrap()).unwrap().cut_points;
+        let cuts = default_cut_points(model);
         assert!(help.contains(&format!("{name} {cuts},")), "--help does not say {name} {cuts}:\n{help}");
     }
 }

@@ -219,12 +219,7 @@ fn fitted_intensity_path_takes_at_most_4_sb_mac16() {
 fn blinn_takes_at_most_6_sb_mac16_and_6_block_rams_and_its_colours_no_flip_flops() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let deepest = specgen::plan::Plan::new(
-        specgen::config::Config::new(specgen::config::Params { model: specgen::config::SpecularModel::Blinn, ..Default::default() }).unwrap(),
-    )
-    .unwrap()
-    .cut_points
-    .to_string();
+    let deepest = default_cut_points(specgen::config::SpecularModel::Blinn).to_string();
     let dir = generate(tmp.path(), "blinn", &["--model", "blinn", "--stages", &deepest]);
     let r = synth(&dir, &["--target", "ice40", "--dsp", "--no-pnr"]);
     let dsp = r["dsp_blocks"].as_u64().unwrap();
