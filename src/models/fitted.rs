@@ -440,7 +440,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let m_max = cfg.max_squarings();
     for j in 1..=m_max {
         let prev = format!("power{}", j - 1);
-        let (hi_bits, keep) = if sq_split {
+        let hi_bits = if sq_split {
             let t = format!("squaring {j} of {m_max}: T = 2*hi*lo + lo^2/2^{r}");
             b.step(&format!("{t}: the partial products of 2*hi*lo; lo^2 by a table"));
             let tw = dsp + r + 2;
@@ -480,15 +480,16 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             // the bypass in a step of its own: the DSP's output meets only a flip-flop
             b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
             b.delay(LUT_DELAY);
-            (b.bits(&format!("square{j}"), 2 * wf - 2 * r, wf - 2 * r), b.r(&prev))
+            b.bits(&format!("square{j}"), 2 * wf - 2 * r, wf - 2 * r)
         } else {
             b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
             let sq = 2 * wf + 2;
             let (p1, p2) = (b.zext(&prev, sq), b.zext(&prev, sq));
             b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
             b.delay(mul_delay((wf + 1).min(dsp), (wf + 1).min(dsp)) + LUT_DELAY);
-            (b.bits(&format!("square{j}"), 2 * wf, wf), b.r(&prev))
+            b.bits(&format!("square{j}"), 2 * wf, wf)
         };
+        let keep = b.r(&prev);
         let mf = b.bits("fit", w.rom_word_bits - 1, w.a_bits);
         let m_test = format!("({mf} >= {})", lit(w.m_bits, j as u128));
         b.wire(
