@@ -463,6 +463,42 @@ fn block_table(dp: &datapath::Datapath, t: usize) -> bool {
     reads.peek().is_some() && reads.all(|r| r.block)
 }
 
+/// Where a signal's chain of registers (its `read` masks per cut) is cut in two for block RAM:
+/// each index `k` of a read word, not the last, that ends a stretch of unread words and itself
+/// as long as [`DelayLine::memory_tail`] takes into block RAM.
+fn unread_stretches(read: &[u128], width: u32, memory: bool) -> Vec<usize> {
+    let mut out = Vec::new();
+    if !memory {
+        return out;
+    }
+    let mut gap_from = 0;
+    for (k, &r) in read.iter().enumerate() {
+        if r == 0 {
+            continue;
+        }
+        let words = k + 1 - gap_from; // the stretch and the word read at its end
+        if k + 1 < read.len() && words >= datapath::MEMORY_TAIL_MIN_CUTS && width * words as u32 >= datapath::MEMORY_TAIL_MIN_BITS {
+            out.push(k);
+        }
+        gap_from = k + 1;
+    }
+    out
+}
+
+/// Adds the chain of `name` through the cuts `at` to the delay line through the same cuts, or
+/// as a line of its own, `line`.
+#[allow(clippy::too_many_arguments)]
+fn lines_add(lines: &mut Vec<DelayLine>, line: &str, name: &str, width: u32, source: &str, at: &[usize], read: &[u128], memory: bool) {
+    let member = Waiting { name: name.to_string(), width, source: source.to_string(), read: read.to_vec() };
+    match lines.iter_mut().find(|l| l.cuts == at) {
+        Some(l) => {
+            l.members.push(member);
+            l.name = format!("waiting_c{}_c{}", at[0], at[at.len() - 1]);
+        }
+        None => lines.push(DelayLine { name: line.to_string(), cuts: at.to_vec(), members: vec![member], memory }),
+    }
+}
+
 /// The registered cuts of a datapath, each with the signals it holds and where from: a signal
 /// that only waits (registered at several cuts, each taking the one before) is one
 /// [`DelayLine`] at the first of them.
@@ -499,15 +535,18 @@ fn cut_list(dp: &datapath::Datapath, memory: bool) -> Vec<Cut> {
             cuts[at[0] - 1].signals.push(CutSignal { name, width, source });
             continue;
         }
-        let read = at.iter().map(|k| dp.read.get(&format!("{name}_c{k}")).copied().unwrap_or(0)).collect();
-        let member = Waiting { name: name.clone(), width, source, read };
-        match lines.iter_mut().find(|l| l.cuts == at) {
-            Some(l) => {
-                l.members.push(member);
-                l.name = format!("waiting_c{}_c{}", at[0], at[at.len() - 1]);
-            }
-            None => lines.push(DelayLine { name, cuts: at, members: vec![member], memory }),
+        let read: Vec<u128> = at.iter().map(|k| dp.read.get(&format!("{name}_c{k}")).copied().unwrap_or(0)).collect();
+        // a long unread stretch before a read that is not the last: the line ends at that read
+        // (the stretch its tail, in block RAM where [`DelayLine::memory_tail`] takes it) and the
+        // rest is a line of its own, from the word read there
+        let (mut from, mut line) = (0, name.clone());
+        for k in unread_stretches(&read, width, memory) {
+            lines_add(&mut lines, &line, &name, width, &source, &at[from..=k], &read[from..=k], memory);
+            source = format!("{name}_c{}", at[k]);
+            from = k + 1;
+            line = format!("{name}_from_c{}", at[from]);
         }
+        lines_add(&mut lines, &line, &name, width, &source, &at[from..], &read[from..], memory);
     }
     for l in lines {
         let first = l.cuts[0];

@@ -256,9 +256,11 @@ pub(crate) struct DelayLine {
 
 /// A delay line's tail waits in block RAM when it spans at least this many cuts...
 pub(crate) const MEMORY_TAIL_MIN_CUTS: usize = 8;
-/// ...and holds at least this many bits (a UP5K block RAM holds 4096; below a few hundred, the
-/// flip-flops cost less than its address counters and output register)
-pub(crate) const MEMORY_TAIL_MIN_BITS: u32 = 256;
+/// ...and holds at least this many bits (a UP5K block RAM holds 4096). The memory costs two
+/// address counters of log2(depth) bits and a read register of two words: for 160 bits in
+/// 8 to 32 cuts, at most 2·20 + 2·5 flip-flops and 10 carry cells, less than a third of what it
+/// saves. Below that the flip-flops cost less.
+pub(crate) const MEMORY_TAIL_MIN_BITS: u32 = 160;
 
 impl DelayLine {
     /// The bits of a word (every member's).
@@ -568,6 +570,68 @@ impl Builder {
         });
         self.define(name, width, self.steps.len(), true);
         self.steps.last_mut().expect("a step").dsps.push(Dsp { name: name.into(), width, a: ea, b: eb, comment: comment.into() });
+    }
+
+    /// `name = a·b + addend mod 2^width` (operands zero-extended), starting in this step.
+    /// Where the DSP block's post-adder takes it, one multiply-add (the add inside the block):
+    /// generic, and the iCE40's SB_MAC16 when the sum is no wider than the product's operands
+    /// together (yosys 0.23 leaves a wider add in the fabric, on the product's unregistered
+    /// output). Elsewhere (and always on the ECP5, whose MULT18X18D has no adder) the product
+    /// `name_prod` alone here ([`Builder::product`]: on a block with its own registers where
+    /// the cuts allow), then the add over the bits above the addend's low zeros in steps of its
+    /// own, titled `title`: one carry chain on the ECP5, a carry-select add on the iCE40.
+    /// Returns the name of the sum.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn multiply_add(&mut self, name: &str, a: &[Piece], b: &[Piece], addend: &[Piece], width: u32, title: &str, comment: &str) -> String {
+        let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
+        let post_adder = match self.target {
+            Target::Generic => true,
+            Target::Ice40 => width <= wa + wb,
+            Target::Ecp5 => false,
+        };
+        if post_adder {
+            self.delay(mul_delay(wa, wb));
+            let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
+            let ec = self.addend(&sub_pieces(addend, 0, width), |e| e);
+            self.wire(name, width, format!("{ea} * {eb}{ec}"), &format!("{comment} (one DSP, the add inside it)"));
+            return name.to_string();
+        }
+        let product = format!("{name}_prod");
+        let pw = width.min(wa + wb);
+        self.product(&product, a, b, pw, &format!("the product alone (one DSP), exact: {pw} bits"));
+        // the addend's low zero bits: the sum there is the product's
+        let mut z = 0;
+        for p in addend {
+            match p {
+                Piece::Const { value: 0, width } => z += width,
+                _ => break,
+            }
+        }
+        let z = z.min(pw);
+        let hi = if z == 0 { name.to_string() } else { format!("{name}_hi") };
+        let mut pb = sub_pieces(addend, z, width - z);
+        if pb.iter().any(|p| matches!(p, Piece::Sig { invert: true, .. })) {
+            // a complemented addend is formed here, beside the product: a carry chain's
+            // operand takes no inverter, which would be a LUT level before it
+            let e = self.pieces(&pb);
+            let (aname, aw) = (format!("{name}_addend"), width - z);
+            self.wire(&aname, aw, e, &format!("bits [{}:{z}] of the addend of {name}", width - 1));
+            pb = vec![Piece::sig(&aname, 0, aw)];
+        }
+        let pa = [Piece::sig(&product, z, pw - z)];
+        self.step(&format!("{title}: the add after the product"));
+        let what = if z == 0 { comment.to_string() } else { format!("bits [{}:{z}] of {name}", width - 1) };
+        if self.target == Target::Ecp5 {
+            self.add(&hi, &pa, &pb, false, width - z, &what);
+        } else {
+            let p = self.add_start(&hi, &pa, &pb, false, width - z, &what);
+            self.resolve(p, title);
+        }
+        if z > 0 {
+            let (h, l) = (self.r(&hi), self.bits(&product, z - 1, 0));
+            self.wire(name, width, format!("{{{h}, {l}}}"), comment);
+        }
+        name.to_string()
     }
 
     /// Starts the next step.

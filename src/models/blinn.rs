@@ -53,7 +53,7 @@
 
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, lit, mask};
-use crate::config::{Config, Target};
+use crate::config::Config;
 use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY};
 use crate::table::Table;
 use serde::Serialize;
@@ -513,7 +513,17 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let gb = w.ghat_bits();
     let ge = w.log_entry_bits;
     let title = "g by linear interpolation";
-    if rb > 0 {
+    let dsp = b.dsp_bits();
+    if rb > 0 && w.log_delta_bits.max(rb) <= dsp && gb + rb <= 2 * dsp {
+        // g^ = G[i] + floor(dG[i]*r / 2^RB) = floor((G[i]*2^RB + dG[i]*r) / 2^RB): one DSP
+        // multiply-add, the entry its addend
+        b.step(&format!("{title}: dG[i]*r + G[i]*2^{rb} (multiplier)"));
+        let sw = gb + rb;
+        let (dg, r, g) = (Piece::sig("log_word", ge, w.log_delta_bits), Piece::sig("x", 0, rb), Piece::sig("log_word", 0, ge));
+        let sum = b.multiply_add("ghat_sum", &[dg], &[r], &[Piece::zeros(rb), g], sw, title, &format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact", tg + 1));
+        let e = b.bits(&sum, sw - 1, rb);
+        b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+    } else if rb > 0 {
         // g^ = G[i] + floor(dG[i]*r / 2^RB) = floor((G[i]*2^RB + dG[i]*r) / 2^RB): the entry and
         // the step's partial products in one carry-save sum, one carry chain at its end
         b.step(&format!("{title}: the partial products of dG[i]*r"));
@@ -535,7 +545,6 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let lb = f - 1 + gb;
     // g wider than a DSP's operands: g = g_hi*2^D + g_lo; x*g_lo on one DSP, then the bits of
     // L above D as x*g_hi (its few partial products) plus x*g_lo/2^D in one carry-save sum
-    let dsp = b.dsp_bits();
     if f - 1 <= dsp && gb > dsp && gb - dsp <= SHIFT_ADD_BITS {
         b.step("-log2 c' = x*g(x): x*g_lo (multiplier); the partial products of x*g_hi");
         let lw = f - 1 + dsp;
@@ -589,29 +598,17 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
                 terms.push(vec![Piece::sig(&below, dsp, bw - dsp)]);
                 let p = b.sum_start(&name, terms, width, t, &what);
                 b.resolve(p, t);
-            } else if b.target() == Target::Ecp5 {
-                // the MULT18X18D has no adder: the product alone (with the block's own
-                // registers where the cuts allow), the chunk below added after it on a carry chain
-                b.step(&format!("y = n*(-log2 c) (multiplier 7): n*l[{}:{lo}] (one DSP)", lo + cw - 1));
-                let product = if k == 0 { name.clone() } else { format!("{name}_prod") };
-                b.product(&product, &[Piece::sig("n", 0, nb)], &[Piece::sig("ell", lo, cw)], width, &format!("n*l[{}:{lo}], exact (one DSP)", lo + cw - 1));
-                if k > 0 {
-                    b.step(&format!("y = n*(-log2 c): n*l[{}:{lo}] plus the chunk below", lo + cw - 1));
-                    let bw = nb + chunks[k - 1].1;
-                    b.add(&name, &[Piece::sig(&product, 0, width)], &[Piece::sig(&format!("y_part{}", k - 1), dsp, bw - dsp)], false, width, &what);
-                }
             } else {
-                b.step(&format!("y = n*(-log2 c) (multiplier 7): l[{}:{lo}] (multiply-add)", lo + cw - 1));
-                let (nv, lv) = (b.zext("n", width), b.operand("ell", lo, cw, width));
-                let expr = if k == 0 {
-                    format!("{nv} * {lv}")
+                // one DSP each, the chunk below added inside it (on the ECP5, after it)
+                let t = format!("y = n*(-log2 c) (multiplier 7): n*l[{}:{lo}]", lo + cw - 1);
+                b.step(&format!("{t} (one DSP)"));
+                let (nn, l) = ([Piece::sig("n", 0, nb)], [Piece::sig("ell", lo, cw)]);
+                if k == 0 {
+                    b.product(&name, &nn, &l, width, &format!("{what} (one DSP)"));
                 } else {
-                    let bw = nb + chunks[k - 1].1;
-                    let av = b.operand(&format!("y_part{}", k - 1), dsp, bw - dsp, width);
-                    format!("{nv} * {lv} + {av}")
-                };
-                b.wire(&name, width, expr, &format!("{what} (one DSP{})", if k == 0 { "" } else { ", the add inside it" }));
-                b.delay(mul_delay(nb, cw));
+                    let below = Piece::sig(&format!("y_part{}", k - 1), dsp, nb + chunks[k - 1].1 - dsp);
+                    b.multiply_add(&name, &nn, &l, &[below], width, &t, &format!("{what}: n*l[{}:{lo}] plus the chunk below", lo + cw - 1));
+                }
             }
         }
         // each P_k's low D bits, read here (in the step of the last: a register holds the others)
@@ -682,12 +679,28 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         e_word.push(Piece::sig("exp2_one", 0, 1));
     }
     let title = "2^-frac(y) by linear interpolation";
-    if re > 0 {
+    let sw = ee + re;
+    // set when E[j] - floor(dE[j]*r / 2^RE) is the complement of bits of exp2_sum
+    let mut complemented = None;
+    if re > 0 && w.exp2_delta_bits.max(re) <= b.dsp_bits() && sw <= 2 * b.dsp_bits() {
+        // E[j]*2^RE + 2^RE - 1 - s = ~(s + ~(E[j]*2^RE + 2^RE - 1)) mod 2^sw for the step
+        // s = dE[j]*r, and ~(E[j]*2^RE + 2^RE - 1) = {~E[j], RE zeros}: one DSP multiply-add,
+        // the complemented entry its addend; the result's complement is taken in the LUTs of
+        // the shift that follows (the DSP's output meets only a flip-flop)
+        b.step(&format!("{title}: dE[j]*r + ~E[j]*2^{re} (multiplier)"));
+        let mut addend = vec![Piece::zeros(re)];
+        addend.extend(e_word.iter().map(|p| match p {
+            Piece::Sig { name, lo, width, .. } => Piece::not(name, *lo, *width),
+            Piece::Const { .. } => unreachable!("the entry is read from the table"),
+        }));
+        let (de, r) = (Piece::sig("exp2_word", es, w.exp2_delta_bits), Piece::sig("y", 0, re));
+        let what = format!("~(E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te})), exact");
+        complemented = Some(b.multiply_add("exp2_sum", &[de], &[r], &addend, sw, title, &what));
+    } else if re > 0 {
         // E[j] - floor(s / 2^RE) = floor((E[j]*2^RE + 2^RE - 1 - s) / 2^RE) for the step
         // s = dE[j]*r, and -s = the sum of its complemented partial products plus their count:
         // one carry-save sum, one carry chain at its end
         b.step(&format!("{title}: the partial products of dE[j]*r, complemented"));
-        let sw = ee + re;
         let mut terms = b.partial_products("exp2_sum", &Piece::sig("exp2_word", es, w.exp2_delta_bits), &Piece::sig("y", 0, re), 0, sw, true);
         let k = terms.len() as u128;
         let mut et = vec![Piece::zeros(re)];
@@ -711,6 +724,10 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     while hi > 0 {
         let lo = hi.saturating_sub(2);
         b.step(&format!("shift by the integer part of y: its bits [{}:{lo}]{}", hi - 1, if lo == 0 { " (truncation #3)" } else { "" }));
+        if let Some(sum) = complemented.take() {
+            let e = b.bits(&sum, sw - 1, re);
+            b.wire("exp2_frac", ee, format!("~{e}"), &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+        }
         let (sv, yi) = (b.r(&src), b.bits("y", w.y_frac_bits + hi - 1, w.y_frac_bits + lo));
         let name = if lo == 0 { "power".to_string() } else { format!("power_shift{lo}") };
         let comment = if lo == 0 { format!("UQ1.{we}: c^n before rounding") } else { format!("2^-frac(y) shifted by floor(y)'s bits above {lo}") };
