@@ -53,7 +53,7 @@
 
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, lit, mask};
-use crate::config::Config;
+use crate::config::{Config, Target};
 use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY};
 use crate::table::Table;
 use serde::Serialize;
@@ -304,30 +304,48 @@ pub fn tables(w: &BlinnWidths) -> BlinnTables {
     }
 }
 
-/// An interpolation table: word i = `{Δ_i, entry_i}` (the entry in the low bits), one name
-/// for the memory, its file and its `FILE` parameter.
-fn interpolation_table(name: &str, entries: &[u128], deltas: &[u128], bits: (u32, u32), what: String, fields: (&str, &str)) -> Table {
+/// How an interpolation table's word carries its step for a DSP block whose post-adder adds
+/// the entry: the step in a field `a_bits` wide, and above it `b_pad` zero bits that widen the
+/// other operand (the interpolation fraction) to the block's width. yosys 0.23 puts an add in
+/// the iCE40's SB_MAC16 only when the sum is no wider than the operands it sees, and an
+/// operand's zero bits from a table are bits it sees (constant ones it strips); the block RAM
+/// then drops the constant bits again, so they cost nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OperandPad {
+    pub a_bits: u32,
+    pub b_pad: u32,
+}
+
+/// An interpolation table: word i = `{Δ_i, entry_i}` (the entry in the low bits; with `pad`,
+/// `{0, Δ_i, entry_i}`, the step in its field and the zero bits above it), one name for the
+/// memory, its file and its `FILE` parameter.
+fn interpolation_table(name: &str, entries: &[u128], deltas: &[u128], bits: (u32, u32), pad: Option<OperandPad>, what: String, fields: (&str, &str)) -> Table {
     let (entry_bits, delta_bits) = bits;
+    let (delta_field, zeros) = pad.map_or((delta_bits, 0), |p| (p.a_bits, p.b_pad));
+    let mut f = vec![(fields.0.into(), entry_bits), (fields.1.into(), delta_field)];
+    if zeros > 0 {
+        f.push(("zero".into(), zeros));
+    }
     Table {
         name: format!("{name}_rom"),
         file: format!("{name}_rom.hex"),
         param: format!("{}_ROM_FILE", name.to_uppercase()),
-        width: delta_bits + entry_bits,
+        width: delta_field + entry_bits + zeros,
         words: entries.iter().zip(deltas).map(|(&e, &d)| (d << entry_bits) | e).collect(),
         what,
-        fields: vec![(fields.0.into(), entry_bits), (fields.1.into(), delta_bits)],
+        fields: f,
     }
 }
 
 impl BlinnTables {
-    pub fn log_table(&self, w: &BlinnWidths) -> Table {
+    pub fn log_table(&self, w: &BlinnWidths, pad: Option<OperandPad>) -> Table {
         let what = format!("{{dG, G}}: g(x) = -log2(1 - x)/x at x = i/2^{}, UQ2.{}, and the step to the next entry", w.log_index_bits + 1, w.log_frac_bits);
-        interpolation_table("log2", &self.g, &self.dg, (w.log_entry_bits, w.log_delta_bits), what, ("g", "dg"))
+        interpolation_table("log2", &self.g, &self.dg, (w.log_entry_bits, w.log_delta_bits), pad, what, ("g", "dg"))
     }
     /// The exp2 table as stored: `E_0 = 1.0` is the only entry with its integer bit set when
     /// [`BlinnTables::exp2_one_implied`], and then that bit is not stored but read as `j == 0`
     /// (one word bit fewer: 2 block RAMs for 256 words instead of 3).
-    pub fn exp2_table(&self, w: &BlinnWidths) -> Table {
+    pub fn exp2_table(&self, w: &BlinnWidths, pad: Option<OperandPad>) -> Table {
         let implied = self.exp2_one_implied(w);
         let stored_bits = w.exp2_entry_bits - implied as u32;
         let entries: Vec<u128> = self.e.iter().map(|&e| e & mask(stored_bits)).collect();
@@ -339,7 +357,7 @@ impl BlinnTables {
         } else {
             format!("{{dE, E}}: 2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits)
         };
-        interpolation_table("exp2", &entries, &self.de, (stored_bits, w.exp2_delta_bits), what, ("e", "de"))
+        interpolation_table("exp2", &entries, &self.de, (stored_bits, w.exp2_delta_bits), pad, what, ("e", "de"))
     }
 
     /// Whether E_0 = 2^WE is the only exp2 entry at or above 1.0.
@@ -393,6 +411,16 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: Inputs) -> (Blin
     (BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v }, Outputs { spec, intensity, done: intensity == 0 })
 }
 
+/// The operands of an interpolation's DSP block: the step `delta` and the fraction `r`, each
+/// at the block's width when the table word carries them so (`pad`: the step's field, and the
+/// zero bits above it that widen `r`).
+fn operands(delta: Piece, r: Piece, word: &str, pad: Option<OperandPad>) -> (Vec<Piece>, Vec<Piece>) {
+    match (pad, &delta) {
+        (Some(p), Piece::Sig { lo, .. }) => (vec![Piece::sig(word, *lo, p.a_bits)], vec![r, Piece::sig(word, lo + p.a_bits, p.b_pad)]),
+        _ => (vec![delta], vec![r]),
+    }
+}
+
 /// A multiplier of at most this many bits is worth shift-adds rather than a DSP block.
 const SHIFT_ADD_BITS: u32 = 5;
 
@@ -400,8 +428,18 @@ const SHIFT_ADD_BITS: u32 = 5;
 pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder) {
     let (f, fi, bb, nb) = (cfg.f(), cfg.fi(), cfg.b(), cfg.n_bits());
     let cb = f + 1;
-    let lt = b.table(t.log_table(w));
-    let et = b.table(t.exp2_table(w));
+    // each interpolation on one DSP block where its operands fit (on the iCE40 with the
+    // entry added inside it: the table word carries the operands at the block's width)
+    let dsp = b.dsp_bits();
+    let (rb, re) = (w.log_rest_bits(cfg), w.exp2_rest_bits());
+    let (log_dsp, exp2_dsp) = (
+        rb > 0 && w.log_delta_bits.max(rb) <= dsp && w.ghat_bits() + rb <= 2 * dsp,
+        re > 0 && w.exp2_delta_bits.max(re) <= dsp && w.exp2_entry_bits + re <= 2 * dsp,
+    );
+    let pad = |on: bool, rest: u32| (on && b.target() == Target::Ice40).then_some(OperandPad { a_bits: dsp, b_pad: dsp - rest });
+    let (log_pad, exp2_pad) = (pad(log_dsp, rb), pad(exp2_dsp, re));
+    let lt = b.table(t.log_table(w, log_pad));
+    let et = b.table(t.exp2_table(w, exp2_pad));
 
     b.step("clamp c = min(cos, 1)");
     let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
@@ -502,7 +540,6 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let p = b.add_start("x", &[Piece::sig("cos_norm_inv", 0, f - 1)], &[], true, f - 1, &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
     b.resolve(p, title);
 
-    let rb = w.log_rest_bits(cfg);
     let tg = w.log_index_bits;
     b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
     let idx = b.bits("x", f - 2, rb);
@@ -513,14 +550,14 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let gb = w.ghat_bits();
     let ge = w.log_entry_bits;
     let title = "g by linear interpolation";
-    let dsp = b.dsp_bits();
-    if rb > 0 && w.log_delta_bits.max(rb) <= dsp && gb + rb <= 2 * dsp {
+    if log_dsp {
         // g^ = G[i] + floor(dG[i]*r / 2^RB) = floor((G[i]*2^RB + dG[i]*r) / 2^RB): one DSP
         // multiply-add, the entry its addend
         b.step(&format!("{title}: dG[i]*r + G[i]*2^{rb} (multiplier)"));
         let sw = gb + rb;
         let (dg, r, g) = (Piece::sig("log_word", ge, w.log_delta_bits), Piece::sig("x", 0, rb), Piece::sig("log_word", 0, ge));
-        let sum = b.multiply_add("ghat_sum", &[dg], &[r], &[Piece::zeros(rb), g], sw, title, &format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact", tg + 1));
+        let (a, r) = operands(dg, r, "log_word", log_pad);
+        let sum = b.multiply_add("ghat_sum", &a, &r, &[Piece::zeros(rb), g], sw, title, &format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact", tg + 1));
         let e = b.bits(&sum, sw - 1, rb);
         b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
     } else if rb > 0 {
@@ -658,7 +695,6 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     );
     b.delay(LUT_DELAY);
 
-    let re = w.exp2_rest_bits();
     let te = w.exp2_index_bits;
     b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
     let ji = b.bits("y", w.y_frac_bits - 1, re);
@@ -682,7 +718,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let sw = ee + re;
     // set when E[j] - floor(dE[j]*r / 2^RE) is the complement of bits of exp2_sum
     let mut complemented = None;
-    if re > 0 && w.exp2_delta_bits.max(re) <= b.dsp_bits() && sw <= 2 * b.dsp_bits() {
+    if exp2_dsp {
         // E[j]*2^RE + 2^RE - 1 - s = ~(s + ~(E[j]*2^RE + 2^RE - 1)) mod 2^sw for the step
         // s = dE[j]*r, and ~(E[j]*2^RE + 2^RE - 1) = {~E[j], RE zeros}: one DSP multiply-add,
         // the complemented entry its addend; the result's complement is taken in the LUTs of
@@ -694,8 +730,9 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
             Piece::Const { .. } => unreachable!("the entry is read from the table"),
         }));
         let (de, r) = (Piece::sig("exp2_word", es, w.exp2_delta_bits), Piece::sig("y", 0, re));
+        let (a, r) = operands(de, r, "exp2_word", exp2_pad);
         let what = format!("~(E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te})), exact");
-        complemented = Some(b.multiply_add("exp2_sum", &[de], &[r], &addend, sw, title, &what));
+        complemented = Some(b.multiply_add("exp2_sum", &a, &r, &addend, sw, title, &what));
     } else if re > 0 {
         // E[j] - floor(s / 2^RE) = floor((E[j]*2^RE + 2^RE - 1 - s) / 2^RE) for the step
         // s = dE[j]*r, and -s = the sum of its complemented partial products plus their count:
@@ -753,7 +790,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     // multipliers sits by the DSP column
     b.step("the intensity rounding: chunk sums; done");
     // round half up on the bits that matter: (power[WE:WE-FI-1] + 1) >> 1
-    let p = b.add_start_short(
+    let p = b.add_start(
         "intensity_sum",
         &[Piece::sig("power", we - fi - 1, fi + 2)],
         &[],
