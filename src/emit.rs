@@ -20,6 +20,8 @@ pub(crate) use crate::names::{ECP5_BRAM_MODEL_FILE, ECP5_SIM_MODEL_FILE, SIM_DIR
 pub(crate) struct CutSignal {
     pub name: String,
     pub width: u32,
+    /// a block's output read by another block ([`datapath::Datapath::block_to_block`])
+    pub keep: bool,
     /// the expression the cut takes it from (`x_sK` computed in step K, a port, a block's output)
     pub source: String,
 }
@@ -41,7 +43,8 @@ impl Cut {
         let range = |w: u32| if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
         for s in &self.signals {
             let reg = format!("{}_c{}", s.name, self.index);
-            out.push(format!("reg  {} {reg};   always @(posedge clk) {reg} <= {};", range(s.width), s.source));
+            let keep = if s.keep { "(* keep *) " } else { "" };
+            out.push(format!("{keep}reg  {} {reg};   always @(posedge clk) {reg} <= {};", range(s.width), s.source));
         }
         for l in &self.lines {
             out.extend(l.lines());
@@ -524,15 +527,18 @@ fn cut_list(dp: &datapath::Datapath, memory: bool) -> Vec<Cut> {
     let mut lines: Vec<DelayLine> = Vec::new();
     for (name, width, mut source, mut at) in chains {
         // a product's first register is its own (the DSP block's output register), the rest
-        // of its wait a delay line (never a same-name copy)
+        // of its wait a delay line (never a same-name copy); kept as a register of its own:
+        // yosys 0.23's ice40_dsp, given the product's register with a shift register after
+        // it, changes the function (found by `synth --verify` on blinn's x*g_lo)
         let product = at.len() > 1 && dp.products.contains(&name);
         if product {
-            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source });
+            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true });
             source = format!("{name}_c{}", at[0]);
             at.remove(0);
         }
         if at.len() == 1 && !product {
-            cuts[at[0] - 1].signals.push(CutSignal { name, width, source });
+            let keep = dp.block_to_block(&name, at[0]);
+            cuts[at[0] - 1].signals.push(CutSignal { name, width, source, keep });
             continue;
         }
         let read: Vec<u128> = at.iter().map(|k| dp.read.get(&format!("{name}_c{k}")).copied().unwrap_or(0)).collect();

@@ -122,6 +122,28 @@ pub struct Datapath {
 }
 
 impl Datapath {
+    /// Whether the register `name_cK` must stay out of the DSP block that reads it: `name` is a
+    /// block's output (a product, or bits of one with no logic between) and a multiplier reads
+    /// this register. yosys 0.23's ice40_dsp would take that one flip-flop into both blocks,
+    /// as the first's output register and the second's input register, and leave the second
+    /// reading the first's unregistered output: the function changes (a `(* keep *)` on the
+    /// register stops the second, not the first).
+    pub(crate) fn block_to_block(&self, name: &str, k: usize) -> bool {
+        let reg = format!("{name}_c{k}");
+        let reads = |w: &Wire| w.expr.contains(" * ") && w.expr.split(|c: char| !(c.is_alphanumeric() || c == '_')).any(|t| t == reg);
+        let from_block = self.products.iter().any(|p| p == name)
+            || self.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).is_some_and(|w| {
+                let plain = w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, ".contains(c));
+                plain
+                    && self.products.iter().any(|p| {
+                        w.expr
+                            .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                            .any(|t| t.rsplit_once("_s").is_some_and(|(b, i)| b == p && i.parse::<u32>().is_ok()))
+                    })
+            });
+        from_block && self.steps.iter().flat_map(|s| &s.wires).any(reads)
+    }
+
     pub(crate) fn delays(&self) -> Vec<f64> {
         self.steps.iter().map(|s| s.delay).collect()
     }
