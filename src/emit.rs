@@ -86,12 +86,40 @@ pub(crate) struct ReadView {
     pub file: bool,
     pub zero: String,
     pub entries: Vec<RomEntry>,
-    /// on an ECP5 DP16KD with its registers: its contents as `INITVAL_XX` values, the
-    /// address zero-extended to 10 bits, the unread data bits, the cut its address register takes
+    /// on ECP5 DP16KDs with their registers, one per 18 bits of the word ([`BlockSlice`]), the
+    /// address zero-extended to 10 bits, the cut their address registers take
     pub block: bool,
-    pub initvals: Vec<(String, String)>,
-    pub unused: u32,
+    pub slices: Vec<BlockSlice>,
     pub input_cut: usize,
+}
+
+/// One DP16KD of a registered table read: its instance suffix (none when it is the only one),
+/// its contents as `INITVAL_XX` values, the bits of the word it gives and its unread data bits.
+pub(crate) struct BlockSlice {
+    pub suffix: String,
+    pub initvals: Vec<(String, String)>,
+    pub bits: String,
+    pub unused: u32,
+}
+
+/// The DP16KDs of a registered read of `t` into `signal`: 18 bits of the word each, low first.
+fn block_slices(t: &crate::table::Table, signal: &str) -> Vec<BlockSlice> {
+    let b = datapath::DP16KD_BITS;
+    let n = t.width.div_ceil(b);
+    (0..n)
+        .map(|k| {
+            let (lo, hi) = (k * b, ((k + 1) * b).min(t.width));
+            let words: Vec<u128> = t.words.iter().map(|w| (w >> lo) & mask(hi - lo)).collect();
+            let bits = if n == 1 {
+                signal.to_string()
+            } else if hi - lo == 1 {
+                format!("{signal}[{lo}]")
+            } else {
+                format!("{signal}[{}:{lo}]", hi - 1)
+            };
+            BlockSlice { suffix: if n == 1 { String::new() } else { k.to_string() }, initvals: dp16kd_initvals(&words), bits, unused: b - (hi - lo) }
+        })
+        .collect()
 }
 
 /// The `INITVAL_00..3F` parameters of a DP16KD in 1024 x 18 mode holding `words`: word k in
@@ -376,8 +404,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                 file,
                 zero: lit(t.width, 0),
                 block: r.block,
-                initvals: if r.block { dp16kd_initvals(&t.words) } else { Vec::new() },
-                unused: datapath::DP16KD_BITS - t.width.min(datapath::DP16KD_BITS),
+                slices: if r.block { block_slices(t, &format!("{}_c{}", r.signal, r.step)) } else { Vec::new() },
                 input_cut: r.step - 1,
                 entries: if file || r.block {
                     Vec::new()

@@ -100,16 +100,18 @@ wire [{{ d.unused - 1 }}:0] unused_{{ d.name }}_p;
 {%- for item in st.items %}
 {%- if let Some(r) = item.read %}
 {%- if r.block %}
-// {{ r.what }}: one DP16KD, its address register in place of cut {{ r.input_cut }}, its output register cut {{ st.index }}
+// {{ r.what }}: {% if r.slices.len() == 1 %}one DP16KD{% else %}{{ r.slices.len() }} DP16KDs side by side, 18 bits of the word each{% endif %}, {% if r.slices.len() == 1 %}its address register{% else %}their address registers{% endif %} in place of cut {{ r.input_cut }}, {% if r.slices.len() == 1 %}its output register{% else %}their output registers{% endif %} cut {{ st.index }}
 wire [{{ r.width - 1 }}:0] {{ r.signal }};
-{%- if r.unused > 0 %}
-wire [{{ r.unused - 1 }}:0] unused_{{ r.table }}_q;
+{%- for s in r.slices %}
+{%- if s.unused > 0 %}
+wire [{{ s.unused - 1 }}:0] unused_{{ r.table }}_q{{ s.suffix }};
 {%- endif %}
 {{ top }}_rom1k18 #(
-{%- for (k, v) in r.initvals %}
+{%- for (k, v) in s.initvals %}
     .{{ k }}({{ v }}){% if !loop.last %},{% endif %}
 {%- endfor %}
-) {{ r.table }}_bram (.clk(clk), .addr({{ r.addr }}), .q({% if r.unused > 0 %}{unused_{{ r.table }}_q, {{ r.signal }}}{% else %}{{ r.signal }}{% endif %}));
+) {{ r.table }}_bram{{ s.suffix }} (.clk(clk), .addr({{ r.addr }}), .q({% if s.unused > 0 %}{unused_{{ r.table }}_q{{ s.suffix }}, {{ s.bits }}}{% else %}{{ s.bits }}{% endif %}));
+{%- endfor %}
 {%- else if r.file %}
 wire [{{ r.width - 1 }}:0] {{ r.signal }} = {{ r.table }}[{{ r.addr }}];   // {{ r.what }}
 {%- else %}

@@ -98,6 +98,8 @@ pub struct RomRead {
 /// Words and width an ECP5 DP16KD holds in its 1024 x 18 mode.
 pub(crate) const DP16KD_WORDS: usize = 1024;
 pub(crate) const DP16KD_BITS: u32 = 18;
+/// A registered table read spreads its word over at most this many DP16KDs side by side.
+pub(crate) const MAX_BLOCK_SLICES: u32 = 4;
 
 #[derive(Debug, Clone)]
 pub struct Datapath {
@@ -578,14 +580,21 @@ impl Builder {
     /// `name_cK` from there). Anywhere else, a `*` the synthesis tool maps.
     pub fn product(&mut self, name: &str, a: &[Piece], b: &[Piece], width: u32, comment: &str) {
         let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
-        let on_dsp = self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
+        let inputs: Vec<String> = a.iter().chain(b).filter_map(|p| if let Piece::Sig { name, .. } = p { Some(name.clone()) } else { None }).collect();
+        // an operand that is another block's output registered at the cut before cannot also
+        // be this block's input register: then a `*` the tool maps
+        let k = self.steps.len();
+        let visible = inputs.iter().all(|n| {
+            let s = self.signal(n);
+            s.step < k && !(s.dsp_registered && s.step + 1 == k)
+        });
+        let on_dsp = visible && self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
         self.delay(mul_delay(wa, wb));
         if !on_dsp {
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
             self.wire(name, width, format!("{ea} * {eb}"), comment);
             return;
         }
-        let inputs: Vec<String> = a.iter().chain(b).filter_map(|p| if let Piece::Sig { name, .. } = p { Some(name.clone()) } else { None }).collect();
         let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
         let (ea, eb) = self.seen_from_step_before(&inputs, &format!("the DSP of {name}"), |s| {
             (s.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)), s.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)))
@@ -895,13 +904,14 @@ impl Builder {
         self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a, block: false, position });
     }
 
-    /// [`Builder::rom_read`], on ECP5 a block RAM with both its registers when the table fits
-    /// one DP16KD (1024 x 18) and the cuts on both sides of this step are registered: its
-    /// address register takes the address as the step before sees it, its output register
-    /// is the cut after this step (the read's clock-to-out, 5.6 ns without it on LFE5U-25F
-    /// grade 6, then never limits Fmax). Anywhere else, an asynchronous read in this step.
+    /// [`Builder::rom_read`], on ECP5 block RAM with its registers when the table has at most
+    /// 1024 words of at most [`MAX_BLOCK_SLICES`]·18 bits (one DP16KD, 1024 x 18, per 18 bits
+    /// of the word) and the cuts on both sides of this step are registered: the address
+    /// registers take the address as the step before sees it, the output registers are the cut
+    /// after this step (the read's clock-to-out, 5.6 ns without them on LFE5U-25F grade 6,
+    /// then never limits Fmax). Anywhere else, an asynchronous read in this step.
     pub(crate) fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
-        let fits = self.tables[t].words.len() <= DP16KD_WORDS && self.tables[t].width <= DP16KD_BITS;
+        let fits = self.tables[t].words.len() <= DP16KD_WORDS && self.tables[t].width <= MAX_BLOCK_SLICES * DP16KD_BITS;
         if !(fits && self.block_registers_here()) {
             return self.rom_read(signal, t, addr);
         }

@@ -54,7 +54,7 @@
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, lit, mask};
 use crate::config::{Config, Target};
-use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY};
+use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY, REGISTER_ONLY_DELAY};
 use crate::table::Table;
 use serde::Serialize;
 
@@ -411,6 +411,17 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: Inputs) -> (Blin
     (BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v }, Outputs { spec, intensity, done: intensity == 0 })
 }
 
+/// On the ECP5, after a table read (in block RAM with its output register where the cuts
+/// allow), a step that only registers: the word then reaches the multiplier through the
+/// MULT18X18D's input registers (one register cannot be both). The step is there whatever the
+/// cuts, so the datapath's shape does not depend on them.
+fn word_to_multiplier(b: &mut Builder, title: &str) {
+    if b.target() == Target::Ecp5 {
+        b.step(&format!("{title}: the word at the multiplier's input registers"));
+        b.delay(REGISTER_ONLY_DELAY);
+    }
+}
+
 /// The operands of an interpolation's DSP block: the step `delta` and the fraction `r`, each
 /// at the block's width when the table word carries them so (`pad`: the step's field, and the
 /// zero bits above it that widen `r`).
@@ -539,13 +550,15 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.step(title);
     let p = b.add_start("x", &[Piece::sig("cos_norm_inv", 0, f - 1)], &[], true, f - 1, &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
     b.resolve(p, title);
-
+    // the table's address beside x (on ECP5 the block RAM's address register takes it)
     let tg = w.log_index_bits;
-    b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
     let idx = b.bits("x", f - 2, rb);
     b.wire("log_index", tg, idx, &format!("i: 2x to {tg} bits"));
-    b.rom_read("log_word", lt, "log_index");
+
+    b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
+    b.rom_read_registered("log_word", lt, "log_index");
     b.delay(LUT_DELAY * tg.div_ceil(2) as f64);
+    word_to_multiplier(b, "log2 table read");
 
     let gb = w.ghat_bits();
     let ge = w.log_entry_bits;
@@ -696,10 +709,11 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.delay(LUT_DELAY);
 
     let te = w.exp2_index_bits;
-    b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
     let ji = b.bits("y", w.y_frac_bits - 1, re);
     b.wire("exp2_index", te, ji, "j: frac(y) to the table's resolution");
-    b.rom_read("exp2_word", et, "exp2_index");
+    b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
+    b.rom_read_registered("exp2_word", et, "exp2_index");
+    word_to_multiplier(b, "exp2 table read");
     let implied = t.exp2_one_implied(w);
     if implied {
         let ji = b.r("exp2_index");
