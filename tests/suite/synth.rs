@@ -210,25 +210,39 @@ fn fitted_intensity_path_takes_at_most_4_sb_mac16() {
     assert!(dsp <= 4 + 3, "{dsp} SB_MAC16: more than 4 in the intensity path: {r}");
 }
 
-/// Issue 11: the blinn unit shaped for the iCE40, fully pipelined, keeps to 3 SB_MAC16 in its
-/// intensity path (x*g_lo and n*l in two 16-bit chunks; g's and l's high bits by carry-save
-/// partial products) beside the 3 colour multipliers, and its two tables to 4 SB_RAM40_4K
-/// (the exp2 word 32 bits: E's integer bit is j == 0). Issue 23: its per-pixel colours wait in
-/// 2 more (24 bits through 55 cuts), not in 1320 flip-flops. Its speed is the ignored test above.
+/// Issue 23: the blinn unit shaped for the iCE40 at its 100 MHz depth takes the UP5K's 8
+/// SB_MAC16 (3 colours; x*g_lo and n*l in two 16-bit chunks; one per interpolation, each
+/// table's entry added inside the block: the table word carries the operands at 16 bits), at
+/// most 7 block RAMs (2 tables of 2, n's and the colours' long waits), under 1500 flip-flops;
+/// and its netlist is right. yosys 0.23's ice40_dsp changed this unit's function while one
+/// flip-flop was a block's output register and, at once, a shift register's first word or
+/// another block's input register (the `(* keep *)` registers); `--verify` is what caught it.
 #[test]
-fn blinn_takes_at_most_6_sb_mac16_and_6_block_rams_and_its_colours_no_flip_flops() {
+fn blinn_at_100_mhz_takes_the_up5k_dsps_few_flip_flops_and_its_netlist_is_right() {
     require_tool("yosys", "yosys");
+    require_tool("verilator", "verilator");
+    require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    let deepest = default_cut_points(specgen::config::SpecularModel::Blinn).to_string();
-    let dir = generate(tmp.path(), "blinn", &["--model", "blinn", "--stages", &deepest]);
-    let r = synth(&dir, &["--target", "ice40", "--dsp", "--no-pnr"]);
-    let dsp = r["dsp_blocks"].as_u64().unwrap();
-    assert!(dsp <= 3 + 3, "{dsp} SB_MAC16: more than 3 in the intensity path: {r}");
-    assert!(r["block_rams"].as_u64().unwrap() <= 4 + 2, "{r}");
+    let dir = generate(tmp.path(), "blinn", &["--model", "blinn", "--target", "ice40", "--target-mhz", "100"]);
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
     assert!(unit.contains("{ks_b, ks_g, ks_r};") && unit.contains("_line_ram ["), "the colours wait in block RAM");
-    // 4261 flip-flops with the colours in registers (issue 23's measurement)
-    assert!(r["flip_flops"].as_u64().unwrap() < 3100, "{r}");
+    assert!(unit.contains("reg  [9:0] n_line_ram ["), "n waits in block RAM between its two reads");
+    let json = dir.join("synth.json");
+    let o = specgen()
+        .args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "2000", "--json"])
+        .arg(&json)
+        .arg("--rtl")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{text}{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(text.matches(", 0 mismatches").count(), 2, "Verilator and Icarus\n{text}");
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(r["dsp_blocks"].as_u64().unwrap(), 8, "{r}");
+    assert!(r["block_rams"].as_u64().unwrap() <= 7, "{r}");
+    // 2977 at 60 stages with the interpolations' carry-save sums in the fabric
+    assert!(r["flip_flops"].as_u64().unwrap() < 1500, "{r}");
 }
 
 /// Every synthesis ends in yosys `check -assert`: an undriven net (here the unit's `done`
