@@ -4,7 +4,7 @@
 //! holds only the Verilog's shape.
 
 use crate::bits::{lit, mask};
-use crate::config::{Params, RomStyle};
+use crate::config::{Params, RomStyle, Target};
 use crate::datapath::{self, DelayLine, Waiting, Wire};
 pub use crate::error::OutputError;
 use crate::plan::Plan;
@@ -361,7 +361,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let cfg = &plan.cfg;
     let p = &cfg.params;
     let dp = &plan.datapath;
-    let cuts = cut_list(dp, cfg.target().has_block_ram());
+    let cuts = cut_list(dp, cfg.target());
     let edge = crate::interface::edge(plan, &dp.outputs);
     let line_unread: Vec<String> = cuts.iter().flat_map(|c| c.lines.iter().flat_map(DelayLine::unread)).collect();
     // each line indented 4 and ended by a comma
@@ -518,21 +518,27 @@ fn unread_stretches(read: &[u128], width: u32, memory: bool) -> Vec<usize> {
 /// Adds the chain of `name` through the cuts `at` to the delay line through the same cuts, or
 /// as a line of its own, `line`.
 #[allow(clippy::too_many_arguments)]
-fn lines_add(lines: &mut Vec<DelayLine>, line: &str, name: &str, width: u32, source: &str, at: &[usize], read: &[u128], memory: bool) {
+fn lines_add(lines: &mut Vec<DelayLine>, line: &str, name: &str, width: u32, source: &str, at: &[usize], read: &[u128], target: Target) {
     let member = Waiting { name: name.to_string(), width, source: source.to_string(), read: read.to_vec() };
     match lines.iter_mut().find(|l| l.cuts == at) {
         Some(l) => {
             l.members.push(member);
             l.name = format!("waiting_c{}_c{}", at[0], at[at.len() - 1]);
         }
-        None => lines.push(DelayLine { name: line.to_string(), cuts: at.to_vec(), members: vec![member], memory }),
+        None => lines.push(DelayLine {
+            name: line.to_string(),
+            cuts: at.to_vec(),
+            members: vec![member],
+            memory: target.has_block_ram(),
+            distributed: target == Target::Ecp5,
+        }),
     }
 }
 
 /// The registered cuts of a datapath, each with the signals it holds and where from: a signal
 /// that only waits (registered at several cuts, each taking the one before) is one
 /// [`DelayLine`] at the first of them.
-fn cut_list(dp: &datapath::Datapath, memory: bool) -> Vec<Cut> {
+fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
     let mut cuts: Vec<Cut> =
         (1..=dp.live.len()).map(|index| Cut { index, registered: dp.registered.contains(&(index as u32)), signals: Vec::new(), lines: Vec::new() }).collect();
     // each signal's chain of registers: the cuts holding it, in order, and the first source
@@ -573,13 +579,13 @@ fn cut_list(dp: &datapath::Datapath, memory: bool) -> Vec<Cut> {
         // (the stretch its tail, in block RAM where [`DelayLine::memory_tail`] takes it) and the
         // rest is a line of its own, from the word read there
         let (mut from, mut line) = (0, name.clone());
-        for k in unread_stretches(&read, width, memory) {
-            lines_add(&mut lines, &line, &name, width, &source, &at[from..=k], &read[from..=k], memory);
+        for k in unread_stretches(&read, width, target.has_block_ram()) {
+            lines_add(&mut lines, &line, &name, width, &source, &at[from..=k], &read[from..=k], target);
             source = format!("{name}_c{}", at[k]);
             from = k + 1;
             line = format!("{name}_from_c{}", at[from]);
         }
-        lines_add(&mut lines, &line, &name, width, &source, &at[from..], &read[from..], memory);
+        lines_add(&mut lines, &line, &name, width, &source, &at[from..], &read[from..], target);
     }
     for l in lines {
         let first = l.cuts[0];

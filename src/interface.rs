@@ -13,7 +13,7 @@
 //! - a static colour: three registers loaded by `ks_load`; the datapath reads them at every step
 //!   (`datapath::Builder::hold`), so no cut carries a colour.
 
-use crate::config::{Colour, Config, Interface, BUFFER_LATENCY};
+use crate::config::{Colour, Config, Interface, Target, BUFFER_LATENCY};
 use crate::datapath::{DelayLine, Waiting};
 use crate::plan::Plan;
 use crate::ports::{self, Field};
@@ -200,7 +200,8 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         let last = format!("tag_c{}", cuts[cuts.len() - 1]);
         let read = vec![0; cuts.len()];
         let member = Waiting { name: "tag".into(), width: tw, source: "in_tag".into(), read };
-        let line = DelayLine { name: "tag".into(), cuts, members: vec![member], memory: cfg.target().has_block_ram() };
+        let line =
+            DelayLine { name: "tag".into(), cuts, members: vec![member], memory: cfg.target().has_block_ram(), distributed: cfg.target() == Target::Ecp5 };
         e.tag.push(String::new());
         e.tag.extend(line.lines());
         Some(last)

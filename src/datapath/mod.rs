@@ -276,6 +276,9 @@ pub(crate) struct DelayLine {
     pub members: Vec<Waiting>,
     /// the target has block RAM: a long unread tail may wait there ([`DelayLine::memory_tail`])
     pub memory: bool,
+    /// that memory is LUT RAM (ECP5: a DP16KD read without its output register, 5.8 ns from
+    /// the clock, would set the unit's clock; TRELLIS_DPR16X4 reads in under 5 ns)
+    pub distributed: bool,
 }
 
 /// A delay line's tail waits in block RAM when it spans at least this many cuts...
@@ -369,7 +372,7 @@ impl DelayLine {
         vec![
             format!("// {} wait {cuts} more cuts: {wait} clocks in block RAM (with its read register), one in", names.join(", ")),
             format!("// the high word of {line}_out: the memory's output meets only a flip-flop"),
-            "(* no_rw_check *)".to_string(),
+            if self.distributed { "(* no_rw_check, ram_style = \"distributed\" *)".to_string() } else { "(* no_rw_check *)".to_string() },
             format!("reg  [{w}:0] {line}_ram [0:{}];", depth - 1),
             format!("reg  [{a}:0] {line}_at, {line}_from;   // write and read addresses: the read trails by {}", wait - 1),
             format!("reg  [{}:0] {line}_out;   // the memory's read register (low word), then the last word", 2 * word - 1),
@@ -663,6 +666,17 @@ impl Builder {
             self.wire(name, width, format!("{{{h}, {l}}}"), comment);
         }
         name.to_string()
+    }
+
+    /// On the ECP5, after a table read (in block RAM with its output register where the cuts
+    /// allow) that a multiplier takes next, a step that only registers: the word then reaches
+    /// the MULT18X18D through its input registers (one register cannot be both). The step is
+    /// there whatever the cuts, so the datapath's shape does not depend on them.
+    pub(crate) fn word_to_multiplier(&mut self, title: &str) {
+        if self.target == Target::Ecp5 {
+            self.step(&format!("{title}: the word at the multiplier's input registers"));
+            self.delay(REGISTER_ONLY_DELAY);
+        }
     }
 
     /// Starts the next step.

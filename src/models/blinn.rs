@@ -54,7 +54,7 @@
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, lit, mask};
 use crate::config::{Config, Target};
-use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY, REGISTER_ONLY_DELAY};
+use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY};
 use crate::table::Table;
 use serde::Serialize;
 
@@ -411,17 +411,6 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: Inputs) -> (Blin
     (BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v }, Outputs { spec, intensity, done: intensity == 0 })
 }
 
-/// On the ECP5, after a table read (in block RAM with its output register where the cuts
-/// allow), a step that only registers: the word then reaches the multiplier through the
-/// MULT18X18D's input registers (one register cannot be both). The step is there whatever the
-/// cuts, so the datapath's shape does not depend on them.
-fn word_to_multiplier(b: &mut Builder, title: &str) {
-    if b.target() == Target::Ecp5 {
-        b.step(&format!("{title}: the word at the multiplier's input registers"));
-        b.delay(REGISTER_ONLY_DELAY);
-    }
-}
-
 /// The operands of an interpolation's DSP block: the step `delta` and the fraction `r`, each
 /// at the block's width when the table word carries them so (`pad`: the step's field, and the
 /// zero bits above it that widen `r`).
@@ -558,7 +547,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
     b.rom_read_registered("log_word", lt, "log_index");
     b.delay(LUT_DELAY * tg.div_ceil(2) as f64);
-    word_to_multiplier(b, "log2 table read");
+    b.word_to_multiplier("log2 table read");
 
     let gb = w.ghat_bits();
     let ge = w.log_entry_bits;
@@ -713,7 +702,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.wire("exp2_index", te, ji, "j: frac(y) to the table's resolution");
     b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
     b.rom_read_registered("exp2_word", et, "exp2_index");
-    word_to_multiplier(b, "exp2 table read");
+    b.word_to_multiplier("exp2 table read");
     let implied = t.exp2_one_implied(w);
     if implied {
         let ji = b.r("exp2_index");

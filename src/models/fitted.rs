@@ -349,18 +349,26 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let cb = f + 1;
     let t = b.table(table(fit, w));
 
-    b.step("per-n fit ROM read {m_n, a_n}; c = min(cos, 1)");
-    b.rom_read("fit", t, "n");
+    // on the ECP5 the ROM is read a step later, from n's register, into block RAM with its
+    // address and output registers (a read from the ports has no register before it)
+    let ecp5 = b.target() == Target::Ecp5;
+    b.step(if ecp5 { "c = min(cos, 1)" } else { "per-n fit ROM read {m_n, a_n}; c = min(cos, 1)" });
+    if !ecp5 {
+        b.rom_read("fit", t, "n");
+    }
     let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator; complemented
     // here, in the mux's LUT, so that the add below takes it straight into its carry chain
     let not_one = lit(cb, mask(cb) & !(1u128 << f));
     b.wire("cos_clamped_n", cb, Builder::select(&top, &not_one, &format!("~{g}"), cb), &format!("~c, c = min(cos, 1) in UQ1.{f}"));
-    b.delay(LUT_DELAY * cfg.n_bits().div_ceil(2) as f64);
+    b.delay(LUT_DELAY * if ecp5 { 1 } else { cfg.n_bits().div_ceil(2) } as f64);
 
     // 1 - c = ~c + 2^F + 1 mod 2^(F+1) (c <= 1): a carry-select add of a constant
     let title = "1 - c (adder 6)";
-    b.step(title);
+    b.step(&if ecp5 { format!("{title}; per-n fit ROM read {{m_n, a_n}}") } else { title.to_string() });
+    if ecp5 {
+        b.rom_read_registered("fit", t, "n");
+    }
     let p = b.add_start(
         "one_minus_cos",
         &[Piece::sig("cos_clamped_n", 0, cb)],
@@ -370,6 +378,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         &format!("UQ1.{f}: 1 - c, exact"),
     );
     b.resolve(p, title);
+    b.word_to_multiplier("per-n fit ROM read");
 
     // a_n wider than a DSP's operands: a_n = a_hi*2^D + a_lo; a_lo*(1 - cos) on one DSP, then
     // the bits of P above D as a_hi*(1 - cos) (its few partial products) plus

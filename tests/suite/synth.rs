@@ -228,13 +228,8 @@ fn blinn_at_100_mhz_takes_the_up5k_dsps_few_flip_flops_and_its_netlist_is_right(
     assert!(unit.contains("{ks_b, ks_g, ks_r};") && unit.contains("_line_ram ["), "the colours wait in block RAM");
     assert!(unit.contains("reg  [9:0] n_line_ram ["), "n waits in block RAM between its two reads");
     let json = dir.join("synth.json");
-    let o = specgen()
-        .args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "2000", "--json"])
-        .arg(&json)
-        .arg("--rtl")
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let o =
+        specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "2000", "--json"]).arg(&json).arg("--rtl").arg(&dir).output().unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{text}{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(text.matches(", 0 mismatches").count(), 2, "Verilator and Icarus\n{text}");
