@@ -335,9 +335,9 @@ fn long_delay_line_tails_wait_in_block_ram_and_stay_right() {
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
     let cases: &[(&str, &[&str], bool)] = &[
-        ("blinn_ice40", &["--model", "blinn", "--stages", "30", "--target", "ice40"], true),
-        ("blinn_ecp5", &["--model", "blinn", "--stages", "30", "--target", "ecp5"], true),
-        ("blinn_generic", &["--model", "blinn", "--stages", "30", "--target", "generic"], false),
+        ("blinn_ice40", &["--model", "blinn", "--stages", "20", "--target", "ice40"], true),
+        ("blinn_ecp5", &["--model", "blinn", "--stages", "20", "--target", "ecp5"], true),
+        ("blinn_generic", &["--model", "blinn", "--stages", "20", "--target", "generic"], false),
         ("tag_ready", &["--stages", "13", "--tag-bits", "24", "--target", "ice40", "--interface", "ready"], true),
     ];
     for_each_parallel(cases, |_, (name, args, memory)| {

@@ -100,9 +100,9 @@ fn fitted_and_blinn_on_the_ecp5_keep_every_product_in_a_registered_block_and_are
     require_tool("verilator", "verilator");
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    // fitted: a_lo*(1 - cos), three squarings' hi^2, three colours; blinn: x*g_lo, two n*l
-    // chunks, three colours
-    for (model, blocks) in [("fitted", 7), ("blinn", 6)] {
+    // fitted: a_lo*(1 - cos), three squarings' hi^2, three colours; blinn: the two
+    // interpolations' steps, x*g_lo, two n*l chunks, three colours
+    for (model, blocks) in [("fitted", 7), ("blinn", 8)] {
         let args = ["--model", model, "--target", "ecp5"];
         let stages = deepest(&args);
         let dir = generate(tmp.path(), model, &[&args[..], &["--stages", &stages]].concat());
