@@ -53,6 +53,9 @@ for family in ice40 ecp5; do
 done
 # square-and-multiply wants 75 DSP blocks: one seed shows it does not fit the UP5K
 op blinn-pow ice40 100 1 --model blinn-pow
+# OP_ONLY=1: the operating point alone (a quarter of an hour); the tables after it are kept
+# from the BENCHMARKS-hw.md already there, and say so
+if [ "${OP_ONLY:-0}" != 1 ]; then
 # the full matrix (every model pipelined, paper at wide widths) takes well over half an hour
 # on 2 cores; FULL=1 runs it
 for s in 0 "$(max_stages)"; do run lean default "$s"; done
@@ -72,17 +75,20 @@ if [ "${FULL:-0}" = 1 ]; then
     run paper wide 0 --arch paper "${wide[@]}"
     run blinn-pow default 12 --model blinn-pow
 fi
-python3 - "$rows" "$oprows" > BENCHMARKS-hw.md <<'PY'
+fi
+cp BENCHMARKS-hw.md "$work/previous.md" 2>/dev/null || : > "$work/previous.md"
+python3 - "$rows" "$oprows" "$work/previous.md" > BENCHMARKS-hw.md <<'PY'
 import json, re, sys, subprocess
 rows = [json.loads(l) for l in open(sys.argv[1])]
 ops = [json.loads(l) for l in open(sys.argv[2])]
+previous = open(sys.argv[3]).read()
 def get(name, widths, stages, mode):
     for r in rows:
         if (r['name'], r['widths'], r['stages'], r['mode']) == (name, widths, stages, mode):
             return r
 ver = subprocess.run(['yosys', '-V'], capture_output=True, text=True).stdout.strip()
 print('# Hardware benchmarks\n')
-seeds = max((len(r.get('fmax_seeds') or []) for r in rows), default=0)
+seeds = max((len(r.get('fmax_seeds') or []) for r in rows + ops), default=0)
 print('## At the operating point: 100 MHz on the iCE40 UP5K, 200 MHz on the ECP5-25\n')
 print(f'Produced by `scripts/bench_hw.sh` with {subprocess.run(["yosys", "-V"], capture_output=True, text=True).stdout.strip()}, nextpnr-ice40 and nextpnr-ecp5 (LFE5U-25F grade 6).')
 print('Each unit pipelined by `specgen generate --target T --target-mhz F` (the delay model picks the depth;')
@@ -101,6 +107,14 @@ for o in ops:
     reach = ('yes' if o['fmax_mhz'] >= o['mhz'] else f"no ({100 * (o['fmax_mhz'] / o['mhz'] - 1):+.0f} %)") if o.get('fmax_mhz') else 'no'
     err = f"{o['error']:.3e}" if o.get('error') is not None else '-'
     print(f"| {o['name']} | {part[o['family']]} | {o['mhz']} MHz | {o['stages']} ({o['latency']}) | {o.get('logic_cells') or '-'} | {o['flip_flops']} | {o['dsp_blocks']} | {o['block_rams']} | {f} | {reach} | {err} | {o['how']} |")
+if not rows:
+    # OP_ONLY=1: the rest as the last full run wrote it
+    rest = previous[previous.find('## Every configuration'):] if '## Every configuration' in previous else ''
+    kept = '(From the last full run of `scripts/bench_hw.sh`; `OP_ONLY=1` regenerated only the table above.)'
+    if kept not in rest:
+        rest = rest.replace('## Every configuration\n', f'## Every configuration\n\n{kept}\n', 1)
+    print('\n' + rest, end='')
+    sys.exit(0)
 print('\n## Every configuration\n')
 print(f'Produced by `scripts/bench_hw.sh` with {ver} and nextpnr-ice40 (iCE40 UP5K, SG48; Fmax of the unit between')
 print(f'the registers of a serial-I/O wrapper, the median over nextpnr seeds 1..{seeds} with the range in brackets).')

@@ -1241,6 +1241,67 @@ mod tests {
         }
     }
 
+    /// The post-adder takes an add no wider than the operands (yosys 0.23's rule on the
+    /// iCE40; always in generic RTL); a wider one is the product, then a carry-select add over
+    /// the bits above the addend's low zeros (a complemented addend formed beside the product);
+    /// on the ECP5 always the product, then one carry chain.
+    #[test]
+    fn multiply_add_uses_the_post_adder_only_where_the_tool_takes_it() {
+        let expr = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).map(|w| w.expr.clone());
+        let (a, r) = ([Piece::sig("a", 0, 11)], [Piece::sig("r", 0, 7)]);
+        let inputs = [("a", 11), ("r", 7), ("g", 20)];
+        // 18 bits from 11 x 7: inside the block
+        for target in [Target::Ice40, Target::Generic] {
+            let mut b = Builder::new(&inputs, &[], target);
+            b.step("t");
+            b.multiply_add("s", &a, &r, &[Piece::sig("g", 0, 18)], 18, "t", "");
+            assert_eq!(b.steps.len(), 1, "{target:?}");
+            assert!(expr(&b, "s").unwrap().contains(" * ") && expr(&b, "s").unwrap().contains(" + "), "{target:?}");
+        }
+        // 28 bits (the entry above 7 zero bits): in the generic RTL still one expression ...
+        let addend = [Piece::zeros(7), Piece::not("g", 0, 20)];
+        let mut b = Builder::new(&inputs, &[], Target::Generic);
+        b.step("t");
+        b.multiply_add("s", &a, &r, &addend, 28, "t", "");
+        assert_eq!(b.steps.len(), 1);
+        // ... on the iCE40 the product alone, the addend complemented beside it, then the add
+        // of bits [27:7] in carry-select chunks, and the sum with the product's low bits
+        let mut b = Builder::new(&inputs, &[], Target::Ice40);
+        b.step("t");
+        b.multiply_add("s", &a, &r, &addend, 28, "t", "");
+        assert_eq!(expr(&b, "s_prod").unwrap(), "{7'h0, a} * {11'h0, r}");
+        assert_eq!(expr(&b, "s_addend").unwrap(), "{1'h0, ~g}");
+        assert!(b.steps.len() >= 3, "chunk sums and their select after the product");
+        assert!(expr(&b, "s_hi_part1_plus1").is_some());
+        assert!(expr(&b, "s").unwrap().ends_with("s_prod_s1[6:0]}"), "{:?}", expr(&b, "s"));
+        // on the ECP5 one carry chain after the product
+        let mut b = Builder::new(&inputs, &[], Target::Ecp5);
+        b.step("t");
+        b.multiply_add("s", &a, &r, &addend, 28, "t", "");
+        assert_eq!(b.steps.len(), 2);
+        assert!(expr(&b, "s_hi").unwrap().contains("s_prod_s1[17:7]"), "{:?}", expr(&b, "s_hi"));
+    }
+
+    /// A product's registered output (or bits of it) that another multiplier reads is named
+    /// for `(* keep *)`; one only the fabric reads is not.
+    #[test]
+    fn a_block_output_register_read_by_a_block_is_kept() {
+        let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1, 2], Target::Ice40);
+        b.step("p");
+        b.wire("p", 16, "a * c".into(), "");
+        let e = b.bits("p", 15, 8);
+        b.wire("hi", 8, e, "");
+        b.step("q");
+        let (hv, cv) = (b.r("hi"), b.r("c"));
+        b.wire("q", 16, format!("{hv} * {cv}"), "");
+        let e = b.bits("p", 7, 0);
+        b.wire("lo", 8, format!("~{e}"), "");
+        let d = b.finish(&["q", "lo"]);
+        assert!(d.block_to_block("hi", 1), "bits of a product, read by a multiplier");
+        assert!(!d.block_to_block("p", 1), "the product itself is read only by the fabric");
+        assert!(!d.block_to_block("c", 1), "an input is no block's output");
+    }
+
     #[test]
     fn sub_pieces_pads_with_zeros() {
         let p = [Piece::sig("a", 2, 3), Piece::Const { value: 0b101, width: 3 }];
