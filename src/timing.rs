@@ -15,6 +15,11 @@
 //! cap is predicted at the cap (`cap_up_to`): once every hard block has its own registers the
 //! clock jumps to the blocks' limit, which no straight line follows.
 //!
+//! Each datapath's line also carries its calibration units (`measured`): a unit whose slowest
+//! and mean stretches are both no longer than a measured one's is predicted and assured at
+//! least that unit's median Fmax. The last cuts remove the long stretches at once (blinn's
+//! 30 → 38 stages on the UP5K: 63.8 → 101.1 MHz), a jump no straight line follows.
+//!
 //! The mean is there because the slowest stretch stops moving once it is one step no register
 //! can split (a DSP product and its add), while the measured clock keeps rising with depth:
 //! the other stretches shorten, and with them the logic and routing around each register.
@@ -41,7 +46,7 @@ use serde::Deserialize;
 const MODEL_JSON: &str = include_str!("../data/delay_model.json");
 
 /// One family's line (see the module doc).
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 pub struct Line {
     pub offset_ns: f64,
     pub ns_per_unit: f64,
@@ -50,6 +55,11 @@ pub struct Line {
     /// the largest `e` among the calibration units that reached the cap (-1: none did)
     pub cap_up_to: f64,
     pub margin: f64,
+    /// the calibration units of this datapath on this family, `[e, m, median Fmax]`: a unit
+    /// whose stretches are no longer than one measured reaches at least its Fmax (the line
+    /// misses the jump of the last cuts, where the long stretches go at once)
+    #[serde(default)]
+    pub measured: Vec<[f64; 3]>,
 }
 
 impl Line {
@@ -58,7 +68,15 @@ impl Line {
         if e <= self.cap_up_to {
             return self.cap_mhz;
         }
-        self.cap_mhz.min(1000.0 / (self.offset_ns + self.ns_per_unit * e + self.ns_per_mean_unit * m).max(1e-6))
+        let line = self.cap_mhz.min(1000.0 / (self.offset_ns + self.ns_per_unit * e + self.ns_per_mean_unit * m).max(1e-6));
+        line.max(self.measured_floor(e, m))
+    }
+
+    /// The best median Fmax measured on a calibration unit whose slowest and mean stretches are
+    /// both at least `e` and `m` (0: none); the manifest, and so the calibration data, states
+    /// the stretches to 0.01.
+    pub fn measured_floor(&self, e: f64, m: f64) -> f64 {
+        self.measured.iter().filter(|p| p[0] >= e - 0.005 && p[1] >= m - 0.005).map(|p| p[2]).fold(0.0, f64::max)
     }
 
     /// The model's Fmax for `plan`.
@@ -69,10 +87,11 @@ impl Line {
     /// What `--target-mhz` compares with its target: the cap where a calibration unit as short
     /// reached it (measured), else the line's prediction times the fit's margin.
     pub fn assured_of(&self, plan: &Plan) -> f64 {
-        if plan.stage_delay() <= self.cap_up_to {
+        let (e, m) = (plan.stage_delay(), plan.stage_delay_mean());
+        if e <= self.cap_up_to {
             self.cap_mhz
         } else {
-            self.fmax_of(plan) * self.margin
+            (self.fmax_of(plan) * self.margin).max(self.measured_floor(e, m))
         }
     }
 }
@@ -169,9 +188,28 @@ mod tests {
 
     #[test]
     fn the_cap_holds_where_a_calibration_unit_reached_it() {
-        let l = Line { offset_ns: 5.0, ns_per_unit: 1.0, ns_per_mean_unit: 0.0, cap_mhz: 100.0, cap_up_to: 3.0, margin: 0.9 };
+        let l = Line { offset_ns: 5.0, ns_per_unit: 1.0, ns_per_mean_unit: 0.0, cap_mhz: 100.0, cap_up_to: 3.0, margin: 0.9, measured: vec![] };
         assert_eq!(l.fmax(2.0, 50.0), 100.0);
         assert!((l.fmax(15.0, 0.0) - 50.0).abs() < 1e-9);
         assert!(l.fmax(4.0, 0.0) <= 100.0);
+    }
+
+    /// A calibration unit's measured Fmax holds for every unit whose two stretches are no
+    /// longer than its own, and only for those.
+    #[test]
+    fn a_measured_unit_is_a_floor_for_shorter_stretches() {
+        let l = Line {
+            offset_ns: 5.0,
+            ns_per_unit: 1.0,
+            ns_per_mean_unit: 0.0,
+            cap_mhz: 300.0,
+            cap_up_to: -1.0,
+            margin: 0.8,
+            measured: vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]],
+        };
+        assert_eq!(l.fmax(10.0, 6.0), 150.0);
+        assert_eq!(l.fmax(9.0, 5.0), 150.0);
+        assert!((l.fmax(10.0, 7.0) - 66.666).abs() < 0.1, "a longer mean stretch: the line");
+        assert_eq!(l.measured_floor(21.0, 1.0), 0.0);
     }
 }

@@ -337,7 +337,8 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
 /// Where it differs from [`lean`]:
 /// - `k_q·n` is a product on a DSP (the constant as operand B);
 /// - `P = kn·(1 − cos)` as `kn[17:0]·d + kn[hi:18]·d·2^18` (two DSPs), `P + K'` in two adds;
-/// - the bracket (≤ 18 bits) is squared on one DSP: no hi/lo split;
+/// - a bracket of at most 18 bits is squared on one DSP; a wider one as hi² and hi·lo on a
+///   DSP each (hi 18 bits), lo² by table, and two carry chains;
 /// - the colours' rounding half is a fabric add after their products.
 pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     let (f, cb, bb) = (cfg.f(), w.cos_bits, cfg.b());
@@ -351,16 +352,29 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("cut-off ROM read (10, a block RAM); 1 - cos (adder 6); k_q*n (a product)");
     rom_read(cfg, b, true);
     b.add("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
-    let kc = Piece::Const { value: cfg.k_code as u128, width: bit_length(cfg.k_code as u128) };
-    b.product(
-        "kn",
-        &[Piece::sig("n", 0, cfg.n_bits())],
-        &[kc],
-        w.kn_bits,
-        &format!("UQ{}.{}: k_q*n, exact; one constant product replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
-    );
+    let (k, kb) = (cfg.k_code as u128, bit_length(cfg.k_code as u128));
+    let what = format!("UQ{}.{}: k_q*n, exact; one constant product replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf());
+    let nn = [Piece::sig("n", 0, cfg.n_bits())];
+    if kb <= dsp {
+        b.product("kn", &nn, &[Piece::Const { value: k, width: kb }], w.kn_bits, &what);
+    } else {
+        // k_q wider than the block's operands: n*k[17:0] on one, n*k[hi:18] beside it, their
+        // sum in the comparator's step
+        b.product(
+            "kn_lo",
+            &nn,
+            &[Piece::Const { value: k & mask(dsp), width: dsp }],
+            w.kn_bits.min(cfg.n_bits() + dsp),
+            &format!("n*k_q[{}:0], exact", dsp - 1),
+        );
+        b.product("kn_hi", &nn, &[Piece::Const { value: k >> dsp, width: kb - dsp }], w.kn_bits - dsp, &format!("n*k_q[{}:{dsp}], exact", kb - 1));
+    }
 
     b.step("comparator (12)");
+    if kb > dsp {
+        let lo_w = w.kn_bits.min(cfg.n_bits() + dsp);
+        b.add("kn", &[Piece::sig("kn_lo", 0, lo_w)], &[Piece::zeros(dsp), Piece::sig("kn_hi", 0, w.kn_bits - dsp)], false, w.kn_bits, &what);
+    }
     let (ca, cb2, cw, comment) = cutoff_add(cfg);
     let cmp = b.add("cutoff_sum", &ca, &cb2, false, cw, &comment);
 
@@ -368,28 +382,45 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     let split = w.kn_bits > dsp && m > dsp;
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7, products); comparator result");
     done(cfg, b, &cmp);
-    let one_minus_cos = [Piece::sig("one_minus_cos", 0, cb)];
+    // 1 - cos one bit wider than the block's operands (F = 18): its top bit is set only for
+    // 1 - cos = 1.0, when the bits below are 0; the block takes those bits, and that one case
+    // is kn*2^18, a mux after the products (the high product is 0 then)
+    let top_alone = split && cb == dsp + 1;
+    let dw = if top_alone { dsp } else { cb };
+    let one_minus_cos = [Piece::sig("one_minus_cos", 0, dw)];
     if split {
         let hi_w = m - dsp;
-        b.product("deviation_lo", &[Piece::sig("kn", 0, dsp)], &one_minus_cos, m.min(dsp + cb), &format!("kn[{}:0] * (1 - cos), exact", dsp - 1));
+        b.product("deviation_lo", &[Piece::sig("kn", 0, dsp)], &one_minus_cos, m.min(dsp + dw), &format!("kn[{}:0] * (1 - cos), exact", dsp - 1));
         b.product(
             "deviation_hi",
             &[Piece::sig("kn", dsp, w.kn_bits - dsp)],
             &one_minus_cos,
             hi_w,
-            &format!("kn[{}:{dsp}] * (1 - cos), mod 2^{hi_w}", w.kn_bits - 1),
+            &format!("kn[{}:{dsp}] * (1 - cos){}, mod 2^{hi_w}", w.kn_bits - 1, if top_alone { format!("[{}:0]", dsp - 1) } else { String::new() }),
         );
         b.step("deviation: the high product plus K' (adder)");
+        let hi = if top_alone {
+            let (top, kn, h) = (b.bits("one_minus_cos", dsp, dsp), b.operand("kn", 0, w.kn_bits, hi_w), b.r("deviation_hi"));
+            b.wire(
+                "deviation_top",
+                hi_w,
+                Builder::select(&top, &kn, &h, hi_w),
+                &format!("kn * (1 - cos) / 2^{dsp}: kn when 1 - cos = 1.0, else the high product"),
+            );
+            "deviation_top"
+        } else {
+            "deviation_hi"
+        };
         b.add(
             "deviation_hi_sum",
-            &[Piece::sig("deviation_hi", 0, hi_w)],
+            &[Piece::sig(hi, 0, hi_w)],
             &[Piece::Const { value: k_prime >> dsp, width: hi_w }],
             false,
             hi_w,
             &format!("kn[{}:{dsp}] * (1 - cos) + K'[{}:{dsp}], mod 2^{hi_w}", w.kn_bits - 1, m - 1),
         );
         b.step("deviation P plus K' (adder)");
-        let lo_w = m.min(dsp + cb);
+        let lo_w = m.min(dsp + dw);
         b.add(
             "deviation_sum",
             &[Piece::sig("deviation_lo", 0, lo_w)],
@@ -414,12 +445,46 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     bracket(w, b);
 
     let full_bits = w.full_square_bits();
-    b.step("square (squarer 11, a product)");
-    let bracket_bits = [Piece::sig("bracket", 0, wb + 1)];
-    b.product("square_full", &bracket_bits, &bracket_bits, full_bits, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+    let full = if wb < dsp {
+        b.step("square (squarer 11, a product)");
+        let bracket_bits = [Piece::sig("bracket", 0, wb + 1)];
+        b.product("square_full", &bracket_bits, &bracket_bits, full_bits, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+        vec![Piece::sig("square_full", 0, full_bits)]
+    } else {
+        // a bracket wider than the MULT18X18D's operands: bracket = hi*2^r + lo with hi at 18
+        // bits; hi^2 and hi*lo alone on a block each, lo^2 by table; then, as on the iCE40,
+        // T = hi*lo + lo^2/2^(r+1) and Z = hi^2 + T/2^(r-1), each a carry chain of its own:
+        // bracket^2 = {Z, T mod 2^(r-1), lo^2 mod 2^(r+1)}, every floor exact
+        let r = wb + 1 - dsp;
+        let (hi, lo) = (Piece::sig("bracket", r, dsp), Piece::sig("bracket", 0, r));
+        let t = "square (squarer 11)";
+        b.step(&format!("{t}: hi^2 and hi*lo (a product each); lo^2 by table"));
+        b.product("square_hh", std::slice::from_ref(&hi), std::slice::from_ref(&hi), 2 * dsp, &format!("hi^2, bracket = hi*2^{r} + lo, exact"));
+        b.product("square_hl", std::slice::from_ref(&hi), std::slice::from_ref(&lo), dsp + r, "hi*lo, exact");
+        b.square_table("square_ll", "bracket", 0, r, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
+        b.step(&format!("{t}: T = hi*lo + lo^2/2^{}", r + 1));
+        let tw = dsp + r;
+        let ll_hi: Vec<Piece> = if r > 1 { vec![Piece::sig("square_ll", r + 1, r - 1)] } else { vec![] };
+        b.add("square_t", &[Piece::sig("square_hl", 0, tw)], &ll_hi, false, tw, &format!("hi*lo + floor(lo^2 / 2^{}), exact", r + 1));
+        b.step(&format!("{t}: Z = hi^2 + T/2^{}", r - 1));
+        b.add(
+            "square_z",
+            &[Piece::sig("square_hh", 0, 2 * dsp)],
+            &[Piece::sig("square_t", r - 1, tw - (r - 1))],
+            false,
+            2 * dsp,
+            &format!("floor(bracket^2 / 2^{}), exact", 2 * r),
+        );
+        let mut full = vec![Piece::sig("square_ll", 0, r + 1)];
+        if r > 1 {
+            full.push(Piece::sig("square_t", 0, r - 1));
+        }
+        full.push(Piece::sig("square_z", 0, 2 * dsp));
+        full
+    };
 
     b.step("truncation #2; intensity rounding (adder)");
-    square_and_color_square(w, b, &[Piece::sig("square_full", 0, full_bits)]);
+    square_and_color_square(w, b, &full);
     if let Some((a, width, comment)) = intensity_add(cfg, w, b) {
         let sum = b.add("intensity_sum", &a, &[], true, width, &comment);
         intensity_from(cfg, b, &sum);
