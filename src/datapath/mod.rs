@@ -668,6 +668,17 @@ impl Builder {
         name.to_string()
     }
 
+    /// On the ECP5, before a table read whose address a carry chain or mux computes, a step
+    /// that only registers: the DP16KD's address register then takes it from a flip-flop (its
+    /// setup is the long route into the block RAM column; with the chain before it, blinn's log
+    /// table address set the clock at 186–208 MHz over 5 seeds). There whatever the cuts.
+    pub(crate) fn address_to_block(&mut self, title: &str) {
+        if self.target == Target::Ecp5 {
+            self.step(&format!("{title}: the address at the block RAM's address register"));
+            self.delay(REGISTER_ONLY_DELAY);
+        }
+    }
+
     /// On the ECP5, after a table read (in block RAM with its output register where the cuts
     /// allow) that a multiplier takes next, a step that only registers: the word then reaches
     /// the MULT18X18D through its input registers (one register cannot be both). The step is

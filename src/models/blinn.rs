@@ -256,8 +256,9 @@ impl BlinnWidths {
     pub(crate) fn ghat_bits(&self) -> u32 {
         self.log_entry_bits.max(self.log_frac_bits + 1) + 1
     }
+    /// ℓ = e + L < F + 1 ≤ 2^exp_bits (e ≤ F, L < 1): exp_bits integer bits hold it.
     pub(crate) fn ell_bits(&self) -> u32 {
-        self.exp_bits + self.ell_frac_bits + 1
+        self.exp_bits + self.ell_frac_bits
     }
     pub(crate) fn y_bits(&self) -> u32 {
         self.y_int_bits + self.y_frac_bits
@@ -544,6 +545,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let idx = b.bits("x", f - 2, rb);
     b.wire("log_index", tg, idx, &format!("i: 2x to {tg} bits"));
 
+    b.address_to_block("log2 table read");
     b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
     b.rom_read_registered("log_word", lt, "log_index");
     b.delay(LUT_DELAY * tg.div_ceil(2) as f64);
@@ -613,7 +615,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let v = b.bits("log_frac", lf - 1, 0);
         format!("{{{v}, {}}}", lit(w.ell_frac_bits - lf, 0))
     };
-    b.wire("ell", eb2, format!("{{1'b0, {e}, {lbits}}}"), &format!("UQ{}.{}: e + L floored (truncation #1); L < 1", eb2 - w.ell_frac_bits, w.ell_frac_bits));
+    b.wire("ell", eb2, format!("{{{e}, {lbits}}}"), &format!("UQ{}.{}: e + L floored (truncation #1); L < 1", eb2 - w.ell_frac_bits, w.ell_frac_bits));
 
     // n*l from the bottom up, l in D-bit chunks: P_0 = n*l[D-1:0], and P_k = n*l[chunk k] +
     // floor(P_(k-1) / 2^D) on one DSP each (the add inside it); then n*l = {P_top, P_(top-1)
@@ -700,6 +702,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let te = w.exp2_index_bits;
     let ji = b.bits("y", w.y_frac_bits - 1, re);
     b.wire("exp2_index", te, ji, "j: frac(y) to the table's resolution");
+    b.address_to_block("exp2 table read");
     b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
     b.rom_read_registered("exp2_word", et, "exp2_index");
     b.word_to_multiplier("exp2 table read");
