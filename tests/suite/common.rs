@@ -138,7 +138,7 @@ pub const CONFIGS: &[&[&str]] = &[
         "--top",
         "fit_unit",
     ],
-    &["--model", "blinn", "--stages", "38"],
+    &["--model", "blinn", "--stages", "37"],
     &["--model", "blinn", "--cos-frac-bits", "7", "--n-bits", "5", "--color-bits", "12", "--intensity-frac-bits", "6", "--stages", "4", "--rom-style", "case"],
     // issue 22: the interfaces, tags and static colours (indices 17..)
     &["--interface", "ready", "--tag-bits", "12", "--stages", "13"],

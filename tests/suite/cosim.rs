@@ -48,17 +48,21 @@ fn checked_in_default_unit_is_right_on_its_whole_input_space() {
     assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)), "{}", text(&o));
 }
 
-/// Issue 23: the fitted unit at its deepest iCE40 pipeline (its sums carry-save and
-/// carry-select, a register before each squaring's DSP) is the golden model's on every input.
+/// Issue 23: the fitted and blinn units at their deepest iCE40 pipelines (fitted's sums
+/// carry-save and carry-select, a register before each squaring's DSP; blinn's interpolations
+/// each a DSP multiply-add whose operands the table word widens, n waiting in block RAM between
+/// its reads) are the golden model's on every input.
 #[test]
-fn fitted_at_its_deepest_pipeline_is_right_on_its_whole_input_space() {
+fn fitted_and_blinn_at_their_deepest_pipelines_are_right_on_the_whole_input_space() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let deepest = default_cut_points(specgen::config::SpecularModel::Fitted);
-    assert!(deepest >= 50, "the fitted datapath's sums are cut into steps: {deepest} cut points");
-    let dir = generate(tmp.path(), "fitted", &["--model", "fitted", "--stages", &deepest.to_string()]);
-    let o = cosim(&dir, &["--exhaustive"]);
-    assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)), "{}", text(&o));
+    for (model, name, at_least) in [(specgen::config::SpecularModel::Fitted, "fitted", 50), (specgen::config::SpecularModel::Blinn, "blinn", 30)] {
+        let deepest = default_cut_points(model);
+        assert!(deepest >= at_least, "{name}: the datapath's sums are cut into steps: {deepest} cut points");
+        let dir = generate(tmp.path(), name, &["--model", name, "--stages", &deepest.to_string()]);
+        let o = cosim(&dir, &["--exhaustive"]);
+        assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)), "{name}: {}", text(&o));
+    }
 }
 
 #[test]
