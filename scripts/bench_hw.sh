@@ -108,12 +108,18 @@ for o in ops:
     err = f"{o['error']:.3e}" if o.get('error') is not None else '-'
     print(f"| {o['name']} | {part[o['family']]} | {o['mhz']} MHz | {o['stages']} ({o['latency']}) | {o.get('logic_cells') or '-'} | {o['flip_flops']} | {o['dsp_blocks']} | {o['block_rams']} | {f} | {reach} | {err} | {o['how']} |")
 if not rows:
-    # OP_ONLY=1: the rest as the last full run wrote it
-    rest = previous[previous.find('## Every configuration'):] if '## Every configuration' in previous else ''
-    kept = '(From the last full run of `scripts/bench_hw.sh`; `OP_ONLY=1` regenerated only the table above.)'
+    # OP_ONLY=1: the tables of every configuration as the last full run wrote them (up to the
+    # comparison at the operating point, written again below); the LUT-only comparison is kept
+    # aside for the end
+    op_head, lut_head = '## The models compared at the operating point', '## The models compared (`specgen report --hw`, iCE40 LUT-only'
+    start = previous.find('## Every configuration')
+    rest = previous[start:previous.find(op_head)] if start >= 0 and op_head in previous else ''
+    kept = '(From the last full run of `scripts/bench_hw.sh`; `OP_ONLY=1` regenerated only the operating point.)'
     if kept not in rest:
         rest = rest.replace('## Every configuration\n', f'## Every configuration\n\n{kept}\n', 1)
-    print('\n' + rest, end='')
+    print('\n' + rest.rstrip('\n'))
+    with open(sys.argv[3] + '.lut', 'w') as f:
+        f.write('\n' + previous[previous.find(lut_head):].rstrip('\n') + '\n' if lut_head in previous else '')
     sys.exit(0)
 print('\n## Every configuration\n')
 print(f'Produced by `scripts/bench_hw.sh` with {ver} and nextpnr-ice40 (iCE40 UP5K, SG48; Fmax of the unit between')
@@ -160,10 +166,12 @@ PY
 # model has) as a secondary table
 hw=(); for m in lean fitted blinn blinn-pow; do hw+=(--hw "$work/op-$m-ice40/op.json"); done
 $bin report --out "$work/report-op" "${hw[@]}" >/dev/null
-hw=(); for m in lean fitted blinn blinn-pow; do hw+=(--hw "$work/$m-default-0/nodsp.json"); done
-$bin report --out "$work/report" "${hw[@]}" >/dev/null
+if [ "${OP_ONLY:-0}" != 1 ]; then
+    hw=(); for m in lean fitted blinn blinn-pow; do hw+=(--hw "$work/$m-default-0/nodsp.json"); done
+    $bin report --out "$work/report" "${hw[@]}" >/dev/null
+fi
 python3 - "$work/report-op/report.json" "$work/report/report.json" >> BENCHMARKS-hw.md <<'PY'
-import json, sys
+import json, os, sys
 def compare(path, title, heads, cells, missing):
     d = json.load(open(path))
     print(f'\n## {title}\n')
@@ -178,10 +186,14 @@ compare(sys.argv[1], 'The models compared at the operating point (`specgen repor
         ['logic cells', 'FFs', 'DSP', 'BRAM', 'Fmax, median of seeds (MHz)', 'stages'],
         lambda h, f: [str(h.get('logic_cells') or '-'), str(h.get('flip_flops', '-')), str(h.get('dsp_blocks', '-')), str(h.get('block_rams', '-')), f, str(h.get('stages', '-'))],
         '- (does not fit)')
-compare(sys.argv[2], 'The models compared (`specgen report --hw`, iCE40 LUT-only, combinational: a secondary view)',
-        ['LUT4', 'Fmax, median of seeds (MHz)'], lambda h, f: [str(h.get('luts', '-')), f], '-')
+if os.path.exists(sys.argv[2]):
+    compare(sys.argv[2], 'The models compared (`specgen report --hw`, iCE40 LUT-only, combinational: a secondary view)',
+            ['LUT4', 'Fmax, median of seeds (MHz)'], lambda h, f: [str(h.get('luts', '-')), f], '-')
 PY
+# OP_ONLY=1: the LUT-only comparison of the last full run after it
+[ "${OP_ONLY:-0}" = 1 ] && cat "$work/previous.md.lut" >> BENCHMARKS-hw.md
 echo "wrote BENCHMARKS-hw.md"
+[ "${OP_ONLY:-0}" = 1 ] && exit 0
 # the speed claims the suite leaves to the bench (median over nextpnr seeds 1-5)
 echo "== the multi-seed Fmax claims (cargo test -- --ignored)"
 cargo test --release -q --test suite -- --ignored
