@@ -559,13 +559,21 @@ impl Builder {
     fn seen_from_step_before<T>(&mut self, inputs: &[&str], what: &str, f: impl FnOnce(&mut Self) -> T) -> T {
         let k = self.steps.len();
         for n in inputs {
-            let s = self.signal(n);
-            assert!(s.step < k && !(s.dsp_registered && s.step + 1 == k), "datapath: {n} is not visible in step {} for {what}", k - 1);
+            assert!(self.visible_before(n), "datapath: {n} is not visible in step {} for {what}", k - 1);
         }
         self.view = Some(k - 1);
         let out = f(self);
         self.view = None;
         out
+    }
+
+    /// Whether `name` is visible in the step before the current one, where a block's input
+    /// registers take their operands: defined before the current step, and not another block's
+    /// output registered at the cut between the two.
+    fn visible_before(&mut self, name: &str) -> bool {
+        let k = self.steps.len();
+        let s = self.signal(name);
+        s.step < k && !(s.dsp_registered && s.step + 1 == k)
     }
 
     /// Records a new signal defined in `step` (`dsp_registered`: held by a block's output
@@ -586,11 +594,7 @@ impl Builder {
         let inputs: Vec<String> = a.iter().chain(b).filter_map(|p| if let Piece::Sig { name, .. } = p { Some(name.clone()) } else { None }).collect();
         // an operand that is another block's output registered at the cut before cannot also
         // be this block's input register: then a `*` the tool maps
-        let k = self.steps.len();
-        let visible = inputs.iter().all(|n| {
-            let s = self.signal(n);
-            s.step < k && !(s.dsp_registered && s.step + 1 == k)
-        });
+        let visible = inputs.iter().all(|n| self.visible_before(n));
         let on_dsp = visible && self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
         self.delay(mul_delay(wa, wb));
         if !on_dsp {
