@@ -91,15 +91,22 @@ pub(crate) struct ReadView {
     pub block: bool,
     pub slices: Vec<BlockSlice>,
     pub input_cut: usize,
+    /// two banks: the address's low 10 bits (to every DP16KD) and its bank bit
+    pub banked: bool,
+    pub addr_lo: String,
+    pub addr_bank: String,
 }
 
-/// One DP16KD of a registered table read: its instance suffix (none when it is the only one),
-/// its contents as `INITVAL_XX` values, the bits of the word it gives and its unread data bits.
+/// The DP16KDs of 18 bits of the word of a registered table read: its instance suffix (none
+/// when it is the only one), each bank's contents as `INITVAL_XX` values (one bank per 1024
+/// words; two: the address's bit 10 picks, after registers like the block's own), the bits of
+/// the word it gives and its unread data bits.
 pub(crate) struct BlockSlice {
     pub suffix: String,
-    pub initvals: Vec<(String, String)>,
+    pub banks: Vec<Vec<(String, String)>>,
     pub bits: String,
     pub unused: u32,
+    pub width: u32,
 }
 
 /// The DP16KDs of a registered read of `t` into `signal`: 18 bits of the word each, low first.
@@ -110,6 +117,7 @@ fn block_slices(t: &crate::table::Table, signal: &str) -> Vec<BlockSlice> {
         .map(|k| {
             let (lo, hi) = (k * b, ((k + 1) * b).min(t.width));
             let words: Vec<u128> = t.words.iter().map(|w| (w >> lo) & mask(hi - lo)).collect();
+            let banks = words.chunks(datapath::DP16KD_WORDS).map(dp16kd_initvals).collect();
             let bits = if n == 1 {
                 signal.to_string()
             } else if hi - lo == 1 {
@@ -117,7 +125,7 @@ fn block_slices(t: &crate::table::Table, signal: &str) -> Vec<BlockSlice> {
             } else {
                 format!("{signal}[{}:{lo}]", hi - 1)
             };
-            BlockSlice { suffix: if n == 1 { String::new() } else { k.to_string() }, initvals: dp16kd_initvals(&words), bits, unused: b - (hi - lo) }
+            BlockSlice { suffix: if n == 1 { String::new() } else { k.to_string() }, banks, bits, unused: b - (hi - lo), width: hi - lo }
         })
         .collect()
 }
@@ -405,6 +413,9 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                 zero: lit(t.width, 0),
                 block: r.block,
                 slices: if r.block { block_slices(t, &format!("{}_c{}", r.signal, r.step)) } else { Vec::new() },
+                banked: r.block && t.words.len() > datapath::DP16KD_WORDS,
+                addr_lo: format!("{}[9:0]", r.addr),
+                addr_bank: format!("{}[10]", r.addr),
                 input_cut: r.step - 1,
                 entries: if file || r.block {
                     Vec::new()

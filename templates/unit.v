@@ -102,15 +102,32 @@ wire [{{ d.unused - 1 }}:0] unused_{{ d.name }}_p;
 {%- if r.block %}
 // {{ r.what }}: {% if r.slices.len() == 1 %}one DP16KD{% else %}{{ r.slices.len() }} DP16KDs side by side, 18 bits of the word each{% endif %}, {% if r.slices.len() == 1 %}its address register{% else %}their address registers{% endif %} in place of cut {{ r.input_cut }}, {% if r.slices.len() == 1 %}its output register{% else %}their output registers{% endif %} cut {{ st.index }}
 wire [{{ r.width - 1 }}:0] {{ r.signal }};
+{%- if r.banked %}
+// words 0..1023 in bank 0, 1024.. in bank 1; the address's bit 10 picks, registered twice as
+// the blocks register the address and the word
+reg        {{ r.table }}_bank_a, {{ r.table }}_bank_q;
+always @(posedge clk) begin
+    {{ r.table }}_bank_a <= {{ r.addr_bank }};
+    {{ r.table }}_bank_q <= {{ r.table }}_bank_a;
+end
+{%- endif %}
 {%- for s in r.slices %}
+{%- for initvals in s.banks %}
+{%- if r.banked %}
+wire [{{ s.width - 1 }}:0] {{ r.table }}_bank{{ loop.index0 }}_q{{ s.suffix }};
+{%- endif %}
 {%- if s.unused > 0 %}
-wire [{{ s.unused - 1 }}:0] unused_{{ r.table }}_q{{ s.suffix }};
+wire [{{ s.unused - 1 }}:0] unused_{{ r.table }}_q{{ s.suffix }}{% if r.banked %}_b{{ loop.index0 }}{% endif %};
 {%- endif %}
 {{ top }}_rom1k18 #(
-{%- for (k, v) in s.initvals %}
+{%- for (k, v) in initvals %}
     .{{ k }}({{ v }}){% if !loop.last %},{% endif %}
 {%- endfor %}
-) {{ r.table }}_bram{{ s.suffix }} (.clk(clk), .addr({{ r.addr }}), .q({% if s.unused > 0 %}{unused_{{ r.table }}_q{{ s.suffix }}, {{ s.bits }}}{% else %}{{ s.bits }}{% endif %}));
+) {{ r.table }}_bram{{ s.suffix }}{% if r.banked %}_b{{ loop.index0 }}{% endif %} (.clk(clk), .addr({% if r.banked %}{{ r.addr_lo }}{% else %}{{ r.addr }}{% endif %}), .q({% if s.unused > 0 %}{unused_{{ r.table }}_q{{ s.suffix }}{% if r.banked %}_b{{ loop.index0 }}{% endif %}, {% endif %}{% if r.banked %}{{ r.table }}_bank{{ loop.index0 }}_q{{ s.suffix }}{% else %}{{ s.bits }}{% endif %}{% if s.unused > 0 %}}{% endif %}));
+{%- endfor %}
+{%- if r.banked %}
+assign {{ s.bits }} = {{ r.table }}_bank_q ? {{ r.table }}_bank1_q{{ s.suffix }} : {{ r.table }}_bank0_q{{ s.suffix }};
+{%- endif %}
 {%- endfor %}
 {%- else if r.file %}
 wire [{{ r.width - 1 }}:0] {{ r.signal }} = {{ r.table }}[{{ r.addr }}];   // {{ r.what }}

@@ -940,7 +940,10 @@ impl Builder {
     /// after this step (the read's clock-to-out, 5.6 ns without them on LFE5U-25F grade 6,
     /// then never limits Fmax). Anywhere else, an asynchronous read in this step.
     pub(crate) fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
-        let fits = self.tables[t].words.len() <= DP16KD_WORDS && self.tables[t].width <= MAX_BLOCK_SLICES * DP16KD_BITS;
+        // up to 1024 words, or two banks of them addressed by a whole 11-bit signal
+        let words = self.tables[t].words.len();
+        let banks = words > DP16KD_WORDS && words <= 2 * DP16KD_WORDS && self.signal(addr).width == 11;
+        let fits = (words <= DP16KD_WORDS || banks) && self.tables[t].width <= MAX_BLOCK_SLICES * DP16KD_BITS;
         if !(fits && self.block_registers_here()) {
             return self.rom_read(signal, t, addr);
         }

@@ -370,6 +370,12 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.product("kn_hi", &nn, &[Piece::Const { value: k >> dsp, width: kb - dsp }], w.kn_bits - dsp, &format!("n*k_q[{}:{dsp}], exact", kb - 1));
     }
 
+    // a cut-off ROM of more than 1024 words is two banks of DP16KDs, picked after their output
+    // registers: a step that only registers the picked word before the comparator's chain
+    if cfg.n_bits() > 10 {
+        b.step("cut-off ROM read: the bank's word registered");
+        b.delay(REGISTER_ONLY_DELAY);
+    }
     b.step("comparator (12)");
     if kb > dsp {
         let lo_w = w.kn_bits.min(cfg.n_bits() + dsp);
