@@ -96,19 +96,27 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
 /// fitted's squarings' hi², blinn's n·ℓ chunks, both models' colours; the adds follow on carry
 /// chains), and are the golden model's under both simulators.
 #[test]
-fn fitted_and_blinn_on_the_ecp5_keep_every_product_in_a_registered_block_and_are_right() {
+fn fitted_blinn_and_wide_lean_on_the_ecp5_keep_every_product_in_a_registered_block_and_are_right() {
     require_tool("verilator", "verilator");
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
     // fitted: a_lo*(1 - cos), three squarings' hi^2, three colours; blinn: the two
-    // interpolations' steps, x*g_lo, two n*l chunks, three colours
-    for (model, blocks) in [("fitted", 7), ("blinn", 8)] {
-        let args = ["--model", model, "--target", "ecp5"];
+    // interpolations' steps, x*g_lo, two n*l chunks, three colours; the wide lean: k_q*n and
+    // kn*(1 - cos) in two halves each, the bracket's hi^2 and hi*lo, three colours (and its
+    // 2048-word cut-off ROM in two banks of DP16KDs, 19 bits: 2 x 2)
+    let wide = ["--cos-frac-bits", "18", "--n-bits", "11", "--color-bits", "10", "--intensity-frac-bits", "18", "--k-frac-bits", "20"];
+    let cases: [(&str, Vec<&str>, usize); 3] =
+        [("fitted", vec!["--model", "fitted"], 7), ("blinn", vec!["--model", "blinn"], 8), ("lean_wide", wide.to_vec(), 9)];
+    for (model, margs, blocks) in cases {
+        let args = [&margs[..], &["--target", "ecp5"]].concat();
         let stages = deepest(&args);
         let dir = generate(tmp.path(), model, &[&args[..], &["--stages", &stages]].concat());
         let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
         assert!(!has_multiply(&unit), "{model}: every product on a registered block:\n{unit}");
         assert_eq!(unit.matches("specular_unit_mult18x18 ").count(), blocks, "{model}");
+        if model == "lean_wide" {
+            assert_eq!(unit.matches("specular_unit_rom1k18 #(").count(), 4, "two banks of two DP16KDs");
+        }
         let o = cosim(&dir, &["--vectors", "200000"]);
         assert_eq!(o.status.code(), Some(0), "{model}: {}", text(&o));
         let o = cosim(&dir, &["--simulator", "icarus", "--vectors", "2000"]);
