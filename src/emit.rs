@@ -990,9 +990,17 @@ mod tests {
         );
         // word 0 of each: 5, 1, 3 (the low 5 hex digits of INITVAL_00)
         for (slice, low) in s.iter().zip(["00005", "00001", "00003"]) {
-            assert!(slice.initvals[0].1.ends_with(low), "{}", slice.initvals[0].1);
+            assert_eq!(slice.banks.len(), 1);
+            assert!(slice.banks[0][0].1.ends_with(low), "{}", slice.banks[0][0].1);
         }
-        let one = crate::table::Table { width: 18, ..t };
+        // 1500 words: two banks, the second from word 1024
+        let mut words = vec![0u128; 1500];
+        words[1024] = 9;
+        let banked = crate::table::Table { words, width: 18, ..t.clone() };
+        let s = block_slices(&banked, "w_c3");
+        assert_eq!(s[0].banks.len(), 2);
+        assert!(s[0].banks[1][0].1.ends_with("00009") && s[0].banks[0][0].1.ends_with("00000"));
+        let one = crate::table::Table { width: 18, ..t.clone() };
         assert_eq!(block_slices(&one, "w_c3").iter().map(|x| (x.suffix.as_str(), x.bits.as_str())).collect::<Vec<_>>(), [("", "w_c3")]);
     }
 }
