@@ -672,24 +672,15 @@ impl Builder {
         name.to_string()
     }
 
-    /// On the ECP5, before a table read whose address a carry chain or mux computes, a step
-    /// that only registers: the DP16KD's address register then takes it from a flip-flop (its
-    /// setup is the long route into the block RAM column; with the chain before it, blinn's log
-    /// table address set the clock at 186–208 MHz over 5 seeds). There whatever the cuts.
-    pub(crate) fn address_to_block(&mut self, title: &str) {
-        if self.target == Target::Ecp5 {
-            self.step(&format!("{title}: the address at the block RAM's address register"));
-            self.delay(REGISTER_ONLY_DELAY);
-        }
-    }
-
-    /// On the ECP5, after a table read (in block RAM with its output register where the cuts
-    /// allow) that a multiplier takes next, a step that only registers: the word then reaches
-    /// the MULT18X18D through its input registers (one register cannot be both). The step is
+    /// On the ECP5 only, a step titled `title` that only registers, where one flip-flop cannot
+    /// serve two blocks or a long route needs a flip-flop at its start: before a DP16KD's
+    /// address register when a carry chain or mux computes the address (blinn's log table
+    /// address set the clock at 186–208 MHz over 5 seeds without it), and after a block RAM's
+    /// output register when a MULT18X18D's input registers take the word next. The step is
     /// there whatever the cuts, so the datapath's shape does not depend on them.
-    pub(crate) fn word_to_multiplier(&mut self, title: &str) {
+    pub(crate) fn ecp5_register_step(&mut self, title: &str) {
         if self.target == Target::Ecp5 {
-            self.step(&format!("{title}: the word at the multiplier's input registers"));
+            self.step(title);
             self.delay(REGISTER_ONLY_DELAY);
         }
     }

@@ -545,11 +545,11 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let idx = b.bits("x", f - 2, rb);
     b.wire("log_index", tg, idx, &format!("i: 2x to {tg} bits"));
 
-    b.address_to_block("log2 table read");
+    b.ecp5_register_step("log2 table read: the address at the block RAM's address register");
     b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
     b.rom_read_registered("log_word", lt, "log_index");
     b.delay(LUT_DELAY * tg.div_ceil(2) as f64);
-    b.word_to_multiplier("log2 table read");
+    b.ecp5_register_step("log2 table read: the word at the multiplier's input registers");
 
     let gb = w.ghat_bits();
     let ge = w.log_entry_bits;
@@ -702,10 +702,10 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let te = w.exp2_index_bits;
     let ji = b.bits("y", w.y_frac_bits - 1, re);
     b.wire("exp2_index", te, ji, "j: frac(y) to the table's resolution");
-    b.address_to_block("exp2 table read");
+    b.ecp5_register_step("exp2 table read: the address at the block RAM's address register");
     b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
     b.rom_read_registered("exp2_word", et, "exp2_index");
-    b.word_to_multiplier("exp2 table read");
+    b.ecp5_register_step("exp2 table read: the word at the multiplier's input registers");
     let implied = t.exp2_one_implied(w);
     if implied {
         let ji = b.r("exp2_index");

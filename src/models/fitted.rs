@@ -378,7 +378,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         &format!("UQ1.{f}: 1 - c, exact"),
     );
     b.resolve(p, title);
-    b.word_to_multiplier("per-n fit ROM read");
+    b.ecp5_register_step("per-n fit ROM read: the word at the multiplier's input registers");
 
     // a_n wider than a DSP's operands: a_n = a_hi*2^D + a_lo; a_lo*(1 - cos) on one DSP, then
     // the bits of P above D as a_hi*(1 - cos) (its few partial products) plus

@@ -373,8 +373,7 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     // a cut-off ROM of more than 1024 words is two banks of DP16KDs, picked after their output
     // registers: a step that only registers the picked word before the comparator's chain
     if cfg.n_bits() > 10 {
-        b.step("cut-off ROM read: the bank's word registered");
-        b.delay(REGISTER_ONLY_DELAY);
+        b.ecp5_register_step("cut-off ROM read: the bank's word registered");
     }
     b.step("comparator (12)");
     if kb > dsp {
