@@ -31,7 +31,6 @@ run() { # name widths-label stages args...
         echo "done: $name $label stages=$stages $mode" >&2
     done
 }
-wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)
 oprows="$work/op.jsonl"; : > "$oprows"
 op() { # name family mhz seeds args...: one unit at the operating point
     local name=$1 family=$2 mhz=$3 n=$4; shift 4
