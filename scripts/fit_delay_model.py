@@ -30,15 +30,17 @@ import sys
 import tempfile
 
 
-def features(family, model, stages):
+def features(family, model, stages, extra):
     """The unit's slowest and mean stretch estimates, asked of the generator as it is now (so a
-    change to the estimates needs a refit, not a new place-and-route)."""
+    change to the estimates needs a refit, not a new place-and-route); `extra`: the generate
+    flags beyond the model (the CSV's `args`, the widths)."""
     binary = os.environ.get("SPECGEN", "target/release/specgen")
     with tempfile.TemporaryDirectory() as d:
         out = os.path.join(d, "u")
         args = [binary, "generate", "--out", out, "--target", family, "--stages", str(stages)]
         if model != "lean":
             args += ["--model", model]
+        args += extra
         subprocess.run(args, check=True, capture_output=True)
         with open(os.path.join(out, "specular_unit.json")) as f:
             m = json.load(f)
@@ -122,7 +124,7 @@ def main():
             if not row["fmax_mhz"]:
                 continue
             fam, model, stages = row["family"], row["model"], int(row["stages"])
-            est, mean = features(fam, model, stages)
+            est, mean = features(fam, model, stages, (row.get("args") or "").split())
             by_family.setdefault(fam, []).append({"model": model, "stages": stages, "est": est, "mean": mean, "fmax": float(row["fmax_mhz"])})
     # a line per family ("all") and per model of it (three units or more): the generator uses
     # its model's line, else the family's

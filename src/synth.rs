@@ -342,14 +342,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         r.fmax_note = format!("place-and-route failed: {why}");
         return Ok(r);
     }
-    let fmax = |log: &str| -> Option<f64> {
-        log.lines()
-            .rfind(|l| l.contains("Max frequency for clock"))
-            .and_then(|l| l.split("': ").nth(1))
-            .and_then(|s| s.split_whitespace().next())
-            .and_then(|s| s.parse().ok())
-    };
-    r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax(log)).collect();
+    r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax_of_log(log)).collect();
     r.logic_cells = runs.first().and_then(|(_, log)| logic_cells(log));
     r.fmax_mhz = median(&r.fmax_seeds);
     r.fmax_note = format!(
@@ -357,8 +350,44 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
         args.join(" "),
         r.fmax_seeds.iter().map(|f| format!("{f:.1}")).collect::<Vec<_>>().join(", ")
     );
+    if runs.iter().any(|(_, log)| has_unclocked_block(log)) {
+        r.fmax_note.push_str(UNCLOCKED_BLOCK_NOTE);
+    }
     Ok(r)
 }
+
+/// nextpnr's Fmax of a routed design: the slowest of the clocks in its last report (each
+/// clock's last "Max frequency" line: the one after routing). A hard block whose clock pin is
+/// tied low (an SB_MAC16 with no register in use) forms a clock of its own,
+/// `$PACKER_GND_NET`, whose figure is only the routes between such blocks: the wrapper's
+/// `clk` may be far slower, so the figure is the least of them.
+pub(crate) fn fmax_of_log(log: &str) -> Option<f64> {
+    let mut last: Vec<(&str, f64)> = Vec::new();
+    for l in log.lines() {
+        let Some(rest) = l.split("Max frequency for clock").nth(1) else { continue };
+        let Some((name, value)) = rest.split_once("': ") else { continue };
+        let Some(mhz) = value.split_whitespace().next().and_then(|v| v.parse::<f64>().ok()) else { continue };
+        let name = name.trim().trim_start_matches('\'');
+        match last.iter_mut().find(|(n, _)| *n == name) {
+            Some(slot) => slot.1 = mhz,
+            None => last.push((name, mhz)),
+        }
+    }
+    last.into_iter().map(|(_, f)| f).reduce(f64::min)
+}
+
+/// Whether nextpnr saw a hard block clocked by a constant: on the iCE40 an SB_MAC16 used
+/// without any of its registers.
+pub(crate) fn has_unclocked_block(log: &str) -> bool {
+    log.lines().any(|l| (l.contains("Max frequency for clock") || l.contains("Max delay")) && (l.contains("$PACKER_GND_NET") || l.contains("$PACKER_VCC_NET")))
+}
+
+/// What `fmax_note` adds when [`has_unclocked_block`]: nextpnr-ice40 (0.4, `ice40/arch.cc`,
+/// `getPortClockingInfo`) models every SB_MAC16 data port as a register of its CLK pin, with
+/// 0.1 ns setup and clock-to-out, so the multiply inside is never timed, and a path through a
+/// block whose CLK is tied low is cut in two.
+pub const UNCLOCKED_BLOCK_NOTE: &str =
+    "; an SB_MAC16 without registers (its clock tied low): nextpnr-ice40 does not time a path through it, so the figure is an upper bound";
 
 impl SynthResult {
     /// Reads a `specgen synth --json` result: a regular file of at most 1 MiB (never a FIFO or a
@@ -586,5 +615,23 @@ mod tests {
             "Info: Device utilisation:\nInfo: \t          TRELLIS_FF:    2684/  24288    11%\nInfo: \t        TRELLIS_COMB:    1510/  24288     6%\n";
         assert_eq!(logic_cells(ecp5_cells), Some(2684));
         assert_eq!(logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"), None);
+    }
+
+    /// The slowest clock of the last report, not the last line: an SB_MAC16 whose clock is tied
+    /// low forms a clock of its own whose figure is only the routes between such blocks.
+    #[test]
+    fn fmax_is_the_slowest_clock_after_routing() {
+        let log = "Info: Max frequency for clock    'clk$SB_IO_IN_$glb_clk': 47.68 MHz (FAIL at 100.00 MHz)\n\
+                   Info: Max frequency for clock '$PACKER_GND_NET_$glb_clk': 139.74 MHz (PASS at 100.00 MHz)\n\
+                   Info: Routing..\n\
+                   Warning: Max frequency for clock    'clk$SB_IO_IN_$glb_clk': 46.69 MHz (FAIL at 100.00 MHz)\n\
+                   Info: Max frequency for clock '$PACKER_GND_NET_$glb_clk': 129.77 MHz (PASS at 100.00 MHz)\n";
+        assert_eq!(fmax_of_log(log), Some(46.69));
+        assert!(has_unclocked_block(log));
+        let one = "Info: Max frequency for clock 'clk': 90.00 MHz (FAIL at 100.00 MHz)\nInfo: Max frequency for clock 'clk': 102.60 MHz (PASS at 100.00 MHz)\n";
+        assert_eq!(fmax_of_log(one), Some(102.6));
+        assert!(!has_unclocked_block(one));
+        assert!(has_unclocked_block("Info: Max delay posedge $PACKER_GND_NET_$glb_clk -> posedge clk$SB_IO_IN_$glb_clk   : 4.93 ns"));
+        assert_eq!(fmax_of_log("Info: Routing..\n"), None);
     }
 }

@@ -554,6 +554,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let gb = w.ghat_bits();
     let ge = w.log_entry_bits;
     let title = "g by linear interpolation";
+    // where g^ is read from: a signal and its lowest bit
+    let mut ghat = ("ghat".to_string(), 0);
     if log_dsp {
         // g^ = G[i] + floor(dG[i]*r / 2^RB) = floor((G[i]*2^RB + dG[i]*r) / 2^RB): one DSP
         // multiply-add, the entry its addend
@@ -561,9 +563,18 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let sw = gb + rb;
         let (dg, r, g) = (Piece::sig("log_word", ge, w.log_delta_bits), Piece::sig("x", 0, rb), Piece::sig("log_word", 0, ge));
         let (a, r) = operands(dg, r, "log_word", log_pad);
-        let sum = b.multiply_add("ghat_sum", &a, &r, &[Piece::zeros(rb), g], sw, title, &format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact", tg + 1));
-        let e = b.bits(&sum, sw - 1, rb);
-        b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+        let comment = format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact; g^ = bits [{}:{rb}], UQ2.{}", tg + 1, sw - 1, w.log_frac_bits);
+        let sum = b.multiply_add("ghat_sum", &a, &r, &[Piece::zeros(rb), g], sw, title, &comment);
+        if b.target() == Target::Ecp5 {
+            let e = b.bits(&sum, sw - 1, rb);
+            b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+        } else {
+            // the next steps read g^ as bits of the sum: the cut registers the DSP's whole
+            // output, which yosys takes into the block as its output register (a register of
+            // some of its bits stays in the fabric, and leaves the SB_MAC16 without a clock:
+            // nextpnr-ice40 then does not time the path through it)
+            ghat = (sum, rb);
+        }
     } else if rb > 0 {
         // g^ = G[i] + floor(dG[i]*r / 2^RB) = floor((G[i]*2^RB + dG[i]*r) / 2^RB): the entry and
         // the step's partial products in one carry-save sum, one carry chain at its end
@@ -589,11 +600,11 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     if f - 1 <= dsp && gb > dsp && gb - dsp <= SHIFT_ADD_BITS {
         b.step("-log2 c' = x*g(x): x*g_lo (multiplier); the partial products of x*g_hi");
         let lw = f - 1 + dsp;
-        b.product("log_frac_lo", &[Piece::sig("x", 0, f - 1)], &[Piece::sig("ghat", 0, dsp)], lw, &format!("x*ghat[{}:0], exact", dsp - 1));
+        b.product("log_frac_lo", &[Piece::sig("x", 0, f - 1)], &[Piece::sig(&ghat.0, ghat.1, dsp)], lw, &format!("x*ghat[{}:0], exact", dsp - 1));
         // beside the DSP (they do not wait for it), x*g_hi's partial products
         let t = "-log2 c' = x*g(x)";
         let hw = lb - dsp;
-        let mut terms = b.partial_products("log_frac_hi", &Piece::sig("x", 0, f - 1), &Piece::sig("ghat", dsp, gb - dsp), 0, hw, false);
+        let mut terms = b.partial_products("log_frac_hi", &Piece::sig("x", 0, f - 1), &Piece::sig(&ghat.0, ghat.1 + dsp, gb - dsp), 0, hw, false);
         b.delay(mul_delay(f - 1, dsp));
         terms.push(vec![Piece::sig("log_frac_lo", dsp, lw - dsp)]);
         let p = b.sum_start("log_frac_hi", terms, hw, t, &format!("x*ghat[{}:{dsp}] + x*ghat[{}:0]/2^{dsp}, exact", gb - 1, dsp - 1));
@@ -602,6 +613,10 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.wire("log_frac", lb, format!("{{{hv}, {lv}}}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
     } else {
         b.step("-log2 c' = x*g(x)");
+        if ghat.0 != "ghat" {
+            let e = b.bits(&ghat.0, ghat.1 + gb - 1, ghat.1);
+            b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+        }
         let (xv, gv) = (b.zext("x", lb), b.zext("ghat", lb));
         b.wire("log_frac", lb, format!("{xv} * {gv}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
         b.delay(mul_delay(f - 1, gb));
