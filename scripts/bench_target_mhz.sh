@@ -54,7 +54,8 @@ for family in ${FAMILIES:-ice40 ecp5}; do
                 r=$(measure "$work/fewer" "$family $config $((stages - k))")
                 [ "$k" = 1 ] && fewer=$r
                 if ! reaches "$r"; then break; fi
-                verdict="overshoots by $k cut$([ $k -gt 1 ] && echo s) ($((stages - k)) stages: $r)"
+                plural=""; [ "$k" -gt 1 ] && plural=s
+                verdict="overshoots by $k cut$plural ($((stages - k)) stages: $r)"
                 [ "$k" = "${OVERSHOOT_MAX:-8}" ] && verdict="overshoots by $k cuts or more"
                 k=$((k + 1))
             done
