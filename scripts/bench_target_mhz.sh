@@ -75,6 +75,8 @@ done
     echo "does not); \"misses F\" when the chosen depth does not reach it. The wide lean is F=18, N=11,"
     echo "B=10, FI=18, KF=20. The last column is how long \`generate --target-mhz\` took."
     echo
+    echo "$(grep -c '| exact |' "$rows" || true) rows exact, $(grep -c '| overshoots' "$rows" || true) overshooting, $(grep -c '| misses F |' "$rows" || true) missing F, of $(wc -l < "$rows")."
+    echo
     echo "| model | family | target MHz | stages | predicted MHz | measured MHz | one cut fewer | verdict | generate took |"
     echo "|---|---|---|---|---|---|---|---|---|"
     cat "$rows"
