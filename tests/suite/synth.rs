@@ -264,16 +264,15 @@ fn blinn_at_100_mhz_takes_the_up5k_dsps_few_flip_flops_and_its_netlist_is_right(
     assert_eq!(unclocked_dsps(&dir), Vec::<String>::new(), "every SB_MAC16 has a register");
 }
 
-/// Lean and fitted at 100 MHz on the iCE40 (blinn: the test above) give every SB_MAC16 a
-/// register, so that nextpnr-ice40 times the routes into and out of each block.
+/// Fitted at 100 MHz on the iCE40 gives every SB_MAC16 a register, so that nextpnr-ice40
+/// times the routes into and out of each block (blinn: the test above; lean: its deepest unit,
+/// placed in `lean_fully_pipelined_fits_an_up5k`, has no block with a constant clock).
 #[test]
-fn lean_and_fitted_at_100_mhz_give_every_sb_mac16_a_register() {
+fn fitted_at_100_mhz_gives_every_sb_mac16_a_register() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    for model in ["quadratic", "fitted"] {
-        let dir = generate(tmp.path(), model, &["--model", model, "--target", "ice40", "--target-mhz", "100"]);
-        assert_eq!(unclocked_dsps(&dir), Vec::<String>::new(), "{model}: every SB_MAC16 has a register");
-    }
+    let dir = generate(tmp.path(), "fitted", &["--model", "fitted", "--target", "ice40", "--target-mhz", "100"]);
+    assert_eq!(unclocked_dsps(&dir), Vec::<String>::new(), "every SB_MAC16 has a register");
 }
 
 /// Every synthesis ends in yosys `check -assert`: an undriven net (here the unit's `done`
