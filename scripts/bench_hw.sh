@@ -132,11 +132,16 @@ for key in sorted({(r['name'], r['widths'], r['stages']) for r in rows}, key=lam
     nd, d, g = (get(*key, m) for m in ('nodsp', 'dsp', 'generic'))
     if not (nd and d and g):
         continue  # an ECP5-shaped unit: in the ECP5 table only
-    f = lambda r: f"{r['fmax_mhz']:.1f} ({min(r['fmax_seeds']):.1f}–{max(r['fmax_seeds']):.1f})" if r and r.get('fmax_mhz') else '-'
+    # an SB_MAC16 without registers (synth's fmax_note says so): nextpnr-ice40 does not time a
+    # path through it, the figure is an upper bound
+    bound = lambda r: 'SB_MAC16 without registers' in r.get('fmax_note', '')
+    f = lambda r: f"{'≤ ' if bound(r) else ''}{r['fmax_mhz']:.1f} ({min(r['fmax_seeds']):.1f}–{max(r['fmax_seeds']):.1f})" if r and r.get('fmax_mhz') else '-'
     for r in (nd, d):
         if r and not r.get('fmax_mhz'):
             why = re.sub(r"place-and-route failed: ERROR: Unable to place cell '[^']*', no BELs remaining to implement cell type '([A-Z_]+)'", r"does not fit the UP5K (no \1 left)", r['fmax_note'])
             notes.append(f"{key[0]} {key[1]} stages={key[2]} {r['target']}{' dsp' if r['dsp'] else ''}: {why}")
+        elif r and bound(r):
+            notes.append(f"{key[0]} {key[1]} stages={key[2]} {r['target']} dsp: ≤, an upper bound: an SB_MAC16 without registers, through which nextpnr-ice40 times no path")
     print(f"| {key[0]} | {key[1]} | {key[2]} | {nd['luts']} | {f(nd)} | {d['luts']} | {d['dsp_blocks']} | {d['flip_flops']} | {f(d)} | {g['luts']} |")
 lean, paper = get('lean', 'default', 0, 'nodsp'), get('paper', 'default', 0, 'nodsp')
 print(f"\nLean vs paper, default widths, LUT-only iCE40: {lean['luts']} vs {paper['luts']} LUT4 ({100*(1-lean['luts']/paper['luts']):.1f}% fewer).")
