@@ -17,8 +17,9 @@
 //!
 //! Each datapath's line also carries its calibration units (`measured`): a unit whose slowest
 //! and mean stretches are both no longer than a measured one's is predicted and assured at
-//! least the median Fmax of the nearest such unit. The last cuts remove the long stretches at once (blinn's
-//! 30 → 38 stages on the UP5K: 63.8 → 101.1 MHz), a jump no straight line follows.
+//! least the median Fmax of the nearest such unit. The last cuts remove the long stretches at
+//! once (blinn's 30 → 37 stages on the UP5K: 63.8 → 102.6 MHz), a jump no straight line
+//! follows.
 //!
 //! The mean is there because the slowest stretch stops moving once it is one step no register
 //! can split (a DSP product and its add), while the measured clock keeps rising with depth:
