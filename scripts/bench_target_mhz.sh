@@ -11,6 +11,9 @@
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-3}
 rows="$work/rows.txt"; : > "$rows"
+reaches() { # "median (min-max)" F -> whether the median reaches F MHz
+    [ "$1" != "-" ] && python3 -c "import sys; sys.exit(0 if float('${1%% *}') >= $2 else 1)"
+}
 measured="$work/measured.txt"; : > "$measured"
 measure() { # dir key -> "median (min-max)" or "-" (the result beside the unit, not in it: a
     # unit directory holds only what generate wrote, or the next generate there refuses it);
@@ -45,15 +48,14 @@ for family in ${FAMILIES:-ice40 ecp5}; do
             # the depth picked against the shallowest that reaches F: one cut fewer, and while
             # that reaches F, fewer still (at most OVERSHOOT_MAX cuts, default 8)
             fewer="-"; verdict="misses F"
-            reaches() { [ "$1" != "-" ] && python3 -c "import sys; sys.exit(0 if float('${1%% *}') >= $f else 1)"; }
-            reaches "$chosen" && verdict="exact"
+            reaches "$chosen" "$f" && verdict="exact"
             k=1
             while [ "$stages" -ge "$k" ] && [ "$k" -le "${OVERSHOOT_MAX:-8}" ]; do
                 rm -rf "$work/fewer"
                 $bin generate --out "$work/fewer" --target "$family" --stages $((stages - k)) "${margs[@]}" >/dev/null 2>&1
                 r=$(measure "$work/fewer" "$family $config $((stages - k))")
                 [ "$k" = 1 ] && fewer=$r
-                if ! reaches "$r"; then break; fi
+                if ! reaches "$r" "$f"; then break; fi
                 plural=""; [ "$k" -gt 1 ] && plural=s
                 verdict="overshoots by $k cut$plural ($((stages - k)) stages: $r)"
                 [ "$k" = "${OVERSHOOT_MAX:-8}" ] && verdict="overshoots by $k cuts or more"

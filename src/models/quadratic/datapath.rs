@@ -370,9 +370,10 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.product("kn_hi", &nn, &[Piece::Const { value: k >> dsp, width: kb - dsp }], w.kn_bits - dsp, &format!("n*k_q[{}:{dsp}], exact", kb - 1));
     }
 
-    // a cut-off ROM of more than 1024 words is two banks of DP16KDs, picked after their output
-    // registers: a step that only registers the picked word before the comparator's chain
-    if cfg.n_bits() > 10 {
+    // a cut-off ROM of more than one DP16KD's words (one per n) is two banks of them, picked
+    // after their output registers: a step that only registers the picked word before the
+    // comparator's chain
+    if 1usize << cfg.n_bits() > DP16KD_WORDS {
         b.ecp5_register_step("cut-off ROM read: the bank's word registered");
     }
     b.step("comparator (12)");
