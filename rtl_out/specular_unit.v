@@ -21,7 +21,7 @@
 
 module specular_unit #(
     // 1024 x 16: cut-off ROM cos_sp(n), UQ1.15, address = n
-    parameter ROM_FILE = "cos_sp_rom.hex"
+    parameter ROM_FILE = "specular_unit_cos_sp_rom.hex"
 ) (
     input  wire        in_valid,
     input  wire [15:0] cos_g,        // UQ1.15: cos(gamma) = N.H; codes above 1.0 read as 1.0

@@ -14,7 +14,7 @@ use askama::Template;
 use serde::Serialize;
 use std::path::Path;
 
-pub(crate) use crate::names::{ECP5_BRAM_MODEL_FILE, ECP5_SIM_MODEL_FILE, SIM_DIR, VERSION};
+pub(crate) use crate::names::{ECP5_BRAM_MODEL_SUFFIX, ECP5_SIM_MODEL_SUFFIX, SIM_DIR, VERSION};
 
 /// A signal registered at one cut only: `reg x_cK; x_cK <= source`.
 pub(crate) struct CutSignal {
@@ -385,7 +385,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                 TableView {
                     name: t.name.clone(),
                     param: t.param.clone(),
-                    file: t.file.clone(),
+                    file: t.file(cfg.top()),
                     what: t.what.clone(),
                     width: t.width,
                     depth: t.words.len(),
@@ -627,7 +627,13 @@ struct CoreTemplate<'a> {
     sim_models: Vec<String>,
     /// synthesize for ECP5 (trellis flow) rather than iCE40
     ecp5: bool,
+    /// the FuseSoC flags under which a dependent core gets the simulation models
+    sim_flags: Vec<&'static str>,
 }
+
+/// The FuseSoC flags under which a core that depends on a unit gets its simulation models: a
+/// target named `sim`/`lint` (the flow API sets `target_<name>`), or a simulator as the tool.
+const SIM_FLAGS: [&str; 7] = ["target_sim", "target_lint", "tool_icarus", "tool_verilator", "tool_modelsim", "tool_questa", "tool_xsim"];
 
 /// The clock constraint `<top>.sdc` (every unit) or `<top>.lpf` (ECP5).
 #[derive(Template)]
@@ -803,12 +809,12 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     if dp.has_dsp_blocks() {
         let text = Mult18Template { top, version: VERSION }.render().expect("mult18x18 template renders") + "\n";
         rtl_files.push((format!("{top}_mult18x18.v"), text));
-        sim_models.push((format!("{SIM_DIR}/{ECP5_SIM_MODEL_FILE}"), ecp5_sim_model()));
+        sim_models.push((format!("{SIM_DIR}/{top}{ECP5_SIM_MODEL_SUFFIX}"), ecp5_sim_model()));
     }
     if dp.has_block_rams() {
         let text = Rom1k18Template { top, version: VERSION }.render().expect("rom1k18 template renders") + "\n";
         rtl_files.push((format!("{top}_rom1k18.v"), text));
-        sim_models.push((format!("{SIM_DIR}/{ECP5_BRAM_MODEL_FILE}"), ecp5_bram_model()));
+        sim_models.push((format!("{SIM_DIR}/{top}{ECP5_BRAM_MODEL_SUFFIX}"), ecp5_bram_model()));
     }
     let constraints = constraint_files(cfg);
     let testbench = crate::vectors::testbench_files(&plan.model);
@@ -823,17 +829,18 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         name: core_name(cfg),
         params: cfg.describe(),
         description: format!("{description}, {}-cycle latency", cfg.latency()),
-        table_files: tables.iter().map(|t| t.file.clone()).collect(),
+        table_files: tables.iter().map(|t| t.file(top)).collect(),
         rtl_files: rtl_files.iter().map(|(n, _)| n.clone()).collect(),
         sim_models: sim_models.iter().map(|(n, _)| n.clone()).collect(),
         ecp5: cfg.target() == crate::config::Target::Ecp5,
+        sim_flags: if sim_models.is_empty() { Vec::new() } else { SIM_FLAGS.to_vec() },
     }
     .render()
     .expect("core template renders")
         + "\n";
     files.extend(rtl_files.into_iter().chain(sim_models).map(|(n, t)| (n, t.into_bytes())));
     for t in &tables {
-        files.push((t.file.clone(), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
+        files.push((t.file(top), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
     }
     files.extend(constraints.into_iter().chain(testbench).map(|(n, t)| (n, t.into_bytes())));
     files.push((format!("{top}.core"), core.into_bytes()));
@@ -919,7 +926,8 @@ fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Output
                 if let (Some(want), false) = (want, force) {
                     let path = dir.join(n);
                     if std::fs::metadata(&path).is_ok_and(|m| m.is_file()) {
-                        let bytes = std::fs::read(&path)?;
+                        let bytes = crate::small_file::read_bytes(&path, crate::small_file::UNIT_FILE_MAX)
+                            .map_err(|e| OutputError::Occupied(dir.to_path_buf(), format!("{n} {e}")))?;
                         if sha256_hex(&bytes) != want {
                             return Err(occupied(format!(
                                 "{n} was changed since specgen wrote it (its SHA-256 is not the manifest's); move it away, or pass --force to replace it"
@@ -976,7 +984,6 @@ mod tests {
     fn a_wide_block_read_is_dp16kds_side_by_side() {
         let t = crate::table::Table {
             name: "t_rom".into(),
-            file: "t_rom.hex".into(),
             param: "T_ROM_FILE".into(),
             width: 40,
             words: vec![(3u128 << 36) | (1 << 18) | 5, 7],

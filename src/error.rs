@@ -71,8 +71,9 @@ pub enum OutputError {
     /// It cannot be an output at all (the current directory, a parent we cannot write, a
     /// dangling link): the reason.
     Refused(PathBuf, String),
-    /// Another specgen is writing into the same parent directory right now.
-    Busy(PathBuf),
+    /// Another specgen has been writing the same output for longer than we wait (its process
+    /// id when known).
+    Busy(PathBuf, Option<u32>),
     Io(std::io::Error),
 }
 
@@ -83,8 +84,9 @@ impl fmt::Display for OutputError {
                 write!(f, "refusing to write into {}: {why}; only an empty directory or a previous specgen output is replaced", dir.display())
             }
             OutputError::Refused(dir, why) => write!(f, "refusing to write {}: {why}", dir.display()),
-            OutputError::Busy(dir) => {
-                write!(f, "another specgen is writing into {} at this moment; nothing written (try again when it has finished)", dir.display())
+            OutputError::Busy(dir, holder) => {
+                let who = holder.map_or("another specgen".to_string(), |pid| format!("another specgen (process {pid})"));
+                write!(f, "{who} has been writing {} for 10 s and still holds its lock; nothing written (try again when it has finished)", dir.display())
             }
             OutputError::Io(e) => write!(f, "{e}"),
         }

@@ -4,14 +4,18 @@
 /// The generator's version, in every file header.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
-/// The file name of the DP16KD simulation model: simulators read it, synthesis must not.
-pub const ECP5_BRAM_MODEL_FILE: &str = "ecp5_dp16kd_sim.v";
+/// What the DP16KD simulation model's file name adds to the top's (`<top>_ecp5_dp16kd_sim.v`):
+/// simulators read it, synthesis must not.
+pub const ECP5_BRAM_MODEL_SUFFIX: &str = "_ecp5_dp16kd_sim.v";
 
-/// The file name of the MULT18X18D simulation model: simulators read it, synthesis must not.
-pub const ECP5_SIM_MODEL_FILE: &str = "ecp5_mult18x18d_sim.v";
+/// What the MULT18X18D simulation model's file name adds to the top's: simulators read it,
+/// synthesis must not.
+pub const ECP5_SIM_MODEL_SUFFIX: &str = "_ecp5_mult18x18d_sim.v";
 
-/// The simulation-only files specgen writes: simulators read them, synthesis never.
-pub const SIM_MODEL_FILES: [&str; 2] = [ECP5_SIM_MODEL_FILE, ECP5_BRAM_MODEL_FILE];
+/// Whether a file name is one of the simulation-only models specgen writes (any unit's).
+pub fn is_sim_model_file(name: &str) -> bool {
+    [ECP5_SIM_MODEL_SUFFIX, ECP5_BRAM_MODEL_SUFFIX].iter().any(|s| name.len() > s.len() && name.ends_with(s))
+}
 
 /// The subdirectory of an output that holds the simulation models, so a flow that reads every
 /// `*.v` of the output directory (`read_verilog *.v; synth_ecp5`) reads only RTL.

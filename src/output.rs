@@ -78,6 +78,9 @@ pub fn tag(target: &Path) -> String {
     crate::bits::sha256_hex(&name, 6)
 }
 
+/// How long a writer waits for another writer of the same output before it gives up.
+const LOCK_WAIT: std::time::Duration = std::time::Duration::from_secs(10);
+
 /// Holds the exclusive lock of one output while it is swapped in, so two writers of the same
 /// output never race; the staging directories an interrupted run left are tidied under it.
 /// The lock file is removed on release (while still locked); a writer that locked a file
@@ -92,12 +95,42 @@ impl OutputLock {
         use std::os::unix::fs::MetadataExt;
         let tag = tag(target);
         let path = parent.join(format!(".specgen-lock-{tag}"));
+        use std::os::unix::fs::OpenOptionsExt;
         let mut tries = 0;
+        let start = std::time::Instant::now();
         let f = loop {
-            let f = std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&path).map_err(|e| unwritable(parent, target, e))?;
+            // never through a link, never blocking on a FIFO: a lock path planted by someone
+            // else is refused, not followed
+            let f = std::fs::OpenOptions::new()
+                .create(true)
+                .truncate(false)
+                .read(true)
+                .write(true)
+                .mode(0o600)
+                .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK | libc::O_CLOEXEC)
+                .open(&path)
+                .map_err(|e| match e.raw_os_error() {
+                    Some(libc::ELOOP) => {
+                        OutputError::Refused(target.to_path_buf(), format!("its lock {} is a symbolic link, not specgen's: remove it", path.display()))
+                    }
+                    Some(libc::ENXIO) => OutputError::Refused(target.to_path_buf(), format!("its lock {} is a FIFO, not specgen's: remove it", path.display())),
+                    _ => unwritable(parent, target, e),
+                })?;
+            if !f.metadata().is_ok_and(|m| m.is_file()) {
+                return Err(OutputError::Refused(target.to_path_buf(), format!("its lock {} is not a regular file, not specgen's: remove it", path.display())));
+            }
             match f.try_lock() {
                 Ok(()) => {}
-                Err(std::fs::TryLockError::WouldBlock) => return Err(OutputError::Busy(target.to_path_buf())),
+                // another writer: wait a bounded time, then name it
+                Err(std::fs::TryLockError::WouldBlock) if start.elapsed() < LOCK_WAIT => {
+                    std::thread::sleep(std::time::Duration::from_millis(50));
+                    continue;
+                }
+                Err(std::fs::TryLockError::WouldBlock) => {
+                    let mut holder = String::new();
+                    let _ = std::io::Read::read_to_string(&mut std::io::Read::take(&f, 32), &mut holder);
+                    return Err(OutputError::Busy(target.to_path_buf(), holder.trim().parse().ok()));
+                }
                 Err(std::fs::TryLockError::Error(e)) => return Err(e.into()),
             }
             let same = match (f.metadata(), std::fs::metadata(&path)) {
@@ -109,9 +142,12 @@ impl OutputLock {
                 break f;
             }
             if tries > 100 {
-                return Err(OutputError::Busy(target.to_path_buf()));
+                return Err(OutputError::Busy(target.to_path_buf(), None));
             }
         };
+        // the holder's process id, for a writer that waits in vain
+        let _ = f.set_len(0);
+        let _ = std::io::Write::write_all(&mut &f, format!("{}\n", std::process::id()).as_bytes());
         // under the lock no other specgen is mid-swap on this output: what is left is from a
         // killed run. A saved old copy goes back when the name is missing, else it is removed.
         for entry in std::fs::read_dir(parent)?.flatten() {
@@ -275,6 +311,66 @@ fn through_links(path: &Path) -> std::io::Result<PathBuf> {
     Err(std::io::Error::from_raw_os_error(libc::ELOOP))
 }
 
+/// A directory only the caller can write (the simulator cache): created `0700` when missing;
+/// an existing one must be a real directory (not a symbolic link), owned by the caller's user,
+/// and writable by no one else. Checked on every use, so an entry planted by another user
+/// is never run. `Err`: the reason, in words.
+pub fn private_dir(dir: &Path) -> Result<(), String> {
+    use std::os::unix::fs::{DirBuilderExt, MetadataExt};
+    if std::fs::symlink_metadata(dir).is_err() {
+        if let Some(parent) = dir.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(parent).map_err(|e| format!("cannot create {}: {}", parent.display(), plain(e)))?;
+        }
+        match std::fs::DirBuilder::new().mode(0o700).create(dir) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+            Err(e) => return Err(format!("cannot create {}: {}", dir.display(), plain(e))),
+        }
+    }
+    let m = std::fs::symlink_metadata(dir).map_err(|e| format!("cannot read {}: {}", dir.display(), plain(e)))?;
+    // SAFETY: geteuid has no preconditions and cannot fail
+    let me = unsafe { libc::geteuid() };
+    if m.file_type().is_symlink() {
+        Err(format!("{} is a symbolic link; specgen runs programs from its cache only in a directory of your own", dir.display()))
+    } else if !m.is_dir() {
+        Err(format!("{} is not a directory", dir.display()))
+    } else if m.uid() != me {
+        Err(format!(
+            "{} belongs to user {}, not to you (user {me}); specgen runs programs from its cache only in a directory of your own",
+            dir.display(),
+            m.uid()
+        ))
+    } else if m.mode() & 0o022 != 0 {
+        Err(format!(
+            "{} is writable by others (mode {:04o}); specgen runs programs from its cache only in a directory no one else can write (chmod go-w)",
+            dir.display(),
+            m.mode() & 0o7777
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+/// Whether process `pid` is gone (signal 0 finds no such process).
+pub(crate) fn process_gone(pid: i32) -> bool {
+    // SAFETY: signal 0 only asks whether the process exists
+    pid > 0 && unsafe { libc::kill(pid, 0) } != 0 && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH)
+}
+
+/// Removes the directories `<prefix><pid>-…` in `dir` whose process no longer runs (what a
+/// killed run left).
+pub(crate) fn remove_orphan_dirs(dir: &Path, prefix: &str) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
+        let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else { continue };
+        if process_gone(pid) && entry.file_type().is_ok_and(|t| t.is_dir()) {
+            let _ = std::fs::remove_dir_all(entry.path());
+        }
+    }
+}
+
 /// Removes the temporary files `<prefix><pid>-…` in `dir` whose process no longer runs.
 fn remove_orphans(dir: &Path, prefix: &str) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
@@ -282,9 +378,7 @@ fn remove_orphans(dir: &Path, prefix: &str) {
         let name = entry.file_name();
         let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
         let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else { continue };
-        // SAFETY: signal 0 only asks whether the process exists
-        let gone = pid > 0 && unsafe { libc::kill(pid, 0) } != 0 && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH);
-        if gone && entry.file_type().is_ok_and(|t| t.is_file()) {
+        if process_gone(pid) && entry.file_type().is_ok_and(|t| t.is_file()) {
             let _ = std::fs::remove_file(entry.path());
         }
     }

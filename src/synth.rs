@@ -193,9 +193,10 @@ fn stage_sources(design: &Design, work: &Path) -> Result<String, Failure> {
         names.push(name);
     }
     for t in &design.plan.datapath.tables {
-        let from = design.dir.join(&t.file);
-        if from.exists() && !work.join(&t.file).exists() {
-            link(&from, &t.file)?;
+        let file = t.file(design.cfg.top());
+        let from = design.dir.join(&file);
+        if from.exists() && !work.join(&file).exists() {
+            link(&from, &file)?;
         }
     }
     Ok(format!("read_verilog {}", names.join(" ")))
@@ -557,12 +558,12 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
             // its DP16KD is an empty black box: ours takes its place
             if let Some(start) = text.find("module DP16KD(") {
                 let end = text[start..].find("endmodule").map_or(text.len(), |e| start + e + "endmodule".len());
-                text.replace_range(start..end, "// DP16KD: see ecp5_dp16kd_sim.v (specgen's model; this one is an empty black box)");
+                text.replace_range(start..end, "// DP16KD: see <top>_ecp5_dp16kd_sim.v (specgen's model; this one is an empty black box)");
             }
             vec![
                 ("ecp5_cells_sim.v".into(), text),
-                (emit::ECP5_SIM_MODEL_FILE.into(), emit::ecp5_sim_model()),
-                (emit::ECP5_BRAM_MODEL_FILE.into(), emit::ecp5_bram_model()),
+                (format!("{top}{}", emit::ECP5_SIM_MODEL_SUFFIX), emit::ecp5_sim_model()),
+                (format!("{top}{}", emit::ECP5_BRAM_MODEL_SUFFIX), emit::ecp5_bram_model()),
             ]
         }
     };

@@ -7,10 +7,8 @@ use crate::bits::bit_length;
 /// A constant table of the unit (a ROM): written as a `$readmemh` file or inlined as a `case`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Table {
-    /// The memory's name in the Verilog.
+    /// The memory's name in the Verilog, and the second half of its file's name.
     pub name: String,
-    /// Its `$readmemh` file.
-    pub file: String,
     /// The Verilog parameter that names the file.
     pub param: String,
     pub width: u32,
@@ -22,6 +20,13 @@ pub struct Table {
 }
 
 impl Table {
+    /// Its `$readmemh` file, `<top>_<name>.hex`: the unit's top in front, so two units in one
+    /// design (one simulator run, one FuseSoC `copyto`, one yosys working directory) never
+    /// read each other's tables.
+    pub fn file(&self, top: &str) -> String {
+        format!("{top}_{}.hex", self.name)
+    }
+
     pub(crate) fn address_bits(&self) -> u32 {
         bit_length(self.words.len() as u128 - 1).max(1)
     }

@@ -10,6 +10,9 @@
 // rather than computing something else. Ports as in yosys's ecp5/cells_sim.v.
 {%- raw %}
 `timescale 1ns / 1ps
+// Guarded: every ECP5 unit brings this model, and a design with several units reads it once.
+`ifndef SPECGEN_ECP5_DP16KD_SIM
+`define SPECGEN_ECP5_DP16KD_SIM
 // A cell model: its ports are the primitive's, most unused here, its file is not its name, and
 // it compares string parameters of any length.
 /* verilator lint_off UNUSEDSIGNAL */
@@ -160,6 +163,7 @@ module DP16KD(
     end
     assign {DOB17, DOB16, DOB15, DOB14, DOB13, DOB12, DOB11, DOB10, DOB9, DOB8, DOB7, DOB6, DOB5, DOB4, DOB3, DOB2, DOB1, DOB0} = REGMODE_B == "OUTREG" ? out_b : rd_b;
 endmodule
+`endif
 /* verilator lint_on WIDTH */
 /* verilator lint_on DECLFILENAME */
 /* verilator lint_on UNUSEDPARAM */

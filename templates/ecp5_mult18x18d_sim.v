@@ -10,6 +10,9 @@
 // simulation with an error rather than computing something else. Ports as in cells_bb.v.
 {%- raw %}
 `timescale 1ns / 1ps
+// Guarded: every ECP5 unit brings this model, and a design with several units reads it once.
+`ifndef SPECGEN_ECP5_MULT18X18D_SIM
+`define SPECGEN_ECP5_MULT18X18D_SIM
 // A cell model: its ports are the primitive's, most unused here, its file is not its name, and
 // it compares string parameters of any length.
 /* verilator lint_off UNUSEDSIGNAL */
@@ -114,6 +117,7 @@ module MULT18X18D(
     assign {SROA17, SROA16, SROA15, SROA14, SROA13, SROA12, SROA11, SROA10, SROA9, SROA8, SROA7, SROA6, SROA5, SROA4, SROA3, SROA2, SROA1, SROA0} = a_in;
     assign {SROB17, SROB16, SROB15, SROB14, SROB13, SROB12, SROB11, SROB10, SROB9, SROB8, SROB7, SROB6, SROB5, SROB4, SROB3, SROB2, SROB1, SROB0} = b_in;
 endmodule
+`endif
 /* verilator lint_on WIDTH */
 /* verilator lint_on DECLFILENAME */
 /* verilator lint_on UNUSEDPARAM */

@@ -10,7 +10,7 @@
 // output register for the one after it, so the unit's latency is that of its --stages.
 // No reset and no clock enable, like the unit's data registers (the valid bits say what
 // they hold). yosys synth_ecp5 and nextpnr-ecp5 keep the registers inside the DSP block;
-// simulate with the family's MULT18X18D model (Lattice's, or sim/ecp5_mult18x18d_sim.v of
+// simulate with the family's MULT18X18D model (Lattice's, or sim/{{ top }}_ecp5_mult18x18d_sim.v of
 // this output).
 
 module {{ top }}_mult18x18 (

@@ -9,7 +9,7 @@
 // pipeline register before the read's step, the output register for the one after it, so
 // the unit's latency is that of its --stages. The contents are the INITVAL_00..3F parameters
 // (word k in INITVAL_(k/16) bits [(k%16)*20 +: 18], as yosys lays them out); the unit sets
-// them. Simulate with the family's DP16KD model (Lattice's, or sim/ecp5_dp16kd_sim.v of this
+// them. Simulate with the family's DP16KD model (Lattice's, or sim/{{ top }}_ecp5_dp16kd_sim.v of this
 // output).
 
 module {{ top }}_rom1k18 #(

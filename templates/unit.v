@@ -23,12 +23,12 @@
 //             wait from cut A to cut B), shifted a word each clock; the words read are named x_cK.
 {%- if dsp_module %}
 // Products:   on ECP5 MULT18X18D blocks with their own registers ({{ top }}_mult18x18.v); simulate
-//             with a MULT18X18D model (Lattice's, or sim/ecp5_mult18x18d_sim.v, written with it).
+//             with a MULT18X18D model (Lattice's, or sim/{{ top }}_ecp5_mult18x18d_sim.v, written with it).
 {%- endif %}
 {%- if bram_module %}
 // Tables:     on ECP5 DP16KD block RAMs with their own registers ({{ top }}_rom1k18.v), contents
 //             as INITVAL parameters below; simulate with a DP16KD model (Lattice's, or
-//             sim/ecp5_dp16kd_sim.v, written with it).
+//             sim/{{ top }}_ecp5_dp16kd_sim.v, written with it).
 {%- endif %}
 {%- for t in file_tables %}
 {%- if loop.first %}

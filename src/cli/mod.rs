@@ -29,7 +29,7 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Write <top>.v, its table files (cos_sp_rom.hex, ...), <top>.json and <top>.core into DIR, atomically.
+    /// Write <top>.v, its table files (<top>_cos_sp_rom.hex, ...), <top>.json and <top>.core into DIR, atomically.
     Generate {
         /// Output directory (created, or replaced if it holds only a previous specgen output).
         #[arg(long, value_name = "DIR")]
@@ -210,7 +210,7 @@ pub struct RtlArgs {
     pub rom_style: Option<RomStyleFlag>,
     /// The FPGA family the datapath is shaped for: ice40 (16x16 DSPs with post-adders, short
     /// carry chains), ecp5 (MULT18X18D instances with their own registers, long carry chains;
-    /// simulate with sim/ecp5_mult18x18d_sim.v, written with it) or generic (whole-width products
+    /// simulate with sim/<top>_ecp5_mult18x18d_sim.v, written with it) or generic (whole-width products
     /// and adds, left to the synthesis tool) [default ice40]
     #[arg(long, value_enum, help_heading = "RTL")]
     pub target: Option<TargetFlag>,
@@ -288,6 +288,14 @@ macro_rules! out {
 macro_rules! outln {
     ($($t:tt)*) => { $crate::cli::write_stdout(format_args!("{}\n", format_args!($($t)*))) };
 }
+/// `eprintln!` that never panics: a message to a full or closed standard error is lost, the
+/// exit code is not.
+macro_rules! errln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
+}
 /// The CLI's names for the library's error constructors: a usage error is the user's input
 /// not being what it must be (exit 2), a failed check is a mismatch (exit 1).
 pub use specgen::error::{input as usage, mismatch as failed, Error as Failure};
@@ -298,7 +306,7 @@ pub(crate) use {out, outln};
 fn exit_code(e: &Failure) -> i32 {
     match e {
         Failure::Config(_) | Failure::Input(_) | Failure::Output(OutputError::Occupied(..) | OutputError::Refused(..)) => 2,
-        Failure::Output(OutputError::Busy(_) | OutputError::Io(_)) | Failure::Tool { .. } | Failure::Mismatch(_) | Failure::Io { .. } => 1,
+        Failure::Output(OutputError::Busy(..) | OutputError::Io(_)) | Failure::Tool { .. } | Failure::Mismatch(_) | Failure::Io { .. } => 1,
     }
 }
 
@@ -364,14 +372,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 // the delay model, no place-and-route: `synth --seeds K` measures the result
                 let (stages, predicted) = specgen::timing::pick_stages(&plan, mhz)?;
                 plan = plan.with_stages(stages)?;
-                eprintln!("target-mhz: chose --stages {stages}: {predicted:.1} MHz predicted on the {}", specgen::timing::part(plan.cfg.target()));
+                errln!("target-mhz: chose --stages {stages}: {predicted:.1} MHz predicted on the {}", specgen::timing::part(plan.cfg.target()));
             }
             let files = emit::generate_files(&plan);
             write_output(&out, &files, force)?;
             for (name, _) in &files {
                 outln!("{}", out.join(name).display())?;
             }
-            eprintln!(
+            errln!(
                 "FuseSoC core {} (fusesoc --cores-root {} run --target lint|sim|sim_verilator|synth <this name>)",
                 emit::core_name(&plan.cfg),
                 out.display()
@@ -518,7 +526,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     if !args.model_only {
         for (design, model) in designs.iter().zip(&models) {
             let pixels = render_through_rtl(design, model, &args.n, args.size)?;
-            eprintln!("render: {pixels} pixels through the RTL in {} (Verilator), all bit-identical to the golden model", design.dir.display());
+            errln!("render: {pixels} pixels through the RTL in {} (Verilator), all bit-identical to the golden model", design.dir.display());
         }
     }
     let refs: Vec<&specgen::models::Model> = models.iter().collect();
@@ -605,7 +613,7 @@ pub fn main() -> i32 {
     match run(cli) {
         Ok(()) => 0,
         Err(e) => {
-            eprintln!("specgen: error: {}", message(&e));
+            errln!("specgen: error: {}", message(&e));
             exit_code(&e)
         }
     }

@@ -15,17 +15,30 @@ use std::time::{Duration, Instant};
 const VERILATOR_HARNESS: &str = include_str!("../../tb/verilator_harness.cpp");
 const ICARUS_BENCH: &str = include_str!("../../tb/icarus_bench.v");
 
-fn cache_root() -> PathBuf {
-    if let Some(dir) = std::env::var_os("SPECGEN_CACHE_DIR") {
-        return PathBuf::from(dir);
-    }
-    if let Some(dir) = std::env::var_os("XDG_CACHE_HOME") {
-        return PathBuf::from(dir).join("specgen");
-    }
-    if let Some(home) = std::env::var_os("HOME") {
-        return PathBuf::from(home).join(".cache").join("specgen");
-    }
-    std::env::temp_dir().join("specgen-cache")
+/// The simulator cache: `$SPECGEN_CACHE_DIR`, `$XDG_CACHE_HOME/specgen`, `$HOME/.cache/specgen`,
+/// else `<tmp>/specgen-cache-<uid>`. Its programs are run, so it is the caller's own: created
+/// `0700`, and checked on every use (`output::private_dir`: not a link, the caller's, writable
+/// by no one else); a shared or planted directory is refused, never used.
+fn cache_root() -> Result<PathBuf, Failure> {
+    let root = if let Some(dir) = std::env::var_os("SPECGEN_CACHE_DIR").filter(|d| !d.is_empty()) {
+        PathBuf::from(dir)
+    } else if let Some(dir) = std::env::var_os("XDG_CACHE_HOME").filter(|d| Path::new(d).is_absolute()) {
+        PathBuf::from(dir).join("specgen")
+    } else if let Some(home) = std::env::var_os("HOME").filter(|d| Path::new(d).is_absolute()) {
+        PathBuf::from(home).join(".cache").join("specgen")
+    } else {
+        // SAFETY: geteuid has no preconditions and cannot fail
+        std::env::temp_dir().join(format!("specgen-cache-{}", unsafe { libc::geteuid() }))
+    };
+    crate::output::private_dir(&root).map_err(|why| error::tool("simulator", format!("the simulator cache cannot be used: {why}")))?;
+    Ok(root)
+}
+
+/// Whether a cache entry is a real directory of the caller's (not a link planted there).
+fn own_entry(dir: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    // SAFETY: geteuid has no preconditions and cannot fail
+    std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir() && m.uid() == unsafe { libc::geteuid() })
 }
 
 fn tool_version(tool: &str, package: &str) -> Result<String, Failure> {
@@ -59,12 +72,17 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         h.update(part.as_bytes());
         h.update([0u8]);
     }
+    // the build reads copies named src<i>.v (so no path, however named, reaches a compiler
+    // or a compiled program): the key is every input of the build, whole
+    let mut texts = Vec::new();
     for src in &design.sim_sources() {
-        h.update(src.file_name().unwrap().to_string_lossy().as_bytes());
-        h.update(std::fs::read(src).map_err(|e| input(format!("cannot read {}: {e}", src.display())))?);
+        let text = crate::small_file::read_bytes(src, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", src.display())))?;
+        h.update((text.len() as u64).to_le_bytes());
+        h.update(&text);
+        texts.push((src.clone(), text));
     }
     let key: String = h.finalize().iter().take(12).map(|b| format!("{b:02x}")).collect();
-    let root = cache_root();
+    let root = cache_root()?;
     let dir = root.join(format!("{}-{top}-{key}", tool));
     // an entry is used only when its program is the one built: `ok` holds its SHA-256, so a
     // damaged entry (truncated, deleted, overwritten) is removed and built again
@@ -75,20 +93,31 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         })
     };
     let digest = |p: &Path| std::fs::read(p).ok().map(|b| crate::bits::sha256_hex(&b, 32));
-    if let Ok(stamp) = std::fs::read_to_string(dir.join("ok")) {
-        if digest(&program(&dir)).is_some_and(|d| d == stamp.trim()) {
-            return Ok(Built { simulator, dir, fresh: false });
+    if own_entry(&dir) {
+        if let Ok(stamp) = crate::small_file::read(&dir.join("ok"), 256) {
+            if digest(&program(&dir)).is_some_and(|d| d == stamp.trim()) {
+                return Ok(Built { simulator, dir, fresh: false });
+            }
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
-    std::fs::create_dir_all(&root).map_err(|e| error::tool("simulator", format!("cannot create cache {}: {e}", root.display())))?;
+    if std::fs::symlink_metadata(&dir).is_ok() {
+        // damaged, partial or not ours: never used, removed (a link itself, not where it points)
+        let _ = std::fs::remove_dir_all(&dir).or_else(|_| std::fs::remove_file(&dir));
+    }
+    // what killed runs left: build directories whose process is gone
+    crate::output::remove_orphan_dirs(&root, ".build-");
     let work = tempfile::Builder::new()
-        .prefix(".build-")
+        .prefix(&format!(".build-{}-", std::process::id()))
         .tempdir_in(&root)
         .map_err(|e| error::tool("simulator", format!("cannot create a build directory in {}: {e}", root.display())))?;
-    let mut sources: Vec<PathBuf> = design.sim_sources().iter().map(|p| std::fs::canonicalize(p).unwrap_or(p.clone())).collect();
+    let mut sources = Vec::new();
+    for (i, (_, text)) in texts.iter().enumerate() {
+        let name = format!("src{i}.v");
+        std::fs::write(work.path().join(&name), text).map_err(|e| error::tool("simulator", e.to_string()))?;
+        sources.push(PathBuf::from(name));
+    }
     std::fs::write(work.path().join("cosim_top.v"), &adapter).map_err(|e| error::tool("simulator", e.to_string()))?;
-    sources.push(work.path().join("cosim_top.v"));
+    sources.push(PathBuf::from("cosim_top.v"));
     let mut cmd;
     match simulator {
         Simulator::Verilator => {
@@ -124,7 +153,11 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     }
     let out = cmd.output().map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
     if !out.status.success() {
-        let log = String::from_utf8_lossy(&out.stderr);
+        // the copies' names back to the user's files
+        let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
+        for (i, (src, _)) in texts.iter().enumerate().rev() {
+            log = log.replace(&format!("src{i}.v"), &src.display().to_string());
+        }
         let tail: Vec<&str> = log.lines().rev().take(25).collect();
         return Err(input(format!("{tool} could not build the RTL in {}:\n{}", design.dir.display(), tail.into_iter().rev().collect::<Vec<_>>().join("\n"))));
     }
@@ -405,11 +438,17 @@ fn progress_bar(progress: &AtomicU64, total: u64, done: &std::sync::atomic::Atom
         let p = progress.load(Ordering::Relaxed).min(total);
         let width = 40;
         let filled = (p * width / total) as usize;
-        eprint!("\r[{}{}] {:5.1}% {p}/{total} cycles", "#".repeat(filled), ".".repeat(width as usize - filled), p as f64 * 100.0 / total as f64);
+        let _ = write!(
+            std::io::stderr(),
+            "\r[{}{}] {:5.1}% {p}/{total} cycles",
+            "#".repeat(filled),
+            ".".repeat(width as usize - filled),
+            p as f64 * 100.0 / total as f64
+        );
         shown = true;
     }
     if shown {
-        eprintln!();
+        let _ = writeln!(std::io::stderr());
     }
 }
 

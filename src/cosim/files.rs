@@ -35,19 +35,17 @@ pub fn check_tables(design: &Design) -> Result<(), Failure> {
     if design.cfg.params.rom_style != crate::config::RomStyle::File {
         return Ok(());
     }
-    let sources: Vec<String> = design.sources.iter().map(|p| std::fs::read_to_string(p).unwrap_or_default()).collect();
+    let sources: Vec<String> = design.sources.iter().map(|p| crate::small_file::read(p, crate::small_file::UNIT_FILE_MAX).unwrap_or_default()).collect();
     for t in &design.plan.datapath.tables {
+        let file = t.file(design.cfg.top());
         // a synthesized netlist holds its tables inline: only files the sources name are read
-        if !sources.iter().any(|s| s.contains(&format!("\"{}\"", t.file))) {
+        if !sources.iter().any(|s| s.contains(&format!("\"{file}\""))) {
             continue;
         }
-        let path = design.dir.join(&t.file);
-        let meta = std::fs::metadata(&path)
+        let path = design.dir.join(&file);
+        std::fs::metadata(&path)
             .map_err(|e| mismatch(format!("table file {} is missing ({e}); `specgen generate` writes it beside the RTL", path.display())))?;
-        if !meta.is_file() || meta.len() > 64 << 20 {
-            return Err(mismatch(format!("table file {} is not a regular file of at most 64 MiB", path.display())));
-        }
-        let text = std::fs::read_to_string(&path).map_err(|e| mismatch(format!("cannot read table file {}: {e}", path.display())))?;
+        let text = crate::small_file::read(&path, crate::small_file::UNIT_FILE_MAX).map_err(|e| mismatch(format!("table file {} {e}", path.display())))?;
         let words = parse_readmemh(&text, t.words.len()).map_err(|e| mismatch(format!("table file {}: {e}", path.display())))?;
         for (i, (got, want)) in words.iter().zip(&t.words).enumerate() {
             match got {
@@ -140,7 +138,7 @@ pub fn check_ports(design: &Design) -> Result<(), Failure> {
     let top = design.cfg.top();
     let mut found = None;
     for src in &design.sources {
-        let text = std::fs::read_to_string(src).map_err(|e| input(format!("cannot read {}: {e}", src.display())))?;
+        let text = crate::small_file::read(src, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", src.display())))?;
         if let Some(p) = source_ports(&text, top) {
             found = Some((src.clone(), p));
             break;

@@ -105,7 +105,7 @@ impl Design {
         for f in v.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
             let (Some(name), Some(want)) = (f.get("name").and_then(|n| n.as_str()), f.get("sha256").and_then(|h| h.as_str())) else { continue };
             let Some(path) = self.inputs.iter().find(|p| p.strip_prefix(&self.dir).is_ok_and(|r| r == Path::new(name))) else { continue };
-            let bytes = std::fs::read(path).map_err(|e| input(format!("cannot read {}: {e}", path.display())))?;
+            let bytes = crate::small_file::read_bytes(path, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", path.display())))?;
             let got = crate::bits::sha256_hex(&bytes, 32);
             if got != want {
                 return Err(input(format!(
@@ -133,7 +133,7 @@ impl Design {
         files.dedup();
         for f in files {
             h.update(f.as_os_str().as_encoded_bytes());
-            match std::fs::read(f) {
+            match crate::small_file::read_bytes(f, crate::small_file::UNIT_FILE_MAX) {
                 Ok(bytes) => h.update(sha2::Sha256::digest(&bytes)),
                 Err(_) => h.update(b"missing"),
             }
@@ -173,7 +173,7 @@ impl Design {
         for entry in entries.flatten() {
             let path = entry.path();
             match path.extension().and_then(|e| e.to_str()) {
-                Some("v") if path.file_name().and_then(|n| n.to_str()).is_some_and(|n| crate::names::SIM_MODEL_FILES.contains(&n)) => sim_models.push(path),
+                Some("v") if path.file_name().and_then(|n| n.to_str()).is_some_and(crate::names::is_sim_model_file) => sim_models.push(path),
                 Some("v") => sources.push(path),
                 Some("json") => {
                     // a regular file of at most MANIFEST_MAX_BYTES (never a FIFO or a device)

@@ -701,6 +701,14 @@ impl Builder {
         self.signals.iter_mut().rev().find(|s| s.name == name).unwrap_or_else(|| panic!("datapath: {name} used before it is defined"))
     }
 
+    /// Whether `name` is held in a block's output register defined in the current step (so
+    /// it can be read only from the next step on).
+    pub(crate) fn is_block_output_here(&mut self, name: &str) -> bool {
+        let cur = self.cur();
+        let s = self.signal(name);
+        s.dsp_registered && s.step == cur
+    }
+
     /// The name of `name` as seen from the current step.
     fn version(&mut self, name: &str) -> String {
         let (cur, def, dsp) = (self.cur(), self.signal(name).step, self.signal(name).dsp_registered);

@@ -329,7 +329,6 @@ fn interpolation_table(name: &str, entries: &[u128], deltas: &[u128], bits: (u32
     }
     Table {
         name: format!("{name}_rom"),
-        file: format!("{name}_rom.hex"),
         param: format!("{}_ROM_FILE", name.to_uppercase()),
         width: delta_field + entry_bits + zeros,
         words: entries.iter().zip(deltas).map(|(&e, &d)| (d << entry_bits) | e).collect(),

@@ -333,7 +333,6 @@ fn ratio(num: &BigUint, den_log2: u32) -> f64 {
 pub fn table(fit: &Fit, w: &FittedWidths) -> Table {
     Table {
         name: "fit_rom".into(),
-        file: "fit_rom.hex".into(),
         param: "FIT_ROM_FILE".into(),
         width: w.rom_word_bits,
         words: fit.rom_words(w),
@@ -385,6 +384,9 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     // a_lo*(1 - cos)/2^D in one carry-save sum: exact
     let dsp = b.dsp_bits();
     let pb = w.product_bits;
+    // ~P, the add's first operand: a wire of the product's step, or (a product held in an
+    // ECP5 block's output register, readable only after its step) complemented in the add
+    let mut complement = Piece::sig("deviation_n", 0, pb);
     if w.a_bits > dsp && cb <= dsp {
         let t = "deviation a_n*(1 - cos) (multiplier 7)";
         b.step(&format!("{t}: a_lo*(1 - cos) (one DSP); the partial products of a_hi*(1 - cos)"));
@@ -409,8 +411,12 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             pb,
             &format!("UQ{}.{}: a_n*(1 - cos), exact", pb - ka - f, ka + f),
         );
-        let d = b.r("deviation");
-        b.wire("deviation_n", pb, format!("~{d}"), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
+        if b.is_block_output_here("deviation") {
+            complement = Piece::not("deviation", 0, pb);
+        } else {
+            let d = b.r("deviation");
+            b.wire("deviation_n", pb, format!("~{d}"), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
+        }
     }
 
     // 2^(KA+F) - P = ~P + 2^(KA+F) + 1 mod 2^DB (P zero-extended): a carry-select add
@@ -419,7 +425,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let db = w.diff_bits;
     let p = b.add_start(
         "diff",
-        &[Piece::sig("deviation_n", 0, pb), Piece::Const { value: mask(db - pb), width: db - pb }],
+        &[complement, Piece::Const { value: mask(db - pb), width: db - pb }],
         &[Piece::Const { value: (1u128 << (ka + f)) + 1, width: db }],
         false,
         db,

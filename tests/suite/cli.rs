@@ -102,7 +102,15 @@ fn previous_output_is_replaced_whole() {
     let names: Vec<String> = read_dir_sorted(&dir).into_iter().map(|(n, _)| n).collect();
     assert_eq!(
         names,
-        ["cos_sp_rom.hex", "second_unit.core", "second_unit.json", "second_unit.sdc", "second_unit.v", "second_unit_tb.sv", "second_unit_vectors.hex"]
+        [
+            "second_unit.core",
+            "second_unit.json",
+            "second_unit.sdc",
+            "second_unit.v",
+            "second_unit_cos_sp_rom.hex",
+            "second_unit_tb.sv",
+            "second_unit_vectors.hex"
+        ]
     );
     let hidden: Vec<_> = std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(hidden.len(), 1, "staging directories left: {hidden:?}");
@@ -164,7 +172,7 @@ fn manifest_lists_files_with_hashes_ports_and_widths() {
         assert_eq!(f["sha256"].as_str().unwrap(), sum, "{} ({} bytes)", f["name"], bytes.len());
     }
     let core = std::fs::read_to_string(dir.join("specular_unit.core")).unwrap();
-    assert!(core.starts_with("CAPI=2:") && core.contains("- specular_unit.v") && core.contains("cos_sp_rom.hex"));
+    assert!(core.starts_with("CAPI=2:") && core.contains("- specular_unit.v") && core.contains("specular_unit_cos_sp_rom.hex"));
 }
 
 #[test]

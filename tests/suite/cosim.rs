@@ -252,26 +252,26 @@ fn a_wrong_or_missing_table_entry_fails_cosim_at_default_settings() {
     let n_random = (specgen::cosim::splitmix(std::process::id() as u64) % 1024) as usize;
     for (i, n) in [700usize, n_random].into_iter().enumerate() {
         let dir = generate(tmp.path(), &format!("q{i}"), &[]);
-        corrupt(&dir.join("cos_sp_rom.hex"), n, 1);
+        corrupt(&dir.join("specular_unit_cos_sp_rom.hex"), n, 1);
         let o = cosim(&dir, &[]);
         assert_eq!(o.status.code(), Some(1), "ROM[{n}]+1 survived: {}", text(&o));
-        assert!(text(&o).contains(&format!("entry {n} is")) && text(&o).contains("cos_sp_rom.hex"), "{}", text(&o));
+        assert!(text(&o).contains(&format!("entry {n} is")) && text(&o).contains("specular_unit_cos_sp_rom.hex"), "{}", text(&o));
     }
     // a table of the blinn unit, and a short and a missing file
     let dir = generate(tmp.path(), "b", &["--model", "blinn"]);
-    corrupt(&dir.join("exp2_rom.hex"), 77, 1);
+    corrupt(&dir.join("specular_unit_exp2_rom.hex"), 77, 1);
     let o = cosim(&dir, &[]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("exp2_rom.hex: entry 77 is"), "{}", text(&o));
-    let short = std::fs::read_to_string(dir.join("log2_rom.hex")).unwrap().lines().take(5).collect::<Vec<_>>().join("\n");
-    std::fs::write(dir.join("log2_rom.hex"), short).unwrap();
+    assert!(text(&o).contains("specular_unit_exp2_rom.hex: entry 77 is"), "{}", text(&o));
+    let short = std::fs::read_to_string(dir.join("specular_unit_log2_rom.hex")).unwrap().lines().take(5).collect::<Vec<_>>().join("\n");
+    std::fs::write(dir.join("specular_unit_log2_rom.hex"), short).unwrap();
     let o = cosim(&dir, &[]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("log2_rom.hex is short: entry 5 is missing"), "{}", text(&o));
-    std::fs::remove_file(dir.join("log2_rom.hex")).unwrap();
+    assert!(text(&o).contains("specular_unit_log2_rom.hex is short: entry 5 is missing"), "{}", text(&o));
+    std::fs::remove_file(dir.join("specular_unit_log2_rom.hex")).unwrap();
     let o = cosim(&dir, &[]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("log2_rom.hex is missing"), "{}", text(&o));
+    assert!(text(&o).contains("specular_unit_log2_rom.hex is missing"), "{}", text(&o));
 }
 
 /// The generated unit itself refuses to run without its tables: from a working directory
@@ -284,7 +284,7 @@ fn a_missing_table_file_stops_both_simulators() {
     let elsewhere = tmp.path().join("elsewhere");
     std::fs::create_dir(&elsewhere).unwrap();
     // every table is read by the same template code: one unit's stands for all
-    let (name, args, file) = ("b", &["--model", "blinn"][..], "log2_rom.hex");
+    let (name, args, file) = ("b", &["--model", "blinn"][..], "specular_unit_log2_rom.hex");
     let dir = generate(tmp.path(), name, args);
     let v = dir.join("specular_unit.v");
     let sim = tmp.path().join(format!("{name}.vvp"));

@@ -37,7 +37,7 @@ fn out_through_a_symlink_lands_where_it_points_and_keeps_the_link() {
         let o = specgen().args(["generate", "--out", out]).output().unwrap();
         assert!(o.status.success(), "round {round}: {}", text(&o));
         assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "the link is gone");
-        assert!(target.join("specular_unit.v").is_file() && link.join("cos_sp_rom.hex").is_file());
+        assert!(target.join("specular_unit.v").is_file() && link.join("specular_unit_cos_sp_rom.hex").is_file());
     }
     // a dangling link: refused, the link left alone
     let dangling = tmp.path().join("dangling");
@@ -73,11 +73,13 @@ fn leftovers_of_an_interrupted_swap_are_cleaned_and_a_concurrent_writer_is_told(
     assert!(o.status.success(), "{}", text(&o));
     assert!(!saved.exists() && std::fs::read(out.join("specular_unit.v")).unwrap() == before);
     // another writer of the same output: a clear message, exit 1, the output untouched
+    // (issue 39: it waits a bounded time, then names the holder)
     let lock = std::fs::File::create(tmp.path().join(format!(".specgen-lock-{tag}"))).unwrap();
     lock.lock().unwrap();
+    std::io::Write::write_all(&mut &lock, b"4242\n").unwrap();
     let o = specgen().args(["generate", "--stages", "2", "--out"]).arg(&out).output().unwrap();
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("another specgen is writing"), "{}", text(&o));
+    assert!(text(&o).contains("another specgen (process 4242) has been writing"), "{}", text(&o));
     assert_eq!(std::fs::read(out.join("specular_unit.v")).unwrap(), before);
     // … while a sibling output is written at the same time (the lock is per output)
     let o = specgen().args(["generate", "--out"]).arg(tmp.path().join("p")).output().unwrap();
@@ -396,7 +398,7 @@ fn outputs_never_replace_the_commands_inputs() {
         (vec!["cosim".into(), "--trace".into(), d.join("specular_unit.v").display().to_string()], "specular_unit.v"),
         (vec!["cosim".into(), "--trace".into(), d.join("specular_unit.json").display().to_string()], "specular_unit.json"),
         (vec!["render".into(), "--model-only".into(), "--out".into(), d.join("specular_unit.v").display().to_string()], "specular_unit.v"),
-        (vec!["vectors".into(), "--out".into(), d.join("cos_sp_rom.hex").display().to_string()], "cos_sp_rom.hex"),
+        (vec!["vectors".into(), "--out".into(), d.join("specular_unit_cos_sp_rom.hex").display().to_string()], "specular_unit_cos_sp_rom.hex"),
         (vec!["synth".into(), "--no-pnr".into(), "--json".into(), d.join("specular_unit.v").display().to_string()], "specular_unit.v"),
         (vec!["synth".into(), "--no-pnr".into(), "--pnr-log".into(), d.join("specular_unit.core").display().to_string()], "specular_unit.core"),
     ];
@@ -654,7 +656,7 @@ fn fuzzed_argument_vectors_exit_0_1_or_2() {
             unit.clone(),
             unit.join("specular_unit.v"),
             unit.join("specular_unit.json"),
-            unit.join("cos_sp_rom.hex"),
+            unit.join("specular_unit_cos_sp_rom.hex"),
             tmp.path().join("fresh"),
             "..".into(),
             ".".into(),

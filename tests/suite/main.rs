@@ -5,6 +5,7 @@ mod common;
 
 mod cli;
 mod cosim;
+mod embedding;
 mod every_model;
 mod exhaustive;
 mod hostile;
@@ -12,6 +13,7 @@ mod interfaces;
 mod layers;
 mod models;
 mod properties;
+mod reliability;
 mod render;
 mod report;
 mod rtl_tools;

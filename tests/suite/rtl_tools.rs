@@ -124,7 +124,7 @@ fn fusesoc_runs_the_core_with_the_flow_api() {
     let synth = fusesoc(&["run", "--target", "synth", &nb]);
     assert!(synth.contains("SB_MAC16"), "synthesized with DSPs:\n{synth}");
     let work = tmp.path().join("build").join(nb.replace(':', "_")).join("synth");
-    for table in ["log2_rom.hex", "exp2_rom.hex"] {
+    for table in ["specular_unit_log2_rom.hex", "specular_unit_exp2_rom.hex"] {
         assert_eq!(std::fs::read(work.join(table)).unwrap(), std::fs::read(b.join(table)).unwrap(), "{table} shipped to the tool");
     }
     // an ECP5 unit: the primitives' models are linted with it, never synthesized

@@ -54,15 +54,27 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
     let stages = deepest(&["--target", "ecp5"]);
     let dir = generate(tmp.path(), "ecp5", &["--target", "ecp5", "--stages", &stages]);
     let files = verilog_files(&dir);
-    assert_eq!(files, ["specular_unit.v", "specular_unit_mult18x18.v", "specular_unit_rom1k18.v", "sim/ecp5_dp16kd_sim.v", "sim/ecp5_mult18x18d_sim.v"]);
-    assert!(!dir.join("cos_sp_rom.hex").exists(), "the ROM's contents are the DP16KD's INITVAL parameters");
+    assert_eq!(
+        files,
+        [
+            "specular_unit.v",
+            "specular_unit_mult18x18.v",
+            "specular_unit_rom1k18.v",
+            "sim/specular_unit_ecp5_dp16kd_sim.v",
+            "sim/specular_unit_ecp5_mult18x18d_sim.v"
+        ]
+    );
+    assert!(!dir.join("specular_unit_cos_sp_rom.hex").exists(), "the ROM's contents are the DP16KD's INITVAL parameters");
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
     assert_eq!(unit.matches("specular_unit_mult18x18 ").count(), 7, "kn, two deviation products, the square, three colours");
     assert_eq!(unit.matches("specular_unit_rom1k18 #(").count(), 1);
     assert!(!has_multiply(&unit), "every product on a DSP at the deepest pipeline");
     let core = std::fs::read_to_string(dir.join("specular_unit.core")).unwrap();
     assert!(
-        core.contains("tool: yosys") && core.contains("arch: ecp5") && core.contains("sim_models:") && core.contains("- sim/ecp5_mult18x18d_sim.v"),
+        core.contains("tool: yosys")
+            && core.contains("arch: ecp5")
+            && core.contains("sim_models:")
+            && core.contains("- sim/specular_unit_ecp5_mult18x18d_sim.v"),
         "{core}"
     );
     // a user's flow: every *.v of the directory into yosys, no list kept by hand

@@ -8,9 +8,6 @@
 use crate::config::Config;
 use crate::table::Table;
 
-/// The cut-off ROM's `$readmemh` file.
-pub const ROM_FILE: &str = "cos_sp_rom.hex";
-
 /// Every entry of the ROM, index n = 0 .. 2^N − 1.
 pub fn cos_sp_table(cfg: &Config) -> Vec<u32> {
     (0..1u64 << cfg.n_bits()).map(|n| cos_sp(cfg, n)).collect()
@@ -31,7 +28,6 @@ pub fn cos_sp(cfg: &Config, n: u64) -> u32 {
 pub fn cos_sp_rom(cfg: &Config) -> Table {
     Table {
         name: "cos_sp_rom".into(),
-        file: ROM_FILE.into(),
         param: "ROM_FILE".into(),
         width: cfg.f() + 1,
         words: cos_sp_table(cfg).into_iter().map(u128::from).collect(),

@@ -1,0 +1,255 @@
+//! Issue 39 (reliability III): a cache nobody else can plant, a lock nobody else can point
+//! elsewhere, no panic in any configuration, reads that are bounded.
+
+use crate::common::*;
+use std::os::unix::fs::{MetadataExt, PermissionsExt};
+use std::path::Path;
+use std::process::Output;
+
+fn text(o: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+}
+
+/// `specgen cosim` of `rtl` under Icarus with no cache variable set: the cache is then
+/// `$TMPDIR/specgen-cache-<uid>`.
+fn cosim_without_home(rtl: &Path, tmpdir: &Path) -> Output {
+    specgen()
+        .env_remove("SPECGEN_CACHE_DIR")
+        .env_remove("XDG_CACHE_HOME")
+        .env_remove("HOME")
+        .env("TMPDIR", tmpdir)
+        .args(["cosim", "--simulator", "icarus", "--vectors", "200", "--jobs", "1", "--rtl"])
+        .arg(rtl)
+        .output()
+        .unwrap()
+}
+
+/// Finding 1: without HOME the cache was a world-writable directory whose owner was never
+/// checked, and a harness planted there ran. Now it is the caller's own directory, created
+/// 0700, and a directory writable by others, owned by another user, or a link is refused
+/// before anything in it is run.
+#[test]
+fn the_simulator_cache_is_the_callers_own_and_a_planted_one_is_refused() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let rtl = generate(tmp.path(), "u", &["--n-bits", "5", "--stages", "2"]);
+    let tmpdir = tmp.path().join("tmp");
+    std::fs::create_dir(&tmpdir).unwrap();
+    // SAFETY: geteuid has no preconditions
+    let uid = unsafe { libc::geteuid() };
+    let cache = tmpdir.join(format!("specgen-cache-{uid}"));
+    // a shared directory: writable by everyone (as /tmp/specgen-cache was)
+    std::fs::create_dir(&cache).unwrap();
+    std::fs::set_permissions(&cache, std::fs::Permissions::from_mode(0o777)).unwrap();
+    let o = cosim_without_home(&rtl, &tmpdir);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("is writable by others (mode 0777)"), "{}", text(&o));
+    assert_eq!(std::fs::read_dir(&cache).unwrap().count(), 0, "nothing built into a shared directory");
+    // a directory of another user (as root: nobody's)
+    if uid == 0 {
+        std::fs::set_permissions(&cache, std::fs::Permissions::from_mode(0o700)).unwrap();
+        std::os::unix::fs::chown(&cache, Some(65534), Some(65534)).unwrap();
+        let o = cosim_without_home(&rtl, &tmpdir);
+        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+        assert!(text(&o).contains("belongs to user 65534, not to you"), "{}", text(&o));
+    }
+    // a link planted in its name
+    std::fs::remove_dir(&cache).unwrap();
+    let elsewhere = tmp.path().join("elsewhere");
+    std::fs::create_dir(&elsewhere).unwrap();
+    std::os::unix::fs::symlink(&elsewhere, &cache).unwrap();
+    let o = cosim_without_home(&rtl, &tmpdir);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("is a symbolic link"), "{}", text(&o));
+    assert_eq!(std::fs::read_dir(&elsewhere).unwrap().count(), 0);
+    // none there: created 0700, the caller's, and used
+    std::fs::remove_file(&cache).unwrap();
+    let o = cosim_without_home(&rtl, &tmpdir);
+    assert!(o.status.success(), "{}", text(&o));
+    let m = std::fs::symlink_metadata(&cache).unwrap();
+    assert!(m.is_dir() && m.uid() == uid && m.mode() & 0o777 == 0o700, "mode {:o}", m.mode());
+    // what a killed build left (its process gone) is swept by the next build
+    let left = cache.join(".build-999999999-abc");
+    std::fs::create_dir(&left).unwrap();
+    std::fs::write(left.join("sim.vvp"), "partial").unwrap();
+    let other = generate(tmp.path(), "v", &["--n-bits", "4", "--stages", "1"]);
+    let o = cosim_without_home(&other, &tmpdir);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(!left.exists(), "a dead build's directory is swept");
+    let builds: Vec<_> = std::fs::read_dir(&cache).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    assert!(builds.iter().all(|n| n.starts_with("iverilog-")), "only finished builds are kept: {builds:?}");
+}
+
+/// Finding 8: the cache key ignored the path and the compiled program held it: a unit in a
+/// directory named `q'"x` cached an Icarus program that did not parse, and every later
+/// cosim of an identical unit failed. The build now reads copies with plain names: the same
+/// unit anywhere is one entry that works, and Verilator builds a unit under `$` and newlines.
+#[test]
+fn a_hostile_directory_name_reaches_no_compiler() {
+    require_tool("iverilog", "iverilog");
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let cache = tmp.path().join("cache");
+    for (i, name) in ["q'\"x", "a$b\nc", "plain"].iter().enumerate() {
+        let rtl = generate(tmp.path(), name, &["--n-bits", "5", "--stages", "2"]);
+        for sim in ["icarus", "verilator"] {
+            let o = specgen()
+                .env("SPECGEN_CACHE_DIR", &cache)
+                .args(["cosim", "--vectors", "300", "--jobs", "1", "--simulator", sim, "--rtl"])
+                .arg(&rtl)
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "{sim} in {name:?} (unit {i}): {}", text(&o));
+        }
+    }
+    let entries = std::fs::read_dir(&cache).unwrap().filter(|e| !e.as_ref().unwrap().file_name().to_string_lossy().starts_with('.')).count();
+    assert_eq!(entries, 2, "one entry per simulator for one unit, wherever it lies");
+}
+
+/// Finding 4: the lock followed a link planted in its name (creating a file where the link
+/// pointed) and hung on a FIFO. Now both are refused at once, naming the lock, and nothing is
+/// created through the link.
+#[test]
+fn the_output_lock_never_follows_a_link_nor_waits_on_a_fifo() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    let lock = tmp.path().join(format!(".specgen-lock-{}", specgen::output::tag(&out)));
+    let victim = tmp.path().join("root-only").join("created");
+    std::fs::create_dir(victim.parent().unwrap()).unwrap();
+    std::os::unix::fs::symlink(&victim, &lock).unwrap();
+    let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("is a symbolic link, not specgen's"), "{}", text(&o));
+    assert!(!victim.exists() && !out.exists());
+    std::fs::remove_file(&lock).unwrap();
+    let fifo = std::ffi::CString::new(lock.as_os_str().as_encoded_bytes()).unwrap();
+    // SAFETY: a NUL-terminated path
+    assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0);
+    let start = std::time::Instant::now();
+    let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+    assert!(start.elapsed() < std::time::Duration::from_secs(5), "waited on the FIFO");
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("is not a regular file, not specgen's"), "{}", text(&o));
+    std::fs::remove_file(&lock).unwrap();
+    let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+}
+
+/// Finding 6: a unit file other than the manifest was read without limit (a listed file as a
+/// FIFO hung cosim). Every file of a unit is now read as a bounded regular file.
+#[test]
+fn a_listed_unit_file_that_is_a_fifo_is_refused_not_read() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let rtl = generate(tmp.path(), "u", &["--n-bits", "5", "--stages", "2"]);
+    let v = rtl.join("specular_unit.v");
+    std::fs::remove_file(&v).unwrap();
+    let path = std::ffi::CString::new(v.as_os_str().as_encoded_bytes()).unwrap();
+    // SAFETY: a NUL-terminated path
+    assert_eq!(unsafe { libc::mkfifo(path.as_ptr(), 0o600) }, 0);
+    let mut child = specgen()
+        .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+        .args(["cosim", "--simulator", "icarus", "--vectors", "10", "--rtl"])
+        .arg(&rtl)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > std::time::Duration::from_secs(20) {
+            let _ = child.kill();
+            panic!("cosim hangs on a FIFO in the unit");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("specular_unit.v is not a regular file"), "{}", text(&o));
+}
+
+/// Finding 5: `generate --model fitted --target ecp5 --n-bits 4 --stages 12` panicked ("deviation
+/// is a DSP's registered output"): with a_n as narrow as a MULT18X18D operand the product's
+/// complement was read in the block's own step. Every fitted ECP5 configuration with a narrow
+/// n, at every depth, now plans and renders.
+#[test]
+fn fitted_on_the_ecp5_with_a_narrow_n_plans_at_every_depth() {
+    use specgen::config::{Params, SpecularModel, Target};
+    for n_bits in 1..=4 {
+        for (cos_frac_bits, k_frac_bits) in [(4, 4), (8, 12), (15, 16), (20, 24)] {
+            let params = Params { model: SpecularModel::Fitted, target: Target::Ecp5, n_bits, cos_frac_bits, k_frac_bits, ..Default::default() };
+            let deepest = specgen::plan::Plan::from_params(params.clone()).unwrap().cut_points;
+            for stages in 0..=deepest {
+                let plan = specgen::plan::Plan::from_params(Params { stages, ..params.clone() }).unwrap();
+                assert!(!specgen::emit::generate_files(&plan).is_empty());
+            }
+        }
+    }
+}
+
+/// What `generate` may end with on a configuration: success, or exit 2 naming a parameter.
+fn generate_exit(args: &[String], out: &Path) -> (Option<i32>, String) {
+    let o = specgen().arg("generate").arg("--out").arg(out).args(args).output().unwrap();
+    (o.status.code(), text(&o))
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 40, failure_persistence: None, ..Default::default() })]
+
+    /// Finding 5: no panic in any configuration. Over the whole space (models × targets ×
+    /// widths × depths × interfaces × colours × tags × roundings × ROM styles; n to 8 bits to
+    /// keep the fits quick), `generate` exits 0, or 2 with the parameter named.
+    #[test]
+    fn every_configuration_generates_or_is_refused_never_panics(
+        model in proptest::sample::select(vec!["quadratic", "fitted", "blinn", "blinn-pow"]),
+        target in proptest::sample::select(vec!["ice40", "ecp5", "generic"]),
+        interface in proptest::sample::select(vec!["valid", "ready", "axis"]),
+        colour in proptest::sample::select(vec!["pixel", "static"]),
+        rounding in proptest::sample::select(vec!["faithful", "exact"]),
+        rom_style in proptest::sample::select(vec!["file", "case"]),
+        f in 4u32..=20, n in 1u32..=8, b in 1u32..=16, fi in 1u32..=24, kf in 4u32..=24, m in 0u32..=4,
+        tag in 0u32..=64, stages in 0u32..=70,
+    ) {
+        let tmp = tempfile::tempdir().unwrap();
+        let args: Vec<String> = [
+            ("--model", model.to_string()), ("--target", target.into()), ("--interface", interface.into()), ("--colour", colour.into()),
+            ("--rounding", rounding.into()), ("--rom-style", rom_style.into()), ("--cos-frac-bits", f.to_string()), ("--n-bits", n.to_string()),
+            ("--color-bits", b.to_string()), ("--intensity-frac-bits", fi.to_string()), ("--k-frac-bits", kf.to_string()),
+            ("--tag-bits", tag.to_string()), ("--stages", stages.to_string()),
+        ]
+        .into_iter()
+        .chain((model == "fitted").then(|| ("--max-squarings", m.to_string())))
+        .flat_map(|(k, v)| [k.to_string(), v])
+        .collect();
+        let (code, out) = generate_exit(&args, &tmp.path().join("o"));
+        proptest::prop_assert!(code == Some(0) || (code == Some(2) && out.contains("invalid --")) || (code == Some(2) && out.contains("--stages")), "{args:?}: exit {code:?}\n{out}");
+        proptest::prop_assert!(!out.contains("panicked"), "{args:?}:\n{out}");
+        if code == Some(2) {
+            proptest::prop_assert!(!tmp.path().join("o").exists(), "a refused configuration wrote nothing");
+        }
+    }
+}
+
+/// Finding 5: a full standard error (`2>/dev/full`) made 5 of 6 commands panic (exit 101).
+/// The message is lost, the exit code is not.
+#[test]
+fn a_full_stderr_never_panics() {
+    let tmp = tempfile::tempdir().unwrap();
+    let full = || std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+    let cases: Vec<(Vec<&str>, i32)> = vec![
+        (vec!["generate", "--n-bits", "99", "--out", "x"], 2),
+        (vec!["rom", "--n-bits", "99"], 2),
+        (vec!["cosim", "--rtl", "/nonexistent-specgen"], 2),
+        (vec!["vectors", "--n-bits", "99", "--out", "v.csv"], 2),
+        (vec!["synth", "--rtl", "/nonexistent-specgen"], 2),
+        (vec!["eval", "--n-bits", "99"], 2),
+        (vec!["--no-such-flag"], 2),
+    ];
+    for (args, want) in cases {
+        let o = specgen().current_dir(tmp.path()).args(&args).stderr(full()).output().unwrap();
+        assert_eq!(o.status.code(), Some(want), "{args:?} with a full stderr");
+    }
+    // a success that prints to a full stdout: exit 1 (the output is lost), never a panic
+    let o = specgen().current_dir(tmp.path()).args(["rom", "--n-bits", "4"]).stdout(full()).stderr(full()).output().unwrap();
+    assert!(matches!(o.status.code(), Some(0 | 1)), "rom to a full stdout: {:?}", o.status);
+}
