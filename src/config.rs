@@ -248,6 +248,11 @@ pub struct Params {
     pub colour: Colour,
     /// The clock the constraints ask for, MHz as a plain decimal; none: the target's default.
     pub clock_mhz: Option<String>,
+    /// The clock port of the user's top that drives the unit's clock, which the constraint
+    /// files name (`<top>.sdc`, `<top>.lpf`); none: the unit's own clock pin (`clk`, `aclk`),
+    /// right when the unit is the top.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clock_port: Option<String>,
 }
 
 impl Default for Params {
@@ -271,6 +276,7 @@ impl Default for Params {
             tag_bits: TAG_BITS.default,
             colour: Colour::Pixel,
             clock_mhz: None,
+            clock_port: None,
         }
     }
 }
@@ -373,6 +379,9 @@ impl Config {
         TAG_BITS.check(params.tag_bits)?;
         if let Some(text) = &params.clock_mhz {
             parse_clock_mhz(text)?;
+        }
+        if let Some(port) = &params.clock_port {
+            check_port_name(port)?;
         }
         let k_code = parse_k(&params.k, params.k_frac_bits)?;
         if params.model != SpecularModel::Quadratic {
@@ -543,6 +552,9 @@ impl Config {
         s.push_str(&self.interface_words());
         if let Some(mhz) = &p.clock_mhz {
             s.push_str(&format!(" clock_mhz={mhz}"));
+        }
+        if let Some(port) = &p.clock_port {
+            s.push_str(&format!(" clock_port={port}"));
         }
         s
     }
@@ -930,6 +942,21 @@ pub(crate) const INTERNAL_NAMES: &[&str] =
     &["in_take", "out_result", "out_held", "out_buffer", "tag_line", "ks_r_material", "ks_g_material", "ks_b_material", "result_valid"];
 
 /// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
+/// `clock_port`: a port name of the user's design, written into SDC and LPF files: a Verilog
+/// identifier of at most 64 characters (no escaped names: the files quote nothing else).
+fn check_port_name(port: &str) -> Result<(), ConfigError> {
+    let ok = port.len() <= 64
+        && port.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && port.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    match ok {
+        true => Ok(()),
+        false => Err(ConfigError {
+            parameter: "clock_port",
+            message: format!("{port:?} is not a port name; allowed: a Verilog identifier [A-Za-z_][A-Za-z0-9_]* of at most 64 characters"),
+        }),
+    }
+}
+
 fn check_identifier(top: &str) -> Result<(), ConfigError> {
     let err = |why: &str| ConfigError {
         parameter: "top",

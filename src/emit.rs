@@ -664,12 +664,13 @@ pub(crate) fn clock_port(cfg: &crate::config::Config) -> Option<&'static str> {
     cfg.ports("").iter().map(|p| p.name).find(|n| *n == "clk" || *n == "aclk")
 }
 
-/// `<top>.sdc`, and `<top>.lpf` for ECP5, at the configuration's clock.
+/// `<top>.sdc`, and `<top>.lpf` for ECP5, at the configuration's clock, on the clock port of
+/// the user's top when given (`clock_port`), else on the unit's own.
 fn constraint_files(cfg: &crate::config::Config) -> Vec<(String, String)> {
     let top = cfg.top();
     let mhz = cfg.clock_mhz();
     let mhz_text = format!("{mhz}");
-    let clock = clock_port(cfg);
+    let clock = clock_port(cfg).map(|own| cfg.params.clock_port.as_deref().unwrap_or(own));
     let sdc = SdcTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text.clone(), period: format!("{:.3}", 1000.0 / mhz) };
     let mut files = vec![(format!("{top}.sdc"), sdc.render().expect("sdc renders") + "\n")];
     if cfg.target() == crate::config::Target::Ecp5 {

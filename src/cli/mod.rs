@@ -229,6 +229,10 @@ pub struct RtlArgs {
     /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
     #[arg(long, value_name = "F", allow_hyphen_values = true, help_heading = "Interface")]
     pub clock_mhz: Option<String>,
+    /// The clock port of your top that drives the unit, for the constraint files when the unit
+    /// is embedded (their clock is found by that name) [default: the unit's own, clk or aclk]
+    #[arg(long, value_name = "NAME", help_heading = "Interface")]
+    pub clock_port: Option<String>,
 }
 
 /// A whole-number flag: a negative value gets a range error, not a "flag not found".
@@ -336,6 +340,9 @@ impl ParamArgs {
             set!(r; stages, rom_style, target, interface, tag_bits, colour);
             if let Some(v) = &r.clock_mhz {
                 p.clock_mhz = Some(v.clone());
+            }
+            if let Some(v) = &r.clock_port {
+                p.clock_port = Some(v.clone());
             }
         }
         if let Some(v) = &self.k {

