@@ -4,7 +4,8 @@
 //!
 //! Layers import only downward (docs/ARCHITECTURE.md draws them):
 //! 1. leaves: [`bits`] (fixed-point helpers), [`names`] (version, non-RTL file names), [`ports`] (the port table, `Inputs`/`Outputs`),
-//!    [`table`] (a ROM), [`config`] (validated parameters), [`error`];
+//!    [`table`] (a ROM), [`config`] (validated parameters), [`error`], [`process`] (children and
+//!    temporaries that do not outlive a run);
 //! 2. [`datapath`]: the step/cut IR and its `Builder`, which knows no model;
 //! 3. [`models`]: one home per model behind the `SpecularUnit` trait, and the registry;
 //! 4. [`plan`]: config → model → registers placed → datapath, built once per command;
@@ -26,6 +27,7 @@ pub mod output;
 pub mod paper;
 pub mod plan;
 pub mod ports;
+pub mod process;
 pub mod render;
 pub mod report;
 pub mod rom;

@@ -24,11 +24,23 @@
 //! is written to a temporary file beside it (`.specgen-<tag>-<pid>-…`; one a killed run left is
 //! removed by the next run writing the same output) and renamed over it. A symbolic link is written
 //! through (its target is replaced, the link stays); a FIFO or character device (`/dev/null`,
-//! `/dev/stdout`) is written as a stream; any other special file is refused. A replaced file
+//! `/dev/stdout`) is written as a stream; any other special file is refused. `-` and standard
+//! output by any of its names (`/dev/stdout`, `/dev/fd/1`, `/proc/self/fd/1`) are the process's
+//! own stream, whatever it is (a file opened with `>>` keeps its lines; a pipe works). A replaced file
 //! keeps its mode; a new one gets `0666 & !umask`.
 
 use crate::error::OutputError;
 use std::path::{Path, PathBuf};
+
+/// Whether two paths name one file (device and inode, links followed): an output that is an
+/// input of the same command is refused.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
+        _ => false,
+    }
+}
 
 /// The directory a path lives in (`.` for a bare name).
 pub(crate) fn parent_dir(path: &Path) -> PathBuf {
@@ -296,6 +308,12 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     write_file_with(path, |w| w.write_all(bytes))
 }
 
+/// Whether an output path means standard output: `-`, `/dev/stdout`, `/dev/fd/1`,
+/// `/proc/self/fd/1`.
+pub fn is_stdout(path: &Path) -> bool {
+    ["-", "/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"].iter().any(|p| path == Path::new(p))
+}
+
 /// Where a single-file output really goes: through a symbolic link to its target.
 fn through_links(path: &Path) -> std::io::Result<PathBuf> {
     let mut path = path.to_path_buf();
@@ -416,6 +434,15 @@ fn open_fifo(path: &Path) -> std::io::Result<std::fs::File> {
 /// directory, renamed over the target only when `fill` succeeded (on error nothing is left);
 /// a FIFO or character device gets the stream itself.
 pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<T>) -> std::io::Result<T> {
+    // `-` and standard output by any of its names are the stream itself, whatever it is: a
+    // file opened for appending (`>> log`) keeps its lines, a pipe works (its /proc link names
+    // nothing that can be opened)
+    if is_stdout(path) {
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
+        let v = fill(&mut w)?;
+        std::io::Write::flush(&mut w)?;
+        return Ok(v);
+    }
     let path = through_links(path)?;
     let existing = std::fs::metadata(&path).ok();
     #[cfg(unix)]

@@ -602,6 +602,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
     if let Some(k) = u.k_quantisation_max {
         unit_rows.push(Row { name: "k quantisation: |S(k_q) − S(k)|, max", value: sig3(k) });
     }
+    let mut data = data;
     let reference = match cfg.model() {
         crate::config::SpecularModel::Quadratic => "formula (15) in exact arithmetic with the quantised k_q and the cut-off at cos_sp(n)",
         _ => "its exact reference (the same function in exact arithmetic)",
@@ -621,6 +622,9 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
         grid_scale: crate::render::sig3(grid.e_max),
     };
     let html = page.render().expect("report template renders");
+    drop(page);
+    // the page with its SHA-256, so a later `report --out` here replaces it only unedited
+    data.files = vec![serde_json::json!({"name": "index.html", "sha256": crate::bits::sha256_hex(html.as_bytes(), 32)})];
     let mut json = serde_json::to_string_pretty(&data).expect("report serialises");
     json.push('\n');
     vec![("index.html".into(), html.into_bytes()), ("report.json".into(), json.into_bytes())]

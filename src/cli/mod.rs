@@ -122,6 +122,10 @@ pub struct VectorsArgs {
     /// Every (cos_g <= 1.0, n), colours varied, instead of random vectors (2^N * (2^F + 1) rows).
     #[arg(long, conflicts_with_all = ["count", "seed"])]
     pub exhaustive: bool,
+    /// The most rows written: a larger --exhaustive set is refused before anything is written
+    /// (the default configuration's is 33.6 M rows, ~1.3 GB of CSV) [1..=4294967296]
+    #[arg(long, value_name = "N", default_value_t = 1 << 26, value_parser = clap::value_parser!(u64).range(1..=1 << 32))]
+    pub max_rows: u64,
     /// csv or hex [default: hex for FILE ending in .hex or .mem, else csv]
     #[arg(long, value_enum)]
     pub format: Option<VectorFormatFlag>,
@@ -410,6 +414,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 })
             })?;
             let text = rom::render_table(&cfg, t, format.into());
+            if let (Some(out), Some(config)) = (&output, &params.config) {
+                if specgen::output::same_file(out, config) {
+                    return Err(usage(format!("-o {} is the --config file this command reads; write the table elsewhere", out.display())));
+                }
+            }
             match output {
                 Some(path) => specgen::output::write_file(&path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
                 None => {
@@ -509,7 +518,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         return Err(usage(format!("render: give 1 to 6 units with --rtl DIR and --models LIST (got {units})")));
     }
     // the --models units, generated at default parameters beside each other
-    let scratch = tempfile::tempdir().map_err(|e| specgen::error::Error::io("create a temporary directory in", std::env::temp_dir(), e))?;
+    let scratch = specgen::process::temp_dir().map_err(|e| specgen::error::Error::io("create a temporary directory in", std::env::temp_dir(), e))?;
     let mut dirs = args.rtl.clone();
     for m in &args.models {
         let model: specgen::config::SpecularModel = (*m).into();
@@ -610,6 +619,8 @@ pub fn command() -> clap::Command {
 /// Runs the command line; returns the process exit code.
 pub fn main() -> i32 {
     use clap::FromArgMatches;
+    // SIGINT/SIGTERM/SIGHUP: temporaries removed, children ended (before any thread starts)
+    specgen::process::remove_temporaries_on_signals();
     let cli = match command().try_get_matches().and_then(|m| Cli::from_arg_matches(&m)) {
         Ok(cli) => cli,
         Err(e) => {
@@ -637,6 +648,14 @@ fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
         Some("hex" | "mem") => VectorFormat::Hex,
         _ => VectorFormat::Csv,
     });
+    let (wanted, _) = specgen::vectors::inputs(&model, selection);
+    if wanted > args.max_rows {
+        return Err(usage(format!(
+            "invalid --max-rows: this set is {wanted} rows ({:.1} GB or more as text) and --max-rows is {}; allowed: raise --max-rows to at least {wanted}, or narrow --n-bits/--cos-frac-bits, or use random vectors (--count)",
+            wanted as f64 * 40.0 / 1e9,
+            args.max_rows
+        )));
+    }
     let rows = specgen::output::write_file_with(&args.out, |w| specgen::vectors::write(&model, selection, format, w))
         .map_err(|e| Failure::io("write", &args.out, e))?;
     outln!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.stages(), args.out.display())?;

@@ -7,7 +7,7 @@ use crate::models::{Model, Outputs};
 use sha2::{Digest, Sha256};
 use std::io::{BufRead, BufReader, IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -42,7 +42,7 @@ fn own_entry(dir: &Path) -> bool {
 }
 
 fn tool_version(tool: &str, package: &str) -> Result<String, Failure> {
-    let out = Command::new(tool)
+    let out = crate::process::command(tool)
         .arg(if tool == "iverilog" { "-V" } else { "--version" })
         .output()
         .map_err(|_| input(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))?;
@@ -106,9 +106,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     }
     // what killed runs left: build directories whose process is gone
     crate::output::remove_orphan_dirs(&root, ".build-");
-    let work = tempfile::Builder::new()
-        .prefix(&format!(".build-{}-", std::process::id()))
-        .tempdir_in(&root)
+    let work = crate::process::temp_dir_in(&root, &format!(".build-{}-", std::process::id()))
         .map_err(|e| error::tool("simulator", format!("cannot create a build directory in {}: {e}", root.display())))?;
     let mut sources = Vec::new();
     for (i, (_, text)) in texts.iter().enumerate() {
@@ -122,7 +120,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     match simulator {
         Simulator::Verilator => {
             std::fs::write(work.path().join("harness.cpp"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
-            cmd = Command::new("verilator");
+            cmd = crate::process::command("verilator");
             cmd.current_dir(work.path())
                 .args(["--cc", "--exe", "--build", "-O3", "--prefix", "Vdut", "--top-module", "specgen_cosim_top"])
                 .args(["-Wno-fatal", "-Wno-lint", "-Wno-style", "-Mdir", "obj", "-o", "../harness"])
@@ -141,7 +139,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         Simulator::Icarus => {
             std::fs::write(work.path().join("bench.v"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
             let c = &design.cfg;
-            cmd = Command::new("iverilog");
+            cmd = crate::process::command("iverilog");
             cmd.current_dir(work.path())
                 .args(["-g2005", "-o", "sim.vvp", "-s", "specgen_icarus_bench"])
                 .arg(format!("-DCOS_W={}", c.f() + 1))
@@ -248,7 +246,7 @@ pub fn run_one(
     let mut checker = Checker::new(model, run);
     match built.simulator {
         Simulator::Verilator => {
-            let mut child = Command::new(built.dir.join("harness"))
+            let mut child = crate::process::command(built.dir.join("harness"))
                 .current_dir(&design.dir)
                 .envs(env.iter().map(|(k, v)| (k, v.as_os_str())))
                 .stdin(Stdio::piped())
@@ -307,7 +305,7 @@ pub fn run_one(
             }
         }
         Simulator::Icarus => {
-            let work = tempfile::tempdir().map_err(|e| error::tool("simulator", e.to_string()))?;
+            let work = crate::process::temp_dir().map_err(|e| error::tool("simulator", e.to_string()))?;
             let vin = work.path().join("vectors.in");
             let vout = work.path().join("vectors.out");
             {
@@ -320,7 +318,7 @@ pub fn run_one(
                         .map_err(|e| error::tool("simulator", e.to_string()))?;
                 }
             }
-            let child = Command::new("vvp")
+            let child = crate::process::command("vvp")
                 .current_dir(&design.dir)
                 .arg("-n")
                 .arg(built.dir.join("sim.vvp"))
@@ -465,7 +463,7 @@ pub fn write_trace(design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], 
     }
     cycles.extend((from..=to).map(|i| stim.cycle(i)));
     // the harness writes into a directory of ours; the trace reaches `path` only when it exists
-    let work = tempfile::tempdir().map_err(|e| error::tool("simulator", e.to_string()))?;
+    let work = crate::process::temp_dir().map_err(|e| error::tool("simulator", e.to_string()))?;
     let vcd = work.path().join("trace.vcd");
     run_one(&built, design, model, &Recorded(cycles), 0, &AtomicU64::new(0), &[("SPECGEN_VCD", &vcd)])?;
     let bytes = match std::fs::read(&vcd) {

@@ -52,19 +52,14 @@ pub struct Design {
 const MANIFEST_MAX_BYTES: u64 = 1 << 20;
 
 /// Whether `a` and `b` are the same file (device and inode; both must exist).
-fn same_file(a: &Path, b: &Path) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    match (std::fs::metadata(a), std::fs::metadata(b)) {
-        (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
-        _ => false,
-    }
-}
+use crate::output::same_file;
 
 impl Design {
     /// Refuses an output path (`flag` names it) that is one of the unit's files: a command never
     /// writes over what it reads.
     pub fn refuse_output(&self, flag: &str, out: &Path) -> Result<(), Error> {
-        match self.inputs.iter().find(|i| same_file(out, i)) {
+        // the manifest, every file it lists, and every Verilog file the command compiles
+        match self.inputs.iter().chain(&self.sources).chain(&self.sim_models).find(|i| same_file(out, i)) {
             Some(i) => Err(input(format!("{flag} {} is the unit's own file {}; write it elsewhere", out.display(), i.display()))),
             None => Ok(()),
         }

@@ -253,3 +253,146 @@ fn a_full_stderr_never_panics() {
     let o = specgen().current_dir(tmp.path()).args(["rom", "--n-bits", "4"]).stdout(full()).stderr(full()).output().unwrap();
     assert!(matches!(o.status.code(), Some(0 | 1)), "rom to a full stdout: {:?}", o.status);
 }
+
+/// Finding 2: `rom -o /dev/stdout >> log.txt` replaced log.txt by rename (its earlier lines
+/// gone), and into a pipe failed ("No such file"). `-` and standard output by any name are
+/// the stream itself now.
+#[test]
+fn standard_output_by_any_name_is_a_stream() {
+    let tmp = tempfile::tempdir().unwrap();
+    let log = tmp.path().join("log.txt");
+    std::fs::write(&log, "first line\n").unwrap();
+    for name in ["/dev/stdout", "-"] {
+        let append = std::fs::OpenOptions::new().append(true).open(&log).unwrap();
+        let o = specgen().args(["rom", "--n-bits", "2", "-o", name]).stdout(append).output().unwrap();
+        assert!(o.status.success(), "{}", text(&o));
+    }
+    let got = std::fs::read_to_string(&log).unwrap();
+    assert!(got.starts_with("first line\n") && got.lines().count() == 9, "{got:?}");
+    let o = specgen().args(["rom", "--n-bits", "2", "-o", "/dev/stdout"]).output().unwrap();
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).lines().count() == 4, "into a pipe: {}", text(&o));
+}
+
+/// Finding 3: outputs over inputs. `rom --config X -o X` replaced the manifest with a table;
+/// `cosim --trace DIR/extra.v` wrote a VCD over a Verilog file the run compiled; `report --out`
+/// replaced a hand-edited index.html (listed without a SHA-256). Each is refused now, the
+/// input untouched.
+#[test]
+fn an_output_never_replaces_what_the_command_reads() {
+    let tmp = tempfile::tempdir().unwrap();
+    let unit = generate(tmp.path(), "u", &["--n-bits", "4", "--stages", "1"]);
+    let manifest = unit.join("specular_unit.json");
+    let before = std::fs::read(&manifest).unwrap();
+    let o = specgen().arg("rom").arg("--config").arg(&manifest).arg("-o").arg(&manifest).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("is the --config file this command reads"), "{}", text(&o));
+    assert_eq!(std::fs::read(&manifest).unwrap(), before);
+    // a Verilog file of the user's beside the unit: compiled by cosim, so never its trace
+    let extra = unit.join("extra.v");
+    std::fs::write(&extra, "// the user's\n").unwrap();
+    let o = specgen()
+        .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+        .args(["cosim", "--simulator", "icarus", "--rtl"])
+        .arg(&unit)
+        .arg("--trace")
+        .arg(&extra)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("is the unit's own file"), "{}", text(&o));
+    assert_eq!(std::fs::read_to_string(&extra).unwrap(), "// the user's\n");
+    // a report's page is listed with its SHA-256: edited, it is not replaced without --force
+    let report = tmp.path().join("report");
+    let args = ["report", "--n-bits", "4", "--cos-frac-bits", "8", "--out"];
+    let o = specgen().args(args).arg(&report).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let page = report.join("index.html");
+    let edited = std::fs::read_to_string(&page).unwrap() + "<!-- mine -->\n";
+    std::fs::write(&page, &edited).unwrap();
+    let o = specgen().args(args).arg(&report).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("index.html was changed since specgen wrote it"), "{}", text(&o));
+    assert_eq!(std::fs::read_to_string(&page).unwrap(), edited);
+}
+
+/// The children of process `pid` (from /proc), with their command names.
+fn children(pid: u32) -> Vec<(u32, String)> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir("/proc").unwrap().flatten() {
+        let Ok(child) = e.file_name().to_string_lossy().parse::<u32>() else { continue };
+        let Ok(stat) = std::fs::read_to_string(format!("/proc/{child}/stat")) else { continue };
+        // pid (comm) state ppid …
+        let Some((comm, rest)) = stat.split_once(" (").and_then(|(_, r)| r.rsplit_once(") ")) else { continue };
+        if rest.split_whitespace().nth(1).and_then(|p| p.parse::<u32>().ok()) == Some(pid) {
+            out.push((child, comm.to_string()));
+        }
+    }
+    out
+}
+
+/// Whether process `pid` has ended (gone, or a zombie waiting for its new parent).
+fn ended(pid: u32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat")).map_or(true, |s| s.rsplit_once(") ").is_some_and(|(_, r)| r.starts_with('Z')))
+}
+
+/// Finding 7: `vvp` kept running at 100 % CPU after SIGTERM/SIGINT to specgen, and `render
+/// --models` left its temporary units. Children now die with specgen, and a signal removes
+/// every temporary directory before specgen ends with 128 + the signal.
+#[test]
+fn children_and_temporaries_end_with_a_signalled_run() {
+    require_tool("iverilog", "iverilog");
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let unit = generate(tmp.path(), "u", &["--stages", "4"]);
+    for signal in [libc::SIGTERM, libc::SIGINT] {
+        let mut run = specgen()
+            .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+            .args(["cosim", "--simulator", "icarus", "--jobs", "1", "--vectors", "5000000", "--rtl"])
+            .arg(&unit)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        let start = std::time::Instant::now();
+        let vvp = loop {
+            if let Some((pid, _)) = children(run.id()).into_iter().find(|(_, c)| c == "vvp") {
+                break pid;
+            }
+            assert!(start.elapsed() < std::time::Duration::from_secs(60), "no vvp started");
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        };
+        // SAFETY: a signal to our own child
+        unsafe { libc::kill(run.id() as libc::pid_t, signal) };
+        let status = run.wait().unwrap();
+        assert_eq!(status.code(), Some(128 + signal), "specgen ends with 128 + the signal");
+        let start = std::time::Instant::now();
+        while !ended(vvp) {
+            assert!(start.elapsed() < std::time::Duration::from_secs(5), "vvp {vvp} outlived specgen (signal {signal})");
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+    }
+    // render --models: its temporary units are gone after a signal
+    let private = tmp.path().join("tmp");
+    std::fs::create_dir(&private).unwrap();
+    let mut run = specgen()
+        .env("TMPDIR", &private)
+        .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+        .args(["render", "--models", "quadratic,fitted,blinn", "--out"])
+        .arg(tmp.path().join("r.png"))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while std::fs::read_dir(&private).unwrap().count() == 0 {
+        assert!(start.elapsed() < std::time::Duration::from_secs(30), "render made no temporary directory");
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    // SAFETY: a signal to our own child
+    unsafe { libc::kill(run.id() as libc::pid_t, libc::SIGINT) };
+    let status = run.wait().unwrap();
+    assert!(status.code() == Some(130) || status.success(), "{status:?}");
+    let left: Vec<_> = std::fs::read_dir(&private).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert!(left.is_empty(), "temporaries left: {left:?}");
+}
