@@ -40,7 +40,8 @@ module specular_unit #(
 // ---- table cos_sp_rom: cut-off ROM cos_sp(n), UQ1.15, address = n ----
 reg  [15:0] cos_sp_rom [0:1023];
 `ifndef SYNTHESIS
-integer cos_sp_rom_fd;
+integer cos_sp_rom_fd, cos_sp_rom_i;
+reg  [63:0] cos_sp_rom_sum;
 `endif
 initial begin
 `ifndef SYNTHESIS
@@ -56,6 +57,13 @@ initial begin
         $display("%m: entry 1023 is %h, expected %h", cos_sp_rom[1023], 16'h7faa);
         $fatal(1, "%m: table file %0s (parameter ROM_FILE) is short or not the generated one", ROM_FILE);
     end
+    // every entry: sum = sum*31 + entry (mod 2^64) over the whole table, as the generator has it
+    cos_sp_rom_sum = 64'd0;
+    for (cos_sp_rom_i = 0; cos_sp_rom_i < 1024; cos_sp_rom_i = cos_sp_rom_i + 1)
+        cos_sp_rom_sum = cos_sp_rom_sum * 64'd31 + {48'h0, cos_sp_rom[cos_sp_rom_i]};
+    if (cos_sp_rom_sum !== 64'h8d6e686acd1f2b7d)
+        $fatal(1, "%m: table file %0s (parameter ROM_FILE) is not the generated one: an entry is missing or changed",
+            ROM_FILE);
 `endif
 end
 

@@ -781,6 +781,13 @@ const SYSTEMVERILOG_KEYWORDS: &[&str] = &[
 const TOOL_MODULES: &[&str] =
     &["specgen_cosim_top", "specgen_icarus_bench", "specgen_synth_top", "MULT18X18D", "DP16KD", "SB_MAC16", "SB_RAM40_4K", "SB_LUT4", "SB_CARRY", "SB_DFF"];
 
+/// Every module of yosys's iCE40 and ECP5 cell libraries, 0.23 and 0.70 (`data/cell_names.txt`).
+const CELL_NAMES: &str = include_str!("../data/cell_names.txt");
+
+/// The modules a unit derives from its top (`<top>_out_buffer`, …): a top ending so could be
+/// another unit's derived module.
+const DERIVED_SUFFIXES: &[&str] = &["_out_buffer", "_mult18x18", "_rom1k18", "_tb", "_tb_ports"];
+
 const VERILOG_KEYWORDS: &[&str] = &[
     "always",
     "and",
@@ -982,8 +989,13 @@ fn check_identifier(top: &str) -> Result<(), ConfigError> {
     if is_internal_name(top) {
         return Err(err("is the name of a port or an internal signal of the unit"));
     }
-    if TOOL_MODULES.contains(&top) {
-        return Err(err("is a module the simulation or synthesis tools already define"));
+    if TOOL_MODULES.contains(&top) || CELL_NAMES.lines().any(|l| !l.starts_with('#') && l == top) {
+        return Err(err("is a module the simulation or synthesis tools already define (a cell of the iCE40 or ECP5 library)"));
+    }
+    if let Some(suffix) = DERIVED_SUFFIXES.iter().find(|s| top.ends_with(*s)) {
+        return Err(err(&format!(
+            "ends with {suffix}, the name of a module every unit derives from its top (<top>{suffix}): another unit's would be defined twice"
+        )));
     }
     Ok(())
 }

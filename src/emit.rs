@@ -74,6 +74,10 @@ pub(crate) struct TableView {
     /// its last entry, and a value it cannot be (the short-file check)
     pub last: String,
     pub not_last: String,
+    /// an entry as 64 bits (zero-extended or its low 64), `{i}` the index
+    pub word64: String,
+    /// [`Table::checksum`] as a Verilog literal
+    pub checksum: String,
 }
 
 /// A table read inside a step: an index into a `$readmemh` memory or an inline `case`.
@@ -391,6 +395,12 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                     depth: t.words.len(),
                     last: lit(t.width, last_word),
                     not_last: lit(t.width, !last_word & mask(t.width)),
+                    word64: match t.width {
+                        w if w < 64 => format!("{{{}, {}[{}_i]}}", lit(64 - w, 0), t.name, t.name),
+                        64 => format!("{}[{}_i]", t.name, t.name),
+                        _ => format!("{}[{}_i][63:0]", t.name, t.name),
+                    },
+                    checksum: lit(64, t.checksum() as u128),
                 }
             })
             .collect()

@@ -188,6 +188,10 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.prologue.push("// ---- the material registers: ks_load takes ks_r/g/b; every step reads them ----".into());
         e.prologue.push(format!("reg  {} ks_r_material, ks_g_material, ks_b_material;   // UNORM{b}", range(b)));
         e.prologue.push("always @(posedge clk) if (ks_load) {ks_r_material, ks_g_material, ks_b_material} <= {ks_r, ks_g, ks_b};".into());
+        if depth == 0 && !interface.handshake() {
+            // combinational: no valid pipeline for rst to clear (the port stays, as with every clock)
+            e.unused.push("rst".into());
+        }
     }
 
     // the tag: one delay line beside valid_line

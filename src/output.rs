@@ -267,6 +267,19 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
     }
     let tag = tag(dir);
     let staging = tempfile::Builder::new().prefix(&format!(".specgen-new-{tag}-")).tempdir_in(&parent).map_err(|e| unwritable(&parent, dir, e))?;
+    // the old directory's mode and group, or what mkdir would give a new one: the group and a
+    // setgid bit first (writable by us meanwhile), so the files written in it take its group
+    // as they would in the old one; the mode itself once they are written
+    #[cfg(unix)]
+    let mode = {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        if let Some(m) = &old {
+            let _ = std::os::unix::fs::chown(staging.path(), None, Some(m.gid()));
+        }
+        let mode = old.as_ref().map_or(0o777 & !umask(), |m| m.mode() & 0o7777);
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode((mode | 0o700) & 0o7777))?;
+        mode
+    };
     for (name, bytes) in files {
         let path = staging.path().join(name);
         if let Some(sub) = path.parent().filter(|p| *p != staging.path()) {
@@ -274,14 +287,9 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
         }
         std::fs::write(path, bytes)?;
     }
-    // the old directory's mode and group, or what mkdir would give a new one
     #[cfg(unix)]
     {
-        use std::os::unix::fs::{MetadataExt, PermissionsExt};
-        let mode = old.as_ref().map_or(0o777 & !umask(), |m| m.mode() & 0o7777);
-        if let Some(m) = &old {
-            let _ = std::os::unix::fs::chown(staging.path(), None, Some(m.gid()));
-        }
+        use std::os::unix::fs::PermissionsExt;
         std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(mode))?;
     }
     if old.is_none() {

@@ -444,6 +444,13 @@ impl SynthResult {
         if !crate::config::SpecularModel::ALL.iter().any(|m| m.name() == r.model) {
             return Err(not(&format!("unknown model {:?}; allowed quadratic, fitted, blinn, blinn-pow", r.model)));
         }
+        // figures a place-and-route can give: a clock in (0, 1000] MHz, an Fmax in (0, 2000]
+        let mhz_ok = |f: f64, max: f64| f.is_finite() && f > 0.0 && f <= max;
+        for (key, f, max) in r.fmax_mhz.iter().chain(&r.fmax_seeds).map(|&f| ("fmax_mhz", f, 2000.0)).chain(r.clock_mhz.map(|f| ("clock_mhz", f, 1000.0))) {
+            if !mhz_ok(f, max) {
+                return Err(not(&format!("{key} {f} is not a clock; allowed (0, {max}] MHz")));
+            }
+        }
         Ok(r)
     }
 }

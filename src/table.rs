@@ -27,6 +27,14 @@ impl Table {
         format!("{top}_{}.hex", self.name)
     }
 
+    /// What the RTL's load check recomputes over every entry after `$readmemh`:
+    /// `sum = sum·31 + word` (mod 2^64, each word's low 64 bits), from 0. A missing entry (X in
+    /// Icarus) or a wrong one changes it, so a file that sets only some entries (`@3ff 7faa`)
+    /// or another table's is caught in the user's own simulator, not only by `cosim`.
+    pub fn checksum(&self) -> u64 {
+        self.words.iter().fold(0u64, |s, &w| s.wrapping_mul(31).wrapping_add(w as u64))
+    }
+
     pub(crate) fn address_bits(&self) -> u32 {
         bit_length(self.words.len() as u128 - 1).max(1)
     }

@@ -55,7 +55,8 @@ module {{ top }}{% if !file_tables.is_empty() %} #(
 // ---- table {{ t.name }}: {{ t.what }} ----
 reg  [{{ t.width - 1 }}:0] {{ t.name }} [0:{{ t.depth - 1 }}];
 `ifndef SYNTHESIS
-integer {{ t.name }}_fd;
+integer {{ t.name }}_fd, {{ t.name }}_i;
+reg  [63:0] {{ t.name }}_sum;
 `endif
 initial begin
 `ifndef SYNTHESIS
@@ -71,6 +72,12 @@ initial begin
         $display("%m: entry {{ t.depth - 1 }} is %h, expected %h", {{ t.name }}[{{ t.depth - 1 }}], {{ t.last }});
         $fatal(1, "%m: table file %0s (parameter {{ t.param }}) is short or not the generated one", {{ t.param }});
     end
+    // every entry: sum = sum*31 + entry (mod 2^64) over the whole table, as the generator has it
+    {{ t.name }}_sum = 64'd0;
+    for ({{ t.name }}_i = 0; {{ t.name }}_i < {{ t.depth }}; {{ t.name }}_i = {{ t.name }}_i + 1)
+        {{ t.name }}_sum = {{ t.name }}_sum * 64'd31 + {{ t.word64 }};
+    if ({{ t.name }}_sum !== {{ t.checksum }})
+        $fatal(1, "%m: table file %0s (parameter {{ t.param }}) is not the generated one: an entry is missing or changed", {{ t.param }});
 `endif
 end
 {%- endfor %}

@@ -369,13 +369,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Generate { out, force, target_mhz, params, rtl } => {
             let mut cfg = params.to_config(Some(&rtl))?;
             if let Some(mhz) = target_mhz {
-                if !(mhz > 0.0 && mhz <= 1000.0) {
-                    return Err(usage(format!("invalid --target-mhz: {mhz}; allowed (0, 1000]")));
+                if !(0.001..=1000.0).contains(&mhz) {
+                    let shown = if mhz.is_finite() && (1e-3..1e6).contains(&mhz.abs()) { format!("{mhz}") } else { format!("{mhz:e}") };
+                    return Err(usage(format!("invalid --target-mhz: {shown}; allowed [0.001, 1000] MHz")));
                 }
             }
             if let (Some(mhz), None) = (target_mhz, &cfg.params.clock_mhz) {
                 // the constraints ask for the clock the pipeline was chosen for
-                cfg = Config::new(Params { clock_mhz: Some(format!("{mhz}")), ..cfg.params })?;
+                cfg = Config::new(Params { clock_mhz: Some(format!("{}", (mhz * 1000.0).round() / 1000.0)), ..cfg.params })?;
             }
             // the plan: model, widths, registers, datapath, built once; --stages checked here
             let mut plan = Plan::new(cfg)?;

@@ -27,6 +27,7 @@ pub struct Report {
     pub checked: u64,
     /// results delivered and compared (`out_valid`, and `out_ready` behind a handshake)
     pub results: u64,
+    /// checked cycles with at least one difference (at most `checked`)
     pub mismatches: u64,
     pub first: Option<Mismatch>,
 }
@@ -68,6 +69,8 @@ pub struct Checker<'a> {
     /// pixels taken and not yet delivered one, two and three cycles before (none after a reset)
     pending_before: [usize; 3],
     before: Option<(Cycle, Sampled)>,
+    /// the last cycle counted as a mismatch (several rules broken in one cycle count once)
+    last_failed: Option<u64>,
     pub report: Report,
 }
 
@@ -88,6 +91,7 @@ impl<'a> Checker<'a> {
             pending: VecDeque::new(),
             pending_before: [0; 3],
             before: None,
+            last_failed: None,
             report: Report::default(),
         }
     }
@@ -102,7 +106,11 @@ impl<'a> Checker<'a> {
     }
 
     fn fail(&mut self, t: u64, cycle_in: Cycle, expected: Sampled, actual: Sampled, data_compared: bool, rule: Option<String>) {
-        self.report.mismatches += 1;
+        // mismatching cycles, never more than the cycles checked
+        if self.last_failed != Some(t) {
+            self.report.mismatches += 1;
+            self.last_failed = Some(t);
+        }
         if self.report.first.is_none() {
             self.report.first = Some(Mismatch { cycle: t, run: self.run, cycle_in, expected, actual, data_compared, rule });
         }

@@ -97,7 +97,14 @@ impl Design {
         if edited {
             return Ok(());
         }
-        for f in v.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
+        // a manifest without its file list would check nothing: refused, not trusted
+        let Some(files) = v.get("files").and_then(|f| f.as_array()).filter(|f| !f.is_empty()) else {
+            return Err(input(format!(
+                "manifest {} lists no files (`files` with their SHA-256): edited by hand? regenerate the unit, or pass --edited to check an RTL changed on purpose",
+                manifest.display()
+            )));
+        };
+        for f in files {
             let (Some(name), Some(want)) = (f.get("name").and_then(|n| n.as_str()), f.get("sha256").and_then(|h| h.as_str())) else { continue };
             let Some(path) = self.inputs.iter().find(|p| p.strip_prefix(&self.dir).is_ok_and(|r| r == Path::new(name))) else { continue };
             let bytes = crate::small_file::read_bytes(path, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", path.display())))?;

