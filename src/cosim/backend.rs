@@ -197,13 +197,19 @@ fn decode(rec: &[u8]) -> Sampled {
 
 /// Runs one stimulus through the built simulator, checking every cycle. `progress` counts
 /// cycles done (for the progress bar).
-/// How long one simulator run may take: a minute plus 2 ms a cycle (Icarus simulates about
-/// 20 000 cycles a second here, Verilator millions), or `SPECGEN_SIM_TIMEOUT` seconds when set.
-/// A run past it is killed and reported (a zero-delay loop in the RTL never advances time).
-fn time_limit(cycles: u64) -> std::time::Duration {
+/// How long one simulator run may take: a minute plus 2 ms a cycle under Verilator (millions of
+/// cycles a second), 50 ms under Icarus (about 20 000 cycles a second on RTL, but some 100 on
+/// a mapped netlist of thousands of cells, as `synth --verify` of fitted at 60 stages gives
+/// it), or `SPECGEN_SIM_TIMEOUT` seconds when set. A run past it is killed and reported (a
+/// zero-delay loop in the RTL never advances time).
+fn time_limit(simulator: Simulator, cycles: u64) -> std::time::Duration {
+    let per_cycle = match simulator {
+        Simulator::Verilator => 2,
+        Simulator::Icarus => 50,
+    };
     match std::env::var("SPECGEN_SIM_TIMEOUT").ok().and_then(|s| s.trim().parse::<u64>().ok()) {
         Some(s) => std::time::Duration::from_secs(s.max(1)),
-        None => std::time::Duration::from_secs(60) + std::time::Duration::from_millis(cycles.saturating_mul(2)),
+        None => std::time::Duration::from_secs(60) + std::time::Duration::from_millis(cycles.saturating_mul(per_cycle)),
     }
 }
 
@@ -254,7 +260,7 @@ pub fn run_one(
                 .stderr(Stdio::piped())
                 .spawn()
                 .map_err(|e| error::tool("verilator", format!("cannot start the Verilator harness: {e}")))?;
-            let limit = time_limit(stim.len());
+            let limit = time_limit(Simulator::Verilator, stim.len());
             let (_alive, fired) = watchdog(child.id(), limit);
             let mut stdin = child.stdin.take().unwrap();
             let mut stdout = child.stdout.take().unwrap();
@@ -329,7 +335,7 @@ pub fn run_one(
                 .stderr(Stdio::piped())
                 .spawn()
                 .map_err(|e| error::tool("vvp", format!("cannot run vvp (Debian package `iverilog`): {e}")))?;
-            let limit = time_limit(stim.len());
+            let limit = time_limit(Simulator::Icarus, stim.len());
             let (alive, fired) = watchdog(child.id(), limit);
             let out = child.wait_with_output().map_err(|e| error::tool("vvp", e.to_string()))?;
             drop(alive);

@@ -136,6 +136,22 @@ impl Datapath {
     /// sees one flip-flop either way, and yosys 0.70 took it into both blocks so (the colour
     /// products of the 13-stage lean unit read `16'b000000xxxxxxxxxx`).
     pub(crate) fn block_to_block(&self, name: &str, k: usize) -> bool {
+        let from_block = self.products.iter().any(|p| p == name)
+            || self.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).is_some_and(|w| {
+                let plain = w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, ".contains(c));
+                plain
+                    && self.products.iter().any(|p| {
+                        w.expr
+                            .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                            .any(|t| t.rsplit_once("_s").is_some_and(|(b, i)| b == p && i.parse::<u32>().is_ok()))
+                    })
+            });
+        from_block && self.read_by_block(name, k)
+    }
+
+    /// Whether a multiplier reads the register `name_cK`, directly or through wires that only
+    /// select and concatenate its bits.
+    pub(crate) fn read_by_block(&self, name: &str, k: usize) -> bool {
         let tokens = |e: &str| e.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect::<Vec<_>>();
         let mut aliases = vec![format!("{name}_c{k}")];
         for s in &self.steps {
@@ -147,17 +163,7 @@ impl Datapath {
             }
         }
         let reads = |w: &Wire| w.expr.contains(" * ") && tokens(&w.expr).iter().any(|t| aliases.contains(t));
-        let from_block = self.products.iter().any(|p| p == name)
-            || self.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).is_some_and(|w| {
-                let plain = w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, ".contains(c));
-                plain
-                    && self.products.iter().any(|p| {
-                        w.expr
-                            .split(|c: char| !(c.is_alphanumeric() || c == '_'))
-                            .any(|t| t.rsplit_once("_s").is_some_and(|(b, i)| b == p && i.parse::<u32>().is_ok()))
-                    })
-            });
-        from_block && self.steps.iter().flat_map(|s| &s.wires).any(reads)
+        self.steps.iter().flat_map(|s| &s.wires).any(reads)
     }
 
     pub(crate) fn delays(&self) -> Vec<f64> {
