@@ -223,8 +223,16 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
             e.tail.push(format!("assign {:<9} = {t};", "out_tag"));
         }
         if colour == Colour::Static {
-            let idle = if depth == 0 { "1'b1".to_string() } else { "~|valid_line".to_string() };
-            e.tail.push(format!("assign {:<9} = {idle};   // no pixel in the pipeline", "idle"));
+            if depth == 0 {
+                e.tail.push(format!("assign {:<9} = 1'b1;   // no pipeline: never a pixel inside", "idle"));
+            } else {
+                // registered, from what valid_line holds after this edge: idle leaves the unit
+                // from a flip-flop, not through an OR of the whole valid pipeline
+                let shifted = if depth == 1 { "in_valid".to_string() } else { format!("in_valid | (|valid_line[{}:0])", depth - 2) };
+                e.tail.push("reg  idle_q;   // no pixel in the pipeline: ~|valid_line, one edge ahead".into());
+                e.tail.push(format!("always @(posedge clk) idle_q <= rst | ~({shifted});"));
+                e.tail.push(format!("assign {:<9} = idle_q;", "idle"));
+            }
         }
         return e;
     }

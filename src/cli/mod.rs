@@ -222,7 +222,7 @@ pub struct RtlArgs {
     /// rules) or axis (AXI4-Stream names, fields packed in tdata) [default valid]
     #[arg(long, value_enum, help_heading = "Interface")]
     pub interface: Option<InterfaceFlag>,
-    /// W: bits of a tag carried beside each pixel, in_tag -> out_tag (tuser with axis) [0..=64; default 0]
+    /// W: bits of a tag carried beside each pixel, in_tag -> out_tag (tuser with axis)
     #[arg(allow_negative_numbers = true, value_parser = param_tag_bits, long, help_heading = "Interface")]
     pub tag_bits: Option<u32>,
     /// The specular colour: pixel (ks_r/g/b with every pixel) or static (material registers

@@ -287,3 +287,19 @@ fn subcommands_take_only_their_parameters_and_help_is_complete() {
         assert!(text(&o).contains(heading), "{heading}");
     }
 }
+
+/// Issue 35: each ranged flag states its range once in --help (`--tag-bits` said
+/// "[0..=64; default 0] [0..=64, default 0]").
+#[test]
+fn every_range_is_stated_once_in_help() {
+    let o = specgen().args(["generate", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&o.stdout).replace('\n', " ");
+    for r in specgen::config::RANGES {
+        let range = format!("{}..={}", r.min, r.max);
+        let flag = format!("--{} <", r.name.replace('_', "-"));
+        let from = help.find(&flag).unwrap_or_else(|| panic!("{flag} in --help"));
+        let rest = &help[from + flag.len()..];
+        let text = &rest[..rest.find("  --").unwrap_or(rest.len())];
+        assert_eq!(text.matches(&range).count(), 1, "{flag}: {text}");
+    }
+}

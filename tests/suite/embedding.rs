@@ -269,3 +269,20 @@ fn an_embedded_unit_is_timed_at_its_clock_on_the_ecp5() {
     let log = pnr(&plain.join("unit_e.lpf"));
     assert!(log.contains("net 'clk' does not exist in design, ignoring clock constraint") || log.contains("ignoring clock constraint"), "{log}");
 }
+
+/// Issue 35: `--colour static` had `idle = ~|valid_line` unregistered (an OR of the whole
+/// valid pipeline on the unit's output: blinn missed 100 MHz on it). `idle` leaves from a
+/// flip-flop now, and cosim (which checks it cycle by cycle) still finds it right.
+#[test]
+fn a_static_colours_idle_is_a_register() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    for stages in ["1", "9"] {
+        let dir = generate(tmp.path(), &format!("s{stages}"), &["--colour", "static", "--stages", stages, "--n-bits", "6"]);
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert!(v.contains("assign idle      = idle_q;") && v.contains("always @(posedge clk) idle_q <= rst | ~(in_valid"), "{v}");
+        assert!(!v.contains("= ~|valid_line"), "no OR of the pipeline on the output");
+        let o = specgen().env("SPECGEN_CACHE_DIR", tmp.path().join("cache")).args(["cosim", "--vectors", "20000", "--rtl"]).arg(&dir).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+}
