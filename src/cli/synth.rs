@@ -35,6 +35,10 @@ pub struct SynthArgs {
     /// Random vectors of --verify after the corner cases (Icarus runs a tenth of them) [0..=10000000].
     #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(0..=10_000_000))]
     pub verify_vectors: u64,
+    /// ECP5 speed grade: nextpnr places for it and the blocks' limits are read at it
+    /// (DP16KD: 211.9 MHz at 6, 254.2 at 7, 271.4 at 8)
+    #[arg(long, value_name = "GRADE", default_value_t = 6, value_parser = clap::value_parser!(u32).range(6..=8))]
+    pub speed: u32,
     /// With --verify: every (cos_g, n) of the unit through the netlist under Verilator (Icarus
     /// keeps its random vectors).
     #[arg(long, requires = "verify")]
@@ -63,7 +67,7 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         }
     }
     let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
-    let tools = specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone() };
+    let tools = specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone(), speed: args.speed };
     let (r, logs) = synthesize(&design, target, args.dsp, &tools, if args.no_pnr { 0 } else { args.seeds })?;
     if let Some(path) = &args.pnr_log {
         specgen::output::write_file(path, logs.as_bytes()).map_err(|e| Failure::io("write", path, e))?;

@@ -122,6 +122,14 @@ fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
         assert!(measured >= 0.9 * mhz, "{family}: --stages {} measured {measured} MHz for a {mhz} MHz target (predicted {predicted})", m["stages"]);
         assert!(measured >= 0.9 * line.margin * predicted, "{family}: measured {measured} MHz, predicted {predicted} (margin {})", line.margin);
     }
+    // issue 36: a clock above a block's limit is refused with the reason and the alternatives
+    let o = specgen().arg("generate").arg("--out").arg(tmp.path().join("above")).args(["--target", "ecp5", "--target-mhz", "215"]).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("215 MHz is above what the blocks allow") && err.contains("DP16KD") && err.contains("at most 211.9 MHz") && err.contains("--speed"),
+        "{err}"
+    );
     let out = tmp.path().join("impossible");
     let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
