@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 missing=()
-for pair in verilator:verilator iverilog:iverilog vvp:iverilog yosys:yosys nextpnr-ice40:nextpnr-ice40 ccache:ccache; do
+for pair in verilator:verilator iverilog:iverilog vvp:iverilog yosys:yosys nextpnr-ice40:nextpnr-ice40 icetime:fpga-icestorm ccache:ccache; do
     tool=${pair%%:*}; pkg=${pair##*:}
     command -v "$tool" >/dev/null 2>&1 || missing+=("$pkg")
 done

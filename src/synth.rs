@@ -50,6 +50,11 @@ pub struct SynthResult {
     /// the ECP5 speed grade placed for (none on the iCE40)
     #[serde(default)]
     pub speed_grade: Option<u32>,
+    /// iCE40: `icetime -d up5k` on each placed seed (its interior paths), and their median
+    #[serde(default)]
+    pub icetime_seeds: Vec<f64>,
+    #[serde(default)]
+    pub icetime_mhz: Option<f64>,
     /// Fmax of each seed 1..=K, in seed order (Fmax moves with the seed by several per cent)
     pub fmax_seeds: Vec<f64>,
     /// why Fmax is missing, when it is
@@ -336,6 +341,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         fmax_limited_by: String::new(),
         block_limits: Vec::new(),
         speed_grade: None,
+        icetime_seeds: Vec::new(),
+        icetime_mhz: None,
         logic_cells: None,
         cells,
     };
@@ -356,8 +363,14 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
     run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {} -json wrapped.json", synth_cmd("specgen_synth_top")))?;
     // one nextpnr per seed, as many at a time as there are cores
+    // iCE40: the placed design as an .asc per seed, for icetime's second opinion
+    let asc = |seed: u32| format!("seed{seed}.asc");
     let run = |seed: u32| -> Result<(bool, String), Failure> {
-        let out = crate::process::command(tool)
+        let mut cmd = crate::process::command(tool);
+        if target == Target::Ice40 {
+            cmd.args(["--asc", &asc(seed)]);
+        }
+        let out = cmd
             .args(args)
             // relative to the work directory: the WebAssembly build sees only its cwd
             .current_dir(work.path())
@@ -399,6 +412,17 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax_of_log(log)).collect();
     r.logic_cells = runs.first().and_then(|(_, log)| logic_cells(log));
     r.fmax_route_mhz = median(&r.fmax_seeds);
+    // icetime (IceStorm's timer, Debian's fpga-icestorm) on each placed seed: its own delay
+    // model of the same routes, beside nextpnr's
+    if target == Target::Ice40 && tool_exists("icetime") {
+        for seed in 1..=seeds {
+            let out = crate::process::command("icetime").current_dir(work.path()).args(["-d", "up5k", "-i", "-t", &asc(seed)]).output();
+            if let Some(mhz) = out.ok().and_then(|o| icetime_mhz(&String::from_utf8_lossy(&o.stdout))) {
+                r.icetime_seeds.push(mhz);
+            }
+        }
+        r.icetime_mhz = median(&r.icetime_seeds);
+    }
     // the blocks' own limits, which nextpnr does not time (crate::blocks)
     let has = |cell: &str| r.cells.iter().any(|(n, c)| n == cell && *c > 0);
     let limits = crate::blocks::limits(target, tools.speed, has("MULT18X18D") || has("SB_MAC16"), has("DP16KD") || has("SB_RAM40_4K"));
@@ -438,6 +462,12 @@ pub(crate) fn fmax_of_log(log: &str) -> Option<f64> {
         }
     }
     last.into_iter().map(|(_, f)| f).reduce(f64::min)
+}
+
+/// icetime's estimate: `Total path delay: 9.56 ns (104.64 MHz)`.
+pub(crate) fn icetime_mhz(report: &str) -> Option<f64> {
+    let line = report.lines().rfind(|l| l.contains("Total path delay:"))?;
+    line.split('(').nth(1)?.split_whitespace().next()?.parse().ok()
 }
 
 /// Whether nextpnr saw a hard block clocked by a constant: on the iCE40 an SB_MAC16 used
@@ -530,6 +560,9 @@ pub fn table(r: &SynthResult) -> String {
     ];
     for (k, v) in rows {
         s.push_str(&format!("  {k:<14} {v}\n"));
+    }
+    if let Some(m) = r.icetime_mhz {
+        s.push_str(&format!("  {:<14} {m:.1} median of {} placed seeds (icetime -d up5k, interior paths)\n", "icetime (MHz)", r.icetime_seeds.len()));
     }
     for (block, mhz, what) in &r.block_limits {
         s.push_str(&format!("  {:<14} {mhz:.1} MHz: {what}\n", format!("{block} limit")));

@@ -41,6 +41,11 @@ fn lean_fully_pipelined_fits_an_up5k() {
     assert!(r["flip_flops"].as_u64().unwrap() > 100, "a {deepest}-stage pipeline has registers: {r}");
     assert!(r["fmax_mhz"].as_f64().is_some(), "placed on the UP5K: {r}");
     assert!(!r["fmax_note"].as_str().unwrap().contains(specgen::synth::UNCLOCKED_BLOCK_NOTE), "every SB_MAC16 has a register: {r}");
+    // issue 36: icetime's second opinion on the placed design, and the SB_MAC16's own limit
+    require_tool("icetime", "fpga-icestorm");
+    assert!(r["icetime_mhz"].as_f64().is_some_and(|f| f > 50.0) && r["icetime_seeds"].as_array().unwrap().len() == 1, "{r}");
+    assert!(r["block_limits"].as_array().unwrap().iter().any(|l| l[0] == "SB_MAC16" && l[1] == 153.7), "{r}");
+    assert_eq!(r["fmax_limited_by"], "routing (nextpnr)", "{r}");
 }
 
 /// The SB_MAC16 cells of `dir`'s unit, mapped by yosys `synth_ice40 -dsp`, whose clock is a
