@@ -170,6 +170,25 @@ impl Interface {
 /// the write, the memory's read register, the output register.
 pub const BUFFER_LATENCY: u32 = 3;
 
+/// The reset's polarity (`generate --reset`, SPEC §7): synchronous either way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reset {
+    /// `rst` (`areset` under `axis`), active high
+    SyncHigh,
+    /// `rst_n` (`aresetn` under `axis`), active low
+    SyncLow,
+}
+
+impl Reset {
+    pub fn name(self) -> &'static str {
+        match self {
+            Reset::SyncHigh => "sync-high",
+            Reset::SyncLow => "sync-low",
+        }
+    }
+}
+
 /// Where the specular colour comes from (`generate --colour`, SPEC §7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -253,6 +272,10 @@ pub struct Params {
     /// right when the unit is the top.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub clock_port: Option<String>,
+    /// The reset's polarity; none: the interface's own (active high `rst` for `valid` and
+    /// `ready`, active low `aresetn` for `axis`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reset: Option<Reset>,
 }
 
 impl Default for Params {
@@ -277,6 +300,7 @@ impl Default for Params {
             colour: Colour::Pixel,
             clock_mhz: None,
             clock_port: None,
+            reset: None,
         }
     }
 }
@@ -339,6 +363,10 @@ impl Params {
             map.remove(*key);
         }
         let mut full = serde_json::to_value(Params::default()).expect("params serialise");
+        // the parameters a manifest states only when given (absent: the default)
+        for key in ["clock_port", "reset"] {
+            full[key] = serde_json::Value::Null;
+        }
         for (k, v) in map {
             if full.get(&k).is_none() {
                 return Err(format!("unknown key {k:?}"));
@@ -460,6 +488,10 @@ impl Config {
     pub fn colour(&self) -> Colour {
         self.params.colour
     }
+    /// The reset's polarity: `reset` when given, else the interface's own.
+    pub fn reset(&self) -> Reset {
+        self.params.reset.unwrap_or(if self.interface() == Interface::Axis { Reset::SyncLow } else { Reset::SyncHigh })
+    }
     /// Whether the unit has a clock and reset: pipeline registers, a handshake's buffer or
     /// material registers.
     pub fn clocked(&self) -> bool {
@@ -497,6 +529,7 @@ impl Config {
             axis: self.interface() == Interface::Axis,
             tag_bits: self.tag_bits(),
             static_colour: self.colour() == Colour::Static,
+            reset_low: self.reset() == Reset::SyncLow,
         }
     }
 
@@ -572,6 +605,9 @@ impl Config {
         }
         if p.colour != Colour::Pixel {
             s.push_str(&format!(" colour={}", p.colour.name()));
+        }
+        if let Some(r) = p.reset {
+            s.push_str(&format!(" reset={}", r.name()));
         }
         s
     }

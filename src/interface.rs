@@ -109,7 +109,8 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     // the header
     if interface.handshake() {
         let places = buffer_places(cfg);
-        let (iv, ir, ov, or, rst) = names(interface);
+        let (iv, ir, ov, or, _) = names(interface);
+        let rst = reset_words(cfg);
         e.header.push(format!("Latency:    {} clock cycles from a transfer in to its result out while {or} is high;", cfg.stages() + BUFFER_LATENCY));
         e.header.push(format!("            one result a cycle; {rst} empties the unit."));
         e.header.push("Handshake:  AXI4-Stream rules: a transfer when valid and ready are both high at a rising clock edge.".into());
@@ -123,7 +124,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         let latency = if cfg.stages() == 0 {
             "0 clock cycle(s) (combinational).".to_string()
         } else {
-            format!("{} clock cycle(s), one result per cycle; rst clears only the valid pipeline.", cfg.stages())
+            format!("{} clock cycle(s), one result per cycle; {} clears only the valid pipeline.", cfg.stages(), reset_words(cfg))
         };
         e.header.push(format!("Latency:    {latency}"));
     }
@@ -145,13 +146,18 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.header.push("            taken in the same cycle (a pixel inside the unit meanwhile would see either colour).".into());
     }
 
-    // the prologue: axis aliases, the take, the material registers
+    // the prologue: the reset active high inside, axis aliases, the take, the material registers
+    if interface != Interface::Axis && cfg.clocked() && cfg.port_widths().reset_low {
+        e.prologue.push(format!("wire {} rst = ~rst_n;   // active high inside", range(1)));
+    }
     if interface == Interface::Axis {
         let w = cfg.port_widths();
         let (sf, sw, _, _) = ports::tdata_fields(w);
         e.prologue.push("// ---- AXI4-Stream names: the logic below uses the plain ones ----".into());
         e.prologue.push(format!("wire {} clk       = aclk;", range(1)));
-        e.prologue.push(format!("wire {} rst       = ~aresetn;   // active high inside", range(1)));
+        let w = cfg.port_widths();
+        let polarity = if w.reset_low { "~" } else { "" };
+        e.prologue.push(format!("wire {} rst       = {polarity}{};   // active high inside", range(1), ports::reset_port(w)));
         e.prologue.push(format!("wire {} in_valid  = s_axis_tvalid;", range(1)));
         e.prologue.push(format!("wire {} out_ready = m_axis_tready;", range(1)));
         e.prologue.push(format!("wire {} in_ready, out_valid;", range(1)));
@@ -276,6 +282,12 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         }
     }
     e
+}
+
+/// The reset as the header names it: `rst`, `rst_n low`, `areset`, `aresetn low`.
+fn reset_words(cfg: &crate::config::Config) -> String {
+    let w = cfg.port_widths();
+    format!("{}{}", ports::reset_port(w), if w.reset_low { " low" } else { "" })
 }
 
 /// The handshake's port names: in valid, in ready, out valid, out ready, reset.

@@ -47,6 +47,18 @@ pub struct PortWidths {
     pub tag_bits: u32,
     /// `ks_r/g/b` are material registers loaded by `ks_load`, with an `idle` output
     pub static_colour: bool,
+    /// the reset is active low (`rst_n`, `aresetn`), else active high (`rst`, `areset`)
+    pub reset_low: bool,
+}
+
+/// The reset port's name: `rst`/`rst_n`, or under `axis` `areset`/`aresetn`.
+pub fn reset_port(w: PortWidths) -> &'static str {
+    match (w.axis, w.reset_low) {
+        (true, true) => "aresetn",
+        (true, false) => "areset",
+        (false, true) => "rst_n",
+        (false, false) => "rst",
+    }
 }
 
 /// One field of a packed `tdata` (the `axis` interface): a logical port's bits at `lo`.
@@ -114,9 +126,11 @@ pub struct Port {
 }
 
 /// Every name the port table can hold, and the logical names of the `axis` unit's fields.
-pub(crate) const NAMES: [&str; 30] = [
+pub(crate) const NAMES: [&str; 32] = [
     "clk",
     "rst",
+    "rst_n",
+    "areset",
     "in_valid",
     "in_ready",
     "cos_g",
@@ -162,7 +176,8 @@ pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
         let (sf, sw, mf, mw) = tdata_fields(w);
         let layout = |fields: &[Field]| fields.iter().map(|x| format!("{}@{}", x.name, x.lo)).collect::<Vec<_>>().join(" ");
         port("aclk", "input", 1, String::new(), false);
-        port("aresetn", "input", 1, "synchronous, active low: empties the unit".into(), false);
+        let level = if w.reset_low { "low" } else { "high" };
+        port(reset_port(w), "input", 1, format!("synchronous, active {level}: empties the unit"), false);
         port("s_axis_tvalid", "input", 1, String::new(), false);
         port("s_axis_tready", "output", 1, String::new(), false);
         port("s_axis_tdata", "input", sw, layout(&sf), true);
@@ -184,7 +199,8 @@ pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
     if w.clocked {
         port("clk", "input", 1, String::new(), false);
         let what = if w.ready { "empties the unit" } else { "clears the valid pipeline" };
-        port("rst", "input", 1, format!("synchronous, active high: {what}"), false);
+        let level = if w.reset_low { "low" } else { "high" };
+        port(reset_port(w), "input", 1, format!("synchronous, active {level}: {what}"), false);
     }
     port("in_valid", "input", 1, String::new(), false);
     if w.ready {

@@ -95,7 +95,7 @@ fn wrapper(cfg: &Config) -> String {
     let pack = |dir: &str| {
         let mut lo = 0;
         let mut v = Vec::new();
-        for p in ports.iter().filter(|p| p.direction == dir && !["clk", "rst", "aclk", "aresetn"].contains(&p.name)) {
+        for p in ports.iter().filter(|p| p.direction == dir && !["clk", "aclk", crate::ports::reset_port(cfg.port_widths())].contains(&p.name)) {
             v.push(WrapperPort { name: p.name, hi: lo + p.width - 1, lo, relay: ["out_ready", "m_axis_tready"].contains(&p.name) });
             lo += p.width;
         }
@@ -105,7 +105,8 @@ fn wrapper(cfg: &Config) -> String {
     let (outputs, out_bits) = pack("output");
     let clocked = cfg.clocked();
     let axis = cfg.interface() == crate::config::Interface::Axis;
-    let (clock, reset) = if axis { ("aclk", "aresetn") } else { ("clk", "rst") };
+    let clock = if axis { "aclk" } else { "clk" };
+    let reset = crate::ports::reset_port(cfg.port_widths());
     let mut text =
         Wrapper { top: cfg.top(), clocked, clock, reset, in_bits: in_data + clocked as u32, out_bits, inputs, outputs }.render().expect("wrapper renders");
     text.push('\n');

@@ -13,7 +13,7 @@ use specgen::models::Inputs;
 use specgen::plan::Plan;
 use specgen::rom;
 use std::path::PathBuf;
-use values::{ArchFlag, ColourFlag, InterfaceFlag, ModelFlag, RomFormatFlag, RomStyleFlag, RoundingFlag, TargetFlag, VectorFormatFlag};
+use values::{ArchFlag, ColourFlag, InterfaceFlag, ModelFlag, ResetFlag, RomFormatFlag, RomStyleFlag, RoundingFlag, TargetFlag, VectorFormatFlag};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -229,6 +229,10 @@ pub struct RtlArgs {
     /// loaded by ks_load while idle) [default pixel]
     #[arg(long, value_enum, help_heading = "Interface")]
     pub colour: Option<ColourFlag>,
+    /// The reset's polarity, synchronous either way [default: sync-high (rst) for valid and
+    /// ready, sync-low (aresetn) for axis]
+    #[arg(long, value_enum, help_heading = "Interface")]
+    pub reset: Option<ResetFlag>,
     /// The clock the constraints (<top>.sdc, <top>.lpf), the FuseSoC core and synth ask for, MHz
     /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
     #[arg(long, value_name = "F", allow_hyphen_values = true, help_heading = "Interface")]
@@ -342,6 +346,9 @@ impl ParamArgs {
                 p.top = v.clone();
             }
             set!(r; stages, rom_style, target, interface, tag_bits, colour);
+            if let Some(v) = r.reset {
+                p.reset = Some(v.into());
+            }
             if let Some(v) = &r.clock_mhz {
                 p.clock_mhz = Some(v.clone());
             }

@@ -1,7 +1,7 @@
 //! The command line's form of the library's enums: clap's `ValueEnum` lives here, never in the
 //! library. Each flag value converts into its library type.
 
-use specgen::config::{Arch, Colour, Interface, RomStyle, Rounding, SpecularModel, Target};
+use specgen::config::{Arch, Colour, Interface, Reset, RomStyle, Rounding, SpecularModel, Target};
 use specgen::cosim::Simulator;
 use specgen::rom::RomFormat;
 use specgen::vectors::VectorFormat;
@@ -61,6 +61,13 @@ flag_values! {
         Ready,
         /// the ready behaviour under AXI4-Stream names (aclk, aresetn, s_axis_*, m_axis_*)
         Axis,
+    }
+    /// `--reset`
+    ResetFlag => Reset {
+        /// synchronous, active high: rst (areset with axis)
+        SyncHigh,
+        /// synchronous, active low: rst_n (aresetn with axis)
+        SyncLow,
     }
     /// `--colour`
     ColourFlag => Colour {

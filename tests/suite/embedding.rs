@@ -286,3 +286,51 @@ fn a_static_colours_idle_is_a_register() {
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     }
 }
+
+/// Issue 35: `--reset sync-high|sync-low` for every interface (the port `rst`/`rst_n`, or
+/// `areset`/`aresetn` under `axis`; the default is the interface's own). Each unit is lint
+/// clean and right under stalls and mid-stream resets in both simulators, and a reset of the
+/// wrong polarity would hold it (cosim drives the reset through the port's own polarity).
+#[test]
+fn every_interface_takes_either_reset_polarity() {
+    require_tool("verilator", "verilator");
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let cases = [
+        ("valid", "sync-low", "rst_n", "low"),
+        ("ready", "sync-low", "rst_n", "low"),
+        ("axis", "sync-high", "areset", "high"),
+        ("axis", "sync-low", "aresetn", "low"),
+        ("valid", "sync-high", "rst", "high"),
+    ];
+    for (i, (interface, reset, port, level)) in cases.iter().enumerate() {
+        let dir = generate(
+            tmp.path(),
+            &format!("r{i}"),
+            &["--interface", interface, "--reset", reset, "--stages", "4", "--n-bits", "6", "--tag-bits", "3", "--colour", "static"],
+        );
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert!(v.contains(&format!("input  wire        {port},")) && v.contains(&format!("active {level}")), "{interface} {reset}:\n{v}");
+        let manifest = std::fs::read_to_string(dir.join("specular_unit.json")).unwrap();
+        assert!(manifest.contains(&format!("\"reset\": \"{reset}\"")), "{manifest}");
+        let mut files: Vec<std::path::PathBuf> = vec![dir.join("specular_unit.v")];
+        if *interface != "valid" {
+            files.push(dir.join("specular_unit_out_buffer.v"));
+        }
+        let o = Command::new("verilator").args(["--lint-only", "-Wall"]).args(&files).output().unwrap();
+        assert!(o.status.success() && o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
+        for sim in ["verilator", "icarus"] {
+            let o = specgen()
+                .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+                .args(["cosim", "--vectors", "5000", "--simulator", sim, "--rtl"])
+                .arg(&dir)
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "{interface} {reset} {sim}: {}", String::from_utf8_lossy(&o.stderr));
+        }
+    }
+    // the default stays the interface's own, and the default unit's bytes do not change
+    let d = generate(tmp.path(), "d", &["--interface", "axis", "--stages", "2"]);
+    assert!(std::fs::read_to_string(d.join("specular_unit.v")).unwrap().contains("input  wire        aresetn,"));
+    assert!(!std::fs::read_to_string(d.join("specular_unit.json")).unwrap().contains("\"reset\""));
+}
