@@ -129,8 +129,6 @@ pub struct Port {
 pub(crate) const NAMES: [&str; 32] = [
     "clk",
     "rst",
-    "rst_n",
-    "areset",
     "in_valid",
     "in_ready",
     "cos_g",
@@ -159,6 +157,8 @@ pub(crate) const NAMES: [&str; 32] = [
     "m_axis_tready",
     "m_axis_tdata",
     "m_axis_tuser",
+    "rst_n",
+    "areset",
 ];
 
 /// The port list in module order; `done_meaning` completes the `done` comment.
@@ -283,11 +283,18 @@ mod tests {
             axis: false,
             tag_bits: 0,
             static_colour: false,
+            reset_low: false,
         };
         let p = ports(w, "");
         let names = |w| ports(w, "").iter().map(|p| p.name).collect::<Vec<_>>();
         let mut all: Vec<&str> = names(PortWidths { ready: true, tag_bits: 4, static_colour: true, ..w });
-        all.extend(names(PortWidths { axis: true, tag_bits: 4, static_colour: true, ..w }).into_iter().filter(|n| n.contains("axis") || n.starts_with('a')));
+        all.extend(
+            names(PortWidths { axis: true, tag_bits: 4, static_colour: true, reset_low: true, ..w })
+                .into_iter()
+                .filter(|n| n.contains("axis") || n.starts_with('a')),
+        );
+        all.extend(names(PortWidths { reset_low: true, ..w }).into_iter().filter(|n| *n == "rst_n"));
+        all.extend(names(PortWidths { axis: true, ..w }).into_iter().filter(|n| *n == "areset"));
         assert_eq!(all, NAMES);
         for c in VECTOR_COLUMNS {
             assert!(p.iter().any(|p| p.name == c && p.data), "{c}");
