@@ -276,6 +276,9 @@ pub struct Params {
     /// `ready`, active low `aresetn` for `axis`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reset: Option<Reset>,
+    /// `axis`: `s_axis_tlast` → `m_axis_tlast`, carried with each pixel as `tuser` is.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub tlast: bool,
 }
 
 impl Default for Params {
@@ -301,6 +304,7 @@ impl Default for Params {
             clock_mhz: None,
             clock_port: None,
             reset: None,
+            tlast: false,
         }
     }
 }
@@ -367,6 +371,7 @@ impl Params {
         for key in ["clock_port", "reset"] {
             full[key] = serde_json::Value::Null;
         }
+        full["tlast"] = serde_json::Value::Bool(false);
         for (k, v) in map {
             if full.get(&k).is_none() {
                 return Err(format!("unknown key {k:?}"));
@@ -410,6 +415,23 @@ impl Config {
         }
         if let Some(port) = &params.clock_port {
             check_port_name(port)?;
+        }
+        if params.tlast && params.interface != Interface::Axis {
+            return Err(ConfigError {
+                parameter: "tlast",
+                message: format!("applies to the axis interface only; allowed with {}: none", params.interface.name()),
+            });
+        }
+        if params.tlast && params.tag_bits == TAG_BITS.max {
+            return Err(ConfigError {
+                parameter: "tag_bits",
+                message: format!(
+                    "{} with tlast: the tag and tlast travel as one word of at most {} bits; allowed 0..={}",
+                    params.tag_bits,
+                    TAG_BITS.max,
+                    TAG_BITS.max - 1
+                ),
+            });
         }
         let k_code = parse_k(&params.k, params.k_frac_bits)?;
         if params.model != SpecularModel::Quadratic {
@@ -488,6 +510,10 @@ impl Config {
     pub fn colour(&self) -> Colour {
         self.params.colour
     }
+    /// The bits that travel beside each pixel: the tag, and `tlast` above it.
+    pub fn carried_tag_bits(&self) -> u32 {
+        self.params.tag_bits + self.params.tlast as u32
+    }
     /// The reset's polarity: `reset` when given, else the interface's own.
     pub fn reset(&self) -> Reset {
         self.params.reset.unwrap_or(if self.interface() == Interface::Axis { Reset::SyncLow } else { Reset::SyncHigh })
@@ -530,6 +556,7 @@ impl Config {
             tag_bits: self.tag_bits(),
             static_colour: self.colour() == Colour::Static,
             reset_low: self.reset() == Reset::SyncLow,
+            tlast: self.params.tlast,
         }
     }
 
@@ -608,6 +635,9 @@ impl Config {
         }
         if let Some(r) = p.reset {
             s.push_str(&format!(" reset={}", r.name()));
+        }
+        if p.tlast {
+            s.push_str(" tlast");
         }
         s
     }
@@ -977,14 +1007,14 @@ pub fn is_internal_name(name: &str) -> bool {
         || name.ends_with("_FILE")
         || name.ends_with("_line")
         || name.contains("_line_")
+        || TABLES.iter().any(|t| name.strip_prefix(t).is_some_and(|r| r == "_sum" || r == "_i"))
         || INTERNAL_NAMES.contains(&name)
 }
 
 /// The handshake's, tag's and material registers' own names inside the unit.
 pub(crate) const INTERNAL_NAMES: &[&str] =
-    &["in_take", "out_result", "out_held", "out_buffer", "tag_line", "ks_r_material", "ks_g_material", "ks_b_material", "result_valid"];
+    &["in_take", "out_result", "out_held", "out_buffer", "tag_line", "ks_r_material", "ks_g_material", "ks_b_material", "result_valid", "idle_q"];
 
-/// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
 /// `clock_port`: a port name of the user's design, written into SDC and LPF files: a Verilog
 /// identifier of at most 64 characters (no escaped names: the files quote nothing else).
 fn check_port_name(port: &str) -> Result<(), ConfigError> {
@@ -1000,6 +1030,7 @@ fn check_port_name(port: &str) -> Result<(), ConfigError> {
     }
 }
 
+/// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
 fn check_identifier(top: &str) -> Result<(), ConfigError> {
     let err = |why: &str| ConfigError {
         parameter: "top",

@@ -103,7 +103,9 @@ fn concat(parts: &[String]) -> String {
 pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     let cfg = &plan.cfg;
     let depth = plan.registered_cuts.len() as u32;
-    let (interface, tw, colour) = (cfg.interface(), cfg.tag_bits(), cfg.colour());
+    // tw: the bits carried beside each pixel, tlast above the tag
+    let (interface, tw, colour) = (cfg.interface(), cfg.carried_tag_bits(), cfg.colour());
+    let (user, tlast) = (cfg.tag_bits(), cfg.params.tlast);
     let top = cfg.top();
     let mut e = Edge { header: Vec::new(), prologue: Vec::new(), valid_source: "in_valid".into(), tag: Vec::new(), tail: Vec::new(), unused: Vec::new() };
     // the header
@@ -136,9 +138,12 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.header.push(format!("tdata:      s_axis_tdata: {}", layout(&sf)));
         e.header.push(format!("            m_axis_tdata: {} (other bits 0)", layout(&mf)));
     }
-    if tw > 0 {
+    if user > 0 {
         let (inp, out) = if interface == Interface::Axis { ("s_axis_tuser", "m_axis_tuser") } else { ("in_tag", "out_tag") };
-        e.header.push(format!("Tag:        {inp} ({tw} bits) leaves on {out} with its own pixel's result."));
+        e.header.push(format!("Tag:        {inp} ({user} bits) leaves on {out} with its own pixel's result."));
+    }
+    if tlast {
+        e.header.push("Last:       s_axis_tlast leaves on m_axis_tlast with its own pixel's result (carried as tuser is).".into());
     }
     if colour == Colour::Static {
         e.header.push("Colour:     static: ks_load takes ks_r/g/b into the material registers at a rising edge; every".into());
@@ -168,7 +173,12 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         }
         e.unused.extend(crate::datapath::bit_ranges("s_axis_tdata", sw, crate::bits::mask(sw) & !covered));
         if tw > 0 {
-            e.prologue.push(format!("wire {} in_tag    = s_axis_tuser;", range(tw)));
+            let source = match (user, tlast) {
+                (0, _) => "s_axis_tlast".to_string(),
+                (_, true) => "{s_axis_tlast, s_axis_tuser}".to_string(),
+                (_, false) => "s_axis_tuser".to_string(),
+            };
+            e.prologue.push(format!("wire {} in_tag    = {source};", range(tw)));
         }
         let b = cfg.b();
         e.prologue.push(format!("wire {} spec_r, spec_g, spec_b;", range(b)));
@@ -277,8 +287,11 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     if interface == Interface::Axis {
         let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
         e.tail.push(format!("assign m_axis_tdata = {};", ports::packed_tdata(&mf, mw)));
-        if tw > 0 {
-            e.tail.push("assign m_axis_tuser = out_tag;".into());
+        match (user, tlast) {
+            (0, false) => {}
+            (0, true) => e.tail.push("assign m_axis_tlast = out_tag;".into()),
+            (_, false) => e.tail.push("assign m_axis_tuser = out_tag;".into()),
+            (_, true) => e.tail.push(format!("assign {{m_axis_tlast, m_axis_tuser}} = out_tag;   // tlast above the tag ({user} bits)")),
         }
     }
     e

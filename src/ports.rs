@@ -49,6 +49,8 @@ pub struct PortWidths {
     pub static_colour: bool,
     /// the reset is active low (`rst_n`, `aresetn`), else active high (`rst`, `areset`)
     pub reset_low: bool,
+    /// `s_axis_tlast`/`m_axis_tlast` (the `axis` interface)
+    pub tlast: bool,
 }
 
 /// The reset port's name: `rst`/`rst_n`, or under `axis` `areset`/`aresetn`.
@@ -126,7 +128,7 @@ pub struct Port {
 }
 
 /// Every name the port table can hold, and the logical names of the `axis` unit's fields.
-pub(crate) const NAMES: [&str; 32] = [
+pub(crate) const NAMES: [&str; 34] = [
     "clk",
     "rst",
     "in_valid",
@@ -159,6 +161,8 @@ pub(crate) const NAMES: [&str; 32] = [
     "m_axis_tuser",
     "rst_n",
     "areset",
+    "s_axis_tlast",
+    "m_axis_tlast",
 ];
 
 /// The port list in module order; `done_meaning` completes the `done` comment.
@@ -184,11 +188,17 @@ pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
         if tw > 0 {
             port("s_axis_tuser", "input", tw, "the pixel's tag".into(), true);
         }
+        if w.tlast {
+            port("s_axis_tlast", "input", 1, "the pixel's last flag, carried with it as tuser is".into(), true);
+        }
         port("m_axis_tvalid", "output", 1, String::new(), false);
         port("m_axis_tready", "input", 1, String::new(), false);
         port("m_axis_tdata", "output", mw, layout(&mf), true);
         if tw > 0 {
             port("m_axis_tuser", "output", tw, "the tag of the pixel out".into(), true);
+        }
+        if w.tlast {
+            port("m_axis_tlast", "output", 1, "the last flag of the pixel out".into(), true);
         }
         if w.static_colour {
             static_colour(&mut port);
@@ -284,6 +294,7 @@ mod tests {
             tag_bits: 0,
             static_colour: false,
             reset_low: false,
+            tlast: false,
         };
         let p = ports(w, "");
         let names = |w| ports(w, "").iter().map(|p| p.name).collect::<Vec<_>>();
@@ -295,6 +306,7 @@ mod tests {
         );
         all.extend(names(PortWidths { reset_low: true, ..w }).into_iter().filter(|n| *n == "rst_n"));
         all.extend(names(PortWidths { axis: true, ..w }).into_iter().filter(|n| *n == "areset"));
+        all.extend(names(PortWidths { axis: true, tlast: true, ..w }).into_iter().filter(|n| n.ends_with("tlast")));
         assert_eq!(all, NAMES);
         for c in VECTOR_COLUMNS {
             assert!(p.iter().any(|p| p.name == c && p.data), "{c}");

@@ -216,7 +216,7 @@ pub fn testbench_files(model: &Model) -> Vec<(String, String)> {
         i_w: cfg.fi() + 1,
         handshake,
         static_colour,
-        tag_bits: cfg.tag_bits(),
+        tag_bits: cfg.carried_tag_bits(),
         patience: if static_colour { cfg.latency() as u64 + places + 24 } else { 24 },
         cos_g: at("cos_g"),
         n: at("n"),

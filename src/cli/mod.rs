@@ -233,6 +233,9 @@ pub struct RtlArgs {
     /// ready, sync-low (aresetn) for axis]
     #[arg(long, value_enum, help_heading = "Interface")]
     pub reset: Option<ResetFlag>,
+    /// With --interface axis: s_axis_tlast -> m_axis_tlast, carried with each pixel as tuser is
+    #[arg(long, help_heading = "Interface")]
+    pub tlast: bool,
     /// The clock the constraints (<top>.sdc, <top>.lpf), the FuseSoC core and synth ask for, MHz
     /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
     #[arg(long, value_name = "F", allow_hyphen_values = true, help_heading = "Interface")]
@@ -349,6 +352,9 @@ impl ParamArgs {
             if let Some(v) = r.reset {
                 p.reset = Some(v.into());
             }
+            if r.tlast {
+                p.tlast = true;
+            }
             if let Some(v) = &r.clock_mhz {
                 p.clock_mhz = Some(v.clone());
             }
@@ -377,7 +383,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let mut cfg = params.to_config(Some(&rtl))?;
             if let Some(mhz) = target_mhz {
                 if !(0.001..=1000.0).contains(&mhz) {
-                    let shown = if mhz.is_finite() && (1e-3..1e6).contains(&mhz.abs()) { format!("{mhz}") } else { format!("{mhz:e}") };
+                    let shown = if mhz == 0.0 || (mhz.is_finite() && (1e-3..1e6).contains(&mhz.abs())) { format!("{mhz}") } else { format!("{mhz:e}") };
                     return Err(usage(format!("invalid --target-mhz: {shown}; allowed [0.001, 1000] MHz")));
                 }
             }

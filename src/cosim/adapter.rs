@@ -27,7 +27,8 @@ pub(crate) fn adapter(cfg: &Config) -> String {
 
 /// The adapter as module `name`.
 pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
-    let tw = cfg.tag_bits();
+    // the carried word: the tag, tlast above it
+    let (tw, user) = (cfg.carried_tag_bits(), cfg.tag_bits());
     let axis = cfg.interface() == Interface::Axis;
     let (sf, sw, mf, mw) = ports::tdata_fields(cfg.port_widths());
     let mut body = Vec::new();
@@ -44,8 +45,10 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
             "m_axis_tvalid" => "out_valid".to_string(),
             "m_axis_tready" => "out_ready".to_string(),
             "m_axis_tdata" => "m_tdata".to_string(),
-            "s_axis_tuser" | "in_tag" => format!("in_tag[{}:0]", tw - 1),
-            "m_axis_tuser" | "out_tag" => format!("out_tag[{}:0]", tw - 1),
+            "s_axis_tuser" | "in_tag" => format!("in_tag[{}:0]", user - 1),
+            "m_axis_tuser" | "out_tag" => format!("out_tag[{}:0]", user - 1),
+            "s_axis_tlast" => format!("in_tag[{user}]"),
+            "m_axis_tlast" => format!("out_tag[{user}]"),
             other => other.to_string(),
         };
         links.push(format!(".{name}({to})"));

@@ -258,7 +258,7 @@ pub fn describe(m: &Mismatch, cfg: &Config) -> String {
         x.ks[1],
         x.ks[2]
     );
-    if m.cycle_in.tag != 0 || cfg.tag_bits() > 0 {
+    if m.cycle_in.tag != 0 || cfg.carried_tag_bits() > 0 {
         s = s.trim_end().to_string() + &format!(" tag={:#x}\n", m.cycle_in.tag);
     }
     if let Some(rule) = &m.rule {
@@ -283,7 +283,7 @@ pub fn describe(m: &Mismatch, cfg: &Config) -> String {
     row("spec_b", e.outputs.spec[2] as u64, a.outputs.spec[2] as u64, d);
     row("intensity", e.outputs.intensity as u64, a.outputs.intensity as u64, d);
     row("done", e.outputs.done as u64, a.outputs.done as u64, d);
-    if cfg.tag_bits() > 0 {
+    if cfg.carried_tag_bits() > 0 {
         row("out_tag", e.tag, a.tag, d);
     }
     if cfg.interface().handshake() {

@@ -129,7 +129,7 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
     let clocked = cfg.clocked();
     let handshake = cfg.interface().handshake();
     let static_colour = cfg.colour() == crate::config::Colour::Static;
-    let tag_mask = crate::bits::mask(cfg.tag_bits()) as u64;
+    let tag_mask = crate::bits::mask(cfg.carried_tag_bits()) as u64;
     let vectors: Vec<Inputs> = corner_vectors(model).into_iter().chain((0..count).map(|i| random_vector(cfg, seed, i))).collect();
     let mut cycles: Vec<Cycle> = Vec::with_capacity(vectors.len() * 5 / 4 + 8);
     let load = |cycles: &mut Vec<Cycle>, k: u64| {
@@ -233,7 +233,7 @@ impl Exhaustive {
                 n_hi: n_count * (p + 1) / parts,
                 clocked: cfg.clocked(),
                 static_colour: cfg.colour() == crate::config::Colour::Static,
-                tag_bits: cfg.tag_bits(),
+                tag_bits: cfg.carried_tag_bits(),
                 full_intensity_tail: p == 0,
                 drain: if cfg.clocked() { cfg.latency() as u64 + 1 } else { 0 },
             })

@@ -55,7 +55,7 @@ fn invalid_parameters_exit_2_name_the_range_and_write_nothing() {
         (&["--model", "blinn-pow", "--arch", "paper"], "--arch", "lean"),
         (&["--model", "blinn-pow", "--n-bits", "2", "--stages", "5"], "--stages", "0..=4"),
         (&["--arch", "fast"], "--arch", "lean"),
-        (&["--target-mhz", "0"], "--target-mhz", "(0, 1000]"),
+        (&["--target-mhz", "0"], "--target-mhz", "[0.001, 1000]"),
         (&["--n-bits", "ten"], "--n-bits", ""),
     ];
     for (i, (args, param, range)) in cases.iter().enumerate() {

@@ -334,3 +334,55 @@ fn every_interface_takes_either_reset_polarity() {
     assert!(std::fs::read_to_string(d.join("specular_unit.v")).unwrap().contains("input  wire        aresetn,"));
     assert!(!std::fs::read_to_string(d.join("specular_unit.json")).unwrap().contains("\"reset\""));
 }
+
+/// Issue 35: `tlast` carried like `tuser` (`--tlast`, axis only): `s_axis_tlast` leaves on
+/// `m_axis_tlast` with its own pixel's result, beside a tag or alone; cosim drives it with
+/// random values under stalls and resets and checks every result's. Elsewhere it is refused.
+#[test]
+fn tlast_travels_with_its_pixel() {
+    require_tool("verilator", "verilator");
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    for (i, tag) in ["5", "0"].iter().enumerate() {
+        let dir = generate(tmp.path(), &format!("t{i}"), &["--interface", "axis", "--tlast", "--tag-bits", tag, "--stages", "5", "--n-bits", "6"]);
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert!(v.contains("input  wire        s_axis_tlast,") && v.contains("output wire        m_axis_tlast"), "{v}");
+        let o = Command::new("verilator")
+            .args(["--lint-only", "-Wall"])
+            .arg(dir.join("specular_unit.v"))
+            .arg(dir.join("specular_unit_out_buffer.v"))
+            .output()
+            .unwrap();
+        assert!(o.status.success() && o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
+        for sim in ["verilator", "icarus"] {
+            let o = specgen()
+                .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+                .args(["cosim", "--vectors", "5000", "--simulator", sim, "--rtl"])
+                .arg(&dir)
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "tag {tag} {sim}: {}", String::from_utf8_lossy(&o.stderr));
+        }
+        // a fault: tlast taken from the wrong bit of the word is caught
+        let bad = tmp.path().join(format!("bad{i}"));
+        std::fs::create_dir(&bad).unwrap();
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let e = e.unwrap();
+            if e.file_type().unwrap().is_file() {
+                std::fs::copy(e.path(), bad.join(e.file_name())).unwrap();
+            }
+        }
+        let broken = match *tag {
+            "0" => v.replace("assign m_axis_tlast = out_tag;", "assign m_axis_tlast = 1'b0;"),
+            _ => v.replace("assign {m_axis_tlast, m_axis_tuser} = out_tag;", "assign {m_axis_tuser, m_axis_tlast} = out_tag;"),
+        };
+        assert_ne!(broken, v);
+        std::fs::write(bad.join("specular_unit.v"), broken).unwrap();
+        let o =
+            specgen().env("SPECGEN_CACHE_DIR", tmp.path().join("cache")).args(["cosim", "--edited", "--vectors", "2000", "--rtl"]).arg(&bad).output().unwrap();
+        assert_eq!(o.status.code(), Some(1), "a wrong tlast must fail: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = specgen().args(["generate", "--tlast", "--out"]).arg(tmp.path().join("no")).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("invalid --tlast: applies to the axis interface only"), "{}", String::from_utf8_lossy(&o.stderr));
+}
