@@ -99,10 +99,19 @@ print('the intensity against cos^n over every input. Default widths: F=15, N=10,
 print('F=18, N=11, B=10, FI=18, KF=20.\n')
 print('| model | part | clock | stages (latency) | logic cells | FFs | DSP | BRAM | Fmax, median (range) MHz | reaches the clock | max error vs cos^n | depth picked by |')
 print('|---|---|---|---|---|---|---|---|---|---|---|---|')
+def fm(r):
+    """Fmax, median (range): the least of nextpnr's and the blocks' limits (synth's fmax_mhz);
+    where a block's limit sets it, nextpnr's own figure and range follow it."""
+    s = r.get('fmax_seeds') or []
+    route = r.get('fmax_route_mhz')
+    if route and route > r['fmax_mhz']:
+        block = (r.get('fmax_limited_by') or 'block').split()[0]
+        return f"{r['fmax_mhz']:.1f} ({block} limit; nextpnr {route:.1f}, {min(s):.1f}–{max(s):.1f})"
+    return f"{r['fmax_mhz']:.1f} ({min(s):.1f}–{max(s):.1f})"
 part = {'ice40': 'UP5K', 'ecp5': 'ECP5-25'}
 for o in ops:
     s = o.get('fmax_seeds') or []
-    f = f"{o['fmax_mhz']:.1f} ({min(s):.1f}–{max(s):.1f})" if o.get('fmax_mhz') else '- (' + re.sub(r"place-and-route failed: ERROR: Unable to place cell '[^']*', no BELs remaining to implement cell type '([A-Z_0-9]+)'", r"does not fit: no \1 left", o['fmax_note']) + ')'
+    f = fm(o) if o.get('fmax_mhz') else '- (' + re.sub(r"place-and-route failed: ERROR: Unable to place cell '[^']*', no BELs remaining to implement cell type '([A-Z_0-9]+)'", r"does not fit: no \1 left", o['fmax_note']) + ')'
     reach = ('yes' if o['fmax_mhz'] >= o['mhz'] else f"no ({100 * (o['fmax_mhz'] / o['mhz'] - 1):+.0f} %)") if o.get('fmax_mhz') else 'no'
     err = f"{o['error']:.3e}" if o.get('error') is not None else '-'
     print(f"| {o['name']} | {part[o['family']]} | {o['mhz']} MHz | {o['stages']} ({o['latency']}) | {o.get('logic_cells') or '-'} | {o['flip_flops']} | {o['dsp_blocks']} | {o['block_rams']} | {f} | {reach} | {err} | {o['how']} |")
@@ -135,7 +144,7 @@ for key in sorted({(r['name'], r['widths'], r['stages']) for r in rows}, key=lam
     # an SB_MAC16 without registers (synth's fmax_note says so): nextpnr-ice40 does not time a
     # path through it, the figure is an upper bound
     bound = lambda r: 'SB_MAC16 without registers' in r.get('fmax_note', '')
-    f = lambda r: f"{'≤ ' if bound(r) else ''}{r['fmax_mhz']:.1f} ({min(r['fmax_seeds']):.1f}–{max(r['fmax_seeds']):.1f})" if r and r.get('fmax_mhz') else '-'
+    f = lambda r: f"{'≤ ' if bound(r) else ''}{fm(r)}" if r and r.get('fmax_mhz') else '-'
     for r in (nd, d):
         if r and not r.get('fmax_mhz'):
             why = re.sub(r"place-and-route failed: ERROR: Unable to place cell '[^']*', no BELs remaining to implement cell type '([A-Z_]+)'", r"does not fit the UP5K (no \1 left)", r['fmax_note'])
@@ -162,7 +171,7 @@ if e5:
     print('| model | widths | stages | LUT4 | CCU2C | MULT18X18D | DP16KD | FFs | Fmax, median (range) MHz |')
     print('|---|---|---|---|---|---|---|---|---|')
     for r in sorted(e5, key=lambda r: (r['name'] != 'lean', r['name'], r['widths'], r['stages'])):
-        f = f"{r['fmax_mhz']:.1f} ({min(r['fmax_seeds']):.1f}–{max(r['fmax_seeds']):.1f})" if r.get('fmax_mhz') else '- (' + r['fmax_note'] + ')'
+        f = fm(r) if r.get('fmax_mhz') else '- (' + r['fmax_note'] + ')'
         print(f"| {r['name']} | {r['widths']} | {r['stages']} | {r['luts']} | {r['carry_cells']} | {r['dsp_blocks']} | {r['block_rams']} | {r['flip_flops']} | {f} |")
 PY
 # the report's model comparison and its verdict on the paper's premise at the operating point
