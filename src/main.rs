@@ -3,5 +3,5 @@
 mod cli;
 
 fn main() {
-    std::process::exit(cli::main());
+    specgen::process::exit(cli::main());
 }

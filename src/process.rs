@@ -18,6 +18,21 @@ use std::sync::Mutex;
 /// The temporary directories alive now.
 static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
+/// The signal being handled (0: none): from then on only the signal thread ends the process.
+static SIGNALLED: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(0);
+
+/// Ends the process with `code`, unless a signal is being handled: then the signal thread ends
+/// it, with 128 + the signal, once the temporaries are gone (a run stopped by a signal never
+/// reports the failures the stopping caused, such as a simulator's directory removed under it).
+pub fn exit(code: i32) -> ! {
+    if SIGNALLED.load(std::sync::atomic::Ordering::SeqCst) != 0 {
+        loop {
+            std::thread::park();
+        }
+    }
+    std::process::exit(code)
+}
+
 /// A command whose process dies with specgen's and starts with no signal blocked.
 pub fn command(program: impl AsRef<OsStr>) -> Command {
     use std::os::unix::process::CommandExt;
@@ -112,6 +127,7 @@ pub fn remove_temporaries_on_signals() {
         let waiter = std::thread::Builder::new().name("signals".into()).spawn(move || {
             let mut sig: libc::c_int = 0;
             if libc::sigwait(&set, &mut sig) == 0 {
+                SIGNALLED.store(sig, std::sync::atomic::Ordering::SeqCst);
                 let all = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).clone();
                 for dir in all {
                     let _ = std::fs::remove_dir_all(dir);

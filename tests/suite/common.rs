@@ -46,10 +46,13 @@ pub fn for_each_parallel<T: Sync>(items: &[T], f: impl Fn(usize, &T) + Sync) {
     });
 }
 
-/// A cache directory for simulator builds shared by every test of this checkout.
+/// A cache directory for simulator builds shared by every test of this checkout: the caller's
+/// own and writable by no one else (specgen refuses any other cache), whatever the umask.
 pub fn cache_dir() -> PathBuf {
+    use std::os::unix::fs::PermissionsExt;
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cosim-cache");
     std::fs::create_dir_all(&d).unwrap();
+    std::fs::set_permissions(&d, std::fs::Permissions::from_mode(0o700)).unwrap();
     d
 }
 
