@@ -29,8 +29,9 @@ pub struct BlockLimit {
 }
 
 impl BlockLimit {
+    /// Its clock, rounded down to 0.1 MHz (a limit is never rounded up).
     pub fn mhz(&self) -> f64 {
-        1000.0 / self.period_ns
+        (10_000.0 / self.period_ns).floor() / 10.0
     }
 }
 
@@ -76,11 +77,16 @@ pub fn limits(target: Target, grade: u32, dsp: bool, bram: bool) -> Vec<BlockLim
     out
 }
 
+/// The slowest of `limits` (the longest minimum period).
+pub fn slowest(limits: &[BlockLimit]) -> Option<&BlockLimit> {
+    limits.iter().max_by(|a, b| a.period_ns.total_cmp(&b.period_ns))
+}
+
 /// The least of nextpnr's Fmax and the blocks' limits, and what sets it: `"routing (nextpnr)"`
 /// or the limiting block's description.
 pub fn limited(route_mhz: f64, limits: &[BlockLimit]) -> (f64, String) {
-    match limits.iter().min_by(|a, b| a.period_ns.total_cmp(&b.period_ns).reverse()) {
-        Some(l) if l.mhz() < route_mhz => ((l.mhz() * 10.0).floor() / 10.0, l.what.clone()),
+    match slowest(limits) {
+        Some(l) if l.mhz() < route_mhz => (l.mhz(), l.what.clone()),
         _ => (route_mhz, "routing (nextpnr)".into()),
     }
 }

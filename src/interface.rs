@@ -111,7 +111,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     // the header
     if interface.handshake() {
         let places = buffer_places(cfg);
-        let (iv, ir, ov, or, _) = names(interface);
+        let (iv, ir, ov, or) = names(interface);
         let rst = reset_words(cfg);
         e.header.push(format!("Latency:    {} clock cycles from a transfer in to its result out while {or} is high;", cfg.stages() + BUFFER_LATENCY));
         e.header.push(format!("            one result a cycle; {rst} empties the unit."));
@@ -303,11 +303,12 @@ fn reset_words(cfg: &crate::config::Config) -> String {
     format!("{}{}", ports::reset_port(w), if w.reset_low { " low" } else { "" })
 }
 
-/// The handshake's port names: in valid, in ready, out valid, out ready, reset.
-fn names(interface: Interface) -> (&'static str, &'static str, &'static str, &'static str, &'static str) {
+/// The handshake's port names: in valid, in ready, out valid, out ready (the reset's:
+/// [`reset_words`]).
+fn names(interface: Interface) -> (&'static str, &'static str, &'static str, &'static str) {
     match interface {
-        Interface::Axis => ("s_axis_tvalid", "s_axis_tready", "m_axis_tvalid", "m_axis_tready", "aresetn low"),
-        _ => ("in_valid", "in_ready", "out_valid", "out_ready", "rst"),
+        Interface::Axis => ("s_axis_tvalid", "s_axis_tready", "m_axis_tvalid", "m_axis_tready"),
+        _ => ("in_valid", "in_ready", "out_valid", "out_ready"),
     }
 }
 

@@ -354,8 +354,7 @@ pub fn private_dir(dir: &Path) -> Result<(), String> {
         }
     }
     let m = std::fs::symlink_metadata(dir).map_err(|e| format!("cannot read {}: {}", dir.display(), plain(e)))?;
-    // SAFETY: geteuid has no preconditions and cannot fail
-    let me = unsafe { libc::geteuid() };
+    let me = euid();
     if m.file_type().is_symlink() {
         Err(format!("{} is a symbolic link; specgen runs programs from its cache only in a directory of your own", dir.display()))
     } else if !m.is_dir() {
@@ -377,34 +376,34 @@ pub fn private_dir(dir: &Path) -> Result<(), String> {
     }
 }
 
+/// The caller's effective user id.
+pub(crate) fn euid() -> u32 {
+    // SAFETY: geteuid has no preconditions and cannot fail
+    unsafe { libc::geteuid() }
+}
+
 /// Whether process `pid` is gone (signal 0 finds no such process).
 pub(crate) fn process_gone(pid: i32) -> bool {
     // SAFETY: signal 0 only asks whether the process exists
     pid > 0 && unsafe { libc::kill(pid, 0) } != 0 && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH)
 }
 
-/// Removes the directories `<prefix><pid>-…` in `dir` whose process no longer runs (what a
-/// killed run left).
-pub(crate) fn remove_orphan_dirs(dir: &Path, prefix: &str) {
+/// Removes what a killed run left in `dir`: the entries `<prefix><pid>-…` whose process no
+/// longer runs, directories (`dirs`: the simulator cache's builds) or files (a single-file
+/// output's temporary).
+pub(crate) fn remove_orphans(dir: &Path, prefix: &str, dirs: bool) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
     for entry in entries.flatten() {
         let name = entry.file_name();
         let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
         let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else { continue };
-        if process_gone(pid) && entry.file_type().is_ok_and(|t| t.is_dir()) {
-            let _ = std::fs::remove_dir_all(entry.path());
+        let Ok(kind) = entry.file_type() else { continue };
+        if !process_gone(pid) {
+            continue;
         }
-    }
-}
-
-/// Removes the temporary files `<prefix><pid>-…` in `dir` whose process no longer runs.
-fn remove_orphans(dir: &Path, prefix: &str) {
-    let Ok(entries) = std::fs::read_dir(dir) else { return };
-    for entry in entries.flatten() {
-        let name = entry.file_name();
-        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
-        let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else { continue };
-        if process_gone(pid) && entry.file_type().is_ok_and(|t| t.is_file()) {
+        if dirs && kind.is_dir() {
+            let _ = std::fs::remove_dir_all(entry.path());
+        } else if !dirs && kind.is_file() {
             let _ = std::fs::remove_file(entry.path());
         }
     }
@@ -479,7 +478,7 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
     // the temporary file is `.specgen-<tag>-<pid>-…`: what a killed run left for this output
     // (its process gone) is removed by the next run writing it
     let prefix = format!(".specgen-{}-", tag(&path));
-    remove_orphans(&parent, &prefix);
+    remove_orphans(&parent, &prefix, false);
     let mut tmp = tempfile::Builder::new().prefix(&format!("{prefix}{}-", std::process::id())).tempfile_in(&parent).map_err(plain)?;
     let value = {
         let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file_mut());

@@ -436,7 +436,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let has = |cell: &str| r.cells.iter().any(|(n, c)| n == cell && *c > 0);
     let limits = crate::blocks::limits(target, tools.speed, has("MULT18X18D") || has("SB_MAC16"), has("DP16KD") || has("SB_RAM40_4K"));
     r.speed_grade = (target == Target::Ecp5).then_some(tools.speed);
-    r.block_limits = limits.iter().map(|l| (l.block.to_string(), (l.mhz() * 10.0).floor() / 10.0, l.what.clone())).collect();
+    r.block_limits = limits.iter().map(|l| (l.block.to_string(), l.mhz(), l.what.clone())).collect();
     if let Some(route) = r.fmax_route_mhz {
         let (f, why) = crate::blocks::limited(route, &limits);
         r.fmax_mhz = Some(f);

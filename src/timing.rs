@@ -161,12 +161,7 @@ fn line_of(plan: &Plan) -> Line {
 
 /// The Fmax the delay model predicts for `plan` on its family's part, in MHz.
 pub fn predicted_fmax(plan: &Plan) -> f64 {
-    line_of(plan).fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| floor1(l.mhz())))
-}
-
-/// A clock rounded down to 0.1 MHz (a limit is never rounded up).
-fn floor1(mhz: f64) -> f64 {
-    (mhz * 10.0).floor() / 10.0
+    line_of(plan).fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz()))
 }
 
 /// The slowest limit of the ECP5 blocks `plan` instantiates (MULT18X18D, DP16KD) at speed
@@ -178,7 +173,7 @@ fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
         return None;
     }
     let dp = &plan.datapath;
-    crate::blocks::limits(plan.cfg.target(), 6, dp.has_dsp_blocks(), dp.has_block_rams()).into_iter().max_by(|a, b| a.period_ns.total_cmp(&b.period_ns))
+    crate::blocks::slowest(&crate::blocks::limits(plan.cfg.target(), 6, dp.has_dsp_blocks(), dp.has_block_rams())).cloned()
 }
 
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
@@ -195,7 +190,7 @@ pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), ConfigError> {
         if let Some(c) = cap.as_ref().filter(|c| c.mhz() < mhz && assured >= mhz) {
             capped.get_or_insert((stages, c.clone()));
         }
-        let (f, assured) = cap.as_ref().map_or((f, assured), |c| (f.min(floor1(c.mhz())), assured.min(floor1(c.mhz()))));
+        let (f, assured) = cap.as_ref().map_or((f, assured), |c| (f.min(c.mhz()), assured.min(c.mhz())));
         if assured >= mhz {
             return Ok((stages, f));
         }
@@ -210,7 +205,7 @@ pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), ConfigError> {
                 "{mhz} MHz is above what the blocks allow on the {}: at --stages {stages} the routes would reach it, but the {} (at most {:.1} MHz); allowed: at most {:.1} MHz here (--stages {}), or a faster speed grade (specgen synth --speed 7 or 8 measures one: DP16KD 254.2 or 271.4 MHz; this delay model is calibrated on grade 6)",
                 part(plan.cfg.target()),
                 c.what,
-                floor1(c.mhz()),
+                c.mhz(),
                 best.2,
                 best.0
             ),

@@ -27,8 +27,7 @@ fn cache_root() -> Result<PathBuf, Failure> {
     } else if let Some(home) = std::env::var_os("HOME").filter(|d| Path::new(d).is_absolute()) {
         PathBuf::from(home).join(".cache").join("specgen")
     } else {
-        // SAFETY: geteuid has no preconditions and cannot fail
-        std::env::temp_dir().join(format!("specgen-cache-{}", unsafe { libc::geteuid() }))
+        std::env::temp_dir().join(format!("specgen-cache-{}", crate::output::euid()))
     };
     crate::output::private_dir(&root).map_err(|why| error::tool("simulator", format!("the simulator cache cannot be used: {why}")))?;
     Ok(root)
@@ -37,8 +36,7 @@ fn cache_root() -> Result<PathBuf, Failure> {
 /// Whether a cache entry is a real directory of the caller's (not a link planted there).
 fn own_entry(dir: &Path) -> bool {
     use std::os::unix::fs::MetadataExt;
-    // SAFETY: geteuid has no preconditions and cannot fail
-    std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir() && m.uid() == unsafe { libc::geteuid() })
+    std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir() && m.uid() == crate::output::euid())
 }
 
 fn tool_version(tool: &str, package: &str) -> Result<String, Failure> {
@@ -105,7 +103,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         let _ = std::fs::remove_dir_all(&dir).or_else(|_| std::fs::remove_file(&dir));
     }
     // what killed runs left: build directories whose process is gone
-    crate::output::remove_orphan_dirs(&root, ".build-");
+    crate::output::remove_orphans(&root, ".build-", true);
     let work = crate::process::temp_dir_in(&root, &format!(".build-{}-", std::process::id()))
         .map_err(|e| error::tool("simulator", format!("cannot create a build directory in {}: {e}", root.display())))?;
     let mut sources = Vec::new();

@@ -67,6 +67,17 @@ fn design_bench(units: &[Unit]) -> String {
     text
 }
 
+/// Verilator `-Wall` on `files` is silent, and cosim of `dir` passes under both simulators
+/// (`what` names the case in a failure).
+fn lint_and_cosim(cache: &Path, dir: &Path, files: &[PathBuf], what: &str) {
+    let o = Command::new("verilator").args(["--lint-only", "-Wall"]).args(files).output().unwrap();
+    assert!(o.status.success() && o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
+    for sim in ["verilator", "icarus"] {
+        let o = specgen().env("SPECGEN_CACHE_DIR", cache).args(["cosim", "--vectors", "5000", "--simulator", sim, "--rtl"]).arg(dir).output().unwrap();
+        assert!(o.status.success(), "{what} {sim}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+}
+
 fn run(cmd: &mut Command) -> String {
     let o = cmd.output().unwrap();
     let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
@@ -317,17 +328,7 @@ fn every_interface_takes_either_reset_polarity() {
         if *interface != "valid" {
             files.push(dir.join("specular_unit_out_buffer.v"));
         }
-        let o = Command::new("verilator").args(["--lint-only", "-Wall"]).args(&files).output().unwrap();
-        assert!(o.status.success() && o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
-        for sim in ["verilator", "icarus"] {
-            let o = specgen()
-                .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
-                .args(["cosim", "--vectors", "5000", "--simulator", sim, "--rtl"])
-                .arg(&dir)
-                .output()
-                .unwrap();
-            assert!(o.status.success(), "{interface} {reset} {sim}: {}", String::from_utf8_lossy(&o.stderr));
-        }
+        lint_and_cosim(&tmp.path().join("cache"), &dir, &files, &format!("{interface} {reset}"));
     }
     // the default stays the interface's own, and the default unit's bytes do not change
     let d = generate(tmp.path(), "d", &["--interface", "axis", "--stages", "2"]);
@@ -347,22 +348,8 @@ fn tlast_travels_with_its_pixel() {
         let dir = generate(tmp.path(), &format!("t{i}"), &["--interface", "axis", "--tlast", "--tag-bits", tag, "--stages", "5", "--n-bits", "6"]);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
         assert!(v.contains("input  wire        s_axis_tlast,") && v.contains("output wire        m_axis_tlast"), "{v}");
-        let o = Command::new("verilator")
-            .args(["--lint-only", "-Wall"])
-            .arg(dir.join("specular_unit.v"))
-            .arg(dir.join("specular_unit_out_buffer.v"))
-            .output()
-            .unwrap();
-        assert!(o.status.success() && o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
-        for sim in ["verilator", "icarus"] {
-            let o = specgen()
-                .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
-                .args(["cosim", "--vectors", "5000", "--simulator", sim, "--rtl"])
-                .arg(&dir)
-                .output()
-                .unwrap();
-            assert!(o.status.success(), "tag {tag} {sim}: {}", String::from_utf8_lossy(&o.stderr));
-        }
+        let files = [dir.join("specular_unit.v"), dir.join("specular_unit_out_buffer.v")];
+        lint_and_cosim(&tmp.path().join("cache"), &dir, &files, &format!("tag {tag}"));
         // a fault: tlast taken from the wrong bit of the word is caught
         let bad = tmp.path().join(format!("bad{i}"));
         std::fs::create_dir(&bad).unwrap();
