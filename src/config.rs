@@ -279,6 +279,10 @@ pub struct Params {
     /// `axis`: `s_axis_tlast` → `m_axis_tlast`, carried with each pixel as `tuser` is.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub tlast: bool,
+    /// `ready`/`axis`: a clock enable (`clk_en`, `aclken` under `axis`); a rising edge with it
+    /// low transfers nothing and loads no colour.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub clock_enable: bool,
 }
 
 impl Default for Params {
@@ -305,6 +309,7 @@ impl Default for Params {
             clock_port: None,
             reset: None,
             tlast: false,
+            clock_enable: false,
         }
     }
 }
@@ -371,7 +376,9 @@ impl Params {
         for key in ["clock_port", "reset"] {
             full[key] = serde_json::Value::Null;
         }
-        full["tlast"] = serde_json::Value::Bool(false);
+        for key in ["tlast", "clock_enable"] {
+            full[key] = serde_json::Value::Bool(false);
+        }
         for (k, v) in map {
             if full.get(&k).is_none() {
                 return Err(format!("unknown key {k:?}"));
@@ -420,6 +427,15 @@ impl Config {
             return Err(ConfigError {
                 parameter: "tlast",
                 message: format!("applies to the axis interface only; allowed with {}: none", params.interface.name()),
+            });
+        }
+        if params.clock_enable && !params.interface.handshake() {
+            return Err(ConfigError {
+                parameter: "clock_enable",
+                message: format!(
+                    "applies to the ready and axis interfaces only (their edge gates every transfer; a valid pipeline has none to gate); allowed with {}: none",
+                    params.interface.name()
+                ),
             });
         }
         if params.tlast && params.tag_bits == TAG_BITS.max {
@@ -557,6 +573,7 @@ impl Config {
             static_colour: self.colour() == Colour::Static,
             reset_low: self.reset() == Reset::SyncLow,
             tlast: self.params.tlast,
+            clock_enable: self.params.clock_enable,
         }
     }
 
@@ -638,6 +655,9 @@ impl Config {
         }
         if p.tlast {
             s.push_str(" tlast");
+        }
+        if p.clock_enable {
+            s.push_str(" clock_enable");
         }
         s
     }

@@ -107,6 +107,14 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     let (interface, tw, colour) = (cfg.interface(), cfg.carried_tag_bits(), cfg.colour());
     let (user, tlast) = (cfg.tag_bits(), cfg.params.tlast);
     let top = cfg.top();
+    // the clock enable's port, if any: it gates the handshake's inputs, so an edge with it low
+    // is one without a transfer (the pipeline runs on; its results wait in the buffer)
+    let enable = cfg.params.clock_enable.then_some(if interface == Interface::Axis { "aclken" } else { "clk_en" });
+    // what the buffer sees of in_valid and out_ready
+    let (offer, accept) = match (enable, interface) {
+        (Some(_), Interface::Ready) => ("in_valid_enabled", "out_ready_enabled"),
+        _ => ("in_valid", "out_ready"),
+    };
     let mut e = Edge { header: Vec::new(), prologue: Vec::new(), valid_source: "in_valid".into(), tag: Vec::new(), tail: Vec::new(), unused: Vec::new() };
     // the header
     if interface.handshake() {
@@ -145,6 +153,10 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     if tlast {
         e.header.push("Last:       s_axis_tlast leaves on m_axis_tlast with its own pixel's result (carried as tuser is).".into());
     }
+    if let Some(en) = enable {
+        e.header.push(format!("Enable:     {en}: a rising edge with {en} low transfers nothing and loads no colour; the"));
+        e.header.push(format!("            pipeline runs on (a result waits in {top}_out_buffer), so no result depends on {en}."));
+    }
     if colour == Colour::Static {
         e.header.push("Colour:     static: ks_load takes ks_r/g/b into the material registers at a rising edge; every".into());
         e.header.push("            pixel taken after that edge uses them. Load only while idle is high and with no pixel".into());
@@ -163,8 +175,9 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         let w = cfg.port_widths();
         let polarity = if w.reset_low { "~" } else { "" };
         e.prologue.push(format!("wire {} rst       = {polarity}{};   // active high inside", range(1), ports::reset_port(w)));
-        e.prologue.push(format!("wire {} in_valid  = s_axis_tvalid;", range(1)));
-        e.prologue.push(format!("wire {} out_ready = m_axis_tready;", range(1)));
+        let gate = if enable.is_some() { " & aclken;   // a transfer only at an enabled edge" } else { ";" };
+        e.prologue.push(format!("wire {} in_valid  = s_axis_tvalid{gate}", range(1)));
+        e.prologue.push(format!("wire {} out_ready = m_axis_tready{gate}", range(1)));
         e.prologue.push(format!("wire {} in_ready, out_valid;", range(1)));
         let mut covered = 0u128;
         for f in &sf {
@@ -190,6 +203,10 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.prologue.push("assign s_axis_tready = in_ready;".into());
         e.prologue.push("assign m_axis_tvalid = out_valid;".into());
     }
+    if let (Some(en), Interface::Ready) = (enable, interface) {
+        e.prologue.push(format!("wire {} {offer}  = in_valid & {en};    // a transfer only at an enabled edge", range(1)));
+        e.prologue.push(format!("wire {} {accept} = out_ready & {en};", range(1)));
+    }
     if interface.handshake() {
         e.prologue.push(format!("wire {} in_take;   // in_valid && in_ready: the pipeline takes a pixel ({top}_out_buffer)", range(1)));
         e.prologue.push(format!("wire {} buffer_idle;   // no result in {top}_out_buffer", range(1)));
@@ -203,7 +220,8 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.prologue.push(String::new());
         e.prologue.push("// ---- the material registers: ks_load takes ks_r/g/b; every step reads them ----".into());
         e.prologue.push(format!("reg  {} ks_r_material, ks_g_material, ks_b_material;   // UNORM{b}", range(b)));
-        e.prologue.push("always @(posedge clk) if (ks_load) {ks_r_material, ks_g_material, ks_b_material} <= {ks_r, ks_g, ks_b};".into());
+        let load = enable.map_or("ks_load".to_string(), |en| format!("ks_load && {en}"));
+        e.prologue.push(format!("always @(posedge clk) if ({load}) {{ks_r_material, ks_g_material, ks_b_material}} <= {{ks_r, ks_g, ks_b}};"));
         if depth == 0 && !interface.handshake() {
             // combinational: no valid pipeline for rst to clear (the port stays, as with every clock)
             e.unused.push("rst".into());
@@ -275,9 +293,9 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         places_for(depth),
         cfg.stages()
     ));
-    e.tail.push("    .clk(clk), .rst(rst), .in_valid(in_valid), .in_ready(in_ready), .take(in_take),".into());
+    e.tail.push(format!("    .clk(clk), .rst(rst), .in_valid({offer}), .in_ready(in_ready), .take(in_take),"));
     e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
-    e.tail.push("    .out_valid(out_valid), .out_ready(out_ready), .out(out_held), .idle(buffer_idle)".into());
+    e.tail.push(format!("    .out_valid(out_valid), .out_ready({accept}), .out(out_held), .idle(buffer_idle)"));
     e.tail.push(");".into());
     if colour == Colour::Static {
         let idle = if depth == 0 { "buffer_idle".to_string() } else { "~|valid_line && buffer_idle".to_string() };

@@ -51,6 +51,8 @@ pub struct PortWidths {
     pub reset_low: bool,
     /// `s_axis_tlast`/`m_axis_tlast` (the `axis` interface)
     pub tlast: bool,
+    /// a clock enable: `clk_en`, `aclken` under `axis` (the `ready` and `axis` interfaces)
+    pub clock_enable: bool,
 }
 
 /// The reset port's name: `rst`/`rst_n`, or under `axis` `areset`/`aresetn`.
@@ -128,7 +130,7 @@ pub struct Port {
 }
 
 /// Every name the port table can hold, and the logical names of the `axis` unit's fields.
-pub(crate) const NAMES: [&str; 34] = [
+pub(crate) const NAMES: [&str; 36] = [
     "clk",
     "rst",
     "in_valid",
@@ -163,6 +165,8 @@ pub(crate) const NAMES: [&str; 34] = [
     "areset",
     "s_axis_tlast",
     "m_axis_tlast",
+    "clk_en",
+    "aclken",
 ];
 
 /// The port list in module order; `done_meaning` completes the `done` comment.
@@ -182,6 +186,9 @@ pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
         port("aclk", "input", 1, String::new(), false);
         let level = if w.reset_low { "low" } else { "high" };
         port(reset_port(w), "input", 1, format!("synchronous, active {level}: empties the unit"), false);
+        if w.clock_enable {
+            port("aclken", "input", 1, "clock enable: an edge with it low transfers nothing".into(), false);
+        }
         port("s_axis_tvalid", "input", 1, String::new(), false);
         port("s_axis_tready", "output", 1, String::new(), false);
         port("s_axis_tdata", "input", sw, layout(&sf), true);
@@ -211,6 +218,9 @@ pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
         let what = if w.ready { "empties the unit" } else { "clears the valid pipeline" };
         let level = if w.reset_low { "low" } else { "high" };
         port(reset_port(w), "input", 1, format!("synchronous, active {level}: {what}"), false);
+        if w.clock_enable {
+            port("clk_en", "input", 1, "clock enable: an edge with it low transfers nothing".into(), false);
+        }
     }
     port("in_valid", "input", 1, String::new(), false);
     if w.ready {
@@ -295,6 +305,7 @@ mod tests {
             static_colour: false,
             reset_low: false,
             tlast: false,
+            clock_enable: false,
         };
         let p = ports(w, "");
         let names = |w| ports(w, "").iter().map(|p| p.name).collect::<Vec<_>>();
@@ -307,6 +318,8 @@ mod tests {
         all.extend(names(PortWidths { reset_low: true, ..w }).into_iter().filter(|n| *n == "rst_n"));
         all.extend(names(PortWidths { axis: true, ..w }).into_iter().filter(|n| *n == "areset"));
         all.extend(names(PortWidths { axis: true, tlast: true, ..w }).into_iter().filter(|n| n.ends_with("tlast")));
+        all.extend(names(PortWidths { ready: true, clock_enable: true, ..w }).into_iter().filter(|n| *n == "clk_en"));
+        all.extend(names(PortWidths { axis: true, clock_enable: true, ..w }).into_iter().filter(|n| *n == "aclken"));
         assert_eq!(all, NAMES);
         for c in VECTOR_COLUMNS {
             assert!(p.iter().any(|p| p.name == c && p.data), "{c}");

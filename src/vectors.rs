@@ -161,6 +161,8 @@ struct Testbench<'a> {
     i_w: u32,
     handshake: bool,
     static_colour: bool,
+    /// the unit has a clock enable: the bench drives it low one edge in four at random
+    clock_enable: bool,
     tag_bits: u32,
     /// cycles a row may take at most (a colour load waits for the unit to drain)
     patience: u64,
@@ -216,8 +218,9 @@ pub fn testbench_files(model: &Model) -> Vec<(String, String)> {
         i_w: cfg.fi() + 1,
         handshake,
         static_colour,
+        clock_enable: cfg.params.clock_enable,
         tag_bits: cfg.carried_tag_bits(),
-        patience: if static_colour { cfg.latency() as u64 + places + 24 } else { 24 },
+        patience: (if static_colour { cfg.latency() as u64 + places + 24 } else { 24 }) * if cfg.params.clock_enable { 2 } else { 1 },
         cos_g: at("cos_g"),
         n: at("n"),
         ks_r: at("ks_r"),

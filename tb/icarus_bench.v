@@ -3,12 +3,13 @@
 // It drives specgen_cosim_top, the adapter specgen writes for each unit (one set of port names
 // for every interface mode). Defines (passed with -D by specgen cosim): COS_W, N_W, B_W, I_W
 // (port widths). Plusargs +vec_in=FILE +vec_out=FILE.
-// vec_in holds one cycle a line, in hex: "in_valid rst cos_g n ks_r ks_g ks_b out_ready ks_load tag".
+// vec_in holds one cycle a line, in hex: "in_valid rst cos_g n ks_r ks_g ks_b out_ready load tag",
+// load's bit 0 ks_load, its bit 1 the clock enable low.
 // vec_out gets one line a cycle, in hex: "out_valid done intensity spec_r spec_g spec_b in_ready idle tag",
 // sampled after the inputs settle and before the clock's rising edge (as the C++ harness).
 `timescale 1ns/1ps
 module specgen_icarus_bench;
-    reg             in_valid, rst, clk, out_ready, ks_load;
+    reg             in_valid, rst, clk, out_ready, ks_load, clk_en;
     reg  [`COS_W-1:0] cos_g;
     reg  [`N_W-1:0]   n;
     reg  [`B_W-1:0]   ks_r, ks_g, ks_b;
@@ -23,7 +24,7 @@ module specgen_icarus_bench;
     reg  [8*1024-1:0] vec_in, vec_out;
 
     specgen_cosim_top dut (
-        .clk(clk), .rst(rst), .in_valid(in_valid), .out_ready(out_ready), .ks_load(ks_load),
+        .clk(clk), .rst(rst), .in_valid(in_valid), .out_ready(out_ready), .ks_load(ks_load), .clk_en(clk_en),
         .cos_g(cos_g), .n(n), .ks_r(ks_r), .ks_g(ks_g), .ks_b(ks_b), .in_tag(in_tag),
         .in_ready(in_ready), .out_valid(out_valid), .spec_r(spec_r), .spec_g(spec_g), .spec_b(spec_b),
         .intensity(intensity), .done(done), .out_tag(out_tag), .idle(idle));
@@ -51,6 +52,7 @@ module specgen_icarus_bench;
             ks_b = v_b[`B_W-1:0];
             out_ready = v_ready[0];
             ks_load = v_load[0];
+            clk_en = !v_load[1];
             in_tag = v_tag;
             clk = 1'b0;
             #5;

@@ -20,7 +20,7 @@
 struct InRecord {            // 24 bytes
     uint32_t cos_g;
     uint16_t n, ks_r, ks_g, ks_b;
-    uint8_t flags;           // bit 0: in_valid, 1: rst, 2: out_ready, 3: ks_load
+    uint8_t flags;           // bit 0: in_valid, 1: rst, 2: out_ready, 3: ks_load, 4: clk_en low
     uint8_t pad[3];
     uint64_t tag;
 };
@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
             dut.rst = (in.flags >> 1) & 1;
             dut.out_ready = (in.flags >> 2) & 1;
             dut.ks_load = (in.flags >> 3) & 1;
+            dut.clk_en = !((in.flags >> 4) & 1);
             dut.clk = 0;
             dut.eval();
 #if TRACE

@@ -6,7 +6,8 @@
 // each), offers the rows in order with random gaps on in_valid (in_valid never drops before its
 // transfer){% if handshake %}, stalls out_ready at random (runs at full rate, every other cycle, long
 // stalls){% endif %}{% if static_colour %}, loads each row's colour through ks_load while the unit is idle
-// when it changes{% endif %}, and checks every result in order against its row{% if tag_bits > 0 %}, its tag being the row's
+// when it changes{% endif %}{% if clock_enable %}, drives the clock enable low one edge in four at random (the
+// bench itself moves only at enabled edges, as a stream partner on the same enable would){% endif %}, and checks every result in order against its row{% if tag_bits > 0 %}, its tag being the row's
 // index{% endif %}. It ends with "PASS: N results" or $fatal.
 `timescale 1ns / 1ps
 `default_nettype none
@@ -20,7 +21,7 @@ module {{ top }}_tb;
     always #5 clk = !clk;
     reg  [{{ word_bits - 1 }}:0] rows [0:ROWS-1];
     reg  [{{ word_bits - 1 }}:0] want;
-    reg                  rst = 1'b1, in_valid = 1'b0, out_ready = 1'b0, ks_load = 1'b0;
+    reg                  rst = 1'b1, in_valid = 1'b0, out_ready = 1'b0, ks_load = 1'b0, clk_en = 1'b1;
     reg  [{{ cos_w - 1 }}:0]  cos_g = 0;
     reg  [{{ n_w - 1 }}:0]  n = 0;
     reg  [{{ b_w - 1 }}:0]  ks_r = 0, ks_g = 0, ks_b = 0;
@@ -34,7 +35,7 @@ module {{ top }}_tb;
     reg                  loaded = 1'b0;
 
     {{ top }}_tb_ports dut (
-        .clk(clk), .rst(rst), .in_valid(in_valid), .out_ready(out_ready), .ks_load(ks_load),
+        .clk(clk), .rst(rst), .in_valid(in_valid), .out_ready(out_ready), .ks_load(ks_load), .clk_en(clk_en),
         .cos_g(cos_g), .n(n), .ks_r(ks_r), .ks_g(ks_g), .ks_b(ks_b), .in_tag(in_tag),
         .in_ready(in_ready), .out_valid(out_valid), .spec_r(spec_r), .spec_g(spec_g), .spec_b(spec_b),
         .intensity(intensity), .done(done), .out_tag(out_tag), .idle(idle));
@@ -54,7 +55,8 @@ module {{ top }}_tb;
     always @(posedge clk) begin
         cycle <= cycle + 1;
         if (!passed && cycle > ROWS * {{ patience }} + 1000) $fatal(1, "FAIL: %0d of %0d results after %0d cycles", got, ROWS, cycle);
-        if (!rst) begin
+        clk_en <= {% if clock_enable %}($random % 4) != 0{% else %}1'b1{% endif %};
+        if (!rst && clk_en) begin
             // the consumer: a result each transfer, in order
             if (out_valid && out_ready) begin
                 want = rows[got];

@@ -236,6 +236,10 @@ pub struct RtlArgs {
     /// With --interface axis: s_axis_tlast -> m_axis_tlast, carried with each pixel as tuser is
     #[arg(long, help_heading = "Interface")]
     pub tlast: bool,
+    /// With --interface ready or axis: a clock enable, clk_en (aclken with axis); an edge with
+    /// it low transfers nothing and loads no colour
+    #[arg(long, help_heading = "Interface")]
+    pub clock_enable: bool,
     /// The clock the constraints (<top>.sdc, <top>.lpf), the FuseSoC core and synth ask for, MHz
     /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
     #[arg(long, value_name = "F", allow_hyphen_values = true, help_heading = "Interface")]
@@ -354,6 +358,9 @@ impl ParamArgs {
             }
             if r.tlast {
                 p.tlast = true;
+            }
+            if r.clock_enable {
+                p.clock_enable = true;
             }
             if let Some(v) = &r.clock_mhz {
                 p.clock_mhz = Some(v.clone());

@@ -39,6 +39,7 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
             "aclk" => "clk".to_string(),
             "aresetn" | "rst_n" => "~rst".to_string(),
             "areset" => "rst".to_string(),
+            "aclken" => "clk_en".to_string(),
             "s_axis_tvalid" => "in_valid".to_string(),
             "s_axis_tready" => "in_ready".to_string(),
             "s_axis_tdata" => ports::packed_tdata(&sf, sw),

@@ -177,7 +177,7 @@ fn encode(c: &Cycle, buf: &mut Vec<u8>) {
     for k in c.inputs.ks {
         buf.extend_from_slice(&(k as u16).to_le_bytes());
     }
-    buf.push(c.valid as u8 | (c.rst as u8) << 1 | (!c.stall as u8) << 2 | (c.load as u8) << 3);
+    buf.push(c.valid as u8 | (c.rst as u8) << 1 | (!c.stall as u8) << 2 | (c.load as u8) << 3 | (c.disabled as u8) << 4);
     buf.extend_from_slice(&[0, 0, 0]);
     buf.extend_from_slice(&c.tag.to_le_bytes());
 }
@@ -317,7 +317,8 @@ pub fn run_one(
                 for i in 0..stim.len() {
                     let c = stim.cycle(i);
                     let x = c.inputs;
-                    let (v, r, o, l) = (c.valid as u8, c.rst as u8, !c.stall as u8, c.load as u8);
+                    // ks_load in bit 0 of its column, the clock enable low in bit 1
+                    let (v, r, o, l) = (c.valid as u8, c.rst as u8, !c.stall as u8, c.load as u8 | (c.disabled as u8) << 1);
                     writeln!(w, "{v:x} {r:x} {:x} {:x} {:x} {:x} {:x} {o:x} {l:x} {:x}", x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2], c.tag)
                         .map_err(|e| error::tool("simulator", e.to_string()))?;
                 }

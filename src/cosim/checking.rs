@@ -50,7 +50,8 @@ struct Pending {
 ///   result must be the next pixel's, in order, with its tag; the outputs must hold while
 ///   stalled; a pixel taken `latency` cycles ago must be on the outputs (no bubbles);
 ///   `in_ready` must be high exactly when, three cycles before, fewer than the buffer's places - 3
-///   were taken (except the cycle after a reset), and `idle` exactly while none is.
+///   were taken (except the cycle after a reset), and `idle` exactly while none is. An edge with
+///   the clock enable low is one with nothing offered, the consumer stalled and no load.
 pub struct Checker<'a> {
     model: &'a Model,
     latency: u64,
@@ -119,7 +120,12 @@ impl<'a> Checker<'a> {
     /// Checks the outputs sampled in cycle `t` (before its rising edge).
     pub fn check(&mut self, stim: &dyn Stimulus, t: u64, got: Sampled) {
         self.report.cycles += 1;
-        let now = stim.cycle(t);
+        let mut now = stim.cycle(t);
+        if now.disabled {
+            // the clock enable low: the edge is one without a transfer or a load, as if nothing
+            // were offered and the consumer stalled
+            (now.valid, now.stall, now.load) = (false, true, false);
+        }
         if self.places.is_some() {
             self.check_stream(now, t, got);
         } else {

@@ -228,6 +228,8 @@ pub struct Cycle {
     pub load: bool,
     /// `in_tag` (masked to the unit's tag bits)
     pub tag: u64,
+    /// the clock enable low (`--clock-enable`): no transfer and no load at this edge
+    pub disabled: bool,
 }
 
 impl Cycle {

@@ -119,9 +119,22 @@ fn stalled(seed: u64, t: u64) -> bool {
     }
 }
 
+/// The clock enable's pattern (`--clock-enable`), in three phases of 450 cycles (against the
+/// stalls' 600, so every mix of the two occurs): always high; low every other cycle at random;
+/// low in runs of 20 of every 50 cycles.
+fn disabled(seed: u64, t: u64) -> bool {
+    let r = splitmix(seed ^ 0xc10c ^ t << 12);
+    match (t / 450) % 3 {
+        0 => false,
+        1 => r & 1 == 0,
+        _ => t % 50 < 20,
+    }
+}
+
 /// Corners, then `count` random vectors. For a clocked unit: a reset first, random bubbles on
 /// `in_valid` (one cycle in eight, and runs of them), and a reset in mid-stream. Behind a
-/// handshake, the consumer stalls in the patterns of [`stalled`]. With a tag, every pixel
+/// handshake, the consumer stalls in the patterns of [`stalled`], and a clock enable goes low
+/// in those of [`disabled`]. With a tag, every pixel
 /// carries a random one. With a static colour: a load after the first reset, and a new colour
 /// every quarter of the stream, each after the unit has drained.
 pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
@@ -138,6 +151,11 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
         }
         let ks = random_vector(cfg, seed ^ 0x10ad, k).ks;
         cycles.push(Cycle { inputs: Inputs { ks, ..Inputs::default() }, load: true, ..Cycle::default() });
+        if cfg.params.clock_enable {
+            // a decoy: ks_load with another colour at an edge the clock enable leaves out
+            let ks = random_vector(cfg, seed ^ 0xdec0, k).ks;
+            cycles.push(Cycle { inputs: Inputs { ks, ..Inputs::default() }, load: true, disabled: true, ..Cycle::default() });
+        }
     };
     if clocked {
         cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xdead, 0), valid: true, rst: true, ..Cycle::default() });
@@ -179,8 +197,10 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
     if handshake {
         // the consumer's stalls, except on the cycles that load a colour (the unit is empty
         // there only if it could deliver), and a tail at full rate that empties the unit
+        let enable = cfg.params.clock_enable;
         for (t, c) in cycles.iter_mut().enumerate() {
             c.stall = !c.load && stalled(seed, t as u64);
+            c.disabled |= enable && !c.load && disabled(seed, t as u64);
         }
         for _ in 0..drain_cycles(cfg) {
             cycles.push(Cycle::default());
@@ -190,8 +210,8 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
         while t > 0 {
             t -= 1;
             if cycles[t].load {
-                for c in cycles[t.saturating_sub(drain_cycles(cfg) as usize)..t].iter_mut() {
-                    c.stall = false;
+                for c in cycles[t.saturating_sub(drain_cycles(cfg) as usize)..t].iter_mut().filter(|c| !c.load) {
+                    (c.stall, c.disabled) = (false, false);
                 }
             }
         }

@@ -72,6 +72,9 @@ class Ports:
         self.out_ready = getattr(dut, n("m_axis_tready", "out_ready")) if handshake else None
         self.in_tag = getattr(dut, n("s_axis_tuser", "in_tag")) if self.tag_bits else None
         self.out_tag = getattr(dut, n("m_axis_tuser", "out_tag")) if self.tag_bits else None
+        if info.get("clock_enable"):
+            # the clock enable stays high: every edge is one the stream moves on
+            getattr(dut, n("aclken", "clk_en")).value = 1
 
     def reset(self, on):
         if self.axis:

@@ -373,3 +373,63 @@ fn tlast_travels_with_its_pixel() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("invalid --tlast: applies to the axis interface only"), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// Issue 35: a clock enable (`--clock-enable`: `aclken` under axis, `clk_en` with ready). An
+/// edge with it low transfers nothing and loads no colour. Cosim drives it low in patterns
+/// mixed with stalls (and a decoy `ks_load` at a disabled edge); the unit's own testbench
+/// drives it at random. Each gate removed is caught; the valid interface refuses the flag.
+#[test]
+fn a_clock_enable_gates_every_transfer() {
+    require_tool("verilator", "verilator");
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let cache = tmp.path().join("cache");
+    for (interface, en) in [("axis", "aclken"), ("ready", "clk_en")] {
+        let dir = generate(tmp.path(), interface, &["--interface", interface, "--clock-enable", "--colour", "static", "--stages", "4", "--n-bits", "6"]);
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert!(v.contains(&format!("input  wire        {en},")), "{v}");
+        let files = [dir.join("specular_unit.v"), dir.join("specular_unit_out_buffer.v")];
+        lint_and_cosim(&cache, &dir, &files, interface);
+        // the unit's own testbench, its clock enable low one edge in four
+        let sim = tmp.path().join(format!("{interface}.vvp"));
+        let o = Command::new("iverilog").args(["-g2012", "-o"]).arg(&sim).arg(dir.join("specular_unit_tb.sv")).args(&files).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let o = Command::new("vvp").arg("-n").arg(&sim).current_dir(&dir).output().unwrap();
+        assert!(String::from_utf8_lossy(&o.stdout).contains("PASS: "), "{}", String::from_utf8_lossy(&o.stdout));
+        // each gate removed: a pixel taken, a result given or a colour loaded at a disabled edge
+        let gates: Vec<(String, String)> = match interface {
+            "axis" => vec![
+                ("s_axis_tvalid & aclken;".into(), "s_axis_tvalid;".into()),
+                ("m_axis_tready & aclken;".into(), "m_axis_tready;".into()),
+                ("if (ks_load && aclken)".into(), "if (ks_load)".into()),
+            ],
+            _ => vec![
+                ("= in_valid & clk_en;".into(), "= in_valid;".into()),
+                ("= out_ready & clk_en;".into(), "= out_ready;".into()),
+                ("if (ks_load && clk_en)".into(), "if (ks_load)".into()),
+            ],
+        };
+        for (i, (from, to)) in gates.iter().enumerate() {
+            let bad = tmp.path().join(format!("{interface}_bad{i}"));
+            std::fs::create_dir(&bad).unwrap();
+            for e in std::fs::read_dir(&dir).unwrap() {
+                let e = e.unwrap();
+                if e.file_type().unwrap().is_file() {
+                    std::fs::copy(e.path(), bad.join(e.file_name())).unwrap();
+                }
+            }
+            assert!(v.contains(from.as_str()), "{from}");
+            std::fs::write(bad.join("specular_unit.v"), v.replacen(from.as_str(), to, 1)).unwrap();
+            let o = specgen().env("SPECGEN_CACHE_DIR", &cache).args(["cosim", "--edited", "--vectors", "5000", "--rtl"]).arg(&bad).output().unwrap();
+            assert_eq!(o.status.code(), Some(1), "{interface}: without `{from}` cosim must fail: {}", String::from_utf8_lossy(&o.stdout));
+        }
+    }
+    let o = specgen().args(["generate", "--clock-enable", "--out"]).arg(tmp.path().join("no")).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("invalid --clock-enable: applies to the ready and axis interfaces only"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!tmp.path().join("no").exists());
+}
