@@ -73,32 +73,33 @@ wire [15:0] cos_sp_s1 = cos_sp_rom[n];   // cut-off ROM cos_sp(n), UQ1.15, addre
 wire [15:0] cos_complement_s1 = {cos_g[15], ~cos_g[14:0] | {15{cos_g[15]}}};
 
 // ==== step 2: 1 - cos (adder 6): chunk sums ====
-// bits [5:0] and their carry above bit 0, carry-in 1
-wire [7:0] one_minus_cos_part0_s2 = {1'b0, cos_complement_s1[5:0], 1'b1} + 8'h1;
-wire [5:0] one_minus_cos_part1_s2 = {1'b0, cos_complement_s1[10:6]};   // bits [10:6] and their carry, carry-in 0
-// bits [10:6] and their carry above bit 0, carry-in 1 (carry-select)
-wire [6:0] one_minus_cos_part1_plus1_s2 = {1'b0, cos_complement_s1[10:6], 1'b1} + 7'h1;
+// bits [5:0] and their carry (complemented) above bit 0, carry-in 1
+wire [7:0] one_minus_cos_part0_s2 = {1'b1, cos_complement_s1[5:0], 1'b1} + 8'h1;
+// bits [10:6] and their carry (complemented), carry-in 0
+wire [5:0] one_minus_cos_part1_s2 = {1'b1, cos_complement_s1[10:6]};
+// bits [10:6] and their carry (complemented) above bit 0, carry-in 1 (carry-select)
+wire [6:0] one_minus_cos_part1_plus1_s2 = {1'b1, cos_complement_s1[10:6], 1'b1} + 7'h1;
 wire [4:0] one_minus_cos_part2_s2 = cos_complement_s1[15:11];   // bits [15:11], carry-in 0
 // bits [15:11] above bit 0, carry-in 1 (carry-select)
 wire [5:0] one_minus_cos_part2_plus1_s2 = {cos_complement_s1[15:11], 1'b1} + 6'h1;
 
 // ==== step 3: 1 - cos: carries and select; comparator (12): chunk sums ====
 // carry into bit 11
-wire        one_minus_cos_carry2_s3 = one_minus_cos_part0_s2[7] & one_minus_cos_part1_plus1_s2[6];
+wire        one_minus_cos_carry2_s3 = ~one_minus_cos_part0_s2[7] & ~one_minus_cos_part1_plus1_s2[6];
 // bits [10:6]: the sum with the carry into bit 6
-wire [4:0] one_minus_cos_chunk1_s3 = one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] :
+wire [4:0] one_minus_cos_chunk1_s3 = ~one_minus_cos_part0_s2[7] ? one_minus_cos_part1_plus1_s2[5:1] :
     one_minus_cos_part1_s2[4:0];
 // bits [15:11]: the sum with the carry into bit 11
 wire [4:0] one_minus_cos_chunk2_s3 = one_minus_cos_carry2_s3 ? one_minus_cos_part2_plus1_s2[5:1] :
     one_minus_cos_part2_s2;
 // UQ1.15: 1 - min(cos, 1) = ~cos + 1, exact
 wire [15:0] one_minus_cos_s3 = {one_minus_cos_chunk2_s3, one_minus_cos_chunk1_s3, one_minus_cos_part0_s2[6:1]};
-// bits [5:0] and their carry, carry-in 0
-wire [6:0] cutoff_sum_part0_s3 = {1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};
-// bits [11:6] and their carry, carry-in 0
-wire [6:0] cutoff_sum_part1_s3 = {1'b0, cos_sp_s1[11:6]} + {1'b0, cos_complement_s1[11:6]};
-// bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
-wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b0, cos_sp_s1[11:6], 1'b1} + {1'b0, cos_complement_s1[11:6], 1'b1};
+// bits [5:0] and their carry (complemented), carry-in 0
+wire [6:0] cutoff_sum_part0_s3 = {1'b1, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};
+// bits [11:6] and their carry (complemented), carry-in 0
+wire [6:0] cutoff_sum_part1_s3 = {1'b1, cos_sp_s1[11:6]} + {1'b0, cos_complement_s1[11:6]};
+// bits [11:6] and their carry (complemented) above bit 0, carry-in 1 (carry-select)
+wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b1, cos_sp_s1[11:6], 1'b1} + {1'b0, cos_complement_s1[11:6], 1'b1};
 // bits [16:12], carry-in 0
 wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_s1[15:12]} + {1'h0, 1'h1, cos_complement_s1[14:12]};
 // bits [16:12] above bit 0, carry-in 1 (carry-select)
@@ -107,13 +108,13 @@ wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_s1[15:12]}, 1'b1} + {{1'h0
 
 // ==== step 4: comparator: carries; k_q*n (constant multiply) ====
 // carry into bit 12
-wire        cutoff_sum_carry2_s4 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[7] : cutoff_sum_part1_s3[6];
+wire        cutoff_sum_carry2_s4 = ~cutoff_sum_part0_s3[6] ? ~cutoff_sum_part1_plus1_s3[7] : ~cutoff_sum_part1_s3[6];
 // UQ9.16: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34
 wire [24:0] kn_s4 = {15'h0, n} * 25'h5e5d;
 
 // ==== step 5: comparator: select; deviation, high partial product (multiply-add) ====
 // bits [11:6]: the sum with the carry into bit 6
-wire [5:0] cutoff_sum_chunk1_s5 = cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[6:1] : cutoff_sum_part1_s3[5:0];
+wire [5:0] cutoff_sum_chunk1_s5 = ~cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[6:1] : cutoff_sum_part1_s3[5:0];
 // bits [16:12]: the sum with the carry into bit 12
 wire [4:0] cutoff_sum_chunk2_s5 = cutoff_sum_carry2_s4 ? cutoff_sum_part2_plus1_s3[5:1] : cutoff_sum_part2_s3;
 // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
@@ -155,20 +156,21 @@ wire [16:0] color_sum_b_s11 = {7'h0, color_square_s11} * {9'h0, ks_b} + 17'h100;
 wire [7:0] spec_r_s12 = color_sum_r_s11[16:9];   // UNORM8: S*ks_r rounded half up
 wire [7:0] spec_g_s12 = color_sum_g_s11[16:9];   // UNORM8: S*ks_g rounded half up
 wire [7:0] spec_b_s12 = color_sum_b_s11[16:9];   // UNORM8: S*ks_b rounded half up
-// bits [5:0] and their carry above bit 0, carry-in 1
-wire [7:0] intensity_sum_part0_s12 = {1'b0, square_s11[5:0], 1'b1} + 8'h1;
-wire [6:0] intensity_sum_part1_s12 = {1'b0, square_s11[11:6]};   // bits [11:6] and their carry, carry-in 0
-// bits [11:6] and their carry above bit 0, carry-in 1 (carry-select)
-wire [7:0] intensity_sum_part1_plus1_s12 = {1'b0, square_s11[11:6], 1'b1} + 8'h1;
+// bits [5:0] and their carry (complemented) above bit 0, carry-in 1
+wire [7:0] intensity_sum_part0_s12 = {1'b1, square_s11[5:0], 1'b1} + 8'h1;
+// bits [11:6] and their carry (complemented), carry-in 0
+wire [6:0] intensity_sum_part1_s12 = {1'b1, square_s11[11:6]};
+// bits [11:6] and their carry (complemented) above bit 0, carry-in 1 (carry-select)
+wire [7:0] intensity_sum_part1_plus1_s12 = {1'b1, square_s11[11:6], 1'b1} + 8'h1;
 wire [4:0] intensity_sum_part2_s12 = square_s11[16:12];   // bits [16:12], carry-in 0
 // bits [16:12] above bit 0, carry-in 1 (carry-select)
 wire [5:0] intensity_sum_part2_plus1_s12 = {square_s11[16:12], 1'b1} + 6'h1;
 
 // ==== step 13: intensity rounding: carries and select ====
 // carry into bit 12
-wire        intensity_sum_carry2_s13 = intensity_sum_part0_s12[7] & intensity_sum_part1_plus1_s12[7];
+wire        intensity_sum_carry2_s13 = ~intensity_sum_part0_s12[7] & ~intensity_sum_part1_plus1_s12[7];
 // bits [11:6]: the sum with the carry into bit 6
-wire [5:0] intensity_sum_chunk1_s13 = intensity_sum_part0_s12[7] ? intensity_sum_part1_plus1_s12[6:1] :
+wire [5:0] intensity_sum_chunk1_s13 = ~intensity_sum_part0_s12[7] ? intensity_sum_part1_plus1_s12[6:1] :
     intensity_sum_part1_s12[5:0];
 // bits [16:12]: the sum with the carry into bit 12
 wire [4:0] intensity_sum_chunk2_s13 = intensity_sum_carry2_s13 ? intensity_sum_part2_plus1_s12[5:1] :

@@ -20,7 +20,7 @@ pub(crate) use crate::names::{ECP5_BRAM_MODEL_SUFFIX, ECP5_SIM_MODEL_SUFFIX, SIM
 pub(crate) struct CutSignal {
     pub name: String,
     pub width: u32,
-    /// a block's output read by another block ([`datapath::Datapath::block_to_block`])
+    /// a register a multiplier reads ([`datapath::Datapath::read_by_block`]): out of the DSP block
     pub keep: bool,
     /// the expression the cut takes it from (`x_sK` computed in step K, a port, a block's output)
     pub source: String,
@@ -585,13 +585,17 @@ fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
         // yosys 0.23's ice40_dsp, given the product's register with a shift register after
         // it, changes the function (found by `synth --verify` on blinn's x*g_lo)
         let product = at.len() > 1 && dp.products.contains(&name);
-        if product {
+        // a multiplier reads the first register: it stays a register of its own, kept out of
+        // the DSP block (yosys 0.70's ice40_dsp takes the first flip-flop of a delay line
+        // into the block as its input register, and the logic before it becomes the path)
+        let operand = at.len() > 1 && dp.read_by_block(&name, at[0]);
+        if product || operand {
             cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true });
             source = format!("{name}_c{}", at[0]);
             at.remove(0);
         }
-        if at.len() == 1 && !product {
-            let keep = dp.block_to_block(&name, at[0]);
+        if at.len() == 1 && !product && !operand {
+            let keep = dp.read_by_block(&name, at[0]);
             cuts[at[0] - 1].signals.push(CutSignal { name, width, source, keep });
             continue;
         }

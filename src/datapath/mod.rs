@@ -124,33 +124,19 @@ pub struct Datapath {
 }
 
 impl Datapath {
-    /// Whether the register `name_cK` must stay out of the DSP block that reads it: `name` is a
-    /// block's output (a product, or bits of one with no logic between) and a multiplier reads
-    /// this register. yosys 0.23's ice40_dsp would take that one flip-flop into both blocks,
-    /// as the first's output register and the second's input register, and leave the second
-    /// reading the first's unregistered output: the function changes (a `(* keep *)` on the
-    /// register stops the second, not the first).
-    ///
-    /// A multiplier reads the register also through wires that only select and concatenate its
-    /// bits (`square_s11 = square_z_c10[30:14]`, `color_square_s11 = square_s11[16:7]`): synthesis
-    /// sees one flip-flop either way, and yosys 0.70 took it into both blocks so (the colour
-    /// products of the 13-stage lean unit read `16'b000000xxxxxxxxxx`).
-    pub(crate) fn block_to_block(&self, name: &str, k: usize) -> bool {
-        let from_block = self.products.iter().any(|p| p == name)
-            || self.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).is_some_and(|w| {
-                let plain = w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, ".contains(c));
-                plain
-                    && self.products.iter().any(|p| {
-                        w.expr
-                            .split(|c: char| !(c.is_alphanumeric() || c == '_'))
-                            .any(|t| t.rsplit_once("_s").is_some_and(|(b, i)| b == p && i.parse::<u32>().is_ok()))
-                    })
-            });
-        from_block && self.read_by_block(name, k)
-    }
-
     /// Whether a multiplier reads the register `name_cK`, directly or through wires that only
-    /// select and concatenate its bits.
+    /// select and concatenate its bits: such a register stays out of the DSP block (`(* keep *)`,
+    /// which yosys's ice40_dsp honours). Two reasons:
+    /// - correctness: when the register is a block's output (a product, or bits of one),
+    ///   yosys 0.23's and 0.70's ice40_dsp would take that one flip-flop into both blocks, as
+    ///   the first's output register and the second's input register, and leave the second
+    ///   reading the first's unregistered output: the function changes (the colour products
+    ///   of the 13-stage lean unit read `16'b000000xxxxxxxxxx` under 0.70). Synthesis sees one
+    ///   flip-flop through wires that only slice it (`square_s11 = square_z_c10[30:14]`), so
+    ///   those count as reads;
+    /// - speed: yosys 0.70 takes an operand's register into the block as its input register,
+    ///   and the logic before it, with the long route into the DSP tile, becomes the path
+    ///   (fitted at 60 stages: 88 MHz; kept in the fabric: 100).
     pub(crate) fn read_by_block(&self, name: &str, k: usize) -> bool {
         let tokens = |e: &str| e.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect::<Vec<_>>();
         let mut aliases = vec![format!("{name}_c{k}")];
@@ -1002,22 +988,31 @@ impl Builder {
             for (i, &(lo, w)) in parts.iter().enumerate() {
                 let top = i + 1 == n;
                 let ww = if top { w } else { w + 1 };
-                let ext = |e: String| if top { e } else { format!("{{1'b0, {e}}}") };
-                // carry-in 1 as a 1 + 1 in an extra low bit: one adder that no synthesis tool
-                // can share with the carry-in-0 sum (a shared "+ 1" would chain two adders)
-                let ext1 = |e: String| if top { format!("{{{e}, 1'b1}}") } else { format!("{{1'b0, {e}, 1'b1}}") };
                 let pa = sub_pieces(a, lo, w);
                 let pb = sub_pieces(b, lo, w);
+                // below the top chunk, the carry-out is kept complemented, as the sum bit of a
+                // 1 above the first operand and a 0 above the second (1 + 0 + carry = ~carry
+                // mod 2): the chain computes it in a LUT of its own that packs with its
+                // flip-flop. A plain carry-out (0 above both, or 1 above both, which synthesis
+                // folds to the same) is the chain's CO, which leaves an iCE40 chain through an
+                // extra LUT placed apart from the flip-flop: 2-3 ns of routing more.
+                // [`Builder::carry_out`] reads it back.
+                let ext_a = |e: String| if top { e } else { format!("{{1'b1, {e}}}") };
+                let ext_b = |e: String| if top { e } else { format!("{{1'b0, {e}}}") };
+                // carry-in 1 as a 1 + 1 in an extra low bit: one adder that no synthesis tool
+                // can share with the carry-in-0 sum (a shared "+ 1" would chain two adders)
+                let ext1_a = |e: String| if top { format!("{{{e}, 1'b1}}") } else { format!("{{1'b1, {e}, 1'b1}}") };
+                let ext1_b = |e: String| if top { format!("{{{e}, 1'b1}}") } else { format!("{{1'b0, {e}, 1'b1}}") };
                 let ea = self.pieces(&pa);
-                let what = if top { format!("bits [{}:{lo}]", lo + w - 1) } else { format!("bits [{}:{lo}] and their carry", lo + w - 1) };
+                let what = if top { format!("bits [{}:{lo}]", lo + w - 1) } else { format!("bits [{}:{lo}] and their carry (complemented)", lo + w - 1) };
                 let sum0 = {
-                    let eb = self.addend(&pb, ext);
-                    format!("{}{eb}", ext(ea.clone()))
+                    let eb = self.addend(&pb, ext_b);
+                    format!("{}{eb}", ext_a(ea.clone()))
                 };
                 let sum1 = {
-                    let eb = self.addend(&pb, ext1);
+                    let eb = self.addend(&pb, ext1_b);
                     let eb = if eb.is_empty() { format!(" + {}", lit(ww + 1, 1)) } else { eb };
-                    format!("{}{eb}", ext1(ea))
+                    format!("{}{eb}", ext1_a(ea))
                 };
                 if i == 0 && cin {
                     self.wire(&format!("{name}_part0"), ww + 1, sum1, &format!("{what} above bit 0, carry-in 1"));
@@ -1039,6 +1034,11 @@ impl Builder {
         }
     }
 
+    /// The carry out of a chunk of [`Builder::add_start`]: its bit `bit`, kept complemented.
+    fn carry_out(&mut self, part: &str, bit: u32) -> String {
+        format!("~{}", self.bits(part, bit, bit))
+    }
+
     /// Second step of a carry-select add: the carry into each chunk from the third on
     /// (the first chunk's own carry-out is the carry into the second), rippled through the
     /// chunks' carry-outs. Nothing to do for one or two chunks.
@@ -1055,18 +1055,18 @@ impl Builder {
         let (_, w0) = p.chunks[0];
         let o = p.part0_offset;
         let mut carry = match from {
-            1 => self.bits(&format!("{}_part0", p.name), w0 + o, w0 + o),
+            1 => self.carry_out(&format!("{}_part0", p.name), w0 + o),
             _ => self.r(&format!("{}_carry{from}", p.name)),
         };
         for i in from..to {
             let w = p.chunks[i].1;
-            let ca = self.bits(&format!("{}_part{i}_plus1", p.name), w + 1, w + 1);
+            let ca = self.carry_out(&format!("{}_part{i}_plus1", p.name), w + 1);
             let cname = format!("{}_carry{}", p.name, i + 1);
             let expr = if p.no_carry_out[i] {
                 // an AND, not a ?: of 0 ([`Builder::select`])
                 format!("{carry} & {ca}")
             } else {
-                let cb = self.bits(&format!("{}_part{i}", p.name), w, w);
+                let cb = self.carry_out(&format!("{}_part{i}", p.name), w);
                 format!("{carry} ? {ca} : {cb}")
             };
             self.wire(&cname, 1, expr, &format!("carry into bit {}", p.chunks[i + 1].0));
@@ -1187,7 +1187,7 @@ impl Builder {
         let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1 + o, o)];
         for (i, &(lo, w)) in p.chunks.iter().enumerate().skip(1) {
             let carry = match i {
-                1 => self.bits(&format!("{}_part0", p.name), w0 + o, w0 + o),
+                1 => self.carry_out(&format!("{}_part0", p.name), w0 + o),
                 _ => self.r(&format!("{}_carry{i}", p.name)),
             };
             let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
@@ -1319,10 +1319,10 @@ mod tests {
         assert!(expr(&b, "s_hi").unwrap().contains("s_prod_s1[17:7]"), "{:?}", expr(&b, "s_hi"));
     }
 
-    /// A product's registered output (or bits of it) that another multiplier reads is named
-    /// for `(* keep *)`; one only the fabric reads is not.
+    /// A register a multiplier reads (bits of a product, an input) is named for `(* keep *)`;
+    /// one only the fabric reads is not.
     #[test]
-    fn a_block_output_register_read_by_a_block_is_kept() {
+    fn a_register_read_by_a_block_is_kept() {
         let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1, 2], Target::Ice40);
         b.step("p");
         b.wire("p", 16, "a * c".into(), "");
@@ -1334,9 +1334,9 @@ mod tests {
         let e = b.bits("p", 7, 0);
         b.wire("lo", 8, format!("~{e}"), "");
         let d = b.finish(&["q", "lo"]);
-        assert!(d.block_to_block("hi", 1), "bits of a product, read by a multiplier");
-        assert!(!d.block_to_block("p", 1), "the product itself is read only by the fabric");
-        assert!(!d.block_to_block("c", 1), "an input is no block's output");
+        assert!(d.read_by_block("hi", 1), "bits of a product, read by a multiplier");
+        assert!(!d.read_by_block("p", 1), "the product itself is read only by the fabric");
+        assert!(d.read_by_block("c", 1), "an input's register a multiplier reads");
     }
 
     /// Issue 35: a multiplier reads a block's output register also through wires that only
@@ -1354,7 +1354,7 @@ mod tests {
         let (t, c) = (b.r("t"), b.r("c"));
         b.wire("q", 16, format!("{t} * {c}"), "");
         let d = b.finish(&["q"]);
-        assert!(d.block_to_block("p", 1), "read by a multiplier through two slices");
+        assert!(d.read_by_block("p", 1), "read by a multiplier through two slices");
     }
 
     #[test]

@@ -108,7 +108,7 @@ fn injected_faults_are_caught() {
         // an off-by-one constant: k_code 24157 = 0x5e5d
         ("k_off_by_one", &[], "25'h5e5d", "25'h5e5e", random),
         // a dropped rounding bit: intensity truncates instead of rounding
-        ("no_round", &[], "{1'b0, square_s11[5:0], 1'b1} + 8'h1;", "{1'b0, square_s11[5:0], 1'b1} + 8'h0;", random),
+        ("no_round", &[], "{1'b1, square_s11[5:0], 1'b1} + 8'h1;", "{1'b1, square_s11[5:0], 1'b1} + 8'h0;", random),
         // swapped colour channels
         (
             "swap_rg",
@@ -121,8 +121,8 @@ fn injected_faults_are_caught() {
         (
             "cutoff_le",
             &[],
-            "{1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};",
-            "{1'b0, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]} + 7'h1;",
+            "{1'b1, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]};",
+            "{1'b1, cos_sp_s1[5:0]} + {1'b0, cos_complement_s1[5:0]} + 7'h1;",
             random,
         ),
         // a fault at one single (cos_g, n): only the exhaustive run meets it
@@ -152,8 +152,8 @@ fn mismatch_with_trace_writes_a_vcd() {
         tmp.path(),
         "t",
         &["--stages", "1"],
-        "{1'b0, square_s11[5:0], 1'b1} + 8'h1;",
-        "{1'b0, square_s11[5:0], 1'b1} + 8'h0;",
+        "{1'b1, square_s11[5:0], 1'b1} + 8'h1;",
+        "{1'b1, square_s11[5:0], 1'b1} + 8'h0;",
         &["--trace", vcd.to_str().unwrap()],
     );
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
