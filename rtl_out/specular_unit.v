@@ -101,9 +101,9 @@ wire [6:0] cutoff_sum_part1_s3 = {1'b1, cos_sp_s1[11:6]} + {1'b0, cos_complement
 // bits [11:6] and their carry (complemented) above bit 0, carry-in 1 (carry-select)
 wire [7:0] cutoff_sum_part1_plus1_s3 = {1'b1, cos_sp_s1[11:6], 1'b1} + {1'b0, cos_complement_s1[11:6], 1'b1};
 // bits [16:12], carry-in 0
-wire [4:0] cutoff_sum_part2_s3 = {1'h0, cos_sp_s1[15:12]} + {1'h0, 1'h1, cos_complement_s1[14:12]};
+wire [4:0] cutoff_sum_part2_s3 = {1'h1, cos_sp_s1[15:12]} + {1'h0, 1'h1, cos_complement_s1[14:12]};
 // bits [16:12] above bit 0, carry-in 1 (carry-select)
-wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h0, cos_sp_s1[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_s1[14:12]},
+wire [5:0] cutoff_sum_part2_plus1_s3 = {{1'h1, cos_sp_s1[15:12]}, 1'b1} + {{1'h0, 1'h1, cos_complement_s1[14:12]},
     1'b1};
 
 // ==== step 4: comparator: carries; k_q*n (constant multiply) ====
@@ -116,7 +116,8 @@ wire [24:0] kn_s4 = {15'h0, n} * 25'h5e5d;
 // bits [11:6]: the sum with the carry into bit 6
 wire [5:0] cutoff_sum_chunk1_s5 = ~cutoff_sum_part0_s3[6] ? cutoff_sum_part1_plus1_s3[6:1] : cutoff_sum_part1_s3[5:0];
 // bits [16:12]: the sum with the carry into bit 12
-wire [4:0] cutoff_sum_chunk2_s5 = cutoff_sum_carry2_s4 ? cutoff_sum_part2_plus1_s3[5:1] : cutoff_sum_part2_s3;
+wire [4:0] cutoff_sum_chunk2_s5 = cutoff_sum_carry2_s4 ? {~cutoff_sum_part2_plus1_s3[5], cutoff_sum_part2_plus1_s3[4:1]}
+    : {~cutoff_sum_part2_s3[4], cutoff_sum_part2_s3[3:0]};
 // cos_sp + ~cos over UQ1.15: bit 16 (the carry) is cos < cos_sp
 wire [16:0] cutoff_sum_s5 = {cutoff_sum_chunk2_s5, cutoff_sum_chunk1_s5, cutoff_sum_part0_s3[5:0]};
 // comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)

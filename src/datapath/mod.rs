@@ -245,6 +245,18 @@ pub(crate) fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
     out
 }
 
+/// Whether bit `bit` of `pieces` (LSB first) is a constant 0.
+fn zero_bit(pieces: &[Piece], bit: u32) -> bool {
+    let mut base = 0;
+    for p in pieces {
+        if bit < base + p.width() {
+            return matches!(p, Piece::Const { value, .. } if (value >> (bit - base)) & 1 == 0);
+        }
+        base += p.width();
+    }
+    false
+}
+
 /// A wide add started by [`Builder::add_start`], finished by [`Builder::add_finish`].
 pub(crate) struct PendingAdd {
     name: String,
@@ -255,6 +267,9 @@ pub(crate) struct PendingAdd {
     part0_offset: u32,
     /// per chunk: the second addend is 0 there, so its carry-in-0 sum has no carry-out
     no_carry_out: Vec<bool>,
+    /// the top chunk's top bit is the add's carry-out (both operands 0 there), held
+    /// complemented as the other chunks' carries are; [`Builder::add_finish`] restores it
+    top_inverted: bool,
     comment: String,
 }
 
@@ -979,6 +994,7 @@ impl Builder {
         let no_carry_out = parts.iter().map(|&(lo, w)| sub_pieces(b, lo, w).iter().all(|p| matches!(p, Piece::Const { value: 0, .. }))).collect();
         let max_chunk = parts.iter().map(|c| c.1).max().unwrap_or(1);
         self.delay(add_delay(max_chunk));
+        let mut top_inverted = false;
         if n == 1 {
             let ea = self.pieces(&sub_pieces(a, 0, width));
             let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
@@ -990,6 +1006,16 @@ impl Builder {
                 let ww = if top { w } else { w + 1 };
                 let pa = sub_pieces(a, lo, w);
                 let pb = sub_pieces(b, lo, w);
+                // the top chunk's top bit a carry-out (0 above both operands): a 1 above the
+                // first makes it a sum bit, the carry's complement, as below
+                let pa = if top && zero_bit(&pa, w - 1) && zero_bit(&pb, w - 1) {
+                    top_inverted = true;
+                    let mut v = sub_pieces(&pa, 0, w - 1);
+                    v.push(Piece::Const { value: 1, width: 1 });
+                    v
+                } else {
+                    pa
+                };
                 // below the top chunk, the carry-out is kept complemented, as the sum bit of a
                 // 1 above the first operand and a 0 above the second (1 + 0 + carry = ~carry
                 // mod 2): the chain computes it in a LUT of its own that packs with its
@@ -1030,8 +1056,34 @@ impl Builder {
             chunks: if n == 1 { Vec::new() } else { parts },
             part0_offset: u32::from(cin),
             no_carry_out,
+            top_inverted,
             comment: comment.into(),
         }
+    }
+
+    /// `sig[hi:lo] >= c` as AND/OR of its bits, most significant first (a bit of `c` set: that
+    /// bit and the rest; clear: that bit or the rest; none left set: true): a few LUTs that
+    /// synthesis maps as logic, where `>=` becomes a carry chain whose carry-out leaves it
+    /// through an extra LUT placed apart (iCE40).
+    pub(crate) fn at_least(&mut self, sig: &str, hi: u32, lo: u32, c: u128) -> String {
+        let width = hi - lo + 1;
+        if c == 0 {
+            return "1'b1".into();
+        }
+        let mut expr = String::new();
+        // x[i:0] >= c[i:0], from the lowest set bit of c up (below it, c's bits are 0: true)
+        let low = c.trailing_zeros();
+        for i in low..width {
+            let bit = self.bits(sig, lo + i, lo + i);
+            expr = if i == low {
+                bit
+            } else if (c >> i) & 1 == 1 {
+                format!("{bit} & ({expr})")
+            } else {
+                format!("{bit} | ({expr})")
+            };
+        }
+        expr
     }
 
     /// The carry out of a chunk of [`Builder::add_start`]: its bit `bit`, kept complemented.
@@ -1191,7 +1243,17 @@ impl Builder {
                 _ => self.r(&format!("{}_carry{i}", p.name)),
             };
             let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
-            let (a, b) = (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0));
+            let (a, b) = if p.top_inverted && i + 1 == p.chunks.len() {
+                // the carry-out above the top chunk's sum, complemented back
+                let (na, nb) = (format!("~{}", self.bits(&inc, w, w)), format!("~{}", self.bits(&plain, w - 1, w - 1)));
+                if w == 1 {
+                    (na, nb)
+                } else {
+                    (format!("{{{na}, {}}}", self.bits(&inc, w - 1, 1)), format!("{{{nb}, {}}}", self.bits(&plain, w - 2, 0)))
+                }
+            } else {
+                (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0))
+            };
             // each chunk's pick on its own line; the sum is then a plain concatenation
             let chunk = format!("{}_chunk{i}", p.name);
             self.wire(&chunk, w, format!("{carry} ? {a} : {b}"), &format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1));
@@ -1355,6 +1417,75 @@ mod tests {
         b.wire("q", 16, format!("{t} * {c}"), "");
         let d = b.finish(&["q"]);
         assert!(d.read_by_block("p", 1), "read by a multiplier through two slices");
+    }
+
+    /// Issue 36: no carry-out leaves a chain as the chain's own CO. Each chunk's carry is a sum
+    /// bit of its chunk, complemented (1 above the first operand, 0 above the second), and so
+    /// is the top chunk's when the add's top bit is a carry-out; the select reads them back
+    /// complemented.
+    #[test]
+    fn carries_are_sum_bits_kept_complemented() {
+        let mut b = Builder::new(&[("x", 16), ("y", 15)], &[1, 2], Target::Ice40);
+        b.step("add");
+        b.chunk_limit = 6;
+        // 17 bits of two 16/15-bit operands: the top bit is the carry-out
+        let p = b.add_start("s", &[Piece::sig("x", 0, 16)], &[Piece::sig("y", 0, 15)], false, 17, "");
+        let expr = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).map(|w| w.expr.clone()).unwrap();
+        assert_eq!(expr(&b, "s_part0"), "{1'b1, x[5:0]} + {1'b0, y[5:0]}");
+        assert_eq!(expr(&b, "s_part1"), "{1'b1, x[11:6]} + {1'b0, y[11:6]}");
+        assert_eq!(expr(&b, "s_part1_plus1"), "{1'b1, x[11:6], 1'b1} + {1'b0, y[11:6], 1'b1}");
+        assert!(expr(&b, "s_part2").starts_with("{1'h1, x[15:12]}"), "{}", expr(&b, "s_part2"));
+        b.step("carries");
+        b.add_carries(&p);
+        assert!(expr(&b, "s_carry2").starts_with("~s_part0_c1[6] ?"), "{}", expr(&b, "s_carry2"));
+        b.step("select");
+        b.add_finish(p);
+        assert!(expr(&b, "s_chunk2").contains("{~s_part2_plus1_c2[5], s_part2_plus1_c2[4:1]}"), "{}", expr(&b, "s_chunk2"));
+    }
+
+    /// `at_least` is `>=` on every value of a 6-bit signal for every constant: its AND/OR
+    /// expression, evaluated here, agrees with the integer comparison.
+    #[test]
+    fn at_least_is_the_comparison() {
+        // a tiny evaluator of the expressions at_least writes: x[i], 1'b1, &, |, parentheses
+        fn eval(e: &[u8], at: &mut usize, x: u32) -> bool {
+            let mut v = term(e, at, x);
+            while *at < e.len() && e[*at] != b')' {
+                let op = e[*at];
+                *at += 1;
+                let r = term(e, at, x);
+                v = if op == b'&' { v & r } else { v | r };
+            }
+            v
+        }
+        fn term(e: &[u8], at: &mut usize, x: u32) -> bool {
+            match e[*at] {
+                b'(' => {
+                    *at += 1;
+                    let v = eval(e, at, x);
+                    *at += 1;
+                    v
+                }
+                b'1' => {
+                    *at += 4;
+                    true
+                }
+                _ => {
+                    let end = e[*at..].iter().position(|&c| c == b']').unwrap() + *at;
+                    let bit: u32 = std::str::from_utf8(&e[*at + 2..end]).unwrap().parse().unwrap();
+                    *at = end + 1;
+                    (x >> bit) & 1 == 1
+                }
+            }
+        }
+        let mut b = Builder::new(&[("x", 6)], &[], Target::Ice40);
+        b.step("t");
+        for c in 0..64u128 {
+            let expr = b.at_least("x", 5, 0, c).replace(' ', "");
+            for x in 0..64u32 {
+                assert_eq!(eval(expr.as_bytes(), &mut 0, x), x as u128 >= c, "x = {x}, c = {c}: {expr}");
+            }
+        }
     }
 
     #[test]

@@ -691,8 +691,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let mut flags = vec!["y_zero_power"];
     if sat_int < 1u128 << yiw {
         let k = bit_length(sat_int);
-        let low = b.bits("y_trunc", w.y_frac_bits + k - 1, w.y_frac_bits);
-        b.wire("y_over_low", 1, format!("{low} >= {}", lit(k, sat_int)), &format!("floor(y)'s low {k} bits reach {sat_int}"));
+        let ge = b.at_least("y_trunc", w.y_frac_bits + k - 1, w.y_frac_bits, sat_int);
+        b.wire("y_over_low", 1, ge, &format!("floor(y)'s low {k} bits reach {sat_int}"));
         flags.push("y_over_low");
         if yiw > k {
             let high = b.bits("y_trunc", ytw - 1, w.y_frac_bits + k);
