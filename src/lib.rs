@@ -29,6 +29,7 @@ pub mod paper;
 pub mod plan;
 pub mod ports;
 pub mod process;
+pub mod prove;
 pub mod render;
 pub mod report;
 pub mod rom;

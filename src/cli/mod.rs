@@ -2,6 +2,7 @@
 //! (2: bad parameters or usage, 1: a check failed or an I/O error).
 
 mod cosim;
+mod prove;
 mod synth;
 mod values;
 
@@ -82,6 +83,9 @@ pub enum Command {
     },
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
     Cosim(cosim::CosimArgs),
+    /// Prove the unit's edge for every input sequence (yosys and ABC's pdr, unbounded): valid's
+    /// latency; ready/axis's handshake, buffer bounds, in_ready rule, order of tagged pixels.
+    Prove(prove::ProveArgs),
     /// Write golden vectors for any testbench: CSV (a header row of port names) or $readmemh
     /// hex, one row per input with the golden model's outputs; the header states the timing.
     Vectors(VectorsArgs),
@@ -453,6 +457,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             eval(&cfg, cos.as_deref(), cos_code, n, ks)
         }
         Command::Cosim(args) => cosim::run(&args),
+        Command::Prove(args) => prove::run(&args),
         Command::Render(args) => render(&args),
         Command::Synth(args) => synth::run(&args),
         Command::Vectors(args) => vectors(&args),

@@ -213,7 +213,7 @@ fn time_limit(simulator: Simulator, cycles: u64) -> std::time::Duration {
 
 /// Kills process `pid` unless the returned sender is dropped (or sent to) within `limit`;
 /// the flag tells afterwards whether it was killed.
-fn watchdog(pid: u32, limit: std::time::Duration) -> (std::sync::mpsc::Sender<()>, std::sync::Arc<std::sync::atomic::AtomicBool>) {
+pub(crate) fn watchdog(pid: u32, limit: std::time::Duration) -> (std::sync::mpsc::Sender<()>, std::sync::Arc<std::sync::atomic::AtomicBool>) {
     let (tx, rx) = std::sync::mpsc::channel::<()>();
     let fired = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     let flag = fired.clone();

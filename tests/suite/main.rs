@@ -13,6 +13,7 @@ mod interfaces;
 mod layers;
 mod models;
 mod properties;
+mod prove;
 mod reliability;
 mod render;
 mod report;

@@ -1,0 +1,77 @@
+//! `specgen prove`: the command-line glue over [`specgen::prove`].
+
+use super::outln;
+use super::{failed, Failure};
+use specgen::cosim::Design;
+use specgen::prove::{prove, Tools, Verdict};
+use std::path::PathBuf;
+use std::time::Duration;
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct ProveArgs {
+    /// Directory with the Verilog (*.v) and the specgen manifest (<top>.json).
+    #[arg(long, value_name = "DIR")]
+    pub rtl: PathBuf,
+    /// The yosys binary that writes the model and replays a counterexample [default: yosys]
+    #[arg(long, value_name = "PATH", default_value = "yosys")]
+    pub yosys: String,
+    /// ABC with pdr (Debian's yosys-abc) [default: yosys-abc]
+    #[arg(long, value_name = "PATH", default_value = "yosys-abc")]
+    pub abc: String,
+    /// Seconds pdr may take before the proof is reported undecided [1..=86400]
+    #[arg(long, value_name = "S", default_value_t = 600, value_parser = clap::value_parser!(u64).range(1..=86400))]
+    pub time_limit: u64,
+    /// Directory for a counterexample's VCD (made if missing) [default: a new directory in the
+    /// system's temporary directory, named in the message]
+    #[arg(long, value_name = "DIR")]
+    pub traces: Option<PathBuf>,
+    /// Prove an RTL changed on purpose (without it, a file whose SHA-256 is not the manifest's
+    /// is refused).
+    #[arg(long)]
+    pub edited: bool,
+}
+
+/// `specgen prove`: exit 0 when every property is proved, 1 when one fails (its VCD named) or
+/// is undecided within the time limit, 2 on usage errors.
+pub fn run(args: &ProveArgs) -> Result<(), Failure> {
+    let design = Design::load(&args.rtl)?;
+    design.verify_files(args.edited)?;
+    let traces = match &args.traces {
+        Some(t) => {
+            design.refuse_output("--traces", t)?;
+            t.clone()
+        }
+        None => std::env::temp_dir().join(format!("specgen-prove-{}", std::process::id())),
+    };
+    let tools = Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit) };
+    tools.check()?;
+    let proof = prove(&design, &tools, &traces)?;
+    let head = format!("prove {} ({}): ", design.dir.display(), proof.name);
+    match &proof.verdict {
+        Verdict::Proved => {
+            outln!("{head}proved, unbounded (ABC pdr), {:.1} s:", proof.seconds)?;
+            for p in &proof.properties {
+                outln!("  - {p}")?;
+            }
+            Ok(())
+        }
+        Verdict::Undecided { bounded } => {
+            let also = match bounded {
+                Some(k) => format!("; the properties hold for the first {k} clock edges (a bounded search, yosys sat)"),
+                None => String::new(),
+            };
+            Err(failed(format!("{head}undecided: pdr did not end within {} s, so not proved (--time-limit gives it longer){also}", args.time_limit)))
+        }
+        Verdict::Failed { frame, vcd } => {
+            let mut msg = format!("{head}a property fails {frame} clock edges after the reset (ABC pdr counterexample)");
+            if let Some(v) = vcd {
+                msg.push_str(&format!("; the replay's trace: {}", v.display()));
+            }
+            msg.push_str("\nthe properties:\n");
+            for p in &proof.properties {
+                msg.push_str(&format!("  - {p}\n"));
+            }
+            Err(failed(msg.trim_end().to_string()))
+        }
+    }
+}

