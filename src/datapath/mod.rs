@@ -1271,6 +1271,12 @@ impl Builder {
     /// for the bits of each signal that its last reader leaves unread, and lists the live
     /// signals of every cut.
     pub(crate) fn finish(mut self, outputs: &[&str]) -> Datapath {
+        // a step with logic and no delay estimate would count 0 ns, and `--target-mhz` would
+        // place its cuts on a wrong sum: every step's logic states its delay (Builder::delay)
+        for s in &self.steps {
+            let logic = s.wires.iter().any(|w| !w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '".contains(c))) || !s.dsps.is_empty();
+            assert!(!logic || s.delay > 0.0, "datapath: step {} ({}) has logic but no delay estimate: call Builder::delay in it", s.index, s.title);
+        }
         let last = self.cur();
         for o in outputs {
             let w = self.signal(o).width;
@@ -1388,6 +1394,7 @@ mod tests {
         let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1, 2], Target::Ice40);
         b.step("p");
         b.wire("p", 16, "a * c".into(), "");
+        b.delay(5.5);
         let e = b.bits("p", 15, 8);
         b.wire("hi", 8, e, "");
         b.step("q");
@@ -1395,6 +1402,7 @@ mod tests {
         b.wire("q", 16, format!("{hv} * {cv}"), "");
         let e = b.bits("p", 7, 0);
         b.wire("lo", 8, format!("~{e}"), "");
+        b.delay(5.5);
         let d = b.finish(&["q", "lo"]);
         assert!(d.read_by_block("hi", 1), "bits of a product, read by a multiplier");
         assert!(!d.read_by_block("p", 1), "the product itself is read only by the fabric");
@@ -1408,7 +1416,9 @@ mod tests {
         let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1], Target::Ice40);
         b.step("p");
         b.wire("p", 16, "a * c".into(), "");
+        b.delay(5.5);
         b.step("q");
+        b.delay(5.5);
         let e = b.bits("p", 15, 4);
         b.wire("s", 12, e, "a slice of the registered product");
         let e = b.bits("s", 11, 4);
@@ -1441,6 +1451,22 @@ mod tests {
         b.step("select");
         b.add_finish(p);
         assert!(expr(&b, "s_chunk2").contains("{~s_part2_plus1_c2[5], s_part2_plus1_c2[4:1]}"), "{}", expr(&b, "s_chunk2"));
+    }
+
+    /// Issue 37: a step with logic and no delay estimate is a build error (it would count 0 ns
+    /// and `--target-mhz` would place its cuts on a wrong sum); a step that only selects bits
+    /// needs none.
+    #[test]
+    #[should_panic(expected = "has logic but no delay estimate")]
+    fn a_step_without_a_delay_estimate_is_refused() {
+        let mut b = Builder::new(&[("x", 8)], &[1], Target::Ice40);
+        b.step("slices only");
+        let e = b.bits("x", 7, 4);
+        b.wire("hi", 4, e, "");
+        b.step("logic, no delay");
+        let h = b.r("hi");
+        b.wire("y", 4, format!("~{h}"), "");
+        b.finish(&["y"]);
     }
 
     /// `at_least` is `>=` on every value of a 6-bit signal for every constant: its AND/OR

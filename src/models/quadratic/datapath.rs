@@ -215,6 +215,8 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("comparator: select; deviation, high partial product (multiply-add)");
     let sum = b.add_finish(cmp);
     done(cfg, b, &sum);
+    // done: one LUT (a one-chunk comparator's add_finish has no select to count)
+    b.delay(LUT_DELAY);
     // 1 - cos wider than the DSP's operands: d = d_hi*2^16 + d_lo, and kn*d_hi (a few bits of
     // d_hi) in shift-adds with K'[m-1:16], the products then take d_lo alone: kn*d + K' =
     // kn*d_lo + 2^16*(kn*d_hi + K'_hi) + K'_lo, every term exact mod 2^m
