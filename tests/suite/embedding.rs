@@ -67,6 +67,17 @@ fn design_bench(units: &[Unit]) -> String {
     text
 }
 
+/// A copy of the unit's files (not its subdirectories) in a new directory `to`, to break.
+fn copy_unit(from: &Path, to: &Path) {
+    std::fs::create_dir(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.file_type().unwrap().is_file() {
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}
+
 /// Verilator `-Wall` on `files` is silent, and cosim of `dir` passes under both simulators
 /// (`what` names the case in a failure).
 fn lint_and_cosim(cache: &Path, dir: &Path, files: &[PathBuf], what: &str) {
@@ -352,13 +363,7 @@ fn tlast_travels_with_its_pixel() {
         lint_and_cosim(&tmp.path().join("cache"), &dir, &files, &format!("tag {tag}"));
         // a fault: tlast taken from the wrong bit of the word is caught
         let bad = tmp.path().join(format!("bad{i}"));
-        std::fs::create_dir(&bad).unwrap();
-        for e in std::fs::read_dir(&dir).unwrap() {
-            let e = e.unwrap();
-            if e.file_type().unwrap().is_file() {
-                std::fs::copy(e.path(), bad.join(e.file_name())).unwrap();
-            }
-        }
+        copy_unit(&dir, &bad);
         let broken = match *tag {
             "0" => v.replace("assign m_axis_tlast = out_tag;", "assign m_axis_tlast = 1'b0;"),
             _ => v.replace("assign {m_axis_tlast, m_axis_tuser} = out_tag;", "assign {m_axis_tuser, m_axis_tlast} = out_tag;"),
@@ -411,13 +416,7 @@ fn a_clock_enable_gates_every_transfer() {
         };
         for (i, (from, to)) in gates.iter().enumerate() {
             let bad = tmp.path().join(format!("{interface}_bad{i}"));
-            std::fs::create_dir(&bad).unwrap();
-            for e in std::fs::read_dir(&dir).unwrap() {
-                let e = e.unwrap();
-                if e.file_type().unwrap().is_file() {
-                    std::fs::copy(e.path(), bad.join(e.file_name())).unwrap();
-                }
-            }
+            copy_unit(&dir, &bad);
             assert!(v.contains(from.as_str()), "{from}");
             std::fs::write(bad.join("specular_unit.v"), v.replacen(from.as_str(), to, 1)).unwrap();
             let o = specgen().env("SPECGEN_CACHE_DIR", &cache).args(["cosim", "--edited", "--vectors", "5000", "--rtl"]).arg(&bad).output().unwrap();
