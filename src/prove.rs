@@ -20,7 +20,7 @@
 use crate::cosim::Design;
 use crate::error::{self, Error};
 use askama::Template;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Stdio;
 use std::time::{Duration, Instant};
 
@@ -84,8 +84,8 @@ impl Tools {
 pub enum Verdict {
     /// every property holds in every reachable state
     Proved,
-    /// a property fails `frame` edges after the start; the replay's VCD, when it could be made
-    Failed { frame: u32, vcd: Option<PathBuf> },
+    /// a property fails `frame` edges after the start; the replay's VCD
+    Failed { frame: u32, vcd: Vec<u8> },
     /// `pdr` did not end within the limit; the properties hold for the first `bounded` edges
     /// (yosys's `sat`, a bounded search), or `None` when that did not end either
     Undecided { bounded: Option<u32> },
@@ -179,9 +179,9 @@ fn run(program: &str, args: &[String], dir: &Path, limit: Duration) -> Result<Op
     Ok(Some(text))
 }
 
-/// Proves the edge of the unit in `design`; a failed proof's VCD goes to `traces` (a
-/// directory, made if missing).
-pub fn prove(design: &Design, tools: &Tools, traces: &Path) -> Result<Proof, Error> {
+/// Proves the edge of the unit in `design`; a failed proof carries its counterexample's VCD
+/// (the caller writes it).
+pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let cfg = &design.cfg;
     if !cfg.clocked() && cfg.interface().handshake() {
         return Err(error::input("a handshake unit always has registers"));
@@ -226,10 +226,7 @@ pub fn prove(design: &Design, tools: &Tools, traces: &Path) -> Result<Proof, Err
         let steps = cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4;
         let verdict = match bounded(tools, w, &files, &name, steps)? {
             Some(true) => Verdict::Undecided { bounded: Some(steps) },
-            Some(false) => {
-                let vcd = keep_trace(tools, w, &name, traces, design)?;
-                Verdict::Failed { frame: steps, vcd: Some(vcd) }
-            }
+            Some(false) => Verdict::Failed { frame: steps, vcd: trace(tools, w, design)? },
             None => Verdict::Undecided { bounded: None },
         };
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64() });
@@ -243,8 +240,9 @@ pub fn prove(design: &Design, tools: &Tools, traces: &Path) -> Result<Proof, Err
     else {
         return Err(error::tool(&tools.abc, format!("pdr neither proved nor refuted the properties: {said}")));
     };
-    let vcd = replay(design, tools, w, &files, &name, frame, traces)?;
-    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd: Some(vcd) }, seconds })
+    bounded(tools, w, &files, &name, frame + 2)?;
+    let vcd = trace(tools, w, design)?;
+    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds })
 }
 
 /// A bounded search with yosys's `sat` over the first `steps` edges: `Some(true)` when every
@@ -269,21 +267,11 @@ fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) ->
     }
 }
 
-/// `trace.vcd` of the work directory as `<traces>/<harness>.vcd`.
-fn keep_trace(tools: &Tools, w: &Path, name: &str, traces: &Path, design: &Design) -> Result<PathBuf, Error> {
+/// The counterexample's VCD that yosys's `sat` wrote in the work directory (bounded).
+fn trace(tools: &Tools, w: &Path, design: &Design) -> Result<Vec<u8>, Error> {
     let vcd = w.join("trace.vcd");
     if !vcd.is_file() {
         return Err(error::tool(&tools.yosys, format!("yosys's sat wrote no trace of the counterexample for {}", design.dir.display())));
     }
-    std::fs::create_dir_all(traces).map_err(|e| Error::io("create", traces, e))?;
-    let dest = traces.join(format!("{name}.vcd"));
-    std::fs::copy(&vcd, &dest).map_err(|e| Error::io("write", &dest, e))?;
-    Ok(dest)
-}
-
-/// Replays a counterexample of `frame` edges with yosys's `sat` (a bounded search of that
-/// length) to `<traces>/<harness>.vcd`.
-fn replay(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &str, frame: u32, traces: &Path) -> Result<PathBuf, Error> {
-    bounded(tools, w, files, name, frame + 2)?;
-    keep_trace(tools, w, name, traces, design)
+    crate::small_file::read_bytes(&vcd, 1 << 30).map_err(|e| error::tool(&tools.yosys, format!("the counterexample's trace: {e}")))
 }

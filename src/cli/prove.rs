@@ -21,10 +21,10 @@ pub struct ProveArgs {
     /// Seconds pdr may take before the proof is reported undecided [1..=86400]
     #[arg(long, value_name = "S", default_value_t = 600, value_parser = clap::value_parser!(u64).range(1..=86400))]
     pub time_limit: u64,
-    /// Directory for a counterexample's VCD (made if missing) [default: a new directory in the
-    /// system's temporary directory, named in the message]
-    #[arg(long, value_name = "DIR")]
-    pub traces: Option<PathBuf>,
+    /// Where a counterexample's VCD goes [default: <tmp>/<top>_prove_edge-<pid>.vcd, named in
+    /// the message]
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
     /// Prove an RTL changed on purpose (without it, a file whose SHA-256 is not the manifest's
     /// is refused).
     #[arg(long)]
@@ -36,16 +36,12 @@ pub struct ProveArgs {
 pub fn run(args: &ProveArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
     design.verify_files(args.edited)?;
-    let traces = match &args.traces {
-        Some(t) => {
-            design.refuse_output("--traces", t)?;
-            t.clone()
-        }
-        None => std::env::temp_dir().join(format!("specgen-prove-{}", std::process::id())),
-    };
+    if let Some(t) = &args.trace {
+        design.refuse_output("--trace", t)?;
+    }
     let tools = Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit) };
     tools.check()?;
-    let proof = prove(&design, &tools, &traces)?;
+    let proof = prove(&design, &tools)?;
     let head = format!("prove {} ({}): ", design.dir.display(), proof.name);
     match &proof.verdict {
         Verdict::Proved => {
@@ -63,9 +59,11 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             Err(failed(format!("{head}undecided: pdr did not end within {} s, so not proved (--time-limit gives it longer){also}", args.time_limit)))
         }
         Verdict::Failed { frame, vcd } => {
+            let path = args.trace.clone().unwrap_or_else(|| std::env::temp_dir().join(format!("{}-{}.vcd", proof.name, std::process::id())));
             let mut msg = format!("{head}a property fails {frame} clock edges after the reset (ABC pdr counterexample)");
-            if let Some(v) = vcd {
-                msg.push_str(&format!("; the replay's trace: {}", v.display()));
+            match specgen::output::write_file(&path, vcd) {
+                Ok(()) => msg.push_str(&format!("; the replay's trace: {}", path.display())),
+                Err(e) => msg.push_str(&format!("; could not write the trace {}: {e}", path.display())),
             }
             msg.push_str("\nthe properties:\n");
             for p in &proof.properties {
