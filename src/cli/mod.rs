@@ -84,7 +84,8 @@ pub enum Command {
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
     Cosim(cosim::CosimArgs),
     /// Prove the unit's edge for every input sequence (yosys and ABC's pdr, unbounded): valid's
-    /// latency; ready/axis's handshake, buffer bounds, in_ready rule, order of tagged pixels.
+    /// latency is proved; ready/axis's handshake harness is stated but pdr leaves it undecided
+    /// (exit 1, with a bounded search) today.
     Prove(prove::ProveArgs),
     /// Write golden vectors for any testbench: CSV (a header row of port names) or $readmemh
     /// hex, one row per input with the golden model's outputs; the header states the timing.

@@ -12,10 +12,10 @@ pub struct ProveArgs {
     /// Directory with the Verilog (*.v) and the specgen manifest (<top>.json).
     #[arg(long, value_name = "DIR")]
     pub rtl: PathBuf,
-    /// The yosys binary that writes the model and replays a counterexample [default: yosys]
+    /// The yosys binary that writes the model and replays a counterexample
     #[arg(long, value_name = "PATH", default_value = "yosys")]
     pub yosys: String,
-    /// ABC with pdr (Debian's yosys-abc) [default: yosys-abc]
+    /// ABC with pdr (Debian's yosys-abc)
     #[arg(long, value_name = "PATH", default_value = "yosys-abc")]
     pub abc: String,
     /// Seconds pdr may take before the proof is reported undecided [1..=86400]
