@@ -50,7 +50,17 @@ struct EdgeHarness<'a> {
 struct Script<'a> {
     version: &'a str,
     harness: &'a str,
-    files: Vec<String>,
+    files: &'a [String],
+    /// a bounded `sat` search of this many edges; none: the AIGER model for `pdr`
+    bounded: Option<u32>,
+}
+
+impl Script<'_> {
+    /// Writes the script as `file` in `w`.
+    fn write(&self, w: &Path, file: &str) -> Result<(), Error> {
+        let text = self.render().expect("the prove script renders") + "\n";
+        std::fs::write(w.join(file), text).map_err(|e| Error::io("write", w.join(file), e))
+    }
 }
 
 /// The tools a proof runs.
@@ -68,8 +78,7 @@ impl Tools {
     /// Each tool can be run: a path that is a file, or a name on the PATH.
     pub fn check(&self) -> Result<(), Error> {
         for tool in [&self.yosys, &self.abc] {
-            let found = if tool.contains('/') { Path::new(tool).is_file() } else { crate::cosim::backend::on_path(tool) };
-            if !found {
+            if !crate::synth::tool_exists(tool) {
                 return Err(error::input(format!(
                     "{tool} not found: install the Debian package `yosys` (apt-get install -y yosys), which has yosys and yosys-abc"
                 )));
@@ -183,35 +192,24 @@ fn run(program: &str, args: &[String], dir: &Path, limit: Duration) -> Result<Op
 /// (the caller writes it).
 pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let cfg = &design.cfg;
-    if !cfg.clocked() && cfg.interface().handshake() {
-        return Err(error::input("a handshake unit always has registers"));
-    }
     let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
     let w = work.path();
-    // the unit's sources as src<i>.v (no path of the user's reaches a tool), its tables by name
     // (an ECP5 unit's primitives are yosys's black boxes, not the simulation models: no
     // property reads the datapath)
     let mut files = Vec::new();
     if !design.sim_models.is_empty() {
         files.push("-lib +/ecp5/cells_bb.v".to_string());
     }
-    for (i, src) in design.sources.iter().enumerate() {
-        let name = format!("src{i}.v");
-        std::fs::copy(src, w.join(&name)).map_err(|e| Error::io("copy", src, e))?;
-        files.push(name);
-    }
-    for f in design.inputs.iter().filter(|p| p.extension().is_some_and(|e| e == "hex")) {
-        let name = f.file_name().expect("a file name");
-        std::fs::copy(f, w.join(name)).map_err(|e| Error::io("copy", f, e))?;
-    }
+    files.extend(design.stage(w)?);
     let ports = crate::cosim::adapter::adapter_named(cfg, &format!("{}_prove_ports", cfg.top()));
     std::fs::write(w.join("ports.v"), ports).map_err(|e| Error::io("write", w.join("ports.v"), e))?;
     std::fs::write(w.join("harness.v"), harness(design)).map_err(|e| Error::io("write", w.join("harness.v"), e))?;
     files.push("ports.v".into());
     files.push("harness.v".into());
     let name = harness_name(cfg.top());
-    let script = Script { version: crate::names::VERSION, harness: &name, files: files.clone() }.render().expect("the prove script renders") + "\n";
-    std::fs::write(w.join("prove.ys"), script).map_err(|e| Error::io("write", w.join("prove.ys"), e))?;
+    Script { version: crate::names::VERSION, harness: &name, files: &files, bounded: None }.write(w, "prove.ys")?;
+    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
+    let tools = &Tools { yosys, abc, limit: tools.limit };
     let t0 = Instant::now();
     let long = Duration::from_secs(600);
     run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
@@ -249,14 +247,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
 /// property holds there, `Some(false)` when one fails (its trace in `trace.vcd`), `None` when
 /// the search did not end within the limit.
 fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) -> Result<Option<bool>, Error> {
-    let mut script = String::new();
-    for f in files {
-        script += &format!("read_verilog -formal -DSYNTHESIS {f}\n");
-    }
-    script += &format!(
-        "prep -flatten -top {name}\nmemory_map\nopt -fast\nasync2sync\nsat -seq {steps} -prove-asserts -set-assumes -set-init-undef -enable_undef -set-def-inputs -show-inputs -dump_vcd trace.vcd\n"
-    );
-    std::fs::write(w.join("bounded.ys"), script).map_err(|e| Error::io("write", w.join("bounded.ys"), e))?;
+    Script { version: crate::names::VERSION, harness: name, files, bounded: Some(steps) }.write(w, "bounded.ys")?;
     let _ = std::fs::remove_file(w.join("trace.vcd"));
     // sat ends with an error when it finds the failure it was asked to look for
     match run(&tools.yosys, &["-s".into(), "bounded.ys".into()], w, tools.limit) {

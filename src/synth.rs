@@ -159,7 +159,7 @@ fn require(tool: &str, package: &str) -> Result<(), Failure> {
 
 /// Whether `tool` can be run: a path that is a file, or a name found on the PATH (looked up
 /// directly, no shell: the name is data).
-fn tool_exists(tool: &str) -> bool {
+pub(crate) fn tool_exists(tool: &str) -> bool {
     if tool.contains('/') {
         return Path::new(tool).is_file();
     }
@@ -180,7 +180,7 @@ pub(crate) fn parse_stat_json(json: &str, top: &str) -> Result<Vec<(String, u64)
 
 /// A tool named by a path (`./bin/yosys`) as an absolute path: the tools run in a temporary
 /// directory, where a relative path would name nothing. A bare name is looked up on the PATH.
-fn absolute_tool(tool: &str) -> String {
+pub(crate) fn absolute_tool(tool: &str) -> String {
     match tool.contains('/') {
         true => std::fs::canonicalize(tool).map_or(tool.to_string(), |p| p.display().to_string()),
         false => tool.to_string(),
@@ -217,30 +217,9 @@ pub fn median(v: &[f64]) -> Option<f64> {
     }
 }
 
-/// Stages the design for yosys in `work`: each source copied as `src<i>.v` and each table file
-/// under its own (generated) name, so yosys runs in `work` and its scripts hold only names
-/// specgen chose — a file name of the user's (spaces, `;`, quotes, newlines) never reaches a
-/// yosys command line. Copies, not links: a WebAssembly yosys (YoWASP) sees its working
-/// directory and nothing a link there points to. Returns the `read_verilog` command.
+/// The unit's sources staged in `work` ([`Design::stage`]) as one `read_verilog` command.
 fn stage_sources(design: &Design, work: &Path) -> Result<String, Failure> {
-    let link = |from: &Path, name: &str| -> Result<(), Failure> {
-        let bytes = crate::small_file::read_bytes(from, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", from.display())))?;
-        std::fs::write(work.join(name), bytes).map_err(|e| Failure::io("write", work.join(name), e))
-    };
-    let mut names = Vec::new();
-    for (i, src) in design.sources.iter().enumerate() {
-        let name = format!("src{i}.v");
-        link(src, &name)?;
-        names.push(name);
-    }
-    for t in &design.plan.datapath.tables {
-        let file = t.file(design.cfg.top());
-        let from = design.dir.join(&file);
-        if from.exists() && !work.join(&file).exists() {
-            link(&from, &file)?;
-        }
-    }
-    Ok(format!("read_verilog {}", names.join(" ")))
+    Ok(format!("read_verilog {}", design.stage(work)?.join(" ")))
 }
 
 /// The family to synthesize the design for: the one asked for, else the one its RTL was

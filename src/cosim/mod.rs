@@ -55,6 +55,32 @@ const MANIFEST_MAX_BYTES: u64 = 1 << 20;
 use crate::output::same_file;
 
 impl Design {
+    /// Stages the unit for a tool that runs in `work`: each source copied as `src<i>.v` and
+    /// each table file under its own (generated) name, so the tool's scripts hold only names
+    /// specgen chose — a file name of the user's (spaces, `;`, quotes, newlines) never reaches
+    /// a command line. Copies, not links: a WebAssembly yosys (YoWASP) sees its working
+    /// directory and nothing a link there points to. Returns the sources' names, in order.
+    pub(crate) fn stage(&self, work: &Path) -> Result<Vec<String>, Error> {
+        let copy = |from: &Path, name: &str| -> Result<(), Error> {
+            let bytes = crate::small_file::read_bytes(from, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", from.display())))?;
+            std::fs::write(work.join(name), bytes).map_err(|e| Error::io("write", work.join(name), e))
+        };
+        let mut names = Vec::new();
+        for (i, src) in self.sources.iter().enumerate() {
+            let name = format!("src{i}.v");
+            copy(src, &name)?;
+            names.push(name);
+        }
+        for t in &self.plan.datapath.tables {
+            let file = t.file(self.cfg.top());
+            let from = self.dir.join(&file);
+            if from.exists() && !work.join(&file).exists() {
+                copy(&from, &file)?;
+            }
+        }
+        Ok(names)
+    }
+
     /// Refuses an output path (`flag` names it) that is one of the unit's files: a command never
     /// writes over what it reads.
     pub fn refuse_output(&self, flag: &str, out: &Path) -> Result<(), Error> {

@@ -60,6 +60,13 @@ pub struct Wire {
     pub comment: String,
 }
 
+impl Wire {
+    /// Whether the wire only selects and concatenates bits (and constants): no logic, no delay.
+    pub(crate) fn is_plain(&self) -> bool {
+        self.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '".contains(c))
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct Step {
     /// 1-based
@@ -142,8 +149,7 @@ impl Datapath {
         let mut aliases = vec![format!("{name}_c{k}")];
         for s in &self.steps {
             for w in &s.wires {
-                let plain = w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '".contains(c));
-                if plain && tokens(&w.expr).iter().any(|t| aliases.contains(t)) {
+                if w.is_plain() && tokens(&w.expr).iter().any(|t| aliases.contains(t)) {
                     aliases.push(format!("{}_s{}", w.name, s.index));
                 }
             }
@@ -1274,7 +1280,7 @@ impl Builder {
         // a step with logic and no delay estimate would count 0 ns, and `--target-mhz` would
         // place its cuts on a wrong sum: every step's logic states its delay (Builder::delay)
         for s in &self.steps {
-            let logic = s.wires.iter().any(|w| !w.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '".contains(c))) || !s.dsps.is_empty();
+            let logic = s.wires.iter().any(|w| !w.is_plain()) || !s.dsps.is_empty();
             assert!(!logic || s.delay > 0.0, "datapath: step {} ({}) has logic but no delay estimate: call Builder::delay in it", s.index, s.title);
         }
         let last = self.cur();
