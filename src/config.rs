@@ -1032,8 +1032,21 @@ pub fn is_internal_name(name: &str) -> bool {
 }
 
 /// The handshake's, tag's and material registers' own names inside the unit.
-pub(crate) const INTERNAL_NAMES: &[&str] =
-    &["in_take", "out_result", "out_held", "out_buffer", "tag_line", "ks_r_material", "ks_g_material", "ks_b_material", "result_valid", "idle_q"];
+pub(crate) const INTERNAL_NAMES: &[&str] = &[
+    "in_take",
+    "out_result",
+    "out_held",
+    "out_buffer",
+    "tag_line",
+    "ks_r_material",
+    "ks_g_material",
+    "ks_b_material",
+    "result_valid",
+    "idle_q",
+    "inside_up",
+    "inside_down",
+    "inside_less_one",
+];
 
 /// `clock_port`: a port name of the user's design, written into SDC and LPF files: a Verilog
 /// identifier of at most 64 characters (no escaped names: the files quote nothing else).

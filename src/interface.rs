@@ -209,10 +209,6 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     }
     if interface.handshake() {
         e.prologue.push(format!("wire {} in_take;   // in_valid && in_ready: the pipeline takes a pixel ({top}_out_buffer)", range(1)));
-        e.prologue.push(format!("wire {} buffer_idle;   // no result in {top}_out_buffer", range(1)));
-        if colour != Colour::Static {
-            e.unused.push("buffer_idle".into());
-        }
         e.valid_source = "in_take".into();
     }
     if colour == Colour::Static {
@@ -295,11 +291,10 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     ));
     e.tail.push(format!("    .clk(clk), .rst(rst), .in_valid({offer}), .in_ready(in_ready), .take(in_take),"));
     e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
-    e.tail.push(format!("    .out_valid(out_valid), .out_ready({accept}), .out(out_held), .idle(buffer_idle)"));
+    e.tail.push(format!("    .out_valid(out_valid), .out_ready({accept}), .out(out_held)"));
     e.tail.push(");".into());
     if colour == Colour::Static {
-        let idle = if depth == 0 { "buffer_idle".to_string() } else { "~|valid_line && buffer_idle".to_string() };
-        e.tail.push(format!("assign {:<9} = {idle};   // no pixel in the pipeline or the buffer", "idle"));
+        e.tail.extend(inside_count(places_for(depth), accept));
     }
     e.tail.push(format!("assign {} = out_held;", concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>())));
     if interface == Interface::Axis {
@@ -313,6 +308,28 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         }
     }
     e
+}
+
+/// `idle` of a handshake unit with material registers, from a flip-flop: the pixels inside
+/// (taken, not yet delivered: 0..=`places`) less one, kept as a signed count whose sign bit is
+/// `idle`. One LUT of the handshake (one more, one fewer or as many) before a short carry
+/// chain; no OR over the pipeline and no comparator reaches the port.
+fn inside_count(places: u64, accept: &str) -> Vec<String> {
+    // bits for -1..=places - 1: a sign bit above the magnitude bits of places - 1
+    let bits = 64 - places.saturating_sub(1).leading_zeros() + 1;
+    let top = bits - 1;
+    vec![
+        String::new(),
+        "// ---- idle: the pixels inside (taken, not yet delivered) less one; its sign bit is idle ----".into(),
+        format!("wire {} inside_up   = in_take && !(out_valid && {accept});   // one more pixel inside", range(1)),
+        format!("wire {} inside_down = out_valid && {accept} && !in_take;     // one fewer", range(1)),
+        format!("reg  {} inside_less_one;   // signed: -1 (empty) ..= {}", range(bits), places - 1),
+        "always @(posedge clk) begin".into(),
+        format!("    if (rst) inside_less_one <= {{{bits}{{1'b1}}}};"),
+        format!("    else     inside_less_one <= inside_less_one + {{{{{top}{{inside_down}}}}, inside_up | inside_down}};"),
+        "end".into(),
+        format!("assign {:<9} = inside_less_one[{top}];   // no pixel in the pipeline or the buffer", "idle"),
+    ]
 }
 
 /// The reset as the header names it: `rst`, `rst_n low`, `areset`, `aresetn low`.

@@ -58,8 +58,7 @@ module {{ top }}_out_buffer #(
     input  wire [WIDTH-1:0] result,
     output reg              out_valid,
     input  wire             out_ready,
-    output reg  [WIDTH-1:0] out,
-    output wire             idle             // no result here (in the places, read_q or the queue)
+    output reg  [WIDTH-1:0] out
 );
 
 `ifndef SYNTHESIS
@@ -121,7 +120,6 @@ wire                  queue_two = held[1] || (out_valid && read_valid);  // two 
 wire                  deliver = out_valid && out_ready;
 
 assign take = in_valid && in_ready;
-assign idle = !stored_at_least[1] && held == 2'd0;   // a read in flight is counted in stored_at_least
 
 // the places: a result is written the cycle it leaves the pipeline, read in order
 always @(posedge clk) begin

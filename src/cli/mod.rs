@@ -211,7 +211,7 @@ pub struct RtlArgs {
     #[arg(long, help_heading = "RTL")]
     pub top: Option<String>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points:
-    /// lean 13, paper 6, fitted 60, blinn 37, blinn-pow N+2 at default widths; default 0]
+    /// lean 13, paper 6, fitted 65, blinn 38, blinn-pow N+2 at default widths; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,
     /// How tables are written: file ($readmemh) or case (inline) [default file]

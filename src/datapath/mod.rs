@@ -1150,15 +1150,22 @@ impl Builder {
 
     /// `name = Σ terms mod 2^width` (each term pieces, LSB first) without a carry chain until
     /// the end: 3:2 carry-save layers (sum `a ^ b ^ c`, carry the majority shifted up: one LUT
-    /// level each, two a step, from this step on), then (iCE40: after a step that only
+    /// level each, from this step on; one a step on the iCE40, where two in a row are a function
+    /// of up to 9 registers that yosys 0.70's ABC maps to three LUT4 levels, two a step
+    /// elsewhere), then (iCE40: after a step that only
     /// registers them) the two vectors left into [`Builder::add_start`] in a step of its own.
     /// [`Builder::resolve`] finishes it.
     pub(crate) fn sum_start(&mut self, name: &str, mut terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
         let mut layer = 0;
+        let per_step = if self.target == Target::Ice40 { 1 } else { 2 };
         while terms.len() > 2 {
-            if layer % 2 == 0 {
-                self.step(&format!("{title}: carry-save layers {} and {}", layer + 1, layer + 2));
-                self.delay(2.0 * LUT_DELAY);
+            if layer % per_step == 0 {
+                if per_step == 1 {
+                    self.step(&format!("{title}: carry-save layer {}", layer + 1));
+                } else {
+                    self.step(&format!("{title}: carry-save layers {} and {}", layer + 1, layer + 2));
+                }
+                self.delay(per_step as f64 * LUT_DELAY);
             }
             layer += 1;
             let mut next = Vec::new();

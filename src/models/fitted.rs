@@ -44,7 +44,7 @@
 //! add starts at a flip-flop), each squaring's `T = 2·hi·lo + ⌊lo²/2^r⌋` (partial products
 //! and a table of lo², registered once more before its DSP, whose input registers would
 //! otherwise take it from LUTs) and the intensity's rounding. The DSP's output meets only a
-//! flip-flop before the bypass mux. On the iCE40 this makes about 60 cut points, each at most
+//! flip-flop before the bypass mux. On the iCE40 this makes about 65 cut points, each at most
 //! a short carry chain or two LUTs; a shallower `--stages` picks among them by the delays.
 
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};

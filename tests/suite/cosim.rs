@@ -217,11 +217,11 @@ fn injected_faults_in_the_new_models_are_caught() {
         // fitted: the second squaring done when m_n = 1 too
         ("fit_mux", &["--model", "fitted"], "(fit_s1[24:23] >= 2'h2)", "(fit_s1[24:23] >= 2'h1)"),
         // fitted: intensity truncated instead of rounded
-        ("fit_round", &["--model", "fitted"], "power3_s55[7:4], 1'b1} + 6'h1;", "power3_s55[7:4], 1'b1} + 6'h0;"),
+        ("fit_round", &["--model", "fitted"], "power3_s60[7:4], 1'b1} + 6'h1;", "power3_s60[7:4], 1'b1} + 6'h0;"),
         // fitted: a_n's bit 16 left out of the deviation (a partial product beside its DSP)
         ("fit_a_hi", &["--model", "fitted"], "deviation_hi_pp0_s4 = ({23{fit_s1[16]}}", "deviation_hi_pp0_s4 = ({23{1'b0}}"),
         // fitted: the first squaring's 2*hi*lo masked by the wrong bit of lo
-        ("fit_sq_t", &["--model", "fitted"], "({23{power0_s19[4]}} & {{2'h0", "({23{power0_s19[3]}} & {{2'h0"),
+        ("fit_sq_t", &["--model", "fitted"], "({23{power0_s21[4]}} & {{2'h0", "({23{power0_s21[3]}} & {{2'h0"),
         // blinn: one exponent mis-encoded in the normalisation
         ("blinn_lzc", &["--model", "blinn"], "(~cos_minus_ulp_s3[10] & cos_minus_ulp_s3[9]) |", "(~cos_minus_ulp_s3[10] & cos_minus_ulp_s3[8]) |"),
         // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)
