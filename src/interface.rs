@@ -310,25 +310,41 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     e
 }
 
-/// `idle` of a handshake unit with material registers, from a flip-flop: the pixels inside
-/// (taken, not yet delivered: 0..=`places`) less one, kept as a signed count whose sign bit is
-/// `idle`. One LUT of the handshake (one more, one fewer or as many) before a short carry
-/// chain; no OR over the pipeline and no comparator reaches the port.
+/// `idle` of a handshake unit with material registers, from a flip-flop: a thermometer of the
+/// pixels inside (taken, not yet delivered: 0..=`places`), bit k set while k or more are.
+/// Two LUT levels from the handshake, no carry chain and no OR over the pipeline: first each
+/// bit as it would be after the take alone (`in_take ? bit k-1 : bit k`, kept), then the
+/// delivery picks it or its neighbour above (a delivery moves every bit down one).
 fn inside_count(places: u64, accept: &str) -> Vec<String> {
-    // bits for -1..=places - 1: a sign bit above the magnitude bits of places - 1
-    let bits = 64 - places.saturating_sub(1).leading_zeros() + 1;
-    let top = bits - 1;
+    let p = places;
+    let given = format!("out_valid && {accept}");
     vec![
         String::new(),
-        "// ---- idle: the pixels inside (taken, not yet delivered) less one; its sign bit is idle ----".into(),
-        format!("wire {} inside_up   = in_take && !(out_valid && {accept});   // one more pixel inside", range(1)),
-        format!("wire {} inside_down = out_valid && {accept} && !in_take;     // one fewer", range(1)),
-        format!("reg  {} inside_less_one;   // signed: -1 (empty) ..= {}", range(bits), places - 1),
+        "// ---- idle: a thermometer of the pixels inside (taken, not yet delivered) ----".into(),
+        format!("reg  [{p}:1] inside_at_least;   // bit k: k or more pixels inside"),
+        format!("wire [{}:0] inside_level = {{1'b0, inside_at_least, 1'b1}};   // with its two ends", p + 1),
+        "// bit k after the take alone (k = 1 ..= places + 1): one LUT of in_take and two bits".into(),
+        "// (AND-OR, not ?: a hold would become a flip-flop enable that the handshake and rst reach)".into(),
+        format!(
+            "(* keep *) wire [{}:1] inside_taken = ({{{}{{in_take}}}} & inside_level[{p}:0]) | ({{{}{{!in_take}}}} & inside_level[{}:1]);",
+            p + 1,
+            p + 1,
+            p + 1,
+            p + 1
+        ),
+        format!("wire        inside_given = {given};   // a delivery"),
+        "reg  idle_q;   // none inside: bit 1 clear, a flip-flop of its own".into(),
         "always @(posedge clk) begin".into(),
-        format!("    if (rst) inside_less_one <= {{{bits}{{1'b1}}}};"),
-        format!("    else     inside_less_one <= inside_less_one + {{{{{top}{{inside_down}}}}, inside_up | inside_down}};"),
+        "    if (rst) begin".into(),
+        format!("        inside_at_least <= {p}'h0;"),
+        "        idle_q          <= 1'b1;".into(),
+        "    end else begin".into(),
+        "        // a delivery moves every bit down one".into(),
+        format!("        inside_at_least <= ({{{p}{{inside_given}}}} & inside_taken[{}:2]) | ({{{p}{{!inside_given}}}} & inside_taken[{p}:1]);", p + 1),
+        "        idle_q          <= !((inside_given & inside_taken[2]) | (!inside_given & inside_taken[1]));".into(),
+        "    end".into(),
         "end".into(),
-        format!("assign {:<9} = inside_less_one[{top}];   // no pixel in the pipeline or the buffer", "idle"),
+        format!("assign {:<9} = idle_q;   // no pixel in the pipeline or the buffer", "idle"),
     ]
 }
 

@@ -187,6 +187,30 @@ mod tests {
         }
     }
 
+    /// Issues 35/36: on the iCE40 no step holds two carry-save layers (a function of up to 9
+    /// registers, three LUT levels on yosys 0.70), and fitted's lo^2 tables read at most a
+    /// LUT's inputs (a table of 5 bits was two LUT levels: fitted 96.2 MHz on yosys 0.23).
+    #[test]
+    fn ice40_steps_hold_one_carry_save_layer_and_one_lut_tables() {
+        use crate::datapath::LUT_INPUTS;
+        for model in [SpecularModel::Fitted, SpecularModel::Blinn] {
+            let plan = Plan::from_params(Params { model, ..Params::default() }).unwrap();
+            let mut layers = 0;
+            for step in &plan.datapath.steps {
+                let mut seen: Vec<&str> = step.wires.iter().filter_map(|w| w.name.split("_csa").nth(1)).map(|t| t.split('_').next().unwrap()).collect();
+                seen.dedup();
+                assert!(seen.len() <= 1, "{model:?} step {} ({}): carry-save layers {seen:?}", step.index, step.title);
+                layers += seen.len();
+                for w in step.wires.iter().filter(|w| w.name.ends_with("_ll")) {
+                    assert!(w.width <= 2 * LUT_INPUTS, "{model:?} {}: a square table of {} bits", w.name, w.width / 2);
+                }
+            }
+            assert!(layers >= 2, "{model:?}: carry-save sums exist ({layers} layers)");
+        }
+        let plan = Plan::from_params(Params { model: SpecularModel::Fitted, ..Params::default() }).unwrap();
+        assert!(plan.datapath.steps.iter().flat_map(|s| &s.wires).any(|w| w.name == "square1_t_top"), "lo's top bit split off the table");
+    }
+
     #[test]
     fn cuts_are_distinct_increasing_and_in_range() {
         let plan = Plan::new(Config::defaults()).unwrap();

@@ -30,6 +30,9 @@ pub(crate) const DSP_BITS: u32 = 16;
 /// 2^6 = 64 entries in LUTs, and `hi·lo` from one DSP (the bracket is at most UQ1.21 there).
 pub(crate) const MAX_SQUARER_SPLIT: u32 = 6;
 
+/// The inputs of a fabric LUT (iCE40 LUT4, ECP5 LUT4): a function of more takes two levels.
+pub(crate) const LUT_INPUTS: u32 = 4;
+
 /// Width of an ECP5 MULT18X18D's operands.
 pub(crate) const ECP5_DSP_BITS: u32 = 18;
 
@@ -932,15 +935,17 @@ impl Builder {
     }
 
     /// `name = v²` for the `r`-bit field `v = sig[lo..lo+r)`, by a table of 2^r entries in
-    /// LUTs (no multiply, no carry chain): one LUT level for small `r`. Written as an OR of
-    /// the entries, each gated by its match: a `?:` chain of constants before a register
-    /// would become the register's synchronous set/reset ([`Builder::select`]).
+    /// LUTs (no multiply, no carry chain): one LUT level up to [`LUT_INPUTS`] bits, two above.
+    /// Written as an OR of the entries, each gated by its match: a `?:` chain of constants
+    /// before a register would become the register's synchronous set/reset
+    /// ([`Builder::select`]).
     pub(crate) fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
         let v = self.bits(sig, lo + r - 1, lo);
         // one entry a line; v = 0 squares to 0 and adds nothing
         let entries: Vec<String> = (1..1u128 << r).map(|x| Builder::gate(&format!("{v} == {}", lit(r, x)), &lit(2 * r, x * x), 2 * r)).collect();
         self.wire(name, 2 * r, entries.join("\n    | "), comment);
-        self.delay(LUT_DELAY);
+        // a function of more inputs than a LUT has: two levels
+        self.delay(if r > LUT_INPUTS { 2.0 * LUT_DELAY } else { LUT_DELAY });
     }
 
     /// Adds a constant table to the unit; returns its index for [`Builder::rom_read`].

@@ -50,7 +50,7 @@
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::{Config, Target};
-use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
+use crate::datapath::{mul_delay, Builder, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -460,9 +460,27 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             b.step(&format!("{t}: the partial products of 2*hi*lo; lo^2 by a table"));
             let tw = dsp + r + 2;
             let (ll, tn) = (format!("square{j}_ll"), format!("square{j}_t"));
-            b.square_table(&ll, &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
-            let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw, false);
-            terms.push(vec![Piece::sig(&ll, r, r)]);
+            let terms = if r > LUT_INPUTS {
+                // lo = t*2^(r-1) + l' (t its top bit): lo^2 = t*2^(2r-2) + t*l'*2^r + l'^2, so
+                // T = 2*hi*l' + t*(hi*2^r + l') + t*2^(r-2) + floor(l'^2/2^r), every floor exact
+                // (the first two terms of lo^2 are multiples of 2^r) and l'^2 < 2^(2r-2) leaves
+                // bit r-2 of its floor clear for t: a table of r-1 bits, one LUT level, not two
+                let l = r - 1;
+                b.square_table(&ll, &prev, 0, l, &format!("l'^2 by table, power{} = hi*2^{r} + t*2^{l} + l'", j - 1));
+                let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, l), 1, tw, false);
+                let t_bit = b.bits(&prev, l, l);
+                let hl = b.pieces(&[Piece::sig(&prev, 0, l), Piece::zeros(1), Piece::sig(&prev, r, dsp), Piece::zeros(tw - dsp - r)]);
+                let top = format!("{tn}_top");
+                b.wire(&top, tw, Builder::gate(&t_bit, &hl, tw), "t*(hi*2^r + l'): the partial product of lo's top bit");
+                terms.push(vec![Piece::sig(&top, 0, tw)]);
+                terms.push(vec![Piece::sig(&ll, r, r - 2), Piece::sig(&prev, l, 1)]);
+                terms
+            } else {
+                b.square_table(&ll, &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
+                let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw, false);
+                terms.push(vec![Piece::sig(&ll, r, r)]);
+                terms
+            };
             let p = b.sum_start(&tn, terms, tw, &t, "2*hi*lo + floor(lo^2 / 2^r), exact");
             let tn = b.resolve(p, &t);
             let zw = 2 * dsp;
