@@ -324,11 +324,27 @@ pub const MODEL_KEYS: &[(&str, &[SpecularModel])] = &[
     ("max_squarings", &[SpecularModel::Fitted]),
 ];
 
+/// The values of shared parameters only some models take, with those models (every other
+/// model refuses them, naming these).
+pub const MODEL_OPTIONS: &[(&str, &[SpecularModel])] = &[("rounding=exact", &[SpecularModel::Quadratic]), ("arch=paper", &[SpecularModel::Quadratic])];
+
+/// The models that take `option` of [`MODEL_OPTIONS`], by name ("quadratic", "quadratic and fitted").
+fn takers(option: &str) -> String {
+    let names: Vec<&str> = SpecularModel::ALL.into_iter().filter(|m| m.takes(option)).map(SpecularModel::name).collect();
+    names.join(" and ")
+}
+
 impl SpecularModel {
     /// Whether this model reads the parameter (or output) `key`: false only for the keys of
     /// [`MODEL_KEYS`] that belong to other models.
     pub fn reads(self, key: &str) -> bool {
         MODEL_KEYS.iter().find(|(k, _)| *k == key).is_none_or(|(_, models)| models.contains(&self))
+    }
+
+    /// Whether this model takes `option` (`name=value`): false only for the options of
+    /// [`MODEL_OPTIONS`] that belong to other models.
+    pub fn takes(self, option: &str) -> bool {
+        MODEL_OPTIONS.iter().find(|(o, _)| *o == option).is_none_or(|(_, models)| models.contains(&self))
     }
 
     /// Drops from a JSON object (a manifest, a report's parameters) the keys of other models.
@@ -450,19 +466,17 @@ impl Config {
             });
         }
         let k_code = parse_k(&params.k, params.k_frac_bits)?;
-        if params.model != SpecularModel::Quadratic {
-            if params.rounding == Rounding::Exact {
-                return Err(ConfigError {
-                    parameter: "rounding",
-                    message: format!("exact is not available with the {} model; allowed: faithful", params.model.name()),
-                });
-            }
-            if params.arch == Arch::Paper {
-                return Err(ConfigError {
-                    parameter: "arch",
-                    message: format!("paper applies to the quadratic model only; allowed with {}: lean", params.model.name()),
-                });
-            }
+        if params.rounding == Rounding::Exact && !params.model.takes("rounding=exact") {
+            return Err(ConfigError {
+                parameter: "rounding",
+                message: format!("exact is not available with the {} model; allowed: faithful", params.model.name()),
+            });
+        }
+        if params.arch == Arch::Paper && !params.model.takes("arch=paper") {
+            return Err(ConfigError {
+                parameter: "arch",
+                message: format!("paper applies to the {} model only; allowed with {}: lean", takers("arch=paper"), params.model.name()),
+            });
         }
         // `stages` is bounded by the datapath's cut points: `plan::Plan::new` checks it, since
         // validating a configuration builds nothing
@@ -585,9 +599,10 @@ impl Config {
 
     /// The datapath's name in messages: the architecture for the quadratic model, else the model.
     pub(crate) fn datapath_name(&self) -> &'static str {
-        match self.model() {
-            SpecularModel::Quadratic => self.arch().name(),
-            other => other.name(),
+        if self.model().reads("arch") {
+            self.arch().name()
+        } else {
+            self.model().name()
         }
     }
 

@@ -789,7 +789,8 @@ pub(crate) struct Manifest<'a> {
     /// `Plan::stage_delay_mean`
     pub stage_delay_mean: f64,
     /// `timing::predicted_fmax`: the delay model's clock for this unit on its family's part
-    pub predicted_fmax_mhz: f64,
+    /// (null for a datapath without calibration)
+    pub predicted_fmax_mhz: Option<f64>,
     /// `max |intensity/2^FI − c^n|` over the inputs of `blinn_error_method` (SPEC §6).
     pub blinn_error_max: f64,
     pub blinn_error_mean: f64,
@@ -876,7 +877,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         registered_cuts: &plan.registered_cuts,
         stage_delay_estimate: (plan.stage_delay() * 100.0).round() / 100.0,
         stage_delay_mean: (plan.stage_delay_mean() * 100.0).round() / 100.0,
-        predicted_fmax_mhz: (crate::timing::predicted_fmax(plan) * 10.0).round() / 10.0,
+        predicted_fmax_mhz: crate::timing::predicted_fmax(plan).map(|f| (f * 10.0).round() / 10.0),
         blinn_error_max: fidelity.max,
         blinn_error_mean: fidelity.mean,
         blinn_error_method: fidelity.method(),
@@ -1004,6 +1005,7 @@ mod tests {
             words: vec![(3u128 << 36) | (1 << 18) | 5, 7],
             what: String::new(),
             fields: vec![("v".into(), 40)],
+            cosines: None,
         };
         let s = block_slices(&t, "w_c3");
         assert_eq!(

@@ -325,13 +325,8 @@ fn inside_count(places: u64, accept: &str) -> Vec<String> {
         format!("wire [{}:0] inside_level = {{1'b0, inside_at_least, 1'b1}};   // with its two ends", p + 1),
         "// bit k after the take alone (k = 1 ..= places + 1): one LUT of in_take and two bits".into(),
         "// (AND-OR, not ?: a hold would become a flip-flop enable that the handshake and rst reach)".into(),
-        format!(
-            "(* keep *) wire [{}:1] inside_taken = ({{{}{{in_take}}}} & inside_level[{p}:0]) | ({{{}{{!in_take}}}} & inside_level[{}:1]);",
-            p + 1,
-            p + 1,
-            p + 1,
-            p + 1
-        ),
+        format!("(* keep *) wire [{}:1] inside_taken;", p + 1),
+        format!("assign inside_taken = ({{{}{{in_take}}}} & inside_level[{p}:0]) | ({{{}{{!in_take}}}} & inside_level[{}:1]);", p + 1, p + 1, p + 1),
         format!("wire        inside_given = {given};   // a delivery"),
         "reg  idle_q;   // none inside: bit 1 clear, a flip-flop of its own".into(),
         "always @(posedge clk) begin".into(),

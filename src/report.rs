@@ -47,8 +47,6 @@ pub(crate) fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
     let total = (one + 1) * n_count;
     let stride = total.div_ceil(SWEEP_LIMIT).max(1);
     let ks_max = (1u32 << cfg.b()) - 1;
-    let k_real: f64 = cfg.params.k.trim().parse().unwrap_or(f64::NAN);
-    let k_q = cfg.k_code as f64 / (cfg.kf() as f64).exp2();
     #[derive(Default, Clone)]
     struct Acc {
         points: u64,
@@ -75,15 +73,7 @@ pub(crate) fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
                 let c = cos_g as f64 / one as f64;
                 let s = o.intensity as f64 / (cfg.fi() as f64).exp2();
                 let be = (s - c.powi(n as i32)).abs();
-                let quad = |k: f64| {
-                    let b = 1.0 - k * n as f64 * (1.0 - c);
-                    if b < 0.0 {
-                        0.0
-                    } else {
-                        b * b
-                    }
-                };
-                let ke = (quad(k_q) - quad(k_real)).abs();
+                let ke = m.unit().quantisation_error(x).unwrap_or(0.0);
                 a.points += 1;
                 a.imax = a.imax.max(ie);
                 a.isum += ie;
@@ -115,7 +105,7 @@ pub(crate) fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
         spec_mean_ulp: (a.ssum + b.ssum) / points as f64,
         vs_blinn_max: a.bmax.max(b.bmax),
         vs_blinn_mean: (a.bsum + b.bsum) / points as f64,
-        k_quantisation_max: (cfg.model() == crate::config::SpecularModel::Quadratic).then(|| a.kmax.max(b.kmax)),
+        k_quantisation_max: m.unit().quantisation_error(Inputs::default()).map(|_| a.kmax.max(b.kmax)),
         heat: a.heat.iter().zip(&b.heat).map(|(x, y)| x.max(*y)).collect(),
     }
 }
@@ -244,7 +234,7 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
     for n in [10.0f64, 50.0, 200.0] {
         let x_max = (1.0 - 2.713 / n).max(-1.0).acos().max(0.3) * 1.2;
         v.push(Figure {
-            id: "quadratic",
+            id: "formula15",
             caption: format!("Blinn cos^n δ, (12) and (15) for n = {n} (paper, Fig. 4)."),
             svg: line_plot(
                 &format!("Blinn vs (12) vs (15), n = {n}"),
@@ -273,8 +263,8 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
         ),
     });
     let n_max = (1u64 << cfg.n_bits()) as f64;
-    if cfg.model() == crate::config::SpecularModel::Quadratic {
-        v.push(cutoff_figure(cfg));
+    if let Some(fig) = cutoff_figure(cfg) {
+        v.push(fig);
     }
     v.push(Figure {
         id: "unit_error",
@@ -313,14 +303,19 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
 }
 
 /// The cut-off angle from the generated ROM (the quadratic model's).
-fn cutoff_figure(cfg: &Config) -> Figure {
-    let table = crate::models::quadratic::rom::cos_sp_table(cfg);
+/// The cut-off angle per n, stored (points) and ideal (line), for a model that stores its
+/// cut-off ([`SpecularUnit::cut_off`](crate::models::SpecularUnit::cut_off),
+/// [`ideal_cut_off`](crate::models::SpecularUnit::ideal_cut_off)); none for the others.
+fn cutoff_figure(cfg: &Config) -> Option<Figure> {
+    let unit = crate::models::unit(cfg);
+    let count = 1u32 << cfg.n_bits();
+    let table: Vec<u32> = (0..count).map(|n| unit.cut_off(n)).collect::<Option<_>>()?;
+    let ideal: Vec<f64> = (1..count).map(|n| unit.ideal_cut_off(n)).collect::<Option<_>>()?;
     let one = (cfg.f() as f64).exp2();
-    let k_q = cfg.k_code as f64 / (cfg.kf() as f64).exp2();
     let n_max = table.len() as f64;
-    Figure {
+    Some(Figure {
         id: "cutoff",
-        caption: format!("Cut-off angle γsp(n) = arccos(ROM[n]/2^{}) from the generated ROM (points), and arccos(1 − 1/(k_q·n)) (line).", cfg.f()),
+        caption: format!("Cut-off angle γsp(n) = arccos(ROM[n]/2^{}) from the generated ROM (points), and the ideal cut-off (line).", cfg.f()),
         svg: svg(|area| {
             let mut chart = ChartBuilder::on(&area)
                 .caption("Cut-off angle γsp(n) from the ROM", ("sans-serif", 18))
@@ -333,13 +328,10 @@ fn cutoff_figure(cfg: &Config) -> Figure {
             chart.draw_series(
                 table.iter().enumerate().step_by(step).skip(1).map(|(n, &c)| Circle::new((n as f64, (c as f64 / one).acos().to_degrees()), 2, BLUE.filled())),
             )?;
-            chart.draw_series(LineSeries::new(
-                (1..table.len()).map(|n| (n as f64, (1.0 - 1.0 / (k_q * n as f64)).max(0.0).acos().to_degrees())),
-                RED.stroke_width(1),
-            ))?;
+            chart.draw_series(LineSeries::new(ideal.iter().enumerate().map(|(i, &c)| ((i + 1) as f64, c.acos().to_degrees())), RED.stroke_width(1)))?;
             Ok(())
         }),
-    }
+    })
 }
 
 /// Everything the report shows; serialised as `report.json`.
@@ -359,6 +351,9 @@ pub(crate) struct ModelComparison {
     pub worst_n: u32,
     pub worst_cos_g: u32,
     pub hardware: Option<crate::synth::SynthResult>,
+    /// its part in the verdict on the premise
+    #[serde(skip)]
+    pub role: Option<crate::models::PremiseRole>,
 }
 
 /// Every model at the report's widths (stages 0, faithful), in `SpecularModel::ALL`'s order:
@@ -369,7 +364,7 @@ pub(crate) fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
     SpecularModel::ALL
         .into_iter()
         .map(|model| {
-            let arch = if model == SpecularModel::Quadratic { cfg.arch() } else { crate::config::Arch::Lean };
+            let arch = if model.reads("arch") { cfg.arch() } else { crate::config::Arch::Lean };
             let p = Params { model, arch, stages: 0, rounding: Rounding::Faithful, ..cfg.params.clone() };
             let m = Model::new(&Config::new(p).expect("the report's widths are valid for every model"));
             let what = m.unit().describe().computes;
@@ -407,9 +402,10 @@ fn did_not_fit(h: &crate::synth::SynthResult) -> bool {
 /// Rows pipelined for one clock on one target are compared at that operating point (logic
 /// cells when place-and-route counted them); a unit that does not fit the part says so.
 fn premise(rows: &[ModelComparison]) -> String {
+    use crate::models::PremiseRole;
     use crate::render::sig3;
-    let get = |m: &str| rows.iter().find(|r| r.model == m);
-    let (q, f, b, p) = (get("quadratic"), get("fitted"), get("blinn"), get("blinn-pow"));
+    let get = |role: PremiseRole| rows.iter().find(|r| r.role == Some(role));
+    let (q, f, b, p) = (get(PremiseRole::Paper), get(PremiseRole::Fit), get(PremiseRole::Tables), get(PremiseRole::SquareAndMultiply));
     let (Some(q), Some(f), Some(b), Some(p)) = (q, f, b, p) else { return String::new() };
     let mut s = format!(
         "Against Blinn's cos^n, formula (15) is off by up to {} of full scale; the fitted form by {}; the table-based unit by {} (within one unit of the output), as exact as square-and-multiply ({}).",
@@ -456,8 +452,11 @@ fn premise(rows: &[ModelComparison]) -> String {
             ));
         }
         _ if !measured.is_empty() => s.push_str(&format!(
-            " Hardware is given for {} only; the verdict on the premise needs quadratic, blinn and blinn-pow measured (scripts/bench_hw.sh writes them).",
-            measured.iter().map(|r| r.model.as_str()).collect::<Vec<_>>().join(", ")
+            " Hardware is given for {} only; the verdict on the premise needs {}, {} and {} measured (scripts/bench_hw.sh writes them).",
+            measured.iter().map(|r| r.model.as_str()).collect::<Vec<_>>().join(", "),
+            q.model,
+            b.model,
+            p.model
         )),
         _ => s.push_str(" No hardware was given: pass `specgen synth --json` results with --hw (scripts/bench_hw.sh writes them) to compare area and speed."),
     }
@@ -467,7 +466,8 @@ fn premise(rows: &[ModelComparison]) -> String {
 /// The per-n worst error of every model against cos^n (log scale).
 fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
     let n_max = fids.first().map_or(1, |f| f.1.len()) as f64;
-    let colours = [RED, BLUE, GREEN, BLACK];
+    // one colour a model, cycled: a model added to the registry is drawn too
+    let colours = [RED, BLUE, GREEN, BLACK, MAGENTA, CYAN];
     svg(|area| {
         let mut chart = ChartBuilder::on(&area)
             .caption("Worst |intensity − cos^n| over cos_g, per n", ("sans-serif", 18))
@@ -476,7 +476,7 @@ fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
             .y_label_area_size(64)
             .build_cartesian_2d(1.0..n_max, (1e-7f64..1.0).log_scale())?;
         chart.configure_mesh().x_desc("n").y_desc("max error").y_labels(8).y_label_formatter(&|v| tick(*v)).x_label_formatter(&int_tick).draw()?;
-        for ((name, per_n), colour) in fids.iter().zip(colours) {
+        for ((name, per_n), colour) in fids.iter().zip(colours.into_iter().cycle()) {
             let pts: Vec<(f64, f64)> = per_n.iter().enumerate().skip(1).map(|(n, &e)| (n as f64, e.max(1e-7))).collect();
             chart
                 .draw_series(LineSeries::new(pts, colour.stroke_width(1)))?
@@ -563,6 +563,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
                 worst_n: f.worst_n,
                 worst_cos_g: f.worst_cos,
                 hardware: hw.iter().find(|h| h.model == name).cloned(),
+                role: m.unit().premise_role(),
             }
         })
         .collect();
@@ -603,10 +604,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
         unit_rows.push(Row { name: "k quantisation: |S(k_q) − S(k)|, max", value: sig3(k) });
     }
     let mut data = data;
-    let reference = match cfg.model() {
-        crate::config::SpecularModel::Quadratic => "formula (15) in exact arithmetic with the quantised k_q and the cut-off at cos_sp(n)",
-        _ => "its exact reference (the same function in exact arithmetic)",
-    };
+    let reference = crate::models::unit(cfg).reference_words();
     let hw_given = data.models.iter().any(|m| m.hardware.is_some());
     let page = ReportPage {
         data: &data,

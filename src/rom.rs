@@ -92,18 +92,21 @@ pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
         RomFormat::Mif => {
             MifFile { top, what, width, depth, addr_digits: (t.address_bits() as usize).div_ceil(4).max(1), words: words(table, 16, width) }.render()
         }
-        RomFormat::Csv if t.name == "cos_sp_rom" => CsvFile {
-            header: "n,code,cosine,angle_deg".into(),
-            rows: table
-                .iter()
-                .enumerate()
-                .map(|(n, &code)| {
-                    let cos = code as f64 / (1u64 << cfg.f()) as f64;
-                    format!("{n},{code},{},{:.4}", exact_decimal(code as u64, cfg.f()), cos.acos().to_degrees())
-                })
-                .collect(),
+        RomFormat::Csv if t.cosines.is_some() => {
+            let f = t.cosines.unwrap_or_default();
+            CsvFile {
+                header: "n,code,cosine,angle_deg".into(),
+                rows: table
+                    .iter()
+                    .enumerate()
+                    .map(|(n, &code)| {
+                        let cos = code as f64 / (1u64 << f) as f64;
+                        format!("{n},{code},{},{:.4}", exact_decimal(code as u64, f), cos.acos().to_degrees())
+                    })
+                    .collect(),
+            }
+            .render()
         }
-        .render(),
         RomFormat::Csv => CsvFile {
             header: format!("index,word_hex,{}", t.fields.iter().rev().map(|f| f.0.as_str()).collect::<Vec<_>>().join(",")),
             rows: table

@@ -17,6 +17,9 @@ pub struct Table {
     pub what: String,
     /// The fields of a word, LSB first: (name, bits), for the CSV export.
     pub fields: Vec<(String, u32)>,
+    /// Each word is a cosine, UQ1.this: the CSV export gives its address as `n`, the cosine as
+    /// a decimal and its angle (a cut-off table).
+    pub cosines: Option<u32>,
 }
 
 impl Table {

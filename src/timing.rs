@@ -146,22 +146,37 @@ pub fn part(target: Target) -> &'static str {
 }
 
 /// The fitted line of `target`'s family for the datapath `datapath` (`lean`, `paper`, `fitted`,
-/// `blinn`, `blinn-pow`): its own when calibrated, else the family's (`all`).
-pub fn line(target: Target, datapath: &str) -> Line {
+/// `blinn`, `blinn-pow`): its own when calibrated, the family's (`all`) where the data says so
+/// by name. A datapath the data does not name is an error: a new model is calibrated
+/// (`scripts/calibrate_delay.sh`), never estimated by another's line in silence.
+pub fn line(target: Target, datapath: &str) -> Result<Line, ConfigError> {
     let all: serde_json::Value = serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");
     let lines = &all[family(target)];
-    let chosen = if lines[datapath].is_object() { &lines[datapath] } else { &lines["all"] };
-    serde_json::from_value(chosen.clone()).expect("data/delay_model.json has a line per family")
+    let chosen = match &lines[datapath] {
+        serde_json::Value::Object(_) => &lines[datapath],
+        serde_json::Value::String(s) if s == "all" => &lines["all"],
+        _ => {
+            return Err(ConfigError {
+                parameter: "target_mhz",
+                message: format!(
+                    "the {datapath} datapath has no delay calibration on the {}: run scripts/calibrate_delay.sh, then scripts/fit_delay_model.py, to measure it (or give --stages)",
+                    part(target)
+                ),
+            })
+        }
+    };
+    Ok(serde_json::from_value(chosen.clone()).expect("data/delay_model.json has a line per family"))
 }
 
 /// The line for `plan`'s family and datapath.
-fn line_of(plan: &Plan) -> Line {
+fn line_of(plan: &Plan) -> Result<Line, ConfigError> {
     line(plan.cfg.target(), plan.cfg.datapath_name())
 }
 
 /// The Fmax the delay model predicts for `plan` on its family's part, in MHz.
-pub fn predicted_fmax(plan: &Plan) -> f64 {
-    line_of(plan).fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz()))
+/// None for a datapath without calibration.
+pub fn predicted_fmax(plan: &Plan) -> Option<f64> {
+    Some(line_of(plan).ok()?.fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz())))
 }
 
 /// The slowest limit of the ECP5 blocks `plan` instantiates (MULT18X18D, DP16KD) at speed
@@ -179,7 +194,7 @@ fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
 /// reaches `mhz`, and that prediction. Err: no depth does (the best one is named).
 pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), ConfigError> {
-    let l = line_of(plan);
+    let l = line_of(plan)?;
     let mut best = (0, 0.0f64, 0.0f64);
     // a depth whose blocks cannot run at mhz is no pick, whatever its routes (the first seen)
     let mut capped: Option<(u32, crate::blocks::BlockLimit)> = None;
@@ -228,12 +243,30 @@ mod tests {
     use super::*;
     use crate::config::Config;
 
+    /// Issue 37: a datapath the calibration does not name is an error naming the script (a
+    /// new model is measured, never estimated in silence by the family's line); the ones the
+    /// data names take theirs, every model of the registry included.
+    #[test]
+    fn an_uncalibrated_datapath_is_refused_by_name() {
+        for target in [Target::Ice40, Target::Ecp5] {
+            let e = line(target, "schlick").unwrap_err();
+            assert_eq!(e.parameter, "target_mhz");
+            assert!(e.message.contains("the schlick datapath has no delay calibration") && e.message.contains("scripts/calibrate_delay.sh"), "{}", e.message);
+            for model in crate::config::SpecularModel::ALL {
+                assert!(line(target, model.name()).is_ok() || model.reads("arch"), "{target:?} {}", model.name());
+            }
+            for arch in ["lean", "paper"] {
+                assert!(line(target, arch).is_ok(), "{target:?} {arch}");
+            }
+        }
+    }
+
     /// Deeper targets never pick shallower pipelines, each pick is the shallowest that the
     /// model assures, and it takes milliseconds.
     #[test]
     fn picks_are_the_shallowest_and_grow_with_the_target() {
         let plan = Plan::new(Config::defaults()).unwrap();
-        let l = line_of(&plan);
+        let l = line_of(&plan).unwrap();
         let t0 = std::time::Instant::now();
         let mut last = 0;
         for f in [5.0, 20.0, 40.0, 60.0, 80.0, 100.0] {

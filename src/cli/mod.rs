@@ -512,18 +512,11 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
         outln!("{line}")?;
     }
     outln!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / scale, o.spec, o.done)?;
-    let k_real: f64 = cfg.params.k.trim().parse().unwrap_or(f64::NAN);
-    let bracket_real = k_real * n as f64 * (c - 1.0) + 1.0;
-    let formula15 = if bracket_real < 0.0 { 0.0 } else { bracket_real * bracket_real };
     outln!(
         "fidelity   Blinn cos^n = {blinn:.9}; this unit gives {:.9}, off by {:.9}{}",
         o.intensity as f64 / scale,
         (o.intensity as f64 / scale - blinn).abs(),
-        if cfg.model() == config::SpecularModel::Quadratic {
-            format!("; formula (15) in real arithmetic with k = {k_real}: {formula15:.9}")
-        } else {
-            String::new()
-        }
+        m.unit().fidelity_note(x).map_or(String::new(), |note| format!("; {note}"))
     )?;
     match m.check(x, o) {
         Ok(()) => outln!("contract   {} rounding holds for this input ({} model)", cfg.rounding().name(), cfg.model().name())?,

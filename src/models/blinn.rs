@@ -334,6 +334,7 @@ fn interpolation_table(name: &str, entries: &[u128], deltas: &[u128], bits: (u32
         words: entries.iter().zip(deltas).map(|(&e, &d)| (d << entry_bits) | e).collect(),
         what,
         fields: f,
+        cosines: None,
     }
 }
 
@@ -856,6 +857,10 @@ impl Blinn {
 }
 
 impl SpecularUnit for Blinn {
+    fn premise_role(&self) -> Option<crate::models::PremiseRole> {
+        Some(crate::models::PremiseRole::Tables)
+    }
+
     fn eval(&self, x: Inputs) -> Outputs {
         trace(&self.cfg, &self.widths, &self.tables, x).1
     }

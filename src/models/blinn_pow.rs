@@ -36,6 +36,10 @@ impl BlinnPow {
 }
 
 impl SpecularUnit for BlinnPow {
+    fn premise_role(&self) -> Option<crate::models::PremiseRole> {
+        Some(crate::models::PremiseRole::SquareAndMultiply)
+    }
+
     /// Square-and-multiply over the bits of n, LSB first, each product truncated to W
     /// fractional bits ([`power_frac_bits`]), as the RTL does it.
     fn eval(&self, x: Inputs) -> Outputs {

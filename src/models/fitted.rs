@@ -338,6 +338,7 @@ pub fn table(fit: &Fit, w: &FittedWidths) -> Table {
         words: fit.rom_words(w),
         what: format!("per-n fit: {{m_n ({} bits), a_n (UQ{}.{})}}", w.m_bits, w.a_bits.saturating_sub(w.a_frac_bits), w.a_frac_bits),
         fields: vec![("a_code".into(), w.a_bits), ("m".into(), w.m_bits)],
+        cosines: None,
     }
 }
 
@@ -599,6 +600,10 @@ impl Fitted {
 }
 
 impl SpecularUnit for Fitted {
+    fn premise_role(&self) -> Option<crate::models::PremiseRole> {
+        Some(crate::models::PremiseRole::Fit)
+    }
+
     fn eval(&self, x: Inputs) -> Outputs {
         trace(&self.cfg, &self.fit, &self.widths, x).1
     }

@@ -42,6 +42,21 @@ pub struct Description {
     pub computes: &'static str,
 }
 
+/// The part a model plays in the report's verdict on the paper's premise (that `cos^n` itself
+/// costs too much): the paper's formula, a cheaper fit, the table-based `cos^n`, or `cos^n`
+/// the costly way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PremiseRole {
+    /// the paper's own formula
+    Paper,
+    /// a closer approximation of the same shape
+    Fit,
+    /// `cos^n` itself, by tables
+    Tables,
+    /// `cos^n` itself, by square-and-multiply
+    SquareAndMultiply,
+}
+
 /// One model of the unit (SPEC §3, §6): the golden model, its contract and its datapath.
 ///
 /// Everything here is a function of the configuration the model was made from; a model is
@@ -75,6 +90,35 @@ pub trait SpecularUnit: Send + Sync + std::fmt::Debug {
 
     /// The internal values of the golden model for one input, one line each, for `specgen eval`.
     fn explain(&self, x: Inputs) -> Vec<String>;
+
+    /// Its part in the report's verdict on the paper's premise; none leaves it out of it.
+    fn premise_role(&self) -> Option<PremiseRole> {
+        None
+    }
+
+    /// What the model's exact reference is, in words (the report's contract line).
+    fn reference_words(&self) -> &'static str {
+        "its exact reference (the same function in exact arithmetic)"
+    }
+
+    /// What quantising the model's constant costs at one input, as a fraction of full scale
+    /// (the model with its quantised constant against the same formula with the real one),
+    /// when the model has such a constant; the report gives its maximum.
+    fn quantisation_error(&self, _x: Inputs) -> Option<f64> {
+        None
+    }
+
+    /// The ideal cut-off cosine at `n` beside the stored one ([`SpecularUnit::cut_off`]): the
+    /// report draws both.
+    fn ideal_cut_off(&self, _n: u32) -> Option<f64> {
+        None
+    }
+
+    /// A sentence `specgen eval` adds to its fidelity line at one input (a formula in real
+    /// arithmetic the model approximates), when there is one.
+    fn fidelity_note(&self, _x: Inputs) -> Option<String> {
+        None
+    }
 }
 
 /// The registry: the model a configuration asks for. Every model is one line here.

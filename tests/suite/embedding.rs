@@ -329,7 +329,7 @@ fn a_static_colours_idle_is_a_register() {
         // not count up
         let line = |key: &str| v.lines().find(|l| l.contains(key)).unwrap_or_else(|| panic!("{name}: {key}")).to_string();
         let moved = line("inside_at_least <= ({");
-        let taken = line("inside_taken = (");
+        let taken = line("assign inside_taken = (");
         let hi = moved.split("inside_taken[").nth(1).and_then(|t| t.split(']').next()).expect("the delivery's bits").to_string();
         let lo = moved.split("inside_taken[").nth(2).and_then(|t| t.split(']').next()).expect("the hold's bits").to_string();
         let faults = [

@@ -69,3 +69,46 @@ fn library_layers_import_only_downward_and_know_no_command_line() {
         }
     }
 }
+
+/// Issue 37: a model is one home. Outside `src/models/` (the homes and the registry) and
+/// `src/config.rs` (the enum, its names and the table of which model takes which parameter),
+/// the library's code names no model: no `SpecularModel::<Variant>`, no `match` over a
+/// configuration's model (a `_ =>` there would give a new model a silent default), no model's
+/// name as a string. The places that decide per model ask the trait or the table instead, so
+/// a sixth model needs only its home, its registry line, its enum variant and its calibration.
+#[test]
+fn no_model_is_named_outside_its_home_and_the_registry() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let variants: Vec<String> = specgen::config::SpecularModel::ALL.iter().map(|m| format!("{m:?}")).collect();
+    let names: Vec<String> = specgen::config::SpecularModel::ALL.iter().map(|m| format!("\"{}\"", m.name())).collect();
+    let mut found = Vec::new();
+    for f in &files {
+        let rel = f.strip_prefix(&src).unwrap();
+        if rel.starts_with("models") || rel == Path::new("config.rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(f).unwrap();
+        // the code before its unit tests, without comments
+        let code = text.split("#[cfg(test)]").next().unwrap();
+        for (i, line) in code.lines().enumerate() {
+            let l = line.trim_start();
+            if l.starts_with("//") {
+                continue;
+            }
+            let l = l.split(" //").next().unwrap();
+            let at = format!("{}:{}: {}", rel.display(), i + 1, line.trim());
+            if variants.iter().any(|v| l.contains(&format!("SpecularModel::{v}"))) {
+                found.push(format!("{at} (a model's variant)"));
+            }
+            if l.contains("match") && (l.contains(".model()") || l.contains(".model {") || l.contains("params.model")) {
+                found.push(format!("{at} (a match over models)"));
+            }
+            if names.iter().any(|n| l.contains(n.as_str())) {
+                found.push(format!("{at} (a model's name)"));
+            }
+        }
+    }
+    assert!(found.is_empty(), "models named outside their homes and the registry:\n{}", found.join("\n"));
+}

@@ -121,7 +121,7 @@ fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
         let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
         let predicted = m["predicted_fmax_mhz"].as_f64().unwrap();
         assert!(predicted >= mhz, "{family}: predicted {predicted} MHz for a {mhz} MHz target");
-        let line = specgen::timing::line(if family == "ecp5" { specgen::config::Target::Ecp5 } else { specgen::config::Target::Ice40 }, "lean");
+        let line = specgen::timing::line(if family == "ecp5" { specgen::config::Target::Ecp5 } else { specgen::config::Target::Ice40 }, "lean").unwrap();
         let r = synth(&out, &["--dsp", "--seeds", "1"]);
         let measured = r["fmax_mhz"].as_f64().unwrap();
         assert!(measured >= 0.9 * mhz, "{family}: --stages {} measured {measured} MHz for a {mhz} MHz target (predicted {predicted})", m["stages"]);

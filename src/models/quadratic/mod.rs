@@ -142,9 +142,33 @@ impl Quadratic {
     pub fn new(cfg: &Config) -> Quadratic {
         Quadratic { cfg: cfg.clone(), widths: Widths::derive(cfg), rom: rom::cos_sp_table(cfg) }
     }
+
+    /// `k` as given (`--k`), a float.
+    fn k_real(&self) -> f64 {
+        self.cfg.params.k.trim().parse().unwrap_or(f64::NAN)
+    }
+
+    /// `k_q = k_code / 2^KF`, the constant the unit uses.
+    fn k_q(&self) -> f64 {
+        self.cfg.k_code as f64 / (self.cfg.kf() as f64).exp2()
+    }
+}
+
+/// Formula (15) in floats: `[1 - k·n·(1 - c)]²`, 0 where the bracket is negative.
+fn formula15(k: f64, n: u32, c: f64) -> f64 {
+    let b = 1.0 - k * n as f64 * (1.0 - c);
+    if b < 0.0 {
+        0.0
+    } else {
+        b * b
+    }
 }
 
 impl SpecularUnit for Quadratic {
+    fn premise_role(&self) -> Option<crate::models::PremiseRole> {
+        Some(crate::models::PremiseRole::Paper)
+    }
+
     fn eval(&self, x: Inputs) -> Outputs {
         self.trace(x).outputs
     }
@@ -200,6 +224,24 @@ impl SpecularUnit for Quadratic {
 
     fn widths(&self) -> serde_json::Value {
         serde_json::to_value(&self.widths).expect("widths serialise")
+    }
+
+    fn reference_words(&self) -> &'static str {
+        "formula (15) in exact arithmetic with the quantised k_q and the cut-off at cos_sp(n)"
+    }
+
+    fn quantisation_error(&self, x: Inputs) -> Option<f64> {
+        let c = crate::models::cosine(&self.cfg, x.cos_g);
+        Some((formula15(self.k_q(), x.n, c) - formula15(self.k_real(), x.n, c)).abs())
+    }
+
+    fn ideal_cut_off(&self, n: u32) -> Option<f64> {
+        Some((1.0 - 1.0 / (self.k_q() * n as f64)).max(0.0))
+    }
+
+    fn fidelity_note(&self, x: Inputs) -> Option<String> {
+        let c = crate::models::cosine(&self.cfg, x.cos_g);
+        Some(format!("formula (15) in real arithmetic with k = {}: {:.9}", self.k_real(), formula15(self.k_real(), x.n, c)))
     }
 
     fn explain(&self, x: Inputs) -> Vec<String> {

@@ -33,5 +33,6 @@ pub fn cos_sp_rom(cfg: &Config) -> Table {
         words: cos_sp_table(cfg).into_iter().map(u128::from).collect(),
         what: format!("cut-off ROM cos_sp(n), UQ1.{}, address = n", cfg.f()),
         fields: vec![("cos_sp".into(), cfg.f() + 1)],
+        cosines: Some(cfg.f()),
     }
 }
