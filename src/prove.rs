@@ -55,6 +55,32 @@ struct Script<'a> {
     bounded: Option<u32>,
 }
 
+#[derive(Template)]
+#[template(path = "prove_pipelining.v")]
+struct PipeliningHarness<'a> {
+    name: &'a str,
+    top: &'a str,
+    twin: &'a str,
+    version: &'a str,
+    cos_w: u32,
+    n_w: u32,
+    b_w: u32,
+    i_w: u32,
+    latency: u32,
+}
+
+#[derive(Template)]
+#[template(path = "prove_pipelining.ys")]
+struct PipeliningScript<'a> {
+    version: &'a str,
+    harness: &'a str,
+    files: &'a [String],
+    /// a failure's replay with yosys's `sat` over this many edges (0: the models for ABC)
+    replay_steps: u32,
+    /// the replay's first edges whose assertions are not checked (0: from the all-zero state)
+    replay_skip: u32,
+}
+
 impl Script<'_> {
     /// Writes the script as `file` in `w`.
     fn write(&self, w: &Path, file: &str) -> Result<(), Error> {
@@ -265,4 +291,126 @@ fn trace(tools: &Tools, w: &Path, design: &Design) -> Result<Vec<u8>, Error> {
         return Err(error::tool(&tools.yosys, format!("yosys's sat wrote no trace of the counterexample for {}", design.dir.display())));
     }
     crate::small_file::read_bytes(&vcd, 1 << 30).map_err(|e| error::tool(&tools.yosys, format!("the counterexample's trace: {e}")))
+}
+
+/// The pipelining proof's properties, in words.
+fn pipelining_properties(k: u32) -> Vec<&'static str> {
+    let _ = k;
+    vec![
+        "after a reset, out_valid is the depth-0 twin's fed the same inputs `latency` edges late",
+        "while out_valid is high, every output and the tag are the twin's",
+    ]
+}
+
+/// Proves that the unit in `design` equals its depth-0 twin (the same configuration generated
+/// with no pipeline registers, under its own top name) fed the same inputs `K = stages` edges
+/// late, for every input sequence. Two checks of a miter (`templates/prove_pipelining.v`),
+/// each unrolled by ABC and proved with `iprove` (fraiging: the two datapaths share most of
+/// their structure):
+/// 1. from *any* state, the properties hold `K + 1` edges later: every register of a
+///    feed-forward pipeline is a function of the last `K + 1` inputs by then, so this covers
+///    every time from edge `K + 1` of every run, whatever came before;
+/// 2. from power-up (no reset yet, every other flip-flop free), they hold at every one of the
+///    first `K + 1` edges.
+///
+/// Together: at every edge of every run. A design that kept state longer than `K + 1` edges
+/// would fail check 1 (an incomplete proof, never a wrong one). The valid interface with
+/// per-pixel colours only: a handshake's buffer and material registers hold state by design.
+pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> {
+    let cfg = &design.cfg;
+    if cfg.interface().handshake() || cfg.colour() == crate::config::Colour::Static {
+        return Err(error::input(format!(
+            "prove --pipelining: {} has the {} interface with {} colours; allowed: --interface valid with per-pixel colours (a buffer or material registers keep state by design: their edge is `specgen prove` without --pipelining)",
+            design.dir.display(),
+            cfg.interface().name(),
+            if cfg.colour() == crate::config::Colour::Static { "static" } else { "per-pixel" }
+        )));
+    }
+    let k = cfg.stages();
+    let top = cfg.top();
+    let twin_top = format!("{top}_depth0");
+    let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
+    let w = work.path();
+    let mut files = Vec::new();
+    if !design.sim_models.is_empty() {
+        // the datapath is compared, so an ECP5 unit's primitives are their simulation models
+        for (i, m) in design.sim_models.iter().enumerate() {
+            let name = format!("model{i}.v");
+            let bytes = crate::small_file::read_bytes(m, crate::small_file::UNIT_FILE_MAX).map_err(|e| error::input(format!("{} {e}", m.display())))?;
+            std::fs::write(w.join(&name), bytes).map_err(|e| Error::io("write", w.join(&name), e))?;
+            files.push(name);
+        }
+    }
+    files.extend(design.stage(w)?);
+    // the twin: the same parameters at depth 0, its files by its own names beside the unit's
+    let twin_params = crate::config::Params { stages: 0, top: twin_top.clone(), ..cfg.params.clone() };
+    let twin = crate::plan::Plan::from_params(twin_params).map_err(|e| error::input(format!("the depth-0 twin of {}: {e}", design.dir.display())))?;
+    for (name, bytes) in crate::emit::generate_files(&twin) {
+        let path = w.join(&name);
+        if name.ends_with(".v") && !name.contains('/') && name != format!("{twin_top}_tb.sv") {
+            files.push(name.clone());
+        }
+        if !name.contains('/') {
+            std::fs::write(&path, bytes).map_err(|e| Error::io("write", path, e))?;
+        }
+    }
+    for (c, name) in [(cfg, format!("{top}_prove_ports")), (&twin.cfg, format!("{twin_top}_prove_ports"))] {
+        let file = format!("{name}.v");
+        std::fs::write(w.join(&file), crate::cosim::adapter::adapter_named(c, &name)).map_err(|e| Error::io("write", w.join(&file), e))?;
+        files.push(file);
+    }
+    let name = format!("{top}_prove_pipelining");
+    let harness = PipeliningHarness {
+        name: &name,
+        top,
+        twin: &twin_top,
+        version: crate::names::VERSION,
+        cos_w: cfg.f() + 1,
+        n_w: cfg.n_bits(),
+        b_w: cfg.b(),
+        i_w: cfg.fi() + 1,
+        latency: k,
+    }
+    .render()
+    .expect("the pipelining harness renders")
+        + "\n";
+    std::fs::write(w.join("harness.v"), harness).map_err(|e| Error::io("write", w.join("harness.v"), e))?;
+    files.push("harness.v".into());
+    let script = |replay: Option<(u32, u32)>, file: &str| -> Result<(), Error> {
+        let (replay_steps, replay_skip) = replay.unwrap_or((0, 0));
+        let text =
+            PipeliningScript { version: crate::names::VERSION, harness: &name, files: &files, replay_steps, replay_skip }.render().expect("the script renders")
+                + "\n";
+        std::fs::write(w.join(file), text).map_err(|e| Error::io("write", w.join(file), e))
+    };
+    script(None, "models.ys")?;
+    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
+    let t0 = Instant::now();
+    run(&yosys, &["-q".into(), "-s".into(), "models.ys".into()], w, Duration::from_secs(600))?
+        .ok_or_else(|| error::tool(&yosys, "yosys did not write the models within 600 s"))?;
+    let frames = k + 2;
+    // check 1: the last of K + 2 frames from a free state; check 2: the first K + 1 from power-up
+    let checks = [
+        (format!("read_aiger free.aig; fold; strash; orpos; frames -F {frames}; comb; cone -O {} -s; strash; iprove", k + 1), (frames, k + 1)),
+        (format!("read_aiger started.aig; fold; strash; orpos; frames -F {} -i; strash; orpos; iprove", k + 1), (k + 1, 0)),
+    ];
+    let properties = pipelining_properties(k);
+    for (abc_script, replay) in checks {
+        let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
+            return Ok(Proof { name, properties, verdict: Verdict::Undecided { bounded: None }, seconds: t0.elapsed().as_secs_f64() });
+        };
+        if said.contains("UNSATISFIABLE") {
+            continue;
+        }
+        if !said.contains("SATISFIABLE") {
+            return Err(error::tool(&abc, format!("iprove neither proved nor refuted the miter: {said}")));
+        }
+        script(Some(replay), "replay.ys")?;
+        let _ = std::fs::remove_file(w.join("trace.vcd"));
+        // sat ends with an error when it finds the failure it looks for
+        let _ = run(&yosys, &["-s".into(), "replay.ys".into()], w, tools.limit);
+        let vcd = trace(&Tools { yosys: yosys.clone(), abc: abc.clone(), limit: tools.limit }, w, design)?;
+        return Ok(Proof { name, properties, verdict: Verdict::Failed { frame: replay.0 - 1, vcd }, seconds: t0.elapsed().as_secs_f64() });
+    }
+    Ok(Proof { name, properties, verdict: Verdict::Proved, seconds: t0.elapsed().as_secs_f64() })
 }

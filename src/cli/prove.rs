@@ -3,7 +3,7 @@
 use super::outln;
 use super::{failed, Failure};
 use specgen::cosim::Design;
-use specgen::prove::{prove, Tools, Verdict};
+use specgen::prove::{prove, prove_pipelining, Tools, Verdict};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -29,6 +29,11 @@ pub struct ProveArgs {
     /// is refused).
     #[arg(long)]
     pub edited: bool,
+    /// Prove instead that pipelining changes nothing: the unit equals its depth-0 twin (the
+    /// same parameters, no pipeline registers) fed the same inputs `stages` edges late, for
+    /// every input sequence (--interface valid with per-pixel colours)
+    #[arg(long)]
+    pub pipelining: bool,
 }
 
 /// `specgen prove`: exit 0 when every property is proved, 1 when one fails (its VCD named) or
@@ -39,13 +44,23 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
     if let Some(t) = &args.trace {
         design.refuse_output("--trace", t)?;
     }
+    let cfg = &design.cfg;
+    if args.pipelining && (cfg.interface().handshake() || cfg.colour() == specgen::config::Colour::Static) {
+        return Err(super::usage(format!(
+            "invalid --pipelining: {} has the {} interface{}; allowed: --interface valid with per-pixel colours (a buffer or material registers keep state by design; `specgen prove` without --pipelining proves their edge)",
+            args.rtl.display(),
+            cfg.interface().name(),
+            if cfg.colour() == specgen::config::Colour::Static { " with static colours" } else { "" }
+        )));
+    }
     let tools = Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit) };
     tools.check()?;
-    let proof = prove(&design, &tools)?;
+    let proof = if args.pipelining { prove_pipelining(&design, &tools)? } else { prove(&design, &tools)? };
+    let how = if args.pipelining { "ABC iprove over the unrolled miter, from any state and from power-up" } else { "ABC pdr" };
     let head = format!("prove {} ({}): ", design.dir.display(), proof.name);
     match &proof.verdict {
         Verdict::Proved => {
-            outln!("{head}proved, unbounded (ABC pdr), {:.1} s:", proof.seconds)?;
+            outln!("{head}proved, unbounded ({how}), {:.1} s:", proof.seconds)?;
             for p in &proof.properties {
                 outln!("  - {p}")?;
             }
@@ -56,11 +71,11 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
                 Some(k) => format!("; the properties hold for the first {k} clock edges (a bounded search, yosys sat)"),
                 None => String::new(),
             };
-            Err(failed(format!("{head}undecided: pdr did not end within {} s, so not proved (--time-limit gives it longer){also}", args.time_limit)))
+            Err(failed(format!("{head}undecided: {how} did not end within {} s, so not proved (--time-limit gives it longer){also}", args.time_limit)))
         }
         Verdict::Failed { frame, vcd } => {
             let path = args.trace.clone().unwrap_or_else(|| std::env::temp_dir().join(format!("{}-{}.vcd", proof.name, std::process::id())));
-            let mut msg = format!("{head}a property fails {frame} clock edges after the reset (ABC pdr counterexample)");
+            let mut msg = format!("{head}a property fails {frame} clock edges into the counterexample ({how})");
             match specgen::output::write_file(&path, vcd) {
                 Ok(()) => msg.push_str(&format!("; the replay's trace: {}", path.display())),
                 Err(e) => msg.push_str(&format!("; could not write the trace {}: {e}", path.display())),

@@ -43,3 +43,48 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
 fn text(o: &std::process::Output) -> String {
     format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
 }
+
+/// Issue 38, point 2: pipelining changes nothing. lean and fitted at reduced widths, pipelined,
+/// equal their depth-0 twins fed the same inputs `stages` edges late for every input sequence
+/// (from any state, and from power-up); a register bypassed (a value taken one stage early) is
+/// refuted with a VCD; a handshake unit is refused (exit 2).
+#[test]
+fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let traces = tmp.path().join("bypass.vcd");
+    let prove_pipelining = |dir: &Path| {
+        specgen().args(["prove", "--pipelining", "--edited", "--time-limit", "300", "--rtl"]).arg(dir).arg("--trace").arg(&traces).output().unwrap()
+    };
+    let lean: &[&str] = &["--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "5", "--intensity-frac-bits", "6", "--stages", "3"];
+    let fitted: &[&str] = &["--model", "fitted", "--cos-frac-bits", "8", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "8", "--stages", "4"];
+    for (name, args) in [("lean", lean), ("fitted", fitted)] {
+        let dir = generate(tmp.path(), name, args);
+        let o = prove_pipelining(&dir);
+        assert!(o.status.success(), "{name}: {}", text(&o));
+        assert!(text(&o).contains("proved, unbounded") && text(&o).contains("the depth-0 twin's"), "{}", text(&o));
+    }
+    // power3 reads power2 one stage early: the result mixes two pixels
+    let dir = tmp.path().join("fitted");
+    let v = dir.join("specular_unit.v");
+    let src = std::fs::read_to_string(&v).unwrap();
+    let line = src
+        .lines()
+        .find(|l| l.starts_with("wire [") && l.contains("power3_s") && l.contains(": power2_c"))
+        .expect("power3's bypass reads a register")
+        .to_string();
+    let reg = line.rsplit(": ").next().unwrap().trim_end_matches(';').to_string();
+    let bypassed = line.replace(&format!(": {reg};"), &format!(": {};", reg.replace("power2_c", "power2_s")));
+    assert_ne!(bypassed, line);
+    std::fs::write(&v, src.replace(&line, &bypassed)).unwrap();
+    let o = prove_pipelining(&dir);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("a property fails") && text(&o).contains("bypass.vcd"), "{}", text(&o));
+    let vcd = std::fs::read_to_string(&traces).unwrap();
+    assert!(vcd.contains("$enddefinitions") && vcd.contains("unit.dut.power2_c") && vcd.contains("valid_late"), "{vcd}");
+    let ready = generate(tmp.path(), "ready", &["--interface", "ready", "--stages", "2"]);
+    let o = prove_pipelining(&ready);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("invalid --pipelining") && text(&o).contains("--interface valid"), "{}", text(&o));
+}
