@@ -73,6 +73,9 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             };
             Err(failed(format!("{head}undecided: {how} did not end within {} s, so not proved (--time-limit gives it longer){also}", args.time_limit)))
         }
+        Verdict::Incomplete { bounded } => Err(failed(format!(
+            "{head}not proved: the properties hold for the first {bounded} clock edges from power-up, but the unit keeps state longer than its latency (a delay line in block RAM, its pointers never flushed), so the check from any state cannot conclude; generate it with fewer stages or narrower widths (no delay line in memory) to prove it"
+        ))),
         Verdict::Failed { frame, vcd } => {
             let path = args.trace.clone().unwrap_or_else(|| std::env::temp_dir().join(format!("{}-{}.vcd", proof.name, std::process::id())));
             let mut msg = format!("{head}a property fails {frame} clock edges into the counterexample ({how})");

@@ -88,3 +88,26 @@ fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("invalid --pipelining") && text(&o).contains("--interface valid"), "{}", text(&o));
 }
+
+/// Issue 38, point 3: a handshake fault the simulation suite injects (a result dropped while
+/// stalled: the queue counts a result gone with out_ready low) is refuted by pdr with a VCD,
+/// though the correct ready edge is still undecided. The other six are refuted by
+/// `scripts/bench_prove.sh` (BENCHMARKS-prove.md).
+#[test]
+fn a_dropped_result_is_refuted_on_the_ready_edge() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "dropped", &["--interface", "ready", "--stages", "5", "--tag-bits", "12"]);
+    let buffer = dir.join("specular_unit_out_buffer.v");
+    let src = std::fs::read_to_string(&buffer).unwrap();
+    let bad = src.replace("leaving = count != 2'd0 && ready;", "leaving = count != 2'd0;");
+    assert_ne!(bad, src);
+    std::fs::write(&buffer, bad).unwrap();
+    let trace = tmp.path().join("dropped.vcd");
+    let o = specgen().args(["prove", "--edited", "--time-limit", "300", "--rtl"]).arg(&dir).arg("--trace").arg(&trace).output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("a property fails") && text(&o).contains("dropped.vcd"), "{}", text(&o));
+    let vcd = std::fs::read_to_string(&trace).unwrap();
+    assert!(vcd.contains("$enddefinitions") && vcd.contains("out_buffer"), "{vcd}");
+}
