@@ -258,9 +258,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
             } else {
                 // registered, from what valid_line holds after this edge: idle leaves the unit
                 // from a flip-flop, not through an OR of the whole valid pipeline
-                let shifted = if depth == 1 { "in_valid".to_string() } else { format!("in_valid | (|valid_line[{}:0])", depth - 2) };
-                e.tail.push("reg  idle_q;   // no pixel in the pipeline: ~|valid_line, one edge ahead".into());
-                e.tail.push(format!("always @(posedge clk) idle_q <= rst | ~({shifted});"));
+                e.tail.extend(idle_of_valid_line(depth));
                 e.tail.push(format!("assign {:<9} = idle_q;", "idle"));
             }
         }
@@ -308,6 +306,41 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         }
     }
     e
+}
+
+/// `idle_q` of a `valid` unit with material registers: `~|valid_line` one edge ahead. After
+/// the edge valid_line holds `in_valid` and its bits `0 ..= depth - 2`; those bits are
+/// `valid_seen`, one flag for each four, registered one edge ahead too (each a LUT of four
+/// bits, as they shift in), so idle_q's input is an OR of `in_valid` and the flags: two LUT
+/// levels at any depth, not an OR of the whole pipeline (three levels from 17 stages on).
+fn idle_of_valid_line(depth: u32) -> Vec<String> {
+    let mut out = vec!["reg  idle_q;   // no pixel in the pipeline: ~|valid_line, one edge ahead".to_string()];
+    if depth == 1 {
+        out.push("always @(posedge clk) idle_q <= rst | ~(in_valid);".into());
+        return out;
+    }
+    // flag j: valid_line[4j+3:4j] (within 0..=depth-2) after the edge, from the bits one below
+    let top = depth - 2;
+    let groups = (top / 4 + 1) as usize;
+    let next: Vec<String> = (0..groups as u32)
+        .rev()
+        .map(|j| {
+            let (lo, hi) = (4 * j, (4 * j + 3).min(top));
+            match (lo, hi) {
+                (0, 0) => "in_valid".to_string(),
+                (0, h) => format!("(|{{valid_line[{}:0], in_valid}})", h - 1),
+                (l, h) if l == h => format!("valid_line[{}]", l - 1),
+                (l, h) => format!("(|valid_line[{}:{}])", h - 1, l - 1),
+            }
+        })
+        .collect();
+    out.push(format!("reg  {} valid_seen;   // bit j: a pixel in valid_line[4j+3:4j] (bits 0..={top}), one edge ahead", range(groups as u32)));
+    out.push("always @(posedge clk) begin".into());
+    out.push(format!("    if (rst) valid_seen <= {groups}'h0;"));
+    out.push(format!("    else     valid_seen <= {{{}}};", next.join(", ")));
+    out.push("end".into());
+    out.push("always @(posedge clk) idle_q <= rst | ~(in_valid | (|valid_seen));".into());
+    out
 }
 
 /// `idle` of a handshake unit with material registers, from a flip-flop: a thermometer of the

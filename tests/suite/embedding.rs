@@ -306,6 +306,22 @@ fn a_static_colours_idle_is_a_register() {
         assert!(!v.contains("= ~|valid_line"), "no OR of the pipeline on the output");
         let o = specgen().env("SPECGEN_CACHE_DIR", tmp.path().join("cache")).args(["cosim", "--vectors", "20000", "--rtl"]).arg(&dir).output().unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        if stages == "9" {
+            // no wide OR: flags of four bits each, registered one edge ahead (valid static blinn
+            // was 95.5 MHz with `~(in_valid | (|valid_line[36:0]))` before idle_q); a flag that
+            // misses a bit is caught
+            assert!(v.contains("idle_q <= rst | ~(in_valid | (|valid_seen));") && v.contains("valid_seen <= {(|valid_line[6:3]), "), "{v}");
+            let bad = tmp.path().join("s9_bad");
+            copy_unit(&dir, &bad);
+            std::fs::write(bad.join("specular_unit.v"), v.replace("valid_seen <= {(|valid_line[6:3]), ", "valid_seen <= {(|valid_line[5:3]), ")).unwrap();
+            let o = specgen()
+                .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+                .args(["cosim", "--edited", "--vectors", "20000", "--rtl"])
+                .arg(&bad)
+                .output()
+                .unwrap();
+            assert_eq!(o.status.code(), Some(1), "a flag missing a bit must fail: {}", String::from_utf8_lossy(&o.stderr));
+        }
     }
     // with a handshake, idle is a flip-flop beside a thermometer of the pixels inside (taken,
     // not yet delivered), two LUT levels from the handshake: no OR of the pipeline, no carry
