@@ -85,7 +85,7 @@ impl Script<'_> {
     /// Writes the script as `file` in `w`.
     fn write(&self, w: &Path, file: &str) -> Result<(), Error> {
         let text = self.render().expect("the prove script renders") + "\n";
-        std::fs::write(w.join(file), text).map_err(|e| Error::io("write", w.join(file), e))
+        put(w, file, text)
     }
 }
 
@@ -232,8 +232,8 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     }
     files.extend(design.stage(w)?);
     let ports = crate::cosim::adapter::adapter_named(cfg, &format!("{}_prove_ports", cfg.top()));
-    std::fs::write(w.join("ports.v"), ports).map_err(|e| Error::io("write", w.join("ports.v"), e))?;
-    std::fs::write(w.join("harness.v"), harness(design)).map_err(|e| Error::io("write", w.join("harness.v"), e))?;
+    put(w, "ports.v", ports)?;
+    put(w, "harness.v", harness(design))?;
     files.push("ports.v".into());
     files.push("harness.v".into());
     let name = harness_name(cfg.top());
@@ -254,7 +254,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         let steps = cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4;
         let verdict = match bounded(tools, w, &files, &name, steps)? {
             Some(true) => Verdict::Undecided { bounded: Some(steps) },
-            Some(false) => Verdict::Failed { frame: steps, vcd: trace(tools, w, design)? },
+            Some(false) => Verdict::Failed { frame: steps, vcd: trace(&tools.yosys, w, design)? },
             None => Verdict::Undecided { bounded: None },
         };
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64() });
@@ -269,7 +269,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         return Err(error::tool(&tools.abc, format!("pdr neither proved nor refuted the properties: {said}")));
     };
     bounded(tools, w, &files, &name, frame + 2)?;
-    let vcd = trace(tools, w, design)?;
+    let vcd = trace(&tools.yosys, w, design)?;
     Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds })
 }
 
@@ -278,9 +278,16 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
 /// the search did not end within the limit.
 fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) -> Result<Option<bool>, Error> {
     Script { version: crate::names::VERSION, harness: name, files, bounded: Some(steps) }.write(w, "bounded.ys")?;
+    run_sat(&tools.yosys, w, "bounded.ys", tools.limit)
+}
+
+/// Runs yosys's `sat` script `file` in `w` (a bounded search or a replay): `Some(true)` when
+/// every property holds, `Some(false)` when one fails (its trace in `trace.vcd`), `None` when
+/// it did not end within `limit`.
+fn run_sat(yosys: &str, w: &Path, file: &str, limit: Duration) -> Result<Option<bool>, Error> {
     let _ = std::fs::remove_file(w.join("trace.vcd"));
     // sat ends with an error when it finds the failure it was asked to look for
-    match run(&tools.yosys, &["-s".into(), "bounded.ys".into()], w, tools.limit) {
+    match run(yosys, &["-s".into(), file.into()], w, limit) {
         Ok(None) => Ok(None),
         Ok(Some(_)) => Ok(Some(true)),
         Err(_) if w.join("trace.vcd").is_file() => Ok(Some(false)),
@@ -288,22 +295,39 @@ fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) ->
     }
 }
 
-/// The counterexample's VCD that yosys's `sat` wrote in the work directory (bounded).
-fn trace(tools: &Tools, w: &Path, design: &Design) -> Result<Vec<u8>, Error> {
+/// The counterexample's VCD that yosys's `sat` wrote in the work directory.
+fn trace(yosys: &str, w: &Path, design: &Design) -> Result<Vec<u8>, Error> {
     let vcd = w.join("trace.vcd");
     if !vcd.is_file() {
-        return Err(error::tool(&tools.yosys, format!("yosys's sat wrote no trace of the counterexample for {}", design.dir.display())));
+        return Err(error::tool(yosys, format!("yosys's sat wrote no trace of the counterexample for {}", design.dir.display())));
     }
-    crate::small_file::read_bytes(&vcd, 1 << 30).map_err(|e| error::tool(&tools.yosys, format!("the counterexample's trace: {e}")))
+    crate::small_file::read_bytes(&vcd, 1 << 30).map_err(|e| error::tool(yosys, format!("the counterexample's trace: {e}")))
+}
+
+/// Writes `bytes` as `name` in the work directory `w`.
+fn put(w: &Path, name: &str, bytes: impl AsRef<[u8]>) -> Result<(), Error> {
+    std::fs::write(w.join(name), bytes).map_err(|e| Error::io("write", w.join(name), e))
 }
 
 /// The pipelining proof's properties, in words.
-fn pipelining_properties(k: u32) -> Vec<&'static str> {
-    let _ = k;
-    vec![
-        "after a reset, out_valid is the depth-0 twin's fed the same inputs `latency` edges late",
-        "while out_valid is high, every output and the tag are the twin's",
-    ]
+const PIPELINING_PROPERTIES: [&str; 2] = [
+    "after a reset, out_valid is the depth-0 twin's fed the same inputs `latency` edges late",
+    "while out_valid is high, every output and the tag are the twin's",
+];
+
+/// Why `prove --pipelining` does not apply to `design`, when it does not: a handshake's buffer
+/// and material registers keep state by design (their edge is what `prove` proves).
+pub fn pipelining_refused(design: &Design) -> Option<String> {
+    let cfg = &design.cfg;
+    let static_colour = cfg.colour() == crate::config::Colour::Static;
+    (cfg.interface().handshake() || static_colour).then(|| {
+        format!(
+            "{} has the {} interface{}; allowed: --interface valid with per-pixel colours (a buffer or material registers keep state by design; `specgen prove` without --pipelining proves their edge)",
+            design.dir.display(),
+            cfg.interface().name(),
+            if static_colour { " with static colours" } else { "" }
+        )
+    })
 }
 
 /// Proves that the unit in `design` equals its depth-0 twin (the same configuration generated
@@ -324,45 +348,31 @@ fn pipelining_properties(k: u32) -> Vec<&'static str> {
 /// per-pixel colours only: a handshake's buffer and material registers hold state by design.
 pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let cfg = &design.cfg;
-    if cfg.interface().handshake() || cfg.colour() == crate::config::Colour::Static {
-        return Err(error::input(format!(
-            "prove --pipelining: {} has the {} interface with {} colours; allowed: --interface valid with per-pixel colours (a buffer or material registers keep state by design: their edge is `specgen prove` without --pipelining)",
-            design.dir.display(),
-            cfg.interface().name(),
-            if cfg.colour() == crate::config::Colour::Static { "static" } else { "per-pixel" }
-        )));
+    if let Some(why) = pipelining_refused(design) {
+        return Err(error::input(format!("prove --pipelining: {why}")));
     }
     let k = cfg.stages();
     let top = cfg.top();
     let twin_top = format!("{top}_depth0");
     let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
     let w = work.path();
-    let mut files = Vec::new();
-    if !design.sim_models.is_empty() {
-        // the datapath is compared, so an ECP5 unit's primitives are their simulation models
-        for (i, m) in design.sim_models.iter().enumerate() {
-            let name = format!("model{i}.v");
-            let bytes = crate::small_file::read_bytes(m, crate::small_file::UNIT_FILE_MAX).map_err(|e| error::input(format!("{} {e}", m.display())))?;
-            std::fs::write(w.join(&name), bytes).map_err(|e| Error::io("write", w.join(&name), e))?;
-            files.push(name);
-        }
-    }
+    // the datapath is compared, so an ECP5 unit's primitives are their simulation models (the
+    // twin's are the same modules, guarded)
+    let mut files = design.stage_sim_models(w)?;
     files.extend(design.stage(w)?);
     // the twin: the same parameters at depth 0, its files by its own names beside the unit's
+    // (its simulation models, under sim/, are the unit's)
     let twin_params = crate::config::Params { stages: 0, top: twin_top.clone(), ..cfg.params.clone() };
     let twin = crate::plan::Plan::from_params(twin_params).map_err(|e| error::input(format!("the depth-0 twin of {}: {e}", design.dir.display())))?;
-    for (name, bytes) in crate::emit::generate_files(&twin) {
-        let path = w.join(&name);
-        if name.ends_with(".v") && !name.contains('/') && name != format!("{twin_top}_tb.sv") {
-            files.push(name.clone());
-        }
-        if !name.contains('/') {
-            std::fs::write(&path, bytes).map_err(|e| Error::io("write", path, e))?;
+    for (name, bytes) in crate::emit::generate_files(&twin).into_iter().filter(|(name, _)| !name.contains('/')) {
+        put(w, &name, bytes)?;
+        if name.ends_with(".v") {
+            files.push(name);
         }
     }
     for (c, name) in [(cfg, format!("{top}_prove_ports")), (&twin.cfg, format!("{twin_top}_prove_ports"))] {
         let file = format!("{name}.v");
-        std::fs::write(w.join(&file), crate::cosim::adapter::adapter_named(c, &name)).map_err(|e| Error::io("write", w.join(&file), e))?;
+        put(w, &file, crate::cosim::adapter::adapter_named(c, &name))?;
         files.push(file);
     }
     let name = format!("{top}_prove_pipelining");
@@ -380,14 +390,14 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     .render()
     .expect("the pipelining harness renders")
         + "\n";
-    std::fs::write(w.join("harness.v"), harness).map_err(|e| Error::io("write", w.join("harness.v"), e))?;
+    put(w, "harness.v", harness)?;
     files.push("harness.v".into());
     let script = |replay: Option<(u32, u32)>, file: &str| -> Result<(), Error> {
         let (replay_steps, replay_skip) = replay.unwrap_or((0, 0));
         let text =
             PipeliningScript { version: crate::names::VERSION, harness: &name, files: &files, replay_steps, replay_skip }.render().expect("the script renders")
                 + "\n";
-        std::fs::write(w.join(file), text).map_err(|e| Error::io("write", w.join(file), e))
+        put(w, file, text)
     };
     script(None, "models.ys")?;
     let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
@@ -402,7 +412,7 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
         (format!("read_aiger started.aig; fold; strash; orpos; frames -F {frames} -i; strash; orpos; iprove"), (frames, 0)),
         (format!("read_aiger free.aig; fold; strash; orpos; frames -F {frames}; comb; cone -O {} -s; strash; iprove", k + 1), (frames, k + 1)),
     ];
-    let properties = pipelining_properties(k);
+    let properties = PIPELINING_PROPERTIES.to_vec();
     for (abc_script, replay) in checks {
         let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
             return Ok(Proof { name, properties, verdict: Verdict::Undecided { bounded: None }, seconds: t0.elapsed().as_secs_f64() });
@@ -414,14 +424,12 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
             return Err(error::tool(&abc, format!("iprove neither proved nor refuted the miter: {said}")));
         }
         script(Some(replay), "replay.ys")?;
-        let _ = std::fs::remove_file(w.join("trace.vcd"));
-        // sat ends with an error when it finds the failure it looks for
-        let _ = run(&yosys, &["-s".into(), "replay.ys".into()], w, tools.limit);
-        if replay.1 > 0 && !w.join("trace.vcd").is_file() {
+        let found = run_sat(&yosys, w, "replay.ys", tools.limit)? == Some(false);
+        if replay.1 > 0 && !found {
             // no run reaches the failing state from the replay's: state kept beyond K + 1 edges
             return Ok(Proof { name, properties, verdict: Verdict::Incomplete { bounded: frames }, seconds: t0.elapsed().as_secs_f64() });
         }
-        let vcd = trace(&Tools { yosys: yosys.clone(), abc: abc.clone(), limit: tools.limit }, w, design)?;
+        let vcd = trace(&yosys, w, design)?;
         return Ok(Proof { name, properties, verdict: Verdict::Failed { frame: replay.0 - 1, vcd }, seconds: t0.elapsed().as_secs_f64() });
     }
     Ok(Proof { name, properties, verdict: Verdict::Proved, seconds: t0.elapsed().as_secs_f64() })

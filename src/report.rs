@@ -39,8 +39,8 @@ pub struct UnitAccuracy {
 }
 
 /// Exhaustive (or strided) sweep of `(cos_g ∈ [0, 2^F], n)` on two threads.
-pub(crate) fn unit_accuracy(cfg: &Config) -> UnitAccuracy {
-    let m = crate::plan::Plan::from_params(crate::config::Params { stages: 0, ..cfg.params.clone() }).expect("a valid configuration at stages 0").model();
+pub(crate) fn unit_accuracy(m: &Model) -> UnitAccuracy {
+    let cfg = &m.cfg;
     let f = cfg.f();
     let one = 1u64 << f;
     let n_count = 1u64 << cfg.n_bits();
@@ -214,7 +214,7 @@ pub struct Figure {
 }
 
 /// The figures: analogues of the paper's, plus the ROM cut-off and two error maps.
-pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
+pub fn figures(cfg: &Config, acc: &UnitAccuracy, unit: &dyn crate::models::SpecularUnit) -> Vec<Figure> {
     let mut v = Vec::new();
     let alpha = 0.15;
     v.push(Figure {
@@ -263,7 +263,7 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
         ),
     });
     let n_max = (1u64 << cfg.n_bits()) as f64;
-    if let Some(fig) = cutoff_figure(cfg) {
+    if let Some(fig) = cutoff_figure(cfg, unit) {
         v.push(fig);
     }
     v.push(Figure {
@@ -302,12 +302,10 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy) -> Vec<Figure> {
     v
 }
 
-/// The cut-off angle from the generated ROM (the quadratic model's).
 /// The cut-off angle per n, stored (points) and ideal (line), for a model that stores its
 /// cut-off ([`SpecularUnit::cut_off`](crate::models::SpecularUnit::cut_off),
 /// [`ideal_cut_off`](crate::models::SpecularUnit::ideal_cut_off)); none for the others.
-fn cutoff_figure(cfg: &Config) -> Option<Figure> {
-    let unit = crate::models::unit(cfg);
+fn cutoff_figure(cfg: &Config, unit: &dyn crate::models::SpecularUnit) -> Option<Figure> {
     let count = 1u32 << cfg.n_bits();
     let table: Vec<u32> = (0..count).map(|n| unit.cut_off(n)).collect::<Option<_>>()?;
     let ideal: Vec<f64> = (1..count).map(|n| unit.ideal_cut_off(n)).collect::<Option<_>>()?;
@@ -543,8 +541,10 @@ struct ReportPage<'a> {
 
 /// Builds `index.html` and `report.json` (file name, bytes).
 pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec<u8>)> {
-    let unit = unit_accuracy(cfg);
-    let figures = figures(cfg, &unit);
+    // the configured model, made once (its fit or tables) for every figure and row of its own
+    let model = Model::new(cfg);
+    let unit = unit_accuracy(&model);
+    let figures = figures(cfg, &unit, model.unit());
     let models = models_compared(cfg);
     let mut fids = Vec::new();
     let rows: Vec<ModelComparison> = models
@@ -604,7 +604,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
         unit_rows.push(Row { name: "k quantisation: |S(k_q) − S(k)|, max", value: sig3(k) });
     }
     let mut data = data;
-    let reference = crate::models::unit(cfg).reference_words();
+    let reference = model.unit().reference_words();
     let hw_given = data.models.iter().any(|m| m.hardware.is_some());
     let page = ReportPage {
         data: &data,
@@ -635,7 +635,7 @@ mod tests {
     #[test]
     fn small_unit_accuracy_is_within_contract() {
         let cfg = Config::new(crate::config::Params { cos_frac_bits: 8, n_bits: 4, ..Default::default() }).unwrap();
-        let acc = unit_accuracy(&cfg);
+        let acc = unit_accuracy(&Model::new(&cfg));
         assert_eq!(acc.points, 257 * 16);
         assert!(acc.intensity_max_ulp < 1.0 && acc.spec_max_ulp < 1.0);
         assert!(acc.intensity_max_ulp > 0.0);

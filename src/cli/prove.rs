@@ -44,14 +44,8 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
     if let Some(t) = &args.trace {
         design.refuse_output("--trace", t)?;
     }
-    let cfg = &design.cfg;
-    if args.pipelining && (cfg.interface().handshake() || cfg.colour() == specgen::config::Colour::Static) {
-        return Err(super::usage(format!(
-            "invalid --pipelining: {} has the {} interface{}; allowed: --interface valid with per-pixel colours (a buffer or material registers keep state by design; `specgen prove` without --pipelining proves their edge)",
-            args.rtl.display(),
-            cfg.interface().name(),
-            if cfg.colour() == specgen::config::Colour::Static { " with static colours" } else { "" }
-        )));
+    if let Some(why) = args.pipelining.then(|| specgen::prove::pipelining_refused(&design)).flatten() {
+        return Err(super::usage(format!("invalid --pipelining: {why}")));
     }
     let tools = Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit) };
     tools.check()?;

@@ -51,6 +51,12 @@ pub struct Design {
 /// The largest manifest read (a generated one is a few kB).
 const MANIFEST_MAX_BYTES: u64 = 1 << 20;
 
+/// Copies the unit's file `from` into `work` as `name` (bounded read).
+fn copy_in(from: &Path, work: &Path, name: &str) -> Result<(), Error> {
+    let bytes = crate::small_file::read_bytes(from, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", from.display())))?;
+    std::fs::write(work.join(name), bytes).map_err(|e| Error::io("write", work.join(name), e))
+}
+
 /// Whether `a` and `b` are the same file (device and inode; both must exist).
 use crate::output::same_file;
 
@@ -61,10 +67,7 @@ impl Design {
     /// a command line. Copies, not links: a WebAssembly yosys (YoWASP) sees its working
     /// directory and nothing a link there points to. Returns the sources' names, in order.
     pub(crate) fn stage(&self, work: &Path) -> Result<Vec<String>, Error> {
-        let copy = |from: &Path, name: &str| -> Result<(), Error> {
-            let bytes = crate::small_file::read_bytes(from, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", from.display())))?;
-            std::fs::write(work.join(name), bytes).map_err(|e| Error::io("write", work.join(name), e))
-        };
+        let copy = |from: &Path, name: &str| copy_in(from, work, name);
         let mut names = Vec::new();
         for (i, src) in self.sources.iter().enumerate() {
             let name = format!("src{i}.v");
@@ -77,6 +80,18 @@ impl Design {
             if from.exists() && !work.join(&file).exists() {
                 copy(&from, &file)?;
             }
+        }
+        Ok(names)
+    }
+
+    /// Copies the unit's simulation models (an ECP5 unit's primitives) into `work` as
+    /// `model<i>.v`, for a tool that reads the datapath through them; returns their names.
+    pub(crate) fn stage_sim_models(&self, work: &Path) -> Result<Vec<String>, Error> {
+        let mut names = Vec::new();
+        for (i, m) in self.sim_models.iter().enumerate() {
+            let name = format!("model{i}.v");
+            copy_in(m, work, &name)?;
+            names.push(name);
         }
         Ok(names)
     }
