@@ -39,13 +39,17 @@ fn own_entry(dir: &Path) -> bool {
     std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir() && m.uid() == crate::output::euid())
 }
 
-fn tool_version(tool: &str, package: &str) -> Result<String, Failure> {
-    let out = crate::process::command(tool)
-        .arg(if tool == "iverilog" { "-V" } else { "--version" })
-        .output()
-        .map_err(|_| input(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))?;
-    let text = String::from_utf8_lossy(&out.stdout);
-    Ok(text.lines().next().unwrap_or("").to_string())
+/// What identifies the installed `tool` in a cache key: the program the PATH finds, its size,
+/// modification time and inode (an upgrade or another install changes them), read from the
+/// file system, not by running it (`verilator --version` starts Perl: 30 ms a call).
+fn tool_identity(tool: &str, package: &str) -> Result<String, Failure> {
+    use std::os::unix::fs::MetadataExt;
+    let missing = || input(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})"));
+    let paths = std::env::var_os("PATH").ok_or_else(missing)?;
+    let program = std::env::split_paths(&paths).map(|d| d.join(tool)).find(|p| p.is_file()).ok_or_else(missing)?;
+    let real = std::fs::canonicalize(&program).unwrap_or(program);
+    let m = std::fs::metadata(&real).map_err(|_| missing())?;
+    Ok(format!("{} {} {} {}", real.display(), m.len(), m.mtime(), m.ino()))
 }
 
 /// A built simulator, ready to run vectors.
@@ -64,9 +68,10 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         Simulator::Verilator => ("verilator", "verilator", VERILATOR_HARNESS),
         Simulator::Icarus => ("iverilog", "iverilog", ICARUS_BENCH),
     };
-    let version = tool_version(tool, package)?;
+    let version = tool_identity(tool, package)?;
     let mut h = Sha256::new();
-    for part in [version.as_str(), harness, &top, &adapter, &format!("{trace} {simulator:?} v3")] {
+    let (clocked, tagged) = (design.cfg.clocked(), design.cfg.carried_tag_bits() > 0);
+    for part in [version.as_str(), harness, &top, &adapter, &format!("{trace} {simulator:?} {clocked} {tagged} v4")] {
         h.update(part.as_bytes());
         h.update([0u8]);
     }
@@ -122,7 +127,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
             cmd.current_dir(work.path())
                 .args(["--cc", "--exe", "--build", "-O3", "--prefix", "Vdut", "--top-module", "specgen_cosim_top"])
                 .args(["-Wno-fatal", "-Wno-lint", "-Wno-style", "-Mdir", "obj", "-o", "../harness"])
-                .args(["-j", "2", "-CFLAGS", &format!("-O2 -DTRACE={}", trace as u8)])
+                .args(["-j", "2", "-CFLAGS", &format!("-O2 -DTRACE={} -DCLOCKED={} -DTAGGED={}", trace as u8, clocked as u8, tagged as u8)])
                 .arg("-MAKEFLAGS")
                 .arg("OPT_FAST=-O2");
             if trace {
@@ -168,8 +173,21 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
 }
 
 const IN_RECORD: usize = 24;
-const OUT_RECORD: usize = 24;
+/// An output record: 24 bytes with `out_tag`, 12 without (`-DTAGGED`).
+fn out_record(tagged: bool) -> usize {
+    if tagged {
+        24
+    } else {
+        12
+    }
+}
+/// Cycles a batch: the harness's `BATCH`.
 const CHUNK: u64 = 1 << 14;
+
+/// The input record's flags byte.
+fn flags(c: &Cycle) -> u8 {
+    c.valid as u8 | (c.rst as u8) << 1 | (!c.stall as u8) << 2 | (c.load as u8) << 3 | (c.disabled as u8) << 4
+}
 
 fn encode(c: &Cycle, buf: &mut Vec<u8>) {
     buf.extend_from_slice(&c.inputs.cos_g.to_le_bytes());
@@ -177,9 +195,17 @@ fn encode(c: &Cycle, buf: &mut Vec<u8>) {
     for k in c.inputs.ks {
         buf.extend_from_slice(&(k as u16).to_le_bytes());
     }
-    buf.push(c.valid as u8 | (c.rst as u8) << 1 | (!c.stall as u8) << 2 | (c.load as u8) << 3 | (c.disabled as u8) << 4);
+    buf.push(flags(c));
     buf.extend_from_slice(&[0, 0, 0]);
     buf.extend_from_slice(&c.tag.to_le_bytes());
+}
+
+/// One cycle folded into a batch's digest of the inputs applied, as the harness folds the cycle
+/// it applied (its `applied`, over the input record's fields).
+fn applied(h: u64, c: &Cycle) -> u64 {
+    let [r, g, b] = c.inputs.ks.map(|k| k as u16 as u64);
+    let a = c.inputs.cos_g as u64 | (c.inputs.n as u16 as u64) << 32 | (flags(c) as u64) << 48;
+    (h.rotate_left(7) ^ a).wrapping_add((r | g << 16 | b << 32) ^ c.tag)
 }
 
 fn decode(rec: &[u8]) -> Sampled {
@@ -189,7 +215,7 @@ fn decode(rec: &[u8]) -> Sampled {
         valid: rec[10] & 1 != 0,
         in_ready: rec[10] & 4 != 0,
         idle: rec[10] & 8 != 0,
-        tag: u64::from_le_bytes(rec[16..24].try_into().expect("8 bytes")),
+        tag: rec.get(16..24).map_or(0, |t| u64::from_le_bytes(t.try_into().expect("8 bytes"))),
     }
 }
 
@@ -250,63 +276,24 @@ pub fn run_one(
     let mut checker = Checker::new(model, run);
     match built.simulator {
         Simulator::Verilator => {
-            let mut child = crate::process::command(built.dir.join("harness"))
-                .current_dir(&design.dir)
-                .envs(env.iter().map(|(k, v)| (k, v.as_os_str())))
-                .stdin(Stdio::piped())
-                .stdout(Stdio::piped())
-                .stderr(Stdio::piped())
-                .spawn()
-                .map_err(|e| error::tool("verilator", format!("cannot start the Verilator harness: {e}")))?;
-            let limit = time_limit(Simulator::Verilator, stim.len());
-            let (_alive, fired) = watchdog(child.id(), limit);
-            let mut stdin = child.stdin.take().unwrap();
-            let mut stdout = child.stdout.take().unwrap();
-            let len = stim.len();
-            std::thread::scope(|scope| -> Result<(), Failure> {
-                scope.spawn(move || {
-                    let mut buf = Vec::with_capacity(CHUNK as usize * IN_RECORD);
-                    let mut i = 0;
-                    while i < len {
-                        buf.clear();
-                        let end = (i + CHUNK).min(len);
-                        for j in i..end {
-                            encode(&stim.cycle(j), &mut buf);
-                        }
-                        if stdin.write_all(&buf).is_err() {
-                            return;
-                        }
-                        i = end;
-                    }
-                });
-                let mut buf = vec![0u8; CHUNK as usize * OUT_RECORD];
-                let mut t = 0;
-                while t < len {
-                    let n = (len - t).min(CHUNK) as usize;
-                    if let Err(e) = stdout.read_exact(&mut buf[..n * OUT_RECORD]) {
-                        if fired.load(Ordering::SeqCst) {
-                            let _ = child.wait();
-                            return Err(timed_out("verilator", limit, len));
-                        }
-                        let mut err = String::new();
-                        let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
-                        let _ = child.wait();
-                        return Err(error::tool("verilator", format!("the Verilator harness stopped after {t} of {len} cycles ({e}):\n{}", err.trim_end())));
-                    }
-                    for k in 0..n {
-                        checker.check(stim, t + k as u64, decode(&buf[k * OUT_RECORD..(k + 1) * OUT_RECORD]));
-                    }
-                    t += n as u64;
-                    progress.fetch_add(n as u64, Ordering::Relaxed);
-                }
-                Ok(())
-            })?;
-            let status = child.wait().map_err(|e| error::tool("simulator", e.to_string()))?;
-            if !status.success() {
-                let mut err = String::new();
-                let _ = child.stderr.take().unwrap().read_to_string(&mut err);
-                return Err(error::tool("verilator", format!("the Verilator harness failed ({status}): {err}")));
+            if !checker.digestible() {
+                run_verilator(built, design, &mut checker, stim, progress, env, false)?;
+                return Ok(checker.report);
             }
+            if run_verilator(built, design, &mut checker, stim, progress, env, true)? {
+                return Ok(checker.report);
+            }
+            // a batch's digest differed: run again with every record compared, which finds the
+            // first mismatch and describes it
+            let mut checker = Checker::new(model, run);
+            run_verilator(built, design, &mut checker, stim, &AtomicU64::new(0), env, false)?;
+            if checker.report.first.is_none() {
+                return Err(error::tool(
+                    "verilator",
+                    "the harness's digest of a batch differed from the golden model's, but none of its records did: a harness of another version?",
+                ));
+            }
+            Ok(checker.report)
         }
         Simulator::Icarus => {
             let work = crate::process::temp_dir().map_err(|e| error::tool("simulator", e.to_string()))?;
@@ -347,6 +334,12 @@ pub fn run_one(
             let said = String::from_utf8_lossy(&out.stdout);
             let file = std::fs::File::open(&vout).map_err(|e| error::tool("vvp", format!("vvp wrote no output ({e}); it said:\n{}", said.trim_end())))?;
             let mut t = 0;
+            let (mut cycles, mut samples) = (Vec::new(), Vec::with_capacity(CHUNK as usize));
+            let mut check = |t: u64, samples: &mut Vec<Sampled>| {
+                let from = t - samples.len() as u64;
+                stim.fill(from, samples.len() as u64, &mut cycles);
+                checker.check_batch(from, &cycles, samples.drain(..));
+            };
             for line in BufReader::new(file).lines() {
                 let line = line.map_err(|e| error::tool("simulator", e.to_string()))?;
                 let f: Vec<&str> = line.split_whitespace().collect();
@@ -362,16 +355,145 @@ pub fn run_one(
                     tag: u64::from_str_radix(f[8], 16).unwrap_or(u64::MAX),
                 };
                 // outputs that are x/z before the pipeline fills are never compared (see Checker)
-                checker.check(stim, t, s);
+                if t >= stim.len() {
+                    return Err(error::tool("vvp", format!("vvp returned more than the {} cycles it was given", stim.len())));
+                }
+                samples.push(s);
                 t += 1;
+                if samples.len() as u64 == CHUNK {
+                    check(t, &mut samples);
+                }
             }
+            check(t, &mut samples);
             if t != stim.len() {
                 return Err(error::tool("vvp", format!("vvp returned {t} of {} cycles", stim.len())));
             }
             progress.fetch_add(t, Ordering::Relaxed);
+            Ok(checker.report)
         }
     }
-    Ok(checker.report)
+}
+
+/// Gives a pipe to the harness room for a whole batch (1 MiB; the 64 KiB default wakes each
+/// side several times a batch, which cost as much as the simulation). Best effort: a system
+/// that refuses keeps the default, only slower.
+fn widen_pipe(pipe: &impl std::os::fd::AsRawFd) {
+    // SAFETY: F_SETPIPE_SZ on a pipe this process holds open; it changes only its capacity
+    unsafe { libc::fcntl(pipe.as_raw_fd(), libc::F_SETPIPE_SZ, 1 << 20) };
+}
+
+/// Runs `stim` through the Verilator harness into `checker`. With `digest`, the harness
+/// returns one digest a batch of what it sampled ([`super::checking::sample_hash`]) instead of
+/// its records, checked against the golden model's ([`Checker::digest_batch`]); returns false
+/// at the first batch whose digest differs (nothing is known then but that it does).
+fn run_verilator(
+    built: &Built,
+    design: &Design,
+    checker: &mut Checker,
+    stim: &dyn Stimulus,
+    progress: &AtomicU64,
+    env: &[(&str, &Path)],
+    digest: bool,
+) -> Result<bool, Failure> {
+    // the exhaustive sweep is made by the harness itself (no input stream); with records, each
+    // batch's digest of what it applied is checked against the cycles checked here
+    let sweep = stim.harness_sweep();
+    let mut cmd = crate::process::command(built.dir.join("harness"));
+    cmd.current_dir(&design.dir).envs(env.iter().map(|(k, v)| (k, v.as_os_str())));
+    match &sweep {
+        Some(spec) => cmd.env("SPECGEN_SWEEP", spec).stdin(Stdio::null()),
+        None => cmd.stdin(Stdio::piped()),
+    };
+    if digest {
+        // what the harness folds: every cycle's outputs (combinational), or only the valid ones
+        // after the first reset (pipelined)
+        cmd.env("SPECGEN_DIGEST", if design.cfg.latency() > 0 { "1" } else { "0" });
+    }
+    let mut child =
+        cmd.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().map_err(|e| error::tool("verilator", format!("cannot start the Verilator harness: {e}")))?;
+    let limit = time_limit(Simulator::Verilator, stim.len());
+    let (_alive, fired) = watchdog(child.id(), limit);
+    let stdin = child.stdin.take();
+    let mut stdout = child.stdout.take().unwrap();
+    if let Some(stdin) = &stdin {
+        widen_pipe(stdin);
+    }
+    widen_pipe(&stdout);
+    let len = stim.len();
+    // a batch: its records, then the digest of the inputs applied (a sweep); or only the
+    // digest of the outputs
+    let record = if digest { 0 } else { out_record(design.cfg.carried_tag_bits() > 0) };
+    let trailer = if sweep.is_some() || digest { 8 } else { 0 };
+    let matched = std::thread::scope(|scope| -> Result<bool, Failure> {
+        if let Some(mut stdin) = stdin {
+            scope.spawn(move || {
+                let mut buf = Vec::with_capacity(CHUNK as usize * IN_RECORD);
+                let mut cycles = Vec::with_capacity(CHUNK as usize);
+                let mut i = 0;
+                while i < len {
+                    buf.clear();
+                    let end = (i + CHUNK).min(len);
+                    stim.fill(i, end - i, &mut cycles);
+                    for c in &cycles {
+                        encode(c, &mut buf);
+                    }
+                    if stdin.write_all(&buf).is_err() {
+                        return;
+                    }
+                    i = end;
+                }
+            });
+        }
+        let mut buf = vec![0u8; CHUNK as usize * record + trailer];
+        let mut cycles = Vec::with_capacity(CHUNK as usize);
+        let mut t = 0;
+        while t < len {
+            let n = (len - t).min(CHUNK) as usize;
+            if let Err(e) = stdout.read_exact(&mut buf[..n * record + trailer]) {
+                if fired.load(Ordering::SeqCst) {
+                    let _ = child.wait();
+                    return Err(timed_out("verilator", limit, len));
+                }
+                let mut err = String::new();
+                let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
+                let _ = child.wait();
+                return Err(error::tool("verilator", format!("the Verilator harness stopped after {t} of {len} cycles ({e}):\n{}", err.trim_end())));
+            }
+            stim.fill(t, n as u64, &mut cycles);
+            let trailer_word = || u64::from_le_bytes(buf[n * record..n * record + 8].try_into().expect("8 bytes"));
+            if digest {
+                if checker.digest_batch(t, &cycles) != trailer_word() {
+                    let _ = child.kill();
+                    let _ = child.wait();
+                    return Ok(false);
+                }
+            } else {
+                checker.check_batch(t, &cycles, buf[..n * record].chunks_exact(record).map(decode));
+                if trailer > 0 && trailer_word() != cycles.iter().fold(0, applied) {
+                    let _ = child.kill();
+                    let _ = child.wait();
+                    let to = t + n as u64;
+                    return Err(error::tool(
+                        "verilator",
+                        format!("the harness's sweep applied other inputs than the checker's in cycles {t}..{to} (harness and specgen of two versions?)"),
+                    ));
+                }
+            }
+            t += n as u64;
+            progress.fetch_add(n as u64, Ordering::Relaxed);
+        }
+        Ok(true)
+    })?;
+    if !matched {
+        return Ok(false);
+    }
+    let status = child.wait().map_err(|e| error::tool("simulator", e.to_string()))?;
+    if !status.success() {
+        let mut err = String::new();
+        let _ = child.stderr.take().unwrap().read_to_string(&mut err);
+        return Err(error::tool("verilator", format!("the Verilator harness failed ({status}): {err}")));
+    }
+    Ok(true)
 }
 
 /// Runs several independent stimuli on `jobs` parallel simulator processes and merges the reports.

@@ -1,8 +1,8 @@
 //! The comparison with the golden model, cycle by cycle, and how a mismatch is described.
 
-use super::{Cycle, Sampled, Stimulus};
+use super::{Cycle, Sampled};
 use crate::config::{Colour, Config};
-use crate::models::Model;
+use crate::models::{Inputs, Model, Outputs};
 use std::collections::VecDeque;
 
 /// The first disagreement found.
@@ -30,6 +30,36 @@ pub struct Report {
     /// checked cycles with at least one difference (at most `checked`)
     pub mismatches: u64,
     pub first: Option<Mismatch>,
+}
+
+/// What a cycle of a `valid` unit must show.
+struct Due {
+    expected: Sampled,
+    /// the data and tag are compared (else only `out_valid`, and `idle`)
+    data_compared: bool,
+    /// the cycle whose inputs the outputs belong to
+    src: Cycle,
+}
+
+/// The hash of checked cycle `t`: `out_valid`, and the outputs and tag when they are compared.
+/// A batch's digest is the sum of its cycles' hashes (mod 2^64): each hash mixes (multiply,
+/// shift) the cycle's index with what it shows, so differences never cancel as in a plain
+/// sum, and no cycle waits for the one before. The Verilator harness hashes what it samples in
+/// the same steps (its `sample_hash`).
+pub fn sample_hash(t: u64, s: &Sampled, compared: bool) -> u64 {
+    let mix = |x: u64| {
+        let x = x.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        x ^ (x >> 29)
+    };
+    let o = &s.outputs;
+    let (w0, w1) = if compared {
+        let w0 = s.valid as u64 | 2 | (o.done as u64) << 2 | (o.intensity as u64) << 32;
+        let w1 = (o.spec[0] & 0xffff) as u64 | ((o.spec[1] & 0xffff) as u64) << 16 | ((o.spec[2] & 0xffff) as u64) << 32;
+        (w0, w1 ^ s.tag.rotate_left(17))
+    } else {
+        (s.valid as u64, 0)
+    };
+    mix(mix(t ^ w0.rotate_left(8)) ^ w1)
 }
 
 /// A pixel taken and not yet delivered (behind a handshake).
@@ -62,8 +92,17 @@ pub struct Checker<'a> {
     material: [u32; 3],
     /// a load has set them (before it, they hold no value)
     material_loaded: bool,
-    /// `valid`: the material in effect in each of the last `latency + 1` cycles
-    history: VecDeque<[u32; 3]>,
+    /// `valid`, pipelined: the stimulus's last `latency + 1` cycles as given, each with the
+    /// golden model's outputs for it (the oldest is the one whose result is on the outputs now)
+    recent: VecDeque<(Cycle, Outputs)>,
+    /// a batch's scratch: what each cycle offers under the material then, whether a load had
+    /// set the material, and the golden model's outputs
+    offered: Vec<Inputs>,
+    loaded: Vec<bool>,
+    expected: Vec<Outputs>,
+    /// `valid`: pixels offered in the last `latency` cycles after the last reset (the pipeline
+    /// holds one: `idle` low)
+    offered_inside: u64,
     /// `ready`/`axis`: the buffer's places, the pixels inside, the last cycle's sample
     places: Option<usize>,
     pending: VecDeque<Pending>,
@@ -87,7 +126,11 @@ impl<'a> Checker<'a> {
             static_colour: cfg.colour() == Colour::Static,
             material: [0; 3],
             material_loaded: false,
-            history: VecDeque::new(),
+            recent: VecDeque::new(),
+            offered: Vec::new(),
+            loaded: Vec::new(),
+            expected: Vec::new(),
+            offered_inside: 0,
             places,
             pending: VecDeque::new(),
             pending_before: [0; 3],
@@ -95,15 +138,6 @@ impl<'a> Checker<'a> {
             last_failed: None,
             report: Report::default(),
         }
-    }
-
-    /// The outputs the golden model gives for a pixel offered in `c` under `material`.
-    fn expect(&self, c: &Cycle, material: [u32; 3]) -> Sampled {
-        let mut x = c.inputs;
-        if self.static_colour {
-            x.ks = material;
-        }
-        Sampled { outputs: self.model.eval(x), valid: true, tag: c.tag, ..Sampled::default() }
     }
 
     fn fail(&mut self, t: u64, cycle_in: Cycle, expected: Sampled, actual: Sampled, data_compared: bool, rule: Option<String>) {
@@ -117,70 +151,151 @@ impl<'a> Checker<'a> {
         }
     }
 
-    /// Checks the outputs sampled in cycle `t` (before its rising edge).
-    pub fn check(&mut self, stim: &dyn Stimulus, t: u64, got: Sampled) {
-        self.report.cycles += 1;
-        let mut now = stim.cycle(t);
-        if now.disabled {
-            // the clock enable low: the edge is one without a transfer or a load, as if nothing
-            // were offered and the consumer stalled
-            (now.valid, now.stall, now.load) = (false, true, false);
+    /// Checks the outputs sampled in cycles `t0 ..` (each before its rising edge), whose
+    /// stimulus is `cycles`; batches come in order, from cycle 0. The golden model evaluates the
+    /// batch at once, each pixel under the material in effect when it is offered (a load takes
+    /// effect at its edge, and not at an edge the clock enable leaves out).
+    pub fn check_batch(&mut self, t0: u64, cycles: &[Cycle], got: impl IntoIterator<Item = Sampled>) {
+        let (mut offered, mut loaded, mut expected) = (std::mem::take(&mut self.offered), std::mem::take(&mut self.loaded), std::mem::take(&mut self.expected));
+        offered.clear();
+        loaded.clear();
+        for c in cycles {
+            offered.push(if self.static_colour { Inputs { ks: self.material, ..c.inputs } } else { c.inputs });
+            loaded.push(self.material_loaded);
+            if c.load && !c.disabled {
+                self.material = c.inputs.ks;
+                self.material_loaded = true;
+            }
         }
+        self.model.eval_batch(&offered, &mut expected);
+        for (k, got) in got.into_iter().enumerate().take(cycles.len()) {
+            self.check(cycles[k], t0 + k as u64, got, expected[k], loaded[k]);
+        }
+        (self.offered, self.loaded, self.expected) = (offered, loaded, expected);
+    }
+
+    /// Checks cycle `t`: stimulus `now`, sampled `got`, the golden model's outputs for what it
+    /// offers, and whether the material had been loaded.
+    fn check(&mut self, now: Cycle, t: u64, got: Sampled, expected: Outputs, loaded: bool) {
+        let now = self.arrive(now, expected);
         if self.places.is_some() {
-            self.check_stream(now, t, got);
+            self.check_stream(now, t, got, expected);
         } else {
-            self.check_cycle(stim, now, t, got);
-        }
-        if now.load {
-            self.material = now.inputs.ks;
-            self.material_loaded = true;
+            self.check_cycle(now, t, got, expected, loaded);
         }
     }
 
-    fn check_cycle(&mut self, stim: &dyn Stimulus, now: Cycle, t: u64, got: Sampled) {
-        let s = self.latency;
-        if self.static_colour {
-            self.history.push_back(self.material);
-            if self.history.len() as u64 > s + 1 {
-                self.history.pop_front();
+    /// A cycle comes in, with the golden model's outputs for what it offers: counted, kept
+    /// while its result may be due; returned as its edge acts (the clock enable low: an edge
+    /// without a transfer or a load, as if nothing were offered and the consumer stalled).
+    #[inline(always)]
+    fn arrive(&mut self, mut now: Cycle, outputs: Outputs) -> Cycle {
+        self.report.cycles += 1;
+        if self.places.is_none() && self.latency > 0 {
+            self.recent.push_back((now, outputs));
+            if self.recent.len() as u64 > self.latency + 1 {
+                self.recent.pop_front();
             }
         }
-        let (exp_valid, data_compared, src) = if s == 0 {
+        if now.disabled {
+            (now.valid, now.stall, now.load) = (false, true, false);
+        }
+        now
+    }
+
+    fn check_cycle(&mut self, now: Cycle, t: u64, got: Sampled, outputs: Outputs, loaded: bool) {
+        let Some(due) = self.due(now, t, outputs, loaded) else { return };
+        let e = due.expected;
+        let mut ok = got.valid == e.valid && (!due.data_compared || (got.outputs == e.outputs && got.tag == e.tag));
+        if self.static_colour {
+            ok &= got.idle == e.idle;
+        }
+        if !ok {
+            self.fail(t, due.src, e, got, due.data_compared, None);
+        }
+    }
+
+    /// What cycle `t` of a `valid` unit must show (`None`: nothing, before the first reset of a
+    /// pipelined unit), and the window moved on; counts the cycle checked and its result.
+    #[inline(always)]
+    fn due(&mut self, now: Cycle, t: u64, outputs: Outputs, loaded: bool) -> Option<Due> {
+        let s = self.latency;
+        let (exp_valid, data_compared, (src, outputs)) = if s == 0 {
             // combinational: the outputs follow the inputs in every cycle, but a static colour
             // has no value (x in Icarus) before its first load
-            (now.valid, !self.static_colour || self.material_loaded, now)
+            (now.valid, !self.static_colour || loaded, (now, outputs))
         } else {
             // valid needs a defined pipeline: a reset at some cycle before t
             let Some(last_rst) = self.last_rst else {
                 if now.rst {
                     self.last_rst = Some(t);
                 }
-                return;
+                return None;
             };
-            let v = t >= s && stim.cycle(t - s).valid && last_rst < t - s;
-            let src = if t >= s { stim.cycle(t - s) } else { now };
-            (v, v, src)
+            // the cycle whose result is due now, `s` before (`recent` holds s + 1 from t ≥ s)
+            let due = (t >= s).then(|| self.recent[0]);
+            let v = due.is_some_and(|(d, _)| d.valid && last_rst < t - s);
+            (v, v, due.unwrap_or((now, outputs)))
         };
-        let material = self.history.front().copied().unwrap_or(self.material);
-        let mut expected = Sampled { valid: exp_valid, ..self.expect(&src, material) };
-        let mut ok = got.valid == exp_valid && (!data_compared || (got.outputs == expected.outputs && got.tag == expected.tag));
+        let mut expected = Sampled { outputs, valid: exp_valid, tag: src.tag, ..Sampled::default() };
         if self.static_colour {
-            // idle: no pixel taken since the last reset is still in the pipeline
-            let from = t.saturating_sub(s).max(self.last_rst.map_or(0, |r| r + 1));
-            expected.idle = s == 0 || !(from..t).any(|j| stim.cycle(j).valid);
-            ok &= got.idle == expected.idle;
+            // idle: no pixel offered since the last reset is still in the pipeline (offered in
+            // the last s cycles)
+            expected.idle = s == 0 || self.offered_inside == 0;
         }
         if now.rst {
             self.last_rst = Some(t);
         }
+        // the window moves on to t + 1 - s ..= t: cycle t comes in (counted when after the last
+        // reset), cycle t - s leaves (counted if it was, that is offered after the last reset)
+        if s > 0 {
+            let after_rst = |j: u64| self.last_rst.is_some_and(|r| j > r);
+            // as given: what was offered, whatever the clock enable
+            let offered = self.recent.back().is_some_and(|(c, _)| c.valid);
+            if offered && after_rst(t) {
+                self.offered_inside += 1;
+            }
+            if now.rst {
+                self.offered_inside = 0;
+            } else if t >= s && self.recent[0].0.valid && after_rst(t - s) {
+                self.offered_inside -= 1;
+            }
+        }
         self.report.checked += 1;
         self.report.results += (data_compared && exp_valid) as u64;
-        if !ok {
-            self.fail(t, src, expected, got, data_compared, None);
-        }
+        Some(Due { expected, data_compared, src })
     }
 
-    fn check_stream(&mut self, now: Cycle, t: u64, got: Sampled) {
+    /// Whether the unit's every rule is a comparison of each cycle's outputs with what is due
+    /// ([`Checker::digest_batch`] can stand for the check): the `valid` interface without a
+    /// static colour (whose `idle` is a rule of its own).
+    pub fn digestible(&self) -> bool {
+        self.places.is_none() && !self.static_colour
+    }
+
+    /// The digest of what cycles `t0 ..` (stimulus `cycles`) must show, as the harness digests
+    /// what they do show ([`sample_hash`]): equal digests mean every compared output equal,
+    /// as [`Checker::check_batch`] would find them. Counts the cycles as checked; finds no
+    /// mismatch itself (a differing digest is run again with every record compared).
+    pub fn digest_batch(&mut self, t0: u64, cycles: &[Cycle]) -> u64 {
+        debug_assert!(self.digestible());
+        let (mut offered, mut expected) = (std::mem::take(&mut self.offered), std::mem::take(&mut self.expected));
+        offered.clear();
+        offered.extend(cycles.iter().map(|c| c.inputs));
+        self.model.eval_batch(&offered, &mut expected);
+        let mut h = 0u64;
+        for (k, (&c, &outputs)) in cycles.iter().zip(&expected).enumerate() {
+            let t = t0 + k as u64;
+            let now = self.arrive(c, outputs);
+            if let Some(d) = self.due(now, t, outputs, true) {
+                h = h.wrapping_add(sample_hash(t, &d.expected, d.data_compared));
+            }
+        }
+        (self.offered, self.expected) = (offered, expected);
+        h
+    }
+
+    fn check_stream(&mut self, now: Cycle, t: u64, got: Sampled, outputs: Outputs) {
         let places = self.places.expect("a handshake");
         if self.last_rst.is_none() {
             if now.rst {
@@ -244,7 +359,7 @@ impl<'a> Checker<'a> {
         }
         // a pixel taken
         if now.valid && got.in_ready {
-            let expected = self.expect(&now, self.material);
+            let expected = Sampled { outputs, valid: true, tag: now.tag, ..Sampled::default() };
             self.pending.push_back(Pending { taken_at: t, cycle: now, expected });
         }
         self.before = Some((now, got));

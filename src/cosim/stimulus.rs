@@ -9,8 +9,19 @@ use crate::models::{Inputs, Model};
 pub trait Stimulus: Send + Sync {
     fn len(&self) -> u64;
     fn cycle(&self, i: u64) -> Cycle;
+    /// Cycles `from .. from + count` into `out` (cleared first): what a run streams and checks a
+    /// batch at a time (a stimulus may step through them faster than [`Stimulus::cycle`] finds each).
+    fn fill(&self, from: u64, count: u64, out: &mut Vec<Cycle>) {
+        out.clear();
+        out.extend((from..from + count).map(|i| self.cycle(i)));
+    }
     fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+    /// The Verilator harness's own description of this stimulus (`SPECGEN_SWEEP`), when it can
+    /// make the cycles itself instead of reading them: the exhaustive sweep.
+    fn harness_sweep(&self) -> Option<String> {
+        None
     }
 }
 
@@ -234,6 +245,9 @@ pub struct Exhaustive {
     pub clocked: bool,
     /// a material load after the reset (a static colour): full-scale red, mid green, 1 blue
     pub static_colour: bool,
+    /// idle cycles after those, before the sweep: 1 behind a handshake, whose `in_ready` is low
+    /// the cycle after a reset (a pixel offered then is not taken, and would be missed)
+    pub settle: u64,
     pub tag_bits: u32,
     pub full_intensity_tail: bool,
     /// idle cycles at the end, so the last pixels' results leave a pipelined unit
@@ -253,25 +267,57 @@ impl Exhaustive {
                 n_hi: n_count * (p + 1) / parts,
                 clocked: cfg.clocked(),
                 static_colour: cfg.colour() == crate::config::Colour::Static,
+                settle: cfg.interface().handshake() as u64,
                 tag_bits: cfg.carried_tag_bits(),
                 full_intensity_tail: p == 0,
-                drain: if cfg.clocked() { cfg.latency() as u64 + 1 } else { 0 },
+                // behind a handshake the last results wait in the output buffer too
+                drain: match cfg.clocked() {
+                    false => 0,
+                    true if cfg.interface().handshake() => drain_cycles(cfg),
+                    true => cfg.latency() as u64 + 1,
+                },
             })
             .collect()
     }
     fn row(&self) -> u64 {
         (1u64 << self.f) + 1
     }
-    /// The cycles before the sweep: a reset, and a material load.
+    /// The cycles before the sweep: a reset, a material load, the settling cycles.
     pub fn lead(&self) -> u64 {
-        self.clocked as u64 + self.static_colour as u64
+        self.clocked as u64 + self.static_colour as u64 + self.settle
+    }
+}
+
+impl Exhaustive {
+    /// The cycles of the sweep, before the tail.
+    fn sweep(&self) -> u64 {
+        (self.n_hi - self.n_lo) as u64 * self.row()
+    }
+
+    /// Cycle `i`, which is in the sweep at `(cos_g, n)`.
+    fn sweep_cycle(&self, i: u64, cos_g: u32, n: u32) -> Cycle {
+        let bm = (1u32 << self.b) - 1;
+        let ks = [
+            cos_g.wrapping_add(n.wrapping_mul(1)) & bm,
+            cos_g.wrapping_add(n.wrapping_mul(3)).wrapping_add(85) & bm,
+            cos_g.wrapping_add(n.wrapping_mul(7)).wrapping_add(170) & bm,
+        ];
+        Cycle { tag: self.tag(i), ..Cycle::pixel(Inputs { cos_g, n, ks }) }
+    }
+
+    fn tag(&self, i: u64) -> u64 {
+        if self.tag_bits == 0 {
+            0
+        } else {
+            splitmix(i) & crate::bits::mask(self.tag_bits) as u64
+        }
     }
 }
 
 impl Stimulus for Exhaustive {
     fn len(&self) -> u64 {
         let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
-        (self.n_hi - self.n_lo) as u64 * self.row() + self.lead() + tail + self.drain
+        self.sweep() + self.lead() + tail + self.drain
     }
     fn cycle(&self, i: u64) -> Cycle {
         let bm = (1u32 << self.b) - 1;
@@ -281,9 +327,11 @@ impl Stimulus for Exhaustive {
         if self.static_colour && i == self.clocked as u64 {
             return Cycle { inputs: Inputs { ks: [bm, bm / 2 + 1, 1.min(bm)], ..Inputs::default() }, load: true, ..Cycle::default() };
         }
+        if i < self.lead() {
+            return Cycle::default();
+        }
         let j = i - self.lead();
-        let tag = splitmix(i) & crate::bits::mask(self.tag_bits) as u64;
-        let sweep = (self.n_hi - self.n_lo) as u64 * self.row();
+        let sweep = self.sweep();
         let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
         if j >= sweep + tail {
             return Cycle::default();
@@ -292,15 +340,90 @@ impl Stimulus for Exhaustive {
             let code = (j - sweep) as u32;
             let n = code.wrapping_mul(7) & ((1u32 << self.n_bits) - 1);
             let ks = [code, code.wrapping_add(1) & bm, code.wrapping_add(2) & bm];
-            return Cycle { tag, ..Cycle::pixel(Inputs { cos_g: 1 << self.f, n, ks }) };
+            return Cycle { tag: self.tag(i), ..Cycle::pixel(Inputs { cos_g: 1 << self.f, n, ks }) };
         }
-        let n = self.n_lo + (j / self.row()) as u32;
-        let cos_g = (j % self.row()) as u32;
-        let ks = [
-            cos_g.wrapping_add(n.wrapping_mul(1)) & bm,
-            cos_g.wrapping_add(n.wrapping_mul(3)).wrapping_add(85) & bm,
-            cos_g.wrapping_add(n.wrapping_mul(7)).wrapping_add(170) & bm,
+        self.sweep_cycle(i, (j % self.row()) as u32, self.n_lo + (j / self.row()) as u32)
+    }
+    fn harness_sweep(&self) -> Option<String> {
+        let flag = |b: bool| b as u8;
+        Some(format!(
+            "{} {} {} {} {} {} {} {} {} {} {}",
+            self.f,
+            self.b,
+            self.n_bits,
+            self.n_lo,
+            self.n_hi,
+            flag(self.clocked),
+            flag(self.static_colour),
+            self.settle,
+            self.tag_bits,
+            flag(self.full_intensity_tail),
+            self.drain
+        ))
+    }
+    /// Steps through the sweep (one division a batch, not two a cycle).
+    fn fill(&self, from: u64, count: u64, out: &mut Vec<Cycle>) {
+        out.clear();
+        let (lead, sweep, row, end) = (self.lead(), self.sweep(), self.row(), from + count);
+        let mut i = from;
+        while i < end {
+            if i < lead || i - lead >= sweep {
+                out.push(self.cycle(i));
+                i += 1;
+                continue;
+            }
+            let j = i - lead;
+            let (mut cos_g, mut n) = ((j % row) as u32, self.n_lo + (j / row) as u32);
+            for i in i..end.min(lead + sweep) {
+                out.push(self.sweep_cycle(i, cos_g, n));
+                cos_g += 1;
+                if u64::from(cos_g) == row {
+                    (cos_g, n) = (0, n + 1);
+                }
+            }
+            i = end.min(lead + sweep);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{Colour, Interface, Params};
+
+    #[test]
+    fn the_sweep_steps_through_the_cycles_it_addresses() {
+        // a batch may start and end anywhere: in the lead, mid-row, in the tail, in the drain
+        let configs = [
+            Params { cos_frac_bits: 5, n_bits: 3, color_bits: 4, ..Params::default() },
+            Params {
+                cos_frac_bits: 5,
+                n_bits: 3,
+                color_bits: 6,
+                stages: 3,
+                colour: Colour::Static,
+                tag_bits: 5,
+                interface: Interface::Ready,
+                ..Params::default()
+            },
         ];
-        Cycle { tag, ..Cycle::pixel(Inputs { cos_g, n, ks }) }
+        for params in configs {
+            let cfg = Config::new(params).unwrap();
+            for part in Exhaustive::parts(&cfg, 3) {
+                let all: Vec<Cycle> = (0..part.len()).map(|i| part.cycle(i)).collect();
+                for batch in [1, 7, 33, 1000] {
+                    let mut got = Vec::new();
+                    let mut out = Vec::new();
+                    let mut i = 0;
+                    while i < part.len() {
+                        let n = batch.min(part.len() - i);
+                        part.fill(i, n, &mut out);
+                        got.extend_from_slice(&out);
+                        i += n;
+                    }
+                    assert_eq!(got, all, "batches of {batch}");
+                }
+            }
+        }
     }
 }

@@ -64,6 +64,13 @@ pub enum PremiseRole {
 pub trait SpecularUnit: Send + Sync + std::fmt::Debug {
     /// The unit's outputs for one input, bit for bit as the RTL computes them.
     fn eval(&self, x: Inputs) -> Outputs;
+    /// [`SpecularUnit::eval`] of every input of `xs`, into `out` (cleared first): what the
+    /// co-simulation asks a batch at a time. A model overrides it only to let the compiler see
+    /// its `eval` inside the loop; the outputs are `eval`'s.
+    fn eval_batch(&self, xs: &[Inputs], out: &mut Vec<Outputs>) {
+        out.clear();
+        out.extend(xs.iter().map(|&x| self.eval(x)));
+    }
 
     /// Checks outputs against this model's contract (its exact reference): `Err` says which
     /// output breaks it and by how much.
@@ -167,6 +174,11 @@ impl Model {
     /// The unit's outputs for one input, bit for bit.
     pub fn eval(&self, x: Inputs) -> Outputs {
         self.unit.eval(x)
+    }
+
+    /// [`SpecularUnit::eval_batch`]: the outputs of every input of `xs`, into `out`.
+    pub fn eval_batch(&self, xs: &[Inputs], out: &mut Vec<Outputs>) {
+        self.unit.eval_batch(xs, out)
     }
 
     /// See [`SpecularUnit::ideal`].

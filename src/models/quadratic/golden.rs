@@ -4,7 +4,7 @@
 //! [`check`], the rounding contract.
 
 use super::Quadratic;
-use crate::bits::mask;
+use crate::bits::{mask, Word};
 use crate::config::Config;
 use crate::models::{check_value, Ideal, Inputs, Outputs, SPEC_PORTS};
 
@@ -28,53 +28,67 @@ pub struct Trace {
 
 impl Quadratic {
     /// Runs the quadratic datapath and returns every intermediate value.
+    #[inline]
     pub fn trace(&self, x: Inputs) -> Trace {
+        if self.widths.fits_u64(self.cfg.fi()) {
+            self.trace_in::<u64>(x)
+        } else {
+            self.trace_in::<u128>(x)
+        }
+    }
+
+    /// [`Quadratic::trace`] in the word `W`, which holds every value of the datapath.
+    #[inline(always)]
+    fn trace_in<W: Word>(&self, x: Inputs) -> Trace {
         let w = &self.widths;
         let f = self.cfg.f();
         let wb = w.bracket_frac_bits;
         let ws = w.square_frac_bits;
         let fi = self.cfg.fi();
         let b = self.cfg.b();
-        let one = 1u64 << f;
-        let cos_g = x.cos_g as u64 & mask(f + 1) as u64;
-        let n = x.n as u64 & mask(self.cfg.n_bits()) as u64;
-        let ks = x.ks.map(|k| k as u128 & mask(b));
+        let m = W::mask;
+        let bit = |k: u32| W::from(1u32) << k;
+        let wide = |v: W| -> u128 { v.into() };
+        let one = bit(f);
+        let cos_g = W::from(x.cos_g) & m(f + 1);
+        let n = x.n & mask(self.cfg.n_bits()) as u32;
+        let ks = x.ks.map(|k| W::from(k) & m(b));
 
         // step 1: clamp, 1 − cos (adder 6), ROM, comparator, k_code·n
         let cos_clamped = cos_g.min(one);
         let one_minus_cos = one - cos_clamped;
-        let cos_sp = self.rom[n as usize] as u64;
+        let cos_sp = W::from(self.rom[n as usize]);
         let done = cos_clamped < cos_sp;
-        let kn = self.cfg.k_code * n;
+        let kn = W::low(self.cfg.k_code as u128) * W::from(n);
         // step 2: P = kn·d, truncation #1 to WB fractional bits (keep WB+1 bits)
-        let deviation_full = kn as u128 * one_minus_cos as u128;
-        let deviation = ((deviation_full >> w.deviation_shift) & mask(wb + 1)) as u64;
+        let deviation_full = kn * one_minus_cos;
+        let deviation = (deviation_full >> w.deviation_shift) & m(wb + 1);
         // step 3: bracket = 1 − dev, zeroed by the key block beyond the cut-off (mod 2^(WB+1))
-        let bracket = if done { 0 } else { ((1u128 << wb).wrapping_sub(deviation as u128) & mask(wb + 1)) as u64 };
+        let bracket = if done { W::from(0u32) } else { bit(wb).wrapping_sub(deviation) & m(wb + 1) };
         // step 4: square, truncation #2 to WS fractional bits
-        let square_full = bracket as u128 * bracket as u128;
-        let square = (square_full >> w.square_shift) & mask(ws + 1);
+        let square_full = bracket * bracket;
+        let square = (square_full >> w.square_shift) & m(ws + 1);
         // step 5: colour products (of the square cut to WS_C bits); intensity rounding add
         let wsc = w.color_square_frac_bits;
         let color_square = square >> (ws - wsc);
         let color_prod = ks.map(|k| color_square * k);
-        let intensity_sum = if ws > fi { square + (1u128 << (ws - fi - 1)) } else { square << (fi - ws) };
+        let intensity_sum = if ws > fi { square + bit(ws - fi - 1) } else { square << (fi - ws) };
         // step 6: colour rounding add and the final slices
-        let spec = color_prod.map(|p| ((p + (1u128 << (wsc - 1))) >> wsc) as u32);
-        let intensity = if ws > fi { (intensity_sum >> (ws - fi)) as u32 } else { intensity_sum as u32 };
+        let spec = color_prod.map(|p| wide((p + bit(wsc - 1)) >> wsc) as u32);
+        let intensity = if ws > fi { wide(intensity_sum >> (ws - fi)) as u32 } else { wide(intensity_sum) as u32 };
         Trace {
-            cos_clamped,
-            one_minus_cos,
-            cos_sp,
+            cos_clamped: wide(cos_clamped) as u64,
+            one_minus_cos: wide(one_minus_cos) as u64,
+            cos_sp: wide(cos_sp) as u64,
             done,
-            kn,
-            deviation_full,
-            deviation,
-            bracket,
-            square_full,
-            square,
-            color_prod,
-            intensity_sum,
+            kn: wide(kn) as u64,
+            deviation_full: wide(deviation_full),
+            deviation: wide(deviation) as u64,
+            bracket: wide(bracket) as u64,
+            square_full: wide(square_full),
+            square: wide(square),
+            color_prod: color_prod.map(wide),
+            intensity_sum: wide(intensity_sum),
             outputs: Outputs { spec, intensity, done },
         }
     }
@@ -127,6 +141,19 @@ mod tests {
         let m = Model::new(&Config::defaults());
         let o = m.eval(Inputs { cos_g: 1 << 15, n: 500, ks: [255, 7, 0] });
         assert_eq!(o, Outputs { spec: [255, 7, 0], intensity: 1 << 15, done: false });
+    }
+
+    #[test]
+    fn the_u64_and_u128_datapaths_agree() {
+        // the default unit computes in u64; the same steps in u128 must give every value
+        let m = super::super::Quadratic::new(&Config::defaults());
+        assert!(m.widths.fits_u64(15));
+        for n in [0, 1, 2, 40, 500, 1023] {
+            for cos_g in (0..=(1u32 << 16) - 1).step_by(97).chain([1 << 15, (1 << 15) + 1]) {
+                let x = Inputs { cos_g, n, ks: [cos_g & 255, (n * 7) & 255, 255] };
+                assert_eq!(m.trace_in::<u64>(x), m.trace_in::<u128>(x), "{x:?}");
+            }
+        }
     }
 
     #[test]

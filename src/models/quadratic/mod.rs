@@ -82,6 +82,15 @@ pub struct Widths {
 }
 
 impl Widths {
+    /// Whether every value of the datapath fits a u64 (the golden model then computes in one):
+    /// the exact deviation, the full square, the colour products with their rounding half, and
+    /// the intensity sum.
+    pub fn fits_u64(&self, intensity_frac_bits: u32) -> bool {
+        let square_full = 2 * (self.bracket_frac_bits + 1);
+        let intensity_sum = self.square_frac_bits.max(intensity_frac_bits) + 2;
+        [self.deviation_bits, square_full, self.color_product_bits + 1, intensity_sum].into_iter().max().unwrap_or(0) <= 64
+    }
+
     /// Every width, from the budget above.
     pub fn derive(cfg: &Config) -> Widths {
         let (f, kf, fi, b) = (cfg.f(), cfg.kf(), cfg.fi(), cfg.b());
@@ -171,6 +180,11 @@ impl SpecularUnit for Quadratic {
 
     fn eval(&self, x: Inputs) -> Outputs {
         self.trace(x).outputs
+    }
+
+    fn eval_batch(&self, xs: &[Inputs], out: &mut Vec<Outputs>) {
+        out.clear();
+        out.extend(xs.iter().map(|&x| self.trace(x).outputs));
     }
 
     fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
