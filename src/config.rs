@@ -94,11 +94,15 @@ pub enum SpecularModel {
     /// `[1 − a_n·(1 − cos)]^(2^m_n)` with per-n `a_n`, `m_n` from a minimax fit (SPEC §6).
     #[serde(rename = "fitted")]
     Fitted,
+    /// The paper's modified Schlick (11), `c/(n − n·c + c)`, by a restoring divider (SPEC §6).
+    #[serde(rename = "schlick")]
+    Schlick,
 }
 
 impl SpecularModel {
     /// Every model, from the coarsest to the exact ones (the order of reports and tests).
-    pub const ALL: [SpecularModel; 4] = [SpecularModel::Quadratic, SpecularModel::Fitted, SpecularModel::Blinn, SpecularModel::BlinnPow];
+    pub const ALL: [SpecularModel; 5] =
+        [SpecularModel::Quadratic, SpecularModel::Schlick, SpecularModel::Fitted, SpecularModel::Blinn, SpecularModel::BlinnPow];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -106,6 +110,7 @@ impl SpecularModel {
             SpecularModel::BlinnPow => "blinn-pow",
             SpecularModel::Blinn => "blinn",
             SpecularModel::Fitted => "fitted",
+            SpecularModel::Schlick => "schlick",
         }
     }
 }

@@ -145,8 +145,8 @@ pub fn part(target: Target) -> &'static str {
     }
 }
 
-/// The fitted line of `target`'s family for the datapath `datapath` (`lean`, `paper`, `fitted`,
-/// `blinn`, `blinn-pow`): its own when calibrated, the family's (`all`) where the data says so
+/// The fitted line of `target`'s family for the datapath `datapath` (`lean`, `paper`, or a
+/// model's name): its own when calibrated, the family's (`all`) where the data says so
 /// by name. A datapath the data does not name is an error: a new model is calibrated
 /// (`scripts/calibrate_delay.sh`), never estimated by another's line in silence.
 pub fn line(target: Target, datapath: &str) -> Result<Line, ConfigError> {
@@ -249,9 +249,9 @@ mod tests {
     #[test]
     fn an_uncalibrated_datapath_is_refused_by_name() {
         for target in [Target::Ice40, Target::Ecp5] {
-            let e = line(target, "schlick").unwrap_err();
+            let e = line(target, "phong").unwrap_err();
             assert_eq!(e.parameter, "target_mhz");
-            assert!(e.message.contains("the schlick datapath has no delay calibration") && e.message.contains("scripts/calibrate_delay.sh"), "{}", e.message);
+            assert!(e.message.contains("the phong datapath has no delay calibration") && e.message.contains("scripts/calibrate_delay.sh"), "{}", e.message);
             for model in crate::config::SpecularModel::ALL {
                 assert!(line(target, model.name()).is_ok() || model.reads("arch"), "{target:?} {}", model.name());
             }

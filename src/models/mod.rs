@@ -1,6 +1,6 @@
 //! The models: what each unit computes, each in one home behind one trait.
 //!
-//! A model's home (`quadratic/`, `fitted.rs`, `blinn.rs`, `blinn_pow.rs`) holds everything
+//! A model's home (`quadratic/`, `fitted.rs`, `blinn.rs`, `blinn_pow.rs`, `schlick.rs`) holds everything
 //! that model is: its error budget (module doc) and widths, its tables, its bit-exact golden
 //! model, its exact reference and contract check, its datapath on the shared
 //! [`Builder`](crate::datapath::Builder), its header text and its `eval` trace. Everything
@@ -15,6 +15,7 @@ pub mod blinn;
 pub mod blinn_pow;
 pub mod fitted;
 pub mod quadratic;
+pub mod schlick;
 
 use crate::bits::mask;
 use crate::config::{Config, Rounding, SpecularModel};
@@ -135,6 +136,7 @@ pub fn unit(cfg: &Config) -> Arc<dyn SpecularUnit> {
         SpecularModel::Fitted => Arc::new(fitted::Fitted::new(cfg)),
         SpecularModel::Blinn => Arc::new(blinn::Blinn::new(cfg)),
         SpecularModel::BlinnPow => Arc::new(blinn_pow::BlinnPow::new(cfg)),
+        SpecularModel::Schlick => Arc::new(schlick::Schlick::new(cfg)),
     }
 }
 

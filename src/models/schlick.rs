@@ -1,0 +1,299 @@
+//! `--model schlick`: the paper's modified Schlick approximation, formula (11),
+//! `S = c / (n − n·c + c)`, by a restoring divider — a rational function, no cut-off table,
+//! no power. Its home: the error budget ([`quotient_frac_bits`]), the golden model
+//! ([`Schlick::trace`], the divider step for step), the exact reference and contract
+//! ([`check`]: big integers, no float), and the datapath on the same builder as every model.
+//!
+//! The division. With `c = min(cos_g, 2^F)` (a code, UQ1.F) the denominator in the same units
+//! is `den = n·(2^F − c) + c`, an integer of at most `N + F + 1` bits, computed exactly (one
+//! multiply-add). `den ≥ c` (as `n·(2^F − c) ≥ 0`), so `S = c/den ≤ 1`. A restoring divider
+//! takes the quotient one bit a step, most significant first: the remainder starts at `c`, the
+//! bit of weight 1 is `[r ≥ den]` (and `r −= den` when set), then each of the W fractional bits
+//! doubles the remainder and compares again. The remainder stays below `den ≤ 2^(N+F)`, so a
+//! doubled one has `N + F + 2` bits: one compare-subtract of that width a step, W + 1 steps.
+//! The result is `q = floor(S·2^W)` exactly. `den = 0` only at `c = 0, n = 0`, where `S` is
+//! taken as its limit 1 (cos^0 = 1): the quotient of `n = 0` is 1.0 by a select at the end
+//! (for `c > 0` the divider gives 1.0 there too).
+//!
+//! Error budget. `q·2^−W` is within `[S − 2^−W, S]`. An output `o = round_half_up(q·M/2^W)`
+//! (`M = 2^FI` for the intensity, `ks < 2^B` for a colour) is then within
+//! `(S·M − 1/2 − M·2^−W, S·M + 1/2]` of the ideal `S·M`: faithful (`|o − S·M| < 1`) when
+//! `M·2^−W ≤ 1/2`, that is `W ≥ max(FI, B) + 1` ([`quotient_frac_bits`]). The colours' bound
+//! is tight: at `W = B` a colour near `2^B` loses up to one whole unit to the truncation and
+//! half a unit more to the rounding (a test finds such an input). The intensity's alone would
+//! allow `W = FI` with the quotient taken as it is (floor, within 1); one rounding step for
+//! every output keeps `W > FI`. The property test `every_model` checks the contract on random
+//! configurations, the exhaustive sweep at the defaults. `done = (intensity == 0)`, as for
+//! the `cos^n` models.
+
+use super::{explain_ideal, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
+use crate::bits::{lit, mask};
+use crate::config::Config;
+use crate::datapath::{add_delay, mul_delay, Builder, LUT_DELAY};
+
+/// W: fractional bits of the quotient `q = floor(S·2^W)`, from the budget above.
+pub(crate) fn quotient_frac_bits(cfg: &Config) -> u32 {
+    cfg.fi().max(cfg.b()) + 1
+}
+
+/// The schlick unit of one configuration.
+#[derive(Debug, Clone)]
+pub struct Schlick {
+    pub cfg: Config,
+    /// W: fractional bits of the quotient, UQ1.W.
+    pub quotient_frac_bits: u32,
+}
+
+/// Every intermediate value of the datapath, named as in the RTL.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Trace {
+    /// `c`, UQ1.F
+    pub cos_clamped: u128,
+    /// `den = n·(2^F − c) + c`, in units of 2^−F
+    pub den: u128,
+    /// the remainder after each quotient bit (W + 1 of them)
+    pub remainders: Vec<u128>,
+    /// `q = floor(S·2^W)`, UQ1.W (1.0 at n = 0)
+    pub quotient: u128,
+    pub outputs: Outputs,
+}
+
+impl Schlick {
+    pub fn new(cfg: &Config) -> Schlick {
+        Schlick { cfg: cfg.clone(), quotient_frac_bits: quotient_frac_bits(cfg) }
+    }
+
+    /// The divider step for step, as the RTL computes it.
+    pub fn trace(&self, x: Inputs) -> Trace {
+        let mut remainders = Vec::with_capacity(self.quotient_frac_bits as usize + 1);
+        let (cos_clamped, den, quotient, outputs) = self.divide(x, |r| remainders.push(r));
+        Trace { cos_clamped, den, remainders, quotient, outputs }
+    }
+
+    /// The datapath: `(c, den, quotient, outputs)`, each remainder given to `remainder` as it
+    /// is made.
+    fn divide(&self, x: Inputs, mut remainder: impl FnMut(u128)) -> (u128, u128, u128, Outputs) {
+        let (f, w, fi, b) = (self.cfg.f(), self.quotient_frac_bits, self.cfg.fi(), self.cfg.b());
+        // step 1: clamp, 1 − c
+        let c = (x.cos_g as u128 & mask(f + 1)).min(1 << f);
+        let n = x.n as u128 & mask(self.cfg.n_bits());
+        let d = (1u128 << f) - c;
+        // step 2: the denominator, exact
+        let den = n * d + c;
+        // steps 3..: one quotient bit a step, the weight-1 bit first
+        let mut r = c;
+        let mut q = 0u128;
+        for k in 0..=w {
+            if k > 0 {
+                r <<= 1;
+            }
+            let bit = r >= den;
+            if bit {
+                r -= den;
+            }
+            q = q << 1 | bit as u128;
+            remainder(r);
+        }
+        // last step: n = 0 is 1.0 (the limit at c = 0); round half up to the outputs
+        let quotient = if n == 0 { 1 << w } else { q };
+        let intensity = ((quotient + (1 << (w - fi - 1))) >> (w - fi)) as u32;
+        let spec = x.ks.map(|k| ((quotient * (k as u128 & mask(b)) + (1 << (w - 1))) >> w) as u32);
+        (c, den, quotient, Outputs { spec, intensity, done: intensity == 0 })
+    }
+}
+
+/// `S = c/den` as an exact fraction `(num, den)` of codes: `(1, 1)` where `den = 0`.
+fn ratio(cfg: &Config, x: Inputs) -> (u128, u128) {
+    let c = (x.cos_g as u128).min(1 << cfg.f());
+    let n = x.n as u128;
+    match n * ((1u128 << cfg.f()) - c) + c {
+        0 => (1, 1),
+        den => (c, den),
+    }
+}
+
+/// The contract: every output within 1 of its ideal `S·M` (`|o·den − c·M| < den`, in integers),
+/// `done` ⇔ the intensity is 0.
+pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
+    let (num, den) = ratio(cfg, x);
+    let within = |o: u32, m: u128| (o as u128 * den).abs_diff(num * m) < den;
+    let one = 1u128 << cfg.fi();
+    if !within(got.intensity, one) {
+        return Err(format!("intensity: got {}, S·2^FI = {}·2^{}/{den}", got.intensity, num, cfg.fi()));
+    }
+    for (i, name) in SPEC_PORTS.iter().enumerate() {
+        if !within(got.spec[i], x.ks[i] as u128) {
+            return Err(format!("{name}: got {}, S·ks = {}·{}/{den}", got.spec[i], num, x.ks[i]));
+        }
+    }
+    if got.done != (got.intensity == 0) {
+        return Err(format!("done: got {}, intensity {}", got.done, got.intensity));
+    }
+    Ok(())
+}
+
+impl SpecularUnit for Schlick {
+    fn eval(&self, x: Inputs) -> Outputs {
+        self.divide(x, |_| {}).3
+    }
+
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+        check(&self.cfg, x, got)
+    }
+
+    fn ideal(&self, x: Inputs) -> (f64, [f64; 3]) {
+        let (num, den) = ratio(&self.cfg, x);
+        let s = num as f64 / den as f64;
+        (s * (self.cfg.fi() as f64).exp2(), x.ks.map(|k| s * k as f64))
+    }
+
+    fn reference_words(&self) -> &'static str {
+        "the exact quotient S = c/(n - n*c + c) in integers"
+    }
+
+    fn datapath(&self, b: &mut Builder) {
+        datapath(&self.cfg, self.quotient_frac_bits, b)
+    }
+
+    fn describe(&self) -> Description {
+        let p = &self.cfg.params;
+        Description {
+            param_line: String::new(),
+            formula: vec![
+                "S = c / (n - n*c + c), c = min(cos_g, 1.0) (the paper's modified Schlick, formula (11)); S = 1 at n = 0;".into(),
+                format!("intensity = S (UQ1.{}), spec_X = S * ks_X; done = (intensity == 0).", p.intensity_frac_bits),
+            ],
+            rounding: "faithful: every output within 1 ulp of the exact quotient (|o - o*| < 1)".into(),
+            datapath: format!(
+                "den = n*(1 - c) + c exact, a restoring divider of one quotient bit a step to UQ1.{} (error budget in specgen's models/schlick.rs)",
+                self.quotient_frac_bits
+            ),
+            done_meaning: "intensity == 0: the highlight is below the output's resolution",
+            summary: "Fixed-point Schlick specular unit, c/(n - n*c + c) by a restoring divider",
+            computes: "Schlick's c/(n - nc + c) by division",
+        }
+    }
+
+    fn widths(&self) -> serde_json::Value {
+        let (f, nb) = (self.cfg.f(), self.cfg.n_bits());
+        serde_json::json!({ "quotient_frac_bits": self.quotient_frac_bits, "denominator_bits": nb + f + 1, "remainder_bits": nb + f + 2 })
+    }
+
+    fn explain(&self, x: Inputs) -> Vec<String> {
+        let t = self.trace(x);
+        vec![
+            format!("den        n*(1 - c) + c = {} (units of 2^-{})", t.den, self.cfg.f()),
+            format!(
+                "quotient   floor(S*2^{}) = {} (UQ1.{}: {:.9})",
+                self.quotient_frac_bits,
+                t.quotient,
+                self.quotient_frac_bits,
+                t.quotient as f64 / (self.quotient_frac_bits as f64).exp2()
+            ),
+            explain_ideal(self.ideal(x), "(c/(n - n*c + c))"),
+        ]
+    }
+}
+
+/// Step 1 clamps c and forms 1 − c; step 2 the denominator; then one quotient bit a step (a
+/// compare-subtract of the doubled remainder and a select); the last step picks 1.0 at n = 0
+/// and rounds to the outputs.
+fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
+    let (f, nb, bb, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
+    let dw = nb + f + 1; // den, and the remainder
+    let rw = dw + 1; // a doubled remainder
+
+    b.step("clamp c = min(cos, 1); d = 1 - c; n = 0 picks S = 1 at the end");
+    let g = b.r("cos_g");
+    let one = lit(f + 1, 1u128 << f);
+    b.wire("cos_clamped", f + 1, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    let c = b.r("cos_clamped");
+    b.wire("one_minus_cos", f + 1, format!("{one} - {c}"), &format!("UQ1.{f}: 1 - c, exact"));
+    let n = b.r("n");
+    b.wire("n_zero", 1, format!("{n} == {}", lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
+    b.delay(2.0 * add_delay(f + 1));
+
+    b.step("the denominator den = n*(1 - c) + c, exact");
+    let (ne, de, ce) = (b.zext("n", dw), b.zext("one_minus_cos", dw), b.zext("cos_clamped", dw));
+    b.wire("den", dw, format!("{ne} * {de} + {ce}"), &format!("UQ{}.{f}: n*(1 - c) + c, exact (at most 2^{} ulps)", nb + 1, nb + f));
+    b.delay(mul_delay(nb, f + 1) + add_delay(dw));
+
+    // the remainder r_k after quotient bit k, and the bits so far q_k (q_0: the weight-1 bit)
+    for k in 0..=w {
+        let title = if k == 0 { "quotient bit of weight 1: c >= den".to_string() } else { format!("quotient bit of weight 2^-{k}: 2r >= den") };
+        b.step(&title);
+        let prev = if k == 0 { b.zext("cos_clamped", rw) } else { format!("{{{}, 1'b0}}", b.r(&format!("rem{}", k - 1))) };
+        let what = if k == 0 { "c".to_string() } else { format!("2*r{}", k - 1) };
+        b.wire(&format!("shifted{k}"), rw, prev, &format!("UQ{}.{f}: {what}", nb + 2));
+        let (s, d) = (b.r(&format!("shifted{k}")), b.zext("den", rw + 1));
+        b.wire(&format!("trial{k}"), rw + 1, format!("{{1'b0, {s}}} - {d}"), &format!("{what} - den; its top bit: a borrow"));
+        let borrow = b.bits(&format!("trial{k}"), rw, rw);
+        b.wire(&format!("qbit{k}"), 1, format!("~{borrow}"), &format!("quotient bit of weight 2^-{k}: {what} >= den"));
+        let (bit, t, s) = (b.r(&format!("qbit{k}")), b.bits(&format!("trial{k}"), dw - 1, 0), b.bits(&format!("shifted{k}"), dw - 1, 0));
+        b.wire(&format!("rem{k}"), dw, Builder::select(&bit, &t, &s, dw), &format!("r{k}: the remainder, below den"));
+        let quotient = if k == 0 { bit } else { format!("{{{}, {bit}}}", b.r(&format!("quot{}", k - 1))) };
+        b.wire(&format!("quot{k}"), k + 1, quotient, &format!("the quotient's top {} bit(s)", k + 1));
+        b.delay(add_delay(rw + 1) + LUT_DELAY);
+    }
+
+    b.step("S = 1 at n = 0; round half up to the outputs");
+    let (nz, q) = (b.r("n_zero"), b.r(&format!("quot{w}")));
+    b.wire("quotient", w + 1, Builder::select_const(&nz, 1u128 << w, w + 1, &q), &format!("UQ1.{w}: floor(S*2^{w}), 1.0 at n = 0"));
+    let qv = b.r("quotient");
+    b.wire("intensity_sum", w + 1, format!("{qv} + {}", lit(w + 1, 1u128 << (w - fi - 1))), &format!("UQ1.{w}: S + 2^-{}", fi + 1));
+    let e = b.bits("intensity_sum", w, w - fi);
+    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    b.colour_sums("quotient", w, "S");
+    b.colour_results(w, "S");
+    let iv = b.r("intensity");
+    b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
+    b.delay(mul_delay(w + 1, bb) + add_delay(w + bb));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{Params, SpecularModel};
+
+    fn cfg(p: Params) -> Config {
+        Config::new(Params { model: SpecularModel::Schlick, ..p }).unwrap()
+    }
+
+    #[test]
+    fn the_divider_gives_the_floor_of_the_quotient() {
+        let s = Schlick::new(&cfg(Params::default()));
+        let w = s.quotient_frac_bits;
+        for n in [1u32, 2, 7, 100, 1023] {
+            for cos_g in (0..=1u32 << 15).step_by(331) {
+                let t = s.trace(Inputs { cos_g, n, ks: [0; 3] });
+                assert_eq!(t.quotient, ((cos_g as u128) << w) / t.den, "n={n} cos_g={cos_g}");
+                assert!(t.remainders.iter().all(|&r| r < t.den));
+            }
+        }
+    }
+
+    #[test]
+    fn the_colours_bound_is_tight() {
+        // colours wider than the intensity: one quotient bit fewer than the budget (W = B)
+        // breaks the contract on a colour near 2^B; the budget's W meets it everywhere
+        let c = cfg(Params { cos_frac_bits: 10, n_bits: 6, color_bits: 12, intensity_frac_bits: 6, ..Params::default() });
+        let (narrow, s) = (Schlick { cfg: c.clone(), quotient_frac_bits: quotient_frac_bits(&c) - 1 }, Schlick::new(&c));
+        let mut broken = false;
+        for n in 0..64u32 {
+            for cos_g in 0..=1u32 << 10 {
+                let x = Inputs { cos_g, n, ks: [4095, 4094, 1] };
+                broken |= check(&c, x, narrow.eval(x)).is_err();
+                assert!(check(&c, x, s.eval(x)).is_ok(), "{x:?}");
+            }
+        }
+        assert!(broken, "W = B is enough: the colours' bound is not tight");
+    }
+
+    #[test]
+    fn zero_over_zero_is_one() {
+        let s = Schlick::new(&cfg(Params::default()));
+        let o = s.eval(Inputs { cos_g: 0, n: 0, ks: [255, 3, 0] });
+        assert_eq!(o, Outputs { spec: [255, 3, 0], intensity: 1 << 15, done: false });
+        assert_eq!(s.eval(Inputs { cos_g: 0, n: 5, ks: [255; 3] }).intensity, 0);
+    }
+}
