@@ -195,7 +195,7 @@ pub fn claims() -> Vec<Claim> {
         m(&|d, n| schlick(d, n)) / m(&|d, n| schlick_ab(d, n, 2.0, 2.0))
     };
     v.push(Claim {
-        id: "schlick",
+        id: "schlick_mad",
         claim: "Modified Schlick (11) vs Schlick (7): mean absolute deviation from Blinn, n ∈ [1, 1000]".into(),
         paper: "1.45× smaller".into(),
         ours: format!("{ratio:.3}× smaller (MAD (7) = {mad7:.5}, (11) = {mad11:.5})"),

@@ -249,7 +249,7 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy, unit: &dyn crate::models::Specu
         });
     }
     v.push(Figure {
-        id: "schlick",
+        id: "schlick_curves",
         caption: "Blinn, Schlick (7) and modified Schlick (11) for n = 10 (paper, Fig. 3).".into(),
         svg: line_plot(
             "Blinn, Schlick (7), (11), n = 10",

@@ -493,7 +493,8 @@ impl SynthResult {
         }
         let r: SynthResult = serde_json::from_value(value).map_err(|e| not(&e.to_string()))?;
         if !crate::config::SpecularModel::ALL.iter().any(|m| m.name() == r.model) {
-            return Err(not(&format!("unknown model {:?}; allowed quadratic, fitted, blinn, blinn-pow", r.model)));
+            let allowed: Vec<&str> = crate::config::SpecularModel::ALL.iter().map(|m| m.name()).collect();
+            return Err(not(&format!("unknown model {:?}; allowed {}", r.model, allowed.join(", "))));
         }
         // figures a place-and-route can give: a clock in (0, 1000] MHz, an Fmax in (0, 2000]
         let mhz_ok = |f: f64, max: f64| f.is_finite() && f > 0.0 && f <= max;

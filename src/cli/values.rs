@@ -52,7 +52,7 @@ flag_values! {
         Blinn,
         /// [1 - a_n*(1 - cos)]^(2^m_n) with per-n a_n, m_n from a minimax fit
         Fitted,
-        /// the paper's modified Schlick (11): c/(n - n*c + c), by a restoring divider
+        /// the paper's modified Schlick (11): c/(2n - 2n*c + c), by a restoring divider
         Schlick,
     }
     /// `--interface`

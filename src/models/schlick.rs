@@ -1,16 +1,16 @@
 //! `--model schlick`: the paper's modified Schlick approximation, formula (11),
-//! `S = c / (n − n·c + c)`, by a restoring divider — a rational function, no cut-off table,
+//! `S = c / (2n − 2n·c + c)` (Schlick's (7) with a = b = 2), by a restoring divider — a rational function, no cut-off table,
 //! no power. Its home: the error budget ([`quotient_frac_bits`]), the golden model
 //! ([`Schlick::trace`], the divider step for step), the exact reference and contract
 //! ([`check`]: big integers, no float), and the datapath on the same builder as every model.
 //!
 //! The division. With `c = min(cos_g, 2^F)` (a code, UQ1.F) the denominator in the same units
-//! is `den = n·(2^F − c) + c`, an integer of at most `N + F + 1` bits, computed exactly (one
-//! multiply-add). `den ≥ c` (as `n·(2^F − c) ≥ 0`), so `S = c/den ≤ 1`. A restoring divider
+//! is `den = 2n·(2^F − c) + c`, an integer of at most `N + F + 2` bits, computed exactly (one
+//! multiply-add, `2n` a shift). `den ≥ c` (as `2n·(2^F − c) ≥ 0`), so `S = c/den ≤ 1`. A restoring divider
 //! takes the quotient one bit a step, most significant first: the remainder starts at `c`, the
 //! bit of weight 1 is `[r ≥ den]` (and `r −= den` when set), then each of the W fractional bits
-//! doubles the remainder and compares again. The remainder stays below `den ≤ 2^(N+F)`, so a
-//! doubled one has `N + F + 2` bits: one compare-subtract of that width a step, W + 1 steps.
+//! doubles the remainder and compares again. The remainder stays below `den ≤ 2^(N+F+1)`, so
+//! a doubled one has `N + F + 3` bits: one compare-subtract of that width a step, W + 1 steps.
 //! The result is `q = floor(S·2^W)` exactly. `den = 0` only at `c = 0, n = 0`, where `S` is
 //! taken as its limit 1 (cos^0 = 1): the quotient of `n = 0` is 1.0 by a select at the end
 //! (for `c > 0` the divider gives 1.0 there too).
@@ -49,7 +49,7 @@ pub struct Schlick {
 pub struct Trace {
     /// `c`, UQ1.F
     pub cos_clamped: u128,
-    /// `den = n·(2^F − c) + c`, in units of 2^−F
+    /// `den = 2n·(2^F − c) + c`, in units of 2^−F
     pub den: u128,
     /// the remainder after each quotient bit (W + 1 of them)
     pub remainders: Vec<u128>,
@@ -79,7 +79,7 @@ impl Schlick {
         let n = x.n as u128 & mask(self.cfg.n_bits());
         let d = (1u128 << f) - c;
         // step 2: the denominator, exact
-        let den = n * d + c;
+        let den = 2 * n * d + c;
         // steps 3..: one quotient bit a step, the weight-1 bit first
         let mut r = c;
         let mut q = 0u128;
@@ -106,7 +106,7 @@ impl Schlick {
 fn ratio(cfg: &Config, x: Inputs) -> (u128, u128) {
     let c = (x.cos_g as u128).min(1 << cfg.f());
     let n = x.n as u128;
-    match n * ((1u128 << cfg.f()) - c) + c {
+    match 2 * n * ((1u128 << cfg.f()) - c) + c {
         0 => (1, 1),
         den => (c, den),
     }
@@ -148,7 +148,7 @@ impl SpecularUnit for Schlick {
     }
 
     fn reference_words(&self) -> &'static str {
-        "the exact quotient S = c/(n - n*c + c) in integers"
+        "the exact quotient S = c/(2n - 2n*c + c) in integers"
     }
 
     fn datapath(&self, b: &mut Builder) {
@@ -160,29 +160,29 @@ impl SpecularUnit for Schlick {
         Description {
             param_line: String::new(),
             formula: vec![
-                "S = c / (n - n*c + c), c = min(cos_g, 1.0) (the paper's modified Schlick, formula (11)); S = 1 at n = 0;".into(),
+                "S = c / (2n - 2n*c + c), c = min(cos_g, 1.0) (the paper's modified Schlick, formula (11)); S = 1 at n = 0;".into(),
                 format!("intensity = S (UQ1.{}), spec_X = S * ks_X; done = (intensity == 0).", p.intensity_frac_bits),
             ],
             rounding: "faithful: every output within 1 ulp of the exact quotient (|o - o*| < 1)".into(),
             datapath: format!(
-                "den = n*(1 - c) + c exact, a restoring divider of one quotient bit a step to UQ1.{} (error budget in specgen's models/schlick.rs)",
+                "den = 2n*(1 - c) + c exact, a restoring divider of one quotient bit a step to UQ1.{} (error budget in specgen's models/schlick.rs)",
                 self.quotient_frac_bits
             ),
             done_meaning: "intensity == 0: the highlight is below the output's resolution",
-            summary: "Fixed-point Schlick specular unit, c/(n - n*c + c) by a restoring divider",
-            computes: "Schlick's c/(n - nc + c) by division",
+            summary: "Fixed-point modified-Schlick specular unit, c/(2n - 2n*c + c) by a restoring divider",
+            computes: "modified Schlick (11) by division",
         }
     }
 
     fn widths(&self) -> serde_json::Value {
         let (f, nb) = (self.cfg.f(), self.cfg.n_bits());
-        serde_json::json!({ "quotient_frac_bits": self.quotient_frac_bits, "denominator_bits": nb + f + 1, "remainder_bits": nb + f + 2 })
+        serde_json::json!({ "quotient_frac_bits": self.quotient_frac_bits, "denominator_bits": nb + f + 2, "remainder_bits": nb + f + 3 })
     }
 
     fn explain(&self, x: Inputs) -> Vec<String> {
         let t = self.trace(x);
         vec![
-            format!("den        n*(1 - c) + c = {} (units of 2^-{})", t.den, self.cfg.f()),
+            format!("den        2n*(1 - c) + c = {} (units of 2^-{})", t.den, self.cfg.f()),
             format!(
                 "quotient   floor(S*2^{}) = {} (UQ1.{}: {:.9})",
                 self.quotient_frac_bits,
@@ -190,7 +190,7 @@ impl SpecularUnit for Schlick {
                 self.quotient_frac_bits,
                 t.quotient as f64 / (self.quotient_frac_bits as f64).exp2()
             ),
-            explain_ideal(self.ideal(x), "(c/(n - n*c + c))"),
+            explain_ideal(self.ideal(x), "(c/(2n - 2n*c + c))"),
         ]
     }
 }
@@ -200,7 +200,7 @@ impl SpecularUnit for Schlick {
 /// and rounds to the outputs.
 fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     let (f, nb, bb, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
-    let dw = nb + f + 1; // den, and the remainder
+    let dw = nb + f + 2; // den, and the remainder
     let rw = dw + 1; // a doubled remainder
 
     b.step("clamp c = min(cos, 1); d = 1 - c; n = 0 picks S = 1 at the end");
@@ -213,10 +213,11 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     b.wire("n_zero", 1, format!("{n} == {}", lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
     b.delay(2.0 * add_delay(f + 1));
 
-    b.step("the denominator den = n*(1 - c) + c, exact");
-    let (ne, de, ce) = (b.zext("n", dw), b.zext("one_minus_cos", dw), b.zext("cos_clamped", dw));
-    b.wire("den", dw, format!("{ne} * {de} + {ce}"), &format!("UQ{}.{f}: n*(1 - c) + c, exact (at most 2^{} ulps)", nb + 1, nb + f));
-    b.delay(mul_delay(nb, f + 1) + add_delay(dw));
+    b.step("the denominator den = 2n*(1 - c) + c, exact");
+    let (nv, de, ce) = (b.r("n"), b.zext("one_minus_cos", dw), b.zext("cos_clamped", dw));
+    let twice_n = format!("{{{}, {nv}, 1'b0}}", lit(dw - nb - 1, 0));
+    b.wire("den", dw, format!("{twice_n} * {de} + {ce}"), &format!("UQ{}.{f}: 2n*(1 - c) + c, exact (at most 2^{} ulps)", nb + 2, nb + f + 1));
+    b.delay(mul_delay(nb + 1, f + 1) + add_delay(dw));
 
     // the remainder r_k after quotient bit k, and the bits so far q_k (q_0: the weight-1 bit)
     for k in 0..=w {
@@ -224,7 +225,7 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
         b.step(&title);
         let prev = if k == 0 { b.zext("cos_clamped", rw) } else { format!("{{{}, 1'b0}}", b.r(&format!("rem{}", k - 1))) };
         let what = if k == 0 { "c".to_string() } else { format!("2*r{}", k - 1) };
-        b.wire(&format!("shifted{k}"), rw, prev, &format!("UQ{}.{f}: {what}", nb + 2));
+        b.wire(&format!("shifted{k}"), rw, prev, &format!("UQ{}.{f}: {what}", nb + 3));
         let (s, d) = (b.r(&format!("shifted{k}")), b.zext("den", rw + 1));
         b.wire(&format!("trial{k}"), rw + 1, format!("{{1'b0, {s}}} - {d}"), &format!("{what} - den; its top bit: a borrow"));
         let borrow = b.bits(&format!("trial{k}"), rw, rw);

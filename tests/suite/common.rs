@@ -56,7 +56,9 @@ pub fn cache_dir() -> PathBuf {
     d
 }
 
-/// Configurations that exercise odd widths, pipeline depths from 0 to each datapath's full depth, both roundings, both ROM styles, every model.
+/// Configurations that exercise odd widths, pipeline depths from 0 to each datapath's full
+/// depth, both roundings, both ROM styles, the interfaces and static colours: the options'
+/// corners, written out. [`configs`] adds every model of `SpecularModel::ALL` twice.
 pub const CONFIGS: &[&[&str]] = &[
     &[],
     &["--stages", "1", "--rom-style", "case"],
@@ -149,6 +151,27 @@ pub const CONFIGS: &[&[&str]] = &[
     &["--colour", "static", "--tag-bits", "1", "--stages", "2", "--model", "blinn-pow"],
     &["--interface", "ready", "--model", "blinn", "--n-bits", "5", "--cos-frac-bits", "9", "--color-bits", "6", "--rom-style", "case"],
 ];
+
+/// The two configurations [`configs`] gives every model: at default widths, two stages; at
+/// small widths behind a handshake, one stage.
+pub fn model_configs(model: specgen::config::SpecularModel) -> [Vec<&'static str>; 2] {
+    let m = model.name();
+    [
+        vec!["--model", m, "--stages", "2"],
+        vec!["--model", m, "--cos-frac-bits", "7", "--n-bits", "4", "--color-bits", "5", "--intensity-frac-bits", "6", "--interface", "ready", "--stages", "1"],
+    ]
+}
+
+/// What the lint, co-simulation and synthesis tests draw from: [`CONFIGS`], then
+/// [`model_configs`] of every model of `SpecularModel::ALL` (the one list of models: a model
+/// added there is linted, simulated and synthesised with no line here changing).
+pub fn configs() -> Vec<Vec<&'static str>> {
+    let mut all: Vec<Vec<&'static str>> = CONFIGS.iter().map(|c| c.to_vec()).collect();
+    for model in specgen::config::SpecularModel::ALL {
+        all.extend(model_configs(model));
+    }
+    all
+}
 
 proptest::prop_compose! {
     /// A configuration of a `cos^n` model (blinn or blinn-pow) over every width range.

@@ -193,10 +193,8 @@ fn top_may_not_be_a_port_or_an_internal_name() {
         assert!(!out.exists());
     }
     // the rule covers every name the generated units declare
-    for args in
-        [&[][..], &["--model", "blinn", "--stages", "3"][..], &["--model", "fitted", "--stages", "8"][..], &["--model", "blinn-pow", "--stages", "2"][..]]
-    {
-        let dir = generate(tmp.path(), "ok", args);
+    for args in specgen::config::SpecularModel::ALL.map(|m| crate::common::model_configs(m)[0].clone()) {
+        let dir = generate(tmp.path(), "ok", &args);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
         for line in v.lines().map(str::trim) {
             let decl = ["wire ", "reg ", "integer "].iter().find_map(|k| line.strip_prefix(k));

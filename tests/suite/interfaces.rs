@@ -220,7 +220,7 @@ proptest! {
     #[test]
     fn random_configurations_pass_every_interface_under_icarus(
         interface in prop_oneof![Just("valid"), Just("ready"), Just("axis")],
-        model in prop_oneof![Just("quadratic"), Just("fitted"), Just("blinn"), Just("blinn-pow")],
+        model in proptest::sample::select(specgen::config::SpecularModel::ALL.map(|m| m.name()).to_vec()),
         stages in 0u32..6,
         tag_bits in prop_oneof![Just(0u32), 1u32..=64],
         colour in prop_oneof![Just("pixel"), Just("static")],

@@ -201,7 +201,7 @@ proptest::proptest! {
     /// keep the fits quick), `generate` exits 0, or 2 with the parameter named.
     #[test]
     fn every_configuration_generates_or_is_refused_never_panics(
-        model in proptest::sample::select(vec!["quadratic", "fitted", "blinn", "blinn-pow"]),
+        model in proptest::sample::select(specgen::config::SpecularModel::ALL.map(|m| m.name()).to_vec()),
         target in proptest::sample::select(vec!["ice40", "ecp5", "generic"]),
         interface in proptest::sample::select(vec!["valid", "ready", "axis"]),
         colour in proptest::sample::select(vec!["pixel", "static"]),

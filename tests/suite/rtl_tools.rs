@@ -13,7 +13,7 @@ fn top_of<'a>(args: &[&'a str]) -> &'a str {
 fn silent_on_every_config(tool: &str, package: &str, args: &[&str]) {
     require_tool(tool, package);
     let tmp = tempfile::tempdir().unwrap();
-    for (i, gen_args) in CONFIGS.iter().enumerate() {
+    for (i, gen_args) in configs().iter().enumerate() {
         let dir = generate(tmp.path(), &format!("c{i}"), gen_args);
         let top = top_of(gen_args);
         let mut files = vec![format!("{top}.v")];
@@ -42,7 +42,14 @@ fn yosys_synthesizes_without_latches_or_warnings() {
     let tmp = tempfile::tempdir().unwrap();
     // one representative of each model, arch, rounding, ROM style and depth (the rest of
     // CONFIGS repeats their shapes at other widths; yosys takes a minute over all of them)
-    let representative: Vec<&[&str]> = [0, 2, 4, 6, 7, 9, 11, 13, 14, 17, 18].iter().map(|&i| CONFIGS[i]).collect();
+    let mut representative: Vec<Vec<&str>> = [0, 2, 4, 6, 7, 9, 11, 13, 14, 17, 18].iter().map(|&i| CONFIGS[i].to_vec()).collect();
+    // and every model none of them is (a model added to the registry)
+    for model in specgen::config::SpecularModel::ALL {
+        let of_model = |args: &Vec<&str>| args.iter().position(|a| *a == "--model").map_or(model.name() == "quadratic", |i| args[i + 1] == model.name());
+        if !representative.iter().any(of_model) {
+            representative.push(model_configs(model)[0].clone());
+        }
+    }
     for_each_parallel(&representative, |i, args| {
         // a parent of its own: specgen locks the parent while it swaps an output in
         let dir = generate(&tmp.path().join(format!("p{i}")), &format!("c{i}"), args);
@@ -64,9 +71,9 @@ fn yosys_synthesizes_without_latches_or_warnings() {
 #[test]
 fn combinational_units_have_no_renaming_wires_and_one_sink() {
     let tmp = tempfile::tempdir().unwrap();
-    for (i, args) in
-        [&[][..], &["--arch", "paper"][..], &["--model", "fitted"][..], &["--model", "blinn"][..], &["--model", "blinn-pow"][..]].iter().enumerate()
-    {
+    let mut units: Vec<Vec<&str>> = vec![vec!["--arch", "paper"]];
+    units.extend(specgen::config::SpecularModel::ALL.iter().map(|m| vec!["--model", m.name()]));
+    for (i, args) in units.iter().enumerate() {
         let dir = generate(tmp.path(), &format!("r{i}"), args);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
         // a wire's whole statement: its continuation lines (one operand a line) joined
@@ -174,7 +181,7 @@ fn pipelined_rtl_reads_top_to_bottom() {
     let words = |line: &str| -> Vec<String> {
         line.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).filter(|w| !w.is_empty()).map(str::to_string).collect::<Vec<_>>()
     };
-    for (i, args) in CONFIGS.iter().enumerate() {
+    for (i, args) in configs().iter().enumerate() {
         let dir = generate(tmp.path(), &format!("r{i}"), args);
         let v = std::fs::read_to_string(dir.join(format!("{}.v", top_of(args)))).unwrap();
         let mut declared = std::collections::HashSet::new();
