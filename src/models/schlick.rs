@@ -29,7 +29,7 @@
 use super::{explain_ideal, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, mul_delay, Builder, LUT_DELAY};
+use crate::datapath::{add_delay, mul_delay, Builder, Piece, LUT_DELAY};
 
 /// W: fractional bits of the quotient `q = floor(S·2^W)`, from the budget above.
 pub(crate) fn quotient_frac_bits(cfg: &Config) -> u32 {
@@ -195,9 +195,9 @@ impl SpecularUnit for Schlick {
     }
 }
 
-/// Step 1 clamps c and forms 1 − c; step 2 the denominator; then one quotient bit a step (a
-/// compare-subtract of the doubled remainder and a select); the last step picks 1.0 at n = 0
-/// and rounds to the outputs.
+/// Step 1 clamps c and forms 1 − c; then the denominator (a multiply-add) and its complement;
+/// then one quotient bit a step (a compare-subtract of the doubled remainder on one carry
+/// chain, and a select); the last step picks 1.0 at n = 0 and rounds to the outputs.
 fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     let (f, nb, bb, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
     let dw = nb + f + 2; // den, and the remainder
@@ -213,27 +213,40 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     b.wire("n_zero", 1, format!("{n} == {}", lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
     b.delay(2.0 * add_delay(f + 1));
 
+    // 2n·(1 − c) + c: one multiply-add (on the iCE40 the SB_MAC16's post-adder; on the ECP5 a
+    // MULT18X18D, then a carry chain)
     b.step("the denominator den = 2n*(1 - c) + c, exact");
-    let (nv, de, ce) = (b.r("n"), b.zext("one_minus_cos", dw), b.zext("cos_clamped", dw));
-    let twice_n = format!("{{{}, {nv}, 1'b0}}", lit(dw - nb - 1, 0));
-    b.wire("den", dw, format!("{twice_n} * {de} + {ce}"), &format!("UQ{}.{f}: 2n*(1 - c) + c, exact (at most 2^{} ulps)", nb + 2, nb + f + 1));
-    b.delay(mul_delay(nb + 1, f + 1) + add_delay(dw));
+    let twice_n = [Piece::zeros(1), Piece::sig("n", 0, nb)];
+    let (d, c) = ([Piece::sig("one_minus_cos", 0, f + 1)], [Piece::sig("cos_clamped", 0, f + 1)]);
+    let comment = format!("UQ{}.{f}: 2n*(1 - c) + c, exact (at most 2^{} ulps)", nb + 2, nb + f + 1);
+    b.multiply_add("den", &twice_n, &d, &c, dw, "the denominator", &comment);
 
-    // the remainder r_k after quotient bit k, and the bits so far q_k (q_0: the weight-1 bit)
+    // −den − 1 = ~den over the trial's width, once: each compare-subtract is then a plain add
+    // with carry-in 1 (a carry chain's operand takes no inverter)
+    b.step("~den for the compare-subtracts");
+    let dv = b.r("den");
+    b.wire("den_inv", rw + 1, format!("~{{{}, {dv}}}", lit(rw + 1 - dw, 0)), &format!("~den over {} bits: 2r + ~den + 1 = 2r - den", rw + 1));
+    b.delay(LUT_DELAY);
+
+    // one quotient bit a step (the weight-1 bit first): the trial `shifted - den` on one carry
+    // chain (a carry-select add would cut a bit over several steps, and its registers, a
+    // remainder's and den's a cut, overflow the UP5K), its carry-out the bit, then the select
     for k in 0..=w {
         let title = if k == 0 { "quotient bit of weight 1: c >= den".to_string() } else { format!("quotient bit of weight 2^-{k}: 2r >= den") };
         b.step(&title);
         let prev = if k == 0 { b.zext("cos_clamped", rw) } else { format!("{{{}, 1'b0}}", b.r(&format!("rem{}", k - 1))) };
         let what = if k == 0 { "c".to_string() } else { format!("2*r{}", k - 1) };
         b.wire(&format!("shifted{k}"), rw, prev, &format!("UQ{}.{f}: {what}", nb + 3));
-        let (s, d) = (b.r(&format!("shifted{k}")), b.zext("den", rw + 1));
-        b.wire(&format!("trial{k}"), rw + 1, format!("{{1'b0, {s}}} - {d}"), &format!("{what} - den; its top bit: a borrow"));
-        let borrow = b.bits(&format!("trial{k}"), rw, rw);
+        let trial = format!("trial{k}");
+        let (sv, dv) = (b.zext(&format!("shifted{k}"), rw + 1), b.r("den_inv"));
+        b.wire(&trial, rw + 1, format!("{sv} + {dv} + {}", lit(rw + 1, 1)), &format!("{what} - den mod 2^{}: its top bit a borrow", rw + 1));
+        let borrow = b.bits(&trial, rw, rw);
         b.wire(&format!("qbit{k}"), 1, format!("~{borrow}"), &format!("quotient bit of weight 2^-{k}: {what} >= den"));
-        let (bit, t, s) = (b.r(&format!("qbit{k}")), b.bits(&format!("trial{k}"), dw - 1, 0), b.bits(&format!("shifted{k}"), dw - 1, 0));
+        let (bit, t, s) = (b.r(&format!("qbit{k}")), b.bits(&trial, dw - 1, 0), b.bits(&format!("shifted{k}"), dw - 1, 0));
         b.wire(&format!("rem{k}"), dw, Builder::select(&bit, &t, &s, dw), &format!("r{k}: the remainder, below den"));
         let quotient = if k == 0 { bit } else { format!("{{{}, {bit}}}", b.r(&format!("quot{}", k - 1))) };
         b.wire(&format!("quot{k}"), k + 1, quotient, &format!("the quotient's top {} bit(s)", k + 1));
+        // the chain, its carry-out through a LUT, the remainder's select
         b.delay(add_delay(rw + 1) + LUT_DELAY);
     }
 
