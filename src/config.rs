@@ -384,10 +384,11 @@ pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
 impl Params {
     /// Reads parameters from JSON: a full manifest written by `generate`, or any subset of
     /// the parameter keys (the rest take their defaults). Unknown keys are an error.
-    pub fn from_json(text: &str) -> Result<Params, String> {
-        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| format!("not valid JSON: {e}"))?;
+    pub fn from_json(text: &str) -> Result<Params, ConfigError> {
+        let err = |message: String| ConfigError { parameter: "config", message };
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| err(format!("not valid JSON: {e}")))?;
         let serde_json::Value::Object(mut map) = value else {
-            return Err("must hold a JSON object".into());
+            return Err(err("must hold a JSON object".into()));
         };
         for key in MANIFEST_OUTPUT_KEYS {
             map.remove(*key);
@@ -402,11 +403,11 @@ impl Params {
         }
         for (k, v) in map {
             if full.get(&k).is_none() {
-                return Err(format!("unknown key {k:?}"));
+                return Err(err(format!("unknown key {k:?}")));
             }
             full[&k] = v;
         }
-        serde_json::from_value(full).map_err(|e| e.to_string())
+        serde_json::from_value(full).map_err(|e| err(e.to_string()))
     }
 
     pub fn from_json_file(path: &std::path::Path) -> Result<Params, ConfigError> {
@@ -416,7 +417,7 @@ impl Params {
             SmallFileError::Io(m) => err(format!("cannot read it ({m})")),
             other => err(format!("{other}; allowed a JSON file of at most 1 MiB")),
         })?;
-        Params::from_json(&text).map_err(err)
+        Params::from_json(&text).map_err(|e| err(e.message))
     }
 }
 
@@ -687,18 +688,19 @@ impl Config {
 /// `2^-frac_bits` with the `fixed` crate, which converts decimal text with a single correct
 /// rounding (to nearest, ties to even) and no binary floating point in between.
 /// Returns the integer code `round(x · 2^frac_bits)`. `frac_bits` must be in 1..=24.
-pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
+pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, ConfigError> {
+    let err = |message: String| ConfigError { parameter: "decimal", message };
     use fixed::types::extra::U120;
     use fixed::FixedU128;
     let trimmed = text.trim();
     let plain = |t: &str| !t.is_empty() && t.chars().all(|c| c.is_ascii_digit() || c == '.');
     if let Some(rest) = trimmed.strip_prefix('-') {
         if plain(rest) {
-            return Err(format!("{text:?} is negative, out of range"));
+            return Err(err(format!("{text:?} is negative, out of range")));
         }
     }
     if !plain(trimmed) {
-        return Err(format!("{text:?} is not a plain decimal number"));
+        return Err(err(format!("{text:?} is not a plain decimal number")));
     }
     assert!((1..=24).contains(&frac_bits), "parse_decimal: frac_bits {frac_bits} outside 1..=24");
     // The decimal is read to 120 fractional bits (within 2^-120 of its value) and rounded to
@@ -709,13 +711,13 @@ pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, String> {
     const MAX_DIGITS: usize = 28;
     let digits = trimmed.split_once('.').map_or(0, |(_, f)| f.len());
     if digits > MAX_DIGITS {
-        return Err(format!("{text:?} has {digits} digits after the point (at most {MAX_DIGITS})"));
+        return Err(err(format!("{text:?} has {digits} digits after the point (at most {MAX_DIGITS})")));
     }
-    let wide = trimmed.parse::<FixedU128<U120>>().map_err(|e| format!("{text:?} does not parse ({e})"))?.to_bits();
+    let wide = trimmed.parse::<FixedU128<U120>>().map_err(|e| err(format!("{text:?} does not parse ({e})")))?.to_bits();
     let shift = 120 - frac_bits;
     let (q, rem, half) = (wide >> shift, wide & ((1u128 << shift) - 1), 1u128 << (shift - 1));
     let code = if rem > half || (rem == half && q & 1 == 1) { q + 1 } else { q };
-    u64::try_from(code).map_err(|_| format!("{text:?} is too large"))
+    u64::try_from(code).map_err(|_| err(format!("{text:?} is too large")))
 }
 
 /// Parses `clock_mhz`: a plain decimal in (0, 1000] MHz.
@@ -744,7 +746,7 @@ pub fn parse_k(text: &str, kf: u32) -> Result<u64, ConfigError> {
     if text.chars().any(|c| c.is_whitespace() || c.is_control()) {
         return Err(bad(format!("{text:?} contains a space, line break or control character")));
     }
-    let code = parse_decimal(text, kf).map_err(bad)?;
+    let code = parse_decimal(text, kf).map_err(|e| bad(e.message))?;
     if code == 0 {
         return Err(bad(format!("{text:?} rounds to 0")));
     }

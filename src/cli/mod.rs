@@ -476,7 +476,7 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
     let f = cfg.f();
     let cos_g = match (cos, cos_code) {
         (Some(text), _) => {
-            let code = config::parse_decimal(text, f).map_err(|why| usage(format!("invalid --cos: {why}; allowed a decimal in [0, 2)")))?;
+            let code = config::parse_decimal(text, f).map_err(|why| usage(format!("invalid --cos: {}; allowed a decimal in [0, 2)", why.message)))?;
             if code >= 2u64 << f {
                 return Err(usage(format!("invalid --cos: {text} is out of range; allowed a decimal in [0, 2)")));
             }

@@ -5,20 +5,21 @@ use super::Design;
 use crate::error::{input, mismatch, Error as Failure};
 
 /// Reads a `$readmemh` file: hex words separated by white space, `//` comments, `@addr`
-/// address jumps. Returns the words by address (`None` where the file sets nothing).
-pub fn parse_readmemh(text: &str, depth: usize) -> Result<Vec<Option<u128>>, String> {
+/// address jumps. Returns the words by address (`None` where the file sets nothing); a
+/// malformed file is the user's input error, naming the line.
+pub fn parse_readmemh(text: &str, depth: usize) -> Result<Vec<Option<u128>>, Failure> {
     let mut words = vec![None; depth];
     let mut addr = 0usize;
     for (ln, line) in text.lines().enumerate() {
         let line = line.split("//").next().unwrap_or("");
         for tok in line.split_whitespace() {
             if let Some(a) = tok.strip_prefix('@') {
-                addr = usize::from_str_radix(a, 16).map_err(|_| format!("line {}: bad address {tok:?}", ln + 1))?;
+                addr = usize::from_str_radix(a, 16).map_err(|_| input(format!("line {}: bad address {tok:?}", ln + 1)))?;
                 continue;
             }
-            let v = u128::from_str_radix(&tok.replace('_', ""), 16).map_err(|_| format!("line {}: {tok:?} is not a hex word", ln + 1))?;
+            let v = u128::from_str_radix(&tok.replace('_', ""), 16).map_err(|_| input(format!("line {}: {tok:?} is not a hex word", ln + 1)))?;
             if addr >= depth {
-                return Err(format!("line {}: more than {depth} entries", ln + 1));
+                return Err(input(format!("line {}: more than {depth} entries", ln + 1)));
             }
             words[addr] = Some(v);
             addr += 1;

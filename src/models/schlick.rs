@@ -26,7 +26,7 @@
 //! configurations, the exhaustive sweep at the defaults. `done = (intensity == 0)`, as for
 //! the `cos^n` models.
 
-use super::{explain_ideal, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
+use super::{explain_ideal, Breach, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{lit, mask};
 use crate::config::Config;
 use crate::datapath::{add_delay, mul_delay, Builder, Piece, LUT_DELAY};
@@ -114,20 +114,20 @@ fn ratio(cfg: &Config, x: Inputs) -> (u128, u128) {
 
 /// The contract: every output within 1 of its ideal `S·M` (`|o·den − c·M| < den`, in integers),
 /// `done` ⇔ the intensity is 0.
-pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
+pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Breach> {
     let (num, den) = ratio(cfg, x);
     let within = |o: u32, m: u128| (o as u128 * den).abs_diff(num * m) < den;
     let one = 1u128 << cfg.fi();
     if !within(got.intensity, one) {
-        return Err(format!("intensity: got {}, S·2^FI = {}·2^{}/{den}", got.intensity, num, cfg.fi()));
+        return Err(Breach::new("intensity", format!("got {}, S·2^FI = {}·2^{}/{den}", got.intensity, num, cfg.fi())));
     }
     for (i, name) in SPEC_PORTS.iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
-            return Err(format!("{name}: got {}, S·ks = {}·{}/{den}", got.spec[i], num, x.ks[i]));
+            return Err(Breach::new(name, format!("got {}, S·ks = {}·{}/{den}", got.spec[i], num, x.ks[i])));
         }
     }
     if got.done != (got.intensity == 0) {
-        return Err(format!("done: got {}, intensity {}", got.done, got.intensity));
+        return Err(Breach::new("done", format!("got {}, intensity {}", got.done, got.intensity)));
     }
     Ok(())
 }
@@ -137,7 +137,7 @@ impl SpecularUnit for Schlick {
         self.divide(x, |_| {}).3
     }
 
-    fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), Breach> {
         check(&self.cfg, x, got)
     }
 

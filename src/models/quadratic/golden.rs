@@ -6,7 +6,7 @@
 use super::Quadratic;
 use crate::bits::{mask, Word};
 use crate::config::Config;
-use crate::models::{check_value, Ideal, Inputs, Outputs, SPEC_PORTS};
+use crate::models::{check_value, Breach, Ideal, Inputs, Outputs, SPEC_PORTS};
 
 /// Every intermediate value of the datapath, named as in the RTL.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -119,14 +119,14 @@ pub fn reference(cfg: &Config, x: Inputs) -> Reference {
 }
 
 /// Checks a full output vector against SPEC §3 for one input.
-pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), String> {
+pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Breach> {
     let r = reference(cfg, x);
     if got.done != r.done {
-        return Err(format!("done: got {}, reference {}", got.done, r.done));
+        return Err(Breach::new("done", format!("got {}, reference {}", got.done, r.done)));
     }
-    check_value(cfg.rounding(), got.intensity, r.intensity).map_err(|e| format!("intensity: {e}"))?;
+    check_value("intensity", cfg.rounding(), got.intensity, r.intensity)?;
     for (i, name) in SPEC_PORTS.iter().enumerate() {
-        check_value(cfg.rounding(), got.spec[i], r.spec[i]).map_err(|e| format!("{name}: {e}"))?;
+        check_value(name, cfg.rounding(), got.spec[i], r.spec[i])?;
     }
     Ok(())
 }

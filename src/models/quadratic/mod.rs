@@ -187,7 +187,7 @@ impl SpecularUnit for Quadratic {
         out.extend(xs.iter().map(|&x| self.trace(x).outputs));
     }
 
-    fn check(&self, x: Inputs, got: Outputs) -> Result<(), String> {
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::models::Breach> {
         golden::check(&self.cfg, x, got)
     }
 
