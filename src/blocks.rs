@@ -21,11 +21,11 @@ use crate::config::Target;
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockLimit {
     /// the primitive (`DP16KD`, `MULT18X18D`, `SB_MAC16`)
-    pub block: &'static str,
+    pub(crate) block: &'static str,
     /// its minimum period, ns
-    pub period_ns: f64,
+    pub(crate) period_ns: f64,
     /// what the period is, in words, with the source
-    pub what: String,
+    pub(crate) what: String,
 }
 
 impl BlockLimit {

@@ -18,20 +18,20 @@ pub(crate) use crate::names::{ECP5_BRAM_MODEL_SUFFIX, ECP5_SIM_MODEL_SUFFIX, SIM
 
 /// A signal registered at one cut only: `reg x_cK; x_cK <= source`.
 pub(crate) struct CutSignal {
-    pub name: String,
-    pub width: u32,
+    pub(crate) name: String,
+    pub(crate) width: u32,
     /// a register a multiplier reads ([`datapath::Datapath::read_by_block`]): out of the DSP block
-    pub keep: bool,
+    pub(crate) keep: bool,
     /// the expression the cut takes it from (`x_sK` computed in step K, a port, a block's output)
-    pub source: String,
+    pub(crate) source: String,
 }
 
 pub(crate) struct Cut {
-    pub index: usize,
-    pub registered: bool,
-    pub signals: Vec<CutSignal>,
+    pub(crate) index: usize,
+    pub(crate) registered: bool,
+    pub(crate) signals: Vec<CutSignal>,
     /// the delay lines that start here
-    pub lines: Vec<DelayLine>,
+    pub(crate) lines: Vec<DelayLine>,
 }
 
 impl Cut {
@@ -59,46 +59,46 @@ impl Cut {
 }
 
 pub(crate) struct RomEntry {
-    pub index: String,
-    pub value: String,
+    pub(crate) index: String,
+    pub(crate) value: String,
 }
 
 /// A table read with `$readmemh` (declared once at the top of the module).
 pub(crate) struct TableView {
-    pub name: String,
-    pub param: String,
-    pub file: String,
-    pub what: String,
-    pub width: u32,
-    pub depth: usize,
+    pub(crate) name: String,
+    pub(crate) param: String,
+    pub(crate) file: String,
+    pub(crate) what: String,
+    pub(crate) width: u32,
+    pub(crate) depth: usize,
     /// its last entry, and a value it cannot be (the short-file check)
-    pub last: String,
-    pub not_last: String,
+    pub(crate) last: String,
+    pub(crate) not_last: String,
     /// an entry as 64 bits (zero-extended or its low 64), `{i}` the index
-    pub word64: String,
+    pub(crate) word64: String,
     /// [`Table::checksum`] as a Verilog literal
-    pub checksum: String,
+    pub(crate) checksum: String,
 }
 
 /// A table read inside a step: an index into a `$readmemh` memory or an inline `case`.
 pub(crate) struct ReadView {
-    pub signal: String,
-    pub width: u32,
-    pub table: String,
-    pub addr: String,
-    pub what: String,
-    pub file: bool,
-    pub zero: String,
-    pub entries: Vec<RomEntry>,
+    pub(crate) signal: String,
+    pub(crate) width: u32,
+    pub(crate) table: String,
+    pub(crate) addr: String,
+    pub(crate) what: String,
+    pub(crate) file: bool,
+    pub(crate) zero: String,
+    pub(crate) entries: Vec<RomEntry>,
     /// on ECP5 DP16KDs with their registers, one per 18 bits of the word ([`BlockSlice`]), the
     /// address zero-extended to 10 bits, the cut their address registers take
-    pub block: bool,
-    pub slices: Vec<BlockSlice>,
-    pub input_cut: usize,
+    pub(crate) block: bool,
+    pub(crate) slices: Vec<BlockSlice>,
+    pub(crate) input_cut: usize,
     /// two banks: the address's low 10 bits (to every DP16KD) and its bank bit
-    pub banked: bool,
-    pub addr_lo: String,
-    pub addr_bank: String,
+    pub(crate) banked: bool,
+    pub(crate) addr_lo: String,
+    pub(crate) addr_bank: String,
 }
 
 /// The DP16KDs of 18 bits of the word of a registered table read: its instance suffix (none
@@ -106,11 +106,11 @@ pub(crate) struct ReadView {
 /// words; two: the address's bit 10 picks, after registers like the block's own), the bits of
 /// the word it gives and its unread data bits.
 pub(crate) struct BlockSlice {
-    pub suffix: String,
-    pub banks: Vec<Vec<(String, String)>>,
-    pub bits: String,
-    pub unused: u32,
-    pub width: u32,
+    pub(crate) suffix: String,
+    pub(crate) banks: Vec<Vec<(String, String)>>,
+    pub(crate) bits: String,
+    pub(crate) unused: u32,
+    pub(crate) width: u32,
 }
 
 /// The DP16KDs of a registered read of `t` into `signal`: 18 bits of the word each, low first.
@@ -148,18 +148,18 @@ pub(crate) fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
 
 /// One step of the datapath as the template renders it: its reads and wires, then the cut after it.
 pub(crate) struct StepView {
-    pub index: usize,
-    pub title: String,
+    pub(crate) index: usize,
+    pub(crate) title: String,
     /// table reads and wires in definition order
-    pub items: Vec<StepItem>,
-    pub dsps: Vec<DspView>,
-    pub cut: Cut,
+    pub(crate) items: Vec<StepItem>,
+    pub(crate) dsps: Vec<DspView>,
+    pub(crate) cut: Cut,
 }
 
 /// A table read or a wire (its whole statement, comment included, as the RTL shows it).
 pub(crate) struct StepItem {
-    pub read: Option<ReadView>,
-    pub wire: Option<String>,
+    pub(crate) read: Option<ReadView>,
+    pub(crate) wire: Option<String>,
 }
 
 /// The longest line the RTL holds.
@@ -270,54 +270,54 @@ fn wrap_words(indent: &str, body: &str, first: &str, rest: &str, out: &mut Strin
 /// A product on an ECP5 MULT18X18D with its registers (see `datapath::Builder::product`).
 pub(crate) struct DspView {
     /// the product's signal name, and its wire (the DSP's output register: the cut after the step)
-    pub name: String,
-    pub wire: String,
-    pub width: u32,
+    pub(crate) name: String,
+    pub(crate) wire: String,
+    pub(crate) width: u32,
     /// bits of the 36-bit P above `width`, sent to `unused_<name>_p`
-    pub unused: u32,
-    pub a: String,
-    pub b: String,
-    pub comment: String,
+    pub(crate) unused: u32,
+    pub(crate) a: String,
+    pub(crate) b: String,
+    pub(crate) comment: String,
     /// the cut whose place the input registers take
-    pub input_cut: usize,
+    pub(crate) input_cut: usize,
 }
 
 #[derive(Template)]
 #[template(path = "unit.v")]
 pub(crate) struct UnitTemplate<'a> {
-    pub top: &'a str,
-    pub version: &'a str,
+    pub(crate) top: &'a str,
+    pub(crate) version: &'a str,
     /// `Config::fingerprint`, repeated from the manifest
-    pub fingerprint: String,
-    pub model: &'a str,
-    pub p: &'a Params,
-    pub param_line: String,
+    pub(crate) fingerprint: String,
+    pub(crate) model: &'a str,
+    pub(crate) p: &'a Params,
+    pub(crate) param_line: String,
     /// `interface=… tag_bits=… colour=…` when any is not the default
-    pub interface_line: String,
-    pub formula: Vec<String>,
-    pub rounding_text: String,
-    pub datapath_line: String,
+    pub(crate) interface_line: String,
+    pub(crate) formula: Vec<String>,
+    pub(crate) rounding_text: String,
+    pub(crate) datapath_line: String,
     /// the port list (SPEC §2), one declaration a line
-    pub port_lines: Vec<String>,
-    pub cuts_text: String,
-    pub file_tables: Vec<TableView>,
-    pub steps: Vec<StepView>,
+    pub(crate) port_lines: Vec<String>,
+    pub(crate) cuts_text: String,
+    pub(crate) file_tables: Vec<TableView>,
+    pub(crate) steps: Vec<StepView>,
     /// registers in the valid pipeline (one a registered cut)
-    pub valid_depth: u32,
+    pub(crate) valid_depth: u32,
     /// what the valid pipeline takes (`in_valid`, or `in_take` behind a handshake)
-    pub valid_source: String,
+    pub(crate) valid_source: String,
     /// the header's latency and interface lines, the declarations after the ports, the tag's
     /// delay line, and the outputs (see [`crate::interface`])
-    pub edge_header: Vec<String>,
-    pub prologue: Vec<String>,
-    pub tag_lines: Vec<String>,
-    pub tail: Vec<String>,
+    pub(crate) edge_header: Vec<String>,
+    pub(crate) prologue: Vec<String>,
+    pub(crate) tag_lines: Vec<String>,
+    pub(crate) tail: Vec<String>,
     /// the one lint sink for bits no step reads, four a line
-    pub unused: Vec<String>,
+    pub(crate) unused: Vec<String>,
     /// products use the ECP5 product module (`<top>_mult18x18`)
-    pub dsp_module: bool,
+    pub(crate) dsp_module: bool,
     /// tables use the ECP5 ROM module (`<top>_rom1k18`)
-    pub bram_module: bool,
+    pub(crate) bram_module: bool,
 }
 
 /// "after steps [..]" for the Verilog header: runs of consecutive steps as `a-b`.
@@ -714,7 +714,7 @@ struct Mult18Template<'a> {
 #[derive(Template)]
 #[template(path = "ecp5_mult18x18d_sim.v")]
 pub(crate) struct Mult18SimModel<'a> {
-    pub version: &'a str,
+    pub(crate) version: &'a str,
 }
 
 /// The ECP5 ROM module `<top>_rom1k18` (one DP16KD with its address and output registers).
@@ -754,48 +754,48 @@ pub fn core_name(cfg: &crate::config::Config) -> String {
 /// Where each field sits in the `axis` unit's `tdata`.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct Tdata {
-    pub s_axis: Vec<crate::ports::Field>,
-    pub m_axis: Vec<crate::ports::Field>,
+    pub(crate) s_axis: Vec<crate::ports::Field>,
+    pub(crate) m_axis: Vec<crate::ports::Field>,
 }
 
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct FileEntry {
-    pub name: String,
-    pub sha256: String,
+    pub(crate) name: String,
+    pub(crate) sha256: String,
 }
 
 /// The manifest `<top>.json` (SPEC §4): parameters at top level under their SPEC names.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct Manifest<'a> {
-    pub generator: &'static str,
-    pub version: &'static str,
+    pub(crate) generator: &'static str,
+    pub(crate) version: &'static str,
     /// `Config::fingerprint`: the unit's header repeats it
-    pub fingerprint: String,
+    pub(crate) fingerprint: String,
     #[serde(flatten)]
-    pub params: &'a Params,
-    pub k_code: u64,
-    pub latency: u32,
-    pub ports: Vec<Port>,
+    pub(crate) params: &'a Params,
+    pub(crate) k_code: u64,
+    pub(crate) latency: u32,
+    pub(crate) ports: Vec<Port>,
     /// The fields packed into `s_axis_tdata` and `m_axis_tdata` (the `axis` interface).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub tdata: Option<Tdata>,
+    pub(crate) tdata: Option<Tdata>,
     /// The model's own widths and table sizes.
-    pub internal_widths: serde_json::Value,
+    pub(crate) internal_widths: serde_json::Value,
     /// The cuts that hold a pipeline register (1-based step numbers).
-    pub registered_cuts: &'a [u32],
+    pub(crate) registered_cuts: &'a [u32],
     /// `Plan::stage_delay`: the slowest stretch between registers, in the delay estimates'
     /// units (what `--target-mhz`'s delay model reads)
-    pub stage_delay_estimate: f64,
+    pub(crate) stage_delay_estimate: f64,
     /// `Plan::stage_delay_mean`
-    pub stage_delay_mean: f64,
+    pub(crate) stage_delay_mean: f64,
     /// `timing::predicted_fmax`: the delay model's clock for this unit on its family's part
     /// (null for a datapath without calibration)
-    pub predicted_fmax_mhz: Option<f64>,
+    pub(crate) predicted_fmax_mhz: Option<f64>,
     /// `max |intensity/2^FI − c^n|` over the inputs of `blinn_error_method` (SPEC §6).
-    pub blinn_error_max: f64,
-    pub blinn_error_mean: f64,
-    pub blinn_error_method: String,
-    pub files: Vec<FileEntry>,
+    pub(crate) blinn_error_max: f64,
+    pub(crate) blinn_error_mean: f64,
+    pub(crate) blinn_error_method: String,
+    pub(crate) files: Vec<FileEntry>,
 }
 
 fn sha256_hex(bytes: &[u8]) -> String {

@@ -68,17 +68,17 @@ pub fn buffer_places(cfg: &Config) -> u64 {
 /// The lines around the datapath.
 pub(crate) struct Edge {
     /// the header's `Latency:` line and the lines after it (each without its `// `)
-    pub header: Vec<String>,
+    pub(crate) header: Vec<String>,
     /// declarations right after the port list: `axis` aliases, `in_take`, material registers
-    pub prologue: Vec<String>,
+    pub(crate) prologue: Vec<String>,
     /// what `valid_line` takes: `in_valid`, or `in_take` behind a handshake
-    pub valid_source: String,
+    pub(crate) valid_source: String,
     /// the tag's delay line (after the valid pipeline)
-    pub tag: Vec<String>,
+    pub(crate) tag: Vec<String>,
     /// the outputs: assigns, or the buffer and what it drives
-    pub tail: Vec<String>,
+    pub(crate) tail: Vec<String>,
     /// bits no logic reads (`tdata` padding), for the lint sink
-    pub unused: Vec<String>,
+    pub(crate) unused: Vec<String>,
 }
 
 fn range(width: u32) -> String {

@@ -124,15 +124,15 @@ pub(crate) fn mad_over_n(ns: std::ops::RangeInclusive<u32>, steps: usize, f: imp
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct Claim {
     pub id: &'static str,
-    pub claim: String,
-    pub paper: String,
-    pub ours: String,
+    pub(crate) claim: String,
+    pub(crate) paper: String,
+    pub(crate) ours: String,
     pub value: f64,
-    pub method: String,
-    pub agrees: bool,
+    pub(crate) method: String,
+    pub(crate) agrees: bool,
     /// "agrees", "disagrees", or a qualified verdict
-    pub verdict: String,
-    pub remark: String,
+    pub(crate) verdict: String,
+    pub(crate) remark: String,
 }
 
 fn verdict(agrees: bool) -> String {

@@ -16,7 +16,7 @@ pub const OUTPUT_SIGNALS: [&str; 5] = ["spec_r", "spec_g", "spec_b", "intensity"
 #[derive(Debug, Clone)]
 pub struct Plan {
     pub cfg: Config,
-    pub model: Model,
+    pub(crate) model: Model,
     /// The cuts that hold a pipeline register, 1-based step numbers (empty: combinational).
     pub registered_cuts: Vec<u32>,
     pub datapath: Datapath,

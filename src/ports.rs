@@ -32,27 +32,27 @@ pub struct Outputs {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PortWidths {
     /// F of UQ1.F
-    pub cos_frac_bits: u32,
-    pub n_bits: u32,
-    pub color_bits: u32,
+    pub(crate) cos_frac_bits: u32,
+    pub(crate) n_bits: u32,
+    pub(crate) color_bits: u32,
     /// FI of UQ1.FI
-    pub intensity_frac_bits: u32,
+    pub(crate) intensity_frac_bits: u32,
     /// a clock and reset (the unit has registers)
-    pub clocked: bool,
+    pub(crate) clocked: bool,
     /// `in_ready`/`out_ready` (the `ready` and `axis` interfaces)
-    pub ready: bool,
+    pub(crate) ready: bool,
     /// AXI4-Stream names, the fields packed into `tdata` (the `axis` interface)
-    pub axis: bool,
+    pub(crate) axis: bool,
     /// W of `in_tag`/`out_tag` (`tuser` under `axis`), 0 for none
-    pub tag_bits: u32,
+    pub(crate) tag_bits: u32,
     /// `ks_r/g/b` are material registers loaded by `ks_load`, with an `idle` output
-    pub static_colour: bool,
+    pub(crate) static_colour: bool,
     /// the reset is active low (`rst_n`, `aresetn`), else active high (`rst`, `areset`)
-    pub reset_low: bool,
+    pub(crate) reset_low: bool,
     /// `s_axis_tlast`/`m_axis_tlast` (the `axis` interface)
-    pub tlast: bool,
+    pub(crate) tlast: bool,
     /// a clock enable: `clk_en`, `aclken` under `axis` (the `ready` and `axis` interfaces)
-    pub clock_enable: bool,
+    pub(crate) clock_enable: bool,
 }
 
 /// The reset port's name: `rst`/`rst_n`, or under `axis` `areset`/`aresetn`.
@@ -68,9 +68,9 @@ pub fn reset_port(w: PortWidths) -> &'static str {
 /// One field of a packed `tdata` (the `axis` interface): a logical port's bits at `lo`.
 #[derive(Debug, Clone, Serialize, PartialEq, Eq)]
 pub struct Field {
-    pub name: &'static str,
-    pub lo: u32,
-    pub width: u32,
+    pub(crate) name: &'static str,
+    pub(crate) lo: u32,
+    pub(crate) width: u32,
 }
 
 /// A packed `tdata` of `width` bits as a Verilog concatenation, most significant first: the
@@ -118,15 +118,15 @@ pub fn tdata_fields(w: PortWidths) -> (Vec<Field>, u32, Vec<Field>, u32) {
 /// One port of the generated module.
 #[derive(Debug, Clone, Serialize, PartialEq, Eq)]
 pub struct Port {
-    pub name: &'static str,
-    pub direction: &'static str,
-    pub width: u32,
+    pub(crate) name: &'static str,
+    pub(crate) direction: &'static str,
+    pub(crate) width: u32,
     /// its number format and meaning, for the Verilog comment
     #[serde(skip)]
-    pub meaning: String,
+    pub(crate) meaning: String,
     /// a data field of a vector (not a clock, reset or handshake)
     #[serde(skip)]
-    pub data: bool,
+    pub(crate) data: bool,
 }
 
 /// Every name the port table can hold, and the logical names of the `axis` unit's fields.

@@ -177,10 +177,10 @@ pub fn sig3(x: f64) -> String {
 
 /// An RGB canvas that records the text drawn on it (what a reader reads; the tests read it).
 pub struct Sheet {
-    pub width: u32,
-    pub height: u32,
-    pub rgb: Vec<u8>,
-    pub labels: Vec<String>,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) rgb: Vec<u8>,
+    pub(crate) labels: Vec<String>,
 }
 
 /// Glyph cell of the bundled 8×8 font (font8x8, public domain), at scale 1.
@@ -267,7 +267,6 @@ pub struct Picture {
     pub e_max: f64,
     /// where each tile is: its row's label, its column's title, its top left corner
     pub tiles: Vec<TilePlace>,
-    pub size: u32,
 }
 
 /// Where a tile of the sheet is.
@@ -365,7 +364,7 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
         columns.iter().map(|c| format!("{} {}", c.0, c.1)).collect::<Vec<_>>().join(", "),
         sig3(e_max)
     );
-    Picture { png: png(sheet.width, sheet.height, &sheet.rgb, &description), labels: sheet.labels, e_max, tiles, size }
+    Picture { png: png(sheet.width, sheet.height, &sheet.rgb, &description), labels: sheet.labels, e_max, tiles }
 }
 
 /// Encodes RGB8 pixels as PNG, with a text chunk describing the picture.

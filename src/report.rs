@@ -19,23 +19,23 @@ const SWEEP_LIMIT: u64 = 1 << 26;
 #[derive(Debug, Clone, Serialize)]
 pub struct UnitAccuracy {
     /// "exhaustive" or "every k-th cos code"
-    pub sweep: String,
-    pub points: u64,
+    pub(crate) sweep: String,
+    pub(crate) points: u64,
     /// |intensity − intensity*| in units of 2^-FI
-    pub intensity_max_ulp: f64,
-    pub intensity_mean_ulp: f64,
+    pub(crate) intensity_max_ulp: f64,
+    pub(crate) intensity_mean_ulp: f64,
     /// |spec − spec*| at ks = all ones, in colour codes
-    pub spec_max_ulp: f64,
-    pub spec_mean_ulp: f64,
+    pub(crate) spec_max_ulp: f64,
+    pub(crate) spec_mean_ulp: f64,
     /// |intensity/2^FI − cos^n| (model + quantisation error against Blinn)
-    pub vs_blinn_max: f64,
-    pub vs_blinn_mean: f64,
+    pub(crate) vs_blinn_max: f64,
+    pub(crate) vs_blinn_mean: f64,
     /// |k_q-formula − real-k formula (15)|: what quantising k costs (the quadratic model only)
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub k_quantisation_max: Option<f64>,
+    pub(crate) k_quantisation_max: Option<f64>,
     /// max |intensity error| in ulps per (cos bin, n bin), row-major by n bin
     #[serde(skip)]
-    pub heat: Vec<f64>,
+    pub(crate) heat: Vec<f64>,
 }
 
 /// Exhaustive (or strided) sweep of `(cos_g ∈ [0, 2^F], n)` on two threads.
@@ -208,9 +208,9 @@ fn heat_map(title: &str, x_label: &str, y_label: &str, x_max: f64, y_max: f64, c
 }
 
 pub struct Figure {
-    pub id: &'static str,
-    pub caption: String,
-    pub svg: String,
+    pub(crate) id: &'static str,
+    pub(crate) caption: String,
+    pub(crate) svg: String,
 }
 
 /// The figures: analogues of the paper's, plus the ROM cut-off and two error maps.
@@ -337,21 +337,21 @@ fn cutoff_figure(cfg: &Config, unit: &dyn crate::models::SpecularUnit) -> Option
 /// hardware as `specgen synth --json` measured it (when given with `--hw`).
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct ModelComparison {
-    pub model: String,
-    pub computes: String,
-    pub blinn_error_max: f64,
-    pub blinn_error_mean: f64,
+    pub(crate) model: String,
+    pub(crate) computes: String,
+    pub(crate) blinn_error_max: f64,
+    pub(crate) blinn_error_mean: f64,
     /// the two, to 3 significant digits (as the page prints them)
     #[serde(skip)]
-    pub blinn_error_max_text: String,
+    pub(crate) blinn_error_max_text: String,
     #[serde(skip)]
-    pub blinn_error_mean_text: String,
-    pub worst_n: u32,
-    pub worst_cos_g: u32,
-    pub hardware: Option<crate::synth::SynthResult>,
+    pub(crate) blinn_error_mean_text: String,
+    pub(crate) worst_n: u32,
+    pub(crate) worst_cos_g: u32,
+    pub(crate) hardware: Option<crate::synth::SynthResult>,
     /// its part in the verdict on the premise
     #[serde(skip)]
-    pub role: Option<crate::models::PremiseRole>,
+    pub(crate) role: Option<crate::models::PremiseRole>,
 }
 
 /// Every model at the report's widths (stages 0, faithful), in `SpecularModel::ALL`'s order:
@@ -498,21 +498,21 @@ fn render_grid(models: &[(Model, &'static str)]) -> (crate::render::Picture, Vec
 
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct ReportData {
-    pub generator: &'static str,
-    pub version: &'static str,
+    pub(crate) generator: &'static str,
+    pub(crate) version: &'static str,
     /// the model every section but the paper's claims and the comparison is about
-    pub model: String,
+    pub(crate) model: String,
     /// its parameters, `name=value` words (only the ones the model reads)
-    pub configuration: String,
+    pub(crate) configuration: String,
     /// its parameters by name (only the ones the model reads)
-    pub parameters: serde_json::Value,
+    pub(crate) parameters: serde_json::Value,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub k_code: Option<u64>,
-    pub claims: Vec<Claim>,
-    pub unit: UnitAccuracy,
-    pub models: Vec<ModelComparison>,
-    pub premise: String,
-    pub files: Vec<serde_json::Value>,
+    pub(crate) k_code: Option<u64>,
+    pub(crate) claims: Vec<Claim>,
+    pub(crate) unit: UnitAccuracy,
+    pub(crate) models: Vec<ModelComparison>,
+    pub(crate) premise: String,
+    pub(crate) files: Vec<serde_json::Value>,
 }
 
 struct Row {

@@ -15,57 +15,57 @@ pub use crate::config::Target;
 #[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct SynthResult {
-    pub top: String,
+    pub(crate) top: String,
     /// the manifest's model and pipeline depth
     #[serde(default)]
-    pub model: String,
+    pub(crate) model: String,
     #[serde(default)]
-    pub stages: u32,
-    pub target: String,
-    pub dsp: bool,
+    pub(crate) stages: u32,
+    pub(crate) target: String,
+    pub(crate) dsp: bool,
     /// the clock the unit is constrained to (its `.sdc`, nextpnr's `--freq`), MHz
     #[serde(default)]
-    pub clock_mhz: Option<f64>,
+    pub(crate) clock_mhz: Option<f64>,
     /// LUT4 (iCE40/ECP5) or all cells (generic)
-    pub luts: u64,
-    pub carry_cells: u64,
-    pub dsp_blocks: u64,
-    pub flip_flops: u64,
-    pub block_rams: u64,
+    pub(crate) luts: u64,
+    pub(crate) carry_cells: u64,
+    pub(crate) dsp_blocks: u64,
+    pub(crate) flip_flops: u64,
+    pub(crate) block_rams: u64,
     /// the content of every table (cut-off ROM, fit ROM, log2/exp2 tables; 0 for blinn-pow)
-    pub rom_bits: u64,
-    pub total_cells: u64,
+    pub(crate) rom_bits: u64,
+    pub(crate) total_cells: u64,
     /// MHz the unit runs at, when place-and-route ran: the least of nextpnr's median over the
     /// seeds (`fmax_route_mhz`) and the limits of the blocks it uses (`crate::blocks`)
-    pub fmax_mhz: Option<f64>,
+    pub(crate) fmax_mhz: Option<f64>,
     /// nextpnr's median over the seeds (its routes, not the blocks' own limits)
     #[serde(default)]
-    pub fmax_route_mhz: Option<f64>,
+    pub(crate) fmax_route_mhz: Option<f64>,
     /// what sets `fmax_mhz`: "routing (nextpnr)", or the block's limit with its source
     #[serde(default)]
-    pub fmax_limited_by: String,
+    pub(crate) fmax_limited_by: String,
     /// every block limit of the part and grade: (block, MHz, what)
     #[serde(default)]
-    pub block_limits: Vec<(String, f64, String)>,
+    pub(crate) block_limits: Vec<(String, f64, String)>,
     /// the ECP5 speed grade placed for (none on the iCE40)
     #[serde(default)]
-    pub speed_grade: Option<u32>,
+    pub(crate) speed_grade: Option<u32>,
     /// iCE40: `icetime -d up5k` on each placed seed (its interior paths), and their median
     #[serde(default)]
-    pub icetime_seeds: Vec<f64>,
+    pub(crate) icetime_seeds: Vec<f64>,
     #[serde(default)]
-    pub icetime_mhz: Option<f64>,
+    pub(crate) icetime_mhz: Option<f64>,
     /// Fmax of each seed 1..=K, in seed order (Fmax moves with the seed by several per cent)
-    pub fmax_seeds: Vec<f64>,
+    pub(crate) fmax_seeds: Vec<f64>,
     /// why Fmax is missing, when it is
-    pub fmax_note: String,
+    pub(crate) fmax_note: String,
     /// logic cells after packing, from nextpnr's device utilisation: ICESTORM_LC (iCE40) or
     /// TRELLIS_SLICE (ECP5; where nextpnr-ecp5 counts TRELLIS_COMB and TRELLIS_FF instead, the
     /// larger: LUT4-and-flip-flop places, two to a slice), the serial-I/O wrapper included;
     /// none without place-and-route
     #[serde(default)]
-    pub logic_cells: Option<u64>,
-    pub cells: Vec<(String, u64)>,
+    pub(crate) logic_cells: Option<u64>,
+    pub(crate) cells: Vec<(String, u64)>,
 }
 
 struct WrapperPort {

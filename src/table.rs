@@ -10,16 +10,16 @@ pub struct Table {
     /// The memory's name in the Verilog, and the second half of its file's name.
     pub name: String,
     /// The Verilog parameter that names the file.
-    pub param: String,
-    pub width: u32,
-    pub words: Vec<u128>,
+    pub(crate) param: String,
+    pub(crate) width: u32,
+    pub(crate) words: Vec<u128>,
     /// What an entry holds, for the comments.
-    pub what: String,
+    pub(crate) what: String,
     /// The fields of a word, LSB first: (name, bits), for the CSV export.
-    pub fields: Vec<(String, u32)>,
+    pub(crate) fields: Vec<(String, u32)>,
     /// Each word is a cosine, UQ1.this: the CSV export gives its address as `n`, the cosine as
     /// a decimal and its angle (a cut-off table).
-    pub cosines: Option<u32>,
+    pub(crate) cosines: Option<u32>,
 }
 
 impl Table {

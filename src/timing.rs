@@ -56,18 +56,18 @@ const MODEL_JSON: &str = include_str!("../data/delay_model.json");
 /// One family's line (see the module doc).
 #[derive(Debug, Clone, Deserialize)]
 pub struct Line {
-    pub offset_ns: f64,
-    pub ns_per_unit: f64,
-    pub ns_per_mean_unit: f64,
-    pub cap_mhz: f64,
+    pub(crate) offset_ns: f64,
+    pub(crate) ns_per_unit: f64,
+    pub(crate) ns_per_mean_unit: f64,
+    pub(crate) cap_mhz: f64,
     /// the largest `e` among the calibration units that reached the cap (-1: none did)
-    pub cap_up_to: f64,
+    pub(crate) cap_up_to: f64,
     pub margin: f64,
     /// the calibration units of this datapath on this family, `[e, m, median Fmax]`: a unit
     /// whose stretches are no longer than one measured reaches at least its Fmax (the line
     /// misses the jump of the last cuts, where the long stretches go at once)
     #[serde(default)]
-    pub measured: Vec<[f64; 3]>,
+    pub(crate) measured: Vec<[f64; 3]>,
 }
 
 impl Line {

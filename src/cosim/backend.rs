@@ -54,8 +54,8 @@ fn tool_identity(tool: &str, package: &str) -> Result<String, Failure> {
 
 /// A built simulator, ready to run vectors.
 pub struct Built {
-    pub simulator: Simulator,
-    pub dir: PathBuf,
+    pub(crate) simulator: Simulator,
+    pub(crate) dir: PathBuf,
     /// true when this call compiled it (false: taken from the cache)
     pub fresh: bool,
 }

@@ -9,15 +9,15 @@ use std::collections::VecDeque;
 #[derive(Debug, Clone)]
 pub struct Mismatch {
     /// cycle index within its run
-    pub cycle: u64,
-    pub run: usize,
+    pub(crate) cycle: u64,
+    pub(crate) run: usize,
     /// the inputs the compared outputs belong to (the pixel's own cycle)
-    pub cycle_in: Cycle,
-    pub expected: Sampled,
-    pub actual: Sampled,
-    pub data_compared: bool,
+    pub(crate) cycle_in: Cycle,
+    pub(crate) expected: Sampled,
+    pub(crate) actual: Sampled,
+    pub(crate) data_compared: bool,
     /// what rule broke, when it is more than a wrong value (a handshake's or idle's rule)
-    pub rule: Option<String>,
+    pub(crate) rule: Option<String>,
 }
 
 /// The result of checking one or more runs.
@@ -111,7 +111,7 @@ pub struct Checker<'a> {
     before: Option<(Cycle, Sampled)>,
     /// the last cycle counted as a mismatch (several rules broken in one cycle count once)
     last_failed: Option<u64>,
-    pub report: Report,
+    pub(crate) report: Report,
 }
 
 impl<'a> Checker<'a> {

@@ -40,12 +40,12 @@ pub struct Design {
     /// the configuration's plan: its model, widths, datapath and tables
     pub plan: crate::plan::Plan,
     /// the synthesizable Verilog: every `*.v` but the simulation models
-    pub sources: Vec<PathBuf>,
+    pub(crate) sources: Vec<PathBuf>,
     /// simulation-only models beside it (the MULT18X18D model of an ECP5 unit): simulators
     /// read them after the sources, synthesis never
-    pub sim_models: Vec<PathBuf>,
+    pub(crate) sim_models: Vec<PathBuf>,
     /// every file of the unit: the manifest and the files it lists that are present
-    pub inputs: Vec<PathBuf>,
+    pub(crate) inputs: Vec<PathBuf>,
 }
 
 /// The largest manifest read (a generated one is a few kB).
@@ -287,12 +287,12 @@ impl Cycle {
 /// What the simulator returned for one cycle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Sampled {
-    pub outputs: Outputs,
-    pub valid: bool,
+    pub(crate) outputs: Outputs,
+    pub(crate) valid: bool,
     /// `in_ready` (always 1 without a handshake)
-    pub in_ready: bool,
+    pub(crate) in_ready: bool,
     /// `idle` (0 without material registers)
-    pub idle: bool,
+    pub(crate) idle: bool,
     /// `out_tag` (0 without a tag)
-    pub tag: u64,
+    pub(crate) tag: u64,
 }

@@ -236,22 +236,22 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
 /// ends with a tail of `2^B` cycles at `cos_g = 1.0` carrying every colour code on every
 /// channel through full intensity (whatever N is).
 pub struct Exhaustive {
-    pub f: u32,
-    pub b: u32,
-    pub n_bits: u32,
-    pub n_lo: u32,
-    pub n_hi: u32,
+    pub(crate) f: u32,
+    pub(crate) b: u32,
+    pub(crate) n_bits: u32,
+    pub(crate) n_lo: u32,
+    pub(crate) n_hi: u32,
     /// a reset first (the unit has registers)
-    pub clocked: bool,
+    pub(crate) clocked: bool,
     /// a material load after the reset (a static colour): full-scale red, mid green, 1 blue
-    pub static_colour: bool,
+    pub(crate) static_colour: bool,
     /// idle cycles after those, before the sweep: 1 behind a handshake, whose `in_ready` is low
     /// the cycle after a reset (a pixel offered then is not taken, and would be missed)
-    pub settle: u64,
-    pub tag_bits: u32,
-    pub full_intensity_tail: bool,
+    pub(crate) settle: u64,
+    pub(crate) tag_bits: u32,
+    pub(crate) full_intensity_tail: bool,
     /// idle cycles at the end, so the last pixels' results leave a pipelined unit
-    pub drain: u64,
+    pub(crate) drain: u64,
 }
 
 impl Exhaustive {

@@ -45,22 +45,22 @@ pub(crate) const ECP5_CHUNK_BITS: u32 = 40;
 #[derive(Debug, Clone)]
 pub struct Dsp {
     /// the product signal; its wire is `name_cK` (the DSP's output register is cut K)
-    pub name: String,
+    pub(crate) name: String,
     /// bits of the product kept (the rest of the 36-bit P goes to `unused_<name>_p`)
-    pub width: u32,
+    pub(crate) width: u32,
     /// 18-bit operands, as seen in the step before (the input registers take them there)
-    pub a: String,
-    pub b: String,
-    pub comment: String,
+    pub(crate) a: String,
+    pub(crate) b: String,
+    pub(crate) comment: String,
 }
 
 /// One wire of a step: `wire [width-1:0] name_sK = expr;   // comment`.
 #[derive(Debug, Clone)]
 pub struct Wire {
-    pub name: String,
-    pub width: u32,
-    pub expr: String,
-    pub comment: String,
+    pub(crate) name: String,
+    pub(crate) width: u32,
+    pub(crate) expr: String,
+    pub(crate) comment: String,
 }
 
 impl Wire {
@@ -73,36 +73,36 @@ impl Wire {
 #[derive(Debug, Clone)]
 pub struct Step {
     /// 1-based
-    pub index: usize,
-    pub title: String,
-    pub wires: Vec<Wire>,
+    pub(crate) index: usize,
+    pub(crate) title: String,
+    pub(crate) wires: Vec<Wire>,
     /// products on ECP5 DSP blocks with their own registers (`Builder::product`)
-    pub dsps: Vec<Dsp>,
+    pub(crate) dsps: Vec<Dsp>,
     /// Delay estimate (ns on a LUT4 + carry-chain fabric); only ratios matter.
-    pub delay: f64,
+    pub(crate) delay: f64,
 }
 
 /// A signal alive across a cut, and the name it is taken from there.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Live {
-    pub name: String,
-    pub width: u32,
-    pub source: String,
+    pub(crate) name: String,
+    pub(crate) width: u32,
+    pub(crate) source: String,
 }
 
 /// A read of a table in a step: `signal_sK = table[addr]`.
 #[derive(Debug, Clone)]
 pub struct RomRead {
-    pub step: usize,
-    pub signal: String,
-    pub table: usize,
+    pub(crate) step: usize,
+    pub(crate) signal: String,
+    pub(crate) table: usize,
     /// the address as a Verilog expression of this step (of the step before, for a block read)
-    pub addr: String,
+    pub(crate) addr: String,
     /// on an ECP5 DP16KD with its output register: the address register stands in for the cut
     /// before this step, the output register is the cut after it (`signal_cK`)
-    pub block: bool,
+    pub(crate) block: bool,
     /// how many of its step's wires come before it (the RTL declares in definition order)
-    pub position: usize,
+    pub(crate) position: usize,
 }
 
 /// Words and width an ECP5 DP16KD holds in its 1024 x 18 mode.
@@ -114,23 +114,23 @@ pub(crate) const MAX_BLOCK_SLICES: u32 = 4;
 #[derive(Debug, Clone)]
 pub struct Datapath {
     pub tables: Vec<Table>,
-    pub reads: Vec<RomRead>,
+    pub(crate) reads: Vec<RomRead>,
     pub steps: Vec<Step>,
     /// `live[K-1]`: the signals cut K carries, in definition order.
-    pub live: Vec<Vec<Live>>,
+    pub(crate) live: Vec<Vec<Live>>,
     /// The bits no step reads, as Verilog selects (`x_c3[7:1]`), for the one lint sink.
-    pub unused: Vec<String>,
+    pub(crate) unused: Vec<String>,
     /// Each output port's source after the last step.
     pub outputs: Vec<(String, String)>,
-    pub registered: Vec<u32>,
+    pub(crate) registered: Vec<u32>,
     /// Every name a step, an output or the lint sink reads, with the bits read: a delay line
     /// names only these words.
-    pub read: BTreeMap<String, u128>,
+    pub(crate) read: BTreeMap<String, u128>,
     /// The signals a multiplier computes: their first register stays a register of its own,
     /// outside any delay line, so that synthesis can take it into the DSP block as its output
     /// register (yosys 0.23's ice40_dsp, given a product registered as the low word of a wider
     /// shift register, takes the whole register and changes the function).
-    pub products: Vec<String>,
+    pub(crate) products: Vec<String>,
 }
 
 impl Datapath {
@@ -271,7 +271,7 @@ pub(crate) struct PendingAdd {
     name: String,
     width: u32,
     /// the chunks `(lo, width)` of a carry-select add (empty: one chain, done)
-    pub chunks: Vec<(u32, u32)>,
+    pub(crate) chunks: Vec<(u32, u32)>,
     /// 1 when chunk 0 carries its carry-in as an extra low bit
     part0_offset: u32,
     /// per chunk: the second addend is 0 there, so its carry-in-0 sum has no carry-out
@@ -284,13 +284,13 @@ pub(crate) struct PendingAdd {
 
 /// A signal that waits in a [`DelayLine`]: its word after cut K is `x_cK`.
 pub(crate) struct Waiting {
-    pub name: String,
-    pub width: u32,
+    pub(crate) name: String,
+    pub(crate) width: u32,
     /// what its first word takes (`x_sK`, a port, a block's output)
-    pub source: String,
+    pub(crate) source: String,
     /// per cut of the line: the bits something past the line reads (0: none; the last word is
     /// always named)
-    pub read: Vec<u128>,
+    pub(crate) read: Vec<u128>,
 }
 
 /// Signals that wait through the same registered cuts (two or more): one vector, declared at
@@ -299,16 +299,16 @@ pub(crate) struct Waiting {
 /// reads get a name, `x_cK`, as wires declared together.
 pub(crate) struct DelayLine {
     /// the vector is `<name>_line`
-    pub name: String,
+    pub(crate) name: String,
     /// the registered cuts it spans, in order
-    pub cuts: Vec<usize>,
+    pub(crate) cuts: Vec<usize>,
     /// the signals of a word, the first in its low bits
-    pub members: Vec<Waiting>,
+    pub(crate) members: Vec<Waiting>,
     /// the target has block RAM: a long unread tail may wait there ([`DelayLine::memory_tail`])
-    pub memory: bool,
+    pub(crate) memory: bool,
     /// that memory is LUT RAM (ECP5: a DP16KD read without its output register, 5.8 ns from
     /// the clock, would set the unit's clock; TRELLIS_DPR16X4 reads in under 5 ns)
-    pub distributed: bool,
+    pub(crate) distributed: bool,
 }
 
 /// A delay line's tail waits in block RAM when it spans at least this many cuts...

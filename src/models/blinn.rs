@@ -90,13 +90,13 @@ pub struct BlinnWidths {
 /// The budget terms in output units; their sum must be < 1/2.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Budget {
-    pub log_table: f64,
-    pub ell_truncation: f64,
-    pub y_truncation: f64,
-    pub exp2_table: f64,
-    pub shift_truncation: f64,
+    pub(crate) log_table: f64,
+    pub(crate) ell_truncation: f64,
+    pub(crate) y_truncation: f64,
+    pub(crate) exp2_table: f64,
+    pub(crate) shift_truncation: f64,
     /// `εg/2` against the room `1 − L(1/2 − 2^−F)` below the next exponent (must be ≤ 0.9).
-    pub monotone_ratio: f64,
+    pub(crate) monotone_ratio: f64,
 }
 
 impl Budget {
@@ -289,10 +289,10 @@ fn exp2_values(w: &BlinnWidths) -> Vec<u128> {
 /// The two tables of the unit, each word `{Δ, entry}`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct BlinnTables {
-    pub g: Vec<u128>,
-    pub dg: Vec<u128>,
-    pub e: Vec<u128>,
-    pub de: Vec<u128>,
+    pub(crate) g: Vec<u128>,
+    pub(crate) dg: Vec<u128>,
+    pub(crate) e: Vec<u128>,
+    pub(crate) de: Vec<u128>,
 }
 
 pub fn tables(w: &BlinnWidths) -> BlinnTables {
@@ -313,8 +313,8 @@ pub fn tables(w: &BlinnWidths) -> BlinnTables {
 /// then drops the constant bits again, so they cost nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct OperandPad {
-    pub a_bits: u32,
-    pub b_pad: u32,
+    pub(crate) a_bits: u32,
+    pub(crate) b_pad: u32,
 }
 
 /// An interpolation table: word i = `{Δ_i, entry_i}` (the entry in the low bits; with `pad`,
@@ -370,14 +370,14 @@ impl BlinnTables {
 /// Every intermediate value of the blinn datapath for one input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct BlinnTrace {
-    pub cos_clamped: u64,
-    pub exponent: u32,
-    pub x: u64,
-    pub ghat: u128,
-    pub ell: u128,
-    pub y: u128,
-    pub ehat: u128,
-    pub v: u128,
+    pub(crate) cos_clamped: u64,
+    pub(crate) exponent: u32,
+    pub(crate) x: u64,
+    pub(crate) ghat: u128,
+    pub(crate) ell: u128,
+    pub(crate) y: u128,
+    pub(crate) ehat: u128,
+    pub(crate) v: u128,
 }
 
 /// The bit-exact golden model.
@@ -843,9 +843,9 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 /// The blinn unit of one configuration: its widths and its two tables.
 #[derive(Debug, Clone)]
 pub struct Blinn {
-    pub cfg: Config,
-    pub widths: BlinnWidths,
-    pub tables: BlinnTables,
+    pub(crate) cfg: Config,
+    pub(crate) widths: BlinnWidths,
+    pub(crate) tables: BlinnTables,
 }
 
 impl Blinn {

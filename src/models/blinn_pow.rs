@@ -24,9 +24,9 @@ pub(crate) fn power_frac_bits(cfg: &Config) -> u32 {
 /// The blinn-pow unit of one configuration.
 #[derive(Debug, Clone)]
 pub struct BlinnPow {
-    pub cfg: Config,
+    pub(crate) cfg: Config,
     /// W: fractional bits of every power and partial product, UQ1.W.
-    pub power_frac_bits: u32,
+    pub(crate) power_frac_bits: u32,
 }
 
 impl BlinnPow {

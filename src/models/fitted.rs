@@ -74,21 +74,21 @@ pub struct Fit {
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct FittedWidths {
     /// KA: fractional bits of `a_n` (the `k_frac_bits` parameter).
-    pub a_frac_bits: u32,
+    pub(crate) a_frac_bits: u32,
     /// Bits of the largest `a_code`.
-    pub a_bits: u32,
+    pub(crate) a_bits: u32,
     /// Bits of the `m_n` field of the ROM word (0 when M = 0).
-    pub m_bits: u32,
+    pub(crate) m_bits: u32,
     /// ROM word: `{m_n, a_code}`.
-    pub rom_word_bits: u32,
+    pub(crate) rom_word_bits: u32,
     /// `P = a_code·D`.
-    pub product_bits: u32,
+    pub(crate) product_bits: u32,
     /// `diff = 2^(KA+F) − P` with its sign bit.
-    pub diff_bits: u32,
+    pub(crate) diff_bits: u32,
     /// W: fractional bits of the bracket and of every square, UQ1.W.
-    pub frac_bits: u32,
+    pub(crate) frac_bits: u32,
     /// WC: fractional bits of S fed to the colour multipliers (≤ W; see the module docs).
-    pub color_frac_bits: u32,
+    pub(crate) color_frac_bits: u32,
 }
 
 /// WC: the colours' own budget. With `e < 2^(M+1−W)` from the squarings and `< 2^−WC` from
@@ -242,13 +242,13 @@ impl FittedWidths {
 /// Every intermediate value of the fitted datapath for one input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct FittedTrace {
-    pub a_code: u64,
-    pub m: u32,
-    pub one_minus_cos: u64,
-    pub product: u128,
-    pub done: bool,
+    pub(crate) a_code: u64,
+    pub(crate) m: u32,
+    pub(crate) one_minus_cos: u64,
+    pub(crate) product: u128,
+    pub(crate) done: bool,
     /// `x_0 … x_M` (only the first M+1 used)
-    pub squares: [u128; 5],
+    pub(crate) squares: [u128; 5],
 }
 
 /// The bit-exact golden model (what the RTL computes).
@@ -577,9 +577,9 @@ pub fn cached_fit(cfg: &Config) -> Arc<Fit> {
 /// The fitted unit of one configuration: its fit and its widths.
 #[derive(Debug, Clone)]
 pub struct Fitted {
-    pub cfg: Config,
-    pub fit: Arc<Fit>,
-    pub widths: FittedWidths,
+    pub(crate) cfg: Config,
+    pub(crate) fit: Arc<Fit>,
+    pub(crate) widths: FittedWidths,
 }
 
 impl Fitted {

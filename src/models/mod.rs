@@ -28,19 +28,19 @@ use std::sync::{Arc, OnceLock};
 pub struct Description {
     /// the model's own parameters, `name=value` words, for the header (none of `stages`,
     /// `rounding`, `rom_style`: the header adds those)
-    pub param_line: String,
+    pub(crate) param_line: String,
     /// the formula, one line each
-    pub formula: Vec<String>,
+    pub(crate) formula: Vec<String>,
     /// the rounding contract
-    pub rounding: String,
+    pub(crate) rounding: String,
     /// the datapath and its widths, one line
-    pub datapath: String,
+    pub(crate) datapath: String,
     /// what `done` means
-    pub done_meaning: &'static str,
+    pub(crate) done_meaning: &'static str,
     /// one line for the `.core` description
-    pub summary: &'static str,
+    pub(crate) summary: &'static str,
     /// what it computes, in a few words (the report's model comparison)
-    pub computes: &'static str,
+    pub(crate) computes: &'static str,
 }
 
 /// The part a model plays in the report's verdict on the paper's premise (that `cos^n` itself
@@ -63,9 +63,9 @@ pub enum PremiseRole {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Breach {
     /// `intensity`, `spec_r`/`g`/`b` or `done`
-    pub port: &'static str,
+    pub(crate) port: &'static str,
     /// what the port shows, and the exact value or range it breaks
-    pub detail: String,
+    pub(crate) detail: String,
 }
 
 impl Breach {
@@ -363,12 +363,12 @@ pub struct Fidelity {
     pub max: f64,
     pub mean: f64,
     /// where the maximum is
-    pub worst_n: u32,
-    pub worst_cos: u32,
+    pub(crate) worst_n: u32,
+    pub(crate) worst_cos: u32,
     pub points: u64,
     pub stride: u32,
     /// `max_c |intensity/2^FI − c^n|` for each n
-    pub per_n_max: Vec<f64>,
+    pub(crate) per_n_max: Vec<f64>,
 }
 
 /// The most points [`blinn_fidelity`] visits: 2^26.

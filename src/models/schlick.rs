@@ -39,23 +39,23 @@ pub(crate) fn quotient_frac_bits(cfg: &Config) -> u32 {
 /// The schlick unit of one configuration.
 #[derive(Debug, Clone)]
 pub struct Schlick {
-    pub cfg: Config,
+    pub(crate) cfg: Config,
     /// W: fractional bits of the quotient, UQ1.W.
-    pub quotient_frac_bits: u32,
+    pub(crate) quotient_frac_bits: u32,
 }
 
 /// Every intermediate value of the datapath, named as in the RTL.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Trace {
     /// `c`, UQ1.F
-    pub cos_clamped: u128,
+    pub(crate) cos_clamped: u128,
     /// `den = 2n·(2^F − c) + c`, in units of 2^−F
-    pub den: u128,
+    pub(crate) den: u128,
     /// the remainder after each quotient bit (W + 1 of them)
-    pub remainders: Vec<u128>,
+    pub(crate) remainders: Vec<u128>,
     /// `q = floor(S·2^W)`, UQ1.W (1.0 at n = 0)
-    pub quotient: u128,
-    pub outputs: Outputs,
+    pub(crate) quotient: u128,
+    pub(crate) outputs: Outputs,
 }
 
 impl Schlick {

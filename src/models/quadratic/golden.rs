@@ -11,19 +11,19 @@ use crate::models::{check_value, Breach, Ideal, Inputs, Outputs, SPEC_PORTS};
 /// Every intermediate value of the datapath, named as in the RTL.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Trace {
-    pub cos_clamped: u64,
-    pub one_minus_cos: u64,
-    pub cos_sp: u64,
-    pub done: bool,
-    pub kn: u64,
-    pub deviation_full: u128,
-    pub deviation: u64,
-    pub bracket: u64,
-    pub square_full: u128,
-    pub square: u128,
-    pub color_prod: [u128; 3],
-    pub intensity_sum: u128,
-    pub outputs: Outputs,
+    pub(crate) cos_clamped: u64,
+    pub(crate) one_minus_cos: u64,
+    pub(crate) cos_sp: u64,
+    pub(crate) done: bool,
+    pub(crate) kn: u64,
+    pub(crate) deviation_full: u128,
+    pub(crate) deviation: u64,
+    pub(crate) bracket: u64,
+    pub(crate) square_full: u128,
+    pub(crate) square: u128,
+    pub(crate) color_prod: [u128; 3],
+    pub(crate) intensity_sum: u128,
+    pub(crate) outputs: Outputs,
 }
 
 impl Quadratic {
@@ -99,7 +99,7 @@ impl Quadratic {
 pub struct Reference {
     /// `base · 2^(KF+F)` (may be negative).
     pub base_num: i128,
-    pub base_den_log2: u32,
+    pub(crate) base_den_log2: u32,
     pub done: bool,
     pub intensity: Ideal,
     pub spec: [Ideal; 3],

@@ -60,25 +60,25 @@ use serde::Serialize;
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct Widths {
     /// `cos_g`, `cos_sp` and `d = 1 − cos`: F+1 bits, UQ1.F.
-    pub cos_bits: u32,
+    pub(crate) cos_bits: u32,
     /// `kn = k_code·n`: bits of its largest value, UQ(·).KF.
-    pub kn_bits: u32,
+    pub(crate) kn_bits: u32,
     /// `P = kn·d`, the exact deviation: UQ(·).(KF+F).
-    pub deviation_bits: u32,
+    pub(crate) deviation_bits: u32,
     /// Bits dropped from `P` (truncation #1): `s = KF + F − WB`.
-    pub deviation_shift: u32,
+    pub(crate) deviation_shift: u32,
     /// WB: fractional bits of the bracket; the bracket is UQ1.WB, WB+1 bits.
-    pub bracket_frac_bits: u32,
+    pub(crate) bracket_frac_bits: u32,
     /// WS: fractional bits of the (truncated) square; UQ1.WS, WS+1 bits.
-    pub square_frac_bits: u32,
+    pub(crate) square_frac_bits: u32,
     /// Bits dropped from the full square (truncation #2): `2·WB − WS`.
-    pub square_shift: u32,
+    pub(crate) square_shift: u32,
     /// WS_C: fractional bits of the square fed to the colour multipliers (≤ WS).
-    pub color_square_frac_bits: u32,
+    pub(crate) color_square_frac_bits: u32,
     /// Low bits split off the bracket so the squarer's main product is ≤ 16×16 (0: one multiply).
-    pub squarer_split: u32,
+    pub(crate) squarer_split: u32,
     /// `sq_C · ks_X` (+ the rounding half): WS_C+B bits, since `2^WS_C·(2^B−1) + 2^(WS_C−1) < 2^(WS_C+B)`.
-    pub color_product_bits: u32,
+    pub(crate) color_product_bits: u32,
 }
 
 impl Widths {
@@ -141,10 +141,10 @@ impl Widths {
 /// The quadratic unit of one configuration: its widths and its cut-off ROM.
 #[derive(Debug, Clone)]
 pub struct Quadratic {
-    pub cfg: Config,
-    pub widths: Widths,
+    pub(crate) cfg: Config,
+    pub(crate) widths: Widths,
     /// The cut-off ROM `cos_sp(n)`, n = 0 .. 2^N − 1.
-    pub rom: Vec<u32>,
+    pub(crate) rom: Vec<u32>,
 }
 
 impl Quadratic {
