@@ -4,8 +4,8 @@
 # model picks (in milliseconds, no place-and-route), its predicted Fmax, and the median Fmax
 # over nextpnr seeds 1..SEEDS (default 3) of that unit and of the unit one cut shallower (a
 # unit measured once serves every row that asks for it).
-# MODELS (default "lean fitted blinn", and "lean:wide" on the ECP5: the wide widths of
-# bench_common.sh; blinn-pow fits neither part) and FAMILIES narrow it; OUT (default
+# MODELS (default every model but blinn-pow, which fits neither part — lean for quadratic — and
+# "lean:wide" on the ECP5: the wide widths of bench_common.sh) and FAMILIES narrow it; OUT (default
 # BENCHMARKS-target.md) is where the table goes. Needs yosys and nextpnr; hours on 2 cores
 # with every model (blinn's deep units take minutes a seed).
 source "$(dirname "$0")/bench_common.sh"
@@ -30,7 +30,7 @@ measure() { # dir key -> "median (min-max)" or "-" (the result beside the unit, 
 }
 for family in ${FAMILIES:-ice40 ecp5}; do
     if [ "$family" = ice40 ]; then targets="50 75 100"; else targets="100 150 200"; fi
-    models=${MODELS:-lean fitted blinn}
+    models=${MODELS:-$(for m in $(models); do case $m in quadratic) echo lean ;; blinn-pow) ;; *) echo "$m" ;; esac; done)}
     [ -z "${MODELS:-}" ] && [ "$family" = ecp5 ] && models="$models lean:wide"
     for config in $models; do
         model=${config%%:*}
