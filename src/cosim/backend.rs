@@ -222,14 +222,15 @@ fn decode(rec: &[u8]) -> Sampled {
 /// Runs one stimulus through the built simulator, checking every cycle. `progress` counts
 /// cycles done (for the progress bar).
 /// How long one simulator run may take: a minute plus 2 ms a cycle under Verilator (millions of
-/// cycles a second), 50 ms under Icarus (about 20 000 cycles a second on RTL, but some 100 on
-/// a mapped netlist of thousands of cells, as `synth --verify` of fitted at 60 stages gives
-/// it), or `SPECGEN_SIM_TIMEOUT` seconds when set. A run past it is killed and reported (a
-/// zero-delay loop in the RTL never advances time).
+/// cycles a second), 250 ms under Icarus (about 20 000 cycles a second on RTL, but some 20 on
+/// a mapped netlist of thousands of cells: `synth --verify` of fitted at 65 stages took 8 211
+/// cycles in about 7 minutes alone on 2 cores, 50 ms a cycle, and past the old limit of 50 ms
+/// with two place-and-routes beside it), or `SPECGEN_SIM_TIMEOUT` seconds when set. A run past
+/// it is killed and reported (a zero-delay loop in the RTL never advances time).
 fn time_limit(simulator: Simulator, cycles: u64) -> std::time::Duration {
     let per_cycle = match simulator {
         Simulator::Verilator => 2,
-        Simulator::Icarus => 50,
+        Simulator::Icarus => 250,
     };
     match std::env::var("SPECGEN_SIM_TIMEOUT").ok().and_then(|s| s.trim().parse::<u64>().ok()) {
         Some(s) => std::time::Duration::from_secs(s.max(1)),
