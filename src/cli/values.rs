@@ -46,14 +46,14 @@ flag_values! {
     ModelFlag => SpecularModel {
         /// the paper's formula (15): [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)
         Quadratic,
-        /// Blinn's cos^n by square-and-multiply over the bits of n
-        BlinnPow,
-        /// Blinn's cos^n from log2/exp2 tables with linear interpolation
-        Blinn,
-        /// [1 - a_n*(1 - cos)]^(2^m_n) with per-n a_n, m_n from a minimax fit
-        Fitted,
         /// the paper's modified Schlick (11): c/(2n - 2n*c + c), by a restoring divider
         Schlick,
+        /// [1 - a_n*(1 - cos)]^(2^m_n) with per-n a_n, m_n from a minimax fit
+        Fitted,
+        /// Blinn's cos^n from log2/exp2 tables with linear interpolation
+        Blinn,
+        /// Blinn's cos^n by square-and-multiply over the bits of n
+        BlinnPow,
     }
     /// `--interface`
     InterfaceFlag => Interface {

@@ -303,3 +303,13 @@ fn every_range_is_stated_once_in_help() {
         assert_eq!(text.matches(&range).count(), 1, "{flag}: {text}");
     }
 }
+
+/// The `--model` values are `SpecularModel::ALL`, in its order (the scripts read the list of
+/// models from this message, and the help shows it).
+#[test]
+fn the_model_flag_lists_every_model_in_the_registrys_order() {
+    let o = specgen().args(["generate", "--model", "?"]).output().unwrap();
+    let text = String::from_utf8_lossy(&o.stderr);
+    let names: Vec<&str> = specgen::config::SpecularModel::ALL.iter().map(|m| m.name()).collect();
+    assert!(text.contains(&format!("[possible values: {}]", names.join(", "))), "{text}");
+}
