@@ -244,8 +244,12 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
         b.wire(&format!("qbit{k}"), 1, format!("~{borrow}"), &format!("quotient bit of weight 2^-{k}: {what} >= den"));
         let (bit, t, s) = (b.r(&format!("qbit{k}")), b.bits(&trial, dw - 1, 0), b.bits(&format!("shifted{k}"), dw - 1, 0));
         b.wire(&format!("rem{k}"), dw, Builder::select(&bit, &t, &s, dw), &format!("r{k}: the remainder, below den"));
-        let quotient = if k == 0 { bit } else { format!("{{{}, {bit}}}", b.r(&format!("quot{}", k - 1))) };
-        b.wire(&format!("quot{k}"), k + 1, quotient, &format!("the quotient's top {} bit(s)", k + 1));
+        // the quotient's bits so far (from the second on: the first is qbit0 itself)
+        if k > 0 {
+            let above = if k == 1 { "qbit0".to_string() } else { format!("quot{}", k - 1) };
+            let quotient = format!("{{{}, {bit}}}", b.r(&above));
+            b.wire(&format!("quot{k}"), k + 1, quotient, &format!("the quotient's top {} bits", k + 1));
+        }
         // the chain, its carry-out through a LUT, the remainder's select
         b.delay(add_delay(rw + 1) + LUT_DELAY);
     }
