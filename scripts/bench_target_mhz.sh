@@ -30,7 +30,7 @@ measure() { # dir key -> "median (min-max)" or "-" (the result beside the unit, 
 }
 for family in ${FAMILIES:-ice40 ecp5}; do
     if [ "$family" = ice40 ]; then targets="50 75 100"; else targets="100 150 200"; fi
-    models=${MODELS:-$(for m in $(models); do case $m in quadratic) echo lean ;; blinn-pow) ;; *) echo "$m" ;; esac; done)}
+    models=${MODELS:-$(placeable)}
     [ -z "${MODELS:-}" ] && [ "$family" = ecp5 ] && models="$models lean:wide"
     for config in $models; do
         model=${config%%:*}

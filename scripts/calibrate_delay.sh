@@ -19,8 +19,7 @@ mkdir -p "$(dirname "$out")"
 # fmax_mhz: nextpnr's (fmax_route_mhz of synth): the delay model maps routes; block limits cap it apart (src/timing.rs)
 [ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args" > "$out"
 for family in ${FAMILIES:-ice40 ecp5}; do
-    # every model the generator has but blinn-pow (73 DSP blocks: it fits neither part)
-    configs=${CONFIGS:-$(for m in $(models); do case $m in quadratic) echo lean ;; blinn-pow) ;; *) echo "$m" ;; esac; done)}
+    configs=${CONFIGS:-$(placeable)}
     [ -z "${CONFIGS:-}" ] && [ "$family" = ecp5 ] && configs="$configs lean:wide"
     for config in $configs; do
         model=${config%%:*}

@@ -153,25 +153,32 @@ impl<'a> Checker<'a> {
 
     /// Checks the outputs sampled in cycles `t0 ..` (each before its rising edge), whose
     /// stimulus is `cycles`; batches come in order, from cycle 0. The golden model evaluates the
-    /// batch at once, each pixel under the material in effect when it is offered (a load takes
-    /// effect at its edge, and not at an edge the clock enable leaves out).
+    /// batch at once ([`Checker::evaluate`]).
     pub fn check_batch(&mut self, t0: u64, cycles: &[Cycle], got: impl IntoIterator<Item = Sampled>) {
-        let (mut offered, mut loaded, mut expected) = (std::mem::take(&mut self.offered), std::mem::take(&mut self.loaded), std::mem::take(&mut self.expected));
-        offered.clear();
-        loaded.clear();
+        self.evaluate(cycles);
+        let (expected, loaded) = (std::mem::take(&mut self.expected), std::mem::take(&mut self.loaded));
+        for (k, got) in got.into_iter().enumerate().take(cycles.len()) {
+            self.check(cycles[k], t0 + k as u64, got, expected[k], loaded[k]);
+        }
+        (self.expected, self.loaded) = (expected, loaded);
+    }
+
+    /// The golden model's outputs for what each of `cycles` offers, into `expected`, and
+    /// whether a load had set the material then, into `loaded`: each pixel under the material
+    /// in effect when it is offered (a load takes effect at its edge, and not at an edge the
+    /// clock enable leaves out).
+    fn evaluate(&mut self, cycles: &[Cycle]) {
+        self.offered.clear();
+        self.loaded.clear();
         for c in cycles {
-            offered.push(if self.static_colour { Inputs { ks: self.material, ..c.inputs } } else { c.inputs });
-            loaded.push(self.material_loaded);
+            self.offered.push(if self.static_colour { Inputs { ks: self.material, ..c.inputs } } else { c.inputs });
+            self.loaded.push(self.material_loaded);
             if c.load && !c.disabled {
                 self.material = c.inputs.ks;
                 self.material_loaded = true;
             }
         }
-        self.model.eval_batch(&offered, &mut expected);
-        for (k, got) in got.into_iter().enumerate().take(cycles.len()) {
-            self.check(cycles[k], t0 + k as u64, got, expected[k], loaded[k]);
-        }
-        (self.offered, self.loaded, self.expected) = (offered, loaded, expected);
+        self.model.eval_batch(&self.offered, &mut self.expected);
     }
 
     /// Checks cycle `t`: stimulus `now`, sampled `got`, the golden model's outputs for what it
@@ -279,10 +286,8 @@ impl<'a> Checker<'a> {
     /// mismatch itself (a differing digest is run again with every record compared).
     pub fn digest_batch(&mut self, t0: u64, cycles: &[Cycle]) -> u64 {
         debug_assert!(self.digestible());
-        let (mut offered, mut expected) = (std::mem::take(&mut self.offered), std::mem::take(&mut self.expected));
-        offered.clear();
-        offered.extend(cycles.iter().map(|c| c.inputs));
-        self.model.eval_batch(&offered, &mut expected);
+        self.evaluate(cycles);
+        let expected = std::mem::take(&mut self.expected);
         let mut h = 0u64;
         for (k, (&c, &outputs)) in cycles.iter().zip(&expected).enumerate() {
             let t = t0 + k as u64;
@@ -291,7 +296,7 @@ impl<'a> Checker<'a> {
                 h = h.wrapping_add(sample_hash(t, &d.expected, d.data_compared));
             }
         }
-        (self.offered, self.expected) = (offered, expected);
+        self.expected = expected;
         h
     }
 

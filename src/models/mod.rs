@@ -90,8 +90,8 @@ pub trait SpecularUnit: Send + Sync + std::fmt::Debug {
     /// The unit's outputs for one input, bit for bit as the RTL computes them.
     fn eval(&self, x: Inputs) -> Outputs;
     /// [`SpecularUnit::eval`] of every input of `xs`, into `out` (cleared first): what the
-    /// co-simulation asks a batch at a time. A model overrides it only to let the compiler see
-    /// its `eval` inside the loop; the outputs are `eval`'s.
+    /// co-simulation asks a batch at a time, one dynamic call a batch (this default is compiled
+    /// for each model, so its `eval` is called, and inlined, directly).
     fn eval_batch(&self, xs: &[Inputs], out: &mut Vec<Outputs>) {
         out.clear();
         out.extend(xs.iter().map(|&x| self.eval(x)));

@@ -182,11 +182,6 @@ impl SpecularUnit for Quadratic {
         self.trace(x).outputs
     }
 
-    fn eval_batch(&self, xs: &[Inputs], out: &mut Vec<Outputs>) {
-        out.clear();
-        out.extend(xs.iter().map(|&x| self.trace(x).outputs));
-    }
-
     fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::models::Breach> {
         golden::check(&self.cfg, x, got)
     }
