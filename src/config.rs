@@ -3,24 +3,8 @@
 //! Every parameter of SPEC §2 lives here with its default and its allowed range. Nothing
 //! downstream re-checks a range: a `Config` that exists is a legal one.
 
+use crate::error::Error;
 use serde::{Deserialize, Serialize};
-use std::fmt;
-
-/// An invalid parameter: names the parameter (its name in SPEC §2, as in the manifest) and
-/// what it may be.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ConfigError {
-    pub parameter: &'static str,
-    pub message: String,
-}
-
-impl fmt::Display for ConfigError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "invalid {}: {}", self.parameter, self.message)
-    }
-}
-
-impl std::error::Error for ConfigError {}
 
 /// Output rounding contract (SPEC §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -234,9 +218,9 @@ pub const TAG_BITS: Range = Range { name: "tag_bits", min: 0, max: 64, default: 
 pub const RANGES: &[&Range] = &[&COS_FRAC_BITS, &N_BITS, &COLOR_BITS, &INTENSITY_FRAC_BITS, &K_FRAC_BITS, &MAX_SQUARINGS, &TAG_BITS];
 
 impl Range {
-    fn check(&self, value: u32) -> Result<u32, ConfigError> {
+    fn check(&self, value: u32) -> Result<u32, Error> {
         if value < self.min || value > self.max {
-            Err(ConfigError { parameter: self.name, message: format!("{} is out of range; allowed {}..={}", value, self.min, self.max) })
+            Err(Error::Config { parameter: self.name, message: format!("{} is out of range; allowed {}..={}", value, self.min, self.max) })
         } else {
             Ok(value)
         }
@@ -384,8 +368,8 @@ pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
 impl Params {
     /// Reads parameters from JSON: a full manifest written by `generate`, or any subset of
     /// the parameter keys (the rest take their defaults). Unknown keys are an error.
-    pub fn from_json(text: &str) -> Result<Params, ConfigError> {
-        let err = |message: String| ConfigError { parameter: "config", message };
+    pub fn from_json(text: &str) -> Result<Params, Error> {
+        let err = |message: String| Error::Config { parameter: "config", message };
         let value: serde_json::Value = serde_json::from_str(text).map_err(|e| err(format!("not valid JSON: {e}")))?;
         let serde_json::Value::Object(mut map) = value else {
             return Err(err("must hold a JSON object".into()));
@@ -410,14 +394,13 @@ impl Params {
         serde_json::from_value(full).map_err(|e| err(e.to_string()))
     }
 
-    pub fn from_json_file(path: &std::path::Path) -> Result<Params, ConfigError> {
-        use crate::small_file::SmallFileError;
-        let err = |why: String| ConfigError { parameter: "config", message: format!("{}: {why}", path.display()) };
-        let text = crate::small_file::read(path, 1 << 20).map_err(|e| match e {
-            SmallFileError::Io(m) => err(format!("cannot read it ({m})")),
-            other => err(format!("{other}; allowed a JSON file of at most 1 MiB")),
+    pub fn from_json_file(path: &std::path::Path) -> Result<Params, Error> {
+        let err = |why: String| Error::Config { parameter: "config", message: format!("{}: {why}", path.display()) };
+        let text = crate::small_file::read(path, 1 << 20).map_err(|e| match crate::small_file::refused(&e) {
+            true => err(format!("{e}; allowed a JSON file of at most 1 MiB")),
+            false => err(e.to_string().replacen("cannot be read", "cannot read it", 1)),
         })?;
-        Params::from_json(&text).map_err(|e| err(e.message))
+        Params::from_json(&text).map_err(|e| err(e.reason()))
     }
 }
 
@@ -430,7 +413,7 @@ pub struct Config {
 }
 
 impl Config {
-    pub fn new(params: Params) -> Result<Config, ConfigError> {
+    pub fn new(params: Params) -> Result<Config, Error> {
         check_identifier(&params.top)?;
         COS_FRAC_BITS.check(params.cos_frac_bits)?;
         N_BITS.check(params.n_bits)?;
@@ -446,13 +429,13 @@ impl Config {
             check_port_name(port)?;
         }
         if params.tlast && params.interface != Interface::Axis {
-            return Err(ConfigError {
+            return Err(Error::Config {
                 parameter: "tlast",
                 message: format!("applies to the axis interface only; allowed with {}: none", params.interface.name()),
             });
         }
         if params.clock_enable && !params.interface.handshake() {
-            return Err(ConfigError {
+            return Err(Error::Config {
                 parameter: "clock_enable",
                 message: format!(
                     "applies to the ready and axis interfaces only (their edge gates every transfer; a valid pipeline has none to gate); allowed with {}: none",
@@ -461,7 +444,7 @@ impl Config {
             });
         }
         if params.tlast && params.tag_bits == TAG_BITS.max {
-            return Err(ConfigError {
+            return Err(Error::Config {
                 parameter: "tag_bits",
                 message: format!(
                     "{} with tlast: the tag and tlast travel as one word of at most {} bits; allowed 0..={}",
@@ -473,13 +456,13 @@ impl Config {
         }
         let k_code = parse_k(&params.k, params.k_frac_bits)?;
         if params.rounding == Rounding::Exact && !params.model.takes("rounding=exact") {
-            return Err(ConfigError {
+            return Err(Error::Config {
                 parameter: "rounding",
                 message: format!("exact is not available with the {} model; allowed: faithful", params.model.name()),
             });
         }
         if params.arch == Arch::Paper && !params.model.takes("arch=paper") {
-            return Err(ConfigError {
+            return Err(Error::Config {
                 parameter: "arch",
                 message: format!("paper applies to the {} model only; allowed with {}: lean", takers("arch=paper"), params.model.name()),
             });
@@ -688,8 +671,8 @@ impl Config {
 /// `2^-frac_bits` with the `fixed` crate, which converts decimal text with a single correct
 /// rounding (to nearest, ties to even) and no binary floating point in between.
 /// Returns the integer code `round(x · 2^frac_bits)`. `frac_bits` must be in 1..=24.
-pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, ConfigError> {
-    let err = |message: String| ConfigError { parameter: "decimal", message };
+pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, Error> {
+    let err = |message: String| Error::Config { parameter: "decimal", message };
     use fixed::types::extra::U120;
     use fixed::FixedU128;
     let trimmed = text.trim();
@@ -721,9 +704,11 @@ pub fn parse_decimal(text: &str, frac_bits: u32) -> Result<u64, ConfigError> {
 }
 
 /// Parses `clock_mhz`: a plain decimal in (0, 1000] MHz.
-pub fn parse_clock_mhz(text: &str) -> Result<f64, ConfigError> {
-    let bad =
-        |why: String| ConfigError { parameter: "clock_mhz", message: format!("{why}; allowed a plain decimal in (0, 1000] MHz, such as \"100\" or \"148.5\"") };
+pub fn parse_clock_mhz(text: &str) -> Result<f64, Error> {
+    let bad = |why: String| Error::Config {
+        parameter: "clock_mhz",
+        message: format!("{why}; allowed a plain decimal in (0, 1000] MHz, such as \"100\" or \"148.5\""),
+    };
     let t = text;
     let plain = !t.is_empty() && t.len() <= 16 && t.chars().all(|c| c.is_ascii_digit() || c == '.') && t.matches('.').count() <= 1 && t != ".";
     if !plain {
@@ -737,8 +722,8 @@ pub fn parse_clock_mhz(text: &str) -> Result<f64, ConfigError> {
 }
 
 /// Parses the constant `k` (SPEC §3: `k_q = round(k·2^KF)/2^KF`). Allowed: `0 < k_q ≤ 1`.
-pub fn parse_k(text: &str, kf: u32) -> Result<u64, ConfigError> {
-    let bad = |why: String| ConfigError {
+pub fn parse_k(text: &str, kf: u32) -> Result<u64, Error> {
+    let bad = |why: String| Error::Config {
         parameter: "k",
         message: format!("{why}; allowed a plain decimal such as \"0.3686\" with 0 < k <= 1 after rounding to {kf} fractional bits"),
     };
@@ -746,7 +731,7 @@ pub fn parse_k(text: &str, kf: u32) -> Result<u64, ConfigError> {
     if text.chars().any(|c| c.is_whitespace() || c.is_control()) {
         return Err(bad(format!("{text:?} contains a space, line break or control character")));
     }
-    let code = parse_decimal(text, kf).map_err(|e| bad(e.message))?;
+    let code = parse_decimal(text, kf).map_err(|e| bad(e.reason()))?;
     if code == 0 {
         return Err(bad(format!("{text:?} rounds to 0")));
     }
@@ -1072,13 +1057,13 @@ pub(crate) const INTERNAL_NAMES: &[&str] = &[
 
 /// `clock_port`: a port name of the user's design, written into SDC and LPF files: a Verilog
 /// identifier of at most 64 characters (no escaped names: the files quote nothing else).
-fn check_port_name(port: &str) -> Result<(), ConfigError> {
+fn check_port_name(port: &str) -> Result<(), Error> {
     let ok = port.len() <= 64
         && port.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
         && port.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     match ok {
         true => Ok(()),
-        false => Err(ConfigError {
+        false => Err(Error::Config {
             parameter: "clock_port",
             message: format!("{port:?} is not a port name; allowed: a Verilog identifier [A-Za-z_][A-Za-z0-9_]* of at most 64 characters"),
         }),
@@ -1086,8 +1071,8 @@ fn check_port_name(port: &str) -> Result<(), ConfigError> {
 }
 
 /// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
-fn check_identifier(top: &str) -> Result<(), ConfigError> {
-    let err = |why: &str| ConfigError {
+fn check_identifier(top: &str) -> Result<(), Error> {
+    let err = |why: &str| Error::Config {
         parameter: "top",
         message: format!(
             "{top:?} {why}; allowed: a Verilog identifier [A-Za-z_][A-Za-z0-9_]* of at most 64 characters, not a keyword, not a port or internal name"
@@ -1145,7 +1130,7 @@ mod tests {
     fn top_must_be_identifier() {
         for bad in ["", "1abc", "a-b", "../x", "a/b", "module", "wire", "a b"] {
             let p = Params { top: bad.into(), ..Params::default() };
-            assert_eq!(Config::new(p).unwrap_err().parameter, "top", "{bad}");
+            assert_eq!(Config::new(p).unwrap_err().parameter(), Some("top"), "{bad}");
         }
         let p = Params { top: "my_unit_2".into(), ..Params::default() };
         assert!(Config::new(p).is_ok());

@@ -6,7 +6,7 @@
 use crate::bits::{lit, mask};
 use crate::config::{Params, RomStyle, Target};
 use crate::datapath::{self, DelayLine, Waiting, Wire};
-pub use crate::error::OutputError;
+use crate::error::{At, Error};
 use crate::plan::Plan;
 use crate::ports::Port;
 use crate::rom::{self, RomFormat};
@@ -896,21 +896,21 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
 /// specgen for the same kind of output (a unit's manifest has `ports`, a report's `claims`), and
 /// the files it lists. `Err` names the first entry that is not one of them, the other kind of
 /// output, or (unless `force`) a listed file whose SHA-256 is not the manifest's: edited by hand.
-fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), OutputError> {
-    let occupied = |why: String| OutputError::Occupied(dir.to_path_buf(), why);
+fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Error> {
+    let occupied = |why: String| Error::Occupied { dir: dir.to_path_buf(), why };
     if !dir.is_dir() {
         return Err(occupied("it exists and is not a directory".into()));
     }
     let mut names = Vec::new();
-    for entry in std::fs::read_dir(dir)? {
-        let entry = entry?;
+    for entry in std::fs::read_dir(dir).at("read", dir)? {
+        let entry = entry.at("read", dir)?;
         let name = entry.file_name().to_string_lossy().into_owned();
-        let kind = entry.file_type()?;
+        let kind = entry.file_type().at("read", dir)?;
         if kind.is_dir() && name == SIM_DIR {
             // the simulation models' subdirectory: its files are listed as `sim/<name>`
-            for inner in std::fs::read_dir(entry.path())? {
-                let inner = inner?;
-                if !inner.file_type()?.is_file() {
+            for inner in std::fs::read_dir(entry.path()).at("read", dir)? {
+                let inner = inner.at("read", dir)?;
+                if !inner.file_type().at("read", dir)?.is_file() {
                     return Err(occupied(format!("it contains {SIM_DIR}/{:?}, which is not a regular file", inner.file_name())));
                 }
                 names.push(format!("{SIM_DIR}/{}", inner.file_name().to_string_lossy()));
@@ -942,8 +942,7 @@ fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Output
                 if let (Some(want), false) = (want, force) {
                     let path = dir.join(n);
                     if std::fs::metadata(&path).is_ok_and(|m| m.is_file()) {
-                        let bytes = crate::small_file::read_bytes(&path, crate::small_file::UNIT_FILE_MAX)
-                            .map_err(|e| OutputError::Occupied(dir.to_path_buf(), format!("{n} {e}")))?;
+                        let bytes = crate::small_file::read_bytes(&path, crate::small_file::UNIT_FILE_MAX).map_err(|e| occupied(format!("{n} {e}")))?;
                         if sha256_hex(&bytes) != want {
                             return Err(occupied(format!(
                                 "{n} was changed since specgen wrote it (its SHA-256 is not the manifest's); move it away, or pass --force to replace it"
@@ -963,12 +962,12 @@ fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Output
 /// Writes `files` as the whole content of `dir`, atomically (`output::write_dir`). An
 /// existing `dir` is replaced only when it is empty or holds nothing but a previous specgen
 /// output of the same kind, unedited.
-pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), OutputError> {
+pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), Error> {
     write_dir_atomically_forced(dir, files, false)
 }
 
 /// [`write_dir_atomically`]; with `force`, also over files of a previous output edited by hand.
-pub fn write_dir_atomically_forced(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), OutputError> {
+pub fn write_dir_atomically_forced(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Error> {
     let report = files.iter().any(|(n, _)| n == "report.json");
     crate::output::write_dir(dir, files, |d| check_replaceable(d, report, force))
 }

@@ -29,7 +29,7 @@
 //! own stream, whatever it is (a file opened with `>>` keeps its lines; a pipe works). A replaced file
 //! keeps its mode; a new one gets `0666 & !umask`.
 
-use crate::error::OutputError;
+use crate::error::{plain, At, Error};
 use std::path::{Path, PathBuf};
 
 /// Whether two paths name one file (device and inode, links followed): an output that is an
@@ -58,31 +58,6 @@ fn umask() -> u32 {
         .unwrap_or(0o022)
 }
 
-/// An I/O error without the (temporary) path some crates put in its text: the caller names
-/// the user's path.
-pub(crate) fn plain(e: std::io::Error) -> std::io::Error {
-    if let Some(code) = e.raw_os_error() {
-        return std::io::Error::from_raw_os_error(code);
-    }
-    // tempfile wraps the OS error with its own path: find the OS error underneath
-    let mut cause: Option<&(dyn std::error::Error + 'static)> = e.get_ref().map(|r| r as &(dyn std::error::Error + 'static));
-    while let Some(c) = cause {
-        if let Some(code) = c.downcast_ref::<std::io::Error>().and_then(|io| io.raw_os_error()) {
-            return std::io::Error::from_raw_os_error(code);
-        }
-        cause = c.source();
-    }
-    // tempfile's PathError shows "<OS error> at path <temp path>": keep the OS error only
-    let text = e.to_string();
-    std::io::Error::new(e.kind(), text.split(" at path ").next().unwrap_or(&text).to_string())
-}
-
-impl From<std::io::Error> for OutputError {
-    fn from(e: std::io::Error) -> Self {
-        OutputError::Io(plain(e))
-    }
-}
-
 /// The tag of one output's staging and lock names in its parent: a hash of its file name, so
 /// the names of two outputs never overlap and any file name is data.
 pub fn tag(target: &Path) -> String {
@@ -103,7 +78,7 @@ struct OutputLock {
 }
 
 impl OutputLock {
-    fn take(parent: &Path, target: &Path) -> Result<OutputLock, OutputError> {
+    fn take(parent: &Path, target: &Path) -> Result<OutputLock, Error> {
         use std::os::unix::fs::MetadataExt;
         let tag = tag(target);
         let path = parent.join(format!(".specgen-lock-{tag}"));
@@ -123,13 +98,18 @@ impl OutputLock {
                 .open(&path)
                 .map_err(|e| match e.raw_os_error() {
                     Some(libc::ELOOP) => {
-                        OutputError::Refused(target.to_path_buf(), format!("its lock {} is a symbolic link, not specgen's: remove it", path.display()))
+                        Error::Refused { dir: target.to_path_buf(), why: format!("its lock {} is a symbolic link, not specgen's: remove it", path.display()) }
                     }
-                    Some(libc::ENXIO) => OutputError::Refused(target.to_path_buf(), format!("its lock {} is a FIFO, not specgen's: remove it", path.display())),
+                    Some(libc::ENXIO) => {
+                        Error::Refused { dir: target.to_path_buf(), why: format!("its lock {} is a FIFO, not specgen's: remove it", path.display()) }
+                    }
                     _ => unwritable(parent, target, e),
                 })?;
             if !f.metadata().is_ok_and(|m| m.is_file()) {
-                return Err(OutputError::Refused(target.to_path_buf(), format!("its lock {} is not a regular file, not specgen's: remove it", path.display())));
+                return Err(Error::Refused {
+                    dir: target.to_path_buf(),
+                    why: format!("its lock {} is not a regular file, not specgen's: remove it", path.display()),
+                });
             }
             match f.try_lock() {
                 Ok(()) => {}
@@ -141,9 +121,9 @@ impl OutputLock {
                 Err(std::fs::TryLockError::WouldBlock) => {
                     let mut holder = String::new();
                     let _ = std::io::Read::read_to_string(&mut std::io::Read::take(&f, 32), &mut holder);
-                    return Err(OutputError::Busy(target.to_path_buf(), holder.trim().parse().ok()));
+                    return Err(Error::Busy { dir: target.to_path_buf(), holder: holder.trim().parse().ok() });
                 }
-                Err(std::fs::TryLockError::Error(e)) => return Err(e.into()),
+                Err(std::fs::TryLockError::Error(e)) => return Err(Error::io("write", target, plain(e))),
             }
             let same = match (f.metadata(), std::fs::metadata(&path)) {
                 (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
@@ -154,7 +134,7 @@ impl OutputLock {
                 break f;
             }
             if tries > 100 {
-                return Err(OutputError::Busy(target.to_path_buf(), None));
+                return Err(Error::Busy { dir: target.to_path_buf(), holder: None });
             }
         };
         // the holder's process id, for a writer that waits in vain
@@ -162,7 +142,7 @@ impl OutputLock {
         let _ = std::io::Write::write_all(&mut &f, format!("{}\n", std::process::id()).as_bytes());
         // under the lock no other specgen is mid-swap on this output: what is left is from a
         // killed run. A saved old copy goes back when the name is missing, else it is removed.
-        for entry in std::fs::read_dir(parent)?.flatten() {
+        for entry in std::fs::read_dir(parent).at("write", target)?.flatten() {
             let name = entry.file_name();
             let name = name.to_string_lossy();
             let ours = name.starts_with(&format!(".specgen-old-{tag}-")) || name.starts_with(&format!(".specgen-new-{tag}-"));
@@ -171,7 +151,7 @@ impl OutputLock {
             }
             let saved = entry.path().join("old");
             if name.starts_with(".specgen-old-") && saved.is_dir() && std::fs::symlink_metadata(target).is_err() {
-                std::fs::rename(&saved, target)?;
+                std::fs::rename(&saved, target).at("write", target)?;
             }
             let _ = std::fs::remove_dir_all(entry.path());
         }
@@ -187,13 +167,17 @@ impl Drop for OutputLock {
 }
 
 /// The one-line reason a parent directory cannot take our staging directory or lock.
-fn unwritable(parent: &Path, target: &Path, e: std::io::Error) -> OutputError {
+fn unwritable(parent: &Path, target: &Path, e: std::io::Error) -> Error {
     match e.raw_os_error() {
-        Some(code) if code == libc::EACCES || code == libc::EPERM || code == libc::EROFS => OutputError::Refused(
-            target.to_path_buf(),
-            format!("its parent {} is not writable ({}), and specgen builds the new output beside the old one to swap it in whole", parent.display(), plain(e)),
-        ),
-        _ => plain(e).into(),
+        Some(code) if code == libc::EACCES || code == libc::EPERM || code == libc::EROFS => Error::Refused {
+            dir: target.to_path_buf(),
+            why: format!(
+                "its parent {} is not writable ({}), and specgen builds the new output beside the old one to swap it in whole",
+                parent.display(),
+                plain(e)
+            ),
+        },
+        _ => Error::io("write", target, plain(e)),
     }
 }
 
@@ -234,7 +218,7 @@ fn holds_cwd(dir: &Path) -> bool {
 
 /// Writes `files` as the whole content of `dir`, atomically (see the module doc). `check` is
 /// asked, under the lock, whether an existing `dir` may be replaced.
-pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Path) -> Result<(), OutputError>) -> Result<(), OutputError> {
+pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Path) -> Result<(), Error>) -> Result<(), Error> {
     // `link/` names the link (the trailing separator would make every rename of it fail)
     let normal: PathBuf = dir.components().collect();
     let dir = normal.as_path();
@@ -242,24 +226,24 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
     let resolved;
     let dir = match std::fs::symlink_metadata(dir) {
         Ok(m) if m.file_type().is_symlink() => {
-            resolved =
-                std::fs::canonicalize(dir).map_err(|_| OutputError::Refused(dir.to_path_buf(), "it is a symbolic link to nothing (a dangling link)".into()))?;
+            resolved = std::fs::canonicalize(dir)
+                .map_err(|_| Error::Refused { dir: dir.to_path_buf(), why: "it is a symbolic link to nothing (a dangling link)".into() })?;
             resolved.as_path()
         }
         _ => dir,
     };
     if holds_cwd(dir) {
-        return Err(OutputError::Refused(
-            dir.to_path_buf(),
-            "it is the current directory or holds it; the output is swapped in whole, which would leave this shell in a removed directory: run from outside it"
+        return Err(Error::Refused {
+            dir: dir.to_path_buf(),
+            why: "it is the current directory or holds it; the output is swapped in whole, which would leave this shell in a removed directory: run from outside it"
                 .into(),
-        ));
+        });
     }
     if dir.file_name().is_none() {
-        return Err(OutputError::Refused(dir.to_path_buf(), "it has no name of its own (`/`, `..`): name the output directory".into()));
+        return Err(Error::Refused { dir: dir.to_path_buf(), why: "it has no name of its own (`/`, `..`): name the output directory".into() });
     }
     let parent = parent_dir(dir);
-    std::fs::create_dir_all(&parent)?;
+    std::fs::create_dir_all(&parent).at("write", dir)?;
     let _lock = OutputLock::take(&parent, dir)?;
     let old = std::fs::metadata(dir).ok();
     if old.is_some() {
@@ -277,33 +261,33 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
             let _ = std::os::unix::fs::chown(staging.path(), None, Some(m.gid()));
         }
         let mode = old.as_ref().map_or(0o777 & !umask(), |m| m.mode() & 0o7777);
-        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode((mode | 0o700) & 0o7777))?;
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode((mode | 0o700) & 0o7777)).at("write", dir)?;
         mode
     };
     for (name, bytes) in files {
         let path = staging.path().join(name);
         if let Some(sub) = path.parent().filter(|p| *p != staging.path()) {
-            std::fs::create_dir_all(sub)?;
+            std::fs::create_dir_all(sub).at("write", dir)?;
         }
-        std::fs::write(path, bytes)?;
+        std::fs::write(path, bytes).at("write", dir)?;
     }
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(mode))?;
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(mode)).at("write", dir)?;
     }
     if old.is_none() {
-        std::fs::rename(staging.path(), dir)?;
-    } else if exchange(staging.path(), dir)? {
+        std::fs::rename(staging.path(), dir).at("write", dir)?;
+    } else if exchange(staging.path(), dir).at("write", dir)? {
         // the staging name now holds the old output: dropping it removes it
         return Ok(());
     } else {
-        let graveyard = tempfile::Builder::new().prefix(&format!(".specgen-old-{tag}-")).tempdir_in(&parent)?;
-        std::fs::rename(dir, graveyard.path().join("old"))?;
+        let graveyard = tempfile::Builder::new().prefix(&format!(".specgen-old-{tag}-")).tempdir_in(&parent).at("write", dir)?;
+        std::fs::rename(dir, graveyard.path().join("old")).at("write", dir)?;
         if let Err(e) = std::fs::rename(staging.path(), dir) {
             // put the previous output back before reporting
             let _ = std::fs::rename(graveyard.path().join("old"), dir);
-            return Err(e.into());
+            return Err(Error::io("write", dir, plain(e)));
         }
         drop(graveyard); // removes the previous output
     }
@@ -341,8 +325,8 @@ fn through_links(path: &Path) -> std::io::Result<PathBuf> {
 /// an existing one must be a real directory (not a symbolic link), owned by the caller's user,
 /// and writable by no one else. Checked on every use, so an entry planted by another user
 /// is never run. `Err`: refused, with the reason.
-pub fn private_dir(dir: &Path) -> Result<(), OutputError> {
-    let refused = |why: String| OutputError::Refused(dir.to_path_buf(), why);
+pub fn private_dir(dir: &Path) -> Result<(), Error> {
+    let refused = |why: String| Error::Refused { dir: dir.to_path_buf(), why };
     use std::os::unix::fs::{DirBuilderExt, MetadataExt};
     if std::fs::symlink_metadata(dir).is_err() {
         if let Some(parent) = dir.parent().filter(|p| !p.as_os_str().is_empty()) {

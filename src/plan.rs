@@ -6,8 +6,9 @@
 //! datapath, which only exists once the model is made; and where the registers are placed
 //! ([`balanced_cuts`]) from the datapath's per-step delay estimates.
 
-use crate::config::{Colour, Config, ConfigError, Params};
+use crate::config::{Colour, Config, Params};
 use crate::datapath::{Builder, Datapath};
+use crate::error::Error;
 use crate::models::Model;
 
 /// The signals every model's datapath defines, read by the output ports.
@@ -39,17 +40,17 @@ fn build(model: &Model, registered: &[u32]) -> Datapath {
 }
 
 impl Plan {
-    pub fn new(cfg: Config) -> Result<Plan, ConfigError> {
+    pub fn new(cfg: Config) -> Result<Plan, Error> {
         Plan::for_model(Model::new(&cfg))
     }
 
     /// The plan of a model already made (its configuration's `stages` placed).
-    pub(crate) fn for_model(model: Model) -> Result<Plan, ConfigError> {
+    pub(crate) fn for_model(model: Model) -> Result<Plan, Error> {
         let cfg = model.cfg.clone();
         let combinational = build(&model, &[]);
         let cut_points = combinational.steps.len() as u32;
         if cfg.stages() > cut_points {
-            return Err(ConfigError {
+            return Err(Error::Config {
                 parameter: "stages",
                 message: format!(
                     "{} is out of range; allowed 0..={cut_points} (the cut points of the {} datapath with these widths)",
@@ -63,13 +64,13 @@ impl Plan {
         Ok(Plan { cfg, model, registered_cuts, datapath, cut_points })
     }
 
-    pub fn from_params(params: Params) -> Result<Plan, ConfigError> {
+    pub fn from_params(params: Params) -> Result<Plan, Error> {
         Plan::new(Config::new(params)?)
     }
 
     /// The same configuration at another depth, the model reused (its fit or tables are not
     /// made again).
-    pub fn with_stages(&self, stages: u32) -> Result<Plan, ConfigError> {
+    pub fn with_stages(&self, stages: u32) -> Result<Plan, Error> {
         let cfg = Config::new(Params { stages, ..self.cfg.params.clone() })?;
         let model = self.model.with_config(cfg);
         Plan::for_model(model)
@@ -174,8 +175,8 @@ mod tests {
         // a configuration is valid without its datapath; the plan knows the cut points
         let cfg = Config::new(Params { stages: 99, ..Params::default() }).expect("stages are the plan's to check");
         let e = Plan::new(cfg).unwrap_err();
-        assert_eq!(e.parameter, "stages");
-        assert!(e.message.contains("allowed 0..=13"), "{}", e.message);
+        assert_eq!(e.parameter(), Some("stages"));
+        assert!(e.reason().contains("allowed 0..=13"), "{}", e.reason());
         for model in SpecularModel::ALL {
             let top = Plan::from_params(Params { model, stages: 0, n_bits: 6, ..Params::default() }).unwrap().cut_points;
             let plan = Plan::from_params(Params { model, stages: top, n_bits: 6, ..Params::default() }).unwrap();

@@ -5,28 +5,21 @@
 use std::io::Read;
 use std::path::Path;
 
-/// Why a small file could not be read, in words that follow its path.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum SmallFileError {
-    /// a FIFO, a device, a directory
-    NotRegular,
-    /// larger than the limit (bytes)
-    TooLarge(u64),
-    /// the OS refused, or the text is not UTF-8
-    Io(String),
+/// A refusal: not a regular file, or larger than the limit. Its kind is `InvalidInput`, which
+/// tells it from the OS's own errors ([`refused`]).
+fn refusal(why: String) -> std::io::Error {
+    std::io::Error::new(std::io::ErrorKind::InvalidInput, why)
 }
 
-impl std::fmt::Display for SmallFileError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            SmallFileError::NotRegular => write!(f, "is not a regular file"),
-            SmallFileError::TooLarge(n) => write!(f, "is {n} bytes"),
-            SmallFileError::Io(e) => write!(f, "cannot be read ({e})"),
-        }
-    }
+/// Whether a [`read`] error is ours (not a regular file, too large) rather than the OS's.
+pub fn refused(e: &std::io::Error) -> bool {
+    e.kind() == std::io::ErrorKind::InvalidInput && e.raw_os_error().is_none()
 }
 
-impl std::error::Error for SmallFileError {}
+/// The OS's error (or text that is not UTF-8) in words that follow a path.
+fn unreadable(e: impl std::fmt::Display) -> std::io::Error {
+    std::io::Error::other(format!("cannot be read ({e})"))
+}
 
 /// The most any file of a unit may hold (RTL, table, simulation model): the largest generated
 /// unit is well under a MiB; a file past this is not ours, and is not read.
@@ -35,27 +28,27 @@ pub const UNIT_FILE_MAX: u64 = 64 << 20;
 /// The bytes of `path` when it is a regular file of at most `limit` bytes. It is opened without
 /// blocking (a FIFO put in its place between a check and the open cannot hang the reader) and
 /// checked on the open file, and read with the limit, in case it grows.
-pub fn read_bytes(path: &Path, limit: u64) -> Result<Vec<u8>, SmallFileError> {
+pub fn read_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     use std::os::unix::fs::OpenOptionsExt;
-    let f = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path).map_err(|e| SmallFileError::Io(e.to_string()))?;
-    let meta = f.metadata().map_err(|e| SmallFileError::Io(e.to_string()))?;
+    let f = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path).map_err(unreadable)?;
+    let meta = f.metadata().map_err(unreadable)?;
     if !meta.is_file() {
-        return Err(SmallFileError::NotRegular);
+        return Err(refusal("is not a regular file".into()));
     }
     if meta.len() > limit {
-        return Err(SmallFileError::TooLarge(meta.len()));
+        return Err(refusal(format!("is {} bytes", meta.len())));
     }
     let mut bytes = Vec::with_capacity(meta.len() as usize);
-    f.take(limit + 1).read_to_end(&mut bytes).map_err(|e| SmallFileError::Io(e.to_string()))?;
+    f.take(limit + 1).read_to_end(&mut bytes).map_err(unreadable)?;
     if bytes.len() as u64 > limit {
-        return Err(SmallFileError::TooLarge(bytes.len() as u64));
+        return Err(refusal(format!("is {} bytes", bytes.len())));
     }
     Ok(bytes)
 }
 
 /// The text of `path` when it is a regular file of at most `limit` bytes ([`read_bytes`]).
-pub fn read(path: &Path, limit: u64) -> Result<String, SmallFileError> {
-    String::from_utf8(read_bytes(path, limit)?).map_err(|e| SmallFileError::Io(e.to_string()))
+pub fn read(path: &Path, limit: u64) -> std::io::Result<String> {
+    String::from_utf8(read_bytes(path, limit)?).map_err(unreadable)
 }
 
 #[cfg(test)]
@@ -68,8 +61,11 @@ mod tests {
         let p = dir.path().join("a.json");
         std::fs::write(&p, "{}").unwrap();
         assert_eq!(read(&p, 2).unwrap(), "{}");
-        assert_eq!(read(&p, 1), Err(SmallFileError::TooLarge(2)));
-        assert_eq!(read(dir.path(), 10), Err(SmallFileError::NotRegular));
-        assert!(matches!(read(&dir.path().join("none"), 10), Err(SmallFileError::Io(_))));
+        let large = read(&p, 1).unwrap_err();
+        assert!(refused(&large) && large.to_string() == "is 2 bytes", "{large}");
+        let directory = read(dir.path(), 10).unwrap_err();
+        assert!(refused(&directory) && directory.to_string() == "is not a regular file", "{directory}");
+        let missing = read(&dir.path().join("none"), 10).unwrap_err();
+        assert!(!refused(&missing) && missing.to_string().starts_with("cannot be read ("), "{missing}");
     }
 }

@@ -168,11 +168,14 @@ pub(crate) fn tool_exists(tool: &str) -> bool {
 
 /// The cell counts of module `top` from yosys's `stat -json` (its text differs between 0.23
 /// and 0.70; the JSON does not): cell type → count, sorted by type.
-pub(crate) fn parse_stat_json(json: &str, top: &str) -> Result<Vec<(String, u64)>, String> {
-    let v: serde_json::Value = serde_json::from_str(json).map_err(|e| format!("yosys's stat -json is not JSON: {e}"))?;
-    let module =
-        v.get("modules").and_then(|m| m.get(format!("\\{top}")).or_else(|| m.get(top))).ok_or_else(|| format!("yosys's stat -json has no module {top}"))?;
-    let by_type = module.get("num_cells_by_type").and_then(|c| c.as_object()).ok_or_else(|| "yosys's stat -json has no num_cells_by_type".to_string())?;
+pub(crate) fn parse_stat_json(json: &str, top: &str) -> Result<Vec<(String, u64)>, Failure> {
+    let v: serde_json::Value = serde_json::from_str(json).map_err(|e| error::tool("yosys", format!("yosys's stat -json is not JSON: {e}")))?;
+    let module = v
+        .get("modules")
+        .and_then(|m| m.get(format!("\\{top}")).or_else(|| m.get(top)))
+        .ok_or_else(|| error::tool("yosys", format!("yosys's stat -json has no module {top}")))?;
+    let by_type =
+        module.get("num_cells_by_type").and_then(|c| c.as_object()).ok_or_else(|| error::tool("yosys", "yosys's stat -json has no num_cells_by_type"))?;
     let mut cells: Vec<(String, u64)> = by_type.iter().filter_map(|(k, n)| n.as_u64().map(|n| (k.clone(), n))).collect();
     cells.sort();
     Ok(cells)
@@ -229,7 +232,7 @@ pub fn target_for(design: &Design, asked: Option<Target>) -> Result<Target, Fail
     let generated = design.cfg.target();
     let primitives = design.plan.datapath.has_dsp_blocks() || design.plan.datapath.has_block_rams();
     match asked {
-        Some(t) if primitives && t != generated => Err(Failure::Config(crate::config::ConfigError {
+        Some(t) if primitives && t != generated => Err(Failure::Config {
             parameter: "target",
             message: format!(
                 "{} cannot take the RTL in {}: it was generated for {} and instantiates that family's primitives (MULT18X18D, DP16KD); allowed: {}, or generate again",
@@ -238,7 +241,7 @@ pub fn target_for(design: &Design, asked: Option<Target>) -> Result<Target, Fail
                 generated.name(),
                 generated.name()
             ),
-        })),
+        }),
         Some(t) => Ok(t),
         None if generated == Target::Generic => Ok(Target::Ice40),
         None => Ok(generated),
@@ -301,7 +304,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     run_yosys(yosys, work.path(), &script)?;
     let stat = work.path().join("stat.json");
     let text = crate::small_file::read(&stat, 16 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no statistics ({} {e})", stat.display())))?;
-    let cells = parse_stat_json(&text, &top).map_err(|e| error::tool("yosys", e))?;
+    let cells = parse_stat_json(&text, &top)?;
     let count = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(n, _)| pred(n)).map(|(_, c)| c).sum::<u64>();
     let total_cells = cells.iter().map(|(_, c)| c).sum();
     let cfg = &design.cfg;
@@ -476,9 +479,9 @@ impl SynthResult {
     /// device), a JSON object naming a known model and a target, with its LUT count. A manifest,
     /// `{}` or another tool's JSON is refused with the reason.
     pub fn from_file(path: &Path) -> Result<SynthResult, Failure> {
-        let text = crate::small_file::read(path, 1 << 20).map_err(|e| match e {
-            crate::small_file::SmallFileError::Io(_) => input(format!("{} {e}", path.display())),
-            _ => input(format!("{} {e}; allowed a regular file of at most 1 MiB", path.display())),
+        let text = crate::small_file::read(path, 1 << 20).map_err(|e| match crate::small_file::refused(&e) {
+            false => input(format!("{} {e}", path.display())),
+            true => input(format!("{} {e}; allowed a regular file of at most 1 MiB", path.display())),
         })?;
         let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| input(format!("{} is not JSON: {e}", path.display())))?;
         let not = |why: &str| input(format!("{} is not a `specgen synth --json` result: {why}", path.display()));

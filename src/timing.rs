@@ -46,7 +46,8 @@
 //! The model is a guide, not a proof: `synth --seeds K` measures the unit it chose, and
 //! `scripts/bench_target_mhz.sh` records predicted against measured for every model.
 
-use crate::config::{ConfigError, Target};
+use crate::config::Target;
+use crate::error::Error;
 use crate::plan::Plan;
 use serde::Deserialize;
 
@@ -149,14 +150,14 @@ pub fn part(target: Target) -> &'static str {
 /// model's name): its own when calibrated, the family's (`all`) where the data says so
 /// by name. A datapath the data does not name is an error: a new model is calibrated
 /// (`scripts/calibrate_delay.sh`), never estimated by another's line in silence.
-pub fn line(target: Target, datapath: &str) -> Result<Line, ConfigError> {
+pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
     let all: serde_json::Value = serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");
     let lines = &all[family(target)];
     let chosen = match &lines[datapath] {
         serde_json::Value::Object(_) => &lines[datapath],
         serde_json::Value::String(s) if s == "all" => &lines["all"],
         _ => {
-            return Err(ConfigError {
+            return Err(Error::Config {
                 parameter: "target_mhz",
                 message: format!(
                     "the {datapath} datapath has no delay calibration on the {}: run scripts/calibrate_delay.sh, then scripts/fit_delay_model.py, to measure it (or give --stages)",
@@ -169,7 +170,7 @@ pub fn line(target: Target, datapath: &str) -> Result<Line, ConfigError> {
 }
 
 /// The line for `plan`'s family and datapath.
-fn line_of(plan: &Plan) -> Result<Line, ConfigError> {
+fn line_of(plan: &Plan) -> Result<Line, Error> {
     line(plan.cfg.target(), plan.cfg.datapath_name())
 }
 
@@ -193,7 +194,7 @@ fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
 
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
 /// reaches `mhz`, and that prediction. Err: no depth does (the best one is named).
-pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), ConfigError> {
+pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), Error> {
     let l = line_of(plan)?;
     let mut best = (0, 0.0f64, 0.0f64);
     // a depth whose blocks cannot run at mhz is no pick, whatever its routes (the first seen)
@@ -214,7 +215,7 @@ pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), ConfigError> {
         }
     }
     if let Some((stages, c)) = capped {
-        return Err(ConfigError {
+        return Err(Error::Config {
             parameter: "target_mhz",
             message: format!(
                 "{mhz} MHz is above what the blocks allow on the {}: at --stages {stages} the routes would reach it, but the {} (at most {:.1} MHz); allowed: at most {:.1} MHz here (--stages {}), or a faster speed grade (specgen synth --speed 7 or 8 measures one: DP16KD 254.2 or 271.4 MHz; this delay model is calibrated on grade 6)",
@@ -226,7 +227,7 @@ pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), ConfigError> {
             ),
         });
     }
-    Err(ConfigError {
+    Err(Error::Config {
         parameter: "target_mhz",
         message: format!(
             "{mhz} MHz is out of reach on the {}: the delay model assures at most {:.1} MHz (predicts {:.1}), at --stages {}",
@@ -250,8 +251,8 @@ mod tests {
     fn an_uncalibrated_datapath_is_refused_by_name() {
         for target in [Target::Ice40, Target::Ecp5] {
             let e = line(target, "phong").unwrap_err();
-            assert_eq!(e.parameter, "target_mhz");
-            assert!(e.message.contains("the phong datapath has no delay calibration") && e.message.contains("scripts/calibrate_delay.sh"), "{}", e.message);
+            assert_eq!(e.parameter(), Some("target_mhz"));
+            assert!(e.reason().contains("the phong datapath has no delay calibration") && e.reason().contains("scripts/calibrate_delay.sh"), "{}", e.reason());
             for model in crate::config::SpecularModel::ALL {
                 assert!(line(target, model.name()).is_ok() || model.reads("arch"), "{target:?} {}", model.name());
             }

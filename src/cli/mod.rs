@@ -288,8 +288,6 @@ range_params!(
     param_tag_bits => config::TAG_BITS
 );
 
-use specgen::error::OutputError;
-
 /// Writes to standard output; a closed pipe (`specgen rom … | head -1`) ends the program
 /// quietly with exit 0, any other failure (a full disk) is an error naming standard output —
 /// never a panic.
@@ -328,15 +326,15 @@ pub(crate) use {out, outln};
 /// occupied output directory), 1 for a check that failed, a tool's error, a file.
 fn exit_code(e: &Failure) -> i32 {
     match e {
-        Failure::Config(_) | Failure::Input(_) | Failure::Output(OutputError::Occupied(..) | OutputError::Refused(..)) => 2,
-        Failure::Output(OutputError::Busy(..) | OutputError::Io(_)) | Failure::Tool { .. } | Failure::Mismatch(_) | Failure::Io { .. } => 1,
+        Failure::Config { .. } | Failure::Input(_) | Failure::Occupied { .. } | Failure::Refused { .. } => 2,
+        Failure::Busy { .. } | Failure::Tool { .. } | Failure::Mismatch(_) | Failure::Breach { .. } | Failure::Io { .. } => 1,
     }
 }
 
 /// The message of an error and its causes, a parameter named by its flag.
 fn message(e: &Failure) -> String {
     match e {
-        Failure::Config(c) => format!("invalid --{}: {}", c.parameter.replace('_', "-"), c.message),
+        Failure::Config { parameter, message } => format!("invalid --{}: {message}", parameter.replace('_', "-")),
         _ => specgen::error::chain(e),
     }
 }
@@ -376,15 +374,16 @@ impl ParamArgs {
         if let Some(v) = &self.k {
             p.k = v.clone();
         }
-        Ok(Config::new(p)?)
+        Config::new(p)
     }
 }
 
 /// Writes a whole output directory atomically; an occupied directory is a usage error.
 fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Failure> {
+    // an I/O error names the output as the user spelled it
     emit::write_dir_atomically_forced(out, files, force).map_err(|e| match e {
-        OutputError::Io(io) => Failure::io("write", out, io),
-        other => Failure::Output(other),
+        Failure::Io { action, source, .. } => Failure::io(action, out, source),
+        other => other,
     })
 }
 
@@ -476,7 +475,7 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
     let f = cfg.f();
     let cos_g = match (cos, cos_code) {
         (Some(text), _) => {
-            let code = config::parse_decimal(text, f).map_err(|why| usage(format!("invalid --cos: {}; allowed a decimal in [0, 2)", why.message)))?;
+            let code = config::parse_decimal(text, f).map_err(|why| usage(format!("invalid --cos: {}; allowed a decimal in [0, 2)", why.reason())))?;
             if code >= 2u64 << f {
                 return Err(usage(format!("invalid --cos: {text} is out of range; allowed a decimal in [0, 2)")));
             }

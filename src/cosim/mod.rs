@@ -239,7 +239,7 @@ impl Design {
         if sources.is_empty() {
             return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
         }
-        let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {}", path.display(), e.message)))?;
+        let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {}", path.display(), e.reason())))?;
         let listed: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
         let mut inputs = vec![path.clone()];
         for f in listed.get("files").and_then(|f| f.as_array()).into_iter().flatten() {

@@ -865,7 +865,7 @@ impl SpecularUnit for Blinn {
         trace(&self.cfg, &self.widths, &self.tables, x).1
     }
 
-    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::models::Breach> {
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::error::Error> {
         check_cos_n(&self.cfg, x, got)
     }
 

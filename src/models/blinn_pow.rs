@@ -65,7 +65,7 @@ impl SpecularUnit for BlinnPow {
         Outputs { spec, intensity, done: intensity == 0 }
     }
 
-    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::models::Breach> {
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::error::Error> {
         check_cos_n(&self.cfg, x, got)
     }
 

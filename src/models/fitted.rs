@@ -279,7 +279,7 @@ pub fn trace(cfg: &Config, fit: &Fit, w: &FittedWidths, x: Inputs) -> (FittedTra
 
 /// Checks one output vector against the exact rational `S = base^(2^m)`,
 /// `base = 1 − a_code·D/2^(KA+F)`, with the faithful contract; `done ⇔ base < 0`.
-pub fn check(cfg: &Config, fit: &Fit, x: Inputs, got: Outputs) -> Result<(), crate::models::Breach> {
+pub fn check(cfg: &Config, fit: &Fit, x: Inputs, got: Outputs) -> Result<(), crate::error::Error> {
     let (f, ka) = (cfg.f(), cfg.kf());
     let cos = (x.cos_g as u64).min(1 << f);
     let n = x.n as usize;
@@ -287,7 +287,7 @@ pub fn check(cfg: &Config, fit: &Fit, x: Inputs, got: Outputs) -> Result<(), cra
     let p = fit.a_code[n] as u128 * ((1u64 << f) - cos) as u128;
     let done = p > one;
     if got.done != done {
-        return Err(crate::models::Breach::new("done", format!("got {}, reference {done}", got.done)));
+        return Err(crate::error::Error::breach("done", format!("got {}, reference {done}", got.done)));
     }
     let e = 1u32 << fit.m[n];
     let den_log2 = (ka + f) * e;
@@ -311,14 +311,14 @@ pub fn check(cfg: &Config, fit: &Fit, x: Inputs, got: Outputs) -> Result<(), cra
         diff < (BigUint::from(1u32) << den_log2)
     };
     if !within(got.intensity, 1u128 << cfg.fi()) {
-        return Err(crate::models::Breach::new(
+        return Err(crate::error::Error::breach(
             "intensity",
             format!("got {}, ideal S·2^FI = {:.6}", got.intensity, ratio(s_num(), den_log2) * (cfg.fi() as f64).exp2()),
         ));
     }
     for (i, name) in SPEC_PORTS.iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
-            return Err(crate::models::Breach::new(name, format!("got {}, ideal S·ks = {:.6}", got.spec[i], ratio(s_num(), den_log2) * x.ks[i] as f64)));
+            return Err(crate::error::Error::breach(name, format!("got {}, ideal S·ks = {:.6}", got.spec[i], ratio(s_num(), den_log2) * x.ks[i] as f64)));
         }
     }
     Ok(())
@@ -611,7 +611,7 @@ impl SpecularUnit for Fitted {
         trace(&self.cfg, &self.fit, &self.widths, x).1
     }
 
-    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::models::Breach> {
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::error::Error> {
         check(&self.cfg, &self.fit, x, got)
     }
 

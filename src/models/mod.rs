@@ -20,6 +20,7 @@ pub mod schlick;
 use crate::bits::mask;
 use crate::config::{Config, Rounding, SpecularModel};
 use crate::datapath::Builder;
+use crate::error::Error;
 pub use crate::ports::{Inputs, Outputs};
 use std::sync::{Arc, OnceLock};
 
@@ -58,30 +59,6 @@ pub enum PremiseRole {
     SquareAndMultiply,
 }
 
-/// An output that breaks a model's contract: which port, and what it shows against the exact
-/// value.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Breach {
-    /// `intensity`, `spec_r`/`g`/`b` or `done`
-    pub(crate) port: &'static str,
-    /// what the port shows, and the exact value or range it breaks
-    pub(crate) detail: String,
-}
-
-impl Breach {
-    pub(crate) fn new(port: &'static str, detail: impl Into<String>) -> Breach {
-        Breach { port, detail: detail.into() }
-    }
-}
-
-impl std::fmt::Display for Breach {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}: {}", self.port, self.detail)
-    }
-}
-
-impl std::error::Error for Breach {}
-
 /// One model of the unit (SPEC §3, §6): the golden model, its contract and its datapath.
 ///
 /// Everything here is a function of the configuration the model was made from; a model is
@@ -99,7 +76,7 @@ pub trait SpecularUnit: Send + Sync + std::fmt::Debug {
 
     /// Checks outputs against this model's contract (its exact reference): `Err` says which
     /// output breaks it and by how much.
-    fn check(&self, x: Inputs, got: Outputs) -> Result<(), Breach>;
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), Error>;
 
     /// The ideal outputs the contract refers to, as floats (for reports): `(intensity, spec)`.
     fn ideal(&self, x: Inputs) -> (f64, [f64; 3]);
@@ -213,7 +190,7 @@ impl Model {
     }
 
     /// Checks outputs against this model's contract (its exact reference).
-    pub fn check(&self, x: Inputs, got: Outputs) -> Result<(), Breach> {
+    pub fn check(&self, x: Inputs, got: Outputs) -> Result<(), Error> {
         self.unit.check(x, got)
     }
 
@@ -287,7 +264,7 @@ impl Ideal {
 }
 
 /// Checks one output (`port`) against its ideal under the rounding contract.
-pub(crate) fn check_value(port: &'static str, rounding: Rounding, got: u32, ideal: Ideal) -> Result<(), Breach> {
+pub(crate) fn check_value(port: &'static str, rounding: Rounding, got: u32, ideal: Ideal) -> Result<(), Error> {
     let scaled = (got as u128) << ideal.den_log2;
     let diff = scaled.abs_diff(ideal.num);
     let ok = match rounding {
@@ -297,7 +274,7 @@ pub(crate) fn check_value(port: &'static str, rounding: Rounding, got: u32, idea
     if ok {
         Ok(())
     } else {
-        Err(Breach::new(port, format!("got {got}, ideal {} ({}/2^{})", ideal.to_f64(), ideal.num, ideal.den_log2)))
+        Err(Error::breach(port, format!("got {got}, ideal {} ({}/2^{})", ideal.to_f64(), ideal.num, ideal.den_log2)))
     }
 }
 
@@ -330,7 +307,7 @@ pub(crate) fn cos_n_bounds(cfg: &Config, cos_g: u32, n: u32) -> (u128, u128) {
 
 /// Checks a `c^n` model's outputs (blinn, blinn-pow): every output within 1 of its ideal
 /// `c^n·M` for every value the interval allows; `done` ⇔ intensity is 0.
-pub(crate) fn check_cos_n(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Breach> {
+pub(crate) fn check_cos_n(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Error> {
     let (lo, hi) = cos_n_bounds(cfg, x.cos_g, x.n);
     let q = POW_REF_BITS;
     let within = |o: u32, m: u128| {
@@ -341,16 +318,16 @@ pub(crate) fn check_cos_n(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), B
     let scaled = |v: u128| v as f64 / (q as f64).exp2();
     if !within(got.intensity, 1u128 << cfg.fi()) {
         let (l, h) = (scaled(lo << cfg.fi()), scaled(hi << cfg.fi()));
-        return Err(Breach::new("intensity", format!("got {}, cos^n·2^FI in [{l}, {h}]", got.intensity)));
+        return Err(Error::breach("intensity", format!("got {}, cos^n·2^FI in [{l}, {h}]", got.intensity)));
     }
     for (i, name) in SPEC_PORTS.iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
             let (l, h) = (scaled(lo * x.ks[i] as u128), scaled(hi * x.ks[i] as u128));
-            return Err(Breach::new(name, format!("got {}, cos^n·ks in [{l}, {h}]", got.spec[i])));
+            return Err(Error::breach(name, format!("got {}, cos^n·ks in [{l}, {h}]", got.spec[i])));
         }
     }
     if got.done != (got.intensity == 0) {
-        return Err(Breach::new("done", format!("got {}, intensity {}", got.done, got.intensity)));
+        return Err(Error::breach("done", format!("got {}, intensity {}", got.done, got.intensity)));
     }
     Ok(())
 }

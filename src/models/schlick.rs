@@ -26,10 +26,11 @@
 //! configurations, the exhaustive sweep at the defaults. `done = (intensity == 0)`, as for
 //! the `cos^n` models.
 
-use super::{explain_ideal, Breach, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
+use super::{explain_ideal, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{lit, mask};
 use crate::config::Config;
 use crate::datapath::{add_delay, mul_delay, Builder, Piece, LUT_DELAY};
+use crate::error::Error;
 
 /// W: fractional bits of the quotient `q = floor(S·2^W)`, from the budget above.
 pub(crate) fn quotient_frac_bits(cfg: &Config) -> u32 {
@@ -114,20 +115,20 @@ fn ratio(cfg: &Config, x: Inputs) -> (u128, u128) {
 
 /// The contract: every output within 1 of its ideal `S·M` (`|o·den − c·M| < den`, in integers),
 /// `done` ⇔ the intensity is 0.
-pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Breach> {
+pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Error> {
     let (num, den) = ratio(cfg, x);
     let within = |o: u32, m: u128| (o as u128 * den).abs_diff(num * m) < den;
     let one = 1u128 << cfg.fi();
     if !within(got.intensity, one) {
-        return Err(Breach::new("intensity", format!("got {}, S·2^FI = {}·2^{}/{den}", got.intensity, num, cfg.fi())));
+        return Err(Error::breach("intensity", format!("got {}, S·2^FI = {}·2^{}/{den}", got.intensity, num, cfg.fi())));
     }
     for (i, name) in SPEC_PORTS.iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
-            return Err(Breach::new(name, format!("got {}, S·ks = {}·{}/{den}", got.spec[i], num, x.ks[i])));
+            return Err(Error::breach(name, format!("got {}, S·ks = {}·{}/{den}", got.spec[i], num, x.ks[i])));
         }
     }
     if got.done != (got.intensity == 0) {
-        return Err(Breach::new("done", format!("got {}, intensity {}", got.done, got.intensity)));
+        return Err(Error::breach("done", format!("got {}, intensity {}", got.done, got.intensity)));
     }
     Ok(())
 }
@@ -137,7 +138,7 @@ impl SpecularUnit for Schlick {
         self.divide(x, |_| {}).3
     }
 
-    fn check(&self, x: Inputs, got: Outputs) -> Result<(), Breach> {
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), Error> {
         check(&self.cfg, x, got)
     }
 

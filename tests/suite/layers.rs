@@ -131,3 +131,30 @@ fn the_tool_flow_configurations_cover_every_model() {
         assert!(of_model.len() >= 2, "{}: {} configurations in configs(), at least 2 wanted", model.name(), of_model.len());
     }
 }
+
+/// Issue 37: the library has one error type, `error::Error`, with `std::error::Error`
+/// sources; no other type is an error, and no function returns a bare `String` as its error.
+#[test]
+fn the_library_has_one_error_type_and_no_string_errors() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut found = Vec::new();
+    for f in &files {
+        let rel = f.strip_prefix(&src).unwrap().to_string_lossy().into_owned();
+        if rel.starts_with("cli/") || rel == "main.rs" {
+            continue;
+        }
+        let text = std::fs::read_to_string(f).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            let compact: String = code.split_whitespace().collect();
+            let other_error = code.contains("impl std::error::Error for") && rel != "error.rs";
+            let string_error = compact.contains(",String>") && compact.contains("Result<");
+            if other_error || string_error {
+                found.push(format!("{rel}:{}: {}", n + 1, line.trim()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "a second error type or a String error in the library:\n{}", found.join("\n"));
+}

@@ -6,7 +6,8 @@
 use super::Quadratic;
 use crate::bits::{mask, Word};
 use crate::config::Config;
-use crate::models::{check_value, Breach, Ideal, Inputs, Outputs, SPEC_PORTS};
+use crate::error::Error;
+use crate::models::{check_value, Ideal, Inputs, Outputs, SPEC_PORTS};
 
 /// Every intermediate value of the datapath, named as in the RTL.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -119,10 +120,10 @@ pub fn reference(cfg: &Config, x: Inputs) -> Reference {
 }
 
 /// Checks a full output vector against SPEC §3 for one input.
-pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Breach> {
+pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Error> {
     let r = reference(cfg, x);
     if got.done != r.done {
-        return Err(Breach::new("done", format!("got {}, reference {}", got.done, r.done)));
+        return Err(Error::breach("done", format!("got {}, reference {}", got.done, r.done)));
     }
     check_value("intensity", cfg.rounding(), got.intensity, r.intensity)?;
     for (i, name) in SPEC_PORTS.iter().enumerate() {

@@ -182,7 +182,7 @@ impl SpecularUnit for Quadratic {
         self.trace(x).outputs
     }
 
-    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::models::Breach> {
+    fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::error::Error> {
         golden::check(&self.cfg, x, got)
     }
 
