@@ -209,6 +209,39 @@ pub struct Builder {
     products: Vec<String>,
 }
 
+/// A signal the builder defined, as the datapath's code holds it: its name and width. The
+/// builder's readers take it (or a name, for the unit's inputs) so that a model keeps the
+/// handles its wires returned instead of spelling their names (`rem{k}`) and widths again.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Sig {
+    name: String,
+    width: u32,
+}
+
+impl Sig {
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+    /// All of it, as a piece of an operand.
+    pub(crate) fn all(&self) -> Piece {
+        Piece::sig(&self.name, 0, self.width)
+    }
+    /// Bits `[lo, lo+width)` of it, as a piece of an operand.
+    pub(crate) fn part(&self, lo: u32, width: u32) -> Piece {
+        assert!(lo + width <= self.width, "datapath: bits [{lo}, {}) of the {}-bit {}", lo + width, self.width, self.name);
+        Piece::sig(&self.name, lo, width)
+    }
+}
+
+impl AsRef<str> for Sig {
+    fn as_ref(&self) -> &str {
+        &self.name
+    }
+}
+
 /// Bits `[lo, lo+width)` of a signal, optionally inverted; or a constant.
 #[derive(Debug, Clone)]
 pub enum Piece {
@@ -650,7 +683,7 @@ impl Builder {
     /// own, titled `title`: one carry chain on the ECP5, a carry-select add on the iCE40.
     /// Returns the name of the sum.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn multiply_add(&mut self, name: &str, a: &[Piece], b: &[Piece], addend: &[Piece], width: u32, title: &str, comment: &str) -> String {
+    pub(crate) fn multiply_add(&mut self, name: &str, a: &[Piece], b: &[Piece], addend: &[Piece], width: u32, title: &str, comment: &str) -> Sig {
         let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
         let post_adder = match self.target {
             Target::Generic => true,
@@ -661,8 +694,7 @@ impl Builder {
             self.delay(mul_delay(wa, wb));
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
             let ec = self.addend(&sub_pieces(addend, 0, width), |e| e);
-            self.wire(name, width, format!("{ea} * {eb}{ec}"), &format!("{comment} (one DSP, the add inside it)"));
-            return name.to_string();
+            return self.wire(name, width, format!("{ea} * {eb}{ec}"), &format!("{comment} (one DSP, the add inside it)"));
         }
         let product = format!("{name}_prod");
         let pw = width.min(wa + wb);
@@ -699,7 +731,7 @@ impl Builder {
             let (h, l) = (self.r(&hi), self.bits(&product, z - 1, 0));
             self.wire(name, width, format!("{{{h}, {l}}}"), comment);
         }
-        name.to_string()
+        self.sig(name)
     }
 
     /// On the ECP5 only, a step titled `title` that only registers, where one flip-flop cannot
@@ -733,7 +765,8 @@ impl Builder {
 
     /// Whether `name` is held in a block's output register defined in the current step (so
     /// it can be read only from the next step on).
-    pub(crate) fn is_block_output_here(&mut self, name: &str) -> bool {
+    pub(crate) fn is_block_output_here(&mut self, name: &(impl AsRef<str> + ?Sized)) -> bool {
+        let name = name.as_ref();
         let cur = self.cur();
         let s = self.signal(name);
         s.dsp_registered && s.step == cur
@@ -750,7 +783,8 @@ impl Builder {
     }
 
     /// Bits `[hi:lo]` of a signal (the bare name when that is all of it).
-    pub fn bits(&mut self, name: &str, hi: u32, lo: u32) -> String {
+    pub fn bits(&mut self, name: &(impl AsRef<str> + ?Sized), hi: u32, lo: u32) -> String {
+        let name = name.as_ref();
         let cur = self.cur();
         let s = self.signal(name);
         assert!(hi < s.width && lo <= hi, "datapath: {name}[{hi}:{lo}] of a {}-bit signal", s.width);
@@ -766,19 +800,22 @@ impl Builder {
     }
 
     /// All of a signal.
-    pub fn r(&mut self, name: &str) -> String {
+    pub fn r(&mut self, name: &(impl AsRef<str> + ?Sized)) -> String {
+        let name = name.as_ref();
         let w = self.signal(name).width;
         self.bits(name, w - 1, 0)
     }
 
     /// Bits `[lo, lo+width)` of a signal as an operand of exactly `out` bits: cut to its low
     /// `out` bits (enough for a result taken modulo 2^out) or zero-extended.
-    pub fn operand(&mut self, name: &str, lo: u32, width: u32, out: u32) -> String {
+    pub fn operand(&mut self, name: &(impl AsRef<str> + ?Sized), lo: u32, width: u32, out: u32) -> String {
+        let name = name.as_ref();
         self.pieces(&sub_pieces(&[Piece::sig(name, lo, width)], 0, out))
     }
 
     /// All of `name` zero-extended to `to` bits.
-    pub(crate) fn zext(&mut self, name: &str, to: u32) -> String {
+    pub(crate) fn zext(&mut self, name: &(impl AsRef<str> + ?Sized), to: u32) -> String {
+        let name = name.as_ref();
         let w = self.signal(name).width;
         assert!(to >= w, "zext {name} from {w} to {to}");
         self.operand(name, 0, w, to)
@@ -855,13 +892,20 @@ impl Builder {
     }
 
     /// Defines a wire of the current step.
-    pub fn wire(&mut self, name: &str, width: u32, expr: String, comment: &str) {
+    pub fn wire(&mut self, name: &str, width: u32, expr: String, comment: &str) -> Sig {
         let cur = self.cur();
         if expr.contains(" * ") {
             self.products.push(name.to_string());
         }
         self.define(name, width, cur, false);
         self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
+        Sig { name: name.into(), width }
+    }
+
+    /// The handle of a signal defined before (a unit input, or a wire a helper defined).
+    pub(crate) fn sig(&mut self, name: &str) -> Sig {
+        let width = self.signal(name).width;
+        Sig { name: name.into(), width }
     }
 
     /// The colour multipliers (14–16) with the colours' rounding half as their addend, one
@@ -987,13 +1031,12 @@ impl Builder {
 
     /// `name = (a + b + cin) mod 2^width` as one carry chain in this step, whatever its width
     /// (the ECP5's CCU2C chains are fast; the iCE40 shape uses [`Builder::add_start`]).
-    pub(crate) fn add(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> String {
+    pub(crate) fn add(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> Sig {
         self.delay(add_delay(width.min(self.chunk_bits())));
         let ea = self.pieces(&sub_pieces(a, 0, width));
         let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
         let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
-        self.wire(name, width, format!("{ea}{eb}{plus}"), comment);
-        name.to_string()
+        self.wire(name, width, format!("{ea}{eb}{plus}"), comment)
     }
 
     /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added
@@ -1224,7 +1267,7 @@ impl Builder {
     /// Finishes a carry-select add in the steps it needs, at most two LUT levels a step: none
     /// for one chunk; the chunk carries rippled two a step (one for a sum of more than
     /// [`WIDE_SUM_CHUNKS`] chunks), the last with each chunk's pick. Returns the name of the sum.
-    pub(crate) fn resolve(&mut self, p: PendingAdd, title: &str) -> String {
+    pub(crate) fn resolve(&mut self, p: PendingAdd, title: &str) -> Sig {
         if !p.chunks.is_empty() {
             // the carries into chunks from+1..=to (chunk 1's is part0's), `per_step` levels a
             // step, then the pick with the last of them
@@ -1247,9 +1290,9 @@ impl Builder {
 
     /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT
     /// level). Returns the name of the sum.
-    pub(crate) fn add_finish(&mut self, p: PendingAdd) -> String {
+    pub(crate) fn add_finish(&mut self, p: PendingAdd) -> Sig {
         if p.chunks.is_empty() {
-            return p.name;
+            return self.sig(&p.name);
         }
         self.delay(LUT_DELAY);
         let (_, w0) = p.chunks[0];
@@ -1281,8 +1324,7 @@ impl Builder {
         let comment = p.comment.clone();
         // many chunks: one a line
         let sep = if words.len() > 4 { ",\n    " } else { ", " };
-        self.wire(&p.name, p.width, format!("{{{}}}", words.join(sep)), &comment);
-        p.name
+        self.wire(&p.name, p.width, format!("{{{}}}", words.join(sep)), &comment)
     }
 
     /// Closes the datapath: `outputs` are read after the last step. Adds an `unused_*` wire

@@ -470,9 +470,11 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let eb = w.exp_bits;
     let groups: Vec<(u32, u32)> = (0..f.div_ceil(4)).map(|k| (f - 4 * k, (f - 4 * k).min(4))).collect(); // (top + 1, width)
     b.step("normalise: the exponent e, per group of 4 bits of c - 2^-F");
+    // each group's (has a one, leading zeros)
+    let mut leads = Vec::new();
     for (k, &(hi, gw)) in groups.iter().enumerate() {
         let bits = b.bits("cos_minus_ulp", hi - 1, hi - gw);
-        b.wire(&format!("lead_any{k}"), 1, format!("|{bits}"), &format!("bits [{}:{}] of c - 2^-{f} have a one", hi - 1, hi - gw));
+        let any = b.wire(&format!("lead_any{k}"), 1, format!("|{bits}"), &format!("bits [{}:{}] of c - 2^-{f} have a one", hi - 1, hi - gw));
         // its first one at j from the top: bits above it 0, bit j 1 (the last j: when the
         // group has a one, it is there if nowhere above); each bit of j an OR of those
         // conditions, no ?: of constants ([`Builder::select`])
@@ -499,13 +501,13 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
             }
         };
         let (b1, b0) = (lz_bit(1), lz_bit(0));
-        b.wire(&format!("lead_zeros{k}"), 2, format!("{{{b1},\n    {b0}}}"), "its leading zeros (when it has a one)");
+        leads.push((any, b.wire(&format!("lead_zeros{k}"), 2, format!("{{{b1},\n    {b0}}}"), "its leading zeros (when it has a one)")));
     }
     b.delay(LUT_DELAY);
     b.step("normalise: e = the leading zeros of c - 2^-F");
     let mut cases = Vec::new();
-    for k in 0..groups.len() {
-        let (any, lz) = (b.r(&format!("lead_any{k}")), b.r(&format!("lead_zeros{k}")));
+    for (k, (any, lz)) in leads.iter().enumerate() {
+        let (any, lz) = (b.r(any), b.r(lz));
         cases.push(format!("{any} ? {{{}, {lz}}}", lit(eb - 2, k as u128)));
     }
     cases.push(lit(eb, f as u128));
@@ -573,7 +575,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
             // output, which yosys takes into the block as its output register (a register of
             // some of its bits stays in the fabric, and leaves the SB_MAC16 without a clock:
             // nextpnr-ice40 then does not time the path through it)
-            ghat = (sum, rb);
+            ghat = (sum.name().to_string(), rb);
         }
     } else if rb > 0 {
         // g^ = G[i] + floor(dG[i]*r / 2^RB) = floor((G[i]*2^RB + dG[i]*r) / 2^RB): the entry and

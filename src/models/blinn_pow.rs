@@ -126,16 +126,16 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
         b.step(&format!("bit {i} of n: multiply by c^(2^{i}) when it is set{}", if more { "; square the power" } else { "" }));
         let (r, p) = (format!("result{i}"), format!("power{i}"));
         let (re, pe) = (b.zext(&r, full), b.zext(&p, full));
-        b.wire(&format!("result_prod{}", i + 1), full, format!("{re} * {pe}"), &format!("UQ2.{}: result*power, exact", 2 * pw));
+        let prod = b.wire(&format!("result_prod{}", i + 1), full, format!("{re} * {pe}"), &format!("UQ2.{}: result*power, exact", 2 * pw));
         // the bits of n still to use travel on, shrinking, as n_rest (n itself for bit 0)
         let rest = if i == 0 { "n".to_string() } else { format!("n_rest{i}") };
         let bit = b.bits(&rest, 0, 0);
-        let (hi, keep) = (b.bits(&format!("result_prod{}", i + 1), 2 * pw, pw), b.r(&r));
+        let (hi, keep) = (b.bits(&prod, 2 * pw, pw), b.r(&r));
         b.wire(&format!("result{}", i + 1), pw + 1, format!("{bit} ? {hi} : {keep}"), &format!("UQ1.{pw}: floored product, or the product so far"));
         if more {
             let (p1, p2) = (b.zext(&p, full), b.zext(&p, full));
-            b.wire(&format!("power_sq{}", i + 1), full, format!("{p1} * {p2}"), &format!("UQ2.{}: power^2, exact", 2 * pw));
-            let sq = b.bits(&format!("power_sq{}", i + 1), 2 * pw, pw);
+            let power_sq = b.wire(&format!("power_sq{}", i + 1), full, format!("{p1} * {p2}"), &format!("UQ2.{}: power^2, exact", 2 * pw));
+            let sq = b.bits(&power_sq, 2 * pw, pw);
             b.wire(&format!("power{}", i + 1), pw + 1, sq, &format!("UQ1.{pw}: c^(2^{}), floored", i + 1));
             let upper = b.bits(&rest, nb - i - 1, 1);
             b.wire(&format!("n_rest{}", i + 1), nb - i - 1, upper, "the bits of n still to use");

@@ -489,6 +489,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             let tn = b.resolve(p, &t);
             let zw = 2 * dsp;
             let what = format!("floor(power{}^2 / 2^{}), exact", j - 1, 2 * r);
+            let square;
             if b.target() == Target::Ecp5 {
                 // the MULT18X18D has no adder: hi^2 alone on it (with its own registers where
                 // the cuts allow), T added after it on a carry chain
@@ -496,7 +497,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
                 let hh = format!("square{j}_hh");
                 b.product(&hh, &[Piece::sig(&prev, r, dsp)], &[Piece::sig(&prev, r, dsp)], zw, &format!("hi^2, power{} = hi*2^{r} + lo, exact", j - 1));
                 b.step(&format!("squaring {j} of {m_max}: Z = hi^2 + T/2^{r}"));
-                b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[Piece::sig(&tn, r, tw - r)], false, zw, &what);
+                square = b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[tn.part(r, tw - r)], false, zw, &what);
             } else {
                 // a step that only registers T: the DSP's input registers take their operands
                 // from a flip-flop (a route to the DSP column), not from the LUTs that picked
@@ -506,7 +507,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
                 b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
                 let (h1, h2) = (b.operand(&prev, r, dsp, zw), b.operand(&prev, r, dsp, zw));
                 let th = b.operand(&tn, r, tw - r, zw);
-                b.wire(
+                square = b.wire(
                     &format!("square{j}"),
                     zw,
                     format!("{h1} * {h2} + {th}"),
@@ -517,14 +518,14 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             // the bypass in a step of its own: the DSP's output meets only a flip-flop
             b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
             b.delay(LUT_DELAY);
-            b.bits(&format!("square{j}"), 2 * wf - 2 * r, wf - 2 * r)
+            b.bits(&square, 2 * wf - 2 * r, wf - 2 * r)
         } else {
             b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
             let sq = 2 * wf + 2;
             let (p1, p2) = (b.zext(&prev, sq), b.zext(&prev, sq));
-            b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
+            let square = b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
             b.delay(mul_delay((wf + 1).min(dsp), (wf + 1).min(dsp)) + LUT_DELAY);
-            b.bits(&format!("square{j}"), 2 * wf, wf)
+            b.bits(&square, 2 * wf, wf)
         };
         let keep = b.r(&prev);
         let mf = b.bits("fit", w.rom_word_bits - 1, w.a_bits);

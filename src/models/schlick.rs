@@ -29,7 +29,7 @@
 use super::{explain_ideal, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, mul_delay, Builder, Piece, LUT_DELAY};
+use crate::datapath::{add_delay, mul_delay, Builder, Piece, Sig, LUT_DELAY};
 use crate::error::Error;
 
 /// W: fractional bits of the quotient `q = floor(S·2^W)`, from the budget above.
@@ -207,64 +207,71 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     b.step("clamp c = min(cos, 1); d = 1 - c; n = 0 picks S = 1 at the end");
     let g = b.r("cos_g");
     let one = lit(f + 1, 1u128 << f);
-    b.wire("cos_clamped", f + 1, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}: c"));
-    let c = b.r("cos_clamped");
-    b.wire("one_minus_cos", f + 1, format!("{one} - {c}"), &format!("UQ1.{f}: 1 - c, exact"));
-    let n = b.r("n");
-    b.wire("n_zero", 1, format!("{n} == {}", lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
+    let cos = b.wire("cos_clamped", f + 1, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    let c = b.r(&cos);
+    let one_minus_cos = b.wire("one_minus_cos", f + 1, format!("{one} - {c}"), &format!("UQ1.{f}: 1 - c, exact"));
+    let n = b.sig("n");
+    let nv = b.r(&n);
+    let n_zero = b.wire("n_zero", 1, format!("{nv} == {}", lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
     b.delay(2.0 * add_delay(f + 1));
 
     // 2n·(1 − c) + c: one multiply-add (on the iCE40 the SB_MAC16's post-adder; on the ECP5 a
     // MULT18X18D, then a carry chain)
     b.step("the denominator den = 2n*(1 - c) + c, exact");
-    let twice_n = [Piece::zeros(1), Piece::sig("n", 0, nb)];
-    let (d, c) = ([Piece::sig("one_minus_cos", 0, f + 1)], [Piece::sig("cos_clamped", 0, f + 1)]);
+    let twice_n = [Piece::zeros(1), n.all()];
     let comment = format!("UQ{}.{f}: 2n*(1 - c) + c, exact (at most 2^{} ulps)", nb + 2, nb + f + 1);
-    b.multiply_add("den", &twice_n, &d, &c, dw, "the denominator", &comment);
+    let den = b.multiply_add("den", &twice_n, &[one_minus_cos.all()], &[cos.all()], dw, "the denominator", &comment);
 
     // −den − 1 = ~den over the trial's width, once: each compare-subtract is then a plain add
     // with carry-in 1 (a carry chain's operand takes no inverter)
     b.step("~den for the compare-subtracts");
-    let dv = b.r("den");
-    b.wire("den_inv", rw + 1, format!("~{{{}, {dv}}}", lit(rw + 1 - dw, 0)), &format!("~den over {} bits: 2r + ~den + 1 = 2r - den", rw + 1));
+    let dv = b.r(&den);
+    let den_inv = b.wire("den_inv", rw + 1, format!("~{{{}, {dv}}}", lit(rw + 1 - dw, 0)), &format!("~den over {} bits: 2r + ~den + 1 = 2r - den", rw + 1));
     b.delay(LUT_DELAY);
 
     // one quotient bit a step (the weight-1 bit first): the trial `shifted - den` on one carry
     // chain (a carry-select add would cut a bit over several steps, and its registers, a
-    // remainder's and den's a cut, overflow the UP5K), its carry-out the bit, then the select
+    // remainder's and den's a cut, overflow the UP5K), its carry-out the bit, then the select;
+    // `rem` and `quot` are the last step's remainder and quotient bits so far
+    let (mut rem, mut quot): (Option<Sig>, Option<Sig>) = (None, None);
     for k in 0..=w {
         let title = if k == 0 { "quotient bit of weight 1: c >= den".to_string() } else { format!("quotient bit of weight 2^-{k}: 2r >= den") };
         b.step(&title);
-        let prev = if k == 0 { b.zext("cos_clamped", rw) } else { format!("{{{}, 1'b0}}", b.r(&format!("rem{}", k - 1))) };
-        let what = if k == 0 { "c".to_string() } else { format!("2*r{}", k - 1) };
-        b.wire(&format!("shifted{k}"), rw, prev, &format!("UQ{}.{f}: {what}", nb + 3));
-        let trial = format!("trial{k}");
-        let (sv, dv) = (b.zext(&format!("shifted{k}"), rw + 1), b.r("den_inv"));
-        b.wire(&trial, rw + 1, format!("{sv} + {dv} + {}", lit(rw + 1, 1)), &format!("{what} - den mod 2^{}: its top bit a borrow", rw + 1));
+        let (prev, what) = match &rem {
+            None => (b.zext(&cos, rw), "c".to_string()),
+            Some(r) => (format!("{{{}, 1'b0}}", b.r(r)), format!("2*r{}", k - 1)),
+        };
+        let shifted = b.wire(&format!("shifted{k}"), rw, prev, &format!("UQ{}.{f}: {what}", nb + 3));
+        let (sv, dv) = (b.zext(&shifted, rw + 1), b.r(&den_inv));
+        let trial =
+            b.wire(&format!("trial{k}"), rw + 1, format!("{sv} + {dv} + {}", lit(rw + 1, 1)), &format!("{what} - den mod 2^{}: its top bit a borrow", rw + 1));
         let borrow = b.bits(&trial, rw, rw);
-        b.wire(&format!("qbit{k}"), 1, format!("~{borrow}"), &format!("quotient bit of weight 2^-{k}: {what} >= den"));
-        let (bit, t, s) = (b.r(&format!("qbit{k}")), b.bits(&trial, dw - 1, 0), b.bits(&format!("shifted{k}"), dw - 1, 0));
-        b.wire(&format!("rem{k}"), dw, Builder::select(&bit, &t, &s, dw), &format!("r{k}: the remainder, below den"));
+        let qbit = b.wire(&format!("qbit{k}"), 1, format!("~{borrow}"), &format!("quotient bit of weight 2^-{k}: {what} >= den"));
+        let (bit, t, s) = (b.r(&qbit), b.bits(&trial, dw - 1, 0), b.bits(&shifted, dw - 1, 0));
+        rem = Some(b.wire(&format!("rem{k}"), dw, Builder::select(&bit, &t, &s, dw), &format!("r{k}: the remainder, below den")));
         // the quotient's bits so far (from the second on: the first is qbit0 itself)
-        if k > 0 {
-            let above = if k == 1 { "qbit0".to_string() } else { format!("quot{}", k - 1) };
-            let quotient = format!("{{{}, {bit}}}", b.r(&above));
-            b.wire(&format!("quot{k}"), k + 1, quotient, &format!("the quotient's top {} bits", k + 1));
-        }
+        quot = Some(match quot {
+            None => qbit,
+            Some(above) => {
+                let bits = format!("{{{}, {bit}}}", b.r(&above));
+                b.wire(&format!("quot{k}"), k + 1, bits, &format!("the quotient's top {} bits", k + 1))
+            }
+        });
         // the chain, its carry-out through a LUT, the remainder's select
         b.delay(add_delay(rw + 1) + LUT_DELAY);
     }
+    let quot = quot.expect("at least one quotient bit");
 
     b.step("S = 1 at n = 0; round half up to the outputs");
-    let (nz, q) = (b.r("n_zero"), b.r(&format!("quot{w}")));
-    b.wire("quotient", w + 1, Builder::select_const(&nz, 1u128 << w, w + 1, &q), &format!("UQ1.{w}: floor(S*2^{w}), 1.0 at n = 0"));
-    let qv = b.r("quotient");
-    b.wire("intensity_sum", w + 1, format!("{qv} + {}", lit(w + 1, 1u128 << (w - fi - 1))), &format!("UQ1.{w}: S + 2^-{}", fi + 1));
-    let e = b.bits("intensity_sum", w, w - fi);
-    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    let (nz, q) = (b.r(&n_zero), b.r(&quot));
+    let quotient = b.wire("quotient", w + 1, Builder::select_const(&nz, 1u128 << w, w + 1, &q), &format!("UQ1.{w}: floor(S*2^{w}), 1.0 at n = 0"));
+    let qv = b.r(&quotient);
+    let sum = b.wire("intensity_sum", w + 1, format!("{qv} + {}", lit(w + 1, 1u128 << (w - fi - 1))), &format!("UQ1.{w}: S + 2^-{}", fi + 1));
+    let e = b.bits(&sum, w, w - fi);
+    let intensity = b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
     b.colour_sums("quotient", w, "S");
     b.colour_results(w, "S");
-    let iv = b.r("intensity");
+    let iv = b.r(&intensity);
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
     b.delay(mul_delay(w + 1, bb) + add_delay(w + bb));
 }

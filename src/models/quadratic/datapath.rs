@@ -75,7 +75,7 @@ fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -
 }
 
 /// `done` from the comparator's carry (never when cos >= 1.0).
-fn done(cfg: &Config, b: &mut Builder, sum: &str) {
+fn done(cfg: &Config, b: &mut Builder, sum: &Sig) {
     let f = cfg.f();
     let (gg, c) = (b.bits("cos_g", f, f), b.bits(sum, f + 1, f + 1));
     b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
@@ -143,7 +143,7 @@ fn intensity_add(cfg: &Config, w: &Widths, b: &mut Builder) -> Option<([Piece; 1
 }
 
 /// `intensity` from the rounding add's sum.
-fn intensity_from(cfg: &Config, b: &mut Builder, sum: &str) {
+fn intensity_from(cfg: &Config, b: &mut Builder, sum: &Sig) {
     let fi = cfg.fi();
     let e = b.bits(sum, fi + 1, 1);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
@@ -572,9 +572,10 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("colour multipliers (14-16); intensity rounding");
     let cpb = w.color_product_bits;
+    let mut products = Vec::new();
     for ch in CHANNELS {
         let (cs, ks) = (b.zext("square", cpb), b.zext(&format!("ks_{ch}"), cpb));
-        b.wire(&format!("color_prod_{ch}"), cpb, format!("{cs} * {ks}"), &format!("UQ{bb}.{ws}: S * ks_{ch}, exact"));
+        products.push(b.wire(&format!("color_prod_{ch}"), cpb, format!("{cs} * {ks}"), &format!("UQ{bb}.{ws}: S * ks_{ch}, exact")));
     }
     if ws > fi {
         let sqr = b.r("square");
@@ -583,8 +584,8 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.delay(mul_delay(ws + 1, bb));
 
     b.step("colour rounding, final slices");
-    for ch in CHANNELS {
-        let p = b.r(&format!("color_prod_{ch}"));
+    for (ch, product) in CHANNELS.iter().zip(&products) {
+        let p = b.r(product);
         b.wire(&format!("color_sum_{ch}"), cpb, format!("{p} + {}", lit(cpb, 1u128 << (ws - 1))), "+ 1/2 colour ulp (round half up)");
     }
     b.colour_results(ws, "S");
