@@ -282,6 +282,12 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     e.tail.push(format!("// every pixel taken has a place reserved in {top}_out_buffer, so the pipeline never waits"));
     e.tail.push(format!("wire {} out_result = {};", range(width), concat(&fields.iter().map(|f| f.1.clone()).collect::<Vec<_>>())));
     e.tail.push(format!("wire {} out_held;", range(width)));
+    if colour == Colour::Static {
+        let bits = buffer_depth_log2(depth) + 2;
+        e.tail.push("`ifdef FORMAL".into());
+        e.tail.push(format!("wire {} f_buffer_outstanding;", range(bits)));
+        e.tail.push("`endif".into());
+    }
     let bits = buffer_depth_log2(depth) as usize;
     e.tail.push(format!(
         "{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({bits}), .TAPS({bits}'b{:0bits$b}), .PLACES({}), .LATENCY({})) out_buffer (",
@@ -292,11 +298,18 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     e.tail.push(format!("    .clk(clk), .rst(rst), .in_valid({offer}), .in_ready(in_ready), .take(in_take),"));
     e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
     e.tail.push(format!("    .out_valid(out_valid), .out_ready({accept}), .out(out_held)"));
+    if colour == Colour::Static {
+        e.tail.push("`ifdef FORMAL".into());
+        e.tail.push("    , .f_outstanding(f_buffer_outstanding)   // formal only: pixels inside, for idle's assertions".into());
+        e.tail.push("`endif".into());
+    }
     e.tail.push(");".into());
     if colour == Colour::Static {
         e.tail.extend(inside_count(places_for(depth), accept));
     }
     e.tail.push(format!("assign {} = out_held;", concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>())));
+    let tag_line = (depth > 0 && tw > 0).then(|| (tag_out.clone().expect("a tag"), e.tag.iter().any(|l| l.starts_with("reg  [") && l.contains(" tag_line;"))));
+    e.tail.extend(formal_lines(depth, tw, tag_line, (colour == Colour::Static).then(|| places_for(depth))));
     if interface == Interface::Axis {
         let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
         e.tail.push(format!("assign m_axis_tdata = {};", ports::packed_tdata(&mf, mw)));
@@ -376,6 +389,64 @@ fn inside_count(places: u64, accept: &str) -> Vec<String> {
         "end".into(),
         format!("assign {:<9} = idle_q;   // no pixel in the pipeline or the buffer", "idle"),
     ]
+}
+
+/// The unit's own formal block (read only with `yosys -formal`, as `specgen prove` does; see
+/// `templates/out_buffer.v` for the buffer's): with a tag (`tag`: the last word's name, and
+/// whether the line is a plain shift register `tag_line`), the tag entering the buffer with a
+/// result is in_tag of the pixel `depth` edges before; with material registers (`places`),
+/// idle is high exactly while no pixel is inside. Each is an assertion `prove` proves, with the
+/// invariants that make it inductive within a few edges.
+fn formal_lines(depth: u32, tw: u32, tag: Option<(String, bool)>, places: Option<u64>) -> Vec<String> {
+    if tag.is_none() && places.is_none() {
+        return Vec::new();
+    }
+    let mut out = vec![
+        String::new(),
+        "`ifdef FORMAL".into(),
+        "// ==== formal (read with yosys -formal, as `specgen prove` does; synthesis and simulation never read it) ====".into(),
+        "reg  f_started = 1'b0;   // the first edge (a reset: the buffer's assumption) has passed".into(),
+        "always @(posedge clk) f_started <= 1'b1;".into(),
+    ];
+    if let Some((last, shift)) = tag {
+        let (l, t) = (depth, tw);
+        out.push(format!("// in_tag of the last {l} edges (word j: j + 1 edges before), and how many edges have passed (bit j: more than j)"));
+        out.push(format!("reg  [{}:0] f_tags;", l * t - 1));
+        out.push(format!("reg  [{}:0] f_age = {l}'h0;", l - 1));
+        if l == 1 {
+            out.push("always @(posedge clk) begin f_tags <= in_tag; f_age <= 1'b1; end".into());
+        } else {
+            out.push(format!("always @(posedge clk) begin f_tags <= {{f_tags[{}:0], in_tag}}; f_age <= {{f_age[{}:0], 1'b1}}; end", (l - 1) * t - 1, l - 2));
+        }
+        out.push("always @(*) if (f_started) begin".into());
+        out.push(format!("    // the tag that enters the buffer with a result is its pixel's: in_tag {l} edges before"));
+        out.push(format!("    if (valid_line[{}]) assert({last} == f_tags[{}:{}]);", l - 1, l * t - 1, (l - 1) * t));
+        out.push("    // (a pixel in the pipeline was taken after power-up)".into());
+        out.push("    assert((valid_line & ~f_age) == 0);".into());
+        if shift {
+            out.push("    // the line is a shift register: each word is in_tag j + 1 edges before, once that many have passed".into());
+            for j in 0..l {
+                out.push(format!("    if (f_age[{j}]) assert(tag_line[{} +: {t}] == f_tags[{} +: {t}]);", j * t, j * t));
+            }
+        }
+        out.push("end".into());
+    }
+    if let Some(p) = places {
+        out.push("integer f_k, f_count;".into());
+        out.push("always @(*) begin".into());
+        out.push("    f_count = 0;".into());
+        out.push(format!("    for (f_k = 1; f_k <= {p}; f_k = f_k + 1) f_count = f_count + inside_at_least[f_k];"));
+        out.push("    if (f_started) begin".into());
+        out.push("        // idle is high exactly while no pixel is inside (the buffer counts them)".into());
+        out.push("        assert(idle_q == (f_buffer_outstanding == 0));".into());
+        out.push("        // the thermometer is one, and counts them".into());
+        out.push(format!("        for (f_k = 1; f_k < {p}; f_k = f_k + 1) if (inside_at_least[f_k + 1]) assert(inside_at_least[f_k]);"));
+        out.push("        assert(f_count == f_buffer_outstanding);".into());
+        out.push("    end".into());
+        out.push("end".into());
+    }
+    out.push("`endif".into());
+    out
 }
 
 /// The reset as the header names it: `rst`, `rst_n low`, `areset`, `aresetn low`.

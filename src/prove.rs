@@ -37,12 +37,7 @@ struct EdgeHarness<'a> {
     b_w: u32,
     i_w: u32,
     latency: u32,
-    places: u64,
-    count_bits: u32,
     handshake: bool,
-    clock_enable: bool,
-    tag: bool,
-    static_colour: bool,
 }
 
 #[derive(Template)]
@@ -53,6 +48,14 @@ struct Script<'a> {
     files: &'a [String],
     /// a bounded `sat` search of this many edges; none: the AIGER model for `pdr`
     bounded: Option<u32>,
+    /// k-induction with `sat` up to this many edges (instead of either)
+    induction: Option<u32>,
+    /// `sat` leaves cells it cannot model (an ECP5 unit's black boxes) unconstrained
+    ignore_unknown: bool,
+    /// the modules whose multipliers the induction abstracts (any product)
+    abstract_modules: Vec<String>,
+    /// with `induction`: a bounded search of that many edges instead, for a failure's trace
+    replay: bool,
 }
 
 #[derive(Template)]
@@ -137,7 +140,14 @@ pub struct Proof {
     pub properties: Vec<&'static str>,
     pub verdict: Verdict,
     pub seconds: f64,
+    /// how it was proved or refuted, in words (the engine, and k for an induction)
+    pub engine: String,
 }
+
+/// The edge proof's engine, in words.
+const PDR: &str = "ABC pdr";
+/// The pipelining proof's engine, in words.
+const PIPELINING: &str = "ABC iprove over the unrolled miter, from any state and from power-up";
 
 /// The harness module's name for `top`.
 fn harness_name(top: &str) -> String {
@@ -151,14 +161,15 @@ fn properties(design: &Design) -> Vec<&'static str> {
         return vec!["out_valid is in_valid of exactly `latency` edges before, unless a reset came between"];
     }
     let mut p = vec![
-        "a reset empties the unit: out_valid and in_ready low the cycle after it",
-        "a result not taken stays on the outputs (out_valid held)",
+        "a reset empties the unit: out_valid and in_ready low the edge after it",
+        "a result shown and not taken stays, unchanged: out_valid held, every output and the tag stable",
         "never more pixels inside than the buffer's places; no result without a pixel inside",
-        "in_ready is high exactly when, three edges before, fewer than places - 3 pixels were inside",
+        "in_ready is high exactly when, three edges before, fewer than places - 3 pixels were inside (SPEC §7)",
+        "the n-th result delivered is the n-th written into the buffer, with its data: none lost, repeated or reordered",
+        "a result enters the buffer exactly `stages` edges after its pixel was taken",
     ];
-    if cfg.carried_tag_bits() > 0 {
-        p.push("a result not taken keeps its tag");
-        p.push("the k-th result given carries the k-th pixel's tag: none lost, repeated or reordered");
+    if cfg.carried_tag_bits() > 0 && cfg.stages() > 0 {
+        p.push("the tag that enters the buffer with a result is its own pixel's (in_tag `stages` edges before)");
     }
     if cfg.colour() == crate::config::Colour::Static {
         p.push("idle is high exactly while no pixel is inside");
@@ -169,7 +180,6 @@ fn properties(design: &Design) -> Vec<&'static str> {
 /// The harness's Verilog for `design`.
 pub fn harness(design: &Design) -> String {
     let cfg = &design.cfg;
-    let places = crate::interface::buffer_places(cfg);
     let name = harness_name(cfg.top());
     EdgeHarness {
         name: &name,
@@ -182,13 +192,7 @@ pub fn harness(design: &Design) -> String {
         b_w: cfg.b(),
         i_w: cfg.fi() + 1,
         latency: cfg.latency(),
-        places,
-        // 2^C > places: a count of pixels inside never wraps, nor do two tracked indices meet
-        count_bits: 64 - places.leading_zeros() + 1,
         handshake: cfg.interface().handshake(),
-        clock_enable: cfg.params.clock_enable,
-        tag: cfg.carried_tag_bits() > 0,
-        static_colour: cfg.colour() == crate::config::Colour::Static,
     }
     .render()
     .expect("the prove harness renders")
@@ -237,10 +241,13 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     files.push("ports.v".into());
     files.push("harness.v".into());
     let name = harness_name(cfg.top());
-    Script { version: crate::names::VERSION, harness: &name, files: &files, bounded: None }.write(w, "prove.ys")?;
     let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
     let tools = &Tools { yosys, abc, limit: tools.limit };
     let t0 = Instant::now();
+    if cfg.interface().handshake() {
+        return induction(design, tools, w, &files, &name, t0);
+    }
+    Script { version: crate::names::VERSION, harness: &name, files: &files, bounded: None, induction: None, ignore_unknown: false, abstract_modules: Vec::new(), replay: false }.write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
     run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
         .ok_or_else(|| error::tool(&tools.yosys, "yosys did not write the model within 600 s"))?;
@@ -257,10 +264,10 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
             Some(false) => Verdict::Failed { frame: steps, vcd: trace(&tools.yosys, w, design)? },
             None => Verdict::Undecided { bounded: None },
         };
-        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64() });
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PDR.into() });
     };
     if said.contains("Property proved") {
-        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds });
+        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine: PDR.into() });
     }
     // "Output 0 of miter "model" was asserted in frame 3."
     let Some(frame) =
@@ -270,14 +277,70 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     };
     bounded(tools, w, &files, &name, frame + 2)?;
     let vcd = trace(&tools.yosys, w, design)?;
-    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds })
+    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds, engine: PDR.into() })
+}
+
+/// The handshake's proof: k-induction with yosys's `sat` over the unit's own assertions (its
+/// buffer's stream rules and the invariants that make them inductive, `ifdef FORMAL` in the
+/// RTL). The base case searches from the first reset, so a failure there is a real trace; the
+/// step proves, from any state where every assertion held for k edges, that they hold at the
+/// next. The depth is enough for a pixel to pass the pipeline and a full buffer (the correct
+/// unit is proved at about its latency plus one; a fault may need the buffer filled to show).
+fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &str, t0: Instant) -> Result<Proof, Error> {
+    let cfg = &design.cfg;
+    let steps = cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4;
+    let script = Script {
+        version: crate::names::VERSION,
+        harness: name,
+        files,
+        bounded: None,
+        induction: Some(steps),
+        ignore_unknown: !design.sim_models.is_empty(),
+        abstract_modules: vec![cfg.top().to_string()],
+        replay: false,
+    };
+    script.write(w, "induction.ys")?;
+    let _ = std::fs::remove_file(w.join("trace.vcd"));
+    let said = run(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit)?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let properties = properties(design);
+    let name = name.to_string();
+    let k = said.as_deref().map_or(0, |t| t.matches("Induction step failed").count() + 1);
+    let engine = match said.as_deref() {
+        Some(t) if t.contains("model found for base case: FAIL") => "k-induction's base case, a search from power-up with yosys sat".to_string(),
+        _ => format!("k-induction with yosys sat over the unit's own assertions, k = {k} of at most {steps}"),
+    };
+    let verdict = match said {
+        None => Verdict::Undecided { bounded: None },
+        Some(text) if text.contains("Induction step proven: SUCCESS") => Verdict::Proved,
+        Some(text) if text.contains("model found for base case: FAIL") => {
+            // the base case of length N failed: a failure N edges from power-up, replayed by a
+            // bounded search of N edges for its whole trace (sat's induction keeps the first)
+            let frame = text.matches("Base case for induction length").count() as u32 + 1;
+            // (sat's first step is the state before the first edge)
+            Script { induction: Some(frame + 1), replay: true, ..script }.write(w, "replay.ys")?;
+            if run_sat(&tools.yosys, w, "replay.ys", tools.limit)? != Some(false) {
+                return Err(error::tool(&tools.yosys, format!("the induction's base case failed at {frame} edges, but its replay did not")));
+            }
+            Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
+        }
+        Some(text) if text.contains("Reached maximum number of time steps") => Verdict::Undecided { bounded: Some(steps) },
+        Some(text) => return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted the properties: {}", tail(&text)))),
+    };
+    Ok(Proof { name, properties, verdict, seconds, engine })
+}
+
+/// The last lines of a tool's output, for a message.
+fn tail(text: &str) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    lines[lines.len().saturating_sub(20)..].join("\n")
 }
 
 /// A bounded search with yosys's `sat` over the first `steps` edges: `Some(true)` when every
 /// property holds there, `Some(false)` when one fails (its trace in `trace.vcd`), `None` when
 /// the search did not end within the limit.
 fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) -> Result<Option<bool>, Error> {
-    Script { version: crate::names::VERSION, harness: name, files, bounded: Some(steps) }.write(w, "bounded.ys")?;
+    Script { version: crate::names::VERSION, harness: name, files, bounded: Some(steps), induction: None, ignore_unknown: false, abstract_modules: Vec::new(), replay: false }.write(w, "bounded.ys")?;
     run_sat(&tools.yosys, w, "bounded.ys", tools.limit)
 }
 
@@ -415,7 +478,7 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     let properties = PIPELINING_PROPERTIES.to_vec();
     for (abc_script, replay) in checks {
         let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
-            return Ok(Proof { name, properties, verdict: Verdict::Undecided { bounded: None }, seconds: t0.elapsed().as_secs_f64() });
+            return Ok(Proof { name, properties, verdict: Verdict::Undecided { bounded: None }, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() });
         };
         if said.contains("UNSATISFIABLE") {
             continue;
@@ -427,10 +490,10 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
         let found = run_sat(&yosys, w, "replay.ys", tools.limit)? == Some(false);
         if replay.1 > 0 && !found {
             // no run reaches the failing state from the replay's: state kept beyond K + 1 edges
-            return Ok(Proof { name, properties, verdict: Verdict::Incomplete { bounded: frames }, seconds: t0.elapsed().as_secs_f64() });
+            return Ok(Proof { name, properties, verdict: Verdict::Incomplete { bounded: frames }, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() });
         }
         let vcd = trace(&yosys, w, design)?;
-        return Ok(Proof { name, properties, verdict: Verdict::Failed { frame: replay.0 - 1, vcd }, seconds: t0.elapsed().as_secs_f64() });
+        return Ok(Proof { name, properties, verdict: Verdict::Failed { frame: replay.0 - 1, vcd }, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() });
     }
-    Ok(Proof { name, properties, verdict: Verdict::Proved, seconds: t0.elapsed().as_secs_f64() })
+    Ok(Proof { name, properties, verdict: Verdict::Proved, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() })
 }

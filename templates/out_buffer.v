@@ -59,6 +59,11 @@ module {{ top }}_out_buffer #(
     output reg              out_valid,
     input  wire             out_ready,
     output reg  [WIDTH-1:0] out
+`ifdef FORMAL
+    ,
+    // formal only: the pixels taken and not yet delivered, for the unit's own assertions (idle)
+    output wire [DEPTH_LOG2+1:0] f_outstanding
+`endif
 );
 
 `ifndef SYNTHESIS
@@ -221,6 +226,139 @@ always @(posedge clk) begin
         in_ready <= over_credits[DEPTH_LOG2];
     end
 end
+
+`ifdef FORMAL
+// ==== formal (read with yosys -formal, as `specgen prove` does) ====
+// The stream's rules as properties of this module's ports, with the invariants that make them
+// inductive: every assertion below is proved for every input sequence after a first reset
+// (the one assumption: AXI's rule that a stream starts in reset). Synthesis and simulation
+// never read this block.
+localparam integer F_STATES = (1 << DEPTH_LOG2) - 1;   // the pointers' cycle
+localparam integer F_C = DEPTH_LOG2 + 2;                // bits of a count of results: 2^F_C > 2 * PLACES
+// a pointer's position along its cycle from the reset state 0 (the results in the memory are
+// the places from read_at up to write_at)
+function integer f_index(input [DEPTH_LOG2-1:0] at);
+    integer i;
+    reg [DEPTH_LOG2-1:0] state;
+    begin
+        f_index = 0;
+        state = {DEPTH_LOG2{1'b0}};
+        for (i = 0; i < F_STATES; i = i + 1) begin
+            if (state == at) f_index = i;
+            state = advance(1'b1, state);
+        end
+    end
+endfunction
+reg              f_started = 1'b0;       // the first edge (a reset) has passed
+reg              f_after_reset = 1'b0;   // the last edge reset
+reg              f_stalled = 1'b0;       // the last edge showed a result and did not deliver it
+reg  [WIDTH-1:0] f_out_last;             // out at the last edge
+// pixels taken and not delivered: now, and 1, 2, 3 edges ago
+reg  [F_C-1:0]   f_inside = 0, f_inside_1 = 0, f_inside_2 = 0, f_inside_3 = 0;
+reg  [LATENCY:0] f_line = 0;             // take of the last edges (bit k: k + 1 edges ago)
+reg  [F_C-1:0]   f_written = 0;          // results written into the places (mod 2^F_C)
+reg  [F_C-1:0]   f_delivered = 0;        // results delivered (mod 2^F_C)
+// one result followed through: the f_nth written (any one: a register with no reset and no
+// first value, which never changes), its data and its place
+reg  [F_C-1:0]   f_nth;
+reg              f_in_memory = 1'b0, f_in_read_q = 1'b0, f_in_queue = 1'b0;
+reg  [WIDTH-1:0] f_data;
+reg  [DEPTH_LOG2-1:0] f_at;
+integer          f_i, f_pipe, f_level, f_memory, f_ahead;
+wire [DEPTH_LOG2:0] f_outstanding_1 = taken - delivered + CREDITS;   // pixels outstanding an edge before
+wire [DEPTH_LOG2:0] f_outstanding_2 = over_credits + CREDITS;        // two edges before
+wire [F_C-1:0]   f_position = f_nth - f_delivered;                   // results to leave before the one followed
+wire [F_C-1:0]   f_in_buffer = f_written - f_delivered;              // results written, not delivered
+wire             f_tracked_written = result_valid && f_written == f_nth;
+always @(posedge clk) begin
+    f_started     <= 1'b1;
+    f_after_reset <= rst;
+    f_stalled     <= !rst && out_valid && !out_ready;
+    f_out_last    <= out;
+    f_line        <= rst ? {(LATENCY + 1){1'b0}} : {f_line, take};  // (its top bit dropped)
+    f_inside      <= rst ? {F_C{1'b0}} : f_inside + take - deliver;
+    f_inside_1    <= rst ? {F_C{1'b0}} : f_inside;
+    f_inside_2    <= rst ? {F_C{1'b0}} : f_inside_1;
+    f_inside_3    <= rst ? {F_C{1'b0}} : f_inside_2;
+    f_written     <= rst ? {F_C{1'b0}} : f_written + result_valid;
+    f_delivered   <= rst ? {F_C{1'b0}} : f_delivered + deliver;
+    f_nth         <= f_nth;
+    if (f_tracked_written) begin
+        f_data <= result;
+        f_at   <= write_at;
+    end
+    f_in_memory <= !rst && (f_tracked_written || (f_in_memory && !(read && read_at == f_at)));
+    f_in_read_q <= !rst && f_in_memory && read && read_at == f_at;
+    f_in_queue  <= !rst && (f_in_read_q || (f_in_queue && !(deliver && f_position == 0)));
+end
+assign f_outstanding = f_inside;
+always @(*) begin
+    f_pipe = 0;
+    for (f_i = 0; f_i < LATENCY; f_i = f_i + 1) f_pipe = f_pipe + f_line[f_i];
+    f_level = 0;
+    for (f_i = 1; f_i <= PLACES; f_i = f_i + 1) f_level = f_level + stored_at_least[f_i];
+    f_memory = (f_index(write_at) + F_STATES - f_index(read_at)) % F_STATES;
+    f_ahead = (f_index(f_at) + F_STATES - f_index(read_at)) % F_STATES;
+    if (!f_started) assume(rst);
+    if (f_started) begin
+        // -- the stream's rules --
+        // a reset empties the buffer: nothing out, nothing taken at the edge after it
+        if (f_after_reset) assert(!out_valid && !in_ready);
+        // a result shown and not taken stays, unchanged (valid never withdrawn, data stable)
+        if (f_stalled) assert(out_valid && out == f_out_last);
+        // never more pixels outstanding than places; no result without one
+        assert(f_inside <= PLACES);
+        if (out_valid) assert(f_inside != 0);
+        // in_ready (SPEC §7): high exactly when, three edges before, fewer than CREDITS were outstanding
+        assert(in_ready == (!f_after_reset && f_inside_3 < CREDITS));
+        // nothing lost, repeated or reordered: the n-th result delivered is the n-th written, with
+        // its data (f_nth is any n; the data any value)
+        if (deliver && f_delivered == f_nth) assert(f_in_queue && out == f_data);
+        // -- the invariants --
+        // the pipeline around the buffer: a result LATENCY edges after its pixel
+        assert(result_valid == (LATENCY == 0 ? take : f_line[LATENCY == 0 ? 0 : LATENCY - 1]));
+        // the pointers never in the register's lock-up state (all ones)
+        assert(~&write_at && ~&read_at && (~&f_at || !f_in_memory));
+        // every pixel outstanding is in the pipeline, the places, read_q or the queue; at most
+        // one more each edge
+        assert(f_inside == f_pipe + f_memory + read_valid + held);
+        assert(f_in_buffer == f_memory + read_valid + held);
+        assert(f_inside <= f_inside_1 + 1 && f_inside_1 <= f_inside_2 + 1 && f_inside_2 <= f_inside_3 + 1);
+        // the thermometer: a thermometer, counting the places and read_q
+        for (f_i = 1; f_i < PLACES; f_i = f_i + 1) if (stored_at_least[f_i + 1]) assert(stored_at_least[f_i]);
+        assert(f_level == f_memory + read_valid);
+        assert(read_counted == read_valid);
+        // the queue: held counts out, queued_1, queued_2; queue_full is three with read_q
+        assert(out_valid == (held != 2'd0));
+        assert(held + read_valid <= 3);
+        assert(queue_full == (held + read_valid == 3));
+        // the credits: the counts an edge late, their difference a second, in_ready a third
+        assert(f_inside + gave == f_inside_1 + took);
+        assert(f_outstanding_1 == f_inside_1);
+        assert(f_outstanding_2 == f_inside_2);
+        // the result followed: in one place at most, its data there, as many ahead of it as
+        // it has results to leave before it
+        assert(f_in_memory + f_in_read_q + f_in_queue <= 1);
+        if (f_in_memory) assert(f_ahead < f_memory && places[f_at] == f_data && f_position == f_ahead + read_valid + held);
+        if (f_in_read_q) assert(read_valid && read_q == f_data && f_position == held);
+        if (f_in_queue) assert(f_position < held);
+        if (f_in_queue && f_position == 0) assert(out == f_data);
+        if (f_in_queue && f_position == 1) assert(queued_1 == f_data);
+        if (f_in_queue && f_position == 2) assert(queued_2 == f_data);
+        // not yet written, or gone: not among the results in the buffer
+        if (!(f_in_memory || f_in_read_q || f_in_queue)) assert(f_position >= f_in_buffer);
+    end
+end
+generate
+    for (s = 0; s < SLICES; s = s + 1) begin : f_slice
+        // each slice's copy of the count is the count
+        always @(*) if (f_started) begin
+            assert(slice[s].held_copy == held);
+            assert(slice[s].queued_2_open == (held != 2'd3));
+        end
+    end
+endgenerate
+`endif
 
 endmodule
 `resetall

@@ -17,28 +17,19 @@ module {{ name }} (
     input  wire [{{ n_w - 1 }}:0]  n,
     input  wire [{{ b_w - 1 }}:0]  ks_r,
     input  wire [{{ b_w - 1 }}:0]  ks_g,
-    input  wire [{{ b_w - 1 }}:0]  ks_b
+    input  wire [{{ b_w - 1 }}:0]  ks_b,
+    input  wire [63:0]         tag
 );
     localparam integer LATENCY = {{ latency }};
-    localparam integer PLACES = {{ places }};
-    localparam integer C = {{ count_bits }};   // bits of the transfer counts: 2^C > PLACES
     wire                in_ready, out_valid, done, idle;
     wire [{{ b_w - 1 }}:0]  spec_r, spec_g, spec_b;
     wire [{{ i_w - 1 }}:0]  intensity;
     wire [63:0]         out_tag;
-    wire                clk_en = {% if clock_enable %}clk_en_in{% else %}1'b1{% endif %};
     reg                 started = 1'b0;      // the first edge (a reset) has passed
 {%- if handshake %}
-    reg                 after_reset = 1'b0;  // the last edge reset the unit
-    reg  [C-1:0]        inside = 0;          // pixels taken and not yet delivered
-    reg  [C-1:0]        inside_1 = 0, inside_2 = 0, inside_3 = 0;   // that count 1, 2, 3 edges ago
-    reg  [C-1:0]        taken = 0, given = 0;                        // transfers in and out
-    reg                 held = 1'b0;         // a result was on the outputs and not taken
-    reg                 held_tag = 1'b0;
-    (* anyconst *) reg [C-1:0] tracked;      // the pixel whose tag bit is set: any one
-    wire                take = in_valid && in_ready && clk_en;
-    wire                give = out_valid && out_ready && clk_en;
-    wire [63:0]         in_tag = {63'd0, taken == tracked};
+    // the properties are the unit's own (`ifdef FORMAL` in {{ top }}_out_buffer and {{ top }}): the
+    // harness drives it with free inputs and a free tag
+    wire [63:0]         in_tag = tag;
 {%- else %}
 {%- if latency > 0 %}
     reg  [LATENCY-1:0]  offered = 0;         // in_valid of the last LATENCY edges, cleared by a reset
@@ -54,26 +45,7 @@ module {{ name }} (
 
     always @(posedge clk) begin
         started <= 1'b1;
-{%- if handshake %}
-        after_reset <= rst;
-        held <= !rst && out_valid && !give;
-        held_tag <= out_tag[0];
-        if (rst) begin
-            inside <= 0;
-            inside_1 <= 0;
-            inside_2 <= 0;
-            inside_3 <= 0;
-            taken <= 0;
-            given <= 0;
-        end else begin
-            inside <= inside + take - give;
-            inside_1 <= inside;
-            inside_2 <= inside_1;
-            inside_3 <= inside_2;
-            taken <= taken + take;
-            given <= given + give;
-        end
-{%- else if latency > 0 %}
+{%- if !handshake && latency > 0 %}
         offered <= rst ? {LATENCY{1'b0}} : (offered << 1) | in_valid;
 {%- endif %}
     end
@@ -81,28 +53,7 @@ module {{ name }} (
     always @(*) begin
         if (!started) assume(rst);
         if (started) begin
-{%- if handshake %}
-            // a reset empties the unit: nothing out, nothing taken the cycle after it
-            if (after_reset) assert(!out_valid && !in_ready);
-            // a result not taken stays, unchanged
-            if (held) assert(out_valid);
-{%- if tag %}
-            if (held) assert(out_tag[0] == held_tag);
-{%- endif %}
-            // never more inside than the buffer has places; no result without a pixel inside
-            assert(inside <= PLACES);
-            if (out_valid) assert(inside != 0);
-            // in_ready: high exactly when, three edges before, fewer than PLACES - 3 were inside
-            assert(in_ready == (!after_reset && inside_3 + 3 < PLACES));
-{%- if tag %}
-            // in order, each once: the result given as the k-th carries the k-th pixel's tag
-            if (give) assert(out_tag[0] == (given == tracked));
-{%- endif %}
-{%- if static_colour %}
-            // idle exactly while no pixel is inside
-            assert(idle == (inside == 0));
-{%- endif %}
-{%- else %}
+{%- if !handshake %}
 {%- if latency > 0 %}
             // out_valid is in_valid LATENCY edges before, unless a reset came between
             assert(out_valid == offered[LATENCY - 1]);

@@ -50,7 +50,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
     let tools = Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit) };
     tools.check()?;
     let proof = if args.pipelining { prove_pipelining(&design, &tools)? } else { prove(&design, &tools)? };
-    let how = if args.pipelining { "ABC iprove over the unrolled miter, from any state and from power-up" } else { "ABC pdr" };
+    let how = &proof.engine;
     let head = format!("prove {} ({}): ", design.dir.display(), proof.name);
     match &proof.verdict {
         Verdict::Proved => {
@@ -65,7 +65,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
                 Some(k) => format!("; the properties hold for the first {k} clock edges (a bounded search, yosys sat)"),
                 None => String::new(),
             };
-            Err(failed(format!("{head}undecided: {how} did not end within {} s, so not proved (--time-limit gives it longer){also}", args.time_limit)))
+            Err(failed(format!("{head}undecided: {how} did not conclude within {} s, so not proved (--time-limit gives it longer){also}", args.time_limit)))
         }
         Verdict::Incomplete { bounded } => Err(failed(format!(
             "{head}not proved: the properties hold for the first {bounded} clock edges from power-up, but the unit keeps state longer than its latency (a delay line in block RAM, its pointers never flushed), so the check from any state cannot conclude; generate it with fewer stages or narrower widths (no delay line in memory) to prove it"
