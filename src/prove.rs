@@ -54,8 +54,6 @@ struct Script<'a> {
     ignore_unknown: bool,
     /// the modules whose multipliers the induction abstracts (any product)
     abstract_modules: Vec<String>,
-    /// with `induction`: a bounded search of that many edges instead, for a failure's trace
-    replay: bool,
 }
 
 #[derive(Template)]
@@ -247,7 +245,16 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     if cfg.interface().handshake() {
         return induction(design, tools, w, &files, &name, t0);
     }
-    Script { version: crate::names::VERSION, harness: &name, files: &files, bounded: None, induction: None, ignore_unknown: false, abstract_modules: Vec::new(), replay: false }.write(w, "prove.ys")?;
+    Script {
+        version: crate::names::VERSION,
+        harness: &name,
+        files: &files,
+        bounded: None,
+        induction: None,
+        ignore_unknown: false,
+        abstract_modules: Vec::new(),
+    }
+    .write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
     run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
         .ok_or_else(|| error::tool(&tools.yosys, "yosys did not write the model within 600 s"))?;
@@ -297,7 +304,6 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         induction: Some(steps),
         ignore_unknown: !design.sim_models.is_empty(),
         abstract_modules: vec![cfg.top().to_string()],
-        replay: false,
     };
     script.write(w, "induction.ys")?;
     let _ = std::fs::remove_file(w.join("trace.vcd"));
@@ -314,14 +320,9 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         None => Verdict::Undecided { bounded: None },
         Some(text) if text.contains("Induction step proven: SUCCESS") => Verdict::Proved,
         Some(text) if text.contains("model found for base case: FAIL") => {
-            // the base case of length N failed: a failure N edges from power-up, replayed by a
-            // bounded search of N edges for its whole trace (sat's induction keeps the first)
+            // the base case of length N failed: a failure N edges from power-up, its whole
+            // trace in trace.vcd
             let frame = text.matches("Base case for induction length").count() as u32 + 1;
-            // (sat's first step is the state before the first edge)
-            Script { induction: Some(frame + 1), replay: true, ..script }.write(w, "replay.ys")?;
-            if run_sat(&tools.yosys, w, "replay.ys", tools.limit)? != Some(false) {
-                return Err(error::tool(&tools.yosys, format!("the induction's base case failed at {frame} edges, but its replay did not")));
-            }
             Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
         }
         Some(text) if text.contains("Reached maximum number of time steps") => Verdict::Undecided { bounded: Some(steps) },
@@ -340,7 +341,8 @@ fn tail(text: &str) -> String {
 /// property holds there, `Some(false)` when one fails (its trace in `trace.vcd`), `None` when
 /// the search did not end within the limit.
 fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) -> Result<Option<bool>, Error> {
-    Script { version: crate::names::VERSION, harness: name, files, bounded: Some(steps), induction: None, ignore_unknown: false, abstract_modules: Vec::new(), replay: false }.write(w, "bounded.ys")?;
+    Script { version: crate::names::VERSION, harness: name, files, bounded: Some(steps), induction: None, ignore_unknown: false, abstract_modules: Vec::new() }
+        .write(w, "bounded.ys")?;
     run_sat(&tools.yosys, w, "bounded.ys", tools.limit)
 }
 
@@ -478,7 +480,13 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     let properties = PIPELINING_PROPERTIES.to_vec();
     for (abc_script, replay) in checks {
         let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
-            return Ok(Proof { name, properties, verdict: Verdict::Undecided { bounded: None }, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() });
+            return Ok(Proof {
+                name,
+                properties,
+                verdict: Verdict::Undecided { bounded: None },
+                seconds: t0.elapsed().as_secs_f64(),
+                engine: PIPELINING.into(),
+            });
         };
         if said.contains("UNSATISFIABLE") {
             continue;
@@ -490,10 +498,22 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
         let found = run_sat(&yosys, w, "replay.ys", tools.limit)? == Some(false);
         if replay.1 > 0 && !found {
             // no run reaches the failing state from the replay's: state kept beyond K + 1 edges
-            return Ok(Proof { name, properties, verdict: Verdict::Incomplete { bounded: frames }, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() });
+            return Ok(Proof {
+                name,
+                properties,
+                verdict: Verdict::Incomplete { bounded: frames },
+                seconds: t0.elapsed().as_secs_f64(),
+                engine: PIPELINING.into(),
+            });
         }
         let vcd = trace(&yosys, w, design)?;
-        return Ok(Proof { name, properties, verdict: Verdict::Failed { frame: replay.0 - 1, vcd }, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() });
+        return Ok(Proof {
+            name,
+            properties,
+            verdict: Verdict::Failed { frame: replay.0 - 1, vcd },
+            seconds: t0.elapsed().as_secs_f64(),
+            engine: PIPELINING.into(),
+        });
     }
     Ok(Proof { name, properties, verdict: Verdict::Proved, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() })
 }

