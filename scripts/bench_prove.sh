@@ -13,7 +13,7 @@ row() { # what, command...
     local what=$1; shift
     local s e out verdict
     s=$(date +%s.%N)
-    out=$("$@" 2>&1) && verdict="proved$(grep -o 'k = [0-9]*' <<< "$out" | head -1 | sed 's/^/, /')" || verdict=$(sed -n 's/.*: \(a property fails [0-9]* clock edges[^;]*\).*/refuted: \1/p; s/.*: \(undecided\): .*/\1/p' <<< "$out" | head -1)
+    out=$("$@" 2>&1) && verdict="proved$(sed -n 's/.*\(k = [0-9]*\).*/, \1/p' <<< "$out" | head -1)" || verdict=$(sed -n 's/.*: \(a property fails [0-9]* clock edges[^;]*\).*/refuted: \1/p; s/.*: \(undecided\): .*/\1/p' <<< "$out" | head -1)
     e=$(date +%s.%N)
     [ -n "$verdict" ] || verdict="error: $(tail -1 <<< "$out")"
     printf '| %s | %s | %.1f |\n' "$what" "$verdict" "$(awk -v a="$s" -v b="$e" 'BEGIN { print b - a }')" >> "$rows"
@@ -25,6 +25,8 @@ for s in 0 3 13; do
 done
 $bin generate --out "$work/pl" --cos-frac-bits 6 --n-bits 4 --color-bits 5 --intensity-frac-bits 6 --stages 3 >/dev/null 2>&1
 row "pipelining, lean 6/4/5/6 bits, 3 stages" $bin prove --pipelining --rtl "$work/pl" --time-limit "$limit"
+$bin generate --out "$work/pl8" --cos-frac-bits 8 --n-bits 5 --color-bits 6 --intensity-frac-bits 8 --stages 10 >/dev/null 2>&1
+row "pipelining, lean 8/5/6/8 bits, 10 stages" $bin prove --pipelining --rtl "$work/pl8" --time-limit "$limit"
 $bin generate --out "$work/pf" --model fitted --cos-frac-bits 8 --n-bits 5 --color-bits 6 --intensity-frac-bits 8 --stages 4 >/dev/null 2>&1
 row "pipelining, fitted 8/5/6/8 bits, 4 stages" $bin prove --pipelining --rtl "$work/pf" --time-limit "$limit"
 $bin generate --out "$work/pd" --stages 13 >/dev/null 2>&1

@@ -57,7 +57,7 @@ fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
     let prove_pipelining = |dir: &Path| {
         specgen().args(["prove", "--pipelining", "--edited", "--time-limit", "300", "--rtl"]).arg(dir).arg("--trace").arg(&traces).output().unwrap()
     };
-    let lean: &[&str] = &["--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "5", "--intensity-frac-bits", "6", "--stages", "3"];
+    let lean: &[&str] = &["--cos-frac-bits", "8", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "8", "--stages", "6"];
     let fitted: &[&str] = &["--model", "fitted", "--cos-frac-bits", "8", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "8", "--stages", "4"];
     for (name, args) in [("lean", lean), ("fitted", fitted)] {
         let dir = generate(tmp.path(), name, args);
