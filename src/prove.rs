@@ -477,43 +477,27 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
         (format!("read_aiger started.aig; fold; strash; orpos; frames -F {frames} -i; strash; orpos; iprove"), (frames, 0)),
         (format!("read_aiger free.aig; fold; strash; orpos; frames -F {frames}; comb; cone -O {} -s; strash; iprove", k + 1), (frames, k + 1)),
     ];
+    let verdict = 'checks: {
+        for (abc_script, replay) in checks {
+            let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
+                break 'checks Verdict::Undecided { bounded: None };
+            };
+            if said.contains("UNSATISFIABLE") {
+                continue;
+            }
+            if !said.contains("SATISFIABLE") {
+                return Err(error::tool(&abc, format!("iprove neither proved nor refuted the miter: {said}")));
+            }
+            script(Some(replay), "replay.ys")?;
+            let found = run_sat(&yosys, w, "replay.ys", tools.limit)? == Some(false);
+            if replay.1 > 0 && !found {
+                // no run reaches the failing state from the replay's: state kept beyond K + 1 edges
+                break 'checks Verdict::Incomplete { bounded: frames };
+            }
+            break 'checks Verdict::Failed { frame: replay.0 - 1, vcd: trace(&yosys, w, design)? };
+        }
+        Verdict::Proved
+    };
     let properties = PIPELINING_PROPERTIES.to_vec();
-    for (abc_script, replay) in checks {
-        let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
-            return Ok(Proof {
-                name,
-                properties,
-                verdict: Verdict::Undecided { bounded: None },
-                seconds: t0.elapsed().as_secs_f64(),
-                engine: PIPELINING.into(),
-            });
-        };
-        if said.contains("UNSATISFIABLE") {
-            continue;
-        }
-        if !said.contains("SATISFIABLE") {
-            return Err(error::tool(&abc, format!("iprove neither proved nor refuted the miter: {said}")));
-        }
-        script(Some(replay), "replay.ys")?;
-        let found = run_sat(&yosys, w, "replay.ys", tools.limit)? == Some(false);
-        if replay.1 > 0 && !found {
-            // no run reaches the failing state from the replay's: state kept beyond K + 1 edges
-            return Ok(Proof {
-                name,
-                properties,
-                verdict: Verdict::Incomplete { bounded: frames },
-                seconds: t0.elapsed().as_secs_f64(),
-                engine: PIPELINING.into(),
-            });
-        }
-        let vcd = trace(&yosys, w, design)?;
-        return Ok(Proof {
-            name,
-            properties,
-            verdict: Verdict::Failed { frame: replay.0 - 1, vcd },
-            seconds: t0.elapsed().as_secs_f64(),
-            engine: PIPELINING.into(),
-        });
-    }
-    Ok(Proof { name, properties, verdict: Verdict::Proved, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() })
+    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() })
 }

@@ -218,3 +218,49 @@ pub fn rewrite_sealed(dir: &Path, file: &str, text: &str) {
     assert!(m.contains(&sha(&before)), "{file} is listed in {}", manifest.display());
     std::fs::write(&manifest, m.replace(&sha(&before), &sha(text.as_bytes()))).unwrap();
 }
+
+/// The handshake faults both the simulation (`interfaces::faults_in_the_handshake_are_caught`)
+/// and the proofs (`prove::the_stream_edge_…`) must catch: (name, file, from, to), each a
+/// one-place edit of a generated `ready` unit with a 12-bit tag ([`apply_handshake_fault`]).
+pub const HANDSHAKE_FAULTS: &[(&str, &str, &str, &str)] = &[
+    // a result dropped on stall: the queue counts a result gone while out_ready is low
+    ("dropped", BUFFER, "leaving = count != 2'd0 && ready;", "leaving = count != 2'd0;"),
+    // payload changing while stalled
+    ("unstable", BUFFER, "if (held_copy == 2'd0 || out_ready) out[HI:LO] <=", "if (1'b1) out[HI:LO] <="),
+    // a result duplicated: the read pointer misses a step
+    ("duplicated", BUFFER, "read_at      <= advance(read, read_at);", "read_at <= advance(read && read_at != 5, read_at);"),
+    // a read started with no room in the queue: the result read has no register to go to
+    ("queue_overrun", BUFFER, "queue_full <= !out_ready && (queue_full || (queue_two && read));", "queue_full <= 1'b0;"),
+    // the occupancy thermometer loses a result: bit 2 never rises above bit 1
+    (
+        "thermometer",
+        BUFFER,
+        "else     stored_at_least[k] <= stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);",
+        "else     stored_at_least[k] <= k == 2 ? 1'b0 : stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);",
+    ),
+    // the tag one stage off (the register before the last)
+    ("tag_off", "specular_unit.v", "TAG_LAST", "TAG_BEFORE"),
+    // credits miscounted: in_ready stays high as the last place fills
+    ("overfull", BUFFER, "in_ready <= over_credits[DEPTH_LOG2];", "in_ready <= over_credits[DEPTH_LOG2] || over_credits == 0;"),
+];
+
+/// The output buffer's file in a unit with the default top.
+const BUFFER: &str = "specular_unit_out_buffer.v";
+
+/// Applies a fault of [`HANDSHAKE_FAULTS`] to the unit in `dir` (a 12-bit tag). `TAG_LAST`: the
+/// tag's last word `wire [11:0] tag_cZ = tag_line[59:48];` takes the word before it instead.
+pub fn apply_handshake_fault(dir: &Path, name: &str, file: &str, from: &str, to: &str) {
+    let path = dir.join(file);
+    let src = std::fs::read_to_string(&path).unwrap();
+    let (from, to) = if from == "TAG_LAST" {
+        let word = src.lines().find(|l| l.starts_with("wire ") && l.contains("= tag_line[")).expect("the tag's last word");
+        let select = &word[word.find("tag_line[").unwrap()..word.find(';').unwrap()];
+        let (hi, lo) = select.trim_start_matches("tag_line[").trim_end_matches(']').split_once(':').unwrap();
+        let (hi, lo): (u32, u32) = (hi.parse().unwrap(), lo.parse().unwrap());
+        (select.to_string(), format!("tag_line[{}:{}]", hi - 12, lo - 12))
+    } else {
+        (from.to_string(), to.to_string())
+    };
+    assert_eq!(src.matches(&from).count(), 1, "fault {name}: {from:?} must occur once in {file}");
+    std::fs::write(&path, src.replace(&from, &to)).unwrap();
+}

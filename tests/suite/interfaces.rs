@@ -85,21 +85,7 @@ fn full_rate_gives_one_result_a_clock_at_every_depth() {
 /// A fault in the handshake, applied to one generated file.
 fn handshake_mutant(root: &Path, name: &str, file: &str, from: &str, to: &str) -> Output {
     let dir = generate(&root.join(format!("{name}_parent")), name, &["--interface", "ready", "--stages", "5", "--tag-bits", "12"]);
-    let path = dir.join(file);
-    let src = std::fs::read_to_string(&path).unwrap();
-    let (from, to) = if from == "TAG_LAST" {
-        // the tag's delay line `reg [59:0] tag_line` and its last word `wire [11:0] tag_cZ =
-        // tag_line[59:48];`: the mutant takes the word before it
-        let word = src.lines().find(|l| l.starts_with("wire ") && l.contains("= tag_line[")).expect("the tag's last word");
-        let select = &word[word.find("tag_line[").unwrap()..word.find(';').unwrap()];
-        let (hi, lo) = select.trim_start_matches("tag_line[").trim_end_matches(']').split_once(':').unwrap();
-        let (hi, lo): (u32, u32) = (hi.parse().unwrap(), lo.parse().unwrap());
-        (select.to_string(), format!("tag_line[{}:{}]", hi - 12, lo - 12))
-    } else {
-        (from.to_string(), to.to_string())
-    };
-    assert_eq!(src.matches(&from).count(), 1, "mutation {name}: {from:?} must occur once in {file}");
-    std::fs::write(&path, src.replace(&from, &to)).unwrap();
+    apply_handshake_fault(&dir, name, file, from, to);
     cosim(&dir, &["--vectors", "4000", "--jobs", "1"])
 }
 
@@ -107,29 +93,7 @@ fn handshake_mutant(root: &Path, name: &str, file: &str, from: &str, to: &str) -
 fn faults_in_the_handshake_are_caught() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let buffer = "specular_unit_out_buffer.v";
-    let faults: &[(&str, &str, &str, &str)] = &[
-        // a result dropped on stall: the queue counts a result gone while out_ready is low
-        ("dropped", buffer, "leaving = count != 2'd0 && ready;", "leaving = count != 2'd0;"),
-        // payload changing while stalled
-        ("unstable", buffer, "if (held_copy == 2'd0 || out_ready) out[HI:LO] <=", "if (1'b1) out[HI:LO] <="),
-        // a result duplicated: the read pointer misses a step
-        ("duplicated", buffer, "read_at      <= advance(read, read_at);", "read_at <= advance(read && read_at != 5, read_at);"),
-        // a read started with no room in the queue: the result read has no register to go to
-        ("queue_overrun", buffer, "queue_full <= !out_ready && (queue_full || (queue_two && read));", "queue_full <= 1'b0;"),
-        // the occupancy thermometer loses a result: bit 2 never rises above bit 1
-        (
-            "thermometer",
-            buffer,
-            "else     stored_at_least[k] <= stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);",
-            "else     stored_at_least[k] <= k == 2 ? 1'b0 : stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);",
-        ),
-        // the tag one stage off (the register before the last: see handshake_mutant)
-        ("tag_off", "specular_unit.v", "TAG_LAST", "TAG_BEFORE"),
-        // credits miscounted: in_ready stays high as the last place fills
-        ("overfull", buffer, "in_ready <= over_credits[DEPTH_LOG2];", "in_ready <= over_credits[DEPTH_LOG2] || over_credits == 0;"),
-    ];
-    for_each_parallel(faults, |_, (name, file, from, to)| {
+    for_each_parallel(HANDSHAKE_FAULTS, |_, (name, file, from, to)| {
         let o = handshake_mutant(tmp.path(), name, file, from, to);
         assert_eq!(o.status.code(), Some(1), "fault {name} not caught: {}", text(&o));
         assert!(text(&o).contains("first mismatch"), "fault {name}: {}", text(&o));

