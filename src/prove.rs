@@ -52,8 +52,10 @@ struct Script<'a> {
     induction: Option<u32>,
     /// `sat` leaves cells it cannot model (an ECP5 unit's black boxes) unconstrained
     ignore_unknown: bool,
-    /// the modules whose multipliers the induction abstracts (any product)
-    abstract_modules: Vec<String>,
+    /// the unit's module, whose datapath the induction abstracts: its results
+    /// (`abstract_wires`) and multipliers are free values
+    abstract_module: &'a str,
+    abstract_wires: Vec<String>,
 }
 
 #[derive(Template)]
@@ -252,7 +254,8 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         bounded: None,
         induction: None,
         ignore_unknown: false,
-        abstract_modules: Vec::new(),
+        abstract_module: "",
+        abstract_wires: Vec::new(),
     }
     .write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
@@ -303,7 +306,16 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         bounded: None,
         induction: Some(steps),
         ignore_unknown: !design.sim_models.is_empty(),
-        abstract_modules: vec![cfg.top().to_string()],
+        abstract_module: cfg.top(),
+        // the datapath's results as the buffer reads them (a plain name each)
+        abstract_wires: design
+            .plan
+            .datapath
+            .outputs
+            .iter()
+            .map(|(_, src)| src.clone())
+            .filter(|src| src.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+            .collect(),
     };
     script.write(w, "induction.ys")?;
     let _ = std::fs::remove_file(w.join("trace.vcd"));
@@ -341,8 +353,17 @@ fn tail(text: &str) -> String {
 /// property holds there, `Some(false)` when one fails (its trace in `trace.vcd`), `None` when
 /// the search did not end within the limit.
 fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) -> Result<Option<bool>, Error> {
-    Script { version: crate::names::VERSION, harness: name, files, bounded: Some(steps), induction: None, ignore_unknown: false, abstract_modules: Vec::new() }
-        .write(w, "bounded.ys")?;
+    Script {
+        version: crate::names::VERSION,
+        harness: name,
+        files,
+        bounded: Some(steps),
+        induction: None,
+        ignore_unknown: false,
+        abstract_module: "",
+        abstract_wires: Vec::new(),
+    }
+    .write(w, "bounded.ys")?;
     run_sat(&tools.yosys, w, "bounded.ys", tools.limit)
 }
 
