@@ -65,7 +65,10 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
                 Some(k) => format!("; the properties hold for the first {k} clock edges (a bounded search, yosys sat)"),
                 None => String::new(),
             };
-            Err(failed(format!("{head}undecided: {how} did not conclude within {} s, so not proved (--time-limit gives it longer){also}", args.time_limit)))
+            Err(failed(format!(
+                "{head}undecided: {how} did not conclude within {} s or within its depth, so not proved (--time-limit gives it longer){also}",
+                args.time_limit
+            )))
         }
         Verdict::Incomplete { bounded } => Err(failed(format!(
             "{head}not proved: the properties hold for the first {bounded} clock edges from power-up, but the unit keeps state longer than its latency (a delay line in block RAM, its pointers never flushed), so the check from any state cannot conclude; generate it with fewer stages or narrower widths (no delay line in memory) to prove it"
