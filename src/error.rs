@@ -38,11 +38,6 @@ impl Error {
         Error::Io { action, path: path.into(), source }
     }
 
-    /// A parameter's error (`parameter` as in SPEC §2).
-    pub fn config(parameter: &'static str, message: impl Into<String>) -> Error {
-        Error::Config { parameter, message: message.into() }
-    }
-
     /// The parameter a parameter's error names (SPEC §2), `None` for any other error.
     pub fn parameter(&self) -> Option<&'static str> {
         match self {

@@ -226,7 +226,9 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         }
     }
 
-    // the tag: one delay line beside valid_line
+    // the tag: one delay line beside valid_line (whether it is all a shift register `tag_line`,
+    // no tail in block RAM: its formal block then follows it word by word)
+    let mut tag_shift = false;
     let tag_out = if tw == 0 {
         None
     } else if depth == 0 {
@@ -240,6 +242,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
             DelayLine { name: "tag".into(), cuts, members: vec![member], memory: cfg.target().has_block_ram(), distributed: cfg.target() == Target::Ecp5 };
         e.tag.push(String::new());
         e.tag.extend(line.lines());
+        tag_shift = line.memory_tail().is_none();
         Some(last)
     };
 
@@ -308,7 +311,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.tail.extend(inside_count(places_for(depth), accept));
     }
     e.tail.push(format!("assign {} = out_held;", concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>())));
-    let tag_line = (depth > 0 && tw > 0).then(|| (tag_out.clone().expect("a tag"), e.tag.iter().any(|l| l.starts_with("reg  [") && l.contains(" tag_line;"))));
+    let tag_line = (depth > 0 && tw > 0).then(|| (tag_out.clone().expect("a tag"), tag_shift));
     e.tail.extend(formal_lines(depth, tw, tag_line, (colour == Colour::Static).then(|| places_for(depth))));
     if interface == Interface::Axis {
         let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
