@@ -6,6 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+start=$(date +%s)
 missing=()
 for pair in verilator:verilator iverilog:iverilog vvp:iverilog yosys:yosys nextpnr-ice40:nextpnr-ice40 icetime:fpga-icestorm ccache:ccache; do
     tool=${pair%%:*}; pkg=${pair##*:}
@@ -44,5 +45,21 @@ echo "== cargo fmt --check"
 cargo fmt --check
 echo "== cargo clippy --all-targets -- -D warnings"
 cargo clippy --release --all-targets -- -D warnings
-echo "== cargo test --release"
-cargo test --release "$@"
+# The tests that start external tools hold a job slot each (tests/suite/common.rs: one per
+# core, `SPECGEN_JOBS`), so the suite never runs more tools than the machine has cores, whatever
+# the runner's thread count. cargo-nextest (on the machine, or not) times every test: the ten
+# slowest are printed, so the 10-minute budget stays visible.
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+if cargo nextest --version >/dev/null 2>&1; then
+    echo "== cargo nextest run --release"
+    status=0
+    cargo nextest run --release --no-fail-fast --success-output never --failure-output final "$@" 2>&1 | tee "$log" || status=$?
+    echo "== the ten slowest tests"
+    grep -E '^ +(PASS|FAIL|SIGSEGV|SIGABRT|SIGKILL|TIMEOUT) \[' "$log" | sort -u | sed -E 's/^ +([A-Z]+) \[ *([0-9.]+)s\] (\([^)]*\) )?/\2 s  \1  /' | sort -rn | head -10 || true
+    echo "== $(( $(date +%s) - start )) s in all, installs and builds included"
+    exit $status
+else
+    echo "== cargo test --release (no cargo-nextest: no per-test times)"
+    cargo test --release "$@"
+fi

@@ -934,21 +934,32 @@ fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Error>
             (false, true, _) => return Err(occupied("it holds a report written by `specgen report`, not a unit".into())),
             _ => {}
         }
+        // a manifest vouches for its directory only when it is one specgen wrote: a unit's is
+        // `<top>.json` and its fingerprint is its own parameters'; every file it lists is there
+        // (a copy of a manifest, alone or hand-edited, vouches for nothing)
+        if !report && !genuine_unit_manifest(name, &text) {
+            continue;
+        }
+        let listed: Vec<(&str, Option<&str>)> = v
+            .get("files")
+            .and_then(|f| f.as_array())
+            .into_iter()
+            .flatten()
+            .filter_map(|f| Some((f.get("name")?.as_str()?, f.get("sha256").and_then(|h| h.as_str()))))
+            .collect();
+        if listed.is_empty() || listed.iter().any(|(n, _)| !names.iter().any(|have| have == n)) {
+            continue;
+        }
         allowed.push(name.clone());
-        for file in v.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
-            if let Some(n) = file.get("name").and_then(|n| n.as_str()) {
-                allowed.push(n.to_string());
-                let want = file.get("sha256").and_then(|h| h.as_str());
-                if let (Some(want), false) = (want, force) {
-                    let path = dir.join(n);
-                    if std::fs::metadata(&path).is_ok_and(|m| m.is_file()) {
-                        let bytes = crate::small_file::read_bytes(&path, crate::small_file::UNIT_FILE_MAX).map_err(|e| occupied(format!("{n} {e}")))?;
-                        if sha256_hex(&bytes) != want {
-                            return Err(occupied(format!(
-                                "{n} was changed since specgen wrote it (its SHA-256 is not the manifest's); move it away, or pass --force to replace it"
-                            )));
-                        }
-                    }
+        for (n, want) in listed {
+            allowed.push(n.to_string());
+            if let (Some(want), false) = (want, force) {
+                let path = dir.join(n);
+                let bytes = crate::small_file::read_bytes(&path, crate::small_file::UNIT_FILE_MAX).map_err(|e| occupied(format!("{n} {e}")))?;
+                if sha256_hex(&bytes) != want {
+                    return Err(occupied(format!(
+                        "{n} was changed since specgen wrote it (its SHA-256 is not the manifest's); move it away, or pass --force to replace it"
+                    )));
                 }
             }
         }
@@ -957,6 +968,15 @@ fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Error>
         Some(stranger) => Err(occupied(format!("it contains {stranger:?}, which no specgen manifest there lists"))),
         None => Ok(()),
     }
+}
+
+/// Whether `text`, read as `name`, is a unit's manifest as specgen writes it: its parameters
+/// make a valid configuration whose fingerprint is the manifest's and whose top names it.
+fn genuine_unit_manifest(name: &str, text: &str) -> bool {
+    let Ok(v) = serde_json::from_str::<serde_json::Value>(text) else { return false };
+    let Ok(params) = crate::config::Params::from_json(text) else { return false };
+    let Ok(cfg) = crate::config::Config::new(params) else { return false };
+    v.get("fingerprint").and_then(|f| f.as_str()) == Some(cfg.fingerprint().as_str()) && name == format!("{}.json", cfg.top())
 }
 
 /// Writes `files` as the whole content of `dir`, atomically (`output::write_dir`). An

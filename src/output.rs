@@ -300,6 +300,21 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     write_file_with(path, |w| w.write_all(bytes))
 }
 
+/// Whether the file `path` is inside the directory `dir` (or is it), through links: both
+/// resolved where they exist, so no spelling of either hides it.
+pub fn inside(path: &Path, dir: &Path) -> bool {
+    let resolve = |p: &Path| -> PathBuf {
+        std::fs::canonicalize(p).unwrap_or_else(|_| {
+            let abs = std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+            match (abs.parent(), abs.file_name()) {
+                (Some(parent), Some(name)) => std::fs::canonicalize(parent).unwrap_or_else(|_| parent.to_path_buf()).join(name),
+                _ => abs,
+            }
+        })
+    };
+    resolve(path).starts_with(resolve(dir))
+}
+
 /// Whether an output path means standard output: `-`, `/dev/stdout`, `/dev/fd/1`,
 /// `/proc/self/fd/1`.
 pub fn is_stdout(path: &Path) -> bool {
@@ -340,6 +355,7 @@ pub fn private_dir(dir: &Path) -> Result<(), Error> {
     }
     let m = std::fs::symlink_metadata(dir).map_err(|e| refused(format!("cannot read {}: {}", dir.display(), plain(e))))?;
     let me = euid();
+    safe_ancestors(dir)?;
     if m.file_type().is_symlink() {
         Err(refused("it is a symbolic link; specgen runs programs from its cache only in a directory of your own".into()))
     } else if !m.is_dir() {
@@ -356,38 +372,44 @@ pub fn private_dir(dir: &Path) -> Result<(), Error> {
     }
 }
 
+/// Checks every directory above `dir` the way OpenSSH checks an `authorized_keys` path (its
+/// real path, from the root down): each is owned by root or the caller, and one that others can
+/// write has the sticky bit (`/tmp`: no one else can rename or remove what is ours there) and
+/// is root's or the caller's. Another user who can write an ancestor could swap what is below
+/// it for a directory of theirs.
+fn safe_ancestors(dir: &Path) -> Result<(), Error> {
+    let refused = |why: String| Error::Refused { dir: dir.to_path_buf(), why };
+    use std::os::unix::fs::MetadataExt;
+    let parent = parent_dir(dir);
+    let real = std::fs::canonicalize(&parent).map_err(|e| refused(format!("cannot resolve {}: {}", parent.display(), plain(e))))?;
+    let me = euid();
+    for a in real.ancestors() {
+        let m = std::fs::metadata(a).map_err(|e| refused(format!("cannot read {}: {}", a.display(), plain(e))))?;
+        if m.uid() != 0 && m.uid() != me {
+            return Err(refused(format!(
+                "{} above it belongs to user {}, who could replace what is below it; specgen runs programs from its cache only under directories of yours or root's",
+                a.display(),
+                m.uid()
+            )));
+        }
+        if m.mode() & 0o022 != 0 && m.mode() & 0o1000 == 0 {
+            return Err(refused(format!(
+                "{} above it is writable by others (mode {:04o}) without the sticky bit; specgen runs programs from its cache only under directories no one else can change",
+                a.display(),
+                m.mode() & 0o7777
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// The caller's effective user id.
 pub(crate) fn euid() -> u32 {
     // SAFETY: geteuid has no preconditions and cannot fail
     unsafe { libc::geteuid() }
 }
 
-/// Whether process `pid` is gone (signal 0 finds no such process).
-pub(crate) fn process_gone(pid: i32) -> bool {
-    // SAFETY: signal 0 only asks whether the process exists
-    pid > 0 && unsafe { libc::kill(pid, 0) } != 0 && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH)
-}
-
-/// Removes what a killed run left in `dir`: the entries `<prefix><pid>-…` whose process no
-/// longer runs, directories (`dirs`: the simulator cache's builds) or files (a single-file
-/// output's temporary).
-pub(crate) fn remove_orphans(dir: &Path, prefix: &str, dirs: bool) {
-    let Ok(entries) = std::fs::read_dir(dir) else { return };
-    for entry in entries.flatten() {
-        let name = entry.file_name();
-        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
-        let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else { continue };
-        let Ok(kind) = entry.file_type() else { continue };
-        if !process_gone(pid) {
-            continue;
-        }
-        if dirs && kind.is_dir() {
-            let _ = std::fs::remove_dir_all(entry.path());
-        } else if !dirs && kind.is_file() {
-            let _ = std::fs::remove_file(entry.path());
-        }
-    }
-}
+pub(crate) use crate::process::remove_orphans;
 
 /// Opens a FIFO for writing without hanging: its reader has `FIFO_WAIT` to appear, then the
 /// write fails ("no process reads it").

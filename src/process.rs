@@ -1,14 +1,24 @@
 //! Children and temporaries that do not outlive a run. A leaf: imports nothing from the crate.
 //!
 //! - Every tool specgen runs (simulators, their builds, yosys, nextpnr) is started by
-//!   [`command`]: the child gets `PR_SET_PDEATHSIG(SIGKILL)`, so it dies with specgen however
-//!   specgen ends (a signal, SIGKILL included, or a panic), and the default signal mask.
-//! - Every temporary directory is made by [`temp_dir`] or [`temp_dir_in`], which registers it
-//!   until it is dropped or kept; [`remove_temporaries_on_signals`] (the command line calls it
-//!   first thing) has SIGINT, SIGTERM and SIGHUP handled by a thread of their own that removes
-//!   every registered directory and ends the process with 128 + the signal's number. SIGKILL
-//!   cannot be caught: what it leaves is swept by the next run (the simulator cache's
-//!   `.build-<pid>-…`, the output staging and temporary files, by their dead process id).
+//!   [`command`]: the child gets `PR_SET_PDEATHSIG(SIGKILL)` and the default signal mask, and
+//!   joins one process group led by a *warden*, a small process forked before the first tool
+//!   that waits for specgen to end (the read end of a pipe only specgen holds) and then kills
+//!   the whole group. However specgen ends (returning, a signal, SIGKILL, a panic), every tool
+//!   and every process a tool started (`verilator → make → g++ → cc1plus`, yosys's ABC) ends
+//!   with it.
+//! - With `SPECGEN_JOBS=DIR` (a directory of slot files, the caller's own), each tool holds one
+//!   of them locked (`flock`) from before it starts until the last process that inherited it
+//!   ends: several specgen runs started at once (a test suite's threads) never run more tools
+//!   than there are slots. The lock is taken in the child, so a waiting tool holds nothing.
+//! - Tools run with `TMPDIR` inside specgen's own work directory (`specgen-<pid>-tools`), so
+//!   what they leave there goes with it.
+//! - Every temporary directory is made by [`temp_dir`] or [`temp_dir_in`], named
+//!   `specgen-<pid>-…` (the system's) or `<prefix><pid>-…`, and registered until it is dropped
+//!   or kept; [`remove_temporaries_on_signals`] (the command line calls it first thing) has
+//!   SIGINT, SIGTERM and SIGHUP handled by a thread of their own that removes every registered
+//!   directory and ends the process with 128 + the signal's number. SIGKILL cannot be caught:
+//!   what it leaves is swept by the next run, by its dead process id ([`remove_orphans`]).
 
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
@@ -30,16 +40,25 @@ pub fn exit(code: i32) -> ! {
             std::thread::park();
         }
     }
+    remove_tools_tmp();
     std::process::exit(code)
 }
 
-/// A command whose process dies with specgen's and starts with no signal blocked.
+/// A command whose process (and every process it starts) dies with specgen's, starts with no
+/// signal blocked, runs with `TMPDIR` in specgen's work directory, and holds a job slot while it
+/// runs when `SPECGEN_JOBS` names a slot directory.
 pub fn command(program: impl AsRef<OsStr>) -> Command {
     use std::os::unix::process::CommandExt;
     let mut cmd = Command::new(program);
     let parent = std::process::id() as libc::pid_t;
+    let group = warden();
+    if let Some(tmp) = tools_tmp() {
+        cmd.env("TMPDIR", tmp);
+    }
+    let slots = job_slots();
     // SAFETY: the closure runs in the child between fork and exec and calls only
-    // async-signal-safe functions (prctl, getppid, sigemptyset, pthread_sigmask).
+    // async-signal-safe functions (prctl, getppid, setpgid, open, flock, nanosleep,
+    // sigemptyset, pthread_sigmask) on memory prepared before the fork.
     unsafe {
         cmd.pre_exec(move || {
             #[cfg(target_os = "linux")]
@@ -50,6 +69,13 @@ pub fn command(program: impl AsRef<OsStr>) -> Command {
             if libc::getppid() != parent {
                 return Err(std::io::Error::other("specgen ended while this tool was starting"));
             }
+            // the warden's group: killed whole when specgen ends
+            if group > 0 {
+                libc::setpgid(0, group);
+            }
+            if let Some(slots) = &slots {
+                take_slot(slots);
+            }
             let mut none: libc::sigset_t = std::mem::zeroed();
             libc::sigemptyset(&mut none);
             libc::pthread_sigmask(libc::SIG_SETMASK, &none, std::ptr::null_mut());
@@ -57,6 +83,134 @@ pub fn command(program: impl AsRef<OsStr>) -> Command {
         });
     }
     cmd
+}
+
+/// The job slots' files (`SPECGEN_JOBS=DIR`: every regular file of DIR, the caller's own, is a
+/// slot), as C strings made before any fork; none without the variable or any slot.
+fn job_slots() -> Option<std::sync::Arc<Vec<std::ffi::CString>>> {
+    static SLOTS: std::sync::OnceLock<Option<std::sync::Arc<Vec<std::ffi::CString>>>> = std::sync::OnceLock::new();
+    SLOTS
+        .get_or_init(|| {
+            use std::os::unix::ffi::OsStrExt;
+            use std::os::unix::fs::MetadataExt;
+            let dir = PathBuf::from(std::env::var_os("SPECGEN_JOBS").filter(|d| !d.is_empty())?);
+            let me = unsafe { libc::geteuid() };
+            let ok = |m: &std::fs::Metadata| m.uid() == me && m.mode() & 0o022 == 0;
+            if !std::fs::symlink_metadata(&dir).is_ok_and(|m| m.is_dir() && ok(&m)) {
+                return None;
+            }
+            let mut slots: Vec<std::ffi::CString> = std::fs::read_dir(&dir)
+                .ok()?
+                .flatten()
+                .filter(|e| std::fs::symlink_metadata(e.path()).is_ok_and(|m| m.is_file() && ok(&m)))
+                .filter_map(|e| std::ffi::CString::new(e.path().as_os_str().as_bytes()).ok())
+                .take(256)
+                .collect();
+            slots.sort();
+            (!slots.is_empty()).then(|| std::sync::Arc::new(slots))
+        })
+        .clone()
+}
+
+/// In a child before exec: locks one of `slots` (waiting, 20 ms a round, until one is free)
+/// on a descriptor the tool and its children inherit, so the slot is free again only when the
+/// last of them ends. Async-signal-safe.
+fn take_slot(slots: &[std::ffi::CString]) {
+    loop {
+        for slot in slots {
+            // SAFETY: open/flock/close on a path prepared before the fork
+            unsafe {
+                let fd = libc::open(slot.as_ptr(), libc::O_RDONLY);
+                if fd < 0 {
+                    continue;
+                }
+                if libc::flock(fd, libc::LOCK_EX | libc::LOCK_NB) == 0 {
+                    return;
+                }
+                libc::close(fd);
+            }
+        }
+        let pause = libc::timespec { tv_sec: 0, tv_nsec: 20_000_000 };
+        // SAFETY: a plain sleep
+        unsafe { libc::nanosleep(&pause, std::ptr::null_mut()) };
+    }
+}
+
+/// The warden's process group (0: none could be made, and tools run in specgen's group, still
+/// with `PR_SET_PDEATHSIG`). Forked once, before the first tool: it leads a group of its own,
+/// closes every descriptor but a pipe's read end, and waits on it; when specgen ends however it
+/// ends, the pipe's last writer is gone, the read returns, and the warden kills its group (every
+/// tool and every process a tool started, itself last).
+fn warden() -> libc::pid_t {
+    static GROUP: std::sync::OnceLock<libc::pid_t> = std::sync::OnceLock::new();
+    *GROUP.get_or_init(|| {
+        let mut fds = [0 as libc::c_int; 2];
+        // SAFETY: a pipe whose write end only this process holds (close-on-exec: no tool
+        // inherits it), then a fork whose child calls only async-signal-safe functions
+        unsafe {
+            if libc::pipe2(fds.as_mut_ptr(), libc::O_CLOEXEC) != 0 {
+                return 0;
+            }
+            let [read, write] = fds;
+            match libc::fork() {
+                -1 => {
+                    libc::close(read);
+                    libc::close(write);
+                    0
+                }
+                0 => {
+                    libc::setpgid(0, 0);
+                    for fd in 0..4096 {
+                        if fd != read {
+                            libc::close(fd);
+                        }
+                    }
+                    // signals a terminal or a parent sends the group are specgen's to handle
+                    libc::signal(libc::SIGINT, libc::SIG_IGN);
+                    libc::signal(libc::SIGHUP, libc::SIG_IGN);
+                    let mut byte = 0u8;
+                    while libc::read(read, (&mut byte as *mut u8).cast(), 1) != 0 {
+                        if *libc::__errno_location() != libc::EINTR {
+                            break;
+                        }
+                    }
+                    libc::kill(0, libc::SIGKILL);
+                    libc::_exit(0)
+                }
+                pid => {
+                    libc::close(read);
+                    // the write end stays open (and leaks) for the process's life
+                    libc::setpgid(pid, pid);
+                    pid
+                }
+            }
+        }
+    })
+}
+
+/// Specgen's own temporary directory for its tools (their `TMPDIR`), made on first use and
+/// registered, so a signal removes it and the next run sweeps it after SIGKILL.
+fn tools_tmp() -> Option<PathBuf> {
+    TOOLS_TMP
+        .get_or_init(|| {
+        let base = std::env::temp_dir();
+        remove_orphans(&base, "specgen-", true);
+        let dir = tempfile::Builder::new().prefix(&format!("specgen-{}-tools-", std::process::id())).tempdir_in(&base).ok()?;
+        let path = dir.keep();
+        TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.clone());
+        Some(path)
+    })
+    .clone()
+}
+
+/// The tools' `TMPDIR`, once made.
+static TOOLS_TMP: std::sync::OnceLock<Option<PathBuf>> = std::sync::OnceLock::new();
+
+/// Removes specgen's own tool directory at a normal end (the command line's exit).
+fn remove_tools_tmp() {
+    if let Some(Some(dir)) = TOOLS_TMP.get() {
+        let _ = std::fs::remove_dir_all(dir);
+    }
 }
 
 /// A temporary directory removed when dropped, and on SIGINT/SIGTERM/SIGHUP.
@@ -99,14 +253,47 @@ impl Drop for TempDir {
     }
 }
 
-/// A temporary directory in the system's temporary directory.
+/// A temporary directory `specgen-<pid>-…` in the system's temporary directory (what killed
+/// runs left there is swept first).
 pub fn temp_dir() -> std::io::Result<TempDir> {
-    Ok(TempDir::register(tempfile::tempdir()?))
+    let base = std::env::temp_dir();
+    remove_orphans(&base, "specgen-", true);
+    Ok(TempDir::register(tempfile::Builder::new().prefix(&format!("specgen-{}-", std::process::id())).tempdir_in(base)?))
 }
 
 /// A temporary directory `<prefix>…` in `parent`.
 pub fn temp_dir_in(parent: &Path, prefix: &str) -> std::io::Result<TempDir> {
     Ok(TempDir::register(tempfile::Builder::new().prefix(prefix).tempdir_in(parent)?))
+}
+
+/// Whether process `pid` is gone (signal 0 finds no such process).
+pub(crate) fn process_gone(pid: i32) -> bool {
+    // SAFETY: signal 0 only asks whether the process exists
+    pid > 0 && unsafe { libc::kill(pid, 0) } != 0 && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH)
+}
+
+/// Removes what a killed run left in `dir`: the entries `<prefix><pid>-…` whose process no
+/// longer runs and that are the caller's own, directories (`dirs`: work and build
+/// directories) or files (a single-file output's temporary).
+pub(crate) fn remove_orphans(dir: &Path, prefix: &str, dirs: bool) {
+    use std::os::unix::fs::MetadataExt;
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    // SAFETY: a plain query
+    let me = unsafe { libc::geteuid() };
+    for entry in entries.flatten().take(100_000) {
+        let name = entry.file_name();
+        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
+        let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else { continue };
+        let Ok(meta) = std::fs::symlink_metadata(entry.path()) else { continue };
+        if meta.uid() != me || !process_gone(pid) {
+            continue;
+        }
+        if dirs && meta.is_dir() {
+            let _ = std::fs::remove_dir_all(entry.path());
+        } else if !dirs && meta.is_file() {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 /// Has SIGINT, SIGTERM and SIGHUP remove every registered temporary directory and end the

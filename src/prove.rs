@@ -50,6 +50,8 @@ struct Script<'a> {
     bounded: Option<u32>,
     /// k-induction with `sat` up to this many edges (instead of either)
     induction: Option<u32>,
+    /// with `bounded` and `induction`: replay ABC's counterexample instead of writing the model
+    replay: bool,
     /// `sat` leaves cells it cannot model (an ECP5 unit's black boxes) unconstrained
     ignore_unknown: bool,
     /// the unit's module, whose datapath the induction abstracts: its results
@@ -99,8 +101,14 @@ pub struct Tools {
     pub yosys: String,
     /// ABC with `pdr`: Debian's `yosys-abc`
     pub abc: String,
-    /// how long `pdr` may take
+    /// how long any one engine may run (an infrastructure guard, never a verdict: a run past it
+    /// is reported as out of time, with the depth it reached)
     pub limit: Duration,
+    /// a bounded search of the first this many edges from power-up instead of a proof: refutes
+    /// with a trace, or says the properties hold that far (not a proof)
+    pub depth: Option<u32>,
+    /// called with each line of progress the engine reports (the depth reached)
+    pub progress: Option<fn(&str)>,
 }
 
 impl Tools {
@@ -124,9 +132,13 @@ pub enum Verdict {
     Proved,
     /// a property fails `frame` edges after the start; the replay's VCD
     Failed { frame: u32, vcd: Vec<u8> },
-    /// `pdr` did not end within the limit; the properties hold for the first `bounded` edges
-    /// (yosys's `sat`, a bounded search), or `None` when that did not end either
-    Undecided { bounded: Option<u32> },
+    /// the engine did not conclude: `bounded`, the properties hold for that many first edges
+    /// (a bounded search), or `None`; `out_of_time`, it was stopped at the time limit (not a
+    /// verdict) rather than reaching its depth; `reached`, the last depth it completed
+    Undecided { bounded: Option<u32>, out_of_time: bool, reached: Option<u32> },
+    /// `--depth N`: no property fails in the first `depth` edges from power-up (a bounded
+    /// search, not a proof)
+    Bounded { depth: u32 },
     /// `prove --pipelining`: the properties hold for the first `bounded` edges from power-up,
     /// but the unit keeps state longer than its latency (a delay line in memory, its pointers
     /// never flushed), so the check from any state cannot conclude
@@ -199,9 +211,18 @@ pub fn harness(design: &Design) -> String {
         + "\n"
 }
 
-/// Runs `program` with `args` in `dir`, stopped after `limit`; `Ok(None)` when stopped.
-fn run(program: &str, args: &[String], dir: &Path, limit: Duration) -> Result<Option<String>, Error> {
-    let child = crate::process::command(program)
+/// What a tool said: its standard output, and whether it ended by itself (false: stopped at
+/// the time limit, `text` is what it said until then).
+struct Said {
+    text: String,
+    ended: bool,
+}
+
+/// Runs `program` with `args` in `dir`, stopped after `limit`; each line of its standard output
+/// goes to `progress` as it comes when it is a line of progress (`is_progress`).
+fn run_watched(program: &str, args: &[String], dir: &Path, limit: Duration, progress: Option<fn(&str)>, is_progress: fn(&str) -> Option<String>) -> Result<Said, Error> {
+    use std::io::{BufRead, Read};
+    let mut child = crate::process::command(program)
         .args(args)
         .current_dir(dir)
         .stdin(Stdio::null())
@@ -210,16 +231,101 @@ fn run(program: &str, args: &[String], dir: &Path, limit: Duration) -> Result<Op
         .spawn()
         .map_err(|e| error::tool(program, format!("cannot run {program}: {e}")))?;
     let (alive, fired) = crate::cosim::backend::watchdog(child.id(), limit);
-    let out = child.wait_with_output().map_err(|e| error::tool(program, e.to_string()))?;
+    let mut stderr = child.stderr.take().expect("piped");
+    let errors = std::thread::spawn(move || {
+        let mut text = Vec::new();
+        let _ = (&mut stderr).take(1 << 20).read_to_end(&mut text);
+        let _ = std::io::copy(&mut stderr, &mut std::io::sink());
+        text
+    });
+    let mut text = String::new();
+    let mut out = std::io::BufReader::new(child.stdout.take().expect("piped"));
+    let mut line = Vec::new();
+    // a tool's output is read whole (sat's log is a few lines an edge), bounded at 256 MiB
+    while (&mut out).take(1 << 20).read_until(b'\n', &mut line).map_err(|e| error::tool(program, e.to_string()))? > 0 {
+        let l = String::from_utf8_lossy(&line);
+        if let (Some(report), Some(said)) = (progress, is_progress(&l)) {
+            report(&said);
+        }
+        if text.len() < 256 << 20 {
+            text.push_str(&l);
+        }
+        line.clear();
+    }
+    let status = child.wait().map_err(|e| error::tool(program, e.to_string()))?;
     drop(alive);
+    let stderr = String::from_utf8_lossy(&errors.join().unwrap_or_default()).into_owned();
     if fired.load(std::sync::atomic::Ordering::SeqCst) {
-        return Ok(None);
+        return Ok(Said { text, ended: false });
     }
-    let text = String::from_utf8_lossy(&out.stdout).to_string();
-    if !out.status.success() {
-        return Err(error::tool(program, format!("{program} failed ({}): {}{}", out.status, String::from_utf8_lossy(&out.stderr), text)));
+    if !status.success() {
+        return Err(error::tool(program, format!("{program} failed ({status}): {stderr}{}", tail(&text))));
     }
-    Ok(Some(text))
+    Ok(Said { text, ended: true })
+}
+
+/// Runs `program` with `args` in `dir`, stopped after `limit`; `Ok(None)` when stopped.
+fn run(program: &str, args: &[String], dir: &Path, limit: Duration) -> Result<Option<String>, Error> {
+    let said = run_watched(program, args, dir, limit, None, |_| None)?;
+    Ok(said.ended.then_some(said.text))
+}
+
+/// A line of yosys `sat`'s log that tells the depth reached, in words.
+fn sat_progress(line: &str) -> Option<String> {
+    let k = |prefix: &str| line.trim().strip_prefix(prefix).and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next()).and_then(|d| d.parse::<u32>().ok());
+    if let Some(k) = k("Base case for induction length ") {
+        return Some(format!("no failure within {k} edges from power-up (the base case)"));
+    }
+    if line.contains("Induction step failed") {
+        return Some("the induction step does not close yet: one edge deeper".into());
+    }
+    k("Setting up time step ").filter(|k| k % 8 == 0).map(|k| format!("bounded search: time step {k} set up"))
+}
+
+/// Rewrites ABC's counterexample (`cex.aiw`: a line of latch values, then one line of input
+/// values a frame) as the AIGER witness yosys's `sim -r` reads (`witness.aiw`): the header, the
+/// latches' first values (all zero: the model was written with `-zinit`, a free first value is
+/// an input of the first frame), and each frame's inputs at the model's input count.
+fn yosys_witness(w: &Path) -> Result<(), Error> {
+    let read = |f: &str, max: u64| crate::small_file::read(&w.join(f), max).map_err(|e| error::tool("abc", format!("{f}: {e}")));
+    let cex = read("cex.aiw", 256 << 20)?;
+    let model = crate::small_file::read_bytes(&w.join("model.aig"), 1 << 30).map_err(|e| error::tool("yosys", format!("model.aig: {e}")))?;
+    let header = String::from_utf8_lossy(&model[..model.iter().position(|&b| b == b'\n').unwrap_or(0)]).into_owned();
+    let count = |i: usize| header.split_whitespace().nth(i).and_then(|n| n.parse::<usize>().ok());
+    let (Some(inputs), Some(latches)) = (count(2), count(3)) else {
+        return Err(error::tool("yosys", format!("model.aig has no AIGER header: {header:?}")));
+    };
+    let mut out = format!("1\nb0\n{}\n", "0".repeat(latches));
+    for frame in cex.split_whitespace().skip(1).filter(|l| l.chars().all(|c| c == '0' || c == '1')) {
+        let bits: String = frame.chars().take(inputs).collect();
+        out.push_str(&format!("{bits:0<inputs$}\n"));
+    }
+    out.push_str(".\n");
+    put(w, "witness.aiw", out)
+}
+
+/// The frame in which ABC says a property fails ("Output 0 of miter "model" was asserted in
+/// frame 3."), if it does.
+fn frame_asserted(text: &str) -> Option<u32> {
+    text.split("was asserted in frame ").nth(1).and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next()).and_then(|d| d.parse::<u32>().ok())
+}
+
+/// A line of ABC `bmc3 -v`'s log, in words: the frames searched so far ("   5 + : Var = …").
+fn bmc_progress(line: &str) -> Option<String> {
+    let frame: u32 = line.trim_start().split(' ').next()?.parse().ok()?;
+    line.contains(" + :").then(|| format!("bounded search: no failure within {} edges", frame + 1))
+}
+
+/// The frames ABC's bmc3 finished, from its log.
+fn bmc_reached(text: &str) -> Option<u32> {
+    text.lines().filter_map(|l| l.trim_start().split(' ').next()?.parse::<u32>().ok().filter(|_| l.contains(" + :"))).max().map(|f| f + 1)
+}
+
+/// The depths yosys `sat`'s k-induction completed, from its log: base cases proven.
+fn sat_reached(text: &str) -> Option<u32> {
+    text.lines()
+        .filter_map(|l| l.trim().strip_prefix("Base case for induction length ").and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next()).and_then(|d| d.parse().ok()))
+        .max()
 }
 
 /// Proves the edge of the unit in `design`; a failed proof carries its counterexample's VCD
@@ -242,10 +348,20 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     files.push("harness.v".into());
     let name = harness_name(cfg.top());
     let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
-    let tools = &Tools { yosys, abc, limit: tools.limit };
+    let tools = &Tools { yosys, abc, ..tools.clone() };
     let t0 = Instant::now();
     if cfg.interface().handshake() {
         return induction(design, tools, w, &files, &name, t0);
+    }
+    if let Some(depth) = tools.depth {
+        let properties = properties(design);
+        let verdict = match bounded(tools, w, &files, &name, depth)? {
+            Some(true) => Verdict::Bounded { depth },
+            Some(false) => Verdict::Failed { frame: depth, vcd: trace(&tools.yosys, w, design)? },
+            None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
+        };
+        let engine = format!("a bounded search of {depth} edges from power-up with yosys sat");
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine });
     }
     Script {
         version: crate::names::VERSION,
@@ -253,6 +369,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         files: &files,
         bounded: None,
         induction: None,
+        replay: false,
         ignore_unknown: false,
         abstract_module: "",
         abstract_wires: Vec::new(),
@@ -270,9 +387,9 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         // the unit and a full buffer, which may still find a failure
         let steps = cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4;
         let verdict = match bounded(tools, w, &files, &name, steps)? {
-            Some(true) => Verdict::Undecided { bounded: Some(steps) },
+            Some(true) => Verdict::Undecided { bounded: Some(steps), out_of_time: true, reached: None },
             Some(false) => Verdict::Failed { frame: steps, vcd: trace(&tools.yosys, w, design)? },
-            None => Verdict::Undecided { bounded: None },
+            None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
         };
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PDR.into() });
     };
@@ -280,9 +397,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine: PDR.into() });
     }
     // "Output 0 of miter "model" was asserted in frame 3."
-    let Some(frame) =
-        said.split("was asserted in frame ").nth(1).and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next()).and_then(|d| d.parse::<u32>().ok())
-    else {
+    let Some(frame) = frame_asserted(&said) else {
         return Err(error::tool(&tools.abc, format!("pdr neither proved nor refuted the properties: {said}")));
     };
     bounded(tools, w, &files, &name, frame + 2)?;
@@ -298,13 +413,14 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
 /// unit is proved at about its latency plus one; a fault may need the buffer filled to show).
 fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &str, t0: Instant) -> Result<Proof, Error> {
     let cfg = &design.cfg;
-    let steps = cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4;
+    let steps = tools.depth.unwrap_or_else(|| cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4);
     let script = Script {
         version: crate::names::VERSION,
         harness: name,
         files,
-        bounded: None,
+        bounded: tools.depth,
         induction: Some(steps),
+        replay: false,
         ignore_unknown: !design.sim_models.is_empty(),
         abstract_module: cfg.top(),
         // the datapath's results as the buffer reads them (a plain name each)
@@ -317,28 +433,59 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             .filter(|src| src.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
             .collect(),
     };
+    let properties = properties(design);
+    if let Some(depth) = tools.depth {
+        // the bounded search: the cut model as an AIGER, ABC's bmc3 to `depth` frames, and a
+        // counterexample simulated to a VCD by yosys
+        script.write(w, "model.ys")?;
+        run(&tools.yosys, &["-q".into(), "-s".into(), "model.ys".into()], w, tools.limit)?
+            .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not write the model within {} s (--time-limit)", tools.limit.as_secs())))?;
+        let abc_script = format!("read_aiger model.aig; fold; bmc3 -F {depth} -v; write_cex -a cex.aiw");
+        let said = run_watched(&tools.abc, &["-c".into(), abc_script], w, tools.limit, tools.progress, bmc_progress)?;
+        let engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
+        let reached = bmc_reached(&said.text);
+        let verdict = match frame_asserted(&said.text) {
+            _ if !said.ended => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
+            Some(frame) => {
+                yosys_witness(w)?;
+                Script { replay: true, ..script }.write(w, "replay.ys")?;
+                let _ = std::fs::remove_file(w.join("trace.vcd"));
+                run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit)?
+                    .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
+                Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
+            }
+            None if said.text.contains("No output asserted") => Verdict::Bounded { depth },
+            None => return Err(error::tool(&tools.abc, format!("bmc3 neither found a failure nor finished its {depth} frames: {}", tail(&said.text)))),
+        };
+        return Ok(Proof { name: name.to_string(), properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine });
+    }
     script.write(w, "induction.ys")?;
     let _ = std::fs::remove_file(w.join("trace.vcd"));
-    let said = run(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit)?;
+    let ran = run_watched(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit, tools.progress, sat_progress);
     let seconds = t0.elapsed().as_secs_f64();
-    let properties = properties(design);
     let name = name.to_string();
-    let k = said.as_deref().map_or(0, |t| t.matches("Induction step failed").count() + 1);
-    let engine = match said.as_deref() {
-        Some(t) if t.contains("model found for base case: FAIL") => "k-induction's base case, a search from power-up with yosys sat".to_string(),
-        _ => format!("k-induction with yosys sat over the unit's own assertions, k = {k} of at most {steps}"),
+    let said = ran?;
+    let text = &said.text;
+    let reached = sat_reached(text);
+    let k = text.matches("Induction step failed").count() + 1;
+    let engine = if text.contains("model found for base case: FAIL") {
+        "k-induction's base case, a search from power-up with yosys sat".to_string()
+    } else {
+        format!("k-induction with yosys sat over the unit's own assertions, k = {k} of at most {steps}")
     };
-    let verdict = match said {
-        None => Verdict::Undecided { bounded: None },
-        Some(text) if text.contains("Induction step proven: SUCCESS") => Verdict::Proved,
-        Some(text) if text.contains("model found for base case: FAIL") => {
-            // the base case of length N failed: a failure N edges from power-up, its whole
-            // trace in trace.vcd
-            let frame = text.matches("Base case for induction length").count() as u32 + 1;
-            Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
-        }
-        Some(text) if text.contains("Reached maximum number of time steps") => Verdict::Undecided { bounded: Some(steps) },
-        Some(text) => return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted the properties: {}", tail(&text)))),
+    let verdict = if !said.ended {
+        Verdict::Undecided { bounded: reached, out_of_time: true, reached }
+    } else if text.contains("Induction step proven: SUCCESS") {
+        Verdict::Proved
+    } else if text.contains("model found for base case: FAIL") {
+        // the base case of length N failed: a failure N edges from power-up, its whole trace
+        // in trace.vcd
+        let frame = reached.unwrap_or(0) + 1;
+        Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
+    } else if text.contains("Reached maximum number of time steps") {
+        Verdict::Undecided { bounded: Some(steps), out_of_time: false, reached: Some(steps) }
+    } else {
+        return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted the properties: {}", tail(text))));
     };
     Ok(Proof { name, properties, verdict, seconds, engine })
 }
@@ -359,6 +506,7 @@ fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) ->
         files,
         bounded: Some(steps),
         induction: None,
+        replay: false,
         ignore_unknown: false,
         abstract_module: "",
         abstract_wires: Vec::new(),
@@ -501,7 +649,7 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     let verdict = 'checks: {
         for (abc_script, replay) in checks {
             let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
-                break 'checks Verdict::Undecided { bounded: None };
+                break 'checks Verdict::Undecided { bounded: None, out_of_time: true, reached: None };
             };
             if said.contains("UNSATISFIABLE") {
                 continue;

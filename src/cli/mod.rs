@@ -320,7 +320,7 @@ macro_rules! errln {
 /// The CLI's names for the library's error constructors: a usage error is the user's input
 /// not being what it must be (exit 2), a failed check is a mismatch (exit 1).
 pub use specgen::error::{input as usage, mismatch as failed, Error as Failure};
-pub(crate) use {out, outln};
+pub(crate) use {errln, out, outln};
 
 /// The exit code of an error: 2 for what the user must change (a parameter, an input, an
 /// occupied output directory), 1 for a check that failed, a tool's error, a file.
@@ -390,6 +390,15 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool)
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Generate { out, force, target_mhz, params, rtl } => {
+            if let Some(config) = &params.config {
+                if specgen::output::inside(config, &out) {
+                    return Err(usage(format!(
+                        "invalid --out: {} holds {}, the --config file this command reads; the output replaces its directory whole: write it elsewhere",
+                        out.display(),
+                        config.display()
+                    )));
+                }
+            }
             let mut cfg = params.to_config(Some(&rtl))?;
             if let Some(mhz) = target_mhz {
                 if !(0.001..=1000.0).contains(&mhz) {

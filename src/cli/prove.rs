@@ -18,9 +18,16 @@ pub struct ProveArgs {
     /// ABC with pdr (Debian's yosys-abc)
     #[arg(long, value_name = "PATH", default_value = "yosys-abc")]
     pub abc: String,
-    /// Seconds pdr may take before the proof is reported undecided [1..=86400]
-    #[arg(long, value_name = "S", default_value_t = 600, value_parser = clap::value_parser!(u64).range(1..=86400))]
+    /// Seconds any one engine may run (pdr, sat's induction or bounded search, ABC's iprove): a
+    /// guard against a run that would never end, not a verdict; a run stopped by it is reported
+    /// as out of time, with the depth it reached [1..=86400]
+    #[arg(long, value_name = "S", default_value_t = 3600, value_parser = clap::value_parser!(u64).range(1..=86400))]
     pub time_limit: u64,
+    /// A bounded search of the first N clock edges from power-up instead of a proof: a failure
+    /// within them is refuted with its trace (exit 1); none is reported as holding for N edges,
+    /// not as proved (exit 0). Its run time grows with N, not with the machine's luck [1..=1000]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000), conflicts_with = "pipelining")]
+    pub depth: Option<u32>,
     /// Where a counterexample's VCD goes [default: <tmp>/<top>_prove_edge-<pid>.vcd, named in
     /// the message]
     #[arg(long, value_name = "FILE")]
@@ -47,7 +54,14 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
     if let Some(why) = args.pipelining.then(|| specgen::prove::pipelining_refused(&design)).flatten() {
         return Err(super::usage(format!("invalid --pipelining: {why}")));
     }
-    let tools = Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit) };
+    let progress: fn(&str) = |line| super::errln!("prove: {line}");
+    let tools = Tools {
+        yosys: args.yosys.clone(),
+        abc: args.abc.clone(),
+        limit: Duration::from_secs(args.time_limit),
+        depth: args.depth,
+        progress: Some(progress),
+    };
     tools.check()?;
     let proof = if args.pipelining { prove_pipelining(&design, &tools)? } else { prove(&design, &tools)? };
     let how = &proof.engine;
@@ -60,15 +74,31 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Verdict::Undecided { bounded } => {
+        Verdict::Bounded { depth } => {
+            outln!(
+                "{head}no property fails within the first {depth} clock edges from power-up ({how}), {:.1} s; a bounded search, not a proof:",
+                proof.seconds
+            )?;
+            for p in &proof.properties {
+                outln!("  - {p}")?;
+            }
+            Ok(())
+        }
+        Verdict::Undecided { bounded, out_of_time, reached } => {
             let also = match bounded {
-                Some(k) => format!("; the properties hold for the first {k} clock edges (a bounded search, yosys sat)"),
+                Some(k) => format!("; the properties hold for the first {k} clock edges from power-up"),
                 None => String::new(),
             };
-            Err(failed(format!(
-                "{head}undecided: {how} did not conclude within {} s or within its depth, so not proved (--time-limit gives it longer){also}",
-                args.time_limit
-            )))
+            let why = if *out_of_time {
+                let k = match reached {
+                    Some(k) => format!("; the last depth completed: k = {k}"),
+                    None => "; no depth completed".into(),
+                };
+                format!("ran out of time ({} s, --time-limit), which is not a verdict{k}", args.time_limit)
+            } else {
+                "did not conclude within its depth".to_string()
+            };
+            Err(failed(format!("{head}undecided: {how} {why}; so not proved{also}")))
         }
         Verdict::Incomplete { bounded } => Err(failed(format!(
             "{head}not proved: the properties hold for the first {bounded} clock edges from power-up, but the unit keeps state longer than its latency (a delay line in block RAM, its pointers never flushed), so the check from any state cannot conclude; generate it with fewer stages or narrower widths (no delay line in memory) to prove it"

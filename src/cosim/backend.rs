@@ -133,9 +133,16 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
             if trace {
                 cmd.arg("--trace");
             }
-            // every harness compiles the same Verilator runtime: with ccache there, compile it once
+            // every harness compiles the same Verilator runtime: with ccache there, compile it
+            // once; ccache's directory (which holds its configuration, whose `prefix_command`
+            // runs before every compile) is one of the cache's own, checked as the cache is, and
+            // no other configuration file is read
+            cmd.env("OBJCACHE", "").env_remove("CCACHE_CONFIGPATH");
             if on_path("ccache") {
-                cmd.env("OBJCACHE", "ccache");
+                let ccache = root.join("ccache");
+                if crate::output::private_dir(&ccache).is_ok() {
+                    cmd.env("OBJCACHE", "ccache").env("CCACHE_DIR", &ccache);
+                }
             }
             cmd.args(&sources).arg("harness.cpp");
         }

@@ -16,8 +16,42 @@ pub fn require_tool(tool: &str, package: &str) {
     assert!(found, "{tool} is required for this test: run `scripts/test.sh` (installs it) or `apt-get install -y {package}`");
 }
 
+/// The suite's job slots: one file per core in a directory of this checkout's, named by
+/// `SPECGEN_JOBS` for every specgen this process starts and every tool it runs itself
+/// ([`tool`]), so that however many tests run at once (cargo's threads, nextest's processes,
+/// [`for_each_parallel`]), at most as many external tools run as there are cores: each holds a
+/// slot (`flock`) from its start until its last child ends.
+pub fn jobs() -> &'static Path {
+    use std::os::unix::fs::PermissionsExt;
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join("job-slots");
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::set_permissions(&d, std::fs::Permissions::from_mode(0o700)).unwrap();
+        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        for i in 0..cores {
+            let slot = d.join(format!("slot{i}"));
+            if !slot.exists() {
+                std::fs::write(&slot, b"").unwrap();
+            }
+            std::fs::set_permissions(&slot, std::fs::Permissions::from_mode(0o600)).unwrap();
+        }
+        // the library's own tool runs in this process read it too
+        std::env::set_var("SPECGEN_JOBS", &d);
+        d
+    })
+}
+
 pub fn specgen() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_specgen"))
+    let mut c = Command::new(env!("CARGO_BIN_EXE_specgen"));
+    c.env("SPECGEN_JOBS", jobs());
+    c
+}
+
+/// An external tool the test runs itself, holding a job slot while it runs (see [`jobs`]).
+pub fn tool(program: &str) -> Command {
+    jobs();
+    specgen::process::command(program)
 }
 
 /// Runs `specgen generate --out DIR args…` and returns DIR (inside `parent`).
@@ -50,6 +84,7 @@ pub fn for_each_parallel<T: Sync>(items: &[T], f: impl Fn(usize, &T) + Sync) {
 /// own and writable by no one else (specgen refuses any other cache), whatever the umask.
 pub fn cache_dir() -> PathBuf {
     use std::os::unix::fs::PermissionsExt;
+    jobs();
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cosim-cache");
     std::fs::create_dir_all(&d).unwrap();
     std::fs::set_permissions(&d, std::fs::Permissions::from_mode(0o700)).unwrap();
@@ -247,8 +282,8 @@ pub const HANDSHAKE_FAULTS: &[(&str, &str, &str, &str)] = &[
 /// The output buffer's file in a unit with the default top.
 const BUFFER: &str = "specular_unit_out_buffer.v";
 
-/// Applies a fault of [`HANDSHAKE_FAULTS`] to the unit in `dir` (a 12-bit tag). `TAG_LAST`: the
-/// tag's last word `wire [11:0] tag_cZ = tag_line[59:48];` takes the word before it instead.
+/// Applies a fault of [`HANDSHAKE_FAULTS`] to the unit in `dir` (with a tag). `TAG_LAST`: the
+/// tag's last word (`wire [11:0] tag_cZ = tag_line[59:48];`) takes the word before it instead.
 pub fn apply_handshake_fault(dir: &Path, name: &str, file: &str, from: &str, to: &str) {
     let path = dir.join(file);
     let src = std::fs::read_to_string(&path).unwrap();
@@ -257,7 +292,8 @@ pub fn apply_handshake_fault(dir: &Path, name: &str, file: &str, from: &str, to:
         let select = &word[word.find("tag_line[").unwrap()..word.find(';').unwrap()];
         let (hi, lo) = select.trim_start_matches("tag_line[").trim_end_matches(']').split_once(':').unwrap();
         let (hi, lo): (u32, u32) = (hi.parse().unwrap(), lo.parse().unwrap());
-        (select.to_string(), format!("tag_line[{}:{}]", hi - 12, lo - 12))
+        let width = hi - lo + 1;
+        (select.to_string(), format!("tag_line[{}:{}]", hi - width, lo - width))
     } else {
         (from.to_string(), to.to_string())
     };

