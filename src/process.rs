@@ -193,14 +193,14 @@ fn warden() -> libc::pid_t {
 fn tools_tmp() -> Option<PathBuf> {
     TOOLS_TMP
         .get_or_init(|| {
-        let base = std::env::temp_dir();
-        remove_orphans(&base, "specgen-", true);
-        let dir = tempfile::Builder::new().prefix(&format!("specgen-{}-tools-", std::process::id())).tempdir_in(&base).ok()?;
-        let path = dir.keep();
-        TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.clone());
-        Some(path)
-    })
-    .clone()
+            let base = std::env::temp_dir();
+            remove_orphans(&base, "specgen-", true);
+            let dir = tempfile::Builder::new().prefix(&format!("specgen-{}-tools-", std::process::id())).tempdir_in(&base).ok()?;
+            let path = dir.keep();
+            TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.clone());
+            Some(path)
+        })
+        .clone()
 }
 
 /// The tools' `TMPDIR`, once made.

@@ -220,7 +220,14 @@ struct Said {
 
 /// Runs `program` with `args` in `dir`, stopped after `limit`; each line of its standard output
 /// goes to `progress` as it comes when it is a line of progress (`is_progress`).
-fn run_watched(program: &str, args: &[String], dir: &Path, limit: Duration, progress: Option<fn(&str)>, is_progress: fn(&str) -> Option<String>) -> Result<Said, Error> {
+fn run_watched(
+    program: &str,
+    args: &[String],
+    dir: &Path,
+    limit: Duration,
+    progress: Option<fn(&str)>,
+    is_progress: fn(&str) -> Option<String>,
+) -> Result<Said, Error> {
     use std::io::{BufRead, Read};
     let mut child = crate::process::command(program)
         .args(args)
@@ -324,7 +331,9 @@ fn bmc_reached(text: &str) -> Option<u32> {
 /// The depths yosys `sat`'s k-induction completed, from its log: base cases proven.
 fn sat_reached(text: &str) -> Option<u32> {
     text.lines()
-        .filter_map(|l| l.trim().strip_prefix("Base case for induction length ").and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next()).and_then(|d| d.parse().ok()))
+        .filter_map(|l| {
+            l.trim().strip_prefix("Base case for induction length ").and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next()).and_then(|d| d.parse().ok())
+        })
         .max()
 }
 

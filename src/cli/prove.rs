@@ -55,13 +55,8 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
         return Err(super::usage(format!("invalid --pipelining: {why}")));
     }
     let progress: fn(&str) = |line| super::errln!("prove: {line}");
-    let tools = Tools {
-        yosys: args.yosys.clone(),
-        abc: args.abc.clone(),
-        limit: Duration::from_secs(args.time_limit),
-        depth: args.depth,
-        progress: Some(progress),
-    };
+    let tools =
+        Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit), depth: args.depth, progress: Some(progress) };
     tools.check()?;
     let proof = if args.pipelining { prove_pipelining(&design, &tools)? } else { prove(&design, &tools)? };
     let how = &proof.engine;

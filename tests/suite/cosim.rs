@@ -331,12 +331,7 @@ fn a_missing_table_file_stops_both_simulators() {
     // $fatal: a non-zero exit, not only a message (a plain `$finish` exits 0)
     assert!(!o.status.success(), "vvp exited 0 without its table");
     let mdir = tmp.path().join(format!("{name}_obj"));
-    let b = tool("verilator")
-        .args(["--binary", "-Wno-fatal", "--top-module", "specular_unit", "-o", "vsim", "--Mdir"])
-        .arg(&mdir)
-        .arg(&v)
-        .output()
-        .unwrap();
+    let b = tool("verilator").args(["--binary", "-Wno-fatal", "--top-module", "specular_unit", "-o", "vsim", "--Mdir"]).arg(&mdir).arg(&v).output().unwrap();
     assert!(b.status.success(), "{}", text(&b));
     let o = specgen::process::command(mdir.join("vsim")).current_dir(&elsewhere).output().unwrap();
     assert!(text(&o).contains(&format!("cannot open table file {file}")), "Verilator: {}", text(&o));

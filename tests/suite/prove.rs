@@ -55,9 +55,7 @@ fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let traces = tmp.path().join("bypass.vcd");
-    let prove_pipelining = |dir: &Path| {
-        specgen().args(["prove", "--pipelining", "--edited", "--rtl"]).arg(dir).arg("--trace").arg(&traces).output().unwrap()
-    };
+    let prove_pipelining = |dir: &Path| specgen().args(["prove", "--pipelining", "--edited", "--rtl"]).arg(dir).arg("--trace").arg(&traces).output().unwrap();
     let lean: &[&str] = &["--cos-frac-bits", "8", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "8", "--stages", "6"];
     let fitted: &[&str] = &["--model", "fitted", "--cos-frac-bits", "8", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "8", "--stages", "4"];
     for (name, args) in [("lean", lean), ("fitted", fitted)] {

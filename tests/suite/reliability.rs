@@ -510,3 +510,122 @@ fn no_top_is_a_cell_of_either_family_nor_another_units_module() {
         assert!(text(&o).contains("a module every unit derives from its top"), "{}", text(&o));
     }
 }
+
+/// Processes whose working directory is under `dir` (a killed build's `make`, `g++`, `cc1plus`).
+fn working_under(dir: &Path) -> Vec<(u32, String)> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir("/proc").unwrap().flatten() {
+        let Ok(pid) = e.file_name().to_string_lossy().parse::<u32>() else { continue };
+        let Ok(cwd) = std::fs::read_link(format!("/proc/{pid}/cwd")) else { continue };
+        if cwd.starts_with(dir) && !ended(pid) {
+            let comm = std::fs::read_to_string(format!("/proc/{pid}/comm")).unwrap_or_default();
+            out.push((pid, comm.trim().to_string()));
+        }
+    }
+    out
+}
+
+/// Issue 47, point 1: `generate --config D/my.json --out D` deleted the user's file; any
+/// specgen-looking `*.json` made its directory look like an earlier output. Now the command's own
+/// input inside the output is refused, and a manifest vouches for its directory only when it is
+/// one specgen wrote (its name, its fingerprint, every file it lists there and unchanged).
+#[test]
+fn a_users_config_or_a_copy_of_a_manifest_is_never_replaced() {
+    let tmp = tempfile::tempdir().unwrap();
+    let real = generate(tmp.path(), "real", &["--stages", "2"]);
+    let manifest = std::fs::read_to_string(real.join("specular_unit.json")).unwrap();
+    let edited = manifest.replace("\"stages\": 2", "\"stages\": 3");
+    assert_ne!(edited, manifest);
+    for (dir, file, text, as_config) in [
+        ("own_input", "my.json", &edited, true),
+        ("edited_copy", "my.json", &edited, false),
+        ("unedited_copy", "my.json", &manifest, false),
+        ("named_copy", "specular_unit.json", &manifest, false),
+        ("named_edited", "specular_unit.json", &edited, false),
+    ] {
+        let d = tmp.path().join(dir);
+        std::fs::create_dir(&d).unwrap();
+        std::fs::write(d.join(file), text).unwrap();
+        let mut cmd = specgen();
+        cmd.arg("generate").arg("--out").arg(&d);
+        if as_config {
+            cmd.arg("--config").arg(d.join(file));
+        }
+        let o = cmd.output().unwrap();
+        let said = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{dir}: {said}");
+        assert_eq!(&std::fs::read_to_string(d.join(file)).unwrap(), text, "{dir}: the user's file is kept");
+        assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1, "{dir}: nothing written");
+        if as_config {
+            assert!(said.contains("--config") && said.contains("--out"), "{said}");
+        } else {
+            assert!(said.contains(file), "{dir}: the stranger is named: {said}");
+        }
+    }
+    // an output specgen wrote is still replaced
+    let o = specgen().arg("generate").arg("--out").arg(&real).args(["--stages", "3"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// Issue 47, points 2–4 and 8: a `ccache.conf` planted where `CCACHE_DIR` points (a directory
+/// others can write) never runs: ccache works in the simulator cache's own directory; a build
+/// killed with SIGKILL leaves no process behind (`make`, `g++`, `cc1plus` die with specgen's
+/// warden group) and its directories are swept by the next run, by their dead process id; a
+/// cache under a directory others can write is refused.
+#[test]
+fn planted_build_state_never_runs_and_a_killed_build_leaves_nothing() {
+    require_tool("verilator", "verilator");
+    require_tool("ccache", "ccache");
+    let tmp = tempfile::tempdir().unwrap();
+    let unit = generate(tmp.path(), "u", &["--stages", "3", "--cos-frac-bits", "8", "--n-bits", "4"]);
+    let evil = tmp.path().join("shared-ccache");
+    std::fs::create_dir(&evil).unwrap();
+    std::fs::set_permissions(&evil, std::fs::Permissions::from_mode(0o777)).unwrap();
+    let pwned = tmp.path().join("pwned");
+    std::fs::write(evil.join("ccache.conf"), format!("prefix_command = touch {}\n", pwned.display())).unwrap();
+    let private = tmp.path().join("tmp");
+    std::fs::create_dir(&private).unwrap();
+    let cache = tmp.path().join("cache");
+    let cosim = || {
+        let mut c = specgen();
+        c.env("SPECGEN_CACHE_DIR", &cache)
+            .env("CCACHE_DIR", &evil)
+            .env("TMPDIR", &private)
+            .args(["cosim", "--simulator", "verilator", "--vectors", "2000", "--rtl"])
+            .arg(&unit);
+        c
+    };
+    // killed while the harness compiles
+    let mut run = cosim().stdout(std::process::Stdio::null()).stderr(std::process::Stdio::null()).spawn().unwrap();
+    let start = std::time::Instant::now();
+    while !working_under(&cache).iter().any(|(_, c)| c.contains("cc1plus") || c == "make" || c.contains("g++")) {
+        assert!(start.elapsed() < std::time::Duration::from_secs(300), "no compiler started");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let dead = run.id();
+    // SAFETY: a signal to our own child
+    unsafe { libc::kill(dead as libc::pid_t, libc::SIGKILL) };
+    run.wait().unwrap();
+    let start = std::time::Instant::now();
+    while !working_under(&cache).is_empty() {
+        assert!(start.elapsed() < std::time::Duration::from_secs(30), "outlived specgen: {:?}", working_under(&cache));
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let left = |dir: &Path| -> Vec<String> {
+        std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| n.contains(&format!("-{dead}-"))).collect()
+    };
+    assert!(!left(&cache).is_empty() || !left(&private).is_empty(), "SIGKILL left the build's directories (else this test shows nothing)");
+    // the next run sweeps them, builds, and never runs the planted configuration
+    let o = cosim().output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!pwned.exists(), "the planted ccache.conf ran");
+    assert!(left(&cache).is_empty() && left(&private).is_empty(), "not swept: {:?} {:?}", left(&cache), left(&private));
+    assert!(cache.join("ccache").is_dir(), "ccache's directory is the cache's own");
+    // a cache below a directory others can write is refused, naming it
+    let open = tmp.path().join("open");
+    std::fs::create_dir(&open).unwrap();
+    std::fs::set_permissions(&open, std::fs::Permissions::from_mode(0o777)).unwrap();
+    let o = specgen().env("SPECGEN_CACHE_DIR", open.join("cache")).args(["cosim", "--vectors", "10", "--rtl"]).arg(&unit).output().unwrap();
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && said.contains("writable by others") && said.contains(&open.display().to_string()), "{said}");
+}
