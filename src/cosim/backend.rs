@@ -95,7 +95,15 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
             Simulator::Icarus => "sim.vvp",
         })
     };
-    let digest = |p: &Path| std::fs::read(p).ok().map(|b| crate::bits::sha256_hex(&b, 32));
+    // read as every other input is: a regular file, not through a link, bounded, never blocking
+    // (an entry's program planted as a FIFO or a link to /dev/zero is damaged, not read forever)
+    let digest = |p: &Path| {
+        std::fs::symlink_metadata(p)
+            .is_ok_and(|m| m.is_file())
+            .then(|| crate::small_file::read_bytes(p, crate::small_file::PROGRAM_MAX).ok())
+            .flatten()
+            .map(|b| crate::bits::sha256_hex(&b, 32))
+    };
     if own_entry(&dir) {
         if let Ok(stamp) = crate::small_file::read(&dir.join("ok"), 256) {
             if digest(&program(&dir)).is_some_and(|d| d == stamp.trim()) {
@@ -163,11 +171,21 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     if !out.status.success() {
         // the copies' names back to the user's files
         let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
+        // the RTL is to blame only when the tool names a line of it; else the tool itself failed
+        // (a broken install, a wrapper that exits 1): its error, exit 1, never the RTL's
+        let names_rtl = (0..texts.len()).any(|i| log.contains(&format!("src{i}.v:"))) || log.contains("cosim_top.v:");
         for (i, (src, _)) in texts.iter().enumerate().rev() {
             log = log.replace(&format!("src{i}.v"), &src.display().to_string());
         }
         let tail: Vec<&str> = log.lines().rev().take(25).collect();
-        return Err(input(format!("{tool} could not build the RTL in {}:\n{}", design.dir.display(), tail.into_iter().rev().collect::<Vec<_>>().join("\n"))));
+        let tail = tail.into_iter().rev().collect::<Vec<_>>().join("\n");
+        if !names_rtl {
+            return Err(error::tool(
+                tool,
+                format!("{tool} failed ({}) building the simulator of {}, naming no line of the RTL:\n{tail}", out.status, design.dir.display()),
+            ));
+        }
+        return Err(input(format!("{tool} could not build the RTL in {}:\n{tail}", design.dir.display())));
     }
     let built = digest(&program(work.path())).ok_or_else(|| error::tool(tool, format!("{tool} reported success but wrote no program")))?;
     std::fs::write(work.path().join("ok"), built).map_err(|e| error::tool("simulator", e.to_string()))?;

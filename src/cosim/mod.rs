@@ -100,10 +100,22 @@ impl Design {
     /// writes over what it reads.
     pub fn refuse_output(&self, flag: &str, out: &Path) -> Result<(), Error> {
         // the manifest, every file it lists, and every Verilog file the command compiles
-        match self.inputs.iter().chain(&self.sources).chain(&self.sim_models).find(|i| same_file(out, i)) {
-            Some(i) => Err(input(format!("{flag} {} is the unit's own file {}; write it elsewhere", out.display(), i.display()))),
-            None => Ok(()),
+        if let Some(i) = self.inputs.iter().chain(&self.sources).chain(&self.sim_models).find(|i| same_file(out, i)) {
+            return Err(input(format!("{flag} {} is the unit's own file {}; write it elsewhere", out.display(), i.display())));
         }
+        // nor a new file there that a later command would read as the unit's (every Verilog
+        // file of the directory is compiled, every manifest and table read)
+        const READ: [&str; 10] = ["v", "sv", "vh", "svh", "hex", "json", "core", "sdc", "lpf", "mem"];
+        let ext = out.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase());
+        if ext.as_ref().is_some_and(|e| READ.contains(&e.as_str())) && crate::output::inside(out, &self.dir) {
+            return Err(input(format!(
+                "{flag} {} is inside the unit's directory {} with a name a later command would read as one of the unit's files (*.{}); write it elsewhere",
+                out.display(),
+                self.dir.display(),
+                ext.unwrap_or_default()
+            )));
+        }
+        Ok(())
     }
 
     /// Whether the directory holds what specgen wrote, checked before anything is simulated or

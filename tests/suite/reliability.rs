@@ -629,3 +629,122 @@ fn planted_build_state_never_runs_and_a_killed_build_leaves_nothing() {
     let said = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && said.contains("writable by others") && said.contains(&open.display().to_string()), "{said}");
 }
+
+/// Issue 47, point 5: `--trace DIR/new.v` wrote a VCD among the unit's files, and every later
+/// command then compiled it. An output inside the unit's directory under a name a later command
+/// reads (`*.v`, `*.hex`, `*.json`, …) is refused, naming it, and nothing is written.
+#[test]
+fn an_output_among_the_units_files_is_refused_when_a_later_command_would_read_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--stages", "2"]);
+    let before = std::fs::read_dir(&d).unwrap().count();
+    for (cmd, name) in [("cosim", "new.v"), ("cosim", "x.hex"), ("prove", "t.json"), ("prove", "t.sv")] {
+        let out = d.join(name);
+        let o = specgen().arg(cmd).arg("--rtl").arg(&d).arg("--trace").arg(&out).output().unwrap();
+        let said = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{cmd} --trace {name}: {said}");
+        assert!(said.contains(name) && said.contains("later command"), "{said}");
+        assert!(!out.exists());
+    }
+    assert_eq!(std::fs::read_dir(&d).unwrap().count(), before);
+}
+
+/// Issue 47, point 7: a cache entry whose program is a FIFO hung cosim, one linked to /dev/zero
+/// read until memory ran out. Entries are read as every input is (a regular file, bounded, never
+/// blocking): such an entry is damaged, built again, and the run passes.
+#[test]
+fn a_planted_cache_entry_is_rebuilt_never_read_forever() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let unit = generate(tmp.path(), "u", &["--stages", "1", "--cos-frac-bits", "7", "--n-bits", "4"]);
+    let cache = tmp.path().join("cache");
+    let cosim = || {
+        let mut run = specgen()
+            .env("SPECGEN_CACHE_DIR", &cache)
+            .args(["cosim", "--simulator", "verilator", "--vectors", "500", "--rtl"])
+            .arg(&unit)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        // a guard against the hang this test is about, not its verdict
+        let start = std::time::Instant::now();
+        loop {
+            if let Some(status) = run.try_wait().unwrap() {
+                return status;
+            }
+            if start.elapsed() > std::time::Duration::from_secs(600) {
+                let _ = run.kill();
+                panic!("cosim hung on a planted cache entry");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+    };
+    assert!(cosim().success());
+    let entry =
+        std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.path()).find(|p| p.file_name().unwrap().to_string_lossy().starts_with("verilator-")).unwrap();
+    let harness = entry.join("harness");
+    std::fs::remove_file(&harness).unwrap();
+    assert!(Command::new("mkfifo").arg(&harness).status().unwrap().success());
+    assert!(cosim().success(), "a FIFO for a program");
+    std::fs::remove_file(&harness).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", &harness).unwrap();
+    assert!(cosim().success(), "a link to /dev/zero for a program");
+    assert!(std::fs::symlink_metadata(&harness).unwrap().is_file(), "built again");
+}
+
+/// Issue 47, point 9: `eval --cos 1.9999999999` said "out of range" for a value inside [0, 2)
+/// (it rounds to 2 at F = 15: say so); `vectors` said the stages for the latency of a unit
+/// whose buffer adds three cycles.
+#[test]
+fn a_value_that_rounds_out_is_told_and_vectors_state_the_latency() {
+    let o = specgen().args(["eval", "--cos", "1.9999999999", "--n", "3"]).output().unwrap();
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(said.contains("rounds to 2") && said.contains("1.999969"), "{said}");
+    let o = specgen().args(["eval", "--cos", "2.5", "--n", "3"]).output().unwrap();
+    assert!(String::from_utf8_lossy(&o.stderr).contains("out of range"));
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--interface", "ready", "--stages", "2"]);
+    let o = specgen().args(["vectors", "--count", "3", "--rtl"]).arg(&d).arg("--out").arg(tmp.path().join("v.csv")).output().unwrap();
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && said.contains("latency 5"), "{said}");
+}
+
+/// Issue 47, point 6: `synth` ran `icetime` from the PATH whatever tools were named and dropped
+/// its failure; a failing `verilator` was blamed on the RTL (exit 2). Now `--icetime` names it, a
+/// missing one is said in the output, a failing one is its own error (exit 1); a simulator
+/// that fails naming no line of the RTL is the tool's failure (exit 1).
+#[test]
+fn only_named_tools_run_and_a_tools_failure_is_its_own() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "7", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"]);
+    let fake = tmp.path().join("bin");
+    std::fs::create_dir(&fake).unwrap();
+    for tool in ["icetime", "verilator"] {
+        let path = fake.join(tool);
+        std::fs::write(&path, "#!/bin/sh\necho broken install >&2\nexit 1\n").unwrap();
+        std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    }
+    let synth = |icetime: &Path| specgen().args(["synth", "--seeds", "1", "--icetime"]).arg(icetime).arg("--rtl").arg(&d).output().unwrap();
+    let o = synth(&tmp.path().join("no-such-icetime"));
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && said.contains("icetime (MHz)") && said.contains("not run"), "{said}{}", String::from_utf8_lossy(&o.stderr));
+    let o = synth(&fake.join("icetime"));
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{said}");
+    assert!(said.contains("icetime") && said.contains("broken install"), "{said}");
+    let path = format!("{}:{}", fake.display(), std::env::var("PATH").unwrap());
+    let o = specgen()
+        .env("PATH", path)
+        .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+        .args(["cosim", "--simulator", "verilator", "--vectors", "10", "--rtl"])
+        .arg(&d)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{said}");
+    assert!(said.contains("naming no line of the RTL") && said.contains("broken install"), "{said}");
+}
