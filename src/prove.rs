@@ -38,9 +38,35 @@ struct EdgeHarness<'a> {
     i_w: u32,
     latency: u32,
     handshake: bool,
+    clock_enable: bool,
+    /// the carried word's width at the ports (tag and tlast), 1 when there is none
+    word_w: u32,
+    word_carried: bool,
 }
 
+/// The stream rules at a handshake unit's ports (`templates/prove_port_checker.v`), written from
+/// the manifest's configuration and SPEC §7, never from the RTL.
 #[derive(Template)]
+#[template(path = "prove_port_checker.v")]
+struct PortChecker<'a> {
+    name: &'a str,
+    top: &'a str,
+    interface: &'a str,
+    version: &'a str,
+    latency: u32,
+    places: u64,
+    carried: u32,
+    tlast: bool,
+    clock_enable: bool,
+    word_w: u32,
+    payload_w: u32,
+    count_w: u32,
+    index_w: u32,
+    respond: u32,
+    recover: u64,
+}
+
+#[derive(Template, Clone)]
 #[template(path = "prove.ys")]
 struct Script<'a> {
     version: &'a str,
@@ -52,6 +78,8 @@ struct Script<'a> {
     induction: Option<u32>,
     /// with `bounded` and `induction`: replay ABC's counterexample instead of writing the model
     replay: bool,
+    /// Verilog macros defined for every file (`SPECGEN_PORTS`: the port checker in the harness)
+    defines: Vec<&'static str>,
     /// `sat` leaves cells it cannot model (an ECP5 unit's black boxes) unconstrained
     ignore_unknown: bool,
     /// the unit's module, whose datapath the induction abstracts: its results
@@ -205,9 +233,49 @@ pub fn harness(design: &Design) -> String {
         i_w: cfg.fi() + 1,
         latency: cfg.latency(),
         handshake: cfg.interface().handshake(),
+        clock_enable: cfg.params.clock_enable,
+        word_w: cfg.carried_tag_bits().max(1),
+        word_carried: cfg.carried_tag_bits() > 0,
     }
     .render()
     .expect("the prove harness renders")
+        + "\n"
+}
+
+/// The port checker's bounds: (RESPOND, RECOVER). With the consumer always ready, a result owed
+/// is delivered within RESPOND edges: a pixel taken into an empty unit leaves `latency` edges
+/// later, plus two for the buffer's queue to start. in_ready rises again within RECOVER: the
+/// unit drains a full buffer (places results, one an edge, after the last pixel's latency),
+/// and in_ready follows the count three edges later.
+fn port_bounds(cfg: &crate::config::Config) -> (u32, u64) {
+    let places = crate::interface::buffer_places(cfg);
+    (cfg.latency() + 2, cfg.latency() as u64 + places + 4)
+}
+
+/// The port checker's Verilog for `design` (from its configuration: the manifest's).
+pub fn port_checker(design: &Design) -> String {
+    let cfg = &design.cfg;
+    let places = crate::interface::buffer_places(cfg);
+    let (respond, recover) = port_bounds(cfg);
+    PortChecker {
+        name: &format!("{}_port_checker", cfg.top()),
+        top: cfg.top(),
+        interface: cfg.interface().name(),
+        version: crate::names::VERSION,
+        latency: cfg.latency(),
+        places,
+        carried: cfg.carried_tag_bits(),
+        tlast: cfg.params.tlast,
+        clock_enable: cfg.params.clock_enable,
+        word_w: cfg.carried_tag_bits().max(1),
+        payload_w: (cfg.fi() + 1) + 3 * cfg.b() + 1,
+        count_w: 64 - places.leading_zeros() + 1,
+        index_w: 5,
+        respond,
+        recover,
+    }
+    .render()
+    .expect("the port checker renders")
         + "\n"
 }
 
@@ -379,6 +447,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         bounded: None,
         induction: None,
         replay: false,
+        defines: Vec::new(),
         ignore_unknown: false,
         abstract_module: "",
         abstract_wires: Vec::new(),
@@ -430,6 +499,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         bounded: tools.depth,
         induction: Some(steps),
         replay: false,
+        defines: Vec::new(),
         ignore_unknown: !design.sim_models.is_empty(),
         abstract_module: cfg.top(),
         // the datapath's results as the buffer reads them (a plain name each)
@@ -442,37 +512,29 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             .filter(|src| src.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
             .collect(),
     };
-    let properties = properties(design);
+    let mut properties = properties(design);
+    let name = name.to_string();
     if let Some(depth) = tools.depth {
-        // the bounded search: the cut model as an AIGER, ABC's bmc3 to `depth` frames, and a
-        // counterexample simulated to a VCD by yosys
-        script.write(w, "model.ys")?;
-        run(&tools.yosys, &["-q".into(), "-s".into(), "model.ys".into()], w, tools.limit)?
-            .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not write the model within {} s (--time-limit)", tools.limit.as_secs())))?;
-        let abc_script = format!("read_aiger model.aig; fold; bmc3 -F {depth} -v; write_cex -a cex.aiw");
-        let said = run_watched(&tools.abc, &["-c".into(), abc_script], w, tools.limit, tools.progress, bmc_progress)?;
+        // the port checker (written from the manifest, apart from the unit) joins the search:
+        // deleting or weakening the unit's own assertions cannot hide a fault at its ports
+        put(w, "port_checker.v", port_checker(design))?;
+        let mut port_files = files.to_vec();
+        port_files.push("port_checker.v".into());
+        let at_ports = Script { bounded: Some(depth), files: &port_files, defines: vec!["SPECGEN_PORTS"], ..script.clone() };
+        properties.extend(PORT_PROPERTIES);
+        // the bounded search: the unit's assertions and the port checker's, to `depth` edges
         let engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
-        let reached = bmc_reached(&said.text);
-        let verdict = match frame_asserted(&said.text) {
-            _ if !said.ended => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
-            Some(frame) => {
-                yosys_witness(w)?;
-                Script { replay: true, ..script }.write(w, "replay.ys")?;
-                let _ = std::fs::remove_file(w.join("trace.vcd"));
-                run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit)?
-                    .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
-                Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
-            }
-            None if said.text.contains("No output asserted") => Verdict::Bounded { depth },
-            None => return Err(error::tool(&tools.abc, format!("bmc3 neither found a failure nor finished its {depth} frames: {}", tail(&said.text)))),
+        let verdict = match search(design, tools, w, at_ports, depth)? {
+            Searched::Clear => Verdict::Bounded { depth },
+            Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
+            Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
-        return Ok(Proof { name: name.to_string(), properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine });
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine });
     }
     script.write(w, "induction.ys")?;
     let _ = std::fs::remove_file(w.join("trace.vcd"));
     let ran = run_watched(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit, tools.progress, sat_progress);
     let seconds = t0.elapsed().as_secs_f64();
-    let name = name.to_string();
     let said = ran?;
     let text = &said.text;
     let reached = sat_reached(text);
@@ -499,6 +561,52 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     Ok(Proof { name, properties, verdict, seconds, engine })
 }
 
+/// The port checker's properties, in words (`templates/prove_port_checker.v`).
+const PORT_PROPERTIES: [&str; 6] = [
+    "at the ports (from the manifest): a transfer is valid, ready, enabled and no reset; a reset leaves out_valid and in_ready low",
+    "at the ports: a result not taken (out_ready low or the edge disabled) stays, every output field, the tag and tlast unchanged",
+    "at the ports: never more pixels taken and not delivered than places, no result without one",
+    "at the ports: in_ready high exactly when, three cycles before, fewer than places - 3 were inside (SPEC §7)",
+    "at the ports: the n-th result delivered carries the n-th pixel's tag and tlast (a scoreboard)",
+    "at the ports, bounded response: with the consumer ready a result owed leaves within latency + 2 edges, and in_ready rises within latency + places + 4",
+];
+
+/// How a bounded search ended.
+enum Searched {
+    /// no assertion fails within the depth
+    Clear,
+    /// one fails `frame` edges in; the run's VCD
+    Found { frame: u32, vcd: Vec<u8> },
+    /// stopped at the time limit, `reached` frames searched
+    OutOfTime { reached: Option<u32> },
+}
+
+/// A bounded search of `depth` edges from power-up of `script`'s model: yosys writes it as an
+/// AIGER, ABC's bmc3 searches it, and a failure is simulated by yosys on the same model to a VCD.
+fn search(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32) -> Result<Searched, Error> {
+    script.write(w, "model.ys")?;
+    run(&tools.yosys, &["-q".into(), "-s".into(), "model.ys".into()], w, tools.limit)?
+        .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not write the model within {} s (--time-limit)", tools.limit.as_secs())))?;
+    let _ = std::fs::remove_file(w.join("cex.aiw"));
+    let abc_script = format!("read_aiger model.aig; fold; bmc3 -F {depth} -v; write_cex -a cex.aiw");
+    let said = run_watched(&tools.abc, &["-c".into(), abc_script], w, tools.limit, tools.progress, bmc_progress)?;
+    if !said.ended {
+        return Ok(Searched::OutOfTime { reached: bmc_reached(&said.text) });
+    }
+    match frame_asserted(&said.text) {
+        Some(frame) => {
+            yosys_witness(w)?;
+            Script { replay: true, ..script }.write(w, "replay.ys")?;
+            let _ = std::fs::remove_file(w.join("trace.vcd"));
+            run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit)?
+                .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
+            Ok(Searched::Found { frame, vcd: trace(&tools.yosys, w, design)? })
+        }
+        None if said.text.contains("No output asserted") => Ok(Searched::Clear),
+        None => Err(error::tool(&tools.abc, format!("bmc3 neither found a failure nor finished its {depth} frames: {}", tail(&said.text)))),
+    }
+}
+
 /// The last lines of a tool's output, for a message.
 fn tail(text: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();
@@ -516,6 +624,7 @@ fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) ->
         bounded: Some(steps),
         induction: None,
         replay: false,
+        defines: Vec::new(),
         ignore_unknown: false,
         abstract_module: "",
         abstract_wires: Vec::new(),

@@ -43,6 +43,17 @@ module {{ name }} (
         .in_ready(in_ready), .out_valid(out_valid), .spec_r(spec_r), .spec_g(spec_g), .spec_b(spec_b),
         .intensity(intensity), .done(done), .out_tag(out_tag), .idle(idle));
 
+{%- if handshake %}
+`ifdef SPECGEN_PORTS
+    // the stream rules at the ports, written from the manifest apart from the unit
+    {{ top }}_port_checker ports (
+        .clk(clk), .rst(rst), .en({% if clock_enable %}clk_en_in{% else %}1'b1{% endif %}),
+        .in_valid(in_valid), .in_ready(in_ready), .in_word({% if word_carried %}in_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}),
+        .out_valid(out_valid), .out_ready(out_ready), .out_payload({intensity, spec_r, spec_g, spec_b, done}),
+        .out_word({% if word_carried %}out_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}));
+`endif
+{%- endif %}
+
     always @(posedge clk) begin
         started <= 1'b1;
 {%- if !handshake && latency > 0 %}

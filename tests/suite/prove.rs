@@ -147,3 +147,61 @@ fn each_handshake_fault_is_refuted_within_24_edges() {
         assert!(vcd.contains("$enddefinitions") && vcd.contains("out_buffer") && vcd.matches("\n#").count() >= 3, "fault {name}: {vcd}");
     });
 }
+
+/// Issue 48 (in part): the port checker, written by `prove` from the manifest apart from the
+/// unit, joins every bounded search, so a unit cannot pass by what its own assertions say or
+/// miss. Each broken unit is refuted within 16 edges with a VCD, and the same units unbroken pass:
+/// - `tlast` and `tuser` swapped in the port assignment (no internal assertion sees the ports);
+/// - the buffer's own assertions deleted, and a result dropped on stall.
+#[test]
+fn the_port_checker_refutes_what_the_units_own_assertions_do_not_see() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6", "--stages", "2"];
+    let axis = ["--interface", "axis", "--tlast", "--tag-bits", "1", "--clock-enable", "--colour", "static"];
+    let ready = ["--interface", "ready", "--tag-bits", "4"];
+    let delete_buffer_assertions = |dir: &Path| {
+        let path = dir.join("specular_unit_out_buffer.v");
+        let src = std::fs::read_to_string(&path).unwrap();
+        let a = src.rfind("`ifdef FORMAL").expect("the buffer's assertions");
+        let b = a + src[a..].find("`endif").unwrap() + "`endif".len();
+        std::fs::write(&path, format!("{}{}", &src[..a], &src[b..])).unwrap();
+    };
+    type Edit<'a> = &'a (dyn Fn(&Path) + Sync);
+    let swap: Edit = &|dir: &Path| {
+        let path = dir.join("specular_unit.v");
+        let src = std::fs::read_to_string(&path).unwrap();
+        let from = "assign {m_axis_tlast, m_axis_tuser} = out_tag;";
+        assert_eq!(src.matches(from).count(), 1);
+        std::fs::write(&path, src.replace(from, "assign {m_axis_tuser, m_axis_tlast} = out_tag;")).unwrap();
+    };
+    let deleted: Edit = &|dir: &Path| delete_buffer_assertions(dir);
+    let deleted_and_dropped: Edit = &|dir: &Path| {
+        delete_buffer_assertions(dir);
+        let (name, file, from, to) = HANDSHAKE_FAULTS[0];
+        apply_handshake_fault(dir, name, file, from, to);
+    };
+    let none: Edit = &|_: &Path| {};
+    let cases: Vec<(&str, &[&str], Edit, bool)> = vec![
+        ("swapped", &axis, swap, true),
+        ("axis_ok", &axis, none, false),
+        ("deleted_dropped", &ready, deleted_and_dropped, true),
+        ("deleted_ok", &ready, deleted, false),
+    ];
+    for_each_parallel(&cases, |_, (name, args, edit, broken)| {
+        let args: Vec<&str> = narrow.iter().chain(args.iter()).copied().collect();
+        let dir = generate(tmp.path(), name, &args);
+        edit(&dir);
+        let trace = tmp.path().join(format!("{name}.vcd"));
+        let o = specgen().args(["prove", "--edited", "--depth", "16", "--rtl"]).arg(&dir).arg("--trace").arg(&trace).output().unwrap();
+        if *broken {
+            assert_eq!(o.status.code(), Some(1), "{name}: {}", text(&o));
+            assert!(text(&o).contains("a property fails") && text(&o).contains("at the ports"), "{name}: {}", text(&o));
+            assert!(std::fs::read_to_string(&trace).unwrap().contains("$enddefinitions"), "{name}");
+        } else {
+            assert!(o.status.success(), "{name}: {}", text(&o));
+            assert!(text(&o).contains("no property fails within the first 16 clock edges") && text(&o).contains("not a proof"), "{name}: {}", text(&o));
+        }
+    });
+}
