@@ -162,14 +162,7 @@ fn a_listed_unit_file_that_is_a_fifo_is_refused_not_read() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    let start = std::time::Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > std::time::Duration::from_secs(20) {
-            let _ = child.kill();
-            panic!("cosim hangs on a FIFO in the unit");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
+    finished_within(&mut child, 20, "cosim hangs on a FIFO in the unit");
     let o = child.wait_with_output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("specular_unit.v is not a regular file"), "{}", text(&o));
@@ -518,6 +511,23 @@ fn no_top_is_a_cell_of_either_family_nor_another_units_module() {
     }
 }
 
+/// Waits for `child`, killing it and failing with `hang` after `seconds`: the hang these tests
+/// are about would otherwise never end the suite (a guard against a run that never ends; the
+/// limit is many times what the run takes alone).
+fn finished_within(child: &mut std::process::Child, seconds: u64, hang: &str) -> std::process::ExitStatus {
+    let start = std::time::Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            return status;
+        }
+        if start.elapsed() > std::time::Duration::from_secs(seconds) {
+            let _ = child.kill();
+            panic!("{hang} (still running after {seconds} s)");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}
+
 /// Processes whose working directory is under `dir` (a killed build's `make`, `g++`, `cc1plus`).
 fn working_under(dir: &Path) -> Vec<(u32, String)> {
     let mut out = Vec::new();
@@ -671,21 +681,10 @@ fn a_planted_cache_entry_is_rebuilt_never_read_forever() {
             .args(["cosim", "--simulator", "verilator", "--vectors", "500", "--rtl"])
             .arg(&unit)
             .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::null())
             .spawn()
             .unwrap();
-        // a guard against the hang this test is about, not its verdict
-        let start = std::time::Instant::now();
-        loop {
-            if let Some(status) = run.try_wait().unwrap() {
-                return status;
-            }
-            if start.elapsed() > std::time::Duration::from_secs(600) {
-                let _ = run.kill();
-                panic!("cosim hung on a planted cache entry");
-            }
-            std::thread::sleep(std::time::Duration::from_millis(50));
-        }
+        finished_within(&mut run, 600, "cosim hung on a planted cache entry")
     };
     assert!(cosim().success());
     let entry =
