@@ -365,6 +365,16 @@ pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "blinn_error_method",
 ];
 
+/// An interface's own reset: active high `rst` for `valid` and `ready`, active low `aresetn`
+/// for `axis`.
+fn default_reset(interface: Interface) -> Reset {
+    if interface == Interface::Axis {
+        Reset::SyncLow
+    } else {
+        Reset::SyncHigh
+    }
+}
+
 impl Params {
     /// Reads parameters from JSON: a full manifest written by `generate`, or any subset of
     /// the parameter keys (the rest take their defaults). Unknown keys are an error.
@@ -469,6 +479,13 @@ impl Config {
         }
         // `stages` is bounded by the datapath's cut points: `plan::Plan::new` checks it, since
         // validating a configuration builds nothing
+        // a reset of the interface's own polarity is the unit without `reset`: one unit, one
+        // fingerprint and one header, whichever way it was asked for (the manifest states it
+        // either way)
+        let mut params = params;
+        if params.reset == Some(default_reset(params.interface)) {
+            params.reset = None;
+        }
         let cfg = Config { params, k_code };
         Ok(cfg)
     }
@@ -535,7 +552,7 @@ impl Config {
     }
     /// The reset's polarity: `reset` when given, else the interface's own.
     pub fn reset(&self) -> Reset {
-        self.params.reset.unwrap_or(if self.interface() == Interface::Axis { Reset::SyncLow } else { Reset::SyncHigh })
+        self.params.reset.unwrap_or(default_reset(self.interface()))
     }
     /// Whether the unit has a clock and reset: pipeline registers, a handshake's buffer or
     /// material registers.

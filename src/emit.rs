@@ -865,7 +865,8 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         generator: "specgen",
         version: VERSION,
         fingerprint: cfg.fingerprint(),
-        params: &cfg.params,
+        // the reset's polarity stated always, the interface's own included
+        params: &Params { reset: Some(cfg.reset()), ..cfg.params.clone() },
         k_code: cfg.k_code,
         latency: cfg.latency(),
         ports: cfg.ports(""),

@@ -635,14 +635,22 @@ pub struct Verification {
 /// golden model: under Verilator (`vectors` random after the corners and every n's boundary)
 /// and under Icarus, whose four-valued logic also catches undefined (`x`) cell inputs (the
 /// corners and a tenth of the random vectors).
-pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: u64, exhaustive: bool) -> Result<Verification, Failure> {
+pub fn verify(
+    design: &Design,
+    target: Target,
+    dsp: bool,
+    yosys: &str,
+    sim: &crate::cosim::SimTools,
+    vectors: u64,
+    exhaustive: bool,
+) -> Result<Verification, Failure> {
     use crate::cosim::{build, check_ports, random_stimulus, run_all, Exhaustive, Simulator, Stimulus};
     require(yosys, "yosys")?;
     // the RTL first, on the same vectors: a netlist is blamed only for what its RTL gets right
     let jobs = std::thread::available_parallelism().map_or(1, |c| c.get());
     {
         let model = design.plan.model();
-        let built = build(design, Simulator::Verilator, false)?;
+        let built = build(design, Simulator::Verilator, sim, false)?;
         check_ports(design)?;
         let stims: Vec<Box<dyn Stimulus>> = vec![Box::new(random_stimulus(&model, vectors, 1))];
         let rtl = run_all(&built, design, &model, &stims, jobs)?;
@@ -713,7 +721,7 @@ pub fn verify(design: &Design, target: Target, dsp: bool, yosys: &str, vectors: 
     let model = mapped.plan.model();
     let mut runs = Vec::new();
     for (simulator, count) in [(Simulator::Verilator, vectors), (Simulator::Icarus, vectors / 10)] {
-        let built = build(&mapped, simulator, false)?;
+        let built = build(&mapped, simulator, sim, false)?;
         check_ports(&mapped)?;
         // exhaustive: every (cos_g, n) under Verilator (Icarus, some 20 000 cycles a second, keeps its random tenth)
         let stims: Vec<Box<dyn Stimulus>> = match (exhaustive, simulator) {

@@ -32,6 +32,8 @@ pub struct CosimArgs {
     /// file whose SHA-256 is not the manifest's is refused: a stale or mixed directory).
     #[arg(long)]
     pub edited: bool,
+    #[command(flatten)]
+    pub sim: super::values::SimToolArgs,
 }
 
 /// `specgen cosim`: exit 0 when every output matches, 1 on any mismatch, 2 on usage errors.
@@ -54,7 +56,8 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let jobs = args.jobs.map(usize::from).unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(64)).max(1);
     let t0 = Instant::now();
     // a file that does not compile is best told by the simulator; then the ports
-    let built = build(&design, args.simulator.into(), false)?;
+    let sim = args.sim.tools();
+    let built = build(&design, args.simulator.into(), &sim, false)?;
     check_ports(&design)?;
     let build_time = t0.elapsed();
     let stims: Vec<Box<dyn Stimulus>> = if args.exhaustive {
@@ -93,7 +96,7 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
         Some(m) => {
             let mut msg = format!("{} of {} checked cycles differ from the golden model\n{}", report.mismatches, report.checked, describe(m, &design.cfg));
             if let Some(path) = &args.trace {
-                match write_trace(&design, &model, &stims, m, path) {
+                match write_trace(&design, &sim, &model, &stims, m, path) {
                     Ok(()) => msg.push_str(&format!("trace of the replay around the failure: {}", path.display())),
                     Err(e) => msg.push_str(&format!("could not write the trace: {e}")),
                 }

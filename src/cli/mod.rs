@@ -162,6 +162,9 @@ pub struct RenderArgs {
     /// Take the pixels from the golden models without simulating the RTL.
     #[arg(long)]
     pub model_only: bool,
+    /// The simulator of the RTL's pixels.
+    #[command(flatten)]
+    pub sim: values::SimToolArgs,
 }
 
 /// The generator parameters (SPEC §2) that define the arithmetic. Unset flags fall back to
@@ -585,7 +588,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
     let models: Vec<specgen::models::Model> = designs.iter().map(|d| d.plan.model()).collect();
     if !args.model_only {
         for (design, model) in designs.iter().zip(&models) {
-            let pixels = render_through_rtl(design, model, &args.n, args.size)?;
+            let pixels = render_through_rtl(design, &args.sim.tools(), model, &args.n, args.size)?;
             errln!("render: {pixels} pixels through the RTL in {} (Verilator), all bit-identical to the golden model", design.dir.display());
         }
     }
@@ -598,7 +601,13 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
 
 /// Runs every pixel of a picture through the unit's RTL and checks each against the golden
 /// model: the picture is drawn from the model only when all are bit-identical.
-fn render_through_rtl(design: &specgen::cosim::Design, model: &specgen::models::Model, ns: &[u32], size: u32) -> Result<u64, Failure> {
+fn render_through_rtl(
+    design: &specgen::cosim::Design,
+    sim: &specgen::cosim::SimTools,
+    model: &specgen::models::Model,
+    ns: &[u32],
+    size: u32,
+) -> Result<u64, Failure> {
     use specgen::cosim::{self, Cycle, Recorded, Stimulus};
     use specgen::render::{self, Scene};
     cosim::check_ports(design)?;
@@ -623,7 +632,7 @@ fn render_through_rtl(design: &specgen::cosim::Design, model: &specgen::models::
     // the pipeline (and a handshake's buffer) empties before the run ends
     cycles.extend((0..design.cfg.latency() + 2).map(|_| Cycle::default()));
     let stim: Vec<Box<dyn Stimulus>> = vec![Box::new(Recorded(cycles))];
-    let built = cosim::build(design, cosim::Simulator::Verilator, false)?;
+    let built = cosim::build(design, cosim::Simulator::Verilator, sim, false)?;
     let report = cosim::run_all(&built, design, model, &stim, 1)?;
     let dir = design.dir.display();
     if report.mismatches > 0 {

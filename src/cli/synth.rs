@@ -57,6 +57,9 @@ pub struct SynthArgs {
     /// Keep nextpnr's logs (critical paths) in FILE: every seed's, one after another.
     #[arg(long, value_name = "FILE")]
     pub pnr_log: Option<PathBuf>,
+    /// The simulators of --verify.
+    #[command(flatten)]
+    pub sim: super::values::SimToolArgs,
 }
 
 pub fn run(args: &SynthArgs) -> Result<(), Failure> {
@@ -83,7 +86,7 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         specgen::output::write_file(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     if args.verify {
-        let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, args.verify_vectors, args.verify_exhaustive)?;
+        let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, &args.sim.tools(), args.verify_vectors, args.verify_exhaustive)?;
         for (sim, report) in &v.runs {
             outln!(
                 "verify: mapped netlist with {} under {sim:?}: {} cycles, {} checked, {} mismatches",

@@ -113,3 +113,24 @@ flag_values! {
         Icarus,
     }
 }
+
+/// The simulator programs, on every command that simulates: each a name on the PATH or a path;
+/// only these run (a missing or failing one is its own error, exit 1).
+#[derive(clap::Args, Debug, Clone)]
+pub struct SimToolArgs {
+    /// The Verilator program (e.g. a newer build than the PATH's).
+    #[arg(long, value_name = "PATH", default_value = "verilator", help_heading = "Simulators")]
+    pub verilator: String,
+    /// Icarus Verilog's compiler.
+    #[arg(long, value_name = "PATH", default_value = "iverilog", help_heading = "Simulators")]
+    pub iverilog: String,
+    /// Icarus Verilog's runtime.
+    #[arg(long, value_name = "PATH", default_value = "vvp", help_heading = "Simulators")]
+    pub vvp: String,
+}
+
+impl SimToolArgs {
+    pub fn tools(&self) -> specgen::cosim::SimTools {
+        specgen::cosim::SimTools { verilator: self.verilator.clone(), iverilog: self.iverilog.clone(), vvp: self.vvp.clone() }
+    }
+}

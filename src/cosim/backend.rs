@@ -1,7 +1,7 @@
 //! The simulators: cached builds of the harnesses in `tb/`, and runs that stream vectors
 //! through them into a [`Checker`].
 
-use super::{Checker, Cycle, Design, Mismatch, Recorded, Report, Sampled, Simulator, Stimulus};
+use super::{Checker, Cycle, Design, Mismatch, Recorded, Report, Sampled, SimTools, Simulator, Stimulus};
 use crate::error::{self, input, Error as Failure};
 use crate::models::{Model, Outputs};
 use sha2::{Digest, Sha256};
@@ -39,14 +39,19 @@ fn own_entry(dir: &Path) -> bool {
     std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir() && m.uid() == crate::output::euid())
 }
 
-/// What identifies the installed `tool` in a cache key: the program the PATH finds, its size,
-/// modification time and inode (an upgrade or another install changes them), read from the
-/// file system, not by running it (`verilator --version` starts Perl: 30 ms a call).
+/// What identifies the installed `tool` in a cache key: the program (a path as given, a name
+/// as the PATH finds it), its size, modification time and inode (an upgrade or another install
+/// changes them), read from the file system, not by running it (`verilator --version` starts
+/// Perl: 30 ms a call). A program not found is the tool's error (exit 1), naming its package.
 fn tool_identity(tool: &str, package: &str) -> Result<String, Failure> {
     use std::os::unix::fs::MetadataExt;
-    let missing = || input(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})"));
-    let paths = std::env::var_os("PATH").ok_or_else(missing)?;
-    let program = std::env::split_paths(&paths).map(|d| d.join(tool)).find(|p| p.is_file()).ok_or_else(missing)?;
+    let missing = || error::tool(tool, format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package}), or name the program"));
+    let program = if tool.contains('/') {
+        Some(PathBuf::from(tool)).filter(|p| p.is_file()).ok_or_else(missing)?
+    } else {
+        let paths = std::env::var_os("PATH").ok_or_else(missing)?;
+        std::env::split_paths(&paths).map(|d| d.join(tool)).find(|p| p.is_file()).ok_or_else(missing)?
+    };
     let real = std::fs::canonicalize(&program).unwrap_or(program);
     let m = std::fs::metadata(&real).map_err(|_| missing())?;
     Ok(format!("{} {} {} {}", real.display(), m.len(), m.mtime(), m.ino()))
@@ -56,19 +61,25 @@ fn tool_identity(tool: &str, package: &str) -> Result<String, Failure> {
 pub struct Built {
     pub(crate) simulator: Simulator,
     pub(crate) dir: PathBuf,
+    /// the program that runs an Icarus build
+    pub(crate) vvp: String,
     /// true when this call compiled it (false: taken from the cache)
     pub fresh: bool,
 }
 
 /// Builds (or finds in the cache) the simulator for `design`.
-pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built, Failure> {
+pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: bool) -> Result<Built, Failure> {
     let top = design.cfg.top().to_string();
     let adapter = super::adapter::adapter(&design.cfg);
     let (tool, package, harness) = match simulator {
-        Simulator::Verilator => ("verilator", "verilator", VERILATOR_HARNESS),
-        Simulator::Icarus => ("iverilog", "iverilog", ICARUS_BENCH),
+        Simulator::Verilator => (tools.verilator.as_str(), "verilator", VERILATOR_HARNESS),
+        Simulator::Icarus => (tools.iverilog.as_str(), "iverilog", ICARUS_BENCH),
     };
     let version = tool_identity(tool, package)?;
+    if simulator == Simulator::Icarus {
+        tool_identity(&tools.vvp, "iverilog")?;
+    }
+    let vvp = tools.vvp.clone();
     let mut h = Sha256::new();
     let (clocked, tagged) = (design.cfg.clocked(), design.cfg.carried_tag_bits() > 0);
     for part in [version.as_str(), harness, &top, &adapter, &format!("{trace} {simulator:?} {clocked} {tagged} v4")] {
@@ -86,7 +97,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     }
     let key: String = h.finalize().iter().take(12).map(|b| format!("{b:02x}")).collect();
     let root = cache_root()?;
-    let dir = root.join(format!("{}-{top}-{key}", tool));
+    let dir = root.join(format!("{}-{top}-{key}", package));
     // an entry is used only when its program is the one built: `ok` holds its SHA-256, so a
     // damaged entry (truncated, deleted, overwritten) is removed and built again
     let program = |d: &Path| {
@@ -107,7 +118,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     if own_entry(&dir) {
         if let Ok(stamp) = crate::small_file::read(&dir.join("ok"), 256) {
             if digest(&program(&dir)).is_some_and(|d| d == stamp.trim()) {
-                return Ok(Built { simulator, dir, fresh: false });
+                return Ok(Built { simulator, dir, vvp, fresh: false });
             }
         }
     }
@@ -131,7 +142,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
     match simulator {
         Simulator::Verilator => {
             std::fs::write(work.path().join("harness.cpp"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
-            cmd = crate::process::command("verilator");
+            cmd = crate::process::command(tool);
             cmd.current_dir(work.path())
                 .args(["--cc", "--exe", "--build", "-O3", "--prefix", "Vdut", "--top-module", "specgen_cosim_top"])
                 .args(["-Wno-fatal", "-Wno-lint", "-Wno-style", "-Mdir", "obj", "-o", "../harness"])
@@ -157,7 +168,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         Simulator::Icarus => {
             std::fs::write(work.path().join("bench.v"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
             let c = &design.cfg;
-            cmd = crate::process::command("iverilog");
+            cmd = crate::process::command(tool);
             cmd.current_dir(work.path())
                 .args(["-g2005", "-o", "sim.vvp", "-s", "specgen_icarus_bench"])
                 .arg(format!("-DCOS_W={}", c.f() + 1))
@@ -194,7 +205,7 @@ pub fn build(design: &Design, simulator: Simulator, trace: bool) -> Result<Built
         // another process built it at the same time: use theirs
         let _ = std::fs::remove_dir_all(&kept);
     }
-    Ok(Built { simulator, dir, fresh: true })
+    Ok(Built { simulator, dir, vvp, fresh: true })
 }
 
 const IN_RECORD: usize = 24;
@@ -336,7 +347,7 @@ pub fn run_one(
                         .map_err(|e| error::tool("simulator", e.to_string()))?;
                 }
             }
-            let child = crate::process::command("vvp")
+            let child = crate::process::command(&built.vvp)
                 .current_dir(&design.dir)
                 .arg("-n")
                 .arg(built.dir.join("sim.vvp"))
@@ -604,8 +615,8 @@ fn progress_bar(progress: &AtomicU64, total: u64, done: &std::sync::atomic::Atom
 }
 
 /// Replays a short window around a failure with a tracing build and writes its VCD.
-pub fn write_trace(design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], m: &Mismatch, path: &Path) -> Result<(), Failure> {
-    let built = build(design, Simulator::Verilator, true)?;
+pub fn write_trace(design: &Design, tools: &SimTools, model: &Model, stims: &[Box<dyn Stimulus>], m: &Mismatch, path: &Path) -> Result<(), Failure> {
+    let built = build(design, Simulator::Verilator, tools, true)?;
     let stim = stims[m.run].as_ref();
     let s = design.cfg.latency() as u64;
     let from = m.cycle.saturating_sub(16 + s);

@@ -32,6 +32,23 @@ pub enum Simulator {
     Icarus,
 }
 
+/// The simulator programs a run starts: each a name looked up on the PATH or a path, the
+/// only programs specgen itself runs to simulate (Verilator's own build runs its `make` and
+/// compiler). A program that is not found is named with its package; one that fails is the
+/// tool's error, never the RTL's.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SimTools {
+    pub verilator: String,
+    pub iverilog: String,
+    pub vvp: String,
+}
+
+impl Default for SimTools {
+    fn default() -> Self {
+        SimTools { verilator: "verilator".into(), iverilog: "iverilog".into(), vvp: "vvp".into() }
+    }
+}
+
 /// A directory of RTL under test, with the configuration its manifest states.
 #[derive(Debug, Clone)]
 pub struct Design {

@@ -715,6 +715,26 @@ fn a_value_that_rounds_out_is_told_and_vectors_state_the_latency() {
     let o = specgen().args(["vectors", "--count", "3", "--rtl"]).arg(&d).arg("--out").arg(tmp.path().join("v.csv")).output().unwrap();
     let said = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success() && said.contains("latency 5"), "{said}");
+    // the manifest states the reset's polarity always, the interface's own included; asking for
+    // the interface's own polarity is the same unit, file for file
+    let manifest = |d: &Path| -> serde_json::Value { serde_json::from_str(&std::fs::read_to_string(d.join("specular_unit.json")).unwrap()).unwrap() };
+    for (interface, own, other) in [("valid", "sync-high", "sync-low"), ("ready", "sync-high", "sync-low"), ("axis", "sync-low", "sync-high")] {
+        let plain = generate(tmp.path(), &format!("{interface}-plain"), &["--interface", interface, "--stages", "1"]);
+        let asked = generate(tmp.path(), &format!("{interface}-own"), &["--interface", interface, "--stages", "1", "--reset", own]);
+        let flipped = generate(tmp.path(), &format!("{interface}-other"), &["--interface", interface, "--stages", "1", "--reset", other]);
+        assert_eq!(manifest(&plain)["reset"], own, "{interface}");
+        assert_eq!(manifest(&flipped)["reset"], other, "{interface}");
+        for entry in std::fs::read_dir(&plain).unwrap().flatten() {
+            let same = std::fs::read(asked.join(entry.file_name())).unwrap();
+            assert!(std::fs::read(entry.path()).unwrap() == same, "{interface}: {:?} differs with --reset {own}", entry.file_name());
+        }
+        assert_ne!(manifest(&plain)["fingerprint"], manifest(&flipped)["fingerprint"], "{interface}");
+        // a manifest read back (the reset stated) is the unit it describes
+        let again = tmp.path().join(format!("{interface}-again"));
+        let o = specgen().args(["generate", "--config"]).arg(plain.join("specular_unit.json")).arg("--out").arg(&again).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(std::fs::read(again.join("specular_unit.v")).unwrap(), std::fs::read(plain.join("specular_unit.v")).unwrap(), "{interface}");
+    }
 }
 
 /// Issue 47, point 6: `synth` ran `icetime` from the PATH whatever tools were named and dropped
@@ -729,7 +749,7 @@ fn only_named_tools_run_and_a_tools_failure_is_its_own() {
     let d = generate(tmp.path(), "u", &["--cos-frac-bits", "7", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"]);
     let fake = tmp.path().join("bin");
     std::fs::create_dir(&fake).unwrap();
-    for tool in ["icetime", "verilator"] {
+    for tool in ["icetime", "verilator", "iverilog", "vvp"] {
         let path = fake.join(tool);
         std::fs::write(&path, "#!/bin/sh\necho broken install >&2\nexit 1\n").unwrap();
         std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
@@ -744,12 +764,46 @@ fn only_named_tools_run_and_a_tools_failure_is_its_own() {
     assert!(said.contains("icetime") && said.contains("broken install"), "{said}");
     let path = format!("{}:{}", fake.display(), std::env::var("PATH").unwrap());
     let o = specgen()
-        .env("PATH", path)
+        .env("PATH", &path)
         .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
         .args(["cosim", "--simulator", "verilator", "--vectors", "10", "--rtl"])
         .arg(&d)
         .output()
         .unwrap();
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{said}");
+    assert!(said.contains("naming no line of the RTL") && said.contains("broken install"), "{said}");
+    // a named simulator is the one run, whatever the PATH finds first; a named one that is
+    // missing or broken is the tool's error (exit 1), on every command that simulates
+    let real = |tool: &str| {
+        let dirs = std::env::var_os("PATH").unwrap();
+        std::env::split_paths(&dirs).map(|d| d.join(tool)).find(|p| p.is_file()).unwrap_or_else(|| panic!("{tool} is on the PATH"))
+    };
+    let with_fakes = || {
+        let mut c = specgen();
+        c.env("PATH", &path).env("SPECGEN_CACHE_DIR", tmp.path().join("cache"));
+        c
+    };
+    let o = with_fakes()
+        .args(["cosim", "--simulator", "icarus", "--vectors", "10", "--iverilog"])
+        .arg(real("iverilog"))
+        .arg("--vvp")
+        .arg(real("vvp"))
+        .arg("--rtl")
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = with_fakes().args(["cosim", "--simulator", "icarus", "--vectors", "10", "--iverilog"]).arg(real("iverilog")).arg("--rtl").arg(&d).output().unwrap();
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "the PATH's vvp is broken: {said}");
+    assert!(said.contains("vvp") && said.contains("broken install"), "{said}");
+    let missing = tmp.path().join("no-such-vvp");
+    let o = specgen().args(["cosim", "--simulator", "icarus", "--vectors", "10", "--vvp"]).arg(&missing).arg("--rtl").arg(&d).output().unwrap();
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{said}");
+    assert!(said.contains("no-such-vvp not found"), "{said}");
+    let o = specgen().args(["synth", "--no-pnr", "--verify", "--verilator"]).arg(fake.join("verilator")).arg("--rtl").arg(&d).output().unwrap();
     let said = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{said}");
     assert!(said.contains("naming no line of the RTL") && said.contains("broken install"), "{said}");
