@@ -297,8 +297,11 @@ always @(*) begin
     for (f_i = 0; f_i < LATENCY; f_i = f_i + 1) f_pipe = f_pipe + f_line[f_i];
     f_level = 0;
     for (f_i = 1; f_i <= PLACES; f_i = f_i + 1) f_level = f_level + stored_at_least[f_i];
-    f_memory = (f_index(write_at) + F_STATES - f_index(read_at)) % F_STATES;
-    f_ahead = (f_index(f_at) + F_STATES - f_index(read_at)) % F_STATES;
+    // the distances along the cycle (a subtraction and a wrap: no divider for the solver)
+    f_memory = f_index(write_at) - f_index(read_at);
+    if (f_memory < 0) f_memory = f_memory + F_STATES;
+    f_ahead = f_index(f_at) - f_index(read_at);
+    if (f_ahead < 0) f_ahead = f_ahead + F_STATES;
     if (!f_started) assume(rst);
     if (f_started) begin
         // -- the stream's rules --
