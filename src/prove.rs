@@ -64,6 +64,7 @@ struct PortChecker<'a> {
     index_w: u32,
     respond: u32,
     recover: u64,
+    static_colour: bool,
 }
 
 #[derive(Template, Clone)]
@@ -78,8 +79,12 @@ struct Script<'a> {
     induction: Option<u32>,
     /// with `bounded` and `induction`: replay ABC's counterexample instead of writing the model
     replay: bool,
-    /// Verilog macros defined for every file (`SPECGEN_PORTS`: the port checker in the harness)
-    defines: Vec<&'static str>,
+    /// Verilog macros defined for every file (`SPECGEN_PORTS`: the port checker in the harness;
+    /// `SPECGEN_COVERS` and `SPECGEN_COVER_MASK=…`: its covers instead of its assertions)
+    defines: Vec<String>,
+    /// the port checker's module: every other assertion (the unit's own) set aside, so the
+    /// verdict is the checker's alone
+    ports_only: Option<String>,
     /// `sat` leaves cells it cannot model (an ECP5 unit's black boxes) unconstrained
     ignore_unknown: bool,
     /// the unit's module, whose datapath the induction abstracts: its results
@@ -171,6 +176,9 @@ pub enum Verdict {
     /// but the unit keeps state longer than its latency (a delay line in memory, its pointers
     /// never flushed), so the check from any state cannot conclude
     Incomplete { bounded: u32 },
+    /// a cover of the port checker is not reached within `depth` edges from power-up: a proof
+    /// of the unit would say nothing about what it never does
+    Unreached { covers: Vec<&'static str>, depth: u32 },
 }
 
 /// One proof: what it states, how it ended, how long it took.
@@ -182,6 +190,19 @@ pub struct Proof {
     pub seconds: f64,
     /// how it was proved or refuted, in words (the engine, and k for an induction)
     pub engine: String,
+    /// a handshake unit's ports, checked apart from its own assertions (the default proof)
+    pub ports: Option<Ports>,
+}
+
+/// What the port checker (written from the manifest) found at a handshake unit's ports: its
+/// properties hold for the first `depth` edges from power-up (a bounded search, the unit's own
+/// assertions set aside), and one run reaches every cover by edge `covered_by`.
+#[derive(Debug, Clone)]
+pub struct Ports {
+    pub depth: u32,
+    pub properties: Vec<&'static str>,
+    pub covers: Vec<&'static str>,
+    pub covered_by: u32,
 }
 
 /// The edge proof's engine, in words.
@@ -273,6 +294,7 @@ pub fn port_checker(design: &Design) -> String {
         index_w: 5,
         respond,
         recover,
+        static_colour: cfg.colour() == crate::config::Colour::Static,
     }
     .render()
     .expect("the port checker renders")
@@ -438,7 +460,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
             None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
         };
         let engine = format!("a bounded search of {depth} edges from power-up with yosys sat");
-        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine });
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
     }
     Script {
         version: crate::names::VERSION,
@@ -448,6 +470,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         induction: None,
         replay: false,
         defines: Vec::new(),
+        ports_only: None,
         ignore_unknown: false,
         abstract_module: "",
         abstract_wires: Vec::new(),
@@ -469,10 +492,10 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
             Some(false) => Verdict::Failed { frame: steps, vcd: trace(&tools.yosys, w, design)? },
             None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
         };
-        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PDR.into() });
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PDR.into(), ports: None });
     };
     if said.contains("Property proved") {
-        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine: PDR.into() });
+        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine: PDR.into(), ports: None });
     }
     // "Output 0 of miter "model" was asserted in frame 3."
     let Some(frame) = frame_asserted(&said) else {
@@ -480,7 +503,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     };
     bounded(tools, w, &files, &name, frame + 2)?;
     let vcd = trace(&tools.yosys, w, design)?;
-    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds, engine: PDR.into() })
+    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds, engine: PDR.into(), ports: None })
 }
 
 /// The handshake's proof: k-induction with yosys's `sat` over the unit's own assertions (its
@@ -500,6 +523,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         induction: Some(steps),
         replay: false,
         defines: Vec::new(),
+        ports_only: None,
         ignore_unknown: !design.sim_models.is_empty(),
         abstract_module: cfg.top(),
         // the datapath's results as the buffer reads them (a plain name each)
@@ -520,7 +544,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         put(w, "port_checker.v", port_checker(design))?;
         let mut port_files = files.to_vec();
         port_files.push("port_checker.v".into());
-        let at_ports = Script { bounded: Some(depth), files: &port_files, defines: vec!["SPECGEN_PORTS"], ..script.clone() };
+        let at_ports = Script { bounded: Some(depth), files: &port_files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() };
         properties.extend(PORT_PROPERTIES);
         // the bounded search: the unit's assertions and the port checker's, to `depth` edges
         let engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
@@ -529,7 +553,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
             Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
-        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine });
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
     }
     script.write(w, "induction.ys")?;
     let _ = std::fs::remove_file(w.join("trace.vcd"));
@@ -558,7 +582,148 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     } else {
         return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted the properties: {}", tail(text))));
     };
-    Ok(Proof { name, properties, verdict, seconds, engine })
+    if verdict != Verdict::Proved {
+        return Ok(Proof { name, properties, verdict, seconds, engine, ports: None });
+    }
+    // the unit's own assertions hold (lemmas, the RTL's word); the verdict is the port
+    // checker's, written from the manifest apart from the RTL, with the unit's assertions set
+    // aside: deleting them can only lose the unbounded part, never pass a broken unit
+    let own = own_assertions(design)?;
+    let ports = at_the_ports(design, tools, w, &script)?;
+    let ports = match ports {
+        AtPorts::Checked(p) => p,
+        AtPorts::Failed { frame, vcd } => {
+            let mut all = PORT_PROPERTIES.to_vec();
+            all.extend(properties.iter().copied());
+            let engine = "the port checker (from the manifest), a bounded search with ABC bmc3, the unit's own assertions set aside".to_string();
+            return Ok(Proof { name, properties: all, verdict: Verdict::Failed { frame, vcd }, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+        }
+        AtPorts::OutOfTime { reached } => {
+            let engine = "the port checker's bounded search".to_string();
+            let verdict = Verdict::Undecided { bounded: reached, out_of_time: true, reached };
+            return Ok(Proof { name, properties: PORT_PROPERTIES.to_vec(), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+        }
+        AtPorts::Unreached { covers, depth } => {
+            let verdict = Verdict::Unreached { covers, depth };
+            let engine = "the port checker's covers, a bounded search with ABC bmc3".to_string();
+            return Ok(Proof { name, properties: PORT_PROPERTIES.to_vec(), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+        }
+    };
+    let seconds = t0.elapsed().as_secs_f64();
+    if !own {
+        // the unit does not state what specgen writes: the bounded search at the ports is all
+        // that can be said
+        let engine = format!(
+            "the unit states no assertions of its own or fewer than specgen writes, so nothing is proved unbounded; the port checker, ABC bmc3 to {} edges",
+            ports.depth
+        );
+        let depth = ports.depth;
+        return Ok(Proof { name, properties: Vec::new(), verdict: Verdict::Bounded { depth }, seconds, engine, ports: Some(ports) });
+    }
+    Ok(Proof { name, properties, verdict, seconds, engine, ports: Some(ports) })
+}
+
+/// `assert(` statements in Verilog text (outside comments).
+fn assertions_in(text: &str) -> usize {
+    text.lines().map(|l| l.split("//").next().unwrap_or("")).map(|l| l.matches("assert(").count() + l.matches("assert (").count()).sum()
+}
+
+/// Whether the unit states the assertions specgen writes for its configuration: as many
+/// `assert` statements in its Verilog as in the files generated from its manifest (an edited
+/// RTL with some deleted states less than the list `prove` prints, so its induction proves
+/// nothing that list could be trusted for).
+fn own_assertions(design: &Design) -> Result<bool, Error> {
+    let mut count = 0;
+    for src in &design.sources {
+        let text = crate::small_file::read(src, crate::small_file::UNIT_FILE_MAX).map_err(|e| error::input(format!("{} {e}", src.display())))?;
+        count += assertions_in(&text);
+    }
+    let written: usize = crate::emit::generate_files(&design.plan)
+        .iter()
+        .filter(|(name, _)| name.ends_with(".v"))
+        .map(|(_, bytes)| assertions_in(&String::from_utf8_lossy(bytes)))
+        .sum();
+    Ok(count > 0 && count >= written)
+}
+
+/// How the port checker's runs ended.
+enum AtPorts {
+    Checked(Ports),
+    Failed { frame: u32, vcd: Vec<u8> },
+    OutOfTime { reached: Option<u32> },
+    Unreached { covers: Vec<&'static str>, depth: u32 },
+}
+
+/// The covers of the port checker, each with its bit in `SPECGEN_COVER_MASK`; `tlast` and a
+/// static colour's load only where the unit has them.
+fn covers(cfg: &crate::config::Config) -> Vec<(u32, &'static str)> {
+    let mut c = vec![
+        (0, "a result delivered"),
+        (1, "the unit full: places pixels inside"),
+        (2, "in_ready falling after it was high"),
+        (3, "in_ready rising again after it fell"),
+    ];
+    if cfg.params.tlast {
+        c.push((4, "a result with tlast delivered"));
+    }
+    if cfg.colour() == crate::config::Colour::Static {
+        c.push((5, "a static colour loaded at an enabled edge"));
+    }
+    c
+}
+
+/// The depth of the port checker's search in the default proof: a pixel taken at the first
+/// edge after the reset is owed from then on and must leave within RESPOND = latency + 2 edges,
+/// so a unit that loses, holds back or never delivers a result fails by edge latency + 4; four
+/// more edges for a fault that needs a second pixel.
+fn port_depth(cfg: &crate::config::Config) -> u32 {
+    cfg.latency() + 8
+}
+
+/// The cover search's depth: every cover in one run, the unit filled and drained once.
+fn cover_depth(cfg: &crate::config::Config) -> u32 {
+    cfg.latency() + 2 * crate::interface::buffer_places(cfg) as u32 + 12
+}
+
+/// The port checker's bounded search (its assertions only), then its covers.
+fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Script) -> Result<AtPorts, Error> {
+    let cfg = &design.cfg;
+    put(w, "port_checker.v", port_checker(design))?;
+    let mut files = script.files.to_vec();
+    files.push("port_checker.v".into());
+    let checker = format!("{}_port_checker", cfg.top());
+    let depth = port_depth(cfg);
+    let ports = Script { bounded: Some(depth), files: &files, defines: vec!["SPECGEN_PORTS".into()], ports_only: Some(checker.clone()), ..script.clone() };
+    match search(design, tools, w, ports, depth)? {
+        Searched::Clear => {}
+        Searched::Found { frame, vcd } => return Ok(AtPorts::Failed { frame, vcd }),
+        Searched::OutOfTime { reached } => return Ok(AtPorts::OutOfTime { reached }),
+    }
+    let all = covers(cfg);
+    let reach = |mask: u32, depth: u32| -> Result<Searched, Error> {
+        let defines = vec!["SPECGEN_PORTS".to_string(), "SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=6'd{mask}")];
+        let covering = Script { bounded: Some(depth), files: &files, defines, ports_only: Some(checker.clone()), ..script.clone() };
+        // (its depths are not "no failure": a cover not reached yet)
+        search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, false)
+    };
+    let cdepth = cover_depth(cfg);
+    let mask = all.iter().fold(0, |m, (bit, _)| m | 1 << bit);
+    match reach(mask, cdepth)? {
+        Searched::Found { frame, .. } => {
+            Ok(AtPorts::Checked(Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: all.iter().map(|c| c.1).collect(), covered_by: frame }))
+        }
+        Searched::OutOfTime { reached } => Ok(AtPorts::OutOfTime { reached }),
+        Searched::Clear => {
+            // not all in one run: which cannot be reached
+            let mut unreached = Vec::new();
+            for (bit, what) in &all {
+                if matches!(reach(1 << bit, cdepth)?, Searched::Clear) {
+                    unreached.push(*what);
+                }
+            }
+            Ok(AtPorts::Unreached { covers: unreached, depth: cdepth })
+        }
+    }
 }
 
 /// The port checker's properties, in words (`templates/prove_port_checker.v`).
@@ -584,6 +749,12 @@ enum Searched {
 /// A bounded search of `depth` edges from power-up of `script`'s model: yosys writes it as an
 /// AIGER, ABC's bmc3 searches it, and a failure is simulated by yosys on the same model to a VCD.
 fn search(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32) -> Result<Searched, Error> {
+    search_with(design, tools, w, script, depth, true)
+}
+
+/// [`search`], with the counterexample replayed to a VCD only when `replay` (a cover's trace
+/// is not kept).
+fn search_with(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32, replay: bool) -> Result<Searched, Error> {
     script.write(w, "model.ys")?;
     run(&tools.yosys, &["-q".into(), "-s".into(), "model.ys".into()], w, tools.limit)?
         .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not write the model within {} s (--time-limit)", tools.limit.as_secs())))?;
@@ -594,6 +765,7 @@ fn search(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32) 
         return Ok(Searched::OutOfTime { reached: bmc_reached(&said.text) });
     }
     match frame_asserted(&said.text) {
+        Some(frame) if !replay => Ok(Searched::Found { frame, vcd: Vec::new() }),
         Some(frame) => {
             yosys_witness(w)?;
             Script { replay: true, ..script }.write(w, "replay.ys")?;
@@ -625,6 +797,7 @@ fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) ->
         induction: None,
         replay: false,
         defines: Vec::new(),
+        ports_only: None,
         ignore_unknown: false,
         abstract_module: "",
         abstract_wires: Vec::new(),
@@ -786,5 +959,5 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
         Verdict::Proved
     };
     let properties = PIPELINING_PROPERTIES.to_vec();
-    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into() })
+    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into(), ports: None })
 }

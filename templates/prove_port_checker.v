@@ -15,7 +15,8 @@ module {{ name }} (
     input  wire                out_valid,
     input  wire                out_ready,
     input  wire [{{ payload_w - 1 }}:0]  out_payload,
-    input  wire [{{ word_w - 1 }}:0]  out_word
+    input  wire [{{ word_w - 1 }}:0]  out_word,
+    input  wire                load
 );
     localparam integer LATENCY = {{ latency }};
     localparam integer PLACES  = {{ places }};
@@ -70,6 +71,35 @@ module {{ name }} (
         end
     end
 
+`ifdef SPECGEN_COVERS
+    // the covers, each an event a proof must reach or it says nothing: a result delivered, the
+    // unit full (places pixels inside), in_ready falling and rising again{% if tlast %}, a tlast delivered{% endif %}{% if static_colour %},
+    // a static colour loaded{% endif %}. One assertion, that not all of them (those of
+    // SPECGEN_COVER_MASK) have happened: its failure is a trace that reaches them all.
+    reg        seen_delivery = 1'b0, seen_full = 1'b0, seen_ready = 1'b0, seen_fall = 1'b0, seen_rise = 1'b0;
+    reg        seen_tlast = 1'b0, seen_load = 1'b0;
+    always @(posedge clk) begin
+        if (started && !rst) begin
+            if (delivered) seen_delivery <= 1'b1;
+            if (inside == PLACES) seen_full <= 1'b1;
+            if (in_ready && !after_reset) seen_ready <= 1'b1;
+            if (seen_ready && !in_ready && !after_reset) seen_fall <= 1'b1;
+            if (seen_fall && in_ready) seen_rise <= 1'b1;
+{%- if tlast %}
+            if (delivered && out_word[{{ word_w - 1 }}]) seen_tlast <= 1'b1;
+{%- endif %}
+{%- if static_colour %}
+            if (load && en) seen_load <= 1'b1;
+{%- endif %}
+        end
+    end
+    wire [5:0] seen = {seen_load, seen_tlast, seen_rise, seen_fall, seen_full, seen_delivery};
+    localparam [5:0] MASK = `SPECGEN_COVER_MASK;
+    always @(*) begin
+        if (!started) assume(rst);
+        if (started) assert((seen & MASK) != MASK);
+    end
+`else
     always @(*) begin
         if (!started) assume(rst);
         if (started) begin
@@ -92,4 +122,5 @@ module {{ name }} (
             assert(refused <= RECOVER);
         end
     end
+`endif
 endmodule

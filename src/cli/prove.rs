@@ -67,7 +67,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             for p in &proof.properties {
                 outln!("  - {p}")?;
             }
-            Ok(())
+            at_the_ports(&proof)
         }
         Verdict::Bounded { depth } => {
             outln!(
@@ -77,7 +77,15 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             for p in &proof.properties {
                 outln!("  - {p}")?;
             }
-            Ok(())
+            at_the_ports(&proof)
+        }
+        Verdict::Unreached { covers, depth } => {
+            let mut msg = format!("{head}vacuous: {how}: within the first {depth} clock edges from power-up no run reaches");
+            for c in covers {
+                msg.push_str(&format!("\n  - {c}"));
+            }
+            msg.push_str("\nso a proof would say nothing about what the unit never does");
+            Err(failed(msg))
         }
         Verdict::Undecided { bounded, out_of_time, reached } => {
             let also = match bounded {
@@ -112,4 +120,21 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             Err(failed(msg.trim_end().to_string()))
         }
     }
+}
+
+/// What the port checker found, after the verdict's own lines.
+fn at_the_ports(proof: &specgen::prove::Proof) -> Result<(), Failure> {
+    let Some(ports) = &proof.ports else { return Ok(()) };
+    outln!(
+        "at the ports (a checker written from the manifest, apart from the RTL; the unit's own assertions set aside): no property fails within the first {} clock edges from power-up, a bounded search, not a proof:",
+        ports.depth
+    )?;
+    for p in &ports.properties {
+        outln!("  - {p}")?;
+    }
+    outln!("covers, all reached in one run by edge {} (none vacuous):", ports.covered_by)?;
+    for c in &ports.covers {
+        outln!("  - {c}")?;
+    }
+    Ok(())
 }

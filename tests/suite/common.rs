@@ -54,6 +54,73 @@ pub fn tool(program: &str) -> Command {
     specgen::process::command(program)
 }
 
+/// A guard against a run that never ends, never a verdict: the limit on every wait in the
+/// suite, many times what any of them takes on a loaded machine. Only a hang reaches it.
+pub const HANG_GUARD_SECS: u64 = 600;
+
+/// Waits until `cond` holds, polling; fails naming `what` only when the hang guard runs out.
+pub fn wait_until(what: &str, mut cond: impl FnMut() -> bool) {
+    let start = std::time::Instant::now();
+    while !cond() {
+        assert!(start.elapsed() < std::time::Duration::from_secs(HANG_GUARD_SECS), "{what} (the hang guard of {HANG_GUARD_SECS} s ran out)");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
+/// Waits for `child`, killing it and failing with `hang` when the hang guard runs out: the hang
+/// a test is about would otherwise never end the suite.
+pub fn finished_within_guard(child: &mut std::process::Child, hang: &str) -> std::process::ExitStatus {
+    let mut status = None;
+    let start = std::time::Instant::now();
+    while status.is_none() {
+        status = child.try_wait().unwrap();
+        if status.is_none() && start.elapsed() > std::time::Duration::from_secs(HANG_GUARD_SECS) {
+            let _ = child.kill();
+            panic!("{hang} (still running when the hang guard of {HANG_GUARD_SECS} s ran out)");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    status.unwrap()
+}
+
+/// Runs `cmd` to its end with its output, under the hang guard (for a command whose bug would
+/// be to block forever: on a FIFO, a device, a lock).
+pub fn output_guarded(cmd: &mut Command, hang: &str) -> std::process::Output {
+    use std::io::Read;
+    let mut child = cmd.stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
+    let read_all = |mut from: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            let _ = from.read_to_end(&mut v);
+            v
+        })
+    };
+    let stdout = read_all(Box::new(child.stdout.take().unwrap()));
+    let stderr = read_all(Box::new(child.stderr.take().unwrap()));
+    let status = finished_within_guard(&mut child, hang);
+    std::process::Output { status, stdout: stdout.join().unwrap(), stderr: stderr.join().unwrap() }
+}
+
+/// The children of process `pid` (from /proc), with their command names.
+pub fn children(pid: u32) -> Vec<(u32, String)> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir("/proc").unwrap().flatten() {
+        let Ok(child) = e.file_name().to_string_lossy().parse::<u32>() else { continue };
+        let Ok(stat) = std::fs::read_to_string(format!("/proc/{child}/stat")) else { continue };
+        // pid (comm) state ppid …
+        let Some((comm, rest)) = stat.split_once(" (").and_then(|(_, r)| r.rsplit_once(") ")) else { continue };
+        if rest.split_whitespace().nth(1).and_then(|p| p.parse::<u32>().ok()) == Some(pid) {
+            out.push((child, comm.to_string()));
+        }
+    }
+    out
+}
+
+/// Whether process `pid` has ended (gone, or a zombie waiting for its new parent).
+pub fn ended(pid: u32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat")).map_or(true, |s| s.rsplit_once(") ").is_some_and(|(_, r)| r.starts_with('Z')))
+}
+
 /// Runs `specgen generate --out DIR args…` and returns DIR (inside `parent`).
 pub fn generate(parent: &Path, name: &str, args: &[&str]) -> PathBuf {
     let dir = parent.join(name);

@@ -436,11 +436,13 @@ fn hw_results_and_manifests_are_read_only_when_they_are_what_they_claim() {
     ];
     for (hw, why) in cases {
         let out = tmp.path().join("rep");
-        let start = std::time::Instant::now();
-        let o = specgen().args(["report", "--n-bits", "4", "--cos-frac-bits", "8", "--out"]).arg(&out).arg("--hw").arg(&hw).output().unwrap();
+        let o = output_guarded(
+            specgen().args(["report", "--n-bits", "4", "--cos-frac-bits", "8", "--out"]).arg(&out).arg("--hw").arg(&hw),
+            "report blocks on --hw",
+        );
         assert_eq!(o.status.code(), Some(2), "{}: {}", hw.display(), text(&o));
         assert!(text(&o).contains("--hw") && text(&o).contains(why), "{}: {}", hw.display(), text(&o));
-        assert!(start.elapsed().as_secs() < 60 && !out.exists());
+        assert!(!out.exists());
     }
     // a FIFO among the unit's files is skipped, not opened (which would block)
     assert!(Command::new("mkfifo").arg(d.join("zz.json")).status().unwrap().success());
@@ -518,17 +520,16 @@ fn a_zero_delay_loop_is_stopped_by_the_time_limit() {
     let looped = "reg zero_delay_a = 1'b0, zero_delay_b = 1'b0;\nalways @(zero_delay_a) zero_delay_b = ~zero_delay_a;\n\
                   always @(zero_delay_b) zero_delay_a = zero_delay_b;\nendmodule";
     std::fs::write(&v, src.replacen("endmodule", looped, 1)).unwrap();
-    let start = std::time::Instant::now();
-    let o = specgen()
-        .args(["cosim", "--edited", "--simulator", "icarus", "--vectors", "50", "--rtl"])
-        .arg(&dir)
-        .env("SPECGEN_SIM_TIMEOUT", "2")
-        .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
-        .output()
-        .unwrap();
+    let o = output_guarded(
+        specgen()
+            .args(["cosim", "--edited", "--simulator", "icarus", "--vectors", "50", "--rtl"])
+            .arg(&dir)
+            .env("SPECGEN_SIM_TIMEOUT", "2")
+            .env("SPECGEN_CACHE_DIR", tmp.path().join("cache")),
+        "the simulation's limit did not stop a zero-delay loop",
+    );
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(text(&o).contains("did not finish within 2 s"), "{}", text(&o));
-    assert!(start.elapsed() < std::time::Duration::from_secs(60), "the limit did not stop it");
 }
 
 /// `synth --verify` checks the RTL against the golden model before the netlist: a faulty RTL
@@ -567,8 +568,17 @@ fn cosim_says_when_its_directory_changed_during_the_run() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(std::time::Duration::from_secs(2));
+    // the swap lands while the simulator runs, whatever the machine's speed: the simulator is
+    // held stopped (SIGSTOP) until it is done
+    let mut vvp = 0;
+    wait_until("no vvp started", || {
+        vvp = children(run.id()).into_iter().find(|(_, c)| c == "vvp").map_or(0, |(pid, _)| pid);
+        vvp != 0
+    });
+    // SAFETY: signals to a process of this test's
+    unsafe { libc::kill(vvp as libc::pid_t, libc::SIGSTOP) };
     let o = specgen().args(["generate", "--stages", "3", "--out"]).arg(&dir).output().unwrap();
+    unsafe { libc::kill(vvp as libc::pid_t, libc::SIGCONT) };
     assert!(o.status.success(), "{}", text(&o));
     let o = run.wait_with_output().unwrap();
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
@@ -690,7 +700,6 @@ fn fuzzed_argument_vectors_exit_0_1_or_2() {
     }
     let case = (0..subcommands.len(), proptest::collection::vec((0..64usize, 0..values.len()), 0..3));
     let mut runner = TestRunner::new_with_rng(Config::default(), TestRng::deterministic_rng(RngAlgorithm::ChaCha));
-    let limit = std::time::Duration::from_secs(120);
     let started = std::time::Instant::now();
     let cases = 24;
     let mut codes = [0u32; 4];
@@ -738,17 +747,7 @@ fn fuzzed_argument_vectors_exit_0_1_or_2() {
             let _ = std::io::Read::read_to_string(&mut pipe, &mut err);
             err
         });
-        let t0 = std::time::Instant::now();
-        let status = loop {
-            if let Some(st) = child.try_wait().unwrap() {
-                break st;
-            }
-            if t0.elapsed() > limit {
-                let _ = child.kill();
-                panic!("case {i}: specgen {argv:?} ran past {limit:?}");
-            }
-            std::thread::sleep(std::time::Duration::from_millis(20));
-        };
+        let status = finished_within_guard(&mut child, &format!("case {i}: specgen {argv:?} never ended"));
         let err = drain.join().unwrap();
         codes[status.code().unwrap_or(3).clamp(0, 3) as usize] += 1;
         assert!(matches!(status.code(), Some(0..=2)), "case {i}: specgen {argv:?} ended with {status}:\n{err}");

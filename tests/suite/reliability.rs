@@ -132,9 +132,7 @@ fn the_output_lock_never_follows_a_link_nor_waits_on_a_fifo() {
     let fifo = std::ffi::CString::new(lock.as_os_str().as_encoded_bytes()).unwrap();
     // SAFETY: a NUL-terminated path
     assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0);
-    let start = std::time::Instant::now();
-    let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
-    assert!(start.elapsed() < std::time::Duration::from_secs(5), "waited on the FIFO");
+    let o = output_guarded(specgen().args(["generate", "--out"]).arg(&out), "generate waits on the FIFO");
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("is not a regular file, not specgen's"), "{}", text(&o));
     std::fs::remove_file(&lock).unwrap();
@@ -162,7 +160,7 @@ fn a_listed_unit_file_that_is_a_fifo_is_refused_not_read() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    finished_within(&mut child, 20, "cosim hangs on a FIFO in the unit");
+    finished_within_guard(&mut child, "cosim hangs on a FIFO in the unit");
     let o = child.wait_with_output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("specular_unit.v is not a regular file"), "{}", text(&o));
@@ -316,26 +314,6 @@ fn an_output_never_replaces_what_the_command_reads() {
     assert_eq!(std::fs::read_to_string(&page).unwrap(), edited);
 }
 
-/// The children of process `pid` (from /proc), with their command names.
-fn children(pid: u32) -> Vec<(u32, String)> {
-    let mut out = Vec::new();
-    for e in std::fs::read_dir("/proc").unwrap().flatten() {
-        let Ok(child) = e.file_name().to_string_lossy().parse::<u32>() else { continue };
-        let Ok(stat) = std::fs::read_to_string(format!("/proc/{child}/stat")) else { continue };
-        // pid (comm) state ppid …
-        let Some((comm, rest)) = stat.split_once(" (").and_then(|(_, r)| r.rsplit_once(") ")) else { continue };
-        if rest.split_whitespace().nth(1).and_then(|p| p.parse::<u32>().ok()) == Some(pid) {
-            out.push((child, comm.to_string()));
-        }
-    }
-    out
-}
-
-/// Whether process `pid` has ended (gone, or a zombie waiting for its new parent).
-fn ended(pid: u32) -> bool {
-    std::fs::read_to_string(format!("/proc/{pid}/stat")).map_or(true, |s| s.rsplit_once(") ").is_some_and(|(_, r)| r.starts_with('Z')))
-}
-
 /// Finding 7: `vvp` kept running at 100 % CPU after SIGTERM/SIGINT to specgen, and `render
 /// --models` left its temporary units. Children now die with specgen, and a signal removes
 /// every temporary directory before specgen ends with 128 + the signal.
@@ -354,23 +332,16 @@ fn children_and_temporaries_end_with_a_signalled_run() {
             .stderr(std::process::Stdio::null())
             .spawn()
             .unwrap();
-        let start = std::time::Instant::now();
-        let vvp = loop {
-            if let Some((pid, _)) = children(run.id()).into_iter().find(|(_, c)| c == "vvp") {
-                break pid;
-            }
-            assert!(start.elapsed() < std::time::Duration::from_secs(60), "no vvp started");
-            std::thread::sleep(std::time::Duration::from_millis(50));
-        };
+        let mut vvp = 0;
+        wait_until("no vvp started", || {
+            vvp = children(run.id()).into_iter().find(|(_, c)| c == "vvp").map_or(0, |(pid, _)| pid);
+            vvp != 0
+        });
         // SAFETY: a signal to our own child
         unsafe { libc::kill(run.id() as libc::pid_t, signal) };
         let status = run.wait().unwrap();
         assert_eq!(status.code(), Some(128 + signal), "specgen ends with 128 + the signal");
-        let start = std::time::Instant::now();
-        while !ended(vvp) {
-            assert!(start.elapsed() < std::time::Duration::from_secs(5), "vvp {vvp} outlived specgen (signal {signal})");
-            std::thread::sleep(std::time::Duration::from_millis(20));
-        }
+        wait_until(&format!("vvp {vvp} outlived specgen (signal {signal})"), || ended(vvp));
     }
     // render --models: its temporary units are gone after a signal
     let private = tmp.path().join("tmp");
@@ -384,12 +355,7 @@ fn children_and_temporaries_end_with_a_signalled_run() {
         .stderr(std::process::Stdio::null())
         .spawn()
         .unwrap();
-    let start = std::time::Instant::now();
-    while std::fs::read_dir(&private).unwrap().count() == 0 {
-        assert!(start.elapsed() < std::time::Duration::from_secs(30), "render made no temporary directory");
-        std::thread::sleep(std::time::Duration::from_millis(10));
-    }
-    std::thread::sleep(std::time::Duration::from_millis(300));
+    wait_until("render made no temporary directory", || std::fs::read_dir(&private).unwrap().count() > 0);
     // SAFETY: a signal to our own child
     unsafe { libc::kill(run.id() as libc::pid_t, libc::SIGINT) };
     let status = run.wait().unwrap();
@@ -511,23 +477,6 @@ fn no_top_is_a_cell_of_either_family_nor_another_units_module() {
     }
 }
 
-/// Waits for `child`, killing it and failing with `hang` after `seconds`: the hang these tests
-/// are about would otherwise never end the suite (a guard against a run that never ends; the
-/// limit is many times what the run takes alone).
-fn finished_within(child: &mut std::process::Child, seconds: u64, hang: &str) -> std::process::ExitStatus {
-    let start = std::time::Instant::now();
-    loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            return status;
-        }
-        if start.elapsed() > std::time::Duration::from_secs(seconds) {
-            let _ = child.kill();
-            panic!("{hang} (still running after {seconds} s)");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
-}
-
 /// Processes whose working directory is under `dir` (a killed build's `make`, `g++`, `cc1plus`).
 fn working_under(dir: &Path) -> Vec<(u32, String)> {
     let mut out = Vec::new();
@@ -614,20 +563,12 @@ fn planted_build_state_never_runs_and_a_killed_build_leaves_nothing() {
     };
     // killed while the harness compiles
     let mut run = cosim().stdout(std::process::Stdio::null()).stderr(std::process::Stdio::null()).spawn().unwrap();
-    let start = std::time::Instant::now();
-    while !working_under(&cache).iter().any(|(_, c)| c.contains("cc1plus") || c == "make" || c.contains("g++")) {
-        assert!(start.elapsed() < std::time::Duration::from_secs(300), "no compiler started");
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    wait_until("no compiler started", || working_under(&cache).iter().any(|(_, c)| c.contains("cc1plus") || c == "make" || c.contains("g++")));
     let dead = run.id();
     // SAFETY: a signal to our own child
     unsafe { libc::kill(dead as libc::pid_t, libc::SIGKILL) };
     run.wait().unwrap();
-    let start = std::time::Instant::now();
-    while !working_under(&cache).is_empty() {
-        assert!(start.elapsed() < std::time::Duration::from_secs(30), "outlived specgen: {:?}", working_under(&cache));
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    wait_until("the build's processes outlived specgen", || working_under(&cache).is_empty());
     let left = |dir: &Path| -> Vec<String> {
         std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| n.contains(&format!("-{dead}-"))).collect()
     };
@@ -684,7 +625,7 @@ fn a_planted_cache_entry_is_rebuilt_never_read_forever() {
             .stderr(std::process::Stdio::null())
             .spawn()
             .unwrap();
-        finished_within(&mut run, 600, "cosim hung on a planted cache entry")
+        finished_within_guard(&mut run, "cosim hung on a planted cache entry")
     };
     assert!(cosim().success());
     let entry =

@@ -103,8 +103,8 @@ fn generic_target_counts_cells() {
     assert!(r["fmax_mhz"].is_null());
 }
 
-/// `generate --target-mhz F` picks the depth by the delay model (`src/timing.rs`) in well under
-/// a second, no place-and-route, and records its prediction in the manifest; one real
+/// `generate --target-mhz F` picks the depth by the delay model (`src/timing.rs`), no tool
+/// run (none is on its PATH), and records its prediction in the manifest; one real
 /// place-and-route per family checks that the chosen unit reaches F (within a seed's scatter,
 /// 10 %) and what was predicted (within the fit's margin and the same scatter). An F out of
 /// reach writes nothing (exit 2).
@@ -116,11 +116,16 @@ fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
     let tmp = tempfile::tempdir().unwrap();
     for (family, mhz) in [("ice40", 60.0), ("ecp5", 150.0)] {
         let out = tmp.path().join(family);
-        let t0 = std::time::Instant::now();
-        let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target", family, "--target-mhz", &format!("{mhz}")]).output().unwrap();
-        let took = t0.elapsed();
+        // no tool runs to pick it (none is on the PATH): the delay model decides
+        let o = specgen()
+            .env("PATH", "/nonexistent")
+            .arg("generate")
+            .arg("--out")
+            .arg(&out)
+            .args(["--target", family, "--target-mhz", &format!("{mhz}")])
+            .output()
+            .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        assert!(took < std::time::Duration::from_secs(10), "{family}: --target-mhz took {took:?}");
         let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
         let predicted = m["predicted_fmax_mhz"].as_f64().unwrap();
         assert!(predicted >= mhz, "{family}: predicted {predicted} MHz for a {mhz} MHz target");
