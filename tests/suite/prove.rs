@@ -100,10 +100,11 @@ fn the_stream_edge_is_proved_at_two_depths() {
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
-    let mut units: Vec<(String, Vec<&str>)> = Vec::new();
     // one interface at each depth (both at both: scripts/bench_prove.sh's 0, 3 and 13 stages)
-    units.push(("ready2".into(), vec!["--interface", "ready", "--tag-bits", "4", "--stages", "2"]));
-    units.push(("axis5".into(), vec!["--interface", "axis", "--tag-bits", "4", "--tlast", "--clock-enable", "--colour", "static", "--stages", "5"]));
+    let units: Vec<(String, Vec<&str>)> = vec![
+        ("ready2".into(), vec!["--interface", "ready", "--tag-bits", "4", "--stages", "2"]),
+        ("axis5".into(), vec!["--interface", "axis", "--tag-bits", "4", "--tlast", "--clock-enable", "--colour", "static", "--stages", "5"]),
+    ];
     for_each_parallel(&units, |_, (name, args)| {
         let args: Vec<&str> = narrow.iter().copied().chain(args.iter().copied()).collect();
         let dir = generate(tmp.path(), name, &args);
