@@ -83,10 +83,11 @@ pub enum Command {
     },
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
     Cosim(cosim::CosimArgs),
-    /// Prove the unit's edge for every input sequence, unbounded: valid's latency by ABC's pdr,
-    /// ready/axis's stream rules (the unit's own assertions) by k-induction with yosys's sat, k
-    /// bounded by the unit's depth; --depth N searches the first N edges instead (ABC's bmc3),
-    /// --pipelining proves the pipeline changes nothing (ABC's iprove).
+    /// Prove the unit's edge: valid's latency by ABC's pdr, unbounded; ready/axis: the unit's own
+    /// assertions by k-induction with yosys's sat (k bounded by its depth), then a port checker
+    /// written from the manifest, apart from the RTL (its assertions alone, latency + 8 edges
+    /// with ABC's bmc3, a bounded search) and its covers; --depth N searches the first N edges
+    /// instead, --pipelining proves the pipeline changes nothing (ABC's iprove).
     Prove(prove::ProveArgs),
     /// Write golden vectors for any testbench: CSV (a header row of port names) or $readmemh
     /// hex, one row per input with the golden model's outputs; the header states the timing.
