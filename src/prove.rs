@@ -541,9 +541,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     if let Some(depth) = tools.depth {
         // the port checker (written from the manifest, apart from the unit) joins the search:
         // deleting or weakening the unit's own assertions cannot hide a fault at its ports
-        put(w, "port_checker.v", port_checker(design))?;
-        let mut port_files = files.to_vec();
-        port_files.push("port_checker.v".into());
+        let port_files = with_port_checker(design, w, files)?;
         let at_ports = Script { bounded: Some(depth), files: &port_files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() };
         properties.extend(PORT_PROPERTIES);
         // the bounded search: the unit's assertions and the port checker's, to `depth` edges
@@ -588,7 +586,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     // the unit's own assertions hold (lemmas, the RTL's word); the verdict is the port
     // checker's, written from the manifest apart from the RTL, with the unit's assertions set
     // aside: deleting them can only lose the unbounded part, never pass a broken unit
-    let own = own_assertions(design)?;
+    let own = states_its_own_assertions(design)?;
     let ports = at_the_ports(design, tools, w, &script)?;
     let ports = match ports {
         AtPorts::Checked(p) => p,
@@ -632,7 +630,7 @@ fn assertions_in(text: &str) -> usize {
 /// `assert` statements in its Verilog as in the files generated from its manifest (an edited
 /// RTL with some deleted states less than the list `prove` prints, so its induction proves
 /// nothing that list could be trusted for).
-fn own_assertions(design: &Design) -> Result<bool, Error> {
+fn states_its_own_assertions(design: &Design) -> Result<bool, Error> {
     let mut count = 0;
     for src in &design.sources {
         let text = crate::small_file::read(src, crate::small_file::UNIT_FILE_MAX).map_err(|e| error::input(format!("{} {e}", src.display())))?;
@@ -685,12 +683,18 @@ fn cover_depth(cfg: &crate::config::Config) -> u32 {
     cfg.latency() + 2 * crate::interface::buffer_places(cfg) as u32 + 12
 }
 
+/// Writes the port checker into the work directory `w`: `files` and it, for a script to read.
+fn with_port_checker(design: &Design, w: &Path, files: &[String]) -> Result<Vec<String>, Error> {
+    put(w, "port_checker.v", port_checker(design))?;
+    let mut all = files.to_vec();
+    all.push("port_checker.v".into());
+    Ok(all)
+}
+
 /// The port checker's bounded search (its assertions only), then its covers.
 fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Script) -> Result<AtPorts, Error> {
     let cfg = &design.cfg;
-    put(w, "port_checker.v", port_checker(design))?;
-    let mut files = script.files.to_vec();
-    files.push("port_checker.v".into());
+    let files = with_port_checker(design, w, script.files)?;
     let checker = format!("{}_port_checker", cfg.top());
     let depth = port_depth(cfg);
     let ports = Script { bounded: Some(depth), files: &files, defines: vec!["SPECGEN_PORTS".into()], ports_only: Some(checker.clone()), ..script.clone() };
