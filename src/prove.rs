@@ -65,6 +65,16 @@ struct PortChecker<'a> {
     respond: u32,
     recover: u64,
     static_colour: bool,
+    /// the depth-0 `valid` twin's module (`prove --datapath`), without `_prove_ports`
+    twin: &'a str,
+    /// the pixel's operands: cos_g, n and the three colours
+    pixel_w: u32,
+    /// the twin's latency (`valid`: its stages)
+    stages: u32,
+    cos_w: u32,
+    n_w: u32,
+    b_w: u32,
+    i_w: u32,
 }
 
 #[derive(Template, Clone)]
@@ -91,6 +101,9 @@ struct Script<'a> {
     /// (`abstract_wires`) and multipliers are free values
     abstract_module: &'a str,
     abstract_wires: Vec<String>,
+    /// `prove --datapath`: identical logic of the unit and its twin merged (kept registers
+    /// too), so the search compares only what differs
+    share: bool,
 }
 
 #[derive(Template)]
@@ -295,6 +308,13 @@ pub fn port_checker(design: &Design) -> String {
         respond,
         recover,
         static_colour: cfg.colour() == crate::config::Colour::Static,
+        twin: &datapath_twin_name(cfg.top()),
+        pixel_w: cfg.f() + 1 + cfg.n_bits() + 3 * cfg.b(),
+        stages: cfg.stages(),
+        cos_w: cfg.f() + 1,
+        n_w: cfg.n_bits(),
+        b_w: cfg.b(),
+        i_w: cfg.fi() + 1,
     }
     .render()
     .expect("the port checker renders")
@@ -474,6 +494,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         ignore_unknown: false,
         abstract_module: "",
         abstract_wires: Vec::new(),
+        share: false,
     }
     .write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
@@ -535,6 +556,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             .map(|(_, src)| src.clone())
             .filter(|src| src.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
             .collect(),
+        share: false,
     };
     let mut properties = properties(design);
     let name = name.to_string();
@@ -705,7 +727,7 @@ fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Script) -> Re
     }
     let all = covers(cfg);
     let reach = |mask: u32, depth: u32| -> Result<Searched, Error> {
-        let defines = vec!["SPECGEN_PORTS".to_string(), "SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=6'd{mask}")];
+        let defines = vec!["SPECGEN_PORTS".to_string(), "SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{mask}")];
         let covering = Script { bounded: Some(depth), files: &files, defines, ports_only: Some(checker.clone()), ..script.clone() };
         // (its depths are not "no failure": a cover not reached yet)
         search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, false)
@@ -805,6 +827,7 @@ fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) ->
         ignore_unknown: false,
         abstract_module: "",
         abstract_wires: Vec::new(),
+        share: false,
     }
     .write(w, "bounded.ys")?;
     run_sat(&tools.yosys, w, "bounded.ys", tools.limit)
@@ -892,18 +915,10 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     // the twin: the same parameters at depth 0, its files by its own names beside the unit's
     // (its simulation models, under sim/, are the unit's)
     let twin_params = crate::config::Params { stages: 0, top: twin_top.clone(), ..cfg.params.clone() };
-    let twin = crate::plan::Plan::from_params(twin_params).map_err(|e| error::input(format!("the depth-0 twin of {}: {e}", design.dir.display())))?;
-    for (name, bytes) in crate::emit::generate_files(&twin).into_iter().filter(|(name, _)| !name.contains('/')) {
-        put(w, &name, bytes)?;
-        if name.ends_with(".v") {
-            files.push(name);
-        }
-    }
-    for (c, name) in [(cfg, format!("{top}_prove_ports")), (&twin.cfg, format!("{twin_top}_prove_ports"))] {
-        let file = format!("{name}.v");
-        put(w, &file, crate::cosim::adapter::adapter_named(c, &name))?;
-        files.push(file);
-    }
+    files.extend(stage_twin(design, w, twin_params)?);
+    let file = format!("{top}_prove_ports.v");
+    put(w, &file, crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")))?;
+    files.push(file);
     let name = format!("{top}_prove_pipelining");
     let harness = PipeliningHarness {
         name: &name,
@@ -964,4 +979,136 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     };
     let properties = PIPELINING_PROPERTIES.to_vec();
     Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into(), ports: None })
+}
+
+/// Writes the twin `params` describe (its own top, its files by their own names) into `w`,
+/// beside the unit's, with its co-simulation adapter `<top>_prove_ports`: the Verilog to read.
+/// Its simulation models (under `sim/`) are the unit's, staged with them.
+fn stage_twin(design: &Design, w: &Path, params: crate::config::Params) -> Result<Vec<String>, Error> {
+    let top = params.top.clone();
+    let twin = crate::plan::Plan::from_params(params).map_err(|e| error::input(format!("the twin {top} of {}: {e}", design.dir.display())))?;
+    let mut files = Vec::new();
+    for (name, bytes) in crate::emit::generate_files(&twin).into_iter().filter(|(name, _)| !name.contains('/')) {
+        put(w, &name, bytes)?;
+        if name.ends_with(".v") {
+            files.push(name);
+        }
+    }
+    let file = format!("{top}_prove_ports.v");
+    put(w, &file, crate::cosim::adapter::adapter_named(&twin.cfg, &format!("{top}_prove_ports")))?;
+    files.push(file);
+    Ok(files)
+}
+
+/// The module name of `top`'s datapath twin (`prove --datapath`).
+fn datapath_twin_name(top: &str) -> String {
+    format!("{top}_datapath")
+}
+
+/// The datapath proof's property, in words.
+const DATAPATH_PROPERTY: &str =
+    "the datapath: the n-th result delivered (every output field) is what the unit's `valid` twin computes for the n-th pixel taken (with a static colour: the colour loaded at an enabled edge before it was taken)";
+/// The datapath proof's cover, in words.
+const DATAPATH_COVER: &str = "a delivered result compared with the twin's";
+
+/// Why `prove --datapath` does not apply to `design`, when it does not.
+pub fn datapath_refused(design: &Design) -> Option<String> {
+    (!design.cfg.interface().handshake()).then(|| {
+        format!(
+            "{} has the valid interface; allowed: --interface ready or axis (a valid unit's datapath is its depth-0 twin's by `prove --pipelining`)",
+            design.dir.display()
+        )
+    })
+}
+
+/// `prove --datapath`: the values a handshake unit delivers are its datapath's. The port checker
+/// (written from the manifest) follows one pixel, any one, through the unit's ports and asserts
+/// that its result, when delivered, equals what the unit's twin — the same configuration
+/// generated as a `valid` unit (no buffer, no clock enable, no tag), top `<top>_datapath` —
+/// computes for it: the twin takes every pixel the unit takes at the same edge (and, with a
+/// static colour, loads every colour the unit should: at an enabled edge with the load high),
+/// and its result `stages` edges later (its latency, proved of every `valid` unit) is kept.
+/// Not compared (SPEC allows either colour): a pixel taken before any colour was loaded, or
+/// inside while one loads.
+///
+/// Nothing is cut. yosys merges what the two compute alike (the same Verilog, the `keep` of
+/// the unit's registers lifted for the model), so the search is over what differs: an edit of
+/// the unit's datapath, its buffer's handling of the values, the clock enable at the material
+/// registers. ABC's bmc3 searches the model to `--depth` edges from power-up (by default
+/// latency plus 8: a pixel taken at the first edge leaves by latency plus 4), with the unit's own assertions
+/// set aside and every port rule of the checker kept. A bounded search, not a proof; that the
+/// twin is right is the co-simulation's and `--pipelining`'s (the twin against its depth-0
+/// twin). Its cover, a result compared, must be reached.
+pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
+    let cfg = &design.cfg;
+    if let Some(why) = datapath_refused(design) {
+        return Err(error::input(format!("prove --datapath: {why}")));
+    }
+    let top = cfg.top();
+    let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
+    let w = work.path();
+    // the values are compared, so an ECP5 unit's primitives are their simulation models
+    let mut files = design.stage_sim_models(w)?;
+    files.extend(design.stage(w)?);
+    let twin = datapath_twin_name(top);
+    let params = crate::config::Params {
+        top: twin.clone(),
+        interface: crate::config::Interface::Valid,
+        tag_bits: 0,
+        tlast: false,
+        clock_enable: false,
+        reset: None,
+        clock_port: None,
+        ..cfg.params.clone()
+    };
+    files.extend(stage_twin(design, w, params)?);
+    put(w, "ports.v", crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")))?;
+    put(w, "harness.v", harness(design))?;
+    files.push("ports.v".into());
+    files.push("harness.v".into());
+    let files = with_port_checker(design, w, &files)?;
+    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
+    let tools = &Tools { yosys, abc, ..tools.clone() };
+    let name = harness_name(top);
+    let depth = tools.depth.unwrap_or_else(|| port_depth(cfg));
+    let script = Script {
+        version: crate::names::VERSION,
+        harness: &name,
+        files: &files,
+        bounded: Some(depth),
+        induction: Some(depth),
+        replay: false,
+        defines: vec!["SPECGEN_PORTS".into(), "SPECGEN_DATAPATH".into()],
+        ports_only: Some(format!("{top}_port_checker")),
+        ignore_unknown: false,
+        abstract_module: "",
+        abstract_wires: Vec::new(),
+        share: true,
+    };
+    let t0 = Instant::now();
+    let engine = format!(
+        "the port checker (from the manifest) with the datapath twin {twin}, a bounded search of {depth} edges from power-up with ABC bmc3, the unit's own assertions set aside"
+    );
+    let mut properties = vec![DATAPATH_PROPERTY];
+    let (verdict, ports) = match search(design, tools, w, script.clone(), depth)? {
+        Searched::Found { frame, vcd } => {
+            properties.extend(PORT_PROPERTIES);
+            (Verdict::Failed { frame, vcd }, None)
+        }
+        Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: reached, out_of_time: true, reached }, None),
+        Searched::Clear => {
+            let mut defines = script.defines.clone();
+            defines.extend(["SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{}", 1 << 6)]);
+            let covering = Script { defines, ..script };
+            match search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, false)? {
+                Searched::Found { frame, .. } => {
+                    let ports = Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: vec![DATAPATH_COVER], covered_by: frame };
+                    (Verdict::Bounded { depth }, Some(ports))
+                }
+                Searched::Clear => (Verdict::Unreached { covers: vec![DATAPATH_COVER], depth }, None),
+                Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: Some(depth), out_of_time: true, reached }, None),
+            }
+        }
+    };
+    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports })
 }

@@ -50,7 +50,8 @@ module {{ name }} (
         .clk(clk), .rst(rst), .en({% if clock_enable %}clk_en_in{% else %}1'b1{% endif %}),
         .in_valid(in_valid), .in_ready(in_ready), .in_word({% if word_carried %}in_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}),
         .out_valid(out_valid), .out_ready(out_ready), .out_payload({intensity, spec_r, spec_g, spec_b, done}),
-        .out_word({% if word_carried %}out_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}), .load(ks_load));
+        .out_word({% if word_carried %}out_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}), .load(ks_load),
+        .in_pixel({cos_g, n, ks_r, ks_g, ks_b}));
 `endif
 {%- endif %}
 

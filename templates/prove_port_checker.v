@@ -16,7 +16,9 @@ module {{ name }} (
     input  wire                out_ready,
     input  wire [{{ payload_w - 1 }}:0]  out_payload,
     input  wire [{{ word_w - 1 }}:0]  out_word,
-    input  wire                load
+    input  wire                load,
+    // the pixel offered at in_valid, {cos_g, n, ks_r, ks_g, ks_b} (read under SPECGEN_DATAPATH)
+    input  wire [{{ pixel_w - 1 }}:0]  in_pixel
 );
     localparam integer LATENCY = {{ latency }};
     localparam integer PLACES  = {{ places }};
@@ -71,13 +73,70 @@ module {{ name }} (
         end
     end
 
+`ifdef SPECGEN_DATAPATH
+    // the datapath (`prove --datapath`): the k-th result delivered is what {{ twin }}, the same
+    // configuration generated as a `valid` unit, computes for the k-th pixel taken: the twin
+    // takes every pixel the unit takes, at the same edge{% if static_colour %}, and loads every colour the unit
+    // should (at an enabled edge with the load high){% endif %}; its result for the k-th is kept{% if static_colour %}. Not
+    // compared: a pixel taken before any colour was loaded, or inside while one loads (SPEC: it
+    // may see either colour){% endif %}
+    reg [{{ payload_w - 1 }}:0]  k_expected = 0;
+    reg        k_kept = 1'b0;                // the k-th pixel's operands are known until it leaves
+    reg        k_computed = 1'b0;            // the twin gave its k-th result
+{%- if static_colour %}
+    reg        colour_known = 1'b0;          // a colour was loaded since power-up
+    always @(posedge clk) begin
+        if (load && en) colour_known <= 1'b1;
+        if (taken && in_count == k) k_kept <= colour_known && !(load && en);
+        else if (load && en) k_kept <= 1'b0;
+    end
+{%- else %}
+    always @(posedge clk) if (taken && in_count == k) k_kept <= 1'b1;
+{%- endif %}
+    wire                twin_ready, twin_valid, twin_idle;
+    wire [63:0]         twin_tag;
+    wire [{{ b_w - 1 }}:0]  twin_r, twin_g, twin_b;
+    wire [{{ i_w - 1 }}:0]  twin_i;
+    wire                twin_done;
+    {{ twin }}_prove_ports twin (
+        .clk(clk), .rst(rst), .in_valid(taken), .out_ready(1'b1), .ks_load({% if static_colour %}load && en{% else %}1'b0{% endif %}), .clk_en(1'b1),
+        .cos_g(in_pixel[{{ pixel_w - 1 }} -: {{ cos_w }}]), .n(in_pixel[{{ 3 * b_w + n_w - 1 }} -: {{ n_w }}]),
+        .ks_r(in_pixel[{{ 3 * b_w - 1 }} -: {{ b_w }}]), .ks_g(in_pixel[{{ 2 * b_w - 1 }} -: {{ b_w }}]), .ks_b(in_pixel[{{ b_w - 1 }}:0]),
+        .in_tag(64'd0), .in_ready(twin_ready), .out_valid(twin_valid), .spec_r(twin_r), .spec_g(twin_g), .spec_b(twin_b),
+        .intensity(twin_i), .done(twin_done), .out_tag(twin_tag), .idle(twin_idle));
+    // the twin's result for a pixel taken at an edge is on its outputs {{ stages }} edges later (its
+    // latency, which `specgen prove` proves of a valid unit): kept then
+{%- if stages > 0 %}
+    reg [{{ stages - 1 }}:0]  k_inside = 0;           // bit j: the k-th pixel was taken j + 1 edges ago
+    always @(posedge clk) begin
+        k_inside <= rst ? {{ stages }}'d0 : (k_inside << 1) | (taken && in_count == k);
+        if (rst) k_computed <= 1'b0;
+        else if (k_inside[{{ stages - 1 }}]) begin
+            k_expected <= {twin_i, twin_r, twin_g, twin_b, twin_done};
+            k_computed <= 1'b1;
+        end
+    end
+{%- else %}
+    always @(posedge clk) begin
+        if (rst) k_computed <= 1'b0;
+        else if (taken && in_count == k) begin
+            k_expected <= {twin_i, twin_r, twin_g, twin_b, twin_done};
+            k_computed <= 1'b1;
+        end
+    end
+{%- endif %}
+    wire       compared = delivered && out_count == k && k_taken && k_kept && k_computed;
+`else
+    wire       compared = 1'b0;
+`endif
+
 `ifdef SPECGEN_COVERS
     // the covers, each an event a proof must reach or it says nothing: a result delivered, the
     // unit full (places pixels inside), in_ready falling and rising again{% if tlast %}, a tlast delivered{% endif %}{% if static_colour %},
-    // a static colour loaded{% endif %}. One assertion, that not all of them (those of
+    // a static colour loaded{% endif %} (and, with the datapath, a result compared with the twin's). One assertion, that not all of them (those of
     // SPECGEN_COVER_MASK) have happened: its failure is a trace that reaches them all.
     reg        seen_delivery = 1'b0, seen_full = 1'b0, seen_ready = 1'b0, seen_fall = 1'b0, seen_rise = 1'b0;
-    reg        seen_tlast = 1'b0, seen_load = 1'b0;
+    reg        seen_tlast = 1'b0, seen_load = 1'b0, seen_compared = 1'b0;
     always @(posedge clk) begin
         if (started && !rst) begin
             if (delivered) seen_delivery <= 1'b1;
@@ -91,10 +150,11 @@ module {{ name }} (
 {%- if static_colour %}
             if (load && en) seen_load <= 1'b1;
 {%- endif %}
+            if (compared) seen_compared <= 1'b1;
         end
     end
-    wire [5:0] seen = {seen_load, seen_tlast, seen_rise, seen_fall, seen_full, seen_delivery};
-    localparam [5:0] MASK = `SPECGEN_COVER_MASK;
+    wire [6:0] seen = {seen_compared, seen_load, seen_tlast, seen_rise, seen_fall, seen_full, seen_delivery};
+    localparam [6:0] MASK = `SPECGEN_COVER_MASK;
     always @(*) begin
         if (!started) assume(rst);
         if (started) assert((seen & MASK) != MASK);
@@ -120,6 +180,10 @@ module {{ name }} (
             // RESPOND edges, and in_ready rises again within RECOVER
             assert(owed <= RESPOND);
             assert(refused <= RECOVER);
+`ifdef SPECGEN_DATAPATH
+            // the datapath: the k-th result delivered is the twin's for the k-th pixel
+            if (compared) assert(out_payload == k_expected);
+`endif
         end
     end
 `endif

@@ -3,7 +3,7 @@
 use super::outln;
 use super::{failed, Failure};
 use specgen::cosim::Design;
-use specgen::prove::{prove, prove_pipelining, Tools, Verdict};
+use specgen::prove::{prove, prove_datapath, prove_pipelining, Tools, Verdict};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -41,6 +41,12 @@ pub struct ProveArgs {
     /// every input sequence (--interface valid with per-pixel colours)
     #[arg(long)]
     pub pipelining: bool,
+    /// Prove instead that a ready/axis unit delivers its datapath's values: the port checker
+    /// follows any one pixel and asserts that its delivered result equals what the same
+    /// configuration as a valid unit (top <top>_datapath) computes for it; a bounded search of
+    /// --depth edges [default: latency + 8]
+    #[arg(long, conflicts_with = "pipelining")]
+    pub datapath: bool,
 }
 
 /// `specgen prove`: exit 0 when every property is proved, 1 when one fails (its VCD named) or
@@ -54,11 +60,20 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
     if let Some(why) = args.pipelining.then(|| specgen::prove::pipelining_refused(&design)).flatten() {
         return Err(super::usage(format!("invalid --pipelining: {why}")));
     }
+    if let Some(why) = args.datapath.then(|| specgen::prove::datapath_refused(&design)).flatten() {
+        return Err(super::usage(format!("invalid --datapath: {why}")));
+    }
     let progress: fn(&str) = |line| super::errln!("prove: {line}");
     let tools =
         Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit), depth: args.depth, progress: Some(progress) };
     tools.check()?;
-    let proof = if args.pipelining { prove_pipelining(&design, &tools)? } else { prove(&design, &tools)? };
+    let proof = if args.pipelining {
+        prove_pipelining(&design, &tools)?
+    } else if args.datapath {
+        prove_datapath(&design, &tools)?
+    } else {
+        prove(&design, &tools)?
+    };
     let how = &proof.engine;
     let head = format!("prove {} ({}): ", design.dir.display(), proof.name);
     match &proof.verdict {

@@ -271,3 +271,52 @@ fn port_checker_cases(more: bool) {
         }
     });
 }
+
+/// Issue 48, point 4: `prove --datapath`, the values a handshake unit delivers are its
+/// datapath's. At narrow widths: a ready unit with a static colour and a clock enable is
+/// searched to its default depth with every delivered result compared with its depth-0 `valid`
+/// twin's, and the compare reached (its cover); a material register that loads at a disabled
+/// edge (the outside set's fault: no port rule sees it, only a value does) and a result bit
+/// flipped before the buffer are refuted with a VCD; a `valid` unit is refused (exit 2).
+#[test]
+fn the_delivered_values_are_the_datapaths_and_a_wrong_one_refuted() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "3", "--intensity-frac-bits", "5", "--stages", "2"];
+    let flags = ["--interface", "ready", "--colour", "static", "--clock-enable", "--tag-bits", "2"];
+    let edit = |dir: &Path, file: &str, from: &str, to: &str| {
+        let path = dir.join(file);
+        let src = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(src.matches(from).count(), 1, "{from} in {src}");
+        std::fs::write(&path, src.replace(from, to)).unwrap();
+    };
+    type Edit<'a> = &'a (dyn Fn(&Path) + Sync);
+    let none: Edit = &|_: &Path| {};
+    let disabled_load: Edit = &|dir: &Path| edit(dir, "specular_unit.v", "if (ks_load && clk_en)", "if (ks_load)");
+    // the red result's last bit flipped before the buffer: only a value shows it
+    let flipped: Edit =
+        &|dir: &Path| edit(dir, "specular_unit.v", "wire [2:0] spec_r_s10 = color_sum_r_s9[6:4];", "wire [2:0] spec_r_s10 = color_sum_r_s9[6:4] ^ 3'd1;");
+    let cases: Vec<(&str, Edit, bool)> = vec![("ok", none, false), ("disabled_load", disabled_load, true), ("flipped", flipped, true)];
+    for_each_parallel(&cases, |_, (name, edit, broken)| {
+        let args: Vec<&str> = narrow.iter().chain(flags.iter()).copied().collect();
+        let dir = generate(tmp.path(), name, &args);
+        edit(&dir);
+        let trace = tmp.path().join(format!("{name}.vcd"));
+        let o = specgen().args(["prove", "--datapath", "--edited", "--rtl"]).arg(&dir).arg("--trace").arg(&trace).output().unwrap();
+        if *broken {
+            assert_eq!(o.status.code(), Some(1), "{name}: {}", text(&o));
+            assert!(text(&o).contains("a property fails") && text(&o).contains("the datapath twin"), "{name}: {}", text(&o));
+            assert!(std::fs::read_to_string(&trace).unwrap().contains("$enddefinitions"), "{name}");
+        } else {
+            assert!(o.status.success(), "{name}: {}", text(&o));
+            let t = text(&o);
+            assert!(t.contains("no property fails within the first 13 clock edges") && t.contains("the n-th result delivered (every output field)"), "{t}");
+            assert!(t.contains("a delivered result compared with the twin's"), "the cover reached: {t}");
+        }
+    });
+    let dir = generate(tmp.path(), "valid", &narrow);
+    let o = specgen().args(["prove", "--datapath", "--rtl"]).arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("--datapath") && text(&o).contains("allowed: --interface ready or axis"), "{}", text(&o));
+}
