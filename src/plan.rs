@@ -53,9 +53,10 @@ impl Plan {
             return Err(Error::Config {
                 parameter: "stages",
                 message: format!(
-                    "{} is out of range; allowed 0..={cut_points} (the cut points of the {} datapath with these widths)",
+                    "{} is out of range; allowed 0..={cut_points} (the cut points of the {} datapath with these widths on the {} target)",
                     cfg.stages(),
-                    cfg.datapath_name()
+                    cfg.datapath_name(),
+                    cfg.target().name()
                 ),
             });
         }

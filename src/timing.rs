@@ -129,20 +129,22 @@ impl Line {
     }
 }
 
-/// The family the model speaks of for `target`: a generic unit is placed on the iCE40 UP5K,
-/// as `synth` does.
-fn family(target: Target) -> &'static str {
+/// The family the model speaks of for `target`; none for `generic`, whose RTL names no family:
+/// its clock is the device's it is mapped to, which no calibration here knows.
+fn family(target: Target) -> Option<&'static str> {
     match target {
-        Target::Ecp5 => "ecp5",
-        Target::Ice40 | Target::Generic => "ice40",
+        Target::Ecp5 => Some("ecp5"),
+        Target::Ice40 => Some("ice40"),
+        Target::Generic => None,
     }
 }
 
-/// The part a family's figures are for.
+/// The part a family's figures are for (`generic`: none, said so).
 pub fn part(target: Target) -> &'static str {
     match target {
         Target::Ecp5 => "ECP5-25 grade 6",
-        Target::Ice40 | Target::Generic => "iCE40 UP5K",
+        Target::Ice40 => "iCE40 UP5K",
+        Target::Generic => "generic target (no part)",
     }
 }
 
@@ -151,8 +153,14 @@ pub fn part(target: Target) -> &'static str {
 /// by name. A datapath the data does not name is an error: a new model is calibrated
 /// (`scripts/calibrate_delay.sh`), never estimated by another's line in silence.
 pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
+    let Some(family) = family(target) else {
+        return Err(Error::Config {
+            parameter: "target_mhz",
+            message: "the generic target has no delay model: its RTL names no family, so its clock is the one of the device it is mapped to, which specgen is not calibrated on; allowed: --target ice40 or --target ecp5 with --target-mhz, or --stages N with --target generic (the README lists each target's depths)".into(),
+        });
+    };
     let all: serde_json::Value = serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");
-    let lines = &all[family(target)];
+    let lines = &all[family];
     let chosen = match &lines[datapath] {
         serde_json::Value::Object(_) => &lines[datapath],
         serde_json::Value::String(s) if s == "all" => &lines["all"],
@@ -267,6 +275,21 @@ mod tests {
                 assert!(line(target, arch).is_ok(), "{target:?} {arch}");
             }
         }
+    }
+
+    /// Issue 49, point 4: `generic` is its own target. No delay model speaks for it: a pick is
+    /// refused naming the target (never an iCE40 figure), no clock is predicted, and its part
+    /// names no device.
+    #[test]
+    fn the_generic_target_is_promised_no_clock() {
+        let cfg = Config::new(crate::config::Params { target: Target::Generic, ..Config::defaults().params }).unwrap();
+        let plan = Plan::new(cfg).unwrap();
+        let e = pick_stages(&plan, 50.0).unwrap_err();
+        assert_eq!(e.parameter(), Some("target_mhz"));
+        assert!(e.reason().contains("the generic target has no delay model") && e.reason().contains("--target ice40"), "{}", e.reason());
+        assert!(!e.reason().contains("UP5K") && !e.reason().contains("ECP5-25"), "{}", e.reason());
+        assert_eq!(predicted_fmax(&plan), None);
+        assert!(!part(Target::Generic).contains("iCE40"));
     }
 
     /// Deeper targets never pick shallower pipelines, each pick is the shallowest that the

@@ -38,7 +38,7 @@ pub enum Command {
         /// Replace a previous output even where its files were edited by hand.
         #[arg(long)]
         force: bool,
-        /// Pick --stages: the shallowest pipeline that reaches F MHz on the --target's part (iCE40 UP5K or ECP5-25, with DSPs) by the delay model calibrated on nextpnr (in milliseconds; `synth --seeds K` measures it).
+        /// Pick --stages: the shallowest pipeline that reaches F MHz on the --target's part (ice40: iCE40 UP5K, ecp5: ECP5-25 grade 6, with DSPs) by the delay model calibrated on nextpnr (in milliseconds; `synth --seeds K` measures it). Refused with --target generic, whose RTL names no device to be calibrated on: give --stages there.
         #[arg(long, value_name = "F", conflicts_with = "stages")]
         target_mhz: Option<f64>,
         #[command(flatten)]
@@ -215,7 +215,9 @@ pub struct RtlArgs {
     #[arg(long, help_heading = "RTL")]
     pub top: Option<String>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points,
-    /// which depend on the model and widths: a value above them is refused with the range; default 0]
+    /// which depend on the model, the widths and the target; at default widths ice40 / ecp5 /
+    /// generic: lean 13/11/10, fitted 65/48/13, blinn 38/35/22, blinn-pow 12, schlick 21/22/21,
+    /// paper 6; a value above them is refused with the range; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,
     /// How tables are written: file ($readmemh) or case (inline) [default file]

@@ -208,12 +208,23 @@ fn ecp5_unit_keeps_its_registers_in_the_blocks_and_reaches_200_mhz() {
 }
 
 /// The generic shape: whole-width products and adds (no DSP-sized splits, no carry-select
-/// chunks), the same values.
+/// chunks), the same values. Issue 49, point 4: `generic` is its own target: `--target-mhz`
+/// is refused naming it, never with another family's figure, and a depth beyond its cut points
+/// is refused naming the target.
 #[test]
 fn generic_target_has_whole_width_arithmetic_and_the_same_values() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
+    for model in ["quadratic", "blinn", "schlick"] {
+        let o =
+            specgen().args(["generate", "--target", "generic", "--target-mhz", "50", "--model", model, "--out"]).arg(tmp.path().join("no")).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains("the generic target has no delay model") && !text(&o).contains("UP5K") && !text(&o).contains("ECP5"), "{}", text(&o));
+        assert!(!tmp.path().join("no").exists());
+    }
     let stages = deepest(&["--target", "generic"]);
+    let o = specgen().args(["generate", "--target", "generic", "--stages", "99", "--out"]).arg(tmp.path().join("no")).output().unwrap();
+    assert!(text(&o).contains(&format!("allowed 0..={stages} (the cut points of the lean datapath with these widths on the generic target)")), "{}", text(&o));
     let dir = generate(tmp.path(), "generic", &["--target", "generic", "--stages", &stages]);
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
     for split in ["_part1", "deviation_hi", "square_t"] {
