@@ -419,7 +419,7 @@ fn outputs_never_replace_the_commands_inputs() {
 #[test]
 fn hw_results_and_manifests_are_read_only_when_they_are_what_they_claim() {
     let tmp = tempfile::tempdir().unwrap();
-    let d = generate(tmp.path(), "u", &["--n-bits", "4", "--cos-frac-bits", "8"]);
+    let d = generate(tmp.path(), "u", &["--n-bits", "4", "--cos-frac-bits", "8", "--color-bits", "4", "--intensity-frac-bits", "6"]);
     let fifo = tmp.path().join("pipe.json");
     assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
     let write = |name: &str, text: &str| {
@@ -456,7 +456,7 @@ fn hw_results_and_manifests_are_read_only_when_they_are_what_they_claim() {
 fn synth_without_nextpnr_fails_when_fmax_is_asked_for() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let d = generate(tmp.path(), "u", &["--n-bits", "4", "--cos-frac-bits", "8"]);
+    let d = generate(tmp.path(), "u", &["--n-bits", "4", "--cos-frac-bits", "8", "--color-bits", "4", "--intensity-frac-bits", "6"]);
     // the PATH's tools without nextpnr
     let bin = tmp.path().join("bin");
     std::fs::create_dir(&bin).unwrap();
