@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the whole test suite on a fresh machine: installs the simulators and yosys when
 # missing (Debian/Ubuntu, apt-get; ccache lets every Verilator harness share one compiled
-# runtime), checks formatting and clippy, then the tests (profile `suite`). Simulator and synthesis
+# runtime), checks formatting and clippy, then `cargo test --release`. Simulator and synthesis
 # tests never skip: a missing tool makes them fail.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,8 +16,7 @@ build_log=$(mktemp); clippy_log=$(mktemp); log=$(mktemp)
 build_pid=; clippy_pid=
 cleanup() { for p in $build_pid $clippy_pid; do kill "$p" 2>/dev/null || true; done; rm -f "$build_log" "$clippy_log" "$log"; }
 trap cleanup EXIT
-# the suite's profile: release at opt-level 1 (Cargo.toml says why)
-build_tests() { if cargo nextest --version >/dev/null 2>&1; then cargo nextest run --cargo-profile suite --no-run; else cargo test --profile suite --no-run; fi; }
+build_tests() { if cargo nextest --version >/dev/null 2>&1; then cargo nextest run --release --no-run; else cargo test --release --no-run; fi; }
 build_tests >"$build_log" 2>&1 & build_pid=$!
 CARGO_TARGET_DIR=target/clippy cargo clippy --release --all-targets -- -D warnings >"$clippy_log" 2>&1 & clippy_pid=$!
 missing=()
@@ -68,14 +67,14 @@ build_pid=; clippy_pid=
 # draw others), so neither the suite's verdict nor its time depends on a lucky draw.
 export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-2026}"
 if cargo nextest --version >/dev/null 2>&1; then
-    echo "== cargo nextest run --cargo-profile suite"
+    echo "== cargo nextest run --release"
     status=0
-    cargo nextest run --cargo-profile suite --no-fail-fast --success-output never --failure-output final "$@" 2>&1 | tee "$log" || status=$?
+    cargo nextest run --release --no-fail-fast --success-output never --failure-output final "$@" 2>&1 | tee "$log" || status=$?
     echo "== the ten slowest tests"
     grep -E '^ +(PASS|FAIL|SIGSEGV|SIGABRT|SIGKILL|TIMEOUT) \[' "$log" | sort -u | sed -E 's/^ +([A-Z]+) \[ *([0-9.]+)s\] (\([^)]*\) )?/\2 s  \1  /' | sort -rn | head -10 || true
     echo "== $(( $(date +%s) - start )) s in all, installs and builds included"
     exit $status
 else
-    echo "== cargo test --profile suite (no cargo-nextest: no per-test times)"
-    cargo test --profile suite "$@"
+    echo "== cargo test --release (no cargo-nextest: no per-test times)"
+    cargo test --release "$@"
 fi
