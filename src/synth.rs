@@ -68,6 +68,11 @@ pub struct SynthResult {
     #[serde(default)]
     pub(crate) logic_cells: Option<u64>,
     pub(crate) cells: Vec<(String, u64)>,
+    /// the hard multipliers of the netlist without their output register (or a MULT18X18D
+    /// without an input register), each named with what is missing (`unregistered_blocks`):
+    /// nextpnr does not time the multiply inside them, so any here makes Fmax an upper bound
+    #[serde(default)]
+    pub(crate) unregistered_blocks: Vec<String>,
 }
 
 struct WrapperPort {
@@ -181,6 +186,82 @@ pub(crate) fn parse_stat_json(json: &str, top: &str) -> Result<Vec<(String, u64)
     let mut cells: Vec<(String, u64)> = by_type.iter().filter_map(|(k, n)| n.as_u64().map(|n| (k.clone(), n))).collect();
     cells.sort();
     Ok(cells)
+}
+
+/// The hard multipliers of module `top` in yosys's `write_json` netlist that lack a register
+/// of their own (SPEC §7), each named with what is missing: an SB_MAC16
+/// whose clock is a constant, or a half of its output that is used and not registered (output
+/// select 1, the accumulator register; 3 with `PIPELINE_16x16_MULT_REG2`; 2 with the 8×8
+/// product's register); a MULT18X18D without its output register or either input register.
+pub(crate) fn unregistered_blocks(json: &str, top: &str) -> Result<Vec<String>, Failure> {
+    let v: serde_json::Value = serde_json::from_str(json).map_err(|e| error::tool("yosys", format!("yosys's write_json is not JSON: {e}")))?;
+    let module = v.get("modules").and_then(|m| m.get(top)).ok_or_else(|| error::tool("yosys", format!("yosys's netlist has no module {top}")))?;
+    let empty = serde_json::Map::new();
+    let cells = module.get("cells").and_then(|c| c.as_object()).unwrap_or(&empty);
+    // the nets something reads: a cell's input, or an output port of the module
+    let mut read = std::collections::HashSet::new();
+    for cell in cells.values() {
+        let dirs = cell.get("port_directions").and_then(|d| d.as_object());
+        for (port, bits) in cell.get("connections").and_then(|c| c.as_object()).unwrap_or(&empty) {
+            if dirs.and_then(|d| d.get(port)).and_then(|d| d.as_str()) != Some("output") {
+                read.extend(bits.as_array().into_iter().flatten().filter_map(|b| b.as_u64()));
+            }
+        }
+    }
+    for port in module.get("ports").and_then(|p| p.as_object()).unwrap_or(&empty).values() {
+        if port.get("direction").and_then(|d| d.as_str()) == Some("output") {
+            read.extend(port.get("bits").and_then(|b| b.as_array()).into_iter().flatten().filter_map(|b| b.as_u64()));
+        }
+    }
+    // a parameter as a number (yosys writes bit strings) or a string
+    let param = |cell: &serde_json::Value, name: &str| -> String {
+        cell.get("parameters").and_then(|p| p.get(name)).and_then(|p| p.as_str()).map_or(String::new(), |s| s.trim().to_string())
+    };
+    let number = |cell: &serde_json::Value, name: &str| -> u64 {
+        let text = param(cell, name);
+        u64::from_str_radix(&text, 2).unwrap_or(0)
+    };
+    let bits = |cell: &serde_json::Value, port: &str| -> Vec<serde_json::Value> {
+        cell.get("connections").and_then(|c| c.get(port)).and_then(|b| b.as_array()).cloned().unwrap_or_default()
+    };
+    let mut missing = Vec::new();
+    let mut names: Vec<&String> = cells.keys().collect();
+    names.sort();
+    for name in names {
+        let cell = &cells[name];
+        let shown = name.trim_start_matches('\\');
+        match cell.get("type").and_then(|t| t.as_str()).unwrap_or("") {
+            "SB_MAC16" => {
+                if bits(cell, "CLK").iter().all(|b| b.as_u64().is_none()) {
+                    missing.push(format!("SB_MAC16 {shown}: its clock is a constant (no register in use)"));
+                    continue;
+                }
+                let out = bits(cell, "O");
+                for (half, range, select) in [("top", 16..32, "TOPOUTPUT_SELECT"), ("bottom", 0..16, "BOTOUTPUT_SELECT")] {
+                    let used = out.get(range).into_iter().flatten().any(|b| b.as_u64().is_some_and(|n| read.contains(&n)));
+                    let registered = match number(cell, select) {
+                        1 => true,
+                        2 => number(cell, if half == "top" { "TOP_8x8_MULT_REG" } else { "BOT_8x8_MULT_REG" }) == 1,
+                        3 => number(cell, "PIPELINE_16x16_MULT_REG2") == 1,
+                        _ => false,
+                    };
+                    if used && !registered {
+                        missing.push(format!("SB_MAC16 {shown}: the {half} half of its output is not registered ({select} = {})", number(cell, select)));
+                    }
+                }
+            }
+            "MULT18X18D" => {
+                for (reg, what) in [("REG_OUTPUT_CLK", "output"), ("REG_INPUTA_CLK", "input A"), ("REG_INPUTB_CLK", "input B")] {
+                    let clk = param(cell, reg);
+                    if clk.is_empty() || clk == "NONE" {
+                        missing.push(format!("MULT18X18D {shown}: no {what} register ({reg} = {})", if clk.is_empty() { "NONE" } else { &clk }));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(missing)
 }
 
 /// A tool named by a path (`./bin/yosys`) as an absolute path: the tools run in a temporary
@@ -303,9 +384,17 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // conflicting drivers
     // (the ECP5 primitives the RTL instantiates are known from yosys's own cell library)
     let cells_lib = if target == Target::Ecp5 { "read_verilog -lib -specify +/ecp5/cells_sim.v +/ecp5/cells_bb.v; " } else { "" };
-    let script =
-        format!("{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; check -assert; tee -q -o stat.json stat -json", synth_cmd(&top));
+    let script = format!(
+        "{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; check -assert; tee -q -o stat.json stat -json; write_json netlist.json",
+        synth_cmd(&top)
+    );
     run_yosys(yosys, work.path(), &script)?;
+    // every hard multiplier's registers, on the netlist: each one without its output register
+    // is listed, and makes nextpnr's figure an upper bound (it does not time the multiply)
+    let netlist = work.path().join("netlist.json");
+    let text =
+        crate::small_file::read(&netlist, 256 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no netlist ({} {e})", netlist.display())))?;
+    let unregistered = unregistered_blocks(&text, &top)?;
     let stat = work.path().join("stat.json");
     let text = crate::small_file::read(&stat, 16 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no statistics ({} {e})", stat.display())))?;
     let cells = parse_stat_json(&text, &top)?;
@@ -341,6 +430,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         icetime_note: String::new(),
         logic_cells: None,
         cells,
+        unregistered_blocks: unregistered,
     };
     if r.total_cells == 0 {
         return Err(error::tool("yosys", "synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
@@ -452,6 +542,11 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     );
     if runs.iter().any(|(_, log)| has_unclocked_block(log)) {
         r.fmax_note.push_str(UNCLOCKED_BLOCK_NOTE);
+    } else if !r.unregistered_blocks.is_empty() {
+        r.fmax_note.push_str(&format!(
+            "; {} hard multiplier(s) without an output register (listed under unregistered_blocks): nextpnr does not time the multiply inside a block, so the figure is an upper bound",
+            r.unregistered_blocks.len()
+        ));
     }
     Ok((r, logs))
 }
@@ -582,6 +677,9 @@ pub fn table(r: &SynthResult) -> String {
     for (block, mhz, what) in &r.block_limits {
         s.push_str(&format!("  {:<14} {mhz:.1} MHz: {what}\n", format!("{block} limit")));
     }
+    for b in &r.unregistered_blocks {
+        s.push_str(&format!("  {:<14} {b} (nextpnr does not time the multiply inside it: Fmax is an upper bound)\n", "unregistered"));
+    }
     s
 }
 
@@ -650,7 +748,7 @@ pub fn verify(
     let jobs = std::thread::available_parallelism().map_or(1, |c| c.get());
     {
         let model = design.plan.model();
-        let built = build(design, Simulator::Verilator, sim, false)?;
+        let built = build(design, Simulator::Verilator, sim, false, vectors)?;
         check_ports(design)?;
         let stims: Vec<Box<dyn Stimulus>> = vec![Box::new(random_stimulus(&model, vectors, 1))];
         let rtl = run_all(&built, design, &model, &stims, jobs)?;
@@ -721,7 +819,7 @@ pub fn verify(
     let model = mapped.plan.model();
     let mut runs = Vec::new();
     for (simulator, count) in [(Simulator::Verilator, vectors), (Simulator::Icarus, vectors / 10)] {
-        let built = build(&mapped, simulator, sim, false)?;
+        let built = build(&mapped, simulator, sim, false, if exhaustive { u64::MAX } else { count })?;
         check_ports(&mapped)?;
         // exhaustive: every (cos_g, n) under Verilator (Icarus, some 20 000 cycles a second, keeps its random tenth)
         let stims: Vec<Box<dyn Stimulus>> = match (exhaustive, simulator) {
@@ -765,6 +863,44 @@ mod tests {
             "Info: Device utilisation:\nInfo: \t          TRELLIS_FF:    2684/  24288    11%\nInfo: \t        TRELLIS_COMB:    1510/  24288     6%\n";
         assert_eq!(logic_cells(ecp5_cells), Some(2684));
         assert_eq!(logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"), None);
+    }
+
+    /// Issue 49, point 3: the netlist check names every hard multiplier without the registers
+    /// SPEC §7 promises: an SB_MAC16 with a constant clock, one whose used output half is
+    /// combinational, a MULT18X18D without its output or an input register; a registered
+    /// block and an unused half pass.
+    #[test]
+    fn unregistered_blocks_are_named_from_the_netlist() {
+        let mac = |clk: &str, top: u32, bot: u32, reg2: u32, o: &str| {
+            format!(
+                r#"{{"type": "SB_MAC16", "parameters": {{"TOPOUTPUT_SELECT": "{top:02b}", "BOTOUTPUT_SELECT": "{bot:02b}", "PIPELINE_16x16_MULT_REG2": "{reg2}"}},
+                "port_directions": {{"CLK": "input", "O": "output"}}, "connections": {{"CLK": [{clk}], "O": {o}}}}}"#
+            )
+        };
+        let low: Vec<u32> = (10..26).collect();
+        let both: Vec<u32> = (10..42).collect();
+        let o_low = format!("{:?}", low.iter().chain(std::iter::repeat_n(&99, 16)).collect::<Vec<_>>());
+        let o_both = format!("{both:?}");
+        let json = format!(
+            r#"{{"modules": {{"u": {{"ports": {{"y": {{"direction": "output", "bits": {both:?}}}}},
+            "cells": {{
+              "$tied": {},
+              "\\comb": {},
+              "regd": {},
+              "lowonly": {},
+              "$m": {{"type": "MULT18X18D", "parameters": {{"REG_OUTPUT_CLK": "NONE", "REG_INPUTA_CLK": "CLK0", "REG_INPUTB_CLK": "CLK0"}}, "connections": {{}}}},
+              "$ok": {{"type": "MULT18X18D", "parameters": {{"REG_OUTPUT_CLK": "CLK0", "REG_INPUTA_CLK": "CLK0", "REG_INPUTB_CLK": "CLK0"}}, "connections": {{}}}}
+            }}}}}}}}"#,
+            mac("\"0\"", 1, 1, 0, &o_both),
+            mac("5", 3, 3, 0, &o_both),
+            mac("5", 3, 3, 1, &o_both),
+            mac("5", 0, 1, 0, &o_low),
+        );
+        let found = unregistered_blocks(&json, "u").unwrap();
+        assert_eq!(found.len(), 4, "{found:#?}");
+        assert!(found[0].starts_with("MULT18X18D $m: no output register"), "{found:#?}");
+        assert!(found[1].starts_with("SB_MAC16 $tied: its clock is a constant"), "{found:#?}");
+        assert!(found[2].starts_with("SB_MAC16 comb: the top half") && found[3].starts_with("SB_MAC16 comb: the bottom half"), "{found:#?}");
     }
 
     /// The slowest clock of the last report, not the last line: an SB_MAC16 whose clock is tied

@@ -57,7 +57,8 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     let t0 = Instant::now();
     // a file that does not compile is best told by the simulator; then the ports
     let sim = args.sim.tools();
-    let built = build(&design, args.simulator.into(), &sim, false)?;
+    let cycles = if args.exhaustive { u64::MAX } else { args.vectors };
+    let built = build(&design, args.simulator.into(), &sim, false, cycles)?;
     check_ports(&design)?;
     let build_time = t0.elapsed();
     let stims: Vec<Box<dyn Stimulus>> = if args.exhaustive {

@@ -635,7 +635,7 @@ fn render_through_rtl(
     // the pipeline (and a handshake's buffer) empties before the run ends
     cycles.extend((0..design.cfg.latency() + 2).map(|_| Cycle::default()));
     let stim: Vec<Box<dyn Stimulus>> = vec![Box::new(Recorded(cycles))];
-    let built = cosim::build(design, cosim::Simulator::Verilator, sim, false)?;
+    let built = cosim::build(design, cosim::Simulator::Verilator, sim, false, stim[0].len())?;
     let report = cosim::run_all(&built, design, model, &stim, 1)?;
     let dir = design.dir.display();
     if report.mismatches > 0 {

@@ -372,3 +372,12 @@ pub fn apply_handshake_fault(dir: &Path, name: &str, file: &str, from: &str, to:
     assert_eq!(src.matches(&from).count(), 1, "fault {name}: {from:?} must occur once in {file}");
     std::fs::write(&path, src.replace(&from, &to)).unwrap();
 }
+
+/// The deepest `--stages` of the configuration `args` (from the range `generate` names).
+pub fn deepest(args: &[&str]) -> String {
+    let o = specgen().args(["generate", "--out"]).arg(std::env::temp_dir().join("unused-never-written")).args(args).args(["--stages", "99"]).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr).to_string();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    // "... allowed 0..=N (the cut points ..."
+    err.split("allowed 0..=").nth(1).unwrap().split(' ').next().unwrap().to_string()
+}

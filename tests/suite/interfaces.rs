@@ -77,7 +77,7 @@ fn full_rate_gives_one_result_a_clock_at_every_depth() {
         cycles.extend((0..1000u64).map(|k| Cycle { tag: k, ..Cycle::pixel(specgen::cosim::random_vector(&design.cfg, 7, k)) }));
         cycles.extend((0..latency).map(|_| Cycle::default()));
         let stim = Recorded(cycles);
-        let built = build(&design, Simulator::Verilator, &Default::default(), false).unwrap();
+        let built = build(&design, Simulator::Verilator, &Default::default(), false, specgen::cosim::Stimulus::len(&stim)).unwrap();
         let r = run_one(&built, &design, &model, &stim, 0, &AtomicU64::new(0), &[]).unwrap();
         assert_eq!((r.results, r.mismatches), (1000, 0), "stages {stages}: {:?}", r.first);
     }

@@ -362,3 +362,36 @@ fn which(tool: &str) -> std::path::PathBuf {
     let paths = std::env::var_os("PATH").unwrap();
     std::env::split_paths(&paths).map(|d| d.join(tool)).find(|p| p.is_file()).unwrap()
 }
+
+/// Issue 49, point 3: every hard multiplier's registers are checked on the netlist. The narrow
+/// schlick unit `--target-mhz 55` picks (12 stages) has SB_MAC16s whose clock is a constant
+/// (the colour products end between fabric registers): `synth` names each under
+/// `unregistered_blocks` and in its table; a narrow ECP5 unit at its deepest, every product a
+/// MULT18X18D with its input and output registers, lists none.
+#[test]
+fn every_hard_multipliers_registers_are_checked_on_the_netlist() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
+    let schlick: Vec<&str> = narrow.iter().copied().chain(["--model", "schlick", "--stages", "12"]).collect();
+    let dir = generate(tmp.path(), "schlick", &schlick);
+    let json = tmp.path().join("schlick-synth.json");
+    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let listed: Vec<&str> = r["unregistered_blocks"].as_array().unwrap().iter().map(|b| b.as_str().unwrap()).collect();
+    assert!(!listed.is_empty() && listed.iter().all(|b| b.starts_with("SB_MAC16 ")), "{listed:?}");
+    assert!(listed.iter().any(|b| b.contains("its clock is a constant")), "{listed:?}");
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("unregistered") && out.contains("Fmax is an upper bound"), "{out}");
+    let ecp5: Vec<&str> = narrow.iter().copied().chain(["--target", "ecp5"]).collect();
+    let stages = deepest(&ecp5);
+    let ecp5: Vec<&str> = ecp5.into_iter().chain(["--stages", stages.as_str()]).collect();
+    let dir = generate(tmp.path(), "ecp5", &ecp5);
+    let json = tmp.path().join("ecp5-synth.json");
+    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(r["dsp_blocks"].as_u64().unwrap() > 0, "{r}");
+    assert_eq!(r["unregistered_blocks"].as_array().unwrap().len(), 0, "{r}");
+}

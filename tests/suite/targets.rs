@@ -34,14 +34,6 @@ fn has_multiply(verilog: &str) -> bool {
     verilog.lines().any(|l| l.split("//").next().unwrap().contains(" * "))
 }
 
-fn deepest(args: &[&str]) -> String {
-    let o = specgen().args(["generate", "--out"]).arg(std::env::temp_dir().join("unused-never-written")).args(args).args(["--stages", "99"]).output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr).to_string();
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    // "... allowed 0..=N (the cut points ..."
-    err.split("allowed 0..=").nth(1).unwrap().split(' ').next().unwrap().to_string()
-}
-
 /// The ECP5 unit at its deepest pipeline: products on MULT18X18D through the product module,
 /// the ROM on a DP16KD with its contents as INITVAL parameters, the primitives' simulation
 /// models in `sim/` (so `read_verilog *.v; synth_ecp5` of the directory works); lint-clean under `verilator -Wall` with them, compiled by Icarus, and
