@@ -298,12 +298,8 @@ fn the_delivered_values_are_the_datapaths_and_a_wrong_one_refuted() {
     let tmp = tempfile::tempdir().unwrap();
     let narrow = ["--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "3", "--intensity-frac-bits", "5", "--stages", "2"];
     let flags = ["--interface", "ready", "--colour", "static", "--clock-enable", "--tag-bits", "2"];
-    let edit = |dir: &Path, file: &str, from: &str, to: &str| {
-        let path = dir.join(file);
-        let src = std::fs::read_to_string(&path).unwrap();
-        assert_eq!(src.matches(from).count(), 1, "{from} in {src}");
-        std::fs::write(&path, src.replace(from, to)).unwrap();
-    };
+    // (one textual edit each, asserted to apply once: the suite's fault helper)
+    let edit = |dir: &Path, file: &str, from: &str, to: &str| apply_handshake_fault(dir, "datapath", file, from, to);
     type Edit<'a> = &'a (dyn Fn(&Path) + Sync);
     let none: Edit = &|_: &Path| {};
     let disabled_load: Edit = &|dir: &Path| edit(dir, "specular_unit.v", "if (ks_load && clk_en)", "if (ks_load)");
