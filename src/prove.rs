@@ -155,6 +155,8 @@ pub struct Tools {
     pub depth: Option<u32>,
     /// called with each line of progress the engine reports (the depth reached)
     pub progress: Option<fn(&str)>,
+    /// keep the trace of the run that reaches the port checker's covers ([`Ports::cover_vcd`])
+    pub cover_trace: bool,
 }
 
 impl Tools {
@@ -216,6 +218,9 @@ pub struct Ports {
     pub properties: Vec<&'static str>,
     pub covers: Vec<&'static str>,
     pub covered_by: u32,
+    /// the VCD of the run that reaches every cover (with [`Tools::cover_trace`]): what a
+    /// reader checks to see the unit deliver, fill and drain, not only that it can
+    pub cover_vcd: Option<Vec<u8>>,
 }
 
 /// The edge proof's engine, in words.
@@ -726,24 +731,28 @@ fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Script) -> Re
         Searched::OutOfTime { reached } => return Ok(AtPorts::OutOfTime { reached }),
     }
     let all = covers(cfg);
-    let reach = |mask: u32, depth: u32| -> Result<Searched, Error> {
+    let reach = |mask: u32, depth: u32, replay: bool| -> Result<Searched, Error> {
         let defines = vec!["SPECGEN_PORTS".to_string(), "SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{mask}")];
         let covering = Script { bounded: Some(depth), files: &files, defines, ports_only: Some(checker.clone()), ..script.clone() };
         // (its depths are not "no failure": a cover not reached yet)
-        search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, false)
+        search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, replay)
     };
     let cdepth = cover_depth(cfg);
     let mask = all.iter().fold(0, |m, (bit, _)| m | 1 << bit);
-    match reach(mask, cdepth)? {
-        Searched::Found { frame, .. } => {
-            Ok(AtPorts::Checked(Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: all.iter().map(|c| c.1).collect(), covered_by: frame }))
-        }
+    match reach(mask, cdepth, tools.cover_trace)? {
+        Searched::Found { frame, vcd } => Ok(AtPorts::Checked(Ports {
+            depth,
+            properties: PORT_PROPERTIES.to_vec(),
+            covers: all.iter().map(|c| c.1).collect(),
+            covered_by: frame,
+            cover_vcd: tools.cover_trace.then_some(vcd),
+        })),
         Searched::OutOfTime { reached } => Ok(AtPorts::OutOfTime { reached }),
         Searched::Clear => {
             // not all in one run: which cannot be reached
             let mut unreached = Vec::new();
             for (bit, what) in &all {
-                if matches!(reach(1 << bit, cdepth)?, Searched::Clear) {
+                if matches!(reach(1 << bit, cdepth, false)?, Searched::Clear) {
                     unreached.push(*what);
                 }
             }
@@ -779,7 +788,7 @@ fn search(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32) 
 }
 
 /// [`search`], with the counterexample replayed to a VCD only when `replay` (a cover's trace
-/// is not kept).
+/// only when asked for: `--cover-trace`).
 fn search_with(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32, replay: bool) -> Result<Searched, Error> {
     script.write(w, "model.ys")?;
     run(&tools.yosys, &["-q".into(), "-s".into(), "model.ys".into()], w, tools.limit)?
@@ -1100,9 +1109,10 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
             let mut defines = script.defines.clone();
             defines.extend(["SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{}", 1 << 6)]);
             let covering = Script { defines, ..script };
-            match search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, false)? {
-                Searched::Found { frame, .. } => {
-                    let ports = Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: vec![DATAPATH_COVER], covered_by: frame };
+            match search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, tools.cover_trace)? {
+                Searched::Found { frame, vcd } => {
+                    let cover_vcd = tools.cover_trace.then_some(vcd);
+                    let ports = Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: vec![DATAPATH_COVER], covered_by: frame, cover_vcd };
                     (Verdict::Bounded { depth }, Some(ports))
                 }
                 Searched::Clear => (Verdict::Unreached { covers: vec![DATAPATH_COVER], depth }, None),

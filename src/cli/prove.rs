@@ -32,6 +32,10 @@ pub struct ProveArgs {
     /// the message]
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
+    /// Where the VCD of the run that reaches every cover of the port checker goes (ready/axis,
+    /// and --datapath): the unit seen delivering, full, in_ready falling and rising again
+    #[arg(long, value_name = "FILE")]
+    pub cover_trace: Option<PathBuf>,
     /// Prove an RTL changed on purpose (without it, a file whose SHA-256 is not the manifest's
     /// is refused).
     #[arg(long)]
@@ -57,6 +61,15 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
     if let Some(t) = &args.trace {
         design.refuse_output("--trace", t)?;
     }
+    if let Some(t) = &args.cover_trace {
+        design.refuse_output("--cover-trace", t)?;
+        if !design.cfg.interface().handshake() {
+            return Err(super::usage("invalid --cover-trace: a valid unit's proof has no covers (the port checker is a ready/axis unit's)"));
+        }
+        if args.trace.as_ref() == Some(t) {
+            return Err(super::usage("invalid --cover-trace: the same file as --trace"));
+        }
+    }
     if let Some(why) = args.pipelining.then(|| specgen::prove::pipelining_refused(&design)).flatten() {
         return Err(super::usage(format!("invalid --pipelining: {why}")));
     }
@@ -64,8 +77,14 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
         return Err(super::usage(format!("invalid --datapath: {why}")));
     }
     let progress: fn(&str) = |line| super::errln!("prove: {line}");
-    let tools =
-        Tools { yosys: args.yosys.clone(), abc: args.abc.clone(), limit: Duration::from_secs(args.time_limit), depth: args.depth, progress: Some(progress) };
+    let tools = Tools {
+        yosys: args.yosys.clone(),
+        abc: args.abc.clone(),
+        limit: Duration::from_secs(args.time_limit),
+        depth: args.depth,
+        progress: Some(progress),
+        cover_trace: args.cover_trace.is_some(),
+    };
     tools.check()?;
     let proof = if args.pipelining {
         prove_pipelining(&design, &tools)?
@@ -82,7 +101,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             for p in &proof.properties {
                 outln!("  - {p}")?;
             }
-            at_the_ports(&proof)
+            at_the_ports(&proof, args.cover_trace.as_deref())
         }
         Verdict::Bounded { depth } => {
             outln!(
@@ -92,7 +111,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             for p in &proof.properties {
                 outln!("  - {p}")?;
             }
-            at_the_ports(&proof)
+            at_the_ports(&proof, args.cover_trace.as_deref())
         }
         Verdict::Unreached { covers, depth } => {
             let mut msg = format!("{head}vacuous: {how}: within the first {depth} clock edges from power-up no run reaches");
@@ -138,7 +157,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
 }
 
 /// What the port checker found, after the verdict's own lines.
-fn at_the_ports(proof: &specgen::prove::Proof) -> Result<(), Failure> {
+fn at_the_ports(proof: &specgen::prove::Proof, cover_trace: Option<&std::path::Path>) -> Result<(), Failure> {
     let Some(ports) = &proof.ports else { return Ok(()) };
     outln!(
         "at the ports (a checker written from the manifest, apart from the RTL; the unit's own assertions set aside): no property fails within the first {} clock edges from power-up, a bounded search, not a proof:",
@@ -150,6 +169,10 @@ fn at_the_ports(proof: &specgen::prove::Proof) -> Result<(), Failure> {
     outln!("covers, all reached in one run by edge {} (none vacuous):", ports.covered_by)?;
     for c in &ports.covers {
         outln!("  - {c}")?;
+    }
+    if let (Some(path), Some(vcd)) = (cover_trace, &ports.cover_vcd) {
+        specgen::output::write_file(path, vcd).map_err(|e| failed(format!("could not write the covering run's trace {}: {e}", path.display())))?;
+        outln!("the covering run's trace: {}", path.display())?;
     }
     Ok(())
 }

