@@ -74,7 +74,7 @@ impl Schlick {
     /// The datapath: `(c, den, quotient, outputs)`, each remainder given to `remainder` as it
     /// is made.
     fn divide(&self, x: Inputs, mut remainder: impl FnMut(u128)) -> (u128, u128, u128, Outputs) {
-        let (f, w, fi, b) = (self.cfg.f(), self.quotient_frac_bits, self.cfg.fi(), self.cfg.b());
+        let (f, w) = (self.cfg.f(), self.quotient_frac_bits);
         // step 1: clamp, 1 − c
         let c = (x.cos_g as u128 & mask(f + 1)).min(1 << f);
         let n = x.n as u128 & mask(self.cfg.n_bits());
@@ -97,9 +97,34 @@ impl Schlick {
         }
         // last step: n = 0 is 1.0 (the limit at c = 0); round half up to the outputs
         let quotient = if n == 0 { 1 << w } else { q };
+        (c, den, quotient, self.outputs(x, quotient))
+    }
+
+    /// The last step: the outputs of the quotient `q` (UQ1.W), rounded half up.
+    fn outputs(&self, x: Inputs, quotient: u128) -> Outputs {
+        let (w, fi, b) = (self.quotient_frac_bits, self.cfg.fi(), self.cfg.b());
         let intensity = ((quotient + (1 << (w - fi - 1))) >> (w - fi)) as u32;
         let spec = x.ks.map(|k| ((quotient * (k as u128 & mask(b)) + (1 << (w - 1))) >> w) as u32);
-        (c, den, quotient, Outputs { spec, intensity, done: intensity == 0 })
+        Outputs { spec, intensity, done: intensity == 0 }
+    }
+
+    /// [`Schlick::divide`]'s outputs without its steps: the restoring divider's quotient is
+    /// `floor(c·2^W/den)` (the module doc; `the_divider_gives_the_floor_of_the_quotient`
+    /// checks it), one division here, in 64 bits where `c·2^W` fits them.
+    fn quick(&self, x: Inputs) -> Outputs {
+        let (f, w) = (self.cfg.f(), self.quotient_frac_bits);
+        let c = (x.cos_g as u128 & mask(f + 1)).min(1 << f);
+        let n = x.n as u128 & mask(self.cfg.n_bits());
+        let quotient = if n == 0 {
+            1 << w
+        } else {
+            let (num, den) = (c << w, 2 * n * ((1u128 << f) - c) + c);
+            match (u64::try_from(num), u64::try_from(den)) {
+                (Ok(num), Ok(den)) => (num / den) as u128,
+                _ => num / den,
+            }
+        };
+        self.outputs(x, quotient)
     }
 }
 
@@ -135,7 +160,7 @@ pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Error> {
 
 impl SpecularUnit for Schlick {
     fn eval(&self, x: Inputs) -> Outputs {
-        self.divide(x, |_| {}).3
+        self.quick(x)
     }
 
     fn check(&self, x: Inputs, got: Outputs) -> Result<(), Error> {
@@ -294,6 +319,27 @@ mod tests {
                 let t = s.trace(Inputs { cos_g, n, ks: [0; 3] });
                 assert_eq!(t.quotient, ((cos_g as u128) << w) / t.den, "n={n} cos_g={cos_g}");
                 assert!(t.remainders.iter().all(|&r| r < t.den));
+                // and eval, one division, is the divider step for step
+                let x = Inputs { cos_g, n, ks: [cos_g & 255, n & 255, 255] };
+                assert_eq!(s.eval(x), s.trace(x).outputs, "{x:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn eval_is_the_divider_step_for_step_on_a_whole_input_space() {
+        // every input of a narrow unit, and a sample of the widest
+        for p in [
+            Params { cos_frac_bits: 9, n_bits: 5, color_bits: 4, intensity_frac_bits: 7, ..Params::default() },
+            Params { cos_frac_bits: 20, n_bits: 12, color_bits: 16, intensity_frac_bits: 24, ..Params::default() },
+        ] {
+            let s = Schlick::new(&cfg(p.clone()));
+            let step = if p.cos_frac_bits > 9 { 77_777 } else { 1 };
+            for n in 0..1u32 << p.n_bits {
+                for cos_g in (0..2u32 << p.cos_frac_bits).step_by(step) {
+                    let x = Inputs { cos_g, n, ks: [cos_g & mask(p.color_bits) as u32, n, (1 << p.color_bits) - 1] };
+                    assert_eq!(s.eval(x), s.divide(x, |_| {}).3, "{x:?}");
+                }
             }
         }
     }
