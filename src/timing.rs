@@ -54,6 +54,91 @@ use serde::Deserialize;
 /// The fitted lines, `scripts/fit_delay_model.py`'s output.
 const MODEL_JSON: &str = include_str!("../data/delay_model.json");
 
+/// The measurements the lines are fitted to (`scripts/calibrate_delay.sh`): each row a unit
+/// placed and routed, its datapath, family and the widths it was generated with (`args`).
+const CALIBRATION_CSV: &str = include_str!("../data/delay_calibration.csv");
+
+/// What shapes a datapath's delays beyond its depth: the widths, the rounding and the ROM
+/// style (the constant's width and fitted's squarings only where the model reads them), as
+/// `generate`'s flags.
+fn shape(p: &crate::config::Params, model: crate::config::SpecularModel) -> Vec<(&'static str, String)> {
+    let mut v = vec![
+        ("--cos-frac-bits", p.cos_frac_bits.to_string()),
+        ("--n-bits", p.n_bits.to_string()),
+        ("--color-bits", p.color_bits.to_string()),
+        ("--intensity-frac-bits", p.intensity_frac_bits.to_string()),
+        ("--rounding", p.rounding.name().to_string()),
+        ("--rom-style", p.rom_style.name().to_string()),
+    ];
+    if model.reads("k_frac_bits") {
+        v.push(("--k-frac-bits", p.k_frac_bits.to_string()));
+    }
+    if model.reads("max_squarings") {
+        v.push(("--max-squarings", p.max_squarings.to_string()));
+    }
+    v
+}
+
+/// The shapes the calibration measured `datapath` at on `family` (rows with a measured Fmax):
+/// each the default parameters with the row's `args` applied; a row whose args name another
+/// flag is left out (it is not known to be any configuration's shape).
+fn calibrated_shapes(family: &str, datapath: &str, model: crate::config::SpecularModel) -> Vec<Vec<(&'static str, String)>> {
+    let mut shapes: Vec<Vec<(&'static str, String)>> = Vec::new();
+    for row in CALIBRATION_CSV.lines().skip(1) {
+        let f: Vec<&str> = row.splitn(8, ',').collect();
+        if f.len() < 8 || f[0] != family || f[1] != datapath || f[5].is_empty() {
+            continue;
+        }
+        let mut sh = shape(&crate::config::Params::default(), model);
+        let words: Vec<&str> = f[7].split_whitespace().collect();
+        let mut known = words.len().is_multiple_of(2);
+        for pair in words.chunks(2) {
+            match sh.iter_mut().find(|(flag, _)| *flag == pair[0]) {
+                Some(slot) if pair.len() == 2 => slot.1 = pair[1].to_string(),
+                _ => known = false,
+            }
+        }
+        if known && !shapes.contains(&sh) {
+            shapes.push(sh);
+        }
+    }
+    shapes
+}
+
+/// Why `plan`'s pick is outside the delay model's calibration, or None: no unit of its
+/// datapath was placed and routed at its widths, rounding and ROM style on its family (the
+/// lines are fitted on those, so elsewhere a pick is the line's extrapolation, not assured:
+/// a narrow schlick asked for 55 MHz measured 49.2). `generate --target-mhz` says it, with
+/// the command that measures the unit.
+pub fn outside_calibration(plan: &Plan) -> Option<String> {
+    let family = family(plan.cfg.target())?;
+    let datapath = plan.cfg.datapath_name();
+    let model = plan.cfg.model();
+    let own = shape(&plan.cfg.params, model);
+    let shapes = calibrated_shapes(family, datapath, model);
+    if shapes.contains(&own) {
+        return None;
+    }
+    let flags = |sh: &[(&'static str, String)]| {
+        let default = shape(&crate::config::Params::default(), model);
+        let differs: Vec<String> = sh.iter().zip(&default).filter(|(a, d)| a != d).map(|(a, _)| format!("{} {}", a.0, a.1)).collect();
+        if differs.is_empty() {
+            "the default widths".to_string()
+        } else {
+            differs.join(" ")
+        }
+    };
+    let measured = match shapes.len() {
+        0 => "no unit of its own".to_string(),
+        _ => shapes.iter().map(|sh| flags(sh)).collect::<Vec<_>>().join("; "),
+    };
+    Some(format!(
+        "the {datapath} datapath on the {} was calibrated at {measured}, not at this configuration ({}): the depth follows the delay model's line, an extrapolation, not a measured assurance",
+        part(plan.cfg.target()),
+        flags(&own)
+    ))
+}
+
 /// One family's line (see the module doc).
 #[derive(Debug, Clone, Deserialize)]
 pub struct Line {
@@ -262,6 +347,32 @@ mod tests {
     /// Issue 37: a datapath the calibration does not name is an error naming the script (a
     /// new model is measured, never estimated in silence by the family's line); the ones the
     /// data names take theirs, every model of the registry included.
+    /// Issue 49, point 2: a configuration at widths no calibration unit had is said to be
+    /// outside the calibration, naming what was measured; the default widths are inside.
+    #[test]
+    fn widths_outside_the_calibration_are_told() {
+        let plan = |p: crate::config::Params| crate::plan::Plan::new(Config::new(p).unwrap()).unwrap();
+        for model in [crate::config::SpecularModel::Quadratic, crate::config::SpecularModel::Schlick, crate::config::SpecularModel::Fitted] {
+            let p = crate::config::Params { model, ..Default::default() };
+            assert_eq!(outside_calibration(&plan(p.clone())), None, "{model:?}");
+            let ecp5 = crate::config::Params { target: Target::Ecp5, ..p.clone() };
+            assert_eq!(outside_calibration(&plan(ecp5)), None, "{model:?} on the ECP5");
+            let narrow = crate::config::Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..p };
+            let why = outside_calibration(&plan(narrow)).expect("narrow widths are outside");
+            assert!(
+                why.contains("calibrated at the default widths") && why.contains("--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8"),
+                "{why}"
+            );
+        }
+        // the wide lean of the ECP5 has units of its own; on the iCE40 it has none
+        let wide = crate::config::Params { cos_frac_bits: 18, n_bits: 11, color_bits: 10, intensity_frac_bits: 18, k_frac_bits: 20, ..Default::default() };
+        assert_eq!(outside_calibration(&plan(crate::config::Params { target: Target::Ecp5, ..wide.clone() })), None);
+        assert!(outside_calibration(&plan(wide)).is_some());
+        // a rounding or ROM style the calibration never had is outside too
+        let exact = crate::config::Params { rounding: crate::config::Rounding::Exact, ..Default::default() };
+        assert!(outside_calibration(&plan(exact)).unwrap().contains("--rounding exact"));
+    }
+
     #[test]
     fn an_uncalibrated_datapath_is_refused_by_name() {
         for target in [Target::Ice40, Target::Ecp5] {

@@ -103,6 +103,31 @@ fn generic_target_counts_cells() {
     assert!(r["fmax_mhz"].is_null());
 }
 
+/// Issue 49, point 2: `--target-mhz` never promises silently outside its calibration: a
+/// narrow schlick (the integrator's 55 MHz unit measured 49.2) is told that its widths were not
+/// measured, naming those that were; a default-width unit is not.
+#[test]
+fn a_pick_outside_the_calibration_is_told() {
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
+    let pick = |name: &str, args: &[&str]| {
+        let o = specgen().arg("generate").arg("--out").arg(tmp.path().join(name)).args(args).output().unwrap();
+        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let err = pick("narrow", &[&["--model", "schlick", "--target-mhz", "45"][..], &narrow].concat());
+    assert!(
+        err.contains("target-mhz: outside the calibration: the schlick datapath on the iCE40 UP5K was calibrated at the default widths")
+            && err.contains("--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8")
+            && err.contains("specgen synth"),
+        "{err}"
+    );
+    for (name, args) in [("lean", &["--target-mhz", "60"][..]), ("blinn", &["--model", "blinn", "--target", "ecp5", "--target-mhz", "150"])] {
+        let err = pick(name, args);
+        assert!(err.contains("target-mhz: chose --stages") && !err.contains("outside the calibration"), "{name}: {err}");
+    }
+}
+
 /// `generate --target-mhz F` picks the depth by the delay model (`src/timing.rs`), no tool
 /// run (none is on its PATH), and records its prediction in the manifest; one real
 /// place-and-route per family checks that the chosen unit reaches F (within a seed's scatter,
