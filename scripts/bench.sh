@@ -55,7 +55,9 @@ $(iverilog -V 2>/dev/null | head -1 | cut -c1-40). Wall-clock seconds of whole c
 | \`specgen eval --model fitted ...\` (the fit alone, no sweep) | $fit_only |
 
 Every \`generate\` measures the manifest's \`blinn_error_max\`/\`_mean\` with the golden model over
-all 33.5 M (cos_g, n) of the default configuration (2^26 points at most): most of its time.
+all 33.5 M (cos_g, n) of the default configuration (2^26 points at most); a row is evaluated
+from its first non-zero output (the outputs are monotone in cos_g), below it every output is zero.
+fitted's time is mostly its minimax fit.
 
 ## Co-simulation (default configuration unless noted)
 
