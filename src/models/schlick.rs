@@ -110,20 +110,13 @@ impl Schlick {
 
     /// [`Schlick::divide`]'s outputs without its steps: the restoring divider's quotient is
     /// `floor(c·2^W/den)` (the module doc; `the_divider_gives_the_floor_of_the_quotient`
-    /// checks it), one division here, in 64 bits where `c·2^W` fits them.
+    /// checks it), one division here, in 64 bits: `c·2^W ≤ 2^(20+25)` and `den < 2^(12+20+2)`
+    /// at every allowed width.
     fn quick(&self, x: Inputs) -> Outputs {
         let (f, w) = (self.cfg.f(), self.quotient_frac_bits);
-        let c = (x.cos_g as u128 & mask(f + 1)).min(1 << f);
-        let n = x.n as u128 & mask(self.cfg.n_bits());
-        let quotient = if n == 0 {
-            1 << w
-        } else {
-            let (num, den) = (c << w, 2 * n * ((1u128 << f) - c) + c);
-            match (u64::try_from(num), u64::try_from(den)) {
-                (Ok(num), Ok(den)) => (num / den) as u128,
-                _ => num / den,
-            }
-        };
+        let c = (x.cos_g as u64 & mask(f + 1) as u64).min(1 << f);
+        let n = x.n as u64 & mask(self.cfg.n_bits()) as u64;
+        let quotient = if n == 0 { 1 << w } else { ((c << w) / (2 * n * ((1u64 << f) - c) + c)) as u128 };
         self.outputs(x, quotient)
     }
 }
