@@ -104,6 +104,9 @@ struct Script<'a> {
     /// `prove --datapath`: identical logic of the unit and its twin merged (kept registers
     /// too), so the search compares only what differs
     share: bool,
+    /// with `induction` and `bounded`: instead of the model for ABC, yosys's `sat` searches this
+    /// many edges and writes its failure's trace (where this yosys has no `sim` to replay ABC's)
+    sat_search: Option<u32>,
 }
 
 #[derive(Template)]
@@ -500,6 +503,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         abstract_module: "",
         abstract_wires: Vec::new(),
         share: false,
+        sat_search: None,
     }
     .write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
@@ -562,6 +566,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             .filter(|src| src.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
             .collect(),
         share: false,
+        sat_search: None,
     };
     let mut properties = properties(design);
     let name = name.to_string();
@@ -803,15 +808,43 @@ fn search_with(design: &Design, tools: &Tools, w: &Path, script: Script, depth: 
         Some(frame) if !replay => Ok(Searched::Found { frame, vcd: Vec::new() }),
         Some(frame) => {
             yosys_witness(w)?;
-            Script { replay: true, ..script }.write(w, "replay.ys")?;
+            Script { replay: true, ..script.clone() }.write(w, "replay.ys")?;
             let _ = std::fs::remove_file(w.join("trace.vcd"));
-            run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit)?
-                .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
+            let replayed = run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit);
+            if matches!(&replayed, Err(e) if without_sim(e)) {
+                // YoWASP's yosys has no `sim`: its `sat` searches the failing run's edges again
+                // (sat's first step is the state before the first edge: ABC's frame f is step f + 2)
+                let steps = frame + 2;
+                Script { sat_search: Some(steps), ..script }.write(w, "replay.ys")?;
+                match run_sat(&tools.yosys, w, "replay.ys", tools.limit)? {
+                    Some(false) => {}
+                    None => {
+                        return Err(error::tool(
+                            &tools.yosys,
+                            format!("yosys's sat did not find the failure of edge {frame} again within {} s", tools.limit.as_secs()),
+                        ))
+                    }
+                    Some(true) => {
+                        return Err(error::tool(
+                            &tools.yosys,
+                            format!("ABC found a failure at edge {frame} that yosys's sat does not find within {steps} edges"),
+                        ))
+                    }
+                }
+            } else {
+                replayed?.ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
+            }
             Ok(Searched::Found { frame, vcd: trace(&tools.yosys, w, design)? })
         }
         None if said.text.contains("No output asserted") => Ok(Searched::Clear),
         None => Err(error::tool(&tools.abc, format!("bmc3 neither found a failure nor finished its {depth} frames: {}", tail(&said.text)))),
     }
+}
+
+/// Whether `e` is yosys saying it has no `sim` command (YoWASP's build leaves it out).
+fn without_sim(e: &Error) -> bool {
+    let text = e.to_string();
+    text.contains("No such command") && text.contains("sim")
 }
 
 /// The last lines of a tool's output, for a message.
@@ -837,6 +870,7 @@ fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) ->
         abstract_module: "",
         abstract_wires: Vec::new(),
         share: false,
+        sat_search: None,
     }
     .write(w, "bounded.ys")?;
     run_sat(&tools.yosys, w, "bounded.ys", tools.limit)
@@ -847,12 +881,19 @@ fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) ->
 /// it did not end within `limit`.
 fn run_sat(yosys: &str, w: &Path, file: &str, limit: Duration) -> Result<Option<bool>, Error> {
     let _ = std::fs::remove_file(w.join("trace.vcd"));
-    // sat ends with an error when it finds the failure it was asked to look for
-    match run(yosys, &["-s".into(), file.into()], w, limit) {
-        Ok(None) => Ok(None),
-        Ok(Some(_)) => Ok(Some(true)),
-        Err(_) if w.join("trace.vcd").is_file() => Ok(Some(false)),
-        Err(e) => Err(e),
+    // sat ends successfully whether or not it finds a failure: its verdict is its log's
+    // ("SAT proof finished - model found: FAIL!") and the trace it writes only then; an error
+    // exit is the tool's failure, never a verdict
+    let text = match run(yosys, &["-s".into(), file.into()], w, limit)? {
+        None => return Ok(None),
+        Some(text) => text,
+    };
+    let failed = text.contains("model found: FAIL");
+    let proved = text.contains("no model found: SUCCESS");
+    match (failed, proved, w.join("trace.vcd").is_file()) {
+        (true, false, true) => Ok(Some(false)),
+        (false, true, false) => Ok(Some(true)),
+        _ => Err(error::tool(yosys, format!("yosys's sat gave no verdict (or a failure without its trace): {}", tail(&text)))),
     }
 }
 
@@ -1093,6 +1134,7 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         abstract_module: "",
         abstract_wires: Vec::new(),
         share: true,
+        sat_search: None,
     };
     let t0 = Instant::now();
     let engine = format!(

