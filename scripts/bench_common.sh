@@ -15,3 +15,13 @@ placeable() { for m in $(models); do case $m in quadratic) echo lean ;; blinn-po
 max_stages() { { $bin generate --out "$work/probe" --stages 4294967295 "$@" 2>&1 || true; } | sed -n 's/.*allowed 0\.\.=\([0-9]*\).*/\1/p'; }
 # the wide configuration: F=18, N=11, B=10, FI=18, KF=20
 wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)
+# the narrow configuration: F=8, N=6, B=4, FI=8 (the delay model's calibration spans it to the
+# defaults: F=15, N=10, B=8, FI=15)
+narrow=(--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8)
+# the generate flags of a configuration `model[:wide|:narrow]`: --model and its widths
+config_args() {
+    local model=${1%%:*}
+    [ "$model" != lean ] && printf '%s\n' --model "$model"
+    case $1 in *:wide) printf '%s\n' "${wide[@]}" ;; *:narrow) printf '%s\n' "${narrow[@]}" ;; esac
+    return 0
+}

@@ -129,7 +129,8 @@ def main():
                 continue
             fam, model, stages = row["family"], row["model"], int(row["stages"])
             est, mean = features(fam, model, stages, (row.get("args") or "").split())
-            by_family.setdefault(fam, []).append({"model": model, "stages": stages, "est": est, "mean": mean, "fmax": float(row["fmax_mhz"])})
+            args = " ".join((row.get("args") or "").split())
+            by_family.setdefault(fam, []).append({"model": model, "stages": stages, "est": est, "mean": mean, "fmax": float(row["fmax_mhz"]), "args": args})
     # a line per family ("all") and per model of it (three units or more): the generator uses
     # its model's line, else the family's
     model = {}
@@ -140,8 +141,12 @@ def main():
             mine = [r for r in rows if r["model"] == name]
             if len(mine) >= 3:
                 lines[name] = fit(mine, cap)
-                # its units as measured: a floor for units with stretches no longer (src/timing.rs)
-                lines[name]["measured"] = [[r["est"], r["mean"], round(r["fmax"], 2)] for r in sorted(mine, key=lambda r: r["stages"])]
+                # its units as measured, each with the widths it was generated at (`args`): a
+                # floor for units of the same widths with stretches no longer (src/timing.rs);
+                # the line and its margin are fitted over every width of the grid
+                ordered = sorted(mine, key=lambda r: (r["args"], r["stages"]))
+                lines[name]["measured"] = [[r["est"], r["mean"], round(r["fmax"], 2)] for r in ordered]
+                lines[name]["measured_args"] = [r["args"] for r in ordered]
         # datapaths with fewer measured units than a line needs (blinn-pow does not fit the
         # parts), and the paper's (the lean datapath's operations uncut, never calibrated on its
         # own), take the family's line by name: the generator refuses a datapath this file

@@ -95,10 +95,10 @@ impl Plan {
         edges.push(dp.steps.len());
         // (iCE40: a `*` that becomes an SB_MAC16, a table read that becomes an SB_RAM40_4K;
         // ECP5: the MULT18X18D and DP16KD instances with their own registers; `RomRead::step`
-        // is the 1-based step number)
+        // is the 1-based step number; a product too small for the block is LUTs: logic)
         let hard_block = |k: usize| {
             let s = &dp.steps[k];
-            !s.dsps.is_empty() || s.wires.iter().any(|w| w.expr.contains(" * ")) || dp.reads.iter().any(|r| r.step == k + 1)
+            !s.soft_product && (!s.dsps.is_empty() || s.wires.iter().any(|w| w.expr.contains(" * ")) || dp.reads.iter().any(|r| r.step == k + 1))
         };
         edges
             .windows(2)

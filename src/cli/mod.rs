@@ -434,7 +434,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 plan = plan.with_stages(stages)?;
                 errln!("target-mhz: chose --stages {stages}: {predicted:.1} MHz predicted on the {}", specgen::timing::part(plan.cfg.target()));
                 if let Some(why) = specgen::timing::outside_calibration(&plan) {
-                    errln!("target-mhz: outside the calibration: {why}; measure it: specgen synth --rtl {} --dsp --seeds 3", out.display());
+                    errln!("target-mhz: {why}; measure it: specgen synth --rtl {} --dsp --seeds 3", out.display());
                 }
             }
             let files = emit::generate_files(&plan);

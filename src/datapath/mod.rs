@@ -80,6 +80,9 @@ pub struct Step {
     pub(crate) dsps: Vec<Dsp>,
     /// Delay estimate (ns on a LUT4 + carry-chain fabric); only ratios matter.
     pub(crate) delay: f64,
+    /// a product here is too small for the family's block and lands in LUTs
+    /// ([`Builder::product_delay`]): the step is logic, never a hard block on its own
+    pub(crate) soft_product: bool,
 }
 
 /// A signal alive across a cut, and the name it is taken from there.
@@ -542,7 +545,8 @@ pub(crate) fn add_delay(w: u32) -> f64 {
 }
 
 /// An a×b multiply: one DSP when both fit its operands, else an array of partial products.
-pub(crate) fn mul_delay(a: u32, b: u32) -> f64 {
+/// (The family's own rule, small products in LUTs: [`Builder::mul_delay`].)
+fn dsp_or_array_delay(a: u32, b: u32) -> f64 {
     if a.max(b) <= DSP_BITS {
         5.5
     } else {
@@ -550,7 +554,50 @@ pub(crate) fn mul_delay(a: u32, b: u32) -> f64 {
     }
 }
 
+/// yosys's `synth_ice40 -dsp` maps a product to an SB_MAC16 only when it has at least this
+/// many bits (`DSP_Y_MINWIDTH`); both families only when each operand has at least 2.
+const ICE40_DSP_MIN_PRODUCT_BITS: u32 = 11;
+
+/// A product yosys leaves in LUTs (too small for the family's block): partial products summed
+/// by a tree of LUT levels, then a carry chain over the product.
+fn soft_mul_delay(a: u32, b: u32) -> f64 {
+    LUT_DELAY * ((a.min(b).max(1) as f64).log2().ceil() + 1.0) + add_delay(a + b)
+}
+
 impl Builder {
+    /// The delay estimate of an a×b multiply as this target's synthesis maps it: a product too
+    /// small for the block (on the iCE40 fewer than [`ICE40_DSP_MIN_PRODUCT_BITS`] bits, on
+    /// either family an operand of one bit) is LUTs, slower than the block (a narrow lean's
+    /// 5×4 colour product set its clock at 52 MHz while the estimate had it as one DSP); else
+    /// one DSP, or an array past the block's operands.
+    pub(crate) fn mul_delay(&self, a: u32, b: u32) -> f64 {
+        if self.is_soft_product(a, b) {
+            soft_mul_delay(a, b)
+        } else {
+            dsp_or_array_delay(a, b)
+        }
+    }
+
+    /// Raises the current step's delay to an a×b multiply's ([`Builder::mul_delay`]) plus
+    /// `after` (the logic behind it in the same step), and marks the step when the product is
+    /// LUTs, not a block ([`Step::soft_product`]).
+    pub(crate) fn product_delay(&mut self, a: u32, b: u32, after: f64) {
+        let d = self.mul_delay(a, b) + after;
+        let soft = self.is_soft_product(a, b);
+        self.delay(d);
+        let s = self.steps.last_mut().expect("a step");
+        s.soft_product |= soft;
+    }
+
+    /// Whether yosys leaves an a×b multiply in LUTs on this target (too small for its block).
+    fn is_soft_product(&self, a: u32, b: u32) -> bool {
+        match self.target {
+            Target::Ice40 => a.min(b) < 2 || a + b < ICE40_DSP_MIN_PRODUCT_BITS,
+            Target::Ecp5 => a.min(b) < 2,
+            Target::Generic => false,
+        }
+    }
+
     /// `inputs`: the port signals, available from cut 0; `registered`: the cuts that hold a
     /// pipeline register (a reference resolves to the last of them before it, or to the
     /// defining wire when there is none: a combinational cut emits nothing).
@@ -659,7 +706,7 @@ impl Builder {
         // be this block's input register: then a `*` the tool maps
         let visible = inputs.iter().all(|n| self.visible_before(n));
         let on_dsp = visible && self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
-        self.delay(mul_delay(wa, wb));
+        self.product_delay(wa, wb, 0.0);
         if !on_dsp {
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
             self.wire(name, width, format!("{ea} * {eb}"), comment);
@@ -691,7 +738,7 @@ impl Builder {
             Target::Ecp5 => false,
         };
         if post_adder {
-            self.delay(mul_delay(wa, wb));
+            self.product_delay(wa, wb, 0.0);
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
             let ec = self.addend(&sub_pieces(addend, 0, width), |e| e);
             return self.wire(name, width, format!("{ea} * {eb}{ec}"), &format!("{comment} (one DSP, the add inside it)"));
@@ -750,7 +797,7 @@ impl Builder {
     /// Starts the next step.
     pub(crate) fn step(&mut self, title: &str) {
         let index = self.steps.len() + 1;
-        self.steps.push(Step { index, title: title.into(), wires: Vec::new(), dsps: Vec::new(), delay: 0.0 });
+        self.steps.push(Step { index, title: title.into(), wires: Vec::new(), dsps: Vec::new(), delay: 0.0, soft_product: false });
     }
 
     /// Raises the current step's delay estimate to at least `d`.

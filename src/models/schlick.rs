@@ -29,7 +29,7 @@
 use super::{explain_ideal, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, mul_delay, Builder, Piece, Sig, LUT_DELAY};
+use crate::datapath::{add_delay, Builder, Piece, Sig, LUT_DELAY};
 use crate::error::Error;
 
 /// W: fractional bits of the quotient `q = floor(S·2^W)`, from the budget above.
@@ -291,7 +291,7 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     b.colour_results(w, "S");
     let iv = b.r(&intensity);
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
-    b.delay(mul_delay(w + 1, bb) + add_delay(w + bb));
+    b.product_delay(w + 1, bb, add_delay(w + bb));
 }
 
 #[cfg(test)]

@@ -103,28 +103,38 @@ fn generic_target_counts_cells() {
     assert!(r["fmax_mhz"].is_null());
 }
 
-/// Issue 49, point 2: `--target-mhz` never promises silently outside its calibration: a
-/// narrow schlick (the integrator's 55 MHz unit measured 49.2) is told that its widths were not
-/// measured, naming those that were; a default-width unit is not.
+/// Issue 49, point 2: `--target-mhz` never promises silently outside its calibration. The
+/// calibration is a grid of widths: a schlick at the narrow grid point (the integrator's
+/// 55 MHz unit measured 49.2 before the grid had it) is calibrated and told nothing; one
+/// between the grid's widths is told so, naming the grid; one narrower than it is told that
+/// its depth is an extrapolation, with the command that measures it.
 #[test]
 fn a_pick_outside_the_calibration_is_told() {
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
+    let widths = |f: &'static str, n: &'static str, b: &'static str, fi: &'static str| {
+        ["--cos-frac-bits", f, "--n-bits", n, "--color-bits", b, "--intensity-frac-bits", fi]
+    };
     let pick = |name: &str, args: &[&str]| {
         let o = specgen().arg("generate").arg("--out").arg(tmp.path().join(name)).args(args).output().unwrap();
         assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
         String::from_utf8_lossy(&o.stderr).into_owned()
     };
-    let err = pick("narrow", &[&["--model", "schlick", "--target-mhz", "45"][..], &narrow].concat());
+    let schlick = ["--model", "schlick", "--target-mhz", "30"];
+    let err = pick("narrower", &[&schlick[..], &widths("6", "6", "4", "8")].concat());
     assert!(
         err.contains("target-mhz: outside the calibration: the schlick datapath on the iCE40 UP5K was calibrated at the default widths")
             && err.contains("--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8")
+            && err.contains("--cos-frac-bits 6")
             && err.contains("specgen synth"),
         "{err}"
     );
+    let err = pick("between", &[&schlick[..], &widths("12", "8", "6", "11")].concat());
+    assert!(err.contains("target-mhz: between calibrated widths: the schlick datapath") && err.contains("specgen synth"), "{err}");
+    let err = pick("narrow", &[&schlick[..], &widths("8", "6", "4", "8")].concat());
+    assert!(err.contains("target-mhz: chose --stages") && !err.contains("calibrat"), "narrow: {err}");
     for (name, args) in [("lean", &["--target-mhz", "60"][..]), ("blinn", &["--model", "blinn", "--target", "ecp5", "--target-mhz", "150"])] {
         let err = pick(name, args);
-        assert!(err.contains("target-mhz: chose --stages") && !err.contains("outside the calibration"), "{name}: {err}");
+        assert!(err.contains("target-mhz: chose --stages") && !err.contains("calibrat"), "{name}: {err}");
     }
 }
 
