@@ -223,8 +223,9 @@ impl Line {
 
     /// The line with only the measured units whose widths `plan` has: a unit measured at other
     /// widths is no floor for it (routes differ with the widths: a narrow schlick with stretches
-    /// shorter than a default-width unit's measured 49.2 MHz where that one had 55). The line
-    /// and its margin stay those fitted over every width of the grid.
+    /// shorter than a default-width unit's measured 49.2 MHz where that one had 55), and at
+    /// widths never measured no stretch is assured the cap. The line and its margin stay those
+    /// fitted over every width of the grid.
     pub(crate) fn at_widths_of(mut self, plan: &Plan) -> Line {
         let model = plan.cfg.model();
         let own = shape(&plan.cfg.params, model);
@@ -233,6 +234,10 @@ impl Line {
         let mut k = keep.iter();
         self.measured.retain(|_| *k.next().expect("one flag a unit"));
         self.measured_args.clear();
+        if self.measured.is_empty() {
+            // the cap where a calibration unit as short reached it: only at widths measured
+            self.cap_up_to = -1.0;
+        }
         self
     }
 
@@ -452,11 +457,16 @@ mod tests {
         assert_eq!(l.clone().at_widths_of(&default).measured, vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]]);
         let mine = l.clone().at_widths_of(&small);
         assert_eq!(mine.measured, vec![[9.0, 5.0, 50.0]]);
+        assert_eq!(mine.cap_up_to, l.cap_up_to);
         assert_eq!(mine.margin, l.margin);
         // the narrow unit's 50 MHz is its widths' floor, never the default units' 150
         assert_eq!(mine.measured_floor(8.0, 4.0), 50.0);
+        // widths never measured: no floor, and no stretch assured the cap
         let between = crate::config::Params { cos_frac_bits: 12, ..Config::defaults().params };
-        assert!(l.at_widths_of(&Plan::new(Config::new(between).unwrap()).unwrap()).measured.is_empty());
+        let l = Line { cap_up_to: 8.0, ..l };
+        let theirs = l.at_widths_of(&Plan::new(Config::new(between).unwrap()).unwrap());
+        assert!(theirs.measured.is_empty() && theirs.cap_up_to < 0.0);
+        assert!(theirs.fmax(7.0, 5.0) < theirs.cap_mhz);
     }
 
     #[test]

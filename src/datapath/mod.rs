@@ -571,28 +571,29 @@ impl Builder {
     /// 5×4 colour product set its clock at 52 MHz while the estimate had it as one DSP); else
     /// one DSP, or an array past the block's operands.
     pub(crate) fn mul_delay(&self, a: u32, b: u32) -> f64 {
-        if self.is_soft_product(a, b) {
+        if self.is_soft_product(a, b, a + b) {
             soft_mul_delay(a, b)
         } else {
             dsp_or_array_delay(a, b)
         }
     }
 
-    /// Raises the current step's delay to an a×b multiply's ([`Builder::mul_delay`]) plus
-    /// `after` (the logic behind it in the same step), and marks the step when the product is
-    /// LUTs, not a block ([`Step::soft_product`]).
-    pub(crate) fn product_delay(&mut self, a: u32, b: u32, after: f64) {
-        let d = self.mul_delay(a, b) + after;
-        let soft = self.is_soft_product(a, b);
+    /// Raises the current step's delay to an a×b multiply's, kept to `y` bits, plus `after`
+    /// (the logic behind it in the same step), and marks the step when the product is LUTs,
+    /// not a block ([`Step::soft_product`]).
+    pub(crate) fn product_delay(&mut self, a: u32, b: u32, y: u32, after: f64) {
+        let soft = self.is_soft_product(a, b, y);
+        let d = if soft { soft_mul_delay(a, b) } else { dsp_or_array_delay(a, b) } + after;
         self.delay(d);
         let s = self.steps.last_mut().expect("a step");
         s.soft_product |= soft;
     }
 
-    /// Whether yosys leaves an a×b multiply in LUTs on this target (too small for its block).
-    fn is_soft_product(&self, a: u32, b: u32) -> bool {
+    /// Whether yosys leaves an a×b multiply kept to `y` bits in LUTs on this target (too small
+    /// for its block: the iCE40's rule is on the product's width after yosys's `wreduce`).
+    fn is_soft_product(&self, a: u32, b: u32, y: u32) -> bool {
         match self.target {
-            Target::Ice40 => a.min(b) < 2 || a + b < ICE40_DSP_MIN_PRODUCT_BITS,
+            Target::Ice40 => a.min(b) < 2 || y.min(a + b) < ICE40_DSP_MIN_PRODUCT_BITS,
             Target::Ecp5 => a.min(b) < 2,
             Target::Generic => false,
         }
@@ -706,7 +707,7 @@ impl Builder {
         // be this block's input register: then a `*` the tool maps
         let visible = inputs.iter().all(|n| self.visible_before(n));
         let on_dsp = visible && self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
-        self.product_delay(wa, wb, 0.0);
+        self.product_delay(wa, wb, width, 0.0);
         if !on_dsp {
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
             self.wire(name, width, format!("{ea} * {eb}"), comment);
@@ -738,7 +739,7 @@ impl Builder {
             Target::Ecp5 => false,
         };
         if post_adder {
-            self.product_delay(wa, wb, 0.0);
+            self.product_delay(wa, wb, width, 0.0);
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
             let ec = self.addend(&sub_pieces(addend, 0, width), |e| e);
             return self.wire(name, width, format!("{ea} * {eb}{ec}"), &format!("{comment} (one DSP, the add inside it)"));

@@ -607,7 +607,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let t = "-log2 c' = x*g(x)";
         let hw = lb - dsp;
         let mut terms = b.partial_products("log_frac_hi", &Piece::sig("x", 0, f - 1), &Piece::sig(&ghat.0, ghat.1 + dsp, gb - dsp), 0, hw, false);
-        b.product_delay(f - 1, dsp, 0.0);
+        b.product_delay(f - 1, dsp, lw, 0.0);
         terms.push(vec![Piece::sig("log_frac_lo", dsp, lw - dsp)]);
         let p = b.sum_start("log_frac_hi", terms, hw, t, &format!("x*ghat[{}:{dsp}] + x*ghat[{}:0]/2^{dsp}, exact", gb - 1, dsp - 1));
         let hi = b.resolve(p, t);
@@ -621,7 +621,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         }
         let (xv, gv) = (b.zext("x", lb), b.zext("ghat", lb));
         b.wire("log_frac", lb, format!("{xv} * {gv}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
-        b.product_delay(f - 1, gb, 0.0);
+        b.product_delay(f - 1, gb, lb, 0.0);
     }
     // L = x*g < 1 (x < 1/2, g^ < 2: each interpolation stays below the next entry, and the
     // last is g(1/2) = 2), so e + L is a concatenation: e above L's fraction bits
@@ -679,7 +679,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.step("y = n*(-log2 c) (multiplier 7)");
         let (nv, lv) = (b.zext("n", pb), b.zext("ell", pb));
         b.wire("y_full", pb, format!("{nv} * {lv}"), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
-        b.product_delay(nb, eb2, 0.0);
+        b.product_delay(nb, eb2, pb, 0.0);
     }
 
     b.step("y truncated; its saturation");
@@ -808,7 +808,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.step("colour multipliers (14-16)");
     let wc = w.color_frac_bits;
     b.colour_products("power", we - wc, wc, "c^n");
-    b.product_delay(wc + 1, bb, 0.0);
+    b.product_delay(wc + 1, bb, wc + bb, 0.0);
     // a step of its own, from a copy of c^n of its own: the register that feeds the colour
     // multipliers sits by the DSP column
     b.step("the intensity rounding: chunk sums; done");

@@ -140,7 +140,7 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
             let upper = b.bits(&rest, nb - i - 1, 1);
             b.wire(&format!("n_rest{}", i + 1), nb - i - 1, upper, "the bits of n still to use");
         }
-        b.product_delay(pw + 1, pw + 1, LUT_DELAY);
+        b.product_delay(pw + 1, pw + 1, full, LUT_DELAY);
     }
 
     b.step("round half up to the outputs");
@@ -154,5 +154,5 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
     b.colour_results(pw, "c^n");
     let iv = b.r("intensity");
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
-    b.product_delay(pw + 1, bb, add_delay(cp));
+    b.product_delay(pw + 1, bb, pw + bb, add_delay(cp));
 }

@@ -398,7 +398,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         b.product("deviation_lo", &[Piece::sig("fit", 0, dsp)], &[Piece::sig("one_minus_cos", 0, cb)], lw, &format!("a_n[{}:0]*(1 - cos), exact", dsp - 1));
         let hw = pb - dsp;
         let mut terms = b.partial_products("deviation_hi", &Piece::sig("one_minus_cos", 0, cb), &Piece::sig("fit", dsp, w.a_bits - dsp), 0, hw, false);
-        b.product_delay(dsp, cb, 0.0);
+        b.product_delay(dsp, cb, lw, 0.0);
         terms.push(vec![Piece::sig("deviation_lo", dsp, lw - dsp)]);
         let p = b.sum_start("deviation_hi", terms, hw, t, &format!("a_n[{}:{dsp}]*(1 - cos) + a_n[{}:0]*(1 - cos)/2^{dsp}, exact", w.a_bits - 1, dsp - 1));
         let hi = b.resolve(p, t);
@@ -513,7 +513,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
                     format!("{h1} * {h2} + {th}"),
                     &format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1),
                 );
-                b.product_delay(dsp, dsp, 0.0);
+                b.product_delay(dsp, dsp, zw, 0.0);
             }
             // the bypass in a step of its own: the DSP's output meets only a flip-flop
             b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
@@ -524,7 +524,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             let sq = 2 * wf + 2;
             let (p1, p2) = (b.zext(&prev, sq), b.zext(&prev, sq));
             let square = b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
-            b.product_delay((wf + 1).min(dsp), (wf + 1).min(dsp), LUT_DELAY);
+            b.product_delay((wf + 1).min(dsp), (wf + 1).min(dsp), sq, LUT_DELAY);
             b.bits(&square, 2 * wf, wf)
         };
         let keep = b.r(&prev);
@@ -542,7 +542,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let wc = w.color_frac_bits;
     b.step("colour multipliers (14-16)");
     b.colour_products(&s, wf - wc, wc, "S");
-    b.product_delay(wc + 1, bb, 0.0);
+    b.product_delay(wc + 1, bb, wc + bb, 0.0);
     // round half up on the bits that matter: (S[W:W-FI-1] + 1) >> 1 = floor((S + 2^-(FI+1)) / 2^-FI)
     let title = "the intensity rounded half up";
     b.step(&format!("{title}: chunk sums"));

@@ -291,7 +291,7 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     b.colour_results(w, "S");
     let iv = b.r(&intensity);
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
-    b.product_delay(w + 1, bb, add_delay(w + bb));
+    b.product_delay(w + 1, bb, w + bb, add_delay(w + bb));
 }
 
 #[cfg(test)]

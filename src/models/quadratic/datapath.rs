@@ -210,7 +210,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
             &format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
         );
     }
-    b.product_delay(cfg.n_bits(), k_bits.min(dsp), 0.0);
+    b.product_delay(cfg.n_bits(), k_bits.min(dsp), w.kn_bits, 0.0);
 
     b.step("comparator: select; deviation, high partial product (multiply-add)");
     let sum = b.add_finish(cmp);
@@ -245,7 +245,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
             format!("{kh} * {d2} + {c}"),
             &format!("kn[{}:{dsp}] * {what} + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1),
         );
-        b.product_delay(w.kn_bits - dsp, dw, 0.0);
+        b.product_delay(w.kn_bits - dsp, dw, hi_w, 0.0);
     }
 
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add)");
@@ -262,7 +262,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         format!("{kn} * {d1} + {}", lit(m, k_prime))
     };
     b.wire("deviation_sum", m, expr, &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f));
-    b.product_delay(dsp.min(w.kn_bits), dw, 0.0);
+    b.product_delay(dsp.min(w.kn_bits), dw, m, 0.0);
 
     bracket(w, b);
 
@@ -281,7 +281,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let (hi, lo) = (b.operand("bracket", r, hw, tw), b.operand("bracket", 0, r, tw));
         let plus = if 2 * r > r + 1 { format!(" + {}", b.operand("square_ll", r + 1, r - 1, tw)) } else { String::new() };
         b.wire("square_t", tw, format!("{hi} * {lo}{plus}"), "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)");
-        b.product_delay(hw, r, 0.0);
+        b.product_delay(hw, r, tw, 0.0);
         b.step("square: Z = hi^2 + T/2^(r-1) (multiply-add)");
         let (h1, h2) = (b.operand("bracket", r, hw, 2 * hw), b.operand("bracket", r, hw, 2 * hw));
         let th = b.operand("square_t", r - 1, tw - (r - 1), 2 * hw);
@@ -291,7 +291,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
             format!("{h1} * {h2} + {th}"),
             &format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1),
         );
-        b.product_delay(hw, hw, 0.0);
+        b.product_delay(hw, hw, 2 * hw, 0.0);
         let mut full = vec![Piece::sig("square_ll", 0, r + 1)];
         if r > 1 {
             full.push(Piece::sig("square_t", 0, r - 1));
@@ -302,14 +302,14 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.step("square (squarer 11)");
         let (a1, a2) = (b.operand("bracket", 0, wb + 1, full_bits), b.operand("bracket", 0, wb + 1, full_bits));
         b.wire("square_full", full_bits, format!("{a1} * {a2}"), &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
-        b.product_delay(wb + 1, wb + 1, 0.0);
+        b.product_delay(wb + 1, wb + 1, full_bits, 0.0);
         vec![Piece::sig("square_full", 0, full_bits)]
     };
 
     b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add)");
     square_and_color_square(w, b, &full);
     b.colour_sums("color_square", wsc, "S");
-    b.product_delay(wsc + 1, bb, 0.0);
+    b.product_delay(wsc + 1, bb, wsc + bb, 0.0);
     // the intensity rounding starts a step after the squarer's DSP: its output register
     // drives a fabric register across the long route out of the DSP column, not a carry chain
     let intensity_add = intensity_add(cfg, w, b);
@@ -556,7 +556,7 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let dev = b.pieces(&sub_pieces(&[Piece::sig("deviation_full", 0, w.deviation_bits)], w.deviation_shift, wb + 1));
     b.wire("deviation", wb + 1, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
     let constant_product = b.mul_delay(nd_bits, bit_length(cfg.k_code as u128));
-    b.product_delay(nb, cb, constant_product);
+    b.product_delay(nb, cb, nd_bits, constant_product);
 
     b.step("bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13)");
     let (dn, dv) = (b.r("done"), b.r("deviation"));
@@ -569,7 +569,7 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.wire("square_full", fb, format!("{a1} * {a2}"), &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
     let sq = b.bits("square_full", 2 * wb, w.square_shift);
     b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S"));
-    b.product_delay(wb + 1, wb + 1, 0.0);
+    b.product_delay(wb + 1, wb + 1, fb, 0.0);
 
     b.step("colour multipliers (14-16); intensity rounding");
     let cpb = w.color_product_bits;
@@ -582,7 +582,7 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
         let sqr = b.r("square");
         b.wire("intensity_sum", ws + 1, format!("{sqr} + {}", lit(ws + 1, 1u128 << (ws - fi - 1))), &format!("UQ1.{ws}: S + 2^-{} (round half up)", fi + 1));
     }
-    b.product_delay(ws + 1, bb, 0.0);
+    b.product_delay(ws + 1, bb, cpb, 0.0);
 
     b.step("colour rounding, final slices");
     for (ch, product) in CHANNELS.iter().zip(&products) {
