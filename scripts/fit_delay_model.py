@@ -147,6 +147,7 @@ def main():
                 ordered = sorted(mine, key=lambda r: (r["args"], r["stages"]))
                 lines[name]["measured"] = [[r["est"], r["mean"], round(r["fmax"], 2)] for r in ordered]
                 lines[name]["measured_args"] = [r["args"] for r in ordered]
+                lines[name]["measured_stages"] = [r["stages"] for r in ordered]
         # datapaths with fewer measured units than a line needs (blinn-pow does not fit the
         # parts), and the paper's (the lean datapath's operations uncut, never calibrated on its
         # own), take the family's line by name: the generator refuses a datapath this file

@@ -185,6 +185,14 @@ pub struct Line {
     /// in the order of `measured`
     #[serde(default)]
     pub(crate) measured_args: Vec<String>,
+    /// each measured unit's depth, in the order of `measured`
+    #[serde(default)]
+    pub(crate) measured_stages: Vec<u32>,
+    /// at widths no unit was measured at: each calibrated width's units as `(stages, median
+    /// Fmax)`; a depth is assured no more than every one of them measured at that depth or
+    /// shallower ([`Line::corner_floor`])
+    #[serde(skip)]
+    pub(crate) corners: Vec<Vec<(u32, f64)>>,
 }
 
 impl Line {
@@ -231,14 +239,35 @@ impl Line {
         let own = shape(&plan.cfg.params, model);
         let keep: Vec<bool> =
             (0..self.measured.len()).map(|i| shape_of_args(self.measured_args.get(i).map_or("", String::as_str), model).is_some_and(|sh| sh == own)).collect();
-        let mut k = keep.iter();
-        self.measured.retain(|_| *k.next().expect("one flag a unit"));
-        self.measured_args.clear();
-        if self.measured.is_empty() {
+        if !keep.iter().any(|&k| k) {
+            // widths never measured: each calibrated width's units by depth, a ceiling
+            let mut corners: Vec<(String, Vec<(u32, f64)>)> = Vec::new();
+            for (i, p) in self.measured.iter().enumerate() {
+                let (args, stages) = (self.measured_args.get(i).cloned().unwrap_or_default(), self.measured_stages.get(i).copied().unwrap_or(0));
+                match corners.iter_mut().find(|(a, _)| *a == args) {
+                    Some((_, units)) => units.push((stages, p[2])),
+                    None => corners.push((args, vec![(stages, p[2])])),
+                }
+            }
+            self.corners = corners.into_iter().map(|(_, units)| units).collect();
             // the cap where a calibration unit as short reached it: only at widths measured
             self.cap_up_to = -1.0;
         }
+        let mut k = keep.iter();
+        self.measured.retain(|_| *k.next().expect("one flag a unit"));
+        self.measured_args.clear();
+        self.measured_stages.clear();
         self
+    }
+
+    /// At widths never measured, what every calibrated width measured at `stages` or
+    /// shallower (the deepest such unit of each; none: 0), the least of them; elsewhere
+    /// unbounded. Between calibrated widths the line alone over-promised: a lean at 10/6/8/12
+    /// bits, 11 stages, was predicted 124.9 MHz with a stretch as short as the 13-stage default
+    /// unit's and measured 83.2, between the narrow unit's 52.2 and the default's 99.9 at that
+    /// depth.
+    pub fn corner_floor(&self, stages: u32) -> f64 {
+        self.corners.iter().map(|units| units.iter().filter(|u| u.0 <= stages).max_by_key(|u| u.0).map_or(0.0, |u| u.1)).fold(f64::INFINITY, f64::min)
     }
 
     /// The model's Fmax for `plan`.
@@ -250,7 +279,7 @@ impl Line {
     /// reached it; between calibration units, what the longer one measured (`bracketed`);
     /// else the line's prediction times the fit's margin, or a measured floor if higher.
     pub fn assured_of(&self, plan: &Plan) -> f64 {
-        self.assured(plan.stage_delay(), plan.stage_delay_mean())
+        self.assured(plan.stage_delay(), plan.stage_delay_mean()).min(self.corner_floor(plan.cfg.stages()))
     }
 
     /// [`Line::assured_of`] for the stretches `e`, `m`.
@@ -450,6 +479,8 @@ mod tests {
             margin: 0.7,
             measured: vec![[10.0, 6.0, 150.0], [9.0, 5.0, 50.0], [20.0, 9.0, 60.0]],
             measured_args: vec![String::new(), narrow.into(), String::new()],
+            measured_stages: vec![6, 11, 3],
+            corners: vec![],
         };
         let default = Plan::new(Config::defaults()).unwrap();
         let p = crate::config::Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Config::defaults().params };
@@ -467,6 +498,13 @@ mod tests {
         let theirs = l.at_widths_of(&Plan::new(Config::new(between).unwrap()).unwrap());
         assert!(theirs.measured.is_empty() && theirs.cap_up_to < 0.0);
         assert!(theirs.fmax(7.0, 5.0) < theirs.cap_mhz);
+        // and no depth is assured more than every calibrated width measured at it or shallower
+        assert_eq!(theirs.corner_floor(2), 0.0);
+        assert_eq!(theirs.corner_floor(3), 0.0);
+        assert_eq!(theirs.corner_floor(6), 0.0);
+        assert_eq!(theirs.corner_floor(11), 50.0);
+        assert_eq!(theirs.corner_floor(20), 50.0);
+        assert_eq!(mine.corner_floor(3), f64::INFINITY);
     }
 
     #[test]
@@ -530,6 +568,8 @@ mod tests {
             margin: 0.9,
             measured: vec![],
             measured_args: vec![],
+            measured_stages: vec![],
+            corners: vec![],
         };
         assert_eq!(l.fmax(2.0, 50.0), 100.0);
         assert!((l.fmax(15.0, 0.0) - 50.0).abs() < 1e-9);
@@ -549,6 +589,8 @@ mod tests {
             margin: 0.8,
             measured: vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]],
             measured_args: vec![],
+            measured_stages: vec![],
+            corners: vec![],
         };
         assert_eq!(l.fmax(10.0, 6.0), 150.0);
         assert_eq!(l.fmax(9.0, 5.0), 150.0);
@@ -574,6 +616,8 @@ mod tests {
             margin: 0.9,
             measured: vec![[20.0, 9.0, 130.0], [15.0, 5.0, 206.0]],
             measured_args: vec![],
+            measured_stages: vec![],
+            corners: vec![],
         };
         // the line says 1000/(0.25*17) = 235 MHz at e = 17: between the two, 130 is assured
         assert!(l.bracketed(17.0, 7.0));

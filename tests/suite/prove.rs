@@ -38,17 +38,27 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
     assert!(text(&o).contains("a property fails") && text(&o).contains("late.vcd"), "{}", text(&o));
     let vcd = std::fs::read_to_string(&traces).unwrap();
     assert!(vcd.contains("$enddefinitions") && vcd.contains("valid_late"), "{vcd}");
-    // a bounded search (`--depth`) reads sat's verdict, not its exit code (which is 0 either
-    // way): the late unit is refuted within 8 edges, with its trace, and the right one is not
+    // a bounded search (`--depth`, over the whole unit: narrow widths) reads sat's verdict, not
+    // its exit code (which is 0 either way): a late unit is refuted within 8 edges, with its
+    // trace, and the right one is not
+    let narrow = ["--stages", "3", "--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "3", "--intensity-frac-bits", "5"];
+    let right = generate(tmp.path(), "n3", &narrow);
+    let late_narrow = generate(tmp.path(), "n3-late", &narrow);
+    let v = late_narrow.join("specular_unit.v");
+    let src = std::fs::read_to_string(&v).unwrap();
+    let late =
+        src.replace("assign out_valid = valid_line[2];", "reg valid_late;\nalways @(posedge clk) valid_late <= valid_line[2];\nassign out_valid = valid_late;");
+    assert_ne!(late, src);
+    std::fs::write(&v, late).unwrap();
     let bounded =
         |dir: &Path, trace: &Path| specgen().args(["prove", "--edited", "--depth", "8", "--rtl"]).arg(dir).arg("--trace").arg(trace).output().unwrap();
     let within = tmp.path().join("late-bounded.vcd");
-    let o = bounded(&dir, &within);
+    let o = bounded(&late_narrow, &within);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(text(&o).contains("a property fails") && std::fs::read_to_string(&within).unwrap().contains("valid_late"), "{}", text(&o));
-    let o = bounded(&tmp.path().join("v3"), &tmp.path().join("v3-bounded.vcd"));
+    let o = bounded(&right, &tmp.path().join("n3-bounded.vcd"));
     assert!(o.status.success() && text(&o).contains("no property fails within the first 8 clock edges"), "{}", text(&o));
-    assert!(!tmp.path().join("v3-bounded.vcd").exists());
+    assert!(!tmp.path().join("n3-bounded.vcd").exists());
 }
 
 /// The valid edge of the lean unit at its deepest, 13 stages: proved unbounded. Outside the

@@ -119,7 +119,7 @@ fn a_pick_outside_the_calibration_is_told() {
         assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
         String::from_utf8_lossy(&o.stderr).into_owned()
     };
-    let schlick = ["--model", "schlick", "--target-mhz", "30"];
+    let schlick = ["--model", "schlick", "--target-mhz", "20"];
     let err = pick("narrower", &[&schlick[..], &widths("6", "6", "4", "8")].concat());
     assert!(
         err.contains("target-mhz: outside the calibration: the schlick datapath on the iCE40 UP5K was calibrated at the default widths")
