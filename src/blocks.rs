@@ -17,64 +17,12 @@
 
 use crate::config::Target;
 
-/// A block's minimum clock period on one part and speed grade, and where it comes from.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BlockLimit {
-    /// the primitive (`DP16KD`, `MULT18X18D`, `SB_MAC16`)
-    pub(crate) block: &'static str,
-    /// its minimum period, ns
-    pub(crate) period_ns: f64,
-    /// what the period is, in words, with the source
-    pub(crate) what: String,
-}
-
-impl BlockLimit {
-    /// Its clock, rounded down to 0.1 MHz (a limit is never rounded up).
-    pub fn mhz(&self) -> f64 {
-        (10_000.0 / self.period_ns).floor() / 10.0
-    }
-}
-
-/// The ECP5 speed grades the Trellis database covers.
-pub const ECP5_GRADES: [u32; 3] = [6, 7, 8];
+pub use crate::family::BlockLimit;
 
 /// The limits of the blocks a unit uses on `target`'s part (ECP5-25 at `grade`, iCE40 UP5K):
-/// `dsp`/`bram` say which it uses.
+/// `dsp`/`bram` say which it uses. Each family states its own (`crate::family`).
 pub fn limits(target: Target, grade: u32, dsp: bool, bram: bool) -> Vec<BlockLimit> {
-    let mut out = Vec::new();
-    match target {
-        Target::Ecp5 => {
-            let i = ECP5_GRADES.iter().position(|&g| g == grade).unwrap_or(0);
-            let g = ECP5_GRADES[i];
-            if bram {
-                let width = [2.359, 1.967, 1.842][i];
-                out.push(BlockLimit {
-                    block: "DP16KD",
-                    period_ns: 2.0 * width,
-                    what: format!("DP16KD clock pulse ≥ {width} ns high and low, speed grade {g} (prjtrellis-db ECP5/timing/speed_{g}/cells.json)"),
-                });
-            }
-            if dsp {
-                let path = [3.864, 3.455, 3.045][i];
-                out.push(BlockLimit {
-                    block: "MULT18X18D",
-                    period_ns: path,
-                    what: format!("MULT18X18D input register to P {path} ns, speed grade {g} (prjtrellis-db ECP5/timing/speed_{g}/cells.json, REGS=INPUT)"),
-                });
-            }
-        }
-        Target::Ice40 => {
-            if dsp {
-                out.push(BlockLimit {
-                    block: "SB_MAC16",
-                    period_ns: 6.504,
-                    what: "SB_MAC16 input to output register setup 6.504 ns, UP5K (IceStorm icefuzz/timings_up5k.txt, MAC_U_16X16_BYPASS); untimed by nextpnr-ice40".into(),
-                });
-            }
-        }
-        Target::Generic => {}
-    }
-    out
+    crate::family::of(target).block_limits(grade, dsp, bram)
 }
 
 /// The slowest of `limits` (the longest minimum period).

@@ -121,12 +121,6 @@ impl Target {
             Target::Ecp5 => "ecp5",
         }
     }
-
-    /// The family has block RAM with a read register (iCE40 SB_RAM40_4K, ECP5 DP16KD): a long
-    /// delay line's unread tail waits there instead of in flip-flops.
-    pub fn has_block_ram(self) -> bool {
-        self != Target::Generic
-    }
 }
 
 /// The unit's handshake (`generate --interface`, SPEC §7).

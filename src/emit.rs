@@ -550,7 +550,7 @@ fn lines_add(lines: &mut Vec<DelayLine>, line: &str, name: &str, width: u32, sou
             name: line.to_string(),
             cuts: at.to_vec(),
             members: vec![member],
-            memory: target.has_block_ram(),
+            memory: crate::family::of(target).has_block_ram(),
             distributed: target == Target::Ecp5,
         }),
     }
@@ -604,7 +604,7 @@ fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
         // (the stretch its tail, in block RAM where [`DelayLine::memory_tail`] takes it) and the
         // rest is a line of its own, from the word read there
         let (mut from, mut line) = (0, name.clone());
-        for k in unread_stretches(&read, width, target.has_block_ram()) {
+        for k in unread_stretches(&read, width, crate::family::of(target).has_block_ram()) {
             lines_add(&mut lines, &line, &name, width, &source, &at[from..=k], &read[from..=k], target);
             source = format!("{name}_c{}", at[k]);
             from = k + 1;
@@ -710,36 +710,12 @@ struct Mult18Template<'a> {
     version: &'a str,
 }
 
-/// The MULT18X18D simulation model written beside an ECP5 unit (never synthesized).
-#[derive(Template)]
-#[template(path = "ecp5_mult18x18d_sim.v")]
-pub(crate) struct Mult18SimModel<'a> {
-    pub(crate) version: &'a str,
-}
-
 /// The ECP5 ROM module `<top>_rom1k18` (one DP16KD with its address and output registers).
 #[derive(Template)]
 #[template(path = "rom1k18.v")]
 struct Rom1k18Template<'a> {
     top: &'a str,
     version: &'a str,
-}
-
-/// The DP16KD simulation model written beside an ECP5 unit with a table in block RAM.
-#[derive(Template)]
-#[template(path = "ecp5_dp16kd_sim.v")]
-struct Dp16kdSimModel<'a> {
-    version: &'a str,
-}
-
-/// The DP16KD simulation model's text.
-pub(crate) fn ecp5_bram_model() -> String {
-    Dp16kdSimModel { version: VERSION }.render().expect("model template renders") + "\n"
-}
-
-/// The MULT18X18D simulation model's text.
-pub(crate) fn ecp5_sim_model() -> String {
-    Mult18SimModel { version: VERSION }.render().expect("model template renders") + "\n"
 }
 
 /// The FuseSoC VLNV of a configuration: `specgen:specular:<top>-<digest>:<version>`, the digest
@@ -825,12 +801,12 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     if dp.has_dsp_blocks() {
         let text = Mult18Template { top, version: VERSION }.render().expect("mult18x18 template renders") + "\n";
         rtl_files.push((format!("{top}_mult18x18.v"), text));
-        sim_models.push((format!("{SIM_DIR}/{top}{ECP5_SIM_MODEL_SUFFIX}"), ecp5_sim_model()));
+        sim_models.push((format!("{SIM_DIR}/{top}{ECP5_SIM_MODEL_SUFFIX}"), crate::family::ecp5_sim_model()));
     }
     if dp.has_block_rams() {
         let text = Rom1k18Template { top, version: VERSION }.render().expect("rom1k18 template renders") + "\n";
         rtl_files.push((format!("{top}_rom1k18.v"), text));
-        sim_models.push((format!("{SIM_DIR}/{top}{ECP5_BRAM_MODEL_SUFFIX}"), ecp5_bram_model()));
+        sim_models.push((format!("{SIM_DIR}/{top}{ECP5_BRAM_MODEL_SUFFIX}"), crate::family::ecp5_bram_model()));
     }
     let constraints = constraint_files(cfg);
     let testbench = crate::vectors::testbench_files(&plan.model);

