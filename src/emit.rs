@@ -551,7 +551,7 @@ fn lines_add(lines: &mut Vec<DelayLine>, line: &str, name: &str, width: u32, sou
             cuts: at.to_vec(),
             members: vec![member],
             memory: crate::family::of(target).has_block_ram(),
-            distributed: target == Target::Ecp5,
+            distributed: crate::family::of(target).distributed_ram(),
         }),
     }
 }
@@ -639,8 +639,8 @@ struct CoreTemplate<'a> {
     rtl_files: Vec<String>,
     /// the simulation models of the ECP5 primitives, for lint and simulation only
     sim_models: Vec<String>,
-    /// synthesize for ECP5 (trellis flow) rather than iCE40
-    ecp5: bool,
+    /// the family FuseSoC's `synth` target maps for (`ecp5`: yosys alone; else the icestorm flow)
+    arch: &'a str,
     /// the FuseSoC flags under which a dependent core gets the simulation models
     sim_flags: Vec<&'static str>,
 }
@@ -687,7 +687,7 @@ fn constraint_files(cfg: &crate::config::Config) -> Vec<(String, String)> {
     let clock = clock_port(cfg).map(|own| cfg.params.clock_port.as_deref().unwrap_or(own));
     let sdc = SdcTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text.clone(), period: format!("{:.3}", 1000.0 / mhz) };
     let mut files = vec![(format!("{top}.sdc"), sdc.render().expect("sdc renders") + "\n")];
-    if cfg.target() == crate::config::Target::Ecp5 {
+    if crate::family::of(cfg.target()).lpf_constraints() {
         let lpf = LpfTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text };
         files.push((format!("{top}.lpf"), lpf.render().expect("lpf renders") + "\n"));
     }
@@ -824,7 +824,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         table_files: tables.iter().map(|t| t.file(top)).collect(),
         rtl_files: rtl_files.iter().map(|(n, _)| n.clone()).collect(),
         sim_models: sim_models.iter().map(|(n, _)| n.clone()).collect(),
-        ecp5: cfg.target() == crate::config::Target::Ecp5,
+        arch: crate::family::of(cfg.target()).fusesoc_arch(),
         sim_flags: if sim_models.is_empty() { Vec::new() } else { SIM_FLAGS.to_vec() },
     }
     .render()

@@ -13,7 +13,7 @@
 //! - a static colour: three registers loaded by `ks_load`; the datapath reads them at every step
 //!   (`datapath::Builder::hold`), so no cut carries a colour.
 
-use crate::config::{Colour, Config, Interface, Target, BUFFER_LATENCY};
+use crate::config::{Colour, Config, Interface, BUFFER_LATENCY};
 use crate::datapath::{DelayLine, Waiting};
 use crate::plan::Plan;
 use crate::ports::{self, Field};
@@ -243,7 +243,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
             cuts,
             members: vec![member],
             memory: crate::family::of(cfg.target()).has_block_ram(),
-            distributed: cfg.target() == Target::Ecp5,
+            distributed: crate::family::of(cfg.target()).distributed_ram(),
         };
         e.tag.push(String::new());
         e.tag.extend(line.lines());

@@ -18,13 +18,9 @@ pub use crate::ports::CHANNELS;
 pub use crate::table::Table;
 use std::collections::BTreeMap;
 
-/// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
-/// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
-/// ~103 MHz, 8 bits ~92 MHz.
-pub(crate) const CHUNK_BITS: u32 = 6;
-
-/// Width of a DSP block's multiplier operands (iCE40 SB_MAC16: 16×16).
-pub(crate) const DSP_BITS: u32 = 16;
+/// Width of a DSP block's multiplier operands (iCE40 SB_MAC16: 16×16), the split width of the
+/// models' products.
+pub(crate) use crate::family::ice40::MULTIPLIER_BITS as DSP_BITS;
 
 /// The most low bits split off the bracket for the squarer: `lo²` then comes from a table of
 /// 2^6 = 64 entries in LUTs, and `hi·lo` from one DSP (the bracket is at most UQ1.21 there).
@@ -33,12 +29,8 @@ pub(crate) const MAX_SQUARER_SPLIT: u32 = 6;
 /// The inputs of a fabric LUT (iCE40 LUT4, ECP5 LUT4): a function of more takes two levels.
 pub(crate) const LUT_INPUTS: u32 = 4;
 
-/// Width of an ECP5 MULT18X18D's operands.
-pub(crate) const ECP5_DSP_BITS: u32 = 18;
-
-/// Longest carry chain of one ECP5 step: a 32-bit CCU2C chain between registers took 1.9 ns
-/// of a 9.1 ns path on LFE5U-25F grade 6 (nextpnr), so every add of the unit fits one step.
-pub(crate) const ECP5_CHUNK_BITS: u32 = 40;
+/// Width of an ECP5 MULT18X18D's operands (`crate::family::ecp5`).
+pub(crate) use crate::family::ecp5::MULTIPLIER_BITS as ECP5_DSP_BITS;
 
 /// A product on an ECP5 MULT18X18D with its own registers: the input registers take the
 /// operands at the cut before the product's step, the output register is the cut after it.
@@ -505,7 +497,7 @@ pub(crate) fn bit_ranges(v: &str, width: u32, unread: u128) -> Vec<String> {
     parts
 }
 
-/// Chunk boundaries `(lo, width)` of a `width`-bit carry chain, each ≤ `CHUNK_BITS`.
+/// Chunk boundaries `(lo, width)` of a `width`-bit carry chain, each ≤ `chunk_bits`.
 fn chunks(width: u32, chunk_bits: u32) -> Vec<(u32, u32)> {
     let n = width.div_ceil(chunk_bits).max(1);
     let (base, extra) = (width / n, width % n);
@@ -554,10 +546,6 @@ fn dsp_or_array_delay(a: u32, b: u32) -> f64 {
     }
 }
 
-/// yosys's `synth_ice40 -dsp` maps a product to an SB_MAC16 only when it has at least this
-/// many bits (`DSP_Y_MINWIDTH`); both families only when each operand has at least 2.
-const ICE40_DSP_MIN_PRODUCT_BITS: u32 = 11;
-
 /// A product yosys leaves in LUTs (too small for the family's block): partial products summed
 /// by a tree of LUT levels, then a carry chain over the product.
 fn soft_mul_delay(a: u32, b: u32) -> f64 {
@@ -566,7 +554,7 @@ fn soft_mul_delay(a: u32, b: u32) -> f64 {
 
 impl Builder {
     /// The delay estimate of an a×b multiply as this target's synthesis maps it: a product too
-    /// small for the block (on the iCE40 fewer than [`ICE40_DSP_MIN_PRODUCT_BITS`] bits, on
+    /// small for the block (on the iCE40 fewer than 11 bits, on
     /// either family an operand of one bit) is LUTs, slower than the block (a narrow lean's
     /// 5×4 colour product set its clock at 52 MHz while the estimate had it as one DSP); else
     /// one DSP, or an array past the block's operands.
@@ -592,11 +580,18 @@ impl Builder {
     /// Whether yosys leaves an a×b multiply kept to `y` bits in LUTs on this target (too small
     /// for its block: the iCE40's rule is on the product's width after yosys's `wreduce`).
     fn is_soft_product(&self, a: u32, b: u32, y: u32) -> bool {
-        match self.target {
-            Target::Ice40 => a.min(b) < 2 || y.min(a + b) < ICE40_DSP_MIN_PRODUCT_BITS,
-            Target::Ecp5 => a.min(b) < 2,
-            Target::Generic => false,
-        }
+        self.family().soft_product(a, b, y)
+    }
+
+    /// The family the datapath is shaped for.
+    fn family(&self) -> &'static dyn crate::family::Family {
+        crate::family::of(self.target)
+    }
+
+    /// Whether the family's products and table reads are blocks instantiated with their own
+    /// registers (no post-adder; one carry chain a step): `Family::instantiated_blocks`.
+    pub(crate) fn instantiated_blocks(&self) -> bool {
+        self.family().instantiated_blocks()
     }
 
     /// `inputs`: the port signals, available from cut 0; `registered`: the cuts that hold a
@@ -637,20 +632,12 @@ impl Builder {
 
     /// The widest multiplier operand one DSP block takes on the target (generic: no limit).
     pub(crate) fn dsp_bits(&self) -> u32 {
-        match self.target {
-            Target::Ice40 => DSP_BITS,
-            Target::Ecp5 => ECP5_DSP_BITS,
-            Target::Generic => u32::MAX,
-        }
+        self.family().multiplier_bits()
     }
 
     /// The longest carry chain one step holds on the target (generic: no limit).
     pub(crate) fn chunk_bits(&self) -> u32 {
-        match self.target {
-            Target::Ice40 => CHUNK_BITS,
-            Target::Ecp5 => ECP5_CHUNK_BITS,
-            Target::Generic => u32::MAX,
-        }
+        self.family().carry_chunk_bits()
     }
 
     fn is_registered(&self, cut: usize) -> bool {
@@ -661,7 +648,7 @@ impl Builder {
     /// the cuts on both sides registered, the one before being a cut (not the input ports).
     fn block_registers_here(&self) -> bool {
         let k = self.steps.len();
-        self.target == Target::Ecp5 && k >= 2 && self.is_registered(k - 1) && self.is_registered(k)
+        self.family().instantiated_blocks() && k >= 2 && self.is_registered(k - 1) && self.is_registered(k)
     }
 
     /// Runs `f` with references taken as the step before sees them, where a block's input
@@ -733,11 +720,7 @@ impl Builder {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn multiply_add(&mut self, name: &str, a: &[Piece], b: &[Piece], addend: &[Piece], width: u32, title: &str, comment: &str) -> Sig {
         let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
-        let post_adder = match self.target {
-            Target::Generic => true,
-            Target::Ice40 => width <= wa + wb,
-            Target::Ecp5 => false,
-        };
+        let post_adder = self.family().post_adder(width, wa, wb);
         if post_adder {
             self.product_delay(wa, wb, width, 0.0);
             let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
@@ -769,7 +752,7 @@ impl Builder {
         let pa = [Piece::sig(&product, z, pw - z)];
         self.step(&format!("{title}: the add after the product"));
         let what = if z == 0 { comment.to_string() } else { format!("bits [{}:{z}] of {name}", width - 1) };
-        if self.target == Target::Ecp5 {
+        if self.family().instantiated_blocks() {
             self.add(&hi, &pa, &pb, false, width - z, &what);
         } else {
             let p = self.add_start(&hi, &pa, &pb, false, width - z, &what);
@@ -789,7 +772,7 @@ impl Builder {
     /// output register when a MULT18X18D's input registers take the word next. The step is
     /// there whatever the cuts, so the datapath's shape does not depend on them.
     pub(crate) fn ecp5_register_step(&mut self, title: &str) {
-        if self.target == Target::Ecp5 {
+        if self.family().instantiated_blocks() {
             self.step(title);
             self.delay(REGISTER_ONLY_DELAY);
         }
@@ -977,7 +960,7 @@ impl Builder {
     /// the products alone (`color_prod_X`, on blocks with their own registers where the cuts
     /// allow), and [`Builder::colour_rounding`] adds the half in a later step.
     pub(crate) fn colour_products(&mut self, src: &str, lo: u32, wc: u32, what: &str) {
-        if self.target != Target::Ecp5 {
+        if !self.family().instantiated_blocks() {
             let cs = self.bits(src, lo + wc, lo);
             self.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"));
             self.colour_sums("color_power", wc, what);
@@ -1000,7 +983,7 @@ impl Builder {
     /// `color_sum_X = color_prod_X + 2^(wc−1)` on carry chains (elsewhere nothing: the half was
     /// the multiply-add's addend).
     pub(crate) fn colour_rounding(&mut self, wc: u32, what: &str) {
-        if self.target != Target::Ecp5 {
+        if !self.family().instantiated_blocks() {
             return;
         }
         let cp = wc + self.colour_bits();
@@ -1253,7 +1236,7 @@ impl Builder {
     /// [`Builder::resolve`] finishes it.
     pub(crate) fn sum_start(&mut self, name: &str, mut terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
         let mut layer = 0;
-        let per_step = if self.target == Target::Ice40 { 1 } else { 2 };
+        let per_step = self.family().carry_save_layers_per_step();
         while terms.len() > 2 {
             if layer % per_step == 0 {
                 if per_step == 1 {
@@ -1289,10 +1272,8 @@ impl Builder {
             }
             terms = next;
         }
-        if self.target == Target::Ice40 {
-            // a step that only registers the two vectors: each of their bits feeds two carry
-            // chains (carry-select), and a flip-flop with no logic before it is free to sit
-            // between them (from the carry-save layers' LUTs a bit crosses a 3 ns route)
+        if self.family().registers_carry_save_vectors() {
+            // a step that only registers the two vectors (`Family::registers_carry_save_vectors`)
             self.step(&format!("{title}: the two vectors registered"));
             self.delay(REGISTER_ONLY_DELAY);
         }
@@ -1446,6 +1427,7 @@ mod tests {
     #[test]
     fn chunks_cover_the_width_in_balanced_pieces() {
         for w in 1..80 {
+            use crate::family::ice40::CHUNK_BITS;
             let c = chunks(w, CHUNK_BITS);
             assert_eq!(c.iter().map(|x| x.1).sum::<u32>(), w);
             assert!(c.iter().all(|x| x.1 <= CHUNK_BITS && x.1 >= 1));

@@ -36,6 +36,18 @@ impl Family for Generic {
     fn generic_gates(&self) -> bool {
         true
     }
+    fn multiplier_bits(&self) -> u32 {
+        u32::MAX
+    }
+    fn carry_chunk_bits(&self) -> u32 {
+        u32::MAX
+    }
+    fn soft_product(&self, _a: u32, _b: u32, _y: u32) -> bool {
+        false
+    }
+    fn post_adder(&self, _width: u32, _wa: u32, _wb: u32) -> bool {
+        true
+    }
     fn cell_models(&self, _datdir: &Path, _top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         Ok(Vec::new())
     }

@@ -5,6 +5,18 @@ use super::{BlockLimit, Family, PlaceAndRoute};
 use crate::config::Target;
 use std::path::{Path, PathBuf};
 
+/// Longest carry chain of one lean step (bits). iCE40 UP5K post-route, operands and sum
+/// straight from and to registers, carry-out registered too: 4 bits ~109 MHz, 6 bits
+/// ~103 MHz, 8 bits ~92 MHz.
+pub(crate) const CHUNK_BITS: u32 = 6;
+
+/// Width of an SB_MAC16's multiplier operands: 16×16.
+pub(crate) const MULTIPLIER_BITS: u32 = 16;
+
+/// yosys's `synth_ice40 -dsp` maps a product to an SB_MAC16 only when it has at least this
+/// many bits (`DSP_Y_MINWIDTH`, after `wreduce`), and each operand at least 2.
+const MIN_PRODUCT_BITS: u32 = 11;
+
 pub(super) struct Ice40;
 
 impl Family for Ice40 {
@@ -49,6 +61,31 @@ impl Family for Ice40 {
     }
     fn synthesized_on(&self) -> Target {
         Target::Ice40
+    }
+    fn multiplier_bits(&self) -> u32 {
+        MULTIPLIER_BITS
+    }
+    fn carry_chunk_bits(&self) -> u32 {
+        CHUNK_BITS
+    }
+    fn soft_product(&self, a: u32, b: u32, y: u32) -> bool {
+        a.min(b) < 2 || y.min(a + b) < MIN_PRODUCT_BITS
+    }
+    /// yosys 0.23 leaves a sum wider than the product's operands together in the fabric, on
+    /// the product's unregistered output.
+    fn post_adder(&self, width: u32, wa: u32, wb: u32) -> bool {
+        width <= wa + wb
+    }
+    /// one layer a step: yosys 0.70's ABC maps a layer of up to 9 registers to three LUT4
+    /// levels
+    fn carry_save_layers_per_step(&self) -> usize {
+        1
+    }
+    /// each of their bits feeds two carry chains (carry-select), and a flip-flop with no logic
+    /// before it is free to sit between them (from the carry-save layers' LUTs a bit crosses a
+    /// 3 ns route)
+    fn registers_carry_save_vectors(&self) -> bool {
+        true
     }
     fn cell_models(&self, datdir: &Path, _top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         let text = super::read(&datdir.join("ice40/cells_sim.v"))?;

@@ -567,7 +567,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let (a, r) = operands(dg, r, "log_word", log_pad);
         let comment = format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact; g^ = bits [{}:{rb}], UQ2.{}", tg + 1, sw - 1, w.log_frac_bits);
         let sum = b.multiply_add("ghat_sum", &a, &r, &[Piece::zeros(rb), g], sw, title, &comment);
-        if b.target() == Target::Ecp5 {
+        if b.instantiated_blocks() {
             let e = b.bits(&sum, sw - 1, rb);
             b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
         } else {

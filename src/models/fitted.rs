@@ -49,7 +49,7 @@
 
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
-use crate::config::{Config, Target};
+use crate::config::Config;
 use crate::datapath::{Builder, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
 use crate::table::Table;
 use num_bigint::BigUint;
@@ -354,7 +354,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
 
     // on the ECP5 the ROM is read a step later, from n's register, into block RAM with its
     // address and output registers (a read from the ports has no register before it)
-    let ecp5 = b.target() == Target::Ecp5;
+    let ecp5 = b.instantiated_blocks();
     b.step(if ecp5 { "c = min(cos, 1)" } else { "per-n fit ROM read {m_n, a_n}; c = min(cos, 1)" });
     if !ecp5 {
         b.rom_read("fit", t, "n");
@@ -490,7 +490,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             let zw = 2 * dsp;
             let what = format!("floor(power{}^2 / 2^{}), exact", j - 1, 2 * r);
             let square;
-            if b.target() == Target::Ecp5 {
+            if b.instantiated_blocks() {
                 // the MULT18X18D has no adder: hi^2 alone on it (with its own registers where
                 // the cuts allow), T added after it on a carry chain
                 b.step(&format!("squaring {j} of {m_max} (squarer 11): hi^2 (one DSP)"));

@@ -4,7 +4,7 @@
 //! [`super::Quadratic::trace`].
 //!
 //! `lean` is split into short steps so that a fully registered unit has at most one DSP
-//! multiply-add, one ROM read, one LUT level or one ≤ [`CHUNK_BITS`]-bit carry chain between
+//! multiply-add, one ROM read, one LUT level or one ≤ [`crate::family::ice40::CHUNK_BITS`]-bit carry chain between
 //! registers, and every carry chain takes its operands straight from registers (an inverter
 //! or mux in front of an iCE40 carry chain costs a LUT level and a route). Wide adds go into
 //! the DSPs' post-adders where the products are; the three left in the fabric are

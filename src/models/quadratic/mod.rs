@@ -198,7 +198,7 @@ impl SpecularUnit for Quadratic {
     fn datapath(&self, b: &mut Builder) {
         let (cfg, w) = (&self.cfg, &self.widths);
         match cfg.arch() {
-            Arch::Lean if cfg.target() == Target::Ecp5 => datapath::lean_ecp5(cfg, w, b),
+            Arch::Lean if b.instantiated_blocks() => datapath::lean_ecp5(cfg, w, b),
             Arch::Lean => datapath::lean(cfg, w, b),
             Arch::Paper => datapath::paper(cfg, w, b),
         }
