@@ -584,7 +584,7 @@ impl Builder {
     }
 
     /// The family the datapath is shaped for.
-    fn family(&self) -> &'static dyn crate::family::Family {
+    pub(crate) fn family(&self) -> &'static dyn crate::family::Family {
         crate::family::of(self.target)
     }
 

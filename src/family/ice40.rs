@@ -87,6 +87,13 @@ impl Family for Ice40 {
     fn registers_carry_save_vectors(&self) -> bool {
         true
     }
+    /// the SB_MAC16 multiplies 16×16: a wider bracket is split, squared with one block product
+    fn splits_wide_squares(&self) -> bool {
+        true
+    }
+    fn pads_block_operands(&self) -> bool {
+        true
+    }
     fn cell_models(&self, datdir: &Path, _top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         let text = super::read(&datdir.join("ice40/cells_sim.v"))?;
         // port default values are SystemVerilog; the netlist connects every port it uses

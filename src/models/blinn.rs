@@ -53,7 +53,7 @@
 
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, lit, mask};
-use crate::config::{Config, Target};
+use crate::config::Config;
 use crate::datapath::{Builder, Piece, LUT_DELAY};
 use crate::table::Table;
 use serde::Serialize;
@@ -437,7 +437,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         rb > 0 && w.log_delta_bits.max(rb) <= dsp && w.ghat_bits() + rb <= 2 * dsp,
         re > 0 && w.exp2_delta_bits.max(re) <= dsp && w.exp2_entry_bits + re <= 2 * dsp,
     );
-    let pad = |on: bool, rest: u32| (on && b.target() == Target::Ice40).then_some(OperandPad { a_bits: dsp, b_pad: dsp - rest });
+    let pad = |on: bool, rest: u32| (on && b.family().pads_block_operands()).then_some(OperandPad { a_bits: dsp, b_pad: dsp - rest });
     let (log_pad, exp2_pad) = (pad(log_dsp, rb), pad(exp2_dsp, re));
     let lt = b.table(t.log_table(w, log_pad));
     let et = b.table(t.exp2_table(w, exp2_pad));

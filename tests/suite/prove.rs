@@ -27,12 +27,7 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
         assert!(text(&o).contains("proved, unbounded"), "{}", text(&o));
     }
     let dir = generate(tmp.path(), "late", &["--stages", "3"]);
-    let v = dir.join("specular_unit.v");
-    let src = std::fs::read_to_string(&v).unwrap();
-    let late =
-        src.replace("assign out_valid = valid_line[2];", "reg valid_late;\nalways @(posedge clk) valid_late <= valid_line[2];\nassign out_valid = valid_late;");
-    assert_ne!(late, src);
-    std::fs::write(&v, late).unwrap();
+    make_late(&dir);
     let o = prove(&dir, &traces);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(text(&o).contains("a property fails") && text(&o).contains("late.vcd"), "{}", text(&o));
@@ -44,12 +39,7 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
     let narrow = ["--stages", "3", "--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "3", "--intensity-frac-bits", "5"];
     let right = generate(tmp.path(), "n3", &narrow);
     let late_narrow = generate(tmp.path(), "n3-late", &narrow);
-    let v = late_narrow.join("specular_unit.v");
-    let src = std::fs::read_to_string(&v).unwrap();
-    let late =
-        src.replace("assign out_valid = valid_line[2];", "reg valid_late;\nalways @(posedge clk) valid_late <= valid_line[2];\nassign out_valid = valid_late;");
-    assert_ne!(late, src);
-    std::fs::write(&v, late).unwrap();
+    make_late(&late_narrow);
     let bounded =
         |dir: &Path, trace: &Path| specgen().args(["prove", "--edited", "--depth", "8", "--rtl"]).arg(dir).arg("--trace").arg(trace).output().unwrap();
     let within = tmp.path().join("late-bounded.vcd");
@@ -59,6 +49,17 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
     let o = bounded(&right, &tmp.path().join("n3-bounded.vcd"));
     assert!(o.status.success() && text(&o).contains("no property fails within the first 8 clock edges"), "{}", text(&o));
     assert!(!tmp.path().join("n3-bounded.vcd").exists());
+}
+
+/// The 3-stage unit in `dir` with its output one edge late (the simulation suite's
+/// `valid_late` fault): `out_valid` through one more register.
+fn make_late(dir: &Path) {
+    let v = dir.join("specular_unit.v");
+    let src = std::fs::read_to_string(&v).unwrap();
+    let late =
+        src.replace("assign out_valid = valid_line[2];", "reg valid_late;\nalways @(posedge clk) valid_late <= valid_line[2];\nassign out_valid = valid_late;");
+    assert_ne!(late, src);
+    std::fs::write(&v, late).unwrap();
 }
 
 /// The valid edge of the lean unit at its deepest, 13 stages: proved unbounded. Outside the

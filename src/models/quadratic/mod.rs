@@ -52,7 +52,7 @@ pub mod rom;
 
 use super::{explain_ideal, Description, Ideal, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, exact_decimal};
-use crate::config::{Arch, Config, Rounding, Target};
+use crate::config::{Arch, Config, Rounding};
 use crate::datapath::{Builder, MAX_SQUARER_SPLIT};
 use serde::Serialize;
 
@@ -110,8 +110,10 @@ impl Widths {
         // An iCE40 DSP block multiplies 16×16 (SB_MAC16); a wider bracket is split x = h·2^r + l
         // and squared as h²·2^2r + 2hl·2^r + l², the same exact value with one 16×16 product.
         // (ECP5 squares an 18-bit bracket in one MULT18X18D; generic leaves it to the tool.)
-        let squarer_split = match (cfg.arch(), cfg.target()) {
-            (Arch::Lean, Target::Ice40) if wb + 1 > 16 && wb + 1 - 16 <= MAX_SQUARER_SPLIT => wb + 1 - 16,
+        let family = crate::family::of(cfg.target());
+        let dsp = family.multiplier_bits();
+        let squarer_split = match cfg.arch() {
+            Arch::Lean if family.splits_wide_squares() && wb + 1 > dsp && wb + 1 - dsp <= MAX_SQUARER_SPLIT => wb + 1 - dsp,
             _ => 0,
         };
         let n_max = (1u64 << cfg.n_bits()) - 1;
