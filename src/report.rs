@@ -461,11 +461,37 @@ fn premise(rows: &[ModelComparison]) -> String {
     s
 }
 
+/// The colours a model's curve is drawn in, one picked by its name.
+const MODEL_COLOURS: [RGBColor; 16] = [
+    RGBColor(228, 26, 28),
+    RGBColor(55, 126, 184),
+    RGBColor(77, 175, 74),
+    RGBColor(152, 78, 163),
+    RGBColor(255, 127, 0),
+    RGBColor(0, 0, 0),
+    RGBColor(166, 86, 40),
+    RGBColor(247, 129, 191),
+    RGBColor(102, 102, 102),
+    RGBColor(23, 190, 207),
+    RGBColor(188, 189, 34),
+    RGBColor(31, 31, 140),
+    RGBColor(0, 128, 0),
+    RGBColor(128, 0, 0),
+    RGBColor(0, 128, 128),
+    RGBColor(200, 0, 200),
+];
+
+/// A model's colour in the comparison figure, fixed by its name (FNV-1a over its bytes): a
+/// model added to the registry never repaints another, as a colour by place in the registry
+/// did.
+fn model_colour(name: &str) -> RGBColor {
+    let h = name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3));
+    MODEL_COLOURS[(h % MODEL_COLOURS.len() as u64) as usize]
+}
+
 /// The per-n worst error of every model against cos^n (log scale).
 fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
     let n_max = fids.first().map_or(1, |f| f.1.len()) as f64;
-    // one colour a model, cycled: a model added to the registry is drawn too
-    let colours = [RED, BLUE, GREEN, BLACK, MAGENTA, CYAN];
     svg(|area| {
         let mut chart = ChartBuilder::on(&area)
             .caption("Worst |intensity − cos^n| over cos_g, per n", ("sans-serif", 18))
@@ -474,7 +500,8 @@ fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
             .y_label_area_size(64)
             .build_cartesian_2d(1.0..n_max, (1e-7f64..1.0).log_scale())?;
         chart.configure_mesh().x_desc("n").y_desc("max error").y_labels(8).y_label_formatter(&|v| tick(*v)).x_label_formatter(&int_tick).draw()?;
-        for ((name, per_n), colour) in fids.iter().zip(colours.into_iter().cycle()) {
+        for (name, per_n) in fids {
+            let colour = model_colour(name);
             let pts: Vec<(f64, f64)> = per_n.iter().enumerate().skip(1).map(|(n, &e)| (n as f64, e.max(1e-7))).collect();
             chart
                 .draw_series(LineSeries::new(pts, colour.stroke_width(1)))?
@@ -631,6 +658,18 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 50, point 4: each model's colour is its name's, so every model of the registry
+    /// has its own, and adding one repaints none.
+    #[test]
+    fn every_model_has_its_own_colour_by_name() {
+        let names: Vec<&str> = crate::config::SpecularModel::ALL.iter().map(|m| m.name()).collect();
+        let colours: Vec<RGBColor> = names.iter().map(|n| model_colour(n)).collect();
+        for (i, c) in colours.iter().enumerate() {
+            assert!(colours[..i].iter().all(|d| d != c), "{} shares its colour with another model: {names:?}", names[i]);
+        }
+        assert_eq!(model_colour("blinn"), model_colour(&String::from("blinn")));
+    }
 
     #[test]
     fn small_unit_accuracy_is_within_contract() {
