@@ -15,15 +15,7 @@
 //!   B to CLK 6.504 ns; the block's route in comes on top, which nextpnr does time.
 //!   SB_RAM40_4K: the file has no pulse width or period: no limit is known.
 
-use crate::config::Target;
-
 pub use crate::family::BlockLimit;
-
-/// The limits of the blocks a unit uses on `target`'s part (ECP5-25 at `grade`, iCE40 UP5K):
-/// `dsp`/`bram` say which it uses. Each family states its own (`crate::family`).
-pub fn limits(target: Target, grade: u32, dsp: bool, bram: bool) -> Vec<BlockLimit> {
-    crate::family::of(target).block_limits(grade, dsp, bram)
-}
 
 /// The slowest of `limits` (the longest minimum period).
 pub fn slowest(limits: &[BlockLimit]) -> Option<&BlockLimit> {
@@ -42,21 +34,22 @@ pub fn limited(route_mhz: f64, limits: &[BlockLimit]) -> (f64, String) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::Target;
 
     /// The figures of the issue: a grade-6 DP16KD allows 211.9 MHz, grade 8 271.4; the
     /// slower block wins; a faster route is capped, a slower one is not.
     #[test]
     fn the_slowest_block_caps_the_route() {
-        let six = limits(Target::Ecp5, 6, true, true);
+        let six = crate::family::of(Target::Ecp5).block_limits(6, true, true);
         assert_eq!(six.len(), 2);
         let (f, why) = limited(273.3, &six);
         assert_eq!(f, 211.9);
         assert!(why.starts_with("DP16KD") && why.contains("speed_6"), "{why}");
-        let eight = limits(Target::Ecp5, 8, false, true);
+        let eight = crate::family::of(Target::Ecp5).block_limits(8, false, true);
         let (f, _) = limited(eight[0].mhz() + 50.0, &eight);
         assert_eq!(f, 271.4);
-        let (f, why) = limited(102.6, &limits(Target::Ice40, 0, true, true));
+        let (f, why) = limited(102.6, &crate::family::of(Target::Ice40).block_limits(0, true, true));
         assert_eq!((f, why.as_str()), (102.6, "routing (nextpnr)"));
-        assert!(limits(Target::Ecp5, 6, false, false).is_empty());
+        assert!(crate::family::of(Target::Ecp5).block_limits(6, false, false).is_empty());
     }
 }

@@ -54,10 +54,6 @@ use serde::Deserialize;
 /// The fitted lines, `scripts/fit_delay_model.py`'s output.
 const MODEL_JSON: &str = include_str!("../data/delay_model.json");
 
-/// The measurements the lines are fitted to (`scripts/calibrate_delay.sh`): each row a unit
-/// placed and routed, its datapath, family and the widths it was generated with (`args`).
-const CALIBRATION_CSV: &str = include_str!("../data/delay_calibration.csv");
-
 /// What shapes a datapath's delays beyond its depth: the widths, the rounding and the ROM
 /// style (the constant's width and fitted's squarings only where the model reads them), as
 /// `generate`'s flags.
@@ -79,17 +75,14 @@ fn shape(p: &crate::config::Params, model: crate::config::SpecularModel) -> Vec<
     v
 }
 
-/// The shapes the calibration measured `datapath` at on `family` (rows with a measured Fmax):
-/// each the default parameters with the row's `args` applied; a row whose args name another
-/// flag is left out (it is not known to be any configuration's shape).
-fn calibrated_shapes(family: &str, datapath: &str, model: crate::config::SpecularModel) -> Vec<Vec<(&'static str, String)>> {
+/// The shapes the calibration measured `datapath` at on `target`'s family: each the default
+/// parameters with a measured unit's `args` applied (the fitted line's `measured_args`, the
+/// same rows the floors come from); a unit whose args name another flag is left out (it is not
+/// known to be any configuration's shape).
+fn calibrated_shapes(target: Target, datapath: &str, model: crate::config::SpecularModel) -> Vec<Vec<(&'static str, String)>> {
     let mut shapes: Vec<Vec<(&'static str, String)>> = Vec::new();
-    for row in CALIBRATION_CSV.lines().skip(1) {
-        let f: Vec<&str> = row.splitn(8, ',').collect();
-        if f.len() < 8 || f[0] != family || f[1] != datapath || f[5].is_empty() {
-            continue;
-        }
-        if let Some(sh) = shape_of_args(f[7], model) {
+    for args in line(target, datapath).map(|l| l.measured_args).unwrap_or_default() {
+        if let Some(sh) = shape_of_args(&args, model) {
             if !shapes.contains(&sh) {
                 shapes.push(sh);
             }
@@ -120,11 +113,11 @@ fn shape_of_args(args: &str, model: crate::config::SpecularModel) -> Option<Vec<
 /// the grid had narrow units). `generate --target-mhz` says it, with
 /// the command that measures the unit.
 pub fn outside_calibration(plan: &Plan) -> Option<String> {
-    let family = family(plan.cfg.target())?;
+    family(plan.cfg.target())?;
     let datapath = plan.cfg.datapath_name();
     let model = plan.cfg.model();
     let own = shape(&plan.cfg.params, model);
-    let shapes = calibrated_shapes(family, datapath, model);
+    let shapes = calibrated_shapes(plan.cfg.target(), datapath, model);
     if shapes.contains(&own) {
         return None;
     }
@@ -352,7 +345,7 @@ pub fn predicted_fmax(plan: &Plan) -> Option<f64> {
 /// below the SB_MAC16's).
 fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
     let dp = &plan.datapath;
-    crate::blocks::slowest(&crate::blocks::limits(plan.cfg.target(), 6, dp.has_dsp_blocks(), dp.has_block_rams())).cloned()
+    crate::blocks::slowest(&crate::family::of(plan.cfg.target()).block_limits(6, dp.has_dsp_blocks(), dp.has_block_rams())).cloned()
 }
 
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
@@ -414,6 +407,23 @@ mod tests {
     use super::*;
     use crate::config::Config;
 
+    /// A line `offset + slope·e` ns (no mean term) with its (cap, cap_up_to), margin and
+    /// measured units, all at the default widths.
+    fn test_line((offset_ns, ns_per_unit): (f64, f64), (cap_mhz, cap_up_to): (f64, f64), margin: f64, measured: Vec<[f64; 3]>) -> Line {
+        Line {
+            offset_ns,
+            ns_per_unit,
+            ns_per_mean_unit: 0.0,
+            cap_mhz,
+            cap_up_to,
+            margin,
+            measured,
+            measured_args: vec![],
+            measured_stages: vec![],
+            corners: vec![],
+        }
+    }
+
     /// Issue 49, point 2: the calibration is a grid of widths (narrow 8/6/4/8 and the
     /// defaults per datapath and family, and the wide lean on the ECP5). A configuration at a
     /// grid point is calibrated; one between them is told so, naming the grid; one outside it
@@ -461,16 +471,9 @@ mod tests {
     fn only_units_of_the_same_widths_are_floors() {
         let narrow = "--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8";
         let l = Line {
-            offset_ns: 5.0,
-            ns_per_unit: 1.0,
-            ns_per_mean_unit: 0.0,
-            cap_mhz: 300.0,
-            cap_up_to: -1.0,
-            margin: 0.7,
-            measured: vec![[10.0, 6.0, 150.0], [9.0, 5.0, 50.0], [20.0, 9.0, 60.0]],
             measured_args: vec![String::new(), narrow.into(), String::new()],
             measured_stages: vec![6, 11, 3],
-            corners: vec![],
+            ..test_line((5.0, 1.0), (300.0, -1.0), 0.7, vec![[10.0, 6.0, 150.0], [9.0, 5.0, 50.0], [20.0, 9.0, 60.0]])
         };
         let default = Plan::new(Config::defaults()).unwrap();
         let p = crate::config::Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Config::defaults().params };
@@ -549,18 +552,7 @@ mod tests {
 
     #[test]
     fn the_cap_holds_where_a_calibration_unit_reached_it() {
-        let l = Line {
-            offset_ns: 5.0,
-            ns_per_unit: 1.0,
-            ns_per_mean_unit: 0.0,
-            cap_mhz: 100.0,
-            cap_up_to: 3.0,
-            margin: 0.9,
-            measured: vec![],
-            measured_args: vec![],
-            measured_stages: vec![],
-            corners: vec![],
-        };
+        let l = test_line((5.0, 1.0), (100.0, 3.0), 0.9, vec![]);
         assert_eq!(l.fmax(2.0, 50.0), 100.0);
         assert!((l.fmax(15.0, 0.0) - 50.0).abs() < 1e-9);
         assert!(l.fmax(4.0, 0.0) <= 100.0);
@@ -570,18 +562,7 @@ mod tests {
     /// longer than its own, and only for those.
     #[test]
     fn a_measured_unit_is_a_floor_for_shorter_stretches() {
-        let l = Line {
-            offset_ns: 5.0,
-            ns_per_unit: 1.0,
-            ns_per_mean_unit: 0.0,
-            cap_mhz: 300.0,
-            cap_up_to: -1.0,
-            margin: 0.8,
-            measured: vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]],
-            measured_args: vec![],
-            measured_stages: vec![],
-            corners: vec![],
-        };
+        let l = test_line((5.0, 1.0), (300.0, -1.0), 0.8, vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]]);
         assert_eq!(l.fmax(10.0, 6.0), 150.0);
         assert_eq!(l.fmax(9.0, 5.0), 150.0);
         assert!((l.fmax(10.0, 7.0) - 66.666).abs() < 0.1, "a longer mean stretch: the line");
@@ -597,18 +578,7 @@ mod tests {
     /// whatever the line says; beyond the shortest or the longest, the line (with its margin).
     #[test]
     fn between_calibration_units_only_the_longer_ones_figure_is_assured() {
-        let l = Line {
-            offset_ns: 0.0,
-            ns_per_unit: 0.25,
-            ns_per_mean_unit: 0.0,
-            cap_mhz: 300.0,
-            cap_up_to: -1.0,
-            margin: 0.9,
-            measured: vec![[20.0, 9.0, 130.0], [15.0, 5.0, 206.0]],
-            measured_args: vec![],
-            measured_stages: vec![],
-            corners: vec![],
-        };
+        let l = test_line((0.0, 0.25), (300.0, -1.0), 0.9, vec![[20.0, 9.0, 130.0], [15.0, 5.0, 206.0]]);
         // the line says 1000/(0.25*17) = 235 MHz at e = 17: between the two, 130 is assured
         assert!(l.bracketed(17.0, 7.0));
         assert_eq!(l.assured(17.0, 7.0), 130.0);

@@ -559,10 +559,15 @@ impl Builder {
     /// 5×4 colour product set its clock at 52 MHz while the estimate had it as one DSP); else
     /// one DSP, or an array past the block's operands.
     pub(crate) fn mul_delay(&self, a: u32, b: u32) -> f64 {
-        if self.is_soft_product(a, b, a + b) {
-            soft_mul_delay(a, b)
-        } else {
-            dsp_or_array_delay(a, b)
+        self.product_estimate(a, b, a + b).0
+    }
+
+    /// An a×b multiply kept to `y` bits: its delay estimate, and whether yosys leaves it in
+    /// LUTs on this family (too small for its block: `Family::soft_product`).
+    fn product_estimate(&self, a: u32, b: u32, y: u32) -> (f64, bool) {
+        match self.family().soft_product(a, b, y) {
+            true => (soft_mul_delay(a, b), true),
+            false => (dsp_or_array_delay(a, b), false),
         }
     }
 
@@ -570,17 +575,10 @@ impl Builder {
     /// (the logic behind it in the same step), and marks the step when the product is LUTs,
     /// not a block ([`Step::soft_product`]).
     pub(crate) fn product_delay(&mut self, a: u32, b: u32, y: u32, after: f64) {
-        let soft = self.is_soft_product(a, b, y);
-        let d = if soft { soft_mul_delay(a, b) } else { dsp_or_array_delay(a, b) } + after;
-        self.delay(d);
+        let (d, soft) = self.product_estimate(a, b, y);
+        self.delay(d + after);
         let s = self.steps.last_mut().expect("a step");
         s.soft_product |= soft;
-    }
-
-    /// Whether yosys leaves an a×b multiply kept to `y` bits in LUTs on this target (too small
-    /// for its block: the iCE40's rule is on the product's width after yosys's `wreduce`).
-    fn is_soft_product(&self, a: u32, b: u32, y: u32) -> bool {
-        self.family().soft_product(a, b, y)
     }
 
     /// The family the datapath is shaped for.

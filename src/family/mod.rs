@@ -168,15 +168,13 @@ mod tests {
     }
 
     /// A family named outside its home: every `Target::Ice40`, `Target::Ecp5` or
-    /// `Target::Generic` in `src/` outside `src/family/` and the enum's own file. The places
-    /// not moved yet are listed with their count, which may only shrink; any other file has
-    /// none (a new comparison would give a new family another's behaviour in silence).
+    /// `Target::Generic` in the code (not the unit tests) of `src/` outside `src/family/` and
+    /// the enum's own file. There is none: a comparison elsewhere would give a new family
+    /// another's behaviour in silence.
     #[test]
     fn family_names_stay_home() {
-        const NOT_MOVED_YET: [(&str, usize); 0] = [];
         let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
         let mut files = vec![src.clone()];
-        let mut seen = Vec::new();
         while let Some(p) = files.pop() {
             for e in std::fs::read_dir(&p).unwrap() {
                 let path = e.unwrap().path();
@@ -188,17 +186,11 @@ mod tests {
                         continue;
                     }
                     let text = std::fs::read_to_string(&path).unwrap();
-                    // the file's own code, not its tests
                     let code = text.split("#[cfg(test)]").next().unwrap_or("");
                     let n = ["Target::Ice40", "Target::Ecp5", "Target::Generic"].iter().map(|t| code.matches(t).count()).sum::<usize>();
-                    let allowed = NOT_MOVED_YET.iter().find(|(f, _)| *f == rel).map_or(0, |(_, n)| *n);
-                    assert!(n <= allowed, "src/{rel} names a family {n} times (at most {allowed}): ask crate::family::of(target) instead");
-                    seen.push(rel);
+                    assert!(n == 0, "src/{rel} names a family {n} times (at most 0): ask crate::family::of(target) instead");
                 }
             }
-        }
-        for (f, _) in NOT_MOVED_YET {
-            assert!(seen.iter().any(|s| s == f), "src/{f} is listed but gone: take it off the list");
         }
     }
 }
