@@ -1,0 +1,301 @@
+//! Adds and sums: carry chains, carry-select and carry-save sums, partial products.
+
+use super::*;
+
+impl Builder {
+    /// `name = (a + b + cin) mod 2^width` as one carry chain in this step, whatever its width
+    /// (the ECP5's CCU2C chains are fast; the iCE40 shape uses [`Builder::add_start`]).
+    pub(crate) fn add(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> Sig {
+        self.delay(add_delay(width.min(self.chunk_bits())));
+        let ea = self.pieces(&sub_pieces(a, 0, width));
+        let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
+        let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
+        self.wire(name, width, format!("{ea}{eb}{plus}"), comment)
+    }
+
+    /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added
+    /// here with carry-in 0 and 1 (carry-select), and [`Builder::add_finish`] resolves the
+    /// carries and picks in the next step.
+    pub(crate) fn add_start(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
+        let parts = chunks(width, self.chunk_bits().min(self.chunk_limit));
+        let n = parts.len();
+        let no_carry_out = parts.iter().map(|&(lo, w)| sub_pieces(b, lo, w).iter().all(|p| matches!(p, Piece::Const { value: 0, .. }))).collect();
+        let max_chunk = parts.iter().map(|c| c.1).max().unwrap_or(1);
+        self.delay(add_delay(max_chunk));
+        let mut top_inverted = false;
+        if n == 1 {
+            let ea = self.pieces(&sub_pieces(a, 0, width));
+            let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
+            let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
+            self.wire(name, width, format!("{ea}{eb}{plus}"), comment);
+        } else {
+            for (i, &(lo, w)) in parts.iter().enumerate() {
+                let top = i + 1 == n;
+                let ww = if top { w } else { w + 1 };
+                let pa = sub_pieces(a, lo, w);
+                let pb = sub_pieces(b, lo, w);
+                // the top chunk's top bit a carry-out (0 above both operands): a 1 above the
+                // first makes it a sum bit, the carry's complement, as below
+                let pa = if top && zero_bit(&pa, w - 1) && zero_bit(&pb, w - 1) {
+                    top_inverted = true;
+                    let mut v = sub_pieces(&pa, 0, w - 1);
+                    v.push(Piece::Const { value: 1, width: 1 });
+                    v
+                } else {
+                    pa
+                };
+                // below the top chunk, the carry-out is kept complemented, as the sum bit of a
+                // 1 above the first operand and a 0 above the second (1 + 0 + carry = ~carry
+                // mod 2): the chain computes it in a LUT of its own that packs with its
+                // flip-flop. A plain carry-out (0 above both, or 1 above both, which synthesis
+                // folds to the same) is the chain's CO, which leaves an iCE40 chain through an
+                // extra LUT placed apart from the flip-flop: 2-3 ns of routing more.
+                // [`Builder::carry_out`] reads it back.
+                let ext_a = |e: String| if top { e } else { format!("{{1'b1, {e}}}") };
+                let ext_b = |e: String| if top { e } else { format!("{{1'b0, {e}}}") };
+                // carry-in 1 as a 1 + 1 in an extra low bit: one adder that no synthesis tool
+                // can share with the carry-in-0 sum (a shared "+ 1" would chain two adders)
+                let ext1_a = |e: String| if top { format!("{{{e}, 1'b1}}") } else { format!("{{1'b1, {e}, 1'b1}}") };
+                let ext1_b = |e: String| if top { format!("{{{e}, 1'b1}}") } else { format!("{{1'b0, {e}, 1'b1}}") };
+                let ea = self.pieces(&pa);
+                let what = if top { format!("bits [{}:{lo}]", lo + w - 1) } else { format!("bits [{}:{lo}] and their carry (complemented)", lo + w - 1) };
+                let sum0 = {
+                    let eb = self.addend(&pb, ext_b);
+                    format!("{}{eb}", ext_a(ea.clone()))
+                };
+                let sum1 = {
+                    let eb = self.addend(&pb, ext1_b);
+                    let eb = if eb.is_empty() { format!(" + {}", lit(ww + 1, 1)) } else { eb };
+                    format!("{}{eb}", ext1_a(ea))
+                };
+                if i == 0 && cin {
+                    self.wire(&format!("{name}_part0"), ww + 1, sum1, &format!("{what} above bit 0, carry-in 1"));
+                } else if i == 0 {
+                    self.wire(&format!("{name}_part0"), ww, sum0, &format!("{what}, carry-in 0"));
+                } else {
+                    self.wire(&format!("{name}_part{i}"), ww, sum0, &format!("{what}, carry-in 0"));
+                    self.wire(&format!("{name}_part{i}_plus1"), ww + 1, sum1, &format!("{what} above bit 0, carry-in 1 (carry-select)"));
+                }
+            }
+        }
+        PendingAdd {
+            name: name.into(),
+            width,
+            chunks: if n == 1 { Vec::new() } else { parts },
+            part0_offset: u32::from(cin),
+            no_carry_out,
+            top_inverted,
+            comment: comment.into(),
+        }
+    }
+
+    /// `sig[hi:lo] >= c` as AND/OR of its bits, most significant first (a bit of `c` set: that
+    /// bit and the rest; clear: that bit or the rest; none left set: true): a few LUTs that
+    /// synthesis maps as logic, where `>=` becomes a carry chain whose carry-out leaves it
+    /// through an extra LUT placed apart (iCE40).
+    pub(crate) fn at_least(&mut self, sig: &str, hi: u32, lo: u32, c: u128) -> String {
+        let width = hi - lo + 1;
+        if c == 0 {
+            return "1'b1".into();
+        }
+        let mut expr = String::new();
+        // x[i:0] >= c[i:0], from the lowest set bit of c up (below it, c's bits are 0: true)
+        let low = c.trailing_zeros();
+        for i in low..width {
+            let bit = self.bits(sig, lo + i, lo + i);
+            expr = if i == low {
+                bit
+            } else if (c >> i) & 1 == 1 {
+                format!("{bit} & ({expr})")
+            } else {
+                format!("{bit} | ({expr})")
+            };
+        }
+        expr
+    }
+
+    /// The carry out of a chunk of [`Builder::add_start`]: its bit `bit`, kept complemented.
+    pub(super) fn carry_out(&mut self, part: &str, bit: u32) -> String {
+        format!("~{}", self.bits(part, bit, bit))
+    }
+
+    /// Second step of a carry-select add: the carry into each chunk from the third on
+    /// (the first chunk's own carry-out is the carry into the second), rippled through the
+    /// chunks' carry-outs. Nothing to do for one or two chunks.
+    pub(crate) fn add_carries(&mut self, p: &PendingAdd) {
+        let n = p.chunks.len();
+        if n > 2 {
+            self.add_carries_range(p, 1, n - 1);
+        }
+    }
+
+    /// The carries into chunks `from + 1 ..= to` (one LUT level each, rippled).
+    pub(super) fn add_carries_range(&mut self, p: &PendingAdd, from: usize, to: usize) {
+        self.delay(LUT_DELAY * (to - from) as f64);
+        let (_, w0) = p.chunks[0];
+        let o = p.part0_offset;
+        let mut carry = match from {
+            1 => self.carry_out(&format!("{}_part0", p.name), w0 + o),
+            _ => self.r(&format!("{}_carry{from}", p.name)),
+        };
+        for i in from..to {
+            let w = p.chunks[i].1;
+            let ca = self.carry_out(&format!("{}_part{i}_plus1", p.name), w + 1);
+            let cname = format!("{}_carry{}", p.name, i + 1);
+            let expr = if p.no_carry_out[i] {
+                // an AND, not a ?: of 0 ([`Builder::select`])
+                format!("{carry} & {ca}")
+            } else {
+                let cb = self.carry_out(&format!("{}_part{i}", p.name), w);
+                format!("{carry} ? {ca} : {cb}")
+            };
+            self.wire(&cname, 1, expr, &format!("carry into bit {}", p.chunks[i + 1].0));
+            carry = self.r(&cname);
+        }
+    }
+
+    /// The partial products of `a·r·2^shift` mod 2^width as wires `{name}_pp{k}` (one LUT
+    /// level: `a` shifted to bit `k` of `r` where it is set, else 0; each complemented when
+    /// `invert`, for a difference), as terms for [`Builder::sum_start`].
+    pub(crate) fn partial_products(&mut self, name: &str, a: &Piece, r: &Piece, shift: u32, width: u32, invert: bool) -> Vec<Vec<Piece>> {
+        let terms = self.shift_add_terms(a, r, shift, width);
+        let mut out = Vec::new();
+        for (k, t) in terms.into_iter().enumerate() {
+            let pp = format!("{name}_pp{k}");
+            let (e, what) = if invert { (format!("~{t}"), "complemented") } else { (t, "") };
+            self.wire(&pp, width, e, &format!("partial product {k}{}", if invert { format!(", {what}") } else { String::new() }));
+            out.push(vec![Piece::sig(&pp, 0, width)]);
+        }
+        self.delay(LUT_DELAY);
+        out
+    }
+
+    /// `name = Σ terms mod 2^width` (each term pieces, LSB first) without a carry chain until
+    /// the end: 3:2 carry-save layers (sum `a ^ b ^ c`, carry the majority shifted up: one LUT
+    /// level each, from this step on; one a step on the iCE40, where two in a row are a function
+    /// of up to 9 registers that yosys 0.70's ABC maps to three LUT4 levels, two a step
+    /// elsewhere), then (iCE40: after a step that only
+    /// registers them) the two vectors left into [`Builder::add_start`] in a step of its own.
+    /// [`Builder::resolve`] finishes it.
+    pub(crate) fn sum_start(&mut self, name: &str, mut terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
+        let mut layer = 0;
+        let per_step = self.family().carry_save_layers_per_step();
+        while terms.len() > 2 {
+            if layer % per_step == 0 {
+                if per_step == 1 {
+                    self.step(&format!("{title}: carry-save layer {}", layer + 1));
+                } else {
+                    self.step(&format!("{title}: carry-save layers {} and {}", layer + 1, layer + 2));
+                }
+                self.delay(per_step as f64 * LUT_DELAY);
+            }
+            layer += 1;
+            let mut next = Vec::new();
+            let mut rest = terms.into_iter();
+            let mut i = 0;
+            loop {
+                let group: Vec<Vec<Piece>> = rest.by_ref().take(3).collect();
+                if group.len() < 3 {
+                    next.extend(group);
+                    break;
+                }
+                let e: Vec<String> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
+                let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
+                // one operand (or pair) a line
+                self.wire(&sn, width, format!("{}\n    ^ {}\n    ^ {}", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the sum bits"));
+                self.wire(
+                    &cn,
+                    width,
+                    format!("({0} & {1})\n    | ({0} & {2})\n    | ({1} & {2})", e[0], e[1], e[2]),
+                    &format!("carry-save layer {layer}: the carries (worth twice)"),
+                );
+                next.push(vec![Piece::sig(&sn, 0, width)]);
+                next.push(vec![Piece::zeros(1), Piece::sig(&cn, 0, width - 1)]);
+                i += 1;
+            }
+            terms = next;
+        }
+        if self.family().registers_carry_save_vectors() {
+            // a step that only registers the two vectors (`Family::registers_carry_save_vectors`)
+            self.step(&format!("{title}: the two vectors registered"));
+            self.delay(REGISTER_ONLY_DELAY);
+        }
+        self.step(&format!("{title}: chunk sums"));
+        let zero = vec![Piece::zeros(width)];
+        let (a, b) = (terms.first().unwrap_or(&zero).clone(), terms.get(1).unwrap_or(&zero).clone());
+        // short chunks: the vectors come from registers spread over a wide sum
+        self.add_start_short(name, &a, &b, false, width, comment)
+    }
+
+    /// [`Builder::add_start`] in chunks of at most [`SUM_CHUNK_BITS`]: for a sum whose
+    /// operands come from registers spread over the fabric, or whose result fans out far.
+    pub(crate) fn add_start_short(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
+        self.chunk_limit = SUM_CHUNK_BITS;
+        let p = self.add_start(name, a, b, cin, width, comment);
+        self.chunk_limit = u32::MAX;
+        p
+    }
+
+    /// Finishes a carry-select add in the steps it needs, at most two LUT levels a step: none
+    /// for one chunk; the chunk carries rippled two a step (one for a sum of more than
+    /// [`WIDE_SUM_CHUNKS`] chunks), the last with each chunk's pick. Returns the name of the sum.
+    pub(crate) fn resolve(&mut self, p: PendingAdd, title: &str) -> Sig {
+        if !p.chunks.is_empty() {
+            // the carries into chunks from+1..=to (chunk 1's is part0's), `per_step` levels a
+            // step, then the pick with the last of them
+            let to = p.chunks.len().saturating_sub(1).max(1);
+            let per_step = if p.chunks.len() > WIDE_SUM_CHUNKS { 1 } else { 2 };
+            let mut from = 1;
+            while to - from > 1 {
+                self.step(&format!("{title}: carries"));
+                self.add_carries_range(&p, from, from + per_step);
+                from += per_step;
+            }
+            let rest = from < to;
+            self.step(&format!("{title}: {}select", if rest { "carries and " } else { "" }));
+            if rest {
+                self.add_carries_range(&p, from, to);
+            }
+        }
+        self.add_finish(p)
+    }
+
+    /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT
+    /// level). Returns the name of the sum.
+    pub(crate) fn add_finish(&mut self, p: PendingAdd) -> Sig {
+        if p.chunks.is_empty() {
+            return self.sig(&p.name);
+        }
+        self.delay(LUT_DELAY);
+        let (_, w0) = p.chunks[0];
+        let o = p.part0_offset;
+        let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1 + o, o)];
+        for (i, &(lo, w)) in p.chunks.iter().enumerate().skip(1) {
+            let carry = match i {
+                1 => self.carry_out(&format!("{}_part0", p.name), w0 + o),
+                _ => self.r(&format!("{}_carry{i}", p.name)),
+            };
+            let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
+            let (a, b) = if p.top_inverted && i + 1 == p.chunks.len() {
+                // the carry-out above the top chunk's sum, complemented back
+                let (na, nb) = (format!("~{}", self.bits(&inc, w, w)), format!("~{}", self.bits(&plain, w - 1, w - 1)));
+                if w == 1 {
+                    (na, nb)
+                } else {
+                    (format!("{{{na}, {}}}", self.bits(&inc, w - 1, 1)), format!("{{{nb}, {}}}", self.bits(&plain, w - 2, 0)))
+                }
+            } else {
+                (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0))
+            };
+            // each chunk's pick on its own line; the sum is then a plain concatenation
+            let chunk = format!("{}_chunk{i}", p.name);
+            self.wire(&chunk, w, format!("{carry} ? {a} : {b}"), &format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1));
+            words.push(self.r(&chunk));
+        }
+        words.reverse();
+        let comment = p.comment.clone();
+        // many chunks: one a line
+        let sep = if words.len() > 4 { ",\n    " } else { ", " };
+        self.wire(&p.name, p.width, format!("{{{}}}", words.join(sep)), &comment)
+    }
+}

@@ -1,0 +1,219 @@
+use super::*;
+
+#[test]
+fn chunks_cover_the_width_in_balanced_pieces() {
+    for w in 1..80 {
+        use crate::family::ice40::CHUNK_BITS;
+        let c = chunks(w, CHUNK_BITS);
+        assert_eq!(c.iter().map(|x| x.1).sum::<u32>(), w);
+        assert!(c.iter().all(|x| x.1 <= CHUNK_BITS && x.1 >= 1));
+        assert!(c.windows(2).all(|p| p[0].0 + p[0].1 == p[1].0));
+        assert_eq!(c.len() as u32, w.div_ceil(CHUNK_BITS));
+    }
+}
+
+/// The post-adder takes an add no wider than the operands (yosys 0.23's rule on the
+/// iCE40; always in generic RTL); a wider one is the product, then a carry-select add over
+/// the bits above the addend's low zeros (a complemented addend formed beside the product);
+/// on the ECP5 always the product, then one carry chain.
+#[test]
+fn multiply_add_uses_the_post_adder_only_where_the_tool_takes_it() {
+    let expr = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).map(|w| w.expr.clone());
+    let (a, r) = ([Piece::sig("a", 0, 11)], [Piece::sig("r", 0, 7)]);
+    let inputs = [("a", 11), ("r", 7), ("g", 20)];
+    // 18 bits from 11 x 7: inside the block
+    for target in [Target::Ice40, Target::Generic] {
+        let mut b = Builder::new(&inputs, &[], target);
+        b.step("t");
+        b.multiply_add("s", &a, &r, &[Piece::sig("g", 0, 18)], 18, "t", "");
+        assert_eq!(b.steps.len(), 1, "{target:?}");
+        assert!(expr(&b, "s").unwrap().contains(" * ") && expr(&b, "s").unwrap().contains(" + "), "{target:?}");
+    }
+    // 28 bits (the entry above 7 zero bits): in the generic RTL still one expression ...
+    let addend = [Piece::zeros(7), Piece::not("g", 0, 20)];
+    let mut b = Builder::new(&inputs, &[], Target::Generic);
+    b.step("t");
+    b.multiply_add("s", &a, &r, &addend, 28, "t", "");
+    assert_eq!(b.steps.len(), 1);
+    // ... on the iCE40 the product alone, the addend complemented beside it, then the add
+    // of bits [27:7] in carry-select chunks, and the sum with the product's low bits
+    let mut b = Builder::new(&inputs, &[], Target::Ice40);
+    b.step("t");
+    b.multiply_add("s", &a, &r, &addend, 28, "t", "");
+    assert_eq!(expr(&b, "s_prod").unwrap(), "{7'h0, a} * {11'h0, r}");
+    assert_eq!(expr(&b, "s_addend").unwrap(), "{1'h0, ~g}");
+    assert!(b.steps.len() >= 3, "chunk sums and their select after the product");
+    assert!(expr(&b, "s_hi_part1_plus1").is_some());
+    assert!(expr(&b, "s").unwrap().ends_with("s_prod_s1[6:0]}"), "{:?}", expr(&b, "s"));
+    // on the ECP5 one carry chain after the product
+    let mut b = Builder::new(&inputs, &[], Target::Ecp5);
+    b.step("t");
+    b.multiply_add("s", &a, &r, &addend, 28, "t", "");
+    assert_eq!(b.steps.len(), 2);
+    assert!(expr(&b, "s_hi").unwrap().contains("s_prod_s1[17:7]"), "{:?}", expr(&b, "s_hi"));
+}
+
+/// A register a multiplier reads (bits of a product, an input) is named for `(* keep *)`;
+/// one only the fabric reads is not.
+#[test]
+fn a_register_read_by_a_block_is_kept() {
+    let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1, 2], Target::Ice40);
+    b.step("p");
+    b.wire("p", 16, "a * c".into(), "");
+    b.delay(5.5);
+    let e = b.bits("p", 15, 8);
+    b.wire("hi", 8, e, "");
+    b.step("q");
+    let (hv, cv) = (b.r("hi"), b.r("c"));
+    b.wire("q", 16, format!("{hv} * {cv}"), "");
+    let e = b.bits("p", 7, 0);
+    b.wire("lo", 8, format!("~{e}"), "");
+    b.delay(5.5);
+    let d = b.finish(&["q", "lo"]);
+    assert!(d.read_by_block("hi", 1), "bits of a product, read by a multiplier");
+    assert!(!d.read_by_block("p", 1), "the product itself is read only by the fabric");
+    assert!(d.read_by_block("c", 1), "an input's register a multiplier reads");
+}
+
+/// Issue 35: a multiplier reads a block's output register also through wires that only
+/// slice it (yosys 0.70 took such a register into both blocks): it is kept too.
+#[test]
+fn a_block_output_register_read_through_slices_is_kept() {
+    let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1], Target::Ice40);
+    b.step("p");
+    b.wire("p", 16, "a * c".into(), "");
+    b.delay(5.5);
+    b.step("q");
+    b.delay(5.5);
+    let e = b.bits("p", 15, 4);
+    b.wire("s", 12, e, "a slice of the registered product");
+    let e = b.bits("s", 11, 4);
+    b.wire("t", 8, e, "a slice of the slice");
+    let (t, c) = (b.r("t"), b.r("c"));
+    b.wire("q", 16, format!("{t} * {c}"), "");
+    let d = b.finish(&["q"]);
+    assert!(d.read_by_block("p", 1), "read by a multiplier through two slices");
+}
+
+/// Issue 36: no carry-out leaves a chain as the chain's own CO. Each chunk's carry is a sum
+/// bit of its chunk, complemented (1 above the first operand, 0 above the second), and so
+/// is the top chunk's when the add's top bit is a carry-out; the select reads them back
+/// complemented.
+#[test]
+fn carries_are_sum_bits_kept_complemented() {
+    let mut b = Builder::new(&[("x", 16), ("y", 15)], &[1, 2], Target::Ice40);
+    b.step("add");
+    b.chunk_limit = 6;
+    // 17 bits of two 16/15-bit operands: the top bit is the carry-out
+    let p = b.add_start("s", &[Piece::sig("x", 0, 16)], &[Piece::sig("y", 0, 15)], false, 17, "");
+    let expr = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).map(|w| w.expr.clone()).unwrap();
+    assert_eq!(expr(&b, "s_part0"), "{1'b1, x[5:0]} + {1'b0, y[5:0]}");
+    assert_eq!(expr(&b, "s_part1"), "{1'b1, x[11:6]} + {1'b0, y[11:6]}");
+    assert_eq!(expr(&b, "s_part1_plus1"), "{1'b1, x[11:6], 1'b1} + {1'b0, y[11:6], 1'b1}");
+    assert!(expr(&b, "s_part2").starts_with("{1'h1, x[15:12]}"), "{}", expr(&b, "s_part2"));
+    b.step("carries");
+    b.add_carries(&p);
+    assert!(expr(&b, "s_carry2").starts_with("~s_part0_c1[6] ?"), "{}", expr(&b, "s_carry2"));
+    b.step("select");
+    b.add_finish(p);
+    assert!(expr(&b, "s_chunk2").contains("{~s_part2_plus1_c2[5], s_part2_plus1_c2[4:1]}"), "{}", expr(&b, "s_chunk2"));
+}
+
+/// Issue 37: a step with logic and no delay estimate is a build error (it would count 0 ns
+/// and `--target-mhz` would place its cuts on a wrong sum); a step that only selects bits
+/// needs none.
+#[test]
+#[should_panic(expected = "has logic but no delay estimate")]
+fn a_step_without_a_delay_estimate_is_refused() {
+    let mut b = Builder::new(&[("x", 8)], &[1], Target::Ice40);
+    b.step("slices only");
+    let e = b.bits("x", 7, 4);
+    b.wire("hi", 4, e, "");
+    b.step("logic, no delay");
+    let h = b.r("hi");
+    b.wire("y", 4, format!("~{h}"), "");
+    b.finish(&["y"]);
+}
+
+/// `at_least` is `>=` on every value of a 6-bit signal for every constant: its AND/OR
+/// expression, evaluated here, agrees with the integer comparison.
+#[test]
+fn at_least_is_the_comparison() {
+    // a tiny evaluator of the expressions at_least writes: x[i], 1'b1, &, |, parentheses
+    fn eval(e: &[u8], at: &mut usize, x: u32) -> bool {
+        let mut v = term(e, at, x);
+        while *at < e.len() && e[*at] != b')' {
+            let op = e[*at];
+            *at += 1;
+            let r = term(e, at, x);
+            v = if op == b'&' { v & r } else { v | r };
+        }
+        v
+    }
+    fn term(e: &[u8], at: &mut usize, x: u32) -> bool {
+        match e[*at] {
+            b'(' => {
+                *at += 1;
+                let v = eval(e, at, x);
+                *at += 1;
+                v
+            }
+            b'1' => {
+                *at += 4;
+                true
+            }
+            _ => {
+                let end = e[*at..].iter().position(|&c| c == b']').unwrap() + *at;
+                let bit: u32 = std::str::from_utf8(&e[*at + 2..end]).unwrap().parse().unwrap();
+                *at = end + 1;
+                (x >> bit) & 1 == 1
+            }
+        }
+    }
+    let mut b = Builder::new(&[("x", 6)], &[], Target::Ice40);
+    b.step("t");
+    for c in 0..64u128 {
+        let expr = b.at_least("x", 5, 0, c).replace(' ', "");
+        for x in 0..64u32 {
+            assert_eq!(eval(expr.as_bytes(), &mut 0, x), x as u128 >= c, "x = {x}, c = {c}: {expr}");
+        }
+    }
+}
+
+#[test]
+fn sub_pieces_pads_with_zeros() {
+    let p = [Piece::sig("a", 2, 3), Piece::Const { value: 0b101, width: 3 }];
+    let s = sub_pieces(&p, 1, 7);
+    let mut b = Builder::new(&[("a", 8)], &[], Target::Ice40);
+    b.step("t");
+    assert_eq!(b.pieces(&s), "{2'h0, 3'h5, a[4:3]}");
+}
+
+#[test]
+fn liveness_and_unused_bits() {
+    let mut b = Builder::new(&[("x", 8)], &[1], Target::Ice40);
+    b.step("one");
+    let e = b.bits("x", 7, 4);
+    b.wire("y", 4, e, "");
+    b.step("two");
+    let e = b.bits("x", 0, 0);
+    let y = b.r("y");
+    b.wire("z", 5, format!("{{{y}, {e}}}"), "");
+    let d = b.finish(&["z"]);
+    // cut 1 carries x (read again in step 2) and y
+    assert_eq!(d.live[0].iter().map(|l| (l.name.as_str(), l.source.as_str())).collect::<Vec<_>>(), [("x", "x"), ("y", "y_s1")]);
+    assert_eq!(d.live[1].iter().map(|l| l.name.as_str()).collect::<Vec<_>>(), ["z"]);
+    // step 2 reads x through the register of cut 1; bits 7:1 are left for the sink
+    assert_eq!(d.unused, ["x_c1[7:1]"]);
+    assert_eq!(d.outputs, [("z".to_string(), "z_s2".to_string())]);
+}
+
+#[test]
+fn a_combinational_cut_is_no_name() {
+    // nothing registered: every reference goes straight to the defining wire or port
+    assert_eq!(visible(&[], "x", 0, 3), "x");
+    assert_eq!(visible(&[], "y", 1, 3), "y_s1");
+    assert_eq!(visible(&[2], "y", 1, 3), "y_c2");
+    assert_eq!(visible(&[2], "y", 1, 2), "y_s1");
+    assert_eq!(visible(&[1, 2], "y", 2, 2), "y_s2");
+}
