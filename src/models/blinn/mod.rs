@@ -66,8 +66,8 @@ mod tables;
 
 pub use datapath::datapath;
 pub use golden::{trace, BlinnTrace};
-pub use tables::{tables, BlinnTables, OperandPad};
 use tables::{exp2_values, log_values};
+pub use tables::{tables, BlinnTables, OperandPad};
 
 /// Every width and table size of the blinn unit, from the error budget.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
