@@ -12,7 +12,7 @@
 //! - The lock is per output: a lock file `.specgen-lock-<hash of the name>` in the parent,
 //!   taken with `flock` and removed on release, so writers of sibling outputs run in parallel
 //!   and nothing is left beside the output.
-//! - What an existing output may be is decided by the caller's check (`emit`'s
+//! - What an existing output may be is decided by the caller's check (here,
 //!   `check_replaceable`): an empty directory or a previous specgen output of the same kind.
 //! - The new directory gets the old one's mode (setgid included) and group; a new one gets
 //!   `0777 & !umask`, as `mkdir` would give it.
@@ -30,6 +30,7 @@
 //! keeps its mode; a new one gets `0666 & !umask`.
 
 use crate::error::{plain, At, Error};
+use crate::names::SIM_DIR;
 use std::path::{Path, PathBuf};
 
 /// Whether two paths name one file (device and inode, links followed): an output that is an
@@ -504,4 +505,104 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
     }
     tmp.persist(&path).map_err(|e| plain(e.error))?;
     Ok(value)
+}
+
+/// The names a previous specgen output in `dir` may hold: every `*.json` manifest written by
+/// specgen for the same kind of output (a unit's manifest has `ports`, a report's `claims`), and
+/// the files it lists. `Err` names the first entry that is not one of them, the other kind of
+/// output, or (unless `force`) a listed file whose SHA-256 is not the manifest's: edited by hand.
+fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Error> {
+    let occupied = |why: String| Error::Occupied { dir: dir.to_path_buf(), why };
+    if !dir.is_dir() {
+        return Err(occupied("it exists and is not a directory".into()));
+    }
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).at("read", dir)? {
+        let entry = entry.at("read", dir)?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let kind = entry.file_type().at("read", dir)?;
+        if kind.is_dir() && name == SIM_DIR {
+            // the simulation models' subdirectory: its files are listed as `sim/<name>`
+            for inner in std::fs::read_dir(entry.path()).at("read", dir)? {
+                let inner = inner.at("read", dir)?;
+                if !inner.file_type().at("read", dir)?.is_file() {
+                    return Err(occupied(format!("it contains {SIM_DIR}/{:?}, which is not a regular file", inner.file_name())));
+                }
+                names.push(format!("{SIM_DIR}/{}", inner.file_name().to_string_lossy()));
+            }
+            continue;
+        }
+        if !kind.is_file() {
+            return Err(occupied(format!("it contains {:?}, which is not a regular file", entry.file_name())));
+        }
+        names.push(name);
+    }
+    let mut allowed: Vec<String> = Vec::new();
+    for name in names.iter().filter(|n| n.ends_with(".json")) {
+        let Ok(text) = crate::small_file::read(&dir.join(name), 1 << 20) else { continue };
+        let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else { continue };
+        if v.get("generator").and_then(|g| g.as_str()) != Some("specgen") {
+            continue;
+        }
+        match (report, v.get("claims").is_some(), v.get("ports").is_some()) {
+            (true, false, true) => return Err(occupied("it holds a unit written by `specgen generate`, not a report".into())),
+            (false, true, _) => return Err(occupied("it holds a report written by `specgen report`, not a unit".into())),
+            _ => {}
+        }
+        // a manifest vouches for its directory only when it is one specgen wrote: a unit's is
+        // `<top>.json` and its fingerprint is its own parameters'; every file it lists is there
+        // (a copy of a manifest, alone or hand-edited, vouches for nothing)
+        if !report && !genuine_unit_manifest(name, &text) {
+            continue;
+        }
+        let listed: Vec<(&str, Option<&str>)> = v
+            .get("files")
+            .and_then(|f| f.as_array())
+            .into_iter()
+            .flatten()
+            .filter_map(|f| Some((f.get("name")?.as_str()?, f.get("sha256").and_then(|h| h.as_str()))))
+            .collect();
+        if listed.is_empty() || listed.iter().any(|(n, _)| !names.iter().any(|have| have == n)) {
+            continue;
+        }
+        allowed.push(name.clone());
+        for (n, want) in listed {
+            allowed.push(n.to_string());
+            if let (Some(want), false) = (want, force) {
+                let path = dir.join(n);
+                let bytes = crate::small_file::read_bytes(&path, crate::small_file::UNIT_FILE_MAX).map_err(|e| occupied(format!("{n} {e}")))?;
+                if crate::bits::sha256_hex(&bytes, 32) != want {
+                    return Err(occupied(format!(
+                        "{n} was changed since specgen wrote it (its SHA-256 is not the manifest's); move it away, or pass --force to replace it"
+                    )));
+                }
+            }
+        }
+    }
+    match names.iter().find(|n| !allowed.contains(n)) {
+        Some(stranger) => Err(occupied(format!("it contains {stranger:?}, which no specgen manifest there lists"))),
+        None => Ok(()),
+    }
+}
+
+/// Whether `text`, read as `name`, is a unit's manifest as specgen writes it: its parameters
+/// make a valid configuration whose fingerprint is the manifest's and whose top names it.
+fn genuine_unit_manifest(name: &str, text: &str) -> bool {
+    let Ok(v) = serde_json::from_str::<serde_json::Value>(text) else { return false };
+    let Ok(params) = crate::config::Params::from_json(text) else { return false };
+    let Ok(cfg) = crate::config::Config::new(params) else { return false };
+    v.get("fingerprint").and_then(|f| f.as_str()) == Some(cfg.fingerprint().as_str()) && name == format!("{}.json", cfg.top())
+}
+
+/// Writes `files` as the whole content of `dir`, atomically (`output::write_dir`). An
+/// existing `dir` is replaced only when it is empty or holds nothing but a previous specgen
+/// output of the same kind, unedited.
+pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), Error> {
+    write_dir_atomically_forced(dir, files, false)
+}
+
+/// [`write_dir_atomically`]; with `force`, also over files of a previous output edited by hand.
+pub fn write_dir_atomically_forced(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Error> {
+    let report = files.iter().any(|(n, _)| n == "report.json");
+    write_dir(dir, files, |d| check_replaceable(d, report, force))
 }

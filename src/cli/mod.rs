@@ -388,7 +388,7 @@ impl ParamArgs {
 /// Writes a whole output directory atomically; an occupied directory is a usage error.
 fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Failure> {
     // an I/O error names the output as the user spelled it
-    emit::write_dir_atomically_forced(out, files, force).map_err(|e| match e {
+    specgen::output::write_dir_atomically_forced(out, files, force).map_err(|e| match e {
         Failure::Io { action, source, .. } => Failure::io(action, out, source),
         other => other,
     })
@@ -577,7 +577,7 @@ fn render(args: &RenderArgs) -> Result<(), Failure> {
         let model: specgen::config::SpecularModel = (*m).into();
         let plan = specgen::plan::Plan::from_params(specgen::config::Params { model, ..Default::default() })?;
         let dir = scratch.path().join(model.name());
-        emit::write_dir_atomically(&dir, &emit::generate_files(&plan))?;
+        specgen::output::write_dir_atomically(&dir, &emit::generate_files(&plan))?;
         dirs.push(dir);
     }
     let mut designs = Vec::new();
