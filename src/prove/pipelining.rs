@@ -1,0 +1,257 @@
+//! `prove --pipelining` and `prove --datapath`: miters against a twin of the unit.
+
+use super::*;
+
+/// The pipelining proof's properties, in words.
+pub(super) const PIPELINING_PROPERTIES: [&str; 2] = [
+    "after a reset, out_valid is the depth-0 twin's fed the same inputs `latency` edges late",
+    "while out_valid is high, every output and the tag are the twin's",
+];
+
+/// Why `prove --pipelining` does not apply to `design`, when it does not: a handshake's buffer
+/// and material registers keep state by design (their edge is what `prove` proves).
+pub fn pipelining_refused(design: &Design) -> Option<String> {
+    let cfg = &design.cfg;
+    let static_colour = cfg.colour() == crate::config::Colour::Static;
+    (cfg.interface().handshake() || static_colour).then(|| {
+        format!(
+            "{} has the {} interface{}; allowed: --interface valid with per-pixel colours (a buffer or material registers keep state by design; `specgen prove` without --pipelining proves their edge)",
+            design.dir.display(),
+            cfg.interface().name(),
+            if static_colour { " with static colours" } else { "" }
+        )
+    })
+}
+
+/// Proves that the unit in `design` equals its depth-0 twin (the same configuration generated
+/// with no pipeline registers, under its own top name) fed the same inputs `K = stages` edges
+/// late, for every input sequence. Two checks of a miter (`templates/prove_pipelining.v`),
+/// each unrolled by ABC and proved with `iprove` (fraiging: the two datapaths share most of
+/// their structure):
+/// 1. from power-up (no reset yet, every other flip-flop free), they hold at every one of the
+///    first `K + 2` edges (a failure here is real: replayed to a VCD);
+/// 2. from *any* state, they hold `K + 1` edges later: every register of a feed-forward
+///    pipeline is a function of the last `K + 1` inputs by then, so this covers every edge
+///    from `K + 1` on of every run, whatever came before.
+///
+/// Together: at every edge of every run. A unit that keeps state longer than `K + 1` edges (a
+/// delay line in block RAM, whose pointers never flush) fails check 2 from states no run
+/// reaches: the replay from any state then finds no trace and the verdict is
+/// [`Verdict::Incomplete`], never proved and never a false failure. The valid interface with
+/// per-pixel colours only: a handshake's buffer and material registers hold state by design.
+pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> {
+    let cfg = &design.cfg;
+    if let Some(why) = pipelining_refused(design) {
+        return Err(error::input(format!("prove --pipelining: {why}")));
+    }
+    let k = cfg.stages();
+    let top = cfg.top();
+    let twin_top = format!("{top}_depth0");
+    let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
+    let w = work.path();
+    // the datapath is compared, so an ECP5 unit's primitives are their simulation models (the
+    // twin's are the same modules, guarded)
+    let mut files = design.stage_sim_models(w)?;
+    files.extend(design.stage(w)?);
+    // the twin: the same parameters at depth 0, its files by its own names beside the unit's
+    // (its simulation models, under sim/, are the unit's)
+    let twin_params = crate::config::Params { stages: 0, top: twin_top.clone(), ..cfg.params.clone() };
+    files.extend(stage_twin(design, w, twin_params)?);
+    let file = format!("{top}_prove_ports.v");
+    put(w, &file, crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")))?;
+    files.push(file);
+    let name = format!("{top}_prove_pipelining");
+    let harness = PipeliningHarness {
+        name: &name,
+        top,
+        twin: &twin_top,
+        version: crate::names::VERSION,
+        cos_w: cfg.f() + 1,
+        n_w: cfg.n_bits(),
+        b_w: cfg.b(),
+        i_w: cfg.fi() + 1,
+        latency: k,
+    }
+    .render()
+    .expect("the pipelining harness renders")
+        + "\n";
+    put(w, "harness.v", harness)?;
+    files.push("harness.v".into());
+    let script = |replay: Option<(u32, u32)>, file: &str| -> Result<(), Error> {
+        let (replay_steps, replay_skip) = replay.unwrap_or((0, 0));
+        let text =
+            PipeliningScript { version: crate::names::VERSION, harness: &name, files: &files, replay_steps, replay_skip }.render().expect("the script renders")
+                + "\n";
+        put(w, file, text)
+    };
+    script(None, "models.ys")?;
+    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
+    let t0 = Instant::now();
+    run(&yosys, &["-q".into(), "-s".into(), "models.ys".into()], w, Duration::from_secs(600))?
+        .ok_or_else(|| error::tool(&yosys, "yosys did not write the models within 600 s"))?;
+    let frames = k + 2;
+    // first from power-up, the first K + 2 edges (a pixel taken after a reset at the first
+    // reaches the outputs at the last): a failure there is a real one; then from a free state,
+    // the last of K + 2 edges (a failure there may be a state no run reaches)
+    let checks = [
+        (format!("read_aiger started.aig; fold; strash; orpos; frames -F {frames} -i; strash; orpos; iprove"), (frames, 0)),
+        (format!("read_aiger free.aig; fold; strash; orpos; frames -F {frames}; comb; cone -O {} -s; strash; iprove", k + 1), (frames, k + 1)),
+    ];
+    let verdict = 'checks: {
+        for (abc_script, replay) in checks {
+            let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
+                break 'checks Verdict::Undecided { bounded: None, out_of_time: true, reached: None };
+            };
+            if said.contains("UNSATISFIABLE") {
+                continue;
+            }
+            if !said.contains("SATISFIABLE") {
+                return Err(error::tool(&abc, format!("iprove neither proved nor refuted the miter: {said}")));
+            }
+            script(Some(replay), "replay.ys")?;
+            let found = run_sat(&yosys, w, "replay.ys", tools.limit)? == Some(false);
+            if replay.1 > 0 && !found {
+                // no run reaches the failing state from the replay's: state kept beyond K + 1 edges
+                break 'checks Verdict::Incomplete { bounded: frames };
+            }
+            break 'checks Verdict::Failed { frame: replay.0 - 1, vcd: trace(&yosys, w, design)? };
+        }
+        Verdict::Proved
+    };
+    let properties = PIPELINING_PROPERTIES.to_vec();
+    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into(), ports: None })
+}
+
+/// Writes the twin `params` describe (its own top, its files by their own names) into `w`,
+/// beside the unit's, with its co-simulation adapter `<top>_prove_ports`: the Verilog to read.
+/// Its simulation models (under `sim/`) are the unit's, staged with them.
+pub(super) fn stage_twin(design: &Design, w: &Path, params: crate::config::Params) -> Result<Vec<String>, Error> {
+    let top = params.top.clone();
+    let twin = crate::plan::Plan::from_params(params).map_err(|e| error::input(format!("the twin {top} of {}: {e}", design.dir.display())))?;
+    let mut files = Vec::new();
+    for (name, bytes) in crate::emit::generate_files(&twin).into_iter().filter(|(name, _)| !name.contains('/')) {
+        put(w, &name, bytes)?;
+        if name.ends_with(".v") {
+            files.push(name);
+        }
+    }
+    let file = format!("{top}_prove_ports.v");
+    put(w, &file, crate::cosim::adapter::adapter_named(&twin.cfg, &format!("{top}_prove_ports")))?;
+    files.push(file);
+    Ok(files)
+}
+
+/// The module name of `top`'s datapath twin (`prove --datapath`).
+pub(super) fn datapath_twin_name(top: &str) -> String {
+    format!("{top}_datapath")
+}
+
+/// The datapath proof's property, in words.
+pub(super) const DATAPATH_PROPERTY: &str =
+    "the datapath: the n-th result delivered (every output field) is what the unit's `valid` twin computes for the n-th pixel taken (with a static colour: the colour loaded at an enabled edge before it was taken)";
+/// The datapath proof's cover, in words.
+pub(super) const DATAPATH_COVER: &str = "a delivered result compared with the twin's";
+
+/// Why `prove --datapath` does not apply to `design`, when it does not.
+pub fn datapath_refused(design: &Design) -> Option<String> {
+    (!design.cfg.interface().handshake()).then(|| {
+        format!(
+            "{} has the valid interface; allowed: --interface ready or axis (a valid unit's datapath is its depth-0 twin's by `prove --pipelining`)",
+            design.dir.display()
+        )
+    })
+}
+
+/// `prove --datapath`: the values a handshake unit delivers are its datapath's. The port checker
+/// (written from the manifest) follows one pixel, any one, through the unit's ports and asserts
+/// that its result, when delivered, equals what the unit's twin — the same configuration
+/// generated as a `valid` unit (no buffer, no clock enable, no tag), top `<top>_datapath` —
+/// computes for it: the twin takes every pixel the unit takes at the same edge (and, with a
+/// static colour, loads every colour the unit should: at an enabled edge with the load high),
+/// and its result `stages` edges later (its latency, proved of every `valid` unit) is kept.
+/// Not compared (SPEC allows either colour): a pixel taken before any colour was loaded, or
+/// inside while one loads.
+///
+/// Nothing is cut. yosys merges what the two compute alike (the same Verilog, the `keep` of
+/// the unit's registers lifted for the model), so the search is over what differs: an edit of
+/// the unit's datapath, its buffer's handling of the values, the clock enable at the material
+/// registers. ABC's bmc3 searches the model to `--depth` edges from power-up (by default
+/// latency plus 8: a pixel taken at the first edge leaves by latency plus 4), with the unit's own assertions
+/// set aside and every port rule of the checker kept. A bounded search, not a proof; that the
+/// twin is right is the co-simulation's and `--pipelining`'s (the twin against its depth-0
+/// twin). Its cover, a result compared, must be reached.
+pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
+    let cfg = &design.cfg;
+    if let Some(why) = datapath_refused(design) {
+        return Err(error::input(format!("prove --datapath: {why}")));
+    }
+    let top = cfg.top();
+    let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
+    let w = work.path();
+    // the values are compared, so an ECP5 unit's primitives are their simulation models
+    let mut files = design.stage_sim_models(w)?;
+    files.extend(design.stage(w)?);
+    let twin = datapath_twin_name(top);
+    let params = crate::config::Params {
+        top: twin.clone(),
+        interface: crate::config::Interface::Valid,
+        tag_bits: 0,
+        tlast: false,
+        clock_enable: false,
+        reset: None,
+        clock_port: None,
+        ..cfg.params.clone()
+    };
+    files.extend(stage_twin(design, w, params)?);
+    put(w, "ports.v", crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")))?;
+    put(w, "harness.v", harness(design))?;
+    files.push("ports.v".into());
+    files.push("harness.v".into());
+    let files = with_port_checker(design, w, &files)?;
+    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
+    let tools = &Tools { yosys, abc, ..tools.clone() };
+    let name = harness_name(top);
+    let depth = tools.depth.unwrap_or_else(|| port_depth(cfg));
+    let script = Script {
+        version: crate::names::VERSION,
+        harness: &name,
+        files: &files,
+        bounded: Some(depth),
+        induction: Some(depth),
+        replay: false,
+        defines: vec!["SPECGEN_PORTS".into(), "SPECGEN_DATAPATH".into()],
+        ports_only: Some(format!("{top}_port_checker")),
+        ignore_unknown: false,
+        abstract_module: "",
+        abstract_wires: Vec::new(),
+        share: true,
+        sat_search: None,
+    };
+    let t0 = Instant::now();
+    let engine = format!(
+        "the port checker (from the manifest) with the datapath twin {twin}, a bounded search of {depth} edges from power-up with ABC bmc3, the unit's own assertions set aside"
+    );
+    let mut properties = vec![DATAPATH_PROPERTY];
+    let (verdict, ports) = match search(design, tools, w, script.clone(), depth)? {
+        Searched::Found { frame, vcd } => {
+            properties.extend(PORT_PROPERTIES);
+            (Verdict::Failed { frame, vcd }, None)
+        }
+        Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: reached, out_of_time: true, reached }, None),
+        Searched::Clear => {
+            let mut defines = script.defines.clone();
+            defines.extend(["SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{}", 1 << 6)]);
+            let covering = Script { defines, ..script };
+            match search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, tools.cover_trace)? {
+                Searched::Found { frame, vcd } => {
+                    let cover_vcd = tools.cover_trace.then_some(vcd);
+                    let ports = Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: vec![DATAPATH_COVER], covered_by: frame, cover_vcd };
+                    (Verdict::Bounded { depth }, Some(ports))
+                }
+                Searched::Clear => (Verdict::Unreached { covers: vec![DATAPATH_COVER], depth }, None),
+                Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: Some(depth), out_of_time: true, reached }, None),
+            }
+        }
+    };
+    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports })
+}

@@ -1,0 +1,168 @@
+//! The outside checker at the unit's ports: its bounded search, its covers, its verdict.
+
+use super::*;
+
+/// How the port checker's runs ended.
+pub(super) enum AtPorts {
+    Checked(Ports),
+    Failed { frame: u32, vcd: Vec<u8> },
+    OutOfTime { reached: Option<u32> },
+    Unreached { covers: Vec<&'static str>, depth: u32 },
+}
+
+/// The covers of the port checker, each with its bit in `SPECGEN_COVER_MASK`; `tlast` and a
+/// static colour's load only where the unit has them.
+pub(super) fn covers(cfg: &crate::config::Config) -> Vec<(u32, &'static str)> {
+    let mut c = vec![
+        (0, "a result delivered"),
+        (1, "the unit full: places pixels inside"),
+        (2, "in_ready falling after it was high"),
+        (3, "in_ready rising again after it fell"),
+    ];
+    if cfg.params.tlast {
+        c.push((4, "a result with tlast delivered"));
+    }
+    if cfg.colour() == crate::config::Colour::Static {
+        c.push((5, "a static colour loaded at an enabled edge"));
+    }
+    c
+}
+
+/// The depth of the port checker's search in the default proof: a pixel taken at the first
+/// edge after the reset is owed from then on and must leave within RESPOND = latency + 2 edges,
+/// so a unit that loses, holds back or never delivers a result fails by edge latency + 4; four
+/// more edges for a fault that needs a second pixel.
+pub(super) fn port_depth(cfg: &crate::config::Config) -> u32 {
+    cfg.latency() + 8
+}
+
+/// The cover search's depth: every cover in one run, the unit filled and drained once.
+pub(super) fn cover_depth(cfg: &crate::config::Config) -> u32 {
+    cfg.latency() + 2 * crate::interface::buffer_places(cfg) as u32 + 12
+}
+
+/// Writes the port checker into the work directory `w`: `files` and it, for a script to read.
+pub(super) fn with_port_checker(design: &Design, w: &Path, files: &[String]) -> Result<Vec<String>, Error> {
+    put(w, "port_checker.v", port_checker(design))?;
+    let mut all = files.to_vec();
+    all.push("port_checker.v".into());
+    Ok(all)
+}
+
+/// The port checker's bounded search (its assertions only), then its covers.
+pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Script) -> Result<AtPorts, Error> {
+    let cfg = &design.cfg;
+    let files = with_port_checker(design, w, script.files)?;
+    let checker = format!("{}_port_checker", cfg.top());
+    let depth = port_depth(cfg);
+    let ports = Script { bounded: Some(depth), files: &files, defines: vec!["SPECGEN_PORTS".into()], ports_only: Some(checker.clone()), ..script.clone() };
+    match search(design, tools, w, ports, depth)? {
+        Searched::Clear => {}
+        Searched::Found { frame, vcd } => return Ok(AtPorts::Failed { frame, vcd }),
+        Searched::OutOfTime { reached } => return Ok(AtPorts::OutOfTime { reached }),
+    }
+    let all = covers(cfg);
+    let reach = |mask: u32, depth: u32, replay: bool| -> Result<Searched, Error> {
+        let defines = vec!["SPECGEN_PORTS".to_string(), "SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{mask}")];
+        let covering = Script { bounded: Some(depth), files: &files, defines, ports_only: Some(checker.clone()), ..script.clone() };
+        // (its depths are not "no failure": a cover not reached yet)
+        search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, replay)
+    };
+    let cdepth = cover_depth(cfg);
+    let mask = all.iter().fold(0, |m, (bit, _)| m | 1 << bit);
+    match reach(mask, cdepth, tools.cover_trace)? {
+        Searched::Found { frame, vcd } => Ok(AtPorts::Checked(Ports {
+            depth,
+            properties: PORT_PROPERTIES.to_vec(),
+            covers: all.iter().map(|c| c.1).collect(),
+            covered_by: frame,
+            cover_vcd: tools.cover_trace.then_some(vcd),
+        })),
+        Searched::OutOfTime { reached } => Ok(AtPorts::OutOfTime { reached }),
+        Searched::Clear => {
+            // not all in one run: which cannot be reached
+            let mut unreached = Vec::new();
+            for (bit, what) in &all {
+                if matches!(reach(1 << bit, cdepth, false)?, Searched::Clear) {
+                    unreached.push(*what);
+                }
+            }
+            Ok(AtPorts::Unreached { covers: unreached, depth: cdepth })
+        }
+    }
+}
+
+/// The port checker's properties, in words (`templates/prove_port_checker.v`).
+pub(super) const PORT_PROPERTIES: [&str; 6] = [
+    "at the ports (from the manifest): a transfer is valid, ready, enabled and no reset; a reset leaves out_valid and in_ready low",
+    "at the ports: a result not taken (out_ready low or the edge disabled) stays, every output field, the tag and tlast unchanged",
+    "at the ports: never more pixels taken and not delivered than places, no result without one",
+    "at the ports: in_ready high exactly when, three cycles before, fewer than places - 3 were inside (SPEC §7)",
+    "at the ports: the n-th result delivered carries the n-th pixel's tag and tlast (a scoreboard)",
+    "at the ports, bounded response: with the consumer ready a result owed leaves within latency + 2 edges, and in_ready rises within latency + places + 4",
+];
+
+/// How a bounded search ended.
+pub(super) enum Searched {
+    /// no assertion fails within the depth
+    Clear,
+    /// one fails `frame` edges in; the run's VCD
+    Found { frame: u32, vcd: Vec<u8> },
+    /// stopped at the time limit, `reached` frames searched
+    OutOfTime { reached: Option<u32> },
+}
+
+/// A bounded search of `depth` edges from power-up of `script`'s model: yosys writes it as an
+/// AIGER, ABC's bmc3 searches it, and a failure is simulated by yosys on the same model to a VCD.
+pub(super) fn search(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32) -> Result<Searched, Error> {
+    search_with(design, tools, w, script, depth, true)
+}
+
+/// [`search`], with the counterexample replayed to a VCD only when `replay` (a cover's trace
+/// only when asked for: `--cover-trace`).
+pub(super) fn search_with(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32, replay: bool) -> Result<Searched, Error> {
+    script.write(w, "model.ys")?;
+    run(&tools.yosys, &["-q".into(), "-s".into(), "model.ys".into()], w, tools.limit)?
+        .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not write the model within {} s (--time-limit)", tools.limit.as_secs())))?;
+    let _ = std::fs::remove_file(w.join("cex.aiw"));
+    let abc_script = format!("read_aiger model.aig; fold; bmc3 -F {depth} -v; write_cex -a cex.aiw");
+    let said = run_watched(&tools.abc, &["-c".into(), abc_script], w, tools.limit, tools.progress, bmc_progress)?;
+    if !said.ended {
+        return Ok(Searched::OutOfTime { reached: bmc_reached(&said.text) });
+    }
+    match frame_asserted(&said.text) {
+        Some(frame) if !replay => Ok(Searched::Found { frame, vcd: Vec::new() }),
+        Some(frame) => {
+            yosys_witness(w)?;
+            Script { replay: true, ..script.clone() }.write(w, "replay.ys")?;
+            let _ = std::fs::remove_file(w.join("trace.vcd"));
+            let replayed = run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit);
+            if matches!(&replayed, Err(e) if without_sim(e)) {
+                // YoWASP's yosys has no `sim`: its `sat` searches the failing run's edges again
+                // (sat's first step is the state before the first edge: ABC's frame f is step f + 2)
+                let steps = frame + 2;
+                Script { sat_search: Some(steps), ..script }.write(w, "replay.ys")?;
+                match run_sat(&tools.yosys, w, "replay.ys", tools.limit)? {
+                    Some(false) => {}
+                    None => {
+                        return Err(error::tool(
+                            &tools.yosys,
+                            format!("yosys's sat did not find the failure of edge {frame} again within {} s", tools.limit.as_secs()),
+                        ))
+                    }
+                    Some(true) => {
+                        return Err(error::tool(
+                            &tools.yosys,
+                            format!("ABC found a failure at edge {frame} that yosys's sat does not find within {steps} edges"),
+                        ))
+                    }
+                }
+            } else {
+                replayed?.ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
+            }
+            Ok(Searched::Found { frame, vcd: trace(&tools.yosys, w, design)? })
+        }
+        None if said.text.contains("No output asserted") => Ok(Searched::Clear),
+        None => Err(error::tool(&tools.abc, format!("bmc3 neither found a failure nor finished its {depth} frames: {}", tail(&said.text)))),
+    }
+}

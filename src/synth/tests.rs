@@ -1,0 +1,86 @@
+use super::*;
+
+/// The consumer's ready reaches a handshake unit through two free flip-flops of the
+/// wrapper (under either name); a unit without it is wired straight from the input chain.
+#[test]
+fn the_wrapper_gives_the_consumers_ready_through_two_free_flip_flops() {
+    use crate::config::{Interface, Params};
+    for (interface, ready) in [(Interface::Valid, None), (Interface::Ready, Some("out_ready")), (Interface::Axis, Some("m_axis_tready"))] {
+        let cfg = Config::new(Params { interface, stages: 4, ..Default::default() }).unwrap();
+        let text = wrapper(&cfg);
+        match ready {
+            None => assert!(!text.contains("_near"), "{text}"),
+            Some(name) => {
+                assert!(text.contains(&format!(".{name}({name}_near)")), "{text}");
+                assert!(text.contains(&format!("{name}_relay <= in_reg[")) && text.contains(&format!("{name}_near <= {name}_relay;")), "{text}");
+            }
+        }
+    }
+}
+
+#[test]
+fn logic_cells_are_read_from_the_device_utilisation() {
+    let ice40 = "Info: Device utilisation:\nInfo: \t         ICESTORM_LC:   777/ 5280    14%\nInfo: \t        ICESTORM_RAM:     4/   30    13%\n";
+    assert_eq!(logic_cells(ice40), Some(777));
+    let ecp5 = "Info: Device utilisation:\nInfo: \t          TRELLIS_IO:    23/  197    11%\nInfo: \t       TRELLIS_SLICE:   312/12144     2%\n";
+    assert_eq!(logic_cells(ecp5), Some(312));
+    let ecp5_cells = "Info: Device utilisation:\nInfo: \t          TRELLIS_FF:    2684/  24288    11%\nInfo: \t        TRELLIS_COMB:    1510/  24288     6%\n";
+    assert_eq!(logic_cells(ecp5_cells), Some(2684));
+    assert_eq!(logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"), None);
+}
+
+/// Issue 49, point 3: the netlist check names every hard multiplier without the registers
+/// SPEC §7 promises: an SB_MAC16 with a constant clock, one whose used output half is
+/// combinational, a MULT18X18D without its output or an input register; a registered
+/// block and an unused half pass.
+#[test]
+fn unregistered_blocks_are_named_from_the_netlist() {
+    let mac = |clk: &str, top: u32, bot: u32, reg2: u32, o: &str| {
+        format!(
+            r#"{{"type": "SB_MAC16", "parameters": {{"TOPOUTPUT_SELECT": "{top:02b}", "BOTOUTPUT_SELECT": "{bot:02b}", "PIPELINE_16x16_MULT_REG2": "{reg2}"}},
+            "port_directions": {{"CLK": "input", "O": "output"}}, "connections": {{"CLK": [{clk}], "O": {o}}}}}"#
+        )
+    };
+    let low: Vec<u32> = (10..26).collect();
+    let both: Vec<u32> = (10..42).collect();
+    let o_low = format!("{:?}", low.iter().chain(std::iter::repeat_n(&99, 16)).collect::<Vec<_>>());
+    let o_both = format!("{both:?}");
+    let json = format!(
+        r#"{{"modules": {{"u": {{"ports": {{"y": {{"direction": "output", "bits": {both:?}}}}},
+        "cells": {{
+          "$tied": {},
+          "\\comb": {},
+          "regd": {},
+          "lowonly": {},
+          "$m": {{"type": "MULT18X18D", "parameters": {{"REG_OUTPUT_CLK": "NONE", "REG_INPUTA_CLK": "CLK0", "REG_INPUTB_CLK": "CLK0"}}, "connections": {{}}}},
+          "$ok": {{"type": "MULT18X18D", "parameters": {{"REG_OUTPUT_CLK": "CLK0", "REG_INPUTA_CLK": "CLK0", "REG_INPUTB_CLK": "CLK0"}}, "connections": {{}}}}
+        }}}}}}}}"#,
+        mac("\"0\"", 1, 1, 0, &o_both),
+        mac("5", 3, 3, 0, &o_both),
+        mac("5", 3, 3, 1, &o_both),
+        mac("5", 0, 1, 0, &o_low),
+    );
+    let found = unregistered_blocks(&json, "u").unwrap();
+    assert_eq!(found.len(), 4, "{found:#?}");
+    assert!(found[0].starts_with("MULT18X18D $m: no output register"), "{found:#?}");
+    assert!(found[1].starts_with("SB_MAC16 $tied: its clock is a constant"), "{found:#?}");
+    assert!(found[2].starts_with("SB_MAC16 comb: the top half") && found[3].starts_with("SB_MAC16 comb: the bottom half"), "{found:#?}");
+}
+
+/// The slowest clock of the last report, not the last line: an SB_MAC16 whose clock is tied
+/// low forms a clock of its own whose figure is only the routes between such blocks.
+#[test]
+fn fmax_is_the_slowest_clock_after_routing() {
+    let log = "Info: Max frequency for clock    'clk$SB_IO_IN_$glb_clk': 47.68 MHz (FAIL at 100.00 MHz)\n\
+               Info: Max frequency for clock '$PACKER_GND_NET_$glb_clk': 139.74 MHz (PASS at 100.00 MHz)\n\
+               Info: Routing..\n\
+               Warning: Max frequency for clock    'clk$SB_IO_IN_$glb_clk': 46.69 MHz (FAIL at 100.00 MHz)\n\
+               Info: Max frequency for clock '$PACKER_GND_NET_$glb_clk': 129.77 MHz (PASS at 100.00 MHz)\n";
+    assert_eq!(fmax_of_log(log), Some(46.69));
+    assert!(has_unclocked_block(log));
+    let one = "Info: Max frequency for clock 'clk': 90.00 MHz (FAIL at 100.00 MHz)\nInfo: Max frequency for clock 'clk': 102.60 MHz (PASS at 100.00 MHz)\n";
+    assert_eq!(fmax_of_log(one), Some(102.6));
+    assert!(!has_unclocked_block(one));
+    assert!(has_unclocked_block("Info: Max delay posedge $PACKER_GND_NET_$glb_clk -> posedge clk$SB_IO_IN_$glb_clk   : 4.93 ns"));
+    assert_eq!(fmax_of_log("Info: Routing..\n"), None);
+}

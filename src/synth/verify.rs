@@ -1,0 +1,82 @@
+//! `synth --verify`: the mapped netlist simulated against the golden model.
+
+use super::*;
+
+/// What `synth --verify` simulated and found.
+#[derive(Debug, Clone)]
+pub struct Verification {
+    /// the simulators run, each with its report
+    pub runs: Vec<(crate::cosim::Simulator, crate::cosim::Report)>,
+    /// the cell-model files simulated with the netlist
+    pub models: Vec<String>,
+}
+
+/// `synth --verify`: the *mapped* netlist (yosys `write_verilog` after the same synthesis
+/// script) simulated with yosys's cell models under the co-simulation harness, against the
+/// golden model: under Verilator (`vectors` random after the corners and every n's boundary)
+/// and under Icarus, whose four-valued logic also catches undefined (`x`) cell inputs (the
+/// corners and a tenth of the random vectors).
+pub fn verify(
+    design: &Design,
+    target: Target,
+    dsp: bool,
+    yosys: &str,
+    sim: &crate::cosim::SimTools,
+    vectors: u64,
+    exhaustive: bool,
+) -> Result<Verification, Failure> {
+    use crate::cosim::{build, check_ports, random_stimulus, run_all, Exhaustive, Simulator, Stimulus};
+    require(yosys, "yosys")?;
+    // the RTL first, on the same vectors: a netlist is blamed only for what its RTL gets right
+    let jobs = std::thread::available_parallelism().map_or(1, |c| c.get());
+    {
+        let model = design.plan.model();
+        let built = build(design, Simulator::Verilator, sim, false, vectors)?;
+        check_ports(design)?;
+        let stims: Vec<Box<dyn Stimulus>> = vec![Box::new(random_stimulus(&model, vectors, 1))];
+        let rtl = run_all(&built, design, &model, &stims, jobs)?;
+        if let Some(m) = &rtl.first {
+            return Err(error::mismatch(format!(
+                "the RTL in {} itself differs from the golden model ({} of {} checked cycles), so its netlist was not judged: regenerate the unit\n{}",
+                design.dir.display(),
+                rtl.mismatches,
+                rtl.checked,
+                crate::cosim::describe(m, &design.cfg)
+            )));
+        }
+    }
+    let top = design.cfg.top().to_string();
+    let work = crate::process::temp_dir().map_err(|e| error::tool("yosys", e.to_string()))?;
+    let dir = work.path().join("netlist");
+    std::fs::create_dir_all(&dir).map_err(|e| Failure::io("create", &dir, e))?;
+    let netlist = dir.join(format!("{top}.v"));
+    let staging = work.path().join("staging");
+    std::fs::create_dir_all(&staging).map_err(|e| Failure::io("create", &staging, e))?;
+    let read = stage_sources(design, &staging)?;
+    // written in yosys's working directory (a WebAssembly yosys sees nothing above it), then moved
+    run_yosys(yosys, &staging, &format!("{read}; {}; write_verilog -noattr netlist.v", synth_command(target, dsp, &top)))?;
+    std::fs::rename(staging.join("netlist.v"), &netlist)
+        .map_err(|_| error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())))?;
+    // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
+    let datdir = yosys_datdir(yosys)?;
+    let models = crate::family::of(target).cell_models(&datdir, &top).map_err(|(path, e)| Failure::io("read", &path, e))?;
+    for (name, text) in &models {
+        std::fs::write(dir.join(name), text).map_err(|e| Failure::io("write", dir.join(name), e))?;
+    }
+    let manifest = design.dir.join(format!("{top}.json"));
+    std::fs::copy(&manifest, dir.join(format!("{top}.json"))).map_err(|e| Failure::io("read", &manifest, e))?;
+    let mapped = Design::load(&dir)?;
+    let model = mapped.plan.model();
+    let mut runs = Vec::new();
+    for (simulator, count) in [(Simulator::Verilator, vectors), (Simulator::Icarus, vectors / 10)] {
+        let built = build(&mapped, simulator, sim, false, if exhaustive { u64::MAX } else { count })?;
+        check_ports(&mapped)?;
+        // exhaustive: every (cos_g, n) under Verilator (Icarus, some 20 000 cycles a second, keeps its random tenth)
+        let stims: Vec<Box<dyn Stimulus>> = match (exhaustive, simulator) {
+            (true, Simulator::Verilator) => Exhaustive::parts(&mapped.cfg, jobs as u32 * 2).into_iter().map(|e| Box::new(e) as Box<dyn Stimulus>).collect(),
+            _ => vec![Box::new(random_stimulus(&model, count, 1))],
+        };
+        runs.push((simulator, run_all(&built, &mapped, &model, &stims, jobs)?));
+    }
+    Ok(Verification { runs, models: models.into_iter().map(|m| m.0).collect() })
+}
