@@ -158,3 +158,20 @@ fn the_library_has_one_error_type_and_no_string_errors() {
     }
     assert!(found.is_empty(), "a second error type or a String error in the library:\n{}", found.join("\n"));
 }
+
+/// Issue 50, point 3: a file that grows past 800 lines holds several parts; split it by part
+/// (the way `datapath/`, `prove/` and `models/blinn/` are) before it does.
+#[test]
+fn no_source_file_is_over_800_lines() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    assert!(files.len() > 40, "found only {} files under src/", files.len());
+    let long: Vec<String> = files
+        .iter()
+        .map(|f| (f, std::fs::read_to_string(f).unwrap().lines().count()))
+        .filter(|(_, n)| *n > 800)
+        .map(|(f, n)| format!("{} ({n} lines)", f.strip_prefix(&src).unwrap().display()))
+        .collect();
+    assert!(long.is_empty(), "over 800 lines: {long:?}");
+}
