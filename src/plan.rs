@@ -98,7 +98,7 @@ impl Plan {
         // is the 1-based step number; a product too small for the block is LUTs: logic)
         let hard_block = |k: usize| {
             let s = &dp.steps[k];
-            !s.soft_product && (!s.dsps.is_empty() || s.wires.iter().any(|w| w.expr.contains(" * ")) || dp.reads.iter().any(|r| r.step == k + 1))
+            !s.soft_product && (!s.dsps.is_empty() || s.wires.iter().any(|w| w.product.is_some()) || dp.reads.iter().any(|r| r.step == k + 1))
         };
         edges
             .windows(2)

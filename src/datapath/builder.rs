@@ -30,6 +30,8 @@ impl Builder {
             chunk_limit: u32::MAX,
             read: BTreeMap::new(),
             products: Vec::new(),
+            product_uses: Vec::new(),
+            fabric: Default::default(),
         }
     }
 
@@ -115,12 +117,12 @@ impl Builder {
         // be this block's input register: then a `*` the tool maps
         let visible = inputs.iter().all(|n| self.visible_before(n));
         let on_dsp = visible && self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
-        self.product_delay(wa, wb, width, 0.0);
-        if !on_dsp {
-            let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
-            self.wire(name, width, format!("{ea} * {eb}"), comment);
+        if !on_dsp || self.is_in_fabric(name) {
+            self.mul(name, width, (a, wa), (b, wb), &[], 0.0, comment);
             return;
         }
+        self.count_product(name, wa, wb, width);
+        self.product_delay(wa, wb, width, 0.0);
         let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
         let (ea, eb) = self.seen_from_step_before(&inputs, &format!("the DSP of {name}"), |s| {
             (s.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)), s.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)))
@@ -143,10 +145,12 @@ impl Builder {
         let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
         let post_adder = self.family().post_adder(width, wa, wb);
         if post_adder {
-            self.product_delay(wa, wb, width, 0.0);
-            let (ea, eb) = (self.pieces(&sub_pieces(a, 0, width)), self.pieces(&sub_pieces(b, 0, width)));
-            let ec = self.addend(&sub_pieces(addend, 0, width), |e| e);
-            return self.wire(name, width, format!("{ea} * {eb}{ec}"), &format!("{comment} (one DSP, the add inside it)"));
+            // an addend of constant zeros is none
+            let addend = match sub_pieces(addend, 0, width).iter().all(|p| matches!(p, Piece::Const { value: 0, .. })) {
+                true => Vec::new(),
+                false => addend.to_vec(),
+            };
+            return self.mul(name, width, (a, wa), (b, wb), &addend, 0.0, &format!("{comment} (one DSP, the add inside it)"));
         }
         let product = format!("{name}_prod");
         let pw = width.min(wa + wb);
@@ -345,12 +349,18 @@ impl Builder {
 
     /// Defines a wire of the current step.
     pub fn wire(&mut self, name: &str, width: u32, expr: String, comment: &str) -> Sig {
+        debug_assert!(!expr.contains(" * "), "datapath: {name} is a product: make it with Builder::mul");
+        self.wire_of(name, width, expr, comment, None)
+    }
+
+    /// [`Builder::wire`], typed: `product` the operands' significant bits of a hard product.
+    pub(super) fn wire_of(&mut self, name: &str, width: u32, expr: String, comment: &str, product: Option<(u32, u32)>) -> Sig {
         let cur = self.cur();
-        if expr.contains(" * ") {
+        if product.is_some() {
             self.products.push(name.to_string());
         }
         self.define(name, width, cur, false);
-        self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into() });
+        self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into(), product });
         Sig { name: name.into(), width }
     }
 
@@ -364,14 +374,24 @@ impl Builder {
     /// multiply-add each (on a DSP block, the add is its post-adder):
     /// `color_sum_X = v·ks_X + 2^(wc−1)`, `B + wc` bits, for the `wc + 1`-bit UQ1.wc signal `v`
     /// (`what` names the value in the comments). [`Builder::colour_results`] takes the outputs.
-    pub(crate) fn colour_sums(&mut self, v: &str, wc: u32, what: &str) {
+    /// `after`: the delay of the logic behind the products in the same step.
+    pub(crate) fn colour_sums(&mut self, v: &str, wc: u32, what: &str, after: f64) {
         let bb = self.colour_bits();
         let cp = wc + bb;
-        for ch in CHANNELS {
-            let (sv, kv) = (self.zext(v, cp), self.zext(&format!("ks_{ch}"), cp));
-            let comment = format!("UQ{bb}.{wc}: {what}*ks_{ch} + 1/2 colour ulp");
-            self.wire(&format!("color_sum_{ch}"), cp, format!("{sv} * {kv} + {}", lit(cp, 1u128 << (wc - 1))), &comment);
-        }
+        let vw = self.signal(v).width;
+        let (vp, ks) = ([Piece::sig(v, 0, vw)], CHANNELS.map(|ch| [Piece::sig(&format!("ks_{ch}"), 0, bb)]));
+        let items: Vec<MulItem> = CHANNELS
+            .iter()
+            .zip(&ks)
+            .map(|(ch, k)| MulItem {
+                name: format!("color_sum_{ch}"),
+                a: (&vp, wc + 1),
+                b: (k, bb),
+                addend: vec![Piece::Const { value: 1u128 << (wc - 1), width: cp }],
+                comment: format!("UQ{bb}.{wc}: {what}*ks_{ch} + 1/2 colour ulp"),
+            })
+            .collect();
+        self.muls(&items, cp, after);
     }
 
     /// The colour multipliers (14–16) in this step, for the `wc + 1`-bit UQ1.wc field of `src`
@@ -384,7 +404,7 @@ impl Builder {
         if !self.family().instantiated_blocks() {
             let cs = self.bits(src, lo + wc, lo);
             self.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"));
-            self.colour_sums("color_power", wc, what);
+            self.colour_sums("color_power", wc, what, 0.0);
             return;
         }
         let bb = self.colour_bits();
@@ -541,6 +561,7 @@ impl Builder {
             registered: self.registered,
             read: self.read,
             products: self.products,
+            product_uses: self.product_uses,
         }
     }
 }

@@ -53,6 +53,9 @@ pub struct Wire {
     pub(crate) width: u32,
     pub(crate) expr: String,
     pub(crate) comment: String,
+    /// a product the family's synthesis maps (`a * b`, perhaps `+ addend`): its operands'
+    /// significant bits ([`Builder::mul`]); a product in the fabric is not one
+    pub(crate) product: Option<(u32, u32)>,
 }
 
 impl Wire {
@@ -126,6 +129,8 @@ pub struct Datapath {
     /// register (yosys 0.23's ice40_dsp, given a product registered as the low word of a wider
     /// shift register, takes the whole register and changes the function).
     pub(crate) products: Vec<String>,
+    /// every product, hard or in the fabric ([`ProductUse`])
+    pub product_uses: Vec<ProductUse>,
 }
 
 impl Datapath {
@@ -152,7 +157,7 @@ impl Datapath {
                 }
             }
         }
-        let reads = |w: &Wire| w.expr.contains(" * ") && tokens(&w.expr).iter().any(|t| aliases.contains(t));
+        let reads = |w: &Wire| w.product.is_some() && tokens(&w.expr).iter().any(|t| aliases.contains(t));
         self.steps.iter().flat_map(|s| &s.wires).any(reads)
     }
 
@@ -185,6 +190,20 @@ struct Signal {
     held: Option<String>,
 }
 
+/// A product of the datapath, hard or not: what `--dsp-budget` counts and trades.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ProductUse {
+    pub name: String,
+    /// the operands' significant bits, and the bits kept
+    pub a: u32,
+    pub b: u32,
+    pub width: u32,
+    /// the family's blocks it takes as a hard product (`Family::product_blocks`)
+    pub blocks: u32,
+    /// summed from partial products in the fabric, by the unit's `--dsp-budget`
+    pub fabric: bool,
+}
+
 /// Records the datapath step by step; see the module documentation.
 pub struct Builder {
     steps: Vec<Step>,
@@ -202,6 +221,10 @@ pub struct Builder {
     read: BTreeMap<String, u128>,
     /// the signals a multiplier computes (a `*` in their expression)
     products: Vec<String>,
+    /// every product, hard or in the fabric, in the order made
+    product_uses: Vec<ProductUse>,
+    /// the products `--dsp-budget` puts in the fabric
+    fabric: std::collections::BTreeSet<String>,
 }
 
 /// A signal the builder defined, as the datapath's code holds it: its name and width. The
@@ -324,6 +347,8 @@ pub(crate) struct Waiting {
 mod builder;
 mod delay;
 mod delay_line;
+mod products;
+pub(crate) use products::MulItem;
 mod sums;
 #[cfg(test)]
 mod tests;

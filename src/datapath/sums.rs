@@ -177,10 +177,18 @@ impl Builder {
     /// elsewhere), then (iCE40: after a step that only
     /// registers them) the two vectors left into [`Builder::add_start`] in a step of its own.
     /// [`Builder::resolve`] finishes it.
-    pub(crate) fn sum_start(&mut self, name: &str, mut terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
+    pub(crate) fn sum_start(&mut self, name: &str, terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
+        self.sums_start(vec![(name.to_string(), terms, width, comment.to_string())], title).pop().expect("one sum")
+    }
+
+    /// [`Builder::sum_start`] for several sums side by side (`(name, terms, width, comment)`):
+    /// each carry-save layer of every sum in the same step, each closing add started in the same
+    /// step, so that the sums take the steps of the longest, not their total.
+    pub(crate) fn sums_start(&mut self, sums: Vec<(String, Vec<Vec<Piece>>, u32, String)>, title: &str) -> Vec<PendingAdd> {
         let mut layer = 0;
         let per_step = self.family().carry_save_layers_per_step();
-        while terms.len() > 2 {
+        let mut all: Vec<(String, Vec<Vec<Piece>>, u32, String)> = sums;
+        while all.iter().any(|s| s.1.len() > 2) {
             if layer % per_step == 0 {
                 if per_step == 1 {
                     self.step(&format!("{title}: carry-save layer {}", layer + 1));
@@ -190,30 +198,36 @@ impl Builder {
                 self.delay(per_step as f64 * LUT_DELAY);
             }
             layer += 1;
-            let mut next = Vec::new();
-            let mut rest = terms.into_iter();
-            let mut i = 0;
-            loop {
-                let group: Vec<Vec<Piece>> = rest.by_ref().take(3).collect();
-                if group.len() < 3 {
-                    next.extend(group);
-                    break;
+            for (name, terms, width, _) in all.iter_mut() {
+                if terms.len() <= 2 {
+                    continue;
                 }
-                let e: Vec<String> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
-                let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
-                // one operand (or pair) a line
-                self.wire(&sn, width, format!("{}\n    ^ {}\n    ^ {}", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the sum bits"));
-                self.wire(
-                    &cn,
-                    width,
-                    format!("({0} & {1})\n    | ({0} & {2})\n    | ({1} & {2})", e[0], e[1], e[2]),
-                    &format!("carry-save layer {layer}: the carries (worth twice)"),
-                );
-                next.push(vec![Piece::sig(&sn, 0, width)]);
-                next.push(vec![Piece::zeros(1), Piece::sig(&cn, 0, width - 1)]);
-                i += 1;
+                let (name, width) = (name.clone(), *width);
+                let mut next = Vec::new();
+                let mut rest = std::mem::take(terms).into_iter();
+                let mut i = 0;
+                loop {
+                    let group: Vec<Vec<Piece>> = rest.by_ref().take(3).collect();
+                    if group.len() < 3 {
+                        next.extend(group);
+                        break;
+                    }
+                    let e: Vec<String> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
+                    let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
+                    // one operand (or pair) a line
+                    self.wire(&sn, width, format!("{}\n    ^ {}\n    ^ {}", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the sum bits"));
+                    self.wire(
+                        &cn,
+                        width,
+                        format!("({0} & {1})\n    | ({0} & {2})\n    | ({1} & {2})", e[0], e[1], e[2]),
+                        &format!("carry-save layer {layer}: the carries (worth twice)"),
+                    );
+                    next.push(vec![Piece::sig(&sn, 0, width)]);
+                    next.push(vec![Piece::zeros(1), Piece::sig(&cn, 0, width - 1)]);
+                    i += 1;
+                }
+                *terms = next;
             }
-            terms = next;
         }
         if self.family().registers_carry_save_vectors() {
             // a step that only registers the two vectors (`Family::registers_carry_save_vectors`)
@@ -221,14 +235,15 @@ impl Builder {
             self.delay(REGISTER_ONLY_DELAY);
         }
         self.step(&format!("{title}: chunk sums"));
-        let zero = vec![Piece::zeros(width)];
-        let (a, b) = (terms.first().unwrap_or(&zero).clone(), terms.get(1).unwrap_or(&zero).clone());
-        // short chunks: the vectors come from registers spread over a wide sum
-        self.add_start_short(name, &a, &b, false, width, comment)
+        all.into_iter()
+            .map(|(name, terms, width, comment)| {
+                let zero = vec![Piece::zeros(width)];
+                let (a, b) = (terms.first().unwrap_or(&zero).clone(), terms.get(1).unwrap_or(&zero).clone());
+                // short chunks: the vectors come from registers spread over a wide sum
+                self.add_start_short(&name, &a, &b, false, width, &comment)
+            })
+            .collect()
     }
-
-    /// [`Builder::add_start`] in chunks of at most [`SUM_CHUNK_BITS`]: for a sum whose
-    /// operands come from registers spread over the fabric, or whose result fans out far.
     pub(crate) fn add_start_short(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
         self.chunk_limit = SUM_CHUNK_BITS;
         let p = self.add_start(name, a, b, cin, width, comment);
@@ -240,24 +255,38 @@ impl Builder {
     /// for one chunk; the chunk carries rippled two a step (one for a sum of more than
     /// [`WIDE_SUM_CHUNKS`] chunks), the last with each chunk's pick. Returns the name of the sum.
     pub(crate) fn resolve(&mut self, p: PendingAdd, title: &str) -> Sig {
-        if !p.chunks.is_empty() {
+        self.resolve_all(vec![p], title).pop().expect("one sum")
+    }
+
+    /// [`Builder::resolve`] for sums started side by side ([`Builder::sums_start`]): those of
+    /// as many chunks as the first resolved in the same steps, any other after them.
+    pub(crate) fn resolve_all(&mut self, ps: Vec<PendingAdd>, title: &str) -> Vec<Sig> {
+        let n = ps.first().map_or(0, |p| p.chunks.len());
+        if ps.iter().any(|p| p.chunks.len() != n) {
+            return ps.into_iter().map(|p| self.resolve(p, title)).collect();
+        }
+        if n > 0 {
             // the carries into chunks from+1..=to (chunk 1's is part0's), `per_step` levels a
             // step, then the pick with the last of them
-            let to = p.chunks.len().saturating_sub(1).max(1);
-            let per_step = if p.chunks.len() > WIDE_SUM_CHUNKS { 1 } else { 2 };
+            let to = n.saturating_sub(1).max(1);
+            let per_step = if n > WIDE_SUM_CHUNKS { 1 } else { 2 };
             let mut from = 1;
             while to - from > 1 {
                 self.step(&format!("{title}: carries"));
-                self.add_carries_range(&p, from, from + per_step);
+                for p in &ps {
+                    self.add_carries_range(p, from, from + per_step);
+                }
                 from += per_step;
             }
             let rest = from < to;
             self.step(&format!("{title}: {}select", if rest { "carries and " } else { "" }));
             if rest {
-                self.add_carries_range(&p, from, to);
+                for p in &ps {
+                    self.add_carries_range(p, from, to);
+                }
             }
         }
-        self.add_finish(p)
+        ps.into_iter().map(|p| self.add_finish(p)).collect()
     }
 
     /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT

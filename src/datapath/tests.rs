@@ -59,16 +59,13 @@ fn multiply_add_uses_the_post_adder_only_where_the_tool_takes_it() {
 fn a_register_read_by_a_block_is_kept() {
     let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1, 2], Target::Ice40);
     b.step("p");
-    b.wire("p", 16, "a * c".into(), "");
-    b.delay(5.5);
+    b.mul("p", 16, (&[Piece::sig("a", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
     let e = b.bits("p", 15, 8);
     b.wire("hi", 8, e, "");
     b.step("q");
-    let (hv, cv) = (b.r("hi"), b.r("c"));
-    b.wire("q", 16, format!("{hv} * {cv}"), "");
+    b.mul("q", 16, (&[Piece::sig("hi", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
     let e = b.bits("p", 7, 0);
     b.wire("lo", 8, format!("~{e}"), "");
-    b.delay(5.5);
     let d = b.finish(&["q", "lo"]);
     assert!(d.read_by_block("hi", 1), "bits of a product, read by a multiplier");
     assert!(!d.read_by_block("p", 1), "the product itself is read only by the fabric");
@@ -81,16 +78,13 @@ fn a_register_read_by_a_block_is_kept() {
 fn a_block_output_register_read_through_slices_is_kept() {
     let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1], Target::Ice40);
     b.step("p");
-    b.wire("p", 16, "a * c".into(), "");
-    b.delay(5.5);
+    b.mul("p", 16, (&[Piece::sig("a", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
     b.step("q");
-    b.delay(5.5);
     let e = b.bits("p", 15, 4);
     b.wire("s", 12, e, "a slice of the registered product");
     let e = b.bits("s", 11, 4);
     b.wire("t", 8, e, "a slice of the slice");
-    let (t, c) = (b.r("t"), b.r("c"));
-    b.wire("q", 16, format!("{t} * {c}"), "");
+    b.mul("q", 16, (&[Piece::sig("t", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
     let d = b.finish(&["q"]);
     assert!(d.read_by_block("p", 1), "read by a multiplier through two slices");
 }

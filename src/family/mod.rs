@@ -93,6 +93,15 @@ pub trait Family: Sync {
     /// Whether yosys leaves an a×b multiply kept to `y` bits in LUTs here: too small for its
     /// block.
     fn soft_product(&self, a: u32, b: u32, y: u32) -> bool;
+    /// The blocks an a×b product kept to `y` bits takes: none when it is LUTs
+    /// ([`Family::soft_product`]), else one per pair of operand slices of the block's width
+    /// (generic: one, a multiplier the user's tool may map to one block).
+    fn product_blocks(&self, a: u32, b: u32, y: u32) -> u32 {
+        match self.soft_product(a, b, y) {
+            true => 0,
+            false => a.div_ceil(self.multiplier_bits()) * b.div_ceil(self.multiplier_bits()),
+        }
+    }
     /// Whether a multiply-add of `width` bits from an a×b product takes its add inside the
     /// block (a post-adder the synthesis tool uses).
     fn post_adder(&self, width: u32, wa: u32, wb: u32) -> bool;

@@ -6,7 +6,7 @@
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, Builder, LUT_DELAY};
+use crate::datapath::{add_delay, Builder, Piece, LUT_DELAY};
 
 /// W for `--model blinn-pow` (square-and-multiply over the bits of n, LSB first, every
 /// product truncated to W fractional bits, c taken exactly: W ≥ F).
@@ -125,22 +125,20 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
         let more = i + 1 < nb;
         b.step(&format!("bit {i} of n: multiply by c^(2^{i}) when it is set{}", if more { "; square the power" } else { "" }));
         let (r, p) = (format!("result{i}"), format!("power{i}"));
-        let (re, pe) = (b.zext(&r, full), b.zext(&p, full));
-        let prod = b.wire(&format!("result_prod{}", i + 1), full, format!("{re} * {pe}"), &format!("UQ2.{}: result*power, exact", 2 * pw));
+        let (rp, pp) = ([Piece::sig(&r, 0, pw + 1)], [Piece::sig(&p, 0, pw + 1)]);
+        let prod = b.mul(&format!("result_prod{}", i + 1), full, (&rp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &format!("UQ2.{}: result*power, exact", 2 * pw));
         // the bits of n still to use travel on, shrinking, as n_rest (n itself for bit 0)
         let rest = if i == 0 { "n".to_string() } else { format!("n_rest{i}") };
         let bit = b.bits(&rest, 0, 0);
         let (hi, keep) = (b.bits(&prod, 2 * pw, pw), b.r(&r));
         b.wire(&format!("result{}", i + 1), pw + 1, format!("{bit} ? {hi} : {keep}"), &format!("UQ1.{pw}: floored product, or the product so far"));
         if more {
-            let (p1, p2) = (b.zext(&p, full), b.zext(&p, full));
-            let power_sq = b.wire(&format!("power_sq{}", i + 1), full, format!("{p1} * {p2}"), &format!("UQ2.{}: power^2, exact", 2 * pw));
+            let power_sq = b.mul(&format!("power_sq{}", i + 1), full, (&pp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &format!("UQ2.{}: power^2, exact", 2 * pw));
             let sq = b.bits(&power_sq, 2 * pw, pw);
             b.wire(&format!("power{}", i + 1), pw + 1, sq, &format!("UQ1.{pw}: c^(2^{}), floored", i + 1));
             let upper = b.bits(&rest, nb - i - 1, 1);
             b.wire(&format!("n_rest{}", i + 1), nb - i - 1, upper, "the bits of n still to use");
         }
-        b.product_delay(pw + 1, pw + 1, full, LUT_DELAY);
     }
 
     b.step("round half up to the outputs");
@@ -150,9 +148,8 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
     let e = b.bits("intensity_sum", pw, pw - fi);
     b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
     let cp = pw + bb;
-    b.colour_sums(&r, pw, "c^n");
+    b.colour_sums(&r, pw, "c^n", add_delay(cp));
     b.colour_results(pw, "c^n");
     let iv = b.r("intensity");
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
-    b.product_delay(pw + 1, bb, pw + bb, add_delay(cp));
 }

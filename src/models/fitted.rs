@@ -505,15 +505,9 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
                 b.step(&format!("{t}: registered for the DSP"));
                 b.delay(REGISTER_ONLY_DELAY);
                 b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
-                let (h1, h2) = (b.operand(&prev, r, dsp, zw), b.operand(&prev, r, dsp, zw));
-                let th = b.operand(&tn, r, tw - r, zw);
-                square = b.wire(
-                    &format!("square{j}"),
-                    zw,
-                    format!("{h1} * {h2} + {th}"),
-                    &format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1),
-                );
-                b.product_delay(dsp, dsp, zw, 0.0);
+                let (h, th) = ([Piece::sig(&prev, r, dsp)], [Piece::sig(tn.as_ref(), r, tw - r)]);
+                let what = format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1);
+                square = b.mul(&format!("square{j}"), zw, (&h, dsp), (&h, dsp), &th, 0.0, &what);
             }
             // the bypass in a step of its own: the DSP's output meets only a flip-flop
             b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
@@ -522,9 +516,9 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         } else {
             b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
             let sq = 2 * wf + 2;
-            let (p1, p2) = (b.zext(&prev, sq), b.zext(&prev, sq));
-            let square = b.wire(&format!("square{j}"), sq, format!("{p1} * {p2}"), &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
-            b.product_delay((wf + 1).min(dsp), (wf + 1).min(dsp), sq, LUT_DELAY);
+            let p = [Piece::sig(&prev, 0, wf + 1)];
+            let wp = (wf + 1).min(dsp);
+            let square = b.mul(&format!("square{j}"), sq, (&p, wp), (&p, wp), &[], LUT_DELAY, &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
             b.bits(&square, 2 * wf, wf)
         };
         let keep = b.r(&prev);

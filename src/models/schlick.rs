@@ -287,11 +287,10 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     let sum = b.wire("intensity_sum", w + 1, format!("{qv} + {}", lit(w + 1, 1u128 << (w - fi - 1))), &format!("UQ1.{w}: S + 2^-{}", fi + 1));
     let e = b.bits(&sum, w, w - fi);
     let intensity = b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
-    b.colour_sums("quotient", w, "S");
+    b.colour_sums("quotient", w, "S", add_delay(w + bb));
     b.colour_results(w, "S");
     let iv = b.r(&intensity);
     b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
-    b.product_delay(w + 1, bb, w + bb, add_delay(w + bb));
 }
 
 #[cfg(test)]

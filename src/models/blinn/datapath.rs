@@ -210,9 +210,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
             let e = b.bits(&ghat.0, ghat.1 + gb - 1, ghat.1);
             b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
         }
-        let (xv, gv) = (b.zext("x", lb), b.zext("ghat", lb));
-        b.wire("log_frac", lb, format!("{xv} * {gv}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
-        b.product_delay(f - 1, gb, lb, 0.0);
+        let (xs, gs) = ([Piece::sig("x", 0, f - 1)], [Piece::sig("ghat", 0, gb)]);
+        b.mul("log_frac", lb, (&xs, f - 1), (&gs, gb), &[], 0.0, &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
     }
     // L = x*g < 1 (x < 1/2, g^ < 2: each interpolation stays below the next entry, and the
     // last is g(1/2) = 2), so e + L is a concatenation: e above L's fraction bits
@@ -268,9 +267,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.wire("y_full", pb, format!("{{{}}}", low_words.join(", ")), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
     } else {
         b.step("y = n*(-log2 c) (multiplier 7)");
-        let (nv, lv) = (b.zext("n", pb), b.zext("ell", pb));
-        b.wire("y_full", pb, format!("{nv} * {lv}"), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
-        b.product_delay(nb, eb2, pb, 0.0);
+        let (ns, ls) = ([Piece::sig("n", 0, nb)], [Piece::sig("ell", 0, eb2)]);
+        b.mul("y_full", pb, (&ns, nb), (&ls, eb2), &[], 0.0, &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
     }
 
     b.step("y truncated; its saturation");

@@ -160,7 +160,7 @@ fn intensity_from(cfg: &Config, b: &mut Builder, sum: &Sig) {
 /// - widths cut to the error budget (bracket UQ1.(max(FI,B)+2), colours fed UQ1.(B+1));
 /// - the colour rounding half is the colour DSPs' addend: no rounding adders.
 pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
-    let (f, cb, bb) = (cfg.f(), w.cos_bits, cfg.b());
+    let (f, cb) = (cfg.f(), w.cos_bits);
     let (wb, wsc) = (w.bracket_frac_bits, w.color_square_frac_bits);
     let (m, k_prime) = deviation_offset(w);
 
@@ -193,24 +193,18 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("comparator: carries; k_q*n (constant multiply)");
     b.add_carries(&cmp);
-    let nn = b.operand("n", 0, cfg.n_bits(), w.kn_bits);
+    let nn = [Piece::sig("n", 0, cfg.n_bits())];
+    let kq = (cfg.n_bits(), k_bits.min(dsp));
     if k_split {
-        let hi = b.operand("n_k_hi", 0, w.kn_bits - dsp, w.kn_bits - dsp);
-        b.wire(
-            "kn",
-            w.kn_bits,
-            format!("{nn} * {} + {{{hi}, {}}}", lit(w.kn_bits, cfg.k_code as u128 & mask(dsp)), lit(dsp, 0)),
-            &format!("UQ{}.{}: k_q*n = n*k_lo + n*k_hi*2^{dsp}, exact (one DSP, the add inside it)", w.kn_bits - cfg.kf(), cfg.kf()),
-        );
+        let (k_lo, hi) =
+            ([Piece::Const { value: cfg.k_code as u128 & mask(dsp), width: w.kn_bits }], [Piece::zeros(dsp), Piece::sig("n_k_hi", 0, w.kn_bits - dsp)]);
+        let what = format!("UQ{}.{}: k_q*n = n*k_lo + n*k_hi*2^{dsp}, exact (one DSP, the add inside it)", w.kn_bits - cfg.kf(), cfg.kf());
+        b.mul("kn", w.kn_bits, (&nn, kq.0), (&k_lo, kq.1), &hi, 0.0, &what);
     } else {
-        b.wire(
-            "kn",
-            w.kn_bits,
-            format!("{nn} * {}", lit(w.kn_bits, cfg.k_code as u128)),
-            &format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf()),
-        );
+        let k = [Piece::Const { value: cfg.k_code as u128, width: w.kn_bits }];
+        let what = format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf());
+        b.mul("kn", w.kn_bits, (&nn, kq.0), (&k, kq.1), &[], 0.0, &what);
     }
-    b.product_delay(cfg.n_bits(), k_bits.min(dsp), w.kn_bits, 0.0);
 
     b.step("comparator: select; deviation, high partial product (multiply-add)");
     let sum = b.add_finish(cmp);
@@ -235,34 +229,26 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     let split = w.kn_bits > dsp && m > dsp;
     if split {
         let hi_w = m - dsp;
-        let (kh, d2) = (b.operand("kn", dsp, w.kn_bits - dsp, hi_w), b.operand("one_minus_cos", 0, dw, hi_w));
+        let (kh, d2) = ([Piece::sig("kn", dsp, w.kn_bits - dsp)], [Piece::sig("one_minus_cos", 0, dw)]);
         // the addend of the 2^16 part: K'_hi, or with kn*d_hi
-        let c = if d_split { b.operand("deviation_top", 0, m - dsp, hi_w) } else { lit(hi_w, k_prime >> dsp) };
+        let c = if d_split { Piece::sig("deviation_top", 0, m - dsp) } else { Piece::Const { value: k_prime >> dsp, width: hi_w } };
         let what = if d_split { format!("(1 - cos)[{}:0] + kn*(1 - cos)[{}:{dsp}]", dsp - 1, cb - 1) } else { "(1 - cos)".into() };
-        b.wire(
-            "deviation_hi",
-            hi_w,
-            format!("{kh} * {d2} + {c}"),
-            &format!("kn[{}:{dsp}] * {what} + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1),
-        );
-        b.product_delay(w.kn_bits - dsp, dw, hi_w, 0.0);
+        let what = format!("kn[{}:{dsp}] * {what} + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1);
+        b.mul("deviation_hi", hi_w, (&kh, w.kn_bits - dsp), (&d2, dw), &[c], 0.0, &what);
     }
 
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add)");
-    let expr = if split {
-        let (kl, d1) = (b.operand("kn", 0, dsp, m), b.operand("one_minus_cos", 0, dw, m));
-        let c = b.pieces(&[Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_hi", 0, m - dsp)]);
-        format!("{kl} * {d1} + {c}")
+    let (kn, d1, c) = if split {
+        let c = vec![Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_hi", 0, m - dsp)];
+        (Piece::sig("kn", 0, dsp), Piece::sig("one_minus_cos", 0, dw), c)
     } else if d_split {
-        let (kn, d1) = (b.operand("kn", 0, w.kn_bits, m), b.operand("one_minus_cos", 0, dw, m));
-        let c = b.pieces(&[Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_top", 0, m - dsp)]);
-        format!("{kn} * {d1} + {c}")
+        let c = vec![Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_top", 0, m - dsp)];
+        (Piece::sig("kn", 0, w.kn_bits), Piece::sig("one_minus_cos", 0, dw), c)
     } else {
-        let (kn, d1) = (b.operand("kn", 0, w.kn_bits, m), b.operand("one_minus_cos", 0, cb, m));
-        format!("{kn} * {d1} + {}", lit(m, k_prime))
+        (Piece::sig("kn", 0, w.kn_bits), Piece::sig("one_minus_cos", 0, cb), vec![Piece::Const { value: k_prime, width: m }])
     };
-    b.wire("deviation_sum", m, expr, &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f));
-    b.product_delay(dsp.min(w.kn_bits), dw, m, 0.0);
+    let what = format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f);
+    b.mul("deviation_sum", m, (&[kn], dsp.min(w.kn_bits)), (&[d1], dw), &c, 0.0, &what);
 
     bracket(w, b);
 
@@ -278,20 +264,14 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.square_table("square_ll", "bracket", 0, r, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
         b.step("square: T = hi*lo + lo^2/2^(r+1) (multiply-add)");
         let tw = hw + r;
-        let (hi, lo) = (b.operand("bracket", r, hw, tw), b.operand("bracket", 0, r, tw));
-        let plus = if 2 * r > r + 1 { format!(" + {}", b.operand("square_ll", r + 1, r - 1, tw)) } else { String::new() };
-        b.wire("square_t", tw, format!("{hi} * {lo}{plus}"), "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)");
-        b.product_delay(hw, r, tw, 0.0);
+        let (hi, lo) = ([Piece::sig("bracket", r, hw)], [Piece::sig("bracket", 0, r)]);
+        let plus = if 2 * r > r + 1 { vec![Piece::sig("square_ll", r + 1, r - 1)] } else { Vec::new() };
+        b.mul("square_t", tw, (&hi, hw), (&lo, r), &plus, 0.0, "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)");
         b.step("square: Z = hi^2 + T/2^(r-1) (multiply-add)");
-        let (h1, h2) = (b.operand("bracket", r, hw, 2 * hw), b.operand("bracket", r, hw, 2 * hw));
-        let th = b.operand("square_t", r - 1, tw - (r - 1), 2 * hw);
-        b.wire(
-            "square_z",
-            2 * hw,
-            format!("{h1} * {h2} + {th}"),
-            &format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1),
-        );
-        b.product_delay(hw, hw, 2 * hw, 0.0);
+        let h = [Piece::sig("bracket", r, hw)];
+        let th = [Piece::sig("square_t", r - 1, tw - (r - 1))];
+        let what = format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1);
+        b.mul("square_z", 2 * hw, (&h, hw), (&h, hw), &th, 0.0, &what);
         let mut full = vec![Piece::sig("square_ll", 0, r + 1)];
         if r > 1 {
             full.push(Piece::sig("square_t", 0, r - 1));
@@ -300,16 +280,14 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         full
     } else {
         b.step("square (squarer 11)");
-        let (a1, a2) = (b.operand("bracket", 0, wb + 1, full_bits), b.operand("bracket", 0, wb + 1, full_bits));
-        b.wire("square_full", full_bits, format!("{a1} * {a2}"), &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
-        b.product_delay(wb + 1, wb + 1, full_bits, 0.0);
+        let br = [Piece::sig("bracket", 0, wb + 1)];
+        b.mul("square_full", full_bits, (&br, wb + 1), (&br, wb + 1), &[], 0.0, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
         vec![Piece::sig("square_full", 0, full_bits)]
     };
 
     b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add)");
     square_and_color_square(w, b, &full);
-    b.colour_sums("color_square", wsc, "S");
-    b.product_delay(wsc + 1, bb, wsc + bb, 0.0);
+    b.colour_sums("color_square", wsc, "S", 0.0);
     // the intensity rounding starts a step after the squarer's DSP: its output register
     // drives a fabric register across the long route out of the DSP column, not a carry chain
     let intensity_add = intensity_add(cfg, w, b);
@@ -544,19 +522,16 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("deviation n*(1 - cos) (multiplier 7) times k (general multiplier 34), truncation #1");
     let nd_bits = nb + cb;
-    let (nn, d) = (b.zext("n", nd_bits), b.zext("one_minus_cos", nd_bits));
-    b.wire("n_dev", nd_bits, format!("{nn} * {d}"), &format!("UQ{nb}.{f}: n*(1 - cos), exact (multiplier 7)"));
-    let nd = b.zext("n_dev", w.deviation_bits);
-    b.wire(
-        "deviation_full",
-        w.deviation_bits,
-        format!("{nd} * {}", lit(w.deviation_bits, cfg.k_code as u128)),
-        &format!("UQ.{}: k_q*n*(1 - cos), exact (general multiplier 34)", cfg.kf() + f),
-    );
+    let constant_product = b.mul_delay(nd_bits, bit_length(cfg.k_code as u128));
+    let (nn, d) = ([Piece::sig("n", 0, nb)], [Piece::sig("one_minus_cos", 0, cb)]);
+    b.mul("n_dev", nd_bits, (&nn, nb), (&d, cb), &[], constant_product, &format!("UQ{nb}.{f}: n*(1 - cos), exact (multiplier 7)"));
+    let (nd, k) = ([Piece::sig("n_dev", 0, nd_bits)], [Piece::Const { value: cfg.k_code as u128, width: w.deviation_bits }]);
+    let what = format!("UQ.{}: k_q*n*(1 - cos), exact (general multiplier 34)", cfg.kf() + f);
+    // in the same step as n_dev: its delay comes before this product's
+    let after = b.mul_delay(nb, cb);
+    b.mul("deviation_full", w.deviation_bits, (&nd, nd_bits), (&k, bit_length(cfg.k_code as u128)), &[], after, &what);
     let dev = b.pieces(&sub_pieces(&[Piece::sig("deviation_full", 0, w.deviation_bits)], w.deviation_shift, wb + 1));
     b.wire("deviation", wb + 1, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
-    let constant_product = b.mul_delay(nd_bits, bit_length(cfg.k_code as u128));
-    b.product_delay(nb, cb, nd_bits, constant_product);
 
     b.step("bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13)");
     let (dn, dv) = (b.r("done"), b.r("deviation"));
@@ -565,24 +540,22 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("square (a general multiplier as squarer 11)");
     let fb = w.full_square_bits();
-    let (a1, a2) = (b.zext("bracket", fb), b.zext("bracket", fb));
-    b.wire("square_full", fb, format!("{a1} * {a2}"), &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
+    let br = [Piece::sig("bracket", 0, wb + 1)];
+    b.mul("square_full", fb, (&br, wb + 1), (&br, wb + 1), &[], 0.0, &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
     let sq = b.bits("square_full", 2 * wb, w.square_shift);
     b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S"));
-    b.product_delay(wb + 1, wb + 1, fb, 0.0);
 
     b.step("colour multipliers (14-16); intensity rounding");
     let cpb = w.color_product_bits;
     let mut products = Vec::new();
     for ch in CHANNELS {
-        let (cs, ks) = (b.zext("square", cpb), b.zext(&format!("ks_{ch}"), cpb));
-        products.push(b.wire(&format!("color_prod_{ch}"), cpb, format!("{cs} * {ks}"), &format!("UQ{bb}.{ws}: S * ks_{ch}, exact")));
+        let (cs, ks) = ([Piece::sig("square", 0, ws + 1)], [Piece::sig(&format!("ks_{ch}"), 0, bb)]);
+        products.push(b.mul(&format!("color_prod_{ch}"), cpb, (&cs, ws + 1), (&ks, bb), &[], 0.0, &format!("UQ{bb}.{ws}: S * ks_{ch}, exact")));
     }
     if ws > fi {
         let sqr = b.r("square");
         b.wire("intensity_sum", ws + 1, format!("{sqr} + {}", lit(ws + 1, 1u128 << (ws - fi - 1))), &format!("UQ1.{ws}: S + 2^-{} (round half up)", fi + 1));
     }
-    b.product_delay(ws + 1, bb, cpb, 0.0);
 
     b.step("colour rounding, final slices");
     for (ch, product) in CHANNELS.iter().zip(&products) {
