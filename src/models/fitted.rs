@@ -489,15 +489,14 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             let tn = b.resolve(p, &t);
             let zw = 2 * dsp;
             let what = format!("floor(power{}^2 / 2^{}), exact", j - 1, 2 * r);
-            let square;
-            if b.instantiated_blocks() {
+            let square = if b.instantiated_blocks() {
                 // the MULT18X18D has no adder: hi^2 alone on it (with its own registers where
                 // the cuts allow), T added after it on a carry chain
                 b.step(&format!("squaring {j} of {m_max} (squarer 11): hi^2 (one DSP)"));
                 let hh = format!("square{j}_hh");
                 b.product(&hh, &[Piece::sig(&prev, r, dsp)], &[Piece::sig(&prev, r, dsp)], zw, &format!("hi^2, power{} = hi*2^{r} + lo, exact", j - 1));
                 b.step(&format!("squaring {j} of {m_max}: Z = hi^2 + T/2^{r}"));
-                square = b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[tn.part(r, tw - r)], false, zw, &what);
+                b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[tn.part(r, tw - r)], false, zw, &what)
             } else {
                 // a step that only registers T: the DSP's input registers take their operands
                 // from a flip-flop (a route to the DSP column), not from the LUTs that picked
@@ -507,8 +506,8 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
                 b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
                 let (h, th) = ([Piece::sig(&prev, r, dsp)], [Piece::sig(tn.as_ref(), r, tw - r)]);
                 let what = format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1);
-                square = b.mul(&format!("square{j}"), zw, (&h, dsp), (&h, dsp), &th, 0.0, &what);
-            }
+                b.mul(&format!("square{j}"), zw, (&h, dsp), (&h, dsp), &th, 0.0, &what)
+            };
             // the bypass in a step of its own: the DSP's output meets only a flip-flop
             b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
             b.delay(LUT_DELAY);
