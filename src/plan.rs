@@ -7,9 +7,10 @@
 //! ([`balanced_cuts`]) from the datapath's per-step delay estimates.
 
 use crate::config::{Colour, Config, Params};
-use crate::datapath::{Builder, Datapath};
+use crate::datapath::{Builder, Datapath, ProductUse};
 use crate::error::Error;
 use crate::models::Model;
+use std::collections::BTreeSet;
 
 /// The signals every model's datapath defines, read by the output ports.
 pub const OUTPUT_SIGNALS: [&str; 5] = ["spec_r", "spec_g", "spec_b", "intensity", "done"];
@@ -25,11 +26,13 @@ pub struct Plan {
     pub cut_points: u32,
 }
 
-/// The model's datapath with registers at `registered` cuts.
-fn build(model: &Model, registered: &[u32]) -> Datapath {
+/// The model's datapath with registers at `registered` cuts, the products named in `fabric`
+/// summed in the fabric.
+fn build(model: &Model, registered: &[u32], fabric: &BTreeSet<String>) -> Datapath {
     let cfg = &model.cfg;
     let inputs = [("cos_g", cfg.f() + 1), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
     let mut b = Builder::new(&inputs, registered, cfg.target());
+    b.in_fabric(fabric);
     if cfg.colour() == Colour::Static {
         for ch in crate::ports::CHANNELS {
             b.hold(&format!("ks_{ch}"), &format!("ks_{ch}_material"));
@@ -47,7 +50,14 @@ impl Plan {
     /// The plan of a model already made (its configuration's `stages` placed).
     pub(crate) fn for_model(model: Model) -> Result<Plan, Error> {
         let cfg = model.cfg.clone();
-        let combinational = build(&model, &[]);
+        let mut combinational = build(&model, &[], &BTreeSet::new());
+        let fabric = match cfg.params.dsp_budget {
+            Some(budget) => to_fabric(&combinational.product_uses, budget),
+            None => BTreeSet::new(),
+        };
+        if !fabric.is_empty() {
+            combinational = build(&model, &[], &fabric);
+        }
         let cut_points = combinational.steps.len() as u32;
         if cfg.stages() > cut_points {
             return Err(Error::Config {
@@ -61,7 +71,7 @@ impl Plan {
             });
         }
         let registered_cuts = balanced_cuts(&combinational.delays(), cfg.stages());
-        let datapath = if cfg.stages() == 0 { combinational } else { build(&model, &registered_cuts) };
+        let datapath = if cfg.stages() == 0 { combinational } else { build(&model, &registered_cuts, &fabric) };
         Ok(Plan { cfg, model, registered_cuts, datapath, cut_points })
     }
 
@@ -116,6 +126,38 @@ impl Plan {
     pub fn stage_delay_mean(&self) -> f64 {
         self.datapath.delays().iter().sum::<f64>() / (self.registered_cuts.len() + 1) as f64
     }
+}
+
+/// The products `--dsp-budget` puts in the fabric: those whose blocks the budget does not
+/// hold, chosen so that the logic they cost is least. Each product's cost in the fabric is its
+/// partial products' bits (the narrower operand's bits times the bits kept); the products
+/// kept on blocks are the most costly set whose blocks fit the budget (a 0/1 knapsack over
+/// the blocks, exact; ties keep the product made first). A product of no block (too small
+/// for one) stays as it is.
+pub(crate) fn to_fabric(uses: &[ProductUse], budget: u32) -> BTreeSet<String> {
+    let hard: Vec<&ProductUse> = uses.iter().filter(|u| u.blocks > 0).collect();
+    let cap = budget as usize;
+    // best[i][c]: the most cost products i.. keep within c blocks
+    let mut best = vec![vec![0u64; cap + 1]; hard.len() + 1];
+    for i in (0..hard.len()).rev() {
+        let (w, v) = (hard[i].blocks as usize, hard[i].a.min(hard[i].b) as u64 * hard[i].width as u64);
+        for c in 0..=cap {
+            let skip = best[i + 1][c];
+            best[i][c] = if w <= c { skip.max(v + best[i + 1][c - w]) } else { skip };
+        }
+    }
+    let mut out = BTreeSet::new();
+    let mut c = cap;
+    for (i, u) in hard.iter().enumerate() {
+        let w = u.blocks as usize;
+        let v = u.a.min(u.b) as u64 * u.width as u64;
+        if w <= c && best[i][c] == v + best[i + 1][c - w] {
+            c -= w;
+        } else {
+            out.insert(u.name.clone());
+        }
+    }
+    out
 }
 
 /// Places `stages` registers after steps (1-based) so that the slowest stretch of logic

@@ -220,6 +220,12 @@ pub struct RtlArgs {
     /// paper 6; a value above them is refused with the range; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,
+    /// The most hard multiplier blocks the unit may take (ice40: SB_MAC16, ecp5: MULT18X18D,
+    /// generic: multipliers); the products past it are summed from partial products in the
+    /// fabric, those cheapest in logic first, so several units can share one device [0..=64;
+    /// default: no limit]
+    #[arg(allow_negative_numbers = true, value_parser = param_dsp_budget, long, value_name = "N", help_heading = "RTL")]
+    pub dsp_budget: Option<u32>,
     /// How tables are written: file ($readmemh) or case (inline) [default file]
     #[arg(long, value_enum, help_heading = "RTL")]
     pub rom_style: Option<RomStyleFlag>,
@@ -292,7 +298,8 @@ range_params!(
     param_intensity_frac_bits => config::INTENSITY_FRAC_BITS,
     param_k_frac_bits => config::K_FRAC_BITS,
     param_max_squarings => config::MAX_SQUARINGS,
-    param_tag_bits => config::TAG_BITS
+    param_tag_bits => config::TAG_BITS,
+    param_dsp_budget => config::DSP_BUDGET
 );
 
 /// Writes to standard output; a closed pipe (`specgen rom … | head -1`) ends the program
@@ -367,6 +374,9 @@ impl ParamArgs {
             }
             if r.tlast {
                 p.tlast = true;
+            }
+            if let Some(v) = r.dsp_budget {
+                p.dsp_budget = Some(v);
             }
             if r.clock_enable {
                 p.clock_enable = true;

@@ -212,6 +212,9 @@ pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min:
 pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24, default: 16 };
 pub const MAX_SQUARINGS: Range = Range { name: "max_squarings", min: 0, max: 4, default: 3 };
 pub const TAG_BITS: Range = Range { name: "tag_bits", min: 0, max: 64, default: 0 };
+/// `--dsp-budget`: the most hard multiplier blocks the unit may take (its default, none given,
+/// is no limit).
+pub const DSP_BUDGET: Range = Range { name: "dsp_budget", min: 0, max: 64, default: 64 };
 
 /// Every integer parameter with a fixed range (`stages` depends on the datapath).
 pub const RANGES: &[&Range] = &[&COS_FRAC_BITS, &N_BITS, &COLOR_BITS, &INTENSITY_FRAC_BITS, &K_FRAC_BITS, &MAX_SQUARINGS, &TAG_BITS];
@@ -271,6 +274,10 @@ pub struct Params {
     /// low transfers nothing and loads no colour.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub clock_enable: bool,
+    /// The most hard multiplier blocks (SB_MAC16, MULT18X18D; generic: multipliers) the unit
+    /// may take; the products past it are summed in the fabric. None: no limit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dsp_budget: Option<u32>,
 }
 
 impl Default for Params {
@@ -298,6 +305,7 @@ impl Default for Params {
             reset: None,
             tlast: false,
             clock_enable: false,
+            dsp_budget: None,
         }
     }
 }
@@ -388,7 +396,7 @@ impl Params {
         }
         let mut full = serde_json::to_value(Params::default()).expect("params serialise");
         // the parameters a manifest states only when given (absent: the default)
-        for key in ["clock_port", "reset"] {
+        for key in ["clock_port", "reset", "dsp_budget"] {
             full[key] = serde_json::Value::Null;
         }
         for key in ["tlast", "clock_enable"] {
@@ -431,6 +439,9 @@ impl Config {
         K_FRAC_BITS.check(params.k_frac_bits)?;
         MAX_SQUARINGS.check(params.max_squarings)?;
         TAG_BITS.check(params.tag_bits)?;
+        if let Some(n) = params.dsp_budget {
+            DSP_BUDGET.check(n)?;
+        }
         if let Some(text) = &params.clock_mhz {
             parse_clock_mhz(text)?;
         }
@@ -652,6 +663,9 @@ impl Config {
         }
         if let Some(port) = &p.clock_port {
             s.push_str(&format!(" clock_port={port}"));
+        }
+        if let Some(n) = p.dsp_budget {
+            s.push_str(&format!(" dsp_budget={n}"));
         }
         s
     }
