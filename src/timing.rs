@@ -116,6 +116,13 @@ pub fn outside_calibration(plan: &Plan) -> Option<String> {
     family(plan.cfg.target())?;
     let datapath = plan.cfg.datapath_name();
     let model = plan.cfg.model();
+    let fabric = plan.datapath.product_uses.iter().filter(|u| u.fabric).count();
+    if fabric > 0 {
+        return Some(format!(
+            "outside the calibration: --dsp-budget {} puts {fabric} product(s) of the {datapath} datapath in the fabric, a shape no calibration unit has: the depth follows the delay model's line, an extrapolation, not a measured assurance",
+            plan.cfg.params.dsp_budget.unwrap_or(0)
+        ));
+    }
     let own = shape(&plan.cfg.params, model);
     let shapes = calibrated_shapes(plan.cfg.target(), datapath, model);
     if shapes.contains(&own) {
@@ -230,8 +237,11 @@ impl Line {
     pub(crate) fn at_widths_of(mut self, plan: &Plan) -> Line {
         let model = plan.cfg.model();
         let own = shape(&plan.cfg.params, model);
-        let keep: Vec<bool> =
-            (0..self.measured.len()).map(|i| shape_of_args(self.measured_args.get(i).map_or("", String::as_str), model).is_some_and(|sh| sh == own)).collect();
+        // products in the fabric (--dsp-budget): a shape no unit was measured at
+        let fabric = plan.datapath.product_uses.iter().any(|u| u.fabric);
+        let keep: Vec<bool> = (0..self.measured.len())
+            .map(|i| !fabric && shape_of_args(self.measured_args.get(i).map_or("", String::as_str), model).is_some_and(|sh| sh == own))
+            .collect();
         if !keep.iter().any(|&k| k) {
             // widths never measured: each calibrated width's units by depth, a ceiling
             let mut corners: Vec<(String, Vec<(u32, f64)>)> = Vec::new();
