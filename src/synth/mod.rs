@@ -316,7 +316,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             false => count(&|n| n == "SB_LUT4" || n == "LUT4"),
         },
         carry_cells: count(&|n| n == "SB_CARRY" || n == "CCU2C"),
-        dsp_blocks: count(&|n| n == "SB_MAC16" || n.starts_with("MULT18X18") || n.starts_with("ALU54")),
+        dsp_blocks: count(&|n| is_dsp_block(n)),
         flip_flops: count(&|n| n.starts_with("SB_DFF") || n == "TRELLIS_FF" || n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE")),
         block_rams: count(&|n| n.starts_with("SB_RAM40") || n == "DP16KD" || n.starts_with("$mem")),
         rom_bits: design.plan.datapath.tables.iter().map(|t| t.words.len() as u64 * t.width as u64).sum(),
@@ -337,6 +337,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     };
     if r.total_cells == 0 {
         return Err(error::tool("yosys", "synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
+    }
+    // the unit's --dsp-budget, a promise checked on the netlist
+    if let Some(why) = over_dsp_budget(&r.cells, cfg.params.dsp_budget, &top) {
+        return Err(Failure::Mismatch(why));
     }
     // speed: the wrapped unit through place-and-route
     if seeds == 0 && family.place_and_route(tools.speed).is_some() {

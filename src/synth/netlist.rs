@@ -148,3 +148,23 @@ pub(crate) fn logic_cells(log: &str) -> Option<u64> {
     // ICESTORM_LC holds them, is then the larger of the two
     used("ICESTORM_LC").or_else(|| used("TRELLIS_SLICE")).or_else(|| Some(used("TRELLIS_COMB")?.max(used("TRELLIS_FF")?)))
 }
+
+/// Whether a netlist cell is a hard multiplier block (iCE40 SB_MAC16, ECP5 MULT18X18D, ALU54B).
+pub(crate) fn is_dsp_block(cell: &str) -> bool {
+    cell == "SB_MAC16" || cell.starts_with("MULT18X18") || cell.starts_with("ALU54")
+}
+
+/// The unit's `--dsp-budget` against its netlist's cells (`parse_stat_json`): why it is broken
+/// (the blocks counted, by kind), or None when it holds or there is none.
+pub(crate) fn over_dsp_budget(cells: &[(String, u64)], budget: Option<u32>, top: &str) -> Option<String> {
+    let budget = budget?;
+    let blocks: Vec<&(String, u64)> = cells.iter().filter(|(n, c)| is_dsp_block(n) && *c > 0).collect();
+    let total: u64 = blocks.iter().map(|(_, c)| c).sum();
+    (total > budget as u64).then(|| {
+        let kinds: Vec<String> = blocks.iter().map(|(n, c)| format!("{c} {n}")).collect();
+        format!(
+            "dsp_budget: the netlist of {top} has {total} hard multiplier blocks ({}), more than the {budget} it was generated for (--dsp-budget {budget})",
+            kinds.join(", ")
+        )
+    })
+}

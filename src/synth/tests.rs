@@ -84,3 +84,16 @@ fn fmax_is_the_slowest_clock_after_routing() {
     assert!(has_unclocked_block("Info: Max delay posedge $PACKER_GND_NET_$glb_clk -> posedge clk$SB_IO_IN_$glb_clk   : 4.93 ns"));
     assert_eq!(fmax_of_log("Info: Routing..\n"), None);
 }
+
+/// Issue 49, point 1: a netlist with more hard multipliers than the unit's --dsp-budget is a
+/// broken promise, named with its blocks; at the budget, or without one, it holds.
+#[test]
+fn a_netlist_over_the_dsp_budget_is_named() {
+    let cells = vec![("SB_LUT4".to_string(), 900), ("SB_MAC16".to_string(), 3)];
+    let why = over_dsp_budget(&cells, Some(2), "u").expect("3 blocks over a budget of 2");
+    assert!(why.starts_with("dsp_budget: the netlist of u has 3 hard multiplier blocks (3 SB_MAC16)"), "{why}");
+    assert!(over_dsp_budget(&cells, Some(3), "u").is_none());
+    assert!(over_dsp_budget(&cells, None, "u").is_none());
+    let ecp5 = vec![("MULT18X18D".to_string(), 1), ("ALU54B".to_string(), 1)];
+    assert!(over_dsp_budget(&ecp5, Some(1), "u").expect("two blocks").contains("1 MULT18X18D, 1 ALU54B"));
+}
