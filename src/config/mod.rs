@@ -214,7 +214,7 @@ pub const MAX_SQUARINGS: Range = Range { name: "max_squarings", min: 0, max: 4, 
 pub const TAG_BITS: Range = Range { name: "tag_bits", min: 0, max: 64, default: 0 };
 /// `--dsp-budget`: the most hard multiplier blocks the unit may take (its default, none given,
 /// is no limit).
-pub const DSP_BUDGET: Range = Range { name: "dsp_budget", min: 0, max: 64, default: 64 };
+pub const DSP_BUDGET: Range = Range { name: "dsp_budget", min: 0, max: 256, default: 256 };
 
 /// Every integer parameter with a fixed range (`stages` depends on the datapath).
 pub const RANGES: &[&Range] = &[&COS_FRAC_BITS, &N_BITS, &COLOR_BITS, &INTENSITY_FRAC_BITS, &K_FRAC_BITS, &MAX_SQUARINGS, &TAG_BITS];

@@ -161,6 +161,12 @@ impl Datapath {
         self.steps.iter().flat_map(|s| &s.wires).any(reads)
     }
 
+    /// The products the family's synthesis maps (a `*`, or an instantiated block): those the
+    /// budget leaves out of the fabric, small ones (LUTs by the tool's own rule) included.
+    pub fn mapped_products(&self) -> usize {
+        self.steps.iter().map(|s| s.dsps.len() + s.wires.iter().filter(|w| w.product.is_some()).count()).sum()
+    }
+
     pub(crate) fn delays(&self) -> Vec<f64> {
         self.steps.iter().map(|s| s.delay).collect()
     }

@@ -3,6 +3,7 @@
 
 mod common;
 
+mod budget;
 mod cli;
 mod cosim;
 mod embedding;

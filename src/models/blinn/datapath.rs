@@ -25,8 +25,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let dsp = b.dsp_bits();
     let (rb, re) = (w.log_rest_bits(cfg), w.exp2_rest_bits());
     let (log_dsp, exp2_dsp) = (
-        rb > 0 && w.log_delta_bits.max(rb) <= dsp && w.ghat_bits() + rb <= 2 * dsp,
-        re > 0 && w.exp2_delta_bits.max(re) <= dsp && w.exp2_entry_bits + re <= 2 * dsp,
+        rb > 0 && w.log_delta_bits.max(rb) <= dsp && w.ghat_bits() + rb <= dsp.saturating_mul(2),
+        re > 0 && w.exp2_delta_bits.max(re) <= dsp && w.exp2_entry_bits + re <= dsp.saturating_mul(2),
     );
     let pad = |on: bool, rest: u32| (on && b.family().pads_block_operands()).then_some(OperandPad { a_bits: dsp, b_pad: dsp - rest });
     let (log_pad, exp2_pad) = (pad(log_dsp, rb), pad(exp2_dsp, re));

@@ -1,0 +1,106 @@
+//! Issue 49, point 1: `--dsp-budget N`. The generator keeps at most N hard multiplier blocks
+//! (its own count, for every model, family and budget), a budget the unit already meets
+//! changes no byte, the products it moves to the fabric compute the same values on every
+//! input, and the netlist yosys maps holds the promise (`synth` fails a netlist over it).
+
+use crate::common::*;
+use specgen::config::{Params, SpecularModel, Target};
+use specgen::plan::Plan;
+
+fn blocks(plan: &Plan) -> u32 {
+    plan.datapath.product_uses.iter().map(|u| u.blocks).sum()
+}
+
+fn plan(model: SpecularModel, target: Target, stages: u32, budget: Option<u32>) -> Plan {
+    Plan::from_params(Params { model, target, stages, dsp_budget: budget, ..Params::default() }).unwrap()
+}
+
+/// Every model on every family, budgets from 0 to its unbudgeted count: the unit's blocks
+/// stay within the budget, a larger budget never keeps fewer, and the budget it already meets
+/// changes neither the datapath nor its registers.
+#[test]
+fn the_blocks_stay_within_every_budget_and_a_met_budget_changes_nothing() {
+    for model in SpecularModel::ALL {
+        for target in [Target::Ice40, Target::Ecp5, Target::Generic] {
+            let free = plan(model, target, 3, None);
+            let full = blocks(&free);
+            assert!(full > 0, "{model:?} {target:?}: some product is a block");
+            let mut last = 0;
+            let mut budgets = vec![0, 1, 2, 3, full / 2, full.saturating_sub(1), full];
+            budgets.retain(|&b| b <= full);
+            budgets.sort();
+            budgets.dedup();
+            for budget in budgets {
+                let p = plan(model, target, 3, Some(budget));
+                let b = blocks(&p);
+                assert!(b <= budget, "{model:?} {target:?} --dsp-budget {budget}: {b} blocks");
+                assert!(b >= last, "{model:?} {target:?}: a larger budget kept fewer blocks ({b} after {last})");
+                last = b;
+                if budget == 0 {
+                    let left = p.datapath.mapped_products();
+                    assert_eq!(left, 0, "{model:?} {target:?} --dsp-budget 0: {left} product(s) the family maps left");
+                }
+            }
+            assert_eq!(last, full, "{model:?} {target:?}: the whole budget keeps every block");
+            let met = plan(model, target, 3, Some(full));
+            let same = format!("{:?}", free.datapath) == format!("{:?}", met.datapath) && free.registered_cuts == met.registered_cuts;
+            assert!(same, "{model:?} {target:?}: --dsp-budget {full} (met) changed the datapath");
+        }
+    }
+}
+
+/// The products a budget moves to the fabric are the golden model's on every input, for every
+/// model, on both families' shapes, at 8/6/4/8 bits and 4 stages (Verilator, exhaustive).
+#[test]
+fn every_model_within_a_dsp_budget_is_right_on_its_whole_input_space() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let mut runs: Vec<Vec<String>> = Vec::new();
+    for model in SpecularModel::ALL {
+        for (target, budget) in [("ice40", "0"), ("ice40", "2"), ("ecp5", "0")] {
+            let args = ["--model", model.name(), "--target", target, "--dsp-budget", budget, "--stages", "4"];
+            let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
+            runs.push(args.iter().chain(&narrow).map(|s| s.to_string()).collect());
+        }
+    }
+    for_each_parallel(&runs, |i, args| {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let dir = generate(&tmp.path().join(format!("b{i}")), "u", &args);
+        let o = specgen().env("SPECGEN_CACHE_DIR", cache_dir()).arg("cosim").arg("--rtl").arg(&dir).arg("--exhaustive").output().unwrap();
+        let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {text}");
+        assert!(text.contains(" 0 mismatches") && text.contains("exhaustive"), "{args:?}: {text}");
+    });
+}
+
+/// The promise on the netlist: the lean unit takes 8 SB_MAC16s at default widths; with
+/// `--dsp-budget 3` yosys maps 3 at most and `synth` says so, and the same unit stated to have a
+/// budget of 2 (its manifest edited) is refused, naming the blocks.
+#[test]
+fn the_netlist_keeps_the_dsp_budget() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let synth = |dir: &std::path::Path| {
+        let json = dir.with_extension("synth.json");
+        let o = specgen().args(["synth", "--dsp", "--no-pnr", "--rtl"]).arg(dir).arg("--json").arg(&json).output().unwrap();
+        (o.status.code(), format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr)), json)
+    };
+    let dir = generate(tmp.path(), "lean3", &["--stages", "13", "--dsp-budget", "3"]);
+    let (code, text, json) = synth(&dir);
+    assert_eq!(code, Some(0), "{text}");
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let dsp = r["dsp_blocks"].as_u64().unwrap();
+    assert!((1..=3).contains(&dsp), "--dsp-budget 3: {dsp} SB_MAC16 in the netlist");
+    // the same netlist against a budget of 2: a broken promise, exit 1, the blocks named
+    let manifest = dir.join("specular_unit.json");
+    let text = std::fs::read_to_string(&manifest).unwrap().replace("\"dsp_budget\": 3", "\"dsp_budget\": 2");
+    std::fs::write(&manifest, text).unwrap();
+    let (code, text, _) = synth(&dir);
+    if dsp > 2 {
+        assert_eq!(code, Some(1), "{text}");
+        assert!(
+            text.contains(&format!("dsp_budget: the netlist of specular_unit has {dsp} hard multiplier blocks ({dsp} SB_MAC16), more than the 2")),
+            "{text}"
+        );
+    }
+}
