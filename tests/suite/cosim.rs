@@ -388,3 +388,48 @@ fn long_delay_line_tails_wait_in_block_ram_and_stay_right() {
         }
     });
 }
+
+/// Issue 50, point 4: faults derived from every model's own RTL, not written per model: the
+/// colours' rounding half dropped (the constant added in `color_sum_r`, whatever the model
+/// computes before it) and `out_valid` one clock late in a pipelined unit. A model added to
+/// `SpecularModel::ALL` is tested with no line here changed.
+#[test]
+fn derived_faults_are_caught_in_every_model() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--stages", "2"];
+    let mut faults: Vec<(String, &'static str)> = Vec::new();
+    for model in specgen::config::SpecularModel::ALL {
+        for fault in ["no_colour_half", "valid_late"] {
+            faults.push((model.name().to_string(), fault));
+        }
+    }
+    for_each_parallel(&faults, |i, (model, fault)| {
+        let mut args = vec!["--model", model.as_str()];
+        args.extend(narrow);
+        let dir = generate(&tmp.path().join(format!("d{i}")), "u", &args);
+        let v = dir.join("specular_unit.v");
+        let src = std::fs::read_to_string(&v).unwrap();
+        let edited = match *fault {
+            // the last `+ W'hX` of the line that defines color_sum_r: the rounding half
+            "no_colour_half" => {
+                let line = src.lines().find(|l| l.starts_with("wire") && l.contains(" color_sum_r_s")).unwrap_or_else(|| panic!("{model}: no color_sum_r"));
+                let code = line.split("//").next().unwrap();
+                let at = code.rfind(" + ").unwrap_or_else(|| panic!("{model}: no addend in {line}"));
+                let (width, _) = code[at + 3..].split_once("'h").unwrap_or_else(|| panic!("{model}: no constant in {line}"));
+                let new = format!("{} + {width}'h0;{}", &code[..at], &line[code.len()..]);
+                src.replacen(line, &new, 1)
+            }
+            _ => {
+                let line = src.lines().find(|l| l.starts_with("assign out_valid = ")).unwrap_or_else(|| panic!("{model}: no out_valid"));
+                let was = line.trim_start_matches("assign out_valid = ").trim_end_matches(';');
+                src.replacen(line, &format!("reg valid_late;\nalways @(posedge clk) valid_late <= {was};\nassign out_valid = valid_late;"), 1)
+            }
+        };
+        assert_ne!(edited, src, "{model} {fault}: the fault applies");
+        std::fs::write(&v, edited).unwrap();
+        let o = cosim(&dir, &["--vectors", "20000"]);
+        assert_eq!(o.status.code(), Some(1), "{model}: fault {fault} survived: {}", text(&o));
+        assert!(text(&o).contains("first mismatch"), "{model} {fault}: {}", text(&o));
+    });
+}
