@@ -19,6 +19,7 @@ mod cuts;
 mod tests;
 mod text;
 
+pub use cuts::registered_blocks;
 use cuts::*;
 pub(crate) use text::*;
 

@@ -430,3 +430,46 @@ fn every_hard_multipliers_registers_are_checked_on_the_netlist() {
     assert!(r["dsp_blocks"].as_u64().unwrap() > 0, "{r}");
     assert_eq!(r["unregistered_blocks"].as_array().unwrap().len(), 0, "{r}");
 }
+
+/// Issue 49, point 3: the product registers a unit gives its SB_MAC16s as their output
+/// registers are checked on the netlist. The narrow units of every model keep every promise
+/// (synth passes), and a promised register that yosys cannot take into the block (a LUT put
+/// between the product and it by hand, as a generator bug would) fails `synth`, naming it.
+#[test]
+fn every_promised_block_register_is_the_blocks_on_the_netlist() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "8", "--intensity-frac-bits", "8"];
+    let run = |dir: &Path| specgen().args(["synth", "--dsp", "--no-pnr", "--rtl"]).arg(dir).output().unwrap();
+    let models: Vec<(String, String)> = specgen::config::SpecularModel::ALL
+        .into_iter()
+        .filter(|m| *m != specgen::config::SpecularModel::BlinnPow)
+        .map(|m| {
+            let mut args: Vec<&str> = vec!["--model", m.name()];
+            args.extend(narrow);
+            (m.name().to_string(), deepest(&args))
+        })
+        .collect();
+    for_each_parallel(&models, |i, (model, stages)| {
+        let mut args: Vec<&str> = vec!["--model", model, "--stages", stages];
+        args.extend(narrow);
+        let dir = generate(&tmp.path().join(format!("m{i}")), "u", &args);
+        let o = run(&dir);
+        assert!(o.status.success(), "{model}: {}", String::from_utf8_lossy(&o.stderr));
+    });
+    // the default lean unit at 13 stages: its promised registers, and one of them broken
+    let params = specgen::config::Params { stages: 13, ..Default::default() };
+    let promised = specgen::emit::registered_blocks(&specgen::plan::Plan::from_params(params).unwrap());
+    assert!(promised.len() >= 4, "lean at 13 stages promises its products' registers: {promised:?}");
+    let dir = generate(tmp.path(), "lean", &["--stages", "13"]);
+    let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+    let victim = &promised[0];
+    let (name, k) = victim.rsplit_once("_c").unwrap();
+    let take = format!("{victim} <= {name}_s{k};");
+    assert_eq!(v.matches(&take).count(), 1, "{victim} takes the product's wire: {take}");
+    rewrite_sealed(&dir, "specular_unit.v", &v.replacen(&take, &format!("{victim} <= {name}_s{k} ^ 1'b1;"), 1));
+    let o = run(&dir);
+    let text = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{text}");
+    assert!(text.contains("registered_blocks:") && text.contains(&format!("{victim}: SB_MAC16")), "{text}");
+}
