@@ -112,21 +112,3 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
     }
     cuts
 }
-
-/// The product registers the unit promises to its family's hard multiplier as the block's
-/// output register: each `x_cK` that takes a product's wire `x_sK` at the cut right after its
-/// step, alone (not kept out of the block: no multiplier reads it, it waits no further cut).
-/// `synth` fails a netlist in which one of them is not the block's register. Only on a family
-/// whose synthesis takes such a register into the block (`Family::absorbs_product_registers`).
-pub fn registered_blocks(plan: &Plan) -> Vec<String> {
-    let dp = &plan.datapath;
-    if !crate::family::of(plan.cfg.target()).absorbs_product_registers() {
-        return Vec::new();
-    }
-    cut_list(dp, plan.cfg.target())
-        .iter()
-        .flat_map(|c| c.signals.iter().map(move |s| (c.index, s)))
-        .filter(|(k, s)| !s.keep && dp.products.contains(&s.name) && s.source == format!("{}_s{k}", s.name))
-        .map(|(k, s)| format!("{}_c{k}", s.name))
-        .collect()
-}

@@ -19,7 +19,6 @@ mod cuts;
 mod tests;
 mod text;
 
-pub use cuts::registered_blocks;
 use cuts::*;
 pub(crate) use text::*;
 

@@ -76,9 +76,6 @@ impl Family for Ice40 {
     fn post_adder(&self, width: u32, wa: u32, wb: u32) -> bool {
         width <= wa + wb
     }
-    fn absorbs_product_registers(&self) -> bool {
-        true
-    }
     /// one layer a step: yosys 0.70's ABC maps a layer of up to 9 registers to three LUT4
     /// levels
     fn carry_save_layers_per_step(&self) -> usize {

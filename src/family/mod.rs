@@ -105,12 +105,6 @@ pub trait Family: Sync {
     /// Whether a multiply-add of `width` bits from an a×b product takes its add inside the
     /// block (a post-adder the synthesis tool uses).
     fn post_adder(&self, width: u32, wa: u32, wb: u32) -> bool;
-    /// Whether the family's synthesis takes a product's register into its block as the block's
-    /// output register (yosys's ice40_dsp does; synth_ecp5 leaves an inferred product's
-    /// registers in the fabric, and the ECP5 units instantiate their registered blocks).
-    fn absorbs_product_registers(&self) -> bool {
-        false
-    }
     /// Whether products and table reads are instantiated blocks with their own input and
     /// output registers (where the cuts allow), rather than inferred by the synthesis tool;
     /// such a family has no post-adder, and its adds are one carry chain a step.

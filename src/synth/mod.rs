@@ -342,17 +342,6 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     if let Some(why) = over_dsp_budget(&r.cells, cfg.params.dsp_budget, &top) {
         return Err(Failure::Mismatch(why));
     }
-    // the block registers the unit promises (SPEC §7), each on the netlist
-    // (on the family synthesized for: a unit shaped for one family may be mapped to another)
-    let promised = if family.absorbs_product_registers() { crate::emit::registered_blocks(&design.plan) } else { Vec::new() };
-    let broken = broken_register_promises(&promised, &r.unregistered_blocks);
-    if !broken.is_empty() {
-        return Err(Failure::Mismatch(format!(
-            "registered_blocks: {} product register(s) the unit gives its multiplier block as the block's output register are not the block's in the netlist of {top}: {}",
-            broken.len(),
-            broken.join("; ")
-        )));
-    }
     // speed: the wrapped unit through place-and-route
     if seeds == 0 && family.place_and_route(tools.speed).is_some() {
         r.fmax_note = "place-and-route skipped (--no-pnr)".into();

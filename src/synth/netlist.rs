@@ -168,23 +168,3 @@ pub(crate) fn over_dsp_budget(cells: &[(String, u64)], budget: Option<u32>, top:
         )
     })
 }
-
-/// The promised block registers (`emit::registered_blocks`, `x_cK`) the netlist's blocks
-/// without their output register (`unregistered_blocks`) break: a block named by the register
-/// (`x_cK…`) or by the product's wire (`x_sK…`, the register left in the fabric).
-pub(crate) fn broken_register_promises(promised: &[String], unregistered: &[String]) -> Vec<String> {
-    let cell = |u: &str| u.split(':').next().unwrap_or("").split_whitespace().last().unwrap_or("").rsplit('.').next().unwrap_or("").to_string();
-    let mut broken = Vec::new();
-    for p in promised {
-        let Some((name, k)) = p.rsplit_once("_c") else { continue };
-        let wire = format!("{name}_s{k}");
-        for u in unregistered {
-            let c = cell(u);
-            let by = |n: &str| c == n || c.starts_with(&format!("{n}_"));
-            if (by(p) || by(&wire)) && !broken.iter().any(|b: &String| b.starts_with(&format!("{p}:"))) {
-                broken.push(format!("{p}: {u}"));
-            }
-        }
-    }
-    broken
-}

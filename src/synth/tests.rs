@@ -97,20 +97,3 @@ fn a_netlist_over_the_dsp_budget_is_named() {
     let ecp5 = vec![("MULT18X18D".to_string(), 1), ("ALU54B".to_string(), 1)];
     assert!(over_dsp_budget(&ecp5, Some(1), "u").expect("two blocks").contains("1 MULT18X18D, 1 ALU54B"));
 }
-
-/// Issue 49, point 3: a promised register (`x_cK`) is broken by an unregistered block named by
-/// it or by its product's wire (`x_sK`), and only by those.
-#[test]
-fn a_broken_register_promise_names_the_register() {
-    let promised = vec!["deviation_sum_c6".to_string(), "square_z_c10".to_string()];
-    let unregistered = vec![
-        "SB_MAC16 deviation_sum_s6_SB_MAC16_O: the top half of its output is not registered (TOPOUTPUT_SELECT = 0)".to_string(),
-        "SB_MAC16 deviation_sum_s6_SB_MAC16_O: the bottom half of its output is not registered (BOTOUTPUT_SELECT = 0)".to_string(),
-        "SB_MAC16 kn_c4_SB_MAC16_O: the top half of its output is not registered (TOPOUTPUT_SELECT = 3)".to_string(),
-        "SB_MAC16 square_z_c100_SB_MAC16_O: its clock is a constant (no register in use)".to_string(),
-    ];
-    let broken = broken_register_promises(&promised, &unregistered);
-    assert_eq!(broken.len(), 1, "{broken:#?}");
-    assert!(broken[0].starts_with("deviation_sum_c6: SB_MAC16 deviation_sum_s6_SB_MAC16_O"), "{broken:#?}");
-    assert!(broken_register_promises(&promised, &[]).is_empty());
-}
