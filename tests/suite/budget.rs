@@ -119,3 +119,28 @@ fn plan_blocks(args: &[&str]) -> u32 {
     };
     blocks(&Plan::from_params(p).unwrap())
 }
+
+/// `--dsp-budget` out of its range is refused naming it (exit 2, nothing written), and a
+/// budgeted unit's manifest, given back as `--config`, writes the very same unit.
+#[test]
+fn the_budget_is_a_parameter_like_the_others() {
+    let tmp = tempfile::tempdir().unwrap();
+    for bad in ["257", "-1", "x"] {
+        let out = tmp.path().join(format!("bad{bad}"));
+        let o = specgen().args(["generate", "--dsp-budget", bad, "--out"]).arg(&out).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("--dsp-budget") && err.contains("0..=256"), "{bad}: {err}");
+        assert!(!out.exists(), "{bad}: nothing written");
+    }
+    let a = generate(tmp.path(), "a", &["--dsp-budget", "2", "--stages", "5"]);
+    let b = generate(tmp.path(), "b", &["--config", a.join("specular_unit.json").to_str().unwrap()]);
+    for e in std::fs::read_dir(&a).unwrap().flatten() {
+        let name = e.file_name();
+        if e.path().is_file() {
+            assert_eq!(std::fs::read(e.path()).unwrap(), std::fs::read(b.join(&name)).unwrap(), "{name:?} differs");
+        }
+    }
+    let manifest = std::fs::read_to_string(a.join("specular_unit.json")).unwrap();
+    assert!(manifest.contains("\"dsp_budget\": 2"), "the manifest states the budget");
+}
