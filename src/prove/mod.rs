@@ -143,7 +143,27 @@ struct PipeliningScript<'a> {
     replay_skip: u32,
 }
 
-impl Script<'_> {
+impl<'a> Script<'a> {
+    /// The script for `harness` over `files` that writes the AIGER model for ABC's `pdr`, every
+    /// other choice at its default: the callers set what differs.
+    fn model(harness: &'a str, files: &'a [String]) -> Script<'a> {
+        Script {
+            version: crate::names::VERSION,
+            harness,
+            files,
+            bounded: None,
+            induction: None,
+            replay: false,
+            defines: Vec::new(),
+            ports_only: None,
+            ignore_unknown: false,
+            abstract_module: "",
+            abstract_wires: Vec::new(),
+            share: false,
+            sat_search: None,
+        }
+    }
+
     /// Writes the script as `file` in `w`.
     fn write(&self, w: &Path, file: &str) -> Result<(), Error> {
         let text = self.render().expect("the prove script renders") + "\n";
@@ -372,22 +392,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         let engine = format!("a bounded search of {depth} edges from power-up with yosys sat");
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
     }
-    Script {
-        version: crate::names::VERSION,
-        harness: &name,
-        files: &files,
-        bounded: None,
-        induction: None,
-        replay: false,
-        defines: Vec::new(),
-        ports_only: None,
-        ignore_unknown: false,
-        abstract_module: "",
-        abstract_wires: Vec::new(),
-        share: false,
-        sat_search: None,
-    }
-    .write(w, "prove.ys")?;
+    Script::model(&name, &files).write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
     run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
         .ok_or_else(|| error::tool(&tools.yosys, "yosys did not write the model within 600 s"))?;
@@ -428,14 +433,8 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     let cfg = &design.cfg;
     let steps = tools.depth.unwrap_or_else(|| cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4);
     let script = Script {
-        version: crate::names::VERSION,
-        harness: name,
-        files,
         bounded: tools.depth,
         induction: Some(steps),
-        replay: false,
-        defines: Vec::new(),
-        ports_only: None,
         ignore_unknown: !design.sim_models.is_empty(),
         abstract_module: cfg.top(),
         // the datapath's results as the buffer reads them (a plain name each)
@@ -447,8 +446,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             .map(|(_, src)| src.clone())
             .filter(|src| src.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
             .collect(),
-        share: false,
-        sat_search: None,
+        ..Script::model(name, files)
     };
     let mut properties = properties(design);
     let name = name.to_string();

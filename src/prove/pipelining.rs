@@ -213,19 +213,12 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let name = harness_name(top);
     let depth = tools.depth.unwrap_or_else(|| port_depth(cfg));
     let script = Script {
-        version: crate::names::VERSION,
-        harness: &name,
-        files: &files,
         bounded: Some(depth),
         induction: Some(depth),
-        replay: false,
         defines: vec!["SPECGEN_PORTS".into(), "SPECGEN_DATAPATH".into()],
         ports_only: Some(format!("{top}_port_checker")),
-        ignore_unknown: false,
-        abstract_module: "",
-        abstract_wires: Vec::new(),
         share: true,
-        sat_search: None,
+        ..Script::model(&name, &files)
     };
     let t0 = Instant::now();
     let engine = format!(

@@ -145,22 +145,7 @@ pub(super) fn tail(text: &str) -> String {
 /// property holds there, `Some(false)` when one fails (its trace in `trace.vcd`), `None` when
 /// the search did not end within the limit.
 pub(super) fn bounded(tools: &Tools, w: &Path, files: &[String], name: &str, steps: u32) -> Result<Option<bool>, Error> {
-    Script {
-        version: crate::names::VERSION,
-        harness: name,
-        files,
-        bounded: Some(steps),
-        induction: None,
-        replay: false,
-        defines: Vec::new(),
-        ports_only: None,
-        ignore_unknown: false,
-        abstract_module: "",
-        abstract_wires: Vec::new(),
-        share: false,
-        sat_search: None,
-    }
-    .write(w, "bounded.ys")?;
+    Script { bounded: Some(steps), ..Script::model(name, files) }.write(w, "bounded.ys")?;
     run_sat(&tools.yosys, w, "bounded.ys", tools.limit)
 }
 
