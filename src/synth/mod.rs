@@ -80,6 +80,12 @@ pub struct SynthResult {
     /// nextpnr does not time the multiply inside them, so any here makes Fmax an upper bound
     #[serde(default)]
     pub(crate) unregistered_blocks: Vec<String>,
+    /// the unit's `--dsp-budget`, and the products it put in the fabric (what the logic cells
+    /// and the clock above pay for the blocks saved)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) dsp_budget: Option<u32>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub(crate) fabric_products: Vec<String>,
 }
 
 struct WrapperPort {
@@ -334,6 +340,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         logic_cells: None,
         cells,
         unregistered_blocks: unregistered,
+        dsp_budget: cfg.params.dsp_budget,
+        fabric_products: design.plan.datapath.product_uses.iter().filter(|u| u.fabric).map(|u| u.name.clone()).collect(),
     };
     if r.total_cells == 0 {
         return Err(error::tool("yosys", "synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
@@ -520,6 +528,13 @@ pub fn table(r: &SynthResult) -> String {
     ];
     for (k, v) in rows {
         s.push_str(&format!("  {k:<14} {v}\n"));
+    }
+    if let Some(b) = r.dsp_budget {
+        let moved = match r.fabric_products.len() {
+            0 => "none in the fabric".to_string(),
+            n => format!("{n} product(s) in the fabric: {}", r.fabric_products.join(", ")),
+        };
+        s.push_str(&format!("  {:<14} {b} blocks ({moved})\n", "dsp budget"));
     }
     if let Some(m) = r.icetime_mhz {
         s.push_str(&format!("  {:<14} {m:.1} median of {} placed seeds (icetime -d up5k, interior paths)\n", "icetime (MHz)", r.icetime_seeds.len()));

@@ -97,6 +97,7 @@ fn the_netlist_keeps_the_dsp_budget() {
     let (code, text, dsp) = synth(&dir);
     assert_eq!(code, Some(0), "{text}");
     assert_eq!(dsp, Some(1), "--dsp-budget 1: {text}");
+    assert!(text.contains("dsp budget     1 blocks (") && text.contains("product(s) in the fabric: "), "synth states the budget's cost: {text}");
     // the same netlist against a budget of 0: a broken promise, exit 1, the block named
     let manifest = dir.join("specular_unit.json");
     let text = std::fs::read_to_string(&manifest).unwrap().replace("\"dsp_budget\": 1", "\"dsp_budget\": 0");
