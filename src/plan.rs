@@ -70,7 +70,14 @@ impl Plan {
                 ),
             });
         }
-        let registered_cuts = balanced_cuts(&combinational.delays(), cfg.stages());
+        // with products in the fabric, the registers are placed by the measure stage_delay
+        // reports (a hard-block step alone between registers counts nothing): else a block
+        // RAM's long step sets the length of every fabric stretch (a lean at --dsp-budget 3, 28
+        // stages: five carry-save layers in one stretch, 64 MHz in a pair on the UP5K)
+        let registered_cuts = match fabric.is_empty() {
+            true => balanced_cuts(&combinational.delays(), cfg.stages()),
+            false => balanced_cuts_by(&combinational.delays(), &hard_steps(&combinational), cfg.stages()),
+        };
         let datapath = if cfg.stages() == 0 { combinational } else { build(&model, &registered_cuts, &fabric) };
         Ok(Plan { cfg, model, registered_cuts, datapath, cut_points })
     }
@@ -106,10 +113,8 @@ impl Plan {
         // (iCE40: a `*` that becomes an SB_MAC16, a table read that becomes an SB_RAM40_4K;
         // ECP5: the MULT18X18D and DP16KD instances with their own registers; `RomRead::step`
         // is the 1-based step number; a product too small for the block is LUTs: logic)
-        let hard_block = |k: usize| {
-            let s = &dp.steps[k];
-            !s.soft_product && (!s.dsps.is_empty() || s.wires.iter().any(|w| w.product.is_some()) || dp.reads.iter().any(|r| r.step == k + 1))
-        };
+        let hard = hard_steps(dp);
+        let hard_block = |k: usize| hard[k];
         edges
             .windows(2)
             .map(|e| match e[1].saturating_sub(e[0]) {
@@ -160,18 +165,38 @@ pub(crate) fn to_fabric(uses: &[ProductUse], budget: u32) -> BTreeSet<String> {
     out
 }
 
+/// Per step, whether it is a hard block's (iCE40: a `*` that becomes an SB_MAC16, a table read
+/// that becomes an SB_RAM40_4K; ECP5: the MULT18X18D and DP16KD instances with their own
+/// registers; `RomRead::step` is the 1-based step number; a product too small for the block is
+/// LUTs: logic).
+fn hard_steps(dp: &Datapath) -> Vec<bool> {
+    (0..dp.steps.len())
+        .map(|k| {
+            let s = &dp.steps[k];
+            !s.soft_product && (!s.dsps.is_empty() || s.wires.iter().any(|w| w.product.is_some()) || dp.reads.iter().any(|r| r.step == k + 1))
+        })
+        .collect()
+}
+
 /// Places `stages` registers after steps (1-based) so that the slowest stretch of logic
 /// between registers (inputs and outputs count as registered outside) is as short as
 /// possible; ties go to the placement closest to the outputs. Exact: the least bound any
 /// placement reaches (over the segment sums), then each cut as late as the bound allows.
 pub(crate) fn balanced_cuts(delays: &[f64], stages: u32) -> Vec<u32> {
+    balanced_cuts_by(delays, &vec![false; delays.len()], stages)
+}
+
+/// [`balanced_cuts`], a stretch that is one `hard` step alone counting nothing (as
+/// `Plan::stage_delay` counts it). Every stretch inside another still costs no more than it,
+/// so the greedy bound below stays exact.
+pub(crate) fn balanced_cuts_by(delays: &[f64], hard: &[bool], stages: u32) -> Vec<u32> {
     const TIE: f64 = 1e-9;
     let c = delays.len();
     let s = (stages as usize).min(c);
     if s == 0 {
         return Vec::new();
     }
-    let seg = |a: usize, b: usize| delays[a..b].iter().sum::<f64>();
+    let seg = |a: usize, b: usize| if b == a + 1 && hard[a] { 0.0 } else { delays[a..b].iter().sum::<f64>() };
     // the fewest cuts after an edge at `v` that keep every segment up to the end within `w`
     // (greedy: each segment as long as it may be); None when one step alone exceeds `w`
     let need = |v: usize, w: f64| -> Option<usize> {
@@ -332,6 +357,17 @@ mod tests {
 #[cfg(test)]
 mod budget_tests {
     use super::*;
+
+    /// With products in the fabric the registers balance the fabric's stretches, not the hard
+    /// block's step: a lone block step counts nothing (as in `Plan::stage_delay`), so the
+    /// four LUT steps after it are cut in two halves of 6 instead of 9 and 3.
+    #[test]
+    fn a_hard_steps_length_does_not_set_the_fabrics() {
+        let delays = [10.0, 3.0, 3.0, 3.0, 3.0];
+        assert_eq!(balanced_cuts(&delays, 2), vec![1, 4]);
+        assert_eq!(balanced_cuts_by(&delays, &[true, false, false, false, false], 2), vec![1, 3]);
+        assert_eq!(balanced_cuts_by(&delays, &[false; 5], 2), balanced_cuts(&delays, 2));
+    }
 
     fn product(name: &str, a: u32, b: u32, width: u32, blocks: u32) -> ProductUse {
         ProductUse { name: name.into(), a, b, width, blocks, fabric: false }
