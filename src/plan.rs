@@ -110,15 +110,11 @@ impl Plan {
         let mut edges = vec![0usize];
         edges.extend(self.registered_cuts.iter().map(|&c| (c as usize).min(dp.steps.len())));
         edges.push(dp.steps.len());
-        // (iCE40: a `*` that becomes an SB_MAC16, a table read that becomes an SB_RAM40_4K;
-        // ECP5: the MULT18X18D and DP16KD instances with their own registers; `RomRead::step`
-        // is the 1-based step number; a product too small for the block is LUTs: logic)
         let hard = hard_steps(dp);
-        let hard_block = |k: usize| hard[k];
         edges
             .windows(2)
             .map(|e| match e[1].saturating_sub(e[0]) {
-                1 if hard_block(e[0]) => 0.0,
+                1 if hard[e[0]] => 0.0,
                 _ => dp.steps[e[0]..e[1].max(e[0])].iter().map(|s| s.delay).sum::<f64>(),
             })
             .fold(0.0, f64::max)
@@ -141,11 +137,12 @@ impl Plan {
 /// for one) stays as it is.
 pub(crate) fn to_fabric(uses: &[ProductUse], budget: u32) -> BTreeSet<String> {
     let hard: Vec<&ProductUse> = uses.iter().filter(|u| u.blocks > 0).collect();
+    let cost = |u: &ProductUse| u.a.min(u.b) as u64 * u.width as u64;
     let cap = budget as usize;
     // best[i][c]: the most cost products i.. keep within c blocks
     let mut best = vec![vec![0u64; cap + 1]; hard.len() + 1];
     for i in (0..hard.len()).rev() {
-        let (w, v) = (hard[i].blocks as usize, hard[i].a.min(hard[i].b) as u64 * hard[i].width as u64);
+        let (w, v) = (hard[i].blocks as usize, cost(hard[i]));
         for c in 0..=cap {
             let skip = best[i + 1][c];
             best[i][c] = if w <= c { skip.max(v + best[i + 1][c - w]) } else { skip };
@@ -155,8 +152,7 @@ pub(crate) fn to_fabric(uses: &[ProductUse], budget: u32) -> BTreeSet<String> {
     let mut c = cap;
     for (i, u) in hard.iter().enumerate() {
         let w = u.blocks as usize;
-        let v = u.a.min(u.b) as u64 * u.width as u64;
-        if w <= c && best[i][c] == v + best[i + 1][c - w] {
+        if w <= c && best[i][c] == cost(u) + best[i + 1][c - w] {
             c -= w;
         } else {
             out.insert(u.name.clone());

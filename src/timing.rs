@@ -116,7 +116,7 @@ pub fn outside_calibration(plan: &Plan) -> Option<String> {
     family(plan.cfg.target())?;
     let datapath = plan.cfg.datapath_name();
     let model = plan.cfg.model();
-    let fabric = plan.datapath.product_uses.iter().filter(|u| u.fabric).count();
+    let fabric = plan.datapath.fabric_products().len();
     if fabric > 0 {
         return Some(format!(
             "outside the calibration: --dsp-budget {} puts {fabric} product(s) of the {datapath} datapath in the fabric, a shape no calibration unit has: the depth follows the delay model's line, an extrapolation, not a measured assurance",
@@ -238,7 +238,7 @@ impl Line {
         let model = plan.cfg.model();
         let own = shape(&plan.cfg.params, model);
         // products in the fabric (--dsp-budget): a shape no unit was measured at
-        let fabric = plan.datapath.product_uses.iter().any(|u| u.fabric);
+        let fabric = !plan.datapath.fabric_products().is_empty();
         let keep: Vec<bool> = (0..self.measured.len())
             .map(|i| !fabric && shape_of_args(self.measured_args.get(i).map_or("", String::as_str), model).is_some_and(|sh| sh == own))
             .collect();

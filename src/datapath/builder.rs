@@ -146,7 +146,7 @@ impl Builder {
         let post_adder = self.family().post_adder(width, wa, wb);
         if post_adder {
             // an addend of constant zeros is none
-            let addend = match sub_pieces(addend, 0, width).iter().all(|p| matches!(p, Piece::Const { value: 0, .. })) {
+            let addend = match all_zero(&sub_pieces(addend, 0, width)) {
                 true => Vec::new(),
                 false => addend.to_vec(),
             };
@@ -339,7 +339,7 @@ impl Builder {
 
     /// ` + b` for an addend (`ext` applied), or nothing when it is constant zero.
     pub(super) fn addend(&mut self, pieces: &[Piece], ext: impl Fn(String) -> String) -> String {
-        if pieces.iter().all(|p| matches!(p, Piece::Const { value: 0, .. })) {
+        if all_zero(pieces) {
             String::new()
         } else {
             let e = self.pieces(pieces);

@@ -167,6 +167,11 @@ impl Datapath {
         self.steps.iter().map(|s| s.dsps.len() + s.wires.iter().filter(|w| w.product.is_some()).count()).sum()
     }
 
+    /// The products `--dsp-budget` put in the fabric, by name.
+    pub fn fabric_products(&self) -> Vec<&str> {
+        self.product_uses.iter().filter(|u| u.fabric).map(|u| u.name.as_str()).collect()
+    }
+
     pub(crate) fn delays(&self) -> Vec<f64> {
         self.steps.iter().map(|s| s.delay).collect()
     }
@@ -291,6 +296,11 @@ impl Piece {
 }
 
 /// Bits `[lo, lo+width)` of the value the pieces (LSB first) make, zero above their top.
+/// Whether `pieces` are all constant zeros (an addend that adds nothing).
+pub(crate) fn all_zero(pieces: &[Piece]) -> bool {
+    pieces.iter().all(|p| matches!(p, Piece::Const { value: 0, .. }))
+}
+
 pub(crate) fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
     let mut out = Vec::new();
     let mut base = 0;

@@ -84,10 +84,7 @@ impl Builder {
             sums.push((it.name.clone(), terms, width, comment));
         }
         self.delay(LUT_DELAY);
-        let title = match items.len() {
-            1 => format!("{} in the fabric", items[0].name),
-            _ => format!("{} in the fabric", items.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(", ")),
-        };
+        let title = format!("{} in the fabric", items.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(", "));
         let pending = self.sums_start(sums, &title);
         let out = self.resolve_all(pending, &title);
         let s = self.steps.last_mut().expect("a step");

@@ -341,7 +341,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         cells,
         unregistered_blocks: unregistered,
         dsp_budget: cfg.params.dsp_budget,
-        fabric_products: design.plan.datapath.product_uses.iter().filter(|u| u.fabric).map(|u| u.name.clone()).collect(),
+        fabric_products: design.plan.datapath.fabric_products().into_iter().map(String::from).collect(),
     };
     if r.total_cells == 0 {
         return Err(error::tool("yosys", "synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
