@@ -114,6 +114,7 @@ module DP16KD(
     parameter INITVAL_3F = 320'h0;
 
     localparam [20479:0] INIT = {INITVAL_3F, INITVAL_3E, INITVAL_3D, INITVAL_3C, INITVAL_3B, INITVAL_3A, INITVAL_39, INITVAL_38, INITVAL_37, INITVAL_36, INITVAL_35, INITVAL_34, INITVAL_33, INITVAL_32, INITVAL_31, INITVAL_30, INITVAL_2F, INITVAL_2E, INITVAL_2D, INITVAL_2C, INITVAL_2B, INITVAL_2A, INITVAL_29, INITVAL_28, INITVAL_27, INITVAL_26, INITVAL_25, INITVAL_24, INITVAL_23, INITVAL_22, INITVAL_21, INITVAL_20, INITVAL_1F, INITVAL_1E, INITVAL_1D, INITVAL_1C, INITVAL_1B, INITVAL_1A, INITVAL_19, INITVAL_18, INITVAL_17, INITVAL_16, INITVAL_15, INITVAL_14, INITVAL_13, INITVAL_12, INITVAL_11, INITVAL_10, INITVAL_0F, INITVAL_0E, INITVAL_0D, INITVAL_0C, INITVAL_0B, INITVAL_0A, INITVAL_09, INITVAL_08, INITVAL_07, INITVAL_06, INITVAL_05, INITVAL_04, INITVAL_03, INITVAL_02, INITVAL_01, INITVAL_00};
+`ifndef SYNTHESIS  // (a simulation check: `specgen prove` reads the model with SYNTHESIS)
     initial begin
         if (!(DATA_WIDTH_A == 18 || DATA_WIDTH_A == 9) || !(DATA_WIDTH_B == 18 || DATA_WIDTH_B == 9)
                 || !(REGMODE_A == "NOREG" || REGMODE_A == "OUTREG") || !(REGMODE_B == "NOREG" || REGMODE_B == "OUTREG")
@@ -121,6 +122,7 @@ module DP16KD(
             $fatal(1, "%m: DP16KD setting outside the specgen model (widths 18 or 9, REGMODE NOREG or OUTREG, plain clocks)");
         end
     end
+`endif
     // 18-bit word k of the contents, and 9-bit half h
     function [17:0] word(input [9:0] k);
         word = INIT[k[9:4] * 320 + k[3:0] * 20 +: 18];
@@ -138,9 +140,11 @@ module DP16KD(
     wire        cs_a = {CSA2, CSA1, CSA0} == {CSDECODE_A[16], CSDECODE_A[8], CSDECODE_A[0]};
     reg  [17:0] rd_a, out_a;
     always @(posedge CLKA) begin
+`ifndef SYNTHESIS  // (a simulation check: `specgen prove` reads the model with SYNTHESIS)
         if (WEA === 1'b1 && CEA === 1'b1 && cs_a) begin
             $fatal(1, "%m: DP16KD write on port A: the specgen model is read-only (ROMs)");
         end
+`endif
         if (RSTA === 1'b1) rd_a <= 18'd0;
         else if (CEA === 1'b1 && cs_a) rd_a <= DATA_WIDTH_A == 18 ? word(ad_a[13:4]) : {9'd0, half(ad_a[13:3])};
         if (RSTA === 1'b1) out_a <= 18'd0;
@@ -153,9 +157,11 @@ module DP16KD(
     wire        cs_b = {CSB2, CSB1, CSB0} == {CSDECODE_B[16], CSDECODE_B[8], CSDECODE_B[0]};
     reg  [17:0] rd_b, out_b;
     always @(posedge CLKB) begin
+`ifndef SYNTHESIS  // (a simulation check: `specgen prove` reads the model with SYNTHESIS)
         if (WEB === 1'b1 && CEB === 1'b1 && cs_b) begin
             $fatal(1, "%m: DP16KD write on port B: the specgen model is read-only (ROMs)");
         end
+`endif
         if (RSTB === 1'b1) rd_b <= 18'd0;
         else if (CEB === 1'b1 && cs_b) rd_b <= DATA_WIDTH_B == 18 ? word(ad_b[13:4]) : {9'd0, half(ad_b[13:3])};
         if (RSTB === 1'b1) out_b <= 18'd0;

@@ -67,12 +67,14 @@ module MULT18X18D(
     localparam REG_B = REG_INPUTB_CLK == "CLK0";
     localparam REG_P = REG_PIPELINE_CLK == "CLK0";
     localparam REG_O = REG_OUTPUT_CLK == "CLK0";
+`ifndef SYNTHESIS  // (a simulation check: `specgen prove` reads the model with SYNTHESIS)
     initial begin
         if (!(REG_A || REG_INPUTA_CLK == "NONE") || !(REG_B || REG_INPUTB_CLK == "NONE") || !(REG_P || REG_PIPELINE_CLK == "NONE")
                 || !(REG_O || REG_OUTPUT_CLK == "NONE") || RESETMODE != "SYNC" || MULT_BYPASS != "DISABLED") begin
             $fatal(1, "%m: MULT18X18D setting outside the specgen model (registers on CLK0 or NONE, RESETMODE SYNC, MULT_BYPASS DISABLED)");
         end
     end
+`endif
 
     wire [17:0] a = {A17, A16, A15, A14, A13, A12, A11, A10, A9, A8, A7, A6, A5, A4, A3, A2, A1, A0};
     wire [17:0] b = {B17, B16, B15, B14, B13, B12, B11, B10, B9, B8, B7, B6, B5, B4, B3, B2, B1, B0};
@@ -80,9 +82,11 @@ module MULT18X18D(
     reg  [17:0] a_q, b_q;
     reg         sa_q, sb_q;
     always @(posedge CLK0) begin
+`ifndef SYNTHESIS  // (a simulation check: `specgen prove` reads the model with SYNTHESIS)
         if (SOURCEA !== 1'b0 || SOURCEB !== 1'b0) begin
             $fatal(1, "%m: MULT18X18D shift-chain inputs (SOURCEA/SOURCEB) are outside the specgen model");
         end
+`endif
         if (RST0) begin
             a_q <= 18'd0; sa_q <= 1'b0; b_q <= 18'd0; sb_q <= 1'b0;
         end else if (CE0) begin

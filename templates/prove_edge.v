@@ -37,9 +37,24 @@ module {{ name }} (
     wire [63:0]         in_tag = 64'd0;
 {%- endif %}
 
+{%- if handshake %}
+`ifdef SPECGEN_COLOUR
+    // the colour check (`prove` of a static colour): every pixel at cos_g = 1.0 and n = 1, so the
+    // intensity is a constant the model folds and a result shows the colour it was computed with
+    wire [{{ cos_w - 1 }}:0]  cos_in = {{ cos_w }}'d{{ cos_one }};
+    wire [{{ n_w - 1 }}:0]  n_in = {{ n_w }}'d1;
+`else
+    wire [{{ cos_w - 1 }}:0]  cos_in = cos_g;
+    wire [{{ n_w - 1 }}:0]  n_in = n;
+`endif
+{%- else %}
+    wire [{{ cos_w - 1 }}:0]  cos_in = cos_g;
+    wire [{{ n_w - 1 }}:0]  n_in = n;
+{%- endif %}
+
     {{ top }}_prove_ports dut (
         .clk(clk), .rst(rst), .in_valid(in_valid), .out_ready(out_ready), .ks_load(ks_load), .clk_en(clk_en_in),
-        .cos_g(cos_g), .n(n), .ks_r(ks_r), .ks_g(ks_g), .ks_b(ks_b), .in_tag(in_tag),
+        .cos_g(cos_in), .n(n_in), .ks_r(ks_r), .ks_g(ks_g), .ks_b(ks_b), .in_tag(in_tag),
         .in_ready(in_ready), .out_valid(out_valid), .spec_r(spec_r), .spec_g(spec_g), .spec_b(spec_b),
         .intensity(intensity), .done(done), .out_tag(out_tag), .idle(idle));
 
@@ -51,7 +66,7 @@ module {{ name }} (
         .in_valid(in_valid), .in_ready(in_ready), .in_word({% if word_carried %}in_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}),
         .out_valid(out_valid), .out_ready(out_ready), .out_payload({intensity, spec_r, spec_g, spec_b, done}),
         .out_word({% if word_carried %}out_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}), .load(ks_load),
-        .in_pixel({cos_g, n, ks_r, ks_g, ks_b}));
+        .in_pixel({cos_in, n_in, ks_r, ks_g, ks_b}));
 `endif
 {%- endif %}
 

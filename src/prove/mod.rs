@@ -41,6 +41,8 @@ struct EdgeHarness<'a> {
     version: &'a str,
     properties: Vec<&'static str>,
     cos_w: u32,
+    /// 1.0 in cos_g's format (UQ1.F)
+    cos_one: u64,
     n_w: u32,
     b_w: u32,
     i_w: u32,
@@ -298,6 +300,7 @@ pub fn harness(design: &Design) -> String {
         version: crate::names::VERSION,
         properties: properties(design),
         cos_w: cfg.f() + 1,
+        cos_one: 1 << cfg.f(),
         n_w: cfg.n_bits(),
         b_w: cfg.b(),
         i_w: cfg.fi() + 1,
@@ -519,6 +522,24 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             return Ok(Proof { name, properties: PORT_PROPERTIES.to_vec(), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
         }
     };
+    // a static colour: which colour each result was computed with, against the datapath twin
+    // at cos_g = 1.0 (the only value a port rule cannot see without the datapath)
+    if cfg.colour() == crate::config::Colour::Static {
+        let (verdict, _) = against_the_twin(design, tools, port_depth(cfg), true)?;
+        let engine = "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search with ABC bmc3, the unit's own assertions set aside";
+        match verdict {
+            Verdict::Bounded { .. } => {}
+            verdict => {
+                let seconds = t0.elapsed().as_secs_f64();
+                let properties = vec![COLOUR_PROPERTY];
+                return Ok(Proof { name, properties, verdict, seconds, engine: engine.into(), ports: None });
+            }
+        }
+    }
+    let mut ports = ports;
+    if cfg.colour() == crate::config::Colour::Static {
+        ports.properties.push(COLOUR_PROPERTY);
+    }
     let seconds = t0.elapsed().as_secs_f64();
     if !own {
         // the unit does not state what specgen writes: the bounded search at the ports is all

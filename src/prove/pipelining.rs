@@ -181,10 +181,35 @@ pub fn datapath_refused(design: &Design) -> Option<String> {
 /// twin is right is the co-simulation's and `--pipelining`'s (the twin against its depth-0
 /// twin). Its cover, a result compared, must be reached.
 pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
-    let cfg = &design.cfg;
     if let Some(why) = datapath_refused(design) {
         return Err(error::input(format!("prove --datapath: {why}")));
     }
+    let t0 = Instant::now();
+    let depth = tools.depth.unwrap_or_else(|| port_depth(&design.cfg));
+    let twin = datapath_twin_name(design.cfg.top());
+    let engine = format!(
+        "the port checker (from the manifest) with the datapath twin {twin}, a bounded search of {depth} edges from power-up with ABC bmc3, the unit's own assertions set aside"
+    );
+    let (verdict, ports) = against_the_twin(design, tools, depth, false)?;
+    let mut properties = vec![DATAPATH_PROPERTY];
+    if matches!(verdict, Verdict::Failed { .. }) {
+        properties.extend(PORT_PROPERTIES);
+    }
+    Ok(Proof { name: harness_name(design.cfg.top()), properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports })
+}
+
+/// The colour check's property, in words (the default proof of a static colour).
+pub(super) const COLOUR_PROPERTY: &str =
+    "with a static colour: a result delivered for a pixel at cos_g = 1.0 is the one computed with the colour loaded at an enabled edge before it was taken (the datapath twin's)";
+
+/// The search of [`prove_datapath`] in a work directory of its own, to `depth` edges: the
+/// verdict, and the ports' figures when every property holds and the compare is reached. With
+/// `colour_only`, the harness holds every pixel at cos_g = 1.0 and n = 1 (`SPECGEN_COLOUR`): the
+/// intensity folds to a constant in the unit and its twin alike, so what is left to compare is
+/// the colour each result was computed with (a material register loaded at a disabled edge),
+/// cheap at any width.
+pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colour_only: bool) -> Result<(Verdict, Option<Ports>), Error> {
+    let cfg = &design.cfg;
     let top = cfg.top();
     let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
     let w = work.path();
@@ -211,25 +236,20 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
     let tools = &Tools { yosys, abc, ..tools.clone() };
     let name = harness_name(top);
-    let depth = tools.depth.unwrap_or_else(|| port_depth(cfg));
+    let mut defines = vec!["SPECGEN_PORTS".to_string(), "SPECGEN_DATAPATH".to_string()];
+    if colour_only {
+        defines.push("SPECGEN_COLOUR".into());
+    }
     let script = Script {
         bounded: Some(depth),
         induction: Some(depth),
-        defines: vec!["SPECGEN_PORTS".into(), "SPECGEN_DATAPATH".into()],
+        defines,
         ports_only: Some(format!("{top}_port_checker")),
         share: true,
         ..Script::model(&name, &files)
     };
-    let t0 = Instant::now();
-    let engine = format!(
-        "the port checker (from the manifest) with the datapath twin {twin}, a bounded search of {depth} edges from power-up with ABC bmc3, the unit's own assertions set aside"
-    );
-    let mut properties = vec![DATAPATH_PROPERTY];
-    let (verdict, ports) = match search(design, tools, w, script.clone(), depth)? {
-        Searched::Found { frame, vcd } => {
-            properties.extend(PORT_PROPERTIES);
-            (Verdict::Failed { frame, vcd }, None)
-        }
+    Ok(match search(design, tools, w, script.clone(), depth)? {
+        Searched::Found { frame, vcd } => (Verdict::Failed { frame, vcd }, None),
         Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: reached, out_of_time: true, reached }, None),
         Searched::Clear => {
             let mut defines = script.defines.clone();
@@ -245,6 +265,5 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
                 Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: Some(depth), out_of_time: true, reached }, None),
             }
         }
-    };
-    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports })
+    })
 }
