@@ -142,7 +142,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
         ))),
         Verdict::Failed { frame, vcd } => {
             let path = args.trace.clone().unwrap_or_else(|| std::env::temp_dir().join(format!("{}-{}.vcd", proof.name, std::process::id())));
-            let mut msg = format!("{head}a property fails {frame} clock edges into the counterexample ({how})");
+            let mut msg = format!("{head}a property fails {frame} clock edge{} into the counterexample ({how})", if *frame == 1 { "" } else { "s" });
             match specgen::output::write_file(&path, vcd) {
                 Ok(()) => msg.push_str(&format!("; the replay's trace: {}", path.display())),
                 Err(e) => msg.push_str(&format!("; could not write the trace {}: {e}", path.display())),

@@ -387,12 +387,15 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     }
     if let Some(depth) = tools.depth {
         let properties = properties(design);
-        let verdict = match bounded(tools, w, &files, &name, depth)? {
-            Some(true) => Verdict::Bounded { depth },
-            Some(false) => Verdict::Failed { frame: depth, vcd: trace(&tools.yosys, w, design)? },
-            None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
+        // ABC's bmc3 on the AIGER of the same model, as for a handshake unit: it names the
+        // edge that fails (sat's `-seq N` says only that one of the N does)
+        let script = Script { bounded: Some(depth), induction: Some(depth), ignore_unknown: !design.sim_models.is_empty(), ..Script::model(&name, &files) };
+        let verdict = match search(design, tools, w, script, depth)? {
+            Searched::Clear => Verdict::Bounded { depth },
+            Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
+            Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
-        let engine = format!("a bounded search of {depth} edges from power-up with yosys sat");
+        let engine = format!("a bounded search of {depth} edges from power-up with ABC bmc3");
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
     }
     Script::model(&name, &files).write(w, "prove.ys")?;
