@@ -73,6 +73,33 @@ tag=$(grep -o 'tag_line\[[0-9]*:[0-9]*\];' "$work/r/specular_unit.v" | tail -1 |
 hi=${tag#tag_line[}; hi=${hi%%:*}; lo=${tag#*:}; lo=${lo%]}
 fault tag_off specular_unit.v "= $tag;" "= tag_line[$((hi - 12)):$((lo - 12))];"
 fault overfull "$buffer" "in_ready <= over_credits[DEPTH_LOG2];" "in_ready <= over_credits[DEPTH_LOG2] || over_credits == 0;"
+# the outside classes of issue 48, each against the default proof (no --depth): the port
+# checker's verdict, the colour check with a static colour; with DELETE=1 the buffer's own
+# assertions deleted first
+outside() { # unit name file from to
+    local d="$work/o-$2"
+    cp -r "$work/$1" "$d"
+    FROM=$4 TO=$5 python3 - "$d/$3" "$d/$buffer" <<'PY'
+import os, sys
+p, buf = sys.argv[1], sys.argv[2]
+if os.environ.get("DELETE"):
+    s = open(buf).read(); a = s.rfind("`ifdef FORMAL"); b = a + s[a:].find("`endif") + len("`endif")
+    open(buf, "w").write(s[:a] + s[b:])
+s = open(p).read(); a, b = os.environ["FROM"], os.environ["TO"]
+assert s.count(a) == 1, a
+open(p, "w").write(s.replace(a, b))
+PY
+    row "$1 at default widths, outside class \`$2\`, the default proof" $bin prove --rtl "$d" --edited --time-limit "$limit"
+}
+$bin generate --out "$work/axis3" --interface axis --stages 3 --tag-bits 1 --tlast --clock-enable --colour static >/dev/null 2>&1
+outside axis3 colour_at_disabled_edge specular_unit.v "if (ks_load && aclken)" "if (ks_load)"
+outside axis3 input_enable_ignored specular_unit.v "in_valid  = s_axis_tvalid & aclken;" "in_valid  = s_axis_tvalid;"
+outside axis3 output_enable_ignored specular_unit.v "out_ready = m_axis_tready & aclken;" "out_ready = m_axis_tready;"
+outside axis3 tlast_tuser_swapped specular_unit.v "assign {m_axis_tlast, m_axis_tuser} = out_tag;" "assign {m_axis_tuser, m_axis_tlast} = out_tag;"
+read_line="wire                  read = (read_valid ? stored_at_least[2] : stored_at_least[1]) && !queue_full;"
+DELETE=1 outside r never_reads "$buffer" "$read_line" "wire                  read = 1'b0;"
+DELETE=1 outside r pairs_only "$buffer" "$read_line" "wire                  read = stored_at_least[2] && !queue_full;"
+DELETE=1 outside r ignores_in_ready "$buffer" "assign take = in_valid && in_ready;" "assign take = in_valid;"
 {
     echo "# What \`specgen prove\` proves"
     echo
@@ -83,7 +110,9 @@ fault overfull "$buffer" "in_ready <= over_credits[DEPTH_LOG2];" "in_ready <= ov
     echo "is neither (never reported as proved; out of time is the guard, not a verdict); \"bounded\" is a bounded search of the depth"
     echo "stated (\`--datapath\`: every delivered result against the unit's valid twin), not a proof. A ready/axis \"proved\" has also"
     echo "passed the port checker's bounded search (latency + 8 edges) and reached its covers. The faults are the simulation suite's own"
-    echo "(tests/suite/interfaces.rs), applied to a ready unit of 5 stages with a 12-bit tag."
+    echo "(tests/suite/interfaces.rs), applied to a ready unit of 5 stages with a 12-bit tag. The outside classes are broken units"
+    echo "of the kinds the outside set holds, at default widths against the default proof (no --depth; the buffer's own"
+    echo "assertions deleted where the class says so): each must be refuted."
     echo
     echo "| proof | verdict | seconds |"
     echo "|---|---|---|"
