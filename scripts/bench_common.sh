@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 cargo build --release -q
-bin=target/release/specgen
+bin="${CARGO_TARGET_DIR:-target}/release/specgen"   # (a target directory of its own: CARGO_TARGET_DIR)
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 models() { { $bin generate --model '?' 2>&1 || true; } | sed -n 's/.*possible values: \(.*\)\]/\1/p' | tr -d ','; }
 # the models a part can hold, as calibration and benches name their datapaths: lean for
