@@ -287,7 +287,7 @@ fn the_port_checker_refutes_what_the_units_own_assertions_do_not_see() {
 /// The other classes of broken units, at the axis ports (tlast, a tag, a clock enable, a static
 /// colour) and at the ready ports with the buffer's assertions deleted: `tlast` and `tuser`
 /// swapped; the clock enable ignored on the input side (pixels taken twice) or on the output
-/// side (results lost at disabled edges); a buffer that never reads (a deadlock); one that reads only when two results wait
+/// side (results lost at disabled edges); a reset that keeps a result shown; a buffer that never reads (a deadlock); one that reads only when two results wait
 /// (a lone result never delivered); the unbroken axis unit proved with every cover reached.
 /// Outside the suite's budget.
 #[test]
@@ -337,6 +337,11 @@ fn port_checker_cases(more: bool) {
         delete_buffer_assertions(dir);
         edit(dir, "specular_unit_out_buffer.v", READ, "wire                  read = stored_at_least[2] && !queue_full;");
     };
+    // a reset that leaves a result shown (out_valid kept through it)
+    let reset_keeps: Edit = &|dir: &Path| {
+        delete_buffer_assertions(dir);
+        edit(dir, "specular_unit_out_buffer.v", "out_valid      <= 1'b0;", "");
+    };
     let none: Edit = &|_: &Path| {};
     // a static colour loaded at an edge with the clock enable low: no port rule sees it, only
     // the colour check (every pixel at cos_g = 1.0 against the datapath twin) does
@@ -351,6 +356,7 @@ fn port_checker_cases(more: bool) {
             ("axis_ok", &axis, none, false, true),
             ("never_reads", &ready, never_reads, true, false),
             ("pairs_only", &ready, pairs_only, true, false),
+            ("reset_keeps_valid", &ready, reset_keeps, true, false),
         ]
     } else {
         vec![
