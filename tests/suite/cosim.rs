@@ -14,11 +14,29 @@ fn text(o: &Output) -> String {
     format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
 }
 
+/// The deep pipelines (13 stages of lean, valid and ready; blinn's 37): in
+/// `the_deep_configs_pass_under_verilator`, outside the suite's budget (their C++ is the
+/// longest to build; the exhaustive deep tests run there too).
+const DEEP: [usize; 3] = [7, 13, 15];
+
 #[test]
 fn every_config_passes_under_verilator() {
+    let all = configs();
+    let shallow: Vec<_> = all.iter().enumerate().filter(|(i, _)| !DEEP.contains(i)).map(|(_, c)| c.clone()).collect();
+    assert!(DEEP.iter().all(|&i| CONFIGS[i].contains(&"13") || CONFIGS[i].contains(&"37")), "DEEP names the deep configurations");
+    passes_under_verilator(&shallow);
+}
+
+#[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
+fn the_deep_configs_pass_under_verilator() {
+    passes_under_verilator(&DEEP.iter().map(|&i| CONFIGS[i].to_vec()).collect::<Vec<_>>());
+}
+
+fn passes_under_verilator(configs: &[Vec<&str>]) {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    for_each_parallel(&configs(), |i, args| {
+    for_each_parallel(configs, |i, args| {
         // a parent of its own: specgen locks the parent while it swaps an output in
         let dir = generate(&tmp.path().join(format!("p{i}")), &format!("c{i}"), args);
         let o = cosim(&dir, &["--vectors", "100000", "--seed", &i.to_string()]);

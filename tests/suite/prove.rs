@@ -164,6 +164,8 @@ fn the_stream_edge_is_proved_at_two_depths() {
         if name.starts_with("axis") {
             assert!(text(&o).contains("idle is high exactly while no pixel is inside"), "{name}: {}", text(&o));
             assert!(text(&o).contains("a result with tlast delivered") && text(&o).contains("a static colour loaded"), "{name}: {}", text(&o));
+            // the colour check held (issue 48): which colour each result was computed with
+            assert!(text(&o).contains("a result delivered for a pixel at cos_g = 1.0"), "{name}: {}", text(&o));
         }
         // the port checker's verdict, and every cover reached
         assert!(
