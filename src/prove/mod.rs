@@ -464,11 +464,27 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         properties.extend(PORT_PROPERTIES);
         // the bounded search: the unit's assertions and the port checker's, to `depth` edges
         let engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
-        let verdict = match search(design, tools, w, at_ports, depth)? {
+        let mut verdict = match search(design, tools, w, at_ports, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
             Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
             Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
+        let mut engine = engine;
+        if verdict == (Verdict::Bounded { depth }) && cfg.colour() == crate::config::Colour::Static {
+            // the colour check to the same depth (as in the default proof)
+            // (a depth too short to compare a result says nothing of the colour: not listed)
+            match against_the_twin(design, tools, depth, true)? {
+                (Verdict::Bounded { .. }, _) => properties.push(COLOUR_PROPERTY),
+                (Verdict::Unreached { .. }, _) => {}
+                (colour, _) => {
+                    properties.push(COLOUR_PROPERTY);
+                    verdict = colour;
+                    engine = format!(
+                        "the colour check: the port checker with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3"
+                    );
+                }
+            }
+        }
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
     }
     script.write(w, "induction.ys")?;
