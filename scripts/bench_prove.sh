@@ -52,16 +52,25 @@ done
 $bin generate --out "$work/r" --interface ready --stages 5 --tag-bits 12 >/dev/null 2>&1
 row "ready edge, lean, 5 stages, 12-bit tag" $bin prove --rtl "$work/r" --time-limit "$limit"
 buffer=specular_unit_out_buffer.v
-fault() { # name file from to
-    local d="$work/f-$1"
-    cp -r "$work/r" "$d"
-    FROM=$3 TO=$4 python3 - "$d/$2" <<'PY'
+# broken UNIT NAME FILE FROM TO: a copy of $work/UNIT as $work/NAME with FROM replaced by TO in
+# FILE (once); with DELETE=1 the buffer's own assertions deleted first
+broken() {
+    local d="$work/$2"
+    cp -r "$work/$1" "$d"
+    FROM=$4 TO=$5 python3 - "$d/$3" "$d/$buffer" <<'PY'
 import os, sys
-p = sys.argv[1]; s = open(p).read(); a, b = os.environ["FROM"], os.environ["TO"]
+p, buf = sys.argv[1], sys.argv[2]
+if os.environ.get("DELETE"):
+    s = open(buf).read(); a = s.rfind("`ifdef FORMAL"); b = a + s[a:].find("`endif") + len("`endif")
+    open(buf, "w").write(s[:a] + s[b:])
+s = open(p).read(); a, b = os.environ["FROM"], os.environ["TO"]
 assert s.count(a) == 1, a
 open(p, "w").write(s.replace(a, b))
 PY
-    row "ready edge, fault \`$1\`, a bounded search of 24 edges" $bin prove --rtl "$d" --edited --depth 24 --time-limit "$limit"
+}
+fault() { # name file from to
+    broken r "f-$1" "$2" "$3" "$4"
+    row "ready edge, fault \`$1\`, a bounded search of 24 edges" $bin prove --rtl "$work/f-$1" --edited --depth 24 --time-limit "$limit"
 }
 fault dropped "$buffer" "leaving = count != 2'd0 && ready;" "leaving = count != 2'd0;"
 fault unstable "$buffer" "if (held_copy == 2'd0 || out_ready) out[HI:LO] <=" "if (1'b1) out[HI:LO] <="
@@ -74,22 +83,10 @@ hi=${tag#tag_line[}; hi=${hi%%:*}; lo=${tag#*:}; lo=${lo%]}
 fault tag_off specular_unit.v "= $tag;" "= tag_line[$((hi - 12)):$((lo - 12))];"
 fault overfull "$buffer" "in_ready <= over_credits[DEPTH_LOG2];" "in_ready <= over_credits[DEPTH_LOG2] || over_credits == 0;"
 # the outside classes of issue 48, each against the default proof (no --depth): the port
-# checker's verdict, the colour check with a static colour; with DELETE=1 the buffer's own
-# assertions deleted first
+# checker's verdict, the colour check with a static colour
 outside() { # unit name file from to
-    local d="$work/o-$2"
-    cp -r "$work/$1" "$d"
-    FROM=$4 TO=$5 python3 - "$d/$3" "$d/$buffer" <<'PY'
-import os, sys
-p, buf = sys.argv[1], sys.argv[2]
-if os.environ.get("DELETE"):
-    s = open(buf).read(); a = s.rfind("`ifdef FORMAL"); b = a + s[a:].find("`endif") + len("`endif")
-    open(buf, "w").write(s[:a] + s[b:])
-s = open(p).read(); a, b = os.environ["FROM"], os.environ["TO"]
-assert s.count(a) == 1, a
-open(p, "w").write(s.replace(a, b))
-PY
-    row "$1 at default widths, outside class \`$2\`, the default proof" $bin prove --rtl "$d" --edited --time-limit "$limit"
+    broken "$1" "o-$2" "$3" "$4" "$5"
+    row "$1 at default widths, outside class \`$2\`, the default proof" $bin prove --rtl "$work/o-$2" --edited --time-limit "$limit"
 }
 $bin generate --out "$work/axis3" --interface axis --stages 3 --tag-bits 1 --tlast --clock-enable --colour static >/dev/null 2>&1
 outside axis3 colour_at_disabled_edge specular_unit.v "if (ks_load && aclken)" "if (ks_load)"

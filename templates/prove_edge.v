@@ -37,7 +37,6 @@ module {{ name }} (
     wire [63:0]         in_tag = 64'd0;
 {%- endif %}
 
-{%- if handshake %}
 `ifdef SPECGEN_COLOUR
     // the colour check (`prove` of a static colour): every pixel at cos_g = 1.0 and n = 1, so the
     // intensity is a constant the model folds and a result shows the colour it was computed with
@@ -47,10 +46,6 @@ module {{ name }} (
     wire [{{ cos_w - 1 }}:0]  cos_in = cos_g;
     wire [{{ n_w - 1 }}:0]  n_in = n;
 `endif
-{%- else %}
-    wire [{{ cos_w - 1 }}:0]  cos_in = cos_g;
-    wire [{{ n_w - 1 }}:0]  n_in = n;
-{%- endif %}
 
     {{ top }}_prove_ports dut (
         .clk(clk), .rst(rst), .in_valid(in_valid), .out_ready(out_ready), .ks_load(ks_load), .clk_en(clk_en_in),

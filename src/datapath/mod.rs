@@ -295,12 +295,12 @@ impl Piece {
     }
 }
 
-/// Bits `[lo, lo+width)` of the value the pieces (LSB first) make, zero above their top.
 /// Whether `pieces` are all constant zeros (an addend that adds nothing).
 pub(crate) fn all_zero(pieces: &[Piece]) -> bool {
     pieces.iter().all(|p| matches!(p, Piece::Const { value: 0, .. }))
 }
 
+/// Bits `[lo, lo+width)` of the value the pieces (LSB first) make, zero above their top.
 pub(crate) fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
     let mut out = Vec::new();
     let mut base = 0;

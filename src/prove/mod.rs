@@ -463,25 +463,21 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         let at_ports = Script { bounded: Some(depth), files: &port_files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() };
         properties.extend(PORT_PROPERTIES);
         // the bounded search: the unit's assertions and the port checker's, to `depth` edges
-        let engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
+        let mut engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
         let mut verdict = match search(design, tools, w, at_ports, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
             Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
             Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
-        let mut engine = engine;
-        if verdict == (Verdict::Bounded { depth }) && cfg.colour() == crate::config::Colour::Static {
-            // the colour check to the same depth (as in the default proof)
-            // (a depth too short to compare a result says nothing of the colour: not listed)
-            match against_the_twin(design, tools, depth, true)? {
-                (Verdict::Bounded { .. }, _) => properties.push(COLOUR_PROPERTY),
-                (Verdict::Unreached { .. }, _) => {}
-                (colour, _) => {
+        if verdict == (Verdict::Bounded { depth }) {
+            // the colour check to the same depth (as in the default proof); a depth too short
+            // to compare a result says nothing of the colour: not listed
+            match colour_check(design, tools, depth)? {
+                None | Some((Verdict::Unreached { .. }, _)) => {}
+                Some((Verdict::Bounded { .. }, _)) => properties.push(COLOUR_PROPERTY),
+                Some((colour, how)) => {
                     properties.push(COLOUR_PROPERTY);
-                    verdict = colour;
-                    engine = format!(
-                        "the colour check: the port checker with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3"
-                    );
+                    (verdict, engine) = (colour, how);
                 }
             }
         }
@@ -541,23 +537,14 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             return Ok(Proof { name, properties: PORT_PROPERTIES.to_vec(), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
         }
     };
-    // a static colour: which colour each result was computed with, against the datapath twin
-    // at cos_g = 1.0 (the only value a port rule cannot see without the datapath)
-    if cfg.colour() == crate::config::Colour::Static {
-        let (verdict, _) = against_the_twin(design, tools, port_depth(cfg), true)?;
-        let engine = "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search with ABC bmc3, the unit's own assertions set aside";
-        match verdict {
-            Verdict::Bounded { .. } => {}
-            verdict => {
-                let seconds = t0.elapsed().as_secs_f64();
-                let properties = vec![COLOUR_PROPERTY];
-                return Ok(Proof { name, properties, verdict, seconds, engine: engine.into(), ports: None });
-            }
-        }
-    }
     let mut ports = ports;
-    if cfg.colour() == crate::config::Colour::Static {
-        ports.properties.push(COLOUR_PROPERTY);
+    match colour_check(design, tools, port_depth(cfg))? {
+        None => {}
+        Some((Verdict::Bounded { .. }, _)) => ports.properties.push(COLOUR_PROPERTY),
+        Some((verdict, engine)) => {
+            let seconds = t0.elapsed().as_secs_f64();
+            return Ok(Proof { name, properties: vec![COLOUR_PROPERTY], verdict, seconds, engine, ports: None });
+        }
     }
     let seconds = t0.elapsed().as_secs_f64();
     if !own {
@@ -571,6 +558,20 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         return Ok(Proof { name, properties: Vec::new(), verdict: Verdict::Bounded { depth }, seconds, engine, ports: Some(ports) });
     }
     Ok(Proof { name, properties, verdict, seconds, engine, ports: Some(ports) })
+}
+
+/// A static colour's colour check to `depth` edges (none for another colour): which colour each
+/// result was computed with, against the datapath twin at cos_g = 1.0 (the only value a port
+/// rule cannot see without the datapath); its verdict, and how it was reached in words.
+fn colour_check(design: &Design, tools: &Tools, depth: u32) -> Result<Option<(Verdict, String)>, Error> {
+    if design.cfg.colour() != crate::config::Colour::Static {
+        return Ok(None);
+    }
+    let (verdict, _) = against_the_twin(design, tools, depth, true)?;
+    let engine = format!(
+        "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside"
+    );
+    Ok(Some((verdict, engine)))
 }
 
 /// `assert(` statements in Verilog text (outside comments).
