@@ -169,7 +169,7 @@ fn hard_steps(dp: &Datapath) -> Vec<bool> {
     (0..dp.steps.len())
         .map(|k| {
             let s = &dp.steps[k];
-            !s.soft_product && (!s.dsps.is_empty() || s.wires.iter().any(|w| w.product.is_some()) || dp.reads.iter().any(|r| r.step == k + 1))
+            !s.soft_product && (!s.dsps.is_empty() || s.wires.iter().any(|w| w.product().is_some()) || dp.reads.iter().any(|r| r.step == k + 1))
         })
         .collect()
 }

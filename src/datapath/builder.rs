@@ -125,7 +125,7 @@ impl Builder {
         self.product_delay(wa, wb, width, 0.0);
         let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
         let (ea, eb) = self.seen_from_step_before(&inputs, &format!("the DSP of {name}"), |s| {
-            (s.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)), s.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)))
+            (s.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)).text, s.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)).text)
         });
         self.define(name, width, self.steps.len(), true);
         self.steps.last_mut().expect("a step").dsps.push(Dsp { name: name.into(), width, a: ea, b: eb, comment: comment.into() });
@@ -171,7 +171,7 @@ impl Builder {
             // operand takes no inverter, which would be a LUT level before it
             let e = self.pieces(&pb);
             let (aname, aw) = (format!("{name}_addend"), width - z);
-            self.wire(&aname, aw, e, &format!("bits [{}:{z}] of the addend of {name}", width - 1));
+            self.wire(&aname, aw, Kind::Logic, e, &format!("bits [{}:{z}] of the addend of {name}", width - 1));
             pb = vec![Piece::sig(&aname, 0, aw)];
         }
         let pa = [Piece::sig(&product, z, pw - z)];
@@ -185,7 +185,7 @@ impl Builder {
         }
         if z > 0 {
             let (h, l) = (self.r(&hi), self.bits(&product, z - 1, 0));
-            self.wire(name, width, format!("{{{h}, {l}}}"), comment);
+            self.wire(name, width, Kind::Select, ex!("{{{}, {}}}", h, l), comment);
         }
         self.sig(name)
     }
@@ -239,7 +239,7 @@ impl Builder {
     }
 
     /// Bits `[hi:lo]` of a signal (the bare name when that is all of it).
-    pub fn bits(&mut self, name: &(impl AsRef<str> + ?Sized), hi: u32, lo: u32) -> String {
+    pub fn bits(&mut self, name: &(impl AsRef<str> + ?Sized), hi: u32, lo: u32) -> Expr {
         let name = name.as_ref();
         let cur = self.cur();
         let s = self.signal(name);
@@ -248,15 +248,16 @@ impl Builder {
         let whole = lo == 0 && hi + 1 == s.width;
         let v = self.version(name);
         *self.read.entry(v.clone()).or_default() |= mask(hi + 1) & !mask(lo);
-        match (whole, hi == lo) {
-            (true, _) => v,
+        let text = match (whole, hi == lo) {
+            (true, _) => v.clone(),
             (false, true) => format!("{v}[{lo}]"),
             (false, false) => format!("{v}[{hi}:{lo}]"),
-        }
+        };
+        Expr::read(v, text)
     }
 
     /// All of a signal.
-    pub fn r(&mut self, name: &(impl AsRef<str> + ?Sized)) -> String {
+    pub fn r(&mut self, name: &(impl AsRef<str> + ?Sized)) -> Expr {
         let name = name.as_ref();
         let w = self.signal(name).width;
         self.bits(name, w - 1, 0)
@@ -264,13 +265,13 @@ impl Builder {
 
     /// Bits `[lo, lo+width)` of a signal as an operand of exactly `out` bits: cut to its low
     /// `out` bits (enough for a result taken modulo 2^out) or zero-extended.
-    pub fn operand(&mut self, name: &(impl AsRef<str> + ?Sized), lo: u32, width: u32, out: u32) -> String {
+    pub fn operand(&mut self, name: &(impl AsRef<str> + ?Sized), lo: u32, width: u32, out: u32) -> Expr {
         let name = name.as_ref();
         self.pieces(&sub_pieces(&[Piece::sig(name, lo, width)], 0, out))
     }
 
     /// All of `name` zero-extended to `to` bits.
-    pub(crate) fn zext(&mut self, name: &(impl AsRef<str> + ?Sized), to: u32) -> String {
+    pub(crate) fn zext(&mut self, name: &(impl AsRef<str> + ?Sized), to: u32) -> Expr {
         let name = name.as_ref();
         let w = self.signal(name).width;
         assert!(to >= w, "zext {name} from {w} to {to}");
@@ -282,47 +283,47 @@ impl Builder {
     /// synchronous set/reset (iCE40 SB_DFFSR/SS), and a set/reset driven by logic costs
     /// placement (the 8 flip-flops of a tile share one) and ~3.5 ns of route into the pin,
     /// or a global buffer ~6 ns away when it drives more than 15 flip-flops.
-    pub fn select(cond: &str, a: &str, b: &str, width: u32) -> String {
+    pub fn select(cond: &Expr, a: &Expr, b: &Expr, width: u32) -> Expr {
         // one side a line
-        format!("({{{width}{{{cond}}}}} & {a})\n    | (~{{{width}{{{cond}}}}} & {b})")
+        ex!("({{{}{{{}}}}} & {})\n    | (~{{{}{{{}}}}} & {})", width, cond, a, width, cond, b)
     }
 
     /// `cond ? value : other` for a constant `value` of `width` bits ([`Builder::select`]).
-    pub(crate) fn select_const(cond: &str, value: u128, width: u32, other: &str) -> String {
-        Builder::select(cond, &lit(width, value), other, width)
+    pub(crate) fn select_const(cond: &Expr, value: u128, width: u32, other: &Expr) -> Expr {
+        Builder::select(cond, &Expr::constant(lit(width, value)), other, width)
     }
 
     /// `cond ? a : 0` over `width` bits as an AND ([`Builder::select`]).
-    pub(crate) fn gate(cond: &str, a: &str, width: u32) -> String {
-        format!("({{{width}{{{cond}}}}} & {a})")
+    pub(crate) fn gate(cond: &Expr, a: &Expr, width: u32) -> Expr {
+        ex!("({{{}{{{}}}}} & {})", width, cond, a)
     }
 
     /// The Verilog for a list of pieces (LSB first), MSB first in a concatenation.
-    pub(crate) fn pieces(&mut self, pieces: &[Piece]) -> String {
-        let parts: Vec<String> = pieces
+    pub(crate) fn pieces(&mut self, pieces: &[Piece]) -> Expr {
+        let parts: Vec<Expr> = pieces
             .iter()
             .rev()
             .map(|p| match p {
                 Piece::Sig { name, lo, width, invert } => {
                     let b = self.bits(name, lo + width - 1, *lo);
                     if *invert {
-                        format!("~{b}")
+                        ex!("~{}", b)
                     } else {
                         b
                     }
                 }
-                Piece::Const { value, width } => lit(*width, *value),
+                Piece::Const { value, width } => Expr::constant(lit(*width, *value)),
             })
             .collect();
         match parts.len() {
             1 => parts.into_iter().next().unwrap(),
-            _ => format!("{{{}}}", parts.join(", ")),
+            _ => ex!("{{{}}}", Expr::join(&parts, ", ")),
         }
     }
 
     /// The terms of `a·r·2^shift` mod 2^out: `a` shifted to each bit `k` of `r` (by `k + shift`)
     /// where that bit is set, for a sum with more addends (constants, a table's value).
-    pub(crate) fn shift_add_terms(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32) -> Vec<String> {
+    pub(crate) fn shift_add_terms(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32) -> Vec<Expr> {
         let (Piece::Sig { name: rn, lo: rlo, width: rw, .. }, Piece::Sig { name: an, lo: alo, width: aw, .. }) = (r, a) else {
             panic!("shift_add takes signal pieces")
         };
@@ -331,36 +332,31 @@ impl Builder {
             let bit = self.bits(rn, rlo + k, rlo + k);
             let s = k + shift;
             let av = self.operand(an, *alo, *aw, out - s);
-            let shifted = if s == 0 { av } else { format!("{{{av}, {}}}", lit(s, 0)) };
+            let shifted = if s == 0 { av } else { ex!("{{{}, {}}}", av, lit(s, 0)) };
             terms.push(Builder::gate(&bit, &shifted, out));
         }
         terms
     }
 
     /// ` + b` for an addend (`ext` applied), or nothing when it is constant zero.
-    pub(super) fn addend(&mut self, pieces: &[Piece], ext: impl Fn(String) -> String) -> String {
+    pub(super) fn addend(&mut self, pieces: &[Piece], ext: impl Fn(Expr) -> Expr) -> Expr {
         if all_zero(pieces) {
-            String::new()
+            Expr::default()
         } else {
             let e = self.pieces(pieces);
-            format!(" + {}", ext(e))
+            ex!(" + {}", ext(e))
         }
     }
 
-    /// Defines a wire of the current step.
-    pub fn wire(&mut self, name: &str, width: u32, expr: String, comment: &str) -> Sig {
-        debug_assert!(!expr.contains(" * "), "datapath: {name} is a product: make it with Builder::mul");
-        self.wire_of(name, width, expr, comment, None)
-    }
-
-    /// [`Builder::wire`], typed: `product` the operands' significant bits of a hard product.
-    pub(super) fn wire_of(&mut self, name: &str, width: u32, expr: String, comment: &str, product: Option<(u32, u32)>) -> Sig {
+    /// Defines a wire of the current step computing `expr`, of kind `kind` (a product is made
+    /// by [`Builder::mul`], nowhere else).
+    pub fn wire(&mut self, name: &str, width: u32, kind: Kind, expr: Expr, comment: &str) -> Sig {
         let cur = self.cur();
-        if product.is_some() {
+        if let Kind::Product(..) = kind {
             self.products.push(name.to_string());
         }
         self.define(name, width, cur, false);
-        self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, expr, comment: comment.into(), product });
+        self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, kind, expr, comment: comment.into() });
         Sig { name: name.into(), width }
     }
 
@@ -403,7 +399,7 @@ impl Builder {
     pub(crate) fn colour_products(&mut self, src: &str, lo: u32, wc: u32, what: &str) {
         if !self.family().instantiated_blocks() {
             let cs = self.bits(src, lo + wc, lo);
-            self.wire("color_power", wc + 1, cs, &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"));
+            self.wire("color_power", wc + 1, Kind::Select, cs, &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"));
             self.colour_sums("color_power", wc, what, 0.0);
             return;
         }
@@ -441,7 +437,7 @@ impl Builder {
         let bb = self.colour_bits();
         for ch in CHANNELS {
             let e = self.bits(&format!("color_sum_{ch}"), wc + bb - 1, wc);
-            self.wire(&format!("spec_{ch}"), bb, e, &format!("UNORM{bb}: {what}*ks_{ch} rounded half up"));
+            self.wire(&format!("spec_{ch}"), bb, Kind::Select, e, &format!("UNORM{bb}: {what}*ks_{ch} rounded half up"));
         }
     }
 
@@ -458,8 +454,8 @@ impl Builder {
     pub(crate) fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
         let v = self.bits(sig, lo + r - 1, lo);
         // one entry a line; v = 0 squares to 0 and adds nothing
-        let entries: Vec<String> = (1..1u128 << r).map(|x| Builder::gate(&format!("{v} == {}", lit(r, x)), &lit(2 * r, x * x), 2 * r)).collect();
-        self.wire(name, 2 * r, entries.join("\n    | "), comment);
+        let entries: Vec<Expr> = (1..1u128 << r).map(|x| Builder::gate(&ex!("{} == {}", v, lit(r, x)), &Expr::constant(lit(2 * r, x * x)), 2 * r)).collect();
+        self.wire(name, 2 * r, Kind::Table, Expr::join(&entries, "\n    | "), comment);
         // a function of more inputs than a LUT has: two levels
         self.delay(if r > LUT_INPUTS { 2.0 * LUT_DELAY } else { LUT_DELAY });
     }
@@ -477,7 +473,7 @@ impl Builder {
         let cur = self.cur();
         self.define(signal, self.tables[t].width, cur, false);
         let position = self.steps.last().expect("a step").wires.len();
-        self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a, block: false, position });
+        self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a.text, block: false, position });
     }
 
     /// [`Builder::rom_read`], on ECP5 block RAM with its registers when the table has at most
@@ -498,7 +494,7 @@ impl Builder {
         let k = self.steps.len();
         self.define(signal, self.tables[t].width, k, true);
         let position = self.steps.last().expect("a step").wires.len();
-        self.reads.push(RomRead { step: k, signal: signal.into(), table: t, addr: a, block: true, position });
+        self.reads.push(RomRead { step: k, signal: signal.into(), table: t, addr: a.text, block: true, position });
     }
 
     /// Closes the datapath: `outputs` are read after the last step. Adds an `unused_*` wire

@@ -51,17 +51,24 @@ pub struct Dsp {
 pub struct Wire {
     pub(crate) name: String,
     pub(crate) width: u32,
-    pub(crate) expr: String,
+    /// what it computes ([`Kind`]), typed when the builder made it
+    pub(crate) kind: Kind,
+    pub(crate) expr: Expr,
     pub(crate) comment: String,
-    /// a product the family's synthesis maps (`a * b`, perhaps `+ addend`): its operands'
-    /// significant bits ([`Builder::mul`]); a product in the fabric is not one
-    pub(crate) product: Option<(u32, u32)>,
 }
 
 impl Wire {
     /// Whether the wire only selects and concatenates bits (and constants): no logic, no delay.
     pub(crate) fn is_plain(&self) -> bool {
-        self.expr.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '".contains(c))
+        self.kind == Kind::Select
+    }
+
+    /// A product the family's synthesis maps: its operands' significant bits.
+    pub(crate) fn product(&self) -> Option<(u32, u32)> {
+        match self.kind {
+            Kind::Product(a, b) => Some((a, b)),
+            _ => None,
+        }
     }
 }
 
@@ -148,23 +155,22 @@ impl Datapath {
     ///   and the logic before it, with the long route into the DSP tile, becomes the path
     ///   (fitted at 60 stages: 88 MHz; kept in the fabric: 100).
     pub(crate) fn read_by_block(&self, name: &str, k: usize) -> bool {
-        let tokens = |e: &str| e.split(|c: char| !(c.is_alphanumeric() || c == '_')).map(str::to_string).collect::<Vec<_>>();
         let mut aliases = vec![format!("{name}_c{k}")];
         for s in &self.steps {
             for w in &s.wires {
-                if w.is_plain() && tokens(&w.expr).iter().any(|t| aliases.contains(t)) {
+                if w.is_plain() && w.expr.reads.iter().any(|r| aliases.contains(r)) {
                     aliases.push(format!("{}_s{}", w.name, s.index));
                 }
             }
         }
-        let reads = |w: &Wire| w.product.is_some() && tokens(&w.expr).iter().any(|t| aliases.contains(t));
+        let reads = |w: &Wire| w.product().is_some() && w.expr.reads.iter().any(|r| aliases.contains(r));
         self.steps.iter().flat_map(|s| &s.wires).any(reads)
     }
 
     /// The products the family's synthesis maps (a `*`, or an instantiated block): those the
     /// budget leaves out of the fabric, small ones (LUTs by the tool's own rule) included.
     pub fn mapped_products(&self) -> usize {
-        self.steps.iter().map(|s| s.dsps.len() + s.wires.iter().filter(|w| w.product.is_some()).count()).sum()
+        self.steps.iter().map(|s| s.dsps.len() + s.wires.iter().filter(|w| w.product().is_some()).count()).sum()
     }
 
     /// The products `--dsp-budget` put in the fabric, by name.
@@ -321,6 +327,14 @@ pub(crate) fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
     out
 }
 
+/// The kind of a wire that only writes `pieces`: a select, or logic when one is complemented.
+pub(crate) fn pieces_kind(pieces: &[Piece]) -> Kind {
+    match pieces.iter().any(|p| matches!(p, Piece::Sig { invert: true, .. })) {
+        true => Kind::Logic,
+        false => Kind::Select,
+    }
+}
+
 /// Whether bit `bit` of `pieces` (LSB first) is a constant 0.
 fn zero_bit(pieces: &[Piece], bit: u32) -> bool {
     let mut base = 0;
@@ -363,6 +377,8 @@ pub(crate) struct Waiting {
 mod builder;
 mod delay;
 mod delay_line;
+pub(crate) mod expr;
+pub(crate) use expr::{ex, Expr, Kind};
 mod products;
 pub(crate) use products::MulItem;
 mod sums;

@@ -60,10 +60,10 @@ impl Builder {
                 self.product_delay(it.a.1, it.b.1, width, after);
                 let (ea, eb) = (self.pieces(&sub_pieces(it.a.0, 0, width)), self.pieces(&sub_pieces(it.b.0, 0, width)));
                 let plus = match it.addend.is_empty() {
-                    true => String::new(),
-                    false => format!(" + {}", self.pieces(&sub_pieces(&it.addend, 0, width))),
+                    true => Expr::default(),
+                    false => ex!(" + {}", self.pieces(&sub_pieces(&it.addend, 0, width))),
                 };
-                self.wire_of(&it.name, width, format!("{ea} * {eb}{plus}"), &it.comment, Some((it.a.1, it.b.1)))
+                self.wire(&it.name, width, Kind::Product(it.a.1, it.b.1), ex!("{} * {}{}", ea, eb, plus), &it.comment)
             })
             .collect()
     }
@@ -135,7 +135,7 @@ impl Builder {
             [one @ Piece::Sig { invert: false, .. }] => one.clone(),
             _ => {
                 let e = self.pieces(&p);
-                self.wire(name, bits, e, "an operand of the product below");
+                self.wire(name, bits, pieces_kind(&p), e, "an operand of the product below");
                 Piece::sig(name, 0, bits)
             }
         }

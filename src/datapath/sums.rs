@@ -10,7 +10,8 @@ impl Builder {
         let ea = self.pieces(&sub_pieces(a, 0, width));
         let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
         let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
-        self.wire(name, width, format!("{ea}{eb}{plus}"), comment)
+        let kind = if eb.is_empty() && !cin { pieces_kind(a) } else { Kind::Sum };
+        self.wire(name, width, kind, ex!("{}{}{}", ea, eb, plus), comment)
     }
 
     /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added
@@ -27,7 +28,8 @@ impl Builder {
             let ea = self.pieces(&sub_pieces(a, 0, width));
             let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
             let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
-            self.wire(name, width, format!("{ea}{eb}{plus}"), comment);
+            let kind = if eb.is_empty() && !cin { pieces_kind(a) } else { Kind::Sum };
+            self.wire(name, width, kind, ex!("{}{}{}", ea, eb, plus), comment);
         } else {
             for (i, &(lo, w)) in parts.iter().enumerate() {
                 let top = i + 1 == n;
@@ -51,30 +53,30 @@ impl Builder {
                 // folds to the same) is the chain's CO, which leaves an iCE40 chain through an
                 // extra LUT placed apart from the flip-flop: 2-3 ns of routing more.
                 // [`Builder::carry_out`] reads it back.
-                let ext_a = |e: String| if top { e } else { format!("{{1'b1, {e}}}") };
-                let ext_b = |e: String| if top { e } else { format!("{{1'b0, {e}}}") };
+                let ext_a = |e: Expr| if top { e } else { ex!("{{1'b1, {}}}", e) };
+                let ext_b = |e: Expr| if top { e } else { ex!("{{1'b0, {}}}", e) };
                 // carry-in 1 as a 1 + 1 in an extra low bit: one adder that no synthesis tool
                 // can share with the carry-in-0 sum (a shared "+ 1" would chain two adders)
-                let ext1_a = |e: String| if top { format!("{{{e}, 1'b1}}") } else { format!("{{1'b1, {e}, 1'b1}}") };
-                let ext1_b = |e: String| if top { format!("{{{e}, 1'b1}}") } else { format!("{{1'b0, {e}, 1'b1}}") };
+                let ext1_a = |e: Expr| if top { ex!("{{{}, 1'b1}}", e) } else { ex!("{{1'b1, {}, 1'b1}}", e) };
+                let ext1_b = |e: Expr| if top { ex!("{{{}, 1'b1}}", e) } else { ex!("{{1'b0, {}, 1'b1}}", e) };
                 let ea = self.pieces(&pa);
                 let what = if top { format!("bits [{}:{lo}]", lo + w - 1) } else { format!("bits [{}:{lo}] and their carry (complemented)", lo + w - 1) };
                 let sum0 = {
                     let eb = self.addend(&pb, ext_b);
-                    format!("{}{eb}", ext_a(ea.clone()))
+                    (if eb.is_empty() { pieces_kind(&pa) } else { Kind::Sum }, ex!("{}{}", ext_a(ea.clone()), eb))
                 };
                 let sum1 = {
                     let eb = self.addend(&pb, ext1_b);
-                    let eb = if eb.is_empty() { format!(" + {}", lit(ww + 1, 1)) } else { eb };
-                    format!("{}{eb}", ext1_a(ea))
+                    let eb = if eb.is_empty() { Expr::constant(format!(" + {}", lit(ww + 1, 1))) } else { eb };
+                    ex!("{}{}", ext1_a(ea), eb)
                 };
                 if i == 0 && cin {
-                    self.wire(&format!("{name}_part0"), ww + 1, sum1, &format!("{what} above bit 0, carry-in 1"));
+                    self.wire(&format!("{name}_part0"), ww + 1, Kind::Sum, sum1, &format!("{what} above bit 0, carry-in 1"));
                 } else if i == 0 {
-                    self.wire(&format!("{name}_part0"), ww, sum0, &format!("{what}, carry-in 0"));
+                    self.wire(&format!("{name}_part0"), ww, sum0.0, sum0.1, &format!("{what}, carry-in 0"));
                 } else {
-                    self.wire(&format!("{name}_part{i}"), ww, sum0, &format!("{what}, carry-in 0"));
-                    self.wire(&format!("{name}_part{i}_plus1"), ww + 1, sum1, &format!("{what} above bit 0, carry-in 1 (carry-select)"));
+                    self.wire(&format!("{name}_part{i}"), ww, sum0.0, sum0.1, &format!("{what}, carry-in 0"));
+                    self.wire(&format!("{name}_part{i}_plus1"), ww + 1, Kind::Sum, sum1, &format!("{what} above bit 0, carry-in 1 (carry-select)"));
                 }
             }
         }
@@ -93,12 +95,12 @@ impl Builder {
     /// bit and the rest; clear: that bit or the rest; none left set: true): a few LUTs that
     /// synthesis maps as logic, where `>=` becomes a carry chain whose carry-out leaves it
     /// through an extra LUT placed apart (iCE40).
-    pub(crate) fn at_least(&mut self, sig: &str, hi: u32, lo: u32, c: u128) -> String {
+    pub(crate) fn at_least(&mut self, sig: &str, hi: u32, lo: u32, c: u128) -> Expr {
         let width = hi - lo + 1;
         if c == 0 {
-            return "1'b1".into();
+            return Expr::constant("1'b1");
         }
-        let mut expr = String::new();
+        let mut expr = Expr::default();
         // x[i:0] >= c[i:0], from the lowest set bit of c up (below it, c's bits are 0: true)
         let low = c.trailing_zeros();
         for i in low..width {
@@ -106,17 +108,17 @@ impl Builder {
             expr = if i == low {
                 bit
             } else if (c >> i) & 1 == 1 {
-                format!("{bit} & ({expr})")
+                ex!("{} & ({})", bit, expr)
             } else {
-                format!("{bit} | ({expr})")
+                ex!("{} | ({})", bit, expr)
             };
         }
         expr
     }
 
     /// The carry out of a chunk of [`Builder::add_start`]: its bit `bit`, kept complemented.
-    pub(super) fn carry_out(&mut self, part: &str, bit: u32) -> String {
-        format!("~{}", self.bits(part, bit, bit))
+    pub(super) fn carry_out(&mut self, part: &str, bit: u32) -> Expr {
+        ex!("~{}", self.bits(part, bit, bit))
     }
 
     /// Second step of a carry-select add: the carry into each chunk from the third on
@@ -144,12 +146,12 @@ impl Builder {
             let cname = format!("{}_carry{}", p.name, i + 1);
             let expr = if p.no_carry_out[i] {
                 // an AND, not a ?: of 0 ([`Builder::select`])
-                format!("{carry} & {ca}")
+                ex!("{} & {}", carry, ca)
             } else {
                 let cb = self.carry_out(&format!("{}_part{i}", p.name), w);
-                format!("{carry} ? {ca} : {cb}")
+                ex!("{} ? {} : {}", carry, ca, cb)
             };
-            self.wire(&cname, 1, expr, &format!("carry into bit {}", p.chunks[i + 1].0));
+            self.wire(&cname, 1, Kind::Sum, expr, &format!("carry into bit {}", p.chunks[i + 1].0));
             carry = self.r(&cname);
         }
     }
@@ -162,8 +164,8 @@ impl Builder {
         let mut out = Vec::new();
         for (k, t) in terms.into_iter().enumerate() {
             let pp = format!("{name}_pp{k}");
-            let (e, what) = if invert { (format!("~{t}"), "complemented") } else { (t, "") };
-            self.wire(&pp, width, e, &format!("partial product {k}{}", if invert { format!(", {what}") } else { String::new() }));
+            let (e, what) = if invert { (ex!("~{}", t), "complemented") } else { (t, "") };
+            self.wire(&pp, width, Kind::Logic, e, &format!("partial product {k}{}", if invert { format!(", {what}") } else { String::new() }));
             out.push(vec![Piece::sig(&pp, 0, width)]);
         }
         self.delay(LUT_DELAY);
@@ -212,14 +214,15 @@ impl Builder {
                         next.extend(group);
                         break;
                     }
-                    let e: Vec<String> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
+                    let e: Vec<Expr> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
                     let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
                     // one operand (or pair) a line
-                    self.wire(&sn, width, format!("{}\n    ^ {}\n    ^ {}", e[0], e[1], e[2]), &format!("carry-save layer {layer}: the sum bits"));
+                    self.wire(&sn, width, Kind::Sum, ex!("{}\n    ^ {}\n    ^ {}", &e[0], &e[1], &e[2]), &format!("carry-save layer {layer}: the sum bits"));
                     self.wire(
                         &cn,
                         width,
-                        format!("({0} & {1})\n    | ({0} & {2})\n    | ({1} & {2})", e[0], e[1], e[2]),
+                        Kind::Sum,
+                        ex!("({} & {})\n    | ({} & {})\n    | ({} & {})", &e[0], &e[1], &e[0], &e[2], &e[1], &e[2]),
                         &format!("carry-save layer {layer}: the carries (worth twice)"),
                     );
                     next.push(vec![Piece::sig(&sn, 0, width)]);
@@ -307,24 +310,24 @@ impl Builder {
             let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
             let (a, b) = if p.top_inverted && i + 1 == p.chunks.len() {
                 // the carry-out above the top chunk's sum, complemented back
-                let (na, nb) = (format!("~{}", self.bits(&inc, w, w)), format!("~{}", self.bits(&plain, w - 1, w - 1)));
+                let (na, nb) = (ex!("~{}", self.bits(&inc, w, w)), ex!("~{}", self.bits(&plain, w - 1, w - 1)));
                 if w == 1 {
                     (na, nb)
                 } else {
-                    (format!("{{{na}, {}}}", self.bits(&inc, w - 1, 1)), format!("{{{nb}, {}}}", self.bits(&plain, w - 2, 0)))
+                    (ex!("{{{}, {}}}", na, self.bits(&inc, w - 1, 1)), ex!("{{{}, {}}}", nb, self.bits(&plain, w - 2, 0)))
                 }
             } else {
                 (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0))
             };
             // each chunk's pick on its own line; the sum is then a plain concatenation
             let chunk = format!("{}_chunk{i}", p.name);
-            self.wire(&chunk, w, format!("{carry} ? {a} : {b}"), &format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1));
+            self.wire(&chunk, w, Kind::Sum, ex!("{} ? {} : {}", carry, a, b), &format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1));
             words.push(self.r(&chunk));
         }
         words.reverse();
         let comment = p.comment.clone();
         // many chunks: one a line
         let sep = if words.len() > 4 { ",\n    " } else { ", " };
-        self.wire(&p.name, p.width, format!("{{{}}}", words.join(sep)), &comment)
+        self.wire(&p.name, p.width, Kind::Select, ex!("{{{}}}", Expr::join(&words, sep)), &comment)
     }
 }

@@ -18,7 +18,8 @@ fn chunks_cover_the_width_in_balanced_pieces() {
 /// on the ECP5 always the product, then one carry chain.
 #[test]
 fn multiply_add_uses_the_post_adder_only_where_the_tool_takes_it() {
-    let expr = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).map(|w| w.expr.clone());
+    let wire = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).cloned();
+    let expr = |b: &Builder, name: &str| wire(b, name).map(|w| w.expr.text);
     let (a, r) = ([Piece::sig("a", 0, 11)], [Piece::sig("r", 0, 7)]);
     let inputs = [("a", 11), ("r", 7), ("g", 20)];
     // 18 bits from 11 x 7: inside the block
@@ -27,6 +28,7 @@ fn multiply_add_uses_the_post_adder_only_where_the_tool_takes_it() {
         b.step("t");
         b.multiply_add("s", &a, &r, &[Piece::sig("g", 0, 18)], 18, "t", "");
         assert_eq!(b.steps.len(), 1, "{target:?}");
+        assert_eq!(wire(&b, "s").unwrap().kind, Kind::Product(11, 7), "{target:?}");
         assert!(expr(&b, "s").unwrap().contains(" * ") && expr(&b, "s").unwrap().contains(" + "), "{target:?}");
     }
     // 28 bits (the entry above 7 zero bits): in the generic RTL still one expression ...
@@ -42,6 +44,7 @@ fn multiply_add_uses_the_post_adder_only_where_the_tool_takes_it() {
     b.multiply_add("s", &a, &r, &addend, 28, "t", "");
     assert_eq!(expr(&b, "s_prod").unwrap(), "{7'h0, a} * {11'h0, r}");
     assert_eq!(expr(&b, "s_addend").unwrap(), "{1'h0, ~g}");
+    assert_eq!(wire(&b, "s_addend").unwrap().expr.reads, ["g"]);
     assert!(b.steps.len() >= 3, "chunk sums and their select after the product");
     assert!(expr(&b, "s_hi_part1_plus1").is_some());
     assert!(expr(&b, "s").unwrap().ends_with("s_prod_s1[6:0]}"), "{:?}", expr(&b, "s"));
@@ -61,11 +64,11 @@ fn a_register_read_by_a_block_is_kept() {
     b.step("p");
     b.mul("p", 16, (&[Piece::sig("a", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
     let e = b.bits("p", 15, 8);
-    b.wire("hi", 8, e, "");
+    b.wire("hi", 8, Kind::Select, e, "");
     b.step("q");
     b.mul("q", 16, (&[Piece::sig("hi", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
     let e = b.bits("p", 7, 0);
-    b.wire("lo", 8, format!("~{e}"), "");
+    b.wire("lo", 8, Kind::Logic, ex!("~{}", e), "");
     let d = b.finish(&["q", "lo"]);
     assert!(d.read_by_block("hi", 1), "bits of a product, read by a multiplier");
     assert!(!d.read_by_block("p", 1), "the product itself is read only by the fabric");
@@ -81,9 +84,9 @@ fn a_block_output_register_read_through_slices_is_kept() {
     b.mul("p", 16, (&[Piece::sig("a", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
     b.step("q");
     let e = b.bits("p", 15, 4);
-    b.wire("s", 12, e, "a slice of the registered product");
+    b.wire("s", 12, Kind::Select, e, "a slice of the registered product");
     let e = b.bits("s", 11, 4);
-    b.wire("t", 8, e, "a slice of the slice");
+    b.wire("t", 8, Kind::Select, e, "a slice of the slice");
     b.mul("q", 16, (&[Piece::sig("t", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
     let d = b.finish(&["q"]);
     assert!(d.read_by_block("p", 1), "read by a multiplier through two slices");
@@ -100,7 +103,7 @@ fn carries_are_sum_bits_kept_complemented() {
     b.chunk_limit = 6;
     // 17 bits of two 16/15-bit operands: the top bit is the carry-out
     let p = b.add_start("s", &[Piece::sig("x", 0, 16)], &[Piece::sig("y", 0, 15)], false, 17, "");
-    let expr = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).map(|w| w.expr.clone()).unwrap();
+    let expr = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).map(|w| w.expr.text.clone()).unwrap();
     assert_eq!(expr(&b, "s_part0"), "{1'b1, x[5:0]} + {1'b0, y[5:0]}");
     assert_eq!(expr(&b, "s_part1"), "{1'b1, x[11:6]} + {1'b0, y[11:6]}");
     assert_eq!(expr(&b, "s_part1_plus1"), "{1'b1, x[11:6], 1'b1} + {1'b0, y[11:6], 1'b1}");
@@ -122,10 +125,10 @@ fn a_step_without_a_delay_estimate_is_refused() {
     let mut b = Builder::new(&[("x", 8)], &[1], Target::Ice40);
     b.step("slices only");
     let e = b.bits("x", 7, 4);
-    b.wire("hi", 4, e, "");
+    b.wire("hi", 4, Kind::Select, e, "");
     b.step("logic, no delay");
     let h = b.r("hi");
-    b.wire("y", 4, format!("~{h}"), "");
+    b.wire("y", 4, Kind::Logic, ex!("~{}", h), "");
     b.finish(&["y"]);
 }
 
@@ -167,7 +170,7 @@ fn at_least_is_the_comparison() {
     let mut b = Builder::new(&[("x", 6)], &[], Target::Ice40);
     b.step("t");
     for c in 0..64u128 {
-        let expr = b.at_least("x", 5, 0, c).replace(' ', "");
+        let expr = b.at_least("x", 5, 0, c).text.replace(' ', "");
         for x in 0..64u32 {
             assert_eq!(eval(expr.as_bytes(), &mut 0, x), x as u128 >= c, "x = {x}, c = {c}: {expr}");
         }
@@ -180,7 +183,7 @@ fn sub_pieces_pads_with_zeros() {
     let s = sub_pieces(&p, 1, 7);
     let mut b = Builder::new(&[("a", 8)], &[], Target::Ice40);
     b.step("t");
-    assert_eq!(b.pieces(&s), "{2'h0, 3'h5, a[4:3]}");
+    assert_eq!(b.pieces(&s).text, "{2'h0, 3'h5, a[4:3]}");
 }
 
 #[test]
@@ -188,11 +191,11 @@ fn liveness_and_unused_bits() {
     let mut b = Builder::new(&[("x", 8)], &[1], Target::Ice40);
     b.step("one");
     let e = b.bits("x", 7, 4);
-    b.wire("y", 4, e, "");
+    b.wire("y", 4, Kind::Select, e, "");
     b.step("two");
     let e = b.bits("x", 0, 0);
     let y = b.r("y");
-    b.wire("z", 5, format!("{{{y}, {e}}}"), "");
+    b.wire("z", 5, Kind::Select, ex!("{{{}, {}}}", y, e), "");
     let d = b.finish(&["z"]);
     // cut 1 carries x (read again in step 2) and y
     assert_eq!(d.live[0].iter().map(|l| (l.name.as_str(), l.source.as_str())).collect::<Vec<_>>(), [("x", "x"), ("y", "y_s1")]);
@@ -210,4 +213,53 @@ fn a_combinational_cut_is_no_name() {
     assert_eq!(visible(&[2], "y", 1, 3), "y_c2");
     assert_eq!(visible(&[2], "y", 1, 2), "y_s1");
     assert_eq!(visible(&[1, 2], "y", 2, 2), "y_s2");
+}
+
+/// Issue 50: a wire's kind and reads are data the builder recorded as it made the operands,
+/// never read back from the Verilog. Checked here against the text, over every model, family,
+/// width, depth and budget: the reads are exactly the signal names the text holds; a select
+/// is no more than bits and braces (a multi-line concatenation included: the old text rule
+/// missed it, and left registers a block reads through one without their `keep`); a
+/// product, and only a product, multiplies.
+#[test]
+fn every_wire_is_typed_as_its_text_reads() {
+    use crate::config::{Arch, Params, SpecularModel};
+    use crate::plan::Plan;
+    let narrow = Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Params::default() };
+    let mut checked = 0;
+    for model in SpecularModel::ALL {
+        for target in [Target::Ice40, Target::Ecp5, Target::Generic] {
+            for (base, arch) in [(Params::default(), Arch::Lean), (narrow.clone(), Arch::Lean), (Params::default(), Arch::Paper)] {
+                if arch == Arch::Paper && model != SpecularModel::Quadratic {
+                    continue;
+                }
+                for budget in [None, Some(1)] {
+                    let params = Params { model, target, arch, dsp_budget: budget, stages: 0, ..base.clone() };
+                    let top = Plan::from_params(params.clone()).unwrap().cut_points;
+                    for stages in [0, 1, top / 2, top] {
+                        let plan = Plan::from_params(Params { stages, ..params.clone() }).unwrap();
+                        let dp = &plan.datapath;
+                        // every name a step, an output or the lint sink reads
+                        let names: std::collections::BTreeSet<&str> = dp.read.keys().map(String::as_str).collect();
+                        for s in &dp.steps {
+                            for w in &s.wires {
+                                let text = &w.expr.text;
+                                let mut in_text: Vec<&str> = text.split(|c: char| !(c.is_alphanumeric() || c == '_')).filter(|t| names.contains(t)).collect();
+                                in_text.sort();
+                                in_text.dedup();
+                                let mut reads: Vec<&str> = w.expr.reads.iter().map(String::as_str).collect();
+                                reads.sort();
+                                assert_eq!(reads, in_text, "{model:?} {target:?} {stages}: {}_s{} = {text}", w.name, s.index);
+                                let plain = text.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '\n".contains(c));
+                                assert_eq!(w.kind == Kind::Select, plain, "{model:?} {target:?} {stages}: {}_s{} ({:?}) = {text}", w.name, s.index, w.kind);
+                                assert_eq!(w.product().is_some(), text.contains(" * "), "{model:?} {target:?}: {}_s{} = {text}", w.name, s.index);
+                                checked += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked > 10_000, "{checked} wires");
 }

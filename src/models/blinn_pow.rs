@@ -6,7 +6,7 @@
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, Builder, Piece, LUT_DELAY};
+use crate::datapath::{add_delay, ex, Builder, Expr, Kind, Piece, LUT_DELAY};
 
 /// W for `--model blinn-pow` (square-and-multiply over the bits of n, LSB first, every
 /// product truncated to W fractional bits, c taken exactly: W ≥ F).
@@ -114,11 +114,11 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
     b.step(&format!("clamp c = min(cos, 1), widen to UQ1.{pw}; the running product starts at 1.0"));
     let g = b.r("cos_g");
     let one = lit(f + 1, 1u128 << f);
-    b.wire("cos_clamped", f + 1, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    b.wire("cos_clamped", f + 1, Kind::Logic, ex!("({} > {}) ? {} : {}", g, one, one, g), &format!("UQ1.{f}: c"));
     let c = b.r("cos_clamped");
-    let widened = if pw > f { format!("{{{c}, {}}}", lit(pw - f, 0)) } else { c };
-    b.wire("power0", pw + 1, widened, &format!("UQ1.{pw}: c^(2^0), exact"));
-    b.wire("result0", pw + 1, lit(pw + 1, 1u128 << pw), &format!("UQ1.{pw}: 1.0"));
+    let widened = if pw > f { ex!("{{{}, {}}}", c, lit(pw - f, 0)) } else { c };
+    b.wire("power0", pw + 1, Kind::Select, widened, &format!("UQ1.{pw}: c^(2^0), exact"));
+    b.wire("result0", pw + 1, Kind::Select, Expr::constant(lit(pw + 1, 1u128 << pw)), &format!("UQ1.{pw}: 1.0"));
     b.delay(add_delay(f + 1));
 
     for i in 0..nb {
@@ -131,25 +131,31 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
         let rest = if i == 0 { "n".to_string() } else { format!("n_rest{i}") };
         let bit = b.bits(&rest, 0, 0);
         let (hi, keep) = (b.bits(&prod, 2 * pw, pw), b.r(&r));
-        b.wire(&format!("result{}", i + 1), pw + 1, format!("{bit} ? {hi} : {keep}"), &format!("UQ1.{pw}: floored product, or the product so far"));
+        b.wire(
+            &format!("result{}", i + 1),
+            pw + 1,
+            Kind::Logic,
+            ex!("{} ? {} : {}", bit, hi, keep),
+            &format!("UQ1.{pw}: floored product, or the product so far"),
+        );
         if more {
             let power_sq = b.mul(&format!("power_sq{}", i + 1), full, (&pp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &format!("UQ2.{}: power^2, exact", 2 * pw));
             let sq = b.bits(&power_sq, 2 * pw, pw);
-            b.wire(&format!("power{}", i + 1), pw + 1, sq, &format!("UQ1.{pw}: c^(2^{}), floored", i + 1));
+            b.wire(&format!("power{}", i + 1), pw + 1, Kind::Select, sq, &format!("UQ1.{pw}: c^(2^{}), floored", i + 1));
             let upper = b.bits(&rest, nb - i - 1, 1);
-            b.wire(&format!("n_rest{}", i + 1), nb - i - 1, upper, "the bits of n still to use");
+            b.wire(&format!("n_rest{}", i + 1), nb - i - 1, Kind::Select, upper, "the bits of n still to use");
         }
     }
 
     b.step("round half up to the outputs");
     let r = format!("result{nb}");
     let rv = b.r(&r);
-    b.wire("intensity_sum", pw + 1, format!("{rv} + {}", lit(pw + 1, 1u128 << (pw - fi - 1))), &format!("UQ1.{pw}: c^n + 2^-{}", fi + 1));
+    b.wire("intensity_sum", pw + 1, Kind::Sum, ex!("{} + {}", rv, lit(pw + 1, 1u128 << (pw - fi - 1))), &format!("UQ1.{pw}: c^n + 2^-{}", fi + 1));
     let e = b.bits("intensity_sum", pw, pw - fi);
-    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
+    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: c^n rounded half up"));
     let cp = pw + bb;
     b.colour_sums(&r, pw, "c^n", add_delay(cp));
     b.colour_results(pw, "c^n");
     let iv = b.r("intensity");
-    b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
+    b.wire("done", 1, Kind::Logic, ex!("{} == {}", iv, lit(fi + 1, 0)), "the highlight is below the output's resolution");
 }

@@ -50,7 +50,7 @@
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::Config;
-use crate::datapath::{Builder, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
+use crate::datapath::{ex, Builder, Expr, Kind, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -362,8 +362,8 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator; complemented
     // here, in the mux's LUT, so that the add below takes it straight into its carry chain
-    let not_one = lit(cb, mask(cb) & !(1u128 << f));
-    b.wire("cos_clamped_n", cb, Builder::select(&top, &not_one, &format!("~{g}"), cb), &format!("~c, c = min(cos, 1) in UQ1.{f}"));
+    let not_one = Expr::constant(lit(cb, mask(cb) & !(1u128 << f)));
+    b.wire("cos_clamped_n", cb, Kind::Logic, Builder::select(&top, &not_one, &ex!("~{}", g), cb), &format!("~c, c = min(cos, 1) in UQ1.{f}"));
     b.delay(LUT_DELAY * if ecp5 { 1 } else { cfg.n_bits().div_ceil(2) } as f64);
 
     // 1 - c = ~c + 2^F + 1 mod 2^(F+1) (c <= 1): a carry-select add of a constant
@@ -405,7 +405,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         let (hv, lv) = (b.r(&hi), b.bits("deviation_lo", dsp - 1, 0));
         // complemented here, in the LUTs that pick the sum's chunks, so that the add below
         // takes it straight into its carry chain
-        b.wire("deviation_n", pb, format!("~{{{hv}, {lv}}}"), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
+        b.wire("deviation_n", pb, Kind::Logic, ex!("~{{{}, {}}}", hv, lv), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
     } else {
         b.step("deviation a_n*(1 - cos) (multiplier 7)");
         b.product(
@@ -419,7 +419,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             complement = Piece::not("deviation", 0, pb);
         } else {
             let d = b.r("deviation");
-            b.wire("deviation_n", pb, format!("~{d}"), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
+            b.wire("deviation_n", pb, Kind::Logic, ex!("~{}", d), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
         }
     }
 
@@ -439,14 +439,20 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
 
     b.step("key block (13) and truncation #1");
     let sign = b.bits("diff", db - 1, db - 1);
-    b.wire("done", 1, sign.clone(), "the bracket is negative: beyond the highlight");
+    b.wire("done", 1, Kind::Select, sign.clone(), "the bracket is negative: beyond the highlight");
     let x0 = if ka + f >= wf {
         b.bits("diff", ka + f, ka + f - wf)
     } else {
         let d = b.bits("diff", ka + f, 0);
-        format!("{{{d}, {}}}", lit(wf - ka - f, 0))
+        ex!("{{{}, {}}}", d, lit(wf - ka - f, 0))
     };
-    b.wire("power0", wf + 1, Builder::gate(&format!("~{sign}"), &x0, wf + 1), &format!("UQ1.{wf}: the bracket in [0, 1], floored; 0 beyond the cut-off"));
+    b.wire(
+        "power0",
+        wf + 1,
+        Kind::Logic,
+        Builder::gate(&ex!("~{}", sign), &x0, wf + 1),
+        &format!("UQ1.{wf}: the bracket in [0, 1], floored; 0 beyond the cut-off"),
+    );
     b.delay(LUT_DELAY);
 
     // a bracket wider than a DSP's operands: x = hi*2^r + lo with hi of D bits, and
@@ -475,7 +481,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
                 let t_bit = b.bits(&prev, l, l);
                 let hl = b.pieces(&[Piece::sig(&prev, 0, l), Piece::zeros(1), Piece::sig(&prev, r, dsp), Piece::zeros(tw - dsp - r)]);
                 let top = format!("{tn}_top");
-                b.wire(&top, tw, Builder::gate(&t_bit, &hl, tw), "t*(hi*2^r + l'): the partial product of lo's top bit");
+                b.wire(&top, tw, Kind::Logic, Builder::gate(&t_bit, &hl, tw), "t*(hi*2^r + l'): the partial product of lo's top bit");
                 terms.push(vec![Piece::sig(&top, 0, tw)]);
                 terms.push(vec![Piece::sig(&ll, r, r - 2), Piece::sig(&prev, l, 1)]);
                 terms
@@ -522,11 +528,12 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         };
         let keep = b.r(&prev);
         let mf = b.bits("fit", w.rom_word_bits - 1, w.a_bits);
-        let m_test = format!("({mf} >= {})", lit(w.m_bits, j as u128));
+        let m_test = ex!("({} >= {})", mf, lit(w.m_bits, j as u128));
         b.wire(
             &format!("power{j}"),
             wf + 1,
-            format!("{m_test} ? {hi_bits} : {keep}"),
+            Kind::Logic,
+            ex!("{} ? {} : {}", m_test, hi_bits, keep),
             &format!("UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}", j + 1, j - 1),
         );
     }
@@ -552,7 +559,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let sum = b.resolve(p, title);
     b.colour_results(wc, "S");
     let e = b.bits(&sum, fi + 1, 1);
-    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S rounded half up"));
 }
 
 /// The fit of a configuration, computed once per process for each (N, M, KA).

@@ -29,7 +29,7 @@
 use super::{explain_ideal, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, Builder, Piece, Sig, LUT_DELAY};
+use crate::datapath::{add_delay, ex, Builder, Kind, Piece, Sig, LUT_DELAY};
 use crate::error::Error;
 
 /// W: fractional bits of the quotient `q = floor(S·2^W)`, from the budget above.
@@ -225,12 +225,12 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     b.step("clamp c = min(cos, 1); d = 1 - c; n = 0 picks S = 1 at the end");
     let g = b.r("cos_g");
     let one = lit(f + 1, 1u128 << f);
-    let cos = b.wire("cos_clamped", f + 1, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}: c"));
+    let cos = b.wire("cos_clamped", f + 1, Kind::Logic, ex!("({} > {}) ? {} : {}", g, one, one, g), &format!("UQ1.{f}: c"));
     let c = b.r(&cos);
-    let one_minus_cos = b.wire("one_minus_cos", f + 1, format!("{one} - {c}"), &format!("UQ1.{f}: 1 - c, exact"));
+    let one_minus_cos = b.wire("one_minus_cos", f + 1, Kind::Sum, ex!("{} - {}", one, c), &format!("UQ1.{f}: 1 - c, exact"));
     let n = b.sig("n");
     let nv = b.r(&n);
-    let n_zero = b.wire("n_zero", 1, format!("{nv} == {}", lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
+    let n_zero = b.wire("n_zero", 1, Kind::Logic, ex!("{} == {}", nv, lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
     b.delay(2.0 * add_delay(f + 1));
 
     // 2n·(1 − c) + c: one multiply-add (on the iCE40 the SB_MAC16's post-adder; on the ECP5 a
@@ -244,7 +244,8 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     // with carry-in 1 (a carry chain's operand takes no inverter)
     b.step("~den for the compare-subtracts");
     let dv = b.r(&den);
-    let den_inv = b.wire("den_inv", rw + 1, format!("~{{{}, {dv}}}", lit(rw + 1 - dw, 0)), &format!("~den over {} bits: 2r + ~den + 1 = 2r - den", rw + 1));
+    let den_inv =
+        b.wire("den_inv", rw + 1, Kind::Logic, ex!("~{{{}, {}}}", lit(rw + 1 - dw, 0), dv), &format!("~den over {} bits: 2r + ~den + 1 = 2r - den", rw + 1));
     b.delay(LUT_DELAY);
 
     // one quotient bit a step (the weight-1 bit first): the trial `shifted - den` on one carry
@@ -257,22 +258,27 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
         b.step(&title);
         let (prev, what) = match &rem {
             None => (b.zext(&cos, rw), "c".to_string()),
-            Some(r) => (format!("{{{}, 1'b0}}", b.r(r)), format!("2*r{}", k - 1)),
+            Some(r) => (ex!("{{{}, 1'b0}}", b.r(r)), format!("2*r{}", k - 1)),
         };
-        let shifted = b.wire(&format!("shifted{k}"), rw, prev, &format!("UQ{}.{f}: {what}", nb + 3));
+        let shifted = b.wire(&format!("shifted{k}"), rw, Kind::Select, prev, &format!("UQ{}.{f}: {what}", nb + 3));
         let (sv, dv) = (b.zext(&shifted, rw + 1), b.r(&den_inv));
-        let trial =
-            b.wire(&format!("trial{k}"), rw + 1, format!("{sv} + {dv} + {}", lit(rw + 1, 1)), &format!("{what} - den mod 2^{}: its top bit a borrow", rw + 1));
+        let trial = b.wire(
+            &format!("trial{k}"),
+            rw + 1,
+            Kind::Sum,
+            ex!("{} + {} + {}", sv, dv, lit(rw + 1, 1)),
+            &format!("{what} - den mod 2^{}: its top bit a borrow", rw + 1),
+        );
         let borrow = b.bits(&trial, rw, rw);
-        let qbit = b.wire(&format!("qbit{k}"), 1, format!("~{borrow}"), &format!("quotient bit of weight 2^-{k}: {what} >= den"));
+        let qbit = b.wire(&format!("qbit{k}"), 1, Kind::Logic, ex!("~{}", borrow), &format!("quotient bit of weight 2^-{k}: {what} >= den"));
         let (bit, t, s) = (b.r(&qbit), b.bits(&trial, dw - 1, 0), b.bits(&shifted, dw - 1, 0));
-        rem = Some(b.wire(&format!("rem{k}"), dw, Builder::select(&bit, &t, &s, dw), &format!("r{k}: the remainder, below den")));
+        rem = Some(b.wire(&format!("rem{k}"), dw, Kind::Logic, Builder::select(&bit, &t, &s, dw), &format!("r{k}: the remainder, below den")));
         // the quotient's bits so far (from the second on: the first is qbit0 itself)
         quot = Some(match quot {
             None => qbit,
             Some(above) => {
-                let bits = format!("{{{}, {bit}}}", b.r(&above));
-                b.wire(&format!("quot{k}"), k + 1, bits, &format!("the quotient's top {} bits", k + 1))
+                let bits = ex!("{{{}, {}}}", b.r(&above), bit);
+                b.wire(&format!("quot{k}"), k + 1, Kind::Select, bits, &format!("the quotient's top {} bits", k + 1))
             }
         });
         // the chain, its carry-out through a LUT, the remainder's select
@@ -282,15 +288,15 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
 
     b.step("S = 1 at n = 0; round half up to the outputs");
     let (nz, q) = (b.r(&n_zero), b.r(&quot));
-    let quotient = b.wire("quotient", w + 1, Builder::select_const(&nz, 1u128 << w, w + 1, &q), &format!("UQ1.{w}: floor(S*2^{w}), 1.0 at n = 0"));
+    let quotient = b.wire("quotient", w + 1, Kind::Logic, Builder::select_const(&nz, 1u128 << w, w + 1, &q), &format!("UQ1.{w}: floor(S*2^{w}), 1.0 at n = 0"));
     let qv = b.r(&quotient);
-    let sum = b.wire("intensity_sum", w + 1, format!("{qv} + {}", lit(w + 1, 1u128 << (w - fi - 1))), &format!("UQ1.{w}: S + 2^-{}", fi + 1));
+    let sum = b.wire("intensity_sum", w + 1, Kind::Sum, ex!("{} + {}", qv, lit(w + 1, 1u128 << (w - fi - 1))), &format!("UQ1.{w}: S + 2^-{}", fi + 1));
     let e = b.bits(&sum, w, w - fi);
-    let intensity = b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    let intensity = b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S rounded half up"));
     b.colour_sums("quotient", w, "S", add_delay(w + bb));
     b.colour_results(w, "S");
     let iv = b.r(&intensity);
-    b.wire("done", 1, format!("{iv} == {}", lit(fi + 1, 0)), "the highlight is below the output's resolution");
+    b.wire("done", 1, Kind::Logic, ex!("{} == {}", iv, lit(fi + 1, 0)), "the highlight is below the output's resolution");
 }
 
 #[cfg(test)]

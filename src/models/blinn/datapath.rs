@@ -36,7 +36,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.step("clamp c = min(cos, 1)");
     let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator
-    b.wire("cos_clamped", cb, Builder::select_const(&top, 1u128 << f, cb, &g), &format!("UQ1.{f}: c"));
+    b.wire("cos_clamped", cb, Kind::Logic, Builder::select_const(&top, 1u128 << f, cb, &g), &format!("UQ1.{f}: c"));
     b.delay(LUT_DELAY);
 
     // c - 2^-F = c + (2^(F+1) - 1) mod 2^(F+1): a carry-select add of the all-ones word
@@ -51,7 +51,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         &format!("UQ1.{f}: c - 2^-{f} (its leading zeros give the exponent)"),
     );
     let zc = b.r("cos_clamped");
-    b.wire("cos_zero", 1, format!("{zc} == {}", lit(cb, 0)), "c = 0: c^n = 0 for n >= 1");
+    b.wire("cos_zero", 1, Kind::Logic, ex!("{} == {}", zc, lit(cb, 0)), "c = 0: c^n = 0 for n >= 1");
     b.delay(2.0 * LUT_DELAY);
     b.resolve(p, title);
 
@@ -65,47 +65,47 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let mut leads = Vec::new();
     for (k, &(hi, gw)) in groups.iter().enumerate() {
         let bits = b.bits("cos_minus_ulp", hi - 1, hi - gw);
-        let any = b.wire(&format!("lead_any{k}"), 1, format!("|{bits}"), &format!("bits [{}:{}] of c - 2^-{f} have a one", hi - 1, hi - gw));
+        let any = b.wire(&format!("lead_any{k}"), 1, Kind::Logic, ex!("|{}", bits), &format!("bits [{}:{}] of c - 2^-{f} have a one", hi - 1, hi - gw));
         // its first one at j from the top: bits above it 0, bit j 1 (the last j: when the
         // group has a one, it is there if nowhere above); each bit of j an OR of those
         // conditions, no ?: of constants ([`Builder::select`])
         let bit = |b: &mut Builder, j: u32| b.bits("cos_minus_ulp", hi - 1 - j, hi - 1 - j);
-        let first_at: Vec<String> = (0..gw)
+        let first_at: Vec<Expr> = (0..gw)
             .map(|j| {
-                let mut terms: Vec<String> = (0..j).map(|i| format!("~{}", bit(b, i))).collect();
+                let mut terms: Vec<Expr> = (0..j).map(|i| ex!("~{}", bit(b, i))).collect();
                 if j + 1 < gw {
                     terms.push(bit(b, j));
                 }
                 if terms.is_empty() {
-                    "1'b1".to_string()
+                    Expr::constant("1'b1")
                 } else {
-                    format!("({})", terms.join(" & "))
+                    ex!("({})", Expr::join(&terms, " & "))
                 }
             })
             .collect();
         let lz_bit = |v: u32| {
-            let ors: Vec<&str> = (0..gw).filter(|j| j >> v & 1 == 1).map(|j| first_at[j as usize].as_str()).collect();
+            let ors: Vec<Expr> = (0..gw).filter(|j| j >> v & 1 == 1).map(|j| first_at[j as usize].clone()).collect();
             if ors.is_empty() {
-                "1'b0".to_string()
+                Expr::constant("1'b0")
             } else {
-                ors.join(" | ")
+                Expr::join(&ors, " | ")
             }
         };
         let (b1, b0) = (lz_bit(1), lz_bit(0));
-        leads.push((any, b.wire(&format!("lead_zeros{k}"), 2, format!("{{{b1},\n    {b0}}}"), "its leading zeros (when it has a one)")));
+        leads.push((any, b.wire(&format!("lead_zeros{k}"), 2, Kind::Logic, ex!("{{{},\n    {}}}", b1, b0), "its leading zeros (when it has a one)")));
     }
     b.delay(LUT_DELAY);
     b.step("normalise: e = the leading zeros of c - 2^-F");
     let mut cases = Vec::new();
     for (k, (any, lz)) in leads.iter().enumerate() {
         let (any, lz) = (b.r(any), b.r(lz));
-        cases.push(format!("{any} ? {{{}, {lz}}}", lit(eb - 2, k as u128)));
+        cases.push(ex!("{} ? {{{}, {}}}", any, lit(eb - 2, k as u128), lz));
     }
-    cases.push(lit(eb, f as u128));
-    b.wire("exponent", eb, cases.join("\n    : "), &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"));
+    cases.push(Expr::constant(lit(eb, f as u128)));
+    b.wire("exponent", eb, Kind::Logic, Expr::join(&cases, "\n    : "), &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"));
     // beside it, the one case the tables do not cover, carried as one bit
     let (z, nn) = (b.r("cos_zero"), b.r("n"));
-    b.wire("y_zero_power", 1, format!("{z} && ({nn} != {})", lit(nb, 0)), "c = 0 with n >= 1: c^n = 0 (y saturates)");
+    b.wire("y_zero_power", 1, Kind::Logic, ex!("{} && ({} != {})", z, nn, lit(nb, 0)), "c = 0 with n >= 1: c^n = 0 (y saturates)");
     b.delay(2.0 * LUT_DELAY);
 
     // c' = c*2^e, one bit of e a step from the top: a 2:1 mux level each, so the bit that
@@ -118,12 +118,12 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.step(&if last { "normalise: c' = c*2^e in (1/2, 1], its complement".to_string() } else { format!("normalise: c shifted by e's bit {k}") });
         let (c, ek) = (b.r(&src), b.bits("exponent", k, k));
         // 2^k <= F < F + 1: bit k of e never shifts the whole word out
-        let shifted = format!("{{{}, {}}}", b.bits(&src, cb - 1 - (1 << k), 0), lit(1 << k, 0));
+        let shifted = ex!("{{{}, {}}}", b.bits(&src, cb - 1 - (1 << k), 0), lit(1 << k, 0));
         let what = if last { format!("UQ1.{f}: c' = c*2^e in (1/2, 1]") } else { format!("UQ1.{f}: c*2^(e's bits from {k} up)") };
-        b.wire(&name, cb, Builder::select(&ek, &shifted, &c, cb), &what);
+        b.wire(&name, cb, Kind::Logic, Builder::select(&ek, &shifted, &c, cb), &what);
         if last {
             let cn = b.bits("cos_norm", f - 2, 0);
-            b.wire("cos_norm_inv", f - 1, format!("~{cn}"), &format!("~c' over its low {} bits", f - 1));
+            b.wire("cos_norm_inv", f - 1, Kind::Logic, ex!("~{}", cn), &format!("~c' over its low {} bits", f - 1));
         }
         b.delay(LUT_DELAY);
         src = name;
@@ -136,7 +136,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     // the table's address beside x (on ECP5 the block RAM's address register takes it)
     let tg = w.log_index_bits;
     let idx = b.bits("x", f - 2, rb);
-    b.wire("log_index", tg, idx, &format!("i: 2x to {tg} bits"));
+    b.wire("log_index", tg, Kind::Select, idx, &format!("i: 2x to {tg} bits"));
 
     b.ecp5_register_step("log2 table read: the address at the block RAM's address register");
     b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
@@ -160,7 +160,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let sum = b.multiply_add("ghat_sum", &a, &r, &[Piece::zeros(rb), g], sw, title, &comment);
         if b.instantiated_blocks() {
             let e = b.bits(&sum, sw - 1, rb);
-            b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+            b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
         } else {
             // the next steps read g^ as bits of the sum: the cut registers the DSP's whole
             // output, which yosys takes into the block as its output register (a register of
@@ -178,11 +178,11 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let p = b.sum_start("ghat_sum", terms, sw, title, &format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact", tg + 1));
         let sum = b.resolve(p, title);
         let e = b.bits(&sum, sw - 1, rb);
-        b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+        b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
     } else {
         b.step(title);
         let e = b.operand("log_word", 0, ge, gb);
-        b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+        b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
     }
 
     let lf = f + w.log_frac_bits;
@@ -203,12 +203,12 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let p = b.sum_start("log_frac_hi", terms, hw, t, &format!("x*ghat[{}:{dsp}] + x*ghat[{}:0]/2^{dsp}, exact", gb - 1, dsp - 1));
         let hi = b.resolve(p, t);
         let (hv, lv) = (b.r(&hi), b.bits("log_frac_lo", dsp - 1, 0));
-        b.wire("log_frac", lb, format!("{{{hv}, {lv}}}"), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
+        b.wire("log_frac", lb, Kind::Select, ex!("{{{}, {}}}", hv, lv), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
     } else {
         b.step("-log2 c' = x*g(x)");
         if ghat.0 != "ghat" {
             let e = b.bits(&ghat.0, ghat.1 + gb - 1, ghat.1);
-            b.wire("ghat", gb, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+            b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
         }
         let (xs, gs) = ([Piece::sig("x", 0, f - 1)], [Piece::sig("ghat", 0, gb)]);
         b.mul("log_frac", lb, (&xs, f - 1), (&gs, gb), &[], 0.0, &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
@@ -220,9 +220,15 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.bits("log_frac", lf - 1, lf - w.ell_frac_bits)
     } else {
         let v = b.bits("log_frac", lf - 1, 0);
-        format!("{{{v}, {}}}", lit(w.ell_frac_bits - lf, 0))
+        ex!("{{{}, {}}}", v, lit(w.ell_frac_bits - lf, 0))
     };
-    b.wire("ell", eb2, format!("{{{e}, {lbits}}}"), &format!("UQ{}.{}: e + L floored (truncation #1); L < 1", eb2 - w.ell_frac_bits, w.ell_frac_bits));
+    b.wire(
+        "ell",
+        eb2,
+        Kind::Select,
+        ex!("{{{}, {}}}", e, lbits),
+        &format!("UQ{}.{}: e + L floored (truncation #1); L < 1", eb2 - w.ell_frac_bits, w.ell_frac_bits),
+    );
 
     // n*l from the bottom up, l in D-bit chunks: P_0 = n*l[D-1:0], and P_k = n*l[chunk k] +
     // floor(P_(k-1) / 2^D) on one DSP each (the add inside it); then n*l = {P_top, P_(top-1)
@@ -231,7 +237,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let pb = nb + eb2;
     let chunks: Vec<(u32, u32)> = (0..eb2.div_ceil(dsp.min(eb2))).map(|i| (i * dsp, (eb2 - i * dsp).min(dsp))).collect();
     if nb <= dsp && chunks.len() > 1 {
-        let mut low_words: Vec<String> = Vec::new();
+        let mut low_words: Vec<Expr> = Vec::new();
         let last = chunks.len() - 1;
         for (k, &(lo, cw)) in chunks.iter().enumerate() {
             let width = nb + cw;
@@ -264,7 +270,13 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
             let name = format!("y_part{k}");
             low_words.push(if k == last { b.r(&name) } else { b.bits(&name, dsp - 1, 0) });
         }
-        b.wire("y_full", pb, format!("{{{}}}", low_words.join(", ")), &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
+        b.wire(
+            "y_full",
+            pb,
+            Kind::Select,
+            ex!("{{{}}}", Expr::join(&low_words, ", ")),
+            &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits),
+        );
     } else {
         b.step("y = n*(-log2 c) (multiplier 7)");
         let (ns, ls) = ([Piece::sig("n", 0, nb)], [Piece::sig("ell", 0, eb2)]);
@@ -275,7 +287,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let drop = w.ell_frac_bits - w.y_frac_bits;
     let top = b.bits("y_full", pb - 1, drop);
     let ytw = pb - drop;
-    b.wire("y_trunc", ytw, top, &format!("UQ{}.{}: truncation #2", ytw - w.y_frac_bits, w.y_frac_bits));
+    b.wire("y_trunc", ytw, Kind::Select, top, &format!("UQ{}.{}: truncation #2", ytw - w.y_frac_bits, w.y_frac_bits));
     // y >= (W + 2)*2^WY on its integer bits alone (the saturation value has no fraction):
     // some high bit set, or the low ones at least W + 2
     let sat_int = (w.out_bits + 2) as u128;
@@ -284,22 +296,23 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     if sat_int < 1u128 << yiw {
         let k = bit_length(sat_int);
         let ge = b.at_least("y_trunc", w.y_frac_bits + k - 1, w.y_frac_bits, sat_int);
-        b.wire("y_over_low", 1, ge, &format!("floor(y)'s low {k} bits reach {sat_int}"));
+        b.wire("y_over_low", 1, Kind::Logic, ge, &format!("floor(y)'s low {k} bits reach {sat_int}"));
         flags.push("y_over_low");
         if yiw > k {
             let high = b.bits("y_trunc", ytw - 1, w.y_frac_bits + k);
-            b.wire("y_over_high", 1, format!("|{high}"), &format!("floor(y) has a bit set above its low {k}"));
+            b.wire("y_over_high", 1, Kind::Logic, ex!("|{}", high), &format!("floor(y) has a bit set above its low {k}"));
             flags.push("y_over_high");
         }
     } // else y_trunc cannot reach the saturation value
     b.delay(2.0 * LUT_DELAY);
     b.step("y saturated");
-    let flags: Vec<String> = flags.iter().map(|f| b.r(f)).collect();
-    b.wire("y_saturate", 1, flags.join(" || "), &format!("y reaches {} (or c = 0 with n >= 1)", w.out_bits + 2));
+    let flags: Vec<Expr> = flags.iter().map(|f| b.r(f)).collect();
+    b.wire("y_saturate", 1, Kind::Logic, Expr::join(&flags, " || "), &format!("y reaches {} (or c = 0 with n >= 1)", w.out_bits + 2));
     let (sat, yt2) = (b.r("y_saturate"), b.operand("y_trunc", 0, ytw, yb));
     b.wire(
         "y",
         yb,
+        Kind::Logic,
         Builder::select_const(&sat, w.y_sat(), yb, &yt2),
         &format!("UQ{}.{}: y, saturated at {} (every output is 0 from there on)", w.y_int_bits, w.y_frac_bits, w.out_bits + 2),
     );
@@ -307,7 +320,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     let te = w.exp2_index_bits;
     let ji = b.bits("y", w.y_frac_bits - 1, re);
-    b.wire("exp2_index", te, ji, "j: frac(y) to the table's resolution");
+    b.wire("exp2_index", te, Kind::Select, ji, "j: frac(y) to the table's resolution");
     b.ecp5_register_step("exp2 table read: the address at the block RAM's address register");
     b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
     b.rom_read_registered("exp2_word", et, "exp2_index");
@@ -315,7 +328,7 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let implied = t.exp2_one_implied(w);
     if implied {
         let ji = b.r("exp2_index");
-        b.wire("exp2_one", 1, format!("{ji} == {}", lit(te, 0)), "E's integer bit: 2^-f = 1.0 at j = 0 only");
+        b.wire("exp2_one", 1, Kind::Logic, ex!("{} == {}", ji, lit(te, 0)), "E's integer bit: 2^-f = 1.0 at j = 0 only");
     }
     b.delay(LUT_DELAY * te.div_ceil(2) as f64);
 
@@ -359,11 +372,11 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let p = b.sum_start("exp2_sum", terms, sw, title, &format!("E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te}), exact"));
         let sum = b.resolve(p, title);
         let e = b.bits(&sum, sw - 1, re);
-        b.wire("exp2_frac", ee, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+        b.wire("exp2_frac", ee, Kind::Select, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
     } else {
         b.step(title);
         let e = b.pieces(&e_word);
-        b.wire("exp2_frac", ee, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+        b.wire("exp2_frac", ee, Kind::Select, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
     }
 
     // the shift by the integer part of y, two of its bits a step (a 4:1 mux level each)
@@ -375,20 +388,20 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.step(&format!("shift by the integer part of y: its bits [{}:{lo}]{}", hi - 1, if lo == 0 { " (truncation #3)" } else { "" }));
         if let Some(sum) = complemented.take() {
             let e = b.bits(&sum, sw - 1, re);
-            b.wire("exp2_frac", ee, format!("~{e}"), &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+            b.wire("exp2_frac", ee, Kind::Logic, ex!("~{}", e), &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
         }
         let (sv, yi) = (b.r(&src), b.bits("y", w.y_frac_bits + hi - 1, w.y_frac_bits + lo));
         let name = if lo == 0 { "power".to_string() } else { format!("power_shift{lo}") };
         let comment = if lo == 0 { format!("UQ1.{we}: c^n before rounding") } else { format!("2^-frac(y) shifted by floor(y)'s bits above {lo}") };
         // a 4:1 mux as an AND-OR of the shifted words ([`Builder::select`])
-        let terms: Vec<String> = (0..1u32 << (hi - lo))
+        let terms: Vec<Expr> = (0..1u32 << (hi - lo))
             .filter(|v| v << lo < ee)
             .map(|v| {
-                let shifted = if v == 0 { sv.clone() } else { format!("({sv} >> {})", v << lo) };
-                Builder::gate(&format!("({yi} == {})", lit(hi - lo, v as u128)), &shifted, ee)
+                let shifted = if v == 0 { sv.clone() } else { ex!("({} >> {})", sv, v << lo) };
+                Builder::gate(&ex!("({} == {})", yi, lit(hi - lo, v as u128)), &shifted, ee)
             })
             .collect();
-        b.wire(&name, ee, terms.join("\n    | "), &comment);
+        b.wire(&name, ee, Kind::Logic, Expr::join(&terms, "\n    | "), &comment);
         b.delay(2.0 * LUT_DELAY);
         src = name;
         hi = lo;
@@ -418,15 +431,15 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         let gh = (g + 4).min(hi);
         let bits = b.bits("power", gh - 1, g);
         let name = format!("done_zero{k}");
-        b.wire(&name, 1, format!("~|{bits}"), &format!("bits [{}:{g}] of c^n are 0", gh - 1));
+        b.wire(&name, 1, Kind::Logic, ex!("~|{}", bits), &format!("bits [{}:{g}] of c^n are 0", gh - 1));
         groups.push(name);
     }
     // (on the ECP5, the colours' rounding half after their products)
     b.colour_rounding(wc, "c^n");
     let sum = b.resolve(p, "the intensity rounded half up");
-    let zeros: Vec<String> = groups.iter().map(|g| b.r(g)).collect();
-    b.wire("done", 1, zeros.join(" & "), "the highlight is below the output's resolution (the intensity rounds to 0)");
+    let zeros: Vec<Expr> = groups.iter().map(|g| b.r(g)).collect();
+    b.wire("done", 1, Kind::Logic, Expr::join(&zeros, " & "), "the highlight is below the output's resolution (the intensity rounds to 0)");
     b.colour_results(wc, "c^n");
     let e = b.bits(&sum, fi + 1, 1);
-    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: c^n rounded half up"));
+    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: c^n rounded half up"));
 }

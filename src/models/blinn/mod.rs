@@ -56,7 +56,7 @@
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{bit_length, lit, mask};
 use crate::config::Config;
-use crate::datapath::{Builder, Piece, LUT_DELAY};
+use crate::datapath::{ex, Builder, Expr, Kind, Piece, LUT_DELAY};
 use crate::table::Table;
 use serde::Serialize;
 

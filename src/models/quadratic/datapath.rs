@@ -41,7 +41,8 @@ fn cos_complement(cfg: &Config, b: &mut Builder) {
     b.wire(
         "cos_complement",
         f + 1,
-        format!("{{{g}, ~{x} | {{{f}{{{g}}}}}}}"),
+        Kind::Logic,
+        ex!("{{{}, ~{} | {{{}{{{}}}}}}}", g, x, f, g),
         &format!("UQ1.{f}: ~cos = 1 - 2^-{f} - cos; all ones when cos_g >= 1.0, so +1 wraps to 0 (the clamp)"),
     );
     b.delay(LUT_DELAY);
@@ -61,16 +62,16 @@ fn cutoff_add(cfg: &Config) -> ([Piece; 1], [Piece; 2], u32, String) {
 
 /// `sig * c` (`c` a constant) as a sum of `sig` shifted to each set bit of `c`, mod 2^width:
 /// fabric adds, for a product too narrow to spend a DSP block on.
-fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -> String {
-    let mut terms: Vec<String> = Vec::new();
+fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -> Expr {
+    let mut terms: Vec<Expr> = Vec::new();
     for j in (0..128).filter(|j| c >> j & 1 == 1 && *j < width) {
         let pieces = if j == 0 { vec![Piece::sig(sig, 0, sig_width)] } else { vec![Piece::zeros(j), Piece::sig(sig, 0, sig_width)] };
         terms.push(b.pieces(&sub_pieces(&pieces, 0, width)));
     }
     if terms.is_empty() {
-        lit(width, 0)
+        Expr::constant(lit(width, 0))
     } else {
-        terms.join("\n    + ")
+        Expr::join(&terms, "\n    + ")
     }
 }
 
@@ -78,7 +79,7 @@ fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -
 fn done(cfg: &Config, b: &mut Builder, sum: &Sig) {
     let f = cfg.f();
     let (gg, c) = (b.bits("cos_g", f, f), b.bits(sum, f + 1, f + 1));
-    b.wire("done", 1, format!("~{gg} & {c}"), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+    b.wire("done", 1, Kind::Logic, ex!("~{} & {}", gg, c), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
 }
 
 /// 1 - deviation without an adder: with K = 2^(WB+s) + 2^s - 1 and K' = 2^m - 1 - K,
@@ -102,7 +103,8 @@ fn bracket(w: &Widths, b: &mut Builder) {
     b.wire(
         "bracket",
         wb + 1,
-        format!("{dn} ? {} : ~{q}", lit(wb + 1, 0)),
+        Kind::Logic,
+        ex!("{} ? {} : ~{}", dn, lit(wb + 1, 0), q),
         &format!("UQ1.{wb} in [0, 1]: 2^{wb} - floor(P/2^{s}) (truncation #1), zeroed beyond the cut-off (key block 13)"),
     );
     b.delay(LUT_DELAY);
@@ -112,11 +114,12 @@ fn bracket(w: &Widths, b: &mut Builder) {
 fn square_and_color_square(w: &Widths, b: &mut Builder, full: &[Piece]) {
     let (ws, wsc) = (w.square_frac_bits, w.color_square_frac_bits);
     let sq = b.pieces(&sub_pieces(full, w.square_shift, ws + 1));
-    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
+    b.wire("square", ws + 1, Kind::Select, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
     let csq = b.bits("square", ws, ws - wsc);
     b.wire(
         "color_square",
         wsc + 1,
+        Kind::Select,
         csq,
         &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
     );
@@ -136,8 +139,8 @@ fn intensity_add(cfg: &Config, w: &Widths, b: &mut Builder) -> Option<([Piece; 1
         ))
     } else {
         let sqr = b.r("square");
-        let e = if fi > ws { format!("{{{sqr}, {}}}", lit(fi - ws, 0)) } else { sqr };
-        b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
+        let e = if fi > ws { ex!("{{{}, {}}}", sqr, lit(fi - ws, 0)) } else { sqr };
+        b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
         None
     }
 }
@@ -146,7 +149,7 @@ fn intensity_add(cfg: &Config, w: &Widths, b: &mut Builder) -> Option<([Piece; 1
 fn intensity_from(cfg: &Config, b: &mut Builder, sum: &Sig) {
     let fi = cfg.fi();
     let e = b.bits(sum, fi + 1, 1);
-    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}: S rounded half up"));
+    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S rounded half up"));
 }
 
 /// The lean datapath: short steps, every decomposition exact (see the module docs).
@@ -187,7 +190,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let k_hi = cfg.k_code as u128 >> dsp;
         let nkw = (w.kn_bits - dsp).max(1);
         let e = shift_adds(b, "n", cfg.n_bits(), k_hi, nkw);
-        b.wire("n_k_hi", nkw, e, &format!("n * k_code[{}:{dsp}] = n * {k_hi} mod 2^{nkw}, by shift-adds", k_bits - 1));
+        b.wire("n_k_hi", nkw, Kind::Sum, e, &format!("n * k_code[{}:{dsp}] = n * {k_hi} mod 2^{nkw}, by shift-adds", k_bits - 1));
         b.delay(add_delay(nkw) + LUT_DELAY * (k_hi.count_ones().max(2) - 1).ilog2() as f64);
     }
 
@@ -219,8 +222,14 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     if d_split {
         let xw = m - dsp;
         let mut terms = b.shift_add_terms(&Piece::sig("kn", 0, w.kn_bits), &Piece::sig("one_minus_cos", dsp, cb - dsp), 0, xw);
-        terms.push(lit(xw, k_prime >> dsp));
-        b.wire("deviation_top", xw, terms.join("\n    + "), &format!("kn * (1 - cos)[{}:{dsp}] + K'[{}:{dsp}] mod 2^{xw}, by shift-adds", cb - 1, m - 1));
+        terms.push(Expr::constant(lit(xw, k_prime >> dsp)));
+        b.wire(
+            "deviation_top",
+            xw,
+            Kind::Sum,
+            Expr::join(&terms, "\n    + "),
+            &format!("kn * (1 - cos)[{}:{dsp}] + K'[{}:{dsp}] mod 2^{xw}, by shift-adds", cb - 1, m - 1),
+        );
         b.delay(add_delay(xw) + LUT_DELAY * ((cb - dsp + 1) as f64).log2().ceil());
         b.step("deviation, high partial product (multiply-add)");
     }
@@ -390,6 +399,7 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             b.wire(
                 "deviation_top",
                 hi_w,
+                Kind::Logic,
                 Builder::select(&top, &kn, &h, hi_w),
                 &format!("kn * (1 - cos) / 2^{dsp}: kn when 1 - cos = 1.0, else the high product"),
             );
@@ -513,11 +523,11 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("clamp, 1 - cos (adder 6), cut-off ROM (10), comparator (12)");
     rom_read(cfg, b, false);
     let g = b.r("cos_g");
-    b.wire("cos_clamped", cb, format!("({g} > {one}) ? {one} : {g}"), &format!("UQ1.{f}, <= 1.0"));
+    b.wire("cos_clamped", cb, Kind::Logic, ex!("({} > {}) ? {} : {}", g, one, one, g), &format!("UQ1.{f}, <= 1.0"));
     let c = b.r("cos_clamped");
-    b.wire("one_minus_cos", cb, format!("{one} - {c}"), &format!("UQ1.{f}: 1 - cos(gamma), exact"));
+    b.wire("one_minus_cos", cb, Kind::Sum, ex!("{} - {}", one, c), &format!("UQ1.{f}: 1 - cos(gamma), exact"));
     let (c, sp) = (b.r("cos_clamped"), b.r("cos_sp"));
-    b.wire("done", 1, format!("({c} < {sp})"), "comparator: bracket < 0");
+    b.wire("done", 1, Kind::Logic, ex!("({} < {})", c, sp), "comparator: bracket < 0");
     b.delay(add_delay(cb) * 2.0);
 
     b.step("deviation n*(1 - cos) (multiplier 7) times k (general multiplier 34), truncation #1");
@@ -531,11 +541,11 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let after = b.mul_delay(nb, cb);
     b.mul("deviation_full", w.deviation_bits, (&nd, nd_bits), (&k, bit_length(cfg.k_code as u128)), &[], after, &what);
     let dev = b.pieces(&sub_pieces(&[Piece::sig("deviation_full", 0, w.deviation_bits)], w.deviation_shift, wb + 1));
-    b.wire("deviation", wb + 1, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
+    b.wire("deviation", wb + 1, Kind::Select, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
 
     b.step("bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13)");
     let (dn, dv) = (b.r("done"), b.r("deviation"));
-    b.wire("bracket", wb + 1, format!("{dn} ? {} : ({} - {dv})", lit(wb + 1, 0), lit(wb + 1, 1u128 << wb)), &format!("UQ1.{wb}, in [0, 1]"));
+    b.wire("bracket", wb + 1, Kind::Logic, ex!("{} ? {} : ({} - {})", dn, lit(wb + 1, 0), lit(wb + 1, 1u128 << wb), dv), &format!("UQ1.{wb}, in [0, 1]"));
     b.delay(add_delay(wb + 1) + LUT_DELAY);
 
     b.step("square (a general multiplier as squarer 11)");
@@ -543,7 +553,7 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let br = [Piece::sig("bracket", 0, wb + 1)];
     b.mul("square_full", fb, (&br, wb + 1), (&br, wb + 1), &[], 0.0, &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
     let sq = b.bits("square_full", 2 * wb, w.square_shift);
-    b.wire("square", ws + 1, sq, &format!("UQ1.{ws}: S"));
+    b.wire("square", ws + 1, Kind::Select, sq, &format!("UQ1.{ws}: S"));
 
     b.step("colour multipliers (14-16); intensity rounding");
     let cpb = w.color_product_bits;
@@ -554,13 +564,19 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     }
     if ws > fi {
         let sqr = b.r("square");
-        b.wire("intensity_sum", ws + 1, format!("{sqr} + {}", lit(ws + 1, 1u128 << (ws - fi - 1))), &format!("UQ1.{ws}: S + 2^-{} (round half up)", fi + 1));
+        b.wire(
+            "intensity_sum",
+            ws + 1,
+            Kind::Sum,
+            ex!("{} + {}", sqr, lit(ws + 1, 1u128 << (ws - fi - 1))),
+            &format!("UQ1.{ws}: S + 2^-{} (round half up)", fi + 1),
+        );
     }
 
     b.step("colour rounding, final slices");
     for (ch, product) in CHANNELS.iter().zip(&products) {
         let p = b.r(product);
-        b.wire(&format!("color_sum_{ch}"), cpb, format!("{p} + {}", lit(cpb, 1u128 << (ws - 1))), "+ 1/2 colour ulp (round half up)");
+        b.wire(&format!("color_sum_{ch}"), cpb, Kind::Sum, ex!("{} + {}", p, lit(cpb, 1u128 << (ws - 1))), "+ 1/2 colour ulp (round half up)");
     }
     b.colour_results(ws, "S");
     let e = if ws > fi {
@@ -568,11 +584,11 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     } else {
         let sqr = b.r("square");
         if fi > ws {
-            format!("{{{sqr}, {}}}", lit(fi - ws, 0))
+            ex!("{{{}, {}}}", sqr, lit(fi - ws, 0))
         } else {
             sqr
         }
     };
-    b.wire("intensity", fi + 1, e, &format!("UQ1.{fi}"));
+    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}"));
     b.delay(add_delay(cpb));
 }
