@@ -2,6 +2,7 @@
 //! shift, round.
 
 use super::*;
+use crate::datapath::Sig;
 
 /// The operands of an interpolation's DSP block: the step `delta` and the fraction `r`, each
 /// at the block's width when the table word carries them so (`pad`: the step's field, and the
@@ -15,6 +16,31 @@ fn operands(delta: Piece, r: Piece, word: &str, pad: Option<OperandPad>) -> (Vec
 
 /// A multiplier of at most this many bits is worth shift-adds rather than a DSP block.
 const SHIFT_ADD_BITS: u32 = 5;
+
+/// What every part of the datapath reads: the configuration, the widths and tables, and the
+/// shape chosen once (each interpolation on a DSP block or not, the tables' indices).
+#[derive(Clone, Copy)]
+struct Shape<'a> {
+    w: &'a BlinnWidths,
+    t: &'a BlinnTables,
+    f: u32,
+    fi: u32,
+    bb: u32,
+    nb: u32,
+    cb: u32,
+    dsp: u32,
+    /// the low bits of x (log) and of frac(y) (exp2) below each table's index
+    rb: u32,
+    re: u32,
+    /// each interpolation on one DSP block
+    log_dsp: bool,
+    exp2_dsp: bool,
+    log_pad: Option<OperandPad>,
+    exp2_pad: Option<OperandPad>,
+    /// the tables' indices in the builder
+    lt: usize,
+    et: usize,
+}
 
 /// The blinn datapath: normalise, log2 by table, times n, exp2 by table, shift, round.
 pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder) {
@@ -33,6 +59,17 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let lt = b.table(t.log_table(w, log_pad));
     let et = b.table(t.exp2_table(w, exp2_pad));
 
+    let s = Shape { w, t, f, fi, bb, nb, cb, dsp, rb, re, log_dsp, exp2_dsp, log_pad, exp2_pad, lt, et };
+    normalise(&s, b);
+    log2(&s, b);
+    times_n(&s, b);
+    let complemented = exp2(&s, b);
+    shift_and_round(&s, b, complemented);
+}
+
+/// Clamp c, then normalise it: c' = c*2^e in (1/2, 1] by its leading zeros, and x = 1 - c'.
+fn normalise(s: &Shape, b: &mut Builder) {
+    let Shape { w, f, nb, cb, .. } = *s;
     b.step("clamp c = min(cos, 1)");
     let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator
@@ -133,6 +170,11 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     b.step(title);
     let p = b.add_start("x", &[Piece::sig("cos_norm_inv", 0, f - 1)], &[], true, f - 1, &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
     b.resolve(p, title);
+}
+
+/// -log2 c' = x*g(x), g by the log2 table and linear interpolation; then l = e + L (truncation #1).
+fn log2(s: &Shape, b: &mut Builder) {
+    let Shape { w, f, dsp, rb, log_dsp, log_pad, lt, .. } = *s;
     // the table's address beside x (on ECP5 the block RAM's address register takes it)
     let tg = w.log_index_bits;
     let idx = b.bits("x", f - 2, rb);
@@ -229,7 +271,12 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         ex!("{{{}, {}}}", e, lbits),
         &format!("UQ{}.{}: e + L floored (truncation #1); L < 1", eb2 - w.ell_frac_bits, w.ell_frac_bits),
     );
+}
 
+/// y = n*l (multiplier 7), truncated (#2) and saturated.
+fn times_n(s: &Shape, b: &mut Builder) {
+    let Shape { w, nb, dsp, .. } = *s;
+    let eb2 = w.ell_bits();
     // n*l from the bottom up, l in D-bit chunks: P_0 = n*l[D-1:0], and P_k = n*l[chunk k] +
     // floor(P_(k-1) / 2^D) on one DSP each (the add inside it); then n*l = {P_top, P_(top-1)
     // mod 2^D, .., P_0 mod 2^D}. A top chunk of a few bits is partial products instead.
@@ -317,7 +364,12 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         &format!("UQ{}.{}: y, saturated at {} (every output is 0 from there on)", w.y_int_bits, w.y_frac_bits, w.out_bits + 2),
     );
     b.delay(LUT_DELAY);
+}
 
+/// 2^-frac(y) by the exp2 table and linear interpolation. Returns the sum whose bits are its
+/// complement when the interpolation took the DSP's multiply-add (complemented in the shift's LUTs).
+fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
+    let Shape { w, t, re, exp2_dsp, exp2_pad, et, .. } = *s;
     let te = w.exp2_index_bits;
     let ji = b.bits("y", w.y_frac_bits - 1, re);
     b.wire("exp2_index", te, Kind::Select, ji, "j: frac(y) to the table's resolution");
@@ -379,6 +431,14 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
         b.wire("exp2_frac", ee, Kind::Select, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
     }
 
+    complemented
+}
+
+/// The shift by the integer part of y (truncation #3), the colour multipliers and the rounding.
+fn shift_and_round(s: &Shape, b: &mut Builder, mut complemented: Option<Sig>) {
+    let Shape { w, fi, bb, re, .. } = *s;
+    let (we, ee) = (w.exp2_frac_bits, w.exp2_entry_bits);
+    let sw = ee + re;
     // the shift by the integer part of y, two of its bits a step (a 4:1 mux level each)
     let yib = w.y_int_bits;
     let mut src = "exp2_frac".to_string();
