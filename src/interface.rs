@@ -98,6 +98,25 @@ fn concat(parts: &[String]) -> String {
     }
 }
 
+/// What every part of a unit's edge reads: the configuration and the ports it gives.
+#[derive(Clone, Copy)]
+struct Shape<'a> {
+    cfg: &'a Config,
+    depth: u32,
+    interface: Interface,
+    /// the bits carried beside each pixel, tlast above the tag
+    tw: u32,
+    colour: Colour,
+    user: u32,
+    tlast: bool,
+    top: &'a str,
+    /// the clock enable's port, if any
+    enable: Option<&'static str>,
+    /// what the buffer sees of in_valid and out_ready
+    offer: &'static str,
+    accept: &'static str,
+}
+
 /// The edge of the unit `plan` describes. `outputs`: each output port and the signal that
 /// drives it (the datapath's last view of it).
 pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
@@ -115,8 +134,18 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         (Some(_), Interface::Ready) => ("in_valid_enabled", "out_ready_enabled"),
         _ => ("in_valid", "out_ready"),
     };
+    let s = Shape { cfg, depth, interface, tw, colour, user, tlast, top, enable, offer, accept };
     let mut e = Edge { header: Vec::new(), prologue: Vec::new(), valid_source: "in_valid".into(), tag: Vec::new(), tail: Vec::new(), unused: Vec::new() };
-    // the header
+    header(&s, &mut e);
+    prologue(&s, &mut e);
+    let (tag_out, tag_shift) = tag(&s, plan, &mut e);
+    tail(&s, outputs, tag_out, tag_shift, &mut e);
+    e
+}
+
+/// The header's lines from `Latency:` on: the timing, the handshake, the fields, the enable, the colour.
+fn header(s: &Shape, e: &mut Edge) {
+    let Shape { cfg, interface, colour, user, tlast, top, enable, .. } = *s;
     if interface.handshake() {
         let places = buffer_places(cfg);
         let (iv, ir, ov, or) = names(interface);
@@ -162,8 +191,12 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         e.header.push("            pixel taken after that edge uses them. Load only while idle is high and with no pixel".into());
         e.header.push("            taken in the same cycle (a pixel inside the unit meanwhile would see either colour).".into());
     }
+}
 
-    // the prologue: the reset active high inside, axis aliases, the take, the material registers
+/// The declarations after the port list: the reset active high inside, axis aliases, the take,
+/// the material registers.
+fn prologue(s: &Shape, e: &mut Edge) {
+    let Shape { cfg, depth, interface, tw, colour, user, tlast, top, enable, offer, accept } = *s;
     if interface != Interface::Axis && cfg.clocked() && cfg.port_widths().reset_low {
         e.prologue.push(format!("wire {} rst = ~rst_n;   // active high inside", range(1)));
     }
@@ -225,9 +258,13 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
             e.unused.push("rst".into());
         }
     }
+}
 
-    // the tag: one delay line beside valid_line (whether it is all a shift register `tag_line`,
-    // no tail in block RAM: its formal block then follows it word by word)
+/// The tag: one delay line beside valid_line. Returns its last word, and whether the line is
+/// all a shift register `tag_line` (no tail in block RAM: its formal block then follows it word
+/// by word).
+fn tag(s: &Shape, plan: &Plan, e: &mut Edge) -> (Option<String>, bool) {
+    let Shape { cfg, depth, tw, .. } = *s;
     let mut tag_shift = false;
     let tag_out = if tw == 0 {
         None
@@ -251,7 +288,12 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
         Some(last)
     };
 
-    // the outputs
+    (tag_out, tag_shift)
+}
+
+/// The outputs: assigns, or the output buffer and what it drives (the formal lines, axis packing).
+fn tail(s: &Shape, outputs: &[(String, String)], tag_out: Option<String>, tag_shift: bool, e: &mut Edge) {
+    let Shape { cfg, depth, interface, tw, colour, user, tlast, top, offer, accept, .. } = *s;
     let last_valid = if depth == 0 { e.valid_source.clone() } else { format!("valid_line[{}]", depth - 1) };
     if !interface.handshake() {
         e.tail.push(String::new());
@@ -272,7 +314,7 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
                 e.tail.push(format!("assign {:<9} = idle_q;", "idle"));
             }
         }
-        return e;
+        return;
     }
     // the buffer: the tag, then the outputs in port order reversed (spec_r lowest)
     let mut fields: Vec<(String, String, u32)> = Vec::new();
@@ -328,7 +370,6 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
             (_, true) => e.tail.push(format!("assign {{m_axis_tlast, m_axis_tuser}} = out_tag;   // tlast above the tag ({user} bits)")),
         }
     }
-    e
 }
 
 /// `idle_q` of a `valid` unit with material registers: `~|valid_line` one edge ahead. After

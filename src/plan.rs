@@ -348,6 +348,55 @@ mod tests {
         // and a long datapath in no time (the search would take 2^43 placements)
         assert_eq!(balanced_cuts(&[2.7; 43], 43).len(), 43);
     }
+    /// Issue 50: a wire's kind and reads are data the builder recorded as it made the operands,
+    /// never read back from the Verilog. Checked here against the text, over every model, family,
+    /// width, depth and budget: the reads are exactly the signal names the text holds; a select
+    /// is no more than bits and braces (a multi-line concatenation included: the old text rule
+    /// missed it, and left registers a block reads through one without their `keep`); a
+    /// product, and only a product, multiplies.
+    #[test]
+    fn every_wire_is_typed_as_its_text_reads() {
+        use crate::config::{Arch, SpecularModel, Target};
+        use crate::datapath::Kind;
+        let narrow = Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Params::default() };
+        let mut checked = 0;
+        for model in SpecularModel::ALL {
+            for target in [Target::Ice40, Target::Ecp5, Target::Generic] {
+                for (base, arch) in [(Params::default(), Arch::Lean), (narrow.clone(), Arch::Lean), (Params::default(), Arch::Paper)] {
+                    if arch == Arch::Paper && model != SpecularModel::Quadratic {
+                        continue;
+                    }
+                    for budget in [None, Some(1)] {
+                        let params = Params { model, target, arch, dsp_budget: budget, stages: 0, ..base.clone() };
+                        let top = Plan::from_params(params.clone()).unwrap().cut_points;
+                        for stages in [0, 1, top / 2, top] {
+                            let plan = Plan::from_params(Params { stages, ..params.clone() }).unwrap();
+                            let dp = &plan.datapath;
+                            // every name a step, an output or the lint sink reads
+                            let names: std::collections::BTreeSet<&str> = dp.read.keys().map(String::as_str).collect();
+                            for s in &dp.steps {
+                                for w in &s.wires {
+                                    let text = &w.expr.text;
+                                    let mut in_text: Vec<&str> =
+                                        text.split(|c: char| !(c.is_alphanumeric() || c == '_')).filter(|t| names.contains(t)).collect();
+                                    in_text.sort();
+                                    in_text.dedup();
+                                    let mut reads: Vec<&str> = w.expr.reads.iter().map(String::as_str).collect();
+                                    reads.sort();
+                                    assert_eq!(reads, in_text, "{model:?} {target:?} {stages}: {}_s{} = {text}", w.name, s.index);
+                                    let plain = text.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '\n".contains(c));
+                                    assert_eq!(w.kind == Kind::Select, plain, "{model:?} {target:?} {stages}: {}_s{} ({:?}) = {text}", w.name, s.index, w.kind);
+                                    assert_eq!(w.product().is_some(), text.contains(" * "), "{model:?} {target:?}: {}_s{} = {text}", w.name, s.index);
+                                    checked += 1;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked} wires");
+    }
 }
 
 #[cfg(test)]

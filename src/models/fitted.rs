@@ -464,78 +464,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let sq_split = r > 0 && wf >= 2 * r && r <= MAX_SQUARER_SPLIT;
     let m_max = cfg.max_squarings();
     for j in 1..=m_max {
-        let prev = format!("power{}", j - 1);
-        let hi_bits = if sq_split {
-            let t = format!("squaring {j} of {m_max}: T = 2*hi*lo + lo^2/2^{r}");
-            b.step(&format!("{t}: the partial products of 2*hi*lo; lo^2 by a table"));
-            let tw = dsp + r + 2;
-            let (ll, tn) = (format!("square{j}_ll"), format!("square{j}_t"));
-            let terms = if r > LUT_INPUTS {
-                // lo = t*2^(r-1) + l' (t its top bit): lo^2 = t*2^(2r-2) + t*l'*2^r + l'^2, so
-                // T = 2*hi*l' + t*(hi*2^r + l') + t*2^(r-2) + floor(l'^2/2^r), every floor exact
-                // (the first two terms of lo^2 are multiples of 2^r) and l'^2 < 2^(2r-2) leaves
-                // bit r-2 of its floor clear for t: a table of r-1 bits, one LUT level, not two
-                let l = r - 1;
-                b.square_table(&ll, &prev, 0, l, &format!("l'^2 by table, power{} = hi*2^{r} + t*2^{l} + l'", j - 1));
-                let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, l), 1, tw, false);
-                let t_bit = b.bits(&prev, l, l);
-                let hl = b.pieces(&[Piece::sig(&prev, 0, l), Piece::zeros(1), Piece::sig(&prev, r, dsp), Piece::zeros(tw - dsp - r)]);
-                let top = format!("{tn}_top");
-                b.wire(&top, tw, Kind::Logic, Builder::gate(&t_bit, &hl, tw), "t*(hi*2^r + l'): the partial product of lo's top bit");
-                terms.push(vec![Piece::sig(&top, 0, tw)]);
-                terms.push(vec![Piece::sig(&ll, r, r - 2), Piece::sig(&prev, l, 1)]);
-                terms
-            } else {
-                b.square_table(&ll, &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
-                let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw, false);
-                terms.push(vec![Piece::sig(&ll, r, r)]);
-                terms
-            };
-            let p = b.sum_start(&tn, terms, tw, &t, "2*hi*lo + floor(lo^2 / 2^r), exact");
-            let tn = b.resolve(p, &t);
-            let zw = 2 * dsp;
-            let what = format!("floor(power{}^2 / 2^{}), exact", j - 1, 2 * r);
-            let square = if b.instantiated_blocks() {
-                // the MULT18X18D has no adder: hi^2 alone on it (with its own registers where
-                // the cuts allow), T added after it on a carry chain
-                b.step(&format!("squaring {j} of {m_max} (squarer 11): hi^2 (one DSP)"));
-                let hh = format!("square{j}_hh");
-                b.product(&hh, &[Piece::sig(&prev, r, dsp)], &[Piece::sig(&prev, r, dsp)], zw, &format!("hi^2, power{} = hi*2^{r} + lo, exact", j - 1));
-                b.step(&format!("squaring {j} of {m_max}: Z = hi^2 + T/2^{r}"));
-                b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[tn.part(r, tw - r)], false, zw, &what)
-            } else {
-                // a step that only registers T: the DSP's input registers take their operands
-                // from a flip-flop (a route to the DSP column), not from the LUTs that picked
-                // T's chunks
-                b.step(&format!("{t}: registered for the DSP"));
-                b.delay(REGISTER_ONLY_DELAY);
-                b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
-                let (h, th) = ([Piece::sig(&prev, r, dsp)], [Piece::sig(tn.as_ref(), r, tw - r)]);
-                let what = format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1);
-                b.mul(&format!("square{j}"), zw, (&h, dsp), (&h, dsp), &th, 0.0, &what)
-            };
-            // the bypass in a step of its own: the DSP's output meets only a flip-flop
-            b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
-            b.delay(LUT_DELAY);
-            b.bits(&square, 2 * wf - 2 * r, wf - 2 * r)
-        } else {
-            b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
-            let sq = 2 * wf + 2;
-            let p = [Piece::sig(&prev, 0, wf + 1)];
-            let wp = (wf + 1).min(dsp);
-            let square = b.mul(&format!("square{j}"), sq, (&p, wp), (&p, wp), &[], LUT_DELAY, &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
-            b.bits(&square, 2 * wf, wf)
-        };
-        let keep = b.r(&prev);
-        let mf = b.bits("fit", w.rom_word_bits - 1, w.a_bits);
-        let m_test = ex!("({} >= {})", mf, lit(w.m_bits, j as u128));
-        b.wire(
-            &format!("power{j}"),
-            wf + 1,
-            Kind::Logic,
-            ex!("{} ? {} : {}", m_test, hi_bits, keep),
-            &format!("UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}", j + 1, j - 1),
-        );
+        squaring(w, b, j, m_max, r, sq_split);
     }
 
     let s = format!("power{m_max}");
@@ -560,6 +489,85 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     b.colour_results(wc, "S");
     let e = b.bits(&sum, fi + 1, 1);
     b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S rounded half up"));
+}
+
+/// Squaring `j` of `m_max` (squarer 11): power_j = power_(j-1)^2 floored, or power_(j-1) when
+/// m_n < j. `r`: the low bits split off a bracket wider than a DSP's operands (`sq_split`: the
+/// square is then hi^2*2^2r + T*2^r + lo^2 with T by partial products and a table, above).
+fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_split: bool) {
+    let (wf, dsp) = (w.frac_bits, b.dsp_bits());
+    let prev = format!("power{}", j - 1);
+    let hi_bits = if sq_split {
+        let t = format!("squaring {j} of {m_max}: T = 2*hi*lo + lo^2/2^{r}");
+        b.step(&format!("{t}: the partial products of 2*hi*lo; lo^2 by a table"));
+        let tw = dsp + r + 2;
+        let (ll, tn) = (format!("square{j}_ll"), format!("square{j}_t"));
+        let terms = if r > LUT_INPUTS {
+            // lo = t*2^(r-1) + l' (t its top bit): lo^2 = t*2^(2r-2) + t*l'*2^r + l'^2, so
+            // T = 2*hi*l' + t*(hi*2^r + l') + t*2^(r-2) + floor(l'^2/2^r), every floor exact
+            // (the first two terms of lo^2 are multiples of 2^r) and l'^2 < 2^(2r-2) leaves
+            // bit r-2 of its floor clear for t: a table of r-1 bits, one LUT level, not two
+            let l = r - 1;
+            b.square_table(&ll, &prev, 0, l, &format!("l'^2 by table, power{} = hi*2^{r} + t*2^{l} + l'", j - 1));
+            let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, l), 1, tw, false);
+            let t_bit = b.bits(&prev, l, l);
+            let hl = b.pieces(&[Piece::sig(&prev, 0, l), Piece::zeros(1), Piece::sig(&prev, r, dsp), Piece::zeros(tw - dsp - r)]);
+            let top = format!("{tn}_top");
+            b.wire(&top, tw, Kind::Logic, Builder::gate(&t_bit, &hl, tw), "t*(hi*2^r + l'): the partial product of lo's top bit");
+            terms.push(vec![Piece::sig(&top, 0, tw)]);
+            terms.push(vec![Piece::sig(&ll, r, r - 2), Piece::sig(&prev, l, 1)]);
+            terms
+        } else {
+            b.square_table(&ll, &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
+            let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw, false);
+            terms.push(vec![Piece::sig(&ll, r, r)]);
+            terms
+        };
+        let p = b.sum_start(&tn, terms, tw, &t, "2*hi*lo + floor(lo^2 / 2^r), exact");
+        let tn = b.resolve(p, &t);
+        let zw = 2 * dsp;
+        let what = format!("floor(power{}^2 / 2^{}), exact", j - 1, 2 * r);
+        let square = if b.instantiated_blocks() {
+            // the MULT18X18D has no adder: hi^2 alone on it (with its own registers where
+            // the cuts allow), T added after it on a carry chain
+            b.step(&format!("squaring {j} of {m_max} (squarer 11): hi^2 (one DSP)"));
+            let hh = format!("square{j}_hh");
+            b.product(&hh, &[Piece::sig(&prev, r, dsp)], &[Piece::sig(&prev, r, dsp)], zw, &format!("hi^2, power{} = hi*2^{r} + lo, exact", j - 1));
+            b.step(&format!("squaring {j} of {m_max}: Z = hi^2 + T/2^{r}"));
+            b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[tn.part(r, tw - r)], false, zw, &what)
+        } else {
+            // a step that only registers T: the DSP's input registers take their operands
+            // from a flip-flop (a route to the DSP column), not from the LUTs that picked
+            // T's chunks
+            b.step(&format!("{t}: registered for the DSP"));
+            b.delay(REGISTER_ONLY_DELAY);
+            b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
+            let (h, th) = ([Piece::sig(&prev, r, dsp)], [Piece::sig(tn.as_ref(), r, tw - r)]);
+            let what = format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1);
+            b.mul(&format!("square{j}"), zw, (&h, dsp), (&h, dsp), &th, 0.0, &what)
+        };
+        // the bypass in a step of its own: the DSP's output meets only a flip-flop
+        b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
+        b.delay(LUT_DELAY);
+        b.bits(&square, 2 * wf - 2 * r, wf - 2 * r)
+    } else {
+        b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
+        let sq = 2 * wf + 2;
+        let p = [Piece::sig(&prev, 0, wf + 1)];
+        let wp = (wf + 1).min(dsp);
+        let square = b.mul(&format!("square{j}"), sq, (&p, wp), (&p, wp), &[], LUT_DELAY, &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
+        b.bits(&square, 2 * wf, wf)
+    };
+    let keep = b.r(&prev);
+    let mf = b.bits("fit", w.rom_word_bits - 1, w.a_bits);
+    let m_test = ex!("({} >= {})", mf, lit(w.m_bits, j as u128));
+    b.wire(
+        &format!("power{j}"),
+        wf + 1,
+        Kind::Logic,
+        ex!("{} ? {} : {}", m_test, hi_bits, keep),
+        &format!("UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}", j + 1, j - 1),
+    );
 }
 
 /// The fit of a configuration, computed once per process for each (N, M, KA).
