@@ -361,7 +361,7 @@ mod tests {
         let narrow = Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Params::default() };
         let mut checked = 0;
         for model in SpecularModel::ALL {
-            for target in [Target::Ice40, Target::Ecp5, Target::Generic] {
+            for target in Target::ALL {
                 for (base, arch) in [(Params::default(), Arch::Lean), (narrow.clone(), Arch::Lean), (Params::default(), Arch::Paper)] {
                     if arch == Arch::Paper && model != SpecularModel::Quadratic {
                         continue;

@@ -121,6 +121,10 @@ pub enum Target {
 }
 
 impl Target {
+    /// Every target: a test that covers every family iterates this (a new family is added here
+    /// and in `family::of`).
+    pub const ALL: [Target; 3] = [Target::Generic, Target::Ice40, Target::Ecp5];
+
     pub fn name(self) -> &'static str {
         match self {
             Target::Generic => "generic",
