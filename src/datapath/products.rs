@@ -1,4 +1,4 @@
-//! Products: every multiply of a datapath is made here, typed ([`Wire::product`], never found
+//! Products: every multiply of a datapath is made here, typed ([`Kind::Product`](super::Kind::Product), never found
 //! by searching the text), counted in blocks ([`ProductUse`]), and — for the products the
 //! unit's `--dsp-budget` leaves out of the blocks — summed from partial products in the
 //! fabric, a carry-save sum the plan can cut like any other.
