@@ -33,6 +33,7 @@ fn build(model: &Model, registered: &[u32], fabric: &BTreeSet<String>) -> Datapa
     let inputs = [("cos_g", cfg.f() + 1), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
     let mut b = Builder::new(&inputs, registered, cfg.target());
     b.in_fabric(fabric);
+    b.set_tables_as_logic(cfg.params.rom_style == crate::config::RomStyle::Logic);
     if cfg.colour() == Colour::Static {
         for ch in crate::ports::CHANNELS {
             b.hold(&format!("ks_{ch}"), &format!("ks_{ch}_material"));
@@ -362,8 +363,14 @@ mod tests {
         let mut checked = 0;
         for model in SpecularModel::ALL {
             for target in Target::ALL {
-                for (base, arch) in [(Params::default(), Arch::Lean), (narrow.clone(), Arch::Lean), (Params::default(), Arch::Paper)] {
+                let logic = Params { rom_style: crate::config::RomStyle::Logic, ..narrow.clone() };
+                let shapes = [(Params::default(), Arch::Lean), (narrow.clone(), Arch::Lean), (Params::default(), Arch::Paper), (logic, Arch::Lean)];
+                for (base, arch) in shapes {
                     if arch == Arch::Paper && model != SpecularModel::Quadratic {
+                        continue;
+                    }
+                    // a table as logic: the lean quadratic datapath on the ECP5 only
+                    if base.rom_style == crate::config::RomStyle::Logic && !(model == SpecularModel::Quadratic && target == Target::Ecp5) {
                         continue;
                     }
                     for budget in [None, Some(1)] {

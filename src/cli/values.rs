@@ -34,6 +34,8 @@ flag_values! {
         File,
         /// a case table inlined in the module (no file to carry around)
         Case,
+        /// the table as logic in two steps, never block RAM (lean quadratic on the ECP5: past the DP16KD's clock limit)
+        Logic,
     }
     /// `--arch`
     ArchFlag => Arch {

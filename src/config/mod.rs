@@ -40,6 +40,10 @@ pub enum RomStyle {
     File,
     /// A `case` table inlined in the module (no file to carry around).
     Case,
+    /// The table written as logic, its read in two steps (the entry within each group of
+    /// words, then the group): never a memory, never block RAM. Past the ECP5 DP16KD's clock
+    /// limit; the lean quadratic datapath on the ECP5 only.
+    Logic,
 }
 
 impl RomStyle {
@@ -47,6 +51,7 @@ impl RomStyle {
         match self {
             RomStyle::File => "file",
             RomStyle::Case => "case",
+            RomStyle::Logic => "logic",
         }
     }
 }
@@ -485,6 +490,17 @@ impl Config {
             return Err(Error::Config {
                 parameter: "rounding",
                 message: format!("exact is not available with the {} model; allowed: faithful", params.model.name()),
+            });
+        }
+        if params.rom_style == RomStyle::Logic && !(params.model == SpecularModel::Quadratic && params.arch == Arch::Lean && params.target == Target::Ecp5) {
+            return Err(Error::Config {
+                parameter: "rom_style",
+                message: format!(
+                    "logic applies to the lean quadratic datapath on the ECP5 (--model quadratic --arch lean --target ecp5: its cut-off table kept out of DP16KD); allowed with {} {} on {}: file, case",
+                    params.model.name(),
+                    params.arch.name(),
+                    params.target.name()
+                ),
             });
         }
         if params.arch == Arch::Paper && !params.model.takes("arch=paper") {

@@ -32,7 +32,18 @@ impl Builder {
             products: Vec::new(),
             product_uses: Vec::new(),
             fabric: Default::default(),
+            tables_as_logic: false,
         }
+    }
+
+    /// Asks the model to read its tables as logic, never a memory (`--rom-style logic`).
+    pub(crate) fn set_tables_as_logic(&mut self, on: bool) {
+        self.tables_as_logic = on;
+    }
+
+    /// Whether the model reads its tables as logic ([`Builder::rom_parts`]).
+    pub(crate) fn tables_as_logic(&self) -> bool {
+        self.tables_as_logic
     }
 
     /// Makes the input `name` one held in the register `register` for every pixel (a static
@@ -458,6 +469,73 @@ impl Builder {
         self.wire(name, 2 * r, Kind::Table, Expr::join(&entries, "\n    | "), comment);
         // a function of more inputs than a LUT has: two levels
         self.delay(if r > LUT_INPUTS { 2.0 * LUT_DELAY } else { LUT_DELAY });
+    }
+
+    /// The first step of a table read written as logic (`--rom-style logic`: never a memory,
+    /// never block RAM): for each value `h` of the address's top bits, the entry its low bits
+    /// pick (`<signal>_part<h>`, an OR of the entries, each gated by its match: a function of
+    /// the low bits alone, two LUT levels up to 6 of them). [`Builder::rom_pick`] takes the
+    /// word in the next step. Returns the parts and how many low bits they read.
+    pub(crate) fn rom_parts(&mut self, signal: &str, t: usize, addr: &str) -> (Vec<Sig>, u32) {
+        let aw = self.signal(addr).width;
+        let (width, words) = (self.tables[t].width, self.tables[t].words.clone());
+        // the top bits pick among at most 16 parts (a 16:1 mux, two LUT levels)
+        let hi = (aw / 2).clamp(1, 4);
+        let lo = aw - hi;
+        let mut parts = Vec::new();
+        if lo == 0 {
+            // a one-bit address: each part is its word
+            for h in 0..2usize {
+                let e = Expr::constant(lit(width, words.get(h).copied().unwrap_or(0)));
+                let what = format!("{} at {addr} = {h}", self.tables[t].what);
+                parts.push(self.wire(&format!("{signal}_part{h}"), width, Kind::Select, e, &what));
+            }
+            return (parts, 0);
+        }
+        let low = self.bits(addr, lo - 1, 0);
+        for h in 0..1usize << hi {
+            let entries: Vec<Expr> = (0..1usize << lo)
+                .filter_map(|l| words.get(h << lo | l).copied().filter(|&v| v != 0).map(|v| (l, v)))
+                .map(|(l, v)| Builder::gate(&ex!("{} == {}", low, lit(lo, l as u128)), &Expr::constant(lit(width, v)), width))
+                .collect();
+            let e = if entries.is_empty() { Expr::constant(lit(width, 0)) } else { Expr::join(&entries, "\n    | ") };
+            let what = format!("{} at {addr}[{}:{lo}] = {h}, by {addr}[{}:0]", self.tables[t].what, aw - 1, lo - 1);
+            parts.push(self.wire(&format!("{signal}_part{h}"), width, Kind::Table, e, &what));
+        }
+        self.delay(if lo > LUT_INPUTS { 2.0 * LUT_DELAY } else { LUT_DELAY });
+        (parts, lo)
+    }
+
+    /// A later step of [`Builder::rom_parts`]: the parts (picked by the address's bits from
+    /// `lo` up, lowest first) four to one by the next two of those bits (a 4:1 mux, one slice
+    /// of LUTs: an AND-OR, [`Builder::select`]'s rule). The last pick is `signal` itself.
+    /// Returns the parts left and the address bit they are picked by.
+    pub(crate) fn rom_pick(&mut self, signal: &str, t: usize, addr: &str, parts: &[Sig], lo: u32) -> (Vec<Sig>, u32) {
+        let width = self.tables[t].width;
+        let k: u32 = if parts.len() > 2 { 2 } else { 1 };
+        let sel = self.bits(addr, lo + k - 1, lo);
+        let what = self.tables[t].what.clone();
+        let mut out = Vec::new();
+        for (g, group) in parts.chunks(1 << k).enumerate() {
+            let terms: Vec<Expr> = group
+                .iter()
+                .enumerate()
+                .map(|(j, p)| {
+                    let v = self.r(p);
+                    Builder::gate(&ex!("{} == {}", sel, lit(k, j as u128)), &v, width)
+                })
+                .collect();
+            let last = parts.len() <= 1 << k;
+            let name = if last { signal.to_string() } else { format!("{signal}_pick{}_{g}", lo + k) };
+            let comment = if last {
+                format!("{what} (a table in LUTs, address = {addr})")
+            } else {
+                format!("{addr}[{}:{lo}] picks among parts {}..{}", lo + k - 1, g << k, (g << k) + group.len() - 1)
+            };
+            out.push(self.wire(&name, width, Kind::Logic, Expr::join(&terms, "\n    | "), &comment));
+        }
+        self.delay(LUT_DELAY);
+        (out, lo + k)
     }
 
     /// Adds a constant table to the unit; returns its index for [`Builder::rom_read`].

@@ -578,7 +578,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let dp = &plan.datapath;
     let tables: Vec<_> = match cfg.params.rom_style {
         RomStyle::File => dp.tables.iter().enumerate().filter(|(i, _)| !block_table(dp, *i)).map(|(_, t)| t.clone()).collect(),
-        RomStyle::Case => Vec::new(),
+        RomStyle::Case | RomStyle::Logic => Vec::new(),
     };
     let description = unit.describe().summary;
     let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];

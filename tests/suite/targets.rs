@@ -316,3 +316,54 @@ fn dsp_splits_are_right_over_random_wide_configs() {
         assert_eq!(o.status.code(), Some(0), "{args:?} --stages {stages}: {}", text(&o));
     }
 }
+
+/// Issue 51, point 3: `--rom-style logic` keeps the lean unit's cut-off table out of block RAM on
+/// the ECP5 (the DP16KD's clock limit, 211.9 MHz at grade 6, capped every lean unit): the table
+/// is written as logic, read over three steps (the entry within each group of words, then the
+/// picks by n's top bits), and nothing else names a memory. A narrow unit at its deepest (the
+/// two pick steps more than the block RAM's unit) has no table file, no DP16KD, synthesizes
+/// with no block RAM, and equals the golden model on every input. The style is refused,
+/// naming the parameter and what is allowed, where it does not apply.
+#[test]
+fn a_logic_rom_keeps_the_lean_table_out_of_block_ram_on_the_ecp5() {
+    require_tool("verilator", "verilator");
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ecp5"];
+    let block: u32 = deepest(&narrow).parse().unwrap();
+    let logic_args: Vec<&str> = narrow.iter().copied().chain(["--rom-style", "logic"]).collect();
+    let logic: u32 = deepest(&logic_args).parse().unwrap();
+    assert_eq!(logic, block + 2, "the entry's step stands where the block read was, and two picks follow");
+    let stages = logic.to_string();
+    let args: Vec<&str> = logic_args.iter().copied().chain(["--stages", &stages]).collect();
+    let dir = generate(tmp.path(), "logic", &args);
+    assert_eq!(verilog_files(&dir), ["specular_unit.v", "specular_unit_mult18x18.v", "sim/specular_unit_ecp5_mult18x18d_sim.v"]);
+    let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+    assert!(!v.contains("DP16KD") && !v.contains("rom1k18") && !v.contains("$readmemh") && !v.contains("case ("), "no memory of any kind");
+    assert!(v.contains("cos_sp_part7_s") && v.contains("cos_sp_pick5_1_s"), "the parts and the first pick");
+    assert!(!std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .any(|e| e.file_name().to_string_lossy().ends_with(".hex") && e.file_name().to_string_lossy().contains("rom")));
+    let json = tmp.path().join("synth.json");
+    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(r["block_rams"], 0, "{r}");
+    let o = cosim(&dir, &["--exhaustive"]);
+    assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{}", text(&o));
+    // refused where it does not apply
+    let refused = [
+        (&["--target", "ice40"][..], "quadratic lean on ice40"),
+        (&["--target", "ecp5", "--model", "fitted"][..], "fitted lean on ecp5"),
+        (&["--target", "ecp5", "--arch", "paper"][..], "quadratic paper on ecp5"),
+    ];
+    for (extra, named) in refused {
+        let a: Vec<&str> = ["--rom-style", "logic"].iter().copied().chain(extra.iter().copied()).collect();
+        let o = specgen().args(["generate", "--out"]).arg(tmp.path().join("refused")).args(&a).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{a:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("--rom-style") && err.contains(named) && err.contains("allowed") && err.contains("file, case"), "{err}");
+        assert!(!tmp.path().join("refused").exists());
+    }
+}

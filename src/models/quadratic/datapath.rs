@@ -338,8 +338,18 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("cos complemented and clamped");
     cos_complement(cfg, b);
 
-    b.step("cut-off ROM read (10, a block RAM); 1 - cos (adder 6); k_q*n (a product)");
-    rom_read(cfg, b, true);
+    let logic = b.tables_as_logic();
+    let mut parts = None;
+    if logic {
+        // --rom-style logic: the table in LUTs, read in this step and the next, past the
+        // DP16KD's clock limit
+        b.step("cut-off ROM read (10, in LUTs): the entry in each group of words; 1 - cos (adder 6); k_q*n (a product)");
+        let t = b.table(super::rom::cos_sp_rom(cfg));
+        parts = Some((t, b.rom_parts("cos_sp", t, "n")));
+    } else {
+        b.step("cut-off ROM read (10, a block RAM); 1 - cos (adder 6); k_q*n (a product)");
+        rom_read(cfg, b, true);
+    }
     b.add("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
     let (k, kb) = (cfg.k_code as u128, bit_length(cfg.k_code as u128));
     let what = format!("UQ{}.{}: k_q*n, exact; one constant product replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf());
@@ -362,7 +372,12 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     // a cut-off ROM of more than one DP16KD's words (one per n) is two banks of them, picked
     // after their output registers: a step that only registers the picked word before the
     // comparator's chain
-    if 1usize << cfg.n_bits() > DP16KD_WORDS {
+    if let Some((t, (mut words, mut lo))) = parts {
+        while words.len() > 1 {
+            b.step(&format!("cut-off ROM read (10, in LUTs): the entry picked by n's bits from {lo}"));
+            (words, lo) = b.rom_pick("cos_sp", t, "n", &words, lo);
+        }
+    } else if 1usize << cfg.n_bits() > DP16KD_WORDS {
         b.ecp5_register_step("cut-off ROM read: the bank's word registered");
     }
     b.step("comparator (12)");
