@@ -98,14 +98,29 @@ impl Family for Ecp5 {
     /// yosys's models with their `include`d parts inline (so every simulator finds them), its
     /// empty DP16KD black box replaced by specgen's model, and specgen's MULT18X18D model.
     fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
-        let mut text = String::new();
-        for line in super::read(&datdir.join("ecp5/cells_sim.v"))?.lines() {
-            match line.trim().strip_prefix("`include \"").and_then(|r| r.strip_suffix('"')) {
-                Some(name) => text.push_str(&super::read(&datdir.join("ecp5").join(name))?),
-                None => text.push_str(line),
+        // an included part may include others, and two parts the same one (yosys 0.70: both
+        // cells_sim.v and its common_sim.vh include cells_ff.vh and cells_io.vh): each inlined
+        // once, where it is first included, to a bounded depth
+        fn inline(dir: &Path, file: &str, depth: u32, seen: &mut Vec<String>, text: &mut String) -> Result<(), (PathBuf, std::io::Error)> {
+            for line in super::read(&dir.join(file))?.lines() {
+                match line.trim().strip_prefix("`include \"").and_then(|r| r.strip_suffix('"')) {
+                    Some(name) if seen.iter().any(|s| s == name) => {}
+                    Some(name) if depth < 4 => {
+                        seen.push(name.to_string());
+                        inline(dir, name, depth + 1, seen, text)?
+                    }
+                    // an elaboration-time `$error` in a generate branch no netlist takes (yosys
+                    // 0.70's TRELLIS_SLICE: "unsupported COMB mode") is SystemVerilog, which
+                    // Icarus in Verilog-2005 refuses: left as a comment
+                    _ if line.trim_start().starts_with("$error(") => text.push_str(&format!("// {}", line.trim())),
+                    _ => text.push_str(line),
+                }
+                text.push('\n');
             }
-            text.push('\n');
+            Ok(())
         }
+        let mut text = String::new();
+        inline(&datdir.join("ecp5"), "cells_sim.v", 0, &mut Vec::new(), &mut text)?;
         if let Some(start) = text.find("module DP16KD(") {
             let end = text[start..].find("endmodule").map_or(text.len(), |e| start + e + "endmodule".len());
             text.replace_range(start..end, "// DP16KD: see <top>_ecp5_dp16kd_sim.v (specgen's model; this one is an empty black box)");
