@@ -32,7 +32,7 @@ print(json.dumps(dict(style=os.environ["STYLE"], versions=os.environ["VERSIONS"]
 PY
     done
 done
-python3 - "$rows" <<'PY'
+python3 - "$rows" <<'PY' | python3 scripts/bench_section.py "## ECP5 past the block RAM's cap"
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
 out = ["## ECP5 past the block RAM's cap: lean with its table in LUTs", "",
@@ -51,14 +51,5 @@ for r in rows:
     if s:
         f += " (set by %s; nextpnr %.1f, %.1f–%.1f)" % ((r["limit"] or "routing").split(":")[0], r["nextpnr"] or 0, min(s), max(s))
     out.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (r["style"], r["stages"], r["versions"], net, r["lc"], r["ff"], r["dsp"], r["bram"], f))
-text = open("BENCHMARKS-hw.md").read()
-section = "\n".join(out) + "\n"
-start = text.find("## ECP5 past the block RAM's cap")
-if start < 0:
-    text = text.rstrip("\n") + "\n\n" + section
-else:
-    end = text.find("\n## ", start + 1)
-    text = text[:start] + section + ("" if end < 0 else text[end:])
-open("BENCHMARKS-hw.md", "w").write(text)
-print(section)
+print("\n".join(out))
 PY

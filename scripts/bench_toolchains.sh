@@ -36,7 +36,7 @@ print(json.dumps(dict(model=os.environ["MODEL"], chain=os.environ["NAME"], versi
 PY
     done
 done
-python3 - "$rows" <<'PY'
+python3 - "$rows" <<'PY' | python3 scripts/bench_section.py "## Toolchains:"
 import json, sys, re
 rows = [json.loads(l) for l in open(sys.argv[1])]
 out = ["## Toolchains: every model's iCE40 operating point on yosys 0.23 and 0.70", "",
@@ -50,14 +50,5 @@ for r in rows:
     s = r["seeds"]
     f = "%.1f (%.1f–%.1f)" % (r["fmax"], min(s), max(s)) if s else "–"
     out.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (r["model"], r["stages"], r["versions"], net, r["lc"], r["dsp"], r["ff"], f))
-text = open("BENCHMARKS-hw.md").read()
-section = "\n".join(out) + "\n"
-start = text.find("## Toolchains:")
-if start < 0:
-    text = text.rstrip("\n") + "\n\n" + section
-else:
-    end = text.find("\n## ", start + 1)
-    text = text[:start] + section + ("" if end < 0 else text[end:])
-open("BENCHMARKS-hw.md", "w").write(text)
-print(section)
+print("\n".join(out))
 PY

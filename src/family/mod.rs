@@ -169,7 +169,7 @@ mod tests {
     /// The registry answers for every target by its own name.
     #[test]
     fn every_target_has_its_home() {
-        for t in [Target::Ice40, Target::Ecp5, Target::Generic] {
+        for t in Target::ALL {
             assert_eq!(of(t).name(), t.name());
         }
         assert!(of(Target::Generic).place_and_route(6).is_none() && of(Target::Generic).calibration().is_none());
