@@ -18,18 +18,8 @@ for style in file logic; do
         log="$work/$style-$name.log"
         if $bin synth --rtl "$dir" --dsp --verify --verify-exhaustive --seeds "$seeds" --yosys "$yosys" \
             --json "$work/$style-$name.json" > "$log" 2>&1; then verdict=right; else verdict=WRONG; fi
-        STYLE=$style VERSIONS="$($yosys -V | sed 's/ (.*//')" VERDICT=$verdict LOG=$log python3 - "$work/$style-$name.json" >> "$rows" <<'PY'
-import json, os, re, sys
-try:
-    d = json.load(open(sys.argv[1]))
-except Exception:
-    d = {}
-log = open(os.environ["LOG"]).read()
-checked = re.findall(r"under Verilator: (\d+) cycles, (\d+) checked, (\d+) mismatches", log)
-print(json.dumps(dict(style=os.environ["STYLE"], versions=os.environ["VERSIONS"], verdict=os.environ["VERDICT"], stages=d.get("stages"),
-                      lc=d.get("logic_cells"), ff=d.get("flip_flops"), dsp=d.get("dsp_blocks"), bram=d.get("block_rams"), seeds=d.get("fmax_seeds", []),
-                      fmax=d.get("fmax_mhz"), nextpnr=d.get("fmax_route_mhz"), limit=d.get("fmax_limited_by"), exhaustive=checked[-1] if checked else None)))
-PY
+        python3 scripts/bench_synth_row.py "$work/$style-$name.json" "$log" style="$style" versions="$($yosys -V | sed 's/ (.*//')" \
+            verdict="$verdict" >> "$rows"
     done
 done
 python3 - "$rows" <<'PY' | python3 scripts/bench_section.py "## ECP5 past the block RAM's cap"

@@ -22,18 +22,8 @@ for model in $(models); do
         if $bin synth --rtl "$dir" --dsp --verify --verify-exhaustive --seeds "$seeds" --yosys "$yosys" --nextpnr "$nextpnr" \
             --json "$work/$model-$name.json" > "$log" 2>&1; then verdict=right; else verdict=WRONG; fi
         versions="$($yosys -V | sed 's/ (.*//'), nextpnr-ice40 $($nextpnr --version 2>&1 | head -1 | sed 's/.*(Version \(.*\))/\1/')"
-        MODEL=$model NAME=$name VERDICT=$verdict VERSIONS=$versions LOG=$log python3 - "$work/$model-$name.json" >> "$rows" <<'PY'
-import json, os, re, sys
-try:
-    d = json.load(open(sys.argv[1]))
-except Exception:
-    d = {}
-log = open(os.environ["LOG"]).read()
-checked = re.findall(r"under Verilator: (\d+) cycles, (\d+) checked, (\d+) mismatches", log)
-print(json.dumps(dict(model=os.environ["MODEL"], chain=os.environ["NAME"], versions=os.environ["VERSIONS"], verdict=os.environ["VERDICT"],
-                      stages=d.get("stages"), lc=d.get("logic_cells"), dsp=d.get("dsp_blocks"), ff=d.get("flip_flops"), seeds=d.get("fmax_seeds", []),
-                      fmax=d.get("fmax_mhz"), exhaustive=checked[-1] if checked else None)))
-PY
+        python3 scripts/bench_synth_row.py "$work/$model-$name.json" "$log" model="$model" chain="$name" versions="$versions" \
+            verdict="$verdict" >> "$rows"
     done
 done
 python3 - "$rows" <<'PY' | python3 scripts/bench_section.py "## Toolchains:"

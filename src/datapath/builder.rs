@@ -32,18 +32,7 @@ impl Builder {
             products: Vec::new(),
             product_uses: Vec::new(),
             fabric: Default::default(),
-            tables_as_logic: false,
         }
-    }
-
-    /// Asks the model to read its tables as logic, never a memory (`--rom-style logic`).
-    pub(crate) fn set_tables_as_logic(&mut self, on: bool) {
-        self.tables_as_logic = on;
-    }
-
-    /// Whether the model reads its tables as logic ([`Builder::rom_parts`]).
-    pub(crate) fn tables_as_logic(&self) -> bool {
-        self.tables_as_logic
     }
 
     /// Makes the input `name` one held in the register `register` for every pixel (a static
@@ -457,6 +446,17 @@ impl Builder {
         self.signals.iter().find(|s| s.name == "ks_r").expect("the colour ports are inputs").width
     }
 
+    /// The value of `cases` (`(index, value)`) whose index `sel` (`bits` wide) equals, over
+    /// `width` bits: an OR of the values, each gated by its match, one a line; 0 when there is
+    /// none. A table or a mux in LUTs without a `?:` chain ([`Builder::select`]'s rule).
+    pub(crate) fn one_of(sel: &Expr, bits: u32, cases: impl IntoIterator<Item = (u128, Expr)>, width: u32) -> Expr {
+        let terms: Vec<Expr> = cases.into_iter().map(|(i, v)| Builder::gate(&ex!("{} == {}", sel, lit(bits, i)), &v, width)).collect();
+        match terms.is_empty() {
+            true => Expr::constant(lit(width, 0)),
+            false => Expr::join(&terms, "\n    | "),
+        }
+    }
+
     /// `name = v²` for the `r`-bit field `v = sig[lo..lo+r)`, by a table of 2^r entries in
     /// LUTs (no multiply, no carry chain): one LUT level up to [`LUT_INPUTS`] bits, two above.
     /// Written as an OR of the entries, each gated by its match: a `?:` chain of constants
@@ -465,8 +465,8 @@ impl Builder {
     pub(crate) fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
         let v = self.bits(sig, lo + r - 1, lo);
         // one entry a line; v = 0 squares to 0 and adds nothing
-        let entries: Vec<Expr> = (1..1u128 << r).map(|x| Builder::gate(&ex!("{} == {}", v, lit(r, x)), &Expr::constant(lit(2 * r, x * x)), 2 * r)).collect();
-        self.wire(name, 2 * r, Kind::Table, Expr::join(&entries, "\n    | "), comment);
+        let e = Builder::one_of(&v, r, (1..1u128 << r).map(|x| (x, Expr::constant(lit(2 * r, x * x)))), 2 * r);
+        self.wire(name, 2 * r, Kind::Table, e, comment);
         // a function of more inputs than a LUT has: two levels
         self.delay(if r > LUT_INPUTS { 2.0 * LUT_DELAY } else { LUT_DELAY });
     }
@@ -494,11 +494,9 @@ impl Builder {
         }
         let low = self.bits(addr, lo - 1, 0);
         for h in 0..1usize << hi {
-            let entries: Vec<Expr> = (0..1usize << lo)
-                .filter_map(|l| words.get(h << lo | l).copied().filter(|&v| v != 0).map(|v| (l, v)))
-                .map(|(l, v)| Builder::gate(&ex!("{} == {}", low, lit(lo, l as u128)), &Expr::constant(lit(width, v)), width))
-                .collect();
-            let e = if entries.is_empty() { Expr::constant(lit(width, 0)) } else { Expr::join(&entries, "\n    | ") };
+            let entries =
+                (0..1usize << lo).filter_map(|l| words.get(h << lo | l).copied().filter(|&v| v != 0).map(|v| (l as u128, Expr::constant(lit(width, v)))));
+            let e = Builder::one_of(&low, lo, entries, width);
             let what = format!("{} at {addr}[{}:{lo}] = {h}, by {addr}[{}:0]", self.tables[t].what, aw - 1, lo - 1);
             parts.push(self.wire(&format!("{signal}_part{h}"), width, Kind::Table, e, &what));
         }
@@ -517,14 +515,7 @@ impl Builder {
         let what = self.tables[t].what.clone();
         let mut out = Vec::new();
         for (g, group) in parts.chunks(1 << k).enumerate() {
-            let terms: Vec<Expr> = group
-                .iter()
-                .enumerate()
-                .map(|(j, p)| {
-                    let v = self.r(p);
-                    Builder::gate(&ex!("{} == {}", sel, lit(k, j as u128)), &v, width)
-                })
-                .collect();
+            let cases: Vec<(u128, Expr)> = group.iter().enumerate().map(|(j, p)| (j as u128, self.r(p))).collect();
             let last = parts.len() <= 1 << k;
             let name = if last { signal.to_string() } else { format!("{signal}_pick{}_{g}", lo + k) };
             let comment = if last {
@@ -532,7 +523,7 @@ impl Builder {
             } else {
                 format!("{addr}[{}:{lo}] picks among parts {}..{}", lo + k - 1, g << k, (g << k) + group.len() - 1)
             };
-            out.push(self.wire(&name, width, Kind::Logic, Expr::join(&terms, "\n    | "), &comment));
+            out.push(self.wire(&name, width, Kind::Logic, Builder::one_of(&sel, k, cases, width), &comment));
         }
         self.delay(LUT_DELAY);
         (out, lo + k)

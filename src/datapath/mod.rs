@@ -242,8 +242,6 @@ pub struct Builder {
     product_uses: Vec<ProductUse>,
     /// the products `--dsp-budget` puts in the fabric
     fabric: std::collections::BTreeSet<String>,
-    /// `--rom-style logic`: a model that can reads its tables as logic ([`Builder::rom_parts`])
-    tables_as_logic: bool,
 }
 
 /// A signal the builder defined, as the datapath's code holds it: its name and width. The

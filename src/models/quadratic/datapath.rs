@@ -338,7 +338,7 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("cos complemented and clamped");
     cos_complement(cfg, b);
 
-    let logic = b.tables_as_logic();
+    let logic = cfg.params.rom_style == crate::config::RomStyle::Logic;
     let mut parts = None;
     if logic {
         // --rom-style logic: the table in LUTs, read in this step and the next, past the
