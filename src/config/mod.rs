@@ -374,6 +374,7 @@ pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "files",
     "model_widths",
     "registered_cuts",
+    "unregistered_products",
     "stage_delay_estimate",
     "stage_delay_mean",
     "predicted_fmax_mhz",

@@ -30,6 +30,7 @@ impl Builder {
             chunk_limit: u32::MAX,
             read: BTreeMap::new(),
             products: Vec::new(),
+            shifted_products: Vec::new(),
             product_uses: Vec::new(),
             fabric: Default::default(),
         }
@@ -627,6 +628,7 @@ impl Builder {
             read: self.read,
             products: self.products,
             product_uses: self.product_uses,
+            shifted_products: self.shifted_products,
         }
     }
 }

@@ -138,6 +138,9 @@ pub struct Datapath {
     pub(crate) products: Vec<String>,
     /// every product, hard or in the fabric ([`ProductUse`])
     pub product_uses: Vec<ProductUse>,
+    /// the products one of whose operands has constant zero low bits: yosys takes the shift
+    /// out of the multiply, and the product's add and register with it, out of the block
+    pub(crate) shifted_products: Vec<String>,
 }
 
 impl Datapath {
@@ -242,6 +245,8 @@ pub struct Builder {
     product_uses: Vec<ProductUse>,
     /// the products `--dsp-budget` puts in the fabric
     fabric: std::collections::BTreeSet<String>,
+    /// [`Datapath::shifted_products`]
+    shifted_products: Vec<String>,
 }
 
 /// A signal the builder defined, as the datapath's code holds it: its name and width. The

@@ -58,7 +58,11 @@ impl Builder {
             .iter()
             .map(|it| {
                 self.product_delay(it.a.1, it.b.1, width, after);
-                let (ea, eb) = (self.pieces(&sub_pieces(it.a.0, 0, width)), self.pieces(&sub_pieces(it.b.0, 0, width)));
+                let (pa, pb) = (sub_pieces(it.a.0, 0, width), sub_pieces(it.b.0, 0, width));
+                if [&pa, &pb].iter().any(|p| matches!(p.first(), Some(Piece::Const { value, width }) if *width > 0 && value & 1 == 0)) {
+                    self.shifted_products.push(it.name.clone());
+                }
+                let (ea, eb) = (self.pieces(&pa), self.pieces(&pb));
                 let plus = match it.addend.is_empty() {
                     true => Expr::default(),
                     false => ex!(" + {}", self.pieces(&sub_pieces(&it.addend, 0, width))),

@@ -112,3 +112,46 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
     }
     cuts
 }
+
+/// The hard products whose block has no register of its own on the netlist, each with why;
+/// empty: the unit promises every block its register (SPEC §7), which `synth` checks. A block
+/// the unit instantiates (an ECP5 MULT18X18D) has its registers by construction. An inferred
+/// product has one where the family's synthesis takes it into the block
+/// ([`crate::family::Family::registers_inferred_blocks`]: yosys's ice40_dsp takes the
+/// register after a product, or after its add, when nothing else reads what it holds): the
+/// product is one block, registered whole at the cut after its step, read by nothing else in
+/// that step, and no operand has constant zero low bits (yosys takes that shift, and the add
+/// and the register behind it, out of the block). A register kept in the fabric
+/// (`(* keep *)`) is taken all the same.
+pub(crate) fn unregistered_products(dp: &datapath::Datapath, cuts: &[Cut], target: Target) -> Vec<(String, String)> {
+    let family = crate::family::of(target);
+    let mut out = Vec::new();
+    for s in &dp.steps {
+        for w in s.wires.iter().filter(|w| w.product().is_some()) {
+            let blocks = dp.product_uses.iter().find(|u| u.name == w.name).map_or(1, |u| u.blocks);
+            if blocks == 0 {
+                continue; // LUTs: no block
+            }
+            let wire = format!("{}_s{}", w.name, s.index);
+            let cut = cuts.get(s.index - 1).filter(|c| c.registered);
+            let whole = cut.is_some_and(|c| c.signals.iter().any(|r| r.name == w.name && r.source == wire));
+            let why = if !family.registers_inferred_blocks() {
+                format!("an inferred product: {} maps it without registers", family.name())
+            } else if blocks > 1 {
+                format!("the synthesis tool splits it over {blocks} blocks, summed in the fabric")
+            } else if dp.shifted_products.contains(&w.name) {
+                "an operand's low bits are constant zeros: the tool shifts outside the block, and adds and registers there".to_string()
+            } else if s.wires.iter().any(|o| o.expr.reads.contains(&wire)) {
+                format!("logic reads it in its own step ({})", s.index)
+            } else if cut.is_none() {
+                format!("no register at the cut after its step ({})", s.index)
+            } else if !whole {
+                "no register of its own holds it whole".to_string()
+            } else {
+                continue;
+            };
+            out.push((w.name.clone(), why));
+        }
+    }
+    out
+}

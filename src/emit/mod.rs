@@ -549,6 +549,9 @@ pub(crate) struct Manifest<'a> {
     pub(crate) internal_widths: serde_json::Value,
     /// The cuts that hold a pipeline register (1-based step numbers).
     pub(crate) registered_cuts: &'a [u32],
+    /// The hard products whose block has no output register (SPEC §7), each with why; empty:
+    /// every block has it, and `synth` fails naming any that does not.
+    pub(crate) unregistered_products: Vec<Unregistered>,
     /// `Plan::stage_delay`: the slowest stretch between registers, in the delay estimates'
     /// units (what `--target-mhz`'s delay model reads)
     pub(crate) stage_delay_estimate: f64,
@@ -562,6 +565,19 @@ pub(crate) struct Manifest<'a> {
     pub(crate) blinn_error_mean: f64,
     pub(crate) blinn_error_method: String,
     pub(crate) files: Vec<FileEntry>,
+}
+
+/// A product whose block has no output register, and why.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Unregistered {
+    pub(crate) name: String,
+    pub(crate) why: String,
+}
+
+/// The hard products of the plan's unit whose block has no output register, each with why
+/// (empty: every block has it).
+pub fn unregistered(plan: &Plan) -> Vec<(String, String)> {
+    unregistered_products(&plan.datapath, &cut_list(&plan.datapath, plan.cfg.target()), plan.cfg.target())
 }
 
 fn sha256_hex(bytes: &[u8]) -> String {
@@ -642,6 +658,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         }),
         internal_widths: unit.widths(),
         registered_cuts: &plan.registered_cuts,
+        unregistered_products: unregistered(plan).into_iter().map(|(name, why)| Unregistered { name, why }).collect(),
         stage_delay_estimate: (plan.stage_delay() * 100.0).round() / 100.0,
         stage_delay_mean: (plan.stage_delay_mean() * 100.0).round() / 100.0,
         predicted_fmax_mhz: crate::timing::predicted_fmax(plan).map(|f| (f * 10.0).round() / 10.0),

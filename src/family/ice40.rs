@@ -71,6 +71,10 @@ impl Family for Ice40 {
     fn soft_product(&self, a: u32, b: u32, y: u32) -> bool {
         a.min(b) < 2 || y.min(a + b) < MIN_PRODUCT_BITS
     }
+    /// ice40_dsp takes a product's register into the SB_MAC16 (and its post-adder's)
+    fn registers_inferred_blocks(&self) -> bool {
+        true
+    }
     /// yosys 0.23 leaves a sum wider than the product's operands together in the fabric, on
     /// the product's unregistered output.
     fn post_adder(&self, width: u32, wa: u32, wb: u32) -> bool {

@@ -105,6 +105,13 @@ pub trait Family: Sync {
     /// Whether a multiply-add of `width` bits from an a×b product takes its add inside the
     /// block (a post-adder the synthesis tool uses).
     fn post_adder(&self, width: u32, wa: u32, wb: u32) -> bool;
+    /// Whether yosys takes an inferred product's register into the block as its output
+    /// register (ice40_dsp on the iCE40). Where it does not (the ECP5's inferred multipliers,
+    /// which yosys maps without registers; generic RTL, which names no block), a unit
+    /// promises registers only on the blocks it instantiates.
+    fn registers_inferred_blocks(&self) -> bool {
+        false
+    }
     /// Whether products and table reads are instantiated blocks with their own input and
     /// output registers (where the cuts allow), rather than inferred by the synthesis tool;
     /// such a family has no post-adder, and its adds are one carry chain a step.

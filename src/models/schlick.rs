@@ -5,8 +5,11 @@
 //! ([`check`]: big integers, no float), and the datapath on the same builder as every model.
 //!
 //! The division. With `c = min(cos_g, 2^F)` (a code, UQ1.F) the denominator in the same units
-//! is `den = 2n·(2^F − c) + c`, an integer of at most `N + F + 2` bits, computed exactly (one
-//! multiply-add, `2n` a shift). `den ≥ c` (as `2n·(2^F − c) ≥ 0`), so `S = c/den ≤ 1`. A restoring divider
+//! is `den = 2n·(2^F − c) + c`, an integer of at most `N + F + 2` bits, computed exactly as
+//! `2·(n·(2^F − c) + ⌊c/2⌋) + (c mod 2)`: one multiply-add of `N`- and `(F+1)`-bit operands
+//! whose sum fits `N + F + 1` bits, then the doubling and `c`'s low bit by wiring (an operand
+//! `2n`, its low bit a constant 0, would have yosys take the shift, and the add and register
+//! behind it, out of the SB_MAC16). `den ≥ c` (as `2n·(2^F − c) ≥ 0`), so `S = c/den ≤ 1`. A restoring divider
 //! takes the quotient one bit a step, most significant first: the remainder starts at `c`, the
 //! bit of weight 1 is `[r ≥ den]` (and `r −= den` when set), then each of the W fractional bits
 //! doubles the remainder and compares again. The remainder stays below `den ≤ 2^(N+F+1)`, so
@@ -29,7 +32,7 @@
 use super::{explain_ideal, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, ex, Builder, Kind, Piece, Sig, LUT_DELAY};
+use crate::datapath::{add_delay, ex, Builder, Kind, Sig, LUT_DELAY};
 use crate::error::Error;
 
 /// W: fractional bits of the quotient `q = floor(S·2^W)`, from the budget above.
@@ -233,19 +236,24 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     let n_zero = b.wire("n_zero", 1, Kind::Logic, ex!("{} == {}", nv, lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
     b.delay(2.0 * add_delay(f + 1));
 
-    // 2n·(1 − c) + c: one multiply-add (on the iCE40 the SB_MAC16's post-adder; on the ECP5 a
-    // MULT18X18D, then a carry chain)
-    b.step("the denominator den = 2n*(1 - c) + c, exact");
-    let twice_n = [Piece::zeros(1), n.all()];
-    let comment = format!("UQ{}.{f}: 2n*(1 - c) + c, exact (at most 2^{} ulps)", nb + 2, nb + f + 1);
-    let den = b.multiply_add("den", &twice_n, &[one_minus_cos.all()], &[cos.all()], dw, "the denominator", &comment);
+    // 2n·(1 − c) + c = 2·(n·(1 − c) + ⌊c/2⌋) + c[0]: one multiply-add (on the iCE40 the
+    // SB_MAC16's post-adder, its register the block's; on the ECP5 a MULT18X18D, then a carry
+    // chain), the doubling and c[0] by wiring
+    b.step("the denominator den = 2n*(1 - c) + c, exact: half of it, n*(1 - c) + floor(c/2)");
+    let comment = format!("UQ{}.{}: n*(1 - c) + floor(c/2), exact: den = 2*den_half + c[0]", nb + 1, f);
+    let half = b.multiply_add("den_half", &[n.all()], &[one_minus_cos.all()], &[cos.part(1, f)], dw - 1, "the denominator", &comment);
 
     // −den − 1 = ~den over the trial's width, once: each compare-subtract is then a plain add
     // with carry-in 1 (a carry chain's operand takes no inverter)
     b.step("~den for the compare-subtracts");
-    let dv = b.r(&den);
-    let den_inv =
-        b.wire("den_inv", rw + 1, Kind::Logic, ex!("~{{{}, {}}}", lit(rw + 1 - dw, 0), dv), &format!("~den over {} bits: 2r + ~den + 1 = 2r - den", rw + 1));
+    let (hv, c0) = (b.r(&half), b.bits(&cos, 0, 0));
+    let den_inv = b.wire(
+        "den_inv",
+        rw + 1,
+        Kind::Logic,
+        ex!("~{{{}, {}, {}}}", lit(rw + 1 - dw, 0), hv, c0),
+        &format!("~den over {} bits, den = 2n*(1 - c) + c = {{den_half, c[0]}}: 2r + ~den + 1 = 2r - den", rw + 1),
+    );
     b.delay(LUT_DELAY);
 
     // one quotient bit a step (the weight-1 bit first): the trial `shifted - den` on one carry

@@ -80,6 +80,11 @@ pub struct SynthResult {
     /// nextpnr does not time the multiply inside them, so any here makes Fmax an upper bound
     #[serde(default)]
     pub(crate) unregistered_blocks: Vec<String>,
+    /// the SB_MAC16s holding a 16×16 product only in their pipeline register, the product's
+    /// last add after it (yosys's mapping of one register after a product): a register of the
+    /// block's own, but nextpnr does not time that add, so any here makes Fmax an upper bound
+    #[serde(default)]
+    pub(crate) pipelined_blocks: Vec<String>,
     /// the unit's `--dsp-budget`, and the products it put in the fabric (what the logic cells
     /// and the clock above pay for the blocks saved)
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -304,6 +309,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let text =
         crate::small_file::read(&netlist, 256 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no netlist ({} {e})", netlist.display())))?;
     let unregistered = unregistered_blocks(&text, &top)?;
+    let pipelined = pipelined_blocks(&text, &top)?;
     let stat = work.path().join("stat.json");
     let text = crate::small_file::read(&stat, 16 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no statistics ({} {e})", stat.display())))?;
     let cells = parse_stat_json(&text, &top)?;
@@ -340,6 +346,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         logic_cells: None,
         cells,
         unregistered_blocks: unregistered,
+        pipelined_blocks: pipelined,
         dsp_budget: cfg.params.dsp_budget,
         fabric_products: design.plan.datapath.fabric_products().into_iter().map(String::from).collect(),
     };
@@ -348,6 +355,11 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     }
     // the unit's --dsp-budget, a promise checked on the netlist
     if let Some(why) = over_dsp_budget(&r.cells, cfg.params.dsp_budget, &top) {
+        return Err(Failure::Mismatch(why));
+    }
+    // every block registered, where the unit promises it (on the family it was generated for)
+    let promised = target == cfg.target() && crate::emit::unregistered(&design.plan).is_empty();
+    if let Some(why) = broken_register_promise(&r.unregistered_blocks, promised, &top) {
         return Err(Failure::Mismatch(why));
     }
     // speed: the wrapped unit through place-and-route
@@ -462,6 +474,11 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             "; {} hard multiplier(s) without an output register (listed under unregistered_blocks): nextpnr does not time the multiply inside a block, so the figure is an upper bound",
             r.unregistered_blocks.len()
         ));
+    } else if !r.pipelined_blocks.is_empty() {
+        r.fmax_note.push_str(&format!(
+            "; {} SB_MAC16(s) hold a product in the block's pipeline register with its last add after it (listed under pipelined_blocks): nextpnr does not time that add, so the figure is an upper bound",
+            r.pipelined_blocks.len()
+        ));
     }
     Ok((r, logs))
 }
@@ -546,6 +563,9 @@ pub fn table(r: &SynthResult) -> String {
     }
     for b in &r.unregistered_blocks {
         s.push_str(&format!("  {:<14} {b} (nextpnr does not time the multiply inside it: Fmax is an upper bound)\n", "unregistered"));
+    }
+    for b in &r.pipelined_blocks {
+        s.push_str(&format!("  {:<14} {b} (nextpnr does not time that add: Fmax is an upper bound)\n", "pipelined"));
     }
     s
 }

@@ -21,9 +21,24 @@ pub(crate) fn parse_stat_json(json: &str, top: &str) -> Result<Vec<(String, u64)
 /// The hard multipliers of module `top` in yosys's `write_json` netlist that lack a register
 /// of their own (SPEC §7), each named with what is missing: an SB_MAC16
 /// whose clock is a constant, or a half of its output that is used and not registered (output
-/// select 1, the accumulator register; 3 with `PIPELINE_16x16_MULT_REG2`; 2 with the 8×8
-/// product's register); a MULT18X18D without its output register or either input register.
+/// select 1, the accumulator register; 3 with `PIPELINE_16x16_MULT_REG2`, or with the 16×16
+/// product's pipeline register `PIPELINE_16x16_MULT_REG1` and both 8×8 registers, where
+/// yosys's ice40_dsp puts a product's one register; 2 with the 8×8 product's register); a
+/// MULT18X18D without its output register or either input register.
 pub(crate) fn unregistered_blocks(json: &str, top: &str) -> Result<Vec<String>, Failure> {
+    Ok(block_registers(json, top)?.0)
+}
+
+/// The SB_MAC16s of module `top` whose used output is a 16×16 product held only in the
+/// block's pipeline register (`PIPELINE_16x16_MULT_REG1` and the 8×8 registers, no
+/// `PIPELINE_16x16_MULT_REG2`): the product's last add runs after the register, inside the
+/// block, and nextpnr does not time it.
+pub(crate) fn pipelined_blocks(json: &str, top: &str) -> Result<Vec<String>, Failure> {
+    Ok(block_registers(json, top)?.1)
+}
+
+/// [`unregistered_blocks`] and [`pipelined_blocks`], from one reading of the netlist.
+fn block_registers(json: &str, top: &str) -> Result<(Vec<String>, Vec<String>), Failure> {
     let v: serde_json::Value = serde_json::from_str(json).map_err(|e| error::tool("yosys", format!("yosys's write_json is not JSON: {e}")))?;
     let module = v.get("modules").and_then(|m| m.get(top)).ok_or_else(|| error::tool("yosys", format!("yosys's netlist has no module {top}")))?;
     let empty = serde_json::Map::new();
@@ -54,7 +69,7 @@ pub(crate) fn unregistered_blocks(json: &str, top: &str) -> Result<Vec<String>, 
     let bits = |cell: &serde_json::Value, port: &str| -> Vec<serde_json::Value> {
         cell.get("connections").and_then(|c| c.get(port)).and_then(|b| b.as_array()).cloned().unwrap_or_default()
     };
-    let mut missing = Vec::new();
+    let (mut missing, mut pipelined) = (Vec::new(), Vec::new());
     let mut names: Vec<&String> = cells.keys().collect();
     names.sort();
     for name in names {
@@ -72,9 +87,26 @@ pub(crate) fn unregistered_blocks(json: &str, top: &str) -> Result<Vec<String>, 
                     let registered = match number(cell, select) {
                         1 => true,
                         2 => number(cell, if half == "top" { "TOP_8x8_MULT_REG" } else { "BOT_8x8_MULT_REG" }) == 1,
-                        3 => number(cell, "PIPELINE_16x16_MULT_REG2") == 1,
+                        // the output register, or the block's own pipeline register after
+                        // the 8×8 products (yosys's ice40_dsp puts the one register after a
+                        // product there, and a second one at the output)
+                        3 => {
+                            number(cell, "PIPELINE_16x16_MULT_REG2") == 1
+                                || [("PIPELINE_16x16_MULT_REG1"), ("TOP_8x8_MULT_REG"), ("BOT_8x8_MULT_REG")].iter().all(|r| number(cell, r) == 1)
+                        }
                         _ => false,
                     };
+                    let reg2 = number(cell, "PIPELINE_16x16_MULT_REG2") == 1;
+                    if used
+                        && registered
+                        && number(cell, select) == 3
+                        && !reg2
+                        && !pipelined.iter().any(|p: &String| p.starts_with(&format!("SB_MAC16 {shown}:")))
+                    {
+                        pipelined.push(format!(
+                            "SB_MAC16 {shown}: the 16x16 product in the block's pipeline register, its last add after it (no PIPELINE_16x16_MULT_REG2)"
+                        ));
+                    }
                     if used && !registered {
                         missing.push(format!("SB_MAC16 {shown}: the {half} half of its output is not registered ({select} = {})", number(cell, select)));
                     }
@@ -91,7 +123,7 @@ pub(crate) fn unregistered_blocks(json: &str, top: &str) -> Result<Vec<String>, 
             _ => {}
         }
     }
-    Ok(missing)
+    Ok((missing, pipelined))
 }
 
 /// nextpnr's Fmax of a routed design: the slowest of the clocks in its last report (each
@@ -156,6 +188,18 @@ pub(crate) fn is_dsp_block(cell: &str) -> bool {
 
 /// The unit's `--dsp-budget` against its netlist's cells (`parse_stat_json`): why it is broken
 /// (the blocks counted, by kind), or None when it holds or there is none.
+/// The blocks of a netlist without a register of their own when the unit promised every block
+/// one (its manifest lists no `unregistered_products`: SPEC §7), as a broken promise naming them.
+pub(crate) fn broken_register_promise(unregistered: &[String], promised: bool, top: &str) -> Option<String> {
+    (promised && !unregistered.is_empty()).then(|| {
+        format!(
+            "unregistered_products: {top} promises every hard multiplier a register of its own (its manifest lists none without), and the netlist has {} without:\n  {}",
+            unregistered.len(),
+            unregistered.join("\n  ")
+        )
+    })
+}
+
 pub(crate) fn over_dsp_budget(cells: &[(String, u64)], budget: Option<u32>, top: &str) -> Option<String> {
     let budget = budget?;
     let blocks: Vec<&(String, u64)> = cells.iter().filter(|(n, c)| is_dsp_block(n) && *c > 0).collect();

@@ -32,15 +32,19 @@ fn logic_cells_are_read_from_the_device_utilisation() {
 /// Issue 49, point 3: the netlist check names every hard multiplier without the registers
 /// SPEC §7 promises: an SB_MAC16 with a constant clock, one whose used output half is
 /// combinational, a MULT18X18D without its output or an input register; a registered
-/// block and an unused half pass.
+/// block, a 16×16 product in its pipeline register (REG1 and both 8×8 registers, yosys's
+/// mapping of one register after a product) and an unused half pass; REG1 alone does not.
 #[test]
 fn unregistered_blocks_are_named_from_the_netlist() {
-    let mac = |clk: &str, top: u32, bot: u32, reg2: u32, o: &str| {
+    let macp = |clk: &str, top: u32, bot: u32, reg2: u32, pipe: (u32, u32), o: &str| {
+        let (reg1, r8) = pipe;
         format!(
-            r#"{{"type": "SB_MAC16", "parameters": {{"TOPOUTPUT_SELECT": "{top:02b}", "BOTOUTPUT_SELECT": "{bot:02b}", "PIPELINE_16x16_MULT_REG2": "{reg2}"}},
+            r#"{{"type": "SB_MAC16", "parameters": {{"TOPOUTPUT_SELECT": "{top:02b}", "BOTOUTPUT_SELECT": "{bot:02b}", "PIPELINE_16x16_MULT_REG2": "{reg2}",
+            "PIPELINE_16x16_MULT_REG1": "{reg1}", "TOP_8x8_MULT_REG": "{r8}", "BOT_8x8_MULT_REG": "{r8}"}},
             "port_directions": {{"CLK": "input", "O": "output"}}, "connections": {{"CLK": [{clk}], "O": {o}}}}}"#
         )
     };
+    let mac = |clk: &str, top: u32, bot: u32, reg2: u32, o: &str| macp(clk, top, bot, reg2, (0, 0), o);
     let low: Vec<u32> = (10..26).collect();
     let both: Vec<u32> = (10..42).collect();
     let o_low = format!("{:?}", low.iter().chain(std::iter::repeat_n(&99, 16)).collect::<Vec<_>>());
@@ -52,6 +56,8 @@ fn unregistered_blocks_are_named_from_the_netlist() {
           "\\comb": {},
           "regd": {},
           "lowonly": {},
+          "piped": {},
+          "reg1only": {},
           "$m": {{"type": "MULT18X18D", "parameters": {{"REG_OUTPUT_CLK": "NONE", "REG_INPUTA_CLK": "CLK0", "REG_INPUTB_CLK": "CLK0"}}, "connections": {{}}}},
           "$ok": {{"type": "MULT18X18D", "parameters": {{"REG_OUTPUT_CLK": "CLK0", "REG_INPUTA_CLK": "CLK0", "REG_INPUTB_CLK": "CLK0"}}, "connections": {{}}}}
         }}}}}}}}"#,
@@ -59,12 +65,32 @@ fn unregistered_blocks_are_named_from_the_netlist() {
         mac("5", 3, 3, 0, &o_both),
         mac("5", 3, 3, 1, &o_both),
         mac("5", 0, 1, 0, &o_low),
+        macp("5", 3, 3, 0, (1, 1), &o_both),
+        macp("5", 3, 3, 0, (1, 0), &o_both),
     );
     let found = unregistered_blocks(&json, "u").unwrap();
-    assert_eq!(found.len(), 4, "{found:#?}");
+    assert_eq!(found.len(), 6, "{found:#?}");
     assert!(found[0].starts_with("MULT18X18D $m: no output register"), "{found:#?}");
     assert!(found[1].starts_with("SB_MAC16 $tied: its clock is a constant"), "{found:#?}");
     assert!(found[2].starts_with("SB_MAC16 comb: the top half") && found[3].starts_with("SB_MAC16 comb: the bottom half"), "{found:#?}");
+    assert!(found[4].starts_with("SB_MAC16 reg1only: the top half") && found[5].starts_with("SB_MAC16 reg1only: the bottom half"), "{found:#?}");
+    // the one held in its pipeline register is named apart: a register of its own, its last
+    // add untimed
+    let piped = pipelined_blocks(&json, "u").unwrap();
+    assert_eq!(piped.len(), 1, "{piped:#?}");
+    assert!(piped[0].starts_with("SB_MAC16 piped: the 16x16 product in the block's pipeline register"), "{piped:#?}");
+}
+
+/// Issue 49, point 3: a unit that promises every block its register and a netlist with one
+/// without is a broken promise naming the block; without the promise, or with every block
+/// registered, nothing is broken.
+#[test]
+fn a_block_without_the_promised_register_is_named() {
+    let missing = vec!["SB_MAC16 kn_c4_SB_MAC16_O: its clock is a constant (no register in use)".to_string()];
+    let why = broken_register_promise(&missing, true, "u").expect("promised and missing");
+    assert!(why.starts_with("unregistered_products: u promises every hard multiplier") && why.contains("SB_MAC16 kn_c4_SB_MAC16_O"), "{why}");
+    assert!(broken_register_promise(&missing, false, "u").is_none());
+    assert!(broken_register_promise(&[], true, "u").is_none());
 }
 
 /// The slowest clock of the last report, not the last line: an SB_MAC16 whose clock is tied

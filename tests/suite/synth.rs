@@ -417,6 +417,11 @@ fn every_hard_multipliers_registers_are_checked_on_the_netlist() {
     let listed: Vec<&str> = r["unregistered_blocks"].as_array().unwrap().iter().map(|b| b.as_str().unwrap()).collect();
     assert!(!listed.is_empty() && listed.iter().all(|b| b.starts_with("SB_MAC16 ")), "{listed:?}");
     assert!(listed.iter().any(|b| b.contains("its clock is a constant")), "{listed:?}");
+    // the unit says so itself: its manifest lists the products without a register, with why
+    // (no promise, so synth succeeds)
+    let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
+    let own = manifest["unregistered_products"].as_array().unwrap();
+    assert!(own.iter().any(|p| p["name"] == "color_sum_r" && p["why"].as_str().unwrap().contains("its own step")), "{own:?}");
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("unregistered") && out.contains("Fmax is an upper bound"), "{out}");
     let ecp5: Vec<&str> = narrow.iter().copied().chain(["--target", "ecp5"]).collect();
@@ -429,4 +434,101 @@ fn every_hard_multipliers_registers_are_checked_on_the_netlist() {
     let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(r["dsp_blocks"].as_u64().unwrap() > 0, "{r}");
     assert_eq!(r["unregistered_blocks"].as_array().unwrap().len(), 0, "{r}");
+    assert_eq!(promised_blocks(&dir), Some(true), "the ECP5 unit promises every block its registers");
+}
+
+/// Whether the unit in `dir` promises every hard multiplier a register of its own (its
+/// manifest's `unregistered_products` is empty).
+fn promised_blocks(dir: &Path) -> Option<bool> {
+    let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).ok()?).ok()?;
+    Some(manifest["unregistered_products"].as_array()?.is_empty())
+}
+
+/// Issue 49, point 3: where a unit promises every block its register (its manifest lists no
+/// `unregistered_products`: the narrow lean unit at its deepest), `synth` holds the netlist to
+/// it. The unit as generated passes with none listed; the same unit with one bit of logic between
+/// a product and its register (the SHA-256 in its manifest updated, as a tool that rewrites RTL
+/// would) fails with exit 1, naming the block and the promise.
+#[test]
+fn a_block_without_its_promised_register_fails_synth_naming_it() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
+    let stages = deepest(&narrow);
+    let args: Vec<&str> = narrow.iter().copied().chain(["--stages", stages.as_str()]).collect();
+    let dir = generate(tmp.path(), "lean", &args);
+    assert_eq!(promised_blocks(&dir), Some(true));
+    let json = tmp.path().join("lean-synth.json");
+    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(r["dsp_blocks"].as_u64().unwrap() >= 3, "{r}");
+    assert_eq!(r["unregistered_blocks"].as_array().unwrap().len(), 0, "{r}");
+    // the squarer's product register takes its low bit through an XOR with an input: the
+    // block can no longer hold it
+    let v = dir.join("specular_unit.v");
+    let text = std::fs::read_to_string(&v).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.contains("always @(posedge clk) square_full_c") || l.contains("always @(posedge clk) kn_c"))
+        .expect("a product register")
+        .to_string();
+    let (head, source) = line.rsplit_once(" <= ").unwrap();
+    let source = source.trim_end_matches(';');
+    let width: u32 = head.split('[').nth(1).unwrap().split(':').next().unwrap().parse::<u32>().unwrap() + 1;
+    let broken = format!("{head} <= {source} ^ {{{}'h0, cos_g[0]}};", width - 1);
+    std::fs::write(&v, text.replace(&line, &broken)).unwrap();
+    let digest = sha256_hex(&std::fs::read(&v).unwrap());
+    let mpath = dir.join("specular_unit.json");
+    let mut manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&mpath).unwrap()).unwrap();
+    for f in manifest["files"].as_array_mut().unwrap() {
+        if f["name"] == "specular_unit.v" {
+            f["sha256"] = serde_json::Value::String(digest.clone());
+        }
+    }
+    std::fs::write(&mpath, serde_json::to_string_pretty(&manifest).unwrap()).unwrap();
+    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("promises every hard multiplier a register of its own") && err.contains("SB_MAC16 "), "{err}");
+}
+
+/// Issue 49, point 3: which units promise every hard block its register (their manifests). At
+/// their deepest, the default-width lean, fitted and blinn units do on the iCE40 (one block a
+/// product, each registered whole, read by nothing else in its step) and on the ECP5
+/// (instantiated MULT18X18Ds); schlick's colour multiply-adds (two blocks each) and
+/// blinn-pow's wide chain (each product over several blocks) do not, and say why, while
+/// schlick's denominator keeps its register; a combinational unit lists every block; generic
+/// RTL promises nothing.
+#[test]
+fn the_units_that_promise_every_block_its_register() {
+    let tmp = tempfile::tempdir().unwrap();
+    let listed = |name: &str, model: &str, target: &str, deepest: bool| -> Vec<(String, String)> {
+        let args = ["--model", model, "--target", target];
+        let stages = if deepest { self::deepest(&args) } else { "0".to_string() };
+        let args: Vec<&str> = args.iter().copied().chain(["--stages", stages.as_str()]).collect();
+        let dir = generate(tmp.path(), name, &args);
+        let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
+        let list = manifest["unregistered_products"].as_array().unwrap();
+        list.iter().map(|p| (p["name"].as_str().unwrap().to_string(), p["why"].as_str().unwrap().to_string())).collect()
+    };
+    for model in ["quadratic", "fitted", "blinn"] {
+        for target in ["ice40", "ecp5"] {
+            assert_eq!(listed(&format!("{model}-{target}"), model, target, true), Vec::new(), "{model} on {target}");
+        }
+        let none = listed(&format!("{model}-0"), model, "ice40", false);
+        assert!(!none.is_empty() && none.iter().all(|(_, why)| why.contains("no register at the cut after its step")), "{none:?}");
+        let generic = listed(&format!("{model}-generic"), model, "generic", true);
+        assert!(!generic.is_empty() && generic.iter().all(|(_, why)| why.contains("generic maps it without registers")), "{generic:?}");
+    }
+    let schlick = listed("schlick", "schlick", "ice40", true);
+    assert!(schlick.iter().any(|(n, why)| n == "color_sum_r" && why.contains("splits it over 2 blocks")), "{schlick:?}");
+    assert!(!schlick.iter().any(|(n, _)| n.starts_with("den")), "the denominator's block keeps its register: {schlick:?}");
+    let pow = listed("pow", "blinn-pow", "ice40", true);
+    assert!(pow.iter().any(|(_, why)| why.contains("splits it over")), "{pow:?}");
+}
+
+fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest;
+    format!("{:x}", sha2::Sha256::digest(bytes))
 }
