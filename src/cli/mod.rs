@@ -216,7 +216,7 @@ pub struct RtlArgs {
     pub top: Option<String>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points,
     /// which depend on the model, the widths and the target; at default widths ice40 / ecp5 /
-    /// generic: lean 13/11/10, fitted 65/48/13, blinn 38/35/22, blinn-pow 12, schlick 21/22/21,
+    /// generic: lean 13/11/10, fitted 65/48/16, blinn 38/35/22, blinn-pow 13, schlick 23/24/23,
     /// paper 6; a value above them is refused with the range; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,

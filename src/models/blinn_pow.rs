@@ -108,7 +108,7 @@ impl SpecularUnit for BlinnPow {
 /// Step 1 clamps and widens c; steps 2..N+1 take one bit of n each (multiply the running
 /// product by the power when the bit is set, square the power); the last step rounds.
 fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
-    let (f, nb, bb, fi) = (cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi());
+    let (f, nb, fi) = (cfg.f(), cfg.n_bits(), cfg.fi());
     let full = 2 * pw + 2;
 
     b.step(&format!("clamp c = min(cos, 1), widen to UQ1.{pw}; the running product starts at 1.0"));
@@ -121,41 +121,83 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
     b.wire("result0", pw + 1, Kind::Select, Expr::constant(lit(pw + 1, 1u128 << pw)), &format!("UQ1.{pw}: 1.0"));
     b.delay(add_delay(f + 1));
 
+    // on the ECP5 each choice takes a step of its own, so that the MULT18X18Ds' input
+    // registers take the chosen operands (and a block's output is read after its step), when
+    // the operands fit one block
+    let own_step = b.instantiated_blocks() && pw < crate::datapath::ECP5_DSP_BITS;
     for i in 0..nb {
         let more = i + 1 < nb;
+        if i > 0 && own_step {
+            b.step(&format!("bit {} of n: the choice", i - 1));
+            chosen(b, nb, pw, i);
+            b.delay(LUT_DELAY);
+        }
         b.step(&format!("bit {i} of n: multiply by c^(2^{i}) when it is set{}", if more { "; square the power" } else { "" }));
+        // the last bit's choice, here: a product's block meets only its register
+        if i > 0 && !own_step {
+            chosen(b, nb, pw, i);
+        }
         let (r, p) = (format!("result{i}"), format!("power{i}"));
         let (rp, pp) = ([Piece::sig(&r, 0, pw + 1)], [Piece::sig(&p, 0, pw + 1)]);
-        let prod = b.mul(&format!("result_prod{}", i + 1), full, (&rp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &format!("UQ2.{}: result*power, exact", 2 * pw));
-        // the bits of n still to use travel on, shrinking, as n_rest (n itself for bit 0)
-        let rest = if i == 0 { "n".to_string() } else { format!("n_rest{i}") };
-        let bit = b.bits(&rest, 0, 0);
-        let (hi, keep) = (b.bits(&prod, 2 * pw, pw), b.r(&r));
-        b.wire(
-            &format!("result{}", i + 1),
-            pw + 1,
-            Kind::Logic,
-            ex!("{} ? {} : {}", bit, hi, keep),
-            &format!("UQ1.{pw}: floored product, or the product so far"),
-        );
+        let what = format!("UQ2.{}: result*power, exact", 2 * pw);
+        match own_step {
+            true => b.product(&format!("result_prod{}", i + 1), &rp, &pp, full, &what),
+            false => _ = b.mul(&format!("result_prod{}", i + 1), full, (&rp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &what),
+        }
         if more {
-            let power_sq = b.mul(&format!("power_sq{}", i + 1), full, (&pp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &format!("UQ2.{}: power^2, exact", 2 * pw));
-            let sq = b.bits(&power_sq, 2 * pw, pw);
-            b.wire(&format!("power{}", i + 1), pw + 1, Kind::Select, sq, &format!("UQ1.{pw}: c^(2^{}), floored", i + 1));
-            let upper = b.bits(&rest, nb - i - 1, 1);
-            b.wire(&format!("n_rest{}", i + 1), nb - i - 1, Kind::Select, upper, "the bits of n still to use");
+            let what = format!("UQ2.{}: power^2, exact", 2 * pw);
+            match own_step {
+                true => b.product(&format!("power_sq{}", i + 1), &pp, &pp, full, &what),
+                false => _ = b.mul(&format!("power_sq{}", i + 1), full, (&pp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &what),
+            }
         }
     }
 
-    b.step("round half up to the outputs");
+    if own_step {
+        b.step(&format!("bit {} of n: the choice", nb - 1));
+        chosen(b, nb, pw, nb);
+        b.delay(LUT_DELAY);
+    }
+    b.step("colour multipliers (14-16)");
+    if !own_step {
+        chosen(b, nb, pw, nb);
+    }
     let r = format!("result{nb}");
+    match b.instantiated_blocks() {
+        // the products alone (MULT18X18Ds where they fit), the rounding half after them
+        true => b.colour_products(&r, 0, pw, "c^n"),
+        false => b.colour_sums(&r, pw, "c^n", 0.0),
+    }
+    // (on the iCE40 after the choice's LUT)
+    b.product_delay(pw + 1, cfg.b(), pw + cfg.b(), if own_step { 0.0 } else { LUT_DELAY });
+
+    // the colours after their blocks' registers
+    b.step("round half up to the outputs");
     let rv = b.r(&r);
     b.wire("intensity_sum", pw + 1, Kind::Sum, ex!("{} + {}", rv, lit(pw + 1, 1u128 << (pw - fi - 1))), &format!("UQ1.{pw}: c^n + 2^-{}", fi + 1));
     let e = b.bits("intensity_sum", pw, pw - fi);
     b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: c^n rounded half up"));
-    let cp = pw + bb;
-    b.colour_sums(&r, pw, "c^n", add_delay(cp));
+    // (on the ECP5, the colours' rounding half after their products)
+    b.colour_rounding(pw, "c^n");
     b.colour_results(pw, "c^n");
     let iv = b.r("intensity");
     b.wire("done", 1, Kind::Logic, ex!("{} == {}", iv, lit(fi + 1, 0)), "the highlight is below the output's resolution");
+    b.delay(add_delay(pw + 1) + LUT_DELAY);
+}
+
+/// After bit `i - 1` of n: `result{i}` (the floored product when the bit is set, else the
+/// product so far), and below the last bit the power `power{i}` (the floored square) and the
+/// bits of n still to use, `n_rest{i}`.
+fn chosen(b: &mut Builder, nb: u32, pw: u32, i: u32) {
+    // the bits of n still to use travel on, shrinking, as n_rest (n itself for bit 0)
+    let rest = if i == 1 { "n".to_string() } else { format!("n_rest{}", i - 1) };
+    let bit = b.bits(&rest, 0, 0);
+    let (hi, keep) = (b.bits(&format!("result_prod{i}"), 2 * pw, pw), b.r(&format!("result{}", i - 1)));
+    b.wire(&format!("result{i}"), pw + 1, Kind::Logic, ex!("{} ? {} : {}", bit, hi, keep), &format!("UQ1.{pw}: floored product, or the product so far"));
+    if i < nb {
+        let sq = b.bits(&format!("power_sq{i}"), 2 * pw, pw);
+        b.wire(&format!("power{i}"), pw + 1, Kind::Select, sq, &format!("UQ1.{pw}: c^(2^{i}), floored"));
+        let upper = b.bits(&rest, nb - i, 1);
+        b.wire(&format!("n_rest{i}"), nb - i, Kind::Select, upper, "the bits of n still to use");
+    }
 }

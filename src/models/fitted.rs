@@ -551,11 +551,20 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
         b.delay(LUT_DELAY);
         b.bits(&square, 2 * wf - 2 * r, wf - 2 * r)
     } else {
-        b.step(&format!("squaring {j} of {m_max} (squarer 11), bypassed when m_n < {j}"));
+        b.step(&format!("squaring {j} of {m_max} (squarer 11): the product alone"));
         let sq = 2 * wf + 2;
         let p = [Piece::sig(&prev, 0, wf + 1)];
-        let wp = (wf + 1).min(dsp);
-        let square = b.mul(&format!("square{j}"), sq, (&p, wp), (&p, wp), &[], LUT_DELAY, &format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
+        let (square, what) = (format!("square{j}"), format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
+        if b.instantiated_blocks() {
+            // a MULT18X18D with its own registers where the cuts allow
+            b.product(&square, &p, &p, sq, &what);
+        } else {
+            let wp = (wf + 1).min(dsp);
+            b.mul(&square, sq, (&p, wp), (&p, wp), &[], 0.0, &what);
+        }
+        // the bypass in a step of its own: the block's output meets only its register
+        b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
+        b.delay(LUT_DELAY);
         b.bits(&square, 2 * wf, wf)
     };
     let keep = b.r(&prev);

@@ -25,7 +25,11 @@
 //! is tight: at `W = B` a colour near `2^B` loses up to one whole unit to the truncation and
 //! half a unit more to the rounding (a test finds such an input). The intensity's alone would
 //! allow `W = FI` with the quotient taken as it is (floor, within 1); one rounding step for
-//! every output keeps `W > FI`. The property test `every_model` checks the contract on random
+//! every output keeps `W > FI`. The colours take `q` floored to `Wc = min(B + 1, W)` bits,
+//! `floor(q/2^(W−Wc)) = floor(S·2^Wc)` (floors compose), and the same bound with `Wc` for `W`
+//! holds: `ks·2^−Wc < 2^B·2^−(B+1) = 1/2`. So a colour product's operand is `Wc + 1` bits, not
+//! `W + 1`: one SB_MAC16 each while `B ≤ 14` (17 bits at the defaults took two, summed in the
+//! fabric, with no register of their own). The property test `every_model` checks the contract on random
 //! configurations, the exhaustive sweep at the defaults. `done = (intensity == 0)`, as for
 //! the `cos^n` models.
 
@@ -38,6 +42,11 @@ use crate::error::Error;
 /// W: fractional bits of the quotient `q = floor(S·2^W)`, from the budget above.
 pub(crate) fn quotient_frac_bits(cfg: &Config) -> u32 {
     cfg.fi().max(cfg.b()) + 1
+}
+
+/// Wc: the fractional bits of the quotient the colours take, from the budget above.
+fn colour_frac_bits(cfg: &Config, w: u32) -> u32 {
+    (cfg.b() + 1).min(w)
 }
 
 /// The schlick unit of one configuration.
@@ -107,7 +116,9 @@ impl Schlick {
     fn outputs(&self, x: Inputs, quotient: u128) -> Outputs {
         let (w, fi, b) = (self.quotient_frac_bits, self.cfg.fi(), self.cfg.b());
         let intensity = ((quotient + (1 << (w - fi - 1))) >> (w - fi)) as u32;
-        let spec = x.ks.map(|k| ((quotient * (k as u128 & mask(b)) + (1 << (w - 1))) >> w) as u32);
+        let wc = colour_frac_bits(&self.cfg, w);
+        let qc = quotient >> (w - wc);
+        let spec = x.ks.map(|k| ((qc * (k as u128 & mask(b)) + (1 << (wc - 1))) >> wc) as u32);
         Outputs { spec, intensity, done: intensity == 0 }
     }
 
@@ -294,17 +305,29 @@ fn datapath(cfg: &Config, w: u32, b: &mut Builder) {
     }
     let quot = quot.expect("at least one quotient bit");
 
-    b.step("S = 1 at n = 0; round half up to the outputs");
+    b.step("S = 1 at n = 0");
     let (nz, q) = (b.r(&n_zero), b.r(&quot));
     let quotient = b.wire("quotient", w + 1, Kind::Logic, Builder::select_const(&nz, 1u128 << w, w + 1, &q), &format!("UQ1.{w}: floor(S*2^{w}), 1.0 at n = 0"));
+    b.delay(LUT_DELAY);
+
+    // the colours take S floored to Wc bits (the module doc): one block each, its product
+    // alone in its step, read after its register
+    let wc = colour_frac_bits(cfg, w);
+    b.step("colour multipliers (14-16)");
+    b.colour_products(quotient.name(), w - wc, wc, "S");
+    b.product_delay(wc + 1, bb, wc + bb, 0.0);
+
+    b.step("round half up to the outputs");
     let qv = b.r(&quotient);
     let sum = b.wire("intensity_sum", w + 1, Kind::Sum, ex!("{} + {}", qv, lit(w + 1, 1u128 << (w - fi - 1))), &format!("UQ1.{w}: S + 2^-{}", fi + 1));
     let e = b.bits(&sum, w, w - fi);
     let intensity = b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S rounded half up"));
-    b.colour_sums("quotient", w, "S", add_delay(w + bb));
-    b.colour_results(w, "S");
+    // (on the ECP5, the colours' rounding half after their products)
+    b.colour_rounding(wc, "S");
+    b.colour_results(wc, "S");
     let iv = b.r(&intensity);
     b.wire("done", 1, Kind::Logic, ex!("{} == {}", iv, lit(fi + 1, 0)), "the highlight is below the output's resolution");
+    b.delay(add_delay(w + 1) + LUT_DELAY);
 }
 
 #[cfg(test)]

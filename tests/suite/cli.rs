@@ -53,7 +53,7 @@ fn invalid_parameters_exit_2_name_the_range_and_write_nothing() {
         (&["--stages", "-1"], "", ""),
         (&["--model", "blinn-pow", "--rounding", "exact"], "--rounding", "faithful"),
         (&["--model", "blinn-pow", "--arch", "paper"], "--arch", "lean"),
-        (&["--model", "blinn-pow", "--n-bits", "2", "--stages", "5"], "--stages", "0..=4"),
+        (&["--model", "blinn-pow", "--n-bits", "2", "--stages", "6"], "--stages", "0..=5"),
         (&["--arch", "fast"], "--arch", "lean"),
         (&["--target-mhz", "0"], "--target-mhz", "[0.001, 1000]"),
         (&["--n-bits", "ten"], "--n-bits", ""),

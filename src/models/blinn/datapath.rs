@@ -61,8 +61,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
 
     let s = Shape { w, t, f, fi, bb, nb, cb, dsp, rb, re, log_dsp, exp2_dsp, log_pad, exp2_pad, lt, et };
     normalise(&s, b);
-    log2(&s, b);
-    times_n(&s, b);
+    let ell_after = log2(&s, b);
+    times_n(&s, b, ell_after);
     let complemented = exp2(&s, b);
     shift_and_round(&s, b, complemented);
 }
@@ -173,7 +173,8 @@ fn normalise(s: &Shape, b: &mut Builder) {
 }
 
 /// -log2 c' = x*g(x), g by the log2 table and linear interpolation; then l = e + L (truncation #1).
-fn log2(s: &Shape, b: &mut Builder) {
+/// Returns whether `ell` is left to the next step ([`ell`]): after a product alone in its step.
+fn log2(s: &Shape, b: &mut Builder) -> bool {
     let Shape { w, f, dsp, rb, log_dsp, log_pad, lt, .. } = *s;
     // the table's address beside x (on ECP5 the block RAM's address register takes it)
     let tg = w.log_index_bits;
@@ -228,7 +229,6 @@ fn log2(s: &Shape, b: &mut Builder) {
     }
 
     let lf = f + w.log_frac_bits;
-    let eb2 = w.ell_bits();
     let lb = f - 1 + gb;
     // g wider than a DSP's operands: g = g_hi*2^D + g_lo; x*g_lo on one DSP, then the bits of
     // L above D as x*g_hi (its few partial products) plus x*g_lo/2^D in one carry-save sum
@@ -248,13 +248,33 @@ fn log2(s: &Shape, b: &mut Builder) {
         b.wire("log_frac", lb, Kind::Select, ex!("{{{}, {}}}", hv, lv), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
     } else {
         b.step("-log2 c' = x*g(x)");
+        let what = format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact");
+        if b.instantiated_blocks() {
+            // a MULT18X18D with its own registers where the cuts allow; e + L after a step
+            // that registers L (the block's output is read only after its step)
+            b.product("log_frac", &[Piece::sig("x", 0, f - 1)], &[Piece::sig(&ghat.0, ghat.1, gb)], lb, &what);
+            b.ecp5_register_step("e + L: the product registered");
+            ell(s, b);
+            return false;
+        }
         if ghat.0 != "ghat" {
             let e = b.bits(&ghat.0, ghat.1 + gb - 1, ghat.1);
             b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
         }
         let (xs, gs) = ([Piece::sig("x", 0, f - 1)], [Piece::sig("ghat", 0, gb)]);
-        b.mul("log_frac", lb, (&xs, f - 1), (&gs, gb), &[], 0.0, &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
+        b.mul("log_frac", lb, (&xs, f - 1), (&gs, gb), &[], 0.0, &what);
+        // e + L in the next step: the block's output meets only its register
+        return true;
     }
+    ell(s, b);
+    false
+}
+
+/// `ell = e + L`, in this step.
+fn ell(s: &Shape, b: &mut Builder) {
+    let Shape { w, f, .. } = *s;
+    let lf = f + w.log_frac_bits;
+    let eb2 = w.ell_bits();
     // L = x*g < 1 (x < 1/2, g^ < 2: each interpolation stays below the next entry, and the
     // last is g(1/2) = 2), so e + L is a concatenation: e above L's fraction bits
     let e = b.r("exponent");
@@ -274,8 +294,16 @@ fn log2(s: &Shape, b: &mut Builder) {
 }
 
 /// y = n*l (multiplier 7), truncated (#2) and saturated.
-fn times_n(s: &Shape, b: &mut Builder) {
+/// `ell_here`: `ell` is made in the first step here (after `log_frac` alone in its step).
+fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
     let Shape { w, nb, dsp, .. } = *s;
+    // the first step of n*l, and `ell` in it where log2 left it
+    let first_step = |b: &mut Builder, title: &str| {
+        b.step(title);
+        if ell_here {
+            ell(s, b);
+        }
+    };
     let eb2 = w.ell_bits();
     // n*l from the bottom up, l in D-bit chunks: P_0 = n*l[D-1:0], and P_k = n*l[chunk k] +
     // floor(P_(k-1) / 2^D) on one DSP each (the add inside it); then n*l = {P_top, P_(top-1)
@@ -283,9 +311,9 @@ fn times_n(s: &Shape, b: &mut Builder) {
     let yb = w.y_bits();
     let pb = nb + eb2;
     let chunks: Vec<(u32, u32)> = (0..eb2.div_ceil(dsp.min(eb2))).map(|i| (i * dsp, (eb2 - i * dsp).min(dsp))).collect();
-    if nb <= dsp && chunks.len() > 1 {
-        let mut low_words: Vec<Expr> = Vec::new();
-        let last = chunks.len() - 1;
+    let chunked = nb <= dsp && chunks.len() > 1;
+    let last = chunks.len() - 1;
+    if chunked {
         for (k, &(lo, cw)) in chunks.iter().enumerate() {
             let width = nb + cw;
             let name = format!("y_part{k}");
@@ -302,7 +330,10 @@ fn times_n(s: &Shape, b: &mut Builder) {
             } else {
                 // one DSP each, the chunk below added inside it (on the ECP5, after it)
                 let t = format!("y = n*(-log2 c) (multiplier 7): n*l[{}:{lo}]", lo + cw - 1);
-                b.step(&format!("{t} (one DSP)"));
+                match k {
+                    0 => first_step(b, &format!("{t} (one DSP)")),
+                    _ => b.step(&format!("{t} (one DSP)")),
+                }
                 let (nn, l) = ([Piece::sig("n", 0, nb)], [Piece::sig("ell", lo, cw)]);
                 if k == 0 {
                     b.product(&name, &nn, &l, width, &format!("{what} (one DSP)"));
@@ -312,7 +343,17 @@ fn times_n(s: &Shape, b: &mut Builder) {
                 }
             }
         }
-        // each P_k's low D bits, read here (in the step of the last: a register holds the others)
+    } else {
+        first_step(b, "y = n*(-log2 c) (multiplier 7)");
+        let (ns, ls) = ([Piece::sig("n", 0, nb)], [Piece::sig("ell", 0, eb2)]);
+        b.mul("y_full", pb, (&ns, nb), (&ls, eb2), &[], 0.0, &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
+    }
+
+    b.step("y truncated; its saturation");
+    if chunked {
+        // each P_k's low D bits, read here (after the last one's step: the block's output
+        // meets only its register)
+        let mut low_words: Vec<Expr> = Vec::new();
         for k in (0..chunks.len()).rev() {
             let name = format!("y_part{k}");
             low_words.push(if k == last { b.r(&name) } else { b.bits(&name, dsp - 1, 0) });
@@ -324,13 +365,7 @@ fn times_n(s: &Shape, b: &mut Builder) {
             ex!("{{{}}}", Expr::join(&low_words, ", ")),
             &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits),
         );
-    } else {
-        b.step("y = n*(-log2 c) (multiplier 7)");
-        let (ns, ls) = ([Piece::sig("n", 0, nb)], [Piece::sig("ell", 0, eb2)]);
-        b.mul("y_full", pb, (&ns, nb), (&ls, eb2), &[], 0.0, &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
     }
-
-    b.step("y truncated; its saturation");
     let drop = w.ell_frac_bits - w.y_frac_bits;
     let top = b.bits("y_full", pb - 1, drop);
     let ytw = pb - drop;
