@@ -77,7 +77,8 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
         // a product's first register is its own (the DSP block's output register), the rest
         // of its wait a delay line (never a same-name copy); kept as a register of its own:
         // yosys 0.23's ice40_dsp, given the product's register with a shift register after
-        // it, changes the function (found by `synth --verify` on blinn's x*g_lo)
+        // it, changes the function (found by `synth --verify` on blinn's x*g_lo), and given a
+        // plain second register that only the first feeds, crashes (a segmentation fault)
         let product = at.len() > 1 && dp.products.contains(&name);
         // a multiplier reads the first register: it stays a register of its own, kept out of
         // the DSP block (yosys 0.70's ice40_dsp takes the first flip-flop of a delay line
