@@ -222,7 +222,7 @@ pub struct RtlArgs {
     pub stages: Option<u32>,
     /// The most hard multiplier blocks the unit may take (ice40: SB_MAC16, ecp5: MULT18X18D,
     /// generic: multipliers); the products past it are summed from partial products in the
-    /// fabric, those cheapest in logic first, so several units can share one device [0..=64;
+    /// fabric, those cheapest in logic first, so several units can share one device [0..=256;
     /// default: no limit]
     #[arg(allow_negative_numbers = true, value_parser = param_dsp_budget, long, value_name = "N", help_heading = "RTL")]
     pub dsp_budget: Option<u32>,
