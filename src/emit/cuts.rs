@@ -120,10 +120,10 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
 /// product has one where the family's synthesis takes it into the block
 /// ([`crate::family::Family::registers_inferred_blocks`]: yosys's ice40_dsp takes the
 /// register after a product, or after its add, when nothing else reads what it holds): the
-/// product is one block, registered whole at the cut after its step, read by nothing else in
-/// that step, and no operand has constant zero low bits (yosys takes that shift, and the add
-/// and the register behind it, out of the block). A register kept in the fabric
-/// (`(* keep *)`) is taken all the same.
+/// product is one block, no wider than the block's output, registered whole at the cut after
+/// its step, read by nothing else in that step, and no operand has constant zero low bits
+/// (yosys takes that shift, and the add and the register behind it, out of the block). A
+/// register kept in the fabric (`(* keep *)`) is taken all the same.
 pub(crate) fn unregistered_products(dp: &datapath::Datapath, cuts: &[Cut], target: Target) -> Vec<(String, String)> {
     let family = crate::family::of(target);
     let mut out = Vec::new();
@@ -140,6 +140,8 @@ pub(crate) fn unregistered_products(dp: &datapath::Datapath, cuts: &[Cut], targe
                 format!("an inferred product: {} maps it without registers", family.name())
             } else if blocks > 1 {
                 format!("the synthesis tool splits it over {blocks} blocks, summed in the fabric")
+            } else if w.width as u64 > 2 * family.multiplier_bits() as u64 {
+                format!("its {} bits run past the block's {}-bit output: the add above them is in the fabric", w.width, 2 * family.multiplier_bits())
             } else if dp.shifted_products.contains(&w.name) {
                 "an operand's low bits are constant zeros: the tool shifts outside the block, and adds and registers there".to_string()
             } else if s.wires.iter().any(|o| o.expr.reads.contains(&wire)) {

@@ -506,7 +506,8 @@ fn a_block_without_its_promised_register_fails_synth_naming_it() {
     assert!(err.contains("promises every hard multiplier a register of its own") && err.contains("SB_MAC16 "), "{err}");
 }
 
-/// Issue 49, point 3, over the width space: for every model at default and 8/6/4/8 bits, at
+/// Issue 49, point 3, over the width space: for every model at default, 8/6/4/8 and issue 12's
+/// wide 18/11/10/18 bits, at
 /// its deepest and at half of it on the iCE40 and at its deepest on the ECP5, the manifest
 /// promises every block its register exactly where the netlist has none without (a promise
 /// never broken, and never withheld where the netlist would keep it), and synth passes.
@@ -516,9 +517,10 @@ fn the_register_promise_matches_the_netlist_over_models_widths_and_families() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
+    let wide = ["--cos-frac-bits", "18", "--n-bits", "11", "--color-bits", "10", "--intensity-frac-bits", "18"];
     let mut cases: Vec<(String, Vec<String>, bool)> = Vec::new();
     for model in ["quadratic", "fitted", "blinn", "schlick", "blinn-pow"] {
-        for (wname, widths) in [("default", &[][..]), ("narrow", &narrow[..])] {
+        for (wname, widths) in [("default", &[][..]), ("narrow", &narrow[..]), ("wide", &wide[..])] {
             for (target, half) in [("ice40", false), ("ice40", true), ("ecp5", false)] {
                 let args: Vec<String> = widths.iter().copied().chain(["--model", model, "--target", target]).map(String::from).collect();
                 cases.push((format!("{model}-{wname}-{target}-{}", if half { "half" } else { "deepest" }), args, half));
