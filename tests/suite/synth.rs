@@ -400,8 +400,8 @@ fn which(tool: &str) -> std::path::PathBuf {
 
 /// Issue 49, point 3: every hard multiplier's registers are checked on the netlist. The narrow
 /// schlick unit without stages has SB_MAC16s whose clock is a constant: `synth` names each under
-/// `unregistered_blocks` and in its table; a narrow ECP5 unit at its deepest, every product a
-/// MULT18X18D with its input and output registers, lists none.
+/// `unregistered_blocks` and in its table, and its manifest lists them with why (a unit whose
+/// every block keeps its registers is the promise tests' below).
 #[test]
 fn every_hard_multipliers_registers_are_checked_on_the_netlist() {
     require_tool("yosys", "yosys");
@@ -423,17 +423,6 @@ fn every_hard_multipliers_registers_are_checked_on_the_netlist() {
     assert!(own.iter().any(|p| p["name"] == "den_half" && p["why"].as_str().unwrap().contains("no register at the cut after its step")), "{own:?}");
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("unregistered") && out.contains("Fmax is an upper bound"), "{out}");
-    let ecp5: Vec<&str> = narrow.iter().copied().chain(["--target", "ecp5"]).collect();
-    let stages = deepest(&ecp5);
-    let ecp5: Vec<&str> = ecp5.into_iter().chain(["--stages", stages.as_str()]).collect();
-    let dir = generate(tmp.path(), "ecp5", &ecp5);
-    let json = tmp.path().join("ecp5-synth.json");
-    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    assert!(r["dsp_blocks"].as_u64().unwrap() > 0, "{r}");
-    assert_eq!(r["unregistered_blocks"].as_array().unwrap().len(), 0, "{r}");
-    assert_eq!(promised_blocks(&dir), Some(true), "the ECP5 unit promises every block its registers");
 }
 
 /// Whether the unit in `dir` promises every hard multiplier a register of its own (its
@@ -456,9 +445,10 @@ fn synth_blocks(dir: &Path, json: &Path) -> (bool, Vec<String>, String) {
     (o.status.success(), listed, err)
 }
 
-/// Issue 49, point 3: every model at its deepest on the iCE40 at 8/6/4/8 bits promises every
-/// block its register (its manifest lists no `unregistered_products`), and `synth` holds the
-/// netlist to it: each passes with none without. The lean unit with one bit of logic between a
+/// Issue 49, point 3: lean, schlick and blinn-pow at their deepest on the iCE40 at 8/6/4/8 bits
+/// promise every block its register (their manifests list no `unregistered_products`), and
+/// `synth` holds the netlist to it: each passes with none without (fitted and blinn, and the
+/// ECP5, are the heavy test's below). The lean unit with one bit of logic between a
 /// product and its register (the SHA-256 in its manifest updated, as a tool that rewrites RTL
 /// would) fails with exit 1, naming the block and the promise.
 #[test]
@@ -466,7 +456,7 @@ fn a_block_without_its_promised_register_fails_synth_naming_it() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
-    let models = ["quadratic", "fitted", "blinn", "schlick", "blinn-pow"];
+    let models = ["quadratic", "schlick", "blinn-pow"];
     for_each_parallel(&models, |_, model| {
         let args: Vec<&str> = narrow.iter().copied().chain(["--model", model]).collect();
         let stages = deepest(&args);
