@@ -139,17 +139,15 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
         }
         let (r, p) = (format!("result{i}"), format!("power{i}"));
         let (rp, pp) = ([Piece::sig(&r, 0, pw + 1)], [Piece::sig(&p, 0, pw + 1)]);
-        let what = format!("UQ2.{}: result*power, exact", 2 * pw);
-        match own_step {
-            true => b.product(&format!("result_prod{}", i + 1), &rp, &pp, full, &what),
-            false => _ = b.mul(&format!("result_prod{}", i + 1), full, (&rp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &what),
-        }
+        // on the ECP5 a MULT18X18D with its own registers where the cuts allow; elsewhere a
+        // product inferred after the choice's LUT
+        let product = |b: &mut Builder, name: String, a: &[Piece], what: String| match own_step {
+            true => b.product(&name, a, &pp, full, &what),
+            false => _ = b.mul(&name, full, (a, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &what),
+        };
+        product(b, format!("result_prod{}", i + 1), &rp, format!("UQ2.{}: result*power, exact", 2 * pw));
         if more {
-            let what = format!("UQ2.{}: power^2, exact", 2 * pw);
-            match own_step {
-                true => b.product(&format!("power_sq{}", i + 1), &pp, &pp, full, &what),
-                false => _ = b.mul(&format!("power_sq{}", i + 1), full, (&pp, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &what),
-            }
+            product(b, format!("power_sq{}", i + 1), &pp, format!("UQ2.{}: power^2, exact", 2 * pw));
         }
     }
 

@@ -481,7 +481,7 @@ fn a_block_without_its_promised_register_fails_synth_naming_it() {
     let width: u32 = head.split('[').nth(1).unwrap().split(':').next().unwrap().parse::<u32>().unwrap() + 1;
     let broken = format!("{head} <= {source} ^ {{{}'h0, cos_g[0]}};", width - 1);
     std::fs::write(&v, text.replace(&line, &broken)).unwrap();
-    let digest = sha256_hex(&std::fs::read(&v).unwrap());
+    let digest = specgen::bits::sha256_hex(&std::fs::read(&v).unwrap(), 32);
     let mpath = dir.join("specular_unit.json");
     let mut manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&mpath).unwrap()).unwrap();
     for f in manifest["files"].as_array_mut().unwrap() {
@@ -562,9 +562,4 @@ fn the_units_that_promise_every_block_its_register() {
         let generic = listed(&format!("{model}-generic"), model, "generic", true);
         assert!(!generic.is_empty() && generic.iter().all(|(_, why)| why.contains("generic maps it without registers")), "{generic:?}");
     });
-}
-
-fn sha256_hex(bytes: &[u8]) -> String {
-    use sha2::Digest;
-    format!("{:x}", sha2::Sha256::digest(bytes))
 }
