@@ -260,30 +260,40 @@ fn prologue(s: &Shape, e: &mut Edge) {
     }
 }
 
+/// The tag's delay line beside valid_line, where the unit has a tag and a pipeline.
+pub(crate) fn tag_line(plan: &Plan) -> Option<DelayLine> {
+    let cfg = &plan.cfg;
+    let tw = cfg.carried_tag_bits();
+    if tw == 0 || plan.registered_cuts.is_empty() {
+        return None;
+    }
+    let cuts: Vec<usize> = plan.registered_cuts.iter().map(|&k| k as usize).collect();
+    let read = vec![0; cuts.len()];
+    let member = Waiting { name: "tag".into(), width: tw, source: "in_tag".into(), read };
+    Some(DelayLine {
+        name: "tag".into(),
+        cuts,
+        members: vec![member],
+        memory: crate::family::of(cfg.target()).has_block_ram(),
+        distributed: crate::family::of(cfg.target()).distributed_ram(),
+    })
+}
+
 /// The tag: one delay line beside valid_line. Returns its last word, and whether the line is
 /// all a shift register `tag_line` (no tail in block RAM: its formal block then follows it word
 /// by word).
 fn tag(s: &Shape, plan: &Plan, e: &mut Edge) -> (Option<String>, bool) {
-    let Shape { cfg, depth, tw, .. } = *s;
+    let Shape { depth, tw, top, .. } = *s;
     let mut tag_shift = false;
     let tag_out = if tw == 0 {
         None
     } else if depth == 0 {
         Some("in_tag".to_string())
     } else {
-        let cuts: Vec<usize> = plan.registered_cuts.iter().map(|&k| k as usize).collect();
-        let last = format!("tag_c{}", cuts[cuts.len() - 1]);
-        let read = vec![0; cuts.len()];
-        let member = Waiting { name: "tag".into(), width: tw, source: "in_tag".into(), read };
-        let line = DelayLine {
-            name: "tag".into(),
-            cuts,
-            members: vec![member],
-            memory: crate::family::of(cfg.target()).has_block_ram(),
-            distributed: crate::family::of(cfg.target()).distributed_ram(),
-        };
+        let line = tag_line(plan).expect("a tag and a pipeline");
+        let last = format!("tag_c{}", line.cuts[line.cuts.len() - 1]);
         e.tag.push(String::new());
-        e.tag.extend(line.lines());
+        e.tag.extend(line.lines(top));
         tag_shift = line.memory_tail().is_none();
         Some(last)
     };

@@ -156,7 +156,7 @@ end
 {%- endif %}
 {%- endfor %}
 {%- if st.cut.registered && !st.cut.is_empty() %}
-{% call cuts::register(st.cut) %}{% endcall %}
+{% call cuts::register(st.cut, top) %}{% endcall %}
 {%- endif %}
 {%- endfor %}
 {%- if !unused.is_empty() %}

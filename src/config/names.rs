@@ -141,7 +141,7 @@ pub(super) const CELL_NAMES: &str = include_str!("../../data/cell_names.txt");
 
 /// The modules a unit derives from its top (`<top>_out_buffer`, …): a top ending so could be
 /// another unit's derived module.
-pub(super) const DERIVED_SUFFIXES: &[&str] = &["_out_buffer", "_mult18x18", "_rom1k18", "_tb", "_tb_ports"];
+pub(super) const DERIVED_SUFFIXES: &[&str] = &["_out_buffer", "_mult18x18", "_rom1k18", "_delay_ram", "_tb", "_tb_ports"];
 
 pub(super) const VERILOG_KEYWORDS: &[&str] = &[
     "always",

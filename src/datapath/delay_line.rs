@@ -31,7 +31,7 @@ pub(crate) const MEMORY_TAIL_MIN_BITS: u32 = 160;
 
 impl DelayLine {
     /// The bits of a word (every member's).
-    pub(super) fn word(&self) -> u32 {
+    pub(crate) fn word(&self) -> u32 {
         self.members.iter().map(|m| m.width).sum()
     }
 
@@ -49,8 +49,8 @@ impl DelayLine {
 
     /// Its Verilog: the vector and the statement that shifts it, then the words read, named
     /// (one statement per width). A tail in block RAM ([`DelayLine::memory_tail`]) follows the
-    /// vector: the memory, its two address counters, and its read register with the last word.
-    pub fn lines(&self) -> Vec<String> {
+    /// vector: an instance of `<top>_delay_ram`, its output the line's last word.
+    pub fn lines(&self, top: &str) -> Vec<String> {
         let word = self.word();
         let line = format!("{}_line", self.name);
         let sources: Vec<&str> = self.members.iter().rev().map(|m| m.source.as_str()).collect();
@@ -64,7 +64,7 @@ impl DelayLine {
             out.push(format!("reg  [{}:0] {line};   always @(posedge clk) {line} <= {shifted};", word * d as u32 - 1));
         }
         if let Some((kept, cuts)) = tail {
-            out.extend(self.memory_lines(&line, word, kept, cuts, &joined));
+            out.extend(self.memory_lines(top, &line, word, kept, cuts, &joined));
         }
         // the named words, grouped by width in order of first appearance
         let mut by_width: Vec<(u32, Vec<String>)> = Vec::new();
@@ -75,8 +75,8 @@ impl DelayLine {
                 if m.read[k] == 0 && k < last {
                     continue;
                 }
-                // the last word of a tail in block RAM is the high word of `<line>_out`
-                let (vector, lo) = if k >= d { (format!("{line}_out"), word + offset) } else { (line.clone(), word * k as u32 + offset) };
+                // the last word of a tail in block RAM is `<line>_out`
+                let (vector, lo) = if k >= d { (format!("{line}_out"), offset) } else { (line.clone(), word * k as u32 + offset) };
                 let select = if m.width == 1 { format!("[{lo}]") } else { format!("[{}:{lo}]", lo + m.width - 1) };
                 let tap = format!("{}_c{cut} = {vector}{select}", m.name);
                 match by_width.iter_mut().find(|x| x.0 == m.width) {
@@ -94,36 +94,18 @@ impl DelayLine {
     }
 
     /// The tail in block RAM: `cuts` cycles from the word before it (`kept` words into the
-    /// vector; none: the sources) to the high word of `<line>_out`. The memory and its read
-    /// register (the low word) wait `cuts - 1` of them (a word written at one clock is read
-    /// `cuts - 2` clocks later), the high word the last, so the memory's output meets only a
-    /// flip-flop.
-    pub(super) fn memory_lines(&self, line: &str, word: u32, kept: usize, cuts: usize, sources: &str) -> Vec<String> {
-        let wait = cuts - 1; // the memory with its read register
-        let bits = (wait as u64).next_power_of_two().trailing_zeros().max(1);
-        let depth = 1u64 << bits;
+    /// vector; none: the sources) to `<line>_out`, in an instance `<line>_ram` of
+    /// `<top>_delay_ram` (`templates/delay_ram.v`: `cuts - 1` clocks in the memory with its read
+    /// register, the last in a flip-flop, so the memory's output meets only a flip-flop).
+    pub(super) fn memory_lines(&self, top: &str, line: &str, word: u32, kept: usize, cuts: usize, sources: &str) -> Vec<String> {
         let input = if kept == 0 { sources.to_string() } else { format!("{line}[{}:{}]", word * kept as u32 - 1, word * (kept as u32 - 1)) };
-        // the read address trails the write address by wait - 1 places: what was written
-        // wait - 1 clocks before, never what is being written
-        let from_reset = (depth - (wait as u64 - 1)) % depth;
-        let w = word - 1;
-        let a = bits - 1;
         let names: Vec<&str> = self.members.iter().map(|m| m.name.as_str()).collect();
+        let memory = if self.distributed { "LUT RAM" } else { "block RAM" };
         vec![
-            format!("// {} wait {cuts} more cuts: {wait} clocks in block RAM (with its read register), one in", names.join(", ")),
-            format!("// the high word of {line}_out: the memory's output meets only a flip-flop"),
-            if self.distributed { "(* no_rw_check, ram_style = \"distributed\" *)".to_string() } else { "(* no_rw_check *)".to_string() },
-            format!("reg  [{w}:0] {line}_ram [0:{}];", depth - 1),
-            format!("reg  [{a}:0] {line}_at, {line}_from;   // write and read addresses: the read trails by {}", wait - 1),
-            format!("reg  [{}:0] {line}_out;   // the memory's read register (low word), then the last word", 2 * word - 1),
-            "always @(posedge clk) begin".to_string(),
-            format!("    {line}_ram[{line}_at] <= {input};"),
-            format!("    {line}_out <= {{{line}_out[{w}:0], {line}_ram[{line}_from]}};"),
-            "end".to_string(),
-            "always @(posedge clk) begin".to_string(),
-            format!("    {line}_at <= rst ? {bits}'d0 : {line}_at + 1'b1;"),
-            format!("    {line}_from <= rst ? {bits}'d{from_reset} : {line}_from + 1'b1;"),
-            "end".to_string(),
+            format!("// {} wait {cuts} more cuts: {} clocks in {memory} (with its read register), one in", names.join(", "), cuts - 1),
+            format!("// a flip-flop after it ({top}_delay_ram), so the memory's output meets only a flip-flop"),
+            format!("wire [{}:0] {line}_out;", word - 1),
+            format!("{top}_delay_ram #(.WIDTH({word}), .CUTS({cuts})) {line}_ram (.clk(clk), .d({input}), .q({line}_out));"),
         ]
     }
 

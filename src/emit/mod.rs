@@ -44,7 +44,7 @@ impl Cut {
     /// Every register that starts here: a single register with the always block that loads
     /// it, one line; or a delay line, its registers declared in one statement and loaded in
     /// one, each from the one before.
-    pub fn lines(&self) -> Vec<String> {
+    pub fn lines(&self, top: &str) -> Vec<String> {
         let mut out = Vec::new();
         let range = |w: u32| if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
         for s in &self.signals {
@@ -53,7 +53,7 @@ impl Cut {
             out.push(format!("{keep}reg  {} {reg};   always @(posedge clk) {reg} <= {};", range(s.width), s.source));
         }
         for l in &self.lines {
-            out.extend(l.lines());
+            out.extend(l.lines(top));
         }
         out
     }
@@ -508,6 +508,34 @@ struct Rom1k18Template<'a> {
     version: &'a str,
 }
 
+/// The delay line's memory module `<top>_delay_ram` (a word delayed CUTS clocks in RAM).
+#[derive(Template)]
+#[template(path = "delay_ram.v")]
+struct DelayRamTemplate<'a> {
+    top: &'a str,
+    version: &'a str,
+    /// what the memory is, in words
+    memory: &'a str,
+    /// the memory's attributes after `no_rw_check`
+    ram_style: &'a str,
+}
+
+/// The (word bits, cuts) of every delay line's tail in RAM (`<top>_delay_ram`), the datapath's
+/// and the tag's, each pair once, in order.
+pub fn delay_rams(plan: &Plan) -> Vec<(u32, u32)> {
+    let mut out: Vec<(u32, u32)> = Vec::new();
+    let lines = cut_list(&plan.datapath, plan.cfg.target()).into_iter().flat_map(|c| c.lines).chain(crate::interface::tag_line(plan));
+    for l in lines {
+        if let Some((_, cuts)) = l.memory_tail() {
+            let p = (l.word(), cuts as u32);
+            if !out.contains(&p) {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
 /// The FuseSoC VLNV of a configuration: `specgen:specular:<top>-<digest>:<version>`, the digest
 /// (8 hex digits of SHA-256) taken over every parameter that shapes the files, so two
 /// configurations never replace each other in one cores-root, and one configuration always
@@ -608,6 +636,12 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         let text = Mult18Template { top, version: VERSION }.render().expect("mult18x18 template renders") + "\n";
         rtl_files.push((format!("{top}_mult18x18.v"), text));
         sim_models.push((format!("{SIM_DIR}/{top}{ECP5_SIM_MODEL_SUFFIX}"), crate::family::ecp5_sim_model()));
+    }
+    if !delay_rams(plan).is_empty() {
+        let distributed = crate::family::of(cfg.target()).distributed_ram();
+        let (memory, ram_style) = if distributed { ("LUT RAM", ", ram_style = \"distributed\"") } else { ("block RAM", "") };
+        let text = DelayRamTemplate { top, version: VERSION, memory, ram_style }.render().expect("delay_ram template renders") + "\n";
+        rtl_files.push((format!("{top}_delay_ram.v"), text));
     }
     if dp.has_block_rams() {
         let text = Rom1k18Template { top, version: VERSION }.render().expect("rom1k18 template renders") + "\n";

@@ -134,11 +134,33 @@ struct PipeliningHarness<'a> {
 }
 
 #[derive(Template)]
+#[template(path = "prove_delay_ram.v")]
+struct DelayRamContract<'a> {
+    name: &'a str,
+    top: &'a str,
+    version: &'a str,
+    width: u32,
+    cuts: u32,
+}
+
+#[derive(Template)]
+#[template(path = "prove_delay_ram_ideal.v")]
+struct DelayRamIdeal<'a> {
+    top: &'a str,
+    version: &'a str,
+    /// the (WIDTH, CUTS) whose contract is proved
+    proved: &'a [(u32, u32)],
+}
+
+#[derive(Template)]
 #[template(path = "prove_pipelining.ys")]
 struct PipeliningScript<'a> {
     version: &'a str,
     harness: &'a str,
     files: &'a [String],
+    /// files read after `files`, their modules replacing those of the same name (the delay
+    /// RAM's proved model)
+    overrides: &'a [String],
     /// a failure's replay with yosys's `sat` over this many edges (0: the models for ABC)
     replay_steps: u32,
     /// the replay's first edges whose assertions are not checked (0: from the all-zero state)

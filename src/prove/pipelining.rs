@@ -8,6 +8,44 @@ pub(super) const PIPELINING_PROPERTIES: [&str; 2] = [
     "while out_valid is high, every output and the tag are the twin's",
 ];
 
+/// The delay RAM's contract, in words (`templates/prove_delay_ram.v`).
+pub(super) const DELAY_RAM_PROPERTY: &str =
+    "each <top>_delay_ram the unit uses, alone: from the CUTS-th edge after power-up on, whatever rst does, q is d of CUTS edges before, as CUTS flip-flops in a row (k-induction with yosys sat)";
+
+/// Proves the contract of `<top>_delay_ram` at `width` and `cuts` (`templates/prove_delay_ram.v`)
+/// by k-induction with yosys's `sat`, over the unit's staged `files` (the module as shipped, its
+/// lemma under `SPECGEN_CONTRACT`). `None`: proved; else the verdict that stops the proof.
+fn delay_ram_contract(design: &Design, tools: &Tools, w: &Path, files: &[String], width: u32, cuts: u32) -> Result<Option<Verdict>, Error> {
+    let top = design.cfg.top();
+    let name = format!("{top}_delay_ram_contract_w{width}_c{cuts}");
+    let file = format!("{name}.v");
+    let text = DelayRamContract { name: &name, top, version: crate::names::VERSION, width, cuts }.render().expect("the contract renders") + "\n";
+    put(w, &file, text)?;
+    let mut all = files.to_vec();
+    all.push(file);
+    // the module's lemmas make it inductive in a step or two; the base case searches CUTS + 4
+    // edges from power-up, past the first edge the contract speaks of (a module without its
+    // lemmas: a failure found there, or no verdict)
+    let steps = cuts + 4;
+    let script = Script { induction: Some(steps), defines: vec!["SPECGEN_CONTRACT".into()], ..Script::model(&name, &all) };
+    script.write(w, "contract.ys")?;
+    let _ = std::fs::remove_file(w.join("trace.vcd"));
+    let said = run_watched(&tools.yosys, &["-s".into(), "contract.ys".into()], w, tools.limit, None, sat_progress)?;
+    let text = &said.text;
+    let reached = sat_reached(text);
+    Ok(if !said.ended {
+        Some(Verdict::Undecided { bounded: reached, out_of_time: true, reached })
+    } else if text.contains("Induction step proven: SUCCESS") {
+        None
+    } else if text.contains("model found for base case: FAIL") {
+        Some(Verdict::Failed { frame: reached.unwrap_or(0) + 1, vcd: trace(&tools.yosys, w, design)? })
+    } else if text.contains("Reached maximum number of time steps") {
+        Some(Verdict::Undecided { bounded: Some(steps), out_of_time: false, reached: Some(steps) })
+    } else {
+        return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted the delay RAM's contract: {}", tail(text))));
+    })
+}
+
 /// Why `prove --pipelining` does not apply to `design`, when it does not: a handshake's buffer
 /// and material registers keep state by design (their edge is what `prove` proves).
 pub fn pipelining_refused(design: &Design) -> Option<String> {
@@ -51,8 +89,34 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     let w = work.path();
     // the datapath is compared, so an ECP5 unit's primitives are their simulation models (the
     // twin's are the same modules, guarded)
+    let t0 = Instant::now();
     let mut files = design.stage_sim_models(w)?;
     files.extend(design.stage(w)?);
+    // a delay line's tail in RAM keeps words longer than the pipeline's K + 1 edges (the checks
+    // from any state cannot flush a memory): its module's contract is proved alone, for each
+    // width and length the unit uses, and the unit is then read with the contract's model in
+    // its place, CUTS flip-flops in a row free at power-up (every run of the module is one of
+    // theirs), which the checks flush like every other register
+    let rams = crate::emit::delay_rams(&design.plan);
+    let mut overrides = Vec::new();
+    for &(width, cuts) in &rams {
+        if let Some(verdict) = delay_ram_contract(design, tools, w, &files, width, cuts)? {
+            let engine = format!("k-induction with yosys sat over {top}_delay_ram (WIDTH = {width}, CUTS = {cuts}) alone");
+            return Ok(Proof {
+                name: format!("{top}_prove_pipelining"),
+                properties: vec![DELAY_RAM_PROPERTY],
+                verdict,
+                seconds: t0.elapsed().as_secs_f64(),
+                engine,
+                ports: None,
+            });
+        }
+    }
+    if !rams.is_empty() {
+        let ideal = DelayRamIdeal { top, version: crate::names::VERSION, proved: &rams }.render().expect("the model renders") + "\n";
+        put(w, "delay_ram_proved.v", ideal)?;
+        overrides.push("delay_ram_proved.v".to_string());
+    }
     // the twin: the same parameters at depth 0, its files by its own names beside the unit's
     // (its simulation models, under sim/, are the unit's)
     let twin_params = crate::config::Params { stages: 0, top: twin_top.clone(), ..cfg.params.clone() };
@@ -79,14 +143,14 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     files.push("harness.v".into());
     let script = |replay: Option<(u32, u32)>, file: &str| -> Result<(), Error> {
         let (replay_steps, replay_skip) = replay.unwrap_or((0, 0));
-        let text =
-            PipeliningScript { version: crate::names::VERSION, harness: &name, files: &files, replay_steps, replay_skip }.render().expect("the script renders")
-                + "\n";
+        let text = PipeliningScript { version: crate::names::VERSION, harness: &name, files: &files, overrides: &overrides, replay_steps, replay_skip }
+            .render()
+            .expect("the script renders")
+            + "\n";
         put(w, file, text)
     };
     script(None, "models.ys")?;
     let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
-    let t0 = Instant::now();
     run(&yosys, &["-q".into(), "-s".into(), "models.ys".into()], w, Duration::from_secs(600))?
         .ok_or_else(|| error::tool(&yosys, "yosys did not write the models within 600 s"))?;
     let frames = k + 2;
@@ -118,8 +182,14 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
         }
         Verdict::Proved
     };
-    let properties = PIPELINING_PROPERTIES.to_vec();
-    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PIPELINING.into(), ports: None })
+    let mut properties = PIPELINING_PROPERTIES.to_vec();
+    let mut engine = PIPELINING.to_string();
+    if !rams.is_empty() {
+        properties.push(DELAY_RAM_PROPERTY);
+        let each: Vec<String> = rams.iter().map(|(w, c)| format!("WIDTH = {w}, CUTS = {c}")).collect();
+        engine = format!("{engine}, the delay RAM's contract proved alone ({}) and its model in its place", each.join("; "));
+    }
+    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None })
 }
 
 /// Writes the twin `params` describe (its own top, its files by their own names) into `w`,

@@ -398,7 +398,8 @@ fn long_delay_line_tails_wait_in_block_ram_and_stay_right() {
     for_each_parallel(cases, |_, (name, args, memory)| {
         let dir = generate(tmp.path(), name, args);
         let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert_eq!(unit.contains("_line_ram ["), *memory, "{name}: a tail in block RAM or not");
+        assert_eq!(unit.contains("_line_ram ("), *memory, "{name}: a tail in block RAM or not");
+        assert_eq!(dir.join("specular_unit_delay_ram.v").exists(), *memory, "{name}: the memory's module beside the unit or not");
         for sim in ["verilator", "icarus"] {
             let vectors = if sim == "icarus" { "1500" } else { "20000" };
             let o = cosim(&dir, &["--simulator", sim, "--vectors", vectors, "--jobs", "1"]);

@@ -126,6 +126,50 @@ fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
     assert!(text(&o).contains("invalid --pipelining") && text(&o).contains("--interface valid"), "{}", text(&o));
 }
 
+/// Issue 51, point 4: a delay line's tail in RAM keeps words longer than the pipeline, so its
+/// module (`<top>_delay_ram`) is proved apart — its contract, from the CUTS-th edge on q is d of
+/// CUTS edges before, by induction with the module's lemmas — and the unit, with CUTS flip-flops
+/// in the module's place, equals its depth-0 twin. A module whose read address sits one place
+/// off, its lemmas deleted, is refuted with a VCD by the contract's search from power-up; one
+/// with the lemmas kept, by its own lemma.
+#[test]
+fn a_delay_line_in_ram_is_proved_apart_and_the_pipeline_with_it() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let args = ["--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "8", "--intensity-frac-bits", "6", "--stages", "11"];
+    let dir = generate(tmp.path(), "lean", &args);
+    let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+    assert!(unit.contains("specular_unit_delay_ram #(.WIDTH(24), .CUTS(8)) waiting_c1_c8_line_ram ("), "the colours wait in RAM:\n{unit}");
+    let trace = tmp.path().join("contract.vcd");
+    let prove = |dir: &Path| specgen().args(["prove", "--pipelining", "--edited", "--rtl"]).arg(dir).arg("--trace").arg(&trace).output().unwrap();
+    let o = prove(&dir);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains("proved, unbounded")
+            && text(&o).contains("the delay RAM's contract proved alone (WIDTH = 24, CUTS = 8)")
+            && text(&o).contains("the depth-0 twin's"),
+        "{}",
+        text(&o)
+    );
+    let module = dir.join("specular_unit_delay_ram.v");
+    let src = std::fs::read_to_string(&module).unwrap();
+    let next_from = "localparam integer NEXT_FROM_I = (1 << ABITS) + 1 - TRAIL_PLACES;";
+    assert!(src.contains(next_from), "{src}");
+    let off = src.replace(next_from, "localparam integer NEXT_FROM_I = (1 << ABITS) + 2 - TRAIL_PLACES;");
+    // the lemmas deleted (their ports stay): the contract's search from power-up finds it
+    let (from, to) = (off.find("// the lemmas that make the contract").unwrap(), off.find("`endif\n\nendmodule").unwrap());
+    for (name, edited) in [("lemmas kept", off.clone()), ("lemmas deleted", format!("{}{}", &off[..from], &off[to..]))] {
+        std::fs::write(&module, &edited).unwrap();
+        let _ = std::fs::remove_file(&trace);
+        let o = prove(&dir);
+        assert_eq!(o.status.code(), Some(1), "{name}: {}", text(&o));
+        assert!(text(&o).contains("a property fails") && text(&o).contains("specular_unit_delay_ram (WIDTH = 24, CUTS = 8) alone"), "{name}: {}", text(&o));
+        let vcd = std::fs::read_to_string(&trace).unwrap();
+        assert!(vcd.contains("$enddefinitions"), "{name}: {vcd}");
+    }
+}
+
 /// Issue 38, points 1 and 3: the stream edge proved unbounded (k-induction over the unit's own
 /// assertions: the buffer's stream rules, its invariants, the tag's transport and idle) for
 /// `ready` with a tag at 2 stages and `axis` with a tag, tlast, a clock enable and a static

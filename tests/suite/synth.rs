@@ -241,7 +241,7 @@ fn verify_passes_real_netlists_and_catches_a_broken_one() {
     // keep right too
     let rtl = generate(tmp.path(), "u", &["--stages", "13", "--tag-bits", "24"]);
     let unit = std::fs::read_to_string(rtl.join("specular_unit.v")).unwrap();
-    assert!(unit.contains("reg  [23:0] tag_line_ram [0:15];"), "the tag waits in block RAM:\n{unit}");
+    assert!(unit.contains("specular_unit_delay_ram #(.WIDTH(24), .CUTS(") && unit.contains(") tag_line_ram ("), "the tag waits in block RAM:\n{unit}");
     // (the ECP5 netlist is verified in targets::ecp5_unit_keeps_its_registers_in_the_blocks…)
     let target = "ice40";
     let o = specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--target", target, "--rtl"]).arg(&rtl).output().unwrap();
@@ -308,8 +308,8 @@ fn blinn_at_100_mhz_takes_the_up5k_dsps_few_flip_flops_and_its_netlist_is_right(
     let tmp = tempfile::tempdir().unwrap();
     let dir = generate(tmp.path(), "blinn", &["--model", "blinn", "--target", "ice40", "--target-mhz", "100"]);
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    assert!(unit.contains("{ks_b, ks_g, ks_r};") && unit.contains("_line_ram ["), "the colours wait in block RAM");
-    assert!(unit.contains("reg  [9:0] n_line_ram ["), "n waits in block RAM between its two reads");
+    assert!(unit.contains(".d({ks_b, ks_g, ks_r})") && unit.contains("_line_ram ("), "the colours wait in block RAM");
+    assert!(unit.contains("_delay_ram #(.WIDTH(10), .CUTS(") && unit.contains(") n_line_ram ("), "n waits in block RAM between its two reads");
     // beside the unit, never among its files (a later command would read a second *.json there)
     let json = dir.with_extension("synth.json");
     let o =
