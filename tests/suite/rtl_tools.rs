@@ -8,6 +8,18 @@ fn top_of<'a>(args: &[&'a str]) -> &'a str {
     args.iter().position(|a| *a == "--top").map(|i| args[i + 1]).unwrap_or("specular_unit")
 }
 
+/// The unit's Verilog: `<top>.v` and the modules it derives beside it (its output buffer, its
+/// delay lines' memory).
+fn unit_files(dir: &std::path::Path, top: &str) -> Vec<String> {
+    let mut files = vec![format!("{top}.v")];
+    for derived in ["_out_buffer.v", "_delay_ram.v"] {
+        if dir.join(format!("{top}{derived}")).exists() {
+            files.push(format!("{top}{derived}"));
+        }
+    }
+    files
+}
+
 /// Runs `tool args… <top>.v` in every generated configuration; it must succeed and print nothing.
 fn silent_on_every_config(tool: &str, package: &str, args: &[&str]) {
     require_tool(tool, package);
@@ -17,10 +29,7 @@ fn silent_on_every_config(tool: &str, package: &str, args: &[&str]) {
         // a parent of its own: specgen locks the parent while it swaps an output in
         let dir = generate(&tmp.path().join(format!("p{i}")), &format!("c{i}"), gen_args);
         let top = top_of(gen_args);
-        let mut files = vec![format!("{top}.v")];
-        if dir.join(format!("{top}_out_buffer.v")).exists() {
-            files.push(format!("{top}_out_buffer.v"));
-        }
+        let files = unit_files(&dir, top);
         let out = crate::common::tool(tool).current_dir(&dir).args(args).args(&files).output().unwrap();
         let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
         assert!(out.status.success() && text.trim().is_empty(), "{tool} {gen_args:?}:\n{text}");
@@ -74,10 +83,9 @@ fn synthesizes_without_latches(configs: &[Vec<&str>]) {
         // a parent of its own: specgen locks the parent while it swaps an output in
         let dir = generate(&tmp.path().join(format!("p{i}")), &format!("c{i}"), args);
         let top = top_of(args);
-        let buffer = format!("{top}_out_buffer.v");
-        let extra = if dir.join(&buffer).exists() { format!(" {buffer}") } else { String::new() };
+        let files = unit_files(&dir, top).join(" ");
         let script =
-            format!("read_verilog {top}.v{extra}; synth -top {top}; check -assert; select -assert-none t:$dlatch t:$_DLATCH_*; select -assert-min 1 t:*; stat");
+            format!("read_verilog {files}; synth -top {top}; check -assert; select -assert-none t:$dlatch t:$_DLATCH_*; select -assert-min 1 t:*; stat");
         let out = tool("yosys").current_dir(&dir).args(["-p", &script]).output().unwrap();
         let log = String::from_utf8_lossy(&out.stdout);
         assert!(out.status.success(), "{args:?}: yosys failed:\n{}", &log[log.len().saturating_sub(3000)..]);
