@@ -141,6 +141,8 @@ struct DelayRamContract<'a> {
     version: &'a str,
     width: u32,
     cuts: u32,
+    /// the module's lemma ports connected (an edited module without them: the contract alone)
+    lemmas: bool,
 }
 
 #[derive(Template)]

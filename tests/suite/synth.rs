@@ -55,7 +55,9 @@ fn lean_fully_pipelined_fits_an_up5k() {
 /// port as a register of its clock, so a path through such a block is never timed.
 fn unclocked_dsps(dir: &Path) -> Vec<String> {
     let json = dir.join("netlist.json");
-    let script = format!("read_verilog -sv specular_unit.v; synth_ice40 -dsp -top specular_unit; write_json {}", json.display());
+    // the unit and its delay lines' memory module, where it has one
+    let ram = if dir.join("specular_unit_delay_ram.v").exists() { " specular_unit_delay_ram.v" } else { "" };
+    let script = format!("read_verilog -sv specular_unit.v{ram}; synth_ice40 -dsp -top specular_unit; write_json {}", json.display());
     let o = std::process::Command::new("yosys").current_dir(dir).args(["-q", "-p", &script]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let netlist: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();

@@ -51,6 +51,7 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
         files,
         [
             "specular_unit.v",
+            "specular_unit_delay_ram.v",
             "specular_unit_mult18x18.v",
             "specular_unit_rom1k18.v",
             "sim/specular_unit_ecp5_dp16kd_sim.v",
