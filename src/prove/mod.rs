@@ -453,6 +453,28 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds, engine: PDR.into(), ports: None })
 }
 
+/// The verdict of a k-induction by yosys's `sat` (`said`, its log) bounded by `steps`: proved
+/// when the step closes; a failure of the base case (a search from power-up) with its trace;
+/// undecided when it ran out of time or depth. `what` names the properties in an error.
+fn sat_verdict(said: &Said, steps: u32, tools: &Tools, w: &Path, design: &Design, what: &str) -> Result<Verdict, Error> {
+    let text = &said.text;
+    let reached = sat_reached(text);
+    Ok(if !said.ended {
+        Verdict::Undecided { bounded: reached, out_of_time: true, reached }
+    } else if text.contains("Induction step proven: SUCCESS") {
+        Verdict::Proved
+    } else if text.contains("model found for base case: FAIL") {
+        // the base case of length N failed: a failure N edges from power-up, its whole trace
+        // in trace.vcd
+        let frame = reached.unwrap_or(0) + 1;
+        Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
+    } else if text.contains("Reached maximum number of time steps") {
+        Verdict::Undecided { bounded: Some(steps), out_of_time: false, reached: Some(steps) }
+    } else {
+        return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted {what}: {}", tail(text))));
+    })
+}
+
 /// The handshake's proof: k-induction with yosys's `sat` over the unit's own assertions (its
 /// buffer's stream rules and the invariants that make them inductive, `ifdef FORMAL` in the
 /// RTL). The base case searches from the first reset, so a failure there is a real trace; the
@@ -513,27 +535,13 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     let seconds = t0.elapsed().as_secs_f64();
     let said = ran?;
     let text = &said.text;
-    let reached = sat_reached(text);
     let k = text.matches("Induction step failed").count() + 1;
     let engine = if text.contains("model found for base case: FAIL") {
         "k-induction's base case, a search from power-up with yosys sat".to_string()
     } else {
         format!("k-induction with yosys sat over the unit's own assertions, k = {k} of at most {steps}")
     };
-    let verdict = if !said.ended {
-        Verdict::Undecided { bounded: reached, out_of_time: true, reached }
-    } else if text.contains("Induction step proven: SUCCESS") {
-        Verdict::Proved
-    } else if text.contains("model found for base case: FAIL") {
-        // the base case of length N failed: a failure N edges from power-up, its whole trace
-        // in trace.vcd
-        let frame = reached.unwrap_or(0) + 1;
-        Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
-    } else if text.contains("Reached maximum number of time steps") {
-        Verdict::Undecided { bounded: Some(steps), out_of_time: false, reached: Some(steps) }
-    } else {
-        return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted the properties: {}", tail(text))));
-    };
+    let verdict = sat_verdict(&said, steps, tools, w, design, "the properties")?;
     if verdict != Verdict::Proved {
         return Ok(Proof { name, properties, verdict, seconds, engine, ports: None });
     }

@@ -43,18 +43,9 @@ fn delay_ram_contract(design: &Design, tools: &Tools, w: &Path, files: &[String]
         }
     }
     let said = said.expect("the contract ran");
-    let text = &said.text;
-    let reached = sat_reached(text);
-    Ok(if !said.ended {
-        Some(Verdict::Undecided { bounded: reached, out_of_time: true, reached })
-    } else if text.contains("Induction step proven: SUCCESS") {
-        None
-    } else if text.contains("model found for base case: FAIL") {
-        Some(Verdict::Failed { frame: reached.unwrap_or(0) + 1, vcd: trace(&tools.yosys, w, design)? })
-    } else if text.contains("Reached maximum number of time steps") {
-        Some(Verdict::Undecided { bounded: Some(steps), out_of_time: false, reached: Some(steps) })
-    } else {
-        return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted the delay RAM's contract: {}", tail(text))));
+    Ok(match sat_verdict(&said, steps, tools, w, design, "the delay RAM's contract")? {
+        Verdict::Proved => None,
+        verdict => Some(verdict),
     })
 }
 
