@@ -16,7 +16,7 @@ row() { # what, command...
     local what=$1; shift
     local s e out verdict
     s=$(date +%s.%N)
-    out=$("$@" 2>&1) && verdict="proved$(sed -n 's/.*\(k = [0-9]*\).*/, \1/p' <<< "$out" | head -1)" || verdict=$(sed -n 's/.*: \(a property fails [0-9]* clock edges[^;]*\).*/refuted: \1/p; s/.*: \(undecided\): .*\(ran out of time\).*/\1, \2/p; s/.*: \(undecided\): .*/\1/p' <<< "$out" | head -1)
+    out=$("$@" 2>&1) && verdict="proved$(sed -n 's/.*\(k = [0-9]*\).*/, \1/p' <<< "$out" | head -1)" || verdict=$(sed -n 's/.*: \(a property fails [0-9]* clock edges\{0,1\}[^;]*\).*/refuted: \1/p; s/.*: \(undecided\): .*\(ran out of time\).*/\1, \2/p; s/.*: \(undecided\): .*/\1/p' <<< "$out" | head -1)
     # a bounded search (--depth, --datapath) says so; a proof's own port search does not make it one
     grep -q "proved, unbounded" <<< "$out" || { grep -q "no property fails within the first" <<< "$out" && verdict=$(sed -n 's/.*\(no property fails within the first [0-9]* clock edges\).*/bounded: \1/p' <<< "$out" | head -1); }
     e=$(date +%s.%N)
