@@ -45,6 +45,10 @@ $bin generate --out "$work/pd" --stages 13 >/dev/null 2>&1
 row "pipelining, lean default widths, 13 stages (1 delay line in RAM)" $bin prove --pipelining --rtl "$work/pd" --time-limit "$limit"
 $bin generate --out "$work/pfd" --model fitted --stages 65 >/dev/null 2>&1
 row "pipelining, fitted default widths, 65 stages (8 delay lines in RAM, 5 contracts)" $bin prove --pipelining --rtl "$work/pfd" --time-limit "$limit"
+$bin generate --out "$work/pbd" --model blinn --stages 38 >/dev/null 2>&1
+row "pipelining, blinn default widths, 38 stages (2 delay lines in RAM)" $bin prove --pipelining --rtl "$work/pbd" --time-limit "$limit"
+$bin generate --out "$work/psd" --model schlick --stages 23 >/dev/null 2>&1
+row "pipelining, schlick default widths, 23 stages (1 delay line in RAM)" $bin prove --pipelining --rtl "$work/psd" --time-limit "$limit"
 cp -r "$work/pd" "$work/pdx"
 sed -i 's/^localparam integer NEXT_FROM_I = (1 << ABITS) + 1 - TRAIL_PLACES;/localparam integer NEXT_FROM_I = (1 << ABITS) + 2 - TRAIL_PLACES;/' "$work/pdx/specular_unit_delay_ram.v"
 row "pipelining, lean default widths, 13 stages, the delay RAM's read address one place off" $bin prove --pipelining --edited --rtl "$work/pdx" --time-limit "$limit"
