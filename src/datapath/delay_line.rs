@@ -100,7 +100,7 @@ impl DelayLine {
     pub(super) fn memory_lines(&self, top: &str, line: &str, word: u32, kept: usize, cuts: usize, sources: &str) -> Vec<String> {
         let input = if kept == 0 { sources.to_string() } else { format!("{line}[{}:{}]", word * kept as u32 - 1, word * (kept as u32 - 1)) };
         let names: Vec<&str> = self.members.iter().map(|m| m.name.as_str()).collect();
-        let memory = if self.distributed { "LUT RAM" } else { "block RAM" };
+        let memory = memory_kind(self.distributed);
         vec![
             format!("// {} wait {cuts} more cuts: {} clocks in {memory} (with its read register), one in", names.join(", "), cuts - 1),
             format!("// a flip-flop after it ({top}_delay_ram), so the memory's output meets only a flip-flop"),
@@ -122,6 +122,16 @@ impl DelayLine {
             }
         }
         out
+    }
+}
+
+/// What a delay line's tail waits in, in words: LUT RAM where the family's delay lines are
+/// distributed (the ECP5), else block RAM.
+pub(crate) fn memory_kind(distributed: bool) -> &'static str {
+    if distributed {
+        "LUT RAM"
+    } else {
+        "block RAM"
     }
 }
 

@@ -639,7 +639,8 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     }
     if !delay_rams(plan).is_empty() {
         let distributed = crate::family::of(cfg.target()).distributed_ram();
-        let (memory, ram_style) = if distributed { ("LUT RAM", ", ram_style = \"distributed\"") } else { ("block RAM", "") };
+        let ram_style = if distributed { ", ram_style = \"distributed\"" } else { "" };
+        let memory = datapath::memory_kind(distributed);
         let text = DelayRamTemplate { top, version: VERSION, memory, ram_style }.render().expect("delay_ram template renders") + "\n";
         rtl_files.push((format!("{top}_delay_ram.v"), text));
     }
