@@ -65,6 +65,68 @@ pub fn buffer_places(cfg: &Config) -> u64 {
     }
 }
 
+/// The port checker's state as `specgen prove` hands it to a handshake unit's lemmas: the port
+/// `f_ports` (only under `SPECGEN_LEMMAS`), its fields from bit 0 up: the pixels inside
+/// (`count` bits), whether one is followed, its edges since taken (`age` bits, stopping at the
+/// latency: in the buffer), the results to leave before it (`count`), its carried word (`word`:
+/// tag and tlast, 1 bit without), the edges a result has been owed (8), the edges in_ready
+/// has been low to a consumer ready at each (8), and with `prove --datapath` whether the
+/// followed pixel's result is known and what it is (the `valid` twin's, `payload` bits:
+/// {intensity, spec_r, spec_g, spec_b, done}; 0 without). The checker packs
+/// it (`templates/prove_port_checker.v`), the unit unpacks it: both from this one layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CheckerState {
+    pub count: u32,
+    pub age: u32,
+    pub word: u32,
+    /// a result's bits, {intensity, spec_r, spec_g, spec_b, done}
+    pub payload: u32,
+}
+
+impl CheckerState {
+    pub fn of(cfg: &Config) -> CheckerState {
+        let places = buffer_places(cfg);
+        CheckerState {
+            count: 64 - places.leading_zeros() + 1,
+            age: (32 - cfg.latency().leading_zeros()).max(1),
+            word: cfg.carried_tag_bits().max(1),
+            payload: (cfg.fi() + 1) + 3 * cfg.b() + 1,
+        }
+    }
+
+    /// Bits of `f_ports`.
+    pub fn width(&self) -> u32 {
+        2 * self.count + 1 + self.age + self.word + 16 + 1 + self.payload
+    }
+
+    /// Each field's (name, lowest bit, width), from bit 0 up.
+    pub fn fields(&self) -> [(&'static str, u32, u32); 9] {
+        let (c, a, w) = (self.count, self.age, self.word);
+        let word = 2 * c + 1 + a;
+        let check = word + w + 16;
+        [
+            ("inside", 0, c),
+            ("following", c, 1),
+            ("age", c + 1, a),
+            ("rank", c + 1 + a, c),
+            ("word", word, w),
+            ("owed", word + w, 8),
+            ("refused", word + w + 8, 8),
+            ("check", check, 1),
+            ("expected", check + 1, self.payload),
+        ]
+    }
+
+    /// The bounds of the port checker's bounded response, (RESPOND, RECOVER): with the consumer
+    /// always ready, a result owed is delivered within RESPOND edges (a pixel taken into an
+    /// empty unit leaves `latency` edges later, plus two for the buffer's queue to start), and
+    /// in_ready rises again within RECOVER (the unit drains a full buffer, places results one an
+    /// edge after the last pixel's latency, and in_ready follows the count three edges later).
+    pub fn bounds(cfg: &Config) -> (u32, u64) {
+        (cfg.latency() + 2, cfg.latency() as u64 + buffer_places(cfg) + 4)
+    }
+}
+
 /// The lines around the datapath.
 pub(crate) struct Edge {
     /// the header's `Latency:` line and the lines after it (each without its `// `)
@@ -342,12 +404,14 @@ fn tail(s: &Shape, outputs: &[(String, String)], tag_out: Option<String>, tag_sh
     e.tail.push(format!("// every pixel taken has a place reserved in {top}_out_buffer, so the pipeline never waits"));
     e.tail.push(format!("wire {} out_result = {};", range(width), concat(&fields.iter().map(|f| f.1.clone()).collect::<Vec<_>>())));
     e.tail.push(format!("wire {} out_held;", range(width)));
-    if colour == Colour::Static {
-        let bits = buffer_depth_log2(depth) + 2;
-        e.tail.push("`ifdef FORMAL".into());
-        e.tail.push(format!("wire {} f_buffer_outstanding;", range(bits)));
-        e.tail.push("`endif".into());
-    }
+    let count_bits = buffer_depth_log2(depth) + 2;
+    e.tail.push("`ifdef FORMAL".into());
+    e.tail.push("// formal only: what the buffer tells the unit's own assertions (see its formal block)".into());
+    e.tail.push(format!("wire {} f_buffer_outstanding, f_buffer_results, f_buffer_rank;", range(count_bits)));
+    e.tail.push(format!("wire {} f_buffer_at_rank;", range(width)));
+    e.tail.push("wire [7:0]  f_buffer_progress, f_buffer_recover;".into());
+    e.tail.push(format!("wire [{}:0] f_buffer_takes;", cfg.stages()));
+    e.tail.push("`endif".into());
     let bits = buffer_depth_log2(depth) as usize;
     e.tail.push(format!(
         "{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({bits}), .TAPS({bits}'b{:0bits$b}), .PLACES({}), .LATENCY({})) out_buffer (",
@@ -358,18 +422,27 @@ fn tail(s: &Shape, outputs: &[(String, String)], tag_out: Option<String>, tag_sh
     e.tail.push(format!("    .clk(clk), .rst(rst), .in_valid({offer}), .in_ready(in_ready), .take(in_take),"));
     e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
     e.tail.push(format!("    .out_valid(out_valid), .out_ready({accept}), .out(out_held)"));
-    if colour == Colour::Static {
-        e.tail.push("`ifdef FORMAL".into());
-        e.tail.push("    , .f_outstanding(f_buffer_outstanding)   // formal only: pixels inside, for idle's assertions".into());
-        e.tail.push("`endif".into());
-    }
+    e.tail.push("`ifdef FORMAL".into());
+    e.tail.push("    , .f_outstanding(f_buffer_outstanding), .f_results(f_buffer_results), .f_rank(f_buffer_rank),".into());
+    e.tail.push("    .f_at_rank(f_buffer_at_rank), .f_progress(f_buffer_progress), .f_recover(f_buffer_recover), .f_takes(f_buffer_takes)".into());
+    e.tail.push("`endif".into());
     e.tail.push(");".into());
     if colour == Colour::Static {
         e.tail.extend(inside_count(places_for(depth), accept));
     }
     e.tail.push(format!("assign {} = out_held;", concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>())));
     let tag_line = (depth > 0 && tw > 0).then(|| (tag_out.clone().expect("a tag"), tag_shift));
-    e.tail.extend(formal_lines(depth, tw, tag_line, (colour == Colour::Static).then(|| places_for(depth))));
+    // a result in the buffer's word as the port checker orders it: {intensity, spec_r, spec_g,
+    // spec_b, done}
+    let mut at = width;
+    let mut bits = std::collections::BTreeMap::new();
+    for (port, _, w) in &fields {
+        bits.insert(port.as_str(), if *w == 1 { format!("f_buffer_at_rank[{}]", at - 1) } else { format!("f_buffer_at_rank[{}:{}]", at - 1, at - w) });
+        at -= w;
+    }
+    let payload = format!("{{{}}}", ["intensity", "spec_r", "spec_g", "spec_b", "done"].map(|p| bits[p].clone()).join(", "));
+    let lemmas = lemma_lines(depth, tw, width, &payload, CheckerState::of(cfg), CheckerState::bounds(cfg).1);
+    e.tail.extend(formal_lines(depth, tw, tag_line, (colour == Colour::Static).then(|| places_for(depth)), lemmas));
     if interface == Interface::Axis {
         let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
         e.tail.push(format!("assign m_axis_tdata = {};", ports::packed_tdata(&mf, mw)));
@@ -456,10 +529,7 @@ fn inside_count(places: u64, accept: &str) -> Vec<String> {
 /// result is in_tag of the pixel `depth` edges before; with material registers (`places`),
 /// idle is high exactly while no pixel is inside. Each is an assertion `prove` proves, with the
 /// invariants that make it inductive within a few edges.
-fn formal_lines(depth: u32, tw: u32, tag: Option<(String, bool)>, places: Option<u64>) -> Vec<String> {
-    if tag.is_none() && places.is_none() {
-        return Vec::new();
-    }
+fn formal_lines(depth: u32, tw: u32, tag: Option<(String, bool)>, places: Option<u64>, lemmas: Vec<String>) -> Vec<String> {
     let mut out = vec![
         String::new(),
         "`ifdef FORMAL".into(),
@@ -504,6 +574,96 @@ fn formal_lines(depth: u32, tw: u32, tag: Option<(String, bool)>, places: Option
         out.push("    end".into());
         out.push("end".into());
     }
+    out.extend(lemmas);
+    out.push("`endif".into());
+    out
+}
+
+/// The unit's lemmas for `specgen prove` at its ports (under `SPECGEN_LEMMAS`, with the port
+/// `f_ports`): the port checker's state, written from the manifest apart from the unit, tied to
+/// the unit's own, so the checker's stream rules close by induction. The pixels inside are the
+/// buffer's count; a result owed has waited no longer than the unit's progress toward one
+/// (`f_progress` of the buffer); the pixel followed is, by its age, at its stage of the pipeline
+/// (its tag there, the pixels inside less those at or behind its stage ahead of it) or in the
+/// buffer at its rank with its tag. Each is an assertion: a false one fails the proof, and
+/// without them the induction may not close, but no lemma can pass a unit that breaks a rule.
+/// With `prove --datapath`, the followed pixel's result in the buffer is the one the `valid`
+/// twin computed for it. (`depth`: the latency; `tw`: the carried word's bits; `width`: the
+/// buffer's word, the carried word on top; `payload`: a result at the buffer's rank, in the
+/// checker's order.)
+fn lemma_lines(depth: u32, tw: u32, width: u32, payload: &str, state: CheckerState, recover: u64) -> Vec<String> {
+    let mut out = vec![
+        "`ifdef SPECGEN_LEMMAS".into(),
+        "// ---- lemmas (`specgen prove` at the ports): the port checker's state, f_ports, tied to the unit's ----".into(),
+    ];
+    for (name, lo, w) in state.fields() {
+        let what = match name {
+            "inside" => "pixels taken and not delivered",
+            "following" => "a pixel followed",
+            "age" => "its edges since taken (the latency and more: in the buffer)",
+            "rank" => "results to leave before it",
+            "word" => "its tag (and tlast)",
+            "owed" => "edges a result has been owed to a consumer ready at each",
+            "refused" => "edges in_ready has been low to a consumer ready at each",
+            "check" => "prove --datapath: its result is known",
+            _ => "prove --datapath: its result, {intensity, spec_r, spec_g, spec_b, done}",
+        };
+        let sel = if w == 1 { format!("f_ports[{lo}]") } else { format!("f_ports[{}:{lo}]", lo + w - 1) };
+        out.push(format!("wire {} f_ports_{name:<9} = {sel};   // {what}", range(w)));
+    }
+    out.push("assign f_buffer_rank = f_ports_rank;".into());
+    if depth > 0 {
+        out.push("integer f_p, f_behind;".into());
+        if tw > 0 {
+            out.push(format!("reg  {} f_tag_at_age;   // in_tag of the edge the followed pixel was taken", range(tw)));
+        }
+    }
+    out.push("always @(*) begin".into());
+    if depth > 0 {
+        out.push("    f_behind = 0;   // pixels in the pipeline at the followed one's stage or behind it".into());
+        out.push(format!("    for (f_p = 0; f_p < {depth}; f_p = f_p + 1) if (f_p <= f_ports_age) f_behind = f_behind + valid_line[f_p];"));
+        if tw > 0 {
+            // (a constant part-select in a loop: yosys 0.23 reads `f_tags[f_ports_age * T +: T]` wrongly)
+            out.push(format!("    f_tag_at_age = {tw}'h0;"));
+            out.push(format!("    for (f_p = 0; f_p < {depth}; f_p = f_p + 1) if (f_p == f_ports_age) f_tag_at_age = f_tags[f_p * {tw} +: {tw}];"));
+        }
+    }
+    out.push("    if (f_started) begin".into());
+    if depth > 0 {
+        out.push("        // the pipeline's valid bits are the pixels the buffer saw taken".into());
+        out.push(format!("        assert(valid_line == f_buffer_takes[{}:0]);", depth - 1));
+    }
+    out.push("        // the checker counts the pixels inside as the buffer does".into());
+    out.push("        assert(f_ports_inside == f_buffer_outstanding);".into());
+    out.push("        // a result owed has waited no longer than the unit's progress toward delivering one".into());
+    out.push("        assert(f_ports_owed <= f_buffer_progress);".into());
+    out.push("        // in_ready low: the edges it has been low to a ready consumer and those it stays low".into());
+    out.push(format!("        // are {recover} at most (the checker's bound: latency + places + 4)"));
+    out.push(format!("        if (!in_ready) assert(f_ports_refused + f_buffer_recover <= {recover});"));
+    if depth > 0 {
+        out.push(format!("        if (f_ports_following && f_ports_age < {depth}) begin"));
+        out.push("            // in the pipeline, at the stage of its age: a pixel there, its tag with it, those inside".into());
+        out.push("            // less those at its stage or behind it ahead of it".into());
+        out.push("            assert(valid_line[f_ports_age]);".into());
+        if tw > 0 {
+            out.push("            assert(f_tag_at_age == f_ports_word);".into());
+        }
+        out.push("            assert(f_ports_rank == f_ports_inside - f_behind);".into());
+        out.push("        end".into());
+    }
+    out.push(format!("        if (f_ports_following && f_ports_age >= {depth}) begin"));
+    out.push("            // in the buffer, at its rank, with its tag".into());
+    out.push("            assert(f_ports_rank < f_buffer_results);".into());
+    if tw > 0 {
+        out.push(format!("            assert(f_buffer_at_rank[{}:{}] == f_ports_word);", width - 1, width - tw));
+    }
+    out.push("            // (prove --datapath) with the result the twin computed for it".into());
+    out.push(format!("            if (f_ports_check) assert({payload} == f_ports_expected);"));
+    out.push("        end".into());
+    out.push("    end".into());
+    out.push("end".into());
+    out.push("`else".into());
+    out.push("assign f_buffer_rank = 0;".into());
     out.push("`endif".into());
     out
 }

@@ -26,6 +26,13 @@ module {{ name }} (
     output wire                done,
     output wire [63:0]         out_tag,
     output wire                idle
+{%- if lemma_w > 0 %}
+`ifdef SPECGEN_LEMMAS
+    ,
+    // formal only (`specgen prove`): the port checker's state, for the unit's lemmas
+    input  wire [{{ lemma_w - 1 }}:0]  f_ports
+`endif
+{%- endif %}
 );
 {%- for line in body %}
     {{ line }}

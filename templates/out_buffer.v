@@ -61,8 +61,18 @@ module {{ top }}_out_buffer #(
     output reg  [WIDTH-1:0] out
 `ifdef FORMAL
     ,
-    // formal only: the pixels taken and not yet delivered, for the unit's own assertions (idle)
-    output wire [DEPTH_LOG2+1:0] f_outstanding
+    // formal only, for the unit's own assertions: the pixels taken and not yet delivered (idle);
+    // the results in the buffer, and the one at position f_rank from the head (0: out); the
+    // edges a consumer ready at each has waited for a result at most (see f_progress)
+    output wire [DEPTH_LOG2+1:0] f_outstanding,
+    output wire [DEPTH_LOG2+1:0] f_results,
+    input  wire [DEPTH_LOG2+1:0] f_rank,
+    output reg  [WIDTH-1:0]      f_at_rank,
+    output reg  [7:0]            f_progress,
+    // with a consumer ready at every edge and in_ready low: the edges until in_ready is high
+    output reg  [7:0]            f_recover,
+    // the pixels taken: bit j, one taken j + 1 edges before (the pipeline's valid bits)
+    output wire [LATENCY:0]      f_takes
 `endif
 );
 
@@ -292,6 +302,62 @@ always @(posedge clk) begin
     f_in_queue  <= !rst && (f_in_read_q || (f_in_queue && !(deliver && f_position == 0)));
 end
 assign f_outstanding = f_inside;
+assign f_results = f_in_buffer;
+assign f_takes = f_line;
+// the result at position f_rank: the queue's, then read_q's, then the memory's from read_at on
+integer f_j, f_behind;
+reg  [DEPTH_LOG2-1:0] f_rank_at;
+always @(*) begin
+    f_behind = f_rank - held - read_valid;
+    f_rank_at = read_at;
+    for (f_j = 0; f_j < F_STATES; f_j = f_j + 1) if (f_j < f_behind) f_rank_at = advance(1'b1, f_rank_at);
+    if (f_rank == 0 && held != 2'd0) f_at_rank = out;
+    else if (f_rank == 1 && held > 2'd1) f_at_rank = queued_1;
+    else if (f_rank == 2 && held == 2'd3) f_at_rank = queued_2;
+    else if (f_rank == held && read_valid) f_at_rank = read_q;
+    else f_at_rank = places[f_rank_at];
+    // progress toward a delivery, in edges of a consumer ready at each (a result owed can have
+    // waited no longer): a pixel at stage j of the pipeline (taken j + 1 edges ago) has waited
+    // j; it is written LATENCY edges after it was taken, read the edge after, in out the next
+    f_progress = 8'd0;
+    for (f_j = 0; f_j < LATENCY; f_j = f_j + 1) if (f_line[f_j]) f_progress = f_j;
+    if (f_memory != 0) f_progress = LATENCY;
+    if (read_valid) f_progress = LATENCY + 1;
+    if (out_valid) f_progress = LATENCY + 2;
+end
+// f_recover: in_ready is high once, three edges before, fewer than CREDITS were outstanding
+// (the last three edges' counts are known: f_inside_2, f_inside_1, f_inside); else the
+// outstanding must first fall below CREDITS: f_need results leave (4 at most, as PLACES =
+// CREDITS + 3), no pixel comes in (in_ready is low), and the edges until the f_need-th has
+// left follow from where the oldest are: a result in the queue leaves at the next edge, in
+// read_q one later, in the memory one later still, a pixel at stage j of the pipeline
+// LATENCY + 3 - j edges on; each behind the one before it by an edge at least
+integer f_q, f_s, f_n, f_g, f_d, f_need, f_d_need;
+always @(*) begin
+    f_need = f_inside - CREDITS + 1;
+    f_d = 0;
+    f_d_need = 0;
+    for (f_q = 0; f_q < 4; f_q = f_q + 1) begin
+        if (f_q < held) f_g = LATENCY + 2;
+        else if (f_q < held + read_valid) f_g = LATENCY + 1;
+        else if (f_q < f_in_buffer) f_g = LATENCY;
+        else begin
+            // the (f_q - f_in_buffer)-th oldest pixel in the pipeline: its stage
+            f_g = 0;
+            f_n = 0;
+            for (f_s = LATENCY - 1; f_s >= 0; f_s = f_s - 1) if (f_line[f_s]) begin
+                if (f_n == f_q - f_in_buffer) f_g = f_s;
+                f_n = f_n + 1;
+            end
+        end
+        f_d = (f_q == 0 || LATENCY + 3 - f_g > f_d + 1) ? LATENCY + 3 - f_g : f_d + 1;
+        if (f_q == f_need - 1) f_d_need = f_d;
+    end
+    if (f_inside_2 < CREDITS) f_recover = 8'd1;
+    else if (f_inside_1 < CREDITS) f_recover = 8'd2;
+    else if (f_inside < CREDITS) f_recover = 8'd3;
+    else f_recover = 3 + f_d_need;
+end
 always @(*) begin
     f_pipe = 0;
     for (f_i = 0; f_i < LATENCY; f_i = f_i + 1) f_pipe = f_pipe + f_line[f_i];

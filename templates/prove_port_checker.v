@@ -18,7 +18,15 @@ module {{ name }} (
     input  wire [{{ word_w - 1 }}:0]  out_word,
     input  wire                load,
     // the pixel offered at in_valid, {cos_g, n, ks_r, ks_g, ks_b} (read under SPECGEN_DATAPATH)
-    input  wire [{{ pixel_w - 1 }}:0]  in_pixel
+    input  wire [{{ pixel_w - 1 }}:0]  in_pixel,
+    // free: follow the pixel taken at this edge (when none is followed)
+    input  wire                follow,
+    // the checker's own state, for the unit's lemmas (SPECGEN_LEMMAS), from bit 0 up: the pixels
+    // inside; the pixel followed: whether one is, its edges since taken (LATENCY and more read
+    // as LATENCY), the results to leave before it, its tag; the edges a result has been owed;
+    // the edges in_ready has been low; with the datapath, whether the followed pixel's result
+    // is known and what it is (the twin's)
+    output wire [{{ state_w - 1 }}:0]  f_state
 );
     localparam integer LATENCY = {{ latency }};
     localparam integer PLACES  = {{ places }};
@@ -37,15 +45,17 @@ module {{ name }} (
     reg        held = 1'b0;                  // out_valid && !(out_ready && en) in the cycle before
     reg [{{ payload_w - 1 }}:0]  held_payload = 0;
     reg [{{ word_w - 1 }}:0]  held_word = 0;
-    // the scoreboard: one pixel followed, any one (k: no reset, never changes, any value)
-    reg [{{ index_w - 1 }}:0]  k;
-    reg [{{ index_w }}:0]  in_count = 0, out_count = 0;
+    // the scoreboard: one pixel followed at a time, any one (taken with `follow` high while none
+    // is): its tag, the results to leave before it, its edges since taken
+    reg        k_on = 1'b0;
     reg [{{ word_w - 1 }}:0]  k_word = 0;
-    reg        k_taken = 1'b0;
+    reg [{{ count_w - 1 }}:0]  k_rank = 0;
+    reg [{{ age_w - 1 }}:0]  k_age = 0;
+    wire       k_start = taken && follow && !k_on;
+    wire       k_leaves = delivered && k_on && k_rank == 0;
     // bounded response: edges a result has been owed to a ready consumer, and in_ready low to one
     reg [7:0]  owed = 0, refused = 0;
     always @(posedge clk) begin
-        k <= k;
         started <= 1'b1;
         after_reset <= rst;
         held <= !rst && out_valid && !(out_ready && en);
@@ -54,19 +64,22 @@ module {{ name }} (
         if (rst) begin
             inside <= 0;
             fewer <= 3'b111;
-            in_count <= 0;
-            out_count <= 0;
-            k_taken <= 1'b0;
+            k_on <= 1'b0;
             owed <= 0;
             refused <= 0;
         end else begin
             inside <= inside + taken - delivered;
             fewer <= {fewer[1:0], inside < PLACES - 3};
-            if (taken && !in_count[{{ index_w }}]) in_count <= in_count + 1'b1;
-            if (delivered && !out_count[{{ index_w }}]) out_count <= out_count + 1'b1;
-            if (taken && in_count == k) begin
-                k_taken <= 1'b1;
+            if (k_start) begin
+                // ahead of it: the pixels inside that do not leave at this edge
+                k_on <= 1'b1;
                 k_word <= in_word;
+                k_rank <= inside - delivered;
+                k_age <= 0;
+            end else if (k_on) begin
+                if (k_leaves) k_on <= 1'b0;
+                if (delivered && k_rank != 0) k_rank <= k_rank - 1'b1;
+                if (k_age < LATENCY) k_age <= k_age + 1'b1;
             end
             owed <= (delivered || inside == 0 || !(out_ready && en)) ? 8'd0 : owed + (owed != 8'hff);
             refused <= (in_ready || !(out_ready && en)) ? 8'd0 : refused + (refused != 8'hff);
@@ -74,24 +87,24 @@ module {{ name }} (
     end
 
 `ifdef SPECGEN_DATAPATH
-    // the datapath (`prove --datapath`): the k-th result delivered is what {{ twin }}, the same
-    // configuration generated as a `valid` unit, computes for the k-th pixel taken: the twin
+    // the datapath (`prove --datapath`): the result delivered for the pixel followed is what
+    // {{ twin }}, the same configuration generated as a `valid` unit, computes for it: the twin
     // takes every pixel the unit takes, at the same edge{% if static_colour %}, and loads every colour the unit
-    // should (at an enabled edge with the load high){% endif %}; its result for the k-th is kept{% if static_colour %}. Not
+    // should (at an enabled edge with the load high){% endif %}; its result for the one followed is kept{% if static_colour %}. Not
     // compared: a pixel taken before any colour was loaded, or inside while one loads (SPEC: it
     // may see either colour){% endif %}
     reg [{{ payload_w - 1 }}:0]  k_expected = 0;
-    reg        k_kept = 1'b0;                // the k-th pixel's operands are known until it leaves
-    reg        k_computed = 1'b0;            // the twin gave its k-th result
+    reg        k_kept = 1'b0;                // the followed pixel's operands are known until it leaves
+    reg        k_computed = 1'b0;            // the twin gave its result for it
 {%- if static_colour %}
     reg        colour_known = 1'b0;          // a colour was loaded since power-up
     always @(posedge clk) begin
         if (load && en) colour_known <= 1'b1;
-        if (taken && in_count == k) k_kept <= colour_known && !(load && en);
+        if (k_start) k_kept <= colour_known && !(load && en);
         else if (load && en) k_kept <= 1'b0;
     end
 {%- else %}
-    always @(posedge clk) if (taken && in_count == k) k_kept <= 1'b1;
+    always @(posedge clk) if (k_start) k_kept <= 1'b1;
 {%- endif %}
     wire                twin_ready, twin_valid, twin_idle;
     wire [63:0]         twin_tag;
@@ -107,10 +120,10 @@ module {{ name }} (
     // the twin's result for a pixel taken at an edge is on its outputs {{ stages }} edges later (its
     // latency, which `specgen prove` proves of a valid unit): kept then
 {%- if stages > 0 %}
-    reg [{{ stages - 1 }}:0]  k_inside = 0;           // bit j: the k-th pixel was taken j + 1 edges ago
+    reg [{{ stages - 1 }}:0]  k_inside = 0;           // bit j: the pixel followed was taken j + 1 edges ago
     always @(posedge clk) begin
-        k_inside <= rst ? {{ stages }}'d0 : (k_inside << 1) | (taken && in_count == k);
-        if (rst) k_computed <= 1'b0;
+        k_inside <= rst ? {{ stages }}'d0 : (k_inside << 1) | k_start;
+        if (rst || k_start) k_computed <= 1'b0;
         else if (k_inside[{{ stages - 1 }}]) begin
             k_expected <= {twin_i, twin_r, twin_g, twin_b, twin_done};
             k_computed <= 1'b1;
@@ -119,16 +132,22 @@ module {{ name }} (
 {%- else %}
     always @(posedge clk) begin
         if (rst) k_computed <= 1'b0;
-        else if (taken && in_count == k) begin
+        else if (k_start) begin
             k_expected <= {twin_i, twin_r, twin_g, twin_b, twin_done};
             k_computed <= 1'b1;
         end
     end
 {%- endif %}
-    wire       compared = delivered && out_count == k && k_taken && k_kept && k_computed;
+    wire       compared = k_leaves && k_kept && k_computed;
+    // (for the unit's lemmas: the followed pixel's result is known, and what it is)
+    wire       k_check = k_kept && k_computed;
+    wire [{{ payload_w - 1 }}:0]  k_result = k_expected;
 `else
     wire       compared = 1'b0;
+    wire       k_check = 1'b0;
+    wire [{{ payload_w - 1 }}:0]  k_result = {{ payload_w }}'d0;
 `endif
+    assign f_state = {k_result, k_check, refused, owed, k_word, k_rank, k_age, k_on, inside};
 
 `ifdef SPECGEN_COVERS
     // the covers, each an event a proof must reach or it says nothing: a result delivered, the
@@ -174,14 +193,14 @@ module {{ name }} (
             // pixels were inside (none in the cycles up to a reset); low the cycle after one
             if (!after_reset) assert(in_ready == fewer[2]);
             // the n-th result delivered carries the n-th pixel's tag{% if tlast %} and tlast{% endif %}: none lost,
-            // repeated or reordered
-            if (delivered && out_count == k) assert(k_taken && out_word == k_word);
+            // repeated or reordered (n any: the pixel followed leaves when those ahead of it have)
+            if (k_leaves) assert(out_word == k_word);
             // bounded response: with the consumer ready, a result owed is delivered within
             // RESPOND edges, and in_ready rises again within RECOVER
             assert(owed <= RESPOND);
             assert(refused <= RECOVER);
 `ifdef SPECGEN_DATAPATH
-            // the datapath: the k-th result delivered is the twin's for the k-th pixel
+            // the datapath: the result delivered for the pixel followed is the twin's for it
             if (compared) assert(out_payload == k_expected);
 `endif
         end

@@ -3,7 +3,7 @@
 use super::outln;
 use super::{failed, Failure};
 use specgen::cosim::Design;
-use specgen::prove::{prove, prove_datapath, prove_pipelining, Tools, Verdict};
+use specgen::prove::{prove, prove_datapath, prove_pipelining, Tools, Unbounded, Verdict};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -159,10 +159,18 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
 /// What the port checker found, after the verdict's own lines.
 fn at_the_ports(proof: &specgen::prove::Proof, cover_trace: Option<&std::path::Path>) -> Result<(), Failure> {
     let Some(ports) = &proof.ports else { return Ok(()) };
-    outln!(
-        "at the ports (a checker written from the manifest, apart from the RTL; the unit's own assertions set aside): no property fails within the first {} clock edges from power-up, a bounded search, not a proof:",
-        ports.depth
-    )?;
+    let bounded =
+        format!("no property fails within the first {} clock edges from power-up (a bounded search, the unit's own assertions set aside)", ports.depth);
+    let verdict = match ports.unbounded {
+        Unbounded::Proved { k } => format!(
+            "proved, unbounded (k-induction with yosys sat, k = {k}, the unit's lemmas tying the checker's state to its own; a lemma is an assertion, none can pass a broken unit); {bounded}"
+        ),
+        Unbounded::NoLemmas => format!("{bounded}, not a proof: the unit lacks the lemmas the induction needs (the port f_ports, or assertions specgen writes)"),
+        Unbounded::Undecided { steps, out_of_time: false } => format!("{bounded}, not a proof: the induction with the unit's lemmas did not close within {steps} edges"),
+        Unbounded::Undecided { out_of_time: true, .. } => format!("{bounded}, not a proof: the induction with the unit's lemmas ran out of time"),
+        Unbounded::NotTried => format!("{bounded}, not a proof"),
+    };
+    outln!("at the ports (a checker written from the manifest, apart from the RTL): {verdict}:")?;
     for p in &ports.properties {
         outln!("  - {p}")?;
     }

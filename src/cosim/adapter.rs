@@ -17,6 +17,8 @@ struct CosimTop<'a> {
     n_w: u32,
     b_w: u32,
     i_w: u32,
+    /// bits of a handshake unit's lemma port (0: none)
+    lemma_w: u32,
     body: Vec<String>,
 }
 
@@ -30,6 +32,8 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
     // the carried word: the tag, tlast above it
     let (tw, user) = (cfg.carried_tag_bits(), cfg.tag_bits());
     let axis = cfg.interface() == Interface::Axis;
+    // a handshake unit's lemma port, passed through (`specgen prove`: SPECGEN_LEMMAS)
+    let lemma_w = if cfg.interface().handshake() { crate::interface::CheckerState::of(cfg).width() } else { 0 };
     let (sf, sw, mf, mw) = ports::tdata_fields(cfg.port_widths());
     let mut body = Vec::new();
     let mut links = Vec::new();
@@ -65,6 +69,11 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
     for (i, l) in links.into_iter().enumerate() {
         body.push(format!("    {l}{}", if i + 1 < n { "," } else { "" }));
     }
+    if lemma_w > 0 {
+        body.push("`ifdef SPECGEN_LEMMAS".into());
+        body.push("    , .f_ports(f_ports)".into());
+        body.push("`endif".into());
+    }
     body.push(");".into());
     if !names.contains(&"in_ready") && !names.contains(&"s_axis_tready") {
         body.push("assign in_ready = 1'b1;".into());
@@ -86,6 +95,7 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
         n_w: cfg.n_bits(),
         b_w: cfg.b(),
         i_w: cfg.fi() + 1,
+        lemma_w,
         body,
     }
     .render()

@@ -85,6 +85,7 @@ pub fn source_ports(text: &str, top: &str) -> Option<Vec<(String, &'static str, 
             rest = &rest[c.len_utf8()..];
         }
     }
+    let clean = without_formal(&clean);
     let tokens: Vec<String> = clean.replace('[', " [ ").replace(']', " ] ").replace([',', ';', '(', ')'], " , ").split_whitespace().map(String::from).collect();
     let start = tokens.windows(2).position(|w| w[0] == "module" && (w[1] == top || w[1].starts_with(&format!("{top}#"))))?;
     let end = tokens[start..].iter().position(|t| t == "endmodule").map_or(tokens.len(), |e| start + e);
@@ -131,6 +132,34 @@ pub fn source_ports(text: &str, top: &str) -> Option<Vec<(String, &'static str, 
         }
     }
     Some(ports)
+}
+
+/// `text` without what only a proof reads: the lines from an `` `ifdef FORMAL `` or
+/// `` `ifdef SPECGEN_… `` to its `` `endif `` (nested conditionals counted), whose ports (a
+/// unit's lemma port `f_ports`) no flow sees.
+fn without_formal(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut depth = 0usize;
+    for line in text.lines() {
+        let t = line.trim_start();
+        let opens = t.starts_with("`ifdef") || t.starts_with("`ifndef");
+        if depth > 0 {
+            if opens {
+                depth += 1;
+            } else if t.starts_with("`endif") {
+                depth -= 1;
+            }
+            continue;
+        }
+        let word = t.strip_prefix("`ifdef").map(str::trim);
+        if word.is_some_and(|w| w.starts_with("FORMAL") || w.starts_with("SPECGEN_")) {
+            depth = 1;
+            continue;
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out
 }
 
 /// The RTL's port names and widths must be those the manifest implies: a mismatch is a

@@ -253,6 +253,20 @@ pub(crate) fn port_lines(ports: &[Port]) -> Vec<String> {
         .collect()
 }
 
+/// A handshake unit's port list with, under `SPECGEN_LEMMAS`, the port checker's state for its
+/// lemmas (`specgen prove`; [`crate::interface::CheckerState`]): no flow but the proof sees it.
+fn with_lemma_port(cfg: &crate::config::Config, mut lines: Vec<String>) -> Vec<String> {
+    if cfg.interface().handshake() {
+        let w = crate::interface::CheckerState::of(cfg).width();
+        lines.push("`ifdef SPECGEN_LEMMAS".into());
+        lines.push("    ,".into());
+        lines.push("    // formal only (`specgen prove` at the ports): the port checker's state, for the lemmas below".into());
+        lines.push(format!("    input  wire [{}:0] f_ports", w - 1));
+        lines.push("`endif".into());
+    }
+    lines
+}
+
 /// Joins `items` with `sep` into as few lines as keep each at most `width` characters (an item
 /// longer than that has a line of its own): an expression's operands, the lint sink's selects.
 fn fill_lines<'a>(items: impl IntoIterator<Item = &'a str>, sep: &str, width: usize) -> Vec<String> {
@@ -354,7 +368,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
         formula: d.formula,
         rounding_text: d.rounding,
         datapath_line: d.datapath,
-        port_lines: port_lines(&ports),
+        port_lines: with_lemma_port(cfg, port_lines(&ports)),
         cuts_text: registered_cuts_text(&plan.registered_cuts),
         file_tables,
         valid_depth: plan.registered_cuts.len() as u32,

@@ -52,6 +52,8 @@ struct EdgeHarness<'a> {
     /// the carried word's width at the ports (tag and tlast), 1 when there is none
     word_w: u32,
     word_carried: bool,
+    /// bits of the port checker's state (a handshake unit)
+    state_w: u32,
 }
 
 /// The stream rules at a handshake unit's ports (`templates/prove_port_checker.v`), written from
@@ -71,7 +73,10 @@ struct PortChecker<'a> {
     word_w: u32,
     payload_w: u32,
     count_w: u32,
-    index_w: u32,
+    /// bits of the followed pixel's age, which stops at the latency
+    age_w: u32,
+    /// bits of the state it hands the unit's lemmas
+    state_w: u32,
     respond: u32,
     recover: u64,
     static_colour: bool,
@@ -278,6 +283,22 @@ pub struct Ports {
     /// the VCD of the run that reaches every cover (with [`Tools::cover_trace`]): what a
     /// reader checks to see the unit deliver, fill and drain, not only that it can
     pub cover_vcd: Option<Vec<u8>>,
+    /// whether the properties were also proved for every edge
+    pub unbounded: Unbounded,
+}
+
+/// The port checker's properties beyond its bounded search.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Unbounded {
+    /// proved for every edge: k-induction closed at `k` with the unit's lemmas
+    Proved { k: u32 },
+    /// not tried: the unit lacks the lemmas the induction needs (an edited RTL: no port
+    /// `f_ports`, or fewer assertions than specgen writes)
+    NoLemmas,
+    /// the induction did not close within `steps` edges (`out_of_time`: it was stopped first)
+    Undecided { steps: u32, out_of_time: bool },
+    /// not tried: a bounded check only (the datapath's)
+    NotTried,
 }
 
 /// The edge proof's engine, in words.
@@ -333,27 +354,19 @@ pub fn harness(design: &Design) -> String {
         clock_enable: cfg.params.clock_enable,
         word_w: cfg.carried_tag_bits().max(1),
         word_carried: cfg.carried_tag_bits() > 0,
+        state_w: crate::interface::CheckerState::of(cfg).width(),
     }
     .render()
     .expect("the prove harness renders")
         + "\n"
 }
 
-/// The port checker's bounds: (RESPOND, RECOVER). With the consumer always ready, a result owed
-/// is delivered within RESPOND edges: a pixel taken into an empty unit leaves `latency` edges
-/// later, plus two for the buffer's queue to start. in_ready rises again within RECOVER: the
-/// unit drains a full buffer (places results, one an edge, after the last pixel's latency),
-/// and in_ready follows the count three edges later.
-fn port_bounds(cfg: &crate::config::Config) -> (u32, u64) {
-    let places = crate::interface::buffer_places(cfg);
-    (cfg.latency() + 2, cfg.latency() as u64 + places + 4)
-}
-
 /// The port checker's Verilog for `design` (from its configuration: the manifest's).
 pub fn port_checker(design: &Design) -> String {
     let cfg = &design.cfg;
     let places = crate::interface::buffer_places(cfg);
-    let (respond, recover) = port_bounds(cfg);
+    let (respond, recover) = crate::interface::CheckerState::bounds(cfg);
+    let state = crate::interface::CheckerState::of(cfg);
     PortChecker {
         name: &format!("{}_port_checker", cfg.top()),
         top: cfg.top(),
@@ -366,8 +379,9 @@ pub fn port_checker(design: &Design) -> String {
         clock_enable: cfg.params.clock_enable,
         word_w: cfg.carried_tag_bits().max(1),
         payload_w: (cfg.fi() + 1) + 3 * cfg.b() + 1,
-        count_w: 64 - places.leading_zeros() + 1,
-        index_w: 5,
+        count_w: state.count,
+        age_w: state.age,
+        state_w: state.width(),
         respond,
         recover,
         static_colour: cfg.colour() == crate::config::Colour::Static,
@@ -529,33 +543,48 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         }
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
     }
-    script.write(w, "induction.ys")?;
-    let _ = std::fs::remove_file(w.join("trace.vcd"));
-    let ran = run_watched(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit, tools.progress, sat_progress);
-    let seconds = t0.elapsed().as_secs_f64();
-    let said = ran?;
-    let text = &said.text;
-    let k = text.matches("Induction step failed").count() + 1;
-    let engine = if text.contains("model found for base case: FAIL") {
-        "k-induction's base case, a search from power-up with yosys sat".to_string()
-    } else {
-        format!("k-induction with yosys sat over the unit's own assertions, k = {k} of at most {steps}")
-    };
-    let verdict = sat_verdict(&said, steps, tools, w, design, "the properties")?;
-    if verdict != Verdict::Proved {
-        return Ok(Proof { name, properties, verdict, seconds, engine, ports: None });
-    }
-    // the unit's own assertions hold (lemmas, the RTL's word); the verdict is the port
-    // checker's, written from the manifest apart from the RTL, with the unit's assertions set
-    // aside: deleting them can only lose the unbounded part, never pass a broken unit
+    // a unit that states the assertions specgen writes is proved in one induction with the
+    // port checker (its assertions the lemmas); one that states fewer has its own proved first
+    // (the RTL's word), and its ports only searched
     let own = states_its_own_assertions(design)?;
-    let ports = at_the_ports(design, tools, w, &script)?;
+    // the unit's own assertions by themselves: the engine in words, or the proof that ends here
+    let own_induction = || -> Result<Result<String, Proof>, Error> {
+        script.write(w, "induction.ys")?;
+        let _ = std::fs::remove_file(w.join("trace.vcd"));
+        let ran = run_watched(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit, tools.progress, sat_progress);
+        let seconds = t0.elapsed().as_secs_f64();
+        let said = ran?;
+        let text = &said.text;
+        let k = text.matches("Induction step failed").count() + 1;
+        let engine = if text.contains("model found for base case: FAIL") {
+            "k-induction's base case, a search from power-up with yosys sat".to_string()
+        } else {
+            format!("k-induction with yosys sat over the unit's own assertions, k = {k} of at most {steps}")
+        };
+        let verdict = sat_verdict(&said, steps, tools, w, design, "the properties")?;
+        if verdict != Verdict::Proved {
+            return Ok(Err(Proof { name: name.clone(), properties: properties.clone(), verdict, seconds, engine, ports: None }));
+        }
+        Ok(Ok(engine))
+    };
+    let mut engine = String::new();
+    if !own {
+        match own_induction()? {
+            Ok(how) => engine = how,
+            Err(proof) => return Ok(proof),
+        }
+    }
+    // the verdict is the port checker's, written from the manifest apart from the RTL: its
+    // bounded search with the unit's assertions set aside, its covers, then its properties
+    // for every edge by induction with the unit's assertions as lemmas (deleting them can
+    // only lose the unbounded part, never pass a broken unit)
+    let ports = at_the_ports(design, tools, w, &script, own)?;
     let ports = match ports {
         AtPorts::Checked(p) => p,
-        AtPorts::Failed { frame, vcd } => {
+        AtPorts::Failed { frame, vcd, how } => {
             let mut all = PORT_PROPERTIES.to_vec();
             all.extend(properties.iter().copied());
-            let engine = "the port checker (from the manifest), a bounded search with ABC bmc3, the unit's own assertions set aside".to_string();
+            let engine = format!("the port checker (from the manifest), {how}");
             return Ok(Proof { name, properties: all, verdict: Verdict::Failed { frame, vcd }, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
         }
         AtPorts::OutOfTime { reached } => {
@@ -572,7 +601,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     let mut ports = ports;
     match colour_check(design, tools, port_depth(cfg))? {
         None => {}
-        Some((Verdict::Bounded { .. }, _)) => ports.properties.push(COLOUR_PROPERTY),
+        Some((Verdict::Proved | Verdict::Bounded { .. }, _)) => ports.properties.push(COLOUR_PROPERTY),
         Some((verdict, engine)) => {
             let seconds = t0.elapsed().as_secs_f64();
             return Ok(Proof { name, properties: vec![COLOUR_PROPERTY], verdict, seconds, engine, ports: None });
@@ -589,7 +618,30 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         let depth = ports.depth;
         return Ok(Proof { name, properties: Vec::new(), verdict: Verdict::Bounded { depth }, seconds, engine, ports: Some(ports) });
     }
-    Ok(Proof { name, properties, verdict, seconds, engine, ports: Some(ports) })
+    match ports.unbounded {
+        Unbounded::Undecided { steps, out_of_time } => {
+            // the unit states its lemmas, yet the induction at the ports did not close: not proved
+            let engine = format!("the port checker's k-induction with the unit's assertions as lemmas (yosys sat, at most {steps} edges)");
+            let verdict = Verdict::Undecided { bounded: Some(ports.depth), out_of_time, reached: None };
+            let mut all = PORT_PROPERTIES.to_vec();
+            all.extend(properties.iter().copied());
+            Ok(Proof { name, properties: all, verdict, seconds, engine, ports: None })
+        }
+        Unbounded::Proved { k } => {
+            let engine = format!(
+                "k-induction with yosys sat over the port checker's properties and the unit's own assertions, its lemmas, k = {k} of at most {UNBOUNDED_STEPS}"
+            );
+            Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine, ports: Some(ports) })
+        }
+        Unbounded::NoLemmas if own => {
+            // assertions enough but no lemma port (an edited unit): its own assertions alone
+            match own_induction()? {
+                Ok(engine) => Ok(Proof { name, properties, verdict: Verdict::Proved, seconds: t0.elapsed().as_secs_f64(), engine, ports: Some(ports) }),
+                Err(proof) => Ok(proof),
+            }
+        }
+        Unbounded::NoLemmas | Unbounded::NotTried => Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine, ports: Some(ports) }),
+    }
 }
 
 /// A static colour's colour check to `depth` edges (none for another colour): which colour each
@@ -600,8 +652,9 @@ fn colour_check(design: &Design, tools: &Tools, depth: u32) -> Result<Option<(Ve
         return Ok(None);
     }
     let (verdict, _) = against_the_twin(design, tools, depth, true)?;
+    let then = if tools.depth.is_none() { ", then k-induction with yosys sat, the unit's assertions its lemmas" } else { "" };
     let engine = format!(
-        "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside"
+        "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside{then}"
     );
     Ok(Some((verdict, engine)))
 }

