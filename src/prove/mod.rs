@@ -634,9 +634,16 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine, ports: Some(ports) })
         }
         Unbounded::NoLemmas if own => {
-            // assertions enough but no lemma port (an edited unit): its own assertions alone
+            // assertions enough but no lemma port (an edited unit): its own assertions proved by
+            // themselves are its word; the verdict at the ports stays a bounded search
             match own_induction()? {
-                Ok(engine) => Ok(Proof { name, properties, verdict: Verdict::Proved, seconds: t0.elapsed().as_secs_f64(), engine, ports: Some(ports) }),
+                Ok(how) => {
+                    let depth = ports.depth;
+                    let engine = format!(
+                        "the port checker, ABC bmc3 to {depth} edges; the unit has no lemma port f_ports, so its own assertions were proved by themselves ({how}), the RTL's word, and its ports only searched"
+                    );
+                    Ok(Proof { name, properties, verdict: Verdict::Bounded { depth }, seconds: t0.elapsed().as_secs_f64(), engine, ports: Some(ports) })
+                }
                 Err(proof) => Ok(proof),
             }
         }
