@@ -120,11 +120,10 @@ module {{ name }} (
     // the twin's result for a pixel taken at an edge is on its outputs {{ stages }} edges later (its
     // latency, which `specgen prove` proves of a valid unit): kept then
 {%- if stages > 0 %}
-    reg [{{ stages - 1 }}:0]  k_inside = 0;           // bit j: the pixel followed was taken j + 1 edges ago
+    // (the followed pixel's age tells when: no second count of its edges for an induction to tie)
     always @(posedge clk) begin
-        k_inside <= rst ? {{ stages }}'d0 : (k_inside << 1) | k_start;
         if (rst || k_start) k_computed <= 1'b0;
-        else if (k_inside[{{ stages - 1 }}]) begin
+        else if (k_on && k_age == {{ stages - 1 }}) begin
             k_expected <= {twin_i, twin_r, twin_g, twin_b, twin_done};
             k_computed <= 1'b1;
         end

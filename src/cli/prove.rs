@@ -174,6 +174,12 @@ fn at_the_ports(proof: &specgen::prove::Proof, cover_trace: Option<&std::path::P
     for p in &ports.properties {
         outln!("  - {p}")?;
     }
+    if !ports.bounded_only.is_empty() {
+        outln!("and by the bounded search alone, of {} edges from power-up, not a proof:", ports.depth)?;
+        for p in &ports.bounded_only {
+            outln!("  - {p}")?;
+        }
+    }
     outln!("covers, all reached in one run by edge {} (none vacuous):", ports.covered_by)?;
     for c in &ports.covers {
         outln!("  - {c}")?;

@@ -261,7 +261,7 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let depth = tools.depth.unwrap_or_else(|| port_depth(&design.cfg));
     let twin = datapath_twin_name(design.cfg.top());
     let then = if tools.depth.is_none() {
-        format!(", then for every edge: k-induction with yosys sat (at most {UNBOUNDED_STEPS} edges), the unit's assertions its lemmas")
+        format!(", then for every edge: k-induction with yosys sat (at most {} edges), the unit's assertions its lemmas", twin_steps(&design.cfg))
     } else {
         String::new()
     };
@@ -287,6 +287,9 @@ pub(super) const COLOUR_PROPERTY: &str =
 /// the colour each result was computed with (a material register loaded at a disabled edge),
 /// cheap at any width.
 pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colour_only: bool) -> Result<(Verdict, Option<Ports>), Error> {
+    // the colour check stays a bounded search: the twin's colour path is not merged with the
+    // unit's, so its induction needs every stage (k = 12 at 11 stages, minutes at narrow widths)
+    let for_every_edge = tools.depth.is_none() && !colour_only;
     let cfg = &design.cfg;
     let top = cfg.top();
     let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
@@ -338,10 +341,10 @@ pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colou
                     let cover_vcd = tools.cover_trace.then_some(vcd);
                     // then for every edge, unless a bounded search was asked for (--depth): the
                     // unit's lemmas place the followed pixel's result in the buffer, the twin's
-                    let unbounded = if tools.depth.is_some() {
+                    let unbounded = if !for_every_edge {
                         Unbounded::NotTried
                     } else {
-                        match unbounded(design, tools, w, &script)? {
+                        match unbounded(design, tools, w, &script, twin_steps(cfg))? {
                             Ok(u) => u,
                             Err((frame, vcd)) => return Ok((Verdict::Failed { frame, vcd }, None)),
                         }
@@ -351,7 +354,15 @@ pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colou
                         Unbounded::Undecided { out_of_time, .. } => Verdict::Undecided { bounded: Some(depth), out_of_time, reached: None },
                         Unbounded::NoLemmas | Unbounded::NotTried => Verdict::Bounded { depth },
                     };
-                    let ports = Ports { depth, properties: PORT_PROPERTIES.to_vec(), covers: vec![DATAPATH_COVER], covered_by: frame, cover_vcd, unbounded };
+                    let ports = Ports {
+                        depth,
+                        properties: PORT_PROPERTIES.to_vec(),
+                        covers: vec![DATAPATH_COVER],
+                        covered_by: frame,
+                        cover_vcd,
+                        unbounded,
+                        bounded_only: Vec::new(),
+                    };
                     (verdict, Some(ports))
                 }
                 Searched::Clear => (Verdict::Unreached { covers: vec![DATAPATH_COVER], depth }, None),

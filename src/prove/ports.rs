@@ -87,7 +87,7 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
         Searched::Found { frame, vcd } => {
             let cover_vcd = tools.cover_trace.then_some(vcd);
             let at_ports = Script { files: &files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() };
-            let unbounded = match lemmas.then(|| unbounded(design, tools, w, &at_ports)).transpose()? {
+            let unbounded = match lemmas.then(|| unbounded(design, tools, w, &at_ports, UNBOUNDED_STEPS)).transpose()? {
                 None => Unbounded::NoLemmas,
                 Some(Ok(u)) => u,
                 Some(Err((frame, vcd))) => {
@@ -105,6 +105,7 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
                 covered_by: frame,
                 cover_vcd,
                 unbounded,
+                bounded_only: Vec::new(),
             }))
         }
         Searched::OutOfTime { reached } => Ok(AtPorts::OutOfTime { reached }),
@@ -127,16 +128,23 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
 /// on a unit whose lemmas fall short, which is then undecided, never proved.
 pub(super) const UNBOUNDED_STEPS: u32 = 6;
 
+/// The edges the unbounded proof against the `valid` twin may unroll (`prove --datapath`, the
+/// colour check): the port proof's, or enough to flush a pipeline of `stages` registers where
+/// the unit's and the twin's are not merged into one (a value computed apart from its twin's
+/// is known only from the inputs of its last `stages` edges).
+pub(super) fn twin_steps(cfg: &crate::config::Config) -> u32 {
+    UNBOUNDED_STEPS.max(cfg.stages() + 4)
+}
+
 /// The port checker's properties proved unbounded: k-induction with yosys's `sat` over the
 /// checker's assertions and the unit's own, its lemmas (`SPECGEN_LEMMAS`) reading the checker's
 /// state through the port `f_ports`. The checker's assertions decide: a lemma is an assertion
 /// too, so a false one fails the proof and a missing one leaves it undecided, and the checker
 /// is written from the manifest, never read from the unit. A failure from power-up (the base
 /// case) is `Err` with its edge and trace.
-/// (`script`: the checker's search, whose files and defines it keeps.)
+/// (`script`: the checker's search, whose files and defines it keeps; `steps`: the most edges.)
 #[allow(clippy::type_complexity)]
-pub(super) fn unbounded(design: &Design, tools: &Tools, w: &Path, script: &Script) -> Result<Result<Unbounded, (u32, Vec<u8>)>, Error> {
-    let steps = UNBOUNDED_STEPS;
+pub(super) fn unbounded(design: &Design, tools: &Tools, w: &Path, script: &Script, steps: u32) -> Result<Result<Unbounded, (u32, Vec<u8>)>, Error> {
     let mut defines = script.defines.clone();
     defines.push("SPECGEN_LEMMAS".into());
     let lemmas = Script { bounded: None, induction: Some(steps), defines, ports_only: None, sat_search: None, replay: false, ..script.clone() };
