@@ -250,9 +250,13 @@ pub fn datapath_refused(design: &Design) -> Option<String> {
 /// the unit's datapath, its buffer's handling of the values, the clock enable at the material
 /// registers. ABC's bmc3 searches the model to `--depth` edges from power-up (by default
 /// latency plus 8: a pixel taken at the first edge leaves by latency plus 4), with the unit's own assertions
-/// set aside and every port rule of the checker kept. A bounded search, not a proof; that the
-/// twin is right is the co-simulation's and `--pipelining`'s (the twin against its depth-0
-/// twin). Its cover, a result compared, must be reached.
+/// set aside and every port rule of the checker kept; its cover, a result compared, must be
+/// reached. Then, without `--depth`, the same for every edge: k-induction with the unit's
+/// assertions as lemmas, the checker handing them the twin's result for the followed pixel,
+/// which the unit's lemma finds at the pixel's rank in the buffer (at most `stages` + 4 edges:
+/// where the two pipelines are not merged, a value is known from its last `stages` inputs).
+/// That the twin is right is the co-simulation's and `--pipelining`'s (the twin against its
+/// depth-0 twin).
 pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     if let Some(why) = datapath_refused(design) {
         return Err(error::input(format!("prove --datapath: {why}")));

@@ -262,11 +262,11 @@ fn vcd_values<'a>(vcd: &'a str, name: &str) -> Vec<&'a str> {
 /// Issue 46: the simulation suite's seven handshake faults
 /// (`interfaces::faults_in_the_handshake_are_caught`), each refuted with a VCD by a bounded
 /// search to a stated depth, 24 edges (ABC's bmc3, the port checker joining; the deepest,
-/// `duplicated`, fails at edge 17), so the verdict is the same on any machine, however loaded:
+/// `duplicated`, fails at edge 20), so the verdict is the same on any machine, however loaded:
 /// no clock decides it. Two here (a loss, and the deepest); the other five in `scripts/bench_suite.sh`.
 #[test]
 fn two_handshake_faults_are_refuted_within_24_edges() {
-    // a result lost, and one repeated (the deepest: edge 17)
+    // a result lost, and one repeated (the deepest: edge 20)
     let two: Vec<_> = HANDSHAKE_FAULTS.iter().filter(|f| ["dropped", "duplicated"].contains(&f.0)).copied().collect();
     assert_eq!(two.len(), 2);
     refuted_within_24_edges(&two, true);
