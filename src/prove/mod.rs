@@ -122,6 +122,8 @@ struct Script<'a> {
     /// with `induction` and `bounded`: instead of the model for ABC, yosys's `sat` searches this
     /// many edges and writes its failure's trace (where this yosys has no `sim` to replay ABC's)
     sat_search: Option<u32>,
+    /// with `share` and the induction: passes of merging, one stage of a delay line each
+    merge_passes: u32,
 }
 
 #[derive(Template)]
@@ -192,6 +194,7 @@ impl<'a> Script<'a> {
             abstract_wires: Vec::new(),
             share: false,
             sat_search: None,
+            merge_passes: 0,
         }
     }
 
@@ -603,6 +606,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     let mut ports = ports;
     match colour_check(design, tools, port_depth(cfg))? {
         None => {}
+        Some((Verdict::Proved, _)) => ports.properties.push(COLOUR_PROPERTY),
         Some((Verdict::Bounded { .. }, _)) => ports.bounded_only.push(COLOUR_PROPERTY),
         Some((verdict, engine)) => {
             let seconds = t0.elapsed().as_secs_f64();
@@ -661,8 +665,9 @@ fn colour_check(design: &Design, tools: &Tools, depth: u32) -> Result<Option<(Ve
         return Ok(None);
     }
     let (verdict, _) = against_the_twin(design, tools, depth, true)?;
+    let then = if tools.depth.is_none() { ", then k-induction with yosys sat, the unit's assertions its lemmas" } else { "" };
     let engine = format!(
-        "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside"
+        "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside{then}"
     );
     Ok(Some((verdict, engine)))
 }

@@ -291,9 +291,7 @@ pub(super) const COLOUR_PROPERTY: &str =
 /// the colour each result was computed with (a material register loaded at a disabled edge),
 /// cheap at any width.
 pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colour_only: bool) -> Result<(Verdict, Option<Ports>), Error> {
-    // the colour check stays a bounded search: the twin's colour path is not merged with the
-    // unit's, so its induction needs every stage (k = 12 at 11 stages, minutes at narrow widths)
-    let for_every_edge = tools.depth.is_none() && !colour_only;
+    let for_every_edge = tools.depth.is_none();
     let cfg = &design.cfg;
     let top = cfg.top();
     let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
@@ -331,6 +329,7 @@ pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colou
         defines,
         ports_only: Some(format!("{top}_port_checker")),
         share: true,
+        merge_passes: cfg.stages() + 2,
         ..Script::model(&name, &files)
     };
     Ok(match search(design, tools, w, script.clone(), depth)? {

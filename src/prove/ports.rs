@@ -129,9 +129,9 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
 pub(super) const UNBOUNDED_STEPS: u32 = 6;
 
 /// The edges the unbounded proof against the `valid` twin may unroll (`prove --datapath`, the
-/// colour check): the port proof's, or enough to flush a pipeline of `stages` registers where
-/// the unit's and the twin's are not merged into one (a value computed apart from its twin's
-/// is known only from the inputs of its last `stages` edges).
+/// colour check): the port proof's, or enough to flush a pipeline of `stages` registers should
+/// a stage of the unit's and the twin's stay unmerged (a value computed apart from its twin's
+/// is known only from the inputs of its last `stages` edges); merged, they close at k = 3.
 pub(super) fn twin_steps(cfg: &crate::config::Config) -> u32 {
     UNBOUNDED_STEPS.max(cfg.stages() + 4)
 }
