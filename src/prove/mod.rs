@@ -665,9 +665,8 @@ fn colour_check(design: &Design, tools: &Tools, depth: u32) -> Result<Option<(Ve
         return Ok(None);
     }
     let (verdict, _) = against_the_twin(design, tools, depth, true)?;
-    let then = if tools.depth.is_none() { ", then k-induction with yosys sat, the unit's assertions its lemmas" } else { "" };
     let engine = format!(
-        "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside{then}"
+        "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside"
     );
     Ok(Some((verdict, engine)))
 }
