@@ -382,8 +382,8 @@ pub fn port_checker(design: &Design) -> String {
         carried: cfg.carried_tag_bits(),
         tlast: cfg.params.tlast,
         clock_enable: cfg.params.clock_enable,
-        word_w: cfg.carried_tag_bits().max(1),
-        payload_w: (cfg.fi() + 1) + 3 * cfg.b() + 1,
+        word_w: state.word,
+        payload_w: state.payload,
         count_w: state.count,
         age_w: state.age,
         state_w: state.width(),
@@ -572,11 +572,9 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         }
         Ok(Ok(engine))
     };
-    let mut engine = String::new();
     if !own {
-        match own_induction()? {
-            Ok(how) => engine = how,
-            Err(proof) => return Ok(proof),
+        if let Err(proof) = own_induction()? {
+            return Ok(proof);
         }
     }
     // the verdict is the port checker's, written from the manifest apart from the RTL: its
@@ -639,7 +637,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             );
             Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine, ports: Some(ports) })
         }
-        Unbounded::NoLemmas if own => {
+        Unbounded::NoLemmas | Unbounded::NotTried => {
             // assertions enough but no lemma port (an edited unit): its own assertions proved by
             // themselves are its word; the verdict at the ports stays a bounded search
             match own_induction()? {
@@ -653,7 +651,6 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
                 Err(proof) => Ok(proof),
             }
         }
-        Unbounded::NoLemmas | Unbounded::NotTried => Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine, ports: Some(ports) }),
     }
 }
 

@@ -67,7 +67,7 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
     let checker = format!("{}_port_checker", cfg.top());
     let depth = port_depth(cfg);
     let ports = Script { bounded: Some(depth), files: &files, defines: vec!["SPECGEN_PORTS".into()], ports_only: Some(checker.clone()), ..script.clone() };
-    match search(design, tools, w, ports, depth)? {
+    match search(design, tools, w, ports.clone(), depth)? {
         Searched::Clear => {}
         Searched::Found { frame, vcd } => {
             return Ok(AtPorts::Failed { frame, vcd, how: "a bounded search with ABC bmc3, the unit's own assertions set aside" })
@@ -86,8 +86,7 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
     match reach(mask, cdepth, tools.cover_trace)? {
         Searched::Found { frame, vcd } => {
             let cover_vcd = tools.cover_trace.then_some(vcd);
-            let at_ports = Script { files: &files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() };
-            let unbounded = match lemmas.then(|| unbounded(design, tools, w, &at_ports, UNBOUNDED_STEPS)).transpose()? {
+            let unbounded = match lemmas.then(|| unbounded(design, tools, w, &ports, UNBOUNDED_STEPS)).transpose()? {
                 None => Unbounded::NoLemmas,
                 Some(Ok(u)) => u,
                 Some(Err((frame, vcd))) => {
