@@ -75,10 +75,12 @@ fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -
     }
 }
 
-/// `done` from the comparator's carry (never when cos >= 1.0).
-fn done(cfg: &Config, b: &mut Builder, sum: &Sig) {
+/// `done` from the comparator's carry (never when cos >= 1.0); `complemented`: the sum holds
+/// the carry complemented ([`Builder::add_carry_complemented`]).
+fn done(cfg: &Config, b: &mut Builder, sum: &Sig, complemented: bool) {
     let f = cfg.f();
     let (gg, c) = (b.bits("cos_g", f, f), b.bits(sum, f + 1, f + 1));
+    let c = if complemented { ex!("~{}", c) } else { c };
     b.wire("done", 1, Kind::Logic, ex!("~{} & {}", gg, c), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
 }
 
@@ -211,7 +213,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
 
     b.step("comparator: select; deviation, high partial product (multiply-add)");
     let sum = b.add_finish(cmp);
-    done(cfg, b, &sum);
+    done(cfg, b, &sum, false);
     // done: one LUT (a one-chunk comparator's add_finish has no select to count)
     b.delay(LUT_DELAY);
     // 1 - cos wider than the DSP's operands: d = d_hi*2^16 + d_lo, and kn*d_hi (a few bits of
@@ -386,12 +388,13 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.add("kn", &[Piece::sig("kn_lo", 0, lo_w)], &[Piece::zeros(dsp), Piece::sig("kn_hi", 0, w.kn_bits - dsp)], false, w.kn_bits, &what);
     }
     let (ca, cb2, cw, comment) = cutoff_add(cfg);
-    let cmp = b.add("cutoff_sum", &ca, &cb2, false, cw, &comment);
+    let comment = format!("{comment}, kept complemented (a 1 above cos_sp): the chain's own output");
+    let cmp = b.add_carry_complemented("cutoff_sum", &ca, &cb2, cw, &comment);
 
     // 1 - deviation without a subtractor, as in `lean`: ~(P + K') = K - P (mod 2^m)
     let split = w.kn_bits > dsp && m > dsp;
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7, products); comparator result");
-    done(cfg, b, &cmp);
+    done(cfg, b, &cmp, true);
     // 1 - cos one bit wider than the block's operands (F = 18): its top bit is set only for
     // 1 - cos = 1.0, when the bits below are 0; the block takes those bits, and that one case
     // is kn*2^18, a mux after the products (the high product is 0 then)
