@@ -374,7 +374,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let (tool, args) = (pnr.tool.as_str(), pnr.args.as_slice());
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
-    run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {} -json wrapped.json", synth_cmd("specgen_synth_top")))?;
+    // yosys 0.70's flatten leaves a `$scopeinfo` cell for each flattened instance (the delay
+    // RAM's); nextpnr-ice40 0.4 (Debian's) has no place for one and stops, so they go before
+    // the netlist is written (0.23 makes none: the delete then selects nothing)
+    run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {}; delete t:$scopeinfo; write_json wrapped.json", synth_cmd("specgen_synth_top")))?;
     // one nextpnr per seed, as many at a time as there are cores
     // iCE40: the placed design as an .asc per seed, for icetime's second opinion
     let asc = |seed: u32| format!("seed{seed}.asc");

