@@ -26,8 +26,8 @@ run() { # name widths-label stages args...
             generic) flags=(--target generic --no-pnr) ;;
         esac
         if [ "$mode" = generic ]; then seed_flag=(); else seed_flag=(--seeds "$seeds"); fi
-        $bin synth --rtl "$dir" "${flags[@]}" "${seed_flag[@]}" --json "$dir/$mode.json" >/dev/null
-        python3 -c "import json,sys; d=json.load(open('$dir/$mode.json')); d.update(name='$name', widths='$label', stages=$stages, mode='$mode'); print(json.dumps(d))" >> "$rows"
+        $bin synth --rtl "$dir" "${flags[@]}" "${seed_flag[@]}" --json "$dir.$mode.json" >/dev/null
+        python3 -c "import json,sys; d=json.load(open('$dir.$mode.json')); d.update(name='$name', widths='$label', stages=$stages, mode='$mode'); print(json.dumps(d))" >> "$rows"
         echo "done: $name $label stages=$stages $mode" >&2
     done
 }
@@ -39,8 +39,8 @@ op() { # name family mhz seeds args...: one unit at the operating point
         how="deepest (the delay model does not reach $mhz MHz)"
         $bin generate --out "$dir" --target "$family" --clock-mhz "$mhz" --stages "$(max_stages --target "$family" "$@")" "$@" >/dev/null
     fi
-    $bin synth --rtl "$dir" --dsp --seeds "$n" --json "$dir/op.json" >/dev/null
-    HOW="$how" python3 -c "import json, os; d=json.load(open('$dir/op.json')); m=json.load(open('$dir/specular_unit.json')); d.update(name='$name', family='$family', mhz=$mhz, how=os.environ['HOW'], latency=m['latency'], predicted=m.get('predicted_fmax_mhz'), error=m.get('blinn_error_max')); print(json.dumps(d))" >> "$oprows"
+    $bin synth --rtl "$dir" --dsp --seeds "$n" --json "$dir.op.json" >/dev/null
+    HOW="$how" python3 -c "import json, os; d=json.load(open('$dir.op.json')); m=json.load(open('$dir/specular_unit.json')); d.update(name='$name', family='$family', mhz=$mhz, how=os.environ['HOW'], latency=m['latency'], predicted=m.get('predicted_fmax_mhz'), error=m.get('blinn_error_max')); print(json.dumps(d))" >> "$oprows"
     echo "done: operating point $name $family $mhz MHz" >&2
 }
 # every model the generator has (quadratic as "lean", and at the wide widths too)
@@ -183,10 +183,10 @@ PY
 # the report's model comparison and its verdict on the paper's premise at the operating point
 # (the UP5K rows above), then from the LUT-only combinational results (the one mode every
 # model has) as a secondary table
-hw=(); for m in "${opnames[@]}"; do hw+=(--hw "$work/op-$m-ice40/op.json"); done
+hw=(); for m in "${opnames[@]}"; do hw+=(--hw "$work/op-$m-ice40.op.json"); done
 $bin report --out "$work/report-op" "${hw[@]}" >/dev/null
 if [ "${OP_ONLY:-0}" != 1 ]; then
-    hw=(); for m in "${opnames[@]}"; do [ -f "$work/$m-default-0/nodsp.json" ] && hw+=(--hw "$work/$m-default-0/nodsp.json"); done
+    hw=(); for m in "${opnames[@]}"; do [ -f "$work/$m-default-0.nodsp.json" ] && hw+=(--hw "$work/$m-default-0.nodsp.json"); done
     $bin report --out "$work/report" "${hw[@]}" >/dev/null
 fi
 python3 - "$work/report-op/report.json" "$work/report/report.json" >> BENCHMARKS-hw.md <<'PY'

@@ -17,8 +17,8 @@ for model in ${MODELS:-lean blinn}; do
             dir="$work/$model-$target-$interface"
             iargs=(--interface "$interface"); [ "$interface" = axis-static ] && iargs=(--interface axis --colour static)
             $bin generate --out "$dir" --stages "$stages" --target $target "${iargs[@]}" "${margs[@]}" >/dev/null
-            $bin synth --rtl "$dir" --dsp --seeds "$seeds" --json "$dir/r.json" >/dev/null
-            python3 -c "import json; d=json.load(open('$dir/r.json')); d.update(name='$model', family='$target', interface='$interface', depth=$stages); print(json.dumps(d))" >> "$rows"
+            $bin synth --rtl "$dir" --dsp --seeds "$seeds" --json "$dir.r.json" >/dev/null
+            python3 -c "import json; d=json.load(open('$dir.r.json')); d.update(name='$model', family='$target', interface='$interface', depth=$stages); print(json.dumps(d))" >> "$rows"
             echo "done: $model $target $interface (stages $stages)" >&2
         done
     done
