@@ -215,16 +215,7 @@ PY
 [ "${OP_ONLY:-0}" = 1 ] && cat "$work/previous.md.lut" >> BENCHMARKS-hw.md
 # the sections other scripts write (bench_speed8.sh, bench_toolchains.sh, bench_ecp5_logic_rom.sh,
 # each through bench_section.py) are kept as they were, after this script's own
-python3 - "$work/previous.md" <<'PY'
-import re, sys
-def sections(text):
-    return [p for p in re.split(r"(?m)^(?=## )", text) if p.startswith("## ")]
-cur = open("BENCHMARKS-hw.md").read()
-have = {s.splitlines()[0] for s in sections(cur)}
-kept = [s.rstrip("\n") + "\n" for s in sections(open(sys.argv[1]).read()) if s.splitlines()[0] not in have]
-if kept:
-    open("BENCHMARKS-hw.md", "w").write(cur.rstrip("\n") + "\n\n" + "\n".join(kept))
-PY
+python3 scripts/bench_section.py --keep-others "$work/previous.md"
 echo "wrote BENCHMARKS-hw.md"
 [ "${OP_ONLY:-0}" = 1 ] && exit 0
 # the speed claims the suite leaves to the bench (median over nextpnr seeds 1-5)

@@ -248,13 +248,13 @@ pub fn target_for(design: &Design, asked: Option<Target>) -> Result<Target, Fail
     }
 }
 
-/// The yosys synthesis command of `target` for module `top`.
 /// Deletes the `$scopeinfo` cells yosys 0.70's `flatten` leaves for each flattened instance (the
 /// unit in the wrapper, the delay RAM in the unit): no hardware, yet counted by `stat`, and a
 /// cell Debian's nextpnr-ice40 0.4 cannot place. yosys 0.23 makes none: the delete then selects
-/// nothing.
+/// nothing. Both synthesis scripts run it.
 const NO_SCOPEINFO: &str = "delete t:$scopeinfo";
 
+/// The yosys synthesis command of `target` for module `top`.
 fn synth_command(target: Target, dsp: bool, top: &str) -> String {
     crate::family::of(target).synth_command(dsp, top)
 }
@@ -304,8 +304,6 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // conflicting drivers
     // (the ECP5 primitives the RTL instantiates are known from yosys's own cell library)
     let cells_lib = family.primitives_lib();
-    // yosys 0.70's flatten leaves a `$scopeinfo` cell for each flattened instance: no hardware,
-    // deleted before the count (and before place-and-route, below)
     let script = format!(
         "{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; {NO_SCOPEINFO}; check -assert; tee -q -o stat.json stat -json; write_json netlist.json",
         synth_cmd(&top)
@@ -382,7 +380,6 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let (tool, args) = (pnr.tool.as_str(), pnr.args.as_slice());
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
-    // nextpnr-ice40 0.4 (Debian's) has no place for a `$scopeinfo` cell and stops
     run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")))?;
     // one nextpnr per seed, as many at a time as there are cores
     // iCE40: the placed design as an .asc per seed, for icetime's second opinion
