@@ -382,6 +382,7 @@ pub(crate) struct Waiting {
 mod builder;
 mod delay;
 mod delay_line;
+mod normalise;
 pub(crate) mod expr;
 pub(crate) use expr::{ex, Expr, Kind};
 mod products;

@@ -96,50 +96,18 @@ fn normalise(s: &Shape, b: &mut Builder) {
     // of 4 bits from the top, whether it has a one and where its first one is; then the
     // first group with a one
     let eb = w.exp_bits;
-    let groups: Vec<(u32, u32)> = (0..f.div_ceil(4)).map(|k| (f - 4 * k, (f - 4 * k).min(4))).collect(); // (top + 1, width)
     b.step("normalise: the exponent e, per group of 4 bits of c - 2^-F");
-    // each group's (has a one, leading zeros)
-    let mut leads = Vec::new();
-    for (k, &(hi, gw)) in groups.iter().enumerate() {
-        let bits = b.bits("cos_minus_ulp", hi - 1, hi - gw);
-        let any = b.wire(&format!("lead_any{k}"), 1, Kind::Logic, ex!("|{}", bits), &format!("bits [{}:{}] of c - 2^-{f} have a one", hi - 1, hi - gw));
-        // its first one at j from the top: bits above it 0, bit j 1 (the last j: when the
-        // group has a one, it is there if nowhere above); each bit of j an OR of those
-        // conditions, no ?: of constants ([`Builder::select`])
-        let bit = |b: &mut Builder, j: u32| b.bits("cos_minus_ulp", hi - 1 - j, hi - 1 - j);
-        let first_at: Vec<Expr> = (0..gw)
-            .map(|j| {
-                let mut terms: Vec<Expr> = (0..j).map(|i| ex!("~{}", bit(b, i))).collect();
-                if j + 1 < gw {
-                    terms.push(bit(b, j));
-                }
-                if terms.is_empty() {
-                    Expr::constant("1'b1")
-                } else {
-                    ex!("({})", Expr::join(&terms, " & "))
-                }
-            })
-            .collect();
-        let lz_bit = |v: u32| {
-            let ors: Vec<Expr> = (0..gw).filter(|j| j >> v & 1 == 1).map(|j| first_at[j as usize].clone()).collect();
-            if ors.is_empty() {
-                Expr::constant("1'b0")
-            } else {
-                Expr::join(&ors, " | ")
-            }
-        };
-        let (b1, b0) = (lz_bit(1), lz_bit(0));
-        leads.push((any, b.wire(&format!("lead_zeros{k}"), 2, Kind::Logic, ex!("{{{},\n    {}}}", b1, b0), "its leading zeros (when it has a one)")));
-    }
-    b.delay(LUT_DELAY);
-    b.step("normalise: e = the leading zeros of c - 2^-F");
-    let mut cases = Vec::new();
-    for (k, (any, lz)) in leads.iter().enumerate() {
-        let (any, lz) = (b.r(any), b.r(lz));
-        cases.push(ex!("{} ? {{{}, {}}}", any, lit(eb - 2, k as u128), lz));
-    }
-    cases.push(Expr::constant(lit(eb, f as u128)));
-    b.wire("exponent", eb, Kind::Logic, Expr::join(&cases, "\n    : "), &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"));
+    b.leading_zeros(
+        "lead",
+        "cos_minus_ulp",
+        f,
+        f,
+        "exponent",
+        w.exp_bits,
+        &format!("c - 2^-{f}"),
+        "normalise: e = the leading zeros of c - 2^-F",
+        &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"),
+    );
     // beside it, the one case the tables do not cover, carried as one bit
     let (z, nn) = (b.r("cos_zero"), b.r("n"));
     b.wire("y_zero_power", 1, Kind::Logic, ex!("{} && ({} != {})", z, nn, lit(nb, 0)), "c = 0 with n >= 1: c^n = 0 (y saturates)");
