@@ -42,3 +42,44 @@ impl Table {
         bit_length(self.words.len() as u128 - 1).max(1)
     }
 }
+
+/// How an interpolation table's word carries its step for a DSP block whose post-adder adds
+/// the entry: the step in a field `a_bits` wide, and above it `b_pad` zero bits that widen the
+/// other operand (the interpolation fraction) to the block's width. yosys 0.23 puts an add in
+/// the iCE40's SB_MAC16 only when the sum is no wider than the operands it sees, and an
+/// operand's zero bits from a table are bits it sees (constant ones it strips); the block RAM
+/// then drops the constant bits again, so they cost nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OperandPad {
+    pub(crate) a_bits: u32,
+    pub(crate) b_pad: u32,
+}
+
+/// An interpolation table: word i = `{Δ_i, entry_i}` (the entry in the low bits; with `pad`,
+/// `{0, Δ_i, entry_i}`, the step in its field and the zero bits above it), one name for the
+/// memory, its file and its `FILE` parameter.
+pub(crate) fn interpolation_table(
+    name: &str,
+    entries: &[u128],
+    deltas: &[u128],
+    bits: (u32, u32),
+    pad: Option<OperandPad>,
+    what: String,
+    fields: (&str, &str),
+) -> Table {
+    let (entry_bits, delta_bits) = bits;
+    let (delta_field, zeros) = pad.map_or((delta_bits, 0), |p| (p.a_bits, p.b_pad));
+    let mut f = vec![(fields.0.into(), entry_bits), (fields.1.into(), delta_field)];
+    if zeros > 0 {
+        f.push(("zero".into(), zeros));
+    }
+    Table {
+        name: format!("{name}_rom"),
+        param: format!("{}_ROM_FILE", name.to_uppercase()),
+        width: delta_field + entry_bits + zeros,
+        words: entries.iter().zip(deltas).map(|(&e, &d)| (d << entry_bits) | e).collect(),
+        what,
+        fields: f,
+        cosines: None,
+    }
+}

@@ -442,6 +442,41 @@ impl Builder {
         }
     }
 
+    /// The last step, titled so: the intensity `src` (UQ1.`frac`, `what` in the comments)
+    /// rounded half up to FI fractional bits by a carry-select add over the bits that matter
+    /// (`(src[frac:frac−FI−1] + 1) >> 1`), `done` read off `src` beside it (the intensity is 0
+    /// exactly when `src < 2^−(FI+1)`: its bits from there up all 0, per group of 4 here and
+    /// all of them in the add's last step), and the colours' results (on the ECP5 their
+    /// rounding half added here, after their products).
+    pub(crate) fn round_intensity(&mut self, src: &str, frac: u32, fi: u32, wc: u32, what: &str) {
+        self.step("the intensity rounding: chunk sums; done");
+        // round half up on the bits that matter: (src[frac:frac-FI-1] + 1) >> 1
+        let p = self.add_start(
+            "intensity_sum",
+            &[Piece::sig(src, frac - fi - 1, fi + 2)],
+            &[],
+            true,
+            fi + 2,
+            &format!("UQ1.{}: {what} to 2^-{} plus one ulp = {what} + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
+        );
+        let (lo, hi) = (frac - fi - 1, self.signal(src).width);
+        let mut groups = Vec::new();
+        for (k, g) in (lo..hi).step_by(4).enumerate() {
+            let gh = (g + 4).min(hi);
+            let bits = self.bits(src, gh - 1, g);
+            let name = format!("done_zero{k}");
+            self.wire(&name, 1, Kind::Logic, ex!("~|{}", bits), &format!("bits [{}:{g}] of {what} are 0", gh - 1));
+            groups.push(name);
+        }
+        self.colour_rounding(wc, what);
+        let sum = self.resolve(p, "the intensity rounded half up");
+        let zeros: Vec<Expr> = groups.iter().map(|g| self.r(g)).collect();
+        self.wire("done", 1, Kind::Logic, Expr::join(&zeros, " & "), "the highlight is below the output's resolution (the intensity rounds to 0)");
+        self.colour_results(wc, what);
+        let e = self.bits(&sum, fi + 1, 1);
+        self.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: {what} rounded half up"));
+    }
+
     /// B: the width of the colour ports.
     pub(super) fn colour_bits(&self) -> u32 {
         self.signals.iter().find(|s| s.name == "ks_r").expect("the colour ports are inputs").width

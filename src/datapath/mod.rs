@@ -382,11 +382,11 @@ pub(crate) struct Waiting {
 mod builder;
 mod delay;
 mod delay_line;
-mod normalise;
 pub(crate) mod expr;
+mod normalise;
 pub(crate) use expr::{ex, Expr, Kind};
 mod products;
-pub(crate) use products::MulItem;
+pub(crate) use products::{pad_operands, MulItem};
 mod sums;
 #[cfg(test)]
 mod tests;

@@ -13,7 +13,10 @@ impl Builder {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn leading_zeros(&mut self, prefix: &str, src: &str, top: u32, width: u32, out: &str, out_bits: u32, what: &str, title: &str, comment: &str) {
         let groups: Vec<(u32, u32)> = (0..width.div_ceil(4)).map(|k| (top - 4 * k, (width - 4 * k).min(4))).collect(); // (top + 1, width)
-        assert!(out_bits >= 2 && groups.len() as u128 <= 1u128 << (out_bits - 2) && (width as u128) < 1u128 << out_bits, "datapath: {out} is too narrow for {width} bits");
+        assert!(
+            out_bits >= 2 && groups.len() as u128 <= 1u128 << (out_bits - 2) && (width as u128) < 1u128 << out_bits,
+            "datapath: {out} is too narrow for {width} bits"
+        );
         // each group's (has a one, leading zeros)
         let mut leads = Vec::new();
         for (k, &(hi, gw)) in groups.iter().enumerate() {
@@ -45,7 +48,8 @@ impl Builder {
                 }
             };
             let (b1, b0) = (lz_bit(1), lz_bit(0));
-            leads.push((any, self.wire(&format!("{prefix}_zeros{k}"), 2, Kind::Logic, ex!("{{{},\n    {}}}", b1, b0), "its leading zeros (when it has a one)")));
+            leads
+                .push((any, self.wire(&format!("{prefix}_zeros{k}"), 2, Kind::Logic, ex!("{{{},\n    {}}}", b1, b0), "its leading zeros (when it has a one)")));
         }
         self.delay(LUT_DELAY);
         self.step(title);

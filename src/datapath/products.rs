@@ -145,3 +145,13 @@ impl Builder {
         }
     }
 }
+
+/// The operands of an interpolation's DSP block: the step `delta` and the fraction `r`, each
+/// at the block's width when the table word carries them so (`pad`: the step's field, and the
+/// zero bits above it that widen `r`).
+pub(crate) fn pad_operands(delta: Piece, r: Piece, word: &str, pad: Option<crate::table::OperandPad>) -> (Vec<Piece>, Vec<Piece>) {
+    match (pad, &delta) {
+        (Some(p), Piece::Sig { lo, .. }) => (vec![Piece::sig(word, *lo, p.a_bits)], vec![r, Piece::sig(word, lo + p.a_bits, p.b_pad)]),
+        _ => (vec![delta], vec![r]),
+    }
+}

@@ -2,17 +2,7 @@
 //! shift, round.
 
 use super::*;
-use crate::datapath::Sig;
-
-/// The operands of an interpolation's DSP block: the step `delta` and the fraction `r`, each
-/// at the block's width when the table word carries them so (`pad`: the step's field, and the
-/// zero bits above it that widen `r`).
-fn operands(delta: Piece, r: Piece, word: &str, pad: Option<OperandPad>) -> (Vec<Piece>, Vec<Piece>) {
-    match (pad, &delta) {
-        (Some(p), Piece::Sig { lo, .. }) => (vec![Piece::sig(word, *lo, p.a_bits)], vec![r, Piece::sig(word, lo + p.a_bits, p.b_pad)]),
-        _ => (vec![delta], vec![r]),
-    }
-}
+use crate::datapath::{pad_operands, Sig};
 
 /// A multiplier of at most this many bits is worth shift-adds rather than a DSP block.
 const SHIFT_ADD_BITS: u32 = 5;
@@ -166,7 +156,7 @@ fn log2(s: &Shape, b: &mut Builder) -> bool {
         b.step(&format!("{title}: dG[i]*r + G[i]*2^{rb} (multiplier)"));
         let sw = gb + rb;
         let (dg, r, g) = (Piece::sig("log_word", ge, w.log_delta_bits), Piece::sig("x", 0, rb), Piece::sig("log_word", 0, ge));
-        let (a, r) = operands(dg, r, "log_word", log_pad);
+        let (a, r) = pad_operands(dg, r, "log_word", log_pad);
         let comment = format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact; g^ = bits [{}:{rb}], UQ2.{}", tg + 1, sw - 1, w.log_frac_bits);
         let sum = b.multiply_add("ghat_sum", &a, &r, &[Piece::zeros(rb), g], sw, title, &comment);
         if b.instantiated_blocks() {
@@ -410,7 +400,7 @@ fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
             Piece::Const { .. } => unreachable!("the entry is read from the table"),
         }));
         let (de, r) = (Piece::sig("exp2_word", es, w.exp2_delta_bits), Piece::sig("y", 0, re));
-        let (a, r) = operands(de, r, "exp2_word", exp2_pad);
+        let (a, r) = pad_operands(de, r, "exp2_word", exp2_pad);
         let what = format!("~(E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te})), exact");
         complemented = Some(b.multiply_add("exp2_sum", &a, &r, &addend, sw, title, &what));
     } else if re > 0 {
@@ -476,33 +466,5 @@ fn shift_and_round(s: &Shape, b: &mut Builder, mut complemented: Option<Sig>) {
     b.product_delay(wc + 1, bb, wc + bb, 0.0);
     // a step of its own, from a copy of c^n of its own: the register that feeds the colour
     // multipliers sits by the DSP column
-    b.step("the intensity rounding: chunk sums; done");
-    // round half up on the bits that matter: (power[WE:WE-FI-1] + 1) >> 1
-    let p = b.add_start(
-        "intensity_sum",
-        &[Piece::sig("power", we - fi - 1, fi + 2)],
-        &[],
-        true,
-        fi + 2,
-        &format!("UQ1.{}: c^n to 2^-{} plus one ulp = c^n + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
-    );
-    // the intensity is 0 exactly when c^n < 2^-(FI+1): its bits from 2^-(FI+1) up are all 0
-    // (whether each group of 4 of them is 0 here, all of them in the last step)
-    let (lo, hi) = (we - fi - 1, ee);
-    let mut groups = Vec::new();
-    for (k, g) in (lo..hi).step_by(4).enumerate() {
-        let gh = (g + 4).min(hi);
-        let bits = b.bits("power", gh - 1, g);
-        let name = format!("done_zero{k}");
-        b.wire(&name, 1, Kind::Logic, ex!("~|{}", bits), &format!("bits [{}:{g}] of c^n are 0", gh - 1));
-        groups.push(name);
-    }
-    // (on the ECP5, the colours' rounding half after their products)
-    b.colour_rounding(wc, "c^n");
-    let sum = b.resolve(p, "the intensity rounded half up");
-    let zeros: Vec<Expr> = groups.iter().map(|g| b.r(g)).collect();
-    b.wire("done", 1, Kind::Logic, Expr::join(&zeros, " & "), "the highlight is below the output's resolution (the intensity rounds to 0)");
-    b.colour_results(wc, "c^n");
-    let e = b.bits(&sum, fi + 1, 1);
-    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: c^n rounded half up"));
+    b.round_intensity("power", we, fi, wc, "c^n");
 }

@@ -64,10 +64,11 @@ mod datapath;
 mod golden;
 mod tables;
 
+pub use crate::table::OperandPad;
 pub use datapath::datapath;
 pub use golden::{trace, BlinnTrace};
 use tables::{exp2_values, log_values};
-pub use tables::{tables, BlinnTables, OperandPad};
+pub use tables::{tables, BlinnTables};
 
 /// Every width and table size of the blinn unit, from the error budget.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]

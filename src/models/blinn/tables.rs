@@ -1,6 +1,7 @@
 //! The log2 and exp2 tables, each word `{Δ, entry}`, and the operands their words pad.
 
 use super::*;
+use crate::table::interpolation_table;
 
 /// `G_i = round(g(i/2^(TG+1))·2^WG)` for `i = 0..=2^TG` (the last only for ΔG).
 pub(super) fn log_values(w: &BlinnWidths) -> Vec<u128> {
@@ -35,39 +36,6 @@ pub fn tables(w: &BlinnWidths) -> BlinnTables {
         dg: lv.windows(2).map(|p| p[1] - p[0]).collect(),
         e: ev[..ev.len() - 1].to_vec(),
         de: ev.windows(2).map(|p| p[0] - p[1]).collect(),
-    }
-}
-
-/// How an interpolation table's word carries its step for a DSP block whose post-adder adds
-/// the entry: the step in a field `a_bits` wide, and above it `b_pad` zero bits that widen the
-/// other operand (the interpolation fraction) to the block's width. yosys 0.23 puts an add in
-/// the iCE40's SB_MAC16 only when the sum is no wider than the operands it sees, and an
-/// operand's zero bits from a table are bits it sees (constant ones it strips); the block RAM
-/// then drops the constant bits again, so they cost nothing.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct OperandPad {
-    pub(crate) a_bits: u32,
-    pub(crate) b_pad: u32,
-}
-
-/// An interpolation table: word i = `{Δ_i, entry_i}` (the entry in the low bits; with `pad`,
-/// `{0, Δ_i, entry_i}`, the step in its field and the zero bits above it), one name for the
-/// memory, its file and its `FILE` parameter.
-fn interpolation_table(name: &str, entries: &[u128], deltas: &[u128], bits: (u32, u32), pad: Option<OperandPad>, what: String, fields: (&str, &str)) -> Table {
-    let (entry_bits, delta_bits) = bits;
-    let (delta_field, zeros) = pad.map_or((delta_bits, 0), |p| (p.a_bits, p.b_pad));
-    let mut f = vec![(fields.0.into(), entry_bits), (fields.1.into(), delta_field)];
-    if zeros > 0 {
-        f.push(("zero".into(), zeros));
-    }
-    Table {
-        name: format!("{name}_rom"),
-        param: format!("{}_ROM_FILE", name.to_uppercase()),
-        width: delta_field + entry_bits + zeros,
-        words: entries.iter().zip(deltas).map(|(&e, &d)| (d << entry_bits) | e).collect(),
-        what,
-        fields: f,
-        cosines: None,
     }
 }
 
