@@ -284,7 +284,7 @@ pub(super) const VERILOG_KEYWORDS: &[&str] = &[
 /// cut), every delay line (`*_line`), the tables and their file handles, `unused_*`. A module named like one
 /// of them would be hidden by it inside the module (Verilator VARHIDDEN).
 pub fn is_internal_name(name: &str) -> bool {
-    const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom"];
+    const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom", "recip_rom"];
     let step_or_cut = name
         .rsplit_once('_')
         .is_some_and(|(_, tail)| tail.len() > 1 && (tail.starts_with('s') || tail.starts_with('c')) && tail[1..].bytes().all(|b| b.is_ascii_digit()));

@@ -75,12 +75,18 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
         let what = if last { format!("UQ1.{}: u = den*2^L in [1, 2) (n >= 1)", dw - 1) } else { format!("den*2^(L's bits from {s} up)") };
         b.wire(&name, dw, Kind::Logic, Builder::select(&ls, &shifted, &v, dw), &what);
         if last {
-            let idx = b.bits("den_norm", dw - 2, dw - 1 - k);
+            // u's next K + J fraction bits (zeros below u's last bit)
+            let field = if dw - 1 >= kj {
+                b.bits("den_norm", dw - 2, dw - 1 - kj)
+            } else {
+                let v = b.bits("den_norm", dw - 2, 0);
+                ex!("{{{}, {}}}", v, lit(kj - (dw - 1), 0))
+            };
+            b.wire("den_field", kj, Kind::Select, field, &format!("u's {kj} fraction bits from the top: i, then t"));
+            let idx = b.bits("den_field", kj - 1, j);
             b.wire("recip_index", k, Kind::Select, idx, &format!("i: u's top {k} fraction bits, the table's interval"));
-            // t: the next J bits (zeros below u's last bit)
-            let (hi, lo) = (dw - 2 - k, (dw - 1).saturating_sub(kj));
-            let frac = b.bits("den_norm", hi, lo);
-            let t = if dw - 1 >= kj { ex!("~{}", frac) } else { ex!("~{{{}, {}}}", frac, lit(kj - (dw - 1), 0)) };
+            let frac = b.bits("den_field", j - 1, 0);
+            let t = ex!("~{}", frac);
             b.wire("recip_frac", j, Kind::Logic, t, &format!("~t: the next {j} bits of u, complemented (the line is read from the interval's end)"));
         }
         b.delay(LUT_DELAY);
