@@ -47,9 +47,9 @@ pub enum Command {
         rtl: RtlArgs,
     },
     /// Export one table of the unit: the cut-off ROM cos_sp(n) (quadratic), the fit ROM
-    /// (fitted), the log2 or exp2 table (blinn).
+    /// (fitted), the log2 or exp2 table (blinn), the reciprocal table (schlick).
     Rom {
-        /// Which table [default: the model's first: cos_sp_rom, fit_rom, log2_rom]
+        /// Which table [default: the model's first: cos_sp_rom, fit_rom, log2_rom, recip_rom]
         #[arg(long, value_name = "NAME")]
         table: Option<String>,
         #[arg(long, value_enum, default_value = "hex")]
@@ -216,7 +216,7 @@ pub struct RtlArgs {
     pub top: Option<String>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points,
     /// which depend on the model, the widths and the target; at default widths ice40 / ecp5 /
-    /// generic: lean 13/11/10, fitted 65/48/16, blinn 38/35/22, blinn-pow 13, schlick 23/24/23,
+    /// generic: lean 13/11/10, fitted 65/48/16, blinn 38/35/22, blinn-pow 13, schlick 21/24/19,
     /// paper 6; a value above them is refused with the range; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,

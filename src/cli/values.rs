@@ -48,7 +48,7 @@ flag_values! {
     ModelFlag => SpecularModel {
         /// the paper's formula (15): [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)
         Quadratic,
-        /// the paper's modified Schlick (11): c/(2n - 2n*c + c), by a restoring divider
+        /// the paper's modified Schlick (11): c/(2n - 2n*c + c), by an interpolated reciprocal
         Schlick,
         /// [1 - a_n*(1 - cos)]^(2^m_n) with per-n a_n, m_n from a minimax fit
         Fitted,

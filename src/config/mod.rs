@@ -90,7 +90,7 @@ pub enum SpecularModel {
     /// `[1 − a_n·(1 − cos)]^(2^m_n)` with per-n `a_n`, `m_n` from a minimax fit (SPEC §6).
     #[serde(rename = "fitted")]
     Fitted,
-    /// The paper's modified Schlick (11), `c/(2n − 2n·c + c)`, by a restoring divider (SPEC §6).
+    /// The paper's modified Schlick (11), `c/(2n − 2n·c + c)`, by an interpolated reciprocal (SPEC §6).
     #[serde(rename = "schlick")]
     Schlick,
 }

@@ -1,6 +1,6 @@
 //! The models: what each unit computes, each in one home behind one trait.
 //!
-//! A model's home (`quadratic/`, `fitted.rs`, `blinn.rs`, `blinn_pow.rs`, `schlick.rs`) holds everything
+//! A model's home (`quadratic/`, `fitted.rs`, `blinn/`, `blinn_pow.rs`, `schlick/`) holds everything
 //! that model is: its error budget (module doc) and widths, its tables, its bit-exact golden
 //! model, its exact reference and contract check, its datapath on the shared
 //! [`Builder`](crate::datapath::Builder), its header text and its `eval` trace. Everything

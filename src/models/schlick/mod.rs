@@ -66,11 +66,11 @@
 //!
 //! # The divider this replaced
 //!
-//! Until stop 64 the unit divided by a restoring divider, one quotient bit a step, each a
+//! The unit used to divide by a restoring divider, one quotient bit a step, each a
 //! compare-subtract of N+F+3 bits on one carry chain: exact (`q = ⌊S·2^W⌋`), but its
-//! deepest pipeline ran at 49 MHz on the UP5K, the chain in every step. A radix-2 SRT
-//! divider (carry-save remainders) reached 85 MHz at twice the area. Here every step is a
-//! mux level, a table read or a DSP block.
+//! deepest pipeline ran at 49 MHz on the UP5K, a chain in every step. A radix-2 SRT
+//! divider (carry-save remainders) reached 85 MHz at three times the area. Here every step
+//! is a mux level, a LUT level, a short carry-select chunk, a table read or a DSP block.
 
 mod datapath;
 mod reciprocal;
