@@ -76,7 +76,7 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
         b.wire(&name, dw, Kind::Logic, Builder::select(&ls, &shifted, &v, dw), &what);
         if last {
             // u's next K + J fraction bits (zeros below u's last bit)
-            let field = if dw - 1 >= kj {
+            let field = if dw > kj {
                 b.bits("den_norm", dw - 2, dw - 1 - kj)
             } else {
                 let v = b.bits("den_norm", dw - 2, 0);

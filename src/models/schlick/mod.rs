@@ -132,7 +132,7 @@ impl Schlick {
         let u = (den << lead_zeros) & mask(dw);
         // the table's interval and fraction: u's next K + J bits (zeros below u's last)
         let frac = u & mask(dw - 1);
-        let it = if dw - 1 >= k + j { frac >> (dw - 1 - k - j) } else { frac << (k + j - (dw - 1)) };
+        let it = if dw > k + j { frac >> (dw - 1 - k - j) } else { frac << (k + j - (dw - 1)) };
         let (index, fraction) = ((it >> j) as usize, it & mask(j));
         let recip = self.t.recip(w, index, fraction);
         // c·r̂, exact; shifted by L and floored to W bits
@@ -275,7 +275,7 @@ mod tests {
                     // in units of 2^−(W+M+3)/den: q·den·2^(M+3) − c·2^(W+M+3)
                     let got = (t.quotient * t.den) as i128 * (1 << (m + 3));
                     let exact = (t.cos_clamped as i128) << (w + m + 3);
-                    let sd = 3 * (t.cos_clamped as i128) << w; // S·δ·den·2^(W+M+3)
+                    let sd = (3 * t.cos_clamped as i128) << w; // S·δ·den·2^(W+M+3)
                     assert!(got - exact <= sd && got - exact > -sd - ((t.den as i128) << (m + 3)), "n={n} cos_g={cos_g}: {t:?}");
                 }
             }
