@@ -120,7 +120,7 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
     // P = c·r̂·2^Z = c·z + c·2^Z: one multiply-add, exact
     let pw = f + 1 + z;
     b.step("the product P = c*r^ = c*z + c*2^Z");
-    let comment = format!("UQ{}.{z}: c*r^, exact", f + 1);
+    let comment = format!("UQ2.{}: c*r^, exact", f + z);
     let product = b.multiply_add("quot_prod", &[cos.all()], &[recip], &[Piece::zeros(z), cos.all()], pw, "the product", &comment);
 
     // q = ⌊P·2^L / 2^(N+F)⌋: ⌊P/2^(F−1)⌋ (W bits) shifted left by L, one bit a step, its bits

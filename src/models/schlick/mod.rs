@@ -15,7 +15,7 @@
 //! u    = den << L                              UQ1.(N+F+1) exact
 //! i, t = the next K, then J bits of u          the table's interval, the fraction in it (truncated)
 //! z    = ⌊(B_i·2^J + D_i·(2^J − 1 − t)) / 2^(U+J−Z)⌋         r̂ = 1 + z/2^Z ≈ r = 2/u, r̂ ∈ [1, 2)
-//! P    = c·(2^Z + z)                           UQ(F+1).Z: c·r̂, exact (one multiply-add)
+//! P    = c·(2^Z + z)                           UQ2.(F+Z): c·r̂, exact (one multiply-add)
 //! q    = ⌊P·2^L / 2^(N+F)⌋ = ⌊⌊P/2^(F−1)⌋ / 2^(N+1−L)⌋        UQ1.W: S·(r̂/r) floored; 2^W at n = 0
 //! out  = ⌊(q + 2^(W−FI−1)) / 2^(W−FI)⌋; spec = ⌊(⌊q/2^(W−Wc)⌋·ks + 2^(Wc−1)) / 2^Wc⌋, Wc = B + 3; done = (intensity == 0)
 //! ```
@@ -247,7 +247,7 @@ impl SpecularUnit for Schlick {
         vec![
             format!("den        2n*(1 - c) + c = {} (units of 2^-{}), L = {}", t.den, self.cfg.f(), t.lead_zeros),
             format!("recip      r^ = 1 + {}/2^{z} ~ 2/u (interval {}, fraction {})", t.recip, t.index, t.fraction),
-            format!("product    c*r^ = {} (UQ{}.{z})", t.product, self.cfg.f() + 1),
+            format!("product    c*r^ = {} (UQ2.{})", t.product, self.cfg.f() + z),
             format!("quotient   q = {} (UQ1.{w}: {:.9})", t.quotient, t.quotient as f64 / (w as f64).exp2()),
             explain_ideal(self.ideal(x), "(c/(2n - 2n*c + c))"),
         ]
