@@ -61,4 +61,23 @@ impl Builder {
         cases.push(Expr::constant(lit(out_bits, width as u128)));
         self.wire(out, out_bits, Kind::Logic, Expr::join(&cases, "\n    : "), comment);
     }
+
+    /// One level of a left shift by a signal, a 2:1 mux: `name = amount[s] ? src·2^(2^s) :
+    /// src` over `width` bits, `src` zero-extended to them (the bits shifted past the top
+    /// dropped). A shift by all of `amount` is one such level a step, from its top bit: the
+    /// bit that fans out over the whole word drives one LUT level.
+    pub(crate) fn shift_left_level(&mut self, name: &str, src: &str, amount: &str, s: u32, width: u32, what: &str) -> Sig {
+        let sw = self.signal(src).width;
+        let v = if sw == width { self.r(src) } else { self.zext(src, width) };
+        let keep = sw.min(width - (1 << s));
+        let mut parts = Vec::new();
+        if width - (1 << s) > keep {
+            parts.push(Expr::constant(lit(width - (1 << s) - keep, 0)));
+        }
+        parts.push(self.bits(src, keep - 1, 0));
+        parts.push(Expr::constant(lit(1 << s, 0)));
+        let shifted = ex!("{{{}}}", Expr::join(&parts, ", "));
+        let bit = self.bits(amount, s, s);
+        self.wire(name, width, Kind::Logic, Builder::select(&bit, &shifted, &v, width), what)
+    }
 }

@@ -155,3 +155,15 @@ pub(crate) fn pad_operands(delta: Piece, r: Piece, word: &str, pad: Option<crate
         _ => (vec![delta], vec![r]),
     }
 }
+
+impl Builder {
+    /// Whether an interpolation `entry + Δ·r` (`Δ` of `delta_bits`, the fraction `r` of
+    /// `rest_bits`, the sum `entry_bits + rest_bits` wide) is one DSP block's multiply-add: its
+    /// operands fit the block and its sum twice them; and on a family whose block takes its
+    /// operands whole (the iCE40), how the table word pads them ([`pad_operands`]).
+    pub(crate) fn interpolation_on_block(&self, delta_bits: u32, rest_bits: u32, entry_bits: u32) -> (bool, Option<crate::table::OperandPad>) {
+        let dsp = self.dsp_bits();
+        let on = rest_bits > 0 && delta_bits.max(rest_bits) <= dsp && entry_bits + rest_bits <= dsp.saturating_mul(2);
+        (on, (on && self.family().pads_block_operands()).then_some(crate::table::OperandPad { a_bits: dsp, b_pad: dsp - rest_bits }))
+    }
+}

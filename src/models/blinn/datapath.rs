@@ -40,12 +40,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     // entry added inside it: the table word carries the operands at the block's width)
     let dsp = b.dsp_bits();
     let (rb, re) = (w.log_rest_bits(cfg), w.exp2_rest_bits());
-    let (log_dsp, exp2_dsp) = (
-        rb > 0 && w.log_delta_bits.max(rb) <= dsp && w.ghat_bits() + rb <= dsp.saturating_mul(2),
-        re > 0 && w.exp2_delta_bits.max(re) <= dsp && w.exp2_entry_bits + re <= dsp.saturating_mul(2),
-    );
-    let pad = |on: bool, rest: u32| (on && b.family().pads_block_operands()).then_some(OperandPad { a_bits: dsp, b_pad: dsp - rest });
-    let (log_pad, exp2_pad) = (pad(log_dsp, rb), pad(exp2_dsp, re));
+    let (log_dsp, log_pad) = b.interpolation_on_block(w.log_delta_bits, rb, w.ghat_bits());
+    let (exp2_dsp, exp2_pad) = b.interpolation_on_block(w.exp2_delta_bits, re, w.exp2_entry_bits);
     let lt = b.table(t.log_table(w, log_pad));
     let et = b.table(t.exp2_table(w, exp2_pad));
 
@@ -111,11 +107,9 @@ fn normalise(s: &Shape, b: &mut Builder) {
         let last = k == 0;
         let name = if last { "cos_norm".to_string() } else { format!("cos_norm_shift{k}") };
         b.step(&if last { "normalise: c' = c*2^e in (1/2, 1], its complement".to_string() } else { format!("normalise: c shifted by e's bit {k}") });
-        let (c, ek) = (b.r(&src), b.bits("exponent", k, k));
         // 2^k <= F < F + 1: bit k of e never shifts the whole word out
-        let shifted = ex!("{{{}, {}}}", b.bits(&src, cb - 1 - (1 << k), 0), lit(1 << k, 0));
         let what = if last { format!("UQ1.{f}: c' = c*2^e in (1/2, 1]") } else { format!("UQ1.{f}: c*2^(e's bits from {k} up)") };
-        b.wire(&name, cb, Kind::Logic, Builder::select(&ek, &shifted, &c, cb), &what);
+        b.shift_left_level(&name, &src, "exponent", k, cb, &what);
         if last {
             let cn = b.bits("cos_norm", f - 2, 0);
             b.wire("cos_norm_inv", f - 1, Kind::Logic, ex!("~{}", cn), &format!("~c' over its low {} bits", f - 1));

@@ -3,8 +3,7 @@
 
 use super::*;
 use crate::bits::{lit, mask};
-use crate::datapath::{ex, pad_operands, Expr, Kind, Piece, LUT_DELAY};
-use crate::table::OperandPad;
+use crate::datapath::{ex, pad_operands, Kind, Piece, LUT_DELAY};
 
 /// Step 1 clamps c and forms 1 − c; the denominator is one multiply-add; its leading zeros
 /// take two LUT steps and its normalising shift one mux level a step; then the table read, the
@@ -16,9 +15,7 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
     let (wq, wc, lb) = (w.quotient_frac_bits, w.colour_frac_bits, w.shift_bits);
     // the interpolation on one DSP block, its post-adder adding B, where the operands fit (on
     // the iCE40 the table word carries them at the block's width)
-    let dsp = b.dsp_bits();
-    let on_dsp = w.slope_bits().max(j) <= dsp && w.sum_bits() <= 2 * dsp;
-    let pad = (on_dsp && b.family().pads_block_operands()).then_some(OperandPad { a_bits: dsp, b_pad: dsp - j });
+    let (_, pad) = b.interpolation_on_block(w.slope_bits(), j, u);
     let rt = b.table(t.table(w, pad));
 
     b.step("clamp c = min(cos, 1); the operand of 1 - c; n = 0 picks S = 1 at the end");
@@ -70,10 +67,8 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
         let last = s == 0;
         let name = if last { "den_norm".to_string() } else { format!("den_norm_shift{s}") };
         b.step(&if last { "normalise: u = den*2^L, the table's index and fraction".to_string() } else { format!("normalise: den shifted by L's bit {s}") });
-        let (v, ls) = (b.r(&src), b.bits("den_zeros", s, s));
-        let shifted = ex!("{{{}, {}}}", b.bits(&src, dw - 1 - (1 << s), 0), lit(1 << s, 0));
         let what = if last { format!("UQ1.{}: u = den*2^L in [1, 2) (n >= 1)", dw - 1) } else { format!("den*2^(L's bits from {s} up)") };
-        b.wire(&name, dw, Kind::Logic, Builder::select(&ls, &shifted, &v, dw), &what);
+        b.shift_left_level(&name, &src, "den_zeros", s, dw, &what);
         if last {
             // u's next K + J fraction bits (zeros below u's last bit)
             let field = if dw > kj {
@@ -135,20 +130,9 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
             let e = b.bits(&product, f + z, f - 1);
             b.wire("quot_floor", wq, Kind::Select, e, &format!("floor(P/2^{}), {wq} bits: c*r^*2^(Z - F + 1) floored", f - 1));
         }
-        let sw = b.sig(&src).width();
-        let v = b.zext(&src, xw);
-        let keep = sw.min(xw - (1 << s));
-        let mut parts = Vec::new();
-        if xw - (1 << s) > keep {
-            parts.push(Expr::constant(lit(xw - (1 << s) - keep, 0)));
-        }
-        parts.push(b.bits(&src, keep - 1, 0));
-        parts.push(Expr::constant(lit(1 << s, 0)));
-        let shifted = ex!("{{{}}}", Expr::join(&parts, ", "));
-        let ls = b.bits("den_zeros", s, s);
         let what =
             if last { format!("floor(P/2^{})*2^L: q = bits [{}:{}]", f - 1, xw - 1, nb + 1) } else { format!("floor(P/2^{})*2^(L's bits from {s} up)", f - 1) };
-        b.wire(&name, xw, Kind::Logic, Builder::select(&ls, &shifted, &v, xw), &what);
+        b.shift_left_level(&name, &src, "den_zeros", s, xw, &what);
         b.delay(LUT_DELAY);
         src = name;
     }
