@@ -63,9 +63,30 @@ always @(posedge clk) begin
     read_q  <= ram[from];
     last    <= read_q;
 end
+// both addresses' next values as logic, not carry chains (per bit, the carry into it an AND-OR
+// of the bits below): at + NEXT_FROM agrees with at + 1 on its low bits, so synthesis merges
+// the two, and a carry chain then ends in two sum bits that want its last carry; yosys 0.70
+// took the read address's top bit off the shared chain through a LUT placed apart (108.8 MHz on
+// the UP5K). As logic, each bit is a function of the address's bits up to it: two LUT levels.
+function [ABITS-1:0] plus;   // a + b mod 2^ABITS, bit by bit, each carry an AND-OR
+    input [ABITS-1:0] a;
+    input [ABITS-1:0] b;
+    integer i;
+    reg carry;
+    begin
+        carry = 1'b0;
+        for (i = 0; i < ABITS; i = i + 1) begin
+            plus[i] = a[i] ^ b[i] ^ carry;
+            carry = (a[i] & b[i]) | ((a[i] | b[i]) & carry);
+        end
+    end
+endfunction
+localparam [ABITS-1:0] ONE = 1;
+wire [ABITS-1:0] at_next = plus(at, ONE);
+wire [ABITS-1:0] from_next = plus(at, NEXT_FROM);
 always @(posedge clk) begin
-    at   <= at + 1'b1;
-    from <= at + NEXT_FROM;
+    at   <= at_next;
+    from <= from_next;
 end
 assign q = last;
 

@@ -294,6 +294,22 @@ impl Builder {
         Builder::select(cond, &Expr::constant(lit(width, value)), other, width)
     }
 
+    /// The value of the first case whose condition holds, else `default`, over `width` bits,
+    /// as an AND-OR ([`Builder::select`]): each value gated by its condition and the others'
+    /// before it clear.
+    pub(crate) fn first_of(cases: &[(Expr, Expr)], default: &Expr, width: u32) -> Expr {
+        let mut terms = Vec::new();
+        let mut before: Vec<Expr> = Vec::new();
+        for (cond, value) in cases {
+            let mut all = before.clone();
+            all.push(cond.clone());
+            terms.push(Builder::gate(&ex!("({})", Expr::join(&all, " & ")), value, width));
+            before.push(ex!("~{}", cond));
+        }
+        terms.push(Builder::gate(&ex!("({})", Expr::join(&before, " & ")), default, width));
+        Expr::join(&terms, "\n    | ")
+    }
+
     /// `cond ? a : 0` over `width` bits as an AND ([`Builder::select`]).
     pub(crate) fn gate(cond: &Expr, a: &Expr, width: u32) -> Expr {
         ex!("({{{}{{{}}}}} & {})", width, cond, a)
@@ -325,6 +341,12 @@ impl Builder {
     /// The terms of `a·r·2^shift` mod 2^out: `a` shifted to each bit `k` of `r` (by `k + shift`)
     /// where that bit is set, for a sum with more addends (constants, a table's value).
     pub(crate) fn shift_add_terms(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32) -> Vec<Expr> {
+        self.shift_add_rows(a, r, shift, out, false).into_iter().map(|(t, _)| t).collect()
+    }
+
+    /// [`Builder::shift_add_terms`], each term with its width: `out` bits, or (`narrow`) only
+    /// its significant ones, `a`'s width above its shift (the bits above are 0).
+    pub(super) fn shift_add_rows(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32, narrow: bool) -> Vec<(Expr, u32)> {
         let (Piece::Sig { name: rn, lo: rlo, width: rw, .. }, Piece::Sig { name: an, lo: alo, width: aw, .. }) = (r, a) else {
             panic!("shift_add takes signal pieces")
         };
@@ -332,9 +354,10 @@ impl Builder {
         for k in (0..*rw).filter(|k| k + shift < out) {
             let bit = self.bits(rn, rlo + k, rlo + k);
             let s = k + shift;
-            let av = self.operand(an, *alo, *aw, out - s);
+            let tw = if narrow { out.min(aw + s) } else { out };
+            let av = self.operand(an, *alo, *aw, tw - s);
             let shifted = if s == 0 { av } else { ex!("{{{}, {}}}", av, lit(s, 0)) };
-            terms.push(Builder::gate(&bit, &shifted, out));
+            terms.push((Builder::gate(&bit, &shifted, tw), tw));
         }
         terms
     }
@@ -357,8 +380,19 @@ impl Builder {
             self.products.push(name.to_string());
         }
         self.define(name, width, cur, false);
-        self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, kind, expr, comment: comment.into() });
+        self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, kind, expr, comment: comment.into(), keep: false });
         Sig { name: name.into(), width }
+    }
+
+    /// [`Builder::wire`] marked `(* keep *)`: synthesis maps the logic up to it apart from the
+    /// logic after it, so a function of more inputs than a LUT's is the two LUT levels the
+    /// datapath wrote, not what the mapper makes of it. yosys 0.70's ABC9 relaxes a path to
+    /// the deepest in the design (area recovery): a 9-input OR became a chain of three LUT4s,
+    /// blinn's leading-zero pick three levels where two fit.
+    pub(crate) fn wire_kept(&mut self, name: &str, width: u32, kind: Kind, expr: Expr, comment: &str) -> Sig {
+        let sig = self.wire(name, width, kind, expr, comment);
+        self.steps.last_mut().expect("a step").wires.last_mut().expect("the wire").keep = true;
+        sig
     }
 
     /// The handle of a signal defined before (a unit input, or a wire a helper defined).
@@ -373,16 +407,25 @@ impl Builder {
     /// (`what` names the value in the comments). [`Builder::colour_results`] takes the outputs.
     /// `after`: the delay of the logic behind the products in the same step.
     pub(crate) fn colour_sums(&mut self, v: &str, wc: u32, what: &str, after: f64) {
+        self.colour_sums_of([v; 3], wc, what, after)
+    }
+
+    /// [`Builder::colour_sums`] of one signal per channel (`vs`, in [`CHANNELS`]' order).
+    fn colour_sums_of(&mut self, vs: [&str; 3], wc: u32, what: &str, after: f64) {
         let bb = self.colour_bits();
         let cp = wc + bb;
-        let vw = self.signal(v).width;
-        let (vp, ks) = ([Piece::sig(v, 0, vw)], CHANNELS.map(|ch| [Piece::sig(&format!("ks_{ch}"), 0, bb)]));
+        let vps = vs.map(|v| {
+            let vw = self.signal(v).width;
+            [Piece::sig(v, 0, vw)]
+        });
+        let ks = CHANNELS.map(|ch| [Piece::sig(&format!("ks_{ch}"), 0, bb)]);
         let items: Vec<MulItem> = CHANNELS
             .iter()
             .zip(&ks)
-            .map(|(ch, k)| MulItem {
+            .zip(&vps)
+            .map(|((ch, k), vp)| MulItem {
                 name: format!("color_sum_{ch}"),
-                a: (&vp, wc + 1),
+                a: (vp, wc + 1),
                 b: (k, bb),
                 addend: vec![Piece::Const { value: 1u128 << (wc - 1), width: cp }],
                 comment: format!("UQ{bb}.{wc}: {what}*ks_{ch} + 1/2 colour ulp"),
@@ -399,6 +442,20 @@ impl Builder {
     /// allow), and [`Builder::colour_rounding`] adds the half in a later step.
     pub(crate) fn colour_products(&mut self, src: &str, lo: u32, wc: u32, what: &str) {
         if !self.family().instantiated_blocks() {
+            if self.signals.iter().any(|s| s.name == "color_power_r") {
+                // a copy per channel, made the step before ([`Builder::colour_copies`])
+                self.colour_sums_of(
+                    CHANNELS.map(|ch| match ch {
+                        "r" => "color_power_r",
+                        "g" => "color_power_g",
+                        _ => "color_power_b",
+                    }),
+                    wc,
+                    what,
+                    0.0,
+                );
+                return;
+            }
             let cs = self.bits(src, lo + wc, lo);
             self.wire("color_power", wc + 1, Kind::Select, cs, &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"));
             self.colour_sums("color_power", wc, what, 0.0);
@@ -413,6 +470,31 @@ impl Builder {
                 &[k],
                 wc + bb,
                 &format!("UQ{bb}.{wc}: {what}*ks_{ch}, {what} floored to what the colours' budget needs, exact"),
+            );
+        }
+    }
+
+    /// Before [`Builder::colour_products`], where the family registers a block's operand once
+    /// per block (`Family::copies_block_operands`): a step with the UQ1.wc field of `src` from
+    /// bit `lo` once per channel, `color_power_X`, each its own register at the cut (kept: a
+    /// block reads it), which place-and-route puts by its block.
+    pub(crate) fn colour_copies(&mut self, src: &str, lo: u32, wc: u32, what: &str) {
+        if !self.family().copies_block_operands() || self.family().instantiated_blocks() {
+            return;
+        }
+        // a step of its own: each copy's register then takes its value from a register, not
+        // from the logic before it, and can sit by its block (packed with a LUT of that logic,
+        // one held blinn's colour products at 118 MHz)
+        self.step(&format!("colour multipliers: {what}'s colour field once per block"));
+        self.delay(REGISTER_ONLY_DELAY);
+        for ch in CHANNELS {
+            let cs = self.bits(src, lo + wc, lo);
+            self.wire(
+                &format!("color_power_{ch}"),
+                wc + 1,
+                Kind::Select,
+                cs,
+                &format!("UQ1.{wc}: {what} floored to what the colours' budget needs, for ks_{ch}"),
             );
         }
     }

@@ -55,6 +55,8 @@ pub struct Wire {
     pub(crate) kind: Kind,
     pub(crate) expr: Expr,
     pub(crate) comment: String,
+    /// `(* keep *)`: a LUT boundary synthesis keeps ([`Builder::wire_kept`])
+    pub(crate) keep: bool,
 }
 
 impl Wire {
@@ -386,6 +388,7 @@ pub(crate) mod expr;
 mod normalise;
 pub(crate) use expr::{ex, Expr, Kind};
 mod products;
+mod reduce;
 pub(crate) use products::{pad_operands, MulItem};
 mod sums;
 #[cfg(test)]

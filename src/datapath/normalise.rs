@@ -53,13 +53,58 @@ impl Builder {
         }
         self.delay(LUT_DELAY);
         self.step(title);
-        let mut cases = Vec::new();
-        for (k, (any, lz)) in leads.iter().enumerate() {
-            let (any, lz) = (self.r(any), self.r(lz));
-            cases.push(ex!("{} ? {{{}, {}}}", any, lit(out_bits - 2, k as u128), lz));
+        if leads.len() <= 2 {
+            // each bit of the pick a function of at most 4 inputs: one LUT
+            let mut cases = Vec::new();
+            for (k, (any, lz)) in leads.iter().enumerate() {
+                let (any, lz) = (self.r(any), self.r(lz));
+                cases.push(ex!("{} ? {{{}, {}}}", any, lit(out_bits - 2, k as u128), lz));
+            }
+            cases.push(Expr::constant(lit(out_bits, width as u128)));
+            self.wire(out, out_bits, Kind::Logic, Expr::join(&cases, "\n    : "), comment);
+            return;
         }
-        cases.push(Expr::constant(lit(out_bits, width as u128)));
-        self.wire(out, out_bits, Kind::Logic, Expr::join(&cases, "\n    : "), comment);
+        // more groups: the pick in two LUT levels, the first kept ([`Builder::wire_kept`]): per
+        // pair of groups, whether it has a one and its first one's leading zeros; then the
+        // group's index from the groups' flags, and the zeros from the first pair with a one
+        // (a function of 2 inputs a pair, at most 4 for 2 pairs: yosys 0.70's ABC9 made the
+        // one ?: chain over 4 groups three LUT levels)
+        let mut pairs = Vec::new();
+        for (m, pair) in leads.chunks(2).enumerate() {
+            let (a_any, a_lz) = (self.r(&pair[0].0), self.r(&pair[0].1));
+            if pair.len() == 1 {
+                pairs.push((a_any, a_lz));
+                continue;
+            }
+            let (b_any, b_lz) = (self.r(&pair[1].0), self.r(&pair[1].1));
+            let has = self.wire_kept(
+                &format!("{prefix}_pair_any{m}"),
+                1,
+                Kind::Logic,
+                ex!("{} | {}", a_any, b_any),
+                &format!("groups {} and {} have a one", 2 * m, 2 * m + 1),
+            );
+            let lz = self.wire_kept(
+                &format!("{prefix}_pair_zeros{m}"),
+                2,
+                Kind::Logic,
+                ex!("{} ? {} : {}", a_any, a_lz, b_lz),
+                "the leading zeros of the first of them with a one",
+            );
+            pairs.push((self.r(&has), self.r(&lz)));
+        }
+        // both as AND-ORs ([`Builder::first_of`]): a ?: chain ending in a constant before a
+        // register is the register's synchronous set/reset to yosys, driven by logic
+        let anys: Vec<Expr> = leads.iter().map(|(any, _)| self.r(any)).collect();
+        let cases: Vec<(Expr, Expr)> = anys.iter().enumerate().map(|(k, a)| (a.clone(), Expr::constant(lit(out_bits - 2, k as u128)))).collect();
+        let e = Builder::first_of(&cases, &Expr::constant(lit(out_bits - 2, (width >> 2) as u128)), out_bits - 2);
+        let group = format!("{prefix}_group");
+        self.wire(&group, out_bits - 2, Kind::Logic, e, "the first group with a one");
+        let e = Builder::first_of(&pairs, &Expr::constant(lit(2, (width & 3) as u128)), 2);
+        let lz = format!("{prefix}_zeros");
+        self.wire(&lz, 2, Kind::Logic, e, "its leading zeros");
+        let (g, z) = (self.r(&group), self.r(&lz));
+        self.wire(out, out_bits, Kind::Select, ex!("{{{}, {}}}", g, z), comment);
     }
 
     /// One level of a left shift by a signal, a 2:1 mux: `name = amount[s] ? src·2^(2^s) :

@@ -9,7 +9,8 @@ pub(crate) const MAX_LINE: usize = 120;
 /// own above it when the two do not fit one line.
 pub(super) fn wire_statement(x: &Wire, step: usize) -> String {
     let range = if x.width == 1 { "      ".to_string() } else { format!("[{}:0]", x.width - 1) };
-    let stmt = format!("wire {range} {}_s{step} = {};", x.name, x.expr);
+    let keep = if x.keep { "(* keep *) " } else { "" };
+    let stmt = format!("{keep}wire {range} {}_s{step} = {};", x.name, x.expr);
     // an expression written one operand a line reads as few lines as fit
     let stmt = fill_lines(stmt.split("\n    "), " ", MAX_LINE).join("\n    ");
     if x.comment.is_empty() {

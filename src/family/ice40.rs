@@ -98,6 +98,9 @@ impl Family for Ice40 {
     fn pads_block_operands(&self) -> bool {
         true
     }
+    fn copies_block_operands(&self) -> bool {
+        true
+    }
     fn cell_models(&self, datdir: &Path, _top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         let text = super::read(&datdir.join("ice40/cells_sim.v"))?;
         // port default values are SystemVerilog; the netlist connects every port it uses

@@ -137,6 +137,12 @@ pub trait Family: Sync {
     fn pads_block_operands(&self) -> bool {
         false
     }
+    /// Whether an operand several blocks read is registered once per block: the blocks sit
+    /// apart (the UP5K's DSPs in two columns at the die's edges), and one register's route to
+    /// the farthest is most of a clock (8.3 ns: blinn's colour products at 102.6 MHz).
+    fn copies_block_operands(&self) -> bool {
+        false
+    }
     /// Whether a delay line may sit in distributed (LUT) RAM.
     fn distributed_ram(&self) -> bool {
         false

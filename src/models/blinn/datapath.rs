@@ -2,7 +2,7 @@
 //! shift, round.
 
 use super::*;
-use crate::datapath::{pad_operands, Sig};
+use crate::datapath::{pad_operands, Sig, LUT_INPUTS};
 
 /// A multiplier of at most this many bits is worth shift-adds rather than a DSP block.
 const SHIFT_ADD_BITS: u32 = 5;
@@ -43,7 +43,8 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     let (log_dsp, log_pad) = b.interpolation_on_block(w.log_delta_bits, rb, w.ghat_bits());
     let (exp2_dsp, exp2_pad) = b.interpolation_on_block(w.exp2_delta_bits, re, w.exp2_entry_bits);
     let lt = b.table(t.log_table(w, log_pad));
-    let et = b.table(t.exp2_table(w, exp2_pad));
+    // on a DSP block the entry is the multiply-add's addend, complemented: stored so
+    let et = b.table(t.exp2_table(w, exp2_pad, exp2_dsp));
 
     let s = Shape { w, t, f, fi, bb, nb, cb, dsp, rb, re, log_dsp, exp2_dsp, log_pad, exp2_pad, lt, et };
     normalise(&s, b);
@@ -60,6 +61,12 @@ fn normalise(s: &Shape, b: &mut Builder) {
     let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator
     b.wire("cos_clamped", cb, Kind::Logic, Builder::select_const(&top, 1u128 << f, cb, &g), &format!("UQ1.{f}: c"));
+    // beside it, the first LUT level of c = 0 (cos_g = 0: the clamp keeps 0) and of n != 0,
+    // each an OR of up to 4 bits: the second is one LUT in a later step
+    let bits = b.bit_list("cos_g", f, 0);
+    let cos_any = b.or_groups("cos_nonzero", bits, "cos_g");
+    let bits = b.bit_list("n", nb - 1, 0);
+    let n_any = b.or_groups("n_nonzero", bits, "n");
     b.delay(LUT_DELAY);
 
     // c - 2^-F = c + (2^(F+1) - 1) mod 2^(F+1): a carry-select add of the all-ones word
@@ -73,8 +80,8 @@ fn normalise(s: &Shape, b: &mut Builder) {
         cb,
         &format!("UQ1.{f}: c - 2^-{f} (its leading zeros give the exponent)"),
     );
-    let zc = b.r("cos_clamped");
-    b.wire("cos_zero", 1, Kind::Logic, ex!("{} == {}", zc, lit(cb, 0)), "c = 0: c^n = 0 for n >= 1");
+    let terms: Vec<Expr> = cos_any.iter().map(|g| b.r(g)).collect();
+    b.wire("cos_zero", 1, Kind::Logic, ex!("~({})", Expr::join(&terms, " | ")), "c = 0: c^n = 0 for n >= 1");
     b.delay(2.0 * LUT_DELAY);
     b.resolve(p, title);
 
@@ -95,8 +102,9 @@ fn normalise(s: &Shape, b: &mut Builder) {
         &format!("e = F - bitlength(C - 1) in 0..{f}: leading zeros of c - 2^-{f}"),
     );
     // beside it, the one case the tables do not cover, carried as one bit
-    let (z, nn) = (b.r("cos_zero"), b.r("n"));
-    b.wire("y_zero_power", 1, Kind::Logic, ex!("{} && ({} != {})", z, nn, lit(nb, 0)), "c = 0 with n >= 1: c^n = 0 (y saturates)");
+    let terms: Vec<Expr> = n_any.iter().map(|g| b.r(g)).collect();
+    let z = b.r("cos_zero");
+    b.wire("y_zero_power", 1, Kind::Logic, ex!("{} & ({})", z, Expr::join(&terms, " | ")), "c = 0 with n >= 1: c^n = 0 (y saturates)");
     b.delay(2.0 * LUT_DELAY);
 
     // c' = c*2^e, one bit of e a step from the top: a 2:1 mux level each, so the bit that
@@ -333,8 +341,9 @@ fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
         b.wire("y_over_low", 1, Kind::Logic, ge, &format!("floor(y)'s low {k} bits reach {sat_int}"));
         flags.push("y_over_low");
         if yiw > k {
-            let high = b.bits("y_trunc", ytw - 1, w.y_frac_bits + k);
-            b.wire("y_over_high", 1, Kind::Logic, ex!("|{}", high), &format!("floor(y) has a bit set above its low {k}"));
+            let bits = b.bit_list("y_trunc", ytw - 1, w.y_frac_bits + k);
+            let terms = b.or_terms("y_over_high", bits, LUT_INPUTS, "floor(y) above its low bits");
+            b.wire("y_over_high", 1, Kind::Logic, Expr::join(&terms, " | "), &format!("floor(y) has a bit set above its low {k}"));
             flags.push("y_over_high");
         }
     } // else y_trunc cannot reach the saturation value
@@ -365,7 +374,11 @@ fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
     b.rom_read_registered("exp2_word", et, "exp2_index");
     b.ecp5_register_step("exp2 table read: the word at the multiplier's input registers");
     let implied = t.exp2_one_implied(w);
-    if implied {
+    if implied && exp2_dsp {
+        // the table holds ~E: its integer bit complemented as well
+        let ji = b.r("exp2_index");
+        b.wire("exp2_not_one", 1, Kind::Logic, ex!("{} != {}", ji, lit(te, 0)), "~E's integer bit: 2^-f = 1.0 at j = 0 only");
+    } else if implied {
         let ji = b.r("exp2_index");
         b.wire("exp2_one", 1, Kind::Logic, ex!("{} == {}", ji, lit(te, 0)), "E's integer bit: 2^-f = 1.0 at j = 0 only");
     }
@@ -374,9 +387,10 @@ fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
     let we = w.exp2_frac_bits;
     let ee = w.exp2_entry_bits;
     let es = ee - implied as u32; // E's bits in the word
+                                  // E's bits as read: complemented (~E) where the table holds them so
     let mut e_word = vec![Piece::sig("exp2_word", 0, es)];
     if implied {
-        e_word.push(Piece::sig("exp2_one", 0, 1));
+        e_word.push(Piece::sig(if exp2_dsp { "exp2_not_one" } else { "exp2_one" }, 0, 1));
     }
     let title = "2^-frac(y) by linear interpolation";
     let sw = ee + re;
@@ -385,14 +399,12 @@ fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
     if exp2_dsp {
         // E[j]*2^RE + 2^RE - 1 - s = ~(s + ~(E[j]*2^RE + 2^RE - 1)) mod 2^sw for the step
         // s = dE[j]*r, and ~(E[j]*2^RE + 2^RE - 1) = {~E[j], RE zeros}: one DSP multiply-add,
-        // the complemented entry its addend; the result's complement is taken in the LUTs of
-        // the shift that follows (the DSP's output meets only a flip-flop)
+        // the complemented entry its addend, read as the table stores it (the block RAM feeds
+        // the block directly); the result's complement is taken in the LUTs of the shift that
+        // follows (the DSP's output meets only a flip-flop)
         b.step(&format!("{title}: dE[j]*r + ~E[j]*2^{re} (multiplier)"));
         let mut addend = vec![Piece::zeros(re)];
-        addend.extend(e_word.iter().map(|p| match p {
-            Piece::Sig { name, lo, width, .. } => Piece::not(name, *lo, *width),
-            Piece::Const { .. } => unreachable!("the entry is read from the table"),
-        }));
+        addend.extend(e_word.iter().cloned());
         let (de, r) = (Piece::sig("exp2_word", es, w.exp2_delta_bits), Piece::sig("y", 0, re));
         let (a, r) = pad_operands(de, r, "exp2_word", exp2_pad);
         let what = format!("~(E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te})), exact");
@@ -426,13 +438,15 @@ fn shift_and_round(s: &Shape, b: &mut Builder, mut complemented: Option<Sig>) {
     let Shape { w, fi, bb, re, .. } = *s;
     let (we, ee) = (w.exp2_frac_bits, w.exp2_entry_bits);
     let sw = ee + re;
-    // the shift by the integer part of y, two of its bits a step (a 4:1 mux level each)
+    // the shift by the integer part of y, one of its bits a step from the top: a 2:1 mux, one
+    // LUT level (a 4:1 mux is two, after a select bit that fans out over the word: yosys
+    // 0.70's netlist of blinn then stopped at 106 MHz on the UP5K)
     let yib = w.y_int_bits;
     let mut src = "exp2_frac".to_string();
     let mut hi = yib;
     while hi > 0 {
-        let lo = hi.saturating_sub(2);
-        b.step(&format!("shift by the integer part of y: its bits [{}:{lo}]{}", hi - 1, if lo == 0 { " (truncation #3)" } else { "" }));
+        let lo = hi - 1;
+        b.step(&format!("shift by the integer part of y: its bit {lo}{}", if lo == 0 { " (truncation #3)" } else { "" }));
         if let Some(sum) = complemented.take() {
             let e = b.bits(&sum, sw - 1, re);
             b.wire("exp2_frac", ee, Kind::Logic, ex!("~{}", e), &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
@@ -440,7 +454,7 @@ fn shift_and_round(s: &Shape, b: &mut Builder, mut complemented: Option<Sig>) {
         let (sv, yi) = (b.r(&src), b.bits("y", w.y_frac_bits + hi - 1, w.y_frac_bits + lo));
         let name = if lo == 0 { "power".to_string() } else { format!("power_shift{lo}") };
         let comment = if lo == 0 { format!("UQ1.{we}: c^n before rounding") } else { format!("2^-frac(y) shifted by floor(y)'s bits above {lo}") };
-        // a 4:1 mux as an AND-OR of the shifted words ([`Builder::select`])
+        // a 2:1 mux as an AND-OR of the shifted words ([`Builder::select`])
         let terms: Vec<Expr> = (0..1u32 << (hi - lo))
             .filter(|v| v << lo < ee)
             .map(|v| {
@@ -449,13 +463,15 @@ fn shift_and_round(s: &Shape, b: &mut Builder, mut complemented: Option<Sig>) {
             })
             .collect();
         b.wire(&name, ee, Kind::Logic, Expr::join(&terms, "\n    | "), &comment);
-        b.delay(2.0 * LUT_DELAY);
+        b.delay(LUT_DELAY);
         src = name;
         hi = lo;
     }
+    let wc = w.color_frac_bits;
+    // c^n's colour field once per colour product's block (iCE40)
+    b.colour_copies("power", we - wc, wc, "c^n");
 
     b.step("colour multipliers (14-16)");
-    let wc = w.color_frac_bits;
     b.colour_products("power", we - wc, wc, "c^n");
     b.product_delay(wc + 1, bb, wc + bb, 0.0);
     // a step of its own, from a copy of c^n of its own: the register that feeds the colour

@@ -47,19 +47,27 @@ impl BlinnTables {
     /// The exp2 table as stored: `E_0 = 1.0` is the only entry with its integer bit set when
     /// [`BlinnTables::exp2_one_implied`], and then that bit is not stored but read as `j == 0`
     /// (one word bit fewer: 2 block RAMs for 256 words instead of 3).
-    pub fn exp2_table(&self, w: &BlinnWidths, pad: Option<OperandPad>) -> Table {
+    ///
+    /// `complemented`: each entry is stored complemented (`~E`, over its stored bits), the
+    /// addend of the interpolation's multiply-add on a DSP block ([`super::datapath`]): the
+    /// block RAM then feeds the block with no LUT between them (on the UP5K that LUT, and
+    /// the route on to the DSP column, held blinn at 97.8–114.9 MHz).
+    pub fn exp2_table(&self, w: &BlinnWidths, pad: Option<OperandPad>, complemented: bool) -> Table {
         let implied = self.exp2_one_implied(w);
         let stored_bits = w.exp2_entry_bits - implied as u32;
-        let entries: Vec<u128> = self.e.iter().map(|&e| e & mask(stored_bits)).collect();
+        let flip = if complemented { mask(stored_bits) } else { 0 };
+        let entries: Vec<u128> = self.e.iter().map(|&e| (e ^ flip) & mask(stored_bits)).collect();
+        let (field, not) = if complemented { ("~E", "~") } else { ("E", "") };
         let what = if implied {
             format!(
-                "{{dE, E mod 1}}: 2^-f at f = j/2^{}, UQ0.{} (its integer bit, set for j = 0 only, is j == 0), and the step down to the next entry",
+                "{{dE, {field} mod 1}}: {not}2^-f at f = j/2^{}, UQ0.{} (its integer bit, set for j = 0 only, is j == 0), and the step down to the next entry",
                 w.exp2_index_bits, w.exp2_frac_bits
             )
         } else {
-            format!("{{dE, E}}: 2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits)
+            format!("{{dE, {field}}}: {not}2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits)
         };
-        interpolation_table("exp2", &entries, &self.de, (stored_bits, w.exp2_delta_bits), pad, what, ("e", "de"))
+        let entry_field = if complemented { "not_e" } else { "e" };
+        interpolation_table("exp2", &entries, &self.de, (stored_bits, w.exp2_delta_bits), pad, what, (entry_field, "de"))
     }
 
     /// Whether E_0 = 2^WE is the only exp2 entry at or above 1.0.
