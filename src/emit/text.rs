@@ -9,10 +9,15 @@ pub(crate) const MAX_LINE: usize = 120;
 /// own above it when the two do not fit one line.
 pub(super) fn wire_statement(x: &Wire, step: usize) -> String {
     let range = if x.width == 1 { "      ".to_string() } else { format!("[{}:0]", x.width - 1) };
-    let keep = if x.keep { "(* keep *) " } else { "" };
-    let stmt = format!("{keep}wire {range} {}_s{step} = {};", x.name, x.expr);
+    // a kept wire is declared, then assigned: Icarus drops an attribute on a net declaration
+    // assignment (and says so)
+    let (decl, stmt) = match x.keep {
+        true => (format!("(* keep *) wire {range} {}_s{step};\n", x.name), format!("assign {}_s{step} = {};", x.name, x.expr)),
+        false => (String::new(), format!("wire {range} {}_s{step} = {};", x.name, x.expr)),
+    };
     // an expression written one operand a line reads as few lines as fit
     let stmt = fill_lines(stmt.split("\n    "), " ", MAX_LINE).join("\n    ");
+    let stmt = format!("{decl}{stmt}");
     if x.comment.is_empty() {
         return stmt;
     }
