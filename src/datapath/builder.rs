@@ -444,16 +444,7 @@ impl Builder {
         if !self.family().instantiated_blocks() {
             if self.signals.iter().any(|s| s.name == "color_power_r") {
                 // a copy per channel, made the step before ([`Builder::colour_copies`])
-                self.colour_sums_of(
-                    CHANNELS.map(|ch| match ch {
-                        "r" => "color_power_r",
-                        "g" => "color_power_g",
-                        _ => "color_power_b",
-                    }),
-                    wc,
-                    what,
-                    0.0,
-                );
+                self.colour_sums_of(["color_power_r", "color_power_g", "color_power_b"], wc, what, 0.0);
                 return;
             }
             let cs = self.bits(src, lo + wc, lo);
