@@ -29,6 +29,13 @@ pub(crate) const MEMORY_TAIL_MIN_CUTS: usize = 8;
 /// saves. Below that the flip-flops cost less.
 pub(crate) const MEMORY_TAIL_MIN_BITS: u32 = 160;
 
+/// A tail in LUT RAM spans at most this many cuts: its memory then holds 32 words (the read
+/// register and the last flip-flop take two cuts, and a word is read one edge before it is
+/// written over), two TRELLIS_DPR16X4 and one mux level (PFUMX) deep; 64 words are four and
+/// two LUT levels, 4.9 ns from the read address (blinn's colours at 37 ECP5 stages held it
+/// at 204 MHz). The cuts before it are flip-flops.
+pub(crate) const DISTRIBUTED_TAIL_MAX_CUTS: usize = 33;
+
 impl DelayLine {
     /// The bits of a word (every member's).
     pub(crate) fn word(&self) -> u32 {
@@ -42,7 +49,10 @@ impl DelayLine {
     pub fn memory_tail(&self) -> Option<(usize, usize)> {
         let d = self.cuts.len();
         let read_before_end = (0..d - 1).rev().find(|&k| self.members.iter().any(|m| m.read[k] != 0));
-        let kept = read_before_end.map_or(0, |r| r + 1);
+        let mut kept = read_before_end.map_or(0, |r| r + 1);
+        if self.distributed && d - kept > DISTRIBUTED_TAIL_MAX_CUTS {
+            kept = d - DISTRIBUTED_TAIL_MAX_CUTS;
+        }
         let tail = d - kept;
         (self.memory && tail >= MEMORY_TAIL_MIN_CUTS && self.word() * tail as u32 >= MEMORY_TAIL_MIN_BITS).then_some((kept, tail))
     }
