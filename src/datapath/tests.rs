@@ -214,3 +214,25 @@ fn a_combinational_cut_is_no_name() {
     assert_eq!(visible(&[2], "y", 1, 2), "y_s1");
     assert_eq!(visible(&[1, 2], "y", 2, 2), "y_s2");
 }
+
+/// A long unread tail waits in memory; in LUT RAM (the ECP5) at most
+/// `DISTRIBUTED_TAIL_MAX_CUTS` cuts of it (a memory of 32 words, one mux level deep), the cuts
+/// before them in flip-flops; in block RAM the whole tail.
+#[test]
+fn a_tail_in_lut_ram_holds_at_most_32_words() {
+    use super::delay_line::{DelayLine, DISTRIBUTED_TAIL_MAX_CUTS};
+    let line = |cuts: usize, distributed: bool| DelayLine {
+        name: "ks".into(),
+        cuts: (1..=cuts).collect(),
+        members: vec![Waiting { name: "ks".into(), width: 24, source: "ks".into(), read: vec![0; cuts] }],
+        memory: true,
+        distributed,
+    };
+    assert_eq!(line(40, false).memory_tail(), Some((0, 40)), "block RAM: the whole tail");
+    assert_eq!(line(40, true).memory_tail(), Some((40 - DISTRIBUTED_TAIL_MAX_CUTS, DISTRIBUTED_TAIL_MAX_CUTS)), "LUT RAM: 33 cuts");
+    assert_eq!(line(33, true).memory_tail(), Some((0, 33)));
+    assert_eq!(DISTRIBUTED_TAIL_MAX_CUTS, 33, "32 words: the memory holds cuts - 1");
+    // the text: a flip-flop word before the memory, the memory's instance at 33 cuts
+    let text = line(40, true).lines("u").join("\n");
+    assert!(text.contains("u_delay_ram #(.WIDTH(24), .CUTS(33))"), "{text}");
+}

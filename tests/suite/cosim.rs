@@ -392,6 +392,8 @@ fn long_delay_line_tails_wait_in_block_ram_and_stay_right() {
     let cases: &[(&str, &[&str], bool)] = &[
         ("blinn_ice40", &["--model", "blinn", "--stages", "20", "--target", "ice40"], true),
         ("blinn_ecp5", &["--model", "blinn", "--stages", "20", "--target", "ecp5"], true),
+        // its colours' tail past 33 cuts: flip-flops, then 33 cuts in LUT RAM
+        ("blinn_ecp5_deep", &["--model", "blinn", "--stages", "37", "--target", "ecp5"], true),
         ("blinn_generic", &["--model", "blinn", "--stages", "20", "--target", "generic"], false),
         ("tag_ready", &["--stages", "13", "--tag-bits", "24", "--target", "ice40", "--interface", "ready"], true),
     ];
