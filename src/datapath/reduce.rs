@@ -7,25 +7,14 @@ impl Builder {
     /// The OR of `bits` (Verilog bit expressions, most significant first) as at most `room`
     /// terms (`room` ≤ [`LUT_INPUTS`]), for the caller to combine (with `4 − room` other
     /// inputs) in one LUT: up to `room` bits are their own terms; more are ORed per group of up
-    /// to 4 into kept wires `{name}_any{k}` (one LUT level each), and those again where they
-    /// are still too many. `what` names the word the bits are of, in the comments.
+    /// to 4 into kept wires `{name}_any{k}` ([`Builder::or_groups`]), and those again where
+    /// they are still too many. `what` names the word the bits are of, in the comments.
     pub(crate) fn or_terms(&mut self, name: &str, bits: Vec<Expr>, room: u32, what: &str) -> Vec<Expr> {
         assert!((1..=LUT_INPUTS).contains(&room), "datapath: {name}: room for {room} terms");
         if bits.len() as u32 <= room {
             return bits;
         }
-        let groups = bits.len().div_ceil(LUT_INPUTS as usize);
-        let per = bits.len().div_ceil(groups);
-        let mut terms = Vec::new();
-        for (k, group) in bits.chunks(per).enumerate() {
-            if group.len() == 1 {
-                terms.push(group[0].clone());
-                continue;
-            }
-            let any = format!("{name}_any{k}");
-            self.wire_kept(&any, 1, Kind::Logic, Expr::join(group, " | "), &format!("{what}: {} of its bits, any set", group.len()));
-            terms.push(self.r(&any));
-        }
+        let terms = self.or_groups(name, bits, what).iter().map(|g| self.r(g)).collect();
         self.or_terms(&format!("{name}_l"), terms, room, what)
     }
 
