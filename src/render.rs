@@ -409,3 +409,50 @@ mod tests {
         }
     }
 }
+
+/// What the eye sees of a unit's error in [`Scene::Sphere`]: the sphere at `size`² pixels for
+/// each exponent, the unit's intensity at each pixel's quantised `cos δ` against Blinn's float
+/// `cos^n δ` at the exact `cos δ` (so the quantisation of `cos_g` counts too).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ImageFigures {
+    /// `10·log10(1 / mean squared error)` over every pixel of every tile, dB (capped at 200:
+    /// an exact image)
+    pub psnr_db: f64,
+    /// the largest step between two neighbouring pixels (across or down) of the unit's image
+    /// beyond the float image's step there: a band's edge, in full scale
+    pub max_step_excess: f64,
+}
+
+/// [`ImageFigures`] of `model` over the exponents `ns` at `size`² pixels a tile.
+pub fn image_figures(model: &Model, ns: &[u32], size: u32) -> ImageFigures {
+    let scale = (model.cfg.fi() as f64).exp2();
+    let ks = (1u32 << model.cfg.b()) - 1;
+    let (mut squares, mut count, mut step) = (0.0f64, 0u64, 0.0f64);
+    for &n in ns {
+        // (unit, float) per pixel, row-major; None off the sphere
+        let mut px: Vec<Option<(f64, f64)>> = Vec::with_capacity((size * size) as usize);
+        for py in 0..size {
+            for pxx in 0..size {
+                let (u, w) = ((pxx as f64 + 0.5) / size as f64, (py as f64 + 0.5) / size as f64);
+                px.push(geometry(Scene::Sphere, u, w).map(|(c, _)| {
+                    let unit = model.eval(Inputs { cos_g: cos_code(model, c), n, ks: [ks; 3] }).intensity as f64 / scale;
+                    (unit, c.powi(n as i32))
+                }));
+            }
+        }
+        let s = size as usize;
+        for i in 0..px.len() {
+            let Some((u, r)) = px[i] else { continue };
+            squares += (u - r) * (u - r);
+            count += 1;
+            let right = (i % s + 1 < s).then(|| px[i + 1]).flatten();
+            let down = (i + s < px.len()).then(|| px[i + s]).flatten();
+            for (u2, r2) in [right, down].into_iter().flatten() {
+                step = step.max((u - u2).abs() - (r - r2).abs());
+            }
+        }
+    }
+    let mse = squares / count.max(1) as f64;
+    let psnr_db = if mse > 0.0 { (10.0 * (1.0 / mse).log10()).min(200.0) } else { 200.0 };
+    ImageFigures { psnr_db, max_step_excess: step.max(0.0) }
+}

@@ -2,6 +2,7 @@
 //! (2: bad parameters or usage, 1: a check failed or an I/O error).
 
 mod cosim;
+mod explore;
 mod prove;
 mod synth;
 mod values;
@@ -41,6 +42,20 @@ pub enum Command {
         /// Pick --stages: the shallowest pipeline that reaches F MHz on the --target's part (ice40: iCE40 UP5K, ecp5: ECP5-25 grade 6, with DSPs) by the delay model calibrated on nextpnr (in milliseconds; `synth --seeds K` measures it). Refused with --target generic, whose RTL names no device to be calibrated on: give --stages there.
         #[arg(long, value_name = "F", conflicts_with = "stages")]
         target_mhz: Option<f64>,
+        /// Choose the unit (model, widths, depth, budget, ROM style) instead of taking the flags:
+        /// the cheapest in logic cells of the exploration's measured units whose --metric error
+        /// is at most E and whose median Fmax over seeds reaches --target-mhz (a --model or
+        /// --dsp-budget given narrows the choice); it prints the choice and its evidence, and is
+        /// refused naming the nearest units when none meets both [(0, 1]]
+        #[arg(long, value_name = "E", requires = "target_mhz", allow_negative_numbers = true)]
+        max_error: Option<f64>,
+        /// The error --max-error bounds.
+        #[arg(long, value_enum, default_value = "max", requires = "max_error")]
+        metric: explore::MetricFlag,
+        /// The exploration --max-error chooses from (`specgen explore`'s points.json) [default:
+        /// the one built in for the --target]
+        #[arg(long, value_name = "FILE", requires = "max_error")]
+        explored: Option<PathBuf>,
         #[command(flatten)]
         params: ParamArgs,
         #[command(flatten)]
@@ -92,6 +107,15 @@ pub enum Command {
     /// Write golden vectors for any testbench: CSV (a header row of port names) or $readmemh
     /// hex, one row per input with the golden model's outputs; the header states the timing.
     Vectors(VectorsArgs),
+    /// Explore a space of units (models, widths, depths, --dsp-budget, --rom-style) on one
+    /// target: each point's accuracy (golden model: max, mean, RMS error, the sphere's PSNR and
+    /// banding step), its cost estimated, the points on or near the front as sweep jobs
+    /// (jobs.json; scripts/sweep.sh runs them on Snakemake), and with --results the measured
+    /// front, per clock, as CSV, JSON and SVG.
+    Explore(explore::ExploreArgs),
+    /// Run one job of a sweep (explore's jobs.json): generate its unit, synthesize and
+    /// place-and-route it with its seed, write the result under its fingerprint.
+    Measure(explore::MeasureArgs),
     /// Synthesize the RTL in DIR with yosys (and nextpnr for Fmax): LUTs, carries, DSPs, FFs, ROM.
     Synth(synth::SynthArgs),
     /// Render a sphere and a plane at grazing light with the unit in DIR, beside float cos^n and
@@ -406,7 +430,7 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool)
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Generate { out, force, target_mhz, params, rtl } => {
+        Command::Generate { out, force, target_mhz, max_error, metric, explored, params, rtl } => {
             if let Some(config) = &params.config {
                 if specgen::output::inside(config, &out) {
                     return Err(usage(format!(
@@ -427,9 +451,19 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 // the constraints ask for the clock the pipeline was chosen for
                 cfg = Config::new(Params { clock_mhz: Some(format!("{}", (mhz * 1000.0).round() / 1000.0)), ..cfg.params })?;
             }
+            // --max-error: the unit is the exploration's choice, its depth measured, not predicted
+            let mut pick_depth = target_mhz;
+            if let (Some(e), Some(mhz)) = (max_error, target_mhz) {
+                if !(e > 0.0 && e <= 1.0) {
+                    return Err(usage(format!("invalid --max-error: {e}; allowed (0, 1] (full scale)")));
+                }
+                let chosen = explore::choose(explored.as_deref(), &cfg.params, params.model.is_some(), rtl.dsp_budget.is_some(), metric.into(), e, mhz)?;
+                cfg = Config::new(chosen)?;
+                pick_depth = None;
+            }
             // the plan: model, widths, registers, datapath, built once; --stages checked here
             let mut plan = Plan::new(cfg)?;
-            if let Some(mhz) = target_mhz {
+            if let Some(mhz) = pick_depth {
                 // the delay model, no place-and-route: `synth --seeds K` measures the result
                 // a depth at a time; said on standard error when the search takes a while
                 let start = std::time::Instant::now();
@@ -497,6 +531,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Prove(args) => prove::run(&args),
         Command::Render(args) => render(&args),
         Command::Synth(args) => synth::run(&args),
+        Command::Explore(args) => explore::run(&args),
+        Command::Measure(args) => explore::measure(&args),
         Command::Vectors(args) => vectors(&args),
         Command::Report { out, force, hw, params } => {
             let cfg = params.to_config(None)?;

@@ -26,6 +26,12 @@ impl Family for Ecp5 {
     fn part(&self) -> &'static str {
         "ECP5-25 grade 6"
     }
+    fn dsp_capacity(&self) -> Option<u64> {
+        Some(28)
+    }
+    fn explore_clocks(&self) -> &'static [f64] {
+        &[100.0, 150.0, 200.0, 250.0]
+    }
     fn calibration(&self) -> Option<&'static str> {
         Some("ecp5")
     }

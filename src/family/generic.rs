@@ -14,6 +14,12 @@ impl Family for Generic {
     fn part(&self) -> &'static str {
         "generic target (no part)"
     }
+    fn dsp_capacity(&self) -> Option<u64> {
+        None
+    }
+    fn explore_clocks(&self) -> &'static [f64] {
+        &[]
+    }
     fn calibration(&self) -> Option<&'static str> {
         None
     }

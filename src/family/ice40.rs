@@ -26,6 +26,12 @@ impl Family for Ice40 {
     fn part(&self) -> &'static str {
         "iCE40 UP5K"
     }
+    fn dsp_capacity(&self) -> Option<u64> {
+        Some(8)
+    }
+    fn explore_clocks(&self) -> &'static [f64] {
+        &[50.0, 75.0, 100.0, 125.0]
+    }
     fn calibration(&self) -> Option<&'static str> {
         Some("ice40")
     }

@@ -57,6 +57,18 @@ pub trait Family: Sync {
     /// The family the delay model's calibration names (`data/delay_model.json`); None: no
     /// delay model speaks for it, and `--target-mhz` is refused.
     fn calibration(&self) -> Option<&'static str>;
+    /// The clocks `explore` measures its fronts at, MHz (from a slow unit to the blocks'
+    /// limits): a depth is chosen per clock and the front is drawn per clock. Empty: no
+    /// place-and-route to measure a clock with.
+    fn explore_clocks(&self) -> &'static [f64];
+    /// The hard multiplier blocks of the part its figures are for (None: no part): `explore`
+    /// measures no unit that needs more.
+    fn dsp_capacity(&self) -> Option<u64>;
+    /// The exploration built in for `generate --max-error` (`specgen explore`'s points.json,
+    /// measured by `scripts/explore.sh`), if one was measured for the family.
+    fn explored(&self) -> Option<&'static str> {
+        None
+    }
     /// yosys's synthesis command for module `top` (`dsp`: hard multipliers allowed).
     fn synth_command(&self, dsp: bool, top: &str) -> String;
     /// What yosys reads before the RTL: the library of the primitives the RTL instantiates.

@@ -346,6 +346,8 @@ pub(crate) fn check_cos_n(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), E
 pub struct Fidelity {
     pub max: f64,
     pub mean: f64,
+    /// the root of the mean square error
+    pub rms: f64,
     /// where the maximum is
     pub(crate) worst_n: u32,
     pub(crate) worst_cos: u32,
@@ -385,7 +387,7 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
     // on every machine
     let threads = 8u32;
     /// one thread's part: max, sum, worst n, worst cos_g, points, per-n maxima
-    type Part = (f64, f64, u32, u32, u64, Vec<(u32, f64)>);
+    type Part = (f64, f64, f64, u32, u32, u64, Vec<(u32, f64)>);
     // the codes of a row, and c = code/2^F (exact): the same for every n
     let mut codes: Vec<u32> = (0..one).step_by(stride as usize).collect();
     codes.push(one);
@@ -395,7 +397,7 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
                 s.spawn(move || {
-                    let (mut max, mut sum, mut wn, mut wc, mut count) = (0.0f64, 0.0f64, 0u32, 0u32, 0u64);
+                    let (mut max, mut sum, mut squares_sum, mut wn, mut wc, mut count) = (0.0f64, 0.0f64, 0.0f64, 0u32, 0u32, 0u64);
                     let mut per_n = Vec::new();
                     let (mut got, mut powers, mut squares) = (Vec::new(), Vec::new(), Vec::new());
                     for n in (t..n_count).step_by(threads as usize) {
@@ -411,6 +413,7 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
                         for ((&cos_g, &g), &p) in codes.iter().zip(&got).zip(&powers) {
                             let err = (g as f64 / scale - p).abs();
                             sum += err;
+                            squares_sum += err * err;
                             count += 1;
                             row_max = row_max.max(err);
                             if err > max {
@@ -419,15 +422,15 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
                         }
                         per_n.push((n, row_max));
                     }
-                    (max, sum, wn, wc, count, per_n)
+                    (max, sum, squares_sum, wn, wc, count, per_n)
                 })
             })
             .collect();
         handles.into_iter().map(|h| h.join().expect("fidelity thread")).collect()
     });
-    let mut f = Fidelity { max: 0.0, mean: 0.0, worst_n: 0, worst_cos: 0, points: 0, stride, per_n_max: vec![0.0; n_count as usize] };
-    let mut sum = 0.0;
-    for (max, s, wn, wc, count, per_n) in parts {
+    let mut f = Fidelity { max: 0.0, mean: 0.0, rms: 0.0, worst_n: 0, worst_cos: 0, points: 0, stride, per_n_max: vec![0.0; n_count as usize] };
+    let (mut sum, mut squares) = (0.0, 0.0);
+    for (max, s, sq, wn, wc, count, per_n) in parts {
         for (n, e) in per_n {
             f.per_n_max[n as usize] = e;
         }
@@ -435,9 +438,11 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
             (f.max, f.worst_n, f.worst_cos) = (max, wn, wc);
         }
         sum += s;
+        squares += sq;
         f.points += count;
     }
     f.mean = sum / f.points as f64;
+    f.rms = (squares / f.points as f64).sqrt();
     f
 }
 

@@ -165,6 +165,26 @@ impl Pnr {
     }
 }
 
+/// The place-and-route program `synthesize` would run for `target` (None: the family has none).
+pub fn pnr_tool(target: Target, tools: &Tools) -> Result<Option<String>, Failure> {
+    match crate::family::of(target).place_and_route(tools.speed) {
+        None => Ok(None),
+        Some(_) => Ok(Some(Pnr::find(target, tools.nextpnr.as_deref(), tools.speed)?.tool)),
+    }
+}
+
+/// A tool's version as it prints it (its first line), run with `flag`.
+pub fn version_of(tool: &str, flag: &str) -> Result<String, Failure> {
+    let t = absolute_tool(tool);
+    let out = crate::process::command(&t).arg(flag).output().map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
+    let mut text = String::from_utf8_lossy(&out.stdout).into_owned();
+    text.push_str(&String::from_utf8_lossy(&out.stderr));
+    match text.lines().map(str::trim).find(|l| !l.is_empty()) {
+        Some(line) if out.status.success() => Ok(line.to_string()),
+        _ => Err(error::tool(tool, format!("{tool} {flag} failed ({}): {text}", out.status))),
+    }
+}
+
 fn require(tool: &str, package: &str) -> Result<(), Failure> {
     if tool_exists(tool) {
         Ok(())
@@ -208,6 +228,14 @@ fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String, Failure> {
         return Err(error::tool("yosys", format!("yosys failed:\n{}{}", &log[log.len().saturating_sub(2000)..], String::from_utf8_lossy(&out.stderr))));
     }
     Ok(log)
+}
+
+/// Seeds as a user reads them: `1..=5` for a run from 1, else a list.
+pub fn seed_list(seeds: &[u32]) -> String {
+    match seeds {
+        [1, .., last] if seeds.iter().zip(1..).all(|(&s, i)| s == i) => format!("1..={last}"),
+        _ => seeds.iter().map(u32::to_string).collect::<Vec<_>>().join(", "),
+    }
 }
 
 /// The median (mean of the two middle values for an even count).
@@ -278,16 +306,17 @@ impl Default for Tools {
 }
 
 /// Synthesizes the unit in `design` for `target`.
-/// `seeds`: place-and-route runs with nextpnr seeds 1..=seeds (0: none); Fmax is their median.
+/// `seeds`: the nextpnr seeds of the place-and-route runs (none: no place-and-route); Fmax is
+/// their median.
 /// Returns the result and nextpnr's logs (every seed's, one after another, each under a line
 /// naming its seed; empty without place-and-route): the caller writes them where asked.
-pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, seeds: u32) -> Result<(SynthResult, String), Failure> {
+pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, seeds: &[u32]) -> Result<(SynthResult, String), Failure> {
     let yosys = tools.yosys.as_str();
     require(yosys, "yosys")?;
     // Fmax asked for (seeds > 0): without the place-and-route tool it cannot be measured, so
     // say so before synthesis rather than after
     let family = crate::family::of(target);
-    let pnr = if seeds > 0 && family.place_and_route(tools.speed).is_some() {
+    let pnr = if !seeds.is_empty() && family.place_and_route(tools.speed).is_some() {
         Some(
             Pnr::find(target, tools.nextpnr.as_deref(), tools.speed)
                 .map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?,
@@ -369,7 +398,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         return Err(Failure::Mismatch(why));
     }
     // speed: the wrapped unit through place-and-route
-    if seeds == 0 && family.place_and_route(tools.speed).is_some() {
+    if seeds.is_empty() && family.place_and_route(tools.speed).is_some() {
         r.fmax_note = "place-and-route skipped (--no-pnr)".into();
         return Ok((r, String::new()));
     }
@@ -404,7 +433,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     };
     let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as u32;
     let mut runs = Vec::new();
-    for batch in (1..=seeds).collect::<Vec<_>>().chunks(cores as usize) {
+    for batch in seeds.chunks(cores as usize) {
         let done: Vec<_> = std::thread::scope(|sc| {
             let hs: Vec<_> = batch.iter().map(|&seed| sc.spawn(move || run(seed))).collect();
             hs.into_iter().map(|h| h.join().expect("nextpnr thread")).collect()
@@ -414,7 +443,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         }
     }
     // every seed's log, one after another, each under a line naming its seed
-    let logs: String = runs.iter().enumerate().map(|(i, (_, log))| format!("==== nextpnr seed {} ====\n{log}", i + 1)).collect();
+    let logs: String = runs.iter().zip(seeds).map(|((_, log), seed)| format!("==== nextpnr seed {seed} ====\n{log}")).collect();
     if let Some((_, log)) = runs.iter().find(|(ok, _)| !ok) {
         // typically the design does not fit the device: report it, keep the area figures
         // nextpnr's own words: its ERROR line, or the end of its log when it has none
@@ -439,7 +468,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         r.icetime_note = format!("not run: {} not found (--icetime PATH, or apt-get install -y fpga-icestorm)", tools.icetime);
     } else if family.icetime() {
         let icetime = absolute_tool(&tools.icetime);
-        for seed in 1..=seeds {
+        for &seed in seeds {
             let o = crate::process::command(&icetime)
                 .current_dir(work.path())
                 .args(["-d", "up5k", "-i", "-t", &asc(seed)])
@@ -469,8 +498,9 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         r.fmax_limited_by = why;
     }
     r.fmax_note = format!(
-        "{tool} {}, median of seeds 1..={seeds} ({}), unit between registers of a serial-I/O wrapper",
+        "{tool} {}, median of seeds {} ({}), unit between registers of a serial-I/O wrapper",
         args.join(" "),
+        seed_list(seeds),
         r.fmax_seeds.iter().map(|f| format!("{f:.1}")).collect::<Vec<_>>().join(", ")
     );
     if runs.iter().any(|(_, log)| has_unclocked_block(log)) {
@@ -490,6 +520,14 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
 }
 
 impl SynthResult {
+    /// Fmax, capped by the blocks' limits (None: no place-and-route, or it failed).
+    pub fn fmax(&self) -> Option<f64> {
+        self.fmax_mhz
+    }
+    /// Logic cells after packing (None without place-and-route).
+    pub fn cells(&self) -> Option<u64> {
+        self.logic_cells
+    }
     /// Reads a `specgen synth --json` result: a regular file of at most 1 MiB (never a FIFO or a
     /// device), a JSON object naming a known model and a target, with its LUT count. A manifest,
     /// `{}` or another tool's JSON is refused with the reason.

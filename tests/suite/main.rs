@@ -9,6 +9,7 @@ mod cosim;
 mod embedding;
 mod every_model;
 mod exhaustive;
+mod explore;
 mod hostile;
 mod interfaces;
 mod layers;

@@ -1,0 +1,337 @@
+//! `specgen explore` and `specgen measure`: the command-line glue over [`specgen::explore`].
+
+use super::values::{ModelFlag, RomStyleFlag, TargetFlag};
+use super::{errln, outln, usage, Failure};
+use specgen::config::{Params, Target};
+use specgen::explore::{self, Exploration, Metric, Space};
+use std::path::{Path, PathBuf};
+
+/// `--metric`
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum MetricFlag {
+    /// the largest |intensity - cos^n| over every (cos_g, n)
+    Max,
+    /// its mean
+    Mean,
+    /// its root mean square
+    Rms,
+    /// the largest step between neighbouring pixels of render's sphere beyond the float image's (banding)
+    Step,
+}
+
+impl From<MetricFlag> for Metric {
+    fn from(m: MetricFlag) -> Metric {
+        match m {
+            MetricFlag::Max => Metric::Max,
+            MetricFlag::Mean => Metric::Mean,
+            MetricFlag::Rms => Metric::Rms,
+            MetricFlag::Step => Metric::Step,
+        }
+    }
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct ExploreArgs {
+    /// Output directory: points.json/.csv (every point: accuracy, estimate, measurement),
+    /// front.csv and front.svg (the front per clock), jobs.json (the sweep's jobs), merge.json
+    /// (created, or replaced if it holds only a previous specgen output).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Replace a previous output even where its files were edited by hand.
+    #[arg(long)]
+    pub force: bool,
+    /// The family explored.
+    #[arg(long, value_enum, default_value = "ice40")]
+    pub target: TargetFlag,
+    /// Models in the space.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "quadratic,schlick,fitted,blinn,blinn-pow")]
+    pub models: Vec<ModelFlag>,
+    /// F values (cos_g's fractional bits) in the space [each 4..=20]
+    #[arg(long, value_delimiter = ',', default_value = "8,10,12,15")]
+    pub cos_frac_bits: Vec<u32>,
+    /// FI values (intensity's fractional bits) in the space [each 1..=24]
+    #[arg(long, value_delimiter = ',', default_value = "8,10,12,15")]
+    pub intensity_frac_bits: Vec<u32>,
+    /// N, the exponent's width: fixed, as the user's shading needs it [1..=12]
+    #[arg(long, default_value_t = 10)]
+    pub n_bits: u32,
+    /// B, the colours' width: fixed [4..=16]
+    #[arg(long, default_value_t = 8)]
+    pub color_bits: u32,
+    /// --dsp-budget values in the space: a number, or "none" (no limit)
+    #[arg(long, value_delimiter = ',', default_value = "none")]
+    pub dsp_budget: Vec<String>,
+    /// --rom-style values in the space (one the family does not write is left out).
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "file")]
+    pub rom_style: Vec<RomStyleFlag>,
+    /// Clocks (MHz) a depth is chosen for and a front drawn at [default: the family's: iCE40
+    /// 50,75,100,125; ECP5 100,150,200,250]
+    #[arg(long, value_delimiter = ',', value_name = "MHZ,...", allow_negative_numbers = true)]
+    pub clocks: Vec<f64>,
+    /// The error the front and the choice are drawn by.
+    #[arg(long, value_enum, default_value = "max")]
+    pub metric: MetricFlag,
+    /// nextpnr seeds 1..=K of each measured point [1..=20]
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=20))]
+    pub seeds: u32,
+    /// A point is measured when it is on the estimated front or within this fraction of its
+    /// logic cells (at a clock the delay model predicts it within 20% of) [0..=10]
+    #[arg(long, default_value_t = 0.15, allow_negative_numbers = true)]
+    pub near: f64,
+    /// Measure every point of the space, not only those on or near the estimated front.
+    #[arg(long)]
+    pub measure_all: bool,
+    /// A directory of job results (`specgen measure`'s, a sweep's); repeat it to merge shards.
+    #[arg(long, value_name = "DIR")]
+    pub results: Vec<PathBuf>,
+    /// The yosys the jobs run (its version is in every job's fingerprint).
+    #[arg(long, value_name = "PATH", default_value = "yosys")]
+    pub yosys: String,
+    /// The nextpnr the jobs run [default: the family's].
+    #[arg(long, value_name = "PATH")]
+    pub nextpnr: Option<String>,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct MeasureArgs {
+    /// The sweep's jobs (`specgen explore`'s jobs.json).
+    #[arg(long, value_name = "FILE")]
+    pub jobs: PathBuf,
+    /// The job to run, by its fingerprint.
+    #[arg(long, value_name = "FP")]
+    pub fingerprint: String,
+    /// Where its result goes (written atomically): a sweep keeps it as <results>/<FP>.json.
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+    /// The yosys binary (its version must be the one the job was planned with).
+    #[arg(long, value_name = "PATH", default_value = "yosys")]
+    pub yosys: String,
+    /// The nextpnr binary [default: the family's].
+    #[arg(long, value_name = "PATH")]
+    pub nextpnr: Option<String>,
+}
+
+/// The most jobs a plan holds; the largest jobs file.
+const MAX_JOBS: usize = 100_000;
+const MAX_JOBS_BYTES: u64 = 256 << 20;
+
+fn tools(yosys: &str, nextpnr: &Option<String>) -> specgen::synth::Tools {
+    specgen::synth::Tools { yosys: yosys.to_string(), nextpnr: nextpnr.clone(), ..Default::default() }
+}
+
+pub fn read_jobs(path: &Path) -> Result<Vec<explore::Job>, Failure> {
+    let text = specgen::small_file::read(path, MAX_JOBS_BYTES).map_err(|e| usage(format!("invalid --jobs: {} {e}", path.display())))?;
+    let jobs: Vec<explore::Job> =
+        serde_json::from_str(&text).map_err(|e| usage(format!("invalid --jobs: {} is not a sweep's jobs.json: {e}", path.display())))?;
+    if jobs.len() > MAX_JOBS {
+        return Err(usage(format!("invalid --jobs: {} holds {} jobs; allowed at most {MAX_JOBS}", path.display(), jobs.len())));
+    }
+    Ok(jobs)
+}
+
+pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
+    let range = |flag: &str, v: &[u32], r: &specgen::config::Range| -> Result<(), Failure> {
+        match v.iter().find(|&&x| x < r.min || x > r.max) {
+            Some(x) => Err(usage(format!("invalid --{flag}: {x} is out of range; allowed {}..={}", r.min, r.max))),
+            None if v.is_empty() || v.len() > 16 => Err(usage(format!("invalid --{flag}: give 1 to 16 values"))),
+            None => Ok(()),
+        }
+    };
+    range("cos-frac-bits", &a.cos_frac_bits, &specgen::config::COS_FRAC_BITS)?;
+    range("intensity-frac-bits", &a.intensity_frac_bits, &specgen::config::INTENSITY_FRAC_BITS)?;
+    if !(0.0..=10.0).contains(&a.near) {
+        return Err(usage(format!("invalid --near: {}; allowed 0..=10", a.near)));
+    }
+    if let Some(c) = a.clocks.iter().find(|c| !(1.0..=1000.0).contains(*c)) {
+        return Err(usage(format!("invalid --clocks: {c}; allowed MHz in [1, 1000]")));
+    }
+    if a.clocks.len() > 16 || a.models.is_empty() || a.rom_style.is_empty() {
+        return Err(usage("invalid --clocks, --models or --rom-style: give 1 to 16 values"));
+    }
+    let mut budgets = Vec::new();
+    for b in &a.dsp_budget {
+        budgets.push(match b.trim() {
+            "none" => None,
+            t => Some(
+                t.parse::<u32>()
+                    .ok()
+                    .filter(|v| *v <= specgen::config::DSP_BUDGET.max)
+                    .ok_or_else(|| usage(format!("invalid --dsp-budget: {t:?}; allowed \"none\" or 0..={}", specgen::config::DSP_BUDGET.max)))?,
+            ),
+        });
+    }
+    let target: Target = a.target.into();
+    let base = Params { target, n_bits: a.n_bits, color_bits: a.color_bits, ..Params::default() };
+    specgen::config::Config::new(base.clone())?;
+    let space = Space {
+        base,
+        models: a.models.iter().map(|&m| m.into()).collect(),
+        cos_frac_bits: a.cos_frac_bits.clone(),
+        intensity_frac_bits: a.intensity_frac_bits.clone(),
+        dsp_budgets: budgets,
+        rom_styles: a.rom_style.iter().map(|&r| r.into()).collect(),
+        clocks: a.clocks.clone(),
+    };
+    for dir in &a.results {
+        if specgen::output::inside(dir, &a.out) {
+            return Err(usage(format!(
+                "invalid --results: {} is inside --out {}, which is replaced whole: keep results elsewhere",
+                dir.display(),
+                a.out.display()
+            )));
+        }
+    }
+    let metric: Metric = a.metric.into();
+    let clocks = space.clocks();
+    let start = std::time::Instant::now();
+    // progress on standard error, at most every two seconds
+    let said = std::cell::Cell::new(0u64);
+    let mut points = explore::points(&space, &|done, of| {
+        let now = start.elapsed().as_secs();
+        if now >= said.get() + 2 || done == of {
+            said.set(now);
+            errln!("explore: {done} of {of} (model, widths) measured by the golden model ({now} s)");
+        }
+    })?;
+    if points.len() > explore::MAX_POINTS {
+        return Err(usage(format!("the space holds {} points; allowed at most {}: narrow it", points.len(), explore::MAX_POINTS)));
+    }
+    let ids = match a.measure_all {
+        true => points.iter().map(|p| p.id.clone()).collect(),
+        false => explore::candidates(&points, metric, &clocks, a.near, 0.8),
+    };
+    let seeds: Vec<u32> = (1..=a.seeds).collect();
+    let versions = explore::tool_versions(target, &tools(&a.yosys, &a.nextpnr))?;
+    let jobs = explore::jobs_of(&points, &ids, &seeds, &versions)?;
+    let dirs: Vec<&Path> = a.results.iter().map(PathBuf::as_path).collect();
+    let results = explore::read_results(&dirs)?;
+    let report = explore::merge(&mut points, &jobs, &results);
+    explore::mark_fronts(&mut points, metric, &clocks);
+    let e = Exploration {
+        generator: "specgen".into(),
+        version: specgen::names::VERSION.into(),
+        target: target.name().into(),
+        part: specgen::timing::part(target).into(),
+        metric: metric.name().into(),
+        clocks: clocks.clone(),
+        seeds,
+        points,
+    };
+    let files = explore::files(&e, metric, &jobs, &report);
+    super::write_output(&a.out, &files, a.force)?;
+    let measured = e.points.iter().filter(|p| p.measured.is_some()).count();
+    outln!(
+        "explore: {} points on the {}, {} to measure ({} jobs); {measured} measured, {} jobs without a result, {} with conflicting results, {} results of no job here",
+        e.points.len(),
+        e.part,
+        ids.len(),
+        jobs.len(),
+        report.missing.len(),
+        report.conflicting.len(),
+        report.unused
+    )?;
+    for &mhz in &clocks {
+        let front = explore::front_at(&e.points, metric, mhz);
+        outln!("front at {mhz} MHz: {}", front.join(", "))?;
+    }
+    if !report.missing.is_empty() {
+        let jobs_file = a.out.join("jobs.json");
+        outln!(
+            "measure the rest: scripts/sweep.sh {} RESULTS_DIR (Snakemake, every core; a cluster: see the README), then run this command again with --results RESULTS_DIR",
+            jobs_file.display()
+        )?;
+    }
+    if !report.conflicting.is_empty() {
+        return Err(super::failed(format!("jobs with conflicting results: {}", report.conflicting.join(", "))));
+    }
+    Ok(())
+}
+
+pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {
+    let jobs = read_jobs(&a.jobs)?;
+    let job = jobs
+        .iter()
+        .find(|j| j.fingerprint == a.fingerprint)
+        .ok_or_else(|| usage(format!("invalid --fingerprint: {} is no job of {}", a.fingerprint, a.jobs.display())))?;
+    if specgen::output::same_file(&a.out, &a.jobs) {
+        return Err(usage(format!("invalid --out: {} is the --jobs file this command reads", a.out.display())));
+    }
+    let r = explore::run_job(job, &tools(&a.yosys, &a.nextpnr))?;
+    let mut text = serde_json::to_string_pretty(&r).expect("serialises");
+    text.push('\n');
+    specgen::output::write_file(&a.out, text.as_bytes()).map_err(|e| Failure::io("write", &a.out, e))?;
+    outln!(
+        "{}: {} seed {}: {} MHz, {} logic cells",
+        job.fingerprint,
+        job.point,
+        job.seed,
+        r.synth.fmax().map_or("no Fmax".into(), |f| format!("{f:.1}")),
+        r.synth.cells().map_or("?".into(), |c| c.to_string())
+    )?;
+    Ok(())
+}
+
+/// `generate --max-error`: the exploration's cheapest measured unit meeting the error and the
+/// clock; its parameters replace the explored axes of `params`.
+pub fn choose(
+    explored: Option<&Path>,
+    params: &Params,
+    model_given: bool,
+    budget_given: bool,
+    metric: Metric,
+    max_error: f64,
+    mhz: f64,
+) -> Result<Params, Failure> {
+    let (text, what) = match explored {
+        Some(p) => (specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?, p.display().to_string()),
+        None => match specgen::family::of(params.target).explored() {
+            Some(t) => (t.to_string(), format!("the built-in exploration of the {}", specgen::timing::part(params.target))),
+            None => {
+                return Err(usage(format!(
+                    "invalid --max-error: no exploration is built in for --target {}; give one with --explored FILE (specgen explore's points.json)",
+                    params.target.name()
+                )))
+            }
+        },
+    };
+    let mut e = Exploration::from_text(&text, &what)?;
+    if model_given {
+        e.points.retain(|p| p.params.model == params.model);
+    }
+    if budget_given {
+        e.points.retain(|p| p.params.dsp_budget == params.dsp_budget);
+    }
+    let c = explore::choose(&e, params, metric, max_error, mhz)?;
+    let p = &c.point;
+    let m = p.measured.as_ref().expect("a choice is measured");
+    let lo = m.fmax_seeds.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = m.fmax_seeds.iter().copied().fold(0.0, f64::max);
+    errln!(
+        "max-error: chose {} ({} error {:.3e} <= {max_error}): measured {:.1} MHz median over nextpnr seeds {} ({lo:.1}-{hi:.1}), {} logic cells, {} DSP blocks, {} block RAMs; jobs {}; tools {}; from {what}",
+        p.id,
+        metric.name(),
+        c.error,
+        m.fmax_mhz.unwrap_or(0.0),
+        specgen::synth::seed_list(&m.seeds),
+        p.cells(),
+        m.dsp_blocks,
+        m.block_rams,
+        m.jobs.join(" "),
+        m.tools.iter().map(|(k, v)| format!("{k} {v:?}")).collect::<Vec<_>>().join(", ")
+    );
+    let chosen = &p.params;
+    Ok(Params {
+        model: chosen.model,
+        cos_frac_bits: chosen.cos_frac_bits,
+        intensity_frac_bits: chosen.intensity_frac_bits,
+        stages: chosen.stages,
+        dsp_budget: chosen.dsp_budget,
+        rom_style: chosen.rom_style,
+        k: chosen.k.clone(),
+        k_frac_bits: chosen.k_frac_bits,
+        rounding: chosen.rounding,
+        arch: chosen.arch,
+        max_squarings: chosen.max_squarings,
+        ..params.clone()
+    })
+}

@@ -1,0 +1,204 @@
+//! `specgen explore`, its sweeps on Snakemake, and `generate --max-error`.
+
+use crate::common::{finished_within_guard, output_guarded, require_tool, specgen, wait_until};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A narrow space: quadratic at F = FI = 8, N = B = 4, two seeds, every point measured.
+const NARROW: &[&str] =
+    &["--models", "quadratic", "--cos-frac-bits", "8", "--intensity-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--seeds", "2", "--measure-all"];
+
+fn explore(out: &Path, results: &[&Path], extra: &[&str]) -> std::process::Output {
+    let mut c = specgen();
+    c.arg("explore").arg("--out").arg(out).args(NARROW).args(extra);
+    for r in results {
+        c.arg("--results").arg(r);
+    }
+    output_guarded(&mut c, "specgen explore")
+}
+
+fn points(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("points.json")).unwrap()).unwrap()
+}
+
+fn results_in(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> =
+        std::fs::read_dir(dir).map(|d| d.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|x| x == "json")).collect()).unwrap_or_default();
+    v.sort();
+    v
+}
+
+#[test]
+fn explore_writes_every_point_its_front_and_the_sweeps_jobs() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("x");
+    let o = explore(&out, &[], &["--models", "quadratic,blinn", "--intensity-frac-bits", "8,10"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["points.json", "points.csv", "front.csv", "front.svg", "jobs.json", "merge.json", "calibration.csv", "explore.json"] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let p = points(&out);
+    let pts = p["points"].as_array().unwrap();
+    // two models, two intensity widths, each at one depth or more
+    assert!(pts.len() >= 4, "{}", pts.len());
+    for pt in pts {
+        let a = &pt["accuracy"];
+        // the golden model's figures, exhaustive at these widths
+        assert_eq!(a["stride"], 1);
+        assert!(a["max"].as_f64().unwrap() >= a["rms"].as_f64().unwrap());
+        assert!(a["rms"].as_f64().unwrap() >= a["mean"].as_f64().unwrap());
+        assert!(a["psnr_db"].as_f64().unwrap() > 0.0);
+    }
+    // blinn is far more accurate than the paper's formula
+    let max_of = |m: &str| pts.iter().filter(|p| p["model"] == m).map(|p| p["accuracy"]["max"].as_f64().unwrap()).fold(0.0, f64::max);
+    assert!(max_of("blinn") < max_of("quadratic") / 10.0);
+    // every point measured: two seeds each, one job per (point, seed), no result yet
+    let jobs: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(out.join("jobs.json")).unwrap()).unwrap();
+    assert_eq!(jobs.len(), 2 * pts.len());
+    let merge: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("merge.json")).unwrap()).unwrap();
+    assert_eq!(merge["missing"].as_array().unwrap().len(), jobs.len());
+    let svg = std::fs::read_to_string(out.join("front.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("quadratic") && svg.contains("blinn"));
+    // a second run replaces its own output; a user's file beside it stops it
+    assert!(explore(&out, &[], &[]).status.success());
+    std::fs::write(out.join("mine.txt"), "keep").unwrap();
+    let o = explore(&out, &[], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read_to_string(out.join("mine.txt")).unwrap(), "keep");
+}
+
+#[test]
+fn explore_refuses_bad_input_naming_the_flag_and_writes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("x");
+    for (args, flag) in [
+        (&["--cos-frac-bits", "99"][..], "--cos-frac-bits"),
+        (&["--intensity-frac-bits", "99"][..], "--intensity-frac-bits"),
+        (&["--near", "-1"][..], "--near"),
+        (&["--dsp-budget", "lots"][..], "--dsp-budget"),
+        (&["--clocks", "0"][..], "--clocks"),
+    ] {
+        let o = output_guarded(specgen().arg("explore").arg("--out").arg(&out).args(args), "explore");
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(String::from_utf8_lossy(&o.stderr).contains(flag), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(!out.exists());
+    }
+    // results kept inside the output, which is replaced whole, are refused
+    let o = output_guarded(specgen().arg("explore").arg("--out").arg(&out).arg("--results").arg(out.join("r")).args(NARROW), "explore");
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn generate_max_error_needs_a_clock_and_refuses_an_error_out_of_range() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("u");
+    let o = output_guarded(specgen().args(["generate", "--max-error", "0.02"]).arg("--out").arg(&out), "generate");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--target-mhz"));
+    for e in ["0", "2", "-1"] {
+        let o = output_guarded(specgen().args(["generate", "--target-mhz", "100", "--max-error", e]).arg("--out").arg(&out), "generate");
+        assert_eq!(o.status.code(), Some(2), "{e}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("--max-error"), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    assert!(!out.exists());
+}
+
+/// The sweep engine for real (point 4 of the exploration issue): Snakemake on this machine runs a plan's jobs; killed (the whole
+/// process group, SIGKILL) after its first result, it leaves no half result and, run again,
+/// runs only what is missing; the front it gives is the front of the same jobs run as shards of
+/// `specgen measure` by hand and merged.
+#[test]
+fn a_sweep_on_snakemake_killed_midway_resumes_to_the_same_front() {
+    require_tool("snakemake", "snakemake (pip)");
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let plan = tmp.path().join("plan");
+    let o = explore(&plan, &[], &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let jobs: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(plan.join("jobs.json")).unwrap()).unwrap();
+    assert!(jobs.len() >= 4, "{}", jobs.len());
+    let results = tmp.path().join("results");
+    let sweep = || {
+        let mut c = Command::new("bash");
+        c.arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/sweep.sh")).arg(plan.join("jobs.json")).arg(&results).args(["--cores", "1", "--quiet"]);
+        c.env("SPECGEN", env!("CARGO_BIN_EXE_specgen")).env("SPECGEN_JOBS", crate::common::jobs());
+        c.stdout(std::process::Stdio::null()).stderr(std::process::Stdio::piped());
+        c
+    };
+    // the first run, killed once a result is there
+    let mut first = {
+        use std::os::unix::process::CommandExt;
+        sweep().process_group(0).spawn().unwrap()
+    };
+    wait_until("the sweep's first result", || !results_in(&results).is_empty());
+    unsafe {
+        libc::kill(-(first.id() as i32), libc::SIGKILL);
+    }
+    finished_within_guard(&mut first, "the killed sweep");
+    let done = results_in(&results).len();
+    assert!(done >= 1 && done < jobs.len(), "{done} of {} done when killed", jobs.len());
+    // every result there is whole (the job writes atomically)
+    for r in results_in(&results) {
+        let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+        assert_eq!(r.file_stem().unwrap().to_str().unwrap(), v["job"]["fingerprint"].as_str().unwrap());
+    }
+    let kept: Vec<(PathBuf, std::time::SystemTime)> =
+        results_in(&results).into_iter().map(|p| (p.clone(), std::fs::metadata(&p).unwrap().modified().unwrap())).collect();
+    // resumed: the rest runs, what was done is not run again
+    let mut again = sweep().spawn().unwrap();
+    let status = finished_within_guard(&mut again, "the resumed sweep");
+    assert!(status.success());
+    assert_eq!(results_in(&results).len(), jobs.len());
+    for (p, t) in kept {
+        assert_eq!(std::fs::metadata(&p).unwrap().modified().unwrap(), t, "{} was run again", p.display());
+    }
+    // the same jobs as two shards by hand
+    let (shard_a, shard_b) = (tmp.path().join("a"), tmp.path().join("b"));
+    for (i, j) in jobs.iter().enumerate() {
+        let fp = j["fingerprint"].as_str().unwrap();
+        let dir = if i % 2 == 0 { &shard_a } else { &shard_b };
+        std::fs::create_dir_all(dir).unwrap();
+        let o = output_guarded(
+            specgen().arg("measure").arg("--jobs").arg(plan.join("jobs.json")).args(["--fingerprint", fp]).arg("--out").arg(dir.join(format!("{fp}.json"))),
+            "specgen measure",
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    // a shard alone names what it lacks
+    let one = tmp.path().join("one");
+    let o = explore(&one, &[&shard_a], &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let merge: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(one.join("merge.json")).unwrap()).unwrap();
+    assert_eq!(merge["missing"].as_array().unwrap().len(), jobs.len() / 2);
+    // both shards, and the resumed sweep: every job measured, the same points and fronts
+    let (swept, merged) = (tmp.path().join("swept"), tmp.path().join("merged"));
+    assert!(explore(&swept, &[&results], &[]).status.success());
+    assert!(explore(&merged, &[&shard_a, &shard_b], &[]).status.success());
+    let (ps, pm) = (points(&swept), points(&merged));
+    assert_eq!(ps["points"], pm["points"]);
+    for p in ps["points"].as_array().unwrap() {
+        assert!(p["measured"]["fmax_mhz"].as_f64().unwrap() > 0.0, "{p}");
+        assert_eq!(p["measured"]["seeds"], serde_json::json!([1, 2]));
+    }
+    assert_eq!(std::fs::read(swept.join("front.csv")).unwrap(), std::fs::read(merged.join("front.csv")).unwrap());
+    // shards that overlap merge (identical results are one); all three directories at once
+    let all = tmp.path().join("all");
+    assert!(explore(&all, &[&results, &shard_a, &shard_b], &[]).status.success());
+    assert_eq!(points(&all)["points"], ps["points"]);
+    // a seed added plans its own jobs only: the results of the others are kept, its are missing
+    let other = tmp.path().join("other");
+    let three: Vec<&str> = NARROW.iter().map(|&a| if a == "2" { "3" } else { a }).collect();
+    let o = output_guarded(specgen().arg("explore").arg("--out").arg(&other).args(&three).arg("--results").arg(&results), "explore");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let merge: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(other.join("merge.json")).unwrap()).unwrap();
+    assert_eq!(merge["missing"].as_array().unwrap().len(), jobs.len() / 2);
+    // a result renamed is refused, naming it
+    let r = results_in(&results)[0].clone();
+    std::fs::rename(&r, results.join("00000000000000000000.json")).unwrap();
+    let o = explore(&tmp.path().join("renamed"), &[&results], &[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("fingerprint"), "{}", String::from_utf8_lossy(&o.stderr));
+}
