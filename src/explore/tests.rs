@@ -1,0 +1,118 @@
+//! The front, the fingerprints, the merge and the choice.
+
+use super::*;
+use crate::config::{Params, RomStyle, SpecularModel};
+use std::collections::BTreeMap;
+
+fn space() -> Space {
+    let base = Params { n_bits: 4, color_bits: 4, ..Params::default() };
+    Space {
+        base,
+        models: SpecularModel::ALL.into_iter().filter(|m| ["quadratic", "blinn"].contains(&m.name())).collect(),
+        cos_frac_bits: vec![8],
+        intensity_frac_bits: vec![8],
+        dsp_budgets: vec![None],
+        rom_styles: vec![RomStyle::File],
+        clocks: vec![],
+    }
+}
+
+#[test]
+fn a_front_is_what_no_point_beats_on_both() {
+    let mut ps = points(&space(), &|_, _| {}).unwrap();
+    assert!(ps.len() >= 2);
+    let clocks = space().clocks();
+    mark_fronts(&mut ps, Metric::Max, &clocks);
+    for &mhz in &clocks {
+        let on: Vec<&Point> = ps.iter().filter(|p| p.front.contains(&mhz)).collect();
+        for p in &on {
+            assert!(p.fmax().unwrap() >= mhz);
+            // no point reaching the clock is both cheaper-or-equal and strictly better
+            assert!(!ps
+                .iter()
+                .any(|q| q.fmax().is_some_and(|f| f >= mhz) && q.cells() <= p.cells() && Metric::Max.of(&q.accuracy) < Metric::Max.of(&p.accuracy)));
+        }
+        // every point reaching the clock is beaten or matched by a front point
+        for q in ps.iter().filter(|q| q.fmax().is_some_and(|f| f >= mhz)) {
+            assert!(on.iter().any(|p| p.cells() <= q.cells() && Metric::Max.of(&p.accuracy) <= Metric::Max.of(&q.accuracy)), "{} not covered", q.id);
+        }
+    }
+}
+
+#[test]
+fn a_fingerprint_changes_with_params_seed_and_tools() {
+    let ps = points(&space(), &|_, _| {}).unwrap();
+    let tools: Versions = [("yosys".to_string(), "Yosys 0.23".to_string())].into();
+    let a = Job::new(&ps[0], "r", 1, &tools);
+    assert_eq!(a.fingerprint, a.compute_fingerprint());
+    assert_ne!(a.fingerprint, Job::new(&ps[0], "r", 2, &tools).fingerprint);
+    assert_ne!(a.fingerprint, Job::new(&ps[1], "r", 1, &tools).fingerprint);
+    assert_ne!(a.fingerprint, Job::new(&ps[0], "another RTL", 1, &tools).fingerprint);
+    let newer: Versions = [("yosys".to_string(), "Yosys 0.70".to_string())].into();
+    assert_ne!(a.fingerprint, Job::new(&ps[0], "r", 1, &newer).fingerprint);
+}
+
+#[test]
+fn a_merge_names_missing_and_conflicting_jobs() {
+    let mut ps = points(&space(), &|_, _| {}).unwrap();
+    let tools: Versions = [("yosys".to_string(), "x".to_string())].into();
+    let ids = vec![ps[0].id.clone(), ps[1].id.clone()];
+    let jobs = jobs_of(&ps, &ids, &[1, 2], &tools).unwrap();
+    assert_eq!(jobs.len(), 4);
+    let result =
+        |j: &Job, f: f64| JobResult { job: j.clone(), synth: crate::synth::SynthResult { fmax_mhz: Some(f), logic_cells: Some(100), ..Default::default() } };
+    let mut rs = vec![result(&jobs[0], 50.0), result(&jobs[1], 60.0), result(&jobs[2], 70.0), result(&jobs[2], 71.0)];
+    let report = merge(&mut ps, &jobs, &rs);
+    assert_eq!(report.missing.len(), 1);
+    assert!(report.missing[0].starts_with(&jobs[3].fingerprint));
+    assert_eq!(report.conflicting.len(), 1);
+    assert_eq!(ps[0].measured.as_ref().unwrap().fmax_mhz, Some(55.0));
+    assert!(ps[1].measured.is_none());
+    rs.pop();
+    rs.push(result(&jobs[3], 80.0));
+    let report = merge(&mut ps, &jobs, &rs);
+    assert!(report.missing.is_empty() && report.conflicting.is_empty());
+    assert_eq!(ps[1].measured.as_ref().unwrap().fmax_mhz, Some(75.0));
+}
+
+#[test]
+fn the_choice_is_the_cheapest_measured_point_meeting_both() {
+    let mut ps = points(&space(), &|_, _| {}).unwrap();
+    for (i, p) in ps.iter_mut().enumerate() {
+        p.measured = Some(Measured {
+            seeds: vec![1],
+            fmax_seeds: vec![50.0 + 10.0 * i as f64],
+            fmax_mhz: Some(50.0 + 10.0 * i as f64),
+            route_seeds: vec![],
+            logic_cells: Some(100 + i as u64),
+            luts: 0,
+            flip_flops: 0,
+            dsp_blocks: 0,
+            block_rams: 0,
+            limited_by: String::new(),
+            note: String::new(),
+            jobs: vec![],
+            tools: BTreeMap::new(),
+        });
+    }
+    let e = Exploration {
+        generator: "specgen".into(),
+        version: "x".into(),
+        target: "ice40".into(),
+        part: "p".into(),
+        metric: "max".into(),
+        clocks: vec![],
+        seeds: vec![1],
+        points: ps.clone(),
+    };
+    let base = &space().base;
+    let c = choose(&e, base, Metric::Max, 1.0, 50.0).unwrap();
+    assert_eq!(c.point.id, ps[0].id);
+    let c = choose(&e, base, Metric::Max, 1.0, 55.0).unwrap();
+    assert_eq!(c.point.id, ps[1].id);
+    let err = choose(&e, base, Metric::Max, 1e-9, 50.0).unwrap_err();
+    assert_eq!(err.parameter(), Some("max_error"));
+    assert!(err.reason().contains("nearest"), "{}", err.reason());
+    let other = Params { n_bits: 10, ..base.clone() };
+    assert!(choose(&e, &other, Metric::Max, 1.0, 50.0).is_err());
+}
