@@ -8,7 +8,7 @@ fn space() -> Space {
     let base = Params { n_bits: 4, color_bits: 4, ..Params::default() };
     Space {
         base,
-        models: SpecularModel::ALL.into_iter().filter(|m| ["quadratic", "blinn"].contains(&m.name())).collect(),
+        models: SpecularModel::ALL[..2].to_vec(),
         cos_frac_bits: vec![8],
         intensity_frac_bits: vec![8],
         dsp_budgets: vec![None],
