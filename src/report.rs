@@ -348,7 +348,8 @@ pub(crate) struct ModelComparison {
     pub(crate) blinn_error_mean_text: String,
     pub(crate) worst_n: u32,
     pub(crate) worst_cos_g: u32,
-    pub(crate) hardware: Option<crate::synth::SynthResult>,
+    /// every `--hw` result of this model, in the order given (two units of one model are two rows)
+    pub(crate) hardware: Vec<crate::synth::SynthResult>,
     /// its part in the verdict on the premise
     #[serde(skip)]
     pub(crate) role: Option<crate::models::PremiseRole>,
@@ -371,14 +372,23 @@ pub(crate) fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
         .collect()
 }
 
-/// Where a row's hardware was measured: target, DSPs, pipeline depth, and the clock it was
-/// constrained to when it was pipelined for one.
-fn operating_point(h: &crate::synth::SynthResult) -> String {
+/// Where a row's hardware was measured: target, DSPs, widths, pipeline depth, the clock it was
+/// constrained to when it was pipelined for one, budget and the seeds.
+pub(crate) fn operating_point(h: &crate::synth::SynthResult) -> String {
     let clock = match (h.stages, h.clock_mhz) {
         (s, Some(c)) if s > 0 => format!(" for {c} MHz"),
         _ => String::new(),
     };
-    format!("{}{}, {} stage(s){clock}", h.target, if h.dsp { " with DSPs" } else { ", LUTs only" }, h.stages)
+    let widths = match h.widths.is_empty() {
+        true => String::new(),
+        false => format!(", F/N/B/FI {}", h.widths),
+    };
+    let budget = h.dsp_budget.map_or(String::new(), |b| format!(", --dsp-budget {b}"));
+    let seeds = match h.seeds.is_empty() {
+        true => String::new(),
+        false => format!(", nextpnr seeds {}", crate::synth::seed_list(&h.seeds)),
+    };
+    format!("{}{}{widths}, {} stage(s){clock}{budget}{seeds}", h.target, if h.dsp { " with DSPs" } else { ", LUTs only" }, h.stages)
 }
 
 /// What a row's area is counted in: logic cells after packing (the wrapper included) when
@@ -412,8 +422,8 @@ fn premise(rows: &[ModelComparison]) -> String {
         sig3(b.blinn_error_max),
         sig3(p.blinn_error_max)
     );
-    let measured: Vec<&ModelComparison> = rows.iter().filter(|r| r.hardware.is_some()).collect();
-    match (&q.hardware, &b.hardware, &p.hardware) {
+    let measured: Vec<&ModelComparison> = rows.iter().filter(|r| !r.hardware.is_empty()).collect();
+    match (q.hardware.first(), b.hardware.first(), p.hardware.first()) {
         (Some(qh), Some(bh), Some(ph)) => {
             let (qa, unit) = area(qh);
             let (ba, bunit) = area(bh);
@@ -589,7 +599,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
                 blinn_error_mean_text: crate::render::sig3(f.mean),
                 worst_n: f.worst_n,
                 worst_cos_g: f.worst_cos,
-                hardware: hw.iter().find(|h| h.model == name).cloned(),
+                hardware: hw.iter().filter(|h| h.model == name).cloned().collect(),
                 role: m.unit().premise_role(),
             }
         })
@@ -632,7 +642,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
     }
     let mut data = data;
     let reference = model.unit().reference_words();
-    let hw_given = data.models.iter().any(|m| m.hardware.is_some());
+    let hw_given = data.models.iter().any(|m| !m.hardware.is_empty());
     let page = ReportPage {
         data: &data,
         unit_rows,

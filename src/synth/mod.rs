@@ -28,6 +28,13 @@ pub struct SynthResult {
     pub(crate) model: String,
     #[serde(default)]
     pub(crate) stages: u32,
+    /// the widths F/N/B/FI of the unit measured (`cos_frac_bits`, `n_bits`, `color_bits`,
+    /// `intensity_frac_bits`), as "15/10/8/15"
+    #[serde(default)]
+    pub(crate) widths: String,
+    /// the nextpnr seeds of the place-and-route runs, in order
+    #[serde(default)]
+    pub(crate) seeds: Vec<u32>,
     pub(crate) target: String,
     pub(crate) dsp: bool,
     /// the clock the unit is constrained to (its `.sdc`, nextpnr's `--freq`), MHz
@@ -354,6 +361,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let mut r = SynthResult {
         model: cfg.model().name().to_string(),
         stages: cfg.stages(),
+        widths: format!("{}/{}/{}/{}", cfg.f(), cfg.n_bits(), cfg.b(), cfg.fi()),
+        seeds: Vec::new(),
         top: top.clone(),
         target: format!("{target:?}").to_lowercase(),
         dsp,
@@ -458,6 +467,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         return Ok((r, logs));
     }
     r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax_of_log(log)).collect();
+    r.seeds = seeds.to_vec();
     r.logic_cells = runs.first().and_then(|(_, log)| logic_cells(log));
     r.fmax_route_mhz = median(&r.fmax_seeds);
     // icetime (IceStorm's timer, Debian's fpga-icestorm) on each placed seed: its own delay

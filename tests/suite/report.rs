@@ -176,8 +176,8 @@ fn report_shows_synthesis_results_given_with_hw() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     let of = |name: &str| json["models"].as_array().unwrap().iter().find(|m| m["model"] == name).unwrap().clone();
-    assert_eq!(of("fitted")["hardware"]["luts"], 4321);
-    assert!(of("quadratic")["hardware"].is_null());
+    assert_eq!(of("fitted")["hardware"][0]["luts"], 4321);
+    assert_eq!(of("quadratic")["hardware"], serde_json::json!([]));
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("<td>4321</td><td>0</td><td>–</td><td>7</td><td>3</td><td>55.5</td><td>ice40 with DSPs, 0 stage(s)</td>"), "hardware row not shown");
     // the verdict follows the data it was given: one row measured, no stale sentence
@@ -318,4 +318,27 @@ fn report_numbers_are_right_and_only_the_models_own() {
         assert_eq!(html.contains("Cut-off angle"), quadratic, "{name}: cut-off figure");
         assert!(!html.contains("0.0000<"), "{name}: an error printed as 0.0000");
     }
+}
+
+/// The exploration issue, point 5: each hardware row names its widths, depth and seeds, and
+/// two units of one model are both kept.
+#[test]
+fn report_keeps_two_units_of_one_model_each_with_its_widths_depth_and_seeds() {
+    let tmp = tempfile::tempdir().unwrap();
+    let a = tmp.path().join("a.json");
+    let b = tmp.path().join("b.json");
+    std::fs::write(&a, r#"{"top": "u", "model": "blinn", "stages": 41, "widths": "15/10/8/15", "seeds": [1, 2, 3], "target": "ice40", "dsp": true, "luts": 1111, "dsp_blocks": 8, "block_rams": 7, "fmax_mhz": 126.4}"#).unwrap();
+    std::fs::write(&b, r#"{"top": "u", "model": "blinn", "stages": 22, "widths": "8/10/8/8", "seeds": [4], "dsp_budget": 5, "target": "ice40", "dsp": true, "luts": 2222, "dsp_blocks": 5, "block_rams": 2, "fmax_mhz": 101.5}"#).unwrap();
+    let out = tmp.path().join("r");
+    let o = specgen().args(["report", "--cos-frac-bits", "9", "--n-bits", "5", "--out"]).arg(&out).arg("--hw").arg(&a).arg("--hw").arg(&b).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let rows: Vec<&str> = html.lines().filter(|l| l.starts_with("<td>") && (l.contains("1111") || l.contains("2222"))).collect();
+    assert_eq!(rows.len(), 2, "both blinn units kept: {rows:?}");
+    assert!(rows[0].contains("F/N/B/FI 15/10/8/15") && rows[0].contains("41 stage(s)") && rows[0].contains("seeds 1..=3"), "{}", rows[0]);
+    assert!(
+        rows[1].contains("F/N/B/FI 8/10/8/8") && rows[1].contains("22 stage(s)") && rows[1].contains("--dsp-budget 5") && rows[1].contains("seeds 4"),
+        "{}",
+        rows[1]
+    );
 }
