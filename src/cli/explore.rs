@@ -109,6 +109,10 @@ pub struct MeasureArgs {
     /// The nextpnr binary [default: the family's].
     #[arg(long, value_name = "PATH")]
     pub nextpnr: Option<String>,
+    /// Keep yosys's netlists here by what made them, so the job of another seed of the same
+    /// unit synthesizes it no more (a sweep passes RESULTS/.yosys-cache).
+    #[arg(long, value_name = "DIR")]
+    pub cache: Option<PathBuf>,
 }
 
 /// The most jobs a plan holds; the largest jobs file.
@@ -256,7 +260,7 @@ pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {
     if specgen::output::same_file(&a.out, &a.jobs) {
         return Err(usage(format!("invalid --out: {} is the --jobs file this command reads", a.out.display())));
     }
-    let r = explore::run_job(job, &tools(&a.yosys, &a.nextpnr))?;
+    let r = explore::run_job(job, &specgen::synth::Tools { cache: a.cache.clone(), ..tools(&a.yosys, &a.nextpnr) })?;
     let mut text = serde_json::to_string_pretty(&r).expect("serialises");
     text.push('\n');
     specgen::output::write_file(&a.out, text.as_bytes()).map_err(|e| Failure::io("write", &a.out, e))?;

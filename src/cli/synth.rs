@@ -74,7 +74,8 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         }
     }
     let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
-    let tools = specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone(), speed: args.speed, icetime: args.icetime.clone() };
+    let tools =
+        specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone(), speed: args.speed, icetime: args.icetime.clone(), cache: None };
     let (r, logs) = synthesize(&design, target, args.dsp, &tools, &if args.no_pnr { Vec::new() } else { (1..=args.seeds).collect::<Vec<u32>>() })?;
     if let Some(path) = &args.pnr_log {
         specgen::output::write_file(path, logs.as_bytes()).map_err(|e| Failure::io("write", path, e))?;

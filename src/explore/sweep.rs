@@ -214,6 +214,8 @@ pub fn run_job(job: &Job, tools: &crate::synth::Tools) -> Result<JobResult, Erro
     let unit = dir.path().join("unit");
     crate::output::write_dir_atomically(&unit, &crate::emit::generate_files(&plan))?;
     let design = crate::cosim::Design::load(&unit)?;
+    // IceStorm's second opinion is not part of an exploration's figures: not run
+    let tools = &crate::synth::Tools { icetime: String::new(), ..tools.clone() };
     let (synth, _) = crate::synth::synthesize(&design, job.params.target, true, tools, &[job.seed])?;
     Ok(JobResult { job: job.clone(), synth })
 }

@@ -245,6 +245,51 @@ pub fn seed_list(seeds: &[u32]) -> String {
     }
 }
 
+/// Runs yosys's `script` in `work`, which writes `products`; with a cache (`Tools::cache`), the
+/// products are taken from it when the same sources, script and yosys made them before, and
+/// kept there when made. The key is the SHA-256 of yosys's version, the script and every file
+/// of `work` (the staged sources and tables).
+fn cached_yosys(tools: &Tools, work: &Path, script: &str, products: &[&str]) -> Result<(), Failure> {
+    let Some(cache) = &tools.cache else {
+        run_yosys(&tools.yosys, work, script)?;
+        return Ok(());
+    };
+    use sha2::Digest;
+    let mut h = sha2::Sha256::new();
+    h.update(version_of(&tools.yosys, "-V")?.as_bytes());
+    h.update(script.as_bytes());
+    let mut names: Vec<std::path::PathBuf> =
+        std::fs::read_dir(work).map_err(|e| Failure::io("read", work, e))?.flatten().map(|e| e.path()).filter(|p| p.is_file()).collect();
+    names.sort();
+    for p in &names {
+        let bytes = crate::small_file::read_bytes(p, 256 << 20).map_err(|e| input(format!("{} {e}", p.display())))?;
+        h.update(p.file_name().map(|n| n.as_encoded_bytes()).unwrap_or_default());
+        h.update((bytes.len() as u64).to_le_bytes());
+        h.update(&bytes);
+    }
+    let key: String = h.finalize().iter().take(16).map(|b| format!("{b:02x}")).collect();
+    let kept = cache.join(&key);
+    if products.iter().all(|p| kept.join(p).is_file()) {
+        for p in products {
+            std::fs::copy(kept.join(p), work.join(p)).map_err(|e| Failure::io("copy", kept.join(p), e))?;
+        }
+        return Ok(());
+    }
+    run_yosys(&tools.yosys, work, script)?;
+    // kept whole or not at all: made in a directory of its own, then renamed into place (a job
+    // that made the same products first wins; both are the same bytes)
+    std::fs::create_dir_all(cache).map_err(|e| Failure::io("create", cache, e))?;
+    let tmp = tempfile::Builder::new().prefix(".new-").tempdir_in(cache).map_err(|e| Failure::io("create a directory in", cache, e))?;
+    for p in products {
+        std::fs::copy(work.join(p), tmp.path().join(p)).map_err(|e| Failure::io("copy", work.join(p), e))?;
+    }
+    let made = tmp.keep();
+    if std::fs::rename(&made, &kept).is_err() {
+        let _ = std::fs::remove_dir_all(&made);
+    }
+    Ok(())
+}
+
 /// The median (mean of the two middle values for an even count).
 pub fn median(v: &[f64]) -> Option<f64> {
     let mut s = v.to_vec();
@@ -304,11 +349,14 @@ pub struct Tools {
     pub speed: u32,
     /// IceStorm's timer for the iCE40's second opinion (a path, or a name on the PATH)
     pub icetime: String,
+    /// A directory where yosys's netlists are kept by what made them (the sources, the script,
+    /// yosys's version): a sweep's jobs of one unit with other seeds synthesize it once
+    pub cache: Option<std::path::PathBuf>,
 }
 
 impl Default for Tools {
     fn default() -> Self {
-        Tools { yosys: "yosys".into(), nextpnr: None, speed: 6, icetime: "icetime".into() }
+        Tools { yosys: "yosys".into(), nextpnr: None, speed: 6, icetime: "icetime".into(), cache: None }
     }
 }
 
@@ -344,7 +392,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         "{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; {NO_SCOPEINFO}; check -assert; tee -q -o stat.json stat -json; write_json netlist.json",
         synth_cmd(&top)
     );
-    run_yosys(yosys, work.path(), &script)?;
+    cached_yosys(tools, work.path(), &script, &["stat.json", "netlist.json"])?;
     // every hard multiplier's registers, on the netlist: each one without its output register
     // is listed, and makes nextpnr's figure an upper bound (it does not time the multiply)
     let netlist = work.path().join("netlist.json");
@@ -418,7 +466,12 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let (tool, args) = (pnr.tool.as_str(), pnr.args.as_slice());
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
-    run_yosys(yosys, work.path(), &format!("{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")))?;
+    cached_yosys(
+        tools,
+        work.path(),
+        &format!("{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")),
+        &["wrapped.json"],
+    )?;
     // one nextpnr per seed, as many at a time as there are cores
     // iCE40: the placed design as an .asc per seed, for icetime's second opinion
     let asc = |seed: u32| format!("seed{seed}.asc");
