@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs a sweep (`specgen explore`'s jobs.json) on Snakemake: on this machine on every core by
 # default, on a cluster with a profile (scripts/sweep/profiles/slurm). Each job's result is
-# RESULTS/<fingerprint>.json; run again after an interruption and only what is missing runs.
+# RESULTS/<fingerprint>.json; run again after an interruption and only what is missing runs
+# (a result is never run again because the Snakefile changed: its fingerprint says what it is).
 #   scripts/sweep.sh JOBS.json RESULTS_DIR [snakemake options, e.g. --cores 1 or --profile P]
 set -euo pipefail
 [ $# -ge 2 ] || { echo "usage: $0 JOBS.json RESULTS_DIR [snakemake options]" >&2; exit 2; }
@@ -20,4 +21,4 @@ if [ -d "$results/.snakemake/locks" ] && ! pgrep -f -- "--directory $results( |$
 fi
 exec snakemake -s "$here/sweep/Snakefile" --directory "$results" --config jobs="$jobs" specgen="$specgen" \
     ${YOSYS:+yosys="$YOSYS"} ${NEXTPNR:+nextpnr="$NEXTPNR"} \
-    --rerun-incomplete --keep-going --printshellcmds "${cores[@]}" "$@"
+    --rerun-incomplete --rerun-triggers mtime --keep-going --printshellcmds "${cores[@]}" "$@"

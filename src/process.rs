@@ -197,6 +197,7 @@ fn tools_tmp() -> Option<PathBuf> {
             remove_orphans(&base, "specgen-", true);
             let dir = tempfile::Builder::new().prefix(&format!("specgen-{}-tools-", std::process::id())).tempdir_in(&base).ok()?;
             let path = dir.keep();
+            mark(&path);
             TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.clone());
             Some(path)
         })
@@ -221,6 +222,7 @@ pub struct TempDir {
 
 impl TempDir {
     fn register(inner: tempfile::TempDir) -> TempDir {
+        mark(inner.path());
         TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(inner.path().to_path_buf());
         TempDir { inner: Some(inner) }
     }
@@ -277,9 +279,33 @@ pub(crate) fn process_gone(pid: i32) -> bool {
     pid > 0 && unsafe { libc::kill(pid, 0) } != 0 && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH)
 }
 
-/// Removes what a killed run left in `dir`: the entries `<prefix><pid>-…` whose process no
-/// longer runs and that are the caller's own, directories (`dirs`: work and build
-/// directories) or files (a single-file output's temporary).
+/// The file a temporary directory of specgen's holds from its first moment: what the sweep of
+/// a killed run's leftovers asks before it removes a directory, so that a user's own
+/// `specgen-2026-11-28/` (a name like ours) is never taken for one.
+pub(crate) const MARKER: &str = ".specgen-temporary";
+
+/// The marker's text for process `pid`.
+fn marker_text(pid: u32) -> String {
+    format!("a temporary directory of specgen process {pid}, removed when it ends\n")
+}
+
+/// Writes the marker into a directory just made.
+fn mark(dir: &Path) {
+    let _ = std::fs::write(dir.join(MARKER), marker_text(std::process::id()));
+}
+
+/// Whether `rest` (a name after `<prefix><pid>-`) is what specgen's own names put there: the
+/// random part of `tempfile` (six letters or digits), perhaps after `tools-`.
+fn random_part(rest: &str) -> bool {
+    let r = rest.strip_prefix("tools-").unwrap_or(rest);
+    r.len() == 6 && r.bytes().all(|b| b.is_ascii_alphanumeric())
+}
+
+/// Removes what a killed run left in `dir`: the entries named exactly as specgen names them
+/// (`<prefix><pid>-<random>`) whose process no longer runs and that are the caller's own —
+/// directories (`dirs`: work and build directories) only when they hold specgen's marker naming
+/// that process, files (a single-file output's temporary) by their name. Nothing else is
+/// touched, however like ours its name is.
 pub(crate) fn remove_orphans(dir: &Path, prefix: &str, dirs: bool) {
     use std::os::unix::fs::MetadataExt;
     let Ok(entries) = std::fs::read_dir(dir) else { return };
@@ -288,10 +314,23 @@ pub(crate) fn remove_orphans(dir: &Path, prefix: &str, dirs: bool) {
     for entry in entries.flatten().take(100_000) {
         let name = entry.file_name();
         let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
-        let Some(pid) = rest.split('-').next().and_then(|p| p.parse::<i32>().ok()) else { continue };
+        let Some((pid, random)) = rest.split_once('-') else { continue };
+        let Some(pid) = pid.parse::<i32>().ok().filter(|p| *p > 0 && pid.bytes().all(|b| b.is_ascii_digit())) else { continue };
+        if !random_part(random) {
+            continue;
+        }
         let Ok(meta) = std::fs::symlink_metadata(entry.path()) else { continue };
         if meta.uid() != me || !process_gone(pid) {
             continue;
+        }
+        if dirs && meta.is_dir() {
+            // ours only if it says so, naming that process (a bounded read of a regular file)
+            let marker = entry.path().join(MARKER);
+            let says = std::fs::symlink_metadata(&marker).is_ok_and(|m| m.is_file() && m.len() < 256)
+                && std::fs::read_to_string(&marker).is_ok_and(|t| t == marker_text(pid as u32));
+            if !says {
+                continue;
+            }
         }
         if dirs && meta.is_dir() {
             let _ = std::fs::remove_dir_all(entry.path());

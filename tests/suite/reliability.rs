@@ -749,3 +749,42 @@ fn only_named_tools_run_and_a_tools_failure_is_its_own() {
     assert_eq!(o.status.code(), Some(1), "{said}");
     assert!(said.contains("naming no line of the RTL") && said.contains("broken install"), "{said}");
 }
+
+/// Reliability V, finding 1: the sweep of a killed run's leftovers removes only what a run
+/// provably made (specgen's name with its random part, and its marker naming the dead
+/// process), never a user's directory that merely looks like one.
+#[test]
+fn the_sweep_of_leftovers_never_removes_a_users_directory() {
+    use crate::common::specgen;
+    let tmp = tempfile::tempdir().unwrap();
+    // a process id that is gone: a child that has ended
+    let mut child = std::process::Command::new("true").spawn().unwrap();
+    child.wait().unwrap();
+    let dead = child.id();
+    let users = ["specgen-2026-11-28", &format!("specgen-{dead}-results"), "specgen-2025-summary", &format!("specgen-{dead}-abcdef")];
+    for d in &users {
+        std::fs::create_dir(tmp.path().join(d)).unwrap();
+        std::fs::write(tmp.path().join(d).join("keep.txt"), "mine").unwrap();
+    }
+    // a marker that names another process does not make a directory ours either
+    std::fs::write(tmp.path().join(users[3]).join(".specgen-temporary"), "a temporary directory of specgen process 1, removed when it ends\n").unwrap();
+    // what a killed run of ours left: our name, our marker naming it
+    let ours = tmp.path().join(format!("specgen-{dead}-Xy12Zq"));
+    std::fs::create_dir(&ours).unwrap();
+    std::fs::write(ours.join(".specgen-temporary"), format!("a temporary directory of specgen process {dead}, removed when it ends\n")).unwrap();
+    std::fs::write(ours.join("netlist.json"), "{}").unwrap();
+    let png = tmp.path().join("out").join("r.png");
+    std::fs::create_dir(png.parent().unwrap()).unwrap();
+    // any command that makes a temporary directory sweeps first
+    let o = specgen()
+        .env("TMPDIR", tmp.path())
+        .args(["render", "--models", "quadratic", "--model-only", "--n", "1", "--size", "16", "--out"])
+        .arg(&png)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for d in &users {
+        assert_eq!(std::fs::read_to_string(tmp.path().join(d).join("keep.txt")).unwrap(), "mine", "{d} was touched");
+    }
+    assert!(!ours.exists(), "a killed run's own directory was left");
+}
