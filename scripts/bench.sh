@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates BENCHMARKS.md: generator, golden-model and co-simulation speed on this machine.
+# Regenerates benchmarks/speed.md: generator, golden-model and co-simulation speed on this machine.
 # Usage: scripts/bench.sh   (needs verilator; builds the release binary first)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,10 +36,10 @@ t0=$(now); exb=$($bin cosim --rtl "$work/rtl_blinn" --exhaustive); t1=$(now); ex
 rate() { sed -E 's/.*\(([0-9.]+) M cycles\/s\).*/\1/' <<<"$1"; }
 ratio=$(RUNS=5 scripts/bench_cosim_ratio.sh)
 
-cat > BENCHMARKS.md <<MD
+cat > benchmarks/speed.md <<MD
 # Benchmarks
 
-Hardware (area, DSPs, Fmax of every model): [\`BENCHMARKS-hw.md\`](BENCHMARKS-hw.md), from \`scripts/bench_hw.sh\`.
+Hardware (area, DSPs, Fmax of every model): [\`benchmarks/hw.md\`](benchmarks/hw.md), from \`scripts/bench_hw.sh\`.
 
 Produced by \`scripts/bench.sh\` on $(nproc) cores ($(uname -m)), $(verilator --version | head -1),
 $(iverilog -V 2>/dev/null | head -1 | cut -c1-40). Wall-clock seconds of whole commands.
@@ -105,4 +105,6 @@ rather than by running \`verilator --version\` (30 ms a call). Left: the Verilat
 evaluation (the floor), the harness's sweep and hashing, and the golden model's evaluation and
 digest on the other core.
 MD
-echo "wrote BENCHMARKS.md"
+source scripts/bench_stamp.sh
+bench_stamp "scripts/bench.sh" >> benchmarks/speed.md
+echo "wrote benchmarks/speed.md"

@@ -25,3 +25,5 @@ config_args() {
     case $1 in *:wide) printf '%s\n' "${wide[@]}" ;; *:narrow) printf '%s\n' "${narrow[@]}" ;; esac
     return 0
 }
+# bench_stamp CMD: the provenance line that ends every benchmark file
+source "$(dirname "${BASH_SOURCE[0]}")/bench_stamp.sh"

@@ -5,7 +5,7 @@
 # 0.70; YoWASP's nextpnr-ecp5 for both): `synth --dsp --verify --verify-exhaustive` (the mapped
 # netlist against the golden model on every (cos_g, n) under Verilator) and Fmax over nextpnr
 # seeds 1..$SEEDS (median and range), capped at every block's own limit (DP16KD, MULT18X18D).
-# Rewrites the "ECP5 past the block RAM's cap" section of BENCHMARKS-hw.md.
+# Rewrites the "ECP5 past the block RAM's cap" section of benchmarks/hw.md.
 #   SEEDS=5 scripts/bench_ecp5_logic_rom.sh
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-5}

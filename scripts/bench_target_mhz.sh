@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Regenerates BENCHMARKS-target.md: how good `generate --target-mhz F` is. For every model and
+# Regenerates benchmarks/target.md: how good `generate --target-mhz F` is. For every model and
 # F in {50, 75, 100} on the iCE40 UP5K and {100, 150, 200} on the ECP5-25, the depth the delay
 # model picks (in milliseconds, no place-and-route), its predicted Fmax, and the median Fmax
 # over nextpnr seeds 1..SEEDS (default 3) of that unit and of the unit one cut shallower (a
 # unit measured once serves every row that asks for it).
 # MODELS (default every model but blinn-pow, which fits neither part — lean for quadratic — and
 # "lean:wide" on the ECP5: the wide widths of bench_common.sh) and FAMILIES narrow it; OUT (default
-# BENCHMARKS-target.md) is where the table goes. Needs yosys and nextpnr; hours on 2 cores
+# benchmarks/target.md) is where the table goes. Needs yosys and nextpnr; hours on 2 cores
 # with every model (blinn's deep units take minutes a seed).
 # SAMPLE=N instead measures N random configurations (models x widths x families; below).
 source "$(dirname "$0")/bench_common.sh"
@@ -35,8 +35,8 @@ if [ -n "${SAMPLE:-}" ]; then
     # FI 8-15), and a target clock. Each is generated with --target-mhz; a pick is "reaches"
     # when the median over the seeds is at least the target, "misses" otherwise; a target the
     # generator refuses beforehand (exit 2) is "refused". Writes OUT (default
-    # BENCHMARKS-target-sample.md).
-    out=${OUT:-BENCHMARKS-target-sample.md}
+    # benchmarks/target-sample.md).
+    out=${OUT:-benchmarks/target-sample.md}
     python3 - "$SAMPLE" "${SAMPLE_SEED:-1}" "$(placeable | tr '\n' ' ')" > "$work/sample.txt" <<'PY'
 import random, sys
 n, seed, models = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3].split()
@@ -143,5 +143,6 @@ done
     echo "| model | family | target MHz | stages | predicted MHz | measured MHz | one cut fewer | verdict | generate took |"
     echo "|---|---|---|---|---|---|---|---|---|"
     cat "$rows"
-} > "${OUT:-BENCHMARKS-target.md}"
-echo "wrote ${OUT:-BENCHMARKS-target.md}" >&2
+} > "${OUT:-benchmarks/target.md}"
+bench_stamp "scripts/bench_target_mhz.sh" >> "${OUT:-benchmarks/target.md}"
+echo "wrote ${OUT:-benchmarks/target.md}" >&2

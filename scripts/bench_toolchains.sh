@@ -3,7 +3,7 @@
 # and YoWASP's yosys 0.70 + nextpnr-ice40 0.11 (PyPI). For each: `synth --dsp --verify
 # --verify-exhaustive` (the mapped netlist against the golden model on every (cos_g, n) under
 # Verilator, and a random set under Icarus) and Fmax over nextpnr seeds 1..$SEEDS (median and
-# range). Rewrites the "Toolchains" section of BENCHMARKS-hw.md.
+# range). Rewrites the "Toolchains" section of benchmarks/hw.md.
 #   SEEDS=5 scripts/bench_toolchains.sh
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-5}

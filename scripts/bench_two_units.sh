@@ -6,7 +6,7 @@
 # 1..$SEEDS (median and range of the clock, the device's logic cells and DSPs). Each unit's
 # own netlist is then checked against its golden model, every (cos_g, n) input, by
 # `specgen synth --verify --verify-exhaustive` (yosys's cell models, Verilator).
-# Writes BENCHMARKS-two-units.md.
+# Writes benchmarks/two-units.md.
 #   SEEDS=5 A=quadratic:3:28 B=blinn:5:47 scripts/bench_two_units.sh
 # A and B: model:dsp-budget:stages.
 source "$(dirname "$0")/bench_common.sh"
@@ -79,7 +79,7 @@ for u in "${units[@]}"; do
     echo "$top: $(grep -i -m2 'verify\|netlist' "$work/$top.verify.log" | tr '\n' ' ')" >> "$verify"
     grep "unregistered" "$work/$top.verify.log" | sed "s/^ *unregistered *//; s/^/$top: /" >> "$work/unregistered.txt" || true
 done
-python3 - "$rows" "$verify" "$seeds" "$run/stat.txt" "$work/unregistered.txt" "${units[@]}" > BENCHMARKS-two-units.md <<'PY'
+python3 - "$rows" "$verify" "$seeds" "$run/stat.txt" "$work/unregistered.txt" "${units[@]}" > benchmarks/two-units.md <<'PY'
 import statistics, sys, re
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 verify = open(sys.argv[2]).read().strip().splitlines()
@@ -122,4 +122,5 @@ print()
 for u in unreg:
     print(f"- {u}")
 PY
-cat BENCHMARKS-two-units.md
+bench_stamp "SEEDS=${SEEDS:-5} scripts/bench_two_units.sh" >> benchmarks/two-units.md
+cat benchmarks/two-units.md

@@ -541,7 +541,7 @@ mod tests {
     }
 
     /// Deeper targets never pick shallower pipelines, and each pick is the shallowest that the
-    /// model assures (how long a pick takes: BENCHMARKS-target.md, not a test's verdict).
+    /// model assures (how long a pick takes: benchmarks/target.md, not a test's verdict).
     #[test]
     fn picks_are_the_shallowest_and_grow_with_the_target() {
         let plan = Plan::new(Config::defaults()).unwrap();
