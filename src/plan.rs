@@ -50,6 +50,19 @@ impl Plan {
     /// The plan of a model already made (its configuration's `stages` placed).
     pub(crate) fn for_model(model: Model) -> Result<Plan, Error> {
         let cfg = model.cfg.clone();
+        if cfg.params.rom_style == crate::config::RomStyle::Logic && !crate::family::of(cfg.target()).writes_logic_tables() {
+            let takers: Vec<&str> = crate::config::Target::ALL.into_iter().filter(|t| crate::family::of(*t).writes_logic_tables()).map(|t| t.name()).collect();
+            return Err(Error::Config {
+                parameter: "rom_style",
+                message: format!(
+                    "logic is not written for {} {} on {}: that family's tables stay where its synthesis puts them; allowed there: file, case (logic: --target {})",
+                    cfg.model().name(),
+                    cfg.arch().name(),
+                    cfg.target().name(),
+                    takers.join(" or ")
+                ),
+            });
+        }
         let mut combinational = build(&model, &[], &BTreeSet::new());
         let fabric = match cfg.params.dsp_budget {
             Some(budget) => to_fabric(&combinational.product_uses, budget),

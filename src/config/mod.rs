@@ -493,11 +493,13 @@ impl Config {
                 message: format!("exact is not available with the {} model; allowed: faithful", params.model.name()),
             });
         }
-        if params.rom_style == RomStyle::Logic && !(params.model == SpecularModel::Quadratic && params.arch == Arch::Lean && params.target == Target::Ecp5) {
+        // (the family's part of the rule, which families write tables as logic, is the plan's:
+        // `Family::writes_logic_tables`)
+        if params.rom_style == RomStyle::Logic && !(params.model == SpecularModel::Quadratic && params.arch == Arch::Lean) {
             return Err(Error::Config {
                 parameter: "rom_style",
                 message: format!(
-                    "logic applies to the lean quadratic datapath on the ECP5 (--model quadratic --arch lean --target ecp5: its cut-off table kept out of DP16KD); allowed with {} {} on {}: file, case",
+                    "logic applies to the lean quadratic datapath (--model quadratic --arch lean: its cut-off table kept out of block RAM); allowed with {} {} on {}: file, case",
                     params.model.name(),
                     params.arch.name(),
                     params.target.name()
@@ -592,14 +594,10 @@ impl Config {
     pub fn clocked(&self) -> bool {
         self.stages() > 0 || self.interface().handshake() || self.colour() == Colour::Static
     }
-    /// The clock the constraint files and `synth` ask for: `clock_mhz`, else 200 MHz on ECP5
-    /// and 100 MHz elsewhere.
-    pub fn clock_mhz(&self) -> f64 {
-        match &self.params.clock_mhz {
-            Some(text) => parse_clock_mhz(text).expect("validated"),
-            None if self.target() == Target::Ecp5 => 200.0,
-            None => 100.0,
-        }
+    /// The clock the unit names (`clock_mhz`), if any; `crate::family::clock_mhz` gives the
+    /// family's default otherwise.
+    pub fn explicit_clock_mhz(&self) -> Option<f64> {
+        self.params.clock_mhz.as_ref().map(|text| parse_clock_mhz(text).expect("validated"))
     }
     /// The unit's ports (SPEC §2) in module order; `done_meaning` completes `done`'s comment.
     pub fn ports(&self, done_meaning: &str) -> Vec<crate::ports::Port> {

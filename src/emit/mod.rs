@@ -486,7 +486,7 @@ pub(crate) fn clock_port(cfg: &crate::config::Config) -> Option<&'static str> {
 /// the user's top when given (`clock_port`), else on the unit's own.
 fn constraint_files(cfg: &crate::config::Config) -> Vec<(String, String)> {
     let top = cfg.top();
-    let mhz = cfg.clock_mhz();
+    let mhz = crate::family::clock_mhz(cfg);
     let mhz_text = format!("{mhz}");
     let clock = clock_port(cfg).map(|own| cfg.params.clock_port.as_deref().unwrap_or(own));
     let sdc = SdcTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text.clone(), period: format!("{:.3}", 1000.0 / mhz) };
@@ -671,7 +671,7 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         tb_vectors: testbench[1].0.clone(),
         top,
         constraint_files: constraints.iter().map(|(n, _)| n.clone()).collect(),
-        clock_mhz: format!("{}", cfg.clock_mhz()),
+        clock_mhz: format!("{}", crate::family::clock_mhz(cfg)),
         version: VERSION,
         name: core_name(cfg),
         params: cfg.describe(),

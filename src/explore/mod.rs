@@ -311,7 +311,12 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
                     // a style the family does not write, a budget out of range: not in the space
                     Err(_) => continue,
                 };
-                let plan = Plan::for_model(golden.with_config(cfg))?;
+                let plan = match Plan::for_model(golden.with_config(cfg)) {
+                    Ok(p) => p,
+                    // a style the family does not write: not in the space
+                    Err(e) if e.parameter() == Some("rom_style") => continue,
+                    Err(e) => return Err(e),
+                };
                 let mut depths: BTreeMap<u32, Vec<f64>> = BTreeMap::new();
                 let mut at = BTreeMap::new();
                 for &mhz in &clocks {

@@ -29,6 +29,12 @@ impl Family for Ecp5 {
     fn dsp_capacity(&self) -> Option<u64> {
         Some(28)
     }
+    fn default_clock_mhz(&self) -> f64 {
+        200.0
+    }
+    fn writes_logic_tables(&self) -> bool {
+        true
+    }
     fn explore_clocks(&self) -> &'static [f64] {
         &[100.0, 150.0, 200.0, 250.0]
     }

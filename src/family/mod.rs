@@ -61,6 +61,15 @@ pub trait Family: Sync {
     /// limits): a depth is chosen per clock and the front is drawn per clock. Empty: no
     /// place-and-route to measure a clock with.
     fn explore_clocks(&self) -> &'static [f64];
+    /// The clock the constraint files and `synth` ask for when the unit names none, MHz.
+    fn default_clock_mhz(&self) -> f64 {
+        100.0
+    }
+    /// Whether a table may be written as logic (`--rom-style logic`: kept out of block RAM
+    /// where block RAM's own clock limit is below the rest of the unit's).
+    fn writes_logic_tables(&self) -> bool {
+        false
+    }
     /// The hard multiplier blocks of the part its figures are for (None: no part): `explore`
     /// measures no unit that needs more.
     fn dsp_capacity(&self) -> Option<u64>;
@@ -179,6 +188,12 @@ pub(crate) fn read(path: &Path) -> Result<String, (PathBuf, std::io::Error)> {
 }
 
 /// The family of `target`: the one registry, exhaustive over the targets.
+/// The clock the unit's constraints and `synth` ask for: its `clock_mhz`, else its family's
+/// default.
+pub fn clock_mhz(cfg: &crate::config::Config) -> f64 {
+    cfg.explicit_clock_mhz().unwrap_or_else(|| of(cfg.target()).default_clock_mhz())
+}
+
 pub fn of(target: Target) -> &'static dyn Family {
     match target {
         Target::Ice40 => &ice40::Ice40,

@@ -414,7 +414,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         top: top.clone(),
         target: format!("{target:?}").to_lowercase(),
         dsp,
-        clock_mhz: Some(cfg.clock_mhz()),
+        clock_mhz: Some(crate::family::clock_mhz(cfg)),
         luts: match family.generic_gates() {
             true => total_cells,
             false => count(&|n| n == "SB_LUT4" || n == "LUT4"),
@@ -486,7 +486,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             .current_dir(work.path())
             .args(["--json", "wrapped.json"])
             // the clock the constraints ask for (`clock_mhz`): nextpnr's timing-driven placement aims at it
-            .args(["--timing-allow-fail", "--freq", &format!("{}", design.cfg.clock_mhz()), "--seed", &seed.to_string()])
+            .args(["--timing-allow-fail", "--freq", &format!("{}", crate::family::clock_mhz(&design.cfg)), "--seed", &seed.to_string()])
             .output()
             .map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
         let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
