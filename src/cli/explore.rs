@@ -339,3 +339,71 @@ pub fn choose(
         ..params.clone()
     })
 }
+
+/// The built-in exploration of `target`'s family, if one was measured.
+fn built_in(target: Target) -> Result<Option<Exploration>, Failure> {
+    match specgen::family::of(target).explored() {
+        None => Ok(None),
+        Some(text) => Ok(Some(Exploration::from_text(text, "the built-in exploration")?)),
+    }
+}
+
+/// Parameters with what does not change the measured unit cleared: its depth, clock, names.
+fn shape(p: &Params) -> Params {
+    Params { stages: 0, clock_mhz: None, top: Params::default().top, clock_port: None, ..p.clone() }
+}
+
+/// `--target-mhz` where the delay model refuses: the shallowest depth of this very
+/// configuration that a measured unit of the built-in exploration reaches `mhz` at, with that
+/// evidence in words.
+pub fn measured_depth(params: &Params, mhz: f64) -> Result<Option<(u32, String)>, Failure> {
+    let Some(e) = built_in(params.target)? else { return Ok(None) };
+    let want = shape(params);
+    let best = e
+        .points
+        .iter()
+        .filter(|p| shape(&p.params) == want)
+        .filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz))
+        .min_by_key(|p| p.stages);
+    Ok(best.map(|p| {
+        let m = p.measured.as_ref().expect("measured");
+        (
+            p.stages,
+            format!(
+                "{:.1} MHz measured, median over nextpnr seeds {} ({} of {})",
+                m.fmax_mhz.unwrap_or(0.0),
+                specgen::synth::seed_list(&m.seeds),
+                p.id,
+                e.part
+            ),
+        )
+    }))
+}
+
+/// What a refusal of `--target-mhz` adds: the nearest measured unit of the same model (and
+/// budget) that reaches `mhz`, by widths, and how to choose among measured units.
+pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
+    let Some(e) = built_in(params.target)? else { return Ok(String::new()) };
+    let near = e
+        .points
+        .iter()
+        .filter(|p| p.params.model == params.model && p.params.n_bits == params.n_bits && p.params.color_bits == params.color_bits)
+        .filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz))
+        .min_by_key(|p| {
+            let d = p.params.cos_frac_bits.abs_diff(params.cos_frac_bits) + p.params.intensity_frac_bits.abs_diff(params.intensity_frac_bits);
+            (d, p.params.dsp_budget != params.dsp_budget, p.cells())
+        });
+    Ok(match near {
+        Some(p) => format!(
+            "; the nearest measured unit that reaches it: {} (--cos-frac-bits {} --intensity-frac-bits {} --stages {}{}), {:.1} MHz median over seeds {}; `generate --max-error E --target-mhz {mhz}` chooses among measured units",
+            p.id,
+            p.params.cos_frac_bits,
+            p.params.intensity_frac_bits,
+            p.stages,
+            p.params.dsp_budget.map_or(String::new(), |b| format!(" --dsp-budget {b}")),
+            p.fmax().unwrap_or(0.0),
+            p.measured.as_ref().map_or(String::new(), |m| specgen::synth::seed_list(&m.seeds))
+        ),
+        None => format!("; no measured {} unit of the built-in exploration reaches it", params.model.name()),
+    })
+}
