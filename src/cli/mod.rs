@@ -98,11 +98,12 @@ pub enum Command {
     },
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
     Cosim(cosim::CosimArgs),
-    /// Prove the unit's edge: valid's latency by ABC's pdr, unbounded; ready/axis: the unit's own
-    /// assertions by k-induction with yosys's sat (k bounded by its depth), then a port checker
-    /// written from the manifest, apart from the RTL (its assertions alone, latency + 8 edges
-    /// with ABC's bmc3, a bounded search) and its covers; --depth N searches the first N edges
-    /// instead, --pipelining proves the pipeline changes nothing (ABC's iprove).
+    /// Prove the unit's edge: valid's latency by ABC's pdr, unbounded; ready/axis: a port checker
+    /// written from the manifest, apart from the RTL, first searched for latency + 8 edges
+    /// (ABC's bmc3: a fault fails there with a trace), its covers reached, then proved for
+    /// every edge by k-induction with yosys's sat over its assertions and the unit's own; --depth
+    /// N searches the first N edges instead, --pipelining proves the pipeline changes nothing
+    /// (ABC's iprove), --datapath that a ready/axis unit delivers its datapath's values.
     Prove(prove::ProveArgs),
     /// Write golden vectors for any testbench: CSV (a header row of port names) or $readmemh
     /// hex, one row per input with the golden model's outputs; the header states the timing.
@@ -240,7 +241,7 @@ pub struct RtlArgs {
     pub top: Option<String>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points,
     /// which depend on the model, the widths and the target; at default widths ice40 / ecp5 /
-    /// generic: lean 13/11/10, fitted 65/48/16, blinn 38/35/22, blinn-pow 13, schlick 21/24/19,
+    /// generic: lean 13/11/10, fitted 65/48/16, blinn 41/37/24, blinn-pow 13, schlick 21/24/19,
     /// paper 6; a value above them is refused with the range; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,
@@ -250,7 +251,8 @@ pub struct RtlArgs {
     /// default: no limit]
     #[arg(allow_negative_numbers = true, value_parser = param_dsp_budget, long, value_name = "N", help_heading = "RTL")]
     pub dsp_budget: Option<u32>,
-    /// How tables are written: file ($readmemh) or case (inline) [default file]
+    /// How tables are written: file ($readmemh), case (inline) or logic (LUTs over two steps,
+    /// never block RAM: the lean quadratic unit on a family that takes it) [default file]
     #[arg(long, value_enum, help_heading = "RTL")]
     pub rom_style: Option<RomStyleFlag>,
     /// The FPGA family the datapath is shaped for: ice40 (16x16 DSPs with post-adders, short

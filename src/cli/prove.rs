@@ -47,8 +47,8 @@ pub struct ProveArgs {
     pub pipelining: bool,
     /// Prove instead that a ready/axis unit delivers its datapath's values: the port checker
     /// follows any one pixel and asserts that its delivered result equals what the same
-    /// configuration as a valid unit (top <top>_datapath) computes for it; a bounded search of
-    /// --depth edges [default: latency + 8]
+    /// configuration as a valid unit (top <top>_datapath) computes for it: searched for
+    /// latency + 8 edges (or --depth N), then proved for every edge by k-induction
     #[arg(long, conflicts_with = "pipelining")]
     pub datapath: bool,
 }

@@ -313,3 +313,47 @@ fn the_model_flag_lists_every_model_in_the_registrys_order() {
     let names: Vec<&str> = specgen::config::SpecularModel::ALL.iter().map(|m| m.name()).collect();
     assert!(text.contains(&format!("[possible values: {}]", names.join(", "))), "{text}");
 }
+
+/// The house issue, point 4: what the help texts and the guide quote — each model's deepest
+/// `--stages` per target at default widths, every `--rom-style`, the prove engines — is what
+/// the code does; a changed depth fails here.
+#[test]
+fn help_lines_and_the_guide_quote_what_the_code_does() {
+    use specgen::config::{Arch, Config, Params, SpecularModel, Target};
+    let deepest = |model: SpecularModel, arch: Arch, target: Target| {
+        specgen::plan::Plan::new(Config::new(Params { model, arch, target, ..Params::default() }).unwrap()).unwrap().cut_points
+    };
+    let targets = [Target::ALL[1], Target::ALL[2], Target::ALL[0]];
+    assert_eq!(targets.map(|t| t.name()), ["ice40", "ecp5", "generic"]);
+    let help = String::from_utf8(specgen().args(["generate", "--help"]).output().unwrap().stdout).unwrap();
+    let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    let guide = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/GUIDE.md")).unwrap();
+    for model in SpecularModel::ALL {
+        let archs: &[Arch] = if model.reads("arch") { &[Arch::Lean, Arch::Paper] } else { &[Arch::Lean] };
+        for &arch in archs {
+            let d: Vec<u32> = targets.iter().map(|&t| deepest(model, arch, t)).collect();
+            let (help_name, guide_name) = match (model.reads("arch"), arch) {
+                (true, Arch::Lean) => ("lean".to_string(), "quadratic (`lean`)".to_string()),
+                (true, _) => ("paper".to_string(), "quadratic `--arch paper`".to_string()),
+                _ => (model.name().to_string(), model.name().to_string()),
+            };
+            // the help: "name a/b/c", or "name a" where every target has the same depth
+            let quoted = if d.iter().all(|&x| x == d[0]) { format!("{help_name} {}", d[0]) } else { format!("{help_name} {}/{}/{}", d[0], d[1], d[2]) };
+            assert!(help.contains(&format!("{quoted},")) || help.contains(&format!("{quoted};")), "generate --help does not quote {quoted}");
+            // the guide's table of depths
+            let row = format!("| {guide_name} | {} | {} | {} |", d[0], d[1], d[2]);
+            assert!(guide.contains(&row), "docs/GUIDE.md lacks the row {row}");
+        }
+    }
+    // every ROM style is named in its help line
+    let rom = help.split("--rom-style <ROM_STYLE>").nth(1).unwrap().split("Possible values").next().unwrap();
+    for style in ["file", "case", "logic"] {
+        assert!(rom.contains(style), "--rom-style's help does not name {style}: {rom}");
+    }
+    // prove: the port checker is proved for every edge (k-induction), searched first; --datapath too
+    let prove = String::from_utf8(specgen().args(["prove", "--help"]).output().unwrap().stdout).unwrap();
+    let prove = prove.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(prove.contains("proved for every edge by k-induction"), "{prove}");
+    assert!(!prove.contains("a bounded search) and its covers"), "the port checker is not only a bounded search: {prove}");
+    assert!(prove.contains("--datapath") && prove.contains("then proved for every edge by k-induction"), "{prove}");
+}
