@@ -57,6 +57,11 @@ pub struct SynthArgs {
     /// Keep nextpnr's logs (critical paths) in FILE: every seed's, one after another.
     #[arg(long, value_name = "FILE")]
     pub pnr_log: Option<PathBuf>,
+    /// Synthesize an RTL changed on purpose: its files' SHA-256 are not checked against the
+    /// manifest (the manifest's and the header's fingerprints still are), and its promises
+    /// (the manifest's registers and budget) are still held to.
+    #[arg(long)]
+    pub edited: bool,
     /// The simulators of --verify.
     #[command(flatten)]
     pub sim: super::values::SimToolArgs,
@@ -64,10 +69,10 @@ pub struct SynthArgs {
 
 pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
-    if args.verify {
-        // the netlist is compared with the golden model: the RTL must first be what specgen wrote
-        design.verify_files(false)?;
-    }
+    // the manifest states the promises the netlist is held to (registers, budget, depth): it
+    // must be the RTL's own, its parameters unedited, and (unless --edited) the files the ones
+    // specgen wrote with it
+    design.verify_files(args.edited)?;
     for (flag, out) in [("--json", &args.json), ("--pnr-log", &args.pnr_log)] {
         if let Some(out) = out {
             design.refuse_output(flag, out)?;

@@ -788,3 +788,38 @@ fn the_sweep_of_leftovers_never_removes_a_users_directory() {
     }
     assert!(!ours.exists(), "a killed run's own directory was left");
 }
+
+/// Reliability V, finding 4: `synth` holds a netlist to its manifest's promises, so it checks
+/// that the manifest is the RTL's own (both fingerprints) and unedited, as cosim does.
+#[test]
+fn synth_refuses_a_manifest_that_is_not_the_rtls_own() {
+    use crate::common::{generate, specgen};
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"];
+    fn with<'a>(narrow: &[&'a str], stages: &'a str) -> Vec<&'a str> {
+        narrow.iter().copied().chain(["--stages", stages]).collect()
+    }
+    let zero = generate(tmp.path(), "zero", &with(&narrow, "0"));
+    let three = generate(tmp.path(), "three", &with(&narrow, "3"));
+    let synth = |dir: &std::path::Path| specgen().args(["synth", "--no-pnr", "--rtl"]).arg(dir).output().unwrap();
+    // a 0-stage RTL under a 3-stage manifest
+    let swapped = tmp.path().join("swapped");
+    std::fs::create_dir(&swapped).unwrap();
+    for e in std::fs::read_dir(&three).unwrap().flatten() {
+        std::fs::copy(e.path(), swapped.join(e.file_name())).unwrap();
+    }
+    std::fs::copy(zero.join("specular_unit.v"), swapped.join("specular_unit.v")).unwrap();
+    let o = synth(&swapped);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("fingerprint"), "{}", String::from_utf8_lossy(&o.stderr));
+    // the manifest's depth or budget edited by hand
+    let manifest = three.join("specular_unit.json");
+    let text = std::fs::read_to_string(&manifest).unwrap();
+    for edited in [text.replace("\"stages\": 3", "\"stages\": 0"), text.replace("\"stages\": 3,", "\"stages\": 3,\n  \"dsp_budget\": 1,")] {
+        assert_ne!(edited, text);
+        std::fs::write(&manifest, &edited).unwrap();
+        let o = synth(&three);
+        assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(String::from_utf8_lossy(&o.stderr).contains("edited by hand"), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+}
