@@ -556,7 +556,10 @@ fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), 
                     return Err(occupied(format!("it holds another kind of specgen output ({other}), not this one")));
                 }
             }
-            if v.get(k).is_none() {
+            // only the manifest by its own name vouches for the directory: a copy of it under
+            // another name (a user's annotated.json) is the user's
+            let own = if k == "claims" { "report.json" } else { "explore.json" };
+            if v.get(k).is_none() || name != own {
                 continue;
             }
         }

@@ -21,7 +21,8 @@ const ICARUS_BENCH: &str = include_str!("../../tb/icarus_bench.v");
 /// by no one else); a shared or planted directory is refused, never used.
 fn cache_root() -> Result<PathBuf, Failure> {
     let root = if let Some(dir) = std::env::var_os("SPECGEN_CACHE_DIR").filter(|d| !d.is_empty()) {
-        PathBuf::from(dir)
+        // a relative name is the caller's working directory's (the simulators run elsewhere)
+        std::path::absolute(PathBuf::from(&dir)).map_err(|e| error::tool("simulator", format!("SPECGEN_CACHE_DIR={}: {e}", PathBuf::from(&dir).display())))?
     } else if let Some(dir) = std::env::var_os("XDG_CACHE_HOME").filter(|d| Path::new(d).is_absolute()) {
         PathBuf::from(dir).join("specgen")
     } else if let Some(home) = std::env::var_os("HOME").filter(|d| Path::new(d).is_absolute()) {
@@ -271,14 +272,18 @@ fn decode(rec: &[u8]) -> Sampled {
 /// cycles in about 7 minutes alone on 2 cores, 50 ms a cycle, and past the old limit of 50 ms
 /// with two place-and-routes beside it), or `SPECGEN_SIM_TIMEOUT` seconds when set. A run past
 /// it is killed and reported (a zero-delay loop in the RTL never advances time).
-fn time_limit(simulator: Simulator, cycles: u64) -> std::time::Duration {
+/// A malformed `SPECGEN_SIM_TIMEOUT` is an error naming it, never ignored.
+fn time_limit(simulator: Simulator, cycles: u64) -> Result<std::time::Duration, Failure> {
     let per_cycle = match simulator {
         Simulator::Verilator => 2,
         Simulator::Icarus => 250,
     };
-    match std::env::var("SPECGEN_SIM_TIMEOUT").ok().and_then(|s| s.trim().parse::<u64>().ok()) {
-        Some(s) => std::time::Duration::from_secs(s.max(1)),
-        None => std::time::Duration::from_secs(60) + std::time::Duration::from_millis(cycles.saturating_mul(per_cycle)),
+    match std::env::var_os("SPECGEN_SIM_TIMEOUT").filter(|v| !v.is_empty()) {
+        Some(v) => match v.to_str().and_then(|s| s.trim().parse::<u64>().ok()).filter(|s| (1..=1_000_000).contains(s)) {
+            Some(s) => Ok(std::time::Duration::from_secs(s)),
+            None => Err(input(format!("SPECGEN_SIM_TIMEOUT={} is not a time limit; allowed whole seconds 1..=1000000 (or unset)", v.to_string_lossy()))),
+        },
+        None => Ok(std::time::Duration::from_secs(60) + std::time::Duration::from_millis(cycles.saturating_mul(per_cycle))),
     }
 }
 
@@ -366,7 +371,7 @@ pub fn run_one(
                 .stderr(Stdio::piped())
                 .spawn()
                 .map_err(|e| error::tool("vvp", format!("cannot run vvp (Debian package `iverilog`): {e}")))?;
-            let limit = time_limit(Simulator::Icarus, stim.len());
+            let limit = time_limit(Simulator::Icarus, stim.len())?;
             let (alive, fired) = watchdog(child.id(), limit);
             let out = child.wait_with_output().map_err(|e| error::tool("vvp", e.to_string()))?;
             drop(alive);
@@ -456,7 +461,7 @@ fn run_verilator(
     }
     let mut child =
         cmd.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().map_err(|e| error::tool("verilator", format!("cannot start the Verilator harness: {e}")))?;
-    let limit = time_limit(Simulator::Verilator, stim.len());
+    let limit = time_limit(Simulator::Verilator, stim.len())?;
     let (_alive, fired) = watchdog(child.id(), limit);
     let stdin = child.stdin.take();
     let mut stdout = child.stdout.take().unwrap();

@@ -823,3 +823,44 @@ fn synth_refuses_a_manifest_that_is_not_the_rtls_own() {
         assert!(String::from_utf8_lossy(&o.stderr).contains("edited by hand"), "{}", String::from_utf8_lossy(&o.stderr));
     }
 }
+
+/// Reliability V, finding 6 (the smaller ones): a relative `SPECGEN_CACHE_DIR` works, a
+/// malformed `SPECGEN_SIM_TIMEOUT` is an error naming it, `--target-mhz -5` gets a range error,
+/// and `report --out R` keeps a copy of a report's manifest a user put in R.
+#[test]
+fn small_findings_of_reliability_five() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let cosim = |env: (&str, &str)| {
+        specgen()
+            .current_dir(tmp.path())
+            .env(env.0, env.1)
+            .args(["cosim", "--simulator", "icarus", "--vectors", "50", "--jobs", "1", "--rtl"])
+            .arg(&d)
+            .output()
+            .unwrap()
+    };
+    let o = specgen()
+        .current_dir(tmp.path())
+        .env("SPECGEN_CACHE_DIR", "relative-cache")
+        .args(["cosim", "--simulator", "icarus", "--vectors", "50", "--jobs", "1", "--rtl"])
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(tmp.path().join("relative-cache").is_dir());
+    let o = cosim(("SPECGEN_SIM_TIMEOUT", "ten"));
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("SPECGEN_SIM_TIMEOUT=ten"), "{}", text(&o));
+    let o = specgen().args(["generate", "--target-mhz", "-5", "--out"]).arg(tmp.path().join("x")).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).contains("invalid --target-mhz: -5; allowed"), "{}", text(&o));
+    // a report's manifest copied under another name is the user's: the report refuses to replace it
+    let r = tmp.path().join("r");
+    assert!(specgen().args(["report", "--cos-frac-bits", "6", "--n-bits", "3", "--out"]).arg(&r).output().unwrap().status.success());
+    std::fs::copy(r.join("report.json"), r.join("annotated.json")).unwrap();
+    let o = specgen().args(["report", "--cos-frac-bits", "6", "--n-bits", "3", "--out"]).arg(&r).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(r.join("annotated.json").is_file());
+}
