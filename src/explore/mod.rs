@@ -357,9 +357,11 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
 }
 
 /// The front at `mhz` by `metric`: the ids of the points reaching the clock that no other point
-/// beats on both error and logic cells (ties kept).
+/// beats on both error and logic cells (ties kept). Where any point is measured, only measured
+/// points stand on it: an estimate never pushes a measurement off the front.
 pub fn front_at(points: &[Point], metric: Metric, mhz: f64) -> Vec<String> {
-    let mut reach: Vec<&Point> = points.iter().filter(|p| p.fmax().is_some_and(|f| f >= mhz)).collect();
+    let any_measured = points.iter().any(|p| p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some()));
+    let mut reach: Vec<&Point> = points.iter().filter(|p| !any_measured || p.measured.is_some()).filter(|p| p.fmax().is_some_and(|f| f >= mhz)).collect();
     reach.sort_by(|a, b| a.cells().cmp(&b.cells()).then(metric.of(&a.accuracy).total_cmp(&metric.of(&b.accuracy))).then(a.id.cmp(&b.id)));
     let mut best = f64::INFINITY;
     let mut ids = Vec::new();

@@ -29,6 +29,9 @@ impl Family for Ice40 {
     fn dsp_capacity(&self) -> Option<u64> {
         Some(8)
     }
+    fn explored(&self) -> Option<&'static str> {
+        Some(include_str!("../../data/explore/ice40.json"))
+    }
     fn explore_clocks(&self) -> &'static [f64] {
         &[50.0, 75.0, 100.0, 125.0]
     }

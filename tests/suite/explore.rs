@@ -202,3 +202,41 @@ fn a_sweep_on_snakemake_killed_midway_resumes_to_the_same_front() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("fingerprint"), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// `generate --max-error E --target-mhz F` picks a unit that meets its error, checked here
+/// exhaustively with the golden model, and whose measured median Fmax (the built-in
+/// exploration's, over its seeds) reaches F; refused with the nearest units when none does.
+#[test]
+fn generate_max_error_picks_a_measured_unit_within_its_error() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cases: &[(&str, f64, &[&str])] = &[("0.02", 100.0, &[]), ("0.001", 100.0, &[]), ("1e-4", 200.0, &["--target", "ecp5"])];
+    for (i, &(e, mhz, extra)) in cases.iter().enumerate() {
+        let out = tmp.path().join(format!("u{i}"));
+        let o = output_guarded(
+            specgen().args(["generate", "--max-error", e, "--target-mhz", &mhz.to_string()]).args(extra).arg("--out").arg(&out),
+            "generate --max-error",
+        );
+        assert!(o.status.success(), "{e} at {mhz}: {}", String::from_utf8_lossy(&o.stderr));
+        let said = String::from_utf8_lossy(&o.stderr);
+        assert!(said.contains("max-error: chose") && said.contains("median over nextpnr seeds"), "{said}");
+        let params = specgen::config::Params::from_json_file(&out.join("specular_unit.json")).unwrap();
+        let cfg = specgen::config::Config::new(params).unwrap();
+        // the error, every (cos_g <= 1.0, n)
+        let f = specgen::models::blinn_fidelity(&specgen::models::Model::new(&cfg));
+        assert_eq!(f.stride, 1, "not exhaustive");
+        assert!(f.max <= e.parse::<f64>().unwrap(), "{e}: the unit's max error is {}", f.max);
+        // the clock: the chosen point's measured median
+        let fmax: f64 = said.split("measured ").nth(1).unwrap().split(" MHz").next().unwrap().parse().unwrap();
+        assert!(fmax >= mhz, "{said}");
+        // the constraints ask for the clock chosen for
+        let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
+        assert_eq!(m["clock_mhz"], serde_json::json!(mhz.to_string()));
+    }
+    // none meets both: refused (exit 2), naming the nearest, nothing written
+    let out = tmp.path().join("none");
+    let o = output_guarded(specgen().args(["generate", "--max-error", "1e-9", "--target-mhz", "100"]).arg("--out").arg(&out), "generate");
+    assert_eq!(o.status.code(), Some(2));
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert!(said.contains("--max-error") && said.contains("nearest") && said.contains("most accurate at the clock"), "{said}");
+    assert!(!out.exists());
+}
