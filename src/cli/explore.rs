@@ -68,6 +68,10 @@ pub struct ExploreArgs {
     /// 50,75,100,125; ECP5 100,150,200,250]
     #[arg(long, value_delimiter = ',', value_name = "MHZ,...", allow_negative_numbers = true)]
     pub clocks: Vec<f64>,
+    /// Also K depths spread evenly up to each unit's deepest (a calibration grid for the delay
+    /// model: scripts/calibrate_delay.sh) [0..=64]
+    #[arg(long, value_name = "K", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub depths: u32,
     /// The error the front and the choice are drawn by.
     #[arg(long, value_enum, default_value = "max")]
     pub metric: MetricFlag,
@@ -175,6 +179,7 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         dsp_budgets: budgets,
         rom_styles: a.rom_style.iter().map(|&r| r.into()).collect(),
         clocks: a.clocks.clone(),
+        spread: a.depths,
     };
     for dir in &a.results {
         if specgen::output::inside(dir, &a.out) {

@@ -64,6 +64,8 @@ pub struct Space {
     pub rom_styles: Vec<RomStyle>,
     /// the clocks a depth is chosen for; empty: the family's `explore_clocks`
     pub clocks: Vec<f64>,
+    /// also this many depths spread evenly up to the deepest (a calibration's grid), 0: none
+    pub spread: u32,
 }
 
 impl Space {
@@ -325,6 +327,10 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
                     }
                 }
                 depths.entry(plan.cut_points).or_default();
+                // a calibration's grid: `spread` depths from a `spread`-th of the cuts to all
+                for k in 1..=space.spread {
+                    depths.entry((plan.cut_points * k).div_ceil(space.spread).max(1)).or_default();
+                }
                 if clocks.is_empty() || at.values().all(Option::is_none) {
                     // no delay model: a quarter, half, three quarters and all of the cuts
                     for q in 1..=3 {

@@ -14,6 +14,7 @@ fn space() -> Space {
         dsp_budgets: vec![None],
         rom_styles: vec![RomStyle::File],
         clocks: vec![],
+        spread: 0,
     }
 }
 
@@ -102,6 +103,7 @@ fn the_choice_is_the_cheapest_measured_point_meeting_both() {
         part: "p".into(),
         metric: "max".into(),
         clocks: vec![],
+        spread: 0,
         seeds: vec![1],
         points: ps.clone(),
     };
