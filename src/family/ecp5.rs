@@ -35,6 +35,9 @@ impl Family for Ecp5 {
     fn writes_logic_tables(&self) -> bool {
         true
     }
+    fn explored(&self) -> Option<&'static str> {
+        Some(include_str!("../../data/explore/ecp5.json"))
+    }
     fn explore_clocks(&self) -> &'static [f64] {
         &[100.0, 150.0, 200.0, 250.0]
     }

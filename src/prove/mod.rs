@@ -124,6 +124,24 @@ struct Script<'a> {
     sat_search: Option<u32>,
     /// with `share` and the induction: passes of merging, one stage of a delay line each
     merge_passes: u32,
+    /// the modules whose assumptions are the environment's (the harness, the port checker, the
+    /// adapter): every other module's, the unit's own, is removed before any step, so no
+    /// assumption of the RTL under proof narrows what is proved
+    environment: Vec<String>,
+}
+
+/// The modules of a harness named `harness` (`<top>_prove_edge`, `<top>_prove_pipelining`, a
+/// delay RAM's contract) whose assumptions are the environment's: it and specgen's own
+/// checker and adapter beside it.
+fn environment_of(harness: &str) -> Vec<String> {
+    let mut v = vec![harness.to_string()];
+    for suffix in ["_prove_edge", "_prove_pipelining"] {
+        if let Some(top) = harness.strip_suffix(suffix) {
+            v.push(format!("{top}_port_checker"));
+            v.push(format!("{top}_prove_ports"));
+        }
+    }
+    v
 }
 
 #[derive(Template)]
@@ -174,6 +192,8 @@ struct PipeliningScript<'a> {
     replay_steps: u32,
     /// the replay's first edges whose assertions are not checked (0: from the all-zero state)
     replay_skip: u32,
+    /// as `Script::environment`
+    environment: Vec<String>,
 }
 
 impl<'a> Script<'a> {
@@ -195,6 +215,7 @@ impl<'a> Script<'a> {
             share: false,
             sat_search: None,
             merge_passes: 0,
+            environment: environment_of(harness),
         }
     }
 

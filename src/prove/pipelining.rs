@@ -146,9 +146,17 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     files.push("harness.v".into());
     let script = |replay: Option<(u32, u32)>, file: &str| -> Result<(), Error> {
         let (replay_steps, replay_skip) = replay.unwrap_or((0, 0));
-        let text = PipeliningScript { version: crate::names::VERSION, harness: &name, files: &files, overrides: &overrides, replay_steps, replay_skip }
-            .render()
-            .expect("the script renders")
+        let text = PipeliningScript {
+            version: crate::names::VERSION,
+            harness: &name,
+            files: &files,
+            overrides: &overrides,
+            replay_steps,
+            replay_skip,
+            environment: super::environment_of(&name),
+        }
+        .render()
+        .expect("the script renders")
             + "\n";
         put(w, file, text)
     };

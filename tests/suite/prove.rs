@@ -597,3 +597,41 @@ fn the_delivered_values_are_the_datapaths_and_a_wrong_one_refuted() {
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("--datapath") && text(&o).contains("allowed: --interface ready or axis"), "{}", text(&o));
 }
+
+/// The proof issue, class 2 (and reliability V, finding 5): an `assume` in the unit under proof
+/// is not honoured. A buffer that drops a result on a stall, with an assumption under
+/// `ifdef FORMAL` that the consumer is always ready (so no stall is ever seen), is refuted:
+/// only the harness's environment assumptions stay.
+#[test]
+fn an_assumption_in_the_unit_hides_no_fault() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let args = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "4",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "6",
+        "--interface",
+        "ready",
+        "--tag-bits",
+        "4",
+        "--stages",
+        "2",
+    ];
+    let dir = generate(tmp.path(), "hidden", &args);
+    let (name, file, from, to) = HANDSHAKE_FAULTS.iter().find(|f| f.0 == "dropped").unwrap();
+    apply_handshake_fault(&dir, name, file, from, to);
+    let buffer = dir.join(file);
+    let src = std::fs::read_to_string(&buffer).unwrap();
+    let anchor = "    if (!f_started) assume(rst);";
+    assert_eq!(src.matches(anchor).count(), 1);
+    std::fs::write(&buffer, src.replace(anchor, &format!("{anchor}\n    assume(out_ready);"))).unwrap();
+    let o = specgen().args(["prove", "--edited", "--depth", "12", "--rtl"]).arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "a dropped result hidden by the unit's assume: {}", text(&o));
+    assert!(text(&o).contains("refuted") || text(&o).contains("fails"), "{}", text(&o));
+}
