@@ -15,12 +15,26 @@ for family in ${FAMILIES:-ice40 ecp5}; do
     # within 10% of the estimated front is measured
     [ "$family" = ecp5 ] && args+=(--rom-style file,logic --near 0.1)
     SPECGEN=$bin SWEEP_ARGS=${SWEEP_ARGS:-} scripts/explore.sh "$WORK/$family" "${args[@]}"
+    # beside the front, every point of the units users build to share a device or pass a block
+    # RAM's limit, measured at default widths: the budgets of the two-unit recipe on the UP5K,
+    # lean's table as logic on the ECP5
+    case $family in
+        ice40) extra=(--models quadratic,blinn --cos-frac-bits 15 --intensity-frac-bits 15 --dsp-budget 3,5 --measure-all) ;;
+        ecp5) extra=(--models quadratic --cos-frac-bits 15 --intensity-frac-bits 15 --rom-style logic --measure-all) ;;
+    esac
+    SPECGEN=$bin SWEEP_ARGS=${SWEEP_ARGS:-} scripts/explore.sh "$WORK/$family-extra" --target "$family" "${extra[@]}"
     mkdir -p "benchmarks/explore/$family" data/explore
     cp "$WORK/$family/plan/"{front.svg,front.csv,points.csv,calibration.csv} "benchmarks/explore/$family/"
-    python3 - "$WORK/$family/plan/points.json" > "data/explore/$family.json" <<'PY'
+    cp "$WORK/$family-extra/plan/points.csv" "benchmarks/explore/$family/extra-points.csv"
+    # the built-in exploration: the measured points of both
+    python3 - "$WORK/$family/plan/points.json" "$WORK/$family-extra/plan/points.json" > "data/explore/$family.json" <<'PY'
 import json, sys
 e = json.load(open(sys.argv[1]))
+seen = {p["id"] for p in e["points"]}
 e["points"] = [p for p in e["points"] if p["measured"]]
+for p in json.load(open(sys.argv[2]))["points"]:
+    if p["measured"] and p["id"] not in seen:
+        e["points"].append(p)
 print(json.dumps(e, indent=1))
 PY
 done
@@ -38,7 +52,9 @@ print("measured: synthesized and placed with nextpnr seeds 1..3, one Snakemake j
 print("median (range) of the seeds, each capped by the limits of the blocks the unit uses; logic cells")
 print("include the serial-I/O wrapper. The front at a clock: the measured points reaching it that no")
 print("other beats on both max error and logic cells. `generate --max-error E --target-mhz F` chooses")
-print("the cheapest measured point meeting both from these data (`data/explore/<family>.json`).\n")
+print("the cheapest measured point meeting both from these data (`data/explore/<family>.json`, which")
+print("also holds the units measured beside the front: the two-unit recipe's budgets on the UP5K,")
+print("lean's table as logic on the ECP5; every point of those: `explore/<family>/extra-points.csv`).\n")
 for fam in families:
     e = json.load(open(os.path.join(work, fam, "plan", "points.json")))
     pts = e["points"]

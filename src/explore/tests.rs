@@ -103,7 +103,6 @@ fn the_choice_is_the_cheapest_measured_point_meeting_both() {
         part: "p".into(),
         metric: "max".into(),
         clocks: vec![],
-        spread: 0,
         seeds: vec![1],
         points: ps.clone(),
     };
