@@ -574,10 +574,14 @@ struct ReportPage<'a> {
     grid_models: Vec<String>,
     grid_ns: Vec<u32>,
     grid_scale: String,
+    /// `--explored`: the exploration's front (SVG) and what it shows, in words
+    front_svg: String,
+    front_caption: String,
 }
 
-/// Builds `index.html` and `report.json` (file name, bytes).
-pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec<u8>)> {
+/// Builds `index.html` and `report.json` (file name, bytes); with an exploration, its measured
+/// front is a section of the page.
+pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult], explored: Option<&crate::explore::Exploration>) -> Vec<(String, Vec<u8>)> {
     // the configured model, made once (its fit or tables) for every figure and row of its own
     let model = Model::new(cfg);
     let unit = unit_accuracy(&model);
@@ -655,6 +659,17 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult]) -> Vec<(String, Vec
         grid_models,
         grid_ns,
         grid_scale: crate::render::sig3(grid.e_max),
+        front_svg: explored.map_or(String::new(), |e| crate::explore::svg(e, crate::explore::Metric::Max)),
+        front_caption: explored.map_or(String::new(), |e| {
+            let measured = e.points.iter().filter(|p| p.measured.is_some()).count();
+            format!(
+                "The {} exploration: {} points, {measured} measured over nextpnr seeds {}; max |intensity − cos^n| against logic cells, one colour per model, measured points filled, the front at each of {} MHz a line.",
+                e.part,
+                e.points.len(),
+                e.seeds.iter().map(u32::to_string).collect::<Vec<_>>().join(", "),
+                e.clocks.iter().map(|c| format!("{c}")).collect::<Vec<_>>().join(", ")
+            )
+        }),
     };
     let html = page.render().expect("report template renders");
     drop(page);

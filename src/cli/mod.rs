@@ -135,6 +135,9 @@ pub enum Command {
         /// A `specgen synth --json` result to show in the model comparison (repeatable).
         #[arg(long, value_name = "FILE.json")]
         hw: Vec<PathBuf>,
+        /// An exploration (`specgen explore`'s points.json) whose measured front the page shows.
+        #[arg(long, value_name = "FILE")]
+        explored: Option<PathBuf>,
         #[command(flatten)]
         params: ParamArgs,
     },
@@ -560,11 +563,21 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Explore(args) => explore::run(&args),
         Command::Measure(args) => explore::measure(&args),
         Command::Vectors(args) => vectors(&args),
-        Command::Report { out, force, hw, params } => {
+        Command::Report { out, force, hw, explored, params } => {
             let cfg = params.to_config(None)?;
             let hw =
                 hw.iter().map(|p| specgen::synth::SynthResult::from_file(p).map_err(|e| usage(format!("invalid --hw: {e}")))).collect::<Result<Vec<_>, _>>()?;
-            let files = specgen::report::build(&cfg, &hw);
+            let explored = match &explored {
+                Some(p) => {
+                    let text = specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?;
+                    Some(
+                        specgen::explore::Exploration::from_text(&text, &p.display().to_string())
+                            .map_err(|e| usage(format!("invalid --explored: {}", e.reason())))?,
+                    )
+                }
+                None => None,
+            };
+            let files = specgen::report::build(&cfg, &hw, explored.as_ref());
             write_output(&out, &files, force)?;
             Ok(())
         }

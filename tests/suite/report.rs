@@ -342,3 +342,23 @@ fn report_keeps_two_units_of_one_model_each_with_its_widths_depth_and_seeds() {
         rows[1]
     );
 }
+
+/// The exploration issue, point 1: the report's page shows an exploration's measured front.
+#[test]
+fn report_shows_an_explorations_front() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    let explored = concat!(env!("CARGO_MANIFEST_DIR"), "/data/explore/ice40.json");
+    let o = specgen().args(["report", "--cos-frac-bits", "9", "--n-bits", "5", "--explored", explored, "--out"]).arg(&out).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("id=\"fig-front\"") && html.contains("iCE40 UP5K exploration") && html.contains("measured over nextpnr seeds 1, 2, 3"), "no front");
+    let svg = html.split("id=\"fig-front\"").nth(1).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("blinn") && svg.contains("front at 100 MHz"));
+    // not an exploration: refused, nothing written
+    let o =
+        specgen().args(["report", "--explored", "Cargo.toml", "--out"]).arg(tmp.path().join("bad")).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--explored"));
+    assert!(!tmp.path().join("bad").exists());
+}
