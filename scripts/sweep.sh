@@ -11,6 +11,10 @@ here=$(cd "$(dirname "$0")" && pwd)
 command -v snakemake >/dev/null 2>&1 || python3 -m pip install -q "snakemake==9.27.1"
 specgen=${SPECGEN:-$(command -v specgen || echo "$here/../target/release/specgen")}
 [ -x "$specgen" ] || { echo "$0: specgen not found: cargo install --path . (or SPECGEN=path)" >&2; exit 1; }
+# the jobs run in RESULTS_DIR: a program named by a relative path is named absolutely
+specgen=$(realpath "$specgen")
+case ${YOSYS:-} in */*) YOSYS=$(realpath "$YOSYS") ;; esac
+case ${NEXTPNR:-} in */*) NEXTPNR=$(realpath "$NEXTPNR") ;; esac
 mkdir -p "$results"
 results=$(realpath "$results")
 cores=(--cores all)
