@@ -116,13 +116,15 @@ fn the_netlist_keeps_the_dsp_budget() {
     assert_eq!(code, Some(0), "{text}");
     assert_eq!(dsp, Some(1), "--dsp-budget 1: {text}");
     assert!(text.contains("dsp budget     1 blocks (") && text.contains("product(s) in the fabric: "), "synth states the budget's cost: {text}");
-    // the same netlist against a budget of 0: a broken promise, exit 1, the block named
+    // a budget edited into the manifest by hand is no promise of the RTL's: refused before
+    // synthesis (reliability V, finding 4), never judged; the netlist against a budget it
+    // exceeds is `synth::tests::a_netlist_over_the_dsp_budget_is_named`'s
     let manifest = dir.join("specular_unit.json");
     let text = std::fs::read_to_string(&manifest).unwrap().replace("\"dsp_budget\": 1", "\"dsp_budget\": 0");
     std::fs::write(&manifest, text).unwrap();
     let (code, text, _) = synth(&dir);
-    assert_eq!(code, Some(1), "{text}");
-    assert!(text.contains("dsp_budget: the netlist of specular_unit has 1 hard multiplier blocks (1 SB_MAC16), more than the 0"), "{text}");
+    assert_eq!(code, Some(2), "{text}");
+    assert!(text.contains("edited by hand"), "{text}");
 }
 
 /// The blocks the generator counts for the default lean unit with `args`.

@@ -69,8 +69,9 @@ fn the_simulator_cache_is_the_callers_own_and_a_planted_one_is_refused() {
     let m = std::fs::symlink_metadata(&cache).unwrap();
     assert!(m.is_dir() && m.uid() == uid && m.mode() & 0o777 == 0o700, "mode {:o}", m.mode());
     // what a killed build left (its process gone) is swept by the next build
-    let left = cache.join(".build-999999999-abc");
+    let left = cache.join(".build-999999999-abc123");
     std::fs::create_dir(&left).unwrap();
+    std::fs::write(left.join(".specgen-temporary"), "a temporary directory of specgen process 999999999, removed when it ends\n").unwrap();
     std::fs::write(left.join("sim.vvp"), "partial").unwrap();
     let other = generate(tmp.path(), "v", &["--n-bits", "4", "--stages", "1"]);
     let o = cosim_without_home(&other, &tmpdir);

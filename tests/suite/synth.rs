@@ -358,7 +358,7 @@ fn an_undriven_net_fails_synthesis() {
     let text = std::fs::read_to_string(&v).unwrap();
     let line = text.lines().find(|l| l.starts_with("assign done")).expect("the done output").to_string();
     std::fs::write(&v, text.replace(&line, "wire never_driven;\nassign done = never_driven;")).unwrap();
-    let o = specgen().arg("synth").arg("--rtl").arg(&dir).args(["--target", "ecp5", "--no-pnr"]).output().unwrap();
+    let o = specgen().arg("synth").arg("--edited").arg("--rtl").arg(&dir).args(["--target", "ecp5", "--no-pnr"]).output().unwrap();
     let all = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert_eq!(o.status.code(), Some(1), "{all}");
     assert!(all.contains("never_driven is used but has no driver"), "{all}");
