@@ -345,7 +345,16 @@ fn line_of(plan: &Plan) -> Result<Line, Error> {
 /// The Fmax the delay model predicts for `plan` on its family's part, in MHz.
 /// None for a datapath without calibration.
 pub fn predicted_fmax(plan: &Plan) -> Option<f64> {
-    Some(line_of(plan).ok()?.fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz())))
+    Some(line_of(plan).ok()?.fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz())).min(handshake_cap(plan).map_or(f64::INFINITY, |c| c.0)))
+}
+
+/// A `ready`/`axis` unit's ceiling on its family: the most such a unit was measured at (the
+/// output buffer's own paths, which no calibration unit has), and which unit that was.
+fn handshake_cap(plan: &Plan) -> Option<(f64, &'static str)> {
+    match plan.cfg.interface().handshake() {
+        true => crate::family::of(plan.cfg.target()).handshake_cap_mhz(plan.cfg.datapath_name()),
+        false => None,
+    }
 }
 
 /// The slowest limit of the blocks with their own registers that `plan` instantiates (the
@@ -380,6 +389,7 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
             capped.get_or_insert((stages, c.clone()));
         }
         let (f, assured) = cap.as_ref().map_or((f, assured), |c| (f.min(c.mhz()), assured.min(c.mhz())));
+        let (f, assured) = handshake_cap(&p).map_or((f, assured), |(c, _)| (f.min(c), assured.min(c)));
         if assured >= mhz {
             return Ok((stages, f));
         }
@@ -400,10 +410,17 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
             ),
         });
     }
+    let handshake = match handshake_cap(plan) {
+        Some((c, which)) if c < mhz => format!(
+            "; a {} unit's output buffer has paths of its own, which no calibration unit has: the most one was measured at on this part is {c:.1} MHz ({which}; benchmarks/interface.md)",
+            plan.cfg.interface().name()
+        ),
+        _ => String::new(),
+    };
     Err(Error::Config {
         parameter: "target_mhz",
         message: format!(
-            "{mhz} MHz is out of reach on the {}: the delay model assures at most {:.1} MHz (predicts {:.1}), at --stages {}",
+            "{mhz} MHz is out of reach on the {}: the delay model assures at most {:.1} MHz (predicts {:.1}), at --stages {}{handshake}",
             part(plan.cfg.target()),
             best.2,
             best.1,

@@ -393,6 +393,7 @@ pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
         .points
         .iter()
         .filter(|p| p.params.model == params.model && p.params.n_bits == params.n_bits && p.params.color_bits == params.color_bits)
+        .filter(|p| p.params.interface == params.interface)
         .filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz))
         .min_by_key(|p| {
             let d = p.params.cos_frac_bits.abs_diff(params.cos_frac_bits) + p.params.intensity_frac_bits.abs_diff(params.intensity_frac_bits);
@@ -409,6 +410,6 @@ pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
             p.fmax().unwrap_or(0.0),
             p.measured.as_ref().map_or(String::new(), |m| specgen::synth::seed_list(&m.seeds))
         ),
-        None => format!("; no measured {} unit of the built-in exploration reaches it", params.model.name()),
+        None => format!("; no measured {} unit of the built-in exploration with --interface {} reaches it", params.model.name(), params.interface.name()),
     })
 }

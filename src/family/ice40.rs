@@ -32,6 +32,14 @@ impl Family for Ice40 {
     fn explored(&self) -> Option<&'static str> {
         Some(include_str!("../../data/explore/ice40.json"))
     }
+    fn handshake_cap_mhz(&self, datapath: &str) -> Option<(f64, &'static str)> {
+        // benchmarks/interface.md (SEEDS=5 scripts/bench_interface.sh): lean 104.7 ready, 99.6
+        // axis-static; blinn 99.8 ready, 95.1 axis-static
+        Some(match datapath {
+            "lean" => (99.6, "lean's axis with a static colour, 13 stages"),
+            _ => (95.1, "blinn's axis with a static colour, 41 stages"),
+        })
+    }
     fn explore_clocks(&self) -> &'static [f64] {
         &[50.0, 75.0, 100.0, 125.0]
     }

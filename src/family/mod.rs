@@ -70,6 +70,14 @@ pub trait Family: Sync {
     fn writes_logic_tables(&self) -> bool {
         false
     }
+    /// The most a `ready`/`axis` unit of `datapath` reached on the part (the output buffer's own
+    /// paths, which the delay model has no shape for: its read decision, the queue's counts,
+    /// `out_ready`'s route), median over seeds at the deepest, ready and axis with a static
+    /// colour the lesser; a datapath not measured so takes the least any did. None: nothing
+    /// measured (no delay model either).
+    fn handshake_cap_mhz(&self, _datapath: &str) -> Option<(f64, &'static str)> {
+        None
+    }
     /// The hard multiplier blocks of the part its figures are for (None: no part): `explore`
     /// measures no unit that needs more.
     fn dsp_capacity(&self) -> Option<u64>;

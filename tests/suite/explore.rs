@@ -240,3 +240,22 @@ fn generate_max_error_picks_a_measured_unit_within_its_error() {
     assert!(said.contains("--max-error") && said.contains("nearest") && said.contains("most accurate at the clock"), "{said}");
     assert!(!out.exists());
 }
+
+/// The exploration issue, point 3: `--interface ready --target-mhz 120` on the UP5K is refused
+/// beforehand, naming the output buffer's own paths and the most a handshake unit measured,
+/// where it used to pick 13 stages at "129.8 MHz predicted" for a unit that measures 101.7.
+#[test]
+fn a_handshake_unit_is_not_promised_what_its_buffer_cannot_do() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("u");
+    let o = output_guarded(specgen().args(["generate", "--interface", "ready", "--target-mhz", "120", "--out"]).arg(&out), "generate");
+    assert_eq!(o.status.code(), Some(2));
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert!(said.contains("output buffer has paths of its own") && said.contains("benchmarks/interface.md") && said.contains("99.6 MHz"), "{said}");
+    assert!(!out.exists());
+    // below the buffer's measured clock it is picked, and its prediction never above it
+    let o = output_guarded(specgen().args(["generate", "--interface", "ready", "--target-mhz", "95", "--out"]).arg(&out), "generate");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
+    assert!(m["predicted_fmax_mhz"].as_f64().unwrap() <= 99.6, "{}", m["predicted_fmax_mhz"]);
+}
