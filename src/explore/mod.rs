@@ -305,15 +305,24 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
         let cfg = Config::new(base.clone())?;
         let golden = Model::new(&cfg);
         let acc = accuracy(&golden);
-        for &budget in &space.dsp_budgets {
-            for &rom in &space.rom_styles {
+        for &rom in &space.rom_styles {
+            // the ROM style shapes the model's own datapath (its tables' steps): a model of its
+            // own per style (every style computes the same function: one accuracy); a budget is
+            // the plan's, so the model is shared across budgets
+            let styled = match Config::new(Params { rom_style: rom, ..base.clone() }) {
+                Ok(c) if rom != base.rom_style => Model::new(&c),
+                Ok(_) => golden.clone(),
+                // a style the model does not take: not in the space
+                Err(_) => continue,
+            };
+            for &budget in &space.dsp_budgets {
                 let params = Params { dsp_budget: budget, rom_style: rom, ..base.clone() };
                 let cfg = match Config::new(params) {
                     Ok(c) => c,
-                    // a style the family does not write, a budget out of range: not in the space
+                    // a budget out of range: not in the space
                     Err(_) => continue,
                 };
-                let plan = match Plan::for_model(golden.with_config(cfg)) {
+                let plan = match Plan::for_model(styled.with_config(cfg)) {
                     Ok(p) => p,
                     // a style the family does not write: not in the space
                     Err(e) if e.parameter() == Some("rom_style") => continue,

@@ -117,3 +117,31 @@ fn the_choice_is_the_cheapest_measured_point_meeting_both() {
     let other = Params { n_bits: 10, ..base.clone() };
     assert!(choose(&e, &other, Metric::Max, 1.0, 50.0).is_err());
 }
+
+/// A point's estimate is its own parameters' plan's (a model shared across the space must not
+/// carry one style's datapath into another's: lean's table as logic has more cut points).
+#[test]
+fn every_point_is_the_plan_of_its_own_parameters() {
+    let quadratic = SpecularModel::ALL.into_iter().filter(|m| m.takes("rounding=exact")).collect();
+    let target = crate::config::Target::ALL.into_iter().find(|t| crate::family::of(*t).writes_logic_tables()).expect("a family writes tables as logic");
+    let s = Space {
+        base: Params { n_bits: 4, color_bits: 4, target, ..Params::default() },
+        models: quadratic,
+        cos_frac_bits: vec![8],
+        intensity_frac_bits: vec![8],
+        dsp_budgets: vec![None, Some(2)],
+        rom_styles: vec![RomStyle::File, RomStyle::Logic],
+        clocks: vec![],
+        spread: 2,
+    };
+    let ps = points(&s, &|_, _| {}).unwrap();
+    assert!(ps.iter().any(|p| p.params.rom_style == RomStyle::Logic));
+    for p in &ps {
+        let own = Plan::new(Config::new(p.params.clone()).unwrap()).unwrap();
+        assert_eq!(estimate(&own), p.estimate, "{}", p.id);
+    }
+    let deepest = |rom| ps.iter().filter(|p| p.params.rom_style == rom && p.params.dsp_budget.is_none()).map(|p| p.stages).max().unwrap();
+    let own_deepest = |rom| Plan::new(Config::new(Params { rom_style: rom, ..s.base.clone() }).unwrap()).unwrap().cut_points;
+    assert_eq!(deepest(RomStyle::Logic), own_deepest(RomStyle::Logic));
+    assert_eq!(deepest(RomStyle::File), own_deepest(RomStyle::File));
+}
