@@ -30,8 +30,8 @@ for family in ${FAMILIES:-ice40 ecp5}; do
     python3 - "$WORK/$family/plan/points.json" "$WORK/$family-extra/plan/points.json" > "data/explore/$family.json" <<'PY'
 import json, sys
 e = json.load(open(sys.argv[1]))
-seen = {p["id"] for p in e["points"]}
 e["points"] = [p for p in e["points"] if p["measured"]]
+seen = {p["id"] for p in e["points"]}
 for p in json.load(open(sys.argv[2]))["points"]:
     if p["measured"] and p["id"] not in seen:
         e["points"].append(p)

@@ -259,3 +259,24 @@ fn a_handshake_unit_is_not_promised_what_its_buffer_cannot_do() {
     let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
     assert!(m["predicted_fmax_mhz"].as_f64().unwrap() <= 99.6, "{}", m["predicted_fmax_mhz"]);
 }
+
+/// The exploration issue's two refusals: a budgeted blinn at 100 MHz on the UP5K and lean's
+/// table as logic at 250 MHz on the ECP5 are picked from measured units of exactly that
+/// configuration (median over seeds at or above the clock), where the delay model alone refuses.
+#[test]
+fn the_refused_cases_are_picked_from_measured_units() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (i, (args, mhz)) in
+        [(&["--model", "blinn", "--dsp-budget", "5"][..], 100.0), (&["--target", "ecp5", "--rom-style", "logic"][..], 250.0)].into_iter().enumerate()
+    {
+        let out = tmp.path().join(format!("u{i}"));
+        let o = output_guarded(specgen().arg("generate").args(args).args(["--target-mhz", &mhz.to_string(), "--out"]).arg(&out), "generate");
+        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        let said = String::from_utf8_lossy(&o.stderr);
+        let measured: f64 = said.split("MHz measured").next().unwrap().rsplit(' ').nth(1).unwrap().parse().unwrap_or_else(|_| panic!("{said}"));
+        assert!(measured >= mhz, "{said}");
+        let stages: u32 = said.split("chose --stages ").nth(1).unwrap().split(':').next().unwrap().parse().unwrap();
+        let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
+        assert_eq!(m["stages"], stages);
+    }
+}
