@@ -23,6 +23,9 @@ for a in "$@"; do case $a in --cores|--cores=*|-c*|--jobs|--jobs=*|-j*|--profile
 if [ -d "$results/.snakemake/locks" ] && ! pgrep -f -- "--directory $results( |$)" >/dev/null; then
     snakemake -s "$here/sweep/Snakefile" --directory "$results" --config jobs="$jobs" specgen="$specgen" --unlock >/dev/null 2>&1 || true
 fi
+# each job writes its result whole or not at all (specgen measure writes atomically), so a result
+# there is complete even when Snakemake was killed before it recorded so: --ignore-incomplete
+# keeps it (--rerun-incomplete would run a finished job again)
 exec snakemake -s "$here/sweep/Snakefile" --directory "$results" --config jobs="$jobs" specgen="$specgen" \
     ${YOSYS:+yosys="$YOSYS"} ${NEXTPNR:+nextpnr="$NEXTPNR"} \
-    --rerun-incomplete --rerun-triggers mtime --keep-going --printshellcmds "${cores[@]}" "$@"
+    --ignore-incomplete --rerun-triggers mtime --keep-going --printshellcmds "${cores[@]}" "$@"
