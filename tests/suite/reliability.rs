@@ -865,3 +865,20 @@ fn small_findings_of_reliability_five() {
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(r.join("annotated.json").is_file());
 }
+
+/// Reliability V, finding 6: an output named through a symbolic link is checked where it lands:
+/// `--trace link.vcd` whose (dangling) link points at a new Verilog file in the unit is refused
+/// and writes nothing there.
+#[test]
+fn an_output_through_a_link_into_the_unit_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let link = tmp.path().join("link.vcd");
+    std::os::unix::fs::symlink(d.join("evil.v"), &link).unwrap();
+    for cmd in [&["cosim", "--vectors", "10", "--trace"][..], &["prove", "--depth", "2", "--trace"][..]] {
+        let o = specgen().args(cmd).arg(&link).arg("--rtl").arg(&d).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{cmd:?}: {}", text(&o));
+        assert!(text(&o).contains("symbolic link") && text(&o).contains("evil.v"), "{cmd:?}: {}", text(&o));
+        assert!(!d.join("evil.v").exists());
+    }
+}
