@@ -283,7 +283,9 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
     if old.is_none() {
         std::fs::rename(staging.path(), dir).at("write", dir)?;
     } else if exchange(staging.path(), dir).at("write", dir)? {
-        // the staging name now holds the old output: dropping it removes it
+        // the staging name now holds the old output: dropping it removes it (an old output the
+        // user made read-only, 0555, is made the owner's to empty first, or it would stay)
+        open_for_removal(staging.path());
         return Ok(());
     } else {
         let graveyard = tempfile::Builder::new().prefix(&format!(".specgen-old-{tag}-")).tempdir_in(&parent).at("write", dir)?;
@@ -293,6 +295,7 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
             let _ = std::fs::rename(graveyard.path().join("old"), dir);
             return Err(Error::io("write", dir, plain(e)));
         }
+        open_for_removal(&graveyard.path().join("old"));
         drop(graveyard); // removes the previous output
     }
     let _ = staging.keep(); // renamed away: nothing left to clean up
@@ -596,6 +599,23 @@ fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), 
     match names.iter().find(|n| !allowed.contains(n)) {
         Some(stranger) => Err(occupied(format!("it contains {stranger:?}, which no specgen manifest there lists"))),
         None => Ok(()),
+    }
+}
+
+/// Gives the owner write access to `dir` and the directories in it (an output's `sim/`), so
+/// that removing it can empty them; files need none.
+fn open_for_removal(dir: &Path) {
+    use std::os::unix::fs::PermissionsExt;
+    let mut dirs = vec![dir.to_path_buf()];
+    if let Ok(entries) = std::fs::read_dir(dir) {
+        dirs.extend(entries.flatten().take(1000).filter(|e| e.file_type().is_ok_and(|t| t.is_dir())).map(|e| e.path()));
+    }
+    for d in dirs {
+        if let Ok(m) = std::fs::symlink_metadata(&d) {
+            if m.is_dir() {
+                let _ = std::fs::set_permissions(&d, std::fs::Permissions::from_mode(m.permissions().mode() | 0o700));
+            }
+        }
     }
 }
 

@@ -882,3 +882,38 @@ fn an_output_through_a_link_into_the_unit_is_refused() {
         assert!(!d.join("evil.v").exists());
     }
 }
+
+/// Reliability V, finding 6: an old output the user made read-only (0555) is replaced and
+/// removed whole: no `.specgen-new-*` is left beside it, run after run. (Root ignores the
+/// mode: as root, the runs are made as `nobody`, so the test sees what a user sees.)
+#[test]
+fn a_read_only_old_output_leaves_nothing_behind() {
+    let tmp = tempfile::tempdir().unwrap();
+    let root = unsafe { libc::geteuid() } == 0;
+    let base = tmp.path().join("mine");
+    std::fs::create_dir(&base).unwrap();
+    if root {
+        std::os::unix::fs::chown(&base, Some(65534), Some(65534)).unwrap();
+        std::fs::set_permissions(tmp.path(), std::fs::Permissions::from_mode(0o755)).unwrap();
+    }
+    let out = base.join("u");
+    let gen = || {
+        let mut c = if root {
+            let mut c = Command::new("setpriv");
+            c.args(["--reuid=65534", "--regid=65534", "--clear-groups", env!("CARGO_BIN_EXE_specgen")]);
+            c
+        } else {
+            Command::new(env!("CARGO_BIN_EXE_specgen"))
+        };
+        c.env("TMPDIR", &base).args(["generate", "--cos-frac-bits", "6", "--n-bits", "3", "--out"]).arg(&out).output().unwrap()
+    };
+    let o = gen();
+    assert!(o.status.success(), "{}", text(&o));
+    for _ in 0..2 {
+        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o555)).unwrap();
+        let o = gen();
+        assert!(o.status.success(), "{}", text(&o));
+    }
+    let left: Vec<String> = std::fs::read_dir(&base).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| n != "u").collect();
+    assert!(left.is_empty(), "left beside the output: {left:?}");
+}
