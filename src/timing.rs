@@ -412,7 +412,7 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
     }
     let handshake = match handshake_cap(plan) {
         Some((c, which)) if c < mhz => format!(
-            "; a {} unit's output buffer has paths of its own, which no calibration unit has: the most one was measured at on this part is {c:.1} MHz ({which}; benchmarks/interface.md)",
+            "; the {} interface's output buffer has paths of its own, which no calibration unit has: the most a unit with one was measured at on this part is {c:.1} MHz ({which}; benchmarks/interface.md)",
             plan.cfg.interface().name()
         ),
         _ => String::new(),

@@ -251,7 +251,7 @@ fn a_handshake_unit_is_not_promised_what_its_buffer_cannot_do() {
     let o = output_guarded(specgen().args(["generate", "--interface", "ready", "--target-mhz", "120", "--out"]).arg(&out), "generate");
     assert_eq!(o.status.code(), Some(2));
     let said = String::from_utf8_lossy(&o.stderr);
-    assert!(said.contains("output buffer has paths of its own") && said.contains("benchmarks/interface.md") && said.contains("99.6 MHz"), "{said}");
+    assert!(said.contains("interface's output buffer has paths of its own") && said.contains("benchmarks/interface.md") && said.contains("99.6 MHz"), "{said}");
     assert!(!out.exists());
     // below the buffer's measured clock it is picked, and its prediction never above it
     let o = output_guarded(specgen().args(["generate", "--interface", "ready", "--target-mhz", "95", "--out"]).arg(&out), "generate");
