@@ -250,9 +250,7 @@ impl Tools {
     pub fn check(&self) -> Result<(), Error> {
         for tool in [&self.yosys, &self.abc] {
             if !crate::synth::tool_exists(tool) {
-                return Err(error::input(format!(
-                    "{tool} not found: install the Debian package `yosys` (apt-get install -y yosys), which has yosys and yosys-abc"
-                )));
+                return Err(error::tool(tool, format!("{tool} not found{}", crate::synth::install_hint(tool, "yosys"))));
             }
         }
         Ok(())

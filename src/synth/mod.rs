@@ -192,11 +192,23 @@ pub fn version_of(tool: &str, flag: &str) -> Result<String, Failure> {
     }
 }
 
+/// A missing tool is the tool's error (exit 1, as every other missing tool), with the hint
+/// that fits its name: the Debian package for the Debian name, PyPI for a YoWASP one, none for a
+/// path the user gave.
 fn require(tool: &str, package: &str) -> Result<(), Failure> {
     if tool_exists(tool) {
-        Ok(())
-    } else {
-        Err(input(format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package})")))
+        return Ok(());
+    }
+    Err(error::tool(tool, format!("{tool} not found{}", install_hint(tool, package))))
+}
+
+/// How to get `tool`: `package` from Debian for its own name, the PyPI wheel for a `yowasp-` name.
+pub(crate) fn install_hint(tool: &str, package: &str) -> String {
+    match tool {
+        t if t.contains('/') => String::new(),
+        t if t.starts_with("yowasp-") => format!(": install it with pip (python3 -m pip install {t})"),
+        t if t == package || t == "yosys-abc" => format!(": install the Debian package `{package}` (apt-get install -y {package})"),
+        _ => String::new(),
     }
 }
 
