@@ -15,8 +15,8 @@ use std::time::{Duration, Instant};
 const VERILATOR_HARNESS: &str = include_str!("../../tb/verilator_harness.cpp");
 const ICARUS_BENCH: &str = include_str!("../../tb/icarus_bench.v");
 
-/// The simulator cache: `$SPECGEN_CACHE_DIR`, `$XDG_CACHE_HOME/specgen`, `$HOME/.cache/specgen`,
-/// else `<tmp>/specgen-cache-<uid>`. Its programs are run, so it is the caller's own: created
+/// The simulator cache: `$SPECGEN_CACHE_DIR`, `$XDG_CACHE_HOME/specgen`, `$HOME/.cache/specgen`
+/// (where one can be made there), else `<tmp>/specgen-cache-<uid>`. Its programs are run, so it is the caller's own: created
 /// `0700`, and checked on every use (`output::private_dir`: not a link, the caller's, writable
 /// by no one else); a shared or planted directory is refused, never used.
 fn cache_root() -> Result<PathBuf, Failure> {
@@ -25,8 +25,14 @@ fn cache_root() -> Result<PathBuf, Failure> {
         std::path::absolute(PathBuf::from(&dir)).map_err(|e| error::tool("simulator", format!("SPECGEN_CACHE_DIR={}: {e}", PathBuf::from(&dir).display())))?
     } else if let Some(dir) = std::env::var_os("XDG_CACHE_HOME").filter(|d| Path::new(d).is_absolute()) {
         PathBuf::from(dir).join("specgen")
-    } else if let Some(home) = std::env::var_os("HOME").filter(|d| Path::new(d).is_absolute()) {
-        PathBuf::from(home).join(".cache").join("specgen")
+    } else if let Some(cache) = std::env::var_os("HOME")
+        .filter(|d| Path::new(d).is_absolute())
+        .map(|home| PathBuf::from(home).join(".cache").join("specgen"))
+        // a HOME where no cache can be made (not a directory, not writable) falls back to the
+        // temporary one; a cache that is there is held to the rules below, never passed over
+        .filter(|c| c.exists() || c.parent().is_some_and(|p| std::fs::create_dir_all(p).is_ok()))
+    {
+        cache
     } else {
         std::env::temp_dir().join(format!("specgen-cache-{}", crate::output::euid()))
     };

