@@ -121,19 +121,33 @@ fn a_sweep_on_snakemake_killed_midway_resumes_to_the_same_front() {
     let jobs: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(plan.join("jobs.json")).unwrap()).unwrap();
     assert!(jobs.len() >= 4, "{}", jobs.len());
     let results = tmp.path().join("results");
-    let sweep = || {
+    let sweep = |specgen: &Path| {
         let mut c = Command::new("bash");
         c.arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/sweep.sh")).arg(plan.join("jobs.json")).arg(&results).args(["--cores", "1", "--quiet"]);
-        c.env("SPECGEN", env!("CARGO_BIN_EXE_specgen")).env("SPECGEN_JOBS", crate::common::jobs());
+        c.env("SPECGEN", specgen).env("SPECGEN_JOBS", crate::common::jobs());
         c.stdout(std::process::Stdio::null()).stderr(std::process::Stdio::piped());
         c
     };
-    // the first run, killed once a result is there
+    // the first run, killed midway by its state, not by time: its specgen runs the first job
+    // and stalls in the second, and the kill comes once the second has started (one job at a
+    // time: the first's result is then whole and the second's not begun)
+    let count = tmp.path().join("started");
+    let stalling = tmp.path().join("stalling-specgen");
+    std::fs::write(
+        &stalling,
+        format!(
+            "#!/bin/bash\nn=$(( $(cat {count:?} 2>/dev/null || echo 0) + 1 )); echo $n > {count:?}\n[ $n -ge 2 ] && exec sleep {}\nexec {:?} \"$@\"\n",
+            crate::common::HANG_GUARD_SECS,
+            env!("CARGO_BIN_EXE_specgen")
+        ),
+    )
+    .unwrap();
+    std::fs::set_permissions(&stalling, std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
     let mut first = {
         use std::os::unix::process::CommandExt;
-        sweep().process_group(0).spawn().unwrap()
+        sweep(&stalling).process_group(0).spawn().unwrap()
     };
-    wait_until("the sweep's first result", || !results_in(&results).is_empty());
+    wait_until("the sweep's second job", || std::fs::read_to_string(&count).is_ok_and(|n| n.trim() == "2"));
     unsafe {
         libc::kill(-(first.id() as i32), libc::SIGKILL);
     }
@@ -148,7 +162,7 @@ fn a_sweep_on_snakemake_killed_midway_resumes_to_the_same_front() {
     let kept: Vec<(PathBuf, std::time::SystemTime)> =
         results_in(&results).into_iter().map(|p| (p.clone(), std::fs::metadata(&p).unwrap().modified().unwrap())).collect();
     // resumed: the rest runs, what was done is not run again
-    let mut again = sweep().spawn().unwrap();
+    let mut again = sweep(Path::new(env!("CARGO_BIN_EXE_specgen"))).spawn().unwrap();
     let status = finished_within_guard(&mut again, "the resumed sweep");
     assert!(status.success());
     assert_eq!(results_in(&results).len(), jobs.len());
