@@ -329,7 +329,7 @@ pub fn is_stdout(path: &Path) -> bool {
 }
 
 /// Where a single-file output really goes: through a symbolic link to its target.
-fn through_links(path: &Path) -> std::io::Result<PathBuf> {
+pub(crate) fn through_links(path: &Path) -> std::io::Result<PathBuf> {
     let mut path = path.to_path_buf();
     for _ in 0..40 {
         match std::fs::symlink_metadata(&path) {

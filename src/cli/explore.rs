@@ -1,34 +1,10 @@
 //! `specgen explore` and `specgen measure`: the command-line glue over [`specgen::explore`].
 
-use super::values::{ModelFlag, RomStyleFlag, TargetFlag};
+use super::values::{MetricFlag, ModelFlag, RomStyleFlag, TargetFlag};
 use super::{errln, outln, usage, Failure};
 use specgen::config::{Params, Target};
 use specgen::explore::{self, Exploration, Metric, Space};
 use std::path::{Path, PathBuf};
-
-/// `--metric`
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum MetricFlag {
-    /// the largest |intensity - cos^n| over every (cos_g, n)
-    Max,
-    /// its mean
-    Mean,
-    /// its root mean square
-    Rms,
-    /// the largest step between neighbouring pixels of render's sphere beyond the float image's (banding)
-    Step,
-}
-
-impl From<MetricFlag> for Metric {
-    fn from(m: MetricFlag) -> Metric {
-        match m {
-            MetricFlag::Max => Metric::Max,
-            MetricFlag::Mean => Metric::Mean,
-            MetricFlag::Rms => Metric::Rms,
-            MetricFlag::Step => Metric::Step,
-        }
-    }
-}
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct ExploreArgs {

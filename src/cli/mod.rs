@@ -52,7 +52,7 @@ pub enum Command {
         max_error: Option<f64>,
         /// The error --max-error bounds.
         #[arg(long, value_enum, default_value = "max", requires = "max_error")]
-        metric: explore::MetricFlag,
+        metric: values::MetricFlag,
         /// The exploration --max-error chooses from (`specgen explore`'s points.json) [default:
         /// the one built in for the --target]
         #[arg(long, value_name = "FILE", requires = "max_error")]

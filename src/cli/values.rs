@@ -3,6 +3,7 @@
 
 use specgen::config::{Arch, Colour, Interface, Reset, RomStyle, Rounding, SpecularModel, Target};
 use specgen::cosim::Simulator;
+use specgen::explore::Metric;
 use specgen::rom::RomFormat;
 use specgen::vectors::VectorFormat;
 
@@ -21,6 +22,17 @@ macro_rules! flag_values {
 }
 
 flag_values! {
+    /// `--metric`
+    MetricFlag => Metric {
+        /// the largest |intensity - cos^n| over every (cos_g, n)
+        Max,
+        /// its mean
+        Mean,
+        /// its root mean square
+        Rms,
+        /// the largest step between neighbouring pixels of render's sphere beyond the float image's (banding)
+        Step,
+    }
     /// `--rounding`
     RoundingFlag => Rounding {
         /// |o - o*| < 1 for every output

@@ -117,7 +117,7 @@ impl Design {
     /// writes over what it reads.
     pub fn refuse_output(&self, flag: &str, out: &Path) -> Result<(), Error> {
         // a symbolic link is written through: what it points at (dangling or not) is checked too
-        let target = link_target(out);
+        let target = crate::output::through_links(out).unwrap_or_else(|_| out.to_path_buf());
         if target != out {
             self.refuse_output(flag, &target)
                 .map_err(|e| input(format!("{flag} {} is a symbolic link to {}: {}", out.display(), target.display(), e.reason())))?;
@@ -140,23 +140,6 @@ impl Design {
         }
         Ok(())
     }
-}
-
-/// Where writing `path` lands: the end of its chain of symbolic links (at most 40), a dangling
-/// one's target included; `path` itself when it is no link.
-fn link_target(path: &Path) -> std::path::PathBuf {
-    let mut p = path.to_path_buf();
-    for _ in 0..40 {
-        match std::fs::read_link(&p) {
-            Ok(next) if next.is_absolute() => p = next,
-            Ok(next) => p = p.parent().map_or(next.clone(), |d| d.join(&next)),
-            Err(_) => break,
-        }
-    }
-    p
-}
-
-impl Design {
     /// Whether the directory holds what specgen wrote, checked before anything is simulated or
     /// compared, each difference named (exit 2): the manifest's fingerprint against its own
     /// parameters (a hand-edited manifest), the unit's header against the manifest (files of two

@@ -214,17 +214,12 @@ fn front_csv(e: &Exploration, metric: Metric) -> String {
 /// `front.svg`, `jobs.json` (the measuring plan), `merge.json` (what the merge found) and
 /// `explore.json`, the directory's manifest.
 pub fn files(e: &Exploration, metric: Metric, jobs: &[Job], merge: &MergeReport) -> Vec<(String, Vec<u8>)> {
-    let json = |v: &dyn erased::Json| {
-        let mut t = v.text();
-        t.push('\n');
-        t.into_bytes()
-    };
     let mut files: Vec<(String, Vec<u8>)> = vec![
         ("points.json".into(), json(e)),
         ("points.csv".into(), csv(&e.points).into_bytes()),
         ("front.csv".into(), front_csv(e, metric).into_bytes()),
         ("front.svg".into(), svg(e, metric).into_bytes()),
-        ("jobs.json".into(), json(&jobs.to_vec())),
+        ("jobs.json".into(), json(jobs)),
         ("merge.json".into(), json(merge)),
         ("calibration.csv".into(), calibration_csv(e).into_bytes()),
     ];
@@ -235,14 +230,9 @@ pub fn files(e: &Exploration, metric: Metric, jobs: &[Job], merge: &MergeReport)
     files
 }
 
-mod erased {
-    /// Any serialisable value as pretty JSON.
-    pub trait Json {
-        fn text(&self) -> String;
-    }
-    impl<T: serde::Serialize> Json for T {
-        fn text(&self) -> String {
-            serde_json::to_string_pretty(self).expect("serialises")
-        }
-    }
+/// A value as pretty JSON, with a final newline.
+fn json<T: Serialize + ?Sized>(v: &T) -> Vec<u8> {
+    let mut t = serde_json::to_string_pretty(v).expect("serialises");
+    t.push('\n');
+    t.into_bytes()
 }

@@ -259,16 +259,16 @@ pub fn seed_list(seeds: &[u32]) -> String {
 
 /// Runs yosys's `script` in `work`, which writes `products`; with a cache (`Tools::cache`), the
 /// products are taken from it when the same sources, script and yosys made them before, and
-/// kept there when made. The key is the SHA-256 of yosys's version, the script and every file
-/// of `work` (the staged sources and tables).
-fn cached_yosys(tools: &Tools, work: &Path, script: &str, products: &[&str]) -> Result<(), Failure> {
-    let Some(cache) = &tools.cache else {
+/// kept there when made. The key is the SHA-256 of yosys's `version` (asked once a run), the
+/// script and every file of `work` (the staged sources and tables).
+fn cached_yosys(tools: &Tools, version: Option<&str>, work: &Path, script: &str, products: &[&str]) -> Result<(), Failure> {
+    let (Some(cache), Some(version)) = (&tools.cache, version) else {
         run_yosys(&tools.yosys, work, script)?;
         return Ok(());
     };
     use sha2::Digest;
     let mut h = sha2::Sha256::new();
-    h.update(version_of(&tools.yosys, "-V")?.as_bytes());
+    h.update(version.as_bytes());
     h.update(script.as_bytes());
     let mut names: Vec<std::path::PathBuf> =
         std::fs::read_dir(work).map_err(|e| Failure::io("read", work, e))?.flatten().map(|e| e.path()).filter(|p| p.is_file()).collect();
@@ -404,7 +404,9 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         "{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; {NO_SCOPEINFO}; check -assert; tee -q -o stat.json stat -json; write_json netlist.json",
         synth_cmd(&top)
     );
-    cached_yosys(tools, work.path(), &script, &["stat.json", "netlist.json"])?;
+    // the cache's key names yosys's version: asked once for both runs
+    let version = tools.cache.as_ref().map(|_| version_of(yosys, "-V")).transpose()?;
+    cached_yosys(tools, version.as_deref(), work.path(), &script, &["stat.json", "netlist.json"])?;
     // every hard multiplier's registers, on the netlist: each one without its output register
     // is listed, and makes nextpnr's figure an upper bound (it does not time the multiply)
     let netlist = work.path().join("netlist.json");
@@ -480,6 +482,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
     cached_yosys(
         tools,
+        version.as_deref(),
         work.path(),
         &format!("{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")),
         &["wrapped.json"],

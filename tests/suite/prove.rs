@@ -4,6 +4,10 @@
 use crate::common::*;
 use std::path::Path;
 
+/// A `ready` unit with a tag at narrow widths and 2 stages: small enough for a proof in seconds.
+const NARROW_READY: [&str; 14] =
+    ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6", "--interface", "ready", "--tag-bits", "4", "--stages", "2"];
+
 fn prove(dir: &Path, trace: &Path) -> std::process::Output {
     specgen().args(["prove", "--edited", "--rtl"]).arg(dir).arg("--trace").arg(trace).output().unwrap()
 }
@@ -347,22 +351,7 @@ fn a_unit_whose_lemmas_are_neutered_is_not_proved_past_the_bounded_search() {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let args = [
-        "--cos-frac-bits",
-        "8",
-        "--n-bits",
-        "4",
-        "--color-bits",
-        "4",
-        "--intensity-frac-bits",
-        "6",
-        "--interface",
-        "ready",
-        "--tag-bits",
-        "4",
-        "--stages",
-        "2",
-    ];
+    let args = NARROW_READY;
     // (name, a deadlock after the 40th pixel, the lemma port and lemmas deleted)
     let cases = [("deadlock_after_40", true, false), ("neutered_only", false, false), ("no_lemma_port", true, true)];
     for_each_parallel(&cases, |_, (name, deadlock, no_port)| {
@@ -607,22 +596,7 @@ fn an_assumption_in_the_unit_hides_no_fault() {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let args = [
-        "--cos-frac-bits",
-        "8",
-        "--n-bits",
-        "4",
-        "--color-bits",
-        "4",
-        "--intensity-frac-bits",
-        "6",
-        "--interface",
-        "ready",
-        "--tag-bits",
-        "4",
-        "--stages",
-        "2",
-    ];
+    let args = NARROW_READY;
     let dir = generate(tmp.path(), "hidden", &args);
     let (name, file, from, to) = HANDSHAKE_FAULTS.iter().find(|f| f.0 == "dropped").unwrap();
     apply_handshake_fault(&dir, name, file, from, to);
