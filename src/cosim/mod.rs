@@ -49,6 +49,9 @@ impl Default for SimTools {
     }
 }
 
+/// The prefix of the unit's files as [`Design::stage`] names them in a work directory.
+const STAGED_UNIT: &str = "unit-";
+
 /// A directory of RTL under test, with the configuration its manifest states.
 #[derive(Debug, Clone)]
 pub struct Design {
@@ -83,11 +86,17 @@ impl Design {
     /// specgen chose — a file name of the user's (spaces, `;`, quotes, newlines) never reaches
     /// a command line. Copies, not links: a WebAssembly yosys (YoWASP) sees its working
     /// directory and nothing a link there points to. Returns the sources' names, in order.
+    /// Whether `name` is one of the unit's files as [`Design::stage`] names them (no generated
+    /// file's name has a `-`: a top is a Verilog identifier).
+    pub(crate) fn is_staged_unit(name: &str) -> bool {
+        name.strip_prefix(STAGED_UNIT).and_then(|n| n.strip_suffix(".v")).is_some_and(|i| !i.is_empty() && i.chars().all(|c| c.is_ascii_digit()))
+    }
+
     pub(crate) fn stage(&self, work: &Path) -> Result<Vec<String>, Error> {
         let copy = |from: &Path, name: &str| copy_in(from, work, name);
         let mut names = Vec::new();
         for (i, src) in self.sources.iter().enumerate() {
-            let name = format!("src{i}.v");
+            let name = format!("{STAGED_UNIT}{i}.v");
             copy(src, &name)?;
             names.push(name);
         }

@@ -24,6 +24,7 @@ use std::path::Path;
 use std::process::Stdio;
 use std::time::{Duration, Instant};
 
+mod built;
 mod pipelining;
 mod ports;
 mod run;
@@ -128,6 +129,33 @@ struct Script<'a> {
     /// adapter): every other module's, the unit's own, is removed before any step, so no
     /// assumption of the RTL under proof narrows what is proved
     environment: Vec<String>,
+    /// the macros the unit's own files are read with in every step (`built::unit_defines`):
+    /// one elaboration of the unit for the whole proof, the one shown equal to the built design
+    unit_defines: Vec<String>,
+}
+
+impl PipeliningScript<'_> {
+    /// The unit's own files among `files` (as `Design::stage` names them).
+    fn unit(&self) -> Vec<&String> {
+        self.files.iter().filter(|f| Design::is_staged_unit(f)).collect()
+    }
+
+    /// specgen's files among `files`.
+    fn ours(&self) -> Vec<&String> {
+        self.files.iter().filter(|f| !Design::is_staged_unit(f)).collect()
+    }
+}
+
+impl Script<'_> {
+    /// The unit's own files among `files` (as `Design::stage` names them).
+    fn unit(&self) -> Vec<&String> {
+        self.files.iter().filter(|f| Design::is_staged_unit(f)).collect()
+    }
+
+    /// specgen's files among `files`: the harness, the checker, the twin, the models.
+    fn ours(&self) -> Vec<&String> {
+        self.files.iter().filter(|f| !Design::is_staged_unit(f)).collect()
+    }
 }
 
 /// The modules of a harness named `harness` (`<top>_prove_edge`, `<top>_prove_pipelining`, a
@@ -194,6 +222,8 @@ struct PipeliningScript<'a> {
     replay_skip: u32,
     /// as `Script::environment`
     environment: Vec<String>,
+    /// as `Script::unit_defines`
+    unit_defines: Vec<String>,
 }
 
 impl<'a> Script<'a> {
@@ -216,6 +246,7 @@ impl<'a> Script<'a> {
             sat_search: None,
             merge_passes: 0,
             environment: environment_of(harness),
+            unit_defines: Vec::new(),
         }
     }
 
@@ -275,6 +306,9 @@ pub enum Verdict {
     /// but the unit keeps state longer than its latency (a delay line in memory, its pointers
     /// never flushed), so the check from any state cannot conclude
     Incomplete { bounded: u32 },
+    /// the design the proof reads is not the one synthesis builds (`differs`, in words): the
+    /// unit's formal regions change what it computes, so nothing proved of it would hold
+    NotBuilt { differs: String },
     /// a cover of the port checker is not reached within `depth` edges from power-up: a proof
     /// of the unit would say nothing about what it never does
     Unreached { covers: Vec<&'static str>, depth: u32 },
@@ -434,7 +468,8 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     if !design.sim_models.is_empty() {
         files.push("-lib +/ecp5/cells_bb.v".to_string());
     }
-    files.extend(design.stage(w)?);
+    let unit = design.stage(w)?;
+    files.extend(unit.iter().cloned());
     let ports = crate::cosim::adapter::adapter_named(cfg, &format!("{}_prove_ports", cfg.top()));
     put(w, "ports.v", ports)?;
     put(w, "harness.v", harness(design))?;
@@ -444,14 +479,28 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
     let tools = &Tools { yosys, abc, ..tools.clone() };
     let t0 = Instant::now();
+    // one design: every step reads the unit as the check shows synthesis builds it
+    // (a handshake unit that states the assertions specgen writes is read with its lemma port;
+    // one that states fewer, an edited one, without: its lemmas could not be trusted)
+    let lemmas = cfg.interface().handshake() && states_its_own_assertions(design)?;
+    let unit_defines = match built::one_design(design, tools, w, &unit, lemmas, false, &name)? {
+        Ok(d) => d,
+        Err(proof) => return Ok(proof),
+    };
     if cfg.interface().handshake() {
-        return induction(design, tools, w, &files, &name, t0);
+        return induction(design, tools, w, &files, &unit_defines, &name, t0);
     }
     if let Some(depth) = tools.depth {
         let properties = properties(design);
         // ABC's bmc3 on the AIGER of the same model, as for a handshake unit: it names the
         // edge that fails (sat's `-seq N` says only that one of the N does)
-        let script = Script { bounded: Some(depth), induction: Some(depth), ignore_unknown: !design.sim_models.is_empty(), ..Script::model(&name, &files) };
+        let script = Script {
+            bounded: Some(depth),
+            induction: Some(depth),
+            ignore_unknown: !design.sim_models.is_empty(),
+            unit_defines,
+            ..Script::model(&name, &files)
+        };
         let verdict = match search(design, tools, w, script, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
             Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
@@ -460,7 +509,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         let engine = format!("a bounded search of {depth} edges from power-up with ABC bmc3");
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
     }
-    Script::model(&name, &files).write(w, "prove.ys")?;
+    Script { unit_defines: unit_defines.clone(), ..Script::model(&name, &files) }.write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
     run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
         .ok_or_else(|| error::tool(&tools.yosys, "yosys did not write the model within 600 s"))?;
@@ -519,7 +568,7 @@ fn sat_verdict(said: &Said, steps: u32, tools: &Tools, w: &Path, design: &Design
 /// step proves, from any state where every assertion held for k edges, that they hold at the
 /// next. The depth is enough for a pixel to pass the pipeline and a full buffer (the correct
 /// unit is proved at about its latency plus one; a fault may need the buffer filled to show).
-fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &str, t0: Instant) -> Result<Proof, Error> {
+fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_defines: &[String], name: &str, t0: Instant) -> Result<Proof, Error> {
     let cfg = &design.cfg;
     let steps = tools.depth.unwrap_or_else(|| cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4);
     let script = Script {
@@ -536,6 +585,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
             .map(|(_, src)| src.clone())
             .filter(|src| src.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
             .collect(),
+        unit_defines: unit_defines.to_vec(),
         ..Script::model(name, files)
     };
     let mut properties = properties(design);
@@ -556,7 +606,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         if verdict == (Verdict::Bounded { depth }) {
             // the colour check to the same depth (as in the default proof); a depth too short
             // to compare a result says nothing of the colour: not listed
-            match colour_check(design, tools, depth)? {
+            match colour_check(design, tools, depth, unit_defines)? {
                 None | Some((Verdict::Unreached { .. }, _)) => {}
                 Some((Verdict::Bounded { .. }, _)) => properties.push(COLOUR_PROPERTY),
                 Some((colour, how)) => {
@@ -572,8 +622,15 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
     // (the RTL's word), and its ports only searched
     let own = states_its_own_assertions(design)?;
     // the unit's own assertions by themselves: the engine in words, or the proof that ends here
+    // (the unit read with its lemma port: the checker drives it, its assertions joining the unit's)
+    let lemma_files = with_port_checker(design, w, files)?;
+    let own_script = if unit_defines.iter().any(|d| d == "SPECGEN_LEMMAS") {
+        Script { files: &lemma_files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() }
+    } else {
+        script.clone()
+    };
     let own_induction = || -> Result<Result<String, Proof>, Error> {
-        script.write(w, "induction.ys")?;
+        own_script.write(w, "induction.ys")?;
         let _ = std::fs::remove_file(w.join("trace.vcd"));
         let ran = run_watched(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit, tools.progress, sat_progress);
         let seconds = t0.elapsed().as_secs_f64();
@@ -621,7 +678,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
         }
     };
     let mut ports = ports;
-    match colour_check(design, tools, port_depth(cfg))? {
+    match colour_check(design, tools, port_depth(cfg), unit_defines)? {
         None => {}
         Some((Verdict::Proved, _)) => ports.properties.push(COLOUR_PROPERTY),
         Some((Verdict::Bounded { .. }, _)) => ports.bounded_only.push(COLOUR_PROPERTY),
@@ -676,11 +733,11 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], name: &
 /// A static colour's colour check to `depth` edges (none for another colour): which colour each
 /// result was computed with, against the datapath twin at cos_g = 1.0 (the only value a port
 /// rule cannot see without the datapath); its verdict, and how it was reached in words.
-fn colour_check(design: &Design, tools: &Tools, depth: u32) -> Result<Option<(Verdict, String)>, Error> {
+fn colour_check(design: &Design, tools: &Tools, depth: u32, unit_defines: &[String]) -> Result<Option<(Verdict, String)>, Error> {
     if design.cfg.colour() != crate::config::Colour::Static {
         return Ok(None);
     }
-    let (verdict, _) = against_the_twin(design, tools, depth, true)?;
+    let (verdict, _) = against_the_twin(design, tools, depth, true, unit_defines)?;
     let engine = format!(
         "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside"
     );

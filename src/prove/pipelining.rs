@@ -15,7 +15,15 @@ pub(super) const DELAY_RAM_PROPERTY: &str =
 /// Proves the contract of `<top>_delay_ram` at `width` and `cuts` (`templates/prove_delay_ram.v`)
 /// by k-induction with yosys's `sat`, over the unit's staged `files` (the module as shipped, its
 /// lemma under `SPECGEN_CONTRACT`). `None`: proved; else the verdict that stops the proof.
-fn delay_ram_contract(design: &Design, tools: &Tools, w: &Path, files: &[String], width: u32, cuts: u32) -> Result<Option<Verdict>, Error> {
+fn delay_ram_contract(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    files: &[String],
+    unit_defines: &[String],
+    width: u32,
+    cuts: u32,
+) -> Result<Option<Verdict>, Error> {
     let top = design.cfg.top();
     let name = format!("{top}_delay_ram_contract_w{width}_c{cuts}");
     let file = format!("{name}.v");
@@ -25,7 +33,7 @@ fn delay_ram_contract(design: &Design, tools: &Tools, w: &Path, files: &[String]
     // edges from power-up, past the first edge the contract speaks of (a module without its
     // lemmas: a failure found there, or no verdict)
     let steps = cuts + 4;
-    let script = Script { induction: Some(steps), defines: vec!["SPECGEN_CONTRACT".into()], ..Script::model(&name, &all) };
+    let script = Script { induction: Some(steps), defines: vec!["SPECGEN_CONTRACT".into()], unit_defines: unit_defines.to_vec(), ..Script::model(&name, &all) };
     script.write(w, "contract.ys")?;
     let mut said = None;
     for lemmas in [true, false] {
@@ -94,25 +102,26 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     // twin's are the same modules, guarded)
     let t0 = Instant::now();
     let mut files = design.stage_sim_models(w)?;
-    files.extend(design.stage(w)?);
+    let unit = design.stage(w)?;
+    files.extend(unit.iter().cloned());
     // a delay line's tail in RAM keeps words longer than the pipeline's K + 1 edges (the checks
     // from any state cannot flush a memory): its module's contract is proved alone, for each
     // width and length the unit uses, and the unit is then read with the contract's model in
     // its place, CUTS flip-flops in a row free at power-up (every run of the module is one of
     // theirs), which the checks flush like every other register
     let rams = crate::emit::delay_rams(&design.plan);
+    let name = format!("{top}_prove_pipelining");
+    let tools = &Tools { yosys: crate::synth::absolute_tool(&tools.yosys), abc: crate::synth::absolute_tool(&tools.abc), ..tools.clone() };
+    // one design: every step reads the unit as the check shows synthesis builds it
+    let unit_defines = match super::built::one_design(design, tools, w, &unit, false, !rams.is_empty(), &name)? {
+        Ok(d) => d,
+        Err(proof) => return Ok(proof),
+    };
     let mut overrides = Vec::new();
     for &(width, cuts) in &rams {
-        if let Some(verdict) = delay_ram_contract(design, tools, w, &files, width, cuts)? {
+        if let Some(verdict) = delay_ram_contract(design, tools, w, &files, &unit_defines, width, cuts)? {
             let engine = format!("k-induction with yosys sat over {top}_delay_ram (WIDTH = {width}, CUTS = {cuts}) alone");
-            return Ok(Proof {
-                name: format!("{top}_prove_pipelining"),
-                properties: vec![DELAY_RAM_PROPERTY],
-                verdict,
-                seconds: t0.elapsed().as_secs_f64(),
-                engine,
-                ports: None,
-            });
+            return Ok(Proof { name: name.clone(), properties: vec![DELAY_RAM_PROPERTY], verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
         }
     }
     if !rams.is_empty() {
@@ -127,7 +136,6 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     let file = format!("{top}_prove_ports.v");
     put(w, &file, crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")))?;
     files.push(file);
-    let name = format!("{top}_prove_pipelining");
     let harness = PipeliningHarness {
         name: &name,
         top,
@@ -154,6 +162,7 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
             replay_steps,
             replay_skip,
             environment: super::environment_of(&name),
+            unit_defines: unit_defines.clone(),
         }
         .render()
         .expect("the script renders")
@@ -280,7 +289,18 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let engine = format!(
         "the port checker (from the manifest) with the datapath twin {twin}, a bounded search of {depth} edges from power-up with ABC bmc3, the unit's own assertions set aside{then}"
     );
-    let (verdict, ports) = against_the_twin(design, tools, depth, false)?;
+    // one design: every step reads the unit as the check shows synthesis builds it
+    let unit_defines = {
+        let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
+        let unit = design.stage(work.path())?;
+        let tools = &Tools { yosys: crate::synth::absolute_tool(&tools.yosys), ..tools.clone() };
+        let lemmas = states_its_own_assertions(design)?;
+        match super::built::one_design(design, tools, work.path(), &unit, lemmas, false, &harness_name(design.cfg.top()))? {
+            Ok(d) => d,
+            Err(proof) => return Ok(proof),
+        }
+    };
+    let (verdict, ports) = against_the_twin(design, tools, depth, false, &unit_defines)?;
     let mut properties = vec![DATAPATH_PROPERTY];
     if matches!(verdict, Verdict::Failed { .. }) {
         properties.extend(PORT_PROPERTIES);
@@ -298,7 +318,13 @@ pub(super) const COLOUR_PROPERTY: &str =
 /// intensity folds to a constant in the unit and its twin alike, so what is left to compare is
 /// the colour each result was computed with (a material register loaded at a disabled edge),
 /// cheap at any width.
-pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colour_only: bool) -> Result<(Verdict, Option<Ports>), Error> {
+pub(super) fn against_the_twin(
+    design: &Design,
+    tools: &Tools,
+    depth: u32,
+    colour_only: bool,
+    unit_defines: &[String],
+) -> Result<(Verdict, Option<Ports>), Error> {
     // the colour check stays a bounded search: its induction closes (k = 3 at 11 stages, narrow
     // widths) but takes minutes there, unmeasured at default widths
     let for_every_edge = tools.depth.is_none() && !colour_only;
@@ -340,6 +366,7 @@ pub(super) fn against_the_twin(design: &Design, tools: &Tools, depth: u32, colou
         ports_only: Some(format!("{top}_port_checker")),
         share: true,
         merge_passes: cfg.stages() + 2,
+        unit_defines: unit_defines.to_vec(),
         ..Script::model(&name, &files)
     };
     Ok(match search(design, tools, w, script.clone(), depth)? {

@@ -609,3 +609,42 @@ fn an_assumption_in_the_unit_hides_no_fault() {
     assert_eq!(o.status.code(), Some(1), "a dropped result hidden by the unit's assume: {}", text(&o));
     assert!(text(&o).contains("refuted") || text(&o).contains("fails"), "{}", text(&o));
 }
+
+/// The proof issue, class 1: the design proved is the one built. Every step reads the unit with
+/// one set of macros, and that elaboration is proved equal at the ports to the RTL as synthesis
+/// reads it; a unit whose formal regions change a built result (an `` `else `` of `ifdef
+/// FORMAL`, a branch where SPECGEN_LEMMAS is undefined, a register's first value) is refused
+/// with what differs, exit 1, before any search — here with `--depth 4`, which would otherwise
+/// pass a fault that shows only past the search.
+#[test]
+fn a_unit_whose_formal_regions_change_what_is_built_is_refused() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "built", &NARROW_READY);
+    let prove_at = |dir: &Path| specgen().args(["prove", "--edited", "--depth", "4", "--rtl"]).arg(dir).output().unwrap();
+    let o = prove_at(&dir);
+    assert_eq!(o.status.code(), Some(0), "the generated unit is the built one: {}", text(&o));
+    let anchor = "assign {out_tag, done, intensity, spec_b, spec_g, spec_r} = out_held;";
+    let broken = "assign {out_tag, done, intensity, spec_b, spec_g, spec_r} = out_held ^ 1'b1;";
+    let cases = [
+        ("else", format!("`ifdef FORMAL\n{anchor}\n`else\n{broken}\n`endif"), "spec_r (bit "),
+        ("lemmas", format!("`ifndef SPECGEN_LEMMAS\n{broken}\n`else\n{anchor}\n`endif"), "spec_r (bit "),
+        (
+            "first value",
+            format!("`ifdef FORMAL\nreg f_fz = 1'b0;\n`else\nreg f_fz = 1'b1;\n`endif\nalways @(posedge clk) f_fz <= f_fz;\nassign {{out_tag, done, intensity, spec_b, spec_g, spec_r}} = out_held ^ f_fz;"),
+            "f_fz starts at 1'1 built, at 1'0 in the proof",
+        ),
+    ];
+    for (what, text_in, names) in cases {
+        let case = generate(tmp.path(), &what.replace(' ', "_"), &NARROW_READY);
+        let unit = case.join("specular_unit.v");
+        let src = std::fs::read_to_string(&unit).unwrap();
+        assert_eq!(src.matches(anchor).count(), 1);
+        std::fs::write(&unit, src.replace(anchor, &text_in)).unwrap();
+        let o = prove_at(&case);
+        assert_eq!(o.status.code(), Some(1), "{what}: {}", text(&o));
+        assert!(text(&o).contains("is not the one synthesis builds"), "{what}: {}", text(&o));
+        assert!(text(&o).contains(names), "{what} names what differs ({names}): {}", text(&o));
+    }
+}
