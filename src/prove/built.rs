@@ -107,10 +107,12 @@ fn differs_from_built(design: &Design, tools: &Tools, w: &Path, unit: &[String],
     let elaborate = |step: &str| -> Result<Elaboration, Error> {
         script(step, Vec::new())?;
         match run(&tools.yosys, &["-q".into(), "-s".into(), format!("built_{step}.ys")], w, tools.limit) {
-            Err(e) if e.to_string().contains("select -assert-none") => return Err(error::input(format!(
+            Err(e) if e.to_string().contains("select -assert-none") => {
+                return Err(error::input(format!(
                 "{}: a module of the unit takes the name of one of specgen's proof modules ({top}_prove_*, {top}_port_checker, {top}_datapath*, {top}_depth0*)",
                 design.dir.display()
-            ))),
+            )))
+            }
             ran => {
                 ran?.ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not elaborate the unit within {} s (--time-limit)", tools.limit.as_secs())))?
             }

@@ -498,15 +498,20 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
             bounded: Some(depth),
             induction: Some(depth),
             ignore_unknown: !design.sim_models.is_empty(),
-            unit_defines,
+            unit_defines: unit_defines.clone(),
             ..Script::model(&name, &files)
         };
+        let mut engine = format!("a bounded search of {depth} edges from power-up with ABC bmc3");
         let verdict = match search(design, tools, w, script, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
-            Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
+            Searched::Found { frame, vcd, which } => {
+                if let Some(a) = which {
+                    engine = format!("{engine}; the first assertion to fail: {a}");
+                }
+                Verdict::Failed { frame, vcd }
+            }
             Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
-        let engine = format!("a bounded search of {depth} edges from power-up with ABC bmc3");
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
     }
     Script { unit_defines: unit_defines.clone(), ..Script::model(&name, &files) }.write(w, "prove.ys")?;
@@ -600,7 +605,12 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
         let mut engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
         let mut verdict = match search(design, tools, w, at_ports, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
-            Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
+            Searched::Found { frame, vcd, which } => {
+                if let Some(a) = which {
+                    engine = format!("{engine}; the first assertion to fail: {a}");
+                }
+                Verdict::Failed { frame, vcd }
+            }
             Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
         if verdict == (Verdict::Bounded { depth }) {

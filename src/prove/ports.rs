@@ -9,7 +9,7 @@ pub(super) enum AtPorts {
     Failed {
         frame: u32,
         vcd: Vec<u8>,
-        how: &'static str,
+        how: String,
     },
     OutOfTime {
         reached: Option<u32>,
@@ -67,10 +67,14 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
     let checker = format!("{}_port_checker", cfg.top());
     let depth = port_depth(cfg);
     let ports = Script { bounded: Some(depth), files: &files, defines: vec!["SPECGEN_PORTS".into()], ports_only: Some(checker.clone()), ..script.clone() };
-    match search(design, tools, w, ports.clone(), depth)? {
+    // the first search keeps the unit's own assertions beside the checker's: a fault they see
+    // is refuted here, within the depth, and named
+    let first = Script { ports_only: None, ..ports.clone() };
+    match search(design, tools, w, first, depth)? {
         Searched::Clear => {}
-        Searched::Found { frame, vcd } => {
-            return Ok(AtPorts::Failed { frame, vcd, how: "a bounded search with ABC bmc3, the unit's own assertions set aside" })
+        Searched::Found { frame, vcd, which } => {
+            let first = which.map(|a| format!("; the first to fail: {a}")).unwrap_or_default();
+            return Ok(AtPorts::Failed { frame, vcd, how: format!("a bounded search with ABC bmc3 over its assertions and the unit's own{first}") });
         }
         Searched::OutOfTime { reached } => return Ok(AtPorts::OutOfTime { reached }),
     }
@@ -84,7 +88,7 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
     let cdepth = cover_depth(cfg);
     let mask = all.iter().fold(0, |m, (bit, _)| m | 1 << bit);
     match reach(mask, cdepth, tools.cover_trace)? {
-        Searched::Found { frame, vcd } => {
+        Searched::Found { frame, vcd, .. } => {
             let cover_vcd = tools.cover_trace.then_some(vcd);
             let unbounded = match lemmas.then(|| unbounded(design, tools, w, &ports, UNBOUNDED_STEPS)).transpose()? {
                 None => Unbounded::NoLemmas,
@@ -93,7 +97,7 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
                     return Ok(AtPorts::Failed {
                         frame,
                         vcd,
-                        how: "k-induction's base case with the unit's lemmas (a port property or a lemma), a search from power-up with yosys sat",
+                        how: "k-induction's base case with the unit's lemmas (a port property or a lemma), a search from power-up with yosys sat".into(),
                     })
                 }
             };
@@ -177,8 +181,9 @@ pub(super) const PORT_PROPERTIES: [&str; 6] = [
 pub(super) enum Searched {
     /// no assertion fails within the depth
     Clear,
-    /// one fails `frame` edges in; the run's VCD
-    Found { frame: u32, vcd: Vec<u8> },
+    /// one fails `frame` edges in; the run's VCD; the assertion that fails, in words, where the
+    /// replay names it (yosys's `sim`)
+    Found { frame: u32, vcd: Vec<u8>, which: Option<String> },
     /// stopped at the time limit, `reached` frames searched
     OutOfTime { reached: Option<u32> },
 }
@@ -202,12 +207,13 @@ pub(super) fn search_with(design: &Design, tools: &Tools, w: &Path, script: Scri
         return Ok(Searched::OutOfTime { reached: bmc_reached(&said.text) });
     }
     match frame_asserted(&said.text) {
-        Some(frame) if !replay => Ok(Searched::Found { frame, vcd: Vec::new() }),
+        Some(frame) if !replay => Ok(Searched::Found { frame, vcd: Vec::new(), which: None }),
         Some(frame) => {
             yosys_witness(w)?;
             Script { replay: true, ..script.clone() }.write(w, "replay.ys")?;
             let _ = std::fs::remove_file(w.join("trace.vcd"));
-            let replayed = run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit);
+            let replayed = run(&tools.yosys, &["-s".into(), "replay.ys".into()], w, tools.limit);
+            let mut which = None;
             if matches!(&replayed, Err(e) if without_sim(e)) {
                 // YoWASP's yosys has no `sim`: its `sat` searches the failing run's edges again
                 // (sat's first step is the state before the first edge: ABC's frame f is step f + 2)
@@ -229,9 +235,11 @@ pub(super) fn search_with(design: &Design, tools: &Tools, w: &Path, script: Scri
                     }
                 }
             } else {
-                replayed?.ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
+                let said = replayed?
+                    .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
+                which = failed_assertion(&said, design, w);
             }
-            Ok(Searched::Found { frame, vcd: trace(&tools.yosys, w, design)? })
+            Ok(Searched::Found { frame, vcd: trace(&tools.yosys, w, design)?, which })
         }
         None if said.text.contains("No output asserted") => Ok(Searched::Clear),
         None => Err(error::tool(&tools.abc, format!("bmc3 neither found a failure nor finished its {depth} frames: {}", tail(&said.text)))),

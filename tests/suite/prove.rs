@@ -648,3 +648,23 @@ fn a_unit_whose_formal_regions_change_what_is_built_is_refused() {
         assert!(text(&o).contains(names), "{what} names what differs ({names}): {}", text(&o));
     }
 }
+
+/// The proof issue, class 5: the first bounded search keeps the unit's own assertions beside
+/// the port checker's, so a buffer fault they see within its depth is refuted there (never left
+/// undecided by an induction that stops earlier), and the failure names the assertion: its
+/// statement and the unit's file and line.
+#[test]
+fn the_first_search_keeps_the_units_assertions_and_names_the_one_that_fails() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = generate(tmp.path(), "dropped", &NARROW_READY);
+    let (name, file, from, to) = HANDSHAKE_FAULTS.iter().find(|f| f.0 == "dropped").unwrap();
+    apply_handshake_fault(&dir, name, file, from, to);
+    let o = prove(&dir, &tmp.path().join("dropped.vcd"));
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let said = text(&o);
+    assert!(said.contains("over its assertions and the unit's own; the first to fail: `"), "{said}");
+    let at = said.split("the first to fail: `").nth(1).unwrap();
+    assert!(at.contains("assert") && at.contains(&format!("{} line ", dir.join(file).display())), "the statement and its file and line: {said}");
+}
