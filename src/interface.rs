@@ -96,14 +96,14 @@ impl CheckerState {
 
     /// Bits of `f_ports`.
     pub fn width(&self) -> u32 {
-        2 * self.count + 1 + self.age + self.word + 16 + 1 + self.payload
+        2 * self.count + 1 + self.age + self.word + 24 + 1 + self.payload
     }
 
     /// Each field's (name, lowest bit, width), from bit 0 up.
-    pub fn fields(&self) -> [(&'static str, u32, u32); 9] {
+    pub fn fields(&self) -> [(&'static str, u32, u32); 10] {
         let (c, a, w) = (self.count, self.age, self.word);
         let word = 2 * c + 1 + a;
-        let check = word + w + 16;
+        let check = word + w + 24;
         [
             ("inside", 0, c),
             ("following", c, 1),
@@ -112,6 +112,7 @@ impl CheckerState {
             ("word", word, w),
             ("owed", word + w, 8),
             ("refused", word + w + 8, 8),
+            ("waiting", word + w + 16, 8),
             ("check", check, 1),
             ("expected", check + 1, self.payload),
         ]
@@ -605,6 +606,7 @@ fn lemma_lines(depth: u32, tw: u32, width: u32, payload: &str, state: CheckerSta
             "word" => "its tag (and tlast)",
             "owed" => "edges a result has been owed to a consumer ready at each",
             "refused" => "edges in_ready has been low to a consumer ready at each",
+            "waiting" => "edges a result has been owed and not shown, whatever the consumer does",
             "check" => "prove --datapath: its result is known",
             _ => "prove --datapath: its result, {intensity, spec_r, spec_g, spec_b, done}",
         };
@@ -637,6 +639,8 @@ fn lemma_lines(depth: u32, tw: u32, width: u32, payload: &str, state: CheckerSta
     out.push("        assert(f_ports_inside == f_buffer_outstanding);".into());
     out.push("        // a result owed has waited no longer than the unit's progress toward delivering one".into());
     out.push("        assert(f_ports_owed <= f_buffer_progress);".into());
+    out.push("        // and one owed and not shown: out_valid never waits for out_ready".into());
+    out.push("        assert(f_ports_waiting <= f_buffer_progress);".into());
     out.push("        // in_ready low: the edges it has been low to a ready consumer and those it stays low".into());
     out.push(format!("        // are {recover} at most (the checker's bound: latency + places + 4)"));
     out.push(format!("        if (!in_ready) assert(f_ports_refused + f_buffer_recover <= {recover});"));

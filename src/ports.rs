@@ -329,3 +329,112 @@ mod tests {
         assert_eq!(ports(PortWidths { clocked: false, ..w }, "").len(), 12);
     }
 }
+
+/// What `specgen prove`'s port checker asserts of an output port (every output port has one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PortRule {
+    /// `in_ready`: SPEC §7's credit rule, low after a reset, high again within a bound
+    Ready,
+    /// `out_valid`: low after a reset, held until taken, never waiting for `out_ready`, a
+    /// result owed shown within a bound
+    Valid,
+    /// a result's bits (and the tag, tlast): every bit held while shown and not taken, the
+    /// n-th delivered carries the n-th pixel's tag, padding zero while shown
+    Data,
+    /// `idle`: high exactly while no pixel is taken and not delivered
+    Idle,
+}
+
+/// The port checker's rule of the output port `name`; none for a name no rule speaks of (a
+/// port added without one, which `prove` refuses).
+pub fn port_rule(name: &str) -> Option<PortRule> {
+    Some(match name {
+        "in_ready" | "s_axis_tready" => PortRule::Ready,
+        "out_valid" | "m_axis_tvalid" => PortRule::Valid,
+        "m_axis_tdata" | "m_axis_tuser" | "m_axis_tlast" | "spec_r" | "spec_g" | "spec_b" | "intensity" | "done" | "out_tag" => PortRule::Data,
+        "idle" => PortRule::Idle,
+        _ => return None,
+    })
+}
+
+/// The bits of output port `name` that carry no field (`m_axis_tdata`'s padding between its
+/// fields, which the unit's header states are 0), as (highest, lowest) ranges.
+pub fn padding(w: PortWidths, name: &str) -> Vec<(u32, u32)> {
+    if name != "m_axis_tdata" || !w.axis {
+        return Vec::new();
+    }
+    let (_, _, mf, mw) = tdata_fields(w);
+    let mut ranges = Vec::new();
+    let mut at = 0;
+    for f in mf.iter().map(|f| (f.lo, f.lo + f.width)).chain([(mw, mw)]) {
+        if f.0 > at {
+            ranges.push((f.0 - 1, at));
+        }
+        at = f.1;
+    }
+    ranges
+}
+
+#[cfg(test)]
+mod port_rule_tests {
+    use super::*;
+
+    /// The default widths, the `valid` interface.
+    fn example() -> PortWidths {
+        PortWidths {
+            cos_frac_bits: 15,
+            n_bits: 8,
+            color_bits: 8,
+            intensity_frac_bits: 15,
+            clocked: true,
+            ready: false,
+            axis: false,
+            tag_bits: 0,
+            static_colour: false,
+            reset_low: false,
+            tlast: false,
+            clock_enable: false,
+        }
+    }
+
+    /// The proof issue, point 4: every output port of every port table has a rule of the port
+    /// checker (a port added without one fails here).
+    #[test]
+    fn every_output_port_has_a_rule_of_the_port_checker() {
+        for axis in [false, true] {
+            for ready in [false, true] {
+                for static_colour in [false, true] {
+                    for (tag_bits, tlast) in [(0, false), (3, false), (0, true), (2, true)] {
+                        for (clocked, clock_enable, reset_low) in [(false, false, false), (true, false, false), (true, true, true)] {
+                            let w = PortWidths {
+                                axis,
+                                ready: ready || axis,
+                                static_colour,
+                                tag_bits,
+                                tlast: tlast && axis,
+                                clocked: clocked || axis || ready,
+                                clock_enable: clock_enable && (axis || ready),
+                                reset_low,
+                                ..example()
+                            };
+                            for p in ports(w, "").iter().filter(|p| p.direction == "output") {
+                                assert!(port_rule(p.name).is_some(), "{} has no rule of the port checker ({w:?})", p.name);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_padding_of_tdata_is_every_bit_between_its_fields() {
+        let w = PortWidths { axis: true, ready: true, ..example() };
+        // intensity@0 (16 bits), spec_r@16, spec_g@24, spec_b@32 (8 each), done@40, 48 bits
+        assert_eq!(padding(w, "m_axis_tdata"), vec![(47, 41)]);
+        let narrow = PortWidths { axis: true, ready: true, color_bits: 4, intensity_frac_bits: 6, ..example() };
+        // intensity 7 bits @0, spec_r 4 @8, spec_g 4 @16, spec_b 4 @24, done @32, 40 bits
+        assert_eq!(padding(narrow, "m_axis_tdata"), vec![(39, 33), (31, 28), (23, 20), (15, 12), (7, 7)].into_iter().rev().collect::<Vec<_>>());
+        assert!(padding(w, "m_axis_tuser").is_empty());
+    }
+}

@@ -33,8 +33,20 @@ module {{ name }} (
     input  wire [{{ lemma_w - 1 }}:0]  f_ports
 `endif
 {%- endif %}
+{%- if raw_w > 0 %}
+`ifdef FORMAL
+    ,
+    // formal only (`specgen prove`): every data output of the unit as it leaves it, whole
+    output wire [{{ raw_w - 1 }}:0]  f_out_ports
+`endif
+{%- endif %}
 );
 {%- for line in body %}
     {{ line }}
 {%- endfor %}
+{%- if raw_w > 0 %}
+`ifdef FORMAL
+    assign f_out_ports = { {%- for r in raw %}{{ r }}{% if !loop.last %}, {% endif %}{% endfor -%} };
+`endif
+{%- endif %}
 endmodule

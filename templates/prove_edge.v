@@ -52,12 +52,14 @@ module {{ name }} (
 {%- if handshake %}
     // the port checker's state (SPECGEN_PORTS), for the unit's lemmas (SPECGEN_LEMMAS)
     wire [{{ state_w - 1 }}:0]  f_state;
+    // every data output of the unit as it leaves it, whole (padding and all)
+    wire [{{ raw_w - 1 }}:0]  out_ports;
 {%- endif %}
     {{ top }}_prove_ports dut (
         .clk(clk), .rst(rst), .in_valid(in_valid), .out_ready(out_ready), .ks_load(ks_load), .clk_en(clk_en_in),
         .cos_g(cos_in), .n(n_in), .ks_r(ks_r), .ks_g(ks_g), .ks_b(ks_b), .in_tag(in_tag),
         .in_ready(in_ready), .out_valid(out_valid), .spec_r(spec_r), .spec_g(spec_g), .spec_b(spec_b),
-        .intensity(intensity), .done(done), .out_tag(out_tag), .idle(idle)
+        .intensity(intensity), .done(done), .out_tag(out_tag), .idle(idle){% if handshake %}, .f_out_ports(out_ports){% endif %}
 `ifdef SPECGEN_LEMMAS
         , .f_ports(f_state)
 `endif
@@ -71,7 +73,7 @@ module {{ name }} (
         .in_valid(in_valid), .in_ready(in_ready), .in_word({% if word_carried %}in_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}),
         .out_valid(out_valid), .out_ready(out_ready), .out_payload({intensity, spec_r, spec_g, spec_b, done}),
         .out_word({% if word_carried %}out_tag[{{ word_w - 1 }}:0]{% else %}1'b0{% endif %}), .load(ks_load),
-        .in_pixel({cos_in, n_in, ks_r, ks_g, ks_b}), .follow(follow), .f_state(f_state));
+        .in_pixel({cos_in, n_in, ks_r, ks_g, ks_b}), .follow(follow), .out_ports(out_ports), .idle(idle), .f_state(f_state));
 `endif
 {%- endif %}
 

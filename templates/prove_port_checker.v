@@ -21,6 +21,10 @@ module {{ name }} (
     input  wire [{{ pixel_w - 1 }}:0]  in_pixel,
     // free: follow the pixel taken at this edge (when none is followed)
     input  wire                follow,
+    // every data output port of the unit as it leaves it, whole: its padding too
+    input  wire [{{ raw_w - 1 }}:0]  out_ports,
+    // the unit's idle (a static colour's; 0 without one)
+    input  wire                idle,
     // the checker's own state, for the unit's lemmas (SPECGEN_LEMMAS), from bit 0 up: the pixels
     // inside; the pixel followed: whether one is, its edges since taken (LATENCY and more read
     // as LATENCY), the results to leave before it, its tag; the edges a result has been owed;
@@ -45,6 +49,7 @@ module {{ name }} (
     reg        held = 1'b0;                  // out_valid && !(out_ready && en) in the cycle before
     reg [{{ payload_w - 1 }}:0]  held_payload = 0;
     reg [{{ word_w - 1 }}:0]  held_word = 0;
+    reg [{{ raw_w - 1 }}:0]  held_ports = 0;
     // the scoreboard: one pixel followed at a time, any one (taken with `follow` high while none
     // is): its tag, the results to leave before it, its edges since taken
     reg        k_on = 1'b0;
@@ -53,20 +58,24 @@ module {{ name }} (
     reg [{{ age_w - 1 }}:0]  k_age = 0;
     wire       k_start = taken && follow && !k_on;
     wire       k_leaves = delivered && k_on && k_rank == 0;
-    // bounded response: edges a result has been owed to a ready consumer, and in_ready low to one
-    reg [7:0]  owed = 0, refused = 0;
+    // bounded response: edges a result has been owed to a ready consumer, and in_ready low to
+    // one; and edges a result has been owed and not shown, whatever the consumer does (AXI: a
+    // master's tvalid never waits for tready)
+    reg [7:0]  owed = 0, refused = 0, waiting = 0;
     always @(posedge clk) begin
         started <= 1'b1;
         after_reset <= rst;
         held <= !rst && out_valid && !(out_ready && en);
         held_payload <= out_payload;
         held_word <= out_word;
+        held_ports <= out_ports;
         if (rst) begin
             inside <= 0;
             fewer <= 3'b111;
             k_on <= 1'b0;
             owed <= 0;
             refused <= 0;
+            waiting <= 0;
         end else begin
             inside <= inside + taken - delivered;
             fewer <= {fewer[1:0], inside < PLACES - 3};
@@ -83,6 +92,7 @@ module {{ name }} (
             end
             owed <= (delivered || inside == 0 || !(out_ready && en)) ? 8'd0 : owed + (owed != 8'hff);
             refused <= (in_ready || !(out_ready && en)) ? 8'd0 : refused + (refused != 8'hff);
+            waiting <= (out_valid || inside == 0) ? 8'd0 : waiting + (waiting != 8'hff);
         end
     end
 
@@ -146,7 +156,7 @@ module {{ name }} (
     wire       k_check = 1'b0;
     wire [{{ payload_w - 1 }}:0]  k_result = {{ payload_w }}'d0;
 `endif
-    assign f_state = {k_result, k_check, refused, owed, k_word, k_rank, k_age, k_on, inside};
+    assign f_state = {k_result, k_check, waiting, refused, owed, k_word, k_rank, k_age, k_on, inside};
 
 `ifdef SPECGEN_COVERS
     // the covers, each an event a proof must reach or it says nothing: a result delivered, the
@@ -183,8 +193,17 @@ module {{ name }} (
         if (started) begin
             // a reset empties the unit: out_valid and in_ready low in the cycle after it
             if (after_reset) assert(!out_valid && !in_ready);
-            // a result shown and not taken (out_ready low, or the edge disabled) stays, unchanged
-            if (held) assert(out_valid && out_payload == held_payload && out_word == held_word);
+            // a result shown and not taken (out_ready low, or the edge disabled) stays, unchanged:
+            // every bit of every data output port, the padding too
+            if (held) assert(out_valid && out_payload == held_payload && out_word == held_word && out_ports == held_ports);
+{%- for (hi, lo) in padding %}
+            // padding between tdata's fields: 0 while a result is shown (the unit's header)
+            if (out_valid) assert(out_ports[{{ hi }}:{{ lo }}] == {{ hi - lo + 1 }}'d0);
+{%- endfor %}
+{%- if static_colour %}
+            // idle is high exactly while no pixel is taken and not delivered
+            assert(idle == (inside == 0));
+{%- endif %}
             // never more pixels inside than places; no result without a pixel inside
             assert(inside <= PLACES);
             if (delivered) assert(inside != 0);
@@ -198,6 +217,9 @@ module {{ name }} (
             // RESPOND edges, and in_ready rises again within RECOVER
             assert(owed <= RESPOND);
             assert(refused <= RECOVER);
+            // and whatever the consumer does (one that waits for out_valid before it raises
+            // out_ready is legal): a result owed is shown within RESPOND edges
+            assert(waiting <= RESPOND);
 `ifdef SPECGEN_DATAPATH
             // the datapath: the result delivered for the pixel followed is the twin's for it
             if (compared) assert(out_payload == k_expected);

@@ -162,8 +162,10 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
 /// What the port checker found, after the verdict's own lines.
 fn at_the_ports(proof: &specgen::prove::Proof, cover_trace: Option<&std::path::Path>) -> Result<(), Failure> {
     let Some(ports) = &proof.ports else { return Ok(()) };
-    let bounded =
-        format!("no property fails within the first {} clock edges from power-up (a bounded search, the unit's own assertions set aside)", ports.depth);
+    let bounded = format!(
+        "no property fails within the first {} clock edges from power-up (a bounded search over the checker's rules and the unit's own assertions)",
+        ports.depth
+    );
     let verdict = match ports.unbounded {
         Unbounded::Proved { k } => format!(
             "proved, unbounded (k-induction with yosys sat, k = {k}, the unit's lemmas tying the checker's state to its own; a lemma is an assertion, none can pass a broken unit); {bounded}"

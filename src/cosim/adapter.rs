@@ -20,6 +20,9 @@ struct CosimTop<'a> {
     /// bits of a handshake unit's lemma port (0: none)
     lemma_w: u32,
     body: Vec<String>,
+    /// the unit's data outputs as connected, from the highest bits down (`f_out_ports`)
+    raw: Vec<String>,
+    raw_w: u32,
 }
 
 /// The adapter's Verilog for the unit `cfg` describes, as module `specgen_cosim_top`.
@@ -37,8 +40,12 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
     let (sf, sw, mf, mw) = ports::tdata_fields(cfg.port_widths());
     let mut body = Vec::new();
     let mut links = Vec::new();
-    let names: Vec<&str> = cfg.ports("").iter().map(|p| p.name).collect();
-    for name in &names {
+    let table = cfg.ports("");
+    let names: Vec<&str> = table.iter().map(|p| p.name).collect();
+    // every data output as it leaves the unit (`specgen prove`'s port checker reads them whole)
+    let mut raw = Vec::new();
+    let mut raw_w = 0;
+    for (name, port) in names.iter().zip(&table) {
         let to = match *name {
             "aclk" => "clk".to_string(),
             "aresetn" | "rst_n" => "~rst".to_string(),
@@ -56,6 +63,10 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
             "m_axis_tlast" => format!("out_tag[{user}]"),
             other => other.to_string(),
         };
+        if port.direction == "output" && ports::port_rule(name) == Some(ports::PortRule::Data) {
+            raw.push(to.clone());
+            raw_w += port.width;
+        }
         links.push(format!(".{name}({to})"));
     }
     if axis {
@@ -97,6 +108,8 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
         i_w: cfg.fi() + 1,
         lemma_w,
         body,
+        raw,
+        raw_w,
     }
     .render()
     .expect("adapter template renders")

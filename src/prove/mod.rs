@@ -55,6 +55,25 @@ struct EdgeHarness<'a> {
     word_carried: bool,
     /// bits of the port checker's state (a handshake unit)
     state_w: u32,
+    /// bits of the unit's data outputs, whole (the adapter's `f_out_ports`)
+    raw_w: u32,
+}
+
+/// The unit's data outputs as the adapter joins them (`f_out_ports`, the first port's bits
+/// highest): their width, and the bits among them that carry no field (`m_axis_tdata`'s
+/// padding), as (highest, lowest) ranges.
+fn raw_outputs(cfg: &crate::config::Config) -> (u32, Vec<(u32, u32)>) {
+    let data: Vec<_> =
+        cfg.ports("").into_iter().filter(|p| p.direction == "output" && crate::ports::port_rule(p.name) == Some(crate::ports::PortRule::Data)).collect();
+    let width: u32 = data.iter().map(|p| p.width).sum();
+    let mut padding = Vec::new();
+    let mut above = 0;
+    for p in &data {
+        above += p.width;
+        let lo = width - above;
+        padding.extend(crate::ports::padding(cfg.port_widths(), p.name).into_iter().map(|(h, l)| (h + lo, l + lo)));
+    }
+    (width, padding)
 }
 
 /// The stream rules at a handshake unit's ports (`templates/prove_port_checker.v`), written from
@@ -85,6 +104,9 @@ struct PortChecker<'a> {
     twin: &'a str,
     /// the pixel's operands: cos_g, n and the three colours
     pixel_w: u32,
+    /// bits of the unit's data outputs, whole, and their padding ([`raw_outputs`])
+    raw_w: u32,
+    padding: Vec<(u32, u32)>,
     /// the twin's latency (`valid`: its stages)
     stages: u32,
     cos_w: u32,
@@ -413,6 +435,7 @@ pub fn harness(design: &Design) -> String {
         word_w: cfg.carried_tag_bits().max(1),
         word_carried: cfg.carried_tag_bits() > 0,
         state_w: crate::interface::CheckerState::of(cfg).width(),
+        raw_w: raw_outputs(cfg).0,
     }
     .render()
     .expect("the prove harness renders")
@@ -425,6 +448,7 @@ pub fn port_checker(design: &Design) -> String {
     let places = crate::interface::buffer_places(cfg);
     let (respond, recover) = crate::interface::CheckerState::bounds(cfg);
     let state = crate::interface::CheckerState::of(cfg);
+    let (raw_w, padding) = raw_outputs(cfg);
     PortChecker {
         name: &format!("{}_port_checker", cfg.top()),
         top: cfg.top(),
@@ -445,6 +469,8 @@ pub fn port_checker(design: &Design) -> String {
         static_colour: cfg.colour() == crate::config::Colour::Static,
         twin: &datapath_twin_name(cfg.top()),
         pixel_w: cfg.f() + 1 + cfg.n_bits() + 3 * cfg.b(),
+        raw_w,
+        padding,
         stages: cfg.stages(),
         cos_w: cfg.f() + 1,
         n_w: cfg.n_bits(),
@@ -501,15 +527,10 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
             unit_defines: unit_defines.clone(),
             ..Script::model(&name, &files)
         };
-        let mut engine = format!("a bounded search of {depth} edges from power-up with ABC bmc3");
+        let engine = format!("a bounded search of {depth} edges from power-up with ABC bmc3");
         let verdict = match search(design, tools, w, script, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
-            Searched::Found { frame, vcd, which } => {
-                if let Some(a) = which {
-                    engine = format!("{engine}; the first assertion to fail: {a}");
-                }
-                Verdict::Failed { frame, vcd }
-            }
+            Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
             Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
@@ -605,12 +626,7 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
         let mut engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
         let mut verdict = match search(design, tools, w, at_ports, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
-            Searched::Found { frame, vcd, which } => {
-                if let Some(a) = which {
-                    engine = format!("{engine}; the first assertion to fail: {a}");
-                }
-                Verdict::Failed { frame, vcd }
-            }
+            Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
             Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
         if verdict == (Verdict::Bounded { depth }) {

@@ -370,14 +370,14 @@ pub(super) fn against_the_twin(
         ..Script::model(&name, &files)
     };
     Ok(match search(design, tools, w, script.clone(), depth)? {
-        Searched::Found { frame, vcd, .. } => (Verdict::Failed { frame, vcd }, None),
+        Searched::Found { frame, vcd } => (Verdict::Failed { frame, vcd }, None),
         Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: reached, out_of_time: true, reached }, None),
         Searched::Clear => {
             let mut defines = script.defines.clone();
             defines.extend(["SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{}", 1 << 6)]);
             let covering = Script { defines, ..script.clone() };
             match search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, tools.cover_trace)? {
-                Searched::Found { frame, vcd, .. } => {
+                Searched::Found { frame, vcd } => {
                     let cover_vcd = tools.cover_trace.then_some(vcd);
                     // then for every edge, unless a bounded search was asked for (--depth): the
                     // unit's lemmas place the followed pixel's result in the buffer, the twin's

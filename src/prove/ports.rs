@@ -72,9 +72,13 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
     let first = Script { ports_only: None, ..ports.clone() };
     match search(design, tools, w, first, depth)? {
         Searched::Clear => {}
-        Searched::Found { frame, vcd, which } => {
-            let first = which.map(|a| format!("; the first to fail: {a}")).unwrap_or_default();
-            return Ok(AtPorts::Failed { frame, vcd, how: format!("a bounded search with ABC bmc3 over its assertions and the unit's own{first}") });
+        Searched::Found { frame, vcd } => {
+            // which failed: the checker's rules alone, searched again to the same depth
+            let how = match search_with(design, &Tools { progress: None, ..tools.clone() }, w, ports.clone(), depth, false)? {
+                Searched::Found { .. } => "a bounded search with ABC bmc3 over its assertions and the unit's own; a rule at the ports fails",
+                _ => "a bounded search with ABC bmc3 over its assertions and the unit's own; the unit's own assertion fails, the rules at the ports hold to that depth",
+            };
+            return Ok(AtPorts::Failed { frame, vcd, how: how.into() });
         }
         Searched::OutOfTime { reached } => return Ok(AtPorts::OutOfTime { reached }),
     }
@@ -88,7 +92,7 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
     let cdepth = cover_depth(cfg);
     let mask = all.iter().fold(0, |m, (bit, _)| m | 1 << bit);
     match reach(mask, cdepth, tools.cover_trace)? {
-        Searched::Found { frame, vcd, .. } => {
+        Searched::Found { frame, vcd } => {
             let cover_vcd = tools.cover_trace.then_some(vcd);
             let unbounded = match lemmas.then(|| unbounded(design, tools, w, &ports, UNBOUNDED_STEPS)).transpose()? {
                 None => Unbounded::NoLemmas,
@@ -181,9 +185,8 @@ pub(super) const PORT_PROPERTIES: [&str; 6] = [
 pub(super) enum Searched {
     /// no assertion fails within the depth
     Clear,
-    /// one fails `frame` edges in; the run's VCD; the assertion that fails, in words, where the
-    /// replay names it (yosys's `sim`)
-    Found { frame: u32, vcd: Vec<u8>, which: Option<String> },
+    /// one fails `frame` edges in; the run's VCD
+    Found { frame: u32, vcd: Vec<u8> },
     /// stopped at the time limit, `reached` frames searched
     OutOfTime { reached: Option<u32> },
 }
@@ -207,13 +210,12 @@ pub(super) fn search_with(design: &Design, tools: &Tools, w: &Path, script: Scri
         return Ok(Searched::OutOfTime { reached: bmc_reached(&said.text) });
     }
     match frame_asserted(&said.text) {
-        Some(frame) if !replay => Ok(Searched::Found { frame, vcd: Vec::new(), which: None }),
+        Some(frame) if !replay => Ok(Searched::Found { frame, vcd: Vec::new() }),
         Some(frame) => {
             yosys_witness(w)?;
             Script { replay: true, ..script.clone() }.write(w, "replay.ys")?;
             let _ = std::fs::remove_file(w.join("trace.vcd"));
-            let replayed = run(&tools.yosys, &["-s".into(), "replay.ys".into()], w, tools.limit);
-            let mut which = None;
+            let replayed = run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit);
             if matches!(&replayed, Err(e) if without_sim(e)) {
                 // YoWASP's yosys has no `sim`: its `sat` searches the failing run's edges again
                 // (sat's first step is the state before the first edge: ABC's frame f is step f + 2)
@@ -235,11 +237,9 @@ pub(super) fn search_with(design: &Design, tools: &Tools, w: &Path, script: Scri
                     }
                 }
             } else {
-                let said = replayed?
-                    .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
-                which = failed_assertion(&said, design, w);
+                replayed?.ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
             }
-            Ok(Searched::Found { frame, vcd: trace(&tools.yosys, w, design)?, which })
+            Ok(Searched::Found { frame, vcd: trace(&tools.yosys, w, design)? })
         }
         None if said.text.contains("No output asserted") => Ok(Searched::Clear),
         None => Err(error::tool(&tools.abc, format!("bmc3 neither found a failure nor finished its {depth} frames: {}", tail(&said.text)))),

@@ -129,25 +129,6 @@ pub(super) fn sat_reached(text: &str) -> Option<u32> {
         .max()
 }
 
-/// The assertion that yosys's `sim` saw fail first in a replay's log `text` ("Warning: Assert
-/// t.$assert$unit-1.v:418$3235 (harness.v:50.31-58.6|unit-1.v:418.57-418.91) failed."), in words: its source line and where
-/// it is (a unit's file by its own path, specgen's by the module it holds).
-pub(super) fn failed_assertion(text: &str, design: &Design, w: &Path) -> Option<String> {
-    let line = text.lines().find(|l| l.contains("Assert ") && l.trim_end().ends_with("failed."))?;
-    // the cell's own name holds its source ("…$assert$unit-1.v:418$3235"; a flattened cell's
-    // `src` lists its instances' too, in no set order)
-    let named = line.split("$assert$").nth(1)?.split_whitespace().next()?;
-    let (file, at) = named.split_once(':')?;
-    let number: usize = at.split(|c: char| !c.is_ascii_digit()).next()?.parse().ok()?;
-    let staged = crate::small_file::read(&w.join(file), crate::small_file::UNIT_FILE_MAX).ok()?;
-    let statement = staged.lines().nth(number.checked_sub(1)?).map(str::trim).unwrap_or("");
-    let whose = match file.strip_prefix("unit-").and_then(|i| i.strip_suffix(".v")).and_then(|i| i.parse::<usize>().ok()) {
-        Some(i) => design.sources.get(i).map(|p| p.display().to_string()).unwrap_or_else(|| file.to_string()),
-        None => format!("specgen's {file}"),
-    };
-    Some(format!("`{statement}` ({whose} line {number})"))
-}
-
 /// Whether `e` is yosys saying it has no `sim` command (YoWASP's build leaves it out).
 pub(super) fn without_sim(e: &Error) -> bool {
     let text = e.to_string();
