@@ -634,9 +634,9 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
             // to compare a result says nothing of the colour: not listed
             match colour_check(design, tools, depth, unit_defines)? {
                 None | Some((Verdict::Unreached { .. }, _)) => {}
-                Some((Verdict::Bounded { .. }, _)) => properties.push(COLOUR_PROPERTY),
+                Some((Verdict::Bounded { .. }, _)) => properties.push(colour_property(cfg)),
                 Some((colour, how)) => {
-                    properties.push(COLOUR_PROPERTY);
+                    properties.push(colour_property(cfg));
                     (verdict, engine) = (colour, how);
                 }
             }
@@ -706,11 +706,11 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
     let mut ports = ports;
     match colour_check(design, tools, port_depth(cfg), unit_defines)? {
         None => {}
-        Some((Verdict::Proved, _)) => ports.properties.push(COLOUR_PROPERTY),
-        Some((Verdict::Bounded { .. }, _)) => ports.bounded_only.push(COLOUR_PROPERTY),
+        Some((Verdict::Proved, _)) => ports.properties.push(colour_property(cfg)),
+        Some((Verdict::Bounded { .. }, _)) => ports.bounded_only.push(colour_property(cfg)),
         Some((verdict, engine)) => {
             let seconds = t0.elapsed().as_secs_f64();
-            return Ok(Proof { name, properties: vec![COLOUR_PROPERTY], verdict, seconds, engine, ports: None });
+            return Ok(Proof { name, properties: vec![colour_property(cfg)], verdict, seconds, engine, ports: None });
         }
     }
     let seconds = t0.elapsed().as_secs_f64();
@@ -760,14 +760,22 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
 /// result was computed with, against the datapath twin at cos_g = 1.0 (the only value a port
 /// rule cannot see without the datapath); its verdict, and how it was reached in words.
 fn colour_check(design: &Design, tools: &Tools, depth: u32, unit_defines: &[String]) -> Result<Option<(Verdict, String)>, Error> {
-    if design.cfg.colour() != crate::config::Colour::Static {
-        return Ok(None);
-    }
+    // every ready/axis unit: with a per-pixel colour too, the values at cos_g = 1.0 (an
+    // intensity bit or a colour bit out of place at the ports is seen)
     let (verdict, _) = against_the_twin(design, tools, depth, true, unit_defines)?;
     let engine = format!(
-        "the colour check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside"
+        "the value check: the port checker (from the manifest) with the datapath twin, every pixel at cos_g = 1.0 and n = 1, a bounded search of {depth} edges with ABC bmc3, the unit's own assertions set aside"
     );
     Ok(Some((verdict, engine)))
+}
+
+/// The value check's property for `cfg`, in words.
+fn colour_property(cfg: &crate::config::Config) -> &'static str {
+    if cfg.colour() == crate::config::Colour::Static {
+        COLOUR_PROPERTY
+    } else {
+        VALUE_PROPERTY
+    }
 }
 
 /// `assert(` statements in Verilog text (outside comments).

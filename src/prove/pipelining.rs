@@ -308,6 +308,9 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     Ok(Proof { name: harness_name(design.cfg.top()), properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports })
 }
 
+/// The value check's property, in words (the default proof of a per-pixel colour).
+pub(super) const VALUE_PROPERTY: &str =
+    "the values at cos_g = 1.0 and n = 1: a result delivered carries the datapath twin's, every bit of the intensity and of each colour in its place";
 /// The colour check's property, in words (the default proof of a static colour).
 pub(super) const COLOUR_PROPERTY: &str =
     "with a static colour: a result delivered for a pixel at cos_g = 1.0 is the one computed with the colour loaded at an enabled edge before it was taken (the datapath twin's)";

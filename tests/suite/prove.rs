@@ -717,3 +717,24 @@ fn the_axis_master_rules_hold_at_every_port_bit() {
         assert!(text(&o).contains("a rule at the ports fails"), "{name}: the checker's own rule fails: {}", text(&o));
     });
 }
+
+/// The proof issue, class 6: a value check by default. A per-pixel-colour `axis` unit whose
+/// intensity MSB is dropped in `m_axis_tdata` keeps every stream rule, and the default proof
+/// refutes it: every pixel at cos_g = 1.0 and n = 1 against the datapath twin.
+#[test]
+fn the_default_proof_checks_values_of_a_per_pixel_colour() {
+    require_tool("yosys", "yosys");
+    require_tool("yosys-abc", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let args =
+        ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6", "--interface", "axis", "--tag-bits", "2", "--stages", "2"];
+    let dir = generate(tmp.path(), "msb", &args);
+    let unit = dir.join("specular_unit.v");
+    let src = std::fs::read_to_string(&unit).unwrap();
+    let from = "1'd0, intensity};";
+    assert_eq!(src.matches(from).count(), 1, "{src}");
+    std::fs::write(&unit, src.replace(from, "1'd0, 1'b0, intensity[5:0]};")).unwrap();
+    let o = prove(&dir, &tmp.path().join("msb.vcd"));
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("the value check") && text(&o).contains("every bit of the intensity and of each colour in its place"), "{}", text(&o));
+}
