@@ -99,12 +99,15 @@ pub enum Command {
     },
     /// Check generated (or hand-edited, or synthesized) Verilog against the golden model.
     Cosim(cosim::CosimArgs),
-    /// Prove the unit's edge: valid's latency by ABC's pdr, unbounded; ready/axis: a port checker
-    /// written from the manifest, apart from the RTL, first searched for latency + 8 edges
-    /// (ABC's bmc3: a fault fails there with a trace), its covers reached, then proved for
-    /// every edge by k-induction with yosys's sat over its assertions and the unit's own; --depth
-    /// N searches the first N edges instead, --pipelining proves the pipeline changes nothing
-    /// (ABC's iprove), --datapath that a ready/axis unit delivers its datapath's values.
+    /// Prove the unit's edge, of the design synthesis builds (the elaboration every step reads is
+    /// first proved equal to it at every port bit; the unit's own assumes are removed): valid's
+    /// latency by ABC's pdr, unbounded; ready/axis: a port checker written from the manifest,
+    /// apart from the RTL, over every output port bit, first searched for latency + 8 edges with
+    /// the unit's own assertions (ABC's bmc3: a fault fails there with a trace), its covers
+    /// reached, then proved for every edge by k-induction with yosys's sat over its assertions
+    /// and the unit's own, and the values at cos_g = 1.0 checked against the datapath twin;
+    /// --depth N searches the first N edges instead, --pipelining proves the pipeline changes
+    /// nothing (ABC's iprove), --datapath that a ready/axis unit delivers its datapath's values.
     Prove(prove::ProveArgs),
     /// Write golden vectors for any testbench: CSV (a header row of port names) or $readmemh
     /// hex, one row per input with the golden model's outputs; the header states the timing.

@@ -3,7 +3,7 @@
 use super::outln;
 use super::{failed, Failure};
 use specgen::cosim::Design;
-use specgen::prove::{prove, prove_datapath, prove_pipelining, Tools, Unbounded, Verdict};
+use specgen::prove::{environment, prove, prove_datapath, prove_pipelining, Tools, Unbounded, Verdict, OF_THE_BUILT};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -101,6 +101,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             for p in &proof.properties {
                 outln!("  - {p}")?;
             }
+            outln!("{OF_THE_BUILT}; assumed: {}", environment(args.pipelining))?;
             at_the_ports(&proof, args.cover_trace.as_deref())
         }
         Verdict::Bounded { depth } => {
@@ -111,6 +112,7 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             for p in &proof.properties {
                 outln!("  - {p}")?;
             }
+            outln!("{OF_THE_BUILT}; assumed: {}", environment(args.pipelining))?;
             at_the_ports(&proof, args.cover_trace.as_deref())
         }
         Verdict::Unreached { covers, depth } => {

@@ -138,7 +138,7 @@ fn differs_from_built(design: &Design, tools: &Tools, w: &Path, unit: &[String],
         }
     }
     for (reg, init) in &formal.inits {
-        if !built.inits.contains_key(reg) && built.ports.get(reg).is_none() && text_has_wire(w, reg)? {
+        if !built.inits.contains_key(reg) && !built.ports.contains_key(reg) && text_has_wire(w, reg)? {
             differ.push(format!("{reg} starts at {init} in the proof and has no first value built"));
         }
     }

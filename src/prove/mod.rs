@@ -381,6 +381,21 @@ pub enum Unbounded {
     NotTried,
 }
 
+/// What a proof assumes of the unit's environment, in words: the harness's assumptions, the only
+/// ones kept (the unit's own are removed before any step). `pipelining`: `prove --pipelining`'s
+/// miter, which assumes nothing.
+pub fn environment(pipelining: bool) -> &'static str {
+    if pipelining {
+        "nothing: every input free at every edge, from power-up and from any state"
+    } else {
+        "only the environment's: the first clock edge resets the unit (AXI: a stream starts in reset), every input free at every edge after it; the unit's own assume statements are removed"
+    }
+}
+
+/// What every verdict is of, in words: the design built, shown equal to the one proved.
+pub const OF_THE_BUILT: &str =
+    "of the design synthesis builds: the unit as every step reads it (FORMAL and one set of macros) is proved equal to the RTL as synthesis reads it at every port bit before any step";
+
 /// The edge proof's engine, in words.
 const PDR: &str = "ABC pdr";
 /// The pipelining proof's engine, in words.

@@ -356,4 +356,7 @@ fn help_lines_and_the_guide_quote_what_the_code_does() {
     assert!(prove.contains("proved for every edge by k-induction"), "{prove}");
     assert!(!prove.contains("a bounded search) and its covers"), "the port checker is not only a bounded search: {prove}");
     assert!(prove.contains("--datapath") && prove.contains("then proved for every edge by k-induction"), "{prove}");
+    // the proof issue, point 7: the help says of which design and what is assumed
+    assert!(prove.contains("of the design synthesis builds") && prove.contains("the unit's own assumes are removed"), "{prove}");
+    assert!(!prove.contains("own assertions set aside"), "the first search keeps the unit's assertions: {prove}");
 }
