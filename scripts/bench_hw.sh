@@ -106,14 +106,17 @@ print('F=18, N=11, B=10, FI=18, KF=20.\n')
 print('| model | part | clock | stages (latency) | logic cells | FFs | DSP | BRAM | Fmax, median (range) MHz | reaches the clock | max error vs cos^n | depth picked by |')
 print('|---|---|---|---|---|---|---|---|---|---|---|---|')
 def fm(r):
-    """Fmax, median (range): the least of nextpnr's and the blocks' limits (synth's fmax_mhz);
-    where a block's limit sets it, nextpnr's own figure and range follow it."""
+    """Fmax, median (range): the least of nextpnr's and the blocks' limits (synth's fmax_mhz),
+    every seed capped as the median is (fmax_seeds_capped); where a limit caps any seed, the
+    block and nextpnr's own median and range follow."""
     s = r.get('fmax_seeds') or []
-    route = r.get('fmax_route_mhz')
-    if route and route > r['fmax_mhz']:
-        block = (r.get('fmax_limited_by') or 'block').split()[0]
-        return f"{r['fmax_mhz']:.1f} ({block} limit; nextpnr {route:.1f}, {min(s):.1f}–{max(s):.1f})"
-    return f"{r['fmax_mhz']:.1f} ({min(s):.1f}–{max(s):.1f})"
+    c = r.get('fmax_seeds_capped') or s
+    route = r.get('fmax_route_mhz') or r['fmax_mhz']
+    if max(s) > max(c):
+        lims = [b for b in (r.get('block_limits') or []) if b[1] <= max(s)]
+        block = min(lims, key=lambda b: b[1])[0] if lims else (r.get('fmax_limited_by') or 'block').split()[0]
+        return f"{r['fmax_mhz']:.1f} ({min(c):.1f}–{max(c):.1f}; {block} limit; nextpnr {route:.1f}, {min(s):.1f}–{max(s):.1f})"
+    return f"{r['fmax_mhz']:.1f} ({min(c):.1f}–{max(c):.1f})"
 part = {'ice40': 'UP5K', 'ecp5': 'ECP5-25'}
 for o in ops:
     s = o.get('fmax_seeds') or []

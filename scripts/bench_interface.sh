@@ -37,7 +37,8 @@ print("limit (`specgen synth`'s fmax_mhz; ECP5 speed grade 6: DP16KD 211.9 MHz),
 print("| model | family | stages | interface | LUT4 | FF | DSP | BRAM | Fmax MHz | vs valid |")
 print("|---|---|---|---|---|---|---|---|---|---|")
 def fmax(r):
-    s = r.get("fmax_seeds") or []
+    # every seed capped as the median is (fmax_seeds_capped); nextpnr's own beside a capped one
+    s = r.get("fmax_seeds_capped") or r.get("fmax_seeds") or []
     return r.get("fmax_mhz"), (min(s) if s else None), (max(s) if s else None)
 base = {}
 for r in rows:
@@ -49,10 +50,13 @@ for r in rows:
     rel = ""
     if r["interface"] != "valid" and b and m and b.get("fmax_mhz"):
         rel = "%+.1f %% Fmax, +%d LUT4, +%d FF, +%d BRAM" % (100.0 * (m / b["fmax_mhz"] - 1), r["luts"] - b["luts"], r["flip_flops"] - b["flip_flops"], r["block_rams"] - b["block_rams"])
-    route = r.get("fmax_route_mhz")
-    if m and route and route > m:
-        # a block's limit sets it (synth's fmax_limited_by): nextpnr's own figure follows
-        f = "%.1f (%s limit; nextpnr %.1f, %.1f-%.1f)" % (m, (r.get("fmax_limited_by") or "block").split()[0], route, lo, hi)
+    route = r.get("fmax_route_mhz") or m
+    raw = r.get("fmax_seeds") or []
+    if m and raw and max(raw) > hi:
+        # a block's limit caps a seed: nextpnr's own figures follow
+        lims = [b for b in (r.get("block_limits") or []) if b[1] <= max(raw)]
+        block = min(lims, key=lambda b: b[1])[0] if lims else (r.get("fmax_limited_by") or "block").split()[0]
+        f = "%.1f (%.1f-%.1f; %s limit; nextpnr %.1f, %.1f-%.1f)" % (m, lo, hi, block, route, min(raw), max(raw))
     else:
         f = "%.1f (%.1f-%.1f)" % (m, lo, hi) if m else "-"
     print("| %s | %s | %d | %s | %d | %d | %d | %d | %s | %s |" % (r["name"], r["family"], r["depth"], r["interface"], r["luts"], r["flip_flops"], r["dsp_blocks"], r["block_rams"], f, rel))

@@ -13,6 +13,6 @@ except Exception:
 checked = re.findall(r"under Verilator: (\d+) cycles, (\d+) checked, (\d+) mismatches", open(log).read())
 row = dict(p.split("=", 1) for p in pairs)
 row.update(stages=d.get("stages"), lc=d.get("logic_cells"), ff=d.get("flip_flops"), dsp=d.get("dsp_blocks"), bram=d.get("block_rams"),
-           seeds=d.get("fmax_seeds", []), fmax=d.get("fmax_mhz"), nextpnr=d.get("fmax_route_mhz"), limit=d.get("fmax_limited_by"),
+           seeds=d.get("fmax_seeds_capped") or d.get("fmax_seeds", []), nextpnr_seeds=d.get("fmax_seeds", []), fmax=d.get("fmax_mhz"), nextpnr=d.get("fmax_route_mhz"), limit=d.get("fmax_limited_by"),
            exhaustive=checked[-1] if checked else None)
 print(json.dumps(row))

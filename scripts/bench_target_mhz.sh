@@ -24,7 +24,7 @@ measure() { # dir key -> "median (min-max)" or "-" (the result beside the unit, 
     local r="-"
     if $bin synth --rtl "$1" --dsp --seeds "$seeds" --json "$1.synth.json" >/dev/null 2>&1; then
         # synth's fmax_mhz: never above a block's limit; where one sets it, nextpnr's own figure follows
-        r=$(python3 -c "import json; d=json.load(open('$1.synth.json')); s=d.get('fmax_seeds') or [0]; rt=d.get('fmax_route_mhz') or d['fmax_mhz']; print('%.1f (%.1f-%.1f)' % (d['fmax_mhz'], min(s), max(s)) if rt <= d['fmax_mhz'] else '%.1f (%s limit; nextpnr %.1f, %.1f-%.1f)' % (d['fmax_mhz'], (d.get('fmax_limited_by') or 'block').split()[0], rt, min(s), max(s)))")
+        r=$(python3 -c "import json; d=json.load(open('$1.synth.json')); s=d.get('fmax_seeds') or [0]; c=d.get('fmax_seeds_capped') or s; rt=d.get('fmax_route_mhz') or d['fmax_mhz']; print('%.1f (%.1f-%.1f)' % (d['fmax_mhz'], min(c), max(c)) if max(s) <= max(c) else '%.1f (%.1f-%.1f; %s limit; nextpnr %.1f, %.1f-%.1f)' % (d['fmax_mhz'], min(c), max(c), (d.get('fmax_limited_by') or 'block').split()[0], rt, min(s), max(s)))")
     fi
     echo "$2=$r" >> "$measured"
     echo "$r"

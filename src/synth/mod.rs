@@ -71,8 +71,13 @@ pub struct SynthResult {
     pub(crate) icetime_mhz: Option<f64>,
     /// why icetime's figure is missing (the tool not found), empty when it ran
     pub(crate) icetime_note: String,
-    /// Fmax of each seed 1..=K, in seed order (Fmax moves with the seed by several per cent)
+    /// nextpnr's Fmax of each seed 1..=K, in seed order (Fmax moves with the seed by several
+    /// per cent): its routes, not the blocks' own limits
     pub(crate) fmax_seeds: Vec<f64>,
+    /// each seed's figure capped by the blocks' limits, as the median is (`fmax_seeds`
+    /// beside it is nextpnr's own)
+    #[serde(default)]
+    pub(crate) fmax_seeds_capped: Vec<f64>,
     /// why Fmax is missing, when it is
     pub(crate) fmax_note: String,
     /// logic cells after packing, from nextpnr's device utilisation: ICESTORM_LC (iCE40) or
@@ -441,6 +446,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         total_cells,
         fmax_mhz: None,
         fmax_seeds: Vec::new(),
+        fmax_seeds_capped: Vec::new(),
         fmax_note: String::new(),
         fmax_route_mhz: None,
         fmax_limited_by: String::new(),
@@ -575,6 +581,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         r.fmax_mhz = Some(f);
         r.fmax_limited_by = why;
     }
+    r.fmax_seeds_capped = capped_seeds(&r.fmax_seeds, &limits);
     r.fmax_note = format!(
         "{tool} {}, median of seeds {} ({}), unit between registers of a serial-I/O wrapper",
         args.join(" "),
@@ -597,7 +604,37 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     Ok((r, logs))
 }
 
+/// Every seed's figure capped as the median is: none above a limit of a block the unit uses.
+pub(crate) fn capped_seeds(seeds: &[f64], limits: &[crate::family::BlockLimit]) -> Vec<f64> {
+    seeds.iter().map(|&f| crate::blocks::limited(f, limits).0).collect()
+}
+
 impl SynthResult {
+    /// Fmax in words: the median and every seed's range, each capped by the blocks' limits;
+    /// where a limit caps any seed, the block and nextpnr's own median and range follow. None
+    /// without place-and-route.
+    pub fn fmax_text(&self) -> Option<String> {
+        let m = self.fmax_mhz?;
+        let capped = if self.fmax_seeds_capped.len() == self.fmax_seeds.len() { &self.fmax_seeds_capped } else { &self.fmax_seeds };
+        let lo = capped.iter().copied().reduce(f64::min)?;
+        let hi = capped.iter().copied().reduce(f64::max)?;
+        let (raw_lo, raw_hi) = (self.fmax_seeds.iter().copied().fold(f64::INFINITY, f64::min), self.fmax_seeds.iter().copied().fold(0.0, f64::max));
+        let seeds = self.fmax_seeds.len();
+        let route = self.fmax_route_mhz.unwrap_or(m);
+        Some(if raw_hi > hi {
+            let block = self
+                .block_limits
+                .iter()
+                .filter(|(_, mhz, _)| *mhz <= raw_hi)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map_or("a block's", |(b, _, _)| b.as_str())
+                .to_string();
+            format!("{m:.1} median of {seeds} seeds ({lo:.1}–{hi:.1}), each capped by the {block} limit (nextpnr: {route:.1}, {raw_lo:.1}–{raw_hi:.1})")
+        } else {
+            format!("{m:.1} median of {seeds} seeds ({lo:.1}–{hi:.1})")
+        })
+    }
+
     /// Fmax, capped by the blocks' limits (None: no place-and-route, or it failed).
     pub fn fmax(&self) -> Option<f64> {
         self.fmax_mhz
@@ -651,19 +688,7 @@ pub fn table(r: &SynthResult) -> String {
         ("logic cells", r.logic_cells.map_or("- (after place-and-route)".into(), |c| c.to_string())),
         ("block RAMs", r.block_rams.to_string()),
         ("ROM bits", r.rom_bits.to_string()),
-        (
-            "Fmax (MHz)",
-            match (r.fmax_mhz, r.fmax_seeds.iter().copied().reduce(f64::min), r.fmax_seeds.iter().copied().reduce(f64::max)) {
-                (Some(m), Some(lo), Some(hi)) if r.fmax_route_mhz.is_some_and(|route| route > m) => format!(
-                    "{m:.1}, limited by the {} (nextpnr: {:.1} median of {} seeds, min {lo:.1}, max {hi:.1})",
-                    r.fmax_limited_by.split_whitespace().next().unwrap_or("block"),
-                    r.fmax_route_mhz.unwrap_or(m),
-                    r.fmax_seeds.len()
-                ),
-                (Some(m), Some(lo), Some(hi)) => format!("{m:.1} median of {} seeds (min {lo:.1}, max {hi:.1})", r.fmax_seeds.len()),
-                _ => format!("- ({})", r.fmax_note),
-            },
-        ),
+        ("Fmax (MHz)", r.fmax_text().unwrap_or_else(|| format!("- ({})", r.fmax_note))),
     ];
     for (k, v) in rows {
         s.push_str(&format!("  {k:<14} {v}\n"));

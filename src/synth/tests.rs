@@ -123,3 +123,25 @@ fn a_netlist_over_the_dsp_budget_is_named() {
     let ecp5 = vec![("MULT18X18D".to_string(), 1), ("ALU54B".to_string(), 1)];
     assert!(over_dsp_budget(&ecp5, Some(1), "u").expect("two blocks").contains("1 MULT18X18D, 1 ALU54B"));
 }
+
+/// The hardware issue, point 4: every seed's figure is capped as the median is. Schlick on the
+/// ECP5 at grade 6 (its DP16KDs allow 211.9 MHz): nextpnr's seeds 203.2, 210.6 and 226.5 give
+/// 203.2–211.9, nextpnr's own figures in parentheses; a unit under every limit is unchanged.
+#[test]
+fn every_seed_is_capped_by_the_blocks_limits() {
+    let limits = vec![crate::family::BlockLimit { block: "DP16KD", period_ns: 4.719, what: "DP16KD clock pulse, grade 6".into() }];
+    let seeds = [203.2, 210.6, 226.5];
+    let capped = capped_seeds(&seeds, &limits);
+    assert_eq!(capped, vec![203.2, 210.6, 211.9]);
+    let r = SynthResult {
+        fmax_mhz: Some(210.6),
+        fmax_route_mhz: Some(210.6),
+        fmax_seeds: seeds.to_vec(),
+        fmax_seeds_capped: capped,
+        block_limits: limits.iter().map(|l| (l.block.to_string(), l.mhz(), l.what.clone())).collect(),
+        ..Default::default()
+    };
+    assert_eq!(r.fmax_text().unwrap(), "210.6 median of 3 seeds (203.2–211.9), each capped by the DP16KD limit (nextpnr: 210.6, 203.2–226.5)");
+    let under = SynthResult { fmax_seeds: vec![190.0, 200.0], fmax_seeds_capped: capped_seeds(&[190.0, 200.0], &limits), fmax_mhz: Some(195.0), ..r };
+    assert_eq!(under.fmax_text().unwrap(), "195.0 median of 2 seeds (190.0–200.0)");
+}
