@@ -4,7 +4,7 @@ use super::{failed, Failure};
 use super::{out, outln};
 use specgen::cosim::describe;
 use specgen::cosim::Design;
-use specgen::synth::{synthesize, table};
+use specgen::synth::{synthesize, table, Depth};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug, Clone)]
@@ -28,10 +28,17 @@ pub struct SynthArgs {
     /// Also write the result as JSON to FILE.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
-    /// Also simulate the mapped netlist (yosys write_verilog, yosys's cell models) against the
-    /// golden model under Verilator and Icarus; exit 1 on any mismatch.
+    /// Simulate the mapped netlist (yosys write_verilog, yosys's cell models) against the golden
+    /// model under Verilator and Icarus (--verify-vectors); exit 1 on any mismatch. Without it,
+    /// every synth still checks its netlist: the corners, every n's boundary and 200 random
+    /// vectors under Verilator, before any figure is written (a synthesis tool that changed the
+    /// function is exit 1, nothing written).
     #[arg(long)]
     pub verify: bool,
+    /// Skip the netlist check every synth runs (no Verilator at hand): the figures are then of
+    /// a netlist nobody simulated, and the output says so.
+    #[arg(long, conflicts_with = "verify")]
+    pub no_check: bool,
     /// Random vectors of --verify after the corner cases (Icarus runs a tenth of them) [0..=10000000].
     #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(0..=10_000_000))]
     pub verify_vectors: u64,
@@ -67,6 +74,10 @@ pub struct SynthArgs {
     pub sim: super::values::SimToolArgs,
 }
 
+/// The random vectors of every synth's own check of its netlist (after the corners and every
+/// n's boundary).
+const SHORT_CHECK_VECTORS: u64 = 200;
+
 pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
     // the manifest states the promises the netlist is held to (registers, budget, depth): it
@@ -86,13 +97,16 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         specgen::output::write_file(path, logs.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     out!("{}", table(&r))?;
-    if let Some(path) = &args.json {
-        let mut text = serde_json::to_string_pretty(&r).expect("serialises");
-        text.push('\n');
-        specgen::output::write_file(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
-    }
-    if args.verify {
-        let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, &args.sim.tools(), args.verify_vectors, args.verify_exhaustive)?;
+    // the netlist checked before any figure of it is written
+    let depth = match (args.verify, args.verify_exhaustive, args.no_check) {
+        (true, true, _) => Some(Depth::Exhaustive),
+        (true, false, _) => Some(Depth::Full),
+        (false, _, false) => Some(Depth::Short),
+        (false, _, true) => None,
+    };
+    if let Some(depth) = depth {
+        let vectors = if depth == Depth::Short { SHORT_CHECK_VECTORS } else { args.verify_vectors };
+        let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, &args.sim.tools(), vectors, depth)?;
         for (sim, report) in &v.runs {
             outln!(
                 "verify: mapped netlist with {} under {sim:?}: {} cycles, {} checked, {} mismatches",
@@ -113,6 +127,13 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
                 return Err(failed(format!("verify under {sim:?}: no output was checked")));
             }
         }
+    } else {
+        outln!("not checked: the mapped netlist was not simulated (--no-check); its figures are of a netlist nobody simulated")?;
+    }
+    if let Some(path) = &args.json {
+        let mut text = serde_json::to_string_pretty(&r).expect("serialises");
+        text.push('\n');
+        specgen::output::write_file(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     Ok(())
 }
