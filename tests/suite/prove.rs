@@ -570,7 +570,7 @@ fn the_delivered_values_are_the_datapaths_and_a_wrong_one_refuted() {
                 // a bounded search of the default proof's kind (`--depth`) runs the colour check too
                 let o = specgen().args(["prove", "--depth", "12", "--edited", "--rtl"]).arg(&dir).arg("--trace").arg(&trace).output().unwrap();
                 assert_eq!(o.status.code(), Some(1), "{name} --depth 12: {}", text(&o));
-                assert!(text(&o).contains("the colour check"), "{name} --depth 12: {}", text(&o));
+                assert!(text(&o).contains("the value check"), "{name} --depth 12: {}", text(&o));
             }
         } else {
             assert!(o.status.success(), "{name}: {}", text(&o));
