@@ -118,6 +118,11 @@ module specular_unit_tb_ports (
     output wire                done,
     output wire [63:0]         out_tag,
     output wire                idle
+`ifdef FORMAL
+    ,
+    // formal only (`specgen prove`): every data output of the unit as it leaves it, whole
+    output wire [40:0]  f_out_ports
+`endif
 );
     specular_unit dut (
         .in_valid(in_valid),
@@ -136,5 +141,8 @@ module specular_unit_tb_ports (
     assign in_ready = 1'b1;
     assign out_tag = 64'd0;
     assign idle = 1'b0;
+`ifdef FORMAL
+    assign f_out_ports = {spec_r, spec_g, spec_b, intensity, done};
+`endif
 endmodule
 

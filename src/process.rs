@@ -1,4 +1,5 @@
-//! Children and temporaries that do not outlive a run. A leaf: imports nothing from the crate.
+//! Children and temporaries that do not outlive a run. A leaf: imports nothing from the crate
+//! but its error type.
 //!
 //! - Every tool specgen runs (simulators, their builds, yosys, nextpnr) is started by
 //!   [`command`]: the child gets `PR_SET_PDEATHSIG(SIGKILL)` and the default signal mask, and
@@ -74,7 +75,7 @@ pub fn command(program: impl AsRef<OsStr>) -> Command {
                 libc::setpgid(0, group);
             }
             if let Some(slots) = &slots {
-                take_slot(slots);
+                take_slot(slots)?;
             }
             let mut none: libc::sigset_t = std::mem::zeroed();
             libc::sigemptyset(&mut none);
@@ -85,39 +86,92 @@ pub fn command(program: impl AsRef<OsStr>) -> Command {
     cmd
 }
 
-/// The job slots' files (`SPECGEN_JOBS=DIR`: every regular file of DIR, the caller's own, is a
-/// slot), as C strings made before any fork; none without the variable or any slot.
-fn job_slots() -> Option<std::sync::Arc<Vec<std::ffi::CString>>> {
-    static SLOTS: std::sync::OnceLock<Option<std::sync::Arc<Vec<std::ffi::CString>>>> = std::sync::OnceLock::new();
-    SLOTS
-        .get_or_init(|| {
-            use std::os::unix::ffi::OsStrExt;
-            use std::os::unix::fs::MetadataExt;
-            let dir = PathBuf::from(std::env::var_os("SPECGEN_JOBS").filter(|d| !d.is_empty())?);
-            let me = unsafe { libc::geteuid() };
-            let ok = |m: &std::fs::Metadata| m.uid() == me && m.mode() & 0o022 == 0;
-            if !std::fs::symlink_metadata(&dir).is_ok_and(|m| m.is_dir() && ok(&m)) {
-                return None;
-            }
-            let mut slots: Vec<std::ffi::CString> = std::fs::read_dir(&dir)
-                .ok()?
-                .flatten()
-                .filter(|e| std::fs::symlink_metadata(e.path()).is_ok_and(|m| m.is_file() && ok(&m)))
-                .filter_map(|e| std::ffi::CString::new(e.path().as_os_str().as_bytes()).ok())
-                .take(256)
-                .collect();
-            slots.sort();
-            (!slots.is_empty()).then(|| std::sync::Arc::new(slots))
-        })
-        .clone()
+/// The job slots (`SPECGEN_JOBS=DIR`: every regular file of DIR, the caller's own, is a slot),
+/// as C strings made before any fork, with the wait's bound and messages; none without the
+/// variable. A malformed one is refused ([`check_environment`]) before anything runs.
+struct Slots {
+    files: Vec<std::ffi::CString>,
+    /// written to standard error once a tool has waited 10 s for a slot
+    waiting: std::ffi::CString,
+    /// written when no slot came free within `wait_s` seconds (the tool then does not start)
+    gave_up: std::ffi::CString,
+    wait_s: u64,
+    /// specgen's own standard error, duplicated before any fork (close-on-exec: no tool keeps it)
+    stderr: libc::c_int,
 }
 
-/// In a child before exec: locks one of `slots` (waiting, 20 ms a round, until one is free)
+/// The job slots `SPECGEN_JOBS` names (none without it), or why it names none usable (the
+/// variable set but not a directory of the caller's own, not written by others, with a slot
+/// file in it; a malformed `SPECGEN_JOBS_WAIT`).
+fn slots_of_environment() -> Result<Option<Slots>, crate::error::Error> {
+    use crate::error::input;
+    use std::os::unix::ffi::OsStrExt;
+    use std::os::unix::fs::MetadataExt;
+    let Some(dir) = std::env::var_os("SPECGEN_JOBS").filter(|d| !d.is_empty()).map(PathBuf::from) else {
+        return Ok(None);
+    };
+    let named = format!("SPECGEN_JOBS={}", dir.display());
+    let me = unsafe { libc::geteuid() };
+    let ok = |m: &std::fs::Metadata| m.uid() == me && m.mode() & 0o022 == 0;
+    if !std::fs::symlink_metadata(&dir).is_ok_and(|m| m.is_dir() && ok(&m)) {
+        return Err(input(format!(
+            "{named} is not a directory of yours that only you can write; allowed: a directory of slot files (one per tool that may run at once), or unset"
+        )));
+    }
+    let mut files: Vec<std::ffi::CString> = std::fs::read_dir(&dir)
+        .map_err(|e| input(format!("{named}: cannot read it: {e}")))?
+        .flatten()
+        .filter(|e| std::fs::symlink_metadata(e.path()).is_ok_and(|m| m.is_file() && ok(&m)))
+        .filter_map(|e| std::ffi::CString::new(e.path().as_os_str().as_bytes()).ok())
+        .take(256)
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(input(format!(
+            "{named} holds no slot file (a regular file of yours); allowed: a directory with one file per tool that may run at once, or unset"
+        )));
+    }
+    let wait_s = match std::env::var("SPECGEN_JOBS_WAIT").ok().filter(|v| !v.is_empty()) {
+        None => 3600,
+        Some(v) => v
+            .parse::<u64>()
+            .ok()
+            .filter(|s| (1..=604_800).contains(s))
+            .ok_or_else(|| input(format!("SPECGEN_JOBS_WAIT={v} is not a wait; allowed whole seconds 1..=604800 (or unset: 3600)")))?,
+    };
+    let c = |s: String| std::ffi::CString::new(s).unwrap_or_default();
+    Ok(Some(Slots {
+        files,
+        waiting: c(format!("specgen: waiting for a job slot of {named}: every slot is held (at most {wait_s} s, SPECGEN_JOBS_WAIT)\n")),
+        gave_up: c(format!("specgen: no job slot of {named} came free within {wait_s} s (SPECGEN_JOBS_WAIT); the tool was not started\n")),
+        wait_s,
+        // SAFETY: duplicating a descriptor this process holds
+        stderr: unsafe { libc::fcntl(2, libc::F_DUPFD_CLOEXEC, 3) },
+    }))
+}
+
+/// The environment specgen reads, checked before anything runs: a malformed `SPECGEN_JOBS` or
+/// `SPECGEN_JOBS_WAIT` is an input error naming it (never ignored).
+pub fn check_environment() -> Result<(), crate::error::Error> {
+    slots_of_environment().map(|_| ())
+}
+
+/// The job slots, made once before any fork; none without `SPECGEN_JOBS` (or a malformed one,
+/// which [`check_environment`] has refused already).
+fn job_slots() -> Option<std::sync::Arc<Slots>> {
+    static SLOTS: std::sync::OnceLock<Option<std::sync::Arc<Slots>>> = std::sync::OnceLock::new();
+    SLOTS.get_or_init(|| slots_of_environment().ok().flatten().map(std::sync::Arc::new)).clone()
+}
+
+/// In a child before exec: locks one of the slots (waiting, 20 ms a round, until one is free)
 /// on a descriptor the tool and its children inherit, so the slot is free again only when the
-/// last of them ends. Async-signal-safe.
-fn take_slot(slots: &[std::ffi::CString]) {
+/// last of them ends. After 10 s of waiting it says so on standard error; past the bound it
+/// says so and fails (the tool does not start: the caller reports its start failing).
+/// Async-signal-safe.
+fn take_slot(slots: &Slots) -> std::io::Result<()> {
+    let mut rounds: u64 = 0;
     loop {
-        for slot in slots {
+        for slot in &slots.files {
             // SAFETY: open/flock/close on a path prepared before the fork
             unsafe {
                 let fd = libc::open(slot.as_ptr(), libc::O_RDONLY);
@@ -125,10 +179,23 @@ fn take_slot(slots: &[std::ffi::CString]) {
                     continue;
                 }
                 if libc::flock(fd, libc::LOCK_EX | libc::LOCK_NB) == 0 {
-                    return;
+                    return Ok(());
                 }
                 libc::close(fd);
             }
+        }
+        rounds += 1;
+        let say = |text: &std::ffi::CString| {
+            // SAFETY: write(2) of a string prepared before the fork, to specgen's own standard
+            // error (the tool's is a pipe specgen reads only once the tool runs)
+            unsafe { libc::write(slots.stderr, text.as_ptr().cast(), text.as_bytes().len()) };
+        };
+        if rounds == 500 {
+            say(&slots.waiting);
+        }
+        if rounds >= slots.wait_s * 50 {
+            say(&slots.gave_up);
+            return Err(std::io::Error::from_raw_os_error(libc::EBUSY));
         }
         let pause = libc::timespec { tv_sec: 0, tv_nsec: 20_000_000 };
         // SAFETY: a plain sleep

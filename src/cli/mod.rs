@@ -681,6 +681,12 @@ pub fn main() -> i32 {
             return e.exit_code();
         }
     };
+    // the environment read before anything runs: a malformed variable is refused, never ignored
+    if let Err(e) = specgen::process::check_environment() {
+        let e = Failure::from(e);
+        errln!("specgen: error: {}", message(&e));
+        return exit_code(&e);
+    }
     match run(cli) {
         Ok(()) => 0,
         Err(e) => {

@@ -964,3 +964,43 @@ fn a_home_without_room_for_a_cache_falls_back_to_the_temporary_one() {
     let uid = unsafe { libc::geteuid() };
     assert!(t.join(format!("specgen-cache-{uid}")).is_dir());
 }
+
+/// Reliability V, finding 6: a malformed `SPECGEN_JOBS` (not a directory, or one without a slot
+/// file) or `SPECGEN_JOBS_WAIT` is refused before anything runs, naming it (exit 2); a tool that
+/// waits for a slot says so after 10 s and gives up at the bound, saying so (exit 1), instead of
+/// waiting silently for ever.
+#[test]
+fn a_job_slot_is_waited_for_with_a_message_and_a_bound() {
+    require_tool("iverilog", "iverilog");
+    require_tool("flock", "util-linux");
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let empty = tmp.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let slots = tmp.path().join("slots");
+    std::fs::create_dir(&slots).unwrap();
+    let slot = slots.join("0");
+    std::fs::write(&slot, "").unwrap();
+    for (jobs, wait, names) in
+        [(tmp.path().join("none"), "", "SPECGEN_JOBS="), (empty.clone(), "", "holds no slot file"), (slots.clone(), "soon", "SPECGEN_JOBS_WAIT=soon")]
+    {
+        let o = specgen().env("SPECGEN_JOBS", &jobs).env("SPECGEN_JOBS_WAIT", wait).args(["eval", "--cos", "0.9", "--n", "4"]).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{names}: {}", text(&o));
+        assert!(text(&o).contains(names), "{names}: {}", text(&o));
+    }
+    // one slot, held by another process for the whole run: the wait is said and bounded
+    let mut holder = std::process::Command::new("flock").arg(&slot).args(["sleep", "60"]).spawn().unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let o = specgen()
+        .env("SPECGEN_JOBS", &slots)
+        .env("SPECGEN_JOBS_WAIT", "12")
+        .args(["cosim", "--simulator", "icarus", "--vectors", "20", "--jobs", "1", "--rtl"])
+        .arg(&d)
+        .output()
+        .unwrap();
+    let _ = holder.kill();
+    let _ = holder.wait();
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("waiting for a job slot of SPECGEN_JOBS="), "{}", text(&o));
+    assert!(text(&o).contains("came free within 12 s (SPECGEN_JOBS_WAIT)"), "{}", text(&o));
+}
