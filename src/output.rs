@@ -351,6 +351,11 @@ pub fn private_dir(dir: &Path) -> Result<(), Error> {
     let refused = |why: String| Error::Refused { dir: dir.to_path_buf(), why };
     use std::os::unix::fs::{DirBuilderExt, MetadataExt};
     if std::fs::symlink_metadata(dir).is_err() {
+        // the directories that exist above it are checked before any is made below them: a
+        // refusal leaves nothing behind in another user's directory
+        if let Some(existing) = dir.ancestors().skip(1).find(|a| !a.as_os_str().is_empty() && std::fs::symlink_metadata(a).is_ok()) {
+            safe_ancestors(&existing.join("cache"))?;
+        }
         if let Some(parent) = dir.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent).map_err(|e| refused(format!("cannot create {}: {}", parent.display(), plain(e))))?;
         }

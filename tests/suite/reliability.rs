@@ -52,6 +52,20 @@ fn the_simulator_cache_is_the_callers_own_and_a_planted_one_is_refused() {
         let o = cosim_without_home(&rtl, &tmpdir);
         assert_eq!(o.status.code(), Some(1), "{}", text(&o));
         assert!(text(&o).contains("belongs to user 65534, not to you"), "{}", text(&o));
+        // (reliability V, finding 6) a cache named below another user's directory is refused
+        // before anything is made in it
+        let theirs = tmp.path().join("theirs");
+        std::fs::create_dir(&theirs).unwrap();
+        std::os::unix::fs::chown(&theirs, Some(65534), Some(65534)).unwrap();
+        let o = specgen()
+            .env("SPECGEN_CACHE_DIR", theirs.join("a").join("b").join("cache"))
+            .args(["cosim", "--simulator", "icarus", "--vectors", "20", "--jobs", "1", "--rtl"])
+            .arg(&rtl)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+        assert!(text(&o).contains("belongs to user 65534"), "{}", text(&o));
+        assert_eq!(std::fs::read_dir(&theirs).unwrap().count(), 0, "nothing made in another user's directory");
     }
     // a link planted in its name
     std::fs::remove_dir(&cache).unwrap();
