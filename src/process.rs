@@ -203,14 +203,16 @@ fn take_slot(slots: &Slots) -> std::io::Result<()> {
     }
 }
 
+/// The warden's process group, once made (see [`warden`]).
+static WARDEN_GROUP: std::sync::OnceLock<libc::pid_t> = std::sync::OnceLock::new();
+
 /// The warden's process group (0: none could be made, and tools run in specgen's group, still
 /// with `PR_SET_PDEATHSIG`). Forked once, before the first tool: it leads a group of its own,
 /// closes every descriptor but a pipe's read end, and waits on it; when specgen ends however it
 /// ends, the pipe's last writer is gone, the read returns, and the warden kills its group (every
 /// tool and every process a tool started, itself last).
 fn warden() -> libc::pid_t {
-    static GROUP: std::sync::OnceLock<libc::pid_t> = std::sync::OnceLock::new();
-    *GROUP.get_or_init(|| {
+    *WARDEN_GROUP.get_or_init(|| {
         let mut fds = [0 as libc::c_int; 2];
         // SAFETY: a pipe whose write end only this process holds (close-on-exec: no tool
         // inherits it), then a fork whose child calls only async-signal-safe functions
@@ -408,7 +410,8 @@ pub(crate) fn remove_orphans(dir: &Path, prefix: &str, dirs: bool) {
 }
 
 /// Has SIGINT, SIGTERM and SIGHUP remove every registered temporary directory and end the
-/// process (status 128 + the signal). Call it before any other thread starts: the signals are
+/// process (status 128 + the signal); SIGTSTP (Ctrl-Z) stops the tools' group with specgen,
+/// the warden still watching, and continues them when specgen is. Call it before any other thread starts: the signals are
 /// blocked in the calling thread, whose mask every later thread inherits, and waited for by a
 /// thread of their own. Children get the default mask back ([`command`]).
 pub fn remove_temporaries_on_signals() {
@@ -416,15 +419,33 @@ pub fn remove_temporaries_on_signals() {
     unsafe {
         let mut set: libc::sigset_t = std::mem::zeroed();
         libc::sigemptyset(&mut set);
-        for s in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+        for s in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP, libc::SIGTSTP] {
             libc::sigaddset(&mut set, s);
         }
         if libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut()) != 0 {
             return;
         }
-        let waiter = std::thread::Builder::new().name("signals".into()).spawn(move || {
+        let waiter = std::thread::Builder::new().name("signals".into()).spawn(move || loop {
             let mut sig: libc::c_int = 0;
-            if libc::sigwait(&set, &mut sig) == 0 {
+            if libc::sigwait(&set, &mut sig) != 0 {
+                return;
+            }
+            if sig == libc::SIGTSTP {
+                // Ctrl-Z: the tools (in the warden's group, not the terminal's) stop with
+                // specgen, and go on when it does; the warden itself keeps watching
+                let group = WARDEN_GROUP.get().copied().unwrap_or(0);
+                if group > 0 {
+                    libc::kill(-group, libc::SIGSTOP);
+                    libc::kill(group, libc::SIGCONT);
+                }
+                libc::raise(libc::SIGSTOP);
+                // continued (fg, bg, SIGCONT): the tools too
+                if group > 0 {
+                    libc::kill(-group, libc::SIGCONT);
+                }
+                continue;
+            }
+            {
                 SIGNALLED.store(sig, std::sync::atomic::Ordering::SeqCst);
                 let all = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).clone();
                 for path in all {

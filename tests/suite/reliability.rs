@@ -1018,3 +1018,64 @@ fn a_job_slot_is_waited_for_with_a_message_and_a_bound() {
     assert!(text(&o).contains("waiting for a job slot of SPECGEN_JOBS="), "{}", text(&o));
     assert!(text(&o).contains("came free within 12 s (SPECGEN_JOBS_WAIT)"), "{}", text(&o));
 }
+
+/// The state letter of process `pid` (`/proc/<pid>/stat`'s third field: R, S, T…), if it lives.
+fn process_state(pid: u32) -> Option<char> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    stat.rsplit_once(") ")?.1.chars().next()
+}
+
+/// The processes whose parent is `pid`.
+fn children_of(pid: u32) -> Vec<u32> {
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .flatten()
+        .filter_map(|e| e.file_name().to_str()?.parse::<u32>().ok())
+        .filter(|&c| {
+            std::fs::read_to_string(format!("/proc/{c}/stat"))
+                .ok()
+                .and_then(|s| s.rsplit_once(") ").map(|(_, rest)| rest.split_whitespace().nth(1) == Some(&pid.to_string())))
+                .unwrap_or(false)
+        })
+        .collect()
+}
+
+/// Reliability V, finding 6: Ctrl-Z stops specgen and the tool it runs (in a process group of
+/// its own, which the terminal's signal does not reach), and `fg` continues both: the run then
+/// ends as it would have.
+#[test]
+fn a_stop_stops_the_tool_and_a_continue_continues_it() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(tmp.path(), "u", &["--stages", "6"]);
+    let mut run = specgen().args(["synth", "--no-pnr", "--no-check", "--dsp", "--rtl"]).arg(&d).stdout(std::process::Stdio::null()).spawn().unwrap();
+    let me = run.id();
+    // yosys started (a child of specgen's), then the stop
+    let mut tool = None;
+    for _ in 0..200 {
+        tool = children_of(me).into_iter().find(|&c| std::fs::read_to_string(format!("/proc/{c}/comm")).is_ok_and(|n| n.trim() == "yosys"));
+        if tool.is_some() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let tool = tool.expect("yosys started under specgen");
+    // SAFETY: signals to processes this test started
+    unsafe { libc::kill(me as i32, libc::SIGTSTP) };
+    let mut stopped = false;
+    for _ in 0..100 {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        if process_state(me) == Some('T') && process_state(tool) == Some('T') {
+            stopped = true;
+            break;
+        }
+        if process_state(tool).is_none() {
+            break;
+        }
+    }
+    assert!(stopped, "specgen {:?} and yosys {:?} stopped", process_state(me), process_state(tool));
+    unsafe { libc::kill(me as i32, libc::SIGCONT) };
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    assert_ne!(process_state(tool), Some('T'), "yosys continued with specgen");
+    assert!(run.wait().unwrap().success());
+}
