@@ -683,7 +683,6 @@ pub fn main() -> i32 {
     };
     // the environment read before anything runs: a malformed variable is refused, never ignored
     if let Err(e) = specgen::process::check_environment() {
-        let e = Failure::from(e);
         errln!("specgen: error: {}", message(&e));
         return exit_code(&e);
     }

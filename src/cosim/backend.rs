@@ -352,19 +352,20 @@ pub fn run_one(
             Ok(checker.report)
         }
         Simulator::Icarus => {
-            let work = crate::process::temp_dir().map_err(|e| error::tool("simulator", e.to_string()))?;
+            let work = crate::process::temp_dir().map_err(|e| crate::error::Error::io("create a temporary directory in", std::env::temp_dir(), e))?;
             let vin = work.path().join("vectors.in");
             let vout = work.path().join("vectors.out");
             {
-                let mut w = std::io::BufWriter::new(std::fs::File::create(&vin).map_err(|e| error::tool("simulator", e.to_string()))?);
+                let mut w = std::io::BufWriter::new(std::fs::File::create(&vin).map_err(|e| crate::error::Error::io("write", &vin, e))?);
                 for i in 0..stim.len() {
                     let c = stim.cycle(i);
                     let x = c.inputs;
                     // ks_load in bit 0 of its column, the clock enable low in bit 1
                     let (v, r, o, l) = (c.valid as u8, c.rst as u8, !c.stall as u8, c.load as u8 | (c.disabled as u8) << 1);
                     writeln!(w, "{v:x} {r:x} {:x} {:x} {:x} {:x} {:x} {o:x} {l:x} {:x}", x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2], c.tag)
-                        .map_err(|e| error::tool("simulator", e.to_string()))?;
+                        .map_err(|e| crate::error::Error::io("write", &vin, e))?;
                 }
+                w.flush().map_err(|e| crate::error::Error::io("write", &vin, e))?;
             }
             let child = crate::process::command(&built.vvp)
                 .current_dir(&design.dir)
@@ -401,7 +402,7 @@ pub fn run_one(
                 let f: Vec<&str> = line.split_whitespace().collect();
                 let hex = |s: &str| u32::from_str_radix(s, 16).unwrap_or(u32::MAX); // x/z never match
                 if f.len() != 9 {
-                    return Err(error::tool("vvp", format!("vvp output line {t} is malformed: {line:?}")));
+                    return Err(error::tool("vvp", format!("vvp output line {t} is malformed: {line:?}{}", full_disk(&vout))));
                 }
                 let s = Sampled {
                     outputs: Outputs { intensity: hex(f[2]), spec: [hex(f[3]), hex(f[4]), hex(f[5])], done: f[1] == "1" },
@@ -422,11 +423,35 @@ pub fn run_one(
             }
             check(t, &mut samples);
             if t != stim.len() {
-                return Err(error::tool("vvp", format!("vvp returned {t} of {} cycles", stim.len())));
+                return Err(error::tool("vvp", format!("vvp returned {t} of {} cycles{}", stim.len(), full_disk(&vout))));
             }
             progress.fetch_add(t, Ordering::Relaxed);
             Ok(checker.report)
         }
+    }
+}
+
+/// Why a simulator's output file `out` may be cut short, when its disk is full: the words that
+/// follow the error ("; the disk holding DIR is full: N bytes free"); empty otherwise (vvp's
+/// `$fwrite` to a full disk fails without a word).
+fn full_disk(out: &Path) -> String {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = out.parent().unwrap_or(out);
+    let Ok(c) = std::ffi::CString::new(dir.as_os_str().as_bytes()) else { return String::new() };
+    // SAFETY: statvfs fills a struct we own from a NUL-terminated path
+    let mut st: libc::statvfs = unsafe { std::mem::zeroed() };
+    if unsafe { libc::statvfs(c.as_ptr(), &mut st) } != 0 {
+        return String::new();
+    }
+    let free = st.f_bavail as u64 * st.f_frsize as u64;
+    if free < 64 << 10 {
+        format!(
+            "; the disk holding {} is full ({free} bytes free): the simulator's output {} was cut short (No space left on device)",
+            dir.display(),
+            out.display()
+        )
+    } else {
+        String::new()
     }
 }
 

@@ -1079,3 +1079,56 @@ fn a_stop_stops_the_tool_and_a_continue_continues_it() {
     assert_ne!(process_state(tool), Some('T'), "yosys continued with specgen");
     assert!(run.wait().unwrap().success());
 }
+
+/// Reliability V, finding 6: a full disk during a co-simulation is named with its path. The
+/// simulator's build and temporary files on a 300 KiB tmpfs (mounted for the test: as root, or in a user
+/// namespace of its own): vvp's output is cut short, and the error says which disk is full and
+/// which file was cut, not only that a line is malformed.
+#[test]
+fn a_full_disk_during_cosim_is_named_with_its_path() {
+    require_tool("iverilog", "iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let d = generate(
+        tmp.path(),
+        "u",
+        &[
+            "--cos-frac-bits",
+            "8",
+            "--n-bits",
+            "4",
+            "--color-bits",
+            "4",
+            "--intensity-frac-bits",
+            "6",
+            "--interface",
+            "ready",
+            "--tag-bits",
+            "4",
+            "--stages",
+            "2",
+        ],
+    );
+    let small = tmp.path().join("small");
+    std::fs::create_dir(&small).unwrap();
+    let cosim = format!(
+        "mount -t tmpfs -o size=300k tmpfs {0} && TMPDIR={0} SPECGEN_CACHE_DIR={1} {2} cosim --simulator icarus --vectors 2000 --jobs 1 --rtl {3}; s=$?; umount {0}; exit $s",
+        small.display(),
+        small.join("cache").display(),
+        env!("CARGO_BIN_EXE_specgen"),
+        d.display()
+    );
+    // SAFETY: geteuid has no preconditions
+    let root = unsafe { libc::geteuid() } == 0;
+    let mut sh = if root {
+        std::process::Command::new("sh")
+    } else {
+        let mut c = std::process::Command::new("unshare");
+        c.args(["--user", "--map-root-user", "--mount", "sh"]);
+        c
+    };
+    let o = sh.arg("-c").arg(&cosim).output().unwrap();
+    let said = text(&o);
+    assert!(!said.contains("mount: ") && !said.contains("unshare: "), "a small tmpfs is needed for this test (root, or user namespaces): {said}");
+    assert_eq!(o.status.code(), Some(1), "{said}");
+    assert!(said.contains(&format!("the disk holding {}", small.display())) && said.contains("is full") && said.contains("No space left on device"), "{said}");
+}
