@@ -653,6 +653,18 @@ fn a_unit_whose_formal_regions_change_what_is_built_is_refused() {
         assert!(text(&o).contains("is not the one synthesis builds"), "{what}: {}", text(&o));
         assert!(text(&o).contains(names), "{what} names what differs ({names}): {}", text(&o));
     }
+    // a valid unit too, by the default proof and by --pipelining
+    let valid = generate(tmp.path(), "valid", &["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6", "--stages", "3"]);
+    let unit = valid.join("specular_unit.v");
+    let src = std::fs::read_to_string(&unit).unwrap();
+    let line = src.lines().find(|l| l.starts_with("assign spec_r ")).expect("spec_r's assignment").to_string();
+    let flipped = line.replace("= ", "= ~");
+    std::fs::write(&unit, src.replace(&line, &format!("`ifdef FORMAL\n{line}\n`else\n{flipped}\n`endif"))).unwrap();
+    for flow in [&["prove"][..], &["prove", "--pipelining"]] {
+        let o = specgen().args(flow).args(["--edited", "--rtl"]).arg(&valid).output().unwrap();
+        assert_eq!(o.status.code(), Some(1), "{flow:?}: {}", text(&o));
+        assert!(text(&o).contains("is not the one synthesis builds") && text(&o).contains("spec_r (bit "), "{flow:?}: {}", text(&o));
+    }
 }
 
 /// The proof issue, class 5: the first bounded search keeps the unit's own assertions beside
