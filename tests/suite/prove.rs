@@ -267,8 +267,11 @@ fn vcd_values<'a>(vcd: &'a str, name: &str) -> Vec<&'a str> {
 /// (`interfaces::faults_in_the_handshake_are_caught`), each refuted with a VCD by a bounded
 /// search to a stated depth, 24 edges (ABC's bmc3, the port checker joining; the deepest,
 /// `duplicated`, fails at edge 20), so the verdict is the same on any machine, however loaded:
-/// no clock decides it. Two here (a loss, and the deepest); the other five in `scripts/bench_suite.sh`.
+/// no clock decides it. Two here (a loss, and the deepest), heavy like the other five: the suite
+/// refutes the loss by the default proof (`the_first_search_keeps_the_units_assertions_and_says_whose_fails`),
+/// and `scripts/bench_prove.sh` all seven at 5 stages.
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn two_handshake_faults_are_refuted_within_24_edges() {
     // a result lost, and one repeated (the deepest: edge 20)
     let two: Vec<_> = HANDSHAKE_FAULTS.iter().filter(|f| ["dropped", "duplicated"].contains(&f.0)).copied().collect();
