@@ -293,20 +293,7 @@ mod tests {
 
     #[test]
     fn the_table_holds_every_name_once_and_every_column() {
-        let w = PortWidths {
-            cos_frac_bits: 15,
-            n_bits: 10,
-            color_bits: 8,
-            intensity_frac_bits: 15,
-            clocked: true,
-            ready: false,
-            axis: false,
-            tag_bits: 0,
-            static_colour: false,
-            reset_low: false,
-            tlast: false,
-            clock_enable: false,
-        };
+        let w = default_widths();
         let p = ports(w, "");
         let names = |w| ports(w, "").iter().map(|p| p.name).collect::<Vec<_>>();
         let mut all: Vec<&str> = names(PortWidths { ready: true, tag_bits: 4, static_colour: true, ..w });
@@ -375,27 +362,28 @@ pub fn padding(w: PortWidths, name: &str) -> Vec<(u32, u32)> {
     ranges
 }
 
+/// The default widths, the `valid` interface (the tests' port table).
+#[cfg(test)]
+fn default_widths() -> PortWidths {
+    PortWidths {
+        cos_frac_bits: 15,
+        n_bits: 10,
+        color_bits: 8,
+        intensity_frac_bits: 15,
+        clocked: true,
+        ready: false,
+        axis: false,
+        tag_bits: 0,
+        static_colour: false,
+        reset_low: false,
+        tlast: false,
+        clock_enable: false,
+    }
+}
+
 #[cfg(test)]
 mod port_rule_tests {
     use super::*;
-
-    /// The default widths, the `valid` interface.
-    fn example() -> PortWidths {
-        PortWidths {
-            cos_frac_bits: 15,
-            n_bits: 8,
-            color_bits: 8,
-            intensity_frac_bits: 15,
-            clocked: true,
-            ready: false,
-            axis: false,
-            tag_bits: 0,
-            static_colour: false,
-            reset_low: false,
-            tlast: false,
-            clock_enable: false,
-        }
-    }
 
     /// The proof issue, point 4: every output port of every port table has a rule of the port
     /// checker (a port added without one fails here).
@@ -415,7 +403,7 @@ mod port_rule_tests {
                                 clocked: clocked || axis || ready,
                                 clock_enable: clock_enable && (axis || ready),
                                 reset_low,
-                                ..example()
+                                ..default_widths()
                             };
                             for p in ports(w, "").iter().filter(|p| p.direction == "output") {
                                 assert!(port_rule(p.name).is_some(), "{} has no rule of the port checker ({w:?})", p.name);
@@ -429,10 +417,10 @@ mod port_rule_tests {
 
     #[test]
     fn the_padding_of_tdata_is_every_bit_between_its_fields() {
-        let w = PortWidths { axis: true, ready: true, ..example() };
+        let w = PortWidths { axis: true, ready: true, ..default_widths() };
         // intensity@0 (16 bits), spec_r@16, spec_g@24, spec_b@32 (8 each), done@40, 48 bits
         assert_eq!(padding(w, "m_axis_tdata"), vec![(47, 41)]);
-        let narrow = PortWidths { axis: true, ready: true, color_bits: 4, intensity_frac_bits: 6, ..example() };
+        let narrow = PortWidths { axis: true, ready: true, color_bits: 4, intensity_frac_bits: 6, ..default_widths() };
         // intensity 7 bits @0, spec_r 4 @8, spec_g 4 @16, spec_b 4 @24, done @32, 40 bits
         assert_eq!(padding(narrow, "m_axis_tdata"), vec![(39, 33), (31, 28), (23, 20), (15, 12), (7, 7)].into_iter().rev().collect::<Vec<_>>());
         assert!(padding(w, "m_axis_tuser").is_empty());

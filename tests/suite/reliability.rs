@@ -1003,8 +1003,11 @@ fn a_job_slot_is_waited_for_with_a_message_and_a_bound() {
         assert!(text(&o).contains(names), "{names}: {}", text(&o));
     }
     // one slot, held by another process for the whole run: the wait is said and bounded
-    let mut holder = std::process::Command::new("flock").arg(&slot).args(["sleep", "60"]).spawn().unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(500));
+    let mut holder = std::process::Command::new("flock").arg(&slot).args(["sleep", "600"]).spawn().unwrap();
+    // (held once a try to take it fails: by state, not by a pause)
+    while std::process::Command::new("flock").args(["-n"]).arg(&slot).arg("true").status().unwrap().success() {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
     let o = specgen()
         .env("SPECGEN_JOBS", &slots)
         .env("SPECGEN_JOBS_WAIT", "12")
