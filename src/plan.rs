@@ -11,6 +11,7 @@ use crate::datapath::{Builder, Datapath, ProductUse};
 use crate::error::Error;
 use crate::models::Model;
 use std::collections::BTreeSet;
+use std::sync::Arc;
 
 /// The signals every model's datapath defines, read by the output ports.
 pub const OUTPUT_SIGNALS: [&str; 5] = ["spec_r", "spec_g", "spec_b", "intensity", "done"];
@@ -24,11 +25,34 @@ pub struct Plan {
     pub datapath: Datapath,
     /// the most `--stages` this configuration takes
     pub cut_points: u32,
+    /// What every depth of this configuration shares: planned once, read by `with_stages`.
+    shape: Arc<Shape>,
+}
+
+/// The depth-free part of a plan: the combinational datapath (the delays the registers are
+/// placed by) and the products `--dsp-budget` puts in the fabric.
+#[derive(Debug)]
+struct Shape {
+    combinational: Datapath,
+    fabric: BTreeSet<String>,
+}
+
+thread_local! {
+    /// Datapaths built on this thread ([`datapath_builds`]).
+    static BUILDS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// How many datapaths this thread has built: the work of planning, which a test holds to a
+/// bound (a depth search builds each depth once, and the shared shape once).
+#[doc(hidden)]
+pub fn datapath_builds() -> u64 {
+    BUILDS.with(|b| b.get())
 }
 
 /// The model's datapath with registers at `registered` cuts, the products named in `fabric`
 /// summed in the fabric.
 fn build(model: &Model, registered: &[u32], fabric: &BTreeSet<String>) -> Datapath {
+    BUILDS.with(|b| b.set(b.get() + 1));
     let cfg = &model.cfg;
     let inputs = [("cos_g", cfg.f() + 1), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
     let mut b = Builder::new(&inputs, registered, cfg.target());
@@ -71,6 +95,13 @@ impl Plan {
         if !fabric.is_empty() {
             combinational = build(&model, &[], &fabric);
         }
+        Plan::placed(model, Arc::new(Shape { combinational, fabric }))
+    }
+
+    /// The plan of `model` at its configuration's depth, over a shape already planned.
+    fn placed(model: Model, shape: Arc<Shape>) -> Result<Plan, Error> {
+        let cfg = model.cfg.clone();
+        let combinational = &shape.combinational;
         let cut_points = combinational.steps.len() as u32;
         if cfg.stages() > cut_points {
             return Err(Error::Config {
@@ -87,12 +118,12 @@ impl Plan {
         // reports (a hard-block step alone between registers counts nothing): else a block
         // RAM's long step sets the length of every fabric stretch (a lean at --dsp-budget 3, 28
         // stages: five carry-save layers in one stretch, 64 MHz in a pair on the UP5K)
-        let registered_cuts = match fabric.is_empty() {
+        let registered_cuts = match shape.fabric.is_empty() {
             true => balanced_cuts(&combinational.delays(), cfg.stages()),
-            false => balanced_cuts_by(&combinational.delays(), &hard_steps(&combinational), cfg.stages()),
+            false => balanced_cuts_by(&combinational.delays(), &hard_steps(combinational), cfg.stages()),
         };
-        let datapath = if cfg.stages() == 0 { combinational } else { build(&model, &registered_cuts, &fabric) };
-        Ok(Plan { cfg, model, registered_cuts, datapath, cut_points })
+        let datapath = if cfg.stages() == 0 { combinational.clone() } else { build(&model, &registered_cuts, &shape.fabric) };
+        Ok(Plan { cfg, model, registered_cuts, datapath, cut_points, shape })
     }
 
     pub fn from_params(params: Params) -> Result<Plan, Error> {
@@ -100,11 +131,12 @@ impl Plan {
     }
 
     /// The same configuration at another depth, the model reused (its fit or tables are not
-    /// made again).
+    /// made again) and the depth-free shape too (the combinational datapath is not built
+    /// again): one datapath built a depth, none at depth 0.
     pub fn with_stages(&self, stages: u32) -> Result<Plan, Error> {
         let cfg = Config::new(Params { stages, ..self.cfg.params.clone() })?;
         let model = self.model.with_config(cfg);
-        Plan::for_model(model)
+        Plan::placed(model, Arc::clone(&self.shape))
     }
 
     /// The golden model of this plan.

@@ -370,12 +370,13 @@ fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
 /// reaches `mhz`, and that prediction. Err: no depth does (the best one is named).
 pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), Error> {
-    pick_stages_reporting(plan, mhz, |_, _| {})
+    pick_stages_reporting(plan, mhz, |_, _| {}).map(|(p, f)| (p.cfg.stages(), f))
 }
 
 /// [`pick_stages`], telling `progress(depth, deepest)` before each depth it plans (a wide
-/// configuration takes seconds a depth: the caller shows that it works).
-pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32)) -> Result<(u32, f64), Error> {
+/// configuration takes a while: the caller shows that it works). Returns the plan chosen (not
+/// planned again) and its prediction.
+pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32)) -> Result<(Plan, f64), Error> {
     let l = line_of(plan)?;
     let mut best = (0, 0.0f64, 0.0f64);
     // a depth whose blocks cannot run at mhz is no pick, whatever its routes (the first seen)
@@ -391,7 +392,7 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
         let (f, assured) = cap.as_ref().map_or((f, assured), |c| (f.min(c.mhz()), assured.min(c.mhz())));
         let (f, assured) = handshake_cap(&p).map_or((f, assured), |(c, _)| (f.min(c), assured.min(c)));
         if assured >= mhz {
-            return Ok((stages, f));
+            return Ok((p, f));
         }
         if assured > best.2 {
             best = (stages, f, assured);

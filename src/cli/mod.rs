@@ -485,9 +485,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     }
                 });
                 match picked {
-                    Ok((stages, predicted)) => {
-                        plan = plan.with_stages(stages)?;
-                        errln!("target-mhz: chose --stages {stages}: {predicted:.1} MHz predicted on the {}", specgen::timing::part(plan.cfg.target()));
+                    Ok((chosen, predicted)) => {
+                        plan = chosen;
+                        errln!(
+                            "target-mhz: chose --stages {}: {predicted:.1} MHz predicted on the {}",
+                            plan.cfg.stages(),
+                            specgen::timing::part(plan.cfg.target())
+                        );
                         if let Some(why) = specgen::timing::outside_calibration(&plan) {
                             errln!("target-mhz: {why}; measure it: specgen synth --rtl {} --dsp --seeds 3", out.display());
                         }

@@ -572,6 +572,8 @@ impl Builder {
     /// before a register would become the register's synchronous set/reset
     /// ([`Builder::select`]).
     pub(crate) fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
+        // a table of 2^r lines: every caller splits wider squares otherwise (an invariant, not an input)
+        assert!(r <= MAX_SQUARER_SPLIT, "a square table of {r} bits: at most {MAX_SQUARER_SPLIT}");
         let v = self.bits(sig, lo + r - 1, lo);
         // one entry a line; v = 0 squares to 0 and adds nothing
         let e = Builder::one_of(&v, r, (1..1u128 << r).map(|x| (x, Expr::constant(lit(2 * r, x * x)))), 2 * r);

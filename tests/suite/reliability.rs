@@ -1135,3 +1135,56 @@ fn a_full_disk_during_cosim_is_named_with_its_path() {
     assert_eq!(o.status.code(), Some(1), "{said}");
     assert!(said.contains(&format!("the disk holding {}", small.display())) && said.contains("is full") && said.contains("No space left on device"), "{said}");
 }
+
+/// Issue 71, finding 7: `generate --target ecp5 --rounding exact --k-frac-bits 24
+/// --target-mhz …` took 5.5 minutes and 2 GB: the square of a 40-bit bracket's low 22 bits
+/// was written as a table of 4 M lines (266 MB of Verilog a depth), and the depth search built
+/// the combinational datapath again at every depth. At the widest widths of every model,
+/// family and rounding, a search over every depth now builds the shared datapath once and
+/// each depth once, and every generated unit stays small: work, not time, held to a bound.
+#[test]
+fn a_depth_search_at_the_widest_widths_is_bounded_work() {
+    use specgen::config::{Arch, Params, Rounding, SpecularModel, Target};
+    let mut planned = 0;
+    for model in SpecularModel::ALL {
+        for target in Target::ALL {
+            for (rounding, arch) in [(Rounding::Exact, Arch::Lean), (Rounding::Faithful, Arch::Lean), (Rounding::Exact, Arch::Paper)] {
+                let params = Params {
+                    model,
+                    target,
+                    rounding,
+                    arch,
+                    cos_frac_bits: 20,
+                    n_bits: 12,
+                    color_bits: 16,
+                    intensity_frac_bits: 24,
+                    k_frac_bits: 24,
+                    ..Default::default()
+                };
+                let what = format!("{} {} {} {}", model.name(), target.name(), rounding.name(), arch.name());
+                let before = specgen::plan::datapath_builds();
+                // a configuration the model does not take (paper is quadratic's) is refused, not planned
+                let Ok(plan) = specgen::plan::Plan::from_params(params) else { continue };
+                planned += 1;
+                assert!(specgen::plan::datapath_builds() - before <= 2, "{what}: the shape built more than twice");
+                // a clock no depth reaches: the search plans every depth
+                let before = specgen::plan::datapath_builds();
+                let refused = specgen::timing::pick_stages(&plan, 1.0e6);
+                let built = specgen::plan::datapath_builds() - before;
+                assert!(refused.is_err(), "{what}: 1 THz picked");
+                assert!(built <= plan.cut_points as u64, "{what}: {built} datapaths for {} depths", plan.cut_points);
+                {
+                    let stages = plan.cut_points;
+                    let files = specgen::emit::generate_files(&plan.with_stages(stages).unwrap());
+                    let bytes: usize = files.iter().map(|(_, b)| b.len()).sum();
+                    let rtl: usize = files.iter().filter(|(n, _)| n.ends_with(".v")).map(|(_, b)| b.len()).sum();
+                    // the test bench's vectors are most of the bytes; the unit itself is a page
+                    assert!(rtl < 1 << 20, "{what} at {stages} stages: {rtl} bytes of Verilog");
+                    assert!(bytes < 8 << 20, "{what} at {stages} stages: {bytes} bytes in all");
+                }
+            }
+        }
+    }
+    // every model faithful, and quadratic exact both lean and paper, on every family
+    assert_eq!(planned, (SpecularModel::ALL.len() + 2) * Target::ALL.len(), "configurations planned");
+}

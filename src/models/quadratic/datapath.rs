@@ -459,7 +459,10 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     bracket(w, b);
 
     let full_bits = w.full_square_bits();
-    let full = if wb < dsp {
+    // a bracket more than MAX_SQUARER_SPLIT bits wider than the block's operands is squared as
+    // one product the tool splits over its blocks: its low part's square by table would need
+    // 2^r entries (4 M lines of Verilog at --rounding exact --k-frac-bits 24)
+    let full = if wb < dsp || wb + 1 - dsp > MAX_SQUARER_SPLIT {
         b.step("square (squarer 11, a product)");
         let bracket_bits = [Piece::sig("bracket", 0, wb + 1)];
         b.product("square_full", &bracket_bits, &bracket_bits, full_bits, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
