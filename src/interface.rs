@@ -1,5 +1,7 @@
 //! The unit's edge around its datapath (SPEC §7): the handshake, the tag beside each pixel,
-//! the material registers of a static colour, and the `axis` names — rendered as the lines
+//! the material registers of a static colour, and the `axis` names — rendered by the
+//! templates `edge_header.txt`, `edge_prologue.v`, `edge_tail.v` and `edge_formal.v` (the
+//! unit's formal block and lemmas) from the values computed here, as the lines
 //! `templates/unit.v` places around the steps. One place for all of them, so every model gets
 //! every interface from the same text.
 //!
@@ -17,6 +19,7 @@ use crate::config::{Colour, Config, Interface, BUFFER_LATENCY};
 use crate::datapath::{DelayLine, Waiting};
 use crate::plan::Plan;
 use crate::ports::{self, Field};
+use askama::Template;
 
 /// Places of the output buffer for a pipeline of `stages`: its latency + 7 (the buffer's three
 /// cycles and the four of the credit loop: `took`, `taken`, `over_credits`, `in_ready`), so a stream at
@@ -206,121 +209,147 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     e
 }
 
+/// The lines a template renders: each of its lines starts after a newline (the templates
+/// open with a comment, so the first line is preceded by one too), and a file's last newline
+/// ends nothing.
+fn lines_of(t: &impl Template) -> Vec<String> {
+    let text = t.render().expect("an edge template renders");
+    let text = text.strip_prefix('\n').unwrap_or(&text);
+    let text = text.strip_suffix('\n').unwrap_or(text);
+    if text.is_empty() {
+        return Vec::new();
+    }
+    text.split('\n').map(String::from).collect()
+}
+
+/// The handshake's words in the header.
+struct HandshakeWords {
+    latency: u32,
+    places: u64,
+    in_valid: &'static str,
+    in_ready: &'static str,
+    out_valid: &'static str,
+    out_ready: &'static str,
+}
+
+#[derive(Template)]
+#[template(path = "edge_header.txt")]
+struct HeaderView<'a> {
+    handshake: Option<HandshakeWords>,
+    stages: u32,
+    reset: String,
+    top: &'a str,
+    /// the s_axis_tdata and m_axis_tdata layouts
+    tdata: Option<(String, String)>,
+    /// the tag's port in, port out and bits
+    tag: Option<(&'static str, &'static str, u32)>,
+    tlast: bool,
+    enable: Option<&'static str>,
+    static_colour: bool,
+}
+
 /// The header's lines from `Latency:` on: the timing, the handshake, the fields, the enable, the colour.
 fn header(s: &Shape, e: &mut Edge) {
     let Shape { cfg, interface, colour, user, tlast, top, enable, .. } = *s;
-    if interface.handshake() {
-        let places = buffer_places(cfg);
-        let (iv, ir, ov, or) = names(interface);
-        let rst = reset_words(cfg);
-        e.header.push(format!("Latency:    {} clock cycles from a transfer in to its result out while {or} is high;", cfg.stages() + BUFFER_LATENCY));
-        e.header.push(format!("            one result a cycle; {rst} empties the unit."));
-        e.header.push("Handshake:  AXI4-Stream rules: a transfer when valid and ready are both high at a rising clock edge.".into());
-        e.header.push(format!("            {ov} and every output hold while {or} is low;"));
-        e.header.push(format!("            {ov} never waits for {or}."));
-        e.header.push(format!("            {ir} is a register: high in a cycle when, three cycles before, fewer than {} pixels", places - 3));
-        e.header.push(format!("            were taken and not yet delivered ({top}_out_buffer holds {places} results), so the"));
-        e.header.push("            pipeline never stalls;".into());
-        e.header.push(format!("            {iv} may come and go freely: a pixel is taken only in a transfer."));
-    } else {
-        let latency = if cfg.stages() == 0 {
-            "0 clock cycle(s) (combinational).".to_string()
-        } else {
-            format!("{} clock cycle(s), one result per cycle; {} clears only the valid pipeline.", cfg.stages(), reset_words(cfg))
-        };
-        e.header.push(format!("Latency:    {latency}"));
-    }
-    if interface == Interface::Axis {
-        let w = cfg.port_widths();
-        let (sf, _, mf, _) = ports::tdata_fields(w);
+    let handshake = interface.handshake().then(|| {
+        let (in_valid, in_ready, out_valid, out_ready) = names(interface);
+        HandshakeWords { latency: cfg.stages() + BUFFER_LATENCY, places: buffer_places(cfg), in_valid, in_ready, out_valid, out_ready }
+    });
+    let tdata = (interface == Interface::Axis).then(|| {
+        let (sf, _, mf, _) = ports::tdata_fields(cfg.port_widths());
         let bits = |f: &Field| if f.width == 1 { format!("{}[{}]", f.name, f.lo) } else { format!("{}[{}:{}]", f.name, f.lo + f.width - 1, f.lo) };
         let layout = |fields: &[Field]| fields.iter().map(bits).collect::<Vec<_>>().join(" ");
-        e.header.push(format!("tdata:      s_axis_tdata: {}", layout(&sf)));
-        e.header.push(format!("            m_axis_tdata: {} (other bits 0)", layout(&mf)));
-    }
-    if user > 0 {
-        let (inp, out) = if interface == Interface::Axis { ("s_axis_tuser", "m_axis_tuser") } else { ("in_tag", "out_tag") };
-        e.header.push(format!("Tag:        {inp} ({user} bits) leaves on {out} with its own pixel's result."));
-    }
-    if tlast {
-        e.header.push("Last:       s_axis_tlast leaves on m_axis_tlast with its own pixel's result (carried as tuser is).".into());
-    }
-    if let Some(en) = enable {
-        e.header.push(format!("Enable:     {en}: a rising edge with {en} low transfers nothing and loads no colour; the"));
-        e.header.push(format!("            pipeline runs on (a result waits in {top}_out_buffer), so no result depends on {en}."));
-    }
-    if colour == Colour::Static {
-        e.header.push("Colour:     static: ks_load takes ks_r/g/b into the material registers at a rising edge; every".into());
-        e.header.push("            pixel taken after that edge uses them. Load only while idle is high and with no pixel".into());
-        e.header.push("            taken in the same cycle (a pixel inside the unit meanwhile would see either colour).".into());
-    }
+        (layout(&sf), layout(&mf))
+    });
+    let tag = (user > 0).then_some(match interface {
+        Interface::Axis => ("s_axis_tuser", "m_axis_tuser", user),
+        _ => ("in_tag", "out_tag", user),
+    });
+    let view = HeaderView { handshake, stages: cfg.stages(), reset: reset_words(cfg), top, tdata, tag, tlast, enable, static_colour: colour == Colour::Static };
+    e.header = lines_of(&view);
+}
+
+/// One `s_axis_tdata` field's alias.
+struct FieldAlias {
+    range: String,
+    name: &'static str,
+    hi: u32,
+    lo: u32,
+}
+
+/// The `axis` unit's aliases of its ports.
+struct AxisAliases {
+    reset: String,
+    gate: &'static str,
+    fields: Vec<FieldAlias>,
+    tag_source: Option<&'static str>,
+    intensity_range: String,
+}
+
+#[derive(Template)]
+#[template(path = "edge_prologue.v")]
+struct PrologueView<'a> {
+    reset_from_low: bool,
+    axis: Option<AxisAliases>,
+    /// (in_valid enabled, out_ready enabled, the enable) of a `ready` unit with one
+    enabled_ready: Option<(&'static str, &'static str, &'static str)>,
+    handshake: bool,
+    top: &'a str,
+    /// what loads the material registers, with a static colour
+    material_load: Option<String>,
+    colour_bits: u32,
+    colour_range: String,
+    tag_range: String,
 }
 
 /// The declarations after the port list: the reset active high inside, axis aliases, the take,
 /// the material registers.
 fn prologue(s: &Shape, e: &mut Edge) {
     let Shape { cfg, depth, interface, tw, colour, user, tlast, top, enable, offer, accept } = *s;
-    if interface != Interface::Axis && cfg.clocked() && cfg.port_widths().reset_low {
-        e.prologue.push(format!("wire {} rst = ~rst_n;   // active high inside", range(1)));
-    }
-    if interface == Interface::Axis {
-        let w = cfg.port_widths();
+    let w = cfg.port_widths();
+    let axis = (interface == Interface::Axis).then(|| {
         let (sf, sw, _, _) = ports::tdata_fields(w);
-        e.prologue.push("// ---- AXI4-Stream names: the logic below uses the plain ones ----".into());
-        e.prologue.push(format!("wire {} clk       = aclk;", range(1)));
-        let w = cfg.port_widths();
-        let polarity = if w.reset_low { "~" } else { "" };
-        e.prologue.push(format!("wire {} rst       = {polarity}{};   // active high inside", range(1), ports::reset_port(w)));
-        let gate = if enable.is_some() { " & aclken;   // a transfer only at an enabled edge" } else { ";" };
-        e.prologue.push(format!("wire {} in_valid  = s_axis_tvalid{gate}", range(1)));
-        e.prologue.push(format!("wire {} out_ready = m_axis_tready{gate}", range(1)));
-        e.prologue.push(format!("wire {} in_ready, out_valid;", range(1)));
-        let mut covered = 0u128;
-        for f in &sf {
-            e.prologue.push(format!("wire {} {:<9} = s_axis_tdata[{}:{}];", range(f.width), f.name, f.lo + f.width - 1, f.lo));
-            covered |= crate::bits::mask(f.width) << f.lo;
-        }
+        let covered = sf.iter().fold(0u128, |c, f| c | crate::bits::mask(f.width) << f.lo);
         e.unused.extend(crate::datapath::bit_ranges("s_axis_tdata", sw, crate::bits::mask(sw) & !covered));
-        if tw > 0 {
-            let source = match (user, tlast) {
-                (0, _) => "s_axis_tlast".to_string(),
-                (_, true) => "{s_axis_tlast, s_axis_tuser}".to_string(),
-                (_, false) => "s_axis_tuser".to_string(),
-            };
-            e.prologue.push(format!("wire {} in_tag    = {source};", range(tw)));
+        let fields = sf.iter().map(|f| FieldAlias { range: range(f.width), name: f.name, hi: f.lo + f.width - 1, lo: f.lo }).collect();
+        let tag_source = (tw > 0).then_some(match (user, tlast) {
+            (0, _) => "s_axis_tlast",
+            (_, true) => "{s_axis_tlast, s_axis_tuser}",
+            (_, false) => "s_axis_tuser",
+        });
+        let polarity = if w.reset_low { "~" } else { "" };
+        AxisAliases {
+            reset: format!("{polarity}{}", ports::reset_port(w)),
+            gate: if enable.is_some() { " & aclken;   // a transfer only at an enabled edge" } else { ";" },
+            fields,
+            tag_source,
+            intensity_range: range(cfg.fi() + 1),
         }
-        let b = cfg.b();
-        e.prologue.push(format!("wire {} spec_r, spec_g, spec_b;", range(b)));
-        e.prologue.push(format!("wire {} intensity;", range(cfg.fi() + 1)));
-        e.prologue.push(format!("wire {} done;", range(1)));
-        if tw > 0 {
-            e.prologue.push(format!("wire {} out_tag;", range(tw)));
-        }
-        e.prologue.push("assign s_axis_tready = in_ready;".into());
-        e.prologue.push("assign m_axis_tvalid = out_valid;".into());
-    }
-    if let (Some(en), Interface::Ready) = (enable, interface) {
-        e.prologue.push(format!("wire {} {offer}  = in_valid & {en};    // a transfer only at an enabled edge", range(1)));
-        e.prologue.push(format!("wire {} {accept} = out_ready & {en};", range(1)));
-    }
+    });
+    let enabled_ready = match (enable, interface) {
+        (Some(en), Interface::Ready) => Some((offer, accept, en)),
+        _ => None,
+    };
     if interface.handshake() {
-        e.prologue.push(format!("wire {} in_take;   // in_valid && in_ready: the pipeline takes a pixel ({top}_out_buffer)", range(1)));
         e.valid_source = "in_take".into();
     }
-    if colour == Colour::Static {
-        let b = cfg.b();
-        e.prologue.push(String::new());
-        e.prologue.push("// ---- the material registers: ks_load takes ks_r/g/b; every step reads them ----".into());
-        // kept: yosys 0.70 takes a register a multiplier reads into the SB_MAC16 as its input
-        // register, ks_load its hold, a 6.5 ns route into the DSP tile (blinn static 94.8 MHz)
-        e.prologue.push(format!("(* keep *) reg  {} ks_r_material, ks_g_material, ks_b_material;   // UNORM{b}", range(b)));
-        let load = enable.map_or("ks_load".to_string(), |en| format!("ks_load && {en}"));
-        e.prologue.push(format!("always @(posedge clk) if ({load}) {{ks_r_material, ks_g_material, ks_b_material}} <= {{ks_r, ks_g, ks_b}};"));
-        if depth == 0 && !interface.handshake() {
-            // combinational: no valid pipeline for rst to clear (the port stays, as with every clock)
-            e.unused.push("rst".into());
-        }
+    let material_load = (colour == Colour::Static).then(|| enable.map_or("ks_load".to_string(), |en| format!("ks_load && {en}")));
+    if colour == Colour::Static && depth == 0 && !interface.handshake() {
+        // combinational: no valid pipeline for rst to clear (the port stays, as with every clock)
+        e.unused.push("rst".into());
     }
+    let view = PrologueView {
+        reset_from_low: interface != Interface::Axis && cfg.clocked() && w.reset_low,
+        axis,
+        enabled_ready,
+        handshake: interface.handshake(),
+        top,
+        material_load,
+        colour_bits: cfg.b(),
+        colour_range: range(cfg.b()),
+        tag_range: range(tw),
+    };
+    e.prologue = lines_of(&view);
 }
 
 /// The tag's delay line beside valid_line, where the unit has a tag and a pipeline.
@@ -364,29 +393,53 @@ fn tag(s: &Shape, plan: &Plan, e: &mut Edge) -> (Option<String>, bool) {
     (tag_out, tag_shift)
 }
 
+/// A handshake unit's output buffer, as `templates/edge_tail.v` instantiates it.
+struct BufferView {
+    width: u32,
+    range: String,
+    count_range: String,
+    /// `{…}` of what enters the buffer, the tag on top
+    results: String,
+    /// `{…}` of the ports it drives
+    ports: String,
+    depth_log2: u32,
+    taps: String,
+    places: u64,
+    offer: &'static str,
+    accept: &'static str,
+    tdata: Option<String>,
+    /// what out_tag drives under `axis` (tlast above the tag: its bits)
+    carried: Option<(&'static str, Option<u32>)>,
+}
+
+#[derive(Template)]
+#[template(path = "edge_tail.v")]
+struct TailView<'a> {
+    top: &'a str,
+    stages: u32,
+    last_valid: String,
+    static_colour: bool,
+    buffer: Option<BufferView>,
+    formal: Vec<String>,
+    /// a `valid` unit: each output port and its source
+    outputs: &'a [(String, String)],
+    tag_out: Option<String>,
+    /// a `valid` unit with material registers, 2+ stages: the flags' range, the top bit they
+    /// cover, their count, and their next value
+    valid_seen: Option<(String, u32, usize, String)>,
+}
+
 /// The outputs: assigns, or the output buffer and what it drives (the formal lines, axis packing).
 fn tail(s: &Shape, outputs: &[(String, String)], tag_out: Option<String>, tag_shift: bool, e: &mut Edge) {
     let Shape { cfg, depth, interface, tw, colour, user, tlast, top, offer, accept, .. } = *s;
     let last_valid = if depth == 0 { e.valid_source.clone() } else { format!("valid_line[{}]", depth - 1) };
+    let static_colour = colour == Colour::Static;
+    let mut view =
+        TailView { top, stages: cfg.stages(), last_valid, static_colour, buffer: None, formal: Vec::new(), outputs, tag_out: None, valid_seen: None };
     if !interface.handshake() {
-        e.tail.push(String::new());
-        e.tail.push(format!("assign out_valid = {last_valid};"));
-        for (port, src) in outputs {
-            e.tail.push(format!("assign {port:<9} = {src};"));
-        }
-        if let Some(t) = &tag_out {
-            e.tail.push(format!("assign {:<9} = {t};", "out_tag"));
-        }
-        if colour == Colour::Static {
-            if depth == 0 {
-                e.tail.push(format!("assign {:<9} = 1'b1;   // no pipeline: never a pixel inside", "idle"));
-            } else {
-                // registered, from what valid_line holds after this edge: idle leaves the unit
-                // from a flip-flop, not through an OR of the whole valid pipeline
-                e.tail.extend(idle_of_valid_line(depth));
-                e.tail.push(format!("assign {:<9} = idle_q;", "idle"));
-            }
-        }
+        view.tag_out = tag_out;
+        view.valid_seen = (static_colour && depth > 1).then(|| valid_seen(depth));
+        e.tail = lines_of(&view);
         return;
     }
     // the buffer: the tag, then the outputs in port order reversed (spec_r lowest)
@@ -400,74 +453,58 @@ fn tail(s: &Shape, outputs: &[(String, String)], tag_out: Option<String>, tag_sh
         fields.push((port.clone(), src.clone(), widths(port)));
     }
     let width: u32 = fields.iter().map(|f| f.2).sum();
-    e.tail.push(String::new());
-    e.tail.push("// ==== the output buffer: the handshake ====".into());
-    e.tail.push(format!("// every pixel taken has a place reserved in {top}_out_buffer, so the pipeline never waits"));
-    e.tail.push(format!("wire {} out_result = {};", range(width), concat(&fields.iter().map(|f| f.1.clone()).collect::<Vec<_>>())));
-    e.tail.push(format!("wire {} out_held;", range(width)));
-    let count_bits = buffer_depth_log2(depth) + 2;
-    e.tail.push("`ifdef FORMAL".into());
-    e.tail.push("// formal only: what the buffer tells the unit's own assertions (see its formal block)".into());
-    e.tail.push(format!("wire {} f_buffer_outstanding, f_buffer_results, f_buffer_rank;", range(count_bits)));
-    e.tail.push(format!("wire {} f_buffer_at_rank;", range(width)));
-    e.tail.push("wire [7:0]  f_buffer_progress, f_buffer_recover;".into());
-    e.tail.push(format!("wire [{}:0] f_buffer_takes;", cfg.stages()));
-    e.tail.push("`endif".into());
-    let bits = buffer_depth_log2(depth) as usize;
-    e.tail.push(format!(
-        "{top}_out_buffer #(.WIDTH({width}), .DEPTH_LOG2({bits}), .TAPS({bits}'b{:0bits$b}), .PLACES({}), .LATENCY({})) out_buffer (",
-        lfsr_taps(bits as u32),
-        places_for(depth),
-        cfg.stages()
-    ));
-    e.tail.push(format!("    .clk(clk), .rst(rst), .in_valid({offer}), .in_ready(in_ready), .take(in_take),"));
-    e.tail.push(format!("    .result_valid({last_valid}), .result(out_result),"));
-    e.tail.push(format!("    .out_valid(out_valid), .out_ready({accept}), .out(out_held)"));
-    e.tail.push("`ifdef FORMAL".into());
-    e.tail.push("    , .f_outstanding(f_buffer_outstanding), .f_results(f_buffer_results), .f_rank(f_buffer_rank),".into());
-    e.tail.push("    .f_at_rank(f_buffer_at_rank), .f_progress(f_buffer_progress), .f_recover(f_buffer_recover), .f_takes(f_buffer_takes)".into());
-    e.tail.push("`endif".into());
-    e.tail.push(");".into());
-    if colour == Colour::Static {
-        e.tail.extend(inside_count(places_for(depth), accept));
-    }
-    e.tail.push(format!("assign {} = out_held;", concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>())));
+    let bits = buffer_depth_log2(depth);
     let tag_line = (depth > 0 && tw > 0).then(|| (tag_out.clone().expect("a tag"), tag_shift));
     // a result in the buffer's word as the port checker orders it: {intensity, spec_r, spec_g,
     // spec_b, done}
     let mut at = width;
-    let mut bits = std::collections::BTreeMap::new();
+    let mut at_rank = std::collections::BTreeMap::new();
     for (port, _, w) in &fields {
-        bits.insert(port.as_str(), if *w == 1 { format!("f_buffer_at_rank[{}]", at - 1) } else { format!("f_buffer_at_rank[{}:{}]", at - 1, at - w) });
+        at_rank.insert(port.as_str(), if *w == 1 { format!("f_buffer_at_rank[{}]", at - 1) } else { format!("f_buffer_at_rank[{}:{}]", at - 1, at - w) });
         at -= w;
     }
-    let payload = format!("{{{}}}", ["intensity", "spec_r", "spec_g", "spec_b", "done"].map(|p| bits[p].clone()).join(", "));
-    let lemmas = lemma_lines(depth, tw, width, &payload, CheckerState::of(cfg), CheckerState::bounds(cfg).1);
-    e.tail.extend(formal_lines(depth, tw, tag_line, (colour == Colour::Static).then(|| places_for(depth)), lemmas));
-    if interface == Interface::Axis {
-        let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
-        e.tail.push(format!("assign m_axis_tdata = {};", ports::packed_tdata(&mf, mw)));
-        match (user, tlast) {
-            (0, false) => {}
-            (0, true) => e.tail.push("assign m_axis_tlast = out_tag;".into()),
-            (_, false) => e.tail.push("assign m_axis_tuser = out_tag;".into()),
-            (_, true) => e.tail.push(format!("assign {{m_axis_tlast, m_axis_tuser}} = out_tag;   // tlast above the tag ({user} bits)")),
-        }
-    }
+    let payload = format!("{{{}}}", ["intensity", "spec_r", "spec_g", "spec_b", "done"].map(|p| at_rank[p].clone()).join(", "));
+    let state = CheckerState::of(cfg);
+    view.formal = lines_of(&FormalView {
+        depth,
+        tw,
+        tag: tag_line,
+        places: static_colour.then(|| places_for(depth)),
+        fields: state.fields().iter().map(|&(name, lo, w)| checker_field(name, lo, w)).collect(),
+        tag_range: range(tw),
+        width,
+        payload,
+        recover: CheckerState::bounds(cfg).1,
+    });
+    view.buffer = Some(BufferView {
+        width,
+        range: range(width),
+        count_range: range(bits + 2),
+        results: concat(&fields.iter().map(|f| f.1.clone()).collect::<Vec<_>>()),
+        ports: concat(&fields.iter().map(|f| f.0.clone()).collect::<Vec<_>>()),
+        depth_log2: bits,
+        taps: format!("{bits}'b{:0w$b}", lfsr_taps(bits), w = bits as usize),
+        places: places_for(depth),
+        offer,
+        accept,
+        tdata: (interface == Interface::Axis).then(|| {
+            let (_, _, mf, mw) = ports::tdata_fields(cfg.port_widths());
+            ports::packed_tdata(&mf, mw)
+        }),
+        carried: match (interface, user, tlast) {
+            (Interface::Axis, 0, true) => Some(("m_axis_tlast", None)),
+            (Interface::Axis, u, false) if u > 0 => Some(("m_axis_tuser", None)),
+            (Interface::Axis, u, true) => Some(("{m_axis_tlast, m_axis_tuser}", Some(u))),
+            _ => None,
+        },
+    });
+    e.tail = lines_of(&view);
 }
 
-/// `idle_q` of a `valid` unit with material registers: `~|valid_line` one edge ahead. After
-/// the edge valid_line holds `in_valid` and its bits `0 ..= depth - 2`; those bits are
-/// `valid_seen`, one flag for each four, registered one edge ahead too (each a LUT of four
-/// bits, as they shift in), so idle_q's input is an OR of `in_valid` and the flags: two LUT
-/// levels at any depth, not an OR of the whole pipeline (three levels from 17 stages on).
-fn idle_of_valid_line(depth: u32) -> Vec<String> {
-    let mut out = vec!["reg  idle_q;   // no pixel in the pipeline: ~|valid_line, one edge ahead".to_string()];
-    if depth == 1 {
-        out.push("always @(posedge clk) idle_q <= rst | ~(in_valid);".into());
-        return out;
-    }
-    // flag j: valid_line[4j+3:4j] (within 0..=depth-2) after the edge, from the bits one below
+/// `valid_seen` of a `valid` unit with material registers at `depth` >= 2 stages: flag j is
+/// valid_line[4j+3:4j] (within 0..=depth-2) after the edge, from the bits one below; its
+/// range, the top bit, the flags, their next value.
+fn valid_seen(depth: u32) -> (String, u32, usize, String) {
     let top = depth - 2;
     let groups = (top / 4 + 1) as usize;
     let next: Vec<String> = (0..groups as u32)
@@ -482,194 +519,46 @@ fn idle_of_valid_line(depth: u32) -> Vec<String> {
             }
         })
         .collect();
-    out.push(format!("reg  {} valid_seen;   // bit j: a pixel in valid_line[4j+3:4j] (bits 0..={top}), one edge ahead", range(groups as u32)));
-    out.push("always @(posedge clk) begin".into());
-    out.push(format!("    if (rst) valid_seen <= {groups}'h0;"));
-    out.push(format!("    else     valid_seen <= {{{}}};", next.join(", ")));
-    out.push("end".into());
-    out.push("always @(posedge clk) idle_q <= rst | ~(in_valid | (|valid_seen));".into());
-    out
+    (range(groups as u32), top, groups, format!("{{{}}}", next.join(", ")))
 }
 
-/// `idle` of a handshake unit with material registers, from a flip-flop: a thermometer of the
-/// pixels inside (taken, not yet delivered: 0..=`places`), bit k set while k or more are.
-/// Two LUT levels from the handshake, no carry chain and no OR over the pipeline: first each
-/// bit as it would be after the take alone (`in_take ? bit k-1 : bit k`, kept), then the
-/// delivery picks it or its neighbour above (a delivery moves every bit down one).
-fn inside_count(places: u64, accept: &str) -> Vec<String> {
-    let p = places;
-    let given = format!("out_valid && {accept}");
-    vec![
-        String::new(),
-        "// ---- idle: a thermometer of the pixels inside (taken, not yet delivered) ----".into(),
-        format!("reg  [{p}:1] inside_at_least;   // bit k: k or more pixels inside"),
-        format!("wire [{}:0] inside_level = {{1'b0, inside_at_least, 1'b1}};   // with its two ends", p + 1),
-        "// bit k after the take alone (k = 1 ..= places + 1): one LUT of in_take and two bits".into(),
-        "// (AND-OR, not ?: a hold would become a flip-flop enable that the handshake and rst reach)".into(),
-        format!("(* keep *) wire [{}:1] inside_taken;", p + 1),
-        format!("assign inside_taken = ({{{}{{in_take}}}} & inside_level[{p}:0]) | ({{{}{{!in_take}}}} & inside_level[{}:1]);", p + 1, p + 1, p + 1),
-        format!("wire        inside_given = {given};   // a delivery"),
-        "reg  idle_q;   // none inside: bit 1 clear, a flip-flop of its own".into(),
-        "always @(posedge clk) begin".into(),
-        "    if (rst) begin".into(),
-        format!("        inside_at_least <= {p}'h0;"),
-        "        idle_q          <= 1'b1;".into(),
-        "    end else begin".into(),
-        "        // a delivery moves every bit down one".into(),
-        format!("        inside_at_least <= ({{{p}{{inside_given}}}} & inside_taken[{}:2]) | ({{{p}{{!inside_given}}}} & inside_taken[{p}:1]);", p + 1),
-        "        idle_q          <= !((inside_given & inside_taken[2]) | (!inside_given & inside_taken[1]));".into(),
-        "    end".into(),
-        "end".into(),
-        format!("assign {:<9} = idle_q;   // no pixel in the pipeline or the buffer", "idle"),
-    ]
+#[derive(Template)]
+#[template(path = "edge_formal.v")]
+struct FormalView {
+    /// the latency
+    depth: u32,
+    /// the carried word's bits
+    tw: u32,
+    /// the tag line's last word, and whether the line is a plain shift register `tag_line`
+    tag: Option<(String, bool)>,
+    /// with material registers: the buffer's places
+    places: Option<u64>,
+    /// the port checker's fields: name, range, select of f_ports, what it holds
+    fields: Vec<(&'static str, String, String, &'static str)>,
+    tag_range: String,
+    /// the buffer's word, the carried word on top
+    width: u32,
+    /// a result at the buffer's rank, in the checker's order
+    payload: String,
+    recover: u64,
 }
 
-/// The unit's own formal block (read only with `yosys -formal`, as `specgen prove` does; see
-/// `templates/out_buffer.v` for the buffer's): with a tag (`tag`: the last word's name, and
-/// whether the line is a plain shift register `tag_line`), the tag entering the buffer with a
-/// result is in_tag of the pixel `depth` edges before; with material registers (`places`),
-/// idle is high exactly while no pixel is inside. Each is an assertion `prove` proves, with the
-/// invariants that make it inductive within a few edges.
-fn formal_lines(depth: u32, tw: u32, tag: Option<(String, bool)>, places: Option<u64>, lemmas: Vec<String>) -> Vec<String> {
-    let mut out = vec![
-        String::new(),
-        "`ifdef FORMAL".into(),
-        "// ==== formal (read with yosys -formal, as `specgen prove` does; synthesis and simulation never read it) ====".into(),
-        "reg  f_started = 1'b0;   // the first edge (a reset: the buffer's assumption) has passed".into(),
-        "always @(posedge clk) f_started <= 1'b1;".into(),
-    ];
-    if let Some((last, shift)) = tag {
-        let (l, t) = (depth, tw);
-        out.push(format!("// in_tag of the last {l} edges (word j: j + 1 edges before), and how many edges have passed (bit j: more than j)"));
-        out.push(format!("reg  [{}:0] f_tags;", l * t - 1));
-        out.push(format!("reg  [{}:0] f_age = {l}'h0;", l - 1));
-        if l == 1 {
-            out.push("always @(posedge clk) begin f_tags <= in_tag; f_age <= 1'b1; end".into());
-        } else {
-            out.push(format!("always @(posedge clk) begin f_tags <= {{f_tags[{}:0], in_tag}}; f_age <= {{f_age[{}:0], 1'b1}}; end", (l - 1) * t - 1, l - 2));
-        }
-        out.push("always @(*) if (f_started) begin".into());
-        out.push(format!("    // the tag that enters the buffer with a result is its pixel's: in_tag {l} edges before"));
-        out.push(format!("    if (valid_line[{}]) assert({last} == f_tags[{}:{}]);", l - 1, l * t - 1, (l - 1) * t));
-        out.push("    // (a pixel in the pipeline was taken after power-up)".into());
-        out.push("    assert((valid_line & ~f_age) == 0);".into());
-        if shift {
-            out.push("    // the line is a shift register: each word is in_tag j + 1 edges before, once that many have passed".into());
-            for j in 0..l {
-                out.push(format!("    if (f_age[{j}]) assert(tag_line[{} +: {t}] == f_tags[{} +: {t}]);", j * t, j * t));
-            }
-        }
-        out.push("end".into());
-    }
-    if let Some(p) = places {
-        out.push("integer f_k, f_count;".into());
-        out.push("always @(*) begin".into());
-        out.push("    f_count = 0;".into());
-        out.push(format!("    for (f_k = 1; f_k <= {p}; f_k = f_k + 1) f_count = f_count + inside_at_least[f_k];"));
-        out.push("    if (f_started) begin".into());
-        out.push("        // idle is high exactly while no pixel is inside (the buffer counts them)".into());
-        out.push("        assert(idle_q == (f_buffer_outstanding == 0));".into());
-        out.push("        // the thermometer is one, and counts them".into());
-        out.push(format!("        for (f_k = 1; f_k < {p}; f_k = f_k + 1) if (inside_at_least[f_k + 1]) assert(inside_at_least[f_k]);"));
-        out.push("        assert(f_count == f_buffer_outstanding);".into());
-        out.push("    end".into());
-        out.push("end".into());
-    }
-    out.extend(lemmas);
-    out.push("`endif".into());
-    out
-}
-
-/// The unit's lemmas for `specgen prove` at its ports (under `SPECGEN_LEMMAS`, with the port
-/// `f_ports`): the port checker's state, written from the manifest apart from the unit, tied to
-/// the unit's own, so the checker's stream rules close by induction. The pixels inside are the
-/// buffer's count; a result owed has waited no longer than the unit's progress toward one
-/// (`f_progress` of the buffer); the pixel followed is, by its age, at its stage of the pipeline
-/// (its tag there, the pixels inside less those at or behind its stage ahead of it) or in the
-/// buffer at its rank with its tag. Each is an assertion: a false one fails the proof, and
-/// without them the induction may not close, but no lemma can pass a unit that breaks a rule.
-/// With `prove --datapath`, the followed pixel's result in the buffer is the one the `valid`
-/// twin computed for it. (`depth`: the latency; `tw`: the carried word's bits; `width`: the
-/// buffer's word, the carried word on top; `payload`: a result at the buffer's rank, in the
-/// checker's order.)
-fn lemma_lines(depth: u32, tw: u32, width: u32, payload: &str, state: CheckerState, recover: u64) -> Vec<String> {
-    let mut out = vec![
-        "`ifdef SPECGEN_LEMMAS".into(),
-        "// ---- lemmas (`specgen prove` at the ports): the port checker's state, f_ports, tied to the unit's ----".into(),
-    ];
-    for (name, lo, w) in state.fields() {
-        let what = match name {
-            "inside" => "pixels taken and not delivered",
-            "following" => "a pixel followed",
-            "age" => "its edges since taken (the latency and more: in the buffer)",
-            "rank" => "results to leave before it",
-            "word" => "its tag (and tlast)",
-            "owed" => "edges a result has been owed to a consumer ready at each",
-            "refused" => "edges in_ready has been low to a consumer ready at each",
-            "waiting" => "edges a result has been owed and not shown, whatever the consumer does",
-            "check" => "prove --datapath: its result is known",
-            _ => "prove --datapath: its result, {intensity, spec_r, spec_g, spec_b, done}",
-        };
-        let sel = if w == 1 { format!("f_ports[{lo}]") } else { format!("f_ports[{}:{lo}]", lo + w - 1) };
-        out.push(format!("wire {} f_ports_{name:<9} = {sel};   // {what}", range(w)));
-    }
-    out.push("assign f_buffer_rank = f_ports_rank;".into());
-    if depth > 0 {
-        out.push("integer f_p, f_behind;".into());
-        if tw > 0 {
-            out.push(format!("reg  {} f_tag_at_age;   // in_tag of the edge the followed pixel was taken", range(tw)));
-        }
-    }
-    out.push("always @(*) begin".into());
-    if depth > 0 {
-        out.push("    f_behind = 0;   // pixels in the pipeline at the followed one's stage or behind it".into());
-        out.push(format!("    for (f_p = 0; f_p < {depth}; f_p = f_p + 1) if (f_p <= f_ports_age) f_behind = f_behind + valid_line[f_p];"));
-        if tw > 0 {
-            // (a constant part-select in a loop: yosys 0.23 reads `f_tags[f_ports_age * T +: T]` wrongly)
-            out.push(format!("    f_tag_at_age = {tw}'h0;"));
-            out.push(format!("    for (f_p = 0; f_p < {depth}; f_p = f_p + 1) if (f_p == f_ports_age) f_tag_at_age = f_tags[f_p * {tw} +: {tw}];"));
-        }
-    }
-    out.push("    if (f_started) begin".into());
-    if depth > 0 {
-        out.push("        // the pipeline's valid bits are the pixels the buffer saw taken".into());
-        out.push(format!("        assert(valid_line == f_buffer_takes[{}:0]);", depth - 1));
-    }
-    out.push("        // the checker counts the pixels inside as the buffer does".into());
-    out.push("        assert(f_ports_inside == f_buffer_outstanding);".into());
-    out.push("        // a result owed has waited no longer than the unit's progress toward delivering one".into());
-    out.push("        assert(f_ports_owed <= f_buffer_progress);".into());
-    out.push("        // and one owed and not shown: out_valid never waits for out_ready".into());
-    out.push("        assert(f_ports_waiting <= f_buffer_progress);".into());
-    out.push("        // in_ready low: the edges it has been low to a ready consumer and those it stays low".into());
-    out.push(format!("        // are {recover} at most (the checker's bound: latency + places + 4)"));
-    out.push(format!("        if (!in_ready) assert(f_ports_refused + f_buffer_recover <= {recover});"));
-    if depth > 0 {
-        out.push(format!("        if (f_ports_following && f_ports_age < {depth}) begin"));
-        out.push("            // in the pipeline, at the stage of its age: a pixel there, its tag with it, those inside".into());
-        out.push("            // less those at its stage or behind it ahead of it".into());
-        out.push("            assert(valid_line[f_ports_age]);".into());
-        if tw > 0 {
-            out.push("            assert(f_tag_at_age == f_ports_word);".into());
-        }
-        out.push("            assert(f_ports_rank == f_ports_inside - f_behind);".into());
-        out.push("        end".into());
-    }
-    out.push(format!("        if (f_ports_following && f_ports_age >= {depth}) begin"));
-    out.push("            // in the buffer, at its rank, with its tag".into());
-    out.push("            assert(f_ports_rank < f_buffer_results);".into());
-    if tw > 0 {
-        out.push(format!("            assert(f_buffer_at_rank[{}:{}] == f_ports_word);", width - 1, width - tw));
-    }
-    out.push("            // (prove --datapath) with the result the twin computed for it".into());
-    out.push(format!("            if (f_ports_check) assert({payload} == f_ports_expected);"));
-    out.push("        end".into());
-    out.push("    end".into());
-    out.push("end".into());
-    out.push("`else".into());
-    out.push("assign f_buffer_rank = 0;".into());
-    out.push("`endif".into());
-    out
+/// One field of the port checker's state as the lemmas unpack it from `f_ports`.
+fn checker_field(name: &'static str, lo: u32, w: u32) -> (&'static str, String, String, &'static str) {
+    let what = match name {
+        "inside" => "pixels taken and not delivered",
+        "following" => "a pixel followed",
+        "age" => "its edges since taken (the latency and more: in the buffer)",
+        "rank" => "results to leave before it",
+        "word" => "its tag (and tlast)",
+        "owed" => "edges a result has been owed to a consumer ready at each",
+        "refused" => "edges in_ready has been low to a consumer ready at each",
+        "waiting" => "edges a result has been owed and not shown, whatever the consumer does",
+        "check" => "prove --datapath: its result is known",
+        _ => "prove --datapath: its result, {intensity, spec_r, spec_g, spec_b, done}",
+    };
+    let select = if w == 1 { format!("f_ports[{lo}]") } else { format!("f_ports[{}:{lo}]", lo + w - 1) };
+    (name, range(w), select, what)
 }
 
 /// The reset as the header names it: `rst`, `rst_n low`, `areset`, `aresetn low`.
