@@ -3,7 +3,11 @@
 # F in {50, 75, 100} on the iCE40 UP5K and {100, 150, 200} on the ECP5-25, the depth the delay
 # model picks (in milliseconds, no place-and-route), its predicted Fmax, and the median Fmax
 # over nextpnr seeds 1..SEEDS (default 3) of that unit and of the unit one cut shallower (a
-# unit measured once serves every row that asks for it).
+# unit measured once serves every row that asks for it). The units are measured as sweeps on
+# Snakemake (sweep_units in bench_common.sh: every core here, a cluster with SWEEP_ARGS; every
+# result kept under its fingerprint, so a run interrupted and started again measures only what
+# is missing): first every chosen unit at once, then a round per cut fewer for the rows whose
+# last unit still reaches F.
 # MODELS (default every model but blinn-pow, which fits neither part — lean for quadratic — and
 # "lean:wide" on the ECP5: the wide widths of bench_common.sh) and FAMILIES narrow it; OUT (default
 # benchmarks/target.md) is where the table goes. Needs yosys and nextpnr; hours on 2 cores
@@ -14,20 +18,6 @@ seeds=${SEEDS:-3}
 rows="$work/rows.txt"; : > "$rows"
 reaches() { # "median (min-max)" F -> whether the median reaches F MHz
     [ "$1" != "-" ] && python3 -c "import sys; sys.exit(0 if float('${1%% *}') >= $2 else 1)"
-}
-measured="$work/measured.txt"; : > "$measured"
-measure() { # dir key -> "median (min-max)" or "-" (the result beside the unit, not in it: a
-    # unit directory holds only what generate wrote, or the next generate there refuses it);
-    # a unit measured before (same key) is not placed again
-    local known; known=$(K="$2" awk -F= '$1 == ENVIRON["K"] { print $2; exit }' "$measured")
-    if [ -n "$known" ]; then echo "$known"; return; fi
-    local r="-"
-    if $bin synth --rtl "$1" --dsp --seeds "$seeds" --json "$1.synth.json" >/dev/null 2>&1; then
-        # synth's fmax_mhz: never above a block's limit; where one sets it, nextpnr's own figure follows
-        r=$(python3 -c "import json; d=json.load(open('$1.synth.json')); s=d.get('fmax_seeds') or [0]; c=d.get('fmax_seeds_capped') or s; rt=d.get('fmax_route_mhz') or d['fmax_mhz']; print('%.1f (%.1f-%.1f)' % (d['fmax_mhz'], min(c), max(c)) if max(s) <= max(c) else '%.1f (%.1f-%.1f; %s limit; nextpnr %.1f, %.1f-%.1f)' % (d['fmax_mhz'], min(c), max(c), (d.get('fmax_limited_by') or 'block').split()[0], rt, min(s), max(s)))")
-    fi
-    echo "$2=$r" >> "$measured"
-    echo "$r"
 }
 if [ -n "${SAMPLE:-}" ]; then
     # SAMPLE=N: N configurations drawn at random (SAMPLE_SEED, default 1): a model, a family,
@@ -48,24 +38,36 @@ for i in range(n):
     print(rng.choice(models), family, f, *widths)
 PY
     : > "$rows"
-    i=0
+    # every pick generated first (milliseconds each), then measured in one sweep per family
+    i=0; declare -A dirs_of=()
     while read -r -u 3 model family f cf nb cb fi; do
         i=$((i + 1))
         args=(--cos-frac-bits "$cf" --n-bits "$nb" --color-bits "$cb" --intensity-frac-bits "$fi")
         margs=(); [ "$model" != lean ] && margs=(--model "$model")
         dir="$work/sample-$i"
-        what="| $model | $family | $cf/$nb/$cb/$fi | $f |"
-        if ! $bin generate --out "$dir" --target "$family" --target-mhz "$f" "${margs[@]}" "${args[@]}" >/dev/null 2>"$work/err"; then
-            echo "$what - | - | - | refused: $(tail -1 "$work/err" | sed 's/|/\\|/g' | cut -c1-160) |" >> "$rows"
-            echo "done: $i: refused" >&2
+        if ! $bin generate --out "$dir" --target "$family" --target-mhz "$f" "${margs[@]}" "${args[@]}" >/dev/null 2>"$work/err-$i"; then
             continue
         fi
-        told=$(sed -n 's/^target-mhz: \(outside the calibration\|between calibrated widths\):.*/\1/p' "$work/err")
+        dirs_of[$family]+="$dir "
+    done 3< "$work/sample.txt"
+    for family in ice40 ecp5; do
+        # shellcheck disable=SC2086 # a list of directories without spaces ($work's)
+        sweep_units "$family" "$seeds" dsp ${dirs_of[$family]:-}
+    done
+    i=0
+    while read -r -u 3 model family f cf nb cb fi; do
+        i=$((i + 1))
+        dir="$work/sample-$i"
+        what="| $model | $family | $cf/$nb/$cb/$fi | $f |"
+        if [ ! -d "$dir" ]; then
+            echo "$what - | - | - | refused: $(tail -1 "$work/err-$i" | sed 's/|/\\|/g' | cut -c1-160) |" >> "$rows"
+            continue
+        fi
+        told=$(sed -n 's/^target-mhz: \(outside the calibration\|between calibrated widths\):.*/\1/p' "$work/err-$i")
         read -r stages predicted < <(python3 -c "import json; d=json.load(open('$dir/specular_unit.json')); print(d['stages'], d['predicted_fmax_mhz'])")
-        r=$(measure "$dir" "$family $model $cf $nb $cb $fi $stages")
+        r=$(measured_text "$dir")
         verdict="misses F"; reaches "$r" "$f" && verdict="reaches F"
         echo "$what $stages | $predicted | $r | $verdict${told:+ ($told)} |" >> "$rows"
-        echo "done: $i: $model $family $f MHz -> $stages stages: $r" >&2
     done 3< "$work/sample.txt"
     {
         echo "# generate --target-mhz over a random sample of configurations"
@@ -88,6 +90,9 @@ PY
     echo "wrote $out" >&2
     exit 0
 fi
+# the rows: family, configuration, F; each picked unit generated first (milliseconds each)
+declare -A row_stages=() row_predicted=() row_took=() row_error=() row_args=() settled=() verdict_of=()
+keys=()
 for family in ${FAMILIES:-ice40 ecp5}; do
     if [ "$family" = ice40 ]; then targets="50 75 100"; else targets="100 150 200"; fi
     models=${MODELS:-$(placeable)}
@@ -95,37 +100,69 @@ for family in ${FAMILIES:-ice40 ecp5}; do
     for config in $models; do
         model=${config%%:*}
         margs=(); [ "$model" != lean ] && margs=(--model "$model")
-        [ "$config" != "${config%:wide}" ] && margs+=("${wide[@]}") && model="$model (wide)"
+        [ "$config" != "${config%:wide}" ] && margs+=("${wide[@]}")
         for f in $targets; do
+            key="$family|$config|$f"; keys+=("$key")
+            row_args[$key]="${margs[*]}"
             dir="$work/$family-${config/:/-}-$f"
             start=$(date +%s.%N)
             if ! $bin generate --out "$dir" --target "$family" --target-mhz "$f" "${margs[@]}" >/dev/null 2>"$work/err"; then
-                echo "| $model | $family | $f | - | - | - | - | - | $(tail -1 "$work/err" | sed 's/|/\\|/g') |" >> "$rows"
+                row_error[$key]=$(tail -1 "$work/err" | sed 's/|/\\|/g')
                 continue
             fi
-            took=$(python3 -c "import time; print('%.2f' % (time.time() - $start))")
+            row_took[$key]=$(python3 -c "import time; print('%.2f' % (time.time() - $start))")
             read -r stages predicted < <(python3 -c "import json; d=json.load(open('$dir/specular_unit.json')); print(d['stages'], d['predicted_fmax_mhz'])")
-            chosen=$(measure "$dir" "$family $config $stages")
-            # the depth picked against the shallowest that reaches F: one cut fewer, and while
-            # that reaches F, fewer still (at most OVERSHOOT_MAX cuts, default 8)
-            fewer="-"; verdict="misses F"
-            reaches "$chosen" "$f" && verdict="exact"
-            k=1
-            while [ "$stages" -ge "$k" ] && [ "$k" -le "${OVERSHOOT_MAX:-8}" ]; do
-                rm -rf "$work/fewer"
-                $bin generate --out "$work/fewer" --target "$family" --stages $((stages - k)) "${margs[@]}" >/dev/null 2>&1
-                r=$(measure "$work/fewer" "$family $config $((stages - k))")
-                [ "$k" = 1 ] && fewer=$r
-                if ! reaches "$r" "$f"; then break; fi
-                plural=""; [ "$k" -gt 1 ] && plural=s
-                verdict="overshoots by $k cut$plural ($((stages - k)) stages: $r)"
-                [ "$k" = "${OVERSHOOT_MAX:-8}" ] && verdict="overshoots by $k cuts or more"
-                k=$((k + 1))
-            done
-            echo "| $model | $family | $f | $stages | $predicted | $chosen | $fewer | $verdict | ${took} s |" >> "$rows"
-            echo "done: $model $family $f MHz -> $stages stages" >&2
+            row_stages[$key]=$stages; row_predicted[$key]=$predicted
         done
     done
+done
+# unit KEY K: the directory of row KEY's unit K cuts shallower than its pick
+unit() { local family=${1%%|*} rest=${1#*|}; local config=${rest%%|*} f=${rest#*|}; [ "$2" = 0 ] && echo "$work/$family-${config/:/-}-$f" || echo "$work/$family-${config/:/-}-$f-fewer$2"; }
+# round K = 0..OVERSHOOT_MAX: the rows not settled measure their unit K cuts shallower, all in one
+# sweep per family; a row settles when that unit misses F (or no shallower one is left)
+declare -A measured_k=()
+for k in $(seq 0 "${OVERSHOOT_MAX:-8}"); do
+    declare -A todo=()
+    for key in "${keys[@]}"; do
+        [ -n "${row_error[$key]:-}" ] || [ -n "${settled[$key]:-}" ] && continue
+        [ "${row_stages[$key]}" -ge "$k" ] || { settled[$key]=1; continue; }
+        dir=$(unit "$key" "$k")
+        if [ "$k" -gt 0 ]; then
+            read -r -a margs <<< "${row_args[$key]}"
+            $bin generate --out "$dir" --target "${key%%|*}" --stages $((row_stages[$key] - k)) "${margs[@]}" >/dev/null
+        fi
+        todo[${key%%|*}]+="$dir "
+    done
+    [ ${#todo[@]} -gt 0 ] || break
+    for family in "${!todo[@]}"; do
+        # shellcheck disable=SC2086 # directories without spaces ($work's)
+        sweep_units "$family" "$seeds" dsp ${todo[$family]}
+    done
+    for key in "${keys[@]}"; do
+        [ -n "${row_error[$key]:-}" ] || [ -n "${settled[$key]:-}" ] && continue
+        dir=$(unit "$key" "$k"); [ -f "$dir.dsp.measured.json" ] || continue
+        r=$(measured_text "$dir"); measured_k[$key|$k]=$r
+        f=${key##*|}
+        if [ "$k" = 0 ]; then
+            if reaches "$r" "$f"; then verdict_of[$key]="exact"; else verdict_of[$key]="misses F"; settled[$key]=1; fi
+        elif reaches "$r" "$f"; then
+            plural=""; [ "$k" -gt 1 ] && plural=s
+            verdict_of[$key]="overshoots by $k cut$plural ($((row_stages[$key] - k)) stages: $r)"
+            [ "$k" = "${OVERSHOOT_MAX:-8}" ] && verdict_of[$key]="overshoots by $k cuts or more"
+        else
+            settled[$key]=1
+        fi
+    done
+    unset todo
+done
+for key in "${keys[@]}"; do
+    IFS='|' read -r family config f <<< "$key"
+    model=${config%%:*}; [ "$config" != "${config%:wide}" ] && model="$model (wide)"
+    if [ -n "${row_error[$key]:-}" ]; then
+        echo "| $model | $family | $f | - | - | - | - | - | ${row_error[$key]} |" >> "$rows"
+        continue
+    fi
+    echo "| $model | $family | $f | ${row_stages[$key]} | ${row_predicted[$key]} | ${measured_k[$key|0]:--} | ${measured_k[$key|1]:--} | ${verdict_of[$key]:-misses F} | ${row_took[$key]} s |" >> "$rows"
 done
 {
     echo "# generate --target-mhz: predicted against measured"

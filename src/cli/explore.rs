@@ -64,6 +64,15 @@ pub struct ExploreArgs {
     /// A directory of job results (`specgen measure`'s, a sweep's); repeat it to merge shards.
     #[arg(long, value_name = "DIR")]
     pub results: Vec<PathBuf>,
+    /// Synthesize every job with the products in the fabric (`synth` without `--dsp`: the
+    /// LUT-only figures); said in each job and its fingerprint.
+    #[arg(long)]
+    pub no_dsp: bool,
+    /// A generated unit (its directory, read by its manifest) as a point of its own, instead of
+    /// the space: every unit given is measured (a bench's units on the sweep); repeat it [at
+    /// most 1000, each of --target's family].
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["models", "cos_frac_bits", "intensity_frac_bits", "n_bits", "color_bits", "dsp_budget", "rom_style", "depths", "measure_all"])]
+    pub unit: Vec<PathBuf>,
     /// The yosys the jobs run (its version is in every job's fingerprint).
     #[arg(long, value_name = "PATH", default_value = "yosys")]
     pub yosys: String,
@@ -171,23 +180,29 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     let start = std::time::Instant::now();
     // progress on standard error, at most every two seconds
     let said = std::cell::Cell::new(0u64);
-    let mut points = explore::points(&space, &|done, of| {
-        let now = start.elapsed().as_secs();
-        if now >= said.get() + 2 || done == of {
-            said.set(now);
-            errln!("explore: {done} of {of} (model, widths) measured by the golden model ({now} s)");
-        }
-    })?;
+    let mut points = match a.unit.is_empty() {
+        true => explore::points(&space, &|done, of| {
+            let now = start.elapsed().as_secs();
+            if now >= said.get() + 2 || done == of {
+                said.set(now);
+                errln!("explore: {done} of {of} (model, widths) measured by the golden model ({now} s)");
+            }
+        })?,
+        false => explore::unit_points(&units_of(&a.unit, target)?)?,
+    };
     if points.len() > explore::MAX_POINTS {
         return Err(usage(format!("the space holds {} points; allowed at most {}: narrow it", points.len(), explore::MAX_POINTS)));
     }
-    let ids = match a.measure_all {
+    let ids = match a.measure_all || !a.unit.is_empty() {
         true => points.iter().map(|p| p.id.clone()).collect(),
         false => explore::candidates(&points, metric, &clocks, a.near, 0.8),
     };
     let seeds: Vec<u32> = (1..=a.seeds).collect();
     let versions = explore::tool_versions(target, &tools(&a.yosys, &a.nextpnr))?;
-    let jobs = explore::jobs_of(&points, &ids, &seeds, &versions)?;
+    let mut jobs = explore::jobs_of(&points, &ids, &seeds, &versions)?;
+    if a.no_dsp {
+        jobs = jobs.into_iter().map(explore::Job::fabric_only).collect();
+    }
     let dirs: Vec<&Path> = a.results.iter().map(PathBuf::as_path).collect();
     let results = explore::read_results(&dirs)?;
     let report = explore::merge(&mut points, &jobs, &results);
@@ -230,6 +245,31 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         return Err(super::failed(format!("jobs with conflicting results: {}", report.conflicting.join(", "))));
     }
     Ok(())
+}
+
+/// The most units one `explore --unit` takes.
+const MAX_UNITS: usize = 1000;
+
+/// The parameters of each generated unit in `dirs` (their manifests'), all of `target`'s family.
+fn units_of(dirs: &[PathBuf], target: Target) -> Result<Vec<Params>, Failure> {
+    if dirs.len() > MAX_UNITS {
+        return Err(usage(format!("invalid --unit: {} units; allowed at most {MAX_UNITS}", dirs.len())));
+    }
+    let mut out = Vec::new();
+    for dir in dirs {
+        let design = specgen::cosim::Design::load(dir).map_err(|e| usage(format!("invalid --unit: {e}")))?;
+        let params = design.plan.cfg.params.clone();
+        if params.target != target {
+            return Err(usage(format!(
+                "invalid --unit: {} is generated for --target {}; this exploration is of --target {} (one family at a time)",
+                dir.display(),
+                params.target.name(),
+                target.name()
+            )));
+        }
+        out.push(params);
+    }
+    Ok(out)
 }
 
 pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {

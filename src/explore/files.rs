@@ -223,6 +223,8 @@ pub fn files(e: &Exploration, metric: Metric, jobs: &[Job], merge: &MergeReport)
         ("merge.json".into(), json(merge)),
         ("calibration.csv".into(), calibration_csv(e).into_bytes()),
     ];
+    // each measured point as `synth --seeds K --json` writes it (for `report --hw`, the benches)
+    files.extend(merge.synth.iter().map(|(id, r)| (format!("synth/{id}.json"), json(r))));
     // the directory's manifest: what specgen wrote there, so that a later run replaces it
     let listed: Vec<serde_json::Value> = files.iter().map(|(n, b)| serde_json::json!({ "name": n, "sha256": crate::bits::sha256_hex(b, 32) })).collect();
     let manifest = serde_json::json!({ "generator": "specgen", "version": e.version, "exploration": e.part, "files": listed });

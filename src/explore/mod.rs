@@ -371,6 +371,45 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
     Ok(out)
 }
 
+/// The points of units given whole (a bench's: `explore --unit DIR`), instead of a space:
+/// each its own parameters, accuracy and estimate, measured as any point is. The same unit
+/// twice is one point; the id adds N, B and the parameters' fingerprint to the space's form, so
+/// units that differ elsewhere are apart. Every unit is of one family (the exploration's).
+pub fn unit_points(units: &[Params]) -> Result<Vec<Point>, Error> {
+    let mut out: Vec<Point> = Vec::new();
+    let mut accuracies: BTreeMap<String, Accuracy> = BTreeMap::new();
+    for params in units {
+        let plan = Plan::new(Config::new(params.clone())?)?;
+        let p = &plan.cfg.params;
+        let id = format!("{}-n{}-c{}-{}", point_id(p), p.n_bits, p.color_bits, &plan.cfg.fingerprint()[..8]);
+        if out.iter().any(|q| q.id == id) {
+            continue;
+        }
+        // the function a unit computes is its configuration's at depth 0 (any depth computes it)
+        let shape = Config::new(Params { stages: 0, ..p.clone() })?.fingerprint();
+        let acc = match accuracies.get(&shape) {
+            Some(a) => *a,
+            None => *accuracies.entry(shape).or_insert_with(|| accuracy(&plan.model())),
+        };
+        out.push(Point {
+            id,
+            model: p.model.name().to_string(),
+            cos_frac_bits: p.cos_frac_bits,
+            intensity_frac_bits: p.intensity_frac_bits,
+            stages: p.stages,
+            dsp_budget: p.dsp_budget,
+            rom_style: p.rom_style.name().to_string(),
+            chosen_for: Vec::new(),
+            params: p.clone(),
+            accuracy: acc,
+            estimate: estimate(&plan),
+            measured: None,
+            front: Vec::new(),
+        });
+    }
+    Ok(out)
+}
+
 /// The front at `mhz` by `metric`: the ids of the points reaching the clock that no other point
 /// beats on both error and logic cells (ties kept). Where any point is measured, only measured
 /// points stand on it: an estimate never pushes a measurement off the front.

@@ -21,19 +21,49 @@ pub struct Job {
     pub rtl: String,
     /// specgen's and every tool's version, as each prints it
     pub tools: Versions,
+    /// synthesized with the family's hard multipliers (`synth --dsp`, the default); false: the
+    /// products in the fabric (`explore --no-dsp`, a bench's LUT-only rows)
+    #[serde(default = "with_dsp", skip_serializing_if = "is_true")]
+    pub dsp: bool,
+}
+
+fn with_dsp() -> bool {
+    true
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
 }
 
 impl Job {
     pub fn new(point: &Point, rtl: &str, seed: u32, tools: &Versions) -> Job {
-        let mut j = Job { fingerprint: String::new(), point: point.id.clone(), seed, params: point.params.clone(), rtl: rtl.to_string(), tools: tools.clone() };
+        let mut j = Job {
+            fingerprint: String::new(),
+            point: point.id.clone(),
+            seed,
+            params: point.params.clone(),
+            rtl: rtl.to_string(),
+            tools: tools.clone(),
+            dsp: true,
+        };
+        j.fingerprint = j.compute_fingerprint();
+        j
+    }
+    /// The same job with the products in the fabric (synthesis without the hard multipliers).
+    pub fn fabric_only(self) -> Job {
+        let mut j = Job { dsp: false, ..self };
         j.fingerprint = j.compute_fingerprint();
         j
     }
     /// SHA-256 (first 20 hex digits) of the parameters, the RTL's digest, the seed and the
-    /// tools' versions.
+    /// tools' versions (and the fabric's products, where the job asks for them: a job with the
+    /// hard multipliers keeps the fingerprint it had before jobs could ask otherwise).
     pub fn compute_fingerprint(&self) -> String {
         use sha2::Digest;
-        let what = serde_json::json!({ "params": self.params, "rtl": self.rtl, "seed": self.seed, "tools": self.tools });
+        let mut what = serde_json::json!({ "params": self.params, "rtl": self.rtl, "seed": self.seed, "tools": self.tools });
+        if !self.dsp {
+            what["dsp"] = serde_json::Value::Bool(false);
+        }
         let digest = sha2::Sha256::digest(what.to_string().as_bytes());
         digest.iter().take(10).map(|b| format!("{b:02x}")).collect()
     }
@@ -98,6 +128,10 @@ pub struct MergeReport {
     pub conflicting: Vec<String>,
     /// results of no job of this plan (another plan's, or older tools'): never used
     pub unused: usize,
+    /// each measured point's results as one over its seeds (`synth --seeds K --json`'s form,
+    /// which `report --hw` reads), by point id
+    #[serde(skip)]
+    pub synth: BTreeMap<String, crate::synth::SynthResult>,
 }
 
 /// Fills each point's `measured` from the results of its jobs (a point with any job
@@ -136,6 +170,10 @@ pub fn merge(points: &mut [Point], jobs: &[Job], results: &[JobResult]) -> Merge
         }
         let rs: Vec<&JobResult> = mine.iter().map(|j| one[j.fingerprint.as_str()]).collect();
         let s0 = &rs[0].synth;
+        let whole: Vec<crate::synth::SynthResult> = rs.iter().map(|r| r.synth.clone()).collect();
+        if let Some(w) = crate::synth::SynthResult::over_seeds(&whole) {
+            report.synth.insert(p.id.clone(), w);
+        }
         let fmax_seeds: Vec<f64> = rs.iter().filter_map(|r| r.synth.fmax_mhz).collect();
         let failed = rs.iter().find(|r| r.synth.fmax_mhz.is_none());
         let cells: Vec<f64> = rs.iter().filter_map(|r| r.synth.logic_cells.map(|c| c as f64)).collect();
@@ -216,7 +254,7 @@ pub fn run_job(job: &Job, tools: &crate::synth::Tools) -> Result<JobResult, Erro
     let design = crate::cosim::Design::load(&unit)?;
     // IceStorm's second opinion is not part of an exploration's figures: not run
     let tools = &crate::synth::Tools { icetime: String::new(), ..tools.clone() };
-    let (synth, _) = crate::synth::synthesize(&design, job.params.target, true, tools, &[job.seed])?;
+    let (synth, _) = crate::synth::synthesize(&design, job.params.target, job.dsp, tools, &[job.seed])?;
     Ok(JobResult { job: job.clone(), synth })
 }
 

@@ -11,6 +11,7 @@ use std::path::Path;
 pub use crate::config::Target;
 
 mod netlist;
+mod seeds;
 #[cfg(test)]
 mod tests;
 mod verify;
@@ -19,7 +20,7 @@ pub use netlist::*;
 pub use verify::*;
 
 /// Area and speed of one synthesis run.
-#[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct SynthResult {
     pub(crate) top: String,

@@ -145,3 +145,38 @@ fn every_seed_is_capped_by_the_blocks_limits() {
     let under = SynthResult { fmax_seeds: vec![190.0, 200.0], fmax_seeds_capped: capped_seeds(&[190.0, 200.0], &limits), fmax_mhz: Some(195.0), ..r };
     assert_eq!(under.fmax_text().unwrap(), "195.0 median of 2 seeds (190.0–200.0)");
 }
+
+/// A sweep's jobs, one seed each, read as one `synth --seeds 3`: the seeds in order, both
+/// medians, the limit that caps the median named, the note's seed list; a failed seed fails the
+/// whole.
+#[test]
+fn one_seed_results_are_one_result_over_the_seeds() {
+    let limits = vec![crate::family::BlockLimit { block: "DP16KD", period_ns: 4.719, what: "DP16KD clock pulse, grade 6".into() }];
+    let one = |seed: u32, route: f64| {
+        let (f, why) = crate::blocks::limited(route, &limits);
+        SynthResult {
+            seeds: vec![seed],
+            fmax_mhz: Some(f),
+            fmax_route_mhz: Some(route),
+            fmax_limited_by: why,
+            fmax_seeds: vec![route],
+            fmax_seeds_capped: capped_seeds(&[route], &limits),
+            fmax_note: format!("nextpnr-ecp5 --25k, median of seeds {seed} ({route:.1}), unit between registers of a serial-I/O wrapper"),
+            luts: 100,
+            ..Default::default()
+        }
+    };
+    let all = SynthResult::over_seeds(&[one(1, 203.2), one(2, 226.5), one(3, 230.0)]).unwrap();
+    assert_eq!(all.seeds, vec![1, 2, 3]);
+    assert_eq!(all.fmax_seeds, vec![203.2, 226.5, 230.0]);
+    assert_eq!(all.fmax_seeds_capped, vec![203.2, 211.9, 211.9]);
+    assert_eq!((all.fmax_mhz, all.fmax_route_mhz, all.luts), (Some(211.9), Some(226.5), 100));
+    assert!(all.fmax_limited_by.starts_with("DP16KD"), "{}", all.fmax_limited_by);
+    assert_eq!(all.fmax_note, "nextpnr-ecp5 --25k, median of seeds 1..=3 (203.2, 226.5, 230.0), unit between registers of a serial-I/O wrapper");
+    let under = SynthResult::over_seeds(&[one(1, 190.0), one(2, 200.0)]).unwrap();
+    assert_eq!((under.fmax_mhz, under.fmax_limited_by.as_str()), (Some(195.0), "routing (nextpnr)"));
+    let failed = SynthResult { fmax_mhz: None, fmax_note: "place-and-route failed: ERROR: no BELs".into(), ..one(2, 0.0) };
+    let whole = SynthResult::over_seeds(&[one(1, 190.0), failed]).unwrap();
+    assert_eq!((whole.fmax_mhz, whole.fmax_note.as_str()), (None, "place-and-route failed: ERROR: no BELs"));
+    assert!(SynthResult::over_seeds(&[]).is_none());
+}

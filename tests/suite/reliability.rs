@@ -1154,8 +1154,8 @@ fn a_depth_search_at_the_widest_widths_is_bounded_work() {
                     target,
                     rounding,
                     arch,
+                    // (N at its default: the widest N only makes the fits slower, not the RTL larger)
                     cos_frac_bits: 20,
-                    n_bits: 12,
                     color_bits: 16,
                     intensity_frac_bits: 24,
                     k_frac_bits: 24,
