@@ -57,6 +57,7 @@ fn build(model: &Model, registered: &[u32], fabric: &BTreeSet<String>) -> Datapa
     let inputs = [("cos_g", cfg.f() + 1), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
     let mut b = Builder::new(&inputs, registered, cfg.target());
     b.in_fabric(fabric);
+    b.tables_in_logic(cfg.params.rom_style == crate::config::RomStyle::Logic);
     if cfg.colour() == Colour::Static {
         for ch in crate::ports::CHANNELS {
             b.hold(&format!("ks_{ch}"), &format!("ks_{ch}_material"));
@@ -413,8 +414,8 @@ mod tests {
                     if arch == Arch::Paper && model != SpecularModel::Quadratic {
                         continue;
                     }
-                    // a table as logic: the lean quadratic datapath on the ECP5 only
-                    if base.rom_style == crate::config::RomStyle::Logic && !(model == SpecularModel::Quadratic && target == Target::Ecp5) {
+                    // a table as logic: the lean datapaths with tables, on the ECP5 only
+                    if base.rom_style == crate::config::RomStyle::Logic && !(model.takes("rom_style=logic") && target == Target::Ecp5) {
                         continue;
                     }
                     for budget in [None, Some(1)] {

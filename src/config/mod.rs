@@ -333,7 +333,12 @@ pub const MODEL_KEYS: &[(&str, &[SpecularModel])] = &[
 
 /// The values of shared parameters only some models take, with those models (every other
 /// model refuses them, naming these).
-pub const MODEL_OPTIONS: &[(&str, &[SpecularModel])] = &[("rounding=exact", &[SpecularModel::Quadratic]), ("arch=paper", &[SpecularModel::Quadratic])];
+pub const MODEL_OPTIONS: &[(&str, &[SpecularModel])] = &[
+    ("rounding=exact", &[SpecularModel::Quadratic]),
+    ("arch=paper", &[SpecularModel::Quadratic]),
+    // the models with tables (blinn-pow has none)
+    ("rom_style=logic", &[SpecularModel::Quadratic, SpecularModel::Schlick, SpecularModel::Fitted, SpecularModel::Blinn]),
+];
 
 /// The models that take `option` of [`MODEL_OPTIONS`], by name ("quadratic", "quadratic and fitted").
 fn takers(option: &str) -> String {
@@ -495,11 +500,12 @@ impl Config {
         }
         // (the family's part of the rule, which families write tables as logic, is the plan's:
         // `Family::writes_logic_tables`)
-        if params.rom_style == RomStyle::Logic && !(params.model == SpecularModel::Quadratic && params.arch == Arch::Lean) {
+        if params.rom_style == RomStyle::Logic && !(params.model.takes("rom_style=logic") && params.arch == Arch::Lean) {
             return Err(Error::Config {
                 parameter: "rom_style",
                 message: format!(
-                    "logic applies to the lean quadratic datapath (--model quadratic --arch lean: its cut-off table kept out of block RAM); allowed with {} {} on {}: file, case",
+                    "logic applies to the lean datapaths of {} (their tables kept out of block RAM); allowed with {} {} on {}: file, case",
+                    takers("rom_style=logic"),
                     params.model.name(),
                     params.arch.name(),
                     params.target.name()

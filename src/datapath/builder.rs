@@ -33,7 +33,14 @@ impl Builder {
             shifted_products: Vec::new(),
             product_uses: Vec::new(),
             fabric: Default::default(),
+            logic_tables: false,
         }
+    }
+
+    /// Writes every table read with [`Builder::rom_read_registered`] as LUTs (`--rom-style
+    /// logic`, the plan's choice): no memory, so no block RAM's clock limit.
+    pub(crate) fn tables_in_logic(&mut self, yes: bool) {
+        self.logic_tables = yes;
     }
 
     /// Makes the input `name` one held in the register `register` for every pixel (a static
@@ -662,7 +669,22 @@ impl Builder {
     /// registers take the address as the step before sees it, the output registers are the cut
     /// after this step (the read's clock-to-out, 5.6 ns without them on LFE5U-25F grade 6,
     /// then never limits Fmax). Anywhere else, an asynchronous read in this step.
+    ///
+    /// With `--rom-style logic` ([`Builder::tables_in_logic`]) the table is LUTs instead: its
+    /// parts in this step ([`Builder::rom_parts`]), then a step for each pick among them
+    /// ([`Builder::rom_pick`], four to one), `signal` the last; what the caller writes after this
+    /// call goes in the last of them.
     pub(crate) fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
+        if self.logic_tables {
+            let (mut parts, mut lo) = self.rom_parts(signal, t, addr);
+            // (at least two parts: the last pick is `signal` itself)
+            while parts.len() > 1 {
+                let what = self.tables[t].what.clone();
+                self.step(&format!("{what} (in LUTs): the entry picked by {addr}'s bits from {lo}"));
+                (parts, lo) = self.rom_pick(signal, t, addr, &parts, lo);
+            }
+            return;
+        }
         // up to 1024 words, or two banks of them addressed by a whole 11-bit signal
         let words = self.tables[t].words.len();
         let banks = words > DP16KD_WORDS && words <= 2 * DP16KD_WORDS && self.signal(addr).width == 11;

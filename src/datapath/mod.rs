@@ -249,6 +249,9 @@ pub struct Builder {
     fabric: std::collections::BTreeSet<String>,
     /// [`Datapath::shifted_products`]
     shifted_products: Vec<String>,
+    /// `--rom-style logic`: a table read with [`Builder::rom_read_registered`] is written as
+    /// LUTs over steps of its own, never a memory (the plan's choice for the unit)
+    logic_tables: bool,
 }
 
 /// A signal the builder defined, as the datapath's code holds it: its name and width. The

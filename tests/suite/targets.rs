@@ -376,7 +376,7 @@ fn a_logic_rom_keeps_the_lean_table_out_of_block_ram_on_the_ecp5() {
     // refused where it does not apply
     let refused = [
         (&["--target", "ice40"][..], "quadratic lean on ice40"),
-        (&["--target", "ecp5", "--model", "fitted"][..], "fitted lean on ecp5"),
+        (&["--target", "ecp5", "--model", "blinn-pow"][..], "blinn-pow lean on ecp5"),
         (&["--target", "ecp5", "--arch", "paper"][..], "quadratic paper on ecp5"),
     ];
     for (extra, named) in refused {
@@ -387,4 +387,37 @@ fn a_logic_rom_keeps_the_lean_table_out_of_block_ram_on_the_ecp5() {
         assert!(err.contains("--rom-style") && err.contains(named) && err.contains("allowed") && err.contains("file, case"), "{err}");
         assert!(!tmp.path().join("refused").exists());
     }
+}
+
+/// Issue 69, point 2: every model with tables writes them as logic on the ECP5 (`--rom-style
+/// logic`), past the DP16KD's clock limit: schlick's reciprocal, fitted's per-n fit and blinn's
+/// log2 and exp2 tables, each read over steps of its own (its parts, then the picks). At narrow
+/// widths and the deepest depth each unit names no memory, synthesizes with no block RAM, and
+/// equals the golden model on every input; blinn-pow, which has no table, is refused.
+#[test]
+fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
+    require_tool("verilator", "verilator");
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ecp5"];
+    let models = ["schlick", "fitted", "blinn"];
+    for_each_parallel(&models, |_, model| {
+        let block_args: Vec<&str> = narrow.iter().copied().chain(["--model", model]).collect();
+        let logic_args: Vec<&str> = block_args.iter().copied().chain(["--rom-style", "logic"]).collect();
+        let (block, logic): (u32, u32) = (deepest(&block_args).parse().unwrap(), deepest(&logic_args).parse().unwrap());
+        assert!(logic > block, "{model}: the picks are steps of their own ({logic} against {block})");
+        let stages = logic.to_string();
+        let args: Vec<&str> = logic_args.iter().copied().chain(["--stages", &stages]).collect();
+        let dir = generate(tmp.path(), model, &args);
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert!(!v.contains("DP16KD") && !v.contains("rom1k18") && !v.contains("$readmemh") && !v.contains("case ("), "{model}: no memory of any kind");
+        assert!(v.contains("(in LUTs): the entry picked by"), "{model}: the picks' steps");
+        let json = tmp.path().join(format!("{model}.json"));
+        let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+        assert!(o.status.success(), "{model}: {}", text(&o));
+        let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        assert_eq!(r["block_rams"], 0, "{model}: {r}");
+        let o = cosim(&dir, &["--exhaustive"]);
+        assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{model}: {}", text(&o));
+    });
 }
