@@ -46,7 +46,7 @@ flag_values! {
         File,
         /// a case table inlined in the module (no file to carry around)
         Case,
-        /// the table as logic in two steps, never block RAM (lean quadratic on the ECP5: past the DP16KD's clock limit)
+        /// every table as logic over steps of its own, never block RAM (the lean datapaths with tables on the ECP5: past the DP16KD's clock limit)
         Logic,
     }
     /// `--arch`

@@ -26,6 +26,10 @@ pub(crate) use crate::family::ice40::MULTIPLIER_BITS as DSP_BITS;
 /// 2^6 = 64 entries in LUTs, and `hi·lo` from one DSP (the bracket is at most UQ1.21 there).
 pub(crate) const MAX_SQUARER_SPLIT: u32 = 6;
 
+/// The most address bits one part of a table written as logic reads, where a model's table
+/// is read with `Builder::rom_read_registered` under `--rom-style logic`: a LUT4 and its PFUMX.
+pub(crate) const LOGIC_PART_BITS: u32 = 5;
+
 /// The inputs of a fabric LUT (iCE40 LUT4, ECP5 LUT4): a function of more takes two levels.
 pub(crate) const LUT_INPUTS: u32 = 4;
 

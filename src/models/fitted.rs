@@ -533,6 +533,7 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
             b.step(&format!("squaring {j} of {m_max} (squarer 11): hi^2 (one DSP)"));
             let hh = format!("square{j}_hh");
             b.product(&hh, &[Piece::sig(&prev, r, dsp)], &[Piece::sig(&prev, r, dsp)], zw, &format!("hi^2, power{} = hi*2^{r} + lo, exact", j - 1));
+            b.fabric_register_step(&format!("squaring {j} of {m_max}: hi^2 registered in the fabric"));
             b.step(&format!("squaring {j} of {m_max}: Z = hi^2 + T/2^{r}"));
             b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[tn.part(r, tw - r)], false, zw, &what)
         } else {

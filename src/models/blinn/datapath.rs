@@ -190,6 +190,9 @@ fn log2(s: &Shape, b: &mut Builder) -> bool {
 
     let lf = f + w.log_frac_bits;
     let lb = f - 1 + gb;
+    // (past the block RAM's limit: g^ from a flip-flop of the fabric's into the block's input
+    // register, not from the carry chain's last LUT)
+    b.fabric_register_step("g^ registered for the DSP");
     // g wider than a DSP's operands: g = g_hi*2^D + g_lo; x*g_lo on one DSP, then the bits of
     // L above D as x*g_hi (its few partial products) plus x*g_lo/2^D in one carry-save sum
     if f - 1 <= dsp && gb > dsp && gb - dsp <= SHIFT_ADD_BITS {

@@ -38,6 +38,8 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
     // 2n·(1 − c) + c = 2·(n·(1 − c) + ⌊c/2⌋) + c[0]: one multiply-add (on the iCE40 the
     // SB_MAC16's post-adder, its register the block's; on the ECP5 a MULT18X18D, then a carry
     // chain), the doubling and c[0] by wiring
+    // (past the block RAM's limit: 1 - c from a flip-flop of the fabric's into the block)
+    b.fabric_register_step("1 - c registered for the DSP");
     b.step("the denominator den = 2n*(1 - c) + c, exact: half of it, n*(1 - c) + floor(c/2)");
     let comment = format!("UQ{}.{}: n*(1 - c) + floor(c/2), exact: den = 2*den_half + c[0]", nb + 1, f);
     let half = b.multiply_add("den_half", &[n.all()], &[one_minus_cos.all()], &[cos.part(1, f)], dw - 1, "the denominator", &comment);
@@ -114,6 +116,9 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
 
     // P = c·r̂·2^Z = c·z + c·2^Z: one multiply-add, exact
     let pw = f + 1 + z;
+    // (past the block RAM's limit: r^ from a flip-flop of the fabric's into the block's input
+    // register, not from the carry chain's last LUT)
+    b.fabric_register_step("r^ registered for the DSP");
     b.step("the product P = c*r^ = c*z + c*2^Z");
     let comment = format!("UQ2.{}: c*r^, exact", f + z);
     let product = b.multiply_add("quot_prod", &[cos.all()], &[recip], &[Piece::zeros(z), cos.all()], pw, "the product", &comment);
