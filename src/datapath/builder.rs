@@ -613,8 +613,8 @@ impl Builder {
     }
 
     /// [`Builder::rom_parts`], each part a function of at most `most` low bits (more parts,
-    /// more picks: a function of 5 bits is a LUT4 and its PFUMX in one slice, of 6 two slices
-    /// and the route between them, fitted's table at 239 MHz).
+    /// more picks: a function of more bits than a LUT4 takes is LUT4s and muxes the placer may
+    /// put apart, fitted's table at 239-241 MHz on the ECP5).
     pub(crate) fn rom_parts_of(&mut self, signal: &str, t: usize, addr: &str, most: u32) -> (Vec<Sig>, u32) {
         let aw = self.signal(addr).width;
         let (width, words) = (self.tables[t].width, self.tables[t].words.clone());
@@ -649,8 +649,15 @@ impl Builder {
     /// of LUTs: an AND-OR, [`Builder::select`]'s rule). The last pick is `signal` itself.
     /// Returns the parts left and the address bit they are picked by.
     pub(crate) fn rom_pick(&mut self, signal: &str, t: usize, addr: &str, parts: &[Sig], lo: u32) -> (Vec<Sig>, u32) {
+        self.rom_pick_of(signal, t, addr, parts, lo, 2)
+    }
+
+    /// [`Builder::rom_pick`] by at most `most` of the address's bits a step: one (2:1, a LUT4
+    /// each) where a 4:1 pick's two LUT4 and their PFUMX would span slices (schlick's
+    /// reciprocal at 238 MHz on the ECP5).
+    pub(crate) fn rom_pick_of(&mut self, signal: &str, t: usize, addr: &str, parts: &[Sig], lo: u32, most: u32) -> (Vec<Sig>, u32) {
         let width = self.tables[t].width;
-        let k: u32 = if parts.len() > 2 { 2 } else { 1 };
+        let k: u32 = if parts.len() > 2 { 2 } else { 1 }.min(most);
         let sel = self.bits(addr, lo + k - 1, lo);
         let what = self.tables[t].what.clone();
         let mut out = Vec::new();
@@ -703,7 +710,7 @@ impl Builder {
             while parts.len() > 1 {
                 let what = self.tables[t].what.clone();
                 self.step(&format!("{what} (in LUTs): the entry picked by {addr}'s bits from {lo}"));
-                (parts, lo) = self.rom_pick(signal, t, addr, &parts, lo);
+                (parts, lo) = self.rom_pick_of(signal, t, addr, &parts, lo, 1);
             }
             return;
         }

@@ -27,8 +27,9 @@ pub(crate) use crate::family::ice40::MULTIPLIER_BITS as DSP_BITS;
 pub(crate) const MAX_SQUARER_SPLIT: u32 = 6;
 
 /// The most address bits one part of a table written as logic reads, where a model's table
-/// is read with `Builder::rom_read_registered` under `--rom-style logic`: a LUT4 and its PFUMX.
-pub(crate) const LOGIC_PART_BITS: u32 = 5;
+/// is read with `Builder::rom_read_registered` under `--rom-style logic`: one LUT4 a bit (of 5
+/// or 6, two LUT4 and a PFUMX that the placer may put apart: fitted's table at 239-241 MHz).
+pub(crate) const LOGIC_PART_BITS: u32 = 4;
 
 /// The inputs of a fabric LUT (iCE40 LUT4, ECP5 LUT4): a function of more takes two levels.
 pub(crate) const LUT_INPUTS: u32 = 4;
