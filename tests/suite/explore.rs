@@ -198,6 +198,48 @@ fn a_sweep_on_snakemake_killed_midway_resumes_to_the_same_front() {
         assert_eq!(p["measured"]["seeds"], serde_json::json!([1, 2]));
     }
     assert_eq!(std::fs::read(swept.join("front.csv")).unwrap(), std::fs::read(merged.join("front.csv")).unwrap());
+    // each measured point's seeds as one synth result (what `report --hw` and the benches read)
+    for p in ps["points"].as_array().unwrap() {
+        let id = p["id"].as_str().unwrap();
+        let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(swept.join("synth").join(format!("{id}.json"))).unwrap()).unwrap();
+        assert_eq!((&r["seeds"], &r["fmax_mhz"]), (&serde_json::json!([1, 2]), &p["measured"]["fmax_mhz"]), "{id}: {r}");
+    }
+    // a bench's unit, generated and given whole (`explore --unit`), is the same job as the
+    // space's point of its parameters: measured from these results, nothing run again
+    let first = &ps["points"][0];
+    let stages = first["params"]["stages"].to_string();
+    let unit = tmp.path().join("unit");
+    let o = specgen()
+        .args(["generate", "--n-bits", "4", "--color-bits", "4", "--cos-frac-bits", "8", "--intensity-frac-bits", "8", "--stages", &stages, "--out"])
+        .arg(&unit)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let given = tmp.path().join("given");
+    let o = output_guarded(
+        specgen().args(["explore", "--seeds", "2", "--out"]).arg(&given).arg("--unit").arg(&unit).arg("--unit").arg(&unit).arg("--results").arg(&results),
+        "explore",
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let pu = points(&given);
+    assert_eq!(pu["points"].as_array().unwrap().len(), 1, "one unit given twice is one point: {pu}");
+    assert_eq!(pu["points"][0]["measured"]["fmax_seeds"], first["measured"]["fmax_seeds"], "{pu}");
+    let merge: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(given.join("merge.json")).unwrap()).unwrap();
+    assert_eq!(merge["missing"].as_array().unwrap().len(), 0, "{merge}");
+    // with the products in the fabric, other jobs: none measured yet; a unit of another family
+    // is refused, naming the flag
+    let o = output_guarded(
+        specgen().args(["explore", "--seeds", "2", "--no-dsp", "--out"]).arg(tmp.path().join("lut")).arg("--unit").arg(&unit).arg("--results").arg(&results),
+        "explore",
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let lut_jobs: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(tmp.path().join("lut/jobs.json")).unwrap()).unwrap();
+    assert!(lut_jobs.as_array().unwrap().iter().all(|j| j["dsp"] == false), "{lut_jobs}");
+    let merge: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(tmp.path().join("lut/merge.json")).unwrap()).unwrap();
+    assert_eq!(merge["missing"].as_array().unwrap().len(), 2, "{merge}");
+    let o = output_guarded(specgen().args(["explore", "--target", "ecp5", "--out"]).arg(tmp.path().join("ecp5")).arg("--unit").arg(&unit), "explore");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--unit") && !tmp.path().join("ecp5").exists(), "{}", String::from_utf8_lossy(&o.stderr));
     // shards that overlap merge (identical results are one); all three directories at once
     let all = tmp.path().join("all");
     assert!(explore(&all, &[&results, &shard_a, &shard_b], &[]).status.success());
