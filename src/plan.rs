@@ -58,10 +58,16 @@ fn build(model: &Model, registered: &[u32], fabric: &BTreeSet<String>) -> Datapa
     let mut b = Builder::new(&inputs, registered, cfg.target());
     b.in_fabric(fabric);
     b.tables_in_logic(cfg.params.rom_style == crate::config::RomStyle::Logic);
+    b.registers_in_fabric(cfg.params.fabric_registers || cfg.params.rom_style == crate::config::RomStyle::Logic);
     if cfg.colour() == Colour::Static {
         for ch in crate::ports::CHANNELS {
             b.hold(&format!("ks_{ch}"), &format!("ks_{ch}_material"));
         }
+    }
+    if cfg.params.fabric_registers {
+        // the ports into flip-flops first: the step after them reads no port's long route (an
+        // input bit that fans out to every bit of the clamp, schlick on the UP5K at 117 MHz)
+        b.fabric_register_step("the ports registered");
     }
     model.unit().datapath(&mut b);
     b.finish(&OUTPUT_SIGNALS)

@@ -72,6 +72,8 @@ fn shape(p: &crate::config::Params, model: crate::config::SpecularModel) -> Vec<
     if model.reads("max_squarings") {
         v.push(("--max-squarings", p.max_squarings.to_string()));
     }
+    // (a flag of no value: no calibration unit has it)
+    v.push(("--fabric-registers", p.fabric_registers.to_string()));
     v
 }
 

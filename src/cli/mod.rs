@@ -290,6 +290,12 @@ pub struct RtlArgs {
     /// it low transfers nothing and loads no colour
     #[arg(long, help_heading = "Interface")]
     pub clock_enable: bool,
+    /// A flip-flop of the fabric's after each hard multiplier's output that a carry chain
+    /// reads, and before each one a chain feeds (a step that only registers, each: more cut
+    /// points): for the routes into and out of the DSP column, at the deepest depths
+    /// (--rom-style logic implies it; outside --target-mhz's calibration)
+    #[arg(long)]
+    pub fabric_registers: bool,
     /// The clock the constraints (<top>.sdc, <top>.lpf), the FuseSoC core and synth ask for, MHz
     /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
     #[arg(long, value_name = "F", allow_hyphen_values = true, help_heading = "Interface")]
@@ -413,6 +419,9 @@ impl ParamArgs {
             }
             if r.clock_enable {
                 p.clock_enable = true;
+            }
+            if r.fabric_registers {
+                p.fabric_registers = true;
             }
             if let Some(v) = &r.clock_mhz {
                 p.clock_mhz = Some(v.clone());

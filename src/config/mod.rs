@@ -289,6 +289,11 @@ pub struct Params {
     /// may take; the products past it are summed in the fabric. None: no limit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dsp_budget: Option<u32>,
+    /// A flip-flop of the fabric's after each hard multiplier's output that a carry chain reads,
+    /// and before each hard multiplier that a chain feeds (a step that only registers, each):
+    /// for the routes into and out of the DSP column. `--rom-style logic` implies it.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub fabric_registers: bool,
 }
 
 impl Default for Params {
@@ -316,6 +321,7 @@ impl Default for Params {
             reset: None,
             tlast: false,
             clock_enable: false,
+            fabric_registers: false,
             dsp_budget: None,
         }
     }
@@ -416,7 +422,7 @@ impl Params {
         for key in ["clock_port", "reset", "dsp_budget"] {
             full[key] = serde_json::Value::Null;
         }
-        for key in ["tlast", "clock_enable"] {
+        for key in ["tlast", "clock_enable", "fabric_registers"] {
             full[key] = serde_json::Value::Bool(false);
         }
         for (k, v) in map {
@@ -693,6 +699,9 @@ impl Config {
         }
         if let Some(n) = p.dsp_budget {
             s.push_str(&format!(" dsp_budget={n}"));
+        }
+        if p.fabric_registers {
+            s.push_str(" fabric_registers");
         }
         s
     }

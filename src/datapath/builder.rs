@@ -34,6 +34,7 @@ impl Builder {
             product_uses: Vec::new(),
             fabric: Default::default(),
             logic_tables: false,
+            fabric_registers: false,
         }
     }
 
@@ -41,6 +42,12 @@ impl Builder {
     /// logic`, the plan's choice): no memory, so no block RAM's clock limit.
     pub(crate) fn tables_in_logic(&mut self, yes: bool) {
         self.logic_tables = yes;
+    }
+
+    /// Gives each hard block a fabric flip-flop on the routes to and from it
+    /// ([`Builder::fabric_register_step`]; `--fabric-registers`, the plan's choice).
+    pub(crate) fn registers_in_fabric(&mut self, yes: bool) {
+        self.fabric_registers = yes;
     }
 
     /// Makes the input `name` one held in the register `register` for every pixel (a static
@@ -158,7 +165,10 @@ impl Builder {
                 true => Vec::new(),
                 false => addend.to_vec(),
             };
-            return self.mul(name, width, (a, wa), (b, wb), &addend, 0.0, &format!("{comment} (one DSP, the add inside it)"));
+            let sum = self.mul(name, width, (a, wa), (b, wb), &addend, 0.0, &format!("{comment} (one DSP, the add inside it)"));
+            // (the block's output read by the fabric from a flip-flop of its own)
+            self.fabric_register_step(&format!("{title}: the sum registered in the fabric"));
+            return sum;
         }
         let product = format!("{name}_prod");
         let pw = width.min(wa + wb);
@@ -212,16 +222,20 @@ impl Builder {
         }
     }
 
-    /// In the unit past the block RAM's limit (`--rom-style logic`, [`Builder::tables_in_logic`])
-    /// on the ECP5, a step that only registers, titled `title`, between a block's output and
-    /// the carry chain that reads it: the product leaves its MULT18X18D into a flip-flop of the
-    /// fabric's, so the chain does not share a stage with the route out of the block and the one
-    /// into the next block's input register (4.6-5.4 ns at grade 6: schlick 203.6 MHz, blinn
-    /// 214.7, fitted 215.9 without it). Elsewhere nothing (the shapes the delay model is
-    /// calibrated on stay as they are).
+    /// With `--fabric-registers` ([`Builder::registers_in_fabric`]; implied by `--rom-style
+    /// logic`), on a family with hard multipliers, a step that only registers, titled `title`,
+    /// between a block's output and the logic that reads it, or between a carry chain and the
+    /// block it feeds: the product leaves its block into a flip-flop of the fabric's, so the
+    /// logic does not share a stage with the route out of the block's column and the one into
+    /// the next block (ECP5 grade 6, 4.6-5.4 ns: schlick 203.6 MHz, blinn 214.7, fitted 215.9
+    /// without it; UP5K, a 4.7 ns route from an SB_MAC16: schlick 111.3). Elsewhere nothing
+    /// (the shapes the delay model is calibrated on stay as they are).
     pub(crate) fn fabric_register_step(&mut self, title: &str) {
-        if self.logic_tables {
-            self.ecp5_register_step(title);
+        // (one such step is enough: none right after another with nothing in it)
+        let just_registered = self.steps.last().is_some_and(|s| s.wires.is_empty() && s.dsps.is_empty() && s.delay == REGISTER_ONLY_DELAY);
+        if self.fabric_registers && self.family().dsp_capacity().is_some() && !just_registered {
+            self.step(title);
+            self.delay(REGISTER_ONLY_DELAY);
         }
     }
 

@@ -257,6 +257,8 @@ pub struct Builder {
     /// `--rom-style logic`: a table read with [`Builder::rom_read_registered`] is written as
     /// LUTs over steps of its own, never a memory (the plan's choice for the unit)
     logic_tables: bool,
+    /// `--fabric-registers` (implied by `--rom-style logic`): [`Builder::fabric_register_step`]
+    fabric_registers: bool,
 }
 
 /// A signal the builder defined, as the datapath's code holds it: its name and width. The

@@ -355,6 +355,9 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     if !dp.tables.is_empty() {
         param_line.push_str(&format!(" rom_style={}", p.rom_style.name()));
     }
+    if p.fabric_registers {
+        param_line.push_str(" fabric_registers");
+    }
     let interface_line = cfg.interface_words().trim_start().to_string();
     let ports = cfg.ports(d.done_meaning);
     UnitTemplate {

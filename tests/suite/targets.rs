@@ -421,3 +421,31 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
         assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{model}: {}", text(&o));
     });
 }
+
+/// Issue 69, points 1 and 3: `--fabric-registers` gives each hard multiplier a fabric
+/// flip-flop on its routes (a step that only registers: more cut points), on the iCE40 after a
+/// multiply-add's sum that the fabric reads, on the ECP5 around the carry chains. At narrow
+/// widths and the deepest depth the unit equals the golden model on every input, its manifest
+/// and header say so, and a unit without the flag is as it was (fewer cut points).
+#[test]
+fn fabric_registers_add_register_steps_and_keep_every_value() {
+    require_tool("verilator", "verilator");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
+    let units = [("schlick", "ice40"), ("blinn", "ice40"), ("schlick", "ecp5")];
+    for_each_parallel(&units, |_, (model, target)| {
+        let base: Vec<&str> = narrow.iter().copied().chain(["--model", model, "--target", target]).collect();
+        let with: Vec<&str> = base.iter().copied().chain(["--fabric-registers"]).collect();
+        let (plain, registered): (u32, u32) = (deepest(&base).parse().unwrap(), deepest(&with).parse().unwrap());
+        assert!(registered > plain, "{model} on {target}: {registered} cut points against {plain}");
+        let stages = registered.to_string();
+        let args: Vec<&str> = with.iter().copied().chain(["--stages", &stages]).collect();
+        let dir = generate(tmp.path(), &format!("{model}-{target}"), &args);
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert!(v.contains(" fabric_registers") && v.contains("registered in the fabric"), "{model} on {target}: the header and the steps");
+        let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
+        assert_eq!(m["fabric_registers"], true, "{model} on {target}: {m}");
+        let o = cosim(&dir, &["--exhaustive"]);
+        assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{model} on {target}: {}", text(&o));
+    });
+}
