@@ -401,6 +401,7 @@ mod products;
 mod reduce;
 pub(crate) use products::{pad_operands, MulItem};
 mod sums;
+mod tables;
 #[cfg(test)]
 mod tests;
 
