@@ -57,8 +57,9 @@ fn build(model: &Model, registered: &[u32], fabric: &BTreeSet<String>) -> Datapa
     let inputs = [("cos_g", cfg.f() + 1), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
     let mut b = Builder::new(&inputs, registered, cfg.target());
     b.in_fabric(fabric);
-    b.tables_in_logic(cfg.params.rom_style == crate::config::RomStyle::Logic);
-    b.registers_in_fabric(cfg.params.fabric_registers || cfg.params.rom_style == crate::config::RomStyle::Logic);
+    let logic = cfg.params.rom_style == crate::config::RomStyle::Logic;
+    b.tables_in_logic(logic);
+    b.registers_in_fabric(cfg.params.fabric_registers || logic);
     if cfg.colour() == Colour::Static {
         for ch in crate::ports::CHANNELS {
             b.hold(&format!("ks_{ch}"), &format!("ks_{ch}_material"));

@@ -289,9 +289,10 @@ pub struct Params {
     /// may take; the products past it are summed in the fabric. None: no limit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dsp_budget: Option<u32>,
-    /// A flip-flop of the fabric's after each hard multiplier's output that a carry chain reads,
-    /// and before each hard multiplier that a chain feeds (a step that only registers, each):
-    /// for the routes into and out of the DSP column. `--rom-style logic` implies it.
+    /// A flip-flop of the fabric's after each hard multiplier's output that the fabric reads,
+    /// before each hard multiplier that a carry chain feeds, and after the ports (a step that
+    /// only registers, each): for the routes into and out of the DSP column. `--rom-style
+    /// logic` implies the blocks' (not the ports').
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub fabric_registers: bool,
 }

@@ -647,9 +647,9 @@ impl Builder {
     pub(crate) fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
         if self.logic_tables {
             let (mut parts, mut lo) = self.rom_parts_of(signal, t, addr, LOGIC_PART_BITS);
+            let what = self.tables[t].what.clone();
             // (at least two parts: the last pick is `signal` itself)
             while parts.len() > 1 {
-                let what = self.tables[t].what.clone();
                 self.step(&format!("{what} (in LUTs): the entry picked by {addr}'s bits from {lo}"));
                 (parts, lo) = self.rom_pick_of(signal, t, addr, &parts, lo, 1);
             }

@@ -387,10 +387,7 @@ pub fn unit_points(units: &[Params]) -> Result<Vec<Point>, Error> {
         }
         // the function a unit computes is its configuration's at depth 0 (any depth computes it)
         let shape = Config::new(Params { stages: 0, ..p.clone() })?.fingerprint();
-        let acc = match accuracies.get(&shape) {
-            Some(a) => *a,
-            None => *accuracies.entry(shape).or_insert_with(|| accuracy(&plan.model())),
-        };
+        let acc = *accuracies.entry(shape).or_insert_with(|| accuracy(&plan.model()));
         out.push(Point {
             id,
             model: p.model.name().to_string(),

@@ -76,7 +76,7 @@ pub fn finished_within_guard(child: &mut std::process::Child, hang: &str) -> std
         status = child.try_wait().unwrap();
         if status.is_none() && start.elapsed() > std::time::Duration::from_secs(HANG_GUARD_SECS) {
             let _ = child.kill();
-            panic!("{hang} (still running when the hang guard of {HANG_GUARD_SECS} s ran out)");
+            panic!("infrastructure failure, not a verdict: {hang} still running when the hang guard of {HANG_GUARD_SECS} s ran out");
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
     }

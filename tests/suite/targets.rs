@@ -318,6 +318,9 @@ fn dsp_splits_are_right_over_random_wide_configs() {
     }
 }
 
+/// The narrow widths (8/6/4/8) on the ECP5, of the tests of tables written as logic.
+const NARROW_ECP5: [&str; 10] = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ecp5"];
+
 /// Issue 51, point 3: `--rom-style logic` keeps the lean unit's cut-off table out of block RAM on
 /// the ECP5 (the DP16KD's clock limit, 211.9 MHz at grade 6, capped every lean unit): the table
 /// is written as logic, read over three steps (the entry within each group of words, then the
@@ -331,7 +334,7 @@ fn a_logic_rom_keeps_the_lean_table_out_of_block_ram_on_the_ecp5() {
     require_tool("verilator", "verilator");
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ecp5"];
+    let narrow = NARROW_ECP5;
     let block: u32 = deepest(&narrow).parse().unwrap();
     let logic_args: Vec<&str> = narrow.iter().copied().chain(["--rom-style", "logic"]).collect();
     let logic: u32 = deepest(&logic_args).parse().unwrap();
@@ -399,7 +402,7 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
     require_tool("verilator", "verilator");
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ecp5"];
+    let narrow = NARROW_ECP5;
     let models = ["schlick", "fitted", "blinn"];
     for_each_parallel(&models, |_, model| {
         let block_args: Vec<&str> = narrow.iter().copied().chain(["--model", model]).collect();
