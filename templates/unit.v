@@ -22,13 +22,13 @@
 //             several cuts are words of one delay line, x_line (waiting_cA_cB_line when several
 //             wait from cut A to cut B), shifted a word each clock; the words read are named x_cK.
 {%- if dsp_module %}
-// Products:   on ECP5 MULT18X18D blocks with their own registers ({{ top }}_mult18x18.v); simulate
-//             with a MULT18X18D model (Lattice's, or sim/{{ top }}_ecp5_mult18x18d_sim.v, written with it).
+// Products:   on {{ blk.family }} {{ blk.dsp }} blocks with their own registers ({{ top }}_mult18x18.v); simulate
+//             with a {{ blk.dsp }} model ({{ blk.vendor }}'s, or sim/{{ top }}{{ blk.dsp_model }}, written with it).
 {%- endif %}
 {%- if bram_module %}
-// Tables:     on ECP5 DP16KD block RAMs with their own registers ({{ top }}_rom1k18.v), contents
-//             as INITVAL parameters below; simulate with a DP16KD model (Lattice's, or
-//             sim/{{ top }}_ecp5_dp16kd_sim.v, written with it).
+// Tables:     on {{ blk.family }} {{ blk.bram }} block RAMs with their own registers ({{ top }}_rom1k18.v), contents
+//             as {{ blk.init }} parameters below; simulate with a {{ blk.bram }} model ({{ blk.vendor }}'s, or
+//             sim/{{ top }}{{ blk.bram_model }}, written with it).
 {%- endif %}
 {%- for t in file_tables %}
 {%- if loop.first %}
@@ -97,7 +97,7 @@ end
 
 // ==== step {{ st.index }}: {{ st.title }} ====
 {%- for d in st.dsps %}
-// {{ d.comment }}: one MULT18X18D, its input registers in place of cut {{ d.input_cut }}, its output register cut {{ st.index }}
+// {{ d.comment }}: one {{ blk.dsp }}, its input registers in place of cut {{ d.input_cut }}, its output register cut {{ st.index }}
 wire [{{ d.width - 1 }}:0] {{ d.wire }};
 {%- if d.unused > 0 %}
 wire [{{ d.unused - 1 }}:0] unused_{{ d.name }}_p;
@@ -107,7 +107,7 @@ wire [{{ d.unused - 1 }}:0] unused_{{ d.name }}_p;
 {%- for item in st.items %}
 {%- if let Some(r) = item.read %}
 {%- if r.block %}
-// {{ r.what }}: {% if r.slices.len() == 1 %}one DP16KD{% else %}{{ r.slices.len() }} DP16KDs side by side, 18 bits of the word each{% endif %}, {% if r.slices.len() == 1 %}its address register{% else %}their address registers{% endif %} in place of cut {{ r.input_cut }}, {% if r.slices.len() == 1 %}its output register{% else %}their output registers{% endif %} cut {{ st.index }}
+// {{ r.what }}: {% if r.slices.len() == 1 %}one {{ blk.bram }}{% else %}{{ r.slices.len() }} {{ blk.bram }}s side by side, 18 bits of the word each{% endif %}, {% if r.slices.len() == 1 %}its address register{% else %}their address registers{% endif %} in place of cut {{ r.input_cut }}, {% if r.slices.len() == 1 %}its output register{% else %}their output registers{% endif %} cut {{ st.index }}
 wire [{{ r.width - 1 }}:0] {{ r.signal }};
 {%- if r.banked %}
 // words 0..1023 in bank 0, 1024.. in bank 1; the address's bit 10 picks, registered twice as

@@ -100,6 +100,9 @@ flag_values! {
         Ice40,
         /// Lattice ECP5: 18x18 MULT18X18D with its input and output registers, long carry chains
         Ecp5,
+        /// Gowin GW1NR-9 (Tang Nano 9K): 18x18 MULT18X18 with its input and output registers,
+        /// pROMX9 block RAM
+        Gowin,
     }
     /// `specgen rom --format`
     RomFormatFlag => RomFormat {

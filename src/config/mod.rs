@@ -123,18 +123,22 @@ pub enum Target {
     Ice40,
     /// Lattice ECP5: 18x18 MULT18X18D with its input and output registers, long carry chains
     Ecp5,
+    /// Gowin GW1NR-9 (Tang Nano 9K): 18x18 MULT18X18 with its input and output registers,
+    /// pROMX9 block RAM
+    Gowin,
 }
 
 impl Target {
     /// Every target: a test that covers every family iterates this (a new family is added here
     /// and in `family::of`).
-    pub const ALL: [Target; 3] = [Target::Generic, Target::Ice40, Target::Ecp5];
+    pub const ALL: [Target; 4] = [Target::Generic, Target::Ice40, Target::Ecp5, Target::Gowin];
 
     pub fn name(self) -> &'static str {
         match self {
             Target::Generic => "generic",
             Target::Ice40 => "ice40",
             Target::Ecp5 => "ecp5",
+            Target::Gowin => "gowin",
         }
     }
 }

@@ -136,7 +136,7 @@ pub(super) const SYSTEMVERILOG_KEYWORDS: &[&str] = &[
 pub(super) const TOOL_MODULES: &[&str] =
     &["specgen_cosim_top", "specgen_icarus_bench", "specgen_synth_top", "MULT18X18D", "DP16KD", "SB_MAC16", "SB_RAM40_4K", "SB_LUT4", "SB_CARRY", "SB_DFF"];
 
-/// Every module of yosys's iCE40 and ECP5 cell libraries, 0.23 and 0.70 (`data/cell_names.txt`).
+/// Every module of yosys's iCE40, ECP5 and Gowin cell libraries, 0.23 and 0.70 (`data/cell_names.txt`).
 pub(super) const CELL_NAMES: &str = include_str!("../../data/cell_names.txt");
 
 /// The modules a unit derives from its top (`<top>_out_buffer`, …): a top ending so could be
@@ -359,7 +359,7 @@ pub(super) fn check_identifier(top: &str) -> Result<(), Error> {
         return Err(err("is the name of a port or an internal signal of the unit"));
     }
     if TOOL_MODULES.contains(&top) || CELL_NAMES.lines().any(|l| !l.starts_with('#') && l == top) {
-        return Err(err("is a module the simulation or synthesis tools already define (a cell of the iCE40 or ECP5 library)"));
+        return Err(err("is a module the simulation or synthesis tools already define (a cell of an FPGA family's library)"));
     }
     if let Some(suffix) = DERIVED_SUFFIXES.iter().find(|s| top.ends_with(*s)) {
         return Err(err(&format!(

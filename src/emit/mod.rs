@@ -12,7 +12,7 @@ use crate::rom::{self, RomFormat};
 use askama::Template;
 use serde::Serialize;
 
-pub(crate) use crate::names::{ECP5_BRAM_MODEL_SUFFIX, ECP5_SIM_MODEL_SUFFIX, SIM_DIR, VERSION};
+pub(crate) use crate::names::{SIM_DIR, VERSION};
 
 mod cuts;
 #[cfg(test)]
@@ -119,15 +119,16 @@ pub(crate) struct BlockSlice {
     pub(crate) width: u32,
 }
 
-/// The DP16KDs of a registered read of `t` into `signal`: 18 bits of the word each, low first.
-fn block_slices(t: &crate::table::Table, signal: &str) -> Vec<BlockSlice> {
+/// The table blocks of a registered read of `t` into `signal`: 18 bits of the word each, low
+/// first, each bank's contents as the family's block lays them out (`init`).
+fn block_slices(t: &crate::table::Table, signal: &str, init: fn(&[u128]) -> Vec<(String, String)>) -> Vec<BlockSlice> {
     let b = datapath::DP16KD_BITS;
     let n = t.width.div_ceil(b);
     (0..n)
         .map(|k| {
             let (lo, hi) = (k * b, ((k + 1) * b).min(t.width));
             let words: Vec<u128> = t.words.iter().map(|w| (w >> lo) & mask(hi - lo)).collect();
-            let banks = words.chunks(datapath::DP16KD_WORDS).map(dp16kd_initvals).collect();
+            let banks = words.chunks(datapath::DP16KD_WORDS).map(init).collect();
             let bits = if n == 1 {
                 signal.to_string()
             } else if hi - lo == 1 {
@@ -136,18 +137,6 @@ fn block_slices(t: &crate::table::Table, signal: &str) -> Vec<BlockSlice> {
                 format!("{signal}[{}:{lo}]", hi - 1)
             };
             BlockSlice { suffix: if n == 1 { String::new() } else { k.to_string() }, banks, bits, unused: b - (hi - lo), width: hi - lo }
-        })
-        .collect()
-}
-
-/// The `INITVAL_00..3F` parameters of a DP16KD in 1024 x 18 mode holding `words`: word k in
-/// INITVAL_(k/16) bits [(k%16)*20 +: 18], as yosys's ecp5/brams_map.v lays them out.
-pub(crate) fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
-    (0..datapath::DP16KD_WORDS / 16)
-        .map(|i| {
-            // 320 bits as 80 hex digits, most significant first: 16 slots of 20 bits = 5 digits
-            let digits: String = (0..16).rev().map(|j| format!("{:05x}", words.get(i * 16 + j).copied().unwrap_or(0) & 0x3ffff)).collect();
-            (format!("INITVAL_{i:02X}"), format!("320'h{digits}"))
         })
         .collect()
 }
@@ -215,10 +204,25 @@ pub(crate) struct UnitTemplate<'a> {
     pub(crate) tail: Vec<String>,
     /// the one lint sink for bits no step reads, four a line
     pub(crate) unused: Vec<String>,
-    /// products use the ECP5 product module (`<top>_mult18x18`)
+    /// products use the family's product module (`<top>_mult18x18`)
     pub(crate) dsp_module: bool,
-    /// tables use the ECP5 ROM module (`<top>_rom1k18`)
+    /// tables use the family's ROM module (`<top>_rom1k18`)
     pub(crate) bram_module: bool,
+    /// the family's blocks as the header names them
+    pub(crate) blk: BlockNames,
+}
+
+/// The family's hard blocks as the unit's header and comments name them (empty: none).
+#[derive(Default)]
+pub(crate) struct BlockNames {
+    vendor: &'static str,
+    family: &'static str,
+    dsp: &'static str,
+    bram: &'static str,
+    dsp_model: &'static str,
+    bram_model: &'static str,
+    /// the contents parameters' common name (`INITVAL`, `INIT_RAM`)
+    init: String,
 }
 
 /// "after steps [..]" for the Verilog header: runs of consecutive steps as `a-b`.
@@ -288,6 +292,7 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let cfg = &plan.cfg;
     let p = &cfg.params;
     let dp = &plan.datapath;
+    let blocks = crate::family::of(cfg.target()).blocks();
     let cuts = cut_list(dp, cfg.target());
     let edge = crate::interface::edge(plan, &dp.outputs);
     let line_unread: Vec<String> = cuts.iter().flat_map(|c| c.lines.iter().flat_map(DelayLine::unread)).collect();
@@ -337,7 +342,10 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                 file,
                 zero: lit(t.width, 0),
                 block: r.block,
-                slices: if r.block { block_slices(t, &format!("{}_c{}", r.signal, r.step)) } else { Vec::new() },
+                slices: match blocks.filter(|_| r.block) {
+                    Some(b) => block_slices(t, &format!("{}_c{}", r.signal, r.step), b.bram_init),
+                    None => Vec::new(),
+                },
                 banked: r.block && t.words.len() > datapath::DP16KD_WORDS,
                 addr_lo: format!("{}[9:0]", r.addr),
                 addr_bank: format!("{}[10]", r.addr),
@@ -409,6 +417,15 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
             .collect(),
         dsp_module: dp.has_dsp_blocks(),
         bram_module: dp.has_block_rams(),
+        blk: blocks.map_or_else(BlockNames::default, |b| BlockNames {
+            vendor: b.vendor,
+            family: b.family,
+            dsp: b.dsp,
+            bram: b.bram,
+            dsp_model: b.dsp_model_suffix,
+            bram_model: b.bram_model_suffix,
+            init: (b.bram_init)(&[]).first().map_or(String::new(), |(k, _)| k.trim_end_matches(|c: char| c.is_ascii_hexdigit()).trim_end_matches('_').to_string()),
+        }),
     }
 }
 
@@ -498,6 +515,7 @@ fn constraint_files(cfg: &crate::config::Config) -> Vec<(String, String)> {
         let lpf = LpfTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text };
         files.push((format!("{top}.lpf"), lpf.render().expect("lpf renders") + "\n"));
     }
+    files.extend(crate::family::of(cfg.target()).constraint_files(top));
     files
 }
 
@@ -505,22 +523,6 @@ fn constraint_files(cfg: &crate::config::Config) -> Vec<(String, String)> {
 #[derive(Template)]
 #[template(path = "out_buffer.v")]
 struct OutBufferTemplate<'a> {
-    top: &'a str,
-    version: &'a str,
-}
-
-/// The ECP5 product module `<top>_mult18x18` (one MULT18X18D with its registers).
-#[derive(Template)]
-#[template(path = "mult18x18.v")]
-struct Mult18Template<'a> {
-    top: &'a str,
-    version: &'a str,
-}
-
-/// The ECP5 ROM module `<top>_rom1k18` (one DP16KD with its address and output registers).
-#[derive(Template)]
-#[template(path = "rom1k18.v")]
-struct Rom1k18Template<'a> {
     top: &'a str,
     version: &'a str,
 }
@@ -649,10 +651,10 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         let text = OutBufferTemplate { top, version: VERSION }.render().expect("buffer template renders") + "\n";
         rtl_files.push((format!("{top}_out_buffer.v"), text));
     }
-    if dp.has_dsp_blocks() {
-        let text = Mult18Template { top, version: VERSION }.render().expect("mult18x18 template renders") + "\n";
-        rtl_files.push((format!("{top}_mult18x18.v"), text));
-        sim_models.push((format!("{SIM_DIR}/{top}{ECP5_SIM_MODEL_SUFFIX}"), crate::family::ecp5_sim_model()));
+    let blocks = crate::family::of(cfg.target()).blocks();
+    if let Some(b) = blocks.filter(|_| dp.has_dsp_blocks()) {
+        rtl_files.push((format!("{top}_mult18x18.v"), (b.dsp_module)(top)));
+        sim_models.push((format!("{SIM_DIR}/{top}{}", b.dsp_model_suffix), (b.dsp_model)()));
     }
     if !delay_rams(plan).is_empty() {
         let distributed = crate::family::of(cfg.target()).distributed_ram();
@@ -661,10 +663,9 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         let text = DelayRamTemplate { top, version: VERSION, memory, ram_style }.render().expect("delay_ram template renders") + "\n";
         rtl_files.push((format!("{top}_delay_ram.v"), text));
     }
-    if dp.has_block_rams() {
-        let text = Rom1k18Template { top, version: VERSION }.render().expect("rom1k18 template renders") + "\n";
-        rtl_files.push((format!("{top}_rom1k18.v"), text));
-        sim_models.push((format!("{SIM_DIR}/{top}{ECP5_BRAM_MODEL_SUFFIX}"), crate::family::ecp5_bram_model()));
+    if let Some(b) = blocks.filter(|_| dp.has_block_rams()) {
+        rtl_files.push((format!("{top}_rom1k18.v"), (b.bram_module)(top)));
+        sim_models.push((format!("{SIM_DIR}/{top}{}", b.bram_model_suffix), (b.bram_model)()));
     }
     let constraints = constraint_files(cfg);
     let testbench = crate::vectors::testbench_files(&plan.model);

