@@ -10,7 +10,7 @@ BIN=$1; OUT=$2; : > "$OUT"
 TMP=$(mktemp -d); trap 'rm -rf "$TMP"' EXIT
 W=$TMP/w
 for m in quadratic schlick fitted blinn blinn-pow; do
- for t in generic ice40 ecp5; do
+ for t in generic ice40 ecp5 gowin; do
   for i in valid ready axis; do
    for opts in "" "--tag-bits 3" "--tag-bits 1 --colour static" "--clock-enable --reset sync-low" "--tlast --tag-bits 2 --colour static --clock-enable"; do
     [ "$i" != axis ] && [[ "$opts" == *tlast* ]] && continue

@@ -64,6 +64,11 @@ pub struct SynthArgs {
     /// Keep nextpnr's logs (critical paths) in FILE: every seed's, one after another.
     #[arg(long, value_name = "FILE")]
     pub pnr_log: Option<PathBuf>,
+    /// Write the bitstream of the unit in its serial-I/O wrapper (seed 1's placement, the pins of
+    /// the family's .cst) to FILE: Gowin (gowin_pack, for the Tang Nano 9K; load it with
+    /// openFPGALoader -b tangnano9k FILE).
+    #[arg(long, value_name = "FILE", conflicts_with = "no_pnr")]
+    pub bitstream: Option<PathBuf>,
     /// Synthesize an RTL changed on purpose: its files' SHA-256 are not checked against the
     /// manifest (the manifest's and the header's fingerprints still are), and its promises
     /// (the manifest's registers and budget) are still held to.
@@ -84,17 +89,22 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     // must be the RTL's own, its parameters unedited, and (unless --edited) the files the ones
     // specgen wrote with it
     design.verify_files(args.edited)?;
-    for (flag, out) in [("--json", &args.json), ("--pnr-log", &args.pnr_log)] {
+    for (flag, out) in [("--json", &args.json), ("--pnr-log", &args.pnr_log), ("--bitstream", &args.bitstream)] {
         if let Some(out) = out {
             design.refuse_output(flag, out)?;
         }
     }
     let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
     let tools =
-        specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone(), speed: args.speed, icetime: args.icetime.clone(), cache: None };
-    let (r, logs) = synthesize(&design, target, args.dsp, &tools, &if args.no_pnr { Vec::new() } else { (1..=args.seeds).collect::<Vec<u32>>() })?;
+        specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone(), speed: args.speed,
+        icetime: args.icetime.clone(),
+        cache: None,
+        pack: args.bitstream.is_some(),
+    };
+    let done = synthesize(&design, target, args.dsp, &tools, &if args.no_pnr { Vec::new() } else { (1..=args.seeds).collect::<Vec<u32>>() })?;
+    let r = done.result;
     if let Some(path) = &args.pnr_log {
-        specgen::output::write_file(path, logs.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+        specgen::output::write_file(path, done.logs.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
     }
     out!("{}", table(&r))?;
     // the netlist checked before any figure of it is written
@@ -134,6 +144,11 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         let mut text = serde_json::to_string_pretty(&r).expect("serialises");
         text.push('\n');
         specgen::output::write_file(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+    }
+    // the bitstream of a netlist that was checked
+    if let (Some(path), Some(bits)) = (&args.bitstream, &done.bitstream) {
+        specgen::output::write_file(path, bits).map_err(|e| Failure::io("write", path, e))?;
+        outln!("bitstream: {} ({} bytes, the unit in its serial-I/O wrapper, seed 1)", path.display(), bits.len())?;
     }
     Ok(())
 }

@@ -254,7 +254,7 @@ pub fn run_job(job: &Job, tools: &crate::synth::Tools) -> Result<JobResult, Erro
     let design = crate::cosim::Design::load(&unit)?;
     // IceStorm's second opinion is not part of an exploration's figures: not run
     let tools = &crate::synth::Tools { icetime: String::new(), ..tools.clone() };
-    let (synth, _) = crate::synth::synthesize(&design, job.params.target, job.dsp, tools, &[job.seed])?;
+    let synth = crate::synth::synthesize(&design, job.params.target, job.dsp, tools, &[job.seed])?.result;
     Ok(JobResult { job: job.clone(), synth })
 }
 

@@ -151,6 +151,14 @@ fn wrapper(cfg: &Config) -> String {
     text
 }
 
+/// What `synthesize` gives back: the figures, nextpnr's logs, the bitstream when asked.
+#[derive(Debug, Clone)]
+pub struct Synthesized {
+    pub result: SynthResult,
+    pub logs: String,
+    pub bitstream: Option<Vec<u8>>,
+}
+
 /// The place-and-route tool of a target and its device options.
 struct Pnr {
     tool: String,
@@ -370,22 +378,41 @@ pub struct Tools {
     /// A directory where yosys's netlists are kept by what made them (the sources, the script,
     /// yosys's version): a sweep's jobs of one unit with other seeds synthesize it once
     pub cache: Option<std::path::PathBuf>,
+    /// Pack the first seed's placed and routed wrapper into a bitstream (`Family::packer`)
+    pub pack: bool,
 }
 
 impl Default for Tools {
     fn default() -> Self {
-        Tools { yosys: "yosys".into(), nextpnr: None, speed: 6, icetime: "icetime".into(), cache: None }
+        Tools { yosys: "yosys".into(), nextpnr: None, speed: 6, icetime: "icetime".into(), cache: None, pack: false }
     }
 }
 
 /// Synthesizes the unit in `design` for `target`.
 /// `seeds`: the nextpnr seeds of the place-and-route runs (none: no place-and-route); Fmax is
 /// their median.
-/// Returns the result and nextpnr's logs (every seed's, one after another, each under a line
-/// naming its seed; empty without place-and-route): the caller writes them where asked.
-pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, seeds: &[u32]) -> Result<(SynthResult, String), Failure> {
+/// Returns the result, nextpnr's logs (every seed's, one after another, each under a line
+/// naming its seed; empty without place-and-route) and, with `Tools::pack`, the bitstream of
+/// the first seed's wrapper: the caller writes them where asked.
+pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, seeds: &[u32]) -> Result<Synthesized, Failure> {
     let yosys = tools.yosys.as_str();
     require(yosys, "yosys")?;
+    let packer = match (tools.pack, crate::family::of(target).packer()) {
+        (false, _) => None,
+        (true, Some(p)) if !seeds.is_empty() => Some(p),
+        (true, p) => {
+            let packs: Vec<&str> = Target::ALL.into_iter().filter(|t| crate::family::of(*t).packer().is_some()).map(|t| t.name()).collect();
+            let why = if p.is_none() { format!("the {} target has no bitstream packer", target.name()) } else { "it packs a placed design (not with --no-pnr)".into() };
+            return Err(Failure::Config { parameter: "bitstream", message: format!("{why}; allowed: --target {} with place-and-route", packs.join(" or ")) });
+        }
+    };
+    let packer = match packer {
+        None => None,
+        Some(p) => match p.tools.iter().find(|t| tool_exists(t)) {
+            Some(t) => Some((t.to_string(), p.args)),
+            None => return Err(error::tool(p.tools[0], format!("{} not found ({})", p.tools.join(" or "), p.install))),
+        },
+    };
     // Fmax asked for (seeds > 0): without the place-and-route tool it cannot be measured, so
     // say so before synthesis rather than after
     let family = crate::family::of(target);
@@ -488,11 +515,11 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // speed: the wrapped unit through place-and-route
     if seeds.is_empty() && family.place_and_route(tools.speed).is_some() {
         r.fmax_note = "place-and-route skipped (--no-pnr)".into();
-        return Ok((r, String::new()));
+        return Ok(Synthesized { result: r, logs: String::new(), bitstream: None });
     }
     let Some(pnr) = pnr else {
         r.fmax_note = "no place-and-route for the generic target".into();
-        return Ok((r, String::new()));
+        return Ok(Synthesized { result: r, logs: String::new(), bitstream: None });
     };
     let (tool, args) = (pnr.tool.as_str(), pnr.args.as_slice());
     let wrap = work.path().join("specgen_synth_top.v");
@@ -514,6 +541,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         let mut cmd = crate::process::command(tool);
         if family.icetime() {
             cmd.args(["--asc", &asc(seed)]);
+        }
+        // the routed design of the first seed, for the packer
+        if packer.is_some() && Some(&seed) == seeds.first() {
+            cmd.args(["--write", "routed.json"]);
         }
         let out = cmd
             .args(args)
@@ -552,7 +583,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             }
         };
         r.fmax_note = format!("place-and-route failed: {why}");
-        return Ok((r, logs));
+        if packer.is_some() {
+            return Err(error::tool(tool, format!("no bitstream: place-and-route failed: {why}")));
+        }
+        return Ok(Synthesized { result: r, logs, bitstream: None });
     }
     r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax_of_log(log)).collect();
     r.seeds = seeds.to_vec();
@@ -619,7 +653,24 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             r.pipelined_blocks.len()
         ));
     }
-    Ok((r, logs))
+    // the first seed's routed wrapper as the family's bitstream (its packer's own words on failure)
+    let bitstream = match &packer {
+        None => None,
+        Some((packer, args)) => {
+            let o = crate::process::command(&absolute_tool(packer))
+                .current_dir(work.path())
+                .args(*args)
+                .args(["-o", "specgen_synth_top.bit", "routed.json"])
+                .output()
+                .map_err(|e| error::tool(packer, format!("cannot run {packer}: {e}")))?;
+            let bit = work.path().join("specgen_synth_top.bit");
+            if !o.status.success() || !bit.is_file() {
+                return Err(error::tool(packer, format!("{packer} failed ({}): {}{}", o.status, String::from_utf8_lossy(&o.stderr), String::from_utf8_lossy(&o.stdout))));
+            }
+            Some(crate::small_file::read_bytes(&bit, 64 << 20).map_err(|e| error::tool(packer, format!("{} {e}", bit.display())))?)
+        }
+    };
+    Ok(Synthesized { result: r, logs, bitstream })
 }
 
 /// Every seed's figure capped as the median is: none above a limit of a block the unit uses.
