@@ -316,9 +316,20 @@ pub fn part(target: Target) -> &'static str {
 /// (`scripts/calibrate_delay.sh`), never estimated by another's line in silence.
 pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
     let Some(family) = family(target) else {
+        let calibrated: Vec<String> =
+            Target::ALL.into_iter().filter(|t| crate::family::of(*t).calibration().is_some()).map(|t| format!("--target {}", t.name())).collect();
+        let why = match crate::family::of(target).place_and_route(6) {
+            None => "its RTL names no family, so its clock is the one of the device it is mapped to, which specgen is not calibrated on".to_string(),
+            Some(_) => format!("specgen is not calibrated on the {} yet (scripts/calibrate_delay.sh measures it)", part(target)),
+        };
         return Err(Error::Config {
             parameter: "target_mhz",
-            message: "the generic target has no delay model: its RTL names no family, so its clock is the one of the device it is mapped to, which specgen is not calibrated on; allowed: --target ice40 or --target ecp5 with --target-mhz, or --stages N with --target generic (the README lists each target's depths)".into(),
+            message: format!(
+                "the {} target has no delay model: {why}; allowed: {} with --target-mhz, or --stages N with --target {} (the README lists each target's depths)",
+                target.name(),
+                calibrated.join(" or "),
+                target.name()
+            ),
         });
     };
     let all: serde_json::Value = serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");

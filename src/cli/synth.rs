@@ -95,8 +95,10 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         }
     }
     let target = specgen::synth::target_for(&design, args.target.map(Into::into))?;
-    let tools =
-        specgen::synth::Tools { yosys: args.yosys.clone(), nextpnr: args.nextpnr.clone(), speed: args.speed,
+    let tools = specgen::synth::Tools {
+        yosys: args.yosys.clone(),
+        nextpnr: args.nextpnr.clone(),
+        speed: args.speed,
         icetime: args.icetime.clone(),
         cache: None,
         pack: args.bitstream.is_some(),

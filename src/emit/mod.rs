@@ -424,7 +424,9 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
             bram: b.bram,
             dsp_model: b.dsp_model_suffix,
             bram_model: b.bram_model_suffix,
-            init: (b.bram_init)(&[]).first().map_or(String::new(), |(k, _)| k.trim_end_matches(|c: char| c.is_ascii_hexdigit()).trim_end_matches('_').to_string()),
+            init: (b.bram_init)(&[])
+                .first()
+                .map_or(String::new(), |(k, _)| k.trim_end_matches(|c: char| c.is_ascii_hexdigit()).trim_end_matches('_').to_string()),
         }),
     }
 }

@@ -48,5 +48,8 @@ fn a_wide_block_read_is_dp16kds_side_by_side() {
     assert_eq!(s[0].banks.len(), 2);
     assert!(s[0].banks[1][0].1.ends_with("00009") && s[0].banks[0][0].1.ends_with("00000"));
     let one = crate::table::Table { width: 18, ..t.clone() };
-    assert_eq!(block_slices(&one, "w_c3", crate::family::ecp5::dp16kd_initvals).iter().map(|x| (x.suffix.as_str(), x.bits.as_str())).collect::<Vec<_>>(), [("", "w_c3")]);
+    assert_eq!(
+        block_slices(&one, "w_c3", crate::family::ecp5::dp16kd_initvals).iter().map(|x| (x.suffix.as_str(), x.bits.as_str())).collect::<Vec<_>>(),
+        [("", "w_c3")]
+    );
 }

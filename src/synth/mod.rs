@@ -402,7 +402,11 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         (true, Some(p)) if !seeds.is_empty() => Some(p),
         (true, p) => {
             let packs: Vec<&str> = Target::ALL.into_iter().filter(|t| crate::family::of(*t).packer().is_some()).map(|t| t.name()).collect();
-            let why = if p.is_none() { format!("the {} target has no bitstream packer", target.name()) } else { "it packs a placed design (not with --no-pnr)".into() };
+            let why = if p.is_none() {
+                format!("the {} target has no bitstream packer", target.name())
+            } else {
+                "it packs a placed design (not with --no-pnr)".into()
+            };
             return Err(Failure::Config { parameter: "bitstream", message: format!("{why}; allowed: --target {} with place-and-route", packs.join(" or ")) });
         }
     };
@@ -665,7 +669,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
                 .map_err(|e| error::tool(packer, format!("cannot run {packer}: {e}")))?;
             let bit = work.path().join("specgen_synth_top.bit");
             if !o.status.success() || !bit.is_file() {
-                return Err(error::tool(packer, format!("{packer} failed ({}): {}{}", o.status, String::from_utf8_lossy(&o.stderr), String::from_utf8_lossy(&o.stdout))));
+                return Err(error::tool(
+                    packer,
+                    format!("{packer} failed ({}): {}{}", o.status, String::from_utf8_lossy(&o.stderr), String::from_utf8_lossy(&o.stdout)),
+                ));
             }
             Some(crate::small_file::read_bytes(&bit, 64 << 20).map_err(|e| error::tool(packer, format!("{} {e}", bit.display())))?)
         }

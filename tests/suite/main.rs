@@ -10,6 +10,7 @@ mod embedding;
 mod every_model;
 mod exhaustive;
 mod explore;
+mod gowin;
 mod hostile;
 mod interfaces;
 mod layers;
