@@ -669,6 +669,10 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         rtl_files.push((format!("{top}_rom1k18.v"), (b.bram_module)(top)));
         sim_models.push((format!("{SIM_DIR}/{top}{}", b.bram_model_suffix), (b.bram_model)()));
     }
+    // the primitives as black boxes, for a synthesis tool that lacks them
+    if let Some((suffix, text)) = blocks.filter(|_| dp.has_dsp_blocks() || dp.has_block_rams()).and_then(|b| b.boxes) {
+        rtl_files.push((format!("{top}{suffix}"), text(top)));
+    }
     let constraints = constraint_files(cfg);
     let testbench = crate::vectors::testbench_files(&plan.model);
     let core = CoreTemplate {

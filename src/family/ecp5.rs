@@ -2,7 +2,7 @@
 //! yosys's `synth_ecp5`, nextpnr-ecp5 (CABGA256 package; the PyPI build where Debian has none)
 //! at speed grades 6 to 8.
 
-use super::{BlockLimit, Blocks, Family, PlaceAndRoute, PrimitiveBoxes};
+use super::{BlockLimit, Blocks, Family, PlaceAndRoute};
 use crate::config::Target;
 use askama::Template;
 use std::path::{Path, PathBuf};
@@ -32,6 +32,7 @@ static BLOCKS: Blocks = Blocks {
     bram_model: ecp5_bram_model,
     bram_init: dp16kd_initvals,
     dsp_registers: &[("REG_OUTPUT_CLK", "output"), ("REG_INPUTA_CLK", "input A"), ("REG_INPUTB_CLK", "input B")],
+    boxes: None,
 };
 
 /// The `INITVAL_00..3F` parameters of a DP16KD in 1024 x 18 mode holding `words`: word k in
@@ -158,8 +159,8 @@ impl Family for Ecp5 {
     fn blocks(&self) -> Option<&'static Blocks> {
         Some(&BLOCKS)
     }
-    fn primitive_boxes(&self) -> Option<PrimitiveBoxes> {
-        Some(PrimitiveBoxes::Shipped("+/ecp5/cells_bb.v"))
+    fn primitive_boxes(&self) -> Option<&'static str> {
+        Some("+/ecp5/cells_bb.v")
     }
     fn cell_kind(&self, cell: &str) -> Option<super::CellKind> {
         use super::CellKind::*;

@@ -15,7 +15,7 @@
 //! between its input and output registers is not timed. No datasheet figure for it is built in,
 //! so `synth` says so beside the figure rather than cap it.
 
-use super::{BlockLimit, Blocks, CellKind, Family, Packer, PlaceAndRoute, PrimitiveBoxes};
+use super::{BlockLimit, Blocks, CellKind, Family, Packer, PlaceAndRoute};
 use crate::config::Target;
 use askama::Template;
 use std::path::{Path, PathBuf};
@@ -44,6 +44,7 @@ static BLOCKS: Blocks = Blocks {
     bram_model: || RomModel { version: crate::names::VERSION }.render().expect("gowin_promx9_sim renders") + "\n",
     bram_init: init_rams,
     dsp_registers: &[("OUT_REG", "output"), ("AREG", "input A"), ("BREG", "input B")],
+    boxes: Some(("_gowin_cells_bb.v", |top| Boxes { top, version: crate::names::VERSION }.render().expect("gowin_cells_bb renders") + "\n")),
 };
 
 impl Family for Gowin {
@@ -60,7 +61,7 @@ impl Family for Gowin {
         true
     }
     fn explore_clocks(&self) -> &'static [f64] {
-        &[]
+        &[50.0, 100.0, 150.0, 200.0]
     }
     fn calibration(&self) -> Option<&'static str> {
         None
@@ -69,10 +70,6 @@ impl Family for Gowin {
     /// to MULT blocks unless told not to
     fn synth_command(&self, dsp: bool, top: &str) -> String {
         format!("synth_gowin -top {top}{}", if dsp { "" } else { " -nodsp" })
-    }
-    fn primitive_boxes(&self) -> Option<PrimitiveBoxes> {
-        // the simulation models, read as black boxes: their ports are the primitives'
-        Some(PrimitiveBoxes::Written("specgen_gowin_cells_bb.v", (BLOCKS.dsp_model)() + &(BLOCKS.bram_model)()))
     }
     fn place_and_route(&self, _grade: u32) -> Option<PlaceAndRoute> {
         Some(PlaceAndRoute {
@@ -182,6 +179,13 @@ struct MultModule<'a> {
 #[derive(Template)]
 #[template(path = "gowin_rom1k18.v")]
 struct RomModule<'a> {
+    top: &'a str,
+    version: &'a str,
+}
+
+#[derive(Template)]
+#[template(path = "gowin_cells_bb.v")]
+struct Boxes<'a> {
     top: &'a str,
     version: &'a str,
 }

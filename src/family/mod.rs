@@ -74,36 +74,9 @@ pub struct Blocks {
     /// the product primitive's register parameters in a netlist, with what each registers: a
     /// value of none, `NONE` or zeros is no register
     pub dsp_registers: &'static [(&'static str, &'static str)],
-}
-
-/// What yosys reads before a family's RTL so that the primitives it instantiates are known: a
-/// file yosys ships (`+/ecp5/cells_bb.v`), or one the family writes into yosys's working
-/// directory (its name and text).
-pub enum PrimitiveBoxes {
-    Shipped(&'static str),
-    Written(&'static str, String),
-}
-
-/// The yosys command that reads the black boxes a family writes itself, staged in `dir` (empty
-/// for a family whose synthesis command knows its primitives).
-pub fn written_boxes(target: Target, dir: &Path) -> std::io::Result<String> {
-    match of(target).primitive_boxes() {
-        Some(b @ PrimitiveBoxes::Written(..)) => Ok(format!("read_verilog -lib {}; ", b.stage(dir)?)),
-        _ => Ok(String::new()),
-    }
-}
-
-impl PrimitiveBoxes {
-    /// Writes the family's file into `dir` where it has one; the argument of `read_verilog -lib`.
-    pub fn stage(&self, dir: &Path) -> std::io::Result<String> {
-        match self {
-            PrimitiveBoxes::Shipped(path) => Ok(path.to_string()),
-            PrimitiveBoxes::Written(name, text) => {
-                std::fs::write(dir.join(name), text)?;
-                Ok(name.to_string())
-            }
-        }
-    }
+    /// black boxes of the primitives for a synthesis tool that lacks them, as an RTL file the
+    /// unit brings (what its name adds to the top's, its text for a top); None: the tools know them
+    pub boxes: Option<(&'static str, fn(&str) -> String)>,
 }
 
 /// A bitstream packer of a family: the programs tried in order, how to install the first, and
@@ -266,9 +239,10 @@ pub trait Family: Sync {
     fn blocks(&self) -> Option<&'static Blocks> {
         None
     }
-    /// The black boxes of the primitives its RTL instantiates, read before the RTL (None: yosys's
-    /// synthesis command knows them, or there are none).
-    fn primitive_boxes(&self) -> Option<PrimitiveBoxes> {
+    /// The library of black boxes of the primitives its RTL instantiates that yosys ships, read
+    /// before the RTL where no synthesis command does (`specgen prove`); None: the unit brings
+    /// its own ([`Blocks::boxes`]), or there are none.
+    fn primitive_boxes(&self) -> Option<&'static str> {
         None
     }
     /// What a cell of its netlist counts as (None: nothing of the family's; yosys's own

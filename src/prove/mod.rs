@@ -477,8 +477,8 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     // (a unit's primitives are black boxes, not the simulation models: no property reads the
     // datapath)
     let mut files = Vec::new();
-    if let Some(b) = crate::family::of(cfg.target()).primitive_boxes().filter(|_| !design.sim_models.is_empty()) {
-        files.push(format!("-lib {}", b.stage(w).map_err(|e| error::tool("prove", format!("cannot write in {}: {e}", w.display())))?));
+    if let Some(lib) = crate::family::of(cfg.target()).primitive_boxes().filter(|_| !design.sim_models.is_empty()) {
+        files.push(format!("-lib {lib}"));
     }
     let unit = design.stage(w)?;
     files.extend(unit.iter().cloned());

@@ -436,8 +436,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // `check -assert` on the RTL and on the netlist: no undriven net, no combinational loop, no
     // conflicting drivers
     // (the ECP5 primitives the RTL instantiates are known from yosys's own cell library)
-    let boxes = crate::family::written_boxes(target, work.path()).map_err(|e| Failure::io("write", work.path(), e))?;
-    let cells_lib = format!("{}{boxes}", family.primitives_lib());
+    let cells_lib = family.primitives_lib();
     let script = format!(
         "{cells_lib}{read}; hierarchy -check -top {top}; proc; check -assert; {}; {NO_SCOPEINFO}; check -assert; tee -q -o stat.json stat -json; write_json netlist.json",
         synth_cmd(&top)
@@ -535,7 +534,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         tools,
         version.as_deref(),
         work.path(),
-        &format!("{boxes}{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")),
+        &format!("{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")),
         &["wrapped.json"],
     )?;
     // one nextpnr per seed, as many at a time as there are cores

@@ -72,9 +72,8 @@ pub fn verify(
     let staging = work.path().join("staging");
     std::fs::create_dir_all(&staging).map_err(|e| Failure::io("create", &staging, e))?;
     let read = stage_sources(design, &staging)?;
-    let boxes = crate::family::written_boxes(target, &staging).map_err(|e| Failure::io("write", &staging, e))?;
     // written in yosys's working directory (a WebAssembly yosys sees nothing above it), then moved
-    run_yosys(yosys, &staging, &format!("{boxes}{read}; {}; write_verilog -noattr netlist.v", synth_command(target, dsp, &top)))?;
+    run_yosys(yosys, &staging, &format!("{read}; {}; write_verilog -noattr netlist.v", synth_command(target, dsp, &top)))?;
     std::fs::rename(staging.join("netlist.v"), &netlist)
         .map_err(|_| error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())))?;
     // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
