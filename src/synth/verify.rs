@@ -73,7 +73,10 @@ pub fn verify(
     std::fs::create_dir_all(&staging).map_err(|e| Failure::io("create", &staging, e))?;
     let read = stage_sources(design, &staging)?;
     // written in yosys's working directory (a WebAssembly yosys sees nothing above it), then moved
-    run_yosys(yosys, &staging, &format!("{read}; {}; write_verilog -noattr netlist.v", synth_command(target, dsp, &top)))?;
+    // (`splitnets`: every internal net a wire of its own, the ports kept whole; Icarus resolves a
+    // multi-bit net driven bit by bit by cells a whole vector at a time, which made a Gowin
+    // netlist's simulation some 30 times slower)
+    run_yosys(yosys, &staging, &format!("{read}; {}; splitnets; write_verilog -noattr netlist.v", synth_command(target, dsp, &top)))?;
     std::fs::rename(staging.join("netlist.v"), &netlist)
         .map_err(|_| error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())))?;
     // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
