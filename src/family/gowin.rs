@@ -97,7 +97,11 @@ impl Family for Gowin {
         Some(Packer { tools: &["gowin_pack"], install: "pip install apycula", args: &["-d", CHIP] })
     }
     fn has_block_ram(&self) -> bool {
-        false
+        true
+    }
+    /// a delay line's unread tail in the CFU's shadow SRAM (RAM16SDP4), as the ECP5's in LUT RAM
+    fn distributed_ram(&self) -> bool {
+        true
     }
     fn synthesized_on(&self) -> Target {
         Target::Gowin
