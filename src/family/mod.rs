@@ -64,8 +64,8 @@ pub struct Blocks {
     pub dsp_model_suffix: &'static str,
     pub bram_model_suffix: &'static str,
     /// the product module's and the table module's RTL for a top
-    pub dsp_module: fn(&str) -> String,
-    pub bram_module: fn(&str) -> String,
+    pub dsp_module: RenderFor,
+    pub bram_module: RenderFor,
     /// the primitives' simulation models
     pub dsp_model: fn() -> String,
     pub bram_model: fn() -> String,
@@ -76,8 +76,11 @@ pub struct Blocks {
     pub dsp_registers: &'static [(&'static str, &'static str)],
     /// black boxes of the primitives for a synthesis tool that lacks them, as an RTL file the
     /// unit brings (what its name adds to the top's, its text for a top); None: the tools know them
-    pub boxes: Option<(&'static str, fn(&str) -> String)>,
+    pub boxes: Option<(&'static str, RenderFor)>,
 }
+
+/// A file's text for a unit's top.
+pub type RenderFor = fn(&str) -> String;
 
 /// A bitstream packer of a family: the programs tried in order, how to install the first, and
 /// its arguments before `-o <file> <routed json>`.

@@ -660,7 +660,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let bitstream = match &packer {
         None => None,
         Some((packer, args)) => {
-            let o = crate::process::command(&absolute_tool(packer))
+            let o = crate::process::command(absolute_tool(packer))
                 .current_dir(work.path())
                 .args(*args)
                 .args(["-o", "specgen_synth_top.bit", "routed.json"])
