@@ -323,8 +323,8 @@ fn help_lines_and_the_guide_quote_what_the_code_does() {
     let deepest = |model: SpecularModel, arch: Arch, target: Target| {
         specgen::plan::Plan::new(Config::new(Params { model, arch, target, ..Params::default() }).unwrap()).unwrap().cut_points
     };
-    let targets = [Target::ALL[1], Target::ALL[2], Target::ALL[0]];
-    assert_eq!(targets.map(|t| t.name()), ["ice40", "ecp5", "generic"]);
+    let targets = [Target::ALL[1], Target::ALL[2], Target::ALL[3], Target::ALL[0]];
+    assert_eq!(targets.map(|t| t.name()), ["ice40", "ecp5", "gowin", "generic"]);
     let help = String::from_utf8(specgen().args(["generate", "--help"]).output().unwrap().stdout).unwrap();
     let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
     let guide = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/GUIDE.md")).unwrap();
@@ -337,11 +337,12 @@ fn help_lines_and_the_guide_quote_what_the_code_does() {
                 (true, _) => ("paper".to_string(), "quadratic `--arch paper`".to_string()),
                 _ => (model.name().to_string(), model.name().to_string()),
             };
-            // the help: "name a/b/c", or "name a" where every target has the same depth
-            let quoted = if d.iter().all(|&x| x == d[0]) { format!("{help_name} {}", d[0]) } else { format!("{help_name} {}/{}/{}", d[0], d[1], d[2]) };
+            // the help: "name a/b/c/d", or "name a" where every target has the same depth
+            let quoted =
+                if d.iter().all(|&x| x == d[0]) { format!("{help_name} {}", d[0]) } else { format!("{help_name} {}/{}/{}/{}", d[0], d[1], d[2], d[3]) };
             assert!(help.contains(&format!("{quoted},")) || help.contains(&format!("{quoted};")), "generate --help does not quote {quoted}");
             // the guide's table of depths
-            let row = format!("| {guide_name} | {} | {} | {} |", d[0], d[1], d[2]);
+            let row = format!("| {guide_name} | {} | {} | {} | {} |", d[0], d[1], d[2], d[3]);
             assert!(guide.contains(&row), "docs/GUIDE.md lacks the row {row}");
         }
     }
