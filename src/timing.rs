@@ -391,6 +391,18 @@ pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), Error> {
 /// planned again) and its prediction.
 pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32)) -> Result<(Plan, f64), Error> {
     let l = line_of(plan)?;
+    // a ready/axis unit on a part where no unit with the output buffer was measured: its own
+    // paths have no shape in the delay model and no ceiling measured, so no pick is assured
+    if plan.cfg.interface().handshake() && handshake_cap(plan).is_none() {
+        return Err(Error::Config {
+            parameter: "target_mhz",
+            message: format!(
+                "no {} unit was measured on the {}: its output buffer's own paths are outside the delay model, so no depth is assured; allowed: --interface valid with --target-mhz, or --stages N (scripts/bench_interface.sh measures the buffer)",
+                plan.cfg.interface().name(),
+                part(plan.cfg.target())
+            ),
+        });
+    }
     let mut best = (0, 0.0f64, 0.0f64);
     // a depth whose blocks cannot run at mhz is no pick, whatever its routes (the first seen)
     let mut capped: Option<(u32, crate::blocks::BlockLimit)> = None;
