@@ -519,6 +519,10 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
 /// specgen for the same kind of output (a unit's manifest has `ports`, a report's `claims`), and
 /// the files it lists. `Err` names the first entry that is not one of them, the other kind of
 /// output, or (unless `force`) a listed file whose SHA-256 is not the manifest's: edited by hand.
+/// The subdirectories a specgen output holds: a unit's simulation models (`sim/`) and an
+/// exploration's results over seeds (`synth/`, `specgen explore`).
+const OUTPUT_SUBDIRS: [&str; 2] = [SIM_DIR, "synth"];
+
 fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), Error> {
     let report = kind.is_some();
     let occupied = |why: String| Error::Occupied { dir: dir.to_path_buf(), why };
@@ -530,14 +534,15 @@ fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), 
         let entry = entry.at("read", dir)?;
         let name = entry.file_name().to_string_lossy().into_owned();
         let kind = entry.file_type().at("read", dir)?;
-        if kind.is_dir() && name == SIM_DIR {
-            // the simulation models' subdirectory: its files are listed as `sim/<name>`
+        if kind.is_dir() && OUTPUT_SUBDIRS.contains(&name.as_str()) {
+            // a subdirectory specgen writes (a unit's simulation models, an exploration's
+            // results over seeds): its files are listed as `<sub>/<name>`
             for inner in std::fs::read_dir(entry.path()).at("read", dir)? {
                 let inner = inner.at("read", dir)?;
                 if !inner.file_type().at("read", dir)?.is_file() {
-                    return Err(occupied(format!("it contains {SIM_DIR}/{:?}, which is not a regular file", inner.file_name())));
+                    return Err(occupied(format!("it contains {name}/{:?}, which is not a regular file", inner.file_name())));
                 }
-                names.push(format!("{SIM_DIR}/{}", inner.file_name().to_string_lossy()));
+                names.push(format!("{name}/{}", inner.file_name().to_string_lossy()));
             }
             continue;
         }

@@ -336,3 +336,26 @@ fn the_refused_cases_are_picked_from_measured_units() {
         assert_eq!(m["stages"], stages);
     }
 }
+
+/// An exploration's output with its results over seeds (`synth/<id>.json`) is a previous specgen
+/// output that the next run replaces: `scripts/explore.sh` runs `explore` again over its own plan
+/// when a sweep resumes, and the `synth/` directory made the output guard refuse it.
+#[test]
+fn an_exploration_with_results_over_seeds_is_replaced_by_the_next_run() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("plan");
+    let files = |fmax: &str| -> Vec<(String, Vec<u8>)> {
+        let synth = format!("{{\"fmax_mhz\": {fmax}}}\n").into_bytes();
+        let sha = <sha2::Sha256 as sha2::Digest>::digest(&synth).iter().map(|x| format!("{x:02x}")).collect::<String>();
+        let manifest =
+            format!("{{\"generator\": \"specgen\", \"exploration\": \"x\", \"files\": [{{\"name\": \"synth/p-1.json\", \"sha256\": \"{sha}\"}}]}}\n");
+        vec![("synth/p-1.json".to_string(), synth), ("explore.json".to_string(), manifest.into_bytes())]
+    };
+    specgen::output::write_dir_atomically(&dir, &files("100.0")).unwrap();
+    specgen::output::write_dir_atomically(&dir, &files("101.0")).unwrap();
+    assert_eq!(std::fs::read_to_string(dir.join("synth/p-1.json")).unwrap(), "{\"fmax_mhz\": 101.0}\n");
+    // a subdirectory of the user's is still refused
+    std::fs::create_dir(dir.join("mine")).unwrap();
+    let e = specgen::output::write_dir_atomically(&dir, &files("102.0")).unwrap_err().to_string();
+    assert!(e.contains("\"mine\", which is not a regular file"), "{e}");
+}
