@@ -558,7 +558,7 @@ fn a_block_without_its_promised_register_fails_synth_naming_it() {
 
 /// Issue 49, point 3, over the width space: for every model at default, 8/6/4/8 and issue 12's
 /// wide 18/11/10/18 bits, at
-/// its deepest and at half of it on the iCE40 and at its deepest on the ECP5, the manifest
+/// its deepest and at half of it on the iCE40 and at its deepest on the ECP5 and the GW1NR-9, the manifest
 /// promises every block its register exactly where the netlist has none without (a promise
 /// never broken, and never withheld where the netlist would keep it), and synth passes.
 #[test]
@@ -571,7 +571,13 @@ fn the_register_promise_matches_the_netlist_over_models_widths_and_families() {
     let mut cases: Vec<(String, Vec<String>, bool)> = Vec::new();
     for model in ["quadratic", "fitted", "blinn", "schlick", "blinn-pow"] {
         for (wname, widths) in [("default", &[][..]), ("narrow", &narrow[..]), ("wide", &wide[..])] {
-            for (target, half) in [("ice40", false), ("ice40", true), ("ecp5", false)] {
+            for (target, half) in [("ice40", false), ("ice40", true), ("ecp5", false), ("gowin", false)] {
+                // (yosys 0.23 maps no product to a Gowin block: a product the cuts leave to the tool
+                // is LUTs there, so a unit that lists one (blinn-pow's split chain, the wide
+                // widths') proves nothing of the rule)
+                if target == "gowin" && (model == "blinn-pow" || wname == "wide") {
+                    continue;
+                }
                 let args: Vec<String> = widths.iter().copied().chain(["--model", model, "--target", target]).map(String::from).collect();
                 cases.push((format!("{model}-{wname}-{target}-{}", if half { "half" } else { "deepest" }), args, half));
             }
@@ -592,8 +598,8 @@ fn the_register_promise_matches_the_netlist_over_models_widths_and_families() {
 
 /// Issue 49, point 3: which units promise every hard block its register (their manifests). At
 /// their deepest, the default-width lean, fitted, blinn and schlick units do on the iCE40 (one
-/// block a product, each registered whole, read by nothing else in its step) and on the ECP5
-/// (instantiated MULT18X18Ds); blinn-pow's wide chain (each product over several blocks) does
+/// block a product, each registered whole, read by nothing else in its step), on the ECP5
+/// (instantiated MULT18X18Ds) and on the GW1NR-9 (instantiated MULT18X18s); blinn-pow's wide chain (each product over several blocks) does
 /// not, and says why; a combinational unit lists every block; generic RTL promises nothing.
 #[test]
 fn the_units_that_promise_every_block_its_register() {
@@ -614,7 +620,7 @@ fn the_units_that_promise_every_block_its_register() {
             assert!(pow.iter().any(|(_, why)| why.contains("splits it over")), "{pow:?}");
             return;
         }
-        for target in ["ice40", "ecp5"] {
+        for target in ["ice40", "ecp5", "gowin"] {
             assert_eq!(listed(&format!("{model}-{target}"), model, target, true), Vec::new(), "{model} on {target}");
         }
         let none = listed(&format!("{model}-0"), model, "ice40", false);
