@@ -31,7 +31,7 @@ static BLOCKS: Blocks = Blocks {
     dsp_model: ecp5_sim_model,
     bram_model: ecp5_bram_model,
     bram_init: dp16kd_initvals,
-    dsp_registers: &[("REG_OUTPUT_CLK", "output"), ("REG_INPUTA_CLK", "input A"), ("REG_INPUTB_CLK", "input B")],
+    dsp_registers: &[("MULT18X18D", &[("REG_OUTPUT_CLK", "output"), ("REG_INPUTA_CLK", "input A"), ("REG_INPUTB_CLK", "input B")])],
     boxes: None,
 };
 

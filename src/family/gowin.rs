@@ -43,7 +43,12 @@ static BLOCKS: Blocks = Blocks {
     dsp_model: || MultModel { version: crate::names::VERSION }.render().expect("gowin_mult18x18_sim renders") + "\n",
     bram_model: || RomModel { version: crate::names::VERSION }.render().expect("gowin_promx9_sim renders") + "\n",
     bram_init: init_rams,
-    dsp_registers: &[("OUT_REG", "output"), ("AREG", "input A"), ("BREG", "input B")],
+    // (yosys 0.70 infers MULT9X9 and MULT36X36 too, for products of other widths)
+    dsp_registers: &[
+        ("MULT18X18", &[("OUT_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
+        ("MULT9X9", &[("OUT_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
+        ("MULT36X36", &[("OUT0_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
+    ],
     boxes: Some(("_gowin_cells_bb.v", |top| Boxes { top, version: crate::names::VERSION }.render().expect("gowin_cells_bb renders") + "\n")),
 };
 

@@ -71,9 +71,10 @@ pub struct Blocks {
     pub bram_model: fn() -> String,
     /// the table module's contents parameters holding up to 1024 words of 18 bits
     pub bram_init: fn(&[u128]) -> Vec<(String, String)>,
-    /// the product primitive's register parameters in a netlist, with what each registers: a
-    /// value of none, `NONE` or zeros is no register
-    pub dsp_registers: &'static [(&'static str, &'static str)],
+    /// every multiplier primitive of the family a netlist may hold (the one instantiated, and
+    /// those the synthesis tool infers), with its register parameters and what each registers:
+    /// a value of none, `NONE` or zeros is no register
+    pub dsp_registers: &'static [(&'static str, &'static [(&'static str, &'static str)])],
     /// black boxes of the primitives for a synthesis tool that lacks them, as an RTL file the
     /// unit brings (what its name adds to the top's, its text for a top); None: the tools know them
     pub boxes: Option<(&'static str, RenderFor)>,

@@ -112,15 +112,14 @@ fn block_registers(json: &str, top: &str) -> Result<(Vec<String>, Vec<String>), 
                     }
                 }
             }
-            // a family's instantiated product block: each register its `Blocks` names
+            // a family's multiplier block (instantiated or inferred): each register its `Blocks` names
             ty => {
                 let family_blocks = crate::config::Target::ALL.into_iter().filter_map(|t| crate::family::of(t).blocks());
-                for b in family_blocks.filter(|b| b.dsp == ty).take(1) {
-                    for &(reg, what) in b.dsp_registers {
-                        let value = param(cell, reg);
-                        if value.is_empty() || value == "NONE" || value.chars().all(|c| c == '0') {
-                            missing.push(format!("{ty} {shown}: no {what} register ({reg} = {})", if value.is_empty() { "NONE" } else { &value }));
-                        }
+                let registers = family_blocks.flat_map(|b| b.dsp_registers.iter()).find(|(cell, _)| *cell == ty).map_or(&[][..], |(_, regs)| *regs);
+                for &(reg, what) in registers {
+                    let value = param(cell, reg);
+                    if value.is_empty() || value == "NONE" || value.chars().all(|c| c == '0') {
+                        missing.push(format!("{ty} {shown}: no {what} register ({reg} = {})", if value.is_empty() { "NONE" } else { &value }));
                     }
                 }
             }
