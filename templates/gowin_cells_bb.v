@@ -7,36 +7,10 @@
 // twice is one.
 `ifdef SYNTHESIS
 (* blackbox *)
-module MULT18X18(A, SIA, B, SIB, ASIGN, BSIGN, ASEL, BSEL, CE, CLK, RESET, DOUT, SOA, SOB);
-    input  [17:0] A, SIA;
-    input  [17:0] B, SIB;
-    input         ASIGN, BSIGN;
-    input         ASEL, BSEL;
-    input         CE;
-    input         CLK;
-    input         RESET;
-    output [35:0] DOUT;
-    output [17:0] SOA, SOB;
-    parameter AREG = 1'b0;
-    parameter BREG = 1'b0;
-    parameter OUT_REG = 1'b0;
-    parameter PIPE_REG = 1'b0;
-    parameter ASIGN_REG = 1'b0;
-    parameter BSIGN_REG = 1'b0;
-    parameter SOA_REG = 1'b0;
-    parameter MULT_RESET_MODE = "SYNC";
+{% include "gowin_mult18x18_decl.v" %}
 endmodule
 
 (* blackbox *)
-module pROMX9(CLK, CE, OCE, RESET, AD, DO);
-    input         CLK, CE, OCE, RESET;
-    input  [13:0] AD;
-    output [35:0] DO;
-    parameter READ_MODE = 1'b0;
-    parameter BIT_WIDTH = 36;
-    parameter RESET_MODE = "SYNC";
-{%- for i in 0..64 %}
-    parameter [287:0] INIT_RAM_{{ "{:02X}"|format(i) }} = 288'h0;
-{%- endfor %}
+{% include "gowin_promx9_decl.v" %}
 endmodule
 `endif

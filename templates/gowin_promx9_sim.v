@@ -21,77 +21,9 @@
 /* verilator lint_off UNUSEDPARAM */
 /* verilator lint_off DECLFILENAME */
 /* verilator lint_off WIDTH */
-module pROMX9(CLK, CE, OCE, RESET, AD, DO);
-    input         CLK, CE, OCE, RESET;
-    input  [13:0] AD;
-    output [35:0] DO;
-    parameter READ_MODE = 1'b0;
-    parameter BIT_WIDTH = 36;
-    parameter RESET_MODE = "SYNC";
-    parameter [287:0] INIT_RAM_00 = 288'h0;
-    parameter [287:0] INIT_RAM_01 = 288'h0;
-    parameter [287:0] INIT_RAM_02 = 288'h0;
-    parameter [287:0] INIT_RAM_03 = 288'h0;
-    parameter [287:0] INIT_RAM_04 = 288'h0;
-    parameter [287:0] INIT_RAM_05 = 288'h0;
-    parameter [287:0] INIT_RAM_06 = 288'h0;
-    parameter [287:0] INIT_RAM_07 = 288'h0;
-    parameter [287:0] INIT_RAM_08 = 288'h0;
-    parameter [287:0] INIT_RAM_09 = 288'h0;
-    parameter [287:0] INIT_RAM_0A = 288'h0;
-    parameter [287:0] INIT_RAM_0B = 288'h0;
-    parameter [287:0] INIT_RAM_0C = 288'h0;
-    parameter [287:0] INIT_RAM_0D = 288'h0;
-    parameter [287:0] INIT_RAM_0E = 288'h0;
-    parameter [287:0] INIT_RAM_0F = 288'h0;
-    parameter [287:0] INIT_RAM_10 = 288'h0;
-    parameter [287:0] INIT_RAM_11 = 288'h0;
-    parameter [287:0] INIT_RAM_12 = 288'h0;
-    parameter [287:0] INIT_RAM_13 = 288'h0;
-    parameter [287:0] INIT_RAM_14 = 288'h0;
-    parameter [287:0] INIT_RAM_15 = 288'h0;
-    parameter [287:0] INIT_RAM_16 = 288'h0;
-    parameter [287:0] INIT_RAM_17 = 288'h0;
-    parameter [287:0] INIT_RAM_18 = 288'h0;
-    parameter [287:0] INIT_RAM_19 = 288'h0;
-    parameter [287:0] INIT_RAM_1A = 288'h0;
-    parameter [287:0] INIT_RAM_1B = 288'h0;
-    parameter [287:0] INIT_RAM_1C = 288'h0;
-    parameter [287:0] INIT_RAM_1D = 288'h0;
-    parameter [287:0] INIT_RAM_1E = 288'h0;
-    parameter [287:0] INIT_RAM_1F = 288'h0;
-    parameter [287:0] INIT_RAM_20 = 288'h0;
-    parameter [287:0] INIT_RAM_21 = 288'h0;
-    parameter [287:0] INIT_RAM_22 = 288'h0;
-    parameter [287:0] INIT_RAM_23 = 288'h0;
-    parameter [287:0] INIT_RAM_24 = 288'h0;
-    parameter [287:0] INIT_RAM_25 = 288'h0;
-    parameter [287:0] INIT_RAM_26 = 288'h0;
-    parameter [287:0] INIT_RAM_27 = 288'h0;
-    parameter [287:0] INIT_RAM_28 = 288'h0;
-    parameter [287:0] INIT_RAM_29 = 288'h0;
-    parameter [287:0] INIT_RAM_2A = 288'h0;
-    parameter [287:0] INIT_RAM_2B = 288'h0;
-    parameter [287:0] INIT_RAM_2C = 288'h0;
-    parameter [287:0] INIT_RAM_2D = 288'h0;
-    parameter [287:0] INIT_RAM_2E = 288'h0;
-    parameter [287:0] INIT_RAM_2F = 288'h0;
-    parameter [287:0] INIT_RAM_30 = 288'h0;
-    parameter [287:0] INIT_RAM_31 = 288'h0;
-    parameter [287:0] INIT_RAM_32 = 288'h0;
-    parameter [287:0] INIT_RAM_33 = 288'h0;
-    parameter [287:0] INIT_RAM_34 = 288'h0;
-    parameter [287:0] INIT_RAM_35 = 288'h0;
-    parameter [287:0] INIT_RAM_36 = 288'h0;
-    parameter [287:0] INIT_RAM_37 = 288'h0;
-    parameter [287:0] INIT_RAM_38 = 288'h0;
-    parameter [287:0] INIT_RAM_39 = 288'h0;
-    parameter [287:0] INIT_RAM_3A = 288'h0;
-    parameter [287:0] INIT_RAM_3B = 288'h0;
-    parameter [287:0] INIT_RAM_3C = 288'h0;
-    parameter [287:0] INIT_RAM_3D = 288'h0;
-    parameter [287:0] INIT_RAM_3E = 288'h0;
-    parameter [287:0] INIT_RAM_3F = 288'h0;
+{%- endraw %}
+{% include "gowin_promx9_decl.v" %}
+{%- raw %}
 
     localparam ASYNC = RESET_MODE == "ASYNC";
 `ifndef SYNTHESIS  // (a simulation check: `specgen prove` reads the model with SYNTHESIS)

@@ -1,0 +1,18 @@
+module MULT18X18(A, SIA, B, SIB, ASIGN, BSIGN, ASEL, BSEL, CE, CLK, RESET, DOUT, SOA, SOB);
+    input  [17:0] A, SIA;
+    input  [17:0] B, SIB;
+    input         ASIGN, BSIGN;
+    input         ASEL, BSEL;
+    input         CE;
+    input         CLK;
+    input         RESET;
+    output [35:0] DOUT;
+    output [17:0] SOA, SOB;
+    parameter AREG = 1'b0;
+    parameter BREG = 1'b0;
+    parameter OUT_REG = 1'b0;
+    parameter PIPE_REG = 1'b0;
+    parameter ASIGN_REG = 1'b0;
+    parameter BSIGN_REG = 1'b0;
+    parameter SOA_REG = 1'b0;
+    parameter MULT_RESET_MODE = "SYNC";
