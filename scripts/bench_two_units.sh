@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # Two units of different models in one iCE40 UP5K (issue 49): each generated with a
-# --dsp-budget so that their SB_MAC16s together fit the device's 8, both instantiated in one
-# top (a serial-I/O wrapper as `synth` uses: every port of both units from or to a flip-flop),
-# synthesized by yosys (synth_ice40 -dsp) and placed and routed by nextpnr-ice40 over seeds
+# --dsp-budget so that their SB_MAC16s together fit the device's 8, both instantiated in each of
+# two tops (a serial-I/O wrapper as `synth` uses: every port of both units from or to a flip-flop;
+# and a top of one's own, plain registers in and out, tb/pair_plain_top.v), synthesized by
+# yosys (synth_ice40 -dsp) and placed and routed by nextpnr-ice40 over seeds
 # 1..$SEEDS (median and range of the clock, the device's logic cells and DSPs). Each unit's
 # own netlist is then checked against its golden model, every (cos_g, n) input, by
 # `specgen synth --verify --verify-exhaustive` (yosys's cell models, Verilator).
 # Writes benchmarks/two-units.md.
 #   SEEDS=5 A=quadratic:3:28 B=blinn:5:47 scripts/bench_two_units.sh
-# A and B: model:dsp-budget:stages.
+# A and B: model:dsp-budget:stages. PNR_LOGS=PREFIX keeps nextpnr's logs (PREFIX.TOP.SEED.log).
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-5}
 A=${A:-quadratic:3:28}
@@ -24,10 +25,13 @@ for spec in "$A" "$B"; do
     done
     units+=("$top:$model:$budget:$stages")
 done
-# the top: both units behind one serial chain in and one out (each port from or to a register)
-python3 - "$work" "${units[@]}" > "$run/pair_top.v" <<'PY'
+# the tops: both units behind one serial chain in and one out (each port from or to a register),
+# and a top of one's own (plain registers in and out; tb/pair_plain_top.v is the one of the
+# README's recipe, checked below to be what this writes)
+for kind in serial plain; do
+python3 - "$work" "$kind" "${units[@]}" > "$run/$kind.v.txt" <<'PY'
 import json, sys
-work, units = sys.argv[1], [u.split(":") for u in sys.argv[2:]]
+work, kind, units = sys.argv[1], sys.argv[2], [u.split(":") for u in sys.argv[3:]]
 ins, outs, inst = 0, 0, []
 for top, *_ in units:
     ports = json.load(open(f"{work}/{top}/{top}.json"))["ports"]
@@ -41,7 +45,9 @@ for top, *_ in units:
         else:
             conn.append(f".{n}(unit_out[{outs + w - 1}:{outs}])"); outs += w
     inst.append(f"    {top} u_{top} ({', '.join(conn)});")
-print(f"""// two specgen units in one device, serial I/O (scripts/bench_two_units.sh); not for a design
+names = " and ".join(f"`{u[0]}`" for u in units)
+if kind == "serial":
+    print(f"""// two specgen units in one device, serial I/O (scripts/bench_two_units.sh); not for a design
 module pair_top (input wire clk, input wire sin, input wire load, output wire sout);
     reg  [{ins - 1}:0] in_chain;
     reg  [{ins - 1}:0] in_reg;
@@ -58,17 +64,67 @@ module pair_top (input wire clk, input wire sin, input wire load, output wire so
     assign sout = out_chain[{outs - 1}];
 {chr(10).join(inst)}
 endmodule""")
+else:
+    # a user's own top: each unit fed by plain registers (here from a shift register the pins
+    # feed, standing for the user's pipeline) and read by plain registers (here their parity,
+    # folded four bits a register level, to a pin: a LUT a level, so the top adds no long path)
+    decls, folds, width, src, level = [], [], outs, "out_reg", 0
+    while width > 1:
+        groups = (width + 3) // 4
+        pad = 4 * groups - width
+        decls.append(f"    wire [{4 * groups - 1}:0] fold{level}_in = " + (f"{{{pad}'d0, {src}}};" if pad else f"{src};"))
+        decls.append(f"    reg  [{groups - 1}:0] fold{level} = {groups}'d0;")
+        folds.append(f"        for (i = 0; i < {groups}; i = i + 1) fold{level}[i] <= ^fold{level}_in[4 * i +: 4];")
+        width, src, level = groups, f"fold{level}", level + 1
+    print(f"""// Two specgen units in a top of one's own (written by scripts/bench_two_units.sh):
+// {names} fed by plain registers and read by plain registers, no serial wrapper. The registers stand for
+// the user's pipeline: `src` is a shift register the pins `din` feed; the outputs' parity is
+// folded four bits a register level to the pin `dout` (so that nothing is optimized away).
+`timescale 1ns / 1ps
+`default_nettype none
+module pair_plain_top (
+    input  wire       clk,
+    input  wire [3:0] din,
+    output wire       dout
+);
+    reg  [{ins - 1}:0] src = {ins}'d0;      // the user's data, shifted in from the pins
+    reg  [{ins - 1}:0] in_reg = {ins}'d0;   // every unit input from a plain register
+    wire [{outs - 1}:0] unit_out;
+    reg  [{outs - 1}:0] out_reg = {outs}'d0; // every unit output into a plain register
+{chr(10).join(decls)}
+    integer i;
+    always @(posedge clk) begin
+        src <= {{src[{ins - 5}:0], din}};
+        in_reg <= src;
+        out_reg <= unit_out;
+{chr(10).join(folds)}
+    end
+    assign dout = {src}[0];
+{chr(10).join(inst)}
+endmodule
+`default_nettype wire""")
 PY
-( cd "$run" && yosys -q -l yosys.log -p "read_verilog $(ls *.v | tr '\n' ' '); synth_ice40 -dsp -top pair_top -json pair.json; tee -o stat.txt stat" ) \
-    || { tail -20 "$run/yosys.log" >&2; exit 1; }
+done
+if [ "$A:$B" = "quadratic:3:28:blinn:5:47" ]; then
+    diff -u tb/pair_plain_top.v "$run/plain.v.txt" || { echo "$0: tb/pair_plain_top.v is not what this script writes" >&2; exit 1; }
+fi
 rows="$work/rows.txt"; : > "$rows"
-for seed in $(seq 1 "$seeds"); do
-    ( cd "$run" && nextpnr-ice40 --up5k --package sg48 --pcf-allow-unconstrained --timing-allow-fail --json pair.json --freq 100 --seed "$seed" > "pnr$seed.log" 2>&1 ) \
-        || { grep ERROR "$run/pnr$seed.log" >&2; tail -5 "$run/pnr$seed.log" >&2; exit 1; }
-    mhz=$(grep "Max frequency for clock" "$run/pnr$seed.log" | tail -1 | sed -n 's/.*: \([0-9.]*\) MHz.*/\1/p')
-    lc=$(grep -m1 "ICESTORM_LC:" "$run/pnr$seed.log" | sed -n 's/.*ICESTORM_LC: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
-    dsp=$(grep -m1 "ICESTORM_DSP:" "$run/pnr$seed.log" | sed -n 's/.*ICESTORM_DSP: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
-    echo "$seed $mhz $lc $dsp" >> "$rows"
+for kind in serial plain; do
+    top=pair_top; [ "$kind" = plain ] && top=pair_plain_top
+    kdir="$run/$kind"; mkdir -p "$kdir"
+    cp "$run"/*.v "$run"/*.hex "$kdir/" 2>/dev/null || true
+    cp "$run/$kind.v.txt" "$kdir/$top.v"
+    ( cd "$kdir" && yosys -q -l yosys.log -p "read_verilog $(cd "$kdir" && ls *.v | tr '\n' ' '); synth_ice40 -dsp -top $top -json pair.json; tee -o stat.txt stat" ) \
+        || { tail -20 "$kdir/yosys.log" >&2; exit 1; }
+    for seed in $(seq 1 "$seeds"); do
+        ( cd "$kdir" && nextpnr-ice40 --up5k --package sg48 --pcf-allow-unconstrained --timing-allow-fail --json pair.json --freq 100 --seed "$seed" > "pnr$seed.log" 2>&1 ) \
+            || { grep ERROR "$kdir/pnr$seed.log" >&2; tail -5 "$kdir/pnr$seed.log" >&2; exit 1; }
+        mhz=$(grep "Max frequency for clock" "$kdir/pnr$seed.log" | tail -1 | sed -n 's/.*: \([0-9.]*\) MHz.*/\1/p')
+        lc=$(grep -m1 "ICESTORM_LC:" "$kdir/pnr$seed.log" | sed -n 's/.*ICESTORM_LC: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
+        dsp=$(grep -m1 "ICESTORM_DSP:" "$kdir/pnr$seed.log" | sed -n 's/.*ICESTORM_DSP: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
+        echo "$kind $seed $mhz $lc $dsp" >> "$rows"
+        [ -n "${PNR_LOGS:-}" ] && cp "$kdir/pnr$seed.log" "${PNR_LOGS}.$kind.$seed.log"
+    done
 done
 # each unit's own netlist, every input, against its golden model
 verify="$work/verify.txt"; : > "$verify"; : > "$work/unregistered.txt"
@@ -79,37 +135,37 @@ for u in "${units[@]}"; do
     echo "$top: $(grep -i -m2 'verify\|netlist' "$work/$top.verify.log" | tr '\n' ' ')" >> "$verify"
     grep "unregistered" "$work/$top.verify.log" | sed "s/^ *unregistered *//; s/^/$top: /" >> "$work/unregistered.txt" || true
 done
-python3 - "$rows" "$verify" "$seeds" "$run/stat.txt" "$work/unregistered.txt" "${units[@]}" > benchmarks/two-units.md <<'PY'
-import statistics, sys, re
+python3 - "$rows" "$verify" "$seeds" "$work/unregistered.txt" "${units[@]}" > benchmarks/two-units.md <<'PY'
+import statistics, sys
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 verify = open(sys.argv[2]).read().strip().splitlines()
-seeds, stat = sys.argv[3], open(sys.argv[4]).read()
-unreg = sorted(set(l.strip() for l in open(sys.argv[5]) if l.strip()))
-units = [u.split(":") for u in sys.argv[6:]]
-mhz = [float(r[1]) for r in rows]
-mac = re.findall(r"SB_MAC16\s+(\d+)", stat)
+seeds = sys.argv[3]
+unreg = sorted(set(l.strip() for l in open(sys.argv[4]) if l.strip()))
+units = [u.split(":") for u in sys.argv[5:]]
 print("# Two units in one iCE40 UP5K")
 print()
 print("`scripts/bench_two_units.sh` (SEEDS=%s): two units of different models, each generated with a" % seeds)
-print("`--dsp-budget`, in one top (`pair_top`, serial I/O: every port of both units from or to a")
-print("flip-flop), `yosys synth_ice40 -dsp`, `nextpnr-ice40 --up5k --package sg48 --freq 100` over seeds")
-print("1..%s. Fmax is nextpnr's, after routing; nextpnr-ice40 does not time the multiply inside an" % seeds)
-print("SB_MAC16 (IceStorm's data: 153.7 MHz with its registers). A block without its output register")
-print("(`specgen synth` lists them under `unregistered`, below) is not timed at all, so with one the")
-print("figure is an upper bound.")
+print("`--dsp-budget`, in two tops: `pair_top`, serial I/O (every port of both units from or to a")
+print("flip-flop of a shift chain), and `pair_plain_top`, a top of one's own (both units fed and read by")
+print("plain registers, no serial wrapper: [`tb/pair_plain_top.v`](../tb/pair_plain_top.v)).")
+print("`yosys synth_ice40 -dsp`, `nextpnr-ice40 --up5k --package sg48 --freq 100` over seeds 1..%s." % seeds)
+print("Fmax is nextpnr's, after routing; nextpnr-ice40 does not time the multiply inside an SB_MAC16")
+print("(IceStorm's data: 153.7 MHz with its registers). A block without its output register (`specgen")
+print("synth` lists them under `unregistered`, below) is not timed at all, so with one the figure is an")
+print("upper bound.")
 print()
 print("| unit | model | --dsp-budget | --stages |")
 print("|---|---|---|---|")
 for top, model, budget, stages in units:
     print(f"| `{top}` | {model} | {budget} | {stages} |")
 print()
-print("| | median | range |")
-print("|---|---|---|")
-print(f"| Fmax (MHz) | {statistics.median(mhz):.1f} | {min(mhz):.1f}–{max(mhz):.1f} |")
-print(f"| logic cells (ICESTORM_LC) | {rows[0][2]} of {rows[0][3]} | |")
-print(f"| SB_MAC16 (ICESTORM_DSP) | {rows[0][4]} of {rows[0][5]} | |")
-print()
-print("Per seed: " + ", ".join(f"{r[0]}: {float(r[1]):.1f}" for r in rows) + " MHz.")
+print("| top | Fmax MHz, median (range) | per seed | logic cells (ICESTORM_LC) | SB_MAC16 |")
+print("|---|---|---|---|---|")
+for kind, name in (("serial", "`pair_top` (serial I/O)"), ("plain", "`pair_plain_top` (plain registers)")):
+    rs = [r for r in rows if r[0] == kind]
+    mhz = [float(r[2]) for r in rs]
+    per = ", ".join(f"{r[1]}: {float(r[2]):.1f}" for r in rs)
+    print(f"| {name} | {statistics.median(mhz):.1f} ({min(mhz):.1f}–{max(mhz):.1f}) | {per} | {rs[0][3]} of {rs[0][4]} | {rs[0][5]} of {rs[0][6]} |")
 print()
 print("Each unit's own netlist (`specgen synth --dsp --verify --verify-exhaustive`: every (cos_g, n)")
 print("through yosys's netlist under Verilator, against the golden model):")
