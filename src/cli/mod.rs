@@ -40,7 +40,7 @@ pub enum Command {
         /// Replace a previous output even where its files were edited by hand.
         #[arg(long)]
         force: bool,
-        /// Pick --stages: the shallowest pipeline that reaches F MHz on the --target's part (ice40: iCE40 UP5K, ecp5: ECP5-25 grade 6, with DSPs) by the delay model calibrated on nextpnr (in milliseconds; `synth --seeds K` measures it). Refused with --target generic, whose RTL names no device to be calibrated on: give --stages there.
+        /// Pick --stages: the shallowest pipeline that reaches F MHz on the --target's part (ice40: iCE40 UP5K, ecp5: ECP5-25 grade 6, gowin: GW1NR-9 C6/I5, with DSPs) by the delay model calibrated on nextpnr (in milliseconds; `synth --seeds K` measures it). Refused with --target generic, whose RTL names no device to be calibrated on: give --stages there.
         #[arg(long, value_name = "F", conflicts_with = "stages", allow_negative_numbers = true)]
         target_mhz: Option<f64>,
         /// Choose the unit (model, widths, depth, budget, ROM style) instead of taking the flags:
