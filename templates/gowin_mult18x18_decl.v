@@ -1,13 +1,13 @@
-module MULT18X18(A, SIA, B, SIB, ASIGN, BSIGN, ASEL, BSEL, CE, CLK, RESET, DOUT, SOA, SOB);
-    input  [17:0] A, SIA;
-    input  [17:0] B, SIB;
+module {{ mult }}(A, SIA, B, SIB, ASIGN, BSIGN, ASEL, BSEL, CE, CLK, RESET, DOUT, SOA, SOB);
+    input  [{{ a_hi }}:0] A, SIA;
+    input  [{{ a_hi }}:0] B, SIB;
     input         ASIGN, BSIGN;
     input         ASEL, BSEL;
     input         CE;
     input         CLK;
     input         RESET;
-    output [35:0] DOUT;
-    output [17:0] SOA, SOB;
+    output [{{ p_hi }}:0] DOUT;
+    output [{{ a_hi }}:0] SOA, SOB;
     parameter AREG = 1'b0;
     parameter BREG = 1'b0;
     parameter OUT_REG = 1'b0;

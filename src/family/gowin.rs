@@ -40,7 +40,7 @@ static BLOCKS: Blocks = Blocks {
     bram_model_suffix: "_gowin_promx9_sim.v",
     dsp_module: |top| MultModule { top, version: crate::names::VERSION }.render().expect("gowin_mult18x18 renders") + "\n",
     bram_module: |top| RomModule { top, version: crate::names::VERSION }.render().expect("gowin_rom1k18 renders") + "\n",
-    dsp_model: || MultModel { version: crate::names::VERSION }.render().expect("gowin_mult18x18_sim renders") + "\n",
+    dsp_model: || mult_model("MULT18X18", 18),
     bram_model: || RomModel { version: crate::names::VERSION }.render().expect("gowin_promx9_sim renders") + "\n",
     bram_init: init_rams,
     // (yosys 0.70 infers MULT9X9 and MULT36X36 too, for products of other widths)
@@ -49,7 +49,9 @@ static BLOCKS: Blocks = Blocks {
         ("MULT9X9", &[("OUT_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
         ("MULT36X36", &[("OUT0_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
     ],
-    boxes: Some(("_gowin_cells_bb.v", |top| Boxes { top, version: crate::names::VERSION }.render().expect("gowin_cells_bb renders") + "\n")),
+    boxes: Some(("_gowin_cells_bb.v", |top| {
+        Boxes { top, version: crate::names::VERSION, mult: "MULT18X18", a_hi: 17, p_hi: 35 }.render().expect("gowin_cells_bb renders") + "\n"
+    })),
 };
 
 impl Family for Gowin {
@@ -147,13 +149,16 @@ impl Family for Gowin {
         })
     }
     /// yosys's models of the fabric's cells (LUTs, flip-flops, ALU, wide-LUT muxes, I/O
-    /// buffers), and specgen's of the two blocks, which yosys has only as black boxes
+    /// buffers), and specgen's of the two blocks, which yosys has only as black boxes; and of
+    /// the multipliers yosys 0.70 infers for products no cut surrounds (MULT9X9, MULT36X36)
     fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         let text = super::read(&datdir.join("gowin").join("cells_sim.v"))?;
         Ok(vec![
             ("gowin_cells_sim.v".into(), text),
             (format!("{top}{}", BLOCKS.dsp_model_suffix), (BLOCKS.dsp_model)()),
             (format!("{top}{}", BLOCKS.bram_model_suffix), (BLOCKS.bram_model)()),
+            (format!("{top}_gowin_mult9x9_sim.v"), mult_model("MULT9X9", 9)),
+            (format!("{top}_gowin_mult36x36_sim.v"), Mult36Model { version: crate::names::VERSION }.render().expect("gowin_mult36x36_sim renders") + "\n"),
         ])
     }
 }
@@ -200,11 +205,29 @@ struct RomModule<'a> {
 struct Boxes<'a> {
     top: &'a str,
     version: &'a str,
+    mult: &'a str,
+    a_hi: u32,
+    p_hi: u32,
+}
+
+/// The simulation model of Gowin's `mult` (MULT18X18 or MULT9X9), whose operands are `w` bits.
+fn mult_model(mult: &str, w: u32) -> String {
+    MultModel { version: crate::names::VERSION, mult, w, a_hi: w - 1, p_hi: 2 * w - 1 }.render().expect("gowin_mult18x18_sim renders") + "\n"
 }
 
 #[derive(Template)]
 #[template(path = "gowin_mult18x18_sim.v")]
 struct MultModel<'a> {
+    version: &'a str,
+    mult: &'a str,
+    w: u32,
+    a_hi: u32,
+    p_hi: u32,
+}
+
+#[derive(Template)]
+#[template(path = "gowin_mult36x36_sim.v")]
+struct Mult36Model<'a> {
     version: &'a str,
 }
 
@@ -240,5 +263,46 @@ mod tests {
         assert_eq!(hex.len(), 72);
         assert!(hex.starts_with('8'), "{hex}");
         assert!(hex.ends_with("40000"), "{hex}");
+    }
+
+    /// The models of the multipliers yosys 0.70 infers compute the product of their operands,
+    /// each signed when its sign input says so, and the 36x36 one stops the simulation on a
+    /// register it does not model (Icarus, as `synth --verify` runs them).
+    #[test]
+    fn the_inferred_multipliers_models_multiply_and_refuse_what_they_do_not_model() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("m9.v"), mult_model("MULT9X9", 9)).unwrap();
+        std::fs::write(dir.path().join("m36.v"), Mult36Model { version: "t" }.render().unwrap()).unwrap();
+        let bench = |reg: u32| {
+            format!(
+                "`timescale 1ns / 1ps
+module t;
+    reg [8:0] a9, b9; reg s9; wire [17:0] p9;
+    reg [35:0] a36, b36; reg s36; wire [71:0] p36;
+    MULT9X9 m9 (.A(a9), .SIA(9'd0), .B(b9), .SIB(9'd0), .ASIGN(s9), .BSIGN(s9), .ASEL(1'b0), .BSEL(1'b0),
+        .CE(1'b0), .CLK(1'b0), .RESET(1'b0), .DOUT(p9), .SOA(), .SOB());
+    MULT36X36 #(.OUT0_REG(1'b{reg})) m36 (.A(a36), .B(b36), .ASIGN(s36), .BSIGN(s36), .CE(1'b0), .CLK(1'b0), .RESET(1'b0), .DOUT(p36));
+    initial begin
+        a9 = 9'd511; b9 = 9'd3; s9 = 1'b0; a36 = 36'hfffffffff; b36 = 36'd5; s36 = 1'b0; #1;
+        if (p9 !== 18'd1533 || p36 !== 72'd343597383675) begin $display(\"FAIL unsigned %d %d\", p9, p36); $finish; end
+        s9 = 1'b1; s36 = 1'b1; #1;
+        if (p9 !== 18'h3fffd || p36 !== {{72{{1'b1}}}} - 72'd4) begin $display(\"FAIL signed %h %h\", p9, p36); $finish; end
+        $display(\"PASS\");
+    end
+endmodule
+"
+            )
+        };
+        let run = |reg: u32| -> String {
+            std::fs::write(dir.path().join("t.v"), bench(reg)).unwrap();
+            let c = std::process::Command::new("iverilog").current_dir(dir.path()).args(["-g2005", "-o", "t.vvp", "t.v", "m9.v", "m36.v"]).output().unwrap();
+            assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
+            let r = std::process::Command::new("vvp").current_dir(dir.path()).args(["-n", "t.vvp"]).output().unwrap();
+            format!("{}{}", String::from_utf8_lossy(&r.stdout), String::from_utf8_lossy(&r.stderr))
+        };
+        let ok = run(0);
+        assert!(ok.contains("PASS") && !ok.contains("FAIL"), "{ok}");
+        let refused = run(1);
+        assert!(refused.contains("MULT36X36 with a register") && !refused.contains("PASS"), "{refused}");
     }
 }
