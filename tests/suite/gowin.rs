@@ -178,3 +178,33 @@ fn every_gowin_model_at_default_widths_is_right_through_the_netlists_of_both_yos
         }
     }
 }
+
+/// Issue 70, point 4: `--target gowin --target-mhz` picks from the part's own delay model
+/// (`benchmarks/target-gowin.md` measures every pick at 50, 100 and 150 MHz over seeds 1–5):
+/// every model but blinn-pow (which does not fit the part) gets a depth at 100 MHz, recorded in
+/// its manifest with the model's prediction; a clock past every calibrated unit is refused with
+/// exit 2, as is a handshake interface, of which no unit was measured on the part.
+#[test]
+fn the_gowin_delay_model_picks_a_depth_or_refuses_with_its_reason() {
+    let tmp = tempfile::tempdir().unwrap();
+    for model in ["quadratic", "schlick", "fitted", "blinn"] {
+        let dir = tmp.path().join(model);
+        let o = specgen().args(["generate", "--target", "gowin", "--target-mhz", "100", "--model", model, "--out"]).arg(&dir).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{model}: {err}");
+        assert!(err.contains("target-mhz: chose --stages") && err.contains("GW1NR-9"), "{model}: {err}");
+        let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
+        assert!(m["predicted_fmax_mhz"].as_f64().is_some_and(|f| f >= 100.0), "{model}: {}", m["predicted_fmax_mhz"]);
+    }
+    for (args, why) in [
+        (&["--model", "blinn", "--target-mhz", "1000"][..], "out of reach on the GW1NR-9"),
+        (&["--interface", "ready", "--target-mhz", "100"][..], "no ready unit was measured on the GW1NR-9"),
+    ] {
+        let out = tmp.path().join("refused");
+        let o = specgen().args(["generate", "--target", "gowin"]).args(args).arg("--out").arg(&out).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains("--target-mhz") && err.contains(why), "{args:?}: {err}");
+        assert!(!out.exists(), "{args:?}: a refusal wrote {}", out.display());
+    }
+}
