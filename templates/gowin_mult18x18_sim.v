@@ -4,7 +4,8 @@
 // would replace the DSP block with logic). yosys 0.70 ships {{ mult }} only as a black box
 // (gowin/cells_xtra_gw1n.v) and yosys 0.23 not at all, so neither the generated RTL nor a mapped
 // netlist can be simulated with yosys's models alone. Written from Gowin's DSP user guide
-// (UG287, MULT18X18 and MULT9X9, one model for both): DOUT = A * B, each operand two's complement when its ASIGN/BSIGN is 1;
+// (UG287, MULT18X18 and MULT9X9, one model for both): DOUT = A * B, each operand two's
+// complement when its ASIGN/BSIGN is 1;
 // the input registers (AREG, BREG, with the sign registers ASIGN_REG, BSIGN_REG), the pipeline
 // register (PIPE_REG) and the output register (OUT_REG), each 1'b0 (bypassed) or 1'b1 (on CLK,
 // enabled by CE, cleared by RESET: synchronously with MULT_RESET_MODE "SYNC", at once with
@@ -30,7 +31,7 @@
 `ifndef SYNTHESIS  // (a simulation check: `specgen prove` reads the model with SYNTHESIS)
     initial begin
         if (!(MULT_RESET_MODE == "SYNC" || MULT_RESET_MODE == "ASYNC")) begin
-            $fatal(1, "%m: MULT_RESET_MODE must be \"SYNC\" or \"ASYNC\"");
+            $fatal(1, "%m: {% endraw %}{{ mult }}{% raw %} MULT_RESET_MODE must be \"SYNC\" or \"ASYNC\"");
         end
     end
 `endif
