@@ -125,8 +125,12 @@ for chain in $chains; do
         ( cd "$kdir" && $yosys -q -l yosys.log -p "read_verilog $(cd "$kdir" && ls *.v | tr '\n' ' '); synth_ice40 -dsp -top $top -json pair.json; tee -o stat.txt stat" ) \
             || { tail -20 "$kdir/yosys.log" >&2; exit 1; }
         for seed in $(seq 1 "$seeds"); do
-            ( cd "$kdir" && $nextpnr --up5k --package sg48 --pcf-allow-unconstrained --timing-allow-fail --json pair.json --freq 100 --seed "$seed" > "pnr$seed.log" 2>&1 ) \
-                || { grep ERROR "$kdir/pnr$seed.log" >&2; tail -5 "$kdir/pnr$seed.log" >&2; exit 1; }
+            if ! ( cd "$kdir" && $nextpnr --up5k --package sg48 --pcf-allow-unconstrained --timing-allow-fail --json pair.json --freq 100 --seed "$seed" > "pnr$seed.log" 2>&1 ); then
+                # a seed whose placement does not fit (the device nearly full) is a result: said so
+                grep -q "Unable to find legal placement" "$kdir/pnr$seed.log" || { grep ERROR "$kdir/pnr$seed.log" >&2; tail -5 "$kdir/pnr$seed.log" >&2; exit 1; }
+                echo "$kind $version $seed unplaced" >> "$rows"
+                continue
+            fi
             mhz=$(grep "Max frequency for clock" "$kdir/pnr$seed.log" | tail -1 | sed -n 's/.*: \([0-9.]*\) MHz.*/\1/p')
             lc=$(grep -m1 "ICESTORM_LC:" "$kdir/pnr$seed.log" | sed -n 's/.*ICESTORM_LC: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
             dsp=$(grep -m1 "ICESTORM_DSP:" "$kdir/pnr$seed.log" | sed -n 's/.*ICESTORM_DSP: *\([0-9]*\)\/ *\([0-9]*\).*/\1 \2/p')
@@ -177,10 +181,18 @@ print("|---|---|---|---|---|---|")
 versions = list(dict.fromkeys(r[1] for r in rows))
 for kind, name in (("serial", "`pair_top` (serial I/O)"), ("plain", "`pair_plain_top` (plain registers)")):
     for v in versions:
-        rs = [r for r in rows if r[0] == kind and r[1] == v]
+        every = [r for r in rows if r[0] == kind and r[1] == v]
+        rs = [r for r in every if r[3] != "unplaced"]
+        unplaced = [r[2] for r in every if r[3] == "unplaced"]
+        per = ", ".join(f"{r[2]}: {float(r[3]):.1f}" if r[3] != "unplaced" else f"{r[2]}: does not place" for r in every)
+        if not rs:
+            print(f"| {name} | {v.replace('_', ' ')} | no seed places | {per} | | |")
+            continue
         mhz = [float(r[3]) for r in rs]
-        per = ", ".join(f"{r[2]}: {float(r[3]):.1f}" for r in rs)
-        print(f"| {name} | {v.replace('_', ' ')} | {statistics.median(mhz):.1f} ({min(mhz):.1f}–{max(mhz):.1f}) | {per} | {rs[0][4]} of {rs[0][5]} | {rs[0][6]} of {rs[0][7]} |")
+        fig = f"{statistics.median(mhz):.1f} ({min(mhz):.1f}–{max(mhz):.1f})"
+        if unplaced:
+            fig += f" over the {len(rs)} seeds that place"
+        print(f"| {name} | {v.replace('_', ' ')} | {fig} | {per} | {rs[0][4]} of {rs[0][5]} | {rs[0][6]} of {rs[0][7]} |")
 print()
 print("Each unit's own netlist with each yosys (`specgen synth --dsp --verify --verify-exhaustive`: every")
 print("(cos_g, n) through the netlist under Verilator, against the golden model):")
