@@ -164,8 +164,9 @@ print("`scripts/bench_two_units.sh` (SEEDS=%s): two units of different models, e
 print("`--dsp-budget`, in two tops: `pair_top`, serial I/O (every port of both units from or to a")
 print("flip-flop of a shift chain), and `pair_plain_top`, a top of one's own (both units fed and read by")
 print("plain registers, no serial wrapper: [`tb/pair_plain_top.v`](../tb/pair_plain_top.v)).")
-print("`synth_ice40 -dsp` on each toolchain users have (Debian 12's yosys 0.23 with nextpnr-ice40 0.4, YoWASP's")
-print("yosys 0.70 with its nextpnr-ice40), `nextpnr-ice40 --up5k --package sg48 --freq 100` over seeds 1..%s." % seeds)
+print("`synth_ice40 -dsp` on the toolchains the table's yosys column names (`CHAINS`: Debian 12's yosys 0.23 with")
+print("nextpnr-ice40 0.4, YoWASP's 0.70 with its nextpnr-ice40), `nextpnr-ice40 --up5k --package sg48 --freq 100`")
+print("over seeds 1..%s." % seeds)
 print("Fmax is nextpnr's, after routing; nextpnr-ice40 does not time the multiply inside an SB_MAC16")
 print("(IceStorm's data: 153.7 MHz with its registers). A block without its output register (`specgen")
 print("synth` lists them under `unregistered`, below) is not timed at all, so with one the figure is an")
@@ -205,5 +206,5 @@ print()
 for u in unreg:
     print(f"- {u}")
 PY
-bench_stamp "SEEDS=${SEEDS:-5} scripts/bench_two_units.sh" >> benchmarks/two-units.md
+bench_stamp "SEEDS=${SEEDS:-5}${CHAINS:+ CHAINS=$CHAINS} scripts/bench_two_units.sh" >> benchmarks/two-units.md
 cat benchmarks/two-units.md
