@@ -1,13 +1,13 @@
 module {{ mult }}(A, SIA, B, SIB, ASIGN, BSIGN, ASEL, BSEL, CE, CLK, RESET, DOUT, SOA, SOB);
-    input  [{{ a_hi }}:0] A, SIA;
-    input  [{{ a_hi }}:0] B, SIB;
+    input  [{{ w - 1 }}:0] A, SIA;
+    input  [{{ w - 1 }}:0] B, SIB;
     input         ASIGN, BSIGN;
     input         ASEL, BSEL;
     input         CE;
     input         CLK;
     input         RESET;
-    output [{{ p_hi }}:0] DOUT;
-    output [{{ a_hi }}:0] SOA, SOB;
+    output [{{ 2 * w - 1 }}:0] DOUT;
+    output [{{ w - 1 }}:0] SOA, SOB;
     parameter AREG = 1'b0;
     parameter BREG = 1'b0;
     parameter OUT_REG = 1'b0;

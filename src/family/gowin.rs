@@ -50,7 +50,7 @@ static BLOCKS: Blocks = Blocks {
         ("MULT36X36", &[("OUT0_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
     ],
     boxes: Some(("_gowin_cells_bb.v", |top| {
-        Boxes { top, version: crate::names::VERSION, mult: "MULT18X18", a_hi: 17, p_hi: 35 }.render().expect("gowin_cells_bb renders") + "\n"
+        Boxes { top, version: crate::names::VERSION, mult: "MULT18X18", w: 18 }.render().expect("gowin_cells_bb renders") + "\n"
     })),
 };
 
@@ -206,13 +206,13 @@ struct Boxes<'a> {
     top: &'a str,
     version: &'a str,
     mult: &'a str,
-    a_hi: u32,
-    p_hi: u32,
+    /// the operands' width
+    w: u32,
 }
 
 /// The simulation model of Gowin's `mult` (MULT18X18 or MULT9X9), whose operands are `w` bits.
 fn mult_model(mult: &str, w: u32) -> String {
-    MultModel { version: crate::names::VERSION, mult, w, a_hi: w - 1, p_hi: 2 * w - 1 }.render().expect("gowin_mult18x18_sim renders") + "\n"
+    MultModel { version: crate::names::VERSION, mult, w }.render().expect("gowin_mult18x18_sim renders") + "\n"
 }
 
 #[derive(Template)]
@@ -220,9 +220,8 @@ fn mult_model(mult: &str, w: u32) -> String {
 struct MultModel<'a> {
     version: &'a str,
     mult: &'a str,
+    /// the operands' width
     w: u32,
-    a_hi: u32,
-    p_hi: u32,
 }
 
 #[derive(Template)]

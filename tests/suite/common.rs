@@ -62,7 +62,10 @@ pub const HANG_GUARD_SECS: u64 = 600;
 pub fn wait_until(what: &str, mut cond: impl FnMut() -> bool) {
     let start = std::time::Instant::now();
     while !cond() {
-        assert!(start.elapsed() < std::time::Duration::from_secs(HANG_GUARD_SECS), "{what} (the hang guard of {HANG_GUARD_SECS} s ran out)");
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(HANG_GUARD_SECS),
+            "infrastructure failure, not a verdict: {what} (the hang guard of {HANG_GUARD_SECS} s ran out)"
+        );
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
 }
