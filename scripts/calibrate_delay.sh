@@ -31,19 +31,5 @@ for family in ${FAMILIES:-ice40 ecp5}; do
     done
 done
 [ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args" > "$out"
-python3 - "$out" "$WORK"/*/plan/calibration.csv <<'PY'
-import csv, sys
-out, new = sys.argv[1], sys.argv[2:]
-key = lambda r: (r["family"], r["model"], r["stages"], r["args"])
-rows = {key(r): r for r in csv.DictReader(open(out))}
-fields = ["family", "model", "stages", "stage_delay_estimate", "stage_delay_mean", "fmax_mhz", "fmax_seeds", "args"]
-for f in new:
-    for r in csv.DictReader(open(f)):
-        rows[key(r)] = r
-with open(out, "w", newline="") as fh:
-    w = csv.DictWriter(fh, fieldnames=fields, lineterminator="\n")
-    w.writeheader()
-    for k in sorted(rows, key=lambda k: (k[0], k[1], k[3], int(k[2]))):
-        w.writerow({f: rows[k][f] for f in fields})
-PY
+python3 scripts/merge_calibration.py "$out" "$WORK"/*/plan/calibration.csv
 echo "wrote $out; fit it with scripts/fit_delay_model.py" >&2
