@@ -165,11 +165,12 @@ pub fn outside_calibration(plan: &Plan) -> Option<String> {
     let (part, own_flags) = (part(plan.cfg.target()), flags(&own));
     if between(&own, &shapes) {
         if let Some(l) = line_of(plan).ok().filter(|l| l.surrounded) {
-            let around: Vec<String> = l.corners.iter().filter_map(|c| shape_of_args(&c.args, model)).map(|sh| flags(&sh)).collect();
+            let around: Vec<String> = l.around.iter().filter_map(|a| shape_of_args(a, model)).map(|sh| flags(&sh)).collect();
             return Some(format!(
-                "between calibrated widths: the {datapath} datapath on the {part} was calibrated at {} widths; this configuration ({own_flags}) lies between the nearest of them, {}: a depth is assured {CORNER_MARGIN} of the least they measured as many cuts from their deepest where its slowest stretch is no longer than theirs, else the delay model's line with its margin; not a unit measured at these widths",
+                "between calibrated widths: the {datapath} datapath on the {part} was calibrated at {} widths; this configuration ({own_flags}) lies between the nearest of them, {}: a depth is assured {CORNER_MARGIN} of the least that these and the {} calibrated width(s) between them measured as many cuts from their deepest, where its slowest stretch is no longer than theirs, else the delay model's line with its margin; not a unit measured at these widths",
                 shapes.len(),
-                around.join("; ")
+                around.join("; "),
+                l.corners.len().saturating_sub(l.around.len())
             ));
         }
         return Some(format!(
@@ -230,6 +231,10 @@ pub struct Line {
     /// some no narrower, the other flags alike
     #[serde(skip)]
     pub(crate) surrounded: bool,
+    /// where surrounded: the nearest calibrated widths below and above (generate flags beyond
+    /// the defaults); `corners` are every calibrated width in the box they span
+    #[serde(skip)]
+    pub(crate) around: Vec<String>,
 }
 
 /// A calibrated width's units, read for a configuration at widths no unit was measured at.
@@ -241,13 +246,23 @@ pub(crate) struct Corner {
     pub(crate) deepest: u32,
     /// its units: `(stages, slowest stretch e, median Fmax)`
     pub(crate) units: Vec<(u32, f64, f64)>,
+    /// a width measured between the nearest ones around the configuration (not one of them):
+    /// it speaks only through a unit within [`BETWEEN_WINDOW`] cuts of the depth read
+    pub(crate) inner: bool,
 }
 
-/// `params` (at depth 0) with a calibration row's `args` applied; None when they name a flag
-/// that is not a width, the rounding or the ROM style, or a value the configuration refuses.
+/// How many cuts shallower than the depth read a unit of a width between the nearest ones may
+/// be and still speak for it: such widths were measured at a few depths each (the
+/// explorations' fronts), and a unit far shallower says nothing of the depth read.
+pub const BETWEEN_WINDOW: u32 = 2;
+
+/// A calibration unit's configuration at depth 0: `params`'s model, architecture and target,
+/// every other parameter the default (as `scripts/calibrate_delay.sh` generates it: no
+/// `--dsp-budget`, `--interface valid`), with the row's `args` applied; None when they name a
+/// flag that is not a width, the rounding or the ROM style.
 fn params_with_args(params: &crate::config::Params, args: &str) -> Option<crate::config::Params> {
     use crate::config::{RomStyle, Rounding};
-    let mut p = crate::config::Params { stages: 0, ..params.clone() };
+    let mut p = crate::config::Params { model: params.model, arch: params.arch, target: params.target, ..Default::default() };
     let words: Vec<&str> = args.split_whitespace().collect();
     if !words.len().is_multiple_of(2) {
         return None;
@@ -350,7 +365,7 @@ impl Line {
                 let (args, stages) = (self.measured_args.get(i).cloned().unwrap_or_default(), self.measured_stages.get(i).copied().unwrap_or(0));
                 match corners.iter_mut().find(|c| c.args == args) {
                     Some(c) => c.units.push((stages, p[0], p[2])),
-                    None => corners.push(Corner { args, deepest: 0, units: vec![(stages, p[0], p[2])] }),
+                    None => corners.push(Corner { args, deepest: 0, units: vec![(stages, p[0], p[2])], inner: false }),
                 }
             }
             // the nearest calibrated widths on either side of the configuration's, where there
@@ -360,11 +375,22 @@ impl Line {
                 corners.iter().enumerate().filter_map(|(i, c)| shape_of_args(&c.args, model).map(|sh| (i, sh))).collect();
             let below: Vec<&(usize, Vec<(&'static str, String)>)> = shaped.iter().filter(|(_, sh)| no_wider(sh, &own)).collect();
             let above: Vec<&(usize, Vec<(&'static str, String)>)> = shaped.iter().filter(|(_, sh)| no_wider(&own, sh)).collect();
-            let nearest_below = below.iter().filter(|(_, a)| !below.iter().any(|(_, b)| b != a && no_wider(a, b))).map(|(i, _)| *i);
-            let nearest_above = above.iter().filter(|(_, a)| !above.iter().any(|(_, b)| b != a && no_wider(b, a))).map(|(i, _)| *i);
-            let around: Vec<usize> = nearest_below.chain(nearest_above).collect();
+            let nearest_below: Vec<_> = below.iter().filter(|(_, a)| !below.iter().any(|(_, b)| b != a && no_wider(a, b))).collect();
+            let nearest_above: Vec<_> = above.iter().filter(|(_, a)| !above.iter().any(|(_, b)| b != a && no_wider(b, a))).collect();
             if !fabric && !below.is_empty() && !above.is_empty() {
-                corners = corners.into_iter().enumerate().filter(|(i, _)| around.contains(i)).map(|(_, c)| c).collect();
+                // every calibrated width in the box they span, not only the nearest: between
+                // two widths a unit may be slower than both (schlick on the ECP5 at 9 stages:
+                // 118 MHz at 8/6/5/8, 115 at the defaults, 69-70 at four widths between them,
+                // and 70 at 13/9/7/10, which the two alone had promised 104)
+                let inside =
+                    |sh: &[(&'static str, String)]| nearest_below.iter().any(|(_, b)| no_wider(b, sh)) && nearest_above.iter().any(|(_, a)| no_wider(sh, a));
+                let keep: Vec<usize> = shaped.iter().filter(|(_, sh)| inside(sh)).map(|(i, _)| *i).collect();
+                let nearest: Vec<usize> = nearest_below.iter().chain(&nearest_above).map(|(i, _)| *i).collect();
+                self.around = nearest.iter().map(|i| corners[*i].args.clone()).collect();
+                for (i, c) in corners.iter_mut().enumerate() {
+                    c.inner = !nearest.contains(&i);
+                }
+                corners = corners.into_iter().enumerate().filter(|(i, _)| keep.contains(i)).map(|(_, c)| c).collect();
                 self.surrounded = true;
             }
             let mut longest_step = f64::NEG_INFINITY;
@@ -374,11 +400,11 @@ impl Line {
                 c.deepest = d.max(deepest);
                 longest_step = longest_step.max(step);
             }
-            // a step longer than every corner's longest (a product in LUTs none of them has:
-            // schlick at 8/9/4/12 on the UP5K measured 32.8 MHz at 10 stages, below both
-            // corners at every depth) is not between them
-            let own_step = deepest_of(&plan.cfg.params).map_or(f64::INFINITY, |d| d.1);
-            self.surrounded &= own_step <= longest_step + 0.005;
+            // a step longer than every corner's longest by a LUT level or more (a product left
+            // in LUTs that none of them has: a LUT tree and a carry chain, 8 or more) is not
+            // between them
+            let own_step = plan.with_stages(plan.cut_points).map_or(f64::INFINITY, |p| p.stage_delay());
+            self.surrounded &= own_step < longest_step + crate::datapath::LUT_DELAY;
             self.corners = corners;
             self.deepest = plan.cut_points;
             // the cap where a calibration unit as short reached it: only at widths measured
@@ -414,11 +440,13 @@ impl Line {
         let (mut value, mut longest, mut every) = (f64::INFINITY, f64::NEG_INFINITY, true);
         for c in &self.corners {
             let at = c.deepest.saturating_sub(from_deepest);
-            match c.units.iter().filter(|u| u.0 <= at).max_by_key(|u| u.0) {
+            match c.units.iter().filter(|u| u.0 <= at && !(c.inner && u.0 + BETWEEN_WINDOW < at)).max_by_key(|u| u.0) {
                 Some(&(_, ce, f)) => {
                     value = value.min(f);
                     longest = longest.max(ce);
                 }
+                // a width between the nearest ones, not measured near this depth: no say
+                None if c.inner => {}
                 // measured only deeper: no figure here (the line's, with its margin, speaks)
                 None => every = false,
             }
@@ -434,7 +462,7 @@ impl Line {
             .iter()
             .filter_map(|c| {
                 let at = c.deepest.saturating_sub(from_deepest);
-                c.units.iter().filter(|u| u.0 <= at).max_by_key(|u| u.0).map(|u| (c.args.as_str(), u.0, u.2))
+                c.units.iter().filter(|u| u.0 <= at && !(c.inner && u.0 + BETWEEN_WINDOW < at)).max_by_key(|u| u.0).map(|u| (c.args.as_str(), u.0, u.2))
             })
             .min_by(|a, b| a.2.total_cmp(&b.2))
     }
@@ -609,14 +637,11 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
             ),
         });
     }
-    // what holds the best depth down at widths never measured: the nearest calibrated unit
-    let nearest = plan
-        .with_stages(best.0)
-        .ok()
-        .and_then(|p| {
-            let (v, _) = l.corner(best.0, p.stage_delay());
-            l.nearest_unit(best.0).filter(|u| u.2 * CORNER_MARGIN <= best.2 + 1e-9 || u.2 <= v + 1e-9)
-        })
+    // what holds the best depth down at widths never measured, when it is the nearest
+    // calibrated unit (its figure, or CORNER_MARGIN of it), not the line
+    let nearest = l
+        .nearest_unit(best.0)
+        .filter(|u| (u.2 - best.2).abs() < 0.05 || (u.2 * CORNER_MARGIN - best.2).abs() < 0.05)
         .map(|(args, stages, f)| {
             let widths = if args.is_empty() { "the default widths".to_string() } else { args.to_string() };
             format!("; the nearest calibrated unit holds it there: {widths} at --stages {stages}, {f:.1} MHz measured")
@@ -662,6 +687,7 @@ mod tests {
             corners: vec![],
             deepest: 0,
             surrounded: false,
+            around: vec![],
         }
     }
 
