@@ -47,8 +47,10 @@
 //! against the nearest calibrated widths around its own (`Line::corner`): below (no wider in
 //! every width, none between) and above. A depth is compared at as many cuts from the deepest
 //! as it is from its own (the jump of the last long stretch comes at the last cuts, whatever
-//! the widths). Where widths lie on both sides, no step of its own is longer than their
-//! longest, and its slowest stretch is no longer than theirs at that depth, it is assured
+//! the widths). Where widths lie on both sides and no step of its own is a LUT level longer
+//! than their longest, every calibrated width in the box they span is read (one between them
+//! within [`BETWEEN_WINDOW`] cuts of the depth: a unit between two widths can be slower than
+//! both), and where its slowest stretch is no longer than theirs at that depth it is assured
 //! [`CORNER_MARGIN`] of the least they measured: interpolation, checked by leaving each
 //! calibrated width out and reading its units through the others. Elsewhere the line with its
 //! margin, never above what every calibrated width measured there. The grid is dense where
@@ -419,11 +421,11 @@ impl Line {
 
     /// At widths never measured, what the corners measured at `stages` (the least, over the
     /// corners, of each one's deepest unit at as many cuts from its own deepest as `stages` is
-    /// from the configuration's, or shallower; a corner measured only deeper has no say), and whether
-    /// that figure is assured, not only a ceiling: the corners surround the configuration's
-    /// widths and its slowest stretch `e` is no longer than the longest of theirs (a product
-    /// left in LUTs that no corner has, schlick at 13/9/8/8 on the UP5K, is not between them).
-    /// Elsewhere: unbounded, nothing assured by it.
+    /// from the configuration's, or shallower: a corner measured only deeper has no say, nor a
+    /// width between the nearest ones whose unit is more than [`BETWEEN_WINDOW`] cuts
+    /// shallower), and whether that figure is assured, not only a ceiling: the corners surround
+    /// the configuration's widths, every nearest one has a unit here, and its slowest stretch
+    /// `e` is no longer than the longest of theirs. Without corners: unbounded, nothing assured.
     ///
     /// Why a ceiling: between calibrated widths the line alone over-promised (a lean at
     /// 10/6/8/12 bits, 11 stages, was predicted 124.9 MHz and measured 83.2, between the narrow
