@@ -75,9 +75,9 @@ pub const CORNER_MARGIN: f64 = 0.92;
 /// The fitted lines, `scripts/fit_delay_model.py`'s output.
 const MODEL_JSON: &str = include_str!("../data/delay_model.json");
 
-/// What shapes a datapath's delays beyond its depth: the widths, the rounding and the ROM
-/// style (the constant's width and fitted's squarings only where the model reads them), as
-/// `generate`'s flags.
+/// What shapes a datapath's delays beyond its depth: the widths, the rounding, the ROM style
+/// and the DSP budget (the constant's width and fitted's squarings only where the model reads
+/// them), as `generate`'s flags.
 fn shape(p: &crate::config::Params, model: crate::config::SpecularModel) -> Vec<(&'static str, String)> {
     let mut v = vec![
         ("--cos-frac-bits", p.cos_frac_bits.to_string()),
@@ -95,7 +95,21 @@ fn shape(p: &crate::config::Params, model: crate::config::SpecularModel) -> Vec<
     }
     // (a flag of no value: no calibration unit has it)
     v.push(("--fabric-registers", p.fabric_registers.to_string()));
+    // the blocks a budget allows: no budget is the most there is ([`plan_shape`]: so is a
+    // budget every product fits in), so that a budget lies between smaller ones and none
+    let most = crate::config::DSP_BUDGET.max;
+    v.push(("--dsp-budget", p.dsp_budget.unwrap_or(most).to_string()));
     v
+}
+
+/// [`shape`] of `plan`'s configuration, a budget that leaves every product in a block read as
+/// no budget (the same datapath: a met budget changes nothing).
+fn plan_shape(plan: &Plan) -> Vec<(&'static str, String)> {
+    let mut sh = shape(&plan.cfg.params, plan.cfg.model());
+    if plan.datapath.fabric_products().is_empty() {
+        sh.iter_mut().filter(|(flag, _)| *flag == "--dsp-budget").for_each(|(_, v)| *v = crate::config::DSP_BUDGET.max.to_string());
+    }
+    sh
 }
 
 /// The shapes the calibration measured `datapath` at on `target`'s family: each the default
@@ -139,14 +153,7 @@ pub fn outside_calibration(plan: &Plan) -> Option<String> {
     family(plan.cfg.target())?;
     let datapath = plan.cfg.datapath_name();
     let model = plan.cfg.model();
-    let fabric = plan.datapath.fabric_products().len();
-    if fabric > 0 {
-        return Some(format!(
-            "outside the calibration: --dsp-budget {} puts {fabric} product(s) of the {datapath} datapath in the fabric, a shape no calibration unit has: the depth follows the delay model's line, an extrapolation, not a measured assurance",
-            plan.cfg.params.dsp_budget.unwrap_or(0)
-        ));
-    }
-    let own = shape(&plan.cfg.params, model);
+    let own = plan_shape(plan);
     let shapes = calibrated_shapes(plan.cfg.target(), datapath, model);
     if shapes.contains(&own) {
         return None;
@@ -281,6 +288,7 @@ fn params_with_args(params: &crate::config::Params, args: &str) -> Option<crate:
             "--rounding" => p.rounding = [Rounding::Faithful, Rounding::Exact].into_iter().find(|r| r.name() == pair[1])?,
             "--rom-style" => p.rom_style = [RomStyle::File, RomStyle::Case, RomStyle::Logic].into_iter().find(|r| r.name() == pair[1])?,
             "--fabric-registers" => p.fabric_registers = pair[1].parse().ok()?,
+            "--dsp-budget" => p.dsp_budget = Some(n()?),
             _ => return None,
         }
     }
@@ -354,12 +362,9 @@ impl Line {
     /// fitted over every width of the grid.
     pub(crate) fn at_widths_of(mut self, plan: &Plan) -> Line {
         let model = plan.cfg.model();
-        let own = shape(&plan.cfg.params, model);
-        // products in the fabric (--dsp-budget): a shape no unit was measured at
-        let fabric = !plan.datapath.fabric_products().is_empty();
-        let keep: Vec<bool> = (0..self.measured.len())
-            .map(|i| !fabric && shape_of_args(self.measured_args.get(i).map_or("", String::as_str), model).is_some_and(|sh| sh == own))
-            .collect();
+        let own = plan_shape(plan);
+        let keep: Vec<bool> =
+            (0..self.measured.len()).map(|i| shape_of_args(self.measured_args.get(i).map_or("", String::as_str), model).is_some_and(|sh| sh == own)).collect();
         if !keep.iter().any(|&k| k) {
             // widths never measured: each calibrated width's units by depth
             let mut corners: Vec<Corner> = Vec::new();
@@ -379,7 +384,7 @@ impl Line {
             let above: Vec<&(usize, Vec<(&'static str, String)>)> = shaped.iter().filter(|(_, sh)| no_wider(&own, sh)).collect();
             let nearest_below: Vec<_> = below.iter().filter(|(_, a)| !below.iter().any(|(_, b)| b != a && no_wider(a, b))).collect();
             let nearest_above: Vec<_> = above.iter().filter(|(_, a)| !above.iter().any(|(_, b)| b != a && no_wider(b, a))).collect();
-            if !fabric && !below.is_empty() && !above.is_empty() {
+            if !below.is_empty() && !above.is_empty() {
                 // every calibrated width in the box they span, not only the nearest: between
                 // two widths a unit may be slower than both (schlick on the ECP5 at 9 stages:
                 // 118 MHz at 8/6/5/8, 115 at the defaults, 69-70 at four widths between them,

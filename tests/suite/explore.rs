@@ -317,8 +317,9 @@ fn a_handshake_unit_is_not_promised_what_its_buffer_cannot_do() {
 }
 
 /// The exploration issue's two refusals: a budgeted blinn at 100 MHz on the UP5K and lean's
-/// table as logic at 250 MHz on the ECP5 are picked from measured units of exactly that
-/// configuration (median over seeds at or above the clock), where the delay model alone refuses.
+/// table as logic at 250 MHz on the ECP5 are picked: from measured units of exactly that
+/// configuration (median over seeds at or above the clock) where the delay model alone refuses,
+/// or by the delay model at a shape it was calibrated at (the budgets 3 and 5 on the UP5K).
 #[test]
 fn the_refused_cases_are_picked_from_measured_units() {
     let tmp = tempfile::tempdir().unwrap();
@@ -329,9 +330,13 @@ fn the_refused_cases_are_picked_from_measured_units() {
         let o = output_guarded(specgen().arg("generate").args(args).args(["--target-mhz", &mhz.to_string(), "--out"]).arg(&out), "generate");
         assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
         let said = String::from_utf8_lossy(&o.stderr);
-        let measured: f64 = said.split("MHz measured").next().unwrap().rsplit(' ').nth(1).unwrap().parse().unwrap_or_else(|_| panic!("{said}"));
-        assert!(measured >= mhz, "{said}");
-        let stages: u32 = said.split("chose --stages ").nth(1).unwrap().split(':').next().unwrap().parse().unwrap();
+        // "chose --stages N: F MHz measured, …" (a measured unit of the built-in exploration)
+        // or "… MHz predicted" by the delay model at a calibrated shape (the budget is one)
+        let chose = said.split("chose --stages ").nth(1).unwrap_or_else(|| panic!("{said}"));
+        let figure: f64 = chose.split(": ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap_or_else(|_| panic!("{said}"));
+        assert!(figure >= mhz, "{said}");
+        assert!(chose.contains("MHz measured") || !(said.contains("between calibrated widths") || said.contains("outside the calibration")), "{said}");
+        let stages: u32 = chose.split(':').next().unwrap().parse().unwrap();
         let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
         assert_eq!(m["stages"], stages);
     }
