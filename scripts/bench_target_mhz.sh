@@ -87,6 +87,7 @@ PY
         echo "| model | family | F/N/B/FI | target MHz | stages | predicted MHz | measured MHz | verdict |"
         echo "|---|---|---|---|---|---|---|---|"
         cat "$rows"
+        bench_stamp "SAMPLE=$SAMPLE SAMPLE_SEED=${SAMPLE_SEED:-1} SEEDS=$seeds${OUT:+ OUT=$OUT} scripts/bench_target_mhz.sh"
     } > "$out"
     echo "wrote $out" >&2
     exit 0
