@@ -260,6 +260,16 @@ pub(crate) struct Corner {
     pub(crate) inner: bool,
 }
 
+impl Corner {
+    /// Its unit read for a depth `from_deepest` cuts from the configuration's deepest: the
+    /// deepest at as many cuts from its own deepest or more (an inner width's: within
+    /// [`BETWEEN_WINDOW`] cuts of that depth).
+    fn unit_at(&self, from_deepest: u32) -> Option<&(u32, f64, f64)> {
+        let at = self.deepest.saturating_sub(from_deepest);
+        self.units.iter().filter(|u| u.0 <= at && !(self.inner && u.0 + BETWEEN_WINDOW < at)).max_by_key(|u| u.0)
+    }
+}
+
 /// How many cuts shallower than the depth read a unit of a width between the nearest ones may
 /// be and still speak for it: such widths were measured at a few depths each (the
 /// explorations' fronts), and a unit far shallower says nothing of the depth read.
@@ -446,8 +456,7 @@ impl Line {
         let from_deepest = self.deepest.saturating_sub(stages);
         let (mut value, mut longest, mut every) = (f64::INFINITY, f64::NEG_INFINITY, true);
         for c in &self.corners {
-            let at = c.deepest.saturating_sub(from_deepest);
-            match c.units.iter().filter(|u| u.0 <= at && !(c.inner && u.0 + BETWEEN_WINDOW < at)).max_by_key(|u| u.0) {
+            match c.unit_at(from_deepest) {
                 Some(&(_, ce, f)) => {
                     value = value.min(f);
                     longest = longest.max(ce);
@@ -465,13 +474,7 @@ impl Line {
     /// `stages`: its widths (generate flags beyond the defaults), depth and median Fmax.
     pub fn nearest_unit(&self, stages: u32) -> Option<(&str, u32, f64)> {
         let from_deepest = self.deepest.saturating_sub(stages);
-        self.corners
-            .iter()
-            .filter_map(|c| {
-                let at = c.deepest.saturating_sub(from_deepest);
-                c.units.iter().filter(|u| u.0 <= at && !(c.inner && u.0 + BETWEEN_WINDOW < at)).max_by_key(|u| u.0).map(|u| (c.args.as_str(), u.0, u.2))
-            })
-            .min_by(|a, b| a.2.total_cmp(&b.2))
+        self.corners.iter().filter_map(|c| c.unit_at(from_deepest).map(|u| (c.args.as_str(), u.0, u.2))).min_by(|a, b| a.2.total_cmp(&b.2))
     }
 
     /// The model's Fmax for `plan`.
