@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Measures what the delay model of `generate --target-mhz` (src/timing.rs) is fitted to, as a
+# Measures what the delay model of `generate --target-mhz` (src/timing/mod.rs) is fitted to, as a
 # Snakemake sweep (scripts/explore.sh: every core here, or a cluster with SWEEP_ARGS="--profile
 # scripts/sweep/profiles/slurm"): for each family (iCE40 UP5K with DSPs, ECP5-25 grade 6) and
 # width (the defaults F/N/B/FI 15/10/8/15, and narrow 8/6/4/8), every model a part holds at

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fits the delay model of `generate --target-mhz` (src/timing.rs) to place-and-route data.
+"""Fits the delay model of `generate --target-mhz` (src/timing/mod.rs) to place-and-route data.
 
     scripts/fit_delay_model.py [data/delay_calibration.csv] [data/delay_model.json]
 
@@ -142,7 +142,7 @@ def main():
             if len(mine) >= 3:
                 lines[name] = fit(mine, cap)
                 # its units as measured, each with the widths it was generated at (`args`): a
-                # floor for units of the same widths with stretches no longer (src/timing.rs);
+                # floor for units of the same widths with stretches no longer (src/timing/mod.rs);
                 # the line and its margin are fitted over every width of the grid
                 ordered = sorted(mine, key=lambda r: (r["args"], r["stages"]))
                 lines[name]["measured"] = [[r["est"], r["mean"], round(r["fmax"], 2)] for r in ordered]

@@ -173,6 +173,14 @@ impl Plan {
             .fold(0.0, f64::max)
     }
 
+    /// The longest step no register splits (a hard-block step alone counts nothing, as in
+    /// [`Plan::stage_delay`]), read from the shape every depth shares: no datapath is built.
+    pub(crate) fn longest_step(&self) -> f64 {
+        let dp = &self.shape.combinational;
+        let hard = hard_steps(dp);
+        dp.steps.iter().zip(hard).map(|(s, h)| if h { 0.0 } else { s.delay }).fold(0.0, f64::max)
+    }
+
     /// The mean stretch of logic between registers: the datapath's whole delay estimate over
     /// the `stages + 1` stretches the registers cut it into. With `stage_delay` it is what the
     /// delay model reads: once one step that no register can split is the slowest stretch, the

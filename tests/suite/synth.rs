@@ -174,7 +174,7 @@ fn a_pick_outside_the_calibration_is_told() {
     }
 }
 
-/// `generate --target-mhz F` picks the depth by the delay model (`src/timing.rs`), no tool
+/// `generate --target-mhz F` picks the depth by the delay model (`src/timing/mod.rs`), no tool
 /// run (none is on its PATH), and records its prediction in the manifest; one real
 /// place-and-route per family checks that the chosen unit reaches F (within a seed's scatter,
 /// 10 %) and what was predicted (within the fit's margin and the same scatter). An F out of

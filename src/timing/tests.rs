@@ -1,0 +1,247 @@
+//! The delay model's tests: the grid's shapes, the reading between widths, the picks.
+
+use super::*;
+use crate::config::Config;
+
+/// The models whose datapath has calibration units of its own on the UP5K (every one a part
+/// holds: blinn-pow fits neither part and takes the family's line).
+fn calibrated_models() -> Vec<crate::config::SpecularModel> {
+    crate::config::SpecularModel::ALL
+        .into_iter()
+        .filter(|&model| {
+            let cfg = Config::new(crate::config::Params { model, ..Default::default() }).unwrap();
+            line(Target::Ice40, cfg.datapath_name()).is_ok_and(|l| !l.measured.is_empty())
+        })
+        .collect()
+}
+
+/// A line `offset + slope·e` ns (no mean term) with its (cap, cap_up_to), margin and
+/// measured units, all at the default widths.
+fn test_line((offset_ns, ns_per_unit): (f64, f64), (cap_mhz, cap_up_to): (f64, f64), margin: f64, measured: Vec<[f64; 3]>) -> Line {
+    Line {
+        offset_ns,
+        ns_per_unit,
+        ns_per_mean_unit: 0.0,
+        cap_mhz,
+        cap_up_to,
+        margin,
+        measured,
+        measured_args: vec![],
+        measured_stages: vec![],
+        corners: vec![],
+        deepest: 0,
+        surrounded: false,
+        around: vec![],
+    }
+}
+
+/// Issue 49, point 2: the calibration is a grid of widths (narrow 8/6/4/8 and the
+/// defaults per datapath and family, and the wide lean on the ECP5). A configuration at a
+/// grid point is calibrated; one between them is told so, naming the grid; one outside it
+/// (narrower, wider, another rounding) is told it is an extrapolation.
+#[test]
+fn widths_outside_the_calibration_are_told() {
+    let plan = |p: crate::config::Params| crate::plan::Plan::new(Config::new(p).unwrap()).unwrap();
+    let narrow = |p: crate::config::Params| crate::config::Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..p };
+    for model in calibrated_models() {
+        for target in [Target::Ice40, Target::Ecp5] {
+            let p = crate::config::Params { model, target, ..Default::default() };
+            assert_eq!(outside_calibration(&plan(p.clone())), None, "{model:?} on {target:?}");
+            assert_eq!(outside_calibration(&plan(narrow(p.clone()))), None, "{model:?} on {target:?}, narrow");
+            let between = crate::config::Params { cos_frac_bits: 12, n_bits: 8, color_bits: 6, intensity_frac_bits: 11, ..p.clone() };
+            let why = outside_calibration(&plan(between)).expect("between the grid's widths");
+            // read against the nearest widths around it: a narrow one below, one above
+            assert!(
+                why.starts_with("between calibrated widths") && why.contains("lies between the nearest of them") && why.contains("--n-bits 6 --color-bits"),
+                "{why}"
+            );
+            let narrower = crate::config::Params { cos_frac_bits: 6, ..narrow(p) };
+            let why = outside_calibration(&plan(narrower)).expect("narrower than the grid");
+            assert!(why.starts_with("outside the calibration") && why.contains("--cos-frac-bits 6"), "{why}");
+        }
+    }
+    // the wide lean of the ECP5 has units of its own; on the iCE40 it has none
+    let wide = crate::config::Params { cos_frac_bits: 18, n_bits: 11, color_bits: 10, intensity_frac_bits: 18, k_frac_bits: 20, ..Default::default() };
+    assert_eq!(outside_calibration(&plan(crate::config::Params { target: Target::Ecp5, ..wide.clone() })), None);
+    assert!(outside_calibration(&plan(wide)).unwrap().starts_with("outside the calibration"));
+    // a rounding or ROM style the calibration never had is outside too
+    let exact = crate::config::Params { rounding: crate::config::Rounding::Exact, ..Default::default() };
+    let why = outside_calibration(&plan(exact)).unwrap();
+    assert!(why.starts_with("outside the calibration") && why.contains("--rounding exact"), "{why}");
+}
+
+/// A unit measured at other widths is no floor for a configuration: only its own widths'
+/// units are kept, in order (the line and margin, fitted over all, stay).
+#[test]
+fn only_units_of_the_same_widths_are_floors() {
+    let narrow = "--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8";
+    let l = Line {
+        measured_args: vec![String::new(), narrow.into(), String::new()],
+        measured_stages: vec![6, 11, 3],
+        ..test_line((5.0, 1.0), (300.0, -1.0), 0.7, vec![[10.0, 6.0, 150.0], [9.0, 5.0, 50.0], [20.0, 9.0, 60.0]])
+    };
+    let default = Plan::new(Config::defaults()).unwrap();
+    let p = crate::config::Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Config::defaults().params };
+    let small = Plan::new(Config::new(p).unwrap()).unwrap();
+    assert_eq!(l.clone().at_widths_of(&default).measured, vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]]);
+    let mine = l.clone().at_widths_of(&small);
+    assert_eq!(mine.measured, vec![[9.0, 5.0, 50.0]]);
+    assert_eq!(mine.cap_up_to, l.cap_up_to);
+    assert_eq!(mine.margin, l.margin);
+    // the narrow unit's 50 MHz is its widths' floor, never the default units' 150
+    assert_eq!(mine.measured_floor(8.0, 4.0), 50.0);
+    // widths never measured: no floor, and no stretch assured the cap
+    let between = crate::config::Params { cos_frac_bits: 12, ..Config::defaults().params };
+    let l = Line { cap_up_to: 8.0, ..l };
+    let theirs = l.at_widths_of(&Plan::new(Config::new(between).unwrap()).unwrap());
+    assert!(theirs.measured.is_empty() && theirs.cap_up_to < 0.0);
+    assert!(theirs.fmax(7.0, 5.0) < theirs.cap_mhz);
+    // and no depth is assured more than the calibrated widths measured at as many cuts from
+    // their deepest, or shallower: a 12-bit cos_g lies between the narrow widths and the
+    // defaults, both its corners; what they measured is assured (with CORNER_MARGIN) where
+    // its slowest stretch is no longer than theirs
+    assert!(theirs.surrounded && theirs.corners.len() == 2);
+    let at = |from_deepest: u32, e: f64| theirs.corner(theirs.deepest - from_deepest, e);
+    assert_eq!(at(theirs.deepest, 1.0), (f64::INFINITY, false), "shallower than every unit: no say");
+    assert_eq!(at(0, 1.0), (50.0, true), "the narrow unit at its deepest, 11, the default one at 6");
+    assert_eq!(at(0, 10.0), (50.0, true), "a stretch as long as the longest of theirs");
+    assert_eq!(at(0, 10.5), (50.0, false), "a longer stretch: a ceiling only");
+    assert_eq!(mine.corner(3, 1.0), (f64::INFINITY, false));
+}
+
+#[test]
+fn an_uncalibrated_datapath_is_refused_by_name() {
+    for target in [Target::Ice40, Target::Ecp5] {
+        let e = line(target, "phong").unwrap_err();
+        assert_eq!(e.parameter(), Some("target_mhz"));
+        assert!(e.reason().contains("the phong datapath has no delay calibration") && e.reason().contains("scripts/calibrate_delay.sh"), "{}", e.reason());
+        for model in crate::config::SpecularModel::ALL {
+            assert!(line(target, model.name()).is_ok() || model.reads("arch"), "{target:?} {}", model.name());
+        }
+        for arch in ["lean", "paper"] {
+            assert!(line(target, arch).is_ok(), "{target:?} {arch}");
+        }
+    }
+}
+
+/// Issue 49, point 4: `generic` is its own target. No delay model speaks for it: a pick is
+/// refused naming the target (never an iCE40 figure), no clock is predicted, and its part
+/// names no device.
+#[test]
+fn the_generic_target_is_promised_no_clock() {
+    let cfg = Config::new(crate::config::Params { target: Target::Generic, ..Config::defaults().params }).unwrap();
+    let plan = Plan::new(cfg).unwrap();
+    let e = pick_stages(&plan, 50.0).unwrap_err();
+    assert_eq!(e.parameter(), Some("target_mhz"));
+    assert!(e.reason().contains("the generic target has no delay model") && e.reason().contains("--target ice40"), "{}", e.reason());
+    assert!(!e.reason().contains("UP5K") && !e.reason().contains("ECP5-25"), "{}", e.reason());
+    assert_eq!(predicted_fmax(&plan), None);
+    assert!(!part(Target::Generic).contains("iCE40"));
+}
+
+/// Deeper targets never pick shallower pipelines, and each pick is the shallowest that the
+/// model assures (how long a pick takes: benchmarks/target.md, not a test's verdict).
+#[test]
+fn picks_are_the_shallowest_and_grow_with_the_target() {
+    let plan = Plan::new(Config::defaults()).unwrap();
+    let l = line_of(&plan).unwrap();
+    let mut last = 0;
+    for f in [5.0, 20.0, 40.0, 60.0, 80.0, 100.0] {
+        let Ok((stages, predicted)) = pick_stages(&plan, f) else { continue };
+        assert!(stages >= last, "{f} MHz: {stages} stages after {last}");
+        let p = plan.with_stages(stages).unwrap();
+        assert!(l.assured_of(&p) >= f && (predicted - l.fmax_of(&p)).abs() < 1e-9);
+        if stages > 0 {
+            assert!(l.assured_of(&plan.with_stages(stages - 1).unwrap()) < f, "{f} MHz: {} stages would do", stages - 1);
+        }
+        last = stages;
+    }
+    assert!(pick_stages(&plan, 5000.0).is_err());
+}
+
+#[test]
+fn the_cap_holds_where_a_calibration_unit_reached_it() {
+    let l = test_line((5.0, 1.0), (100.0, 3.0), 0.9, vec![]);
+    assert_eq!(l.fmax(2.0, 50.0), 100.0);
+    assert!((l.fmax(15.0, 0.0) - 50.0).abs() < 1e-9);
+    assert!(l.fmax(4.0, 0.0) <= 100.0);
+}
+
+/// A calibration unit's measured Fmax holds for every unit whose two stretches are no
+/// longer than its own, and only for those.
+#[test]
+fn a_measured_unit_is_a_floor_for_shorter_stretches() {
+    let l = test_line((5.0, 1.0), (300.0, -1.0), 0.8, vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]]);
+    assert_eq!(l.fmax(10.0, 6.0), 150.0);
+    assert_eq!(l.fmax(9.0, 5.0), 150.0);
+    assert!((l.fmax(10.0, 7.0) - 66.666).abs() < 0.1, "a longer mean stretch: the line");
+    assert_eq!(l.measured_floor(21.0, 1.0), 0.0);
+    // not monotone: the nearest longer unit, a unit measured itself its own figure
+    let l = Line { measured: vec![[13.4, 11.7, 70.2], [13.4, 10.03, 64.3], [11.0, 7.8, 74.4]], ..l };
+    assert_eq!(l.measured_floor(13.4, 10.03), 64.3);
+    assert_eq!(l.measured_floor(13.4, 11.0), 70.2);
+    assert_eq!(l.measured_floor(12.0, 9.0), 64.3);
+}
+
+/// Between two calibration units the model assures only what the longer one measured,
+/// whatever the line says; beyond the shortest or the longest, the line (with its margin).
+#[test]
+fn between_calibration_units_only_the_longer_ones_figure_is_assured() {
+    let l = test_line((0.0, 0.25), (300.0, -1.0), 0.9, vec![[20.0, 9.0, 130.0], [15.0, 5.0, 206.0]]);
+    // the line says 1000/(0.25*17) = 235 MHz at e = 17: between the two, 130 is assured
+    assert!(l.bracketed(17.0, 7.0));
+    assert_eq!(l.assured(17.0, 7.0), 130.0);
+    assert_eq!(l.assured(15.0, 5.0), 206.0, "a calibration unit itself: its figure");
+    assert!(!l.bracketed(14.0, 4.0) && l.assured(14.0, 4.0) >= 206.0, "shorter than every unit: the floor at least");
+    assert!(!l.bracketed(30.0, 12.0));
+    assert!((l.assured(30.0, 12.0) - 0.9 * 1000.0 / 7.5).abs() < 1e-9, "longer than every unit: the line with its margin");
+    // a longer mean stretch than the shorter unit's, a shorter slowest one: not between
+    assert!(!l.bracketed(14.0, 6.0));
+}
+
+/// Issue 67, point 3: between calibrated widths a depth is assured what the widths around
+/// it measured at as many cuts from their deepest, with [`CORNER_MARGIN`]. Checked on the
+/// calibration itself, each width left out in turn and its units read through the others:
+/// none is assured more than it measured, over enough units that the rule is tried.
+#[test]
+fn leave_one_width_out() {
+    let (mut tried, mut worst) = (0, f64::INFINITY);
+    for target in [Target::Ice40, Target::Ecp5] {
+        for model in calibrated_models() {
+            let base = crate::config::Params { model, target, ..Default::default() };
+            let full = line(target, Config::new(base.clone()).unwrap().datapath_name()).unwrap();
+            let mut widths = full.measured_args.clone();
+            widths.sort();
+            widths.dedup();
+            for w in widths {
+                let Some(params) = params_with_args(&base, &w) else { continue };
+                let others: Vec<bool> = full.measured_args.iter().map(|a| *a != w).collect();
+                fn keep<T>(v: &mut Vec<T>, others: &[bool]) {
+                    let mut k = others.iter();
+                    v.retain(|_| *k.next().unwrap());
+                }
+                let mut l = full.clone();
+                keep(&mut l.measured, &others);
+                keep(&mut l.measured_args, &others);
+                keep(&mut l.measured_stages, &others);
+                for (i, unit) in full.measured.iter().enumerate().filter(|(i, _)| full.measured_args[*i] == w) {
+                    let plan = Plan::new(Config::new(crate::config::Params { stages: full.measured_stages[i], ..params.clone() }).unwrap()).unwrap();
+                    let read = l.clone().at_widths_of(&plan);
+                    if let (v, true) = read.corner(plan.cfg.stages(), plan.stage_delay()) {
+                        tried += 1;
+                        worst = worst.min(unit[2] / v);
+                        let assured = read.assured_of(&plan);
+                        assert!(
+                            assured <= unit[2],
+                            "{target:?} {model:?} [{w}] at {} stages: assured {assured:.1} MHz, measured {}",
+                            plan.cfg.stages(),
+                            unit[2]
+                        );
+                    }
+                }
+            }
+        }
+    }
+    assert!(tried >= 50, "only {tried} units read between widths");
+    assert!((CORNER_MARGIN..CORNER_MARGIN + 0.02).contains(&worst), "the worst ratio {worst:.3}: CORNER_MARGIN is its rounding down");
+}
