@@ -131,15 +131,9 @@ fn calibrated_shapes(target: Target, datapath: &str, model: crate::config::Specu
 /// The shape of the default parameters with the calibration row's `args` applied (`--flag
 /// value` pairs); None when the args name another flag (not known to be any shape).
 fn shape_of_args(args: &str, model: crate::config::SpecularModel) -> Option<Vec<(&'static str, String)>> {
-    let mut sh = shape(&crate::config::Params::default(), model);
-    let words: Vec<&str> = args.split_whitespace().collect();
-    if !words.len().is_multiple_of(2) {
-        return None;
-    }
-    for pair in words.chunks(2) {
-        sh.iter_mut().find(|(flag, _)| *flag == pair[0])?.1 = pair[1].to_string();
-    }
-    Some(sh)
+    let sh = shape(&params_with_args(&crate::config::Params::default(), args)?, model);
+    // a flag the model's shape does not read (k_frac_bits where the model takes no constant)
+    args.split_whitespace().step_by(2).all(|flag| sh.iter().any(|(f, _)| *f == flag)).then_some(sh)
 }
 
 /// Why `plan`'s pick is not a calibrated configuration's, or None: no unit of its datapath was
@@ -309,16 +303,16 @@ fn params_with_args(params: &crate::config::Params, args: &str) -> Option<crate:
 /// (the longest step no register splits), planned once per process for each configuration (a
 /// pick reads the same corners at every depth it tries).
 fn deepest_of(params: &crate::config::Params) -> Option<(u32, f64)> {
-    use std::collections::HashMap;
+    use std::collections::BTreeMap;
     use std::sync::Mutex;
-    static DEEPEST: Mutex<Option<HashMap<String, (u32, f64)>>> = Mutex::new(None);
+    static DEEPEST: Mutex<BTreeMap<String, (u32, f64)>> = Mutex::new(BTreeMap::new());
     let key = serde_json::to_string(params).ok()?;
-    if let Some(d) = DEEPEST.lock().ok()?.get_or_insert_with(HashMap::new).get(&key) {
+    if let Some(d) = DEEPEST.lock().ok()?.get(&key) {
         return Some(*d);
     }
     let plan = Plan::from_params(params.clone()).ok()?;
     let d = (plan.cut_points, plan.longest_step());
-    DEEPEST.lock().ok()?.get_or_insert_with(HashMap::new).insert(key, d);
+    DEEPEST.lock().ok()?.insert(key, d);
     Some(d)
 }
 
