@@ -352,6 +352,25 @@ pub(crate) fn pieces_kind(pieces: &[Piece]) -> Kind {
     }
 }
 
+/// The bits of `pieces` (LSB first) below `width` that can be set: up to the last one that is
+/// not a constant 0.
+pub(crate) fn significant_bits(pieces: &[Piece], width: u32) -> u32 {
+    let pieces = sub_pieces(pieces, 0, width);
+    (0..width).rev().find(|&b| !zero_bit(&pieces, b)).map_or(0, |b| b + 1)
+}
+
+/// Whether bit `bit` of `pieces` (LSB first) is a constant 1.
+fn one_bit(pieces: &[Piece], bit: u32) -> bool {
+    let mut base = 0;
+    for p in pieces {
+        if bit < base + p.width() {
+            return matches!(p, Piece::Const { value, .. } if (value >> (bit - base)) & 1 == 1);
+        }
+        base += p.width();
+    }
+    false
+}
+
 /// Whether bit `bit` of `pieces` (LSB first) is a constant 0.
 fn zero_bit(pieces: &[Piece], bit: u32) -> bool {
     let mut base = 0;
@@ -377,6 +396,9 @@ pub(crate) struct PendingAdd {
     /// the top chunk's top bit is the add's carry-out (both operands 0 there), held
     /// complemented as the other chunks' carries are; [`Builder::add_finish`] restores it
     top_inverted: bool,
+    /// per chunk, per bit: the value of its carry-in-0 sum there where that is a constant (the
+    /// second addend 0 over the chunk and the first a constant bit), as the pick reads it
+    plain_consts: Vec<Vec<Option<bool>>>,
     comment: String,
 }
 

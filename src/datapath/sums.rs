@@ -39,6 +39,7 @@ impl Builder {
         let max_chunk = parts.iter().map(|c| c.1).max().unwrap_or(1);
         self.delay(add_delay(max_chunk));
         let mut top_inverted = false;
+        let mut plain_consts = Vec::new();
         if n == 1 {
             let ea = self.pieces(&sub_pieces(a, 0, width));
             let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
@@ -74,6 +75,16 @@ impl Builder {
                 // can share with the carry-in-0 sum (a shared "+ 1" would chain two adders)
                 let ext1_a = |e: Expr| if top { ex!("{{{}, 1'b1}}", e) } else { ex!("{{1'b1, {}, 1'b1}}", e) };
                 let ext1_b = |e: Expr| if top { ex!("{{{}, 1'b1}}", e) } else { ex!("{{1'b0, {}, 1'b1}}", e) };
+                // the carry-in-0 sum's constant bits, where it only copies the first operand
+                plain_consts.push(
+                    (0..w)
+                        .map(|j| match all_zero(&pb) {
+                            true if zero_bit(&pa, j) => Some(top && top_inverted && j + 1 == w),
+                            true if one_bit(&pa, j) => Some(!(top && top_inverted && j + 1 == w)),
+                            _ => None,
+                        })
+                        .collect(),
+                );
                 let ea = self.pieces(&pa);
                 let what = if top { format!("bits [{}:{lo}]", lo + w - 1) } else { format!("bits [{}:{lo}] and their carry (complemented)", lo + w - 1) };
                 let sum0 = {
@@ -102,6 +113,7 @@ impl Builder {
             part0_offset: u32::from(cin),
             no_carry_out,
             top_inverted,
+            plain_consts,
             comment: comment.into(),
         }
     }
@@ -239,19 +251,29 @@ impl Builder {
                         next.extend(group);
                         break;
                     }
-                    let e: Vec<Expr> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, width))).collect();
+                    // the bits each vector can have set: the sum's below the widest term's
+                    // significant bits, the carries' below the second widest (a majority needs
+                    // two), so the zeros above a term reach the closing add, which then keeps
+                    // its carry-out complemented ([`Builder::add_start`]) where a synthesis
+                    // tool would find those bits 0 through the registers and leave a bare
+                    // carry-out (fitted's squaring held at 115.8 MHz on the UP5K)
+                    let mut sig: Vec<u32> = group.iter().map(|t| significant_bits(t, width)).collect();
+                    sig.sort_unstable();
+                    let (sw, cw) = (sig[2].max(1), sig[1].min(width - 1).max(1));
+                    let es: Vec<Expr> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, sw))).collect();
+                    let ec: Vec<Expr> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, cw))).collect();
                     let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
                     // one operand (or pair) a line
-                    self.wire(&sn, width, Kind::Sum, ex!("{}\n    ^ {}\n    ^ {}", &e[0], &e[1], &e[2]), &format!("carry-save layer {layer}: the sum bits"));
+                    self.wire(&sn, sw, Kind::Sum, ex!("{}\n    ^ {}\n    ^ {}", &es[0], &es[1], &es[2]), &format!("carry-save layer {layer}: the sum bits"));
                     self.wire(
                         &cn,
-                        width,
+                        cw,
                         Kind::Sum,
-                        ex!("({} & {})\n    | ({} & {})\n    | ({} & {})", &e[0], &e[1], &e[0], &e[2], &e[1], &e[2]),
+                        ex!("({} & {})\n    | ({} & {})\n    | ({} & {})", &ec[0], &ec[1], &ec[0], &ec[2], &ec[1], &ec[2]),
                         &format!("carry-save layer {layer}: the carries (worth twice)"),
                     );
-                    next.push(vec![Piece::sig(&sn, 0, width)]);
-                    next.push(vec![Piece::zeros(1), Piece::sig(&cn, 0, width - 1)]);
+                    next.push(sub_pieces(&[Piece::sig(&sn, 0, sw)], 0, width));
+                    next.push(sub_pieces(&[Piece::zeros(1), Piece::sig(&cn, 0, cw)], 0, width));
                     i += 1;
                 }
                 *terms = next;
@@ -346,7 +368,34 @@ impl Builder {
             };
             // each chunk's pick on its own line; the sum is then a plain concatenation
             let chunk = format!("{}_chunk{i}", p.name);
-            self.wire(&chunk, w, Kind::Sum, ex!("{} ? {} : {}", carry, a, b), &format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1));
+            let consts = &p.plain_consts[i];
+            let pick = if consts.iter().all(Option::is_none) {
+                ex!("{} ? {} : {}", carry, a, b)
+            } else {
+                // a bit the carry-in-0 sum holds constant: an AND or OR with the carry, not a
+                // ?: with a constant arm, which yosys makes the flip-flop's synchronous set or
+                // reset, driven over the slow set/reset route (fitted's sign at 112.5 MHz)
+                let arm = |b: &mut Self, j: u32| -> (Expr, Expr) {
+                    if p.top_inverted && i + 1 == p.chunks.len() && j + 1 == w {
+                        (ex!("~{}", b.bits(&inc, w, w)), ex!("~{}", b.bits(&plain, w - 1, w - 1)))
+                    } else {
+                        (b.bits(&inc, j + 1, j + 1), b.bits(&plain, j, j))
+                    }
+                };
+                let bits: Vec<Expr> = (0..w)
+                    .rev()
+                    .map(|j| {
+                        let (x, y) = arm(self, j);
+                        match consts[j as usize] {
+                            Some(true) => ex!("({} | ~{})", x, carry),
+                            Some(false) => ex!("({} & {})", x, carry),
+                            None => ex!("({} ? {} : {})", carry, x, y),
+                        }
+                    })
+                    .collect();
+                ex!("{{{}}}", Expr::join(&bits, ", "))
+            };
+            self.wire(&chunk, w, Kind::Sum, pick, &format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1));
             words.push(self.r(&chunk));
         }
         words.reverse();

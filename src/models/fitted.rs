@@ -469,6 +469,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
 
     let s = format!("power{m_max}");
     let wc = w.color_frac_bits;
+    b.colour_copies(&s, wf - wc, wc, "S", false);
     b.step("colour multipliers (14-16)");
     b.colour_products(&s, wf - wc, wc, "S");
     b.product_delay(wc + 1, bb, wc + bb, 0.0);
@@ -511,10 +512,11 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
             b.square_table(&ll, &prev, 0, l, &format!("l'^2 by table, power{} = hi*2^{r} + t*2^{l} + l'", j - 1));
             let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, l), 1, tw, false);
             let t_bit = b.bits(&prev, l, l);
-            let hl = b.pieces(&[Piece::sig(&prev, 0, l), Piece::zeros(1), Piece::sig(&prev, r, dsp), Piece::zeros(tw - dsp - r)]);
+            // (its r + dsp significant bits a wire, the zeros above it pieces the sum sees)
+            let hl = b.pieces(&[Piece::sig(&prev, 0, l), Piece::zeros(1), Piece::sig(&prev, r, dsp)]);
             let top = format!("{tn}_top");
-            b.wire(&top, tw, Kind::Logic, Builder::gate(&t_bit, &hl, tw), "t*(hi*2^r + l'): the partial product of lo's top bit");
-            terms.push(vec![Piece::sig(&top, 0, tw)]);
+            b.wire(&top, dsp + r, Kind::Logic, Builder::gate(&t_bit, &hl, dsp + r), "t*(hi*2^r + l'): the partial product of lo's top bit");
+            terms.push(vec![Piece::sig(&top, 0, dsp + r), Piece::zeros(tw - dsp - r)]);
             terms.push(vec![Piece::sig(&ll, r, r - 2), Piece::sig(&prev, l, 1)]);
             terms
         } else {

@@ -472,7 +472,7 @@ fn shift_and_round(s: &Shape, b: &mut Builder, mut complemented: Option<Sig>) {
     }
     let wc = w.color_frac_bits;
     // c^n's colour field once per colour product's block (iCE40)
-    b.colour_copies("power", we - wc, wc, "c^n");
+    b.colour_copies("power", we - wc, wc, "c^n", true);
 
     b.step("colour multipliers (14-16)");
     b.colour_products("power", we - wc, wc, "c^n");

@@ -18,12 +18,10 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
     let (_, pad) = b.interpolation_on_block(w.slope_bits(), j, u);
     let rt = b.table(t.table(w, pad));
 
-    b.step("clamp c = min(cos, 1); the operand of 1 - c; n = 0 picks S = 1 at the end");
-    let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
+    b.step("the operand of 1 - c = 1 - min(cos, 1); n = 0 picks S = 1 at the end");
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator
-    let cos = b.wire("cos_clamped", f + 1, Kind::Logic, Builder::select_const(&top, 1u128 << f, f + 1, &g), &format!("UQ1.{f}: c"));
     // 1 − c = ~c + 1 over F + 1 bits with c's integer bit 0, and 0 (all ones + 1) at c = 1
-    let low = b.bits("cos_g", f - 1, 0);
+    let (top, low) = (b.bits("cos_g", f, f), b.bits("cos_g", f - 1, 0));
     let comp = Builder::select_const(&top, mask(f + 1), f + 1, &ex!("{{1'b0, ~{}}}", low));
     b.wire("cos_comp", f + 1, Kind::Logic, comp, &format!("2^{} - 1 - c over {} bits (all ones at c = 1): 1 - c = this + 2^-{f}", f + 1, f + 1));
     let n = b.sig("n");
@@ -31,7 +29,13 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
     b.wire("n_zero", 1, Kind::Logic, ex!("{} == {}", nv, lit(nb, 0)), "n = 0: S = 1 (cos^0), the limit at c = 0 too");
     b.delay(LUT_DELAY);
     let title = "1 - c";
-    b.step(title);
+    b.step(&format!("{title}; clamp c = min(cos, 1)"));
+    // (the clamp a step after the operand of 1 - c, from the next register of cos_g: its
+    // integer bit, which selects both, then drives half as many LUTs from each flip-flop, and
+    // no synthesis tool can share c's LUTs with ~c's, whose flip-flops would then take them
+    // over a route of their own: schlick held at 117.1 MHz on the UP5K)
+    let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
+    let cos = b.wire("cos_clamped", f + 1, Kind::Logic, Builder::select_const(&top, 1u128 << f, f + 1, &g), &format!("UQ1.{f}: c"));
     let p = b.add_start("one_minus_cos", &[Piece::sig("cos_comp", 0, f + 1)], &[], true, f + 1, &format!("UQ1.{f}: 1 - c, exact"));
     let one_minus_cos = b.resolve(p, title);
 
