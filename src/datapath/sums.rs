@@ -355,41 +355,40 @@ impl Builder {
                 _ => self.r(&format!("{}_carry{i}", p.name)),
             };
             let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
-            let (a, b) = if p.top_inverted && i + 1 == p.chunks.len() {
-                // the carry-out above the top chunk's sum, complemented back
-                let (na, nb) = (ex!("~{}", self.bits(&inc, w, w)), ex!("~{}", self.bits(&plain, w - 1, w - 1)));
-                if w == 1 {
-                    (na, nb)
-                } else {
-                    (ex!("{{{}, {}}}", na, self.bits(&inc, w - 1, 1)), ex!("{{{}, {}}}", nb, self.bits(&plain, w - 2, 0)))
-                }
-            } else {
-                (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0))
-            };
             // each chunk's pick on its own line; the sum is then a plain concatenation
             let chunk = format!("{}_chunk{i}", p.name);
             let consts = &p.plain_consts[i];
             let pick = if consts.iter().all(Option::is_none) {
+                let (a, b) = if p.top_inverted && i + 1 == p.chunks.len() {
+                    // the carry-out above the top chunk's sum, complemented back
+                    let (na, nb) = (ex!("~{}", self.bits(&inc, w, w)), ex!("~{}", self.bits(&plain, w - 1, w - 1)));
+                    if w == 1 {
+                        (na, nb)
+                    } else {
+                        (ex!("{{{}, {}}}", na, self.bits(&inc, w - 1, 1)), ex!("{{{}, {}}}", nb, self.bits(&plain, w - 2, 0)))
+                    }
+                } else {
+                    (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0))
+                };
                 ex!("{} ? {} : {}", carry, a, b)
             } else {
                 // a bit the carry-in-0 sum holds constant: an AND or OR with the carry, not a
                 // ?: with a constant arm, which yosys makes the flip-flop's synchronous set or
                 // reset, driven over the slow set/reset route (fitted's sign at 112.5 MHz)
-                let arm = |b: &mut Self, j: u32| -> (Expr, Expr) {
-                    if p.top_inverted && i + 1 == p.chunks.len() && j + 1 == w {
-                        (ex!("~{}", b.bits(&inc, w, w)), ex!("~{}", b.bits(&plain, w - 1, w - 1)))
-                    } else {
-                        (b.bits(&inc, j + 1, j + 1), b.bits(&plain, j, j))
-                    }
-                };
+                // (the carry-in-0 arm read only where it is not a constant: a bit read is one
+                // the Verilog reads)
+                let inverted = |j: u32| p.top_inverted && i + 1 == p.chunks.len() && j + 1 == w;
                 let bits: Vec<Expr> = (0..w)
                     .rev()
                     .map(|j| {
-                        let (x, y) = arm(self, j);
+                        let x = if inverted(j) { ex!("~{}", self.bits(&inc, w, w)) } else { self.bits(&inc, j + 1, j + 1) };
                         match consts[j as usize] {
                             Some(true) => ex!("({} | ~{})", x, carry),
                             Some(false) => ex!("({} & {})", x, carry),
-                            None => ex!("({} ? {} : {})", carry, x, y),
+                            None => {
+                                let y = if inverted(j) { ex!("~{}", self.bits(&plain, w - 1, w - 1)) } else { self.bits(&plain, j, j) };
+                                ex!("({} ? {} : {})", carry, x, y)
+                            }
                         }
                     })
                     .collect();

@@ -116,6 +116,53 @@ fn carries_are_sum_bits_kept_complemented() {
     assert!(expr(&b, "s_chunk2").contains("{~s_part2_plus1_c2[5], s_part2_plus1_c2[4:1]}"), "{}", expr(&b, "s_chunk2"));
 }
 
+/// Issue 69: a carry-save layer's vectors are as wide as the bits they can have set (the sum
+/// the widest term's, the carries the second widest's, one up), so the zeros above the terms
+/// reach the closing add, whose top bit is then a carry-out kept complemented. Wires as wide
+/// as the sum left those zeros to the synthesis tool, which found them through the registers
+/// and left the chain's carry-out bare (fitted's squaring at 115.8 MHz on the UP5K).
+#[test]
+fn carry_save_vectors_keep_the_zeros_above_their_terms() {
+    let mut b = Builder::new(&[("x", 8), ("y", 9), ("z", 10)], &[1, 2, 3], Target::Ice40);
+    b.step("terms");
+    let term = |n: &str, w: u32| vec![Piece::sig(n, 0, w), Piece::zeros(14 - w)];
+    let p = b.sum_start("s", vec![term("x", 8), term("y", 9), term("z", 10)], 14, "t", "");
+    let wire = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).cloned().unwrap();
+    assert_eq!(wire(&b, "s_csa1_s0").width, 10, "the sum bits: below the widest term's");
+    assert_eq!(wire(&b, "s_csa1_c0").width, 9, "the carries: below the second widest term's");
+    assert!(p.top_inverted, "x + y + z < 2^11: the 14-bit sum's top bit is a carry-out of zeros");
+    // a term with no zeros above it: full width, as before
+    let mut b = Builder::new(&[("x", 14), ("y", 14), ("z", 14)], &[1, 2, 3], Target::Ice40);
+    b.step("terms");
+    let p = b.sum_start("s", vec![term("x", 14), term("y", 14), term("z", 14)], 14, "t", "");
+    assert_eq!((wire(&b, "s_csa1_s0").width, wire(&b, "s_csa1_c0").width), (14, 13));
+    assert!(!p.top_inverted);
+}
+
+/// Issue 69: a carry-select pick whose carry-in-0 arm holds a constant bit (the second addend
+/// 0 over the chunk, the first a constant there) is an AND or OR with the carry, never a ?:
+/// with a constant arm, which yosys makes the flip-flop's synchronous set or reset over the
+/// slow set/reset route (fitted's sign bit at 112.5 MHz on the UP5K).
+#[test]
+fn a_pick_with_a_constant_arm_is_an_and_or() {
+    let mut b = Builder::new(&[("x", 16), ("y", 10)], &[1, 2], Target::Ice40);
+    b.step("add");
+    b.chunk_limit = 6;
+    // bit 16 of the first operand a constant 1 (a sign extension), the second 0 above bit 9
+    let a = [Piece::sig("x", 0, 16), Piece::Const { value: 1, width: 1 }];
+    let p = b.add_start("s", &a, &[Piece::sig("y", 0, 10)], false, 17, "");
+    let expr = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).map(|w| w.expr.text.clone()).unwrap();
+    b.step("carries");
+    b.add_carries(&p);
+    b.step("select");
+    b.add_finish(p);
+    let top = expr(&b, "s_chunk2");
+    assert!(top.starts_with("{(s_part2_plus1_c2[5] | ~s_carry2_c2), (s_carry2_c2 ? s_part2_plus1_c2[4] : s_part2_c2[3])"), "{top}");
+    assert!(!top.contains("1'h1") && !top.contains("1'b1"), "no constant arm: {top}");
+    // the chunk with the second addend in it picks as before
+    assert_eq!(expr(&b, "s_chunk1"), "~s_part0_c2[6] ? s_part1_plus1_c2[6:1] : s_part1_c2[5:0]");
+}
+
 /// Issue 37: a step with logic and no delay estimate is a build error (it would count 0 ns
 /// and `--target-mhz` would place its cuts on a wrong sum); a step that only selects bits
 /// needs none.
