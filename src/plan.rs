@@ -293,6 +293,22 @@ pub(crate) fn balanced_cuts_by(delays: &[f64], hard: &[bool], stages: u32) -> Ve
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 69: c's clamp and ~c (the operand of 1 − c) are made in different steps, from
+    /// different registers of cos: in one step the integer bit of cos drove both words and a
+    /// synthesis tool shared c's LUTs for ~c, so c's flip-flops took them over a route of
+    /// their own (schlick at 117.1 MHz on the UP5K).
+    #[test]
+    fn the_clamp_and_the_operand_of_one_minus_c_are_apart() {
+        use crate::config::Target;
+        for target in [Target::Ice40, Target::Ecp5, Target::Generic] {
+            let cfg = crate::config::Config::new(crate::config::Params { model: crate::config::SpecularModel::Schlick, target, ..Default::default() }).unwrap();
+            let plan = Plan::new(cfg).unwrap();
+            let step_of = |name: &str| plan.datapath.steps.iter().position(|s| s.wires.iter().any(|w| w.name == name)).unwrap();
+            assert_eq!(step_of("cos_clamped"), step_of("cos_comp") + 1, "{target:?}");
+        }
+    }
+
     use crate::config::SpecularModel;
 
     #[test]

@@ -282,20 +282,6 @@ mod tests {
         }
     }
 
-    /// Issue 69: c's clamp and ~c (the operand of 1 − c) are made in different steps, from
-    /// different registers of cos: in one step the integer bit of cos drove both words and a
-    /// synthesis tool shared c's LUTs for ~c, so c's flip-flops took them over a route of
-    /// their own (schlick at 117.1 MHz on the UP5K).
-    #[test]
-    fn the_clamp_and_the_operand_of_one_minus_c_are_apart() {
-        use crate::config::Target;
-        for target in [Target::Ice40, Target::Ecp5, Target::Generic] {
-            let plan = crate::plan::Plan::new(cfg(Params { target, ..Params::default() })).unwrap();
-            let step_of = |name: &str| plan.datapath.steps.iter().position(|s| s.wires.iter().any(|w| w.name == name)).unwrap();
-            assert_eq!(step_of("cos_clamped"), step_of("cos_comp") + 1, "{target:?}");
-        }
-    }
-
     #[test]
     fn zero_over_zero_is_one() {
         let s = Schlick::new(&cfg(Params::default()));
