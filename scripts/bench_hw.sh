@@ -258,4 +258,4 @@ echo "wrote benchmarks/hw.md"
 [ "${OP_ONLY:-0}" = 1 ] && exit 0
 # the speed claims the suite leaves to the bench (median over nextpnr seeds 1-5)
 echo "== the multi-seed Fmax claims (cargo test -- --ignored)"
-cargo test --release -q --test suite -- --ignored synth::fully_pipelined_units_reach_their_clocks_on_the_up5k_on_both_yosys
+cargo test --release -q --test suite -- --ignored synth::fully_pipelined_units_reach_their_clocks_on_the_up5k_on_both_yosys --nocapture

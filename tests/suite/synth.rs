@@ -124,6 +124,8 @@ fn fully_pipelined_units_reach_their_clocks_on_the_up5k_on_both_yosys() {
             let r = synth(&dir, &["--target", "ice40", "--dsp", "--seeds", "5", "--yosys", y]);
             assert_eq!(r["fmax_seeds"].as_array().unwrap().len(), 5, "{r}");
             let fmax = r["fmax_mhz"].as_f64().expect("placed on the UP5K");
+            // (every figure in the bench's log: `--nocapture`)
+            eprintln!("{model:?} on {y}: {fmax} MHz median, seeds {}, {} logic cells", r["fmax_seeds"], r["logic_cells"]);
             if fmax < 125.0 {
                 failures.push(format!("{model:?} on {y}: median Fmax over nextpnr seeds 1-5 {fmax} MHz < 125 ({})", r["fmax_seeds"]));
             }
