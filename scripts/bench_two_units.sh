@@ -9,12 +9,12 @@
 # own netlist is then checked against its golden model, every (cos_g, n) input, by
 # `specgen synth --verify --verify-exhaustive` with each yosys (its cell models, Verilator).
 # Writes benchmarks/two-units.md.
-#   SEEDS=5 A=quadratic:3:28 B=blinn:5:47 scripts/bench_two_units.sh
+#   SEEDS=5 A=quadratic:3:37 B=blinn:5:50 scripts/bench_two_units.sh
 # A and B: model:dsp-budget:stages. PNR_LOGS=PREFIX keeps nextpnr's logs (PREFIX.CHAIN.TOP.SEED.log).
 source "$(dirname "$0")/bench_common.sh"
 seeds=${SEEDS:-5}
-A=${A:-quadratic:3:28}
-B=${B:-blinn:5:47}
+A=${A:-quadratic:3:37}
+B=${B:-blinn:5:50}
 run="$work/run"; mkdir -p "$run"
 units=()
 for spec in "$A" "$B"; do
@@ -106,7 +106,7 @@ endmodule
 `default_nettype wire""")
 PY
 done
-if [ "$A:$B" = "quadratic:3:28:blinn:5:47" ]; then
+if [ "$A:$B" = "quadratic:3:37:blinn:5:50" ]; then
     diff -u tb/pair_plain_top.v "$run/plain.v.txt" || { echo "$0: tb/pair_plain_top.v is not what this script writes" >&2; exit 1; }
 fi
 rows="$work/rows.txt"; : > "$rows"
