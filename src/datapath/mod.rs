@@ -359,28 +359,25 @@ pub(crate) fn significant_bits(pieces: &[Piece], width: u32) -> u32 {
     (0..width).rev().find(|&b| !zero_bit(&pieces, b)).map_or(0, |b| b + 1)
 }
 
-/// Whether bit `bit` of `pieces` (LSB first) is a constant 1.
-fn one_bit(pieces: &[Piece], bit: u32) -> bool {
+/// Bit `bit` of `pieces` (LSB first) where it is a constant; `None` where a signal holds it (or
+/// beyond the pieces).
+fn const_bit(pieces: &[Piece], bit: u32) -> Option<bool> {
     let mut base = 0;
     for p in pieces {
         if bit < base + p.width() {
-            return matches!(p, Piece::Const { value, .. } if (value >> (bit - base)) & 1 == 1);
+            return match p {
+                Piece::Const { value, .. } => Some((value >> (bit - base)) & 1 == 1),
+                Piece::Sig { .. } => None,
+            };
         }
         base += p.width();
     }
-    false
+    None
 }
 
 /// Whether bit `bit` of `pieces` (LSB first) is a constant 0.
 fn zero_bit(pieces: &[Piece], bit: u32) -> bool {
-    let mut base = 0;
-    for p in pieces {
-        if bit < base + p.width() {
-            return matches!(p, Piece::Const { value, .. } if (value >> (bit - base)) & 1 == 0);
-        }
-        base += p.width();
-    }
-    false
+    const_bit(pieces, bit) == Some(false)
 }
 
 /// A wide add started by [`Builder::add_start`], finished by [`Builder::add_finish`].

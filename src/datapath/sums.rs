@@ -79,9 +79,9 @@ impl Builder {
                 plain_consts.push(
                     (0..w)
                         .map(|j| match all_zero(&pb) {
-                            true if zero_bit(&pa, j) => Some(top && top_inverted && j + 1 == w),
-                            true if one_bit(&pa, j) => Some(!(top && top_inverted && j + 1 == w)),
-                            _ => None,
+                            // (the top bit of a top chunk kept complemented is read back complemented)
+                            true => const_bit(&pa, j).map(|v| v != (top && top_inverted && j + 1 == w)),
+                            false => None,
                         })
                         .collect(),
                 );
