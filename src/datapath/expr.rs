@@ -47,6 +47,18 @@ impl Expr {
         self.text.is_empty()
     }
 
+    /// The complement of a one-bit expression: `~x` for a name or a bit of one, `x` for `~x`,
+    /// `~(...)` otherwise.
+    pub(crate) fn not(&self) -> Expr {
+        let simple = |t: &str| !t.is_empty() && t.chars().all(|c| c.is_ascii_alphanumeric() || "_[]:".contains(c));
+        let text = match self.text.strip_prefix('~') {
+            Some(t) if simple(t) => t.to_string(),
+            _ if simple(&self.text) => format!("~{}", self.text),
+            _ => format!("~({})", self.text),
+        };
+        Expr { text, reads: self.reads.clone() }
+    }
+
     /// `parts` joined by `sep`, reading what each reads.
     pub(crate) fn join(parts: &[Expr], sep: &str) -> Expr {
         let mut e = Expr::constant(parts.iter().map(|p| p.text.as_str()).collect::<Vec<_>>().join(sep));

@@ -112,7 +112,7 @@ fn carries_are_sum_bits_kept_complemented() {
     b.add_carries(&p);
     assert!(expr(&b, "s_carry2").starts_with("~s_part0_c1[6] ?"), "{}", expr(&b, "s_carry2"));
     b.step("select");
-    b.add_finish(p);
+    b.add_finish(p, false);
     assert!(expr(&b, "s_chunk2").contains("{~s_part2_plus1_c2[5], s_part2_plus1_c2[4:1]}"), "{}", expr(&b, "s_chunk2"));
 }
 
@@ -155,12 +155,52 @@ fn a_pick_with_a_constant_arm_is_an_and_or() {
     b.step("carries");
     b.add_carries(&p);
     b.step("select");
-    b.add_finish(p);
+    b.add_finish(p, false);
     let top = expr(&b, "s_chunk2");
     assert!(top.starts_with("{(s_part2_plus1_c2[5] | ~s_carry2_c2), (s_carry2_c2 ? s_part2_plus1_c2[4] : s_part2_c2[3])"), "{top}");
     assert!(!top.contains("1'h1") && !top.contains("1'b1"), "no constant arm: {top}");
     // the chunk with the second addend in it picks as before
     assert_eq!(expr(&b, "s_chunk1"), "~s_part0_c2[6] ? s_part1_plus1_c2[6:1] : s_part1_c2[5:0]");
+}
+
+/// Issue 69: where the select step would make the last carry and then the last chunk's pick
+/// (two LUT levels from the carry register below), the last chunk picks by that register from
+/// two kept picks by the carry-outs of the chunk below, and the last carry is not made: the
+/// carry register, which the chunk below reads too, enters only the last LUT (fitted's
+/// `square3_t_carry4` over a 3.0-3.6 ns route and two LUTs at 121 MHz on the UP5K).
+#[test]
+fn the_last_chunk_picks_by_the_carry_below_from_two_kept_picks() {
+    let wire = |b: &Builder, name: &str| b.steps.iter().flat_map(|s| &s.wires).find(|w| w.name == name).cloned();
+    // three chunks of 6: the carry into chunk 2 would be made in the select step
+    let mut b = Builder::new(&[("x", 18), ("y", 18)], &[1, 2], Target::Ice40);
+    b.step("add");
+    b.chunk_limit = 6;
+    let p = b.add_start("s", &[Piece::sig("x", 0, 18)], &[Piece::sig("y", 0, 18)], false, 18, "");
+    b.resolve(p, "t");
+    assert!(wire(&b, "s_carry2").is_none(), "the last carry is not made");
+    let (if1, if0) = (wire(&b, "s_chunk2_if1").unwrap(), wire(&b, "s_chunk2_if0").unwrap());
+    assert!(if1.keep && if0.keep, "both picks kept apart from the last LUT");
+    assert_eq!(if1.expr.text, "~s_part1_plus1_c1[7] ? s_part2_plus1_c1[6:1] : s_part2_c1");
+    assert_eq!(if0.expr.text, "~s_part1_c1[6] ? s_part2_plus1_c1[6:1] : s_part2_c1");
+    assert_eq!(wire(&b, "s_chunk2").unwrap().expr.text, "~s_part0_c1[6] ? s_chunk2_if1_s2 : s_chunk2_if0_s2");
+    // the second addend 0 over the chunk below: no carry out of it with carry-in 0, so the
+    // pick with carry 0 is the plain sum; a constant of the plain sum stays an AND/OR
+    let mut b = Builder::new(&[("x", 18), ("y", 6)], &[1, 2], Target::Ice40);
+    b.step("add");
+    b.chunk_limit = 6;
+    let a = [Piece::sig("x", 0, 17), Piece::Const { value: 1, width: 1 }];
+    let p = b.add_start("s", &a, &[Piece::sig("y", 0, 6)], false, 18, "");
+    b.resolve(p, "t");
+    assert!(wire(&b, "s_chunk2_if0").is_none(), "carry 0 into the chunk below: the plain sum");
+    let top = wire(&b, "s_chunk2").unwrap().expr.text;
+    assert!(top.starts_with("{(s_chunk2_if1_s2[5] | s_part0_c1[6]), (~s_part0_c1[6] ? s_chunk2_if1_s2[4] : s_part2_c1[4])"), "{top}");
+    // four chunks: the carries made two a step, the select step only picks, as before
+    let mut b = Builder::new(&[("x", 24), ("y", 24)], &[1, 2], Target::Ice40);
+    b.step("add");
+    b.chunk_limit = 6;
+    let p = b.add_start("s", &[Piece::sig("x", 0, 24)], &[Piece::sig("y", 0, 24)], false, 24, "");
+    b.resolve(p, "t");
+    assert!(wire(&b, "s_carry3").is_some() && wire(&b, "s_chunk3_if1").is_none());
 }
 
 /// Issue 37: a step with logic and no delay estimate is a build error (it would count 0 ns
