@@ -31,6 +31,7 @@ impl Builder {
             read: BTreeMap::new(),
             products: Vec::new(),
             shifted_products: Vec::new(),
+            copies: Vec::new(),
             product_uses: Vec::new(),
             fabric: Default::default(),
             logic_tables: false,
@@ -733,6 +734,7 @@ impl Builder {
             products: self.products,
             product_uses: self.product_uses,
             shifted_products: self.shifted_products,
+            copies: self.copies,
         }
     }
 }

@@ -148,6 +148,10 @@ pub struct Datapath {
     /// the products one of whose operands has constant zero low bits: yosys takes the shift
     /// out of the multiply, and the product's add and register with it, out of the block
     pub(crate) shifted_products: Vec<String>,
+    /// copies of a register, each for its own readers: kept (`(* keep *)`), so that synthesis
+    /// neither merges them nor shares logic between their readers
+    /// ([`Builder::rom_read_registered`])
+    pub(crate) copies: Vec<String>,
 }
 
 impl Datapath {
@@ -254,6 +258,8 @@ pub struct Builder {
     fabric: std::collections::BTreeSet<String>,
     /// [`Datapath::shifted_products`]
     shifted_products: Vec<String>,
+    /// [`Datapath::copies`]
+    copies: Vec<String>,
     /// `--rom-style logic`: a table read with [`Builder::rom_read_registered`] is written as
     /// LUTs over steps of its own, never a memory (the plan's choice for the unit)
     logic_tables: bool,

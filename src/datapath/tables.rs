@@ -33,8 +33,25 @@ impl Builder {
             }
             return (parts, 0);
         }
-        let low = self.bits(addr, lo - 1, 0);
+        // each part's own copy of the address's low bits, in a step of its own
+        // ([`Family::copies_table_address`]: only for a table that has its own steps)
+        let copies = most != u32::MAX && self.family().copies_table_address();
+        if copies {
+            for h in 0..1usize << hi {
+                let e = self.bits(addr, lo - 1, 0);
+                self.wire(&format!("{signal}_addr{h}"), lo, Kind::Select, e, &format!("{addr}[{}:0] for part {h} alone", lo - 1));
+                self.copies.push(format!("{signal}_addr{h}"));
+            }
+            self.delay(REGISTER_ONLY_DELAY);
+            let what = self.tables[t].what.clone();
+            self.step(&format!("{what} (in LUTs): its parts, each from its own copy of {addr}[{}:0]", lo - 1));
+        }
+        let shared = (!copies).then(|| self.bits(addr, lo - 1, 0));
         for h in 0..1usize << hi {
+            let low = match &shared {
+                Some(e) => e.clone(),
+                None => self.r(&format!("{signal}_addr{h}")),
+            };
             let entries =
                 (0..1usize << lo).filter_map(|l| words.get(h << lo | l).copied().filter(|&v| v != 0).map(|v| (l as u128, Expr::constant(lit(width, v)))));
             let e = Builder::one_of(&low, lo, entries, width);

@@ -203,6 +203,41 @@ fn the_last_chunk_picks_by_the_carry_below_from_two_kept_picks() {
     assert!(wire(&b, "s_carry3").is_some() && wire(&b, "s_chunk3_if1").is_none());
 }
 
+/// Issue 69, point 2: on the ECP5 a table in LUTs gives each part its own register copy of
+/// the address bits it reads, in a step before the parts; each copy is a datapath copy (its
+/// flip-flop kept, so synthesis merges none) and its part reads it alone. ABC9 had mapped the
+/// parts through each other's LUTs (fitted's table three and four LUT4 levels deep, 227 MHz).
+/// Elsewhere (the iCE40) the parts read the address as before.
+#[test]
+fn table_parts_in_logic_read_their_own_address_copies_on_the_ecp5() {
+    let words: Vec<u128> = (0..64).map(|i| (i * 37 + 5) % 251).collect();
+    let table =
+        || Table { name: "t".into(), param: "T".into(), width: 8, words: words.clone(), what: "w".into(), fields: vec![("w".into(), 8)], cosines: None };
+    let wires = |b: &Builder| b.steps.iter().flat_map(|s| s.wires.iter().map(move |w| (s.index, w.clone()))).collect::<Vec<_>>();
+    for target in [Target::Ecp5, Target::Ice40] {
+        let mut b = Builder::new(&[("n", 6)], &[1, 2, 3, 4, 5], target);
+        b.tables_in_logic(true);
+        let t = b.table(table());
+        b.step("read");
+        b.rom_read_registered("w", t, "n");
+        let all = wires(&b);
+        let parts: Vec<_> = all.iter().filter(|(_, w)| w.name.starts_with("w_part")).collect();
+        assert_eq!(parts.len(), 8, "64 words: parts of n's 3 low bits, picked by its 3 top bits");
+        let copies: Vec<_> = all.iter().filter(|(_, w)| w.name.starts_with("w_addr")).collect();
+        if target == Target::Ecp5 {
+            assert_eq!(copies.len(), 8, "one copy a part");
+            assert!(copies.iter().all(|(k, w)| *k == 1 && w.width == 3 && w.expr.text == "n[2:0]" && b.copies.contains(&w.name)));
+            for (k, p) in &parts {
+                let h = p.name.trim_start_matches("w_part");
+                assert_eq!((*k, p.expr.reads.clone()), (2, vec![format!("w_addr{h}_c1")]), "{}", p.name);
+            }
+        } else {
+            assert!(copies.is_empty() && b.copies.is_empty());
+            assert!(parts.iter().all(|(k, p)| *k == 1 && p.expr.reads == ["n"]));
+        }
+    }
+}
+
 /// Issue 37: a step with logic and no delay estimate is a build error (it would count 0 ns
 /// and `--target-mhz` would place its cuts on a wrong sum); a step that only selects bits
 /// needs none.

@@ -85,13 +85,14 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
         // into the block as its input register, and the logic before it becomes the path)
         let operand = at.len() > 1 && dp.read_by_block(&name, at[0]);
         if product || operand {
-            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true });
+            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy: false });
             source = format!("{name}_c{}", at[0]);
             at.remove(0);
         }
         if at.len() == 1 && !product && !operand {
-            let keep = dp.read_by_block(&name, at[0]);
-            cuts[at[0] - 1].signals.push(CutSignal { name, width, source, keep });
+            let copy = dp.copies.contains(&name);
+            let keep = dp.read_by_block(&name, at[0]) || copy;
+            cuts[at[0] - 1].signals.push(CutSignal { name, width, source, keep, copy });
             continue;
         }
         let read: Vec<u128> = at.iter().map(|k| dp.read.get(&format!("{name}_c{k}")).copied().unwrap_or(0)).collect();

@@ -28,6 +28,10 @@ pub(crate) struct CutSignal {
     pub(crate) width: u32,
     /// a register a multiplier reads ([`datapath::Datapath::read_by_block`]): out of the DSP block
     pub(crate) keep: bool,
+    /// a copy of a register ([`datapath::Datapath::copies`]): its flip-flop kept too (`(* keep *)`
+    /// on the always block), which yosys's opt_merge honours where a kept name alone does not
+    /// (the copies merged into one, and their readers shared their logic again)
+    pub(crate) copy: bool,
     /// the expression the cut takes it from (`x_sK` computed in step K, a port, a block's output)
     pub(crate) source: String,
 }
@@ -50,7 +54,8 @@ impl Cut {
         for s in &self.signals {
             let reg = format!("{}_c{}", s.name, self.index);
             let keep = if s.keep { "(* keep *) " } else { "" };
-            out.push(format!("{keep}reg  {} {reg};   always @(posedge clk) {reg} <= {};", range(s.width), s.source));
+            let cell = if s.copy { "(* keep *) " } else { "" };
+            out.push(format!("{keep}reg  {} {reg};   {cell}always @(posedge clk) {reg} <= {};", range(s.width), s.source));
         }
         for l in &self.lines {
             out.extend(l.lines(top));

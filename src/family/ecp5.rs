@@ -93,6 +93,9 @@ impl Family for Ecp5 {
     fn explore_clocks(&self) -> &'static [f64] {
         &[100.0, 150.0, 200.0, 250.0]
     }
+    fn copies_table_address(&self) -> bool {
+        true
+    }
     fn calibration(&self) -> Option<&'static str> {
         Some("ecp5")
     }

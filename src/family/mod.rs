@@ -220,6 +220,14 @@ pub trait Family: Sync {
     fn pads_block_operands(&self) -> bool {
         false
     }
+    /// Whether a table in LUTs (`--rom-style logic`) gives each of its parts a register copy of
+    /// the address bits it reads, in a step of its own before them: ABC9 maps the parts,
+    /// functions of the same four bits, through each other's LUTs where its timing model sees
+    /// slack (fitted's table three and four LUT4 levels deep, n_c1 → part28 → part36 → part17,
+    /// at 227 MHz on the ECP5); parts that read distinct registers share no logic.
+    fn copies_table_address(&self) -> bool {
+        false
+    }
     /// Whether an operand several blocks read is registered once per block: the blocks sit
     /// apart (the UP5K's DSPs in two columns at the die's edges), and one register's route to
     /// the farthest is most of a clock (8.3 ns: blinn's colour products at 102.6 MHz).

