@@ -168,8 +168,14 @@ if not rows:
     if kept not in rest:
         rest = rest.replace('## Every configuration\n', f'## Every configuration\n\n{kept}\n', 1)
     print('\n' + rest.rstrip('\n'))
+    # (that section alone, up to the next heading: the others' sections are kept below)
+    lut = previous.find(lut_head)
+    lut_end = previous.find('\n## ', lut + 1) if lut >= 0 else -1
     with open(sys.argv[3] + '.lut', 'w') as f:
-        f.write('\n' + previous[previous.find(lut_head):].rstrip('\n') + '\n' if lut_head in previous else '')
+        text = previous[lut:lut_end if lut_end >= 0 else len(previous)] if lut >= 0 else ''
+        # (without the last run's stamp, which closed it: this run writes its own)
+        text = '\n'.join(l for l in text.splitlines() if not (l.startswith('_Written by') and 'bench_hw.sh' in l))
+        f.write('\n' + text.rstrip('\n') + '\n' if text else '')
     sys.exit(0)
 print('\n## Every configuration\n')
 print(f'Produced by `scripts/bench_hw.sh` with {ver} and nextpnr-ice40 (iCE40 UP5K, SG48; Fmax of the unit between')
@@ -250,10 +256,12 @@ if os.path.exists(sys.argv[2]):
 PY
 # OP_ONLY=1: the LUT-only comparison of the last full run after it
 [ "${OP_ONLY:-0}" = 1 ] && cat "$work/previous.md.lut" >> benchmarks/hw.md
+# this script's stamp closes its own sections (a stamp after the others' would be read as the
+# end of the last of them, and replaced with it)
+bench_stamp "SEEDS=${SEEDS:-5}${OP_ONLY:+ OP_ONLY=$OP_ONLY} scripts/bench_hw.sh" >> benchmarks/hw.md
 # the sections other scripts write (bench_speed8.sh, bench_toolchains.sh, bench_ecp5_logic_rom.sh,
 # each through bench_section.py) are kept as they were, after this script's own
 python3 scripts/bench_section.py --keep-others "$work/previous.md"
-bench_stamp "SEEDS=${SEEDS:-5} scripts/bench_hw.sh" >> benchmarks/hw.md
 echo "wrote benchmarks/hw.md"
 [ "${OP_ONLY:-0}" = 1 ] && exit 0
 # the speed claims the suite leaves to the bench (median over nextpnr seeds 1-5)

@@ -85,7 +85,8 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
         // into the block as its input register, and the logic before it becomes the path)
         let operand = at.len() > 1 && dp.read_by_block(&name, at[0]);
         if product || operand {
-            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy: false });
+            let copy = dp.copies.contains(&name);
+            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy });
             source = format!("{name}_c{}", at[0]);
             at.remove(0);
         }
