@@ -127,7 +127,8 @@ for chain in $chains; do
         for seed in $(seq 1 "$seeds"); do
             if ! ( cd "$kdir" && $nextpnr --up5k --package sg48 --pcf-allow-unconstrained --timing-allow-fail --json pair.json --freq 100 --seed "$seed" > "pnr$seed.log" 2>&1 ); then
                 # a seed whose placement does not fit (the device nearly full) is a result: said so
-                grep -q "Unable to find legal placement" "$kdir/pnr$seed.log" || { grep ERROR "$kdir/pnr$seed.log" >&2; tail -5 "$kdir/pnr$seed.log" >&2; exit 1; }
+                # (the analytic placer's "Failed to expand region" is the same verdict, earlier)
+                grep -qE "Unable to find legal placement|Failed to expand region" "$kdir/pnr$seed.log" || { grep ERROR "$kdir/pnr$seed.log" >&2; tail -5 "$kdir/pnr$seed.log" >&2; exit 1; }
                 echo "$kind $version $seed unplaced" >> "$rows"
                 continue
             fi
