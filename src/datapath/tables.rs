@@ -15,7 +15,10 @@ impl Builder {
 
     /// [`Builder::rom_parts`], each part a function of at most `most` low bits (more parts,
     /// more picks: a function of more bits than a LUT4 takes is LUT4s and muxes the placer may
-    /// put apart, fitted's table at 239-241 MHz on the ECP5).
+    /// put apart, fitted's table at 239-241 MHz on the ECP5). Where the family copies a table's
+    /// address ([`Family::copies_table_address`](crate::family::Family::copies_table_address)),
+    /// this step holds a copy of the low bits per part (`<signal>_addr<h>`, a
+    /// [`Datapath::copies`] entry: its flip-flop kept) and the parts are made in the next.
     pub(crate) fn rom_parts_of(&mut self, signal: &str, t: usize, addr: &str, most: u32) -> (Vec<Sig>, u32) {
         let aw = self.signal(addr).width;
         let (width, words) = (self.tables[t].width, self.tables[t].words.clone());
