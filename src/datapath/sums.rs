@@ -413,17 +413,20 @@ impl Builder {
                 None => Arm::Bit(if inverted(j) { ex!("~{}", self.bits(&plain, w - 1, w - 1)) } else { self.bits(&plain, j, j) }),
             })
             .collect();
-        // the words as ranges
+        // the words as ranges (the carry-in-0 sum's only where no bit of it is a constant: a
+        // range read marks every bit of it read, and a bit marked read that the Verilog does
+        // not read is one Verilator's lint names)
+        let plain_whole = plain_bits.iter().all(|b| matches!(b, Arm::Bit(_)));
         let (inc_word, plain_word) = if inverted(w - 1) {
-            let (na, nb) = (ex!("~{}", self.bits(&inc, w, w)), ex!("~{}", self.bits(&plain, w - 1, w - 1)));
+            let na = ex!("~{}", self.bits(&inc, w, w));
+            let nb = plain_whole.then(|| ex!("~{}", self.bits(&plain, w - 1, w - 1)));
             match w {
                 1 => (na, nb),
-                _ => (ex!("{{{}, {}}}", na, self.bits(&inc, w - 1, 1)), ex!("{{{}, {}}}", nb, self.bits(&plain, w - 2, 0))),
+                _ => (ex!("{{{}, {}}}", na, self.bits(&inc, w - 1, 1)), nb.map(|nb| ex!("{{{}, {}}}", nb, self.bits(&plain, w - 2, 0)))),
             }
         } else {
-            (self.bits(&inc, w, 1), self.bits(&plain, w - 1, 0))
+            (self.bits(&inc, w, 1), plain_whole.then(|| self.bits(&plain, w - 1, 0)))
         };
-        let plain_word = plain_bits.iter().all(|b| matches!(b, Arm::Bit(_))).then_some(plain_word);
         (Arms { bits: inc_bits, word: Some(inc_word) }, Arms { bits: plain_bits, word: plain_word })
     }
 
