@@ -654,7 +654,8 @@ impl Builder {
     /// call goes in the last of them.
     pub(crate) fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
         if self.logic_tables {
-            let (mut parts, mut lo) = self.rom_parts_of(signal, t, addr, LOGIC_PART_BITS);
+            let copies = self.family().copies_table_address();
+            let (mut parts, mut lo) = self.rom_parts_of(signal, t, addr, LOGIC_PART_BITS, copies);
             let what = self.tables[t].what.clone();
             // (at least two parts: the last pick is `signal` itself)
             while parts.len() > 1 {

@@ -148,9 +148,10 @@ pub struct Datapath {
     /// the products one of whose operands has constant zero low bits: yosys takes the shift
     /// out of the multiply, and the product's add and register with it, out of the block
     pub(crate) shifted_products: Vec<String>,
-    /// copies of a register, each for its own readers: kept (`(* keep *)`), so that synthesis
-    /// neither merges them nor shares logic between their readers
-    /// ([`Builder::rom_read_registered`])
+    /// copies of a register, each for its own readers: kept (`(* keep *)` on the register and
+    /// its flip-flop), so that synthesis neither merges them nor shares logic between their
+    /// readers (a table's address per part, [`Builder::rom_read_registered`]; the colour
+    /// operand per block, [`Builder::colour_copies`])
     pub(crate) copies: Vec<String>,
 }
 

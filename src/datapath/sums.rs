@@ -317,7 +317,7 @@ impl Builder {
         }
         if n > 0 {
             // the carries into chunks from+1..=to (chunk 1's is part0's), `per_step` levels a
-            // step, then the pick with the last of them
+            // step, then the picks
             let to = n.saturating_sub(1).max(1);
             let per_step = if n > WIDE_SUM_CHUNKS { 1 } else { 2 };
             let mut from = 1;
@@ -330,26 +330,27 @@ impl Builder {
             }
             let rest = from < to;
             self.step(&format!("{title}: {}select", if rest { "carries and " } else { "" }));
-            if rest {
-                // the last carry (into chunk `to`) is not made: that chunk picks by the carry
-                // into the chunk below, from two picks made beside it ([`Builder::add_finish`])
-                return ps.into_iter().map(|p| self.add_finish(p, true)).collect();
-            }
+            // a carry left (into chunk `to`) is not made: that chunk picks by the carry into the
+            // chunk below, from two picks made beside it ([`Builder::finish_picks`])
+            return ps.into_iter().map(|p| self.finish_picks(p, rest)).collect();
         }
-        ps.into_iter().map(|p| self.add_finish(p, false)).collect()
+        ps.into_iter().map(|p| self.finish_picks(p, false)).collect()
     }
 
     /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT
     /// level). Returns the name of the sum.
-    ///
-    /// `split_last`: the carry into the last chunk is not made ([`Builder::resolve_all`]); the
+    pub(crate) fn add_finish(&mut self, p: PendingAdd) -> Sig {
+        self.finish_picks(p, false)
+    }
+
+    /// [`Builder::add_finish`]; `split_last`: the carry into the last chunk is not made ([`Builder::resolve_all`]); the
     /// last chunk picks by the carry into the chunk below, from its two picks by that chunk's
     /// carry-outs, kept wires made beside it: `c ? (cp ? inc : plain) : (cn ? inc : plain)`.
     /// Two LUT levels, as a carry and a pick, but the carry register, which every bit of the
     /// chunk below reads too and so sits apart from most of its readers, enters only the last.
     /// Made as a carry then a pick, its 3.0-3.6 ns route and two LUTs held fitted at 121 MHz on
     /// the UP5K (yosys 0.70: `square3_t_carry4`, `deviation_hi_carry4`).
-    pub(crate) fn add_finish(&mut self, p: PendingAdd, split_last: bool) -> Sig {
+    fn finish_picks(&mut self, p: PendingAdd, split_last: bool) -> Sig {
         if p.chunks.is_empty() {
             return self.sig(&p.name);
         }

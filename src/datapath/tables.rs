@@ -10,16 +10,16 @@ impl Builder {
     /// the low bits alone, two LUT levels up to 6 of them). [`Builder::rom_pick`] takes the
     /// word in the next step. Returns the parts and how many low bits they read.
     pub(crate) fn rom_parts(&mut self, signal: &str, t: usize, addr: &str) -> (Vec<Sig>, u32) {
-        self.rom_parts_of(signal, t, addr, u32::MAX)
+        self.rom_parts_of(signal, t, addr, u32::MAX, false)
     }
 
     /// [`Builder::rom_parts`], each part a function of at most `most` low bits (more parts,
     /// more picks: a function of more bits than a LUT4 takes is LUT4s and muxes the placer may
-    /// put apart, fitted's table at 239-241 MHz on the ECP5). Where the family copies a table's
-    /// address ([`Family::copies_table_address`](crate::family::Family::copies_table_address)),
+    /// put apart, fitted's table at 239-241 MHz on the ECP5). `copies` (where the family copies
+    /// a table's address, [`Family::copies_table_address`](crate::family::Family::copies_table_address)):
     /// this step holds a copy of the low bits per part (`<signal>_addr<h>`, a
     /// [`Datapath::copies`] entry: its flip-flop kept) and the parts are made in the next.
-    pub(crate) fn rom_parts_of(&mut self, signal: &str, t: usize, addr: &str, most: u32) -> (Vec<Sig>, u32) {
+    pub(crate) fn rom_parts_of(&mut self, signal: &str, t: usize, addr: &str, most: u32, copies: bool) -> (Vec<Sig>, u32) {
         let aw = self.signal(addr).width;
         let (width, words) = (self.tables[t].width, self.tables[t].words.clone());
         // the top bits pick among at most 16 parts (a 16:1 mux, two LUT levels), or more where
@@ -37,8 +37,6 @@ impl Builder {
             return (parts, 0);
         }
         // each part's own copy of the address's low bits, in a step of its own
-        // ([`Family::copies_table_address`]: only for a table that has its own steps)
-        let copies = most != u32::MAX && self.family().copies_table_address();
         if copies {
             for h in 0..1usize << hi {
                 let e = self.bits(addr, lo - 1, 0);

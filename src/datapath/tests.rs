@@ -112,7 +112,7 @@ fn carries_are_sum_bits_kept_complemented() {
     b.add_carries(&p);
     assert!(expr(&b, "s_carry2").starts_with("~s_part0_c1[6] ?"), "{}", expr(&b, "s_carry2"));
     b.step("select");
-    b.add_finish(p, false);
+    b.add_finish(p);
     assert!(expr(&b, "s_chunk2").contains("{~s_part2_plus1_c2[5], s_part2_plus1_c2[4:1]}"), "{}", expr(&b, "s_chunk2"));
 }
 
@@ -155,7 +155,7 @@ fn a_pick_with_a_constant_arm_is_an_and_or() {
     b.step("carries");
     b.add_carries(&p);
     b.step("select");
-    b.add_finish(p, false);
+    b.add_finish(p);
     let top = expr(&b, "s_chunk2");
     assert!(top.starts_with("{(s_part2_plus1_c2[5] | ~s_carry2_c2), (s_carry2_c2 ? s_part2_plus1_c2[4] : s_part2_c2[3])"), "{top}");
     assert!(!top.contains("1'h1") && !top.contains("1'b1"), "no constant arm: {top}");

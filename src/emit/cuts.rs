@@ -84,14 +84,14 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
         // the DSP block (yosys 0.70's ice40_dsp takes the first flip-flop of a delay line
         // into the block as its input register, and the logic before it becomes the path)
         let operand = at.len() > 1 && dp.read_by_block(&name, at[0]);
+        // a copy of a register: its flip-flop kept too ([`datapath::Datapath::copies`])
+        let copy = dp.copies.contains(&name);
         if product || operand {
-            let copy = dp.copies.contains(&name);
             cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy });
             source = format!("{name}_c{}", at[0]);
             at.remove(0);
         }
         if at.len() == 1 && !product && !operand {
-            let copy = dp.copies.contains(&name);
             let keep = dp.read_by_block(&name, at[0]) || copy;
             cuts[at[0] - 1].signals.push(CutSignal { name, width, source, keep, copy });
             continue;

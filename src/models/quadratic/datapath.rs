@@ -180,7 +180,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     // DSP's input register, and a register, not a LUT, drives the long route into the DSP column
     b.step("1 - cos: carries and select; comparator (12): chunk sums");
     b.add_carries(&d);
-    b.add_finish(d, false);
+    b.add_finish(d);
     let (ca, cb2, cw, comment) = cutoff_add(cfg);
     let cmp = b.add_start("cutoff_sum", &ca, &cb2, false, cw, &comment);
     // a k_q wider than the DSP's operands: k_q = k_hi*2^16 + k_lo, and n*k_hi (a few bits of
@@ -212,7 +212,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     }
 
     b.step("comparator: select; deviation, high partial product (multiply-add)");
-    let sum = b.add_finish(cmp, false);
+    let sum = b.add_finish(cmp);
     done(cfg, b, &sum, false);
     // done: one LUT (a one-chunk comparator's add_finish has no select to count)
     b.delay(LUT_DELAY);
@@ -312,7 +312,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
             b.step("intensity rounding: carries and select");
             b.add_carries(&p);
         }
-        let sum = b.add_finish(p, false);
+        let sum = b.add_finish(p);
         intensity_from(cfg, b, &sum);
     }
 }
