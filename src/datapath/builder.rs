@@ -240,6 +240,32 @@ impl Builder {
         }
     }
 
+    /// With `--fabric-registers` ([`Builder::registers_in_fabric`]) on a family whose blocks
+    /// yosys infers (the iCE40: its fabric's long routes, from the middle of the die to the
+    /// SB_MAC16s at its edges, are what the steps of two LUT levels lose), the registers that
+    /// shorten a step to one LUT level between routes: a carry-select sum's last pick in a step
+    /// of its own ([`Builder::resolve_all`]), a second register on each colour operand copy
+    /// ([`Builder::colour_copies`]), and those a model asks for ([`Builder::route_register_step`]).
+    /// Elsewhere none: the ECP5's steps were measured without them, and the calibrated shapes of
+    /// the models without the flag stay as they are.
+    pub(crate) fn route_registers(&self) -> bool {
+        self.fabric_registers && self.family().dsp_capacity().is_some() && !self.family().instantiated_blocks()
+    }
+
+    /// Where [`Builder::route_registers`], a step titled `title` that only registers: a
+    /// flip-flop where a long route starts, so that place-and-route can put one at each end.
+    pub(crate) fn route_register_step(&mut self, title: &str) {
+        if self.route_registers() {
+            self.step(title);
+            self.delay(REGISTER_ONLY_DELAY);
+        }
+    }
+
+    /// Whether a signal of this name is defined.
+    pub(crate) fn defined(&self, name: &str) -> bool {
+        self.signals.iter().any(|s| s.name == name)
+    }
+
     /// Starts the next step.
     pub(crate) fn step(&mut self, title: &str) {
         let index = self.steps.len() + 1;
@@ -531,6 +557,9 @@ impl Builder {
             // fabric to fitted's colour SB_MAC16 at 118.3 MHz)
             self.copies.push(format!("color_power_{ch}"));
         }
+        // with route registers, each copy twice: one flip-flop by the logic before, one by
+        // its block (a 6.8 ns route from the first to fitted's colour SB_MAC16: 120.6 MHz)
+        self.route_register_step(&format!("colour multipliers: {what}'s colour field again, by its block"));
     }
 
     /// The ECP5's colour rounding after [`Builder::colour_products`], in this step:

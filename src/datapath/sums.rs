@@ -332,6 +332,14 @@ impl Builder {
             self.step(&format!("{title}: {}select", if rest { "carries and " } else { "" }));
             // a carry left (into chunk `to`) is not made: that chunk picks by the carry into the
             // chunk below, from two picks made beside it ([`Builder::finish_picks`])
+            if rest && self.route_registers() {
+                // ...and with route registers, in a step after them, one LUT level each
+                for p in &ps {
+                    self.picks_below_last(p);
+                }
+                self.step(&format!("{title}: the last chunk's pick"));
+                return ps.into_iter().map(|p| self.finish_picks(p, true)).collect();
+            }
             return ps.into_iter().map(|p| self.finish_picks(p, rest)).collect();
         }
         ps.into_iter().map(|p| self.finish_picks(p, false)).collect()
@@ -358,33 +366,26 @@ impl Builder {
         let (_, w0) = p.chunks[0];
         let o = p.part0_offset;
         let n = p.chunks.len();
+        // made a step before ([`Builder::picks_below_last`]): every chunk's pick but the last's
+        let apart = split_last && self.defined(&format!("{}_chunk{}_if1", p.name, n - 1));
         let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1 + o, o)];
         for (i, &(lo, w)) in p.chunks.iter().enumerate().skip(1) {
-            let carry_into = |b: &mut Self, k: usize| match k {
-                1 => b.carry_out(&format!("{}_part0", p.name), w0 + o),
-                _ => b.r(&format!("{}_carry{k}", p.name)),
-            };
-            let (inc, plain) = self.pick_arms(&p, i);
             let chunk = format!("{}_chunk{i}", p.name);
+            if apart && i + 1 < n {
+                words.push(self.r(&chunk));
+                continue;
+            }
             let what = format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1);
             let pick = if split_last && i + 1 == n {
-                // the carry-outs of the chunk below (`cp` with its carry-in 1, `cn` with 0)
-                let (k, wk) = (i - 1, p.chunks[i - 1].1);
-                let cp = self.carry_out(&format!("{}_part{k}_plus1", p.name), wk + 1);
-                let lo_k = p.chunks[k].0;
-                let e = pick_expr(&cp, &inc, &plain);
-                let if1 = self.kept_arm(&format!("{chunk}_if1"), w, e, &format!("bits [{}:{lo}] if the carry into bit {lo_k} is 1", lo + w - 1));
-                let if0 = if p.no_carry_out[k] {
-                    plain
-                } else {
-                    let cn = self.carry_out(&format!("{}_part{k}", p.name), wk);
-                    let e = pick_expr(&cn, &inc, &plain);
-                    self.kept_arm(&format!("{chunk}_if0"), w, e, &format!("bits [{}:{lo}] if the carry into bit {lo_k} is 0", lo + w - 1))
+                let (if1, if0) = match apart {
+                    true => self.kept_arms_of(&p, i),
+                    false => self.last_chunk_arms(&p),
                 };
-                let carry = carry_into(self, k);
+                let carry = self.carry_into(&p, i - 1);
                 pick_expr(&carry, &if1, &if0)
             } else {
-                let carry = carry_into(self, i);
+                let (inc, plain) = self.pick_arms(&p, i);
+                let carry = self.carry_into(&p, i);
                 pick_expr(&carry, &inc, &plain)
             };
             // each chunk's pick on its own line; the sum is then a plain concatenation
@@ -398,37 +399,111 @@ impl Builder {
         self.wire(&p.name, p.width, Kind::Select, ex!("{{{}}}", Expr::join(&words, sep)), &comment)
     }
 
-    /// Chunk `i`'s two sums as the pick reads them: with carry-in 1 (the carry-out above the
-    /// top chunk's sum complemented back), and with carry-in 0, a constant bit where it only
-    /// copies a constant of the first operand.
-    fn pick_arms(&mut self, p: &PendingAdd, i: usize) -> (Arms, Arms) {
+    /// The carry into chunk `k` of `p` (chunk 1's is part0's carry-out), as this step reads it.
+    fn carry_into(&mut self, p: &PendingAdd, k: usize) -> Expr {
+        match k {
+            1 => self.carry_out(&format!("{}_part0", p.name), p.chunks[0].1 + p.part0_offset),
+            _ => self.r(&format!("{}_carry{k}", p.name)),
+        }
+    }
+
+    /// The last chunk's two picks by the carry-outs of the chunk below (`cp` with its carry-in
+    /// 1, `cn` with 0), kept wires of this step: its sum if the carry into the chunk below is 1,
+    /// and if it is 0 (the carry-in-0 sum itself where that chunk has no carry-out).
+    fn last_chunk_arms(&mut self, p: &PendingAdd) -> (Arms, Arms) {
+        let i = p.chunks.len() - 1;
+        let (lo, w) = p.chunks[i];
+        let chunk = format!("{}_chunk{i}", p.name);
+        let (inc, plain) = self.pick_arms(p, i);
+        let (k, wk) = (i - 1, p.chunks[i - 1].1);
+        let lo_k = p.chunks[k].0;
+        let cp = self.carry_out(&format!("{}_part{k}_plus1", p.name), wk + 1);
+        let e = pick_expr(&cp, &inc, &plain);
+        let if1 = self.kept_arm(&format!("{chunk}_if1"), w, e, &format!("bits [{}:{lo}] if the carry into bit {lo_k} is 1", lo + w - 1));
+        let if0 = if p.no_carry_out[k] {
+            plain
+        } else {
+            let cn = self.carry_out(&format!("{}_part{k}", p.name), wk);
+            let e = pick_expr(&cn, &inc, &plain);
+            self.kept_arm(&format!("{chunk}_if0"), w, e, &format!("bits [{}:{lo}] if the carry into bit {lo_k} is 0", lo + w - 1))
+        };
+        (if1, if0)
+    }
+
+    /// The last chunk's two picks made a step before ([`Builder::last_chunk_arms`]), as this
+    /// step reads them.
+    fn kept_arms_of(&mut self, p: &PendingAdd, i: usize) -> (Arms, Arms) {
         let w = p.chunks[i].1;
-        let (plain, inc) = (format!("{}_part{i}", p.name), format!("{}_part{i}_plus1", p.name));
-        let inverted = |j: u32| p.top_inverted && i + 1 == p.chunks.len() && j + 1 == w;
-        let inc_bits = (0..w).map(|j| Arm::Bit(if inverted(j) { ex!("~{}", self.bits(&inc, w, w)) } else { self.bits(&inc, j + 1, j + 1) })).collect();
-        // (the carry-in-0 arm read only where it is not a constant: a bit read is one the
-        // Verilog reads)
-        let plain_bits: Vec<Arm> = (0..w)
+        let chunk = format!("{}_chunk{i}", p.name);
+        let arms = |b: &mut Self, name: &str| Arms { bits: (0..w).map(|j| Arm::Bit(b.bits(name, j, j))).collect(), word: Some(b.r(name)) };
+        let if1 = arms(self, &format!("{chunk}_if1"));
+        let if0 = match p.no_carry_out[i - 1] {
+            true => self.plain_arm(p, i),
+            false => arms(self, &format!("{chunk}_if0")),
+        };
+        (if1, if0)
+    }
+
+    /// With route registers ([`Builder::route_registers`]), the select step of a sum
+    /// whose last chunk picks by the carry below: every chunk's pick but the last's, and the
+    /// last chunk's two picks ([`Builder::last_chunk_arms`]); [`Builder::finish_picks`] makes the
+    /// last pick and the sum in the step after.
+    fn picks_below_last(&mut self, p: &PendingAdd) {
+        self.delay(LUT_DELAY);
+        let n = p.chunks.len();
+        for i in 1..n - 1 {
+            let (lo, w) = p.chunks[i];
+            let (inc, plain) = self.pick_arms(p, i);
+            let carry = self.carry_into(p, i);
+            let what = format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1);
+            self.wire(&format!("{}_chunk{i}", p.name), w, Kind::Sum, pick_expr(&carry, &inc, &plain), &what);
+        }
+        self.last_chunk_arms(p);
+    }
+
+    /// Chunk `i`'s two sums as the pick reads them: with carry-in 1 ([`Builder::inc_arm`]) and
+    /// with carry-in 0 ([`Builder::plain_arm`]).
+    fn pick_arms(&mut self, p: &PendingAdd, i: usize) -> (Arms, Arms) {
+        (self.inc_arm(p, i), self.plain_arm(p, i))
+    }
+
+    /// Chunk `i`'s sum with carry-in 1 (the carry-out above the top chunk's sum complemented
+    /// back).
+    fn inc_arm(&mut self, p: &PendingAdd, i: usize) -> Arms {
+        let w = p.chunks[i].1;
+        let inc = format!("{}_part{i}_plus1", p.name);
+        let inverted = p.top_inverted && i + 1 == p.chunks.len();
+        let bits = (0..w).map(|j| Arm::Bit(if inverted && j + 1 == w { ex!("~{}", self.bits(&inc, w, w)) } else { self.bits(&inc, j + 1, j + 1) })).collect();
+        let word = match (inverted, w) {
+            (false, _) => self.bits(&inc, w, 1),
+            (true, 1) => ex!("~{}", self.bits(&inc, w, w)),
+            (true, _) => ex!("{{~{}, {}}}", self.bits(&inc, w, w), self.bits(&inc, w - 1, 1)),
+        };
+        Arms { bits, word: Some(word) }
+    }
+
+    /// Chunk `i`'s sum with carry-in 0, a constant bit where it only copies a constant of the
+    /// first operand. (Read only where it is not a constant: a bit read is one the Verilog
+    /// reads; and as a word only where no bit of it is a constant: a range read marks every bit
+    /// of it read, and a bit marked read that the Verilog does not read is one Verilator's lint
+    /// names.)
+    fn plain_arm(&mut self, p: &PendingAdd, i: usize) -> Arms {
+        let w = p.chunks[i].1;
+        let plain = format!("{}_part{i}", p.name);
+        let inverted = p.top_inverted && i + 1 == p.chunks.len();
+        let bits: Vec<Arm> = (0..w)
             .map(|j| match p.plain_consts[i][j as usize] {
                 Some(v) => Arm::Const(v),
-                None => Arm::Bit(if inverted(j) { ex!("~{}", self.bits(&plain, w - 1, w - 1)) } else { self.bits(&plain, j, j) }),
+                None => Arm::Bit(if inverted && j + 1 == w { ex!("~{}", self.bits(&plain, w - 1, w - 1)) } else { self.bits(&plain, j, j) }),
             })
             .collect();
-        // the words as ranges (the carry-in-0 sum's only where no bit of it is a constant: a
-        // range read marks every bit of it read, and a bit marked read that the Verilog does
-        // not read is one Verilator's lint names)
-        let plain_whole = plain_bits.iter().all(|b| matches!(b, Arm::Bit(_)));
-        let (inc_word, plain_word) = if inverted(w - 1) {
-            let na = ex!("~{}", self.bits(&inc, w, w));
-            let nb = plain_whole.then(|| ex!("~{}", self.bits(&plain, w - 1, w - 1)));
-            match w {
-                1 => (na, nb),
-                _ => (ex!("{{{}, {}}}", na, self.bits(&inc, w - 1, 1)), nb.map(|nb| ex!("{{{}, {}}}", nb, self.bits(&plain, w - 2, 0)))),
-            }
-        } else {
-            (self.bits(&inc, w, 1), plain_whole.then(|| self.bits(&plain, w - 1, 0)))
-        };
-        (Arms { bits: inc_bits, word: Some(inc_word) }, Arms { bits: plain_bits, word: plain_word })
+        let whole = bits.iter().all(|b| matches!(b, Arm::Bit(_)));
+        let word = whole.then(|| match (inverted, w) {
+            (false, _) => self.bits(&plain, w - 1, 0),
+            (true, 1) => ex!("~{}", self.bits(&plain, w - 1, w - 1)),
+            (true, _) => ex!("{{~{}, {}}}", self.bits(&plain, w - 1, w - 1), self.bits(&plain, w - 2, 0)),
+        });
+        Arms { bits, word }
     }
 
     /// A kept wire of `w` bits as an arm of a pick.

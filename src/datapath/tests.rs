@@ -203,6 +203,39 @@ fn the_last_chunk_picks_by_the_carry_below_from_two_kept_picks() {
     assert!(wire(&b, "s_carry3").is_some() && wire(&b, "s_chunk3_if1").is_none());
 }
 
+/// Issue 69, point 1: with `--fabric-registers` on the iCE40 (route registers), the last
+/// chunk's pick comes a step after its two kept picks, one LUT level each: the other chunks pick
+/// in the select step beside the two, and the last picks in the next by the carry into the
+/// chunk below, from the two registered. Fitted's two-level picks had held it at 116-123 MHz on
+/// the UP5K. Without the flag, or on the ECP5 (its blocks instantiated), the pick stays where it
+/// was (the calibrated shapes).
+#[test]
+fn with_route_registers_the_last_chunk_picks_a_step_after_its_two_picks() {
+    let wire = |b: &Builder, name: &str| b.steps.iter().find_map(|s| s.wires.iter().find(|w| w.name == name).map(|w| (s.index, w.clone())));
+    for (target, fabric, apart) in [(Target::Ice40, true, true), (Target::Ice40, false, false), (Target::Ecp5, true, false)] {
+        let mut b = Builder::new(&[("x", 18), ("y", 18)], &[1, 2, 3], target);
+        b.registers_in_fabric(fabric);
+        b.step("add");
+        b.chunk_limit = 6;
+        let p = b.add_start("s", &[Piece::sig("x", 0, 18)], &[Piece::sig("y", 0, 18)], false, 18, "");
+        b.resolve(p, "t");
+        let (k1, if1) = wire(&b, "s_chunk2_if1").unwrap();
+        let (k0, if0) = wire(&b, "s_chunk2_if0").unwrap();
+        let (k, last) = wire(&b, "s_chunk2").unwrap();
+        let (kb, below) = wire(&b, "s_chunk1").unwrap();
+        assert!(if1.keep && if0.keep && k1 == 2 && k0 == 2 && kb == 2, "the two picks and the chunk below in the select step");
+        assert_eq!(below.expr.text, "~s_part0_c1[6] ? s_part1_plus1_c1[6:1] : s_part1_c1[5:0]");
+        if apart {
+            assert_eq!(k, 3, "the last pick a step after");
+            assert_eq!(last.expr.text, "~s_part0_c2[6] ? s_chunk2_if1_c2 : s_chunk2_if0_c2");
+            assert_eq!(wire(&b, "s").unwrap().0, 3);
+        } else {
+            assert_eq!(k, 2);
+            assert_eq!(last.expr.text, "~s_part0_c1[6] ? s_chunk2_if1_s2 : s_chunk2_if0_s2");
+        }
+    }
+}
+
 /// Issue 69, point 2: on the ECP5 a table in LUTs gives each part its own register copy of
 /// the address bits it reads, in a step before the parts; each copy is a datapath copy (its
 /// flip-flop kept, so synthesis merges none) and its part reads it alone. ABC9 had mapped the

@@ -86,6 +86,16 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
         let operand = at.len() > 1 && dp.read_by_block(&name, at[0]);
         // a copy of a register: its flip-flop kept too ([`datapath::Datapath::copies`])
         let copy = dp.copies.contains(&name);
+        if copy && at.len() > 1 {
+            // a copy that waits: each of its registers a kept flip-flop of its own (a line
+            // would hold the three copies' words side by side, where yosys merges them, and its
+            // last flip-flop could become the block's input register, far from the first)
+            for k in at {
+                cuts[k - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy });
+                source = format!("{name}_c{k}");
+            }
+            continue;
+        }
         if product || operand {
             cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy });
             source = format!("{name}_c{}", at[0]);

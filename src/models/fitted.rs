@@ -426,6 +426,10 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         }
     }
 
+    // (with route registers, ~P once more in a flip-flop: from the pick that makes it, at the
+    // middle of the die, a 3.6-4.9 ns route into the add's chains held fitted at 112-117 MHz on
+    // the UP5K)
+    b.route_register_step("bracket: ~P registered again, by the add");
     // 2^(KA+F) - P = ~P + 2^(KA+F) + 1 mod 2^DB (P zero-extended): a carry-select add
     let title = "bracket = 1 - deviation (adder 9); its sign is the cut-off (comparator 12)";
     b.step(title);

@@ -98,10 +98,12 @@ fn every_model_passes_the_block_rams_cap_on_the_ecp5_on_both_yosys() {
 /// test: `scripts/bench_hw.sh` runs this with `--ignored`), issue 69: every model with a
 /// datapath of its own, fully pipelined and constrained to 125 MHz as a user asking for it
 /// would be, reaches a median Fmax of 125 MHz on the UP5K on both yosys users have (0.23 and
-/// YoWASP's 0.70, which `scripts/test.sh` installs); blinn in at most 1800 logic cells and
-/// schlick in at most 1200. Schlick and fitted at their deepest with `--fabric-registers`
-/// (a flip-flop of the fabric's on each route into and out of a DSP column: the SB_MAC16's
-/// 4-5 ns route to the denominator's leading zeros held schlick at 117 MHz without it).
+/// YoWASP's 0.70, which `scripts/test.sh` installs); blinn in at most 1800 logic cells,
+/// schlick in at most 1300 and fitted in at most 4200. Schlick and fitted at their deepest with
+/// `--fabric-registers` (a flip-flop of the fabric's on each route into and out of a DSP column:
+/// the SB_MAC16's 4-5 ns route to the denominator's leading zeros held schlick at 117 MHz
+/// without it; and one LUT level between two routes: fitted's two-level picks and its colour
+/// operand's 6.8 ns route to its block held it at 120.6 MHz).
 #[test]
 #[ignore = "multi-seed place-and-route: run by scripts/bench_hw.sh"]
 fn fully_pipelined_units_reach_their_clocks_on_the_up5k_on_both_yosys() {
@@ -111,7 +113,7 @@ fn fully_pipelined_units_reach_their_clocks_on_the_up5k_on_both_yosys() {
     use specgen::config::SpecularModel::{Blinn, Fitted, Quadratic, Schlick};
     // (model, logic cells at most, --fabric-registers)
     let mut failures = Vec::new();
-    for (model, cells_max, fabric) in [(Quadratic, None, false), (Blinn, Some(1800), false), (Schlick, Some(1200), true), (Fitted, None, true)] {
+    for (model, cells_max, fabric) in [(Quadratic, None, false), (Blinn, Some(1800), false), (Schlick, Some(1300), true), (Fitted, Some(4200), true)] {
         let cfg = specgen::config::Config::new(specgen::config::Params { model, fabric_registers: fabric, ..Default::default() }).unwrap();
         let deepest = specgen::plan::Plan::new(cfg).unwrap().cut_points.to_string();
         let mut args = vec!["--model", model.name(), "--stages", &deepest, "--clock-mhz", "125"];
@@ -131,7 +133,9 @@ fn fully_pipelined_units_reach_their_clocks_on_the_up5k_on_both_yosys() {
             }
             if let Some(max) = cells_max {
                 let cells = r["logic_cells"].as_u64().expect("logic cells counted");
-                assert!(cells <= max, "{model:?} on {y} at 125 MHz takes {cells} ICESTORM_LC (at most {max}): {r}");
+                if cells > max {
+                    failures.push(format!("{model:?} on {y} at 125 MHz takes {cells} ICESTORM_LC (at most {max})"));
+                }
             }
         }
     }

