@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Two units of different models in one iCE40 UP5K (issue 49): each generated with a
 # --dsp-budget so that their SB_MAC16s together fit the device's 8, both instantiated in each of
-# two tops (a serial-I/O wrapper as `synth` uses: every port of both units from or to a flip-flop;
+# two tops (a serial-I/O wrapper: every port of both units from or to a flip-flop of a shift chain;
 # and a top of one's own, plain registers in and out, tb/pair_plain_top.v), synthesized by
 # yosys (synth_ice40 -dsp; Debian's 0.23 and YoWASP's 0.70, CHAINS="debian yowasp") and placed
 # and routed by nextpnr-ice40 (each toolchain's) over seeds
@@ -48,18 +48,17 @@ for top, *_ in units:
     inst.append(f"    {top} u_{top} ({', '.join(conn)});")
 names = " and ".join(f"`{u[0]}`" for u in units)
 if kind == "serial":
+    # (the units read the input chain's flip-flops and the output chain loads their outputs:
+    # no holding registers between, 188 flip-flops fewer, which the device nearly full needs;
+    # a unit's inputs changing while the chain shifts changes no path)
     print(f"""// two specgen units in one device, serial I/O (scripts/bench_two_units.sh); not for a design
 module pair_top (input wire clk, input wire sin, input wire load, output wire sout);
-    reg  [{ins - 1}:0] in_chain;
     reg  [{ins - 1}:0] in_reg;
-    reg  [{outs - 1}:0] out_reg;
     reg  [{outs - 1}:0] out_chain;
     wire [{outs - 1}:0] unit_out;
     always @(posedge clk) begin
-        in_chain <= {{in_chain[{ins - 2}:0], sin}};
-        if (load) in_reg <= in_chain;
-        out_reg <= unit_out;
-        if (load) out_chain <= out_reg;
+        in_reg <= {{in_reg[{ins - 2}:0], sin}};
+        if (load) out_chain <= unit_out;
         else      out_chain <= {{out_chain[{outs - 2}:0], 1'b0}};
     end
     assign sout = out_chain[{outs - 1}];
@@ -163,7 +162,8 @@ print("# Two units in one iCE40 UP5K")
 print()
 print("`scripts/bench_two_units.sh` (SEEDS=%s): two units of different models, each generated with a" % seeds)
 print("`--dsp-budget`, in two tops: `pair_top`, serial I/O (every port of both units from or to a")
-print("flip-flop of a shift chain), and `pair_plain_top`, a top of one's own (both units fed and read by")
+print("flip-flop of a shift chain, the units reading the input chain and the output chain loading their")
+print("outputs, with no holding registers between), and `pair_plain_top`, a top of one's own (both units fed and read by")
 print("plain registers, no serial wrapper: [`tb/pair_plain_top.v`](../tb/pair_plain_top.v)).")
 print("`synth_ice40 -dsp` on the toolchains the table's yosys column names (`CHAINS`: Debian 12's yosys 0.23 with")
 print("nextpnr-ice40 0.4, YoWASP's 0.70 with its nextpnr-ice40), `nextpnr-ice40 --up5k --package sg48 --freq 100`")
