@@ -384,3 +384,15 @@ pub fn deepest(args: &[&str]) -> String {
     // "... allowed 0..=N (the cut points ..."
     err.split("allowed 0..=").nth(1).unwrap().split(' ').next().unwrap().to_string()
 }
+
+/// The unit's Verilog: `<top>.v` and the modules it derives beside it (its output buffer, its
+/// delay lines' memory).
+pub fn unit_files(dir: &std::path::Path, top: &str) -> Vec<String> {
+    let mut files = vec![format!("{top}.v")];
+    for derived in ["_out_buffer.v", "_delay_ram.v"] {
+        if dir.join(format!("{top}{derived}")).exists() {
+            files.push(format!("{top}{derived}"));
+        }
+    }
+    files
+}

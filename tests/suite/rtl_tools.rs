@@ -8,18 +8,6 @@ fn top_of<'a>(args: &[&'a str]) -> &'a str {
     args.iter().position(|a| *a == "--top").map(|i| args[i + 1]).unwrap_or("specular_unit")
 }
 
-/// The unit's Verilog: `<top>.v` and the modules it derives beside it (its output buffer, its
-/// delay lines' memory).
-fn unit_files(dir: &std::path::Path, top: &str) -> Vec<String> {
-    let mut files = vec![format!("{top}.v")];
-    for derived in ["_out_buffer.v", "_delay_ram.v"] {
-        if dir.join(format!("{top}{derived}")).exists() {
-            files.push(format!("{top}{derived}"));
-        }
-    }
-    files
-}
-
 /// Runs `tool args… <top>.v` in every generated configuration; it must succeed and print nothing.
 fn silent_on_every_config(tool: &str, package: &str, args: &[&str]) {
     require_tool(tool, package);

@@ -500,13 +500,15 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
 /// flip-flop on its routes (a step that only registers: more cut points), on the iCE40 after a
 /// multiply-add's sum that the fabric reads, on the ECP5 around the carry chains. At narrow
 /// widths and the deepest depth the unit equals the golden model on every input, its manifest
-/// and header say so, and a unit without the flag is as it was (fewer cut points).
+/// and header say so, and a unit without the flag is as it was (fewer cut points). On the
+/// iCE40 its route registers too (the colour operand's copies registered twice where blocks
+/// take the colour products; fitted's sums' last picks in steps of their own), none on the ECP5; and Verilator's lint is silent on each.
 #[test]
 fn fabric_registers_add_register_steps_and_keep_every_value() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
     let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
-    let units = [("schlick", "ice40"), ("blinn", "ice40"), ("schlick", "ecp5")];
+    let units = [("schlick", "ice40"), ("blinn", "ice40"), ("fitted", "ice40"), ("schlick", "ecp5")];
     for_each_parallel(&units, |_, (model, target)| {
         let base: Vec<&str> = narrow.iter().copied().chain(["--model", model, "--target", target]).collect();
         let with: Vec<&str> = base.iter().copied().chain(["--fabric-registers"]).collect();
@@ -517,6 +519,14 @@ fn fabric_registers_add_register_steps_and_keep_every_value() {
         let dir = generate(tmp.path(), &format!("{model}-{target}"), &args);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
         assert!(v.contains(" fabric_registers") && v.contains("registered in the fabric"), "{model} on {target}: the header and the steps");
+        // (schlick's colour products at these widths are LUTs: no copies)
+        assert_eq!(v.contains("colour field again, by its block"), *target == "ice40" && *model != "schlick", "{model} on {target}: the colour copies twice");
+        assert_eq!(v.contains(": the last chunk's pick ===="), *model == "fitted", "{model} on {target}: a sum's last pick apart");
+        if *target == "ice40" {
+            let lint =
+                crate::common::tool("verilator").current_dir(&dir).args(["--lint-only", "-Wall"]).args(unit_files(&dir, "specular_unit")).output().unwrap();
+            assert!(lint.status.success() && text(&lint).trim().is_empty(), "{model} on {target}: {}", text(&lint));
+        }
         let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
         assert_eq!(m["fabric_registers"], true, "{model} on {target}: {m}");
         let o = cosim(&dir, &["--exhaustive"]);
