@@ -54,7 +54,8 @@ for r in rows:
     if s:
         f += " (%.1f–%.1f)" % (min(s), max(s))
     packed = ("%s bytes" % r["packed"]) if r.get("packed") else ""
-    out.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (r["model"], r["stages"], r["versions"], net, r["lc"], r["ff"], r["dsp"], r["bram"], f, packed))
+    lc = r["lc"] if r["lc"] is not None else "– (does not fit)"
+    out.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (r["model"], r["stages"], r["versions"], net, lc, r["ff"], r["dsp"], r["bram"], f, packed))
 if any(r["model"] == "blinn-pow" for r in rows):
     out += ["", "blinn-pow does not fit the part (its unit at default widths wants some 73 18×18 multipliers of the GW1NR-9's 20:",
             "yosys 0.70 maps the products no cut surrounds to MULT36X36 and MULT9X9 without registers, which `synth` lists",
