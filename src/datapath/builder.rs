@@ -261,11 +261,6 @@ impl Builder {
         }
     }
 
-    /// Whether a signal of this name is defined.
-    pub(crate) fn defined(&self, name: &str) -> bool {
-        self.signals.iter().any(|s| s.name == name)
-    }
-
     /// Starts the next step.
     pub(crate) fn step(&mut self, title: &str) {
         let index = self.steps.len() + 1;

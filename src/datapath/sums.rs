@@ -338,27 +338,30 @@ impl Builder {
                     self.picks_below_last(p);
                 }
                 self.step(&format!("{title}: the last chunk's pick"));
-                return ps.into_iter().map(|p| self.finish_picks(p, true)).collect();
+                return ps.into_iter().map(|p| self.finish_picks(p, LastPick::Apart)).collect();
             }
-            return ps.into_iter().map(|p| self.finish_picks(p, rest)).collect();
+            let last = if rest { LastPick::Split } else { LastPick::ByItsCarry };
+            return ps.into_iter().map(|p| self.finish_picks(p, last)).collect();
         }
-        ps.into_iter().map(|p| self.finish_picks(p, false)).collect()
+        ps.into_iter().map(|p| self.finish_picks(p, LastPick::ByItsCarry)).collect()
     }
 
     /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT
     /// level). Returns the name of the sum.
     pub(crate) fn add_finish(&mut self, p: PendingAdd) -> Sig {
-        self.finish_picks(p, false)
+        self.finish_picks(p, LastPick::ByItsCarry)
     }
 
-    /// [`Builder::add_finish`]; `split_last`: the carry into the last chunk is not made ([`Builder::resolve_all`]); the
-    /// last chunk picks by the carry into the chunk below, from its two picks by that chunk's
-    /// carry-outs, kept wires made beside it: `c ? (cp ? inc : plain) : (cn ? inc : plain)`.
-    /// Two LUT levels, as a carry and a pick, but the carry register, which every bit of the
-    /// chunk below reads too and so sits apart from most of its readers, enters only the last.
-    /// Made as a carry then a pick, its 3.0-3.6 ns route and two LUTs held fitted at 121 MHz on
-    /// the UP5K (yosys 0.70: `square3_t_carry4`, `deviation_hi_carry4`).
-    fn finish_picks(&mut self, p: PendingAdd, split_last: bool) -> Sig {
+    /// [`Builder::add_finish`], the last chunk as `last` says. [`LastPick::Split`] (the carry
+    /// into the last chunk is not made, [`Builder::resolve_all`]): the last chunk picks by the
+    /// carry into the chunk below, from its two picks by that chunk's carry-outs, kept wires
+    /// made beside it: `c ? (cp ? inc : plain) : (cn ? inc : plain)`. Two LUT levels, as a carry
+    /// and a pick, but the carry register, which every bit of the chunk below reads too and so
+    /// sits apart from most of its readers, enters only the last. Made as a carry then a pick,
+    /// its 3.0-3.6 ns route and two LUTs held fitted at 121 MHz on the UP5K (yosys 0.70:
+    /// `square3_t_carry4`, `deviation_hi_carry4`). [`LastPick::Apart`]: the two picks and the
+    /// other chunks' were made a step before; here the last pick and the sum.
+    fn finish_picks(&mut self, p: PendingAdd, last: LastPick) -> Sig {
         if p.chunks.is_empty() {
             return self.sig(&p.name);
         }
@@ -366,30 +369,23 @@ impl Builder {
         let (_, w0) = p.chunks[0];
         let o = p.part0_offset;
         let n = p.chunks.len();
-        // made a step before ([`Builder::picks_below_last`]): every chunk's pick but the last's
-        let apart = split_last && self.defined(&format!("{}_chunk{}_if1", p.name, n - 1));
         let mut words = vec![self.bits(&format!("{}_part0", p.name), w0 - 1 + o, o)];
         for (i, &(lo, w)) in p.chunks.iter().enumerate().skip(1) {
             let chunk = format!("{}_chunk{i}", p.name);
-            if apart && i + 1 < n {
-                words.push(self.r(&chunk));
-                continue;
+            match (last, i + 1 == n) {
+                // made a step before ([`Builder::picks_below_last`])
+                (LastPick::Apart, false) => {}
+                (LastPick::ByItsCarry, _) | (_, false) => self.chunk_pick(&p, i),
+                (split, true) => {
+                    let (if1, if0) = match split {
+                        LastPick::Apart => self.kept_arms_of(&p, i),
+                        _ => self.last_chunk_arms(&p),
+                    };
+                    let carry = self.carry_into(&p, i - 1);
+                    let what = format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1);
+                    self.wire(&chunk, w, Kind::Sum, pick_expr(&carry, &if1, &if0), &what);
+                }
             }
-            let what = format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1);
-            let pick = if split_last && i + 1 == n {
-                let (if1, if0) = match apart {
-                    true => self.kept_arms_of(&p, i),
-                    false => self.last_chunk_arms(&p),
-                };
-                let carry = self.carry_into(&p, i - 1);
-                pick_expr(&carry, &if1, &if0)
-            } else {
-                let (inc, plain) = self.pick_arms(&p, i);
-                let carry = self.carry_into(&p, i);
-                pick_expr(&carry, &inc, &plain)
-            };
-            // each chunk's pick on its own line; the sum is then a plain concatenation
-            self.wire(&chunk, w, Kind::Sum, pick, &what);
             words.push(self.r(&chunk));
         }
         words.reverse();
@@ -452,13 +448,19 @@ impl Builder {
         self.delay(LUT_DELAY);
         let n = p.chunks.len();
         for i in 1..n - 1 {
-            let (lo, w) = p.chunks[i];
-            let (inc, plain) = self.pick_arms(p, i);
-            let carry = self.carry_into(p, i);
-            let what = format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1);
-            self.wire(&format!("{}_chunk{i}", p.name), w, Kind::Sum, pick_expr(&carry, &inc, &plain), &what);
+            self.chunk_pick(p, i);
         }
         self.last_chunk_arms(p);
+    }
+
+    /// Chunk `i`'s pick by the carry into it, `<name>_chunk<i>`, on its own line (the sum is
+    /// then a plain concatenation).
+    fn chunk_pick(&mut self, p: &PendingAdd, i: usize) {
+        let (lo, w) = p.chunks[i];
+        let (inc, plain) = self.pick_arms(p, i);
+        let carry = self.carry_into(p, i);
+        let what = format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1);
+        self.wire(&format!("{}_chunk{i}", p.name), w, Kind::Sum, pick_expr(&carry, &inc, &plain), &what);
     }
 
     /// Chunk `i`'s two sums as the pick reads them: with carry-in 1 ([`Builder::inc_arm`]) and
@@ -511,6 +513,19 @@ impl Builder {
         self.wire_kept(name, w, Kind::Sum, e, comment);
         Arms { bits: (0..w).map(|j| Arm::Bit(self.bits(name, j, j))).collect(), word: Some(self.r(name)) }
     }
+}
+
+/// How a carry-select sum's last chunk picks ([`Builder::finish_picks`]).
+#[derive(Clone, Copy)]
+enum LastPick {
+    /// by the carry into it, as every chunk
+    ByItsCarry,
+    /// by the carry into the chunk below, from its two picks by that chunk's carry-outs, made
+    /// beside it ([`Builder::last_chunk_arms`])
+    Split,
+    /// [`LastPick::Split`] a step after the two picks and every other chunk's
+    /// ([`Builder::picks_below_last`]; [`Builder::route_registers`])
+    Apart,
 }
 
 /// One bit of a pick's arm: a constant, or an expression.
