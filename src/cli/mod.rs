@@ -249,7 +249,8 @@ pub struct RtlArgs {
     /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points,
     /// which depend on the model, the widths and the target; at default widths ice40 / ecp5 /
     /// gowin / generic: lean 13/11/11/10, fitted 65/48/48/16, blinn 41/37/37/24, blinn-pow 13,
-    /// schlick 21/24/24/19, paper 6; a value above them is refused with the range; default 0]
+    /// schlick 21/24/24/19, paper 6; with --fabric-registers on ice40: lean 14, fitted 77, blinn
+    /// 51, schlick 28; a value above them is refused with the range; default 0]
     #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
     pub stages: Option<u32>,
     /// The most hard multiplier blocks the unit may take (ice40: SB_MAC16, ecp5: MULT18X18D,

@@ -361,3 +361,23 @@ fn help_lines_and_the_guide_quote_what_the_code_does() {
     assert!(prove.contains("of the design synthesis builds") && prove.contains("the unit's own assumes are removed"), "{prove}");
     assert!(!prove.contains("own assertions set aside"), "the first search keeps the unit's assertions: {prove}");
 }
+
+/// The deepest `--stages` that `generate --help` lists at default widths, per model and target
+/// (and with `--fabric-registers` on the iCE40), are the datapaths' cut points: a change of a
+/// datapath that moves them fails here until the help says it.
+#[test]
+fn the_help_lists_each_models_deepest_stages() {
+    let o = specgen().args(["generate", "--help"]).output().unwrap();
+    let help = text(&o).split_whitespace().collect::<Vec<_>>().join(" ");
+    let listed = |after: &str, name: &str| -> String {
+        let rest = help.split(after).nth(1).unwrap_or_else(|| panic!("no {after:?} in the help: {help}"));
+        rest.split(&format!(" {name} ")).nth(1).unwrap_or_else(|| panic!("no {name} after {after:?}")).split([',', ';', ' ']).next().unwrap().to_string()
+    };
+    let models = [("quadratic", "lean"), ("fitted", "fitted"), ("blinn", "blinn"), ("schlick", "schlick")];
+    for (model, name) in models {
+        let want: Vec<String> = ["ice40", "ecp5", "gowin", "generic"].iter().map(|t| deepest(&["--model", model, "--target", t])).collect();
+        assert_eq!(listed("at default widths ice40 / ecp5 / gowin / generic:", name), want.join("/"), "{model}");
+        let fabric = deepest(&["--model", model, "--target", "ice40", "--fabric-registers"]);
+        assert_eq!(listed("with --fabric-registers on ice40:", name), fabric, "{model} with --fabric-registers");
+    }
+}
