@@ -218,8 +218,7 @@ impl Builder {
     /// there whatever the cuts, so the datapath's shape does not depend on them.
     pub(crate) fn ecp5_register_step(&mut self, title: &str) {
         if self.family().instantiated_blocks() {
-            self.step(title);
-            self.delay(REGISTER_ONLY_DELAY);
+            self.register_only_step(title);
         }
     }
 
@@ -235,8 +234,7 @@ impl Builder {
         // (one such step is enough: none right after another with nothing in it)
         let just_registered = self.steps.last().is_some_and(|s| s.wires.is_empty() && s.dsps.is_empty() && s.delay == REGISTER_ONLY_DELAY);
         if self.fabric_registers && self.family().dsp_capacity().is_some() && !just_registered {
-            self.step(title);
-            self.delay(REGISTER_ONLY_DELAY);
+            self.register_only_step(title);
         }
     }
 
@@ -256,9 +254,15 @@ impl Builder {
     /// flip-flop where a long route starts, so that place-and-route can put one at each end.
     pub(crate) fn route_register_step(&mut self, title: &str) {
         if self.route_registers() {
-            self.step(title);
-            self.delay(REGISTER_ONLY_DELAY);
+            self.register_only_step(title);
         }
+    }
+
+    /// A step titled `title` that only registers (whatever the plan: the shape of the datapath
+    /// does not depend on the cuts).
+    pub(crate) fn register_only_step(&mut self, title: &str) {
+        self.step(title);
+        self.delay(REGISTER_ONLY_DELAY);
     }
 
     /// Starts the next step.

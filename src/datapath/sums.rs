@@ -281,8 +281,7 @@ impl Builder {
         }
         if self.family().registers_carry_save_vectors() {
             // a step that only registers the two vectors (`Family::registers_carry_save_vectors`)
-            self.step(&format!("{title}: the two vectors registered"));
-            self.delay(REGISTER_ONLY_DELAY);
+            self.register_only_step(&format!("{title}: the two vectors registered"));
         }
         self.step(&format!("{title}: chunk sums"));
         all.into_iter()
@@ -431,11 +430,10 @@ impl Builder {
     fn kept_arms_of(&mut self, p: &PendingAdd, i: usize) -> (Arms, Arms) {
         let w = p.chunks[i].1;
         let chunk = format!("{}_chunk{i}", p.name);
-        let arms = |b: &mut Self, name: &str| Arms { bits: (0..w).map(|j| Arm::Bit(b.bits(name, j, j))).collect(), word: Some(b.r(name)) };
-        let if1 = arms(self, &format!("{chunk}_if1"));
+        let if1 = self.arm_of(&format!("{chunk}_if1"), w);
         let if0 = match p.no_carry_out[i - 1] {
             true => self.plain_arm(p, i),
-            false => arms(self, &format!("{chunk}_if0")),
+            false => self.arm_of(&format!("{chunk}_if0"), w),
         };
         (if1, if0)
     }
@@ -511,6 +509,11 @@ impl Builder {
     /// A kept wire of `w` bits as an arm of a pick.
     fn kept_arm(&mut self, name: &str, w: u32, e: Expr, comment: &str) -> Arms {
         self.wire_kept(name, w, Kind::Sum, e, comment);
+        self.arm_of(name, w)
+    }
+
+    /// The `w` bits of the signal `name` as an arm of a pick, as this step reads them.
+    fn arm_of(&mut self, name: &str, w: u32) -> Arms {
         Arms { bits: (0..w).map(|j| Arm::Bit(self.bits(name, j, j))).collect(), word: Some(self.r(name)) }
     }
 }

@@ -86,10 +86,10 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
         let operand = at.len() > 1 && dp.read_by_block(&name, at[0]);
         // a copy of a register: its flip-flop kept too ([`datapath::Datapath::copies`])
         let copy = dp.copies.contains(&name);
-        if copy && at.len() > 1 {
-            // a copy that waits: each of its registers a kept flip-flop of its own (a line
-            // would hold the three copies' words side by side, where yosys merges them, and its
-            // last flip-flop could become the block's input register, far from the first)
+        if copy {
+            // each of its registers a kept flip-flop of its own (a line would hold the three
+            // copies' words side by side, where yosys merges them, and its last flip-flop could
+            // become the block's input register, far from the first)
             for k in at {
                 cuts[k - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy });
                 source = format!("{name}_c{k}");
@@ -97,13 +97,13 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
             continue;
         }
         if product || operand {
-            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy });
+            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy: false });
             source = format!("{name}_c{}", at[0]);
             at.remove(0);
         }
         if at.len() == 1 && !product && !operand {
-            let keep = dp.read_by_block(&name, at[0]) || copy;
-            cuts[at[0] - 1].signals.push(CutSignal { name, width, source, keep, copy });
+            let keep = dp.read_by_block(&name, at[0]);
+            cuts[at[0] - 1].signals.push(CutSignal { name, width, source, keep, copy: false });
             continue;
         }
         let read: Vec<u128> = at.iter().map(|k| dp.read.get(&format!("{name}_c{k}")).copied().unwrap_or(0)).collect();

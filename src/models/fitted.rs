@@ -50,7 +50,7 @@
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::Config;
-use crate::datapath::{ex, Builder, Expr, Kind, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT, REGISTER_ONLY_DELAY};
+use crate::datapath::{ex, Builder, Expr, Kind, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -549,8 +549,7 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
             // a step that only registers T: the DSP's input registers take their operands
             // from a flip-flop (a route to the DSP column), not from the LUTs that picked
             // T's chunks
-            b.step(&format!("{t}: registered for the DSP"));
-            b.delay(REGISTER_ONLY_DELAY);
+            b.register_only_step(&format!("{t}: registered for the DSP"));
             b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
             let (h, th) = ([Piece::sig(&prev, r, dsp)], [Piece::sig(tn.as_ref(), r, tw - r)]);
             let what = format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1);
