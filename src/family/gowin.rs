@@ -9,11 +9,13 @@
 //! written, their simulation models (written from Gowin's user guides: yosys ships both only as
 //! black boxes, 0.23 not at all), the device and its pins, and what nextpnr does not time.
 //!
-//! Timing: nextpnr-himbaechel times the fabric and the block RAM (Apicula's timing database of
-//! the part has the BSRAM's clock-to-output with and without its output register), but has no
+//! Timing: nextpnr-himbaechel (0.11) times the fabric, but neither block the unit uses. It has no
 //! timing class for the DSP: a path through a MULT18X18 is cut at its pins, and the multiply
-//! between its input and output registers is not timed. No datasheet figure for it is built in,
-//! so `synth` says so beside the figure rather than cap it.
+//! between its input and output registers is not timed. Its BSRAM timing (from Apicula's
+//! database of the part) covers the SP, SDP and DP forms only: a pROMX9 is packed as a ROM cell,
+//! which has none, so its ports are ignored by the timer (the address into the block and the word
+//! out of it). No Gowin datasheet figure for either is built in, so `synth` says so beside the
+//! figure rather than cap it.
 
 use super::{BlockLimit, Blocks, CellKind, Family, Packer, PlaceAndRoute};
 use crate::config::Target;
@@ -94,13 +96,24 @@ impl Family for Gowin {
     fn constraint_files(&self, top: &str) -> Vec<(String, String)> {
         vec![(format!("{top}.cst"), cst(top))]
     }
-    /// the block RAM is timed by nextpnr (Apicula's database); no figure of Gowin's is built in
+    /// no figure of Gowin's is built in for either block (see [`untimed_blocks`](Family::untimed_blocks))
     fn block_limits(&self, _grade: u32, _dsp: bool, _bram: bool) -> Vec<BlockLimit> {
         Vec::new()
     }
-    fn untimed_blocks(&self, dsp: bool, _bram: bool) -> Option<String> {
-        dsp.then(|| {
-            "the MULT18X18's multiply between its own registers is not timed: nextpnr-himbaechel has no DSP timing for the GW1N (Apicula's timing database has none) and no datasheet figure is built in, so the figure leaves that path out".to_string()
+    fn untimed_blocks(&self, dsp: bool, bram: bool) -> Option<String> {
+        let mut untimed = Vec::new();
+        if dsp {
+            untimed.push("the MULT18X18's multiply between its own registers is not timed (nextpnr-himbaechel has no DSP timing for the GW1N: Apicula's timing database has none)");
+        }
+        if bram {
+            untimed.push("the pROMX9's paths, its address in and its word out, are not timed (nextpnr-himbaechel 0.11 packs it as a ROM cell, for which its BSRAM timing, of the SP, SDP and DP forms, has none)");
+        }
+        (!untimed.is_empty()).then(|| {
+            format!(
+                "{}; no Gowin datasheet figure is built in, so the figure leaves {} out",
+                untimed.join("; "),
+                if untimed.len() > 1 { "those paths" } else { "that path" }
+            )
         })
     }
     fn packer(&self) -> Option<Packer> {
@@ -246,6 +259,21 @@ struct Cst<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What nextpnr-himbaechel leaves untimed is named for each block the unit uses, and only
+    /// for those: the MULT18X18's multiply, the pROMX9's ports (packed as a ROM cell, which its
+    /// BSRAM timing lacks); nothing for a unit of fabric alone.
+    #[test]
+    fn the_note_names_each_untimed_block_the_unit_uses() {
+        let g = Gowin;
+        assert_eq!(g.untimed_blocks(false, false), None);
+        let dsp = g.untimed_blocks(true, false).unwrap();
+        assert!(dsp.contains("MULT18X18") && !dsp.contains("pROMX9") && dsp.ends_with("leaves that path out"), "{dsp}");
+        let bram = g.untimed_blocks(false, true).unwrap();
+        assert!(bram.contains("pROMX9") && bram.contains("ROM cell") && !bram.contains("MULT18X18"), "{bram}");
+        let both = g.untimed_blocks(true, true).unwrap();
+        assert!(both.contains("MULT18X18") && both.contains("pROMX9") && both.ends_with("leaves those paths out"), "{both}");
+    }
 
     /// Word k sits in INIT_RAM_(k/16) at bit (k%16)*18: the last word of a row at the top.
     #[test]
