@@ -58,9 +58,20 @@ fn default_exact_whole_input_space() {
     sweep(&Config::new(Params { rounding: Rounding::Exact, ..Params::default() }).unwrap());
 }
 
+/// Every model of the registry at narrow widths (F = FI = 8, N = 6, B = 4; a model added to
+/// `SpecularModel::ALL` is swept here with no line changing); at default widths in
+/// `every_model_default_whole_input_space`, outside the suite's budget.
+#[test]
+fn every_model_narrow_whole_input_space() {
+    for model in SpecularModel::ALL {
+        sweep(&Config::new(Params { model, cos_frac_bits: 8, intensity_frac_bits: 8, n_bits: 6, color_bits: 4, ..Params::default() }).unwrap());
+    }
+}
+
 /// Every other model of the registry at its defaults (a model added to `SpecularModel::ALL` is
 /// swept here with no line changing).
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn every_model_default_whole_input_space() {
     for model in SpecularModel::ALL.into_iter().filter(|&m| m != Params::default().model) {
         sweep(&Config::new(Params { model, ..Params::default() }).unwrap());

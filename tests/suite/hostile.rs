@@ -456,6 +456,7 @@ fn hw_results_and_manifests_are_read_only_when_they_are_what_they_claim() {
 /// `synth` asked for Fmax without the place-and-route tool fails (exit 1) and says how to get
 /// area figures alone; it never exits 0 with no Fmax.
 #[test]
+#[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn synth_without_nextpnr_fails_when_fmax_is_asked_for() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
