@@ -28,8 +28,9 @@ const SHAPING: [&str; 6] = ["--model", "--interface", "--rounding", "--rom-style
 fn shallow_configs() -> (Vec<Vec<&'static str>>, Vec<Vec<&'static str>>) {
     let mut seen = std::collections::BTreeSet::new();
     let (mut first, mut rest) = (vec![], vec![]);
-    for (_, c) in configs().into_iter().enumerate().filter(|(i, _)| !DEEP.contains(i)) {
+    for c in configs().into_iter().enumerate().filter(|(i, _)| !DEEP.contains(i)).map(|(_, c)| c) {
         let value = |o: &str| c.iter().position(|a| *a == o).map_or("default", |p| c[p + 1]);
+        // (every option's value recorded, not only the first new one: no `any`)
         let new = SHAPING.iter().filter(|o| seen.insert((**o, value(o)))).count() > 0;
         if new {
             first.push(c);
