@@ -105,7 +105,15 @@ pub(super) fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String,
         log = String::from_utf8_lossy(&out.stdout).into_owned();
     }
     if !out.status.success() {
-        return Err(error::tool("yosys", format!("yosys failed:\n{}{}", &log[log.len().saturating_sub(2000)..], String::from_utf8_lossy(&out.stderr))));
+        // how it ended first (a signal, not an exit code, is a kill: the kernel's out-of-memory
+        // killer stopped yosys 0.23 in synth_gowin's AUTONAME on a 24 GB netlist with no word of
+        // its own), then the log's last 2000 bytes, cut at a character's boundary
+        let from = (log.len().saturating_sub(2000)..=log.len()).find(|&i| log.is_char_boundary(i)).unwrap_or(log.len());
+        let how = match std::os::unix::process::ExitStatusExt::signal(&out.status) {
+            Some(9) => format!("{}; killed, as the out-of-memory killer does when memory runs out", out.status),
+            _ => out.status.to_string(),
+        };
+        return Err(error::tool("yosys", format!("yosys failed ({how}):\n{}{}", &log[from..], String::from_utf8_lossy(&out.stderr))));
     }
     Ok(log)
 }
@@ -207,5 +215,25 @@ pub(super) fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
     match config.as_ref().map(|c| crate::process::command(c).arg("--datdir").output()) {
         Some(Ok(o)) if o.status.success() => Ok(std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim())),
         _ => Err(error::tool(yosys, format!("cannot find the cell models of {yosys} (share/yosys beside the binary, or the yosys-config beside it)"))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::run_yosys;
+    use std::os::unix::fs::PermissionsExt;
+
+    /// A yosys killed by a signal (as the out-of-memory killer does, with no word of its own) is
+    /// said to be killed, and its log's tail is cut at a character's boundary (this log's last
+    /// 2000 bytes begin inside a two-byte character: a plain slice panicked).
+    #[test]
+    fn a_killed_yosys_is_said_killed_and_its_log_cut_whole() {
+        let dir = tempfile::tempdir().unwrap();
+        let fake = dir.path().join("yosys");
+        std::fs::write(&fake, "#!/bin/sh\nprintf 'x'\ni=0; while [ $i -lt 1500 ]; do printf '\\303\\251'; i=$((i+1)); done\nprintf 'x'\nkill -9 $$\n").unwrap();
+        std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+        let e = run_yosys(fake.to_str().unwrap(), dir.path(), "synth").unwrap_err().to_string();
+        assert!(e.contains("signal: 9") && e.contains("killed, as the out-of-memory killer does"), "{e}");
+        assert!(e.contains("éé"), "{e}");
     }
 }
