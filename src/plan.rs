@@ -405,6 +405,51 @@ mod tests {
         best.map(|(_, p)| p.into_iter().map(|x| x as u32).collect()).unwrap_or_default()
     }
 
+    /// No product the synthesis tool maps takes a constant operand wider than the family's
+    /// blocks take (`Family::constant_operand_bits`: on the iCE40, yosys 0.23 mis-maps 16-bit
+    /// constants of 0xC000 and more), over k_q's of every top-bit pattern, both KF's that split
+    /// it, both datapaths that multiply by it, every target and depth. It fails where a constant
+    /// operand reaches the product whole (the lean unit at `--k 0.95` wrote `n * 16'hf333`).
+    #[test]
+    fn no_mapped_product_takes_a_constant_wider_than_the_family_takes() {
+        use crate::config::{Arch, Target};
+        let narrow = Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Params::default() };
+        let (mut checked, mut split) = (0, 0);
+        for target in Target::ALL {
+            let bits = crate::family::of(target).constant_operand_bits();
+            for arch in [Arch::Lean, Arch::Paper] {
+                for k in ["0.3686", "0.6", "0.8", "0.95", "0.99"] {
+                    for (kf, base) in [(16, Params::default()), (20, narrow.clone())] {
+                        let params = Params { target, arch, k: k.into(), k_frac_bits: kf, stages: 0, ..base };
+                        let top = Plan::from_params(params.clone()).unwrap().cut_points;
+                        for stages in [0, top] {
+                            let plan = Plan::from_params(Params { stages, ..params.clone() }).unwrap();
+                            for w in plan.datapath.steps.iter().flat_map(|s| &s.wires).filter(|w| w.product().is_some()) {
+                                // the operands of `a * b`: a literal one is `W'hX`
+                                let text = w.expr.text.split(" + ").next().unwrap();
+                                for operand in text.split(" * ") {
+                                    let operand = operand.trim();
+                                    if let Some((_, hex)) = operand.split_once("'h").filter(|_| !operand.starts_with('{')) {
+                                        let value = u128::from_str_radix(hex, 16).unwrap();
+                                        let width = 128 - value.leading_zeros();
+                                        assert!(width <= bits, "{target:?} {arch:?} k={k} KF={kf} {stages}: {} = {}", w.name, w.expr.text);
+                                        // the hazard itself, apart from the family's figure: no
+                                        // 16-bit slice of an SB_MAC16's constant at 0xC000 or more
+                                        let hazard = (0..8).any(|i| (value >> (16 * i)) & 0xffff >= 0xc000);
+                                        assert!(!(target == Target::Ice40 && hazard), "{arch:?} k={k} KF={kf} {stages}: {} = {}", w.name, w.expr.text);
+                                        split += (value != plan.cfg.k_code as u128) as usize;
+                                        checked += 1;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 50 && split > 0, "{checked} constant operands, {split} of them a split k_q");
+    }
+
     #[test]
     fn balancing_equals_the_search_over_every_placement() {
         let mut r = 7u64;

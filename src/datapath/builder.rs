@@ -74,6 +74,12 @@ impl Builder {
         self.family().multiplier_bits()
     }
 
+    /// The widest constant operand a hard multiplier takes on the target
+    /// ([`crate::family::Family::constant_operand_bits`]).
+    pub(crate) fn constant_bits(&self) -> u32 {
+        self.family().constant_operand_bits()
+    }
+
     /// The longest carry chain one step holds on the target (generic: no limit).
     pub(crate) fn chunk_bits(&self) -> u32 {
         self.family().carry_chunk_bits()

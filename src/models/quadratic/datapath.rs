@@ -183,27 +183,30 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.add_finish(d);
     let (ca, cb2, cw, comment) = cutoff_add(cfg);
     let cmp = b.add_start("cutoff_sum", &ca, &cb2, false, cw, &comment);
-    // a k_q wider than the DSP's operands: k_q = k_hi*2^16 + k_lo, and n*k_hi (a few bits of
-    // k_hi) in shift-adds here, the DSP's addend in the next step: one DSP for k_q*n, not two
+    // a k_q wider than the DSP's constant operand: k_q = k_hi*2^s + k_lo (s = 16, or 15 where
+    // the synthesis tool mis-maps some 16-bit constants: `Family::constant_operand_bits`), and
+    // n*k_hi (a few bits of k_hi) in shift-adds here, the DSP's addend in the next step: one
+    // DSP for k_q*n, not two
     let dsp = b.dsp_bits();
+    let ks = b.constant_bits().min(dsp);
     let k_bits = bit_length(cfg.k_code as u128);
-    let k_split = k_bits > dsp;
+    let k_split = k_bits > ks;
     if k_split {
-        let k_hi = cfg.k_code as u128 >> dsp;
-        let nkw = (w.kn_bits - dsp).max(1);
+        let k_hi = cfg.k_code as u128 >> ks;
+        let nkw = (w.kn_bits - ks).max(1);
         let e = shift_adds(b, "n", cfg.n_bits(), k_hi, nkw);
-        b.wire("n_k_hi", nkw, Kind::Sum, e, &format!("n * k_code[{}:{dsp}] = n * {k_hi} mod 2^{nkw}, by shift-adds", k_bits - 1));
+        b.wire("n_k_hi", nkw, Kind::Sum, e, &format!("n * k_code[{}:{ks}] = n * {k_hi} mod 2^{nkw}, by shift-adds", k_bits - 1));
         b.delay(add_delay(nkw) + LUT_DELAY * (k_hi.count_ones().max(2) - 1).ilog2() as f64);
     }
 
     b.step("comparator: carries; k_q*n (constant multiply)");
     b.add_carries(&cmp);
     let nn = [Piece::sig("n", 0, cfg.n_bits())];
-    let kq = (cfg.n_bits(), k_bits.min(dsp));
+    let kq = (cfg.n_bits(), k_bits.min(ks));
     if k_split {
         let (k_lo, hi) =
-            ([Piece::Const { value: cfg.k_code as u128 & mask(dsp), width: w.kn_bits }], [Piece::zeros(dsp), Piece::sig("n_k_hi", 0, w.kn_bits - dsp)]);
-        let what = format!("UQ{}.{}: k_q*n = n*k_lo + n*k_hi*2^{dsp}, exact (one DSP, the add inside it)", w.kn_bits - cfg.kf(), cfg.kf());
+            ([Piece::Const { value: cfg.k_code as u128 & mask(ks), width: w.kn_bits }], [Piece::zeros(ks), Piece::sig("n_k_hi", 0, w.kn_bits - ks)]);
+        let what = format!("UQ{}.{}: k_q*n = n*k_lo + n*k_hi*2^{ks}, exact (one DSP, the add inside it)", w.kn_bits - cfg.kf(), cfg.kf());
         b.mul("kn", w.kn_bits, (&nn, kq.0), (&k_lo, kq.1), &hi, 0.0, &what);
     } else {
         let k = [Piece::Const { value: cfg.k_code as u128, width: w.kn_bits }];
@@ -556,11 +559,27 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let constant_product = b.mul_delay(nd_bits, bit_length(cfg.k_code as u128));
     let (nn, d) = ([Piece::sig("n", 0, nb)], [Piece::sig("one_minus_cos", 0, cb)]);
     b.mul("n_dev", nd_bits, (&nn, nb), (&d, cb), &[], constant_product, &format!("UQ{nb}.{f}: n*(1 - cos), exact (multiplier 7)"));
-    let (nd, k) = ([Piece::sig("n_dev", 0, nd_bits)], [Piece::Const { value: cfg.k_code as u128, width: w.deviation_bits }]);
+    let nd = [Piece::sig("n_dev", 0, nd_bits)];
     let what = format!("UQ.{}: k_q*n*(1 - cos), exact (general multiplier 34)", cfg.kf() + f);
     // in the same step as n_dev: its delay comes before this product's
     let after = b.mul_delay(nb, cb);
-    b.mul("deviation_full", w.deviation_bits, (&nd, nd_bits), (&k, bit_length(cfg.k_code as u128)), &[], after, &what);
+    // a k_q wider than the target's constant operand (`Family::constant_operand_bits`: 15 on
+    // the iCE40, where yosys 0.23 mis-maps some 16-bit constants): k_q = k_hi*2^s + k_lo, the
+    // product takes k_lo and n_dev*k_hi (a few bits of k_hi, by shift-adds) as its addend
+    let (ks, k_bits) = (b.constant_bits(), bit_length(cfg.k_code as u128));
+    if k_bits > ks {
+        let (k_hi, hw) = (cfg.k_code as u128 >> ks, w.deviation_bits - ks);
+        let e = shift_adds(b, "n_dev", nd_bits, k_hi, hw);
+        b.wire("n_dev_k_hi", hw, Kind::Sum, e, &format!("n_dev * k_code[{}:{ks}] = n_dev * {k_hi} mod 2^{hw}, by shift-adds", k_bits - 1));
+        let k_lo = [Piece::Const { value: cfg.k_code as u128 & mask(ks), width: w.deviation_bits }];
+        let hi = [Piece::zeros(ks), Piece::sig("n_dev_k_hi", 0, hw)];
+        let what = format!("{what}: n_dev*k_lo + n_dev*k_hi*2^{ks}");
+        let after = after + add_delay(hw) + LUT_DELAY * (k_hi.count_ones().max(2) - 1).ilog2() as f64;
+        b.mul("deviation_full", w.deviation_bits, (&nd, nd_bits), (&k_lo, ks), &hi, after, &what);
+    } else {
+        let k = [Piece::Const { value: cfg.k_code as u128, width: w.deviation_bits }];
+        b.mul("deviation_full", w.deviation_bits, (&nd, nd_bits), (&k, k_bits), &[], after, &what);
+    }
     let dev = b.pieces(&sub_pieces(&[Piece::sig("deviation_full", 0, w.deviation_bits)], w.deviation_shift, wb + 1));
     b.wire("deviation", wb + 1, Kind::Select, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
 
