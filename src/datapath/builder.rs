@@ -74,10 +74,16 @@ impl Builder {
         self.family().multiplier_bits()
     }
 
-    /// The widest constant operand a hard multiplier takes on the target
-    /// ([`crate::family::Family::constant_operand_bits`]).
-    pub(crate) fn constant_bits(&self) -> u32 {
-        self.family().constant_operand_bits()
+    /// Where a constant operand `k` of a hard product is split, `k = k_hi·2^s + k_lo`: the
+    /// block's width, or below it while the family does not take the low part whole
+    /// ([`crate::family::Family::takes_constant`]); `k` narrower than `s` is not split.
+    pub(crate) fn constant_split(&self, k: u128) -> u32 {
+        let low = |s: u32| if s >= 128 { k } else { k & ((1u128 << s) - 1) };
+        let mut s = self.dsp_bits();
+        while s > 1 && !self.family().takes_constant(low(s)) {
+            s -= 1;
+        }
+        s
     }
 
     /// The longest carry chain one step holds on the target (generic: no limit).

@@ -82,14 +82,16 @@ impl Family for Ice40 {
     fn multiplier_bits(&self) -> u32 {
         MULTIPLIER_BITS
     }
-    /// 15: yosys 0.23's `synth_ice40 -dsp` maps a multiply by a 16-bit constant of 0xC000 or
-    /// more (its two top bits set, some low bit set) to an SB_MAC16 whose constant has lost its
-    /// top bits (x·0xE5C9 read as x·0x25C9, x·0xF333 as x·0x1333; 0xB333, 0x9999 and 0x7FFF map
-    /// right; yosys 0.70 maps them all right). A constant kept below bit 15 is never one of
-    /// them. Found on the lean unit at `--k` 0.8, 0.95 and 0.99 and at KF = 20 (k_lo = 0xE5C9),
-    /// each netlist then refused by `synth`'s check.
-    fn constant_operand_bits(&self) -> u32 {
-        MULTIPLIER_BITS - 1
+    /// Below 0xC000: yosys 0.23's `synth_ice40 -dsp` maps a multiply by a 16-bit constant of
+    /// 0xC000 or more (its two top bits set) to an SB_MAC16 whose constant has lost its top bits
+    /// (x·0xE5C9 read as x·0x25C9, x·0xF333 as x·0x1333, x·0xD555 as x·0x5555; 0xB333, 0x9999,
+    /// 0x7FFF map right; yosys 0.70 maps them all right). Found on the lean unit at `--k` 0.8,
+    /// 0.95 and 0.99 and at KF = 20 (k_lo = 0xE5C9), each netlist then refused by `synth`'s
+    /// check. Such a constant is split at 15 bits instead (every constant below 0x8000 maps
+    /// right), and no other: splitting k_q = 0xB333 (`--k 0.7`) too left 0.23 the add outside
+    /// the block and its register unused, at default widths and 12 stages.
+    fn takes_constant(&self, value: u128) -> bool {
+        value < 0xc000
     }
     fn carry_chunk_bits(&self) -> u32 {
         CHUNK_BITS

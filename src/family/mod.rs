@@ -171,11 +171,12 @@ pub trait Family: Sync {
     /// The widest multiplier operand one of its hard multipliers takes (u32::MAX: whole-width
     /// products, the synthesis tool's to split).
     fn multiplier_bits(&self) -> u32;
-    /// The widest constant operand one of its hard multipliers takes (a wider constant is
-    /// split, its high part by shift-adds): the block's width, unless its synthesis tool
-    /// mis-maps some constants of that width ([`Family::multiplier_bits`]).
-    fn constant_operand_bits(&self) -> u32 {
-        self.multiplier_bits()
+    /// Whether a hard multiplier takes `value` (a constant of at most
+    /// [`Family::multiplier_bits`] bits) as an operand whole: every value, unless the synthesis
+    /// tool mis-maps some (a constant it refuses is split lower, its high part by shift-adds:
+    /// [`crate::datapath::Builder::constant_split`]).
+    fn takes_constant(&self, _value: u128) -> bool {
+        true
     }
     /// The longest carry chain one pipeline step may hold (u32::MAX: no limit).
     fn carry_chunk_bits(&self) -> u32;

@@ -652,7 +652,7 @@ fn the_units_that_promise_every_block_its_register() {
 
 /// Reliability V.2: a netlist the synthesis tool changed is never shipped. yosys 0.23 maps a
 /// multiply by a 16-bit constant of 0xC000 or more into an SB_MAC16 that computes something
-/// else (the generator now splits such a k_q: `Family::constant_operand_bits`); here the lean
+/// else (the generator now splits such a k_q: `Family::takes_constant`); here the lean
 /// unit at `--k 0.95` is edited back to the whole constant (`n * 16'hf333`, the same function),
 /// which 0.23 mis-maps. Every `synth` checks its mapped netlist (the corners, every n's boundary
 /// and 200 random vectors under Verilator) before writing any figure, so that is exit 1 naming

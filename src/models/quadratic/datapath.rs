@@ -183,12 +183,12 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.add_finish(d);
     let (ca, cb2, cw, comment) = cutoff_add(cfg);
     let cmp = b.add_start("cutoff_sum", &ca, &cb2, false, cw, &comment);
-    // a k_q wider than the DSP's constant operand: k_q = k_hi*2^s + k_lo (s = 16, or 15 where
-    // the synthesis tool mis-maps some 16-bit constants: `Family::constant_operand_bits`), and
+    // a k_q wider than the DSP's operands, or one the synthesis tool mis-maps whole
+    // (`Builder::constant_split`: 0xC000 and more on the iCE40): k_q = k_hi*2^s + k_lo, and
     // n*k_hi (a few bits of k_hi) in shift-adds here, the DSP's addend in the next step: one
     // DSP for k_q*n, not two
     let dsp = b.dsp_bits();
-    let ks = b.constant_bits().min(dsp);
+    let ks = b.constant_split(cfg.k_code as u128);
     let k_bits = bit_length(cfg.k_code as u128);
     let k_split = k_bits > ks;
     if k_split {
@@ -563,11 +563,12 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let what = format!("UQ.{}: k_q*n*(1 - cos), exact (general multiplier 34)", cfg.kf() + f);
     // in the same step as n_dev: its delay comes before this product's
     let after = b.mul_delay(nb, cb);
-    // a k_q wider than the target's constant operand (`Family::constant_operand_bits`: 15 on
-    // the iCE40, where yosys 0.23 mis-maps some 16-bit constants): k_q = k_hi*2^s + k_lo, the
-    // product takes k_lo and n_dev*k_hi (a few bits of k_hi, by shift-adds) as its addend
-    let (ks, k_bits) = (b.constant_bits(), bit_length(cfg.k_code as u128));
-    if k_bits > ks {
+    // a k_q the synthesis tool mis-maps whole (`Builder::constant_split`: 0xC000 and more on
+    // the iCE40): k_q = k_hi*2^s + k_lo, the product takes k_lo and n_dev*k_hi (a few bits of
+    // k_hi, by shift-adds) as its addend
+    // (a k_q only wider than the block is the tool's to split, as it always was)
+    let (ks, k_bits) = (b.constant_split(cfg.k_code as u128), bit_length(cfg.k_code as u128));
+    if k_bits > ks && ks < b.dsp_bits() {
         let (k_hi, hw) = (cfg.k_code as u128 >> ks, w.deviation_bits - ks);
         let e = shift_adds(b, "n_dev", nd_bits, k_hi, hw);
         b.wire("n_dev_k_hi", hw, Kind::Sum, e, &format!("n_dev * k_code[{}:{ks}] = n_dev * {k_hi} mod 2^{hw}, by shift-adds", k_bits - 1));
