@@ -75,6 +75,16 @@ fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -
     }
 }
 
+/// `<sig>_k_hi = sig * (k_code >> ks) mod 2^width` by shift-adds (the high part of a split k_q,
+/// a few bits: the block's addend beside `sig * k_lo`); returns its delay.
+fn k_hi_product(cfg: &Config, b: &mut Builder, sig: &str, sig_width: u32, ks: u32, width: u32) -> f64 {
+    let k_hi = cfg.k_code as u128 >> ks;
+    let e = shift_adds(b, sig, sig_width, k_hi, width);
+    let what = format!("{sig} * k_code[{}:{ks}] = {sig} * {k_hi} mod 2^{width}, by shift-adds", bit_length(cfg.k_code as u128) - 1);
+    b.wire(&format!("{sig}_k_hi"), width, Kind::Sum, e, &what);
+    add_delay(width) + LUT_DELAY * (k_hi.count_ones().max(2) - 1).ilog2() as f64
+}
+
 /// `done` from the comparator's carry (never when cos >= 1.0); `complemented`: the sum holds
 /// the carry complemented ([`Builder::add_carry_complemented`]).
 fn done(cfg: &Config, b: &mut Builder, sum: &Sig, complemented: bool) {
@@ -192,11 +202,8 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     let k_bits = bit_length(cfg.k_code as u128);
     let k_split = k_bits > ks;
     if k_split {
-        let k_hi = cfg.k_code as u128 >> ks;
-        let nkw = (w.kn_bits - ks).max(1);
-        let e = shift_adds(b, "n", cfg.n_bits(), k_hi, nkw);
-        b.wire("n_k_hi", nkw, Kind::Sum, e, &format!("n * k_code[{}:{ks}] = n * {k_hi} mod 2^{nkw}, by shift-adds", k_bits - 1));
-        b.delay(add_delay(nkw) + LUT_DELAY * (k_hi.count_ones().max(2) - 1).ilog2() as f64);
+        let delay = k_hi_product(cfg, b, "n", cfg.n_bits(), ks, (w.kn_bits - ks).max(1));
+        b.delay(delay);
     }
 
     b.step("comparator: carries; k_q*n (constant multiply)");
@@ -569,13 +576,12 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     // (a k_q only wider than the block is the tool's to split, as it always was)
     let (ks, k_bits) = (b.constant_split(cfg.k_code as u128), bit_length(cfg.k_code as u128));
     if k_bits > ks && ks < b.dsp_bits() {
-        let (k_hi, hw) = (cfg.k_code as u128 >> ks, w.deviation_bits - ks);
-        let e = shift_adds(b, "n_dev", nd_bits, k_hi, hw);
-        b.wire("n_dev_k_hi", hw, Kind::Sum, e, &format!("n_dev * k_code[{}:{ks}] = n_dev * {k_hi} mod 2^{hw}, by shift-adds", k_bits - 1));
+        let hw = w.deviation_bits - ks;
+        let delay = k_hi_product(cfg, b, "n_dev", nd_bits, ks, hw);
         let k_lo = [Piece::Const { value: cfg.k_code as u128 & mask(ks), width: w.deviation_bits }];
         let hi = [Piece::zeros(ks), Piece::sig("n_dev_k_hi", 0, hw)];
         let what = format!("{what}: n_dev*k_lo + n_dev*k_hi*2^{ks}");
-        let after = after + add_delay(hw) + LUT_DELAY * (k_hi.count_ones().max(2) - 1).ilog2() as f64;
+        let after = after + delay;
         b.mul("deviation_full", w.deviation_bits, (&nd, nd_bits), (&k_lo, ks), &hi, after, &what);
     } else {
         let k = [Piece::Const { value: cfg.k_code as u128, width: w.deviation_bits }];
