@@ -73,9 +73,9 @@ impl Family for Gowin {
         &[50.0, 100.0, 150.0, 200.0]
     }
     /// fitted to the units `FAMILIES=gowin DEPTHS=5 SEEDS=5 scripts/calibrate_delay.sh` lays
-    /// out (every model but blinn-pow, narrow and default widths; each unit on seeds 1–5 but two
-    /// shallow ones at default widths, on seed 1: docs/SPEC.md); no handshake unit measured
-    /// here, so `--target-mhz` refuses the ready and axis interfaces on this part ([`Family::handshake_cap_mhz`])
+    /// out (every model but blinn-pow, narrow and default widths, each on seeds 1–5); no
+    /// handshake unit measured here, so `--target-mhz` refuses the ready and axis interfaces on
+    /// this part ([`Family::handshake_cap_mhz`])
     fn calibration(&self) -> Option<&'static str> {
         Some("gowin")
     }
