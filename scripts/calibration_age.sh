@@ -8,7 +8,7 @@
 # Samples the default-width rows: per family and model, the shallowest, the middle and the
 # deepest depth (FAMILIES, default "ice40 ecp5 gowin"; MODELS, default every calibrated one;
 # ALL=1: every default-width row). OUT (default benchmarks/calibration-age.md). Needs yosys and
-# nextpnr; minutes a unit for the deep ones, two units at a time.
+# nextpnr; minutes a unit for the deep ones.
 source "$(dirname "$0")/bench_common.sh"
 out=${OUT:-benchmarks/calibration-age.md}
 python3 - "${FAMILIES:-ice40 ecp5 gowin}" "${MODELS:-}" "${ALL:-0}" > "$work/units.txt" <<'PY'
@@ -24,21 +24,22 @@ for (family, model), units in sorted(rows.items()):
     for stages, seed1 in pick:
         print(family, model, stages, seed1)
 PY
-one() { # family model stages -> seed 1's Fmax of today's unit, or "-" (place-and-route failed)
-    local d="$work/$1-$2-$3" margs=()
-    [ "$2" != lean ] && margs=(--model "$2")
-    $bin generate --out "$d" --target "$1" --stages "$3" "${margs[@]}" >/dev/null
-    if $bin synth --target "$1" --dsp --seeds 1 --no-check --rtl "$d" --json "$d.json" >"$d.log" 2>&1; then
-        python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['fmax_seeds'][0])" "$d.json" > "$d.now"
-    else
-        echo - > "$d.now"
-    fi
-}
+# every unit generated first, then placed with seed 1 as one sweep per family (sweep_units:
+# Snakemake on every core here, a cluster with SWEEP_ARGS, results kept under their fingerprints)
+declare -A dirs_of=()
 while read -r family model stages _; do
-    while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n; done
-    one "$family" "$model" "$stages" &
+    margs=(); [ "$model" != lean ] && margs=(--model "$model")
+    $bin generate --out "$work/$family-$model-$stages" --target "$family" --stages "$stages" "${margs[@]}" >/dev/null
+    dirs_of[$family]+="$work/$family-$model-$stages "
 done < "$work/units.txt"
-wait
+for family in "${!dirs_of[@]}"; do
+    # shellcheck disable=SC2086 # a list of directories without spaces ($work's)
+    sweep_units "$family" 1 dsp ${dirs_of[$family]}
+done
+# seed 1's Fmax of today's unit (nextpnr's, as the row's), or "-" (place-and-route failed)
+now_of() {
+    python3 -c "import json, sys; print((json.load(open(sys.argv[1])).get('fmax_seeds') or ['-'])[0])" "$work/$1-$2-$3.dsp.json" 2>/dev/null || echo -
+}
 {
     echo "# How old the delay model's calibration is"
     echo
@@ -51,7 +52,7 @@ wait
     echo "|---|---|---|---|---|---|---|"
     same=0; n=0
     while read -r family model stages seed1; do
-        now=$(cat "$work/$family-$model-$stages.now")
+        now=$(now_of "$family" "$model" "$stages")
         n=$((n + 1))
         verdict=$(python3 -c "
 import sys
