@@ -193,9 +193,17 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     if points.len() > explore::MAX_POINTS {
         return Err(usage(format!("the space holds {} points; allowed at most {}: narrow it", points.len(), explore::MAX_POINTS)));
     }
-    let ids = match a.measure_all || !a.unit.is_empty() {
+    let ids: Vec<String> = match a.measure_all || !a.unit.is_empty() {
         true => points.iter().map(|p| p.id.clone()).collect(),
-        false => explore::candidates(&points, metric, &clocks, a.near, 0.8),
+        // the fronts of every metric are measured, so a choice by any of them is among
+        // measured units
+        false => {
+            let mut ids = std::collections::BTreeSet::new();
+            for m in Metric::ALL {
+                ids.extend(explore::candidates(&points, m, &clocks, a.near, 0.8));
+            }
+            points.iter().filter(|p| ids.contains(&p.id)).map(|p| p.id.clone()).collect()
+        }
     };
     let seeds: Vec<u32> = (1..=a.seeds).collect();
     let versions = explore::tool_versions(target, &tools(&a.yosys, &a.nextpnr))?;
@@ -297,16 +305,10 @@ pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {
 }
 
 /// `generate --max-error`: the exploration's cheapest measured unit meeting the error and the
-/// clock; its parameters replace the explored axes of `params`.
-pub fn choose(
-    explored: Option<&Path>,
-    params: &Params,
-    model_given: bool,
-    budget_given: bool,
-    metric: Metric,
-    max_error: f64,
-    mhz: f64,
-) -> Result<Params, Failure> {
+/// clock, among those with every parameter the user gave (`given`, by `Params`' field name)
+/// and the user's interface; its parameters fill in the rest of `params`, and every chosen one
+/// is said to be chosen.
+pub fn choose(explored: Option<&Path>, params: &Params, given: &[&str], metric: Metric, max_error: f64, mhz: f64) -> Result<Params, Failure> {
     let (text, what) = match explored {
         Some(p) => (specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?, p.display().to_string()),
         None => match specgen::family::of(params.target).explored() {
@@ -319,31 +321,45 @@ pub fn choose(
             }
         },
     };
-    let mut e = Exploration::from_text(&text, &what)?;
-    if model_given {
-        e.points.retain(|p| p.params.model == params.model);
-    }
-    if budget_given {
-        e.points.retain(|p| p.params.dsp_budget == params.dsp_budget);
-    }
-    let c = explore::choose(&e, params, metric, max_error, mhz)?;
+    let e = Exploration::from_text(&text, &what)?;
+    let c = explore::choose(&e, &explore::Question { base: params, given, metric, max_error, mhz })?;
     let p = &c.point;
     let m = p.measured.as_ref().expect("a choice is measured");
     let lo = m.fmax_seeds.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = m.fmax_seeds.iter().copied().fold(0.0, f64::max);
+    let chosen: Vec<String> = [
+        ("model", p.params.model.name().to_string()),
+        ("cos-frac-bits", p.params.cos_frac_bits.to_string()),
+        ("intensity-frac-bits", p.params.intensity_frac_bits.to_string()),
+        ("stages", p.params.stages.to_string()),
+        ("dsp-budget", p.params.dsp_budget.map_or("none".into(), |b| b.to_string())),
+        ("rom-style", p.params.rom_style.name().to_string()),
+    ]
+    .into_iter()
+    .filter(|(k, _)| !given.contains(&k.replace('-', "_").as_str()))
+    .map(|(k, v)| format!("--{k} {v}"))
+    .collect();
     errln!(
-        "max-error: chose {} ({} error {:.3e} <= {max_error}): measured {:.1} MHz median over nextpnr seeds {} ({lo:.1}-{hi:.1}), {} logic cells, {} DSP blocks, {} block RAMs; jobs {}; tools {}; from {what}",
+        "max-error: chose {} ({} error {:.3e} <= {max_error}, recomputed{}): measured {:.1} MHz median over nextpnr seeds {} ({lo:.1}-{hi:.1}), {} logic cells, {} DSP blocks, {} block RAMs, on today's RTL (sha256 {}); jobs {}; tools {}; from {what}",
         p.id,
         metric.name(),
         c.error,
+        if metric.at_pixel() { ", the cosine rounded to F bits counted" } else { "" },
         m.fmax_mhz.unwrap_or(0.0),
         specgen::synth::seed_list(&m.seeds),
         p.cells(),
         m.dsp_blocks,
         m.block_rams,
+        &c.rtl[..16],
         m.jobs.join(" "),
         m.tools.iter().map(|(k, v)| format!("{k} {v:?}")).collect::<Vec<_>>().join(", ")
     );
+    if !chosen.is_empty() {
+        errln!("max-error: chosen for you: {}", chosen.join(" "));
+    }
+    if !c.stale.is_empty() {
+        errln!("max-error: passed over, measured on an older RTL: {}", c.stale.join(", "));
+    }
     let chosen = &p.params;
     Ok(Params {
         model: chosen.model,
@@ -357,6 +373,7 @@ pub fn choose(
         rounding: chosen.rounding,
         arch: chosen.arch,
         max_squarings: chosen.max_squarings,
+        fabric_registers: chosen.fabric_registers,
         ..params.clone()
     })
 }

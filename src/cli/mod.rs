@@ -438,6 +438,31 @@ impl ParamArgs {
     }
 }
 
+/// The parameters of the unit the user gave on the command line (by `Params`' field name):
+/// what `--max-error` may not overwrite.
+fn given_keys(p: &ParamArgs, r: &RtlArgs) -> Vec<&'static str> {
+    let mut given = Vec::new();
+    let mut add = |on: bool, key: &'static str| {
+        if on {
+            given.push(key);
+        }
+    };
+    add(p.model.is_some(), "model");
+    add(p.cos_frac_bits.is_some(), "cos_frac_bits");
+    add(p.intensity_frac_bits.is_some(), "intensity_frac_bits");
+    add(p.k.is_some(), "k");
+    add(p.k_frac_bits.is_some(), "k_frac_bits");
+    add(p.rounding.is_some(), "rounding");
+    add(p.arch.is_some(), "arch");
+    add(p.max_squarings.is_some(), "max_squarings");
+    add(r.stages.is_some(), "stages");
+    add(r.dsp_budget.is_some(), "dsp_budget");
+    add(r.rom_style.is_some(), "rom_style");
+    add(r.fabric_registers, "fabric_registers");
+    add(r.reset.is_some(), "reset");
+    given
+}
+
 /// Writes a whole output directory atomically; an occupied directory is a usage error.
 fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Failure> {
     // an I/O error names the output as the user spelled it
@@ -476,7 +501,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 if !(e > 0.0 && e <= 1.0) {
                     return Err(usage(format!("invalid --max-error: {e}; allowed (0, 1] (full scale)")));
                 }
-                let chosen = explore::choose(explored.as_deref(), &cfg.params, params.model.is_some(), rtl.dsp_budget.is_some(), metric.into(), e, mhz)?;
+                if params.config.is_some() {
+                    return Err(usage(
+                        "invalid --config with --max-error: a configuration file fixes every parameter; give the ones your design fixes as flags (each narrows the choice)",
+                    ));
+                }
+                let given = given_keys(&params, &rtl);
+                let chosen = explore::choose(explored.as_deref(), &cfg.params, &given, metric.into(), e, mhz)?;
                 cfg = Config::new(chosen)?;
                 pick_depth = None;
             }

@@ -24,12 +24,18 @@ macro_rules! flag_values {
 flag_values! {
     /// `--metric`
     MetricFlag => Metric {
-        /// the largest |intensity - cos^n| over every (cos_g, n)
+        /// the largest |intensity - cos^n| at the pixel: over every real cosine in [0, 1] (rounded to F bits before the unit reads it) and every n
         Max,
-        /// its mean
+        /// its mean over cosines uniform in [0, 1] and every n
         Mean,
         /// its root mean square
         Rms,
+        /// the largest |intensity - cos^n| at the unit's own codes (cos = cos_g/2^F exactly): for a cosine that already arrives at F bits
+        CodeMax,
+        /// its mean at the codes
+        CodeMean,
+        /// its root mean square at the codes
+        CodeRms,
         /// the largest step between neighbouring pixels of render's sphere beyond the float image's (banding)
         Step,
     }

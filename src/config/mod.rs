@@ -398,6 +398,10 @@ pub(crate) const MANIFEST_OUTPUT_KEYS: &[&str] = &[
     "blinn_error_max",
     "blinn_error_mean",
     "blinn_error_method",
+    "pixel_error_max",
+    "pixel_error_mean",
+    "pixel_error_rms",
+    "pixel_error_method",
 ];
 
 /// An interface's own reset: active high `rst` for `valid` and `ready`, active low `aresetn`

@@ -618,6 +618,12 @@ pub(crate) struct Manifest<'a> {
     pub(crate) blinn_error_max: f64,
     pub(crate) blinn_error_mean: f64,
     pub(crate) blinn_error_method: String,
+    /// the same at the pixel: over every real cosine in [0, 1], rounded to F bits before the
+    /// unit reads it (SPEC §6)
+    pub(crate) pixel_error_max: f64,
+    pub(crate) pixel_error_mean: f64,
+    pub(crate) pixel_error_rms: f64,
+    pub(crate) pixel_error_method: String,
     pub(crate) files: Vec<FileEntry>,
 }
 
@@ -729,6 +735,10 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         blinn_error_max: fidelity.max,
         blinn_error_mean: fidelity.mean,
         blinn_error_method: fidelity.method(),
+        pixel_error_max: fidelity.pixel.max,
+        pixel_error_mean: fidelity.pixel.mean,
+        pixel_error_rms: fidelity.pixel.rms,
+        pixel_error_method: fidelity.pixel_method(),
         files: files.iter().map(|(name, bytes)| FileEntry { name: name.clone(), sha256: sha256_hex(bytes) }).collect(),
     };
     // only the model's own parameters (MODEL_KEYS): a reader branches on `model`

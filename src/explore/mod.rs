@@ -81,7 +81,8 @@ impl Space {
 /// How far a unit is from Blinn's `cos^n`, on its whole input space and in a picture.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Accuracy {
-    /// max |intensity − cos^n| over every (cos_g ≤ 1.0, n), full scale
+    /// max |intensity − cos^n| over every (cos_g ≤ 1.0, n) at the unit's own codes (c =
+    /// cos_g/2^F), full scale: the error for a cosine that already arrives at F bits
     pub max: f64,
     pub mean: f64,
     pub rms: f64,
@@ -93,35 +94,68 @@ pub struct Accuracy {
     /// pixels) against float cos^n at the exact cos δ
     pub psnr_db: f64,
     pub max_step_excess: f64,
+    /// the error at the pixel: the real cosine rounded to F bits counted (`models::Pixel`);
+    /// None in an exploration written before it was measured (its pixel metrics then meet no
+    /// bound until recomputed)
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pixel: Option<PixelAccuracy>,
+}
+
+/// [`Accuracy::pixel`]: max, mean and RMS of `|intensity − c^n|` over the real `c ∈ [0, 1]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PixelAccuracy {
+    pub max: f64,
+    pub mean: f64,
+    pub rms: f64,
+    /// true: `max` is a bound over a stride of codes (never below the exact figure)
+    pub bound: bool,
 }
 
 /// The metric `--max-error` bounds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Metric {
+    /// the largest |intensity − c^n| over every real cosine c (rounded to F bits) and n
     Max,
     Mean,
     Rms,
+    /// the same at the unit's own codes (c = cos_g/2^F exactly): a cosine that arrives at F bits
+    CodeMax,
+    CodeMean,
+    CodeRms,
     /// the largest step between neighbouring pixels beyond the float image's
     Step,
 }
 
 impl Metric {
-    pub const ALL: [Metric; 4] = [Metric::Max, Metric::Mean, Metric::Rms, Metric::Step];
+    pub const ALL: [Metric; 7] = [Metric::Max, Metric::Mean, Metric::Rms, Metric::CodeMax, Metric::CodeMean, Metric::CodeRms, Metric::Step];
     pub fn name(self) -> &'static str {
         match self {
             Metric::Max => "max",
             Metric::Mean => "mean",
             Metric::Rms => "rms",
+            Metric::CodeMax => "code-max",
+            Metric::CodeMean => "code-mean",
+            Metric::CodeRms => "code-rms",
             Metric::Step => "step",
         }
     }
+    /// The metric's figure; a pixel metric of an accuracy without pixel figures is infinite
+    /// (it meets no bound).
     pub fn of(self, a: &Accuracy) -> f64 {
+        let pixel = |f: fn(&PixelAccuracy) -> f64| a.pixel.as_ref().map_or(f64::INFINITY, f);
         match self {
-            Metric::Max => a.max,
-            Metric::Mean => a.mean,
-            Metric::Rms => a.rms,
+            Metric::Max => pixel(|p| p.max),
+            Metric::Mean => pixel(|p| p.mean),
+            Metric::Rms => pixel(|p| p.rms),
+            Metric::CodeMax => a.max,
+            Metric::CodeMean => a.mean,
+            Metric::CodeRms => a.rms,
             Metric::Step => a.max_step_excess,
         }
+    }
+    /// Whether the figure needs the pixel's part of an accuracy.
+    pub fn at_pixel(self) -> bool {
+        matches!(self, Metric::Max | Metric::Mean | Metric::Rms)
     }
 }
 
@@ -134,7 +168,16 @@ fn picture_exponents(n_bits: u32) -> Vec<u32> {
 pub fn accuracy(model: &Model) -> Accuracy {
     let f = blinn_fidelity(model);
     let img = crate::render::image_figures(model, &picture_exponents(model.cfg.n_bits()), 128);
-    Accuracy { max: f.max, mean: f.mean, rms: f.rms, points: f.points, stride: f.stride, psnr_db: img.psnr_db, max_step_excess: img.max_step_excess }
+    Accuracy {
+        max: f.max,
+        mean: f.mean,
+        rms: f.rms,
+        points: f.points,
+        stride: f.stride,
+        psnr_db: img.psnr_db,
+        max_step_excess: img.max_step_excess,
+        pixel: Some(PixelAccuracy { max: f.pixel.max, mean: f.pixel.mean, rms: f.pixel.rms, bound: f.pixel.bound }),
+    }
 }
 
 /// A point's cost from its datapath, before any synthesis.
@@ -467,49 +510,159 @@ pub fn candidates(points: &[Point], metric: Metric, clocks: &[f64], near: f64, s
 #[derive(Debug, Clone)]
 pub struct Choice {
     pub point: Point,
+    /// its error by the question's metric, recomputed by the golden model (never the file's)
     pub error: f64,
+    /// SHA-256 of the RTL and tables it was measured on: today's
+    pub rtl: String,
+    /// measured points of the exploration left out because their RTL is not today's
+    pub stale: Vec<String>,
 }
 
-/// The cheapest measured point of `e` (logic cells, then the higher clock) whose `metric` error
-/// is at most `max_error` and whose median Fmax reaches `mhz`, among those whose fixed
-/// parameters (the exponent's and colours' widths) are `base`'s. Err: none does, with the
-/// nearest points named.
-pub fn choose(e: &Exploration, base: &Params, metric: Metric, max_error: f64, mhz: f64) -> Result<Choice, Error> {
-    let fits = |p: &&Point| p.params.n_bits == base.n_bits && p.params.color_bits == base.color_bits && p.params.target == base.target;
+/// The parameters of the interface: a unit measured with another edge is another unit (its
+/// handshake costs cells and clock), so a choice is made among units with the user's.
+pub const EDGE_KEYS: [&str; 5] = ["interface", "tag_bits", "tlast", "colour", "clock_enable"];
+
+/// The parameters a user may give beside `--max-error`, each narrowing the choice to the
+/// points that have it (by `Params`' field name).
+pub const CHOICE_KEYS: [&str; 13] = [
+    "model",
+    "cos_frac_bits",
+    "intensity_frac_bits",
+    "stages",
+    "dsp_budget",
+    "rom_style",
+    "k",
+    "k_frac_bits",
+    "rounding",
+    "arch",
+    "max_squarings",
+    "fabric_registers",
+    "reset",
+];
+
+/// A `generate --max-error E --target-mhz F` question.
+#[derive(Debug, Clone)]
+pub struct Question<'a> {
+    /// the user's parameters (given or default)
+    pub base: &'a Params,
+    /// which of [`CHOICE_KEYS`] the user gave: each narrows the choice
+    pub given: &'a [&'a str],
+    pub metric: Metric,
+    pub max_error: f64,
+    pub mhz: f64,
+}
+
+/// One field of `p` by its name, as JSON (the form the manifest and the explorations store).
+fn field(p: &Params, key: &str) -> serde_json::Value {
+    serde_json::to_value(p).ok().and_then(|v| v.get(key).cloned()).unwrap_or(serde_json::Value::Null)
+}
+
+/// Whether a measured point's rows are of the RTL specgen writes today: each of its jobs'
+/// fingerprints is the one a job of today's unit (its RTL and tables' digest), with the tools
+/// that measured it, would have. Returns today's digest where they are.
+pub fn measured_today(p: &Point) -> Result<Option<String>, Error> {
+    let Some(m) = &p.measured else { return Ok(None) };
+    if m.jobs.len() != m.seeds.len() || m.jobs.is_empty() {
+        return Ok(None);
+    }
+    let rtl = rtl_digest(&Plan::new(Config::new(p.params.clone())?)?);
+    let today = m.seeds.iter().zip(&m.jobs).all(|(&seed, fp)| {
+        let j = Job::new(p, &rtl, seed, &m.tools);
+        &j.fingerprint == fp || &j.fabric_only().fingerprint == fp
+    });
+    Ok(today.then_some(rtl))
+}
+
+/// The cheapest measured point of `e` (logic cells, then the higher clock) whose error by the
+/// question's metric is at most `max_error` and whose median Fmax reaches `mhz`, among those
+/// of the user's fixed parameters (exponent's and colours' widths, target), the user's edge
+/// ([`EDGE_KEYS`]) and every parameter given ([`CHOICE_KEYS`]), and measured on today's RTL.
+/// The error is recomputed by the golden model for every point that could be chosen (a file's
+/// figure is never believed). Err: none does, in one line: the reason, the nearest measured
+/// unit and the command that would measure the one asked for.
+pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
+    let base = q.base;
+    let mut keys: Vec<&str> = vec!["n_bits", "color_bits", "target"];
+    keys.extend(EDGE_KEYS);
+    keys.extend(q.given.iter().copied().filter(|k| CHOICE_KEYS.contains(k)));
+    let fits = |p: &&Point| keys.iter().all(|k| field(&p.params, k) == field(base, k));
     let measured: Vec<&Point> = e.points.iter().filter(fits).filter(|p| p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some())).collect();
-    let reach = |p: &&&Point| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz);
-    let good = |p: &&&Point| metric.of(&p.accuracy) <= max_error;
-    let best = measured
-        .iter()
-        .filter(reach)
-        .filter(good)
-        .min_by(|a, b| a.cells().cmp(&b.cells()).then(b.fmax().unwrap_or(0.0).total_cmp(&a.fmax().unwrap_or(0.0))).then(a.id.cmp(&b.id)));
-    if let Some(p) = best {
-        return Ok(Choice { point: (*p).clone(), error: metric.of(&p.accuracy) });
-    }
-    let show = |p: &&Point| {
-        format!("{} ({} error {:.3e}, {:.1} MHz, {} logic cells)", p.id, metric.name(), metric.of(&p.accuracy), p.fmax().unwrap_or(0.0), p.cells())
+    let reach = |p: &&Point| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= q.mhz);
+    let mut reaching: Vec<&Point> = measured.iter().copied().filter(reach).collect();
+    reaching.sort_by(|a, b| a.cells().cmp(&b.cells()).then(b.fmax().unwrap_or(0.0).total_cmp(&a.fmax().unwrap_or(0.0))).then(a.id.cmp(&b.id)));
+    // the error at the pixel is never below the error at the codes: a file's code figure
+    // above the bound rules a point out without computing; every other is recomputed
+    let mut accuracies: BTreeMap<String, Accuracy> = BTreeMap::new();
+    let mut recomputed = |p: &Point| -> Result<Accuracy, Error> {
+        let shape = Config::new(Params { stages: 0, dsp_budget: None, ..p.params.clone() })?;
+        let key = shape.fingerprint();
+        if let Some(a) = accuracies.get(&key) {
+            return Ok(*a);
+        }
+        let a = accuracy(&Model::new(&shape));
+        accuracies.insert(key, a);
+        Ok(a)
     };
-    let fastest_good = measured.iter().filter(good).max_by(|a, b| a.fmax().unwrap_or(0.0).total_cmp(&b.fmax().unwrap_or(0.0)));
-    let closest_fast = measured.iter().filter(reach).min_by(|a, b| metric.of(&a.accuracy).total_cmp(&metric.of(&b.accuracy)));
-    let mut near = Vec::new();
-    if let Some(p) = fastest_good {
-        near.push(format!("the fastest within the error: {}", show(p)));
+    let mut stale = Vec::new();
+    for p in &reaching {
+        let floor = match q.metric {
+            Metric::Max | Metric::CodeMax => p.accuracy.max,
+            _ => 0.0,
+        };
+        if floor > q.max_error {
+            continue;
+        }
+        let a = recomputed(p)?;
+        let err = q.metric.of(&a);
+        if err > q.max_error {
+            continue;
+        }
+        match measured_today(p)? {
+            Some(rtl) => {
+                let point = Point { accuracy: a, ..(*p).clone() };
+                return Ok(Choice { point, error: err, rtl, stale });
+            }
+            None => stale.push(p.id.clone()),
+        }
     }
-    if let Some(p) = closest_fast {
-        near.push(format!("the most accurate at the clock: {}", show(p)));
-    }
-    if measured.is_empty() {
-        near.push(format!("no measured point at n_bits {} and color_bits {} on {}", base.n_bits, base.color_bits, base.target.name()));
+    let show = |p: &Point| {
+        format!("{} ({} error {}, {:.1} MHz, {} logic cells)", p.id, q.metric.name(), short(q.metric.of(&p.accuracy)), p.fmax().unwrap_or(0.0), p.cells())
+    };
+    let why = if measured.is_empty() {
+        format!(
+            "no unit of the {} exploration with these parameters ({}) was measured",
+            e.part,
+            keys.iter().map(|k| format!("{k} {}", field(base, k))).collect::<Vec<_>>().join(", ")
+        )
+    } else if !stale.is_empty() {
+        format!("the units of the {} exploration that would meet it were measured on an older RTL ({})", e.part, stale.join(", "))
+    } else if reaching.is_empty() {
+        format!("no measured unit of the {} exploration reaches {} MHz", e.part, q.mhz)
+    } else {
+        format!("no measured unit of the {} exploration that reaches {} MHz has {} error <= {}", e.part, q.mhz, q.metric.name(), q.max_error)
+    };
+    // the nearest: the most accurate unit reaching the clock (its error recomputed)
+    let mut nearest = String::new();
+    if let Some(p) = reaching.iter().min_by(|a, b| q.metric.of(&a.accuracy).total_cmp(&q.metric.of(&b.accuracy)).then(a.cells().cmp(&b.cells()))) {
+        let a = recomputed(p)?;
+        nearest = format!("; nearest: {}", show(&Point { accuracy: a, ..(*p).clone() }));
+    } else if let Some(p) = measured.iter().max_by(|a, b| a.fmax().unwrap_or(0.0).total_cmp(&b.fmax().unwrap_or(0.0))) {
+        nearest = format!("; the fastest measured: {}", show(p));
     }
     Err(Error::Config {
         parameter: "max_error",
         message: format!(
-            "no measured unit of the {} exploration ({} points measured) has {} error <= {max_error} at {mhz} MHz; nearest: {}",
-            e.part,
-            measured.len(),
-            metric.name(),
-            near.join("; ")
+            "{why}{nearest}; measure the units you want: specgen explore --target {} --n-bits {} --color-bits {}{} --clocks {} --out DIR, then scripts/sweep.sh DIR/jobs.json RESULTS and generate --explored DIR/points.json",
+            base.target.name(),
+            base.n_bits,
+            base.color_bits,
+            q.given.iter().filter(|&&k| k == "model").map(|_| format!(" --models {}", base.model.name())).collect::<String>(),
+            q.mhz
         ),
     })
+}
+
+/// A figure in three significant digits.
+fn short(x: f64) -> String {
+    format!("{x:.3e}")
 }

@@ -2,7 +2,6 @@
 
 use super::*;
 use crate::config::{Params, RomStyle, SpecularModel};
-use std::collections::BTreeMap;
 
 fn space() -> Space {
     let base = Params { n_bits: 4, color_bits: 4, ..Params::default() };
@@ -86,9 +85,13 @@ fn a_merge_names_missing_and_conflicting_jobs() {
     assert_eq!(ps[1].measured.as_ref().unwrap().fmax_mhz, Some(75.0));
 }
 
-#[test]
-fn the_choice_is_the_cheapest_measured_point_meeting_both() {
+/// Every point of the space measured on today's RTL (its jobs' fingerprints today's), the
+/// i-th at 50 + 10·i MHz and 100 + i cells.
+fn measured_exploration() -> (Vec<Point>, Exploration) {
     let mut ps = points(&space(), &|_, _| {}).unwrap();
+    let tools: Versions = [("yosys".to_string(), "x".to_string())].into();
+    let ids: Vec<String> = ps.iter().map(|p| p.id.clone()).collect();
+    let jobs = jobs_of(&ps, &ids, &[1], &tools).unwrap();
     for (i, p) in ps.iter_mut().enumerate() {
         p.measured = Some(Measured {
             seeds: vec![1],
@@ -102,8 +105,8 @@ fn the_choice_is_the_cheapest_measured_point_meeting_both() {
             block_rams: 0,
             limited_by: String::new(),
             note: String::new(),
-            jobs: vec![],
-            tools: BTreeMap::new(),
+            jobs: vec![jobs.iter().find(|j| j.point == p.id).unwrap().fingerprint.clone()],
+            tools: tools.clone(),
         });
     }
     let e = Exploration {
@@ -116,16 +119,98 @@ fn the_choice_is_the_cheapest_measured_point_meeting_both() {
         seeds: vec![1],
         points: ps.clone(),
     };
+    (ps, e)
+}
+
+fn ask<'a>(base: &'a Params, given: &'a [&'a str], metric: Metric, max_error: f64, mhz: f64) -> Question<'a> {
+    Question { base, given, metric, max_error, mhz }
+}
+
+#[test]
+fn the_choice_is_the_cheapest_measured_point_meeting_both() {
+    let (ps, e) = measured_exploration();
     let base = &space().base;
-    let c = choose(&e, base, Metric::Max, 1.0, 50.0).unwrap();
+    let c = choose(&e, &ask(base, &[], Metric::Max, 1.0, 50.0)).unwrap();
     assert_eq!(c.point.id, ps[0].id);
-    let c = choose(&e, base, Metric::Max, 1.0, 55.0).unwrap();
+    assert_eq!(c.rtl.len(), 64);
+    let c = choose(&e, &ask(base, &[], Metric::Max, 1.0, 55.0)).unwrap();
     assert_eq!(c.point.id, ps[1].id);
-    let err = choose(&e, base, Metric::Max, 1e-9, 50.0).unwrap_err();
+    let err = choose(&e, &ask(base, &[], Metric::Max, 1e-9, 50.0)).unwrap_err();
     assert_eq!(err.parameter(), Some("max_error"));
     assert!(err.reason().contains("nearest"), "{}", err.reason());
     let other = Params { n_bits: 10, ..base.clone() };
-    assert!(choose(&e, &other, Metric::Max, 1.0, 50.0).is_err());
+    assert!(choose(&e, &ask(&other, &[], Metric::Max, 1.0, 50.0)).is_err());
+}
+
+/// The error chosen by is the pixel's (the real cosine rounded to F bits), recomputed: a file
+/// whose figures lie is not believed, and the unit's error at its codes is a metric of its own.
+#[test]
+fn the_choice_bounds_the_error_at_the_pixel_recomputed() {
+    let (ps, mut e) = measured_exploration();
+    let base = &space().base;
+    // the file claims every point perfect
+    for p in &mut e.points {
+        p.accuracy.pixel = Some(PixelAccuracy { max: 0.0, mean: 0.0, rms: 0.0, bound: false });
+        p.accuracy.max = 0.0;
+    }
+    let truth = accuracy(&Model::new(&Config::new(ps[0].params.clone()).unwrap()));
+    let pixel = truth.pixel.unwrap();
+    // at F = 8 and n up to 15 the rounding alone costs more than the codes' error
+    assert!(pixel.max > truth.max, "{pixel:?} vs {}", truth.max);
+    let c = choose(&e, &ask(base, &[], Metric::Max, 1.0, 50.0)).unwrap();
+    assert_eq!(c.error, pixel.max);
+    // below it, no point of that model: every other choice is within the bound, recomputed
+    if let Ok(c) = choose(&e, &ask(base, &[], Metric::Max, pixel.max * 0.99, 50.0)) {
+        assert_ne!(c.point.params.model, ps[0].params.model);
+        assert!(c.error <= pixel.max * 0.99);
+        assert_eq!(Some(c.error), accuracy(&Model::new(&Config::new(c.point.params.clone()).unwrap())).pixel.map(|p| p.max));
+    }
+    let c = choose(&e, &ask(base, &[], Metric::CodeMax, truth.max, 50.0)).unwrap();
+    assert_eq!(c.point.id, ps[0].id);
+}
+
+/// A parameter the user gives narrows the choice; one that no measured unit has refuses it.
+/// The edge (interface, tag, tlast, colour, clock enable) is always the user's.
+#[test]
+fn the_users_parameters_and_edge_are_part_of_the_question() {
+    let (ps, e) = measured_exploration();
+    let base = &space().base;
+    let j = ps.iter().position(|p| p.params.model != ps[0].params.model).unwrap();
+    // the model of a later point, given: the first (cheaper) is not chosen
+    let second = Params { model: ps[j].params.model, ..base.clone() };
+    let c = choose(&e, &ask(&second, &["model"], Metric::Max, 1.0, 50.0)).unwrap();
+    assert_eq!(c.point.params.model, ps[j].params.model);
+    // a width no point has, given: refused, never overwritten
+    let wide = Params { cos_frac_bits: 12, ..base.clone() };
+    let err = choose(&e, &ask(&wide, &["cos_frac_bits"], Metric::Max, 1.0, 50.0)).unwrap_err();
+    assert!(err.reason().contains("cos_frac_bits 12"), "{}", err.reason());
+    // the same width not given: chosen for the user
+    assert!(choose(&e, &ask(&wide, &[], Metric::Max, 1.0, 50.0)).is_ok());
+    for edge in [
+        Params { interface: crate::config::Interface::Axis, ..base.clone() },
+        Params { clock_enable: true, ..base.clone() },
+        Params { colour: crate::config::Colour::Static, ..base.clone() },
+    ] {
+        let err = choose(&e, &ask(&edge, &[], Metric::Max, 1.0, 50.0)).unwrap_err();
+        assert!(err.reason().contains("was measured"), "{}", err.reason());
+    }
+}
+
+/// A row measured on another RTL (its jobs' fingerprints not today's) is never chosen.
+#[test]
+fn a_row_of_another_rtl_is_never_chosen() {
+    let (ps, mut e) = measured_exploration();
+    let base = &space().base;
+    let stale = |p: &mut Point| p.measured.as_mut().unwrap().jobs = vec!["00000000000000000000".into()];
+    stale(&mut e.points[0]);
+    assert_eq!(measured_today(&e.points[0]).unwrap(), None);
+    assert!(measured_today(&e.points[1]).unwrap().is_some());
+    let c = choose(&e, &ask(base, &[], Metric::Max, 1.0, 50.0)).unwrap();
+    assert_eq!(c.point.id, ps[1].id);
+    assert_eq!(c.stale, vec![ps[0].id.clone()]);
+    e.points.iter_mut().for_each(stale);
+    let err = choose(&e, &ask(base, &[], Metric::Max, 1.0, 50.0)).unwrap_err();
+    assert!(err.reason().contains("older RTL"), "{}", err.reason());
 }
 
 /// A point's estimate is its own parameters' plan's (a model shared across the space must not

@@ -355,6 +355,54 @@ pub struct Fidelity {
     pub stride: u32,
     /// `max_c |intensity/2^FI − c^n|` for each n
     pub(crate) per_n_max: Vec<f64>,
+    /// the error at the pixel: the real cosine rounded to F bits first ([`Pixel`])
+    pub pixel: Pixel,
+}
+
+/// The error a shader sees (SPEC §6): its real cosine `c ∈ [0, 1]` is rounded to the nearest
+/// F-bit code `q` before the unit reads it, so the intensity `I(q)` stands for every `c` of
+/// `[(q − ½)/2^F, (q + ½)/2^F] ∩ [0, 1]`.
+///
+/// - `max`: the worst `|I(q)/2^FI − c^n|` over those `c` and every `n`. `c^n` is monotone in
+///   `c`, so the worst `c` of a code is an end of its interval: exact where every code is
+///   visited. Where only every `stride`-th code is, the codes between two visited ones `a < b`
+///   hold intensities in `[I(a), I(b)]` (every model is monotone in `cos_g`) for `c` in
+///   `[lo(a), lo(b)]`, and `max(I(b) − lo(a)^n, lo(b)^n − I(a))` bounds them: a bound, never
+///   below the true figure.
+/// - `mean`, `rms`: over `c` uniform in `[0, 1]` (and every `n`), integrated in closed form on
+///   each visited code's interval (`∫ c^n = c^(n+1)/(n+1)`, split where `c^n` crosses `I`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pixel {
+    pub max: f64,
+    pub mean: f64,
+    pub rms: f64,
+    /// true: `max` is the stride's bound, not every code's exact figure
+    pub bound: bool,
+}
+
+/// The ends of the real cosines that round to `codes` (and the last code's top, 1.0), clipped
+/// to `[0, 1]`: `lo[i]` is code i's bottom, `hi[i]` its top.
+fn pixel_ends(codes: &[u32], one: u32) -> (Vec<f64>, Vec<f64>) {
+    let end = |x: f64| (x / one as f64).clamp(0.0, 1.0);
+    (codes.iter().map(|&q| end(q as f64 - 0.5)).collect(), codes.iter().map(|&q| end(q as f64 + 0.5)).collect())
+}
+
+/// `∫ |i − c^n| dc` and `∫ (i − c^n)² dc` over `[lo, hi]`, from the powers of the ends.
+#[allow(clippy::too_many_arguments)]
+fn pixel_integrals(i: f64, n: u32, lo: f64, hi: f64, lo_n: f64, hi_n: f64, lo_n1: f64, hi_n1: f64, lo_2n1: f64, hi_2n1: f64) -> (f64, f64) {
+    let w = hi - lo;
+    let n1 = (n + 1) as f64;
+    let area = (hi_n1 - lo_n1) / n1;
+    let abs = if lo_n < i && i < hi_n {
+        // c^n crosses i at c*: below it i − c^n, above it c^n − i
+        let x = i.powf(1.0 / n as f64);
+        let x_n1 = x.powi(n as i32 + 1) / n1;
+        (i * (x - lo) - (x_n1 - lo_n1 / n1)) + ((hi_n1 / n1 - x_n1) - i * (hi - x))
+    } else {
+        (i * w - area).abs()
+    };
+    let square = i * i * w - 2.0 * i * area + (hi_2n1 - lo_2n1) / (2 * n + 1) as f64;
+    (abs, square.max(0.0))
 }
 
 /// The most points [`blinn_fidelity`] visits: 2^26.
@@ -367,6 +415,13 @@ impl Fidelity {
             s => format!("every {s}th cos_g code (and 1.0) for every n: {} points", self.points),
         }
     }
+    /// How [`Fidelity::pixel`] was measured.
+    pub fn pixel_method(&self) -> String {
+        match self.pixel.bound {
+            false => "every code's interval of real cosines (round to nearest) and every n: exact".to_string(),
+            true => format!("every {}th code's interval and every n: max a bound by monotonicity, mean and RMS of the visited intervals", self.stride),
+        }
+    }
 }
 
 /// Measures [`Fidelity`] with the golden model (two threads or more).
@@ -377,22 +432,35 @@ impl Fidelity {
 /// codes from there are evaluated (at `n` large, a few percent of the row). The errors are
 /// the same numbers, summed in the same order, so the figures are the same bits.
 pub fn blinn_fidelity(m: &Model) -> Fidelity {
+    fidelity_within(m, FIDELITY_POINTS)
+}
+
+/// [`blinn_fidelity`] on every point, whatever the space's size (a test's: 2^30 points at
+/// F = 20, N = 10).
+pub fn fidelity_exhaustive(m: &Model) -> Fidelity {
+    fidelity_within(m, u64::MAX)
+}
+
+/// [`blinn_fidelity`] visiting at most about `points` points.
+fn fidelity_within(m: &Model, points: u64) -> Fidelity {
     let cfg = &m.cfg;
     let one = 1u32 << cfg.f();
     let n_count = 1u32 << cfg.n_bits();
     let full = (one as u64 + 1) * n_count as u64;
-    let stride = full.div_ceil(FIDELITY_POINTS).max(1) as u32;
+    let stride = full.div_ceil(points).max(1) as u32;
     let scale = (cfg.fi() as f64).exp2();
     // a fixed partition (not the core count), so the sums and the manifest are the same bytes
     // on every machine
     let threads = 8u32;
-    /// one thread's part: max, sum, worst n, worst cos_g, points, per-n maxima
-    type Part = (f64, f64, f64, u32, u32, u64, Vec<(u32, f64)>);
+    /// one thread's part: max, sum, worst n, worst cos_g, points, per-n maxima; the pixel's
+    /// max, integral of |error| and of its square, and the width integrated over
+    type Part = (f64, f64, f64, u32, u32, u64, Vec<(u32, f64)>, [f64; 4]);
     // the codes of a row, and c = code/2^F (exact): the same for every n
     let mut codes: Vec<u32> = (0..one).step_by(stride as usize).collect();
     codes.push(one);
     let cs: Vec<f64> = codes.iter().map(|&c| c as f64 / one as f64).collect();
-    let (codes, cs) = (&codes, &cs);
+    let (los, his) = pixel_ends(&codes, one);
+    let (codes, cs, los, his) = (&codes, &cs, &los, &his);
     let parts: Vec<Part> = std::thread::scope(|s| {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
@@ -400,6 +468,8 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
                     let (mut max, mut sum, mut squares_sum, mut wn, mut wc, mut count) = (0.0f64, 0.0f64, 0.0f64, 0u32, 0u32, 0u64);
                     let mut per_n = Vec::new();
                     let (mut got, mut powers, mut squares) = (Vec::new(), Vec::new(), Vec::new());
+                    let mut ends: [Vec<f64>; 6] = Default::default();
+                    let mut pixel = [0.0f64; 4];
                     for n in (t..n_count).step_by(threads as usize) {
                         // below the row's first non-zero output every output is zero
                         // (monotone in cos_g), so only the rest is evaluated
@@ -421,16 +491,54 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
                             }
                         }
                         per_n.push((n, row_max));
+                        // the pixel: each code's interval of real cosines (SPEC §6, [`Pixel`])
+                        for (k, v) in ends.iter_mut().enumerate() {
+                            let from = if k % 2 == 0 { los } else { his };
+                            powi_row(from, [n, n + 1, 2 * n + 1][k / 2], v, &mut squares);
+                        }
+                        let [lo_n, hi_n, lo_n1, hi_n1, lo_2n1, hi_2n1] = &ends;
+                        let last = codes.len() - 1;
+                        for j in 0..codes.len() {
+                            let i = got[j] as f64 / scale;
+                            let worst = if stride == 1 {
+                                (i - lo_n[j]).max(hi_n[j] - i)
+                            } else {
+                                // the codes up to the next visited one: intensities in
+                                // [I(j), I(j+1)], cosines in [lo(j), lo(j+1)]
+                                let (top_i, top_c) = if j < last { (got[j + 1] as f64 / scale, lo_n[j + 1]) } else { (i, hi_n[j]) };
+                                (top_i - lo_n[j]).max(top_c - i)
+                            };
+                            pixel[0] = pixel[0].max(worst);
+                            let (a, q) = pixel_integrals(i, n, los[j], his[j], lo_n[j], hi_n[j], lo_n1[j], hi_n1[j], lo_2n1[j], hi_2n1[j]);
+                            pixel[1] += a;
+                            pixel[2] += q;
+                            pixel[3] += his[j] - los[j];
+                        }
                     }
-                    (max, sum, squares_sum, wn, wc, count, per_n)
+                    (max, sum, squares_sum, wn, wc, count, per_n, pixel)
                 })
             })
             .collect();
         handles.into_iter().map(|h| h.join().expect("fidelity thread")).collect()
     });
-    let mut f = Fidelity { max: 0.0, mean: 0.0, rms: 0.0, worst_n: 0, worst_cos: 0, points: 0, stride, per_n_max: vec![0.0; n_count as usize] };
+    let mut f = Fidelity {
+        max: 0.0,
+        mean: 0.0,
+        rms: 0.0,
+        worst_n: 0,
+        worst_cos: 0,
+        points: 0,
+        stride,
+        per_n_max: vec![0.0; n_count as usize],
+        pixel: Pixel { bound: stride > 1, ..Pixel::default() },
+    };
     let (mut sum, mut squares) = (0.0, 0.0);
-    for (max, s, sq, wn, wc, count, per_n) in parts {
+    let mut pixel = [0.0f64; 4];
+    for (max, s, sq, wn, wc, count, per_n, px) in parts {
+        pixel[0] = pixel[0].max(px[0]);
+        for k in 1..4 {
+            pixel[k] += px[k];
+        }
         for (n, e) in per_n {
             f.per_n_max[n as usize] = e;
         }
@@ -443,6 +551,9 @@ pub fn blinn_fidelity(m: &Model) -> Fidelity {
     }
     f.mean = sum / f.points as f64;
     f.rms = (squares / f.points as f64).sqrt();
+    f.pixel.max = pixel[0];
+    f.pixel.mean = pixel[1] / pixel[3];
+    f.pixel.rms = (pixel[2] / pixel[3]).sqrt();
     f
 }
 
@@ -488,6 +599,42 @@ mod tests {
             for (c, p) in cs.iter().zip(&out) {
                 assert_eq!(p.to_bits(), c.powi(n as i32).to_bits(), "{c}^{n}");
             }
+        }
+    }
+
+    /// The pixel's figures against a dense sampling of the real cosine: the max is never
+    /// below any sample's error and within a sample's spacing of the densest; mean and RMS
+    /// agree with the sampled integrals; with a stride the max is a bound above the exact one.
+    #[test]
+    fn the_error_at_the_pixel_is_the_real_cosines() {
+        for model in [SpecularModel::Quadratic, SpecularModel::Blinn] {
+            let cfg = Config::new(crate::config::Params { model, n_bits: 4, cos_frac_bits: 6, intensity_frac_bits: 8, ..Default::default() }).unwrap();
+            let m = Model::new(&cfg);
+            let f = blinn_fidelity(&m);
+            assert_eq!(f.stride, 1);
+            assert!(!f.pixel.bound);
+            let (samples, one) = (200_000u32, 64.0);
+            let (mut max, mut sum, mut squares) = (0.0f64, 0.0f64, 0.0f64);
+            for n in 0..16u32 {
+                for s in 0..=samples {
+                    let c = s as f64 / samples as f64;
+                    let q = (c * one).round() as u32;
+                    let i = m.eval(Inputs { cos_g: q, n, ks: [0; 3] }).intensity as f64 / 256.0;
+                    let e = (i - c.powi(n as i32)).abs();
+                    max = max.max(e);
+                    sum += e;
+                    squares += e * e;
+                }
+            }
+            let count = 16.0 * (samples + 1) as f64;
+            assert!(f.pixel.max >= max && f.pixel.max <= max + 16.0 / samples as f64, "{model:?}: {} vs sampled {max}", f.pixel.max);
+            assert!((f.pixel.mean - sum / count).abs() < 1e-4, "{model:?}: mean {} vs {}", f.pixel.mean, sum / count);
+            assert!((f.pixel.rms - (squares / count).sqrt()).abs() < 1e-4, "{model:?}: rms {} vs {}", f.pixel.rms, (squares / count).sqrt());
+            // the rounding's own cost is in it: never below the error at the codes
+            assert!(f.pixel.max >= f.max);
+            let strided = fidelity_within(&m, 200);
+            assert!(strided.stride > 1 && strided.pixel.bound);
+            assert!(strided.pixel.max >= f.pixel.max, "a stride's bound {} below the exact {}", strided.pixel.max, f.pixel.max);
         }
     }
 

@@ -249,9 +249,14 @@ fn eval_shows_golden_exact_and_real_values() {
 
 #[test]
 fn rtl_out_is_what_the_generator_emits_now() {
+    rtl_out_is_emitted_now(Path::new(env!("CARGO_MANIFEST_DIR")));
+}
+
+/// `root`'s `rtl_out/` is what `specgen generate --out rtl_out` writes today, byte for byte.
+fn rtl_out_is_emitted_now(root: &Path) {
     let tmp = tempfile::tempdir().unwrap();
     let fresh = generate(tmp.path(), "fresh", &[]);
-    let checked_in = Path::new(env!("CARGO_MANIFEST_DIR")).join("rtl_out");
+    let checked_in = root.join("rtl_out");
     let text = |d: &Path| read_dir_sorted(d).into_iter().map(|(n, b)| (n, String::from_utf8_lossy(&b).into_owned())).collect::<Vec<_>>();
     let (old, new) = (text(&checked_in), text(&fresh));
     assert_eq!(old.iter().map(|f| &f.0).collect::<Vec<_>>(), new.iter().map(|f| &f.0).collect::<Vec<_>>(), "rtl_out/ file names");
@@ -259,6 +264,49 @@ fn rtl_out_is_what_the_generator_emits_now() {
         let first = a.lines().zip(b.lines()).position(|(x, y)| x != y);
         assert!(a == b, "rtl_out/{name} is stale (first differing line {first:?}): run `specgen generate --out rtl_out`");
     }
+}
+
+/// The README's first command, run as a newcomer runs it in a copy of the checkout (its
+/// tracked files), writes where no tracked file is, leaves `rtl_out/` as it was (what the
+/// exhaustive co-simulation of the checked-in unit reads), and the pinned-output test passes
+/// after it; the unit it picks is within its bound at the pixel on every input (the golden
+/// model, every code's interval and every n: no stride).
+#[test]
+fn the_readmes_commands_work_in_its_order() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let first = readme.lines().skip_while(|l| !l.starts_with("```sh")).nth(1).expect("a first command in the README");
+    let command = first.split("&& ").nth(1).expect("cargo install … && specgen …").split('#').next().unwrap().trim();
+    let words: Vec<&str> = command.split_whitespace().collect();
+    assert_eq!(words[..2], ["specgen", "generate"], "{first}");
+    let tracked = tool("git").args(["-C", root.to_str().unwrap(), "ls-files", "-z"]).output().unwrap();
+    assert!(tracked.status.success(), "git ls-files: {}", text(&tracked));
+    let tmp = tempfile::tempdir().unwrap();
+    let copy = tmp.path().join("checkout");
+    let files: Vec<String> = String::from_utf8(tracked.stdout).unwrap().split('\0').filter(|f| !f.is_empty()).map(String::from).collect();
+    for f in &files {
+        let to = copy.join(f);
+        std::fs::create_dir_all(to.parent().unwrap()).unwrap();
+        if root.join(f).is_file() {
+            std::fs::copy(root.join(f), &to).unwrap();
+        }
+    }
+    let before = read_dir_sorted(&copy.join("rtl_out"));
+    let o = specgen().args(&words[1..]).current_dir(&copy).output().unwrap();
+    assert!(o.status.success(), "{command}: {}", text(&o));
+    let out = words.iter().position(|w| *w == "--out").map(|i| words[i + 1]).expect("the command names its --out");
+    assert!(files.iter().all(|f| !Path::new(f).starts_with(out)), "{command} writes over tracked files under {out}/");
+    assert_eq!(read_dir_sorted(&copy.join("rtl_out")), before, "{command} changed rtl_out/");
+    rtl_out_is_emitted_now(&copy);
+    // the bound it was asked for holds at the pixel, exhaustively
+    let bound: f64 = words.iter().position(|w| *w == "--max-error").map(|i| words[i + 1].parse().unwrap()).expect("the README asks --max-error");
+    let unit = copy.join(out);
+    let manifest = std::fs::read_dir(&unit).unwrap().map(|e| e.unwrap().path()).find(|p| p.extension().is_some_and(|x| x == "json")).unwrap();
+    let cfg = Config::new(specgen::config::Params::from_json_file(&manifest).unwrap()).unwrap();
+    let f = specgen::models::fidelity_exhaustive(&specgen::models::Model::new(&cfg));
+    assert_eq!(f.stride, 1);
+    assert!(!f.pixel.bound && f.pixel.max <= bound, "{command}: the unit is {} from cos^n at the pixel", f.pixel.max);
+    assert!(text(&o).contains("measured") && text(&o).contains("today's RTL"), "{}", text(&o));
 }
 
 /// Each subcommand takes only the parameters it uses; help states ranges from the one table
