@@ -104,6 +104,44 @@ pub struct MeasureArgs {
     pub cache: Option<PathBuf>,
 }
 
+#[derive(clap::Args, Debug, Clone)]
+pub struct StaleArgs {
+    /// An exploration to check (`specgen explore`'s points.json); repeat it [default: every
+    /// family's built-in exploration, the data `generate --max-error` chooses from]
+    #[arg(long, value_name = "FILE")]
+    pub explored: Vec<PathBuf>,
+}
+
+/// `specgen stale`: the measured rows that are not of today's RTL, per exploration; exit 1
+/// when any is.
+pub fn stale(a: &StaleArgs) -> Result<(), Failure> {
+    let mut sets: Vec<(String, String)> = Vec::new();
+    if a.explored.is_empty() {
+        for t in Target::ALL {
+            if let Some(text) = specgen::family::of(t).explored() {
+                sets.push((format!("the built-in exploration of the {}", specgen::timing::part(t)), text.to_string()));
+            }
+        }
+    }
+    for p in &a.explored {
+        sets.push((p.display().to_string(), specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?));
+    }
+    let mut stale = 0;
+    for (what, text) in &sets {
+        let e = Exploration::from_text(text, what)?;
+        let ev = explore::evidence(&e)?;
+        outln!("{what}: {} measured rows, {} of today's RTL, {} of an older RTL", ev.today.len() + ev.stale.len(), ev.today.len(), ev.stale.len())?;
+        for id in &ev.stale {
+            outln!("  stale: {id}")?;
+        }
+        stale += ev.stale.len();
+    }
+    match stale {
+        0 => Ok(()),
+        n => Err(super::failed(format!("{n} measured rows are of an older RTL: measure them again (scripts/bench_explore.sh)"))),
+    }
+}
+
 /// The most jobs a plan holds; the largest jobs file.
 const MAX_JOBS: usize = 100_000;
 const MAX_JOBS_BYTES: u64 = 256 << 20;

@@ -121,6 +121,9 @@ pub enum Command {
     /// Run one job of a sweep (explore's jobs.json): generate its unit, synthesize and
     /// place-and-route it with its seed, write the result under its fingerprint.
     Measure(explore::MeasureArgs),
+    /// List the measured rows of the explorations `generate --max-error` chooses from that are
+    /// not of today's RTL (their jobs' RTL digest is another): exit 1 when any is.
+    Stale(explore::StaleArgs),
     /// Synthesize the RTL in DIR with yosys (and nextpnr for Fmax): LUTs, carries, DSPs, FFs, ROM.
     Synth(synth::SynthArgs),
     /// Render a sphere and a plane at grazing light with the unit in DIR, beside float cos^n and
@@ -611,6 +614,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Synth(args) => synth::run(&args),
         Command::Explore(args) => explore::run(&args),
         Command::Measure(args) => explore::measure(&args),
+        Command::Stale(args) => explore::stale(&args),
         Command::Vectors(args) => vectors(&args),
         Command::Report { out, force, hw, explored, params } => {
             let cfg = params.to_config(None)?;

@@ -644,11 +644,19 @@ fn sha256_hex(bytes: &[u8]) -> String {
     crate::bits::sha256_hex(bytes, 32)
 }
 
-/// Every file of a `generate` run, in memory: (file name, contents).
-pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
+/// A unit's sources: its Verilog (the top, then the modules it instantiates), the simulation
+/// models of its family's blocks (under `sim/`) and its tables' files, by name.
+pub struct Sources {
+    pub top: (String, String),
+    pub rtl: Vec<(String, String)>,
+    pub sim_models: Vec<(String, String)>,
+    pub tables: Vec<crate::table::Table>,
+}
+
+/// The unit's sources alone (no manifest, testbench or vectors): what its RTL digest covers.
+pub fn sources(plan: &Plan) -> Sources {
     let cfg = &plan.cfg;
     let top = cfg.top();
-    let unit = plan.model.unit();
     let mut verilog = fold_long_lines(&unit_template(plan).render().expect("unit template renders"));
     verilog.push('\n');
     let dp = &plan.datapath;
@@ -656,8 +664,6 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         RomStyle::File => dp.tables.iter().enumerate().filter(|(i, _)| !block_table(dp, *i)).map(|(_, t)| t.clone()).collect(),
         RomStyle::Case | RomStyle::Logic => Vec::new(),
     };
-    let description = unit.describe().summary;
-    let mut files = vec![(format!("{top}.v"), verilog.into_bytes())];
     // the ECP5 primitives' wrappers (RTL) and their simulation models (never synthesized)
     let (mut rtl_files, mut sim_models) = (Vec::new(), Vec::new());
     if cfg.interface().handshake() {
@@ -684,6 +690,29 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     if let Some((suffix, text)) = blocks.filter(|_| dp.has_dsp_blocks() || dp.has_block_rams()).and_then(|b| b.boxes) {
         rtl_files.push((format!("{top}{suffix}"), text(top)));
     }
+    Sources { top: (format!("{top}.v"), verilog), rtl: rtl_files, sim_models, tables }
+}
+
+/// The files [`sources`] names, in the order `generate` lists them: the top, the RTL modules,
+/// the simulation models, the tables.
+pub fn source_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
+    let s = sources(plan);
+    let mut files = vec![(s.top.0, s.top.1.into_bytes())];
+    files.extend(s.rtl.into_iter().chain(s.sim_models).map(|(n, t)| (n, t.into_bytes())));
+    for t in &s.tables {
+        files.push((t.file(plan.cfg.top()), rom::render_table(&plan.cfg, t, RomFormat::Hex).into_bytes()));
+    }
+    files
+}
+
+/// Every file of a `generate` run, in memory: (file name, contents).
+pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
+    let cfg = &plan.cfg;
+    let top = cfg.top();
+    let unit = plan.model.unit();
+    let Sources { top: (top_name, verilog), rtl: rtl_files, sim_models, tables } = sources(plan);
+    let description = unit.describe().summary;
+    let mut files = vec![(top_name, verilog.into_bytes())];
     let constraints = constraint_files(cfg);
     let testbench = crate::vectors::testbench_files(&plan.model);
     let core = CoreTemplate {

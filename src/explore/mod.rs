@@ -573,6 +573,28 @@ pub fn measured_today(p: &Point) -> Result<Option<String>, Error> {
     Ok(today.then_some(rtl))
 }
 
+/// What [`evidence`] finds of an exploration's measured rows.
+#[derive(Debug, Clone, Default)]
+pub struct Evidence {
+    /// the measured points whose jobs are today's RTL's, with its digest
+    pub today: Vec<(String, String)>,
+    /// the measured points of an older RTL (or of rows that name no jobs)
+    pub stale: Vec<String>,
+}
+
+/// Which measured rows of `e` are of the RTL specgen writes today ([`measured_today`]); each
+/// point costs one generation of its unit's sources (no synthesis): seconds for an exploration.
+pub fn evidence(e: &Exploration) -> Result<Evidence, Error> {
+    let mut ev = Evidence::default();
+    for p in e.points.iter().filter(|p| p.measured.is_some()) {
+        match measured_today(p)? {
+            Some(rtl) => ev.today.push((p.id.clone(), rtl)),
+            None => ev.stale.push(p.id.clone()),
+        }
+    }
+    Ok(ev)
+}
+
 /// The cheapest measured point of `e` (logic cells, then the higher clock) whose error by the
 /// question's metric is at most `max_error` and whose median Fmax reaches `mhz`, among those
 /// of the user's fixed parameters (exponent's and colours' widths, target), the user's edge

@@ -201,14 +201,10 @@ pub fn merge(points: &mut [Point], jobs: &[Job], results: &[JobResult]) -> Merge
 pub fn rtl_digest(plan: &Plan) -> String {
     use sha2::Digest;
     let mut h = sha2::Sha256::new();
-    let tb = format!("{}_tb.sv", plan.cfg.top());
-    let vectors = format!("{}_vectors.hex", plan.cfg.top());
-    for (name, bytes) in crate::emit::generate_files(plan) {
-        if (name.ends_with(".v") || name.ends_with(".hex")) && name != tb && name != vectors {
-            h.update(name.as_bytes());
-            h.update((bytes.len() as u64).to_le_bytes());
-            h.update(&bytes);
-        }
+    for (name, bytes) in crate::emit::source_files(plan) {
+        h.update(name.as_bytes());
+        h.update((bytes.len() as u64).to_le_bytes());
+        h.update(&bytes);
     }
     h.finalize().iter().map(|b| format!("{b:02x}")).collect()
 }

@@ -395,7 +395,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // one nextpnr per seed, as many at a time as there are cores
     // iCE40: the placed design as an .asc per seed, for icetime's second opinion
     let asc = |seed: u32| format!("seed{seed}.asc");
-    let run = |seed: u32| -> Result<(bool, String), Failure> {
+    let run = |seed: u32| -> Result<(std::process::ExitStatus, String), Failure> {
         let mut cmd = crate::process::command(tool);
         if family.icetime() {
             cmd.args(["--asc", &asc(seed)]);
@@ -415,7 +415,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             .map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
         let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
         log.push_str(&String::from_utf8_lossy(&out.stdout));
-        Ok((out.status.success(), log))
+        Ok((out.status, log))
     };
     let cores = std::thread::available_parallelism().map_or(1, |c| c.get()) as u32;
     let mut runs = Vec::new();
@@ -430,8 +430,27 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     }
     // every seed's log, one after another, each under a line naming its seed
     let logs: String = runs.iter().zip(seeds).map(|((_, log), seed)| format!("==== nextpnr seed {seed} ====\n{log}")).collect();
-    if let Some((_, log)) = runs.iter().find(|(ok, _)| !ok) {
-        // typically the design does not fit the device: report it, keep the area figures
+    // a run that failed is a failure unless nextpnr says the design does not fit: a kill (the
+    // out-of-memory killer's, a cluster's preemption), a crash or another error is no
+    // measurement, and a sweep must run the job again
+    for ((status, log), seed) in runs.iter().zip(seeds) {
+        if status.success() || does_not_fit(log) {
+            continue;
+        }
+        use std::os::unix::process::ExitStatusExt;
+        let how = match (status.signal(), status.code()) {
+            (Some(sig), _) => format!("was killed by signal {sig}{}", if sig == 9 { " (a kill, as the out-of-memory killer's)" } else { "" }),
+            (None, Some(code)) => format!("exited with code {code} without saying the design does not fit"),
+            (None, None) => "ended without an exit code".to_string(),
+        };
+        let lines: Vec<&str> = log.lines().collect();
+        return Err(error::tool(
+            tool,
+            format!("{tool} seed {seed} {how}; no measurement. Its last output:\n{}", lines[lines.len().saturating_sub(15)..].join("\n")),
+        ));
+    }
+    if let Some((_, log)) = runs.iter().find(|(status, _)| !status.success()) {
+        // the design does not fit the device (nextpnr's own words): report it, keep the area figures
         // nextpnr's own words: its ERROR line, or the end of its log when it has none
         let why = match log.lines().rfind(|l| l.starts_with("ERROR")) {
             Some(line) => line.to_string(),
@@ -645,4 +664,13 @@ pub fn table(r: &SynthResult) -> String {
         s.push_str(&format!("  {:<14} {b} (nextpnr does not time that add: Fmax is an upper bound)\n", "pipelined"));
     }
     s
+}
+
+/// nextpnr's own words for a design that does not fit the part (its placer's, its packer's):
+/// the only failure stored as a measurement ("does not fit").
+pub const DOES_NOT_FIT: [&str; 4] = ["no BELs remaining", "Unable to place cell", "Failed to place", "too many"];
+
+/// Whether a failed nextpnr's log says the design does not fit, on an ERROR line.
+pub fn does_not_fit(log: &str) -> bool {
+    log.lines().filter(|l| l.starts_with("ERROR")).any(|l| DOES_NOT_FIT.iter().any(|w| l.contains(w)))
 }

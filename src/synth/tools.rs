@@ -118,21 +118,29 @@ pub(super) fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String,
     Ok(log)
 }
 
+/// The most entries the yosys cache keeps: past it, the oldest are removed.
+pub const CACHE_ENTRIES: usize = 512;
+
 /// Runs yosys's `script` in `work`, which writes `products`; with a cache (`Tools::cache`), the
 /// products are taken from it when the same sources, script and yosys made them before, and
 /// kept there when made. The key is the SHA-256 of yosys's `version` (asked once a run), the
-/// script and every file of `work` (the staged sources and tables).
+/// script and every file of `work` that yosys reads (the staged sources and tables; not
+/// specgen's own marker of a temporary directory, which names the run). The cache is the
+/// caller's own (a directory no one else can write, as the simulators' cache) and holds at
+/// most [`CACHE_ENTRIES`] entries, the oldest removed first.
 pub(super) fn cached_yosys(tools: &Tools, version: Option<&str>, work: &Path, script: &str, products: &[&str]) -> Result<(), Failure> {
     let (Some(cache), Some(version)) = (&tools.cache, version) else {
         run_yosys(&tools.yosys, work, script)?;
         return Ok(());
     };
+    crate::output::private_dir(cache)?;
     use sha2::Digest;
     let mut h = sha2::Sha256::new();
     h.update(version.as_bytes());
     h.update(script.as_bytes());
     let mut names: Vec<std::path::PathBuf> =
         std::fs::read_dir(work).map_err(|e| Failure::io("read", work, e))?.flatten().map(|e| e.path()).filter(|p| p.is_file()).collect();
+    names.retain(|p| p.file_name().is_none_or(|n| n != crate::process::MARKER && !products.iter().any(|q| n == *q)));
     names.sort();
     for p in &names {
         let bytes = crate::small_file::read_bytes(p, 256 << 20).map_err(|e| input(format!("{} {e}", p.display())))?;
@@ -160,7 +168,28 @@ pub(super) fn cached_yosys(tools: &Tools, version: Option<&str>, work: &Path, sc
     if std::fs::rename(&made, &kept).is_err() {
         let _ = std::fs::remove_dir_all(&made);
     }
+    prune_cache(cache, CACHE_ENTRIES);
     Ok(())
+}
+
+/// Removes the oldest entries of a yosys cache past `keep` (by modification time; a half-made
+/// `.new-` directory is never counted or removed).
+fn prune_cache(cache: &Path, keep: usize) {
+    let Ok(rd) = std::fs::read_dir(cache) else { return };
+    let mut entries: Vec<(std::time::SystemTime, std::path::PathBuf)> = rd
+        .flatten()
+        .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
+        .filter_map(|e| Some((e.metadata().ok()?.modified().ok()?, e.path())))
+        .take(100_000)
+        .collect();
+    if entries.len() <= keep {
+        return;
+    }
+    entries.sort();
+    let excess = entries.len() - keep;
+    for (_, p) in entries.into_iter().take(excess) {
+        let _ = std::fs::remove_dir_all(p);
+    }
 }
 
 /// yosys's data directory (cell models): `<bin>/../share/yosys` beside the binary, as yosys

@@ -370,3 +370,79 @@ fn an_exploration_with_results_over_seeds_is_replaced_by_the_next_run() {
     let e = specgen::output::write_dir_atomically(&dir, &files("102.0")).unwrap_err().to_string();
     assert!(e.contains("\"mine\", which is not a regular file"), "{e}");
 }
+
+/// A tool's failure is no measurement: a nextpnr killed by a signal (the out-of-memory killer,
+/// a cluster's preemption) or failing without saying the design does not fit makes `measure`
+/// exit 1 and store nothing, so a sweep runs the job again; only nextpnr's own "does not fit"
+/// words are stored as such. Two seeds of one unit through `--cache` run yosys once.
+#[test]
+fn a_killed_tool_is_no_measurement_and_a_units_seeds_synthesize_once() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let plan = tmp.path().join("plan");
+    let o = explore(&plan, &[], &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let jobs: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(plan.join("jobs.json")).unwrap()).unwrap();
+    let first = jobs[0]["point"].as_str().unwrap().to_string();
+    let seeds: Vec<&str> = jobs.iter().filter(|j| j["point"] == first.as_str()).map(|j| j["fingerprint"].as_str().unwrap()).collect();
+    assert_eq!(seeds.len(), 2);
+    // stand-ins that answer --version as the real tool does (the job's fingerprint names it)
+    let stand_in = |name: &str, real: &str, body: &str| -> PathBuf {
+        let p = tmp.path().join(name);
+        std::fs::write(&p, format!("#!/bin/bash\ncase \"$1\" in --version|-V) exec {real} \"$@\";; esac\n{body}\n")).unwrap();
+        std::fs::set_permissions(&p, std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
+        p
+    };
+    let measure = |fp: &str, out: &Path, nextpnr: &Path, yosys: &Path, cache: &Path| {
+        output_guarded(
+            specgen()
+                .arg("measure")
+                .arg("--jobs")
+                .arg(plan.join("jobs.json"))
+                .args(["--fingerprint", fp])
+                .arg("--out")
+                .arg(out)
+                .arg("--nextpnr")
+                .arg(nextpnr)
+                .arg("--yosys")
+                .arg(yosys)
+                .arg("--cache")
+                .arg(cache),
+            "specgen measure",
+        )
+    };
+    let runs = tmp.path().join("yosys-runs");
+    let yosys = stand_in("yosys", "yosys", &format!("echo run >> {runs:?}\nexec yosys \"$@\""));
+    let cache = tmp.path().join("cache");
+    let out = tmp.path().join("out.json");
+    for (name, body, exit) in [
+        ("killed", "kill -9 $$", 1),
+        ("crashed", "echo 'Info: placing' >&2; exit 3", 1),
+        ("full", "echo \"ERROR: Unable to place cell 'x', no BELs remaining to implement cell type 'ICESTORM_DSP'\" >&2; exit 1", 0),
+    ] {
+        let nextpnr = stand_in(&format!("nextpnr-{name}"), "nextpnr-ice40", body);
+        let o = measure(seeds[0], &out, &nextpnr, &yosys, &cache);
+        assert_eq!(o.status.code(), Some(exit), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(out.exists(), exit == 0, "{name}: a result stored");
+        if exit == 1 {
+            let e = String::from_utf8_lossy(&o.stderr);
+            assert!(e.contains("no measurement") && e.contains(if name == "killed" { "signal 9" } else { "code 3" }), "{name}: {e}");
+        } else {
+            let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+            assert!(r["synth"]["fmax_mhz"].is_null(), "{r}");
+            std::fs::remove_file(&out).unwrap();
+        }
+    }
+    // the unit was synthesized once (by the first run: the unit, and the unit in its serial
+    // wrapper for place-and-route), whatever nextpnr did after; its seeds, through the same
+    // cache, synthesize nothing
+    let count = || std::fs::read_to_string(&runs).unwrap_or_default().lines().count();
+    assert_eq!(count(), 2, "yosys runs for one unit");
+    let real = Path::new("nextpnr-ice40");
+    for fp in &seeds {
+        let o = measure(fp, &tmp.path().join(format!("{fp}.json")), real, &yosys, &cache);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    assert_eq!(count(), 2, "yosys runs for the unit's two seeds");
+}
