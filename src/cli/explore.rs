@@ -51,6 +51,10 @@ pub struct ExploreArgs {
     /// The error the front and the choice are drawn by.
     #[arg(long, value_enum, default_value = "max")]
     pub metric: MetricFlag,
+    /// The display of the display metrics: srgbB (sRGB, B bits) or gammaG:B (a power law)
+    /// [B 1..=16, G 1..=4]
+    #[arg(long, value_name = "DISPLAY", default_value = "srgb8")]
+    pub display: String,
     /// nextpnr seeds 1..=K of each measured point [1..=20]
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=20))]
     pub seeds: u32,
@@ -203,6 +207,7 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         rom_styles: a.rom_style.iter().map(|&r| r.into()).collect(),
         clocks: a.clocks.clone(),
         spread: a.depths,
+        display: specgen::models::display::Display::parse(&a.display)?,
     };
     for dir in &a.results {
         if specgen::output::inside(dir, &a.out) {
@@ -346,7 +351,16 @@ pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {
 /// clock, among those with every parameter the user gave (`given`, by `Params`' field name)
 /// and the user's interface; its parameters fill in the rest of `params`, and every chosen one
 /// is said to be chosen.
-pub fn choose(explored: Option<&Path>, params: &Params, given: &[&str], metric: Metric, max_error: f64, mhz: f64) -> Result<Params, Failure> {
+#[allow(clippy::too_many_arguments)]
+pub fn choose(
+    explored: Option<&Path>,
+    params: &Params,
+    given: &[&str],
+    metric: Metric,
+    display: specgen::models::display::Display,
+    max_error: f64,
+    mhz: f64,
+) -> Result<Params, Failure> {
     let (text, what) = match explored {
         Some(p) => (specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?, p.display().to_string()),
         None => match specgen::family::of(params.target).explored() {
@@ -360,7 +374,7 @@ pub fn choose(explored: Option<&Path>, params: &Params, given: &[&str], metric: 
         },
     };
     let e = Exploration::from_text(&text, &what)?;
-    let c = explore::choose(&e, &explore::Question { base: params, given, metric, max_error, mhz })?;
+    let c = explore::choose(&e, &explore::Question { base: params, given, metric, max_error, mhz, display })?;
     let p = &c.point;
     let m = p.measured.as_ref().expect("a choice is measured");
     let lo = m.fmax_seeds.iter().copied().fold(f64::INFINITY, f64::min);
@@ -382,7 +396,11 @@ pub fn choose(explored: Option<&Path>, params: &Params, given: &[&str], metric: 
         p.id,
         metric.name(),
         c.error,
-        if metric.at_pixel() { ", the cosine rounded to F bits counted" } else { "" },
+        match (metric.in_display_codes(), metric.at_pixel()) {
+            (true, _) => format!(" codes of {}, the cosine rounded to F bits counted", display.name()),
+            (false, true) => ", the cosine rounded to F bits counted".to_string(),
+            _ => String::new(),
+        },
         m.fmax_mhz.unwrap_or(0.0),
         specgen::synth::seed_list(&m.seeds),
         p.cells(),

@@ -57,6 +57,10 @@ pub enum Command {
         /// the one built in for the --target]
         #[arg(long, value_name = "FILE", requires = "max_error")]
         explored: Option<PathBuf>,
+        /// The display of --metric display-max and display-banding: srgbB (sRGB, B bits) or
+        /// gammaG:B (a power law) [B 1..=16, G 1..=4]
+        #[arg(long, value_name = "DISPLAY", default_value = "srgb8", requires = "max_error")]
+        display: String,
         #[command(flatten)]
         params: ParamArgs,
         #[command(flatten)]
@@ -477,7 +481,7 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool)
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Generate { out, force, target_mhz, max_error, metric, explored, params, rtl } => {
+        Command::Generate { out, force, target_mhz, max_error, metric, explored, display, params, rtl } => {
             if let Some(config) = &params.config {
                 if specgen::output::inside(config, &out) {
                     return Err(usage(format!(
@@ -501,7 +505,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
             // --max-error: the unit is the exploration's choice, its depth measured, not predicted
             let mut pick_depth = target_mhz;
             if let (Some(e), Some(mhz)) = (max_error, target_mhz) {
-                if !(e > 0.0 && e <= 1.0) {
+                let metric: specgen::explore::Metric = metric.into();
+                let display = specgen::models::display::Display::parse(&display)?;
+                if metric.in_display_codes() {
+                    let top = ((1u64 << display.bits) - 1) as f64;
+                    if !(e > 0.0 && e <= top) {
+                        return Err(usage(format!("invalid --max-error: {e}; allowed (0, {top}] codes of --display {}", display.name())));
+                    }
+                } else if !(e > 0.0 && e <= 1.0) {
                     return Err(usage(format!("invalid --max-error: {e}; allowed (0, 1] (full scale)")));
                 }
                 if params.config.is_some() {
@@ -510,7 +521,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     ));
                 }
                 let given = given_keys(&params, &rtl);
-                let chosen = explore::choose(explored.as_deref(), &cfg.params, &given, metric.into(), e, mhz)?;
+                let chosen = explore::choose(explored.as_deref(), &cfg.params, &given, metric, display, e, mhz)?;
                 cfg = Config::new(chosen)?;
                 pick_depth = None;
             }

@@ -38,6 +38,10 @@ flag_values! {
         CodeRms,
         /// the largest step between neighbouring pixels of render's sphere beyond the float image's (banding)
         Step,
+        /// the largest error at the pixel in codes of the --display (after its transfer function); E in codes
+        DisplayMax,
+        /// the largest jump in codes of the --display between neighbouring cosine codes, every n: 1 is no banding beyond the display's own; E in codes
+        DisplayBanding,
     }
     /// `--rounding`
     RoundingFlag => Rounding {

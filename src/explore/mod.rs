@@ -35,6 +35,7 @@
 use crate::config::{Config, Params, RomStyle, SpecularModel};
 use crate::datapath::Kind;
 use crate::error::Error;
+use crate::models::display::Display;
 use crate::models::{blinn_fidelity, Model};
 use crate::plan::Plan;
 use serde::{Deserialize, Serialize};
@@ -66,6 +67,8 @@ pub struct Space {
     pub clocks: Vec<f64>,
     /// also this many depths spread evenly up to the deepest (a calibration's grid), 0: none
     pub spread: u32,
+    /// the display of the display metrics
+    pub display: Display,
 }
 
 impl Space {
@@ -79,7 +82,7 @@ impl Space {
 }
 
 /// How far a unit is from Blinn's `cos^n`, on its whole input space and in a picture.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Accuracy {
     /// max |intensity − cos^n| over every (cos_g ≤ 1.0, n) at the unit's own codes (c =
     /// cos_g/2^F), full scale: the error for a cosine that already arrives at F bits
@@ -99,6 +102,20 @@ pub struct Accuracy {
     /// bound until recomputed)
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pixel: Option<PixelAccuracy>,
+    /// the error and the banding in codes of a display (`models::display`); None in an
+    /// exploration written before it was measured
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub display: Option<DisplayAccuracy>,
+}
+
+/// [`Accuracy::display`]: on which display, and its figures in that display's codes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DisplayAccuracy {
+    /// `srgb8`, `gamma2.2:10`, …
+    pub display: String,
+    pub max_codes: f64,
+    pub banding_codes: f64,
+    pub bound: bool,
 }
 
 /// [`Accuracy::pixel`]: max, mean and RMS of `|intensity − c^n|` over the real `c ∈ [0, 1]`.
@@ -124,10 +141,16 @@ pub enum Metric {
     CodeRms,
     /// the largest step between neighbouring pixels beyond the float image's
     Step,
+    /// the largest error in codes of a display (after its transfer function), at the pixel
+    DisplayMax,
+    /// the largest jump in codes of a display between neighbouring cosine codes (1: no banding
+    /// beyond the display's own)
+    DisplayBanding,
 }
 
 impl Metric {
-    pub const ALL: [Metric; 7] = [Metric::Max, Metric::Mean, Metric::Rms, Metric::CodeMax, Metric::CodeMean, Metric::CodeRms, Metric::Step];
+    pub const ALL: [Metric; 9] =
+        [Metric::Max, Metric::Mean, Metric::Rms, Metric::CodeMax, Metric::CodeMean, Metric::CodeRms, Metric::Step, Metric::DisplayMax, Metric::DisplayBanding];
     pub fn name(self) -> &'static str {
         match self {
             Metric::Max => "max",
@@ -137,6 +160,8 @@ impl Metric {
             Metric::CodeMean => "code-mean",
             Metric::CodeRms => "code-rms",
             Metric::Step => "step",
+            Metric::DisplayMax => "display-max",
+            Metric::DisplayBanding => "display-banding",
         }
     }
     /// The metric's figure; a pixel metric of an accuracy without pixel figures is infinite
@@ -151,11 +176,17 @@ impl Metric {
             Metric::CodeMean => a.mean,
             Metric::CodeRms => a.rms,
             Metric::Step => a.max_step_excess,
+            Metric::DisplayMax => a.display.as_ref().map_or(f64::INFINITY, |d| d.max_codes),
+            Metric::DisplayBanding => a.display.as_ref().map_or(f64::INFINITY, |d| d.banding_codes),
         }
     }
     /// Whether the figure needs the pixel's part of an accuracy.
     pub fn at_pixel(self) -> bool {
-        matches!(self, Metric::Max | Metric::Mean | Metric::Rms)
+        matches!(self, Metric::Max | Metric::Mean | Metric::Rms | Metric::DisplayMax | Metric::DisplayBanding)
+    }
+    /// Whether the figure is in codes of a display (its bound is in codes, not full scale).
+    pub fn in_display_codes(self) -> bool {
+        matches!(self, Metric::DisplayMax | Metric::DisplayBanding)
     }
 }
 
@@ -164,9 +195,16 @@ fn picture_exponents(n_bits: u32) -> Vec<u32> {
     [1u32, 4, 16, 128].into_iter().filter(|&n| n < 1 << n_bits).collect()
 }
 
-/// The accuracy of a model (every depth of it computes the same function).
+/// The accuracy of a model (every depth of it computes the same function), its display
+/// figures on an 8-bit sRGB display.
 pub fn accuracy(model: &Model) -> Accuracy {
+    accuracy_on(model, Display::SRGB8)
+}
+
+/// [`accuracy`] with the display figures on `display`.
+pub fn accuracy_on(model: &Model, display: Display) -> Accuracy {
     let f = blinn_fidelity(model);
+    let d = crate::models::display::display_error(model, display);
     let img = crate::render::image_figures(model, &picture_exponents(model.cfg.n_bits()), 128);
     Accuracy {
         max: f.max,
@@ -177,6 +215,7 @@ pub fn accuracy(model: &Model) -> Accuracy {
         psnr_db: img.psnr_db,
         max_step_excess: img.max_step_excess,
         pixel: Some(PixelAccuracy { max: f.pixel.max, mean: f.pixel.mean, rms: f.pixel.rms, bound: f.pixel.bound }),
+        display: Some(DisplayAccuracy { display: display.name(), max_codes: d.max_codes, banding_codes: d.banding_codes, bound: d.bound }),
     }
 }
 
@@ -347,7 +386,7 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
         let base = Params { model, cos_frac_bits: f, intensity_frac_bits: fi, stages: 0, ..space.base.clone() };
         let cfg = Config::new(base.clone())?;
         let golden = Model::new(&cfg);
-        let acc = accuracy(&golden);
+        let acc = accuracy_on(&golden, space.display);
         for &rom in &space.rom_styles {
             // the ROM style shapes the model's own datapath (its tables' steps): a model of its
             // own per style (every style computes the same function: one accuracy); a budget is
@@ -401,7 +440,7 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
                         rom_style: rom.name().to_string(),
                         chosen_for,
                         params: p.cfg.params.clone(),
-                        accuracy: acc,
+                        accuracy: acc.clone(),
                         estimate: estimate(&p),
                         measured: None,
                         front: Vec::new(),
@@ -430,7 +469,7 @@ pub fn unit_points(units: &[Params]) -> Result<Vec<Point>, Error> {
         }
         // the function a unit computes is its configuration's at depth 0 (any depth computes it)
         let shape = Config::new(Params { stages: 0, ..p.clone() })?.fingerprint();
-        let acc = *accuracies.entry(shape).or_insert_with(|| accuracy(&plan.model()));
+        let acc = accuracies.entry(shape).or_insert_with(|| accuracy(&plan.model())).clone();
         out.push(Point {
             id,
             model: p.model.name().to_string(),
@@ -550,6 +589,8 @@ pub struct Question<'a> {
     pub metric: Metric,
     pub max_error: f64,
     pub mhz: f64,
+    /// the display the display metrics are in
+    pub display: Display,
 }
 
 /// One field of `p` by its name, as JSON (the form the manifest and the explorations store).
@@ -619,10 +660,10 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
         let shape = Config::new(Params { stages: 0, dsp_budget: None, ..p.params.clone() })?;
         let key = shape.fingerprint();
         if let Some(a) = accuracies.get(&key) {
-            return Ok(*a);
+            return Ok(a.clone());
         }
-        let a = accuracy(&Model::new(&shape));
-        accuracies.insert(key, a);
+        let a = accuracy_on(&Model::new(&shape), q.display);
+        accuracies.insert(key, a.clone());
         Ok(a)
     };
     let mut stale = Vec::new();

@@ -14,6 +14,7 @@ fn space() -> Space {
         rom_styles: vec![RomStyle::File],
         clocks: vec![],
         spread: 0,
+        display: crate::models::display::Display::SRGB8,
     }
 }
 
@@ -123,7 +124,7 @@ fn measured_exploration() -> (Vec<Point>, Exploration) {
 }
 
 fn ask<'a>(base: &'a Params, given: &'a [&'a str], metric: Metric, max_error: f64, mhz: f64) -> Question<'a> {
-    Question { base, given, metric, max_error, mhz }
+    Question { base, given, metric, max_error, mhz, display: crate::models::display::Display::SRGB8 }
 }
 
 #[test]
@@ -167,6 +168,15 @@ fn the_choice_bounds_the_error_at_the_pixel_recomputed() {
     }
     let c = choose(&e, &ask(base, &[], Metric::CodeMax, truth.max, 50.0)).unwrap();
     assert_eq!(c.point.id, ps[0].id);
+    // in a display's codes: the question's display, recomputed (the file says nothing of it)
+    for p in &mut e.points {
+        p.accuracy.display = None;
+    }
+    let shown = crate::models::display::display_error(&Model::new(&Config::new(ps[0].params.clone()).unwrap()), crate::models::display::Display::SRGB8);
+    let c = choose(&e, &ask(base, &[], Metric::DisplayMax, 255.0, 50.0)).unwrap();
+    assert_eq!((c.point.id.as_str(), c.error), (ps[0].id.as_str(), shown.max_codes));
+    let c = choose(&e, &ask(base, &[], Metric::DisplayBanding, 255.0, 50.0)).unwrap();
+    assert_eq!(c.error, shown.banding_codes);
 }
 
 /// A parameter the user gives narrows the choice; one that no measured unit has refuses it.
@@ -228,6 +238,7 @@ fn every_point_is_the_plan_of_its_own_parameters() {
         rom_styles: vec![RomStyle::File, RomStyle::Logic],
         clocks: vec![],
         spread: 2,
+        display: crate::models::display::Display::SRGB8,
     };
     let ps = points(&s, &|_, _| {}).unwrap();
     assert!(ps.iter().any(|p| p.params.rom_style == RomStyle::Logic));

@@ -13,6 +13,7 @@
 
 pub mod blinn;
 pub mod blinn_pow;
+pub mod display;
 pub mod fitted;
 pub mod quadratic;
 pub mod schlick;
