@@ -15,6 +15,7 @@ use serde::Serialize;
 pub(crate) use crate::names::{SIM_DIR, VERSION};
 
 mod cuts;
+mod python;
 #[cfg(test)]
 mod tests;
 mod text;
@@ -741,6 +742,14 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     }
     files.extend(constraints.into_iter().chain(testbench).map(|(n, t)| (n, t.into_bytes())));
     files.push((format!("{top}.core"), core.into_bytes()));
+    // the unit in the Python HDLs (Amaranth, LiteX): what they add to a build is its RTL and
+    // tables, never the simulation models or the testbench
+    let synthesized: Vec<String> = files
+        .iter()
+        .map(|(n, _)| n.clone())
+        .filter(|n| (n.ends_with(".v") || n.ends_with(".hex")) && !n.starts_with(SIM_DIR) && !n.ends_with("_vectors.hex"))
+        .collect();
+    files.extend(python::python_files(plan, synthesized).into_iter().map(|(n, t)| (n, t.into_bytes())));
     let fidelity = plan.model.fidelity();
     let manifest = Manifest {
         generator: "specgen",
