@@ -446,3 +446,29 @@ fn a_killed_tool_is_no_measurement_and_a_units_seeds_synthesize_once() {
     }
     assert_eq!(count(), 2, "yosys runs for the unit's two seeds");
 }
+
+/// Every measured row the tool ships (the built-in explorations `generate --max-error` chooses
+/// from) is of the RTL this specgen writes: `specgen stale` finds none of an older RTL.
+#[test]
+fn the_shipped_explorations_are_of_todays_rtl() {
+    let o = output_guarded(specgen().arg("stale"), "specgen stale");
+    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{text}");
+    assert!(text.contains("of today's RTL, 0 of an older RTL"), "{text}");
+}
+
+/// `specgen stale` says which rows of an exploration are of an older RTL, and exits 1.
+#[test]
+fn a_stale_row_is_named() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut e: serde_json::Value = serde_json::from_str(include_str!("../../data/explore/ice40.json")).unwrap();
+    let p = &mut e["points"][0];
+    let id = p["id"].as_str().unwrap().to_string();
+    p["measured"]["jobs"][0] = serde_json::json!("00000000000000000000");
+    let file = tmp.path().join("e.json");
+    std::fs::write(&file, e.to_string()).unwrap();
+    let o = output_guarded(specgen().arg("stale").arg("--explored").arg(&file), "specgen stale");
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(1), "{text}");
+    assert!(text.contains(&format!("  stale: {id}")) && text.contains("1 of an older RTL"), "{text}");
+}
