@@ -172,6 +172,37 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
             None => Ok(()),
         }
     };
+    // every list bounded before anything is parsed or computed, and each value taken once
+    for (flag, len) in [
+        ("models", a.models.len()),
+        ("cos-frac-bits", a.cos_frac_bits.len()),
+        ("intensity-frac-bits", a.intensity_frac_bits.len()),
+        ("dsp-budget", a.dsp_budget.len()),
+        ("rom-style", a.rom_style.len()),
+        ("clocks", a.clocks.len()),
+    ] {
+        if len > 16 {
+            return Err(usage(format!("invalid --{flag}: {len} values; allowed at most 16")));
+        }
+    }
+    let mut a = a.clone();
+    fn once<T: PartialEq + Clone>(v: &mut Vec<T>) {
+        let mut seen: Vec<T> = Vec::new();
+        v.retain(|x| {
+            let new = !seen.contains(x);
+            if new {
+                seen.push(x.clone());
+            }
+            new
+        });
+    }
+    once(&mut a.models);
+    once(&mut a.cos_frac_bits);
+    once(&mut a.intensity_frac_bits);
+    once(&mut a.dsp_budget);
+    once(&mut a.rom_style);
+    once(&mut a.clocks);
+    let a = &a;
     range("cos-frac-bits", &a.cos_frac_bits, &specgen::config::COS_FRAC_BITS)?;
     range("intensity-frac-bits", &a.intensity_frac_bits, &specgen::config::INTENSITY_FRAC_BITS)?;
     if !(0.0..=10.0).contains(&a.near) {
@@ -220,6 +251,16 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     }
     let metric: Metric = a.metric.into();
     let clocks = space.clocks();
+    // the points counted before any is computed: a depth per clock, the deepest, the spread
+    let at_most = a.models.len()
+        * a.cos_frac_bits.len()
+        * a.intensity_frac_bits.len()
+        * space.dsp_budgets.len()
+        * a.rom_style.len()
+        * (clocks.len().max(3) + 1 + a.depths as usize);
+    if a.unit.is_empty() && at_most > explore::MAX_POINTS {
+        return Err(usage(format!("the space holds up to {at_most} points; allowed at most {}: narrow it", explore::MAX_POINTS)));
+    }
     let start = std::time::Instant::now();
     // progress on standard error, at most every two seconds
     let said = std::cell::Cell::new(0u64);
@@ -253,6 +294,10 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     let mut jobs = explore::jobs_of(&points, &ids, &seeds, &versions)?;
     if a.no_dsp {
         jobs = jobs.into_iter().map(explore::Job::fabric_only).collect();
+    }
+    // one limit for the jobs a plan holds: what `measure` reads
+    if jobs.len() > MAX_JOBS {
+        return Err(usage(format!("the plan holds {} jobs; allowed at most {MAX_JOBS} (what measure reads): fewer --seeds or a narrower space", jobs.len())));
     }
     let dirs: Vec<&Path> = a.results.iter().map(PathBuf::as_path).collect();
     let results = explore::read_results(&dirs)?;

@@ -25,6 +25,55 @@ impl Exploration {
         if e.generator != "specgen" {
             return Err(input(format!("{what} is not an exploration written by specgen")));
         }
+        if e.points.len() > MAX_POINTS {
+            return Err(input(format!("{what} holds {} points; allowed at most {MAX_POINTS}", e.points.len())));
+        }
+        // every number that is drawn or compared in range before anything reads it
+        for p in &e.points {
+            let bad = |what_field: &str, v: f64| input(format!("{what}: point {} has {what_field} {v}, out of range", p.id));
+            let a = &p.accuracy;
+            for (name, v) in [("accuracy.max", a.max), ("accuracy.mean", a.mean), ("accuracy.rms", a.rms), ("accuracy.max_step_excess", a.max_step_excess)] {
+                if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+                    return Err(bad(name, v));
+                }
+            }
+            if !(a.psnr_db.is_finite() && (-1.0..=1000.0).contains(&a.psnr_db)) {
+                return Err(bad("accuracy.psnr_db", a.psnr_db));
+            }
+            if let Some(x) = &a.pixel {
+                for (name, v) in [("accuracy.pixel.max", x.max), ("accuracy.pixel.mean", x.mean), ("accuracy.pixel.rms", x.rms)] {
+                    if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+                        return Err(bad(name, v));
+                    }
+                }
+            }
+            if let Some(d) = &a.display {
+                for (name, v) in [("accuracy.display.max_codes", d.max_codes), ("accuracy.display.banding_codes", d.banding_codes)] {
+                    if !(v.is_finite() && (0.0..=65535.0).contains(&v)) {
+                        return Err(bad(name, v));
+                    }
+                }
+            }
+            let est = &p.estimate;
+            for (name, v) in [("estimate.fmax_mhz", est.fmax_mhz.unwrap_or(1.0)), ("estimate.stage_delay", est.stage_delay.max(0.0) + 1.0)] {
+                if !(v.is_finite() && v > 0.0 && v <= 1e6) {
+                    return Err(bad(name, v));
+                }
+            }
+            if let Some(m) = &p.measured {
+                for &f in m.fmax_mhz.iter().chain(&m.fmax_seeds).chain(&m.route_seeds) {
+                    if !(f.is_finite() && f > 0.0 && f <= 1000.0) {
+                        return Err(bad("measured Fmax", f));
+                    }
+                }
+                if m.logic_cells.is_some_and(|c| c > 10_000_000) {
+                    return Err(bad("measured logic cells", m.logic_cells.unwrap_or(0) as f64));
+                }
+            }
+            if p.estimate.logic_cells > 100_000_000 {
+                return Err(bad("estimate.logic_cells", p.estimate.logic_cells as f64));
+            }
+        }
         Ok(e)
     }
 }

@@ -112,10 +112,57 @@ pub fn read_results(dirs: &[&Path]) -> Result<Vec<JobResult>, Error> {
                     r.job.fingerprint
                 )));
             }
+            r.check().map_err(|why| input(format!("{}: the measurement is not its job's: {why}", path.display())))?;
             out.push(r);
         }
     }
     Ok(out)
+}
+
+impl JobResult {
+    /// The measurement is of its job: the model, depth, widths, family, seed and hard
+    /// multipliers the job names, and figures a part can hold (an Fmax in (0, the family's
+    /// ceiling] MHz, at most the part's logic cells). A result edited by hand, or copied from another job,
+    /// fails here whatever its fingerprint says.
+    pub fn check(&self) -> Result<(), String> {
+        let (j, s) = (&self.job, &self.synth);
+        let p = &j.params;
+        let widths = format!("{}/{}/{}/{}", p.cos_frac_bits, p.n_bits, p.color_bits, p.intensity_frac_bits);
+        let mut wrong = Vec::new();
+        if s.model != p.model.name() {
+            wrong.push(format!("model {:?}, the job's {}", s.model, p.model.name()));
+        }
+        if s.stages != p.stages {
+            wrong.push(format!("stages {}, the job's {}", s.stages, p.stages));
+        }
+        if s.widths != widths {
+            wrong.push(format!("widths {:?}, the job's {widths}", s.widths));
+        }
+        if s.target != p.target.name() {
+            wrong.push(format!("target {:?}, the job's {}", s.target, p.target.name()));
+        }
+        if s.dsp != j.dsp {
+            wrong.push(format!("dsp {}, the job's {}", s.dsp, j.dsp));
+        }
+        if s.fmax_mhz.is_some() && s.seeds != [j.seed] {
+            wrong.push(format!("seeds {:?}, the job's [{}]", s.seeds, j.seed));
+        }
+        let ceiling = crate::family::of(p.target).fmax_ceiling_mhz();
+        for f in s.fmax_mhz.iter().chain(&s.fmax_route_mhz).chain(&s.fmax_seeds) {
+            if !(f.is_finite() && *f > 0.0 && *f <= ceiling) {
+                wrong.push(format!("an Fmax of {f} MHz (the part's place-and-route reaches at most {ceiling})"));
+            }
+        }
+        if let (Some(c), Some(cap)) = (s.logic_cells, crate::family::of(p.target).logic_capacity()) {
+            if c == 0 || c > cap {
+                wrong.push(format!("{c} logic cells (the part has {cap})"));
+            }
+        }
+        match wrong.is_empty() {
+            true => Ok(()),
+            false => Err(wrong.join("; ")),
+        }
+    }
 }
 
 /// What a merge found wrong: the jobs of the plan without exactly one result.

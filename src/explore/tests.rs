@@ -251,3 +251,41 @@ fn every_point_is_the_plan_of_its_own_parameters() {
     assert_eq!(deepest(RomStyle::Logic), own_deepest(RomStyle::Logic));
     assert_eq!(deepest(RomStyle::File), own_deepest(RomStyle::File));
 }
+
+/// A result is checked against its job: another model, depth, seed or family, an Fmax past
+/// the part's reach or more cells than it has is refused, whatever the fingerprint says.
+#[test]
+fn a_result_is_checked_against_its_job() {
+    let ps = points(&space(), &|_, _| {}).unwrap();
+    let tools: Versions = [("yosys".to_string(), "x".to_string())].into();
+    let job = jobs_of(&ps, &[ps[0].id.clone()], &[2], &tools).unwrap().remove(0);
+    let p = &job.params;
+    let good = crate::synth::SynthResult {
+        model: p.model.name().into(),
+        stages: p.stages,
+        widths: format!("{}/{}/{}/{}", p.cos_frac_bits, p.n_bits, p.color_bits, p.intensity_frac_bits),
+        seeds: vec![2],
+        target: p.target.name().into(),
+        dsp: true,
+        fmax_mhz: Some(120.0),
+        fmax_route_mhz: Some(120.0),
+        fmax_seeds: vec![120.0],
+        logic_cells: Some(300),
+        ..Default::default()
+    };
+    assert_eq!(JobResult { job: job.clone(), synth: good.clone() }.check(), Ok(()));
+    let edits: Vec<(&str, crate::synth::SynthResult)> = vec![
+        ("model", crate::synth::SynthResult { model: "blinn-pow".into(), ..good.clone() }),
+        ("stages", crate::synth::SynthResult { stages: p.stages + 1, ..good.clone() }),
+        ("widths", crate::synth::SynthResult { widths: "15/10/8/15".into(), ..good.clone() }),
+        ("seeds", crate::synth::SynthResult { seeds: vec![1], ..good.clone() }),
+        ("target", crate::synth::SynthResult { target: "ecp5".into(), ..good.clone() }),
+        ("dsp", crate::synth::SynthResult { dsp: false, ..good.clone() }),
+        ("Fmax", crate::synth::SynthResult { fmax_mhz: Some(999.0), ..good.clone() }),
+        ("logic cells", crate::synth::SynthResult { logic_cells: Some(1_000_000), ..good.clone() }),
+    ];
+    for (what, synth) in edits {
+        let why = JobResult { job: job.clone(), synth }.check().unwrap_err();
+        assert!(why.contains(what), "{what}: {why}");
+    }
+}

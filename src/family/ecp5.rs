@@ -70,6 +70,12 @@ impl Family for Ecp5 {
     fn part(&self) -> &'static str {
         "ECP5-25 grade 6"
     }
+    fn fmax_ceiling_mhz(&self) -> f64 {
+        600.0
+    }
+    fn logic_capacity(&self) -> Option<u64> {
+        Some(24288)
+    }
     fn dsp_capacity(&self) -> Option<u64> {
         Some(28)
     }

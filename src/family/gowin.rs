@@ -63,6 +63,12 @@ impl Family for Gowin {
     fn part(&self) -> &'static str {
         "GW1NR-9 C6/I5 (Tang Nano 9K)"
     }
+    fn fmax_ceiling_mhz(&self) -> f64 {
+        600.0
+    }
+    fn logic_capacity(&self) -> Option<u64> {
+        Some(8640)
+    }
     fn dsp_capacity(&self) -> Option<u64> {
         Some(20)
     }

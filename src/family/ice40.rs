@@ -26,6 +26,12 @@ impl Family for Ice40 {
     fn part(&self) -> &'static str {
         "iCE40 UP5K"
     }
+    fn fmax_ceiling_mhz(&self) -> f64 {
+        400.0
+    }
+    fn logic_capacity(&self) -> Option<u64> {
+        Some(5280)
+    }
     fn dsp_capacity(&self) -> Option<u64> {
         Some(8)
     }

@@ -135,6 +135,16 @@ pub trait Family: Sync {
     /// The hard multiplier blocks of the part its figures are for (None: no part): `explore`
     /// measures no unit that needs more.
     fn dsp_capacity(&self) -> Option<u64>;
+    /// The logic cells of the part (its LUT4s; a slice holds two on the ECP5): no measurement
+    /// counts more. None: no part.
+    fn logic_capacity(&self) -> Option<u64> {
+        None
+    }
+    /// No place-and-route of the part reports a clock above this (its fabric's and clock
+    /// network's reach, with margin): a measurement above it is refused as not a measurement.
+    fn fmax_ceiling_mhz(&self) -> f64 {
+        1000.0
+    }
     /// The exploration built in for `generate --max-error` (`specgen explore`'s points.json,
     /// measured by `scripts/explore.sh`), if one was measured for the family.
     fn explored(&self) -> Option<&'static str> {

@@ -472,3 +472,33 @@ fn a_stale_row_is_named() {
     assert_eq!(o.status.code(), Some(1), "{text}");
     assert!(text.contains(&format!("  stale: {id}")) && text.contains("1 of an older RTL"), "{text}");
 }
+
+/// Inputs that hung the tool or were bounded too late: a points file whose figure is out of
+/// range (valid JSON, 1.7e308) is refused before it is drawn; an axis repeated past its bound
+/// is refused before anything is computed; a value repeated is one value.
+#[test]
+fn hostile_explorations_are_refused_before_the_work() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut e: serde_json::Value = serde_json::from_str(include_str!("../../data/explore/ice40.json")).unwrap();
+    e["points"][0]["accuracy"]["max"] = serde_json::json!(1.7e308);
+    let file = tmp.path().join("e.json");
+    std::fs::write(&file, e.to_string()).unwrap();
+    let o = output_guarded(specgen().args(["report", "--out"]).arg(tmp.path().join("r")).arg("--explored").arg(&file), "report");
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("accuracy.max"), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!tmp.path().join("r").exists());
+    let many = vec!["none"; 10_001].join(",");
+    let blinn = vec!["blinn"; 40].join(",");
+    for (flag, value) in [("--dsp-budget", many.as_str()), ("--models", blinn.as_str())] {
+        let o = output_guarded(specgen().args(["explore", "--out"]).arg(tmp.path().join("x")).args([flag, value]), "explore");
+        assert_eq!(o.status.code(), Some(2), "{flag}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains(&format!("invalid {flag}")), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(!tmp.path().join("x").exists());
+    }
+    let (once, twice) = (tmp.path().join("once"), tmp.path().join("twice"));
+    assert!(explore(&once, &[], &[]).status.success());
+    let o = explore(&twice, &[], &["--cos-frac-bits", "8,8", "--models", "quadratic,quadratic"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(points(&once)["points"], points(&twice)["points"]);
+    assert_eq!(std::fs::read(once.join("jobs.json")).unwrap(), std::fs::read(twice.join("jobs.json")).unwrap());
+}
