@@ -304,6 +304,7 @@ impl TempDir {
     pub fn keep(mut self) -> PathBuf {
         let inner = self.inner.take().expect("alive");
         unregister(inner.path());
+        unmark(inner.path());
         inner.keep()
     }
 }
@@ -324,6 +325,7 @@ impl Drop for TempDir {
     fn drop(&mut self) {
         if let Some(inner) = self.inner.take() {
             unregister(inner.path());
+            unmark(inner.path());
             drop(inner);
         }
     }
@@ -359,8 +361,37 @@ fn marker_text(pid: u32) -> String {
 }
 
 /// Writes the marker into a directory just made.
+///
+/// The run holds an exclusive `flock` on the marker for its life (the kernel drops it when the
+/// process ends, however it ends): the sweep of leftovers removes a directory only when it can
+/// take that lock itself. A process id alone is no proof of death: from another PID namespace
+/// (a container sharing `/tmp`, cluster nodes sharing a `TMPDIR`) a live run's pid looks gone.
 fn mark(dir: &Path) {
-    let _ = std::fs::write(dir.join(MARKER), marker_text(std::process::id()));
+    let path = dir.join(MARKER);
+    let Ok(mut f) = std::fs::OpenOptions::new().write(true).create_new(true).open(&path) else { return };
+    use std::io::Write;
+    let _ = f.write_all(marker_text(std::process::id()).as_bytes());
+    use std::os::fd::AsRawFd;
+    // SAFETY: flock on a descriptor we own
+    if unsafe { libc::flock(f.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) } == 0 {
+        MARKER_LOCKS.lock().unwrap_or_else(|e| e.into_inner()).push((dir.to_path_buf(), f));
+    }
+}
+
+/// The markers' open files, each holding its directory's lock while the run lives.
+static MARKER_LOCKS: std::sync::Mutex<Vec<(PathBuf, std::fs::File)>> = std::sync::Mutex::new(Vec::new());
+
+/// Lets go of a directory's marker lock (the directory is removed or kept by its owner).
+fn unmark(dir: &Path) {
+    MARKER_LOCKS.lock().unwrap_or_else(|e| e.into_inner()).retain(|(d, _)| d != dir);
+}
+
+/// Whether a run holds `marker`'s lock: true where it cannot be taken now (or not opened).
+fn marker_held(marker: &Path) -> bool {
+    use std::os::fd::AsRawFd;
+    let Ok(f) = std::fs::File::open(marker) else { return true };
+    // SAFETY: flock on a descriptor we own; released when `f` closes
+    unsafe { libc::flock(f.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) != 0 }
 }
 
 /// Whether `rest` (a name after `<prefix><pid>-`) is what specgen's own names put there: the
@@ -397,7 +428,8 @@ pub(crate) fn remove_orphans(dir: &Path, prefix: &str, dirs: bool) {
             let marker = entry.path().join(MARKER);
             let says = std::fs::symlink_metadata(&marker).is_ok_and(|m| m.is_file() && m.len() < 256)
                 && std::fs::read_to_string(&marker).is_ok_and(|t| t == marker_text(pid as u32));
-            if !says {
+            // and no run holds its lock, whatever its pid looks like from here
+            if !says || marker_held(&marker) {
                 continue;
             }
         }

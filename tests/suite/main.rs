@@ -22,6 +22,7 @@ mod reliability;
 mod render;
 mod report;
 mod rtl_tools;
+mod sharing;
 mod synth;
 mod targets;
 mod vectors;
