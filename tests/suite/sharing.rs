@@ -2,7 +2,6 @@
 //! another, whoever sweeps, whatever its PID namespace.
 
 use crate::common::*;
-use std::path::Path;
 
 /// A `synth` stalled inside its yosys holds its work directories; a `cosim` started in another
 /// PID namespace (`unshare --pid --fork`, as a container or a cluster node sharing the
