@@ -381,6 +381,21 @@ pub struct Pixel {
     pub bound: bool,
 }
 
+/// A bound on the error at the pixel for a unit faithful to `c^n` itself (`blinn`,
+/// `blinn-pow`: every intensity within one unit, 2^−FI, of `(q/2^F)^n`, their contracts): that
+/// unit, plus the rounding's own worst, `max |c^n − (q/2^F)^n|` over `c` within half a code of
+/// `q`. `(c + h)^n − c^n` grows with `c`, so the rounding's worst is at the top code,
+/// `1 − (1 − 2^−(F+1))^n`, largest at the largest n. Where codes are visited with a stride this
+/// is far tighter than the stride's monotone bound (which grows with the stride's width).
+fn faithful_pixel_bound(cfg: &crate::config::Config) -> Option<f64> {
+    if !matches!(cfg.model(), SpecularModel::Blinn | SpecularModel::BlinnPow) {
+        return None;
+    }
+    let h = (-(cfg.f() as f64) - 1.0).exp2();
+    let n_max = (1u64 << cfg.n_bits()) - 1;
+    Some((-(cfg.fi() as f64)).exp2() + (1.0 - (1.0 - h).powi(n_max as i32)))
+}
+
 /// The ends of the real cosines that round to `codes` (and the last code's top, 1.0), clipped
 /// to `[0, 1]`: `lo[i]` is code i's bottom, `hi[i]` its top.
 fn pixel_ends(codes: &[u32], one: u32) -> (Vec<f64>, Vec<f64>) {
@@ -420,7 +435,7 @@ impl Fidelity {
     pub fn pixel_method(&self) -> String {
         match self.pixel.bound {
             false => "every code's interval of real cosines (round to nearest) and every n: exact".to_string(),
-            true => format!("every {}th code's interval and every n: max a bound by monotonicity, mean and RMS of the visited intervals", self.stride),
+            true => format!("every {}th code's interval and every n: max a bound (by monotonicity, or a unit faithful to c^n plus the rounding's worst), mean and RMS of the visited intervals", self.stride),
         }
     }
 }
@@ -553,6 +568,11 @@ fn fidelity_within(m: &Model, points: u64) -> Fidelity {
     f.mean = sum / f.points as f64;
     f.rms = (squares / f.points as f64).sqrt();
     f.pixel.max = pixel[0];
+    if stride > 1 {
+        if let Some(b) = faithful_pixel_bound(cfg) {
+            f.pixel.max = f.pixel.max.min(b);
+        }
+    }
     f.pixel.mean = pixel[1] / pixel[3];
     f.pixel.rms = (pixel[2] / pixel[3]).sqrt();
     f
@@ -636,6 +656,9 @@ mod tests {
             let strided = fidelity_within(&m, 200);
             assert!(strided.stride > 1 && strided.pixel.bound);
             assert!(strided.pixel.max >= f.pixel.max, "a stride's bound {} below the exact {}", strided.pixel.max, f.pixel.max);
+            if let Some(b) = faithful_pixel_bound(&cfg) {
+                assert!(b >= f.pixel.max && b <= f.pixel.max + 2.0 / 256.0, "{model:?}: the faithful bound {b} against the exact {}", f.pixel.max);
+            }
         }
     }
 
