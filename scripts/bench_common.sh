@@ -8,11 +8,12 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 cargo build --release -q
 bin="${CARGO_TARGET_DIR:-target}/release/specgen"   # (a target directory of its own: CARGO_TARGET_DIR)
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
-models() { { $bin generate --model '?' 2>&1 || true; } | sed -n 's/.*possible values: \(.*\)\]/\1/p' | tr -d ','; }
+# what the binary offers, from `specgen info --json` (never from an error message's words)
+models() { $bin info --json | python3 -c 'import json, sys; print(" ".join(json.load(sys.stdin)["models"]))'; }
 # the models a part can hold, as calibration and benches name their datapaths: lean for
 # quadratic, every other but blinn-pow (73 DSP blocks: it fits neither part)
 placeable() { for m in $(models); do case $m in quadratic) echo lean ;; blinn-pow) ;; *) echo "$m" ;; esac; done; }
-max_stages() { { $bin generate --out "$work/probe" --stages 4294967295 "$@" 2>&1 || true; } | sed -n 's/.*allowed 0\.\.=\([0-9]*\).*/\1/p'; }
+max_stages() { $bin info --json "$@" | python3 -c 'import json, sys; print(json.load(sys.stdin)["configuration"]["deepest_stages"])'; }
 # the wide configuration: F=18, N=11, B=10, FI=18, KF=20
 wide=(--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20)
 # the narrow configuration: F=8, N=6, B=4, FI=8 (the delay model's calibration spans it to the

@@ -128,6 +128,18 @@ pub enum Command {
     /// List the measured rows of the explorations `generate --max-error` chooses from that are
     /// not of today's RTL (their jobs' RTL digest is another): exit 1 when any is.
     Stale(explore::StaleArgs),
+    /// What this specgen offers, for scripts (never parse an error message): its version, the
+    /// models, the targets (with their parts, and whether a delay model and a built-in
+    /// exploration speak for them), and the deepest pipeline of the configuration the flags give.
+    Info {
+        /// Print JSON (the only form; the flag says so in scripts).
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        params: ParamArgs,
+        #[command(flatten)]
+        rtl: RtlArgs,
+    },
     /// Synthesize the RTL in DIR with yosys (and nextpnr for Fmax): LUTs, carries, DSPs, FFs, ROM.
     Synth(synth::SynthArgs),
     /// Render a sphere and a plane at grazing light with the unit in DIR, beside float cos^n and
@@ -626,6 +638,30 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Explore(args) => explore::run(&args),
         Command::Measure(args) => explore::measure(&args),
         Command::Stale(args) => explore::stale(&args),
+        Command::Info { json: _, params, rtl } => {
+            let cfg = params.to_config(Some(&RtlArgs { stages: Some(0), ..rtl }))?;
+            let plan = Plan::new(cfg)?;
+            let targets: Vec<serde_json::Value> = specgen::config::Target::ALL
+                .iter()
+                .map(|&t| {
+                    serde_json::json!({
+                        "name": t.name(),
+                        "part": specgen::timing::part(t),
+                        "target_mhz": specgen::family::of(t).calibration().is_some(),
+                        "explored": specgen::family::of(t).explored().is_some(),
+                    })
+                })
+                .collect();
+            let info = serde_json::json!({
+                "generator": "specgen",
+                "version": specgen::names::VERSION,
+                "models": specgen::config::SpecularModel::ALL.iter().map(|m| m.name()).collect::<Vec<_>>(),
+                "targets": targets,
+                "configuration": { "model": plan.cfg.model().name(), "target": plan.cfg.target().name(), "deepest_stages": plan.cut_points },
+            });
+            outln!("{}", serde_json::to_string_pretty(&info).expect("serialises"))?;
+            Ok(())
+        }
         Command::Vectors(args) => vectors(&args),
         Command::Report { out, force, hw, explored, params } => {
             let cfg = params.to_config(None)?;

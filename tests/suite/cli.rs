@@ -429,3 +429,23 @@ fn the_help_lists_each_models_deepest_stages() {
         assert_eq!(listed("with --fabric-registers on ice40:", name), fabric, "{model} with --fabric-registers");
     }
 }
+
+/// `specgen info --json` tells scripts what they used to scrape from error messages: the models,
+/// the targets, and the deepest pipeline of a configuration (the plan's cut points).
+#[test]
+fn info_tells_scripts_the_models_targets_and_deepest_depth() {
+    let o = specgen().args(["info", "--json", "--model", "blinn", "--target", "ecp5", "--cos-frac-bits", "10"]).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let models: Vec<&str> = v["models"].as_array().unwrap().iter().map(|m| m.as_str().unwrap()).collect();
+    assert_eq!(models, specgen::config::SpecularModel::ALL.iter().map(|m| m.name()).collect::<Vec<_>>());
+    assert_eq!(v["targets"].as_array().unwrap().len(), specgen::config::Target::ALL.len());
+    let cfg = Config::new(specgen::config::Params {
+        model: specgen::config::SpecularModel::Blinn,
+        target: specgen::config::Target::Ecp5,
+        cos_frac_bits: 10,
+        ..Default::default()
+    })
+    .unwrap();
+    assert_eq!(v["configuration"]["deepest_stages"].as_u64(), Some(specgen::plan::Plan::new(cfg).unwrap().cut_points as u64));
+}
