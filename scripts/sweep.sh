@@ -17,15 +17,24 @@ case ${YOSYS:-} in */*) YOSYS=$(realpath "$YOSYS") ;; esac
 case ${NEXTPNR:-} in */*) NEXTPNR=$(realpath "$NEXTPNR") ;; esac
 mkdir -p "$results"
 results=$(realpath "$results")
+# one sweep at a time on a results directory: this one holds the lock below for its life (its
+# snakemake inherits it; the jobs Snakemake starts do not). Held by another: refused. Taken:
+# any Snakemake lock there is a killed sweep's, and is lifted (no process list is searched:
+# a directory's name is data, never a pattern). A job still running from a killed sweep holds
+# its own lock (`specgen measure`), so none starts beside itself.
+exec 9>>"$results/.specgen-sweep.lock"
+if ! flock -n 9; then
+    echo "$0: a sweep is running on $results (it holds $results/.specgen-sweep.lock); wait for it or stop it" >&2
+    exit 1
+fi
+export SPECGEN_SWEEP_JOBS=$jobs SPECGEN_SWEEP_SPECGEN=$specgen SPECGEN_SWEEP_YOSYS=${YOSYS:-} SPECGEN_SWEEP_NEXTPNR=${NEXTPNR:-}
 cores=(--cores all)
 for a in "$@"; do case $a in --cores|--cores=*|-c*|--jobs|--jobs=*|-j*|--profile|--profile=*) cores=();; esac; done
-# a lock left by a sweep that was killed is stale unless a snakemake on this directory runs
-if [ -d "$results/.snakemake/locks" ] && ! pgrep -f -- "--directory $results( |$)" >/dev/null; then
-    snakemake -s "$here/sweep/Snakefile" --directory "$results" --config jobs="$jobs" specgen="$specgen" --unlock >/dev/null 2>&1 || true
+if [ -d "$results/.snakemake/locks" ]; then
+    snakemake -s "$here/sweep/Snakefile" --directory "$results" --unlock >/dev/null 2>&1 || true
 fi
 # each job writes its result whole or not at all (specgen measure writes atomically), so a result
 # there is complete even when Snakemake was killed before it recorded so: --ignore-incomplete
 # keeps it (--rerun-incomplete would run a finished job again)
-exec snakemake -s "$here/sweep/Snakefile" --directory "$results" --config jobs="$jobs" specgen="$specgen" \
-    ${YOSYS:+yosys="$YOSYS"} ${NEXTPNR:+nextpnr="$NEXTPNR"} \
+exec snakemake -s "$here/sweep/Snakefile" --directory "$results" \
     --ignore-incomplete --rerun-triggers mtime --keep-going --printshellcmds "${cores[@]}" "$@"

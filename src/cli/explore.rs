@@ -377,6 +377,28 @@ pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {
     if specgen::output::same_file(&a.out, &a.jobs) {
         return Err(usage(format!("invalid --out: {} is the --jobs file this command reads", a.out.display())));
     }
+    // one run of a job at a time, whoever starts it (a resumed sweep beside a killed one's
+    // jobs, two shards on one directory): the lock beside the result is held for the run's
+    // life; taken after another run, that run's whole result is this one's
+    let lock_path = {
+        let mut p = a.out.clone().into_os_string();
+        p.push(".lock");
+        PathBuf::from(p)
+    };
+    let lock = std::fs::OpenOptions::new().create(true).append(true).open(&lock_path).map_err(|e| Failure::io("open", &lock_path, e))?;
+    {
+        use std::os::fd::AsRawFd;
+        // SAFETY: flock on a descriptor we own; released when `lock` closes at the end
+        if unsafe { libc::flock(lock.as_raw_fd(), libc::LOCK_EX) } != 0 {
+            return Err(Failure::io("lock", &lock_path, std::io::Error::last_os_error()));
+        }
+    }
+    if let Ok(text) = specgen::small_file::read(&a.out, 1 << 20) {
+        if serde_json::from_str::<explore::JobResult>(&text).is_ok_and(|r| r.job == *job && r.check().is_ok()) {
+            outln!("{}: measured already (by a run beside this one): {}", job.fingerprint, a.out.display())?;
+            return Ok(());
+        }
+    }
     let r = explore::run_job(job, &specgen::synth::Tools { cache: a.cache.clone(), ..tools(&a.yosys, &a.nextpnr) })?;
     let mut text = serde_json::to_string_pretty(&r).expect("serialises");
     text.push('\n');

@@ -52,3 +52,99 @@ fn a_live_runs_files_are_never_swept_from_another_pid_namespace() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(after, before, "a live run's directories swept from another PID namespace");
 }
+
+const NARROW_SPACE: &[&str] =
+    &["--models", "quadratic", "--cos-frac-bits", "8", "--intensity-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--measure-all", "--seeds", "1"];
+
+fn executable(path: &std::path::Path, text: &str) {
+    std::fs::write(path, text).unwrap();
+    std::fs::set_permissions(path, std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
+}
+
+/// One run of a job at a time: a second `measure` of a job that is running (a resumed sweep
+/// beside a killed sweep's orphan) waits for it and takes its result; yosys runs once.
+#[test]
+fn a_job_never_runs_beside_itself() {
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let plan = tmp.path().join("plan");
+    let o = output_guarded(specgen().arg("explore").arg("--out").arg(&plan).args(NARROW_SPACE), "explore");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let jobs: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(plan.join("jobs.json")).unwrap()).unwrap();
+    let fp = jobs[0]["fingerprint"].as_str().unwrap();
+    let (gate, runs, started) = (tmp.path().join("gate"), tmp.path().join("runs"), tmp.path().join("started"));
+    let yosys = tmp.path().join("yosys");
+    executable(&yosys, &format!("#!/bin/bash\ncase \"$1\" in -V) exec yosys -V;; esac\necho run >> {runs:?}\ntouch {started:?}\nwhile [ ! -e {gate:?} ]; do sleep 0.1; done\nexec yosys \"$@\"\n"));
+    let out = tmp.path().join(format!("{fp}.json"));
+    let measure = || {
+        specgen()
+            .arg("measure")
+            .arg("--jobs")
+            .arg(plan.join("jobs.json"))
+            .args(["--fingerprint", fp])
+            .arg("--out")
+            .arg(&out)
+            .arg("--yosys")
+            .arg(&yosys)
+            .spawn()
+            .unwrap()
+    };
+    let mut first = measure();
+    wait_until("the first run's yosys", || started.exists());
+    let mut second = measure();
+    // the second waits on the first's lock: it starts no yosys while the first runs
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    assert_eq!(std::fs::read_to_string(&runs).unwrap().lines().count(), 1, "a second run of the job started beside the first");
+    std::fs::write(&gate, "").unwrap();
+    assert!(finished_within_guard(&mut first, "the first measure").success());
+    assert!(finished_within_guard(&mut second, "the second measure").success());
+    assert_eq!(std::fs::read_to_string(&runs).unwrap().lines().count(), 2, "yosys runs of the job (its unit and its wrapped top, once)");
+    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(r["job"]["fingerprint"], fp);
+}
+
+/// A sweep's paths are data: a results directory named `res+1` and a plan under `run #2/`
+/// sweep as any; a second sweep on a directory a sweep runs on is refused (the lock it holds,
+/// no pattern of its name), never started beside it.
+#[test]
+fn a_sweeps_paths_are_data_and_one_sweep_runs_a_directory() {
+    require_tool("snakemake", "snakemake (pip)");
+    require_tool("yosys", "yosys");
+    require_tool("nextpnr-ice40", "nextpnr-ice40");
+    let tmp = tempfile::tempdir().unwrap();
+    let plan = tmp.path().join("run #2");
+    let o = output_guarded(specgen().arg("explore").arg("--out").arg(&plan).args(NARROW_SPACE), "explore");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let results = tmp.path().join("res+1");
+    let sweep = |specgen_path: &std::path::Path| {
+        let mut c = std::process::Command::new("bash");
+        c.arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/sweep.sh")).arg(plan.join("jobs.json")).arg(&results).args(["--cores", "1", "--quiet"]);
+        c.env("SPECGEN", specgen_path).env("SPECGEN_JOBS", jobs());
+        c.stdout(std::process::Stdio::null()).stderr(std::process::Stdio::piped());
+        c
+    };
+    // a first sweep whose jobs stall: the second is refused while it runs
+    let started = tmp.path().join("started");
+    let stalling = tmp.path().join("stalling-specgen");
+    executable(&stalling, &format!("#!/bin/bash\ntouch {started:?}\nexec sleep {HANG_GUARD_SECS}\n"));
+    let mut first = {
+        use std::os::unix::process::CommandExt;
+        sweep(&stalling).process_group(0).spawn().unwrap()
+    };
+    wait_until("the first sweep's job", || started.exists());
+    let o = output_guarded(&mut sweep(std::path::Path::new(env!("CARGO_BIN_EXE_specgen"))), "the second sweep");
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("a sweep is running on"), "{}", String::from_utf8_lossy(&o.stderr));
+    unsafe {
+        libc::kill(-(first.id() as i32), libc::SIGKILL);
+    }
+    finished_within_guard(&mut first, "the killed sweep");
+    // then a sweep runs, its paths whole
+    let o = output_guarded(&mut sweep(std::path::Path::new(env!("CARGO_BIN_EXE_specgen"))), "the sweep");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let jobs_planned: Vec<serde_json::Value> = serde_json::from_str(&std::fs::read_to_string(plan.join("jobs.json")).unwrap()).unwrap();
+    for j in &jobs_planned {
+        assert!(results.join(format!("{}.json", j["fingerprint"].as_str().unwrap())).is_file());
+    }
+}
