@@ -70,6 +70,9 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             return Err(super::usage("invalid --cover-trace: the same file as --trace"));
         }
     }
+    // the ports the manifest names, as cosim and synth check them: an extra, missing or wider
+    // port is refused before anything is proved
+    specgen::cosim::check_ports(&design)?;
     if let Some(why) = args.pipelining.then(|| specgen::prove::pipelining_refused(&design)).flatten() {
         return Err(super::usage(format!("invalid --pipelining: {why}")));
     }

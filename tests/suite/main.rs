@@ -17,6 +17,7 @@ mod layers;
 mod models;
 mod properties;
 mod prove;
+mod prove_ports;
 mod python_hdl;
 mod reliability;
 mod render;
