@@ -712,6 +712,17 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
     } else if let Some(p) = measured.iter().max_by(|a, b| a.fmax().unwrap_or(0.0).total_cmp(&b.fmax().unwrap_or(0.0))) {
         nearest = format!("; the fastest measured: {}", show(p));
     }
+    // and the fastest measured unit of today's RTL within the error (its error recomputed): the
+    // clock the user can have at that error
+    let mut by_clock: Vec<&Point> = measured.iter().copied().filter(|p| !reach(p)).collect();
+    by_clock.sort_by(|a, b| b.fmax().unwrap_or(0.0).total_cmp(&a.fmax().unwrap_or(0.0)).then(a.cells().cmp(&b.cells())));
+    for p in by_clock.into_iter().filter(|p| !matches!(q.metric, Metric::Max | Metric::CodeMax) || p.accuracy.max <= q.max_error).take(64) {
+        let a = recomputed(p)?;
+        if q.metric.of(&a) <= q.max_error && measured_today(p)?.is_some() {
+            nearest.push_str(&format!("; the fastest within the error: {}", show(&Point { accuracy: a, ..p.clone() })));
+            break;
+        }
+    }
     Err(Error::Config {
         parameter: "max_error",
         message: format!(
