@@ -569,3 +569,28 @@ pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
         None => format!("; no measured {} unit of the built-in exploration with --interface {} reaches it", params.model.name(), params.interface.name()),
     })
 }
+
+/// The parameters of the unit the user gave on the command line (by `Params`' field name):
+/// what `--max-error` may not overwrite.
+pub fn given_keys(p: &super::ParamArgs, r: &super::RtlArgs) -> Vec<&'static str> {
+    let mut given = Vec::new();
+    let mut add = |on: bool, key: &'static str| {
+        if on {
+            given.push(key);
+        }
+    };
+    add(p.model.is_some(), "model");
+    add(p.cos_frac_bits.is_some(), "cos_frac_bits");
+    add(p.intensity_frac_bits.is_some(), "intensity_frac_bits");
+    add(p.k.is_some(), "k");
+    add(p.k_frac_bits.is_some(), "k_frac_bits");
+    add(p.rounding.is_some(), "rounding");
+    add(p.arch.is_some(), "arch");
+    add(p.max_squarings.is_some(), "max_squarings");
+    add(r.stages.is_some(), "stages");
+    add(r.dsp_budget.is_some(), "dsp_budget");
+    add(r.rom_style.is_some(), "rom_style");
+    add(r.fabric_registers, "fabric_registers");
+    add(r.reset.is_some(), "reset");
+    given
+}

@@ -3,6 +3,7 @@
 
 mod cosim;
 mod explore;
+mod info;
 mod prove;
 mod render;
 mod synth;
@@ -457,31 +458,6 @@ impl ParamArgs {
     }
 }
 
-/// The parameters of the unit the user gave on the command line (by `Params`' field name):
-/// what `--max-error` may not overwrite.
-fn given_keys(p: &ParamArgs, r: &RtlArgs) -> Vec<&'static str> {
-    let mut given = Vec::new();
-    let mut add = |on: bool, key: &'static str| {
-        if on {
-            given.push(key);
-        }
-    };
-    add(p.model.is_some(), "model");
-    add(p.cos_frac_bits.is_some(), "cos_frac_bits");
-    add(p.intensity_frac_bits.is_some(), "intensity_frac_bits");
-    add(p.k.is_some(), "k");
-    add(p.k_frac_bits.is_some(), "k_frac_bits");
-    add(p.rounding.is_some(), "rounding");
-    add(p.arch.is_some(), "arch");
-    add(p.max_squarings.is_some(), "max_squarings");
-    add(r.stages.is_some(), "stages");
-    add(r.dsp_budget.is_some(), "dsp_budget");
-    add(r.rom_style.is_some(), "rom_style");
-    add(r.fabric_registers, "fabric_registers");
-    add(r.reset.is_some(), "reset");
-    given
-}
-
 /// Writes a whole output directory atomically; an occupied directory is a usage error.
 fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Failure> {
     // an I/O error names the output as the user spelled it
@@ -532,7 +508,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         "invalid --config with --max-error: a configuration file fixes every parameter; give the ones your design fixes as flags (each narrows the choice)",
                     ));
                 }
-                let given = given_keys(&params, &rtl);
+                let given = explore::given_keys(&params, &rtl);
                 let chosen = explore::choose(explored.as_deref(), &cfg.params, &given, metric, display, e, mhz)?;
                 cfg = Config::new(chosen)?;
                 pick_depth = None;
@@ -638,30 +614,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Explore(args) => explore::run(&args),
         Command::Measure(args) => explore::measure(&args),
         Command::Stale(args) => explore::stale(&args),
-        Command::Info { json: _, params, rtl } => {
-            let cfg = params.to_config(Some(&RtlArgs { stages: Some(0), ..rtl }))?;
-            let plan = Plan::new(cfg)?;
-            let targets: Vec<serde_json::Value> = specgen::config::Target::ALL
-                .iter()
-                .map(|&t| {
-                    serde_json::json!({
-                        "name": t.name(),
-                        "part": specgen::timing::part(t),
-                        "target_mhz": specgen::family::of(t).calibration().is_some(),
-                        "explored": specgen::family::of(t).explored().is_some(),
-                    })
-                })
-                .collect();
-            let info = serde_json::json!({
-                "generator": "specgen",
-                "version": specgen::names::VERSION,
-                "models": specgen::config::SpecularModel::ALL.iter().map(|m| m.name()).collect::<Vec<_>>(),
-                "targets": targets,
-                "configuration": { "model": plan.cfg.model().name(), "target": plan.cfg.target().name(), "deepest_stages": plan.cut_points },
-            });
-            outln!("{}", serde_json::to_string_pretty(&info).expect("serialises"))?;
-            Ok(())
-        }
+        Command::Info { json: _, params, rtl } => info::run(&params, rtl),
         Command::Vectors(args) => vectors(&args),
         Command::Report { out, force, hw, explored, params } => {
             let cfg = params.to_config(None)?;

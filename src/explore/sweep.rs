@@ -112,7 +112,7 @@ pub fn read_results(dirs: &[&Path]) -> Result<Vec<JobResult>, Error> {
                     r.job.fingerprint
                 )));
             }
-            r.check().map_err(|why| input(format!("{}: the measurement is not its job's: {why}", path.display())))?;
+            r.check().map_err(|why| input(format!("{}: the measurement is not its job's: {}", path.display(), why.reason())))?;
             out.push(r);
         }
     }
@@ -124,7 +124,7 @@ impl JobResult {
     /// multipliers the job names, and figures a part can hold (an Fmax in (0, the family's
     /// ceiling] MHz, at most the part's logic cells). A result edited by hand, or copied from another job,
     /// fails here whatever its fingerprint says.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), Error> {
         let (j, s) = (&self.job, &self.synth);
         let p = &j.params;
         let widths = format!("{}/{}/{}/{}", p.cos_frac_bits, p.n_bits, p.color_bits, p.intensity_frac_bits);
@@ -160,7 +160,7 @@ impl JobResult {
         }
         match wrong.is_empty() {
             true => Ok(()),
-            false => Err(wrong.join("; ")),
+            false => Err(input(wrong.join("; "))),
         }
     }
 }

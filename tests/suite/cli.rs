@@ -107,7 +107,9 @@ fn previous_output_is_replaced_whole() {
             "second_unit.json",
             "second_unit.sdc",
             "second_unit.v",
+            "second_unit_amaranth.py",
             "second_unit_cos_sp_rom.hex",
+            "second_unit_litex.py",
             "second_unit_tb.sv",
             "second_unit_vectors.hex"
         ]

@@ -271,7 +271,9 @@ fn a_sweep_on_snakemake_killed_midway_resumes_to_the_same_front() {
 #[test]
 fn generate_max_error_picks_a_measured_unit_within_its_error() {
     let tmp = tempfile::tempdir().unwrap();
-    let cases: &[(&str, f64, &[&str])] = &[("0.02", 100.0, &[]), ("0.001", 100.0, &[]), ("1e-4", 200.0, &["--target", "ecp5"])];
+    // at the pixel: 0.02 is met on both families; 1e-3 (F = 20) only slowly on the UP5K (with
+    // --dsp-budget 8) and at the ECP5's deepest, below 100 MHz
+    let cases: &[(&str, f64, &[&str])] = &[("0.02", 100.0, &[]), ("0.001", 45.0, &[]), ("0.02", 200.0, &["--target", "ecp5"])];
     for (i, &(e, mhz, extra)) in cases.iter().enumerate() {
         let out = tmp.path().join(format!("u{i}"));
         let o = output_guarded(
@@ -283,10 +285,10 @@ fn generate_max_error_picks_a_measured_unit_within_its_error() {
         assert!(said.contains("max-error: chose") && said.contains("median over nextpnr seeds"), "{said}");
         let params = specgen::config::Params::from_json_file(&out.join("specular_unit.json")).unwrap();
         let cfg = specgen::config::Config::new(params).unwrap();
-        // the error, every (cos_g <= 1.0, n)
+        // the error at the pixel, every code's interval and every n (above 2^26 points a bound,
+        // never below the exact figure: SPEC §6)
         let f = specgen::models::blinn_fidelity(&specgen::models::Model::new(&cfg));
-        assert_eq!(f.stride, 1, "not exhaustive");
-        assert!(f.max <= e.parse::<f64>().unwrap(), "{e}: the unit's max error is {}", f.max);
+        assert!(f.pixel.max <= e.parse::<f64>().unwrap(), "{e}: the unit's error at the pixel is {}", f.pixel.max);
         // the clock: the chosen point's measured median
         let fmax: f64 = said.split("measured ").nth(1).unwrap().split(" MHz").next().unwrap().parse().unwrap();
         assert!(fmax >= mhz, "{said}");
@@ -299,7 +301,7 @@ fn generate_max_error_picks_a_measured_unit_within_its_error() {
     let o = output_guarded(specgen().args(["generate", "--max-error", "1e-9", "--target-mhz", "100"]).arg("--out").arg(&out), "generate");
     assert_eq!(o.status.code(), Some(2));
     let said = String::from_utf8_lossy(&o.stderr);
-    assert!(said.contains("--max-error") && said.contains("nearest") && said.contains("most accurate at the clock"), "{said}");
+    assert!(said.contains("--max-error") && said.contains("nearest: ") && said.contains("specgen explore --target ice40"), "{said}");
     assert!(!out.exists());
 }
 
