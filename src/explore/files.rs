@@ -178,7 +178,7 @@ fn colour(model: &str) -> plotters::style::RGBColor {
 pub fn svg(e: &Exploration, metric: Metric) -> String {
     use plotters::prelude::*;
     let mut out = String::new();
-    let pts: Vec<&Point> = e.points.iter().filter(|p| metric.of(&p.accuracy) > 0.0).collect();
+    let pts: Vec<&Point> = e.points.iter().filter(|p| metric.of(&p.accuracy) > 0.0 && metric.of(&p.accuracy).is_finite()).collect();
     let emin = pts.iter().map(|p| metric.of(&p.accuracy)).fold(f64::INFINITY, f64::min).min(1e-3) / 2.0;
     let emax = pts.iter().map(|p| metric.of(&p.accuracy)).fold(0.0, f64::max).max(1e-2) * 2.0;
     let cmax = pts.iter().map(|p| p.cells()).max().unwrap_or(100) as f64 * 1.08;
