@@ -283,6 +283,12 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     } else {
         None
     };
+    // every tool this run needs runs, before minutes are spent in yosys (a tool found but
+    // broken, or its runtime missing, fails here, not after synthesis)
+    version_of(yosys, "-V")?;
+    if let Some(p) = &pnr {
+        version_of(&p.tool, "--version")?;
+    }
     let top = design.cfg.top().to_string();
     let work = crate::process::temp_dir().map_err(|e| input(e.to_string()))?;
     let read = stage_sources(design, work.path())?;
@@ -412,7 +418,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             // the clock the constraints ask for (`clock_mhz`): nextpnr's timing-driven placement aims at it
             .args(["--timing-allow-fail", "--freq", &format!("{}", crate::family::clock_mhz(&design.cfg)), "--seed", &seed.to_string()])
             .output()
-            .map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
+            .map_err(|e| error::tool(tool, format!("cannot run {tool} (as {}) in {}: {e}", absolute_tool(tool), work.path().display())))?;
         let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
         log.push_str(&String::from_utf8_lossy(&out.stdout));
         Ok((out.status, log))
