@@ -13,9 +13,8 @@ use crate::plan::Plan;
 use askama::Template;
 use serde::Serialize;
 
-#[derive(Template)]
-#[template(path = "amaranth.py")]
-struct AmaranthTemplate<'a> {
+/// What both wrappers' templates read.
+struct Wrapper<'a> {
     top: &'a str,
     version: &'a str,
     class_name: String,
@@ -25,14 +24,15 @@ struct AmaranthTemplate<'a> {
 }
 
 #[derive(Template)]
+#[template(path = "amaranth.py")]
+struct AmaranthTemplate<'a> {
+    w: &'a Wrapper<'a>,
+}
+
+#[derive(Template)]
 #[template(path = "litex.py")]
 struct LitexTemplate<'a> {
-    top: &'a str,
-    version: &'a str,
-    class_name: String,
-    summary: String,
-    latency: u32,
-    unit_json: String,
+    w: &'a Wrapper<'a>,
 }
 
 /// One field of a stream's payload: the port it is (or is packed in, from bit `lo`).
@@ -140,9 +140,8 @@ pub fn python_files(plan: &Plan, files: Vec<String>) -> Vec<(String, String)> {
     let unit_json = serde_json::to_string(&unit).expect("the unit serialises");
     let summary = plan.model.unit().describe().summary.to_string();
     let latency = cfg.latency();
-    let amaranth =
-        AmaranthTemplate { top, version: crate::names::VERSION, class_name: class_name(top), summary: summary.clone(), latency, unit_json: unit_json.clone() };
-    let litex = LitexTemplate { top, version: crate::names::VERSION, class_name: class_name(top), summary, latency, unit_json };
+    let w = Wrapper { top, version: crate::names::VERSION, class_name: class_name(top), summary, latency, unit_json };
+    let (amaranth, litex) = (AmaranthTemplate { w: &w }, LitexTemplate { w: &w });
     vec![
         (format!("{top}_amaranth.py"), amaranth.render().expect("amaranth template renders") + "\n"),
         (format!("{top}_litex.py"), litex.render().expect("litex template renders") + "\n"),
