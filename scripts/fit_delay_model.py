@@ -130,7 +130,7 @@ def main():
             fam, model, stages = row["family"], row["model"], int(row["stages"])
             est, mean = features(fam, model, stages, (row.get("args") or "").split())
             args = " ".join((row.get("args") or "").split())
-            by_family.setdefault(fam, []).append({"model": model, "stages": stages, "est": est, "mean": mean, "fmax": float(row["fmax_mhz"]), "args": args})
+            by_family.setdefault(fam, []).append({"model": model, "stages": stages, "est": est, "mean": mean, "fmax": float(row["fmax_mhz"]), "args": args, "digest": (row.get("rtl_sha256") or "").strip()})
     # a line per family ("all") and per model of it (three units or more): the generator uses
     # its model's line, else the family's
     model = {}
@@ -148,6 +148,9 @@ def main():
                 lines[name]["measured"] = [[r["est"], r["mean"], round(r["fmax"], 2)] for r in ordered]
                 lines[name]["measured_args"] = [r["args"] for r in ordered]
                 lines[name]["measured_stages"] = [r["stages"] for r in ordered]
+                # the RTL each was measured on (empty: the row names none): a floor only where
+                # it is the RTL specgen writes today
+                lines[name]["measured_digest"] = [r["digest"] for r in ordered]
         # datapaths with fewer measured units than a line needs (blinn-pow does not fit the
         # parts), and the paper's (the lean datapath's operations uncut, never calibrated on its
         # own), take the family's line by name: the generator refuses a datapath this file

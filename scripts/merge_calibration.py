@@ -14,7 +14,7 @@ came in.
 import csv
 import sys
 
-FIELDS = ["family", "model", "stages", "stage_delay_estimate", "stage_delay_mean", "fmax_mhz", "fmax_seeds", "args"]
+FIELDS = ["family", "model", "stages", "stage_delay_estimate", "stage_delay_mean", "fmax_mhz", "fmax_seeds", "args", "rtl_sha256"]
 
 
 def key(r):
@@ -42,7 +42,7 @@ def main():
         w = csv.DictWriter(fh, fieldnames=FIELDS, lineterminator="\n")
         w.writeheader()
         for k in sorted(rows, key=lambda k: (k[0], k[1], k[3], int(k[2]))):
-            w.writerow({f: rows[k][f] for f in FIELDS})
+            w.writerow({f: rows[k].get(f) or "" for f in FIELDS})
     print(f"{out}: {added} unit(s) added, {len(rows)} in all", file=sys.stderr)
 
 

@@ -280,6 +280,11 @@ pub struct TilePlace {
     pub y: u32,
 }
 
+/// A column's name for the unit of `m`: its model, `F/FI` and depth (`blinn 15/15 s41`).
+fn unit_name(m: &Model) -> String {
+    format!("{} {}/{} s{}", m.cfg.model().name(), m.cfg.f(), m.cfg.fi(), m.cfg.stages())
+}
+
 /// The sheet: a title; a row per (scene, n), labelled; the columns "float cos^n" and then, per
 /// model, "<model>" (its intensity) and "<model> error" (unit − float, signed); under them a
 /// colour bar for the shaded tiles and one for the errors, each in full scale and in output
@@ -302,8 +307,9 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
     // each column's title, in two lines
     let mut columns = vec![("float".to_string(), "cos^n")];
     for m in models {
-        let name = m.cfg.model().name();
-        columns.push((name.to_string(), "unit"));
+        // which unit: model, F/FI and depth (two units of one model side by side differ here)
+        let name = unit_name(m);
+        columns.push((name.clone(), "unit"));
         // "signed error" where a tile is wide enough for it
         columns.push((name.to_string(), if size + GAP >= 12 * GLYPH { "signed error" } else { "error" }));
     }
@@ -319,7 +325,8 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
     let bars_h = 2 * (GLYPH + 4 + 20 + 2 * GLYPH + 2 + 12);
     let height = top + body_h + 8 + bars_h + MARGIN;
     let mut sheet = Sheet::new(width, height);
-    let names: Vec<&str> = models.iter().map(|m| m.cfg.model().name()).collect();
+    let names: Vec<String> =
+        models.iter().map(|m| format!("{} (F {}, FI {}, {} stages)", m.cfg.model().name(), m.cfg.f(), m.cfg.fi(), m.cfg.stages())).collect();
     let title = format!("specular term: {} vs float cos^n", names.join(", "));
     let big = title.chars().count() as u32 * 2 * GLYPH <= width - 2 * MARGIN;
     sheet.text(MARGIN, MARGIN, &title, if big { 2 } else { 1 }, width - 2 * MARGIN);

@@ -549,7 +549,48 @@ pub(crate) struct ReportData {
     pub(crate) unit: UnitAccuracy,
     pub(crate) models: Vec<ModelComparison>,
     pub(crate) premise: String,
+    /// `--explored`: the front at each clock, cheapest first
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub(crate) front: Vec<FrontRow>,
     pub(crate) files: Vec<serde_json::Value>,
+}
+
+/// One point of an exploration's front at one clock: which unit, its error at the pixel, its
+/// cost and clock, and whether they are measured.
+#[derive(Serialize, Debug, Clone)]
+pub(crate) struct FrontRow {
+    pub(crate) clock_mhz: f64,
+    pub(crate) id: String,
+    pub(crate) model: String,
+    pub(crate) cos_frac_bits: u32,
+    pub(crate) intensity_frac_bits: u32,
+    pub(crate) stages: u32,
+    pub(crate) pixel_error_max: f64,
+    pub(crate) logic_cells: u64,
+    pub(crate) fmax_mhz: Option<f64>,
+    pub(crate) measured: bool,
+}
+
+/// The front of `e` at each of its clocks, cheapest first.
+fn front_rows(e: &crate::explore::Exploration) -> Vec<FrontRow> {
+    let mut rows = Vec::new();
+    for &mhz in &e.clocks {
+        let mut on: Vec<&crate::explore::Point> = e.points.iter().filter(|p| p.front.contains(&mhz)).collect();
+        on.sort_by_key(|p| p.cells());
+        rows.extend(on.into_iter().map(|p| FrontRow {
+            clock_mhz: mhz,
+            id: p.id.clone(),
+            model: p.model.clone(),
+            cos_frac_bits: p.cos_frac_bits,
+            intensity_frac_bits: p.intensity_frac_bits,
+            stages: p.stages,
+            pixel_error_max: crate::explore::Metric::Max.of(&p.accuracy),
+            logic_cells: p.cells(),
+            fmax_mhz: p.fmax(),
+            measured: p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some()),
+        }));
+    }
+    rows
 }
 
 struct Row {
@@ -628,6 +669,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult], explored: Option<&c
         unit,
         models: rows,
         premise,
+        front: explored.map(front_rows).unwrap_or_default(),
         files: vec![serde_json::json!({"name": "index.html"})],
     };
     let u = &data.unit;
@@ -663,7 +705,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult], explored: Option<&c
         front_caption: explored.map_or(String::new(), |e| {
             let measured = e.points.iter().filter(|p| p.measured.is_some()).count();
             format!(
-                "The {} exploration: {} points, {measured} measured over nextpnr seeds {}; max |intensity − cos^n| against logic cells, one colour per model, measured points filled, the front at each of {} MHz a line.",
+                "The {} exploration: {} points, {measured} measured over nextpnr seeds {}; the max error at the pixel (the real cosine, rounded to F bits, against cos^n) against logic cells, one colour per model, measured points filled, the front at each of {} MHz a staircase, each of its points named (model, F, FI, depth, Fmax); the table below lists them.",
                 e.part,
                 e.points.len(),
                 e.seeds.iter().map(u32::to_string).collect::<Vec<_>>().join(", "),

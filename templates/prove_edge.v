@@ -86,8 +86,16 @@ module {{ name }} (
 
     always @(*) begin
         if (!started) assume(rst);
+{%- if !handshake %}
+`ifdef SPECGEN_VALID_COVER
+        // the cover, searched for as the failure of its negation: after the reset, a result
+        // (a vacuous environment, one that cannot reach it, is reported as vacuous)
+        if (started) assert(!out_valid);
+`endif
+{%- endif %}
         if (started) begin
 {%- if !handshake %}
+`ifndef SPECGEN_VALID_COVER
 {%- if latency > 0 %}
             // out_valid is in_valid LATENCY edges before, unless a reset came between
             assert(out_valid == offered[LATENCY - 1]);
@@ -95,6 +103,7 @@ module {{ name }} (
             // combinational: out_valid is in_valid
             assert(out_valid == in_valid);
 {%- endif %}
+`endif
 {%- endif %}
         end
     end

@@ -114,6 +114,11 @@ pub struct StaleArgs {
     /// family's built-in exploration, the data `generate --max-error` chooses from]
     #[arg(long, value_name = "FILE")]
     pub explored: Vec<PathBuf>,
+    /// Also write the checked explorations' measured rows as delay-model calibration rows
+    /// (data/delay_calibration.csv's columns, each with the RTL digest it was measured on where
+    /// that is today's) to FILE, for scripts/merge_calibration.py
+    #[arg(long, value_name = "FILE")]
+    pub write_calibration: Option<PathBuf>,
 }
 
 /// `specgen stale`: the measured rows that are not of today's RTL, per exploration; exit 1
@@ -131,14 +136,38 @@ pub fn stale(a: &StaleArgs) -> Result<(), Failure> {
         sets.push((p.display().to_string(), specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?));
     }
     let mut stale = 0;
+    let mut rows = String::new();
     for (what, text) in &sets {
         let e = Exploration::from_text(text, what)?;
+        let csv = explore::calibration_csv(&e);
+        let body = if rows.is_empty() { csv.as_str() } else { csv.split_once('\n').map_or("", |(_, b)| b) };
+        rows.push_str(body);
         let ev = explore::evidence(&e)?;
         outln!("{what}: {} measured rows, {} of today's RTL, {} of an older RTL", ev.today.len() + ev.stale.len(), ev.today.len(), ev.stale.len())?;
         for id in &ev.stale {
             outln!("  stale: {id}")?;
         }
         stale += ev.stale.len();
+    }
+    // the delay model's calibration units: a floor only where its row names today's RTL
+    for t in Target::ALL {
+        let ev = explore::calibration_evidence(t)?;
+        if ev.today + ev.stale.len() + ev.fit_only > 0 {
+            outln!(
+                "the delay model's calibration on the {}: {} floors of today's RTL, {} of an older RTL; {} rows that name no RTL (the fit's data, never a floor)",
+                specgen::timing::part(t),
+                ev.today,
+                ev.stale.len(),
+                ev.fit_only
+            )?;
+            for s in &ev.stale {
+                outln!("  stale floor: {s}")?;
+            }
+            stale += ev.stale.len();
+        }
+    }
+    if let Some(path) = &a.write_calibration {
+        specgen::output::write_file(path, rows.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", path.display())))?;
     }
     match stale {
         0 => Ok(()),
@@ -354,6 +383,10 @@ fn units_of(dirs: &[PathBuf], target: Target) -> Result<Vec<Params>, Failure> {
     let mut out = Vec::new();
     for dir in dirs {
         let design = specgen::cosim::Design::load(dir).map_err(|e| usage(format!("invalid --unit: {e}")))?;
+        // its files checked as every other command checks them (the manifest's fingerprint, every
+        // listed file's SHA-256, no stray Verilog): what is measured is the unit specgen writes
+        // for these parameters, so it is the Verilog in the directory
+        design.verify_files(false).map_err(|e| usage(format!("invalid --unit: {e}")))?;
         let params = design.plan.cfg.params.clone();
         if params.target != target {
             return Err(usage(format!(
@@ -509,38 +542,6 @@ fn built_in(target: Target) -> Result<Option<Exploration>, Failure> {
     }
 }
 
-/// Parameters with what does not change the measured unit cleared: its depth, clock, names.
-fn shape(p: &Params) -> Params {
-    Params { stages: 0, clock_mhz: None, top: Params::default().top, clock_port: None, ..p.clone() }
-}
-
-/// `--target-mhz` where the delay model refuses: the shallowest depth of this very
-/// configuration that a measured unit of the built-in exploration reaches `mhz` at, with that
-/// evidence in words.
-pub fn measured_depth(params: &Params, mhz: f64) -> Result<Option<(u32, String)>, Failure> {
-    let Some(e) = built_in(params.target)? else { return Ok(None) };
-    let want = shape(params);
-    let best = e
-        .points
-        .iter()
-        .filter(|p| shape(&p.params) == want)
-        .filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz))
-        .min_by_key(|p| p.stages);
-    Ok(best.map(|p| {
-        let m = p.measured.as_ref().expect("measured");
-        (
-            p.stages,
-            format!(
-                "{:.1} MHz measured, median over nextpnr seeds {} ({} of {})",
-                m.fmax_mhz.unwrap_or(0.0),
-                specgen::synth::seed_list(&m.seeds),
-                p.id,
-                e.part
-            ),
-        )
-    }))
-}
-
 /// What a refusal of `--target-mhz` adds: the nearest measured unit of the same model (and
 /// budget) that reaches `mhz`, by widths, and how to choose among measured units.
 pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
@@ -551,6 +552,8 @@ pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
         .filter(|p| p.params.model == params.model && p.params.n_bits == params.n_bits && p.params.color_bits == params.color_bits)
         .filter(|p| p.params.interface == params.interface)
         .filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz))
+        // a row of another RTL names no unit
+        .filter(|p| specgen::explore::measured_today(p).ok().flatten().is_some())
         .min_by_key(|p| {
             let d = p.params.cos_frac_bits.abs_diff(params.cos_frac_bits) + p.params.intensity_frac_bits.abs_diff(params.intensity_frac_bits);
             (d, p.params.dsp_budget != params.dsp_budget, p.cells())

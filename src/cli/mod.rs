@@ -520,7 +520,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 // a depth at a time; said on standard error when the search takes a while
                 let start = std::time::Instant::now();
                 let said = std::cell::Cell::new(std::time::Duration::ZERO);
-                let picked = specgen::timing::pick_stages_reporting(&plan, mhz, |depth, deepest| {
+                let picked = specgen::explore::depth_for_clock(&plan, mhz, specgen::explore::Policy::Assured, None, |depth, deepest| {
                     let now = start.elapsed();
                     if now >= said.get() + std::time::Duration::from_secs(2) {
                         said.set(now);
@@ -528,37 +528,29 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     }
                 });
                 match picked {
-                    Ok((chosen, predicted)) => {
-                        plan = chosen;
-                        errln!(
-                            "target-mhz: chose --stages {}: {predicted:.1} MHz predicted on the {}",
-                            plan.cfg.stages(),
-                            specgen::timing::part(plan.cfg.target())
-                        );
-                        if let Some(why) = specgen::timing::outside_calibration(&plan) {
-                            errln!("target-mhz: {why}; measure it: specgen synth --rtl {} --dsp --seeds 3", out.display());
+                    Ok(pick) => {
+                        plan = pick.plan;
+                        errln!("target-mhz: chose --stages {} on the {}: {}", plan.cfg.stages(), specgen::timing::part(plan.cfg.target()), pick.evidence);
+                        if !matches!(pick.evidence, specgen::explore::ClockEvidence::Measured { .. }) {
+                            errln!("target-mhz: measure it: specgen synth --rtl {} --seeds 3", out.display());
                         }
                     }
-                    // the delay model cannot assure it: a measured unit of this very
-                    // configuration that reaches it is evidence enough; else the refusal names
-                    // its reason and the nearest measured unit
-                    Err(refused) => match explore::measured_depth(&plan.cfg.params, mhz)? {
-                        Some((stages, evidence)) => {
-                            plan = plan.with_stages(stages)?;
-                            errln!("target-mhz: chose --stages {stages}: {evidence} (the delay model alone assures less: {})", refused.reason());
+                    // the refusal names its reason, the best depth, and the nearest measured unit
+                    Err(refused) => {
+                        let mut why = refused.reason();
+                        if let Some(b) = plan.cfg.params.dsp_budget {
+                            why.push_str(&format!(" (with --dsp-budget {b}: {} product(s) summed in the fabric)", plan.datapath.fabric_products().len()));
                         }
-                        None => {
-                            let mut why = refused.reason();
-                            if let Some(b) = plan.cfg.params.dsp_budget {
-                                why.push_str(&format!(" (with --dsp-budget {b}: {} product(s) summed in the fabric)", plan.datapath.fabric_products().len()));
-                            }
-                            if let Some(outside) = specgen::timing::outside_calibration(&plan) {
-                                why.push_str(&format!("; {outside}"));
-                            }
-                            why.push_str(&explore::nearest_measured(&plan.cfg.params, mhz)?);
-                            return Err(Failure::Config { parameter: "target_mhz", message: why });
+                        if let Some(outside) = specgen::timing::outside_calibration(&plan) {
+                            why.push_str(&format!("; {outside}"));
                         }
-                    },
+                        why.push_str(&explore::nearest_measured(&plan.cfg.params, mhz)?);
+                        why.push_str(&format!(
+                            "; to measure this configuration: specgen generate --stages {} … --out DIR, then specgen synth --rtl DIR --seeds 3",
+                            plan.cut_points
+                        ));
+                        return Err(Failure::Config { parameter: "target_mhz", message: why });
+                    }
                 }
             }
             let files = emit::generate_files(&plan);

@@ -145,8 +145,8 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
         Verdict::NotBuilt { differs } => Err(failed(format!(
             "{head}refused: the design the proof reads is not the one synthesis builds ({how}): {differs}; the unit's formal regions (`ifdef FORMAL`, SPECGEN_*) change what it computes, so a proof of it would say nothing of the built unit"
         ))),
-        Verdict::Incomplete { bounded } => Err(failed(format!(
-            "{head}not proved: the properties hold for the first {bounded} clock edges from power-up, but the unit keeps state longer than its latency (a delay line in block RAM, its pointers never flushed), so the check from any state cannot conclude; generate it with fewer stages or narrower widths (no delay line in memory) to prove it"
+        Verdict::Incomplete { bounded, keeps } => Err(failed(format!(
+            "{head}not proved: the properties hold for the first {bounded} clock edges from power-up, but the unit keeps state longer than its latency, so the check from any state cannot conclude: {keeps}"
         ))),
         Verdict::Failed { frame, vcd } => {
             let path = args.trace.clone().unwrap_or_else(|| std::env::temp_dir().join(format!("{}-{}.vcd", proof.name, std::process::id())));

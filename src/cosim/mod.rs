@@ -178,6 +178,25 @@ impl Design {
                 )));
             }
         }
+        // every Verilog file a tool would read is one the manifest lists: a stray `*.v` beside
+        // the unit (a module named like one of specgen's, an old copy) is never read in silence,
+        // edited or not. (A directory without the unit's own Verilog, a netlist beside its
+        // manifest, is the netlist's: what it holds is what is read.)
+        if let Some(listed) = v.get("files").and_then(|f| f.as_array()).filter(|f| !f.is_empty()) {
+            let names: Vec<&str> = listed.iter().filter_map(|f| f.get("name").and_then(|n| n.as_str())).collect();
+            let unit_here = names.iter().any(|n| n.ends_with(".v") && self.dir.join(n).is_file());
+            for src in self.sources.iter().chain(&self.sim_models).filter(|_| unit_here) {
+                let rel = src.strip_prefix(&self.dir).map(|r| r.to_string_lossy().into_owned()).unwrap_or_default();
+                if !names.contains(&rel.as_str()) {
+                    return Err(input(format!(
+                        "{} is not a file of this unit (manifest {} does not list it), and every tool would read it: move it out of {}",
+                        src.display(),
+                        manifest.display(),
+                        self.dir.display()
+                    )));
+                }
+            }
+        }
         if edited {
             return Ok(());
         }

@@ -21,6 +21,8 @@ mod tests;
 mod text;
 
 use cuts::*;
+mod digest;
+pub use digest::rtl_digest;
 pub(crate) use text::*;
 
 /// A signal registered at one cut only: `reg x_cK; x_cK <= source`.

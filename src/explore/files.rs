@@ -122,9 +122,10 @@ fn csv(points: &[Point]) -> String {
 
 /// The measured points as the delay model's calibration rows (`data/delay_calibration.csv`'s
 /// columns: family, datapath, stages, the two stretch estimates, nextpnr's median over the
-/// seeds and each seed's, and the generate flags beyond the defaults).
+/// seeds and each seed's, the generate flags beyond the defaults, and the RTL digest the row
+/// was measured on where it is today's, else empty: such a row is the fit's data, no floor).
 pub fn calibration_csv(e: &Exploration) -> String {
-    let mut s = String::from("family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args\n");
+    let mut s = String::from("family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args,rtl_sha256\n");
     let defaults = Params::default();
     for p in &e.points {
         let Some(m) = p.measured.as_ref().filter(|m| m.route_seeds.len() == m.seeds.len() && !m.route_seeds.is_empty()) else { continue };
@@ -147,7 +148,7 @@ pub fn calibration_csv(e: &Exploration) -> String {
             args.push(format!("--rom-style {}", p.params.rom_style.name()));
         }
         s.push_str(&format!(
-            "{},{},{},{:.1},{:.2},{:.2},{},{}\n",
+            "{},{},{},{:.1},{:.2},{:.2},{},{},{}\n",
             e.target,
             cfg.datapath_name(),
             p.stages,
@@ -155,7 +156,8 @@ pub fn calibration_csv(e: &Exploration) -> String {
             p.estimate.stage_delay_mean,
             crate::synth::median(&m.route_seeds).unwrap_or(0.0),
             m.route_seeds.iter().map(|f| format!("{f:.2}")).collect::<Vec<_>>().join(" "),
-            args.join(" ")
+            args.join(" "),
+            super::measured_today(p).ok().flatten().unwrap_or_default()
         ));
     }
     s
@@ -182,16 +184,18 @@ pub fn svg(e: &Exploration, metric: Metric) -> String {
     let emin = pts.iter().map(|p| metric.of(&p.accuracy)).fold(f64::INFINITY, f64::min).min(1e-3) / 2.0;
     let emax = pts.iter().map(|p| metric.of(&p.accuracy)).fold(0.0, f64::max).max(1e-2) * 2.0;
     let cmax = pts.iter().map(|p| p.cells()).max().unwrap_or(100) as f64 * 1.08;
+    // the axis starts near the cheapest point, not at zero cells
+    let cmin = (pts.iter().map(|p| p.cells()).min().unwrap_or(0) as f64 * 0.9).min(cmax * 0.5);
     {
         let root = SVGBackend::with_string(&mut out, (900, 600)).into_drawing_area();
         root.fill(&WHITE).expect("svg");
-        let title = format!("{}: {} error vs logic cells ({}), filled = measured", e.part, metric.name(), e.target);
+        let title = format!("{}: {} error vs logic cells ({}), filled = measured; the front per clock, a staircase", e.part, metric.name(), e.target);
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 18))
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(70)
-            .build_cartesian_2d(0f64..cmax, (emin..emax).log_scale())
+            .build_cartesian_2d(cmin..cmax, (emin..emax).log_scale())
             .expect("svg chart");
         chart
             .configure_mesh()
@@ -201,9 +205,28 @@ pub fn svg(e: &Exploration, metric: Metric) -> String {
             .draw()
             .expect("svg mesh");
         let styles = [BLACK, RGBColor(100, 100, 100), RGBColor(170, 170, 170), RGBColor(210, 210, 210)];
+        let mut labelled: Vec<&str> = Vec::new();
         for (i, &mhz) in e.clocks.iter().enumerate().rev() {
-            let mut line: Vec<(f64, f64)> = pts.iter().filter(|p| p.front.contains(&mhz)).map(|p| (p.cells() as f64, metric.of(&p.accuracy))).collect();
-            line.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut on: Vec<&&Point> = pts.iter().filter(|p| p.front.contains(&mhz)).collect();
+            on.sort_by_key(|p| p.cells());
+            // a staircase: a point's error holds until the next (cheaper to more accurate)
+            let mut line: Vec<(f64, f64)> = Vec::new();
+            for (k, p) in on.iter().enumerate() {
+                let (x, y) = (p.cells() as f64, metric.of(&p.accuracy));
+                if k > 0 {
+                    line.push((x, line[line.len() - 1].1));
+                }
+                line.push((x, y));
+            }
+            // each front point named once: model, widths, depth, Fmax
+            for p in &on {
+                if labelled.contains(&p.id.as_str()) {
+                    continue;
+                }
+                labelled.push(&p.id);
+                let text = format!("{} {}", p.id, p.fmax().map_or(String::new(), |f| format!("{f:.0} MHz")));
+                chart.draw_series(std::iter::once(Text::new(text, (p.cells() as f64, metric.of(&p.accuracy)), ("sans-serif", 10)))).expect("svg label");
+            }
             let style = styles[i.min(3)];
             chart
                 .draw_series(LineSeries::new(line, style.stroke_width(2)))

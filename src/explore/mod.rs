@@ -41,11 +41,13 @@ use crate::plan::Plan;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 
+mod depth;
 mod files;
 mod sweep;
 #[cfg(test)]
 mod tests;
 
+pub use depth::*;
 pub use files::*;
 pub use sweep::*;
 
@@ -341,32 +343,14 @@ fn point_id(p: &Params) -> String {
     id
 }
 
-/// The shallowest depth of `plan`'s configuration predicted to reach `mhz` (a bisection: the
-/// prediction grows with depth), or the deepest where none is; None without a delay model.
-fn depth_for(plan: &Plan, mhz: f64, at: &mut BTreeMap<u32, Option<f64>>) -> Result<Option<u32>, Error> {
-    let mut predicted = |d: u32| -> Result<Option<f64>, Error> {
-        if let Some(f) = at.get(&d) {
-            return Ok(*f);
-        }
-        let f = crate::timing::predicted_fmax(&plan.with_stages(d)?);
-        at.insert(d, f);
-        Ok(f)
-    };
-    let deepest = plan.cut_points;
-    match predicted(deepest)? {
-        None => return Ok(None),
-        Some(f) if f < mhz => return Ok(Some(deepest)),
-        Some(_) => {}
+/// The depth `explore` plans for `mhz`: [`depth_for_clock`] under [`Policy::Predicted`] (a
+/// unit measured on today's RTL first), or the deepest where none reaches it; None without a
+/// delay model.
+fn depth_for(plan: &Plan, mhz: f64) -> Result<Option<u32>, Error> {
+    if crate::timing::predicted_fmax(plan).is_none() {
+        return Ok(None);
     }
-    let (mut lo, mut hi) = (0u32, deepest);
-    while lo < hi {
-        let mid = (lo + hi) / 2;
-        match predicted(mid)? {
-            Some(f) if f >= mhz => hi = mid,
-            _ => lo = mid + 1,
-        }
-    }
-    Ok(Some(lo))
+    Ok(Some(depth_for_clock(plan, mhz, Policy::Predicted, None, |_, _| {})?.plan.cfg.stages()))
 }
 
 /// Every point of the space, with its accuracy and estimate. `progress` hears each (model,
@@ -411,10 +395,11 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
                     Err(e) => return Err(e),
                 };
                 let mut depths: BTreeMap<u32, Vec<f64>> = BTreeMap::new();
-                let mut at = BTreeMap::new();
+                let mut modelled = false;
                 for &mhz in &clocks {
-                    if let Some(d) = depth_for(&plan, mhz, &mut at)? {
+                    if let Some(d) = depth_for(&plan, mhz)? {
                         depths.entry(d).or_default().push(mhz);
+                        modelled = true;
                     }
                 }
                 depths.entry(plan.cut_points).or_default();
@@ -422,7 +407,7 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
                 for k in 1..=space.spread {
                     depths.entry((plan.cut_points * k).div_ceil(space.spread).max(1)).or_default();
                 }
-                if clocks.is_empty() || at.values().all(Option::is_none) {
+                if clocks.is_empty() || !modelled {
                     // no delay model: a quarter, half, three quarters and all of the cuts
                     for q in 1..=3 {
                         depths.entry(plan.cut_points * q / 4).or_default();

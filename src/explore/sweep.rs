@@ -243,18 +243,7 @@ pub fn merge(points: &mut [Point], jobs: &[Job], results: &[JobResult]) -> Merge
     report
 }
 
-/// SHA-256 of what synthesis reads of a unit: its Verilog and table files as specgen writes them
-/// (not the manifest, the testbench or the vectors).
-pub fn rtl_digest(plan: &Plan) -> String {
-    use sha2::Digest;
-    let mut h = sha2::Sha256::new();
-    for (name, bytes) in crate::emit::source_files(plan) {
-        h.update(name.as_bytes());
-        h.update((bytes.len() as u64).to_le_bytes());
-        h.update(&bytes);
-    }
-    h.finalize().iter().map(|b| format!("{b:02x}")).collect()
-}
+pub use crate::emit::rtl_digest;
 
 /// The jobs that measure `ids` over `seeds`.
 pub fn jobs_of(points: &[Point], ids: &[String], seeds: &[u32], tools: &Versions) -> Result<Vec<Job>, Error> {

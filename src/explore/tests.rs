@@ -289,3 +289,48 @@ fn a_result_is_checked_against_its_job() {
         assert!(why.contains(what), "{what}: {why}");
     }
 }
+
+/// The one depth search: a unit of this configuration measured on today's RTL answers first
+/// (the shallowest that reaches the clock, its digest named); a row of another RTL never does,
+/// and the delay model's figure is then labelled, never "measured".
+#[test]
+fn the_depth_search_reads_todays_measured_units_first() {
+    let e = Exploration::from_text(crate::family::of(crate::config::Target::Ice40).explored().expect("built in"), "built-in").unwrap();
+    // a measured point, and a clock it reaches that a shallower measured one of its shape misses
+    let p = e
+        .points
+        .iter()
+        .filter(|p| p.params.interface == crate::config::Interface::Valid && p.fmax().is_some_and(|f| f > 60.0))
+        .find(|p| p.measured.is_some())
+        .expect("a measured point");
+    let mhz = p.measured.as_ref().unwrap().fmax_mhz.unwrap();
+    let plan = Plan::new(Config::new(Params { stages: 0, ..p.params.clone() }).unwrap()).unwrap();
+    let pick = depth_for_clock(&plan, mhz, Policy::Assured, Some(&e), |_, _| {}).unwrap();
+    let today = measured_today(p).unwrap().expect("shipped rows are today's");
+    match &pick.evidence {
+        ClockEvidence::Measured { median, digest, .. } => {
+            assert!(*median >= mhz);
+            assert!(pick.plan.cfg.stages() <= p.stages, "the shallowest measured depth that reaches it");
+            let shallowest = e.points.iter().find(|q| measured_shape(&q.params) == measured_shape(&p.params) && q.stages == pick.plan.cfg.stages());
+            assert_eq!(Some(digest.clone()), shallowest.and_then(|q| measured_today(q).unwrap()));
+            let _ = today;
+        }
+        other => panic!("not measured: {other}"),
+    }
+    assert!(pick.evidence.to_string().starts_with("measured: "), "{}", pick.evidence);
+    // every row of that shape of another RTL: the delay model speaks, and says it is not measured
+    let mut stale = e.clone();
+    for q in stale.points.iter_mut().filter(|q| measured_shape(&q.params) == measured_shape(&p.params)) {
+        if let Some(m) = q.measured.as_mut() {
+            m.jobs = vec!["00000000000000000000".into(); m.seeds.len()];
+        }
+    }
+    match depth_for_clock(&plan, mhz.min(50.0), Policy::Assured, Some(&stale), |_, _| {}) {
+        Ok(pick) => {
+            assert!(matches!(pick.evidence, ClockEvidence::Modelled { .. }), "{}", pick.evidence);
+            let said = pick.evidence.to_string();
+            assert!((said.starts_with("interpolated: ") || said.starts_with("extrapolated: ")) && said.contains("not a measurement"), "{said}");
+        }
+        Err(e) => assert!(!e.reason().contains("measured:"), "{}", e.reason()),
+    }
+}

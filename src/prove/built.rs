@@ -110,11 +110,15 @@ fn differs_from_built(design: &Design, tools: &Tools, w: &Path, unit: &[String],
     let elaborate = |step: &str| -> Result<Elaboration, Error> {
         script(step, Vec::new())?;
         match run(&tools.yosys, &["-q".into(), "-s".into(), format!("built_{step}.ys")], w, tools.limit) {
-            Err(e) if e.to_string().contains("select -assert-none") => {
+            Err(e) if e.to_string().contains("select -assert-none") || e.to_string().contains("selection is not empty") => {
+                // "Selection contains:\n<module>\n<module>/<wire>…": the modules named
+                let text = e.to_string();
+                let named: Vec<&str> = text.split("Selection contains:").nth(1).unwrap_or("").split_whitespace().filter(|m| !m.contains('/')).take(4).collect();
                 return Err(error::input(format!(
-                "{}: a module of the unit takes the name of one of specgen's proof modules ({top}_prove_*, {top}_port_checker, {top}_datapath*, {top}_depth0*)",
-                design.dir.display()
-            )))
+                    "{}: a module of the unit takes the name of one of specgen's proof modules ({top}_prove_*, {top}_port_checker, {top}_datapath*, {top}_depth0*, {top}_delay_ram_contract*){}: it would stand in for the harness; rename it",
+                    design.dir.display(),
+                    if named.is_empty() { String::new() } else { format!(": {}", named.join(", ")) }
+                )));
             }
             ran => {
                 ran?.ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not elaborate the unit within {} s (--time-limit)", tools.limit.as_secs())))?
@@ -125,6 +129,22 @@ fn differs_from_built(design: &Design, tools: &Tools, w: &Path, unit: &[String],
     };
     let built = elaborate("built")?;
     let formal = elaborate("formal")?;
+    // what no proof is handed: an input the unit drives, a second clock, a latch (in the
+    // design built and in the one the proof reads)
+    let clock = crate::emit::clock_port(&design.cfg);
+    let mut refused: Vec<String> = Vec::new();
+    for step in ["built", "formal"] {
+        let json = crate::small_file::read(&w.join(format!("{step}.json")), 1 << 30).map_err(|e| error::tool(&tools.yosys, format!("{step}.json: {e}")))?;
+        for why in super::netlist::refusals(&json, step, clock) {
+            if !refused.contains(&why) {
+                refused.push(why);
+            }
+        }
+    }
+    if !refused.is_empty() {
+        let more = if refused.len() > 8 { format!("; and {} more", refused.len() - 8) } else { String::new() };
+        return Err(error::input(format!("{}: not a unit a proof can be handed: {}{more}", design.dir.display(), refused[..refused.len().min(8)].join("; "))));
+    }
     let lemma_port = formal.ports.contains_key("f_ports") && !built.ports.contains_key("f_ports");
     let mut differ = Vec::new();
     for (port, (dir, width)) in &built.ports {

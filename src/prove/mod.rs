@@ -25,6 +25,7 @@ use std::process::Stdio;
 use std::time::{Duration, Instant};
 
 mod built;
+mod netlist;
 mod pipelining;
 mod ports;
 mod run;
@@ -296,6 +297,9 @@ impl Tools {
     }
 }
 
+/// A `valid` unit's cover, in words: what a run must reach for its properties to say anything.
+pub const VALID_COVER: &str = "a reset at the first edge, then a result (out_valid high)";
+
 /// How a proof ended.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Verdict {
@@ -311,9 +315,10 @@ pub enum Verdict {
     /// search, not a proof)
     Bounded { depth: u32 },
     /// `prove --pipelining`: the properties hold for the first `bounded` edges from power-up,
-    /// but the unit keeps state longer than its latency (a delay line in memory, its pointers
-    /// never flushed), so the check from any state cannot conclude
-    Incomplete { bounded: u32 },
+    /// but the unit keeps state longer than its latency, so the check from any state cannot
+    /// conclude; `keeps`: what holds it, in words, from what the unit has (a delay line in
+    /// memory, its pointers never flushed; or state specgen's unit of these parameters has not)
+    Incomplete { bounded: u32, keeps: String },
     /// the design the proof reads is not the one synthesis builds (`differs`, in words): the
     /// unit's formal regions change what it computes, so nothing proved of it would hold
     NotBuilt { differs: String },
@@ -520,6 +525,11 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
             Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
         };
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+    }
+    // the cover every interface has: after the reset, a result (an environment that cannot
+    // reach it makes every property vacuously true)
+    if let Some(proof) = valid_cover(design, tools, w, &files, &unit_defines, &name, t0)? {
+        return Ok(proof);
     }
     Script { unit_defines: unit_defines.clone(), ..Script::model(&name, &files) }.write(w, "prove.ys")?;
     let long = Duration::from_secs(600);

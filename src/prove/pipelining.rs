@@ -196,7 +196,11 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
             let found = run_sat(&yosys, w, "replay.ys", tools.limit)? == Some(false);
             if replay.1 > 0 && !found {
                 // no run reaches the failing state from the replay's: state kept beyond K + 1 edges
-                break 'checks Verdict::Incomplete { bounded: frames };
+                let keeps = match rams.is_empty() {
+                    false => "a delay line in block RAM, its pointers never flushed; generate it with fewer stages or narrower widths (no delay line in memory) to prove it".to_string(),
+                    true => format!("state specgen's unit of these parameters does not have (it writes no delay line in memory at --stages {k}): a register or memory of this RTL keeps values longer than its {k} stages; find what does, or compare with a unit generated afresh"),
+                };
+                break 'checks Verdict::Incomplete { bounded: frames, keeps };
             }
             break 'checks Verdict::Failed { frame: replay.0 - 1, vcd: trace(&yosys, w, design)? };
         }

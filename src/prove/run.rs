@@ -183,3 +183,34 @@ pub(super) fn trace(yosys: &str, w: &Path, design: &Design) -> Result<Vec<u8>, E
 pub(super) fn put(w: &Path, name: &str, bytes: impl AsRef<[u8]>) -> Result<(), Error> {
     std::fs::write(w.join(name), bytes).map_err(|e| Error::io("write", w.join(name), e))
 }
+
+/// A `valid` unit's cover ([`VALID_COVER`]): after the reset, a result, within latency + 3
+/// edges, searched by yosys's `sat` as the failure of its negation. None: reached; else the
+/// proof that ends here (vacuous, or undecided within the time limit).
+pub(super) fn valid_cover(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    files: &[String],
+    unit_defines: &[String],
+    name: &str,
+    t0: Instant,
+) -> Result<Option<Proof>, Error> {
+    let reach = design.cfg.latency() + 3;
+    Script {
+        bounded: Some(reach),
+        defines: vec!["SPECGEN_VALID_COVER".into()],
+        ignore_unknown: !design.sim_models.is_empty(),
+        unit_defines: unit_defines.to_vec(),
+        ..Script::model(name, files)
+    }
+    .write(w, "cover.ys")?;
+    let verdict = match run_sat(&tools.yosys, w, "cover.ys", tools.limit)? {
+        // its negation fails: reached
+        Some(false) => return Ok(None),
+        Some(true) => Verdict::Unreached { covers: vec![VALID_COVER], depth: reach },
+        None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
+    };
+    let engine = format!("the cover ({VALID_COVER}) searched with yosys sat over {reach} edges");
+    Ok(Some(Proof { name: name.to_string(), properties: properties(design), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None }))
+}

@@ -247,6 +247,19 @@ fn a_sweep_on_snakemake_killed_midway_resumes_to_the_same_front() {
     let o = output_guarded(specgen().args(["explore", "--target", "ecp5", "--out"]).arg(tmp.path().join("ecp5")).arg("--unit").arg(&unit), "explore");
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--unit") && !tmp.path().join("ecp5").exists(), "{}", String::from_utf8_lossy(&o.stderr));
+    // a unit whose Verilog is not the one its manifest lists is refused, as by every command
+    // (explore measures the unit specgen writes for the manifest's parameters)
+    let edited = tmp.path().join("edited");
+    std::fs::create_dir(&edited).unwrap();
+    for e in std::fs::read_dir(&unit).unwrap().flatten().filter(|e| e.path().is_file()) {
+        std::fs::copy(e.path(), edited.join(e.file_name())).unwrap();
+    }
+    let v = std::fs::read_to_string(edited.join("specular_unit.v")).unwrap();
+    std::fs::write(edited.join("specular_unit.v"), v.replacen("\nendmodule", "\n// edited\nendmodule", 1)).unwrap();
+    let o = output_guarded(specgen().args(["explore", "--out"]).arg(tmp.path().join("edited_out")).arg("--unit").arg(&edited), "explore");
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{said}");
+    assert!(said.contains("invalid --unit") && said.contains("is not the file specgen wrote") && !tmp.path().join("edited_out").exists(), "{said}");
     // shards that overlap merge (identical results are one); all three directories at once
     let all = tmp.path().join("all");
     assert!(explore1(&all, &[&results, &shard_a, &shard_b], &[]).status.success());
@@ -338,13 +351,15 @@ fn the_refused_cases_are_picked_from_measured_units() {
         let o = output_guarded(specgen().arg("generate").args(args).args(["--target-mhz", &mhz.to_string(), "--out"]).arg(&out), "generate");
         assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
         let said = String::from_utf8_lossy(&o.stderr);
-        // "chose --stages N: F MHz measured, …" (a measured unit of the built-in exploration)
-        // or "… MHz predicted" by the delay model at a calibrated shape (the budget is one)
+        // "chose --stages N on the PART: measured: F MHz, …" (a unit of the built-in exploration
+        // measured on today's RTL) or "…: interpolated: F MHz by the delay model" at a calibrated
+        // shape (the budget is one); never an extrapolation
         let chose = said.split("chose --stages ").nth(1).unwrap_or_else(|| panic!("{said}"));
-        let figure: f64 = chose.split(": ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap_or_else(|_| panic!("{said}"));
+        let (kind, rest) = chose.split_once(": ").unwrap().1.split_once(": ").unwrap();
+        let figure: f64 = rest.split(' ').next().unwrap().trim_end_matches(',').parse().unwrap_or_else(|_| panic!("{said}"));
         assert!(figure >= mhz, "{said}");
-        assert!(chose.contains("MHz measured") || !(said.contains("between calibrated widths") || said.contains("outside the calibration")), "{said}");
-        let stages: u32 = chose.split(':').next().unwrap().parse().unwrap();
+        assert!(kind == "measured" || kind == "interpolated", "{said}");
+        let stages: u32 = chose.split(' ').next().unwrap().parse().unwrap();
         let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
         assert_eq!(m["stages"], stages);
     }
@@ -457,6 +472,16 @@ fn the_shipped_explorations_are_of_todays_rtl() {
     let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(o.status.success(), "{text}");
     assert!(text.contains("of today's RTL, 0 of an older RTL"), "{text}");
+    // the delay model's floors too: each names today's RTL (a row naming none is no floor)
+    for part in ["iCE40 UP5K", "ECP5-25 grade 6"] {
+        let line = text.lines().find(|l| l.starts_with(&format!("the delay model's calibration on the {part}:"))).unwrap_or_else(|| panic!("{text}"));
+        assert!(line.contains(" 0 of an older RTL") && !line.contains(": 0 floors"), "{line}");
+    }
+    // the library agrees, family by family
+    for t in specgen::config::Target::ALL {
+        let ev = specgen::explore::calibration_evidence(t).unwrap();
+        assert!(ev.stale.is_empty(), "{t:?}: stale floors {:?}", ev.stale);
+    }
 }
 
 /// `specgen stale` says which rows of an exploration are of an older RTL, and exits 1.

@@ -201,7 +201,7 @@ fn the_gowin_delay_model_picks_a_depth_or_refuses_with_its_reason() {
         assert!(m["predicted_fmax_mhz"].as_f64().is_some_and(|f| f >= 100.0), "{model}: {}", m["predicted_fmax_mhz"]);
     }
     for (args, why) in [
-        (&["--model", "blinn", "--target-mhz", "1000"][..], "out of reach on the GW1NR-9"),
+        (&["--model", "blinn", "--target-mhz", "1000"][..], "is not assured on the GW1NR-9"),
         (&["--interface", "ready", "--target-mhz", "100"][..], "no ready unit was measured on the GW1NR-9"),
     ] {
         let out = tmp.path().join("refused");

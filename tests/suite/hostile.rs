@@ -296,6 +296,14 @@ fn file_names_and_tool_paths_never_reach_a_shell() {
     std::fs::write(dir.join("a.v; script evil.ys; #.v"), "module stray; endmodule\n").unwrap();
     let o = specgen().args(["synth", "--no-pnr", "--rtl"]).arg(&dir).output().unwrap();
     let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    // a Verilog file the manifest does not list is named and refused, its name data
+    assert_eq!(o.status.code(), Some(2), "{text}");
+    assert!(text.contains("a.v; script evil.ys; #.v is not a file of this unit"), "{text}");
+    assert!(!mark.exists(), "a file name ran a command");
+    std::fs::remove_file(dir.join("a.v; script evil.ys; #.v")).unwrap();
+    // without it, the unit in a directory whose name has a space synthesizes
+    let o = specgen().args(["synth", "--no-pnr", "--rtl"]).arg(&dir).output().unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert_eq!(o.status.code(), Some(0), "{text}");
     assert!(text.contains("flip-flops"), "{text}");
     assert!(!mark.exists(), "a file name ran a yosys script");

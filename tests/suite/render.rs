@@ -44,7 +44,13 @@ fn render_through_the_rtl_equals_the_model_and_shows_the_difference() {
     let pic = specgen::render::picture(&refs, &[1, 16, 128], 32);
     assert_eq!(pic.png, std::fs::read(&rtl_png).unwrap());
     // (a 32-pixel tile has room for "error", a wider one for "signed error")
-    for label in ["quadratic", "blinn", "float", "cos^n", "unit", "error", "sphere n=1", "sphere n=16", "plane n=128"] {
+    // each column names its unit: model, F/FI and depth; the title the same in words
+    let (qs, bs) = (specgen::cosim::Design::load(&q).unwrap().cfg.stages(), specgen::cosim::Design::load(&b).unwrap().cfg.stages());
+    for label in [format!("quadratic 15/15 s{qs}"), format!("blinn 15/15 s{bs}")] {
+        assert!(pic.labels.contains(&label), "no column {label:?} in {:?}", pic.labels);
+    }
+    assert!(pic.labels.iter().any(|l| l.contains(&format!("quadratic (F 15, FI 15, {qs} stages), blinn (F 15, FI 15, {bs} stages)"))), "{:?}", pic.labels);
+    for label in ["float", "cos^n", "unit", "error", "sphere n=1", "sphere n=16", "plane n=128"] {
         assert!(pic.labels.iter().any(|l| l == label), "no label {label:?} in {:?}", pic.labels);
     }
     for words in ["intensity S: full scale", "signed error unit - float: blue too dark, red too bright", "32768"] {

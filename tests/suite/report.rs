@@ -355,6 +355,25 @@ fn report_shows_an_explorations_front() {
     assert!(html.contains("id=\"fig-front\"") && html.contains("iCE40 UP5K exploration") && html.contains("measured over nextpnr seeds 1, 2, 3"), "no front");
     let svg = html.split("id=\"fig-front\"").nth(1).unwrap();
     assert!(svg.contains("<svg") && svg.contains("blinn") && svg.contains("front at 100 MHz"));
+    // the front as a table too, and in report.json: each row the exploration's front point
+    let e: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(explored).unwrap()).unwrap();
+    let on_front: Vec<(f64, String)> = e["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|p| p["front"].as_array().unwrap().iter().map(move |c| (c.as_f64().unwrap(), p["id"].as_str().unwrap().to_string())))
+        .collect();
+    assert!(!on_front.is_empty());
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let rows = json["front"].as_array().expect("report.json holds the front");
+    assert_eq!(rows.len(), on_front.len());
+    for (mhz, id) in &on_front {
+        assert!(rows.iter().any(|r| r["clock_mhz"] == *mhz && r["id"] == id.as_str()), "{id} at {mhz} MHz");
+        // each front point labelled in the figure, and a row of the table
+        assert!(svg.contains(id.as_str()), "the figure names {id}");
+        assert!(html.contains(&format!("<td>{id}</td>")), "the table lists {id}");
+    }
+    assert!(html.contains("id=\"front-table\""));
     // not an exploration: refused, nothing written
     let o =
         specgen().args(["report", "--explored", "Cargo.toml", "--out"]).arg(tmp.path().join("bad")).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();

@@ -1,0 +1,206 @@
+//! One depth search for a clock, used by `generate --target-mhz`, by `explore` when it plans
+//! the depths it measures, and by the choice among measured units alike.
+//!
+//! **Measured points first.** A unit of this very configuration (every parameter but the depth,
+//! the interface and its edge included) measured on today's RTL (its jobs' fingerprints are
+//! those of the unit specgen writes now: [`super::measured_today`]) whose median Fmax over its
+//! seeds reaches the clock: the shallowest such depth, and the evidence says which unit, which
+//! seeds, which RTL digest. A row of another RTL is never evidence.
+//!
+//! **Else the delay model** (`crate::timing`), with a policy: [`Policy::Assured`] scans for the
+//! shallowest depth whose assured figure reaches the clock (what `generate` promises);
+//! [`Policy::Predicted`] bisects on the predicted figure (what `explore` plans to measure, whose
+//! verdict is the measurement). Its figure is labelled *interpolated* where the delay model
+//! reads calibration units of these widths or of widths around them, *extrapolated* where it
+//! follows its line outside them; neither is a measurement, and the pick says how to measure it.
+
+use super::{measured_today, Exploration};
+use crate::config::Params;
+use crate::error::Error;
+use crate::plan::Plan;
+
+/// What figure a depth search compares with the clock where no measured unit answers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Policy {
+    /// the delay model's prediction (a guess to be measured: `explore`'s plan)
+    Predicted,
+    /// the delay model's assured figure (a promise: `generate --target-mhz`)
+    Assured,
+}
+
+/// What a depth's clock rests on.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ClockEvidence {
+    /// a unit of this configuration measured on today's RTL
+    Measured {
+        /// the exploration point's id, and the part
+        id: String,
+        part: String,
+        /// the median over the seeds, and the seeds
+        median: f64,
+        seeds: Vec<u32>,
+        /// the SHA-256 of the RTL and tables measured (today's)
+        digest: String,
+    },
+    /// the delay model's figure; `extrapolated`: outside every calibrated width (its line
+    /// alone), else read from calibration units at or around these widths; `note`: how
+    Modelled { figure: f64, predicted: f64, extrapolated: bool, note: Option<String> },
+}
+
+impl std::fmt::Display for ClockEvidence {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ClockEvidence::Measured { id, part, median, seeds, digest } => write!(
+                f,
+                "measured: {median:.1} MHz, median over nextpnr seeds {} of {id} on the {part}, today's RTL (sha256 {})",
+                crate::synth::seed_list(seeds),
+                &digest[..digest.len().min(16)]
+            ),
+            ClockEvidence::Modelled { figure, predicted, extrapolated, note } => {
+                let kind = if *extrapolated { "extrapolated" } else { "interpolated" };
+                write!(f, "{kind}: {figure:.1} MHz by the delay model (predicted {predicted:.1}), not a measurement of this unit")?;
+                if let Some(n) = note {
+                    write!(f, " ({n})")?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// A depth chosen for a clock: the plan at that depth, and what its clock rests on.
+#[derive(Debug, Clone)]
+pub struct DepthPick {
+    pub plan: Plan,
+    pub evidence: ClockEvidence,
+}
+
+/// Parameters with what does not change which unit is measured cleared: its depth, the clock
+/// its constraints name, its names.
+pub fn measured_shape(p: &Params) -> Params {
+    Params { stages: 0, clock_mhz: None, top: Params::default().top, clock_port: None, ..p.clone() }
+}
+
+/// The shallowest depth of `plan`'s configuration whose clock reaches `mhz`: a unit measured on
+/// today's RTL in `explored` (the family's built-in exploration when None) first, else the
+/// delay model under `policy`. `progress(depth, deepest)` hears each depth the model plans.
+/// Err: no depth reaches it (the delay model's reason, which names the best depth).
+pub fn depth_for_clock(plan: &Plan, mhz: f64, policy: Policy, explored: Option<&Exploration>, progress: impl Fn(u32, u32)) -> Result<DepthPick, Error> {
+    if let Some(pick) = measured_depth(plan, mhz, explored)? {
+        return Ok(pick);
+    }
+    let (chosen, predicted, figure) = match policy {
+        Policy::Assured => {
+            let (p, f) = crate::timing::pick_stages_reporting(plan, mhz, progress)?;
+            let assured = crate::timing::assured_fmax(&p).unwrap_or(f);
+            (p, f, assured)
+        }
+        Policy::Predicted => {
+            let p = predicted_depth(plan, mhz)?;
+            let f = crate::timing::predicted_fmax(&p).unwrap_or(0.0);
+            (p, f, f)
+        }
+    };
+    let note = crate::timing::outside_calibration(&chosen);
+    let extrapolated = note.as_deref().is_some_and(|n| n.starts_with("outside"));
+    Ok(DepthPick { plan: chosen, evidence: ClockEvidence::Modelled { figure, predicted, extrapolated, note } })
+}
+
+/// The measured step of [`depth_for_clock`]: None where no unit of this configuration measured
+/// on today's RTL reaches `mhz`.
+fn measured_depth(plan: &Plan, mhz: f64, explored: Option<&Exploration>) -> Result<Option<DepthPick>, Error> {
+    let built_in;
+    let e = match explored {
+        Some(e) => e,
+        None => match crate::family::of(plan.cfg.target()).explored() {
+            Some(text) => {
+                built_in = Exploration::from_text(text, "the built-in exploration")?;
+                &built_in
+            }
+            None => return Ok(None),
+        },
+    };
+    let want = measured_shape(&plan.cfg.params);
+    let mut reaching: Vec<&super::Point> = e
+        .points
+        .iter()
+        .filter(|p| p.stages <= plan.cut_points && measured_shape(&p.params) == want)
+        .filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz))
+        .collect();
+    reaching.sort_by_key(|p| p.stages);
+    for p in reaching {
+        // a row of another RTL is never evidence
+        let Some(digest) = measured_today(p)? else { continue };
+        let m = p.measured.as_ref().expect("measured");
+        let evidence = ClockEvidence::Measured { id: p.id.clone(), part: e.part.clone(), median: m.fmax_mhz.unwrap_or(0.0), seeds: m.seeds.clone(), digest };
+        return Ok(Some(DepthPick { plan: plan.with_stages(p.stages)?, evidence }));
+    }
+    Ok(None)
+}
+
+/// The shallowest depth predicted to reach `mhz` (a bisection: the prediction grows with
+/// depth), or the deepest where none is; Err without a delay model.
+fn predicted_depth(plan: &Plan, mhz: f64) -> Result<Plan, Error> {
+    let predicted = |d: u32| -> Result<Option<f64>, Error> { Ok(crate::timing::predicted_fmax(&plan.with_stages(d)?)) };
+    let deepest = plan.cut_points;
+    match predicted(deepest)? {
+        None => return Err(crate::timing::line(plan.cfg.target(), plan.cfg.datapath_name()).err().unwrap_or_else(|| crate::error::input("no delay model"))),
+        Some(f) if f < mhz => return plan.with_stages(deepest),
+        Some(_) => {}
+    }
+    let (mut lo, mut hi) = (0u32, deepest);
+    while lo < hi {
+        let mid = (lo + hi) / 2;
+        match predicted(mid)? {
+            Some(f) if f >= mhz => hi = mid,
+            _ => lo = mid + 1,
+        }
+    }
+    plan.with_stages(lo)
+}
+
+/// What `specgen stale` finds of the delay model's calibration on one family.
+#[derive(Debug, Clone, Default)]
+pub struct CalibrationEvidence {
+    /// floors (rows naming an RTL digest) whose digest is today's for their unit
+    pub today: usize,
+    /// floors whose digest is not today's: `<datapath> <args> --stages N`
+    pub stale: Vec<String>,
+    /// rows that name no digest: the fit's data, never a floor
+    pub fit_only: usize,
+}
+
+/// The delay model's calibration units on `target`'s family, each floor's RTL digest checked
+/// against the unit specgen writes today (each unit generated once: seconds).
+pub fn calibration_evidence(target: crate::config::Target) -> Result<CalibrationEvidence, Error> {
+    let mut ev = CalibrationEvidence::default();
+    let Some(family) = crate::timing::family(target) else { return Ok(ev) };
+    let all: serde_json::Value = serde_json::from_str(crate::timing::MODEL_JSON).expect("data/delay_model.json is JSON");
+    for (name, v) in all[family].as_object().into_iter().flatten() {
+        let Ok(l) = serde_json::from_value::<crate::timing::Line>(v.clone()) else { continue };
+        // a datapath's calibration units are generated as scripts/calibrate_delay.sh does: the
+        // default parameters (`lean`: the default model's), its model named otherwise
+        let base = match crate::config::SpecularModel::ALL.into_iter().find(|m| m.name() == name) {
+            Some(model) => Params { model, target, ..Default::default() },
+            None if name == "lean" => Params { target, ..Default::default() },
+            None => continue,
+        };
+        for i in 0..l.measured.len() {
+            let digest = l.measured_digest.get(i).map_or("", String::as_str);
+            let (args, stages) = (l.measured_args.get(i).map_or("", String::as_str), l.measured_stages.get(i).copied().unwrap_or(0));
+            if digest.is_empty() {
+                ev.fit_only += 1;
+                continue;
+            }
+            let today = crate::timing::params_with_args(&base, args)
+                .map(|p| Params { stages, ..p })
+                .and_then(|p| Plan::from_params(p).ok())
+                .map(|plan| crate::emit::rtl_digest(&plan));
+            match today.as_deref() == Some(digest) {
+                true => ev.today += 1,
+                false => ev.stale.push(format!("{name} {args} --stages {stages}").replace("  ", " ")),
+            }
+        }
+    }
+    Ok(ev)
+}
