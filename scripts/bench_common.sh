@@ -2,7 +2,7 @@
 # directory, a release build in $bin, a scratch directory $work removed on exit, and
 # max_stages ARGS… (the most --stages a configuration takes, read from the generator's own
 # range error, which exits 2), models (every model the generator has, from its own list of
-# --model values), and the wide widths of the issue's ECP5 target in ${wide[@]}.
+# --model values), and the wide widths of the ECP5 target in ${wide[@]}.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 cargo build --release -q

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates benchmarks/interface.md: what the ready handshake (issue 22) costs. The deepest,
+# Regenerates benchmarks/interface.md: what the ready handshake costs. The deepest,
 # fastest configurations (lean and blinn fully pipelined) with --interface valid and ready, and
 # axis with a static colour (material registers and the idle output),
 # on the iCE40 UP5K (DSPs) and the ECP5-25 (ECP5-shaped datapath), place-and-route with

@@ -102,7 +102,7 @@ tag=$(grep -o 'tag_line\[[0-9]*:[0-9]*\];' "$work/r/specular_unit.v" | tail -1 |
 hi=${tag#tag_line[}; hi=${hi%%:*}; lo=${tag#*:}; lo=${lo%]}
 fault tag_off specular_unit.v "= $tag;" "= tag_line[$((hi - 12)):$((lo - 12))];"
 fault overfull "$buffer" "in_ready <= over_credits[DEPTH_LOG2];" "in_ready <= over_credits[DEPTH_LOG2] || over_credits == 0;"
-# the outside classes of issue 48, each against the default proof (no --depth): the port
+# the outside audit's classes, each against the default proof (no --depth): the port
 # checker's verdict, the colour check with a static colour
 outside() { # unit name file from to
     broken "$1" "o-$2" "$3" "$4" "$5"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Two units of different models in one iCE40 UP5K (issue 49): each generated with a
+# Two units of different models in one iCE40 UP5K: each generated with a
 # --dsp-budget so that their SB_MAC16s together fit the device's 8, both instantiated in each of
 # two tops (a serial-I/O wrapper: every port of both units from or to a flip-flop of a shift chain;
 # and a top of one's own, plain registers in and out, tb/pair_plain_top.v), synthesized by

@@ -1,7 +1,7 @@
 #!/bin/bash
 # The emitted files' hashes over a grid: every model x family x interface x {tag, static colour,
 # clock enable, active-low reset, tlast} x depths 0, 1, 3, 9. A refactoring of what is emitted
-# (e.g. issue 72's move of the unit's edge into templates) keeps them byte-identical:
+# (e.g. moving the unit's edge into templates) keeps them byte-identical:
 #   scripts/emitted_grid.sh OLD_SPECGEN before.txt; scripts/emitted_grid.sh NEW_SPECGEN after.txt
 #   diff before.txt after.txt
 # usage: emitted_grid.sh SPECGEN OUTLIST

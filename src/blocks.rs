@@ -36,7 +36,7 @@ mod tests {
     use super::*;
     use crate::config::Target;
 
-    /// The figures of the issue: a grade-6 DP16KD allows 211.9 MHz, grade 8 271.4; the
+    /// A grade-6 DP16KD allows 211.9 MHz, grade 8 271.4; the
     /// slower block wins; a faster route is capped, a slower one is not.
     #[test]
     fn the_slowest_block_caps_the_route() {

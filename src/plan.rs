@@ -294,7 +294,7 @@ pub(crate) fn balanced_cuts_by(delays: &[f64], hard: &[bool], stages: u32) -> Ve
 mod tests {
     use super::*;
 
-    /// Issue 69: c's clamp and ~c (the operand of 1 − c) are made in different steps, from
+    /// C's clamp and ~c (the operand of 1 − c) are made in different steps, from
     /// different registers of cos: in one step the integer bit of cos drove both words and a
     /// synthesis tool shared c's LUTs for ~c, so c's flip-flops took them over a route of
     /// their own (schlick at 117.1 MHz on the UP5K).
@@ -475,7 +475,7 @@ mod tests {
         // and a long datapath in no time (the search would take 2^43 placements)
         assert_eq!(balanced_cuts(&[2.7; 43], 43).len(), 43);
     }
-    /// Issue 50: a wire's kind and reads are data the builder recorded as it made the operands,
+    /// A wire's kind and reads are data the builder recorded as it made the operands,
     /// never read back from the Verilog. Checked here against the text, over every model, family,
     /// width, depth and budget: the reads are exactly the signal names the text holds; a select
     /// is no more than bits and braces (a multi-line concatenation included: the old text rule

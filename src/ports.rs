@@ -385,7 +385,7 @@ fn default_widths() -> PortWidths {
 mod port_rule_tests {
     use super::*;
 
-    /// The proof issue, point 4: every output port of every port table has a rule of the port
+    /// Every output port of every port table has a rule of the port
     /// checker (a port added without one fails here).
     #[test]
     fn every_output_port_has_a_rule_of_the_port_checker() {

@@ -726,7 +726,7 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult], explored: Option<&c
 mod tests {
     use super::*;
 
-    /// Issue 50, point 4: each model's colour is its name's, so every model of the registry
+    /// Each model's colour is its name's, so every model of the registry
     /// has its own, and adding one repaints none.
     #[test]
     fn every_model_has_its_own_colour_by_name() {

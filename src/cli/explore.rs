@@ -72,6 +72,19 @@ pub struct ExploreArgs {
     /// LUT-only figures); said in each job and its fingerprint.
     #[arg(long)]
     pub no_dsp: bool,
+    /// Also run the plan's jobs that have no result in the first --results directory, then
+    /// merge: one command for a sweep. Killed midway, run it again: only what has no result runs.
+    #[arg(long)]
+    pub run: bool,
+    /// With --run: what runs the jobs (auto: Snakemake with --profile, else specgen's own slots)
+    #[arg(long, value_enum, default_value = "auto", requires = "run")]
+    pub engine: super::sweep::Engine,
+    /// With --run: jobs at once on this machine [1..=64; default: the cores]
+    #[arg(long, value_name = "N", requires = "run", value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub run_jobs: Option<u32>,
+    /// With --run: a Snakemake profile (a cluster's: scripts/sweep/profiles/slurm)
+    #[arg(long, value_name = "DIR", requires = "run")]
+    pub profile: Option<PathBuf>,
     /// A generated unit (its directory, read by its manifest) as a point of its own, instead of
     /// the space: every unit given is measured (a bench's units on the sweep); repeat it [at
     /// most 1000, each of --target's family].
@@ -328,6 +341,15 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     if jobs.len() > MAX_JOBS {
         return Err(usage(format!("the plan holds {} jobs; allowed at most {MAX_JOBS} (what measure reads): fewer --seeds or a narrower space", jobs.len())));
     }
+    // --run: the jobs without a result run now, into the first --results
+    let mut failed_jobs = Vec::new();
+    if a.run {
+        let store = super::sweep::store(&a.results)?;
+        let at_once = a.run_jobs.map_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()), |n| n as usize);
+        let opts =
+            super::sweep::RunOptions { engine: a.engine, jobs_at_once: at_once, profile: a.profile.as_deref(), yosys: &a.yosys, nextpnr: a.nextpnr.as_deref() };
+        failed_jobs = super::sweep::run_jobs(&jobs, store, &opts)?;
+    }
     let dirs: Vec<&Path> = a.results.iter().map(PathBuf::as_path).collect();
     let results = explore::read_results(&dirs)?;
     let report = explore::merge(&mut points, &jobs, &results);
@@ -362,12 +384,19 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     if !report.missing.is_empty() {
         let jobs_file = a.out.join("jobs.json");
         outln!(
-            "measure the rest: scripts/sweep.sh {} RESULTS_DIR (Snakemake, every core; a cluster: see the README), then run this command again with --results RESULTS_DIR",
+            "measure the rest: this command with --run (or scripts/sweep.sh {} RESULTS_DIR, Snakemake; a cluster: --run --profile, see the README), then run it again with --results RESULTS_DIR",
             jobs_file.display()
         )?;
     }
     if !report.conflicting.is_empty() {
         return Err(super::failed(format!("jobs with conflicting results: {}", report.conflicting.join(", "))));
+    }
+    if !failed_jobs.is_empty() {
+        return Err(super::failed(format!(
+            "{} job(s) failed and have no result ({}); run the command again to retry them",
+            failed_jobs.len(),
+            failed_jobs.iter().take(8).cloned().collect::<Vec<_>>().join(", ")
+        )));
     }
     Ok(())
 }
@@ -560,12 +589,14 @@ pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
         });
     Ok(match near {
         Some(p) => format!(
-            "; the nearest measured unit that reaches it: {} (--cos-frac-bits {} --intensity-frac-bits {} --stages {}{}), {:.1} MHz median over seeds {}; `generate --max-error E --target-mhz {mhz}` chooses among measured units",
+            "; the nearest measured unit that reaches it: {} (--cos-frac-bits {} --intensity-frac-bits {} --stages {}{}{}{}), {:.1} MHz median over seeds {}; `generate --max-error E --target-mhz {mhz}` chooses among measured units",
             p.id,
             p.params.cos_frac_bits,
             p.params.intensity_frac_bits,
             p.stages,
             p.params.dsp_budget.map_or(String::new(), |b| format!(" --dsp-budget {b}")),
+            if p.params.rom_style != Params::default().rom_style { format!(" --rom-style {}", p.params.rom_style.name()) } else { String::new() },
+            if p.params.fabric_registers { " --fabric-registers" } else { "" },
             p.fmax().unwrap_or(0.0),
             p.measured.as_ref().map_or(String::new(), |m| specgen::synth::seed_list(&m.seeds))
         ),

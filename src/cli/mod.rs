@@ -6,6 +6,7 @@ mod explore;
 mod info;
 mod prove;
 mod render;
+mod sweep;
 mod synth;
 mod values;
 
@@ -520,7 +521,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 // a depth at a time; said on standard error when the search takes a while
                 let start = std::time::Instant::now();
                 let said = std::cell::Cell::new(std::time::Duration::ZERO);
-                let picked = specgen::explore::depth_for_clock(&plan, mhz, specgen::explore::Policy::Assured, None, |depth, deepest| {
+                // the options the user did not give may be chosen with the depth, from measured units
+                let given = explore::given_keys(&params, &rtl);
+                let free: Vec<&str> = ["rom_style", "fabric_registers"].into_iter().filter(|k| !given.contains(k)).collect();
+                let before = plan.cfg.params.clone();
+                let picked = specgen::explore::depth_and_options_for_clock(&plan, mhz, specgen::explore::Policy::Assured, None, &free, |depth, deepest| {
                     let now = start.elapsed();
                     if now >= said.get() + std::time::Duration::from_secs(2) {
                         said.set(now);
@@ -530,7 +535,19 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 match picked {
                     Ok(pick) => {
                         plan = pick.plan;
-                        errln!("target-mhz: chose --stages {} on the {}: {}", plan.cfg.stages(), specgen::timing::part(plan.cfg.target()), pick.evidence);
+                        let mut options = String::new();
+                        if plan.cfg.params.rom_style != before.rom_style {
+                            options.push_str(&format!(" --rom-style {}", plan.cfg.params.rom_style.name()));
+                        }
+                        if plan.cfg.params.fabric_registers != before.fabric_registers {
+                            options.push_str(" --fabric-registers");
+                        }
+                        errln!(
+                            "target-mhz: chose --stages {}{options} on the {}: {}",
+                            plan.cfg.stages(),
+                            specgen::timing::part(plan.cfg.target()),
+                            pick.evidence
+                        );
                         if !matches!(pick.evidence, specgen::explore::ClockEvidence::Measured { .. }) {
                             errln!("target-mhz: measure it: specgen synth --rtl {} --seeds 3", out.display());
                         }

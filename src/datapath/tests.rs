@@ -75,7 +75,7 @@ fn a_register_read_by_a_block_is_kept() {
     assert!(d.read_by_block("c", 1), "an input's register a multiplier reads");
 }
 
-/// Issue 35: a multiplier reads a block's output register also through wires that only
+/// A multiplier reads a block's output register also through wires that only
 /// slice it (yosys 0.70 took such a register into both blocks): it is kept too.
 #[test]
 fn a_block_output_register_read_through_slices_is_kept() {
@@ -92,7 +92,7 @@ fn a_block_output_register_read_through_slices_is_kept() {
     assert!(d.read_by_block("p", 1), "read by a multiplier through two slices");
 }
 
-/// Issue 36: no carry-out leaves a chain as the chain's own CO. Each chunk's carry is a sum
+/// No carry-out leaves a chain as the chain's own CO. Each chunk's carry is a sum
 /// bit of its chunk, complemented (1 above the first operand, 0 above the second), and so
 /// is the top chunk's when the add's top bit is a carry-out; the select reads them back
 /// complemented.
@@ -116,7 +116,7 @@ fn carries_are_sum_bits_kept_complemented() {
     assert!(expr(&b, "s_chunk2").contains("{~s_part2_plus1_c2[5], s_part2_plus1_c2[4:1]}"), "{}", expr(&b, "s_chunk2"));
 }
 
-/// Issue 69: a carry-save layer's vectors are as wide as the bits they can have set (the sum
+/// A carry-save layer's vectors are as wide as the bits they can have set (the sum
 /// the widest term's, the carries the second widest's, one up), so the zeros above the terms
 /// reach the closing add, whose top bit is then a carry-out kept complemented. Wires as wide
 /// as the sum left those zeros to the synthesis tool, which found them through the registers
@@ -139,7 +139,7 @@ fn carry_save_vectors_keep_the_zeros_above_their_terms() {
     assert!(!p.top_inverted);
 }
 
-/// Issue 69: a carry-select pick whose carry-in-0 arm holds a constant bit (the second addend
+/// A carry-select pick whose carry-in-0 arm holds a constant bit (the second addend
 /// 0 over the chunk, the first a constant there) is an AND or OR with the carry, never a ?:
 /// with a constant arm, which yosys makes the flip-flop's synchronous set or reset over the
 /// slow set/reset route (fitted's sign bit at 112.5 MHz on the UP5K).
@@ -163,7 +163,7 @@ fn a_pick_with_a_constant_arm_is_an_and_or() {
     assert_eq!(expr(&b, "s_chunk1"), "~s_part0_c2[6] ? s_part1_plus1_c2[6:1] : s_part1_c2[5:0]");
 }
 
-/// Issue 69: where the select step would make the last carry and then the last chunk's pick
+/// Where the select step would make the last carry and then the last chunk's pick
 /// (two LUT levels from the carry register below), the last chunk picks by that register from
 /// two kept picks by the carry-outs of the chunk below, and the last carry is not made: the
 /// carry register, which the chunk below reads too, enters only the last LUT (fitted's
@@ -203,7 +203,7 @@ fn the_last_chunk_picks_by_the_carry_below_from_two_kept_picks() {
     assert!(wire(&b, "s_carry3").is_some() && wire(&b, "s_chunk3_if1").is_none());
 }
 
-/// Issue 69, point 1: with `--fabric-registers` on the iCE40 (route registers), the last
+/// With `--fabric-registers` on the iCE40 (route registers), the last
 /// chunk's pick comes a step after its two kept picks, one LUT level each: the other chunks pick
 /// in the select step beside the two, and the last picks in the next by the carry into the
 /// chunk below, from the two registered. Fitted's two-level picks had held it at 116-123 MHz on
@@ -236,7 +236,7 @@ fn with_route_registers_the_last_chunk_picks_a_step_after_its_two_picks() {
     }
 }
 
-/// Issue 69, point 2: on the ECP5 a table in LUTs gives each part its own register copy of
+/// On the ECP5 a table in LUTs gives each part its own register copy of
 /// the address bits it reads, in a step before the parts; each copy is a datapath copy (its
 /// flip-flop kept, so synthesis merges none) and its part reads it alone. ABC9 had mapped the
 /// parts through each other's LUTs (fitted's table three and four LUT4 levels deep, 227 MHz).
@@ -271,7 +271,7 @@ fn table_parts_in_logic_read_their_own_address_copies_on_the_ecp5() {
     }
 }
 
-/// Issue 37: a step with logic and no delay estimate is a build error (it would count 0 ns
+/// A step with logic and no delay estimate is a build error (it would count 0 ns
 /// and `--target-mhz` would place its cuts on a wrong sum); a step that only selects bits
 /// needs none.
 #[test]

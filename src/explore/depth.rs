@@ -86,7 +86,23 @@ pub fn measured_shape(p: &Params) -> Params {
 /// delay model under `policy`. `progress(depth, deepest)` hears each depth the model plans.
 /// Err: no depth reaches it (the delay model's reason, which names the best depth).
 pub fn depth_for_clock(plan: &Plan, mhz: f64, policy: Policy, explored: Option<&Exploration>, progress: impl Fn(u32, u32)) -> Result<DepthPick, Error> {
-    if let Some(pick) = measured_depth(plan, mhz, explored)? {
+    depth_and_options_for_clock(plan, mhz, policy, explored, &[], progress)
+}
+
+/// [`depth_for_clock`], where the options named in `free` (`rom_style`, `fabric_registers`: the
+/// ones the user did not give) may be chosen too, from measured units only: where no measured
+/// unit with this configuration's own options reaches `mhz`, the unit of the fewest logic cells
+/// (then the shallowest) among those measured on today's RTL with other options that does.
+/// The delay model, where it speaks, keeps the configuration's options.
+pub fn depth_and_options_for_clock(
+    plan: &Plan,
+    mhz: f64,
+    policy: Policy,
+    explored: Option<&Exploration>,
+    free: &[&str],
+    progress: impl Fn(u32, u32),
+) -> Result<DepthPick, Error> {
+    if let Some(pick) = measured_depth(plan, mhz, explored, free)? {
         return Ok(pick);
     }
     let (chosen, predicted, figure) = match policy {
@@ -108,7 +124,7 @@ pub fn depth_for_clock(plan: &Plan, mhz: f64, policy: Policy, explored: Option<&
 
 /// The measured step of [`depth_for_clock`]: None where no unit of this configuration measured
 /// on today's RTL reaches `mhz`.
-fn measured_depth(plan: &Plan, mhz: f64, explored: Option<&Exploration>) -> Result<Option<DepthPick>, Error> {
+fn measured_depth(plan: &Plan, mhz: f64, explored: Option<&Exploration>, free: &[&str]) -> Result<Option<DepthPick>, Error> {
     let built_in;
     let e = match explored {
         Some(e) => e,
@@ -120,20 +136,35 @@ fn measured_depth(plan: &Plan, mhz: f64, explored: Option<&Exploration>) -> Resu
             None => return Ok(None),
         },
     };
-    let want = measured_shape(&plan.cfg.params);
-    let mut reaching: Vec<&super::Point> = e
-        .points
-        .iter()
-        .filter(|p| p.stages <= plan.cut_points && measured_shape(&p.params) == want)
-        .filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz))
-        .collect();
-    reaching.sort_by_key(|p| p.stages);
+    // the shape a measured unit must have: this configuration's, the free options aside
+    let loose = |p: &Params| {
+        let mut s = measured_shape(p);
+        if free.contains(&"rom_style") {
+            s.rom_style = Params::default().rom_style;
+        }
+        if free.contains(&"fabric_registers") {
+            s.fabric_registers = false;
+        }
+        s
+    };
+    let want = loose(&plan.cfg.params);
+    let mut reaching: Vec<&super::Point> =
+        e.points.iter().filter(|p| loose(&p.params) == want).filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz)).collect();
+    // this configuration's own options first, the shallowest that reaches it; else the
+    // cheapest unit of other options that does
+    let other = |p: &super::Point| measured_shape(&p.params) != measured_shape(&plan.cfg.params);
+    reaching.sort_by_key(|p| (other(p), if other(p) { p.cells() } else { 0 }, p.stages));
     for p in reaching {
         // a row of another RTL is never evidence
         let Some(digest) = measured_today(p)? else { continue };
         let m = p.measured.as_ref().expect("measured");
         let evidence = ClockEvidence::Measured { id: p.id.clone(), part: e.part.clone(), median: m.fmax_mhz.unwrap_or(0.0), seeds: m.seeds.clone(), digest };
-        return Ok(Some(DepthPick { plan: plan.with_stages(p.stages)?, evidence }));
+        let params = Params { stages: p.stages, rom_style: p.params.rom_style, fabric_registers: p.params.fabric_registers, ..plan.cfg.params.clone() };
+        let chosen = match measured_shape(&params) == measured_shape(&plan.cfg.params) {
+            true => plan.with_stages(p.stages)?,
+            false => Plan::new(crate::config::Config::new(params)?)?,
+        };
+        return Ok(Some(DepthPick { plan: chosen, evidence }));
     }
     Ok(None)
 }

@@ -29,7 +29,7 @@ fn logic_cells_are_read_from_the_device_utilisation() {
     assert_eq!(logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"), None);
 }
 
-/// Issue 49, point 3: the netlist check names every hard multiplier without the registers
+/// The netlist check names every hard multiplier without the registers
 /// SPEC §7 promises: an SB_MAC16 with a constant clock, one whose used output half is
 /// combinational, a MULT18X18D without its output or an input register; a registered
 /// block, a 16×16 product in its pipeline register (REG1 and both 8×8 registers, yosys's
@@ -85,7 +85,7 @@ fn unregistered_blocks_are_named_from_the_netlist() {
     assert!(piped[0].starts_with("SB_MAC16 piped: the 16x16 product in the block's pipeline register"), "{piped:#?}");
 }
 
-/// Issue 49, point 3: a unit that promises every block its register and a netlist with one
+/// A unit that promises every block its register and a netlist with one
 /// without is a broken promise naming the block; without the promise, or with every block
 /// registered, nothing is broken.
 #[test]
@@ -115,7 +115,7 @@ fn fmax_is_the_slowest_clock_after_routing() {
     assert_eq!(fmax_of_log("Info: Routing..\n"), None);
 }
 
-/// Issue 49, point 1: a netlist with more hard multipliers than the unit's --dsp-budget is a
+/// A netlist with more hard multipliers than the unit's --dsp-budget is a
 /// broken promise, named with its blocks; at the budget, or without one, it holds.
 #[test]
 fn a_netlist_over_the_dsp_budget_is_named() {
@@ -128,7 +128,7 @@ fn a_netlist_over_the_dsp_budget_is_named() {
     assert!(over_dsp_budget(&ecp5, Some(1), "u").expect("two blocks").contains("1 MULT18X18D, 1 ALU54B"));
 }
 
-/// The hardware issue, point 4: every seed's figure is capped as the median is. Schlick on the
+/// Every seed's figure is capped as the median is. Schlick on the
 /// ECP5 at grade 6 (its DP16KDs allow 211.9 MHz): nextpnr's seeds 203.2, 210.6 and 226.5 give
 /// 203.2–211.9, nextpnr's own figures in parentheses; a unit under every limit is unchanged.
 #[test]

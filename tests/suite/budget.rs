@@ -1,4 +1,4 @@
-//! Issue 49, point 1: `--dsp-budget N`. The generator keeps at most N hard multiplier blocks
+//! `--dsp-budget N`. The generator keeps at most N hard multiplier blocks
 //! (its own count, for every model, family and budget), a budget the unit already meets
 //! changes no byte, the products it moves to the fabric compute the same values on every
 //! input, and the netlist yosys maps holds the promise (`synth` fails a netlist over it).
@@ -118,7 +118,7 @@ fn the_netlist_keeps_the_dsp_budget() {
     assert_eq!(dsp, Some(1), "--dsp-budget 1: {text}");
     assert!(text.contains("dsp budget     1 blocks (") && text.contains("product(s) in the fabric: "), "synth states the budget's cost: {text}");
     // a budget edited into the manifest by hand is no promise of the RTL's: refused before
-    // synthesis (reliability V, finding 4), never judged; the netlist against a budget it
+    // synthesis, never judged; the netlist against a budget it
     // exceeds is `synth::tests::a_netlist_over_the_dsp_budget_is_named`'s
     let manifest = dir.join("specular_unit.json");
     let text = std::fs::read_to_string(&manifest).unwrap().replace("\"dsp_budget\": 1", "\"dsp_budget\": 0");

@@ -338,7 +338,7 @@ fn subcommands_take_only_their_parameters_and_help_is_complete() {
     }
 }
 
-/// Issue 35: each ranged flag states its range once in --help (`--tag-bits` said
+/// Each ranged flag states its range once in --help (`--tag-bits` said
 /// "[0..=64; default 0] [0..=64, default 0]").
 #[test]
 fn every_range_is_stated_once_in_help() {
@@ -364,7 +364,7 @@ fn the_model_flag_lists_every_model_in_the_registrys_order() {
     assert!(text.contains(&format!("[possible values: {}]", names.join(", "))), "{text}");
 }
 
-/// The house issue, point 4: what the help texts and the guide quote — each model's deepest
+/// What the help texts and the guide quote — each model's deepest
 /// `--stages` per target at default widths, every `--rom-style`, the prove engines — is what
 /// the code does; a changed depth fails here.
 #[test]
@@ -407,7 +407,7 @@ fn help_lines_and_the_guide_quote_what_the_code_does() {
     assert!(prove.contains("proved for every edge by k-induction"), "{prove}");
     assert!(!prove.contains("a bounded search) and its covers"), "the port checker is not only a bounded search: {prove}");
     assert!(prove.contains("--datapath") && prove.contains("then proved for every edge by k-induction"), "{prove}");
-    // the proof issue, point 7: the help says of which design and what is assumed
+    // the help says of which design and what is assumed
     assert!(prove.contains("of the design synthesis builds") && prove.contains("the unit's own assumes are removed"), "{prove}");
     assert!(!prove.contains("own assertions set aside"), "the first search keeps the unit's assertions: {prove}");
 }

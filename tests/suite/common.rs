@@ -250,7 +250,7 @@ pub const CONFIGS: &[&[&str]] = &[
     ],
     &["--model", "blinn", "--stages", "37"],
     &["--model", "blinn", "--cos-frac-bits", "7", "--n-bits", "5", "--color-bits", "12", "--intensity-frac-bits", "6", "--stages", "4", "--rom-style", "case"],
-    // issue 22: the interfaces, tags and static colours (indices 17..)
+    // the interfaces, tags and static colours (indices 17..)
     &["--interface", "ready", "--tag-bits", "12", "--stages", "13"],
     &["--interface", "axis", "--tag-bits", "64", "--colour", "static", "--model", "fitted", "--stages", "3", "--top", "axis_unit"],
     &["--colour", "static", "--tag-bits", "1", "--stages", "2", "--model", "blinn-pow"],

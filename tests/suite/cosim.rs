@@ -95,7 +95,7 @@ fn checked_in_default_unit_is_right_on_its_whole_input_space() {
     assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)), "{}", text(&o));
 }
 
-/// Issue 23: the fitted and blinn units at their deepest iCE40 pipelines (fitted's sums
+/// The fitted and blinn units at their deepest iCE40 pipelines (fitted's sums
 /// carry-save and carry-select, a register before each squaring's DSP; blinn's interpolations
 /// each a DSP multiply-add whose operands the table word widens, n waiting in block RAM between
 /// its reads) are the golden model's on every input.
@@ -113,7 +113,7 @@ fn fitted_and_blinn_at_their_deepest_pipelines_are_right_on_the_whole_input_spac
     }
 }
 
-/// Issue 36: the exhaustive sweep is made inside the Verilator harness, and a `valid` unit
+/// The exhaustive sweep is made inside the Verilator harness, and a `valid` unit
 /// returns one digest a batch instead of its records. Every mode is right end to end on a
 /// small whole input space: a pipelined `valid` unit (digests after the first reset), a
 /// handshake with a tag and a static colour, and AXI4-Stream with a clock enable (records, and
@@ -448,7 +448,7 @@ fn long_delay_line_tails_wait_in_block_ram_and_stay_right() {
     });
 }
 
-/// Issue 50, point 4: faults derived from every model's own RTL, not written per model: the
+/// Faults derived from every model's own RTL, not written per model: the
 /// colours' rounding half dropped (the constant added in `color_sum_r`, whatever the model
 /// computes before it) and `out_valid` one clock late in a pipelined unit. A model added to
 /// `SpecularModel::ALL` is tested with no line here changed.

@@ -1,4 +1,4 @@
-//! Issue 35: several units in one design. Three units of different models, widths, `--k`,
+//! Several units in one design. Three units of different models, widths, `--k`,
 //! targets and interfaces are read together, as an integrator's flow reads them, from a
 //! directory that holds none of them: Verilator lint, Icarus and Verilator simulation of each
 //! against its golden vectors, yosys reading every memory from its own table, and a FuseSoC
@@ -238,7 +238,7 @@ fn embedding_top(dir: &Path, top: &str, clock: &str) -> String {
     format!("module design_top (\n{}\n);\n    {top} u_spec ({});\nendmodule\n", ports.join(",\n"), conns.join(", "))
 }
 
-/// Issue 35: constraints that survive embedding. Inside a top whose clock port is `sys_clk`,
+/// Constraints that survive embedding. Inside a top whose clock port is `sys_clk`,
 /// the `.lpf` of `--clock-port sys_clk` constrains that clock: nextpnr-ecp5 times the unit at
 /// its 150 MHz. Without it the constraint names `clk`, which the design does not have, and
 /// nextpnr ignores it (and times at its default 12 MHz).
@@ -297,7 +297,7 @@ fn an_embedded_unit_is_timed_at_its_clock_on_the_ecp5() {
     assert!(log.contains("net 'clk' does not exist in design, ignoring clock constraint") || log.contains("ignoring clock constraint"), "{log}");
 }
 
-/// Issue 35: `--colour static` had `idle = ~|valid_line` unregistered (an OR of the whole
+/// `--colour static` had `idle = ~|valid_line` unregistered (an OR of the whole
 /// valid pipeline on the unit's output: blinn missed 100 MHz on it). `idle` leaves from a
 /// flip-flop now, and cosim (which checks it cycle by cycle) still finds it right.
 #[test]
@@ -374,7 +374,7 @@ fn a_static_colours_idle_is_a_register() {
     }
 }
 
-/// Issue 35: `--reset sync-high|sync-low` for every interface (the port `rst`/`rst_n`, or
+/// `--reset sync-high|sync-low` for every interface (the port `rst`/`rst_n`, or
 /// `areset`/`aresetn` under `axis`; the default is the interface's own). Each unit is lint
 /// clean and right under stalls and mid-stream resets in both simulators, and a reset of the
 /// wrong polarity would hold it (cosim drives the reset through the port's own polarity).
@@ -418,7 +418,7 @@ fn every_interface_takes_either_reset_polarity() {
     }
 }
 
-/// Issue 35: `tlast` carried like `tuser` (`--tlast`, axis only): `s_axis_tlast` leaves on
+/// `tlast` carried like `tuser` (`--tlast`, axis only): `s_axis_tlast` leaves on
 /// `m_axis_tlast` with its own pixel's result, beside a tag or alone; cosim drives it with
 /// random values under stalls and resets and checks every result's. Elsewhere it is refused.
 #[test]
@@ -451,7 +451,7 @@ fn tlast_travels_with_its_pixel() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("invalid --tlast: applies to the axis interface only"), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
-/// Issue 35: a clock enable (`--clock-enable`: `aclken` under axis, `clk_en` with ready). An
+/// A clock enable (`--clock-enable`: `aclken` under axis, `clk_en` with ready). An
 /// edge with it low transfers nothing and loads no colour. Cosim drives it low in patterns
 /// mixed with stalls (and a decoy `ks_load` at a disabled edge); the unit's own testbench
 /// drives it at random. Each gate removed is caught; the valid interface refuses the flag.
@@ -506,7 +506,7 @@ fn a_clock_enable_gates_every_transfer() {
     assert!(!tmp.path().join("no").exists());
 }
 
-/// Issue 69: the README's two-unit recipe in a top of one's own (`tb/pair_plain_top.v`,
+/// The README's two-unit recipe in a top of one's own (`tb/pair_plain_top.v`,
 /// every port of both units from or to a plain register; `scripts/bench_two_units.sh` measures
 /// it and refuses to run when it is not what it writes) reads the units the generator writes
 /// now: Verilator `-Wall` is silent on it with both units' RTL, so a port renamed or resized

@@ -73,7 +73,7 @@ fn leftovers_of_an_interrupted_swap_are_cleaned_and_a_concurrent_writer_is_told(
     assert!(o.status.success(), "{}", text(&o));
     assert!(!saved.exists() && std::fs::read(out.join("specular_unit.v")).unwrap() == before);
     // another writer of the same output: a clear message, exit 1, the output untouched
-    // (issue 39: it waits a bounded time, then names the holder)
+    // (it waits a bounded time, then names the holder)
     let lock = std::fs::File::create(tmp.path().join(format!(".specgen-lock-{tag}"))).unwrap();
     lock.lock().unwrap();
     std::io::Write::write_all(&mut &lock, b"4242\n").unwrap();
@@ -281,7 +281,7 @@ fn files_that_are_not_what_the_manifest_lists_are_named() {
     assert!(o.status.success(), "{}", text(&o));
 }
 
-/// Issue 25, point 1: no shell. A file name in `--rtl` and the `--yosys` path are data: a file
+/// No shell. A file name in `--rtl` and the `--yosys` path are data: a file
 /// named like a yosys command sequence runs nothing, a directory with a space works, and a
 /// "tool" that is a shell command line is not found rather than run.
 #[test]
@@ -316,7 +316,7 @@ fn file_names_and_tool_paths_never_reach_a_shell() {
     assert!(!touched.exists(), "--yosys ran a shell command");
 }
 
-/// Issue 25: a closed pipe ends the output quietly (exit 0, as `head` expects), a full device
+/// A closed pipe ends the output quietly (exit 0, as `head` expects), a full device
 /// is an error naming standard output (exit 1) — never a panic (101).
 #[test]
 fn a_closed_or_full_stdout_is_not_a_panic() {
@@ -336,7 +336,7 @@ fn a_closed_or_full_stdout_is_not_a_panic() {
     }
 }
 
-/// Issue 25: names the tools already use, SystemVerilog keywords and text that would break a
+/// Names the tools already use, SystemVerilog keywords and text that would break a
 /// file header are refused up front, naming the flag (exit 2, nothing written); vector files
 /// take their format from the extension in any case; `render --size` states its own range.
 #[test]
@@ -379,7 +379,7 @@ fn reserved_names_and_header_breaking_text_are_refused() {
     }
 }
 
-/// Issue 25: every count is bounded — a huge `--vectors`, `--jobs`, `--count` or
+/// Every count is bounded — a huge `--vectors`, `--jobs`, `--count` or
 /// `--verify-vectors` is a usage error naming the flag and its range (exit 2), not a panic,
 /// an abort or gigabytes of memory.
 #[test]
@@ -615,7 +615,7 @@ fn a_damaged_cache_entry_is_rebuilt() {
     assert!(o.status.success() && text(&o).contains("(cached)"), "{}", text(&o));
 }
 
-/// Issue 25, point 5: no panic, by fuzzing. Argument vectors are built from the flags each
+/// No panic, by fuzzing. Argument vectors are built from the flags each
 /// subcommand's `--help` lists and hostile values (huge and negative numbers, whitespace and
 /// line breaks, Verilog keywords, a FIFO, a dangling link, /dev/zero, the unit's own files as
 /// outputs); every run must end with exit 0, 1 or 2, never by a signal (a panic is 101, an

@@ -1,4 +1,4 @@
-//! Issue 22: drop-in IP. The `ready` and `axis` handshakes under random backpressure at every
+//! Drop-in IP. The `ready` and `axis` handshakes under random backpressure at every
 //! depth (nothing lost, duplicated or reordered, tags aligned, outputs stable while stalled, no
 //! bubbles), one result a clock at full rate, faults in the handshake caught, static colours
 //! without colour delay lines, the clock constraints, and the manifest's tdata layout.
@@ -98,7 +98,7 @@ fn faults_in_the_handshake_are_caught() {
         let o = handshake_mutant(tmp.path(), name, file, from, to);
         assert_eq!(o.status.code(), Some(1), "fault {name} not caught: {}", text(&o));
         assert!(text(&o).contains("first mismatch"), "fault {name}: {}", text(&o));
-        // issue 39: cycles that differ, never more than those checked (several rules broken in
+        // cycles that differ, never more than those checked (several rules broken in
         // one cycle count once; "50732 of 33515 checked cycles differ" was printed)
         let t = text(&o);
         let line = t.lines().find(|l| l.contains(" checked cycles differ")).unwrap();

@@ -1,4 +1,4 @@
-//! Issue 21: the house has layers that import only downward. Reads `src/` (the library, not
+//! The house has layers that import only downward. Reads `src/` (the library, not
 //! the binary's `cli/` and `main.rs`), takes every `crate::<module>` a file of one top-level
 //! module names, and requires the graph between top-level modules to have no circle; and
 //! no library file names clap.
@@ -70,7 +70,7 @@ fn library_layers_import_only_downward_and_know_no_command_line() {
     }
 }
 
-/// Issue 37: a model is one home. Outside `src/models/` (the homes and the registry) and
+/// A model is one home. Outside `src/models/` (the homes and the registry) and
 /// `src/config/mod.rs` (the enum, its names and the table of which model takes which parameter),
 /// the library's code names no model: no `SpecularModel::<Variant>`, no `match` over a
 /// configuration's model (a `_ =>` there would give a new model a silent default), no model's
@@ -113,7 +113,7 @@ fn no_model_is_named_outside_its_home_and_the_registry() {
     assert!(found.is_empty(), "models named outside their homes and the registry:\n{}", found.join("\n"));
 }
 
-/// Issue 37: `SpecularModel::ALL` is the only list of models. The configurations the lint,
+/// `SpecularModel::ALL` is the only list of models. The configurations the lint,
 /// co-simulation and synthesis tests draw from (`common::configs()`) must hold every model of
 /// it, twice at least: they are made from it, and this holds them to it.
 #[test]
@@ -132,7 +132,7 @@ fn the_tool_flow_configurations_cover_every_model() {
     }
 }
 
-/// Issue 37: the library has one error type, `error::Error`, with `std::error::Error`
+/// The library has one error type, `error::Error`, with `std::error::Error`
 /// sources; no other type is an error, and no function returns a bare `String` as its error.
 #[test]
 fn the_library_has_one_error_type_and_no_string_errors() {
@@ -159,7 +159,7 @@ fn the_library_has_one_error_type_and_no_string_errors() {
     assert!(found.is_empty(), "a second error type or a String error in the library:\n{}", found.join("\n"));
 }
 
-/// Issue 50, point 3: a file that grows past 800 lines holds several parts; split it by part
+/// A file that grows past 800 lines holds several parts; split it by part
 /// (the way `datapath/`, `prove/` and `models/blinn/` are) before it does.
 #[test]
 fn no_source_file_is_over_800_lines() {
@@ -176,7 +176,7 @@ fn no_source_file_is_over_800_lines() {
     assert!(long.is_empty(), "over 800 lines: {long:?}");
 }
 
-/// Issue 72, point 3: the unit's edge (its header lines, prologue, outputs, output buffer,
+/// The unit's edge (its header lines, prologue, outputs, output buffer,
 /// formal block and lemmas) is Verilog in templates, rendered from values `src/interface.rs`
 /// computes: that file writes no line of Verilog itself (it did, in 150 string pushes).
 #[test]
@@ -195,4 +195,38 @@ fn the_units_edge_is_written_in_templates() {
     for t in ["edge_header.txt", "edge_prologue.v", "edge_tail.v", "edge_formal.v"] {
         assert!(code.contains(&format!("#[template(path = \"{t}\")]")), "{t} is not rendered by src/interface.rs");
     }
+}
+
+/// The repository is read without the tracker its work came from: no comment, test or document
+/// names an issue by number ("issue 67, point 3"), which a newcomer cannot resolve.
+#[test]
+fn no_file_names_an_issue_tracker_the_repository_lacks() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in ["src", "tests", "docs", "scripts", "templates"] {
+        let mut stack = vec![root.join(dir)];
+        while let Some(d) = stack.pop() {
+            for e in std::fs::read_dir(&d).unwrap().flatten() {
+                let p = e.path();
+                if p.is_dir() {
+                    stack.push(p);
+                } else if p.extension().is_some_and(|x| ["rs", "md", "sh", "py", "v", "ys", "sv", "html", "txt"].contains(&x.to_str().unwrap_or(""))) {
+                    files.push(p);
+                }
+            }
+        }
+    }
+    files.push(root.join("README.md"));
+    assert!(files.len() > 100, "found only {} files", files.len());
+    let mut named = Vec::new();
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap_or_default();
+        for (i, line) in text.lines().enumerate() {
+            let words: Vec<&str> = line.split(|c: char| !c.is_alphanumeric()).filter(|w| !w.is_empty()).collect();
+            if words.windows(2).any(|w| w[0].eq_ignore_ascii_case("issue") && w[1].chars().all(|c| c.is_ascii_digit())) {
+                named.push(format!("{}:{}", f.strip_prefix(root).unwrap().display(), i + 1));
+            }
+        }
+    }
+    assert!(named.is_empty(), "names an issue by number: {named:?}");
 }

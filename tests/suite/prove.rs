@@ -1,4 +1,4 @@
-//! Issue 38: `specgen prove`, the unit's edge proved for every input sequence (yosys and ABC's
+//! `specgen prove`, the unit's edge proved for every input sequence (yosys and ABC's
 //! pdr, unbounded), and each fault refuted with a counterexample VCD.
 
 use crate::common::*;
@@ -95,7 +95,7 @@ fn text(o: &std::process::Output) -> String {
     format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
 }
 
-/// Issue 38, point 2: pipelining changes nothing. lean and fitted at reduced widths, pipelined,
+/// Pipelining changes nothing. lean and fitted at reduced widths, pipelined,
 /// equal their depth-0 twins fed the same inputs `stages` edges late for every input sequence
 /// (from any state, and from power-up); a register bypassed (a value taken one stage early) is
 /// refuted with a VCD; a handshake unit is refused (exit 2).
@@ -139,7 +139,7 @@ fn pipelining_is_proved_to_change_nothing_and_a_bypassed_register_refuted() {
     assert!(text(&o).contains("invalid --pipelining") && text(&o).contains("--interface valid"), "{}", text(&o));
 }
 
-/// Issue 51, point 4: a delay line's tail in RAM keeps words longer than the pipeline, so its
+/// A delay line's tail in RAM keeps words longer than the pipeline, so its
 /// module (`<top>_delay_ram`) is proved apart — its contract, from the CUTS-th edge on q is d of
 /// CUTS edges before, by induction with the module's lemmas — and the unit, with CUTS flip-flops
 /// in the module's place, equals its depth-0 twin. A module whose read address sits one place
@@ -184,11 +184,11 @@ fn a_delay_line_in_ram_is_proved_apart_and_the_pipeline_with_it() {
     }
 }
 
-/// Issue 38, points 1 and 3: the stream edge proved unbounded (k-induction over the unit's own
+/// The stream edge proved unbounded (k-induction over the unit's own
 /// assertions: the buffer's stream rules, its invariants, the tag's transport and idle) for
 /// `ready` with a tag at 2 stages and `axis` with a tag, tlast, a clock enable and a static
 /// colour at 5 (0, 3 and 13 at default widths are `scripts/bench_prove.sh`'s), k bounded by
-/// the unit's depth, never by seconds; and (issue 48) the port checker's search and covers. Narrow widths keep the
+/// the unit's depth, never by seconds; and the port checker's search and covers. Narrow widths keep the
 /// datapath (which no property reads) small; the default widths are in `scripts/bench_prove.sh`.
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
@@ -220,7 +220,7 @@ fn the_stream_edge_is_proved_at_two_depths() {
         if name.starts_with("axis") {
             assert!(text(&o).contains("idle is high exactly while no pixel is inside"), "{name}: {}", text(&o));
             assert!(text(&o).contains("a result with tlast delivered") && text(&o).contains("a static colour loaded"), "{name}: {}", text(&o));
-            // the colour check held (issue 48): which colour each result was computed with
+            // the colour check held: which colour each result was computed with
             assert!(text(&o).contains("a result delivered for a pixel at cos_g = 1.0"), "{name}: {}", text(&o));
         }
         // the port checker's verdict, proved for every edge with the unit's lemmas, and every
@@ -269,7 +269,7 @@ fn a_ready_units_edge_is_proved_with_every_cover_reached() {
     let o = specgen().args(["prove", "--rtl"]).arg(&ready0).arg("--cover-trace").arg(&cover).output().unwrap();
     assert!(o.status.success(), "{}", text(&o));
     for said in [
-        // (the proof issue, point 7) of which design, and what it assumed
+        // of which design, and what it assumed
         "of the design synthesis builds",
         "assumed: only the environment's: the first clock edge resets",
         "apart from the RTL): proved, unbounded (k-induction",
@@ -318,7 +318,7 @@ fn vcd_values<'a>(vcd: &'a str, name: &str) -> Vec<&'a str> {
         .collect()
 }
 
-/// Issue 46: the simulation suite's seven handshake faults
+/// The simulation suite's seven handshake faults
 /// (`interfaces::faults_in_the_handshake_are_caught`), each refuted with a VCD by a bounded
 /// search to a stated depth, 24 edges (ABC's bmc3, the port checker joining; the deepest,
 /// `duplicated`, fails at edge 20), so the verdict is the same on any machine, however loaded:
@@ -383,7 +383,7 @@ fn refuted_within_24_edges(faults: &[(&str, &str, &str, &str)], yowasp: bool) {
     });
 }
 
-/// Issue 48: the default proof's verdict is the port checker's, written by `prove` from the
+/// The default proof's verdict is the port checker's, written by `prove` from the
 /// manifest apart from the unit, with the unit's own assertions set aside (they stay lemmas of
 /// the unbounded part): a unit cannot pass by what its own assertions say or miss. A unit whose
 /// buffer assertions are deleted and which drops a result on stall is refuted with a VCD; the
@@ -397,7 +397,7 @@ fn the_port_checker_refutes_what_the_units_own_assertions_do_not_see() {
     port_checker_cases(false);
 }
 
-/// Issue 48, points 1 and 2 unbounded: the port checker's properties are proved for every edge
+/// Unbounded: the port checker's properties are proved for every edge
 /// by an induction whose lemmas are the unit's own assertions, fed the checker's state. A unit
 /// whose buffer deadlocks after its 40th pixel, past the bounded search's depth and its covers,
 /// with every assertion of its own neutered (`assert(1'b1 || …)`, as many as specgen writes,
@@ -573,7 +573,7 @@ fn port_checker_cases(more: bool) {
     });
 }
 
-/// Issue 48, point 4: `prove --datapath`, the values a handshake unit delivers are its
+/// `prove --datapath`, the values a handshake unit delivers are its
 /// datapath's. At narrow widths: a ready unit with a static colour and a clock enable is
 /// searched to its default depth with every delivered result compared with its depth-0 `valid`
 /// twin's, and the compare reached (its cover); a material register that loads at a disabled
@@ -648,7 +648,7 @@ fn the_delivered_values_are_the_datapaths_and_a_wrong_one_refuted() {
     assert!(text(&o).contains("--datapath") && text(&o).contains("allowed: --interface ready or axis"), "{}", text(&o));
 }
 
-/// The proof issue, class 2 (and reliability V, finding 5): an `assume` in the unit under proof
+/// An `assume` in the unit under proof
 /// is not honoured. A buffer that drops a result on a stall, with an assumption under
 /// `ifdef FORMAL` that the consumer is always ready (so no stall is ever seen), is refuted:
 /// only the harness's environment assumptions stay.
@@ -671,7 +671,7 @@ fn an_assumption_in_the_unit_hides_no_fault() {
     assert!(text(&o).contains("refuted") || text(&o).contains("fails"), "{}", text(&o));
 }
 
-/// The proof issue, class 1: the design proved is the one built. Every step reads the unit with
+/// The design proved is the one built. Every step reads the unit with
 /// one set of macros, and that elaboration is proved equal at the ports to the RTL as synthesis
 /// reads it; a unit whose formal regions change a built result (an `` `else `` of `ifdef
 /// FORMAL`, a branch where SPECGEN_LEMMAS is undefined, a register's first value) is refused
@@ -721,7 +721,7 @@ fn a_unit_whose_formal_regions_change_what_is_built_is_refused() {
     }
 }
 
-/// The proof issue, class 5: the first bounded search keeps the unit's own assertions beside
+/// The first bounded search keeps the unit's own assertions beside
 /// the port checker's, so a buffer fault they see within its depth is refuted there (never left
 /// undecided by an induction that stops earlier), and the failure says whose assertion fails.
 #[test]
@@ -792,7 +792,7 @@ fn the_axis_master_rules_hold_at_every_port_bit() {
     });
 }
 
-/// The proof issue, class 6: a value check by default. A per-pixel-colour `axis` unit whose
+/// A value check by default. A per-pixel-colour `axis` unit whose
 /// intensity MSB is dropped in `m_axis_tdata` keeps every stream rule, and the default proof
 /// refutes it: every pixel at cos_g = 1.0 and n = 1 against the datapath twin.
 #[test]

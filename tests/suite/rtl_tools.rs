@@ -162,7 +162,7 @@ fn fusesoc_runs_the_core_with_the_flow_api() {
     // the same configuration gives the same name (and the same bytes)
     let again = generate(tmp.path(), "again", &["--n-bits", "6"]);
     assert_eq!(name(&again), na);
-    // issue 22: the sim targets run the self-checking testbench on the golden vectors, under
+    // the sim targets run the self-checking testbench on the golden vectors, under
     // Icarus and Verilator, for a handshake unit with a tag and a static colour
     let h = generate(&root, "h", &["--n-bits", "6", "--interface", "axis", "--tag-bits", "12", "--colour", "static", "--stages", "4"]);
     let nh = name(&h);
@@ -182,7 +182,7 @@ fn fusesoc_runs_the_core_with_the_flow_api() {
     assert!(!o.status.success() && out.contains("FAIL: result"), "a wrong vector must fail the sim target:\n{out}");
 }
 
-/// Issue 21: the pipelined RTL reads top to bottom. For every configuration: every line is at
+/// The pipelined RTL reads top to bottom. For every configuration: every line is at
 /// most 120 characters (header included); every internal name (`x_sK`, `x_cK`) is declared
 /// before the first line that uses it; no register is a same-name copy of the one before it
 /// on a line of its own (a signal that only waits is one delay line); and the deepest blinn

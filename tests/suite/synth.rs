@@ -44,7 +44,7 @@ fn lean_fully_pipelined_fits_an_up5k() {
     assert!(r["flip_flops"].as_u64().unwrap() > 100, "a {deepest}-stage pipeline has registers: {r}");
     assert!(r["fmax_mhz"].as_f64().is_some(), "placed on the UP5K: {r}");
     assert!(!r["fmax_note"].as_str().unwrap().contains(specgen::synth::UNCLOCKED_BLOCK_NOTE), "every SB_MAC16 has a register: {r}");
-    // issue 36: icetime's second opinion on the placed design, and the SB_MAC16's own limit
+    // icetime's second opinion on the placed design, and the SB_MAC16's own limit
     require_tool("icetime", "fpga-icestorm");
     assert!(r["icetime_mhz"].as_f64().is_some_and(|f| f > 50.0) && r["icetime_seeds"].as_array().unwrap().len() == 1, "{r}");
     assert!(r["block_limits"].as_array().unwrap().iter().any(|l| l[0] == "SB_MAC16" && l[1] == 153.7), "{r}");
@@ -68,7 +68,7 @@ fn unclocked_dsps(dir: &Path) -> Vec<String> {
     dsps.into_iter().filter(|(_, c)| !c["connections"]["CLK"][0].is_number()).map(|(n, _)| n.clone()).collect()
 }
 
-/// Issue 69, point 2 (a distribution over nextpnr seeds 1..=5: a benchmark, run by
+/// (A distribution over nextpnr seeds 1..=5: a benchmark, run by
 /// `scripts/bench_ecp5_logic_rom.sh` with `--ignored`): every model with tables, its tables in
 /// LUTs (`--rom-style logic`) at its deepest, passes the DP16KD's cap (211.9 MHz at grade 6)
 /// on the ECP5-25: a median of at least 250 MHz, or the MULT18X18D's own limit, named, on both
@@ -96,7 +96,7 @@ fn every_model_passes_the_block_rams_cap_on_the_ecp5_on_both_yosys() {
 }
 
 /// The speed claims (a distribution over nextpnr seeds 1..=5, so a benchmark, not a suite
-/// test: `scripts/bench_hw.sh` runs this with `--ignored`), issue 69: every model with a
+/// test: `scripts/bench_hw.sh` runs this with `--ignored`): every model with a
 /// datapath of its own, fully pipelined and constrained to 125 MHz as a user asking for it
 /// would be, reaches a median Fmax of 125 MHz on the UP5K on both yosys users have (0.23 and
 /// YoWASP's 0.70, which `scripts/test.sh` installs); blinn in at most 1800 logic cells,
@@ -156,7 +156,7 @@ fn generic_target_counts_cells() {
     assert!(r["fmax_mhz"].is_null());
 }
 
-/// Issue 49, point 2: `--target-mhz` never promises silently outside its calibration. The
+/// `--target-mhz` never promises silently outside its calibration. The
 /// calibration is a grid of widths: a schlick at the narrow grid point (the integrator's
 /// 55 MHz unit measured 49.2 before the grid had it) is calibrated and told nothing; one
 /// between the grid's widths is told so, naming the grid; one narrower than it is told that
@@ -225,7 +225,7 @@ fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
         assert!(measured >= 0.9 * mhz, "{family}: --stages {} measured {measured} MHz for a {mhz} MHz target (predicted {predicted})", m["stages"]);
         assert!(measured >= 0.9 * line.margin * predicted, "{family}: measured {measured} MHz, predicted {predicted} (margin {})", line.margin);
     }
-    // issue 36: a clock above a block's limit is refused with the reason and the alternatives
+    // a clock above a block's limit is refused with the reason and the alternatives
     let o = specgen().arg("generate").arg("--out").arg(tmp.path().join("above")).args(["--target", "ecp5", "--target-mhz", "215"]).output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
@@ -329,7 +329,7 @@ fn place_and_route_failure_shows_nextpnr_text() {
     assert!(note.starts_with("place-and-route failed: ERROR:") && note.contains("SB_MAC16"), "{note}");
 }
 
-/// Issue 11: the fitted unit shaped for the iCE40 keeps its intensity path to 4 SB_MAC16 (one
+/// The fitted unit shaped for the iCE40 keeps its intensity path to 4 SB_MAC16 (one
 /// for a_n·(1 − cos), one per squaring; a_n's high bits and each squaring's hi·lo as partial
 /// products in carry-save sums) beside the 3 colour multipliers.
 #[test]
@@ -347,7 +347,7 @@ fn fitted_intensity_path_takes_at_most_4_sb_mac16() {
     assert!(dsp <= 4 + 3, "{dsp} SB_MAC16: more than 4 in the intensity path: {r}");
 }
 
-/// Issue 23: the blinn unit shaped for the iCE40 at its 100 MHz depth takes the UP5K's 8
+/// The blinn unit shaped for the iCE40 at its 100 MHz depth takes the UP5K's 8
 /// SB_MAC16 (3 colours; x*g_lo and n*l in two 16-bit chunks; one per interpolation, each
 /// table's entry added inside the block: the table word carries the operands at 16 bits), at
 /// most 7 block RAMs (2 tables of 2, n's and the colours' long waits), under 1500 flip-flops;
@@ -435,7 +435,7 @@ fn yosys_0_70_netlists_place_with_the_distributions_nextpnr() {
     assert!(!r["cells"].to_string().contains("scopeinfo"), "{r}");
 }
 
-/// Issue 35: the toolchain users have today. yosys 0.70 (YoWASP, PyPI) mapped the 13-stage
+/// The toolchain users have today. yosys 0.70 (YoWASP, PyPI) mapped the 13-stage
 /// lean unit to a wrong netlist (one register taken into the squarer's SB_MAC16 as its output
 /// register and into the colour SB_MAC16s as their input register: `16'b000000xxxxxxxxxx`);
 /// the register between two blocks is now `(* keep *)` whatever slices lie between. `synth
@@ -478,7 +478,7 @@ fn which(tool: &str) -> std::path::PathBuf {
     std::env::split_paths(&paths).map(|d| d.join(tool)).find(|p| p.is_file()).unwrap()
 }
 
-/// Issue 49, point 3: every hard multiplier's registers are checked on the netlist. The narrow
+/// Every hard multiplier's registers are checked on the netlist. The narrow
 /// schlick unit without stages has SB_MAC16s whose clock is a constant: `synth` names each under
 /// `unregistered_blocks` and in its table, and its manifest lists them with why (a unit whose
 /// every block keeps its registers is the promise tests' below).
@@ -525,7 +525,7 @@ fn synth_blocks(dir: &Path, json: &Path) -> (bool, Vec<String>, String) {
     (o.status.success(), listed, err)
 }
 
-/// Issue 49, point 3: lean, schlick and blinn-pow at their deepest on the iCE40 at 8/6/4/8 bits
+/// Lean, schlick and blinn-pow at their deepest on the iCE40 at 8/6/4/8 bits
 /// promise every block its register (their manifests list no `unregistered_products`), and
 /// `synth` holds the netlist to it: each passes with none without (fitted and blinn, and the
 /// ECP5, are the heavy test's below). The lean unit with one bit of logic between a
@@ -577,7 +577,7 @@ fn a_block_without_its_promised_register_fails_synth_naming_it() {
     assert!(err.contains("promises every hard multiplier a register of its own") && err.contains("SB_MAC16 "), "{err}");
 }
 
-/// Issue 49, point 3, over the width space: for every model at default, 8/6/4/8 and issue 12's
+/// Over the width space: for every model at default, 8/6/4/8 and the wide ECP5
 /// wide 18/11/10/18 bits, at
 /// its deepest and at half of it on the iCE40 and at its deepest on the ECP5 and the GW1NR-9, the manifest
 /// promises every block its register exactly where the netlist has none without (a promise
@@ -617,7 +617,7 @@ fn the_register_promise_matches_the_netlist_over_models_widths_and_families() {
     });
 }
 
-/// Issue 49, point 3: which units promise every hard block its register (their manifests). At
+/// Which units promise every hard block its register (their manifests). At
 /// their deepest, the default-width lean, fitted, blinn and schlick units do on the iCE40 (one
 /// block a product, each registered whole, read by nothing else in its step), on the ECP5
 /// (instantiated MULT18X18Ds) and on the GW1NR-9 (instantiated MULT18X18s); blinn-pow's wide chain (each product over several blocks) does

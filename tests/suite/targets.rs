@@ -97,7 +97,7 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
 /// The primitives' registers are part of the arithmetic's timing: a product module without its
 /// output register, or a ROM without its output register, is a cycle early and the
 /// co-simulation says so.
-/// Issue 23: fitted and blinn shaped for the ECP5 at their deepest pipelines put every product
+/// Fitted and blinn shaped for the ECP5 at their deepest pipelines put every product
 /// on a MULT18X18D with its own registers (products alone on the block, which has no adder:
 /// fitted's squarings' hi², blinn's n·ℓ chunks, both models' colours; the adds follow on carry
 /// chains), and are the golden model's under both simulators.
@@ -153,7 +153,7 @@ fn ecp5_register_faults_are_caught() {
 
 /// ECP5 place-and-route: yosys keeps the registers in the MULT18X18D and DP16KD blocks, the
 /// mapped netlist passes `synth --verify`, and nextpnr-ecp5 (seed 1, LFE5U-25F grade 6)
-/// reaches issue 12's 200 MHz. RTL with ECP5 primitives is refused for another family.
+/// reaches 200 MHz. RTL with ECP5 primitives is refused for another family.
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn ecp5_unit_keeps_its_registers_in_the_blocks_and_reaches_200_mhz() {
@@ -187,7 +187,7 @@ fn ecp5_unit_keeps_its_registers_in_the_blocks_and_reaches_200_mhz() {
     assert!(r["flip_flops"].as_u64().unwrap() < 500, "{r}");
     let fmax = r["fmax_mhz"].as_f64().unwrap();
     assert!(fmax >= 200.0, "{fmax} MHz: {r}");
-    // issue 36: never above a block's limit (nextpnr skips the DP16KD's pulse widths): at
+    // never above a block's limit (nextpnr skips the DP16KD's pulse widths): at
     // grade 6 the DP16KD allows 211.9 MHz, nextpnr's own figure is kept beside it
     let route = r["fmax_route_mhz"].as_f64().unwrap();
     assert!(fmax <= 211.9 && route >= fmax, "{r}");
@@ -201,7 +201,7 @@ fn ecp5_unit_keeps_its_registers_in_the_blocks_and_reaches_200_mhz() {
 }
 
 /// The generic shape: whole-width products and adds (no DSP-sized splits, no carry-select
-/// chunks), the same values. Issue 49, point 4: `generic` is its own target: `--target-mhz`
+/// chunks), the same values. `generic` is its own target: `--target-mhz`
 /// is refused naming it, never with another family's figure, and a depth beyond its cut points
 /// is refused naming the target.
 #[test]
@@ -233,7 +233,7 @@ fn generic_target_has_whole_width_arithmetic_and_the_same_values() {
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
 }
 
-/// Issue 12's wide configuration.
+/// The wide ECP5 configuration.
 const WIDE: &[&str] = &["--cos-frac-bits", "18", "--n-bits", "11", "--color-bits", "10", "--intensity-frac-bits", "18", "--k-frac-bits", "20"];
 
 /// The wide configuration fits the UP5K's 8 SB_MAC16 at its deepest pipeline and places
@@ -321,7 +321,7 @@ fn dsp_splits_are_right_over_random_wide_configs() {
 /// The narrow widths (8/6/4/8) on the ECP5, of the tests of tables written as logic.
 const NARROW_ECP5: [&str; 10] = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ecp5"];
 
-/// Issue 51, point 3: `--rom-style logic` keeps the lean unit's cut-off table out of block RAM on
+/// `--rom-style logic` keeps the lean unit's cut-off table out of block RAM on
 /// the ECP5 (the DP16KD's clock limit, 211.9 MHz at grade 6, capped every lean unit): the table
 /// is written as logic, read over three steps (the entry within each group of words, then the
 /// picks by n's top bits), and nothing else names a memory. A narrow unit at its deepest (the
@@ -412,7 +412,7 @@ fn copies_in_netlist(dir: &Path, yosys: &str, synth: &str, is_copy: impl Fn(&str
     (bits.len(), distinct.len())
 }
 
-/// Issue 69: the colour operand registered once per SB_MAC16 (blinn at its deepest on the
+/// The colour operand registered once per SB_MAC16 (blinn at its deepest on the
 /// UP5K, fitted and schlick with `--fabric-registers`) is three flip-flops in the netlist on
 /// both yosys: each copy's `always` block is kept. With the register's name kept alone, both
 /// merged the three into one, which reached all three blocks (a 7.0 ns route to one of them:
@@ -450,7 +450,7 @@ fn colour_operand_copies_stay_apart_in_the_netlist() {
     }
 }
 
-/// Issue 69, point 2: every model with tables writes them as logic on the ECP5 (`--rom-style
+/// Every model with tables writes them as logic on the ECP5 (`--rom-style
 /// logic`), past the DP16KD's clock limit: schlick's reciprocal, fitted's per-n fit and blinn's
 /// log2 and exp2 tables, each read over steps of its own (its parts, then the picks). At narrow
 /// widths and the deepest depth each unit names no memory, synthesizes with no block RAM, and
@@ -498,7 +498,7 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
     });
 }
 
-/// Issue 69, points 1 and 3: `--fabric-registers` gives each hard multiplier a fabric
+/// `--fabric-registers` gives each hard multiplier a fabric
 /// flip-flop on its routes (a step that only registers: more cut points), on the iCE40 after a
 /// multiply-add's sum that the fabric reads, on the ECP5 around the carry chains. At narrow
 /// widths and the deepest depth the unit equals the golden model on every input, its manifest

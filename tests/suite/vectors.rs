@@ -170,7 +170,7 @@ fn cocotb_checks_the_unit_under_icarus_and_verilator_and_fails_on_a_wrong_vector
     assert!(log.contains("FAIL: 1 of 1 cocotb tests failed") && log.contains("intensity ="), "{log}");
 }
 
-/// Issue 22: the cocotb testbench drives `ready` and `axis` units (fields at the manifest's
+/// The cocotb testbench drives `ready` and `axis` units (fields at the manifest's
 /// tdata offsets) with random backpressure and a static colour, and a wrong vector fails it.
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
