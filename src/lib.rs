@@ -2,15 +2,20 @@
 //! (Blinn's `cos^n δ` approximated by `[k·n·(cos δ − 1) + 1]²`, cut off at `cos γsp(n)`, and
 //! the models past the paper), with a bit-exact golden model.
 //!
-//! Layers import only downward (docs/ARCHITECTURE.md draws them):
-//! 1. leaves: [`bits`] (fixed-point helpers), [`names`] (version, non-RTL file names), [`ports`] (the port table, `Inputs`/`Outputs`),
-//!    [`table`] (a ROM), [`config`] (validated parameters), [`error`], [`process`] (children and
-//!    temporaries that do not outlive a run);
-//! 2. [`datapath`]: the step/cut IR and its `Builder`, which knows no model;
-//! 3. [`models`]: one home per model behind the `SpecularUnit` trait, and the registry;
-//! 4. [`plan`]: config → model → registers placed → datapath, built once per command;
-//! 5. [`interface`] (the handshake, tag and colour around the datapath), [`emit`] and [`rom`] (files), [`cosim`], [`synth`], [`vectors`], [`render`],
-//!    [`report`], [`paper`].
+//! Layers import only downward (docs/ARCHITECTURE.md draws them; the suite's `layers` tests
+//! hold them):
+//! 1. leaves: [`bits`] (fixed-point helpers), [`names`] (version, non-RTL file names), [`ports`]
+//!    (the port table, `Inputs`/`Outputs`), [`table`] (a ROM), [`config`] (validated
+//!    parameters), [`error`], [`process`] (children and temporaries that do not outlive a run),
+//!    [`output`] (atomic writes), [`small_file`] (bounded reads);
+//! 2. [`family`] (each FPGA family's facts) and [`blocks`] (the hard blocks' limits);
+//! 3. [`datapath`]: the step/cut IR and its `Builder`, which knows no model;
+//! 4. [`models`]: one home per model behind the `SpecularUnit` trait, and the registry;
+//! 5. [`plan`]: config → model → registers placed → datapath, built once per command;
+//! 6. [`timing`] (the delay model), [`interface`] (the handshake, tag and colour around the
+//!    datapath), [`emit`] and [`rom`] (files);
+//! 7. [`cosim`], [`synth`], [`prove`], [`vectors`], [`render`], [`explore`] (the space, its
+//!    measurements, the one depth search and the choice), [`report`], [`paper`].
 //!
 //! The command line lives in the binary (`src/main.rs`, `src/cli/`): the library knows no flag.
 

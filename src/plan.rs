@@ -329,7 +329,7 @@ mod tests {
         }
     }
 
-    /// Issues 35/36: on the iCE40 no step holds two carry-save layers (a function of up to 9
+    /// On the iCE40 no step holds two carry-save layers (a function of up to 9
     /// registers, three LUT levels on yosys 0.70), and fitted's lo^2 tables read at most a
     /// LUT's inputs (a table of 5 bits was two LUT levels: fitted 96.2 MHz on yosys 0.23).
     #[test]

@@ -130,7 +130,16 @@ pub fn calibration_csv(e: &Exploration) -> String {
     for p in &e.points {
         let Some(m) = p.measured.as_ref().filter(|m| m.route_seeds.len() == m.seeds.len() && !m.route_seeds.is_empty()) else { continue };
         let Ok(cfg) = Config::new(p.params.clone()) else { continue };
+        // a calibration unit is a `valid` unit with no tag, per-pixel colours and no clock
+        // enable (the delay model knows no edge): a unit of another edge is no row of it
+        let edge = |q: &Params| (q.interface, q.tag_bits, q.tlast, q.colour, q.clock_enable);
+        if edge(&p.params) != edge(&defaults) || p.params.rounding != defaults.rounding {
+            continue;
+        }
         let mut args = Vec::new();
+        if p.params.fabric_registers {
+            args.push("--fabric-registers true".to_string());
+        }
         for (flag, v, d) in [
             ("--cos-frac-bits", p.params.cos_frac_bits, defaults.cos_frac_bits),
             ("--n-bits", p.params.n_bits, defaults.n_bits),

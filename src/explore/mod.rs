@@ -711,7 +711,7 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
     Err(Error::Config {
         parameter: "max_error",
         message: format!(
-            "{why}{nearest}; measure the units you want: specgen explore --target {} --n-bits {} --color-bits {}{} --clocks {} --out DIR, then scripts/sweep.sh DIR/jobs.json RESULTS and generate --explored DIR/points.json",
+            "{why}{nearest}; measure the units you want: specgen explore --target {} --n-bits {} --color-bits {}{} --clocks {} --out DIR --results RESULTS --run, then generate --explored DIR/points.json",
             base.target.name(),
             base.n_bits,
             base.color_bits,

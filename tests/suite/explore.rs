@@ -335,6 +335,18 @@ fn a_handshake_unit_is_not_promised_what_its_buffer_cannot_do() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
     assert!(m["predicted_fmax_mhz"].as_f64().unwrap() <= 99.6, "{}", m["predicted_fmax_mhz"]);
+    // the interface is part of the question: an axis unit measured as axis answers, and the
+    // evidence printed is of that unit (its interface, its depth)
+    for (args, interface) in [(&["--max-error", "0.02", "--target-mhz", "90"][..], "axis"), (&["--model", "blinn", "--target-mhz", "90"][..], "axis")] {
+        let out = tmp.path().join(format!("edge-{}", args.len()));
+        let o = output_guarded(specgen().arg("generate").args(args).args(["--interface", interface, "--out"]).arg(&out), "generate");
+        let said = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{said}");
+        let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
+        assert_eq!(m["interface"], interface, "{m}");
+        let id = format!("{}-f{}-fi{}-s{}-n10-c8-", m["model"].as_str().unwrap(), m["cos_frac_bits"], m["intensity_frac_bits"], m["stages"]);
+        assert!(said.contains(&id) && said.contains("today's RTL (sha256 "), "{id}: {said}");
+    }
 }
 
 /// The exploration issue's two refusals: a budgeted blinn at 100 MHz on the UP5K and lean's

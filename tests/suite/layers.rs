@@ -198,7 +198,7 @@ fn the_units_edge_is_written_in_templates() {
 }
 
 /// The repository is read without the tracker its work came from: no comment, test or document
-/// names an issue by number ("issue 67, point 3"), which a newcomer cannot resolve.
+/// names an issue by number (an issue's number and point), which a newcomer cannot resolve.
 #[test]
 fn no_file_names_an_issue_tracker_the_repository_lacks() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -223,7 +223,8 @@ fn no_file_names_an_issue_tracker_the_repository_lacks() {
         let text = std::fs::read_to_string(f).unwrap_or_default();
         for (i, line) in text.lines().enumerate() {
             let words: Vec<&str> = line.split(|c: char| !c.is_alphanumeric()).filter(|w| !w.is_empty()).collect();
-            if words.windows(2).any(|w| w[0].eq_ignore_ascii_case("issue") && w[1].chars().all(|c| c.is_ascii_digit())) {
+            if words.windows(2).any(|w| (w[0].eq_ignore_ascii_case("issue") || w[0].eq_ignore_ascii_case("issues")) && w[1].chars().all(|c| c.is_ascii_digit()))
+            {
                 named.push(format!("{}:{}", f.strip_prefix(root).unwrap().display(), i + 1));
             }
         }

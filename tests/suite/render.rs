@@ -70,17 +70,17 @@ fn render_through_the_rtl_equals_the_model_and_shows_the_difference() {
     };
     // red minus blue, 0 on the neutral grey (226, 226, 222) of a zero error
     let hue = |p: &[u8; 3]| p[0] as i32 - p[2] as i32 - 4;
-    let q1 = tile("sphere n=1", "quadratic error");
+    let q1 = tile("sphere n=1", &format!("quadratic 15/15 s{qs} error"));
     assert!(q1.iter().filter(|p| hue(p) > 60).count() > 100, "(15) is too bright at n = 1: a red disc");
-    let q16 = tile("sphere n=16", "quadratic error");
+    let q16 = tile("sphere n=16", &format!("quadratic 15/15 s{qs} error"));
     let (red, blue) = (q16.iter().filter(|p| hue(p) > 10).count(), q16.iter().filter(|p| hue(p) < -10).count());
     assert!(red > 5 && blue > 5, "quadratic error tile at n = 16: {red} red, {blue} blue pixels");
     for row in ["sphere n=1", "sphere n=16", "plane n=128"] {
-        let b_err = tile(row, "blinn error");
+        let b_err = tile(row, &format!("blinn 15/15 s{bs} error"));
         assert!(b_err.iter().all(|p| hue(p).abs() <= 1 || p == &[38, 44, 64]), "blinn's error tile at {row} should be neutral (zero at this scale)");
     }
     // exposure: n = 1 is a gradient, not a white disc
-    let unit1 = tile("sphere n=1", "blinn unit");
+    let unit1 = tile("sphere n=1", &format!("blinn 15/15 s{bs} unit"));
     let greys: std::collections::BTreeSet<u8> = unit1.iter().filter(|p| p[0] == p[2]).map(|p| p[0]).collect();
     assert!(greys.len() > 40 && unit1.iter().filter(|p| p[0] == 255).count() < 32, "n = 1 should be shaded, not blown out");
 }
@@ -100,7 +100,7 @@ fn model_only_render_pixels_are_golden() {
     assert_eq!((w, h, hash.as_str()), (GOLDEN.0, GOLDEN.1, GOLDEN.2), "the render changed; look at {} and update GOLDEN", out.display());
 }
 
-const GOLDEN: (u32, u32, &str) = (652, 358, "c5817f5ac1fed6d3e937ffd44d722a8df4c8a1657ecc3d2f9a9e2402ae1c5221");
+const GOLDEN: (u32, u32, &str) = (652, 358, "baf69d3aab98679fc3c2d598bd8e261b436ace456fbd6fbc974d7510b492400b");
 
 #[test]
 fn render_refuses_bad_arguments_and_faulty_rtl() {

@@ -28,7 +28,7 @@ fn lean_uses_30_percent_fewer_lut4_than_paper_without_dsps() {
     assert_eq!(lean["rom_bits"], 1024 * 16);
 }
 
-/// Issues 4 and 12: at default widths the lean unit's deepest pipeline fits an iCE40 UP5K
+/// At default widths the lean unit's deepest pipeline fits an iCE40 UP5K
 /// with DSPs (<= 8 SB_MAC16, <= 5280 LUT4) and registers (one seed placed: it routes).
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
