@@ -163,15 +163,19 @@ fn the_library_has_one_error_type_and_no_string_errors() {
 /// (the way `datapath/`, `prove/` and `models/blinn/` are) before it does.
 #[test]
 fn no_source_file_is_over_800_lines() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    rust_files(&src, &mut files);
+    rust_files(&root.join("src"), &mut files);
     assert!(files.len() > 40, "found only {} files under src/", files.len());
+    // the tests too
+    let before = files.len();
+    rust_files(&root.join("tests"), &mut files);
+    assert!(files.len() > before + 20, "found only {} files under tests/", files.len() - before);
     let long: Vec<String> = files
         .iter()
         .map(|f| (f, std::fs::read_to_string(f).unwrap().lines().count()))
         .filter(|(_, n)| *n > 800)
-        .map(|(f, n)| format!("{} ({n} lines)", f.strip_prefix(&src).unwrap().display()))
+        .map(|(f, n)| format!("{} ({n} lines)", f.strip_prefix(root).unwrap().display()))
         .collect();
     assert!(long.is_empty(), "over 800 lines: {long:?}");
 }

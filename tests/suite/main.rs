@@ -15,6 +15,7 @@ mod hostile;
 mod interfaces;
 mod layers;
 mod models;
+mod processes;
 mod properties;
 mod prove;
 mod prove_ports;
