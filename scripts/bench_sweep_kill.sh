@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # A sweep that is interrupted and resumed never loses a job and never runs one twice:
-# `specgen explore --run` over a narrow space of 20 jobs (quadratic, F = FI = 8, N = B = 4,
+# `specgen explore --run` over a narrow space of about 20 jobs (quadratic, F = FI = 8, N = B = 4,
 # seeds 1..2, every point measured), twice:
 #   1. on specgen's own slots, one nextpnr killed by SIGKILL midway, then the command run again;
 #   2. on Snakemake (--engine snakemake), the sweep's snakemake killed by SIGKILL midway (its jobs
 #      run on as orphans), then the command run again.
 # nextpnr is run through a wrapper that logs every placement: each case must end with 20 results
-# and exactly one placement per job, plus one per placement that was killed. Writes
+# for every job and exactly one placement per job, plus one per placement killed. Writes
 # benchmarks/sweep-kill.md.
 source "$(dirname "$0")/bench_common.sh"
 real=$(command -v nextpnr-ice40)
@@ -17,7 +17,7 @@ case " \$* " in *" --version "*) ;; *) echo "\$\$ \$*" >> "$work/placements.log"
 exec "$real" "\$@"
 EOF
 chmod +x "$work/nextpnr-ice40"
-space=(--models quadratic --cos-frac-bits 8 --intensity-frac-bits 8 --n-bits 4 --color-bits 4 --measure-all --seeds 2 --clocks 50,75 --depths 8)
+space=(--models quadratic --cos-frac-bits 8 --intensity-frac-bits 8 --n-bits 4 --color-bits 4 --measure-all --seeds 2 --clocks 50,75 --depths 12)
 placements() { [ -f "$work/placements.log" ] && wc -l < "$work/placements.log" || echo 0; }
 results() { find "$1" -maxdepth 1 -name '*.json' | wc -l; }
 rows=()
@@ -42,7 +42,7 @@ for case in specgen snakemake; do
         killed=0
     fi
     before=$(results "$store")
-    run > "$work/$case-2.log" 2>&1
+    run > "$work/$case-2.log" 2>&1 || tail -20 "$work/$case-2.log" >&2
     jobs=$(python3 -c 'import json, sys; print(len(json.load(open(sys.argv[1]))))' "$work/$case-plan/jobs.json")
     after=$(results "$store")
     placed=$(placements)
@@ -55,7 +55,7 @@ done
 {
     echo "# A sweep killed midway and resumed"
     echo
-    echo "\`specgen explore --run\` over 20 jobs (quadratic, F = FI = 8, N = B = 4, nextpnr seeds 1..2,"
+    echo "\`specgen explore --run\` over the jobs below (quadratic, F = FI = 8, N = B = 4, nextpnr seeds 1..2,"
     echo "every point measured), two at a time; nextpnr through a wrapper that logs each placement."
     echo "*specgen*: its own slots, one nextpnr killed by SIGKILL midway, then the same command again."
     echo "*snakemake*: \`--engine snakemake\`, the sweep's snakemake killed by SIGKILL midway (its jobs run"

@@ -133,6 +133,20 @@ fn has_result(store: &Path, job: &explore::Job) -> bool {
 fn run_snakemake(plan: &Path, me: &Path, store: &Path, o: &RunOptions) -> Result<(), Failure> {
     let snakefile = store.join(".specgen").join("Snakefile");
     specgen::output::write_file(&snakefile, SNAKEFILE.as_bytes()).map_err(|e| Failure::io("write", &snakefile, e))?;
+    // this run holds the store's sweep lock: a Snakemake lock there is a killed sweep's, lifted
+    // (a job of it still running holds its own job's lock, so none starts beside itself)
+    if store.join(".snakemake").join("locks").is_dir() {
+        let _ = std::process::Command::new("snakemake")
+            .arg("-s")
+            .arg(&snakefile)
+            .arg("--directory")
+            .arg(store)
+            .arg("--unlock")
+            .env("SPECGEN_SWEEP_JOBS", plan)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .status();
+    }
     let mut cmd = std::process::Command::new("snakemake");
     cmd.arg("-s").arg(&snakefile).arg("--directory").arg(store);
     cmd.args(["--ignore-incomplete", "--rerun-triggers", "mtime", "--keep-going"]);
