@@ -531,6 +531,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     if let Some(proof) = valid_cover(design, tools, w, &files, &unit_defines, &name, t0)? {
         return Ok(proof);
     }
+    let pdr_covered = format!("{PDR}; its cover ({VALID_COVER}) reached within {} edges", cfg.latency() + 3);
     Script { unit_defines: unit_defines.clone(), ..Script::model(&name, &files) }.write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
     run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
@@ -551,7 +552,7 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PDR.into(), ports: None });
     };
     if said.contains("Property proved") {
-        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine: PDR.into(), ports: None });
+        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine: pdr_covered, ports: None });
     }
     // "Output 0 of miter "model" was asserted in frame 3."
     let Some(frame) = frame_asserted(&said) else {

@@ -35,6 +35,8 @@ fn the_valid_latency_is_proved_and_a_late_valid_refuted() {
         let o = prove(&dir, &traces);
         assert!(o.status.success(), "{name}: {}", text(&o));
         assert!(text(&o).contains("proved, unbounded"), "{}", text(&o));
+        // not vacuously: the environment reaches a reset and then a result
+        assert!(text(&o).contains("its cover (a reset at the first edge, then a result (out_valid high)) reached within"), "{}", text(&o));
     }
     let late: Vec<&str> = ["--stages", "3"].into_iter().chain(NARROW).collect();
     let dir = generate(tmp.path(), "late", &late);
