@@ -8,7 +8,7 @@
 //!    (the port table, `Inputs`/`Outputs`), [`table`] (a ROM), [`config`] (validated
 //!    parameters), [`error`], [`process`] (children and temporaries that do not outlive a run),
 //!    [`output`] (atomic writes), [`small_file`] (bounded reads);
-//! 2. [`family`] (each FPGA family's facts) and [`blocks`] (the hard blocks' limits);
+//! 2. [`family`] (each FPGA family's facts, its hard blocks' limits among them);
 //! 3. [`datapath`]: the step/cut IR and its `Builder`, which knows no model;
 //! 4. [`models`]: one home per model behind the `SpecularUnit` trait, and the registry;
 //! 5. [`plan`]: config → model → registers placed → datapath, built once per command;
@@ -20,7 +20,6 @@
 //! The command line lives in the binary (`src/main.rs`, `src/cli/`): the library knows no flag.
 
 pub mod bits;
-pub mod blocks;
 pub mod config;
 pub mod cosim;
 pub mod datapath;

@@ -12,6 +12,7 @@
 //! file and FuseSoC's synthesis arch, the split of a wide square and the padding of a block's
 //! operands. No file outside this home names a family (`tests::family_names_stay_home`).
 
+pub mod blocks;
 pub(crate) mod ecp5;
 mod generic;
 mod gowin;
@@ -167,7 +168,7 @@ pub trait Family: Sync {
         None
     }
     /// The minimum periods of the hard blocks a unit uses (`dsp`, `bram`), on its part at
-    /// `grade`, from the vendors' timing data (`crate::blocks` says why and from where).
+    /// `grade`, from the vendors' timing data (`crate::family::blocks` says why and from where).
     fn block_limits(&self, grade: u32, dsp: bool, bram: bool) -> Vec<BlockLimit>;
     /// Block RAM with a read register (a long delay line's tail can wait there).
     fn has_block_ram(&self) -> bool;

@@ -55,7 +55,7 @@ pub struct SynthResult {
     pub(crate) rom_bits: u64,
     pub(crate) total_cells: u64,
     /// MHz the unit runs at, when place-and-route ran: the least of nextpnr's median over the
-    /// seeds (`fmax_route_mhz`) and the limits of the blocks it uses (`crate::blocks`)
+    /// seeds (`fmax_route_mhz`) and the limits of the blocks it uses (`crate::family::blocks`)
     pub(crate) fmax_mhz: Option<f64>,
     /// nextpnr's median over the seeds (its routes, not the blocks' own limits)
     #[serde(default)]
@@ -502,14 +502,14 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         }
         r.icetime_mhz = median(&r.icetime_seeds);
     }
-    // the blocks' own limits, which nextpnr does not time (crate::blocks)
+    // the blocks' own limits, which nextpnr does not time (crate::family::blocks)
     let uses = |k: CellKind| r.cells.iter().any(|(n, c)| *c > 0 && family.cell_kind(n) == Some(k));
     let (dsp_used, bram_used) = (uses(CellKind::Dsp), uses(CellKind::BlockRam));
     let limits = family.block_limits(tools.speed, dsp_used, bram_used);
     r.speed_grade = family.speed_grades().is_some().then_some(tools.speed);
     r.block_limits = limits.iter().map(|l| (l.block.to_string(), l.mhz(), l.what.clone())).collect();
     if let Some(route) = r.fmax_route_mhz {
-        let (f, why) = crate::blocks::limited(route, &limits);
+        let (f, why) = crate::family::blocks::limited(route, &limits);
         r.fmax_mhz = Some(f);
         r.fmax_limited_by = why;
     }
@@ -561,7 +561,7 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
 
 /// Every seed's figure capped as the median is: none above a limit of a block the unit uses.
 pub(crate) fn capped_seeds(seeds: &[f64], limits: &[crate::family::BlockLimit]) -> Vec<f64> {
-    seeds.iter().map(|&f| crate::blocks::limited(f, limits).0).collect()
+    seeds.iter().map(|&f| crate::family::blocks::limited(f, limits).0).collect()
 }
 
 impl SynthResult {

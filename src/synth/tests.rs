@@ -157,7 +157,7 @@ fn every_seed_is_capped_by_the_blocks_limits() {
 fn one_seed_results_are_one_result_over_the_seeds() {
     let limits = vec![crate::family::BlockLimit { block: "DP16KD", period_ns: 4.719, what: "DP16KD clock pulse, grade 6".into() }];
     let one = |seed: u32, route: f64| {
-        let (f, why) = crate::blocks::limited(route, &limits);
+        let (f, why) = crate::family::blocks::limited(route, &limits);
         SynthResult {
             seeds: vec![seed],
             fmax_mhz: Some(f),

@@ -582,9 +582,9 @@ fn handshake_cap(plan: &Plan) -> Option<(f64, &'static str)> {
 /// (`crate::family`): no prediction and no pick passes it. None for a unit without them (an
 /// iCE40 unit's products are yosys's to map, and the delay model's figures there are already
 /// below the SB_MAC16's).
-fn block_cap(plan: &Plan) -> Option<crate::blocks::BlockLimit> {
+fn block_cap(plan: &Plan) -> Option<crate::family::blocks::BlockLimit> {
     let dp = &plan.datapath;
-    crate::blocks::slowest(&crate::family::of(plan.cfg.target()).block_limits(6, dp.has_dsp_blocks(), dp.has_block_rams())).cloned()
+    crate::family::blocks::slowest(&crate::family::of(plan.cfg.target()).block_limits(6, dp.has_dsp_blocks(), dp.has_block_rams())).cloned()
 }
 
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
@@ -612,7 +612,7 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
     }
     let mut best = (0, 0.0f64, 0.0f64);
     // a depth whose blocks cannot run at mhz is no pick, whatever its routes (the first seen)
-    let mut capped: Option<(u32, crate::blocks::BlockLimit)> = None;
+    let mut capped: Option<(u32, crate::family::blocks::BlockLimit)> = None;
     for stages in 0..=plan.cut_points {
         progress(stages, plan.cut_points);
         let p = plan.with_stages(stages)?;

@@ -15,7 +15,7 @@
 //!   B to CLK 6.504 ns; the block's route in comes on top, which nextpnr does time.
 //!   SB_RAM40_4K: the file has no pulse width or period: no limit is known.
 
-pub use crate::family::BlockLimit;
+pub use super::BlockLimit;
 
 /// The slowest of `limits` (the longest minimum period).
 pub fn slowest(limits: &[BlockLimit]) -> Option<&BlockLimit> {
