@@ -6,11 +6,10 @@
 use crate::error::Error;
 use serde::{Deserialize, Serialize};
 
-mod names;
 mod parse;
 
-pub use names::is_internal_name;
-use names::{check_identifier, check_port_name};
+pub use crate::names::identifiers::is_internal_name;
+use crate::names::identifiers::{check_identifier, check_port_name};
 pub use parse::{parse_clock_mhz, parse_decimal, parse_k};
 
 /// Output rounding contract (SPEC §3).

@@ -1,5 +1,9 @@
-//! Names every layer refers to: the generator's version and the files that are not RTL (the
-//! simulation-only models, the testbench). A leaf: imports nothing from the crate.
+//! Names every layer refers to: the generator's version, the files that are not RTL (the
+//! simulation-only models, the testbench), and which identifiers a unit may take
+//! ([`identifiers`]: Verilog and SystemVerilog keywords, the tools' and the families' cell
+//! names, specgen's own module names). A leaf: imports only the error type.
+
+pub mod identifiers;
 
 /// The generator's version, in every file header.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

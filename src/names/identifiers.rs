@@ -5,7 +5,7 @@ use crate::error::Error;
 
 /// SystemVerilog's keywords (IEEE 1800-2017 Annex B) beyond Verilog-2005's: tools read the
 /// unit as SystemVerilog too (Verilator, FuseSoC's sim targets), so none may name it.
-pub(super) const SYSTEMVERILOG_KEYWORDS: &[&str] = &[
+pub(crate) const SYSTEMVERILOG_KEYWORDS: &[&str] = &[
     "accept_on",
     "alias",
     "always_comb",
@@ -133,17 +133,17 @@ pub(super) const SYSTEMVERILOG_KEYWORDS: &[&str] = &[
 
 /// Modules the tools specgen runs the unit with already define: the harnesses' tops and the
 /// FPGA primitives a unit instantiates or synthesizes to.
-pub(super) const TOOL_MODULES: &[&str] =
+pub(crate) const TOOL_MODULES: &[&str] =
     &["specgen_cosim_top", "specgen_icarus_bench", "specgen_synth_top", "MULT18X18D", "DP16KD", "SB_MAC16", "SB_RAM40_4K", "SB_LUT4", "SB_CARRY", "SB_DFF"];
 
 /// Every module of yosys's iCE40, ECP5 and Gowin cell libraries, 0.23 and 0.70 (`data/cell_names.txt`).
-pub(super) const CELL_NAMES: &str = include_str!("../../data/cell_names.txt");
+pub(crate) const CELL_NAMES: &str = include_str!("../../data/cell_names.txt");
 
 /// The modules a unit derives from its top (`<top>_out_buffer`, …): a top ending so could be
 /// another unit's derived module.
-pub(super) const DERIVED_SUFFIXES: &[&str] = &["_out_buffer", "_mult18x18", "_rom1k18", "_delay_ram", "_tb", "_tb_ports"];
+pub(crate) const DERIVED_SUFFIXES: &[&str] = &["_out_buffer", "_mult18x18", "_rom1k18", "_delay_ram", "_tb", "_tb_ports"];
 
-pub(super) const VERILOG_KEYWORDS: &[&str] = &[
+pub(crate) const VERILOG_KEYWORDS: &[&str] = &[
     "always",
     "and",
     "assign",
@@ -301,7 +301,7 @@ pub fn is_internal_name(name: &str) -> bool {
 }
 
 /// The handshake's, tag's and material registers' own names inside the unit.
-pub(super) const INTERNAL_NAMES: &[&str] = &[
+pub(crate) const INTERNAL_NAMES: &[&str] = &[
     "in_take",
     "out_result",
     "out_held",
@@ -319,7 +319,7 @@ pub(super) const INTERNAL_NAMES: &[&str] = &[
 
 /// `clock_port`: a port name of the user's design, written into SDC and LPF files: a Verilog
 /// identifier of at most 64 characters (no escaped names: the files quote nothing else).
-pub(super) fn check_port_name(port: &str) -> Result<(), Error> {
+pub(crate) fn check_port_name(port: &str) -> Result<(), Error> {
     let ok = port.len() <= 64
         && port.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
         && port.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
@@ -333,7 +333,7 @@ pub(super) fn check_port_name(port: &str) -> Result<(), Error> {
 }
 
 /// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
-pub(super) fn check_identifier(top: &str) -> Result<(), Error> {
+pub(crate) fn check_identifier(top: &str) -> Result<(), Error> {
     let err = |why: &str| Error::Config {
         parameter: "top",
         message: format!(
