@@ -34,6 +34,10 @@ pub struct ExploreArgs {
     /// B, the colours' width: fixed [4..=16]
     #[arg(long, default_value_t = 8)]
     pub color_bits: u32,
+    /// The interface of every unit in the space (its edge is measured with it: a `ready` or
+    /// `axis` unit's output buffer has paths of its own)
+    #[arg(long, value_enum, default_value = "valid")]
+    pub interface: super::values::InterfaceFlag,
     /// --dsp-budget values in the space: a number, or "none" (no limit)
     #[arg(long, value_delimiter = ',', default_value = "none")]
     pub dsp_budget: Vec<String>,
@@ -269,7 +273,7 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         });
     }
     let target: Target = a.target.into();
-    let base = Params { target, n_bits: a.n_bits, color_bits: a.color_bits, ..Params::default() };
+    let base = Params { target, n_bits: a.n_bits, color_bits: a.color_bits, interface: a.interface.into(), ..Params::default() };
     specgen::config::Config::new(base.clone())?;
     let space = Space {
         base,

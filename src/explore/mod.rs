@@ -299,7 +299,7 @@ pub struct Measured {
 /// One configuration of the space.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Point {
-    /// `<model>-f<F>-fi<FI>-s<stages>[-b<budget>][-<rom style>]`
+    /// `<model>-f<F>-fi<FI>-s<stages>[-b<budget>][-<rom style>][-<interface>]`
     pub id: String,
     pub model: String,
     pub cos_frac_bits: u32,
@@ -339,6 +339,10 @@ fn point_id(p: &Params) -> String {
     }
     if p.rom_style != RomStyle::File {
         id.push_str(&format!("-{}", p.rom_style.name()));
+    }
+    // a unit of another interface is another point (its edge is measured with it)
+    if p.interface != crate::config::Interface::Valid {
+        id.push_str(&format!("-{}", p.interface.name()));
     }
     id
 }
@@ -711,10 +715,14 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
     Err(Error::Config {
         parameter: "max_error",
         message: format!(
-            "{why}{nearest}; measure the units you want: specgen explore --target {} --n-bits {} --color-bits {}{} --clocks {} --out DIR --results RESULTS --run, then generate --explored DIR/points.json",
+            "{why}{nearest}; measure the units you want: specgen explore --target {} --n-bits {} --color-bits {}{}{} --clocks {} --out DIR --results RESULTS --run, then generate --explored DIR/points.json",
             base.target.name(),
             base.n_bits,
             base.color_bits,
+            match base.interface {
+                crate::config::Interface::Valid => String::new(),
+                i => format!(" --interface {}", i.name()),
+            },
             q.given.iter().filter(|&&k| k == "model").map(|_| format!(" --models {}", base.model.name())).collect::<String>(),
             q.mhz
         ),

@@ -627,3 +627,28 @@ fn target_mhz_chooses_the_options_not_given_from_measured_units() {
     assert!(said.contains("is not assured on the ECP5-25") && said.contains("--rom-style logic"), "{said}");
     assert!(!out.exists());
 }
+
+/// `explore --interface` explores units of that interface (their edge is measured with them):
+/// every point is an `axis` unit, named so apart from a `valid` one of the same shape, and a
+/// `--max-error` refusal for an axis question names the command with `--interface axis`.
+#[test]
+fn explore_takes_the_interface_the_units_are_measured_with() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("axis");
+    let o = output_guarded(specgen().arg("explore").arg("--out").arg(&out).args(NARROW).args(["--interface", "axis"]), "explore --interface axis");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let ps = points(&out);
+    let ps = ps["points"].as_array().unwrap();
+    assert!(!ps.is_empty());
+    for p in ps {
+        assert_eq!(p["params"]["interface"], "axis", "{p}");
+        assert!(p["id"].as_str().unwrap().ends_with("-axis"), "{}", p["id"]);
+    }
+    let o = output_guarded(
+        specgen().args(["generate", "--max-error", "0.001", "--target-mhz", "90", "--interface", "axis", "--out"]).arg(tmp.path().join("u")),
+        "generate",
+    );
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{said}");
+    assert!(said.contains("specgen explore --target ice40") && said.contains("--interface axis --clocks 90"), "{said}");
+}
