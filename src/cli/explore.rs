@@ -452,18 +452,11 @@ pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {
         PathBuf::from(p)
     };
     let lock = std::fs::OpenOptions::new().create(true).append(true).open(&lock_path).map_err(|e| Failure::io("open", &lock_path, e))?;
-    {
-        use std::os::fd::AsRawFd;
-        // SAFETY: flock on a descriptor we own; released when `lock` closes at the end
-        if unsafe { libc::flock(lock.as_raw_fd(), libc::LOCK_EX) } != 0 {
-            return Err(Failure::io("lock", &lock_path, std::io::Error::last_os_error()));
-        }
-    }
-    if let Ok(text) = specgen::small_file::read(&a.out, 1 << 20) {
-        if serde_json::from_str::<explore::JobResult>(&text).is_ok_and(|r| r.job == *job && r.check().is_ok()) {
-            outln!("{}: measured already (by a run beside this one): {}", job.fingerprint, a.out.display())?;
-            return Ok(());
-        }
+    // (an flock, released when `lock` closes at the end)
+    lock.lock().map_err(|e| Failure::io("lock", &lock_path, e))?;
+    if explore::whole_result(&a.out, job) {
+        outln!("{}: measured already (by a run beside this one): {}", job.fingerprint, a.out.display())?;
+        return Ok(());
     }
     let r = explore::run_job(job, &specgen::synth::Tools { cache: a.cache.clone(), ..tools(&a.yosys, &a.nextpnr) })?;
     let mut text = serde_json::to_string_pretty(&r).expect("serialises");
@@ -567,18 +560,10 @@ pub fn choose(
     })
 }
 
-/// The built-in exploration of `target`'s family, if one was measured.
-fn built_in(target: Target) -> Result<Option<Exploration>, Failure> {
-    match specgen::family::of(target).explored() {
-        None => Ok(None),
-        Some(text) => Ok(Some(Exploration::from_text(text, "the built-in exploration")?)),
-    }
-}
-
 /// What a refusal of `--target-mhz` adds: the nearest measured unit of the same model (and
 /// budget) that reaches `mhz`, by widths, and how to choose among measured units.
 pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
-    let Some(e) = built_in(params.target)? else { return Ok(String::new()) };
+    let Some(e) = explore::built_in(params.target)? else { return Ok(String::new()) };
     let near = e
         .points
         .iter()

@@ -38,12 +38,9 @@ pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<V
     // one sweep at a time on a store: this lock is held for the run's life
     let lock_path = store.join(".specgen-sweep.lock");
     let lock = std::fs::OpenOptions::new().create(true).append(true).open(&lock_path).map_err(|e| Failure::io("open", &lock_path, e))?;
-    {
-        use std::os::fd::AsRawFd;
-        // SAFETY: flock on a descriptor we own; released when `lock` closes
-        if unsafe { libc::flock(lock.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) } != 0 {
-            return Err(failed(format!("a sweep is running on {} (it holds {}); wait for it or stop it", store.display(), lock_path.display())));
-        }
+    // (an flock, released when `lock` closes)
+    if lock.try_lock().is_err() {
+        return Err(failed(format!("a sweep is running on {} (it holds {}); wait for it or stop it", store.display(), lock_path.display())));
     }
     // the plan's jobs, as data the jobs read (named by their content: two plans never share one)
     let text = serde_json::to_string(jobs).expect("jobs serialise");
@@ -62,7 +59,7 @@ pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<V
     if snakemake {
         return run_snakemake(&plan, &me, store, o).map(|()| Vec::new());
     }
-    let missing: Vec<&explore::Job> = jobs.iter().filter(|j| !has_result(store, j)).collect();
+    let missing: Vec<&explore::Job> = jobs.iter().filter(|j| !explore::whole_result(&store.join(format!("{}.json", j.fingerprint)), j)).collect();
     eprintln!(
         "explore --run: {} jobs, {} with a result already, {} to run, {} at a time",
         jobs.len(),
@@ -116,16 +113,6 @@ pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<V
     }
     drop(lock);
     Ok(failed_jobs)
-}
-
-/// Whether `store` holds a whole result of `job` (one a killed run left half is never there:
-/// results are written atomically).
-fn has_result(store: &Path, job: &explore::Job) -> bool {
-    let path = store.join(format!("{}.json", job.fingerprint));
-    specgen::small_file::read(&path, 1 << 20)
-        .ok()
-        .and_then(|t| serde_json::from_str::<explore::JobResult>(&t).ok())
-        .is_some_and(|r| r.job == *job && r.check().is_ok())
 }
 
 /// The jobs on Snakemake: the shipped Snakefile written beside the results, the paths passed

@@ -75,6 +75,21 @@ pub struct DepthPick {
     pub evidence: ClockEvidence,
 }
 
+/// The built-in exploration of `target`'s family (what `generate --max-error` and
+/// `--target-mhz` read), if one was measured: read once per process (`explore` asks for it at
+/// every shape and clock it plans).
+pub fn built_in(target: crate::config::Target) -> Result<Option<&'static Exploration>, Error> {
+    use crate::config::Target;
+    use std::sync::OnceLock;
+    static BUILT: [OnceLock<Option<Exploration>>; Target::ALL.len()] = [const { OnceLock::new() }; Target::ALL.len()];
+    let slot = &BUILT[Target::ALL.iter().position(|t| *t == target).expect("a target of ALL")];
+    if let Some(e) = slot.get() {
+        return Ok(e.as_ref());
+    }
+    let read = crate::family::of(target).explored().map(|text| Exploration::from_text(text, "the built-in exploration")).transpose()?;
+    Ok(slot.get_or_init(|| read).as_ref())
+}
+
 /// Parameters with what does not change which unit is measured cleared: its depth, the clock
 /// its constraints name, its names.
 pub fn measured_shape(p: &Params) -> Params {
@@ -125,14 +140,10 @@ pub fn depth_and_options_for_clock(
 /// The measured step of [`depth_for_clock`]: None where no unit of this configuration measured
 /// on today's RTL reaches `mhz`.
 fn measured_depth(plan: &Plan, mhz: f64, explored: Option<&Exploration>, free: &[&str]) -> Result<Option<DepthPick>, Error> {
-    let built_in;
     let e = match explored {
         Some(e) => e,
-        None => match crate::family::of(plan.cfg.target()).explored() {
-            Some(text) => {
-                built_in = Exploration::from_text(text, "the built-in exploration")?;
-                &built_in
-            }
+        None => match built_in(plan.cfg.target())? {
+            Some(b) => b,
             None => return Ok(None),
         },
     };
@@ -205,13 +216,10 @@ pub struct CalibrationEvidence {
 /// against the unit specgen writes today (each unit generated once: seconds).
 pub fn calibration_evidence(target: crate::config::Target) -> Result<CalibrationEvidence, Error> {
     let mut ev = CalibrationEvidence::default();
-    let Some(family) = crate::timing::family(target) else { return Ok(ev) };
-    let all: serde_json::Value = serde_json::from_str(crate::timing::MODEL_JSON).expect("data/delay_model.json is JSON");
-    for (name, v) in all[family].as_object().into_iter().flatten() {
-        let Ok(l) = serde_json::from_value::<crate::timing::Line>(v.clone()) else { continue };
+    for (name, l) in crate::timing::lines(target) {
         // a datapath's calibration units are generated as scripts/calibrate_delay.sh does: the
         // default parameters (`lean`: the default model's), its model named otherwise
-        let base = match crate::config::SpecularModel::ALL.into_iter().find(|m| m.name() == name) {
+        let base = match crate::config::SpecularModel::ALL.into_iter().find(|m| m.name() == name.as_str()) {
             Some(model) => Params { model, target, ..Default::default() },
             None if name == "lean" => Params { target, ..Default::default() },
             None => continue,

@@ -69,6 +69,13 @@ impl Job {
     }
 }
 
+/// Whether `path` holds a whole result of `job` (its own job, its figures checked against it):
+/// a run that finds one has nothing to do. A killed run leaves none half-written (results are
+/// written atomically).
+pub fn whole_result(path: &std::path::Path, job: &Job) -> bool {
+    crate::small_file::read(path, 1 << 20).ok().and_then(|t| serde_json::from_str::<JobResult>(&t).ok()).is_some_and(|r| r.job == *job && r.check().is_ok())
+}
+
 /// A job's result, stored as `<fingerprint>.json`.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct JobResult {

@@ -40,7 +40,7 @@ use serde::Deserialize;
 pub const CORNER_MARGIN: f64 = 0.89;
 
 /// The fitted lines, `scripts/fit_delay_model.py`'s output.
-pub(crate) const MODEL_JSON: &str = include_str!("../../data/delay_model.json");
+const MODEL_JSON: &str = include_str!("../../data/delay_model.json");
 
 /// What shapes a datapath's delays beyond its depth: the widths, the rounding, the ROM style
 /// and the DSP budget (the constant's width and fitted's squarings only where the model reads
@@ -288,6 +288,13 @@ fn deepest_of(params: &crate::config::Params) -> Option<(u32, f64)> {
     Some(d)
 }
 
+/// Keeps the items of `v` whose flag in `keep` is set (one flag an item, in order; an item
+/// past the flags goes).
+pub(crate) fn retain_flagged<T>(v: &mut Vec<T>, keep: &[bool]) {
+    let mut k = keep.iter();
+    v.retain(|_| k.next().copied().unwrap_or(false));
+}
+
 /// Whether shape `a` is no wider than `b` in every width, its other flags (rounding, ROM
 /// style) alike.
 fn no_wider(a: &[(&'static str, String)], b: &[(&'static str, String)]) -> bool {
@@ -348,14 +355,10 @@ impl Line {
     /// (`explore::calibration_evidence`): a row of another RTL fails them.
     pub(crate) fn of_todays_rtl(mut self) -> Line {
         let keep: Vec<bool> = (0..self.measured.len()).map(|i| self.measured_digest.get(i).is_some_and(|d| !d.is_empty())).collect();
-        let mut k = keep.iter();
-        self.measured.retain(|_| *k.next().expect("one flag a unit"));
-        for v in [&mut self.measured_args, &mut self.measured_digest] {
-            let mut k = keep.iter();
-            v.retain(|_| k.next().copied().unwrap_or(false));
-        }
-        let mut k = keep.iter();
-        self.measured_stages.retain(|_| k.next().copied().unwrap_or(false));
+        retain_flagged(&mut self.measured, &keep);
+        retain_flagged(&mut self.measured_args, &keep);
+        retain_flagged(&mut self.measured_digest, &keep);
+        retain_flagged(&mut self.measured_stages, &keep);
         self
     }
 
@@ -416,8 +419,7 @@ impl Line {
             // the cap where a calibration unit as short reached it: only at widths measured
             self.cap_up_to = -1.0;
         }
-        let mut k = keep.iter();
-        self.measured.retain(|_| *k.next().expect("one flag a unit"));
+        retain_flagged(&mut self.measured, &keep);
         self.measured_args.clear();
         self.measured_stages.clear();
         self
@@ -501,7 +503,7 @@ impl Line {
 
 /// The family the model speaks of for `target`; none for `generic`, whose RTL names no family:
 /// its clock is the device's it is mapped to, which no calibration here knows.
-pub(crate) fn family(target: Target) -> Option<&'static str> {
+fn family(target: Target) -> Option<&'static str> {
     crate::family::of(target).calibration()
 }
 
@@ -550,6 +552,14 @@ pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
     Ok(serde_json::from_value(chosen.clone()).expect("data/delay_model.json has a line per family"))
 }
 
+/// Every datapath's own line on `target`'s family, by the datapath's name (a datapath that
+/// reads the family's line is not listed); none for a family without a delay model.
+pub(crate) fn lines(target: Target) -> Vec<(String, Line)> {
+    let Some(family) = family(target) else { return Vec::new() };
+    let all: serde_json::Value = serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");
+    all[family].as_object().into_iter().flatten().filter_map(|(name, v)| Some((name.clone(), serde_json::from_value::<Line>(v.clone()).ok()?))).collect()
+}
+
 /// The line for `plan`'s family and datapath, with the measured units of its widths.
 fn line_of(plan: &Plan) -> Result<Line, Error> {
     Ok(line(plan.cfg.target(), plan.cfg.datapath_name())?.at_widths_of(plan))
@@ -558,14 +568,19 @@ fn line_of(plan: &Plan) -> Result<Line, Error> {
 /// The Fmax the delay model predicts for `plan` on its family's part, in MHz.
 /// None for a datapath without calibration.
 pub fn predicted_fmax(plan: &Plan) -> Option<f64> {
-    Some(line_of(plan).ok()?.fmax_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz())).min(handshake_cap(plan).map_or(f64::INFINITY, |c| c.0)))
+    Some(under_caps(plan, line_of(plan).ok()?.fmax_of(plan)))
+}
+
+/// `mhz` under the limits of the blocks `plan` uses and a handshake unit's measured ceiling.
+fn under_caps(plan: &Plan, mhz: f64) -> f64 {
+    mhz.min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz())).min(handshake_cap(plan).map_or(f64::INFINITY, |c| c.0))
 }
 
 /// The Fmax the delay model assures for `plan` (what `--target-mhz` compares with its target:
 /// [`Line::assured_of`] under the blocks' limits and a handshake's ceiling), in MHz. None for a
 /// datapath without calibration.
 pub fn assured_fmax(plan: &Plan) -> Option<f64> {
-    Some(line_of(plan).ok()?.assured_of(plan).min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz())).min(handshake_cap(plan).map_or(f64::INFINITY, |c| c.0)))
+    Some(under_caps(plan, line_of(plan).ok()?.assured_of(plan)))
 }
 
 /// A `ready`/`axis` unit's ceiling on its family: the most such a unit was measured at (the
