@@ -539,6 +539,15 @@ pub fn choose(
     if !chosen.is_empty() {
         errln!("max-error: chosen for you: {}", chosen.join(" "));
     }
+    if let (true, Some(b)) = (given.contains(&"dsp_budget"), params.dsp_budget) {
+        if p.params.dsp_budget != Some(b) {
+            errln!(
+                "max-error: --dsp-budget {b} is met: the unit takes {} DSP blocks written {}, as it was measured (the same RTL)",
+                m.dsp_blocks,
+                p.params.dsp_budget.map_or("without a budget".to_string(), |x| format!("with --dsp-budget {x}"))
+            );
+        }
+    }
     if !c.stale.is_empty() {
         errln!("max-error: passed over, measured on an older RTL: {}", c.stale.join(", "));
     }

@@ -636,9 +636,13 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
     let base = q.base;
     let mut keys: Vec<&str> = vec!["n_bits", "color_bits", "target"];
     keys.extend(EDGE_KEYS);
-    keys.extend(q.given.iter().copied().filter(|k| CHOICE_KEYS.contains(k)));
+    // a budget given is a ceiling, not a shape: a unit of another budget (or none) that takes
+    // no more blocks meets it
+    let budget = if q.given.contains(&"dsp_budget") { base.dsp_budget } else { None };
+    keys.extend(q.given.iter().copied().filter(|k| CHOICE_KEYS.contains(k) && *k != "dsp_budget"));
     let fits = |p: &&Point| keys.iter().all(|k| field(&p.params, k) == field(base, k));
-    let measured: Vec<&Point> = e.points.iter().filter(fits).filter(|p| p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some())).collect();
+    let kept = |p: &&Point| budget.is_none_or(|b| under_budget(p, b));
+    let measured: Vec<&Point> = e.points.iter().filter(fits).filter(kept).filter(|p| p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some())).collect();
     let reach = |p: &&Point| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= q.mhz);
     let mut reaching: Vec<&Point> = measured.iter().copied().filter(reach).collect();
     reaching.sort_by(|a, b| a.cells().cmp(&b.cells()).then(b.fmax().unwrap_or(0.0).total_cmp(&a.fmax().unwrap_or(0.0))).then(a.id.cmp(&b.id)));
@@ -727,6 +731,13 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
             q.mhz
         ),
     })
+}
+
+/// Whether `p` keeps to a DSP budget of `b` blocks: its own budget is `b`, or its measurement
+/// takes at most `b` blocks (a unit of another budget, or none, whose RTL the budget would not
+/// change in function: it is written as measured, its digest the measurement's).
+fn under_budget(p: &Point, b: u32) -> bool {
+    p.params.dsp_budget == Some(b) || p.measured.as_ref().is_some_and(|m| m.dsp_blocks <= b as u64)
 }
 
 /// A figure in three significant digits.

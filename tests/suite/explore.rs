@@ -349,6 +349,38 @@ fn a_handshake_unit_is_not_promised_what_its_buffer_cannot_do() {
     }
 }
 
+/// A `--dsp-budget` given beside `--max-error` is a ceiling: the choice is the cheapest measured
+/// unit taking at most that many blocks, whatever budget (or none) it was measured with, and the
+/// unit is written as it was measured (its RTL the measurement's), saying the budget is met.
+#[test]
+fn a_dsp_budget_beside_max_error_is_a_ceiling() {
+    let tmp = tempfile::tempdir().unwrap();
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let e: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(root.join("data/explore/ice40.json")).unwrap()).unwrap();
+    let (bound, mhz, budget) = (0.3, 100.0, 6u64);
+    // the cheapest by the file's figures, at the default edge and widths N, B
+    let meets = |p: &&serde_json::Value| {
+        let m = &p["measured"];
+        p["params"]["interface"] == "valid"
+            && p["params"]["n_bits"] == 10
+            && p["params"]["color_bits"] == 8
+            && m["fmax_mhz"].as_f64().is_some_and(|f| f >= mhz)
+            && m["dsp_blocks"].as_u64().is_some_and(|d| d <= budget)
+            && p["accuracy"]["pixel"]["max"].as_f64().is_some_and(|x| x <= bound)
+    };
+    let cheapest = e["points"].as_array().unwrap().iter().filter(meets).map(|p| p["measured"]["logic_cells"].as_u64().unwrap()).min();
+    let cheapest = cheapest.expect("the built-in exploration holds a unit of at most 6 DSP blocks at 100 MHz within 0.3");
+    let out = tmp.path().join("u");
+    let args = ["--max-error", "0.3", "--target-mhz", "100", "--dsp-budget", "6"];
+    let o = output_guarded(specgen().arg("generate").args(args).arg("--out").arg(&out), "generate");
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{said}");
+    let cells: u64 = said.split(" logic cells").next().unwrap().rsplit(' ').next().unwrap().parse().unwrap_or_else(|_| panic!("{said}"));
+    let blocks: u64 = said.split(" DSP blocks").next().unwrap().rsplit(' ').next().unwrap().parse().unwrap_or_else(|_| panic!("{said}"));
+    assert!(blocks <= budget && cells == cheapest, "{cells} cells, {blocks} blocks; the cheapest meeting both: {cheapest}: {said}");
+    assert!(said.contains("--dsp-budget 6 is met"), "{said}");
+}
+
 /// The exploration issue's two refusals: a budgeted blinn at 100 MHz on the UP5K and lean's
 /// table as logic at 250 MHz on the ECP5 are picked: from measured units of exactly that
 /// configuration (median over seeds at or above the clock) where the delay model alone refuses,
