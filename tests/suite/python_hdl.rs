@@ -95,3 +95,57 @@ fn a_wrapper_refuses_a_manifest_of_other_widths() {
         assert!(!o.status.success() && e.contains("port cos_g is ('input', 9) in this wrapper but ('input', 10)"), "{kind}: {e}");
     }
 }
+
+/// The component through Amaranth's own build: the unit inside a user's top on the iCEBreaker
+/// (tb/python/icebreaker_top.py) built by amaranth-boards' `ICEBreakerPlatform` with the open
+/// tools to a bitstream, nothing added by hand; the placed design holds the unit (at least the
+/// logic cells `synth` places for it beside its serial wrapper's, less that wrapper's registers)
+/// and its clock is `synth`'s within the top's own routes (median over the same seeds, at least
+/// 90 %; `scripts/bench_amaranth.sh` measures the default unit over twenty seeds).
+#[test]
+fn the_amaranth_component_builds_an_icebreaker_bitstream_as_synth_places_the_unit() {
+    for (t, package) in [("yosys", "yosys"), ("nextpnr-ice40", "nextpnr-ice40"), ("icepack", "fpga-icestorm"), ("python3", "python3")] {
+        require_tool(t, package);
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let unit = generate(tmp.path(), "u", &["--cos-frac-bits", "10", "--intensity-frac-bits", "10", "--stages", "6", "--clock-mhz", "100"]);
+    let seeds = 3;
+    let json = tmp.path().join("synth.json");
+    let o = output_guarded(specgen().args(["synth", "--dsp", "--seeds", &seeds.to_string(), "--rtl"]).arg(&unit).arg("--json").arg(&json), "synth");
+    assert!(o.status.success(), "synth: {}", String::from_utf8_lossy(&o.stderr));
+    let synth: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let mut fmax = Vec::new();
+    let mut cells = 0u64;
+    for seed in 1..=seeds {
+        let build = tmp.path().join(format!("build{seed}"));
+        let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tb/python/icebreaker_top.py");
+        let args = [script, unit.to_str().unwrap(), build.to_str().unwrap(), "100", &seed.to_string()];
+        let o = output_guarded(tool("python3").args(args), "icebreaker_top.py");
+        assert!(o.status.success(), "Amaranth's build: {}", String::from_utf8_lossy(&o.stderr));
+        let bitstream = std::fs::read(build.join("top.bin")).unwrap();
+        // an iCE40 bitstream: its synchronisation word, and the UP5K's size
+        assert!(bitstream.len() > 100_000 && bitstream.windows(4).any(|w| w == [0x7e, 0xaa, 0x99, 0x7e]), "{} bytes", bitstream.len());
+        let log = std::fs::read_to_string(build.join("top.tim")).unwrap();
+        let mhz = log.lines().filter_map(|l| l.split("Max frequency for clock 'clk': ").nth(1)).last().expect("nextpnr's Fmax");
+        fmax.push(mhz.split(' ').next().unwrap().parse::<f64>().unwrap());
+        let lc = log.lines().find_map(|l| l.split("ICESTORM_LC:").nth(1)).expect("nextpnr's utilisation");
+        cells = lc.trim().split('/').next().unwrap().trim().parse().unwrap();
+    }
+    fmax.sort_by(f64::total_cmp);
+    let (ours, theirs) = (fmax[fmax.len() / 2], synth["fmax_route_mhz"].as_f64().unwrap());
+    assert!(ours >= 0.9 * theirs, "Amaranth's build {ours} MHz (seeds {fmax:?}), synth {theirs} MHz");
+    // the unit is all there (a logic cell holds one LUT and one flip-flop: the unit's own, as
+    // synth counts them before its wrapper, need that many), and nothing but the top's own cost
+    // beside it (its LFSR, boot and a flip-flop or two a result bit, over synth's cells, whose
+    // serial wrapper costs more than that)
+    let own = |k: &str| synth[k].as_u64().unwrap();
+    let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(unit.join("specular_unit.json")).unwrap()).unwrap();
+    let out_bits: u64 = m["ports"].as_array().unwrap().iter().filter(|p| p["direction"] == "output").map(|p| p["width"].as_u64().unwrap()).sum();
+    assert!(
+        cells >= own("luts").max(own("flip_flops")),
+        "the build places {cells} logic cells, the unit alone has {} LUTs, {} flip-flops",
+        own("luts"),
+        own("flip_flops")
+    );
+    assert!(cells <= own("logic_cells") + 40 + 2 * out_bits, "the build places {cells} logic cells, synth {}", own("logic_cells"));
+}
