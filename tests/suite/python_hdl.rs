@@ -126,7 +126,7 @@ fn the_amaranth_component_builds_an_icebreaker_bitstream_as_synth_places_the_uni
         // an iCE40 bitstream: its synchronisation word, and the UP5K's size
         assert!(bitstream.len() > 100_000 && bitstream.windows(4).any(|w| w == [0x7e, 0xaa, 0x99, 0x7e]), "{} bytes", bitstream.len());
         let log = std::fs::read_to_string(build.join("top.tim")).unwrap();
-        let mhz = log.lines().filter_map(|l| l.split("Max frequency for clock 'clk': ").nth(1)).last().expect("nextpnr's Fmax");
+        let mhz = log.lines().rev().filter_map(|l| l.split("Max frequency for clock 'clk': ").nth(1)).next().expect("nextpnr's Fmax");
         fmax.push(mhz.split(' ').next().unwrap().parse::<f64>().unwrap());
         let lc = log.lines().find_map(|l| l.split("ICESTORM_LC:").nth(1)).expect("nextpnr's utilisation");
         cells = lc.trim().split('/').next().unwrap().trim().parse().unwrap();
