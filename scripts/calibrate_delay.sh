@@ -9,7 +9,7 @@
 # target/calibrate, keeps them). The explorations' calibration rows (family, datapath, stages,
 # the plan's slowest and mean stretch, nextpnr's median, its seeds, the generate flags beyond the
 # defaults) replace the rows of the same unit in data/delay_calibration.csv; the rest stay (the
-# wide lean on the ECP5). Then scripts/fit_delay_model.py fits data/delay_model.json from it.
+# wide lean on the ECP5). Then `specgen calibrate --calibration data/delay_calibration.csv --out data/delay_model.json` fits the model to it.
 # FAMILIES (default "ice40 ecp5") and MODELS (default every model but blinn-pow, which fits
 # neither part) narrow it.
 source "$(dirname "$0")/bench_common.sh"
@@ -32,4 +32,4 @@ for family in ${FAMILIES:-ice40 ecp5}; do
 done
 [ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args" > "$out"
 python3 scripts/merge_calibration.py "$out" "$WORK"/*/plan/calibration.csv
-echo "wrote $out; fit it with scripts/fit_delay_model.py" >&2
+echo "wrote $out; fit it with specgen calibrate --calibration $out --out data/delay_model.json" >&2

@@ -192,6 +192,48 @@ pub fn stale(a: &StaleArgs) -> Result<(), Failure> {
     }
 }
 
+#[derive(clap::Args, Debug, Clone)]
+pub struct CalibrateArgs {
+    /// The calibration rows (CSV: family, model, stages, …, fmax_mhz, fmax_seeds, args,
+    /// rtl_sha256)
+    #[arg(long, value_name = "FILE")]
+    pub calibration: PathBuf,
+    /// Where the fitted model goes (JSON), written atomically; never the --calibration file
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+}
+
+/// `specgen calibrate`: the delay model fitted to a calibration CSV, each line's fit printed.
+pub fn calibrate(a: &CalibrateArgs) -> Result<(), Failure> {
+    if specgen::output::same_file(&a.calibration, &a.out) {
+        return Err(usage(format!("invalid --out: {} is the --calibration file this command reads", a.out.display())));
+    }
+    let text = specgen::small_file::read(&a.calibration, 64 << 20).map_err(|e| usage(format!("invalid --calibration: {} {e}", a.calibration.display())))?;
+    let model = specgen::timing::fit::fit_calibration(&text, &a.calibration.display().to_string())?;
+    let mut json = serde_json::to_string_pretty(&model).expect("JSON");
+    json.push('\n');
+    specgen::output::write_file(&a.out, json.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", a.out.display())))?;
+    for (family, lines) in model.as_object().into_iter().flatten().filter(|(k, _)| *k != "source") {
+        for (name, m) in lines.as_object().into_iter().flatten() {
+            match m.as_object() {
+                None => outln!("{family} {name}: the family's line")?,
+                Some(m) => outln!(
+                    "{family} {name}: period = {} + {}*e + {}*m ns, cap {} MHz, margin {} (measured/predicted {}..{}) over {} units",
+                    m["offset_ns"],
+                    m["ns_per_unit"],
+                    m["ns_per_mean_unit"],
+                    m["cap_mhz"],
+                    m["margin"],
+                    m["worst_under"],
+                    m["worst_over"],
+                    m["points"]
+                )?,
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The most jobs a plan holds; the largest jobs file.
 const MAX_JOBS: usize = 100_000;
 const MAX_JOBS_BYTES: u64 = 256 << 20;

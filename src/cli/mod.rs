@@ -130,6 +130,11 @@ pub enum Command {
     /// List the measured rows of the explorations `generate --max-error` chooses from that are
     /// not of today's RTL (their jobs' RTL digest is another): exit 1 when any is.
     Stale(explore::StaleArgs),
+    /// Fit the delay model of --target-mhz to a calibration CSV (data/delay_calibration.csv's
+    /// columns): per family and datapath, the clock period as a plane in the slowest and the mean
+    /// stretch of logic, its cap and margin, and each row kept as a floor; written as JSON
+    /// (data/delay_model.json's form) to --out. Every row's stretches are planned here.
+    Calibrate(explore::CalibrateArgs),
     /// What this specgen offers, for scripts (never parse an error message): its version, the
     /// models, the targets (with their parts, and whether a delay model and a built-in
     /// exploration speak for them), and the deepest pipeline of the configuration the flags give.
@@ -623,6 +628,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Explore(args) => explore::run(&args),
         Command::Measure(args) => explore::measure(&args),
         Command::Stale(args) => explore::stale(&args),
+        Command::Calibrate(args) => explore::calibrate(&args),
         Command::Info { json: _, params, rtl } => info::run(&params, rtl),
         Command::Vectors(args) => vectors(&args),
         Command::Report { out, force, hw, explored, params } => {

@@ -553,16 +553,19 @@ struct DelayRamTemplate<'a> {
 /// and the tag's, each pair once, in order.
 pub fn delay_rams(plan: &Plan) -> Vec<(u32, u32)> {
     let mut out: Vec<(u32, u32)> = Vec::new();
-    let lines = cut_list(&plan.datapath, plan.cfg.target()).into_iter().flat_map(|c| c.lines).chain(crate::interface::tag_line(plan));
-    for l in lines {
-        if let Some((_, cuts)) = l.memory_tail() {
-            let p = (l.word(), cuts as u32);
-            if !out.contains(&p) {
-                out.push(p);
-            }
+    for p in delay_ram_tails(plan) {
+        if !out.contains(&p) {
+            out.push(p);
         }
     }
     out
+}
+
+/// The (word bits, cuts) of every delay line's tail in RAM, one entry a tail (an instance of
+/// `<top>_delay_ram` each), in order.
+pub fn delay_ram_tails(plan: &Plan) -> Vec<(u32, u32)> {
+    let lines = cut_list(&plan.datapath, plan.cfg.target()).into_iter().flat_map(|c| c.lines).chain(crate::interface::tag_line(plan));
+    lines.filter_map(|l| l.memory_tail().map(|(_, cuts)| (l.word(), cuts as u32))).collect()
 }
 
 /// The FuseSoC VLNV of a configuration: `specgen:specular:<top>-<digest>:<version>`, the digest

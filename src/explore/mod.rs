@@ -238,9 +238,12 @@ pub struct Estimate {
     pub stage_delay_mean: f64,
 }
 
-/// The cost estimate of a plan: each wire by its kind (a sum or logic a LUT a bit, a table
+/// The cost estimate of a plan, as `synth` measures it (the unit inside its serial wrapper,
+/// [`crate::synth::wrapper_cost`]): each wire by its kind (a sum or logic a LUT a bit, a table
 /// in LUTs two, a product the family leaves in LUTs half its partial-product bits, a product
-/// on a block none), every registered cut's live bits a flip-flop each.
+/// on a block none), every registered cut's live bits a flip-flop each, but those a delay line
+/// keeps in RAM (`crate::emit::delay_ram_tails`). Over the built-in explorations' measured
+/// points its median is within 10 % of synth's and most points are (a test holds both).
 pub fn estimate(plan: &Plan) -> Estimate {
     let dp = &plan.datapath;
     let family = crate::family::of(plan.cfg.target());
@@ -254,9 +257,27 @@ pub fn estimate(plan: &Plan) -> Estimate {
             Kind::Product(..) => 0,
         };
     }
-    let flip_flops: u64 = dp.registered.iter().filter_map(|&k| dp.live.get(k as usize - 1)).flatten().map(|l| l.width as u64).sum();
+    let mut flip_flops: u64 = dp.registered.iter().filter_map(|&k| dp.live.get(k as usize - 1)).flatten().map(|l| l.width as u64).sum();
     let dsp_blocks = dp.product_uses.iter().filter(|u| !u.fabric).map(|u| u.blocks as u64).sum();
-    let block_rams = dp.reads.iter().filter(|r| r.block).map(|r| r.table).collect::<BTreeSet<_>>().len() as u64;
+    let mut block_rams = dp.reads.iter().filter(|r| r.block).map(|r| r.table).collect::<BTreeSet<_>>().len() as u64;
+    // a delay line's tail in RAM: its words leave the flip-flops for the memory, which costs a
+    // read register of the word, two address counters (a carry a bit) and, in block RAM, a
+    // block per 16 bits of the word (256 words deep: every tail is shorter); in LUT RAM, a
+    // 16-word, 4-bit TRELLIS_DPR16X4 (two LUTs' room) per 4 bits and 16 words
+    for (word, cuts) in crate::emit::delay_ram_tails(plan) {
+        let (word, cuts) = (word as u64, cuts as u64);
+        let address = 64 - (cuts.max(2) - 1).leading_zeros() as u64;
+        flip_flops = flip_flops.saturating_sub(word * cuts) + word + 2 * address;
+        luts += 2 * address;
+        if family.distributed_ram() {
+            luts += 2 * word.div_ceil(4) * cuts.div_ceil(16);
+        } else {
+            block_rams += word.div_ceil(16);
+        }
+    }
+    // the figures are compared with synth's, which are of the unit inside its serial wrapper
+    let (wrapper_luts, wrapper_flip_flops) = crate::synth::wrapper_cost(&plan.cfg);
+    let (luts, flip_flops) = (luts + wrapper_luts, flip_flops + wrapper_flip_flops);
     Estimate {
         luts,
         flip_flops,

@@ -334,3 +334,24 @@ fn the_depth_search_reads_todays_measured_units_first() {
         Err(e) => assert!(!e.reason().contains("measured:"), "{}", e.reason()),
     }
 }
+
+/// The cost estimate is of what synth measures: over every measured point of the built-in
+/// explorations, the median of estimate / measured logic cells is within 10 % of 1 and most
+/// points are within 10 %.
+#[test]
+fn the_estimate_is_near_what_synth_measures() {
+    for target in [crate::config::Target::Ice40, crate::config::Target::Ecp5] {
+        let e = built_in(target).unwrap().unwrap();
+        let mut ratios: Vec<f64> = e
+            .points
+            .iter()
+            .filter_map(|p| Some((p, p.measured.as_ref()?.logic_cells?)))
+            .map(|(p, cells)| estimate(&Plan::new(Config::new(p.params.clone()).unwrap()).unwrap()).logic_cells as f64 / cells as f64)
+            .collect();
+        ratios.sort_by(f64::total_cmp);
+        let median = ratios[ratios.len() / 2];
+        let near = ratios.iter().filter(|r| (*r - 1.0).abs() <= 0.1).count();
+        assert!((0.9..=1.1).contains(&median), "{target:?}: estimate / measured, median {median:.2}");
+        assert!(2 * near > ratios.len(), "{target:?}: {near} of {} points within 10 %", ratios.len());
+    }
+}

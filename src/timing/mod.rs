@@ -3,7 +3,7 @@
 //! `explore::depth_for_clock`, the one depth search; this module is its fallback.)
 //!
 //! **The rules, in order.**
-//! 1. *A line per datapath and family*, fitted by least squares (`scripts/fit_delay_model.py`)
+//! 1. *A line per datapath and family*, fitted by least squares (`specgen calibrate`, `timing::fit`)
 //!    to the median Fmax of the calibration units (`data/delay_calibration.csv`):
 //!    `period_ns = offset_ns + ns_per_unit·e + ns_per_mean_unit·m`, `Fmax = min(cap_mhz,
 //!    1000/period_ns)`, where `e` is the plan's slowest stretch between registers and `m` the
@@ -39,7 +39,7 @@ use serde::Deserialize;
 /// and fails where this margin is above it, never where the data improves.
 pub const CORNER_MARGIN: f64 = 0.89;
 
-/// The fitted lines, `scripts/fit_delay_model.py`'s output.
+/// The fitted lines, `specgen calibrate`'s output (`fit`).
 const MODEL_JSON: &str = include_str!("../../data/delay_model.json");
 
 /// What shapes a datapath's delays beyond its depth: the widths, the rounding, the ROM style
@@ -543,7 +543,7 @@ pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
             return Err(Error::Config {
                 parameter: "target_mhz",
                 message: format!(
-                    "the {datapath} datapath has no delay calibration on the {}: run scripts/calibrate_delay.sh, then scripts/fit_delay_model.py, to measure it (or give --stages)",
+                    "the {datapath} datapath has no delay calibration on the {}: run scripts/calibrate_delay.sh, then specgen calibrate, to measure it (or give --stages)",
                     part(target)
                 ),
             })
@@ -689,3 +689,5 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
 
 #[cfg(test)]
 mod tests;
+
+pub mod fit;

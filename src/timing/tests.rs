@@ -250,3 +250,14 @@ fn leave_one_width_out() {
     eprintln!("leave_one_width_out: {tried} units, worst measured/read {worst:.4}");
     assert!(CORNER_MARGIN <= worst, "the worst ratio {worst:.3} is below CORNER_MARGIN");
 }
+
+/// The shipped delay model is the fit of the shipped calibration (`specgen calibrate`): a row
+/// added, changed or removed without a refit, or a change to the stretches' estimates that the
+/// model was not refitted for, fails here.
+#[test]
+fn the_shipped_model_is_the_fit_of_the_shipped_calibration() {
+    let csv = include_str!("../../data/delay_calibration.csv");
+    let fitted = super::fit::fit_calibration(csv, "data/delay_calibration.csv").unwrap();
+    let shipped: serde_json::Value = serde_json::from_str(include_str!("../../data/delay_model.json")).unwrap();
+    assert!(fitted == shipped, "data/delay_model.json is not the fit of data/delay_calibration.csv: run specgen calibrate --calibration data/delay_calibration.csv --out data/delay_model.json");
+}

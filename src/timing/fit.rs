@@ -1,0 +1,203 @@
+//! The delay model's fit: `data/delay_model.json` from `data/delay_calibration.csv`, in the
+//! binary (`specgen calibrate`), the features of each row planned here (no unit generated).
+//!
+//! Per family, a unit's clock period is the plane `offset + a·e + b·m` in its slowest stretch of
+//! logic `e` and its mean stretch `m` (`Plan::stage_delay`, `Plan::stage_delay_mean`, rounded to
+//! hundredths as the manifest states them), fitted by least squares to `1000 / fmax` with
+//! non-negative slopes (else the line in one of them, or a constant: the best of those). `cap`
+//! is the family's highest median; `cap_up_to` the longest `e` that reached it with no slower
+//! unit as short. `margin` is the worst measured / predicted over the rows the line speaks for
+//! (at most 1): what the model assures is its prediction times the margin. A line per family
+//! ("all") and per model of three rows or more, which also keeps its rows (features, median,
+//! widths, depth, digest): the floors `Line::of_todays_rtl` reads.
+
+use crate::config::{Arch, Params, SpecularModel, Target};
+use crate::error::Error;
+use crate::plan::Plan;
+use serde_json::{json, Map, Value};
+
+/// Datapaths that take the family's line though never measured on their own.
+const FAMILY_LINE: [&str; 2] = ["paper", "blinn-pow"];
+
+/// At most this many calibration rows are read.
+pub const MAX_ROWS: usize = 100_000;
+
+/// One measured row, with its features.
+struct Row {
+    model: String,
+    stages: u32,
+    est: f64,
+    mean: f64,
+    fmax: f64,
+    args: String,
+    digest: String,
+}
+
+fn bad(message: String) -> Error {
+    Error::Config { parameter: "calibration", message }
+}
+
+/// The parameters of a calibration row's unit: its datapath by name (`lean`, `paper` or a
+/// model), its family and depth, its `args` (the widths) applied.
+fn row_params(family: &str, model: &str, stages: u32, args: &str) -> Option<Params> {
+    let target = Target::ALL.into_iter().find(|t| t.name() == family)?;
+    let (model, arch) = match model {
+        "lean" => (SpecularModel::Quadratic, Arch::Lean),
+        "paper" => (SpecularModel::Quadratic, Arch::Paper),
+        m => (SpecularModel::ALL.into_iter().find(|x| x.name() == m)?, Arch::Lean),
+    };
+    let base = Params { model, arch, target, ..Default::default() };
+    Some(Params { stages, ..super::params_with_args(&base, args)? })
+}
+
+/// Solves the square system `a x = b` (Gaussian elimination, partial pivoting).
+fn solve(a: Vec<Vec<f64>>, b: Vec<f64>) -> Option<Vec<f64>> {
+    let n = b.len();
+    let mut m: Vec<Vec<f64>> = a.into_iter().zip(b).map(|(mut row, v)| (row.push(v), row).1).collect();
+    for i in 0..n {
+        let p = (i..n).max_by(|&x, &y| m[x][i].abs().total_cmp(&m[y][i].abs()).then(y.cmp(&x)))?;
+        m.swap(i, p);
+        if m[i][i].abs() < 1e-12 {
+            return None;
+        }
+        for r in 0..n {
+            if r != i {
+                let k = m[r][i] / m[i][i];
+                let pivot = m[i].clone();
+                m[r].iter_mut().zip(&pivot).for_each(|(x, y)| *x -= k * y);
+            }
+        }
+    }
+    Some((0..n).map(|i| m[i][n] / m[i][i]).collect())
+}
+
+/// `period = c0 + Σ c_k · feature_k` by least squares: the coefficients and the squared error.
+fn least_squares(rows: &[&Row], features: &[&str]) -> Option<(Vec<f64>, f64)> {
+    let get = |r: &Row, f: &str| if f == "est" { r.est } else { r.mean };
+    let xs: Vec<Vec<f64>> = rows.iter().map(|r| std::iter::once(1.0).chain(features.iter().map(|f| get(r, f))).collect()).collect();
+    let ys: Vec<f64> = rows.iter().map(|r| 1000.0 / r.fmax).collect();
+    let k = features.len() + 1;
+    let ata = (0..k).map(|i| (0..k).map(|j| xs.iter().map(|x| x[i] * x[j]).sum()).collect()).collect();
+    let aty = (0..k).map(|i| xs.iter().zip(&ys).map(|(x, y)| x[i] * y).sum()).collect();
+    let c = solve(ata, aty)?;
+    let err = xs.iter().zip(&ys).map(|(x, y)| (y - c.iter().zip(x).map(|(a, b)| a * b).sum::<f64>()).powi(2)).sum();
+    Some((c, err))
+}
+
+/// `x` to `digits` decimals, correctly rounded (the nearest decimal to its exact binary value).
+fn round(x: f64, digits: usize) -> f64 {
+    format!("{x:.digits$}").parse().expect("a decimal")
+}
+
+/// A stretch as the manifest states it (hundredths, `emit`'s rounding).
+fn hundredths(x: f64) -> f64 {
+    (x * 100.0).round() / 100.0
+}
+
+/// The line of `rows` under `cap`: the plane (or line, or constant) with non-negative slopes
+/// that fits best, its cap's reach and its margin.
+fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
+    let mut best: Option<(&[&str], Vec<f64>, f64)> = None;
+    for features in [&["est", "mean"][..], &["mean"], &["est"], &[]] {
+        if rows.len() < features.len() + 1 {
+            continue;
+        }
+        let Some((c, err)) = least_squares(rows, features) else { continue };
+        if c[1..].iter().any(|&x| x < 0.0) {
+            continue;
+        }
+        if best.as_ref().is_none_or(|b| err < b.2 - 1e-9) {
+            best = Some((features, c, err));
+        }
+    }
+    let (features, c, _) = best.expect("a constant fits any row");
+    let coef = |f: &str| features.iter().position(|x| *x == f).map_or(0.0, |i| c[i + 1]);
+    let below = rows.iter().filter(|r| r.fmax < 0.99 * cap).map(|r| r.est).fold(f64::INFINITY, f64::min);
+    let at_cap = rows.iter().filter(|r| r.fmax >= 0.99 * cap && r.est < below).map(|r| r.est).fold(f64::NEG_INFINITY, f64::max);
+    let (offset, per_unit, per_mean) = (round(c[0], 4), round(coef("est"), 4), round(coef("mean"), 4));
+    let cap_up_to = if at_cap.is_finite() { round(at_cap, 4) } else { -1.0 };
+    let predict = |r: &Row| if r.est <= cap_up_to { cap } else { cap.min(1000.0 / (offset + per_unit * r.est + per_mean * r.mean).max(1e-6)) };
+    let ratios: Vec<f64> = rows.iter().filter(|r| r.est > cap_up_to).map(|r| r.fmax / predict(r)).collect();
+    let ratios = if ratios.is_empty() { vec![1.0] } else { ratios };
+    let (under, over) = (ratios.iter().copied().fold(f64::INFINITY, f64::min), ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+    let line = json!({
+        "offset_ns": offset,
+        "ns_per_unit": per_unit,
+        "ns_per_mean_unit": per_mean,
+        "cap_mhz": round(cap, 2),
+        "cap_up_to": cap_up_to,
+        "margin": round(under.min(1.0), 4),
+        "points": rows.len(),
+        "worst_under": round(under, 4),
+        "worst_over": round(over, 4),
+    });
+    match line {
+        Value::Object(m) => m,
+        _ => unreachable!("an object"),
+    }
+}
+
+/// The delay model fitted to a calibration CSV's text (`family,model,stages,…,fmax_mhz,
+/// fmax_seeds,args,rtl_sha256`), as `data/delay_model.json` holds it; `source` names the CSV.
+/// Err: a row that is not a calibration unit (named by its line).
+pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).ok_or_else(|| bad(format!("{source} has no column {name}")));
+    let (family_c, model_c, stages_c, fmax_c, args_c) = (col("family")?, col("model")?, col("stages")?, col("fmax_mhz")?, col("args")?);
+    let digest_c = col("rtl_sha256").ok();
+    let mut by_family: std::collections::BTreeMap<String, Vec<Row>> = Default::default();
+    for (i, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
+        if i >= MAX_ROWS {
+            return Err(bad(format!("{source} holds more than {MAX_ROWS} rows; allowed at most {MAX_ROWS}")));
+        }
+        let cells: Vec<&str> = line.split(',').collect();
+        let cell = |c: usize| cells.get(c).copied().unwrap_or("").trim();
+        if cell(fmax_c).is_empty() {
+            continue;
+        }
+        let what = || format!("{source} line {}: {line}", i + 2);
+        let stages: u32 = cell(stages_c).parse().map_err(|_| bad(format!("{}: stages is no count", what())))?;
+        let fmax: f64 =
+            cell(fmax_c).parse().ok().filter(|f: &f64| *f > 0.0 && f.is_finite()).ok_or_else(|| bad(format!("{}: fmax_mhz is no clock", what())))?;
+        let (family, model, args) = (cell(family_c), cell(model_c), cell(args_c).split_whitespace().collect::<Vec<_>>().join(" "));
+        let params = row_params(family, model, stages, &args).ok_or_else(|| bad(format!("{}: no calibration unit (family, datapath or args)", what())))?;
+        let plan = Plan::new(crate::config::Config::new(params).map_err(|e| bad(format!("{}: {e}", what())))?).map_err(|e| bad(format!("{}: {e}", what())))?;
+        by_family.entry(family.to_string()).or_default().push(Row {
+            model: model.to_string(),
+            stages,
+            est: hundredths(plan.stage_delay()),
+            mean: hundredths(plan.stage_delay_mean()),
+            fmax,
+            args,
+            digest: digest_c.map(cell).unwrap_or("").to_string(),
+        });
+    }
+    let mut model = Map::new();
+    for (family, rows) in &by_family {
+        let cap = rows.iter().map(|r| r.fmax).fold(0.0, f64::max);
+        let all: Vec<&Row> = rows.iter().collect();
+        let mut lines = Map::new();
+        lines.insert("all".into(), Value::Object(fit(&all, cap)));
+        let names: std::collections::BTreeSet<&str> = rows.iter().map(|r| r.model.as_str()).collect();
+        for name in &names {
+            let mut mine: Vec<&Row> = rows.iter().filter(|r| r.model == *name).collect();
+            if mine.len() < 3 {
+                continue;
+            }
+            let mut line = fit(&mine, cap);
+            mine.sort_by(|a, b| a.args.cmp(&b.args).then(a.stages.cmp(&b.stages)));
+            line.insert("measured".into(), json!(mine.iter().map(|r| json!([r.est, r.mean, round(r.fmax, 2)])).collect::<Vec<_>>()));
+            line.insert("measured_args".into(), json!(mine.iter().map(|r| r.args.clone()).collect::<Vec<_>>()));
+            line.insert("measured_stages".into(), json!(mine.iter().map(|r| r.stages).collect::<Vec<_>>()));
+            line.insert("measured_digest".into(), json!(mine.iter().map(|r| r.digest.clone()).collect::<Vec<_>>()));
+            lines.insert(name.to_string(), Value::Object(line));
+        }
+        for name in names.iter().copied().chain(FAMILY_LINE) {
+            lines.entry(name.to_string()).or_insert_with(|| json!("all"));
+        }
+        model.insert(family.clone(), Value::Object(lines));
+    }
+    model.insert("source".into(), json!(source));
+    Ok(Value::Object(model))
+}
