@@ -684,3 +684,38 @@ fn explore_takes_the_interface_the_units_are_measured_with() {
     assert_eq!(o.status.code(), Some(2), "{said}");
     assert!(said.contains("specgen explore --target ice40") && said.contains("--interface axis --clocks 90"), "{said}");
 }
+
+/// `specgen calibrate` fits the shipped rows to the shipped model, refuses to write over the
+/// rows it reads, and refuses a row that is no calibration unit naming its line (exit 2,
+/// nothing written).
+#[test]
+fn calibrate_fits_the_shipped_rows_and_refuses_what_it_cannot_read() {
+    let tmp = tempfile::tempdir().unwrap();
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = tmp.path().join("model.json");
+    let o = output_guarded(specgen().arg("calibrate").arg("--calibration").arg(root.join("data/delay_calibration.csv")).arg("--out").arg(&out), "calibrate");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut fitted: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let mut shipped: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(root.join("data/delay_model.json")).unwrap()).unwrap();
+    // the same lines; `source` names the file as given
+    assert!(fitted["source"].as_str().unwrap().ends_with("data/delay_calibration.csv"));
+    for m in [&mut fitted, &mut shipped] {
+        m.as_object_mut().unwrap().remove("source");
+    }
+    assert!(fitted == shipped, "the fit of the shipped rows is not the shipped model");
+    let csv = tmp.path().join("rows.csv");
+    std::fs::write(
+        &csv,
+        "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args,rtl_sha256\nice40,lean,3,0,0,90.0,90.0,--cos-frac-bits 99,\n",
+    )
+    .unwrap();
+    let bad = tmp.path().join("bad.json");
+    let o = output_guarded(specgen().arg("calibrate").arg("--calibration").arg(&csv).arg("--out").arg(&bad), "calibrate");
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{said}");
+    assert!(said.contains("line 2") && said.contains("cos_frac_bits"), "{said}");
+    assert!(!bad.exists());
+    let o = output_guarded(specgen().arg("calibrate").arg("--calibration").arg(&csv).arg("--out").arg(&csv), "calibrate");
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read_to_string(&csv).unwrap().contains("--cos-frac-bits 99"));
+}
