@@ -10,6 +10,7 @@ mod embedding;
 mod every_model;
 mod exhaustive;
 mod explore;
+mod figures;
 mod gowin;
 mod hostile;
 mod interfaces;
