@@ -213,7 +213,12 @@ pub fn calibrate(a: &CalibrateArgs) -> Result<(), Failure> {
     let mut json = serde_json::to_string_pretty(&model).expect("JSON");
     json.push('\n');
     specgen::output::write_file(&a.out, json.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", a.out.display())))?;
-    for (family, lines) in model.as_object().into_iter().flatten().filter(|(k, _)| *k != "source") {
+    for (family, caps) in model["handshake"].as_object().into_iter().flatten() {
+        for (name, c) in caps.as_object().into_iter().flatten() {
+            outln!("{family} {name} with the output buffer: at most {} MHz ({})", c["mhz"], c["unit"].as_str().unwrap_or(""))?;
+        }
+    }
+    for (family, lines) in model.as_object().into_iter().flatten().filter(|(k, _)| !["source", "handshake"].contains(&k.as_str())) {
         for (name, m) in lines.as_object().into_iter().flatten() {
             match m.as_object() {
                 None => outln!("{family} {name}: the family's line")?,

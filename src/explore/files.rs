@@ -130,13 +130,17 @@ pub fn calibration_csv(e: &Exploration) -> String {
     for p in &e.points {
         let Some(m) = p.measured.as_ref().filter(|m| m.route_seeds.len() == m.seeds.len() && !m.route_seeds.is_empty()) else { continue };
         let Ok(cfg) = Config::new(p.params.clone()) else { continue };
-        // a calibration unit is a `valid` unit with no tag, per-pixel colours and no clock
-        // enable (the delay model knows no edge): a unit of another edge is no row of it
-        let edge = |q: &Params| (q.interface, q.tag_bits, q.tlast, q.colour, q.clock_enable);
+        // a calibration unit has no tag, per-pixel colours and no clock enable; a `ready` or
+        // `axis` one is a row of its own (`--interface`), the handshake's ceiling, never the
+        // line's data
+        let edge = |q: &Params| (q.tag_bits, q.tlast, q.colour, q.clock_enable);
         if edge(&p.params) != edge(&defaults) || p.params.rounding != defaults.rounding {
             continue;
         }
         let mut args = Vec::new();
+        if p.params.interface != defaults.interface {
+            args.push(format!("--interface {}", p.params.interface.name()));
+        }
         if p.params.fabric_registers {
             args.push("--fabric-registers true".to_string());
         }

@@ -88,14 +88,6 @@ impl Family for Ecp5 {
     fn explored(&self) -> Option<&'static str> {
         Some(include_str!("../../data/explore/ecp5.json"))
     }
-    fn handshake_cap_mhz(&self, datapath: &str) -> Option<(f64, &'static str)> {
-        // benchmarks/interface.md (SEEDS=5 scripts/bench_interface.sh): lean reaches the
-        // DP16KD's limit either way; blinn 193.7 ready, 182.2 axis-static (c7d0cc5)
-        Some(match datapath {
-            "lean" => (211.9, "lean's ready and axis, 11 stages (the DP16KD's limit)"),
-            _ => (182.2, "blinn's axis with a static colour, 37 stages"),
-        })
-    }
     fn explore_clocks(&self) -> &'static [f64] {
         &[100.0, 150.0, 200.0, 250.0]
     }

@@ -81,7 +81,7 @@ impl Family for Gowin {
     /// fitted to the units `FAMILIES=gowin DEPTHS=5 SEEDS=5 scripts/calibrate_delay.sh` lays
     /// out (every model but blinn-pow, narrow and default widths, each on seeds 1–5); no
     /// handshake unit measured here, so `--target-mhz` refuses the ready and axis interfaces on
-    /// this part ([`Family::handshake_cap_mhz`])
+    /// this part (the delay model's `handshake` entry names none)
     fn calibration(&self) -> Option<&'static str> {
         Some("gowin")
     }

@@ -38,14 +38,6 @@ impl Family for Ice40 {
     fn explored(&self) -> Option<&'static str> {
         Some(include_str!("../../data/explore/ice40.json"))
     }
-    fn handshake_cap_mhz(&self, datapath: &str) -> Option<(f64, &'static str)> {
-        // benchmarks/interface.md (SEEDS=5 scripts/bench_interface.sh, c7d0cc5): lean 104.7
-        // ready, 99.6 axis-static; blinn 98.5 ready, 89.6 axis-static
-        Some(match datapath {
-            "lean" => (99.6, "lean's axis with a static colour, 13 stages"),
-            _ => (89.6, "blinn's axis with a static colour, 41 stages"),
-        })
-    }
     fn explore_clocks(&self) -> &'static [f64] {
         &[50.0, 75.0, 100.0, 125.0]
     }

@@ -125,14 +125,6 @@ pub trait Family: Sync {
     fn writes_logic_tables(&self) -> bool {
         false
     }
-    /// The most a `ready`/`axis` unit of `datapath` reached on the part (the output buffer's own
-    /// paths, which the delay model has no shape for: its read decision, the queue's counts,
-    /// `out_ready`'s route), median over seeds at the deepest, ready and axis with a static
-    /// colour the lesser; a datapath not measured so takes the least any did. None: nothing
-    /// measured (no delay model either).
-    fn handshake_cap_mhz(&self, _datapath: &str) -> Option<(f64, &'static str)> {
-        None
-    }
     /// The hard multiplier blocks of the part its figures are for (None: no part): `explore`
     /// measures no unit that needs more.
     fn dsp_capacity(&self) -> Option<u64>;
@@ -336,32 +328,6 @@ mod tests {
         }
         assert!(of(Target::Generic).place_and_route(6).is_none() && of(Target::Generic).calibration().is_none());
         assert!(of(Target::Ecp5).place_and_route(6).unwrap().args.contains(&"6".to_string()));
-    }
-
-    /// A handshake unit is assured at most what one measured (`handshake_cap_mhz`): each
-    /// family's cap is no more than the least median of `benchmarks/interface.md`'s `ready` and
-    /// `axis-static` rows of its datapath (lean's for lean, blinn's for every other: the least
-    /// measured), so a regenerated table that measures lower fails here until the cap follows.
-    #[test]
-    fn handshake_caps_are_no_more_than_the_interface_bench_measured() {
-        let table = include_str!("../../benchmarks/interface.md");
-        let mut checked = 0;
-        for t in Target::ALL {
-            for datapath in ["lean", "blinn"] {
-                let Some((cap, _)) = of(t).handshake_cap_mhz(datapath) else { continue };
-                let measured: Vec<f64> = table
-                    .lines()
-                    .map(|l| l.split('|').map(str::trim).collect::<Vec<_>>())
-                    .filter(|c| c.len() > 10 && c[1] == datapath && c[2] == t.name() && (c[4] == "ready" || c[4] == "axis-static"))
-                    .map(|c| c[9].split_whitespace().next().unwrap().parse().unwrap())
-                    .collect();
-                assert_eq!(measured.len(), 2, "{} {datapath}: the table's ready and axis-static rows", t.name());
-                let least = measured.iter().copied().fold(f64::INFINITY, f64::min);
-                assert!(cap <= least, "{} {datapath}: assured {cap} MHz, measured {least}", t.name());
-                checked += 1;
-            }
-        }
-        assert!(checked >= 4, "{checked} caps checked");
     }
 
     /// A family named outside its home: every `Target::Ice40`, `Target::Ecp5` or

@@ -9,7 +9,10 @@
 //! unit as short. `margin` is the worst measured / predicted over the rows the line speaks for
 //! (at most 1): what the model assures is its prediction times the margin. A line per family
 //! ("all") and per model of three rows or more, which also keeps its rows (features, median,
-//! widths, depth, digest): the floors `Line::of_todays_rtl` reads.
+//! widths, depth, digest): the floors `Line::of_todays_rtl` reads. A `ready`/`axis` row
+//! (`--interface` in its flags) is no line's data: per family and datapath, the most such a unit
+//! of each interface was measured at on today's RTL, the lesser interface's, is `handshake`: the
+//! ceiling of a unit with the output buffer.
 
 use crate::config::{Arch, Params, SpecularModel, Target};
 use crate::error::Error;
@@ -174,6 +177,32 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
         });
     }
     let mut model = Map::new();
+    let mut handshake = Map::new();
+    for (family, rows) in by_family.iter_mut() {
+        // a `ready`/`axis` unit is the handshake's ceiling, never the line's data: per datapath,
+        // the most measured of each interface, the lesser interface's; of today's RTL only
+        let (edge, line_rows): (Vec<Row>, Vec<Row>) = std::mem::take(rows).into_iter().partition(|r| r.args.contains("--interface "));
+        *rows = line_rows;
+        let mut caps = Map::new();
+        let names: std::collections::BTreeSet<String> = edge.iter().map(|r| r.model.clone()).collect();
+        for name in names {
+            let mut least: Option<&Row> = None;
+            for interface in ["ready", "axis"] {
+                let flag = format!("--interface {interface}");
+                let most = edge.iter().filter(|r| r.model == name && r.args.contains(&flag) && !r.digest.is_empty()).max_by(|a, b| a.fmax.total_cmp(&b.fmax));
+                if let Some(r) = most.filter(|r| least.is_none_or(|l| r.fmax < l.fmax)) {
+                    least = Some(r);
+                }
+            }
+            if let Some(r) = least {
+                let unit = format!("{name} at --stages {}{}", r.stages, format!(" {}", r.args).trim_end());
+                caps.insert(name, json!({ "mhz": round(r.fmax, 2), "unit": unit, "digest": r.digest }));
+            }
+        }
+        if !caps.is_empty() {
+            handshake.insert(family.clone(), Value::Object(caps));
+        }
+    }
     for (family, rows) in &by_family {
         let cap = rows.iter().map(|r| r.fmax).fold(0.0, f64::max);
         let all: Vec<&Row> = rows.iter().collect();
@@ -198,6 +227,7 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
         }
         model.insert(family.clone(), Value::Object(lines));
     }
+    model.insert("handshake".into(), Value::Object(handshake));
     model.insert("source".into(), json!(source));
     Ok(Value::Object(model))
 }

@@ -246,7 +246,7 @@ pub const BETWEEN_WINDOW: u32 = 2;
 /// `--dsp-budget`, `--interface valid`), with the row's `args` applied; None when they name a
 /// flag that is not a width, the rounding or the ROM style.
 pub(crate) fn params_with_args(params: &crate::config::Params, args: &str) -> Option<crate::config::Params> {
-    use crate::config::{RomStyle, Rounding};
+    use crate::config::{Interface, RomStyle, Rounding};
     let mut p = crate::config::Params { model: params.model, arch: params.arch, target: params.target, ..Default::default() };
     let words: Vec<&str> = args.split_whitespace().collect();
     if !words.len().is_multiple_of(2) {
@@ -265,6 +265,7 @@ pub(crate) fn params_with_args(params: &crate::config::Params, args: &str) -> Op
             "--rom-style" => p.rom_style = [RomStyle::File, RomStyle::Case, RomStyle::Logic].into_iter().find(|r| r.name() == pair[1])?,
             "--fabric-registers" => p.fabric_registers = pair[1].parse().ok()?,
             "--dsp-budget" => p.dsp_budget = Some(n()?),
+            "--interface" => p.interface = [Interface::Valid, Interface::Ready, Interface::Axis].into_iter().find(|i| i.name() == pair[1])?,
             _ => return None,
         }
     }
@@ -534,8 +535,7 @@ pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
             ),
         });
     };
-    let all: serde_json::Value = serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");
-    let lines = &all[family];
+    let lines = &model_json()[family];
     let chosen = match &lines[datapath] {
         serde_json::Value::Object(_) => &lines[datapath],
         serde_json::Value::String(s) if s == "all" => &lines["all"],
@@ -583,13 +583,27 @@ pub fn assured_fmax(plan: &Plan) -> Option<f64> {
     Some(under_caps(plan, line_of(plan).ok()?.assured_of(plan)))
 }
 
-/// A `ready`/`axis` unit's ceiling on its family: the most such a unit was measured at (the
-/// output buffer's own paths, which no calibration unit has), and which unit that was.
-fn handshake_cap(plan: &Plan) -> Option<(f64, &'static str)> {
-    match plan.cfg.interface().handshake() {
-        true => crate::family::of(plan.cfg.target()).handshake_cap_mhz(plan.cfg.datapath_name()),
-        false => None,
+/// A `ready`/`axis` unit's ceiling on its family: the most a unit with the output buffer was
+/// measured at on today's RTL (its own paths, which no calibration unit of the line has), the
+/// fit's `handshake` entry (`fit`): its datapath's, else the least any datapath's; with the unit
+/// that was. None: no such unit measured on the part.
+fn handshake_cap(plan: &Plan) -> Option<(f64, String)> {
+    if !plan.cfg.interface().handshake() {
+        return None;
     }
+    let all: &serde_json::Value = model_json();
+    let caps = all["handshake"][family(plan.cfg.target())?].as_object()?;
+    let cap = |v: &serde_json::Value| Some((v["mhz"].as_f64()?, v["unit"].as_str()?.to_string()));
+    match caps.get(plan.cfg.datapath_name()).and_then(cap) {
+        Some(c) => Some(c),
+        None => caps.values().filter_map(cap).min_by(|a, b| a.0.total_cmp(&b.0)),
+    }
+}
+
+/// `data/delay_model.json`, parsed once.
+fn model_json() -> &'static serde_json::Value {
+    static MODEL: std::sync::OnceLock<serde_json::Value> = std::sync::OnceLock::new();
+    MODEL.get_or_init(|| serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON"))
 }
 
 /// The slowest limit of the blocks with their own registers that `plan` instantiates (the
@@ -619,9 +633,11 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
         return Err(Error::Config {
             parameter: "target_mhz",
             message: format!(
-                "no {} unit was measured on the {}: its output buffer's own paths are outside the delay model, so no depth is assured; allowed: --interface valid with --target-mhz, or --stages N (scripts/bench_interface.sh measures the buffer)",
+                "no {} unit was measured on the {} on today's RTL: its output buffer's own paths are outside the delay model, so no depth is assured; allowed: --interface valid with --target-mhz, or --stages N; to measure some: specgen explore --target {} --interface {} --out DIR --results RESULTS --run, then specgen stale --explored DIR/points.json --write-calibration ROWS and specgen calibrate",
                 plan.cfg.interface().name(),
-                part(plan.cfg.target())
+                part(plan.cfg.target()),
+                plan.cfg.target().name(),
+                plan.cfg.interface().name()
             ),
         });
     }
@@ -670,7 +686,7 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
         .unwrap_or_default();
     let handshake = match handshake_cap(plan) {
         Some((c, which)) if c < mhz => format!(
-            "; the {} interface's output buffer has paths of its own, which no calibration unit has: the most a unit with one was measured at on this part is {c:.1} MHz ({which}; benchmarks/interface.md)",
+            "; the {} interface's output buffer has paths of its own, which no calibration unit has: the most a unit with one was measured at on this part is {c:.1} MHz ({which}, on today's RTL)",
             plan.cfg.interface().name()
         ),
         _ => String::new(),
