@@ -223,10 +223,11 @@ pub fn calibrate(a: &CalibrateArgs) -> Result<(), Failure> {
             match m.as_object() {
                 None => outln!("{family} {name}: the family's line")?,
                 Some(m) => outln!(
-                    "{family} {name}: period = {} + {}*e + {}*m ns, cap {} MHz, margin {} (measured/predicted {}..{}) over {} units",
+                    "{family} {name}: period = {} + {}*e + {}*m ns (R² {}), cap {} MHz, margin {} (measured/predicted {}..{}) over {} units",
                     m["offset_ns"],
                     m["ns_per_unit"],
                     m["ns_per_mean_unit"],
+                    m["r2"],
                     m["cap_mhz"],
                     m["margin"],
                     m["worst_under"],

@@ -4,7 +4,9 @@
 //! Per family, a unit's clock period is the plane `offset + a·e + b·m` in its slowest stretch of
 //! logic `e` and its mean stretch `m` (`Plan::stage_delay`, `Plan::stage_delay_mean`, rounded to
 //! hundredths as the manifest states them), fitted by least squares to `1000 / fmax` with
-//! non-negative slopes (else the line in one of them, or a constant: the best of those). `cap`
+//! non-negative slopes (else the line in one of them, or a constant: the best of those) and a
+//! non-negative intercept (a negative one is held at 0, the slopes fitted again); `r2` is the
+//! share of the periods' spread the line explains. `cap`
 //! is the family's highest median; `cap_up_to` the longest `e` that reached it with no slower
 //! unit as short. `margin` is the worst measured / predicted over the rows the line speaks for
 //! (at most 1): what the model assures is its prediction times the margin. A line per family
@@ -74,12 +76,25 @@ fn solve(a: Vec<Vec<f64>>, b: Vec<f64>) -> Option<Vec<f64>> {
     Some((0..n).map(|i| m[i][n] / m[i][i]).collect())
 }
 
-/// `period = c0 + Σ c_k · feature_k` by least squares: the coefficients and the squared error.
-fn least_squares(rows: &[&Row], features: &[&str]) -> Option<(Vec<f64>, f64)> {
+/// `period = c0 + Σ c_k · feature_k` by least squares: the coefficients and the squared error;
+/// with `origin`, `c0` is held at 0 (a line through the origin: what a negative intercept is
+/// bounded to).
+fn least_squares(rows: &[&Row], features: &[&str], origin: bool) -> Option<(Vec<f64>, f64)> {
     let get = |r: &Row, f: &str| if f == "est" { r.est } else { r.mean };
-    let xs: Vec<Vec<f64>> = rows.iter().map(|r| std::iter::once(1.0).chain(features.iter().map(|f| get(r, f))).collect()).collect();
+    if origin {
+        let (c, err) = least_squares_of(rows.iter().map(|r| features.iter().map(|f| get(r, f)).collect()).collect(), rows)?;
+        return Some((std::iter::once(0.0).chain(c).collect(), err));
+    }
+    least_squares_of(rows.iter().map(|r| std::iter::once(1.0).chain(features.iter().map(|f| get(r, f))).collect()).collect(), rows)
+}
+
+/// Least squares of `1000 / fmax` on the rows' columns `xs`.
+fn least_squares_of(xs: Vec<Vec<f64>>, rows: &[&Row]) -> Option<(Vec<f64>, f64)> {
     let ys: Vec<f64> = rows.iter().map(|r| 1000.0 / r.fmax).collect();
-    let k = features.len() + 1;
+    let k = xs.first().map_or(0, Vec::len);
+    if k == 0 {
+        return None;
+    }
     let ata = (0..k).map(|i| (0..k).map(|j| xs.iter().map(|x| x[i] * x[j]).sum()).collect()).collect();
     let aty = (0..k).map(|i| xs.iter().zip(&ys).map(|(x, y)| x[i] * y).sum()).collect();
     let c = solve(ata, aty)?;
@@ -105,7 +120,12 @@ fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
         if rows.len() < features.len() + 1 {
             continue;
         }
-        let Some((c, err)) = least_squares(rows, features) else { continue };
+        let Some((mut c, mut err)) = least_squares(rows, features, false) else { continue };
+        if c[0] < 0.0 {
+            // a clock period has no negative part: the intercept is bounded at 0
+            let Some(o) = least_squares(rows, features, true) else { continue };
+            (c, err) = o;
+        }
         if c[1..].iter().any(|&x| x < 0.0) {
             continue;
         }
@@ -113,7 +133,12 @@ fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
             best = Some((features, c, err));
         }
     }
-    let (features, c, _) = best.expect("a constant fits any row");
+    let (features, c, err) = best.expect("a constant fits any row");
+    // the share of the periods' spread the line explains
+    let periods: Vec<f64> = rows.iter().map(|r| 1000.0 / r.fmax).collect();
+    let mean = periods.iter().sum::<f64>() / periods.len() as f64;
+    let spread: f64 = periods.iter().map(|p| (p - mean).powi(2)).sum();
+    let r2 = if spread > 0.0 { 1.0 - err / spread } else { 1.0 };
     let coef = |f: &str| features.iter().position(|x| *x == f).map_or(0.0, |i| c[i + 1]);
     let below = rows.iter().filter(|r| r.fmax < 0.99 * cap).map(|r| r.est).fold(f64::INFINITY, f64::min);
     let at_cap = rows.iter().filter(|r| r.fmax >= 0.99 * cap && r.est < below).map(|r| r.est).fold(f64::NEG_INFINITY, f64::max);
@@ -131,6 +156,7 @@ fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
         "cap_up_to": cap_up_to,
         "margin": round(under.min(1.0), 4),
         "points": rows.len(),
+        "r2": round(r2, 4),
         "worst_under": round(under, 4),
         "worst_over": round(over, 4),
     });

@@ -7,8 +7,9 @@
 //!    to the median Fmax of the calibration units (`data/delay_calibration.csv`):
 //!    `period_ns = offset_ns + ns_per_unit·e + ns_per_mean_unit·m`, `Fmax = min(cap_mhz,
 //!    1000/period_ns)`, where `e` is the plan's slowest stretch between registers and `m` the
-//!    mean one (`Plan::stage_delay`, `stage_delay_mean`), `cap_mhz` the hard blocks' limit. Its
-//!    `margin` is the worst measured/predicted ratio over the data. This is a *prediction*.
+//!    mean one (`Plan::stage_delay`, `stage_delay_mean`), `cap_mhz` the hard blocks' limit;
+//!    slopes and intercept non-negative, its `r2` stored beside it. Its `margin` is the worst
+//!    measured/predicted ratio over the data. This is a *prediction*.
 //! 2. *Floors from measured units of today's RTL.* A calibration row is a floor only where it
 //!    names the RTL digest specgen writes today for it (`Line::of_todays_rtl`); any other row
 //!    is the fit's data and nothing more. A unit whose stretches are no longer than such a
