@@ -49,30 +49,11 @@ sweep_units() {
     # shellcheck disable=SC2086 # SWEEP_ARGS is a list of options
     SPECGEN=$bin scripts/sweep.sh "$plan/p/jobs.json" "$results" ${SWEEP_ARGS:-} >&2
     $bin explore --out "$plan/p" --target "$family" --seeds "$seeds" "${units[@]}" --results "$results" >/dev/null
-    python3 - "$plan/p" "$mode" "$@" <<'PY'
-import glob, json, shutil, sys
-plan, mode = sys.argv[1], sys.argv[2]
-points = json.load(open(plan + "/points.json"))["points"]
-for d in sys.argv[3:]:
-    manifest = next(m for m in (json.load(open(f)) for f in sorted(glob.glob(d + "/*.json"))) if m.get("generator") == "specgen")
-    [p] = [p for p in points if p["id"].endswith("-" + manifest["fingerprint"][:8]) and p["params"]["stages"] == manifest["stages"]]
-    json.dump(p, open(f"{d}.{mode}.measured.json", "w"), indent=1)
-    shutil.copyfile(f"{plan}/synth/{p['id']}.json", f"{d}.{mode}.json")
-PY
+    python3 scripts/py/sweep_unit_results.py "$plan/p" "$mode" "$@"
 }
 # measured_text DIR [MODE]: a unit's measured Fmax (DIR.MODE.measured.json, MODE dsp by
 # default) as "median (min-max)" over its seeds, each seed capped by a block's limit; where a
 # limit caps one, nextpnr's own figures follow; "-" when place-and-route failed
 measured_text() {
-    python3 - "$1.${2:-dsp}.measured.json" <<'PY'
-import json, statistics, sys
-m = json.load(open(sys.argv[1])).get("measured") or {}
-capped, route = m.get("fmax_seeds") or [], m.get("route_seeds") or []
-if m.get("fmax_mhz") is None or not capped:
-    print("-")
-elif not route or max(route) <= max(capped):
-    print("%.1f (%.1f-%.1f)" % (m["fmax_mhz"], min(capped), max(capped)))
-else:
-    print("%.1f (%.1f-%.1f; %s limit; nextpnr %.1f, %.1f-%.1f)" % (m["fmax_mhz"], min(capped), max(capped), (m.get("limited_by") or "block").split()[0], statistics.median(route), min(route), max(route)))
-PY
+    python3 scripts/py/measured_text.py "$1.${2:-dsp}.measured.json"
 }

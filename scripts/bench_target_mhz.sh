@@ -28,16 +28,7 @@ if [ -n "${SAMPLE:-}" ]; then
     # generator refuses beforehand (exit 2) is "refused". Writes OUT (default
     # benchmarks/target-sample.md).
     out=${OUT:-benchmarks/target-sample.md}
-    python3 - "$SAMPLE" "${SAMPLE_SEED:-1}" "$(placeable | tr '\n' ' ')" > "$work/sample.txt" <<'PY'
-import random, sys
-n, seed, models = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3].split()
-rng = random.Random(seed)
-for i in range(n):
-    family = rng.choice(["ice40", "ecp5"])
-    f = rng.choice([25, 30, 40, 50, 60, 75, 90] if family == "ice40" else [40, 50, 75, 100, 125, 150])
-    widths = [rng.randint(8, 15), rng.randint(6, 10), rng.randint(4, 8), rng.randint(8, 15)]
-    print(rng.choice(models), family, f, *widths)
-PY
+    python3 scripts/py/target_sample_draw.py "$SAMPLE" "${SAMPLE_SEED:-1}" "$(placeable | tr '\n' ' ')" > "$work/sample.txt"
     : > "$rows"
     # every pick generated first (milliseconds each), then measured in one sweep per family
     i=0; declare -A dirs_of=()

@@ -11,19 +11,7 @@
 # nextpnr; minutes a unit for the deep ones.
 source "$(dirname "$0")/bench_common.sh"
 out=${OUT:-benchmarks/calibration-age.md}
-python3 - "${FAMILIES:-ice40 ecp5 gowin}" "${MODELS:-}" "${ALL:-0}" > "$work/units.txt" <<'PY'
-import collections, csv, sys
-families, models, every = sys.argv[1].split(), sys.argv[2].split(), sys.argv[3] == "1"
-rows = collections.defaultdict(list)
-for r in csv.DictReader(open("data/delay_calibration.csv")):
-    if r["family"] in families and (not models or r["model"] in models) and not r["args"].strip() and r["fmax_seeds"].split():
-        rows[(r["family"], r["model"])].append((int(r["stages"]), r["fmax_seeds"].split()[0]))
-for (family, model), units in sorted(rows.items()):
-    units.sort()
-    pick = units if every else sorted({units[0], units[len(units) // 2], units[-1]})
-    for stages, seed1 in pick:
-        print(family, model, stages, seed1)
-PY
+python3 scripts/py/calibration_age_units.py "${FAMILIES:-ice40 ecp5 gowin}" "${MODELS:-}" "${ALL:-0}" > "$work/units.txt"
 # every unit generated first, then placed with seed 1 as one sweep per family (sweep_units:
 # Snakemake on every core here, a cluster with SWEEP_ARGS, results kept under their fingerprints)
 declare -A dirs_of=()

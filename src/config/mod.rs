@@ -66,12 +66,27 @@ pub enum Arch {
 }
 
 impl Arch {
+    pub const ALL: [Arch; 2] = [Arch::Lean, Arch::Paper];
     pub fn name(self) -> &'static str {
         match self {
             Arch::Lean => "lean",
             Arch::Paper => "paper",
         }
     }
+}
+
+/// Every datapath by its name ([`Config::datapath_name`]: a model's, or its architecture's
+/// where the model reads one) with the parameters that build it on `target` (its model and
+/// architecture, every other parameter the default), in the registry's order.
+pub fn datapaths(target: Target) -> Vec<(&'static str, Params)> {
+    let mut out = Vec::new();
+    for model in SpecularModel::ALL {
+        match model.reads("arch") {
+            true => out.extend(Arch::ALL.map(|arch| (arch.name(), Params { model, arch, target, ..Default::default() }))),
+            false => out.push((model.name(), Params { model, target, ..Default::default() })),
+        }
+    }
+    out
 }
 
 /// Which function the unit computes.

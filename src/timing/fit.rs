@@ -16,13 +16,10 @@
 //! of each interface was measured at on today's RTL, the lesser interface's, is `handshake`: the
 //! ceiling of a unit with the output buffer.
 
-use crate::config::{Arch, Params, SpecularModel, Target};
+use crate::config::{Params, Target};
 use crate::error::Error;
 use crate::plan::Plan;
 use serde_json::{json, Map, Value};
-
-/// Datapaths that take the family's line though never measured on their own.
-const FAMILY_LINE: [&str; 2] = ["paper", "blinn-pow"];
 
 /// At most this many calibration rows are read.
 pub const MAX_ROWS: usize = 100_000;
@@ -42,16 +39,11 @@ fn bad(message: String) -> Error {
     Error::Config { parameter: "calibration", message }
 }
 
-/// The parameters of a calibration row's unit: its datapath by name (`lean`, `paper` or a
-/// model), its family and depth, its `args` (the widths) applied.
-fn row_params(family: &str, model: &str, stages: u32, args: &str) -> Option<Params> {
+/// The parameters of a calibration row's unit: its datapath by name (`config::datapaths`), its
+/// family and depth, its `args` (the widths) applied.
+fn row_params(family: &str, datapath: &str, stages: u32, args: &str) -> Option<Params> {
     let target = Target::ALL.into_iter().find(|t| t.name() == family)?;
-    let (model, arch) = match model {
-        "lean" => (SpecularModel::Quadratic, Arch::Lean),
-        "paper" => (SpecularModel::Quadratic, Arch::Paper),
-        m => (SpecularModel::ALL.into_iter().find(|x| x.name() == m)?, Arch::Lean),
-    };
-    let base = Params { model, arch, target, ..Default::default() };
+    let (_, base) = crate::config::datapaths(target).into_iter().find(|(name, _)| *name == datapath)?;
     Some(Params { stages, ..super::params_with_args(&base, args)? })
 }
 
@@ -222,7 +214,7 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
             }
             if let Some(r) = least {
                 let unit = format!("{name} at --stages {}{}", r.stages, format!(" {}", r.args).trim_end());
-                caps.insert(name, json!({ "mhz": round(r.fmax, 2), "unit": unit, "digest": r.digest }));
+                caps.insert(name, json!({ "mhz": round(r.fmax, 2), "unit": unit, "stages": r.stages, "args": r.args, "digest": r.digest }));
             }
         }
         if !caps.is_empty() {
@@ -248,7 +240,10 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
             line.insert("measured_digest".into(), json!(mine.iter().map(|r| r.digest.clone()).collect::<Vec<_>>()));
             lines.insert(name.to_string(), Value::Object(line));
         }
-        for name in names.iter().copied().chain(FAMILY_LINE) {
+        // a datapath with too few rows for a line of its own (or none: the paper's, never
+        // calibrated alone; blinn-pow, which fits no part) takes the family's by name
+        let target = Target::ALL.into_iter().find(|t| t.name() == family).expect("a row's family");
+        for name in names.iter().copied().chain(crate::config::datapaths(target).into_iter().map(|(n, _)| n)) {
             lines.entry(name.to_string()).or_insert_with(|| json!("all"));
         }
         model.insert(family.clone(), Value::Object(lines));

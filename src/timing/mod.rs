@@ -601,6 +601,19 @@ fn handshake_cap(plan: &Plan) -> Option<(f64, String)> {
     }
 }
 
+/// The units the handshake ceilings of `target`'s family rest on: (datapath, stages, flags,
+/// RTL digest), for `specgen stale`.
+pub fn handshake_units(target: Target) -> Vec<(String, u32, String, String)> {
+    let Some(family) = family(target) else { return Vec::new() };
+    let text = |v: &serde_json::Value| v.as_str().unwrap_or_default().to_string();
+    model_json()["handshake"][family]
+        .as_object()
+        .into_iter()
+        .flatten()
+        .map(|(name, c)| (name.clone(), c["stages"].as_u64().unwrap_or(0) as u32, text(&c["args"]), text(&c["digest"])))
+        .collect()
+}
+
 /// `data/delay_model.json`, parsed once.
 fn model_json() -> &'static serde_json::Value {
     static MODEL: std::sync::OnceLock<serde_json::Value> = std::sync::OnceLock::new();

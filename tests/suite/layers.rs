@@ -235,3 +235,28 @@ fn no_file_names_an_issue_tracker_the_repository_lacks() {
     }
     assert!(named.is_empty(), "names an issue by number: {named:?}");
 }
+
+/// The scripts' Python lives in files of its own (`scripts/py/`, each run by a script with its
+/// arguments), never in a shell heredoc, where no linter or reader finds it; every file there
+/// is run by some script.
+#[test]
+fn the_scripts_python_lives_in_files() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scripts: Vec<(String, String)> = std::fs::read_dir(root.join("scripts"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "sh"))
+        .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read_to_string(&p).unwrap()))
+        .collect();
+    assert!(scripts.len() > 10);
+    for (name, text) in &scripts {
+        assert!(!text.lines().any(|l| l.contains("python3 -") && l.contains("<<")), "{name} runs Python from a heredoc");
+    }
+    for e in std::fs::read_dir(root.join("scripts/py")).unwrap().flatten() {
+        let file = e.file_name().to_string_lossy().into_owned();
+        if file.ends_with(".py") {
+            assert!(scripts.iter().any(|(_, t)| t.contains(&format!("scripts/py/{file}"))), "scripts/py/{file} is run by no script");
+        }
+    }
+}
