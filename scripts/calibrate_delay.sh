@@ -9,7 +9,7 @@
 # target/calibrate, keeps them). The explorations' calibration rows (family, datapath, stages,
 # the plan's slowest and mean stretch, nextpnr's median, its seeds, the generate flags beyond the
 # defaults) replace the rows of the same unit in data/delay_calibration.csv; the rest stay (the
-# wide lean on the ECP5). Then `specgen calibrate --calibration data/delay_calibration.csv --out data/delay_model.json` fits the model to it.
+# wide lean on the ECP5). `specgen calibrate --merge` merges them and fits data/delay_model.json to the result.
 # FAMILIES (default "ice40 ecp5") and MODELS (default every model but blinn-pow, which fits
 # neither part) narrow it.
 source "$(dirname "$0")/bench_common.sh"
@@ -30,6 +30,9 @@ for family in ${FAMILIES:-ice40 ecp5}; do
             "${w[@]}" --depths "${DEPTHS:-10}" --measure-all --seeds "$seeds"
     done
 done
-[ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args" > "$out"
-python3 scripts/merge_calibration.py "$out" "$WORK"/*/plan/calibration.csv
-echo "wrote $out; fit it with specgen calibrate --calibration $out --out data/delay_model.json" >&2
+[ -s "$out" ] || echo "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args,rtl_sha256" > "$out"
+merges=(); for f in "$WORK"/*/plan/calibration.csv; do merges+=(--merge "$f"); done
+$bin calibrate --calibration "$out" "${merges[@]}" --rows-out "$work/merged.csv" --out "$work/model.json"
+mv "$work/merged.csv" "$out"
+[ "$out" = data/delay_calibration.csv ] && mv "$work/model.json" data/delay_model.json
+echo "wrote $out (and, where it is the shipped one, data/delay_model.json: its fit)" >&2

@@ -4,7 +4,7 @@
 # row is of today's unit when its unit, generated now and placed with seed 1 (`synth --dsp
 # --seeds 1`), gives the row's seed-1 figure to the digit; a row that differs was measured
 # before its unit last changed (measure it again: scripts/calibrate_delay.sh, then
-# scripts/merge_calibration.py and specgen calibrate).
+# specgen calibrate --merge).
 # Samples the default-width rows: per family and model, the shallowest, the middle and the
 # deepest depth (FAMILIES, default "ice40 ecp5 gowin"; MODELS, default every calibrated one;
 # ALL=1: every default-width row). OUT (default benchmarks/calibration-age.md). Needs yosys and

@@ -133,7 +133,7 @@ pub struct StaleArgs {
     pub explored: Vec<PathBuf>,
     /// Also write the checked explorations' measured rows as delay-model calibration rows
     /// (data/delay_calibration.csv's columns, each with the RTL digest it was measured on where
-    /// that is today's) to FILE, for scripts/merge_calibration.py
+    /// that is today's) to FILE, for `specgen calibrate --merge FILE`
     #[arg(long, value_name = "FILE")]
     pub write_calibration: Option<PathBuf>,
 }
@@ -201,14 +201,39 @@ pub struct CalibrateArgs {
     /// Where the fitted model goes (JSON), written atomically; never the --calibration file
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
+    /// New calibration rows (an exploration's calibration.csv, or `specgen stale
+    /// --write-calibration`'s): each replaces the row of the same unit (family, datapath, depth,
+    /// flags); the merged rows are fitted and written to --rows-out; repeat it
+    #[arg(long, value_name = "FILE", requires = "rows_out")]
+    pub merge: Vec<PathBuf>,
+    /// With --merge: a row of --calibration stays, a new row only adds a unit it lacks
+    #[arg(long, requires = "merge")]
+    pub keep: bool,
+    /// With --merge: where the merged rows go (CSV, sorted), written atomically; never a file
+    /// this command reads (move it over the calibration file after)
+    #[arg(long, value_name = "FILE", requires = "merge")]
+    pub rows_out: Option<PathBuf>,
 }
 
 /// `specgen calibrate`: the delay model fitted to a calibration CSV, each line's fit printed.
 pub fn calibrate(a: &CalibrateArgs) -> Result<(), Failure> {
-    if specgen::output::same_file(&a.calibration, &a.out) {
-        return Err(usage(format!("invalid --out: {} is the --calibration file this command reads", a.out.display())));
+    let inputs: Vec<&PathBuf> = std::iter::once(&a.calibration).chain(&a.merge).collect();
+    for (flag, out) in [("--out", Some(&a.out)), ("--rows-out", a.rows_out.as_ref())] {
+        if let Some(input) = out.and_then(|o| inputs.iter().find(|i| specgen::output::same_file(i, o))) {
+            return Err(usage(format!("invalid {flag}: {} is a file this command reads", input.display())));
+        }
     }
-    let text = specgen::small_file::read(&a.calibration, 64 << 20).map_err(|e| usage(format!("invalid --calibration: {} {e}", a.calibration.display())))?;
+    let mut text = specgen::small_file::read(&a.calibration, 64 << 20).map_err(|e| usage(format!("invalid --calibration: {} {e}", a.calibration.display())))?;
+    if let Some(rows_out) = &a.rows_out {
+        let mut new = Vec::new();
+        for p in &a.merge {
+            new.push(specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --merge: {} {e}", p.display())))?);
+        }
+        let (merged, added) = specgen::timing::fit::merge_calibration(&text, &new.iter().map(String::as_str).collect::<Vec<_>>(), a.keep)?;
+        specgen::output::write_file(rows_out, merged.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", rows_out.display())))?;
+        outln!("{}: {added} unit(s) added, {} in all", rows_out.display(), merged.lines().count() - 1)?;
+        text = merged;
+    }
     let model = specgen::timing::fit::fit_calibration(&text, &a.calibration.display().to_string())?;
     let mut json = serde_json::to_string_pretty(&model).expect("JSON");
     json.push('\n');

@@ -158,6 +158,56 @@ fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
     }
 }
 
+/// The calibration columns, in order.
+pub const COLUMNS: [&str; 9] = ["family", "model", "stages", "stage_delay_estimate", "stage_delay_mean", "fmax_mhz", "fmax_seeds", "args", "rtl_sha256"];
+
+/// Calibration rows merged: each row of `new` (the explorations' `calibration.csv`, `specgen
+/// stale --write-calibration`'s) replaces the row of `old` of the same unit (family, datapath,
+/// depth, flags), or with `keep` only adds a unit `old` lacks. Returns the CSV, sorted by
+/// family, datapath, flags and depth (the file's diff shows what came in), and how many units
+/// were added. Err: a text whose header lacks a column.
+pub fn merge_calibration(old: &str, new: &[&str], keep: bool) -> Result<(String, usize), Error> {
+    type Key = (String, String, String, u64);
+    let rows_of = |text: &str| -> Result<Vec<(Key, Vec<String>)>, Error> {
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+        let at: Vec<Option<usize>> = COLUMNS.iter().map(|c| header.iter().position(|h| h == c)).collect();
+        for c in ["family", "model", "stages", "args"] {
+            if !header.contains(&c) {
+                return Err(bad(format!("a calibration CSV without a column {c}")));
+            }
+        }
+        let mut out = Vec::new();
+        for (i, line) in lines.filter(|l| !l.trim().is_empty()).enumerate() {
+            if i >= MAX_ROWS {
+                return Err(bad(format!("more than {MAX_ROWS} rows; allowed at most {MAX_ROWS}")));
+            }
+            let cells: Vec<&str> = line.split(',').collect();
+            let row: Vec<String> = at.iter().map(|a| a.and_then(|a| cells.get(a)).map_or(String::new(), |c| c.trim().to_string())).collect();
+            let args = row[7].split_whitespace().collect::<Vec<_>>().join(" ");
+            let stages = row[2].parse().map_err(|_| bad(format!("row {}: stages is no count: {line}", i + 2)))?;
+            out.push(((row[0].clone(), row[1].clone(), args, stages), row));
+        }
+        Ok(out)
+    };
+    let mut rows: std::collections::BTreeMap<Key, Vec<String>> = rows_of(old)?.into_iter().collect();
+    let mut added = 0;
+    for text in new {
+        for (key, row) in rows_of(text)? {
+            if keep && rows.contains_key(&key) {
+                continue;
+            }
+            added += usize::from(rows.insert(key, row).is_none());
+        }
+    }
+    let mut csv = COLUMNS.join(",") + "\n";
+    for row in rows.values() {
+        csv.push_str(&row.join(","));
+        csv.push('\n');
+    }
+    Ok((csv, added))
+}
+
 /// The delay model fitted to a calibration CSV's text (`family,model,stages,…,fmax_mhz,
 /// fmax_seeds,args,rtl_sha256`), as `data/delay_model.json` holds it; `source` names the CSV.
 /// Err: a row that is not a calibration unit (named by its line).

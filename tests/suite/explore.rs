@@ -752,4 +752,41 @@ fn calibrate_fits_the_shipped_rows_and_refuses_what_it_cannot_read() {
     let o = output_guarded(specgen().arg("calibrate").arg("--calibration").arg(&csv).arg("--out").arg(&csv), "calibrate");
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(std::fs::read_to_string(&csv).unwrap().contains("--cos-frac-bits 99"));
+    // --merge: the explorations' rows of today's RTL (specgen stale's) are in the shipped rows
+    // already (the merged file is the shipped one, byte for byte); a new unit is added, sorted in
+    let rows = tmp.path().join("today.csv");
+    assert!(output_guarded(specgen().arg("stale").arg("--write-calibration").arg(&rows), "stale").status.success());
+    let merged = tmp.path().join("merged.csv");
+    let shipped = root.join("data/delay_calibration.csv");
+    let calibrate = |merge: &std::path::Path, out: &std::path::Path| {
+        output_guarded(
+            specgen()
+                .arg("calibrate")
+                .arg("--calibration")
+                .arg(&shipped)
+                .arg("--merge")
+                .arg(merge)
+                .arg("--keep")
+                .arg("--rows-out")
+                .arg(out)
+                .arg("--out")
+                .arg(tmp.path().join("m.json")),
+            "calibrate --merge",
+        )
+    };
+    let o = calibrate(&rows, &merged);
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("0 unit(s) added"), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&merged).unwrap(), std::fs::read(&shipped).unwrap());
+    let one = tmp.path().join("one.csv");
+    std::fs::write(
+        &one,
+        "family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args,rtl_sha256\nice40,lean,2,0,0,61.5,61.5,--n-bits 9,\n",
+    )
+    .unwrap();
+    let o = calibrate(&one, &merged);
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("1 unit(s) added"), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read_to_string(&merged).unwrap().contains("\nice40,lean,2,0,0,61.5,61.5,--n-bits 9,\n"));
+    // the merged rows never replace a file the command reads
+    let o = calibrate(&one, &one);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
 }
