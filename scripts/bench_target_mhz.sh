@@ -55,7 +55,8 @@ if [ -n "${SAMPLE:-}" ]; then
             echo "$what - | - | - | refused: $(tail -1 "$work/err-$i" | sed 's/|/\\|/g' | cut -c1-160) |" >> "$rows"
             continue
         fi
-        told=$(sed -n 's/^target-mhz: \(outside the calibration\|between calibrated widths\):.*/\1/p' "$work/err-$i")
+        # what the pick rests on, as the generator said it: measured, interpolated or extrapolated
+        told=$(sed -n 's/^target-mhz: chose --stages [0-9]*[^:]*: \(measured\|interpolated\|extrapolated\):.*/\1/p' "$work/err-$i")
         read -r stages predicted < <(python3 -c "import json; d=json.load(open('$dir/specular_unit.json')); print(d['stages'], d['predicted_fmax_mhz'])")
         r=$(measured_text "$dir")
         verdict="misses F"; reaches "$r" "$f" && verdict="reaches F"
@@ -70,8 +71,8 @@ if [ -n "${SAMPLE:-}" ]; then
         echo "(15/10/8/15) calibration widths, and a target clock. The depth is what \`generate --target-mhz\`"
         echo "picks; the measured Fmax is \`synth --dsp --seeds $seeds\`'s median (min-max), never above a block's"
         echo "limit. \"refused\" is the generator saying beforehand that no depth is assured to reach the target;"
-        echo "a pick at widths no calibration unit had is marked as the generator told it (between calibrated"
-        echo "widths, or outside the calibration)."
+        echo "each pick is marked as the generator told it: measured (a unit of this configuration measured on"
+        echo "today's RTL), interpolated (between calibrated widths) or extrapolated (the fitted line alone)."
         echo
         echo "$(grep -c '| reaches F' "$rows" || true) reach the target, $(grep -c '| misses F' "$rows" || true) miss it, $(grep -c '| refused' "$rows" || true) refused beforehand, of $(wc -l < "$rows")."
         echo
