@@ -208,6 +208,40 @@ pub fn merge_calibration(old: &str, new: &[&str], keep: bool) -> Result<(String,
     Ok((csv, added))
 }
 
+/// The margin of the reading between calibrated widths (`Line::corner`), found by leaving each
+/// calibrated width out in turn and reading its units (floors of today's RTL) through the
+/// others: the worst measured / read over every family and datapath, rounded down to hundredths
+/// (at most 1; 1 where the rule is tried on no unit).
+fn corner_margin(model: &Map<String, Value>) -> Result<f64, Error> {
+    let mut worst = 1.0f64;
+    for target in Target::ALL {
+        let Some(lines) = super::family(target).and_then(|f| model.get(f)).and_then(Value::as_object) else { continue };
+        for (name, base) in crate::config::datapaths(target) {
+            let Some(full) = lines.get(name).and_then(|v| serde_json::from_value::<super::Line>(v.clone()).ok()) else { continue };
+            let full = full.of_todays_rtl();
+            let mut widths = full.measured_args.clone();
+            widths.sort();
+            widths.dedup();
+            for w in widths {
+                let Some(params) = super::params_with_args(&base, &w) else { continue };
+                let others: Vec<bool> = full.measured_args.iter().map(|a| *a != w).collect();
+                let mut rest = full.clone();
+                super::retain_flagged(&mut rest.measured, &others);
+                super::retain_flagged(&mut rest.measured_args, &others);
+                super::retain_flagged(&mut rest.measured_stages, &others);
+                super::retain_flagged(&mut rest.measured_digest, &others);
+                for (i, unit) in full.measured.iter().enumerate().filter(|(i, _)| full.measured_args[*i] == w) {
+                    let plan = Plan::new(crate::config::Config::new(Params { stages: full.measured_stages[i], ..params.clone() })?)?;
+                    if let (read, true) = rest.clone().at_widths_of(&plan).corner(plan.cfg.stages(), plan.stage_delay()) {
+                        worst = worst.min(unit[2] / read);
+                    }
+                }
+            }
+        }
+    }
+    Ok((worst * 100.0).floor() / 100.0)
+}
+
 /// The delay model fitted to a calibration CSV's text (`family,model,stages,…,fmax_mhz,
 /// fmax_seeds,args,rtl_sha256`), as `data/delay_model.json` holds it; `source` names the CSV.
 /// Err: a row that is not a calibration unit (named by its line).
@@ -298,6 +332,7 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
         }
         model.insert(family.clone(), Value::Object(lines));
     }
+    model.insert("corner_margin".into(), json!(corner_margin(&model)?));
     model.insert("handshake".into(), Value::Object(handshake));
     model.insert("source".into(), json!(source));
     Ok(Value::Object(model))

@@ -17,8 +17,8 @@
 //!    one's figure (`bracketed`).
 //! 3. *Between calibrated widths* (`Line::corner`): the calibrated widths around the
 //!    configuration's, read at as many cuts from their deepest depth as the depth asked is from
-//!    its own; assured [`CORNER_MARGIN`] of the least of them, the margin found by leaving each
-//!    calibrated width out (the tests' `leave_one_width_out`).
+//!    its own; assured [`corner_margin`] of the least of them, the margin the fit finds by leaving each
+//!    calibrated width out (`fit::corner_margin`, stored with the model).
 //! 4. *Elsewhere* the line times its margin: an extrapolation, said so.
 //!
 //! Every figure stays under the blocks' limits at speed grade 6 (`crate::family`) and, for a
@@ -34,11 +34,11 @@ use serde::Deserialize;
 
 /// What a depth between calibrated widths is assured, as a share of what the widths around it
 /// measured ([`Line::corner`]): the worst ratio measured/read over the floors (today's RTL)
-/// with each width left out in turn and read through the others, rounded down. The test
-/// `leave_one_width_out` computes that ratio on the data (0.8965 over 101 units at this
-/// commit: blinn at `--cos-frac-bits 20 --intensity-frac-bits 12 --dsp-budget 8` on the UP5K)
-/// and fails where this margin is above it, never where the data improves.
-pub const CORNER_MARGIN: f64 = 0.89;
+/// with each width left out in turn and read through the others, rounded down; computed by the
+/// fit (`fit::corner_margin`) and stored with the model (`corner_margin`).
+pub fn corner_margin() -> f64 {
+    model_json()["corner_margin"].as_f64().unwrap_or(1.0)
+}
 
 /// The fitted lines, `specgen calibrate`'s output (`fit`).
 const MODEL_JSON: &str = include_str!("../../data/delay_model.json");
@@ -138,9 +138,10 @@ pub fn outside_calibration(plan: &Plan) -> Option<String> {
         if let Some(l) = line_of(plan).ok().filter(|l| l.surrounded) {
             let around: Vec<String> = l.around.iter().filter_map(|a| shape_of_args(a, model)).map(|sh| flags(&sh)).collect();
             return Some(format!(
-                "between calibrated widths: the {datapath} datapath on the {part} was calibrated at {} widths; this configuration ({own_flags}) lies between the nearest of them, {}: a depth is assured {CORNER_MARGIN} of the least that these and the {} calibrated width(s) between them measured as many cuts from their deepest, where its slowest stretch is no longer than theirs, else the delay model's line with its margin; not a unit measured at these widths",
+                "between calibrated widths: the {datapath} datapath on the {part} was calibrated at {} widths; this configuration ({own_flags}) lies between the nearest of them, {}: a depth is assured {:.2} of the least that these and the {} calibrated width(s) between them measured as many cuts from their deepest, where its slowest stretch is no longer than theirs, else the delay model's line with its margin; not a unit measured at these widths",
                 shapes.len(),
                 around.join("; "),
+                corner_margin(),
                 l.corners.len().saturating_sub(l.around.len())
             ));
         }
@@ -483,10 +484,10 @@ impl Line {
     /// reached it; between calibration units, what the longer one measured (`bracketed`);
     /// else the line's prediction times the fit's margin, or a measured floor if higher. At
     /// widths never measured, no more than the corners measured at its depth, and that with
-    /// [`CORNER_MARGIN`] where they surround its widths ([`Line::corner`]).
+    /// [`corner_margin`] where they surround its widths ([`Line::corner`]).
     pub fn assured_of(&self, plan: &Plan) -> f64 {
         match self.corner(plan.cfg.stages(), plan.stage_delay()) {
-            (v, true) => v * CORNER_MARGIN,
+            (v, true) => v * corner_margin(),
             (v, false) => self.assured(plan.stage_delay(), plan.stage_delay_mean()).min(v),
         }
     }
@@ -689,10 +690,10 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
         });
     }
     // what holds the best depth down at widths never measured, when it is the nearest
-    // calibrated unit (its figure, or CORNER_MARGIN of it), not the line
+    // calibrated unit (its figure, or corner_margin() of it), not the line
     let nearest = l
         .nearest_unit(best.0)
-        .filter(|u| (u.2 - best.2).abs() < 0.05 || (u.2 * CORNER_MARGIN - best.2).abs() < 0.05)
+        .filter(|u| (u.2 - best.2).abs() < 0.05 || (u.2 * corner_margin() - best.2).abs() < 0.05)
         .map(|(args, stages, f)| {
             let widths = if args.is_empty() { "the default widths".to_string() } else { args.to_string() };
             format!("; the nearest calibrated unit holds it there: {widths} at --stages {stages}, {f:.1} MHz measured")
