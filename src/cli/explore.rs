@@ -154,41 +154,43 @@ pub fn stale(a: &StaleArgs) -> Result<(), Failure> {
     }
     let mut stale = 0;
     let mut rows = String::new();
+    // what is said, said after the rows are written (a reader that stops reading early loses
+    // none of them)
+    let mut said: Vec<String> = Vec::new();
     for (what, text) in &sets {
         let e = Exploration::from_text(text, what)?;
         let csv = explore::calibration_csv(&e);
         let body = if rows.is_empty() { csv.as_str() } else { csv.split_once('\n').map_or("", |(_, b)| b) };
         rows.push_str(body);
         let ev = explore::evidence(&e)?;
-        outln!("{what}: {} measured rows, {} of today's RTL, {} of an older RTL", ev.today.len() + ev.stale.len(), ev.today.len(), ev.stale.len())?;
-        for id in &ev.stale {
-            outln!("  stale: {id}")?;
-        }
+        said.push(format!("{what}: {} measured rows, {} of today's RTL, {} of an older RTL", ev.today.len() + ev.stale.len(), ev.today.len(), ev.stale.len()));
+        said.extend(ev.stale.iter().map(|id| format!("  stale: {id}")));
         stale += ev.stale.len();
     }
     // the delay model's calibration units: a floor only where its row names today's RTL
     for t in Target::ALL {
         let ev = explore::calibration_evidence(t)?;
         if ev.today + ev.stale.len() + ev.fit_only > 0 {
-            outln!(
+            said.push(format!(
                 "the delay model's calibration on the {}: {} floors of today's RTL, {} of an older RTL; {} rows that name no RTL (the fit's data, never a floor)",
                 specgen::timing::part(t),
                 ev.today,
                 ev.stale.len(),
                 ev.fit_only
-            )?;
-            for s in &ev.stale {
-                outln!("  stale floor: {s}")?;
-            }
+            ));
+            said.extend(ev.stale.iter().map(|s| format!("  stale floor: {s}")));
             stale += ev.stale.len();
         }
     }
     if let Some(path) = &a.write_calibration {
         specgen::output::write_file(path, rows.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", path.display())))?;
     }
+    for line in &said {
+        outln!("{line}")?;
+    }
     match stale {
         0 => Ok(()),
-        n => Err(super::failed(format!("{n} measured rows are of an older RTL: measure them again (scripts/bench_explore.sh)"))),
+        n => Err(super::failed(format!("{n} measured rows are of an older RTL: measure them again (specgen explore --run, scripts/bench_explore.sh)"))),
     }
 }
 
@@ -224,6 +226,8 @@ pub fn calibrate(a: &CalibrateArgs) -> Result<(), Failure> {
         }
     }
     let mut text = specgen::small_file::read(&a.calibration, 64 << 20).map_err(|e| usage(format!("invalid --calibration: {} {e}", a.calibration.display())))?;
+    // said after every file is written (a reader that stops reading early loses none)
+    let mut merged_said = None;
     if let Some(rows_out) = &a.rows_out {
         let mut new = Vec::new();
         for p in &a.merge {
@@ -231,13 +235,16 @@ pub fn calibrate(a: &CalibrateArgs) -> Result<(), Failure> {
         }
         let (merged, added) = specgen::timing::fit::merge_calibration(&text, &new.iter().map(String::as_str).collect::<Vec<_>>(), a.keep)?;
         specgen::output::write_file(rows_out, merged.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", rows_out.display())))?;
-        outln!("{}: {added} unit(s) added, {} in all", rows_out.display(), merged.lines().count() - 1)?;
+        merged_said = Some(format!("{}: {added} unit(s) added, {} in all", rows_out.display(), merged.lines().count() - 1));
         text = merged;
     }
     let model = specgen::timing::fit::fit_calibration(&text, &a.calibration.display().to_string())?;
     let mut json = serde_json::to_string_pretty(&model).expect("JSON");
     json.push('\n');
     specgen::output::write_file(&a.out, json.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", a.out.display())))?;
+    if let Some(line) = merged_said {
+        outln!("{line}")?;
+    }
     for (family, caps) in model["handshake"].as_object().into_iter().flatten() {
         for (name, c) in caps.as_object().into_iter().flatten() {
             outln!("{family} {name} with the output buffer: at most {} MHz ({})", c["mhz"], c["unit"].as_str().unwrap_or(""))?;

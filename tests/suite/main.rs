@@ -4,6 +4,7 @@
 mod common;
 
 mod budget;
+mod calibrate;
 mod cli;
 mod cosim;
 mod embedding;
