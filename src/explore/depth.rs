@@ -216,23 +216,24 @@ pub struct CalibrationEvidence {
 /// against the unit specgen writes today (each unit generated once: seconds).
 pub fn calibration_evidence(target: crate::config::Target) -> Result<CalibrationEvidence, Error> {
     let mut ev = CalibrationEvidence::default();
+    // a calibration unit is generated as scripts/calibrate_delay.sh does: the default
+    // parameters but the datapath's model and architecture, the row's flags and depth
+    let today = |datapath: &str, args: &str, stages: u32| {
+        crate::config::datapaths(target)
+            .into_iter()
+            .find(|(n, _)| *n == datapath)
+            .and_then(|(_, base)| crate::timing::params_with_args(&base, args))
+            .and_then(|p| Plan::from_params(Params { stages, ..p }).ok())
+            .map(|plan| crate::emit::rtl_digest(&plan))
+    };
     // the units the handshake ceilings rest on: each a floor of its own
     for (name, stages, args, digest) in crate::timing::handshake_units(target) {
-        let today = crate::config::datapaths(target)
-            .into_iter()
-            .find(|(n, _)| *n == name.as_str())
-            .and_then(|(_, base)| crate::timing::params_with_args(&base, &args))
-            .and_then(|p| Plan::from_params(Params { stages, ..p }).ok())
-            .map(|plan| crate::emit::rtl_digest(&plan));
-        match today.as_deref() == Some(digest.as_str()) {
+        match today(&name, &args, stages) == Some(digest) {
             true => ev.today += 1,
             false => ev.stale.push(format!("{name} {args} --stages {stages} (a handshake's ceiling)")),
         }
     }
     for (name, l) in crate::timing::lines(target) {
-        // a datapath's calibration units are generated as scripts/calibrate_delay.sh does: the
-        // default parameters but the datapath's model and architecture
-        let Some((_, base)) = crate::config::datapaths(target).into_iter().find(|(n, _)| *n == name.as_str()) else { continue };
         for i in 0..l.measured.len() {
             let digest = l.measured_digest.get(i).map_or("", String::as_str);
             let (args, stages) = (l.measured_args.get(i).map_or("", String::as_str), l.measured_stages.get(i).copied().unwrap_or(0));
@@ -240,11 +241,7 @@ pub fn calibration_evidence(target: crate::config::Target) -> Result<Calibration
                 ev.fit_only += 1;
                 continue;
             }
-            let today = crate::timing::params_with_args(&base, args)
-                .map(|p| Params { stages, ..p })
-                .and_then(|p| Plan::from_params(p).ok())
-                .map(|plan| crate::emit::rtl_digest(&plan));
-            match today.as_deref() == Some(digest) {
+            match today(&name, args, stages).as_deref() == Some(digest) {
                 true => ev.today += 1,
                 false => ev.stale.push(format!("{name} {args} --stages {stages}").replace("  ", " ")),
             }

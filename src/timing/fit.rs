@@ -161,6 +161,34 @@ fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
 /// The calibration columns, in order.
 pub const COLUMNS: [&str; 9] = ["family", "model", "stages", "stage_delay_estimate", "stage_delay_mean", "fmax_mhz", "fmax_seeds", "args", "rtl_sha256"];
 
+/// A CSV row: its line number, its text, its cells in [`COLUMNS`] order.
+type CsvRow<'a> = (usize, &'a str, Vec<String>);
+
+/// A calibration CSV's rows, each with its line number and text and its cells in [`COLUMNS`]
+/// order (a column the header lacks reads empty; `family`, `model`, `stages`, `fmax_mhz` and
+/// `args` are required). Err: a missing column, or more than [`MAX_ROWS`] rows.
+fn csv_rows<'a>(text: &'a str, source: &str) -> Result<Vec<CsvRow<'a>>, Error> {
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    for c in ["family", "model", "stages", "fmax_mhz", "args"] {
+        if !header.contains(&c) {
+            return Err(bad(format!("{source} has no column {c}")));
+        }
+    }
+    let at: Vec<Option<usize>> = COLUMNS.iter().map(|c| header.iter().position(|h| h == c)).collect();
+    let mut out = Vec::new();
+    for (i, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
+        if out.len() >= MAX_ROWS {
+            return Err(bad(format!("{source} holds more than {MAX_ROWS} rows; allowed at most {MAX_ROWS}")));
+        }
+        let cells: Vec<&str> = line.split(',').collect();
+        let mut row: Vec<String> = at.iter().map(|a| a.and_then(|a| cells.get(a)).map_or(String::new(), |c| c.trim().to_string())).collect();
+        row[7] = row[7].split_whitespace().collect::<Vec<_>>().join(" ");
+        out.push((i + 2, line, row));
+    }
+    Ok(out)
+}
+
 /// Calibration rows merged: each row of `new` (the explorations' `calibration.csv`, `specgen
 /// stale --write-calibration`'s) replaces the row of `old` of the same unit (family, datapath,
 /// depth, flags), or with `keep` only adds a unit `old` lacks. Returns the CSV, sorted by
@@ -169,24 +197,10 @@ pub const COLUMNS: [&str; 9] = ["family", "model", "stages", "stage_delay_estima
 pub fn merge_calibration(old: &str, new: &[&str], keep: bool) -> Result<(String, usize), Error> {
     type Key = (String, String, String, u64);
     let rows_of = |text: &str| -> Result<Vec<(Key, Vec<String>)>, Error> {
-        let mut lines = text.lines();
-        let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-        let at: Vec<Option<usize>> = COLUMNS.iter().map(|c| header.iter().position(|h| h == c)).collect();
-        for c in ["family", "model", "stages", "args"] {
-            if !header.contains(&c) {
-                return Err(bad(format!("a calibration CSV without a column {c}")));
-            }
-        }
         let mut out = Vec::new();
-        for (i, line) in lines.filter(|l| !l.trim().is_empty()).enumerate() {
-            if i >= MAX_ROWS {
-                return Err(bad(format!("more than {MAX_ROWS} rows; allowed at most {MAX_ROWS}")));
-            }
-            let cells: Vec<&str> = line.split(',').collect();
-            let row: Vec<String> = at.iter().map(|a| a.and_then(|a| cells.get(a)).map_or(String::new(), |c| c.trim().to_string())).collect();
-            let args = row[7].split_whitespace().collect::<Vec<_>>().join(" ");
-            let stages = row[2].parse().map_err(|_| bad(format!("row {}: stages is no count: {line}", i + 2)))?;
-            out.push(((row[0].clone(), row[1].clone(), args, stages), row));
+        for (n, line, row) in csv_rows(text, "a calibration CSV")? {
+            let stages = row[2].parse().map_err(|_| bad(format!("a calibration CSV line {n}: {line}: stages is no count")))?;
+            out.push(((row[0].clone(), row[1].clone(), row[7].clone(), stages), row));
         }
         Ok(out)
     };
@@ -225,11 +239,7 @@ fn corner_margin(model: &Map<String, Value>) -> Result<f64, Error> {
             for w in widths {
                 let Some(params) = super::params_with_args(&base, &w) else { continue };
                 let others: Vec<bool> = full.measured_args.iter().map(|a| *a != w).collect();
-                let mut rest = full.clone();
-                super::retain_flagged(&mut rest.measured, &others);
-                super::retain_flagged(&mut rest.measured_args, &others);
-                super::retain_flagged(&mut rest.measured_stages, &others);
-                super::retain_flagged(&mut rest.measured_digest, &others);
+                let rest = full.clone().keeping(&others);
                 for (i, unit) in full.measured.iter().enumerate().filter(|(i, _)| full.measured_args[*i] == w) {
                     let plan = Plan::new(crate::config::Config::new(Params { stages: full.measured_stages[i], ..params.clone() })?)?;
                     if let (read, true) = rest.clone().at_widths_of(&plan).corner(plan.cfg.stages(), plan.stage_delay()) {
@@ -246,36 +256,25 @@ fn corner_margin(model: &Map<String, Value>) -> Result<f64, Error> {
 /// fmax_seeds,args,rtl_sha256`), as `data/delay_model.json` holds it; `source` names the CSV.
 /// Err: a row that is not a calibration unit (named by its line).
 pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
-    let mut lines = csv.lines();
-    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    let col = |name: &str| header.iter().position(|h| *h == name).ok_or_else(|| bad(format!("{source} has no column {name}")));
-    let (family_c, model_c, stages_c, fmax_c, args_c) = (col("family")?, col("model")?, col("stages")?, col("fmax_mhz")?, col("args")?);
-    let digest_c = col("rtl_sha256").ok();
     let mut by_family: std::collections::BTreeMap<String, Vec<Row>> = Default::default();
-    for (i, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
-        if i >= MAX_ROWS {
-            return Err(bad(format!("{source} holds more than {MAX_ROWS} rows; allowed at most {MAX_ROWS}")));
-        }
-        let cells: Vec<&str> = line.split(',').collect();
-        let cell = |c: usize| cells.get(c).copied().unwrap_or("").trim();
-        if cell(fmax_c).is_empty() {
+    for (n, line, row) in csv_rows(csv, source)? {
+        let [family, model, stages, _, _, fmax, _, args, digest] = &row[..] else { unreachable!("a cell a column") };
+        if fmax.is_empty() {
             continue;
         }
-        let what = || format!("{source} line {}: {line}", i + 2);
-        let stages: u32 = cell(stages_c).parse().map_err(|_| bad(format!("{}: stages is no count", what())))?;
-        let fmax: f64 =
-            cell(fmax_c).parse().ok().filter(|f: &f64| *f > 0.0 && f.is_finite()).ok_or_else(|| bad(format!("{}: fmax_mhz is no clock", what())))?;
-        let (family, model, args) = (cell(family_c), cell(model_c), cell(args_c).split_whitespace().collect::<Vec<_>>().join(" "));
-        let params = row_params(family, model, stages, &args).ok_or_else(|| bad(format!("{}: no calibration unit (family, datapath or args)", what())))?;
+        let what = || format!("{source} line {n}: {line}");
+        let stages: u32 = stages.parse().map_err(|_| bad(format!("{}: stages is no count", what())))?;
+        let fmax: f64 = fmax.parse().ok().filter(|f: &f64| *f > 0.0 && f.is_finite()).ok_or_else(|| bad(format!("{}: fmax_mhz is no clock", what())))?;
+        let params = row_params(family, model, stages, args).ok_or_else(|| bad(format!("{}: no calibration unit (family, datapath or args)", what())))?;
         let plan = Plan::new(crate::config::Config::new(params).map_err(|e| bad(format!("{}: {e}", what())))?).map_err(|e| bad(format!("{}: {e}", what())))?;
-        by_family.entry(family.to_string()).or_default().push(Row {
-            model: model.to_string(),
+        by_family.entry(family.clone()).or_default().push(Row {
+            model: model.clone(),
             stages,
             est: hundredths(plan.stage_delay()),
             mean: hundredths(plan.stage_delay_mean()),
             fmax,
-            args,
-            digest: digest_c.map(cell).unwrap_or("").to_string(),
+            args: args.clone(),
+            digest: digest.clone(),
         });
     }
     let mut model = Map::new();

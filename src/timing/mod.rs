@@ -356,12 +356,18 @@ impl Line {
     /// row that names none is the fit's data, no floor and no corner). That each named RTL is
     /// the one specgen writes today is held by `specgen stale` and the suite
     /// (`explore::calibration_evidence`): a row of another RTL fails them.
-    pub(crate) fn of_todays_rtl(mut self) -> Line {
+    pub(crate) fn of_todays_rtl(self) -> Line {
         let keep: Vec<bool> = (0..self.measured.len()).map(|i| self.measured_digest.get(i).is_some_and(|d| !d.is_empty())).collect();
-        retain_flagged(&mut self.measured, &keep);
-        retain_flagged(&mut self.measured_args, &keep);
-        retain_flagged(&mut self.measured_digest, &keep);
-        retain_flagged(&mut self.measured_stages, &keep);
+        self.keeping(&keep)
+    }
+
+    /// The line with only the measured units whose flag in `keep` is set (each unit's figures,
+    /// flags, depth and digest together).
+    pub(crate) fn keeping(mut self, keep: &[bool]) -> Line {
+        retain_flagged(&mut self.measured, keep);
+        retain_flagged(&mut self.measured_args, keep);
+        retain_flagged(&mut self.measured_digest, keep);
+        retain_flagged(&mut self.measured_stages, keep);
         self
     }
 

@@ -221,11 +221,7 @@ fn leave_one_width_out() {
             for w in widths {
                 let Some(params) = params_with_args(&base, &w) else { continue };
                 let others: Vec<bool> = full.measured_args.iter().map(|a| *a != w).collect();
-                let mut l = full.clone();
-                retain_flagged(&mut l.measured, &others);
-                retain_flagged(&mut l.measured_args, &others);
-                retain_flagged(&mut l.measured_stages, &others);
-                retain_flagged(&mut l.measured_digest, &others);
+                let l = full.clone().keeping(&others);
                 for (i, unit) in full.measured.iter().enumerate().filter(|(i, _)| full.measured_args[*i] == w) {
                     let plan = Plan::new(Config::new(crate::config::Params { stages: full.measured_stages[i], ..params.clone() }).unwrap()).unwrap();
                     let read = l.clone().at_widths_of(&plan);

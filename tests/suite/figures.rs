@@ -55,7 +55,6 @@ fn the_readmes_table_of_models_is_the_explorations_and_the_benchs() {
     for line in readme.lines().filter(|l| l.starts_with("| `") && l.contains("stages")) {
         let cells: Vec<&str> = line.split(" | ").map(|c| c.trim_matches(|c| c == '|' || c == ' ')).collect();
         let model = cells[0].trim_matches('`').split('`').next().unwrap();
-        let model = if model == "quadratic" { "quadratic" } else { model };
         let row = format!("README row {model}: {line}");
         // the error at the pixel (at the codes), default widths: the exploration's accuracy
         let (pixel, codes) = cells[2].split_once(" (").unwrap_or_else(|| panic!("{row}"));
