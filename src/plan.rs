@@ -159,6 +159,16 @@ impl Plan {
     /// uses its own input and output registers and runs as fast as the block itself does (the
     /// family's cap).
     pub fn stage_delay(&self) -> f64 {
+        self.stage_delay_by(|d| d.ns)
+    }
+
+    /// [`Plan::stage_delay`] on a family of primitive delays `w` (each step's primitives
+    /// weighed by the family's own delays: what the delay model reads).
+    pub fn stage_delay_on(&self, w: &crate::family::PrimitiveDelays) -> f64 {
+        self.stage_delay_by(|d| d.on(w))
+    }
+
+    fn stage_delay_by(&self, ns: impl Fn(&crate::datapath::Delay) -> f64) -> f64 {
         let dp = &self.datapath;
         let mut edges = vec![0usize];
         edges.extend(self.registered_cuts.iter().map(|&c| (c as usize).min(dp.steps.len())));
@@ -168,7 +178,7 @@ impl Plan {
             .windows(2)
             .map(|e| match e[1].saturating_sub(e[0]) {
                 1 if hard[e[0]] => 0.0,
-                _ => dp.steps[e[0]..e[1].max(e[0])].iter().map(|s| s.delay).sum::<f64>(),
+                _ => dp.steps[e[0]..e[1].max(e[0])].iter().map(|s| ns(&s.delay)).sum::<f64>(),
             })
             .fold(0.0, f64::max)
     }
@@ -178,7 +188,7 @@ impl Plan {
     pub(crate) fn longest_step(&self) -> f64 {
         let dp = &self.shape.combinational;
         let hard = hard_steps(dp);
-        dp.steps.iter().zip(hard).map(|(s, h)| if h { 0.0 } else { s.delay }).fold(0.0, f64::max)
+        dp.steps.iter().zip(hard).map(|(s, h)| if h { 0.0 } else { s.delay.ns }).fold(0.0, f64::max)
     }
 
     /// The mean stretch of logic between registers: the datapath's whole delay estimate over
@@ -187,6 +197,11 @@ impl Plan {
     /// clock still rises as the others shorten (less logic and routing around each register).
     pub fn stage_delay_mean(&self) -> f64 {
         self.datapath.delays().iter().sum::<f64>() / (self.registered_cuts.len() + 1) as f64
+    }
+
+    /// [`Plan::stage_delay_mean`] on a family of primitive delays `w`.
+    pub fn stage_delay_mean_on(&self, w: &crate::family::PrimitiveDelays) -> f64 {
+        self.datapath.steps.iter().map(|s| s.delay.on(w)).sum::<f64>() / (self.registered_cuts.len() + 1) as f64
     }
 }
 

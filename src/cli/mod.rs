@@ -63,6 +63,10 @@ pub enum Command {
         /// gammaG:B (a power law) [B 1..=16, G 1..=4]
         #[arg(long, value_name = "DISPLAY", default_value = "srgb8", requires = "max_error")]
         display: String,
+        /// Where --target-mhz is refused, also say how: the best depth's figures, the rule of
+        /// the delay model that gave them, the calibrated unit that holds them down.
+        #[arg(long, requires = "target_mhz")]
+        explain: bool,
         #[command(flatten)]
         params: ParamArgs,
         #[command(flatten)]
@@ -475,7 +479,7 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool)
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Generate { out, force, target_mhz, max_error, metric, explored, display, params, rtl } => {
+        Command::Generate { out, force, target_mhz, max_error, metric, explored, display, explain, params, rtl } => {
             if let Some(config) = &params.config {
                 if specgen::output::inside(config, &out) {
                     return Err(usage(format!(
@@ -557,20 +561,25 @@ fn run(cli: Cli) -> Result<(), Failure> {
                             errln!("target-mhz: measure it: specgen synth --rtl {} --seeds 3", out.display());
                         }
                     }
-                    // the refusal names its reason, the best depth, and the nearest measured unit
+                    // the refusal names its reason, the best depth, the nearest measured unit and
+                    // the command that measures this one; --explain says how the figure was read
                     Err(refused) => {
                         let mut why = refused.reason();
                         if let Some(b) = plan.cfg.params.dsp_budget {
                             why.push_str(&format!(" (with --dsp-budget {b}: {} product(s) summed in the fabric)", plan.datapath.fabric_products().len()));
-                        }
-                        if let Some(outside) = specgen::timing::outside_calibration(&plan) {
-                            why.push_str(&format!("; {outside}"));
                         }
                         why.push_str(&explore::nearest_measured(&plan.cfg.params, mhz)?);
                         why.push_str(&format!(
                             "; to measure this configuration: specgen generate --stages {} … --out DIR, then specgen synth --rtl DIR --seeds 3",
                             plan.cut_points
                         ));
+                        if explain {
+                            for line in specgen::timing::explain_refusal(&plan, mhz)? {
+                                why.push_str(&format!("\n  {line}"));
+                            }
+                        } else {
+                            why.push_str(" (--explain: how the delay model read it)");
+                        }
                         return Err(Failure::Config { parameter: "target_mhz", message: why });
                     }
                 }

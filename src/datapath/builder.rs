@@ -146,11 +146,11 @@ impl Builder {
         let visible = inputs.iter().all(|n| self.visible_before(n));
         let on_dsp = visible && self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
         if !on_dsp || self.is_in_fabric(name) {
-            self.mul(name, width, (a, wa), (b, wb), &[], 0.0, comment);
+            self.mul(name, width, (a, wa), (b, wb), &[], Delay::ZERO, comment);
             return;
         }
         self.count_product(name, wa, wb, width);
-        self.product_delay(wa, wb, width, 0.0);
+        self.product_delay(wa, wb, width, Delay::ZERO);
         let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
         let (ea, eb) = self.seen_from_step_before(&inputs, &format!("the DSP of {name}"), |s| {
             (s.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)).text, s.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)).text)
@@ -178,7 +178,7 @@ impl Builder {
                 true => Vec::new(),
                 false => addend.to_vec(),
             };
-            let sum = self.mul(name, width, (a, wa), (b, wb), &addend, 0.0, &format!("{comment} (one DSP, the add inside it)"));
+            let sum = self.mul(name, width, (a, wa), (b, wb), &addend, Delay::ZERO, &format!("{comment} (one DSP, the add inside it)"));
             // (the block's output read by the fabric from a flip-flop of its own)
             self.fabric_register_step(&format!("{title}: the sum registered in the fabric"));
             return sum;
@@ -280,13 +280,15 @@ impl Builder {
     /// Starts the next step.
     pub(crate) fn step(&mut self, title: &str) {
         let index = self.steps.len() + 1;
-        self.steps.push(Step { index, title: title.into(), wires: Vec::new(), dsps: Vec::new(), delay: 0.0, soft_product: false });
+        self.steps.push(Step { index, title: title.into(), wires: Vec::new(), dsps: Vec::new(), delay: Delay::ZERO, soft_product: false });
     }
 
     /// Raises the current step's delay estimate to at least `d`.
-    pub(crate) fn delay(&mut self, d: f64) {
+    pub(crate) fn delay(&mut self, d: Delay) {
         let s = self.steps.last_mut().expect("a step");
-        s.delay = s.delay.max(d);
+        if d.ns > s.delay.ns {
+            s.delay = d;
+        }
     }
 
     pub(super) fn signal(&mut self, name: &str) -> &mut Signal {
@@ -479,12 +481,12 @@ impl Builder {
     /// `color_sum_X = v·ks_X + 2^(wc−1)`, `B + wc` bits, for the `wc + 1`-bit UQ1.wc signal `v`
     /// (`what` names the value in the comments). [`Builder::colour_results`] takes the outputs.
     /// `after`: the delay of the logic behind the products in the same step.
-    pub(crate) fn colour_sums(&mut self, v: &str, wc: u32, what: &str, after: f64) {
+    pub(crate) fn colour_sums(&mut self, v: &str, wc: u32, what: &str, after: Delay) {
         self.colour_sums_of([v; 3], wc, what, after)
     }
 
     /// [`Builder::colour_sums`] of one signal per channel (`vs`, in [`CHANNELS`]' order).
-    fn colour_sums_of(&mut self, vs: [&str; 3], wc: u32, what: &str, after: f64) {
+    fn colour_sums_of(&mut self, vs: [&str; 3], wc: u32, what: &str, after: Delay) {
         let bb = self.colour_bits();
         let cp = wc + bb;
         let vps = vs.map(|v| {
@@ -517,12 +519,12 @@ impl Builder {
         if !self.family().instantiated_blocks() {
             if self.signals.iter().any(|s| s.name == "color_power_r") {
                 // a copy per channel, made the step before ([`Builder::colour_copies`])
-                self.colour_sums_of(["color_power_r", "color_power_g", "color_power_b"], wc, what, 0.0);
+                self.colour_sums_of(["color_power_r", "color_power_g", "color_power_b"], wc, what, Delay::ZERO);
                 return;
             }
             let cs = self.bits(src, lo + wc, lo);
             self.wire("color_power", wc + 1, Kind::Select, cs, &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"));
-            self.colour_sums("color_power", wc, what, 0.0);
+            self.colour_sums("color_power", wc, what, Delay::ZERO);
             return;
         }
         let bb = self.colour_bits();
@@ -726,7 +728,7 @@ impl Builder {
         // place its cuts on a wrong sum: every step's logic states its delay (Builder::delay)
         for s in &self.steps {
             let logic = s.wires.iter().any(|w| !w.is_plain()) || !s.dsps.is_empty();
-            assert!(!logic || s.delay > 0.0, "datapath: step {} ({}) has logic but no delay estimate: call Builder::delay in it", s.index, s.title);
+            assert!(!logic || s.delay.ns > 0.0, "datapath: step {} ({}) has logic but no delay estimate: call Builder::delay in it", s.index, s.title);
         }
         let last = self.cur();
         for o in outputs {

@@ -87,8 +87,9 @@ pub struct Step {
     pub(crate) wires: Vec<Wire>,
     /// products on ECP5 DSP blocks with their own registers (`Builder::product`)
     pub(crate) dsps: Vec<Dsp>,
-    /// Delay estimate (ns on a LUT4 + carry-chain fabric); only ratios matter.
-    pub(crate) delay: f64,
+    /// Delay estimate (ns on a LUT4 + carry-chain fabric, only ratios matter; and the
+    /// primitives it counts)
+    pub(crate) delay: Delay,
     /// a product here is too small for the family's block and lands in LUTs
     /// ([`Builder::product_delay`]): the step is logic, never a hard block on its own
     pub(crate) soft_product: bool,
@@ -194,7 +195,7 @@ impl Datapath {
     }
 
     pub(crate) fn delays(&self) -> Vec<f64> {
-        self.steps.iter().map(|s| s.delay).collect()
+        self.steps.iter().map(|s| s.delay.ns).collect()
     }
 
     /// Whether some product is an ECP5 MULT18X18D with its registers (`<top>_mult18x18`).

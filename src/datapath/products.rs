@@ -40,14 +40,14 @@ impl Builder {
     /// product in the same step. A product the budget leaves out of the blocks is
     /// [`Builder::fabric_products`] instead, in steps of its own.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn mul(&mut self, name: &str, width: u32, a: (&[Piece], u32), b: (&[Piece], u32), addend: &[Piece], after: f64, comment: &str) -> Sig {
+    pub(crate) fn mul(&mut self, name: &str, width: u32, a: (&[Piece], u32), b: (&[Piece], u32), addend: &[Piece], after: Delay, comment: &str) -> Sig {
         let item = MulItem { name: name.into(), a, b, addend: addend.to_vec(), comment: comment.into() };
         self.muls(&[item], width, after).pop().expect("one product")
     }
 
     /// Several products of `width` bits made side by side in this step ([`Builder::mul`]); in
     /// the fabric, their sums take the same steps.
-    pub(crate) fn muls(&mut self, items: &[MulItem], width: u32, after: f64) -> Vec<Sig> {
+    pub(crate) fn muls(&mut self, items: &[MulItem], width: u32, after: Delay) -> Vec<Sig> {
         for it in items {
             self.count_product(&it.name, it.a.1, it.b.1, width);
         }
@@ -77,7 +77,7 @@ impl Builder {
     /// constant), and its addend as one more term; then one carry-save sum each, in steps of
     /// their own ([`Builder::sums_start`]), closed by a carry-select add. Exact: every term is
     /// kept to `width` bits and the sum is taken mod 2^width, as the product's wire is.
-    pub(crate) fn fabric_products(&mut self, items: &[MulItem], width: u32, after: f64) -> Vec<Sig> {
+    pub(crate) fn fabric_products(&mut self, items: &[MulItem], width: u32, after: Delay) -> Vec<Sig> {
         let mut sums = Vec::new();
         for it in items {
             let mut terms = self.partial_terms(&it.name, it.a, it.b, width);
@@ -92,7 +92,7 @@ impl Builder {
         let pending = self.sums_start(sums, &title);
         let out = self.resolve_all(pending, &title);
         let s = self.steps.last_mut().expect("a step");
-        s.delay += after;
+        s.delay = s.delay + after;
         out
     }
 

@@ -62,11 +62,11 @@ fn multiply_add_uses_the_post_adder_only_where_the_tool_takes_it() {
 fn a_register_read_by_a_block_is_kept() {
     let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1, 2], Target::Ice40);
     b.step("p");
-    b.mul("p", 16, (&[Piece::sig("a", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
+    b.mul("p", 16, (&[Piece::sig("a", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], Delay::ZERO, "");
     let e = b.bits("p", 15, 8);
     b.wire("hi", 8, Kind::Select, e, "");
     b.step("q");
-    b.mul("q", 16, (&[Piece::sig("hi", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
+    b.mul("q", 16, (&[Piece::sig("hi", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], Delay::ZERO, "");
     let e = b.bits("p", 7, 0);
     b.wire("lo", 8, Kind::Logic, ex!("~{}", e), "");
     let d = b.finish(&["q", "lo"]);
@@ -81,13 +81,13 @@ fn a_register_read_by_a_block_is_kept() {
 fn a_block_output_register_read_through_slices_is_kept() {
     let mut b = Builder::new(&[("a", 8), ("c", 8)], &[1], Target::Ice40);
     b.step("p");
-    b.mul("p", 16, (&[Piece::sig("a", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
+    b.mul("p", 16, (&[Piece::sig("a", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], Delay::ZERO, "");
     b.step("q");
     let e = b.bits("p", 15, 4);
     b.wire("s", 12, Kind::Select, e, "a slice of the registered product");
     let e = b.bits("s", 11, 4);
     b.wire("t", 8, Kind::Select, e, "a slice of the slice");
-    b.mul("q", 16, (&[Piece::sig("t", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], 0.0, "");
+    b.mul("q", 16, (&[Piece::sig("t", 0, 8)], 8), (&[Piece::sig("c", 0, 8)], 8), &[], Delay::ZERO, "");
     let d = b.finish(&["q"]);
     assert!(d.read_by_block("p", 1), "read by a multiplier through two slices");
 }

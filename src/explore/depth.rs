@@ -132,8 +132,11 @@ pub fn depth_and_options_for_clock(
             (p, f, f)
         }
     };
-    let note = crate::timing::outside_calibration(&chosen);
-    let extrapolated = note.as_deref().is_some_and(|n| n.starts_with("outside"));
+    // extrapolated where the line spoke, not a unit of today's RTL at or around these widths
+    let extrapolated = crate::timing::assured_reading(&chosen).is_none_or(|(_, rule)| rule == crate::timing::Rule::Line);
+    let note = crate::timing::outside_calibration(&chosen).or_else(|| {
+        extrapolated.then(|| "the delay model's line times its margin: no unit of these widths measured on today's RTL bounds this depth".to_string())
+    });
     Ok(DepthPick { plan: chosen, evidence: ClockEvidence::Modelled { figure, predicted, extrapolated, note } })
 }
 

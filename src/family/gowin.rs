@@ -56,6 +56,14 @@ static BLOCKS: Blocks = Blocks {
     })),
 };
 
+/// The GW1NR-9 C6/I5's primitive delays (Apicula's timing as yosys's cell library states it,
+/// plus a typical route of nextpnr-himbaechel): a LUT4 ~1.05-1.49 ns and ~0.8 of route; an
+/// ALU's entry (I0 to COUT ~1.0-1.4 ns) and sum out (~0.7-0.8), then 0.05-0.08 ns a bit; a
+/// MULT18X18 as nextpnr times it, cut at its pins (the routes in and out only: see
+/// `untimed_blocks`); a partial-product level about a LUT's; a register-to-register route ~1 ns.
+pub(crate) const PRIMITIVE_DELAYS: crate::family::PrimitiveDelays =
+    crate::family::PrimitiveDelays { lut: 2.0, carry: 1.0, carry_bit: 0.06, dsp: 1.6, array_level: 2.0, route: 1.0 };
+
 impl Family for Gowin {
     fn name(&self) -> &'static str {
         "gowin"
@@ -104,6 +112,9 @@ impl Family for Gowin {
         vec![(format!("{top}.cst"), cst(top))]
     }
     /// no figure of Gowin's is built in for either block (see [`untimed_blocks`](Family::untimed_blocks))
+    fn primitive_delays(&self) -> crate::family::PrimitiveDelays {
+        PRIMITIVE_DELAYS
+    }
     fn block_limits(&self, _grade: u32, _dsp: bool, _bram: bool) -> Vec<BlockLimit> {
         Vec::new()
     }

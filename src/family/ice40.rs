@@ -19,6 +19,13 @@ const MIN_PRODUCT_BITS: u32 = 11;
 
 pub(super) struct Ice40;
 
+/// The iCE40 UP5K's primitive delays (post-route figures of nextpnr-ice40, each with its
+/// route: a LUT4 ~1.2 ns in the cell library plus ~1.5 of route, a carry 0.3 ns a bit with its
+/// SB_CARRY's entry and exit, an SB_MAC16 multiply ~5.5 ns): the figures the datapath's delay
+/// estimates are written in (`datapath::Delay`), which place the registers on every family.
+pub(crate) const PRIMITIVE_DELAYS: crate::family::PrimitiveDelays =
+    crate::family::PrimitiveDelays { lut: 2.7, carry: 0.7, carry_bit: 0.3, dsp: 5.5, array_level: 1.5, route: 1.0 };
+
 impl Family for Ice40 {
     fn name(&self) -> &'static str {
         "ice40"

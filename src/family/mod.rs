@@ -41,6 +41,35 @@ impl BlockLimit {
     }
 }
 
+/// A family's primitive delays, ns (FloPoCo's way: what a LUT level, a carry chain and its
+/// bits, a hard multiply, a level of a partial-product array and a register-only route cost on
+/// the part, each with its route), from which the delay model reads a datapath's stretches
+/// between registers on that family (`crate::timing`). Only the ratios and the order of the
+/// stretches matter: the delay model's line per datapath scales them to the part's clock.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrimitiveDelays {
+    /// one LUT level and its route
+    pub lut: f64,
+    /// a carry chain's entry and exit (the LUT that brings its carry-out back excluded: counted
+    /// as a LUT level)
+    pub carry: f64,
+    /// a carry chain, per bit
+    pub carry_bit: f64,
+    /// a hard multiply between registers in the fabric (into the block, through, out)
+    pub dsp: f64,
+    /// a level of a partial-product array past the block's operands
+    pub array_level: f64,
+    /// a route from one register to another with no logic
+    pub route: f64,
+}
+
+impl PrimitiveDelays {
+    /// In the order of `datapath::Delay`'s parts.
+    pub(crate) fn as_array(&self) -> [f64; 6] {
+        [self.lut, self.carry, self.carry_bit, self.dsp, self.array_level, self.route]
+    }
+}
+
 /// A place-and-route tool of a family: the programs tried in order, how to install the first,
 /// and the device options.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -162,6 +191,12 @@ pub trait Family: Sync {
     /// The minimum periods of the hard blocks a unit uses (`dsp`, `bram`), on its part at
     /// `grade`, from the vendors' timing data (`crate::family::blocks` says why and from where).
     fn block_limits(&self, grade: u32, dsp: bool, bram: bool) -> Vec<BlockLimit>;
+    /// Its primitive delays on the part its delay model is calibrated on (see
+    /// [`PrimitiveDelays`]; a family without a delay model: the iCE40's, which place the
+    /// registers everywhere).
+    fn primitive_delays(&self) -> PrimitiveDelays {
+        ice40::PRIMITIVE_DELAYS
+    }
     /// Block RAM with a read register (a long delay line's tail can wait there).
     fn has_block_ram(&self) -> bool;
     /// The family `synth` maps this family's RTL on when none is named: its own, or (RTL of no

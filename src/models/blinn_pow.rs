@@ -6,7 +6,7 @@
 use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
 use crate::bits::{lit, mask};
 use crate::config::Config;
-use crate::datapath::{add_delay, ex, Builder, Expr, Kind, Piece, LUT_DELAY};
+use crate::datapath::{add_delay, ex, Builder, Delay, Expr, Kind, Piece, LUT_DELAY};
 
 /// W for `--model blinn-pow` (square-and-multiply over the bits of n, LSB first, every
 /// product truncated to W fractional bits, c taken exactly: W ≥ F).
@@ -164,10 +164,10 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
     match b.instantiated_blocks() {
         // the products alone (MULT18X18Ds where they fit), the rounding half after them
         true => b.colour_products(&r, 0, pw, "c^n"),
-        false => b.colour_sums(&r, pw, "c^n", 0.0),
+        false => b.colour_sums(&r, pw, "c^n", Delay::ZERO),
     }
     // (on the iCE40 after the choice's LUT)
-    b.product_delay(pw + 1, cfg.b(), pw + cfg.b(), if own_step { 0.0 } else { LUT_DELAY });
+    b.product_delay(pw + 1, cfg.b(), pw + cfg.b(), if own_step { Delay::ZERO } else { LUT_DELAY });
 
     // the colours after their blocks' registers
     b.step("round half up to the outputs");

@@ -50,7 +50,7 @@
 use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::Config;
-use crate::datapath::{ex, Builder, Expr, Kind, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT};
+use crate::datapath::{ex, Builder, Delay, Expr, Kind, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -398,7 +398,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
         b.product("deviation_lo", &[Piece::sig("fit", 0, dsp)], &[Piece::sig("one_minus_cos", 0, cb)], lw, &format!("a_n[{}:0]*(1 - cos), exact", dsp - 1));
         let hw = pb - dsp;
         let mut terms = b.partial_products("deviation_hi", &Piece::sig("one_minus_cos", 0, cb), &Piece::sig("fit", dsp, w.a_bits - dsp), 0, hw, false);
-        b.product_delay(dsp, cb, lw, 0.0);
+        b.product_delay(dsp, cb, lw, Delay::ZERO);
         // (the block's output read by the carry-save layers from a flip-flop of its own: a
         // MULT18X18D's 1.5-1.8 ns route into two LUT levels held fitted at 246 MHz on the ECP5)
         b.fabric_register_step(&format!("{t}: a_lo*(1 - cos) registered in the fabric"));
@@ -479,7 +479,7 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     b.colour_copies(&s, wf - wc, wc, "S", false);
     b.step("colour multipliers (14-16)");
     b.colour_products(&s, wf - wc, wc, "S");
-    b.product_delay(wc + 1, bb, wc + bb, 0.0);
+    b.product_delay(wc + 1, bb, wc + bb, Delay::ZERO);
     // round half up on the bits that matter: (S[W:W-FI-1] + 1) >> 1 = floor((S + 2^-(FI+1)) / 2^-FI)
     let title = "the intensity rounded half up";
     b.step(&format!("{title}: chunk sums"));
@@ -553,7 +553,7 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
             b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
             let (h, th) = ([Piece::sig(&prev, r, dsp)], [Piece::sig(tn.as_ref(), r, tw - r)]);
             let what = format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1);
-            b.mul(&format!("square{j}"), zw, (&h, dsp), (&h, dsp), &th, 0.0, &what)
+            b.mul(&format!("square{j}"), zw, (&h, dsp), (&h, dsp), &th, Delay::ZERO, &what)
         };
         // the bypass in a step of its own: the DSP's output meets only a flip-flop
         b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
@@ -569,7 +569,7 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
             b.product(&square, &p, &p, sq, &what);
         } else {
             let wp = (wf + 1).min(dsp);
-            b.mul(&square, sq, (&p, wp), (&p, wp), &[], 0.0, &what);
+            b.mul(&square, sq, (&p, wp), (&p, wp), &[], Delay::ZERO, &what);
         }
         // the bypass in a step of its own: the block's output meets only its register
         b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));

@@ -2,8 +2,8 @@
 //! binary (`specgen calibrate`), the features of each row planned here (no unit generated).
 //!
 //! Per family, a unit's clock period is the plane `offset + a·e + b·m` in its slowest stretch of
-//! logic `e` and its mean stretch `m` (`Plan::stage_delay`, `Plan::stage_delay_mean`, rounded to
-//! hundredths as the manifest states them), fitted by least squares to `1000 / fmax` with
+//! logic `e` and its mean stretch `m` on the family's primitive delays (`super::stretches`,
+//! rounded to hundredths), fitted by least squares to `1000 / fmax` with
 //! non-negative slopes (else the line in one of them, or a constant: the best of those) and a
 //! non-negative intercept (a negative one is held at 0, the slopes fitted again); `r2` is the
 //! share of the periods' spread the line explains. `cap`
@@ -242,7 +242,7 @@ fn corner_margin(model: &Map<String, Value>) -> Result<f64, Error> {
                 let rest = full.clone().keeping(&others);
                 for (i, unit) in full.measured.iter().enumerate().filter(|(i, _)| full.measured_args[*i] == w) {
                     let plan = Plan::new(crate::config::Config::new(Params { stages: full.measured_stages[i], ..params.clone() })?)?;
-                    if let (read, true) = rest.clone().at_widths_of(&plan).corner(plan.cfg.stages(), plan.stage_delay()) {
+                    if let (read, true) = rest.clone().at_widths_of(&plan).corner(plan.cfg.stages(), super::stretches(&plan).0) {
                         worst = worst.min(unit[2] / read);
                     }
                 }
@@ -267,11 +267,12 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
         let fmax: f64 = fmax.parse().ok().filter(|f: &f64| *f > 0.0 && f.is_finite()).ok_or_else(|| bad(format!("{}: fmax_mhz is no clock", what())))?;
         let params = row_params(family, model, stages, args).ok_or_else(|| bad(format!("{}: no calibration unit (family, datapath or args)", what())))?;
         let plan = Plan::new(crate::config::Config::new(params).map_err(|e| bad(format!("{}: {e}", what())))?).map_err(|e| bad(format!("{}: {e}", what())))?;
+        let (e, m) = super::stretches(&plan);
         by_family.entry(family.clone()).or_default().push(Row {
             model: model.clone(),
             stages,
-            est: hundredths(plan.stage_delay()),
-            mean: hundredths(plan.stage_delay_mean()),
+            est: hundredths(e),
+            mean: hundredths(m),
             fmax,
             args: args.clone(),
             digest: digest.clone(),

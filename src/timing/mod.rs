@@ -2,24 +2,28 @@
 //! configuration was measured on today's RTL. (Measured units come first, in
 //! `explore::depth_for_clock`, the one depth search; this module is its fallback.)
 //!
+//! **The stretches.** Each datapath step counts the primitives it passes through (LUT levels,
+//! carry chains and bits, hard multiplies, partial-product levels, register-only routes:
+//! `datapath::Delay`); the family weighs them with its own primitive delays
+//! (`family::PrimitiveDelays`, FloPoCo's way). `e` is the slowest stretch between registers,
+//! `m` the mean one ([`stretches`]).
+//!
 //! **The rules, in order.**
-//! 1. *A line per datapath and family*, fitted by least squares (`specgen calibrate`, `timing::fit`)
-//!    to the median Fmax of the calibration units (`data/delay_calibration.csv`):
-//!    `period_ns = offset_ns + ns_per_unit·e + ns_per_mean_unit·m`, `Fmax = min(cap_mhz,
-//!    1000/period_ns)`, where `e` is the plan's slowest stretch between registers and `m` the
-//!    mean one (`Plan::stage_delay`, `stage_delay_mean`), `cap_mhz` the hard blocks' limit;
-//!    slopes and intercept non-negative, its `r2` stored beside it. Its `margin` is the worst
-//!    measured/predicted ratio over the data. This is a *prediction*.
-//! 2. *Floors from measured units of today's RTL.* A calibration row is a floor only where it
-//!    names the RTL digest specgen writes today for it (`Line::of_todays_rtl`); any other row
-//!    is the fit's data and nothing more. A unit whose stretches are no longer than such a
-//!    unit's is assured that unit's median (`measured_floor`); between two of them the longer
-//!    one's figure (`bracketed`).
-//! 3. *Between calibrated widths* (`Line::corner`): the calibrated widths around the
-//!    configuration's, read at as many cuts from their deepest depth as the depth asked is from
-//!    its own; assured [`corner_margin`] of the least of them, the margin the fit finds by leaving each
-//!    calibrated width out (`fit::corner_margin`, stored with the model).
-//! 4. *Elsewhere* the line times its margin: an extrapolation, said so.
+//! 1. *Floors of these widths.* A calibration unit of this datapath, family and shape whose row
+//!    names today's RTL digest (`Line::of_todays_rtl`) is a floor: a depth whose stretches are
+//!    no longer than such a unit's is assured that unit's median (`measured_floor`); between
+//!    two of them, the longer one's (`bracketed`).
+//! 2. *Between calibrated widths* (`Line::corner`): where calibrated shapes surround the
+//!    configuration's (one no wider in every width, one no narrower), the depth is read at as
+//!    many cuts from the deepest in each, and assured [`corner_margin`] of the least they
+//!    measured there: a margin the fit computes by leaving each width out (`fit::corner_margin`),
+//!    stored with the model and printed by `generate --explain`.
+//! 3. *Otherwise an extrapolation*, said so: the line per datapath and family, fitted by least
+//!    squares (`specgen calibrate`, `timing::fit`) to the calibration's medians,
+//!    `period_ns = offset_ns + ns_per_unit·e + ns_per_mean_unit·m`, slopes and intercept
+//!    non-negative, its R² stored; assured times its `margin` (the worst measured/predicted
+//!    ratio of its data), and never above what the calibrated widths measured as deep or deeper
+//!    (a ceiling: `Line::corner`).
 //!
 //! Every figure stays under the blocks' limits at speed grade 6 (`crate::family`) and, for a
 //! `ready`/`axis` unit, under the most a unit with its output buffer was measured at.
@@ -178,6 +182,9 @@ pub struct Line {
     /// the largest `e` among the calibration units that reached the cap (-1: none did)
     pub(crate) cap_up_to: f64,
     pub margin: f64,
+    /// the share of the calibration's variance (of the period) the line explains
+    #[serde(default)]
+    pub(crate) r2: f64,
     /// the calibration units of this datapath on this family, `[e, m, median Fmax]`: a unit
     /// whose stretches are no longer than one measured reaches at least its Fmax (the line
     /// misses the jump of the last cuts, where the long stretches go at once)
@@ -235,6 +242,13 @@ impl Corner {
     fn unit_at(&self, from_deepest: u32) -> Option<&(u32, f64, f64)> {
         let at = self.deepest.saturating_sub(from_deepest);
         self.units.iter().filter(|u| u.0 <= at && !(self.inner && u.0 + BETWEEN_WINDOW < at)).max_by_key(|u| u.0)
+    }
+
+    /// Its shallowest unit at `from_deepest` cuts from its own deepest or fewer (a ceiling for a
+    /// depth that far from the configuration's deepest).
+    fn unit_at_or_deeper(&self, from_deepest: u32) -> Option<&(u32, f64, f64)> {
+        let at = self.deepest.saturating_sub(from_deepest);
+        self.units.iter().filter(|u| u.0 >= at).min_by_key(|u| u.0)
     }
 }
 
@@ -422,7 +436,7 @@ impl Line {
             // in LUTs that none of them has: a LUT tree and a carry chain, 8 or more) is not
             // between them
             let own_step = plan.longest_step();
-            self.surrounded &= own_step < longest_step + crate::datapath::LUT_DELAY;
+            self.surrounded &= own_step < longest_step + crate::datapath::LUT_DELAY.ns;
             self.corners = corners;
             self.deepest = plan.cut_points;
             // the cap where a calibration unit as short reached it: only at widths measured
@@ -434,53 +448,68 @@ impl Line {
         self
     }
 
-    /// At widths never measured, what the corners measured at `stages` (the least, over the
-    /// corners, of each one's deepest unit at as many cuts from its own deepest as `stages` is
-    /// from the configuration's, or shallower: a corner measured only deeper has no say, nor a
-    /// width between the nearest ones whose unit is more than [`BETWEEN_WINDOW`] cuts
-    /// shallower), and whether that figure is assured, not only a ceiling: the corners surround
-    /// the configuration's widths, every nearest one has a unit here, and its slowest stretch
-    /// `e` is no longer than the longest of theirs. Without corners: unbounded, nothing assured.
+    /// At widths never measured, what the corners measured near `stages`, and whether that
+    /// figure is assured or only a ceiling. Without corners: unbounded, nothing assured.
     ///
-    /// Why a ceiling: between calibrated widths the line alone over-promised (a lean at
-    /// 10/6/8/12 bits, 11 stages, was predicted 124.9 MHz and measured 83.2, between the narrow
-    /// unit's 52.2 and the default's 99.9 at that depth). Why a floor where surrounded: a unit
-    /// between two measured widths at the same distance from its deepest has products, tables
-    /// and carries between theirs, and the cuts that bring the jump of the last long stretch
-    /// are counted from the deepest (blinn on the ECP5: 149 MHz at 7 cuts from the deepest at
-    /// narrow widths, 167 at the default ones).
+    /// *A floor where surrounded*: the least, over the corners, of each one's deepest unit at as
+    /// many cuts from its own deepest as `stages` is from the configuration's, or shallower (a
+    /// width between the nearest ones whose unit is more than [`BETWEEN_WINDOW`] cuts shallower
+    /// has no say), is assured where the corners surround the configuration's widths, every
+    /// nearest one has such a unit, and the slowest stretch `e` is no longer than the longest of
+    /// theirs. A unit between two measured widths at the same distance from its deepest has
+    /// products, tables and carries between theirs, and the cuts that bring the jump of the last
+    /// long stretch are counted from the deepest (blinn on the ECP5: 149 MHz at 7 cuts from the
+    /// deepest at narrow widths, 167 at the default ones).
+    ///
+    /// *Else a ceiling*: the least, over the corners, of each one's shallowest unit at as many
+    /// cuts from its deepest or fewer (a deeper unit of a width runs as fast as a shallower one
+    /// or faster, so a shallower unit is no ceiling). Between calibrated widths the line alone
+    /// over-promised (a lean at 10/6/8/12 bits, 11 stages, predicted 124.9 MHz, measured 83.2,
+    /// where the narrow unit had 52.2 at that depth).
     pub fn corner(&self, stages: u32, e: f64) -> (f64, bool) {
         if self.corners.is_empty() {
             return (f64::INFINITY, false);
         }
         let from_deepest = self.deepest.saturating_sub(stages);
-        let (mut value, mut longest, mut every) = (f64::INFINITY, f64::NEG_INFINITY, true);
-        for c in &self.corners {
-            match c.unit_at(from_deepest) {
-                Some(&(_, ce, f)) => {
-                    value = value.min(f);
-                    longest = longest.max(ce);
+        if self.surrounded {
+            let (mut value, mut longest, mut every) = (f64::INFINITY, f64::NEG_INFINITY, true);
+            for c in &self.corners {
+                match c.unit_at(from_deepest) {
+                    Some(&(_, ce, f)) => {
+                        value = value.min(f);
+                        longest = longest.max(ce);
+                    }
+                    // a width between the nearest ones, not measured near this depth: no say
+                    None if c.inner => {}
+                    // measured only deeper: no floor here
+                    None => every = false,
                 }
-                // a width between the nearest ones, not measured near this depth: no say
-                None if c.inner => {}
-                // measured only deeper: no figure here (the line's, with its margin, speaks)
-                None => every = false,
+            }
+            if every && e <= longest + 0.005 {
+                return (value, true);
             }
         }
-        (value, self.surrounded && every && e <= longest + 0.005)
+        let ceiling = self.corners.iter().filter_map(|c| c.unit_at_or_deeper(from_deepest)).map(|u| u.2).fold(f64::INFINITY, f64::min);
+        (ceiling, false)
     }
 
     /// At widths never measured, the corners' unit that sets [`Line::corner`]'s figure at
-    /// `stages`: its widths (generate flags beyond the defaults), depth and median Fmax.
-    pub fn nearest_unit(&self, stages: u32) -> Option<(&str, u32, f64)> {
+    /// `stages` for a slowest stretch `e`: its widths (generate flags beyond the defaults), depth
+    /// and median Fmax.
+    pub fn nearest_unit(&self, stages: u32, e: f64) -> Option<(&str, u32, f64)> {
+        let (value, floor) = self.corner(stages, e);
         let from_deepest = self.deepest.saturating_sub(stages);
-        self.corners.iter().filter_map(|c| c.unit_at(from_deepest).map(|u| (c.args.as_str(), u.0, u.2))).min_by(|a, b| a.2.total_cmp(&b.2))
+        self.corners
+            .iter()
+            .filter_map(|c| if floor { c.unit_at(from_deepest) } else { c.unit_at_or_deeper(from_deepest) }.map(|u| (c.args.as_str(), u.0, u.2)))
+            .find(|u| u.2 == value)
     }
 
     /// The model's Fmax for `plan`.
     pub fn fmax_of(&self, plan: &Plan) -> f64 {
-        let f = self.fmax(plan.stage_delay(), plan.stage_delay_mean());
-        match self.corner(plan.cfg.stages(), plan.stage_delay()) {
+        let (e, m) = stretches(plan);
+        let f = self.fmax(e, m);
+        match self.corner(plan.cfg.stages(), e) {
             (v, true) => f.max(v),
             _ => f,
         }
@@ -492,22 +521,67 @@ impl Line {
     /// widths never measured, no more than the corners measured at its depth, and that with
     /// [`corner_margin`] where they surround its widths ([`Line::corner`]).
     pub fn assured_of(&self, plan: &Plan) -> f64 {
-        match self.corner(plan.cfg.stages(), plan.stage_delay()) {
-            (v, true) => v * corner_margin(),
-            (v, false) => self.assured(plan.stage_delay(), plan.stage_delay_mean()).min(v),
+        self.assured_by_rule(plan).0
+    }
+
+    /// [`Line::assured_of`], and the rule of the module doc that gave it.
+    pub fn assured_by_rule(&self, plan: &Plan) -> (f64, Rule) {
+        let (e, m) = stretches(plan);
+        match self.corner(plan.cfg.stages(), e) {
+            (v, true) => (v * corner_margin(), Rule::Between),
+            (v, false) => {
+                let (a, rule) = self.assured_with_rule(e, m);
+                (a.min(v), rule)
+            }
         }
     }
 
     /// [`Line::assured_of`] for the stretches `e`, `m`.
     pub fn assured(&self, e: f64, m: f64) -> f64 {
+        self.assured_with_rule(e, m).0
+    }
+
+    fn assured_with_rule(&self, e: f64, m: f64) -> (f64, Rule) {
+        let floor = self.measured_floor(e, m);
         if e <= self.cap_up_to {
-            self.cap_mhz
+            (self.cap_mhz, Rule::Floor)
         } else if self.bracketed(e, m) {
-            self.measured_floor(e, m)
+            (floor, Rule::Floor)
         } else {
-            (self.fmax(e, m) * self.margin).max(self.measured_floor(e, m))
+            let line = self.fmax(e, m) * self.margin;
+            if floor > 0.0 && floor >= line {
+                (floor, Rule::Floor)
+            } else {
+                (line, Rule::Line)
+            }
         }
     }
+}
+
+/// Which rule of the module doc gave an assured figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rule {
+    /// a calibration unit of these widths on today's RTL (rule 1)
+    Floor,
+    /// the calibrated widths around these, with the corner margin (rule 2)
+    Between,
+    /// the fitted line with its margin: an extrapolation (rule 3)
+    Line,
+}
+
+/// The figure [`assured_fmax`] gives `plan`, and the rule that gave it. None for a datapath
+/// without calibration.
+pub fn assured_reading(plan: &Plan) -> Option<(f64, Rule)> {
+    let (f, rule) = line_of(plan).ok()?.assured_by_rule(plan);
+    Some((under_caps(plan, f), rule))
+}
+
+/// The slowest and the mean stretch of logic between registers of `plan` (`Plan::stage_delay`,
+/// `Plan::stage_delay_mean`) weighed with its family's primitive delays
+/// (`family::PrimitiveDelays`): what the lines are fitted in and read at.
+pub(crate) fn stretches(plan: &Plan) -> (f64, f64) {
+    let w = crate::family::of(plan.cfg.target()).primitive_delays();
+    (plan.stage_delay_on(&w), plan.stage_delay_mean_on(&w))
 }
 
 /// The family the model speaks of for `target`; none for `generic`, whose RTL names no family:
@@ -662,13 +736,13 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
             ),
         });
     }
-    let mut best = (0, 0.0f64, 0.0f64);
+    let mut best = (0, 0.0f64, 0.0f64, Rule::Line);
     // a depth whose blocks cannot run at mhz is no pick, whatever its routes (the first seen)
     let mut capped: Option<(u32, crate::family::blocks::BlockLimit)> = None;
     for stages in 0..=plan.cut_points {
         progress(stages, plan.cut_points);
         let p = plan.with_stages(stages)?;
-        let (f, assured) = (l.fmax_of(&p), l.assured_of(&p));
+        let (f, (assured, rule)) = (l.fmax_of(&p), l.assured_by_rule(&p));
         let cap = block_cap(&p);
         if let Some(c) = cap.as_ref().filter(|c| c.mhz() < mhz && assured >= mhz) {
             capped.get_or_insert((stages, c.clone()));
@@ -679,7 +753,7 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
             return Ok((p, f));
         }
         if assured > best.2 {
-            best = (stages, f, assured);
+            best = (stages, f, assured, rule);
         }
     }
     if let Some((stages, c)) = capped {
@@ -695,33 +769,77 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
             ),
         });
     }
-    // what holds the best depth down at widths never measured, when it is the nearest
-    // calibrated unit (its figure, or corner_margin() of it), not the line
-    let nearest = l
-        .nearest_unit(best.0)
-        .filter(|u| (u.2 - best.2).abs() < 0.05 || (u.2 * corner_margin() - best.2).abs() < 0.05)
-        .map(|(args, stages, f)| {
-            let widths = if args.is_empty() { "the default widths".to_string() } else { args.to_string() };
-            format!("; the nearest calibrated unit holds it there: {widths} at --stages {stages}, {f:.1} MHz measured")
-        })
-        .unwrap_or_default();
+    let how = match (best.3, outside_calibration(plan)) {
+        (Rule::Floor, _) => "a unit of these widths measured on today's RTL",
+        (Rule::Between, _) => "read from the calibrated widths around these, not measured at them",
+        (Rule::Line, Some(n)) if n.starts_with("outside") => "extrapolated: these widths are outside the calibration",
+        (Rule::Line, _) => "extrapolated by the delay model's line: no unit of today's RTL at or around these widths bounds it",
+    };
     let handshake = match handshake_cap(plan) {
-        Some((c, which)) if c < mhz => format!(
-            "; the {} interface's output buffer has paths of its own, which no calibration unit has: the most a unit with one was measured at on this part is {c:.1} MHz ({which}, on today's RTL)",
-            plan.cfg.interface().name()
-        ),
+        Some((c, _)) if c < mhz => format!("; the {} interface's output buffer was measured at most {c:.1} MHz here", plan.cfg.interface().name()),
         _ => String::new(),
     };
     Err(Error::Config {
         parameter: "target_mhz",
         message: format!(
-            "{mhz} MHz is not assured on the {}: no unit of this configuration measured on today's RTL reaches it, and the delay model assures at most {:.1} MHz (predicts {:.1}), at --stages {}{nearest}{handshake}",
+            "{mhz} MHz is not assured on the {}: no unit of this configuration measured on today's RTL reaches it, and the delay model assures at most {:.1} MHz, at --stages {} ({how}){handshake}",
             part(plan.cfg.target()),
             best.2,
-            best.1,
             best.0
         ),
     })
+}
+
+/// Why [`pick_stages`] refused `mhz` for `plan`, at length (`generate --explain`): the best
+/// depth's figures, the rule that gave them (which calibrated widths, which unit holds the
+/// figure down, the margins) and the handshake's ceiling.
+pub fn explain_refusal(plan: &Plan, mhz: f64) -> Result<Vec<String>, Error> {
+    let l = line_of(plan)?;
+    let mut best: Option<(Plan, f64)> = None;
+    for stages in 0..=plan.cut_points {
+        let p = plan.with_stages(stages)?;
+        let a = under_caps(&p, l.assured_of(&p));
+        if best.as_ref().is_none_or(|b| a > b.1) {
+            best = Some((p, a));
+        }
+    }
+    let Some((p, assured)) = best else { return Ok(Vec::new()) };
+    let (e, m) = stretches(&p);
+    let mut lines = vec![format!(
+        "the best depth for {mhz} MHz, --stages {}: assured {assured:.1} MHz, predicted {:.1} (the line: {:.2} ns + {:.3} ns a unit of the slowest stretch {:.1} + {:.3} a unit of the mean {:.1}; margin {:.2}; R² {:.2})",
+        p.cfg.stages(),
+        predicted_fmax(&p).unwrap_or(0.0),
+        l.offset_ns,
+        l.ns_per_unit,
+        e,
+        l.ns_per_mean_unit,
+        m,
+        l.margin,
+        l.r2
+    )];
+    if let Some(b) = block_cap(&p) {
+        lines.push(format!("the blocks' limit: {} (at most {:.1} MHz)", b.what, b.mhz()));
+    }
+    if let Some(n) = outside_calibration(&p) {
+        lines.push(n);
+    }
+    if let Some((args, stages, f)) = l.nearest_unit(p.cfg.stages(), e) {
+        let widths = if args.is_empty() { "the default widths" } else { args };
+        let (_, floor) = l.corner(p.cfg.stages(), e);
+        lines.push(match floor {
+            true => {
+                format!("the calibrated unit that holds it: {widths} at --stages {stages}, {f:.1} MHz measured, times the corner margin {:.2}", corner_margin())
+            }
+            false => format!("the calibrated unit that caps it: {widths} at --stages {stages}, {f:.1} MHz measured"),
+        });
+    }
+    if let Some((c, which)) = handshake_cap(plan) {
+        lines.push(format!(
+            "the {} interface's output buffer has paths of its own, which no calibration unit has: the most a unit with one was measured at on this part is {c:.1} MHz ({which}, on today's RTL)",
+            plan.cfg.interface().name()
+        ));
+    }
+    Ok(lines)
 }
 
 #[cfg(test)]

@@ -25,6 +25,7 @@ fn test_line((offset_ns, ns_per_unit): (f64, f64), (cap_mhz, cap_up_to): (f64, f
         cap_mhz,
         cap_up_to,
         margin,
+        r2: 0.0,
         measured,
         measured_args: vec![],
         measured_stages: vec![],
@@ -101,10 +102,17 @@ fn only_units_of_the_same_widths_are_floors() {
     // its slowest stretch is no longer than theirs
     assert!(theirs.surrounded && theirs.corners.len() == 2);
     let at = |from_deepest: u32, e: f64| theirs.corner(theirs.deepest - from_deepest, e);
-    assert_eq!(at(theirs.deepest, 1.0), (f64::INFINITY, false), "shallower than every unit: no say");
+    assert_eq!(at(theirs.deepest, 1.0), (50.0, false), "shallower than every unit: no floor, the ceiling of the shallowest ones");
     assert_eq!(at(0, 1.0), (50.0, true), "the narrow unit at its deepest, 11, the default one at 6");
     assert_eq!(at(0, 10.0), (50.0, true), "a stretch as long as the longest of theirs");
     assert_eq!(at(0, 10.5), (50.0, false), "a longer stretch: a ceiling only");
+    // a ceiling is a unit as deep as the depth read or deeper, never a shallower one (a
+    // shallower unit runs slower: 60 MHz at 3 stages says nothing of 6)
+    let deeper = Line { corners: vec![theirs.corners.iter().find(|c| c.args.is_empty()).cloned().unwrap()], surrounded: false, ..theirs.clone() };
+    let d = deeper.corners[0].deepest;
+    assert_eq!(deeper.corner(theirs.deepest - (d - 3), 1.0), (60.0, false), "the 3-stage unit at its own depth");
+    assert_eq!(deeper.corner(theirs.deepest - (d - 4), 1.0), (150.0, false), "the 6-stage unit, not the 3-stage one");
+    assert_eq!(deeper.corner(theirs.deepest - (d - 7), 1.0), (f64::INFINITY, false), "deeper than every unit: no ceiling");
     assert_eq!(mine.corner(3, 1.0), (f64::INFINITY, false));
 }
 
@@ -225,7 +233,7 @@ fn leave_one_width_out() {
                 for (i, unit) in full.measured.iter().enumerate().filter(|(i, _)| full.measured_args[*i] == w) {
                     let plan = Plan::new(Config::new(crate::config::Params { stages: full.measured_stages[i], ..params.clone() }).unwrap()).unwrap();
                     let read = l.clone().at_widths_of(&plan);
-                    if let (v, true) = read.corner(plan.cfg.stages(), plan.stage_delay()) {
+                    if let (v, true) = read.corner(plan.cfg.stages(), super::stretches(&plan).0) {
                         tried += 1;
                         worst = worst.min(unit[2] / v);
                         let assured = read.assured_of(&plan);

@@ -2,7 +2,7 @@
 //! shift, round.
 
 use super::*;
-use crate::datapath::{pad_operands, Sig, LUT_INPUTS};
+use crate::datapath::{pad_operands, Delay, Sig, LUT_INPUTS};
 
 /// A multiplier of at most this many bits is worth shift-adds rather than a DSP block.
 const SHIFT_ADD_BITS: u32 = 5;
@@ -203,7 +203,7 @@ fn log2(s: &Shape, b: &mut Builder) -> bool {
         let t = "-log2 c' = x*g(x)";
         let hw = lb - dsp;
         let mut terms = b.partial_products("log_frac_hi", &Piece::sig("x", 0, f - 1), &Piece::sig(&ghat.0, ghat.1 + dsp, gb - dsp), 0, hw, false);
-        b.product_delay(f - 1, dsp, lw, 0.0);
+        b.product_delay(f - 1, dsp, lw, Delay::ZERO);
         terms.push(vec![Piece::sig("log_frac_lo", dsp, lw - dsp)]);
         let p = b.sum_start("log_frac_hi", terms, hw, t, &format!("x*ghat[{}:{dsp}] + x*ghat[{}:0]/2^{dsp}, exact", gb - 1, dsp - 1));
         let hi = b.resolve(p, t);
@@ -225,7 +225,7 @@ fn log2(s: &Shape, b: &mut Builder) -> bool {
             b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
         }
         let (xs, gs) = ([Piece::sig("x", 0, f - 1)], [Piece::sig("ghat", 0, gb)]);
-        b.mul("log_frac", lb, (&xs, f - 1), (&gs, gb), &[], 0.0, &what);
+        b.mul("log_frac", lb, (&xs, f - 1), (&gs, gb), &[], Delay::ZERO, &what);
         // e + L in the next step: the block's output meets only its register
         return true;
     }
@@ -309,7 +309,7 @@ fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
     } else {
         first_step(b, "y = n*(-log2 c) (multiplier 7)");
         let (ns, ls) = ([Piece::sig("n", 0, nb)], [Piece::sig("ell", 0, eb2)]);
-        b.mul("y_full", pb, (&ns, nb), (&ls, eb2), &[], 0.0, &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
+        b.mul("y_full", pb, (&ns, nb), (&ls, eb2), &[], Delay::ZERO, &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
     }
 
     b.step("y truncated; its saturation");
@@ -476,7 +476,7 @@ fn shift_and_round(s: &Shape, b: &mut Builder, mut complemented: Option<Sig>) {
 
     b.step("colour multipliers (14-16)");
     b.colour_products("power", we - wc, wc, "c^n");
-    b.product_delay(wc + 1, bb, wc + bb, 0.0);
+    b.product_delay(wc + 1, bb, wc + bb, Delay::ZERO);
     // a step of its own, from a copy of c^n of its own: the register that feeds the colour
     // multipliers sits by the DSP column
     b.round_intensity("power", we, fi, wc, "c^n");

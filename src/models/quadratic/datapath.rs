@@ -77,7 +77,7 @@ fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -
 
 /// `<sig>_k_hi = sig * (k_code >> ks) mod 2^width` by shift-adds (the high part of a split k_q,
 /// a few bits: the block's addend beside `sig * k_lo`); returns its delay.
-fn k_hi_product(cfg: &Config, b: &mut Builder, sig: &str, sig_width: u32, ks: u32, width: u32) -> f64 {
+fn k_hi_product(cfg: &Config, b: &mut Builder, sig: &str, sig_width: u32, ks: u32, width: u32) -> Delay {
     let k_hi = cfg.k_code as u128 >> ks;
     let e = shift_adds(b, sig, sig_width, k_hi, width);
     let what = format!("{sig} * k_code[{}:{ks}] = {sig} * {k_hi} mod 2^{width}, by shift-adds", bit_length(cfg.k_code as u128) - 1);
@@ -214,11 +214,11 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let (k_lo, hi) =
             ([Piece::Const { value: cfg.k_code as u128 & mask(ks), width: w.kn_bits }], [Piece::zeros(ks), Piece::sig("n_k_hi", 0, w.kn_bits - ks)]);
         let what = format!("UQ{}.{}: k_q*n = n*k_lo + n*k_hi*2^{ks}, exact (one DSP, the add inside it)", w.kn_bits - cfg.kf(), cfg.kf());
-        b.mul("kn", w.kn_bits, (&nn, kq.0), (&k_lo, kq.1), &hi, 0.0, &what);
+        b.mul("kn", w.kn_bits, (&nn, kq.0), (&k_lo, kq.1), &hi, Delay::ZERO, &what);
     } else {
         let k = [Piece::Const { value: cfg.k_code as u128, width: w.kn_bits }];
         let what = format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf());
-        b.mul("kn", w.kn_bits, (&nn, kq.0), (&k, kq.1), &[], 0.0, &what);
+        b.mul("kn", w.kn_bits, (&nn, kq.0), (&k, kq.1), &[], Delay::ZERO, &what);
     }
 
     b.step("comparator: select; deviation, high partial product (multiply-add)");
@@ -255,7 +255,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let c = if d_split { Piece::sig("deviation_top", 0, m - dsp) } else { Piece::Const { value: k_prime >> dsp, width: hi_w } };
         let what = if d_split { format!("(1 - cos)[{}:0] + kn*(1 - cos)[{}:{dsp}]", dsp - 1, cb - 1) } else { "(1 - cos)".into() };
         let what = format!("kn[{}:{dsp}] * {what} + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1);
-        b.mul("deviation_hi", hi_w, (&kh, w.kn_bits - dsp), (&d2, dw), &[c], 0.0, &what);
+        b.mul("deviation_hi", hi_w, (&kh, w.kn_bits - dsp), (&d2, dw), &[c], Delay::ZERO, &what);
     }
 
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add)");
@@ -269,7 +269,7 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         (Piece::sig("kn", 0, w.kn_bits), Piece::sig("one_minus_cos", 0, cb), vec![Piece::Const { value: k_prime, width: m }])
     };
     let what = format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f);
-    b.mul("deviation_sum", m, (&[kn], dsp.min(w.kn_bits)), (&[d1], dw), &c, 0.0, &what);
+    b.mul("deviation_sum", m, (&[kn], dsp.min(w.kn_bits)), (&[d1], dw), &c, Delay::ZERO, &what);
 
     bracket(w, b);
 
@@ -287,12 +287,12 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let tw = hw + r;
         let (hi, lo) = ([Piece::sig("bracket", r, hw)], [Piece::sig("bracket", 0, r)]);
         let plus = if 2 * r > r + 1 { vec![Piece::sig("square_ll", r + 1, r - 1)] } else { Vec::new() };
-        b.mul("square_t", tw, (&hi, hw), (&lo, r), &plus, 0.0, "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)");
+        b.mul("square_t", tw, (&hi, hw), (&lo, r), &plus, Delay::ZERO, "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)");
         b.step("square: Z = hi^2 + T/2^(r-1) (multiply-add)");
         let h = [Piece::sig("bracket", r, hw)];
         let th = [Piece::sig("square_t", r - 1, tw - (r - 1))];
         let what = format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1);
-        b.mul("square_z", 2 * hw, (&h, hw), (&h, hw), &th, 0.0, &what);
+        b.mul("square_z", 2 * hw, (&h, hw), (&h, hw), &th, Delay::ZERO, &what);
         let mut full = vec![Piece::sig("square_ll", 0, r + 1)];
         if r > 1 {
             full.push(Piece::sig("square_t", 0, r - 1));
@@ -302,20 +302,20 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     } else {
         b.step("square (squarer 11)");
         let br = [Piece::sig("bracket", 0, wb + 1)];
-        b.mul("square_full", full_bits, (&br, wb + 1), (&br, wb + 1), &[], 0.0, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+        b.mul("square_full", full_bits, (&br, wb + 1), (&br, wb + 1), &[], Delay::ZERO, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
         vec![Piece::sig("square_full", 0, full_bits)]
     };
 
     b.step("truncation #2; colour multipliers (14-16) with the rounding half (multiply-add)");
     square_and_color_square(w, b, &full);
-    b.colour_sums("color_square", wsc, "S", 0.0);
+    b.colour_sums("color_square", wsc, "S", Delay::ZERO);
     // the intensity rounding starts a step after the squarer's DSP: its output register
     // drives a fabric register across the long route out of the DSP column, not a carry chain
     let intensity_add = intensity_add(cfg, w, b);
 
     b.step("colour results; intensity rounding: chunk sums");
     b.colour_results(wsc, "S");
-    b.delay(0.0);
+    b.delay(Delay::ZERO);
     if let Some((a, width, comment)) = intensity_add {
         let p = b.add_start("intensity_sum", &a, &[], true, width, &comment);
         if !p.chunks.is_empty() {
@@ -598,7 +598,7 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("square (a general multiplier as squarer 11)");
     let fb = w.full_square_bits();
     let br = [Piece::sig("bracket", 0, wb + 1)];
-    b.mul("square_full", fb, (&br, wb + 1), (&br, wb + 1), &[], 0.0, &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
+    b.mul("square_full", fb, (&br, wb + 1), (&br, wb + 1), &[], Delay::ZERO, &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
     let sq = b.bits("square_full", 2 * wb, w.square_shift);
     b.wire("square", ws + 1, Kind::Select, sq, &format!("UQ1.{ws}: S"));
 
@@ -607,7 +607,7 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let mut products = Vec::new();
     for ch in CHANNELS {
         let (cs, ks) = ([Piece::sig("square", 0, ws + 1)], [Piece::sig(&format!("ks_{ch}"), 0, bb)]);
-        products.push(b.mul(&format!("color_prod_{ch}"), cpb, (&cs, ws + 1), (&ks, bb), &[], 0.0, &format!("UQ{bb}.{ws}: S * ks_{ch}, exact")));
+        products.push(b.mul(&format!("color_prod_{ch}"), cpb, (&cs, ws + 1), (&ks, bb), &[], Delay::ZERO, &format!("UQ{bb}.{ws}: S * ks_{ch}, exact")));
     }
     if ws > fi {
         let sqr = b.r("square");

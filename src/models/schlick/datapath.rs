@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::bits::{lit, mask};
-use crate::datapath::{ex, pad_operands, Kind, Piece, LUT_DELAY};
+use crate::datapath::{ex, pad_operands, Delay, Kind, Piece, LUT_DELAY};
 
 /// Step 1 clamps c and forms 1 − c; the denominator is one multiply-add; its leading zeros
 /// take two LUT steps and its normalising shift one mux level a step; then the table read, the
@@ -161,7 +161,7 @@ pub(super) fn datapath(cfg: &Config, w: &SchlickWidths, t: &ReciprocalTable, b: 
     // alone in its step, read after its register
     b.step("colour multipliers (14-16)");
     b.colour_products(quotient.name(), wq - wc, wc, "S");
-    b.product_delay(wc + 1, bb, wc + bb, 0.0);
+    b.product_delay(wc + 1, bb, wc + bb, Delay::ZERO);
 
     b.round_intensity("quotient", wq, fi, wc, "S");
 }
