@@ -34,6 +34,7 @@ fn test_line((offset_ns, ns_per_unit): (f64, f64), (cap_mhz, cap_up_to): (f64, f
         deepest: 0,
         surrounded: false,
         around: vec![],
+        own: None,
     }
 }
 
@@ -59,9 +60,12 @@ fn widths_outside_the_calibration_are_told() {
             assert!(why.starts_with("outside the calibration") && why.contains("--cos-frac-bits 6"), "{why}");
         }
     }
-    // the wide lean of the ECP5 has units of its own; on the iCE40 it has none
+    // a shape is calibrated by units of today's RTL only: the wide lean of the ECP5 is where
+    // its rows name today's digest; on the iCE40 it has none
     let wide = crate::config::Params { cos_frac_bits: 18, n_bits: 11, color_bits: 10, intensity_frac_bits: 18, k_frac_bits: 20, ..Default::default() };
-    assert_eq!(outside_calibration(&plan(crate::config::Params { target: Target::Ecp5, ..wide.clone() })), None);
+    let wide_args = "--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20";
+    let today = line(Target::Ecp5, "lean").unwrap().of_todays_rtl().measured_args.iter().any(|a| a == wide_args);
+    assert_eq!(outside_calibration(&plan(crate::config::Params { target: Target::Ecp5, ..wide.clone() })).is_none(), today);
     assert!(outside_calibration(&plan(wide)).unwrap().starts_with("outside the calibration"));
     // a rounding or ROM style the calibration never had is outside too
     let exact = crate::config::Params { rounding: crate::config::Rounding::Exact, ..Default::default() };
@@ -74,15 +78,17 @@ fn widths_outside_the_calibration_are_told() {
 #[test]
 fn only_units_of_the_same_widths_are_floors() {
     let narrow = "--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8";
-    let l = Line {
-        measured_args: vec![String::new(), narrow.into(), String::new()],
-        measured_stages: vec![6, 11, 3],
-        measured_digest: vec!["today".into(); 3],
-        ..test_line((5.0, 1.0), (300.0, -1.0), 0.7, vec![[10.0, 6.0, 150.0], [9.0, 5.0, 50.0], [20.0, 9.0, 60.0]])
-    };
     let default = Plan::new(Config::defaults()).unwrap();
     let p = crate::config::Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Config::defaults().params };
     let small = Plan::new(Config::new(p).unwrap()).unwrap();
+    // each width measured at its deepest, the defaults at half that too
+    let (dd, dn) = (default.cut_points, small.cut_points);
+    let l = Line {
+        measured_args: vec![String::new(), narrow.into(), String::new()],
+        measured_stages: vec![dd, dn, dd / 2],
+        measured_digest: vec!["today".into(); 3],
+        ..test_line((5.0, 1.0), (300.0, -1.0), 0.7, vec![[10.0, 6.0, 150.0], [9.0, 5.0, 50.0], [20.0, 9.0, 60.0]])
+    };
     assert_eq!(l.clone().at_widths_of(&default).measured, vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]]);
     let mine = l.clone().at_widths_of(&small);
     assert_eq!(mine.measured, vec![[9.0, 5.0, 50.0]]);
@@ -103,16 +109,21 @@ fn only_units_of_the_same_widths_are_floors() {
     assert!(theirs.surrounded && theirs.corners.len() == 2);
     let at = |from_deepest: u32, e: f64| theirs.corner(theirs.deepest - from_deepest, e);
     assert_eq!(at(theirs.deepest, 1.0), (50.0, false), "shallower than every unit: no floor, the ceiling of the shallowest ones");
-    assert_eq!(at(0, 1.0), (50.0, true), "the narrow unit at its deepest, 11, the default one at 6");
+    assert_eq!(at(0, 1.0), (50.0, true), "the narrow unit at its deepest, the default one at its own");
     assert_eq!(at(0, 10.0), (50.0, true), "a stretch as long as the longest of theirs");
     assert_eq!(at(0, 10.5), (50.0, false), "a longer stretch: a ceiling only");
     // a ceiling is a unit as deep as the depth read or deeper, never a shallower one (a
     // shallower unit runs slower: 60 MHz at 3 stages says nothing of 6)
     let deeper = Line { corners: vec![theirs.corners.iter().find(|c| c.args.is_empty()).cloned().unwrap()], surrounded: false, ..theirs.clone() };
     let d = deeper.corners[0].deepest;
-    assert_eq!(deeper.corner(theirs.deepest - (d - 3), 1.0), (60.0, false), "the 3-stage unit at its own depth");
-    assert_eq!(deeper.corner(theirs.deepest - (d - 4), 1.0), (150.0, false), "the 6-stage unit, not the 3-stage one");
-    assert_eq!(deeper.corner(theirs.deepest - (d - 7), 1.0), (f64::INFINITY, false), "deeper than every unit: no ceiling");
+    assert_eq!(d, dd);
+    let read = |at: u32| deeper.corner(theirs.deepest - (d - at), 1.0);
+    assert_eq!(read(dd / 2), (60.0, false), "the shallower unit at its own depth");
+    assert_eq!(read(dd / 2 + 1), (150.0, false), "the deeper unit, not the shallower one");
+    // a floor only from a unit near the depth read: the defaults' shallow unit says nothing
+    // of a depth many cuts deeper
+    let sparse = Line { corners: theirs.corners.iter().cloned().map(|mut c| (c.units.retain(|u| u.0 <= dd / 2), c).1).collect(), ..theirs.clone() };
+    assert_eq!(sparse.corner(theirs.deepest, 1.0).1, false, "the defaults measured only {} cuts shallower", dd - dd / 2);
     assert_eq!(mine.corner(3, 1.0), (f64::INFINITY, false));
 }
 
@@ -265,4 +276,26 @@ fn the_shipped_model_is_the_fit_of_the_shipped_calibration() {
     let fitted = super::fit::fit_calibration(csv, "data/delay_calibration.csv").unwrap();
     let shipped: serde_json::Value = serde_json::from_str(include_str!("../../data/delay_model.json")).unwrap();
     assert!(fitted == shipped, "data/delay_model.json is not the fit of data/delay_calibration.csv: run specgen calibrate --calibration data/delay_calibration.csv --out data/delay_model.json");
+}
+
+/// The lines are read in each family's own primitive delays: on the iCE40 the stretches are the
+/// placement estimate's (its figures), on the ECP5 and the GW1NR-9 their own (a LUT level and a
+/// hard multiply weigh otherwise there), and the shipped model says how well each line fits.
+#[test]
+fn each_family_weighs_the_stretches_with_its_own_primitive_delays() {
+    let at = |target: Target| Plan::new(Config::new(crate::config::Params { target, stages: 5, ..Config::defaults().params }).unwrap()).unwrap();
+    let ice40 = at(Target::Ice40);
+    assert!((stretches(&ice40).0 - ice40.stage_delay()).abs() < 1e-9 && (stretches(&ice40).1 - ice40.stage_delay_mean()).abs() < 1e-9);
+    for target in [Target::Ecp5, Target::Gowin] {
+        let p = at(target);
+        let w = crate::family::of(target).primitive_delays();
+        assert_ne!(w, crate::family::of(Target::Ice40).primitive_delays());
+        assert_eq!(stretches(&p), (p.stage_delay_on(&w), p.stage_delay_mean_on(&w)));
+        assert!(stretches(&p).0 < p.stage_delay(), "{target:?}: a faster fabric than the UP5K's");
+    }
+    for target in [Target::Ice40, Target::Ecp5, Target::Gowin] {
+        for (name, l) in lines(target) {
+            assert!((0.0..=1.0).contains(&l.r2) && l.offset_ns >= 0.0, "{target:?} {name}: R² {} offset {}", l.r2, l.offset_ns);
+        }
+    }
 }

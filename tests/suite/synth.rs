@@ -236,7 +236,18 @@ fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
     let out = tmp.path().join("impossible");
     let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("900 MHz is not assured on the iCE40 UP5K"), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("900 MHz is not assured on the iCE40 UP5K"), "{err}");
+    assert!(!out.exists());
+    // the refusal is one line a person reads (its figure, the rule, the nearest measured unit,
+    // the command that measures this one), the details behind --explain
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("to measure this configuration: specgen generate --stages") && err.contains("(--explain: how the delay model read it)"), "{err}");
+    let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900", "--explain"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let explained = String::from_utf8_lossy(&o.stderr);
+    assert!(explained.starts_with(err.trim_end().trim_end_matches(" (--explain: how the delay model read it)")), "{explained}");
+    assert!(explained.contains("\n  the best depth for 900 MHz, --stages ") && explained.contains("R² "), "{explained}");
     assert!(!out.exists());
 }
 
