@@ -187,7 +187,9 @@ fn a_pick_outside_the_calibration_is_told() {
     // read from the widths around it where they were measured near the depth picked, else the
     // line's extrapolation: either way said, with the widths around it named
     assert!(
-        (err.contains("interpolated: ") || err.contains("extrapolated: ")) && err.contains("between calibrated widths: the schlick datapath") && err.contains("specgen synth"),
+        (err.contains("interpolated: ") || err.contains("extrapolated: "))
+            && err.contains("between calibrated widths: the schlick datapath")
+            && err.contains("specgen synth"),
         "{err}"
     );
     let err = pick("narrow", &[&schlick[..], &widths("8", "6", "4", "8")].concat());
