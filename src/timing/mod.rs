@@ -83,7 +83,7 @@ pub fn outside_calibration(plan: &Plan) -> Option<String> {
     let flags = |sh: &Shape| sh.flags(model);
     let measured = match shapes.len() {
         0 => "no unit of today's RTL".to_string(),
-        _ => shapes.iter().map(|sh| flags(sh)).collect::<Vec<_>>().join("; "),
+        _ => shapes.iter().map(flags).collect::<Vec<_>>().join("; "),
     };
     let (part, own_flags) = (part(plan.cfg.target()), flags(&own));
     if own.between(&shapes) {
@@ -706,7 +706,9 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
         (Rule::Line, _) => "extrapolated by the delay model's line: no unit of today's RTL at or around these widths bounds it",
     };
     let handshake = match handshake_cap(plan) {
-        Some((c, _)) if c < mhz => format!("; the {} interface's output buffer was measured at most {c:.1} MHz here", plan.cfg.interface().name()),
+        Some((c, _)) if c < mhz => {
+            format!("; the {} interface's output buffer has paths of its own, measured at most {c:.1} MHz here on today's RTL", plan.cfg.interface().name())
+        }
         _ => String::new(),
     };
     Err(Error::Config {

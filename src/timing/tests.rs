@@ -123,7 +123,7 @@ fn only_units_of_the_same_widths_are_floors() {
     // a floor only from a unit near the depth read: the defaults' shallow unit says nothing
     // of a depth many cuts deeper
     let sparse = Line { corners: theirs.corners.iter().cloned().map(|mut c| (c.units.retain(|u| u.0 <= dd / 2), c).1).collect(), ..theirs.clone() };
-    assert_eq!(sparse.corner(theirs.deepest, 1.0).1, false, "the defaults measured only {} cuts shallower", dd - dd / 2);
+    assert!(!sparse.corner(theirs.deepest, 1.0).1, "the defaults measured only {} cuts shallower", dd - dd / 2);
     assert_eq!(mine.corner(3, 1.0), (f64::INFINITY, false));
 }
 

@@ -246,15 +246,33 @@ fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("900 MHz is not assured on the iCE40 UP5K"), "{err}");
     assert!(!out.exists());
-    // the refusal is one line a person reads (its figure, the rule, the nearest measured unit,
-    // the command that measures this one), the details behind --explain
+}
+
+/// A `--target-mhz` refusal is one line a person reads (its figure, the rule that gave it, the
+/// nearest measured unit, the command that measures this one), the details behind --explain:
+/// the line's terms and R², the widths around, the unit that holds the figure down. No tool
+/// runs; nothing is written.
+#[test]
+fn a_target_mhz_refusal_is_one_line_and_explains_itself() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("impossible");
+    let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("900 MHz is not assured on the iCE40 UP5K") && err.contains("the delay model assures at most"), "{err}");
     assert!(err.contains("to measure this configuration: specgen generate --stages") && err.contains("(--explain: how the delay model read it)"), "{err}");
     let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900", "--explain"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2));
     let explained = String::from_utf8_lossy(&o.stderr);
     assert!(explained.starts_with(err.trim_end().trim_end_matches(" (--explain: how the delay model read it)")), "{explained}");
     assert!(explained.contains("\n  the best depth for 900 MHz, --stages ") && explained.contains("R² "), "{explained}");
+    // between calibrated widths: the widths around it and the unit that holds the figure
+    let between = ["--model", "schlick", "--cos-frac-bits", "10", "--n-bits", "10", "--color-bits", "5", "--intensity-frac-bits", "9"];
+    let o = specgen().arg("generate").arg("--out").arg(&out).args(between).args(["--target-mhz", "300", "--explain"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let explained = String::from_utf8_lossy(&o.stderr);
+    assert!(explained.contains("\n  between calibrated widths: the schlick datapath on the iCE40 UP5K"), "{explained}");
     assert!(!out.exists());
 }
 
