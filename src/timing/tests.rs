@@ -299,3 +299,42 @@ fn each_family_weighs_the_stretches_with_its_own_primitive_delays() {
         }
     }
 }
+
+/// At widths never measured, a ceiling comes only from calibrated widths of the same ROM style
+/// (and rounding and registers): a unit with its tables in LUTs says nothing of one whose
+/// tables are block RAM, however slow it ran.
+#[test]
+fn a_ceiling_comes_only_from_widths_of_the_same_rom_style() {
+    let between = Plan::new(Config::new(crate::config::Params { cos_frac_bits: 12, ..Config::defaults().params }).unwrap()).unwrap();
+    let with = |args: &str| {
+        Line {
+            measured_args: vec![args.into()],
+            measured_stages: vec![between.cut_points],
+            measured_digest: vec!["today".into()],
+            ..test_line((5.0, 1.0), (300.0, -1.0), 0.7, vec![[10.0, 6.0, 20.0]])
+        }
+        .at_widths_of(&between)
+    };
+    let logic = with("--cos-frac-bits 8 --rom-style logic");
+    assert!(logic.corners.is_empty(), "{:?}", logic.corners);
+    assert_eq!(logic.corner(0, 1.0), (f64::INFINITY, false));
+    let file = with("--cos-frac-bits 8");
+    assert_eq!(file.corners.len(), 1);
+    assert_eq!(file.corner(0, 1.0), (20.0, false), "the narrower width's unit, as deep or deeper: a ceiling");
+}
+
+/// A figure says which rule gave it: where no row of today's RTL is at or around the widths
+/// (the GW1NR-9's calibration is of an older RTL), the line spoke, an extrapolation; a
+/// configuration with floors of today's RTL (the UP5K's default lean) reads one.
+#[test]
+fn the_rule_that_gave_a_figure_is_told() {
+    let at = |target: Target, stages: u32| Plan::new(Config::new(crate::config::Params { target, stages, ..Config::defaults().params }).unwrap()).unwrap();
+    let gowin = line(Target::Gowin, "lean").unwrap();
+    if gowin.measured_digest.iter().all(|d| d.is_empty()) {
+        assert_eq!(assured_reading(&at(Target::Gowin, 5)).map(|r| r.1), Some(Rule::Line));
+    }
+    let l = line(Target::Ice40, "lean").unwrap().of_todays_rtl();
+    let shallowest =
+        l.measured_args.iter().zip(&l.measured_stages).filter(|(a, _)| a.is_empty()).map(|(_, s)| *s).min().expect("a default lean of today's RTL");
+    assert_eq!(assured_reading(&at(Target::Ice40, shallowest)).map(|r| r.1), Some(Rule::Floor));
+}
