@@ -196,12 +196,16 @@ impl Plan {
     /// delay model reads: once one step that no register can split is the slowest stretch, the
     /// clock still rises as the others shorten (less logic and routing around each register).
     pub fn stage_delay_mean(&self) -> f64 {
-        self.datapath.delays().iter().sum::<f64>() / (self.registered_cuts.len() + 1) as f64
+        self.stage_delay_mean_by(|d| d.ns)
     }
 
     /// [`Plan::stage_delay_mean`] on a family of primitive delays `w`.
     pub fn stage_delay_mean_on(&self, w: &crate::family::PrimitiveDelays) -> f64 {
-        self.datapath.steps.iter().map(|s| s.delay.on(w)).sum::<f64>() / (self.registered_cuts.len() + 1) as f64
+        self.stage_delay_mean_by(|d| d.on(w))
+    }
+
+    fn stage_delay_mean_by(&self, ns: impl Fn(&crate::datapath::Delay) -> f64) -> f64 {
+        self.datapath.steps.iter().map(|s| ns(&s.delay)).sum::<f64>() / (self.registered_cuts.len() + 1) as f64
     }
 }
 

@@ -88,7 +88,7 @@ pub fn outside_calibration(plan: &Plan) -> Option<String> {
     let (part, own_flags) = (part(plan.cfg.target()), flags(&own));
     if own.between(&shapes) {
         if let Some(l) = line_of(plan).ok().filter(|l| l.surrounded) {
-            let around: Vec<String> = l.around.iter().filter_map(|a| Shape::of_args(a, model)).map(|sh| flags(&sh)).collect();
+            let around: Vec<String> = l.around.iter().map(flags).collect();
             return Some(format!(
                 "between calibrated widths: the {datapath} datapath on the {part} was calibrated at {} widths; this configuration ({own_flags}) lies between the nearest of them, {}: a depth is assured {:.2} of the least that the widths around it measured as many cuts from their deepest (the nearest measured near that depth on either side, and those between them), where its slowest stretch is no longer than theirs, else the delay model's line with its margin; not a unit measured at these widths",
                 shapes.len(),
@@ -149,10 +149,9 @@ pub struct Line {
     /// some no narrower, the other flags alike
     #[serde(skip)]
     pub(crate) surrounded: bool,
-    /// where surrounded: the nearest calibrated widths below and above (generate flags beyond
-    /// the defaults)
+    /// where surrounded: the nearest calibrated widths below and above
     #[serde(skip)]
-    pub(crate) around: Vec<String>,
+    pub(crate) around: Vec<Shape>,
     /// at widths never measured: the configuration's shape
     #[serde(skip)]
     pub(crate) own: Option<Shape>,
@@ -350,7 +349,7 @@ impl Line {
             // of those measured there)
             let (below, above) = nearest_around(&own, corners.iter().map(|c| &c.shape));
             if !below.is_empty() && !above.is_empty() {
-                self.around = corners.iter().filter(|c| below.contains(&&c.shape) || above.contains(&&c.shape)).map(|c| c.args.clone()).collect();
+                self.around = below.into_iter().chain(above).cloned().collect();
                 self.surrounded = true;
             }
             self.own = Some(own.clone());
@@ -425,13 +424,13 @@ impl Line {
 
     /// At widths never measured, the corners' unit that sets [`Line::corner`]'s figure at
     /// `stages` for a slowest stretch `e`: its widths (generate flags beyond the defaults), depth
-    /// and median Fmax.
-    pub fn nearest_unit(&self, stages: u32, e: f64) -> Option<(&str, u32, f64)> {
+    /// and median Fmax, and whether the figure is a floor (else a ceiling).
+    pub fn nearest_unit(&self, stages: u32, e: f64) -> Option<(&str, u32, f64, bool)> {
         let (value, floor) = self.corner(stages, e);
         let from_deepest = self.deepest.saturating_sub(stages);
         self.corners
             .iter()
-            .filter_map(|c| if floor { c.unit_at(from_deepest) } else { c.unit_at_or_deeper(from_deepest) }.map(|u| (c.args.as_str(), u.0, u.2)))
+            .filter_map(|c| if floor { c.unit_at(from_deepest) } else { c.unit_at_or_deeper(from_deepest) }.map(|u| (c.args.as_str(), u.0, u.2, floor)))
             .find(|u| u.2 == value)
     }
 
@@ -755,9 +754,8 @@ pub fn explain_refusal(plan: &Plan, mhz: f64) -> Result<Vec<String>, Error> {
     if let Some(n) = outside_calibration(&p) {
         lines.push(n);
     }
-    if let Some((args, stages, f)) = l.nearest_unit(p.cfg.stages(), e) {
+    if let Some((args, stages, f, floor)) = l.nearest_unit(p.cfg.stages(), e) {
         let widths = if args.is_empty() { "the default widths" } else { args };
-        let (_, floor) = l.corner(p.cfg.stages(), e);
         lines.push(match floor {
             true => {
                 format!("the calibrated unit that holds it: {widths} at --stages {stages}, {f:.1} MHz measured, times the corner margin {:.2}", corner_margin())
