@@ -280,7 +280,15 @@ impl Builder {
     /// Starts the next step.
     pub(crate) fn step(&mut self, title: &str) {
         let index = self.steps.len() + 1;
-        self.steps.push(Step { index, title: title.into(), wires: Vec::new(), dsps: Vec::new(), delay: Delay::ZERO, soft_product: false });
+        self.steps.push(Step {
+            index,
+            title: title.into(),
+            wires: Vec::new(),
+            dsps: Vec::new(),
+            delay: Delay::ZERO,
+            soft_product: false,
+            small_product: false,
+        });
     }
 
     /// Raises the current step's delay estimate to at least `d`.

@@ -117,5 +117,6 @@ impl Builder {
         self.delay(d + after);
         let s = self.steps.last_mut().expect("a step");
         s.soft_product |= soft;
+        s.small_product |= soft && a.min(b) >= 2;
     }
 }

@@ -93,6 +93,9 @@ pub struct Step {
     /// a product here is too small for the family's block and lands in LUTs
     /// ([`Builder::product_delay`]): the step is logic, never a hard block on its own
     pub(crate) soft_product: bool,
+    /// the product in LUTs has operands of two bits or more: a LUT multiplier (too small for
+    /// the block, yosys's threshold on the iCE40), not an AND of a bit
+    pub(crate) small_product: bool,
 }
 
 /// A signal alive across a cut, and the name it is taken from there.

@@ -14,7 +14,8 @@
 //!    no longer than such a unit's is assured that unit's median (`measured_floor`); between
 //!    two of them, the longer one's (`bracketed`).
 //! 2. *Between calibrated widths* (`Line::corner`): where calibrated shapes surround the
-//!    configuration's (one no wider in every width, one no narrower), the depth is read at as
+//!    configuration's (one no wider in every width, one no narrower; alike in rounding, ROM
+//!    style, registers and whether a product is LUTs for its size: `Shape`), the depth is read at as
 //!    many cuts from the deepest in each, and assured [`corner_margin`] of the least they
 //!    measured there: a margin the fit computes by leaving each width out (`fit::corner_margin`),
 //!    stored with the model and printed by `generate --explain`.
@@ -52,10 +53,10 @@ const MODEL_JSON: &str = include_str!("../../data/delay_model.json");
 /// the default parameters with a measured unit's `args` applied (the rows the floors come from;
 /// a row of another RTL calibrates no shape); a unit whose args name another flag is left out
 /// (it is not known to be any configuration's shape).
-fn calibrated_shapes(target: Target, datapath: &str, model: crate::config::SpecularModel) -> Vec<Shape> {
+fn calibrated_shapes(plan: &Plan) -> Vec<Shape> {
     let mut shapes: Vec<Shape> = Vec::new();
-    for args in line(target, datapath).map(|l| l.of_todays_rtl().measured_args).unwrap_or_default() {
-        if let Some(sh) = Shape::of_args(&args, model) {
+    for args in line(plan.cfg.target(), plan.cfg.datapath_name()).map(|l| l.of_todays_rtl().measured_args).unwrap_or_default() {
+        if let Some(sh) = Shape::of_args(&args, &plan.cfg.params) {
             if !shapes.contains(&sh) {
                 shapes.push(sh);
             }
@@ -76,7 +77,7 @@ pub fn outside_calibration(plan: &Plan) -> Option<String> {
     let datapath = plan.cfg.datapath_name();
     let model = plan.cfg.model();
     let own = Shape::of_plan(plan);
-    let shapes = calibrated_shapes(plan.cfg.target(), datapath, model);
+    let shapes = calibrated_shapes(plan);
     if shapes.contains(&own) {
         return None;
     }
@@ -324,10 +325,10 @@ impl Line {
     }
 
     fn widths_of(mut self, plan: &Plan) -> Line {
-        let model = plan.cfg.model();
         let own = Shape::of_plan(plan);
-        let keep: Vec<bool> =
-            (0..self.measured.len()).map(|i| Shape::of_args(self.measured_args.get(i).map_or("", String::as_str), model).is_some_and(|sh| sh == own)).collect();
+        let keep: Vec<bool> = (0..self.measured.len())
+            .map(|i| Shape::of_args(self.measured_args.get(i).map_or("", String::as_str), &plan.cfg.params).is_some_and(|sh| sh == own))
+            .collect();
         if !keep.iter().any(|&k| k) {
             // widths never measured: each calibrated width's units by depth
             let mut corners: Vec<Corner> = Vec::new();
@@ -336,13 +337,14 @@ impl Line {
                 match corners.iter_mut().find(|c| c.args == args) {
                     Some(c) => c.units.push((stages, p[0], p[2])),
                     None => {
-                        let Some(shape) = Shape::of_args(&args, model) else { continue };
+                        let Some(shape) = Shape::of_args(&args, &plan.cfg.params) else { continue };
                         corners.push(Corner { args, deepest: 0, units: vec![(stages, p[0], p[2])], shape })
                     }
                 }
             }
-            // a reading only from widths of the same rounding, ROM style and registers (a table
-            // in LUTs says nothing of one in block RAM)
+            // a reading only from widths of the same rounding, ROM style and registers, with a
+            // product in LUTs for its size where the configuration has one (a table in LUTs
+            // says nothing of one in block RAM, a LUT multiplier nothing of an SB_MAC16)
             corners.retain(|c| c.shape.alike(&own));
             // whether some calibrated widths lie on either side of the configuration's: no wider
             // in every width, and no narrower (at each depth, [`Line::corner`] takes the nearest

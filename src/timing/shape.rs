@@ -1,7 +1,8 @@
 //! The shape of a configuration as the delay model sees it: what shapes a datapath's delays
 //! beyond its depth (the widths, the rounding, the ROM style, the blocks a budget allows, the
-//! constant's width and fitted's squarings where the model reads them), typed; how shapes are
-//! ordered (no wider, between) and how one is said (the `generate` flags beyond the defaults).
+//! constant's width and fitted's squarings where the model reads them, and whether some product
+//! is left in LUTs for being too small for the family's block), typed; how shapes are ordered
+//! (no wider, between) and how one is said (the `generate` flags beyond the defaults).
 
 use crate::config::{Params, RomStyle, Rounding, SpecularModel};
 use crate::plan::Plan;
@@ -22,14 +23,20 @@ pub(crate) struct Shape {
     rounding: Rounding,
     rom_style: RomStyle,
     fabric_registers: bool,
+    /// some product of multi-bit operands is LUTs, too small for the family's block
+    /// (`Family::soft_product`; a product by one bit is an AND on every family): a step no
+    /// register splits (a narrow fitted's 7×4 colour product holds the iCE40 UP5K at 53 MHz
+    /// at every depth, where widths a little wider map it to an SB_MAC16), so a width with one
+    /// and a width without are not alike
+    soft_products: bool,
 }
 
 /// The flags of the sizes, in the order of [`Shape::sizes`].
 const SIZE_FLAGS: [&str; 7] = ["--cos-frac-bits", "--n-bits", "--color-bits", "--intensity-frac-bits", "--k-frac-bits", "--max-squarings", "--dsp-budget"];
 
 impl Shape {
-    /// The shape of `p` for `model`.
-    pub(crate) fn of(p: &Params, model: SpecularModel) -> Shape {
+    /// The shape of `p` for `model`, `soft_products` as its plan has it.
+    fn of(p: &Params, model: SpecularModel, soft_products: bool) -> Shape {
         Shape {
             cos_frac_bits: p.cos_frac_bits,
             n_bits: p.n_bits,
@@ -41,23 +48,27 @@ impl Shape {
             rounding: p.rounding,
             rom_style: p.rom_style,
             fabric_registers: p.fabric_registers,
+            soft_products,
         }
     }
 
     /// The shape of `plan`'s configuration, a budget that leaves every product in a block read
     /// as no budget (the same datapath: a met budget changes nothing).
     pub(crate) fn of_plan(plan: &Plan) -> Shape {
-        let mut sh = Shape::of(&plan.cfg.params, plan.cfg.model());
+        let soft = plan.datapath.steps.iter().any(|s| s.small_product);
+        let mut sh = Shape::of(&plan.cfg.params, plan.cfg.model(), soft);
         if plan.datapath.fabric_products().is_empty() {
             sh.dsp_budget = crate::config::DSP_BUDGET.max;
         }
         sh
     }
 
-    /// The shape of the default parameters with a calibration row's `args` applied; None when
-    /// they name a flag the model's shape does not read (not known to be any shape).
-    pub(crate) fn of_args(args: &str, model: SpecularModel) -> Option<Shape> {
-        let sh = Shape::of(&super::params_with_args(&Params::default(), args)?, model);
+    /// The shape of the default parameters of `base`'s model and target with a calibration
+    /// row's `args` applied; None when they name a flag the model's shape does not read (not
+    /// known to be any shape) or plan no unit.
+    pub(crate) fn of_args(args: &str, base: &Params) -> Option<Shape> {
+        let p = super::params_with_args(base, args)?;
+        let sh = planned(&p)?;
         let reads = |flag: &str| match flag {
             "--k-frac-bits" => sh.k_frac_bits.is_some(),
             "--max-squarings" => sh.max_squarings.is_some(),
@@ -79,9 +90,10 @@ impl Shape {
         ]
     }
 
-    /// Whether the flags that are no size (rounding, ROM style, fabric registers) are alike.
+    /// Whether what is no size (rounding, ROM style, fabric registers, a product in LUTs for its
+    /// size) is alike.
     pub(crate) fn alike(&self, o: &Shape) -> bool {
-        (self.rounding, self.rom_style, self.fabric_registers) == (o.rounding, o.rom_style, o.fabric_registers)
+        (self.rounding, self.rom_style, self.fabric_registers, self.soft_products) == (o.rounding, o.rom_style, o.fabric_registers, o.soft_products)
     }
 
     /// Whether this shape is no wider than `o` in every size, the other flags alike.
@@ -98,12 +110,13 @@ impl Shape {
             && shapes.iter().any(|s| s.rounding == self.rounding)
             && shapes.iter().any(|s| s.rom_style == self.rom_style)
             && shapes.iter().any(|s| s.fabric_registers == self.fabric_registers)
+            && shapes.iter().any(|s| s.soft_products == self.soft_products)
     }
 
     /// The `generate` flags by which it differs from the defaults of `model` ("the default
     /// widths" where none).
     pub(crate) fn flags(&self, model: SpecularModel) -> String {
-        let default = Shape::of(&Params::default(), model);
+        let default = Shape::of(&Params::default(), model, false);
         let mut v: Vec<String> = Vec::new();
         for (i, (own, d)) in self.sizes().into_iter().zip(default.sizes()).enumerate().take(6) {
             if let (Some(x), true) = (own, own != d) {
@@ -128,4 +141,24 @@ impl Shape {
             v.join(" ")
         }
     }
+}
+
+/// The shape of `p`'s plan (a calibration row's configuration), planned once per
+/// configuration: the shapes of every row are read at each depth a search tries.
+fn planned(p: &Params) -> Option<Shape> {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    static SHAPES: OnceLock<Mutex<HashMap<String, Option<Shape>>>> = OnceLock::new();
+    let key = format!("{p:?}");
+    let cache = SHAPES.get_or_init(Default::default);
+    if let Some(found) = cache.lock().ok()?.get(&key) {
+        return found.clone();
+    }
+    let shape = crate::config::Config::new(p.clone()).and_then(Plan::new).ok().map(|plan| Shape::of_plan(&plan));
+    // bounded: the calibration holds a few dozen widths; nothing else is asked here
+    let mut map = cache.lock().ok()?;
+    if map.len() < 4096 {
+        map.insert(key, shape.clone());
+    }
+    shape
 }

@@ -77,9 +77,10 @@ fn widths_outside_the_calibration_are_told() {
 /// units are kept, in order (the line and margin, fitted over all, stay).
 #[test]
 fn only_units_of_the_same_widths_are_floors() {
-    let narrow = "--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8";
+    // (narrow widths whose products are all blocks, as the defaults': `soft_products_are_no_corner`)
+    let narrow = "--cos-frac-bits 10 --n-bits 6 --intensity-frac-bits 8";
     let default = Plan::new(Config::defaults()).unwrap();
-    let p = crate::config::Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Config::defaults().params };
+    let p = crate::config::Params { cos_frac_bits: 10, n_bits: 6, intensity_frac_bits: 8, ..Config::defaults().params };
     let small = Plan::new(Config::new(p).unwrap()).unwrap();
     // each width measured at its deepest, the defaults at half that too
     let (dd, dn) = (default.cut_points, small.cut_points);
@@ -315,10 +316,10 @@ fn a_ceiling_comes_only_from_widths_of_the_same_rom_style() {
         }
         .at_widths_of(&between)
     };
-    let logic = with("--cos-frac-bits 8 --rom-style logic");
+    let logic = with("--cos-frac-bits 10 --rom-style logic");
     assert!(logic.corners.is_empty(), "{:?}", logic.corners);
     assert_eq!(logic.corner(0, 1.0), (f64::INFINITY, false));
-    let file = with("--cos-frac-bits 8");
+    let file = with("--cos-frac-bits 10");
     assert_eq!(file.corners.len(), 1);
     assert_eq!(file.corner(0, 1.0), (20.0, false), "the narrower width's unit, as deep or deeper: a ceiling");
 }
@@ -337,4 +338,43 @@ fn the_rule_that_gave_a_figure_is_told() {
     let shallowest =
         l.measured_args.iter().zip(&l.measured_stages).filter(|(a, _)| a.is_empty()).map(|(_, s)| *s).min().expect("a default lean of today's RTL");
     assert_eq!(assured_reading(&at(Target::Ice40, shallowest)).map(|r| r.1), Some(Rule::Floor));
+}
+
+/// A calibrated width with a product yosys leaves in LUTs (too small for the block: a step no
+/// register splits) is no corner of a configuration whose products are all blocks, nor the
+/// other way round: the narrow fitted unit's 7×4 colour product holds it at 53 MHz at every
+/// depth on the UP5K, while at 11/6/5/14 that product is an SB_MAC16's.
+#[test]
+fn a_width_with_a_product_in_luts_is_no_corner_of_one_without() {
+    let fitted = |cos_frac_bits, n_bits, color_bits, intensity_frac_bits| {
+        let p = crate::config::Params {
+            model: crate::config::SpecularModel::Fitted,
+            cos_frac_bits,
+            n_bits,
+            color_bits,
+            intensity_frac_bits,
+            ..Config::defaults().params
+        };
+        Plan::new(Config::new(p).unwrap()).unwrap()
+    };
+    let (narrow, between) = (fitted(8, 6, 4, 8), fitted(11, 6, 5, 14));
+    assert!(narrow.datapath.steps.iter().any(|s| s.small_product) && !between.datapath.steps.iter().any(|s| s.small_product));
+    let with = |args: &str, plan: &Plan| {
+        Line {
+            measured_args: vec![args.into(), String::new()],
+            measured_stages: vec![plan.cut_points, plan.cut_points],
+            measured_digest: vec!["today".into(); 2],
+            ..test_line((5.0, 1.0), (300.0, -1.0), 0.7, vec![[15.0, 4.0, 53.0], [5.0, 3.0, 150.0]])
+        }
+        .at_widths_of(plan)
+    };
+    let read = with("--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8", &between);
+    assert_eq!(read.corners.len(), 1, "only the default widths: {:?}", read.corners);
+    assert!(!read.surrounded);
+    // a configuration with such a product of its own is read through it
+    let own = fitted(8, 6, 4, 10);
+    assert!(own.datapath.steps.iter().any(|s| s.small_product));
+    let read = with("--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8", &own);
+    assert_eq!(read.corners.len(), 1);
+    assert!(read.corners[0].args.contains("--color-bits 4"));
 }
