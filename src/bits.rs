@@ -94,7 +94,11 @@ pub fn splitmix(mut x: u64) -> u64 {
 /// the manifest's file hashes, the fingerprint, cache keys and staging tags.
 pub fn sha256_hex(data: &[u8], bytes: usize) -> String {
     use sha2::{Digest, Sha256};
-    Sha256::digest(data).iter().take(bytes).map(|b| format!("{b:02x}")).collect()
+    Sha256::digest(data)
+        .iter()
+        .take(bytes)
+        .map(|b| format!("{b:02x}"))
+        .collect()
 }
 
 #[cfg(test)]

@@ -10,7 +10,10 @@ use std::path::PathBuf;
 pub enum Error {
     /// A parameter out of its range or malformed: its name in SPEC §2 (as in the manifest)
     /// and what it may be.
-    Config { parameter: &'static str, message: String },
+    Config {
+        parameter: &'static str,
+        message: String,
+    },
     /// Something the user gave is not what it must be: a directory without a manifest,
     /// arguments that cannot work together, a file of the wrong kind.
     Input(String),
@@ -30,12 +33,20 @@ pub enum Error {
     /// ideal. A finding of `SpecularModel::check`, which the checkers turn into a mismatch.
     Breach { port: &'static str, detail: String },
     /// Reading or writing a file failed.
-    Io { action: &'static str, path: PathBuf, source: std::io::Error },
+    Io {
+        action: &'static str,
+        path: PathBuf,
+        source: std::io::Error,
+    },
 }
 
 impl Error {
     pub fn io(action: &'static str, path: impl Into<PathBuf>, source: std::io::Error) -> Error {
-        Error::Io { action, path: path.into(), source }
+        Error::Io {
+            action,
+            path: path.into(),
+            source,
+        }
     }
 
     /// The parameter a parameter's error names (SPEC §2), `None` for any other error.
@@ -57,7 +68,10 @@ impl Error {
 
     /// A contract's breach on `port`.
     pub(crate) fn breach(port: &'static str, detail: impl Into<String>) -> Error {
-        Error::Breach { port, detail: detail.into() }
+        Error::Breach {
+            port,
+            detail: detail.into(),
+        }
     }
 }
 
@@ -70,7 +84,9 @@ impl fmt::Display for Error {
             }
             Error::Refused { dir, why } => write!(f, "refusing to write {}: {why}", dir.display()),
             Error::Busy { dir, holder } => {
-                let who = holder.map_or("another specgen".to_string(), |pid| format!("another specgen (process {pid})"));
+                let who = holder.map_or("another specgen".to_string(), |pid| {
+                    format!("another specgen (process {pid})")
+                });
                 write!(f, "{who} has been writing {} for 10 s and still holds its lock; nothing written (try again when it has finished)", dir.display())
             }
             Error::Input(m) | Error::Mismatch(m) => write!(f, "{m}"),
@@ -108,16 +124,23 @@ pub(crate) fn plain(e: std::io::Error) -> std::io::Error {
         return std::io::Error::from_raw_os_error(code);
     }
     // tempfile wraps the OS error with its own path: find the OS error underneath
-    let mut cause: Option<&(dyn std::error::Error + 'static)> = e.get_ref().map(|r| r as &(dyn std::error::Error + 'static));
+    let mut cause: Option<&(dyn std::error::Error + 'static)> =
+        e.get_ref().map(|r| r as &(dyn std::error::Error + 'static));
     while let Some(c) = cause {
-        if let Some(code) = c.downcast_ref::<std::io::Error>().and_then(|io| io.raw_os_error()) {
+        if let Some(code) = c
+            .downcast_ref::<std::io::Error>()
+            .and_then(|io| io.raw_os_error())
+        {
             return std::io::Error::from_raw_os_error(code);
         }
         cause = c.source();
     }
     // tempfile's PathError shows "<OS error> at path <temp path>": keep the OS error only
     let text = e.to_string();
-    std::io::Error::new(e.kind(), text.split(" at path ").next().unwrap_or(&text).to_string())
+    std::io::Error::new(
+        e.kind(),
+        text.split(" at path ").next().unwrap_or(&text).to_string(),
+    )
 }
 
 /// The user's input is not what it must be.
@@ -132,7 +155,10 @@ pub fn mismatch(message: impl Into<String>) -> Error {
 
 /// A tool is missing or failed.
 pub fn tool(tool: &str, message: impl Into<String>) -> Error {
-    Error::Tool { tool: tool.into(), message: message.into() }
+    Error::Tool {
+        tool: tool.into(),
+        message: message.into(),
+    }
 }
 
 /// The error and every cause under it, one per line after the first.

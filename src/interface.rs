@@ -32,7 +32,10 @@ pub fn places_for(stages: u32) -> u64 {
 /// Address bits of the buffer's memory: its pointers step through the 2^bits - 1 states of a
 /// linear feedback shift register ([`lfsr_taps`]), at least one per place.
 pub fn buffer_depth_log2(stages: u32) -> u32 {
-    (places_for(stages) + 1).next_power_of_two().trailing_zeros().max(3)
+    (places_for(stages) + 1)
+        .next_power_of_two()
+        .trailing_zeros()
+        .max(3)
 }
 
 /// The taps of a maximal-length XNOR linear feedback shift register of `bits` bits (3..=16),
@@ -127,7 +130,10 @@ impl CheckerState {
     /// in_ready rises again within RECOVER (the unit drains a full buffer, places results one an
     /// edge after the last pixel's latency, and in_ready follows the count three edges later).
     pub fn bounds(cfg: &Config) -> (u32, u64) {
-        (cfg.latency() + 2, cfg.latency() as u64 + buffer_places(cfg) + 4)
+        (
+            cfg.latency() + 2,
+            cfg.latency() as u64 + buffer_places(cfg) + 4,
+        )
     }
 }
 
@@ -194,14 +200,40 @@ pub(crate) fn edge(plan: &Plan, outputs: &[(String, String)]) -> Edge {
     let top = cfg.top();
     // the clock enable's port, if any: it gates the handshake's inputs, so an edge with it low
     // is one without a transfer (the pipeline runs on; its results wait in the buffer)
-    let enable = cfg.params.clock_enable.then_some(if interface == Interface::Axis { "aclken" } else { "clk_en" });
+    let enable = cfg
+        .params
+        .clock_enable
+        .then_some(if interface == Interface::Axis {
+            "aclken"
+        } else {
+            "clk_en"
+        });
     // what the buffer sees of in_valid and out_ready
     let (offer, accept) = match (enable, interface) {
         (Some(_), Interface::Ready) => ("in_valid_enabled", "out_ready_enabled"),
         _ => ("in_valid", "out_ready"),
     };
-    let s = Shape { cfg, depth, interface, tw, colour, user, tlast, top, enable, offer, accept };
-    let mut e = Edge { header: Vec::new(), prologue: Vec::new(), valid_source: "in_valid".into(), tag: Vec::new(), tail: Vec::new(), unused: Vec::new() };
+    let s = Shape {
+        cfg,
+        depth,
+        interface,
+        tw,
+        colour,
+        user,
+        tlast,
+        top,
+        enable,
+        offer,
+        accept,
+    };
+    let mut e = Edge {
+        header: Vec::new(),
+        prologue: Vec::new(),
+        valid_source: "in_valid".into(),
+        tag: Vec::new(),
+        tail: Vec::new(),
+        unused: Vec::new(),
+    };
     header(&s, &mut e);
     prologue(&s, &mut e);
     let (tag_out, tag_shift) = tag(&s, plan, &mut e);
@@ -250,14 +282,36 @@ struct HeaderView<'a> {
 
 /// The header's lines from `Latency:` on: the timing, the handshake, the fields, the enable, the colour.
 fn header(s: &Shape, e: &mut Edge) {
-    let Shape { cfg, interface, colour, user, tlast, top, enable, .. } = *s;
+    let Shape {
+        cfg,
+        interface,
+        colour,
+        user,
+        tlast,
+        top,
+        enable,
+        ..
+    } = *s;
     let handshake = interface.handshake().then(|| {
         let (in_valid, in_ready, out_valid, out_ready) = names(interface);
-        HandshakeWords { latency: cfg.stages() + BUFFER_LATENCY, places: buffer_places(cfg), in_valid, in_ready, out_valid, out_ready }
+        HandshakeWords {
+            latency: cfg.stages() + BUFFER_LATENCY,
+            places: buffer_places(cfg),
+            in_valid,
+            in_ready,
+            out_valid,
+            out_ready,
+        }
     });
     let tdata = (interface == Interface::Axis).then(|| {
         let (sf, _, mf, _) = ports::tdata_fields(cfg.port_widths());
-        let bits = |f: &Field| if f.width == 1 { format!("{}[{}]", f.name, f.lo) } else { format!("{}[{}:{}]", f.name, f.lo + f.width - 1, f.lo) };
+        let bits = |f: &Field| {
+            if f.width == 1 {
+                format!("{}[{}]", f.name, f.lo)
+            } else {
+                format!("{}[{}:{}]", f.name, f.lo + f.width - 1, f.lo)
+            }
+        };
         let layout = |fields: &[Field]| fields.iter().map(bits).collect::<Vec<_>>().join(" ");
         (layout(&sf), layout(&mf))
     });
@@ -265,7 +319,17 @@ fn header(s: &Shape, e: &mut Edge) {
         Interface::Axis => ("s_axis_tuser", "m_axis_tuser", user),
         _ => ("in_tag", "out_tag", user),
     });
-    let view = HeaderView { handshake, stages: cfg.stages(), reset: reset_words(cfg), top, tdata, tag, tlast, enable, static_colour: colour == Colour::Static };
+    let view = HeaderView {
+        handshake,
+        stages: cfg.stages(),
+        reset: reset_words(cfg),
+        top,
+        tdata,
+        tag,
+        tlast,
+        enable,
+        static_colour: colour == Colour::Static,
+    };
     e.header = lines_of(&view);
 }
 
@@ -305,13 +369,39 @@ struct PrologueView<'a> {
 /// The declarations after the port list: the reset active high inside, axis aliases, the take,
 /// the material registers.
 fn prologue(s: &Shape, e: &mut Edge) {
-    let Shape { cfg, depth, interface, tw, colour, user, tlast, top, enable, offer, accept } = *s;
+    let Shape {
+        cfg,
+        depth,
+        interface,
+        tw,
+        colour,
+        user,
+        tlast,
+        top,
+        enable,
+        offer,
+        accept,
+    } = *s;
     let w = cfg.port_widths();
     let axis = (interface == Interface::Axis).then(|| {
         let (sf, sw, _, _) = ports::tdata_fields(w);
-        let covered = sf.iter().fold(0u128, |c, f| c | crate::bits::mask(f.width) << f.lo);
-        e.unused.extend(crate::datapath::bit_ranges("s_axis_tdata", sw, crate::bits::mask(sw) & !covered));
-        let fields = sf.iter().map(|f| FieldAlias { range: range(f.width), name: f.name, hi: f.lo + f.width - 1, lo: f.lo }).collect();
+        let covered = sf
+            .iter()
+            .fold(0u128, |c, f| c | crate::bits::mask(f.width) << f.lo);
+        e.unused.extend(crate::datapath::bit_ranges(
+            "s_axis_tdata",
+            sw,
+            crate::bits::mask(sw) & !covered,
+        ));
+        let fields = sf
+            .iter()
+            .map(|f| FieldAlias {
+                range: range(f.width),
+                name: f.name,
+                hi: f.lo + f.width - 1,
+                lo: f.lo,
+            })
+            .collect();
         let tag_source = (tw > 0).then_some(match (user, tlast) {
             (0, _) => "s_axis_tlast",
             (_, true) => "{s_axis_tlast, s_axis_tuser}",
@@ -320,7 +410,11 @@ fn prologue(s: &Shape, e: &mut Edge) {
         let polarity = if w.reset_low { "~" } else { "" };
         AxisAliases {
             reset: format!("{polarity}{}", ports::reset_port(w)),
-            gate: if enable.is_some() { " & aclken;   // a transfer only at an enabled edge" } else { ";" },
+            gate: if enable.is_some() {
+                " & aclken;   // a transfer only at an enabled edge"
+            } else {
+                ";"
+            },
             fields,
             tag_source,
             intensity_range: range(cfg.fi() + 1),
@@ -333,7 +427,8 @@ fn prologue(s: &Shape, e: &mut Edge) {
     if interface.handshake() {
         e.valid_source = "in_take".into();
     }
-    let material_load = (colour == Colour::Static).then(|| enable.map_or("ks_load".to_string(), |en| format!("ks_load && {en}")));
+    let material_load = (colour == Colour::Static)
+        .then(|| enable.map_or("ks_load".to_string(), |en| format!("ks_load && {en}")));
     if colour == Colour::Static && depth == 0 && !interface.handshake() {
         // combinational: no valid pipeline for rst to clear (the port stays, as with every clock)
         e.unused.push("rst".into());
@@ -361,7 +456,12 @@ pub(crate) fn tag_line(plan: &Plan) -> Option<DelayLine> {
     }
     let cuts: Vec<usize> = plan.registered_cuts.iter().map(|&k| k as usize).collect();
     let read = vec![0; cuts.len()];
-    let member = Waiting { name: "tag".into(), width: tw, source: "in_tag".into(), read };
+    let member = Waiting {
+        name: "tag".into(),
+        width: tw,
+        source: "in_tag".into(),
+        read,
+    };
     Some(DelayLine {
         name: "tag".into(),
         cuts,
@@ -430,12 +530,43 @@ struct TailView<'a> {
 }
 
 /// The outputs: assigns, or the output buffer and what it drives (the formal lines, axis packing).
-fn tail(s: &Shape, outputs: &[(String, String)], tag_out: Option<String>, tag_shift: bool, e: &mut Edge) {
-    let Shape { cfg, depth, interface, tw, colour, user, tlast, top, offer, accept, .. } = *s;
-    let last_valid = if depth == 0 { e.valid_source.clone() } else { format!("valid_line[{}]", depth - 1) };
+fn tail(
+    s: &Shape,
+    outputs: &[(String, String)],
+    tag_out: Option<String>,
+    tag_shift: bool,
+    e: &mut Edge,
+) {
+    let Shape {
+        cfg,
+        depth,
+        interface,
+        tw,
+        colour,
+        user,
+        tlast,
+        top,
+        offer,
+        accept,
+        ..
+    } = *s;
+    let last_valid = if depth == 0 {
+        e.valid_source.clone()
+    } else {
+        format!("valid_line[{}]", depth - 1)
+    };
     let static_colour = colour == Colour::Static;
-    let mut view =
-        TailView { top, stages: cfg.stages(), last_valid, static_colour, buffer: None, formal: Vec::new(), outputs, tag_out: None, valid_seen: None };
+    let mut view = TailView {
+        top,
+        stages: cfg.stages(),
+        last_valid,
+        static_colour,
+        buffer: None,
+        formal: Vec::new(),
+        outputs,
+        tag_out: None,
+        valid_seen: None,
+    };
     if !interface.handshake() {
         view.tag_out = tag_out;
         view.valid_seen = (static_colour && depth > 1).then(|| valid_seen(depth));
@@ -448,7 +579,13 @@ fn tail(s: &Shape, outputs: &[(String, String)], tag_out: Option<String>, tag_sh
         fields.push(("out_tag".into(), t.clone(), tw));
     }
     let logical = cfg.logical_ports();
-    let widths = |p: &str| logical.iter().find(|x| x.name == p).map(|x| x.width).expect("an output port");
+    let widths = |p: &str| {
+        logical
+            .iter()
+            .find(|x| x.name == p)
+            .map(|x| x.width)
+            .expect("an output port")
+    };
     for (port, src) in outputs.iter().rev() {
         fields.push((port.clone(), src.clone(), widths(port)));
     }
@@ -460,17 +597,33 @@ fn tail(s: &Shape, outputs: &[(String, String)], tag_out: Option<String>, tag_sh
     let mut at = width;
     let mut at_rank = std::collections::BTreeMap::new();
     for (port, _, w) in &fields {
-        at_rank.insert(port.as_str(), if *w == 1 { format!("f_buffer_at_rank[{}]", at - 1) } else { format!("f_buffer_at_rank[{}:{}]", at - 1, at - w) });
+        at_rank.insert(
+            port.as_str(),
+            if *w == 1 {
+                format!("f_buffer_at_rank[{}]", at - 1)
+            } else {
+                format!("f_buffer_at_rank[{}:{}]", at - 1, at - w)
+            },
+        );
         at -= w;
     }
-    let payload = format!("{{{}}}", ["intensity", "spec_r", "spec_g", "spec_b", "done"].map(|p| at_rank[p].clone()).join(", "));
+    let payload = format!(
+        "{{{}}}",
+        ["intensity", "spec_r", "spec_g", "spec_b", "done"]
+            .map(|p| at_rank[p].clone())
+            .join(", ")
+    );
     let state = CheckerState::of(cfg);
     view.formal = lines_of(&FormalView {
         depth,
         tw,
         tag: tag_line,
         places: static_colour.then(|| places_for(depth)),
-        fields: state.fields().iter().map(|&(name, lo, w)| checker_field(name, lo, w)).collect(),
+        fields: state
+            .fields()
+            .iter()
+            .map(|&(name, lo, w)| checker_field(name, lo, w))
+            .collect(),
         tag_range: range(tw),
         width,
         payload,
@@ -519,7 +672,12 @@ fn valid_seen(depth: u32) -> (String, u32, usize, String) {
             }
         })
         .collect();
-    (range(groups as u32), top, groups, format!("{{{}}}", next.join(", ")))
+    (
+        range(groups as u32),
+        top,
+        groups,
+        format!("{{{}}}", next.join(", ")),
+    )
 }
 
 #[derive(Template)]
@@ -544,7 +702,11 @@ struct FormalView {
 }
 
 /// One field of the port checker's state as the lemmas unpack it from `f_ports`.
-fn checker_field(name: &'static str, lo: u32, w: u32) -> (&'static str, String, String, &'static str) {
+fn checker_field(
+    name: &'static str,
+    lo: u32,
+    w: u32,
+) -> (&'static str, String, String, &'static str) {
     let what = match name {
         "inside" => "pixels taken and not delivered",
         "following" => "a pixel followed",
@@ -557,21 +719,34 @@ fn checker_field(name: &'static str, lo: u32, w: u32) -> (&'static str, String, 
         "check" => "prove --datapath: its result is known",
         _ => "prove --datapath: its result, {intensity, spec_r, spec_g, spec_b, done}",
     };
-    let select = if w == 1 { format!("f_ports[{lo}]") } else { format!("f_ports[{}:{lo}]", lo + w - 1) };
+    let select = if w == 1 {
+        format!("f_ports[{lo}]")
+    } else {
+        format!("f_ports[{}:{lo}]", lo + w - 1)
+    };
     (name, range(w), select, what)
 }
 
 /// The reset as the header names it: `rst`, `rst_n low`, `areset`, `aresetn low`.
 fn reset_words(cfg: &crate::config::Config) -> String {
     let w = cfg.port_widths();
-    format!("{}{}", ports::reset_port(w), if w.reset_low { " low" } else { "" })
+    format!(
+        "{}{}",
+        ports::reset_port(w),
+        if w.reset_low { " low" } else { "" }
+    )
 }
 
 /// The handshake's port names: in valid, in ready, out valid, out ready (the reset's:
 /// [`reset_words`]).
 fn names(interface: Interface) -> (&'static str, &'static str, &'static str, &'static str) {
     match interface {
-        Interface::Axis => ("s_axis_tvalid", "s_axis_tready", "m_axis_tvalid", "m_axis_tready"),
+        Interface::Axis => (
+            "s_axis_tvalid",
+            "s_axis_tready",
+            "m_axis_tvalid",
+            "m_axis_tready",
+        ),
         _ => ("in_valid", "in_ready", "out_valid", "out_ready"),
     }
 }
@@ -594,7 +769,10 @@ mod tests {
                 at = ((at << 1) | (!(at & taps).count_ones() & 1)) & mask;
             }
             assert_eq!(at, 0, "{bits} bits: back at 0 after 2^{bits} - 1 steps");
-            assert!(!seen[mask as usize], "{bits} bits: all ones is the one state left out");
+            assert!(
+                !seen[mask as usize],
+                "{bits} bits: all ones is the one state left out"
+            );
         }
     }
 }

@@ -55,14 +55,22 @@ pub(crate) fn parent_dir(path: &Path) -> PathBuf {
 fn umask() -> u32 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
-        .and_then(|s| s.lines().find_map(|l| l.strip_prefix("Umask:").and_then(|v| u32::from_str_radix(v.trim(), 8).ok())))
+        .and_then(|s| {
+            s.lines().find_map(|l| {
+                l.strip_prefix("Umask:")
+                    .and_then(|v| u32::from_str_radix(v.trim(), 8).ok())
+            })
+        })
         .unwrap_or(0o022)
 }
 
 /// The tag of one output's staging and lock names in its parent: a hash of its file name, so
 /// the names of two outputs never overlap and any file name is data.
 pub fn tag(target: &Path) -> String {
-    let name = target.file_name().map(|n| n.as_encoded_bytes().to_vec()).unwrap_or_default();
+    let name = target
+        .file_name()
+        .map(|n| n.as_encoded_bytes().to_vec())
+        .unwrap_or_default();
     crate::bits::sha256_hex(&name, 6)
 }
 
@@ -98,18 +106,29 @@ impl OutputLock {
                 .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK | libc::O_CLOEXEC)
                 .open(&path)
                 .map_err(|e| match e.raw_os_error() {
-                    Some(libc::ELOOP) => {
-                        Error::Refused { dir: target.to_path_buf(), why: format!("its lock {} is a symbolic link, not specgen's: remove it", path.display()) }
-                    }
-                    Some(libc::ENXIO) => {
-                        Error::Refused { dir: target.to_path_buf(), why: format!("its lock {} is a FIFO, not specgen's: remove it", path.display()) }
-                    }
+                    Some(libc::ELOOP) => Error::Refused {
+                        dir: target.to_path_buf(),
+                        why: format!(
+                            "its lock {} is a symbolic link, not specgen's: remove it",
+                            path.display()
+                        ),
+                    },
+                    Some(libc::ENXIO) => Error::Refused {
+                        dir: target.to_path_buf(),
+                        why: format!(
+                            "its lock {} is a FIFO, not specgen's: remove it",
+                            path.display()
+                        ),
+                    },
                     _ => unwritable(parent, target, e),
                 })?;
             if !f.metadata().is_ok_and(|m| m.is_file()) {
                 return Err(Error::Refused {
                     dir: target.to_path_buf(),
-                    why: format!("its lock {} is not a regular file, not specgen's: remove it", path.display()),
+                    why: format!(
+                        "its lock {} is not a regular file, not specgen's: remove it",
+                        path.display()
+                    ),
                 });
             }
             match f.try_lock() {
@@ -121,10 +140,18 @@ impl OutputLock {
                 }
                 Err(std::fs::TryLockError::WouldBlock) => {
                     let mut holder = String::new();
-                    let _ = std::io::Read::read_to_string(&mut std::io::Read::take(&f, 32), &mut holder);
-                    return Err(Error::Busy { dir: target.to_path_buf(), holder: holder.trim().parse().ok() });
+                    let _ = std::io::Read::read_to_string(
+                        &mut std::io::Read::take(&f, 32),
+                        &mut holder,
+                    );
+                    return Err(Error::Busy {
+                        dir: target.to_path_buf(),
+                        holder: holder.trim().parse().ok(),
+                    });
                 }
-                Err(std::fs::TryLockError::Error(e)) => return Err(Error::io("write", target, plain(e))),
+                Err(std::fs::TryLockError::Error(e)) => {
+                    return Err(Error::io("write", target, plain(e)))
+                }
             }
             let same = match (f.metadata(), std::fs::metadata(&path)) {
                 (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
@@ -135,7 +162,10 @@ impl OutputLock {
                 break f;
             }
             if tries > 100 {
-                return Err(Error::Busy { dir: target.to_path_buf(), holder: None });
+                return Err(Error::Busy {
+                    dir: target.to_path_buf(),
+                    holder: None,
+                });
             }
         };
         // the holder's process id, for a writer that waits in vain
@@ -146,12 +176,16 @@ impl OutputLock {
         for entry in std::fs::read_dir(parent).at("write", target)?.flatten() {
             let name = entry.file_name();
             let name = name.to_string_lossy();
-            let ours = name.starts_with(&format!(".specgen-old-{tag}-")) || name.starts_with(&format!(".specgen-new-{tag}-"));
+            let ours = name.starts_with(&format!(".specgen-old-{tag}-"))
+                || name.starts_with(&format!(".specgen-new-{tag}-"));
             if !ours || !entry.file_type().is_ok_and(|t| t.is_dir()) {
                 continue;
             }
             let saved = entry.path().join("old");
-            if name.starts_with(".specgen-old-") && saved.is_dir() && std::fs::symlink_metadata(target).is_err() {
+            if name.starts_with(".specgen-old-")
+                && saved.is_dir()
+                && std::fs::symlink_metadata(target).is_err()
+            {
                 std::fs::rename(&saved, target).at("write", target)?;
             }
             let _ = std::fs::remove_dir_all(entry.path());
@@ -192,10 +226,20 @@ fn exchange(a: &Path, b: &Path) -> std::io::Result<bool> {
     {
         use std::ffi::CString;
         use std::os::unix::ffi::OsStrExt;
-        let ca = CString::new(a.as_os_str().as_bytes()).map_err(|_| std::io::Error::from(std::io::ErrorKind::InvalidInput))?;
-        let cb = CString::new(b.as_os_str().as_bytes()).map_err(|_| std::io::Error::from(std::io::ErrorKind::InvalidInput))?;
+        let ca = CString::new(a.as_os_str().as_bytes())
+            .map_err(|_| std::io::Error::from(std::io::ErrorKind::InvalidInput))?;
+        let cb = CString::new(b.as_os_str().as_bytes())
+            .map_err(|_| std::io::Error::from(std::io::ErrorKind::InvalidInput))?;
         // SAFETY: two NUL-terminated paths that live across the call; no memory is shared.
-        let r = unsafe { libc::renameat2(libc::AT_FDCWD, ca.as_ptr(), libc::AT_FDCWD, cb.as_ptr(), libc::RENAME_EXCHANGE) };
+        let r = unsafe {
+            libc::renameat2(
+                libc::AT_FDCWD,
+                ca.as_ptr(),
+                libc::AT_FDCWD,
+                cb.as_ptr(),
+                libc::RENAME_EXCHANGE,
+            )
+        };
         if r == 0 {
             return Ok(true);
         }
@@ -222,7 +266,11 @@ fn holds_cwd(dir: &Path) -> bool {
 
 /// Writes `files` as the whole content of `dir`, atomically (see the module doc). `check` is
 /// asked, under the lock, whether an existing `dir` may be replaced.
-pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Path) -> Result<(), Error>) -> Result<(), Error> {
+pub fn write_dir(
+    dir: &Path,
+    files: &[(String, Vec<u8>)],
+    check: impl FnOnce(&Path) -> Result<(), Error>,
+) -> Result<(), Error> {
     // `link/` names the link (the trailing separator would make every rename of it fail)
     let normal: PathBuf = dir.components().collect();
     let dir = normal.as_path();
@@ -230,8 +278,10 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
     let resolved;
     let dir = match std::fs::symlink_metadata(dir) {
         Ok(m) if m.file_type().is_symlink() => {
-            resolved = std::fs::canonicalize(dir)
-                .map_err(|_| Error::Refused { dir: dir.to_path_buf(), why: "it is a symbolic link to nothing (a dangling link)".into() })?;
+            resolved = std::fs::canonicalize(dir).map_err(|_| Error::Refused {
+                dir: dir.to_path_buf(),
+                why: "it is a symbolic link to nothing (a dangling link)".into(),
+            })?;
             resolved.as_path()
         }
         _ => dir,
@@ -244,7 +294,10 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
         });
     }
     if dir.file_name().is_none() {
-        return Err(Error::Refused { dir: dir.to_path_buf(), why: "it has no name of its own (`/`, `..`): name the output directory".into() });
+        return Err(Error::Refused {
+            dir: dir.to_path_buf(),
+            why: "it has no name of its own (`/`, `..`): name the output directory".into(),
+        });
     }
     let parent = parent_dir(dir);
     std::fs::create_dir_all(&parent).at("write", dir)?;
@@ -254,7 +307,10 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
         check(dir)?;
     }
     let tag = tag(dir);
-    let staging = tempfile::Builder::new().prefix(&format!(".specgen-new-{tag}-")).tempdir_in(&parent).map_err(|e| unwritable(&parent, dir, e))?;
+    let staging = tempfile::Builder::new()
+        .prefix(&format!(".specgen-new-{tag}-"))
+        .tempdir_in(&parent)
+        .map_err(|e| unwritable(&parent, dir, e))?;
     // the old directory's mode and group, or what mkdir would give a new one: the group and a
     // setgid bit first (writable by us meanwhile), so the files written in it take its group
     // as they would in the old one; the mode itself once they are written
@@ -265,7 +321,11 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
             let _ = std::os::unix::fs::chown(staging.path(), None, Some(m.gid()));
         }
         let mode = old.as_ref().map_or(0o777 & !umask(), |m| m.mode() & 0o7777);
-        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode((mode | 0o700) & 0o7777)).at("write", dir)?;
+        std::fs::set_permissions(
+            staging.path(),
+            std::fs::Permissions::from_mode((mode | 0o700) & 0o7777),
+        )
+        .at("write", dir)?;
         mode
     };
     for (name, bytes) in files {
@@ -278,7 +338,8 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(mode)).at("write", dir)?;
+        std::fs::set_permissions(staging.path(), std::fs::Permissions::from_mode(mode))
+            .at("write", dir)?;
     }
     if old.is_none() {
         std::fs::rename(staging.path(), dir).at("write", dir)?;
@@ -288,7 +349,10 @@ pub fn write_dir(dir: &Path, files: &[(String, Vec<u8>)], check: impl FnOnce(&Pa
         open_for_removal(staging.path());
         return Ok(());
     } else {
-        let graveyard = tempfile::Builder::new().prefix(&format!(".specgen-old-{tag}-")).tempdir_in(&parent).at("write", dir)?;
+        let graveyard = tempfile::Builder::new()
+            .prefix(&format!(".specgen-old-{tag}-"))
+            .tempdir_in(&parent)
+            .at("write", dir)?;
         std::fs::rename(dir, graveyard.path().join("old")).at("write", dir)?;
         if let Err(e) = std::fs::rename(staging.path(), dir) {
             // put the previous output back before reporting
@@ -314,7 +378,9 @@ pub fn inside(path: &Path, dir: &Path) -> bool {
         std::fs::canonicalize(p).unwrap_or_else(|_| {
             let abs = std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
             match (abs.parent(), abs.file_name()) {
-                (Some(parent), Some(name)) => std::fs::canonicalize(parent).unwrap_or_else(|_| parent.to_path_buf()).join(name),
+                (Some(parent), Some(name)) => std::fs::canonicalize(parent)
+                    .unwrap_or_else(|_| parent.to_path_buf())
+                    .join(name),
                 _ => abs,
             }
         })
@@ -325,7 +391,9 @@ pub fn inside(path: &Path, dir: &Path) -> bool {
 /// Whether an output path means standard output: `-`, `/dev/stdout`, `/dev/fd/1`,
 /// `/proc/self/fd/1`.
 pub fn is_stdout(path: &Path) -> bool {
-    ["-", "/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"].iter().any(|p| path == Path::new(p))
+    ["-", "/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"]
+        .iter()
+        .any(|p| path == Path::new(p))
 }
 
 /// Where a single-file output really goes: through a symbolic link to its target.
@@ -335,7 +403,11 @@ pub(crate) fn through_links(path: &Path) -> std::io::Result<PathBuf> {
         match std::fs::symlink_metadata(&path) {
             Ok(m) if m.file_type().is_symlink() => {
                 let to = std::fs::read_link(&path)?;
-                path = if to.is_absolute() { to } else { parent_dir(&path).join(to) };
+                path = if to.is_absolute() {
+                    to
+                } else {
+                    parent_dir(&path).join(to)
+                };
             }
             _ => return Ok(path),
         }
@@ -348,24 +420,40 @@ pub(crate) fn through_links(path: &Path) -> std::io::Result<PathBuf> {
 /// and writable by no one else. Checked on every use, so an entry planted by another user
 /// is never run. `Err`: refused, with the reason.
 pub fn private_dir(dir: &Path) -> Result<(), Error> {
-    let refused = |why: String| Error::Refused { dir: dir.to_path_buf(), why };
+    let refused = |why: String| Error::Refused {
+        dir: dir.to_path_buf(),
+        why,
+    };
     use std::os::unix::fs::{DirBuilderExt, MetadataExt};
     if std::fs::symlink_metadata(dir).is_err() {
         // the directories that exist above it are checked before any is made below them: a
         // refusal leaves nothing behind in another user's directory
-        if let Some(existing) = dir.ancestors().skip(1).find(|a| !a.as_os_str().is_empty() && std::fs::symlink_metadata(a).is_ok()) {
+        if let Some(existing) = dir
+            .ancestors()
+            .skip(1)
+            .find(|a| !a.as_os_str().is_empty() && std::fs::symlink_metadata(a).is_ok())
+        {
             safe_ancestors(&existing.join("cache"))?;
         }
         if let Some(parent) = dir.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(parent).map_err(|e| refused(format!("cannot create {}: {}", parent.display(), plain(e))))?;
+            std::fs::create_dir_all(parent).map_err(|e| {
+                refused(format!("cannot create {}: {}", parent.display(), plain(e)))
+            })?;
         }
         match std::fs::DirBuilder::new().mode(0o700).create(dir) {
             Ok(()) => {}
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
-            Err(e) => return Err(refused(format!("cannot create {}: {}", dir.display(), plain(e)))),
+            Err(e) => {
+                return Err(refused(format!(
+                    "cannot create {}: {}",
+                    dir.display(),
+                    plain(e)
+                )))
+            }
         }
     }
-    let m = std::fs::symlink_metadata(dir).map_err(|e| refused(format!("cannot read {}: {}", dir.display(), plain(e))))?;
+    let m = std::fs::symlink_metadata(dir)
+        .map_err(|e| refused(format!("cannot read {}: {}", dir.display(), plain(e))))?;
     let me = euid();
     safe_ancestors(dir)?;
     if m.file_type().is_symlink() {
@@ -390,13 +478,18 @@ pub fn private_dir(dir: &Path) -> Result<(), Error> {
 /// is root's or the caller's. Another user who can write an ancestor could swap what is below
 /// it for a directory of theirs.
 fn safe_ancestors(dir: &Path) -> Result<(), Error> {
-    let refused = |why: String| Error::Refused { dir: dir.to_path_buf(), why };
+    let refused = |why: String| Error::Refused {
+        dir: dir.to_path_buf(),
+        why,
+    };
     use std::os::unix::fs::MetadataExt;
     let parent = parent_dir(dir);
-    let real = std::fs::canonicalize(&parent).map_err(|e| refused(format!("cannot resolve {}: {}", parent.display(), plain(e))))?;
+    let real = std::fs::canonicalize(&parent)
+        .map_err(|e| refused(format!("cannot resolve {}: {}", parent.display(), plain(e))))?;
     let me = euid();
     for a in real.ancestors() {
-        let m = std::fs::metadata(a).map_err(|e| refused(format!("cannot read {}: {}", a.display(), plain(e))))?;
+        let m = std::fs::metadata(a)
+            .map_err(|e| refused(format!("cannot read {}: {}", a.display(), plain(e))))?;
         if m.uid() != 0 && m.uid() != me {
             return Err(refused(format!(
                 "{} above it belongs to user {}, who could replace what is below it; specgen runs programs from its cache only under directories of yours or root's",
@@ -432,19 +525,32 @@ fn open_fifo(path: &Path) -> std::io::Result<std::fs::File> {
     const FIFO_WAIT: std::time::Duration = std::time::Duration::from_secs(10);
     let start = std::time::Instant::now();
     loop {
-        match std::fs::OpenOptions::new().write(true).custom_flags(libc::O_NONBLOCK).open(path) {
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .custom_flags(libc::O_NONBLOCK)
+            .open(path)
+        {
             Ok(f) => {
                 // blocking writes from here on: the reader paces the stream
                 // SAFETY: fcntl on a descriptor we own
                 let flags = unsafe { libc::fcntl(f.as_raw_fd(), libc::F_GETFL) };
-                if flags < 0 || unsafe { libc::fcntl(f.as_raw_fd(), libc::F_SETFL, flags & !libc::O_NONBLOCK) } < 0 {
+                if flags < 0
+                    || unsafe {
+                        libc::fcntl(f.as_raw_fd(), libc::F_SETFL, flags & !libc::O_NONBLOCK)
+                    } < 0
+                {
                     return Err(std::io::Error::last_os_error());
                 }
                 return Ok(f);
             }
-            Err(e) if e.raw_os_error() == Some(libc::ENXIO) && start.elapsed() < FIFO_WAIT => std::thread::sleep(std::time::Duration::from_millis(50)),
+            Err(e) if e.raw_os_error() == Some(libc::ENXIO) && start.elapsed() < FIFO_WAIT => {
+                std::thread::sleep(std::time::Duration::from_millis(50))
+            }
             Err(e) if e.raw_os_error() == Some(libc::ENXIO) => {
-                return Err(std::io::Error::other(format!("it is a FIFO and no process opened it for reading within {} s", FIFO_WAIT.as_secs())))
+                return Err(std::io::Error::other(format!(
+                    "it is a FIFO and no process opened it for reading within {} s",
+                    FIFO_WAIT.as_secs()
+                )))
             }
             Err(e) => return Err(e),
         }
@@ -454,7 +560,10 @@ fn open_fifo(path: &Path) -> std::io::Result<std::fs::File> {
 /// Writes one file from a writer `fill` streams into: a buffered temp file in the same
 /// directory, renamed over the target only when `fill` succeeded (on error nothing is left);
 /// a FIFO or character device gets the stream itself.
-pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<T>) -> std::io::Result<T> {
+pub fn write_file_with<T>(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<T>,
+) -> std::io::Result<T> {
     // `-` and standard output by any of its names are the stream itself, whatever it is: a
     // file opened for appending (`>> log`) keeps its lines, a pipe works (its /proc link names
     // nothing that can be opened)
@@ -471,7 +580,11 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
         use std::os::unix::fs::FileTypeExt;
         let t = m.file_type();
         if t.is_fifo() || t.is_char_device() {
-            let f = if t.is_fifo() { open_fifo(&path)? } else { std::fs::OpenOptions::new().write(true).open(&path)? };
+            let f = if t.is_fifo() {
+                open_fifo(&path)?
+            } else {
+                std::fs::OpenOptions::new().write(true).open(&path)?
+            };
             let mut w = std::io::BufWriter::with_capacity(1 << 16, f);
             let v = fill(&mut w)?;
             std::io::Write::flush(&mut w)?;
@@ -485,7 +598,10 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
             } else {
                 "a special file"
             };
-            return Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, format!("it is {what}, not a file specgen may replace")));
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!("it is {what}, not a file specgen may replace"),
+            ));
         }
     }
     let parent = parent_dir(&path);
@@ -493,7 +609,10 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
     // (its process gone) is removed by the next run writing it
     let prefix = format!(".specgen-{}-", tag(&path));
     remove_orphans(&parent, &prefix, false);
-    let mut tmp = tempfile::Builder::new().prefix(&format!("{prefix}{}-", std::process::id())).tempfile_in(&parent).map_err(plain)?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(&format!("{prefix}{}-", std::process::id()))
+        .tempfile_in(&parent)
+        .map_err(plain)?;
     let value = {
         let mut w = std::io::BufWriter::with_capacity(1 << 20, tmp.as_file_mut());
         let v = fill(&mut w)?;
@@ -505,8 +624,11 @@ pub fn write_file_with<T>(path: &Path, fill: impl FnOnce(&mut dyn std::io::Write
     #[cfg(unix)]
     {
         use std::os::unix::fs::{MetadataExt, PermissionsExt};
-        let mode = existing.as_ref().map_or(0o666 & !umask(), |m| m.mode() & 0o7777);
-        tmp.as_file().set_permissions(std::fs::Permissions::from_mode(mode))?;
+        let mode = existing
+            .as_ref()
+            .map_or(0o666 & !umask(), |m| m.mode() & 0o7777);
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(mode))?;
         if let Some(m) = &existing {
             let _ = std::os::unix::fs::fchown(tmp.as_file(), None, Some(m.gid()));
         }
@@ -525,7 +647,10 @@ const OUTPUT_SUBDIRS: [&str; 2] = [SIM_DIR, "synth"];
 
 fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), Error> {
     let report = kind.is_some();
-    let occupied = |why: String| Error::Occupied { dir: dir.to_path_buf(), why };
+    let occupied = |why: String| Error::Occupied {
+        dir: dir.to_path_buf(),
+        why,
+    };
     if !dir.is_dir() {
         return Err(occupied("it exists and is not a directory".into()));
     }
@@ -540,38 +665,62 @@ fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), 
             for inner in std::fs::read_dir(entry.path()).at("read", dir)? {
                 let inner = inner.at("read", dir)?;
                 if !inner.file_type().at("read", dir)?.is_file() {
-                    return Err(occupied(format!("it contains {name}/{:?}, which is not a regular file", inner.file_name())));
+                    return Err(occupied(format!(
+                        "it contains {name}/{:?}, which is not a regular file",
+                        inner.file_name()
+                    )));
                 }
                 names.push(format!("{name}/{}", inner.file_name().to_string_lossy()));
             }
             continue;
         }
         if !kind.is_file() {
-            return Err(occupied(format!("it contains {:?}, which is not a regular file", entry.file_name())));
+            return Err(occupied(format!(
+                "it contains {:?}, which is not a regular file",
+                entry.file_name()
+            )));
         }
         names.push(name);
     }
     let mut allowed: Vec<String> = Vec::new();
     for name in names.iter().filter(|n| n.ends_with(".json")) {
-        let Ok(text) = crate::small_file::read(&dir.join(name), 1 << 20) else { continue };
-        let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else { continue };
+        let Ok(text) = crate::small_file::read(&dir.join(name), 1 << 20) else {
+            continue;
+        };
+        let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else {
+            continue;
+        };
         if v.get("generator").and_then(|g| g.as_str()) != Some("specgen") {
             continue;
         }
         match (report, v.get("claims").is_some(), v.get("ports").is_some()) {
-            (true, false, true) => return Err(occupied("it holds a unit written by `specgen generate`, not a report".into())),
-            (false, true, _) => return Err(occupied("it holds a report written by `specgen report`, not a unit".into())),
+            (true, false, true) => {
+                return Err(occupied(
+                    "it holds a unit written by `specgen generate`, not a report".into(),
+                ))
+            }
+            (false, true, _) => {
+                return Err(occupied(
+                    "it holds a report written by `specgen report`, not a unit".into(),
+                ))
+            }
             _ => {}
         }
         if let Some(k) = kind {
             for other in ["claims", "exploration"].into_iter().filter(|o| *o != k) {
                 if v.get(other).is_some() {
-                    return Err(occupied(format!("it holds another kind of specgen output ({other}), not this one")));
+                    return Err(occupied(format!(
+                        "it holds another kind of specgen output ({other}), not this one"
+                    )));
                 }
             }
             // only the manifest by its own name vouches for the directory: a copy of it under
             // another name (a user's annotated.json) is the user's
-            let own = if k == "claims" { "report.json" } else { "explore.json" };
+            let own = if k == "claims" {
+                "report.json"
+            } else {
+                "explore.json"
+            };
             if v.get(k).is_none() || name != own {
                 continue;
             }
@@ -587,9 +736,18 @@ fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), 
             .and_then(|f| f.as_array())
             .into_iter()
             .flatten()
-            .filter_map(|f| Some((f.get("name")?.as_str()?, f.get("sha256").and_then(|h| h.as_str()))))
+            .filter_map(|f| {
+                Some((
+                    f.get("name")?.as_str()?,
+                    f.get("sha256").and_then(|h| h.as_str()),
+                ))
+            })
             .collect();
-        if listed.is_empty() || listed.iter().any(|(n, _)| !names.iter().any(|have| have == n)) {
+        if listed.is_empty()
+            || listed
+                .iter()
+                .any(|(n, _)| !names.iter().any(|have| have == n))
+        {
             continue;
         }
         allowed.push(name.clone());
@@ -597,7 +755,8 @@ fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), 
             allowed.push(n.to_string());
             if let (Some(want), false) = (want, force) {
                 let path = dir.join(n);
-                let bytes = crate::small_file::read_bytes(&path, crate::small_file::UNIT_FILE_MAX).map_err(|e| occupied(format!("{n} {e}")))?;
+                let bytes = crate::small_file::read_bytes(&path, crate::small_file::UNIT_FILE_MAX)
+                    .map_err(|e| occupied(format!("{n} {e}")))?;
                 if crate::bits::sha256_hex(&bytes, 32) != want {
                     return Err(occupied(format!(
                         "{n} was changed since specgen wrote it (its SHA-256 is not the manifest's); move it away, or pass --force to replace it"
@@ -607,7 +766,9 @@ fn check_replaceable(dir: &Path, kind: Option<&str>, force: bool) -> Result<(), 
         }
     }
     match names.iter().find(|n| !allowed.contains(n)) {
-        Some(stranger) => Err(occupied(format!("it contains {stranger:?}, which no specgen manifest there lists"))),
+        Some(stranger) => Err(occupied(format!(
+            "it contains {stranger:?}, which no specgen manifest there lists"
+        ))),
         None => Ok(()),
     }
 }
@@ -618,12 +779,21 @@ fn open_for_removal(dir: &Path) {
     use std::os::unix::fs::PermissionsExt;
     let mut dirs = vec![dir.to_path_buf()];
     if let Ok(entries) = std::fs::read_dir(dir) {
-        dirs.extend(entries.flatten().take(1000).filter(|e| e.file_type().is_ok_and(|t| t.is_dir())).map(|e| e.path()));
+        dirs.extend(
+            entries
+                .flatten()
+                .take(1000)
+                .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
+                .map(|e| e.path()),
+        );
     }
     for d in dirs {
         if let Ok(m) = std::fs::symlink_metadata(&d) {
             if m.is_dir() {
-                let _ = std::fs::set_permissions(&d, std::fs::Permissions::from_mode(m.permissions().mode() | 0o700));
+                let _ = std::fs::set_permissions(
+                    &d,
+                    std::fs::Permissions::from_mode(m.permissions().mode() | 0o700),
+                );
             }
         }
     }
@@ -632,10 +802,17 @@ fn open_for_removal(dir: &Path) {
 /// Whether `text`, read as `name`, is a unit's manifest as specgen writes it: its parameters
 /// make a valid configuration whose fingerprint is the manifest's and whose top names it.
 fn genuine_unit_manifest(name: &str, text: &str) -> bool {
-    let Ok(v) = serde_json::from_str::<serde_json::Value>(text) else { return false };
-    let Ok(params) = crate::config::Params::from_json(text) else { return false };
-    let Ok(cfg) = crate::config::Config::new(params) else { return false };
-    v.get("fingerprint").and_then(|f| f.as_str()) == Some(cfg.fingerprint().as_str()) && name == format!("{}.json", cfg.top())
+    let Ok(v) = serde_json::from_str::<serde_json::Value>(text) else {
+        return false;
+    };
+    let Ok(params) = crate::config::Params::from_json(text) else {
+        return false;
+    };
+    let Ok(cfg) = crate::config::Config::new(params) else {
+        return false;
+    };
+    v.get("fingerprint").and_then(|f| f.as_str()) == Some(cfg.fingerprint().as_str())
+        && name == format!("{}.json", cfg.top())
 }
 
 /// Writes `files` as the whole content of `dir`, atomically (`output::write_dir`). An
@@ -646,10 +823,17 @@ pub fn write_dir_atomically(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(
 }
 
 /// [`write_dir_atomically`]; with `force`, also over files of a previous output edited by hand.
-pub fn write_dir_atomically_forced(dir: &Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Error> {
+pub fn write_dir_atomically_forced(
+    dir: &Path,
+    files: &[(String, Vec<u8>)],
+    force: bool,
+) -> Result<(), Error> {
     // a report's manifest is report.json (it has `claims`), an exploration's explore.json (it
     // has `exploration`); a unit's is <top>.json (it has `ports`)
-    let kind = match (files.iter().any(|(n, _)| n == "report.json"), files.iter().any(|(n, _)| n == "explore.json")) {
+    let kind = match (
+        files.iter().any(|(n, _)| n == "report.json"),
+        files.iter().any(|(n, _)| n == "explore.json"),
+    ) {
         (true, _) => Some("claims"),
         (_, true) => Some("exploration"),
         _ => None,

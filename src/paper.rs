@@ -63,12 +63,16 @@ pub(crate) fn wallis(n: u32) -> f64 {
 pub(crate) fn quadratic_area(n: f64, a: f64) -> f64 {
     let u = n / a;
     let x = (1.0 - a / n).clamp(-1.0, 1.0).acos();
-    u * u * (x / 2.0 + (2.0 * x).sin() / 4.0) + 2.0 * u * (1.0 - u) * x.sin() + (1.0 - u) * (1.0 - u) * x
+    u * u * (x / 2.0 + (2.0 * x).sin() / 4.0)
+        + 2.0 * u * (1.0 - u) * x.sin()
+        + (1.0 - u) * (1.0 - u) * x
 }
 
 /// Equation (14) as `g(a) = Σ_{n=2}^{1000} [area of (13) − area of cos^n]`; (14) holds where g = 0.
 pub(crate) fn eq14_residual(a: f64) -> f64 {
-    (2..=1000u32).map(|n| quadratic_area(n as f64, a) - wallis(n)).sum()
+    (2..=1000u32)
+        .map(|n| quadratic_area(n as f64, a) - wallis(n))
+        .sum()
 }
 
 /// Bisection to 1e-12 on a bracketing interval.
@@ -115,9 +119,16 @@ pub(crate) fn mean_abs_dev(f: impl Fn(f64) -> f64, g: impl Fn(f64) -> f64, steps
 }
 
 /// Mean over integer n in `ns` of the per-n mean absolute deviation.
-pub(crate) fn mad_over_n(ns: std::ops::RangeInclusive<u32>, steps: usize, f: impl Fn(f64, f64) -> f64, g: impl Fn(f64, f64) -> f64) -> f64 {
+pub(crate) fn mad_over_n(
+    ns: std::ops::RangeInclusive<u32>,
+    steps: usize,
+    f: impl Fn(f64, f64) -> f64,
+    g: impl Fn(f64, f64) -> f64,
+) -> f64 {
     let count = ns.clone().count() as f64;
-    ns.map(|n| mean_abs_dev(|d| f(d, n as f64), |d| g(d, n as f64), steps)).sum::<f64>() / count
+    ns.map(|n| mean_abs_dev(|d| f(d, n as f64), |d| g(d, n as f64), steps))
+        .sum::<f64>()
+        / count
 }
 
 /// One reproduced claim.
@@ -175,7 +186,12 @@ pub fn claims() -> Vec<Claim> {
         remark: "the paper rounds a = b to 2, giving (11)".into(),
     });
     let mad7 = mad_over_n(1..=1000, MAD_STEPS, schlick, blinn);
-    let mad11 = mad_over_n(1..=1000, MAD_STEPS, |d, n| schlick_ab(d, n, 2.0, 2.0), blinn);
+    let mad11 = mad_over_n(
+        1..=1000,
+        MAD_STEPS,
+        |d, n| schlick_ab(d, n, 2.0, 2.0),
+        blinn,
+    );
     let ratio = mad7 / mad11;
     let ratio_cos = {
         // the same deviation averaged with δ uniform in cos δ ∈ [0, 1] (δ = arccos u)
@@ -213,13 +229,15 @@ pub fn claims() -> Vec<Claim> {
     });
     let alphas: Vec<f64> = (0..=190).map(|i| 0.01 + i as f64 * 0.001).collect();
     let worst = |cut: bool| {
-        alphas.iter().map(|&al| (mean_abs_dev(|d| ward(d, al), |d| ward_approx(d, al, cut), MAD_STEPS * 5), al)).fold((0.0f64, 0.0f64), |acc, x| {
-            if x.0 > acc.0 {
-                x
-            } else {
-                acc
-            }
-        })
+        alphas
+            .iter()
+            .map(|&al| {
+                (
+                    mean_abs_dev(|d| ward(d, al), |d| ward_approx(d, al, cut), MAD_STEPS * 5),
+                    al,
+                )
+            })
+            .fold((0.0f64, 0.0f64), |acc, x| if x.0 > acc.0 { x } else { acc })
     };
     let (w_cut, al_cut) = worst(true);
     let (w_lit, al_lit) = worst(false);
@@ -236,8 +254,18 @@ pub fn claims() -> Vec<Claim> {
             "taken literally (no cut), the 16th power of the negative bracket grows without bound: worst {w_lit:.2e} at α = {al_lit:.3}; the paper's figure only makes sense with the cut, as for (15)"
         ),
     });
-    let mad12 = mad_over_n(2..=1000, MAD_STEPS, |d, n| cosine_quadratic(d, n, 2.0), blinn);
-    let mad15 = mad_over_n(2..=1000, MAD_STEPS, |d, n| cosine_quadratic(d, n, 2.713), blinn);
+    let mad12 = mad_over_n(
+        2..=1000,
+        MAD_STEPS,
+        |d, n| cosine_quadratic(d, n, 2.0),
+        blinn,
+    );
+    let mad15 = mad_over_n(
+        2..=1000,
+        MAD_STEPS,
+        |d, n| cosine_quadratic(d, n, 2.713),
+        blinn,
+    );
     v.push(Claim {
         id: "eq12_vs_eq15",
         claim: "(15) approximates Blinn better than (12), n ∈ [2, 1000]".into(),

@@ -54,7 +54,13 @@ pub fn datapath_builds() -> u64 {
 fn build(model: &Model, registered: &[u32], fabric: &BTreeSet<String>) -> Datapath {
     BUILDS.with(|b| b.set(b.get() + 1));
     let cfg = &model.cfg;
-    let inputs = [("cos_g", cfg.f() + 1), ("n", cfg.n_bits()), ("ks_r", cfg.b()), ("ks_g", cfg.b()), ("ks_b", cfg.b())];
+    let inputs = [
+        ("cos_g", cfg.f() + 1),
+        ("n", cfg.n_bits()),
+        ("ks_r", cfg.b()),
+        ("ks_g", cfg.b()),
+        ("ks_b", cfg.b()),
+    ];
     let mut b = Builder::new(&inputs, registered, cfg.target());
     b.in_fabric(fabric);
     let logic = cfg.params.rom_style == crate::config::RomStyle::Logic;
@@ -82,8 +88,14 @@ impl Plan {
     /// The plan of a model already made (its configuration's `stages` placed).
     pub(crate) fn for_model(model: Model) -> Result<Plan, Error> {
         let cfg = model.cfg.clone();
-        if cfg.params.rom_style == crate::config::RomStyle::Logic && !crate::family::of(cfg.target()).writes_logic_tables() {
-            let takers: Vec<&str> = crate::config::Target::ALL.into_iter().filter(|t| crate::family::of(*t).writes_logic_tables()).map(|t| t.name()).collect();
+        if cfg.params.rom_style == crate::config::RomStyle::Logic
+            && !crate::family::of(cfg.target()).writes_logic_tables()
+        {
+            let takers: Vec<&str> = crate::config::Target::ALL
+                .into_iter()
+                .filter(|t| crate::family::of(*t).writes_logic_tables())
+                .map(|t| t.name())
+                .collect();
             return Err(Error::Config {
                 parameter: "rom_style",
                 message: format!(
@@ -103,7 +115,13 @@ impl Plan {
         if !fabric.is_empty() {
             combinational = build(&model, &[], &fabric);
         }
-        Plan::placed(model, Arc::new(Shape { combinational, fabric }))
+        Plan::placed(
+            model,
+            Arc::new(Shape {
+                combinational,
+                fabric,
+            }),
+        )
     }
 
     /// The plan of `model` at its configuration's depth, over a shape already planned.
@@ -128,10 +146,25 @@ impl Plan {
         // stages: five carry-save layers in one stretch, 64 MHz in a pair on the UP5K)
         let registered_cuts = match shape.fabric.is_empty() {
             true => balanced_cuts(&combinational.delays(), cfg.stages()),
-            false => balanced_cuts_by(&combinational.delays(), &hard_steps(combinational), cfg.stages()),
+            false => balanced_cuts_by(
+                &combinational.delays(),
+                &hard_steps(combinational),
+                cfg.stages(),
+            ),
         };
-        let datapath = if cfg.stages() == 0 { combinational.clone() } else { build(&model, &registered_cuts, &shape.fabric) };
-        Ok(Plan { cfg, model, registered_cuts, datapath, cut_points, shape })
+        let datapath = if cfg.stages() == 0 {
+            combinational.clone()
+        } else {
+            build(&model, &registered_cuts, &shape.fabric)
+        };
+        Ok(Plan {
+            cfg,
+            model,
+            registered_cuts,
+            datapath,
+            cut_points,
+            shape,
+        })
     }
 
     pub fn from_params(params: Params) -> Result<Plan, Error> {
@@ -142,7 +175,10 @@ impl Plan {
     /// made again) and the depth-free shape too (the combinational datapath is not built
     /// again): one datapath built a depth, none at depth 0.
     pub fn with_stages(&self, stages: u32) -> Result<Plan, Error> {
-        let cfg = Config::new(Params { stages, ..self.cfg.params.clone() })?;
+        let cfg = Config::new(Params {
+            stages,
+            ..self.cfg.params.clone()
+        })?;
         let model = self.model.with_config(cfg);
         Plan::placed(model, Arc::clone(&self.shape))
     }
@@ -171,14 +207,21 @@ impl Plan {
     fn stage_delay_by(&self, ns: impl Fn(&crate::datapath::Delay) -> f64) -> f64 {
         let dp = &self.datapath;
         let mut edges = vec![0usize];
-        edges.extend(self.registered_cuts.iter().map(|&c| (c as usize).min(dp.steps.len())));
+        edges.extend(
+            self.registered_cuts
+                .iter()
+                .map(|&c| (c as usize).min(dp.steps.len())),
+        );
         edges.push(dp.steps.len());
         let hard = hard_steps(dp);
         edges
             .windows(2)
             .map(|e| match e[1].saturating_sub(e[0]) {
                 1 if hard[e[0]] => 0.0,
-                _ => dp.steps[e[0]..e[1].max(e[0])].iter().map(|s| ns(&s.delay)).sum::<f64>(),
+                _ => dp.steps[e[0]..e[1].max(e[0])]
+                    .iter()
+                    .map(|s| ns(&s.delay))
+                    .sum::<f64>(),
             })
             .fold(0.0, f64::max)
     }
@@ -188,7 +231,11 @@ impl Plan {
     pub(crate) fn longest_step(&self) -> f64 {
         let dp = &self.shape.combinational;
         let hard = hard_steps(dp);
-        dp.steps.iter().zip(hard).map(|(s, h)| if h { 0.0 } else { s.delay.ns }).fold(0.0, f64::max)
+        dp.steps
+            .iter()
+            .zip(hard)
+            .map(|(s, h)| if h { 0.0 } else { s.delay.ns })
+            .fold(0.0, f64::max)
     }
 
     /// The mean stretch of logic between registers: the datapath's whole delay estimate over
@@ -205,7 +252,12 @@ impl Plan {
     }
 
     fn stage_delay_mean_by(&self, ns: impl Fn(&crate::datapath::Delay) -> f64) -> f64 {
-        self.datapath.steps.iter().map(|s| ns(&s.delay)).sum::<f64>() / (self.registered_cuts.len() + 1) as f64
+        self.datapath
+            .steps
+            .iter()
+            .map(|s| ns(&s.delay))
+            .sum::<f64>()
+            / (self.registered_cuts.len() + 1) as f64
     }
 }
 
@@ -225,7 +277,11 @@ pub(crate) fn to_fabric(uses: &[ProductUse], budget: u32) -> BTreeSet<String> {
         let (w, v) = (hard[i].blocks as usize, cost(hard[i]));
         for c in 0..=cap {
             let skip = best[i + 1][c];
-            best[i][c] = if w <= c { skip.max(v + best[i + 1][c - w]) } else { skip };
+            best[i][c] = if w <= c {
+                skip.max(v + best[i + 1][c - w])
+            } else {
+                skip
+            };
         }
     }
     let mut out = BTreeSet::new();
@@ -249,7 +305,10 @@ fn hard_steps(dp: &Datapath) -> Vec<bool> {
     (0..dp.steps.len())
         .map(|k| {
             let s = &dp.steps[k];
-            !s.soft_product && (!s.dsps.is_empty() || s.wires.iter().any(|w| w.product().is_some()) || dp.reads.iter().any(|r| r.step == k + 1))
+            !s.soft_product
+                && (!s.dsps.is_empty()
+                    || s.wires.iter().any(|w| w.product().is_some())
+                    || dp.reads.iter().any(|r| r.step == k + 1))
         })
         .collect()
 }
@@ -272,7 +331,13 @@ pub(crate) fn balanced_cuts_by(delays: &[f64], hard: &[bool], stages: u32) -> Ve
     if s == 0 {
         return Vec::new();
     }
-    let seg = |a: usize, b: usize| if b == a + 1 && hard[a] { 0.0 } else { delays[a..b].iter().sum::<f64>() };
+    let seg = |a: usize, b: usize| {
+        if b == a + 1 && hard[a] {
+            0.0
+        } else {
+            delays[a..b].iter().sum::<f64>()
+        }
+    };
     // the fewest cuts after an edge at `v` that keep every segment up to the end within `w`
     // (greedy: each segment as long as it may be); None when one step alone exceeds `w`
     let need = |v: usize, w: f64| -> Option<usize> {
@@ -291,10 +356,16 @@ pub(crate) fn balanced_cuts_by(delays: &[f64], hard: &[bool], stages: u32) -> Ve
         Some(count)
     };
     // the least worst step: the smallest segment sum that s cuts can keep every segment within
-    let mut sums: Vec<f64> = (0..c).flat_map(|a| (a + 1..=c).map(move |b| (a, b))).map(|(a, b)| seg(a, b)).collect();
+    let mut sums: Vec<f64> = (0..c)
+        .flat_map(|a| (a + 1..=c).map(move |b| (a, b)))
+        .map(|(a, b)| seg(a, b))
+        .collect();
     sums.push(0.0);
     sums.sort_by(f64::total_cmp);
-    let best = *sums.iter().find(|&&w| need(0, w).is_some_and(|m| m <= s)).expect("c cuts always do");
+    let best = *sums
+        .iter()
+        .find(|&&w| need(0, w).is_some_and(|m| m <= s))
+        .expect("c cuts always do");
     // among the cuts that reach it, the latest first, then the latest second, ...
     let (mut cuts, mut prev) = (Vec::with_capacity(s), 0usize);
     for i in 0..s {
@@ -321,10 +392,25 @@ mod tests {
     fn the_clamp_and_the_operand_of_one_minus_c_are_apart() {
         use crate::config::Target;
         for target in [Target::Ice40, Target::Ecp5, Target::Generic] {
-            let cfg = crate::config::Config::new(crate::config::Params { model: crate::config::SpecularModel::Schlick, target, ..Default::default() }).unwrap();
+            let cfg = crate::config::Config::new(crate::config::Params {
+                model: crate::config::SpecularModel::Schlick,
+                target,
+                ..Default::default()
+            })
+            .unwrap();
             let plan = Plan::new(cfg).unwrap();
-            let step_of = |name: &str| plan.datapath.steps.iter().position(|s| s.wires.iter().any(|w| w.name == name)).unwrap();
-            assert_eq!(step_of("cos_clamped"), step_of("cos_comp") + 1, "{target:?}");
+            let step_of = |name: &str| {
+                plan.datapath
+                    .steps
+                    .iter()
+                    .position(|s| s.wires.iter().any(|w| w.name == name))
+                    .unwrap()
+            };
+            assert_eq!(
+                step_of("cos_clamped"),
+                step_of("cos_comp") + 1,
+                "{target:?}"
+            );
         }
     }
 
@@ -333,17 +419,46 @@ mod tests {
     #[test]
     fn validation_builds_nothing_and_the_plan_bounds_stages() {
         // a configuration is valid without its datapath; the plan knows the cut points
-        let cfg = Config::new(Params { stages: 99, ..Params::default() }).expect("stages are the plan's to check");
+        let cfg = Config::new(Params {
+            stages: 99,
+            ..Params::default()
+        })
+        .expect("stages are the plan's to check");
         let e = Plan::new(cfg).unwrap_err();
         assert_eq!(e.parameter(), Some("stages"));
         assert!(e.reason().contains("allowed 0..=13"), "{}", e.reason());
         for model in SpecularModel::ALL {
-            let top = Plan::from_params(Params { model, stages: 0, n_bits: 6, ..Params::default() }).unwrap().cut_points;
-            let plan = Plan::from_params(Params { model, stages: top, n_bits: 6, ..Params::default() }).unwrap();
+            let top = Plan::from_params(Params {
+                model,
+                stages: 0,
+                n_bits: 6,
+                ..Params::default()
+            })
+            .unwrap()
+            .cut_points;
+            let plan = Plan::from_params(Params {
+                model,
+                stages: top,
+                n_bits: 6,
+                ..Params::default()
+            })
+            .unwrap();
             // every cut registered; the same plan when the model is reused
-            assert_eq!(plan.registered_cuts, (1..=top).collect::<Vec<_>>(), "{model:?}");
+            assert_eq!(
+                plan.registered_cuts,
+                (1..=top).collect::<Vec<_>>(),
+                "{model:?}"
+            );
             assert_eq!(plan.datapath.steps.len() as u32, top);
-            let again = Plan::from_params(Params { model, stages: 0, n_bits: 6, ..Params::default() }).unwrap().with_stages(top).unwrap();
+            let again = Plan::from_params(Params {
+                model,
+                stages: 0,
+                n_bits: 6,
+                ..Params::default()
+            })
+            .unwrap()
+            .with_stages(top)
+            .unwrap();
             assert_eq!(again.registered_cuts, plan.registered_cuts);
         }
     }
@@ -355,21 +470,54 @@ mod tests {
     fn ice40_steps_hold_one_carry_save_layer_and_one_lut_tables() {
         use crate::datapath::LUT_INPUTS;
         for model in [SpecularModel::Fitted, SpecularModel::Blinn] {
-            let plan = Plan::from_params(Params { model, ..Params::default() }).unwrap();
+            let plan = Plan::from_params(Params {
+                model,
+                ..Params::default()
+            })
+            .unwrap();
             let mut layers = 0;
             for step in &plan.datapath.steps {
-                let mut seen: Vec<&str> = step.wires.iter().filter_map(|w| w.name.split("_csa").nth(1)).map(|t| t.split('_').next().unwrap()).collect();
+                let mut seen: Vec<&str> = step
+                    .wires
+                    .iter()
+                    .filter_map(|w| w.name.split("_csa").nth(1))
+                    .map(|t| t.split('_').next().unwrap())
+                    .collect();
                 seen.dedup();
-                assert!(seen.len() <= 1, "{model:?} step {} ({}): carry-save layers {seen:?}", step.index, step.title);
+                assert!(
+                    seen.len() <= 1,
+                    "{model:?} step {} ({}): carry-save layers {seen:?}",
+                    step.index,
+                    step.title
+                );
                 layers += seen.len();
                 for w in step.wires.iter().filter(|w| w.name.ends_with("_ll")) {
-                    assert!(w.width <= 2 * LUT_INPUTS, "{model:?} {}: a square table of {} bits", w.name, w.width / 2);
+                    assert!(
+                        w.width <= 2 * LUT_INPUTS,
+                        "{model:?} {}: a square table of {} bits",
+                        w.name,
+                        w.width / 2
+                    );
                 }
             }
-            assert!(layers >= 2, "{model:?}: carry-save sums exist ({layers} layers)");
+            assert!(
+                layers >= 2,
+                "{model:?}: carry-save sums exist ({layers} layers)"
+            );
         }
-        let plan = Plan::from_params(Params { model: SpecularModel::Fitted, ..Params::default() }).unwrap();
-        assert!(plan.datapath.steps.iter().flat_map(|s| &s.wires).any(|w| w.name == "square1_t_top"), "lo's top bit split off the table");
+        let plan = Plan::from_params(Params {
+            model: SpecularModel::Fitted,
+            ..Params::default()
+        })
+        .unwrap();
+        assert!(
+            plan.datapath
+                .steps
+                .iter()
+                .flat_map(|s| &s.wires)
+                .any(|w| w.name == "square1_t_top"),
+            "lo's top bit split off the table"
+        );
     }
 
     #[test]
@@ -404,14 +552,20 @@ mod tests {
             let mut edges = vec![0usize];
             edges.extend(cuts.iter().copied());
             edges.push(c);
-            edges.windows(2).map(|e| delays[e[0]..e[1]].iter().sum::<f64>()).fold(0.0f64, f64::max)
+            edges
+                .windows(2)
+                .map(|e| delays[e[0]..e[1]].iter().sum::<f64>())
+                .fold(0.0f64, f64::max)
         };
         let mut best: Option<(f64, Vec<usize>)> = None;
         for mask in 0u32..(1 << c) {
             if mask.count_ones() as usize != s {
                 continue;
             }
-            let pick: Vec<usize> = (0..c).filter(|i| mask >> i & 1 == 1).map(|i| i + 1).collect();
+            let pick: Vec<usize> = (0..c)
+                .filter(|i| mask >> i & 1 == 1)
+                .map(|i| i + 1)
+                .collect();
             let w = worst(&pick);
             let better = match &best {
                 None => true,
@@ -421,7 +575,8 @@ mod tests {
                 best = Some((w, pick));
             }
         }
-        best.map(|(_, p)| p.into_iter().map(|x| x as u32).collect()).unwrap_or_default()
+        best.map(|(_, p)| p.into_iter().map(|x| x as u32).collect())
+            .unwrap_or_default()
     }
 
     /// No product the synthesis tool maps takes a constant operand its family mis-maps
@@ -433,7 +588,13 @@ mod tests {
     #[test]
     fn no_mapped_product_takes_a_constant_its_family_mis_maps() {
         use crate::config::{Arch, Target};
-        let narrow = Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Params::default() };
+        let narrow = Params {
+            cos_frac_bits: 8,
+            n_bits: 6,
+            color_bits: 4,
+            intensity_frac_bits: 8,
+            ..Params::default()
+        };
         let (mut checked, mut split) = (0, 0);
         // the hazard itself, apart from the family's rule: a 16-bit slice of 0xC000 or more
         let mis_mapped = |x: u128| (0..8).any(|i| (x >> (16 * i)) & 0xffff >= 0xc000);
@@ -441,25 +602,53 @@ mod tests {
             for arch in [Arch::Lean, Arch::Paper] {
                 for k in ["0.3686", "0.6", "0.7", "0.8", "0.95", "0.99"] {
                     for (kf, base) in [(16, Params::default()), (20, narrow.clone())] {
-                        let params = Params { target, arch, k: k.into(), k_frac_bits: kf, stages: 0, ..base };
+                        let params = Params {
+                            target,
+                            arch,
+                            k: k.into(),
+                            k_frac_bits: kf,
+                            stages: 0,
+                            ..base
+                        };
                         let top = Plan::from_params(params.clone()).unwrap().cut_points;
                         for stages in [0, top] {
-                            let plan = Plan::from_params(Params { stages, ..params.clone() }).unwrap();
+                            let plan = Plan::from_params(Params {
+                                stages,
+                                ..params.clone()
+                            })
+                            .unwrap();
                             let k_code = plan.cfg.k_code as u128;
-                            for w in plan.datapath.steps.iter().flat_map(|s| &s.wires).filter(|w| w.product().is_some()) {
+                            for w in plan
+                                .datapath
+                                .steps
+                                .iter()
+                                .flat_map(|s| &s.wires)
+                                .filter(|w| w.product().is_some())
+                            {
                                 // the operands of `a * b`: a literal one is `W'hX`
                                 let text = w.expr.text.split(" + ").next().unwrap();
                                 for operand in text.split(" * ") {
                                     let operand = operand.trim();
-                                    if let Some((_, hex)) = operand.split_once("'h").filter(|_| !operand.starts_with('{')) {
+                                    if let Some((_, hex)) = operand
+                                        .split_once("'h")
+                                        .filter(|_| !operand.starts_with('{'))
+                                    {
                                         let value = u128::from_str_radix(hex, 16).unwrap();
                                         // no SB_MAC16 takes a constant with such a slice
-                                        let at = format!("{target:?} {arch:?} k={k} KF={kf} {stages}: {} = {}", w.name, w.expr.text);
-                                        assert!(!(target == Target::Ice40 && mis_mapped(value)), "{at}");
+                                        let at = format!(
+                                            "{target:?} {arch:?} k={k} KF={kf} {stages}: {} = {}",
+                                            w.name, w.expr.text
+                                        );
+                                        assert!(
+                                            !(target == Target::Ice40 && mis_mapped(value)),
+                                            "{at}"
+                                        );
                                         // k_q is split only where it must be: wider than the
                                         // block (lean), or a hazard on the iCE40
                                         let must = (target == Target::Ice40 && mis_mapped(k_code))
-                                            || (arch == Arch::Lean && 128 - k_code.leading_zeros() > crate::family::of(target).multiplier_bits());
+                                            || (arch == Arch::Lean
+                                                && 128 - k_code.leading_zeros()
+                                                    > crate::family::of(target).multiplier_bits());
                                         assert_eq!(value != k_code, must, "{at}");
                                         split += (value != k_code) as usize;
                                         checked += 1;
@@ -471,7 +660,10 @@ mod tests {
                 }
             }
         }
-        assert!(checked > 50 && split > 0, "{checked} constant operands, {split} of them a split k_q");
+        assert!(
+            checked > 50 && split > 0,
+            "{checked} constant operands, {split} of them a split k_q"
+        );
     }
 
     #[test]
@@ -488,7 +680,11 @@ mod tests {
                 })
                 .collect();
             for s in 0..=c {
-                assert_eq!(balanced_cuts(&delays, s as u32), balanced_cuts_by_search(&delays, s), "{delays:?} with {s} cuts");
+                assert_eq!(
+                    balanced_cuts(&delays, s as u32),
+                    balanced_cuts_by_search(&delays, s),
+                    "{delays:?} with {s} cuts"
+                );
             }
         }
         // and a long datapath in no time (the search would take 2^43 placements)
@@ -504,41 +700,91 @@ mod tests {
     fn every_wire_is_typed_as_its_text_reads() {
         use crate::config::{Arch, SpecularModel, Target};
         use crate::datapath::Kind;
-        let narrow = Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Params::default() };
+        let narrow = Params {
+            cos_frac_bits: 8,
+            n_bits: 6,
+            color_bits: 4,
+            intensity_frac_bits: 8,
+            ..Params::default()
+        };
         let mut checked = 0;
         for model in SpecularModel::ALL {
             for target in Target::ALL {
-                let logic = Params { rom_style: crate::config::RomStyle::Logic, ..narrow.clone() };
-                let shapes = [(Params::default(), Arch::Lean), (narrow.clone(), Arch::Lean), (Params::default(), Arch::Paper), (logic, Arch::Lean)];
+                let logic = Params {
+                    rom_style: crate::config::RomStyle::Logic,
+                    ..narrow.clone()
+                };
+                let shapes = [
+                    (Params::default(), Arch::Lean),
+                    (narrow.clone(), Arch::Lean),
+                    (Params::default(), Arch::Paper),
+                    (logic, Arch::Lean),
+                ];
                 for (base, arch) in shapes {
                     if arch == Arch::Paper && model != SpecularModel::Quadratic {
                         continue;
                     }
                     // a table as logic: the lean datapaths with tables, on the ECP5 only
-                    if base.rom_style == crate::config::RomStyle::Logic && !(model.takes("rom_style=logic") && target == Target::Ecp5) {
+                    if base.rom_style == crate::config::RomStyle::Logic
+                        && !(model.takes("rom_style=logic") && target == Target::Ecp5)
+                    {
                         continue;
                     }
                     for budget in [None, Some(1)] {
-                        let params = Params { model, target, arch, dsp_budget: budget, stages: 0, ..base.clone() };
+                        let params = Params {
+                            model,
+                            target,
+                            arch,
+                            dsp_budget: budget,
+                            stages: 0,
+                            ..base.clone()
+                        };
                         let top = Plan::from_params(params.clone()).unwrap().cut_points;
                         for stages in [0, 1, top / 2, top] {
-                            let plan = Plan::from_params(Params { stages, ..params.clone() }).unwrap();
+                            let plan = Plan::from_params(Params {
+                                stages,
+                                ..params.clone()
+                            })
+                            .unwrap();
                             let dp = &plan.datapath;
                             // every name a step, an output or the lint sink reads
-                            let names: std::collections::BTreeSet<&str> = dp.read.keys().map(String::as_str).collect();
+                            let names: std::collections::BTreeSet<&str> =
+                                dp.read.keys().map(String::as_str).collect();
                             for s in &dp.steps {
                                 for w in &s.wires {
                                     let text = &w.expr.text;
-                                    let mut in_text: Vec<&str> =
-                                        text.split(|c: char| !(c.is_alphanumeric() || c == '_')).filter(|t| names.contains(t)).collect();
+                                    let mut in_text: Vec<&str> = text
+                                        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                                        .filter(|t| names.contains(t))
+                                        .collect();
                                     in_text.sort();
                                     in_text.dedup();
-                                    let mut reads: Vec<&str> = w.expr.reads.iter().map(String::as_str).collect();
+                                    let mut reads: Vec<&str> =
+                                        w.expr.reads.iter().map(String::as_str).collect();
                                     reads.sort();
-                                    assert_eq!(reads, in_text, "{model:?} {target:?} {stages}: {}_s{} = {text}", w.name, s.index);
-                                    let plain = text.chars().all(|c| c.is_alphanumeric() || "_[]:{}, '\n".contains(c));
-                                    assert_eq!(w.kind == Kind::Select, plain, "{model:?} {target:?} {stages}: {}_s{} ({:?}) = {text}", w.name, s.index, w.kind);
-                                    assert_eq!(w.product().is_some(), text.contains(" * "), "{model:?} {target:?}: {}_s{} = {text}", w.name, s.index);
+                                    assert_eq!(
+                                        reads, in_text,
+                                        "{model:?} {target:?} {stages}: {}_s{} = {text}",
+                                        w.name, s.index
+                                    );
+                                    let plain = text
+                                        .chars()
+                                        .all(|c| c.is_alphanumeric() || "_[]:{}, '\n".contains(c));
+                                    assert_eq!(
+                                        w.kind == Kind::Select,
+                                        plain,
+                                        "{model:?} {target:?} {stages}: {}_s{} ({:?}) = {text}",
+                                        w.name,
+                                        s.index,
+                                        w.kind
+                                    );
+                                    assert_eq!(
+                                        w.product().is_some(),
+                                        text.contains(" * "),
+                                        "{model:?} {target:?}: {}_s{} = {text}",
+                                        w.name,
+                                        s.index
+                                    );
                                     checked += 1;
                                 }
                             }
@@ -562,12 +808,25 @@ mod budget_tests {
     fn a_hard_steps_length_does_not_set_the_fabrics() {
         let delays = [10.0, 3.0, 3.0, 3.0, 3.0];
         assert_eq!(balanced_cuts(&delays, 2), vec![1, 4]);
-        assert_eq!(balanced_cuts_by(&delays, &[true, false, false, false, false], 2), vec![1, 3]);
-        assert_eq!(balanced_cuts_by(&delays, &[false; 5], 2), balanced_cuts(&delays, 2));
+        assert_eq!(
+            balanced_cuts_by(&delays, &[true, false, false, false, false], 2),
+            vec![1, 3]
+        );
+        assert_eq!(
+            balanced_cuts_by(&delays, &[false; 5], 2),
+            balanced_cuts(&delays, 2)
+        );
     }
 
     fn product(name: &str, a: u32, b: u32, width: u32, blocks: u32) -> ProductUse {
-        ProductUse { name: name.into(), a, b, width, blocks, fabric: false }
+        ProductUse {
+            name: name.into(),
+            a,
+            b,
+            width,
+            blocks,
+            fabric: false,
+        }
     }
 
     /// The budget keeps the products costliest in the fabric on blocks: at 2 blocks `wide`
@@ -581,11 +840,27 @@ mod budget_tests {
             product("mid2", 8, 16, 24, 1),
             product("lut", 4, 3, 7, 0),
         ];
-        let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<BTreeSet<String>>();
+        let names = |v: &[&str]| {
+            v.iter()
+                .map(|s| s.to_string())
+                .collect::<BTreeSet<String>>()
+        };
         assert_eq!(to_fabric(&uses, 5), BTreeSet::new(), "every block fits");
         assert_eq!(to_fabric(&uses, 4), names(&["small"]));
-        assert_eq!(to_fabric(&uses, 2), names(&["small", "mid1", "mid2"]), "16·32 > 2·8·24: wide keeps both blocks");
-        assert_eq!(to_fabric(&uses, 1), names(&["small", "wide", "mid2"]), "ties keep the product made first");
-        assert_eq!(to_fabric(&uses, 0), names(&["small", "wide", "mid1", "mid2"]), "a product of no block stays");
+        assert_eq!(
+            to_fabric(&uses, 2),
+            names(&["small", "mid1", "mid2"]),
+            "16·32 > 2·8·24: wide keeps both blocks"
+        );
+        assert_eq!(
+            to_fabric(&uses, 1),
+            names(&["small", "wide", "mid2"]),
+            "ties keep the product made first"
+        );
+        assert_eq!(
+            to_fabric(&uses, 0),
+            names(&["small", "wide", "mid1", "mid2"]),
+            "a product of no block stays"
+        );
     }
 }

@@ -109,7 +109,13 @@ pub fn tdata_fields(w: PortWidths) -> (Vec<Field>, u32, Vec<Field>, u32) {
     if !w.static_colour {
         s.extend([("ks_r", b), ("ks_g", b), ("ks_b", b)]);
     }
-    let m = [("intensity", fi + 1), ("spec_r", b), ("spec_g", b), ("spec_b", b), ("done", 1)];
+    let m = [
+        ("intensity", fi + 1),
+        ("spec_r", b),
+        ("spec_g", b),
+        ("spec_b", b),
+        ("done", 1),
+    ];
     let (sf, sw) = pack(&s);
     let (mf, mw) = pack(&m);
     (sf, sw, mf, mw)
@@ -171,23 +177,66 @@ pub(crate) const NAMES: [&str; 36] = [
 
 /// The port list in module order; `done_meaning` completes the `done` comment.
 pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
-    let (f, b, fi, tw) = (w.cos_frac_bits, w.color_bits, w.intensity_frac_bits, w.tag_bits);
+    let (f, b, fi, tw) = (
+        w.cos_frac_bits,
+        w.color_bits,
+        w.intensity_frac_bits,
+        w.tag_bits,
+    );
     let mut v = Vec::new();
-    let mut port = |name, direction, width, meaning: String, data| v.push(Port { name, direction, width, meaning, data });
+    let mut port = |name, direction, width, meaning: String, data| {
+        v.push(Port {
+            name,
+            direction,
+            width,
+            meaning,
+            data,
+        })
+    };
     let static_colour = |port: &mut dyn FnMut(&'static str, &'static str, u32, String, bool)| {
         for (name, ch) in ["ks_r", "ks_g", "ks_b"].into_iter().zip(["R", "G", "B"]) {
-            port(name, "input", b, format!("UNORM{b}: Ks * {ch}, taken by ks_load"), false);
+            port(
+                name,
+                "input",
+                b,
+                format!("UNORM{b}: Ks * {ch}, taken by ks_load"),
+                false,
+            );
         }
-        port("ks_load", "input", 1, "loads ks_r/g/b into the material registers; only while idle".into(), false);
+        port(
+            "ks_load",
+            "input",
+            1,
+            "loads ks_r/g/b into the material registers; only while idle".into(),
+            false,
+        );
     };
     if w.axis {
         let (sf, sw, mf, mw) = tdata_fields(w);
-        let layout = |fields: &[Field]| fields.iter().map(|x| format!("{}@{}", x.name, x.lo)).collect::<Vec<_>>().join(" ");
+        let layout = |fields: &[Field]| {
+            fields
+                .iter()
+                .map(|x| format!("{}@{}", x.name, x.lo))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
         port("aclk", "input", 1, String::new(), false);
         let level = if w.reset_low { "low" } else { "high" };
-        port(reset_port(w), "input", 1, format!("synchronous, active {level}: empties the unit"), false);
+        port(
+            reset_port(w),
+            "input",
+            1,
+            format!("synchronous, active {level}: empties the unit"),
+            false,
+        );
         if w.clock_enable {
-            port("aclken", "input", 1, "clock enable: an edge with it low transfers nothing".into(), false);
+            port(
+                "aclken",
+                "input",
+                1,
+                "clock enable: an edge with it low transfers nothing".into(),
+                false,
+            );
         }
         port("s_axis_tvalid", "input", 1, String::new(), false);
         port("s_axis_tready", "output", 1, String::new(), false);
@@ -196,38 +245,90 @@ pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
             port("s_axis_tuser", "input", tw, "the pixel's tag".into(), true);
         }
         if w.tlast {
-            port("s_axis_tlast", "input", 1, "the pixel's last flag, carried with it as tuser is".into(), true);
+            port(
+                "s_axis_tlast",
+                "input",
+                1,
+                "the pixel's last flag, carried with it as tuser is".into(),
+                true,
+            );
         }
         port("m_axis_tvalid", "output", 1, String::new(), false);
         port("m_axis_tready", "input", 1, String::new(), false);
         port("m_axis_tdata", "output", mw, layout(&mf), true);
         if tw > 0 {
-            port("m_axis_tuser", "output", tw, "the tag of the pixel out".into(), true);
+            port(
+                "m_axis_tuser",
+                "output",
+                tw,
+                "the tag of the pixel out".into(),
+                true,
+            );
         }
         if w.tlast {
-            port("m_axis_tlast", "output", 1, "the last flag of the pixel out".into(), true);
+            port(
+                "m_axis_tlast",
+                "output",
+                1,
+                "the last flag of the pixel out".into(),
+                true,
+            );
         }
         if w.static_colour {
             static_colour(&mut port);
-            port("idle", "output", 1, "no pixel inside the unit".into(), false);
+            port(
+                "idle",
+                "output",
+                1,
+                "no pixel inside the unit".into(),
+                false,
+            );
         }
         return v;
     }
     if w.clocked {
         port("clk", "input", 1, String::new(), false);
-        let what = if w.ready { "empties the unit" } else { "clears the valid pipeline" };
+        let what = if w.ready {
+            "empties the unit"
+        } else {
+            "clears the valid pipeline"
+        };
         let level = if w.reset_low { "low" } else { "high" };
-        port(reset_port(w), "input", 1, format!("synchronous, active {level}: {what}"), false);
+        port(
+            reset_port(w),
+            "input",
+            1,
+            format!("synchronous, active {level}: {what}"),
+            false,
+        );
         if w.clock_enable {
-            port("clk_en", "input", 1, "clock enable: an edge with it low transfers nothing".into(), false);
+            port(
+                "clk_en",
+                "input",
+                1,
+                "clock enable: an edge with it low transfers nothing".into(),
+                false,
+            );
         }
     }
     port("in_valid", "input", 1, String::new(), false);
     if w.ready {
         port("in_ready", "output", 1, String::new(), false);
     }
-    port("cos_g", "input", f + 1, format!("UQ1.{f}: cos(gamma) = N.H; codes above 1.0 read as 1.0"), true);
-    port("n", "input", w.n_bits, "unsigned specular exponent".into(), true);
+    port(
+        "cos_g",
+        "input",
+        f + 1,
+        format!("UQ1.{f}: cos(gamma) = N.H; codes above 1.0 read as 1.0"),
+        true,
+    );
+    port(
+        "n",
+        "input",
+        w.n_bits,
+        "unsigned specular exponent".into(),
+        true,
+    );
     if w.static_colour {
         static_colour(&mut port);
     } else {
@@ -236,28 +337,63 @@ pub fn ports(w: PortWidths, done_meaning: &str) -> Vec<Port> {
         }
     }
     if tw > 0 {
-        port("in_tag", "input", tw, "carried beside the pixel to out_tag".into(), true);
+        port(
+            "in_tag",
+            "input",
+            tw,
+            "carried beside the pixel to out_tag".into(),
+            true,
+        );
     }
     port("out_valid", "output", 1, String::new(), false);
     if w.ready {
         port("out_ready", "input", 1, String::new(), false);
     }
     for name in ["spec_r", "spec_g", "spec_b"] {
-        port(name, "output", b, format!("UNORM{b}: S * ks_{}", &name[5..]), true);
+        port(
+            name,
+            "output",
+            b,
+            format!("UNORM{b}: S * ks_{}", &name[5..]),
+            true,
+        );
     }
     port("intensity", "output", fi + 1, format!("UQ1.{fi}: S"), true);
     port("done", "output", 1, done_meaning.to_string(), true);
     if tw > 0 {
-        port("out_tag", "output", tw, "in_tag of the pixel out".into(), true);
+        port(
+            "out_tag",
+            "output",
+            tw,
+            "in_tag of the pixel out".into(),
+            true,
+        );
     }
     if w.static_colour {
-        port("idle", "output", 1, "no pixel inside the unit".into(), false);
+        port(
+            "idle",
+            "output",
+            1,
+            "no pixel inside the unit".into(),
+            false,
+        );
     }
     v
 }
 
 /// The data columns of a vector, inputs then outputs: the order of `specgen vectors`.
-pub(crate) const VECTOR_COLUMNS: [&str; 10] = ["cos_g", "n", "ks_r", "ks_g", "ks_b", "intensity", "spec_r", "spec_g", "spec_b", "done"];
+pub(crate) const VECTOR_COLUMNS: [&str; 10] = [
+    "cos_g",
+    "n",
+    "ks_r",
+    "ks_g",
+    "ks_b",
+    "intensity",
+    "spec_r",
+    "spec_g",
+    "spec_b",
+    "done",
+];
 
 impl Inputs {
     /// The value on an input port of [`VECTOR_COLUMNS`].
@@ -296,24 +432,80 @@ mod tests {
         let w = default_widths();
         let p = ports(w, "");
         let names = |w| ports(w, "").iter().map(|p| p.name).collect::<Vec<_>>();
-        let mut all: Vec<&str> = names(PortWidths { ready: true, tag_bits: 4, static_colour: true, ..w });
+        let mut all: Vec<&str> = names(PortWidths {
+            ready: true,
+            tag_bits: 4,
+            static_colour: true,
+            ..w
+        });
         all.extend(
-            names(PortWidths { axis: true, tag_bits: 4, static_colour: true, reset_low: true, ..w })
-                .into_iter()
-                .filter(|n| n.contains("axis") || n.starts_with('a')),
+            names(PortWidths {
+                axis: true,
+                tag_bits: 4,
+                static_colour: true,
+                reset_low: true,
+                ..w
+            })
+            .into_iter()
+            .filter(|n| n.contains("axis") || n.starts_with('a')),
         );
-        all.extend(names(PortWidths { reset_low: true, ..w }).into_iter().filter(|n| *n == "rst_n"));
-        all.extend(names(PortWidths { axis: true, ..w }).into_iter().filter(|n| *n == "areset"));
-        all.extend(names(PortWidths { axis: true, tlast: true, ..w }).into_iter().filter(|n| n.ends_with("tlast")));
-        all.extend(names(PortWidths { ready: true, clock_enable: true, ..w }).into_iter().filter(|n| *n == "clk_en"));
-        all.extend(names(PortWidths { axis: true, clock_enable: true, ..w }).into_iter().filter(|n| *n == "aclken"));
+        all.extend(
+            names(PortWidths {
+                reset_low: true,
+                ..w
+            })
+            .into_iter()
+            .filter(|n| *n == "rst_n"),
+        );
+        all.extend(
+            names(PortWidths { axis: true, ..w })
+                .into_iter()
+                .filter(|n| *n == "areset"),
+        );
+        all.extend(
+            names(PortWidths {
+                axis: true,
+                tlast: true,
+                ..w
+            })
+            .into_iter()
+            .filter(|n| n.ends_with("tlast")),
+        );
+        all.extend(
+            names(PortWidths {
+                ready: true,
+                clock_enable: true,
+                ..w
+            })
+            .into_iter()
+            .filter(|n| *n == "clk_en"),
+        );
+        all.extend(
+            names(PortWidths {
+                axis: true,
+                clock_enable: true,
+                ..w
+            })
+            .into_iter()
+            .filter(|n| *n == "aclken"),
+        );
         assert_eq!(all, NAMES);
         for c in VECTOR_COLUMNS {
             assert!(p.iter().any(|p| p.name == c && p.data), "{c}");
             let (x, y) = (Inputs::default(), Outputs::default());
             assert!(x.value(c).is_some() != y.value(c).is_some(), "{c}");
         }
-        assert_eq!(ports(PortWidths { clocked: false, ..w }, "").len(), 12);
+        assert_eq!(
+            ports(
+                PortWidths {
+                    clocked: false,
+                    ..w
+                },
+                ""
+            )
+            .len(),
+            12
+        );
     }
 }
 
@@ -338,7 +530,8 @@ pub fn port_rule(name: &str) -> Option<PortRule> {
     Some(match name {
         "in_ready" | "s_axis_tready" => PortRule::Ready,
         "out_valid" | "m_axis_tvalid" => PortRule::Valid,
-        "m_axis_tdata" | "m_axis_tuser" | "m_axis_tlast" | "spec_r" | "spec_g" | "spec_b" | "intensity" | "done" | "out_tag" => PortRule::Data,
+        "m_axis_tdata" | "m_axis_tuser" | "m_axis_tlast" | "spec_r" | "spec_g" | "spec_b"
+        | "intensity" | "done" | "out_tag" => PortRule::Data,
         "idle" => PortRule::Idle,
         _ => return None,
     })
@@ -393,7 +586,11 @@ mod port_rule_tests {
             for ready in [false, true] {
                 for static_colour in [false, true] {
                     for (tag_bits, tlast) in [(0, false), (3, false), (0, true), (2, true)] {
-                        for (clocked, clock_enable, reset_low) in [(false, false, false), (true, false, false), (true, true, true)] {
+                        for (clocked, clock_enable, reset_low) in [
+                            (false, false, false),
+                            (true, false, false),
+                            (true, true, true),
+                        ] {
                             let w = PortWidths {
                                 axis,
                                 ready: ready || axis,
@@ -406,7 +603,11 @@ mod port_rule_tests {
                                 ..default_widths()
                             };
                             for p in ports(w, "").iter().filter(|p| p.direction == "output") {
-                                assert!(port_rule(p.name).is_some(), "{} has no rule of the port checker ({w:?})", p.name);
+                                assert!(
+                                    port_rule(p.name).is_some(),
+                                    "{} has no rule of the port checker ({w:?})",
+                                    p.name
+                                );
                             }
                         }
                     }
@@ -417,12 +618,28 @@ mod port_rule_tests {
 
     #[test]
     fn the_padding_of_tdata_is_every_bit_between_its_fields() {
-        let w = PortWidths { axis: true, ready: true, ..default_widths() };
+        let w = PortWidths {
+            axis: true,
+            ready: true,
+            ..default_widths()
+        };
         // intensity@0 (16 bits), spec_r@16, spec_g@24, spec_b@32 (8 each), done@40, 48 bits
         assert_eq!(padding(w, "m_axis_tdata"), vec![(47, 41)]);
-        let narrow = PortWidths { axis: true, ready: true, color_bits: 4, intensity_frac_bits: 6, ..default_widths() };
+        let narrow = PortWidths {
+            axis: true,
+            ready: true,
+            color_bits: 4,
+            intensity_frac_bits: 6,
+            ..default_widths()
+        };
         // intensity 7 bits @0, spec_r 4 @8, spec_g 4 @16, spec_b 4 @24, done @32, 40 bits
-        assert_eq!(padding(narrow, "m_axis_tdata"), vec![(39, 33), (31, 28), (23, 20), (15, 12), (7, 7)].into_iter().rev().collect::<Vec<_>>());
+        assert_eq!(
+            padding(narrow, "m_axis_tdata"),
+            vec![(39, 33), (31, 28), (23, 20), (15, 12), (7, 7)]
+                .into_iter()
+                .rev()
+                .collect::<Vec<_>>()
+        );
         assert!(padding(w, "m_axis_tuser").is_empty());
     }
 }

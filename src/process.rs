@@ -68,7 +68,9 @@ pub fn command(program: impl AsRef<OsStr>) -> Command {
             }
             // specgen ended before the line above: end too
             if libc::getppid() != parent {
-                return Err(std::io::Error::other("specgen ended while this tool was starting"));
+                return Err(std::io::Error::other(
+                    "specgen ended while this tool was starting",
+                ));
             }
             // the warden's group: killed whole when specgen ends
             if group > 0 {
@@ -107,7 +109,10 @@ fn slots_of_environment() -> Result<Option<Slots>, crate::error::Error> {
     use crate::error::input;
     use std::os::unix::ffi::OsStrExt;
     use std::os::unix::fs::MetadataExt;
-    let Some(dir) = std::env::var_os("SPECGEN_JOBS").filter(|d| !d.is_empty()).map(PathBuf::from) else {
+    let Some(dir) = std::env::var_os("SPECGEN_JOBS")
+        .filter(|d| !d.is_empty())
+        .map(PathBuf::from)
+    else {
         return Ok(None);
     };
     let named = format!("SPECGEN_JOBS={}", dir.display());
@@ -160,7 +165,14 @@ pub fn check_environment() -> Result<(), crate::error::Error> {
 /// which [`check_environment`] has refused already).
 fn job_slots() -> Option<std::sync::Arc<Slots>> {
     static SLOTS: std::sync::OnceLock<Option<std::sync::Arc<Slots>>> = std::sync::OnceLock::new();
-    SLOTS.get_or_init(|| slots_of_environment().ok().flatten().map(std::sync::Arc::new)).clone()
+    SLOTS
+        .get_or_init(|| {
+            slots_of_environment()
+                .ok()
+                .flatten()
+                .map(std::sync::Arc::new)
+        })
+        .clone()
 }
 
 /// In a child before exec: locks one of the slots (waiting, 20 ms a round, until one is free)
@@ -197,7 +209,10 @@ fn take_slot(slots: &Slots) -> std::io::Result<()> {
             say(&slots.gave_up);
             return Err(std::io::Error::from_raw_os_error(libc::EBUSY));
         }
-        let pause = libc::timespec { tv_sec: 0, tv_nsec: 20_000_000 };
+        let pause = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 20_000_000,
+        };
         // SAFETY: a plain sleep
         unsafe { libc::nanosleep(&pause, std::ptr::null_mut()) };
     }
@@ -264,10 +279,16 @@ fn tools_tmp() -> Option<PathBuf> {
         .get_or_init(|| {
             let base = std::env::temp_dir();
             remove_orphans(&base, "specgen-", true);
-            let dir = tempfile::Builder::new().prefix(&format!("specgen-{}-tools-", std::process::id())).tempdir_in(&base).ok()?;
+            let dir = tempfile::Builder::new()
+                .prefix(&format!("specgen-{}-tools-", std::process::id()))
+                .tempdir_in(&base)
+                .ok()?;
             let path = dir.keep();
             mark(&path);
-            TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.clone());
+            TEMPORARIES
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .push(path.clone());
             Some(path)
         })
         .clone()
@@ -292,7 +313,10 @@ pub struct TempDir {
 impl TempDir {
     fn register(inner: tempfile::TempDir) -> TempDir {
         mark(inner.path());
-        TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(inner.path().to_path_buf());
+        TEMPORARIES
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(inner.path().to_path_buf());
         TempDir { inner: Some(inner) }
     }
 
@@ -311,7 +335,10 @@ impl TempDir {
 
 /// Has a signal remove `path` (a file of ours, such as an output's lock) until [`unregister`].
 pub(crate) fn register(path: &Path) {
-    TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.to_path_buf());
+    TEMPORARIES
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .push(path.to_path_buf());
 }
 
 pub(crate) fn unregister(path: &Path) {
@@ -336,18 +363,26 @@ impl Drop for TempDir {
 pub fn temp_dir() -> std::io::Result<TempDir> {
     let base = std::env::temp_dir();
     remove_orphans(&base, "specgen-", true);
-    Ok(TempDir::register(tempfile::Builder::new().prefix(&format!("specgen-{}-", std::process::id())).tempdir_in(base)?))
+    Ok(TempDir::register(
+        tempfile::Builder::new()
+            .prefix(&format!("specgen-{}-", std::process::id()))
+            .tempdir_in(base)?,
+    ))
 }
 
 /// A temporary directory `<prefix>…` in `parent`.
 pub fn temp_dir_in(parent: &Path, prefix: &str) -> std::io::Result<TempDir> {
-    Ok(TempDir::register(tempfile::Builder::new().prefix(prefix).tempdir_in(parent)?))
+    Ok(TempDir::register(
+        tempfile::Builder::new().prefix(prefix).tempdir_in(parent)?,
+    ))
 }
 
 /// Whether process `pid` is gone (signal 0 finds no such process).
 pub(crate) fn process_gone(pid: i32) -> bool {
     // SAFETY: signal 0 only asks whether the process exists
-    pid > 0 && unsafe { libc::kill(pid, 0) } != 0 && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH)
+    pid > 0
+        && unsafe { libc::kill(pid, 0) } != 0
+        && std::io::Error::last_os_error().raw_os_error() == Some(libc::ESRCH)
 }
 
 /// The file a temporary directory of specgen's holds from its first moment: what the sweep of
@@ -368,28 +403,43 @@ fn marker_text(pid: u32) -> String {
 /// (a container sharing `/tmp`, cluster nodes sharing a `TMPDIR`) a live run's pid looks gone.
 fn mark(dir: &Path) {
     let path = dir.join(MARKER);
-    let Ok(mut f) = std::fs::OpenOptions::new().write(true).create_new(true).open(&path) else { return };
+    let Ok(mut f) = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&path)
+    else {
+        return;
+    };
     use std::io::Write;
     let _ = f.write_all(marker_text(std::process::id()).as_bytes());
     use std::os::fd::AsRawFd;
     // SAFETY: flock on a descriptor we own
     if unsafe { libc::flock(f.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) } == 0 {
-        MARKER_LOCKS.lock().unwrap_or_else(|e| e.into_inner()).push((dir.to_path_buf(), f));
+        MARKER_LOCKS
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push((dir.to_path_buf(), f));
     }
 }
 
 /// The markers' open files, each holding its directory's lock while the run lives.
-static MARKER_LOCKS: std::sync::Mutex<Vec<(PathBuf, std::fs::File)>> = std::sync::Mutex::new(Vec::new());
+static MARKER_LOCKS: std::sync::Mutex<Vec<(PathBuf, std::fs::File)>> =
+    std::sync::Mutex::new(Vec::new());
 
 /// Lets go of a directory's marker lock (the directory is removed or kept by its owner).
 fn unmark(dir: &Path) {
-    MARKER_LOCKS.lock().unwrap_or_else(|e| e.into_inner()).retain(|(d, _)| d != dir);
+    MARKER_LOCKS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .retain(|(d, _)| d != dir);
 }
 
 /// Whether a run holds `marker`'s lock: true where it cannot be taken now (or not opened).
 fn marker_held(marker: &Path) -> bool {
     use std::os::fd::AsRawFd;
-    let Ok(f) = std::fs::File::open(marker) else { return true };
+    let Ok(f) = std::fs::File::open(marker) else {
+        return true;
+    };
     // SAFETY: flock on a descriptor we own; released when `f` closes
     unsafe { libc::flock(f.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) != 0 }
 }
@@ -408,25 +458,40 @@ fn random_part(rest: &str) -> bool {
 /// touched, however like ours its name is.
 pub(crate) fn remove_orphans(dir: &Path, prefix: &str, dirs: bool) {
     use std::os::unix::fs::MetadataExt;
-    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
     // SAFETY: a plain query
     let me = unsafe { libc::geteuid() };
     for entry in entries.flatten().take(100_000) {
         let name = entry.file_name();
-        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
-        let Some((pid, random)) = rest.split_once('-') else { continue };
-        let Some(pid) = pid.parse::<i32>().ok().filter(|p| *p > 0 && pid.bytes().all(|b| b.is_ascii_digit())) else { continue };
+        let Some(rest) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else {
+            continue;
+        };
+        let Some((pid, random)) = rest.split_once('-') else {
+            continue;
+        };
+        let Some(pid) = pid
+            .parse::<i32>()
+            .ok()
+            .filter(|p| *p > 0 && pid.bytes().all(|b| b.is_ascii_digit()))
+        else {
+            continue;
+        };
         if !random_part(random) {
             continue;
         }
-        let Ok(meta) = std::fs::symlink_metadata(entry.path()) else { continue };
+        let Ok(meta) = std::fs::symlink_metadata(entry.path()) else {
+            continue;
+        };
         if meta.uid() != me || !process_gone(pid) {
             continue;
         }
         if dirs && meta.is_dir() {
             // ours only if it says so, naming that process (a bounded read of a regular file)
             let marker = entry.path().join(MARKER);
-            let says = std::fs::symlink_metadata(&marker).is_ok_and(|m| m.is_file() && m.len() < 256)
+            let says = std::fs::symlink_metadata(&marker)
+                .is_ok_and(|m| m.is_file() && m.len() < 256)
                 && std::fs::read_to_string(&marker).is_ok_and(|t| t == marker_text(pid as u32));
             // and no run holds its lock, whatever its pid looks like from here
             if !says || marker_held(&marker) {
@@ -457,44 +522,49 @@ pub fn remove_temporaries_on_signals() {
         if libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut()) != 0 {
             return;
         }
-        let waiter = std::thread::Builder::new().name("signals".into()).spawn(move || loop {
-            let mut sig: libc::c_int = 0;
-            if libc::sigwait(&set, &mut sig) != 0 {
-                return;
-            }
-            if sig == libc::SIGTSTP {
-                // Ctrl-Z: the tools (in the warden's group, not the terminal's) stop with
-                // specgen, and go on when it does; the warden itself keeps watching
-                let group = WARDEN_GROUP.get().copied().unwrap_or(0);
-                if group > 0 {
-                    libc::kill(-group, libc::SIGSTOP);
-                    libc::kill(group, libc::SIGCONT);
+        let waiter = std::thread::Builder::new()
+            .name("signals".into())
+            .spawn(move || loop {
+                let mut sig: libc::c_int = 0;
+                if libc::sigwait(&set, &mut sig) != 0 {
+                    return;
                 }
-                libc::raise(libc::SIGSTOP);
-                // continued (fg, bg, SIGCONT): the tools too
-                if group > 0 {
-                    libc::kill(-group, libc::SIGCONT);
-                }
-                continue;
-            }
-            {
-                SIGNALLED.store(sig, std::sync::atomic::Ordering::SeqCst);
-                let all = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).clone();
-                for path in all {
-                    match std::fs::symlink_metadata(&path) {
-                        Ok(m) if m.is_dir() => {
-                            let _ = std::fs::remove_dir_all(&path);
-                        }
-                        Ok(_) => {
-                            let _ = std::fs::remove_file(&path);
-                        }
-                        Err(_) => {}
+                if sig == libc::SIGTSTP {
+                    // Ctrl-Z: the tools (in the warden's group, not the terminal's) stop with
+                    // specgen, and go on when it does; the warden itself keeps watching
+                    let group = WARDEN_GROUP.get().copied().unwrap_or(0);
+                    if group > 0 {
+                        libc::kill(-group, libc::SIGSTOP);
+                        libc::kill(group, libc::SIGCONT);
                     }
+                    libc::raise(libc::SIGSTOP);
+                    // continued (fg, bg, SIGCONT): the tools too
+                    if group > 0 {
+                        libc::kill(-group, libc::SIGCONT);
+                    }
+                    continue;
                 }
-                // children die with us (PR_SET_PDEATHSIG)
-                libc::_exit(128 + sig);
-            }
-        });
+                {
+                    SIGNALLED.store(sig, std::sync::atomic::Ordering::SeqCst);
+                    let all = TEMPORARIES
+                        .lock()
+                        .unwrap_or_else(|e| e.into_inner())
+                        .clone();
+                    for path in all {
+                        match std::fs::symlink_metadata(&path) {
+                            Ok(m) if m.is_dir() => {
+                                let _ = std::fs::remove_dir_all(&path);
+                            }
+                            Ok(_) => {
+                                let _ = std::fs::remove_file(&path);
+                            }
+                            Err(_) => {}
+                        }
+                    }
+                    // children die with us (PR_SET_PDEATHSIG)
+                    libc::_exit(128 + sig);
+                }
+            });
         if waiter.is_err() {
             libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut());
         }

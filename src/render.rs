@@ -52,7 +52,9 @@ fn geometry(scene: Scene, u: f64, v: f64) -> Option<(f64, f64)> {
 
 /// The `cos_g` port code nearest to `c`.
 pub fn cos_code(model: &Model, c: f64) -> u32 {
-    (c * (model.cfg.f() as f64).exp2()).round().min((model.cfg.f() as f64).exp2()) as u32
+    (c * (model.cfg.f() as f64).exp2())
+        .round()
+        .min((model.cfg.f() as f64).exp2()) as u32
 }
 
 /// Every unit input a tile of `size`² pixels needs (background pixels excluded), in pixel order.
@@ -61,9 +63,16 @@ pub fn tile_inputs(model: &Model, scene: Scene, n: u32, size: u32) -> Vec<Inputs
     let mut v = Vec::new();
     for py in 0..size {
         for px in 0..size {
-            let (u, w) = ((px as f64 + 0.5) / size as f64, (py as f64 + 0.5) / size as f64);
+            let (u, w) = (
+                (px as f64 + 0.5) / size as f64,
+                (py as f64 + 0.5) / size as f64,
+            );
             if let Some((c, _)) = geometry(scene, u, w) {
-                v.push(Inputs { cos_g: cos_code(model, c), n, ks: [ks; 3] });
+                v.push(Inputs {
+                    cos_g: cos_code(model, c),
+                    n,
+                    ks: [ks; 3],
+                });
             }
         }
     }
@@ -82,10 +91,20 @@ pub fn samples(model: &Model, scene: Scene, n: u32, size: u32) -> Vec<Sample> {
     let mut out = Vec::with_capacity((size * size) as usize);
     for py in 0..size {
         for px in 0..size {
-            let (u, w) = ((px as f64 + 0.5) / size as f64, (py as f64 + 0.5) / size as f64);
+            let (u, w) = (
+                (px as f64 + 0.5) / size as f64,
+                (py as f64 + 0.5) / size as f64,
+            );
             out.push(geometry(scene, u, w).map(|(c, _)| {
                 let code = cos_code(model, c);
-                let unit = model.eval(Inputs { cos_g: code, n, ks: [ks; 3] }).intensity as f64 / scale;
+                let unit = model
+                    .eval(Inputs {
+                        cos_g: code,
+                        n,
+                        ks: [ks; 3],
+                    })
+                    .intensity as f64
+                    / scale;
                 (unit, (code as f64 / one).powi(n as i32))
             }));
         }
@@ -150,7 +169,11 @@ pub fn nice_ceiling(x: f64, floor: f64) -> f64 {
         return floor;
     }
     let p = 10f64.powf(x.log10().floor());
-    [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * p).find(|v| *v >= x * (1.0 - 1e-12)).unwrap_or(10.0 * p)
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|v| *v >= x * (1.0 - 1e-12))
+        .unwrap_or(10.0 * p)
 }
 
 /// A number to 3 significant digits (`0.4`, `1.87e-5`).
@@ -170,7 +193,11 @@ pub fn sig3(x: f64) -> String {
     } else {
         let t = format!("{x:.2e}");
         let (m, e) = t.split_once('e').expect("an exponent");
-        let m = if m.contains('.') { m.trim_end_matches('0').trim_end_matches('.') } else { m };
+        let m = if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            m
+        };
         format!("{m}e{e}")
     }
 }
@@ -188,7 +215,12 @@ const GLYPH: u32 = 8;
 
 impl Sheet {
     fn new(width: u32, height: u32) -> Sheet {
-        Sheet { width, height, rgb: PAPER.repeat((width * height) as usize), labels: Vec::new() }
+        Sheet {
+            width,
+            height,
+            rgb: PAPER.repeat((width * height) as usize),
+            labels: Vec::new(),
+        }
     }
 
     fn put(&mut self, x: u32, y: u32, c: [u8; 3]) {
@@ -215,7 +247,11 @@ impl Sheet {
             if cx + GLYPH * scale > x + max_w {
                 break;
             }
-            let glyph = font8x8::BASIC_FONTS.get(ch).or_else(|| font8x8::GREEK_FONTS.get(ch)).or_else(|| font8x8::LATIN_FONTS.get(ch)).unwrap_or([0; 8]);
+            let glyph = font8x8::BASIC_FONTS
+                .get(ch)
+                .or_else(|| font8x8::GREEK_FONTS.get(ch))
+                .or_else(|| font8x8::LATIN_FONTS.get(ch))
+                .unwrap_or([0; 8]);
             for (row, bits) in glyph.iter().enumerate() {
                 for col in 0..8 {
                     if bits >> col & 1 == 1 {
@@ -232,13 +268,22 @@ impl Sheet {
         for yy in 0..size {
             let src = (yy * size * 3) as usize;
             let dst = (((y + yy) * self.width + x) * 3) as usize;
-            self.rgb[dst..dst + (size * 3) as usize].copy_from_slice(&tile[src..src + (size * 3) as usize]);
+            self.rgb[dst..dst + (size * 3) as usize]
+                .copy_from_slice(&tile[src..src + (size * 3) as usize]);
         }
     }
 
     /// A horizontal colour bar of `w` pixels, `colour(t)` for t from 0 to 1, with tick labels
     /// `(t, full scale, output codes)` in two rows under it; returns the height used.
-    fn bar(&mut self, x: u32, y: u32, w: u32, title: &str, colour: impl Fn(f64) -> [u8; 3], ticks: &[(f64, String, String)]) -> u32 {
+    fn bar(
+        &mut self,
+        x: u32,
+        y: u32,
+        w: u32,
+        title: &str,
+        colour: impl Fn(f64) -> [u8; 3],
+        ticks: &[(f64, String, String)],
+    ) -> u32 {
         self.text(x, y, title, 1, self.width - x);
         let y = y + GLYPH + 4;
         for i in 0..w {
@@ -250,7 +295,9 @@ impl Sheet {
             self.rect(tx, y + 14, 1, 4, INK);
             for (row, label) in [scale, codes].into_iter().enumerate() {
                 let lw = label.chars().count() as u32 * GLYPH;
-                let lx = tx.saturating_sub(lw / 2).clamp(x, (x + w).saturating_sub(lw));
+                let lx = tx
+                    .saturating_sub(lw / 2)
+                    .clamp(x, (x + w).saturating_sub(lw));
                 self.text(lx, y + 20 + row as u32 * (GLYPH + 2), label, 1, lw);
             }
         }
@@ -282,7 +329,13 @@ pub struct TilePlace {
 
 /// A column's name for the unit of `m`: its model, `F/FI` and depth (`blinn 15/15 s41`).
 fn unit_name(m: &Model) -> String {
-    format!("{} {}/{} s{}", m.cfg.model().name(), m.cfg.f(), m.cfg.fi(), m.cfg.stages())
+    format!(
+        "{} {}/{} s{}",
+        m.cfg.model().name(),
+        m.cfg.f(),
+        m.cfg.fi(),
+        m.cfg.stages()
+    )
 }
 
 /// The sheet: a title; a row per (scene, n), labelled; the columns "float cos^n" and then, per
@@ -298,9 +351,18 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
     let rows: Vec<(String, Vec<Vec<Sample>>)> = scenes
         .iter()
         .flat_map(|&(scene, name)| ns.iter().map(move |&n| (scene, name, n)))
-        .map(|(scene, name, n)| (format!("{name} n={n}"), models.iter().map(|m| samples(m, scene, n, size)).collect()))
+        .map(|(scene, name, n)| {
+            (
+                format!("{name} n={n}"),
+                models.iter().map(|m| samples(m, scene, n, size)).collect(),
+            )
+        })
         .collect();
-    let worst = rows.iter().flat_map(|r| r.1.iter().flatten().flatten()).map(|(u, e)| (u - e).abs()).fold(0.0f64, f64::max);
+    let worst = rows
+        .iter()
+        .flat_map(|r| r.1.iter().flatten().flatten())
+        .map(|(u, e)| (u - e).abs())
+        .fold(0.0f64, f64::max);
     let fi = models[0].cfg.fi();
     let ulp = (-(fi as f64)).exp2();
     let e_max = nice_ceiling(worst, ulp);
@@ -311,31 +373,74 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
         let name = unit_name(m);
         columns.push((name.clone(), "unit"));
         // "signed error" where a tile is wide enough for it
-        columns.push((name.to_string(), if size + GAP >= 12 * GLYPH { "signed error" } else { "error" }));
+        columns.push((
+            name.to_string(),
+            if size + GAP >= 12 * GLYPH {
+                "signed error"
+            } else {
+                "error"
+            },
+        ));
     }
     let label_w = 14 * GLYPH + GAP;
     let body_w = columns.len() as u32 * (size + GAP);
-    let subtitle = format!("S alone, gamma 2.2; error = unit - float cos^n, one scale: +/-{}", sig3(e_max));
-    let intensity_title = format!("intensity S: full scale, and below it in output codes (UQ1.{fi})");
-    let error_title = "signed error unit - float: blue too dark, red too bright; full scale, then ulps";
-    let longest = [subtitle.len(), intensity_title.len(), error_title.len()].into_iter().max().unwrap_or(0) as u32;
+    let subtitle = format!(
+        "S alone, gamma 2.2; error = unit - float cos^n, one scale: +/-{}",
+        sig3(e_max)
+    );
+    let intensity_title =
+        format!("intensity S: full scale, and below it in output codes (UQ1.{fi})");
+    let error_title =
+        "signed error unit - float: blue too dark, red too bright; full scale, then ulps";
+    let longest = [subtitle.len(), intensity_title.len(), error_title.len()]
+        .into_iter()
+        .max()
+        .unwrap_or(0) as u32;
     let width = (MARGIN * 2 + label_w + body_w).max(MARGIN * 2 + longest * GLYPH);
     let top = MARGIN + 2 * GLYPH + 6 + GLYPH + 10 + 2 * GLYPH + 6;
     let body_h = rows.len() as u32 * (size + GAP);
     let bars_h = 2 * (GLYPH + 4 + 20 + 2 * GLYPH + 2 + 12);
     let height = top + body_h + 8 + bars_h + MARGIN;
     let mut sheet = Sheet::new(width, height);
-    let names: Vec<String> =
-        models.iter().map(|m| format!("{} (F {}, FI {}, {} stages)", m.cfg.model().name(), m.cfg.f(), m.cfg.fi(), m.cfg.stages())).collect();
+    let names: Vec<String> = models
+        .iter()
+        .map(|m| {
+            format!(
+                "{} (F {}, FI {}, {} stages)",
+                m.cfg.model().name(),
+                m.cfg.f(),
+                m.cfg.fi(),
+                m.cfg.stages()
+            )
+        })
+        .collect();
     let title = format!("specular term: {} vs float cos^n", names.join(", "));
     let big = title.chars().count() as u32 * 2 * GLYPH <= width - 2 * MARGIN;
-    sheet.text(MARGIN, MARGIN, &title, if big { 2 } else { 1 }, width - 2 * MARGIN);
-    sheet.text(MARGIN, MARGIN + 2 * GLYPH + 6, &subtitle, 1, width - 2 * MARGIN);
+    sheet.text(
+        MARGIN,
+        MARGIN,
+        &title,
+        if big { 2 } else { 1 },
+        width - 2 * MARGIN,
+    );
+    sheet.text(
+        MARGIN,
+        MARGIN + 2 * GLYPH + 6,
+        &subtitle,
+        1,
+        width - 2 * MARGIN,
+    );
     let x0 = MARGIN + label_w;
     let y_head = MARGIN + 2 * GLYPH + 6 + GLYPH + 10;
     for (c, (first, second)) in columns.iter().enumerate() {
         sheet.text(x0 + c as u32 * (size + GAP), y_head, first, 1, size + GAP);
-        sheet.text(x0 + c as u32 * (size + GAP), y_head + GLYPH + 2, second, 1, size + GAP);
+        sheet.text(
+            x0 + c as u32 * (size + GAP),
+            y_head + GLYPH + 2,
+            second,
+            1,
+            size + GAP,
+        );
     }
     let mut tiles = Vec::new();
     for (r, (label, per_model)) in rows.iter().enumerate() {
@@ -344,7 +449,12 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
         let mut place = |c: usize, panel: Panel, s: &[Sample], sheet: &mut Sheet| {
             let x = x0 + c as u32 * (size + GAP);
             sheet.blit(x, y, size, &paint(s, panel, e_max));
-            tiles.push(TilePlace { row: label.clone(), column: format!("{} {}", columns[c].0, columns[c].1), x, y });
+            tiles.push(TilePlace {
+                row: label.clone(),
+                column: format!("{} {}", columns[c].0, columns[c].1),
+                x,
+                y,
+            });
         };
         place(0, Panel::Float, &per_model[0], &mut sheet);
         for (i, s) in per_model.iter().enumerate() {
@@ -355,23 +465,49 @@ pub fn picture(models: &[&Model], ns: &[u32], size: u32) -> Picture {
     let bar_w = (width - 2 * MARGIN).min(480);
     let mut y = top + body_h + 8;
     let codes = |v: f64| format!("{}", (v * (fi as f64).exp2()).round() as i64);
-    y += sheet.bar(MARGIN, y, bar_w, &intensity_title, shade, &[0.0, 0.25, 0.5, 0.75, 1.0].map(|t| (t, sig3(t), codes(t)))) + 12;
+    y += sheet.bar(
+        MARGIN,
+        y,
+        bar_w,
+        &intensity_title,
+        shade,
+        &[0.0, 0.25, 0.5, 0.75, 1.0].map(|t| (t, sig3(t), codes(t))),
+    ) + 12;
     sheet.bar(
         MARGIN,
         y,
         bar_w,
         error_title,
         |t| diverging((2.0 * t - 1.0) * e_max, e_max),
-        &[(0.0, -e_max), (0.25, -e_max / 2.0), (0.5, 0.0), (0.75, e_max / 2.0), (1.0, e_max)].map(|(t, e)| (t, sig3(e), sig3(e / ulp))),
+        &[
+            (0.0, -e_max),
+            (0.25, -e_max / 2.0),
+            (0.5, 0.0),
+            (0.75, e_max / 2.0),
+            (1.0, e_max),
+        ]
+        .map(|(t, e)| (t, sig3(e), sig3(e / ulp))),
     );
     let description = format!(
         "specgen {} render: rows {}; columns {}; error scale +/-{} full scale",
         crate::emit::VERSION,
-        rows.iter().map(|r| r.0.as_str()).collect::<Vec<_>>().join(", "),
-        columns.iter().map(|c| format!("{} {}", c.0, c.1)).collect::<Vec<_>>().join(", "),
+        rows.iter()
+            .map(|r| r.0.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        columns
+            .iter()
+            .map(|c| format!("{} {}", c.0, c.1))
+            .collect::<Vec<_>>()
+            .join(", "),
         sig3(e_max)
     );
-    Picture { png: png(sheet.width, sheet.height, &sheet.rgb, &description), labels: sheet.labels, e_max, tiles }
+    Picture {
+        png: png(sheet.width, sheet.height, &sheet.rgb, &description),
+        labels: sheet.labels,
+        e_max,
+        tiles,
+    }
 }
 
 /// Encodes RGB8 pixels as PNG, with a text chunk describing the picture.
@@ -381,7 +517,8 @@ pub fn png(width: u32, height: u32, rgb: &[u8], description: &str) -> Vec<u8> {
         let mut enc = png::Encoder::new(&mut bytes, width, height);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
-        enc.add_text_chunk("Description".into(), description.into()).expect("text chunk");
+        enc.add_text_chunk("Description".into(), description.into())
+            .expect("text chunk");
         let mut w = enc.write_header().expect("PNG header to memory");
         w.write_image_data(rgb).expect("PNG data to memory");
     }
@@ -393,7 +530,9 @@ pub fn base64(bytes: &[u8]) -> String {
     const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
     for c in bytes.chunks(3) {
-        let v = (c[0] as u32) << 16 | (*c.get(1).unwrap_or(&0) as u32) << 8 | *c.get(2).unwrap_or(&0) as u32;
+        let v = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
         for i in 0..4 {
             if i <= c.len() {
                 s.push(A[(v >> (18 - 6 * i) & 63) as usize] as char);
@@ -411,7 +550,15 @@ mod tests {
 
     #[test]
     fn base64_matches_rfc_4648_examples() {
-        for (i, o) in [("", ""), ("f", "Zg=="), ("fo", "Zm8="), ("foo", "Zm9v"), ("foob", "Zm9vYg=="), ("fooba", "Zm9vYmE="), ("foobar", "Zm9vYmFy")] {
+        for (i, o) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
             assert_eq!(base64(i.as_bytes()), o);
         }
     }
@@ -440,9 +587,19 @@ pub fn image_figures(model: &Model, ns: &[u32], size: u32) -> ImageFigures {
         let mut px: Vec<Option<(f64, f64)>> = Vec::with_capacity((size * size) as usize);
         for py in 0..size {
             for pxx in 0..size {
-                let (u, w) = ((pxx as f64 + 0.5) / size as f64, (py as f64 + 0.5) / size as f64);
+                let (u, w) = (
+                    (pxx as f64 + 0.5) / size as f64,
+                    (py as f64 + 0.5) / size as f64,
+                );
                 px.push(geometry(Scene::Sphere, u, w).map(|(c, _)| {
-                    let unit = model.eval(Inputs { cos_g: cos_code(model, c), n, ks: [ks; 3] }).intensity as f64 / scale;
+                    let unit = model
+                        .eval(Inputs {
+                            cos_g: cos_code(model, c),
+                            n,
+                            ks: [ks; 3],
+                        })
+                        .intensity as f64
+                        / scale;
                     (unit, c.powi(n as i32))
                 }));
             }
@@ -460,6 +617,13 @@ pub fn image_figures(model: &Model, ns: &[u32], size: u32) -> ImageFigures {
         }
     }
     let mse = squares / count.max(1) as f64;
-    let psnr_db = if mse > 0.0 { (10.0 * (1.0 / mse).log10()).min(200.0) } else { 200.0 };
-    ImageFigures { psnr_db, max_step_excess: step.max(0.0) }
+    let psnr_db = if mse > 0.0 {
+        (10.0 * (1.0 / mse).log10()).min(200.0)
+    } else {
+        200.0
+    };
+    ImageFigures {
+        psnr_db,
+        max_step_excess: step.max(0.0),
+    }
 }

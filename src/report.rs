@@ -60,12 +60,19 @@ pub(crate) fn unit_accuracy(m: &Model) -> UnitAccuracy {
         heat: Vec<f64>,
     }
     let work = |lo: u64, hi: u64| {
-        let mut a = Acc { heat: vec![0.0; HEAT_COS * HEAT_N], ..Acc::default() };
+        let mut a = Acc {
+            heat: vec![0.0; HEAT_COS * HEAT_N],
+            ..Acc::default()
+        };
         for n in lo..hi {
             let nb = (n * HEAT_N as u64 / n_count) as usize;
             let mut cos_g = 0;
             while cos_g <= one {
-                let x = Inputs { cos_g: cos_g as u32, n: n as u32, ks: [ks_max; 3] };
+                let x = Inputs {
+                    cos_g: cos_g as u32,
+                    n: n as u32,
+                    ks: [ks_max; 3],
+                };
                 let o = m.eval(x);
                 let (ideal_i, ideal_s) = m.ideal(x);
                 let ie = (o.intensity as f64 - ideal_i).abs();
@@ -97,7 +104,11 @@ pub(crate) fn unit_accuracy(m: &Model) -> UnitAccuracy {
     });
     let points = a.points + b.points;
     UnitAccuracy {
-        sweep: if stride == 1 { "exhaustive".into() } else { format!("every {stride}th cos code") },
+        sweep: if stride == 1 {
+            "exhaustive".into()
+        } else {
+            format!("every {stride}th cos code")
+        },
         points,
         intensity_max_ulp: a.imax.max(b.imax),
         intensity_mean_ulp: (a.isum + b.isum) / points as f64,
@@ -105,7 +116,10 @@ pub(crate) fn unit_accuracy(m: &Model) -> UnitAccuracy {
         spec_mean_ulp: (a.ssum + b.ssum) / points as f64,
         vs_blinn_max: a.bmax.max(b.bmax),
         vs_blinn_mean: (a.bsum + b.bsum) / points as f64,
-        k_quantisation_max: m.unit().quantisation_error(Inputs::default()).map(|_| a.kmax.max(b.kmax)),
+        k_quantisation_max: m
+            .unit()
+            .quantisation_error(Inputs::default())
+            .map(|_| a.kmax.max(b.kmax)),
         heat: a.heat.iter().zip(&b.heat).map(|(x, y)| x.max(*y)).collect(),
     }
 }
@@ -113,7 +127,11 @@ pub(crate) fn unit_accuracy(m: &Model) -> UnitAccuracy {
 const W: u32 = 640;
 const H: u32 = 400;
 
-fn svg(draw: impl FnOnce(DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), Box<dyn std::error::Error + '_>>) -> String {
+fn svg(
+    draw: impl FnOnce(
+        DrawingArea<SVGBackend, plotters::coord::Shift>,
+    ) -> Result<(), Box<dyn std::error::Error + '_>>,
+) -> String {
     let mut out = String::new();
     {
         let area = SVGBackend::with_string(&mut out, (W, H)).into_drawing_area();
@@ -150,9 +168,15 @@ fn line_plot(title: &str, x_label: &str, x_max: f64, curves: Vec<Curve>) -> Stri
             chart
                 .draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
                 .label(name)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+                });
         }
-        chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()?;
         Ok(())
     })
 }
@@ -173,7 +197,16 @@ fn int_tick(v: &f64) -> String {
 }
 
 #[allow(clippy::too_many_arguments)] // a plot's labels, axes and grid, each named at the call
-fn heat_map(title: &str, x_label: &str, y_label: &str, x_max: f64, y_max: f64, cols: usize, rows: usize, cells: &[f64]) -> String {
+fn heat_map(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    x_max: f64,
+    y_max: f64,
+    cols: usize,
+    rows: usize,
+    cells: &[f64],
+) -> String {
     let peak = cells.iter().cloned().fold(0.0f64, f64::max).max(1e-300);
     svg(|area| {
         // the map, and beside it its colour bar from 0 to the maximum
@@ -184,24 +217,45 @@ fn heat_map(title: &str, x_label: &str, y_label: &str, x_max: f64, y_max: f64, c
             .x_label_area_size(40)
             .y_label_area_size(56)
             .build_cartesian_2d(0.0..x_max, 0.0..y_max)?;
-        chart.configure_mesh().disable_mesh().x_desc(x_label).y_desc(y_label).y_label_formatter(&int_tick).draw()?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .y_label_formatter(&int_tick)
+            .draw()?;
         let (cw, rh) = (x_max / cols as f64, y_max / rows as f64);
-        chart.draw_series((0..rows).flat_map(|r| (0..cols).map(move |c| (r, c))).map(|(r, c)| {
-            let v = cells[r * cols + c] / peak;
-            let colour = ViridisRGB::get_color(v);
-            Rectangle::new([(c as f64 * cw, r as f64 * rh), ((c + 1) as f64 * cw, (r + 1) as f64 * rh)], colour.filled())
-        }))?;
+        chart.draw_series((0..rows).flat_map(|r| (0..cols).map(move |c| (r, c))).map(
+            |(r, c)| {
+                let v = cells[r * cols + c] / peak;
+                let colour = ViridisRGB::get_color(v);
+                Rectangle::new(
+                    [
+                        (c as f64 * cw, r as f64 * rh),
+                        ((c + 1) as f64 * cw, (r + 1) as f64 * rh),
+                    ],
+                    colour.filled(),
+                )
+            },
+        ))?;
         // the colour bar: 100 bands from 0 (bottom) to the maximum (top), 5 labels beside
         let (top, bottom, x) = (50i32, H as i32 - 50, 8i32);
         for i in 0..100 {
             let y0 = bottom - (bottom - top) * (i + 1) / 100;
             let y1 = bottom - (bottom - top) * i / 100;
-            bar.draw(&Rectangle::new([(x, y0), (x + 18, y1)], ViridisRGB::get_color((i as f64 + 0.5) / 100.0).filled()))?;
+            bar.draw(&Rectangle::new(
+                [(x, y0), (x + 18, y1)],
+                ViridisRGB::get_color((i as f64 + 0.5) / 100.0).filled(),
+            ))?;
         }
         for j in 0..=4 {
             let y = bottom - (bottom - top) * j / 4;
             bar.draw(&PathElement::new(vec![(x + 18, y), (x + 22, y)], BLACK))?;
-            bar.draw(&Text::new(tick(peak * j as f64 / 4.0), (x + 25, y - 6), ("sans-serif", 12)))?;
+            bar.draw(&Text::new(
+                tick(peak * j as f64 / 4.0),
+                (x + 25, y - 6),
+                ("sans-serif", 12),
+            ))?;
         }
         Ok(())
     })
@@ -214,7 +268,11 @@ pub struct Figure {
 }
 
 /// The figures: analogues of the paper's, plus the ROM cut-off and two error maps.
-pub fn figures(cfg: &Config, acc: &UnitAccuracy, unit: &dyn crate::models::SpecularUnit) -> Vec<Figure> {
+pub fn figures(
+    cfg: &Config,
+    acc: &UnitAccuracy,
+    unit: &dyn crate::models::SpecularUnit,
+) -> Vec<Figure> {
     let mut v = Vec::new();
     let alpha = 0.15;
     v.push(Figure {
@@ -242,8 +300,16 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy, unit: &dyn crate::models::Specu
                 x_max.min(FRAC_PI_2),
                 vec![
                     ("cos^n δ", RED, Box::new(move |d| paper::blinn(d, n))),
-                    ("(12): a = 2", BLUE, Box::new(move |d| paper::cosine_quadratic(d, n, 2.0))),
-                    ("(15): a = 2.713", GREEN, Box::new(move |d| paper::cosine_quadratic(d, n, 2.713))),
+                    (
+                        "(12): a = 2",
+                        BLUE,
+                        Box::new(move |d| paper::cosine_quadratic(d, n, 2.0)),
+                    ),
+                    (
+                        "(15): a = 2.713",
+                        GREEN,
+                        Box::new(move |d| paper::cosine_quadratic(d, n, 2.713)),
+                    ),
                 ],
             ),
         });
@@ -258,7 +324,11 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy, unit: &dyn crate::models::Specu
             vec![
                 ("cos^10 δ", RED, Box::new(|d| paper::blinn(d, 10.0))),
                 ("Schlick (7)", BLUE, Box::new(|d| paper::schlick(d, 10.0))),
-                ("(11)", GREEN, Box::new(|d| paper::schlick_ab(d, 10.0, 2.0, 2.0))),
+                (
+                    "(11)",
+                    GREEN,
+                    Box::new(|d| paper::schlick_ab(d, 10.0, 2.0, 2.0)),
+                ),
             ],
         ),
     });
@@ -308,7 +378,9 @@ pub fn figures(cfg: &Config, acc: &UnitAccuracy, unit: &dyn crate::models::Specu
 fn cutoff_figure(cfg: &Config, unit: &dyn crate::models::SpecularUnit) -> Option<Figure> {
     let count = 1u32 << cfg.n_bits();
     let table: Vec<u32> = (0..count).map(|n| unit.cut_off(n)).collect::<Option<_>>()?;
-    let ideal: Vec<f64> = (1..count).map(|n| unit.ideal_cut_off(n)).collect::<Option<_>>()?;
+    let ideal: Vec<f64> = (1..count)
+        .map(|n| unit.ideal_cut_off(n))
+        .collect::<Option<_>>()?;
     let one = (cfg.f() as f64).exp2();
     let n_max = table.len() as f64;
     Some(Figure {
@@ -363,9 +435,20 @@ pub(crate) fn models_compared(cfg: &Config) -> Vec<(Model, &'static str)> {
     SpecularModel::ALL
         .into_iter()
         .map(|model| {
-            let arch = if model.reads("arch") { cfg.arch() } else { crate::config::Arch::Lean };
-            let p = Params { model, arch, stages: 0, rounding: Rounding::Faithful, ..cfg.params.clone() };
-            let m = Model::new(&Config::new(p).expect("the report's widths are valid for every model"));
+            let arch = if model.reads("arch") {
+                cfg.arch()
+            } else {
+                crate::config::Arch::Lean
+            };
+            let p = Params {
+                model,
+                arch,
+                stages: 0,
+                rounding: Rounding::Faithful,
+                ..cfg.params.clone()
+            };
+            let m =
+                Model::new(&Config::new(p).expect("the report's widths are valid for every model"));
             let what = m.unit().describe().computes;
             (m, what)
         })
@@ -383,12 +466,19 @@ pub(crate) fn operating_point(h: &crate::synth::SynthResult) -> String {
         true => String::new(),
         false => format!(", F/N/B/FI {}", h.widths),
     };
-    let budget = h.dsp_budget.map_or(String::new(), |b| format!(", --dsp-budget {b}"));
+    let budget = h
+        .dsp_budget
+        .map_or(String::new(), |b| format!(", --dsp-budget {b}"));
     let seeds = match h.seeds.is_empty() {
         true => String::new(),
         false => format!(", nextpnr seeds {}", crate::synth::seed_list(&h.seeds)),
     };
-    format!("{}{}{widths}, {} stage(s){clock}{budget}{seeds}", h.target, if h.dsp { " with DSPs" } else { ", LUTs only" }, h.stages)
+    format!(
+        "{}{}{widths}, {} stage(s){clock}{budget}{seeds}",
+        h.target,
+        if h.dsp { " with DSPs" } else { ", LUTs only" },
+        h.stages
+    )
 }
 
 /// What a row's area is counted in: logic cells after packing (the wrapper included) when
@@ -402,7 +492,9 @@ fn area(h: &crate::synth::SynthResult) -> (u64, &'static str) {
 
 /// Whether a row's unit did not fit its part (place-and-route found no place for a cell).
 fn did_not_fit(h: &crate::synth::SynthResult) -> bool {
-    h.fmax_mhz.is_none() && (h.fmax_note.contains("no BELs remaining") || h.fmax_note.contains("Failed to expand region"))
+    h.fmax_mhz.is_none()
+        && (h.fmax_note.contains("no BELs remaining")
+            || h.fmax_note.contains("Failed to expand region"))
 }
 
 /// What the comparison says about the paper's premise that cos^n is too costly: the errors
@@ -413,8 +505,15 @@ fn premise(rows: &[ModelComparison]) -> String {
     use crate::models::PremiseRole;
     use crate::render::sig3;
     let get = |role: PremiseRole| rows.iter().find(|r| r.role == Some(role));
-    let (q, f, b, p) = (get(PremiseRole::Paper), get(PremiseRole::Fit), get(PremiseRole::Tables), get(PremiseRole::SquareAndMultiply));
-    let (Some(q), Some(f), Some(b), Some(p)) = (q, f, b, p) else { return String::new() };
+    let (q, f, b, p) = (
+        get(PremiseRole::Paper),
+        get(PremiseRole::Fit),
+        get(PremiseRole::Tables),
+        get(PremiseRole::SquareAndMultiply),
+    );
+    let (Some(q), Some(f), Some(b), Some(p)) = (q, f, b, p) else {
+        return String::new();
+    };
     let mut s = format!(
         "Against Blinn's cos^n, formula (15) is off by up to {} of full scale; the fitted form by {}; the table-based unit by {} (within one unit of the output), as exact as square-and-multiply ({}).",
         sig3(q.blinn_error_max),
@@ -495,7 +594,9 @@ const MODEL_COLOURS: [RGBColor; 16] = [
 /// model added to the registry never repaints another, as a colour by place in the registry
 /// did.
 fn model_colour(name: &str) -> RGBColor {
-    let h = name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3));
+    let h = name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    });
     MODEL_COLOURS[(h % MODEL_COLOURS.len() as u64) as usize]
 }
 
@@ -504,21 +605,42 @@ fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
     let n_max = fids.first().map_or(1, |f| f.1.len()) as f64;
     svg(|area| {
         let mut chart = ChartBuilder::on(&area)
-            .caption("Worst |intensity − cos^n| over cos_g, per n", ("sans-serif", 18))
+            .caption(
+                "Worst |intensity − cos^n| over cos_g, per n",
+                ("sans-serif", 18),
+            )
             .margin(10)
             .x_label_area_size(40)
             .y_label_area_size(64)
             .build_cartesian_2d(1.0..n_max, (1e-7f64..1.0).log_scale())?;
-        chart.configure_mesh().x_desc("n").y_desc("max error").y_labels(8).y_label_formatter(&|v| tick(*v)).x_label_formatter(&int_tick).draw()?;
+        chart
+            .configure_mesh()
+            .x_desc("n")
+            .y_desc("max error")
+            .y_labels(8)
+            .y_label_formatter(&|v| tick(*v))
+            .x_label_formatter(&int_tick)
+            .draw()?;
         for (name, per_n) in fids {
             let colour = model_colour(name);
-            let pts: Vec<(f64, f64)> = per_n.iter().enumerate().skip(1).map(|(n, &e)| (n as f64, e.max(1e-7))).collect();
+            let pts: Vec<(f64, f64)> = per_n
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(n, &e)| (n as f64, e.max(1e-7)))
+                .collect();
             chart
                 .draw_series(LineSeries::new(pts, colour.stroke_width(1)))?
                 .label(name.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+                });
         }
-        chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()?;
         Ok(())
     })
 }
@@ -528,7 +650,10 @@ fn comparison_figure(fids: &[(String, Vec<f64>)]) -> String {
 /// 16, 128 (those within n_bits).
 fn render_grid(models: &[(Model, &'static str)]) -> (crate::render::Picture, Vec<u32>) {
     let n_max = (1u32 << models[0].0.cfg.n_bits()) - 1;
-    let ns: Vec<u32> = [1u32, 4, 16, 128].into_iter().filter(|&n| n <= n_max).collect();
+    let ns: Vec<u32> = [1u32, 4, 16, 128]
+        .into_iter()
+        .filter(|&n| n <= n_max)
+        .collect();
     let refs: Vec<&Model> = models.iter().map(|(m, _)| m).collect();
     (crate::render::picture(&refs, &ns, 96), ns)
 }
@@ -575,7 +700,8 @@ pub(crate) struct FrontRow {
 fn front_rows(e: &crate::explore::Exploration) -> Vec<FrontRow> {
     let mut rows = Vec::new();
     for &mhz in &e.clocks {
-        let mut on: Vec<&crate::explore::Point> = e.points.iter().filter(|p| p.front.contains(&mhz)).collect();
+        let mut on: Vec<&crate::explore::Point> =
+            e.points.iter().filter(|p| p.front.contains(&mhz)).collect();
         on.sort_by_key(|p| p.cells());
         rows.extend(on.into_iter().map(|p| FrontRow {
             clock_mhz: mhz,
@@ -622,7 +748,11 @@ struct ReportPage<'a> {
 
 /// Builds `index.html` and `report.json` (file name, bytes); with an exploration, its measured
 /// front is a section of the page.
-pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult], explored: Option<&crate::explore::Exploration>) -> Vec<(String, Vec<u8>)> {
+pub fn build(
+    cfg: &Config,
+    hw: &[crate::synth::SynthResult],
+    explored: Option<&crate::explore::Exploration>,
+) -> Vec<(String, Vec<u8>)> {
     // the configured model, made once (its fit or tables) for every figure and row of its own
     let model = Model::new(cfg);
     let unit = unit_accuracy(&model);
@@ -652,7 +782,10 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult], explored: Option<&c
     let comparison_svg = comparison_figure(&fids);
     let (grid, grid_ns) = render_grid(&models);
     let grid_png = crate::render::base64(&grid.png);
-    let grid_models = models.iter().map(|(m, _)| m.cfg.model().name().to_string()).collect();
+    let grid_models = models
+        .iter()
+        .map(|(m, _)| m.cfg.model().name().to_string())
+        .collect();
     let premise = premise(&rows);
     let data = ReportData {
         generator: "specgen",
@@ -675,16 +808,40 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult], explored: Option<&c
     let u = &data.unit;
     use crate::render::sig3;
     let mut unit_rows = vec![
-        Row { name: "sweep", value: format!("{} ({} points of (cos_g ∈ [0, 1.0], n))", u.sweep, u.points) },
-        Row { name: "intensity error, max (ulp)", value: sig3(u.intensity_max_ulp) },
-        Row { name: "intensity error, mean (ulp)", value: sig3(u.intensity_mean_ulp) },
-        Row { name: "spec error at ks = 1.0, max (colour code)", value: sig3(u.spec_max_ulp) },
-        Row { name: "spec error at ks = 1.0, mean (colour code)", value: sig3(u.spec_mean_ulp) },
-        Row { name: "|intensity − cos^n|, max (full scale)", value: sig3(u.vs_blinn_max) },
-        Row { name: "|intensity − cos^n|, mean (full scale)", value: sig3(u.vs_blinn_mean) },
+        Row {
+            name: "sweep",
+            value: format!("{} ({} points of (cos_g ∈ [0, 1.0], n))", u.sweep, u.points),
+        },
+        Row {
+            name: "intensity error, max (ulp)",
+            value: sig3(u.intensity_max_ulp),
+        },
+        Row {
+            name: "intensity error, mean (ulp)",
+            value: sig3(u.intensity_mean_ulp),
+        },
+        Row {
+            name: "spec error at ks = 1.0, max (colour code)",
+            value: sig3(u.spec_max_ulp),
+        },
+        Row {
+            name: "spec error at ks = 1.0, mean (colour code)",
+            value: sig3(u.spec_mean_ulp),
+        },
+        Row {
+            name: "|intensity − cos^n|, max (full scale)",
+            value: sig3(u.vs_blinn_max),
+        },
+        Row {
+            name: "|intensity − cos^n|, mean (full scale)",
+            value: sig3(u.vs_blinn_mean),
+        },
     ];
     if let Some(k) = u.k_quantisation_max {
-        unit_rows.push(Row { name: "k quantisation: |S(k_q) − S(k)|, max", value: sig3(k) });
+        unit_rows.push(Row {
+            name: "k quantisation: |S(k_q) − S(k)|, max",
+            value: sig3(k),
+        });
     }
     let mut data = data;
     let reference = model.unit().reference_words();
@@ -716,10 +873,15 @@ pub fn build(cfg: &Config, hw: &[crate::synth::SynthResult], explored: Option<&c
     let html = page.render().expect("report template renders");
     drop(page);
     // the page with its SHA-256, so a later `report --out` here replaces it only unedited
-    data.files = vec![serde_json::json!({"name": "index.html", "sha256": crate::bits::sha256_hex(html.as_bytes(), 32)})];
+    data.files = vec![
+        serde_json::json!({"name": "index.html", "sha256": crate::bits::sha256_hex(html.as_bytes(), 32)}),
+    ];
     let mut json = serde_json::to_string_pretty(&data).expect("report serialises");
     json.push('\n');
-    vec![("index.html".into(), html.into_bytes()), ("report.json".into(), json.into_bytes())]
+    vec![
+        ("index.html".into(), html.into_bytes()),
+        ("report.json".into(), json.into_bytes()),
+    ]
 }
 
 #[cfg(test)]
@@ -730,17 +892,29 @@ mod tests {
     /// has its own, and adding one repaints none.
     #[test]
     fn every_model_has_its_own_colour_by_name() {
-        let names: Vec<&str> = crate::config::SpecularModel::ALL.iter().map(|m| m.name()).collect();
+        let names: Vec<&str> = crate::config::SpecularModel::ALL
+            .iter()
+            .map(|m| m.name())
+            .collect();
         let colours: Vec<RGBColor> = names.iter().map(|n| model_colour(n)).collect();
         for (i, c) in colours.iter().enumerate() {
-            assert!(colours[..i].iter().all(|d| d != c), "{} shares its colour with another model: {names:?}", names[i]);
+            assert!(
+                colours[..i].iter().all(|d| d != c),
+                "{} shares its colour with another model: {names:?}",
+                names[i]
+            );
         }
         assert_eq!(model_colour("blinn"), model_colour(&String::from("blinn")));
     }
 
     #[test]
     fn small_unit_accuracy_is_within_contract() {
-        let cfg = Config::new(crate::config::Params { cos_frac_bits: 8, n_bits: 4, ..Default::default() }).unwrap();
+        let cfg = Config::new(crate::config::Params {
+            cos_frac_bits: 8,
+            n_bits: 4,
+            ..Default::default()
+        })
+        .unwrap();
         let acc = unit_accuracy(&Model::new(&cfg));
         assert_eq!(acc.points, 257 * 16);
         assert!(acc.intensity_max_ulp < 1.0 && acc.spec_max_ulp < 1.0);

@@ -86,12 +86,31 @@ pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
     let (width, depth, top, what) = (t.width, t.words.len(), cfg.top(), t.what.as_str());
     let table = &t.words;
     let text = match format {
-        RomFormat::Hex => ReadmemFile { words: words(table, 16, width) }.render(),
-        RomFormat::Bin => ReadmemFile { words: words(table, 2, width) }.render(),
-        RomFormat::Coe => CoeFile { top, what, width, depth, words: words(table, 16, width) }.render(),
-        RomFormat::Mif => {
-            MifFile { top, what, width, depth, addr_digits: (t.address_bits() as usize).div_ceil(4).max(1), words: words(table, 16, width) }.render()
+        RomFormat::Hex => ReadmemFile {
+            words: words(table, 16, width),
         }
+        .render(),
+        RomFormat::Bin => ReadmemFile {
+            words: words(table, 2, width),
+        }
+        .render(),
+        RomFormat::Coe => CoeFile {
+            top,
+            what,
+            width,
+            depth,
+            words: words(table, 16, width),
+        }
+        .render(),
+        RomFormat::Mif => MifFile {
+            top,
+            what,
+            width,
+            depth,
+            addr_digits: (t.address_bits() as usize).div_ceil(4).max(1),
+            words: words(table, 16, width),
+        }
+        .render(),
         RomFormat::Csv if t.cosines.is_some() => {
             let f = t.cosines.unwrap_or_default();
             CsvFile {
@@ -101,14 +120,26 @@ pub fn render_table(cfg: &Config, t: &Table, format: RomFormat) -> String {
                     .enumerate()
                     .map(|(n, &code)| {
                         let cos = code as f64 / (1u64 << f) as f64;
-                        format!("{n},{code},{},{:.4}", exact_decimal(code as u64, f), cos.acos().to_degrees())
+                        format!(
+                            "{n},{code},{},{:.4}",
+                            exact_decimal(code as u64, f),
+                            cos.acos().to_degrees()
+                        )
                     })
                     .collect(),
             }
             .render()
         }
         RomFormat::Csv => CsvFile {
-            header: format!("index,word_hex,{}", t.fields.iter().rev().map(|f| f.0.as_str()).collect::<Vec<_>>().join(",")),
+            header: format!(
+                "index,word_hex,{}",
+                t.fields
+                    .iter()
+                    .rev()
+                    .map(|f| f.0.as_str())
+                    .collect::<Vec<_>>()
+                    .join(",")
+            ),
             rows: table
                 .iter()
                 .enumerate()

@@ -32,7 +32,11 @@ pub const PROGRAM_MAX: u64 = 1 << 30;
 /// checked on the open file, and read with the limit, in case it grows.
 pub fn read_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     use std::os::unix::fs::OpenOptionsExt;
-    let f = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path).map_err(unreadable)?;
+    let f = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
+        .map_err(unreadable)?;
     let meta = f.metadata().map_err(unreadable)?;
     if !meta.is_file() {
         return Err(refusal("is not a regular file".into()));
@@ -41,7 +45,9 @@ pub fn read_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
         return Err(refusal(format!("is {} bytes", meta.len())));
     }
     let mut bytes = Vec::with_capacity(meta.len() as usize);
-    f.take(limit + 1).read_to_end(&mut bytes).map_err(unreadable)?;
+    f.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(unreadable)?;
     if bytes.len() as u64 > limit {
         return Err(refusal(format!("is {} bytes", bytes.len())));
     }
@@ -64,10 +70,19 @@ mod tests {
         std::fs::write(&p, "{}").unwrap();
         assert_eq!(read(&p, 2).unwrap(), "{}");
         let large = read(&p, 1).unwrap_err();
-        assert!(refused(&large) && large.to_string() == "is 2 bytes", "{large}");
+        assert!(
+            refused(&large) && large.to_string() == "is 2 bytes",
+            "{large}"
+        );
         let directory = read(dir.path(), 10).unwrap_err();
-        assert!(refused(&directory) && directory.to_string() == "is not a regular file", "{directory}");
+        assert!(
+            refused(&directory) && directory.to_string() == "is not a regular file",
+            "{directory}"
+        );
         let missing = read(&dir.path().join("none"), 10).unwrap_err();
-        assert!(!refused(&missing) && missing.to_string().starts_with("cannot be read ("), "{missing}");
+        assert!(
+            !refused(&missing) && missing.to_string().starts_with("cannot be read ("),
+            "{missing}"
+        );
     }
 }

@@ -35,7 +35,9 @@ impl Table {
     /// Icarus) or a wrong one changes it, so a file that sets only some entries (`@3ff 7faa`)
     /// or another table's is caught in the user's own simulator, not only by `cosim`.
     pub fn checksum(&self) -> u64 {
-        self.words.iter().fold(0u64, |s, &w| s.wrapping_mul(31).wrapping_add(w as u64))
+        self.words
+            .iter()
+            .fold(0u64, |s, &w| s.wrapping_mul(31).wrapping_add(w as u64))
     }
 
     pub(crate) fn address_bits(&self) -> u32 {
@@ -69,7 +71,10 @@ pub(crate) fn interpolation_table(
 ) -> Table {
     let (entry_bits, delta_bits) = bits;
     let (delta_field, zeros) = pad.map_or((delta_bits, 0), |p| (p.a_bits, p.b_pad));
-    let mut f = vec![(fields.0.into(), entry_bits), (fields.1.into(), delta_field)];
+    let mut f = vec![
+        (fields.0.into(), entry_bits),
+        (fields.1.into(), delta_field),
+    ];
     if zeros > 0 {
         f.push(("zero".into(), zeros));
     }
@@ -77,7 +82,11 @@ pub(crate) fn interpolation_table(
         name: format!("{name}_rom"),
         param: format!("{}_ROM_FILE", name.to_uppercase()),
         width: delta_field + entry_bits + zeros,
-        words: entries.iter().zip(deltas).map(|(&e, &d)| (d << entry_bits) | e).collect(),
+        words: entries
+            .iter()
+            .zip(deltas)
+            .map(|(&e, &d)| (d << entry_bits) | e)
+            .collect(),
         what,
         fields: f,
         cosines: None,

@@ -36,12 +36,28 @@ pub enum VectorFormat {
 pub(crate) fn columns(cfg: &Config) -> Vec<(&'static str, u32)> {
     // the logical ports: an `axis` unit packs them into tdata, at the same widths
     let ports = cfg.logical_ports();
-    VECTOR_COLUMNS.iter().map(|c| (*c, ports.iter().find(|p| p.name == *c).expect("every column is a port").width)).collect()
+    VECTOR_COLUMNS
+        .iter()
+        .map(|c| {
+            (
+                *c,
+                ports
+                    .iter()
+                    .find(|p| p.name == *c)
+                    .expect("every column is a port")
+                    .width,
+            )
+        })
+        .collect()
 }
 
 /// A row's values, in column order.
 fn values(x: Inputs, y: Outputs) -> [u64; 10] {
-    VECTOR_COLUMNS.map(|c| x.value(c).or_else(|| y.value(c)).expect("every column is an input or an output"))
+    VECTOR_COLUMNS.map(|c| {
+        x.value(c)
+            .or_else(|| y.value(c))
+            .expect("every column is an input or an output")
+    })
 }
 
 /// The inputs of `selection`, in row order, and how many there are.
@@ -50,13 +66,28 @@ pub fn inputs(model: &Model, selection: Selection) -> (u64, Box<dyn Iterator<Ite
     match selection {
         Selection::Random { count, seed } => {
             let corners = corner_vectors(model);
-            (corners.len() as u64 + count, Box::new(corners.into_iter().chain((0..count).map(move |i| random_vector(cfg, seed, i)))))
+            (
+                corners.len() as u64 + count,
+                Box::new(
+                    corners
+                        .into_iter()
+                        .chain((0..count).map(move |i| random_vector(cfg, seed, i))),
+                ),
+            )
         }
         Selection::Exhaustive => {
             let all = Exhaustive::parts(cfg, 1).pop().expect("one part");
             // every cycle but the reset (and colour load) a sweep starts with and its drain
             let rows = all.len() - all.lead() - all.drain;
-            (rows, Box::new((0..all.len()).map(move |i| all.cycle(i)).filter(|c| c.valid && !c.rst).map(|c| c.inputs)))
+            (
+                rows,
+                Box::new(
+                    (0..all.len())
+                        .map(move |i| all.cycle(i))
+                        .filter(|c| c.valid && !c.rst)
+                        .map(|c| c.inputs),
+                ),
+            )
         }
     }
 }
@@ -81,7 +112,12 @@ struct Header<'a> {
 }
 
 /// Writes the vectors of `selection` to `out` in `format`; returns the number of rows.
-pub fn write(model: &Model, selection: Selection, format: VectorFormat, out: &mut dyn Write) -> std::io::Result<u64> {
+pub fn write(
+    model: &Model,
+    selection: Selection,
+    format: VectorFormat,
+    out: &mut dyn Write,
+) -> std::io::Result<u64> {
     let cfg = &model.cfg;
     let (rows, inputs) = inputs(model, selection);
     let cols = columns(cfg);
@@ -102,8 +138,12 @@ pub fn write(model: &Model, selection: Selection, format: VectorFormat, out: &mu
         version: env!("CARGO_PKG_VERSION"),
         model: cfg.model().name(),
         selection: match selection {
-            Selection::Random { count, seed } => format!("corner cases and every n's boundary, then {count} random vectors (seed {seed})"),
-            Selection::Exhaustive => "every (cos_g <= 1.0, n), then every colour code at full intensity".to_string(),
+            Selection::Random { count, seed } => format!(
+                "corner cases and every n's boundary, then {count} random vectors (seed {seed})"
+            ),
+            Selection::Exhaustive => {
+                "every (cos_g <= 1.0, n), then every colour code at full intensity".to_string()
+            }
         },
         rows,
         params: cfg.describe(),
@@ -189,7 +229,16 @@ pub fn testbench_files(model: &Model) -> Vec<(String, String)> {
     let top = cfg.top();
     let vectors_file = format!("{top}_vectors.hex");
     let mut text = Vec::new();
-    let rows = write(model, Selection::Random { count: TESTBENCH_RANDOM_ROWS, seed: 1 }, VectorFormat::Hex, &mut text).expect("vectors to memory");
+    let rows = write(
+        model,
+        Selection::Random {
+            count: TESTBENCH_RANDOM_ROWS,
+            seed: 1,
+        },
+        VectorFormat::Hex,
+        &mut text,
+    )
+    .expect("vectors to memory");
     let cols = columns(cfg);
     let word_bits: u32 = cols.iter().map(|c| c.1).sum();
     let at = |name: &str| {
@@ -220,7 +269,11 @@ pub fn testbench_files(model: &Model) -> Vec<(String, String)> {
         static_colour,
         clock_enable: cfg.params.clock_enable,
         tag_bits: cfg.carried_tag_bits(),
-        patience: (if static_colour { cfg.latency() as u64 + places + 24 } else { 24 }) * if cfg.params.clock_enable { 2 } else { 1 },
+        patience: (if static_colour {
+            cfg.latency() as u64 + places + 24
+        } else {
+            24
+        }) * if cfg.params.clock_enable { 2 } else { 1 },
         cos_g: at("cos_g"),
         n: at("n"),
         ks_r: at("ks_r"),
@@ -234,5 +287,11 @@ pub fn testbench_files(model: &Model) -> Vec<(String, String)> {
         ports: crate::cosim::adapter::adapter_named(cfg, &format!("{top}_tb_ports")),
     };
     let tb_text = tb.render().expect("testbench renders") + "\n";
-    vec![(format!("{top}{}", crate::names::TESTBENCH_SUFFIX), tb_text), (vectors_file, String::from_utf8(text).expect("ASCII vectors"))]
+    vec![
+        (format!("{top}{}", crate::names::TESTBENCH_SUFFIX), tb_text),
+        (
+            vectors_file,
+            String::from_utf8(text).expect("ASCII vectors"),
+        ),
+    ]
 }

@@ -2,7 +2,10 @@
 
 use super::outln;
 use super::{failed, Failure};
-use specgen::cosim::{build, check_ports, check_tables, describe, random_stimulus, run_all, write_trace, Design, Exhaustive, Simulator, Stimulus};
+use specgen::cosim::{
+    build, check_ports, check_tables, describe, random_stimulus, run_all, write_trace, Design,
+    Exhaustive, Simulator, Stimulus,
+};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -43,9 +46,16 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     if let Some(trace) = &args.trace {
         design.refuse_output("--trace", trace)?;
         // say before the run, not after it, that the trace has nowhere to go
-        let parent = trace.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+        let parent = trace
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
         if !parent.is_dir() {
-            return Err(Failure::Input(format!("invalid --trace {}: the directory {} does not exist", trace.display(), parent.display())));
+            return Err(Failure::Input(format!(
+                "invalid --trace {}: the directory {} does not exist",
+                trace.display(),
+                parent.display()
+            )));
         }
     }
     check_tables(&design)?;
@@ -53,16 +63,32 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
     // results are not judged against it
     let before = design.snapshot();
     let model = design.plan.model();
-    let jobs = args.jobs.map(usize::from).unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1).min(64)).max(1);
+    let jobs = args
+        .jobs
+        .map(usize::from)
+        .unwrap_or_else(|| {
+            std::thread::available_parallelism()
+                .map(|n| n.get())
+                .unwrap_or(1)
+                .min(64)
+        })
+        .max(1);
     let t0 = Instant::now();
     // a file that does not compile is best told by the simulator; then the ports
     let sim = args.sim.tools();
-    let cycles = if args.exhaustive { u64::MAX } else { args.vectors };
+    let cycles = if args.exhaustive {
+        u64::MAX
+    } else {
+        args.vectors
+    };
     let built = build(&design, args.simulator.into(), &sim, false, cycles)?;
     check_ports(&design)?;
     let build_time = t0.elapsed();
     let stims: Vec<Box<dyn Stimulus>> = if args.exhaustive {
-        Exhaustive::parts(&design.cfg, jobs as u32 * 2).into_iter().map(|e| Box::new(e) as Box<dyn Stimulus>).collect()
+        Exhaustive::parts(&design.cfg, jobs as u32 * 2)
+            .into_iter()
+            .map(|e| Box::new(e) as Box<dyn Stimulus>)
+            .collect()
     } else {
         vec![Box::new(random_stimulus(&model, args.vectors, args.seed))]
     };
@@ -95,10 +121,18 @@ pub fn run(args: &CosimArgs) -> Result<(), Failure> {
         None if report.checked > 0 => Ok(()),
         None => Err(failed("no output was checked")),
         Some(m) => {
-            let mut msg = format!("{} of {} checked cycles differ from the golden model\n{}", report.mismatches, report.checked, describe(m, &design.cfg));
+            let mut msg = format!(
+                "{} of {} checked cycles differ from the golden model\n{}",
+                report.mismatches,
+                report.checked,
+                describe(m, &design.cfg)
+            );
             if let Some(path) = &args.trace {
                 match write_trace(&design, &sim, &model, &stims, m, path) {
-                    Ok(()) => msg.push_str(&format!("trace of the replay around the failure: {}", path.display())),
+                    Ok(()) => msg.push_str(&format!(
+                        "trace of the replay around the failure: {}",
+                        path.display()
+                    )),
                     Err(e) => msg.push_str(&format!("could not write the trace: {e}")),
                 }
             }

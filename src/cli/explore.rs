@@ -20,7 +20,12 @@ pub struct ExploreArgs {
     #[arg(long, value_enum, default_value = "ice40")]
     pub target: TargetFlag,
     /// Models in the space.
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "quadratic,schlick,fitted,blinn,blinn-pow")]
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "quadratic,schlick,fitted,blinn,blinn-pow"
+    )]
     pub models: Vec<ModelFlag>,
     /// F values (cos_g's fractional bits) in the space [each 4..=20]
     #[arg(long, value_delimiter = ',', default_value = "8,10,12,15")]
@@ -46,7 +51,12 @@ pub struct ExploreArgs {
     pub rom_style: Vec<RomStyleFlag>,
     /// Clocks (MHz) a depth is chosen for and a front drawn at [default: the family's: iCE40
     /// 50,75,100,125; ECP5 100,150,200,250]
-    #[arg(long, value_delimiter = ',', value_name = "MHZ,...", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "MHZ,...",
+        allow_negative_numbers = true
+    )]
     pub clocks: Vec<f64>,
     /// Also K depths spread evenly up to each unit's deepest (a calibration grid for the delay
     /// model: scripts/calibrate_delay.sh) [0..=64]
@@ -145,12 +155,22 @@ pub fn stale(a: &StaleArgs) -> Result<(), Failure> {
     if a.explored.is_empty() {
         for t in Target::ALL {
             if let Some(text) = specgen::family::of(t).explored() {
-                sets.push((format!("the built-in exploration of the {}", specgen::timing::part(t)), text.to_string()));
+                sets.push((
+                    format!(
+                        "the built-in exploration of the {}",
+                        specgen::timing::part(t)
+                    ),
+                    text.to_string(),
+                ));
             }
         }
     }
     for p in &a.explored {
-        sets.push((p.display().to_string(), specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?));
+        sets.push((
+            p.display().to_string(),
+            specgen::small_file::read(p, 64 << 20)
+                .map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?,
+        ));
     }
     let mut stale = 0;
     let mut rows = String::new();
@@ -160,10 +180,19 @@ pub fn stale(a: &StaleArgs) -> Result<(), Failure> {
     for (what, text) in &sets {
         let e = Exploration::from_text(text, what)?;
         let csv = explore::calibration_csv(&e);
-        let body = if rows.is_empty() { csv.as_str() } else { csv.split_once('\n').map_or("", |(_, b)| b) };
+        let body = if rows.is_empty() {
+            csv.as_str()
+        } else {
+            csv.split_once('\n').map_or("", |(_, b)| b)
+        };
         rows.push_str(body);
         let ev = explore::evidence(&e)?;
-        said.push(format!("{what}: {} measured rows, {} of today's RTL, {} of an older RTL", ev.today.len() + ev.stale.len(), ev.today.len(), ev.stale.len()));
+        said.push(format!(
+            "{what}: {} measured rows, {} of today's RTL, {} of an older RTL",
+            ev.today.len() + ev.stale.len(),
+            ev.today.len(),
+            ev.stale.len()
+        ));
         said.extend(ev.stale.iter().map(|id| format!("  stale: {id}")));
         stale += ev.stale.len();
     }
@@ -183,7 +212,8 @@ pub fn stale(a: &StaleArgs) -> Result<(), Failure> {
         }
     }
     if let Some(path) = &a.write_calibration {
-        specgen::output::write_file(path, rows.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", path.display())))?;
+        specgen::output::write_file(path, rows.as_bytes())
+            .map_err(|e| super::failed(format!("cannot write {}: {e}", path.display())))?;
     }
     for line in &said {
         outln!("{line}")?;
@@ -221,36 +251,68 @@ pub struct CalibrateArgs {
 pub fn calibrate(a: &CalibrateArgs) -> Result<(), Failure> {
     let inputs: Vec<&PathBuf> = std::iter::once(&a.calibration).chain(&a.merge).collect();
     for (flag, out) in [("--out", Some(&a.out)), ("--rows-out", a.rows_out.as_ref())] {
-        if let Some(input) = out.and_then(|o| inputs.iter().find(|i| specgen::output::same_file(i, o))) {
-            return Err(usage(format!("invalid {flag}: {} is a file this command reads", input.display())));
+        if let Some(input) =
+            out.and_then(|o| inputs.iter().find(|i| specgen::output::same_file(i, o)))
+        {
+            return Err(usage(format!(
+                "invalid {flag}: {} is a file this command reads",
+                input.display()
+            )));
         }
     }
-    let mut text = specgen::small_file::read(&a.calibration, 64 << 20).map_err(|e| usage(format!("invalid --calibration: {} {e}", a.calibration.display())))?;
+    let mut text = specgen::small_file::read(&a.calibration, 64 << 20).map_err(|e| {
+        usage(format!(
+            "invalid --calibration: {} {e}",
+            a.calibration.display()
+        ))
+    })?;
     // said after every file is written (a reader that stops reading early loses none)
     let mut merged_said = None;
     if let Some(rows_out) = &a.rows_out {
         let mut new = Vec::new();
         for p in &a.merge {
-            new.push(specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --merge: {} {e}", p.display())))?);
+            new.push(
+                specgen::small_file::read(p, 64 << 20)
+                    .map_err(|e| usage(format!("invalid --merge: {} {e}", p.display())))?,
+            );
         }
-        let (merged, added) = specgen::timing::fit::merge_calibration(&text, &new.iter().map(String::as_str).collect::<Vec<_>>(), a.keep)?;
-        specgen::output::write_file(rows_out, merged.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", rows_out.display())))?;
-        merged_said = Some(format!("{}: {added} unit(s) added, {} in all", rows_out.display(), merged.lines().count() - 1));
+        let (merged, added) = specgen::timing::fit::merge_calibration(
+            &text,
+            &new.iter().map(String::as_str).collect::<Vec<_>>(),
+            a.keep,
+        )?;
+        specgen::output::write_file(rows_out, merged.as_bytes())
+            .map_err(|e| super::failed(format!("cannot write {}: {e}", rows_out.display())))?;
+        merged_said = Some(format!(
+            "{}: {added} unit(s) added, {} in all",
+            rows_out.display(),
+            merged.lines().count() - 1
+        ));
         text = merged;
     }
     let model = specgen::timing::fit::fit_calibration(&text, &a.calibration.display().to_string())?;
     let mut json = serde_json::to_string_pretty(&model).expect("JSON");
     json.push('\n');
-    specgen::output::write_file(&a.out, json.as_bytes()).map_err(|e| super::failed(format!("cannot write {}: {e}", a.out.display())))?;
+    specgen::output::write_file(&a.out, json.as_bytes())
+        .map_err(|e| super::failed(format!("cannot write {}: {e}", a.out.display())))?;
     if let Some(line) = merged_said {
         outln!("{line}")?;
     }
     for (family, caps) in model["handshake"].as_object().into_iter().flatten() {
         for (name, c) in caps.as_object().into_iter().flatten() {
-            outln!("{family} {name} with the output buffer: at most {} MHz ({})", c["mhz"], c["unit"].as_str().unwrap_or(""))?;
+            outln!(
+                "{family} {name} with the output buffer: at most {} MHz ({})",
+                c["mhz"],
+                c["unit"].as_str().unwrap_or("")
+            )?;
         }
     }
-    for (family, lines) in model.as_object().into_iter().flatten().filter(|(k, _)| !["source", "handshake"].contains(&k.as_str())) {
+    for (family, lines) in model
+        .as_object()
+        .into_iter()
+        .flatten()
+        .filter(|(k, _)| !["source", "handshake"].contains(&k.as_str()))
+    {
         for (name, m) in lines.as_object().into_iter().flatten() {
             match m.as_object() {
                 None => outln!("{family} {name}: the family's line")?,
@@ -277,15 +339,28 @@ const MAX_JOBS: usize = 100_000;
 const MAX_JOBS_BYTES: u64 = 256 << 20;
 
 fn tools(yosys: &str, nextpnr: &Option<String>) -> specgen::synth::Tools {
-    specgen::synth::Tools { yosys: yosys.to_string(), nextpnr: nextpnr.clone(), ..Default::default() }
+    specgen::synth::Tools {
+        yosys: yosys.to_string(),
+        nextpnr: nextpnr.clone(),
+        ..Default::default()
+    }
 }
 
 pub fn read_jobs(path: &Path) -> Result<Vec<explore::Job>, Failure> {
-    let text = specgen::small_file::read(path, MAX_JOBS_BYTES).map_err(|e| usage(format!("invalid --jobs: {} {e}", path.display())))?;
-    let jobs: Vec<explore::Job> =
-        serde_json::from_str(&text).map_err(|e| usage(format!("invalid --jobs: {} is not a sweep's jobs.json: {e}", path.display())))?;
+    let text = specgen::small_file::read(path, MAX_JOBS_BYTES)
+        .map_err(|e| usage(format!("invalid --jobs: {} {e}", path.display())))?;
+    let jobs: Vec<explore::Job> = serde_json::from_str(&text).map_err(|e| {
+        usage(format!(
+            "invalid --jobs: {} is not a sweep's jobs.json: {e}",
+            path.display()
+        ))
+    })?;
     if jobs.len() > MAX_JOBS {
-        return Err(usage(format!("invalid --jobs: {} holds {} jobs; allowed at most {MAX_JOBS}", path.display(), jobs.len())));
+        return Err(usage(format!(
+            "invalid --jobs: {} holds {} jobs; allowed at most {MAX_JOBS}",
+            path.display(),
+            jobs.len()
+        )));
     }
     Ok(jobs)
 }
@@ -293,8 +368,13 @@ pub fn read_jobs(path: &Path) -> Result<Vec<explore::Job>, Failure> {
 pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     let range = |flag: &str, v: &[u32], r: &specgen::config::Range| -> Result<(), Failure> {
         match v.iter().find(|&&x| x < r.min || x > r.max) {
-            Some(x) => Err(usage(format!("invalid --{flag}: {x} is out of range; allowed {}..={}", r.min, r.max))),
-            None if v.is_empty() || v.len() > 16 => Err(usage(format!("invalid --{flag}: give 1 to 16 values"))),
+            Some(x) => Err(usage(format!(
+                "invalid --{flag}: {x} is out of range; allowed {}..={}",
+                r.min, r.max
+            ))),
+            None if v.is_empty() || v.len() > 16 => {
+                Err(usage(format!("invalid --{flag}: give 1 to 16 values")))
+            }
             None => Ok(()),
         }
     };
@@ -308,7 +388,9 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         ("clocks", a.clocks.len()),
     ] {
         if len > 16 {
-            return Err(usage(format!("invalid --{flag}: {len} values; allowed at most 16")));
+            return Err(usage(format!(
+                "invalid --{flag}: {len} values; allowed at most 16"
+            )));
         }
     }
     let mut a = a.clone();
@@ -329,16 +411,28 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     once(&mut a.rom_style);
     once(&mut a.clocks);
     let a = &a;
-    range("cos-frac-bits", &a.cos_frac_bits, &specgen::config::COS_FRAC_BITS)?;
-    range("intensity-frac-bits", &a.intensity_frac_bits, &specgen::config::INTENSITY_FRAC_BITS)?;
+    range(
+        "cos-frac-bits",
+        &a.cos_frac_bits,
+        &specgen::config::COS_FRAC_BITS,
+    )?;
+    range(
+        "intensity-frac-bits",
+        &a.intensity_frac_bits,
+        &specgen::config::INTENSITY_FRAC_BITS,
+    )?;
     if !(0.0..=10.0).contains(&a.near) {
         return Err(usage(format!("invalid --near: {}; allowed 0..=10", a.near)));
     }
     if let Some(c) = a.clocks.iter().find(|c| !(1.0..=1000.0).contains(*c)) {
-        return Err(usage(format!("invalid --clocks: {c}; allowed MHz in [1, 1000]")));
+        return Err(usage(format!(
+            "invalid --clocks: {c}; allowed MHz in [1, 1000]"
+        )));
     }
     if a.clocks.len() > 16 || a.models.is_empty() || a.rom_style.is_empty() {
-        return Err(usage("invalid --clocks, --models or --rom-style: give 1 to 16 values"));
+        return Err(usage(
+            "invalid --clocks, --models or --rom-style: give 1 to 16 values",
+        ));
     }
     let mut budgets = Vec::new();
     for b in &a.dsp_budget {
@@ -348,12 +442,23 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
                 t.parse::<u32>()
                     .ok()
                     .filter(|v| *v <= specgen::config::DSP_BUDGET.max)
-                    .ok_or_else(|| usage(format!("invalid --dsp-budget: {t:?}; allowed \"none\" or 0..={}", specgen::config::DSP_BUDGET.max)))?,
+                    .ok_or_else(|| {
+                        usage(format!(
+                            "invalid --dsp-budget: {t:?}; allowed \"none\" or 0..={}",
+                            specgen::config::DSP_BUDGET.max
+                        ))
+                    })?,
             ),
         });
     }
     let target: Target = a.target.into();
-    let base = Params { target, n_bits: a.n_bits, color_bits: a.color_bits, interface: a.interface.into(), ..Params::default() };
+    let base = Params {
+        target,
+        n_bits: a.n_bits,
+        color_bits: a.color_bits,
+        interface: a.interface.into(),
+        ..Params::default()
+    };
     specgen::config::Config::new(base.clone())?;
     let space = Space {
         base,
@@ -385,7 +490,10 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         * a.rom_style.len()
         * (clocks.len().max(3) + 1 + a.depths as usize);
     if a.unit.is_empty() && at_most > explore::MAX_POINTS {
-        return Err(usage(format!("the space holds up to {at_most} points; allowed at most {}: narrow it", explore::MAX_POINTS)));
+        return Err(usage(format!(
+            "the space holds up to {at_most} points; allowed at most {}: narrow it",
+            explore::MAX_POINTS
+        )));
     }
     let start = std::time::Instant::now();
     // progress on standard error, at most every two seconds
@@ -401,7 +509,11 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         false => explore::unit_points(&units_of(&a.unit, target)?)?,
     };
     if points.len() > explore::MAX_POINTS {
-        return Err(usage(format!("the space holds {} points; allowed at most {}: narrow it", points.len(), explore::MAX_POINTS)));
+        return Err(usage(format!(
+            "the space holds {} points; allowed at most {}: narrow it",
+            points.len(),
+            explore::MAX_POINTS
+        )));
     }
     let ids: Vec<String> = match a.measure_all || !a.unit.is_empty() {
         true => points.iter().map(|p| p.id.clone()).collect(),
@@ -412,7 +524,11 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
             for m in Metric::ALL {
                 ids.extend(explore::candidates(&points, m, &clocks, a.near, 0.8));
             }
-            points.iter().filter(|p| ids.contains(&p.id)).map(|p| p.id.clone()).collect()
+            points
+                .iter()
+                .filter(|p| ids.contains(&p.id))
+                .map(|p| p.id.clone())
+                .collect()
         }
     };
     let seeds: Vec<u32> = (1..=a.seeds).collect();
@@ -429,9 +545,17 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
     let mut failed_jobs = Vec::new();
     if a.run {
         let store = super::sweep::store(&a.results)?;
-        let at_once = a.run_jobs.map_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()), |n| n as usize);
-        let opts =
-            super::sweep::RunOptions { engine: a.engine, jobs_at_once: at_once, profile: a.profile.as_deref(), yosys: &a.yosys, nextpnr: a.nextpnr.as_deref() };
+        let at_once = a.run_jobs.map_or_else(
+            || std::thread::available_parallelism().map_or(1, |n| n.get()),
+            |n| n as usize,
+        );
+        let opts = super::sweep::RunOptions {
+            engine: a.engine,
+            jobs_at_once: at_once,
+            profile: a.profile.as_deref(),
+            yosys: &a.yosys,
+            nextpnr: a.nextpnr.as_deref(),
+        };
         failed_jobs = super::sweep::run_jobs(&jobs, store, &opts)?;
     }
     let dirs: Vec<&Path> = a.results.iter().map(PathBuf::as_path).collect();
@@ -473,13 +597,21 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         )?;
     }
     if !report.conflicting.is_empty() {
-        return Err(super::failed(format!("jobs with conflicting results: {}", report.conflicting.join(", "))));
+        return Err(super::failed(format!(
+            "jobs with conflicting results: {}",
+            report.conflicting.join(", ")
+        )));
     }
     if !failed_jobs.is_empty() {
         return Err(super::failed(format!(
             "{} job(s) failed and have no result ({}); run the command again to retry them",
             failed_jobs.len(),
-            failed_jobs.iter().take(8).cloned().collect::<Vec<_>>().join(", ")
+            failed_jobs
+                .iter()
+                .take(8)
+                .cloned()
+                .collect::<Vec<_>>()
+                .join(", ")
         )));
     }
     Ok(())
@@ -491,15 +623,21 @@ const MAX_UNITS: usize = 1000;
 /// The parameters of each generated unit in `dirs` (their manifests'), all of `target`'s family.
 fn units_of(dirs: &[PathBuf], target: Target) -> Result<Vec<Params>, Failure> {
     if dirs.len() > MAX_UNITS {
-        return Err(usage(format!("invalid --unit: {} units; allowed at most {MAX_UNITS}", dirs.len())));
+        return Err(usage(format!(
+            "invalid --unit: {} units; allowed at most {MAX_UNITS}",
+            dirs.len()
+        )));
     }
     let mut out = Vec::new();
     for dir in dirs {
-        let design = specgen::cosim::Design::load(dir).map_err(|e| usage(format!("invalid --unit: {e}")))?;
+        let design =
+            specgen::cosim::Design::load(dir).map_err(|e| usage(format!("invalid --unit: {e}")))?;
         // its files checked as every other command checks them (the manifest's fingerprint, every
         // listed file's SHA-256, no stray Verilog): what is measured is the unit specgen writes
         // for these parameters, so it is the Verilog in the directory
-        design.verify_files(false).map_err(|e| usage(format!("invalid --unit: {e}")))?;
+        design
+            .verify_files(false)
+            .map_err(|e| usage(format!("invalid --unit: {e}")))?;
         let params = design.plan.cfg.params.clone();
         if params.target != target {
             return Err(usage(format!(
@@ -519,9 +657,18 @@ pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {
     let job = jobs
         .iter()
         .find(|j| j.fingerprint == a.fingerprint)
-        .ok_or_else(|| usage(format!("invalid --fingerprint: {} is no job of {}", a.fingerprint, a.jobs.display())))?;
+        .ok_or_else(|| {
+            usage(format!(
+                "invalid --fingerprint: {} is no job of {}",
+                a.fingerprint,
+                a.jobs.display()
+            ))
+        })?;
     if specgen::output::same_file(&a.out, &a.jobs) {
-        return Err(usage(format!("invalid --out: {} is the --jobs file this command reads", a.out.display())));
+        return Err(usage(format!(
+            "invalid --out: {} is the --jobs file this command reads",
+            a.out.display()
+        )));
     }
     // one run of a job at a time, whoever starts it (a resumed sweep beside a killed one's
     // jobs, two shards on one directory): the lock beside the result is held for the run's
@@ -531,23 +678,41 @@ pub fn measure(a: &MeasureArgs) -> Result<(), Failure> {
         p.push(".lock");
         PathBuf::from(p)
     };
-    let lock = std::fs::OpenOptions::new().create(true).append(true).open(&lock_path).map_err(|e| Failure::io("open", &lock_path, e))?;
+    let lock = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&lock_path)
+        .map_err(|e| Failure::io("open", &lock_path, e))?;
     // (an flock, released when `lock` closes at the end)
-    lock.lock().map_err(|e| Failure::io("lock", &lock_path, e))?;
+    lock.lock()
+        .map_err(|e| Failure::io("lock", &lock_path, e))?;
     if explore::whole_result(&a.out, job) {
-        outln!("{}: measured already (by a run beside this one): {}", job.fingerprint, a.out.display())?;
+        outln!(
+            "{}: measured already (by a run beside this one): {}",
+            job.fingerprint,
+            a.out.display()
+        )?;
         return Ok(());
     }
-    let r = explore::run_job(job, &specgen::synth::Tools { cache: a.cache.clone(), ..tools(&a.yosys, &a.nextpnr) })?;
+    let r = explore::run_job(
+        job,
+        &specgen::synth::Tools {
+            cache: a.cache.clone(),
+            ..tools(&a.yosys, &a.nextpnr)
+        },
+    )?;
     let mut text = serde_json::to_string_pretty(&r).expect("serialises");
     text.push('\n');
-    specgen::output::write_file(&a.out, text.as_bytes()).map_err(|e| Failure::io("write", &a.out, e))?;
+    specgen::output::write_file(&a.out, text.as_bytes())
+        .map_err(|e| Failure::io("write", &a.out, e))?;
     outln!(
         "{}: {} seed {}: {} MHz, {} logic cells",
         job.fingerprint,
         job.point,
         job.seed,
-        r.synth.fmax().map_or("no Fmax".into(), |f| format!("{f:.1}")),
+        r.synth
+            .fmax()
+            .map_or("no Fmax".into(), |f| format!("{f:.1}")),
         r.synth.cells().map_or("?".into(), |c| c.to_string())
     )?;
     Ok(())
@@ -580,7 +745,17 @@ pub fn choose(
         },
     };
     let e = Exploration::from_text(&text, &what)?;
-    let c = explore::choose(&e, &explore::Question { base: params, given, metric, max_error, mhz, display })?;
+    let c = explore::choose(
+        &e,
+        &explore::Question {
+            base: params,
+            given,
+            metric,
+            max_error,
+            mhz,
+            display,
+        },
+    )?;
     let p = &c.point;
     let m = p.measured.as_ref().expect("a choice is measured");
     let lo = m.fmax_seeds.iter().copied().fold(f64::INFINITY, f64::min);
@@ -588,9 +763,15 @@ pub fn choose(
     let chosen: Vec<String> = [
         ("model", p.params.model.name().to_string()),
         ("cos-frac-bits", p.params.cos_frac_bits.to_string()),
-        ("intensity-frac-bits", p.params.intensity_frac_bits.to_string()),
+        (
+            "intensity-frac-bits",
+            p.params.intensity_frac_bits.to_string(),
+        ),
         ("stages", p.params.stages.to_string()),
-        ("dsp-budget", p.params.dsp_budget.map_or("none".into(), |b| b.to_string())),
+        (
+            "dsp-budget",
+            p.params.dsp_budget.map_or("none".into(), |b| b.to_string()),
+        ),
         ("rom-style", p.params.rom_style.name().to_string()),
     ]
     .into_iter()
@@ -629,7 +810,10 @@ pub fn choose(
         }
     }
     if !c.stale.is_empty() {
-        errln!("max-error: passed over, measured on an older RTL: {}", c.stale.join(", "));
+        errln!(
+            "max-error: passed over, measured on an older RTL: {}",
+            c.stale.join(", ")
+        );
     }
     let chosen = &p.params;
     Ok(Params {
@@ -652,17 +836,31 @@ pub fn choose(
 /// What a refusal of `--target-mhz` adds: the nearest measured unit of the same model (and
 /// budget) that reaches `mhz`, by widths, and how to choose among measured units.
 pub fn nearest_measured(params: &Params, mhz: f64) -> Result<String, Failure> {
-    let Some(e) = explore::built_in(params.target)? else { return Ok(String::new()) };
+    let Some(e) = explore::built_in(params.target)? else {
+        return Ok(String::new());
+    };
     let near = e
         .points
         .iter()
-        .filter(|p| p.params.model == params.model && p.params.n_bits == params.n_bits && p.params.color_bits == params.color_bits)
+        .filter(|p| {
+            p.params.model == params.model
+                && p.params.n_bits == params.n_bits
+                && p.params.color_bits == params.color_bits
+        })
         .filter(|p| p.params.interface == params.interface)
-        .filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz))
+        .filter(|p| {
+            p.measured
+                .as_ref()
+                .and_then(|m| m.fmax_mhz)
+                .is_some_and(|f| f >= mhz)
+        })
         // a row of another RTL names no unit
         .filter(|p| specgen::explore::measured_today(p).ok().flatten().is_some())
         .min_by_key(|p| {
-            let d = p.params.cos_frac_bits.abs_diff(params.cos_frac_bits) + p.params.intensity_frac_bits.abs_diff(params.intensity_frac_bits);
+            let d = p.params.cos_frac_bits.abs_diff(params.cos_frac_bits)
+                + p.params
+                    .intensity_frac_bits
+                    .abs_diff(params.intensity_frac_bits);
             (d, p.params.dsp_budget != params.dsp_budget, p.cells())
         });
     Ok(match near {

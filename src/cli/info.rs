@@ -5,7 +5,10 @@ use specgen::plan::Plan;
 
 /// The version, models, targets and the deepest depth of the configuration the flags give.
 pub fn run(params: &ParamArgs, rtl: RtlArgs) -> Result<(), Failure> {
-    let cfg = params.to_config(Some(&RtlArgs { stages: Some(0), ..rtl }))?;
+    let cfg = params.to_config(Some(&RtlArgs {
+        stages: Some(0),
+        ..rtl
+    }))?;
     let plan = Plan::new(cfg)?;
     let targets: Vec<serde_json::Value> = specgen::config::Target::ALL
         .iter()
@@ -25,6 +28,9 @@ pub fn run(params: &ParamArgs, rtl: RtlArgs) -> Result<(), Failure> {
         "targets": targets,
         "configuration": { "model": plan.cfg.model().name(), "target": plan.cfg.target().name(), "deepest_stages": plan.cut_points },
     });
-    outln!("{}", serde_json::to_string_pretty(&info).expect("serialises"))?;
+    outln!(
+        "{}",
+        serde_json::to_string_pretty(&info).expect("serialises")
+    )?;
     Ok(())
 }

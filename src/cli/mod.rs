@@ -18,7 +18,10 @@ use specgen::models::Inputs;
 use specgen::plan::Plan;
 use specgen::rom;
 use std::path::PathBuf;
-use values::{ArchFlag, ColourFlag, InterfaceFlag, ModelFlag, ResetFlag, RomFormatFlag, RomStyleFlag, RoundingFlag, TargetFlag, VectorFormatFlag};
+use values::{
+    ArchFlag, ColourFlag, InterfaceFlag, ModelFlag, ResetFlag, RomFormatFlag, RomStyleFlag,
+    RoundingFlag, TargetFlag, VectorFormatFlag,
+};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -43,14 +46,24 @@ pub enum Command {
         #[arg(long)]
         force: bool,
         /// Pick --stages: the shallowest pipeline that reaches F MHz on the --target's part (ice40: iCE40 UP5K, ecp5: ECP5-25 grade 6, gowin: GW1NR-9 C6/I5, with DSPs) by the delay model calibrated on nextpnr (in milliseconds; `synth --seeds K` measures it). Refused with --target generic, whose RTL names no device to be calibrated on: give --stages there.
-        #[arg(long, value_name = "F", conflicts_with = "stages", allow_negative_numbers = true)]
+        #[arg(
+            long,
+            value_name = "F",
+            conflicts_with = "stages",
+            allow_negative_numbers = true
+        )]
         target_mhz: Option<f64>,
         /// Choose the unit (model, widths, depth, budget, ROM style) instead of taking the flags:
         /// the cheapest in logic cells of the exploration's measured units whose --metric error
         /// is at most E and whose median Fmax over seeds reaches --target-mhz (a --model or
         /// --dsp-budget given narrows the choice); it prints the choice and its evidence, and is
         /// refused naming the nearest units when none meets both [(0, 1]]
-        #[arg(long, value_name = "E", requires = "target_mhz", allow_negative_numbers = true)]
+        #[arg(
+            long,
+            value_name = "E",
+            requires = "target_mhz",
+            allow_negative_numbers = true
+        )]
         max_error: Option<f64>,
         /// The error --max-error bounds.
         #[arg(long, value_enum, default_value = "max", requires = "max_error")]
@@ -61,7 +74,12 @@ pub enum Command {
         explored: Option<PathBuf>,
         /// The display of --metric display-max and display-banding: srgbB (sRGB, B bits) or
         /// gammaG:B (a power law) [B 1..=16, G 1..=4]
-        #[arg(long, value_name = "DISPLAY", default_value = "srgb8", requires = "max_error")]
+        #[arg(
+            long,
+            value_name = "DISPLAY",
+            default_value = "srgb8",
+            requires = "max_error"
+        )]
         display: String,
         /// Where --target-mhz is refused, also say how: the best depth's figures, the rule of
         /// the delay model that gave them, the calibrated unit that holds them down.
@@ -93,7 +111,13 @@ pub enum Command {
     /// value, formula (15) in real arithmetic, and Blinn's cos^n.
     Eval {
         /// cos(gamma) as a decimal in [0, 2), rounded to the nearest UQ1.F code.
-        #[arg(allow_negative_numbers = true, long, value_name = "X", conflicts_with = "cos_code", required_unless_present = "cos_code")]
+        #[arg(
+            allow_negative_numbers = true,
+            long,
+            value_name = "X",
+            conflicts_with = "cos_code",
+            required_unless_present = "cos_code"
+        )]
         cos: Option<String>,
         /// cos(gamma) as the raw UQ1.F port code.
         #[arg(allow_negative_numbers = true, value_parser = param_whole, long, value_name = "CODE")]
@@ -329,7 +353,12 @@ pub struct RtlArgs {
     pub fabric_registers: bool,
     /// The clock the constraints (<top>.sdc, <top>.lpf), the FuseSoC core and synth ask for, MHz
     /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
-    #[arg(long, value_name = "F", allow_hyphen_values = true, help_heading = "Interface")]
+    #[arg(
+        long,
+        value_name = "F",
+        allow_hyphen_values = true,
+        help_heading = "Interface"
+    )]
     pub clock_mhz: Option<String>,
     /// The clock port of your top that drives the unit, for the constraint files when the unit
     /// is embedded (their clock is found by that name) [default: the unit's own, clk or aclk]
@@ -339,7 +368,9 @@ pub struct RtlArgs {
 
 /// A whole-number flag: a negative value gets a range error, not a "flag not found".
 fn whole_in(text: &str, r: Option<&config::Range>) -> Result<u32, String> {
-    let range = r.map_or("allowed a whole number >= 0".to_string(), |r| format!("allowed {}..={}", r.min, r.max));
+    let range = r.map_or("allowed a whole number >= 0".to_string(), |r| {
+        format!("allowed {}..={}", r.min, r.max)
+    });
     match text.trim().parse::<i64>() {
         Ok(v) if v < 0 || v > u32::MAX as i64 => Err(format!("{v} is out of range; {range}")),
         Ok(v) => Ok(v as u32),
@@ -352,8 +383,19 @@ fn param_whole(t: &str) -> Result<u32, String> {
 }
 /// `render --size`: its own range, stated in the error.
 fn param_size(t: &str) -> Result<u32, String> {
-    const SIZE: config::Range = config::Range { name: "size", min: 16, max: 1024, default: 128 };
-    whole_in(t, Some(&SIZE)).and_then(|v| if (SIZE.min..=SIZE.max).contains(&v) { Ok(v) } else { Err(format!("{v} is out of range; allowed 16..=1024")) })
+    const SIZE: config::Range = config::Range {
+        name: "size",
+        min: 16,
+        max: 1024,
+        default: 128,
+    };
+    whole_in(t, Some(&SIZE)).and_then(|v| {
+        if (SIZE.min..=SIZE.max).contains(&v) {
+            Ok(v)
+        } else {
+            Err(format!("{v} is out of range; allowed 16..=1024"))
+        }
+    })
 }
 fn param_stages(t: &str) -> Result<u32, String> {
     whole_in(t, None).map_err(|e| format!("{e} (up to the configuration's cut points)"))
@@ -410,15 +452,24 @@ pub(crate) use {errln, out, outln};
 /// occupied output directory), 1 for a check that failed, a tool's error, a file.
 fn exit_code(e: &Failure) -> i32 {
     match e {
-        Failure::Config { .. } | Failure::Input(_) | Failure::Occupied { .. } | Failure::Refused { .. } => 2,
-        Failure::Busy { .. } | Failure::Tool { .. } | Failure::Mismatch(_) | Failure::Breach { .. } | Failure::Io { .. } => 1,
+        Failure::Config { .. }
+        | Failure::Input(_)
+        | Failure::Occupied { .. }
+        | Failure::Refused { .. } => 2,
+        Failure::Busy { .. }
+        | Failure::Tool { .. }
+        | Failure::Mismatch(_)
+        | Failure::Breach { .. }
+        | Failure::Io { .. } => 1,
     }
 }
 
 /// The message of an error and its causes, a parameter named by its flag.
 fn message(e: &Failure) -> String {
     match e {
-        Failure::Config { parameter, message } => format!("invalid --{}: {message}", parameter.replace('_', "-")),
+        Failure::Config { parameter, message } => {
+            format!("invalid --{}: {message}", parameter.replace('_', "-"))
+        }
         _ => specgen::error::chain(e),
     }
 }
@@ -469,7 +520,11 @@ impl ParamArgs {
 }
 
 /// Writes a whole output directory atomically; an occupied directory is a usage error.
-fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool) -> Result<(), Failure> {
+fn write_output(
+    out: &std::path::Path,
+    files: &[(String, Vec<u8>)],
+    force: bool,
+) -> Result<(), Failure> {
     // an I/O error names the output as the user spelled it
     specgen::output::write_dir_atomically_forced(out, files, force).map_err(|e| match e {
         Failure::Io { action, source, .. } => Failure::io(action, out, source),
@@ -479,7 +534,18 @@ fn write_output(out: &std::path::Path, files: &[(String, Vec<u8>)], force: bool)
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Generate { out, force, target_mhz, max_error, metric, explored, display, explain, params, rtl } => {
+        Command::Generate {
+            out,
+            force,
+            target_mhz,
+            max_error,
+            metric,
+            explored,
+            display,
+            explain,
+            params,
+            rtl,
+        } => {
             if let Some(config) = &params.config {
                 if specgen::output::inside(config, &out) {
                     return Err(usage(format!(
@@ -492,13 +558,23 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let mut cfg = params.to_config(Some(&rtl))?;
             if let Some(mhz) = target_mhz {
                 if !(0.001..=1000.0).contains(&mhz) {
-                    let shown = if mhz == 0.0 || (mhz.is_finite() && (1e-3..1e6).contains(&mhz.abs())) { format!("{mhz}") } else { format!("{mhz:e}") };
-                    return Err(usage(format!("invalid --target-mhz: {shown}; allowed [0.001, 1000] MHz")));
+                    let shown =
+                        if mhz == 0.0 || (mhz.is_finite() && (1e-3..1e6).contains(&mhz.abs())) {
+                            format!("{mhz}")
+                        } else {
+                            format!("{mhz:e}")
+                        };
+                    return Err(usage(format!(
+                        "invalid --target-mhz: {shown}; allowed [0.001, 1000] MHz"
+                    )));
                 }
             }
             if let (Some(mhz), None) = (target_mhz, &cfg.params.clock_mhz) {
                 // the constraints ask for the clock the pipeline was chosen for
-                cfg = Config::new(Params { clock_mhz: Some(format!("{}", (mhz * 1000.0).round() / 1000.0)), ..cfg.params })?;
+                cfg = Config::new(Params {
+                    clock_mhz: Some(format!("{}", (mhz * 1000.0).round() / 1000.0)),
+                    ..cfg.params
+                })?;
             }
             // --max-error: the unit is the exploration's choice, its depth measured, not predicted
             let mut pick_depth = target_mhz;
@@ -508,10 +584,15 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 if metric.in_display_codes() {
                     let top = ((1u64 << display.bits) - 1) as f64;
                     if !(e > 0.0 && e <= top) {
-                        return Err(usage(format!("invalid --max-error: {e}; allowed (0, {top}] codes of --display {}", display.name())));
+                        return Err(usage(format!(
+                            "invalid --max-error: {e}; allowed (0, {top}] codes of --display {}",
+                            display.name()
+                        )));
                     }
                 } else if !(e > 0.0 && e <= 1.0) {
-                    return Err(usage(format!("invalid --max-error: {e}; allowed (0, 1] (full scale)")));
+                    return Err(usage(format!(
+                        "invalid --max-error: {e}; allowed (0, 1] (full scale)"
+                    )));
                 }
                 if params.config.is_some() {
                     return Err(usage(
@@ -519,7 +600,15 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     ));
                 }
                 let given = explore::given_keys(&params, &rtl);
-                let chosen = explore::choose(explored.as_deref(), &cfg.params, &given, metric, display, e, mhz)?;
+                let chosen = explore::choose(
+                    explored.as_deref(),
+                    &cfg.params,
+                    &given,
+                    metric,
+                    display,
+                    e,
+                    mhz,
+                )?;
                 cfg = Config::new(chosen)?;
                 pick_depth = None;
             }
@@ -532,21 +621,34 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 let said = std::cell::Cell::new(std::time::Duration::ZERO);
                 // the options the user did not give may be chosen with the depth, from measured units
                 let given = explore::given_keys(&params, &rtl);
-                let free: Vec<&str> = ["rom_style", "fabric_registers"].into_iter().filter(|k| !given.contains(k)).collect();
+                let free: Vec<&str> = ["rom_style", "fabric_registers"]
+                    .into_iter()
+                    .filter(|k| !given.contains(k))
+                    .collect();
                 let before = plan.cfg.params.clone();
-                let picked = specgen::explore::depth_and_options_for_clock(&plan, mhz, specgen::explore::Policy::Assured, None, &free, |depth, deepest| {
-                    let now = start.elapsed();
-                    if now >= said.get() + std::time::Duration::from_secs(2) {
-                        said.set(now);
-                        errln!("target-mhz: planning --stages {depth} of at most {deepest} ({:.0} s)", now.as_secs_f64());
-                    }
-                });
+                let picked = specgen::explore::depth_and_options_for_clock(
+                    &plan,
+                    mhz,
+                    specgen::explore::Policy::Assured,
+                    None,
+                    &free,
+                    |depth, deepest| {
+                        let now = start.elapsed();
+                        if now >= said.get() + std::time::Duration::from_secs(2) {
+                            said.set(now);
+                            errln!("target-mhz: planning --stages {depth} of at most {deepest} ({:.0} s)", now.as_secs_f64());
+                        }
+                    },
+                );
                 match picked {
                     Ok(pick) => {
                         plan = pick.plan;
                         let mut options = String::new();
                         if plan.cfg.params.rom_style != before.rom_style {
-                            options.push_str(&format!(" --rom-style {}", plan.cfg.params.rom_style.name()));
+                            options.push_str(&format!(
+                                " --rom-style {}",
+                                plan.cfg.params.rom_style.name()
+                            ));
                         }
                         if plan.cfg.params.fabric_registers != before.fabric_registers {
                             options.push_str(" --fabric-registers");
@@ -557,8 +659,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
                             specgen::timing::part(plan.cfg.target()),
                             pick.evidence
                         );
-                        if !matches!(pick.evidence, specgen::explore::ClockEvidence::Measured { .. }) {
-                            errln!("target-mhz: measure it: specgen synth --rtl {} --seeds 3", out.display());
+                        if !matches!(
+                            pick.evidence,
+                            specgen::explore::ClockEvidence::Measured { .. }
+                        ) {
+                            errln!(
+                                "target-mhz: measure it: specgen synth --rtl {} --seeds 3",
+                                out.display()
+                            );
                         }
                     }
                     // the refusal names its reason, the best depth, the nearest measured unit and
@@ -566,7 +674,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     Err(refused) => {
                         let mut why = refused.reason();
                         if let Some(b) = plan.cfg.params.dsp_budget {
-                            why.push_str(&format!(" (with --dsp-budget {b}: {} product(s) summed in the fabric)", plan.datapath.fabric_products().len()));
+                            why.push_str(&format!(
+                                " (with --dsp-budget {b}: {} product(s) summed in the fabric)",
+                                plan.datapath.fabric_products().len()
+                            ));
                         }
                         why.push_str(&explore::nearest_measured(&plan.cfg.params, mhz)?);
                         why.push_str(&format!(
@@ -580,7 +691,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         } else {
                             why.push_str(" (--explain: how the delay model read it)");
                         }
-                        return Err(Failure::Config { parameter: "target_mhz", message: why });
+                        return Err(Failure::Config {
+                            parameter: "target_mhz",
+                            message: why,
+                        });
                     }
                 }
             }
@@ -596,11 +710,27 @@ fn run(cli: Cli) -> Result<(), Failure> {
             );
             Ok(())
         }
-        Command::Rom { table, format, output, top, params } => {
-            let cfg = params.to_config(Some(&RtlArgs { top, ..RtlArgs::default() }))?;
-            let plan = Plan::new(Config::new(Params { stages: 0, ..cfg.params.clone() })?)?;
+        Command::Rom {
+            table,
+            format,
+            output,
+            top,
+            params,
+        } => {
+            let cfg = params.to_config(Some(&RtlArgs {
+                top,
+                ..RtlArgs::default()
+            }))?;
+            let plan = Plan::new(Config::new(Params {
+                stages: 0,
+                ..cfg.params.clone()
+            })?)?;
             let tables = &plan.datapath.tables;
-            let names = tables.iter().map(|t| t.name.as_str()).collect::<Vec<_>>().join(", ");
+            let names = tables
+                .iter()
+                .map(|t| t.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ");
             let t = match &table {
                 None => tables.first(),
                 Some(name) => tables.iter().find(|t| &t.name == name),
@@ -615,18 +745,28 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let text = rom::render_table(&cfg, t, format.into());
             if let (Some(out), Some(config)) = (&output, &params.config) {
                 if specgen::output::same_file(out, config) {
-                    return Err(usage(format!("-o {} is the --config file this command reads; write the table elsewhere", out.display())));
+                    return Err(usage(format!(
+                        "-o {} is the --config file this command reads; write the table elsewhere",
+                        out.display()
+                    )));
                 }
             }
             match output {
-                Some(path) => specgen::output::write_file(&path, text.as_bytes()).map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
+                Some(path) => specgen::output::write_file(&path, text.as_bytes())
+                    .map_err(|e| failed(format!("cannot write {}: {e}", path.display()))),
                 None => {
                     out!("{text}")?;
                     Ok(())
                 }
             }
         }
-        Command::Eval { cos, cos_code, n, ks, params } => {
+        Command::Eval {
+            cos,
+            cos_code,
+            n,
+            ks,
+            params,
+        } => {
             let cfg = params.to_config(None)?;
             eval(&cfg, cos.as_deref(), cos_code, n, ks)
         }
@@ -638,15 +778,31 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Measure(args) => explore::measure(&args),
         Command::Stale(args) => explore::stale(&args),
         Command::Calibrate(args) => explore::calibrate(&args),
-        Command::Info { json: _, params, rtl } => info::run(&params, rtl),
+        Command::Info {
+            json: _,
+            params,
+            rtl,
+        } => info::run(&params, rtl),
         Command::Vectors(args) => vectors(&args),
-        Command::Report { out, force, hw, explored, params } => {
+        Command::Report {
+            out,
+            force,
+            hw,
+            explored,
+            params,
+        } => {
             let cfg = params.to_config(None)?;
-            let hw =
-                hw.iter().map(|p| specgen::synth::SynthResult::from_file(p).map_err(|e| usage(format!("invalid --hw: {e}")))).collect::<Result<Vec<_>, _>>()?;
+            let hw = hw
+                .iter()
+                .map(|p| {
+                    specgen::synth::SynthResult::from_file(p)
+                        .map_err(|e| usage(format!("invalid --hw: {e}")))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
             let explored = match &explored {
                 Some(p) => {
-                    let text = specgen::small_file::read(p, 64 << 20).map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?;
+                    let text = specgen::small_file::read(p, 64 << 20)
+                        .map_err(|e| usage(format!("invalid --explored: {} {e}", p.display())))?;
                     Some(
                         specgen::explore::Exploration::from_text(&text, &p.display().to_string())
                             .map_err(|e| usage(format!("invalid --explored: {}", e.reason())))?,
@@ -661,60 +817,115 @@ fn run(cli: Cli) -> Result<(), Failure> {
     }
 }
 
-fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Option<Vec<u32>>) -> Result<(), Failure> {
+fn eval(
+    cfg: &Config,
+    cos: Option<&str>,
+    cos_code: Option<u32>,
+    n: u32,
+    ks: Option<Vec<u32>>,
+) -> Result<(), Failure> {
     let f = cfg.f();
     let cos_g = match (cos, cos_code) {
         (Some(text), _) => {
-            let code = config::parse_decimal(text, f).map_err(|why| usage(format!("invalid --cos: {}; allowed a decimal in [0, 2)", why.reason())))?;
+            let code = config::parse_decimal(text, f).map_err(|why| {
+                usage(format!(
+                    "invalid --cos: {}; allowed a decimal in [0, 2)",
+                    why.reason()
+                ))
+            })?;
             if code >= 2u64 << f {
-                let top = format!("{:.*}", (f as usize * 3).div_ceil(10) + 1, ((2u64 << f) - 1) as f64 / (1u64 << f) as f64);
-                return Err(usage(if text.trim_start().starts_with('-') || text.trim().parse::<f64>().is_ok_and(|v| v >= 2.0) {
-                    format!("invalid --cos: {text} is out of range; allowed a decimal in [0, 2)")
-                } else {
-                    format!(
+                let top = format!(
+                    "{:.*}",
+                    (f as usize * 3).div_ceil(10) + 1,
+                    ((2u64 << f) - 1) as f64 / (1u64 << f) as f64
+                );
+                return Err(usage(
+                    if text.trim_start().starts_with('-')
+                        || text.trim().parse::<f64>().is_ok_and(|v| v >= 2.0)
+                    {
+                        format!(
+                            "invalid --cos: {text} is out of range; allowed a decimal in [0, 2)"
+                        )
+                    } else {
+                        format!(
                         "invalid --cos: {text} rounds to 2 at cos_frac_bits = {f} (the nearest multiple of 2^-{f}), one past the largest code; allowed a decimal in [0, 2) that rounds to at most {top}, or --cos-code"
                     )
-                }));
+                    },
+                ));
             }
             code as u32
         }
         (None, Some(code)) if code < 2u32 << f => code,
-        (None, Some(code)) => return Err(usage(format!("invalid --cos-code: {code} is out of range; allowed 0..={}", (2u32 << f) - 1))),
+        (None, Some(code)) => {
+            return Err(usage(format!(
+                "invalid --cos-code: {code} is out of range; allowed 0..={}",
+                (2u32 << f) - 1
+            )))
+        }
         (None, None) => return Err(usage("one of --cos or --cos-code is required")),
     };
     let n_max = (1u32 << cfg.n_bits()) - 1;
     if n > n_max {
-        return Err(usage(format!("invalid --n: {n} is out of range; allowed 0..={n_max} (n_bits = {})", cfg.n_bits())));
+        return Err(usage(format!(
+            "invalid --n: {n} is out of range; allowed 0..={n_max} (n_bits = {})",
+            cfg.n_bits()
+        )));
     }
     let ks_max = (1u32 << cfg.b()) - 1;
     let ks = ks.unwrap_or_else(|| vec![ks_max; 3]);
     if ks.len() != 3 {
-        return Err(usage(format!("invalid --ks: give three codes R,G,B, each 0..={ks_max}")));
+        return Err(usage(format!(
+            "invalid --ks: give three codes R,G,B, each 0..={ks_max}"
+        )));
     }
     if let Some(bad) = ks.iter().find(|&&k| k > ks_max) {
-        return Err(usage(format!("invalid --ks: {bad} is out of range; allowed 0..={ks_max} (color_bits = {})", cfg.b())));
+        return Err(usage(format!(
+            "invalid --ks: {bad} is out of range; allowed 0..={ks_max} (color_bits = {})",
+            cfg.b()
+        )));
     }
-    let x = Inputs { cos_g, n, ks: [ks[0], ks[1], ks[2]] };
+    let x = Inputs {
+        cos_g,
+        n,
+        ks: [ks[0], ks[1], ks[2]],
+    };
     // the golden model alone: no datapath, no Verilog
     let m = specgen::models::Model::new(cfg);
     let o = m.eval(x);
     let c = cos_g.min(1 << f) as f64 / (1u64 << f) as f64;
     let blinn = c.powi(n as i32);
     let scale = (cfg.fi() as f64).exp2();
-    outln!("input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}", exact_decimal(cos_g as u64, f), x.ks)?;
+    outln!(
+        "input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}",
+        exact_decimal(cos_g as u64, f),
+        x.ks
+    )?;
     outln!("model      {}", cfg.model().name())?;
     for line in m.unit().explain(x) {
         outln!("{line}")?;
     }
-    outln!("outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}", o.intensity, cfg.fi(), o.intensity as f64 / scale, o.spec, o.done)?;
+    outln!(
+        "outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}",
+        o.intensity,
+        cfg.fi(),
+        o.intensity as f64 / scale,
+        o.spec,
+        o.done
+    )?;
     outln!(
         "fidelity   Blinn cos^n = {blinn:.9}; this unit gives {:.9}, off by {:.9}{}",
         o.intensity as f64 / scale,
         (o.intensity as f64 / scale - blinn).abs(),
-        m.unit().fidelity_note(x).map_or(String::new(), |note| format!("; {note}"))
+        m.unit()
+            .fidelity_note(x)
+            .map_or(String::new(), |note| format!("; {note}"))
     )?;
     match m.check(x, o) {
-        Ok(()) => outln!("contract   {} rounding holds for this input ({} model)", cfg.rounding().name(), cfg.model().name())?,
+        Ok(()) => outln!(
+            "contract   {} rounding holds for this input ({} model)",
+            cfg.rounding().name(),
+            cfg.model().name()
+        )?,
         Err(e) => return Err(failed(format!("contract violated: {e}"))),
     }
     Ok(())
@@ -725,7 +936,10 @@ fn eval(cfg: &Config, cos: Option<&str>, cos_code: Option<u32>, n: u32, ks: Opti
 pub fn command() -> clap::Command {
     use clap::CommandFactory;
     let mut cmd = Cli::command();
-    let names: Vec<String> = cmd.get_subcommands().map(|s| s.get_name().to_string()).collect();
+    let names: Vec<String> = cmd
+        .get_subcommands()
+        .map(|s| s.get_name().to_string())
+        .collect();
     for sub in names {
         cmd = cmd.mut_subcommand(&sub, |mut sc| {
             for r in config::RANGES {
@@ -747,7 +961,10 @@ pub fn main() -> i32 {
     use clap::FromArgMatches;
     // SIGINT/SIGTERM/SIGHUP: temporaries removed, children ended (before any thread starts)
     specgen::process::remove_temporaries_on_signals();
-    let cli = match command().try_get_matches().and_then(|m| Cli::from_arg_matches(&m)) {
+    let cli = match command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m))
+    {
         Ok(cli) => cli,
         Err(e) => {
             let _ = e.print();
@@ -774,10 +991,25 @@ fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
     design.verify_files(false)?;
     design.refuse_output("--out", &args.out)?;
     let model = design.plan.model();
-    let selection = if args.exhaustive { Selection::Exhaustive } else { Selection::Random { count: args.count, seed: args.seed } };
-    let format = args.format.map(Into::into).unwrap_or_else(|| match args.out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-        Some("hex" | "mem") => VectorFormat::Hex,
-        _ => VectorFormat::Csv,
+    let selection = if args.exhaustive {
+        Selection::Exhaustive
+    } else {
+        Selection::Random {
+            count: args.count,
+            seed: args.seed,
+        }
+    };
+    let format = args.format.map(Into::into).unwrap_or_else(|| {
+        match args
+            .out
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("hex" | "mem") => VectorFormat::Hex,
+            _ => VectorFormat::Csv,
+        }
     });
     let (wanted, _) = specgen::vectors::inputs(&model, selection);
     if wanted > args.max_rows {
@@ -787,8 +1019,14 @@ fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
             args.max_rows
         )));
     }
-    let rows = specgen::output::write_file_with(&args.out, |w| specgen::vectors::write(&model, selection, format, w))
-        .map_err(|e| Failure::io("write", &args.out, e))?;
-    outln!("{rows} vectors ({format:?}, latency {}) written to {}", design.cfg.latency(), args.out.display())?;
+    let rows = specgen::output::write_file_with(&args.out, |w| {
+        specgen::vectors::write(&model, selection, format, w)
+    })
+    .map_err(|e| Failure::io("write", &args.out, e))?;
+    outln!(
+        "{rows} vectors ({format:?}, latency {}) written to {}",
+        design.cfg.latency(),
+        args.out.display()
+    )?;
     Ok(())
 }

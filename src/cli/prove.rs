@@ -3,7 +3,9 @@
 use super::outln;
 use super::{failed, Failure};
 use specgen::cosim::Design;
-use specgen::prove::{environment, prove, prove_datapath, prove_pipelining, Tools, Unbounded, Verdict, OF_THE_BUILT};
+use specgen::prove::{
+    environment, prove, prove_datapath, prove_pipelining, Tools, Unbounded, Verdict, OF_THE_BUILT,
+};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -67,16 +69,26 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
             return Err(super::usage("invalid --cover-trace: a valid unit's proof has no covers (the port checker is a ready/axis unit's)"));
         }
         if args.trace.as_ref() == Some(t) {
-            return Err(super::usage("invalid --cover-trace: the same file as --trace"));
+            return Err(super::usage(
+                "invalid --cover-trace: the same file as --trace",
+            ));
         }
     }
     // the ports the manifest names, as cosim and synth check them: an extra, missing or wider
     // port is refused before anything is proved
     specgen::cosim::check_ports(&design)?;
-    if let Some(why) = args.pipelining.then(|| specgen::prove::pipelining_refused(&design)).flatten() {
+    if let Some(why) = args
+        .pipelining
+        .then(|| specgen::prove::pipelining_refused(&design))
+        .flatten()
+    {
         return Err(super::usage(format!("invalid --pipelining: {why}")));
     }
-    if let Some(why) = args.datapath.then(|| specgen::prove::datapath_refused(&design)).flatten() {
+    if let Some(why) = args
+        .datapath
+        .then(|| specgen::prove::datapath_refused(&design))
+        .flatten()
+    {
         return Err(super::usage(format!("invalid --datapath: {why}")));
     }
     let progress: fn(&str) = |line| super::errln!("prove: {line}");
@@ -165,8 +177,13 @@ pub fn run(args: &ProveArgs) -> Result<(), Failure> {
 }
 
 /// What the port checker found, after the verdict's own lines.
-fn at_the_ports(proof: &specgen::prove::Proof, cover_trace: Option<&std::path::Path>) -> Result<(), Failure> {
-    let Some(ports) = &proof.ports else { return Ok(()) };
+fn at_the_ports(
+    proof: &specgen::prove::Proof,
+    cover_trace: Option<&std::path::Path>,
+) -> Result<(), Failure> {
+    let Some(ports) = &proof.ports else {
+        return Ok(());
+    };
     let bounded = format!(
         "no property fails within the first {} clock edges from power-up (a bounded search over the checker's rules and the unit's own assertions)",
         ports.depth
@@ -185,17 +202,28 @@ fn at_the_ports(proof: &specgen::prove::Proof, cover_trace: Option<&std::path::P
         outln!("  - {p}")?;
     }
     if !ports.bounded_only.is_empty() {
-        outln!("and by the bounded search alone, of {} edges from power-up, not a proof:", ports.depth)?;
+        outln!(
+            "and by the bounded search alone, of {} edges from power-up, not a proof:",
+            ports.depth
+        )?;
         for p in &ports.bounded_only {
             outln!("  - {p}")?;
         }
     }
-    outln!("covers, all reached in one run by edge {} (none vacuous):", ports.covered_by)?;
+    outln!(
+        "covers, all reached in one run by edge {} (none vacuous):",
+        ports.covered_by
+    )?;
     for c in &ports.covers {
         outln!("  - {c}")?;
     }
     if let (Some(path), Some(vcd)) = (cover_trace, &ports.cover_vcd) {
-        specgen::output::write_file(path, vcd).map_err(|e| failed(format!("could not write the covering run's trace {}: {e}", path.display())))?;
+        specgen::output::write_file(path, vcd).map_err(|e| {
+            failed(format!(
+                "could not write the covering run's trace {}: {e}",
+                path.display()
+            ))
+        })?;
         outln!("the covering run's trace: {}", path.display())?;
     }
     Ok(())

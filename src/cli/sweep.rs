@@ -33,14 +33,26 @@ pub struct RunOptions<'a> {
 
 /// Runs every job of `jobs` that has no result in `store` (each its own `specgen measure`):
 /// Ok with the fingerprints that failed (named; the merge then lists them as missing).
-pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<Vec<String>, Failure> {
+pub fn run_jobs(
+    jobs: &[explore::Job],
+    store: &Path,
+    o: &RunOptions,
+) -> Result<Vec<String>, Failure> {
     std::fs::create_dir_all(store).map_err(|e| Failure::io("create", store, e))?;
     // one sweep at a time on a store: this lock is held for the run's life
     let lock_path = store.join(".specgen-sweep.lock");
-    let lock = std::fs::OpenOptions::new().create(true).append(true).open(&lock_path).map_err(|e| Failure::io("open", &lock_path, e))?;
+    let lock = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&lock_path)
+        .map_err(|e| Failure::io("open", &lock_path, e))?;
     // (an flock, released when `lock` closes)
     if lock.try_lock().is_err() {
-        return Err(failed(format!("a sweep is running on {} (it holds {}); wait for it or stop it", store.display(), lock_path.display())));
+        return Err(failed(format!(
+            "a sweep is running on {} (it holds {}); wait for it or stop it",
+            store.display(),
+            lock_path.display()
+        )));
     }
     // the plan's jobs, as data the jobs read (named by their content: two plans never share one)
     let text = serde_json::to_string(jobs).expect("jobs serialise");
@@ -49,8 +61,13 @@ pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<V
     let own = store.join(".specgen");
     std::fs::create_dir_all(&own).map_err(|e| Failure::io("create", &own, e))?;
     let plan = own.join(format!("jobs-{digest}.json"));
-    specgen::output::write_file(&plan, text.as_bytes()).map_err(|e| Failure::io("write", &plan, e))?;
-    let me = std::env::current_exe().map_err(|e| failed(format!("cannot find specgen's own binary to run the jobs: {e}")))?;
+    specgen::output::write_file(&plan, text.as_bytes())
+        .map_err(|e| Failure::io("write", &plan, e))?;
+    let me = std::env::current_exe().map_err(|e| {
+        failed(format!(
+            "cannot find specgen's own binary to run the jobs: {e}"
+        ))
+    })?;
     let snakemake = match o.engine {
         Engine::Specgen => false,
         Engine::Snakemake => true,
@@ -59,7 +76,10 @@ pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<V
     if snakemake {
         return run_snakemake(&plan, &me, store, o).map(|()| Vec::new());
     }
-    let missing: Vec<&explore::Job> = jobs.iter().filter(|j| !explore::whole_result(&store.join(format!("{}.json", j.fingerprint)), j)).collect();
+    let missing: Vec<&explore::Job> = jobs
+        .iter()
+        .filter(|j| !explore::whole_result(&store.join(format!("{}.json", j.fingerprint)), j))
+        .collect();
     eprintln!(
         "explore --run: {} jobs, {} with a result already, {} to run, {} at a time",
         jobs.len(),
@@ -75,14 +95,23 @@ pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<V
         while running.len() < o.jobs_at_once.max(1) {
             let Some(job) = next.next() else { break };
             let mut cmd = std::process::Command::new(&me);
-            cmd.arg("measure").arg("--jobs").arg(&plan).arg("--fingerprint").arg(&job.fingerprint);
-            cmd.arg("--out").arg(store.join(format!("{}.json", job.fingerprint))).arg("--cache").arg(store.join(".yosys-cache"));
+            cmd.arg("measure")
+                .arg("--jobs")
+                .arg(&plan)
+                .arg("--fingerprint")
+                .arg(&job.fingerprint);
+            cmd.arg("--out")
+                .arg(store.join(format!("{}.json", job.fingerprint)))
+                .arg("--cache")
+                .arg(store.join(".yosys-cache"));
             cmd.arg("--yosys").arg(o.yosys);
             if let Some(n) = o.nextpnr {
                 cmd.arg("--nextpnr").arg(n);
             }
             cmd.stdout(std::process::Stdio::null());
-            let child = cmd.spawn().map_err(|e| failed(format!("cannot run {} measure: {e}", me.display())))?;
+            let child = cmd
+                .spawn()
+                .map_err(|e| failed(format!("cannot run {} measure: {e}", me.display())))?;
             running.push((job.fingerprint.clone(), child));
         }
         if running.is_empty() {
@@ -92,7 +121,10 @@ pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<V
         let mut ended = None;
         while ended.is_none() {
             for (i, (_, c)) in running.iter_mut().enumerate() {
-                if let Some(status) = c.try_wait().map_err(|e| failed(format!("waiting for a job: {e}")))? {
+                if let Some(status) = c
+                    .try_wait()
+                    .map_err(|e| failed(format!("waiting for a job: {e}")))?
+                {
                     ended = Some((i, status));
                     break;
                 }
@@ -119,7 +151,8 @@ pub fn run_jobs(jobs: &[explore::Job], store: &Path, o: &RunOptions) -> Result<V
 /// in the environment (data, never parsed), a profile where given.
 fn run_snakemake(plan: &Path, me: &Path, store: &Path, o: &RunOptions) -> Result<(), Failure> {
     let snakefile = store.join(".specgen").join("Snakefile");
-    specgen::output::write_file(&snakefile, SNAKEFILE.as_bytes()).map_err(|e| Failure::io("write", &snakefile, e))?;
+    specgen::output::write_file(&snakefile, SNAKEFILE.as_bytes())
+        .map_err(|e| Failure::io("write", &snakefile, e))?;
     // this run holds the store's sweep lock: a Snakemake lock there is a killed sweep's, lifted
     // (a job of it still running holds its own job's lock, so none starts beside itself)
     if store.join(".snakemake").join("locks").is_dir() {
@@ -136,7 +169,12 @@ fn run_snakemake(plan: &Path, me: &Path, store: &Path, o: &RunOptions) -> Result
     }
     let mut cmd = std::process::Command::new("snakemake");
     cmd.arg("-s").arg(&snakefile).arg("--directory").arg(store);
-    cmd.args(["--ignore-incomplete", "--rerun-triggers", "mtime", "--keep-going"]);
+    cmd.args([
+        "--ignore-incomplete",
+        "--rerun-triggers",
+        "mtime",
+        "--keep-going",
+    ]);
     match o.profile {
         Some(p) => {
             cmd.arg("--profile").arg(p);
@@ -145,7 +183,9 @@ fn run_snakemake(plan: &Path, me: &Path, store: &Path, o: &RunOptions) -> Result
             cmd.arg("--cores").arg(o.jobs_at_once.max(1).to_string());
         }
     }
-    cmd.env("SPECGEN_SWEEP_JOBS", plan).env("SPECGEN_SWEEP_SPECGEN", me).env("SPECGEN_SWEEP_YOSYS", o.yosys);
+    cmd.env("SPECGEN_SWEEP_JOBS", plan)
+        .env("SPECGEN_SWEEP_SPECGEN", me)
+        .env("SPECGEN_SWEEP_YOSYS", o.yosys);
     if let Some(n) = o.nextpnr {
         cmd.env("SPECGEN_SWEEP_NEXTPNR", n);
     }

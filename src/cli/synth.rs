@@ -90,7 +90,11 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     // must be the RTL's own, its parameters unedited, and (unless --edited) the files the ones
     // specgen wrote with it
     design.verify_files(args.edited)?;
-    for (flag, out) in [("--json", &args.json), ("--pnr-log", &args.pnr_log), ("--bitstream", &args.bitstream)] {
+    for (flag, out) in [
+        ("--json", &args.json),
+        ("--pnr-log", &args.pnr_log),
+        ("--bitstream", &args.bitstream),
+    ] {
         if let Some(out) = out {
             design.refuse_output(flag, out)?;
         }
@@ -104,10 +108,21 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         cache: None,
         pack: args.bitstream.is_some(),
     };
-    let done = synthesize(&design, target, args.dsp, &tools, &if args.no_pnr { Vec::new() } else { (1..=args.seeds).collect::<Vec<u32>>() })?;
+    let done = synthesize(
+        &design,
+        target,
+        args.dsp,
+        &tools,
+        &if args.no_pnr {
+            Vec::new()
+        } else {
+            (1..=args.seeds).collect::<Vec<u32>>()
+        },
+    )?;
     let r = done.result;
     if let Some(path) = &args.pnr_log {
-        specgen::output::write_file(path, done.logs.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+        specgen::output::write_file(path, done.logs.as_bytes())
+            .map_err(|e| Failure::io("write", path, e))?;
     }
     out!("{}", table(&r))?;
     // the netlist checked before any figure of it is written
@@ -118,8 +133,20 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
         (false, _, true) => None,
     };
     if let Some(depth) = depth {
-        let vectors = if depth == Depth::Short { SHORT_CHECK_VECTORS } else { args.verify_vectors };
-        let v = specgen::synth::verify(&design, target, args.dsp, &args.yosys, &args.sim.tools(), vectors, depth)?;
+        let vectors = if depth == Depth::Short {
+            SHORT_CHECK_VECTORS
+        } else {
+            args.verify_vectors
+        };
+        let v = specgen::synth::verify(
+            &design,
+            target,
+            args.dsp,
+            &args.yosys,
+            &args.sim.tools(),
+            vectors,
+            depth,
+        )?;
         for (sim, report) in &v.runs {
             outln!(
                 "verify: mapped netlist with {} under {sim:?}: {} cycles, {} checked, {} mismatches",
@@ -137,7 +164,9 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
                 )));
             }
             if report.checked == 0 {
-                return Err(failed(format!("verify under {sim:?}: no output was checked")));
+                return Err(failed(format!(
+                    "verify under {sim:?}: no output was checked"
+                )));
             }
         }
     } else {
@@ -146,12 +175,17 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     if let Some(path) = &args.json {
         let mut text = serde_json::to_string_pretty(&r).expect("serialises");
         text.push('\n');
-        specgen::output::write_file(path, text.as_bytes()).map_err(|e| Failure::io("write", path, e))?;
+        specgen::output::write_file(path, text.as_bytes())
+            .map_err(|e| Failure::io("write", path, e))?;
     }
     // the bitstream of a netlist that was checked
     if let (Some(path), Some(bits)) = (&args.bitstream, &done.bitstream) {
         specgen::output::write_file(path, bits).map_err(|e| Failure::io("write", path, e))?;
-        outln!("bitstream: {} ({} bytes, the unit in its serial-I/O wrapper, seed 1)", path.display(), bits.len())?;
+        outln!(
+            "bitstream: {} ({} bytes, the unit in its serial-I/O wrapper, seed 1)",
+            path.display(),
+            bits.len()
+        )?;
     }
     Ok(())
 }

@@ -146,18 +146,37 @@ flag_values! {
 #[derive(clap::Args, Debug, Clone)]
 pub struct SimToolArgs {
     /// The Verilator program (e.g. a newer build than the PATH's).
-    #[arg(long, value_name = "PATH", default_value = "verilator", help_heading = "Simulators")]
+    #[arg(
+        long,
+        value_name = "PATH",
+        default_value = "verilator",
+        help_heading = "Simulators"
+    )]
     pub verilator: String,
     /// Icarus Verilog's compiler.
-    #[arg(long, value_name = "PATH", default_value = "iverilog", help_heading = "Simulators")]
+    #[arg(
+        long,
+        value_name = "PATH",
+        default_value = "iverilog",
+        help_heading = "Simulators"
+    )]
     pub iverilog: String,
     /// Icarus Verilog's runtime.
-    #[arg(long, value_name = "PATH", default_value = "vvp", help_heading = "Simulators")]
+    #[arg(
+        long,
+        value_name = "PATH",
+        default_value = "vvp",
+        help_heading = "Simulators"
+    )]
     pub vvp: String,
 }
 
 impl SimToolArgs {
     pub fn tools(&self) -> specgen::cosim::SimTools {
-        specgen::cosim::SimTools { verilator: self.verilator.clone(), iverilog: self.iverilog.clone(), vvp: self.vvp.clone() }
+        specgen::cosim::SimTools {
+            verilator: self.verilator.clone(),
+            iverilog: self.iverilog.clone(),
+            vvp: self.vvp.clone(),
+        }
     }
 }

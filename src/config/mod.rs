@@ -82,8 +82,25 @@ pub fn datapaths(target: Target) -> Vec<(&'static str, Params)> {
     let mut out = Vec::new();
     for model in SpecularModel::ALL {
         match model.reads("arch") {
-            true => out.extend(Arch::ALL.map(|arch| (arch.name(), Params { model, arch, target, ..Default::default() }))),
-            false => out.push((model.name(), Params { model, target, ..Default::default() })),
+            true => out.extend(Arch::ALL.map(|arch| {
+                (
+                    arch.name(),
+                    Params {
+                        model,
+                        arch,
+                        target,
+                        ..Default::default()
+                    },
+                )
+            })),
+            false => out.push((
+                model.name(),
+                Params {
+                    model,
+                    target,
+                    ..Default::default()
+                },
+            )),
         }
     }
     out
@@ -111,8 +128,13 @@ pub enum SpecularModel {
 
 impl SpecularModel {
     /// Every model, from the coarsest to the exact ones (the order of reports and tests).
-    pub const ALL: [SpecularModel; 5] =
-        [SpecularModel::Quadratic, SpecularModel::Schlick, SpecularModel::Fitted, SpecularModel::Blinn, SpecularModel::BlinnPow];
+    pub const ALL: [SpecularModel; 5] = [
+        SpecularModel::Quadratic,
+        SpecularModel::Schlick,
+        SpecularModel::Fitted,
+        SpecularModel::Blinn,
+        SpecularModel::BlinnPow,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -234,24 +256,78 @@ pub struct Range {
     pub default: u32,
 }
 
-pub const COS_FRAC_BITS: Range = Range { name: "cos_frac_bits", min: 4, max: 20, default: 15 };
-pub const N_BITS: Range = Range { name: "n_bits", min: 1, max: 12, default: 10 };
-pub const COLOR_BITS: Range = Range { name: "color_bits", min: 1, max: 16, default: 8 };
-pub const INTENSITY_FRAC_BITS: Range = Range { name: "intensity_frac_bits", min: 1, max: 24, default: 15 };
-pub const K_FRAC_BITS: Range = Range { name: "k_frac_bits", min: 4, max: 24, default: 16 };
-pub const MAX_SQUARINGS: Range = Range { name: "max_squarings", min: 0, max: 4, default: 3 };
-pub const TAG_BITS: Range = Range { name: "tag_bits", min: 0, max: 64, default: 0 };
+pub const COS_FRAC_BITS: Range = Range {
+    name: "cos_frac_bits",
+    min: 4,
+    max: 20,
+    default: 15,
+};
+pub const N_BITS: Range = Range {
+    name: "n_bits",
+    min: 1,
+    max: 12,
+    default: 10,
+};
+pub const COLOR_BITS: Range = Range {
+    name: "color_bits",
+    min: 1,
+    max: 16,
+    default: 8,
+};
+pub const INTENSITY_FRAC_BITS: Range = Range {
+    name: "intensity_frac_bits",
+    min: 1,
+    max: 24,
+    default: 15,
+};
+pub const K_FRAC_BITS: Range = Range {
+    name: "k_frac_bits",
+    min: 4,
+    max: 24,
+    default: 16,
+};
+pub const MAX_SQUARINGS: Range = Range {
+    name: "max_squarings",
+    min: 0,
+    max: 4,
+    default: 3,
+};
+pub const TAG_BITS: Range = Range {
+    name: "tag_bits",
+    min: 0,
+    max: 64,
+    default: 0,
+};
 /// `--dsp-budget`: the most hard multiplier blocks the unit may take (its default, none given,
 /// is no limit).
-pub const DSP_BUDGET: Range = Range { name: "dsp_budget", min: 0, max: 256, default: 256 };
+pub const DSP_BUDGET: Range = Range {
+    name: "dsp_budget",
+    min: 0,
+    max: 256,
+    default: 256,
+};
 
 /// Every integer parameter with a fixed range (`stages` depends on the datapath).
-pub const RANGES: &[&Range] = &[&COS_FRAC_BITS, &N_BITS, &COLOR_BITS, &INTENSITY_FRAC_BITS, &K_FRAC_BITS, &MAX_SQUARINGS, &TAG_BITS];
+pub const RANGES: &[&Range] = &[
+    &COS_FRAC_BITS,
+    &N_BITS,
+    &COLOR_BITS,
+    &INTENSITY_FRAC_BITS,
+    &K_FRAC_BITS,
+    &MAX_SQUARINGS,
+    &TAG_BITS,
+];
 
 impl Range {
     fn check(&self, value: u32) -> Result<u32, Error> {
         if value < self.min || value > self.max {
-            Err(Error::Config { parameter: self.name, message: format!("{} is out of range; allowed {}..={}", value, self.min, self.max) })
+            Err(Error::Config {
+                parameter: self.name,
+                message: format!(
+                    "{} is out of range; allowed {}..={}",
+                    value, self.min, self.max
+                ),
+            })
         } else {
             Ok(value)
         }
@@ -352,7 +428,10 @@ pub const MODEL_KEYS: &[(&str, &[SpecularModel])] = &[
     ("k", &[SpecularModel::Quadratic]),
     ("k_code", &[SpecularModel::Quadratic]),
     ("arch", &[SpecularModel::Quadratic]),
-    ("k_frac_bits", &[SpecularModel::Quadratic, SpecularModel::Fitted]),
+    (
+        "k_frac_bits",
+        &[SpecularModel::Quadratic, SpecularModel::Fitted],
+    ),
     ("max_squarings", &[SpecularModel::Fitted]),
 ];
 
@@ -362,12 +441,24 @@ pub const MODEL_OPTIONS: &[(&str, &[SpecularModel])] = &[
     ("rounding=exact", &[SpecularModel::Quadratic]),
     ("arch=paper", &[SpecularModel::Quadratic]),
     // the models with tables (blinn-pow has none)
-    ("rom_style=logic", &[SpecularModel::Quadratic, SpecularModel::Schlick, SpecularModel::Fitted, SpecularModel::Blinn]),
+    (
+        "rom_style=logic",
+        &[
+            SpecularModel::Quadratic,
+            SpecularModel::Schlick,
+            SpecularModel::Fitted,
+            SpecularModel::Blinn,
+        ],
+    ),
 ];
 
 /// The models that take `option` of [`MODEL_OPTIONS`], by name ("quadratic", "quadratic and fitted").
 fn takers(option: &str) -> String {
-    let names: Vec<&str> = SpecularModel::ALL.into_iter().filter(|m| m.takes(option)).map(SpecularModel::name).collect();
+    let names: Vec<&str> = SpecularModel::ALL
+        .into_iter()
+        .filter(|m| m.takes(option))
+        .map(SpecularModel::name)
+        .collect();
     names.join(" and ")
 }
 
@@ -375,13 +466,19 @@ impl SpecularModel {
     /// Whether this model reads the parameter (or output) `key`: false only for the keys of
     /// [`MODEL_KEYS`] that belong to other models.
     pub fn reads(self, key: &str) -> bool {
-        MODEL_KEYS.iter().find(|(k, _)| *k == key).is_none_or(|(_, models)| models.contains(&self))
+        MODEL_KEYS
+            .iter()
+            .find(|(k, _)| *k == key)
+            .is_none_or(|(_, models)| models.contains(&self))
     }
 
     /// Whether this model takes `option` (`name=value`): false only for the options of
     /// [`MODEL_OPTIONS`] that belong to other models.
     pub fn takes(self, option: &str) -> bool {
-        MODEL_OPTIONS.iter().find(|(o, _)| *o == option).is_none_or(|(_, models)| models.contains(&self))
+        MODEL_OPTIONS
+            .iter()
+            .find(|(o, _)| *o == option)
+            .is_none_or(|(_, models)| models.contains(&self))
     }
 
     /// Drops from a JSON object (a manifest, a report's parameters) the keys of other models.
@@ -432,8 +529,12 @@ impl Params {
     /// Reads parameters from JSON: a full manifest written by `generate`, or any subset of
     /// the parameter keys (the rest take their defaults). Unknown keys are an error.
     pub fn from_json(text: &str) -> Result<Params, Error> {
-        let err = |message: String| Error::Config { parameter: "config", message };
-        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| err(format!("not valid JSON: {e}")))?;
+        let err = |message: String| Error::Config {
+            parameter: "config",
+            message,
+        };
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| err(format!("not valid JSON: {e}")))?;
         let serde_json::Value::Object(mut map) = value else {
             return Err(err("must hold a JSON object".into()));
         };
@@ -458,11 +559,19 @@ impl Params {
     }
 
     pub fn from_json_file(path: &std::path::Path) -> Result<Params, Error> {
-        let err = |why: String| Error::Config { parameter: "config", message: format!("{}: {why}", path.display()) };
-        let text = crate::small_file::read(path, 1 << 20).map_err(|e| match crate::small_file::refused(&e) {
-            true => err(format!("{e}; allowed a JSON file of at most 1 MiB")),
-            false => err(e.to_string().replacen("cannot be read", "cannot read it", 1)),
-        })?;
+        let err = |why: String| Error::Config {
+            parameter: "config",
+            message: format!("{}: {why}", path.display()),
+        };
+        let text =
+            crate::small_file::read(path, 1 << 20).map_err(
+                |e| match crate::small_file::refused(&e) {
+                    true => err(format!("{e}; allowed a JSON file of at most 1 MiB")),
+                    false => err(e
+                        .to_string()
+                        .replacen("cannot be read", "cannot read it", 1)),
+                },
+            )?;
         Params::from_json(&text).map_err(|e| err(e.reason()))
     }
 }
@@ -497,7 +606,10 @@ impl Config {
         if params.tlast && params.interface != Interface::Axis {
             return Err(Error::Config {
                 parameter: "tlast",
-                message: format!("applies to the axis interface only; allowed with {}: none", params.interface.name()),
+                message: format!(
+                    "applies to the axis interface only; allowed with {}: none",
+                    params.interface.name()
+                ),
             });
         }
         if params.clock_enable && !params.interface.handshake() {
@@ -524,12 +636,17 @@ impl Config {
         if params.rounding == Rounding::Exact && !params.model.takes("rounding=exact") {
             return Err(Error::Config {
                 parameter: "rounding",
-                message: format!("exact is not available with the {} model; allowed: faithful", params.model.name()),
+                message: format!(
+                    "exact is not available with the {} model; allowed: faithful",
+                    params.model.name()
+                ),
             });
         }
         // (the family's part of the rule, which families write tables as logic, is the plan's:
         // `Family::writes_logic_tables`)
-        if params.rom_style == RomStyle::Logic && !(params.model.takes("rom_style=logic") && params.arch == Arch::Lean) {
+        if params.rom_style == RomStyle::Logic
+            && !(params.model.takes("rom_style=logic") && params.arch == Arch::Lean)
+        {
             return Err(Error::Config {
                 parameter: "rom_style",
                 message: format!(
@@ -544,7 +661,11 @@ impl Config {
         if params.arch == Arch::Paper && !params.model.takes("arch=paper") {
             return Err(Error::Config {
                 parameter: "arch",
-                message: format!("paper applies to the {} model only; allowed with {}: lean", takers("arch=paper"), params.model.name()),
+                message: format!(
+                    "paper applies to the {} model only; allowed with {}: lean",
+                    takers("arch=paper"),
+                    params.model.name()
+                ),
             });
         }
         // `stages` is bounded by the datapath's cut points: `plan::Plan::new` checks it, since
@@ -632,7 +753,10 @@ impl Config {
     /// The clock the unit names (`clock_mhz`), if any; `crate::family::clock_mhz` gives the
     /// family's default otherwise.
     pub fn explicit_clock_mhz(&self) -> Option<f64> {
-        self.params.clock_mhz.as_ref().map(|text| parse_clock_mhz(text).expect("validated"))
+        self.params
+            .clock_mhz
+            .as_ref()
+            .map(|text| parse_clock_mhz(text).expect("validated"))
     }
     /// The unit's ports (SPEC §2) in module order; `done_meaning` completes `done`'s comment.
     pub fn ports(&self, done_meaning: &str) -> Vec<crate::ports::Port> {
@@ -642,7 +766,13 @@ impl Config {
     /// The ports under their plain names, the fields of an `axis` unit's `tdata` among them
     /// (the columns of vectors, the widths of the buffer's fields).
     pub(crate) fn logical_ports(&self) -> Vec<crate::ports::Port> {
-        crate::ports::ports(crate::ports::PortWidths { axis: false, ..self.port_widths() }, "")
+        crate::ports::ports(
+            crate::ports::PortWidths {
+                axis: false,
+                ..self.port_widths()
+            },
+            "",
+        )
     }
 
     /// What the port table depends on.
@@ -666,7 +796,12 @@ impl Config {
     /// Cycles from a pixel in to its result out: the pipeline's registers, and behind a
     /// handshake the output buffer's (while the consumer is ready).
     pub fn latency(&self) -> u32 {
-        self.stages() + if self.interface().handshake() { BUFFER_LATENCY } else { 0 }
+        self.stages()
+            + if self.interface().handshake() {
+                BUFFER_LATENCY
+            } else {
+                0
+            }
     }
 
     /// The datapath's name in messages: the architecture for the quadratic model, else the model.
@@ -708,7 +843,11 @@ impl Config {
         if m.reads("max_squarings") {
             s.push_str(&format!(" max_squarings={}", p.max_squarings));
         }
-        s.push_str(&format!(" stages={} rounding={}", p.stages, p.rounding.name()));
+        s.push_str(&format!(
+            " stages={} rounding={}",
+            p.stages,
+            p.rounding.name()
+        ));
         if m.reads("arch") {
             s.push_str(&format!(" arch={}", p.arch.name()));
         }
@@ -778,10 +917,20 @@ mod tests {
     #[test]
     fn top_must_be_identifier() {
         for bad in ["", "1abc", "a-b", "../x", "a/b", "module", "wire", "a b"] {
-            let p = Params { top: bad.into(), ..Params::default() };
-            assert_eq!(Config::new(p).unwrap_err().parameter(), Some("top"), "{bad}");
+            let p = Params {
+                top: bad.into(),
+                ..Params::default()
+            };
+            assert_eq!(
+                Config::new(p).unwrap_err().parameter(),
+                Some("top"),
+                "{bad}"
+            );
         }
-        let p = Params { top: "my_unit_2".into(), ..Params::default() };
+        let p = Params {
+            top: "my_unit_2".into(),
+            ..Params::default()
+        };
         assert!(Config::new(p).is_ok());
     }
 }

@@ -36,7 +36,11 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
     let (tw, user) = (cfg.carried_tag_bits(), cfg.tag_bits());
     let axis = cfg.interface() == Interface::Axis;
     // a handshake unit's lemma port, passed through (`specgen prove`: SPECGEN_LEMMAS)
-    let lemma_w = if cfg.interface().handshake() { crate::interface::CheckerState::of(cfg).width() } else { 0 };
+    let lemma_w = if cfg.interface().handshake() {
+        crate::interface::CheckerState::of(cfg).width()
+    } else {
+        0
+    };
     let (sf, sw, mf, mw) = ports::tdata_fields(cfg.port_widths());
     let mut body = Vec::new();
     let mut links = Vec::new();
@@ -72,7 +76,12 @@ pub(crate) fn adapter_named(cfg: &Config, name: &str) -> String {
     if axis {
         body.push(format!("wire [{}:0] m_tdata;", mw - 1));
         for f in &mf {
-            body.push(format!("assign {} = m_tdata[{}:{}];", f.name, f.lo + f.width - 1, f.lo));
+            body.push(format!(
+                "assign {} = m_tdata[{}:{}];",
+                f.name,
+                f.lo + f.width - 1,
+                f.lo
+            ));
         }
     }
     body.push(format!("{} dut (", cfg.top()));

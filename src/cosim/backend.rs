@@ -1,7 +1,9 @@
 //! The simulators: cached builds of the harnesses in `tb/`, and runs that stream vectors
 //! through them into a [`Checker`].
 
-use super::{Checker, Cycle, Design, Mismatch, Recorded, Report, Sampled, SimTools, Simulator, Stimulus};
+use super::{
+    Checker, Cycle, Design, Mismatch, Recorded, Report, Sampled, SimTools, Simulator, Stimulus,
+};
 use crate::error::{self, input, Error as Failure};
 use crate::models::{Model, Outputs};
 use sha2::{Digest, Sha256};
@@ -22,21 +24,37 @@ const ICARUS_BENCH: &str = include_str!("../../tb/icarus_bench.v");
 fn cache_root() -> Result<PathBuf, Failure> {
     let root = if let Some(dir) = std::env::var_os("SPECGEN_CACHE_DIR").filter(|d| !d.is_empty()) {
         // a relative name is the caller's working directory's (the simulators run elsewhere)
-        std::path::absolute(PathBuf::from(&dir)).map_err(|e| error::tool("simulator", format!("SPECGEN_CACHE_DIR={}: {e}", PathBuf::from(&dir).display())))?
-    } else if let Some(dir) = std::env::var_os("XDG_CACHE_HOME").filter(|d| Path::new(d).is_absolute()) {
+        std::path::absolute(PathBuf::from(&dir)).map_err(|e| {
+            error::tool(
+                "simulator",
+                format!("SPECGEN_CACHE_DIR={}: {e}", PathBuf::from(&dir).display()),
+            )
+        })?
+    } else if let Some(dir) =
+        std::env::var_os("XDG_CACHE_HOME").filter(|d| Path::new(d).is_absolute())
+    {
         PathBuf::from(dir).join("specgen")
     } else if let Some(cache) = std::env::var_os("HOME")
         .filter(|d| Path::new(d).is_absolute())
         .map(|home| PathBuf::from(home).join(".cache").join("specgen"))
         // a HOME where no cache can be made (not a directory, not writable) falls back to the
         // temporary one; a cache that is there is held to the rules below, never passed over
-        .filter(|c| c.exists() || c.parent().is_some_and(|p| std::fs::create_dir_all(p).is_ok()))
+        .filter(|c| {
+            c.exists()
+                || c.parent()
+                    .is_some_and(|p| std::fs::create_dir_all(p).is_ok())
+        })
     {
         cache
     } else {
         std::env::temp_dir().join(format!("specgen-cache-{}", crate::output::euid()))
     };
-    crate::output::private_dir(&root).map_err(|why| error::tool("simulator", format!("the simulator cache cannot be used: {why}")))?;
+    crate::output::private_dir(&root).map_err(|why| {
+        error::tool(
+            "simulator",
+            format!("the simulator cache cannot be used: {why}"),
+        )
+    })?;
     Ok(root)
 }
 
@@ -52,16 +70,29 @@ fn own_entry(dir: &Path) -> bool {
 /// Perl: 30 ms a call). A program not found is the tool's error (exit 1), naming its package.
 fn tool_identity(tool: &str, package: &str) -> Result<String, Failure> {
     use std::os::unix::fs::MetadataExt;
-    let missing = || error::tool(tool, format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package}), or name the program"));
+    let missing = || {
+        error::tool(tool, format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package}), or name the program"))
+    };
     let program = if tool.contains('/') {
-        Some(PathBuf::from(tool)).filter(|p| p.is_file()).ok_or_else(missing)?
+        Some(PathBuf::from(tool))
+            .filter(|p| p.is_file())
+            .ok_or_else(missing)?
     } else {
         let paths = std::env::var_os("PATH").ok_or_else(missing)?;
-        std::env::split_paths(&paths).map(|d| d.join(tool)).find(|p| p.is_file()).ok_or_else(missing)?
+        std::env::split_paths(&paths)
+            .map(|d| d.join(tool))
+            .find(|p| p.is_file())
+            .ok_or_else(missing)?
     };
     let real = std::fs::canonicalize(&program).unwrap_or(program);
     let m = std::fs::metadata(&real).map_err(|_| missing())?;
-    Ok(format!("{} {} {} {}", real.display(), m.len(), m.mtime(), m.ino()))
+    Ok(format!(
+        "{} {} {} {}",
+        real.display(),
+        m.len(),
+        m.mtime(),
+        m.ino()
+    ))
 }
 
 /// A built simulator, ready to run vectors.
@@ -82,8 +113,18 @@ pub const QUICK_BUILD_CYCLES: u64 = 1_000_000;
 
 /// Builds (or finds in the cache) the simulator for `design`, for a run of about `cycles`
 /// clock cycles (its optimisation: [`QUICK_BUILD_CYCLES`]).
-pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: bool, cycles: u64) -> Result<Built, Failure> {
-    let opt = if cycles <= QUICK_BUILD_CYCLES { "-O0" } else { "-O2" };
+pub fn build(
+    design: &Design,
+    simulator: Simulator,
+    tools: &SimTools,
+    trace: bool,
+    cycles: u64,
+) -> Result<Built, Failure> {
+    let opt = if cycles <= QUICK_BUILD_CYCLES {
+        "-O0"
+    } else {
+        "-O2"
+    };
     let top = design.cfg.top().to_string();
     let adapter = super::adapter::adapter(&design.cfg);
     let (tool, package, harness) = match simulator {
@@ -97,7 +138,13 @@ pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: boo
     let vvp = tools.vvp.clone();
     let mut h = Sha256::new();
     let (clocked, tagged) = (design.cfg.clocked(), design.cfg.carried_tag_bits() > 0);
-    for part in [version.as_str(), harness, &top, &adapter, &format!("{trace} {simulator:?} {clocked} {tagged} {opt} v5")] {
+    for part in [
+        version.as_str(),
+        harness,
+        &top,
+        &adapter,
+        &format!("{trace} {simulator:?} {clocked} {tagged} {opt} v5"),
+    ] {
         h.update(part.as_bytes());
         h.update([0u8]);
     }
@@ -105,12 +152,18 @@ pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: boo
     // or a compiled program): the key is every input of the build, whole
     let mut texts = Vec::new();
     for src in &design.sim_sources() {
-        let text = crate::small_file::read_bytes(src, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", src.display())))?;
+        let text = crate::small_file::read_bytes(src, crate::small_file::UNIT_FILE_MAX)
+            .map_err(|e| input(format!("{} {e}", src.display())))?;
         h.update((text.len() as u64).to_le_bytes());
         h.update(&text);
         texts.push((src.clone(), text));
     }
-    let key: String = h.finalize().iter().take(12).map(|b| format!("{b:02x}")).collect();
+    let key: String = h
+        .finalize()
+        .iter()
+        .take(12)
+        .map(|b| format!("{b:02x}"))
+        .collect();
     let root = cache_root()?;
     let dir = root.join(format!("{}-{top}-{key}", package));
     // an entry is used only when its program is the one built: `ok` holds its SHA-256, so a
@@ -133,7 +186,12 @@ pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: boo
     if own_entry(&dir) {
         if let Ok(stamp) = crate::small_file::read(&dir.join("ok"), 256) {
             if digest(&program(&dir)).is_some_and(|d| d == stamp.trim()) {
-                return Ok(Built { simulator, dir, vvp, fresh: false });
+                return Ok(Built {
+                    simulator,
+                    dir,
+                    vvp,
+                    fresh: false,
+                });
             }
         }
     }
@@ -144,24 +202,57 @@ pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: boo
     // what killed runs left: build directories whose process is gone
     crate::output::remove_orphans(&root, ".build-", true);
     let work = crate::process::temp_dir_in(&root, &format!(".build-{}-", std::process::id()))
-        .map_err(|e| error::tool("simulator", format!("cannot create a build directory in {}: {e}", root.display())))?;
+        .map_err(|e| {
+            error::tool(
+                "simulator",
+                format!("cannot create a build directory in {}: {e}", root.display()),
+            )
+        })?;
     let mut sources = Vec::new();
     for (i, (_, text)) in texts.iter().enumerate() {
         let name = format!("src{i}.v");
-        std::fs::write(work.path().join(&name), text).map_err(|e| error::tool("simulator", e.to_string()))?;
+        std::fs::write(work.path().join(&name), text)
+            .map_err(|e| error::tool("simulator", e.to_string()))?;
         sources.push(PathBuf::from(name));
     }
-    std::fs::write(work.path().join("cosim_top.v"), &adapter).map_err(|e| error::tool("simulator", e.to_string()))?;
+    std::fs::write(work.path().join("cosim_top.v"), &adapter)
+        .map_err(|e| error::tool("simulator", e.to_string()))?;
     sources.push(PathBuf::from("cosim_top.v"));
     let mut cmd;
     match simulator {
         Simulator::Verilator => {
-            std::fs::write(work.path().join("harness.cpp"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
+            std::fs::write(work.path().join("harness.cpp"), harness)
+                .map_err(|e| error::tool("simulator", e.to_string()))?;
             cmd = crate::process::command(tool);
             cmd.current_dir(work.path())
-                .args(["--cc", "--exe", "--build", "-O3", "--prefix", "Vdut", "--top-module", "specgen_cosim_top"])
-                .args(["-Wno-fatal", "-Wno-lint", "-Wno-style", "-Mdir", "obj", "-o", "../harness"])
-                .args(["-j", "2", "-CFLAGS", &format!("{opt} -DTRACE={} -DCLOCKED={} -DTAGGED={}", trace as u8, clocked as u8, tagged as u8)])
+                .args([
+                    "--cc",
+                    "--exe",
+                    "--build",
+                    "-O3",
+                    "--prefix",
+                    "Vdut",
+                    "--top-module",
+                    "specgen_cosim_top",
+                ])
+                .args([
+                    "-Wno-fatal",
+                    "-Wno-lint",
+                    "-Wno-style",
+                    "-Mdir",
+                    "obj",
+                    "-o",
+                    "../harness",
+                ])
+                .args([
+                    "-j",
+                    "2",
+                    "-CFLAGS",
+                    &format!(
+                        "{opt} -DTRACE={} -DCLOCKED={} -DTAGGED={}",
+                        trace as u8, clocked as u8, tagged as u8
+                    ),
+                ])
                 .arg("-MAKEFLAGS")
                 .arg(format!("OPT_FAST={opt}"));
             if trace {
@@ -181,7 +272,8 @@ pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: boo
             cmd.args(&sources).arg("harness.cpp");
         }
         Simulator::Icarus => {
-            std::fs::write(work.path().join("bench.v"), harness).map_err(|e| error::tool("simulator", e.to_string()))?;
+            std::fs::write(work.path().join("bench.v"), harness)
+                .map_err(|e| error::tool("simulator", e.to_string()))?;
             let c = &design.cfg;
             cmd = crate::process::command(tool);
             cmd.current_dir(work.path())
@@ -193,13 +285,16 @@ pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: boo
             cmd.arg("bench.v").args(&sources);
         }
     }
-    let out = cmd.output().map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
+    let out = cmd
+        .output()
+        .map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
     if !out.status.success() {
         // the copies' names back to the user's files
         let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
         // the RTL is to blame only when the tool names a line of it; else the tool itself failed
         // (a broken install, a wrapper that exits 1): its error, exit 1, never the RTL's
-        let names_rtl = (0..texts.len()).any(|i| log.contains(&format!("src{i}.v:"))) || log.contains("cosim_top.v:");
+        let names_rtl = (0..texts.len()).any(|i| log.contains(&format!("src{i}.v:")))
+            || log.contains("cosim_top.v:");
         for (i, (src, _)) in texts.iter().enumerate().rev() {
             log = log.replace(&format!("src{i}.v"), &src.display().to_string());
         }
@@ -211,16 +306,30 @@ pub fn build(design: &Design, simulator: Simulator, tools: &SimTools, trace: boo
                 format!("{tool} failed ({}) building the simulator of {}, naming no line of the RTL:\n{tail}", out.status, design.dir.display()),
             ));
         }
-        return Err(input(format!("{tool} could not build the RTL in {}:\n{tail}", design.dir.display())));
+        return Err(input(format!(
+            "{tool} could not build the RTL in {}:\n{tail}",
+            design.dir.display()
+        )));
     }
-    let built = digest(&program(work.path())).ok_or_else(|| error::tool(tool, format!("{tool} reported success but wrote no program")))?;
-    std::fs::write(work.path().join("ok"), built).map_err(|e| error::tool("simulator", e.to_string()))?;
+    let built = digest(&program(work.path())).ok_or_else(|| {
+        error::tool(
+            tool,
+            format!("{tool} reported success but wrote no program"),
+        )
+    })?;
+    std::fs::write(work.path().join("ok"), built)
+        .map_err(|e| error::tool("simulator", e.to_string()))?;
     let kept = work.keep();
     if std::fs::rename(&kept, &dir).is_err() {
         // another process built it at the same time: use theirs
         let _ = std::fs::remove_dir_all(&kept);
     }
-    Ok(Built { simulator, dir, vvp, fresh: true })
+    Ok(Built {
+        simulator,
+        dir,
+        vvp,
+        fresh: true,
+    })
 }
 
 const IN_RECORD: usize = 24;
@@ -237,7 +346,11 @@ const CHUNK: u64 = 1 << 14;
 
 /// The input record's flags byte.
 fn flags(c: &Cycle) -> u8 {
-    c.valid as u8 | (c.rst as u8) << 1 | (!c.stall as u8) << 2 | (c.load as u8) << 3 | (c.disabled as u8) << 4
+    c.valid as u8
+        | (c.rst as u8) << 1
+        | (!c.stall as u8) << 2
+        | (c.load as u8) << 3
+        | (c.disabled as u8) << 4
 }
 
 fn encode(c: &Cycle, buf: &mut Vec<u8>) {
@@ -262,11 +375,17 @@ fn applied(h: u64, c: &Cycle) -> u64 {
 fn decode(rec: &[u8]) -> Sampled {
     let u16at = |i: usize| u16::from_le_bytes([rec[i], rec[i + 1]]) as u32;
     Sampled {
-        outputs: Outputs { intensity: u32::from_le_bytes([rec[0], rec[1], rec[2], rec[3]]), spec: [u16at(4), u16at(6), u16at(8)], done: rec[10] & 2 != 0 },
+        outputs: Outputs {
+            intensity: u32::from_le_bytes([rec[0], rec[1], rec[2], rec[3]]),
+            spec: [u16at(4), u16at(6), u16at(8)],
+            done: rec[10] & 2 != 0,
+        },
         valid: rec[10] & 1 != 0,
         in_ready: rec[10] & 4 != 0,
         idle: rec[10] & 8 != 0,
-        tag: rec.get(16..24).map_or(0, |t| u64::from_le_bytes(t.try_into().expect("8 bytes"))),
+        tag: rec
+            .get(16..24)
+            .map_or(0, |t| u64::from_le_bytes(t.try_into().expect("8 bytes"))),
     }
 }
 
@@ -295,7 +414,13 @@ fn time_limit(simulator: Simulator, cycles: u64) -> Result<std::time::Duration, 
 
 /// Kills process `pid` unless the returned sender is dropped (or sent to) within `limit`;
 /// the flag tells afterwards whether it was killed.
-pub(crate) fn watchdog(pid: u32, limit: std::time::Duration) -> (std::sync::mpsc::Sender<()>, std::sync::Arc<std::sync::atomic::AtomicBool>) {
+pub(crate) fn watchdog(
+    pid: u32,
+    limit: std::time::Duration,
+) -> (
+    std::sync::mpsc::Sender<()>,
+    std::sync::Arc<std::sync::atomic::AtomicBool>,
+) {
     let (tx, rx) = std::sync::mpsc::channel::<()>();
     let fired = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     let flag = fired.clone();
@@ -342,7 +467,15 @@ pub fn run_one(
             // a batch's digest differed: run again with every record compared, which finds the
             // first mismatch and describes it
             let mut checker = Checker::new(model, run);
-            run_verilator(built, design, &mut checker, stim, &AtomicU64::new(0), env, false)?;
+            run_verilator(
+                built,
+                design,
+                &mut checker,
+                stim,
+                &AtomicU64::new(0),
+                env,
+                false,
+            )?;
             if checker.report.first.is_none() {
                 return Err(error::tool(
                     "verilator",
@@ -352,20 +485,35 @@ pub fn run_one(
             Ok(checker.report)
         }
         Simulator::Icarus => {
-            let work = crate::process::temp_dir().map_err(|e| crate::error::Error::io("create a temporary directory in", std::env::temp_dir(), e))?;
+            let work = crate::process::temp_dir().map_err(|e| {
+                crate::error::Error::io("create a temporary directory in", std::env::temp_dir(), e)
+            })?;
             let vin = work.path().join("vectors.in");
             let vout = work.path().join("vectors.out");
             {
-                let mut w = std::io::BufWriter::new(std::fs::File::create(&vin).map_err(|e| crate::error::Error::io("write", &vin, e))?);
+                let mut w = std::io::BufWriter::new(
+                    std::fs::File::create(&vin)
+                        .map_err(|e| crate::error::Error::io("write", &vin, e))?,
+                );
                 for i in 0..stim.len() {
                     let c = stim.cycle(i);
                     let x = c.inputs;
                     // ks_load in bit 0 of its column, the clock enable low in bit 1
-                    let (v, r, o, l) = (c.valid as u8, c.rst as u8, !c.stall as u8, c.load as u8 | (c.disabled as u8) << 1);
-                    writeln!(w, "{v:x} {r:x} {:x} {:x} {:x} {:x} {:x} {o:x} {l:x} {:x}", x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2], c.tag)
-                        .map_err(|e| crate::error::Error::io("write", &vin, e))?;
+                    let (v, r, o, l) = (
+                        c.valid as u8,
+                        c.rst as u8,
+                        !c.stall as u8,
+                        c.load as u8 | (c.disabled as u8) << 1,
+                    );
+                    writeln!(
+                        w,
+                        "{v:x} {r:x} {:x} {:x} {:x} {:x} {:x} {o:x} {l:x} {:x}",
+                        x.cos_g, x.n, x.ks[0], x.ks[1], x.ks[2], c.tag
+                    )
+                    .map_err(|e| crate::error::Error::io("write", &vin, e))?;
                 }
-                w.flush().map_err(|e| crate::error::Error::io("write", &vin, e))?;
+                w.flush()
+                    .map_err(|e| crate::error::Error::io("write", &vin, e))?;
             }
             let child = crate::process::command(&built.vvp)
                 .current_dir(&design.dir)
@@ -377,19 +525,34 @@ pub fn run_one(
                 .stdout(Stdio::piped())
                 .stderr(Stdio::piped())
                 .spawn()
-                .map_err(|e| error::tool("vvp", format!("cannot run vvp (Debian package `iverilog`): {e}")))?;
+                .map_err(|e| {
+                    error::tool(
+                        "vvp",
+                        format!("cannot run vvp (Debian package `iverilog`): {e}"),
+                    )
+                })?;
             let limit = time_limit(Simulator::Icarus, stim.len())?;
             let (alive, fired) = watchdog(child.id(), limit);
-            let out = child.wait_with_output().map_err(|e| error::tool("vvp", e.to_string()))?;
+            let out = child
+                .wait_with_output()
+                .map_err(|e| error::tool("vvp", e.to_string()))?;
             drop(alive);
             if fired.load(Ordering::SeqCst) {
                 return Err(timed_out("vvp", limit, stim.len()));
             }
             if !out.status.success() {
-                return Err(error::tool("vvp", format!("vvp failed: {}", String::from_utf8_lossy(&out.stderr))));
+                return Err(error::tool(
+                    "vvp",
+                    format!("vvp failed: {}", String::from_utf8_lossy(&out.stderr)),
+                ));
             }
             let said = String::from_utf8_lossy(&out.stdout);
-            let file = std::fs::File::open(&vout).map_err(|e| error::tool("vvp", format!("vvp wrote no output ({e}); it said:\n{}", said.trim_end())))?;
+            let file = std::fs::File::open(&vout).map_err(|e| {
+                error::tool(
+                    "vvp",
+                    format!("vvp wrote no output ({e}); it said:\n{}", said.trim_end()),
+                )
+            })?;
             let mut t = 0;
             let (mut cycles, mut samples) = (Vec::new(), Vec::with_capacity(CHUNK as usize));
             let mut check = |t: u64, samples: &mut Vec<Sampled>| {
@@ -402,10 +565,20 @@ pub fn run_one(
                 let f: Vec<&str> = line.split_whitespace().collect();
                 let hex = |s: &str| u32::from_str_radix(s, 16).unwrap_or(u32::MAX); // x/z never match
                 if f.len() != 9 {
-                    return Err(error::tool("vvp", format!("vvp output line {t} is malformed: {line:?}{}", full_disk(&vout))));
+                    return Err(error::tool(
+                        "vvp",
+                        format!(
+                            "vvp output line {t} is malformed: {line:?}{}",
+                            full_disk(&vout)
+                        ),
+                    ));
                 }
                 let s = Sampled {
-                    outputs: Outputs { intensity: hex(f[2]), spec: [hex(f[3]), hex(f[4]), hex(f[5])], done: f[1] == "1" },
+                    outputs: Outputs {
+                        intensity: hex(f[2]),
+                        spec: [hex(f[3]), hex(f[4]), hex(f[5])],
+                        done: f[1] == "1",
+                    },
                     valid: f[0] == "1",
                     in_ready: f[6] == "1",
                     idle: f[7] == "1",
@@ -413,7 +586,13 @@ pub fn run_one(
                 };
                 // outputs that are x/z before the pipeline fills are never compared (see Checker)
                 if t >= stim.len() {
-                    return Err(error::tool("vvp", format!("vvp returned more than the {} cycles it was given", stim.len())));
+                    return Err(error::tool(
+                        "vvp",
+                        format!(
+                            "vvp returned more than the {} cycles it was given",
+                            stim.len()
+                        ),
+                    ));
                 }
                 samples.push(s);
                 t += 1;
@@ -423,7 +602,14 @@ pub fn run_one(
             }
             check(t, &mut samples);
             if t != stim.len() {
-                return Err(error::tool("vvp", format!("vvp returned {t} of {} cycles{}", stim.len(), full_disk(&vout))));
+                return Err(error::tool(
+                    "vvp",
+                    format!(
+                        "vvp returned {t} of {} cycles{}",
+                        stim.len(),
+                        full_disk(&vout)
+                    ),
+                ));
             }
             progress.fetch_add(t, Ordering::Relaxed);
             Ok(checker.report)
@@ -437,7 +623,9 @@ pub fn run_one(
 fn full_disk(out: &Path) -> String {
     use std::os::unix::ffi::OsStrExt;
     let dir = out.parent().unwrap_or(out);
-    let Ok(c) = std::ffi::CString::new(dir.as_os_str().as_bytes()) else { return String::new() };
+    let Ok(c) = std::ffi::CString::new(dir.as_os_str().as_bytes()) else {
+        return String::new();
+    };
     // SAFETY: statvfs fills a struct we own from a NUL-terminated path
     let mut st: libc::statvfs = unsafe { std::mem::zeroed() };
     if unsafe { libc::statvfs(c.as_ptr(), &mut st) } != 0 {
@@ -480,7 +668,8 @@ fn run_verilator(
     // batch's digest of what it applied is checked against the cycles checked here
     let sweep = stim.harness_sweep();
     let mut cmd = crate::process::command(built.dir.join("harness"));
-    cmd.current_dir(&design.dir).envs(env.iter().map(|(k, v)| (k, v.as_os_str())));
+    cmd.current_dir(&design.dir)
+        .envs(env.iter().map(|(k, v)| (k, v.as_os_str())));
     match &sweep {
         Some(spec) => cmd.env("SPECGEN_SWEEP", spec).stdin(Stdio::null()),
         None => cmd.stdin(Stdio::piped()),
@@ -488,10 +677,21 @@ fn run_verilator(
     if digest {
         // what the harness folds: every cycle's outputs (combinational), or only the valid ones
         // after the first reset (pipelined)
-        cmd.env("SPECGEN_DIGEST", if design.cfg.latency() > 0 { "1" } else { "0" });
+        cmd.env(
+            "SPECGEN_DIGEST",
+            if design.cfg.latency() > 0 { "1" } else { "0" },
+        );
     }
-    let mut child =
-        cmd.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().map_err(|e| error::tool("verilator", format!("cannot start the Verilator harness: {e}")))?;
+    let mut child = cmd
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| {
+            error::tool(
+                "verilator",
+                format!("cannot start the Verilator harness: {e}"),
+            )
+        })?;
     let limit = time_limit(Simulator::Verilator, stim.len())?;
     let (_alive, fired) = watchdog(child.id(), limit);
     let stdin = child.stdin.take();
@@ -503,7 +703,11 @@ fn run_verilator(
     let len = stim.len();
     // a batch: its records, then the digest of the inputs applied (a sweep); or only the
     // digest of the outputs
-    let record = if digest { 0 } else { out_record(design.cfg.carried_tag_bits() > 0) };
+    let record = if digest {
+        0
+    } else {
+        out_record(design.cfg.carried_tag_bits() > 0)
+    };
     let trailer = if sweep.is_some() || digest { 8 } else { 0 };
     let matched = std::thread::scope(|scope| -> Result<bool, Failure> {
         if let Some(mut stdin) = stdin {
@@ -538,10 +742,17 @@ fn run_verilator(
                 let mut err = String::new();
                 let _ = child.stderr.take().map(|mut s| s.read_to_string(&mut err));
                 let _ = child.wait();
-                return Err(error::tool("verilator", format!("the Verilator harness stopped after {t} of {len} cycles ({e}):\n{}", err.trim_end())));
+                return Err(error::tool(
+                    "verilator",
+                    format!(
+                        "the Verilator harness stopped after {t} of {len} cycles ({e}):\n{}",
+                        err.trim_end()
+                    ),
+                ));
             }
             stim.fill(t, n as u64, &mut cycles);
-            let trailer_word = || u64::from_le_bytes(buf[n * record..n * record + 8].try_into().expect("8 bytes"));
+            let trailer_word =
+                || u64::from_le_bytes(buf[n * record..n * record + 8].try_into().expect("8 bytes"));
             if digest {
                 if checker.digest_batch(t, &cycles) != trailer_word() {
                     let _ = child.kill();
@@ -549,7 +760,11 @@ fn run_verilator(
                     return Ok(false);
                 }
             } else {
-                checker.check_batch(t, &cycles, buf[..n * record].chunks_exact(record).map(decode));
+                checker.check_batch(
+                    t,
+                    &cycles,
+                    buf[..n * record].chunks_exact(record).map(decode),
+                );
                 if trailer > 0 && trailer_word() != cycles.iter().fold(0, applied) {
                     let _ = child.kill();
                     let _ = child.wait();
@@ -568,17 +783,28 @@ fn run_verilator(
     if !matched {
         return Ok(false);
     }
-    let status = child.wait().map_err(|e| error::tool("simulator", e.to_string()))?;
+    let status = child
+        .wait()
+        .map_err(|e| error::tool("simulator", e.to_string()))?;
     if !status.success() {
         let mut err = String::new();
         let _ = child.stderr.take().unwrap().read_to_string(&mut err);
-        return Err(error::tool("verilator", format!("the Verilator harness failed ({status}): {err}")));
+        return Err(error::tool(
+            "verilator",
+            format!("the Verilator harness failed ({status}): {err}"),
+        ));
     }
     Ok(true)
 }
 
 /// Runs several independent stimuli on `jobs` parallel simulator processes and merges the reports.
-pub fn run_all(built: &Built, design: &Design, model: &Model, stims: &[Box<dyn Stimulus>], jobs: usize) -> Result<Report, Failure> {
+pub fn run_all(
+    built: &Built,
+    design: &Design,
+    model: &Model,
+    stims: &[Box<dyn Stimulus>],
+    jobs: usize,
+) -> Result<Report, Failure> {
     let total: u64 = stims.iter().map(|s| s.len()).sum();
     let progress = Arc::new(AtomicU64::new(0));
     let next = AtomicU64::new(0);
@@ -599,12 +825,23 @@ pub fn run_all(built: &Built, design: &Design, model: &Model, stims: &[Box<dyn S
                         if i >= stims.len() {
                             return Ok(reports);
                         }
-                        reports.push(run_one(built, design, model, stims[i].as_ref(), i, &progress, &[])?);
+                        reports.push(run_one(
+                            built,
+                            design,
+                            model,
+                            stims[i].as_ref(),
+                            i,
+                            &progress,
+                            &[],
+                        )?);
                     }
                 })
             })
             .collect();
-        let r = workers.into_iter().map(|w| w.join().expect("worker panicked")).collect();
+        let r = workers
+            .into_iter()
+            .map(|w| w.join().expect("worker panicked"))
+            .collect();
         bar.1.store(true, Ordering::Relaxed);
         let _ = bar.0.join();
         r
@@ -659,7 +896,14 @@ fn progress_bar(progress: &AtomicU64, total: u64, done: &std::sync::atomic::Atom
 }
 
 /// Replays a short window around a failure with a tracing build and writes its VCD.
-pub fn write_trace(design: &Design, tools: &SimTools, model: &Model, stims: &[Box<dyn Stimulus>], m: &Mismatch, path: &Path) -> Result<(), Failure> {
+pub fn write_trace(
+    design: &Design,
+    tools: &SimTools,
+    model: &Model,
+    stims: &[Box<dyn Stimulus>],
+    m: &Mismatch,
+    path: &Path,
+) -> Result<(), Failure> {
     // a short window: a quick build
     let built = build(design, Simulator::Verilator, tools, true, 0)?;
     let stim = stims[m.run].as_ref();
@@ -668,13 +912,25 @@ pub fn write_trace(design: &Design, tools: &SimTools, model: &Model, stims: &[Bo
     let to = (m.cycle + 4).min(stim.len() - 1);
     let mut cycles = Vec::new();
     if design.cfg.clocked() {
-        cycles.push(Cycle { rst: true, valid: false, ..stim.cycle(from) });
+        cycles.push(Cycle {
+            rst: true,
+            valid: false,
+            ..stim.cycle(from)
+        });
     }
     cycles.extend((from..=to).map(|i| stim.cycle(i)));
     // the harness writes into a directory of ours; the trace reaches `path` only when it exists
     let work = crate::process::temp_dir().map_err(|e| error::tool("simulator", e.to_string()))?;
     let vcd = work.path().join("trace.vcd");
-    run_one(&built, design, model, &Recorded(cycles), 0, &AtomicU64::new(0), &[("SPECGEN_VCD", &vcd)])?;
+    run_one(
+        &built,
+        design,
+        model,
+        &Recorded(cycles),
+        0,
+        &AtomicU64::new(0),
+        &[("SPECGEN_VCD", &vcd)],
+    )?;
     let bytes = match std::fs::read(&vcd) {
         Ok(b) if !b.is_empty() => b,
         _ => return Err(error::tool("verilator", "the simulator wrote no trace")),
@@ -684,5 +940,6 @@ pub fn write_trace(design: &Design, tools: &SimTools, model: &Model, stims: &[Bo
 
 /// Whether `tool` is an executable on the PATH (looked up directly, no shell).
 pub(crate) fn on_path(tool: &str) -> bool {
-    std::env::var_os("PATH").is_some_and(|paths| std::env::split_paths(&paths).any(|d| d.join(tool).is_file()))
+    std::env::var_os("PATH")
+        .is_some_and(|paths| std::env::split_paths(&paths).any(|d| d.join(tool).is_file()))
 }

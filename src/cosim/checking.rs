@@ -54,7 +54,9 @@ pub fn sample_hash(t: u64, s: &Sampled, compared: bool) -> u64 {
     let o = &s.outputs;
     let (w0, w1) = if compared {
         let w0 = s.valid as u64 | 2 | (o.done as u64) << 2 | (o.intensity as u64) << 32;
-        let w1 = (o.spec[0] & 0xffff) as u64 | ((o.spec[1] & 0xffff) as u64) << 16 | ((o.spec[2] & 0xffff) as u64) << 32;
+        let w1 = (o.spec[0] & 0xffff) as u64
+            | ((o.spec[1] & 0xffff) as u64) << 16
+            | ((o.spec[2] & 0xffff) as u64) << 32;
         (w0, w1 ^ s.tag.rotate_left(17))
     } else {
         (s.valid as u64, 0)
@@ -117,7 +119,10 @@ pub struct Checker<'a> {
 impl<'a> Checker<'a> {
     pub fn new(model: &'a Model, run: usize) -> Checker<'a> {
         let cfg = &model.cfg;
-        let places = cfg.interface().handshake().then(|| crate::interface::buffer_places(cfg) as usize);
+        let places = cfg
+            .interface()
+            .handshake()
+            .then(|| crate::interface::buffer_places(cfg) as usize);
         Checker {
             model,
             latency: cfg.latency() as u64,
@@ -140,23 +145,47 @@ impl<'a> Checker<'a> {
         }
     }
 
-    fn fail(&mut self, t: u64, cycle_in: Cycle, expected: Sampled, actual: Sampled, data_compared: bool, rule: Option<String>) {
+    fn fail(
+        &mut self,
+        t: u64,
+        cycle_in: Cycle,
+        expected: Sampled,
+        actual: Sampled,
+        data_compared: bool,
+        rule: Option<String>,
+    ) {
         // mismatching cycles, never more than the cycles checked
         if self.last_failed != Some(t) {
             self.report.mismatches += 1;
             self.last_failed = Some(t);
         }
         if self.report.first.is_none() {
-            self.report.first = Some(Mismatch { cycle: t, run: self.run, cycle_in, expected, actual, data_compared, rule });
+            self.report.first = Some(Mismatch {
+                cycle: t,
+                run: self.run,
+                cycle_in,
+                expected,
+                actual,
+                data_compared,
+                rule,
+            });
         }
     }
 
     /// Checks the outputs sampled in cycles `t0 ..` (each before its rising edge), whose
     /// stimulus is `cycles`; batches come in order, from cycle 0. The golden model evaluates the
     /// batch at once ([`Checker::evaluate`]).
-    pub fn check_batch(&mut self, t0: u64, cycles: &[Cycle], got: impl IntoIterator<Item = Sampled>) {
+    pub fn check_batch(
+        &mut self,
+        t0: u64,
+        cycles: &[Cycle],
+        got: impl IntoIterator<Item = Sampled>,
+    ) {
         self.evaluate(cycles);
-        let (expected, loaded) = (std::mem::take(&mut self.expected), std::mem::take(&mut self.loaded));
+        let (expected, loaded) = (
+            std::mem::take(&mut self.expected),
+            std::mem::take(&mut self.loaded),
+        );
         for (k, got) in got.into_iter().enumerate().take(cycles.len()) {
             self.check(cycles[k], t0 + k as u64, got, expected[k], loaded[k]);
         }
@@ -171,7 +200,14 @@ impl<'a> Checker<'a> {
         self.offered.clear();
         self.loaded.clear();
         for c in cycles {
-            self.offered.push(if self.static_colour { Inputs { ks: self.material, ..c.inputs } } else { c.inputs });
+            self.offered.push(if self.static_colour {
+                Inputs {
+                    ks: self.material,
+                    ..c.inputs
+                }
+            } else {
+                c.inputs
+            });
             self.loaded.push(self.material_loaded);
             if c.load && !c.disabled {
                 self.material = c.inputs.ks;
@@ -211,9 +247,12 @@ impl<'a> Checker<'a> {
     }
 
     fn check_cycle(&mut self, now: Cycle, t: u64, got: Sampled, outputs: Outputs, loaded: bool) {
-        let Some(due) = self.due(now, t, outputs, loaded) else { return };
+        let Some(due) = self.due(now, t, outputs, loaded) else {
+            return;
+        };
         let e = due.expected;
-        let mut ok = got.valid == e.valid && (!due.data_compared || (got.outputs == e.outputs && got.tag == e.tag));
+        let mut ok = got.valid == e.valid
+            && (!due.data_compared || (got.outputs == e.outputs && got.tag == e.tag));
         if self.static_colour {
             ok &= got.idle == e.idle;
         }
@@ -244,7 +283,12 @@ impl<'a> Checker<'a> {
             let v = due.is_some_and(|(d, _)| d.valid && last_rst < t - s);
             (v, v, due.unwrap_or((now, outputs)))
         };
-        let mut expected = Sampled { outputs, valid: exp_valid, tag: src.tag, ..Sampled::default() };
+        let mut expected = Sampled {
+            outputs,
+            valid: exp_valid,
+            tag: src.tag,
+            ..Sampled::default()
+        };
         if self.static_colour {
             // idle: no pixel offered since the last reset is still in the pipeline (offered in
             // the last s cycles)
@@ -270,7 +314,11 @@ impl<'a> Checker<'a> {
         }
         self.report.checked += 1;
         self.report.results += (data_compared && exp_valid) as u64;
-        Some(Due { expected, data_compared, src })
+        Some(Due {
+            expected,
+            data_compared,
+            src,
+        })
     }
 
     /// Whether the unit's every rule is a comparison of each cycle's outputs with what is due
@@ -312,28 +360,71 @@ impl<'a> Checker<'a> {
         let after_reset = self.last_rst == Some(t.wrapping_sub(1));
         // the outputs hold while stalled
         if let Some((c, s)) = self.before {
-            if s.valid && c.stall && !c.rst && (!got.valid || got.outputs != s.outputs || got.tag != s.tag) {
+            if s.valid
+                && c.stall
+                && !c.rst
+                && (!got.valid || got.outputs != s.outputs || got.tag != s.tag)
+            {
                 let front = self.pending.front().map_or(c, |p| p.cycle);
-                self.fail(t, front, s, got, true, Some("the result changed or went away while out_ready was low".into()));
+                self.fail(
+                    t,
+                    front,
+                    s,
+                    got,
+                    true,
+                    Some("the result changed or went away while out_ready was low".into()),
+                );
             }
         }
         // in_ready: high exactly when fewer than places - 3 were taken three cycles before (the
         // count's strobes, the count, their difference, in_ready: registers; a reset empties
         // them all); idle: none is taken now
         let used_three_before = self.pending_before[2];
-        self.pending_before = if now.rst { [0; 3] } else { [self.pending.len(), self.pending_before[0], self.pending_before[1]] };
+        self.pending_before = if now.rst {
+            [0; 3]
+        } else {
+            [
+                self.pending.len(),
+                self.pending_before[0],
+                self.pending_before[1],
+            ]
+        };
         let exp_ready = !after_reset && used_three_before + 3 < places;
         if got.in_ready != exp_ready {
-            let e = Sampled { in_ready: exp_ready, ..got };
+            let e = Sampled {
+                in_ready: exp_ready,
+                ..got
+            };
             let rule = format!("in_ready is {} with {used_three_before} of {places} places taken three cycles before", got.in_ready as u8);
             self.fail(t, now, e, got, false, Some(rule));
         }
         if self.static_colour && got.idle != self.pending.is_empty() {
-            let e = Sampled { idle: self.pending.is_empty(), ..got };
-            self.fail(t, now, e, got, false, Some(format!("idle is {} with {} pixels inside", got.idle as u8, self.pending.len())));
+            let e = Sampled {
+                idle: self.pending.is_empty(),
+                ..got
+            };
+            self.fail(
+                t,
+                now,
+                e,
+                got,
+                false,
+                Some(format!(
+                    "idle is {} with {} pixels inside",
+                    got.idle as u8,
+                    self.pending.len()
+                )),
+            );
         }
         if now.load && !got.idle {
-            self.fail(t, now, got, got, false, Some("the stimulus loads a colour while the unit is not idle".into()));
+            self.fail(
+                t,
+                now,
+                got,
+                got,
+                false,
+                Some("the stimulus loads a colour while the unit is not idle".into()),
+            );
         }
         if now.rst {
             self.pending.clear();
@@ -344,10 +435,18 @@ impl<'a> Checker<'a> {
         // a result delivered: the oldest pixel's, with its tag
         if got.valid {
             match self.pending.front().copied() {
-                None => self.fail(t, now, Sampled::default(), got, false, Some("out_valid with no pixel inside: a result invented or repeated".into())),
+                None => self.fail(
+                    t,
+                    now,
+                    Sampled::default(),
+                    got,
+                    false,
+                    Some("out_valid with no pixel inside: a result invented or repeated".into()),
+                ),
                 Some(p) => {
                     if got.outputs != p.expected.outputs || got.tag != p.expected.tag {
-                        let rule = (got.outputs == p.expected.outputs).then(|| "the tag is not its pixel's".to_string());
+                        let rule = (got.outputs == p.expected.outputs)
+                            .then(|| "the tag is not its pixel's".to_string());
                         self.fail(t, p.cycle, p.expected, got, true, rule);
                     }
                     if !now.stall {
@@ -358,14 +457,27 @@ impl<'a> Checker<'a> {
             }
         } else if let Some(p) = self.pending.front().copied() {
             if p.taken_at + self.latency <= t {
-                let rule = format!("no result {} cycles after its pixel was taken (latency {}): lost or late", t - p.taken_at, self.latency);
+                let rule = format!(
+                    "no result {} cycles after its pixel was taken (latency {}): lost or late",
+                    t - p.taken_at,
+                    self.latency
+                );
                 self.fail(t, p.cycle, p.expected, got, true, Some(rule));
             }
         }
         // a pixel taken
         if now.valid && got.in_ready {
-            let expected = Sampled { outputs, valid: true, tag: now.tag, ..Sampled::default() };
-            self.pending.push_back(Pending { taken_at: t, cycle: now, expected });
+            let expected = Sampled {
+                outputs,
+                valid: true,
+                tag: now.tag,
+                ..Sampled::default()
+            };
+            self.pending.push_back(Pending {
+                taken_at: t,
+                cycle: now,
+                expected,
+            });
         }
         self.before = Some((now, got));
     }
@@ -400,23 +512,55 @@ pub fn describe(m: &Mismatch, cfg: &Config) -> String {
         } else {
             ""
         };
-        s.push_str(&format!("  {port:<10} expected {exp:>10}  actual {act:>10}{mark}\n"));
+        s.push_str(&format!(
+            "  {port:<10} expected {exp:>10}  actual {act:>10}{mark}\n"
+        ));
     };
     row("out_valid", e.valid as u64, a.valid as u64, true);
     let d = m.data_compared;
-    row("spec_r", e.outputs.spec[0] as u64, a.outputs.spec[0] as u64, d);
-    row("spec_g", e.outputs.spec[1] as u64, a.outputs.spec[1] as u64, d);
-    row("spec_b", e.outputs.spec[2] as u64, a.outputs.spec[2] as u64, d);
-    row("intensity", e.outputs.intensity as u64, a.outputs.intensity as u64, d);
+    row(
+        "spec_r",
+        e.outputs.spec[0] as u64,
+        a.outputs.spec[0] as u64,
+        d,
+    );
+    row(
+        "spec_g",
+        e.outputs.spec[1] as u64,
+        a.outputs.spec[1] as u64,
+        d,
+    );
+    row(
+        "spec_b",
+        e.outputs.spec[2] as u64,
+        a.outputs.spec[2] as u64,
+        d,
+    );
+    row(
+        "intensity",
+        e.outputs.intensity as u64,
+        a.outputs.intensity as u64,
+        d,
+    );
     row("done", e.outputs.done as u64, a.outputs.done as u64, d);
     if cfg.carried_tag_bits() > 0 {
         row("out_tag", e.tag, a.tag, d);
     }
     if cfg.interface().handshake() {
-        row("in_ready", e.in_ready as u64, a.in_ready as u64, m.rule.as_deref().is_some_and(|r| r.starts_with("in_ready")));
+        row(
+            "in_ready",
+            e.in_ready as u64,
+            a.in_ready as u64,
+            m.rule.as_deref().is_some_and(|r| r.starts_with("in_ready")),
+        );
     }
     if cfg.colour() == crate::config::Colour::Static {
-        row("idle", e.idle as u64, a.idle as u64, m.rule.as_deref().is_none_or(|r| r.starts_with("idle")));
+        row(
+            "idle",
+            e.idle as u64,
+            a.idle as u64,
+            m.rule.as_deref().is_none_or(|r| r.starts_with("idle")),
+        );
     }
     s
 }

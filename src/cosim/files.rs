@@ -14,10 +14,12 @@ pub fn parse_readmemh(text: &str, depth: usize) -> Result<Vec<Option<u128>>, Fai
         let line = line.split("//").next().unwrap_or("");
         for tok in line.split_whitespace() {
             if let Some(a) = tok.strip_prefix('@') {
-                addr = usize::from_str_radix(a, 16).map_err(|_| input(format!("line {}: bad address {tok:?}", ln + 1)))?;
+                addr = usize::from_str_radix(a, 16)
+                    .map_err(|_| input(format!("line {}: bad address {tok:?}", ln + 1)))?;
                 continue;
             }
-            let v = u128::from_str_radix(&tok.replace('_', ""), 16).map_err(|_| input(format!("line {}: {tok:?} is not a hex word", ln + 1)))?;
+            let v = u128::from_str_radix(&tok.replace('_', ""), 16)
+                .map_err(|_| input(format!("line {}: {tok:?} is not a hex word", ln + 1)))?;
             if addr >= depth {
                 return Err(input(format!("line {}: more than {depth} entries", ln + 1)));
             }
@@ -36,7 +38,11 @@ pub fn check_tables(design: &Design) -> Result<(), Failure> {
     if design.cfg.params.rom_style != crate::config::RomStyle::File {
         return Ok(());
     }
-    let sources: Vec<String> = design.sources.iter().map(|p| crate::small_file::read(p, crate::small_file::UNIT_FILE_MAX).unwrap_or_default()).collect();
+    let sources: Vec<String> = design
+        .sources
+        .iter()
+        .map(|p| crate::small_file::read(p, crate::small_file::UNIT_FILE_MAX).unwrap_or_default())
+        .collect();
     for t in &design.plan.datapath.tables {
         let file = t.file(design.cfg.top());
         // a synthesized netlist holds its tables inline: only files the sources name are read
@@ -44,10 +50,16 @@ pub fn check_tables(design: &Design) -> Result<(), Failure> {
             continue;
         }
         let path = design.dir.join(&file);
-        std::fs::metadata(&path)
-            .map_err(|e| mismatch(format!("table file {} is missing ({e}); `specgen generate` writes it beside the RTL", path.display())))?;
-        let text = crate::small_file::read(&path, crate::small_file::UNIT_FILE_MAX).map_err(|e| mismatch(format!("table file {} {e}", path.display())))?;
-        let words = parse_readmemh(&text, t.words.len()).map_err(|e| mismatch(format!("table file {}: {e}", path.display())))?;
+        std::fs::metadata(&path).map_err(|e| {
+            mismatch(format!(
+                "table file {} is missing ({e}); `specgen generate` writes it beside the RTL",
+                path.display()
+            ))
+        })?;
+        let text = crate::small_file::read(&path, crate::small_file::UNIT_FILE_MAX)
+            .map_err(|e| mismatch(format!("table file {} {e}", path.display())))?;
+        let words = parse_readmemh(&text, t.words.len())
+            .map_err(|e| mismatch(format!("table file {}: {e}", path.display())))?;
         for (i, (got, want)) in words.iter().zip(&t.words).enumerate() {
             match got {
                 None => {
@@ -59,7 +71,11 @@ pub fn check_tables(design: &Design) -> Result<(), Failure> {
                     )))
                 }
                 Some(v) if v != want => {
-                    return Err(mismatch(format!("table file {}: entry {i} is {v:x}, the golden model's is {want:x} ({})", path.display(), t.what)))
+                    return Err(mismatch(format!(
+                        "table file {}: entry {i} is {v:x}, the golden model's is {want:x} ({})",
+                        path.display(),
+                        t.what
+                    )))
                 }
                 _ => {}
             }
@@ -86,9 +102,20 @@ pub fn source_ports(text: &str, top: &str) -> Option<Vec<(String, &'static str, 
         }
     }
     let clean = without_formal(&clean);
-    let tokens: Vec<String> = clean.replace('[', " [ ").replace(']', " ] ").replace([',', ';', '(', ')'], " , ").split_whitespace().map(String::from).collect();
-    let start = tokens.windows(2).position(|w| w[0] == "module" && (w[1] == top || w[1].starts_with(&format!("{top}#"))))?;
-    let end = tokens[start..].iter().position(|t| t == "endmodule").map_or(tokens.len(), |e| start + e);
+    let tokens: Vec<String> = clean
+        .replace('[', " [ ")
+        .replace(']', " ] ")
+        .replace([',', ';', '(', ')'], " , ")
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+    let start = tokens
+        .windows(2)
+        .position(|w| w[0] == "module" && (w[1] == top || w[1].starts_with(&format!("{top}#"))))?;
+    let end = tokens[start..]
+        .iter()
+        .position(|t| t == "endmodule")
+        .map_or(tokens.len(), |e| start + e);
     let mut ports = Vec::new();
     let mut i = start;
     while i < end {
@@ -107,9 +134,15 @@ pub fn source_ports(text: &str, top: &str) -> Option<Vec<(String, &'static str, 
         let mut width = 1;
         if i < end && tokens[i] == "[" {
             // [ h : l ]
-            let range: String = tokens[i + 1..].iter().take_while(|t| *t != "]").cloned().collect();
+            let range: String = tokens[i + 1..]
+                .iter()
+                .take_while(|t| *t != "]")
+                .cloned()
+                .collect();
             let (h, l) = range.split_once(':')?;
-            width = (h.trim().parse::<i64>().ok()? - l.trim().parse::<i64>().ok()?).unsigned_abs() as u32 + 1;
+            width = (h.trim().parse::<i64>().ok()? - l.trim().parse::<i64>().ok()?).unsigned_abs()
+                as u32
+                + 1;
             i += tokens[i..].iter().position(|t| t == "]")? + 1;
         }
         // one or more names, separated by commas, until a keyword or the end of the list
@@ -119,8 +152,23 @@ pub fn source_ports(text: &str, top: &str) -> Option<Vec<(String, &'static str, 
                 i += 1;
                 continue;
             }
-            if ["input", "output", "wire", "reg", "assign", "always", "initial", "endmodule", "parameter", "localparam", "integer"].contains(&t)
-                || !t.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '\\')
+            if [
+                "input",
+                "output",
+                "wire",
+                "reg",
+                "assign",
+                "always",
+                "initial",
+                "endmodule",
+                "parameter",
+                "localparam",
+                "integer",
+            ]
+            .contains(&t)
+                || !t
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '\\')
             {
                 break;
             }
@@ -168,29 +216,40 @@ pub fn check_ports(design: &Design) -> Result<(), Failure> {
     let top = design.cfg.top();
     let mut found = None;
     for src in &design.sources {
-        let text = crate::small_file::read(src, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", src.display())))?;
+        let text = crate::small_file::read(src, crate::small_file::UNIT_FILE_MAX)
+            .map_err(|e| input(format!("{} {e}", src.display())))?;
         if let Some(p) = source_ports(&text, top) {
             found = Some((src.clone(), p));
             break;
         }
     }
     let Some((src, got)) = found else {
-        return Err(input(format!("no module {top} (the manifest's top) in the Verilog of {}", design.dir.display())));
+        return Err(input(format!(
+            "no module {top} (the manifest's top) in the Verilog of {}",
+            design.dir.display()
+        )));
     };
     let want = design.cfg.ports("");
     let mut problems = Vec::new();
     for p in &want {
         match got.iter().find(|g| g.0 == p.name) {
-            None => problems.push(format!("{} {} [{} bits] is missing", p.direction, p.name, p.width)),
-            Some(g) if g.1 != p.direction || g.2 != p.width => {
-                problems.push(format!("{} is {} of {} bits in the RTL, {} of {} bits by the manifest", p.name, g.1, g.2, p.direction, p.width))
-            }
+            None => problems.push(format!(
+                "{} {} [{} bits] is missing",
+                p.direction, p.name, p.width
+            )),
+            Some(g) if g.1 != p.direction || g.2 != p.width => problems.push(format!(
+                "{} is {} of {} bits in the RTL, {} of {} bits by the manifest",
+                p.name, g.1, g.2, p.direction, p.width
+            )),
             _ => {}
         }
     }
     for g in &got {
         if !want.iter().any(|p| p.name == g.0) {
-            problems.push(format!("{} {} is not a port the manifest implies", g.1, g.0));
+            problems.push(format!(
+                "{} {} is not a port the manifest implies",
+                g.1, g.0
+            ));
         }
     }
     if problems.is_empty() {

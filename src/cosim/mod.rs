@@ -18,7 +18,9 @@ pub mod stimulus;
 pub use backend::{build, run_all, run_one, write_trace, Built};
 pub use checking::{describe, Checker, Mismatch, Report};
 pub use files::{check_ports, check_tables, parse_readmemh, source_ports};
-pub use stimulus::{corner_vectors, random_stimulus, random_vector, splitmix, Exhaustive, Recorded, Stimulus};
+pub use stimulus::{
+    corner_vectors, random_stimulus, random_vector, splitmix, Exhaustive, Recorded, Stimulus,
+};
 
 use crate::config::{Config, Params};
 use crate::error::{input, Error};
@@ -45,7 +47,11 @@ pub struct SimTools {
 
 impl Default for SimTools {
     fn default() -> Self {
-        SimTools { verilator: "verilator".into(), iverilog: "iverilog".into(), vvp: "vvp".into() }
+        SimTools {
+            verilator: "verilator".into(),
+            iverilog: "iverilog".into(),
+            vvp: "vvp".into(),
+        }
     }
 }
 
@@ -73,7 +79,8 @@ const MANIFEST_MAX_BYTES: u64 = 1 << 20;
 
 /// Copies the unit's file `from` into `work` as `name` (bounded read).
 fn copy_in(from: &Path, work: &Path, name: &str) -> Result<(), Error> {
-    let bytes = crate::small_file::read_bytes(from, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", from.display())))?;
+    let bytes = crate::small_file::read_bytes(from, crate::small_file::UNIT_FILE_MAX)
+        .map_err(|e| input(format!("{} {e}", from.display())))?;
     std::fs::write(work.join(name), bytes).map_err(|e| Error::io("write", work.join(name), e))
 }
 
@@ -89,7 +96,9 @@ impl Design {
     /// Whether `name` is one of the unit's files as [`Design::stage`] names them (no generated
     /// file's name has a `-`: a top is a Verilog identifier).
     pub(crate) fn is_staged_unit(name: &str) -> bool {
-        name.strip_prefix(STAGED_UNIT).and_then(|n| n.strip_suffix(".v")).is_some_and(|i| !i.is_empty() && i.chars().all(|c| c.is_ascii_digit()))
+        name.strip_prefix(STAGED_UNIT)
+            .and_then(|n| n.strip_suffix(".v"))
+            .is_some_and(|i| !i.is_empty() && i.chars().all(|c| c.is_ascii_digit()))
     }
 
     pub(crate) fn stage(&self, work: &Path) -> Result<Vec<String>, Error> {
@@ -128,18 +137,41 @@ impl Design {
         // a symbolic link is written through: what it points at (dangling or not) is checked too
         let target = crate::output::through_links(out).unwrap_or_else(|_| out.to_path_buf());
         if target != out {
-            self.refuse_output(flag, &target)
-                .map_err(|e| input(format!("{flag} {} is a symbolic link to {}: {}", out.display(), target.display(), e.reason())))?;
+            self.refuse_output(flag, &target).map_err(|e| {
+                input(format!(
+                    "{flag} {} is a symbolic link to {}: {}",
+                    out.display(),
+                    target.display(),
+                    e.reason()
+                ))
+            })?;
         }
         // the manifest, every file it lists, and every Verilog file the command compiles
-        if let Some(i) = self.inputs.iter().chain(&self.sources).chain(&self.sim_models).find(|i| same_file(out, i)) {
-            return Err(input(format!("{flag} {} is the unit's own file {}; write it elsewhere", out.display(), i.display())));
+        if let Some(i) = self
+            .inputs
+            .iter()
+            .chain(&self.sources)
+            .chain(&self.sim_models)
+            .find(|i| same_file(out, i))
+        {
+            return Err(input(format!(
+                "{flag} {} is the unit's own file {}; write it elsewhere",
+                out.display(),
+                i.display()
+            )));
         }
         // nor a new file there that a later command would read as the unit's (every Verilog
         // file of the directory is compiled, every manifest and table read)
-        const READ: [&str; 10] = ["v", "sv", "vh", "svh", "hex", "json", "core", "sdc", "lpf", "mem"];
-        let ext = out.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase());
-        if ext.as_ref().is_some_and(|e| READ.contains(&e.as_str())) && crate::output::inside(out, &self.dir) {
+        const READ: [&str; 10] = [
+            "v", "sv", "vh", "svh", "hex", "json", "core", "sdc", "lpf", "mem",
+        ];
+        let ext = out
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase());
+        if ext.as_ref().is_some_and(|e| READ.contains(&e.as_str()))
+            && crate::output::inside(out, &self.dir)
+        {
             return Err(input(format!(
                 "{flag} {} is inside the unit's directory {} with a name a later command would read as one of the unit's files (*.{}); write it elsewhere",
                 out.display(),
@@ -156,7 +188,8 @@ impl Design {
     /// the manifest's configuration), every listed file's SHA-256.
     pub fn verify_files(&self, edited: bool) -> Result<(), Error> {
         let manifest = &self.inputs[0];
-        let text = crate::small_file::read(manifest, MANIFEST_MAX_BYTES).map_err(|e| input(format!("manifest {}: {e}", manifest.display())))?;
+        let text = crate::small_file::read(manifest, MANIFEST_MAX_BYTES)
+            .map_err(|e| input(format!("manifest {}: {e}", manifest.display())))?;
         let v: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
         let ours = self.cfg.fingerprint();
         if let Some(stated) = v.get("fingerprint").and_then(|f| f.as_str()) {
@@ -169,7 +202,11 @@ impl Design {
         }
         let top = self.dir.join(format!("{}.v", self.cfg.top()));
         if let Ok(unit) = crate::small_file::read(&top, 64 << 20) {
-            let header = unit.lines().take(40).find_map(|l| l.strip_prefix("// Fingerprint: ")).and_then(|r| r.split_whitespace().next());
+            let header = unit
+                .lines()
+                .take(40)
+                .find_map(|l| l.strip_prefix("// Fingerprint: "))
+                .and_then(|r| r.split_whitespace().next());
             if let Some(h) = header.filter(|h| *h != ours) {
                 return Err(input(format!(
                     "{} was generated for another configuration (fingerprint {h}) than its manifest {} states ({ours}): files of two units in one directory",
@@ -182,11 +219,28 @@ impl Design {
         // the unit (a module named like one of specgen's, an old copy) is never read in silence,
         // edited or not. (A directory without the unit's own Verilog, a netlist beside its
         // manifest, is the netlist's: what it holds is what is read.)
-        if let Some(listed) = v.get("files").and_then(|f| f.as_array()).filter(|f| !f.is_empty()) {
-            let names: Vec<&str> = listed.iter().filter_map(|f| f.get("name").and_then(|n| n.as_str())).collect();
-            let unit_here = names.iter().any(|n| n.ends_with(".v") && self.dir.join(n).is_file());
-            for src in self.sources.iter().chain(&self.sim_models).filter(|_| unit_here) {
-                let rel = src.strip_prefix(&self.dir).map(|r| r.to_string_lossy().into_owned()).unwrap_or_default();
+        if let Some(listed) = v
+            .get("files")
+            .and_then(|f| f.as_array())
+            .filter(|f| !f.is_empty())
+        {
+            let names: Vec<&str> = listed
+                .iter()
+                .filter_map(|f| f.get("name").and_then(|n| n.as_str()))
+                .collect();
+            let unit_here = names
+                .iter()
+                .any(|n| n.ends_with(".v") && self.dir.join(n).is_file());
+            for src in self
+                .sources
+                .iter()
+                .chain(&self.sim_models)
+                .filter(|_| unit_here)
+            {
+                let rel = src
+                    .strip_prefix(&self.dir)
+                    .map(|r| r.to_string_lossy().into_owned())
+                    .unwrap_or_default();
                 if !names.contains(&rel.as_str()) {
                     return Err(input(format!(
                         "{} is not a file of this unit (manifest {} does not list it), and every tool would read it: move it out of {}",
@@ -201,16 +255,31 @@ impl Design {
             return Ok(());
         }
         // a manifest without its file list would check nothing: refused, not trusted
-        let Some(files) = v.get("files").and_then(|f| f.as_array()).filter(|f| !f.is_empty()) else {
+        let Some(files) = v
+            .get("files")
+            .and_then(|f| f.as_array())
+            .filter(|f| !f.is_empty())
+        else {
             return Err(input(format!(
                 "manifest {} lists no files (`files` with their SHA-256): edited by hand? regenerate the unit, or pass --edited to check an RTL changed on purpose",
                 manifest.display()
             )));
         };
         for f in files {
-            let (Some(name), Some(want)) = (f.get("name").and_then(|n| n.as_str()), f.get("sha256").and_then(|h| h.as_str())) else { continue };
-            let Some(path) = self.inputs.iter().find(|p| p.strip_prefix(&self.dir).is_ok_and(|r| r == Path::new(name))) else { continue };
-            let bytes = crate::small_file::read_bytes(path, crate::small_file::UNIT_FILE_MAX).map_err(|e| input(format!("{} {e}", path.display())))?;
+            let (Some(name), Some(want)) = (
+                f.get("name").and_then(|n| n.as_str()),
+                f.get("sha256").and_then(|h| h.as_str()),
+            ) else {
+                continue;
+            };
+            let Some(path) = self.inputs.iter().find(|p| {
+                p.strip_prefix(&self.dir)
+                    .is_ok_and(|r| r == Path::new(name))
+            }) else {
+                continue;
+            };
+            let bytes = crate::small_file::read_bytes(path, crate::small_file::UNIT_FILE_MAX)
+                .map_err(|e| input(format!("{} {e}", path.display())))?;
             let got = crate::bits::sha256_hex(&bytes, 32);
             if got != want {
                 return Err(input(format!(
@@ -233,7 +302,12 @@ impl Design {
             h.update(m.dev().to_le_bytes());
             h.update(m.ino().to_le_bytes());
         }
-        let mut files: Vec<&PathBuf> = self.inputs.iter().chain(&self.sources).chain(&self.sim_models).collect();
+        let mut files: Vec<&PathBuf> = self
+            .inputs
+            .iter()
+            .chain(&self.sources)
+            .chain(&self.sim_models)
+            .collect();
         files.sort();
         files.dedup();
         for f in files {
@@ -248,7 +322,11 @@ impl Design {
 
     /// What a simulator reads: the sources, then the simulation models.
     pub(crate) fn sim_sources(&self) -> Vec<PathBuf> {
-        self.sources.iter().chain(&self.sim_models).cloned().collect()
+        self.sources
+            .iter()
+            .chain(&self.sim_models)
+            .cloned()
+            .collect()
     }
 }
 
@@ -256,33 +334,63 @@ impl Design {
     /// The RTL in `dir` with the plan its manifest states.
     pub fn load(dir: &Path) -> Result<Design, Error> {
         let (path, params, sources, sim_models, inputs) = Design::files(dir)?;
-        let plan = crate::plan::Plan::from_params(params).map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
+        let plan = crate::plan::Plan::from_params(params)
+            .map_err(|e| input(format!("manifest {}: {e}", path.display())))?;
         let cfg = plan.cfg.clone();
-        Ok(Design { dir: dir.to_path_buf(), cfg, plan, sources, sim_models, inputs })
+        Ok(Design {
+            dir: dir.to_path_buf(),
+            cfg,
+            plan,
+            sources,
+            sim_models,
+            inputs,
+        })
     }
 
     /// The manifest (its path and the parameters it states), the Verilog sources and the
     /// simulation models in `dir`.
     #[allow(clippy::type_complexity)] // (manifest, its parameters, sources, sim models, inputs)
-    fn files(dir: &Path) -> Result<(PathBuf, Params, Vec<PathBuf>, Vec<PathBuf>, Vec<PathBuf>), Error> {
-        let entries = std::fs::read_dir(dir).map_err(|e| input(format!("cannot read the RTL directory {}: {e}", dir.display())))?;
+    fn files(
+        dir: &Path,
+    ) -> Result<(PathBuf, Params, Vec<PathBuf>, Vec<PathBuf>, Vec<PathBuf>), Error> {
+        let entries = std::fs::read_dir(dir).map_err(|e| {
+            input(format!(
+                "cannot read the RTL directory {}: {e}",
+                dir.display()
+            ))
+        })?;
         let mut manifests = Vec::new();
         let mut sources = Vec::new();
         let mut sim_models = Vec::new();
         // the simulation models live in `sim/` (an output of an older specgen has them beside)
         let sim_dir = dir.join(crate::names::SIM_DIR);
         if sim_dir.is_dir() {
-            let models = std::fs::read_dir(&sim_dir).map_err(|e| input(format!("cannot read {}: {e}", sim_dir.display())))?;
-            sim_models.extend(models.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|e| e == "v")));
+            let models = std::fs::read_dir(&sim_dir)
+                .map_err(|e| input(format!("cannot read {}: {e}", sim_dir.display())))?;
+            sim_models.extend(
+                models
+                    .flatten()
+                    .map(|e| e.path())
+                    .filter(|p| p.extension().is_some_and(|e| e == "v")),
+            );
         }
         for entry in entries.flatten() {
             let path = entry.path();
             match path.extension().and_then(|e| e.to_str()) {
-                Some("v") if path.file_name().and_then(|n| n.to_str()).is_some_and(crate::names::is_sim_model_file) => sim_models.push(path),
+                Some("v")
+                    if path
+                        .file_name()
+                        .and_then(|n| n.to_str())
+                        .is_some_and(crate::names::is_sim_model_file) =>
+                {
+                    sim_models.push(path)
+                }
                 Some("v") => sources.push(path),
                 Some("json") => {
                     // a regular file of at most MANIFEST_MAX_BYTES (never a FIFO or a device)
-                    let Ok(text) = crate::small_file::read(&path, MANIFEST_MAX_BYTES) else { continue };
+                    let Ok(text) = crate::small_file::read(&path, MANIFEST_MAX_BYTES) else {
+                        continue;
+                    };
                     let v: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
                     if v.get("generator").and_then(|g| g.as_str()) == Some("specgen") {
                         manifests.push((path, text));
@@ -295,19 +403,43 @@ impl Design {
         sim_models.sort();
         let (path, text) = match manifests.len() {
             1 => manifests.pop().unwrap(),
-            0 => return Err(input(format!("no specgen manifest (<top>.json) in the RTL directory {}", dir.display()))),
-            _ => return Err(input(format!("more than one specgen manifest in the RTL directory {}", dir.display()))),
+            0 => {
+                return Err(input(format!(
+                    "no specgen manifest (<top>.json) in the RTL directory {}",
+                    dir.display()
+                )))
+            }
+            _ => {
+                return Err(input(format!(
+                    "more than one specgen manifest in the RTL directory {}",
+                    dir.display()
+                )))
+            }
         };
         if sources.is_empty() {
-            return Err(input(format!("no Verilog (*.v) in the RTL directory {}", dir.display())));
+            return Err(input(format!(
+                "no Verilog (*.v) in the RTL directory {}",
+                dir.display()
+            )));
         }
-        let params = Params::from_json(&text).map_err(|e| input(format!("manifest {}: {}", path.display(), e.reason())))?;
+        let params = Params::from_json(&text)
+            .map_err(|e| input(format!("manifest {}: {}", path.display(), e.reason())))?;
         let listed: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
         let mut inputs = vec![path.clone()];
-        for f in listed.get("files").and_then(|f| f.as_array()).into_iter().flatten() {
+        for f in listed
+            .get("files")
+            .and_then(|f| f.as_array())
+            .into_iter()
+            .flatten()
+        {
             // a listed name is a plain file name of the unit's; anything else is not ours to guard
             let plain = |n: &str| !n.is_empty() && !n.contains('/') && n != ".." && n != ".";
-            let ours = |n: &&str| plain(n) || n.strip_prefix(crate::names::SIM_DIR).and_then(|r| r.strip_prefix('/')).is_some_and(plain);
+            let ours = |n: &&str| {
+                plain(n)
+                    || n.strip_prefix(crate::names::SIM_DIR)
+                        .and_then(|r| r.strip_prefix('/'))
+                        .is_some_and(plain)
+            };
             if let Some(name) = f.get("name").and_then(|n| n.as_str()).filter(ours) {
                 let p = dir.join(name);
                 if p.exists() {
@@ -338,11 +470,18 @@ pub struct Cycle {
 impl Cycle {
     /// A pixel offered with `in_valid` high.
     pub fn pixel(inputs: Inputs) -> Cycle {
-        Cycle { inputs, valid: true, ..Cycle::default() }
+        Cycle {
+            inputs,
+            valid: true,
+            ..Cycle::default()
+        }
     }
     /// A reset cycle (nothing offered).
     pub fn reset() -> Cycle {
-        Cycle { rst: true, ..Cycle::default() }
+        Cycle {
+            rst: true,
+            ..Cycle::default()
+        }
     }
 }
 

@@ -63,14 +63,26 @@ pub fn corner_vectors(model: &Model) -> Vec<Inputs> {
     let mut v = Vec::new();
     for &n in &ns {
         let sp = bounds[n as usize];
-        let mut coss = vec![0, one, one + 1, cos_max, sp.saturating_sub(1), sp, (sp + 1).min(cos_max)];
+        let mut coss = vec![
+            0,
+            one,
+            one + 1,
+            cos_max,
+            sp.saturating_sub(1),
+            sp,
+            (sp + 1).min(cos_max),
+        ];
         coss.sort();
         coss.dedup();
         for &cos_g in &coss {
             for &r in &colours {
                 for &g in &colours {
                     for &b in &colours {
-                        v.push(Inputs { cos_g, n, ks: [r, g, b] });
+                        v.push(Inputs {
+                            cos_g,
+                            n,
+                            ks: [r, g, b],
+                        });
                     }
                 }
             }
@@ -102,13 +114,28 @@ pub fn random_vector(cfg: &Config, seed: u64, i: u64) -> Inputs {
         // s in (0, 1) from 24 random bits
         let s = (((r >> 3) & 0xff_ffff) as f64 + 0.5) / (1u64 << 24) as f64;
         let c = s.powf(1.0 / n as f64);
-        (((c * one as f64).round() as u64).min(one) as u32, n.min(n_max) as u32)
+        (
+            ((c * one as f64).round() as u64).min(one) as u32,
+            n.min(n_max) as u32,
+        )
     } else {
-        let cos_g = if r & 1 == 0 { ((r >> 3) % (one + 1)) as u32 } else { ((r >> 3) & ((2 * one) - 1)) as u32 };
+        let cos_g = if r & 1 == 0 {
+            ((r >> 3) % (one + 1)) as u32
+        } else {
+            ((r >> 3) & ((2 * one) - 1)) as u32
+        };
         (cos_g, ((r >> 32) & n_max) as u32)
     };
     let bm = (1u64 << cfg.b()) - 1;
-    Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
+    Inputs {
+        cos_g,
+        n,
+        ks: [
+            (r2 & bm) as u32,
+            ((r2 >> 16) & bm) as u32,
+            ((r2 >> 32) & bm) as u32,
+        ],
+    }
 }
 
 /// Cycles with nothing offered that empty a unit whose consumer is ready: its latency, and
@@ -154,22 +181,45 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
     let handshake = cfg.interface().handshake();
     let static_colour = cfg.colour() == crate::config::Colour::Static;
     let tag_mask = crate::bits::mask(cfg.carried_tag_bits()) as u64;
-    let vectors: Vec<Inputs> = corner_vectors(model).into_iter().chain((0..count).map(|i| random_vector(cfg, seed, i))).collect();
+    let vectors: Vec<Inputs> = corner_vectors(model)
+        .into_iter()
+        .chain((0..count).map(|i| random_vector(cfg, seed, i)))
+        .collect();
     let mut cycles: Vec<Cycle> = Vec::with_capacity(vectors.len() * 5 / 4 + 8);
     let load = |cycles: &mut Vec<Cycle>, k: u64| {
         for _ in 0..drain_cycles(cfg) {
             cycles.push(Cycle::default());
         }
         let ks = random_vector(cfg, seed ^ 0x10ad, k).ks;
-        cycles.push(Cycle { inputs: Inputs { ks, ..Inputs::default() }, load: true, ..Cycle::default() });
+        cycles.push(Cycle {
+            inputs: Inputs {
+                ks,
+                ..Inputs::default()
+            },
+            load: true,
+            ..Cycle::default()
+        });
         if cfg.params.clock_enable {
             // a decoy: ks_load with another colour at an edge the clock enable leaves out
             let ks = random_vector(cfg, seed ^ 0xdec0, k).ks;
-            cycles.push(Cycle { inputs: Inputs { ks, ..Inputs::default() }, load: true, disabled: true, ..Cycle::default() });
+            cycles.push(Cycle {
+                inputs: Inputs {
+                    ks,
+                    ..Inputs::default()
+                },
+                load: true,
+                disabled: true,
+                ..Cycle::default()
+            });
         }
     };
     if clocked {
-        cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xdead, 0), valid: true, rst: true, ..Cycle::default() });
+        cycles.push(Cycle {
+            inputs: random_vector(cfg, seed ^ 0xdead, 0),
+            valid: true,
+            rst: true,
+            ..Cycle::default()
+        });
     }
     if static_colour {
         load(&mut cycles, 0);
@@ -181,14 +231,31 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
             let r = splitmix(seed ^ 0xb0bb1e5 ^ (i as u64) << 8);
             if r.is_multiple_of(8) {
                 // a bubble, or a run of them
-                for _ in 0..if r & 0x700 == 0 { 1 + (r >> 16) % 40 } else { 1 } {
-                    cycles.push(Cycle { inputs: random_vector(cfg, seed ^ 0xb0bb, i as u64), ..Cycle::default() });
+                for _ in 0..if r & 0x700 == 0 {
+                    1 + (r >> 16) % 40
+                } else {
+                    1
+                } {
+                    cycles.push(Cycle {
+                        inputs: random_vector(cfg, seed ^ 0xb0bb, i as u64),
+                        ..Cycle::default()
+                    });
                 }
             }
             if i == reset_at {
                 // a reset in mid-stream: the pixels inside are dropped, then the stream resumes
-                cycles.push(Cycle { inputs, valid: true, rst: true, ..Cycle::default() });
-                cycles.push(Cycle { inputs, valid: true, rst: true, ..Cycle::default() });
+                cycles.push(Cycle {
+                    inputs,
+                    valid: true,
+                    rst: true,
+                    ..Cycle::default()
+                });
+                cycles.push(Cycle {
+                    inputs,
+                    valid: true,
+                    rst: true,
+                    ..Cycle::default()
+                });
                 if static_colour {
                     load(&mut cycles, i as u64);
                 }
@@ -197,7 +264,10 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
             }
         }
         let tag = splitmix(seed ^ 0x7a9 ^ (i as u64) << 4) & tag_mask;
-        cycles.push(Cycle { tag, ..Cycle::pixel(inputs) });
+        cycles.push(Cycle {
+            tag,
+            ..Cycle::pixel(inputs)
+        });
     }
     if !handshake && clocked {
         // the last pixels' results leave the pipeline before the run ends
@@ -221,7 +291,10 @@ pub fn random_stimulus(model: &Model, count: u64, seed: u64) -> Recorded {
         while t > 0 {
             t -= 1;
             if cycles[t].load {
-                for c in cycles[t.saturating_sub(drain_cycles(cfg) as usize)..t].iter_mut().filter(|c| !c.load) {
+                for c in cycles[t.saturating_sub(drain_cycles(cfg) as usize)..t]
+                    .iter_mut()
+                    .filter(|c| !c.load)
+                {
                     (c.stall, c.disabled) = (false, false);
                 }
             }
@@ -302,7 +375,10 @@ impl Exhaustive {
             cos_g.wrapping_add(n.wrapping_mul(3)).wrapping_add(85) & bm,
             cos_g.wrapping_add(n.wrapping_mul(7)).wrapping_add(170) & bm,
         ];
-        Cycle { tag: self.tag(i), ..Cycle::pixel(Inputs { cos_g, n, ks }) }
+        Cycle {
+            tag: self.tag(i),
+            ..Cycle::pixel(Inputs { cos_g, n, ks })
+        }
     }
 
     fn tag(&self, i: u64) -> u64 {
@@ -316,7 +392,11 @@ impl Exhaustive {
 
 impl Stimulus for Exhaustive {
     fn len(&self) -> u64 {
-        let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
+        let tail = if self.full_intensity_tail {
+            1u64 << self.b
+        } else {
+            0
+        };
         self.sweep() + self.lead() + tail + self.drain
     }
     fn cycle(&self, i: u64) -> Cycle {
@@ -325,14 +405,25 @@ impl Stimulus for Exhaustive {
             return Cycle::reset();
         }
         if self.static_colour && i == self.clocked as u64 {
-            return Cycle { inputs: Inputs { ks: [bm, bm / 2 + 1, 1.min(bm)], ..Inputs::default() }, load: true, ..Cycle::default() };
+            return Cycle {
+                inputs: Inputs {
+                    ks: [bm, bm / 2 + 1, 1.min(bm)],
+                    ..Inputs::default()
+                },
+                load: true,
+                ..Cycle::default()
+            };
         }
         if i < self.lead() {
             return Cycle::default();
         }
         let j = i - self.lead();
         let sweep = self.sweep();
-        let tail = if self.full_intensity_tail { 1u64 << self.b } else { 0 };
+        let tail = if self.full_intensity_tail {
+            1u64 << self.b
+        } else {
+            0
+        };
         if j >= sweep + tail {
             return Cycle::default();
         }
@@ -340,9 +431,20 @@ impl Stimulus for Exhaustive {
             let code = (j - sweep) as u32;
             let n = code.wrapping_mul(7) & ((1u32 << self.n_bits) - 1);
             let ks = [code, code.wrapping_add(1) & bm, code.wrapping_add(2) & bm];
-            return Cycle { tag: self.tag(i), ..Cycle::pixel(Inputs { cos_g: 1 << self.f, n, ks }) };
+            return Cycle {
+                tag: self.tag(i),
+                ..Cycle::pixel(Inputs {
+                    cos_g: 1 << self.f,
+                    n,
+                    ks,
+                })
+            };
         }
-        self.sweep_cycle(i, (j % self.row()) as u32, self.n_lo + (j / self.row()) as u32)
+        self.sweep_cycle(
+            i,
+            (j % self.row()) as u32,
+            self.n_lo + (j / self.row()) as u32,
+        )
     }
     fn harness_sweep(&self) -> Option<String> {
         let flag = |b: bool| b as u8;
@@ -395,7 +497,12 @@ mod tests {
     fn the_sweep_steps_through_the_cycles_it_addresses() {
         // a batch may start and end anywhere: in the lead, mid-row, in the tail, in the drain
         let configs = [
-            Params { cos_frac_bits: 5, n_bits: 3, color_bits: 4, ..Params::default() },
+            Params {
+                cos_frac_bits: 5,
+                n_bits: 3,
+                color_bits: 4,
+                ..Params::default()
+            },
             Params {
                 cos_frac_bits: 5,
                 n_bits: 3,

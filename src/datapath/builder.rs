@@ -21,7 +21,17 @@ impl Builder {
     pub fn new(inputs: &[(&str, u32)], registered: &[u32], target: Target) -> Builder {
         Builder {
             steps: Vec::new(),
-            signals: inputs.iter().map(|&(n, w)| Signal { name: n.into(), width: w, step: 0, uses: Vec::new(), dsp_registered: false, held: None }).collect(),
+            signals: inputs
+                .iter()
+                .map(|&(n, w)| Signal {
+                    name: n.into(),
+                    width: w,
+                    step: 0,
+                    uses: Vec::new(),
+                    dsp_registered: false,
+                    held: None,
+                })
+                .collect(),
             tables: Vec::new(),
             reads: Vec::new(),
             registered: registered.to_vec(),
@@ -99,16 +109,28 @@ impl Builder {
     /// the cuts on both sides registered, the one before being a cut (not the input ports).
     pub(super) fn block_registers_here(&self) -> bool {
         let k = self.steps.len();
-        self.family().instantiated_blocks() && k >= 2 && self.is_registered(k - 1) && self.is_registered(k)
+        self.family().instantiated_blocks()
+            && k >= 2
+            && self.is_registered(k - 1)
+            && self.is_registered(k)
     }
 
     /// Runs `f` with references taken as the step before sees them, where a block's input
     /// registers take its inputs; each of `inputs` must be visible there (defined before it,
     /// and not another block's output registered at its end).
-    pub(super) fn seen_from_step_before<T>(&mut self, inputs: &[&str], what: &str, f: impl FnOnce(&mut Self) -> T) -> T {
+    pub(super) fn seen_from_step_before<T>(
+        &mut self,
+        inputs: &[&str],
+        what: &str,
+        f: impl FnOnce(&mut Self) -> T,
+    ) -> T {
         let k = self.steps.len();
         for n in inputs {
-            assert!(self.visible_before(n), "datapath: {n} is not visible in step {} for {what}", k - 1);
+            assert!(
+                self.visible_before(n),
+                "datapath: {n} is not visible in step {} for {what}",
+                k - 1
+            );
         }
         self.view = Some(k - 1);
         let out = f(self);
@@ -128,8 +150,18 @@ impl Builder {
     /// Records a new signal defined in `step` (`dsp_registered`: held by a block's output
     /// register at the cut after it).
     pub(super) fn define(&mut self, name: &str, width: u32, step: usize, dsp_registered: bool) {
-        assert!(self.signals.iter().all(|s| s.name != name), "datapath: {name} defined twice");
-        self.signals.push(Signal { name: name.into(), width, step, uses: Vec::new(), dsp_registered, held: None });
+        assert!(
+            self.signals.iter().all(|s| s.name != name),
+            "datapath: {name} defined twice"
+        );
+        self.signals.push(Signal {
+            name: name.into(),
+            width,
+            step,
+            uses: Vec::new(),
+            dsp_registered,
+            held: None,
+        });
     }
 
     /// `name = a·b mod 2^width` (operands zero-extended; `width` at most their two widths
@@ -139,12 +171,28 @@ impl Builder {
     /// no fabric register holds them), its output register is the cut after (the product is
     /// `name_cK` from there). Anywhere else, a `*` the synthesis tool maps.
     pub fn product(&mut self, name: &str, a: &[Piece], b: &[Piece], width: u32, comment: &str) {
-        let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
-        let inputs: Vec<String> = a.iter().chain(b).filter_map(|p| if let Piece::Sig { name, .. } = p { Some(name.clone()) } else { None }).collect();
+        let (wa, wb) = (
+            a.iter().map(Piece::width).sum::<u32>(),
+            b.iter().map(Piece::width).sum::<u32>(),
+        );
+        let inputs: Vec<String> = a
+            .iter()
+            .chain(b)
+            .filter_map(|p| {
+                if let Piece::Sig { name, .. } = p {
+                    Some(name.clone())
+                } else {
+                    None
+                }
+            })
+            .collect();
         // an operand that is another block's output registered at the cut before cannot also
         // be this block's input register: then a `*` the tool maps
         let visible = inputs.iter().all(|n| self.visible_before(n));
-        let on_dsp = visible && self.block_registers_here() && wa.max(wb) <= ECP5_DSP_BITS && width <= 2 * ECP5_DSP_BITS;
+        let on_dsp = visible
+            && self.block_registers_here()
+            && wa.max(wb) <= ECP5_DSP_BITS
+            && width <= 2 * ECP5_DSP_BITS;
         if !on_dsp || self.is_in_fabric(name) {
             self.mul(name, width, (a, wa), (b, wb), &[], Delay::ZERO, comment);
             return;
@@ -153,10 +201,19 @@ impl Builder {
         self.product_delay(wa, wb, width, Delay::ZERO);
         let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
         let (ea, eb) = self.seen_from_step_before(&inputs, &format!("the DSP of {name}"), |s| {
-            (s.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)).text, s.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)).text)
+            (
+                s.pieces(&sub_pieces(a, 0, ECP5_DSP_BITS)).text,
+                s.pieces(&sub_pieces(b, 0, ECP5_DSP_BITS)).text,
+            )
         });
         self.define(name, width, self.steps.len(), true);
-        self.steps.last_mut().expect("a step").dsps.push(Dsp { name: name.into(), width, a: ea, b: eb, comment: comment.into() });
+        self.steps.last_mut().expect("a step").dsps.push(Dsp {
+            name: name.into(),
+            width,
+            a: ea,
+            b: eb,
+            comment: comment.into(),
+        });
     }
 
     /// `name = a·b + addend mod 2^width` (operands zero-extended), starting in this step.
@@ -169,8 +226,20 @@ impl Builder {
     /// own, titled `title`: one carry chain on the ECP5, a carry-select add on the iCE40.
     /// Returns the name of the sum.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn multiply_add(&mut self, name: &str, a: &[Piece], b: &[Piece], addend: &[Piece], width: u32, title: &str, comment: &str) -> Sig {
-        let (wa, wb) = (a.iter().map(Piece::width).sum::<u32>(), b.iter().map(Piece::width).sum::<u32>());
+    pub(crate) fn multiply_add(
+        &mut self,
+        name: &str,
+        a: &[Piece],
+        b: &[Piece],
+        addend: &[Piece],
+        width: u32,
+        title: &str,
+        comment: &str,
+    ) -> Sig {
+        let (wa, wb) = (
+            a.iter().map(Piece::width).sum::<u32>(),
+            b.iter().map(Piece::width).sum::<u32>(),
+        );
         let post_adder = self.family().post_adder(width, wa, wb);
         if post_adder {
             // an addend of constant zeros is none
@@ -178,14 +247,28 @@ impl Builder {
                 true => Vec::new(),
                 false => addend.to_vec(),
             };
-            let sum = self.mul(name, width, (a, wa), (b, wb), &addend, Delay::ZERO, &format!("{comment} (one DSP, the add inside it)"));
+            let sum = self.mul(
+                name,
+                width,
+                (a, wa),
+                (b, wb),
+                &addend,
+                Delay::ZERO,
+                &format!("{comment} (one DSP, the add inside it)"),
+            );
             // (the block's output read by the fabric from a flip-flop of its own)
             self.fabric_register_step(&format!("{title}: the sum registered in the fabric"));
             return sum;
         }
         let product = format!("{name}_prod");
         let pw = width.min(wa + wb);
-        self.product(&product, a, b, pw, &format!("the product alone (one DSP), exact: {pw} bits"));
+        self.product(
+            &product,
+            a,
+            b,
+            pw,
+            &format!("the product alone (one DSP), exact: {pw} bits"),
+        );
         // the addend's low zero bits: the sum there is the product's
         let mut z = 0;
         for p in addend {
@@ -195,20 +278,37 @@ impl Builder {
             }
         }
         let z = z.min(pw);
-        let hi = if z == 0 { name.to_string() } else { format!("{name}_hi") };
+        let hi = if z == 0 {
+            name.to_string()
+        } else {
+            format!("{name}_hi")
+        };
         let mut pb = sub_pieces(addend, z, width - z);
-        if pb.iter().any(|p| matches!(p, Piece::Sig { invert: true, .. })) {
+        if pb
+            .iter()
+            .any(|p| matches!(p, Piece::Sig { invert: true, .. }))
+        {
             // a complemented addend is formed here, beside the product: a carry chain's
             // operand takes no inverter, which would be a LUT level before it
             let e = self.pieces(&pb);
             let (aname, aw) = (format!("{name}_addend"), width - z);
-            self.wire(&aname, aw, Kind::Logic, e, &format!("bits [{}:{z}] of the addend of {name}", width - 1));
+            self.wire(
+                &aname,
+                aw,
+                Kind::Logic,
+                e,
+                &format!("bits [{}:{z}] of the addend of {name}", width - 1),
+            );
             pb = vec![Piece::sig(&aname, 0, aw)];
         }
         let pa = [Piece::sig(&product, z, pw - z)];
         self.fabric_register_step(&format!("{title}: the product registered in the fabric"));
         self.step(&format!("{title}: the add after the product"));
-        let what = if z == 0 { comment.to_string() } else { format!("bits [{}:{z}] of {name}", width - 1) };
+        let what = if z == 0 {
+            comment.to_string()
+        } else {
+            format!("bits [{}:{z}] of {name}", width - 1)
+        };
         if self.family().instantiated_blocks() {
             self.add(&hi, &pa, &pb, false, width - z, &what);
         } else {
@@ -244,7 +344,9 @@ impl Builder {
     /// (the shapes the delay model is calibrated on stay as they are).
     pub(crate) fn fabric_register_step(&mut self, title: &str) {
         // (one such step is enough: none right after another with nothing in it)
-        let just_registered = self.steps.last().is_some_and(|s| s.wires.is_empty() && s.dsps.is_empty() && s.delay == REGISTER_ONLY_DELAY);
+        let just_registered = self.steps.last().is_some_and(|s| {
+            s.wires.is_empty() && s.dsps.is_empty() && s.delay == REGISTER_ONLY_DELAY
+        });
         if self.fabric_registers && self.family().dsp_capacity().is_some() && !just_registered {
             self.register_only_step(title);
         }
@@ -259,7 +361,9 @@ impl Builder {
     /// Elsewhere none: the ECP5's steps were measured without them, and the calibrated shapes of
     /// the models without the flag stay as they are.
     pub(crate) fn route_registers(&self) -> bool {
-        self.fabric_registers && self.family().dsp_capacity().is_some() && !self.family().instantiated_blocks()
+        self.fabric_registers
+            && self.family().dsp_capacity().is_some()
+            && !self.family().instantiated_blocks()
     }
 
     /// Where [`Builder::route_registers`], a step titled `title` that only registers: a
@@ -300,7 +404,11 @@ impl Builder {
     }
 
     pub(super) fn signal(&mut self, name: &str) -> &mut Signal {
-        self.signals.iter_mut().rev().find(|s| s.name == name).unwrap_or_else(|| panic!("datapath: {name} used before it is defined"))
+        self.signals
+            .iter_mut()
+            .rev()
+            .find(|s| s.name == name)
+            .unwrap_or_else(|| panic!("datapath: {name} used before it is defined"))
     }
 
     /// Whether `name` is held in a block's output register defined in the current step (so
@@ -314,8 +422,15 @@ impl Builder {
 
     /// The name of `name` as seen from the current step.
     pub(super) fn version(&mut self, name: &str) -> String {
-        let (cur, def, dsp) = (self.cur(), self.signal(name).step, self.signal(name).dsp_registered);
-        assert!(!(dsp && def == cur), "datapath: {name} is a DSP's registered output, read only after its step");
+        let (cur, def, dsp) = (
+            self.cur(),
+            self.signal(name).step,
+            self.signal(name).dsp_registered,
+        );
+        assert!(
+            !(dsp && def == cur),
+            "datapath: {name} is a DSP's registered output, read only after its step"
+        );
         if let Some(held) = &self.signal(name).held {
             return held.clone();
         }
@@ -327,7 +442,11 @@ impl Builder {
         let name = name.as_ref();
         let cur = self.cur();
         let s = self.signal(name);
-        assert!(hi < s.width && lo <= hi, "datapath: {name}[{hi}:{lo}] of a {}-bit signal", s.width);
+        assert!(
+            hi < s.width && lo <= hi,
+            "datapath: {name}[{hi}:{lo}] of a {}-bit signal",
+            s.width
+        );
         s.uses.push((cur, mask(hi + 1) & !mask(lo)));
         let whole = lo == 0 && hi + 1 == s.width;
         let v = self.version(name);
@@ -349,7 +468,13 @@ impl Builder {
 
     /// Bits `[lo, lo+width)` of a signal as an operand of exactly `out` bits: cut to its low
     /// `out` bits (enough for a result taken modulo 2^out) or zero-extended.
-    pub fn operand(&mut self, name: &(impl AsRef<str> + ?Sized), lo: u32, width: u32, out: u32) -> Expr {
+    pub fn operand(
+        &mut self,
+        name: &(impl AsRef<str> + ?Sized),
+        lo: u32,
+        width: u32,
+        out: u32,
+    ) -> Expr {
         let name = name.as_ref();
         self.pieces(&sub_pieces(&[Piece::sig(name, lo, width)], 0, out))
     }
@@ -369,7 +494,15 @@ impl Builder {
     /// or a global buffer ~6 ns away when it drives more than 15 flip-flops.
     pub fn select(cond: &Expr, a: &Expr, b: &Expr, width: u32) -> Expr {
         // one side a line
-        ex!("({{{}{{{}}}}} & {})\n    | (~{{{}{{{}}}}} & {})", width, cond, a, width, cond, b)
+        ex!(
+            "({{{}{{{}}}}} & {})\n    | (~{{{}{{{}}}}} & {})",
+            width,
+            cond,
+            a,
+            width,
+            cond,
+            b
+        )
     }
 
     /// `cond ? value : other` for a constant `value` of `width` bits ([`Builder::select`]).
@@ -386,10 +519,18 @@ impl Builder {
         for (cond, value) in cases {
             let mut all = before.clone();
             all.push(cond.clone());
-            terms.push(Builder::gate(&ex!("({})", Expr::join(&all, " & ")), value, width));
+            terms.push(Builder::gate(
+                &ex!("({})", Expr::join(&all, " & ")),
+                value,
+                width,
+            ));
             before.push(ex!("~{}", cond));
         }
-        terms.push(Builder::gate(&ex!("({})", Expr::join(&before, " & ")), default, width));
+        terms.push(Builder::gate(
+            &ex!("({})", Expr::join(&before, " & ")),
+            default,
+            width,
+        ));
         Expr::join(&terms, "\n    | ")
     }
 
@@ -404,7 +545,12 @@ impl Builder {
             .iter()
             .rev()
             .map(|p| match p {
-                Piece::Sig { name, lo, width, invert } => {
+                Piece::Sig {
+                    name,
+                    lo,
+                    width,
+                    invert,
+                } => {
                     let b = self.bits(name, lo + width - 1, *lo);
                     if *invert {
                         ex!("~{}", b)
@@ -423,14 +569,44 @@ impl Builder {
 
     /// The terms of `a·r·2^shift` mod 2^out: `a` shifted to each bit `k` of `r` (by `k + shift`)
     /// where that bit is set, for a sum with more addends (constants, a table's value).
-    pub(crate) fn shift_add_terms(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32) -> Vec<Expr> {
-        self.shift_add_rows(a, r, shift, out, false).into_iter().map(|(t, _)| t).collect()
+    pub(crate) fn shift_add_terms(
+        &mut self,
+        a: &Piece,
+        r: &Piece,
+        shift: u32,
+        out: u32,
+    ) -> Vec<Expr> {
+        self.shift_add_rows(a, r, shift, out, false)
+            .into_iter()
+            .map(|(t, _)| t)
+            .collect()
     }
 
     /// [`Builder::shift_add_terms`], each term with its width: `out` bits, or (`narrow`) only
     /// its significant ones, `a`'s width above its shift (the bits above are 0).
-    pub(super) fn shift_add_rows(&mut self, a: &Piece, r: &Piece, shift: u32, out: u32, narrow: bool) -> Vec<(Expr, u32)> {
-        let (Piece::Sig { name: rn, lo: rlo, width: rw, .. }, Piece::Sig { name: an, lo: alo, width: aw, .. }) = (r, a) else {
+    pub(super) fn shift_add_rows(
+        &mut self,
+        a: &Piece,
+        r: &Piece,
+        shift: u32,
+        out: u32,
+        narrow: bool,
+    ) -> Vec<(Expr, u32)> {
+        let (
+            Piece::Sig {
+                name: rn,
+                lo: rlo,
+                width: rw,
+                ..
+            },
+            Piece::Sig {
+                name: an,
+                lo: alo,
+                width: aw,
+                ..
+            },
+        ) = (r, a)
+        else {
             panic!("shift_add takes signal pieces")
         };
         let mut terms = Vec::new();
@@ -439,7 +615,11 @@ impl Builder {
             let s = k + shift;
             let tw = if narrow { out.min(aw + s) } else { out };
             let av = self.operand(an, *alo, *aw, tw - s);
-            let shifted = if s == 0 { av } else { ex!("{{{}, {}}}", av, lit(s, 0)) };
+            let shifted = if s == 0 {
+                av
+            } else {
+                ex!("{{{}, {}}}", av, lit(s, 0))
+            };
             terms.push((Builder::gate(&bit, &shifted, tw), tw));
         }
         terms
@@ -463,8 +643,18 @@ impl Builder {
             self.products.push(name.to_string());
         }
         self.define(name, width, cur, false);
-        self.steps.last_mut().expect("a step").wires.push(Wire { name: name.into(), width, kind, expr, comment: comment.into(), keep: false });
-        Sig { name: name.into(), width }
+        self.steps.last_mut().expect("a step").wires.push(Wire {
+            name: name.into(),
+            width,
+            kind,
+            expr,
+            comment: comment.into(),
+            keep: false,
+        });
+        Sig {
+            name: name.into(),
+            width,
+        }
     }
 
     /// [`Builder::wire`] marked `(* keep *)`: synthesis maps the logic up to it apart from the
@@ -472,16 +662,32 @@ impl Builder {
     /// datapath wrote, not what the mapper makes of it. yosys 0.70's ABC9 relaxes a path to
     /// the deepest in the design (area recovery): a 9-input OR became a chain of three LUT4s,
     /// blinn's leading-zero pick three levels where two fit.
-    pub(crate) fn wire_kept(&mut self, name: &str, width: u32, kind: Kind, expr: Expr, comment: &str) -> Sig {
+    pub(crate) fn wire_kept(
+        &mut self,
+        name: &str,
+        width: u32,
+        kind: Kind,
+        expr: Expr,
+        comment: &str,
+    ) -> Sig {
         let sig = self.wire(name, width, kind, expr, comment);
-        self.steps.last_mut().expect("a step").wires.last_mut().expect("the wire").keep = true;
+        self.steps
+            .last_mut()
+            .expect("a step")
+            .wires
+            .last_mut()
+            .expect("the wire")
+            .keep = true;
         sig
     }
 
     /// The handle of a signal defined before (a unit input, or a wire a helper defined).
     pub(crate) fn sig(&mut self, name: &str) -> Sig {
         let width = self.signal(name).width;
-        Sig { name: name.into(), width }
+        Sig {
+            name: name.into(),
+            width,
+        }
     }
 
     /// The colour multipliers (14–16) with the colours' rounding half as their addend, one
@@ -510,7 +716,10 @@ impl Builder {
                 name: format!("color_sum_{ch}"),
                 a: (vp, wc + 1),
                 b: (k, bb),
-                addend: vec![Piece::Const { value: 1u128 << (wc - 1), width: cp }],
+                addend: vec![Piece::Const {
+                    value: 1u128 << (wc - 1),
+                    width: cp,
+                }],
                 comment: format!("UQ{bb}.{wc}: {what}*ks_{ch} + 1/2 colour ulp"),
             })
             .collect();
@@ -527,17 +736,31 @@ impl Builder {
         if !self.family().instantiated_blocks() {
             if self.signals.iter().any(|s| s.name == "color_power_r") {
                 // a copy per channel, made the step before ([`Builder::colour_copies`])
-                self.colour_sums_of(["color_power_r", "color_power_g", "color_power_b"], wc, what, Delay::ZERO);
+                self.colour_sums_of(
+                    ["color_power_r", "color_power_g", "color_power_b"],
+                    wc,
+                    what,
+                    Delay::ZERO,
+                );
                 return;
             }
             let cs = self.bits(src, lo + wc, lo);
-            self.wire("color_power", wc + 1, Kind::Select, cs, &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"));
+            self.wire(
+                "color_power",
+                wc + 1,
+                Kind::Select,
+                cs,
+                &format!("UQ1.{wc}: {what} floored to what the colours' budget needs"),
+            );
             self.colour_sums("color_power", wc, what, Delay::ZERO);
             return;
         }
         let bb = self.colour_bits();
         for ch in CHANNELS {
-            let (v, k) = (Piece::sig(src, lo, wc + 1), Piece::sig(&format!("ks_{ch}"), 0, bb));
+            let (v, k) = (
+                Piece::sig(src, lo, wc + 1),
+                Piece::sig(&format!("ks_{ch}"), 0, bb),
+            );
             self.product(
                 &format!("color_prod_{ch}"),
                 &[v],
@@ -556,13 +779,18 @@ impl Builder {
     /// otherwise only with `--fabric-registers` ([`Builder::registers_in_fabric`]), so the
     /// calibrated shapes of the models that do without it stay as they are.
     pub(crate) fn colour_copies(&mut self, src: &str, lo: u32, wc: u32, what: &str, always: bool) {
-        if !self.family().copies_block_operands() || self.family().instantiated_blocks() || !(always || self.fabric_registers) {
+        if !self.family().copies_block_operands()
+            || self.family().instantiated_blocks()
+            || !(always || self.fabric_registers)
+        {
             return;
         }
         // a step of its own: each copy's register then takes its value from a register, not
         // from the logic before it, and can sit by its block (packed with a LUT of that logic,
         // one held blinn's colour products at 118 MHz)
-        self.step(&format!("colour multipliers: {what}'s colour field once per block"));
+        self.step(&format!(
+            "colour multipliers: {what}'s colour field once per block"
+        ));
         self.delay(REGISTER_ONLY_DELAY);
         for ch in CHANNELS {
             let cs = self.bits(src, lo + wc, lo);
@@ -580,7 +808,9 @@ impl Builder {
         }
         // with route registers, each copy twice: one flip-flop by the logic before, one by
         // its block (a 6.8 ns route from the first to fitted's colour SB_MAC16: 120.6 MHz)
-        self.route_register_step(&format!("colour multipliers: {what}'s colour field again, by its block"));
+        self.route_register_step(&format!(
+            "colour multipliers: {what}'s colour field again, by its block"
+        ));
     }
 
     /// The ECP5's colour rounding after [`Builder::colour_products`], in this step:
@@ -592,9 +822,19 @@ impl Builder {
         }
         let cp = wc + self.colour_bits();
         for ch in CHANNELS {
-            let half = Piece::Const { value: 1u128 << (wc - 1), width: wc };
+            let half = Piece::Const {
+                value: 1u128 << (wc - 1),
+                width: wc,
+            };
             let comment = format!("UQ{}.{wc}: {what}*ks_{ch} + 1/2 colour ulp", cp - wc);
-            self.add(&format!("color_sum_{ch}"), &[Piece::sig(&format!("color_prod_{ch}"), 0, cp)], &[half], false, cp, &comment);
+            self.add(
+                &format!("color_sum_{ch}"),
+                &[Piece::sig(&format!("color_prod_{ch}"), 0, cp)],
+                &[half],
+                false,
+                cp,
+                &comment,
+            );
         }
     }
 
@@ -604,7 +844,13 @@ impl Builder {
         let bb = self.colour_bits();
         for ch in CHANNELS {
             let e = self.bits(&format!("color_sum_{ch}"), wc + bb - 1, wc);
-            self.wire(&format!("spec_{ch}"), bb, Kind::Select, e, &format!("UNORM{bb}: {what}*ks_{ch} rounded half up"));
+            self.wire(
+                &format!("spec_{ch}"),
+                bb,
+                Kind::Select,
+                e,
+                &format!("UNORM{bb}: {what}*ks_{ch} rounded half up"),
+            );
         }
     }
 
@@ -623,7 +869,12 @@ impl Builder {
             &[],
             true,
             fi + 2,
-            &format!("UQ1.{}: {what} to 2^-{} plus one ulp = {what} + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
+            &format!(
+                "UQ1.{}: {what} to 2^-{} plus one ulp = {what} + 2^-{} (round half up)",
+                fi + 1,
+                fi + 1,
+                fi + 1
+            ),
         );
         let (lo, hi) = (frac - fi - 1, self.signal(src).width);
         let mut groups = Vec::new();
@@ -631,28 +882,58 @@ impl Builder {
             let gh = (g + 4).min(hi);
             let bits = self.bits(src, gh - 1, g);
             let name = format!("done_zero{k}");
-            self.wire(&name, 1, Kind::Logic, ex!("~|{}", bits), &format!("bits [{}:{g}] of {what} are 0", gh - 1));
+            self.wire(
+                &name,
+                1,
+                Kind::Logic,
+                ex!("~|{}", bits),
+                &format!("bits [{}:{g}] of {what} are 0", gh - 1),
+            );
             groups.push(name);
         }
         self.colour_rounding(wc, what);
         let sum = self.resolve(p, "the intensity rounded half up");
         let zeros: Vec<Expr> = groups.iter().map(|g| self.r(g)).collect();
-        self.wire("done", 1, Kind::Logic, Expr::join(&zeros, " & "), "the highlight is below the output's resolution (the intensity rounds to 0)");
+        self.wire(
+            "done",
+            1,
+            Kind::Logic,
+            Expr::join(&zeros, " & "),
+            "the highlight is below the output's resolution (the intensity rounds to 0)",
+        );
         self.colour_results(wc, what);
         let e = self.bits(&sum, fi + 1, 1);
-        self.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: {what} rounded half up"));
+        self.wire(
+            "intensity",
+            fi + 1,
+            Kind::Select,
+            e,
+            &format!("UQ1.{fi}: {what} rounded half up"),
+        );
     }
 
     /// B: the width of the colour ports.
     pub(super) fn colour_bits(&self) -> u32 {
-        self.signals.iter().find(|s| s.name == "ks_r").expect("the colour ports are inputs").width
+        self.signals
+            .iter()
+            .find(|s| s.name == "ks_r")
+            .expect("the colour ports are inputs")
+            .width
     }
 
     /// The value of `cases` (`(index, value)`) whose index `sel` (`bits` wide) equals, over
     /// `width` bits: an OR of the values, each gated by its match, one a line; 0 when there is
     /// none. A table or a mux in LUTs without a `?:` chain ([`Builder::select`]'s rule).
-    pub(crate) fn one_of(sel: &Expr, bits: u32, cases: impl IntoIterator<Item = (u128, Expr)>, width: u32) -> Expr {
-        let terms: Vec<Expr> = cases.into_iter().map(|(i, v)| Builder::gate(&ex!("{} == {}", sel, lit(bits, i)), &v, width)).collect();
+    pub(crate) fn one_of(
+        sel: &Expr,
+        bits: u32,
+        cases: impl IntoIterator<Item = (u128, Expr)>,
+        width: u32,
+    ) -> Expr {
+        let terms: Vec<Expr> = cases
+            .into_iter()
+            .map(|(i, v)| Builder::gate(&ex!("{} == {}", sel, lit(bits, i)), &v, width))
+            .collect();
         match terms.is_empty() {
             true => Expr::constant(lit(width, 0)),
             false => Expr::join(&terms, "\n    | "),
@@ -666,13 +947,25 @@ impl Builder {
     /// ([`Builder::select`]).
     pub(crate) fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
         // a table of 2^r lines: every caller splits wider squares otherwise (an invariant, not an input)
-        assert!(r <= MAX_SQUARER_SPLIT, "a square table of {r} bits: at most {MAX_SQUARER_SPLIT}");
+        assert!(
+            r <= MAX_SQUARER_SPLIT,
+            "a square table of {r} bits: at most {MAX_SQUARER_SPLIT}"
+        );
         let v = self.bits(sig, lo + r - 1, lo);
         // one entry a line; v = 0 squares to 0 and adds nothing
-        let e = Builder::one_of(&v, r, (1..1u128 << r).map(|x| (x, Expr::constant(lit(2 * r, x * x)))), 2 * r);
+        let e = Builder::one_of(
+            &v,
+            r,
+            (1..1u128 << r).map(|x| (x, Expr::constant(lit(2 * r, x * x)))),
+            2 * r,
+        );
         self.wire(name, 2 * r, Kind::Table, e, comment);
         // a function of more inputs than a LUT has: two levels
-        self.delay(if r > LUT_INPUTS { 2.0 * LUT_DELAY } else { LUT_DELAY });
+        self.delay(if r > LUT_INPUTS {
+            2.0 * LUT_DELAY
+        } else {
+            LUT_DELAY
+        });
     }
 
     /// Adds a constant table to the unit; returns its index for [`Builder::rom_read`].
@@ -688,7 +981,14 @@ impl Builder {
         let cur = self.cur();
         self.define(signal, self.tables[t].width, cur, false);
         let position = self.steps.last().expect("a step").wires.len();
-        self.reads.push(RomRead { step: cur, signal: signal.into(), table: t, addr: a.text, block: false, position });
+        self.reads.push(RomRead {
+            step: cur,
+            signal: signal.into(),
+            table: t,
+            addr: a.text,
+            block: false,
+            position,
+        });
     }
 
     /// [`Builder::rom_read`], on ECP5 block RAM with its registers when the table has at most
@@ -709,23 +1009,36 @@ impl Builder {
             let what = self.tables[t].what.clone();
             // (at least two parts: the last pick is `signal` itself)
             while parts.len() > 1 {
-                self.step(&format!("{what} (in LUTs): the entry picked by {addr}'s bits from {lo}"));
+                self.step(&format!(
+                    "{what} (in LUTs): the entry picked by {addr}'s bits from {lo}"
+                ));
                 (parts, lo) = self.rom_pick_of(signal, t, addr, &parts, lo, 1);
             }
             return;
         }
         // up to 1024 words, or two banks of them addressed by a whole 11-bit signal
         let words = self.tables[t].words.len();
-        let banks = words > DP16KD_WORDS && words <= 2 * DP16KD_WORDS && self.signal(addr).width == 11;
-        let fits = (words <= DP16KD_WORDS || banks) && self.tables[t].width <= MAX_BLOCK_SLICES * DP16KD_BITS;
+        let banks =
+            words > DP16KD_WORDS && words <= 2 * DP16KD_WORDS && self.signal(addr).width == 11;
+        let fits = (words <= DP16KD_WORDS || banks)
+            && self.tables[t].width <= MAX_BLOCK_SLICES * DP16KD_BITS;
         if !(fits && self.block_registers_here()) {
             return self.rom_read(signal, t, addr);
         }
-        let a = self.seen_from_step_before(&[addr], &format!("the block read of {signal}"), |s| s.r(addr));
+        let a = self.seen_from_step_before(&[addr], &format!("the block read of {signal}"), |s| {
+            s.r(addr)
+        });
         let k = self.steps.len();
         self.define(signal, self.tables[t].width, k, true);
         let position = self.steps.last().expect("a step").wires.len();
-        self.reads.push(RomRead { step: k, signal: signal.into(), table: t, addr: a.text, block: true, position });
+        self.reads.push(RomRead {
+            step: k,
+            signal: signal.into(),
+            table: t,
+            addr: a.text,
+            block: true,
+            position,
+        });
     }
 
     /// Closes the datapath: `outputs` are read after the last step. Adds an `unused_*` wire
@@ -736,7 +1049,12 @@ impl Builder {
         // place its cuts on a wrong sum: every step's logic states its delay (Builder::delay)
         for s in &self.steps {
             let logic = s.wires.iter().any(|w| !w.is_plain()) || !s.dsps.is_empty();
-            assert!(!logic || s.delay.ns > 0.0, "datapath: step {} ({}) has logic but no delay estimate: call Builder::delay in it", s.index, s.title);
+            assert!(
+                !logic || s.delay.ns > 0.0,
+                "datapath: step {} ({}) has logic but no delay estimate: call Builder::delay in it",
+                s.index,
+                s.title
+            );
         }
         let last = self.cur();
         for o in outputs {
@@ -746,12 +1064,25 @@ impl Builder {
         // unused bits: read nowhere at the last step that reads the signal; one sink for all
         let mut unused: Vec<String> = Vec::new();
         for s in &self.signals {
-            let last_use = s.uses.iter().map(|u| u.0).max().unwrap_or(s.step).max(s.step);
+            let last_use = s
+                .uses
+                .iter()
+                .map(|u| u.0)
+                .max()
+                .unwrap_or(s.step)
+                .max(s.step);
             if last_use > last {
                 continue;
             }
-            let read = s.uses.iter().filter(|u| u.0 == last_use).fold(0u128, |m, u| m | u.1);
-            let seen = s.held.clone().unwrap_or_else(|| visible(&self.registered, &s.name, s.step, last_use));
+            let read = s
+                .uses
+                .iter()
+                .filter(|u| u.0 == last_use)
+                .fold(0u128, |m, u| m | u.1);
+            let seen = s
+                .held
+                .clone()
+                .unwrap_or_else(|| visible(&self.registered, &s.name, s.step, last_use));
             self.read.insert(seen.clone(), mask(s.width));
             unused.extend(bit_ranges(&seen, s.width, mask(s.width) & !read));
         }
@@ -760,8 +1091,17 @@ impl Builder {
                 self.signals
                     .iter()
                     // a DSP's output register is the cut after its step: nothing to add there
-                    .filter(|s| s.step <= k && s.uses.iter().any(|u| u.0 > k) && !(s.dsp_registered && s.step == k) && s.held.is_none())
-                    .map(|s| Live { name: s.name.clone(), width: s.width, source: visible(&self.registered, &s.name, s.step, k) })
+                    .filter(|s| {
+                        s.step <= k
+                            && s.uses.iter().any(|u| u.0 > k)
+                            && !(s.dsp_registered && s.step == k)
+                            && s.held.is_none()
+                    })
+                    .map(|s| Live {
+                        name: s.name.clone(),
+                        width: s.width,
+                        source: visible(&self.registered, &s.name, s.step, k),
+                    })
                     .collect()
             })
             .collect();
@@ -769,7 +1109,13 @@ impl Builder {
             .iter()
             .map(|o| {
                 (o.to_string(), {
-                    let d = self.signals.iter().rev().find(|s| s.name == *o).expect("output defined").step;
+                    let d = self
+                        .signals
+                        .iter()
+                        .rev()
+                        .find(|s| s.name == *o)
+                        .expect("output defined")
+                        .step;
                     visible(&self.registered, o, d, last + 1)
                 })
             })

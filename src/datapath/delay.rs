@@ -24,11 +24,18 @@ pub(crate) struct Delay {
 }
 
 impl Delay {
-    pub(crate) const ZERO: Delay = Delay { ns: 0.0, parts: [0.0; 6] };
+    pub(crate) const ZERO: Delay = Delay {
+        ns: 0.0,
+        parts: [0.0; 6],
+    };
 
     /// The delay on a family of primitive delays `w`, ns.
     pub(crate) fn on(&self, w: &crate::family::PrimitiveDelays) -> f64 {
-        self.parts.iter().zip(w.as_array()).map(|(n, d)| n * d).sum()
+        self.parts
+            .iter()
+            .zip(w.as_array())
+            .map(|(n, d)| n * d)
+            .sum()
     }
 }
 
@@ -37,32 +44,47 @@ impl std::ops::Add for Delay {
     fn add(self, o: Delay) -> Delay {
         let mut parts = self.parts;
         parts.iter_mut().zip(o.parts).for_each(|(a, b)| *a += b);
-        Delay { ns: self.ns + o.ns, parts }
+        Delay {
+            ns: self.ns + o.ns,
+            parts,
+        }
     }
 }
 
 impl std::ops::Mul<f64> for Delay {
     type Output = Delay;
     fn mul(self, k: f64) -> Delay {
-        Delay { ns: self.ns * k, parts: self.parts.map(|p| p * k) }
+        Delay {
+            ns: self.ns * k,
+            parts: self.parts.map(|p| p * k),
+        }
     }
 }
 
 impl std::ops::Mul<Delay> for f64 {
     type Output = Delay;
     fn mul(self, d: Delay) -> Delay {
-        Delay { ns: self * d.ns, parts: d.parts.map(|p| self * p) }
+        Delay {
+            ns: self * d.ns,
+            parts: d.parts.map(|p| self * p),
+        }
     }
 }
 
 /// One LUT level and its route.
-pub(crate) const LUT_DELAY: Delay = Delay { ns: 2.7, parts: [1.0, 0.0, 0.0, 0.0, 0.0, 0.0] };
+pub(crate) const LUT_DELAY: Delay = Delay {
+    ns: 2.7,
+    parts: [1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+};
 
 /// Chunk bits of the carry-select add closing a carry-save sum ([`Builder::sum_start`]).
 pub(crate) const SUM_CHUNK_BITS: u32 = 4;
 
 /// A step that only registers its signals (a route, no logic).
-pub(crate) const REGISTER_ONLY_DELAY: Delay = Delay { ns: 1.0, parts: [0.0, 0.0, 0.0, 0.0, 0.0, 1.0] };
+pub(crate) const REGISTER_ONLY_DELAY: Delay = Delay {
+    ns: 1.0,
+    parts: [0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+};
 
 /// A carry-select sum of more chunks than this spreads over so many tiles that a carry
 /// crosses a long route: [`Builder::resolve`] ripples its carries one a step.
@@ -70,17 +92,26 @@ pub(crate) const WIDE_SUM_CHUNKS: usize = 4;
 
 /// A `w`-bit carry chain, carry-out included.
 pub(crate) fn add_delay(w: u32) -> Delay {
-    Delay { ns: 0.7 + 0.3 * w as f64 + LUT_DELAY.ns, parts: [1.0, 1.0, w as f64, 0.0, 0.0, 0.0] }
+    Delay {
+        ns: 0.7 + 0.3 * w as f64 + LUT_DELAY.ns,
+        parts: [1.0, 1.0, w as f64, 0.0, 0.0, 0.0],
+    }
 }
 
 /// An a×b multiply: one DSP when both fit its operands, else an array of partial products.
 /// (The family's own rule, small products in LUTs: [`Builder::mul_delay`].)
 pub(super) fn dsp_or_array_delay(a: u32, b: u32) -> Delay {
     if a.max(b) <= DSP_BITS {
-        Delay { ns: 5.5, parts: [0.0, 0.0, 0.0, 1.0, 0.0, 0.0] }
+        Delay {
+            ns: 5.5,
+            parts: [0.0, 0.0, 0.0, 1.0, 0.0, 0.0],
+        }
     } else {
         let levels = (a.min(b).max(1) as f64).log2().ceil() + 1.0;
-        Delay { ns: 1.5 * levels + 0.3 * (a + b) as f64, parts: [0.0, 0.0, (a + b) as f64, 0.0, levels, 0.0] }
+        Delay {
+            ns: 1.5 * levels + 0.3 * (a + b) as f64,
+            parts: [0.0, 0.0, (a + b) as f64, 0.0, levels, 0.0],
+        }
     }
 }
 

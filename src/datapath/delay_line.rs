@@ -48,13 +48,18 @@ impl DelayLine {
     /// `(shift words kept, tail cuts)` says how. `None`: every word is a register.
     pub fn memory_tail(&self) -> Option<(usize, usize)> {
         let d = self.cuts.len();
-        let read_before_end = (0..d - 1).rev().find(|&k| self.members.iter().any(|m| m.read[k] != 0));
+        let read_before_end = (0..d - 1)
+            .rev()
+            .find(|&k| self.members.iter().any(|m| m.read[k] != 0));
         let mut kept = read_before_end.map_or(0, |r| r + 1);
         if self.distributed && d - kept > DISTRIBUTED_TAIL_MAX_CUTS {
             kept = d - DISTRIBUTED_TAIL_MAX_CUTS;
         }
         let tail = d - kept;
-        (self.memory && tail >= MEMORY_TAIL_MIN_CUTS && self.word() * tail as u32 >= MEMORY_TAIL_MIN_BITS).then_some((kept, tail))
+        (self.memory
+            && tail >= MEMORY_TAIL_MIN_CUTS
+            && self.word() * tail as u32 >= MEMORY_TAIL_MIN_BITS)
+            .then_some((kept, tail))
     }
 
     /// Its Verilog: the vector and the statement that shifts it, then the words read, named
@@ -63,15 +68,35 @@ impl DelayLine {
     pub fn lines(&self, top: &str) -> Vec<String> {
         let word = self.word();
         let line = format!("{}_line", self.name);
-        let sources: Vec<&str> = self.members.iter().rev().map(|m| m.source.as_str()).collect();
-        let joined = if sources.len() == 1 { sources[0].to_string() } else { format!("{{{}}}", sources.join(", ")) };
+        let sources: Vec<&str> = self
+            .members
+            .iter()
+            .rev()
+            .map(|m| m.source.as_str())
+            .collect();
+        let joined = if sources.len() == 1 {
+            sources[0].to_string()
+        } else {
+            format!("{{{}}}", sources.join(", "))
+        };
         let tail = self.memory_tail();
         // the words in the shift vector (none when the whole line waits in block RAM)
         let d = tail.map_or(self.cuts.len(), |(kept, _)| kept);
         let mut out = Vec::new();
         if d > 0 {
-            let shifted = if d == 1 { joined.clone() } else { format!("{{{line}[{}:0], {}}}", word * (d as u32 - 1) - 1, sources.join(", ")) };
-            out.push(format!("reg  [{}:0] {line};   always @(posedge clk) {line} <= {shifted};", word * d as u32 - 1));
+            let shifted = if d == 1 {
+                joined.clone()
+            } else {
+                format!(
+                    "{{{line}[{}:0], {}}}",
+                    word * (d as u32 - 1) - 1,
+                    sources.join(", ")
+                )
+            };
+            out.push(format!(
+                "reg  [{}:0] {line};   always @(posedge clk) {line} <= {shifted};",
+                word * d as u32 - 1
+            ));
         }
         if let Some((kept, cuts)) = tail {
             out.extend(self.memory_lines(top, &line, word, kept, cuts, &joined));
@@ -86,8 +111,16 @@ impl DelayLine {
                     continue;
                 }
                 // the last word of a tail in block RAM is `<line>_out`
-                let (vector, lo) = if k >= d { (format!("{line}_out"), offset) } else { (line.clone(), word * k as u32 + offset) };
-                let select = if m.width == 1 { format!("[{lo}]") } else { format!("[{}:{lo}]", lo + m.width - 1) };
+                let (vector, lo) = if k >= d {
+                    (format!("{line}_out"), offset)
+                } else {
+                    (line.clone(), word * k as u32 + offset)
+                };
+                let select = if m.width == 1 {
+                    format!("[{lo}]")
+                } else {
+                    format!("[{}:{lo}]", lo + m.width - 1)
+                };
                 let tap = format!("{}_c{cut} = {vector}{select}", m.name);
                 match by_width.iter_mut().find(|x| x.0 == m.width) {
                     Some(x) => x.1.push(tap),
@@ -97,7 +130,11 @@ impl DelayLine {
             offset += m.width;
         }
         for (w, taps) in by_width {
-            let range = if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
+            let range = if w == 1 {
+                "     ".to_string()
+            } else {
+                format!("[{}:0]", w - 1)
+            };
             out.push(format!("wire {range} {};", taps.join(", ")));
         }
         out
@@ -107,8 +144,24 @@ impl DelayLine {
     /// vector; none: the sources) to `<line>_out`, in an instance `<line>_ram` of
     /// `<top>_delay_ram` (`templates/delay_ram.v`: `cuts - 1` clocks in the memory with its read
     /// register, the last in a flip-flop, so the memory's output meets only a flip-flop).
-    pub(super) fn memory_lines(&self, top: &str, line: &str, word: u32, kept: usize, cuts: usize, sources: &str) -> Vec<String> {
-        let input = if kept == 0 { sources.to_string() } else { format!("{line}[{}:{}]", word * kept as u32 - 1, word * (kept as u32 - 1)) };
+    pub(super) fn memory_lines(
+        &self,
+        top: &str,
+        line: &str,
+        word: u32,
+        kept: usize,
+        cuts: usize,
+        sources: &str,
+    ) -> Vec<String> {
+        let input = if kept == 0 {
+            sources.to_string()
+        } else {
+            format!(
+                "{line}[{}:{}]",
+                word * kept as u32 - 1,
+                word * (kept as u32 - 1)
+            )
+        };
         let names: Vec<&str> = self.members.iter().map(|m| m.name.as_str()).collect();
         let memory = memory_kind(self.distributed);
         vec![
@@ -127,7 +180,11 @@ impl DelayLine {
         for m in &self.members {
             for (k, cut) in self.cuts[..last].iter().enumerate() {
                 if m.read[k] != 0 {
-                    out.extend(bit_ranges(&format!("{}_c{cut}", m.name), m.width, mask(m.width) & !m.read[k]));
+                    out.extend(bit_ranges(
+                        &format!("{}_c{cut}", m.name),
+                        m.width,
+                        mask(m.width) & !m.read[k],
+                    ));
                 }
             }
         }
@@ -151,7 +208,12 @@ pub(crate) fn visible(registered: &[u32], name: &str, def: usize, at: usize) -> 
     if def == at {
         return format!("{name}_s{at}");
     }
-    match registered.iter().copied().filter(|&r| r as usize >= def && (r as usize) < at).max() {
+    match registered
+        .iter()
+        .copied()
+        .filter(|&r| r as usize >= def && (r as usize) < at)
+        .max()
+    {
         Some(r) => format!("{name}_c{r}"),
         None if def == 0 => name.to_string(),
         None => format!("{name}_s{def}"),

@@ -34,12 +34,18 @@ pub struct Expr {
 impl Expr {
     /// A reference to one name (`name` is what the text reads).
     pub(crate) fn read(name: String, text: String) -> Expr {
-        Expr { text, reads: vec![name] }
+        Expr {
+            text,
+            reads: vec![name],
+        }
     }
 
     /// A constant, or any text that reads no signal.
     pub(crate) fn constant(text: impl Into<String>) -> Expr {
-        Expr { text: text.into(), reads: Vec::new() }
+        Expr {
+            text: text.into(),
+            reads: Vec::new(),
+        }
     }
 
     /// Whether the text is empty (an addend of constant zeros).
@@ -50,18 +56,31 @@ impl Expr {
     /// The complement of a one-bit expression: `~x` for a name or a bit of one, `x` for `~x`,
     /// `~(...)` otherwise.
     pub(crate) fn not(&self) -> Expr {
-        let simple = |t: &str| !t.is_empty() && t.chars().all(|c| c.is_ascii_alphanumeric() || "_[]:".contains(c));
+        let simple = |t: &str| {
+            !t.is_empty()
+                && t.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "_[]:".contains(c))
+        };
         let text = match self.text.strip_prefix('~') {
             Some(t) if simple(t) => t.to_string(),
             _ if simple(&self.text) => format!("~{}", self.text),
             _ => format!("~({})", self.text),
         };
-        Expr { text, reads: self.reads.clone() }
+        Expr {
+            text,
+            reads: self.reads.clone(),
+        }
     }
 
     /// `parts` joined by `sep`, reading what each reads.
     pub(crate) fn join(parts: &[Expr], sep: &str) -> Expr {
-        let mut e = Expr::constant(parts.iter().map(|p| p.text.as_str()).collect::<Vec<_>>().join(sep));
+        let mut e = Expr::constant(
+            parts
+                .iter()
+                .map(|p| p.text.as_str())
+                .collect::<Vec<_>>()
+                .join(sep),
+        );
         for p in parts {
             p.note_into(&mut e.reads);
         }

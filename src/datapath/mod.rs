@@ -182,19 +182,27 @@ impl Datapath {
                 }
             }
         }
-        let reads = |w: &Wire| w.product().is_some() && w.expr.reads.iter().any(|r| aliases.contains(r));
+        let reads =
+            |w: &Wire| w.product().is_some() && w.expr.reads.iter().any(|r| aliases.contains(r));
         self.steps.iter().flat_map(|s| &s.wires).any(reads)
     }
 
     /// The products the family's synthesis maps (a `*`, or an instantiated block): those the
     /// budget leaves out of the fabric, small ones (LUTs by the tool's own rule) included.
     pub fn mapped_products(&self) -> usize {
-        self.steps.iter().map(|s| s.dsps.len() + s.wires.iter().filter(|w| w.product().is_some()).count()).sum()
+        self.steps
+            .iter()
+            .map(|s| s.dsps.len() + s.wires.iter().filter(|w| w.product().is_some()).count())
+            .sum()
     }
 
     /// The products `--dsp-budget` put in the fabric, by name.
     pub fn fabric_products(&self) -> Vec<&str> {
-        self.product_uses.iter().filter(|u| u.fabric).map(|u| u.name.as_str()).collect()
+        self.product_uses
+            .iter()
+            .filter(|u| u.fabric)
+            .map(|u| u.name.as_str())
+            .collect()
     }
 
     pub(crate) fn delays(&self) -> Vec<f64> {
@@ -294,7 +302,13 @@ impl Sig {
     }
     /// Bits `[lo, lo+width)` of it, as a piece of an operand.
     pub(crate) fn part(&self, lo: u32, width: u32) -> Piece {
-        assert!(lo + width <= self.width, "datapath: bits [{lo}, {}) of the {}-bit {}", lo + width, self.width, self.name);
+        assert!(
+            lo + width <= self.width,
+            "datapath: bits [{lo}, {}) of the {}-bit {}",
+            lo + width,
+            self.width,
+            self.name
+        );
         Piece::sig(&self.name, lo, width)
     }
 }
@@ -308,16 +322,34 @@ impl AsRef<str> for Sig {
 /// Bits `[lo, lo+width)` of a signal, optionally inverted; or a constant.
 #[derive(Debug, Clone)]
 pub enum Piece {
-    Sig { name: String, lo: u32, width: u32, invert: bool },
-    Const { value: u128, width: u32 },
+    Sig {
+        name: String,
+        lo: u32,
+        width: u32,
+        invert: bool,
+    },
+    Const {
+        value: u128,
+        width: u32,
+    },
 }
 
 impl Piece {
     pub(crate) fn sig(name: &str, lo: u32, width: u32) -> Piece {
-        Piece::Sig { name: name.into(), lo, width, invert: false }
+        Piece::Sig {
+            name: name.into(),
+            lo,
+            width,
+            invert: false,
+        }
     }
     pub fn not(name: &str, lo: u32, width: u32) -> Piece {
-        Piece::Sig { name: name.into(), lo, width, invert: true }
+        Piece::Sig {
+            name: name.into(),
+            lo,
+            width,
+            invert: true,
+        }
     }
     pub(crate) fn zeros(width: u32) -> Piece {
         Piece::Const { value: 0, width }
@@ -331,7 +363,9 @@ impl Piece {
 
 /// Whether `pieces` are all constant zeros (an addend that adds nothing).
 pub(crate) fn all_zero(pieces: &[Piece]) -> bool {
-    pieces.iter().all(|p| matches!(p, Piece::Const { value: 0, .. }))
+    pieces
+        .iter()
+        .all(|p| matches!(p, Piece::Const { value: 0, .. }))
 }
 
 /// Bits `[lo, lo+width)` of the value the pieces (LSB first) make, zero above their top.
@@ -342,8 +376,21 @@ pub(crate) fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
         let (a, b) = (base.max(lo), (base + p.width()).min(lo + width));
         if a < b {
             out.push(match p {
-                Piece::Sig { name, lo: plo, invert, .. } => Piece::Sig { name: name.clone(), lo: plo + a - base, width: b - a, invert: *invert },
-                Piece::Const { value, .. } => Piece::Const { value: (value >> (a - base)) & mask(b - a), width: b - a },
+                Piece::Sig {
+                    name,
+                    lo: plo,
+                    invert,
+                    ..
+                } => Piece::Sig {
+                    name: name.clone(),
+                    lo: plo + a - base,
+                    width: b - a,
+                    invert: *invert,
+                },
+                Piece::Const { value, .. } => Piece::Const {
+                    value: (value >> (a - base)) & mask(b - a),
+                    width: b - a,
+                },
             });
         }
         base += p.width();
@@ -357,7 +404,10 @@ pub(crate) fn sub_pieces(pieces: &[Piece], lo: u32, width: u32) -> Vec<Piece> {
 
 /// The kind of a wire that only writes `pieces`: a select, or logic when one is complemented.
 pub(crate) fn pieces_kind(pieces: &[Piece]) -> Kind {
-    match pieces.iter().any(|p| matches!(p, Piece::Sig { invert: true, .. })) {
+    match pieces
+        .iter()
+        .any(|p| matches!(p, Piece::Sig { invert: true, .. }))
+    {
         true => Kind::Logic,
         false => Kind::Select,
     }
@@ -367,7 +417,10 @@ pub(crate) fn pieces_kind(pieces: &[Piece]) -> Kind {
 /// not a constant 0.
 pub(crate) fn significant_bits(pieces: &[Piece], width: u32) -> u32 {
     let pieces = sub_pieces(pieces, 0, width);
-    (0..width).rev().find(|&b| !zero_bit(&pieces, b)).map_or(0, |b| b + 1)
+    (0..width)
+        .rev()
+        .find(|&b| !zero_bit(&pieces, b))
+        .map_or(0, |b| b + 1)
 }
 
 /// Bit `bit` of `pieces` (LSB first) where it is a constant; `None` where a signal holds it (or

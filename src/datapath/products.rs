@@ -29,8 +29,19 @@ impl Builder {
     /// Records a product for the budget: `a`×`b` significant bits, `width` kept.
     pub(super) fn count_product(&mut self, name: &str, a: u32, b: u32, width: u32) {
         let fabric = self.is_in_fabric(name);
-        let blocks = if fabric { 0 } else { self.family().product_blocks(a, b, width) };
-        self.product_uses.push(ProductUse { name: name.into(), a, b, width, blocks, fabric });
+        let blocks = if fabric {
+            0
+        } else {
+            self.family().product_blocks(a, b, width)
+        };
+        self.product_uses.push(ProductUse {
+            name: name.into(),
+            a,
+            b,
+            width,
+            blocks,
+            fabric,
+        });
     }
 
     /// `name = a·b (+ addend) mod 2^width`, in this step: one product the family's synthesis
@@ -40,8 +51,23 @@ impl Builder {
     /// product in the same step. A product the budget leaves out of the blocks is
     /// [`Builder::fabric_products`] instead, in steps of its own.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn mul(&mut self, name: &str, width: u32, a: (&[Piece], u32), b: (&[Piece], u32), addend: &[Piece], after: Delay, comment: &str) -> Sig {
-        let item = MulItem { name: name.into(), a, b, addend: addend.to_vec(), comment: comment.into() };
+    pub(crate) fn mul(
+        &mut self,
+        name: &str,
+        width: u32,
+        a: (&[Piece], u32),
+        b: (&[Piece], u32),
+        addend: &[Piece],
+        after: Delay,
+        comment: &str,
+    ) -> Sig {
+        let item = MulItem {
+            name: name.into(),
+            a,
+            b,
+            addend: addend.to_vec(),
+            comment: comment.into(),
+        };
         self.muls(&[item], width, after).pop().expect("one product")
     }
 
@@ -77,7 +103,12 @@ impl Builder {
     /// constant), and its addend as one more term; then one carry-save sum each, in steps of
     /// their own ([`Builder::sums_start`]), closed by a carry-select add. Exact: every term is
     /// kept to `width` bits and the sum is taken mod 2^width, as the product's wire is.
-    pub(crate) fn fabric_products(&mut self, items: &[MulItem], width: u32, after: Delay) -> Vec<Sig> {
+    pub(crate) fn fabric_products(
+        &mut self,
+        items: &[MulItem],
+        width: u32,
+        after: Delay,
+    ) -> Vec<Sig> {
         let mut sums = Vec::new();
         for it in items {
             let mut terms = self.partial_terms(&it.name, it.a, it.b, width);
@@ -88,7 +119,14 @@ impl Builder {
             sums.push((it.name.clone(), terms, width, comment));
         }
         self.delay(LUT_DELAY);
-        let title = format!("{} in the fabric", items.iter().map(|i| i.name.as_str()).collect::<Vec<_>>().join(", "));
+        let title = format!(
+            "{} in the fabric",
+            items
+                .iter()
+                .map(|i| i.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
         let pending = self.sums_start(sums, &title);
         let out = self.resolve_all(pending, &title);
         let s = self.steps.last_mut().expect("a step");
@@ -97,7 +135,13 @@ impl Builder {
     }
 
     /// The partial products of `a`×`b` kept to `width` bits, as terms of a sum.
-    fn partial_terms(&mut self, name: &str, a: (&[Piece], u32), b: (&[Piece], u32), width: u32) -> Vec<Vec<Piece>> {
+    fn partial_terms(
+        &mut self,
+        name: &str,
+        a: (&[Piece], u32),
+        b: (&[Piece], u32),
+        width: u32,
+    ) -> Vec<Vec<Piece>> {
         let constant = |p: &[Piece]| p.iter().all(|x| matches!(x, Piece::Const { .. }));
         let value = |p: &[Piece]| {
             let mut v = 0u128;
@@ -139,7 +183,13 @@ impl Builder {
             [one @ Piece::Sig { invert: false, .. }] => one.clone(),
             _ => {
                 let e = self.pieces(&p);
-                self.wire(name, bits, pieces_kind(&p), e, "an operand of the product below");
+                self.wire(
+                    name,
+                    bits,
+                    pieces_kind(&p),
+                    e,
+                    "an operand of the product below",
+                );
                 Piece::sig(name, 0, bits)
             }
         }
@@ -149,9 +199,17 @@ impl Builder {
 /// The operands of an interpolation's DSP block: the step `delta` and the fraction `r`, each
 /// at the block's width when the table word carries them so (`pad`: the step's field, and the
 /// zero bits above it that widen `r`).
-pub(crate) fn pad_operands(delta: Piece, r: Piece, word: &str, pad: Option<crate::table::OperandPad>) -> (Vec<Piece>, Vec<Piece>) {
+pub(crate) fn pad_operands(
+    delta: Piece,
+    r: Piece,
+    word: &str,
+    pad: Option<crate::table::OperandPad>,
+) -> (Vec<Piece>, Vec<Piece>) {
     match (pad, &delta) {
-        (Some(p), Piece::Sig { lo, .. }) => (vec![Piece::sig(word, *lo, p.a_bits)], vec![r, Piece::sig(word, lo + p.a_bits, p.b_pad)]),
+        (Some(p), Piece::Sig { lo, .. }) => (
+            vec![Piece::sig(word, *lo, p.a_bits)],
+            vec![r, Piece::sig(word, lo + p.a_bits, p.b_pad)],
+        ),
         _ => (vec![delta], vec![r]),
     }
 }
@@ -161,9 +219,22 @@ impl Builder {
     /// `rest_bits`, the sum `entry_bits + rest_bits` wide) is one DSP block's multiply-add: its
     /// operands fit the block and its sum twice them; and on a family whose block takes its
     /// operands whole (the iCE40), how the table word pads them ([`pad_operands`]).
-    pub(crate) fn interpolation_on_block(&self, delta_bits: u32, rest_bits: u32, entry_bits: u32) -> (bool, Option<crate::table::OperandPad>) {
+    pub(crate) fn interpolation_on_block(
+        &self,
+        delta_bits: u32,
+        rest_bits: u32,
+        entry_bits: u32,
+    ) -> (bool, Option<crate::table::OperandPad>) {
         let dsp = self.dsp_bits();
-        let on = rest_bits > 0 && delta_bits.max(rest_bits) <= dsp && entry_bits + rest_bits <= dsp.saturating_mul(2);
-        (on, (on && self.family().pads_block_operands()).then_some(crate::table::OperandPad { a_bits: dsp, b_pad: dsp - rest_bits }))
+        let on = rest_bits > 0
+            && delta_bits.max(rest_bits) <= dsp
+            && entry_bits + rest_bits <= dsp.saturating_mul(2);
+        (
+            on,
+            (on && self.family().pads_block_operands()).then_some(crate::table::OperandPad {
+                a_bits: dsp,
+                b_pad: dsp - rest_bits,
+            }),
+        )
     }
 }

@@ -9,12 +9,25 @@ impl Builder {
     /// inputs) in one LUT: up to `room` bits are their own terms; more are ORed per group of up
     /// to 4 into kept wires `{name}_any{k}` ([`Builder::or_groups`]), and those again where
     /// they are still too many. `what` names the word the bits are of, in the comments.
-    pub(crate) fn or_terms(&mut self, name: &str, bits: Vec<Expr>, room: u32, what: &str) -> Vec<Expr> {
-        assert!((1..=LUT_INPUTS).contains(&room), "datapath: {name}: room for {room} terms");
+    pub(crate) fn or_terms(
+        &mut self,
+        name: &str,
+        bits: Vec<Expr>,
+        room: u32,
+        what: &str,
+    ) -> Vec<Expr> {
+        assert!(
+            (1..=LUT_INPUTS).contains(&room),
+            "datapath: {name}: room for {room} terms"
+        );
         if bits.len() as u32 <= room {
             return bits;
         }
-        let terms = self.or_groups(name, bits, what).iter().map(|g| self.r(g)).collect();
+        let terms = self
+            .or_groups(name, bits, what)
+            .iter()
+            .map(|g| self.r(g))
+            .collect();
         self.or_terms(&format!("{name}_l"), terms, room, what)
     }
 
@@ -27,7 +40,13 @@ impl Builder {
         let mut names = Vec::new();
         for (k, group) in bits.chunks(per.max(1)).enumerate() {
             let any = format!("{name}_any{k}");
-            self.wire_kept(&any, 1, Kind::Logic, Expr::join(group, " | "), &format!("{what}: {} of its bits, any set", group.len()));
+            self.wire_kept(
+                &any,
+                1,
+                Kind::Logic,
+                Expr::join(group, " | "),
+                &format!("{what}: {} of its bits, any set", group.len()),
+            );
             names.push(any);
         }
         names

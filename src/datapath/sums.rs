@@ -5,12 +5,28 @@ use super::*;
 impl Builder {
     /// `name = (a + b + cin) mod 2^width` as one carry chain in this step, whatever its width
     /// (the ECP5's CCU2C chains are fast; the iCE40 shape uses [`Builder::add_start`]).
-    pub(crate) fn add(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> Sig {
+    pub(crate) fn add(
+        &mut self,
+        name: &str,
+        a: &[Piece],
+        b: &[Piece],
+        cin: bool,
+        width: u32,
+        comment: &str,
+    ) -> Sig {
         self.delay(add_delay(width.min(self.chunk_bits())));
         let ea = self.pieces(&sub_pieces(a, 0, width));
         let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
-        let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
-        let kind = if eb.is_empty() && !cin { pieces_kind(a) } else { Kind::Sum };
+        let plus = if cin {
+            format!(" + {}", lit(width, 1))
+        } else {
+            String::new()
+        };
+        let kind = if eb.is_empty() && !cin {
+            pieces_kind(a)
+        } else {
+            Kind::Sum
+        };
         self.wire(name, width, kind, ex!("{}{}{}", ea, eb, plus), comment)
     }
 
@@ -21,9 +37,19 @@ impl Builder {
     /// (yosys 0.70: a LUT and 0.7 ns of route more, the path that held lean at 236 MHz), as it
     /// leaves an iCE40 chain ([`Builder::add_start`] keeps its chunks' carries the same way).
     /// Readers take `~name[width - 1]`.
-    pub(crate) fn add_carry_complemented(&mut self, name: &str, a: &[Piece], b: &[Piece], width: u32, comment: &str) -> Sig {
+    pub(crate) fn add_carry_complemented(
+        &mut self,
+        name: &str,
+        a: &[Piece],
+        b: &[Piece],
+        width: u32,
+        comment: &str,
+    ) -> Sig {
         let top = width - 1;
-        assert!(zero_bit(&sub_pieces(a, 0, width), top) && zero_bit(&sub_pieces(b, 0, width), top), "datapath: {name}'s top bit is not a carry-out");
+        assert!(
+            zero_bit(&sub_pieces(a, 0, width), top) && zero_bit(&sub_pieces(b, 0, width), top),
+            "datapath: {name}'s top bit is not a carry-out"
+        );
         let mut a = sub_pieces(a, 0, top);
         a.push(Piece::Const { value: 1, width: 1 });
         self.add(name, &a, b, false, width, comment)
@@ -32,10 +58,25 @@ impl Builder {
     /// `name = (a + b + cin) mod 2^width`. One chunk: computed here. More: each chunk is added
     /// here with carry-in 0 and 1 (carry-select), and [`Builder::add_finish`] resolves the
     /// carries and picks in the next step.
-    pub(crate) fn add_start(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
+    pub(crate) fn add_start(
+        &mut self,
+        name: &str,
+        a: &[Piece],
+        b: &[Piece],
+        cin: bool,
+        width: u32,
+        comment: &str,
+    ) -> PendingAdd {
         let parts = chunks(width, self.chunk_bits().min(self.chunk_limit));
         let n = parts.len();
-        let no_carry_out = parts.iter().map(|&(lo, w)| sub_pieces(b, lo, w).iter().all(|p| matches!(p, Piece::Const { value: 0, .. }))).collect();
+        let no_carry_out = parts
+            .iter()
+            .map(|&(lo, w)| {
+                sub_pieces(b, lo, w)
+                    .iter()
+                    .all(|p| matches!(p, Piece::Const { value: 0, .. }))
+            })
+            .collect();
         let max_chunk = parts.iter().map(|c| c.1).max().unwrap_or(1);
         self.delay(add_delay(max_chunk));
         let mut top_inverted = false;
@@ -43,8 +84,16 @@ impl Builder {
         if n == 1 {
             let ea = self.pieces(&sub_pieces(a, 0, width));
             let eb = self.addend(&sub_pieces(b, 0, width), |e| e);
-            let plus = if cin { format!(" + {}", lit(width, 1)) } else { String::new() };
-            let kind = if eb.is_empty() && !cin { pieces_kind(a) } else { Kind::Sum };
+            let plus = if cin {
+                format!(" + {}", lit(width, 1))
+            } else {
+                String::new()
+            };
+            let kind = if eb.is_empty() && !cin {
+                pieces_kind(a)
+            } else {
+                Kind::Sum
+            };
             self.wire(name, width, kind, ex!("{}{}{}", ea, eb, plus), comment);
         } else {
             for (i, &(lo, w)) in parts.iter().enumerate() {
@@ -73,36 +122,89 @@ impl Builder {
                 let ext_b = |e: Expr| if top { e } else { ex!("{{1'b0, {}}}", e) };
                 // carry-in 1 as a 1 + 1 in an extra low bit: one adder that no synthesis tool
                 // can share with the carry-in-0 sum (a shared "+ 1" would chain two adders)
-                let ext1_a = |e: Expr| if top { ex!("{{{}, 1'b1}}", e) } else { ex!("{{1'b1, {}, 1'b1}}", e) };
-                let ext1_b = |e: Expr| if top { ex!("{{{}, 1'b1}}", e) } else { ex!("{{1'b0, {}, 1'b1}}", e) };
+                let ext1_a = |e: Expr| {
+                    if top {
+                        ex!("{{{}, 1'b1}}", e)
+                    } else {
+                        ex!("{{1'b1, {}, 1'b1}}", e)
+                    }
+                };
+                let ext1_b = |e: Expr| {
+                    if top {
+                        ex!("{{{}, 1'b1}}", e)
+                    } else {
+                        ex!("{{1'b0, {}, 1'b1}}", e)
+                    }
+                };
                 // the carry-in-0 sum's constant bits, where it only copies the first operand
                 plain_consts.push(
                     (0..w)
                         .map(|j| match all_zero(&pb) {
                             // (the top bit of a top chunk kept complemented is read back complemented)
-                            true => const_bit(&pa, j).map(|v| v != (top && top_inverted && j + 1 == w)),
+                            true => {
+                                const_bit(&pa, j).map(|v| v != (top && top_inverted && j + 1 == w))
+                            }
                             false => None,
                         })
                         .collect(),
                 );
                 let ea = self.pieces(&pa);
-                let what = if top { format!("bits [{}:{lo}]", lo + w - 1) } else { format!("bits [{}:{lo}] and their carry (complemented)", lo + w - 1) };
+                let what = if top {
+                    format!("bits [{}:{lo}]", lo + w - 1)
+                } else {
+                    format!("bits [{}:{lo}] and their carry (complemented)", lo + w - 1)
+                };
                 let sum0 = {
                     let eb = self.addend(&pb, ext_b);
-                    (if eb.is_empty() { pieces_kind(&pa) } else { Kind::Sum }, ex!("{}{}", ext_a(ea.clone()), eb))
+                    (
+                        if eb.is_empty() {
+                            pieces_kind(&pa)
+                        } else {
+                            Kind::Sum
+                        },
+                        ex!("{}{}", ext_a(ea.clone()), eb),
+                    )
                 };
                 let sum1 = {
                     let eb = self.addend(&pb, ext1_b);
-                    let eb = if eb.is_empty() { Expr::constant(format!(" + {}", lit(ww + 1, 1))) } else { eb };
+                    let eb = if eb.is_empty() {
+                        Expr::constant(format!(" + {}", lit(ww + 1, 1)))
+                    } else {
+                        eb
+                    };
                     ex!("{}{}", ext1_a(ea), eb)
                 };
                 if i == 0 && cin {
-                    self.wire(&format!("{name}_part0"), ww + 1, Kind::Sum, sum1, &format!("{what} above bit 0, carry-in 1"));
+                    self.wire(
+                        &format!("{name}_part0"),
+                        ww + 1,
+                        Kind::Sum,
+                        sum1,
+                        &format!("{what} above bit 0, carry-in 1"),
+                    );
                 } else if i == 0 {
-                    self.wire(&format!("{name}_part0"), ww, sum0.0, sum0.1, &format!("{what}, carry-in 0"));
+                    self.wire(
+                        &format!("{name}_part0"),
+                        ww,
+                        sum0.0,
+                        sum0.1,
+                        &format!("{what}, carry-in 0"),
+                    );
                 } else {
-                    self.wire(&format!("{name}_part{i}"), ww, sum0.0, sum0.1, &format!("{what}, carry-in 0"));
-                    self.wire(&format!("{name}_part{i}_plus1"), ww + 1, Kind::Sum, sum1, &format!("{what} above bit 0, carry-in 1 (carry-select)"));
+                    self.wire(
+                        &format!("{name}_part{i}"),
+                        ww,
+                        sum0.0,
+                        sum0.1,
+                        &format!("{what}, carry-in 0"),
+                    );
+                    self.wire(
+                        &format!("{name}_part{i}_plus1"),
+                        ww + 1,
+                        Kind::Sum,
+                        sum1,
+                        &format!("{what} above bit 0, carry-in 1 (carry-select)"),
+                    );
                 }
             }
         }
@@ -178,7 +280,13 @@ impl Builder {
                 let cb = self.carry_out(&format!("{}_part{i}", p.name), w);
                 ex!("{} ? {} : {}", carry, ca, cb)
             };
-            self.wire(&cname, 1, Kind::Sum, expr, &format!("carry into bit {}", p.chunks[i + 1].0));
+            self.wire(
+                &cname,
+                1,
+                Kind::Sum,
+                expr,
+                &format!("carry into bit {}", p.chunks[i + 1].0),
+            );
             carry = self.r(&cname);
         }
     }
@@ -192,13 +300,38 @@ impl Builder {
     /// a carry-out there complemented ([`Builder::add_start`]). A carry-out registered as it is
     /// leaves an iCE40 chain through a LUT of its own placed apart from its flip-flop (blinn's
     /// n·l[32] held it at 115.8 MHz on yosys 0.23).
-    pub(crate) fn partial_products(&mut self, name: &str, a: &Piece, r: &Piece, shift: u32, width: u32, invert: bool) -> Vec<Vec<Piece>> {
+    pub(crate) fn partial_products(
+        &mut self,
+        name: &str,
+        a: &Piece,
+        r: &Piece,
+        shift: u32,
+        width: u32,
+        invert: bool,
+    ) -> Vec<Vec<Piece>> {
         let rows = self.shift_add_rows(a, r, shift, width, !invert);
         let mut out = Vec::new();
         for (k, (t, tw)) in rows.into_iter().enumerate() {
             let pp = format!("{name}_pp{k}");
-            let (e, what) = if invert { (ex!("~{}", t), "complemented") } else { (t, "") };
-            self.wire(&pp, tw, Kind::Logic, e, &format!("partial product {k}{}", if invert { format!(", {what}") } else { String::new() }));
+            let (e, what) = if invert {
+                (ex!("~{}", t), "complemented")
+            } else {
+                (t, "")
+            };
+            self.wire(
+                &pp,
+                tw,
+                Kind::Logic,
+                e,
+                &format!(
+                    "partial product {k}{}",
+                    if invert {
+                        format!(", {what}")
+                    } else {
+                        String::new()
+                    }
+                ),
+            );
             let mut term = vec![Piece::sig(&pp, 0, tw)];
             if tw < width {
                 term.push(Piece::zeros(width - tw));
@@ -216,14 +349,30 @@ impl Builder {
     /// elsewhere), then (iCE40: after a step that only
     /// registers them) the two vectors left into [`Builder::add_start`] in a step of its own.
     /// [`Builder::resolve`] finishes it.
-    pub(crate) fn sum_start(&mut self, name: &str, terms: Vec<Vec<Piece>>, width: u32, title: &str, comment: &str) -> PendingAdd {
-        self.sums_start(vec![(name.to_string(), terms, width, comment.to_string())], title).pop().expect("one sum")
+    pub(crate) fn sum_start(
+        &mut self,
+        name: &str,
+        terms: Vec<Vec<Piece>>,
+        width: u32,
+        title: &str,
+        comment: &str,
+    ) -> PendingAdd {
+        self.sums_start(
+            vec![(name.to_string(), terms, width, comment.to_string())],
+            title,
+        )
+        .pop()
+        .expect("one sum")
     }
 
     /// [`Builder::sum_start`] for several sums side by side (`(name, terms, width, comment)`):
     /// each carry-save layer of every sum in the same step, each closing add started in the same
     /// step, so that the sums take the steps of the longest, not their total.
-    pub(crate) fn sums_start(&mut self, sums: Vec<(String, Vec<Vec<Piece>>, u32, String)>, title: &str) -> Vec<PendingAdd> {
+    pub(crate) fn sums_start(
+        &mut self,
+        sums: Vec<(String, Vec<Vec<Piece>>, u32, String)>,
+        title: &str,
+    ) -> Vec<PendingAdd> {
         let mut layer = 0;
         let per_step = self.family().carry_save_layers_per_step();
         let mut all: Vec<(String, Vec<Vec<Piece>>, u32, String)> = sums;
@@ -232,7 +381,11 @@ impl Builder {
                 if per_step == 1 {
                     self.step(&format!("{title}: carry-save layer {}", layer + 1));
                 } else {
-                    self.step(&format!("{title}: carry-save layers {} and {}", layer + 1, layer + 2));
+                    self.step(&format!(
+                        "{title}: carry-save layers {} and {}",
+                        layer + 1,
+                        layer + 2
+                    ));
                 }
                 self.delay(per_step as f64 * LUT_DELAY);
             }
@@ -257,23 +410,51 @@ impl Builder {
                     // its carry-out complemented ([`Builder::add_start`]) where a synthesis
                     // tool would find those bits 0 through the registers and leave a bare
                     // carry-out (fitted's squaring held at 115.8 MHz on the UP5K)
-                    let mut sig: Vec<u32> = group.iter().map(|t| significant_bits(t, width)).collect();
+                    let mut sig: Vec<u32> =
+                        group.iter().map(|t| significant_bits(t, width)).collect();
                     sig.sort_unstable();
                     let (sw, cw) = (sig[2].max(1), sig[1].min(width - 1).max(1));
-                    let es: Vec<Expr> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, sw))).collect();
-                    let ec: Vec<Expr> = group.iter().map(|t| self.pieces(&sub_pieces(t, 0, cw))).collect();
-                    let (sn, cn) = (format!("{name}_csa{layer}_s{i}"), format!("{name}_csa{layer}_c{i}"));
+                    let es: Vec<Expr> = group
+                        .iter()
+                        .map(|t| self.pieces(&sub_pieces(t, 0, sw)))
+                        .collect();
+                    let ec: Vec<Expr> = group
+                        .iter()
+                        .map(|t| self.pieces(&sub_pieces(t, 0, cw)))
+                        .collect();
+                    let (sn, cn) = (
+                        format!("{name}_csa{layer}_s{i}"),
+                        format!("{name}_csa{layer}_c{i}"),
+                    );
                     // one operand (or pair) a line
-                    self.wire(&sn, sw, Kind::Sum, ex!("{}\n    ^ {}\n    ^ {}", &es[0], &es[1], &es[2]), &format!("carry-save layer {layer}: the sum bits"));
+                    self.wire(
+                        &sn,
+                        sw,
+                        Kind::Sum,
+                        ex!("{}\n    ^ {}\n    ^ {}", &es[0], &es[1], &es[2]),
+                        &format!("carry-save layer {layer}: the sum bits"),
+                    );
                     self.wire(
                         &cn,
                         cw,
                         Kind::Sum,
-                        ex!("({} & {})\n    | ({} & {})\n    | ({} & {})", &ec[0], &ec[1], &ec[0], &ec[2], &ec[1], &ec[2]),
+                        ex!(
+                            "({} & {})\n    | ({} & {})\n    | ({} & {})",
+                            &ec[0],
+                            &ec[1],
+                            &ec[0],
+                            &ec[2],
+                            &ec[1],
+                            &ec[2]
+                        ),
                         &format!("carry-save layer {layer}: the carries (worth twice)"),
                     );
                     next.push(sub_pieces(&[Piece::sig(&sn, 0, sw)], 0, width));
-                    next.push(sub_pieces(&[Piece::zeros(1), Piece::sig(&cn, 0, cw)], 0, width));
+                    next.push(sub_pieces(
+                        &[Piece::zeros(1), Piece::sig(&cn, 0, cw)],
+                        0,
+                        width,
+                    ));
                     i += 1;
                 }
                 *terms = next;
@@ -287,13 +468,24 @@ impl Builder {
         all.into_iter()
             .map(|(name, terms, width, comment)| {
                 let zero = vec![Piece::zeros(width)];
-                let (a, b) = (terms.first().unwrap_or(&zero).clone(), terms.get(1).unwrap_or(&zero).clone());
+                let (a, b) = (
+                    terms.first().unwrap_or(&zero).clone(),
+                    terms.get(1).unwrap_or(&zero).clone(),
+                );
                 // short chunks: the vectors come from registers spread over a wide sum
                 self.add_start_short(&name, &a, &b, false, width, &comment)
             })
             .collect()
     }
-    pub(crate) fn add_start_short(&mut self, name: &str, a: &[Piece], b: &[Piece], cin: bool, width: u32, comment: &str) -> PendingAdd {
+    pub(crate) fn add_start_short(
+        &mut self,
+        name: &str,
+        a: &[Piece],
+        b: &[Piece],
+        cin: bool,
+        width: u32,
+        comment: &str,
+    ) -> PendingAdd {
         self.chunk_limit = SUM_CHUNK_BITS;
         let p = self.add_start(name, a, b, cin, width, comment);
         self.chunk_limit = u32::MAX;
@@ -328,7 +520,10 @@ impl Builder {
                 from += per_step;
             }
             let rest = from < to;
-            self.step(&format!("{title}: {}select", if rest { "carries and " } else { "" }));
+            self.step(&format!(
+                "{title}: {}select",
+                if rest { "carries and " } else { "" }
+            ));
             // a carry left (into chunk `to`) is not made: that chunk picks by the carry into the
             // chunk below, from two picks made beside it ([`Builder::finish_picks`])
             if rest && self.route_registers() {
@@ -337,12 +532,21 @@ impl Builder {
                     self.picks_below_last(p);
                 }
                 self.step(&format!("{title}: the last chunk's pick"));
-                return ps.into_iter().map(|p| self.finish_picks(p, LastPick::Apart)).collect();
+                return ps
+                    .into_iter()
+                    .map(|p| self.finish_picks(p, LastPick::Apart))
+                    .collect();
             }
-            let last = if rest { LastPick::Split } else { LastPick::ByItsCarry };
+            let last = if rest {
+                LastPick::Split
+            } else {
+                LastPick::ByItsCarry
+            };
             return ps.into_iter().map(|p| self.finish_picks(p, last)).collect();
         }
-        ps.into_iter().map(|p| self.finish_picks(p, LastPick::ByItsCarry)).collect()
+        ps.into_iter()
+            .map(|p| self.finish_picks(p, LastPick::ByItsCarry))
+            .collect()
     }
 
     /// Last step of a carry-select add: each chunk picks its sum by its carry-in (one LUT
@@ -381,7 +585,10 @@ impl Builder {
                         _ => self.last_chunk_arms(&p),
                     };
                     let carry = self.carry_into(&p, i - 1);
-                    let what = format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1);
+                    let what = format!(
+                        "bits [{}:{lo}]: the sum with the carry into bit {lo}",
+                        lo + w - 1
+                    );
                     self.wire(&chunk, w, Kind::Sum, pick_expr(&carry, &if1, &if0), &what);
                 }
             }
@@ -391,7 +598,13 @@ impl Builder {
         let comment = p.comment.clone();
         // many chunks: one a line
         let sep = if words.len() > 4 { ",\n    " } else { ", " };
-        self.wire(&p.name, p.width, Kind::Select, ex!("{{{}}}", Expr::join(&words, sep)), &comment)
+        self.wire(
+            &p.name,
+            p.width,
+            Kind::Select,
+            ex!("{{{}}}", Expr::join(&words, sep)),
+            &comment,
+        )
     }
 
     /// The carry into chunk `k` of `p` (chunk 1's is part0's carry-out), as this step reads it.
@@ -414,13 +627,29 @@ impl Builder {
         let lo_k = p.chunks[k].0;
         let cp = self.carry_out(&format!("{}_part{k}_plus1", p.name), wk + 1);
         let e = pick_expr(&cp, &inc, &plain);
-        let if1 = self.kept_arm(&format!("{chunk}_if1"), w, e, &format!("bits [{}:{lo}] if the carry into bit {lo_k} is 1", lo + w - 1));
+        let if1 = self.kept_arm(
+            &format!("{chunk}_if1"),
+            w,
+            e,
+            &format!(
+                "bits [{}:{lo}] if the carry into bit {lo_k} is 1",
+                lo + w - 1
+            ),
+        );
         let if0 = if p.no_carry_out[k] {
             plain
         } else {
             let cn = self.carry_out(&format!("{}_part{k}", p.name), wk);
             let e = pick_expr(&cn, &inc, &plain);
-            self.kept_arm(&format!("{chunk}_if0"), w, e, &format!("bits [{}:{lo}] if the carry into bit {lo_k} is 0", lo + w - 1))
+            self.kept_arm(
+                &format!("{chunk}_if0"),
+                w,
+                e,
+                &format!(
+                    "bits [{}:{lo}] if the carry into bit {lo_k} is 0",
+                    lo + w - 1
+                ),
+            )
         };
         (if1, if0)
     }
@@ -457,8 +686,17 @@ impl Builder {
         let (lo, w) = p.chunks[i];
         let (inc, plain) = self.pick_arms(p, i);
         let carry = self.carry_into(p, i);
-        let what = format!("bits [{}:{lo}]: the sum with the carry into bit {lo}", lo + w - 1);
-        self.wire(&format!("{}_chunk{i}", p.name), w, Kind::Sum, pick_expr(&carry, &inc, &plain), &what);
+        let what = format!(
+            "bits [{}:{lo}]: the sum with the carry into bit {lo}",
+            lo + w - 1
+        );
+        self.wire(
+            &format!("{}_chunk{i}", p.name),
+            w,
+            Kind::Sum,
+            pick_expr(&carry, &inc, &plain),
+            &what,
+        );
     }
 
     /// Chunk `i`'s two sums as the pick reads them: with carry-in 1 ([`Builder::inc_arm`]) and
@@ -473,13 +711,28 @@ impl Builder {
         let w = p.chunks[i].1;
         let inc = format!("{}_part{i}_plus1", p.name);
         let inverted = p.top_inverted && i + 1 == p.chunks.len();
-        let bits = (0..w).map(|j| Arm::Bit(if inverted && j + 1 == w { ex!("~{}", self.bits(&inc, w, w)) } else { self.bits(&inc, j + 1, j + 1) })).collect();
+        let bits = (0..w)
+            .map(|j| {
+                Arm::Bit(if inverted && j + 1 == w {
+                    ex!("~{}", self.bits(&inc, w, w))
+                } else {
+                    self.bits(&inc, j + 1, j + 1)
+                })
+            })
+            .collect();
         let word = match (inverted, w) {
             (false, _) => self.bits(&inc, w, 1),
             (true, 1) => ex!("~{}", self.bits(&inc, w, w)),
-            (true, _) => ex!("{{~{}, {}}}", self.bits(&inc, w, w), self.bits(&inc, w - 1, 1)),
+            (true, _) => ex!(
+                "{{~{}, {}}}",
+                self.bits(&inc, w, w),
+                self.bits(&inc, w - 1, 1)
+            ),
         };
-        Arms { bits, word: Some(word) }
+        Arms {
+            bits,
+            word: Some(word),
+        }
     }
 
     /// Chunk `i`'s sum with carry-in 0, a constant bit where it only copies a constant of the
@@ -494,14 +747,22 @@ impl Builder {
         let bits: Vec<Arm> = (0..w)
             .map(|j| match p.plain_consts[i][j as usize] {
                 Some(v) => Arm::Const(v),
-                None => Arm::Bit(if inverted && j + 1 == w { ex!("~{}", self.bits(&plain, w - 1, w - 1)) } else { self.bits(&plain, j, j) }),
+                None => Arm::Bit(if inverted && j + 1 == w {
+                    ex!("~{}", self.bits(&plain, w - 1, w - 1))
+                } else {
+                    self.bits(&plain, j, j)
+                }),
             })
             .collect();
         let whole = bits.iter().all(|b| matches!(b, Arm::Bit(_)));
         let word = whole.then(|| match (inverted, w) {
             (false, _) => self.bits(&plain, w - 1, 0),
             (true, 1) => ex!("~{}", self.bits(&plain, w - 1, w - 1)),
-            (true, _) => ex!("{{~{}, {}}}", self.bits(&plain, w - 1, w - 1), self.bits(&plain, w - 2, 0)),
+            (true, _) => ex!(
+                "{{~{}, {}}}",
+                self.bits(&plain, w - 1, w - 1),
+                self.bits(&plain, w - 2, 0)
+            ),
         });
         Arms { bits, word }
     }
@@ -514,7 +775,10 @@ impl Builder {
 
     /// The `w` bits of the signal `name` as an arm of a pick, as this step reads them.
     fn arm_of(&mut self, name: &str, w: u32) -> Arms {
-        Arms { bits: (0..w).map(|j| Arm::Bit(self.bits(name, j, j))).collect(), word: Some(self.r(name)) }
+        Arms {
+            bits: (0..w).map(|j| Arm::Bit(self.bits(name, j, j))).collect(),
+            word: Some(self.r(name)),
+        }
     }
 }
 

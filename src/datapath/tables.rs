@@ -19,7 +19,14 @@ impl Builder {
     /// a table's address, [`Family::copies_table_address`](crate::family::Family::copies_table_address)):
     /// this step holds a copy of the low bits per part (`<signal>_addr<h>`, a
     /// [`Datapath::copies`] entry: its flip-flop kept) and the parts are made in the next.
-    pub(crate) fn rom_parts_of(&mut self, signal: &str, t: usize, addr: &str, most: u32, copies: bool) -> (Vec<Sig>, u32) {
+    pub(crate) fn rom_parts_of(
+        &mut self,
+        signal: &str,
+        t: usize,
+        addr: &str,
+        most: u32,
+        copies: bool,
+    ) -> (Vec<Sig>, u32) {
         let aw = self.signal(addr).width;
         let (width, words) = (self.tables[t].width, self.tables[t].words.clone());
         // the top bits pick among at most 16 parts (a 16:1 mux, two LUT levels), or more where
@@ -40,12 +47,21 @@ impl Builder {
         if copies {
             for h in 0..1usize << hi {
                 let e = self.bits(addr, lo - 1, 0);
-                self.wire(&format!("{signal}_addr{h}"), lo, Kind::Select, e, &format!("{addr}[{}:0] for part {h} alone", lo - 1));
+                self.wire(
+                    &format!("{signal}_addr{h}"),
+                    lo,
+                    Kind::Select,
+                    e,
+                    &format!("{addr}[{}:0] for part {h} alone", lo - 1),
+                );
                 self.copies.push(format!("{signal}_addr{h}"));
             }
             self.delay(REGISTER_ONLY_DELAY);
             let what = self.tables[t].what.clone();
-            self.step(&format!("{what} (in LUTs): its parts, each from its own copy of {addr}[{}:0]", lo - 1));
+            self.step(&format!(
+                "{what} (in LUTs): its parts, each from its own copy of {addr}[{}:0]",
+                lo - 1
+            ));
         }
         let shared = (!copies).then(|| self.bits(addr, lo - 1, 0));
         for h in 0..1usize << hi {
@@ -53,13 +69,27 @@ impl Builder {
                 Some(e) => e.clone(),
                 None => self.r(&format!("{signal}_addr{h}")),
             };
-            let entries =
-                (0..1usize << lo).filter_map(|l| words.get(h << lo | l).copied().filter(|&v| v != 0).map(|v| (l as u128, Expr::constant(lit(width, v)))));
+            let entries = (0..1usize << lo).filter_map(|l| {
+                words
+                    .get(h << lo | l)
+                    .copied()
+                    .filter(|&v| v != 0)
+                    .map(|v| (l as u128, Expr::constant(lit(width, v))))
+            });
             let e = Builder::one_of(&low, lo, entries, width);
-            let what = format!("{} at {addr}[{}:{lo}] = {h}, by {addr}[{}:0]", self.tables[t].what, aw - 1, lo - 1);
+            let what = format!(
+                "{} at {addr}[{}:{lo}] = {h}, by {addr}[{}:0]",
+                self.tables[t].what,
+                aw - 1,
+                lo - 1
+            );
             parts.push(self.wire(&format!("{signal}_part{h}"), width, Kind::Table, e, &what));
         }
-        self.delay(if lo > LUT_INPUTS { 2.0 * LUT_DELAY } else { LUT_DELAY });
+        self.delay(if lo > LUT_INPUTS {
+            2.0 * LUT_DELAY
+        } else {
+            LUT_DELAY
+        });
         (parts, lo)
     }
 
@@ -67,29 +97,63 @@ impl Builder {
     /// `lo` up, lowest first) four to one by the next two of those bits (a 4:1 mux, one slice
     /// of LUTs: an AND-OR, [`Builder::select`]'s rule). The last pick is `signal` itself.
     /// Returns the parts left and the address bit they are picked by.
-    pub(crate) fn rom_pick(&mut self, signal: &str, t: usize, addr: &str, parts: &[Sig], lo: u32) -> (Vec<Sig>, u32) {
+    pub(crate) fn rom_pick(
+        &mut self,
+        signal: &str,
+        t: usize,
+        addr: &str,
+        parts: &[Sig],
+        lo: u32,
+    ) -> (Vec<Sig>, u32) {
         self.rom_pick_of(signal, t, addr, parts, lo, 2)
     }
 
     /// [`Builder::rom_pick`] by at most `most` of the address's bits a step: one (2:1, a LUT4
     /// each) where a 4:1 pick's two LUT4 and their PFUMX would span slices (schlick's
     /// reciprocal at 238 MHz on the ECP5).
-    pub(crate) fn rom_pick_of(&mut self, signal: &str, t: usize, addr: &str, parts: &[Sig], lo: u32, most: u32) -> (Vec<Sig>, u32) {
+    pub(crate) fn rom_pick_of(
+        &mut self,
+        signal: &str,
+        t: usize,
+        addr: &str,
+        parts: &[Sig],
+        lo: u32,
+        most: u32,
+    ) -> (Vec<Sig>, u32) {
         let width = self.tables[t].width;
         let k: u32 = if parts.len() > 2 { 2 } else { 1 }.min(most);
         let sel = self.bits(addr, lo + k - 1, lo);
         let what = self.tables[t].what.clone();
         let mut out = Vec::new();
         for (g, group) in parts.chunks(1 << k).enumerate() {
-            let cases: Vec<(u128, Expr)> = group.iter().enumerate().map(|(j, p)| (j as u128, self.r(p))).collect();
+            let cases: Vec<(u128, Expr)> = group
+                .iter()
+                .enumerate()
+                .map(|(j, p)| (j as u128, self.r(p)))
+                .collect();
             let last = parts.len() <= 1 << k;
-            let name = if last { signal.to_string() } else { format!("{signal}_pick{}_{g}", lo + k) };
+            let name = if last {
+                signal.to_string()
+            } else {
+                format!("{signal}_pick{}_{g}", lo + k)
+            };
             let comment = if last {
                 format!("{what} (a table in LUTs, address = {addr})")
             } else {
-                format!("{addr}[{}:{lo}] picks among parts {}..{}", lo + k - 1, g << k, (g << k) + group.len() - 1)
+                format!(
+                    "{addr}[{}:{lo}] picks among parts {}..{}",
+                    lo + k - 1,
+                    g << k,
+                    (g << k) + group.len() - 1
+                )
             };
-            out.push(self.wire(&name, width, Kind::Logic, Builder::one_of(&sel, k, cases, width), &comment));
+            out.push(self.wire(
+                &name,
+                width,
+                Kind::Logic,
+                Builder::one_of(&sel, k, cases, width),
+                &comment,
+            ));
         }
         self.delay(LUT_DELAY);
         (out, lo + k)

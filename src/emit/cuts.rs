@@ -22,7 +22,10 @@ pub(super) fn unread_stretches(read: &[u128], width: u32, memory: bool) -> Vec<u
             continue;
         }
         let words = k + 1 - gap_from; // the stretch and the word read at its end
-        if k + 1 < read.len() && words >= datapath::MEMORY_TAIL_MIN_CUTS && width * words as u32 >= datapath::MEMORY_TAIL_MIN_BITS {
+        if k + 1 < read.len()
+            && words >= datapath::MEMORY_TAIL_MIN_CUTS
+            && width * words as u32 >= datapath::MEMORY_TAIL_MIN_BITS
+        {
             out.push(k);
         }
         gap_from = k + 1;
@@ -33,8 +36,22 @@ pub(super) fn unread_stretches(read: &[u128], width: u32, memory: bool) -> Vec<u
 /// Adds the chain of `name` through the cuts `at` to the delay line through the same cuts, or
 /// as a line of its own, `line`.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn lines_add(lines: &mut Vec<DelayLine>, line: &str, name: &str, width: u32, source: &str, at: &[usize], read: &[u128], target: Target) {
-    let member = Waiting { name: name.to_string(), width, source: source.to_string(), read: read.to_vec() };
+pub(super) fn lines_add(
+    lines: &mut Vec<DelayLine>,
+    line: &str,
+    name: &str,
+    width: u32,
+    source: &str,
+    at: &[usize],
+    read: &[u128],
+    target: Target,
+) {
+    let member = Waiting {
+        name: name.to_string(),
+        width,
+        source: source.to_string(),
+        read: read.to_vec(),
+    };
     match lines.iter_mut().find(|l| l.cuts == at) {
         Some(l) => {
             l.members.push(member);
@@ -54,8 +71,14 @@ pub(super) fn lines_add(lines: &mut Vec<DelayLine>, line: &str, name: &str, widt
 /// that only waits (registered at several cuts, each taking the one before) is one
 /// [`DelayLine`] at the first of them.
 pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
-    let mut cuts: Vec<Cut> =
-        (1..=dp.live.len()).map(|index| Cut { index, registered: dp.registered.contains(&(index as u32)), signals: Vec::new(), lines: Vec::new() }).collect();
+    let mut cuts: Vec<Cut> = (1..=dp.live.len())
+        .map(|index| Cut {
+            index,
+            registered: dp.registered.contains(&(index as u32)),
+            signals: Vec::new(),
+            lines: Vec::new(),
+        })
+        .collect();
     // each signal's chain of registers: the cuts holding it, in order, and the first source
     let mut chains: Vec<(String, u32, String, Vec<usize>)> = Vec::new();
     for (k, live) in dp.live.iter().enumerate() {
@@ -64,7 +87,9 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
             continue;
         }
         for l in live {
-            let continues = chains.iter_mut().rev().find(|c| c.0 == l.name && l.source == format!("{}_c{}", c.0, c.3.last().expect("a cut")));
+            let continues = chains.iter_mut().rev().find(|c| {
+                c.0 == l.name && l.source == format!("{}_c{}", c.0, c.3.last().expect("a cut"))
+            });
             match continues {
                 Some(c) => c.3.push(index),
                 None => chains.push((l.name.clone(), l.width, l.source.clone(), vec![index])),
@@ -91,33 +116,72 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
             // copies' words side by side, where yosys merges them, and its last flip-flop could
             // become the block's input register, far from the first)
             for k in at {
-                cuts[k - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy });
+                cuts[k - 1].signals.push(CutSignal {
+                    name: name.clone(),
+                    width,
+                    source,
+                    keep: true,
+                    copy,
+                });
                 source = format!("{name}_c{k}");
             }
             continue;
         }
         if product || operand {
-            cuts[at[0] - 1].signals.push(CutSignal { name: name.clone(), width, source, keep: true, copy: false });
+            cuts[at[0] - 1].signals.push(CutSignal {
+                name: name.clone(),
+                width,
+                source,
+                keep: true,
+                copy: false,
+            });
             source = format!("{name}_c{}", at[0]);
             at.remove(0);
         }
         if at.len() == 1 && !product && !operand {
             let keep = dp.read_by_block(&name, at[0]);
-            cuts[at[0] - 1].signals.push(CutSignal { name, width, source, keep, copy: false });
+            cuts[at[0] - 1].signals.push(CutSignal {
+                name,
+                width,
+                source,
+                keep,
+                copy: false,
+            });
             continue;
         }
-        let read: Vec<u128> = at.iter().map(|k| dp.read.get(&format!("{name}_c{k}")).copied().unwrap_or(0)).collect();
+        let read: Vec<u128> = at
+            .iter()
+            .map(|k| dp.read.get(&format!("{name}_c{k}")).copied().unwrap_or(0))
+            .collect();
         // a long unread stretch before a read that is not the last: the line ends at that read
         // (the stretch its tail, in block RAM where [`DelayLine::memory_tail`] takes it) and the
         // rest is a line of its own, from the word read there
         let (mut from, mut line) = (0, name.clone());
         for k in unread_stretches(&read, width, crate::family::of(target).has_block_ram()) {
-            lines_add(&mut lines, &line, &name, width, &source, &at[from..=k], &read[from..=k], target);
+            lines_add(
+                &mut lines,
+                &line,
+                &name,
+                width,
+                &source,
+                &at[from..=k],
+                &read[from..=k],
+                target,
+            );
             source = format!("{name}_c{}", at[k]);
             from = k + 1;
             line = format!("{name}_from_c{}", at[from]);
         }
-        lines_add(&mut lines, &line, &name, width, &source, &at[from..], &read[from..], target);
+        lines_add(
+            &mut lines,
+            &line,
+            &name,
+            width,
+            &source,
+            &at[from..],
+            &read[from..],
+            target,
+        );
     }
     for l in lines {
         let first = l.cuts[0];
@@ -136,20 +200,35 @@ pub(super) fn cut_list(dp: &datapath::Datapath, target: Target) -> Vec<Cut> {
 /// its step, read by nothing else in that step, and no operand has constant zero low bits
 /// (yosys takes that shift, and the add and the register behind it, out of the block). A
 /// register kept in the fabric (`(* keep *)`) is taken all the same.
-pub(crate) fn unregistered_products(dp: &datapath::Datapath, cuts: &[Cut], target: Target) -> Vec<(String, String)> {
+pub(crate) fn unregistered_products(
+    dp: &datapath::Datapath,
+    cuts: &[Cut],
+    target: Target,
+) -> Vec<(String, String)> {
     let family = crate::family::of(target);
     let mut out = Vec::new();
     for s in &dp.steps {
         for w in s.wires.iter().filter(|w| w.product().is_some()) {
-            let blocks = dp.product_uses.iter().find(|u| u.name == w.name).map_or(1, |u| u.blocks);
+            let blocks = dp
+                .product_uses
+                .iter()
+                .find(|u| u.name == w.name)
+                .map_or(1, |u| u.blocks);
             if blocks == 0 {
                 continue; // LUTs: no block
             }
             let wire = format!("{}_s{}", w.name, s.index);
             let cut = cuts.get(s.index - 1).filter(|c| c.registered);
-            let whole = cut.is_some_and(|c| c.signals.iter().any(|r| r.name == w.name && r.source == wire));
+            let whole = cut.is_some_and(|c| {
+                c.signals
+                    .iter()
+                    .any(|r| r.name == w.name && r.source == wire)
+            });
             let why = if !family.registers_inferred_blocks() {
-                format!("an inferred product: {} maps it without registers", family.name())
+                format!(
+                    "an inferred product: {} maps it without registers",
+                    family.name()
+                )
             } else if blocks > 1 {
                 format!("the synthesis tool splits it over {blocks} blocks, summed in the fabric")
             } else if w.width as u64 > 2 * family.multiplier_bits() as u64 {

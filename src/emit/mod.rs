@@ -53,12 +53,22 @@ impl Cut {
     /// one, each from the one before.
     pub fn lines(&self, top: &str) -> Vec<String> {
         let mut out = Vec::new();
-        let range = |w: u32| if w == 1 { "     ".to_string() } else { format!("[{}:0]", w - 1) };
+        let range = |w: u32| {
+            if w == 1 {
+                "     ".to_string()
+            } else {
+                format!("[{}:0]", w - 1)
+            }
+        };
         for s in &self.signals {
             let reg = format!("{}_c{}", s.name, self.index);
             let keep = if s.keep { "(* keep *) " } else { "" };
             let cell = if s.copy { "(* keep *) " } else { "" };
-            out.push(format!("{keep}reg  {} {reg};   {cell}always @(posedge clk) {reg} <= {};", range(s.width), s.source));
+            out.push(format!(
+                "{keep}reg  {} {reg};   {cell}always @(posedge clk) {reg} <= {};",
+                range(s.width),
+                s.source
+            ));
         }
         for l in &self.lines {
             out.extend(l.lines(top));
@@ -129,7 +139,11 @@ pub(crate) struct BlockSlice {
 
 /// The table blocks of a registered read of `t` into `signal`: 18 bits of the word each, low
 /// first, each bank's contents as the family's block lays them out (`init`).
-fn block_slices(t: &crate::table::Table, signal: &str, init: fn(&[u128]) -> Vec<(String, String)>) -> Vec<BlockSlice> {
+fn block_slices(
+    t: &crate::table::Table,
+    signal: &str,
+    init: fn(&[u128]) -> Vec<(String, String)>,
+) -> Vec<BlockSlice> {
     let b = datapath::DP16KD_BITS;
     let n = t.width.div_ceil(b);
     (0..n)
@@ -144,7 +158,13 @@ fn block_slices(t: &crate::table::Table, signal: &str, init: fn(&[u128]) -> Vec<
             } else {
                 format!("{signal}[{}:{lo}]", hi - 1)
             };
-            BlockSlice { suffix: if n == 1 { String::new() } else { k.to_string() }, banks, bits, unused: b - (hi - lo), width: hi - lo }
+            BlockSlice {
+                suffix: if n == 1 { String::new() } else { k.to_string() },
+                banks,
+                bits,
+                unused: b - (hi - lo),
+                width: hi - lo,
+            }
         })
         .collect()
 }
@@ -245,7 +265,16 @@ fn registered_cuts_text(cuts: &[u32]) -> String {
             _ => runs.push((c, c)),
         }
     }
-    runs.iter().map(|&(a, b)| if a == b { a.to_string() } else { format!("{a}-{b}") }).collect::<Vec<_>>().join(", ")
+    runs.iter()
+        .map(|&(a, b)| {
+            if a == b {
+                a.to_string()
+            } else {
+                format!("{a}-{b}")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The module's port declarations, one a line, the comments in one column.
@@ -254,8 +283,17 @@ pub(crate) fn port_lines(ports: &[Port]) -> Vec<String> {
         .iter()
         .enumerate()
         .map(|(i, p)| {
-            let range = if p.width == 1 { String::new() } else { format!("[{}:0]", p.width - 1) };
-            let decl = format!("    {:<6} wire {range:<6} {}{}", p.direction, p.name, if i + 1 < ports.len() { "," } else { "" });
+            let range = if p.width == 1 {
+                String::new()
+            } else {
+                format!("[{}:0]", p.width - 1)
+            };
+            let decl = format!(
+                "    {:<6} wire {range:<6} {}{}",
+                p.direction,
+                p.name,
+                if i + 1 < ports.len() { "," } else { "" }
+            );
             if p.meaning.is_empty() {
                 decl
             } else {
@@ -281,7 +319,11 @@ fn with_lemma_port(cfg: &crate::config::Config, mut lines: Vec<String>) -> Vec<S
 
 /// Joins `items` with `sep` into as few lines as keep each at most `width` characters (an item
 /// longer than that has a line of its own): an expression's operands, the lint sink's selects.
-fn fill_lines<'a>(items: impl IntoIterator<Item = &'a str>, sep: &str, width: usize) -> Vec<String> {
+fn fill_lines<'a>(
+    items: impl IntoIterator<Item = &'a str>,
+    sep: &str,
+    width: usize,
+) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for item in items {
         match lines.last_mut() {
@@ -303,9 +345,20 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
     let blocks = crate::family::of(cfg.target()).blocks();
     let cuts = cut_list(dp, cfg.target());
     let edge = crate::interface::edge(plan, &dp.outputs);
-    let line_unread: Vec<String> = cuts.iter().flat_map(|c| c.lines.iter().flat_map(DelayLine::unread)).collect();
+    let line_unread: Vec<String> = cuts
+        .iter()
+        .flat_map(|c| c.lines.iter().flat_map(DelayLine::unread))
+        .collect();
     // each line indented 4 and ended by a comma
-    let unused = fill_lines(dp.unused.iter().chain(&line_unread).chain(&edge.unused).map(String::as_str), ", ", MAX_LINE - 5);
+    let unused = fill_lines(
+        dp.unused
+            .iter()
+            .chain(&line_unread)
+            .chain(&edge.unused)
+            .map(String::as_str),
+        ", ",
+        MAX_LINE - 5,
+    );
     let file = p.rom_style == RomStyle::File;
     let file_tables = if file {
         dp.tables
@@ -345,7 +398,11 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                 signal: format!("{}_{}{}", r.signal, if r.block { "c" } else { "s" }, r.step),
                 width: t.width,
                 table: t.name.clone(),
-                addr: if r.block && ab < 10 { format!("{{{}, {}}}", lit(10 - ab, 0), r.addr) } else { r.addr.clone() },
+                addr: if r.block && ab < 10 {
+                    format!("{{{}, {}}}", lit(10 - ab, 0), r.addr)
+                } else {
+                    r.addr.clone()
+                },
                 what: t.what.clone(),
                 file,
                 zero: lit(t.width, 0),
@@ -361,13 +418,26 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
                 entries: if file || r.block {
                     Vec::new()
                 } else {
-                    t.words.iter().enumerate().map(|(i, &v)| RomEntry { index: format!("{ab}'d{i}"), value: lit(t.width, v) }).collect()
+                    t.words
+                        .iter()
+                        .enumerate()
+                        .map(|(i, &v)| RomEntry {
+                            index: format!("{ab}'d{i}"),
+                            value: lit(t.width, v),
+                        })
+                        .collect()
                 },
             },
         ));
     }
     let d = plan.model.unit().describe();
-    let mut param_line = format!("{}{}stages={} rounding={}", d.param_line, if d.param_line.is_empty() { "" } else { " " }, p.stages, p.rounding.name());
+    let mut param_line = format!(
+        "{}{}stages={} rounding={}",
+        d.param_line,
+        if d.param_line.is_empty() { "" } else { " " },
+        p.stages,
+        p.rounding.name()
+    );
     if !dp.tables.is_empty() {
         param_line.push_str(&format!(" rom_style={}", p.rom_style.name()));
     }
@@ -432,9 +502,11 @@ pub(crate) fn unit_template(plan: &Plan) -> UnitTemplate<'_> {
             bram: b.bram,
             dsp_model: b.dsp_model_suffix,
             bram_model: b.bram_model_suffix,
-            init: (b.bram_init)(&[])
-                .first()
-                .map_or(String::new(), |(k, _)| k.trim_end_matches(|c: char| c.is_ascii_hexdigit()).trim_end_matches('_').to_string()),
+            init: (b.bram_init)(&[]).first().map_or(String::new(), |(k, _)| {
+                k.trim_end_matches(|c: char| c.is_ascii_hexdigit())
+                    .trim_end_matches('_')
+                    .to_string()
+            }),
         }),
     }
 }
@@ -445,11 +517,20 @@ fn step_items(s: &datapath::Step, reads: Vec<(usize, ReadView)>) -> Vec<StepItem
     let mut items = Vec::new();
     for (i, x) in s.wires.iter().enumerate() {
         while let Some((_, r)) = reads.next_if(|(at, _)| *at <= i) {
-            items.push(StepItem { read: Some(r), wire: None });
+            items.push(StepItem {
+                read: Some(r),
+                wire: None,
+            });
         }
-        items.push(StepItem { read: None, wire: Some(wire_statement(x, s.index)) });
+        items.push(StepItem {
+            read: None,
+            wire: Some(wire_statement(x, s.index)),
+        });
     }
-    items.extend(reads.map(|(_, r)| StepItem { read: Some(r), wire: None }));
+    items.extend(reads.map(|(_, r)| StepItem {
+        read: Some(r),
+        wire: None,
+    }));
     items
 }
 
@@ -481,7 +562,15 @@ struct CoreTemplate<'a> {
 
 /// The FuseSoC flags under which a core that depends on a unit gets its simulation models: a
 /// target named `sim`/`lint` (the flow API sets `target_<name>`), or a simulator as the tool.
-const SIM_FLAGS: [&str; 7] = ["target_sim", "target_lint", "tool_icarus", "tool_verilator", "tool_modelsim", "tool_questa", "tool_xsim"];
+const SIM_FLAGS: [&str; 7] = [
+    "target_sim",
+    "target_lint",
+    "tool_icarus",
+    "tool_verilator",
+    "tool_modelsim",
+    "tool_questa",
+    "tool_xsim",
+];
 
 /// The clock constraint `<top>.sdc` (every unit) or `<top>.lpf` (ECP5).
 #[derive(Template)]
@@ -509,7 +598,10 @@ struct LpfTemplate<'a> {
 
 /// The clock port of a unit (none when combinational).
 pub(crate) fn clock_port(cfg: &crate::config::Config) -> Option<&'static str> {
-    cfg.ports("").iter().map(|p| p.name).find(|n| *n == "clk" || *n == "aclk")
+    cfg.ports("")
+        .iter()
+        .map(|p| p.name)
+        .find(|n| *n == "clk" || *n == "aclk")
 }
 
 /// `<top>.sdc`, and `<top>.lpf` for ECP5, at the configuration's clock, on the clock port of
@@ -519,11 +611,30 @@ fn constraint_files(cfg: &crate::config::Config) -> Vec<(String, String)> {
     let mhz = crate::family::clock_mhz(cfg);
     let mhz_text = format!("{mhz}");
     let clock = clock_port(cfg).map(|own| cfg.params.clock_port.as_deref().unwrap_or(own));
-    let sdc = SdcTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text.clone(), period: format!("{:.3}", 1000.0 / mhz) };
-    let mut files = vec![(format!("{top}.sdc"), sdc.render().expect("sdc renders") + "\n")];
+    let sdc = SdcTemplate {
+        top,
+        version: VERSION,
+        params: cfg.describe(),
+        clock,
+        mhz: mhz_text.clone(),
+        period: format!("{:.3}", 1000.0 / mhz),
+    };
+    let mut files = vec![(
+        format!("{top}.sdc"),
+        sdc.render().expect("sdc renders") + "\n",
+    )];
     if crate::family::of(cfg.target()).lpf_constraints() {
-        let lpf = LpfTemplate { top, version: VERSION, params: cfg.describe(), clock, mhz: mhz_text };
-        files.push((format!("{top}.lpf"), lpf.render().expect("lpf renders") + "\n"));
+        let lpf = LpfTemplate {
+            top,
+            version: VERSION,
+            params: cfg.describe(),
+            clock,
+            mhz: mhz_text,
+        };
+        files.push((
+            format!("{top}.lpf"),
+            lpf.render().expect("lpf renders") + "\n",
+        ));
     }
     files.extend(crate::family::of(cfg.target()).constraint_files(top));
     files
@@ -564,8 +675,13 @@ pub fn delay_rams(plan: &Plan) -> Vec<(u32, u32)> {
 /// The (word bits, cuts) of every delay line's tail in RAM, one entry a tail (an instance of
 /// `<top>_delay_ram` each), in order.
 pub fn delay_ram_tails(plan: &Plan) -> Vec<(u32, u32)> {
-    let lines = cut_list(&plan.datapath, plan.cfg.target()).into_iter().flat_map(|c| c.lines).chain(crate::interface::tag_line(plan));
-    lines.filter_map(|l| l.memory_tail().map(|(_, cuts)| (l.word(), cuts as u32))).collect()
+    let lines = cut_list(&plan.datapath, plan.cfg.target())
+        .into_iter()
+        .flat_map(|c| c.lines)
+        .chain(crate::interface::tag_line(plan));
+    lines
+        .filter_map(|l| l.memory_tail().map(|(_, cuts)| (l.word(), cuts as u32)))
+        .collect()
 }
 
 /// The FuseSoC VLNV of a configuration: `specgen:specular:<top>-<digest>:<version>`, the digest
@@ -573,7 +689,15 @@ pub fn delay_ram_tails(plan: &Plan) -> Vec<(u32, u32)> {
 /// configurations never replace each other in one cores-root, and one configuration always
 /// gets the same name.
 pub fn core_name(cfg: &crate::config::Config) -> String {
-    let digest = sha256_hex(format!("{} rom_style={} top={}", cfg.describe(), cfg.params.rom_style.name(), cfg.top()).as_bytes());
+    let digest = sha256_hex(
+        format!(
+            "{} rom_style={} top={}",
+            cfg.describe(),
+            cfg.params.rom_style.name(),
+            cfg.top()
+        )
+        .as_bytes(),
+    );
     format!("specgen:specular:{}-{}:{VERSION}", cfg.top(), &digest[..8])
 }
 
@@ -643,7 +767,11 @@ pub(crate) struct Unregistered {
 /// The hard products of the plan's unit whose block has no output register, each with why
 /// (empty: every block has it).
 pub fn unregistered(plan: &Plan) -> Vec<(String, String)> {
-    unregistered_products(&plan.datapath, &cut_list(&plan.datapath, plan.cfg.target()), plan.cfg.target())
+    unregistered_products(
+        &plan.datapath,
+        &cut_list(&plan.datapath, plan.cfg.target()),
+        plan.cfg.target(),
+    )
 }
 
 fn sha256_hex(bytes: &[u8]) -> String {
@@ -663,40 +791,79 @@ pub struct Sources {
 pub fn sources(plan: &Plan) -> Sources {
     let cfg = &plan.cfg;
     let top = cfg.top();
-    let mut verilog = fold_long_lines(&unit_template(plan).render().expect("unit template renders"));
+    let mut verilog =
+        fold_long_lines(&unit_template(plan).render().expect("unit template renders"));
     verilog.push('\n');
     let dp = &plan.datapath;
     let tables: Vec<_> = match cfg.params.rom_style {
-        RomStyle::File => dp.tables.iter().enumerate().filter(|(i, _)| !block_table(dp, *i)).map(|(_, t)| t.clone()).collect(),
+        RomStyle::File => dp
+            .tables
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !block_table(dp, *i))
+            .map(|(_, t)| t.clone())
+            .collect(),
         RomStyle::Case | RomStyle::Logic => Vec::new(),
     };
     // the ECP5 primitives' wrappers (RTL) and their simulation models (never synthesized)
     let (mut rtl_files, mut sim_models) = (Vec::new(), Vec::new());
     if cfg.interface().handshake() {
-        let text = OutBufferTemplate { top, version: VERSION }.render().expect("buffer template renders") + "\n";
+        let text = OutBufferTemplate {
+            top,
+            version: VERSION,
+        }
+        .render()
+        .expect("buffer template renders")
+            + "\n";
         rtl_files.push((format!("{top}_out_buffer.v"), text));
     }
     let blocks = crate::family::of(cfg.target()).blocks();
     if let Some(b) = blocks.filter(|_| dp.has_dsp_blocks()) {
         rtl_files.push((format!("{top}_mult18x18.v"), (b.dsp_module)(top)));
-        sim_models.push((format!("{SIM_DIR}/{top}{}", b.dsp_model_suffix), (b.dsp_model)()));
+        sim_models.push((
+            format!("{SIM_DIR}/{top}{}", b.dsp_model_suffix),
+            (b.dsp_model)(),
+        ));
     }
     if !delay_rams(plan).is_empty() {
         let distributed = crate::family::of(cfg.target()).distributed_ram();
-        let ram_style = if distributed { ", ram_style = \"distributed\"" } else { "" };
+        let ram_style = if distributed {
+            ", ram_style = \"distributed\""
+        } else {
+            ""
+        };
         let memory = datapath::memory_kind(distributed);
-        let text = DelayRamTemplate { top, version: VERSION, memory, ram_style }.render().expect("delay_ram template renders") + "\n";
+        let text = DelayRamTemplate {
+            top,
+            version: VERSION,
+            memory,
+            ram_style,
+        }
+        .render()
+        .expect("delay_ram template renders")
+            + "\n";
         rtl_files.push((format!("{top}_delay_ram.v"), text));
     }
     if let Some(b) = blocks.filter(|_| dp.has_block_rams()) {
         rtl_files.push((format!("{top}_rom1k18.v"), (b.bram_module)(top)));
-        sim_models.push((format!("{SIM_DIR}/{top}{}", b.bram_model_suffix), (b.bram_model)()));
+        sim_models.push((
+            format!("{SIM_DIR}/{top}{}", b.bram_model_suffix),
+            (b.bram_model)(),
+        ));
     }
     // the primitives as black boxes, for a synthesis tool that lacks them
-    if let Some((suffix, text)) = blocks.filter(|_| dp.has_dsp_blocks() || dp.has_block_rams()).and_then(|b| b.boxes) {
+    if let Some((suffix, text)) = blocks
+        .filter(|_| dp.has_dsp_blocks() || dp.has_block_rams())
+        .and_then(|b| b.boxes)
+    {
         rtl_files.push((format!("{top}{suffix}"), text(top)));
     }
-    Sources { top: (format!("{top}.v"), verilog), rtl: rtl_files, sim_models, tables }
+    Sources {
+        top: (format!("{top}.v"), verilog),
+        rtl: rtl_files,
+        sim_models,
+        tables,
+    }
 }
 
 /// The files [`sources`] names, in the order `generate` lists them: the top, the RTL modules,
@@ -704,9 +871,17 @@ pub fn sources(plan: &Plan) -> Sources {
 pub fn source_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let s = sources(plan);
     let mut files = vec![(s.top.0, s.top.1.into_bytes())];
-    files.extend(s.rtl.into_iter().chain(s.sim_models).map(|(n, t)| (n, t.into_bytes())));
+    files.extend(
+        s.rtl
+            .into_iter()
+            .chain(s.sim_models)
+            .map(|(n, t)| (n, t.into_bytes())),
+    );
     for t in &s.tables {
-        files.push((t.file(plan.cfg.top()), rom::render_table(&plan.cfg, t, RomFormat::Hex).into_bytes()));
+        files.push((
+            t.file(plan.cfg.top()),
+            rom::render_table(&plan.cfg, t, RomFormat::Hex).into_bytes(),
+        ));
     }
     files
 }
@@ -716,7 +891,12 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
     let cfg = &plan.cfg;
     let top = cfg.top();
     let unit = plan.model.unit();
-    let Sources { top: (top_name, verilog), rtl: rtl_files, sim_models, tables } = sources(plan);
+    let Sources {
+        top: (top_name, verilog),
+        rtl: rtl_files,
+        sim_models,
+        tables,
+    } = sources(plan);
     let description = unit.describe().summary;
     let mut files = vec![(top_name, verilog.into_bytes())];
     let constraints = constraint_files(cfg);
@@ -736,32 +916,60 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         rtl_files: rtl_files.iter().map(|(n, _)| n.clone()).collect(),
         sim_models: sim_models.iter().map(|(n, _)| n.clone()).collect(),
         arch: crate::family::of(cfg.target()).fusesoc_arch(),
-        sim_flags: if sim_models.is_empty() { Vec::new() } else { SIM_FLAGS.to_vec() },
+        sim_flags: if sim_models.is_empty() {
+            Vec::new()
+        } else {
+            SIM_FLAGS.to_vec()
+        },
     }
     .render()
     .expect("core template renders")
         + "\n";
-    files.extend(rtl_files.into_iter().chain(sim_models).map(|(n, t)| (n, t.into_bytes())));
+    files.extend(
+        rtl_files
+            .into_iter()
+            .chain(sim_models)
+            .map(|(n, t)| (n, t.into_bytes())),
+    );
     for t in &tables {
-        files.push((t.file(top), rom::render_table(cfg, t, RomFormat::Hex).into_bytes()));
+        files.push((
+            t.file(top),
+            rom::render_table(cfg, t, RomFormat::Hex).into_bytes(),
+        ));
     }
-    files.extend(constraints.into_iter().chain(testbench).map(|(n, t)| (n, t.into_bytes())));
+    files.extend(
+        constraints
+            .into_iter()
+            .chain(testbench)
+            .map(|(n, t)| (n, t.into_bytes())),
+    );
     files.push((format!("{top}.core"), core.into_bytes()));
     // the unit in the Python HDLs (Amaranth, LiteX): what they add to a build is its RTL and
     // tables, never the simulation models or the testbench
     let synthesized: Vec<String> = files
         .iter()
         .map(|(n, _)| n.clone())
-        .filter(|n| (n.ends_with(".v") || n.ends_with(".hex")) && !n.starts_with(SIM_DIR) && !n.ends_with("_vectors.hex"))
+        .filter(|n| {
+            (n.ends_with(".v") || n.ends_with(".hex"))
+                && !n.starts_with(SIM_DIR)
+                && !n.ends_with("_vectors.hex")
+        })
         .collect();
-    files.extend(python::python_files(plan, synthesized).into_iter().map(|(n, t)| (n, t.into_bytes())));
+    files.extend(
+        python::python_files(plan, synthesized)
+            .into_iter()
+            .map(|(n, t)| (n, t.into_bytes())),
+    );
     let fidelity = plan.model.fidelity();
     let manifest = Manifest {
         generator: "specgen",
         version: VERSION,
         fingerprint: cfg.fingerprint(),
         // the reset's polarity stated always, the interface's own included
-        params: &Params { reset: Some(cfg.reset()), ..cfg.params.clone() },
+        params: &Params {
+            reset: Some(cfg.reset()),
+            ..cfg.params.clone()
+        },
         k_code: cfg.k_code,
         latency: cfg.latency(),
         ports: cfg.ports(""),
@@ -771,7 +979,10 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         }),
         internal_widths: unit.widths(),
         registered_cuts: &plan.registered_cuts,
-        unregistered_products: unregistered(plan).into_iter().map(|(name, why)| Unregistered { name, why }).collect(),
+        unregistered_products: unregistered(plan)
+            .into_iter()
+            .map(|(name, why)| Unregistered { name, why })
+            .collect(),
         stage_delay_estimate: (plan.stage_delay() * 100.0).round() / 100.0,
         stage_delay_mean: (plan.stage_delay_mean() * 100.0).round() / 100.0,
         predicted_fmax_mhz: crate::timing::predicted_fmax(plan).map(|f| (f * 10.0).round() / 10.0),
@@ -782,7 +993,13 @@ pub fn generate_files(plan: &Plan) -> Vec<(String, Vec<u8>)> {
         pixel_error_mean: fidelity.pixel.mean,
         pixel_error_rms: fidelity.pixel.rms,
         pixel_error_method: fidelity.pixel_method(),
-        files: files.iter().map(|(name, bytes)| FileEntry { name: name.clone(), sha256: sha256_hex(bytes) }).collect(),
+        files: files
+            .iter()
+            .map(|(name, bytes)| FileEntry {
+                name: name.clone(),
+                sha256: sha256_hex(bytes),
+            })
+            .collect(),
     };
     // only the model's own parameters (MODEL_KEYS): a reader branches on `model`
     let mut value = serde_json::to_value(&manifest).expect("manifest serialises");

@@ -104,7 +104,14 @@ fn unit_description<'a>(plan: &'a Plan, files: Vec<String>) -> Unit<'a> {
         sink: Vec::new(),
         source: Vec::new(),
         other: Vec::new(),
-        ports: ports.iter().map(|p| PortView { name: p.name, direction: p.direction, width: p.width }).collect(),
+        ports: ports
+            .iter()
+            .map(|p| PortView {
+                name: p.name,
+                direction: p.direction,
+                width: p.width,
+            })
+            .collect(),
         files,
     };
     for p in &ports {
@@ -120,11 +127,35 @@ fn unit_description<'a>(plan: &'a Plan, files: Vec<String>) -> Unit<'a> {
             ("in_ready" | "s_axis_tready", _) => u.in_ready = Some(p.name),
             ("out_valid" | "m_axis_tvalid", _) => u.out_valid = p.name,
             ("out_ready" | "m_axis_tready", _) => u.out_ready = Some(p.name),
-            ("s_axis_tdata", _) if axis => u.sink.extend(s_fields.iter().map(|f| Field { field: f.name, width: f.width, port: p.name, lo: Some(f.lo) })),
-            ("m_axis_tdata", _) if axis => u.source.extend(m_fields.iter().map(|f| Field { field: f.name, width: f.width, port: p.name, lo: Some(f.lo) })),
-            (name, "input") if p.data => u.sink.push(Field { field: field(name), width: p.width, port: name, lo: None }),
-            (name, _) if p.data => u.source.push(Field { field: field(name), width: p.width, port: name, lo: None }),
-            (name, direction) => u.other.push(PortView { name, direction, width: p.width }),
+            ("s_axis_tdata", _) if axis => u.sink.extend(s_fields.iter().map(|f| Field {
+                field: f.name,
+                width: f.width,
+                port: p.name,
+                lo: Some(f.lo),
+            })),
+            ("m_axis_tdata", _) if axis => u.source.extend(m_fields.iter().map(|f| Field {
+                field: f.name,
+                width: f.width,
+                port: p.name,
+                lo: Some(f.lo),
+            })),
+            (name, "input") if p.data => u.sink.push(Field {
+                field: field(name),
+                width: p.width,
+                port: name,
+                lo: None,
+            }),
+            (name, _) if p.data => u.source.push(Field {
+                field: field(name),
+                width: p.width,
+                port: name,
+                lo: None,
+            }),
+            (name, direction) => u.other.push(PortView {
+                name,
+                direction,
+                width: p.width,
+            }),
         }
     }
     u
@@ -136,15 +167,31 @@ pub fn python_files(plan: &Plan, files: Vec<String>) -> Vec<(String, String)> {
     let cfg = &plan.cfg;
     let top = cfg.top();
     let unit = unit_description(plan, files);
-    assert!(unit.reset.is_some() || unit.clock.is_none(), "a clocked unit has a reset port");
+    assert!(
+        unit.reset.is_some() || unit.clock.is_none(),
+        "a clocked unit has a reset port"
+    );
     let unit_json = serde_json::to_string(&unit).expect("the unit serialises");
     let summary = plan.model.unit().describe().summary.to_string();
     let latency = cfg.latency();
-    let w = Wrapper { top, version: crate::names::VERSION, class_name: class_name(top), summary, latency, unit_json };
+    let w = Wrapper {
+        top,
+        version: crate::names::VERSION,
+        class_name: class_name(top),
+        summary,
+        latency,
+        unit_json,
+    };
     let (amaranth, litex) = (AmaranthTemplate { w: &w }, LitexTemplate { w: &w });
     vec![
-        (format!("{top}_amaranth.py"), amaranth.render().expect("amaranth template renders") + "\n"),
-        (format!("{top}_litex.py"), litex.render().expect("litex template renders") + "\n"),
+        (
+            format!("{top}_amaranth.py"),
+            amaranth.render().expect("amaranth template renders") + "\n",
+        ),
+        (
+            format!("{top}_litex.py"),
+            litex.render().expect("litex template renders") + "\n",
+        ),
     ]
 }
 

@@ -8,12 +8,22 @@ pub(crate) const MAX_LINE: usize = 120;
 /// A wire's statement: `wire [W-1:0] x_sK = expr;   // comment`, the comment on a line of its
 /// own above it when the two do not fit one line.
 pub(super) fn wire_statement(x: &Wire, step: usize) -> String {
-    let range = if x.width == 1 { "      ".to_string() } else { format!("[{}:0]", x.width - 1) };
+    let range = if x.width == 1 {
+        "      ".to_string()
+    } else {
+        format!("[{}:0]", x.width - 1)
+    };
     // a kept wire is declared, then assigned: Icarus drops an attribute on a net declaration
     // assignment (and says so)
     let (decl, stmt) = match x.keep {
-        true => (format!("(* keep *) wire {range} {}_s{step};\n", x.name), format!("assign {}_s{step} = {};", x.name, x.expr)),
-        false => (String::new(), format!("wire {range} {}_s{step} = {};", x.name, x.expr)),
+        true => (
+            format!("(* keep *) wire {range} {}_s{step};\n", x.name),
+            format!("assign {}_s{step} = {};", x.name, x.expr),
+        ),
+        false => (
+            String::new(),
+            format!("wire {range} {}_s{step} = {};", x.name, x.expr),
+        ),
     };
     // an expression written one operand a line reads as few lines as fit
     let stmt = fill_lines(stmt.split("\n    "), " ", MAX_LINE).join("\n    ");

@@ -44,7 +44,12 @@ pub enum ClockEvidence {
     },
     /// the delay model's figure; `extrapolated`: outside every calibrated width (its line
     /// alone), else read from calibration units at or around these widths; `note`: how
-    Modelled { figure: f64, predicted: f64, extrapolated: bool, note: Option<String> },
+    Modelled {
+        figure: f64,
+        predicted: f64,
+        extrapolated: bool,
+        note: Option<String>,
+    },
 }
 
 impl std::fmt::Display for ClockEvidence {
@@ -81,26 +86,45 @@ pub struct DepthPick {
 pub fn built_in(target: crate::config::Target) -> Result<Option<&'static Exploration>, Error> {
     use crate::config::Target;
     use std::sync::OnceLock;
-    static BUILT: [OnceLock<Option<Exploration>>; Target::ALL.len()] = [const { OnceLock::new() }; Target::ALL.len()];
-    let slot = &BUILT[Target::ALL.iter().position(|t| *t == target).expect("a target of ALL")];
+    static BUILT: [OnceLock<Option<Exploration>>; Target::ALL.len()] =
+        [const { OnceLock::new() }; Target::ALL.len()];
+    let slot = &BUILT[Target::ALL
+        .iter()
+        .position(|t| *t == target)
+        .expect("a target of ALL")];
     if let Some(e) = slot.get() {
         return Ok(e.as_ref());
     }
-    let read = crate::family::of(target).explored().map(|text| Exploration::from_text(text, "the built-in exploration")).transpose()?;
+    let read = crate::family::of(target)
+        .explored()
+        .map(|text| Exploration::from_text(text, "the built-in exploration"))
+        .transpose()?;
     Ok(slot.get_or_init(|| read).as_ref())
 }
 
 /// Parameters with what does not change which unit is measured cleared: its depth, the clock
 /// its constraints name, its names.
 pub fn measured_shape(p: &Params) -> Params {
-    Params { stages: 0, clock_mhz: None, top: Params::default().top, clock_port: None, ..p.clone() }
+    Params {
+        stages: 0,
+        clock_mhz: None,
+        top: Params::default().top,
+        clock_port: None,
+        ..p.clone()
+    }
 }
 
 /// The shallowest depth of `plan`'s configuration whose clock reaches `mhz`: a unit measured on
 /// today's RTL in `explored` (the family's built-in exploration when None) first, else the
 /// delay model under `policy`. `progress(depth, deepest)` hears each depth the model plans.
 /// Err: no depth reaches it (the delay model's reason, which names the best depth).
-pub fn depth_for_clock(plan: &Plan, mhz: f64, policy: Policy, explored: Option<&Exploration>, progress: impl Fn(u32, u32)) -> Result<DepthPick, Error> {
+pub fn depth_for_clock(
+    plan: &Plan,
+    mhz: f64,
+    policy: Policy,
+    explored: Option<&Exploration>,
+    progress: impl Fn(u32, u32),
+) -> Result<DepthPick, Error> {
     depth_and_options_for_clock(plan, mhz, policy, explored, &[], progress)
 }
 
@@ -133,16 +157,30 @@ pub fn depth_and_options_for_clock(
         }
     };
     // extrapolated where the line spoke, not a unit of today's RTL at or around these widths
-    let extrapolated = crate::timing::assured_reading(&chosen).is_none_or(|(_, rule)| rule == crate::timing::Rule::Line);
+    let extrapolated = crate::timing::assured_reading(&chosen)
+        .is_none_or(|(_, rule)| rule == crate::timing::Rule::Line);
     let note = crate::timing::outside_calibration(&chosen).or_else(|| {
         extrapolated.then(|| "the delay model's line times its margin: no unit of these widths measured on today's RTL bounds this depth".to_string())
     });
-    Ok(DepthPick { plan: chosen, evidence: ClockEvidence::Modelled { figure, predicted, extrapolated, note } })
+    Ok(DepthPick {
+        plan: chosen,
+        evidence: ClockEvidence::Modelled {
+            figure,
+            predicted,
+            extrapolated,
+            note,
+        },
+    })
 }
 
 /// The measured step of [`depth_for_clock`]: None where no unit of this configuration measured
 /// on today's RTL reaches `mhz`.
-fn measured_depth(plan: &Plan, mhz: f64, explored: Option<&Exploration>, free: &[&str]) -> Result<Option<DepthPick>, Error> {
+fn measured_depth(
+    plan: &Plan,
+    mhz: f64,
+    explored: Option<&Exploration>,
+    free: &[&str],
+) -> Result<Option<DepthPick>, Error> {
     let e = match explored {
         Some(e) => e,
         None => match built_in(plan.cfg.target())? {
@@ -162,23 +200,48 @@ fn measured_depth(plan: &Plan, mhz: f64, explored: Option<&Exploration>, free: &
         s
     };
     let want = loose(&plan.cfg.params);
-    let mut reaching: Vec<&super::Point> =
-        e.points.iter().filter(|p| loose(&p.params) == want).filter(|p| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= mhz)).collect();
+    let mut reaching: Vec<&super::Point> = e
+        .points
+        .iter()
+        .filter(|p| loose(&p.params) == want)
+        .filter(|p| {
+            p.measured
+                .as_ref()
+                .and_then(|m| m.fmax_mhz)
+                .is_some_and(|f| f >= mhz)
+        })
+        .collect();
     // this configuration's own options first, the shallowest that reaches it; else the
     // cheapest unit of other options that does
     let other = |p: &super::Point| measured_shape(&p.params) != measured_shape(&plan.cfg.params);
     reaching.sort_by_key(|p| (other(p), if other(p) { p.cells() } else { 0 }, p.stages));
     for p in reaching {
         // a row of another RTL is never evidence
-        let Some(digest) = measured_today(p)? else { continue };
+        let Some(digest) = measured_today(p)? else {
+            continue;
+        };
         let m = p.measured.as_ref().expect("measured");
-        let evidence = ClockEvidence::Measured { id: p.id.clone(), part: e.part.clone(), median: m.fmax_mhz.unwrap_or(0.0), seeds: m.seeds.clone(), digest };
-        let params = Params { stages: p.stages, rom_style: p.params.rom_style, fabric_registers: p.params.fabric_registers, ..plan.cfg.params.clone() };
+        let evidence = ClockEvidence::Measured {
+            id: p.id.clone(),
+            part: e.part.clone(),
+            median: m.fmax_mhz.unwrap_or(0.0),
+            seeds: m.seeds.clone(),
+            digest,
+        };
+        let params = Params {
+            stages: p.stages,
+            rom_style: p.params.rom_style,
+            fabric_registers: p.params.fabric_registers,
+            ..plan.cfg.params.clone()
+        };
         let chosen = match measured_shape(&params) == measured_shape(&plan.cfg.params) {
             true => plan.with_stages(p.stages)?,
             false => Plan::new(crate::config::Config::new(params)?)?,
         };
-        return Ok(Some(DepthPick { plan: chosen, evidence }));
+        return Ok(Some(DepthPick {
+            plan: chosen,
+            evidence,
+        }));
     }
     Ok(None)
 }
@@ -186,10 +249,18 @@ fn measured_depth(plan: &Plan, mhz: f64, explored: Option<&Exploration>, free: &
 /// The shallowest depth predicted to reach `mhz` (a bisection: the prediction grows with
 /// depth), or the deepest where none is; Err without a delay model.
 fn predicted_depth(plan: &Plan, mhz: f64) -> Result<Plan, Error> {
-    let predicted = |d: u32| -> Result<Option<f64>, Error> { Ok(crate::timing::predicted_fmax(&plan.with_stages(d)?)) };
+    let predicted = |d: u32| -> Result<Option<f64>, Error> {
+        Ok(crate::timing::predicted_fmax(&plan.with_stages(d)?))
+    };
     let deepest = plan.cut_points;
     match predicted(deepest)? {
-        None => return Err(crate::timing::line(plan.cfg.target(), plan.cfg.datapath_name()).err().unwrap_or_else(|| crate::error::input("no delay model"))),
+        None => {
+            return Err(
+                crate::timing::line(plan.cfg.target(), plan.cfg.datapath_name())
+                    .err()
+                    .unwrap_or_else(|| crate::error::input("no delay model")),
+            )
+        }
         Some(f) if f < mhz => return plan.with_stages(deepest),
         Some(_) => {}
     }
@@ -233,20 +304,27 @@ pub fn calibration_evidence(target: crate::config::Target) -> Result<Calibration
     for (name, stages, args, digest) in crate::timing::handshake_units(target) {
         match today(&name, &args, stages) == Some(digest) {
             true => ev.today += 1,
-            false => ev.stale.push(format!("{name} {args} --stages {stages} (a handshake's ceiling)")),
+            false => ev.stale.push(format!(
+                "{name} {args} --stages {stages} (a handshake's ceiling)"
+            )),
         }
     }
     for (name, l) in crate::timing::lines(target) {
         for i in 0..l.measured.len() {
             let digest = l.measured_digest.get(i).map_or("", String::as_str);
-            let (args, stages) = (l.measured_args.get(i).map_or("", String::as_str), l.measured_stages.get(i).copied().unwrap_or(0));
+            let (args, stages) = (
+                l.measured_args.get(i).map_or("", String::as_str),
+                l.measured_stages.get(i).copied().unwrap_or(0),
+            );
             if digest.is_empty() {
                 ev.fit_only += 1;
                 continue;
             }
             match today(&name, args, stages).as_deref() == Some(digest) {
                 true => ev.today += 1,
-                false => ev.stale.push(format!("{name} {args} --stages {stages}").replace("  ", " ")),
+                false => ev
+                    .stale
+                    .push(format!("{name} {args} --stages {stages}").replace("  ", " ")),
             }
         }
     }

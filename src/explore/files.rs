@@ -21,18 +21,37 @@ pub struct Exploration {
 impl Exploration {
     /// Reads an exploration (`points.json`), at most 64 MiB.
     pub fn from_text(text: &str, what: &str) -> Result<Exploration, Error> {
-        let e: Exploration = serde_json::from_str(text).map_err(|e| input(format!("{what} is not an exploration (`specgen explore`'s points.json): {e}")))?;
+        let e: Exploration = serde_json::from_str(text).map_err(|e| {
+            input(format!(
+                "{what} is not an exploration (`specgen explore`'s points.json): {e}"
+            ))
+        })?;
         if e.generator != "specgen" {
-            return Err(input(format!("{what} is not an exploration written by specgen")));
+            return Err(input(format!(
+                "{what} is not an exploration written by specgen"
+            )));
         }
         if e.points.len() > MAX_POINTS {
-            return Err(input(format!("{what} holds {} points; allowed at most {MAX_POINTS}", e.points.len())));
+            return Err(input(format!(
+                "{what} holds {} points; allowed at most {MAX_POINTS}",
+                e.points.len()
+            )));
         }
         // every number that is drawn or compared in range before anything reads it
         for p in &e.points {
-            let bad = |what_field: &str, v: f64| input(format!("{what}: point {} has {what_field} {v}, out of range", p.id));
+            let bad = |what_field: &str, v: f64| {
+                input(format!(
+                    "{what}: point {} has {what_field} {v}, out of range",
+                    p.id
+                ))
+            };
             let a = &p.accuracy;
-            for (name, v) in [("accuracy.max", a.max), ("accuracy.mean", a.mean), ("accuracy.rms", a.rms), ("accuracy.max_step_excess", a.max_step_excess)] {
+            for (name, v) in [
+                ("accuracy.max", a.max),
+                ("accuracy.mean", a.mean),
+                ("accuracy.rms", a.rms),
+                ("accuracy.max_step_excess", a.max_step_excess),
+            ] {
                 if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
                     return Err(bad(name, v));
                 }
@@ -41,21 +60,31 @@ impl Exploration {
                 return Err(bad("accuracy.psnr_db", a.psnr_db));
             }
             if let Some(x) = &a.pixel {
-                for (name, v) in [("accuracy.pixel.max", x.max), ("accuracy.pixel.mean", x.mean), ("accuracy.pixel.rms", x.rms)] {
+                for (name, v) in [
+                    ("accuracy.pixel.max", x.max),
+                    ("accuracy.pixel.mean", x.mean),
+                    ("accuracy.pixel.rms", x.rms),
+                ] {
                     if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
                         return Err(bad(name, v));
                     }
                 }
             }
             if let Some(d) = &a.display {
-                for (name, v) in [("accuracy.display.max_codes", d.max_codes), ("accuracy.display.banding_codes", d.banding_codes)] {
+                for (name, v) in [
+                    ("accuracy.display.max_codes", d.max_codes),
+                    ("accuracy.display.banding_codes", d.banding_codes),
+                ] {
                     if !(v.is_finite() && (0.0..=65535.0).contains(&v)) {
                         return Err(bad(name, v));
                     }
                 }
             }
             let est = &p.estimate;
-            for (name, v) in [("estimate.fmax_mhz", est.fmax_mhz.unwrap_or(1.0)), ("estimate.stage_delay", est.stage_delay.max(0.0) + 1.0)] {
+            for (name, v) in [
+                ("estimate.fmax_mhz", est.fmax_mhz.unwrap_or(1.0)),
+                ("estimate.stage_delay", est.stage_delay.max(0.0) + 1.0),
+            ] {
                 if !(v.is_finite() && v > 0.0 && v <= 1e6) {
                     return Err(bad(name, v));
                 }
@@ -67,7 +96,10 @@ impl Exploration {
                     }
                 }
                 if m.logic_cells.is_some_and(|c| c > 10_000_000) {
-                    return Err(bad("measured logic cells", m.logic_cells.unwrap_or(0) as f64));
+                    return Err(bad(
+                        "measured logic cells",
+                        m.logic_cells.unwrap_or(0) as f64,
+                    ));
                 }
             }
             if p.estimate.logic_cells > 100_000_000 {
@@ -128,8 +160,16 @@ pub fn calibration_csv(e: &Exploration) -> String {
     let mut s = String::from("family,model,stages,stage_delay_estimate,stage_delay_mean,fmax_mhz,fmax_seeds,args,rtl_sha256\n");
     let defaults = Params::default();
     for p in &e.points {
-        let Some(m) = p.measured.as_ref().filter(|m| m.route_seeds.len() == m.seeds.len() && !m.route_seeds.is_empty()) else { continue };
-        let Ok(cfg) = Config::new(p.params.clone()) else { continue };
+        let Some(m) = p
+            .measured
+            .as_ref()
+            .filter(|m| m.route_seeds.len() == m.seeds.len() && !m.route_seeds.is_empty())
+        else {
+            continue;
+        };
+        let Ok(cfg) = Config::new(p.params.clone()) else {
+            continue;
+        };
         // a calibration unit has no tag, per-pixel colours and no clock enable; a `ready` or
         // `axis` one is a row of its own (`--interface`), the handshake's ceiling, never the
         // line's data
@@ -145,10 +185,18 @@ pub fn calibration_csv(e: &Exploration) -> String {
             args.push("--fabric-registers true".to_string());
         }
         for (flag, v, d) in [
-            ("--cos-frac-bits", p.params.cos_frac_bits, defaults.cos_frac_bits),
+            (
+                "--cos-frac-bits",
+                p.params.cos_frac_bits,
+                defaults.cos_frac_bits,
+            ),
             ("--n-bits", p.params.n_bits, defaults.n_bits),
             ("--color-bits", p.params.color_bits, defaults.color_bits),
-            ("--intensity-frac-bits", p.params.intensity_frac_bits, defaults.intensity_frac_bits),
+            (
+                "--intensity-frac-bits",
+                p.params.intensity_frac_bits,
+                defaults.intensity_frac_bits,
+            ),
         ] {
             if v != d {
                 args.push(format!("{flag} {v}"));
@@ -168,7 +216,11 @@ pub fn calibration_csv(e: &Exploration) -> String {
             p.estimate.stage_delay,
             p.estimate.stage_delay_mean,
             crate::synth::median(&m.route_seeds).unwrap_or(0.0),
-            m.route_seeds.iter().map(|f| format!("{f:.2}")).collect::<Vec<_>>().join(" "),
+            m.route_seeds
+                .iter()
+                .map(|f| format!("{f:.2}"))
+                .collect::<Vec<_>>()
+                .join(" "),
             args.join(" "),
             super::measured_today(p).ok().flatten().unwrap_or_default()
         ));
@@ -193,16 +245,35 @@ fn colour(model: &str) -> plotters::style::RGBColor {
 pub fn svg(e: &Exploration, metric: Metric) -> String {
     use plotters::prelude::*;
     let mut out = String::new();
-    let pts: Vec<&Point> = e.points.iter().filter(|p| metric.of(&p.accuracy) > 0.0 && metric.of(&p.accuracy).is_finite()).collect();
-    let emin = pts.iter().map(|p| metric.of(&p.accuracy)).fold(f64::INFINITY, f64::min).min(1e-3) / 2.0;
-    let emax = pts.iter().map(|p| metric.of(&p.accuracy)).fold(0.0, f64::max).max(1e-2) * 2.0;
+    let pts: Vec<&Point> = e
+        .points
+        .iter()
+        .filter(|p| metric.of(&p.accuracy) > 0.0 && metric.of(&p.accuracy).is_finite())
+        .collect();
+    let emin = pts
+        .iter()
+        .map(|p| metric.of(&p.accuracy))
+        .fold(f64::INFINITY, f64::min)
+        .min(1e-3)
+        / 2.0;
+    let emax = pts
+        .iter()
+        .map(|p| metric.of(&p.accuracy))
+        .fold(0.0, f64::max)
+        .max(1e-2)
+        * 2.0;
     let cmax = pts.iter().map(|p| p.cells()).max().unwrap_or(100) as f64 * 1.08;
     // the axis starts near the cheapest point, not at zero cells
     let cmin = (pts.iter().map(|p| p.cells()).min().unwrap_or(0) as f64 * 0.9).min(cmax * 0.5);
     {
         let root = SVGBackend::with_string(&mut out, (900, 600)).into_drawing_area();
         root.fill(&WHITE).expect("svg");
-        let title = format!("{}: {} error vs logic cells ({}), filled = measured; the front per clock, a staircase", e.part, metric.name(), e.target);
+        let title = format!(
+            "{}: {} error vs logic cells ({}), filled = measured; the front per clock, a staircase",
+            e.part,
+            metric.name(),
+            e.target
+        );
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 18))
             .margin(12)
@@ -217,7 +288,12 @@ pub fn svg(e: &Exploration, metric: Metric) -> String {
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .expect("svg mesh");
-        let styles = [BLACK, RGBColor(100, 100, 100), RGBColor(170, 170, 170), RGBColor(210, 210, 210)];
+        let styles = [
+            BLACK,
+            RGBColor(100, 100, 100),
+            RGBColor(170, 170, 170),
+            RGBColor(210, 210, 210),
+        ];
         let mut labelled: Vec<&str> = Vec::new();
         for (i, &mhz) in e.clocks.iter().enumerate().rev() {
             let mut on: Vec<&&Point> = pts.iter().filter(|p| p.front.contains(&mhz)).collect();
@@ -237,15 +313,27 @@ pub fn svg(e: &Exploration, metric: Metric) -> String {
                     continue;
                 }
                 labelled.push(&p.id);
-                let text = format!("{} {}", p.id, p.fmax().map_or(String::new(), |f| format!("{f:.0} MHz")));
-                chart.draw_series(std::iter::once(Text::new(text, (p.cells() as f64, metric.of(&p.accuracy)), ("sans-serif", 10)))).expect("svg label");
+                let text = format!(
+                    "{} {}",
+                    p.id,
+                    p.fmax().map_or(String::new(), |f| format!("{f:.0} MHz"))
+                );
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        text,
+                        (p.cells() as f64, metric.of(&p.accuracy)),
+                        ("sans-serif", 10),
+                    )))
+                    .expect("svg label");
             }
             let style = styles[i.min(3)];
             chart
                 .draw_series(LineSeries::new(line, style.stroke_width(2)))
                 .expect("svg front")
                 .label(format!("front at {mhz} MHz"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], style.stroke_width(2)));
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 16, y)], style.stroke_width(2))
+                });
         }
         for m in SpecularModel::ALL {
             let name = m.name();
@@ -257,7 +345,15 @@ pub fn svg(e: &Exploration, metric: Metric) -> String {
             chart
                 .draw_series(mine.iter().map(|p| {
                     let filled = p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some());
-                    Circle::new((p.cells() as f64, metric.of(&p.accuracy)), 4, if filled { c.filled() } else { c.stroke_width(1) })
+                    Circle::new(
+                        (p.cells() as f64, metric.of(&p.accuracy)),
+                        4,
+                        if filled {
+                            c.filled()
+                        } else {
+                            c.stroke_width(1)
+                        },
+                    )
                 }))
                 .expect("svg points")
                 .label(name)
@@ -277,7 +373,10 @@ pub fn svg(e: &Exploration, metric: Metric) -> String {
 
 /// The front at each clock as CSV: clock, then the front's points, cheapest first.
 fn front_csv(e: &Exploration, metric: Metric) -> String {
-    let mut s = format!("clock_mhz,id,{}_error,logic_cells,fmax_mhz,measured\n", metric.name());
+    let mut s = format!(
+        "clock_mhz,id,{}_error,logic_cells,fmax_mhz,measured\n",
+        metric.name()
+    );
     for &mhz in &e.clocks {
         let mut on: Vec<&Point> = e.points.iter().filter(|p| p.front.contains(&mhz)).collect();
         on.sort_by_key(|p| p.cells());
@@ -298,7 +397,12 @@ fn front_csv(e: &Exploration, metric: Metric) -> String {
 /// The files of an exploration: `points.json` (everything), `points.csv`, `front.csv`,
 /// `front.svg`, `jobs.json` (the measuring plan), `merge.json` (what the merge found) and
 /// `explore.json`, the directory's manifest.
-pub fn files(e: &Exploration, metric: Metric, jobs: &[Job], merge: &MergeReport) -> Vec<(String, Vec<u8>)> {
+pub fn files(
+    e: &Exploration,
+    metric: Metric,
+    jobs: &[Job],
+    merge: &MergeReport,
+) -> Vec<(String, Vec<u8>)> {
     let mut files: Vec<(String, Vec<u8>)> = vec![
         ("points.json".into(), json(e)),
         ("points.csv".into(), csv(&e.points).into_bytes()),
@@ -309,9 +413,17 @@ pub fn files(e: &Exploration, metric: Metric, jobs: &[Job], merge: &MergeReport)
         ("calibration.csv".into(), calibration_csv(e).into_bytes()),
     ];
     // each measured point as `synth --seeds K --json` writes it (for `report --hw`, the benches)
-    files.extend(merge.synth.iter().map(|(id, r)| (format!("synth/{id}.json"), json(r))));
+    files.extend(
+        merge
+            .synth
+            .iter()
+            .map(|(id, r)| (format!("synth/{id}.json"), json(r))),
+    );
     // the directory's manifest: what specgen wrote there, so that a later run replaces it
-    let listed: Vec<serde_json::Value> = files.iter().map(|(n, b)| serde_json::json!({ "name": n, "sha256": crate::bits::sha256_hex(b, 32) })).collect();
+    let listed: Vec<serde_json::Value> = files
+        .iter()
+        .map(|(n, b)| serde_json::json!({ "name": n, "sha256": crate::bits::sha256_hex(b, 32) }))
+        .collect();
     let manifest = serde_json::json!({ "generator": "specgen", "version": e.version, "exploration": e.part, "files": listed });
     files.push(("explore.json".into(), json(&manifest)));
     files

@@ -77,7 +77,9 @@ impl Space {
     /// The clocks of this space: the asked ones, else the family's.
     pub fn clocks(&self) -> Vec<f64> {
         match self.clocks.is_empty() {
-            true => crate::family::of(self.base.target).explore_clocks().to_vec(),
+            true => crate::family::of(self.base.target)
+                .explore_clocks()
+                .to_vec(),
             false => self.clocks.clone(),
         }
     }
@@ -151,8 +153,17 @@ pub enum Metric {
 }
 
 impl Metric {
-    pub const ALL: [Metric; 9] =
-        [Metric::Max, Metric::Mean, Metric::Rms, Metric::CodeMax, Metric::CodeMean, Metric::CodeRms, Metric::Step, Metric::DisplayMax, Metric::DisplayBanding];
+    pub const ALL: [Metric; 9] = [
+        Metric::Max,
+        Metric::Mean,
+        Metric::Rms,
+        Metric::CodeMax,
+        Metric::CodeMean,
+        Metric::CodeRms,
+        Metric::Step,
+        Metric::DisplayMax,
+        Metric::DisplayBanding,
+    ];
     pub fn name(self) -> &'static str {
         match self {
             Metric::Max => "max",
@@ -179,12 +190,18 @@ impl Metric {
             Metric::CodeRms => a.rms,
             Metric::Step => a.max_step_excess,
             Metric::DisplayMax => a.display.as_ref().map_or(f64::INFINITY, |d| d.max_codes),
-            Metric::DisplayBanding => a.display.as_ref().map_or(f64::INFINITY, |d| d.banding_codes),
+            Metric::DisplayBanding => a
+                .display
+                .as_ref()
+                .map_or(f64::INFINITY, |d| d.banding_codes),
         }
     }
     /// Whether the figure needs the pixel's part of an accuracy.
     pub fn at_pixel(self) -> bool {
-        matches!(self, Metric::Max | Metric::Mean | Metric::Rms | Metric::DisplayMax | Metric::DisplayBanding)
+        matches!(
+            self,
+            Metric::Max | Metric::Mean | Metric::Rms | Metric::DisplayMax | Metric::DisplayBanding
+        )
     }
     /// Whether the figure is in codes of a display (its bound is in codes, not full scale).
     pub fn in_display_codes(self) -> bool {
@@ -194,7 +211,10 @@ impl Metric {
 
 /// The exponents of the picture figures: `render`'s defaults that the exponent's width holds.
 fn picture_exponents(n_bits: u32) -> Vec<u32> {
-    [1u32, 4, 16, 128].into_iter().filter(|&n| n < 1 << n_bits).collect()
+    [1u32, 4, 16, 128]
+        .into_iter()
+        .filter(|&n| n < 1 << n_bits)
+        .collect()
 }
 
 /// The accuracy of a model (every depth of it computes the same function), its display
@@ -216,8 +236,18 @@ pub fn accuracy_on(model: &Model, display: Display) -> Accuracy {
         stride: f.stride,
         psnr_db: img.psnr_db,
         max_step_excess: img.max_step_excess,
-        pixel: Some(PixelAccuracy { max: f.pixel.max, mean: f.pixel.mean, rms: f.pixel.rms, bound: f.pixel.bound }),
-        display: Some(DisplayAccuracy { display: display.name(), max_codes: d.max_codes, banding_codes: d.banding_codes, bound: d.bound }),
+        pixel: Some(PixelAccuracy {
+            max: f.pixel.max,
+            mean: f.pixel.mean,
+            rms: f.pixel.rms,
+            bound: f.pixel.bound,
+        }),
+        display: Some(DisplayAccuracy {
+            display: display.name(),
+            max_codes: d.max_codes,
+            banding_codes: d.banding_codes,
+            bound: d.bound,
+        }),
     }
 }
 
@@ -253,13 +283,32 @@ pub fn estimate(plan: &Plan) -> Estimate {
             Kind::Select => 0,
             Kind::Sum | Kind::Logic => w.width as u64,
             Kind::Table => 2 * w.width as u64,
-            Kind::Product(a, b) if family.product_blocks(a, b, w.width) == 0 => (a as u64 * b as u64).div_ceil(2),
+            Kind::Product(a, b) if family.product_blocks(a, b, w.width) == 0 => {
+                (a as u64 * b as u64).div_ceil(2)
+            }
             Kind::Product(..) => 0,
         };
     }
-    let mut flip_flops: u64 = dp.registered.iter().filter_map(|&k| dp.live.get(k as usize - 1)).flatten().map(|l| l.width as u64).sum();
-    let dsp_blocks = dp.product_uses.iter().filter(|u| !u.fabric).map(|u| u.blocks as u64).sum();
-    let mut block_rams = dp.reads.iter().filter(|r| r.block).map(|r| r.table).collect::<BTreeSet<_>>().len() as u64;
+    let mut flip_flops: u64 = dp
+        .registered
+        .iter()
+        .filter_map(|&k| dp.live.get(k as usize - 1))
+        .flatten()
+        .map(|l| l.width as u64)
+        .sum();
+    let dsp_blocks = dp
+        .product_uses
+        .iter()
+        .filter(|u| !u.fabric)
+        .map(|u| u.blocks as u64)
+        .sum();
+    let mut block_rams = dp
+        .reads
+        .iter()
+        .filter(|r| r.block)
+        .map(|r| r.table)
+        .collect::<BTreeSet<_>>()
+        .len() as u64;
     // a delay line's tail in RAM: its words leave the flip-flops for the memory, which costs a
     // read register of the word, two address counters (a carry a bit) and, in block RAM, a
     // block per 16 bits of the word (256 words deep: every tail is shorter); in LUT RAM, a
@@ -349,12 +398,21 @@ impl Point {
     }
     /// Logic cells as the front reads them: measured where measured, else estimated.
     pub fn cells(&self) -> u64 {
-        self.measured.as_ref().and_then(|m| m.logic_cells).unwrap_or(self.estimate.logic_cells)
+        self.measured
+            .as_ref()
+            .and_then(|m| m.logic_cells)
+            .unwrap_or(self.estimate.logic_cells)
     }
 }
 
 fn point_id(p: &Params) -> String {
-    let mut id = format!("{}-f{}-fi{}-s{}", p.model.name(), p.cos_frac_bits, p.intensity_frac_bits, p.stages);
+    let mut id = format!(
+        "{}-f{}-fi{}-s{}",
+        p.model.name(),
+        p.cos_frac_bits,
+        p.intensity_frac_bits,
+        p.stages
+    );
     if let Some(b) = p.dsp_budget {
         id.push_str(&format!("-b{b}"));
     }
@@ -375,7 +433,12 @@ fn depth_for(plan: &Plan, mhz: f64) -> Result<Option<u32>, Error> {
     if crate::timing::predicted_fmax(plan).is_none() {
         return Ok(None);
     }
-    Ok(Some(depth_for_clock(plan, mhz, Policy::Predicted, None, |_, _| {})?.plan.cfg.stages()))
+    Ok(Some(
+        depth_for_clock(plan, mhz, Policy::Predicted, None, |_, _| {})?
+            .plan
+            .cfg
+            .stages(),
+    ))
 }
 
 /// Every point of the space, with its accuracy and estimate. `progress` hears each (model,
@@ -392,7 +455,13 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
     }
     let mut out = Vec::new();
     for (i, &(model, f, fi)) in shapes.iter().enumerate() {
-        let base = Params { model, cos_frac_bits: f, intensity_frac_bits: fi, stages: 0, ..space.base.clone() };
+        let base = Params {
+            model,
+            cos_frac_bits: f,
+            intensity_frac_bits: fi,
+            stages: 0,
+            ..space.base.clone()
+        };
         let cfg = Config::new(base.clone())?;
         let golden = Model::new(&cfg);
         let acc = accuracy_on(&golden, space.display);
@@ -400,14 +469,21 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
             // the ROM style shapes the model's own datapath (its tables' steps): a model of its
             // own per style (every style computes the same function: one accuracy); a budget is
             // the plan's, so the model is shared across budgets
-            let styled = match Config::new(Params { rom_style: rom, ..base.clone() }) {
+            let styled = match Config::new(Params {
+                rom_style: rom,
+                ..base.clone()
+            }) {
                 Ok(c) if rom != base.rom_style => Model::new(&c),
                 Ok(_) => golden.clone(),
                 // a style the model does not take: not in the space
                 Err(_) => continue,
             };
             for &budget in &space.dsp_budgets {
-                let params = Params { dsp_budget: budget, rom_style: rom, ..base.clone() };
+                let params = Params {
+                    dsp_budget: budget,
+                    rom_style: rom,
+                    ..base.clone()
+                };
                 let cfg = match Config::new(params) {
                     Ok(c) => c,
                     // a budget out of range: not in the space
@@ -430,7 +506,9 @@ pub fn points(space: &Space, progress: &dyn Fn(usize, usize)) -> Result<Vec<Poin
                 depths.entry(plan.cut_points).or_default();
                 // a calibration's grid: `spread` depths from a `spread`-th of the cuts to all
                 for k in 1..=space.spread {
-                    depths.entry((plan.cut_points * k).div_ceil(space.spread).max(1)).or_default();
+                    depths
+                        .entry((plan.cut_points * k).div_ceil(space.spread).max(1))
+                        .or_default();
                 }
                 if clocks.is_empty() || !modelled {
                     // no delay model: a quarter, half, three quarters and all of the cuts
@@ -473,13 +551,26 @@ pub fn unit_points(units: &[Params]) -> Result<Vec<Point>, Error> {
     for params in units {
         let plan = Plan::new(Config::new(params.clone())?)?;
         let p = &plan.cfg.params;
-        let id = format!("{}-n{}-c{}-{}", point_id(p), p.n_bits, p.color_bits, &plan.cfg.fingerprint()[..8]);
+        let id = format!(
+            "{}-n{}-c{}-{}",
+            point_id(p),
+            p.n_bits,
+            p.color_bits,
+            &plan.cfg.fingerprint()[..8]
+        );
         if out.iter().any(|q| q.id == id) {
             continue;
         }
         // the function a unit computes is its configuration's at depth 0 (any depth computes it)
-        let shape = Config::new(Params { stages: 0, ..p.clone() })?.fingerprint();
-        let acc = accuracies.entry(shape).or_insert_with(|| accuracy(&plan.model())).clone();
+        let shape = Config::new(Params {
+            stages: 0,
+            ..p.clone()
+        })?
+        .fingerprint();
+        let acc = accuracies
+            .entry(shape)
+            .or_insert_with(|| accuracy(&plan.model()))
+            .clone();
         out.push(Point {
             id,
             model: p.model.name().to_string(),
@@ -503,9 +594,20 @@ pub fn unit_points(units: &[Params]) -> Result<Vec<Point>, Error> {
 /// beats on both error and logic cells (ties kept). Where any point is measured, only measured
 /// points stand on it: an estimate never pushes a measurement off the front.
 pub fn front_at(points: &[Point], metric: Metric, mhz: f64) -> Vec<String> {
-    let any_measured = points.iter().any(|p| p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some()));
-    let mut reach: Vec<&Point> = points.iter().filter(|p| !any_measured || p.measured.is_some()).filter(|p| p.fmax().is_some_and(|f| f >= mhz)).collect();
-    reach.sort_by(|a, b| a.cells().cmp(&b.cells()).then(metric.of(&a.accuracy).total_cmp(&metric.of(&b.accuracy))).then(a.id.cmp(&b.id)));
+    let any_measured = points
+        .iter()
+        .any(|p| p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some()));
+    let mut reach: Vec<&Point> = points
+        .iter()
+        .filter(|p| !any_measured || p.measured.is_some())
+        .filter(|p| p.fmax().is_some_and(|f| f >= mhz))
+        .collect();
+    reach.sort_by(|a, b| {
+        a.cells()
+            .cmp(&b.cells())
+            .then(metric.of(&a.accuracy).total_cmp(&metric.of(&b.accuracy)))
+            .then(a.id.cmp(&b.id))
+    });
     let mut best = f64::INFINITY;
     let mut ids = Vec::new();
     for p in reach {
@@ -535,24 +637,64 @@ pub fn mark_fronts(points: &mut [Point], metric: Metric, clocks: &[f64]) {
 /// is a guide) that stand on the estimated front or within `near` of its cells (a point whose
 /// estimated cells are at most `(1 + near)` times those of the cheapest front point at least as
 /// accurate).
-pub fn candidates(points: &[Point], metric: Metric, clocks: &[f64], near: f64, slack: f64) -> Vec<String> {
+pub fn candidates(
+    points: &[Point],
+    metric: Metric,
+    clocks: &[f64],
+    near: f64,
+    slack: f64,
+) -> Vec<String> {
     let mut ids = BTreeSet::new();
     // a unit that needs more hard multipliers than the part has does not fit: not measured
-    let fits = |p: &&Point| crate::family::of(p.params.target).dsp_capacity().is_none_or(|c| p.estimate.dsp_blocks <= c);
-    let estimated: Vec<Point> = points.iter().filter(fits).map(|p| Point { measured: None, ..p.clone() }).collect();
+    let fits = |p: &&Point| {
+        crate::family::of(p.params.target)
+            .dsp_capacity()
+            .is_none_or(|c| p.estimate.dsp_blocks <= c)
+    };
+    let estimated: Vec<Point> = points
+        .iter()
+        .filter(fits)
+        .map(|p| Point {
+            measured: None,
+            ..p.clone()
+        })
+        .collect();
     for &mhz in clocks {
-        let reach: Vec<&Point> = estimated.iter().filter(|p| p.estimate.fmax_mhz.is_none_or(|f| f >= mhz * slack)).collect();
-        let owned: Vec<Point> = reach.iter().map(|&p| Point { estimate: Estimate { fmax_mhz: Some(mhz), ..p.estimate }, ..p.clone() }).collect();
-        let front: Vec<&Point> = front_at(&owned, metric, mhz).iter().filter_map(|id| owned.iter().find(|p| &p.id == id)).collect();
+        let reach: Vec<&Point> = estimated
+            .iter()
+            .filter(|p| p.estimate.fmax_mhz.is_none_or(|f| f >= mhz * slack))
+            .collect();
+        let owned: Vec<Point> = reach
+            .iter()
+            .map(|&p| Point {
+                estimate: Estimate {
+                    fmax_mhz: Some(mhz),
+                    ..p.estimate
+                },
+                ..p.clone()
+            })
+            .collect();
+        let front: Vec<&Point> = front_at(&owned, metric, mhz)
+            .iter()
+            .filter_map(|id| owned.iter().find(|p| &p.id == id))
+            .collect();
         for p in &owned {
             let e = metric.of(&p.accuracy);
-            let cheapest = front.iter().filter(|q| metric.of(&q.accuracy) <= e).map(|q| q.cells()).min();
+            let cheapest = front
+                .iter()
+                .filter(|q| metric.of(&q.accuracy) <= e)
+                .map(|q| q.cells())
+                .min();
             if cheapest.is_some_and(|c| p.cells() as f64 <= (1.0 + near) * c as f64) {
                 ids.insert(p.id.clone());
             }
         }
     }
-    points.iter().filter(|p| ids.contains(&p.id)).map(|p| p.id.clone()).collect()
+    points
+        .iter()
+        .filter(|p| ids.contains(&p.id))
+        .map(|p| p.id.clone())
+        .collect()
 }
 
 /// What [`choose`] picked, with its evidence.
@@ -605,14 +747,19 @@ pub struct Question<'a> {
 
 /// One field of `p` by its name, as JSON (the form the manifest and the explorations store).
 fn field(p: &Params, key: &str) -> serde_json::Value {
-    serde_json::to_value(p).ok().and_then(|v| v.get(key).cloned()).unwrap_or(serde_json::Value::Null)
+    serde_json::to_value(p)
+        .ok()
+        .and_then(|v| v.get(key).cloned())
+        .unwrap_or(serde_json::Value::Null)
 }
 
 /// Whether a measured point's rows are of the RTL specgen writes today: each of its jobs'
 /// fingerprints is the one a job of today's unit (its RTL and tables' digest), with the tools
 /// that measured it, would have. Returns today's digest where they are.
 pub fn measured_today(p: &Point) -> Result<Option<String>, Error> {
-    let Some(m) = &p.measured else { return Ok(None) };
+    let Some(m) = &p.measured else {
+        return Ok(None);
+    };
     if m.jobs.len() != m.seeds.len() || m.jobs.is_empty() {
         return Ok(None);
     }
@@ -659,19 +806,48 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
     keys.extend(EDGE_KEYS);
     // a budget given is a ceiling, not a shape: a unit of another budget (or none) that takes
     // no more blocks meets it
-    let budget = if q.given.contains(&"dsp_budget") { base.dsp_budget } else { None };
-    keys.extend(q.given.iter().copied().filter(|k| CHOICE_KEYS.contains(k) && *k != "dsp_budget"));
+    let budget = if q.given.contains(&"dsp_budget") {
+        base.dsp_budget
+    } else {
+        None
+    };
+    keys.extend(
+        q.given
+            .iter()
+            .copied()
+            .filter(|k| CHOICE_KEYS.contains(k) && *k != "dsp_budget"),
+    );
     let fits = |p: &&Point| keys.iter().all(|k| field(&p.params, k) == field(base, k));
     let kept = |p: &&Point| budget.is_none_or(|b| under_budget(p, b));
-    let measured: Vec<&Point> = e.points.iter().filter(fits).filter(kept).filter(|p| p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some())).collect();
-    let reach = |p: &&Point| p.measured.as_ref().and_then(|m| m.fmax_mhz).is_some_and(|f| f >= q.mhz);
+    let measured: Vec<&Point> = e
+        .points
+        .iter()
+        .filter(fits)
+        .filter(kept)
+        .filter(|p| p.measured.as_ref().is_some_and(|m| m.fmax_mhz.is_some()))
+        .collect();
+    let reach = |p: &&Point| {
+        p.measured
+            .as_ref()
+            .and_then(|m| m.fmax_mhz)
+            .is_some_and(|f| f >= q.mhz)
+    };
     let mut reaching: Vec<&Point> = measured.iter().copied().filter(reach).collect();
-    reaching.sort_by(|a, b| a.cells().cmp(&b.cells()).then(b.fmax().unwrap_or(0.0).total_cmp(&a.fmax().unwrap_or(0.0))).then(a.id.cmp(&b.id)));
+    reaching.sort_by(|a, b| {
+        a.cells()
+            .cmp(&b.cells())
+            .then(b.fmax().unwrap_or(0.0).total_cmp(&a.fmax().unwrap_or(0.0)))
+            .then(a.id.cmp(&b.id))
+    });
     // the error at the pixel is never below the error at the codes: a file's code figure
     // above the bound rules a point out without computing; every other is recomputed
     let mut accuracies: BTreeMap<String, Accuracy> = BTreeMap::new();
     let mut recomputed = |p: &Point| -> Result<Accuracy, Error> {
-        let shape = Config::new(Params { stages: 0, dsp_budget: None, ..p.params.clone() })?;
+        let shape = Config::new(Params {
+            stages: 0,
+            dsp_budget: None,
+            ..p.params.clone()
+        })?;
         let key = shape.fingerprint();
         if let Some(a) = accuracies.get(&key) {
             return Ok(a.clone());
@@ -696,44 +872,106 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
         }
         match measured_today(p)? {
             Some(rtl) => {
-                let point = Point { accuracy: a, ..(*p).clone() };
-                return Ok(Choice { point, error: err, rtl, stale });
+                let point = Point {
+                    accuracy: a,
+                    ..(*p).clone()
+                };
+                return Ok(Choice {
+                    point,
+                    error: err,
+                    rtl,
+                    stale,
+                });
             }
             None => stale.push(p.id.clone()),
         }
     }
     let show = |p: &Point| {
-        format!("{} ({} error {}, {:.1} MHz, {} logic cells)", p.id, q.metric.name(), short(q.metric.of(&p.accuracy)), p.fmax().unwrap_or(0.0), p.cells())
+        format!(
+            "{} ({} error {}, {:.1} MHz, {} logic cells)",
+            p.id,
+            q.metric.name(),
+            short(q.metric.of(&p.accuracy)),
+            p.fmax().unwrap_or(0.0),
+            p.cells()
+        )
     };
     let why = if measured.is_empty() {
         format!(
             "no unit of the {} exploration with these parameters ({}) was measured",
             e.part,
-            keys.iter().map(|k| format!("{k} {}", field(base, k))).collect::<Vec<_>>().join(", ")
+            keys.iter()
+                .map(|k| format!("{k} {}", field(base, k)))
+                .collect::<Vec<_>>()
+                .join(", ")
         )
     } else if !stale.is_empty() {
-        format!("the units of the {} exploration that would meet it were measured on an older RTL ({})", e.part, stale.join(", "))
+        format!(
+            "the units of the {} exploration that would meet it were measured on an older RTL ({})",
+            e.part,
+            stale.join(", ")
+        )
     } else if reaching.is_empty() {
-        format!("no measured unit of the {} exploration reaches {} MHz", e.part, q.mhz)
+        format!(
+            "no measured unit of the {} exploration reaches {} MHz",
+            e.part, q.mhz
+        )
     } else {
-        format!("no measured unit of the {} exploration that reaches {} MHz has {} error <= {}", e.part, q.mhz, q.metric.name(), q.max_error)
+        format!(
+            "no measured unit of the {} exploration that reaches {} MHz has {} error <= {}",
+            e.part,
+            q.mhz,
+            q.metric.name(),
+            q.max_error
+        )
     };
     // the nearest: the most accurate unit reaching the clock (its error recomputed)
     let mut nearest = String::new();
-    if let Some(p) = reaching.iter().min_by(|a, b| q.metric.of(&a.accuracy).total_cmp(&q.metric.of(&b.accuracy)).then(a.cells().cmp(&b.cells()))) {
+    if let Some(p) = reaching.iter().min_by(|a, b| {
+        q.metric
+            .of(&a.accuracy)
+            .total_cmp(&q.metric.of(&b.accuracy))
+            .then(a.cells().cmp(&b.cells()))
+    }) {
         let a = recomputed(p)?;
-        nearest = format!("; nearest: {}", show(&Point { accuracy: a, ..(*p).clone() }));
-    } else if let Some(p) = measured.iter().max_by(|a, b| a.fmax().unwrap_or(0.0).total_cmp(&b.fmax().unwrap_or(0.0))) {
+        nearest = format!(
+            "; nearest: {}",
+            show(&Point {
+                accuracy: a,
+                ..(*p).clone()
+            })
+        );
+    } else if let Some(p) = measured
+        .iter()
+        .max_by(|a, b| a.fmax().unwrap_or(0.0).total_cmp(&b.fmax().unwrap_or(0.0)))
+    {
         nearest = format!("; the fastest measured: {}", show(p));
     }
     // and the fastest measured unit of today's RTL within the error (its error recomputed): the
     // clock the user can have at that error
     let mut by_clock: Vec<&Point> = measured.iter().copied().filter(|p| !reach(p)).collect();
-    by_clock.sort_by(|a, b| b.fmax().unwrap_or(0.0).total_cmp(&a.fmax().unwrap_or(0.0)).then(a.cells().cmp(&b.cells())));
-    for p in by_clock.into_iter().filter(|p| !matches!(q.metric, Metric::Max | Metric::CodeMax) || p.accuracy.max <= q.max_error).take(64) {
+    by_clock.sort_by(|a, b| {
+        b.fmax()
+            .unwrap_or(0.0)
+            .total_cmp(&a.fmax().unwrap_or(0.0))
+            .then(a.cells().cmp(&b.cells()))
+    });
+    for p in by_clock
+        .into_iter()
+        .filter(|p| {
+            !matches!(q.metric, Metric::Max | Metric::CodeMax) || p.accuracy.max <= q.max_error
+        })
+        .take(64)
+    {
         let a = recomputed(p)?;
         if q.metric.of(&a) <= q.max_error && measured_today(p)?.is_some() {
-            nearest.push_str(&format!("; the fastest within the error: {}", show(&Point { accuracy: a, ..p.clone() })));
+            nearest.push_str(&format!(
+                "; the fastest within the error: {}",
+                show(&Point {
+                    accuracy: a,
+                    ..p.clone()
+                })
+            ));
             break;
         }
     }
@@ -758,7 +996,10 @@ pub fn choose(e: &Exploration, q: &Question) -> Result<Choice, Error> {
 /// takes at most `b` blocks (a unit of another budget, or none, whose RTL the budget would not
 /// change in function: it is written as measured, its digest the measurement's).
 fn under_budget(p: &Point, b: u32) -> bool {
-    p.params.dsp_budget == Some(b) || p.measured.as_ref().is_some_and(|m| m.dsp_blocks <= b as u64)
+    p.params.dsp_budget == Some(b)
+        || p.measured
+            .as_ref()
+            .is_some_and(|m| m.dsp_blocks <= b as u64)
 }
 
 /// A figure in three significant digits.

@@ -73,7 +73,10 @@ impl Job {
 /// a run that finds one has nothing to do. A killed run leaves none half-written (results are
 /// written atomically).
 pub fn whole_result(path: &std::path::Path, job: &Job) -> bool {
-    crate::small_file::read(path, 1 << 20).ok().and_then(|t| serde_json::from_str::<JobResult>(&t).ok()).is_some_and(|r| r.job == *job && r.check().is_ok())
+    crate::small_file::read(path, 1 << 20)
+        .ok()
+        .and_then(|t| serde_json::from_str::<JobResult>(&t).ok())
+        .is_some_and(|r| r.job == *job && r.check().is_ok())
 }
 
 /// A job's result, stored as `<fingerprint>.json`.
@@ -109,8 +112,14 @@ pub fn read_results(dirs: &[&Path]) -> Result<Vec<JobResult>, Error> {
         }
         names.sort();
         for path in names {
-            let text = crate::small_file::read(&path, MAX_RESULT_BYTES).map_err(|e| input(format!("{} {e}", path.display())))?;
-            let r: JobResult = serde_json::from_str(&text).map_err(|e| input(format!("{} is not a sweep job's result: {e}", path.display())))?;
+            let text = crate::small_file::read(&path, MAX_RESULT_BYTES)
+                .map_err(|e| input(format!("{} {e}", path.display())))?;
+            let r: JobResult = serde_json::from_str(&text).map_err(|e| {
+                input(format!(
+                    "{} is not a sweep job's result: {e}",
+                    path.display()
+                ))
+            })?;
             let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
             if stem != r.job.fingerprint || r.job.compute_fingerprint() != r.job.fingerprint {
                 return Err(input(format!(
@@ -119,7 +128,13 @@ pub fn read_results(dirs: &[&Path]) -> Result<Vec<JobResult>, Error> {
                     r.job.fingerprint
                 )));
             }
-            r.check().map_err(|why| input(format!("{}: the measurement is not its job's: {}", path.display(), why.reason())))?;
+            r.check().map_err(|why| {
+                input(format!(
+                    "{}: the measurement is not its job's: {}",
+                    path.display(),
+                    why.reason()
+                ))
+            })?;
             out.push(r);
         }
     }
@@ -134,7 +149,10 @@ impl JobResult {
     pub fn check(&self) -> Result<(), Error> {
         let (j, s) = (&self.job, &self.synth);
         let p = &j.params;
-        let widths = format!("{}/{}/{}/{}", p.cos_frac_bits, p.n_bits, p.color_bits, p.intensity_frac_bits);
+        let widths = format!(
+            "{}/{}/{}/{}",
+            p.cos_frac_bits, p.n_bits, p.color_bits, p.intensity_frac_bits
+        );
         let mut wrong = Vec::new();
         if s.model != p.model.name() {
             wrong.push(format!("model {:?}, the job's {}", s.model, p.model.name()));
@@ -146,7 +164,11 @@ impl JobResult {
             wrong.push(format!("widths {:?}, the job's {widths}", s.widths));
         }
         if s.target != p.target.name() {
-            wrong.push(format!("target {:?}, the job's {}", s.target, p.target.name()));
+            wrong.push(format!(
+                "target {:?}, the job's {}",
+                s.target,
+                p.target.name()
+            ));
         }
         if s.dsp != j.dsp {
             wrong.push(format!("dsp {}, the job's {}", s.dsp, j.dsp));
@@ -155,12 +177,20 @@ impl JobResult {
             wrong.push(format!("seeds {:?}, the job's [{}]", s.seeds, j.seed));
         }
         let ceiling = crate::family::of(p.target).fmax_ceiling_mhz();
-        for f in s.fmax_mhz.iter().chain(&s.fmax_route_mhz).chain(&s.fmax_seeds) {
+        for f in s
+            .fmax_mhz
+            .iter()
+            .chain(&s.fmax_route_mhz)
+            .chain(&s.fmax_seeds)
+        {
             if !(f.is_finite() && *f > 0.0 && *f <= ceiling) {
-                wrong.push(format!("an Fmax of {f} MHz (the part's place-and-route reaches at most {ceiling})"));
+                wrong.push(format!(
+                    "an Fmax of {f} MHz (the part's place-and-route reaches at most {ceiling})"
+                ));
             }
         }
-        if let (Some(c), Some(cap)) = (s.logic_cells, crate::family::of(p.target).logic_capacity()) {
+        if let (Some(c), Some(cap)) = (s.logic_cells, crate::family::of(p.target).logic_capacity())
+        {
             if c == 0 || c > cap {
                 wrong.push(format!("{c} logic cells (the part has {cap})"));
             }
@@ -195,30 +225,48 @@ pub fn merge(points: &mut [Point], jobs: &[Job], results: &[JobResult]) -> Merge
     for r in results {
         by.entry(r.job.fingerprint.as_str()).or_default().push(r);
     }
-    let mut report = MergeReport { jobs: jobs.len(), results: results.len(), ..Default::default() };
+    let mut report = MergeReport {
+        jobs: jobs.len(),
+        results: results.len(),
+        ..Default::default()
+    };
     let planned: BTreeSet<&str> = jobs.iter().map(|j| j.fingerprint.as_str()).collect();
-    report.unused = results.iter().filter(|r| !planned.contains(r.job.fingerprint.as_str())).count();
+    report.unused = results
+        .iter()
+        .filter(|r| !planned.contains(r.job.fingerprint.as_str()))
+        .count();
     let mut one: BTreeMap<&str, &JobResult> = BTreeMap::new();
     for j in jobs {
         match by.get(j.fingerprint.as_str()).map(Vec::as_slice) {
-            None | Some([]) => report.missing.push(format!("{} ({} seed {})", j.fingerprint, j.point, j.seed)),
+            None | Some([]) => report
+                .missing
+                .push(format!("{} ({} seed {})", j.fingerprint, j.point, j.seed)),
             Some([r]) => {
                 one.insert(&j.fingerprint, r);
             }
             Some(rs) => {
                 let first = serde_json::to_string(&rs[0].synth).unwrap_or_default();
-                match rs.iter().all(|r| serde_json::to_string(&r.synth).unwrap_or_default() == first) {
+                match rs
+                    .iter()
+                    .all(|r| serde_json::to_string(&r.synth).unwrap_or_default() == first)
+                {
                     true => {
                         one.insert(&j.fingerprint, rs[0]);
                     }
-                    false => report.conflicting.push(format!("{} ({} seed {})", j.fingerprint, j.point, j.seed)),
+                    false => report
+                        .conflicting
+                        .push(format!("{} ({} seed {})", j.fingerprint, j.point, j.seed)),
                 }
             }
         }
     }
     for p in points.iter_mut() {
         let mine: Vec<&Job> = jobs.iter().filter(|j| j.point == p.id).collect();
-        if mine.is_empty() || mine.iter().any(|j| !one.contains_key(j.fingerprint.as_str())) {
+        if mine.is_empty()
+            || mine
+                .iter()
+                .any(|j| !one.contains_key(j.fingerprint.as_str()))
+        {
             p.measured = None;
             continue;
         }
@@ -230,10 +278,17 @@ pub fn merge(points: &mut [Point], jobs: &[Job], results: &[JobResult]) -> Merge
         }
         let fmax_seeds: Vec<f64> = rs.iter().filter_map(|r| r.synth.fmax_mhz).collect();
         let failed = rs.iter().find(|r| r.synth.fmax_mhz.is_none());
-        let cells: Vec<f64> = rs.iter().filter_map(|r| r.synth.logic_cells.map(|c| c as f64)).collect();
+        let cells: Vec<f64> = rs
+            .iter()
+            .filter_map(|r| r.synth.logic_cells.map(|c| c as f64))
+            .collect();
         p.measured = Some(Measured {
             seeds: mine.iter().map(|j| j.seed).collect(),
-            fmax_mhz: if failed.is_some() { None } else { crate::synth::median(&fmax_seeds) },
+            fmax_mhz: if failed.is_some() {
+                None
+            } else {
+                crate::synth::median(&fmax_seeds)
+            },
             fmax_seeds,
             route_seeds: rs.iter().filter_map(|r| r.synth.fmax_route_mhz).collect(),
             logic_cells: crate::synth::median(&cells).map(|c| c.round() as u64),
@@ -253,7 +308,12 @@ pub fn merge(points: &mut [Point], jobs: &[Job], results: &[JobResult]) -> Merge
 pub use crate::emit::rtl_digest;
 
 /// The jobs that measure `ids` over `seeds`.
-pub fn jobs_of(points: &[Point], ids: &[String], seeds: &[u32], tools: &Versions) -> Result<Vec<Job>, Error> {
+pub fn jobs_of(
+    points: &[Point],
+    ids: &[String],
+    seeds: &[u32],
+    tools: &Versions,
+) -> Result<Vec<Job>, Error> {
     let want: BTreeSet<&String> = ids.iter().collect();
     let mut jobs = Vec::new();
     for p in points.iter().filter(|p| want.contains(&p.id)) {
@@ -268,12 +328,19 @@ pub fn jobs_of(points: &[Point], ids: &[String], seeds: &[u32], tools: &Versions
 /// stored under a fingerprint that does not describe it).
 pub fn run_job(job: &Job, tools: &crate::synth::Tools) -> Result<JobResult, Error> {
     if job.compute_fingerprint() != job.fingerprint {
-        return Err(input(format!("job {} does not match its fingerprint: the plan was edited", job.fingerprint)));
+        return Err(input(format!(
+            "job {} does not match its fingerprint: the plan was edited",
+            job.fingerprint
+        )));
     }
     let here = tool_versions(job.params.target, tools)?;
     if here != job.tools {
-        let diff: Vec<String> =
-            job.tools.iter().filter(|(k, v)| here.get(*k) != Some(v)).map(|(k, v)| format!("{k}: planned {v:?}, here {:?}", here.get(k))).collect();
+        let diff: Vec<String> = job
+            .tools
+            .iter()
+            .filter(|(k, v)| here.get(*k) != Some(v))
+            .map(|(k, v)| format!("{k}: planned {v:?}, here {:?}", here.get(k)))
+            .collect();
         return Err(input(format!(
             "job {}: the tools here are not those it was planned with ({}); plan again with `specgen explore`",
             job.fingerprint,
@@ -287,14 +354,22 @@ pub fn run_job(job: &Job, tools: &crate::synth::Tools) -> Result<JobResult, Erro
             job.fingerprint
         )));
     }
-    let dir = crate::process::temp_dir().map_err(|e| Error::io("create a temporary directory in", std::env::temp_dir(), e))?;
+    let dir = crate::process::temp_dir()
+        .map_err(|e| Error::io("create a temporary directory in", std::env::temp_dir(), e))?;
     let unit = dir.path().join("unit");
     crate::output::write_dir_atomically(&unit, &crate::emit::generate_files(&plan))?;
     let design = crate::cosim::Design::load(&unit)?;
     // IceStorm's second opinion is not part of an exploration's figures: not run
-    let tools = &crate::synth::Tools { icetime: String::new(), ..tools.clone() };
-    let synth = crate::synth::synthesize(&design, job.params.target, job.dsp, tools, &[job.seed])?.result;
-    Ok(JobResult { job: job.clone(), synth })
+    let tools = &crate::synth::Tools {
+        icetime: String::new(),
+        ..tools.clone()
+    };
+    let synth =
+        crate::synth::synthesize(&design, job.params.target, job.dsp, tools, &[job.seed])?.result;
+    Ok(JobResult {
+        job: job.clone(),
+        synth,
+    })
 }
 
 /// specgen's version and each tool's as it prints it (yosys, the family's nextpnr): part of
@@ -302,9 +377,15 @@ pub fn run_job(job: &Job, tools: &crate::synth::Tools) -> Result<JobResult, Erro
 pub fn tool_versions(target: Target, tools: &crate::synth::Tools) -> Result<Versions, Error> {
     let mut v = BTreeMap::new();
     v.insert("specgen".to_string(), crate::names::VERSION.to_string());
-    v.insert("yosys".to_string(), crate::synth::version_of(&tools.yosys, "-V")?);
+    v.insert(
+        "yosys".to_string(),
+        crate::synth::version_of(&tools.yosys, "-V")?,
+    );
     if let Some(pnr) = crate::synth::pnr_tool(target, tools)? {
-        v.insert("nextpnr".to_string(), crate::synth::version_of(&pnr, "--version")?);
+        v.insert(
+            "nextpnr".to_string(),
+            crate::synth::version_of(&pnr, "--version")?,
+        );
     }
     Ok(v)
 }

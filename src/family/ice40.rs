@@ -24,7 +24,14 @@ pub(super) struct Ice40;
 /// SB_CARRY's entry and exit, an SB_MAC16 multiply ~5.5 ns): the figures the datapath's delay
 /// estimates are written in (`datapath::Delay`), which place the registers on every family.
 pub(crate) const PRIMITIVE_DELAYS: crate::family::PrimitiveDelays =
-    crate::family::PrimitiveDelays { lut: 2.7, carry: 0.7, carry_bit: 0.3, dsp: 5.5, array_level: 1.5, route: 1.0 };
+    crate::family::PrimitiveDelays {
+        lut: 2.7,
+        carry: 0.7,
+        carry_bit: 0.3,
+        dsp: 5.5,
+        array_level: 1.5,
+        route: 1.0,
+    };
 
 impl Family for Ice40 {
     fn name(&self) -> &'static str {
@@ -58,7 +65,9 @@ impl Family for Ice40 {
         Some(PlaceAndRoute {
             tools: &["nextpnr-ice40"],
             install: "apt-get install -y nextpnr-ice40",
-            args: ["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"].map(String::from).to_vec(),
+            args: ["--up5k", "--package", "sg48", "--pcf-allow-unconstrained"]
+                .map(String::from)
+                .to_vec(),
         })
     }
     fn icetime(&self) -> bool {
@@ -145,9 +154,16 @@ impl Family for Ice40 {
     fn copies_block_operands(&self) -> bool {
         true
     }
-    fn cell_models(&self, datdir: &Path, _top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
+    fn cell_models(
+        &self,
+        datdir: &Path,
+        _top: &str,
+    ) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)> {
         let text = super::read(&datdir.join("ice40/cells_sim.v"))?;
         // port default values are SystemVerilog; the netlist connects every port it uses
-        Ok(vec![("ice40_cells_sim.v".into(), format!("`define NO_ICE40_DEFAULT_ASSIGNMENTS\n{text}"))])
+        Ok(vec![(
+            "ice40_cells_sim.v".into(),
+            format!("`define NO_ICE40_DEFAULT_ASSIGNMENTS\n{text}"),
+        )])
     }
 }

@@ -66,7 +66,14 @@ pub struct PrimitiveDelays {
 impl PrimitiveDelays {
     /// In the order of `datapath::Delay`'s parts.
     pub(crate) fn as_array(&self) -> [f64; 6] {
-        [self.lut, self.carry, self.carry_bit, self.dsp, self.array_level, self.route]
+        [
+            self.lut,
+            self.carry,
+            self.carry_bit,
+            self.dsp,
+            self.array_level,
+            self.route,
+        ]
     }
 }
 
@@ -327,7 +334,11 @@ pub trait Family: Sync {
     }
     /// The simulation models of its cells, for co-simulating a mapped netlist, as (file name,
     /// text), read from yosys's data directory `datdir` (`top`: the unit's own models' prefix).
-    fn cell_models(&self, datdir: &Path, top: &str) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)>;
+    fn cell_models(
+        &self,
+        datdir: &Path,
+        top: &str,
+    ) -> Result<Vec<(String, String)>, (PathBuf, std::io::Error)>;
 }
 
 /// Reads `path`, its error naming it.
@@ -339,7 +350,8 @@ pub(crate) fn read(path: &Path) -> Result<String, (PathBuf, std::io::Error)> {
 /// The clock the unit's constraints and `synth` ask for: its `clock_mhz`, else its family's
 /// default.
 pub fn clock_mhz(cfg: &crate::config::Config) -> f64 {
-    cfg.explicit_clock_mhz().unwrap_or_else(|| of(cfg.target()).default_clock_mhz())
+    cfg.explicit_clock_mhz()
+        .unwrap_or_else(|| of(cfg.target()).default_clock_mhz())
 }
 
 pub fn of(target: Target) -> &'static dyn Family {
@@ -361,8 +373,15 @@ mod tests {
         for t in Target::ALL {
             assert_eq!(of(t).name(), t.name());
         }
-        assert!(of(Target::Generic).place_and_route(6).is_none() && of(Target::Generic).calibration().is_none());
-        assert!(of(Target::Ecp5).place_and_route(6).unwrap().args.contains(&"6".to_string()));
+        assert!(
+            of(Target::Generic).place_and_route(6).is_none()
+                && of(Target::Generic).calibration().is_none()
+        );
+        assert!(of(Target::Ecp5)
+            .place_and_route(6)
+            .unwrap()
+            .args
+            .contains(&"6".to_string()));
     }
 
     /// A family named outside its home: every `Target::Ice40`, `Target::Ecp5` or
@@ -379,14 +398,24 @@ mod tests {
                 if path.is_dir() {
                     files.push(path);
                 } else if path.extension().is_some_and(|x| x == "rs") {
-                    let rel = path.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+                    let rel = path
+                        .strip_prefix(&src)
+                        .unwrap()
+                        .to_string_lossy()
+                        .replace('\\', "/");
                     // a `tests.rs` is a module of unit tests as a whole
-                    if rel.starts_with("family/") || rel == "config/mod.rs" || rel.ends_with("/tests.rs") {
+                    if rel.starts_with("family/")
+                        || rel == "config/mod.rs"
+                        || rel.ends_with("/tests.rs")
+                    {
                         continue;
                     }
                     let text = std::fs::read_to_string(&path).unwrap();
                     let code = text.split("#[cfg(test)]").next().unwrap_or("");
-                    let n = ["Target::Ice40", "Target::Ecp5", "Target::Generic"].iter().map(|t| code.matches(t).count()).sum::<usize>();
+                    let n = ["Target::Ice40", "Target::Ecp5", "Target::Generic"]
+                        .iter()
+                        .map(|t| code.matches(t).count())
+                        .sum::<usize>();
                     assert!(n == 0, "src/{rel} names a family {n} times (at most 0): ask crate::family::of(target) instead");
                 }
             }

@@ -3,7 +3,9 @@
 //! model ([`BlinnPow`]'s `eval`), the datapath, on the same builder as every model. Its
 //! contract is the rigorous `c^n` check every `c^n` model shares ([`check_cos_n`]).
 
-use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
+use super::{
+    check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit,
+};
 use crate::bits::{lit, mask};
 use crate::config::Config;
 use crate::datapath::{add_delay, ex, Builder, Delay, Expr, Kind, Piece, LUT_DELAY};
@@ -31,7 +33,10 @@ pub struct BlinnPow {
 
 impl BlinnPow {
     pub fn new(cfg: &Config) -> BlinnPow {
-        BlinnPow { cfg: cfg.clone(), power_frac_bits: power_frac_bits(cfg) }
+        BlinnPow {
+            cfg: cfg.clone(),
+            power_frac_bits: power_frac_bits(cfg),
+        }
     }
 }
 
@@ -61,8 +66,13 @@ impl SpecularUnit for BlinnPow {
         }
         // last step: round half up to the outputs
         let intensity = ((result + (1u128 << (w - fi - 1))) >> (w - fi)) as u32;
-        let spec = x.ks.map(|k| (((result * (k as u128 & mask(b))) + (1u128 << (w - 1))) >> w) as u32);
-        Outputs { spec, intensity, done: intensity == 0 }
+        let spec =
+            x.ks.map(|k| (((result * (k as u128 & mask(b))) + (1u128 << (w - 1))) >> w) as u32);
+        Outputs {
+            spec,
+            intensity,
+            done: intensity == 0,
+        }
     }
 
     fn check(&self, x: Inputs, got: Outputs) -> Result<(), crate::error::Error> {
@@ -101,7 +111,13 @@ impl SpecularUnit for BlinnPow {
     }
 
     fn explain(&self, x: Inputs) -> Vec<String> {
-        vec![format!("datapath   square-and-multiply over the bits of n, UQ1.{}", self.power_frac_bits), explain_ideal(self.ideal(x), "(c^n)")]
+        vec![
+            format!(
+                "datapath   square-and-multiply over the bits of n, UQ1.{}",
+                self.power_frac_bits
+            ),
+            explain_ideal(self.ideal(x), "(c^n)"),
+        ]
     }
 }
 
@@ -111,14 +127,38 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
     let (f, nb, fi) = (cfg.f(), cfg.n_bits(), cfg.fi());
     let full = 2 * pw + 2;
 
-    b.step(&format!("clamp c = min(cos, 1), widen to UQ1.{pw}; the running product starts at 1.0"));
+    b.step(&format!(
+        "clamp c = min(cos, 1), widen to UQ1.{pw}; the running product starts at 1.0"
+    ));
     let g = b.r("cos_g");
     let one = lit(f + 1, 1u128 << f);
-    b.wire("cos_clamped", f + 1, Kind::Logic, ex!("({} > {}) ? {} : {}", g, one, one, g), &format!("UQ1.{f}: c"));
+    b.wire(
+        "cos_clamped",
+        f + 1,
+        Kind::Logic,
+        ex!("({} > {}) ? {} : {}", g, one, one, g),
+        &format!("UQ1.{f}: c"),
+    );
     let c = b.r("cos_clamped");
-    let widened = if pw > f { ex!("{{{}, {}}}", c, lit(pw - f, 0)) } else { c };
-    b.wire("power0", pw + 1, Kind::Select, widened, &format!("UQ1.{pw}: c^(2^0), exact"));
-    b.wire("result0", pw + 1, Kind::Select, Expr::constant(lit(pw + 1, 1u128 << pw)), &format!("UQ1.{pw}: 1.0"));
+    let widened = if pw > f {
+        ex!("{{{}, {}}}", c, lit(pw - f, 0))
+    } else {
+        c
+    };
+    b.wire(
+        "power0",
+        pw + 1,
+        Kind::Select,
+        widened,
+        &format!("UQ1.{pw}: c^(2^0), exact"),
+    );
+    b.wire(
+        "result0",
+        pw + 1,
+        Kind::Select,
+        Expr::constant(lit(pw + 1, 1u128 << pw)),
+        &format!("UQ1.{pw}: 1.0"),
+    );
     b.delay(add_delay(f + 1));
 
     // on the ECP5 each choice takes a step of its own, so that the MULT18X18Ds' input
@@ -132,7 +172,10 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
             chosen(b, nb, pw, i);
             b.delay(LUT_DELAY);
         }
-        b.step(&format!("bit {i} of n: multiply by c^(2^{i}) when it is set{}", if more { "; square the power" } else { "" }));
+        b.step(&format!(
+            "bit {i} of n: multiply by c^(2^{i}) when it is set{}",
+            if more { "; square the power" } else { "" }
+        ));
         // the last bit's choice, here: a product's block meets only its register
         if i > 0 && !own_step {
             chosen(b, nb, pw, i);
@@ -143,11 +186,31 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
         // product inferred after the choice's LUT
         let product = |b: &mut Builder, name: String, a: &[Piece], what: String| match own_step {
             true => b.product(&name, a, &pp, full, &what),
-            false => _ = b.mul(&name, full, (a, pw + 1), (&pp, pw + 1), &[], LUT_DELAY, &what),
+            false => {
+                _ = b.mul(
+                    &name,
+                    full,
+                    (a, pw + 1),
+                    (&pp, pw + 1),
+                    &[],
+                    LUT_DELAY,
+                    &what,
+                )
+            }
         };
-        product(b, format!("result_prod{}", i + 1), &rp, format!("UQ2.{}: result*power, exact", 2 * pw));
+        product(
+            b,
+            format!("result_prod{}", i + 1),
+            &rp,
+            format!("UQ2.{}: result*power, exact", 2 * pw),
+        );
         if more {
-            product(b, format!("power_sq{}", i + 1), &pp, format!("UQ2.{}: power^2, exact", 2 * pw));
+            product(
+                b,
+                format!("power_sq{}", i + 1),
+                &pp,
+                format!("UQ2.{}: power^2, exact", 2 * pw),
+            );
         }
     }
 
@@ -167,19 +230,42 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
         false => b.colour_sums(&r, pw, "c^n", Delay::ZERO),
     }
     // (on the iCE40 after the choice's LUT)
-    b.product_delay(pw + 1, cfg.b(), pw + cfg.b(), if own_step { Delay::ZERO } else { LUT_DELAY });
+    b.product_delay(
+        pw + 1,
+        cfg.b(),
+        pw + cfg.b(),
+        if own_step { Delay::ZERO } else { LUT_DELAY },
+    );
 
     // the colours after their blocks' registers
     b.step("round half up to the outputs");
     let rv = b.r(&r);
-    b.wire("intensity_sum", pw + 1, Kind::Sum, ex!("{} + {}", rv, lit(pw + 1, 1u128 << (pw - fi - 1))), &format!("UQ1.{pw}: c^n + 2^-{}", fi + 1));
+    b.wire(
+        "intensity_sum",
+        pw + 1,
+        Kind::Sum,
+        ex!("{} + {}", rv, lit(pw + 1, 1u128 << (pw - fi - 1))),
+        &format!("UQ1.{pw}: c^n + 2^-{}", fi + 1),
+    );
     let e = b.bits("intensity_sum", pw, pw - fi);
-    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: c^n rounded half up"));
+    b.wire(
+        "intensity",
+        fi + 1,
+        Kind::Select,
+        e,
+        &format!("UQ1.{fi}: c^n rounded half up"),
+    );
     // (on the ECP5, the colours' rounding half after their products)
     b.colour_rounding(pw, "c^n");
     b.colour_results(pw, "c^n");
     let iv = b.r("intensity");
-    b.wire("done", 1, Kind::Logic, ex!("{} == {}", iv, lit(fi + 1, 0)), "the highlight is below the output's resolution");
+    b.wire(
+        "done",
+        1,
+        Kind::Logic,
+        ex!("{} == {}", iv, lit(fi + 1, 0)),
+        "the highlight is below the output's resolution",
+    );
     b.delay(add_delay(pw + 1) + LUT_DELAY);
 }
 
@@ -188,14 +274,39 @@ fn datapath(cfg: &Config, pw: u32, b: &mut Builder) {
 /// bits of n still to use, `n_rest{i}`.
 fn chosen(b: &mut Builder, nb: u32, pw: u32, i: u32) {
     // the bits of n still to use travel on, shrinking, as n_rest (n itself for bit 0)
-    let rest = if i == 1 { "n".to_string() } else { format!("n_rest{}", i - 1) };
+    let rest = if i == 1 {
+        "n".to_string()
+    } else {
+        format!("n_rest{}", i - 1)
+    };
     let bit = b.bits(&rest, 0, 0);
-    let (hi, keep) = (b.bits(&format!("result_prod{i}"), 2 * pw, pw), b.r(&format!("result{}", i - 1)));
-    b.wire(&format!("result{i}"), pw + 1, Kind::Logic, ex!("{} ? {} : {}", bit, hi, keep), &format!("UQ1.{pw}: floored product, or the product so far"));
+    let (hi, keep) = (
+        b.bits(&format!("result_prod{i}"), 2 * pw, pw),
+        b.r(&format!("result{}", i - 1)),
+    );
+    b.wire(
+        &format!("result{i}"),
+        pw + 1,
+        Kind::Logic,
+        ex!("{} ? {} : {}", bit, hi, keep),
+        &format!("UQ1.{pw}: floored product, or the product so far"),
+    );
     if i < nb {
         let sq = b.bits(&format!("power_sq{i}"), 2 * pw, pw);
-        b.wire(&format!("power{i}"), pw + 1, Kind::Select, sq, &format!("UQ1.{pw}: c^(2^{i}), floored"));
+        b.wire(
+            &format!("power{i}"),
+            pw + 1,
+            Kind::Select,
+            sq,
+            &format!("UQ1.{pw}: c^(2^{i}), floored"),
+        );
         let upper = b.bits(&rest, nb - i, 1);
-        b.wire(&format!("n_rest{i}"), nb - i, Kind::Select, upper, "the bits of n still to use");
+        b.wire(
+            &format!("n_rest{i}"),
+            nb - i,
+            Kind::Select,
+            upper,
+            "the bits of n still to use",
+        );
     }
 }

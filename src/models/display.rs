@@ -33,21 +33,44 @@ pub struct Display {
 
 impl Display {
     /// An 8-bit sRGB display: what "no banding" means to most users.
-    pub const SRGB8: Display = Display { bits: 8, gamma: None };
+    pub const SRGB8: Display = Display {
+        bits: 8,
+        gamma: None,
+    };
 
     /// `srgbB` (B in 1..=16) or `gammaG:B` (G in [1, 4]), e.g. `srgb8`, `gamma2.2:10`.
     pub fn parse(s: &str) -> Result<Display, Error> {
-        let bad = || Error::Config {
+        let bad = || {
+            Error::Config {
             parameter: "display",
             message: format!("invalid --display: {s:?}; allowed srgbB (B bits, 1..=16, e.g. srgb8) or gammaG:B (G in [1, 4], e.g. gamma2.2:8)"),
-        };
-        let bits = |b: &str| b.parse::<u32>().ok().filter(|b| (1..=16).contains(b)).ok_or_else(bad);
-        if let Some(b) = s.strip_prefix("srgb") {
-            return Ok(Display { bits: bits(b)?, gamma: None });
         }
-        let (g, b) = s.strip_prefix("gamma").and_then(|r| r.split_once(':')).ok_or_else(bad)?;
-        let g: f64 = g.parse().ok().filter(|g: &f64| (1.0..=4.0).contains(g)).ok_or_else(bad)?;
-        Ok(Display { bits: bits(b)?, gamma: Some(g) })
+        };
+        let bits = |b: &str| {
+            b.parse::<u32>()
+                .ok()
+                .filter(|b| (1..=16).contains(b))
+                .ok_or_else(bad)
+        };
+        if let Some(b) = s.strip_prefix("srgb") {
+            return Ok(Display {
+                bits: bits(b)?,
+                gamma: None,
+            });
+        }
+        let (g, b) = s
+            .strip_prefix("gamma")
+            .and_then(|r| r.split_once(':'))
+            .ok_or_else(bad)?;
+        let g: f64 = g
+            .parse()
+            .ok()
+            .filter(|g: &f64| (1.0..=4.0).contains(g))
+            .ok_or_else(bad)?;
+        Ok(Display {
+            bits: bits(b)?,
+            gamma: Some(g),
+        })
     }
 
     pub fn name(&self) -> String {
@@ -102,14 +125,24 @@ pub fn display_error(m: &Model, display: Display) -> DisplayError {
                     for n in (t..n_count).step_by(threads as usize) {
                         got.clear();
                         m.unit().intensity_row(n, codes, &mut got);
-                        let shown: Vec<f64> = got.iter().map(|&g| display.codes(g as f64 / scale)).collect();
+                        let shown: Vec<f64> = got
+                            .iter()
+                            .map(|&g| display.codes(g as f64 / scale))
+                            .collect();
                         let last = codes.len() - 1;
                         for j in 0..codes.len() {
-                            let (lo, hi) = (display.codes(los[j].powi(n as i32)), display.codes(his[j].powi(n as i32)));
+                            let (lo, hi) = (
+                                display.codes(los[j].powi(n as i32)),
+                                display.codes(his[j].powi(n as i32)),
+                            );
                             let worst = if stride == 1 {
                                 (shown[j] - lo).abs().max((shown[j] - hi).abs())
                             } else {
-                                let (top, top_c) = if j < last { (shown[j + 1], display.codes(los[j + 1].powi(n as i32))) } else { (shown[j], hi) };
+                                let (top, top_c) = if j < last {
+                                    (shown[j + 1], display.codes(los[j + 1].powi(n as i32)))
+                                } else {
+                                    (shown[j], hi)
+                                };
                                 (top - lo).max(top_c - shown[j])
                             };
                             max = max.max(worst);
@@ -122,10 +155,18 @@ pub fn display_error(m: &Model, display: Display) -> DisplayError {
                 })
             })
             .collect();
-        hs.into_iter().map(|h| h.join().expect("display thread")).collect()
+        hs.into_iter()
+            .map(|h| h.join().expect("display thread"))
+            .collect()
     });
-    let (max_codes, banding_codes) = parts.into_iter().fold((0.0f64, 0.0f64), |(a, b), (x, y)| (a.max(x), b.max(y)));
-    DisplayError { max_codes, banding_codes, bound: stride > 1 }
+    let (max_codes, banding_codes) = parts
+        .into_iter()
+        .fold((0.0f64, 0.0f64), |(a, b), (x, y)| (a.max(x), b.max(y)));
+    DisplayError {
+        max_codes,
+        banding_codes,
+        bound: stride > 1,
+    }
 }
 
 #[cfg(test)]
@@ -137,8 +178,21 @@ mod tests {
     #[test]
     fn a_display_is_parsed_and_refused_by_name() {
         assert_eq!(Display::parse("srgb8").unwrap(), Display::SRGB8);
-        assert_eq!(Display::parse("gamma2.2:10").unwrap(), Display { bits: 10, gamma: Some(2.2) });
-        for bad in ["srgb0", "srgb17", "gamma0.5:8", "gamma2.2", "rgb8", "gamma2.2:x"] {
+        assert_eq!(
+            Display::parse("gamma2.2:10").unwrap(),
+            Display {
+                bits: 10,
+                gamma: Some(2.2)
+            }
+        );
+        for bad in [
+            "srgb0",
+            "srgb17",
+            "gamma0.5:8",
+            "gamma2.2",
+            "rgb8",
+            "gamma2.2:x",
+        ] {
             let e = Display::parse(bad).unwrap_err();
             assert_eq!(e.parameter(), Some("display"), "{bad}");
         }
@@ -152,7 +206,14 @@ mod tests {
     /// moves, and a coarse input width bands where a fine one does not.
     #[test]
     fn the_display_error_is_the_real_cosines_in_display_codes() {
-        let cfg = Config::new(Params { model: SpecularModel::Blinn, n_bits: 4, cos_frac_bits: 6, intensity_frac_bits: 10, ..Default::default() }).unwrap();
+        let cfg = Config::new(Params {
+            model: SpecularModel::Blinn,
+            n_bits: 4,
+            cos_frac_bits: 6,
+            intensity_frac_bits: 10,
+            ..Default::default()
+        })
+        .unwrap();
         let m = Model::new(&cfg);
         let d = display_error(&m, Display::SRGB8);
         assert!(!d.bound);
@@ -161,14 +222,33 @@ mod tests {
             for s in 0..=samples {
                 let c = s as f64 / samples as f64;
                 let q = (c * 64.0).round() as u32;
-                let i = m.eval(Inputs { cos_g: q, n, ks: [0; 3] }).intensity as f64 / 1024.0;
-                max = max.max((Display::SRGB8.codes(i) - Display::SRGB8.codes(c.powi(n as i32))).abs());
+                let i = m
+                    .eval(Inputs {
+                        cos_g: q,
+                        n,
+                        ks: [0; 3],
+                    })
+                    .intensity as f64
+                    / 1024.0;
+                max = max
+                    .max((Display::SRGB8.codes(i) - Display::SRGB8.codes(c.powi(n as i32))).abs());
             }
         }
-        assert!(d.max_codes >= max && d.max_codes <= max + 1.0, "{} vs sampled {max}", d.max_codes);
+        assert!(
+            d.max_codes >= max && d.max_codes <= max + 1.0,
+            "{} vs sampled {max}",
+            d.max_codes
+        );
         // 64 cosine codes cannot draw 256 display codes smoothly: bands
         assert!(d.banding_codes > 1.0, "{d:?}");
-        let fine = Config::new(Params { model: SpecularModel::Blinn, n_bits: 2, cos_frac_bits: 14, intensity_frac_bits: 12, ..Default::default() }).unwrap();
+        let fine = Config::new(Params {
+            model: SpecularModel::Blinn,
+            n_bits: 2,
+            cos_frac_bits: 14,
+            intensity_frac_bits: 12,
+            ..Default::default()
+        })
+        .unwrap();
         let f = display_error(&Model::new(&fine), Display::SRGB8);
         assert!(f.banding_codes <= 1.0, "{f:?}");
         assert!(f.max_codes < d.max_codes);

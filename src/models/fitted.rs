@@ -47,10 +47,14 @@
 //! flip-flop before the bypass mux. On the iCE40 this makes about 65 cut points, each at most
 //! a short carry chain or two LUTs; a shallower `--stages` picks among them by the delays.
 
-use super::{cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS};
+use super::{
+    cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit, SPEC_PORTS,
+};
 use crate::bits::{bit_length, exact_decimal, lit, mask};
 use crate::config::Config;
-use crate::datapath::{ex, Builder, Delay, Expr, Kind, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT};
+use crate::datapath::{
+    ex, Builder, Delay, Expr, Kind, Piece, LUT_DELAY, LUT_INPUTS, MAX_SQUARER_SPLIT,
+};
 use crate::table::Table;
 use num_bigint::BigUint;
 use serde::Serialize;
@@ -99,7 +103,9 @@ pub(crate) fn color_frac_bits(cfg: &Config) -> u32 {
     let (b, m) = (cfg.b() as i64, cfg.max_squarings() as i64);
     let w = cfg.fi().max(cfg.b()) as i64 + m + 2;
     let p = |k: i64| (k as f64).exp2();
-    (1..=w).find(|&wc| p(b + m + 1 - w) + p(b - wc) <= 0.5).unwrap_or(w) as u32
+    (1..=w)
+        .find(|&wc| p(b + m + 1 - w) + p(b - wc) <= 0.5)
+        .unwrap_or(w) as u32
 }
 
 /// Largest and worst error of `max(0, 1 − a t)^(2^m)` against `(1 − t)^n` over `t ∈ [0, 1]`.
@@ -193,7 +199,9 @@ pub(crate) fn fit_n(n: u32, max_m: u32) -> (f64, u32, f64) {
 pub fn fit(cfg: &Config) -> Fit {
     let count = 1usize << cfg.n_bits();
     let max_m = cfg.max_squarings();
-    let threads = std::thread::available_parallelism().map_or(1, |p| p.get()).clamp(1, 8);
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |p| p.get())
+        .clamp(1, 8);
     let mut rows: Vec<(f64, u32, f64)> = vec![(0.0, 0, 0.0); count];
     std::thread::scope(|s| {
         let chunk = count.div_ceil(threads);
@@ -209,14 +217,33 @@ pub fn fit(cfg: &Config) -> Fit {
         }
     });
     let scale = (cfg.kf() as f64).exp2();
-    let a_code = rows.iter().enumerate().map(|(n, r)| if n == 0 { 0 } else { ((r.0 * scale).round() as u64).max(1) }).collect();
-    Fit { a: rows.iter().map(|r| r.0).collect(), a_code, m: rows.iter().map(|r| r.1).collect(), fit_error: rows.iter().map(|r| r.2).collect() }
+    let a_code = rows
+        .iter()
+        .enumerate()
+        .map(|(n, r)| {
+            if n == 0 {
+                0
+            } else {
+                ((r.0 * scale).round() as u64).max(1)
+            }
+        })
+        .collect();
+    Fit {
+        a: rows.iter().map(|r| r.0).collect(),
+        a_code,
+        m: rows.iter().map(|r| r.1).collect(),
+        fit_error: rows.iter().map(|r| r.2).collect(),
+    }
 }
 
 impl Fit {
     /// The ROM words `{m_n, a_code}`.
     pub(crate) fn rom_words(&self, w: &FittedWidths) -> Vec<u128> {
-        self.a_code.iter().zip(&self.m).map(|(&a, &m)| ((m as u128) << w.a_bits) | a as u128).collect()
+        self.a_code
+            .iter()
+            .zip(&self.m)
+            .map(|(&a, &m)| ((m as u128) << w.a_bits) | a as u128)
+            .collect()
     }
 }
 
@@ -262,19 +289,42 @@ pub fn trace(cfg: &Config, fit: &Fit, w: &FittedWidths, x: Inputs) -> (FittedTra
     let one = 1u128 << (ka + f);
     let done = product > one;
     let diff = if done { 0 } else { one - product };
-    let x0 = if ka + f >= wf { diff >> (ka + f - wf) } else { diff << (wf - ka - f) };
+    let x0 = if ka + f >= wf {
+        diff >> (ka + f - wf)
+    } else {
+        diff << (wf - ka - f)
+    };
     let mut squares = [0u128; 5];
     squares[0] = x0;
     for j in 1..=cfg.max_squarings() as usize {
         let prev = squares[j - 1];
-        squares[j] = if j as u32 <= m { (prev * prev) >> wf } else { prev };
+        squares[j] = if j as u32 <= m {
+            (prev * prev) >> wf
+        } else {
+            prev
+        };
     }
     let s = squares[cfg.max_squarings() as usize];
     let intensity = ((s + (1u128 << (wf - fi - 1))) >> (wf - fi)) as u32;
     let wc = w.color_frac_bits;
     let sc = s >> (wf - wc);
-    let spec = x.ks.map(|k| ((sc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
-    (FittedTrace { a_code, m, one_minus_cos: d, product, done, squares }, Outputs { spec, intensity, done })
+    let spec =
+        x.ks.map(|k| ((sc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
+    (
+        FittedTrace {
+            a_code,
+            m,
+            one_minus_cos: d,
+            product,
+            done,
+            squares,
+        },
+        Outputs {
+            spec,
+            intensity,
+            done,
+        },
+    )
 }
 
 /// Checks one output vector against the exact rational `S = base^(2^m)`,
@@ -287,7 +337,10 @@ pub fn check(cfg: &Config, fit: &Fit, x: Inputs, got: Outputs) -> Result<(), cra
     let p = fit.a_code[n] as u128 * ((1u64 << f) - cos) as u128;
     let done = p > one;
     if got.done != done {
-        return Err(crate::error::Error::breach("done", format!("got {}, reference {done}", got.done)));
+        return Err(crate::error::Error::breach(
+            "done",
+            format!("got {}, reference {done}", got.done),
+        ));
     }
     let e = 1u32 << fit.m[n];
     let den_log2 = (ka + f) * e;
@@ -296,29 +349,56 @@ pub fn check(cfg: &Config, fit: &Fit, x: Inputs, got: Outputs) -> Result<(), cra
     // adds a relative error of at most 2^−53, so `S·M` is within (2^m + 1)·2^−53·2^25 < 2^−23
     // of its exact value. An output farther than 2^−20 inside the unit interval around it is
     // faithful; only outputs near the edge go to exact big integers.
-    let base = if done { 0.0 } else { (one - p) as f64 / ((ka + f) as f64).exp2() };
+    let base = if done {
+        0.0
+    } else {
+        (one - p) as f64 / ((ka + f) as f64).exp2()
+    };
     let s = (0..fit.m[n]).fold(base, |v, _| v * v);
     let screened = |o: u32, mult: u128| (o as f64 - s * mult as f64).abs() < 1.0 - (-20f64).exp2();
     let s_num = std::cell::OnceCell::new();
-    let s_num = || s_num.get_or_init(|| if done { BigUint::from(0u32) } else { BigUint::from(one - p).pow(e) });
+    let s_num = || {
+        s_num.get_or_init(|| {
+            if done {
+                BigUint::from(0u32)
+            } else {
+                BigUint::from(one - p).pow(e)
+            }
+        })
+    };
     let within = |o: u32, mult: u128| -> bool {
         if screened(o, mult) {
             return true;
         }
         let ideal = s_num() * BigUint::from(mult);
         let scaled = BigUint::from(o) << den_log2;
-        let diff = if scaled > ideal { scaled - &ideal } else { &ideal - scaled };
+        let diff = if scaled > ideal {
+            scaled - &ideal
+        } else {
+            &ideal - scaled
+        };
         diff < (BigUint::from(1u32) << den_log2)
     };
     if !within(got.intensity, 1u128 << cfg.fi()) {
         return Err(crate::error::Error::breach(
             "intensity",
-            format!("got {}, ideal S·2^FI = {:.6}", got.intensity, ratio(s_num(), den_log2) * (cfg.fi() as f64).exp2()),
+            format!(
+                "got {}, ideal S·2^FI = {:.6}",
+                got.intensity,
+                ratio(s_num(), den_log2) * (cfg.fi() as f64).exp2()
+            ),
         ));
     }
     for (i, name) in SPEC_PORTS.iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
-            return Err(crate::error::Error::breach(name, format!("got {}, ideal S·ks = {:.6}", got.spec[i], ratio(s_num(), den_log2) * x.ks[i] as f64)));
+            return Err(crate::error::Error::breach(
+                name,
+                format!(
+                    "got {}, ideal S·ks = {:.6}",
+                    got.spec[i],
+                    ratio(s_num(), den_log2) * x.ks[i] as f64
+                ),
+            ));
         }
     }
     Ok(())
@@ -339,7 +419,12 @@ pub fn table(fit: &Fit, w: &FittedWidths) -> Table {
         param: "FIT_ROM_FILE".into(),
         width: w.rom_word_bits,
         words: fit.rom_words(w),
-        what: format!("per-n fit: {{m_n ({} bits), a_n (UQ{}.{})}}", w.m_bits, w.a_bits.saturating_sub(w.a_frac_bits), w.a_frac_bits),
+        what: format!(
+            "per-n fit: {{m_n ({} bits), a_n (UQ{}.{})}}",
+            w.m_bits,
+            w.a_bits.saturating_sub(w.a_frac_bits),
+            w.a_frac_bits
+        ),
         fields: vec![("a_code".into(), w.a_bits), ("m".into(), w.m_bits)],
         cosines: None,
     }
@@ -355,7 +440,11 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     // on the ECP5 the ROM is read a step later, from n's register, into block RAM with its
     // address and output registers (a read from the ports has no register before it)
     let ecp5 = b.instantiated_blocks();
-    b.step(if ecp5 { "c = min(cos, 1)" } else { "per-n fit ROM read {m_n, a_n}; c = min(cos, 1)" });
+    b.step(if ecp5 {
+        "c = min(cos, 1)"
+    } else {
+        "per-n fit ROM read {m_n, a_n}; c = min(cos, 1)"
+    });
     if !ecp5 {
         b.rom_read("fit", t, "n");
     }
@@ -363,19 +452,32 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator; complemented
     // here, in the mux's LUT, so that the add below takes it straight into its carry chain
     let not_one = Expr::constant(lit(cb, mask(cb) & !(1u128 << f)));
-    b.wire("cos_clamped_n", cb, Kind::Logic, Builder::select(&top, &not_one, &ex!("~{}", g), cb), &format!("~c, c = min(cos, 1) in UQ1.{f}"));
+    b.wire(
+        "cos_clamped_n",
+        cb,
+        Kind::Logic,
+        Builder::select(&top, &not_one, &ex!("~{}", g), cb),
+        &format!("~c, c = min(cos, 1) in UQ1.{f}"),
+    );
     b.delay(LUT_DELAY * if ecp5 { 1 } else { cfg.n_bits().div_ceil(2) } as f64);
 
     // 1 - c = ~c + 2^F + 1 mod 2^(F+1) (c <= 1): a carry-select add of a constant
     let title = "1 - c (adder 6)";
-    b.step(&if ecp5 { format!("{title}; per-n fit ROM read {{m_n, a_n}}") } else { title.to_string() });
+    b.step(&if ecp5 {
+        format!("{title}; per-n fit ROM read {{m_n, a_n}}")
+    } else {
+        title.to_string()
+    });
     if ecp5 {
         b.rom_read_registered("fit", t, "n");
     }
     let p = b.add_start(
         "one_minus_cos",
         &[Piece::sig("cos_clamped_n", 0, cb)],
-        &[Piece::Const { value: (1u128 << f) + 1, width: cb }],
+        &[Piece::Const {
+            value: (1u128 << f) + 1,
+            width: cb,
+        }],
         false,
         cb,
         &format!("UQ1.{f}: 1 - c, exact"),
@@ -393,22 +495,57 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let mut complement = Piece::sig("deviation_n", 0, pb);
     if w.a_bits > dsp && cb <= dsp {
         let t = "deviation a_n*(1 - cos) (multiplier 7)";
-        b.step(&format!("{t}: a_lo*(1 - cos) (one DSP); the partial products of a_hi*(1 - cos)"));
+        b.step(&format!(
+            "{t}: a_lo*(1 - cos) (one DSP); the partial products of a_hi*(1 - cos)"
+        ));
         let lw = dsp + cb;
-        b.product("deviation_lo", &[Piece::sig("fit", 0, dsp)], &[Piece::sig("one_minus_cos", 0, cb)], lw, &format!("a_n[{}:0]*(1 - cos), exact", dsp - 1));
+        b.product(
+            "deviation_lo",
+            &[Piece::sig("fit", 0, dsp)],
+            &[Piece::sig("one_minus_cos", 0, cb)],
+            lw,
+            &format!("a_n[{}:0]*(1 - cos), exact", dsp - 1),
+        );
         let hw = pb - dsp;
-        let mut terms = b.partial_products("deviation_hi", &Piece::sig("one_minus_cos", 0, cb), &Piece::sig("fit", dsp, w.a_bits - dsp), 0, hw, false);
+        let mut terms = b.partial_products(
+            "deviation_hi",
+            &Piece::sig("one_minus_cos", 0, cb),
+            &Piece::sig("fit", dsp, w.a_bits - dsp),
+            0,
+            hw,
+            false,
+        );
         b.product_delay(dsp, cb, lw, Delay::ZERO);
         // (the block's output read by the carry-save layers from a flip-flop of its own: a
         // MULT18X18D's 1.5-1.8 ns route into two LUT levels held fitted at 246 MHz on the ECP5)
         b.fabric_register_step(&format!("{t}: a_lo*(1 - cos) registered in the fabric"));
         terms.push(vec![Piece::sig("deviation_lo", dsp, lw - dsp)]);
-        let p = b.sum_start("deviation_hi", terms, hw, t, &format!("a_n[{}:{dsp}]*(1 - cos) + a_n[{}:0]*(1 - cos)/2^{dsp}, exact", w.a_bits - 1, dsp - 1));
+        let p = b.sum_start(
+            "deviation_hi",
+            terms,
+            hw,
+            t,
+            &format!(
+                "a_n[{}:{dsp}]*(1 - cos) + a_n[{}:0]*(1 - cos)/2^{dsp}, exact",
+                w.a_bits - 1,
+                dsp - 1
+            ),
+        );
         let hi = b.resolve(p, t);
         let (hv, lv) = (b.r(&hi), b.bits("deviation_lo", dsp - 1, 0));
         // complemented here, in the LUTs that pick the sum's chunks, so that the add below
         // takes it straight into its carry chain
-        b.wire("deviation_n", pb, Kind::Logic, ex!("~{{{}, {}}}", hv, lv), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
+        b.wire(
+            "deviation_n",
+            pb,
+            Kind::Logic,
+            ex!("~{{{}, {}}}", hv, lv),
+            &format!(
+                "~P, P = a_n*(1 - cos) in UQ{}.{}, exact",
+                pb - ka - f,
+                ka + f
+            ),
+        );
     } else {
         b.step("deviation a_n*(1 - cos) (multiplier 7)");
         b.product(
@@ -422,7 +559,17 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
             complement = Piece::not("deviation", 0, pb);
         } else {
             let d = b.r("deviation");
-            b.wire("deviation_n", pb, Kind::Logic, ex!("~{}", d), &format!("~P, P = a_n*(1 - cos) in UQ{}.{}, exact", pb - ka - f, ka + f));
+            b.wire(
+                "deviation_n",
+                pb,
+                Kind::Logic,
+                ex!("~{}", d),
+                &format!(
+                    "~P, P = a_n*(1 - cos) in UQ{}.{}, exact",
+                    pb - ka - f,
+                    ka + f
+                ),
+            );
         }
     }
 
@@ -436,17 +583,36 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let db = w.diff_bits;
     let p = b.add_start(
         "diff",
-        &[complement, Piece::Const { value: mask(db - pb), width: db - pb }],
-        &[Piece::Const { value: (1u128 << (ka + f)) + 1, width: db }],
+        &[
+            complement,
+            Piece::Const {
+                value: mask(db - pb),
+                width: db - pb,
+            },
+        ],
+        &[Piece::Const {
+            value: (1u128 << (ka + f)) + 1,
+            width: db,
+        }],
         false,
         db,
-        &format!("S{}.{}: 1 - a_n*(1 - cos), exact (two's complement)", db - ka - f, ka + f),
+        &format!(
+            "S{}.{}: 1 - a_n*(1 - cos), exact (two's complement)",
+            db - ka - f,
+            ka + f
+        ),
     );
     b.resolve(p, title);
 
     b.step("key block (13) and truncation #1");
     let sign = b.bits("diff", db - 1, db - 1);
-    b.wire("done", 1, Kind::Select, sign.clone(), "the bracket is negative: beyond the highlight");
+    b.wire(
+        "done",
+        1,
+        Kind::Select,
+        sign.clone(),
+        "the bracket is negative: beyond the highlight",
+    );
     let x0 = if ka + f >= wf {
         b.bits("diff", ka + f, ka + f - wf)
     } else {
@@ -496,7 +662,13 @@ pub fn datapath(cfg: &Config, fit: &Fit, w: &FittedWidths, b: &mut Builder) {
     let sum = b.resolve(p, title);
     b.colour_results(wc, "S");
     let e = b.bits(&sum, fi + 1, 1);
-    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S rounded half up"));
+    b.wire(
+        "intensity",
+        fi + 1,
+        Kind::Select,
+        e,
+        &format!("UQ1.{fi}: S rounded half up"),
+    );
 }
 
 /// Squaring `j` of `m_max` (squarer 11): power_j = power_(j-1)^2 floored, or power_(j-1) when
@@ -507,7 +679,9 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
     let prev = format!("power{}", j - 1);
     let hi_bits = if sq_split {
         let t = format!("squaring {j} of {m_max}: T = 2*hi*lo + lo^2/2^{r}");
-        b.step(&format!("{t}: the partial products of 2*hi*lo; lo^2 by a table"));
+        b.step(&format!(
+            "{t}: the partial products of 2*hi*lo; lo^2 by a table"
+        ));
         let tw = dsp + r + 2;
         let (ll, tn) = (format!("square{j}_ll"), format!("square{j}_t"));
         let terms = if r > LUT_INPUTS {
@@ -516,19 +690,58 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
             // (the first two terms of lo^2 are multiples of 2^r) and l'^2 < 2^(2r-2) leaves
             // bit r-2 of its floor clear for t: a table of r-1 bits, one LUT level, not two
             let l = r - 1;
-            b.square_table(&ll, &prev, 0, l, &format!("l'^2 by table, power{} = hi*2^{r} + t*2^{l} + l'", j - 1));
-            let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, l), 1, tw, false);
+            b.square_table(
+                &ll,
+                &prev,
+                0,
+                l,
+                &format!("l'^2 by table, power{} = hi*2^{r} + t*2^{l} + l'", j - 1),
+            );
+            let mut terms = b.partial_products(
+                &tn,
+                &Piece::sig(&prev, r, dsp),
+                &Piece::sig(&prev, 0, l),
+                1,
+                tw,
+                false,
+            );
             let t_bit = b.bits(&prev, l, l);
             // (its r + dsp significant bits a wire, the zeros above it pieces the sum sees)
-            let hl = b.pieces(&[Piece::sig(&prev, 0, l), Piece::zeros(1), Piece::sig(&prev, r, dsp)]);
+            let hl = b.pieces(&[
+                Piece::sig(&prev, 0, l),
+                Piece::zeros(1),
+                Piece::sig(&prev, r, dsp),
+            ]);
             let top = format!("{tn}_top");
-            b.wire(&top, dsp + r, Kind::Logic, Builder::gate(&t_bit, &hl, dsp + r), "t*(hi*2^r + l'): the partial product of lo's top bit");
-            terms.push(vec![Piece::sig(&top, 0, dsp + r), Piece::zeros(tw - dsp - r)]);
+            b.wire(
+                &top,
+                dsp + r,
+                Kind::Logic,
+                Builder::gate(&t_bit, &hl, dsp + r),
+                "t*(hi*2^r + l'): the partial product of lo's top bit",
+            );
+            terms.push(vec![
+                Piece::sig(&top, 0, dsp + r),
+                Piece::zeros(tw - dsp - r),
+            ]);
             terms.push(vec![Piece::sig(&ll, r, r - 2), Piece::sig(&prev, l, 1)]);
             terms
         } else {
-            b.square_table(&ll, &prev, 0, r, &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1));
-            let mut terms = b.partial_products(&tn, &Piece::sig(&prev, r, dsp), &Piece::sig(&prev, 0, r), 1, tw, false);
+            b.square_table(
+                &ll,
+                &prev,
+                0,
+                r,
+                &format!("lo^2 by table, power{} = hi*2^{r} + lo", j - 1),
+            );
+            let mut terms = b.partial_products(
+                &tn,
+                &Piece::sig(&prev, r, dsp),
+                &Piece::sig(&prev, 0, r),
+                1,
+                tw,
+                false,
+            );
             terms.push(vec![Piece::sig(&ll, r, r)]);
             terms
         };
@@ -539,31 +752,70 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
         let square = if b.instantiated_blocks() {
             // the MULT18X18D has no adder: hi^2 alone on it (with its own registers where
             // the cuts allow), T added after it on a carry chain
-            b.step(&format!("squaring {j} of {m_max} (squarer 11): hi^2 (one DSP)"));
+            b.step(&format!(
+                "squaring {j} of {m_max} (squarer 11): hi^2 (one DSP)"
+            ));
             let hh = format!("square{j}_hh");
-            b.product(&hh, &[Piece::sig(&prev, r, dsp)], &[Piece::sig(&prev, r, dsp)], zw, &format!("hi^2, power{} = hi*2^{r} + lo, exact", j - 1));
-            b.fabric_register_step(&format!("squaring {j} of {m_max}: hi^2 registered in the fabric"));
+            b.product(
+                &hh,
+                &[Piece::sig(&prev, r, dsp)],
+                &[Piece::sig(&prev, r, dsp)],
+                zw,
+                &format!("hi^2, power{} = hi*2^{r} + lo, exact", j - 1),
+            );
+            b.fabric_register_step(&format!(
+                "squaring {j} of {m_max}: hi^2 registered in the fabric"
+            ));
             b.step(&format!("squaring {j} of {m_max}: Z = hi^2 + T/2^{r}"));
-            b.add(&format!("square{j}"), &[Piece::sig(&hh, 0, zw)], &[tn.part(r, tw - r)], false, zw, &what)
+            b.add(
+                &format!("square{j}"),
+                &[Piece::sig(&hh, 0, zw)],
+                &[tn.part(r, tw - r)],
+                false,
+                zw,
+                &what,
+            )
         } else {
             // a step that only registers T: the DSP's input registers take their operands
             // from a flip-flop (a route to the DSP column), not from the LUTs that picked
             // T's chunks
             b.register_only_step(&format!("{t}: registered for the DSP"));
-            b.step(&format!("squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"));
-            let (h, th) = ([Piece::sig(&prev, r, dsp)], [Piece::sig(tn.as_ref(), r, tw - r)]);
-            let what = format!("{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}", wf + 1, wf + 1);
-            b.mul(&format!("square{j}"), zw, (&h, dsp), (&h, dsp), &th, Delay::ZERO, &what)
+            b.step(&format!(
+                "squaring {j} of {m_max} (squarer 11): Z = hi^2 + T/2^{r} (multiply-add)"
+            ));
+            let (h, th) = (
+                [Piece::sig(&prev, r, dsp)],
+                [Piece::sig(tn.as_ref(), r, tw - r)],
+            );
+            let what = format!(
+                "{what}: a {dsp}x{dsp} multiply-add (one DSP) instead of {}x{}",
+                wf + 1,
+                wf + 1
+            );
+            b.mul(
+                &format!("square{j}"),
+                zw,
+                (&h, dsp),
+                (&h, dsp),
+                &th,
+                Delay::ZERO,
+                &what,
+            )
         };
         // the bypass in a step of its own: the DSP's output meets only a flip-flop
         b.step(&format!("squaring {j} of {m_max}: bypassed when m_n < {j}"));
         b.delay(LUT_DELAY);
         b.bits(&square, 2 * wf - 2 * r, wf - 2 * r)
     } else {
-        b.step(&format!("squaring {j} of {m_max} (squarer 11): the product alone"));
+        b.step(&format!(
+            "squaring {j} of {m_max} (squarer 11): the product alone"
+        ));
         let sq = 2 * wf + 2;
         let p = [Piece::sig(&prev, 0, wf + 1)];
-        let (square, what) = (format!("square{j}"), format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1));
+        let (square, what) = (
+            format!("square{j}"),
+            format!("UQ2.{}: power{}^2, exact", 2 * wf, j - 1),
+        );
         if b.instantiated_blocks() {
             // a MULT18X18D with its own registers where the cuts allow
             b.product(&square, &p, &p, sq, &what);
@@ -584,7 +836,11 @@ fn squaring(w: &FittedWidths, b: &mut Builder, j: u32, m_max: u32, r: u32, sq_sp
         wf + 1,
         Kind::Logic,
         ex!("{} ? {} : {}", m_test, hi_bits, keep),
-        &format!("UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}", j + 1, j - 1),
+        &format!(
+            "UQ1.{wf}: bracket^(2^{j}) floored (truncation #{}), or power{} when m_n < {j}",
+            j + 1,
+            j - 1
+        ),
     );
 }
 
@@ -598,7 +854,12 @@ pub fn cached_fit(cfg: &Config) -> Arc<Fit> {
         return f.clone();
     }
     let fit = Arc::new(fit(cfg));
-    cache.lock().expect("fit cache").entry(key).or_insert(fit).clone()
+    cache
+        .lock()
+        .expect("fit cache")
+        .entry(key)
+        .or_insert(fit)
+        .clone()
 }
 
 /// The fitted unit of one configuration: its fit and its widths.
@@ -613,7 +874,11 @@ impl Fitted {
     pub fn new(cfg: &Config) -> Fitted {
         let fit = cached_fit(cfg);
         let widths = FittedWidths::derive(cfg, &fit);
-        Fitted { cfg: cfg.clone(), fit, widths }
+        Fitted {
+            cfg: cfg.clone(),
+            fit,
+            widths,
+        }
     }
 
     /// `S` with the stored `a_n`, in floating point.
@@ -685,12 +950,22 @@ impl SpecularUnit for Fitted {
                 t.m,
                 1u32 << t.m
             ),
-            format!("datapath   one_minus_cos = {}  a_n*(1 - cos) = {}  done = {}", t.one_minus_cos, t.product, t.done),
+            format!(
+                "datapath   one_minus_cos = {}  a_n*(1 - cos) = {}  done = {}",
+                t.one_minus_cos, t.product, t.done
+            ),
         ];
         for j in 0..=cfg.max_squarings() as usize {
-            lines.push(format!("           power{j} = {} (UQ1.{wf} = {:.9})", t.squares[j], t.squares[j] as f64 / (wf as f64).exp2()));
+            lines.push(format!(
+                "           power{j} = {} (UQ1.{wf} = {:.9})",
+                t.squares[j],
+                t.squares[j] as f64 / (wf as f64).exp2()
+            ));
         }
-        lines.push(explain_ideal(self.ideal(x), "(the fitted formula with the stored a_n)"));
+        lines.push(explain_ideal(
+            self.ideal(x),
+            "(the fitted formula with the stored a_n)",
+        ));
         lines
     }
 }

@@ -79,7 +79,14 @@ pub trait SpecularUnit: Send + Sync + std::fmt::Debug {
     /// [`blinn_fidelity`] measures a row at a time, `eval` inlined with the colour products it
     /// does not read left out.
     fn intensity_row(&self, n: u32, codes: &[u32], out: &mut Vec<u32>) {
-        out.extend(codes.iter().map(|&cos_g| self.eval(Inputs { cos_g, n, ks: [0; 3] }).intensity));
+        out.extend(codes.iter().map(|&cos_g| {
+            self.eval(Inputs {
+                cos_g,
+                n,
+                ks: [0; 3],
+            })
+            .intensity
+        }));
     }
 
     /// Checks outputs against this model's contract (its exact reference): `Err` says which
@@ -161,15 +168,26 @@ pub struct Model {
 impl Model {
     /// The model of a configuration (its fit or tables made here).
     pub fn new(cfg: &Config) -> Model {
-        Model { cfg: cfg.clone(), unit: unit(cfg), fidelity: Arc::default() }
+        Model {
+            cfg: cfg.clone(),
+            unit: unit(cfg),
+            fidelity: Arc::default(),
+        }
     }
 
     /// This model under another configuration that differs only in `stages` (or nothing the
     /// arithmetic depends on): the fit or tables are shared, not made again.
     pub(crate) fn with_config(&self, cfg: Config) -> Model {
-        let same = |c: &Config| crate::config::Params { stages: 0, ..c.params.clone() };
+        let same = |c: &Config| crate::config::Params {
+            stages: 0,
+            ..c.params.clone()
+        };
         debug_assert_eq!(same(&cfg), same(&self.cfg), "only stages may differ");
-        Model { cfg, unit: self.unit.clone(), fidelity: self.fidelity.clone() }
+        Model {
+            cfg,
+            unit: self.unit.clone(),
+            fidelity: self.fidelity.clone(),
+        }
     }
 
     /// How far this model is from Blinn's `cos^n` ([`blinn_fidelity`]), measured on first use.
@@ -205,7 +223,9 @@ impl Model {
     /// The last `cos_g` code with a non-zero output, or the cut-off, for each n: the
     /// boundary a test stimulus should visit.
     pub(crate) fn boundaries(&self) -> Vec<u32> {
-        (0..1u32 << self.cfg.n_bits()).map(|n| self.boundary(n)).collect()
+        (0..1u32 << self.cfg.n_bits())
+            .map(|n| self.boundary(n))
+            .collect()
     }
 
     /// [`Model::boundaries`] for one n.
@@ -214,7 +234,15 @@ impl Model {
             return c;
         }
         // outputs are monotone in cos_g: bisect for the first code with intensity > 0
-        let nz = |c: u32| self.eval(Inputs { cos_g: c, n, ks: [0; 3] }).intensity > 0;
+        let nz = |c: u32| {
+            self.eval(Inputs {
+                cos_g: c,
+                n,
+                ks: [0; 3],
+            })
+            .intensity
+                > 0
+        };
         let (mut lo, mut hi) = (0u32, 1u32 << self.cfg.f());
         if nz(0) {
             return 0;
@@ -244,7 +272,10 @@ pub fn scaled(cfg: &Config, s: f64, x: Inputs) -> (f64, [f64; 3]) {
 /// The `exact` line of `specgen eval`: the ideal outputs, then `tail` (what they are).
 pub(crate) fn explain_ideal(ideal: (f64, [f64; 3]), tail: &str) -> String {
     let (i, s) = ideal;
-    format!("exact      intensity* = {i:.9}  spec* = [{:.6}, {:.6}, {:.6}]  {tail}", s[0], s[1], s[2])
+    format!(
+        "exact      intensity* = {i:.9}  spec* = [{:.6}, {:.6}, {:.6}]  {tail}",
+        s[0], s[1], s[2]
+    )
 }
 
 /// An ideal output value `num / 2^den_log2`, exact.
@@ -272,7 +303,12 @@ impl Ideal {
 }
 
 /// Checks one output (`port`) against its ideal under the rounding contract.
-pub(crate) fn check_value(port: &'static str, rounding: Rounding, got: u32, ideal: Ideal) -> Result<(), Error> {
+pub(crate) fn check_value(
+    port: &'static str,
+    rounding: Rounding,
+    got: u32,
+    ideal: Ideal,
+) -> Result<(), Error> {
     let scaled = (got as u128) << ideal.den_log2;
     let diff = scaled.abs_diff(ideal.num);
     let ok = match rounding {
@@ -282,7 +318,15 @@ pub(crate) fn check_value(port: &'static str, rounding: Rounding, got: u32, idea
     if ok {
         Ok(())
     } else {
-        Err(Error::breach(port, format!("got {got}, ideal {} ({}/2^{})", ideal.to_f64(), ideal.num, ideal.den_log2)))
+        Err(Error::breach(
+            port,
+            format!(
+                "got {got}, ideal {} ({}/2^{})",
+                ideal.to_f64(),
+                ideal.num,
+                ideal.den_log2
+            ),
+        ))
     }
 }
 
@@ -326,16 +370,25 @@ pub(crate) fn check_cos_n(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), E
     let scaled = |v: u128| v as f64 / (q as f64).exp2();
     if !within(got.intensity, 1u128 << cfg.fi()) {
         let (l, h) = (scaled(lo << cfg.fi()), scaled(hi << cfg.fi()));
-        return Err(Error::breach("intensity", format!("got {}, cos^n·2^FI in [{l}, {h}]", got.intensity)));
+        return Err(Error::breach(
+            "intensity",
+            format!("got {}, cos^n·2^FI in [{l}, {h}]", got.intensity),
+        ));
     }
     for (i, name) in SPEC_PORTS.iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
             let (l, h) = (scaled(lo * x.ks[i] as u128), scaled(hi * x.ks[i] as u128));
-            return Err(Error::breach(name, format!("got {}, cos^n·ks in [{l}, {h}]", got.spec[i])));
+            return Err(Error::breach(
+                name,
+                format!("got {}, cos^n·ks in [{l}, {h}]", got.spec[i]),
+            ));
         }
     }
     if got.done != (got.intensity == 0) {
-        return Err(Error::breach("done", format!("got {}, intensity {}", got.done, got.intensity)));
+        return Err(Error::breach(
+            "done",
+            format!("got {}, intensity {}", got.done, got.intensity),
+        ));
     }
     Ok(())
 }
@@ -400,12 +453,26 @@ fn faithful_pixel_bound(cfg: &crate::config::Config) -> Option<f64> {
 /// to `[0, 1]`: `lo[i]` is code i's bottom, `hi[i]` its top.
 fn pixel_ends(codes: &[u32], one: u32) -> (Vec<f64>, Vec<f64>) {
     let end = |x: f64| (x / one as f64).clamp(0.0, 1.0);
-    (codes.iter().map(|&q| end(q as f64 - 0.5)).collect(), codes.iter().map(|&q| end(q as f64 + 0.5)).collect())
+    (
+        codes.iter().map(|&q| end(q as f64 - 0.5)).collect(),
+        codes.iter().map(|&q| end(q as f64 + 0.5)).collect(),
+    )
 }
 
 /// `∫ |i − c^n| dc` and `∫ (i − c^n)² dc` over `[lo, hi]`, from the powers of the ends.
 #[allow(clippy::too_many_arguments)]
-fn pixel_integrals(i: f64, n: u32, lo: f64, hi: f64, lo_n: f64, hi_n: f64, lo_n1: f64, hi_n1: f64, lo_2n1: f64, hi_2n1: f64) -> (f64, f64) {
+fn pixel_integrals(
+    i: f64,
+    n: u32,
+    lo: f64,
+    hi: f64,
+    lo_n: f64,
+    hi_n: f64,
+    lo_n1: f64,
+    hi_n1: f64,
+    lo_2n1: f64,
+    hi_2n1: f64,
+) -> (f64, f64) {
     let w = hi - lo;
     let n1 = (n + 1) as f64;
     let area = (hi_n1 - lo_n1) / n1;
@@ -428,7 +495,10 @@ impl Fidelity {
     pub fn method(&self) -> String {
         match self.stride {
             1 => format!("every (cos_g <= 2^F, n): {} points", self.points),
-            s => format!("every {s}th cos_g code (and 1.0) for every n: {} points", self.points),
+            s => format!(
+                "every {s}th cos_g code (and 1.0) for every n: {} points",
+                self.points
+            ),
         }
     }
     /// How [`Fidelity::pixel`] was measured.
@@ -481,7 +551,8 @@ fn fidelity_within(m: &Model, points: u64) -> Fidelity {
         let handles: Vec<_> = (0..threads)
             .map(|t| {
                 s.spawn(move || {
-                    let (mut max, mut sum, mut squares_sum, mut wn, mut wc, mut count) = (0.0f64, 0.0f64, 0.0f64, 0u32, 0u32, 0u64);
+                    let (mut max, mut sum, mut squares_sum, mut wn, mut wc, mut count) =
+                        (0.0f64, 0.0f64, 0.0f64, 0u32, 0u32, 0u64);
                     let mut per_n = Vec::new();
                     let (mut got, mut powers, mut squares) = (Vec::new(), Vec::new(), Vec::new());
                     let mut ends: [Vec<f64>; 6] = Default::default();
@@ -489,7 +560,15 @@ fn fidelity_within(m: &Model, points: u64) -> Fidelity {
                     for n in (t..n_count).step_by(threads as usize) {
                         // below the row's first non-zero output every output is zero
                         // (monotone in cos_g), so only the rest is evaluated
-                        let zeros = codes.partition_point(|&c| m.eval(Inputs { cos_g: c, n, ks: [0; 3] }).intensity == 0);
+                        let zeros = codes.partition_point(|&c| {
+                            m.eval(Inputs {
+                                cos_g: c,
+                                n,
+                                ks: [0; 3],
+                            })
+                            .intensity
+                                == 0
+                        });
                         got.clear();
                         got.resize(zeros, 0);
                         m.unit().intensity_row(n, &codes[zeros..], &mut got);
@@ -521,11 +600,18 @@ fn fidelity_within(m: &Model, points: u64) -> Fidelity {
                             } else {
                                 // the codes up to the next visited one: intensities in
                                 // [I(j), I(j+1)], cosines in [lo(j), lo(j+1)]
-                                let (top_i, top_c) = if j < last { (got[j + 1] as f64 / scale, lo_n[j + 1]) } else { (i, hi_n[j]) };
+                                let (top_i, top_c) = if j < last {
+                                    (got[j + 1] as f64 / scale, lo_n[j + 1])
+                                } else {
+                                    (i, hi_n[j])
+                                };
                                 (top_i - lo_n[j]).max(top_c - i)
                             };
                             pixel[0] = pixel[0].max(worst);
-                            let (a, q) = pixel_integrals(i, n, los[j], his[j], lo_n[j], hi_n[j], lo_n1[j], hi_n1[j], lo_2n1[j], hi_2n1[j]);
+                            let (a, q) = pixel_integrals(
+                                i, n, los[j], his[j], lo_n[j], hi_n[j], lo_n1[j], hi_n1[j],
+                                lo_2n1[j], hi_2n1[j],
+                            );
                             pixel[1] += a;
                             pixel[2] += q;
                             pixel[3] += his[j] - los[j];
@@ -535,7 +621,10 @@ fn fidelity_within(m: &Model, points: u64) -> Fidelity {
                 })
             })
             .collect();
-        handles.into_iter().map(|h| h.join().expect("fidelity thread")).collect()
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("fidelity thread"))
+            .collect()
     });
     let mut f = Fidelity {
         max: 0.0,
@@ -546,7 +635,10 @@ fn fidelity_within(m: &Model, points: u64) -> Fidelity {
         points: 0,
         stride,
         per_n_max: vec![0.0; n_count as usize],
-        pixel: Pixel { bound: stride > 1, ..Pixel::default() },
+        pixel: Pixel {
+            bound: stride > 1,
+            ..Pixel::default()
+        },
     };
     let (mut sum, mut squares) = (0.0, 0.0);
     let mut pixel = [0.0f64; 4];
@@ -613,7 +705,10 @@ mod tests {
 
     #[test]
     fn a_row_of_powers_is_powi_bit_for_bit() {
-        let cs: Vec<f64> = (0..=4096u32).map(|c| c as f64 / 4096.0).chain([0.3, 0.7, 1e-3, 0.999_999]).collect();
+        let cs: Vec<f64> = (0..=4096u32)
+            .map(|c| c as f64 / 4096.0)
+            .chain([0.3, 0.7, 1e-3, 0.999_999])
+            .collect();
         let (mut out, mut sq) = (Vec::new(), Vec::new());
         for n in (0..=1100).chain([4095, 65535]) {
             powi_row(&cs, n, &mut out, &mut sq);
@@ -629,7 +724,14 @@ mod tests {
     #[test]
     fn the_error_at_the_pixel_is_the_real_cosines() {
         for model in [SpecularModel::Quadratic, SpecularModel::Blinn] {
-            let cfg = Config::new(crate::config::Params { model, n_bits: 4, cos_frac_bits: 6, intensity_frac_bits: 8, ..Default::default() }).unwrap();
+            let cfg = Config::new(crate::config::Params {
+                model,
+                n_bits: 4,
+                cos_frac_bits: 6,
+                intensity_frac_bits: 8,
+                ..Default::default()
+            })
+            .unwrap();
             let m = Model::new(&cfg);
             let f = blinn_fidelity(&m);
             assert_eq!(f.stride, 1);
@@ -640,7 +742,14 @@ mod tests {
                 for s in 0..=samples {
                     let c = s as f64 / samples as f64;
                     let q = (c * one).round() as u32;
-                    let i = m.eval(Inputs { cos_g: q, n, ks: [0; 3] }).intensity as f64 / 256.0;
+                    let i = m
+                        .eval(Inputs {
+                            cos_g: q,
+                            n,
+                            ks: [0; 3],
+                        })
+                        .intensity as f64
+                        / 256.0;
                     let e = (i - c.powi(n as i32)).abs();
                     max = max.max(e);
                     sum += e;
@@ -648,16 +757,39 @@ mod tests {
                 }
             }
             let count = 16.0 * (samples + 1) as f64;
-            assert!(f.pixel.max >= max && f.pixel.max <= max + 16.0 / samples as f64, "{model:?}: {} vs sampled {max}", f.pixel.max);
-            assert!((f.pixel.mean - sum / count).abs() < 1e-4, "{model:?}: mean {} vs {}", f.pixel.mean, sum / count);
-            assert!((f.pixel.rms - (squares / count).sqrt()).abs() < 1e-4, "{model:?}: rms {} vs {}", f.pixel.rms, (squares / count).sqrt());
+            assert!(
+                f.pixel.max >= max && f.pixel.max <= max + 16.0 / samples as f64,
+                "{model:?}: {} vs sampled {max}",
+                f.pixel.max
+            );
+            assert!(
+                (f.pixel.mean - sum / count).abs() < 1e-4,
+                "{model:?}: mean {} vs {}",
+                f.pixel.mean,
+                sum / count
+            );
+            assert!(
+                (f.pixel.rms - (squares / count).sqrt()).abs() < 1e-4,
+                "{model:?}: rms {} vs {}",
+                f.pixel.rms,
+                (squares / count).sqrt()
+            );
             // the rounding's own cost is in it: never below the error at the codes
             assert!(f.pixel.max >= f.max);
             let strided = fidelity_within(&m, 200);
             assert!(strided.stride > 1 && strided.pixel.bound);
-            assert!(strided.pixel.max >= f.pixel.max, "a stride's bound {} below the exact {}", strided.pixel.max, f.pixel.max);
+            assert!(
+                strided.pixel.max >= f.pixel.max,
+                "a stride's bound {} below the exact {}",
+                strided.pixel.max,
+                f.pixel.max
+            );
             if let Some(b) = faithful_pixel_bound(&cfg) {
-                assert!(b >= f.pixel.max && b <= f.pixel.max + 2.0 / 256.0, "{model:?}: the faithful bound {b} against the exact {}", f.pixel.max);
+                assert!(
+                    b >= f.pixel.max && b <= f.pixel.max + 2.0 / 256.0,
+                    "{model:?}: the faithful bound {b} against the exact {}",
+                    f.pixel.max
+                );
             }
         }
     }
@@ -665,12 +797,38 @@ mod tests {
     #[test]
     fn every_model_is_in_the_registry() {
         for model in SpecularModel::ALL {
-            let cfg = Config::new(crate::config::Params { model, n_bits: 4, ..Default::default() }).unwrap();
+            let cfg = Config::new(crate::config::Params {
+                model,
+                n_bits: 4,
+                ..Default::default()
+            })
+            .unwrap();
             let m = Model::new(&cfg);
             // n = 0 gives 1 in every model; c = 1.0 gives full scale
-            let o = m.eval(Inputs { cos_g: 3, n: 0, ks: [255, 1, 0] });
-            assert_eq!(o, Outputs { spec: [255, 1, 0], intensity: 1 << 15, done: false }, "{model:?}");
-            assert!(m.check(Inputs { cos_g: 3, n: 0, ks: [255, 1, 0] }, o).is_ok());
+            let o = m.eval(Inputs {
+                cos_g: 3,
+                n: 0,
+                ks: [255, 1, 0],
+            });
+            assert_eq!(
+                o,
+                Outputs {
+                    spec: [255, 1, 0],
+                    intensity: 1 << 15,
+                    done: false
+                },
+                "{model:?}"
+            );
+            assert!(m
+                .check(
+                    Inputs {
+                        cos_g: 3,
+                        n: 0,
+                        ks: [255, 1, 0]
+                    },
+                    o
+                )
+                .is_ok());
             assert!(!m.unit().describe().formula.is_empty());
         }
     }

@@ -133,15 +133,32 @@ pub(crate) const SYSTEMVERILOG_KEYWORDS: &[&str] = &[
 
 /// Modules the tools specgen runs the unit with already define: the harnesses' tops and the
 /// FPGA primitives a unit instantiates or synthesizes to.
-pub(crate) const TOOL_MODULES: &[&str] =
-    &["specgen_cosim_top", "specgen_icarus_bench", "specgen_synth_top", "MULT18X18D", "DP16KD", "SB_MAC16", "SB_RAM40_4K", "SB_LUT4", "SB_CARRY", "SB_DFF"];
+pub(crate) const TOOL_MODULES: &[&str] = &[
+    "specgen_cosim_top",
+    "specgen_icarus_bench",
+    "specgen_synth_top",
+    "MULT18X18D",
+    "DP16KD",
+    "SB_MAC16",
+    "SB_RAM40_4K",
+    "SB_LUT4",
+    "SB_CARRY",
+    "SB_DFF",
+];
 
 /// Every module of yosys's iCE40, ECP5 and Gowin cell libraries, 0.23 and 0.70 (`data/cell_names.txt`).
 pub(crate) const CELL_NAMES: &str = include_str!("../../data/cell_names.txt");
 
 /// The modules a unit derives from its top (`<top>_out_buffer`, …): a top ending so could be
 /// another unit's derived module.
-pub(crate) const DERIVED_SUFFIXES: &[&str] = &["_out_buffer", "_mult18x18", "_rom1k18", "_delay_ram", "_tb", "_tb_ports"];
+pub(crate) const DERIVED_SUFFIXES: &[&str] = &[
+    "_out_buffer",
+    "_mult18x18",
+    "_rom1k18",
+    "_delay_ram",
+    "_tb",
+    "_tb_ports",
+];
 
 pub(crate) const VERILOG_KEYWORDS: &[&str] = &[
     "always",
@@ -285,9 +302,11 @@ pub(crate) const VERILOG_KEYWORDS: &[&str] = &[
 /// of them would be hidden by it inside the module (Verilator VARHIDDEN).
 pub fn is_internal_name(name: &str) -> bool {
     const TABLES: &[&str] = &["cos_sp_rom", "fit_rom", "log2_rom", "exp2_rom", "recip_rom"];
-    let step_or_cut = name
-        .rsplit_once('_')
-        .is_some_and(|(_, tail)| tail.len() > 1 && (tail.starts_with('s') || tail.starts_with('c')) && tail[1..].bytes().all(|b| b.is_ascii_digit()));
+    let step_or_cut = name.rsplit_once('_').is_some_and(|(_, tail)| {
+        tail.len() > 1
+            && (tail.starts_with('s') || tail.starts_with('c'))
+            && tail[1..].bytes().all(|b| b.is_ascii_digit())
+    });
     crate::ports::NAMES.contains(&name)
         || TABLES.contains(&name)
         || step_or_cut
@@ -296,7 +315,10 @@ pub fn is_internal_name(name: &str) -> bool {
         || name.ends_with("_FILE")
         || name.ends_with("_line")
         || name.contains("_line_")
-        || TABLES.iter().any(|t| name.strip_prefix(t).is_some_and(|r| r == "_sum" || r == "_i"))
+        || TABLES.iter().any(|t| {
+            name.strip_prefix(t)
+                .is_some_and(|r| r == "_sum" || r == "_i")
+        })
         || INTERNAL_NAMES.contains(&name)
 }
 
@@ -321,7 +343,10 @@ pub(crate) const INTERNAL_NAMES: &[&str] = &[
 /// identifier of at most 64 characters (no escaped names: the files quote nothing else).
 pub(crate) fn check_port_name(port: &str) -> Result<(), Error> {
     let ok = port.len() <= 64
-        && port.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && port
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
         && port.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     match ok {
         true => Ok(()),
@@ -334,20 +359,26 @@ pub(crate) fn check_port_name(port: &str) -> Result<(), Error> {
 
 /// `--top`: a legal Verilog-2005 simple identifier, not a keyword, and so never a path.
 pub(crate) fn check_identifier(top: &str) -> Result<(), Error> {
-    let err = |why: &str| Error::Config {
+    let err = |why: &str| {
+        Error::Config {
         parameter: "top",
         message: format!(
             "{top:?} {why}; allowed: a Verilog identifier [A-Za-z_][A-Za-z0-9_]* of at most 64 characters, not a keyword, not a port or internal name"
         ),
+    }
     };
     let mut chars = top.chars();
     match chars.next() {
         None => return Err(err("is empty")),
-        Some(c) if !(c.is_ascii_alphabetic() || c == '_') => return Err(err("does not start with a letter or underscore")),
+        Some(c) if !(c.is_ascii_alphabetic() || c == '_') => {
+            return Err(err("does not start with a letter or underscore"))
+        }
         _ => {}
     }
     if !chars.all(|c| c.is_ascii_alphanumeric() || c == '_') {
-        return Err(err("contains a character other than letters, digits and underscore"));
+        return Err(err(
+            "contains a character other than letters, digits and underscore",
+        ));
     }
     if top.len() > 64 {
         return Err(err("is too long"));
@@ -356,7 +387,9 @@ pub(crate) fn check_identifier(top: &str) -> Result<(), Error> {
         return Err(err("is a reserved word"));
     }
     if is_internal_name(top) {
-        return Err(err("is the name of a port or an internal signal of the unit"));
+        return Err(err(
+            "is the name of a port or an internal signal of the unit",
+        ));
     }
     if TOOL_MODULES.contains(&top) || CELL_NAMES.lines().any(|l| !l.starts_with('#') && l == top) {
         return Err(err("is a module the simulation or synthesis tools already define (a cell of an FPGA family's library)"));

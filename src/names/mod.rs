@@ -18,7 +18,9 @@ pub const ECP5_SIM_MODEL_SUFFIX: &str = "_ecp5_mult18x18d_sim.v";
 
 /// Whether a file name is one of the simulation-only models specgen writes (any unit's).
 pub fn is_sim_model_file(name: &str) -> bool {
-    [ECP5_SIM_MODEL_SUFFIX, ECP5_BRAM_MODEL_SUFFIX].iter().any(|s| name.len() > s.len() && name.ends_with(s))
+    [ECP5_SIM_MODEL_SUFFIX, ECP5_BRAM_MODEL_SUFFIX]
+        .iter()
+        .any(|s| name.len() > s.len() && name.ends_with(s))
 }
 
 /// The subdirectory of an output that holds the simulation models, so a flow that reads every

@@ -64,9 +64,22 @@ fn elaboration(text: &str) -> Elaboration {
         }
         if let Some(rest) = line.strip_prefix("wire ") {
             let words: Vec<&str> = rest.split_whitespace().collect();
-            let name = words.last().copied().unwrap_or("").trim_start_matches('\\').to_string();
-            let width = words.iter().position(|w| *w == "width").and_then(|i| words.get(i + 1)).and_then(|w| w.parse().ok()).unwrap_or(1);
-            if let Some(dir) = words.iter().find(|w| matches!(**w, "input" | "output" | "inout")) {
+            let name = words
+                .last()
+                .copied()
+                .unwrap_or("")
+                .trim_start_matches('\\')
+                .to_string();
+            let width = words
+                .iter()
+                .position(|w| *w == "width")
+                .and_then(|i| words.get(i + 1))
+                .and_then(|w| w.parse().ok())
+                .unwrap_or(1);
+            if let Some(dir) = words
+                .iter()
+                .find(|w| matches!(**w, "input" | "output" | "inout"))
+            {
                 e.ports.insert(name.clone(), (dir.to_string(), width));
             }
             if let Some(v) = init.take() {
@@ -91,40 +104,90 @@ pub(super) struct Checked {
 
 /// Proves that the unit of `design` as every step of its proof reads it (its `unit` files, as
 /// staged in `w`, with `defines`) is the design synthesis builds.
-pub(super) fn check(design: &Design, tools: &Tools, w: &Path, unit: &[String], defines: &[String]) -> Result<Checked, Error> {
+pub(super) fn check(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    unit: &[String],
+    defines: &[String],
+) -> Result<Checked, Error> {
     let (differs, lemma_port) = differs_from_built(design, tools, w, unit, defines)?;
-    Ok(Checked { differs, lemma_port })
+    Ok(Checked {
+        differs,
+        lemma_port,
+    })
 }
 
-fn differs_from_built(design: &Design, tools: &Tools, w: &Path, unit: &[String], defines: &[String]) -> Result<(Option<String>, bool), Error> {
+fn differs_from_built(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    unit: &[String],
+    defines: &[String],
+) -> Result<(Option<String>, bool), Error> {
     let top = design.cfg.top();
-    let libs: Vec<String> = match crate::family::of(design.cfg.target()).primitive_boxes().filter(|_| !design.sim_models.is_empty()) {
+    let libs: Vec<String> = match crate::family::of(design.cfg.target())
+        .primitive_boxes()
+        .filter(|_| !design.sim_models.is_empty())
+    {
         Some(lib) => vec![format!("-lib {lib}")],
         None => Vec::new(),
     };
     let script = |step: &str, formal_only: Vec<String>| -> Result<(), Error> {
-        let text =
-            BuiltScript { version: crate::names::VERSION, step, top, libs: &libs, unit, defines, formal_only }.render().expect("the script renders") + "\n";
+        let text = BuiltScript {
+            version: crate::names::VERSION,
+            step,
+            top,
+            libs: &libs,
+            unit,
+            defines,
+            formal_only,
+        }
+        .render()
+        .expect("the script renders")
+            + "\n";
         put(w, &format!("built_{step}.ys"), text)
     };
     let elaborate = |step: &str| -> Result<Elaboration, Error> {
         script(step, Vec::new())?;
-        match run(&tools.yosys, &["-q".into(), "-s".into(), format!("built_{step}.ys")], w, tools.limit) {
-            Err(e) if e.to_string().contains("select -assert-none") || e.to_string().contains("selection is not empty") => {
+        match run(
+            &tools.yosys,
+            &["-q".into(), "-s".into(), format!("built_{step}.ys")],
+            w,
+            tools.limit,
+        ) {
+            Err(e)
+                if e.to_string().contains("select -assert-none")
+                    || e.to_string().contains("selection is not empty") =>
+            {
                 // "Selection contains:\n<module>\n<module>/<wire>…": the modules named
                 let text = e.to_string();
-                let named: Vec<&str> = text.split("Selection contains:").nth(1).unwrap_or("").split_whitespace().filter(|m| !m.contains('/')).take(4).collect();
+                let named: Vec<&str> = text
+                    .split("Selection contains:")
+                    .nth(1)
+                    .unwrap_or("")
+                    .split_whitespace()
+                    .filter(|m| !m.contains('/'))
+                    .take(4)
+                    .collect();
                 return Err(error::input(format!(
                     "{}: a module of the unit takes the name of one of specgen's proof modules ({top}_prove_*, {top}_port_checker, {top}_datapath*, {top}_depth0*, {top}_delay_ram_contract*){}: it would stand in for the harness; rename it",
                     design.dir.display(),
                     if named.is_empty() { String::new() } else { format!(": {}", named.join(", ")) }
                 )));
             }
-            ran => {
-                ran?.ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not elaborate the unit within {} s (--time-limit)", tools.limit.as_secs())))?
-            }
+            ran => ran?.ok_or_else(|| {
+                error::tool(
+                    &tools.yosys,
+                    format!(
+                        "yosys did not elaborate the unit within {} s (--time-limit)",
+                        tools.limit.as_secs()
+                    ),
+                )
+            })?,
         };
-        let text = crate::small_file::read(&w.join(format!("{step}.il")), 1 << 30).map_err(|e| error::tool(&tools.yosys, format!("{step}.il: {e}")))?;
+        let text = crate::small_file::read(&w.join(format!("{step}.il")), 1 << 30)
+            .map_err(|e| error::tool(&tools.yosys, format!("{step}.il: {e}")))?;
         Ok(elaboration(&text))
     };
     let built = elaborate("built")?;
@@ -134,7 +197,8 @@ fn differs_from_built(design: &Design, tools: &Tools, w: &Path, unit: &[String],
     let clock = crate::emit::clock_port(&design.cfg);
     let mut refused: Vec<String> = Vec::new();
     for step in ["built", "formal"] {
-        let json = crate::small_file::read(&w.join(format!("{step}.json")), 1 << 30).map_err(|e| error::tool(&tools.yosys, format!("{step}.json: {e}")))?;
+        let json = crate::small_file::read(&w.join(format!("{step}.json")), 1 << 30)
+            .map_err(|e| error::tool(&tools.yosys, format!("{step}.json: {e}")))?;
         for why in super::netlist::refusals(&json, step, clock) {
             if !refused.contains(&why) {
                 refused.push(why);
@@ -142,35 +206,64 @@ fn differs_from_built(design: &Design, tools: &Tools, w: &Path, unit: &[String],
         }
     }
     if !refused.is_empty() {
-        let more = if refused.len() > 8 { format!("; and {} more", refused.len() - 8) } else { String::new() };
-        return Err(error::input(format!("{}: not a unit a proof can be handed: {}{more}", design.dir.display(), refused[..refused.len().min(8)].join("; "))));
+        let more = if refused.len() > 8 {
+            format!("; and {} more", refused.len() - 8)
+        } else {
+            String::new()
+        };
+        return Err(error::input(format!(
+            "{}: not a unit a proof can be handed: {}{more}",
+            design.dir.display(),
+            refused[..refused.len().min(8)].join("; ")
+        )));
     }
     let lemma_port = formal.ports.contains_key("f_ports") && !built.ports.contains_key("f_ports");
     let mut differ = Vec::new();
     for (port, (dir, width)) in &built.ports {
         match formal.ports.get(port) {
             None => differ.push(format!("the port {port} is not in the formal elaboration")),
-            Some((d, wd)) if d != dir || wd != width => differ.push(format!("the port {port} is {dir} [{width}] built, {d} [{wd}] in the proof")),
+            Some((d, wd)) if d != dir || wd != width => differ.push(format!(
+                "the port {port} is {dir} [{width}] built, {d} [{wd}] in the proof"
+            )),
             Some(_) => {}
         }
     }
     for (reg, init) in &built.inits {
         match formal.inits.get(reg) {
-            Some(i) if i != init => differ.push(format!("{reg} starts at {init} built, at {i} in the proof")),
+            Some(i) if i != init => {
+                differ.push(format!("{reg} starts at {init} built, at {i} in the proof"))
+            }
             _ => {}
         }
     }
     for (reg, init) in &formal.inits {
-        if !built.inits.contains_key(reg) && !built.ports.contains_key(reg) && text_has_wire(w, reg)? {
-            differ.push(format!("{reg} starts at {init} in the proof and has no first value built"));
+        if !built.inits.contains_key(reg)
+            && !built.ports.contains_key(reg)
+            && text_has_wire(w, reg)?
+        {
+            differ.push(format!(
+                "{reg} starts at {init} in the proof and has no first value built"
+            ));
         }
     }
     if !differ.is_empty() {
         return Ok((Some(differ.join("; ")), lemma_port));
     }
-    let formal_only: Vec<String> = formal.ports.keys().filter(|p| !built.ports.contains_key(*p)).cloned().collect();
+    let formal_only: Vec<String> = formal
+        .ports
+        .keys()
+        .filter(|p| !built.ports.contains_key(*p))
+        .cloned()
+        .collect();
     script("equiv", formal_only)?;
-    let said = run_watched(&tools.yosys, &["-s".into(), "built_equiv.ys".into()], w, tools.limit, None, |_| None);
+    let said = run_watched(
+        &tools.yosys,
+        &["-s".into(), "built_equiv.ys".into()],
+        w,
+        tools.limit,
+        None,
+        |_| None,
+    );
     match said {
         Ok(s) if !s.ended => Err(error::tool(
             &tools.yosys,
@@ -260,8 +353,11 @@ pub(super) const BUILT_PROPERTY: &str =
 /// Whether the formal elaboration's `wire` named `reg` is a register the built one has under
 /// another first value or none (a wire of the formal elaboration only is no difference).
 fn text_has_wire(w: &Path, reg: &str) -> Result<bool, Error> {
-    let built = crate::small_file::read(&w.join("built.il"), 1 << 30).map_err(|e| error::tool("yosys", format!("built.il: {e}")))?;
-    Ok(built.lines().any(|l| l.trim().starts_with("wire ") && l.trim().ends_with(&format!("\\{reg}"))))
+    let built = crate::small_file::read(&w.join("built.il"), 1 << 30)
+        .map_err(|e| error::tool("yosys", format!("built.il: {e}")))?;
+    Ok(built
+        .lines()
+        .any(|l| l.trim().starts_with("wire ") && l.trim().ends_with(&format!("\\{reg}"))))
 }
 
 #[cfg(test)]
@@ -272,7 +368,10 @@ mod tests {
     fn the_rtlil_reader_finds_ports_and_first_values() {
         let il = "module \\built\n  attribute \\init 1'0\n  wire \\fz\n  wire width 48 output 3 \\m_axis_tdata\n  wire input 1 \\clk\n  attribute \\src \"x\"\n  wire \\plain\nend\n";
         let e = elaboration(il);
-        assert_eq!(e.ports.get("m_axis_tdata"), Some(&("output".to_string(), 48)));
+        assert_eq!(
+            e.ports.get("m_axis_tdata"),
+            Some(&("output".to_string(), 48))
+        );
         assert_eq!(e.ports.get("clk"), Some(&("input".to_string(), 1)));
         assert_eq!(e.inits.get("fz").map(String::as_str), Some("1'0"));
         assert!(!e.inits.contains_key("plain"));

@@ -146,24 +146,36 @@ struct Script<'a> {
 impl PipeliningScript<'_> {
     /// The unit's own files among `files` (as `Design::stage` names them).
     fn unit(&self) -> Vec<&String> {
-        self.files.iter().filter(|f| Design::is_staged_unit(f)).collect()
+        self.files
+            .iter()
+            .filter(|f| Design::is_staged_unit(f))
+            .collect()
     }
 
     /// specgen's files among `files`.
     fn ours(&self) -> Vec<&String> {
-        self.files.iter().filter(|f| !Design::is_staged_unit(f)).collect()
+        self.files
+            .iter()
+            .filter(|f| !Design::is_staged_unit(f))
+            .collect()
     }
 }
 
 impl Script<'_> {
     /// The unit's own files among `files` (as `Design::stage` names them).
     fn unit(&self) -> Vec<&String> {
-        self.files.iter().filter(|f| Design::is_staged_unit(f)).collect()
+        self.files
+            .iter()
+            .filter(|f| Design::is_staged_unit(f))
+            .collect()
     }
 
     /// specgen's files among `files`: the harness, the checker, the twin, the models.
     fn ours(&self) -> Vec<&String> {
-        self.files.iter().filter(|f| !Design::is_staged_unit(f)).collect()
+        self.files
+            .iter()
+            .filter(|f| !Design::is_staged_unit(f))
+            .collect()
     }
 }
 
@@ -290,7 +302,13 @@ impl Tools {
     pub fn check(&self) -> Result<(), Error> {
         for tool in [&self.yosys, &self.abc] {
             if !crate::synth::tool_exists(tool) {
-                return Err(error::tool(tool, format!("{tool} not found{}", crate::synth::install_hint(tool, "yosys"))));
+                return Err(error::tool(
+                    tool,
+                    format!(
+                        "{tool} not found{}",
+                        crate::synth::install_hint(tool, "yosys")
+                    ),
+                ));
             }
         }
         Ok(())
@@ -310,7 +328,11 @@ pub enum Verdict {
     /// the engine did not conclude: `bounded`, the properties hold for that many first edges
     /// (a bounded search), or `None`; `out_of_time`, it was stopped at the time limit (not a
     /// verdict) rather than reaching its depth; `reached`, the last depth it completed
-    Undecided { bounded: Option<u32>, out_of_time: bool, reached: Option<u32> },
+    Undecided {
+        bounded: Option<u32>,
+        out_of_time: bool,
+        reached: Option<u32>,
+    },
     /// `--depth N`: no property fails in the first `depth` edges from power-up (a bounded
     /// search, not a proof)
     Bounded { depth: u32 },
@@ -324,7 +346,10 @@ pub enum Verdict {
     NotBuilt { differs: String },
     /// a cover of the port checker is not reached within `depth` edges from power-up: a proof
     /// of the unit would say nothing about what it never does
-    Unreached { covers: Vec<&'static str>, depth: u32 },
+    Unreached {
+        covers: Vec<&'static str>,
+        depth: u32,
+    },
 }
 
 /// One proof: what it states, how it ended, how long it took.
@@ -386,7 +411,9 @@ fn harness_name(top: &str) -> String {
 fn properties(design: &Design) -> Vec<&'static str> {
     let cfg = &design.cfg;
     if !cfg.interface().handshake() {
-        return vec!["out_valid is in_valid of exactly `latency` edges before, unless a reset came between"];
+        return vec![
+            "out_valid is in_valid of exactly `latency` edges before, unless a reset came between",
+        ];
     }
     let mut p = vec![
         "a reset empties the unit: out_valid and in_ready low the edge after it",
@@ -482,7 +509,10 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     // (a unit's primitives are black boxes, not the simulation models: no property reads the
     // datapath)
     let mut files = Vec::new();
-    if let Some(lib) = crate::family::of(cfg.target()).primitive_boxes().filter(|_| !design.sim_models.is_empty()) {
+    if let Some(lib) = crate::family::of(cfg.target())
+        .primitive_boxes()
+        .filter(|_| !design.sim_models.is_empty())
+    {
         files.push(format!("-lib {lib}"));
     }
     let unit = design.stage(w)?;
@@ -493,8 +523,15 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     files.push("ports.v".into());
     files.push("harness.v".into());
     let name = harness_name(cfg.top());
-    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
-    let tools = &Tools { yosys, abc, ..tools.clone() };
+    let (yosys, abc) = (
+        crate::synth::absolute_tool(&tools.yosys),
+        crate::synth::absolute_tool(&tools.abc),
+    );
+    let tools = &Tools {
+        yosys,
+        abc,
+        ..tools.clone()
+    };
     let t0 = Instant::now();
     // one design: every step reads the unit as the check shows synthesis builds it
     // (a handshake unit that states the assertions specgen writes is read with its lemma port;
@@ -522,20 +559,43 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         let verdict = match search(design, tools, w, script, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
             Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
-            Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
+            Searched::OutOfTime { reached } => Verdict::Undecided {
+                bounded: reached,
+                out_of_time: true,
+                reached,
+            },
         };
-        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+        return Ok(Proof {
+            name,
+            properties,
+            verdict,
+            seconds: t0.elapsed().as_secs_f64(),
+            engine,
+            ports: None,
+        });
     }
     // the cover every interface has: after the reset, a result (an environment that cannot
     // reach it makes every property vacuously true)
     if let Some(proof) = valid_cover(design, tools, w, &files, &unit_defines, &name, t0)? {
         return Ok(proof);
     }
-    let pdr_covered = format!("{PDR}; its cover ({VALID_COVER}) reached within {} edges", cfg.latency() + 3);
-    Script { unit_defines: unit_defines.clone(), ..Script::model(&name, &files) }.write(w, "prove.ys")?;
+    let pdr_covered = format!(
+        "{PDR}; its cover ({VALID_COVER}) reached within {} edges",
+        cfg.latency() + 3
+    );
+    Script {
+        unit_defines: unit_defines.clone(),
+        ..Script::model(&name, &files)
+    }
+    .write(w, "prove.ys")?;
     let long = Duration::from_secs(600);
-    run(&tools.yosys, &["-q".into(), "-s".into(), "prove.ys".into()], w, long)?
-        .ok_or_else(|| error::tool(&tools.yosys, "yosys did not write the model within 600 s"))?;
+    run(
+        &tools.yosys,
+        &["-q".into(), "-s".into(), "prove.ys".into()],
+        w,
+        long,
+    )?
+    .ok_or_else(|| error::tool(&tools.yosys, "yosys did not write the model within 600 s"))?;
     let abc_script = "read_aiger model.aig; fold; strash; pdr; write_cex -a cex.aiw".to_string();
     let said = run(&tools.abc, &["-c".into(), abc_script], w, tools.limit)?;
     let seconds = t0.elapsed().as_secs_f64();
@@ -545,43 +605,102 @@ pub fn prove(design: &Design, tools: &Tools) -> Result<Proof, Error> {
         // the unit and a full buffer, which may still find a failure
         let steps = cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4;
         let verdict = match bounded(tools, w, &files, &name, steps)? {
-            Some(true) => Verdict::Undecided { bounded: Some(steps), out_of_time: true, reached: None },
-            Some(false) => Verdict::Failed { frame: steps, vcd: trace(&tools.yosys, w, design)? },
-            None => Verdict::Undecided { bounded: None, out_of_time: true, reached: None },
+            Some(true) => Verdict::Undecided {
+                bounded: Some(steps),
+                out_of_time: true,
+                reached: None,
+            },
+            Some(false) => Verdict::Failed {
+                frame: steps,
+                vcd: trace(&tools.yosys, w, design)?,
+            },
+            None => Verdict::Undecided {
+                bounded: None,
+                out_of_time: true,
+                reached: None,
+            },
         };
-        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine: PDR.into(), ports: None });
+        return Ok(Proof {
+            name,
+            properties,
+            verdict,
+            seconds: t0.elapsed().as_secs_f64(),
+            engine: PDR.into(),
+            ports: None,
+        });
     };
     if said.contains("Property proved") {
-        return Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine: pdr_covered, ports: None });
+        return Ok(Proof {
+            name,
+            properties,
+            verdict: Verdict::Proved,
+            seconds,
+            engine: pdr_covered,
+            ports: None,
+        });
     }
     // "Output 0 of miter "model" was asserted in frame 3."
     let Some(frame) = frame_asserted(&said) else {
-        return Err(error::tool(&tools.abc, format!("pdr neither proved nor refuted the properties: {said}")));
+        return Err(error::tool(
+            &tools.abc,
+            format!("pdr neither proved nor refuted the properties: {said}"),
+        ));
     };
     bounded(tools, w, &files, &name, frame + 2)?;
     let vcd = trace(&tools.yosys, w, design)?;
-    Ok(Proof { name, properties, verdict: Verdict::Failed { frame, vcd }, seconds, engine: PDR.into(), ports: None })
+    Ok(Proof {
+        name,
+        properties,
+        verdict: Verdict::Failed { frame, vcd },
+        seconds,
+        engine: PDR.into(),
+        ports: None,
+    })
 }
 
 /// The verdict of a k-induction by yosys's `sat` (`said`, its log) bounded by `steps`: proved
 /// when the step closes; a failure of the base case (a search from power-up) with its trace;
 /// undecided when it ran out of time or depth. `what` names the properties in an error.
-fn sat_verdict(said: &Said, steps: u32, tools: &Tools, w: &Path, design: &Design, what: &str) -> Result<Verdict, Error> {
+fn sat_verdict(
+    said: &Said,
+    steps: u32,
+    tools: &Tools,
+    w: &Path,
+    design: &Design,
+    what: &str,
+) -> Result<Verdict, Error> {
     let text = &said.text;
     let reached = sat_reached(text);
     Ok(if !said.ended {
-        Verdict::Undecided { bounded: reached, out_of_time: true, reached }
+        Verdict::Undecided {
+            bounded: reached,
+            out_of_time: true,
+            reached,
+        }
     } else if text.contains("Induction step proven: SUCCESS") {
         Verdict::Proved
     } else if text.contains("model found for base case: FAIL") {
         // the base case of length N failed: a failure N edges from power-up, its whole trace
         // in trace.vcd
         let frame = reached.unwrap_or(0) + 1;
-        Verdict::Failed { frame, vcd: trace(&tools.yosys, w, design)? }
+        Verdict::Failed {
+            frame,
+            vcd: trace(&tools.yosys, w, design)?,
+        }
     } else if text.contains("Reached maximum number of time steps") {
-        Verdict::Undecided { bounded: Some(steps), out_of_time: false, reached: Some(steps) }
+        Verdict::Undecided {
+            bounded: Some(steps),
+            out_of_time: false,
+            reached: Some(steps),
+        }
     } else {
-        return Err(error::tool(&tools.yosys, format!("yosys's sat neither proved nor refuted {what}: {}", tail(text))));
+        return Err(error::tool(
+            &tools.yosys,
+            format!(
+                "yosys's sat neither proved nor refuted {what}: {}",
+                tail(text)
+            ),
+        ));
     })
 }
 
@@ -591,9 +710,19 @@ fn sat_verdict(said: &Said, steps: u32, tools: &Tools, w: &Path, design: &Design
 /// step proves, from any state where every assertion held for k edges, that they hold at the
 /// next. The depth is enough for a pixel to pass the pipeline and a full buffer (the correct
 /// unit is proved at about its latency plus one; a fault may need the buffer filled to show).
-fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_defines: &[String], name: &str, t0: Instant) -> Result<Proof, Error> {
+fn induction(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    files: &[String],
+    unit_defines: &[String],
+    name: &str,
+    t0: Instant,
+) -> Result<Proof, Error> {
     let cfg = &design.cfg;
-    let steps = tools.depth.unwrap_or_else(|| cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4);
+    let steps = tools
+        .depth
+        .unwrap_or_else(|| cfg.latency() + crate::interface::buffer_places(cfg) as u32 + 4);
     let script = Script {
         bounded: tools.depth,
         induction: Some(steps),
@@ -617,14 +746,23 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
         // the port checker (written from the manifest, apart from the unit) joins the search:
         // deleting or weakening the unit's own assertions cannot hide a fault at its ports
         let port_files = with_port_checker(design, w, files)?;
-        let at_ports = Script { bounded: Some(depth), files: &port_files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() };
+        let at_ports = Script {
+            bounded: Some(depth),
+            files: &port_files,
+            defines: vec!["SPECGEN_PORTS".into()],
+            ..script.clone()
+        };
         properties.extend(PORT_PROPERTIES);
         // the bounded search: the unit's assertions and the port checker's, to `depth` edges
         let mut engine = format!("a bounded search of {depth} edges from power-up, ABC bmc3 on the model with the datapath cut");
         let mut verdict = match search(design, tools, w, at_ports, depth)? {
             Searched::Clear => Verdict::Bounded { depth },
             Searched::Found { frame, vcd } => Verdict::Failed { frame, vcd },
-            Searched::OutOfTime { reached } => Verdict::Undecided { bounded: reached, out_of_time: true, reached },
+            Searched::OutOfTime { reached } => Verdict::Undecided {
+                bounded: reached,
+                out_of_time: true,
+                reached,
+            },
         };
         if verdict == (Verdict::Bounded { depth }) {
             // the colour check to the same depth (as in the default proof); a depth too short
@@ -638,7 +776,14 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
                 }
             }
         }
-        return Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+        return Ok(Proof {
+            name,
+            properties,
+            verdict,
+            seconds: t0.elapsed().as_secs_f64(),
+            engine,
+            ports: None,
+        });
     }
     // a unit that states the assertions specgen writes is proved in one induction with the
     // port checker (its assertions the lemmas); one that states fewer has its own proved first
@@ -648,14 +793,25 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
     // (the unit read with its lemma port: the checker drives it, its assertions joining the unit's)
     let lemma_files = with_port_checker(design, w, files)?;
     let own_script = if unit_defines.iter().any(|d| d == "SPECGEN_LEMMAS") {
-        Script { files: &lemma_files, defines: vec!["SPECGEN_PORTS".into()], ..script.clone() }
+        Script {
+            files: &lemma_files,
+            defines: vec!["SPECGEN_PORTS".into()],
+            ..script.clone()
+        }
     } else {
         script.clone()
     };
     let own_induction = || -> Result<Result<String, Proof>, Error> {
         own_script.write(w, "induction.ys")?;
         let _ = std::fs::remove_file(w.join("trace.vcd"));
-        let ran = run_watched(&tools.yosys, &["-s".into(), "induction.ys".into()], w, tools.limit, tools.progress, sat_progress);
+        let ran = run_watched(
+            &tools.yosys,
+            &["-s".into(), "induction.ys".into()],
+            w,
+            tools.limit,
+            tools.progress,
+            sat_progress,
+        );
         let seconds = t0.elapsed().as_secs_f64();
         let said = ran?;
         let text = &said.text;
@@ -667,7 +823,14 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
         };
         let verdict = sat_verdict(&said, steps, tools, w, design, "the properties")?;
         if verdict != Verdict::Proved {
-            return Ok(Err(Proof { name: name.clone(), properties: properties.clone(), verdict, seconds, engine, ports: None }));
+            return Ok(Err(Proof {
+                name: name.clone(),
+                properties: properties.clone(),
+                verdict,
+                seconds,
+                engine,
+                ports: None,
+            }));
         }
         Ok(Ok(engine))
     };
@@ -687,17 +850,42 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
             let mut all = PORT_PROPERTIES.to_vec();
             all.extend(properties.iter().copied());
             let engine = format!("the port checker (from the manifest), {how}");
-            return Ok(Proof { name, properties: all, verdict: Verdict::Failed { frame, vcd }, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+            return Ok(Proof {
+                name,
+                properties: all,
+                verdict: Verdict::Failed { frame, vcd },
+                seconds: t0.elapsed().as_secs_f64(),
+                engine,
+                ports: None,
+            });
         }
         AtPorts::OutOfTime { reached } => {
             let engine = "the port checker's bounded search".to_string();
-            let verdict = Verdict::Undecided { bounded: reached, out_of_time: true, reached };
-            return Ok(Proof { name, properties: PORT_PROPERTIES.to_vec(), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+            let verdict = Verdict::Undecided {
+                bounded: reached,
+                out_of_time: true,
+                reached,
+            };
+            return Ok(Proof {
+                name,
+                properties: PORT_PROPERTIES.to_vec(),
+                verdict,
+                seconds: t0.elapsed().as_secs_f64(),
+                engine,
+                ports: None,
+            });
         }
         AtPorts::Unreached { covers, depth } => {
             let verdict = Verdict::Unreached { covers, depth };
             let engine = "the port checker's covers, a bounded search with ABC bmc3".to_string();
-            return Ok(Proof { name, properties: PORT_PROPERTIES.to_vec(), verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+            return Ok(Proof {
+                name,
+                properties: PORT_PROPERTIES.to_vec(),
+                verdict,
+                seconds: t0.elapsed().as_secs_f64(),
+                engine,
+                ports: None,
+            });
         }
     };
     let mut ports = ports;
@@ -707,7 +895,14 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
         Some((Verdict::Bounded { .. }, _)) => ports.bounded_only.push(colour_property(cfg)),
         Some((verdict, engine)) => {
             let seconds = t0.elapsed().as_secs_f64();
-            return Ok(Proof { name, properties: vec![colour_property(cfg)], verdict, seconds, engine, ports: None });
+            return Ok(Proof {
+                name,
+                properties: vec![colour_property(cfg)],
+                verdict,
+                seconds,
+                engine,
+                ports: None,
+            });
         }
     }
     let seconds = t0.elapsed().as_secs_f64();
@@ -719,22 +914,47 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
             ports.depth
         );
         let depth = ports.depth;
-        return Ok(Proof { name, properties: Vec::new(), verdict: Verdict::Bounded { depth }, seconds, engine, ports: Some(ports) });
+        return Ok(Proof {
+            name,
+            properties: Vec::new(),
+            verdict: Verdict::Bounded { depth },
+            seconds,
+            engine,
+            ports: Some(ports),
+        });
     }
     match ports.unbounded {
         Unbounded::Undecided { steps, out_of_time } => {
             // the unit states its lemmas, yet the induction at the ports did not close: not proved
             let engine = format!("the port checker's k-induction with the unit's assertions as lemmas (yosys sat, at most {steps} edges)");
-            let verdict = Verdict::Undecided { bounded: Some(ports.depth), out_of_time, reached: None };
+            let verdict = Verdict::Undecided {
+                bounded: Some(ports.depth),
+                out_of_time,
+                reached: None,
+            };
             let mut all = PORT_PROPERTIES.to_vec();
             all.extend(properties.iter().copied());
-            Ok(Proof { name, properties: all, verdict, seconds, engine, ports: None })
+            Ok(Proof {
+                name,
+                properties: all,
+                verdict,
+                seconds,
+                engine,
+                ports: None,
+            })
         }
         Unbounded::Proved { k } => {
             let engine = format!(
                 "k-induction with yosys sat over the port checker's properties and the unit's own assertions, its lemmas, k = {k} of at most {UNBOUNDED_STEPS}"
             );
-            Ok(Proof { name, properties, verdict: Verdict::Proved, seconds, engine, ports: Some(ports) })
+            Ok(Proof {
+                name,
+                properties,
+                verdict: Verdict::Proved,
+                seconds,
+                engine,
+                ports: Some(ports),
+            })
         }
         Unbounded::NoLemmas | Unbounded::NotTried => {
             // assertions enough but no lemma port (an edited unit): its own assertions proved by
@@ -745,7 +965,14 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
                     let engine = format!(
                         "the port checker, ABC bmc3 to {depth} edges; the unit has no lemma port f_ports, so its own assertions were proved by themselves ({how}), the RTL's word, and its ports only searched"
                     );
-                    Ok(Proof { name, properties, verdict: Verdict::Bounded { depth }, seconds: t0.elapsed().as_secs_f64(), engine, ports: Some(ports) })
+                    Ok(Proof {
+                        name,
+                        properties,
+                        verdict: Verdict::Bounded { depth },
+                        seconds: t0.elapsed().as_secs_f64(),
+                        engine,
+                        ports: Some(ports),
+                    })
                 }
                 Err(proof) => Ok(proof),
             }
@@ -756,7 +983,12 @@ fn induction(design: &Design, tools: &Tools, w: &Path, files: &[String], unit_de
 /// A static colour's colour check to `depth` edges (none for another colour): which colour each
 /// result was computed with, against the datapath twin at cos_g = 1.0 (the only value a port
 /// rule cannot see without the datapath); its verdict, and how it was reached in words.
-fn colour_check(design: &Design, tools: &Tools, depth: u32, unit_defines: &[String]) -> Result<Option<(Verdict, String)>, Error> {
+fn colour_check(
+    design: &Design,
+    tools: &Tools,
+    depth: u32,
+    unit_defines: &[String],
+) -> Result<Option<(Verdict, String)>, Error> {
     // every ready/axis unit: with a per-pixel colour too, the values at cos_g = 1.0 (an
     // intensity bit or a colour bit out of place at the ports is seen)
     let (verdict, _) = against_the_twin(design, tools, depth, true, unit_defines)?;

@@ -25,7 +25,15 @@ enum Bit {
 
 fn bits(v: &Value) -> Vec<Bit> {
     v.as_array()
-        .map(|a| a.iter().map(|b| b.as_u64().map(Bit::Net).unwrap_or_else(|| Bit::Const(b.as_str().unwrap_or("x").to_string()))).collect())
+        .map(|a| {
+            a.iter()
+                .map(|b| {
+                    b.as_u64()
+                        .map(Bit::Net)
+                        .unwrap_or_else(|| Bit::Const(b.as_str().unwrap_or("x").to_string()))
+                })
+                .collect()
+        })
         .unwrap_or_default()
 }
 
@@ -41,7 +49,8 @@ fn param(v: Option<&Value>) -> Option<u64> {
 /// Whether `kind` is a flip-flop, and its clock's polarity (true: rising edge); None when not one.
 fn flip_flop(kind: &str, params: &Value) -> Option<bool> {
     match kind {
-        "$dff" | "$dffe" | "$adff" | "$adffe" | "$sdff" | "$sdffe" | "$sdffce" | "$aldff" | "$aldffe" | "$dffsr" | "$dffsre" => {
+        "$dff" | "$dffe" | "$adff" | "$adffe" | "$sdff" | "$sdffe" | "$sdffce" | "$aldff"
+        | "$aldffe" | "$dffsr" | "$dffsre" => {
             Some(param(params.get("CLK_POLARITY")).unwrap_or(1) == 1)
         }
         _ if kind.starts_with("$_") && kind.contains("DFF") => {
@@ -57,16 +66,25 @@ fn flip_flop(kind: &str, params: &Value) -> Option<bool> {
 /// Whether `kind` holds state without an edge: a latch, an SR cell, or a flip-flop on the
 /// formal global clock.
 fn level_sensitive(kind: &str) -> bool {
-    matches!(kind, "$dlatch" | "$adlatch" | "$dlatchsr" | "$sr" | "$ff" | "$_FF_") || kind.starts_with("$_DLATCH") || kind.starts_with("$_SR_")
+    matches!(
+        kind,
+        "$dlatch" | "$adlatch" | "$dlatchsr" | "$sr" | "$ff" | "$_FF_"
+    ) || kind.starts_with("$_DLATCH")
+        || kind.starts_with("$_SR_")
 }
 
 /// Whether a hard block's pin named `pin` is a clock (CLK, CLK0..3, CLKA, CLKB, RCLK, WCLK; not
 /// a clock enable such as RCLKE).
 fn clock_pin(pin: &str) -> bool {
     let p = pin.to_ascii_uppercase();
-    let Some(at) = p.find("CLK") else { return false };
+    let Some(at) = p.find("CLK") else {
+        return false;
+    };
     let rest = &p[at + 3..];
-    at <= 1 && (rest.is_empty() || (rest.len() == 1 && (rest.chars().all(|c| c.is_ascii_digit()) || rest == "A" || rest == "B")))
+    at <= 1
+        && (rest.is_empty()
+            || (rest.len() == 1
+                && (rest.chars().all(|c| c.is_ascii_digit()) || rest == "A" || rest == "B")))
 }
 
 /// What is wrong with the module `module` of yosys's JSON `json` as a unit handed to a proof,
@@ -86,14 +104,21 @@ pub(super) fn refusals(json: &str, module: &str, clock: Option<&str>) -> Vec<Str
         for (name, n) in nets.iter().filter(|(n, _)| !n.starts_with('$')) {
             let b = bits(&n["bits"]);
             for (i, bit) in b.iter().enumerate() {
-                let label = if b.len() == 1 { name.clone() } else { format!("{name}[{i}]") };
+                let label = if b.len() == 1 {
+                    name.clone()
+                } else {
+                    format!("{name}[{i}]")
+                };
                 names.entry(bit.clone()).or_insert(label);
             }
         }
     }
     let name_of = |b: &Bit| match b {
         Bit::Const(c) => format!("the constant {c}"),
-        Bit::Net(_) => names.get(b).cloned().unwrap_or_else(|| "a net inside the unit".to_string()),
+        Bit::Net(_) => names
+            .get(b)
+            .cloned()
+            .unwrap_or_else(|| "a net inside the unit".to_string()),
     };
     // the bits every cell drives, and by which cell
     let mut driven: BTreeMap<Bit, String> = BTreeMap::new();
@@ -102,7 +127,10 @@ pub(super) fn refusals(json: &str, module: &str, clock: Option<&str>) -> Vec<Str
         for (pin, conn) in c["connections"].as_object().unwrap_or(&empty) {
             if dirs[pin].as_str() == Some("output") {
                 for b in bits(conn) {
-                    driven.insert(b, format!("{cname} (a {})", c["type"].as_str().unwrap_or("cell")));
+                    driven.insert(
+                        b,
+                        format!("{cname} (a {})", c["type"].as_str().unwrap_or("cell")),
+                    );
                 }
             }
         }
@@ -112,7 +140,11 @@ pub(super) fn refusals(json: &str, module: &str, clock: Option<&str>) -> Vec<Str
     for (port, p) in ports.iter().filter(|(_, p)| p["direction"] == "input") {
         let b = bits(&p["bits"]);
         for (i, bit) in b.iter().enumerate() {
-            let label = if b.len() == 1 { port.clone() } else { format!("{port}[{i}]") };
+            let label = if b.len() == 1 {
+                port.clone()
+            } else {
+                format!("{port}[{i}]")
+            };
             let by = match bit {
                 Bit::Const(c) => Some(format!("tied to the constant {c}")),
                 Bit::Net(_) => match (driven.get(bit), seen.get(bit)) {
@@ -130,7 +162,9 @@ pub(super) fn refusals(json: &str, module: &str, clock: Option<&str>) -> Vec<Str
         }
     }
     // one clock, its rising edge
-    let clk: Option<Bit> = clock.and_then(|c| ports.get(c)).and_then(|p| bits(&p["bits"]).into_iter().next());
+    let clk: Option<Bit> = clock
+        .and_then(|c| ports.get(c))
+        .and_then(|p| bits(&p["bits"]).into_iter().next());
     for (cname, c) in cells {
         let kind = c["type"].as_str().unwrap_or("");
         let conns = c["connections"].as_object().unwrap_or(&empty);
@@ -141,7 +175,11 @@ pub(super) fn refusals(json: &str, module: &str, clock: Option<&str>) -> Vec<Str
             continue;
         }
         if let Some(rising) = flip_flop(kind, &c["parameters"]) {
-            let on = conns.get("CLK").or_else(|| conns.get("C")).map(bits).unwrap_or_default();
+            let on = conns
+                .get("CLK")
+                .or_else(|| conns.get("C"))
+                .map(bits)
+                .unwrap_or_default();
             match on.first() {
                 Some(b) if Some(b) == clk.as_ref() && rising => {}
                 Some(b) if Some(b) == clk.as_ref() => why.push(format!(
@@ -198,7 +236,11 @@ mod tests {
         assert_eq!(flip_flop("$_DFF_N_", &Value::Null), Some(false));
         assert_eq!(flip_flop("$_SDFFE_PN0P_", &Value::Null), Some(true));
         assert_eq!(flip_flop("$and", &Value::Null), None);
-        assert!(level_sensitive("$dlatch") && level_sensitive("$_DLATCH_P_") && !level_sensitive("$dff"));
+        assert!(
+            level_sensitive("$dlatch")
+                && level_sensitive("$_DLATCH_P_")
+                && !level_sensitive("$dff")
+        );
     }
 
     #[test]
@@ -224,10 +266,16 @@ mod tests {
         assert!(has("the input a[1] is driven by $dff$1"), "{why:?}");
         assert!(has("the input b is tied to the input en"), "{why:?}");
         assert!(has("$dff$1 (a $dff) is clocked by g"), "{why:?}");
-        assert!(has("$dff$2 (a $dff) is clocked on the falling edge"), "{why:?}");
+        assert!(
+            has("$dff$2 (a $dff) is clocked on the falling edge"),
+            "{why:?}"
+        );
         assert!(!has("$dff$3"), "{why:?}");
         assert!(has("$dlatch$1 is a $dlatch, a latch"), "{why:?}");
-        assert!(has("mac (a SB_MAC16) has its clock pin CLK on g"), "{why:?}");
+        assert!(
+            has("mac (a SB_MAC16) has its clock pin CLK on g"),
+            "{why:?}"
+        );
         assert!(!has("CE"), "{why:?}");
         assert_eq!(why.len(), 7, "{why:?}");
     }

@@ -33,17 +33,41 @@ fn delay_ram_contract(
     // edges from power-up, past the first edge the contract speaks of (a module without its
     // lemmas: a failure found there, or no verdict)
     let steps = cuts + 4;
-    let script = Script { induction: Some(steps), defines: vec!["SPECGEN_CONTRACT".into()], unit_defines: unit_defines.to_vec(), ..Script::model(&name, &all) };
+    let script = Script {
+        induction: Some(steps),
+        defines: vec!["SPECGEN_CONTRACT".into()],
+        unit_defines: unit_defines.to_vec(),
+        ..Script::model(&name, &all)
+    };
     script.write(w, "contract.ys")?;
     let mut said = None;
     for lemmas in [true, false] {
-        let text = DelayRamContract { name: &name, top, version: crate::names::VERSION, width, cuts, lemmas }.render().expect("the contract renders") + "\n";
+        let text = DelayRamContract {
+            name: &name,
+            top,
+            version: crate::names::VERSION,
+            width,
+            cuts,
+            lemmas,
+        }
+        .render()
+        .expect("the contract renders")
+            + "\n";
         put(w, &file, text)?;
         let _ = std::fs::remove_file(w.join("trace.vcd"));
-        match run_watched(&tools.yosys, &["-s".into(), "contract.ys".into()], w, tools.limit, None, sat_progress) {
+        match run_watched(
+            &tools.yosys,
+            &["-s".into(), "contract.ys".into()],
+            w,
+            tools.limit,
+            None,
+            sat_progress,
+        ) {
             // an edited module without the lemma ports: its contract alone (deleting lemmas can
             // only make the proof harder)
-            Err(e) if lemmas && e.to_string().contains("does not have a port named 'f_") => continue,
+            Err(e) if lemmas && e.to_string().contains("does not have a port named 'f_") => {
+                continue
+            }
             ran => {
                 said = Some(ran?);
                 break;
@@ -51,10 +75,12 @@ fn delay_ram_contract(
         }
     }
     let said = said.expect("the contract ran");
-    Ok(match sat_verdict(&said, steps, tools, w, design, "the delay RAM's contract")? {
-        Verdict::Proved => None,
-        verdict => Some(verdict),
-    })
+    Ok(
+        match sat_verdict(&said, steps, tools, w, design, "the delay RAM's contract")? {
+            Verdict::Proved => None,
+            verdict => Some(verdict),
+        },
+    )
 }
 
 /// Why `prove --pipelining` does not apply to `design`, when it does not: a handshake's buffer
@@ -111,30 +137,59 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     // theirs), which the checks flush like every other register
     let rams = crate::emit::delay_rams(&design.plan);
     let name = format!("{top}_prove_pipelining");
-    let tools = &Tools { yosys: crate::synth::absolute_tool(&tools.yosys), abc: crate::synth::absolute_tool(&tools.abc), ..tools.clone() };
-    // one design: every step reads the unit as the check shows synthesis builds it
-    let unit_defines = match super::built::one_design(design, tools, w, &unit, false, !rams.is_empty(), &name)? {
-        Ok(d) => d,
-        Err(proof) => return Ok(proof),
+    let tools = &Tools {
+        yosys: crate::synth::absolute_tool(&tools.yosys),
+        abc: crate::synth::absolute_tool(&tools.abc),
+        ..tools.clone()
     };
+    // one design: every step reads the unit as the check shows synthesis builds it
+    let unit_defines =
+        match super::built::one_design(design, tools, w, &unit, false, !rams.is_empty(), &name)? {
+            Ok(d) => d,
+            Err(proof) => return Ok(proof),
+        };
     let mut overrides = Vec::new();
     for &(width, cuts) in &rams {
-        if let Some(verdict) = delay_ram_contract(design, tools, w, &files, &unit_defines, width, cuts)? {
+        if let Some(verdict) =
+            delay_ram_contract(design, tools, w, &files, &unit_defines, width, cuts)?
+        {
             let engine = format!("k-induction with yosys sat over {top}_delay_ram (WIDTH = {width}, CUTS = {cuts}) alone");
-            return Ok(Proof { name: name.clone(), properties: vec![DELAY_RAM_PROPERTY], verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None });
+            return Ok(Proof {
+                name: name.clone(),
+                properties: vec![DELAY_RAM_PROPERTY],
+                verdict,
+                seconds: t0.elapsed().as_secs_f64(),
+                engine,
+                ports: None,
+            });
         }
     }
     if !rams.is_empty() {
-        let ideal = DelayRamIdeal { top, version: crate::names::VERSION, proved: &rams }.render().expect("the model renders") + "\n";
+        let ideal = DelayRamIdeal {
+            top,
+            version: crate::names::VERSION,
+            proved: &rams,
+        }
+        .render()
+        .expect("the model renders")
+            + "\n";
         put(w, "delay_ram_proved.v", ideal)?;
         overrides.push("delay_ram_proved.v".to_string());
     }
     // the twin: the same parameters at depth 0, its files by its own names beside the unit's
     // (its simulation models, under sim/, are the unit's)
-    let twin_params = crate::config::Params { stages: 0, top: twin_top.clone(), ..cfg.params.clone() };
+    let twin_params = crate::config::Params {
+        stages: 0,
+        top: twin_top.clone(),
+        ..cfg.params.clone()
+    };
     files.extend(stage_twin(design, w, twin_params)?);
     let file = format!("{top}_prove_ports.v");
-    put(w, &file, crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")))?;
+    put(
+        w,
+        &file,
+        crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")),
+    )?;
     files.push(file);
     let harness = PipeliningHarness {
         name: &name,
@@ -170,9 +225,17 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
         put(w, file, text)
     };
     script(None, "models.ys")?;
-    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
-    run(&yosys, &["-q".into(), "-s".into(), "models.ys".into()], w, Duration::from_secs(600))?
-        .ok_or_else(|| error::tool(&yosys, "yosys did not write the models within 600 s"))?;
+    let (yosys, abc) = (
+        crate::synth::absolute_tool(&tools.yosys),
+        crate::synth::absolute_tool(&tools.abc),
+    );
+    run(
+        &yosys,
+        &["-q".into(), "-s".into(), "models.ys".into()],
+        w,
+        Duration::from_secs(600),
+    )?
+    .ok_or_else(|| error::tool(&yosys, "yosys did not write the models within 600 s"))?;
     let frames = k + 2;
     // first from power-up, the first K + 2 edges (a pixel taken after a reset at the first
     // reaches the outputs at the last): a failure there is a real one; then from a free state,
@@ -184,13 +247,20 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     let verdict = 'checks: {
         for (abc_script, replay) in checks {
             let Some(said) = run(&abc, &["-c".into(), abc_script], w, tools.limit)? else {
-                break 'checks Verdict::Undecided { bounded: None, out_of_time: true, reached: None };
+                break 'checks Verdict::Undecided {
+                    bounded: None,
+                    out_of_time: true,
+                    reached: None,
+                };
             };
             if said.contains("UNSATISFIABLE") {
                 continue;
             }
             if !said.contains("SATISFIABLE") {
-                return Err(error::tool(&abc, format!("iprove neither proved nor refuted the miter: {said}")));
+                return Err(error::tool(
+                    &abc,
+                    format!("iprove neither proved nor refuted the miter: {said}"),
+                ));
             }
             script(Some(replay), "replay.ys")?;
             let found = run_sat(&yosys, w, "replay.ys", tools.limit)? == Some(false);
@@ -200,9 +270,15 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
                     false => "a delay line in block RAM, its pointers never flushed; generate it with fewer stages or narrower widths (no delay line in memory) to prove it".to_string(),
                     true => format!("state specgen's unit of these parameters does not have (it writes no delay line in memory at --stages {k}): a register or memory of this RTL keeps values longer than its {k} stages; find what does, or compare with a unit generated afresh"),
                 };
-                break 'checks Verdict::Incomplete { bounded: frames, keeps };
+                break 'checks Verdict::Incomplete {
+                    bounded: frames,
+                    keeps,
+                };
             }
-            break 'checks Verdict::Failed { frame: replay.0 - 1, vcd: trace(&yosys, w, design)? };
+            break 'checks Verdict::Failed {
+                frame: replay.0 - 1,
+                vcd: trace(&yosys, w, design)?,
+            };
         }
         Verdict::Proved
     };
@@ -210,27 +286,52 @@ pub fn prove_pipelining(design: &Design, tools: &Tools) -> Result<Proof, Error> 
     let mut engine = PIPELINING.to_string();
     if !rams.is_empty() {
         properties.push(DELAY_RAM_PROPERTY);
-        let each: Vec<String> = rams.iter().map(|(w, c)| format!("WIDTH = {w}, CUTS = {c}")).collect();
-        engine = format!("{engine}, the delay RAM's contract proved alone ({}) and its model in its place", each.join("; "));
+        let each: Vec<String> = rams
+            .iter()
+            .map(|(w, c)| format!("WIDTH = {w}, CUTS = {c}"))
+            .collect();
+        engine = format!(
+            "{engine}, the delay RAM's contract proved alone ({}) and its model in its place",
+            each.join("; ")
+        );
     }
-    Ok(Proof { name, properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports: None })
+    Ok(Proof {
+        name,
+        properties,
+        verdict,
+        seconds: t0.elapsed().as_secs_f64(),
+        engine,
+        ports: None,
+    })
 }
 
 /// Writes the twin `params` describe (its own top, its files by their own names) into `w`,
 /// beside the unit's, with its co-simulation adapter `<top>_prove_ports`: the Verilog to read.
 /// Its simulation models (under `sim/`) are the unit's, staged with them.
-pub(super) fn stage_twin(design: &Design, w: &Path, params: crate::config::Params) -> Result<Vec<String>, Error> {
+pub(super) fn stage_twin(
+    design: &Design,
+    w: &Path,
+    params: crate::config::Params,
+) -> Result<Vec<String>, Error> {
     let top = params.top.clone();
-    let twin = crate::plan::Plan::from_params(params).map_err(|e| error::input(format!("the twin {top} of {}: {e}", design.dir.display())))?;
+    let twin = crate::plan::Plan::from_params(params)
+        .map_err(|e| error::input(format!("the twin {top} of {}: {e}", design.dir.display())))?;
     let mut files = Vec::new();
-    for (name, bytes) in crate::emit::generate_files(&twin).into_iter().filter(|(name, _)| !name.contains('/')) {
+    for (name, bytes) in crate::emit::generate_files(&twin)
+        .into_iter()
+        .filter(|(name, _)| !name.contains('/'))
+    {
         put(w, &name, bytes)?;
         if name.ends_with(".v") {
             files.push(name);
         }
     }
     let file = format!("{top}_prove_ports.v");
-    put(w, &file, crate::cosim::adapter::adapter_named(&twin.cfg, &format!("{top}_prove_ports")))?;
+    put(
+        w,
+        &file,
+        crate::cosim::adapter::adapter_named(&twin.cfg, &format!("{top}_prove_ports")),
+    )?;
     files.push(file);
     Ok(files)
 }
@@ -297,9 +398,20 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     let unit_defines = {
         let work = crate::process::temp_dir().map_err(|e| error::tool("prove", e.to_string()))?;
         let unit = design.stage(work.path())?;
-        let tools = &Tools { yosys: crate::synth::absolute_tool(&tools.yosys), ..tools.clone() };
+        let tools = &Tools {
+            yosys: crate::synth::absolute_tool(&tools.yosys),
+            ..tools.clone()
+        };
         let lemmas = states_its_own_assertions(design)?;
-        match super::built::one_design(design, tools, work.path(), &unit, lemmas, false, &harness_name(design.cfg.top()))? {
+        match super::built::one_design(
+            design,
+            tools,
+            work.path(),
+            &unit,
+            lemmas,
+            false,
+            &harness_name(design.cfg.top()),
+        )? {
             Ok(d) => d,
             Err(proof) => return Ok(proof),
         }
@@ -309,7 +421,14 @@ pub fn prove_datapath(design: &Design, tools: &Tools) -> Result<Proof, Error> {
     if matches!(verdict, Verdict::Failed { .. }) {
         properties.extend(PORT_PROPERTIES);
     }
-    Ok(Proof { name: harness_name(design.cfg.top()), properties, verdict, seconds: t0.elapsed().as_secs_f64(), engine, ports })
+    Ok(Proof {
+        name: harness_name(design.cfg.top()),
+        properties,
+        verdict,
+        seconds: t0.elapsed().as_secs_f64(),
+        engine,
+        ports,
+    })
 }
 
 /// The value check's property, in words (the default proof of a per-pixel colour).
@@ -354,13 +473,24 @@ pub(super) fn against_the_twin(
         ..cfg.params.clone()
     };
     files.extend(stage_twin(design, w, params)?);
-    put(w, "ports.v", crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")))?;
+    put(
+        w,
+        "ports.v",
+        crate::cosim::adapter::adapter_named(cfg, &format!("{top}_prove_ports")),
+    )?;
     put(w, "harness.v", harness(design))?;
     files.push("ports.v".into());
     files.push("harness.v".into());
     let files = with_port_checker(design, w, &files)?;
-    let (yosys, abc) = (crate::synth::absolute_tool(&tools.yosys), crate::synth::absolute_tool(&tools.abc));
-    let tools = &Tools { yosys, abc, ..tools.clone() };
+    let (yosys, abc) = (
+        crate::synth::absolute_tool(&tools.yosys),
+        crate::synth::absolute_tool(&tools.abc),
+    );
+    let tools = &Tools {
+        yosys,
+        abc,
+        ..tools.clone()
+    };
     let name = harness_name(top);
     let mut defines = vec!["SPECGEN_PORTS".to_string(), "SPECGEN_DATAPATH".to_string()];
     if colour_only {
@@ -378,12 +508,35 @@ pub(super) fn against_the_twin(
     };
     Ok(match search(design, tools, w, script.clone(), depth)? {
         Searched::Found { frame, vcd } => (Verdict::Failed { frame, vcd }, None),
-        Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: reached, out_of_time: true, reached }, None),
+        Searched::OutOfTime { reached } => (
+            Verdict::Undecided {
+                bounded: reached,
+                out_of_time: true,
+                reached,
+            },
+            None,
+        ),
         Searched::Clear => {
             let mut defines = script.defines.clone();
-            defines.extend(["SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{}", 1 << 6)]);
-            let covering = Script { defines, ..script.clone() };
-            match search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, tools.cover_trace)? {
+            defines.extend([
+                "SPECGEN_COVERS".to_string(),
+                format!("SPECGEN_COVER_MASK=7'd{}", 1 << 6),
+            ]);
+            let covering = Script {
+                defines,
+                ..script.clone()
+            };
+            match search_with(
+                design,
+                &Tools {
+                    progress: None,
+                    ..tools.clone()
+                },
+                w,
+                covering,
+                depth,
+                tools.cover_trace,
+            )? {
                 Searched::Found { frame, vcd } => {
                     let cover_vcd = tools.cover_trace.then_some(vcd);
                     // then for every edge, unless a bounded search was asked for (--depth): the
@@ -398,7 +551,11 @@ pub(super) fn against_the_twin(
                     };
                     let verdict = match unbounded {
                         Unbounded::Proved { .. } => Verdict::Proved,
-                        Unbounded::Undecided { out_of_time, .. } => Verdict::Undecided { bounded: Some(depth), out_of_time, reached: None },
+                        Unbounded::Undecided { out_of_time, .. } => Verdict::Undecided {
+                            bounded: Some(depth),
+                            out_of_time,
+                            reached: None,
+                        },
                         Unbounded::NoLemmas | Unbounded::NotTried => Verdict::Bounded { depth },
                     };
                     let ports = Ports {
@@ -412,8 +569,21 @@ pub(super) fn against_the_twin(
                     };
                     (verdict, Some(ports))
                 }
-                Searched::Clear => (Verdict::Unreached { covers: vec![DATAPATH_COVER], depth }, None),
-                Searched::OutOfTime { reached } => (Verdict::Undecided { bounded: Some(depth), out_of_time: true, reached }, None),
+                Searched::Clear => (
+                    Verdict::Unreached {
+                        covers: vec![DATAPATH_COVER],
+                        depth,
+                    },
+                    None,
+                ),
+                Searched::OutOfTime { reached } => (
+                    Verdict::Undecided {
+                        bounded: Some(depth),
+                        out_of_time: true,
+                        reached,
+                    },
+                    None,
+                ),
             }
         }
     })

@@ -52,7 +52,11 @@ pub(super) fn cover_depth(cfg: &crate::config::Config) -> u32 {
 }
 
 /// Writes the port checker into the work directory `w`: `files` and it, for a script to read.
-pub(super) fn with_port_checker(design: &Design, w: &Path, files: &[String]) -> Result<Vec<String>, Error> {
+pub(super) fn with_port_checker(
+    design: &Design,
+    w: &Path,
+    files: &[String],
+) -> Result<Vec<String>, Error> {
     put(w, "port_checker.v", port_checker(design))?;
     let mut all = files.to_vec();
     all.push("port_checker.v".into());
@@ -61,15 +65,30 @@ pub(super) fn with_port_checker(design: &Design, w: &Path, files: &[String]) -> 
 
 /// The port checker's bounded search (its assertions only), then its covers, then (`lemmas`:
 /// the unit states the assertions specgen writes) its properties for every edge.
-pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Script, lemmas: bool) -> Result<AtPorts, Error> {
+pub(super) fn at_the_ports(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    script: &Script,
+    lemmas: bool,
+) -> Result<AtPorts, Error> {
     let cfg = &design.cfg;
     let files = with_port_checker(design, w, script.files)?;
     let checker = format!("{}_port_checker", cfg.top());
     let depth = port_depth(cfg);
-    let ports = Script { bounded: Some(depth), files: &files, defines: vec!["SPECGEN_PORTS".into()], ports_only: Some(checker.clone()), ..script.clone() };
+    let ports = Script {
+        bounded: Some(depth),
+        files: &files,
+        defines: vec!["SPECGEN_PORTS".into()],
+        ports_only: Some(checker.clone()),
+        ..script.clone()
+    };
     // the first search keeps the unit's own assertions beside the checker's: a fault they see
     // is refuted here, within the depth, and named
-    let first = Script { ports_only: None, ..ports.clone() };
+    let first = Script {
+        ports_only: None,
+        ..ports.clone()
+    };
     match search(design, tools, w, first, depth)? {
         Searched::Clear => {}
         Searched::Found { frame, vcd } => {
@@ -78,16 +97,40 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
                 Searched::Found { .. } => "a bounded search with ABC bmc3 over its assertions and the unit's own; a rule at the ports fails",
                 _ => "a bounded search with ABC bmc3 over its assertions and the unit's own; the unit's own assertion fails, the rules at the ports hold to that depth",
             };
-            return Ok(AtPorts::Failed { frame, vcd, how: how.into() });
+            return Ok(AtPorts::Failed {
+                frame,
+                vcd,
+                how: how.into(),
+            });
         }
         Searched::OutOfTime { reached } => return Ok(AtPorts::OutOfTime { reached }),
     }
     let all = covers(cfg);
     let reach = |mask: u32, depth: u32, replay: bool| -> Result<Searched, Error> {
-        let defines = vec!["SPECGEN_PORTS".to_string(), "SPECGEN_COVERS".to_string(), format!("SPECGEN_COVER_MASK=7'd{mask}")];
-        let covering = Script { bounded: Some(depth), files: &files, defines, ports_only: Some(checker.clone()), ..script.clone() };
+        let defines = vec![
+            "SPECGEN_PORTS".to_string(),
+            "SPECGEN_COVERS".to_string(),
+            format!("SPECGEN_COVER_MASK=7'd{mask}"),
+        ];
+        let covering = Script {
+            bounded: Some(depth),
+            files: &files,
+            defines,
+            ports_only: Some(checker.clone()),
+            ..script.clone()
+        };
         // (its depths are not "no failure": a cover not reached yet)
-        search_with(design, &Tools { progress: None, ..tools.clone() }, w, covering, depth, replay)
+        search_with(
+            design,
+            &Tools {
+                progress: None,
+                ..tools.clone()
+            },
+            w,
+            covering,
+            depth,
+            replay,
+        )
     };
     let cdepth = cover_depth(cfg);
     let mask = all.iter().fold(0, |m, (bit, _)| m | 1 << bit);
@@ -124,7 +167,10 @@ pub(super) fn at_the_ports(design: &Design, tools: &Tools, w: &Path, script: &Sc
                     unreached.push(*what);
                 }
             }
-            Ok(AtPorts::Unreached { covers: unreached, depth: cdepth })
+            Ok(AtPorts::Unreached {
+                covers: unreached,
+                depth: cdepth,
+            })
         }
     }
 }
@@ -151,24 +197,61 @@ pub(super) fn twin_steps(cfg: &crate::config::Config) -> u32 {
 /// case) is `Err` with its edge and trace.
 /// (`script`: the checker's search, whose files and defines it keeps; `steps`: the most edges.)
 #[allow(clippy::type_complexity)]
-pub(super) fn unbounded(design: &Design, tools: &Tools, w: &Path, script: &Script, steps: u32) -> Result<Result<Unbounded, (u32, Vec<u8>)>, Error> {
+pub(super) fn unbounded(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    script: &Script,
+    steps: u32,
+) -> Result<Result<Unbounded, (u32, Vec<u8>)>, Error> {
     let mut defines = script.defines.clone();
     defines.push("SPECGEN_LEMMAS".into());
-    let lemmas = Script { bounded: None, induction: Some(steps), defines, ports_only: None, sat_search: None, replay: false, ..script.clone() };
+    let lemmas = Script {
+        bounded: None,
+        induction: Some(steps),
+        defines,
+        ports_only: None,
+        sat_search: None,
+        replay: false,
+        ..script.clone()
+    };
     lemmas.write(w, "lemmas.ys")?;
     let _ = std::fs::remove_file(w.join("trace.vcd"));
-    let said = match run_watched(&tools.yosys, &["-s".into(), "lemmas.ys".into()], w, tools.limit, tools.progress, sat_progress) {
+    let said = match run_watched(
+        &tools.yosys,
+        &["-s".into(), "lemmas.ys".into()],
+        w,
+        tools.limit,
+        tools.progress,
+        sat_progress,
+    ) {
         // an edited unit without the lemma port: the bounded search is what there is
-        Err(e) if e.to_string().contains("does not have a port named 'f_ports'") => return Ok(Ok(Unbounded::NoLemmas)),
+        Err(e)
+            if e.to_string()
+                .contains("does not have a port named 'f_ports'") =>
+        {
+            return Ok(Ok(Unbounded::NoLemmas))
+        }
         ran => ran?,
     };
     let k = said.text.matches("Induction step failed").count() as u32 + 1;
-    Ok(match sat_verdict(&said, steps, tools, w, design, "the port checker's properties")? {
-        Verdict::Proved => Ok(Unbounded::Proved { k }),
-        Verdict::Failed { frame, vcd } => Err((frame, vcd)),
-        Verdict::Undecided { out_of_time, .. } => Ok(Unbounded::Undecided { steps, out_of_time }),
-        other => unreachable!("sat_verdict gives no {other:?}"),
-    })
+    Ok(
+        match sat_verdict(
+            &said,
+            steps,
+            tools,
+            w,
+            design,
+            "the port checker's properties",
+        )? {
+            Verdict::Proved => Ok(Unbounded::Proved { k }),
+            Verdict::Failed { frame, vcd } => Err((frame, vcd)),
+            Verdict::Undecided { out_of_time, .. } => {
+                Ok(Unbounded::Undecided { steps, out_of_time })
+            }
+            other => unreachable!("sat_verdict gives no {other:?}"),
+        },
+    )
 }
 
 /// The port checker's properties, in words (`templates/prove_port_checker.v`).
@@ -193,34 +276,86 @@ pub(super) enum Searched {
 
 /// A bounded search of `depth` edges from power-up of `script`'s model: yosys writes it as an
 /// AIGER, ABC's bmc3 searches it, and a failure is simulated by yosys on the same model to a VCD.
-pub(super) fn search(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32) -> Result<Searched, Error> {
+pub(super) fn search(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    script: Script,
+    depth: u32,
+) -> Result<Searched, Error> {
     search_with(design, tools, w, script, depth, true)
 }
 
 /// [`search`], with the counterexample replayed to a VCD only when `replay` (a cover's trace
 /// only when asked for: `--cover-trace`).
-pub(super) fn search_with(design: &Design, tools: &Tools, w: &Path, script: Script, depth: u32, replay: bool) -> Result<Searched, Error> {
+pub(super) fn search_with(
+    design: &Design,
+    tools: &Tools,
+    w: &Path,
+    script: Script,
+    depth: u32,
+    replay: bool,
+) -> Result<Searched, Error> {
     script.write(w, "model.ys")?;
-    run(&tools.yosys, &["-q".into(), "-s".into(), "model.ys".into()], w, tools.limit)?
-        .ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not write the model within {} s (--time-limit)", tools.limit.as_secs())))?;
+    run(
+        &tools.yosys,
+        &["-q".into(), "-s".into(), "model.ys".into()],
+        w,
+        tools.limit,
+    )?
+    .ok_or_else(|| {
+        error::tool(
+            &tools.yosys,
+            format!(
+                "yosys did not write the model within {} s (--time-limit)",
+                tools.limit.as_secs()
+            ),
+        )
+    })?;
     let _ = std::fs::remove_file(w.join("cex.aiw"));
-    let abc_script = format!("read_aiger model.aig; fold; bmc3 -F {depth} -v; write_cex -a cex.aiw");
-    let said = run_watched(&tools.abc, &["-c".into(), abc_script], w, tools.limit, tools.progress, bmc_progress)?;
+    let abc_script =
+        format!("read_aiger model.aig; fold; bmc3 -F {depth} -v; write_cex -a cex.aiw");
+    let said = run_watched(
+        &tools.abc,
+        &["-c".into(), abc_script],
+        w,
+        tools.limit,
+        tools.progress,
+        bmc_progress,
+    )?;
     if !said.ended {
-        return Ok(Searched::OutOfTime { reached: bmc_reached(&said.text) });
+        return Ok(Searched::OutOfTime {
+            reached: bmc_reached(&said.text),
+        });
     }
     match frame_asserted(&said.text) {
-        Some(frame) if !replay => Ok(Searched::Found { frame, vcd: Vec::new() }),
+        Some(frame) if !replay => Ok(Searched::Found {
+            frame,
+            vcd: Vec::new(),
+        }),
         Some(frame) => {
             yosys_witness(w)?;
-            Script { replay: true, ..script.clone() }.write(w, "replay.ys")?;
+            Script {
+                replay: true,
+                ..script.clone()
+            }
+            .write(w, "replay.ys")?;
             let _ = std::fs::remove_file(w.join("trace.vcd"));
-            let replayed = run(&tools.yosys, &["-q".into(), "-s".into(), "replay.ys".into()], w, tools.limit);
+            let replayed = run(
+                &tools.yosys,
+                &["-q".into(), "-s".into(), "replay.ys".into()],
+                w,
+                tools.limit,
+            );
             if matches!(&replayed, Err(e) if without_sim(e)) {
                 // YoWASP's yosys has no `sim`: its `sat` searches the failing run's edges again
                 // (sat's first step is the state before the first edge: ABC's frame f is step f + 2)
                 let steps = frame + 2;
-                Script { sat_search: Some(steps), ..script }.write(w, "replay.ys")?;
+                Script {
+                    sat_search: Some(steps),
+                    ..script
+                }
+                .write(w, "replay.ys")?;
                 match run_sat(&tools.yosys, w, "replay.ys", tools.limit)? {
                     Some(false) => {}
                     None => {
@@ -237,11 +372,28 @@ pub(super) fn search_with(design: &Design, tools: &Tools, w: &Path, script: Scri
                     }
                 }
             } else {
-                replayed?.ok_or_else(|| error::tool(&tools.yosys, format!("yosys did not replay the counterexample within {} s", tools.limit.as_secs())))?;
+                replayed?.ok_or_else(|| {
+                    error::tool(
+                        &tools.yosys,
+                        format!(
+                            "yosys did not replay the counterexample within {} s",
+                            tools.limit.as_secs()
+                        ),
+                    )
+                })?;
             }
-            Ok(Searched::Found { frame, vcd: trace(&tools.yosys, w, design)? })
+            Ok(Searched::Found {
+                frame,
+                vcd: trace(&tools.yosys, w, design)?,
+            })
         }
         None if said.text.contains("No output asserted") => Ok(Searched::Clear),
-        None => Err(error::tool(&tools.abc, format!("bmc3 neither found a failure nor finished its {depth} frames: {}", tail(&said.text)))),
+        None => Err(error::tool(
+            &tools.abc,
+            format!(
+                "bmc3 neither found a failure nor finished its {depth} frames: {}",
+                tail(&said.text)
+            ),
+        )),
     }
 }

@@ -22,22 +22,35 @@ pub const OF_THE_BUILT: &str =
 /// highest): their width, and the bits among them that carry no field (`m_axis_tdata`'s
 /// padding), as (highest, lowest) ranges.
 pub(super) fn raw_outputs(cfg: &crate::config::Config) -> (u32, Vec<(u32, u32)>) {
-    let data: Vec<_> =
-        cfg.ports("").into_iter().filter(|p| p.direction == "output" && crate::ports::port_rule(p.name) == Some(crate::ports::PortRule::Data)).collect();
+    let data: Vec<_> = cfg
+        .ports("")
+        .into_iter()
+        .filter(|p| {
+            p.direction == "output"
+                && crate::ports::port_rule(p.name) == Some(crate::ports::PortRule::Data)
+        })
+        .collect();
     let width: u32 = data.iter().map(|p| p.width).sum();
     let mut padding = Vec::new();
     let mut above = 0;
     for p in &data {
         above += p.width;
         let lo = width - above;
-        padding.extend(crate::ports::padding(cfg.port_widths(), p.name).into_iter().map(|(h, l)| (h + lo, l + lo)));
+        padding.extend(
+            crate::ports::padding(cfg.port_widths(), p.name)
+                .into_iter()
+                .map(|(h, l)| (h + lo, l + lo)),
+        );
     }
     (width, padding)
 }
 
 /// `assert(` statements in Verilog text (outside comments).
 fn assertions_in(text: &str) -> usize {
-    text.lines().map(|l| l.split("//").next().unwrap_or("")).map(|l| l.matches("assert(").count() + l.matches("assert (").count()).sum()
+    text.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .map(|l| l.matches("assert(").count() + l.matches("assert (").count())
+        .sum()
 }
 
 /// Whether the unit states the assertions specgen writes for its configuration: as many
@@ -47,7 +60,8 @@ fn assertions_in(text: &str) -> usize {
 pub(super) fn states_its_own_assertions(design: &Design) -> Result<bool, Error> {
     let mut count = 0;
     for src in &design.sources {
-        let text = crate::small_file::read(src, crate::small_file::UNIT_FILE_MAX).map_err(|e| error::input(format!("{} {e}", src.display())))?;
+        let text = crate::small_file::read(src, crate::small_file::UNIT_FILE_MAX)
+            .map_err(|e| error::input(format!("{} {e}", src.display())))?;
         count += assertions_in(&text);
     }
     let written: usize = crate::emit::generate_files(&design.plan)

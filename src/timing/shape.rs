@@ -32,7 +32,15 @@ pub(crate) struct Shape {
 }
 
 /// The flags of the sizes, in the order of [`Shape::sizes`].
-const SIZE_FLAGS: [&str; 7] = ["--cos-frac-bits", "--n-bits", "--color-bits", "--intensity-frac-bits", "--k-frac-bits", "--max-squarings", "--dsp-budget"];
+const SIZE_FLAGS: [&str; 7] = [
+    "--cos-frac-bits",
+    "--n-bits",
+    "--color-bits",
+    "--intensity-frac-bits",
+    "--k-frac-bits",
+    "--max-squarings",
+    "--dsp-budget",
+];
 
 impl Shape {
     /// The shape of `p` for `model`, `soft_products` as its plan has it.
@@ -93,7 +101,12 @@ impl Shape {
     /// Whether what is no size (rounding, ROM style, fabric registers, a product in LUTs for its
     /// size) is alike.
     pub(crate) fn alike(&self, o: &Shape) -> bool {
-        (self.rounding, self.rom_style, self.fabric_registers, self.soft_products) == (o.rounding, o.rom_style, o.fabric_registers, o.soft_products)
+        (
+            self.rounding,
+            self.rom_style,
+            self.fabric_registers,
+            self.soft_products,
+        ) == (o.rounding, o.rom_style, o.fabric_registers, o.soft_products)
     }
 
     /// Whether this shape is no wider than `o` in every size, the other flags alike.
@@ -106,10 +119,15 @@ impl Shape {
     pub(crate) fn between(&self, shapes: &[Shape]) -> bool {
         let own = self.sizes();
         !shapes.is_empty()
-            && (0..own.len()).all(|i| shapes.iter().any(|s| s.sizes()[i] <= own[i]) && shapes.iter().any(|s| s.sizes()[i] >= own[i]))
+            && (0..own.len()).all(|i| {
+                shapes.iter().any(|s| s.sizes()[i] <= own[i])
+                    && shapes.iter().any(|s| s.sizes()[i] >= own[i])
+            })
             && shapes.iter().any(|s| s.rounding == self.rounding)
             && shapes.iter().any(|s| s.rom_style == self.rom_style)
-            && shapes.iter().any(|s| s.fabric_registers == self.fabric_registers)
+            && shapes
+                .iter()
+                .any(|s| s.fabric_registers == self.fabric_registers)
             && shapes.iter().any(|s| s.soft_products == self.soft_products)
     }
 
@@ -118,7 +136,13 @@ impl Shape {
     pub(crate) fn flags(&self, model: SpecularModel) -> String {
         let default = Shape::of(&Params::default(), model, false);
         let mut v: Vec<String> = Vec::new();
-        for (i, (own, d)) in self.sizes().into_iter().zip(default.sizes()).enumerate().take(6) {
+        for (i, (own, d)) in self
+            .sizes()
+            .into_iter()
+            .zip(default.sizes())
+            .enumerate()
+            .take(6)
+        {
             if let (Some(x), true) = (own, own != d) {
                 v.push(format!("{} {x}", SIZE_FLAGS[i]));
             }
@@ -154,7 +178,10 @@ fn planned(p: &Params) -> Option<Shape> {
     if let Some(found) = cache.lock().ok()?.get(&key) {
         return found.clone();
     }
-    let shape = crate::config::Config::new(p.clone()).and_then(Plan::new).ok().map(|plan| Shape::of_plan(&plan));
+    let shape = crate::config::Config::new(p.clone())
+        .and_then(Plan::new)
+        .ok()
+        .map(|plan| Shape::of_plan(&plan));
     // bounded: the calibration holds a few dozen widths; nothing else is asked here
     let mut map = cache.lock().ok()?;
     if map.len() < 4096 {

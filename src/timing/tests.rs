@@ -9,7 +9,11 @@ fn calibrated_models() -> Vec<crate::config::SpecularModel> {
     crate::config::SpecularModel::ALL
         .into_iter()
         .filter(|&model| {
-            let cfg = Config::new(crate::config::Params { model, ..Default::default() }).unwrap();
+            let cfg = Config::new(crate::config::Params {
+                model,
+                ..Default::default()
+            })
+            .unwrap();
             line(Target::Ice40, cfg.datapath_name()).is_ok_and(|l| !l.measured.is_empty())
         })
         .collect()
@@ -17,7 +21,12 @@ fn calibrated_models() -> Vec<crate::config::SpecularModel> {
 
 /// A line `offset + slope·e` ns (no mean term) with its (cap, cap_up_to), margin and
 /// measured units, all at the default widths.
-fn test_line((offset_ns, ns_per_unit): (f64, f64), (cap_mhz, cap_up_to): (f64, f64), margin: f64, measured: Vec<[f64; 3]>) -> Line {
+fn test_line(
+    (offset_ns, ns_per_unit): (f64, f64),
+    (cap_mhz, cap_up_to): (f64, f64),
+    margin: f64,
+    measured: Vec<[f64; 3]>,
+) -> Line {
     Line {
         offset_ns,
         ns_per_unit,
@@ -45,32 +54,90 @@ fn test_line((offset_ns, ns_per_unit): (f64, f64), (cap_mhz, cap_up_to): (f64, f
 #[test]
 fn widths_outside_the_calibration_are_told() {
     let plan = |p: crate::config::Params| crate::plan::Plan::new(Config::new(p).unwrap()).unwrap();
-    let narrow = |p: crate::config::Params| crate::config::Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..p };
+    let narrow = |p: crate::config::Params| crate::config::Params {
+        cos_frac_bits: 8,
+        n_bits: 6,
+        color_bits: 4,
+        intensity_frac_bits: 8,
+        ..p
+    };
     for model in calibrated_models() {
         for target in [Target::Ice40, Target::Ecp5] {
-            let p = crate::config::Params { model, target, ..Default::default() };
-            assert_eq!(outside_calibration(&plan(p.clone())), None, "{model:?} on {target:?}");
-            assert_eq!(outside_calibration(&plan(narrow(p.clone()))), None, "{model:?} on {target:?}, narrow");
-            let between = crate::config::Params { cos_frac_bits: 12, n_bits: 8, color_bits: 6, intensity_frac_bits: 11, ..p.clone() };
+            let p = crate::config::Params {
+                model,
+                target,
+                ..Default::default()
+            };
+            assert_eq!(
+                outside_calibration(&plan(p.clone())),
+                None,
+                "{model:?} on {target:?}"
+            );
+            assert_eq!(
+                outside_calibration(&plan(narrow(p.clone()))),
+                None,
+                "{model:?} on {target:?}, narrow"
+            );
+            let between = crate::config::Params {
+                cos_frac_bits: 12,
+                n_bits: 8,
+                color_bits: 6,
+                intensity_frac_bits: 11,
+                ..p.clone()
+            };
             let why = outside_calibration(&plan(between)).expect("between the grid's widths");
             // read against the nearest widths around it: a narrow one below, one above
             assert!(why.starts_with("between calibrated widths"), "{why}");
-            let narrower = crate::config::Params { cos_frac_bits: 6, ..narrow(p) };
+            let narrower = crate::config::Params {
+                cos_frac_bits: 6,
+                ..narrow(p)
+            };
             let why = outside_calibration(&plan(narrower)).expect("narrower than the grid");
-            assert!(why.starts_with("outside the calibration") && why.contains("--cos-frac-bits 6"), "{why}");
+            assert!(
+                why.starts_with("outside the calibration") && why.contains("--cos-frac-bits 6"),
+                "{why}"
+            );
         }
     }
     // a shape is calibrated by units of today's RTL only: the wide lean of the ECP5 is where
     // its rows name today's digest; on the iCE40 it has none
-    let wide = crate::config::Params { cos_frac_bits: 18, n_bits: 11, color_bits: 10, intensity_frac_bits: 18, k_frac_bits: 20, ..Default::default() };
-    let wide_args = "--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20";
-    let today = line(Target::Ecp5, "lean").unwrap().of_todays_rtl().measured_args.iter().any(|a| a == wide_args);
-    assert_eq!(outside_calibration(&plan(crate::config::Params { target: Target::Ecp5, ..wide.clone() })).is_none(), today);
-    assert!(outside_calibration(&plan(wide)).unwrap().starts_with("outside the calibration"));
+    let wide = crate::config::Params {
+        cos_frac_bits: 18,
+        n_bits: 11,
+        color_bits: 10,
+        intensity_frac_bits: 18,
+        k_frac_bits: 20,
+        ..Default::default()
+    };
+    let wide_args =
+        "--cos-frac-bits 18 --n-bits 11 --color-bits 10 --intensity-frac-bits 18 --k-frac-bits 20";
+    let today = line(Target::Ecp5, "lean")
+        .unwrap()
+        .of_todays_rtl()
+        .measured_args
+        .iter()
+        .any(|a| a == wide_args);
+    assert_eq!(
+        outside_calibration(&plan(crate::config::Params {
+            target: Target::Ecp5,
+            ..wide.clone()
+        }))
+        .is_none(),
+        today
+    );
+    assert!(outside_calibration(&plan(wide))
+        .unwrap()
+        .starts_with("outside the calibration"));
     // a rounding or ROM style the calibration never had is outside too
-    let exact = crate::config::Params { rounding: crate::config::Rounding::Exact, ..Default::default() };
+    let exact = crate::config::Params {
+        rounding: crate::config::Rounding::Exact,
+        ..Default::default()
+    };
     let why = outside_calibration(&plan(exact)).unwrap();
-    assert!(why.starts_with("outside the calibration") && why.contains("--rounding exact"), "{why}");
+    assert!(
+        why.starts_with("outside the calibration") && why.contains("--rounding exact"),
+        "{why}"
+    );
 }
 
 /// A unit measured at other widths is no floor for a configuration: only its own widths'
@@ -80,7 +147,12 @@ fn only_units_of_the_same_widths_are_floors() {
     // (narrow widths whose products are all blocks, as the defaults': `soft_products_are_no_corner`)
     let narrow = "--cos-frac-bits 10 --n-bits 6 --intensity-frac-bits 8";
     let default = Plan::new(Config::defaults()).unwrap();
-    let p = crate::config::Params { cos_frac_bits: 10, n_bits: 6, intensity_frac_bits: 8, ..Config::defaults().params };
+    let p = crate::config::Params {
+        cos_frac_bits: 10,
+        n_bits: 6,
+        intensity_frac_bits: 8,
+        ..Config::defaults().params
+    };
     let small = Plan::new(Config::new(p).unwrap()).unwrap();
     // each width measured at its deepest, the defaults at half that too
     let (dd, dn) = (default.cut_points, small.cut_points);
@@ -88,9 +160,17 @@ fn only_units_of_the_same_widths_are_floors() {
         measured_args: vec![String::new(), narrow.into(), String::new()],
         measured_stages: vec![dd, dn, dd / 2],
         measured_digest: vec!["today".into(); 3],
-        ..test_line((5.0, 1.0), (300.0, -1.0), 0.7, vec![[10.0, 6.0, 150.0], [9.0, 5.0, 50.0], [20.0, 9.0, 60.0]])
+        ..test_line(
+            (5.0, 1.0),
+            (300.0, -1.0),
+            0.7,
+            vec![[10.0, 6.0, 150.0], [9.0, 5.0, 50.0], [20.0, 9.0, 60.0]],
+        )
     };
-    assert_eq!(l.clone().at_widths_of(&default).measured, vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]]);
+    assert_eq!(
+        l.clone().at_widths_of(&default).measured,
+        vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]]
+    );
     let mine = l.clone().at_widths_of(&small);
     assert_eq!(mine.measured, vec![[9.0, 5.0, 50.0]]);
     assert_eq!(mine.cap_up_to, l.cap_up_to);
@@ -98,8 +178,14 @@ fn only_units_of_the_same_widths_are_floors() {
     // the narrow unit's 50 MHz is its widths' floor, never the default units' 150
     assert_eq!(mine.measured_floor(8.0, 4.0), 50.0);
     // widths never measured: no floor, and no stretch assured the cap
-    let between = crate::config::Params { cos_frac_bits: 12, ..Config::defaults().params };
-    let l = Line { cap_up_to: 8.0, ..l };
+    let between = crate::config::Params {
+        cos_frac_bits: 12,
+        ..Config::defaults().params
+    };
+    let l = Line {
+        cap_up_to: 8.0,
+        ..l
+    };
     let theirs = l.at_widths_of(&Plan::new(Config::new(between).unwrap()).unwrap());
     assert!(theirs.measured.is_empty() && theirs.cap_up_to < 0.0);
     assert!(theirs.fmax(7.0, 5.0) < theirs.cap_mhz);
@@ -109,22 +195,67 @@ fn only_units_of_the_same_widths_are_floors() {
     // its slowest stretch is no longer than theirs
     assert!(theirs.surrounded && theirs.corners.len() == 2);
     let at = |from_deepest: u32, e: f64| theirs.corner(theirs.deepest - from_deepest, e);
-    assert_eq!(at(theirs.deepest, 1.0), (50.0, false), "shallower than every unit: no floor, the ceiling of the shallowest ones");
-    assert_eq!(at(0, 1.0), (50.0, true), "the narrow unit at its deepest, the default one at its own");
-    assert_eq!(at(0, 10.0), (50.0, true), "a stretch as long as the longest of theirs");
-    assert_eq!(at(0, 10.5), (50.0, false), "a longer stretch: a ceiling only");
+    assert_eq!(
+        at(theirs.deepest, 1.0),
+        (50.0, false),
+        "shallower than every unit: no floor, the ceiling of the shallowest ones"
+    );
+    assert_eq!(
+        at(0, 1.0),
+        (50.0, true),
+        "the narrow unit at its deepest, the default one at its own"
+    );
+    assert_eq!(
+        at(0, 10.0),
+        (50.0, true),
+        "a stretch as long as the longest of theirs"
+    );
+    assert_eq!(
+        at(0, 10.5),
+        (50.0, false),
+        "a longer stretch: a ceiling only"
+    );
     // a ceiling is a unit as deep as the depth read or deeper, never a shallower one (a
     // shallower unit runs slower: 60 MHz at 3 stages says nothing of 6)
-    let deeper = Line { corners: vec![theirs.corners.iter().find(|c| c.args.is_empty()).cloned().unwrap()], surrounded: false, ..theirs.clone() };
+    let deeper = Line {
+        corners: vec![theirs
+            .corners
+            .iter()
+            .find(|c| c.args.is_empty())
+            .cloned()
+            .unwrap()],
+        surrounded: false,
+        ..theirs.clone()
+    };
     let d = deeper.corners[0].deepest;
     assert_eq!(d, dd);
     let read = |at: u32| deeper.corner(theirs.deepest - (d - at), 1.0);
-    assert_eq!(read(dd / 2), (60.0, false), "the shallower unit at its own depth");
-    assert_eq!(read(dd / 2 + 1), (150.0, false), "the deeper unit, not the shallower one");
+    assert_eq!(
+        read(dd / 2),
+        (60.0, false),
+        "the shallower unit at its own depth"
+    );
+    assert_eq!(
+        read(dd / 2 + 1),
+        (150.0, false),
+        "the deeper unit, not the shallower one"
+    );
     // a floor only from a unit near the depth read: the defaults' shallow unit says nothing
     // of a depth many cuts deeper
-    let sparse = Line { corners: theirs.corners.iter().cloned().map(|mut c| (c.units.retain(|u| u.0 <= dd / 2), c).1).collect(), ..theirs.clone() };
-    assert!(!sparse.corner(theirs.deepest, 1.0).1, "the defaults measured only {} cuts shallower", dd - dd / 2);
+    let sparse = Line {
+        corners: theirs
+            .corners
+            .iter()
+            .cloned()
+            .map(|mut c| (c.units.retain(|u| u.0 <= dd / 2), c).1)
+            .collect(),
+        ..theirs.clone()
+    };
+    assert!(
+        !sparse.corner(theirs.deepest, 1.0).1,
+        "the defaults measured only {} cuts shallower",
+        dd - dd / 2
+    );
     assert_eq!(mine.corner(3, 1.0), (f64::INFINITY, false));
 }
 
@@ -133,9 +264,19 @@ fn an_uncalibrated_datapath_is_refused_by_name() {
     for target in [Target::Ice40, Target::Ecp5] {
         let e = line(target, "phong").unwrap_err();
         assert_eq!(e.parameter(), Some("target_mhz"));
-        assert!(e.reason().contains("the phong datapath has no delay calibration") && e.reason().contains("scripts/calibrate_delay.sh"), "{}", e.reason());
+        assert!(
+            e.reason()
+                .contains("the phong datapath has no delay calibration")
+                && e.reason().contains("scripts/calibrate_delay.sh"),
+            "{}",
+            e.reason()
+        );
         for model in crate::config::SpecularModel::ALL {
-            assert!(line(target, model.name()).is_ok() || model.reads("arch"), "{target:?} {}", model.name());
+            assert!(
+                line(target, model.name()).is_ok() || model.reads("arch"),
+                "{target:?} {}",
+                model.name()
+            );
         }
         for arch in ["lean", "paper"] {
             assert!(line(target, arch).is_ok(), "{target:?} {arch}");
@@ -148,12 +289,25 @@ fn an_uncalibrated_datapath_is_refused_by_name() {
 /// names no device.
 #[test]
 fn the_generic_target_is_promised_no_clock() {
-    let cfg = Config::new(crate::config::Params { target: Target::Generic, ..Config::defaults().params }).unwrap();
+    let cfg = Config::new(crate::config::Params {
+        target: Target::Generic,
+        ..Config::defaults().params
+    })
+    .unwrap();
     let plan = Plan::new(cfg).unwrap();
     let e = pick_stages(&plan, 50.0).unwrap_err();
     assert_eq!(e.parameter(), Some("target_mhz"));
-    assert!(e.reason().contains("the generic target has no delay model") && e.reason().contains("--target ice40"), "{}", e.reason());
-    assert!(!e.reason().contains("UP5K") && !e.reason().contains("ECP5-25"), "{}", e.reason());
+    assert!(
+        e.reason().contains("the generic target has no delay model")
+            && e.reason().contains("--target ice40"),
+        "{}",
+        e.reason()
+    );
+    assert!(
+        !e.reason().contains("UP5K") && !e.reason().contains("ECP5-25"),
+        "{}",
+        e.reason()
+    );
     assert_eq!(predicted_fmax(&plan), None);
     assert!(!part(Target::Generic).contains("iCE40"));
 }
@@ -166,13 +320,19 @@ fn picks_are_the_shallowest_and_grow_with_the_target() {
     let l = line_of(&plan).unwrap();
     let (mut last, mut picked) = (0, 0);
     for f in [5.0, 20.0, 40.0, 60.0, 80.0, 100.0] {
-        let Ok((stages, predicted)) = pick_stages(&plan, f) else { continue };
+        let Ok((stages, predicted)) = pick_stages(&plan, f) else {
+            continue;
+        };
         picked += 1;
         assert!(stages >= last, "{f} MHz: {stages} stages after {last}");
         let p = plan.with_stages(stages).unwrap();
         assert!(l.assured_of(&p) >= f && (predicted - l.fmax_of(&p)).abs() < 1e-9);
         if stages > 0 {
-            assert!(l.assured_of(&plan.with_stages(stages - 1).unwrap()) < f, "{f} MHz: {} stages would do", stages - 1);
+            assert!(
+                l.assured_of(&plan.with_stages(stages - 1).unwrap()) < f,
+                "{f} MHz: {} stages would do",
+                stages - 1
+            );
         }
         last = stages;
     }
@@ -195,13 +355,24 @@ fn the_cap_holds_where_a_calibration_unit_reached_it() {
 /// longer than its own, and only for those.
 #[test]
 fn a_measured_unit_is_a_floor_for_shorter_stretches() {
-    let l = test_line((5.0, 1.0), (300.0, -1.0), 0.8, vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]]);
+    let l = test_line(
+        (5.0, 1.0),
+        (300.0, -1.0),
+        0.8,
+        vec![[10.0, 6.0, 150.0], [20.0, 9.0, 60.0]],
+    );
     assert_eq!(l.fmax(10.0, 6.0), 150.0);
     assert_eq!(l.fmax(9.0, 5.0), 150.0);
-    assert!((l.fmax(10.0, 7.0) - 66.666).abs() < 0.1, "a longer mean stretch: the line");
+    assert!(
+        (l.fmax(10.0, 7.0) - 66.666).abs() < 0.1,
+        "a longer mean stretch: the line"
+    );
     assert_eq!(l.measured_floor(21.0, 1.0), 0.0);
     // not monotone: the nearest longer unit, a unit measured itself its own figure
-    let l = Line { measured: vec![[13.4, 11.7, 70.2], [13.4, 10.03, 64.3], [11.0, 7.8, 74.4]], ..l };
+    let l = Line {
+        measured: vec![[13.4, 11.7, 70.2], [13.4, 10.03, 64.3], [11.0, 7.8, 74.4]],
+        ..l
+    };
     assert_eq!(l.measured_floor(13.4, 10.03), 64.3);
     assert_eq!(l.measured_floor(13.4, 11.0), 70.2);
     assert_eq!(l.measured_floor(12.0, 9.0), 64.3);
@@ -211,14 +382,29 @@ fn a_measured_unit_is_a_floor_for_shorter_stretches() {
 /// whatever the line says; beyond the shortest or the longest, the line (with its margin).
 #[test]
 fn between_calibration_units_only_the_longer_ones_figure_is_assured() {
-    let l = test_line((0.0, 0.25), (300.0, -1.0), 0.9, vec![[20.0, 9.0, 130.0], [15.0, 5.0, 206.0]]);
+    let l = test_line(
+        (0.0, 0.25),
+        (300.0, -1.0),
+        0.9,
+        vec![[20.0, 9.0, 130.0], [15.0, 5.0, 206.0]],
+    );
     // the line says 1000/(0.25*17) = 235 MHz at e = 17: between the two, 130 is assured
     assert!(l.bracketed(17.0, 7.0));
     assert_eq!(l.assured(17.0, 7.0), 130.0);
-    assert_eq!(l.assured(15.0, 5.0), 206.0, "a calibration unit itself: its figure");
-    assert!(!l.bracketed(14.0, 4.0) && l.assured(14.0, 4.0) >= 206.0, "shorter than every unit: the floor at least");
+    assert_eq!(
+        l.assured(15.0, 5.0),
+        206.0,
+        "a calibration unit itself: its figure"
+    );
+    assert!(
+        !l.bracketed(14.0, 4.0) && l.assured(14.0, 4.0) >= 206.0,
+        "shorter than every unit: the floor at least"
+    );
     assert!(!l.bracketed(30.0, 12.0));
-    assert!((l.assured(30.0, 12.0) - 0.9 * 1000.0 / 7.5).abs() < 1e-9, "longer than every unit: the line with its margin");
+    assert!(
+        (l.assured(30.0, 12.0) - 0.9 * 1000.0 / 7.5).abs() < 1e-9,
+        "longer than every unit: the line with its margin"
+    );
     // a longer mean stretch than the shorter unit's, a shorter slowest one: not between
     assert!(!l.bracketed(14.0, 6.0));
 }
@@ -232,18 +418,38 @@ fn leave_one_width_out() {
     let (mut tried, mut worst) = (0, f64::INFINITY);
     for target in [Target::Ice40, Target::Ecp5] {
         for model in calibrated_models() {
-            let base = crate::config::Params { model, target, ..Default::default() };
+            let base = crate::config::Params {
+                model,
+                target,
+                ..Default::default()
+            };
             // (the floors: units of today's RTL)
-            let full = line(target, Config::new(base.clone()).unwrap().datapath_name()).unwrap().of_todays_rtl();
+            let full = line(target, Config::new(base.clone()).unwrap().datapath_name())
+                .unwrap()
+                .of_todays_rtl();
             let mut widths = full.measured_args.clone();
             widths.sort();
             widths.dedup();
             for w in widths {
-                let Some(params) = params_with_args(&base, &w) else { continue };
+                let Some(params) = params_with_args(&base, &w) else {
+                    continue;
+                };
                 let others: Vec<bool> = full.measured_args.iter().map(|a| *a != w).collect();
                 let l = full.clone().keeping(&others);
-                for (i, unit) in full.measured.iter().enumerate().filter(|(i, _)| full.measured_args[*i] == w) {
-                    let plan = Plan::new(Config::new(crate::config::Params { stages: full.measured_stages[i], ..params.clone() }).unwrap()).unwrap();
+                for (i, unit) in full
+                    .measured
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, _)| full.measured_args[*i] == w)
+                {
+                    let plan = Plan::new(
+                        Config::new(crate::config::Params {
+                            stages: full.measured_stages[i],
+                            ..params.clone()
+                        })
+                        .unwrap(),
+                    )
+                    .unwrap();
                     let read = l.clone().at_widths_of(&plan);
                     if let (v, true) = read.corner(plan.cfg.stages(), super::stretches(&plan).0) {
                         tried += 1;
@@ -265,7 +471,11 @@ fn leave_one_width_out() {
     assert!(tried >= 20, "only {tried} units read between widths");
     eprintln!("leave_one_width_out: {tried} units, worst measured/read {worst:.4}");
     // the fit's margin is this worst ratio rounded down (computed apart, in `fit`)
-    assert!(corner_margin() <= worst && worst - corner_margin() < 0.01, "the worst ratio {worst:.4}, the fit's margin {}", corner_margin());
+    assert!(
+        corner_margin() <= worst && worst - corner_margin() < 0.01,
+        "the worst ratio {worst:.4}, the fit's margin {}",
+        corner_margin()
+    );
 }
 
 /// The shipped delay model is the fit of the shipped calibration (`specgen calibrate`): a row
@@ -275,7 +485,8 @@ fn leave_one_width_out() {
 fn the_shipped_model_is_the_fit_of_the_shipped_calibration() {
     let csv = include_str!("../../data/delay_calibration.csv");
     let fitted = super::fit::fit_calibration(csv, "data/delay_calibration.csv").unwrap();
-    let shipped: serde_json::Value = serde_json::from_str(include_str!("../../data/delay_model.json")).unwrap();
+    let shipped: serde_json::Value =
+        serde_json::from_str(include_str!("../../data/delay_model.json")).unwrap();
     assert!(fitted == shipped, "data/delay_model.json is not the fit of data/delay_calibration.csv: run specgen calibrate --calibration data/delay_calibration.csv --out data/delay_model.json");
 }
 
@@ -284,19 +495,43 @@ fn the_shipped_model_is_the_fit_of_the_shipped_calibration() {
 /// hard multiply weigh otherwise there), and the shipped model says how well each line fits.
 #[test]
 fn each_family_weighs_the_stretches_with_its_own_primitive_delays() {
-    let at = |target: Target| Plan::new(Config::new(crate::config::Params { target, stages: 5, ..Config::defaults().params }).unwrap()).unwrap();
+    let at = |target: Target| {
+        Plan::new(
+            Config::new(crate::config::Params {
+                target,
+                stages: 5,
+                ..Config::defaults().params
+            })
+            .unwrap(),
+        )
+        .unwrap()
+    };
     let ice40 = at(Target::Ice40);
-    assert!((stretches(&ice40).0 - ice40.stage_delay()).abs() < 1e-9 && (stretches(&ice40).1 - ice40.stage_delay_mean()).abs() < 1e-9);
+    assert!(
+        (stretches(&ice40).0 - ice40.stage_delay()).abs() < 1e-9
+            && (stretches(&ice40).1 - ice40.stage_delay_mean()).abs() < 1e-9
+    );
     for target in [Target::Ecp5, Target::Gowin] {
         let p = at(target);
         let w = crate::family::of(target).primitive_delays();
         assert_ne!(w, crate::family::of(Target::Ice40).primitive_delays());
-        assert_eq!(stretches(&p), (p.stage_delay_on(&w), p.stage_delay_mean_on(&w)));
-        assert!(stretches(&p).0 < p.stage_delay(), "{target:?}: a faster fabric than the UP5K's");
+        assert_eq!(
+            stretches(&p),
+            (p.stage_delay_on(&w), p.stage_delay_mean_on(&w))
+        );
+        assert!(
+            stretches(&p).0 < p.stage_delay(),
+            "{target:?}: a faster fabric than the UP5K's"
+        );
     }
     for target in [Target::Ice40, Target::Ecp5, Target::Gowin] {
         for (name, l) in lines(target) {
-            assert!((0.0..=1.0).contains(&l.r2) && l.offset_ns >= 0.0, "{target:?} {name}: R² {} offset {}", l.r2, l.offset_ns);
+            assert!(
+                (0.0..=1.0).contains(&l.r2) && l.offset_ns >= 0.0,
+                "{target:?} {name}: R² {} offset {}",
+                l.r2,
+                l.offset_ns
+            );
         }
     }
 }
@@ -306,7 +541,14 @@ fn each_family_weighs_the_stretches_with_its_own_primitive_delays() {
 /// tables are block RAM, however slow it ran.
 #[test]
 fn a_ceiling_comes_only_from_widths_of_the_same_rom_style() {
-    let between = Plan::new(Config::new(crate::config::Params { cos_frac_bits: 12, ..Config::defaults().params }).unwrap()).unwrap();
+    let between = Plan::new(
+        Config::new(crate::config::Params {
+            cos_frac_bits: 12,
+            ..Config::defaults().params
+        })
+        .unwrap(),
+    )
+    .unwrap();
     let with = |args: &str| {
         Line {
             measured_args: vec![args.into()],
@@ -321,7 +563,11 @@ fn a_ceiling_comes_only_from_widths_of_the_same_rom_style() {
     assert_eq!(logic.corner(0, 1.0), (f64::INFINITY, false));
     let file = with("--cos-frac-bits 10");
     assert_eq!(file.corners.len(), 1);
-    assert_eq!(file.corner(0, 1.0), (20.0, false), "the narrower width's unit, as deep or deeper: a ceiling");
+    assert_eq!(
+        file.corner(0, 1.0),
+        (20.0, false),
+        "the narrower width's unit, as deep or deeper: a ceiling"
+    );
 }
 
 /// A figure says which rule gave it: where no row of today's RTL is at or around the widths
@@ -329,15 +575,37 @@ fn a_ceiling_comes_only_from_widths_of_the_same_rom_style() {
 /// configuration with floors of today's RTL (the UP5K's default lean) reads one.
 #[test]
 fn the_rule_that_gave_a_figure_is_told() {
-    let at = |target: Target, stages: u32| Plan::new(Config::new(crate::config::Params { target, stages, ..Config::defaults().params }).unwrap()).unwrap();
+    let at = |target: Target, stages: u32| {
+        Plan::new(
+            Config::new(crate::config::Params {
+                target,
+                stages,
+                ..Config::defaults().params
+            })
+            .unwrap(),
+        )
+        .unwrap()
+    };
     let gowin = line(Target::Gowin, "lean").unwrap();
     if gowin.measured_digest.iter().all(|d| d.is_empty()) {
-        assert_eq!(assured_reading(&at(Target::Gowin, 5)).map(|r| r.1), Some(Rule::Line));
+        assert_eq!(
+            assured_reading(&at(Target::Gowin, 5)).map(|r| r.1),
+            Some(Rule::Line)
+        );
     }
     let l = line(Target::Ice40, "lean").unwrap().of_todays_rtl();
-    let shallowest =
-        l.measured_args.iter().zip(&l.measured_stages).filter(|(a, _)| a.is_empty()).map(|(_, s)| *s).min().expect("a default lean of today's RTL");
-    assert_eq!(assured_reading(&at(Target::Ice40, shallowest)).map(|r| r.1), Some(Rule::Floor));
+    let shallowest = l
+        .measured_args
+        .iter()
+        .zip(&l.measured_stages)
+        .filter(|(a, _)| a.is_empty())
+        .map(|(_, s)| *s)
+        .min()
+        .expect("a default lean of today's RTL");
+    assert_eq!(
+        assured_reading(&at(Target::Ice40, shallowest)).map(|r| r.1),
+        Some(Rule::Floor)
+    );
 }
 
 /// A calibrated width with a product yosys leaves in LUTs (too small for the block: a step no
@@ -358,23 +626,42 @@ fn a_width_with_a_product_in_luts_is_no_corner_of_one_without() {
         Plan::new(Config::new(p).unwrap()).unwrap()
     };
     let (narrow, between) = (fitted(8, 6, 4, 8), fitted(11, 6, 5, 14));
-    assert!(narrow.datapath.steps.iter().any(|s| s.small_product) && !between.datapath.steps.iter().any(|s| s.small_product));
+    assert!(
+        narrow.datapath.steps.iter().any(|s| s.small_product)
+            && !between.datapath.steps.iter().any(|s| s.small_product)
+    );
     let with = |args: &str, plan: &Plan| {
         Line {
             measured_args: vec![args.into(), String::new()],
             measured_stages: vec![plan.cut_points, plan.cut_points],
             measured_digest: vec!["today".into(); 2],
-            ..test_line((5.0, 1.0), (300.0, -1.0), 0.7, vec![[15.0, 4.0, 53.0], [5.0, 3.0, 150.0]])
+            ..test_line(
+                (5.0, 1.0),
+                (300.0, -1.0),
+                0.7,
+                vec![[15.0, 4.0, 53.0], [5.0, 3.0, 150.0]],
+            )
         }
         .at_widths_of(plan)
     };
-    let read = with("--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8", &between);
-    assert_eq!(read.corners.len(), 1, "only the default widths: {:?}", read.corners);
+    let read = with(
+        "--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8",
+        &between,
+    );
+    assert_eq!(
+        read.corners.len(),
+        1,
+        "only the default widths: {:?}",
+        read.corners
+    );
     assert!(!read.surrounded);
     // a configuration with such a product of its own is read through it
     let own = fitted(8, 6, 4, 10);
     assert!(own.datapath.steps.iter().any(|s| s.small_product));
-    let read = with("--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8", &own);
+    let read = with(
+        "--cos-frac-bits 8 --n-bits 6 --color-bits 4 --intensity-frac-bits 8",
+        &own,
+    );
     assert_eq!(read.corners.len(), 1);
     assert!(read.corners[0].args.contains("--color-bits 4"));
 }

@@ -6,7 +6,11 @@ use std::path::Path;
 use std::process::Output;
 
 fn text(o: &Output) -> String {
-    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
 }
 
 fn read_dir_sorted(dir: &Path) -> Vec<(String, Vec<u8>)> {
@@ -14,7 +18,10 @@ fn read_dir_sorted(dir: &Path) -> Vec<(String, Vec<u8>)> {
         .unwrap()
         .map(|e| {
             let e = e.unwrap();
-            (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap())
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                std::fs::read(e.path()).unwrap(),
+            )
         })
         .collect();
     v.sort();
@@ -31,8 +38,16 @@ fn invalid_parameters_exit_2_name_the_range_and_write_nothing() {
         (&["--n-bits", "13"], "--n-bits", "1..=12"),
         (&["--color-bits", "0"], "--color-bits", "1..=16"),
         (&["--color-bits", "17"], "--color-bits", "1..=16"),
-        (&["--intensity-frac-bits", "0"], "--intensity-frac-bits", "1..=24"),
-        (&["--intensity-frac-bits", "25"], "--intensity-frac-bits", "1..=24"),
+        (
+            &["--intensity-frac-bits", "0"],
+            "--intensity-frac-bits",
+            "1..=24",
+        ),
+        (
+            &["--intensity-frac-bits", "25"],
+            "--intensity-frac-bits",
+            "1..=24",
+        ),
         (&["--k-frac-bits", "3"], "--k-frac-bits", "4..=24"),
         (&["--k-frac-bits", "25"], "--k-frac-bits", "4..=24"),
         (&["--stages", "14"], "--stages", "0..=13"),
@@ -44,29 +59,58 @@ fn invalid_parameters_exit_2_name_the_range_and_write_nothing() {
         (&["--k", "0.000001"], "--k", "0 < k <= 1"),
         (&["--k", "1e-3"], "--k", "0 < k <= 1"),
         (&["--k", "0.3.6"], "--k", "0 < k <= 1"),
-        (&["--k", "0.36860000000000000000000000001"], "--k", "at most 28"),
+        (
+            &["--k", "0.36860000000000000000000000001"],
+            "--k",
+            "at most 28",
+        ),
         (&["--k=-0.5"], "--k", "0 < k <= 1"),
         (&["--top", "1abc"], "--top", "Verilog identifier"),
         (&["--top", "../evil"], "--top", "Verilog identifier"),
         (&["--top", "module"], "--top", "keyword"),
         (&["--rounding", "sloppy"], "--rounding", "faithful"),
         (&["--stages", "-1"], "", ""),
-        (&["--model", "blinn-pow", "--rounding", "exact"], "--rounding", "faithful"),
-        (&["--model", "blinn-pow", "--arch", "paper"], "--arch", "lean"),
-        (&["--model", "blinn-pow", "--n-bits", "2", "--stages", "6"], "--stages", "0..=5"),
+        (
+            &["--model", "blinn-pow", "--rounding", "exact"],
+            "--rounding",
+            "faithful",
+        ),
+        (
+            &["--model", "blinn-pow", "--arch", "paper"],
+            "--arch",
+            "lean",
+        ),
+        (
+            &["--model", "blinn-pow", "--n-bits", "2", "--stages", "6"],
+            "--stages",
+            "0..=5",
+        ),
         (&["--arch", "fast"], "--arch", "lean"),
         (&["--target-mhz", "0"], "--target-mhz", "[0.001, 1000]"),
         (&["--n-bits", "ten"], "--n-bits", ""),
     ];
     for (i, (args, param, range)) in cases.iter().enumerate() {
         let out = tmp.path().join(format!("o{i}"));
-        let o = specgen().arg("generate").arg("--out").arg(&out).args(*args).output().unwrap();
+        let o = specgen()
+            .arg("generate")
+            .arg("--out")
+            .arg(&out)
+            .args(*args)
+            .output()
+            .unwrap();
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
         let msg = String::from_utf8_lossy(&o.stderr);
-        assert!(msg.contains(param) && msg.contains(range), "{args:?}: message {msg:?} should name {param} and {range}");
+        assert!(
+            msg.contains(param) && msg.contains(range),
+            "{args:?}: message {msg:?} should name {param} and {range}"
+        );
         assert!(!out.exists(), "{args:?} wrote {out:?}");
     }
-    assert_eq!(std::fs::read_dir(tmp.path()).unwrap().count(), 0, "no temp files left behind");
+    assert_eq!(
+        std::fs::read_dir(tmp.path()).unwrap().count(),
+        0,
+        "no temp files left behind"
+    );
 }
 
 #[test]
@@ -75,20 +119,38 @@ fn occupied_output_directory_is_refused_untouched() {
     let dir = tmp.path().join("mine");
     std::fs::create_dir(&dir).unwrap();
     std::fs::write(dir.join("notes.txt"), "precious").unwrap();
-    let o = specgen().arg("generate").arg("--out").arg(&dir).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&dir)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("notes.txt"), "{}", text(&o));
-    assert_eq!(read_dir_sorted(&dir), vec![("notes.txt".to_string(), b"precious".to_vec())]);
+    assert_eq!(
+        read_dir_sorted(&dir),
+        vec![("notes.txt".to_string(), b"precious".to_vec())]
+    );
     // a previous specgen output plus a stranger is refused too
     let gen = generate(tmp.path(), "gen", &[]);
     std::fs::write(gen.join("extra.v"), "// mine").unwrap();
-    let o = specgen().arg("generate").arg("--out").arg(&gen).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&gen)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(gen.join("extra.v").exists());
     // a file in place of the directory
     let file = tmp.path().join("file");
     std::fs::write(&file, "x").unwrap();
-    let o = specgen().arg("generate").arg("--out").arg(&file).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&file)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert_eq!(std::fs::read(&file).unwrap(), b"x");
 }
@@ -114,29 +176,71 @@ fn previous_output_is_replaced_whole() {
             "second_unit_vectors.hex"
         ]
     );
-    let hidden: Vec<_> = std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let hidden: Vec<_> = std::fs::read_dir(tmp.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(hidden.len(), 1, "staging directories left: {hidden:?}");
 }
 
 #[test]
 fn output_is_deterministic_and_config_reproduces_it() {
     let tmp = tempfile::tempdir().unwrap();
-    let args = ["--cos-frac-bits", "12", "--n-bits", "8", "--k", "0.5", "--stages", "3", "--rounding", "exact", "--rom-style", "case", "--top", "u2"];
+    let args = [
+        "--cos-frac-bits",
+        "12",
+        "--n-bits",
+        "8",
+        "--k",
+        "0.5",
+        "--stages",
+        "3",
+        "--rounding",
+        "exact",
+        "--rom-style",
+        "case",
+        "--top",
+        "u2",
+    ];
     let a = generate(tmp.path(), "a", &args);
     let b = generate(tmp.path(), "b", &args);
     assert_eq!(read_dir_sorted(&a), read_dir_sorted(&b));
     let c = tmp.path().join("c");
-    let o = specgen().arg("generate").arg("--out").arg(&c).arg("--config").arg(a.join("u2.json")).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&c)
+        .arg("--config")
+        .arg(a.join("u2.json"))
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert_eq!(read_dir_sorted(&a), read_dir_sorted(&c));
     // a flag overrides the file
     let d = tmp.path().join("d");
-    let o = specgen().arg("generate").arg("--out").arg(&d).arg("--config").arg(a.join("u2.json")).args(["--stages", "1"]).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&d)
+        .arg("--config")
+        .arg(a.join("u2.json"))
+        .args(["--stages", "1"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(std::fs::read_to_string(d.join("u2.json")).unwrap().contains("\"stages\": 1"));
+    assert!(std::fs::read_to_string(d.join("u2.json"))
+        .unwrap()
+        .contains("\"stages\": 1"));
     // a bad config file is a usage error
     std::fs::write(tmp.path().join("bad.json"), "{\"n_bitz\": 3}").unwrap();
-    let o = specgen().arg("generate").arg("--out").arg(tmp.path().join("e")).arg("--config").arg(tmp.path().join("bad.json")).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(tmp.path().join("e"))
+        .arg("--config")
+        .arg(tmp.path().join("bad.json"))
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("n_bitz"));
 }
@@ -145,7 +249,9 @@ fn output_is_deterministic_and_config_reproduces_it() {
 fn manifest_lists_files_with_hashes_ports_and_widths() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = generate(tmp.path(), "m", &["--stages", "2"]);
-    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap())
+            .unwrap();
     for key in [
         "top",
         "cos_frac_bits",
@@ -169,12 +275,29 @@ fn manifest_lists_files_with_hashes_ports_and_widths() {
     assert_eq!(v["latency"], 2);
     for f in v["files"].as_array().unwrap() {
         let bytes = std::fs::read(dir.join(f["name"].as_str().unwrap())).unwrap();
-        let out = std::process::Command::new("sha256sum").arg(dir.join(f["name"].as_str().unwrap())).output().unwrap();
-        let sum = String::from_utf8_lossy(&out.stdout).split_whitespace().next().unwrap().to_string();
-        assert_eq!(f["sha256"].as_str().unwrap(), sum, "{} ({} bytes)", f["name"], bytes.len());
+        let out = std::process::Command::new("sha256sum")
+            .arg(dir.join(f["name"].as_str().unwrap()))
+            .output()
+            .unwrap();
+        let sum = String::from_utf8_lossy(&out.stdout)
+            .split_whitespace()
+            .next()
+            .unwrap()
+            .to_string();
+        assert_eq!(
+            f["sha256"].as_str().unwrap(),
+            sum,
+            "{} ({} bytes)",
+            f["name"],
+            bytes.len()
+        );
     }
     let core = std::fs::read_to_string(dir.join("specular_unit.core")).unwrap();
-    assert!(core.starts_with("CAPI=2:") && core.contains("- specular_unit.v") && core.contains("specular_unit_cos_sp_rom.hex"));
+    assert!(
+        core.starts_with("CAPI=2:")
+            && core.contains("- specular_unit.v")
+            && core.contains("specular_unit_cos_sp_rom.hex")
+    );
 }
 
 #[test]
@@ -206,11 +329,27 @@ fn rom_formats_follow_their_syntax_and_agree() {
     let coe = run("coe");
     let body = coe.split("memory_initialization_vector=").nth(1).unwrap();
     assert!(coe.contains("memory_initialization_radix=16;") && body.trim_end().ends_with(';'));
-    let coe_words: Vec<u32> = body.trim().trim_end_matches(';').split(',').map(|w| u32::from_str_radix(w.trim(), 16).unwrap()).collect();
+    let coe_words: Vec<u32> = body
+        .trim()
+        .trim_end_matches(';')
+        .split(',')
+        .map(|w| u32::from_str_radix(w.trim(), 16).unwrap())
+        .collect();
     assert_eq!(coe_words, table);
     let mif = run("mif");
-    assert!(mif.contains("DEPTH = 1024;") && mif.contains("WIDTH = 16;") && mif.contains("ADDRESS_RADIX = HEX;") && mif.contains("DATA_RADIX = HEX;"));
-    let content = mif.split("BEGIN").nth(1).unwrap().split("END;").next().unwrap();
+    assert!(
+        mif.contains("DEPTH = 1024;")
+            && mif.contains("WIDTH = 16;")
+            && mif.contains("ADDRESS_RADIX = HEX;")
+            && mif.contains("DATA_RADIX = HEX;")
+    );
+    let content = mif
+        .split("BEGIN")
+        .nth(1)
+        .unwrap()
+        .split("END;")
+        .next()
+        .unwrap();
     for (i, line) in content.lines().filter(|l| !l.trim().is_empty()).enumerate() {
         let (addr, data) = line.trim_end_matches(';').split_once(" : ").unwrap();
         assert_eq!(usize::from_str_radix(addr, 16).unwrap(), i);
@@ -230,22 +369,42 @@ fn rom_formats_follow_their_syntax_and_agree() {
     // -o writes the same bytes
     let tmp = tempfile::tempdir().unwrap();
     let p = tmp.path().join("rom.coe");
-    assert!(specgen().args(["rom", "--format", "coe", "-o"]).arg(&p).status().unwrap().success());
+    assert!(specgen()
+        .args(["rom", "--format", "coe", "-o"])
+        .arg(&p)
+        .status()
+        .unwrap()
+        .success());
     assert_eq!(std::fs::read_to_string(&p).unwrap(), coe);
 }
 
 #[test]
 fn eval_shows_golden_exact_and_real_values() {
-    let o = specgen().args(["eval", "--cos", "0.98", "--n", "40", "--ks", "255,128,0"]).output().unwrap();
+    let o = specgen()
+        .args(["eval", "--cos", "0.98", "--n", "40", "--ks", "255,128,0"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let t = text(&o);
-    for needle in ["cos_g = 32113", "intensity =", "Blinn cos^n", "formula (15)", "faithful rounding holds"] {
+    for needle in [
+        "cos_g = 32113",
+        "intensity =",
+        "Blinn cos^n",
+        "formula (15)",
+        "faithful rounding holds",
+    ] {
         assert!(t.contains(needle), "missing {needle:?} in\n{t}");
     }
-    let o = specgen().args(["eval", "--cos", "0.9", "--n", "1024"]).output().unwrap();
+    let o = specgen()
+        .args(["eval", "--cos", "0.9", "--n", "1024"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).contains("--n") && text(&o).contains("0..=1023"));
-    let o = specgen().args(["eval", "--cos", "2.5", "--n", "1"]).output().unwrap();
+    let o = specgen()
+        .args(["eval", "--cos", "2.5", "--n", "1"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
 }
 
@@ -259,9 +418,18 @@ fn rtl_out_is_emitted_now(root: &Path) {
     let tmp = tempfile::tempdir().unwrap();
     let fresh = generate(tmp.path(), "fresh", &[]);
     let checked_in = root.join("rtl_out");
-    let text = |d: &Path| read_dir_sorted(d).into_iter().map(|(n, b)| (n, String::from_utf8_lossy(&b).into_owned())).collect::<Vec<_>>();
+    let text = |d: &Path| {
+        read_dir_sorted(d)
+            .into_iter()
+            .map(|(n, b)| (n, String::from_utf8_lossy(&b).into_owned()))
+            .collect::<Vec<_>>()
+    };
     let (old, new) = (text(&checked_in), text(&fresh));
-    assert_eq!(old.iter().map(|f| &f.0).collect::<Vec<_>>(), new.iter().map(|f| &f.0).collect::<Vec<_>>(), "rtl_out/ file names");
+    assert_eq!(
+        old.iter().map(|f| &f.0).collect::<Vec<_>>(),
+        new.iter().map(|f| &f.0).collect::<Vec<_>>(),
+        "rtl_out/ file names"
+    );
     for ((name, a), (_, b)) in old.iter().zip(&new) {
         let first = a.lines().zip(b.lines()).position(|(x, y)| x != y);
         assert!(a == b, "rtl_out/{name} is stale (first differing line {first:?}): run `specgen generate --out rtl_out`");
@@ -277,15 +445,34 @@ fn rtl_out_is_emitted_now(root: &Path) {
 fn the_readmes_commands_work_in_its_order() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let first = readme.lines().skip_while(|l| !l.starts_with("```sh")).nth(1).expect("a first command in the README");
-    let command = first.split("&& ").nth(1).expect("cargo install … && specgen …").split('#').next().unwrap().trim();
+    let first = readme
+        .lines()
+        .skip_while(|l| !l.starts_with("```sh"))
+        .nth(1)
+        .expect("a first command in the README");
+    let command = first
+        .split("&& ")
+        .nth(1)
+        .expect("cargo install … && specgen …")
+        .split('#')
+        .next()
+        .unwrap()
+        .trim();
     let words: Vec<&str> = command.split_whitespace().collect();
     assert_eq!(words[..2], ["specgen", "generate"], "{first}");
-    let tracked = tool("git").args(["-C", root.to_str().unwrap(), "ls-files", "-z"]).output().unwrap();
+    let tracked = tool("git")
+        .args(["-C", root.to_str().unwrap(), "ls-files", "-z"])
+        .output()
+        .unwrap();
     assert!(tracked.status.success(), "git ls-files: {}", text(&tracked));
     let tmp = tempfile::tempdir().unwrap();
     let copy = tmp.path().join("checkout");
-    let files: Vec<String> = String::from_utf8(tracked.stdout).unwrap().split('\0').filter(|f| !f.is_empty()).map(String::from).collect();
+    let files: Vec<String> = String::from_utf8(tracked.stdout)
+        .unwrap()
+        .split('\0')
+        .filter(|f| !f.is_empty())
+        .map(String::from)
+        .collect();
     for f in &files {
         let to = copy.join(f);
         std::fs::create_dir_all(to.parent().unwrap()).unwrap();
@@ -294,44 +481,95 @@ fn the_readmes_commands_work_in_its_order() {
         }
     }
     let before = read_dir_sorted(&copy.join("rtl_out"));
-    let o = specgen().args(&words[1..]).current_dir(&copy).output().unwrap();
+    let o = specgen()
+        .args(&words[1..])
+        .current_dir(&copy)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{command}: {}", text(&o));
-    let out = words.iter().position(|w| *w == "--out").map(|i| words[i + 1]).expect("the command names its --out");
-    assert!(files.iter().all(|f| !Path::new(f).starts_with(out)), "{command} writes over tracked files under {out}/");
-    assert_eq!(read_dir_sorted(&copy.join("rtl_out")), before, "{command} changed rtl_out/");
+    let out = words
+        .iter()
+        .position(|w| *w == "--out")
+        .map(|i| words[i + 1])
+        .expect("the command names its --out");
+    assert!(
+        files.iter().all(|f| !Path::new(f).starts_with(out)),
+        "{command} writes over tracked files under {out}/"
+    );
+    assert_eq!(
+        read_dir_sorted(&copy.join("rtl_out")),
+        before,
+        "{command} changed rtl_out/"
+    );
     rtl_out_is_emitted_now(&copy);
     // the bound it was asked for holds at the pixel, exhaustively
-    let bound: f64 = words.iter().position(|w| *w == "--max-error").map(|i| words[i + 1].parse().unwrap()).expect("the README asks --max-error");
+    let bound: f64 = words
+        .iter()
+        .position(|w| *w == "--max-error")
+        .map(|i| words[i + 1].parse().unwrap())
+        .expect("the README asks --max-error");
     let unit = copy.join(out);
-    let manifest = std::fs::read_dir(&unit).unwrap().map(|e| e.unwrap().path()).find(|p| p.extension().is_some_and(|x| x == "json")).unwrap();
+    let manifest = std::fs::read_dir(&unit)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|x| x == "json"))
+        .unwrap();
     let cfg = Config::new(specgen::config::Params::from_json_file(&manifest).unwrap()).unwrap();
     let f = specgen::models::fidelity_exhaustive(&specgen::models::Model::new(&cfg));
     assert_eq!(f.stride, 1);
-    assert!(!f.pixel.bound && f.pixel.max <= bound, "{command}: the unit is {} from cos^n at the pixel", f.pixel.max);
-    assert!(text(&o).contains("measured") && text(&o).contains("today's RTL"), "{}", text(&o));
+    assert!(
+        !f.pixel.bound && f.pixel.max <= bound,
+        "{command}: the unit is {} from cos^n at the pixel",
+        f.pixel.max
+    );
+    assert!(
+        text(&o).contains("measured") && text(&o).contains("today's RTL"),
+        "{}",
+        text(&o)
+    );
     // and the evidence printed is of the unit written: its RTL's digest is the measurement's
     let digest = specgen::emit::rtl_digest(&specgen::plan::Plan::new(cfg).unwrap());
-    assert!(text(&o).contains(&format!("today's RTL (sha256 {})", &digest[..16])), "the unit written is {digest}: {}", text(&o));
+    assert!(
+        text(&o).contains(&format!("today's RTL (sha256 {})", &digest[..16])),
+        "the unit written is {digest}: {}",
+        text(&o)
+    );
 }
 
 /// Each subcommand takes only the parameters it uses; help states ranges from the one table
 /// and the exit codes.
 #[test]
 fn subcommands_take_only_their_parameters_and_help_is_complete() {
-    for (cmd, flag) in [("rom", "--stages"), ("rom", "--rom-style"), ("eval", "--stages"), ("eval", "--top"), ("report", "--stages"), ("report", "--rom-style")]
-    {
+    for (cmd, flag) in [
+        ("rom", "--stages"),
+        ("rom", "--rom-style"),
+        ("eval", "--stages"),
+        ("eval", "--top"),
+        ("report", "--stages"),
+        ("report", "--rom-style"),
+    ] {
         let o = specgen().args([cmd, flag, "1"]).output().unwrap();
         assert_eq!(o.status.code(), Some(2), "{cmd} {flag}: {}", text(&o));
-        assert!(text(&o).contains("unexpected argument"), "{cmd} {flag}: {}", text(&o));
+        assert!(
+            text(&o).contains("unexpected argument"),
+            "{cmd} {flag}: {}",
+            text(&o)
+        );
     }
     for cmd in ["generate", "rom", "eval", "report"] {
         let o = specgen().args([cmd, "--help"]).output().unwrap();
         let help = text(&o);
-        assert!(o.status.success() && help.contains("Exit codes: 0 success"), "{cmd}: {help}");
+        assert!(
+            o.status.success() && help.contains("Exit codes: 0 success"),
+            "{cmd}: {help}"
+        );
         for r in specgen::config::RANGES {
             let flag = format!("--{}", r.name.replace('_', "-"));
             if help.contains(&flag) {
-                assert!(help.contains(&format!("[{}..={}, default {}]", r.min, r.max, r.default)), "{cmd} {flag}: range not from the table");
+                assert!(
+                    help.contains(&format!("[{}..={}, default {}]", r.min, r.max, r.default)),
+                    "{cmd} {flag}: range not from the table"
+                );
             }
         }
     }
@@ -350,7 +588,9 @@ fn every_range_is_stated_once_in_help() {
     for r in specgen::config::RANGES {
         let range = format!("{}..={}", r.min, r.max);
         let flag = format!("--{} <", r.name.replace('_', "-"));
-        let from = help.find(&flag).unwrap_or_else(|| panic!("{flag} in --help"));
+        let from = help
+            .find(&flag)
+            .unwrap_or_else(|| panic!("{flag} in --help"));
         let rest = &help[from + flag.len()..];
         let text = &rest[..rest.find("  --").unwrap_or(rest.len())];
         assert_eq!(text.matches(&range).count(), 1, "{flag}: {text}");
@@ -361,10 +601,19 @@ fn every_range_is_stated_once_in_help() {
 /// models from this message, and the help shows it).
 #[test]
 fn the_model_flag_lists_every_model_in_the_registrys_order() {
-    let o = specgen().args(["generate", "--model", "?"]).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--model", "?"])
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&o.stderr);
-    let names: Vec<&str> = specgen::config::SpecularModel::ALL.iter().map(|m| m.name()).collect();
-    assert!(text.contains(&format!("[possible values: {}]", names.join(", "))), "{text}");
+    let names: Vec<&str> = specgen::config::SpecularModel::ALL
+        .iter()
+        .map(|m| m.name())
+        .collect();
+    assert!(
+        text.contains(&format!("[possible values: {}]", names.join(", "))),
+        "{text}"
+    );
 }
 
 /// What the help texts and the guide quote — each model's deepest
@@ -374,15 +623,45 @@ fn the_model_flag_lists_every_model_in_the_registrys_order() {
 fn help_lines_and_the_guide_quote_what_the_code_does() {
     use specgen::config::{Arch, Config, Params, SpecularModel, Target};
     let deepest = |model: SpecularModel, arch: Arch, target: Target| {
-        specgen::plan::Plan::new(Config::new(Params { model, arch, target, ..Params::default() }).unwrap()).unwrap().cut_points
+        specgen::plan::Plan::new(
+            Config::new(Params {
+                model,
+                arch,
+                target,
+                ..Params::default()
+            })
+            .unwrap(),
+        )
+        .unwrap()
+        .cut_points
     };
-    let targets = [Target::ALL[1], Target::ALL[2], Target::ALL[3], Target::ALL[0]];
-    assert_eq!(targets.map(|t| t.name()), ["ice40", "ecp5", "gowin", "generic"]);
-    let help = String::from_utf8(specgen().args(["generate", "--help"]).output().unwrap().stdout).unwrap();
+    let targets = [
+        Target::ALL[1],
+        Target::ALL[2],
+        Target::ALL[3],
+        Target::ALL[0],
+    ];
+    assert_eq!(
+        targets.map(|t| t.name()),
+        ["ice40", "ecp5", "gowin", "generic"]
+    );
+    let help = String::from_utf8(
+        specgen()
+            .args(["generate", "--help"])
+            .output()
+            .unwrap()
+            .stdout,
+    )
+    .unwrap();
     let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
-    let guide = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/GUIDE.md")).unwrap();
+    let guide =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/GUIDE.md")).unwrap();
     for model in SpecularModel::ALL {
-        let archs: &[Arch] = if model.reads("arch") { &[Arch::Lean, Arch::Paper] } else { &[Arch::Lean] };
+        let archs: &[Arch] = if model.reads("arch") {
+            &[Arch::Lean, Arch::Paper]
+        } else {
+            &[Arch::Lean]
+        };
         for &arch in archs {
             let d: Vec<u32> = targets.iter().map(|&t| deepest(model, arch, t)).collect();
             let (help_name, guide_name) = match (model.reads("arch"), arch) {
@@ -391,28 +670,63 @@ fn help_lines_and_the_guide_quote_what_the_code_does() {
                 _ => (model.name().to_string(), model.name().to_string()),
             };
             // the help: "name a/b/c/d", or "name a" where every target has the same depth
-            let quoted =
-                if d.iter().all(|&x| x == d[0]) { format!("{help_name} {}", d[0]) } else { format!("{help_name} {}/{}/{}/{}", d[0], d[1], d[2], d[3]) };
-            assert!(help.contains(&format!("{quoted},")) || help.contains(&format!("{quoted};")), "generate --help does not quote {quoted}");
+            let quoted = if d.iter().all(|&x| x == d[0]) {
+                format!("{help_name} {}", d[0])
+            } else {
+                format!("{help_name} {}/{}/{}/{}", d[0], d[1], d[2], d[3])
+            };
+            assert!(
+                help.contains(&format!("{quoted},")) || help.contains(&format!("{quoted};")),
+                "generate --help does not quote {quoted}"
+            );
             // the guide's table of depths
-            let row = format!("| {guide_name} | {} | {} | {} | {} |", d[0], d[1], d[2], d[3]);
+            let row = format!(
+                "| {guide_name} | {} | {} | {} | {} |",
+                d[0], d[1], d[2], d[3]
+            );
             assert!(guide.contains(&row), "docs/GUIDE.md lacks the row {row}");
         }
     }
     // every ROM style is named in its help line
-    let rom = help.split("--rom-style <ROM_STYLE>").nth(1).unwrap().split("Possible values").next().unwrap();
+    let rom = help
+        .split("--rom-style <ROM_STYLE>")
+        .nth(1)
+        .unwrap()
+        .split("Possible values")
+        .next()
+        .unwrap();
     for style in ["file", "case", "logic"] {
-        assert!(rom.contains(style), "--rom-style's help does not name {style}: {rom}");
+        assert!(
+            rom.contains(style),
+            "--rom-style's help does not name {style}: {rom}"
+        );
     }
     // prove: the port checker is proved for every edge (k-induction), searched first; --datapath too
-    let prove = String::from_utf8(specgen().args(["prove", "--help"]).output().unwrap().stdout).unwrap();
+    let prove =
+        String::from_utf8(specgen().args(["prove", "--help"]).output().unwrap().stdout).unwrap();
     let prove = prove.split_whitespace().collect::<Vec<_>>().join(" ");
-    assert!(prove.contains("proved for every edge by k-induction"), "{prove}");
-    assert!(!prove.contains("a bounded search) and its covers"), "the port checker is not only a bounded search: {prove}");
-    assert!(prove.contains("--datapath") && prove.contains("then proved for every edge by k-induction"), "{prove}");
+    assert!(
+        prove.contains("proved for every edge by k-induction"),
+        "{prove}"
+    );
+    assert!(
+        !prove.contains("a bounded search) and its covers"),
+        "the port checker is not only a bounded search: {prove}"
+    );
+    assert!(
+        prove.contains("--datapath") && prove.contains("then proved for every edge by k-induction"),
+        "{prove}"
+    );
     // the help says of which design and what is assumed
-    assert!(prove.contains("of the design synthesis builds") && prove.contains("the unit's own assumes are removed"), "{prove}");
-    assert!(!prove.contains("own assertions set aside"), "the first search keeps the unit's assertions: {prove}");
+    assert!(
+        prove.contains("of the design synthesis builds")
+            && prove.contains("the unit's own assumes are removed"),
+        "{prove}"
+    );
+    assert!(
+        !prove.contains("own assertions set aside"),
+        "the first search keeps the unit's assertions: {prove}"
+    );
 }
 
 /// The deepest `--stages` that `generate --help` lists at default widths, per model and target
@@ -423,15 +737,40 @@ fn the_help_lists_each_models_deepest_stages() {
     let o = specgen().args(["generate", "--help"]).output().unwrap();
     let help = text(&o).split_whitespace().collect::<Vec<_>>().join(" ");
     let listed = |after: &str, name: &str| -> String {
-        let rest = help.split(after).nth(1).unwrap_or_else(|| panic!("no {after:?} in the help: {help}"));
-        rest.split(&format!(" {name} ")).nth(1).unwrap_or_else(|| panic!("no {name} after {after:?}")).split([',', ';', ' ']).next().unwrap().to_string()
+        let rest = help
+            .split(after)
+            .nth(1)
+            .unwrap_or_else(|| panic!("no {after:?} in the help: {help}"));
+        rest.split(&format!(" {name} "))
+            .nth(1)
+            .unwrap_or_else(|| panic!("no {name} after {after:?}"))
+            .split([',', ';', ' '])
+            .next()
+            .unwrap()
+            .to_string()
     };
-    let models = [("quadratic", "lean"), ("fitted", "fitted"), ("blinn", "blinn"), ("schlick", "schlick")];
+    let models = [
+        ("quadratic", "lean"),
+        ("fitted", "fitted"),
+        ("blinn", "blinn"),
+        ("schlick", "schlick"),
+    ];
     for (model, name) in models {
-        let want: Vec<String> = ["ice40", "ecp5", "gowin", "generic"].iter().map(|t| deepest(&["--model", model, "--target", t])).collect();
-        assert_eq!(listed("at default widths ice40 / ecp5 / gowin / generic:", name), want.join("/"), "{model}");
+        let want: Vec<String> = ["ice40", "ecp5", "gowin", "generic"]
+            .iter()
+            .map(|t| deepest(&["--model", model, "--target", t]))
+            .collect();
+        assert_eq!(
+            listed("at default widths ice40 / ecp5 / gowin / generic:", name),
+            want.join("/"),
+            "{model}"
+        );
         let fabric = deepest(&["--model", model, "--target", "ice40", "--fabric-registers"]);
-        assert_eq!(listed("with --fabric-registers on ice40:", name), fabric, "{model} with --fabric-registers");
+        assert_eq!(
+            listed("with --fabric-registers on ice40:", name),
+            fabric,
+            "{model} with --fabric-registers"
+        );
     }
 }
 
@@ -439,12 +778,38 @@ fn the_help_lists_each_models_deepest_stages() {
 /// the targets, and the deepest pipeline of a configuration (the plan's cut points).
 #[test]
 fn info_tells_scripts_the_models_targets_and_deepest_depth() {
-    let o = specgen().args(["info", "--json", "--model", "blinn", "--target", "ecp5", "--cos-frac-bits", "10"]).output().unwrap();
+    let o = specgen()
+        .args([
+            "info",
+            "--json",
+            "--model",
+            "blinn",
+            "--target",
+            "ecp5",
+            "--cos-frac-bits",
+            "10",
+        ])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", text(&o));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let models: Vec<&str> = v["models"].as_array().unwrap().iter().map(|m| m.as_str().unwrap()).collect();
-    assert_eq!(models, specgen::config::SpecularModel::ALL.iter().map(|m| m.name()).collect::<Vec<_>>());
-    assert_eq!(v["targets"].as_array().unwrap().len(), specgen::config::Target::ALL.len());
+    let models: Vec<&str> = v["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        models,
+        specgen::config::SpecularModel::ALL
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>()
+    );
+    assert_eq!(
+        v["targets"].as_array().unwrap().len(),
+        specgen::config::Target::ALL.len()
+    );
     let cfg = Config::new(specgen::config::Params {
         model: specgen::config::SpecularModel::Blinn,
         target: specgen::config::Target::Ecp5,
@@ -452,5 +817,8 @@ fn info_tells_scripts_the_models_targets_and_deepest_depth() {
         ..Default::default()
     })
     .unwrap();
-    assert_eq!(v["configuration"]["deepest_stages"].as_u64(), Some(specgen::plan::Plan::new(cfg).unwrap().cut_points as u64));
+    assert_eq!(
+        v["configuration"]["deepest_stages"].as_u64(),
+        Some(specgen::plan::Plan::new(cfg).unwrap().cut_points as u64)
+    );
 }

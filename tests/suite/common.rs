@@ -6,13 +6,22 @@ use std::process::Command;
 
 /// The cut points of `model`'s datapath at default parameters (its deepest `--stages`).
 pub fn default_cut_points(model: specgen::config::SpecularModel) -> u32 {
-    let cfg = specgen::config::Config::new(specgen::config::Params { model, ..Default::default() }).unwrap();
+    let cfg = specgen::config::Config::new(specgen::config::Params {
+        model,
+        ..Default::default()
+    })
+    .unwrap();
     specgen::plan::Plan::new(cfg).unwrap().cut_points
 }
 
 /// Fails (never skips) when an external tool is missing: the README's test command installs them.
 pub fn require_tool(tool: &str, package: &str) {
-    let found = Command::new("sh").arg("-c").arg(format!("command -v {tool}")).output().map(|o| o.status.success()).unwrap_or(false);
+    let found = Command::new("sh")
+        .arg("-c")
+        .arg(format!("command -v {tool}"))
+        .output()
+        .map(|o| o.status.success())
+        .unwrap_or(false);
     assert!(found, "{tool} is required for this test: run `scripts/test.sh` (installs it) or `apt-get install -y {package}`");
 }
 
@@ -72,7 +81,10 @@ pub fn wait_until(what: &str, mut cond: impl FnMut() -> bool) {
 
 /// Waits for `child`, killing it and failing with `hang` when the hang guard runs out: the hang
 /// a test is about would otherwise never end the suite.
-pub fn finished_within_guard(child: &mut std::process::Child, hang: &str) -> std::process::ExitStatus {
+pub fn finished_within_guard(
+    child: &mut std::process::Child,
+    hang: &str,
+) -> std::process::ExitStatus {
     let mut status = None;
     let start = std::time::Instant::now();
     while status.is_none() {
@@ -90,7 +102,11 @@ pub fn finished_within_guard(child: &mut std::process::Child, hang: &str) -> std
 /// be to block forever: on a FIFO, a device, a lock).
 pub fn output_guarded(cmd: &mut Command, hang: &str) -> std::process::Output {
     use std::io::Read;
-    let mut child = cmd.stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
+    let mut child = cmd
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
     let read_all = |mut from: Box<dyn Read + Send>| {
         std::thread::spawn(move || {
             let mut v = Vec::new();
@@ -101,18 +117,34 @@ pub fn output_guarded(cmd: &mut Command, hang: &str) -> std::process::Output {
     let stdout = read_all(Box::new(child.stdout.take().unwrap()));
     let stderr = read_all(Box::new(child.stderr.take().unwrap()));
     let status = finished_within_guard(&mut child, hang);
-    std::process::Output { status, stdout: stdout.join().unwrap(), stderr: stderr.join().unwrap() }
+    std::process::Output {
+        status,
+        stdout: stdout.join().unwrap(),
+        stderr: stderr.join().unwrap(),
+    }
 }
 
 /// The children of process `pid` (from /proc), with their command names.
 pub fn children(pid: u32) -> Vec<(u32, String)> {
     let mut out = Vec::new();
     for e in std::fs::read_dir("/proc").unwrap().flatten() {
-        let Ok(child) = e.file_name().to_string_lossy().parse::<u32>() else { continue };
-        let Ok(stat) = std::fs::read_to_string(format!("/proc/{child}/stat")) else { continue };
+        let Ok(child) = e.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
+        let Ok(stat) = std::fs::read_to_string(format!("/proc/{child}/stat")) else {
+            continue;
+        };
         // pid (comm) state ppid …
-        let Some((comm, rest)) = stat.split_once(" (").and_then(|(_, r)| r.rsplit_once(") ")) else { continue };
-        if rest.split_whitespace().nth(1).and_then(|p| p.parse::<u32>().ok()) == Some(pid) {
+        let Some((comm, rest)) = stat.split_once(" (").and_then(|(_, r)| r.rsplit_once(") "))
+        else {
+            continue;
+        };
+        if rest
+            .split_whitespace()
+            .nth(1)
+            .and_then(|p| p.parse::<u32>().ok())
+            == Some(pid)
+        {
             out.push((child, comm.to_string()));
         }
     }
@@ -121,14 +153,26 @@ pub fn children(pid: u32) -> Vec<(u32, String)> {
 
 /// Whether process `pid` has ended (gone, or a zombie waiting for its new parent).
 pub fn ended(pid: u32) -> bool {
-    std::fs::read_to_string(format!("/proc/{pid}/stat")).map_or(true, |s| s.rsplit_once(") ").is_some_and(|(_, r)| r.starts_with('Z')))
+    std::fs::read_to_string(format!("/proc/{pid}/stat")).map_or(true, |s| {
+        s.rsplit_once(") ").is_some_and(|(_, r)| r.starts_with('Z'))
+    })
 }
 
 /// Runs `specgen generate --out DIR args…` and returns DIR (inside `parent`).
 pub fn generate(parent: &Path, name: &str, args: &[&str]) -> PathBuf {
     let dir = parent.join(name);
-    let out = specgen().arg("generate").arg("--out").arg(&dir).args(args).output().unwrap();
-    assert!(out.status.success(), "generate {args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    let out = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&dir)
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "generate {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     dir
 }
 
@@ -168,7 +212,22 @@ pub const CONFIGS: &[&[&str]] = &[
     &[],
     &["--stages", "1", "--rom-style", "case"],
     &["--stages", "2", "--rounding", "exact"],
-    &["--stages", "3", "--cos-frac-bits", "11", "--n-bits", "7", "--color-bits", "5", "--intensity-frac-bits", "9", "--k", "0.5", "--k-frac-bits", "7"],
+    &[
+        "--stages",
+        "3",
+        "--cos-frac-bits",
+        "11",
+        "--n-bits",
+        "7",
+        "--color-bits",
+        "5",
+        "--intensity-frac-bits",
+        "9",
+        "--k",
+        "0.5",
+        "--k-frac-bits",
+        "7",
+    ],
     &[
         "--cos-frac-bits",
         "5",
@@ -208,7 +267,18 @@ pub const CONFIGS: &[&[&str]] = &[
     &["--arch", "paper", "--stages", "2"],
     &["--stages", "13", "--top", "deep_unit"],
     &["--model", "blinn-pow", "--stages", "3"],
-    &["--model", "blinn-pow", "--n-bits", "4", "--color-bits", "11", "--cos-frac-bits", "6", "--intensity-frac-bits", "4"],
+    &[
+        "--model",
+        "blinn-pow",
+        "--n-bits",
+        "4",
+        "--color-bits",
+        "11",
+        "--cos-frac-bits",
+        "6",
+        "--intensity-frac-bits",
+        "4",
+    ],
     &[
         "--arch",
         "paper",
@@ -249,12 +319,62 @@ pub const CONFIGS: &[&[&str]] = &[
         "fit_unit",
     ],
     &["--model", "blinn", "--stages", "37"],
-    &["--model", "blinn", "--cos-frac-bits", "7", "--n-bits", "5", "--color-bits", "12", "--intensity-frac-bits", "6", "--stages", "4", "--rom-style", "case"],
+    &[
+        "--model",
+        "blinn",
+        "--cos-frac-bits",
+        "7",
+        "--n-bits",
+        "5",
+        "--color-bits",
+        "12",
+        "--intensity-frac-bits",
+        "6",
+        "--stages",
+        "4",
+        "--rom-style",
+        "case",
+    ],
     // the interfaces, tags and static colours (indices 17..)
     &["--interface", "ready", "--tag-bits", "12", "--stages", "13"],
-    &["--interface", "axis", "--tag-bits", "64", "--colour", "static", "--model", "fitted", "--stages", "3", "--top", "axis_unit"],
-    &["--colour", "static", "--tag-bits", "1", "--stages", "2", "--model", "blinn-pow"],
-    &["--interface", "ready", "--model", "blinn", "--n-bits", "5", "--cos-frac-bits", "9", "--color-bits", "6", "--rom-style", "case"],
+    &[
+        "--interface",
+        "axis",
+        "--tag-bits",
+        "64",
+        "--colour",
+        "static",
+        "--model",
+        "fitted",
+        "--stages",
+        "3",
+        "--top",
+        "axis_unit",
+    ],
+    &[
+        "--colour",
+        "static",
+        "--tag-bits",
+        "1",
+        "--stages",
+        "2",
+        "--model",
+        "blinn-pow",
+    ],
+    &[
+        "--interface",
+        "ready",
+        "--model",
+        "blinn",
+        "--n-bits",
+        "5",
+        "--cos-frac-bits",
+        "9",
+        "--color-bits",
+        "6",
+        "--rom-style",
+        "case",
+    ],
 ];
 
 /// The two configurations [`configs`] gives every model: at default widths, two stages; at
@@ -263,7 +383,22 @@ pub fn model_configs(model: specgen::config::SpecularModel) -> [Vec<&'static str
     let m = model.name();
     [
         vec!["--model", m, "--stages", "2"],
-        vec!["--model", m, "--cos-frac-bits", "7", "--n-bits", "4", "--color-bits", "5", "--intensity-frac-bits", "6", "--interface", "ready", "--stages", "1"],
+        vec![
+            "--model",
+            m,
+            "--cos-frac-bits",
+            "7",
+            "--n-bits",
+            "4",
+            "--color-bits",
+            "5",
+            "--intensity-frac-bits",
+            "6",
+            "--interface",
+            "ready",
+            "--stages",
+            "1",
+        ],
     ]
 }
 
@@ -275,7 +410,11 @@ pub fn configs() -> Vec<Vec<&'static str>> {
     let mut all: Vec<Vec<&'static str>> = CONFIGS.iter().map(|c| c.to_vec()).collect();
     let default = specgen::config::Params::default().model;
     for model in specgen::config::SpecularModel::ALL {
-        let of_model = |args: &Vec<&str>| args.iter().position(|a| *a == "--model").map_or(model == default, |i| args[i + 1] == model.name());
+        let of_model = |args: &Vec<&str>| {
+            args.iter()
+                .position(|a| *a == "--model")
+                .map_or(model == default, |i| args[i + 1] == model.name())
+        };
         if all.iter().filter(|a| of_model(a)).count() < 2 {
             all.extend(model_configs(model));
         }
@@ -319,13 +458,27 @@ proptest::prop_compose! {
 /// a faulty generator would have written them together (so the file checks pass and the
 /// simulation has to find the fault).
 pub fn rewrite_sealed(dir: &Path, file: &str, text: &str) {
-    let sha = |b: &[u8]| -> String { <sha2::Sha256 as sha2::Digest>::digest(b).iter().map(|x| format!("{x:02x}")).collect() };
+    let sha = |b: &[u8]| -> String {
+        <sha2::Sha256 as sha2::Digest>::digest(b)
+            .iter()
+            .map(|x| format!("{x:02x}"))
+            .collect()
+    };
     let path = dir.join(file);
     let before = std::fs::read(&path).unwrap();
     std::fs::write(&path, text).unwrap();
-    let manifest = std::fs::read_dir(dir).unwrap().flatten().map(|e| e.path()).find(|p| p.extension().is_some_and(|e| e == "json")).expect("a manifest");
+    let manifest = std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| p.extension().is_some_and(|e| e == "json"))
+        .expect("a manifest");
     let m = std::fs::read_to_string(&manifest).unwrap();
-    assert!(m.contains(&sha(&before)), "{file} is listed in {}", manifest.display());
+    assert!(
+        m.contains(&sha(&before)),
+        "{file} is listed in {}",
+        manifest.display()
+    );
     std::fs::write(&manifest, m.replace(&sha(&before), &sha(text.as_bytes()))).unwrap();
 }
 
@@ -363,26 +516,52 @@ pub fn apply_handshake_fault(dir: &Path, name: &str, file: &str, from: &str, to:
     let path = dir.join(file);
     let src = std::fs::read_to_string(&path).unwrap();
     let (from, to) = if from == "TAG_LAST" {
-        let word = src.lines().find(|l| l.starts_with("wire ") && l.contains("= tag_line[")).expect("the tag's last word");
+        let word = src
+            .lines()
+            .find(|l| l.starts_with("wire ") && l.contains("= tag_line["))
+            .expect("the tag's last word");
         let select = &word[word.find("tag_line[").unwrap()..word.find(';').unwrap()];
-        let (hi, lo) = select.trim_start_matches("tag_line[").trim_end_matches(']').split_once(':').unwrap();
+        let (hi, lo) = select
+            .trim_start_matches("tag_line[")
+            .trim_end_matches(']')
+            .split_once(':')
+            .unwrap();
         let (hi, lo): (u32, u32) = (hi.parse().unwrap(), lo.parse().unwrap());
         let width = hi - lo + 1;
-        (select.to_string(), format!("tag_line[{}:{}]", hi - width, lo - width))
+        (
+            select.to_string(),
+            format!("tag_line[{}:{}]", hi - width, lo - width),
+        )
     } else {
         (from.to_string(), to.to_string())
     };
-    assert_eq!(src.matches(&from).count(), 1, "fault {name}: {from:?} must occur once in {file}");
+    assert_eq!(
+        src.matches(&from).count(),
+        1,
+        "fault {name}: {from:?} must occur once in {file}"
+    );
     std::fs::write(&path, src.replace(&from, &to)).unwrap();
 }
 
 /// The deepest `--stages` of the configuration `args` (from the range `generate` names).
 pub fn deepest(args: &[&str]) -> String {
-    let o = specgen().args(["generate", "--out"]).arg(std::env::temp_dir().join("unused-never-written")).args(args).args(["--stages", "99"]).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--out"])
+        .arg(std::env::temp_dir().join("unused-never-written"))
+        .args(args)
+        .args(["--stages", "99"])
+        .output()
+        .unwrap();
     let err = String::from_utf8_lossy(&o.stderr).to_string();
     assert_eq!(o.status.code(), Some(2), "{err}");
     // "... allowed 0..=N (the cut points ..."
-    err.split("allowed 0..=").nth(1).unwrap().split(' ').next().unwrap().to_string()
+    err.split("allowed 0..=")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .to_string()
 }
 
 /// The unit's Verilog: `<top>.v` and the modules it derives beside it (its output buffer, its

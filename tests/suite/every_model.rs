@@ -19,7 +19,11 @@ fn input(cfg: &Config, seed: u64) -> Inputs {
     let r = specgen::bits::splitmix(seed);
     let r2 = specgen::bits::splitmix(r);
     let ks = |s: u32| ((r2 >> s) as u32) & ((1 << cfg.b()) - 1);
-    Inputs { cos_g: (r as u32) & ((2u32 << cfg.f()) - 1), n: ((r >> 32) as u32) & ((1 << cfg.n_bits()) - 1), ks: [ks(0), ks(16), ks(32)] }
+    Inputs {
+        cos_g: (r as u32) & ((2u32 << cfg.f()) - 1),
+        n: ((r >> 32) as u32) & ((1 << cfg.n_bits()) - 1),
+        ks: [ks(0), ks(16), ks(32)],
+    }
 }
 
 proptest! {

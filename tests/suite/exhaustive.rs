@@ -19,7 +19,11 @@ fn sweep(cfg: &Config) {
                     for n in (part * n_count / 2)..((part + 1) * n_count / 2) {
                         let mut prev: Option<models::Outputs> = None;
                         for cos_g in 0..(2u32 << f) {
-                            let ks = [(cos_g + n) & bm, (cos_g + 3 * n + 85) & bm, (cos_g + 7 * n + 170) & bm];
+                            let ks = [
+                                (cos_g + n) & bm,
+                                (cos_g + 3 * n + 85) & bm,
+                                (cos_g + 7 * n + 170) & bm,
+                            ];
                             let x = Inputs { cos_g, n, ks };
                             let o = m.eval(x);
                             if let Err(e) = m.check(x, o) {
@@ -29,7 +33,10 @@ fn sweep(cfg: &Config) {
                                 bad += 1;
                             }
                             if cfg.model() == SpecularModel::Quadratic {
-                                let rom_done = cos_g.min(1 << f) < m.unit().cut_off(n).expect("the quadratic unit stores its cut-off");
+                                let rom_done = cos_g.min(1 << f)
+                                    < m.unit()
+                                        .cut_off(n)
+                                        .expect("the quadratic unit stores its cut-off");
                                 assert_eq!(o.done, rom_done, "{x:?}");
                             }
                             // monotonic in cos_g for fixed n: check intensity (colours vary along the row)
@@ -45,7 +52,12 @@ fn sweep(cfg: &Config) {
             .collect();
         parts.into_iter().map(|p| p.join().unwrap()).sum::<u64>()
     });
-    assert_eq!(bad, 0, "{bad} outputs break the {} contract", cfg.rounding().name());
+    assert_eq!(
+        bad,
+        0,
+        "{bad} outputs break the {} contract",
+        cfg.rounding().name()
+    );
 }
 
 #[test]
@@ -55,7 +67,13 @@ fn default_faithful_whole_input_space() {
 
 #[test]
 fn default_exact_whole_input_space() {
-    sweep(&Config::new(Params { rounding: Rounding::Exact, ..Params::default() }).unwrap());
+    sweep(
+        &Config::new(Params {
+            rounding: Rounding::Exact,
+            ..Params::default()
+        })
+        .unwrap(),
+    );
 }
 
 /// Every model of the registry at narrow widths (F = FI = 8, N = 6, B = 4; a model added to
@@ -64,7 +82,17 @@ fn default_exact_whole_input_space() {
 #[test]
 fn every_model_narrow_whole_input_space() {
     for model in SpecularModel::ALL {
-        sweep(&Config::new(Params { model, cos_frac_bits: 8, intensity_frac_bits: 8, n_bits: 6, color_bits: 4, ..Params::default() }).unwrap());
+        sweep(
+            &Config::new(Params {
+                model,
+                cos_frac_bits: 8,
+                intensity_frac_bits: 8,
+                n_bits: 6,
+                color_bits: 4,
+                ..Params::default()
+            })
+            .unwrap(),
+        );
     }
 }
 
@@ -73,7 +101,16 @@ fn every_model_narrow_whole_input_space() {
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn every_model_default_whole_input_space() {
-    for model in SpecularModel::ALL.into_iter().filter(|&m| m != Params::default().model) {
-        sweep(&Config::new(Params { model, ..Params::default() }).unwrap());
+    for model in SpecularModel::ALL
+        .into_iter()
+        .filter(|&m| m != Params::default().model)
+    {
+        sweep(
+            &Config::new(Params {
+                model,
+                ..Params::default()
+            })
+            .unwrap(),
+        );
     }
 }

@@ -43,7 +43,13 @@ fn three(x: f64) -> String {
 
 /// The leading number of a cell part ("12 stages" → 12).
 fn number(part: &str) -> f64 {
-    part.trim().split(' ').next().unwrap().trim_end_matches('*').parse().unwrap_or_else(|_| panic!("no number in {part:?}"))
+    part.trim()
+        .split(' ')
+        .next()
+        .unwrap()
+        .trim_end_matches('*')
+        .parse()
+        .unwrap_or_else(|_| panic!("no number in {part:?}"))
 }
 
 #[test]
@@ -52,15 +58,29 @@ fn the_readmes_table_of_models_is_the_explorations_and_the_benchs() {
     let hw = std::fs::read_to_string(root().join("benchmarks/hw.md")).unwrap();
     let (ice40, ecp5) = (exploration("ice40"), exploration("ecp5"));
     let mut checked = 0;
-    for line in readme.lines().filter(|l| l.starts_with("| `") && l.contains("stages")) {
-        let cells: Vec<&str> = line.split(" | ").map(|c| c.trim_matches(|c| c == '|' || c == ' ')).collect();
+    for line in readme
+        .lines()
+        .filter(|l| l.starts_with("| `") && l.contains("stages"))
+    {
+        let cells: Vec<&str> = line
+            .split(" | ")
+            .map(|c| c.trim_matches(|c| c == '|' || c == ' '))
+            .collect();
         let model = cells[0].trim_matches('`').split('`').next().unwrap();
         let row = format!("README row {model}: {line}");
         // the error at the pixel (at the codes), default widths: the exploration's accuracy
         let (pixel, codes) = cells[2].split_once(" (").unwrap_or_else(|| panic!("{row}"));
-        let any = ice40.iter().find(|p| p["model"] == model && p["params"]["cos_frac_bits"] == 15 && p["params"]["intensity_frac_bits"] == 15);
+        let any = ice40.iter().find(|p| {
+            p["model"] == model
+                && p["params"]["cos_frac_bits"] == 15
+                && p["params"]["intensity_frac_bits"] == 15
+        });
         if let Some(p) = any {
-            assert_eq!(pixel, three(p["accuracy"]["pixel"]["max"].as_f64().unwrap()), "{row}");
+            assert_eq!(
+                pixel,
+                three(p["accuracy"]["pixel"]["max"].as_f64().unwrap()),
+                "{row}"
+            );
             let codes = codes.trim_end_matches(')');
             let at_codes = p["accuracy"]["max"].as_f64().unwrap();
             if !codes.contains('·') {
@@ -70,9 +90,19 @@ fn the_readmes_table_of_models_is_the_explorations_and_the_benchs() {
         // the UP5K at 100 MHz: "S stages, C logic cells, F MHz"
         let up5k: Vec<&str> = cells[3].split(", ").collect();
         if up5k.len() == 3 {
-            let u = unit(&ice40, model, number(up5k[0]) as u64).unwrap_or_else(|| panic!("{row}: no such measured unit in data/explore/ice40.json"));
-            assert_eq!(number(up5k[1]) as u64, u["measured"]["logic_cells"].as_u64().unwrap(), "{row}");
-            assert_eq!(format!("{:.1}", number(up5k[2])), format!("{:.1}", u["measured"]["fmax_mhz"].as_f64().unwrap()), "{row}");
+            let u = unit(&ice40, model, number(up5k[0]) as u64).unwrap_or_else(|| {
+                panic!("{row}: no such measured unit in data/explore/ice40.json")
+            });
+            assert_eq!(
+                number(up5k[1]) as u64,
+                u["measured"]["logic_cells"].as_u64().unwrap(),
+                "{row}"
+            );
+            assert_eq!(
+                format!("{:.1}", number(up5k[2])),
+                format!("{:.1}", u["measured"]["fmax_mhz"].as_f64().unwrap()),
+                "{row}"
+            );
             checked += 1;
         }
         // the ECP5 at 200 MHz: "S stages, F MHz" from the exploration, else hw.md's row, named
@@ -81,17 +111,30 @@ fn the_readmes_table_of_models_is_the_explorations_and_the_benchs() {
             let stages = number(e[0]) as u64;
             let mhz = format!("{:.1}", number(e[1]));
             match unit(&ecp5, model, stages) {
-                Some(u) => assert_eq!(mhz, format!("{:.1}", u["measured"]["fmax_mhz"].as_f64().unwrap()), "{row}"),
+                Some(u) => assert_eq!(
+                    mhz,
+                    format!("{:.1}", u["measured"]["fmax_mhz"].as_f64().unwrap()),
+                    "{row}"
+                ),
                 None => {
                     assert!(cells[4].contains("hw.md"), "{row}: no measured unit in data/explore/ecp5.json, and the cell names no bench");
                     let name = if model == "quadratic" { "lean" } else { model };
-                    let bench = hw.lines().find(|l| l.starts_with(&format!("| {name} | ECP5-25 | 200 MHz | {stages} (")));
-                    let bench = bench.unwrap_or_else(|| panic!("{row}: no row of benchmarks/hw.md"));
-                    assert!(bench.contains(&format!("| {mhz} (")), "{row}: benchmarks/hw.md says {bench}");
+                    let bench = hw.lines().find(|l| {
+                        l.starts_with(&format!("| {name} | ECP5-25 | 200 MHz | {stages} ("))
+                    });
+                    let bench =
+                        bench.unwrap_or_else(|| panic!("{row}: no row of benchmarks/hw.md"));
+                    assert!(
+                        bench.contains(&format!("| {mhz} (")),
+                        "{row}: benchmarks/hw.md says {bench}"
+                    );
                 }
             }
             checked += 1;
         }
     }
-    assert!(checked >= 8, "{checked} cells checked: the table's form changed");
+    assert!(
+        checked >= 8,
+        "{checked} cells checked: the table's form changed"
+    );
 }

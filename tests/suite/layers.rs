@@ -26,24 +26,51 @@ fn library_layers_import_only_downward_and_know_no_command_line() {
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     for f in &files {
         let rel = f.strip_prefix(&src).unwrap();
-        let top = rel.components().next().unwrap().as_os_str().to_string_lossy().trim_end_matches(".rs").to_string();
+        let top = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy()
+            .trim_end_matches(".rs")
+            .to_string();
         if top == "cli" || top == "main" || top == "lib" {
             continue;
         }
         // code only: comments and docs may name any module
-        let text: String = std::fs::read_to_string(f).unwrap().lines().filter(|l| !l.trim_start().starts_with("//")).collect::<Vec<_>>().join("\n");
-        assert!(!text.contains("clap::") && !text.contains("use clap"), "{} names clap: the library knows no command line", rel.display());
+        let text: String = std::fs::read_to_string(f)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.trim_start().starts_with("//"))
+            .collect::<Vec<_>>()
+            .join("\n");
+        assert!(
+            !text.contains("clap::") && !text.contains("use clap"),
+            "{} names clap: the library knows no command line",
+            rel.display()
+        );
         let deps = graph.entry(top.clone()).or_default();
         for (i, _) in text.match_indices("crate::") {
-            let name: String = text[i + 7..].chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+            let name: String = text[i + 7..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
             if !name.is_empty() && name != top {
                 deps.insert(name);
             }
         }
     }
-    assert!(graph.contains_key("models") && graph.contains_key("datapath"), "{graph:?}");
+    assert!(
+        graph.contains_key("models") && graph.contains_key("datapath"),
+        "{graph:?}"
+    );
     // a depth-first search for a back edge
-    fn visit(n: &str, g: &BTreeMap<String, BTreeSet<String>>, state: &mut BTreeMap<String, u8>, path: &mut Vec<String>) {
+    fn visit(
+        n: &str,
+        g: &BTreeMap<String, BTreeSet<String>>,
+        state: &mut BTreeMap<String, u8>,
+        path: &mut Vec<String>,
+    ) {
         match state.get(n) {
             Some(1) => panic!("import circle: {} -> {n}", path.join(" -> ")),
             Some(2) => return,
@@ -64,8 +91,13 @@ fn library_layers_import_only_downward_and_know_no_command_line() {
     // the builder knows no model, and no model knows what is made of it
     for low in ["bits", "ports", "table", "config", "error", "datapath"] {
         let deps = graph.get(low).cloned().unwrap_or_default();
-        for high in ["models", "plan", "emit", "cosim", "synth", "report", "render", "vectors", "rom"] {
-            assert!(!deps.contains(high), "{low} imports {high}: layers import only downward");
+        for high in [
+            "models", "plan", "emit", "cosim", "synth", "report", "render", "vectors", "rom",
+        ] {
+            assert!(
+                !deps.contains(high),
+                "{low} imports {high}: layers import only downward"
+            );
         }
     }
 }
@@ -81,8 +113,14 @@ fn no_model_is_named_outside_its_home_and_the_registry() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
-    let variants: Vec<String> = specgen::config::SpecularModel::ALL.iter().map(|m| format!("{m:?}")).collect();
-    let names: Vec<String> = specgen::config::SpecularModel::ALL.iter().map(|m| format!("\"{}\"", m.name())).collect();
+    let variants: Vec<String> = specgen::config::SpecularModel::ALL
+        .iter()
+        .map(|m| format!("{m:?}"))
+        .collect();
+    let names: Vec<String> = specgen::config::SpecularModel::ALL
+        .iter()
+        .map(|m| format!("\"{}\"", m.name()))
+        .collect();
     let mut found = Vec::new();
     for f in &files {
         let rel = f.strip_prefix(&src).unwrap();
@@ -99,10 +137,15 @@ fn no_model_is_named_outside_its_home_and_the_registry() {
             }
             let l = l.split(" //").next().unwrap();
             let at = format!("{}:{}: {}", rel.display(), i + 1, line.trim());
-            if variants.iter().any(|v| l.contains(&format!("SpecularModel::{v}"))) {
+            if variants
+                .iter()
+                .any(|v| l.contains(&format!("SpecularModel::{v}")))
+            {
                 found.push(format!("{at} (a model's variant)"));
             }
-            if l.contains("match") && (l.contains(".model()") || l.contains(".model {") || l.contains("params.model")) {
+            if l.contains("match")
+                && (l.contains(".model()") || l.contains(".model {") || l.contains("params.model"))
+            {
                 found.push(format!("{at} (a match over models)"));
             }
             if names.iter().any(|n| l.contains(n.as_str())) {
@@ -110,7 +153,11 @@ fn no_model_is_named_outside_its_home_and_the_registry() {
             }
         }
     }
-    assert!(found.is_empty(), "models named outside their homes and the registry:\n{}", found.join("\n"));
+    assert!(
+        found.is_empty(),
+        "models named outside their homes and the registry:\n{}",
+        found.join("\n")
+    );
 }
 
 /// `SpecularModel::ALL` is the only list of models. The configurations the lint,
@@ -128,7 +175,12 @@ fn the_tool_flow_configurations_cover_every_model() {
                 None => model == default,
             })
             .collect();
-        assert!(of_model.len() >= 2, "{}: {} configurations in configs(), at least 2 wanted", model.name(), of_model.len());
+        assert!(
+            of_model.len() >= 2,
+            "{}: {} configurations in configs(), at least 2 wanted",
+            model.name(),
+            of_model.len()
+        );
     }
 }
 
@@ -156,7 +208,11 @@ fn the_library_has_one_error_type_and_no_string_errors() {
             }
         }
     }
-    assert!(found.is_empty(), "a second error type or a String error in the library:\n{}", found.join("\n"));
+    assert!(
+        found.is_empty(),
+        "a second error type or a String error in the library:\n{}",
+        found.join("\n")
+    );
 }
 
 /// A file that grows past 800 lines holds several parts; split it by part
@@ -166,11 +222,19 @@ fn no_source_file_is_over_800_lines() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
     rust_files(&root.join("src"), &mut files);
-    assert!(files.len() > 40, "found only {} files under src/", files.len());
+    assert!(
+        files.len() > 40,
+        "found only {} files under src/",
+        files.len()
+    );
     // the tests too
     let before = files.len();
     rust_files(&root.join("tests"), &mut files);
-    assert!(files.len() > before + 20, "found only {} files under tests/", files.len() - before);
+    assert!(
+        files.len() > before + 20,
+        "found only {} files under tests/",
+        files.len() - before
+    );
     let long: Vec<String> = files
         .iter()
         .map(|f| (f, std::fs::read_to_string(f).unwrap().lines().count()))
@@ -193,11 +257,31 @@ fn the_units_edge_is_written_in_templates() {
         .filter(|l| !l.trim_start().starts_with("//"))
         .collect::<Vec<_>>()
         .join("\n");
-    for verilog in ["assign ", "wire ", "reg  ", "always @", "assert(", "`ifdef", "out_buffer #(", "Latency:"] {
-        assert!(!code.contains(verilog), "src/interface.rs writes `{verilog}`: Verilog belongs in templates/edge_*.v");
+    for verilog in [
+        "assign ",
+        "wire ",
+        "reg  ",
+        "always @",
+        "assert(",
+        "`ifdef",
+        "out_buffer #(",
+        "Latency:",
+    ] {
+        assert!(
+            !code.contains(verilog),
+            "src/interface.rs writes `{verilog}`: Verilog belongs in templates/edge_*.v"
+        );
     }
-    for t in ["edge_header.txt", "edge_prologue.v", "edge_tail.v", "edge_formal.v"] {
-        assert!(code.contains(&format!("#[template(path = \"{t}\")]")), "{t} is not rendered by src/interface.rs");
+    for t in [
+        "edge_header.txt",
+        "edge_prologue.v",
+        "edge_tail.v",
+        "edge_formal.v",
+    ] {
+        assert!(
+            code.contains(&format!("#[template(path = \"{t}\")]")),
+            "{t} is not rendered by src/interface.rs"
+        );
     }
 }
 
@@ -214,7 +298,10 @@ fn no_file_names_an_issue_tracker_the_repository_lacks() {
                 let p = e.path();
                 if p.is_dir() {
                     stack.push(p);
-                } else if p.extension().is_some_and(|x| ["rs", "md", "sh", "py", "v", "ys", "sv", "html", "txt"].contains(&x.to_str().unwrap_or(""))) {
+                } else if p.extension().is_some_and(|x| {
+                    ["rs", "md", "sh", "py", "v", "ys", "sv", "html", "txt"]
+                        .contains(&x.to_str().unwrap_or(""))
+                }) {
                     files.push(p);
                 }
             }
@@ -226,10 +313,19 @@ fn no_file_names_an_issue_tracker_the_repository_lacks() {
     for f in &files {
         let text = std::fs::read_to_string(f).unwrap_or_default();
         for (i, line) in text.lines().enumerate() {
-            let words: Vec<&str> = line.split(|c: char| !c.is_alphanumeric()).filter(|w| !w.is_empty()).collect();
-            if words.windows(2).any(|w| (w[0].eq_ignore_ascii_case("issue") || w[0].eq_ignore_ascii_case("issues")) && w[1].chars().all(|c| c.is_ascii_digit()))
-            {
-                named.push(format!("{}:{}", f.strip_prefix(root).unwrap().display(), i + 1));
+            let words: Vec<&str> = line
+                .split(|c: char| !c.is_alphanumeric())
+                .filter(|w| !w.is_empty())
+                .collect();
+            if words.windows(2).any(|w| {
+                (w[0].eq_ignore_ascii_case("issue") || w[0].eq_ignore_ascii_case("issues"))
+                    && w[1].chars().all(|c| c.is_ascii_digit())
+            }) {
+                named.push(format!(
+                    "{}:{}",
+                    f.strip_prefix(root).unwrap().display(),
+                    i + 1
+                ));
             }
         }
     }
@@ -247,16 +343,34 @@ fn the_scripts_python_lives_in_files() {
         .flatten()
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|x| x == "sh"))
-        .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read_to_string(&p).unwrap()))
+        .map(|p| {
+            (
+                p.file_name().unwrap().to_string_lossy().into_owned(),
+                std::fs::read_to_string(&p).unwrap(),
+            )
+        })
         .collect();
     assert!(scripts.len() > 10);
     for (name, text) in &scripts {
-        assert!(!text.lines().any(|l| l.contains("python3 -") && l.contains("<<")), "{name} runs Python from a heredoc");
+        assert!(
+            !text
+                .lines()
+                .any(|l| l.contains("python3 -") && l.contains("<<")),
+            "{name} runs Python from a heredoc"
+        );
     }
-    for e in std::fs::read_dir(root.join("scripts/py")).unwrap().flatten() {
+    for e in std::fs::read_dir(root.join("scripts/py"))
+        .unwrap()
+        .flatten()
+    {
         let file = e.file_name().to_string_lossy().into_owned();
         if file.ends_with(".py") {
-            assert!(scripts.iter().any(|(_, t)| t.contains(&format!("scripts/py/{file}"))), "scripts/py/{file} is run by no script");
+            assert!(
+                scripts
+                    .iter()
+                    .any(|(_, t)| t.contains(&format!("scripts/py/{file}"))),
+                "scripts/py/{file} is run by no script"
+            );
         }
     }
 }

@@ -35,7 +35,15 @@ fn input(cfg: &Config, m: &Model, seed: u64) -> Inputs {
     };
     let r2 = specgen::bits::splitmix(r);
     let bm = (1u64 << cfg.b()) - 1;
-    Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
+    Inputs {
+        cos_g,
+        n,
+        ks: [
+            (r2 & bm) as u32,
+            ((r2 >> 16) & bm) as u32,
+            ((r2 >> 32) & bm) as u32,
+        ],
+    }
 }
 
 /// `|got − ideal/2^den| < 1`, and `got = ideal/2^den` where that is an integer.
@@ -51,7 +59,11 @@ fn faithful_to_power(cfg: &Config, x: Inputs, o: specgen::models::Outputs) -> Re
     let den = cfg.f() * x.n;
     let pow = c.pow(x.n);
     if !faithful(o.intensity, &(&pow << cfg.fi()), den) {
-        return Err(format!("intensity {} vs c^n = {}", o.intensity, (x.cos_g.min(1 << cfg.f()) as f64 / (cfg.f() as f64).exp2()).powi(x.n as i32)));
+        return Err(format!(
+            "intensity {} vs c^n = {}",
+            o.intensity,
+            (x.cos_g.min(1 << cfg.f()) as f64 / (cfg.f() as f64).exp2()).powi(x.n as i32)
+        ));
     }
     for ch in 0..3 {
         if !faithful(o.spec[ch], &(&pow * BigInt::from(x.ks[ch])), den) {
@@ -152,7 +164,12 @@ proptest! {
 /// and each a_n is the minimax choice: a 0.1 % change either way is no better.
 #[test]
 fn fit_is_exact_where_it_can_be_and_locally_minimax() {
-    let cfg = Config::new(Params { model: SpecularModel::Fitted, n_bits: 6, ..Params::default() }).unwrap();
+    let cfg = Config::new(Params {
+        model: SpecularModel::Fitted,
+        n_bits: 6,
+        ..Params::default()
+    })
+    .unwrap();
     let fit = specgen::models::fitted::cached_fit(&cfg);
     assert_eq!((fit.a_code[0], fit.m[0]), (0, 0));
     for (n, m) in [(1usize, 0u32), (2, 1), (4, 2), (8, 3)] {
@@ -162,13 +179,23 @@ fn fit_is_exact_where_it_can_be_and_locally_minimax() {
     }
     // the error of (a, m) against cos^n on a dense grid of c
     let err = |n: u32, m: u32, a: f64| {
-        (0..=20000).map(|i| i as f64 / 20000.0).map(|c: f64| ((1.0 - a * (1.0 - c)).max(0.0).powi(1 << m) - c.powi(n as i32)).abs()).fold(0.0, f64::max)
+        (0..=20000)
+            .map(|i| i as f64 / 20000.0)
+            .map(|c: f64| ((1.0 - a * (1.0 - c)).max(0.0).powi(1 << m) - c.powi(n as i32)).abs())
+            .fold(0.0, f64::max)
     };
     for n in [3u32, 5, 17, 40, 63] {
         let (a, m) = (fit.a[n as usize], fit.m[n as usize]);
         let e = err(n, m, a);
-        assert!(err(n, m, a * 1.001) >= e * 0.999 && err(n, m, a * 0.999) >= e * 0.999, "n = {n}: a = {a} is not a local minimum");
-        assert!((e - fit.fit_error[n as usize]).abs() < 2e-4, "n = {n}: fit says {}, grid {e}", fit.fit_error[n as usize]);
+        assert!(
+            err(n, m, a * 1.001) >= e * 0.999 && err(n, m, a * 0.999) >= e * 0.999,
+            "n = {n}: a = {a} is not a local minimum"
+        );
+        assert!(
+            (e - fit.fit_error[n as usize]).abs() < 2e-4,
+            "n = {n}: fit says {}, grid {e}",
+            fit.fit_error[n as usize]
+        );
     }
 }
 
@@ -176,8 +203,20 @@ fn fit_is_exact_where_it_can_be_and_locally_minimax() {
 /// one unit (2^-15), the quadratic unit about 0.40 off; every manifest states it and its method.
 #[test]
 fn fidelity_figures_at_defaults() {
-    let fid = |model| specgen::models::blinn_fidelity(&Model::new(&Config::new(Params { model, ..Params::default() }).unwrap()));
-    let (q, f, b) = (fid(SpecularModel::Quadratic), fid(SpecularModel::Fitted), fid(SpecularModel::Blinn));
+    let fid = |model| {
+        specgen::models::blinn_fidelity(&Model::new(
+            &Config::new(Params {
+                model,
+                ..Params::default()
+            })
+            .unwrap(),
+        ))
+    };
+    let (q, f, b) = (
+        fid(SpecularModel::Quadratic),
+        fid(SpecularModel::Fitted),
+        fid(SpecularModel::Blinn),
+    );
     for x in [&q, &f, &b] {
         assert_eq!((x.points, x.stride), (32769 * 1024, 1));
         assert!(x.mean > 0.0 && x.mean <= x.max);

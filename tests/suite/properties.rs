@@ -52,7 +52,15 @@ fn inputs_for(cfg: &Config, seed: u64, near_cutoff: bool) -> Inputs {
     };
     let r2 = specgen::bits::splitmix(r);
     let bm = (1u64 << cfg.b()) - 1;
-    Inputs { cos_g, n, ks: [(r2 & bm) as u32, ((r2 >> 16) & bm) as u32, ((r2 >> 32) & bm) as u32] }
+    Inputs {
+        cos_g,
+        n,
+        ks: [
+            (r2 & bm) as u32,
+            ((r2 >> 16) & bm) as u32,
+            ((r2 >> 32) & bm) as u32,
+        ],
+    }
 }
 
 proptest! {

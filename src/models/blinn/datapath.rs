@@ -46,7 +46,24 @@ pub fn datapath(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, b: &mut Builder)
     // on a DSP block the entry is the multiply-add's addend, complemented: stored so
     let et = b.table(t.exp2_table(w, exp2_pad, exp2_dsp));
 
-    let s = Shape { w, t, f, fi, bb, nb, cb, dsp, rb, re, log_dsp, exp2_dsp, log_pad, exp2_pad, lt, et };
+    let s = Shape {
+        w,
+        t,
+        f,
+        fi,
+        bb,
+        nb,
+        cb,
+        dsp,
+        rb,
+        re,
+        log_dsp,
+        exp2_dsp,
+        log_pad,
+        exp2_pad,
+        lt,
+        et,
+    };
     normalise(&s, b);
     let ell_after = log2(&s, b);
     times_n(&s, b, ell_after);
@@ -60,7 +77,13 @@ fn normalise(s: &Shape, b: &mut Builder) {
     b.step("clamp c = min(cos, 1)");
     let (top, g) = (b.bits("cos_g", f, f), b.r("cos_g"));
     // cos_g >= 1.0 exactly when its integer bit is set: a mux, no comparator
-    b.wire("cos_clamped", cb, Kind::Logic, Builder::select_const(&top, 1u128 << f, cb, &g), &format!("UQ1.{f}: c"));
+    b.wire(
+        "cos_clamped",
+        cb,
+        Kind::Logic,
+        Builder::select_const(&top, 1u128 << f, cb, &g),
+        &format!("UQ1.{f}: c"),
+    );
     // beside it, the first LUT level of c = 0 (cos_g = 0: the clamp keeps 0) and of n != 0,
     // each an OR of up to 4 bits: the second is one LUT in a later step
     let bits = b.bit_list("cos_g", f, 0);
@@ -75,13 +98,22 @@ fn normalise(s: &Shape, b: &mut Builder) {
     let p = b.add_start(
         "cos_minus_ulp",
         &[Piece::sig("cos_clamped", 0, cb)],
-        &[Piece::Const { value: mask(cb), width: cb }],
+        &[Piece::Const {
+            value: mask(cb),
+            width: cb,
+        }],
         false,
         cb,
         &format!("UQ1.{f}: c - 2^-{f} (its leading zeros give the exponent)"),
     );
     let terms: Vec<Expr> = cos_any.iter().map(|g| b.r(g)).collect();
-    b.wire("cos_zero", 1, Kind::Logic, ex!("~({})", Expr::join(&terms, " | ")), "c = 0: c^n = 0 for n >= 1");
+    b.wire(
+        "cos_zero",
+        1,
+        Kind::Logic,
+        ex!("~({})", Expr::join(&terms, " | ")),
+        "c = 0: c^n = 0 for n >= 1",
+    );
     b.delay(2.0 * LUT_DELAY);
     b.resolve(p, title);
 
@@ -104,7 +136,13 @@ fn normalise(s: &Shape, b: &mut Builder) {
     // beside it, the one case the tables do not cover, carried as one bit
     let terms: Vec<Expr> = n_any.iter().map(|g| b.r(g)).collect();
     let z = b.r("cos_zero");
-    b.wire("y_zero_power", 1, Kind::Logic, ex!("{} & ({})", z, Expr::join(&terms, " | ")), "c = 0 with n >= 1: c^n = 0 (y saturates)");
+    b.wire(
+        "y_zero_power",
+        1,
+        Kind::Logic,
+        ex!("{} & ({})", z, Expr::join(&terms, " | ")),
+        "c = 0 with n >= 1: c^n = 0 (y saturates)",
+    );
     b.delay(2.0 * LUT_DELAY);
 
     // c' = c*2^e, one bit of e a step from the top: a 2:1 mux level each, so the bit that
@@ -113,14 +151,32 @@ fn normalise(s: &Shape, b: &mut Builder) {
     let mut src = "cos_clamped".to_string();
     for k in (0..eb).rev() {
         let last = k == 0;
-        let name = if last { "cos_norm".to_string() } else { format!("cos_norm_shift{k}") };
-        b.step(&if last { "normalise: c' = c*2^e in (1/2, 1], its complement".to_string() } else { format!("normalise: c shifted by e's bit {k}") });
+        let name = if last {
+            "cos_norm".to_string()
+        } else {
+            format!("cos_norm_shift{k}")
+        };
+        b.step(&if last {
+            "normalise: c' = c*2^e in (1/2, 1], its complement".to_string()
+        } else {
+            format!("normalise: c shifted by e's bit {k}")
+        });
         // 2^k <= F < F + 1: bit k of e never shifts the whole word out
-        let what = if last { format!("UQ1.{f}: c' = c*2^e in (1/2, 1]") } else { format!("UQ1.{f}: c*2^(e's bits from {k} up)") };
+        let what = if last {
+            format!("UQ1.{f}: c' = c*2^e in (1/2, 1]")
+        } else {
+            format!("UQ1.{f}: c*2^(e's bits from {k} up)")
+        };
         b.shift_left_level(&name, &src, "exponent", k, cb, &what);
         if last {
             let cn = b.bits("cos_norm", f - 2, 0);
-            b.wire("cos_norm_inv", f - 1, Kind::Logic, ex!("~{}", cn), &format!("~c' over its low {} bits", f - 1));
+            b.wire(
+                "cos_norm_inv",
+                f - 1,
+                Kind::Logic,
+                ex!("~{}", cn),
+                &format!("~c' over its low {} bits", f - 1),
+            );
         }
         b.delay(LUT_DELAY);
         src = name;
@@ -128,21 +184,45 @@ fn normalise(s: &Shape, b: &mut Builder) {
     // x = 1 - c' < 1/2: only the low F-1 bits of 2^F - c', i.e. of -c' = ~c' + 1
     let title = "x = 1 - c'";
     b.step(title);
-    let p = b.add_start("x", &[Piece::sig("cos_norm_inv", 0, f - 1)], &[], true, f - 1, &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"));
+    let p = b.add_start(
+        "x",
+        &[Piece::sig("cos_norm_inv", 0, f - 1)],
+        &[],
+        true,
+        f - 1,
+        &format!("UQ0.{f} (top bit 0): x = 1 - c' in [0, 1/2), exact"),
+    );
     b.resolve(p, title);
 }
 
 /// -log2 c' = x*g(x), g by the log2 table and linear interpolation; then l = e + L (truncation #1).
 /// Returns whether `ell` is left to the next step ([`ell`]): after a product alone in its step.
 fn log2(s: &Shape, b: &mut Builder) -> bool {
-    let Shape { w, f, dsp, rb, log_dsp, log_pad, lt, .. } = *s;
+    let Shape {
+        w,
+        f,
+        dsp,
+        rb,
+        log_dsp,
+        log_pad,
+        lt,
+        ..
+    } = *s;
     // the table's address beside x (on ECP5 the block RAM's address register takes it)
     let tg = w.log_index_bits;
     let idx = b.bits("x", f - 2, rb);
-    b.wire("log_index", tg, Kind::Select, idx, &format!("i: 2x to {tg} bits"));
+    b.wire(
+        "log_index",
+        tg,
+        Kind::Select,
+        idx,
+        &format!("i: 2x to {tg} bits"),
+    );
 
     b.ecp5_register_step("log2 table read: the address at the block RAM's address register");
-    b.step(&format!("log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"));
+    b.step(&format!(
+        "log2 table read: g(x) = -log2(1 - x)/x at the top {tg} bits of 2x"
+    ));
     b.rom_read_registered("log_word", lt, "log_index");
     b.delay(LUT_DELAY * tg.div_ceil(2) as f64);
     b.ecp5_register_step("log2 table read: the word at the multiplier's input registers");
@@ -157,13 +237,36 @@ fn log2(s: &Shape, b: &mut Builder) -> bool {
         // multiply-add, the entry its addend
         b.step(&format!("{title}: dG[i]*r + G[i]*2^{rb} (multiplier)"));
         let sw = gb + rb;
-        let (dg, r, g) = (Piece::sig("log_word", ge, w.log_delta_bits), Piece::sig("x", 0, rb), Piece::sig("log_word", 0, ge));
+        let (dg, r, g) = (
+            Piece::sig("log_word", ge, w.log_delta_bits),
+            Piece::sig("x", 0, rb),
+            Piece::sig("log_word", 0, ge),
+        );
         let (a, r) = pad_operands(dg, r, "log_word", log_pad);
-        let comment = format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact; g^ = bits [{}:{rb}], UQ2.{}", tg + 1, sw - 1, w.log_frac_bits);
-        let sum = b.multiply_add("ghat_sum", &a, &r, &[Piece::zeros(rb), g], sw, title, &comment);
+        let comment = format!(
+            "G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact; g^ = bits [{}:{rb}], UQ2.{}",
+            tg + 1,
+            sw - 1,
+            w.log_frac_bits
+        );
+        let sum = b.multiply_add(
+            "ghat_sum",
+            &a,
+            &r,
+            &[Piece::zeros(rb), g],
+            sw,
+            title,
+            &comment,
+        );
         if b.instantiated_blocks() {
             let e = b.bits(&sum, sw - 1, rb);
-            b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+            b.wire(
+                "ghat",
+                gb,
+                Kind::Select,
+                e,
+                &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits),
+            );
         } else {
             // the next steps read g^ as bits of the sum: the cut registers the DSP's whole
             // output, which yosys takes into the block as its output register (a register of
@@ -176,16 +279,41 @@ fn log2(s: &Shape, b: &mut Builder) -> bool {
         // the step's partial products in one carry-save sum, one carry chain at its end
         b.step(&format!("{title}: the partial products of dG[i]*r"));
         let sw = gb + rb;
-        let mut terms = b.partial_products("ghat_sum", &Piece::sig("log_word", ge, w.log_delta_bits), &Piece::sig("x", 0, rb), 0, sw, false);
+        let mut terms = b.partial_products(
+            "ghat_sum",
+            &Piece::sig("log_word", ge, w.log_delta_bits),
+            &Piece::sig("x", 0, rb),
+            0,
+            sw,
+            false,
+        );
         terms.push(vec![Piece::zeros(rb), Piece::sig("log_word", 0, ge)]);
-        let p = b.sum_start("ghat_sum", terms, sw, title, &format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact", tg + 1));
+        let p = b.sum_start(
+            "ghat_sum",
+            terms,
+            sw,
+            title,
+            &format!("G[i]*2^{rb} + dG[i]*(x mod 2^-{}), exact", tg + 1),
+        );
         let sum = b.resolve(p, title);
         let e = b.bits(&sum, sw - 1, rb);
-        b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+        b.wire(
+            "ghat",
+            gb,
+            Kind::Select,
+            e,
+            &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits),
+        );
     } else {
         b.step(title);
         let e = b.operand("log_word", 0, ge, gb);
-        b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+        b.wire(
+            "ghat",
+            gb,
+            Kind::Select,
+            e,
+            &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits),
+        );
     }
 
     let lf = f + w.log_frac_bits;
@@ -198,34 +326,83 @@ fn log2(s: &Shape, b: &mut Builder) -> bool {
     if f - 1 <= dsp && gb > dsp && gb - dsp <= SHIFT_ADD_BITS {
         b.step("-log2 c' = x*g(x): x*g_lo (multiplier); the partial products of x*g_hi");
         let lw = f - 1 + dsp;
-        b.product("log_frac_lo", &[Piece::sig("x", 0, f - 1)], &[Piece::sig(&ghat.0, ghat.1, dsp)], lw, &format!("x*ghat[{}:0], exact", dsp - 1));
+        b.product(
+            "log_frac_lo",
+            &[Piece::sig("x", 0, f - 1)],
+            &[Piece::sig(&ghat.0, ghat.1, dsp)],
+            lw,
+            &format!("x*ghat[{}:0], exact", dsp - 1),
+        );
         // beside the DSP (they do not wait for it), x*g_hi's partial products
         let t = "-log2 c' = x*g(x)";
         let hw = lb - dsp;
-        let mut terms = b.partial_products("log_frac_hi", &Piece::sig("x", 0, f - 1), &Piece::sig(&ghat.0, ghat.1 + dsp, gb - dsp), 0, hw, false);
+        let mut terms = b.partial_products(
+            "log_frac_hi",
+            &Piece::sig("x", 0, f - 1),
+            &Piece::sig(&ghat.0, ghat.1 + dsp, gb - dsp),
+            0,
+            hw,
+            false,
+        );
         b.product_delay(f - 1, dsp, lw, Delay::ZERO);
         terms.push(vec![Piece::sig("log_frac_lo", dsp, lw - dsp)]);
-        let p = b.sum_start("log_frac_hi", terms, hw, t, &format!("x*ghat[{}:{dsp}] + x*ghat[{}:0]/2^{dsp}, exact", gb - 1, dsp - 1));
+        let p = b.sum_start(
+            "log_frac_hi",
+            terms,
+            hw,
+            t,
+            &format!(
+                "x*ghat[{}:{dsp}] + x*ghat[{}:0]/2^{dsp}, exact",
+                gb - 1,
+                dsp - 1
+            ),
+        );
         let hi = b.resolve(p, t);
         let (hv, lv) = (b.r(&hi), b.bits("log_frac_lo", dsp - 1, 0));
-        b.wire("log_frac", lb, Kind::Select, ex!("{{{}, {}}}", hv, lv), &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"));
+        b.wire(
+            "log_frac",
+            lb,
+            Kind::Select,
+            ex!("{{{}, {}}}", hv, lv),
+            &format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact"),
+        );
     } else {
         b.step("-log2 c' = x*g(x)");
         let what = format!("UQ1.{lf}: L = x*g(x) = -log2 c', exact");
         if b.instantiated_blocks() {
             // a MULT18X18D with its own registers where the cuts allow; e + L after a step
             // that registers L (the block's output is read only after its step)
-            b.product("log_frac", &[Piece::sig("x", 0, f - 1)], &[Piece::sig(&ghat.0, ghat.1, gb)], lb, &what);
+            b.product(
+                "log_frac",
+                &[Piece::sig("x", 0, f - 1)],
+                &[Piece::sig(&ghat.0, ghat.1, gb)],
+                lb,
+                &what,
+            );
             b.ecp5_register_step("e + L: the product registered");
             ell(s, b);
             return false;
         }
         if ghat.0 != "ghat" {
             let e = b.bits(&ghat.0, ghat.1 + gb - 1, ghat.1);
-            b.wire("ghat", gb, Kind::Select, e, &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits));
+            b.wire(
+                "ghat",
+                gb,
+                Kind::Select,
+                e,
+                &format!("UQ2.{}: g(x) within the budget's eps_g", w.log_frac_bits),
+            );
         }
         let (xs, gs) = ([Piece::sig("x", 0, f - 1)], [Piece::sig("ghat", 0, gb)]);
-        b.mul("log_frac", lb, (&xs, f - 1), (&gs, gb), &[], Delay::ZERO, &what);
+        b.mul(
+            "log_frac",
+            lb,
+            (&xs, f - 1),
+            (&gs, gb),
+            &[],
+            Delay::ZERO,
+            &what,
+        );
         // e + L in the next step: the block's output meets only its register
         return true;
     }
@@ -252,7 +429,11 @@ fn ell(s: &Shape, b: &mut Builder) {
         eb2,
         Kind::Select,
         ex!("{{{}, {}}}", e, lbits),
-        &format!("UQ{}.{}: e + L floored (truncation #1); L < 1", eb2 - w.ell_frac_bits, w.ell_frac_bits),
+        &format!(
+            "UQ{}.{}: e + L floored (truncation #1); L < 1",
+            eb2 - w.ell_frac_bits,
+            w.ell_frac_bits
+        ),
     );
 }
 
@@ -273,7 +454,9 @@ fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
     // mod 2^D, .., P_0 mod 2^D}. A top chunk of a few bits is partial products instead.
     let yb = w.y_bits();
     let pb = nb + eb2;
-    let chunks: Vec<(u32, u32)> = (0..eb2.div_ceil(dsp.min(eb2))).map(|i| (i * dsp, (eb2 - i * dsp).min(dsp))).collect();
+    let chunks: Vec<(u32, u32)> = (0..eb2.div_ceil(dsp.min(eb2)))
+        .map(|i| (i * dsp, (eb2 - i * dsp).min(dsp)))
+        .collect();
     let chunked = nb <= dsp && chunks.len() > 1;
     let last = chunks.len() - 1;
     if chunked {
@@ -284,7 +467,14 @@ fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
             if k == last && k > 0 && cw <= SHIFT_ADD_BITS {
                 let t = "y = n*(-log2 c): the top bits of l";
                 b.step(&format!("{t}: partial products"));
-                let mut terms = b.partial_products(&name, &Piece::sig("n", 0, nb), &Piece::sig("ell", lo, cw), 0, width, false);
+                let mut terms = b.partial_products(
+                    &name,
+                    &Piece::sig("n", 0, nb),
+                    &Piece::sig("ell", lo, cw),
+                    0,
+                    width,
+                    false,
+                );
                 let below = format!("y_part{}", k - 1);
                 let bw = nb + chunks[k - 1].1;
                 terms.push(vec![Piece::sig(&below, dsp, bw - dsp)]);
@@ -301,15 +491,36 @@ fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
                 if k == 0 {
                     b.product(&name, &nn, &l, width, &format!("{what} (one DSP)"));
                 } else {
-                    let below = Piece::sig(&format!("y_part{}", k - 1), dsp, nb + chunks[k - 1].1 - dsp);
-                    b.multiply_add(&name, &nn, &l, &[below], width, &t, &format!("{what}: n*l[{}:{lo}] plus the chunk below", lo + cw - 1));
+                    let below =
+                        Piece::sig(&format!("y_part{}", k - 1), dsp, nb + chunks[k - 1].1 - dsp);
+                    b.multiply_add(
+                        &name,
+                        &nn,
+                        &l,
+                        &[below],
+                        width,
+                        &t,
+                        &format!("{what}: n*l[{}:{lo}] plus the chunk below", lo + cw - 1),
+                    );
                 }
             }
         }
     } else {
         first_step(b, "y = n*(-log2 c) (multiplier 7)");
         let (ns, ls) = ([Piece::sig("n", 0, nb)], [Piece::sig("ell", 0, eb2)]);
-        b.mul("y_full", pb, (&ns, nb), (&ls, eb2), &[], Delay::ZERO, &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits));
+        b.mul(
+            "y_full",
+            pb,
+            (&ns, nb),
+            (&ls, eb2),
+            &[],
+            Delay::ZERO,
+            &format!(
+                "UQ{}.{}: n*(-log2 c), exact",
+                pb - w.ell_frac_bits,
+                w.ell_frac_bits
+            ),
+        );
     }
 
     b.step("y truncated; its saturation");
@@ -319,20 +530,34 @@ fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
         let mut low_words: Vec<Expr> = Vec::new();
         for k in (0..chunks.len()).rev() {
             let name = format!("y_part{k}");
-            low_words.push(if k == last { b.r(&name) } else { b.bits(&name, dsp - 1, 0) });
+            low_words.push(if k == last {
+                b.r(&name)
+            } else {
+                b.bits(&name, dsp - 1, 0)
+            });
         }
         b.wire(
             "y_full",
             pb,
             Kind::Select,
             ex!("{{{}}}", Expr::join(&low_words, ", ")),
-            &format!("UQ{}.{}: n*(-log2 c), exact", pb - w.ell_frac_bits, w.ell_frac_bits),
+            &format!(
+                "UQ{}.{}: n*(-log2 c), exact",
+                pb - w.ell_frac_bits,
+                w.ell_frac_bits
+            ),
         );
     }
     let drop = w.ell_frac_bits - w.y_frac_bits;
     let top = b.bits("y_full", pb - 1, drop);
     let ytw = pb - drop;
-    b.wire("y_trunc", ytw, Kind::Select, top, &format!("UQ{}.{}: truncation #2", ytw - w.y_frac_bits, w.y_frac_bits));
+    b.wire(
+        "y_trunc",
+        ytw,
+        Kind::Select,
+        top,
+        &format!("UQ{}.{}: truncation #2", ytw - w.y_frac_bits, w.y_frac_bits),
+    );
     // y >= (W + 2)*2^WY on its integer bits alone (the saturation value has no fraction):
     // some high bit set, or the low ones at least W + 2
     let sat_int = (w.out_bits + 2) as u128;
@@ -341,26 +566,54 @@ fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
     if sat_int < 1u128 << yiw {
         let k = bit_length(sat_int);
         let ge = b.at_least("y_trunc", w.y_frac_bits + k - 1, w.y_frac_bits, sat_int);
-        b.wire("y_over_low", 1, Kind::Logic, ge, &format!("floor(y)'s low {k} bits reach {sat_int}"));
+        b.wire(
+            "y_over_low",
+            1,
+            Kind::Logic,
+            ge,
+            &format!("floor(y)'s low {k} bits reach {sat_int}"),
+        );
         flags.push("y_over_low");
         if yiw > k {
             let bits = b.bit_list("y_trunc", ytw - 1, w.y_frac_bits + k);
-            let terms = b.or_terms("y_over_high", bits, LUT_INPUTS, "floor(y) above its low bits");
-            b.wire("y_over_high", 1, Kind::Logic, Expr::join(&terms, " | "), &format!("floor(y) has a bit set above its low {k}"));
+            let terms = b.or_terms(
+                "y_over_high",
+                bits,
+                LUT_INPUTS,
+                "floor(y) above its low bits",
+            );
+            b.wire(
+                "y_over_high",
+                1,
+                Kind::Logic,
+                Expr::join(&terms, " | "),
+                &format!("floor(y) has a bit set above its low {k}"),
+            );
             flags.push("y_over_high");
         }
     } // else y_trunc cannot reach the saturation value
     b.delay(2.0 * LUT_DELAY);
     b.step("y saturated");
     let flags: Vec<Expr> = flags.iter().map(|f| b.r(f)).collect();
-    b.wire("y_saturate", 1, Kind::Logic, Expr::join(&flags, " || "), &format!("y reaches {} (or c = 0 with n >= 1)", w.out_bits + 2));
+    b.wire(
+        "y_saturate",
+        1,
+        Kind::Logic,
+        Expr::join(&flags, " || "),
+        &format!("y reaches {} (or c = 0 with n >= 1)", w.out_bits + 2),
+    );
     let (sat, yt2) = (b.r("y_saturate"), b.operand("y_trunc", 0, ytw, yb));
     b.wire(
         "y",
         yb,
         Kind::Logic,
         Builder::select_const(&sat, w.y_sat(), yb, &yt2),
-        &format!("UQ{}.{}: y, saturated at {} (every output is 0 from there on)", w.y_int_bits, w.y_frac_bits, w.out_bits + 2),
+        &format!(
+            "UQ{}.{}: y, saturated at {} (every output is 0 from there on)",
+            w.y_int_bits,
+            w.y_frac_bits,
+            w.out_bits + 2
+        ),
     );
     b.delay(LUT_DELAY);
 }
@@ -368,22 +621,50 @@ fn times_n(s: &Shape, b: &mut Builder, ell_here: bool) {
 /// 2^-frac(y) by the exp2 table and linear interpolation. Returns the sum whose bits are its
 /// complement when the interpolation took the DSP's multiply-add (complemented in the shift's LUTs).
 fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
-    let Shape { w, t, re, exp2_dsp, exp2_pad, et, .. } = *s;
+    let Shape {
+        w,
+        t,
+        re,
+        exp2_dsp,
+        exp2_pad,
+        et,
+        ..
+    } = *s;
     let te = w.exp2_index_bits;
     let ji = b.bits("y", w.y_frac_bits - 1, re);
-    b.wire("exp2_index", te, Kind::Select, ji, "j: frac(y) to the table's resolution");
+    b.wire(
+        "exp2_index",
+        te,
+        Kind::Select,
+        ji,
+        "j: frac(y) to the table's resolution",
+    );
     b.ecp5_register_step("exp2 table read: the address at the block RAM's address register");
-    b.step(&format!("exp2 table read: 2^-f at the top {te} bits of frac(y)"));
+    b.step(&format!(
+        "exp2 table read: 2^-f at the top {te} bits of frac(y)"
+    ));
     b.rom_read_registered("exp2_word", et, "exp2_index");
     b.ecp5_register_step("exp2 table read: the word at the multiplier's input registers");
     let implied = t.exp2_one_implied(w);
     if implied && exp2_dsp {
         // the table holds ~E: its integer bit complemented as well
         let ji = b.r("exp2_index");
-        b.wire("exp2_not_one", 1, Kind::Logic, ex!("{} != {}", ji, lit(te, 0)), "~E's integer bit: 2^-f = 1.0 at j = 0 only");
+        b.wire(
+            "exp2_not_one",
+            1,
+            Kind::Logic,
+            ex!("{} != {}", ji, lit(te, 0)),
+            "~E's integer bit: 2^-f = 1.0 at j = 0 only",
+        );
     } else if implied {
         let ji = b.r("exp2_index");
-        b.wire("exp2_one", 1, Kind::Logic, ex!("{} == {}", ji, lit(te, 0)), "E's integer bit: 2^-f = 1.0 at j = 0 only");
+        b.wire(
+            "exp2_one",
+            1,
+            Kind::Logic,
+            ex!("{} == {}", ji, lit(te, 0)),
+            "E's integer bit: 2^-f = 1.0 at j = 0 only",
+        );
     }
     b.delay(LUT_DELAY * te.div_ceil(2) as f64);
 
@@ -393,7 +674,11 @@ fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
                                   // E's bits as read: complemented (~E) where the table holds them so
     let mut e_word = vec![Piece::sig("exp2_word", 0, es)];
     if implied {
-        e_word.push(Piece::sig(if exp2_dsp { "exp2_not_one" } else { "exp2_one" }, 0, 1));
+        e_word.push(Piece::sig(
+            if exp2_dsp { "exp2_not_one" } else { "exp2_one" },
+            0,
+            1,
+        ));
     }
     let title = "2^-frac(y) by linear interpolation";
     let sw = ee + re;
@@ -408,7 +693,10 @@ fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
         b.step(&format!("{title}: dE[j]*r + ~E[j]*2^{re} (multiplier)"));
         let mut addend = vec![Piece::zeros(re)];
         addend.extend(e_word.iter().cloned());
-        let (de, r) = (Piece::sig("exp2_word", es, w.exp2_delta_bits), Piece::sig("y", 0, re));
+        let (de, r) = (
+            Piece::sig("exp2_word", es, w.exp2_delta_bits),
+            Piece::sig("y", 0, re),
+        );
         let (a, r) = pad_operands(de, r, "exp2_word", exp2_pad);
         let what = format!("~(E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te})), exact");
         complemented = Some(b.multiply_add("exp2_sum", &a, &r, &addend, sw, title, &what));
@@ -416,21 +704,51 @@ fn exp2(s: &Shape, b: &mut Builder) -> Option<Sig> {
         // E[j] - floor(s / 2^RE) = floor((E[j]*2^RE + 2^RE - 1 - s) / 2^RE) for the step
         // s = dE[j]*r, and -s = the sum of its complemented partial products plus their count:
         // one carry-save sum, one carry chain at its end
-        b.step(&format!("{title}: the partial products of dE[j]*r, complemented"));
-        let mut terms = b.partial_products("exp2_sum", &Piece::sig("exp2_word", es, w.exp2_delta_bits), &Piece::sig("y", 0, re), 0, sw, true);
+        b.step(&format!(
+            "{title}: the partial products of dE[j]*r, complemented"
+        ));
+        let mut terms = b.partial_products(
+            "exp2_sum",
+            &Piece::sig("exp2_word", es, w.exp2_delta_bits),
+            &Piece::sig("y", 0, re),
+            0,
+            sw,
+            true,
+        );
         let k = terms.len() as u128;
         let mut et = vec![Piece::zeros(re)];
         et.extend(e_word);
         terms.push(et);
-        terms.push(vec![Piece::Const { value: (((1u128 << re) - 1) + k) & mask(sw), width: sw }]);
-        let p = b.sum_start("exp2_sum", terms, sw, title, &format!("E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te}), exact"));
+        terms.push(vec![Piece::Const {
+            value: (((1u128 << re) - 1) + k) & mask(sw),
+            width: sw,
+        }]);
+        let p = b.sum_start(
+            "exp2_sum",
+            terms,
+            sw,
+            title,
+            &format!("E[j]*2^{re} + 2^{re} - 1 - dE[j]*(frac(y) mod 2^-{te}), exact"),
+        );
         let sum = b.resolve(p, title);
         let e = b.bits(&sum, sw - 1, re);
-        b.wire("exp2_frac", ee, Kind::Select, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+        b.wire(
+            "exp2_frac",
+            ee,
+            Kind::Select,
+            e,
+            &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"),
+        );
     } else {
         b.step(title);
         let e = b.pieces(&e_word);
-        b.wire("exp2_frac", ee, Kind::Select, e, &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+        b.wire(
+            "exp2_frac",
+            ee,
+            Kind::Select,
+            e,
+            &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"),
+        );
     }
 
     complemented
@@ -449,23 +767,57 @@ fn shift_and_round(s: &Shape, b: &mut Builder, mut complemented: Option<Sig>) {
     let mut hi = yib;
     while hi > 0 {
         let lo = hi - 1;
-        b.step(&format!("shift by the integer part of y: its bit {lo}{}", if lo == 0 { " (truncation #3)" } else { "" }));
+        b.step(&format!(
+            "shift by the integer part of y: its bit {lo}{}",
+            if lo == 0 { " (truncation #3)" } else { "" }
+        ));
         if let Some(sum) = complemented.take() {
             let e = b.bits(&sum, sw - 1, re);
-            b.wire("exp2_frac", ee, Kind::Logic, ex!("~{}", e), &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"));
+            b.wire(
+                "exp2_frac",
+                ee,
+                Kind::Logic,
+                ex!("~{}", e),
+                &format!("UQ1.{we}: 2^-frac(y) within the budget's eps_E"),
+            );
         }
-        let (sv, yi) = (b.r(&src), b.bits("y", w.y_frac_bits + hi - 1, w.y_frac_bits + lo));
-        let name = if lo == 0 { "power".to_string() } else { format!("power_shift{lo}") };
-        let comment = if lo == 0 { format!("UQ1.{we}: c^n before rounding") } else { format!("2^-frac(y) shifted by floor(y)'s bits above {lo}") };
+        let (sv, yi) = (
+            b.r(&src),
+            b.bits("y", w.y_frac_bits + hi - 1, w.y_frac_bits + lo),
+        );
+        let name = if lo == 0 {
+            "power".to_string()
+        } else {
+            format!("power_shift{lo}")
+        };
+        let comment = if lo == 0 {
+            format!("UQ1.{we}: c^n before rounding")
+        } else {
+            format!("2^-frac(y) shifted by floor(y)'s bits above {lo}")
+        };
         // a 2:1 mux as an AND-OR of the shifted words ([`Builder::select`])
         let terms: Vec<Expr> = (0..1u32 << (hi - lo))
             .filter(|v| v << lo < ee)
             .map(|v| {
-                let shifted = if v == 0 { sv.clone() } else { ex!("({} >> {})", sv, v << lo) };
-                Builder::gate(&ex!("({} == {})", yi, lit(hi - lo, v as u128)), &shifted, ee)
+                let shifted = if v == 0 {
+                    sv.clone()
+                } else {
+                    ex!("({} >> {})", sv, v << lo)
+                };
+                Builder::gate(
+                    &ex!("({} == {})", yi, lit(hi - lo, v as u128)),
+                    &shifted,
+                    ee,
+                )
             })
             .collect();
-        b.wire(&name, ee, Kind::Logic, Expr::join(&terms, "\n    | "), &comment);
+        b.wire(
+            &name,
+            ee,
+            Kind::Logic,
+            Expr::join(&terms, "\n    | "),
+            &comment,
+        );
         b.delay(LUT_DELAY);
         src = name;
         hi = lo;

@@ -31,9 +31,17 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: Inputs) -> (Blin
     let l = xx as u128 * ghat; // frac F + WG
     let lf = f + w.log_frac_bits;
     let full = ((e as u128) << lf) + l;
-    let ell = if lf >= w.ell_frac_bits { full >> (lf - w.ell_frac_bits) } else { full << (w.ell_frac_bits - lf) };
+    let ell = if lf >= w.ell_frac_bits {
+        full >> (lf - w.ell_frac_bits)
+    } else {
+        full << (w.ell_frac_bits - lf)
+    };
     let y_full = (n * ell) >> (w.ell_frac_bits - w.y_frac_bits);
-    let y = if (zero && n != 0) || y_full >= w.y_sat() { w.y_sat() } else { y_full };
+    let y = if (zero && n != 0) || y_full >= w.y_sat() {
+        w.y_sat()
+    } else {
+        y_full
+    };
     let (yint, yfrac) = ((y >> w.y_frac_bits) as u32, y & mask(w.y_frac_bits));
     let re = w.exp2_rest_bits();
     let (j, rr) = ((yfrac >> re) as usize, yfrac & mask(re));
@@ -43,6 +51,23 @@ pub fn trace(cfg: &Config, w: &BlinnWidths, t: &BlinnTables, x: Inputs) -> (Blin
     let intensity = ((v + (1u128 << (we - fi - 1))) >> (we - fi)) as u32;
     let wc = w.color_frac_bits;
     let vc = v >> (we - wc);
-    let spec = x.ks.map(|k| ((vc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
-    (BlinnTrace { cos_clamped: c, exponent: e, x: xx, ghat, ell, y, ehat, v }, Outputs { spec, intensity, done: intensity == 0 })
+    let spec =
+        x.ks.map(|k| ((vc * (k as u128 & mask(b)) + (1u128 << (wc - 1))) >> wc) as u32);
+    (
+        BlinnTrace {
+            cos_clamped: c,
+            exponent: e,
+            x: xx,
+            ghat,
+            ell,
+            y,
+            ehat,
+            v,
+        },
+        Outputs {
+            spec,
+            intensity,
+            done: intensity == 0,
+        },
+    )
 }

@@ -64,7 +64,9 @@
 //! directly; the shift by `⌊y⌋` is one bit a step (a 2:1 mux); each colour product reads its
 //! own copy of `c^n`'s field, registered a step after `c^n`, so the copy sits by its block.
 
-use super::{check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit};
+use super::{
+    check_cos_n, cosine, explain_ideal, scaled, Description, Inputs, Outputs, SpecularUnit,
+};
 use crate::bits::{bit_length, lit, mask};
 use crate::config::Config;
 use crate::datapath::{ex, Builder, Expr, Kind, Piece, LUT_DELAY};
@@ -124,7 +126,11 @@ pub struct Budget {
 
 impl Budget {
     pub(crate) fn total(&self) -> f64 {
-        self.log_table + self.ell_truncation + self.y_truncation + self.exp2_table + self.shift_truncation
+        self.log_table
+            + self.ell_truncation
+            + self.y_truncation
+            + self.exp2_table
+            + self.shift_truncation
     }
     pub fn holds(&self) -> bool {
         self.total() < 0.5 && self.monotone_ratio <= 0.9
@@ -151,7 +157,9 @@ impl Shares {
         let b = w.budget(cfg);
         let room = b.monotone_ratio / w.eps_g(cfg);
         let ln2 = std::f64::consts::LN_2;
-        (w.out_bits as f64).exp2() * ln2 * eps / (std::f64::consts::E * (1.0 - eps * ln2)) <= 1.0 / 12.0 && eps * room <= 0.45
+        (w.out_bits as f64).exp2() * ln2 * eps / (std::f64::consts::E * (1.0 - eps * ln2))
+            <= 1.0 / 12.0
+            && eps * room <= 0.45
     }
     pub fn log_table(w: &BlinnWidths, cfg: &Config) -> bool {
         let b = w.budget(cfg);
@@ -159,7 +167,8 @@ impl Shares {
     }
     pub fn exp2_entries(w: &BlinnWidths, _cfg: &Config) -> bool {
         // the entries' rounding, the interpolation's floor and truncation #3
-        (w.out_bits as f64).exp2() * (2.5 * (-(w.exp2_frac_bits as f64)).exp2() + (-50f64).exp2()) <= 1.0 / 12.0
+        (w.out_bits as f64).exp2() * (2.5 * (-(w.exp2_frac_bits as f64)).exp2() + (-50f64).exp2())
+            <= 1.0 / 12.0
     }
     pub fn exp2_table(w: &BlinnWidths, cfg: &Config) -> bool {
         let b = w.budget(cfg);
@@ -169,7 +178,9 @@ impl Shares {
 
 /// `max g''` on [0, 1/2]: g'' = (1/ln2)·Σ_{k≥2} k(k−1)/(k+1)·x^(k−2), rising in x.
 fn g2_max() -> f64 {
-    let s: f64 = (2..400).map(|k| (k * (k - 1)) as f64 / (k + 1) as f64 * 0.5f64.powi(k - 2)).sum();
+    let s: f64 = (2..400)
+        .map(|k| (k * (k - 1)) as f64 / (k + 1) as f64 * 0.5f64.powi(k - 2))
+        .sum();
     s / std::f64::consts::LN_2 * 1.001
 }
 
@@ -188,7 +199,13 @@ impl BlinnWidths {
         let p = |k: i64| (k as f64).exp2();
         let (tg, wg) = (self.log_index_bits as i64, self.log_frac_bits as i64);
         let interpolates = tg < cfg.f() as i64 - 1;
-        p(-wg - 1) + p(-50) + if interpolates { g2_max() / 8.0 * p(-2 * (tg + 1)) + p(-wg) } else { 0.0 }
+        p(-wg - 1)
+            + p(-50)
+            + if interpolates {
+                g2_max() / 8.0 * p(-2 * (tg + 1)) + p(-wg)
+            } else {
+                0.0
+            }
     }
 
     /// The error budget for a choice of widths (see the module documentation).
@@ -200,7 +217,13 @@ impl BlinnWidths {
         let (te, we) = (self.exp2_index_bits as i64, self.exp2_frac_bits as i64);
         let eps_g = self.eps_g(cfg);
         let interpolates_e = te < wy;
-        let eps_e = p(-we - 1) + p(-50) + if interpolates_e { ln2 * ln2 / 8.0 * p(-2 * te) + p(-we) } else { 0.0 };
+        let eps_e = p(-we - 1)
+            + p(-50)
+            + if interpolates_e {
+                ln2 * ln2 / 8.0 * p(-2 * te) + p(-we)
+            } else {
+                0.0
+            };
         let l_top = -(0.5 + p(-f)).log2();
         Budget {
             log_table: p(w) * ln2 * eps_g / (std::f64::consts::E * (1.0 - eps_g * ln2)),
@@ -253,12 +276,18 @@ impl BlinnWidths {
             bw.exp2_index_bits += 1;
         }
         let b = bw.budget(cfg);
-        assert!(b.holds(), "blinn budget does not close for {:?}: {b:?}", cfg.params);
+        assert!(
+            b.holds(),
+            "blinn budget does not close for {:?}: {b:?}",
+            cfg.params
+        );
         // WC: the colours see the same error scaled by ks/2^W < 2^(B−W), plus flooring V to
         // WC bits (< 2^(B−WC) in colour units): the smallest WC with a sum below 1/2
         let p = |k: i64| (k as f64).exp2();
         let tc = b.total() * p(cfg.b() as i64 - w as i64);
-        bw.color_frac_bits = (1..=bw.exp2_frac_bits).find(|&wc| tc + p(cfg.b() as i64 - wc as i64) < 0.5).unwrap_or(bw.exp2_frac_bits);
+        bw.color_frac_bits = (1..=bw.exp2_frac_bits)
+            .find(|&wc| tc + p(cfg.b() as i64 - wc as i64) < 0.5)
+            .unwrap_or(bw.exp2_frac_bits);
         let (lt, et) = (log_values(&bw), exp2_values(&bw));
         bw.log_entry_bits = bit_length(*lt.iter().max().unwrap());
         bw.log_delta_bits = bit_length(lt.windows(2).map(|p| p[1] - p[0]).max().unwrap()).max(1);
@@ -304,7 +333,11 @@ impl Blinn {
     pub fn new(cfg: &Config) -> Blinn {
         let widths = BlinnWidths::derive(cfg);
         let tables = tables(&widths);
-        Blinn { cfg: cfg.clone(), widths, tables }
+        Blinn {
+            cfg: cfg.clone(),
+            widths,
+            tables,
+        }
     }
 }
 

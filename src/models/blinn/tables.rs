@@ -17,7 +17,11 @@ pub(super) fn log_values(w: &BlinnWidths) -> Vec<u128> {
 /// `E_j = round(2^−(j/2^TE)·2^WE)` for `j = 0..=2^TE` (`E_0 = 2^WE`, the last `2^(WE−1)`).
 pub(super) fn exp2_values(w: &BlinnWidths) -> Vec<u128> {
     let count = 1u32 << w.exp2_index_bits;
-    (0..=count).map(|j| ((-(j as f64) / count as f64).exp2() * (w.exp2_frac_bits as f64).exp2()).round() as u128).collect()
+    (0..=count)
+        .map(|j| {
+            ((-(j as f64) / count as f64).exp2() * (w.exp2_frac_bits as f64).exp2()).round() as u128
+        })
+        .collect()
 }
 
 /// The two tables of the unit, each word `{Δ, entry}`.
@@ -42,7 +46,15 @@ pub fn tables(w: &BlinnWidths) -> BlinnTables {
 impl BlinnTables {
     pub fn log_table(&self, w: &BlinnWidths, pad: Option<OperandPad>) -> Table {
         let what = format!("{{dG, G}}: g(x) = -log2(1 - x)/x at x = i/2^{}, UQ2.{}, and the step to the next entry", w.log_index_bits + 1, w.log_frac_bits);
-        interpolation_table("log2", &self.g, &self.dg, (w.log_entry_bits, w.log_delta_bits), pad, what, ("g", "dg"))
+        interpolation_table(
+            "log2",
+            &self.g,
+            &self.dg,
+            (w.log_entry_bits, w.log_delta_bits),
+            pad,
+            what,
+            ("g", "dg"),
+        )
     }
     /// The exp2 table as stored: `E_0 = 1.0` is the only entry with its integer bit set when
     /// [`BlinnTables::exp2_one_implied`], and then that bit is not stored but read as `j == 0`
@@ -52,11 +64,20 @@ impl BlinnTables {
     /// addend of the interpolation's multiply-add on a DSP block ([`super::datapath`]): the
     /// block RAM then feeds the block with no LUT between them (on the UP5K that LUT, and
     /// the route on to the DSP column, held blinn at 97.8–114.9 MHz).
-    pub fn exp2_table(&self, w: &BlinnWidths, pad: Option<OperandPad>, complemented: bool) -> Table {
+    pub fn exp2_table(
+        &self,
+        w: &BlinnWidths,
+        pad: Option<OperandPad>,
+        complemented: bool,
+    ) -> Table {
         let implied = self.exp2_one_implied(w);
         let stored_bits = w.exp2_entry_bits - implied as u32;
         let flip = if complemented { mask(stored_bits) } else { 0 };
-        let entries: Vec<u128> = self.e.iter().map(|&e| (e ^ flip) & mask(stored_bits)).collect();
+        let entries: Vec<u128> = self
+            .e
+            .iter()
+            .map(|&e| (e ^ flip) & mask(stored_bits))
+            .collect();
         let (field, not) = if complemented { ("~E", "~") } else { ("E", "") };
         let what = if implied {
             format!(
@@ -67,11 +88,20 @@ impl BlinnTables {
             format!("{{dE, {field}}}: {not}2^-f at f = j/2^{}, UQ1.{}, and the step down to the next entry", w.exp2_index_bits, w.exp2_frac_bits)
         };
         let entry_field = if complemented { "not_e" } else { "e" };
-        interpolation_table("exp2", &entries, &self.de, (stored_bits, w.exp2_delta_bits), pad, what, (entry_field, "de"))
+        interpolation_table(
+            "exp2",
+            &entries,
+            &self.de,
+            (stored_bits, w.exp2_delta_bits),
+            pad,
+            what,
+            (entry_field, "de"),
+        )
     }
 
     /// Whether E_0 = 2^WE is the only exp2 entry at or above 1.0.
     pub(crate) fn exp2_one_implied(&self, w: &BlinnWidths) -> bool {
-        w.exp2_entry_bits == w.exp2_frac_bits + 1 && self.e[1..].iter().all(|&e| e < 1u128 << w.exp2_frac_bits)
+        w.exp2_entry_bits == w.exp2_frac_bits + 1
+            && self.e[1..].iter().all(|&e| e < 1u128 << w.exp2_frac_bits)
     }
 }

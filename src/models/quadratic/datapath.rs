@@ -54,7 +54,10 @@ fn cutoff_add(cfg: &Config) -> ([Piece; 1], [Piece; 2], u32, String) {
     let (f, cb) = (cfg.f(), cfg.f() + 1);
     (
         [Piece::sig("cos_sp", 0, cb)],
-        [Piece::sig("cos_complement", 0, f), Piece::Const { value: 1, width: 1 }],
+        [
+            Piece::sig("cos_complement", 0, f),
+            Piece::Const { value: 1, width: 1 },
+        ],
         cb + 1,
         format!("cos_sp + ~cos over UQ1.{f}: bit {cb} (the carry) is cos < cos_sp"),
     )
@@ -65,7 +68,11 @@ fn cutoff_add(cfg: &Config) -> ([Piece; 1], [Piece; 2], u32, String) {
 fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -> Expr {
     let mut terms: Vec<Expr> = Vec::new();
     for j in (0..128).filter(|j| c >> j & 1 == 1 && *j < width) {
-        let pieces = if j == 0 { vec![Piece::sig(sig, 0, sig_width)] } else { vec![Piece::zeros(j), Piece::sig(sig, 0, sig_width)] };
+        let pieces = if j == 0 {
+            vec![Piece::sig(sig, 0, sig_width)]
+        } else {
+            vec![Piece::zeros(j), Piece::sig(sig, 0, sig_width)]
+        };
         terms.push(b.pieces(&sub_pieces(&pieces, 0, width)));
     }
     if terms.is_empty() {
@@ -77,10 +84,20 @@ fn shift_adds(b: &mut Builder, sig: &str, sig_width: u32, c: u128, width: u32) -
 
 /// `<sig>_k_hi = sig * (k_code >> ks) mod 2^width` by shift-adds (the high part of a split k_q,
 /// a few bits: the block's addend beside `sig * k_lo`); returns its delay.
-fn k_hi_product(cfg: &Config, b: &mut Builder, sig: &str, sig_width: u32, ks: u32, width: u32) -> Delay {
+fn k_hi_product(
+    cfg: &Config,
+    b: &mut Builder,
+    sig: &str,
+    sig_width: u32,
+    ks: u32,
+    width: u32,
+) -> Delay {
     let k_hi = cfg.k_code as u128 >> ks;
     let e = shift_adds(b, sig, sig_width, k_hi, width);
-    let what = format!("{sig} * k_code[{}:{ks}] = {sig} * {k_hi} mod 2^{width}, by shift-adds", bit_length(cfg.k_code as u128) - 1);
+    let what = format!(
+        "{sig} * k_code[{}:{ks}] = {sig} * {k_hi} mod 2^{width}, by shift-adds",
+        bit_length(cfg.k_code as u128) - 1
+    );
     b.wire(&format!("{sig}_k_hi"), width, Kind::Sum, e, &what);
     add_delay(width) + LUT_DELAY * (k_hi.count_ones().max(2) - 1).ilog2() as f64
 }
@@ -91,7 +108,13 @@ fn done(cfg: &Config, b: &mut Builder, sum: &Sig, complemented: bool) {
     let f = cfg.f();
     let (gg, c) = (b.bits("cos_g", f, f), b.bits(sum, f + 1, f + 1));
     let c = if complemented { ex!("~{}", c) } else { c };
-    b.wire("done", 1, Kind::Logic, ex!("~{} & {}", gg, c), "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)");
+    b.wire(
+        "done",
+        1,
+        Kind::Logic,
+        ex!("~{} & {}", gg, c),
+        "comparator (12): cos(gamma) < cos_sp(n), beyond the highlight (never when cos >= 1.0)",
+    );
 }
 
 /// 1 - deviation without an adder: with K = 2^(WB+s) + 2^s - 1 and K' = 2^m - 1 - K,
@@ -126,14 +149,27 @@ fn bracket(w: &Widths, b: &mut Builder) {
 fn square_and_color_square(w: &Widths, b: &mut Builder, full: &[Piece]) {
     let (ws, wsc) = (w.square_frac_bits, w.color_square_frac_bits);
     let sq = b.pieces(&sub_pieces(full, w.square_shift, ws + 1));
-    b.wire("square", ws + 1, Kind::Select, sq, &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"));
+    b.wire(
+        "square",
+        ws + 1,
+        Kind::Select,
+        sq,
+        &format!("UQ1.{ws}: S = bracket^2 floored to 2^-{ws} (truncation #2)"),
+    );
     let csq = b.bits("square", ws, ws - wsc);
     b.wire(
         "color_square",
         wsc + 1,
         Kind::Select,
         csq,
-        &if wsc < ws { format!("UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)", ws - wsc) } else { format!("UQ1.{wsc}") },
+        &if wsc < ws {
+            format!(
+                "UQ1.{wsc}: all the colours' budget needs (saves {} bits per colour multiplier)",
+                ws - wsc
+            )
+        } else {
+            format!("UQ1.{wsc}")
+        },
     );
 }
 
@@ -147,12 +183,27 @@ fn intensity_add(cfg: &Config, w: &Widths, b: &mut Builder) -> Option<([Piece; 1
         Some((
             [Piece::sig("square", ws - fi - 1, fi + 2)],
             fi + 2,
-            format!("UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)", fi + 1, fi + 1, fi + 1),
+            format!(
+                "UQ1.{}: S to 2^-{} plus one ulp = S + 2^-{} (round half up)",
+                fi + 1,
+                fi + 1,
+                fi + 1
+            ),
         ))
     } else {
         let sqr = b.r("square");
-        let e = if fi > ws { ex!("{{{}, {}}}", sqr, lit(fi - ws, 0)) } else { sqr };
-        b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S exactly (no bits to drop)"));
+        let e = if fi > ws {
+            ex!("{{{}, {}}}", sqr, lit(fi - ws, 0))
+        } else {
+            sqr
+        };
+        b.wire(
+            "intensity",
+            fi + 1,
+            Kind::Select,
+            e,
+            &format!("UQ1.{fi}: S exactly (no bits to drop)"),
+        );
         None
     }
 }
@@ -161,7 +212,13 @@ fn intensity_add(cfg: &Config, w: &Widths, b: &mut Builder) -> Option<([Piece; 1
 fn intensity_from(cfg: &Config, b: &mut Builder, sum: &Sig) {
     let fi = cfg.fi();
     let e = b.bits(sum, fi + 1, 1);
-    b.wire("intensity", fi + 1, Kind::Select, e, &format!("UQ1.{fi}: S rounded half up"));
+    b.wire(
+        "intensity",
+        fi + 1,
+        Kind::Select,
+        e,
+        &format!("UQ1.{fi}: S rounded half up"),
+    );
 }
 
 /// The lean datapath: short steps, every decomposition exact (see the module docs).
@@ -184,7 +241,14 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     cos_complement(cfg, b);
 
     b.step("1 - cos (adder 6): chunk sums");
-    let d = b.add_start("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
+    let d = b.add_start(
+        "one_minus_cos",
+        &[Piece::sig("cos_complement", 0, cb)],
+        &[],
+        true,
+        cb,
+        &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"),
+    );
 
     // 1 - cos is resolved a step before the DSP that reads it: its cut register there is the
     // DSP's input register, and a register, not a LUT, drives the long route into the DSP column
@@ -211,14 +275,42 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     let nn = [Piece::sig("n", 0, cfg.n_bits())];
     let kq = (cfg.n_bits(), k_bits.min(ks));
     if k_split {
-        let (k_lo, hi) =
-            ([Piece::Const { value: cfg.k_code as u128 & mask(ks), width: w.kn_bits }], [Piece::zeros(ks), Piece::sig("n_k_hi", 0, w.kn_bits - ks)]);
-        let what = format!("UQ{}.{}: k_q*n = n*k_lo + n*k_hi*2^{ks}, exact (one DSP, the add inside it)", w.kn_bits - cfg.kf(), cfg.kf());
-        b.mul("kn", w.kn_bits, (&nn, kq.0), (&k_lo, kq.1), &hi, Delay::ZERO, &what);
+        let (k_lo, hi) = (
+            [Piece::Const {
+                value: cfg.k_code as u128 & mask(ks),
+                width: w.kn_bits,
+            }],
+            [Piece::zeros(ks), Piece::sig("n_k_hi", 0, w.kn_bits - ks)],
+        );
+        let what = format!(
+            "UQ{}.{}: k_q*n = n*k_lo + n*k_hi*2^{ks}, exact (one DSP, the add inside it)",
+            w.kn_bits - cfg.kf(),
+            cfg.kf()
+        );
+        b.mul(
+            "kn",
+            w.kn_bits,
+            (&nn, kq.0),
+            (&k_lo, kq.1),
+            &hi,
+            Delay::ZERO,
+            &what,
+        );
     } else {
-        let k = [Piece::Const { value: cfg.k_code as u128, width: w.kn_bits }];
+        let k = [Piece::Const {
+            value: cfg.k_code as u128,
+            width: w.kn_bits,
+        }];
         let what = format!("UQ{}.{}: k_q*n, exact; one constant multiply replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf());
-        b.mul("kn", w.kn_bits, (&nn, kq.0), (&k, kq.1), &[], Delay::ZERO, &what);
+        b.mul(
+            "kn",
+            w.kn_bits,
+            (&nn, kq.0),
+            (&k, kq.1),
+            &[],
+            Delay::ZERO,
+            &what,
+        );
     }
 
     b.step("comparator: select; deviation, high partial product (multiply-add)");
@@ -233,14 +325,23 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     let dw = cb.min(dsp);
     if d_split {
         let xw = m - dsp;
-        let mut terms = b.shift_add_terms(&Piece::sig("kn", 0, w.kn_bits), &Piece::sig("one_minus_cos", dsp, cb - dsp), 0, xw);
+        let mut terms = b.shift_add_terms(
+            &Piece::sig("kn", 0, w.kn_bits),
+            &Piece::sig("one_minus_cos", dsp, cb - dsp),
+            0,
+            xw,
+        );
         terms.push(Expr::constant(lit(xw, k_prime >> dsp)));
         b.wire(
             "deviation_top",
             xw,
             Kind::Sum,
             Expr::join(&terms, "\n    + "),
-            &format!("kn * (1 - cos)[{}:{dsp}] + K'[{}:{dsp}] mod 2^{xw}, by shift-adds", cb - 1, m - 1),
+            &format!(
+                "kn * (1 - cos)[{}:{dsp}] + K'[{}:{dsp}] mod 2^{xw}, by shift-adds",
+                cb - 1,
+                m - 1
+            ),
         );
         b.delay(add_delay(xw) + LUT_DELAY * ((cb - dsp + 1) as f64).log2().ceil());
         b.step("deviation, high partial product (multiply-add)");
@@ -250,26 +351,87 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     let split = w.kn_bits > dsp && m > dsp;
     if split {
         let hi_w = m - dsp;
-        let (kh, d2) = ([Piece::sig("kn", dsp, w.kn_bits - dsp)], [Piece::sig("one_minus_cos", 0, dw)]);
+        let (kh, d2) = (
+            [Piece::sig("kn", dsp, w.kn_bits - dsp)],
+            [Piece::sig("one_minus_cos", 0, dw)],
+        );
         // the addend of the 2^16 part: K'_hi, or with kn*d_hi
-        let c = if d_split { Piece::sig("deviation_top", 0, m - dsp) } else { Piece::Const { value: k_prime >> dsp, width: hi_w } };
-        let what = if d_split { format!("(1 - cos)[{}:0] + kn*(1 - cos)[{}:{dsp}]", dsp - 1, cb - 1) } else { "(1 - cos)".into() };
-        let what = format!("kn[{}:{dsp}] * {what} + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)", w.kn_bits - 1, m - 1);
-        b.mul("deviation_hi", hi_w, (&kh, w.kn_bits - dsp), (&d2, dw), &[c], Delay::ZERO, &what);
+        let c = if d_split {
+            Piece::sig("deviation_top", 0, m - dsp)
+        } else {
+            Piece::Const {
+                value: k_prime >> dsp,
+                width: hi_w,
+            }
+        };
+        let what = if d_split {
+            format!("(1 - cos)[{}:0] + kn*(1 - cos)[{}:{dsp}]", dsp - 1, cb - 1)
+        } else {
+            "(1 - cos)".into()
+        };
+        let what = format!(
+            "kn[{}:{dsp}] * {what} + K'[{}:{dsp}], mod 2^{hi_w} (one DSP, the add inside it)",
+            w.kn_bits - 1,
+            m - 1
+        );
+        b.mul(
+            "deviation_hi",
+            hi_w,
+            (&kh, w.kn_bits - dsp),
+            (&d2, dw),
+            &[c],
+            Delay::ZERO,
+            &what,
+        );
     }
 
     b.step("deviation P = k_q*n*(1 - cos) (multiplier 7) plus K' (multiply-add)");
     let (kn, d1, c) = if split {
-        let c = vec![Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_hi", 0, m - dsp)];
-        (Piece::sig("kn", 0, dsp), Piece::sig("one_minus_cos", 0, dw), c)
+        let c = vec![
+            Piece::Const {
+                value: k_prime & mask(dsp),
+                width: dsp,
+            },
+            Piece::sig("deviation_hi", 0, m - dsp),
+        ];
+        (
+            Piece::sig("kn", 0, dsp),
+            Piece::sig("one_minus_cos", 0, dw),
+            c,
+        )
     } else if d_split {
-        let c = vec![Piece::Const { value: k_prime & mask(dsp), width: dsp }, Piece::sig("deviation_top", 0, m - dsp)];
-        (Piece::sig("kn", 0, w.kn_bits), Piece::sig("one_minus_cos", 0, dw), c)
+        let c = vec![
+            Piece::Const {
+                value: k_prime & mask(dsp),
+                width: dsp,
+            },
+            Piece::sig("deviation_top", 0, m - dsp),
+        ];
+        (
+            Piece::sig("kn", 0, w.kn_bits),
+            Piece::sig("one_minus_cos", 0, dw),
+            c,
+        )
     } else {
-        (Piece::sig("kn", 0, w.kn_bits), Piece::sig("one_minus_cos", 0, cb), vec![Piece::Const { value: k_prime, width: m }])
+        (
+            Piece::sig("kn", 0, w.kn_bits),
+            Piece::sig("one_minus_cos", 0, cb),
+            vec![Piece::Const {
+                value: k_prime,
+                width: m,
+            }],
+        )
     };
     let what = format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f);
-    b.mul("deviation_sum", m, (&[kn], dsp.min(w.kn_bits)), (&[d1], dw), &c, Delay::ZERO, &what);
+    b.mul(
+        "deviation_sum",
+        m,
+        (&[kn], dsp.min(w.kn_bits)),
+        (&[d1], dw),
+        &c,
+        Delay::ZERO,
+        &what,
+    );
 
     bracket(w, b);
 
@@ -282,17 +444,51 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
         let hw = wb + 1 - r;
         b.step("square (squarer 11): lo^2");
         // a table of 2^r entries: LUTs, no carry chain in front of the next DSP
-        b.square_table("square_ll", "bracket", 0, r, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
+        b.square_table(
+            "square_ll",
+            "bracket",
+            0,
+            r,
+            &format!("lo^2 by table, bracket = hi*2^{r} + lo"),
+        );
         b.step("square: T = hi*lo + lo^2/2^(r+1) (multiply-add)");
         let tw = hw + r;
-        let (hi, lo) = ([Piece::sig("bracket", r, hw)], [Piece::sig("bracket", 0, r)]);
-        let plus = if 2 * r > r + 1 { vec![Piece::sig("square_ll", r + 1, r - 1)] } else { Vec::new() };
-        b.mul("square_t", tw, (&hi, hw), (&lo, r), &plus, Delay::ZERO, "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)");
+        let (hi, lo) = (
+            [Piece::sig("bracket", r, hw)],
+            [Piece::sig("bracket", 0, r)],
+        );
+        let plus = if 2 * r > r + 1 {
+            vec![Piece::sig("square_ll", r + 1, r - 1)]
+        } else {
+            Vec::new()
+        };
+        b.mul(
+            "square_t",
+            tw,
+            (&hi, hw),
+            (&lo, r),
+            &plus,
+            Delay::ZERO,
+            "hi*lo + floor(lo^2 / 2^(r+1)), exact (one DSP, the add inside it)",
+        );
         b.step("square: Z = hi^2 + T/2^(r-1) (multiply-add)");
         let h = [Piece::sig("bracket", r, hw)];
         let th = [Piece::sig("square_t", r - 1, tw - (r - 1))];
-        let what = format!("floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}", 2 * r, wb + 1, wb + 1);
-        b.mul("square_z", 2 * hw, (&h, hw), (&h, hw), &th, Delay::ZERO, &what);
+        let what = format!(
+            "floor(bracket^2 / 2^{}), exact: a {hw}x{hw} multiply-add (one DSP) instead of {}x{}",
+            2 * r,
+            wb + 1,
+            wb + 1
+        );
+        b.mul(
+            "square_z",
+            2 * hw,
+            (&h, hw),
+            (&h, hw),
+            &th,
+            Delay::ZERO,
+            &what,
+        );
         let mut full = vec![Piece::sig("square_ll", 0, r + 1)];
         if r > 1 {
             full.push(Piece::sig("square_t", 0, r - 1));
@@ -302,7 +498,15 @@ pub fn lean(cfg: &Config, w: &Widths, b: &mut Builder) {
     } else {
         b.step("square (squarer 11)");
         let br = [Piece::sig("bracket", 0, wb + 1)];
-        b.mul("square_full", full_bits, (&br, wb + 1), (&br, wb + 1), &[], Delay::ZERO, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+        b.mul(
+            "square_full",
+            full_bits,
+            (&br, wb + 1),
+            (&br, wb + 1),
+            &[],
+            Delay::ZERO,
+            &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb),
+        );
         vec![Piece::sig("square_full", 0, full_bits)]
     };
 
@@ -362,23 +566,55 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.step("cut-off ROM read (10, a block RAM); 1 - cos (adder 6); k_q*n (a product)");
         rom_read(cfg, b, true);
     }
-    b.add("one_minus_cos", &[Piece::sig("cos_complement", 0, cb)], &[], true, cb, &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"));
+    b.add(
+        "one_minus_cos",
+        &[Piece::sig("cos_complement", 0, cb)],
+        &[],
+        true,
+        cb,
+        &format!("UQ1.{f}: 1 - min(cos, 1) = ~cos + 1, exact"),
+    );
     let (k, kb) = (cfg.k_code as u128, bit_length(cfg.k_code as u128));
-    let what = format!("UQ{}.{}: k_q*n, exact; one constant product replaces the paper's general multiplier 34", w.kn_bits - cfg.kf(), cfg.kf());
+    let what = format!(
+        "UQ{}.{}: k_q*n, exact; one constant product replaces the paper's general multiplier 34",
+        w.kn_bits - cfg.kf(),
+        cfg.kf()
+    );
     let nn = [Piece::sig("n", 0, cfg.n_bits())];
     if kb <= dsp {
-        b.product("kn", &nn, &[Piece::Const { value: k, width: kb }], w.kn_bits, &what);
+        b.product(
+            "kn",
+            &nn,
+            &[Piece::Const {
+                value: k,
+                width: kb,
+            }],
+            w.kn_bits,
+            &what,
+        );
     } else {
         // k_q wider than the block's operands: n*k[17:0] on one, n*k[hi:18] beside it, their
         // sum in the comparator's step
         b.product(
             "kn_lo",
             &nn,
-            &[Piece::Const { value: k & mask(dsp), width: dsp }],
+            &[Piece::Const {
+                value: k & mask(dsp),
+                width: dsp,
+            }],
             w.kn_bits.min(cfg.n_bits() + dsp),
             &format!("n*k_q[{}:0], exact", dsp - 1),
         );
-        b.product("kn_hi", &nn, &[Piece::Const { value: k >> dsp, width: kb - dsp }], w.kn_bits - dsp, &format!("n*k_q[{}:{dsp}], exact", kb - 1));
+        b.product(
+            "kn_hi",
+            &nn,
+            &[Piece::Const {
+                value: k >> dsp,
+                width: kb - dsp,
+            }],
+            w.kn_bits - dsp,
+            &format!("n*k_q[{}:{dsp}], exact", kb - 1),
+        );
     }
 
     // a cut-off ROM of more than one DP16KD's words (one per n) is two banks of them, picked
@@ -386,7 +622,9 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     // comparator's chain
     if let Some((t, (mut words, mut lo))) = parts {
         while words.len() > 1 {
-            b.step(&format!("cut-off ROM read (10, in LUTs): the entry picked by n's bits from {lo}"));
+            b.step(&format!(
+                "cut-off ROM read (10, in LUTs): the entry picked by n's bits from {lo}"
+            ));
             (words, lo) = b.rom_pick("cos_sp", t, "n", &words, lo);
         }
     } else if 1usize << cfg.n_bits() > DP16KD_WORDS {
@@ -395,10 +633,18 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("comparator (12)");
     if kb > dsp {
         let lo_w = w.kn_bits.min(cfg.n_bits() + dsp);
-        b.add("kn", &[Piece::sig("kn_lo", 0, lo_w)], &[Piece::zeros(dsp), Piece::sig("kn_hi", 0, w.kn_bits - dsp)], false, w.kn_bits, &what);
+        b.add(
+            "kn",
+            &[Piece::sig("kn_lo", 0, lo_w)],
+            &[Piece::zeros(dsp), Piece::sig("kn_hi", 0, w.kn_bits - dsp)],
+            false,
+            w.kn_bits,
+            &what,
+        );
     }
     let (ca, cb2, cw, comment) = cutoff_add(cfg);
-    let comment = format!("{comment}, kept complemented (a 1 above cos_sp): the chain's own output");
+    let comment =
+        format!("{comment}, kept complemented (a 1 above cos_sp): the chain's own output");
     let cmp = b.add_carry_complemented("cutoff_sum", &ca, &cb2, cw, &comment);
 
     // 1 - deviation without a subtractor, as in `lean`: ~(P + K') = K - P (mod 2^m)
@@ -413,17 +659,35 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     let one_minus_cos = [Piece::sig("one_minus_cos", 0, dw)];
     if split {
         let hi_w = m - dsp;
-        b.product("deviation_lo", &[Piece::sig("kn", 0, dsp)], &one_minus_cos, m.min(dsp + dw), &format!("kn[{}:0] * (1 - cos), exact", dsp - 1));
+        b.product(
+            "deviation_lo",
+            &[Piece::sig("kn", 0, dsp)],
+            &one_minus_cos,
+            m.min(dsp + dw),
+            &format!("kn[{}:0] * (1 - cos), exact", dsp - 1),
+        );
         b.product(
             "deviation_hi",
             &[Piece::sig("kn", dsp, w.kn_bits - dsp)],
             &one_minus_cos,
             hi_w,
-            &format!("kn[{}:{dsp}] * (1 - cos){}, mod 2^{hi_w}", w.kn_bits - 1, if top_alone { format!("[{}:0]", dsp - 1) } else { String::new() }),
+            &format!(
+                "kn[{}:{dsp}] * (1 - cos){}, mod 2^{hi_w}",
+                w.kn_bits - 1,
+                if top_alone {
+                    format!("[{}:0]", dsp - 1)
+                } else {
+                    String::new()
+                }
+            ),
         );
         b.step("deviation: the high product plus K' (adder)");
         let hi = if top_alone {
-            let (top, kn, h) = (b.bits("one_minus_cos", dsp, dsp), b.operand("kn", 0, w.kn_bits, hi_w), b.r("deviation_hi"));
+            let (top, kn, h) = (
+                b.bits("one_minus_cos", dsp, dsp),
+                b.operand("kn", 0, w.kn_bits, hi_w),
+                b.r("deviation_hi"),
+            );
             b.wire(
                 "deviation_top",
                 hi_w,
@@ -438,10 +702,17 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.add(
             "deviation_hi_sum",
             &[Piece::sig(hi, 0, hi_w)],
-            &[Piece::Const { value: k_prime >> dsp, width: hi_w }],
+            &[Piece::Const {
+                value: k_prime >> dsp,
+                width: hi_w,
+            }],
             false,
             hi_w,
-            &format!("kn[{}:{dsp}] * (1 - cos) + K'[{}:{dsp}], mod 2^{hi_w}", w.kn_bits - 1, m - 1),
+            &format!(
+                "kn[{}:{dsp}] * (1 - cos) + K'[{}:{dsp}], mod 2^{hi_w}",
+                w.kn_bits - 1,
+                m - 1
+            ),
         );
         b.step("deviation P plus K' (adder)");
         let lo_w = m.min(dsp + dw);
@@ -454,12 +725,21 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
             &format!("P + K' mod 2^{m}, P = k_q*n*(1 - cos) UQ.{} exact; its complement is K - P (no subtractor)", cfg.kf() + f),
         );
     } else {
-        b.product("deviation", &[Piece::sig("kn", 0, w.kn_bits)], &one_minus_cos, m, &format!("P = k_q*n*(1 - cos) mod 2^{m}, UQ.{} exact", cfg.kf() + f));
+        b.product(
+            "deviation",
+            &[Piece::sig("kn", 0, w.kn_bits)],
+            &one_minus_cos,
+            m,
+            &format!("P = k_q*n*(1 - cos) mod 2^{m}, UQ.{} exact", cfg.kf() + f),
+        );
         b.step("deviation P plus K' (adder)");
         b.add(
             "deviation_sum",
             &[Piece::sig("deviation", 0, m)],
-            &[Piece::Const { value: k_prime, width: m }],
+            &[Piece::Const {
+                value: k_prime,
+                width: m,
+            }],
             false,
             m,
             &format!("P + K' mod 2^{m}; its complement is K - P (no subtractor)"),
@@ -475,7 +755,13 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
     let full = if wb < dsp || wb + 1 - dsp > MAX_SQUARER_SPLIT {
         b.step("square (squarer 11, a product)");
         let bracket_bits = [Piece::sig("bracket", 0, wb + 1)];
-        b.product("square_full", &bracket_bits, &bracket_bits, full_bits, &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb));
+        b.product(
+            "square_full",
+            &bracket_bits,
+            &bracket_bits,
+            full_bits,
+            &format!("UQ2.{}: bracket^2, exact (top bit always 0)", 2 * wb),
+        );
         vec![Piece::sig("square_full", 0, full_bits)]
     } else {
         // a bracket wider than the MULT18X18D's operands: bracket = hi*2^r + lo with hi at 18
@@ -485,14 +771,45 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         let r = wb + 1 - dsp;
         let (hi, lo) = (Piece::sig("bracket", r, dsp), Piece::sig("bracket", 0, r));
         let t = "square (squarer 11)";
-        b.step(&format!("{t}: hi^2 and hi*lo (a product each); lo^2 by table"));
-        b.product("square_hh", std::slice::from_ref(&hi), std::slice::from_ref(&hi), 2 * dsp, &format!("hi^2, bracket = hi*2^{r} + lo, exact"));
-        b.product("square_hl", std::slice::from_ref(&hi), std::slice::from_ref(&lo), dsp + r, "hi*lo, exact");
-        b.square_table("square_ll", "bracket", 0, r, &format!("lo^2 by table, bracket = hi*2^{r} + lo"));
+        b.step(&format!(
+            "{t}: hi^2 and hi*lo (a product each); lo^2 by table"
+        ));
+        b.product(
+            "square_hh",
+            std::slice::from_ref(&hi),
+            std::slice::from_ref(&hi),
+            2 * dsp,
+            &format!("hi^2, bracket = hi*2^{r} + lo, exact"),
+        );
+        b.product(
+            "square_hl",
+            std::slice::from_ref(&hi),
+            std::slice::from_ref(&lo),
+            dsp + r,
+            "hi*lo, exact",
+        );
+        b.square_table(
+            "square_ll",
+            "bracket",
+            0,
+            r,
+            &format!("lo^2 by table, bracket = hi*2^{r} + lo"),
+        );
         b.step(&format!("{t}: T = hi*lo + lo^2/2^{}", r + 1));
         let tw = dsp + r;
-        let ll_hi: Vec<Piece> = if r > 1 { vec![Piece::sig("square_ll", r + 1, r - 1)] } else { vec![] };
-        b.add("square_t", &[Piece::sig("square_hl", 0, tw)], &ll_hi, false, tw, &format!("hi*lo + floor(lo^2 / 2^{}), exact", r + 1));
+        let ll_hi: Vec<Piece> = if r > 1 {
+            vec![Piece::sig("square_ll", r + 1, r - 1)]
+        } else {
+            vec![]
+        };
+        b.add(
+            "square_t",
+            &[Piece::sig("square_hl", 0, tw)],
+            &ll_hi,
+            false,
+            tw,
+            &format!("hi*lo + floor(lo^2 / 2^{}), exact", r + 1),
+        );
         b.step(&format!("{t}: Z = hi^2 + T/2^{}", r - 1));
         b.add(
             "square_z",
@@ -534,7 +851,10 @@ pub(crate) fn lean_ecp5(cfg: &Config, w: &Widths, b: &mut Builder) {
         b.add(
             &format!("color_sum_{ch}"),
             &[Piece::sig(&format!("color_prod_{ch}"), 0, cpb)],
-            &[Piece::Const { value: 1u128 << (wsc - 1), width: wsc }],
+            &[Piece::Const {
+                value: 1u128 << (wsc - 1),
+                width: wsc,
+            }],
             false,
             cpb,
             &format!("UQ{bb}.{wsc}: S * ks_{ch} + 1/2 colour ulp (round half up)"),
@@ -554,51 +874,138 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("clamp, 1 - cos (adder 6), cut-off ROM (10), comparator (12)");
     rom_read(cfg, b, false);
     let g = b.r("cos_g");
-    b.wire("cos_clamped", cb, Kind::Logic, ex!("({} > {}) ? {} : {}", g, one, one, g), &format!("UQ1.{f}, <= 1.0"));
+    b.wire(
+        "cos_clamped",
+        cb,
+        Kind::Logic,
+        ex!("({} > {}) ? {} : {}", g, one, one, g),
+        &format!("UQ1.{f}, <= 1.0"),
+    );
     let c = b.r("cos_clamped");
-    b.wire("one_minus_cos", cb, Kind::Sum, ex!("{} - {}", one, c), &format!("UQ1.{f}: 1 - cos(gamma), exact"));
+    b.wire(
+        "one_minus_cos",
+        cb,
+        Kind::Sum,
+        ex!("{} - {}", one, c),
+        &format!("UQ1.{f}: 1 - cos(gamma), exact"),
+    );
     let (c, sp) = (b.r("cos_clamped"), b.r("cos_sp"));
-    b.wire("done", 1, Kind::Logic, ex!("({} < {})", c, sp), "comparator: bracket < 0");
+    b.wire(
+        "done",
+        1,
+        Kind::Logic,
+        ex!("({} < {})", c, sp),
+        "comparator: bracket < 0",
+    );
     b.delay(add_delay(cb) * 2.0);
 
     b.step("deviation n*(1 - cos) (multiplier 7) times k (general multiplier 34), truncation #1");
     let nd_bits = nb + cb;
     let constant_product = b.mul_delay(nd_bits, bit_length(cfg.k_code as u128));
-    let (nn, d) = ([Piece::sig("n", 0, nb)], [Piece::sig("one_minus_cos", 0, cb)]);
-    b.mul("n_dev", nd_bits, (&nn, nb), (&d, cb), &[], constant_product, &format!("UQ{nb}.{f}: n*(1 - cos), exact (multiplier 7)"));
+    let (nn, d) = (
+        [Piece::sig("n", 0, nb)],
+        [Piece::sig("one_minus_cos", 0, cb)],
+    );
+    b.mul(
+        "n_dev",
+        nd_bits,
+        (&nn, nb),
+        (&d, cb),
+        &[],
+        constant_product,
+        &format!("UQ{nb}.{f}: n*(1 - cos), exact (multiplier 7)"),
+    );
     let nd = [Piece::sig("n_dev", 0, nd_bits)];
-    let what = format!("UQ.{}: k_q*n*(1 - cos), exact (general multiplier 34)", cfg.kf() + f);
+    let what = format!(
+        "UQ.{}: k_q*n*(1 - cos), exact (general multiplier 34)",
+        cfg.kf() + f
+    );
     // in the same step as n_dev: its delay comes before this product's
     let after = b.mul_delay(nb, cb);
     // a k_q the synthesis tool mis-maps whole (`Builder::constant_split`: 0xC000 and more on
     // the iCE40): k_q = k_hi*2^s + k_lo, the product takes k_lo and n_dev*k_hi (a few bits of
     // k_hi, by shift-adds) as its addend
     // (a k_q only wider than the block is the tool's to split, as it always was)
-    let (ks, k_bits) = (b.constant_split(cfg.k_code as u128), bit_length(cfg.k_code as u128));
+    let (ks, k_bits) = (
+        b.constant_split(cfg.k_code as u128),
+        bit_length(cfg.k_code as u128),
+    );
     if k_bits > ks && ks < b.dsp_bits() {
         let hw = w.deviation_bits - ks;
         let delay = k_hi_product(cfg, b, "n_dev", nd_bits, ks, hw);
-        let k_lo = [Piece::Const { value: cfg.k_code as u128 & mask(ks), width: w.deviation_bits }];
+        let k_lo = [Piece::Const {
+            value: cfg.k_code as u128 & mask(ks),
+            width: w.deviation_bits,
+        }];
         let hi = [Piece::zeros(ks), Piece::sig("n_dev_k_hi", 0, hw)];
         let what = format!("{what}: n_dev*k_lo + n_dev*k_hi*2^{ks}");
         let after = after + delay;
-        b.mul("deviation_full", w.deviation_bits, (&nd, nd_bits), (&k_lo, ks), &hi, after, &what);
+        b.mul(
+            "deviation_full",
+            w.deviation_bits,
+            (&nd, nd_bits),
+            (&k_lo, ks),
+            &hi,
+            after,
+            &what,
+        );
     } else {
-        let k = [Piece::Const { value: cfg.k_code as u128, width: w.deviation_bits }];
-        b.mul("deviation_full", w.deviation_bits, (&nd, nd_bits), (&k, k_bits), &[], after, &what);
+        let k = [Piece::Const {
+            value: cfg.k_code as u128,
+            width: w.deviation_bits,
+        }];
+        b.mul(
+            "deviation_full",
+            w.deviation_bits,
+            (&nd, nd_bits),
+            (&k, k_bits),
+            &[],
+            after,
+            &what,
+        );
     }
-    let dev = b.pieces(&sub_pieces(&[Piece::sig("deviation_full", 0, w.deviation_bits)], w.deviation_shift, wb + 1));
-    b.wire("deviation", wb + 1, Kind::Select, dev, &format!("UQ1.{wb}: exact below the cut-off (< 2)"));
+    let dev = b.pieces(&sub_pieces(
+        &[Piece::sig("deviation_full", 0, w.deviation_bits)],
+        w.deviation_shift,
+        wb + 1,
+    ));
+    b.wire(
+        "deviation",
+        wb + 1,
+        Kind::Select,
+        dev,
+        &format!("UQ1.{wb}: exact below the cut-off (< 2)"),
+    );
 
     b.step("bracket = 1 - deviation (adder 9), zeroed beyond the cut-off (key block 13)");
     let (dn, dv) = (b.r("done"), b.r("deviation"));
-    b.wire("bracket", wb + 1, Kind::Logic, ex!("{} ? {} : ({} - {})", dn, lit(wb + 1, 0), lit(wb + 1, 1u128 << wb), dv), &format!("UQ1.{wb}, in [0, 1]"));
+    b.wire(
+        "bracket",
+        wb + 1,
+        Kind::Logic,
+        ex!(
+            "{} ? {} : ({} - {})",
+            dn,
+            lit(wb + 1, 0),
+            lit(wb + 1, 1u128 << wb),
+            dv
+        ),
+        &format!("UQ1.{wb}, in [0, 1]"),
+    );
     b.delay(add_delay(wb + 1) + LUT_DELAY);
 
     b.step("square (a general multiplier as squarer 11)");
     let fb = w.full_square_bits();
     let br = [Piece::sig("bracket", 0, wb + 1)];
-    b.mul("square_full", fb, (&br, wb + 1), (&br, wb + 1), &[], Delay::ZERO, &format!("UQ2.{}: exact (top bit always 0)", 2 * wb));
+    b.mul(
+        "square_full",
+        fb,
+        (&br, wb + 1),
+        (&br, wb + 1),
+        &[],
+        Delay::ZERO,
+        &format!("UQ2.{}: exact (top bit always 0)", 2 * wb),
+    );
     let sq = b.bits("square_full", 2 * wb, w.square_shift);
     b.wire("square", ws + 1, Kind::Select, sq, &format!("UQ1.{ws}: S"));
 
@@ -606,8 +1013,19 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     let cpb = w.color_product_bits;
     let mut products = Vec::new();
     for ch in CHANNELS {
-        let (cs, ks) = ([Piece::sig("square", 0, ws + 1)], [Piece::sig(&format!("ks_{ch}"), 0, bb)]);
-        products.push(b.mul(&format!("color_prod_{ch}"), cpb, (&cs, ws + 1), (&ks, bb), &[], Delay::ZERO, &format!("UQ{bb}.{ws}: S * ks_{ch}, exact")));
+        let (cs, ks) = (
+            [Piece::sig("square", 0, ws + 1)],
+            [Piece::sig(&format!("ks_{ch}"), 0, bb)],
+        );
+        products.push(b.mul(
+            &format!("color_prod_{ch}"),
+            cpb,
+            (&cs, ws + 1),
+            (&ks, bb),
+            &[],
+            Delay::ZERO,
+            &format!("UQ{bb}.{ws}: S * ks_{ch}, exact"),
+        ));
     }
     if ws > fi {
         let sqr = b.r("square");
@@ -623,7 +1041,13 @@ pub fn paper(cfg: &Config, w: &Widths, b: &mut Builder) {
     b.step("colour rounding, final slices");
     for (ch, product) in CHANNELS.iter().zip(&products) {
         let p = b.r(product);
-        b.wire(&format!("color_sum_{ch}"), cpb, Kind::Sum, ex!("{} + {}", p, lit(cpb, 1u128 << (ws - 1))), "+ 1/2 colour ulp (round half up)");
+        b.wire(
+            &format!("color_sum_{ch}"),
+            cpb,
+            Kind::Sum,
+            ex!("{} + {}", p, lit(cpb, 1u128 << (ws - 1))),
+            "+ 1/2 colour ulp (round half up)",
+        );
     }
     b.colour_results(ws, "S");
     let e = if ws > fi {

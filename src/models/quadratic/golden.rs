@@ -65,7 +65,11 @@ impl Quadratic {
         let deviation_full = kn * one_minus_cos;
         let deviation = (deviation_full >> w.deviation_shift) & m(wb + 1);
         // step 3: bracket = 1 − dev, zeroed by the key block beyond the cut-off (mod 2^(WB+1))
-        let bracket = if done { W::from(0u32) } else { bit(wb).wrapping_sub(deviation) & m(wb + 1) };
+        let bracket = if done {
+            W::from(0u32)
+        } else {
+            bit(wb).wrapping_sub(deviation) & m(wb + 1)
+        };
         // step 4: square, truncation #2 to WS fractional bits
         let square_full = bracket * bracket;
         let square = (square_full >> w.square_shift) & m(ws + 1);
@@ -73,10 +77,18 @@ impl Quadratic {
         let wsc = w.color_square_frac_bits;
         let color_square = square >> (ws - wsc);
         let color_prod = ks.map(|k| color_square * k);
-        let intensity_sum = if ws > fi { square + bit(ws - fi - 1) } else { square << (fi - ws) };
+        let intensity_sum = if ws > fi {
+            square + bit(ws - fi - 1)
+        } else {
+            square << (fi - ws)
+        };
         // step 6: colour rounding add and the final slices
         let spec = color_prod.map(|p| wide((p + bit(wsc - 1)) >> wsc) as u32);
-        let intensity = if ws > fi { wide(intensity_sum >> (ws - fi)) as u32 } else { wide(intensity_sum) as u32 };
+        let intensity = if ws > fi {
+            wide(intensity_sum >> (ws - fi)) as u32
+        } else {
+            wide(intensity_sum) as u32
+        };
         Trace {
             cos_clamped: wide(cos_clamped) as u64,
             one_minus_cos: wide(one_minus_cos) as u64,
@@ -90,7 +102,11 @@ impl Quadratic {
             square: wide(square),
             color_prod: color_prod.map(wide),
             intensity_sum: wide(intensity_sum),
-            outputs: Outputs { spec, intensity, done },
+            outputs: Outputs {
+                spec,
+                intensity,
+                done,
+            },
         }
     }
 }
@@ -114,16 +130,35 @@ pub fn reference(cfg: &Config, x: Inputs) -> Reference {
     let base_den_log2 = kf + f;
     let base_num = (1i128 << base_den_log2) - cfg.k_code as i128 * x.n as i128 * ((1i128 << f) - c);
     let done = base_num < 0;
-    let s_num: u128 = if done { 0 } else { (base_num * base_num) as u128 };
+    let s_num: u128 = if done {
+        0
+    } else {
+        (base_num * base_num) as u128
+    };
     let den_log2 = 2 * base_den_log2;
-    Reference { base_num, base_den_log2, done, intensity: Ideal { num: s_num << fi, den_log2 }, spec: x.ks.map(|k| Ideal { num: s_num * k as u128, den_log2 }) }
+    Reference {
+        base_num,
+        base_den_log2,
+        done,
+        intensity: Ideal {
+            num: s_num << fi,
+            den_log2,
+        },
+        spec: x.ks.map(|k| Ideal {
+            num: s_num * k as u128,
+            den_log2,
+        }),
+    }
 }
 
 /// Checks a full output vector against SPEC §3 for one input.
 pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Error> {
     let r = reference(cfg, x);
     if got.done != r.done {
-        return Err(Error::breach("done", format!("got {}, reference {}", got.done, r.done)));
+        return Err(Error::breach(
+            "done",
+            format!("got {}, reference {}", got.done, r.done),
+        ));
     }
     check_value("intensity", cfg.rounding(), got.intensity, r.intensity)?;
     for (i, name) in SPEC_PORTS.iter().enumerate() {
@@ -140,8 +175,19 @@ mod tests {
     #[test]
     fn full_cosine_gives_full_colour() {
         let m = Model::new(&Config::defaults());
-        let o = m.eval(Inputs { cos_g: 1 << 15, n: 500, ks: [255, 7, 0] });
-        assert_eq!(o, Outputs { spec: [255, 7, 0], intensity: 1 << 15, done: false });
+        let o = m.eval(Inputs {
+            cos_g: 1 << 15,
+            n: 500,
+            ks: [255, 7, 0],
+        });
+        assert_eq!(
+            o,
+            Outputs {
+                spec: [255, 7, 0],
+                intensity: 1 << 15,
+                done: false
+            }
+        );
     }
 
     #[test]
@@ -150,8 +196,15 @@ mod tests {
         let m = super::super::Quadratic::new(&Config::defaults());
         assert!(m.widths.fits_u64(15));
         for n in [0, 1, 2, 40, 500, 1023] {
-            for cos_g in (0..=(1u32 << 16) - 1).step_by(97).chain([1 << 15, (1 << 15) + 1]) {
-                let x = Inputs { cos_g, n, ks: [cos_g & 255, (n * 7) & 255, 255] };
+            for cos_g in (0..=(1u32 << 16) - 1)
+                .step_by(97)
+                .chain([1 << 15, (1 << 15) + 1])
+            {
+                let x = Inputs {
+                    cos_g,
+                    n,
+                    ks: [cos_g & 255, (n * 7) & 255, 255],
+                };
                 assert_eq!(m.trace_in::<u64>(x), m.trace_in::<u128>(x), "{x:?}");
             }
         }
@@ -160,7 +213,11 @@ mod tests {
     #[test]
     fn check_rejects_off_by_one() {
         let cfg = Config::defaults();
-        let x = Inputs { cos_g: 32000, n: 40, ks: [200, 100, 50] };
+        let x = Inputs {
+            cos_g: 32000,
+            n: 40,
+            ks: [200, 100, 50],
+        };
         let mut o = Model::new(&cfg).eval(x);
         assert!(check(&cfg, x, o).is_ok());
         o.spec[1] += 1;

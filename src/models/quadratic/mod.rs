@@ -88,7 +88,16 @@ impl Widths {
     pub fn fits_u64(&self, intensity_frac_bits: u32) -> bool {
         let square_full = 2 * (self.bracket_frac_bits + 1);
         let intensity_sum = self.square_frac_bits.max(intensity_frac_bits) + 2;
-        [self.deviation_bits, square_full, self.color_product_bits + 1, intensity_sum].into_iter().max().unwrap_or(0) <= 64
+        [
+            self.deviation_bits,
+            square_full,
+            self.color_product_bits + 1,
+            intensity_sum,
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0)
+            <= 64
     }
 
     /// Every width, from the budget above.
@@ -113,7 +122,13 @@ impl Widths {
         let family = crate::family::of(cfg.target());
         let dsp = family.multiplier_bits();
         let squarer_split = match cfg.arch() {
-            Arch::Lean if family.splits_wide_squares() && wb + 1 > dsp && wb + 1 - dsp <= MAX_SQUARER_SPLIT => wb + 1 - dsp,
+            Arch::Lean
+                if family.splits_wide_squares()
+                    && wb + 1 > dsp
+                    && wb + 1 - dsp <= MAX_SQUARER_SPLIT =>
+            {
+                wb + 1 - dsp
+            }
             _ => 0,
         };
         let n_max = (1u64 << cfg.n_bits()) - 1;
@@ -151,7 +166,11 @@ pub struct Quadratic {
 
 impl Quadratic {
     pub fn new(cfg: &Config) -> Quadratic {
-        Quadratic { cfg: cfg.clone(), widths: Widths::derive(cfg), rom: rom::cos_sp_table(cfg) }
+        Quadratic {
+            cfg: cfg.clone(),
+            widths: Widths::derive(cfg),
+            rom: rom::cos_sp_table(cfg),
+        }
     }
 
     /// `k` as given (`--k`), a float.
@@ -210,25 +229,45 @@ impl SpecularUnit for Quadratic {
         let (cfg, w) = (&self.cfg, &self.widths);
         let p = &cfg.params;
         Description {
-            param_line: format!("k={} k_frac_bits={} (k_code={}, k_q={})", p.k, p.k_frac_bits, cfg.k_code, exact_decimal(cfg.k_code, cfg.kf())),
+            param_line: format!(
+                "k={} k_frac_bits={} (k_code={}, k_q={})",
+                p.k,
+                p.k_frac_bits,
+                cfg.k_code,
+                exact_decimal(cfg.k_code, cfg.kf())
+            ),
             formula: vec![
-                "S = [1 - k_q*n*(1 - cos_g)]^2, cut to 0 where the bracket is negative (done);".into(),
-                format!("intensity = S (UQ1.{}), spec_X = S * ks_X.", p.intensity_frac_bits),
+                "S = [1 - k_q*n*(1 - cos_g)]^2, cut to 0 where the bracket is negative (done);"
+                    .into(),
+                format!(
+                    "intensity = S (UQ1.{}), spec_X = S * ks_X.",
+                    p.intensity_frac_bits
+                ),
             ],
             rounding: match p.rounding {
-                Rounding::Faithful => "faithful: every output within 1 ulp of the exact value (|o - o*| < 1)".into(),
-                Rounding::Exact => "exact: every output is the exact value rounded to nearest, ties away from zero".into(),
+                Rounding::Faithful => {
+                    "faithful: every output within 1 ulp of the exact value (|o - o*| < 1)".into()
+                }
+                Rounding::Exact => {
+                    "exact: every output is the exact value rounded to nearest, ties away from zero"
+                        .into()
+                }
             },
             datapath: format!(
                 "{}{}; bracket UQ1.{}, square UQ1.{} (colours UQ1.{})",
                 cfg.arch().name(),
-                if cfg.arch() == Arch::Paper { " (the paper's Fig. 5 literally, every bit kept)" } else { " (widths from the error budget)" },
+                if cfg.arch() == Arch::Paper {
+                    " (the paper's Fig. 5 literally, every bit kept)"
+                } else {
+                    " (widths from the error budget)"
+                },
                 w.bracket_frac_bits,
                 w.square_frac_bits,
                 w.color_square_frac_bits
             ),
             done_meaning: "cos(gamma) < cos_sp(n): beyond the highlight",
-            summary: "Fixed-point specular highlight unit, [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)",
+            summary:
+                "Fixed-point specular highlight unit, [1 - k*n*(1 - cos)]^2 cut off at cos_sp(n)",
             computes: "formula (15), the paper: [1 - k n (1 - c)]^2",
         }
     }
@@ -252,7 +291,11 @@ impl SpecularUnit for Quadratic {
 
     fn fidelity_note(&self, x: Inputs) -> Option<String> {
         let c = crate::models::cosine(&self.cfg, x.cos_g);
-        Some(format!("formula (15) in real arithmetic with k = {}: {:.9}", self.k_real(), formula15(self.k_real(), x.n, c)))
+        Some(format!(
+            "formula (15) in real arithmetic with k = {}: {:.9}",
+            self.k_real(),
+            formula15(self.k_real(), x.n, c)
+        ))
     }
 
     fn explain(&self, x: Inputs) -> Vec<String> {
@@ -261,8 +304,16 @@ impl SpecularUnit for Quadratic {
         let r = golden::reference(cfg, x);
         let (wb, ws) = (w.bracket_frac_bits, w.square_frac_bits);
         vec![
-            format!("constant   k = {} -> k_code = {} (k_q = {})", cfg.params.k, cfg.k_code, exact_decimal(cfg.k_code, cfg.kf())),
-            format!("datapath   cos_clamped = {}  one_minus_cos = {}  cos_sp[n] = {}  done = {}", t.cos_clamped, t.one_minus_cos, t.cos_sp, t.done),
+            format!(
+                "constant   k = {} -> k_code = {} (k_q = {})",
+                cfg.params.k,
+                cfg.k_code,
+                exact_decimal(cfg.k_code, cfg.kf())
+            ),
+            format!(
+                "datapath   cos_clamped = {}  one_minus_cos = {}  cos_sp[n] = {}  done = {}",
+                t.cos_clamped, t.one_minus_cos, t.cos_sp, t.done
+            ),
             format!(
                 "           kn = {}  deviation = {} (UQ1.{wb})  bracket = {} (UQ1.{wb} = {:.9})",
                 t.kn,
@@ -270,8 +321,15 @@ impl SpecularUnit for Quadratic {
                 t.bracket,
                 t.bracket as f64 / (wb as f64).exp2()
             ),
-            format!("           square = {} (UQ1.{ws} = {:.9})", t.square, t.square as f64 / (ws as f64).exp2()),
-            explain_ideal(self.ideal(x), &format!("done = {}  (SPEC §3 with k_q)", r.done)),
+            format!(
+                "           square = {} (UQ1.{ws} = {:.9})",
+                t.square,
+                t.square as f64 / (ws as f64).exp2()
+            ),
+            explain_ideal(
+                self.ideal(x),
+                &format!("done = {}  (SPEC §3 with k_q)", r.done),
+            ),
         ]
     }
 }

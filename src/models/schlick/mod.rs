@@ -115,7 +115,11 @@ impl Schlick {
     pub fn new(cfg: &Config) -> Schlick {
         let w = SchlickWidths::derive(cfg);
         let t = ReciprocalTable::new(&w);
-        Schlick { cfg: cfg.clone(), w, t }
+        Schlick {
+            cfg: cfg.clone(),
+            w,
+            t,
+        }
     }
 
     /// The datapath step for step, as the RTL computes it.
@@ -132,7 +136,11 @@ impl Schlick {
         let u = (den << lead_zeros) & mask(dw);
         // the table's interval and fraction: u's next K + J bits (zeros below u's last)
         let frac = u & mask(dw - 1);
-        let it = if dw > k + j { frac >> (dw - 1 - k - j) } else { frac << (k + j - (dw - 1)) };
+        let it = if dw > k + j {
+            frac >> (dw - 1 - k - j)
+        } else {
+            frac << (k + j - (dw - 1))
+        };
         let (index, fraction) = ((it >> j) as usize, it & mask(j));
         let recip = self.t.recip(w, index, fraction);
         // c·r̂, exact; shifted by L and floored to W bits
@@ -141,7 +149,17 @@ impl Schlick {
         let xw = wq + nb + 1;
         let shifted = ((product >> (f - 1)) << lead_zeros) & mask(xw);
         let quotient = if n == 0 { 1 << wq } else { shifted >> (nb + 1) };
-        Trace { cos_clamped: c, den, lead_zeros, index, fraction, recip, product, quotient, outputs: self.outputs(x, quotient) }
+        Trace {
+            cos_clamped: c,
+            den,
+            lead_zeros,
+            index,
+            fraction,
+            recip,
+            product,
+            quotient,
+            outputs: self.outputs(x, quotient),
+        }
     }
 
     /// The last step: the outputs of the quotient `q` (UQ1.W), rounded half up.
@@ -150,8 +168,13 @@ impl Schlick {
         let intensity = ((quotient + (1 << (w - fi - 1))) >> (w - fi)) as u32;
         let wc = self.w.colour_frac_bits;
         let qc = quotient >> (w - wc);
-        let spec = x.ks.map(|k| ((qc * (k as u128 & mask(b)) + (1 << (wc - 1))) >> wc) as u32);
-        Outputs { spec, intensity, done: intensity == 0 }
+        let spec =
+            x.ks.map(|k| ((qc * (k as u128 & mask(b)) + (1 << (wc - 1))) >> wc) as u32);
+        Outputs {
+            spec,
+            intensity,
+            done: intensity == 0,
+        }
     }
 }
 
@@ -172,15 +195,29 @@ pub fn check(cfg: &Config, x: Inputs, got: Outputs) -> Result<(), Error> {
     let within = |o: u32, m: u128| (o as u128 * den).abs_diff(num * m) < den;
     let one = 1u128 << cfg.fi();
     if !within(got.intensity, one) {
-        return Err(Error::breach("intensity", format!("got {}, S·2^FI = {}·2^{}/{den}", got.intensity, num, cfg.fi())));
+        return Err(Error::breach(
+            "intensity",
+            format!(
+                "got {}, S·2^FI = {}·2^{}/{den}",
+                got.intensity,
+                num,
+                cfg.fi()
+            ),
+        ));
     }
     for (i, name) in SPEC_PORTS.iter().enumerate() {
         if !within(got.spec[i], x.ks[i] as u128) {
-            return Err(Error::breach(name, format!("got {}, S·ks = {}·{}/{den}", got.spec[i], num, x.ks[i])));
+            return Err(Error::breach(
+                name,
+                format!("got {}, S·ks = {}·{}/{den}", got.spec[i], num, x.ks[i]),
+            ));
         }
     }
     if got.done != (got.intensity == 0) {
-        return Err(Error::breach("done", format!("got {}, intensity {}", got.done, got.intensity)));
+        return Err(Error::breach(
+            "done",
+            format!("got {}, intensity {}", got.done, got.intensity),
+        ));
     }
     Ok(())
 }
@@ -197,7 +234,10 @@ impl SpecularUnit for Schlick {
     fn ideal(&self, x: Inputs) -> (f64, [f64; 3]) {
         let (num, den) = ratio(&self.cfg, x);
         let s = num as f64 / den as f64;
-        (s * (self.cfg.fi() as f64).exp2(), x.ks.map(|k| s * k as f64))
+        (
+            s * (self.cfg.fi() as f64).exp2(),
+            x.ks.map(|k| s * k as f64),
+        )
     }
 
     fn reference_words(&self) -> &'static str {
@@ -245,10 +285,22 @@ impl SpecularUnit for Schlick {
         let t = self.steps(x);
         let (w, z) = (self.w.quotient_frac_bits, self.w.recip_frac_bits);
         vec![
-            format!("den        2n*(1 - c) + c = {} (units of 2^-{}), L = {}", t.den, self.cfg.f(), t.lead_zeros),
-            format!("recip      r^ = 1 + {}/2^{z} ~ 2/u (interval {}, fraction {})", t.recip, t.index, t.fraction),
+            format!(
+                "den        2n*(1 - c) + c = {} (units of 2^-{}), L = {}",
+                t.den,
+                self.cfg.f(),
+                t.lead_zeros
+            ),
+            format!(
+                "recip      r^ = 1 + {}/2^{z} ~ 2/u (interval {}, fraction {})",
+                t.recip, t.index, t.fraction
+            ),
             format!("product    c*r^ = {} (UQ2.{})", t.product, self.cfg.f() + z),
-            format!("quotient   q = {} (UQ1.{w}: {:.9})", t.quotient, t.quotient as f64 / (w as f64).exp2()),
+            format!(
+                "quotient   q = {} (UQ1.{w}: {:.9})",
+                t.quotient,
+                t.quotient as f64 / (w as f64).exp2()
+            ),
             explain_ideal(self.ideal(x), "(c/(2n - 2n*c + c))"),
         ]
     }
@@ -260,23 +312,43 @@ mod tests {
     use crate::config::{Params, SpecularModel};
 
     fn cfg(p: Params) -> Config {
-        Config::new(Params { model: SpecularModel::Schlick, ..p }).unwrap()
+        Config::new(Params {
+            model: SpecularModel::Schlick,
+            ..p
+        })
+        .unwrap()
     }
 
     #[test]
     fn the_quotient_is_within_its_budget_of_the_exact_one() {
         // q·2^−W against S = c/den in integers: within (−S·δ − 2^−W, S·δ], δ = 3·2^−(M+3)
-        for p in [Params::default(), Params { cos_frac_bits: 20, n_bits: 12, color_bits: 16, intensity_frac_bits: 24, ..Params::default() }] {
+        for p in [
+            Params::default(),
+            Params {
+                cos_frac_bits: 20,
+                n_bits: 12,
+                color_bits: 16,
+                intensity_frac_bits: 24,
+                ..Params::default()
+            },
+        ] {
             let s = Schlick::new(&cfg(p.clone()));
             let (w, m) = (s.w.quotient_frac_bits, s.w.m);
             for n in [1u32, 2, 7, 100, (1 << p.n_bits) - 1] {
                 for cos_g in (0..=1u32 << p.cos_frac_bits).step_by(331) {
-                    let t = s.steps(Inputs { cos_g, n, ks: [0; 3] });
+                    let t = s.steps(Inputs {
+                        cos_g,
+                        n,
+                        ks: [0; 3],
+                    });
                     // in units of 2^−(W+M+3)/den: q·den·2^(M+3) − c·2^(W+M+3)
                     let got = (t.quotient * t.den) as i128 * (1 << (m + 3));
                     let exact = (t.cos_clamped as i128) << (w + m + 3);
                     let sd = (3 * t.cos_clamped as i128) << w; // S·δ·den·2^(W+M+3)
-                    assert!(got - exact <= sd && got - exact > -sd - ((t.den as i128) << (m + 3)), "n={n} cos_g={cos_g}: {t:?}");
+                    assert!(
+                        got - exact <= sd && got - exact > -sd - ((t.den as i128) << (m + 3)),
+                        "n={n} cos_g={cos_g}: {t:?}"
+                    );
                 }
             }
         }
@@ -285,12 +357,38 @@ mod tests {
     #[test]
     fn zero_over_zero_is_one() {
         let s = Schlick::new(&cfg(Params::default()));
-        let o = s.eval(Inputs { cos_g: 0, n: 0, ks: [255, 3, 0] });
-        assert_eq!(o, Outputs { spec: [255, 3, 0], intensity: 1 << 15, done: false });
-        assert_eq!(s.eval(Inputs { cos_g: 0, n: 5, ks: [255; 3] }).intensity, 0);
+        let o = s.eval(Inputs {
+            cos_g: 0,
+            n: 0,
+            ks: [255, 3, 0],
+        });
+        assert_eq!(
+            o,
+            Outputs {
+                spec: [255, 3, 0],
+                intensity: 1 << 15,
+                done: false
+            }
+        );
+        assert_eq!(
+            s.eval(Inputs {
+                cos_g: 0,
+                n: 5,
+                ks: [255; 3]
+            })
+            .intensity,
+            0
+        );
         // c = 1: S = 1 for every n, r̂ one step below 2
-        let t = s.steps(Inputs { cos_g: 1 << 15, n: 1000, ks: [255; 3] });
-        assert_eq!((t.recip, t.outputs.intensity, t.outputs.spec), ((1 << 16) - 1, 1 << 15, [255; 3]));
+        let t = s.steps(Inputs {
+            cos_g: 1 << 15,
+            n: 1000,
+            ks: [255; 3],
+        });
+        assert_eq!(
+            (t.recip, t.outputs.intensity, t.outputs.spec),
+            ((1 << 16) - 1, 1 << 15, [255; 3])
+        );
     }
 
     #[test]
@@ -298,14 +396,24 @@ mod tests {
         // colours wider than the intensity: with Wc = B + 1 some colour near 2^B breaks the
         // contract; the budget's B + 3 meets it on the same inputs (B + 2 happens to meet it
         // here too, but the budget cannot show it: its δ bound takes 3/8 of the unit)
-        let c = cfg(Params { cos_frac_bits: 10, n_bits: 6, color_bits: 12, intensity_frac_bits: 6, ..Params::default() });
+        let c = cfg(Params {
+            cos_frac_bits: 10,
+            n_bits: 6,
+            color_bits: 12,
+            intensity_frac_bits: 6,
+            ..Params::default()
+        });
         let s = Schlick::new(&c);
         let mut narrow = s.clone();
         narrow.w.colour_frac_bits -= 2;
         let mut broken = false;
         for n in 0..64u32 {
             for cos_g in 0..=1u32 << 10 {
-                let x = Inputs { cos_g, n, ks: [4095, 4094, 1] };
+                let x = Inputs {
+                    cos_g,
+                    n,
+                    ks: [4095, 4094, 1],
+                };
                 broken |= check(&c, x, narrow.eval(x)).is_err();
                 assert!(check(&c, x, s.eval(x)).is_ok(), "{x:?}");
             }

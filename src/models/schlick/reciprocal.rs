@@ -45,7 +45,8 @@ impl SchlickWidths {
             index_bits: k,
             fraction_bits: u - k,
             den_bits: cfg.n_bits() + cfg.f() + 2,
-            shift_bits: bit_length(cfg.n_bits() as u128 + 2).max(2 + bit_length(groups as u128 - 1)),
+            shift_bits: bit_length(cfg.n_bits() as u128 + 2)
+                .max(2 + bit_length(groups as u128 - 1)),
         }
     }
 
@@ -73,20 +74,31 @@ impl ReciprocalTable {
     /// r̂ < 2), the slopes their differences, and `B_i = V_(i+1) + κ − 2^U` with one constant
     /// κ (the module doc), all in integers.
     pub fn new(w: &SchlickWidths) -> ReciprocalTable {
-        let (k, j, u, z) = (w.index_bits, w.fraction_bits, w.entry_frac_bits, w.recip_frac_bits);
+        let (k, j, u, z) = (
+            w.index_bits,
+            w.fraction_bits,
+            w.entry_frac_bits,
+            w.recip_frac_bits,
+        );
         let count = 1u128 << k;
         let top = 1u128 << (k + 1 + u); // 2·2^K·2^U: V_i = top/(2^K + i)
-        let mut v: Vec<u128> = (0..=count).map(|i| (2 * top + count + i) / (2 * (count + i))).collect();
+        let mut v: Vec<u128> = (0..=count)
+            .map(|i| (2 * top + count + i) / (2 * (count + i)))
+            .collect();
         // κ·2^(J+2) = 2^(U−Z−1)·2^(J+2) + 2·D_max − 2^(U−2K−2)·2^(J+2): the rounding offset to Z
         // bits, the centring of t's truncation, and half the widest chord gap, rounded to a unit
         let dmax = v[0] - v[1];
-        let scaled = (1i128 << (u - z - 1 + j + 2)) + 2 * dmax as i128 - ((1i128 << (u + j + 2)) >> (2 * k + 2));
+        let scaled = (1i128 << (u - z - 1 + j + 2)) + 2 * dmax as i128
+            - ((1i128 << (u + j + 2)) >> (2 * k + 2));
         let kappa = ((scaled + (1 << (j + 1))) >> (j + 2)) as u128;
         // r̂ < 2 on interval 0: B_0·2^J + D_0·(2^J − 1) < 2^(U+J)
         let b0 = v[1] + kappa - (1 << u);
         let room = ((1u128 << (u + j)) - 1 - (b0 << j)) / ((1 << j) - 1);
         v[0] = v[0].min(v[1] + room);
-        ReciprocalTable { b: v[1..].iter().map(|&x| x + kappa - (1 << u)).collect(), d: v.windows(2).map(|p| p[0] - p[1]).collect() }
+        ReciprocalTable {
+            b: v[1..].iter().map(|&x| x + kappa - (1 << u)).collect(),
+            d: v.windows(2).map(|p| p[0] - p[1]).collect(),
+        }
     }
 
     /// `z`: r̂ = 1 + z/2^Z at interval `i`, fraction `t` (J bits).
@@ -108,7 +120,15 @@ impl ReciprocalTable {
             z = w.recip_frac_bits,
             u = w.entry_frac_bits,
         );
-        interpolation_table("recip", &self.b, &self.d, (w.entry_frac_bits, w.slope_bits()), pad, what, ("b", "d"))
+        interpolation_table(
+            "recip",
+            &self.b,
+            &self.d,
+            (w.entry_frac_bits, w.slope_bits()),
+            pad,
+            what,
+            ("b", "d"),
+        )
     }
 }
 
@@ -145,19 +165,44 @@ mod tests {
             }
         }
         // the bound is not loose by more than a factor 2: the argument is the right one
-        assert!(2 * worst > bound, "the reciprocal is well inside its budget: {worst} of {bound}");
+        assert!(
+            2 * worst > bound,
+            "the reciprocal is well inside its budget: {worst} of {bound}"
+        );
     }
 
     #[test]
     fn the_reciprocal_meets_its_budget_on_every_cell() {
         for p in [
             Params::default(),
-            Params { cos_frac_bits: 8, n_bits: 6, color_bits: 4, intensity_frac_bits: 8, ..Params::default() },
-            Params { cos_frac_bits: 12, n_bits: 8, color_bits: 10, intensity_frac_bits: 6, ..Params::default() },
-            Params { intensity_frac_bits: 16, ..Params::default() },
-            Params { intensity_frac_bits: 17, ..Params::default() },
+            Params {
+                cos_frac_bits: 8,
+                n_bits: 6,
+                color_bits: 4,
+                intensity_frac_bits: 8,
+                ..Params::default()
+            },
+            Params {
+                cos_frac_bits: 12,
+                n_bits: 8,
+                color_bits: 10,
+                intensity_frac_bits: 6,
+                ..Params::default()
+            },
+            Params {
+                intensity_frac_bits: 16,
+                ..Params::default()
+            },
+            Params {
+                intensity_frac_bits: 17,
+                ..Params::default()
+            },
         ] {
-            let cfg = Config::new(Params { model: SpecularModel::Schlick, ..p }).unwrap();
+            let cfg = Config::new(Params {
+                model: SpecularModel::Schlick,
+                ..p
+            })
+            .unwrap();
             every_cell_is_within_the_budget(&SchlickWidths::derive(&cfg));
         }
     }
