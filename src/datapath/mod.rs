@@ -475,6 +475,8 @@ pub(crate) struct Waiting {
 }
 
 mod builder;
+mod carry_select;
+mod colour;
 mod delay;
 mod delay_line;
 pub(crate) mod expr;

@@ -1,4 +1,5 @@
-//! Tables written as logic (`--rom-style logic`): a table's parts, each a function of the
+//! Tables: a table added to the datapath, read as a memory (a block RAM where it fits) or,
+//! written as logic (`--rom-style logic`), as a table's parts, each a function of the
 //! address's low bits, and the picks among them by its top bits, a step each.
 
 use super::*;
@@ -157,5 +158,127 @@ impl Builder {
         }
         self.delay(LUT_DELAY);
         (out, lo + k)
+    }
+}
+
+impl Builder {
+    /// The value of `cases` (`(index, value)`) whose index `sel` (`bits` wide) equals, over
+    /// `width` bits: an OR of the values, each gated by its match, one a line; 0 when there is
+    /// none. A table or a mux in LUTs without a `?:` chain ([`Builder::select`]'s rule).
+    pub(crate) fn one_of(
+        sel: &Expr,
+        bits: u32,
+        cases: impl IntoIterator<Item = (u128, Expr)>,
+        width: u32,
+    ) -> Expr {
+        let terms: Vec<Expr> = cases
+            .into_iter()
+            .map(|(i, v)| Builder::gate(&ex!("{} == {}", sel, lit(bits, i)), &v, width))
+            .collect();
+        match terms.is_empty() {
+            true => Expr::constant(lit(width, 0)),
+            false => Expr::join(&terms, "\n    | "),
+        }
+    }
+
+    /// `name = v²` for the `r`-bit field `v = sig[lo..lo+r)`, by a table of 2^r entries in
+    /// LUTs (no multiply, no carry chain): one LUT level up to [`LUT_INPUTS`] bits, two above.
+    /// Written as an OR of the entries, each gated by its match: a `?:` chain of constants
+    /// before a register would become the register's synchronous set/reset
+    /// ([`Builder::select`]).
+    pub(crate) fn square_table(&mut self, name: &str, sig: &str, lo: u32, r: u32, comment: &str) {
+        // a table of 2^r lines: every caller splits wider squares otherwise (an invariant, not an input)
+        assert!(
+            r <= MAX_SQUARER_SPLIT,
+            "a square table of {r} bits: at most {MAX_SQUARER_SPLIT}"
+        );
+        let v = self.bits(sig, lo + r - 1, lo);
+        // one entry a line; v = 0 squares to 0 and adds nothing
+        let e = Builder::one_of(
+            &v,
+            r,
+            (1..1u128 << r).map(|x| (x, Expr::constant(lit(2 * r, x * x)))),
+            2 * r,
+        );
+        self.wire(name, 2 * r, Kind::Table, e, comment);
+        // a function of more inputs than a LUT has: two levels
+        self.delay(if r > LUT_INPUTS {
+            2.0 * LUT_DELAY
+        } else {
+            LUT_DELAY
+        });
+    }
+
+    /// Adds a constant table to the unit; returns its index for [`Builder::rom_read`].
+    pub fn table(&mut self, t: Table) -> usize {
+        self.tables.push(t);
+        self.tables.len() - 1
+    }
+
+    /// Defines `signal` in the current step as the entry of table `t` addressed by all of
+    /// the signal `addr` (the template renders the memory and the read).
+    pub(crate) fn rom_read(&mut self, signal: &str, t: usize, addr: &str) {
+        let a = self.r(addr);
+        let cur = self.cur();
+        self.define(signal, self.tables[t].width, cur, false);
+        let position = self.steps.last().expect("a step").wires.len();
+        self.reads.push(RomRead {
+            step: cur,
+            signal: signal.into(),
+            table: t,
+            addr: a.text,
+            block: false,
+            position,
+        });
+    }
+
+    /// [`Builder::rom_read`], on ECP5 block RAM with its registers when the table has at most
+    /// 1024 words of at most [`MAX_BLOCK_SLICES`]·18 bits (one DP16KD, 1024 x 18, per 18 bits
+    /// of the word) and the cuts on both sides of this step are registered: the address
+    /// registers take the address as the step before sees it, the output registers are the cut
+    /// after this step (the read's clock-to-out, 5.6 ns without them on LFE5U-25F grade 6,
+    /// then never limits Fmax). Anywhere else, an asynchronous read in this step.
+    ///
+    /// With `--rom-style logic` ([`Builder::tables_in_logic`]) the table is LUTs instead: its
+    /// parts in this step ([`Builder::rom_parts`]), then a step for each pick among them
+    /// ([`Builder::rom_pick`], four to one), `signal` the last; what the caller writes after this
+    /// call goes in the last of them.
+    pub(crate) fn rom_read_registered(&mut self, signal: &str, t: usize, addr: &str) {
+        if self.logic_tables {
+            let copies = self.family().copies_table_address();
+            let (mut parts, mut lo) = self.rom_parts_of(signal, t, addr, LOGIC_PART_BITS, copies);
+            let what = self.tables[t].what.clone();
+            // (at least two parts: the last pick is `signal` itself)
+            while parts.len() > 1 {
+                self.step(&format!(
+                    "{what} (in LUTs): the entry picked by {addr}'s bits from {lo}"
+                ));
+                (parts, lo) = self.rom_pick_of(signal, t, addr, &parts, lo, 1);
+            }
+            return;
+        }
+        // up to 1024 words, or two banks of them addressed by a whole 11-bit signal
+        let words = self.tables[t].words.len();
+        let banks =
+            words > DP16KD_WORDS && words <= 2 * DP16KD_WORDS && self.signal(addr).width == 11;
+        let fits = (words <= DP16KD_WORDS || banks)
+            && self.tables[t].width <= MAX_BLOCK_SLICES * DP16KD_BITS;
+        if !(fits && self.block_registers_here()) {
+            return self.rom_read(signal, t, addr);
+        }
+        let a = self.seen_from_step_before(&[addr], &format!("the block read of {signal}"), |s| {
+            s.r(addr)
+        });
+        let k = self.steps.len();
+        self.define(signal, self.tables[t].width, k, true);
+        let position = self.steps.last().expect("a step").wires.len();
+        self.reads.push(RomRead {
+            step: k,
+            signal: signal.into(),
+            table: t,
+            addr: a.text,
+            block: true,
+            position,
+        });
     }
 }
