@@ -2,8 +2,10 @@
 //! (2: bad parameters or usage, 1: a check failed or an I/O error).
 
 mod cosim;
+mod eval;
 mod explore;
 mod info;
+mod params;
 mod prove;
 mod render;
 mod sweep;
@@ -11,6 +13,8 @@ mod synth;
 mod values;
 
 use clap::{Args, Parser, Subcommand};
+use params::*;
+pub use params::{ParamArgs, RtlArgs};
 use specgen::bits::exact_decimal;
 use specgen::config::{self, Config, Params};
 use specgen::emit;
@@ -254,166 +258,6 @@ pub struct RenderArgs {
     pub sim: values::SimToolArgs,
 }
 
-/// The generator parameters (SPEC §2) that define the arithmetic. Unset flags fall back to
-/// --config, then to the defaults. Ranges in --help come from `config::RANGES`.
-#[derive(Args, Debug, Default, Clone)]
-pub struct ParamArgs {
-    /// Read parameters from a JSON file (a manifest written by `generate`, or a subset of its keys).
-    #[arg(long, value_name = "FILE.json", help_heading = "Parameters")]
-    pub config: Option<PathBuf>,
-    /// F: fractional bits of cos_g, UQ1.F
-    #[arg(allow_negative_numbers = true, value_parser = param_cos_frac_bits, long, help_heading = "Number formats")]
-    pub cos_frac_bits: Option<u32>,
-    /// N: bits of the exponent n (tables indexed by n have 2^N entries)
-    #[arg(allow_negative_numbers = true, value_parser = param_n_bits, long, help_heading = "Number formats")]
-    pub n_bits: Option<u32>,
-    /// B: bits of each colour input and output
-    #[arg(allow_negative_numbers = true, value_parser = param_color_bits, long, help_heading = "Number formats")]
-    pub color_bits: Option<u32>,
-    /// FI: fractional bits of the intensity output, UQ1.FI
-    #[arg(allow_negative_numbers = true, value_parser = param_intensity_frac_bits, long, help_heading = "Number formats")]
-    pub intensity_frac_bits: Option<u32>,
-    /// The function the unit computes, one of the models below [default quadratic]
-    #[arg(long, value_enum, help_heading = "Model")]
-    pub model: Option<ModelFlag>,
-    /// The constant k of --model quadratic as a decimal string, 0 < k <= 1 [default "0.3686"]
-    #[arg(allow_negative_numbers = true, long, help_heading = "Model")]
-    pub k: Option<String>,
-    /// KF: fractional bits k is rounded to (nearest, ties to even); with --model fitted, the
-    /// fractional bits of every a_n
-    #[arg(allow_negative_numbers = true, value_parser = param_k_frac_bits, long, help_heading = "Model")]
-    pub k_frac_bits: Option<u32>,
-    /// M of --model fitted: the bracket is squared up to M times (exponent 2^m_n, m_n <= M)
-    #[arg(allow_negative_numbers = true, value_parser = param_max_squarings, long, help_heading = "Model")]
-    pub max_squarings: Option<u32>,
-    /// Output rounding: faithful (|error| < 1 ulp) or exact (nearest, ties away; quadratic only) [default faithful]
-    #[arg(long, value_enum, help_heading = "Model")]
-    pub rounding: Option<RoundingFlag>,
-    /// Datapath of --model quadratic: lean (error-budget widths, DSP-sized) or paper (Fig. 5 literally) [default lean]
-    #[arg(long, value_enum, help_heading = "Model")]
-    pub arch: Option<ArchFlag>,
-}
-
-/// What only the generated RTL needs (`generate`).
-#[derive(Args, Debug, Default, Clone)]
-pub struct RtlArgs {
-    /// Top module name (a Verilog identifier, not a port or internal name) [default: specular_unit]
-    #[arg(long, help_heading = "RTL")]
-    pub top: Option<String>,
-    /// Pipeline registers; 0 = combinational; latency = stages [0..=the datapath's cut points,
-    /// which depend on the model, the widths and the target; at default widths ice40 / ecp5 /
-    /// gowin / generic: lean 13/11/11/10, fitted 65/48/48/16, blinn 41/37/37/24, blinn-pow 13,
-    /// schlick 21/24/24/19, paper 6; with --fabric-registers on ice40: lean 14, fitted 77, blinn
-    /// 51, schlick 28; a value above them is refused with the range; default 0]
-    #[arg(allow_negative_numbers = true, value_parser = param_stages, long, help_heading = "RTL")]
-    pub stages: Option<u32>,
-    /// The most hard multiplier blocks the unit may take (ice40: SB_MAC16, ecp5: MULT18X18D,
-    /// gowin: MULT18X18, generic: multipliers); the products past it are summed from partial products in the
-    /// fabric, those cheapest in logic first, so several units can share one device [0..=256;
-    /// default: no limit]
-    #[arg(allow_negative_numbers = true, value_parser = param_dsp_budget, long, value_name = "N", help_heading = "RTL")]
-    pub dsp_budget: Option<u32>,
-    /// How tables are written: file ($readmemh), case (inline) or logic (LUTs over two steps,
-    /// never block RAM: the lean quadratic unit on a family that takes it) [default file]
-    #[arg(long, value_enum, help_heading = "RTL")]
-    pub rom_style: Option<RomStyleFlag>,
-    /// The FPGA family the datapath is shaped for: ice40 (16x16 DSPs with post-adders, short
-    /// carry chains), ecp5 (MULT18X18D instances with their own registers, long carry chains;
-    /// simulate with sim/<top>_ecp5_mult18x18d_sim.v, written with it) or generic (whole-width products
-    /// and adds, left to the synthesis tool) [default ice40]
-    #[arg(long, value_enum, help_heading = "RTL")]
-    pub target: Option<TargetFlag>,
-    /// The handshake: valid (in_valid/out_valid), ready (adds in_ready/out_ready, AXI4-Stream
-    /// rules) or axis (AXI4-Stream names, fields packed in tdata) [default valid]
-    #[arg(long, value_enum, help_heading = "Interface")]
-    pub interface: Option<InterfaceFlag>,
-    /// W: bits of a tag carried beside each pixel, in_tag -> out_tag (tuser with axis)
-    #[arg(allow_negative_numbers = true, value_parser = param_tag_bits, long, help_heading = "Interface")]
-    pub tag_bits: Option<u32>,
-    /// The specular colour: pixel (ks_r/g/b with every pixel) or static (material registers
-    /// loaded by ks_load while idle) [default pixel]
-    #[arg(long, value_enum, help_heading = "Interface")]
-    pub colour: Option<ColourFlag>,
-    /// The reset's polarity, synchronous either way [default: sync-high (rst) for valid and
-    /// ready, sync-low (aresetn) for axis]
-    #[arg(long, value_enum, help_heading = "Interface")]
-    pub reset: Option<ResetFlag>,
-    /// With --interface axis: s_axis_tlast -> m_axis_tlast, carried with each pixel as tuser is
-    #[arg(long, help_heading = "Interface")]
-    pub tlast: bool,
-    /// With --interface ready or axis: a clock enable, clk_en (aclken with axis); an edge with
-    /// it low transfers nothing and loads no colour
-    #[arg(long, help_heading = "Interface")]
-    pub clock_enable: bool,
-    /// A flip-flop of the fabric's after each hard multiplier's output that a carry chain
-    /// reads, and before each one a chain feeds (a step that only registers, each: more cut
-    /// points): for the routes into and out of the DSP column, at the deepest depths
-    /// (--rom-style logic implies it; outside --target-mhz's calibration)
-    #[arg(long)]
-    pub fabric_registers: bool,
-    /// The clock the constraints (<top>.sdc, <top>.lpf), the FuseSoC core and synth ask for, MHz
-    /// [(0, 1000]; default --target-mhz when given, else 200 for ecp5 and 100 otherwise]
-    #[arg(
-        long,
-        value_name = "F",
-        allow_hyphen_values = true,
-        help_heading = "Interface"
-    )]
-    pub clock_mhz: Option<String>,
-    /// The clock port of your top that drives the unit, for the constraint files when the unit
-    /// is embedded (their clock is found by that name) [default: the unit's own, clk or aclk]
-    #[arg(long, value_name = "NAME", help_heading = "Interface")]
-    pub clock_port: Option<String>,
-}
-
-/// A whole-number flag: a negative value gets a range error, not a "flag not found".
-fn whole_in(text: &str, r: Option<&config::Range>) -> Result<u32, String> {
-    let range = r.map_or("allowed a whole number >= 0".to_string(), |r| {
-        format!("allowed {}..={}", r.min, r.max)
-    });
-    match text.trim().parse::<i64>() {
-        Ok(v) if v < 0 || v > u32::MAX as i64 => Err(format!("{v} is out of range; {range}")),
-        Ok(v) => Ok(v as u32),
-        Err(_) => Err(format!("{text:?} is not a whole number; {range}")),
-    }
-}
-
-fn param_whole(t: &str) -> Result<u32, String> {
-    whole_in(t, None)
-}
-/// `render --size`: its own range, stated in the error.
-fn param_size(t: &str) -> Result<u32, String> {
-    const SIZE: config::Range = config::Range {
-        name: "size",
-        min: 16,
-        max: 1024,
-        default: 128,
-    };
-    whole_in(t, Some(&SIZE)).and_then(|v| {
-        if (SIZE.min..=SIZE.max).contains(&v) {
-            Ok(v)
-        } else {
-            Err(format!("{v} is out of range; allowed 16..=1024"))
-        }
-    })
-}
-fn param_stages(t: &str) -> Result<u32, String> {
-    whole_in(t, None).map_err(|e| format!("{e} (up to the configuration's cut points)"))
-}
-macro_rules! range_params {
-    ($($f:ident => $r:path),*) => { $(fn $f(t: &str) -> Result<u32, String> { whole_in(t, Some(&$r)) })* };
-}
-range_params!(
-    param_cos_frac_bits => config::COS_FRAC_BITS,
-    param_n_bits => config::N_BITS,
-    param_color_bits => config::COLOR_BITS,
-    param_intensity_frac_bits => config::INTENSITY_FRAC_BITS,
-    param_k_frac_bits => config::K_FRAC_BITS,
-    param_max_squarings => config::MAX_SQUARINGS,
-    param_tag_bits => config::TAG_BITS,
-    param_dsp_budget => config::DSP_BUDGET
-);
-
 /// Writes to standard output; a closed pipe (`specgen rom … | head -1`) ends the program
 /// quietly with exit 0, any other failure (a full disk) is an error naming standard output —
 /// never a panic.
@@ -471,51 +315,6 @@ fn message(e: &Failure) -> String {
             format!("invalid --{}: {message}", parameter.replace('_', "-"))
         }
         _ => specgen::error::chain(e),
-    }
-}
-
-impl ParamArgs {
-    /// The configuration: --config, then these flags, then `rtl`'s (when the command has them).
-    pub fn to_config(&self, rtl: Option<&RtlArgs>) -> Result<Config, Failure> {
-        let mut p = match &self.config {
-            Some(path) => Params::from_json_file(path)?,
-            None => Params::default(),
-        };
-        macro_rules! set {
-            ($src:expr; $($f:ident),*) => { $(if let Some(v) = $src.$f { p.$f = v.into(); })* };
-        }
-        set!(self; cos_frac_bits, n_bits, color_bits, intensity_frac_bits, k_frac_bits, rounding, arch, model, max_squarings);
-        if let Some(r) = rtl {
-            if let Some(v) = &r.top {
-                p.top = v.clone();
-            }
-            set!(r; stages, rom_style, target, interface, tag_bits, colour);
-            if let Some(v) = r.reset {
-                p.reset = Some(v.into());
-            }
-            if r.tlast {
-                p.tlast = true;
-            }
-            if let Some(v) = r.dsp_budget {
-                p.dsp_budget = Some(v);
-            }
-            if r.clock_enable {
-                p.clock_enable = true;
-            }
-            if r.fabric_registers {
-                p.fabric_registers = true;
-            }
-            if let Some(v) = &r.clock_mhz {
-                p.clock_mhz = Some(v.clone());
-            }
-            if let Some(v) = &r.clock_port {
-                p.clock_port = Some(v.clone());
-            }
-        }
-        if let Some(v) = &self.k {
-            p.k = v.clone();
-        }
-        Config::new(p)
     }
 }
 
@@ -768,7 +567,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             params,
         } => {
             let cfg = params.to_config(None)?;
-            eval(&cfg, cos.as_deref(), cos_code, n, ks)
+            eval::eval(&cfg, cos.as_deref(), cos_code, n, ks)
         }
         Command::Cosim(args) => cosim::run(&args),
         Command::Prove(args) => prove::run(&args),
@@ -783,7 +582,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             params,
             rtl,
         } => info::run(&params, rtl),
-        Command::Vectors(args) => vectors(&args),
+        Command::Vectors(args) => eval::vectors(&args),
         Command::Report {
             out,
             force,
@@ -815,120 +614,6 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
     }
-}
-
-fn eval(
-    cfg: &Config,
-    cos: Option<&str>,
-    cos_code: Option<u32>,
-    n: u32,
-    ks: Option<Vec<u32>>,
-) -> Result<(), Failure> {
-    let f = cfg.f();
-    let cos_g = match (cos, cos_code) {
-        (Some(text), _) => {
-            let code = config::parse_decimal(text, f).map_err(|why| {
-                usage(format!(
-                    "invalid --cos: {}; allowed a decimal in [0, 2)",
-                    why.reason()
-                ))
-            })?;
-            if code >= 2u64 << f {
-                let top = format!(
-                    "{:.*}",
-                    (f as usize * 3).div_ceil(10) + 1,
-                    ((2u64 << f) - 1) as f64 / (1u64 << f) as f64
-                );
-                return Err(usage(
-                    if text.trim_start().starts_with('-')
-                        || text.trim().parse::<f64>().is_ok_and(|v| v >= 2.0)
-                    {
-                        format!(
-                            "invalid --cos: {text} is out of range; allowed a decimal in [0, 2)"
-                        )
-                    } else {
-                        format!(
-                        "invalid --cos: {text} rounds to 2 at cos_frac_bits = {f} (the nearest multiple of 2^-{f}), one past the largest code; allowed a decimal in [0, 2) that rounds to at most {top}, or --cos-code"
-                    )
-                    },
-                ));
-            }
-            code as u32
-        }
-        (None, Some(code)) if code < 2u32 << f => code,
-        (None, Some(code)) => {
-            return Err(usage(format!(
-                "invalid --cos-code: {code} is out of range; allowed 0..={}",
-                (2u32 << f) - 1
-            )))
-        }
-        (None, None) => return Err(usage("one of --cos or --cos-code is required")),
-    };
-    let n_max = (1u32 << cfg.n_bits()) - 1;
-    if n > n_max {
-        return Err(usage(format!(
-            "invalid --n: {n} is out of range; allowed 0..={n_max} (n_bits = {})",
-            cfg.n_bits()
-        )));
-    }
-    let ks_max = (1u32 << cfg.b()) - 1;
-    let ks = ks.unwrap_or_else(|| vec![ks_max; 3]);
-    if ks.len() != 3 {
-        return Err(usage(format!(
-            "invalid --ks: give three codes R,G,B, each 0..={ks_max}"
-        )));
-    }
-    if let Some(bad) = ks.iter().find(|&&k| k > ks_max) {
-        return Err(usage(format!(
-            "invalid --ks: {bad} is out of range; allowed 0..={ks_max} (color_bits = {})",
-            cfg.b()
-        )));
-    }
-    let x = Inputs {
-        cos_g,
-        n,
-        ks: [ks[0], ks[1], ks[2]],
-    };
-    // the golden model alone: no datapath, no Verilog
-    let m = specgen::models::Model::new(cfg);
-    let o = m.eval(x);
-    let c = cos_g.min(1 << f) as f64 / (1u64 << f) as f64;
-    let blinn = c.powi(n as i32);
-    let scale = (cfg.fi() as f64).exp2();
-    outln!(
-        "input      cos_g = {cos_g} (UQ1.{f} = {}), n = {n}, ks = {:?}",
-        exact_decimal(cos_g as u64, f),
-        x.ks
-    )?;
-    outln!("model      {}", cfg.model().name())?;
-    for line in m.unit().explain(x) {
-        outln!("{line}")?;
-    }
-    outln!(
-        "outputs    intensity = {} (UQ1.{} = {:.9})  spec = {:?}  done = {}",
-        o.intensity,
-        cfg.fi(),
-        o.intensity as f64 / scale,
-        o.spec,
-        o.done
-    )?;
-    outln!(
-        "fidelity   Blinn cos^n = {blinn:.9}; this unit gives {:.9}, off by {:.9}{}",
-        o.intensity as f64 / scale,
-        (o.intensity as f64 / scale - blinn).abs(),
-        m.unit()
-            .fidelity_note(x)
-            .map_or(String::new(), |note| format!("; {note}"))
-    )?;
-    match m.check(x, o) {
-        Ok(()) => outln!(
-            "contract   {} rounding holds for this input ({} model)",
-            cfg.rounding().name(),
-            cfg.model().name()
-        )?,
-        Err(e) => return Err(failed(format!("contract violated: {e}"))),
-    }
-    Ok(())
 }
 
 /// The command line, with each ranged parameter's help completed from `config::RANGES` (one
@@ -983,50 +668,4 @@ pub fn main() -> i32 {
             exit_code(&e)
         }
     }
-}
-
-fn vectors(args: &VectorsArgs) -> Result<(), Failure> {
-    use specgen::vectors::{Selection, VectorFormat};
-    let design = specgen::cosim::Design::load(&args.rtl)?;
-    design.verify_files(false)?;
-    design.refuse_output("--out", &args.out)?;
-    let model = design.plan.model();
-    let selection = if args.exhaustive {
-        Selection::Exhaustive
-    } else {
-        Selection::Random {
-            count: args.count,
-            seed: args.seed,
-        }
-    };
-    let format = args.format.map(Into::into).unwrap_or_else(|| {
-        match args
-            .out
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
-            Some("hex" | "mem") => VectorFormat::Hex,
-            _ => VectorFormat::Csv,
-        }
-    });
-    let (wanted, _) = specgen::vectors::inputs(&model, selection);
-    if wanted > args.max_rows {
-        return Err(usage(format!(
-            "invalid --max-rows: this set is {wanted} rows ({:.1} GB or more as text) and --max-rows is {}; allowed: raise --max-rows to at least {wanted}, or narrow --n-bits/--cos-frac-bits, or use random vectors (--count)",
-            wanted as f64 * 40.0 / 1e9,
-            args.max_rows
-        )));
-    }
-    let rows = specgen::output::write_file_with(&args.out, |w| {
-        specgen::vectors::write(&model, selection, format, w)
-    })
-    .map_err(|e| Failure::io("write", &args.out, e))?;
-    outln!(
-        "{rows} vectors ({format:?}, latency {}) written to {}",
-        design.cfg.latency(),
-        args.out.display()
-    )?;
-    Ok(())
 }
