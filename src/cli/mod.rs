@@ -1,6 +1,7 @@
 //! The command line: parse flags, build a [`Config`], call the library, map errors to exit codes
 //! (2: bad parameters or usage, 1: a check failed or an I/O error).
 
+mod calibrate;
 mod cosim;
 mod eval;
 mod explore;
@@ -161,12 +162,12 @@ pub enum Command {
     Measure(explore::MeasureArgs),
     /// List the measured rows of the explorations `generate --max-error` chooses from that are
     /// not of today's RTL (their jobs' RTL digest is another): exit 1 when any is.
-    Stale(explore::StaleArgs),
+    Stale(calibrate::StaleArgs),
     /// Fit the delay model of --target-mhz to a calibration CSV (data/delay_calibration.csv's
     /// columns): per family and datapath, the clock period as a plane in the slowest and the mean
     /// stretch of logic, its cap and margin, and each row kept as a floor; written as JSON
     /// (data/delay_model.json's form) to --out. Every row's stretches are planned here.
-    Calibrate(explore::CalibrateArgs),
+    Calibrate(calibrate::CalibrateArgs),
     /// What this specgen offers, for scripts (never parse an error message): its version, the
     /// models, the targets (with their parts, and whether a delay model and a built-in
     /// exploration speak for them), and the deepest pipeline of the configuration the flags give.
@@ -575,8 +576,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Synth(args) => synth::run(&args),
         Command::Explore(args) => explore::run(&args),
         Command::Measure(args) => explore::measure(&args),
-        Command::Stale(args) => explore::stale(&args),
-        Command::Calibrate(args) => explore::calibrate(&args),
+        Command::Stale(args) => calibrate::stale(&args),
+        Command::Calibrate(args) => calibrate::calibrate(&args),
         Command::Info {
             json: _,
             params,
