@@ -1,6 +1,12 @@
 //! The simulators: cached builds of the harnesses in `tb/`, and runs that stream vectors
 //! through them into a [`Checker`].
 
+mod cache;
+mod records;
+use cache::*;
+pub use records::write_trace;
+use records::*;
+
 use super::{
     Checker, Cycle, Design, Mismatch, Recorded, Report, Sampled, SimTools, Simulator, Stimulus,
 };
@@ -16,84 +22,6 @@ use std::time::{Duration, Instant};
 
 const VERILATOR_HARNESS: &str = include_str!("../../tb/verilator_harness.cpp");
 const ICARUS_BENCH: &str = include_str!("../../tb/icarus_bench.v");
-
-/// The simulator cache: `$SPECGEN_CACHE_DIR`, `$XDG_CACHE_HOME/specgen`, `$HOME/.cache/specgen`
-/// (where one can be made there), else `<tmp>/specgen-cache-<uid>`. Its programs are run, so it is the caller's own: created
-/// `0700`, and checked on every use (`output::private_dir`: not a link, the caller's, writable
-/// by no one else); a shared or planted directory is refused, never used.
-fn cache_root() -> Result<PathBuf, Failure> {
-    let root = if let Some(dir) = std::env::var_os("SPECGEN_CACHE_DIR").filter(|d| !d.is_empty()) {
-        // a relative name is the caller's working directory's (the simulators run elsewhere)
-        std::path::absolute(PathBuf::from(&dir)).map_err(|e| {
-            error::tool(
-                "simulator",
-                format!("SPECGEN_CACHE_DIR={}: {e}", PathBuf::from(&dir).display()),
-            )
-        })?
-    } else if let Some(dir) =
-        std::env::var_os("XDG_CACHE_HOME").filter(|d| Path::new(d).is_absolute())
-    {
-        PathBuf::from(dir).join("specgen")
-    } else if let Some(cache) = std::env::var_os("HOME")
-        .filter(|d| Path::new(d).is_absolute())
-        .map(|home| PathBuf::from(home).join(".cache").join("specgen"))
-        // a HOME where no cache can be made (not a directory, not writable) falls back to the
-        // temporary one; a cache that is there is held to the rules below, never passed over
-        .filter(|c| {
-            c.exists()
-                || c.parent()
-                    .is_some_and(|p| std::fs::create_dir_all(p).is_ok())
-        })
-    {
-        cache
-    } else {
-        std::env::temp_dir().join(format!("specgen-cache-{}", crate::output::euid()))
-    };
-    crate::output::private_dir(&root).map_err(|why| {
-        error::tool(
-            "simulator",
-            format!("the simulator cache cannot be used: {why}"),
-        )
-    })?;
-    Ok(root)
-}
-
-/// Whether a cache entry is a real directory of the caller's (not a link planted there).
-fn own_entry(dir: &Path) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    std::fs::symlink_metadata(dir).is_ok_and(|m| m.is_dir() && m.uid() == crate::output::euid())
-}
-
-/// What identifies the installed `tool` in a cache key: the program (a path as given, a name
-/// as the PATH finds it), its size, modification time and inode (an upgrade or another install
-/// changes them), read from the file system, not by running it (`verilator --version` starts
-/// Perl: 30 ms a call). A program not found is the tool's error (exit 1), naming its package.
-fn tool_identity(tool: &str, package: &str) -> Result<String, Failure> {
-    use std::os::unix::fs::MetadataExt;
-    let missing = || {
-        error::tool(tool, format!("{tool} not found: install the Debian package `{package}` (apt-get install -y {package}), or name the program"))
-    };
-    let program = if tool.contains('/') {
-        Some(PathBuf::from(tool))
-            .filter(|p| p.is_file())
-            .ok_or_else(missing)?
-    } else {
-        let paths = std::env::var_os("PATH").ok_or_else(missing)?;
-        std::env::split_paths(&paths)
-            .map(|d| d.join(tool))
-            .find(|p| p.is_file())
-            .ok_or_else(missing)?
-    };
-    let real = std::fs::canonicalize(&program).unwrap_or(program);
-    let m = std::fs::metadata(&real).map_err(|_| missing())?;
-    Ok(format!(
-        "{} {} {} {}",
-        real.display(),
-        m.len(),
-        m.mtime(),
-        m.ino()
-    ))
-}
 
 /// A built simulator, ready to run vectors.
 pub struct Built {
@@ -330,63 +258,6 @@ pub fn build(
         vvp,
         fresh: true,
     })
-}
-
-const IN_RECORD: usize = 24;
-/// An output record: 24 bytes with `out_tag`, 12 without (`-DTAGGED`).
-fn out_record(tagged: bool) -> usize {
-    if tagged {
-        24
-    } else {
-        12
-    }
-}
-/// Cycles a batch: the harness's `BATCH`.
-const CHUNK: u64 = 1 << 14;
-
-/// The input record's flags byte.
-fn flags(c: &Cycle) -> u8 {
-    c.valid as u8
-        | (c.rst as u8) << 1
-        | (!c.stall as u8) << 2
-        | (c.load as u8) << 3
-        | (c.disabled as u8) << 4
-}
-
-fn encode(c: &Cycle, buf: &mut Vec<u8>) {
-    buf.extend_from_slice(&c.inputs.cos_g.to_le_bytes());
-    buf.extend_from_slice(&(c.inputs.n as u16).to_le_bytes());
-    for k in c.inputs.ks {
-        buf.extend_from_slice(&(k as u16).to_le_bytes());
-    }
-    buf.push(flags(c));
-    buf.extend_from_slice(&[0, 0, 0]);
-    buf.extend_from_slice(&c.tag.to_le_bytes());
-}
-
-/// One cycle folded into a batch's digest of the inputs applied, as the harness folds the cycle
-/// it applied (its `applied`, over the input record's fields).
-fn applied(h: u64, c: &Cycle) -> u64 {
-    let [r, g, b] = c.inputs.ks.map(|k| k as u16 as u64);
-    let a = c.inputs.cos_g as u64 | (c.inputs.n as u16 as u64) << 32 | (flags(c) as u64) << 48;
-    (h.rotate_left(7) ^ a).wrapping_add((r | g << 16 | b << 32) ^ c.tag)
-}
-
-fn decode(rec: &[u8]) -> Sampled {
-    let u16at = |i: usize| u16::from_le_bytes([rec[i], rec[i + 1]]) as u32;
-    Sampled {
-        outputs: Outputs {
-            intensity: u32::from_le_bytes([rec[0], rec[1], rec[2], rec[3]]),
-            spec: [u16at(4), u16at(6), u16at(8)],
-            done: rec[10] & 2 != 0,
-        },
-        valid: rec[10] & 1 != 0,
-        in_ready: rec[10] & 4 != 0,
-        idle: rec[10] & 8 != 0,
-        tag: rec
-            .get(16..24)
-            .map_or(0, |t| u64::from_le_bytes(t.try_into().expect("8 bytes"))),
-    }
 }
 
 /// Runs one stimulus through the built simulator, checking every cycle. `progress` counts
@@ -893,49 +764,6 @@ fn progress_bar(progress: &AtomicU64, total: u64, done: &std::sync::atomic::Atom
     if shown {
         let _ = writeln!(std::io::stderr());
     }
-}
-
-/// Replays a short window around a failure with a tracing build and writes its VCD.
-pub fn write_trace(
-    design: &Design,
-    tools: &SimTools,
-    model: &Model,
-    stims: &[Box<dyn Stimulus>],
-    m: &Mismatch,
-    path: &Path,
-) -> Result<(), Failure> {
-    // a short window: a quick build
-    let built = build(design, Simulator::Verilator, tools, true, 0)?;
-    let stim = stims[m.run].as_ref();
-    let s = design.cfg.latency() as u64;
-    let from = m.cycle.saturating_sub(16 + s);
-    let to = (m.cycle + 4).min(stim.len() - 1);
-    let mut cycles = Vec::new();
-    if design.cfg.clocked() {
-        cycles.push(Cycle {
-            rst: true,
-            valid: false,
-            ..stim.cycle(from)
-        });
-    }
-    cycles.extend((from..=to).map(|i| stim.cycle(i)));
-    // the harness writes into a directory of ours; the trace reaches `path` only when it exists
-    let work = crate::process::temp_dir().map_err(|e| error::tool("simulator", e.to_string()))?;
-    let vcd = work.path().join("trace.vcd");
-    run_one(
-        &built,
-        design,
-        model,
-        &Recorded(cycles),
-        0,
-        &AtomicU64::new(0),
-        &[("SPECGEN_VCD", &vcd)],
-    )?;
-    let bytes = match std::fs::read(&vcd) {
-        Ok(b) if !b.is_empty() => b,
-        _ => return Err(error::tool("verilator", "the simulator wrote no trace")),
-    };
-    crate::output::write_file(path, &bytes).map_err(|e| Failure::io("write", path, e))
 }
 
 /// Whether `tool` is an executable on the PATH (looked up directly, no shell).
