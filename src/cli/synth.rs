@@ -43,7 +43,7 @@ pub struct SynthArgs {
     #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(0..=10_000_000))]
     pub verify_vectors: u64,
     /// ECP5 speed grade: nextpnr places for it and the blocks' limits are read at it
-    /// (DP16KD: 211.9 MHz at 6, 254.2 at 7, 271.4 at 8)
+    /// (DP16KD: 211.9 MHz at 6, 254.1 at 7, 271.4 at 8)
     #[arg(long, value_name = "GRADE", default_value_t = 6, value_parser = clap::value_parser!(u32).range(6..=8))]
     pub speed: u32,
     /// With --verify: every (cos_g, n) of the unit through the netlist under Verilator (Icarus

@@ -202,6 +202,27 @@ pub fn calibration_csv(e: &Exploration) -> String {
                 args.push(format!("{flag} {v}"));
             }
         }
+        // the widths a model reads beyond those four (the delay model's shape reads them: a
+        // row without them would stand for another unit)
+        let model = p.params.model;
+        for (flag, key, v, d) in [
+            (
+                "--k-frac-bits",
+                "k_frac_bits",
+                p.params.k_frac_bits,
+                defaults.k_frac_bits,
+            ),
+            (
+                "--max-squarings",
+                "max_squarings",
+                p.params.max_squarings,
+                defaults.max_squarings,
+            ),
+        ] {
+            if v != d && model.reads(key) {
+                args.push(format!("{flag} {v}"));
+            }
+        }
         if let Some(b) = p.params.dsp_budget {
             args.push(format!("--dsp-budget {b}"));
         }

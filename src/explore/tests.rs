@@ -594,3 +594,48 @@ fn the_estimate_is_near_what_synth_measures() {
         );
     }
 }
+
+/// A calibration row names every width the delay model's shape reads: a unit measured with
+/// `--k-frac-bits 20` is a row whose flags plan that unit (it had read as the default 16, the
+/// shape of another unit).
+#[test]
+fn a_calibration_row_names_every_width_its_unit_was_measured_at() {
+    let params = Params {
+        k_frac_bits: 20,
+        cos_frac_bits: 18,
+        ..Params::default()
+    };
+    let mut ps = unit_points(&[params.clone()]).unwrap();
+    let p = &mut ps[0];
+    p.measured = Some(Measured {
+        seeds: vec![1],
+        fmax_seeds: vec![90.0],
+        fmax_mhz: Some(90.0),
+        route_seeds: vec![90.0],
+        logic_cells: Some(100),
+        luts: 0,
+        flip_flops: 0,
+        dsp_blocks: 0,
+        block_rams: 0,
+        limited_by: String::new(),
+        note: String::new(),
+        jobs: vec![],
+        tools: Versions::new(),
+    });
+    let e = Exploration {
+        generator: "specgen".into(),
+        version: "x".into(),
+        target: "ice40".into(),
+        part: "p".into(),
+        metric: "max".into(),
+        clocks: vec![],
+        seeds: vec![1],
+        points: ps,
+    };
+    let csv = calibration_csv(&e);
+    let row = csv.lines().nth(1).expect("a row");
+    let args = row.split(',').nth(7).unwrap();
+    assert_eq!(args, "--cos-frac-bits 18 --k-frac-bits 20", "{row}");
+    let read = crate::timing::params_with_args(&Params::default(), args).unwrap();
+    assert_eq!((read.k_frac_bits, read.cos_frac_bits), (20, 18));
+}

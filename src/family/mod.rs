@@ -386,7 +386,7 @@ mod tests {
 
     /// A family named outside its home: every `Target::Ice40`, `Target::Ecp5` or
     /// `Target::Generic` in the code (not the unit tests) of `src/` outside `src/family/` and
-    /// the enum's own file. There is none: a comparison elsewhere would give a new family
+    /// the enum's own files (`config/kinds.rs`, and `config/mod.rs` for the default). There is none: a comparison elsewhere would give a new family
     /// another's behaviour in silence.
     #[test]
     fn family_names_stay_home() {
@@ -405,8 +405,9 @@ mod tests {
                         .replace('\\', "/");
                     // a `tests.rs` is a module of unit tests as a whole
                     if rel.starts_with("family/")
+                        || rel == "config/kinds.rs"
                         || rel == "config/mod.rs"
-                        || rel.ends_with("/tests.rs")
+                        || rel.ends_with("tests.rs")
                     {
                         continue;
                     }
@@ -417,6 +418,56 @@ mod tests {
                         .map(|t| code.matches(t).count())
                         .sum::<usize>();
                     assert!(n == 0, "src/{rel} names a family {n} times (at most 0): ask crate::family::of(target) instead");
+                }
+            }
+        }
+    }
+
+    /// The block limits SPEC states are the ones `synth` applies: each limit's minimum period
+    /// and its clock, on every grade, stand in the SPEC's row of that block, and `synth
+    /// --speed`'s help names the DP16KD's clock at each grade (a changed figure in a family's
+    /// home fails here until the words follow).
+    #[test]
+    fn the_spec_states_the_block_limits_the_families_apply() {
+        let help = include_str!("../cli/synth.rs");
+        let dp = |grade| {
+            of(crate::config::Target::Ecp5)
+                .block_limits(grade, true, true)
+                .into_iter()
+                .find(|l| l.block == "DP16KD")
+                .unwrap()
+                .mhz()
+        };
+        let said = format!(
+            "(DP16KD: {:.1} MHz at 6, {:.1} at 7, {:.1} at 8)",
+            dp(6),
+            dp(7),
+            dp(8)
+        );
+        assert!(
+            help.contains(&said),
+            "synth --speed's help does not say {said}"
+        );
+        let spec = include_str!("../../docs/SPEC.md");
+        for target in crate::config::Target::ALL {
+            for grade in [6, 7, 8] {
+                for limit in of(target).block_limits(grade, true, true) {
+                    let row = spec
+                        .lines()
+                        .find(|l| l.starts_with(&format!("| {} |", limit.block)))
+                        .unwrap_or_else(|| panic!("SPEC has no row for {}", limit.block));
+                    // a period of two pulse widths is stated as the pulse
+                    let (period, pulse) = (
+                        format!("{}", limit.period_ns),
+                        format!("{}", (limit.period_ns / 2.0 * 1e3).round() / 1e3),
+                    );
+                    let mhz = format!("{:.1}", limit.mhz());
+                    assert!(
+                        (row.contains(&period) || row.contains(&format!("2 × {pulse}")) || row.contains(&format!("/ {pulse}")))
+                            && row.contains(&mhz),
+                        "{target:?} grade {grade}: {} {period} ns / {mhz} MHz not in SPEC's row: {row}",
+                        limit.block
+                    );
                 }
             }
         }

@@ -544,15 +544,26 @@ pub fn pick_stages_reporting(
         }
     }
     if let Some((stages, c)) = capped {
+        // the same block's limit at the faster grades, from the family (one home)
+        let at = |grade: u32| {
+            crate::family::of(plan.cfg.target())
+                .block_limits(grade, true, true)
+                .into_iter()
+                .find(|l| l.block == c.block)
+                .map_or("?".to_string(), |l| format!("{:.1}", l.mhz()))
+        };
         return Err(Error::Config {
             parameter: "target_mhz",
             message: format!(
-                "{mhz} MHz is above what the blocks allow on the {}: at --stages {stages} the routes would reach it, but the {} (at most {:.1} MHz); allowed: at most {:.1} MHz here (--stages {}), or a faster speed grade (specgen synth --speed 7 or 8 measures one: DP16KD 254.2 or 271.4 MHz; this delay model is calibrated on grade 6)",
+                "{mhz} MHz is above what the blocks allow on the {}: at --stages {stages} the routes would reach it, but the {} (at most {:.1} MHz); allowed: at most {:.1} MHz here (--stages {}), or a faster speed grade (specgen synth --speed 7 or 8 measures one: {} {} or {} MHz; this delay model is calibrated on grade 6)",
                 part(plan.cfg.target()),
                 c.what,
                 c.mhz(),
                 best.2,
-                best.0
+                best.0,
+                c.block,
+                at(7),
+                at(8)
             ),
         });
     }

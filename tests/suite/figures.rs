@@ -138,3 +138,39 @@ fn the_readmes_table_of_models_is_the_explorations_and_the_benchs() {
         "{checked} cells checked: the table's form changed"
     );
 }
+
+/// The SPEC states what the tool promises: no commit of the history (a hash of 7 to 40 hex
+/// digits) and no figure a bench measured (a "measured" or "median" number): those live in
+/// `benchmarks/` and the data files, and the prose links to them.
+#[test]
+fn the_spec_holds_no_commit_and_no_measured_figure() {
+    let spec = std::fs::read_to_string(root().join("docs/SPEC.md")).unwrap();
+    let mut found = Vec::new();
+    for (i, line) in spec.lines().enumerate() {
+        for word in line.split(|c: char| !c.is_ascii_alphanumeric()) {
+            let hex = (7..=40).contains(&word.len())
+                && word
+                    .chars()
+                    .all(|c| c.is_ascii_hexdigit() && !c.is_ascii_uppercase())
+                && word.chars().any(|c| c.is_ascii_digit())
+                && word.chars().any(|c| c.is_ascii_alphabetic());
+            if hex {
+                found.push(format!("line {}: a commit? {word}", i + 1));
+            }
+        }
+        let lower = line.to_lowercase();
+        for lead in ["measured ", "measures ", "median ", "median of "] {
+            for (at, _) in lower.match_indices(lead) {
+                let next = lower[at + lead.len()..].chars().next();
+                if next.is_some_and(|c| c.is_ascii_digit()) {
+                    found.push(format!(
+                        "line {}: a measured figure: {}",
+                        i + 1,
+                        line.trim()
+                    ));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "docs/SPEC.md:\n{}", found.join("\n"));
+}
