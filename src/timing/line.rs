@@ -171,8 +171,8 @@ impl Line {
     /// counted from the deepest (blinn on the ECP5: 149 MHz at 7 cuts from the deepest at narrow
     /// widths, 167 at the default ones).
     ///
-    /// *Else a ceiling*: the least, over the corners, of each one's shallowest unit at as many
-    /// cuts from its deepest or fewer (a deeper unit of a width runs as fast as a shallower one
+    /// *Else a ceiling*: the least, over the corners no harder to clock ([`Line::caps`]), of
+    /// each one's shallowest unit at as many cuts from its deepest or fewer (a deeper unit of a width runs as fast as a shallower one
     /// or faster, so a shallower unit is no ceiling). Between calibrated widths the line alone
     /// over-promised (a lean at 10/6/8/12 bits, 11 stages, predicted 124.9 MHz, measured 83.2,
     /// where the narrow unit had 52.2 at that depth).
@@ -209,10 +209,20 @@ impl Line {
         let ceiling = self
             .corners
             .iter()
+            .filter(|c| self.caps(c))
             .filter_map(|c| c.unit_at_or_deeper(from_deepest))
             .map(|u| u.2)
             .fold(f64::INFINITY, f64::min);
         (ceiling, false)
+    }
+
+    /// Whether a calibrated width caps the configuration's clock: its units are no harder to
+    /// clock ([`Shape::easier_than`]: no wider, as many blocks or more), so one as deep or
+    /// deeper runs at least as fast as this one would. A wider width, or one with products in
+    /// the fabric, is slower and caps nothing (a lean at 14/9/6/14 was held at the 59.1 MHz of
+    /// 18-bit cosines; a budget of 5 blocks capped a fitted unit whose products are all blocks).
+    fn caps(&self, c: &Corner) -> bool {
+        self.own.as_ref().is_none_or(|own| c.shape.easier_than(own))
     }
 
     /// At widths never measured, the corners' unit that sets [`Line::corner`]'s figure at
@@ -223,6 +233,7 @@ impl Line {
         let from_deepest = self.deepest.saturating_sub(stages);
         self.corners
             .iter()
+            .filter(|c| floor || self.caps(c))
             .filter_map(|c| {
                 if floor {
                     c.unit_at(from_deepest)

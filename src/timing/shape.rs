@@ -114,6 +114,15 @@ impl Shape {
         self.alike(o) && self.sizes().iter().zip(o.sizes()).all(|(a, b)| a <= &b)
     }
 
+    /// Whether a unit of this shape is no harder to clock than one of `o`'s: alike, no wider in
+    /// any width, and with as many blocks or more (a budget leaves products in the fabric, a
+    /// slower shape; fewer blocks is not narrower here).
+    pub(crate) fn easier_than(&self, o: &Shape) -> bool {
+        let (own, theirs) = (self.sizes(), o.sizes());
+        let budget = own.len() - 1;
+        self.alike(o) && (0..budget).all(|i| own[i] <= theirs[i]) && own[budget] >= theirs[budget]
+    }
+
     /// Whether this shape lies in the box `shapes` span: each size between the least and the
     /// most any of them has, each other flag one that one of them has.
     pub(crate) fn between(&self, shapes: &[Shape]) -> bool {

@@ -215,15 +215,25 @@ fn only_units_of_the_same_widths_are_floors() {
         (50.0, false),
         "a longer stretch: a ceiling only"
     );
-    // a ceiling is a unit as deep as the depth read or deeper, never a shallower one (a
-    // shallower unit runs slower: 60 MHz at 3 stages says nothing of 6)
-    let deeper = Line {
-        corners: vec![theirs
+    // the wider default widths cap nothing of 12-bit cosines (a wider unit is slower)...
+    let wider_only = Line {
+        corners: theirs
             .corners
             .iter()
-            .find(|c| c.args.is_empty())
+            .filter(|c| c.args.is_empty())
             .cloned()
-            .unwrap()],
+            .collect(),
+        surrounded: false,
+        ..theirs.clone()
+    };
+    assert_eq!(wider_only.corner(0, 1.0), (f64::INFINITY, false));
+    // ...and a ceiling is a unit as deep as the depth read or deeper, never a shallower one (a
+    // shallower unit runs slower: 60 MHz at 3 stages says nothing of 6), read here at the
+    // default widths' own shape
+    let default_corner = wider_only.corners[0].clone();
+    let deeper = Line {
+        own: Some(default_corner.shape.clone()),
+        corners: vec![default_corner],
         surrounded: false,
         ..theirs.clone()
     };
@@ -664,4 +674,17 @@ fn a_width_with_a_product_in_luts_is_no_corner_of_one_without() {
     );
     assert_eq!(read.corners.len(), 1);
     assert!(read.corners[0].args.contains("--color-bits 4"));
+}
+
+/// A ceiling comes only from widths no harder to clock: no wider in any width and with as many
+/// blocks or more. A budget that leaves products in the fabric is harder, not narrower.
+#[test]
+fn a_ceiling_comes_from_no_wider_widths_with_as_many_blocks() {
+    let base = Config::defaults().params;
+    let sh = |args: &str| shape::Shape::of_args(args, &base).unwrap();
+    let (default, narrower, budget) = (sh(""), sh("--cos-frac-bits 10"), sh("--dsp-budget 5"));
+    assert!(narrower.easier_than(&default) && !default.easier_than(&narrower));
+    assert!(!budget.easier_than(&default), "fewer blocks is slower");
+    assert!(default.easier_than(&budget));
+    assert!(default.easier_than(&default));
 }
