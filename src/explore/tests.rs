@@ -605,7 +605,7 @@ fn a_calibration_row_names_every_width_its_unit_was_measured_at() {
         cos_frac_bits: 18,
         ..Params::default()
     };
-    let mut ps = unit_points(&[params.clone()]).unwrap();
+    let mut ps = unit_points(std::slice::from_ref(&params)).unwrap();
     let p = &mut ps[0];
     p.measured = Some(Measured {
         seeds: vec![1],
