@@ -23,8 +23,8 @@
 //!    squares (`specgen calibrate`, `timing::fit`) to the calibration's medians,
 //!    `period_ns = offset_ns + ns_per_unit·e + ns_per_mean_unit·m`, slopes and intercept
 //!    non-negative, its R² stored; assured times its `margin` (the worst measured/predicted
-//!    ratio of its data), and never above what the calibrated widths measured as deep or deeper
-//!    (a ceiling: `Line::corner`).
+//!    ratio of its data), and never above what calibrated widths no harder to clock (no wider,
+//!    as many blocks or more) measured as deep or deeper (a ceiling: `Line::corner`).
 //!
 //! Every figure stays under the blocks' limits at speed grade 6 (`crate::family`) and, for a
 //! `ready`/`axis` unit, under the most a unit with its output buffer was measured at.
