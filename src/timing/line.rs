@@ -268,10 +268,14 @@ impl Line {
     pub fn assured_by_rule(&self, plan: &Plan) -> (f64, Rule) {
         let (e, m) = stretches(plan);
         match self.corner(plan.cfg.stages(), e) {
-            (v, true) => (v * corner_margin(), Rule::Between),
-            (v, false) => {
+            (v, true) if !inferred_blocks(plan) => (v * corner_margin(), Rule::Between),
+            (v, _) => {
                 let (a, rule) = self.assured_with_rule(e, m);
-                (a.min(v), rule)
+                match rule {
+                    // the line was fitted to units whose blocks have their registers
+                    Rule::Line if inferred_blocks(plan) => (0.0, Rule::Line),
+                    _ => (a.min(v), rule),
+                }
             }
         }
     }
@@ -296,4 +300,27 @@ impl Line {
             }
         }
     }
+}
+
+/// Whether `plan` leaves a product to the synthesis tool on a family whose unit instantiates
+/// its blocks with their registers (the ECP5, the GW1NR-9): at such a depth the tool maps it
+/// into a block without registers, behind a table read without its output register, paths no
+/// calibrated width around it measured. Such a depth is assured only by units of its own widths
+/// measured on today's RTL, never by the widths around it or the line (schlick on the ECP5 at 10 stages, at 11/9/7/11, 14/10/7/12 and 10/7/8/13 bits:
+/// 69-70 MHz, where the widths around them had 111).
+pub(crate) fn inferred_blocks(plan: &Plan) -> bool {
+    let dp = &plan.datapath;
+    crate::family::of(plan.cfg.target()).instantiated_blocks()
+        && dp.steps.iter().any(|s| {
+            s.dsps.is_empty()
+                && s.wires.iter().any(|w| {
+                    w.product().is_some()
+                        && dp
+                            .product_uses
+                            .iter()
+                            .find(|u| u.name == w.name)
+                            .map_or(1, |u| u.blocks)
+                            > 0
+                })
+        })
 }

@@ -26,6 +26,10 @@
 //!    ratio of its data), and never above what calibrated widths no harder to clock (no wider,
 //!    as many blocks or more) measured as deep or deeper (a ceiling: `Line::corner`).
 //!
+//! A depth that leaves a product to the synthesis tool where the family's unit instantiates its
+//! blocks with their registers (the ECP5 and the GW1NR-9 at a shallow depth) is assured by rule 1
+//! alone: neither the widths around it nor the line measured such paths (`line::inferred_blocks`).
+//!
 //! Every figure stays under the blocks' limits at speed grade 6 (`crate::family`) and, for a
 //! `ready`/`axis` unit, under the most a unit with its output buffer was measured at.
 //! [`pick_stages`] scans depths from the shallowest for the first whose assured figure reaches

@@ -688,3 +688,32 @@ fn a_ceiling_comes_from_no_wider_widths_with_as_many_blocks() {
     assert!(default.easier_than(&budget));
     assert!(default.easier_than(&default));
 }
+
+/// A depth that leaves a product to the synthesis tool on a family whose unit instantiates its
+/// blocks with their registers (the ECP5) is assured nothing by the widths around it or the
+/// line: schlick at 11/9/7/11 bits and 10 stages measured 70 MHz (a table read and a product
+/// without registers) where the widths around it read 111. Deeper, every product is a block
+/// with its registers and the widths around it speak again.
+#[test]
+fn a_depth_with_products_left_to_the_tool_is_assured_only_by_its_own_units() {
+    let p = crate::config::Params {
+        model: crate::config::SpecularModel::Schlick,
+        target: Target::Ecp5,
+        cos_frac_bits: 11,
+        n_bits: 9,
+        color_bits: 7,
+        intensity_frac_bits: 11,
+        stages: 10,
+        ..Config::defaults().params
+    };
+    let shallow = Plan::new(Config::new(p).unwrap()).unwrap();
+    assert!(super::line::inferred_blocks(&shallow));
+    let (f, rule) = assured_reading(&shallow).unwrap();
+    assert!(
+        f == 0.0 || rule == Rule::Floor,
+        "{f} MHz by {rule:?} at a depth no unit of these widths measured"
+    );
+    let deep = shallow.with_stages(shallow.cut_points).unwrap();
+    assert!(!super::line::inferred_blocks(&deep));
+    assert!(assured_reading(&deep).unwrap().0 > 0.0);
+}
