@@ -13,7 +13,7 @@
 //! 4. [`models`]: one home per model behind the `SpecularUnit` trait, and the registry;
 //! 5. [`plan`]: config → model → registers placed → datapath, built once per command;
 //! 6. [`timing`] (the delay model), [`interface`] (the handshake, tag and colour around the
-//!    datapath), [`emit`] and [`rom`] (files);
+//!    datapath), [`emit`] and [`table::formats`] (files);
 //! 7. [`cosim`], [`synth`], [`prove`], [`vectors`], [`render`], [`explore`] (the space, its
 //!    measurements, the one depth search and the choice), [`report`], [`paper`].
 //!
@@ -38,7 +38,6 @@ pub mod process;
 pub mod prove;
 pub mod render;
 pub mod report;
-pub mod rom;
 pub mod small_file;
 pub mod synth;
 pub mod table;

@@ -21,7 +21,7 @@ use specgen::config::{self, Config, Params};
 use specgen::emit;
 use specgen::models::Inputs;
 use specgen::plan::Plan;
-use specgen::rom;
+use specgen::table::formats as rom;
 use std::path::PathBuf;
 use values::{
     ArchFlag, ColourFlag, InterfaceFlag, ModelFlag, ResetFlag, RomFormatFlag, RomStyleFlag,

@@ -4,7 +4,7 @@
 use specgen::config::{Arch, Colour, Interface, Reset, RomStyle, Rounding, SpecularModel, Target};
 use specgen::cosim::Simulator;
 use specgen::explore::Metric;
-use specgen::rom::RomFormat;
+use specgen::table::formats::RomFormat;
 use specgen::vectors::VectorFormat;
 
 /// A clap value enum mirroring a library enum variant for variant, with its conversion.

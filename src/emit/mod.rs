@@ -8,7 +8,7 @@ use crate::config::{Params, RomStyle, Target};
 use crate::datapath::{self, DelayLine, Waiting, Wire};
 use crate::plan::Plan;
 use crate::ports::Port;
-use crate::rom::{self, RomFormat};
+use crate::table::formats::{self as rom, RomFormat};
 use askama::Template;
 use serde::Serialize;
 

@@ -1,6 +1,9 @@
 //! A constant table of the unit (a ROM): its words, its width, the file it is written to.
-//! Models make them, the datapath reads them, `emit` and `rom` write them. A leaf: it imports
-//! only the fixed-point helpers.
+//! Models make them, the datapath reads them (`datapath/tables.rs`), `emit` writes them, and
+//! `formats` renders any of them in an export format (`specgen rom`). The type imports only the
+//! fixed-point helpers; `formats` reads the configuration its header names.
+
+pub mod formats;
 
 use crate::bits::bit_length;
 
