@@ -385,7 +385,7 @@ fn every_gowin_model_at_default_widths_is_right_through_the_netlists_of_both_yos
 }
 
 /// `--target gowin --target-mhz` picks from the part's own delay model
-/// (`benchmarks/target-gowin.md` measures every pick at 50, 100 and 150 MHz over seeds 1–5):
+/// (`benchmarks/target-gowin.md` measures every pick at 50, 100 and 150 MHz over seeds 1–3):
 /// every model but blinn-pow (which does not fit the part) gets a depth at 100 MHz, recorded in
 /// its manifest with the model's prediction; a clock past every calibrated unit is refused with
 /// exit 2, as is a handshake interface, of which no unit was measured on the part.
