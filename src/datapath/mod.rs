@@ -196,6 +196,14 @@ impl Datapath {
             .sum()
     }
 
+    /// The hard blocks the product `name` takes (0: LUTs; one where no use is recorded).
+    pub(crate) fn product_blocks(&self, name: &str) -> u32 {
+        self.product_uses
+            .iter()
+            .find(|u| u.name == name)
+            .map_or(1, |u| u.blocks)
+    }
+
     /// The products `--dsp-budget` put in the fabric, by name.
     pub fn fabric_products(&self) -> Vec<&str> {
         self.product_uses

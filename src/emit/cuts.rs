@@ -209,11 +209,7 @@ pub(crate) fn unregistered_products(
     let mut out = Vec::new();
     for s in &dp.steps {
         for w in s.wires.iter().filter(|w| w.product().is_some()) {
-            let blocks = dp
-                .product_uses
-                .iter()
-                .find(|u| u.name == w.name)
-                .map_or(1, |u| u.blocks);
+            let blocks = dp.product_blocks(&w.name);
             if blocks == 0 {
                 continue; // LUTs: no block
             }

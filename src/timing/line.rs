@@ -267,13 +267,14 @@ impl Line {
     /// [`Line::assured_of`], and the rule of the module doc that gave it.
     pub fn assured_by_rule(&self, plan: &Plan) -> (f64, Rule) {
         let (e, m) = stretches(plan);
+        let inferred = inferred_blocks(plan);
         match self.corner(plan.cfg.stages(), e) {
-            (v, true) if !inferred_blocks(plan) => (v * corner_margin(), Rule::Between),
+            (v, true) if !inferred => (v * corner_margin(), Rule::Between),
             (v, _) => {
                 let (a, rule) = self.assured_with_rule(e, m);
                 match rule {
                     // the line was fitted to units whose blocks have their registers
-                    Rule::Line if inferred_blocks(plan) => (0.0, Rule::Line),
+                    Rule::Line if inferred => (0.0, Rule::Line),
                     _ => (a.min(v), rule),
                 }
             }
@@ -313,14 +314,8 @@ pub(crate) fn inferred_blocks(plan: &Plan) -> bool {
     crate::family::of(plan.cfg.target()).instantiated_blocks()
         && dp.steps.iter().any(|s| {
             s.dsps.is_empty()
-                && s.wires.iter().any(|w| {
-                    w.product().is_some()
-                        && dp
-                            .product_uses
-                            .iter()
-                            .find(|u| u.name == w.name)
-                            .map_or(1, |u| u.blocks)
-                            > 0
-                })
+                && s.wires
+                    .iter()
+                    .any(|w| w.product().is_some() && dp.product_blocks(&w.name) > 0)
         })
 }
