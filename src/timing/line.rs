@@ -16,7 +16,7 @@ impl Line {
         line.max(self.measured_floor(e, m))
     }
 
-    /// The median Fmax measured on the nearest calibration unit whose slowest and mean
+    /// The Fmax measured (`fit::row_figure`) on the nearest calibration unit whose slowest and mean
     /// stretches are both at least `e` and `m` (nearest: the least sum of the two differences;
     /// of equals, the slower; 0: none). Not the best of them: the data is not monotone to a
     /// seed's scatter (lean on the iCE40: 70.2 MHz at 5 stages, 64.3 at 6 with stretches no

@@ -11,8 +11,9 @@
 //! **The rules, in order.**
 //! 1. *Floors of these widths.* A calibration unit of this datapath, family and shape whose row
 //!    names today's RTL digest (`Line::of_todays_rtl`) is a floor: a depth whose stretches are
-//!    no longer than such a unit's is assured that unit's median (`measured_floor`); between
-//!    two of them, the longer one's (`bracketed`).
+//!    no longer than such a unit's is assured that unit's figure (`measured_floor`: its median
+//!    over three seeds or more, else its slowest seed, `fit::row_figure`); between two of them,
+//!    the longer one's (`bracketed`).
 //! 2. *Between calibrated widths* (`Line::corner`): where calibrated shapes surround the
 //!    configuration's (one no wider in every width, one no narrower; alike in rounding, ROM
 //!    style, registers and whether a product is LUTs for its size: `Shape`), the depth is read at as

@@ -500,6 +500,44 @@ fn the_shipped_model_is_the_fit_of_the_shipped_calibration() {
     assert!(fitted == shipped, "data/delay_model.json is not the fit of data/delay_calibration.csv: run specgen calibrate --calibration data/delay_calibration.csv --out data/delay_model.json");
 }
 
+/// A row measured over fewer than three seeds stands for its slowest seed, never the mean of
+/// two: every floor the shipped model holds is at most its row's slowest seed where the row has
+/// fewer than three, and its median where it has more.
+#[test]
+fn a_floor_of_fewer_than_three_seeds_is_its_slowest_seed() {
+    use super::fit::{row_figure, MIN_SEEDS};
+    assert_eq!(row_figure(151.3, &[153.8, 148.8]), 148.8);
+    assert_eq!(row_figure(150.0, &[148.0, 150.0, 155.0]), 150.0);
+    assert_eq!(row_figure(90.0, &[90.0]), 90.0);
+    let csv = include_str!("../../data/delay_calibration.csv");
+    let model: serde_json::Value =
+        serde_json::from_str(include_str!("../../data/delay_model.json")).unwrap();
+    let mut floors = 0;
+    let mut short = 0;
+    for row in csv.lines().skip(1) {
+        let c: Vec<&str> = row.split(',').collect();
+        let (family, name, stages) = (c[0], c[1], c[2].parse::<u32>().unwrap());
+        let seeds: Vec<f64> = c[6].split_whitespace().map(|s| s.parse().unwrap()).collect();
+        let Some(line) = model[family][name].as_object() else {
+            continue;
+        };
+        let at = (0..line["measured"].as_array().unwrap().len()).find(|&i| {
+            line["measured_stages"][i] == stages && line["measured_args"][i] == c[7]
+        });
+        let Some(i) = at else { continue };
+        let floor = line["measured"][i][2].as_f64().unwrap();
+        let slowest = seeds.iter().copied().fold(f64::INFINITY, f64::min);
+        if seeds.len() < MIN_SEEDS {
+            short += 1;
+            assert!(floor <= slowest + 0.005, "{row}: floor {floor} above its slowest seed");
+        } else {
+            assert!((floor - c[5].parse::<f64>().unwrap()).abs() < 0.005, "{row}: floor {floor}");
+        }
+        floors += 1;
+    }
+    assert!(floors > 100 && short > 0, "{floors} floors read, {short} of fewer seeds");
+}
+
 /// The lines are read in each family's own primitive delays: on the iCE40 the stretches are the
 /// placement estimate's (its figures), on the ECP5 and the GW1NR-9 their own (a LUT level and a
 /// hard multiply weigh otherwise there), and the shipped model says how well each line fits.
