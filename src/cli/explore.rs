@@ -19,13 +19,8 @@ pub struct ExploreArgs {
     /// The family explored.
     #[arg(long, value_enum, default_value = "ice40")]
     pub target: TargetFlag,
-    /// Models in the space.
-    #[arg(
-        long,
-        value_enum,
-        value_delimiter = ',',
-        default_value = "quadratic,schlick,fitted,blinn,blinn-pow"
-    )]
+    /// Models in the space [default: every model]
+    #[arg(long, value_enum, value_delimiter = ',')]
     pub models: Vec<ModelFlag>,
     /// F values (cos_g's fractional bits) in the space [each 4..=20]
     #[arg(long, value_delimiter = ',', default_value = "8,10,12,15")]
@@ -195,6 +190,9 @@ pub fn run(a: &ExploreArgs) -> Result<(), Failure> {
         }
     }
     let mut a = a.clone();
+    if a.models.is_empty() {
+        a.models = <ModelFlag as clap::ValueEnum>::value_variants().to_vec();
+    }
     fn once<T: PartialEq + Clone>(v: &mut Vec<T>) {
         let mut seen: Vec<T> = Vec::new();
         v.retain(|x| {

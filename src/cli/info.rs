@@ -16,7 +16,7 @@ pub fn run(params: &ParamArgs, rtl: RtlArgs) -> Result<(), Failure> {
             serde_json::json!({
                 "name": t.name(),
                 "part": specgen::timing::part(t),
-                "target_mhz": specgen::family::of(t).calibration().is_some(),
+                "target_mhz": specgen::timing::calibrated(t),
                 "explored": specgen::family::of(t).explored().is_some(),
             })
         })

@@ -140,9 +140,6 @@ impl Family for Ecp5 {
     fn copies_table_address(&self) -> bool {
         true
     }
-    fn calibration(&self) -> Option<&'static str> {
-        Some("ecp5")
-    }
     fn synth_command(&self, dsp: bool, top: &str) -> String {
         format!("synth_ecp5 -top {top}{}", if dsp { "" } else { " -nodsp" })
     }

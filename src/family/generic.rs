@@ -20,9 +20,6 @@ impl Family for Generic {
     fn explore_clocks(&self) -> &'static [f64] {
         &[]
     }
-    fn calibration(&self) -> Option<&'static str> {
-        None
-    }
     fn synth_command(&self, _dsp: bool, top: &str) -> String {
         format!("synth -top {top}")
     }

@@ -149,9 +149,6 @@ impl Family for Gowin {
     /// out (every model but blinn-pow, narrow and default widths, each on seeds 1–5); no
     /// handshake unit measured here, so `--target-mhz` refuses the ready and axis interfaces on
     /// this part (the delay model's `handshake` entry names none)
-    fn calibration(&self) -> Option<&'static str> {
-        Some("gowin")
-    }
     /// yosys 0.23's `synth_gowin` infers no multiplier (it has no `-nodsp`); 0.70's maps a `*`
     /// to MULT blocks unless told not to
     fn synth_command(&self, dsp: bool, top: &str) -> String {

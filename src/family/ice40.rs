@@ -55,9 +55,6 @@ impl Family for Ice40 {
     fn explore_clocks(&self) -> &'static [f64] {
         &[50.0, 75.0, 100.0, 125.0]
     }
-    fn calibration(&self) -> Option<&'static str> {
-        Some("ice40")
-    }
     fn synth_command(&self, dsp: bool, top: &str) -> String {
         format!("synth_ice40 -top {top}{}", if dsp { " -dsp" } else { "" })
     }

@@ -145,9 +145,6 @@ pub trait Family: Sync {
     fn name(&self) -> &'static str;
     /// The part its figures are for (a family with none says so).
     fn part(&self) -> &'static str;
-    /// The family the delay model's calibration names (`data/delay_model.json`); None: no
-    /// delay model speaks for it, and `--target-mhz` is refused.
-    fn calibration(&self) -> Option<&'static str>;
     /// The clocks `explore` measures its fronts at, MHz (from a slow unit to the blocks'
     /// limits): a depth is chosen per clock and the front is drawn per clock. Empty: no
     /// place-and-route to measure a clock with.
@@ -372,10 +369,20 @@ mod tests {
     fn every_target_has_its_home() {
         for t in Target::ALL {
             assert_eq!(of(t).name(), t.name());
+            // a family copied from another brings none of its data: its exploration is its own
+            if let Some(json) = of(t).explored() {
+                let explored: serde_json::Value = serde_json::from_str(json).unwrap();
+                assert_eq!(
+                    explored["target"],
+                    t.name(),
+                    "{}'s built-in exploration",
+                    t.name()
+                );
+            }
         }
         assert!(
             of(Target::Generic).place_and_route(6).is_none()
-                && of(Target::Generic).calibration().is_none()
+                && !crate::timing::calibrated(Target::Generic)
         );
         assert!(of(Target::Ecp5)
             .place_and_route(6)

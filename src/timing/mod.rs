@@ -332,10 +332,21 @@ pub(crate) fn stretches(plan: &Plan) -> (f64, f64) {
     (plan.stage_delay_on(&w), plan.stage_delay_mean_on(&w))
 }
 
-/// The family the model speaks of for `target`; none for `generic`, whose RTL names no family:
-/// its clock is the device's it is mapped to, which no calibration here knows.
+/// The family the model speaks of for `target`: its name where `data/delay_model.json` holds
+/// its lines (the data says which families are calibrated, so a family is never read through
+/// another's); none for `generic`, whose RTL names no family: its clock is the device's it is
+/// mapped to, which no calibration here knows.
 fn family(target: Target) -> Option<&'static str> {
-    crate::family::of(target).calibration()
+    let name = target.name();
+    model_json()
+        .get(name)
+        .is_some_and(|v| v.is_object())
+        .then_some(name)
+}
+
+/// Whether the delay model speaks for `target` (`--target-mhz` is refused where it does not).
+pub fn calibrated(target: Target) -> bool {
+    family(target).is_some()
 }
 
 /// The part a family's figures are for (`generic`: none, said so).
@@ -351,12 +362,12 @@ pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
     let Some(family) = family(target) else {
         let calibrated: Vec<String> = Target::ALL
             .into_iter()
-            .filter(|t| crate::family::of(*t).calibration().is_some())
+            .filter(|t| calibrated(*t))
             .map(|t| format!("--target {}", t.name()))
             .collect();
         let why = match crate::family::of(target).place_and_route(6) {
             None => "its RTL names no family, so its clock is the one of the device it is mapped to, which specgen is not calibrated on".to_string(),
-            Some(_) => format!("specgen is not calibrated on the {} yet (scripts/calibrate_delay.sh measures it)", part(target)),
+            Some(_) => format!("specgen is not calibrated on the {} yet (`FAMILIES={} scripts/calibrate_delay.sh` measures it and fits the model)", part(target), target.name()),
         };
         return Err(Error::Config {
             parameter: "target_mhz",
@@ -376,8 +387,9 @@ pub fn line(target: Target, datapath: &str) -> Result<Line, Error> {
             return Err(Error::Config {
                 parameter: "target_mhz",
                 message: format!(
-                    "the {datapath} datapath has no delay calibration on the {}: run scripts/calibrate_delay.sh, then specgen calibrate, to measure it (or give --stages)",
-                    part(target)
+                    "the {datapath} datapath has no delay calibration on the {}: `FAMILIES={} scripts/calibrate_delay.sh` measures it and fits the model (or give --stages)",
+                    part(target),
+                    target.name()
                 ),
             })
         }

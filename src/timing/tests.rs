@@ -517,25 +517,36 @@ fn a_floor_of_fewer_than_three_seeds_is_its_slowest_seed() {
     for row in csv.lines().skip(1) {
         let c: Vec<&str> = row.split(',').collect();
         let (family, name, stages) = (c[0], c[1], c[2].parse::<u32>().unwrap());
-        let seeds: Vec<f64> = c[6].split_whitespace().map(|s| s.parse().unwrap()).collect();
+        let seeds: Vec<f64> = c[6]
+            .split_whitespace()
+            .map(|s| s.parse().unwrap())
+            .collect();
         let Some(line) = model[family][name].as_object() else {
             continue;
         };
-        let at = (0..line["measured"].as_array().unwrap().len()).find(|&i| {
-            line["measured_stages"][i] == stages && line["measured_args"][i] == c[7]
-        });
+        let at = (0..line["measured"].as_array().unwrap().len())
+            .find(|&i| line["measured_stages"][i] == stages && line["measured_args"][i] == c[7]);
         let Some(i) = at else { continue };
         let floor = line["measured"][i][2].as_f64().unwrap();
         let slowest = seeds.iter().copied().fold(f64::INFINITY, f64::min);
         if seeds.len() < MIN_SEEDS {
             short += 1;
-            assert!(floor <= slowest + 0.005, "{row}: floor {floor} above its slowest seed");
+            assert!(
+                floor <= slowest + 0.005,
+                "{row}: floor {floor} above its slowest seed"
+            );
         } else {
-            assert!((floor - c[5].parse::<f64>().unwrap()).abs() < 0.005, "{row}: floor {floor}");
+            assert!(
+                (floor - c[5].parse::<f64>().unwrap()).abs() < 0.005,
+                "{row}: floor {floor}"
+            );
         }
         floors += 1;
     }
-    assert!(floors > 100 && short > 0, "{floors} floors read, {short} of fewer seeds");
+    assert!(
+        floors > 100 && short > 0,
+        "{floors} floors read, {short} of fewer seeds"
+    );
 }
 
 /// The lines are read in each family's own primitive delays: on the iCE40 the stretches are the
