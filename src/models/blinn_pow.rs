@@ -41,6 +41,10 @@ impl BlinnPow {
 }
 
 impl SpecularUnit for BlinnPow {
+    /// It fits neither part at default widths, so no unit of it is calibrated.
+    fn reads_family_delay_line(&self) -> bool {
+        true
+    }
     fn premise_role(&self) -> Option<crate::models::PremiseRole> {
         Some(crate::models::PremiseRole::SquareAndMultiply)
     }

@@ -138,6 +138,15 @@ pub trait SpecularUnit: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// Whether `--target-mhz` reads the family's delay line for it where its datapath has no
+    /// calibration rows of its own (an extrapolation, said so): a datapath never calibrated
+    /// alone (the paper's literal one) or one that fits no part. False for a new model until
+    /// its units are measured: the fit then gives it no line and `--target-mhz` refuses it,
+    /// naming the calibration script (`timing::fit`).
+    fn reads_family_delay_line(&self) -> bool {
+        false
+    }
+
     /// A sentence `specgen eval` adds to its fidelity line at one input (a formula in real
     /// arithmetic the model approximates), when there is one.
     fn fidelity_note(&self, _x: Inputs) -> Option<String> {

@@ -310,14 +310,30 @@ pub(super) const MODEL_COLOURS: [RGBColor; 16] = [
     RGBColor(200, 0, 200),
 ];
 
-/// A model's colour in the comparison figure, fixed by its name (FNV-1a over its bytes): a
-/// model added to the registry never repaints another, as a colour by place in the registry
-/// did.
+/// A model's colour in the comparison figure, fixed by its name (FNV-1a over its bytes picks
+/// a palette slot), not by its place in the registry: a model added keeps every other's colour
+/// unless its name's slot is theirs. Where two names share a slot, the model earlier in the
+/// registry keeps it and the other takes the next free one, so no two models share a colour.
 pub(super) fn model_colour(name: &str) -> RGBColor {
-    let h = name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
-    });
-    MODEL_COLOURS[(h % MODEL_COLOURS.len() as u64) as usize]
+    let slot = |n: &str| {
+        let h = n.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+            (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+        });
+        (h % MODEL_COLOURS.len() as u64) as usize
+    };
+    let mut taken: Vec<usize> = Vec::new();
+    let names = crate::config::SpecularModel::ALL.map(|m| m.name());
+    for n in names.iter().copied().chain(std::iter::once(name)) {
+        let mut s = slot(n);
+        while taken.contains(&s) && taken.len() < MODEL_COLOURS.len() {
+            s = (s + 1) % MODEL_COLOURS.len();
+        }
+        if n == name {
+            return MODEL_COLOURS[s];
+        }
+        taken.push(s);
+    }
+    unreachable!("the name is the chain's last")
 }
 
 /// The per-n worst error of every model against cos^n (log scale).

@@ -523,17 +523,25 @@ pub fn fit_calibration(csv: &str, source: &str) -> Result<Value, Error> {
             );
             lines.insert(name.to_string(), Value::Object(line));
         }
-        // a datapath with too few rows for a line of its own (or none: the paper's, never
-        // calibrated alone; blinn-pow, which fits no part) takes the family's by name
+        // a datapath with too few rows for a line of its own, or none where its model says it
+        // reads the family's (`SpecularUnit::reads_family_delay_line`: the paper's, never
+        // calibrated alone; one that fits no part), takes the family's by name; any other
+        // datapath without rows gets no line, and `--target-mhz` refuses it
         let target = Target::ALL
             .into_iter()
             .find(|t| t.name() == family)
             .expect("a row's family");
-        for name in names
-            .iter()
-            .copied()
-            .chain(crate::config::datapaths(target).into_iter().map(|(n, _)| n))
-        {
+        let declared = crate::config::datapaths(target)
+            .into_iter()
+            .filter(|(_, params)| {
+                crate::models::Model::new(
+                    &crate::config::Config::new(params.clone()).expect("a datapath's defaults"),
+                )
+                .unit()
+                .reads_family_delay_line()
+            })
+            .map(|(n, _)| n);
+        for name in names.iter().copied().chain(declared) {
             lines
                 .entry(name.to_string())
                 .or_insert_with(|| json!("all"));

@@ -322,6 +322,39 @@ fn the_generic_target_is_promised_no_clock() {
     assert!(!part(Target::Generic).contains("iCE40"));
 }
 
+/// Which families and datapaths the delay model speaks for is the data's: a family is
+/// calibrated where the fitted model holds lines under its name (a family copied from another
+/// reads none of its lines), and a datapath without rows of its own gets the family's line only
+/// where its model says it reads it; any other is left out, so `--target-mhz` refuses it.
+#[test]
+fn the_data_says_what_the_delay_model_speaks_for() {
+    for t in Target::ALL {
+        assert_eq!(
+            calibrated(t),
+            model_json()[t.name()].is_object(),
+            "{}",
+            t.name()
+        );
+    }
+    assert!(!calibrated(Target::Generic) && calibrated(Target::Ice40));
+    // the shipped rows with one datapath's removed: it keeps no line unless its model reads
+    // the family's
+    let csv = include_str!("../../data/delay_calibration.csv");
+    let without: String = csv
+        .lines()
+        .filter(|l| !l.starts_with("ice40,schlick,"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let fitted = super::fit::fit_calibration(&without, "a test's rows").unwrap();
+    assert!(
+        fitted["ice40"].get("schlick").is_none(),
+        "{}",
+        fitted["ice40"]
+    );
+    assert_eq!(fitted["ice40"]["blinn-pow"], "all");
+    assert_eq!(fitted["ice40"]["paper"], "all");
+}
+
 /// Deeper targets never pick shallower pipelines, and each pick is the shallowest that the
 /// model assures (how long a pick takes: benchmarks/target.md, not a test's verdict).
 #[test]

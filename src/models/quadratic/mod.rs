@@ -195,6 +195,10 @@ fn formula15(k: f64, n: u32, c: f64) -> f64 {
 }
 
 impl SpecularUnit for Quadratic {
+    /// The paper's literal datapath is never calibrated alone (the lean one is).
+    fn reads_family_delay_line(&self) -> bool {
+        self.cfg.params.arch == crate::config::Arch::Paper
+    }
     fn premise_role(&self) -> Option<crate::models::PremiseRole> {
         Some(crate::models::PremiseRole::Paper)
     }
