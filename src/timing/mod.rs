@@ -668,6 +668,8 @@ pub fn explain_refusal(plan: &Plan, mhz: f64) -> Result<Vec<String>, Error> {
     Ok(lines)
 }
 
+#[cfg(test)]
+mod data_tests;
 mod shape;
 #[cfg(test)]
 mod tests;
