@@ -174,3 +174,56 @@ fn the_spec_holds_no_commit_and_no_measured_figure() {
     }
     assert!(found.is_empty(), "docs/SPEC.md:\n{}", found.join("\n"));
 }
+
+/// Every clock-sized figure the README and the GUIDE quote (a number of two or three digits
+/// and one decimal: MHz, logic cells' shares) stands in a file under `benchmarks/`, where a
+/// bench wrote it: a bench regenerated with other figures fails here until the prose follows,
+/// and a figure no bench writes (a measurement of an older unit, a log line) has no place in
+/// the prose.
+#[test]
+fn every_clock_the_readme_and_the_guide_quote_is_a_benchs() {
+    let mut bench = String::new();
+    let mut dirs = vec![root().join("benchmarks")];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "md" || x == "csv") {
+                bench.push_str(&std::fs::read_to_string(&p).unwrap());
+            }
+        }
+    }
+    let mut missing = Vec::new();
+    for doc in ["README.md", "docs/GUIDE.md"] {
+        let text = std::fs::read_to_string(root().join(doc)).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            let b = line.as_bytes();
+            let mut i = 0;
+            while i < b.len() {
+                // a run of digits and points, taken whole
+                if !b[i].is_ascii_digit() {
+                    i += 1;
+                    continue;
+                }
+                let start = i;
+                while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
+                    i += 1;
+                }
+                let run = line[start..i].trim_end_matches('.');
+                let preceded =
+                    start > 0 && (b[start - 1].is_ascii_alphabetic() || b[start - 1] == b'_');
+                let clock = run
+                    .split_once('.')
+                    .is_some_and(|(int, frac)| (2..=3).contains(&int.len()) && frac.len() == 1);
+                if clock && !preceded && !bench.contains(run) {
+                    missing.push(format!("{doc}:{}: {run}", n + 1));
+                }
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "figures no file under benchmarks/ holds: {missing:?}"
+    );
+}
