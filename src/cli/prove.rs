@@ -60,6 +60,8 @@ pub struct ProveArgs {
 pub fn run(args: &ProveArgs) -> Result<(), Failure> {
     let design = Design::load(&args.rtl)?;
     design.verify_files(args.edited)?;
+    // the tables the RTL reads are here and right, before any proof reads them
+    specgen::cosim::check_tables(&design)?;
     if let Some(t) = &args.trace {
         design.refuse_output("--trace", t)?;
     }

@@ -90,6 +90,9 @@ pub fn run(args: &SynthArgs) -> Result<(), Failure> {
     // must be the RTL's own, its parameters unedited, and (unless --edited) the files the ones
     // specgen wrote with it
     design.verify_files(args.edited)?;
+    // the tables the RTL reads are here and right, before any tool runs (a missing one was
+    // yosys's "Can not open file" after the elaboration)
+    specgen::cosim::check_tables(&design)?;
     for (flag, out) in [
         ("--json", &args.json),
         ("--pnr-log", &args.pnr_log),

@@ -360,6 +360,8 @@ impl Design {
             ))
         })?;
         let mut manifests = Vec::new();
+        // JSON files that could not be read as JSON, with why (named where no manifest is found)
+        let mut unread: Vec<String> = Vec::new();
         let mut sources = Vec::new();
         let mut sim_models = Vec::new();
         // the simulation models live in `sim/` (an output of an older specgen has them beside)
@@ -388,10 +390,20 @@ impl Design {
                 Some("v") => sources.push(path),
                 Some("json") => {
                     // a regular file of at most MANIFEST_MAX_BYTES (never a FIFO or a device)
-                    let Ok(text) = crate::small_file::read(&path, MANIFEST_MAX_BYTES) else {
-                        continue;
+                    let text = match crate::small_file::read(&path, MANIFEST_MAX_BYTES) {
+                        Ok(t) => t,
+                        Err(e) => {
+                            unread.push(format!("{} {e}", path.display()));
+                            continue;
+                        }
                     };
-                    let v: serde_json::Value = serde_json::from_str(&text).unwrap_or_default();
+                    let v: serde_json::Value = match serde_json::from_str(&text) {
+                        Ok(v) => v,
+                        Err(e) => {
+                            unread.push(format!("{} is not JSON ({e})", path.display()));
+                            continue;
+                        }
+                    };
                     if v.get("generator").and_then(|g| g.as_str()) == Some("specgen") {
                         manifests.push((path, text));
                     }
@@ -404,10 +416,16 @@ impl Design {
         let (path, text) = match manifests.len() {
             1 => manifests.pop().unwrap(),
             0 => {
+                // at most three named, the rest counted
+                let why = match unread.len() {
+                    0 => String::new(),
+                    n if n > 3 => format!(": {}; and {} more", unread[..3].join("; "), n - 3),
+                    _ => format!(": {}", unread.join("; ")),
+                };
                 return Err(input(format!(
-                    "no specgen manifest (<top>.json) in the RTL directory {}",
+                    "no specgen manifest (<top>.json) in the RTL directory {}{why}",
                     dir.display()
-                )))
+                )));
             }
             _ => {
                 return Err(input(format!(

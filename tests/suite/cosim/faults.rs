@@ -182,6 +182,34 @@ fn a_wrong_or_missing_table_entry_fails_cosim_at_default_settings() {
         "{}",
         text(&o)
     );
+    // every command that hands the RTL to a tool says so before the tool runs (synth's yosys
+    // said "Can not open file … for $readmemh" after the elaboration)
+    let dir = generate(tmp.path(), "c", &["--model", "blinn"]);
+    std::fs::remove_file(dir.join("specular_unit_log2_rom.hex")).unwrap();
+    let rtl = dir.to_str().unwrap();
+    for args in [
+        &["synth", "--rtl", rtl, "--no-pnr"][..],
+        &["prove", "--rtl", rtl, "--depth", "1"][..],
+    ] {
+        let o = specgen().args(args).output().unwrap();
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", text(&o));
+        assert!(
+            text(&o).contains("table file")
+                && text(&o).contains("specular_unit_log2_rom.hex is missing")
+                && !text(&o).contains("yosys"),
+            "{args:?}: {}",
+            text(&o)
+        );
+    }
+    // a manifest that is not JSON is named with why, not taken for no manifest at all
+    std::fs::write(dir.join("specular_unit.json"), "{").unwrap();
+    let o = cosim(&dir, &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("specular_unit.json is not JSON"),
+        "{}",
+        text(&o)
+    );
 }
 
 /// The generated unit itself refuses to run without its tables: from a working directory
