@@ -145,10 +145,6 @@ impl Family for Gowin {
     fn explore_clocks(&self) -> &'static [f64] {
         &[50.0, 100.0, 150.0, 200.0]
     }
-    /// fitted to the units `FAMILIES=gowin DEPTHS=5 SEEDS=5 scripts/calibrate_delay.sh` lays
-    /// out (every model but blinn-pow, narrow and default widths, each on seeds 1–5); no
-    /// handshake unit measured here, so `--target-mhz` refuses the ready and axis interfaces on
-    /// this part (the delay model's `handshake` entry names none)
     /// yosys 0.23's `synth_gowin` infers no multiplier (it has no `-nodsp`); 0.70's maps a `*`
     /// to MULT blocks unless told not to
     fn synth_command(&self, dsp: bool, top: &str) -> String {
