@@ -107,16 +107,7 @@ fn exhaustive_within_budgets(take: impl Fn(usize, SpecularModel, usize) -> bool)
                 "--stages",
                 "4",
             ];
-            let narrow = [
-                "--cos-frac-bits",
-                "8",
-                "--n-bits",
-                "6",
-                "--color-bits",
-                "4",
-                "--intensity-frac-bits",
-                "8",
-            ];
+            let narrow = NARROW;
             runs.push(args.iter().chain(&narrow).map(|s| s.to_string()).collect());
         }
     }

@@ -4,6 +4,18 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+/// The narrow widths of the delay model's calibration grid, F/N/B/FI 8/6/4/8, as generate flags.
+pub const NARROW: [&str; 8] = [
+    "--cos-frac-bits",
+    "8",
+    "--n-bits",
+    "6",
+    "--color-bits",
+    "4",
+    "--intensity-frac-bits",
+    "8",
+];
+
 /// The cut points of `model`'s datapath at default parameters (its deepest `--stages`).
 pub fn default_cut_points(model: specgen::config::SpecularModel) -> u32 {
     let cfg = specgen::config::Config::new(specgen::config::Params {

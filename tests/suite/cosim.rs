@@ -274,16 +274,7 @@ fn yosys_netlist_of_a_unit_passes() {
     require_tool("yosys", "yosys");
     require_tool("iverilog", "iverilog");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = [
-        "--cos-frac-bits",
-        "8",
-        "--n-bits",
-        "6",
-        "--color-bits",
-        "4",
-        "--intensity-frac-bits",
-        "8",
-    ];
+    let narrow = NARROW;
     let dir = generate(
         tmp.path(),
         "rtl",

@@ -6,18 +6,6 @@
 
 use crate::common::*;
 
-/// The suite's narrow widths (the input space in a few thousand vectors).
-const NARROW: [&str; 8] = [
-    "--cos-frac-bits",
-    "8",
-    "--n-bits",
-    "6",
-    "--color-bits",
-    "4",
-    "--intensity-frac-bits",
-    "8",
-];
-
 /// `synth` of the unit in `dir` with `args`: (exit code, its words, its JSON).
 fn synth(dir: &std::path::Path, args: &[&str]) -> (Option<i32>, String, serde_json::Value) {
     let json = dir.with_extension("synth.json");

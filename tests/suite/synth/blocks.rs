@@ -11,16 +11,7 @@ use super::*;
 fn every_hard_multipliers_registers_are_checked_on_the_netlist() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = [
-        "--cos-frac-bits",
-        "8",
-        "--n-bits",
-        "6",
-        "--color-bits",
-        "4",
-        "--intensity-frac-bits",
-        "8",
-    ];
+    let narrow = NARROW;
     let schlick: Vec<&str> = narrow
         .iter()
         .copied()
@@ -119,16 +110,7 @@ fn synth_blocks(dir: &Path, json: &Path) -> (bool, Vec<String>, String) {
 fn a_block_without_its_promised_register_fails_synth_naming_it() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = [
-        "--cos-frac-bits",
-        "8",
-        "--n-bits",
-        "6",
-        "--color-bits",
-        "4",
-        "--intensity-frac-bits",
-        "8",
-    ];
+    let narrow = NARROW;
     let models = ["quadratic", "schlick", "blinn-pow"];
     for_each_parallel(&models, |_, model| {
         let args: Vec<&str> = narrow.iter().copied().chain(["--model", model]).collect();
@@ -203,16 +185,7 @@ fn a_block_without_its_promised_register_fails_synth_naming_it() {
 fn the_register_promise_matches_the_netlist_over_models_widths_and_families() {
     require_tool("yosys", "yosys");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = [
-        "--cos-frac-bits",
-        "8",
-        "--n-bits",
-        "6",
-        "--color-bits",
-        "4",
-        "--intensity-frac-bits",
-        "8",
-    ];
+    let narrow = NARROW;
     let wide = [
         "--cos-frac-bits",
         "18",

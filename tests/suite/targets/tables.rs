@@ -379,16 +379,7 @@ fn every_model_with_tables_writes_them_as_logic_on_the_ecp5() {
 fn fabric_registers_add_register_steps_and_keep_every_value() {
     require_tool("verilator", "verilator");
     let tmp = tempfile::tempdir().unwrap();
-    let narrow = [
-        "--cos-frac-bits",
-        "8",
-        "--n-bits",
-        "6",
-        "--color-bits",
-        "4",
-        "--intensity-frac-bits",
-        "8",
-    ];
+    let narrow = NARROW;
     let units = [
         ("schlick", "ice40"),
         ("blinn", "ice40"),
